@@ -1,0 +1,16 @@
+# Small helpers shared by every folder.
+
+# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l])
+# One GoogleTest executable registered with CTest through gtest_discover_tests.
+function(birotor_add_test)
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  gtest_discover_tests(${T_NAME}
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+    PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
