@@ -1,0 +1,55 @@
+// Vehicle parameter files: the reference file loads, bad values are refused.
+#include "params/vehicle_params_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+namespace birotor {
+namespace {
+
+std::string WriteTemp(const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/vehicle_params_test.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(VehicleParamsYaml, ReferenceFileGivesReferenceVehicle) {
+  const VehicleParams p = LoadVehicleParams("config/reference_vehicle.yaml");
+  const VehicleParams defaults;
+  EXPECT_DOUBLE_EQ(p.arm_stiffness_n_m_rad, defaults.arm_stiffness_n_m_rad);
+  EXPECT_DOUBLE_EQ(p.tip_mass_kg, defaults.tip_mass_kg);
+  EXPECT_DOUBLE_EQ(p.thrust_coeff_n_s2_rad2, defaults.thrust_coeff_n_s2_rad2);
+}
+
+TEST(VehicleParamsYaml, RoundTripsThroughText) {
+  VehicleParams p;
+  p.arm_stiffness_n_m_rad = 3100.0;
+  p.motor_time_constant_s = 0.045;
+  const VehicleParams q = LoadVehicleParams(WriteTemp(VehicleParamsYaml(p)));
+  EXPECT_DOUBLE_EQ(q.arm_stiffness_n_m_rad, 3100.0);
+  EXPECT_DOUBLE_EQ(q.motor_time_constant_s, 0.045);
+}
+
+TEST(VehicleParamsYaml, NegativeMassIsRefusedWithKeyAndRange) {
+  const std::string path = WriteTemp("vehicle:\n  body_mass_kg: -4.0\n");
+  try {
+    LoadVehicleParams(path);
+    FAIL() << "accepted a negative mass";
+  } catch (const ParamError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find("vehicle.body_mass_kg"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("allowed: [0.001, 1000]"), std::string::npos) << msg;
+  }
+}
+
+TEST(VehicleParamsYaml, ZeroStiffnessWrongTypeAndMissingSectionAreRefused) {
+  EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  arm_stiffness_n_m_rad: 0\n")), ParamError);
+  EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  arm_length_m: long\n")), ParamError);
+  EXPECT_THROW(LoadVehicleParams(WriteTemp("other: 1\n")), ParamError);
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,29 @@
+// Tests of transport/channels.h.
+#include "transport/channels.h"
+
+#include <gtest/gtest.h>
+
+namespace birotor {
+namespace {
+
+TEST(ChannelsTest, DefaultPrefix) {
+  const ChannelNames names = MakeChannelNames();
+  EXPECT_EQ(names.prefix, "BIROTOR_");
+  EXPECT_EQ(names.strain, "BIROTOR_STRAIN");
+  EXPECT_EQ(names.motor, "BIROTOR_MOTOR");
+  EXPECT_EQ(names.imu, "BIROTOR_IMU");
+  EXPECT_EQ(names.pose, "BIROTOR_POSE");
+  EXPECT_EQ(names.loadcell, "BIROTOR_LOADCELL");
+  EXPECT_EQ(names.truth, "BIROTOR_TRUTH");
+  EXPECT_EQ(names.force, "BIROTOR_FORCE");
+  EXPECT_EQ(names.estimator_status, "BIROTOR_ESTIMATOR_STATUS");
+  EXPECT_EQ(names.sim_status, "BIROTOR_SIM_STATUS");
+}
+
+TEST(ChannelsTest, CustomAndEmptyPrefix) {
+  EXPECT_EQ(MakeChannelNames("VEHICLE2_").force, "VEHICLE2_FORCE");
+  EXPECT_EQ(MakeChannelNames("").strain, "STRAIN");
+}
+
+}  // namespace
+}  // namespace birotor

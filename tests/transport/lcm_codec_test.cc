@@ -1,0 +1,177 @@
+// Tests of transport/lcm_codec.h: round trips of every type, and rejection of
+// garbage, foreign fingerprints, truncated packets, trailing bytes and
+// corrupt length fields without a crash or an exception.
+#include "transport/lcm_codec.h"
+
+#include <gtest/gtest.h>
+
+#include <climits>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "tests/transport/test_messages.h"
+
+namespace birotor {
+namespace {
+
+using transport_test::MakeTestMessage;
+
+template <class Msg>
+std::vector<uint8_t> Encode(const Msg& msg) {
+  std::vector<uint8_t> bytes;
+  EncodeMessage(msg, &bytes);
+  return bytes;
+}
+
+template <class Msg>
+class CodecTest : public ::testing::Test {};
+
+using AllMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t,
+                                     force_estimate_t, input_health_t, estimator_status_t>;
+TYPED_TEST_SUITE(CodecTest, AllMessages);
+
+TYPED_TEST(CodecTest, RoundTripReproducesTheBytes) {
+  const TypeParam original = MakeTestMessage<TypeParam>();
+  const std::vector<uint8_t> bytes = Encode(original);
+  ASSERT_EQ(static_cast<int>(bytes.size()), original.getEncodedSize());
+
+  TypeParam decoded{};
+  ASSERT_EQ(DecodeMessage(bytes.data(), bytes.size(), &decoded), DecodeError::kNone);
+  // Byte equality of the re-encoding compares every field, NaN included.
+  EXPECT_EQ(Encode(decoded), bytes);
+}
+
+TYPED_TEST(CodecTest, EveryPrefixIsTruncated) {
+  const std::vector<uint8_t> bytes = Encode(MakeTestMessage<TypeParam>());
+  for (size_t size = 0; size < bytes.size(); ++size) {
+    TypeParam decoded{};
+    EXPECT_EQ(DecodeMessage(bytes.data(), size, &decoded), DecodeError::kTruncated)
+        << "prefix of " << size << " of " << bytes.size() << " bytes";
+  }
+}
+
+TYPED_TEST(CodecTest, TrailingBytesAreMalformed) {
+  std::vector<uint8_t> bytes = Encode(MakeTestMessage<TypeParam>());
+  bytes.push_back(0);
+  TypeParam decoded{};
+  EXPECT_EQ(DecodeMessage(bytes.data(), bytes.size(), &decoded), DecodeError::kMalformed);
+}
+
+TYPED_TEST(CodecTest, RandomBytesAreRejected) {
+  std::mt19937 random(1);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (size_t size = 0; size < 400; ++size) {
+    std::vector<uint8_t> bytes(size);
+    for (uint8_t& b : bytes) b = static_cast<uint8_t>(byte(random));
+    TypeParam decoded{};
+    EXPECT_NE(DecodeMessage(bytes.data(), bytes.size(), &decoded), DecodeError::kNone);
+  }
+}
+
+TYPED_TEST(CodecTest, RandomPayloadBehindAValidFingerprintNeverCrashes) {
+  const std::vector<uint8_t> valid = Encode(MakeTestMessage<TypeParam>());
+  std::mt19937 random(2);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<uint8_t> bytes(valid.begin(), valid.begin() + 8);
+    bytes.resize(8 + static_cast<size_t>(trial % 300));
+    for (size_t i = 8; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(byte(random));
+    TypeParam decoded{};
+    if (DecodeMessage(bytes.data(), bytes.size(), &decoded) == DecodeError::kNone) {
+      EXPECT_EQ(Encode(decoded), bytes);  // accepted only if it is exactly one message
+    }
+  }
+}
+
+TEST(CodecTest, OtherTypeHasBadFingerprint) {
+  const std::vector<uint8_t> motor_bytes = Encode(MakeTestMessage<motor_t>());
+  strain_t strain{};
+  EXPECT_EQ(DecodeMessage(motor_bytes.data(), motor_bytes.size(), &strain),
+            DecodeError::kBadFingerprint);
+
+  const std::vector<uint8_t> strain_bytes = Encode(MakeTestMessage<strain_t>());
+  loadcell_t loadcell{};  // same layout as strain_t, different type name
+  EXPECT_EQ(DecodeMessage(strain_bytes.data(), strain_bytes.size(), &loadcell),
+            DecodeError::kBadFingerprint);
+}
+
+TEST(CodecTest, NullDataIsTruncated) {
+  strain_t strain{};
+  EXPECT_EQ(DecodeMessage(nullptr, 0, &strain), DecodeError::kTruncated);
+}
+
+// Offsets into an encoded estimator_status_t, from lcmtypes/estimator_status_t.lcm.
+constexpr size_t kMethodLengthOffset = 8 + 8 + 8 + 4;
+
+void WriteInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
+  const auto raw = static_cast<uint32_t>(value);
+  for (int i = 0; i < 4; ++i) (*bytes)[offset + i] = static_cast<uint8_t>(raw >> (24 - 8 * i));
+}
+
+DecodeError DecodeStatus(const std::vector<uint8_t>& bytes) {
+  estimator_status_t status{};
+  return DecodeMessage(bytes.data(), bytes.size(), &status);
+}
+
+TEST(CodecTest, CorruptStringLengthIsRejected) {
+  const std::vector<uint8_t> valid = Encode(MakeTestMessage<estimator_status_t>());
+  for (int32_t length : {0, -1, -100, INT_MIN, INT_MAX, 100000}) {
+    std::vector<uint8_t> bytes = valid;
+    WriteInt32(&bytes, kMethodLengthOffset, length);
+    EXPECT_NE(DecodeStatus(bytes), DecodeError::kNone) << "length " << length;
+  }
+  std::vector<uint8_t> no_terminator = valid;
+  no_terminator[kMethodLengthOffset + 4 + 3] = 'x';  // "ekf\0" -> "ekfx"
+  EXPECT_EQ(DecodeStatus(no_terminator), DecodeError::kMalformed);
+}
+
+TEST(CodecTest, CorruptArrayCountIsRejected) {
+  const estimator_status_t message = MakeTestMessage<estimator_status_t>();
+  const std::vector<uint8_t> valid = Encode(message);
+  const size_t num_inputs_offset = kMethodLengthOffset + 4 + message.method.size() + 1 + 4;
+  for (int32_t count : {-1, INT_MIN, INT_MAX, 5, 1000000}) {
+    std::vector<uint8_t> bytes = valid;
+    WriteInt32(&bytes, num_inputs_offset, count);
+    EXPECT_NE(DecodeStatus(bytes), DecodeError::kNone) << "count " << count;
+  }
+  std::vector<uint8_t> negative = valid;
+  WriteInt32(&negative, num_inputs_offset, -1);
+  EXPECT_EQ(DecodeStatus(negative), DecodeError::kMalformed);
+}
+
+TEST(CodecTest, EmptyArrayDecodes) {
+  estimator_status_t message = MakeTestMessage<estimator_status_t>();
+  message.inputs.clear();
+  message.num_inputs = 0;
+  message.method = "";
+  const std::vector<uint8_t> bytes = Encode(message);
+  estimator_status_t decoded{};
+  ASSERT_EQ(DecodeMessage(bytes.data(), bytes.size(), &decoded), DecodeError::kNone);
+  EXPECT_EQ(decoded.num_inputs, 0);
+  EXPECT_EQ(decoded.method, "");
+  EXPECT_EQ(decoded.last_reset_reason, "start");
+}
+
+TEST(CodecTest, EncodeReusesTheBuffer) {
+  std::vector<uint8_t> buffer;
+  EncodeMessage(MakeTestMessage<estimator_status_t>(), &buffer);
+  const uint8_t* storage = buffer.data();
+  const size_t capacity = buffer.capacity();
+
+  EncodeMessage(MakeTestMessage<strain_t>(), &buffer);
+  EXPECT_EQ(static_cast<int>(buffer.size()), MakeTestMessage<strain_t>().getEncodedSize());
+  EncodeMessage(MakeTestMessage<estimator_status_t>(), &buffer);
+  EXPECT_EQ(buffer.data(), storage);
+  EXPECT_EQ(buffer.capacity(), capacity);
+}
+
+TEST(CodecTest, ErrorNames) {
+  EXPECT_STREQ(DecodeErrorName(DecodeError::kNone), "none");
+  EXPECT_STREQ(DecodeErrorName(DecodeError::kTruncated), "truncated");
+  EXPECT_STREQ(DecodeErrorName(DecodeError::kBadFingerprint), "bad_fingerprint");
+  EXPECT_STREQ(DecodeErrorName(DecodeError::kMalformed), "malformed");
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,38 @@
+// LCM channel names: <prefix><base name>, default prefix "BIROTOR_", so several
+// vehicles can share one LCM network (see shared/spec/interface.md).
+#pragma once
+
+#include <string>
+
+namespace birotor {
+
+inline constexpr char kDefaultChannelPrefix[] = "BIROTOR_";
+
+// Base names, without the prefix.
+inline constexpr char kStrainChannel[] = "STRAIN";
+inline constexpr char kMotorChannel[] = "MOTOR";
+inline constexpr char kImuChannel[] = "IMU";
+inline constexpr char kPoseChannel[] = "POSE";
+inline constexpr char kLoadCellChannel[] = "LOADCELL";
+inline constexpr char kTruthChannel[] = "TRUTH";
+inline constexpr char kForceChannel[] = "FORCE";
+inline constexpr char kEstimatorStatusChannel[] = "ESTIMATOR_STATUS";
+inline constexpr char kSimStatusChannel[] = "SIM_STATUS";
+
+// Full channel names for one prefix.
+struct ChannelNames {
+  std::string prefix;
+  std::string strain;            // strain_t
+  std::string motor;             // motor_t
+  std::string imu;               // imu_t
+  std::string pose;              // pose_t
+  std::string loadcell;          // loadcell_t
+  std::string truth;             // truth_t
+  std::string force;             // force_estimate_t
+  std::string estimator_status;  // estimator_status_t
+  std::string sim_status;        // simulator health, owned by simulator/
+};
+
+ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);
+
+}  // namespace birotor

@@ -1,0 +1,106 @@
+// Non-template parts of the checked LCM codec.
+#include "transport/lcm_codec.h"
+
+namespace birotor {
+
+const char* DecodeErrorName(DecodeError error) {
+  switch (error) {
+    case DecodeError::kNone: return "none";
+    case DecodeError::kTruncated: return "truncated";
+    case DecodeError::kBadFingerprint: return "bad_fingerprint";
+    case DecodeError::kMalformed: return "malformed";
+  }
+  return "unknown";
+}
+
+namespace internal {
+
+uint64_t ReadFingerprint(const void* data) {
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  uint64_t value = 0;
+  for (int i = 0; i < 8; ++i) value = (value << 8) | bytes[i];
+  return value;
+}
+
+namespace {
+
+// Reads the big-endian wire layout of lcm_coretypes.h, never past the end.
+class WireCursor {
+ public:
+  WireCursor(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+
+  bool Skip(size_t bytes) {
+    if (bytes > size_ - pos_) return Fail(DecodeError::kTruncated);
+    pos_ += bytes;
+    return true;
+  }
+
+  bool ReadInt32(int32_t* value) {
+    if (4 > size_ - pos_) return Fail(DecodeError::kTruncated);
+    uint32_t raw = 0;
+    for (int i = 0; i < 4; ++i) raw = (raw << 8) | data_[pos_ + i];
+    *value = static_cast<int32_t>(raw);
+    pos_ += 4;
+    return true;
+  }
+
+  // LCM string: int32 length including the terminating NUL, then the bytes.
+  bool SkipString() {
+    int32_t length = 0;
+    if (!ReadInt32(&length)) return false;
+    if (length < 1) return Fail(DecodeError::kMalformed);
+    if (!Skip(static_cast<size_t>(length))) return false;
+    // The generated decoder drops the last byte unchecked; it must be the NUL.
+    if (data_[pos_ - 1] != '\0') return Fail(DecodeError::kMalformed);
+    return true;
+  }
+
+  bool Fail(DecodeError error) {
+    error_ = error;
+    return false;
+  }
+
+  DecodeError error() const { return error_; }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+  size_t pos_ = 0;
+  DecodeError error_ = DecodeError::kNone;
+};
+
+// Field layout of lcmtypes/input_health_t.lcm.
+bool SkipInputHealth(WireCursor* cursor) {
+  constexpr size_t kInt64Counters = 9;  // received .. dropped_overload
+  constexpr size_t kDoubles = 2;        // age_s, rate_hz
+  return cursor->SkipString() && cursor->Skip(8 * kInt64Counters + 8 * kDoubles);
+}
+
+}  // namespace
+
+// Field layout of lcmtypes/estimator_status_t.lcm.
+template <>
+DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t size) {
+  WireCursor cursor(data, size);
+  int32_t num_inputs = 0;
+  const bool ok = cursor.Skip(8)               // fingerprint
+                  && cursor.Skip(8 + 8 + 4)    // utime, wall_utime, seq
+                  && cursor.SkipString()       // method
+                  && cursor.Skip(4)            // status
+                  && cursor.ReadInt32(&num_inputs) &&
+                  (num_inputs >= 0 || cursor.Fail(DecodeError::kMalformed));
+  if (!ok) return cursor.error();
+  // Each element consumes bytes, so a huge count fails on the data, not on memory.
+  for (int32_t i = 0; i < num_inputs; ++i) {
+    if (!SkipInputHealth(&cursor)) return cursor.error();
+  }
+  const bool tail_ok = cursor.Skip(6 * 8)      // nis mean/max/gate, processing times
+                       && cursor.Skip(8)       // resets
+                       && cursor.SkipString()  // last_reset_reason
+                       && cursor.Skip(8)       // published
+                       && cursor.Skip(2 * 8 + 2 * 8);  // force_n, thrust_scale
+  return tail_ok ? DecodeError::kNone : cursor.error();
+}
+
+}  // namespace internal
+}  // namespace birotor

@@ -1,0 +1,87 @@
+// Checked decoding and allocation-free encoding of LCM messages. Every packet
+// that arrives from the network or a log goes through DecodeMessage, which
+// reports why a packet is rejected instead of crashing or throwing.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "birotor/estimator_status_t.hpp"
+
+namespace birotor {
+
+enum class DecodeError {
+  kNone,            // decoded; the packet is exactly one message
+  kTruncated,       // fewer bytes than the message (or its length fields) need
+  kBadFingerprint,  // the 8-byte type hash is not the expected type's
+  kMalformed,       // impossible length field, or trailing bytes after the message
+};
+
+// Stable lower-case name for counters and log lines ("truncated", ...).
+const char* DecodeErrorName(DecodeError error);
+
+namespace internal {
+
+// Fingerprint as it appears on the wire: the first 8 bytes, big-endian.
+uint64_t ReadFingerprint(const void* data);
+
+// Walks the length fields (strings, variable-length arrays) of a packet before
+// the generated decoder trusts them: a corrupt length would otherwise make it
+// resize a vector by ~2^31 elements or copy 2 GB past the buffer. Types with
+// only fixed-size fields need no check; a new type with a string or a
+// variable-length array needs a specialisation here (the round-trip tests of
+// every type catch a walker that disagrees with the .lcm file).
+template <class Msg>
+DecodeError CheckLengthFields(const uint8_t* /*data*/, size_t /*size*/) {
+  return DecodeError::kNone;
+}
+template <>
+DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t size);
+
+}  // namespace internal
+
+// Decodes one packet of type Msg. Rejects a packet that is shorter than the
+// fingerprint, carries another type's fingerprint, ends early, has a corrupt
+// length field or carries bytes after the message. Never throws. On error
+// *out may be partly overwritten.
+template <class Msg>
+DecodeError DecodeMessage(const void* data, size_t size, Msg* out) {
+  constexpr size_t kFingerprintBytes = 8;
+  if (data == nullptr || size < kFingerprintBytes) return DecodeError::kTruncated;
+  if (size > static_cast<size_t>(std::numeric_limits<int>::max())) {
+    return DecodeError::kMalformed;  // the generated decoder takes an int length
+  }
+  if (internal::ReadFingerprint(data) != static_cast<uint64_t>(Msg::getHash())) {
+    return DecodeError::kBadFingerprint;
+  }
+  const DecodeError length_check =
+      internal::CheckLengthFields<Msg>(static_cast<const uint8_t*>(data), size);
+  if (length_check != DecodeError::kNone) return length_check;
+  try {
+    const int consumed = out->decode(data, 0, static_cast<int>(size));
+    // The generated primitives fail only when they run out of bytes.
+    if (consumed < 0) return DecodeError::kTruncated;
+    if (static_cast<size_t>(consumed) != size) return DecodeError::kMalformed;
+  } catch (...) {  // std::length_error / std::bad_alloc from a string or vector
+    return DecodeError::kMalformed;
+  }
+  return DecodeError::kNone;
+}
+
+// Encodes msg into *buffer, which ends up exactly the encoded size. The buffer
+// keeps its capacity, so reusing it allocates only when a message grows.
+// Leaves the buffer empty if the message cannot be encoded.
+template <class Msg>
+void EncodeMessage(const Msg& msg, std::vector<uint8_t>* buffer) {
+  const int size = msg.getEncodedSize();
+  if (size <= 0) {
+    buffer->clear();
+    return;
+  }
+  buffer->resize(static_cast<size_t>(size));
+  if (msg.encode(buffer->data(), 0, size) != size) buffer->clear();
+}
+
+}  // namespace birotor

@@ -1,0 +1,51 @@
+// Shared CLI11 options and parsing.
+#include "transport/program_options.h"
+
+#include <iostream>
+
+namespace birotor {
+namespace {
+
+// "tools/replay" -> "replay", for messages about the program.
+std::string ProgramName(const CLI::App& app) {
+  const std::string& name = app.get_name();
+  const size_t slash = name.find_last_of('/');
+  return slash == std::string::npos ? name : name.substr(slash + 1);
+}
+
+}  // namespace
+
+void AddCommonOptions(CLI::App& app, CommonOptions* options) {
+  app.option_defaults()->always_capture_default();
+  app.add_option("--lcm-url", options->lcm_url, "LCM URL (memq:// for tests, file:// for logs)");
+  app.add_option("--prefix", options->prefix, "Channel name prefix");
+  app.add_option("--log-level", options->log_level, "Log level")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  app.set_version_flag("--version", [&app] {
+    return ProgramName(app) + " " + BIROTOR_VERSION;
+  });
+}
+
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv) {
+  return ParseCommandLine(app, argc, argv, std::cout, std::cerr);
+}
+
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv,
+                                    std::ostream& out, std::ostream& err) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+      return app.exit(e, out, err);  // --help, --help-all, --version
+    }
+    std::string message = e.what();
+    for (char& c : message) {
+      if (c == '\n') c = ' ';  // one line, whatever CLI11 formats
+    }
+    err << ProgramName(app) << ": error: " << message << " (see --help)" << std::endl;
+    return 2;
+  }
+  return std::nullopt;
+}
+
+}  // namespace birotor
