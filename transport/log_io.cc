@@ -13,8 +13,30 @@ namespace birotor {
 namespace {
 
 constexpr size_t kMaxChannelBytes = 63;  // LCM_MAX_CHANNEL_NAME_LENGTH
-// Event header: sync word, event number, timestamp, channel and data lengths.
+// Every event starts with this word (big-endian), then the event number,
+// timestamp, channel length and data length.
+constexpr uint32_t kSyncWord = 0xEDA1DA01;
 constexpr int64_t kEventHeaderBytes = 4 + 8 + 8 + 4 + 4;
+
+// Offset of the first sync word at or after the current position, which is
+// where LCM's reader will take the next event from; -1 if there is none.
+// Leaves the position unchanged.
+int64_t FindSyncWord(FILE* file) {
+  const off_t start = ftello(file);
+  uint32_t window = 0;
+  int64_t offset = static_cast<int64_t>(start);
+  int64_t found = -1;
+  for (int c; (c = std::fgetc(file)) != EOF; ++offset) {
+    window = (window << 8) | static_cast<uint32_t>(c);
+    if (offset - start >= 3 && window == kSyncWord) {
+      found = offset - 3;
+      break;
+    }
+  }
+  std::clearerr(file);
+  fseeko(file, start, SEEK_SET);
+  return found;
+}
 
 int64_t CurrentFileSize(FILE* file) {
   struct stat info;
@@ -89,9 +111,14 @@ bool LogReader::Open(const std::string& path, std::string* error) {
 
 bool LogReader::Next(LogEvent* event) {
   if (log_ == nullptr || finished_) return false;
-  const int64_t start = static_cast<int64_t>(ftello(log_->f));
+  // LCM's reader does not say where an event ends (after an event it peeks
+  // at the next sync word, and leaves a partial one consumed), so find the
+  // start here and add the event's length.
+  const int64_t position = static_cast<int64_t>(ftello(log_->f));
+  const int64_t event_start = FindSyncWord(log_->f);
   lcm_eventlog_event_t* raw = lcm_eventlog_read_next_event(log_);
-  if (raw == nullptr) {
+  if (raw == nullptr || event_start < 0) {
+    if (raw != nullptr) lcm_eventlog_free_event(raw);
     // A live log may have grown since Open: compare with the size now.
     finished_ = true;
     file_size_ = CurrentFileSize(log_->f);
@@ -106,9 +133,8 @@ bool LogReader::Next(LogEvent* event) {
   const int64_t length = kEventHeaderBytes + raw->channellen + raw->datalen;
   lcm_eventlog_free_event(raw);
 
-  // The reader leaves the file at the end of the event it returned.
-  tail_offset_ = static_cast<int64_t>(ftello(log_->f));
-  skipped_bytes_ += tail_offset_ - start - length;
+  tail_offset_ = event_start + length;
+  skipped_bytes_ += event_start - position;
   return true;
 }
 

@@ -1,0 +1,97 @@
+// ESTIMATOR_STATUS message building and processing-time statistics.
+#include "services/status_message.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace birotor {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMicrosecondsPerSecond = 1e6;
+}  // namespace
+
+void ProcessingTimeStats::Add(double time_us) {
+  ring_[next_] = time_us;
+  next_ = (next_ + 1) % kCapacity;
+  ++count_;
+  sum_us_ += time_us;
+  max_us_ = std::max(max_us_, time_us);
+}
+
+double ProcessingTimeStats::MeanUs() const {
+  return count_ > 0 ? sum_us_ / static_cast<double>(count_) : kNaN;
+}
+
+double ProcessingTimeStats::MaxUs() const { return count_ > 0 ? max_us_ : kNaN; }
+
+double ProcessingTimeStats::P99Us() {
+  if (count_ == 0) return kNaN;
+  const int n = static_cast<int>(std::min<int64_t>(count_, kCapacity));
+  // The newest n samples end just before next_.
+  for (int i = 0; i < n; ++i) {
+    scratch_[i] = ring_[(next_ - n + i + kCapacity) % kCapacity];
+  }
+  const int rank = std::min(n - 1, static_cast<int>(std::ceil(0.99 * n)) - 1);
+  std::nth_element(scratch_.begin(), scratch_.begin() + rank, scratch_.begin() + n);
+  return scratch_[rank];
+}
+
+void ProcessingTimeStats::TakePeriod() {
+  count_ = 0;
+  sum_us_ = 0;
+  max_us_ = 0;
+}
+
+double StrainGateOf(const EstimatorConfig& config) {
+  return config.method == "ekf" ? config.ekf.gate_nis_threshold : kNaN;
+}
+
+void BuildStatusMessage(const PipelineHealth& health, const char* method,
+                        const StatusContext& context, estimator_status_t* message) {
+  message->utime = health.newest_utime;
+  message->wall_utime = context.wall_utime;
+  message->seq = context.seq;
+  message->method = method;
+  message->status = health.last_status;
+  message->num_inputs = kNumInputChannels;
+  message->inputs.resize(kNumInputChannels);
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    const InputCounters& in = health.inputs[i];
+    input_health_t& out = message->inputs[i];
+    out.channel = InputChannelName(static_cast<InputChannel>(i));
+    out.received = in.received;
+    out.fused = in.fused;
+    out.rejected_gate = in.rejected_gate;
+    out.rejected_invalid = in.rejected_invalid;
+    out.decode_errors = in.decode_errors;
+    out.out_of_order = in.out_of_order;
+    out.duplicates = in.duplicates;
+    out.gaps = in.gaps;
+    out.missing_samples = in.missing_samples;
+    out.dropped_overload = in.dropped_overload;
+    out.age_s = (in.last_utime >= 0 && health.newest_utime >= 0)
+                    ? static_cast<double>(health.newest_utime - in.last_utime) /
+                          kMicrosecondsPerSecond
+                    : kNaN;
+    out.rate_hz = context.period_s > 0
+                      ? static_cast<double>(in.accepted_in_period) / context.period_s
+                      : kNaN;
+  }
+  message->strain_nis_mean =
+      health.nis_count > 0 ? health.nis_sum / static_cast<double>(health.nis_count) : kNaN;
+  message->strain_nis_max = health.nis_count > 0 ? health.nis_max : kNaN;
+  message->strain_gate = context.strain_gate;
+  message->processing_time_mean_us = context.processing_time_mean_us;
+  message->processing_time_p99_us = context.processing_time_p99_us;
+  message->processing_time_max_us = context.processing_time_max_us;
+  message->resets = health.resets;
+  message->last_reset_reason = health.last_reset_reason;
+  message->published = health.published;
+  for (int rotor = 0; rotor < 2; ++rotor) {
+    message->force_n[rotor] = health.last_estimate.force_n[rotor];
+    message->thrust_scale[rotor] = health.last_estimate.thrust_scale[rotor];
+  }
+}
+
+}  // namespace birotor

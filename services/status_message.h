@@ -1,0 +1,62 @@
+// Building the ESTIMATOR_STATUS health message (lcmtypes/estimator_status_t.lcm)
+// from the pipeline's counters, and the fixed-size statistics of per-sample
+// processing time that go into it. Shared by the daemon and birotor-replay.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "birotor/estimator_status_t.hpp"
+#include "estimator/estimator_pipeline.h"
+
+namespace birotor {
+
+// Mean, 99th percentile and maximum of per-sample processing times [us] over
+// one reporting period. Add() is allocation-free (fixed ring of the most
+// recent kCapacity samples); the percentile is computed at report time only.
+class ProcessingTimeStats {
+ public:
+  static constexpr int kCapacity = 16384;  // > 1 s of samples at 10 kHz
+
+  void Add(double time_us);
+  // Statistics since the last TakePeriod(); NaN when no sample was added.
+  double MeanUs() const;
+  double MaxUs() const;
+  // Over the newest min(count, kCapacity) samples of the period.
+  double P99Us();
+  void TakePeriod();
+  int64_t count() const { return count_; }
+
+ private:
+  std::array<double, kCapacity> ring_{};
+  std::array<double, kCapacity> scratch_{};
+  int next_ = 0;         // ring index the next sample goes to
+  int64_t count_ = 0;    // samples in the current period
+  double sum_us_ = 0;
+  double max_us_ = 0;
+};
+
+// Inputs of one status message besides the pipeline's counters.
+struct StatusContext {
+  int64_t wall_utime = 0;         // host clock at publication [us since epoch]
+  int32_t seq = 0;                // status message counter
+  double period_s = 0;            // length of the reporting period, for rate_hz [s]
+  double strain_gate = 0;         // chi-square threshold of the strain update; NaN if none
+  double processing_time_mean_us = 0;  // NaN when not measured
+  double processing_time_p99_us = 0;
+  double processing_time_max_us = 0;
+};
+
+// Chi-square gate the method compares the strain NIS with (NaN for the
+// baselines, which have no gate).
+double StrainGateOf(const EstimatorConfig& config);
+
+// Fills *message from the pipeline's health (per-input counters in the order
+// STRAIN, MOTOR, IMU, POSE; age_s on the vehicle clock relative to the newest
+// sample of any input; rates from accepted_in_period / period_s; NIS over the
+// period). Reuses the message's vectors, so steady state does not allocate.
+void BuildStatusMessage(const PipelineHealth& health, const char* method,
+                        const StatusContext& context, estimator_status_t* message);
+
+}  // namespace birotor

@@ -1,0 +1,21 @@
+// Where the simulator delivers its samples: one callback per channel, with
+// the plain structs of estimator/samples.h. The service forwards them to LCM
+// or a log file; tests collect them. Default callbacks ignore the sample.
+#pragma once
+
+#include "estimator/samples.h"
+
+namespace birotor {
+
+class SampleSink {
+ public:
+  virtual ~SampleSink() = default;
+  virtual void OnStrain(const StrainSample& /*sample*/) {}
+  virtual void OnMotor(const MotorSample& /*sample*/) {}
+  virtual void OnImu(const ImuSample& /*sample*/) {}
+  virtual void OnPose(const PoseSample& /*sample*/) {}
+  virtual void OnLoadCell(const LoadCellSample& /*sample*/) {}
+  virtual void OnTruth(const TruthSample& /*sample*/) {}
+};
+
+}  // namespace birotor

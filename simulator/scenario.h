@@ -1,0 +1,129 @@
+// A simulation scenario as plain data: vehicle, trajectory or bench profile,
+// sensors, faults and controller gains. Defaults are the reference vehicle and
+// sensors of shared/spec/reference-vehicle.md; scenario_yaml.h loads it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "estimator/vehicle_params.h"
+
+namespace birotor {
+
+// One quintic move (zero velocity and acceleration at both ends) from where
+// the reference is at start_s to (x_m, z_m), world frame.
+struct Waypoint {
+  double start_s = 0.0;     // time the move starts [s]
+  double duration_s = 1.0;  // time the move takes [s]
+  double x_m = 0.0;
+  double z_m = 0.0;
+};
+
+// Random quintic position steps for identification flights (flight_id).
+struct RandomSteps {
+  double interval_s = 1.5;       // a new step starts every interval [s]
+  double max_step_m = 0.3;       // each axis moves by U[-max, max] per step [m]
+  double move_duration_s = 1.0;  // duration of each quintic move [s]
+  double max_excursion_m = 0.5;  // targets stay within +-this of the start, per axis [m]
+};
+
+struct TrajectoryParams {
+  // "hold": hold the start position; "waypoints": the list below;
+  // "random_steps": RandomSteps drawn from the scenario seed.
+  std::string kind = "hold";
+  std::vector<Waypoint> waypoints;
+  RandomSteps random_steps;
+};
+
+// Open-loop rotor speed commands on the test stand: segments alternate between
+// random steps (independent per rotor) and a linear chirp on both rotors.
+struct BenchProfile {
+  double omega_low_rad_s = 300.0;    // lowest commanded speed [rad/s]
+  double omega_high_rad_s = 1100.0;  // highest commanded speed [rad/s]
+  double segment_s = 10.0;           // length of each steps/chirp segment [s]
+  double step_hold_s = 0.5;          // time between random steps [s]
+  double chirp_start_hz = 0.2;       // chirp frequency at the segment start [Hz]
+  double chirp_end_hz = 8.0;         // chirp frequency at the segment end [Hz]
+};
+
+// One sensor: emitted every 1/rate_hz (an exact multiple of the step).
+struct SensorRate {
+  bool enabled = true;
+  double rate_hz = 1000.0;
+};
+
+struct SensorParams {
+  SensorRate strain{true, 1000.0};
+  double strain_noise_rad = 2e-5;            // white noise on each deflection, one sigma
+  SensorRate motor{true, 500.0};
+  bool motor_telemetry = true;               // false: omega_meas is NaN throughout
+  double motor_speed_noise_rad_s = 5.0;      // on omega_meas, one sigma
+  SensorRate imu{true, 1000.0};
+  double gyro_noise_rad_s = 0.005;
+  double accel_noise_m_s2 = 0.05;
+  SensorRate pose{true, 100.0};
+  double pose_position_noise_m = 1e-3;
+  double pose_angle_noise_rad = 2e-3;
+  SensorRate loadcell{false, 1000.0};
+  double loadcell_noise_n = 0.02;
+  SensorRate truth{true, 1000.0};
+};
+
+// A step of rotor i's thrust efficiency s_i at time_s.
+struct ThrustStep {
+  double time_s = 0.0;
+  int rotor = 1;        // 1 or 2
+  double scale = 1.0;   // new s_i [1]
+};
+
+// A time window [start_s, start_s + duration_s); duration 0 means none.
+struct TimeWindow {
+  double start_s = 0.0;
+  double duration_s = 0.0;
+};
+
+struct FaultParams {
+  double initial_thrust_scale[2] = {1.0, 1.0};  // s_i at t = 0 (density: 0.9)
+  std::vector<ThrustStep> thrust_steps;
+  TimeWindow strain_gap;                  // strain samples not emitted (seq advances)
+  double strain_spike_probability = 0.0;  // per strain sample
+  double strain_spike_sigmas = 50.0;      // spike size on one arm, in strain noise sigmas
+  std::vector<double> strain_nan_times_s;           // sample at/after each time is NaN
+  std::vector<double> strain_out_of_order_times_s;  // sample at/after each time swapped with the next
+  TimeWindow motor_telemetry_gap;         // omega_meas NaN, commands continue
+};
+
+// Cascaded PD (+ integral) on the rigid-body approximation, 500 Hz. Outer
+// loop: desired acceleration from the position error; inner loop: desired
+// pitch acceleration from the tilt error. Gains in SI units.
+struct ControllerParams {
+  double rate_hz = 500.0;
+  double position_kp_1_s2 = 6.25;
+  double position_kd_1_s = 4.0;
+  double position_ki_1_s3 = 2.0;
+  double attitude_kp_1_s2 = 100.0;
+  double attitude_kd_1_s = 16.0;
+  double attitude_ki_1_s3 = 100.0;
+  double max_tilt_rad = 0.5;
+  double max_integral_m_s2 = 3.0;     // clamp of the position integral term
+  double max_attitude_integral_rad_s2 = 40.0;  // clamp of the attitude integral term
+};
+
+struct Scenario {
+  std::string file;                 // where it was loaded from (messages only)
+  std::string name = "hover";
+  std::string mode = "flight";      // "flight" or "bench" (body clamped)
+  double duration_s = 20.0;
+  uint64_t seed = 1;
+  double step_s = 0.00025;          // RK4 step; a whole number of microseconds
+  double start_position_m[2] = {0.0, 0.0};  // x, z
+  VehicleParams vehicle;
+  TrajectoryParams trajectory;
+  BenchProfile bench;
+  SensorParams sensors;
+  FaultParams faults;
+  ControllerParams controller;
+};
+
+}  // namespace birotor
