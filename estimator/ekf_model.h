@@ -1,0 +1,246 @@
+// State, process model and measurement models of the rotor-force EKF.
+// The state holds what the strain gauges observe (thesis ch. 4): the arm
+// deflections and rates, the body pitch rate, the rotor speeds and the thrust
+// scales mu_i, so that f_i = mu_i c_T omega_i^2.
+#pragma once
+
+#include <Eigen/Core>
+#include <ceres/jet.h>
+
+#include "estimator/birotor_dynamics.h"
+#include "estimator/plant.h"
+#include "estimator/vehicle_params.h"
+
+namespace birotor {
+
+// Named indices of the filter state.
+enum EkfIndex : int {
+  kDeflection1 = 0,      // b1 [rad]
+  kDeflection2 = 1,      // b2 [rad]
+  kPitchRate = 2,        // phi_dot [rad/s]
+  kDeflectionRate1 = 3,  // b1_dot [rad/s]
+  kDeflectionRate2 = 4,  // b2_dot [rad/s]
+  kOmega1 = 5,           // rotor 1 speed [rad/s]
+  kOmega2 = 6,           // rotor 2 speed [rad/s]
+  kThrustScale1 = 7,     // mu1 [1]
+  kThrustScale2 = 8,     // mu2 [1]
+};
+constexpr int kEkfStateSize = 9;
+constexpr EkfIndex kDeflectionIndex[2] = {kDeflection1, kDeflection2};
+constexpr EkfIndex kDeflectionRateIndex[2] = {kDeflectionRate1, kDeflectionRate2};
+constexpr EkfIndex kOmegaIndex[2] = {kOmega1, kOmega2};
+constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
+
+using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
+using EkfMatrix = Eigen::Matrix<double, kEkfStateSize, kEkfStateSize>;
+
+// Accelerations of the arm-relative coordinates (phi_ddot, b1_ddot, b2_ddot).
+// For a free body in uniform gravity they do not depend on x, z, phi, x_dot
+// or z_dot (gravity cancels in the relative motion: the Schur complement of M
+// eliminates it), so they are the phi, b1, b2 rows of thesis eq. 3.14 at
+// q = (0, 0, 0, b1, b2), v = (0, 0, phi_dot, b1_dot, b2_dot).
+template <typename T>
+Eigen::Matrix<T, 3, 1> ArmAcceleration(const VehicleParams& p, const T& b1, const T& b2, const T& phi_dot,
+                                       const T& b1_dot, const T& b2_dot, const T& force1_n, const T& force2_n) {
+  Coords<T> q, v;
+  q << T(0.0), T(0.0), T(0.0), b1, b2;
+  v << T(0.0), T(0.0), phi_dot, b1_dot, b2_dot;
+  const Coords<T> acc = GeneralizedAcceleration<T>(p, q, v, force1_n, force2_n);
+  return Eigen::Matrix<T, 3, 1>(acc(kPhi), acc(kB1), acc(kB2));
+}
+
+// Input held over one prediction interval: clamped rotor speed commands.
+struct EkfInput {
+  double omega_cmd_rad_s[2] = {0, 0};
+};
+
+// Process model x_dot = f(x, u):
+//   [b_dot; phi_ddot, b_ddot] from ArmAcceleration with f_i = mu_i c_T omega_i^2,
+//   omega_i_dot = (clamp(omega_cmd_i) - omega_i) / tau_m,
+//   mu_i_dot = 0 (random walk, driven by process noise).
+class EkfProcessModel {
+ public:
+  explicit EkfProcessModel(const VehicleParams& params) : params_(params) {}
+
+  EkfState Derivative(const EkfState& x, const EkfInput& u) const;
+  // A = df/dx at (x, u): Jets over (b1, b2, phi_dot, b1_dot, b2_dot, f1, f2)
+  // and the chain rule df/domega = 2 mu c_T omega, df/dmu = c_T omega^2.
+  EkfMatrix Jacobian(const EkfState& x, const EkfInput& u) const;
+  // One RK4 step over dt_s with u held.
+  EkfState Step(const EkfState& x, const EkfInput& u, double dt_s) const;
+  // Transition matrix Phi = exp(A dt) to fourth order:
+  //   I + A dt + (A dt)^2/2 + (A dt)^3/6 + (A dt)^4/24
+  // (arm modes ~500 rad/s, dt = 1 ms: |A dt| ~ 0.5, truncation ~ 3e-4).
+  static EkfMatrix Transition(const EkfMatrix& a, double dt_s);
+
+  // f_i = mu_i c_T omega_i^2 [N].
+  double Force(const EkfState& x, int rotor) const {
+    const double omega = x(kOmegaIndex[rotor]);
+    return x(kThrustScaleIndex[rotor]) * params_.thrust_coeff_n_s2_rad2 * omega * omega;
+  }
+  // Gradient of f_i with respect to (omega_i, mu_i).
+  Eigen::Vector2d ForceGradient(const EkfState& x, int rotor) const {
+    const double omega = x(kOmegaIndex[rotor]);
+    const double c_t = params_.thrust_coeff_n_s2_rad2;
+    return Eigen::Vector2d(2.0 * x(kThrustScaleIndex[rotor]) * c_t * omega, c_t * omega * omega);
+  }
+  const VehicleParams& params() const { return params_; }
+
+ private:
+  VehicleParams params_;
+};
+
+// One measurement model per sensor: z = h(x) + noise, noise ~ N(0, R).
+// H is constant for all three (they read states directly).
+
+// Strain gauges: z = (b1, b2).
+struct StrainMeasurementModel {
+  static constexpr int kSize = 2;
+  using Vector = Eigen::Matrix<double, kSize, 1>;
+  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
+  using Covariance = Eigen::Matrix<double, kSize, kSize>;
+  explicit StrainMeasurementModel(double noise_rad) {
+    h_jacobian.setZero();
+    h_jacobian(0, kDeflection1) = 1.0;
+    h_jacobian(1, kDeflection2) = 1.0;
+    noise = Covariance::Identity() * (noise_rad * noise_rad);
+  }
+  static Vector Predict(const EkfState& x) { return Vector(x(kDeflection1), x(kDeflection2)); }
+  Jacobian h_jacobian;   // H [1]
+  Covariance noise;      // R [rad^2]
+};
+
+// Motor telemetry: z = (omega1, omega2).
+struct MotorSpeedMeasurementModel {
+  static constexpr int kSize = 2;
+  using Vector = Eigen::Matrix<double, kSize, 1>;
+  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
+  using Covariance = Eigen::Matrix<double, kSize, kSize>;
+  explicit MotorSpeedMeasurementModel(double noise_rad_s) {
+    h_jacobian.setZero();
+    h_jacobian(0, kOmega1) = 1.0;
+    h_jacobian(1, kOmega2) = 1.0;
+    noise = Covariance::Identity() * (noise_rad_s * noise_rad_s);
+  }
+  static Vector Predict(const EkfState& x) { return Vector(x(kOmega1), x(kOmega2)); }
+  Jacobian h_jacobian;   // H [1]
+  Covariance noise;      // R [(rad/s)^2]
+};
+
+// Gyro: z = phi_dot (body pitch rate; the body rate of a rigid body is the
+// same in every frame of the plane).
+struct GyroMeasurementModel {
+  static constexpr int kSize = 1;
+  using Vector = Eigen::Matrix<double, kSize, 1>;
+  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
+  using Covariance = Eigen::Matrix<double, kSize, kSize>;
+  explicit GyroMeasurementModel(double noise_rad_s) {
+    h_jacobian.setZero();
+    h_jacobian(0, kPitchRate) = 1.0;
+    noise(0, 0) = noise_rad_s * noise_rad_s;
+  }
+  static Vector Predict(const EkfState& x) { return Vector(x(kPitchRate)); }
+  Jacobian h_jacobian;   // H [1]
+  Covariance noise;      // R [(rad/s)^2]
+};
+
+// Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
+template <int M>
+struct Innovation {
+  Eigen::Matrix<double, M, 1> residual;
+  Eigen::Matrix<double, M, M> covariance;
+  Eigen::Matrix<double, M, M> covariance_inverse;
+  double nis = 0;
+};
+
+template <typename Model>
+Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfState& x, const EkfMatrix& cov,
+                                           const typename Model::Vector& z) {
+  Innovation<Model::kSize> out;
+  out.residual = z - Model::Predict(x);
+  out.covariance.noalias() = model.h_jacobian * cov * model.h_jacobian.transpose();
+  out.covariance += model.noise;
+  out.covariance_inverse = out.covariance.inverse();
+  out.nis = out.residual.dot(out.covariance_inverse * out.residual);
+  return out;
+}
+
+// Kalman update in Joseph form, which keeps P symmetric positive
+// semi-definite under round-off:
+//   K = P H^T S^-1,  x += K y,  P = (I - K H) P (I - K H)^T + K R K^T.
+template <typename Model>
+void JosephUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
+  const Eigen::Matrix<double, kEkfStateSize, Model::kSize> gain =
+      (*cov) * model.h_jacobian.transpose() * innovation.covariance_inverse;
+  x->noalias() += gain * innovation.residual;
+  EkfMatrix i_kh = EkfMatrix::Identity();
+  i_kh.noalias() -= gain * model.h_jacobian;
+  EkfMatrix temp;
+  temp.noalias() = i_kh * (*cov);
+  cov->noalias() = temp * i_kh.transpose();
+  cov->noalias() += gain * model.noise * gain.transpose();
+}
+
+// ---- inline implementation of EkfProcessModel ----
+
+inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u) const {
+  const Eigen::Vector3d acc =
+      ArmAcceleration<double>(params_, x(kDeflection1), x(kDeflection2), x(kPitchRate), x(kDeflectionRate1),
+                              x(kDeflectionRate2), Force(x, 0), Force(x, 1));
+  EkfState x_dot;
+  x_dot(kDeflection1) = x(kDeflectionRate1);
+  x_dot(kDeflection2) = x(kDeflectionRate2);
+  x_dot(kPitchRate) = acc(0);
+  x_dot(kDeflectionRate1) = acc(1);
+  x_dot(kDeflectionRate2) = acc(2);
+  for (int i = 0; i < 2; ++i) {
+    x_dot(kOmegaIndex[i]) =
+        (ClampCommand(params_, u.omega_cmd_rad_s[i]) - x(kOmegaIndex[i])) / params_.motor_time_constant_s;
+    x_dot(kThrustScaleIndex[i]) = 0.0;
+  }
+  return x_dot;
+}
+
+inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& /*u*/) const {
+  // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2.
+  using Jet = ceres::Jet<double, 7>;
+  const Eigen::Matrix<Jet, 3, 1> acc =
+      ArmAcceleration<Jet>(params_, Jet(x(kDeflection1), 0), Jet(x(kDeflection2), 1), Jet(x(kPitchRate), 2),
+                           Jet(x(kDeflectionRate1), 3), Jet(x(kDeflectionRate2), 4), Jet(Force(x, 0), 5),
+                           Jet(Force(x, 1), 6));
+  constexpr EkfIndex kJetState[5] = {kDeflection1, kDeflection2, kPitchRate, kDeflectionRate1, kDeflectionRate2};
+  constexpr EkfIndex kAccRow[3] = {kPitchRate, kDeflectionRate1, kDeflectionRate2};
+  EkfMatrix a = EkfMatrix::Zero();
+  a(kDeflection1, kDeflectionRate1) = 1.0;
+  a(kDeflection2, kDeflectionRate2) = 1.0;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 5; ++c) a(kAccRow[r], kJetState[c]) = acc(r).v(c);
+    for (int i = 0; i < 2; ++i) {
+      const Eigen::Vector2d grad = ForceGradient(x, i);  // (df/domega, df/dmu)
+      a(kAccRow[r], kOmegaIndex[i]) = acc(r).v(5 + i) * grad(0);
+      a(kAccRow[r], kThrustScaleIndex[i]) = acc(r).v(5 + i) * grad(1);
+    }
+  }
+  a(kOmega1, kOmega1) = -1.0 / params_.motor_time_constant_s;
+  a(kOmega2, kOmega2) = -1.0 / params_.motor_time_constant_s;
+  return a;
+}
+
+inline EkfState EkfProcessModel::Step(const EkfState& x, const EkfInput& u, double dt_s) const {
+  return Rk4Step(x, dt_s, [&](const EkfState& s) { return Derivative(s, u); });
+}
+
+inline EkfMatrix EkfProcessModel::Transition(const EkfMatrix& a, double dt_s) {
+  // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))).
+  const EkfMatrix a_dt = a * dt_s;
+  EkfMatrix phi = EkfMatrix::Identity() + a_dt * 0.25;
+  EkfMatrix temp;
+  temp.noalias() = a_dt * phi;
+  phi = EkfMatrix::Identity() + temp * (1.0 / 3.0);
+  temp.noalias() = a_dt * phi;
+  phi = EkfMatrix::Identity() + temp * 0.5;
+  temp.noalias() = a_dt * phi;
+  return EkfMatrix::Identity() + temp;
+}
+
+}  // namespace birotor

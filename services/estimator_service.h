@@ -1,0 +1,142 @@
+// The estimator daemon's glue between LCM and EstimatorPipeline: raw
+// subscriptions to STRAIN, MOTOR, IMU and POSE, checked decoding that counts a
+// malformed packet instead of dropping it, one FORCE per accepted strain
+// sample and the ESTIMATOR_STATUS health message. birotor-replay drives the
+// same class from a log file, so the daemon and the replay give the same numbers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_t.hpp"
+#include "birotor/imu_t.hpp"
+#include "birotor/motor_t.hpp"
+#include "birotor/pose_t.hpp"
+#include "birotor/strain_t.hpp"
+#include "estimator/estimator_config.h"
+#include "estimator/estimator_pipeline.h"
+#include "services/status_message.h"
+#include "transport/channels.h"
+#include "transport/logging.h"
+
+namespace birotor {
+
+// Where the service's output goes: LCM when live, a log file in replay, a
+// vector in tests. timestamp_us is the event time written to a log (the
+// message's utime); LCM ignores it.
+class MessageSink {
+ public:
+  virtual ~MessageSink() = default;
+  virtual void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
+                       size_t size) = 0;
+};
+
+// Publishes on an LCM instance.
+class LcmSink : public MessageSink {
+ public:
+  explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
+               size_t size) override;
+
+ private:
+  lcm::LCM* lcm_;
+};
+
+struct EstimatorServiceOptions {
+  // ESTIMATOR_STATUS rate [Hz]: wall clock in the daemon, vehicle clock in replay.
+  double status_rate_hz = 5.0;
+  // Overload guard: a strain packet that waited longer than this between its
+  // arrival (ReceiveBuffer::recv_utime, host clock) and its processing is
+  // counted as dropped_overload and not fused, so a backlog is shed instead of
+  // growing [s]. Only applies to live packets (recv time known).
+  double overload_max_delay_s = 0.2;
+  // Measure per-sample processing time for the status message. Replay turns
+  // it off (the fields are NaN) so that its output is byte-for-byte repeatable.
+  bool report_processing_time = true;
+  // Shortest interval between two warnings of the same kind [s].
+  double warning_interval_s = 1.0;
+};
+
+class EstimatorService {
+ public:
+  // sink must outlive the service. The pipeline is built from config (the
+  // method is config.method).
+  EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
+                   const EstimatorServiceOptions& options, MessageSink* sink);
+  ~EstimatorService();
+  EstimatorService(const EstimatorService&) = delete;
+  EstimatorService& operator=(const EstimatorService&) = delete;
+
+  // Raw subscriptions to the four input channels on lcm (which must outlive
+  // the service or Unsubscribe()).
+  void Subscribe(lcm::LCM* lcm);
+  void Unsubscribe();
+
+  // One encoded packet of an input channel, from LCM or a log. Decodes it
+  // (counting a failure as a decode error), feeds the pipeline and, for an
+  // accepted strain sample, publishes FORCE. receive_wall_utime is the host
+  // time the packet arrived [us since epoch], or -1 when unknown (replay).
+  // Returns true when a FORCE message was published. Never throws.
+  bool HandlePacket(InputChannel channel, const void* data, size_t size,
+                    int64_t receive_wall_utime = -1);
+
+  // The input channel a full channel name belongs to; false for any other channel.
+  bool InputChannelOf(const std::string& channel, InputChannel* input) const;
+
+  // Publishes ESTIMATOR_STATUS for a reporting period of period_s and starts
+  // a new period.
+  void PublishStatus(int64_t wall_utime, double period_s);
+  // Replay: publishes ESTIMATOR_STATUS each time the vehicle clock (newest
+  // sample utime) crosses a multiple of 1/status_rate_hz; wall_utime then
+  // carries the vehicle time so the output is deterministic.
+  void PublishStatusOnVehicleClock();
+
+  const PipelineHealth& health() const { return pipeline_.health(); }
+  const EstimatorPipeline& pipeline() const { return pipeline_; }
+  const ChannelNames& channels() const { return channels_; }
+  int32_t status_published() const { return status_seq_; }
+  int64_t forces_published() const { return forces_published_; }
+
+ private:
+  // Context of one raw subscription: which input it feeds.
+  struct RawSubscription {
+    EstimatorService* service = nullptr;
+    InputChannel channel = InputChannel::kStrain;
+    lcm::Subscription* subscription = nullptr;
+  };
+  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel,
+                           RawSubscription* context);
+  bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
+  void WarnDecodeError(InputChannel channel, const char* error);
+
+  EstimatorPipeline pipeline_;
+  ChannelNames channels_;
+  EstimatorServiceOptions options_;
+  MessageSink* sink_;
+  lcm::LCM* lcm_ = nullptr;
+  RawSubscription subscriptions_[kNumInputChannels];
+  const std::string* input_channel_names_[kNumInputChannels];
+
+  // Decoded messages and the output buffer, reused for every packet.
+  strain_t strain_message_;
+  motor_t motor_message_;
+  imu_t imu_message_;
+  pose_t pose_message_;
+  force_estimate_t force_message_;
+  estimator_status_t status_message_;
+  std::vector<uint8_t> buffer_;
+
+  ProcessingTimeStats processing_time_;
+  int32_t status_seq_ = 0;
+  int64_t forces_published_ = 0;
+  int64_t next_status_utime_ = -1;  // vehicle-clock status schedule [us]
+  RateLimitedLog decode_warning_;
+  RateLimitedLog overload_warning_;
+};
+
+}  // namespace birotor

@@ -1,0 +1,135 @@
+// The simulation engine: integrates the 12-state plant of estimator/plant.h
+// with RK4 at a fixed step, drives it with the flight controller (or the bench
+// profile), and emits noisy sensor samples, truth and configured faults at
+// exact multiples of the step. Deterministic from the scenario seed.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "estimator/equilibrium.h"
+#include "estimator/plant.h"
+#include "simulator/bench_profile.h"
+#include "simulator/flight_controller.h"
+#include "simulator/noise.h"
+#include "simulator/sample_sink.h"
+#include "simulator/scenario.h"
+#include "simulator/trajectory.h"
+
+namespace birotor {
+
+enum class FaultKind {
+  kThrustStep,         // s_i changed; rotor, value = new s_i
+  kStrainGap,          // strain sample seq not emitted
+  kStrainSpike,        // strain sample seq carries a spike; rotor, value = spike [rad]
+  kStrainNan,          // strain sample seq is NaN on both arms
+  kStrainOutOfOrder,   // strain sample seq emitted after seq + 1
+  kMotorTelemetryGap,  // motor sample seq has omega_meas NaN
+};
+
+// One injected fault, so tests can check it happened exactly where configured.
+struct FaultEvent {
+  FaultKind kind = FaultKind::kThrustStep;
+  int64_t utime = 0;  // time of the affected sample or step [us]
+  int32_t seq = -1;   // seq of the affected sample (-1 for thrust steps)
+  int rotor = 0;      // 1 or 2 where it applies, 0 otherwise
+  double value = 0.0;
+};
+
+// Samples emitted per channel (a strain sample lost in a gap is not counted).
+struct ChannelCounts {
+  int64_t strain = 0, motor = 0, imu = 0, pose = 0, loadcell = 0, truth = 0;
+};
+
+class Simulator {
+ public:
+  // The scenario must have been validated (LoadScenario does it).
+  explicit Simulator(const Scenario& scenario);
+
+  // Emits the samples due at the current time, then advances one step.
+  // Returns false (and does nothing) once the scenario duration is reached.
+  // Does not allocate except to record fault events.
+  bool Step(SampleSink* sink);
+
+  // Steps until done.
+  void Run(SampleSink* sink);
+
+  bool done() const { return step_index_ >= total_steps_; }
+  double time_s() const { return static_cast<double>(step_index_) * scenario_.step_s; }
+  // Simulated time of the current step plus the offset [us].
+  int64_t utime() const { return utime_offset_us_ + step_index_ * step_us_; }
+  int64_t total_steps() const { return total_steps_; }
+
+  // Added to every utime (for --wall-clock); call before the first step.
+  void set_utime_offset_us(int64_t offset_us) { utime_offset_us_ = offset_us; }
+
+  const Scenario& scenario() const { return scenario_; }
+  const PlantState& state() const { return state_; }
+  // mu_i = s_i (1 + eta_i) over the step about to be taken.
+  const PlantInput& input() const { return input_; }
+  // Hover equilibrium of the scenario's vehicle (the flight start state).
+  const Equilibrium& hover_equilibrium() const { return equilibrium_; }
+  const ReferencePoint& reference() const { return reference_; }
+  const std::vector<FaultEvent>& fault_events() const { return fault_events_; }
+  const ChannelCounts& emitted() const { return emitted_; }
+
+ private:
+  struct Decimation {
+    bool enabled = false;
+    int64_t every_steps = 1;
+    bool Due(int64_t step) const { return enabled && step % every_steps == 0; }
+  };
+  struct ScheduledStep {
+    int64_t step = 0;
+    int rotor = 0;  // 0-based
+    double scale = 1.0;
+  };
+
+  void EmitStrain(int64_t utime, SampleSink* sink);
+  void EmitMotor(int64_t utime, SampleSink* sink);
+  void EmitImu(int64_t utime, const PlantState& derivative, SampleSink* sink);
+  void EmitPose(int64_t utime, SampleSink* sink);
+  void EmitLoadCell(int64_t utime, SampleSink* sink);
+  void EmitTruth(int64_t utime, SampleSink* sink);
+  double TrueForce(int rotor) const;
+  PlantState Derivative(const PlantState& x) const;
+  bool InWindow(const TimeWindow& window, int64_t t_us) const;
+  void RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value);
+
+  Scenario scenario_;
+  bool clamped_body_;
+  int64_t step_us_;
+  int64_t total_steps_;
+  int64_t step_index_ = 0;
+  int64_t utime_offset_us_ = 0;
+
+  Equilibrium equilibrium_;
+  Trajectory trajectory_;
+  FlightController controller_;
+  BenchCommander bench_;
+  ReferencePoint reference_;
+
+  PlantState state_;
+  PlantInput input_;
+  RotorCommand command_;
+  double efficiency_[2] = {1.0, 1.0};  // s_i
+  GaussMarkov turbulence_[2];
+  std::vector<ScheduledStep> thrust_steps_;
+  size_t next_thrust_step_ = 0;
+
+  Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;
+  GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_,
+      fault_noise_;
+
+  // Strain fault bookkeeping (sample indices are seq values).
+  std::vector<int64_t> strain_nan_seq_;
+  std::vector<int64_t> strain_swap_seq_;
+  bool has_held_strain_ = false;
+  StrainSample held_strain_;
+
+  int32_t strain_seq_ = 0, motor_seq_ = 0, imu_seq_ = 0, pose_seq_ = 0, loadcell_seq_ = 0;
+  ChannelCounts emitted_;
+  std::vector<FaultEvent> fault_events_;
+};
+
+}  // namespace birotor
