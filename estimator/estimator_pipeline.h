@@ -40,7 +40,9 @@ struct PipelineHealth {
   InputCounters inputs[kNumInputChannels];
   int64_t newest_utime = -1;      // newest sample time over all inputs [us]
   int64_t resets = 0;
-  std::string last_reset_reason;  // "start", "gap", "time_backwards", "numerical"
+  // "start" (the first strain sample counts as a reset), "gap",
+  // "time_backwards", "numerical"; empty before any.
+  std::string last_reset_reason;
   int64_t published = 0;          // force estimates produced
   int32_t last_status = 0;
   ForceEstimate last_estimate;
@@ -78,10 +80,27 @@ class EstimatorPipeline {
   EstimatorConfig config_;
   std::unique_ptr<ForceEstimator> method_;
   PipelineHealth health_;
-  // (implementation fields are the implementer's choice)
+
+  enum class TimeOrder { kInOrder, kDuplicate, kOutOfOrder, kBackwardsJump };
+  // Classifies utime against the newest accepted sample of the channel.
+  TimeOrder CheckTime(const InputCounters& counters, int64_t utime) const;
+  // Accepts a sample: seq gap book-keeping, last_utime/last_seq, rates.
+  void Accept(InputCounters* counters, int64_t utime, int32_t seq, bool backwards_jump);
+  // Re-initialises the method and re-feeds the newest motor command if it is
+  // still current at utime. reason must be a string literal.
+  void ResetMethod(const char* reason, int64_t utime);
+
+  bool started_ = false;          // a strain sample has been accepted
+  bool reset_flag_pending_ = false;  // kStatusFilterReset on the next estimate
+  bool has_motor_ = false;
+  MotorSample last_motor_;
+  bool has_finite_estimate_ = false;
+  ForceEstimate last_finite_estimate_;
 };
 
-// Creates the method named in config.method ("ekf", "inversion", "motor_map").
+// Creates the method named in config.method ("ekf", "inversion", "motor_map");
+// nullptr for an unknown name (the EstimatorPipeline constructor then throws
+// std::invalid_argument; the config loader refuses such names earlier).
 std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config);
 
 }  // namespace birotor

@@ -1,0 +1,252 @@
+#include "estimator/estimator_pipeline.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "estimator/baseline_estimators.h"
+#include "estimator/ekf_force_estimator.h"
+
+namespace birotor {
+namespace {
+
+bool FiniteWithin(double value, double limit) { return std::isfinite(value) && std::abs(value) <= limit; }
+
+bool IsFinite(const ForceEstimate& e) {
+  for (int i = 0; i < 2; ++i) {
+    if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) || !std::isfinite(e.thrust_scale[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+InputCounters& Counters(PipelineHealth* health, InputChannel channel) {
+  return health->inputs[static_cast<int>(channel)];
+}
+
+}  // namespace
+
+const char* InputChannelName(InputChannel channel) {
+  switch (channel) {
+    case InputChannel::kStrain: return "STRAIN";
+    case InputChannel::kMotor: return "MOTOR";
+    case InputChannel::kImu: return "IMU";
+    case InputChannel::kPose: return "POSE";
+  }
+  return "?";
+}
+
+std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config) {
+  if (config.method == "ekf") return std::make_unique<EkfForceEstimator>(config.vehicle, config.ekf);
+  if (config.method == "inversion") return std::make_unique<InversionEstimator>(config.vehicle, config.inversion);
+  if (config.method == "motor_map") return std::make_unique<MotorMapEstimator>(config.vehicle, config.motor_map);
+  return nullptr;
+}
+
+EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
+    : config_(config), method_(MakeForceEstimator(config)) {
+  if (!method_) throw std::invalid_argument("unknown estimation method '" + config.method + "'");
+  health_.last_reset_reason.reserve(32);  // no allocation when a reason is set later
+}
+
+EstimatorPipeline::~EstimatorPipeline() = default;
+
+const char* EstimatorPipeline::method_name() const { return method_->Name(); }
+
+void EstimatorPipeline::CountReceived(InputChannel channel) { ++Counters(&health_, channel).received; }
+void EstimatorPipeline::CountDecodeError(InputChannel channel) { ++Counters(&health_, channel).decode_errors; }
+void EstimatorPipeline::CountOverloadDrop(InputChannel channel) { ++Counters(&health_, channel).dropped_overload; }
+
+void EstimatorPipeline::TakePeriod() {
+  for (InputCounters& c : health_.inputs) c.accepted_in_period = 0;
+  health_.nis_sum = 0;
+  health_.nis_max = 0;
+  health_.nis_count = 0;
+}
+
+EstimatorPipeline::TimeOrder EstimatorPipeline::CheckTime(const InputCounters& counters, int64_t utime) const {
+  if (counters.last_utime < 0 || utime > counters.last_utime) return TimeOrder::kInOrder;
+  if (utime == counters.last_utime) return TimeOrder::kDuplicate;
+  const double back_s = (counters.last_utime - utime) * 1e-6;
+  return back_s > config_.pipeline.time_backwards_reset_s ? TimeOrder::kBackwardsJump : TimeOrder::kOutOfOrder;
+}
+
+void EstimatorPipeline::Accept(InputCounters* c, int64_t utime, int32_t seq, bool backwards_jump) {
+  if (c->last_utime >= 0 && !backwards_jump) {
+    // seq wraps at int32: compare in unsigned arithmetic.
+    const uint32_t expected = static_cast<uint32_t>(c->last_seq) + 1u;
+    const int32_t jump = static_cast<int32_t>(static_cast<uint32_t>(seq) - expected);
+    if (jump > 0) {
+      ++c->gaps;
+      c->missing_samples += jump;
+    }
+  }
+  c->last_utime = utime;
+  c->last_seq = seq;
+  ++c->accepted_in_period;
+  if (backwards_jump || utime > health_.newest_utime) health_.newest_utime = utime;
+}
+
+void EstimatorPipeline::ResetMethod(const char* reason, int64_t utime) {
+  method_->Reset();
+  ++health_.resets;
+  health_.last_reset_reason = reason;  // short literals: fits the reserved capacity
+  reset_flag_pending_ = true;
+  if (has_motor_ && last_motor_.utime <= utime &&
+      (utime - last_motor_.utime) * 1e-6 <= config_.pipeline.motor_timeout_s) {
+    method_->AddMotor(last_motor_);
+  }
+}
+
+void EstimatorPipeline::OnMotor(const MotorSample& sample) {
+  InputCounters& c = Counters(&health_, InputChannel::kMotor);
+  const double limit = config_.pipeline.max_omega_rad_s;
+  bool valid = FiniteWithin(sample.omega_cmd_rad_s[0], limit) && FiniteWithin(sample.omega_cmd_rad_s[1], limit);
+  for (double meas : sample.omega_meas_rad_s) valid = valid && (std::isnan(meas) || FiniteWithin(meas, limit));
+  if (!valid) {
+    ++c.rejected_invalid;
+    return;
+  }
+  const TimeOrder order = CheckTime(c, sample.utime);
+  if (order == TimeOrder::kDuplicate) {
+    ++c.duplicates;
+    return;
+  }
+  if (order == TimeOrder::kOutOfOrder) {
+    ++c.out_of_order;
+    return;
+  }
+  Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+  last_motor_ = sample;
+  has_motor_ = true;
+  method_->AddMotor(sample);
+  ++c.fused;
+}
+
+void EstimatorPipeline::OnImu(const ImuSample& sample) {
+  InputCounters& c = Counters(&health_, InputChannel::kImu);
+  if (!FiniteWithin(sample.gyro_y_rad_s, config_.pipeline.max_gyro_rad_s)) {
+    ++c.rejected_invalid;
+    return;
+  }
+  const TimeOrder order = CheckTime(c, sample.utime);
+  if (order == TimeOrder::kDuplicate) {
+    ++c.duplicates;
+    return;
+  }
+  if (order == TimeOrder::kOutOfOrder) {
+    ++c.out_of_order;
+    return;
+  }
+  Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+  method_->AddImu(sample);
+  if (config_.method == "ekf" && config_.ekf.use_gyro) ++c.fused;
+}
+
+void EstimatorPipeline::OnPose(const PoseSample& sample) {
+  InputCounters& c = Counters(&health_, InputChannel::kPose);
+  if (!std::isfinite(sample.x_m) || !std::isfinite(sample.z_m) || !std::isfinite(sample.phi_rad)) {
+    ++c.rejected_invalid;
+    return;
+  }
+  const TimeOrder order = CheckTime(c, sample.utime);
+  if (order == TimeOrder::kDuplicate) {
+    ++c.duplicates;
+    return;
+  }
+  if (order == TimeOrder::kOutOfOrder) {
+    ++c.out_of_order;
+    return;
+  }
+  // Accepted for the health counters; no method uses the pose yet.
+  Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+}
+
+bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* estimate) {
+  InputCounters& c = Counters(&health_, InputChannel::kStrain);
+  const double limit = config_.pipeline.max_deflection_rad;
+  if (!FiniteWithin(sample.deflection_rad[0], limit) || !FiniteWithin(sample.deflection_rad[1], limit)) {
+    ++c.rejected_invalid;
+    return false;
+  }
+  const TimeOrder order = CheckTime(c, sample.utime);
+  if (order == TimeOrder::kDuplicate) {
+    ++c.duplicates;
+    return false;
+  }
+  if (order == TimeOrder::kOutOfOrder) {
+    ++c.out_of_order;
+    return false;
+  }
+  const int64_t previous_utime = c.last_utime;
+  const bool backwards = order == TimeOrder::kBackwardsJump;
+  Accept(&c, sample.utime, sample.seq, backwards);
+
+  bool stale = false;
+  if (!started_) {
+    ResetMethod("start", sample.utime);
+    started_ = true;
+  } else if (backwards) {
+    ResetMethod("time_backwards", sample.utime);
+  } else {
+    const double interval_s = (sample.utime - previous_utime) * 1e-6;
+    if (interval_s > config_.pipeline.reset_gap_s) {
+      ResetMethod("gap", sample.utime);
+    } else if (interval_s > config_.pipeline.strain_timeout_s) {
+      stale = true;
+    }
+  }
+
+  StrainUpdateInfo info;
+  method_->AddStrain(sample, estimate, &info);
+  if (info.reset) {
+    // The method re-initialised itself (its own dt bound or a numerical guard).
+    ++health_.resets;
+    health_.last_reset_reason = "numerical";
+    reset_flag_pending_ = true;
+  }
+  if (!IsFinite(*estimate)) {
+    ResetMethod("numerical", sample.utime);
+    if (has_finite_estimate_) {
+      *estimate = last_finite_estimate_;
+    } else {
+      for (int i = 0; i < 2; ++i) {
+        estimate->force_n[i] = config_.vehicle.HoverForceN();
+        estimate->force_std_n[i] = config_.vehicle.HoverForceN();
+        estimate->thrust_scale[i] = 1.0;
+      }
+    }
+    estimate->utime = sample.utime;
+    estimate->seq = sample.seq;
+    estimate->status = kStatusConverging;
+    info.fused = false;
+  } else {
+    last_finite_estimate_ = *estimate;
+    has_finite_estimate_ = true;
+  }
+
+  if (!has_motor_) {
+    estimate->status |= kStatusNoMotorInput;
+  } else if ((sample.utime - last_motor_.utime) * 1e-6 > config_.pipeline.motor_timeout_s) {
+    stale = true;
+  }
+  if (stale) estimate->status |= kStatusInputStale;
+  if (reset_flag_pending_) {
+    estimate->status |= kStatusFilterReset;
+    reset_flag_pending_ = false;
+  }
+
+  if (info.fused) ++c.fused;
+  if (info.gated) ++c.rejected_gate;
+  if (std::isfinite(info.nis)) {
+    health_.nis_sum += info.nis;
+    if (info.nis > health_.nis_max) health_.nis_max = info.nis;
+    ++health_.nis_count;
+  }
+  ++health_.published;
+  health_.last_status = estimate->status;
+  health_.last_estimate = *estimate;
+  return true;
+}
+
+}  // namespace birotor

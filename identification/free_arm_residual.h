@@ -1,0 +1,127 @@
+// Ceres residual of stiffness, damping and thrust coefficient in free flight:
+// output error of the arm and pitch-rate dynamics driven by the measured rotor
+// speeds, predicting deflections, pitch rate and specific force over one window.
+#pragma once
+
+#include <ceres/autodiff_cost_function.h>
+
+#include <cmath>
+#include <vector>
+
+#include "identification/arm_dynamics.h"
+
+namespace birotor {
+
+// Residual layout per sample.
+enum FreeArmResidualIndex : int {
+  kResB1 = 0,       // strain gauge arm 1
+  kResB2 = 1,       // strain gauge arm 2
+  kResGyro = 2,     // IMU pitch rate
+  kResAccelX = 3,   // IMU specific force, body x
+  kResAccelZ = 4,   // IMU specific force, body z
+};
+constexpr int kFreeArmResidualsPerSample = 5;
+
+// One window of strain samples j = 0..N-1 with rotor speeds (telemetry) and,
+// when present, IMU at the same times. From the window's own initial state
+// x_0 = (phi_dot, b1, b2, b1_dot, b2_dot) the model
+//   x_dot = FreeArmDerivative(k, d; x, f1, f2),  f_i = c_T omega_i^2
+// (thesis eq. 3.14, arm_dynamics.h) is integrated with RK4 (`substeps` per
+// interval, omega linear between samples), and
+//   r_j = [b1_meas - b1, b2_meas - b2] / sigma_b,
+//         (gyro_meas - phi_dot) / sigma_gyro,
+//         (a_meas - a_model(x_j, f_j)) / sigma_a                    [1, whitened]
+// A missing measurement (NaN) gives a zero residual. Parameters are ratios to
+// their scales: k = theta_k k_scale, d = theta_d d_scale, c_T = theta_c c_scale.
+struct FreeArmWindowResidual {
+  struct Sample {
+    double dt_s;              // time to the next sample [s] (unused for the last)
+    double omega_rad_s[2];    // rotor speeds [rad/s]
+    double deflection_rad[2]; // strain gauges [rad]
+    double gyro_rad_s;        // pitch rate, NaN when not used [rad/s]
+    double accel_m_s2[2];     // specific force body x, z, NaN when not used [m/s^2]
+  };
+  struct Scales {
+    double stiffness_n_m_rad;
+    double damping_n_m_s_rad;
+    double thrust_coeff_n_s2_rad2;
+  };
+  struct Noise {
+    double strain_rad;
+    double gyro_rad_s;
+    double accel_m_s2;
+  };
+
+  FreeArmWindowResidual(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise,
+                        int substeps, const Scales& scales)
+      : known_(known), samples_(std::move(samples)), noise_(noise), substeps_(substeps), scales_(scales) {}
+
+  template <typename T>
+  bool operator()(const T* k_ratio, const T* d_ratio, const T* thrust_ratio, const T* state0,
+                  T* residual) const {
+    using State = FreeArmState<T>;
+    const T k = k_ratio[0] * scales_.stiffness_n_m_rad;
+    const T d = d_ratio[0] * scales_.damping_n_m_s_rad;
+    const T c_t = thrust_ratio[0] * scales_.thrust_coeff_n_s2_rad2;
+    State x;
+    for (int i = 0; i < kFreeArmStateSize; ++i) x(i) = state0[i];
+    auto forces = [&](const Sample& a, const Sample& b, double alpha, T* f1, T* f2) {
+      const double w1 = a.omega_rad_s[0] + alpha * (b.omega_rad_s[0] - a.omega_rad_s[0]);
+      const double w2 = a.omega_rad_s[1] + alpha * (b.omega_rad_s[1] - a.omega_rad_s[1]);
+      *f1 = c_t * (w1 * w1);
+      *f2 = c_t * (w2 * w2);
+    };
+    for (size_t j = 0; j < samples_.size(); ++j) {
+      if (j > 0) {
+        const Sample& s0 = samples_[j - 1];
+        const Sample& s1 = samples_[j];
+        const double h = s0.dt_s / substeps_;
+        for (int s = 0; s < substeps_; ++s) {
+          const double a0 = static_cast<double>(s) / substeps_;
+          const double a1 = static_cast<double>(s + 1) / substeps_;
+          T fa1, fa2, fm1, fm2, fb1, fb2;
+          forces(s0, s1, a0, &fa1, &fa2);
+          forces(s0, s1, 0.5 * (a0 + a1), &fm1, &fm2);
+          forces(s0, s1, a1, &fb1, &fb2);
+          const State k1 = FreeArmDerivative<T>(known_, k, d, x, fa1, fa2);
+          const State k2 = FreeArmDerivative<T>(known_, k, d, State(x + (0.5 * h) * k1), fm1, fm2);
+          const State k3 = FreeArmDerivative<T>(known_, k, d, State(x + (0.5 * h) * k2), fm1, fm2);
+          const State k4 = FreeArmDerivative<T>(known_, k, d, State(x + h * k3), fb1, fb2);
+          x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        }
+      }
+      const Sample& m = samples_[j];
+      T* r = residual + kFreeArmResidualsPerSample * j;
+      r[kResB1] = (m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad;
+      r[kResB2] = (m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad;
+      r[kResGyro] = std::isfinite(m.gyro_rad_s) ? (m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s : T(0.0);
+      if (std::isfinite(m.accel_m_s2[0]) && std::isfinite(m.accel_m_s2[1])) {
+        T f1, f2;
+        forces(m, m, 0.0, &f1, &f2);
+        Eigen::Matrix<T, 2, 1> specific_force;
+        FreeArmDerivative<T>(known_, k, d, x, f1, f2, &specific_force);
+        r[kResAccelX] = (m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2;
+        r[kResAccelZ] = (m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2;
+      } else {
+        r[kResAccelX] = T(0.0);
+        r[kResAccelZ] = T(0.0);
+      }
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const VehicleParams& known, std::vector<Sample> samples,
+                                     const Noise& noise, int substeps, const Scales& scales) {
+    const int n = kFreeArmResidualsPerSample * static_cast<int>(samples.size());
+    return new ceres::AutoDiffCostFunction<FreeArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, kFreeArmStateSize>(
+        new FreeArmWindowResidual(known, std::move(samples), noise, substeps, scales), n);
+  }
+
+  const VehicleParams known_;  // m, m_p, L, J (k, d, c_T are parameters)
+  const std::vector<Sample> samples_;
+  const Noise noise_;
+  const int substeps_;
+  const Scales scales_;
+};
+
+}  // namespace birotor

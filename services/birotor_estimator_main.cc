@@ -1,0 +1,122 @@
+// birotor-estimator: the live rotor-force estimation daemon. Subscribes to
+// STRAIN, MOTOR, IMU and POSE, publishes one FORCE per accepted strain sample
+// and ESTIMATOR_STATUS at --status-rate-hz (wall clock); stops on SIGINT/SIGTERM.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "params/estimator_config_yaml.h"
+#include "params/yaml_reader.h"
+#include "services/estimator_service.h"
+#include "transport/channels.h"
+#include "transport/lcm_session.h"
+#include "transport/logging.h"
+#include "transport/program_options.h"
+#include "transport/shutdown.h"
+
+namespace {
+
+int64_t WallNowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+double SteadyNowS() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace birotor;
+  CLI::App app{"birotor-estimator: rotor-force estimation daemon (EKF or baselines) over LCM"};
+  CommonOptions common;
+  AddCommonOptions(app, &common);
+  std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
+  std::string method;
+  EstimatorServiceOptions options;
+  app.add_option("--params", params_file, "Estimator parameter file (vehicle: and estimator:)");
+  app.add_option("--method", method, "Estimation method, overrides the file")
+      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+  app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate [Hz]")
+      ->check(CLI::Range(0.1, 100.0));
+  app.add_option("--overload-max-delay-s", options.overload_max_delay_s,
+                 "Strain packets queued longer than this are dropped and counted [s]")
+      ->check(CLI::Range(0.001, 60.0));
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-estimator", common.log_level);
+
+  // The parameter file is checked before anything is subscribed.
+  EstimatorConfig config;
+  try {
+    config = LoadEstimatorConfig(params_file);
+  } catch (const ParamError& error) {
+    std::fprintf(stderr, "birotor-estimator: error: %s\n", error.what());
+    return 1;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "birotor-estimator: error: %s: %s\n", params_file.c_str(), error.what());
+    return 1;
+  }
+  if (!method.empty()) config.method = method;
+
+  std::string error;
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
+  if (!lcm) {
+    std::fprintf(stderr, "birotor-estimator: error: %s\n", error.c_str());
+    return 1;
+  }
+  InstallShutdownHandlers();
+
+  const ChannelNames channels = MakeChannelNames(common.prefix);
+  LcmSink sink(lcm.get());
+  EstimatorService service(config, channels, options, &sink);
+  service.Subscribe(lcm.get());
+  spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION,
+               config.method, params_file, FileChecksum(params_file));
+  spdlog::info("lcm {}: in {} {} {} {}, out {} {}", common.lcm_url, channels.strain,
+               channels.motor, channels.imu, channels.pose, channels.force,
+               channels.estimator_status);
+  bool buffer_ok = true;
+  const std::string buffer_report = ReceiveBufferReport(common.lcm_url, ReadRmemMax(), &buffer_ok);
+  if (buffer_ok) {
+    spdlog::info("{}", buffer_report);
+  } else {
+    spdlog::warn("{}", buffer_report);
+  }
+
+  const double status_period_s = 1.0 / options.status_rate_hz;
+  double last_status_s = SteadyNowS();
+  while (!ShutdownRequested()) {
+    const double wait_s = last_status_s + status_period_s - SteadyNowS();
+    const int handled = HandleFor(*lcm, std::min(std::max(wait_s, 0.0), 0.1));
+    if (handled < 0) {
+      spdlog::error("lcm handle failed; stopping");
+      break;
+    }
+    // Drain everything already queued before looking at the clock again.
+    if (handled > 0) {
+      while (!ShutdownRequested() && lcm->handleTimeout(0) > 0) {
+      }
+    }
+    const double now_s = SteadyNowS();
+    if (now_s - last_status_s >= status_period_s) {
+      service.PublishStatus(WallNowUs(), now_s - last_status_s);
+      last_status_s = now_s;
+    }
+  }
+  service.Unsubscribe();
+  const PipelineHealth& health = service.health();
+  const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
+  spdlog::info(
+      "stopped: {} FORCE published; strain received {} fused {} decode errors {} out of order {} "
+      "overload drops {}; resets {}",
+      service.forces_published(), strain.received, strain.fused, strain.decode_errors,
+      strain.out_of_order, strain.dropped_overload, health.resets);
+  return 0;
+}

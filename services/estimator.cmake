@@ -1,0 +1,12 @@
+# Estimator daemon (issue 4): the LCM glue library shared with birotor-replay,
+# and the birotor-estimator program. Included from services/CMakeLists.txt.
+add_library(birotor_estimator_service STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/estimator_service.cc
+  ${CMAKE_CURRENT_LIST_DIR}/status_message.cc)
+target_include_directories(birotor_estimator_service PUBLIC ${PROJECT_SOURCE_DIR})
+target_link_libraries(birotor_estimator_service PUBLIC
+  birotor_estimator birotor_params birotor_transport)
+
+add_executable(birotor-estimator ${CMAKE_CURRENT_LIST_DIR}/birotor_estimator_main.cc)
+target_link_libraries(birotor-estimator PRIVATE birotor_estimator_service)
+install(TARGETS birotor-estimator RUNTIME DESTINATION bin)

@@ -1,0 +1,219 @@
+// LCM glue of the estimator: raw subscriptions, checked decoding, FORCE and
+// ESTIMATOR_STATUS publication.
+#include "services/estimator_service.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "transport/lcm_codec.h"
+#include "transport/message_conversion.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+int64_t SteadyNowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+int64_t WallNowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+void LcmSink::Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data,
+                      size_t size) {
+  lcm_->publish(channel, data, static_cast<unsigned int>(size));
+}
+
+EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
+                                   const EstimatorServiceOptions& options, MessageSink* sink)
+    : pipeline_(config),
+      channels_(channels),
+      options_(options),
+      sink_(sink),
+      decode_warning_(options.warning_interval_s),
+      overload_warning_(options.warning_interval_s) {
+  input_channel_names_[static_cast<int>(InputChannel::kStrain)] = &channels_.strain;
+  input_channel_names_[static_cast<int>(InputChannel::kMotor)] = &channels_.motor;
+  input_channel_names_[static_cast<int>(InputChannel::kImu)] = &channels_.imu;
+  input_channel_names_[static_cast<int>(InputChannel::kPose)] = &channels_.pose;
+  buffer_.reserve(1024);
+  status_message_.inputs.resize(kNumInputChannels);
+}
+
+EstimatorService::~EstimatorService() { Unsubscribe(); }
+
+void EstimatorService::Subscribe(lcm::LCM* lcm) {
+  Unsubscribe();
+  lcm_ = lcm;
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    RawSubscription& context = subscriptions_[i];
+    context.service = this;
+    context.channel = static_cast<InputChannel>(i);
+    context.subscription = lcm->subscribeFunction(*input_channel_names_[i],
+                                                  &EstimatorService::OnRawMessage, &context);
+    // Keep a burst of 1 kHz strain samples while a status message is built.
+    if (context.subscription != nullptr) context.subscription->setQueueCapacity(10000);
+  }
+}
+
+void EstimatorService::Unsubscribe() {
+  if (lcm_ == nullptr) return;
+  for (RawSubscription& context : subscriptions_) {
+    if (context.subscription != nullptr) lcm_->unsubscribe(context.subscription);
+    context.subscription = nullptr;
+  }
+  lcm_ = nullptr;
+}
+
+void EstimatorService::OnRawMessage(const lcm::ReceiveBuffer* buffer,
+                                    const std::string& /*channel*/, RawSubscription* context) {
+  context->service->HandlePacket(context->channel, buffer->data, buffer->data_size,
+                                 buffer->recv_utime);
+}
+
+bool EstimatorService::InputChannelOf(const std::string& channel, InputChannel* input) const {
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    if (channel == *input_channel_names_[i]) {
+      *input = static_cast<InputChannel>(i);
+      return true;
+    }
+  }
+  return false;
+}
+
+void EstimatorService::WarnDecodeError(InputChannel channel, const char* error) {
+  if (decode_warning_.ShouldLog(SteadyNowUs())) {
+    spdlog::warn("undecodable {} packet ({}); {} similar warnings suppressed",
+                 InputChannelName(channel), error, decode_warning_.suppressed());
+  }
+}
+
+bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size_t size,
+                                    int64_t receive_wall_utime) {
+  pipeline_.CountReceived(channel);
+  switch (channel) {
+    case InputChannel::kStrain:
+      return HandleStrain(data, size, receive_wall_utime);
+    case InputChannel::kMotor: {
+      const DecodeError error = DecodeMessage(data, size, &motor_message_);
+      if (error != DecodeError::kNone) {
+        pipeline_.CountDecodeError(channel);
+        WarnDecodeError(channel, DecodeErrorName(error));
+        return false;
+      }
+      pipeline_.OnMotor(FromMessage(motor_message_));
+      return false;
+    }
+    case InputChannel::kImu: {
+      const DecodeError error = DecodeMessage(data, size, &imu_message_);
+      if (error != DecodeError::kNone) {
+        pipeline_.CountDecodeError(channel);
+        WarnDecodeError(channel, DecodeErrorName(error));
+        return false;
+      }
+      pipeline_.OnImu(FromMessage(imu_message_));
+      return false;
+    }
+    case InputChannel::kPose: {
+      const DecodeError error = DecodeMessage(data, size, &pose_message_);
+      if (error != DecodeError::kNone) {
+        pipeline_.CountDecodeError(channel);
+        WarnDecodeError(channel, DecodeErrorName(error));
+        return false;
+      }
+      pipeline_.OnPose(FromMessage(pose_message_));
+      return false;
+    }
+  }
+  return false;
+}
+
+bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t receive_wall_utime) {
+  const int64_t start_us = options_.report_processing_time ? SteadyNowUs() : 0;
+  const DecodeError error = DecodeMessage(data, size, &strain_message_);
+  if (error != DecodeError::kNone) {
+    pipeline_.CountDecodeError(InputChannel::kStrain);
+    WarnDecodeError(InputChannel::kStrain, DecodeErrorName(error));
+    return false;
+  }
+  if (receive_wall_utime >= 0) {
+    const int64_t queued_us = WallNowUs() - receive_wall_utime;
+    if (static_cast<double>(queued_us) > options_.overload_max_delay_s * 1e6) {
+      pipeline_.CountOverloadDrop(InputChannel::kStrain);
+      if (overload_warning_.ShouldLog(SteadyNowUs())) {
+        spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed",
+                     strain_message_.seq, queued_us, overload_warning_.suppressed());
+      }
+      return false;
+    }
+  }
+  ForceEstimate estimate;
+  if (!pipeline_.OnStrain(FromMessage(strain_message_), &estimate)) return false;
+  force_message_ = ToMessage(estimate);
+  EncodeMessage(force_message_, &buffer_);
+  if (!buffer_.empty()) {
+    sink_->Publish(channels_.force, estimate.utime, buffer_.data(), buffer_.size());
+    ++forces_published_;
+  }
+  if (options_.report_processing_time) {
+    processing_time_.Add(static_cast<double>(SteadyNowUs() - start_us));
+  }
+  return true;
+}
+
+void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
+  StatusContext context;
+  context.wall_utime = wall_utime;
+  context.seq = status_seq_;
+  context.period_s = period_s;
+  context.strain_gate = StrainGateOf(pipeline_.config());
+  if (options_.report_processing_time) {
+    context.processing_time_mean_us = processing_time_.MeanUs();
+    context.processing_time_p99_us = processing_time_.P99Us();
+    context.processing_time_max_us = processing_time_.MaxUs();
+  } else {
+    context.processing_time_mean_us = kNaN;
+    context.processing_time_p99_us = kNaN;
+    context.processing_time_max_us = kNaN;
+  }
+  BuildStatusMessage(pipeline_.health(), pipeline_.method_name(), context, &status_message_);
+  EncodeMessage(status_message_, &buffer_);
+  if (!buffer_.empty()) {
+    const int64_t timestamp_us = pipeline_.health().newest_utime >= 0
+                                     ? pipeline_.health().newest_utime
+                                     : 0;
+    sink_->Publish(channels_.estimator_status, timestamp_us, buffer_.data(), buffer_.size());
+  }
+  ++status_seq_;
+  pipeline_.TakePeriod();
+  processing_time_.TakePeriod();
+}
+
+void EstimatorService::PublishStatusOnVehicleClock() {
+  const int64_t now_utime = pipeline_.health().newest_utime;
+  if (now_utime < 0 || !(options_.status_rate_hz > 0)) return;
+  const int64_t period_us = static_cast<int64_t>(std::llround(1e6 / options_.status_rate_hz));
+  // First sample, or the clock went backwards (a log played in a loop):
+  // restart the schedule one period from now.
+  if (next_status_utime_ < 0 || now_utime < next_status_utime_ - period_us) {
+    next_status_utime_ = now_utime + period_us;
+    return;
+  }
+  if (now_utime < next_status_utime_) return;
+  PublishStatus(now_utime, static_cast<double>(period_us) * 1e-6);
+  next_status_utime_ += period_us;
+  if (next_status_utime_ <= now_utime) next_status_utime_ = now_utime + period_us;  // long gap
+}
+
+}  // namespace birotor

@@ -1,0 +1,238 @@
+#include "simulator/scenario_yaml.h"
+
+#include <cmath>
+#include <limits>
+
+#include "params/vehicle_params_yaml.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxRateHz = 1e5;
+
+// Sets the node at a dotted path to the YAML value text, creating mappings on the way.
+void SetPath(YAML::Node node, const std::vector<std::string>& parts, size_t index, const YAML::Node& value,
+             const std::string& label, const std::string& path) {
+  if (!node.IsMap()) throw ParamError(label + ": key '" + path + "': --set reaches into a value that is not a mapping");
+  if (index + 1 == parts.size()) {
+    node[parts[index]] = value;
+    return;
+  }
+  if (!node[parts[index]].IsDefined() || node[parts[index]].IsNull()) node[parts[index]] = YAML::Node(YAML::NodeType::Map);
+  SetPath(node[parts[index]], parts, index + 1, value, label, path);
+}
+
+void ApplyOverride(YAML::Node root, const std::string& text, const std::string& label) {
+  const size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw ParamError(label + ": override '" + text + "': expected section.key=value");
+  const std::string path = text.substr(0, equals);
+  std::vector<std::string> parts;
+  size_t begin = 0;
+  while (true) {
+    const size_t dot = path.find('.', begin);
+    parts.push_back(path.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
+    if (parts.back().empty()) throw ParamError(label + ": override '" + text + "': empty key in the path");
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(text.substr(equals + 1));
+  } catch (const YAML::Exception& e) {
+    throw ParamError(label + ": key '" + path + "': value is not valid YAML: " + e.msg);
+  }
+  SetPath(root, parts, 0, value, label, path);
+}
+
+// A rate must give a whole number of steps per sample.
+void ReadRate(YamlSection& s, const std::string& key, double step_s, double* rate_hz) {
+  s.Double(key, 1e-3, kMaxRateHz, rate_hz);
+  const double steps = 1.0 / (*rate_hz * step_s);
+  if (steps < 1.0 - 1e-9 || std::fabs(steps - std::round(steps)) > 1e-6)
+    s.Fail(key, "period is not a whole number of simulation steps of " + std::to_string(step_s) + " s",
+           "1 / (n * step_s) for a whole n >= 1");
+}
+
+void ReadSensor(YamlSection parent, const std::string& name, double step_s, SensorRate* rate,
+                const std::vector<std::pair<std::string, double*>>& noises) {
+  YamlSection s = parent.Section(name);
+  s.Bool("enabled", &rate->enabled);
+  ReadRate(s, "rate_hz", step_s, &rate->rate_hz);
+  for (const auto& [key, value] : noises) s.Double(key, 0.0, kInf, value);
+  s.Finish();
+}
+
+void ReadWindow(YamlSection parent, const std::string& key, double duration_s, TimeWindow* window) {
+  YamlSection s = parent.Section(key);
+  s.Double("start_s", 0.0, duration_s, &window->start_s);
+  s.Double("duration_s", 0.0, duration_s, &window->duration_s);
+  s.Finish();
+}
+
+Scenario ReadScenario(YamlSection root) {
+  Scenario sc;
+  sc.file = root.file();
+
+  YamlSection scenario = root.Section("scenario");
+  scenario.AnyString("name", &sc.name);
+  scenario.String("mode", {"flight", "bench"}, &sc.mode);
+  scenario.Double("duration_s", 1e-3, 1e6, &sc.duration_s);
+  int64_t seed = static_cast<int64_t>(sc.seed);
+  scenario.Int("seed", int64_t{0}, std::numeric_limits<int64_t>::max(), &seed);
+  sc.seed = static_cast<uint64_t>(seed);
+  scenario.Double("step_s", 1e-6, 0.01, &sc.step_s);
+  if (std::fabs(sc.step_s * 1e6 - std::round(sc.step_s * 1e6)) > 1e-6)
+    scenario.Fail("step_s", "not a whole number of microseconds", "k * 1e-6 s");
+  const double steps = sc.duration_s / sc.step_s;
+  if (std::fabs(steps - std::round(steps)) > 1e-6)
+    scenario.Fail("duration_s", "not a whole number of steps of " + std::to_string(sc.step_s) + " s", "n * step_s");
+  scenario.DoubleArray("start_position_m", 2, -1e4, 1e4, sc.start_position_m);
+  scenario.Finish();
+  const double end_s = sc.duration_s;
+
+  ReadVehicleParams(root.Section("vehicle"), &sc.vehicle);
+
+  YamlSection trajectory = root.Section("trajectory");
+  trajectory.String("kind", {"hold", "waypoints", "random_steps"}, &sc.trajectory.kind);
+  double previous_end_s = 0.0;
+  for (YamlSection w : trajectory.SectionList("waypoints")) {
+    Waypoint waypoint;
+    w.RequiredDouble("start_s", 0.0, end_s, &waypoint.start_s);
+    w.RequiredDouble("duration_s", 1e-3, end_s, &waypoint.duration_s);
+    w.RequiredDouble("x_m", -1e4, 1e4, &waypoint.x_m);
+    w.RequiredDouble("z_m", -1e4, 1e4, &waypoint.z_m);
+    if (waypoint.start_s < previous_end_s - 1e-12)
+      w.Fail("start_s", "starts before the previous move ends", "start_s >= " + std::to_string(previous_end_s));
+    previous_end_s = waypoint.start_s + waypoint.duration_s;
+    w.Finish();
+    sc.trajectory.waypoints.push_back(waypoint);
+  }
+  {
+    YamlSection r = trajectory.Section("random_steps");
+    RandomSteps& steps = sc.trajectory.random_steps;
+    r.Double("interval_s", 1e-2, 1e4, &steps.interval_s);
+    r.Double("max_step_m", 0.0, 100.0, &steps.max_step_m);
+    r.Double("move_duration_s", 1e-2, 1e4, &steps.move_duration_s);
+    r.Double("max_excursion_m", 0.0, 1e3, &steps.max_excursion_m);
+    if (steps.move_duration_s > steps.interval_s)
+      r.Fail("move_duration_s", "longer than interval_s", "(0, interval_s]");
+    r.Finish();
+  }
+  trajectory.Finish();
+
+  {
+    YamlSection b = root.Section("bench");
+    BenchProfile& bench = sc.bench;
+    b.Double("omega_low_rad_s", 0.0, 1e5, &bench.omega_low_rad_s);
+    b.Double("omega_high_rad_s", bench.omega_low_rad_s, 1e5, &bench.omega_high_rad_s);
+    b.Double("segment_s", 1e-2, 1e5, &bench.segment_s);
+    b.Double("step_hold_s", 1e-3, 1e5, &bench.step_hold_s);
+    b.Double("chirp_start_hz", 0.0, 1e3, &bench.chirp_start_hz);
+    b.Double("chirp_end_hz", 0.0, 1e3, &bench.chirp_end_hz);
+    b.Finish();
+  }
+
+  {
+    YamlSection s = root.Section("sensors");
+    SensorParams& sensors = sc.sensors;
+    const double step = sc.step_s;
+    ReadSensor(s, "strain", step, &sensors.strain, {{"noise_rad", &sensors.strain_noise_rad}});
+    {
+      YamlSection m = s.Section("motor");
+      m.Bool("enabled", &sensors.motor.enabled);
+      ReadRate(m, "rate_hz", step, &sensors.motor.rate_hz);
+      m.Bool("telemetry", &sensors.motor_telemetry);
+      m.Double("speed_noise_rad_s", 0.0, kInf, &sensors.motor_speed_noise_rad_s);
+      m.Finish();
+    }
+    ReadSensor(s, "imu", step, &sensors.imu,
+               {{"gyro_noise_rad_s", &sensors.gyro_noise_rad_s}, {"accel_noise_m_s2", &sensors.accel_noise_m_s2}});
+    ReadSensor(s, "pose", step, &sensors.pose,
+               {{"position_noise_m", &sensors.pose_position_noise_m},
+                {"angle_noise_rad", &sensors.pose_angle_noise_rad}});
+    ReadSensor(s, "loadcell", step, &sensors.loadcell, {{"noise_n", &sensors.loadcell_noise_n}});
+    ReadSensor(s, "truth", step, &sensors.truth, {});
+    s.Finish();
+  }
+
+  {
+    YamlSection f = root.Section("faults");
+    FaultParams& faults = sc.faults;
+    f.DoubleArray("initial_thrust_scale", 2, 0.0, 10.0, faults.initial_thrust_scale);
+    for (YamlSection t : f.SectionList("thrust_steps")) {
+      ThrustStep step;
+      t.RequiredDouble("time_s", 0.0, end_s, &step.time_s);
+      t.Int("rotor", 1, 2, &step.rotor);
+      if (!t.Has("rotor")) t.Fail("rotor", "missing", "1 or 2");
+      t.RequiredDouble("scale", 0.0, 10.0, &step.scale);
+      t.Finish();
+      faults.thrust_steps.push_back(step);
+    }
+    ReadWindow(f, "strain_gap", end_s, &faults.strain_gap);
+    f.Double("strain_spike_probability", 0.0, 1.0, &faults.strain_spike_probability);
+    f.Double("strain_spike_sigmas", 0.0, 1e6, &faults.strain_spike_sigmas);
+    f.DoubleList("strain_nan_times_s", 0.0, end_s, &faults.strain_nan_times_s);
+    f.DoubleList("strain_out_of_order_times_s", 0.0, end_s, &faults.strain_out_of_order_times_s);
+    ReadWindow(f, "motor_telemetry_gap", end_s, &faults.motor_telemetry_gap);
+    f.Finish();
+  }
+
+  {
+    YamlSection c = root.Section("controller");
+    ControllerParams& ctrl = sc.controller;
+    ReadRate(c, "rate_hz", sc.step_s, &ctrl.rate_hz);
+    c.Double("position_kp_1_s2", 0.0, 1e4, &ctrl.position_kp_1_s2);
+    c.Double("position_kd_1_s", 0.0, 1e4, &ctrl.position_kd_1_s);
+    c.Double("position_ki_1_s3", 0.0, 1e4, &ctrl.position_ki_1_s3);
+    c.Double("attitude_kp_1_s2", 0.0, 1e6, &ctrl.attitude_kp_1_s2);
+    c.Double("attitude_kd_1_s", 0.0, 1e4, &ctrl.attitude_kd_1_s);
+    c.Double("attitude_ki_1_s3", 0.0, 1e6, &ctrl.attitude_ki_1_s3);
+    c.Double("max_tilt_rad", 1e-3, 1.5, &ctrl.max_tilt_rad);
+    c.Double("max_integral_m_s2", 0.0, 100.0, &ctrl.max_integral_m_s2);
+    c.Double("max_attitude_integral_rad_s2", 0.0, 1e4, &ctrl.max_attitude_integral_rad_s2);
+    c.Finish();
+  }
+  root.Finish();
+  return sc;
+}
+
+}  // namespace
+
+Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
+                                const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ParamError(file_label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap()) throw ParamError(file_label + ": the top level must be a mapping of keys");
+  const std::string label = overrides.empty() ? file_label : file_label + " (with --set overrides)";
+  for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
+  Scenario scenario = ReadScenario(YamlSection(label, "", root));
+  scenario.file = file_label;
+  return scenario;
+}
+
+Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::BadFile&) {
+    throw ParamError(file + ": cannot open the scenario file");
+  } catch (const YAML::Exception& e) {
+    throw ParamError(file + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap()) throw ParamError(file + ": the top level must be a mapping of keys");
+  const std::string label = overrides.empty() ? file : file + " (with --set overrides)";
+  for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
+  Scenario scenario = ReadScenario(YamlSection(label, "", root));
+  scenario.file = file;
+  return scenario;
+}
+
+}  // namespace birotor

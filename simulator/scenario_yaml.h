@@ -1,0 +1,23 @@
+// Loading a scenario from YAML with every key validated (unknown keys, ranges,
+// rates that are not a whole number of steps, fault times past the end), plus
+// command-line overrides "section.key=value" applied on top of the file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "params/yaml_reader.h"
+#include "simulator/scenario.h"
+
+namespace birotor {
+
+// Loads file, applies overrides ("sensors.strain.noise_rad=0", the value is
+// YAML: "faults.strain_nan_times_s=[8.0]" works), validates. Throws
+// ParamError with a one-line message naming the file and the key.
+Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides = {});
+
+// Same from YAML text; file_label is used in messages.
+Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
+                                const std::vector<std::string>& overrides = {});
+
+}  // namespace birotor

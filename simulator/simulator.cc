@@ -1,0 +1,302 @@
+#include "simulator/simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "simulator/bench_dynamics.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Independent random streams of one seed, so switching one sensor off does
+// not change the noise of the others.
+enum NoiseStream : uint64_t {
+  kTurbulenceStream = 1,
+  kStrainStream = 2,
+  kMotorStream = 3,
+  kImuStream = 4,
+  kPoseStream = 5,
+  kLoadCellStream = 6,
+  kFaultStream = 7,
+};
+
+int64_t Microseconds(double t_s) { return std::llround(t_s * 1e6); }
+
+// First multiple of period_us at or after t_us, as a sample index.
+int64_t FirstSampleAtOrAfter(int64_t t_us, int64_t period_us) { return (t_us + period_us - 1) / period_us; }
+
+}  // namespace
+
+Simulator::Simulator(const Scenario& scenario)
+    : scenario_(scenario),
+      clamped_body_(scenario.mode == "bench"),
+      step_us_(Microseconds(scenario.step_s)),
+      total_steps_(std::llround(scenario.duration_s / scenario.step_s)),
+      equilibrium_(SolveHoverEquilibrium(scenario.vehicle)),
+      trajectory_(scenario),
+      controller_(scenario.vehicle, scenario.controller, 0.5 * (equilibrium_.force_n[0] + equilibrium_.force_n[1])),
+      bench_(scenario.bench, scenario.seed),
+      turbulence_{GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s),
+                  GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s)},
+      turbulence_noise_(scenario.seed, kTurbulenceStream),
+      strain_noise_(scenario.seed, kStrainStream),
+      motor_noise_(scenario.seed, kMotorStream),
+      imu_noise_(scenario.seed, kImuStream),
+      pose_noise_(scenario.seed, kPoseStream),
+      loadcell_noise_(scenario.seed, kLoadCellStream),
+      fault_noise_(scenario.seed, kFaultStream) {
+  const SensorParams& sensors = scenario_.sensors;
+  auto decimation = [&](const SensorRate& rate) {
+    Decimation d;
+    d.enabled = rate.enabled;
+    d.every_steps = std::max<int64_t>(1, std::llround(1.0 / (rate.rate_hz * scenario_.step_s)));
+    return d;
+  };
+  control_ = decimation(SensorRate{true, scenario_.controller.rate_hz});
+  strain_ = decimation(sensors.strain);
+  motor_ = decimation(sensors.motor);
+  imu_ = decimation(sensors.imu);
+  pose_ = decimation(sensors.pose);
+  loadcell_ = decimation(sensors.loadcell);
+  truth_ = decimation(sensors.truth);
+
+  const FaultParams& faults = scenario_.faults;
+  for (int i = 0; i < 2; ++i) efficiency_[i] = faults.initial_thrust_scale[i];
+  for (const ThrustStep& step : faults.thrust_steps) {
+    const int64_t index = FirstSampleAtOrAfter(Microseconds(step.time_s), step_us_);
+    thrust_steps_.push_back({index, step.rotor - 1, step.scale});
+  }
+  std::stable_sort(thrust_steps_.begin(), thrust_steps_.end(),
+                   [](const ScheduledStep& a, const ScheduledStep& b) { return a.step < b.step; });
+  const int64_t strain_period_us = strain_.every_steps * step_us_;
+  for (double t : faults.strain_nan_times_s)
+    strain_nan_seq_.push_back(FirstSampleAtOrAfter(Microseconds(t), strain_period_us));
+  for (double t : faults.strain_out_of_order_times_s)
+    strain_swap_seq_.push_back(FirstSampleAtOrAfter(Microseconds(t), strain_period_us));
+  std::sort(strain_nan_seq_.begin(), strain_nan_seq_.end());
+  std::sort(strain_swap_seq_.begin(), strain_swap_seq_.end());
+  fault_events_.reserve(4096);
+
+  // Initial state: the exact hover equilibrium at the start position (flight),
+  // or the static arm deflection under the first bench command (bench).
+  const VehicleParams& p = scenario_.vehicle;
+  state_.setZero();
+  if (clamped_body_) {
+    command_ = bench_.At(0.0);
+    for (int i = 0; i < 2; ++i) {
+      const double omega = ClampCommand(p, command_.omega_cmd_rad_s[i]);
+      const double force = RotorThrust(p, omega, efficiency_[i]);
+      state_(kPlantOmega1 + i) = omega;
+      // k b = s_i L (f - m_p g) for small b (b row of eq. 3.10 with the body still).
+      state_(kPlantQ + kB1 + i) =
+          kArmSign[i] * p.arm_length_m * (force - p.tip_mass_kg * p.gravity_m_s2) / p.arm_stiffness_n_m_rad;
+    }
+  } else {
+    state_(kPlantQ + kX) = scenario_.start_position_m[0];
+    state_(kPlantQ + kZ) = scenario_.start_position_m[1];
+    state_(kPlantQ + kB1) = equilibrium_.deflection_rad[0];
+    state_(kPlantQ + kB2) = equilibrium_.deflection_rad[1];
+    state_(kPlantOmega1) = equilibrium_.omega_rad_s[0];
+    state_(kPlantOmega2) = equilibrium_.omega_rad_s[1];
+  }
+  for (GaussMarkov& eta : turbulence_) eta.Reset(&turbulence_noise_);
+}
+
+PlantState Simulator::Derivative(const PlantState& x) const {
+  return clamped_body_ ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
+                       : PlantDerivative(scenario_.vehicle, x, input_);
+}
+
+double Simulator::TrueForce(int rotor) const {
+  return RotorThrust(scenario_.vehicle, state_(kPlantOmega1 + rotor), input_.thrust_scale[rotor]);
+}
+
+bool Simulator::InWindow(const TimeWindow& window, int64_t t_us) const {
+  const int64_t start_us = utime_offset_us_ + Microseconds(window.start_s);
+  return window.duration_s > 0.0 && t_us >= start_us && t_us < start_us + Microseconds(window.duration_s);
+}
+
+void Simulator::RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value) {
+  fault_events_.push_back(FaultEvent{kind, utime, seq, rotor, value});
+}
+
+bool Simulator::Step(SampleSink* sink) {
+  if (done()) return false;
+  const int64_t k = step_index_;
+  const int64_t now_us = utime();
+  const double t_s = time_s();
+
+  // Thrust efficiency steps take effect at the first step at or after their time.
+  while (next_thrust_step_ < thrust_steps_.size() && thrust_steps_[next_thrust_step_].step <= k) {
+    const ScheduledStep& step = thrust_steps_[next_thrust_step_++];
+    efficiency_[step.rotor] = step.scale;
+    RecordFault(FaultKind::kThrustStep, now_us, -1, step.rotor + 1, step.scale);
+  }
+  // mu_i = s_i (1 + eta_i), held over this step.
+  for (int i = 0; i < 2; ++i) input_.thrust_scale[i] = efficiency_[i] * (1.0 + turbulence_[i].value());
+
+  // Controller (or bench profile) at its own rate; commands are held (ZOH).
+  if (control_.Due(k)) {
+    if (clamped_body_) {
+      command_ = bench_.At(t_s);
+    } else {
+      reference_ = trajectory_.At(t_s);
+      command_ = controller_.Update(state_, reference_);
+    }
+  }
+  input_.omega_cmd_rad_s[0] = command_.omega_cmd_rad_s[0];
+  input_.omega_cmd_rad_s[1] = command_.omega_cmd_rad_s[1];
+
+  // RK4, keeping k1 = f(x_k, u_k) for the accelerometer.
+  const double dt = scenario_.step_s;
+  const PlantState k1 = Derivative(state_);
+
+  if (sink != nullptr) {
+    if (strain_.Due(k)) EmitStrain(now_us, sink);
+    if (motor_.Due(k)) EmitMotor(now_us, sink);
+    if (imu_.Due(k)) EmitImu(now_us, k1, sink);
+    if (pose_.Due(k)) EmitPose(now_us, sink);
+    if (loadcell_.Due(k)) EmitLoadCell(now_us, sink);
+    if (truth_.Due(k)) EmitTruth(now_us, sink);
+  }
+
+  const PlantState k2 = Derivative(state_ + (0.5 * dt) * k1);
+  const PlantState k3 = Derivative(state_ + (0.5 * dt) * k2);
+  const PlantState k4 = Derivative(state_ + dt * k3);
+  state_ += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+
+  for (GaussMarkov& eta : turbulence_) eta.Advance(&turbulence_noise_);
+  ++step_index_;
+  return true;
+}
+
+void Simulator::Run(SampleSink* sink) {
+  while (Step(sink)) {
+  }
+}
+
+void Simulator::EmitStrain(int64_t utime, SampleSink* sink) {
+  const FaultParams& faults = scenario_.faults;
+  const double sigma = scenario_.sensors.strain_noise_rad;
+  const int32_t seq = strain_seq_++;
+  StrainSample sample;
+  sample.utime = utime;
+  sample.seq = seq;
+  for (int i = 0; i < 2; ++i) sample.deflection_rad[i] = state_(kPlantQ + kB1 + i) + strain_noise_.Normal(sigma);
+
+  // Fault draws happen for every sample so the fault pattern does not depend
+  // on which other faults are configured.
+  const double spike_draw = fault_noise_.Uniform();
+  const double spike_shape = fault_noise_.Uniform();
+  const bool in_gap = InWindow(faults.strain_gap, utime);
+  const bool is_nan = std::binary_search(strain_nan_seq_.begin(), strain_nan_seq_.end(), seq);
+  if (in_gap) {
+    RecordFault(FaultKind::kStrainGap, utime, seq, 0, 0.0);
+  } else if (is_nan) {
+    sample.deflection_rad[0] = sample.deflection_rad[1] = kNaN;
+    RecordFault(FaultKind::kStrainNan, utime, seq, 0, kNaN);
+  } else if (spike_draw < faults.strain_spike_probability) {
+    // One arm (first half of spike_shape: arm 1), sign from the rest.
+    const int arm = spike_shape < 0.5 ? 0 : 1;
+    const double sign = std::fmod(spike_shape * 4.0, 2.0) < 1.0 ? 1.0 : -1.0;
+    const double spike = sign * faults.strain_spike_sigmas * sigma;
+    sample.deflection_rad[arm] += spike;
+    RecordFault(FaultKind::kStrainSpike, utime, seq, arm + 1, spike);
+  }
+  if (in_gap) {
+    // Not emitted; a sample held for swapping still goes out.
+  } else if (std::binary_search(strain_swap_seq_.begin(), strain_swap_seq_.end(), seq)) {
+    RecordFault(FaultKind::kStrainOutOfOrder, utime, seq, 0, 0.0);
+    held_strain_ = sample;
+    has_held_strain_ = true;
+    return;
+  } else {
+    sink->OnStrain(sample);
+    ++emitted_.strain;
+  }
+  if (has_held_strain_) {
+    sink->OnStrain(held_strain_);
+    ++emitted_.strain;
+    has_held_strain_ = false;
+  }
+}
+
+void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
+  const SensorParams& sensors = scenario_.sensors;
+  MotorSample sample;
+  sample.utime = utime;
+  sample.seq = motor_seq_++;
+  const bool in_gap = InWindow(scenario_.faults.motor_telemetry_gap, utime);
+  if (in_gap) RecordFault(FaultKind::kMotorTelemetryGap, utime, sample.seq, 0, kNaN);
+  for (int i = 0; i < 2; ++i) {
+    sample.omega_cmd_rad_s[i] = ClampCommand(scenario_.vehicle, command_.omega_cmd_rad_s[i]);
+    const double noise = motor_noise_.Normal(sensors.motor_speed_noise_rad_s);
+    sample.omega_meas_rad_s[i] = (sensors.motor_telemetry && !in_gap) ? state_(kPlantOmega1 + i) + noise : kNaN;
+  }
+  sink->OnMotor(sample);
+  ++emitted_.motor;
+}
+
+void Simulator::EmitImu(int64_t utime, const PlantState& derivative, SampleSink* sink) {
+  const SensorParams& sensors = scenario_.sensors;
+  // Specific force in body axes: R(phi)^T (p_ddot + [0, g]).
+  const double phi = state_(kPlantQ + kPhi);
+  const double c = std::cos(phi), s = std::sin(phi);
+  const double ax = derivative(kPlantV + kX);
+  const double az = derivative(kPlantV + kZ) + scenario_.vehicle.gravity_m_s2;
+  ImuSample sample;
+  sample.utime = utime;
+  sample.seq = imu_seq_++;
+  sample.gyro_y_rad_s = state_(kPlantV + kPhi) + imu_noise_.Normal(sensors.gyro_noise_rad_s);
+  sample.accel_x_m_s2 = c * ax + s * az + imu_noise_.Normal(sensors.accel_noise_m_s2);
+  sample.accel_z_m_s2 = -s * ax + c * az + imu_noise_.Normal(sensors.accel_noise_m_s2);
+  sink->OnImu(sample);
+  ++emitted_.imu;
+}
+
+void Simulator::EmitPose(int64_t utime, SampleSink* sink) {
+  const SensorParams& sensors = scenario_.sensors;
+  PoseSample sample;
+  sample.utime = utime;
+  sample.seq = pose_seq_++;
+  sample.x_m = state_(kPlantQ + kX) + pose_noise_.Normal(sensors.pose_position_noise_m);
+  sample.z_m = state_(kPlantQ + kZ) + pose_noise_.Normal(sensors.pose_position_noise_m);
+  sample.phi_rad = state_(kPlantQ + kPhi) + pose_noise_.Normal(sensors.pose_angle_noise_rad);
+  sink->OnPose(sample);
+  ++emitted_.pose;
+}
+
+void Simulator::EmitLoadCell(int64_t utime, SampleSink* sink) {
+  LoadCellSample sample;
+  sample.utime = utime;
+  sample.seq = loadcell_seq_++;
+  for (int i = 0; i < 2; ++i)
+    sample.force_n[i] = TrueForce(i) + loadcell_noise_.Normal(scenario_.sensors.loadcell_noise_n);
+  sink->OnLoadCell(sample);
+  ++emitted_.loadcell;
+}
+
+void Simulator::EmitTruth(int64_t utime, SampleSink* sink) {
+  TruthSample sample;
+  sample.utime = utime;
+  sample.x_m = state_(kPlantQ + kX);
+  sample.z_m = state_(kPlantQ + kZ);
+  sample.phi_rad = state_(kPlantQ + kPhi);
+  sample.x_dot_m_s = state_(kPlantV + kX);
+  sample.z_dot_m_s = state_(kPlantV + kZ);
+  sample.phi_dot_rad_s = state_(kPlantV + kPhi);
+  for (int i = 0; i < 2; ++i) {
+    sample.deflection_rad[i] = state_(kPlantQ + kB1 + i);
+    sample.deflection_dot_rad_s[i] = state_(kPlantV + kB1 + i);
+    sample.omega_rad_s[i] = state_(kPlantOmega1 + i);
+    sample.force_n[i] = TrueForce(i);
+    sample.thrust_scale[i] = input_.thrust_scale[i];
+  }
+  sink->OnTruth(sample);
+  ++emitted_.truth;
+}
+
+}  // namespace birotor

@@ -1,0 +1,103 @@
+// The core of birotor-replay, shared with birotor-eval and the tests: feeds
+// recorded (or freshly simulated) input packets through the daemon's own
+// EstimatorService as fast as possible, with ESTIMATOR_STATUS on the vehicle
+// clock, so the output is deterministic; plus the output sinks (log, CSV).
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "birotor/force_estimate_t.hpp"
+#include "estimator/estimator_config.h"
+#include "services/estimator_service.h"
+#include "transport/channels.h"
+#include "transport/log_io.h"
+
+namespace birotor {
+
+struct ReplayOptions {
+  std::string prefix = kDefaultChannelPrefix;  // channel prefix of input and output
+  bool copy_truth = true;       // copy TRUTH events to the output (for evaluation)
+  double status_rate_hz = 5.0;  // ESTIMATOR_STATUS rate on the vehicle clock [Hz]
+};
+
+// What a replay saw.
+struct ReplayStats {
+  int64_t events = 0;          // events offered to the replayer
+  int64_t input_packets = 0;   // STRAIN, MOTOR, IMU, POSE packets
+  int64_t truth_copied = 0;
+  int64_t forces = 0;          // FORCE messages written
+  int64_t first_utime = -1;    // newest-sample utime range of the inputs [us]
+  int64_t last_utime = -1;
+  // Vehicle times [us] at which the pipeline counted an input fault on the
+  // strain channel (gap, out of order, duplicate, invalid, decode error) or
+  // reset: for evaluating accuracy away from faults.
+  std::vector<int64_t> strain_fault_utimes;
+};
+
+// Runs packets through one EstimatorService. Not thread-safe.
+class Replayer {
+ public:
+  Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink);
+
+  // One event of a log (or a simulated packet): inputs go to the estimator,
+  // TRUTH is copied through when asked, anything else is ignored.
+  void Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size);
+
+  const ReplayStats& stats() const { return stats_; }
+  const EstimatorService& service() const { return service_; }
+  const ChannelNames& channels() const { return channels_; }
+
+ private:
+  int64_t StrainFaultCount() const;
+
+  ReplayOptions options_;
+  ChannelNames channels_;
+  MessageSink* sink_;
+  EstimatorService service_;
+  ReplayStats stats_;
+  int64_t strain_fault_count_ = 0;
+};
+
+// Replays every event of the log at input_path. False with *error when the
+// log cannot be opened; a truncated tail is reported in *truncated_tail.
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail,
+                   std::string* error);
+
+// Writes every message to an LCM log (event time = the message's utime).
+class LogSink : public MessageSink {
+ public:
+  explicit LogSink(LogWriter* writer) : writer_(writer) {}
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
+               size_t size) override;
+  bool failed() const { return failed_; }
+
+ private:
+  LogWriter* writer_;
+  bool failed_ = false;
+};
+
+// Writes FORCE messages as CSV rows (full precision, for regression traces),
+// forwarding every message to next (may be null).
+class ForceCsvSink : public MessageSink {
+ public:
+  ForceCsvSink(std::FILE* file, const std::string& force_channel, MessageSink* next);
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
+               size_t size) override;
+
+ private:
+  std::FILE* file_;
+  std::string force_channel_;
+  MessageSink* next_;
+  force_estimate_t message_;
+};
+
+// Header and one row of the FORCE CSV: utime,seq,force_n_1,force_n_2,
+// force_std_n_1,force_std_n_2,thrust_scale_1,thrust_scale_2,status
+// (doubles with 17 significant digits, so a trace round-trips exactly).
+const char* ForceCsvHeader();
+std::string ForceCsvRow(const force_estimate_t& message);
+
+}  // namespace birotor

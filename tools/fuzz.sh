@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses with clang (AddressSanitizer + UBSan) into
+# build-fuzz/ and runs each for a while on its seed corpus (copied, so the
+# repository's corpus only changes by hand).
+# Usage: tools/fuzz.sh [seconds per harness, default 60] [harness ...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+shift || true
+tools/setup.sh --no-build
+BUILD_DIR="${BIROTOR_FUZZ_BUILD_DIR:-build-fuzz}"
+CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DBIROTOR_FUZZ=ON -DBIROTOR_BUILD_TESTS=OFF -DBIROTOR_BUILD_BENCHMARKS=OFF > "$BUILD_DIR.cmake.log" 2>&1 \
+  || { cat "$BUILD_DIR.cmake.log"; exit 1; }
+harnesses=("$@")
+if [ ${#harnesses[@]} -eq 0 ]; then
+  for dir in fuzz/corpus/*/; do harnesses+=("$(basename "$dir")"); done
+fi
+cmake --build "$BUILD_DIR" -j "${BIROTOR_JOBS:-$(nproc)}" --target "${harnesses[@]}"
+status=0
+for h in "${harnesses[@]}"; do
+  work="$BUILD_DIR/corpus-$h"
+  mkdir -p "$work" "$BUILD_DIR/artifacts-$h"
+  cp -n "fuzz/corpus/$h/"* "$work/" 2>/dev/null || true
+  echo "fuzz: $h for ${seconds}s"
+  if ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+     "$BUILD_DIR/fuzz/$h" -max_total_time="$seconds" -rss_limit_mb=2048 -print_final_stats=1 \
+       -artifact_prefix="$BUILD_DIR/artifacts-$h/" "$work" > "$BUILD_DIR/fuzz-$h.log" 2>&1; then
+    echo "fuzz: $h: $(grep -E '^stat::number_of_executed_units' "$BUILD_DIR/fuzz-$h.log" | awk '{print $2}') runs, no crash, no leak, no sanitizer report"
+  else
+    echo "fuzz: $h FAILED; see $BUILD_DIR/fuzz-$h.log and $BUILD_DIR/artifacts-$h/"
+    tail -30 "$BUILD_DIR/fuzz-$h.log"
+    status=1
+  fi
+done
+exit $status
