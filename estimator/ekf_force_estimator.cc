@@ -125,8 +125,8 @@ void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   const EkfMatrix phi = EkfProcessModel::Transition(a, dt_s);
   state_ = process_.Step(state_, input, dt_s);
   EkfMatrix temp;
-  temp.noalias() = phi * covariance_;
-  covariance_.noalias() = temp * phi.transpose();
+  temp.noalias() = phi.lazyProduct(covariance_);
+  covariance_.noalias() = temp.lazyProduct(phi.transpose());
   covariance_ += process_noise_psd_ * dt_s;
 }
 

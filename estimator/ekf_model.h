@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <ceres/jet.h>
 
 #include "estimator/birotor_dynamics.h"
@@ -166,19 +167,26 @@ Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfState& x
 }
 
 // Kalman update in Joseph form, which keeps P symmetric positive
-// semi-definite under round-off:
+// semi-definite under round-off and for any gain:
 //   K = P H^T S^-1,  x += K y,  P = (I - K H) P (I - K H)^T + K R K^T.
+// Expanded with S = H P H^T + R it is the same matrix,
+//   P = P - K (P H^T)^T - (P H^T) K^T + K S K^T,
+// computed in O(n^2 m) instead of O(n^3); the result is symmetrised.
 template <typename Model>
 void JosephUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
-  const Eigen::Matrix<double, kEkfStateSize, Model::kSize> gain =
-      (*cov) * model.h_jacobian.transpose() * innovation.covariance_inverse;
+  using Gain = Eigen::Matrix<double, kEkfStateSize, Model::kSize>;
+  Gain p_ht;
+  p_ht.noalias() = (*cov) * model.h_jacobian.transpose();
+  Gain gain;
+  gain.noalias() = p_ht * innovation.covariance_inverse;
   x->noalias() += gain * innovation.residual;
-  EkfMatrix i_kh = EkfMatrix::Identity();
-  i_kh.noalias() -= gain * model.h_jacobian;
-  EkfMatrix temp;
-  temp.noalias() = i_kh * (*cov);
-  cov->noalias() = temp * i_kh.transpose();
-  cov->noalias() += gain * model.noise * gain.transpose();
+  Gain k_s;
+  k_s.noalias() = gain * innovation.covariance;
+  // -K (P H^T)^T - (P H^T) K^T + K S K^T = K (S K^T - (P H^T)^T) - (P H^T) K^T
+  Gain half = 0.5 * k_s - p_ht;  // symmetric split: (K S/2 - P H^T) K^T, plus its transpose
+  EkfMatrix delta;
+  delta.noalias() = half.lazyProduct(gain.transpose());
+  *cov += delta + delta.transpose();
 }
 
 // ---- inline implementation of EkfProcessModel ----
@@ -202,8 +210,9 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
 }
 
 inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& /*u*/) const {
-  // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2.
-  using Jet = ceres::Jet<double, 7>;
+  // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2; the
+  // eighth is padding so that the derivative part vectorises (4 SSE packets).
+  using Jet = ceres::Jet<double, 8>;
   const Eigen::Matrix<Jet, 3, 1> acc =
       ArmAcceleration<Jet>(params_, Jet(x(kDeflection1), 0), Jet(x(kDeflection2), 1), Jet(x(kPitchRate), 2),
                            Jet(x(kDeflectionRate1), 3), Jet(x(kDeflectionRate2), 4), Jet(Force(x, 0), 5),
@@ -232,14 +241,15 @@ inline EkfState EkfProcessModel::Step(const EkfState& x, const EkfInput& u, doub
 
 inline EkfMatrix EkfProcessModel::Transition(const EkfMatrix& a, double dt_s) {
   // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))).
+  // lazyProduct: coefficient-based products, faster than GEMM at 9x9.
   const EkfMatrix a_dt = a * dt_s;
   EkfMatrix phi = EkfMatrix::Identity() + a_dt * 0.25;
   EkfMatrix temp;
-  temp.noalias() = a_dt * phi;
+  temp.noalias() = a_dt.lazyProduct(phi);
   phi = EkfMatrix::Identity() + temp * (1.0 / 3.0);
-  temp.noalias() = a_dt * phi;
+  temp.noalias() = a_dt.lazyProduct(phi);
   phi = EkfMatrix::Identity() + temp * 0.5;
-  temp.noalias() = a_dt * phi;
+  temp.noalias() = a_dt.lazyProduct(phi);
   return EkfMatrix::Identity() + temp;
 }
 

@@ -20,7 +20,7 @@ struct EkfOptions {
   bool use_gyro = true;                    // fuse IMU gyro_y when IMU samples arrive
   // Process noise. Thrust scale mu: random walk standing in for the
   // Gauss-Markov turbulence, q = 2 sigma^2 / tau (2e-3 /s for the reference).
-  double thrust_scale_psd_1_s = 2e-2;            // [1/s]
+  double thrust_scale_psd_1_s = 2e-3;            // [1/s]
   double deflection_rate_psd_rad2_s3 = 1e-4;     // on b_i_dot [(rad/s)^2/s]
   double pitch_rate_psd_rad2_s3 = 1e-4;          // on phi_dot [(rad/s)^2/s]
   double omega_psd_rad2_s = 100.0;               // on omega_i [(rad/s)^2/s]

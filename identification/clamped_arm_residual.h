@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "identification/arm_dynamics.h"
+#include "identification/robust_residual.h"
 
 namespace birotor {
 
@@ -15,7 +16,7 @@ namespace birotor {
 // samples) from the window's own initial state (b_0, b_dot_0) through
 //   m_p L^2 b_ddot + d b_dot + k b + s_i m_p g L cos(b) = s_i L f_i
 // with k = theta_k k_scale, d = theta_d d_scale, and
-//   r_j = (b_meas_j - b_j) / sigma_b                                [1, whitened]
+//   r_j = Huber((b_meas_j - b_j) / sigma_b)                         [1, whitened]
 struct ClampedArmWindowResidual {
   struct Sample {
     double dt_s;          // time to the next sample [s] (unused for the last)
@@ -24,9 +25,9 @@ struct ClampedArmWindowResidual {
   };
 
   ClampedArmWindowResidual(const VehicleParams& known, int arm, std::vector<Sample> samples,
-                           double sigma_rad, int substeps, double k_scale, double d_scale)
+                           double sigma_rad, int substeps, double k_scale, double d_scale, double huber)
       : known_(known), arm_(arm), samples_(std::move(samples)), inv_sigma_(1.0 / sigma_rad),
-        substeps_(substeps), k_scale_(k_scale), d_scale_(d_scale) {}
+        substeps_(substeps), k_scale_(k_scale), d_scale_(d_scale), huber_(huber) {}
 
   template <typename T>
   bool operator()(const T* k_ratio, const T* d_ratio, const T* state0, T* residual) const {
@@ -53,16 +54,17 @@ struct ClampedArmWindowResidual {
           b_dot = b_dot + (h / 6.0) * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
         }
       }
-      residual[j] = (samples_[j].deflection_rad - b) * inv_sigma_;
+      residual[j] = HuberResidual(T((samples_[j].deflection_rad - b) * inv_sigma_), huber_);
     }
     return true;
   }
 
   static ceres::CostFunction* Create(const VehicleParams& known, int arm, std::vector<Sample> samples,
-                                     double sigma_rad, int substeps, double k_scale, double d_scale) {
+                                     double sigma_rad, int substeps, double k_scale, double d_scale,
+                                     double huber) {
     const int n = static_cast<int>(samples.size());
     return new ceres::AutoDiffCostFunction<ClampedArmWindowResidual, ceres::DYNAMIC, 1, 1, 2>(
-        new ClampedArmWindowResidual(known, arm, std::move(samples), sigma_rad, substeps, k_scale, d_scale),
+        new ClampedArmWindowResidual(known, arm, std::move(samples), sigma_rad, substeps, k_scale, d_scale, huber),
         n);
   }
 
@@ -73,6 +75,7 @@ struct ClampedArmWindowResidual {
   const int substeps_;
   const double k_scale_;       // [N m/rad]
   const double d_scale_;       // [N m s/rad]
+  const double huber_;         // Huber threshold [sigma]
 };
 
 }  // namespace birotor

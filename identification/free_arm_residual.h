@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "identification/arm_dynamics.h"
+#include "identification/robust_residual.h"
 
 namespace birotor {
 
@@ -31,7 +32,7 @@ constexpr int kFreeArmResidualsPerSample = 5;
 //   r_j = [b1_meas - b1, b2_meas - b2] / sigma_b,
 //         (gyro_meas - phi_dot) / sigma_gyro,
 //         (a_meas - a_model(x_j, f_j)) / sigma_a                    [1, whitened]
-// A missing measurement (NaN) gives a zero residual. Parameters are ratios to
+// each passed through HuberResidual. A missing measurement (NaN) gives a zero residual. Parameters are ratios to
 // their scales: k = theta_k k_scale, d = theta_d d_scale, c_T = theta_c c_scale.
 struct FreeArmWindowResidual {
   struct Sample {
@@ -50,6 +51,7 @@ struct FreeArmWindowResidual {
     double strain_rad;
     double gyro_rad_s;
     double accel_m_s2;
+    double huber;  // Huber threshold on whitened residuals [sigma]
   };
 
   FreeArmWindowResidual(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise,
@@ -92,16 +94,19 @@ struct FreeArmWindowResidual {
       }
       const Sample& m = samples_[j];
       T* r = residual + kFreeArmResidualsPerSample * j;
-      r[kResB1] = (m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad;
-      r[kResB2] = (m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad;
-      r[kResGyro] = std::isfinite(m.gyro_rad_s) ? (m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s : T(0.0);
+      const double c = noise_.huber;
+      r[kResB1] = HuberResidual(T((m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad), c);
+      r[kResB2] = HuberResidual(T((m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad), c);
+      r[kResGyro] = std::isfinite(m.gyro_rad_s)
+                        ? HuberResidual(T((m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s), c)
+                        : T(0.0);
       if (std::isfinite(m.accel_m_s2[0]) && std::isfinite(m.accel_m_s2[1])) {
         T f1, f2;
         forces(m, m, 0.0, &f1, &f2);
         Eigen::Matrix<T, 2, 1> specific_force;
         FreeArmDerivative<T>(known_, k, d, x, f1, f2, &specific_force);
-        r[kResAccelX] = (m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2;
-        r[kResAccelZ] = (m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2;
+        r[kResAccelX] = HuberResidual(T((m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2), c);
+        r[kResAccelZ] = HuberResidual(T((m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2), c);
       } else {
         r[kResAccelX] = T(0.0);
         r[kResAccelZ] = T(0.0);

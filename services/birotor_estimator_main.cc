@@ -1,9 +1,13 @@
 // birotor-estimator: the live rotor-force estimation daemon. Subscribes to
 // STRAIN, MOTOR, IMU and POSE, publishes one FORCE per accepted strain sample
 // and ESTIMATOR_STATUS at --status-rate-hz (wall clock); stops on SIGINT/SIGTERM.
+#include <sched.h>
 #include <spdlog/spdlog.h>
+#include <sys/mman.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -49,6 +53,10 @@ int main(int argc, char** argv) {
   app.add_option("--overload-max-delay-s", options.overload_max_delay_s,
                  "Strain packets queued longer than this are dropped and counted [s]")
       ->check(CLI::Range(0.001, 60.0));
+  int realtime_priority = 0;
+  app.add_option("--realtime-priority", realtime_priority,
+                 "SCHED_FIFO priority (1-99) and locked memory; 0 keeps the normal scheduler")
+      ->check(CLI::Range(0, 99));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-estimator", common.log_level);
 
@@ -64,6 +72,17 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!method.empty()) config.method = method;
+
+  // Before LCM starts any thread, so that its threads inherit the policy.
+  if (realtime_priority > 0) {
+    sched_param param{};
+    param.sched_priority = realtime_priority;
+    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+      spdlog::warn("cannot set SCHED_FIFO priority {} (needs CAP_SYS_NICE); normal scheduler",
+                   realtime_priority);
+    }
+    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) spdlog::warn("cannot lock memory (mlockall)");
+  }
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
@@ -96,7 +115,8 @@ int main(int argc, char** argv) {
     const double wait_s = last_status_s + status_period_s - SteadyNowS();
     const int handled = HandleFor(*lcm, std::min(std::max(wait_s, 0.0), 0.1));
     if (handled < 0) {
-      spdlog::error("lcm handle failed; stopping");
+      if (ShutdownRequested() || errno == EINTR) continue;  // a signal interrupted the wait
+      spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
       break;
     }
     // Drain everything already queued before looking at the clock again.

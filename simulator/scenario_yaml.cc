@@ -55,7 +55,7 @@ void ReadRate(YamlSection& s, const std::string& key, double step_s, double* rat
            "1 / (n * step_s) for a whole n >= 1");
 }
 
-void ReadSensor(YamlSection parent, const std::string& name, double step_s, SensorRate* rate,
+void ReadSensor(YamlSection& parent, const std::string& name, double step_s, SensorRate* rate,
                 const std::vector<std::pair<std::string, double*>>& noises) {
   YamlSection s = parent.Section(name);
   s.Bool("enabled", &rate->enabled);
@@ -64,7 +64,7 @@ void ReadSensor(YamlSection parent, const std::string& name, double step_s, Sens
   s.Finish();
 }
 
-void ReadWindow(YamlSection parent, const std::string& key, double duration_s, TimeWindow* window) {
+void ReadWindow(YamlSection& parent, const std::string& key, double duration_s, TimeWindow* window) {
   YamlSection s = parent.Section(key);
   s.Double("start_s", 0.0, duration_s, &window->start_s);
   s.Double("duration_s", 0.0, duration_s, &window->duration_s);
@@ -100,7 +100,7 @@ Scenario ReadScenario(YamlSection root) {
   for (YamlSection w : trajectory.SectionList("waypoints")) {
     Waypoint waypoint;
     w.RequiredDouble("start_s", 0.0, end_s, &waypoint.start_s);
-    w.RequiredDouble("duration_s", 1e-3, end_s, &waypoint.duration_s);
+    w.RequiredDouble("duration_s", 1e-3, 1e6, &waypoint.duration_s);
     w.RequiredDouble("x_m", -1e4, 1e4, &waypoint.x_m);
     w.RequiredDouble("z_m", -1e4, 1e4, &waypoint.z_m);
     if (waypoint.start_s < previous_end_s - 1e-12)
@@ -198,7 +198,38 @@ Scenario ReadScenario(YamlSection root) {
   return sc;
 }
 
+void Flatten(const YAML::Node& node, const std::string& path, std::vector<std::string>* out) {
+  if (node.IsMap() && node.size() > 0) {
+    for (const auto& item : node) {
+      const std::string key = item.first.as<std::string>();
+      Flatten(item.second, path.empty() ? key : path + "." + key, out);
+    }
+    return;
+  }
+  YAML::Emitter emitter;
+  emitter.SetSeqFormat(YAML::Flow);
+  emitter.SetMapFormat(YAML::Flow);
+  emitter << node;
+  out->push_back(path + "=" + emitter.c_str());
+}
+
 }  // namespace
+
+std::vector<std::string> OverridesFromFile(const std::string& file) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::BadFile&) {
+    throw ParamError(file + ": cannot open the parameter file");
+  } catch (const YAML::Exception& e) {
+    throw ParamError(file + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  std::vector<std::string> overrides;
+  if (root.IsNull()) return overrides;
+  if (!root.IsMap()) throw ParamError(file + ": the top level must be a mapping of keys");
+  Flatten(root, "", &overrides);
+  return overrides;
+}
 
 Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
                                 const std::vector<std::string>& overrides) {

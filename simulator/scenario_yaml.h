@@ -16,6 +16,12 @@ namespace birotor {
 // ParamError with a one-line message naming the file and the key.
 Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides = {});
 
+// Turns a partial scenario file (same sections and keys, any subset) into
+// overrides "section.key=value", one per leaf, to pass to LoadScenario after
+// the scenario file: birotor-sim --params FILE. Lists are replaced whole.
+// Throws ParamError if the file cannot be read or is not a mapping.
+std::vector<std::string> OverridesFromFile(const std::string& file);
+
 // Same from YAML text; file_label is used in messages.
 Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
                                 const std::vector<std::string>& overrides = {});

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "simulator/bench_dynamics.h"
+#include "simulator/flight_dynamics.h"
 
 namespace birotor {
 namespace {
@@ -107,7 +108,7 @@ Simulator::Simulator(const Scenario& scenario)
 
 PlantState Simulator::Derivative(const PlantState& x) const {
   return clamped_body_ ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
-                       : PlantDerivative(scenario_.vehicle, x, input_);
+                       : FlightDerivative(scenario_.vehicle, x, input_);
 }
 
 double Simulator::TrueForce(int rotor) const {

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "params/estimator_config_yaml.h"
@@ -62,9 +63,12 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  ForceCsvSink csv_sink(csv != nullptr ? csv : stdout, MakeChannelNames(common.prefix).force,
-                        &log_sink);
-  MessageSink* sink = csv != nullptr ? static_cast<MessageSink*>(&csv_sink) : &log_sink;
+  std::unique_ptr<ForceCsvSink> csv_sink;
+  MessageSink* sink = &log_sink;
+  if (csv != nullptr) {
+    csv_sink = std::make_unique<ForceCsvSink>(csv, MakeChannelNames(common.prefix).force, &log_sink);
+    sink = csv_sink.get();
+  }
 
   const auto start = std::chrono::steady_clock::now();
   Replayer replayer(config, options, sink);

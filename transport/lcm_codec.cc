@@ -5,10 +5,14 @@ namespace birotor {
 
 const char* DecodeErrorName(DecodeError error) {
   switch (error) {
-    case DecodeError::kNone: return "none";
-    case DecodeError::kTruncated: return "truncated";
-    case DecodeError::kBadFingerprint: return "bad_fingerprint";
-    case DecodeError::kMalformed: return "malformed";
+    case DecodeError::kNone:
+      return "none";
+    case DecodeError::kTruncated:
+      return "truncated";
+    case DecodeError::kBadFingerprint:
+      return "bad_fingerprint";
+    case DecodeError::kMalformed:
+      return "malformed";
   }
   return "unknown";
 }
@@ -72,32 +76,38 @@ class WireCursor {
 // Field layout of lcmtypes/input_health_t.lcm.
 bool SkipInputHealth(WireCursor* cursor) {
   constexpr size_t kInt64Counters = 10;  // received .. dropped_overload
-  constexpr size_t kDoubles = 2;        // age_s, rate_hz
+  constexpr size_t kDoubles = 2;         // age_s, rate_hz
   return cursor->SkipString() && cursor->Skip(8 * kInt64Counters + 8 * kDoubles);
 }
 
 }  // namespace
+
+template <>
+DecodeError CheckLengthFields<input_health_t>(const uint8_t* data, size_t size) {
+  WireCursor cursor(data, size);
+  const bool ok = cursor.Skip(8) && SkipInputHealth(&cursor);  // fingerprint, fields
+  return ok ? DecodeError::kNone : cursor.error();
+}
 
 // Field layout of lcmtypes/estimator_status_t.lcm.
 template <>
 DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t size) {
   WireCursor cursor(data, size);
   int32_t num_inputs = 0;
-  const bool ok = cursor.Skip(8)               // fingerprint
-                  && cursor.Skip(8 + 8 + 4)    // utime, wall_utime, seq
-                  && cursor.SkipString()       // method
-                  && cursor.Skip(4)            // status
-                  && cursor.ReadInt32(&num_inputs) &&
-                  (num_inputs >= 0 || cursor.Fail(DecodeError::kMalformed));
+  const bool ok = cursor.Skip(8)             // fingerprint
+                  && cursor.Skip(8 + 8 + 4)  // utime, wall_utime, seq
+                  && cursor.SkipString()     // method
+                  && cursor.Skip(4)          // status
+                  && cursor.ReadInt32(&num_inputs) && (num_inputs >= 0 || cursor.Fail(DecodeError::kMalformed));
   if (!ok) return cursor.error();
   // Each element consumes bytes, so a huge count fails on the data, not on memory.
   for (int32_t i = 0; i < num_inputs; ++i) {
     if (!SkipInputHealth(&cursor)) return cursor.error();
   }
-  const bool tail_ok = cursor.Skip(6 * 8)      // nis mean/max/gate, processing times
-                       && cursor.Skip(8)       // resets
-                       && cursor.SkipString()  // last_reset_reason
-                       && cursor.Skip(8)       // published
+  const bool tail_ok = cursor.Skip(6 * 8)              // nis mean/max/gate, processing times
+                       && cursor.Skip(8)               // resets
+                       && cursor.SkipString()          // last_reset_reason
+                       && cursor.Skip(8)               // published
                        && cursor.Skip(2 * 8 + 2 * 8);  // force_n, thrust_scale
   return tail_ok ? DecodeError::kNone : cursor.error();
 }

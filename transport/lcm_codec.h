@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "birotor/estimator_status_t.hpp"
+#include "birotor/input_health_t.hpp"
 
 namespace birotor {
 
@@ -38,6 +39,8 @@ DecodeError CheckLengthFields(const uint8_t* /*data*/, size_t /*size*/) {
   return DecodeError::kNone;
 }
 template <>
+DecodeError CheckLengthFields<input_health_t>(const uint8_t* data, size_t size);
+template <>
 DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t size);
 
 }  // namespace internal
@@ -56,8 +59,7 @@ DecodeError DecodeMessage(const void* data, size_t size, Msg* out) {
   if (internal::ReadFingerprint(data) != static_cast<uint64_t>(Msg::getHash())) {
     return DecodeError::kBadFingerprint;
   }
-  const DecodeError length_check =
-      internal::CheckLengthFields<Msg>(static_cast<const uint8_t*>(data), size);
+  const DecodeError length_check = internal::CheckLengthFields<Msg>(static_cast<const uint8_t*>(data), size);
   if (length_check != DecodeError::kNone) return length_check;
   try {
     const int consumed = out->decode(data, 0, static_cast<int>(size));

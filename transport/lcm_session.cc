@@ -54,8 +54,9 @@ std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url, std::string* error) {
                "': the provider (udpm://, memq://, file://, tcpq://) is unknown, "
                "the URL is malformed, or the socket/file cannot be opened";
       if (Provider(url) == "udpm") {
-        *error += " (for udpm without a network, route multicast to loopback: "
-                  "ip route add 224.0.0.0/4 dev lo)";
+        *error +=
+            " (for udpm without a network, route multicast to loopback: "
+            "ip route add 224.0.0.0/4 dev lo)";
       }
     }
     return nullptr;
@@ -76,27 +77,24 @@ int64_t ReadRmemMax(const std::string& path) {
   return value;
 }
 
-std::string ReceiveBufferReport(const std::string& url, int64_t rmem_max_bytes,
-                                bool* sufficient) {
+std::string ReceiveBufferReport(const std::string& url, int64_t rmem_max_bytes, bool* sufficient) {
   if (sufficient) *sufficient = true;
   const std::string provider = Provider(url);
   if (provider != "udpm") {
     return "LCM provider '" + provider + "' uses no UDP receive buffer";
   }
-  const std::string limit =
-      rmem_max_bytes > 0 ? "kernel rmem_max is " + std::to_string(rmem_max_bytes) + " B"
-                         : std::string("kernel rmem_max is unknown");
+  const std::string limit = rmem_max_bytes > 0 ? "kernel rmem_max is " + std::to_string(rmem_max_bytes) + " B"
+                                               : std::string("kernel rmem_max is unknown");
   const std::optional<int64_t> requested = RequestedReceiveBuffer(url);
   if (!requested) {
     return "no recv_buf_size in the LCM URL: the kernel default receive buffer "
-           "applies (" + limit + ")";
+           "applies (" +
+           limit + ")";
   }
-  const std::string request =
-      "requested " + std::to_string(*requested) + " B receive buffer; " + limit;
+  const std::string request = "requested " + std::to_string(*requested) + " B receive buffer; " + limit;
   if (rmem_max_bytes > 0 && *requested > rmem_max_bytes) {
     if (sufficient) *sufficient = false;
-    return request + ": raise it with sysctl -w net.core.rmem_max=" +
-           std::to_string(*requested);
+    return request + ": raise it with sysctl -w net.core.rmem_max=" + std::to_string(*requested);
   }
   return request;
 }

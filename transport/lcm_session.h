@@ -4,11 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <optional>
 #include <string>
-
-#include <lcm/lcm-cpp.hpp>
 
 namespace birotor {
 
@@ -30,8 +29,7 @@ int64_t ReadRmemMax(const std::string& path = "/proc/sys/net/core/rmem_max");
 // One sentence on the receive buffer a udpm URL will get given the kernel
 // limit rmem_max_bytes (-1 if unknown), with the sysctl fix when the request
 // exceeds it. *sufficient (optional) is false only in that case.
-std::string ReceiveBufferReport(const std::string& url, int64_t rmem_max_bytes,
-                                bool* sufficient = nullptr);
+std::string ReceiveBufferReport(const std::string& url, int64_t rmem_max_bytes, bool* sufficient = nullptr);
 
 // lcm.handleTimeout with the timeout in seconds (clamped to >= 0). Returns >0
 // if a message was handled, 0 on timeout, <0 on error.

@@ -59,11 +59,9 @@ bool LogWriter::Open(const std::string& path, std::string* error) {
   return true;
 }
 
-bool LogWriter::Write(const std::string& channel, int64_t timestamp_us,
-                      const void* data, size_t size) {
+bool LogWriter::Write(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
   if (log_ == nullptr || channel.empty() || channel.size() > kMaxChannelBytes ||
-      size > static_cast<size_t>(std::numeric_limits<int32_t>::max()) ||
-      (data == nullptr && size > 0)) {
+      size > static_cast<size_t>(std::numeric_limits<int32_t>::max()) || (data == nullptr && size > 0)) {
     return false;
   }
   lcm_eventlog_event_t event{};

@@ -16,8 +16,8 @@ namespace birotor {
 
 // One event of a log file.
 struct LogEvent {
-  int64_t event_number = 0;   // position in the log, from 0
-  int64_t timestamp_us = 0;   // receive time recorded by the logger [us]
+  int64_t event_number = 0;  // position in the log, from 0
+  int64_t timestamp_us = 0;  // receive time recorded by the logger [us]
   std::string channel;
   std::vector<uint8_t> data;  // the encoded message
 };
@@ -35,8 +35,7 @@ class LogWriter {
 
   // Appends one event. Fails when no file is open, the channel name is not
   // 1..63 bytes (LCM's limit) or the disk write fails.
-  bool Write(const std::string& channel, int64_t timestamp_us, const void* data,
-             size_t size);
+  bool Write(const std::string& channel, int64_t timestamp_us, const void* data, size_t size);
 
   // Encodes msg into a buffer kept between calls (no allocation in steady state).
   template <class Msg>

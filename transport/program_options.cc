@@ -21,17 +21,15 @@ void AddCommonOptions(CLI::App& app, CommonOptions* options) {
   app.add_option("--prefix", options->prefix, "Channel name prefix");
   app.add_option("--log-level", options->log_level, "Log level")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
-  app.set_version_flag("--version", [&app] {
-    return ProgramName(app) + " " + BIROTOR_VERSION;
-  });
+  app.set_version_flag("--version", [&app] { return ProgramName(app) + " " + BIROTOR_VERSION; });
 }
 
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv) {
   return ParseCommandLine(app, argc, argv, std::cout, std::cerr);
 }
 
-std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv,
-                                    std::ostream& out, std::ostream& err) {
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv, std::ostream& out,
+                                    std::ostream& err) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,11 +3,10 @@
 // exit 0, an error as one line on stderr and exit 2.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <iosfwd>
 #include <optional>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "transport/channels.h"
 #include "transport/lcm_session.h"
@@ -36,7 +35,7 @@ void AddCommonOptions(CLI::App& app, CommonOptions* options);
 // (0 after --help or --version, 2 after a usage error, reported as one line
 // "<program>: error: <message> (see --help)"), std::nullopt to continue.
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv);
-std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv,
-                                    std::ostream& out, std::ostream& err);
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv, std::ostream& out,
+                                    std::ostream& err);
 
 }  // namespace birotor

@@ -11,8 +11,7 @@ namespace birotor {
 namespace {
 
 std::atomic<bool> shutdown_requested{false};
-static_assert(std::atomic<bool>::is_always_lock_free,
-              "the signal handler needs a lock-free flag");
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
 
 extern "C" void HandleShutdownSignal(int signal_number) {
   if (shutdown_requested.exchange(true)) {

@@ -27,8 +27,8 @@ std::vector<uint8_t> Encode(const Msg& msg) {
 template <class Msg>
 class CodecTest : public ::testing::Test {};
 
-using AllMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t,
-                                     force_estimate_t, input_health_t, estimator_status_t>;
+using AllMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t,
+                                     input_health_t, estimator_status_t>;
 TYPED_TEST_SUITE(CodecTest, AllMessages);
 
 TYPED_TEST(CodecTest, RoundTripReproducesTheBytes) {
@@ -87,13 +87,11 @@ TYPED_TEST(CodecTest, RandomPayloadBehindAValidFingerprintNeverCrashes) {
 TEST(CodecTest, OtherTypeHasBadFingerprint) {
   const std::vector<uint8_t> motor_bytes = Encode(MakeTestMessage<motor_t>());
   strain_t strain{};
-  EXPECT_EQ(DecodeMessage(motor_bytes.data(), motor_bytes.size(), &strain),
-            DecodeError::kBadFingerprint);
+  EXPECT_EQ(DecodeMessage(motor_bytes.data(), motor_bytes.size(), &strain), DecodeError::kBadFingerprint);
 
   const std::vector<uint8_t> strain_bytes = Encode(MakeTestMessage<strain_t>());
   loadcell_t loadcell{};  // same layout as strain_t, different type name
-  EXPECT_EQ(DecodeMessage(strain_bytes.data(), strain_bytes.size(), &loadcell),
-            DecodeError::kBadFingerprint);
+  EXPECT_EQ(DecodeMessage(strain_bytes.data(), strain_bytes.size(), &loadcell), DecodeError::kBadFingerprint);
 }
 
 TEST(CodecTest, NullDataIsTruncated) {
@@ -124,6 +122,16 @@ TEST(CodecTest, CorruptStringLengthIsRejected) {
   std::vector<uint8_t> no_terminator = valid;
   no_terminator[kMethodLengthOffset + 4 + 3] = 'x';  // "ekf\0" -> "ekfx"
   EXPECT_EQ(DecodeStatus(no_terminator), DecodeError::kMalformed);
+}
+
+TEST(CodecTest, CorruptStringLengthInAStandaloneInputHealthIsRejected) {
+  const std::vector<uint8_t> valid = Encode(MakeTestMessage<input_health_t>());
+  for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
+    std::vector<uint8_t> bytes = valid;
+    WriteInt32(&bytes, 8, length);  // channel length follows the fingerprint
+    input_health_t health{};
+    EXPECT_NE(DecodeMessage(bytes.data(), bytes.size(), &health), DecodeError::kNone) << "length " << length;
+  }
 }
 
 TEST(CodecTest, CorruptArrayCountIsRejected) {

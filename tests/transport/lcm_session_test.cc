@@ -58,15 +58,13 @@ TEST(OpenLcmTest, PublishAndHandleOverMemq) {
   ASSERT_EQ(receiver.packets.size(), 1u);
   EXPECT_EQ(receiver.channels[0], "BIROTOR_STRAIN");
   strain_t received{};
-  ASSERT_EQ(DecodeMessage(receiver.packets[0].data(), receiver.packets[0].size(), &received),
-            DecodeError::kNone);
+  ASSERT_EQ(DecodeMessage(receiver.packets[0].data(), receiver.packets[0].size(), &received), DecodeError::kNone);
   EXPECT_EQ(received.seq, sent.seq);
   EXPECT_EQ(received.deflection_rad[0], sent.deflection_rad[0]);
 }
 
 TEST(ReceiveBufferTest, ParsesTheUrlOption) {
-  EXPECT_EQ(RequestedReceiveBuffer("udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"),
-            2097152);
+  EXPECT_EQ(RequestedReceiveBuffer("udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"), 2097152);
   EXPECT_EQ(RequestedReceiveBuffer("udpm://239.255.76.67:7667?recv_buf_size=4096&ttl=0"), 4096);
   EXPECT_EQ(RequestedReceiveBuffer("udpm://239.255.76.67:7667?ttl=0"), std::nullopt);
   EXPECT_EQ(RequestedReceiveBuffer("udpm://239.255.76.67:7667"), std::nullopt);
@@ -76,8 +74,8 @@ TEST(ReceiveBufferTest, ParsesTheUrlOption) {
 
 TEST(ReceiveBufferTest, RequestAboveTheKernelLimitSuggestsSysctl) {
   bool sufficient = true;
-  const std::string report = ReceiveBufferReport(
-      "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152", 212992, &sufficient);
+  const std::string report =
+      ReceiveBufferReport("udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152", 212992, &sufficient);
   EXPECT_FALSE(sufficient);
   EXPECT_EQ(report,
             "requested 2097152 B receive buffer; kernel rmem_max is 212992 B: raise it with "
@@ -86,25 +84,22 @@ TEST(ReceiveBufferTest, RequestAboveTheKernelLimitSuggestsSysctl) {
 
 TEST(ReceiveBufferTest, RequestWithinTheLimitIsFine) {
   bool sufficient = false;
-  const std::string report = ReceiveBufferReport(
-      "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152", 4194304, &sufficient);
+  const std::string report =
+      ReceiveBufferReport("udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152", 4194304, &sufficient);
   EXPECT_TRUE(sufficient);
   EXPECT_EQ(report, "requested 2097152 B receive buffer; kernel rmem_max is 4194304 B");
 }
 
 TEST(ReceiveBufferTest, OtherCases) {
   bool sufficient = false;
-  EXPECT_NE(ReceiveBufferReport(kDefaultLcmUrl, 212992, &sufficient).find("no recv_buf_size"),
-            std::string::npos);
+  EXPECT_NE(ReceiveBufferReport(kDefaultLcmUrl, 212992, &sufficient).find("no recv_buf_size"), std::string::npos);
   EXPECT_TRUE(sufficient);
-  EXPECT_NE(ReceiveBufferReport("udpm://h:1?recv_buf_size=100", -1).find("unknown"),
-            std::string::npos);
+  EXPECT_NE(ReceiveBufferReport("udpm://h:1?recv_buf_size=100", -1).find("unknown"), std::string::npos);
   EXPECT_EQ(ReceiveBufferReport("memq://", 212992), "LCM provider 'memq' uses no UDP receive buffer");
 }
 
 TEST(ReceiveBufferTest, ReadsRmemMaxFromAFile) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "lcm_session_test_rmem_max").string();
+  const std::string path = (std::filesystem::temp_directory_path() / "lcm_session_test_rmem_max").string();
   std::ofstream(path) << "212992\n";
   EXPECT_EQ(ReadRmemMax(path), 212992);
   std::remove(path.c_str());

@@ -4,7 +4,6 @@
 #include "transport/log_io.h"
 
 #include <gtest/gtest.h>
-#include <lcm/lcm-cpp.hpp>
 #include <unistd.h>
 
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <vector>
 
@@ -75,8 +75,7 @@ std::vector<LogEvent> ReadAll(LogReader* reader) {
   return events;
 }
 
-void ExpectEvents(const std::vector<LogEvent>& events, const std::vector<Expected>& expected,
-                  size_t count) {
+void ExpectEvents(const std::vector<LogEvent>& events, const std::vector<Expected>& expected, size_t count) {
   ASSERT_EQ(events.size(), count);
   for (size_t i = 0; i < count; ++i) {
     EXPECT_EQ(events[i].event_number, static_cast<int64_t>(i));
@@ -110,8 +109,7 @@ TEST_F(LogIoTest, WriteThenReadBack) {
   EXPECT_EQ(reader.skipped_bytes(), 0);
 
   strain_t decoded{};
-  ASSERT_EQ(DecodeMessage(events[0].data.data(), events[0].data.size(), &decoded),
-            DecodeError::kNone);
+  ASSERT_EQ(DecodeMessage(events[0].data.data(), events[0].data.size(), &decoded), DecodeError::kNone);
   EXPECT_EQ(decoded.deflection_rad[1], 0.0125);
 }
 
@@ -167,8 +165,8 @@ TEST_F(LogIoTest, LcmLogplayerReplaysOurLog) {
   const std::string input = Path("player_in.lcmlog");
   const std::string output = Path("player_out.lcmlog");
   const std::vector<Expected> expected = WriteExampleLog(input);
-  const std::string command = "lcm-logplayer --speed=1000 --lcm-url='file://" + output +
-                              "?mode=w' '" + input + "' > /dev/null 2>&1";
+  const std::string command =
+      "lcm-logplayer --speed=1000 --lcm-url='file://" + output + "?mode=w' '" + input + "' > /dev/null 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
 
   LogReader reader;

@@ -25,8 +25,7 @@ std::vector<uint8_t> Encode(const Msg& msg) {
 template <class Msg>
 class ConversionTest : public ::testing::Test {};
 
-using ConvertedMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t,
-                                           truth_t, force_estimate_t>;
+using ConvertedMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t>;
 TYPED_TEST_SUITE(ConversionTest, ConvertedMessages);
 
 TYPED_TEST(ConversionTest, MessageSampleMessageKeepsEveryField) {

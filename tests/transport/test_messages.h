@@ -143,8 +143,8 @@ inline estimator_status_t MakeTestMessage<estimator_status_t>() {
   m.seq = 8;
   m.method = "ekf";
   m.status = force_estimate_t::STATUS_VALID;
-  m.inputs = {MakeInputHealth("STRAIN", 10), MakeInputHealth("MOTOR", 20),
-              MakeInputHealth("IMU", 30), MakeInputHealth("POSE", 40)};
+  m.inputs = {MakeInputHealth("STRAIN", 10), MakeInputHealth("MOTOR", 20), MakeInputHealth("IMU", 30),
+              MakeInputHealth("POSE", 40)};
   m.num_inputs = static_cast<int32_t>(m.inputs.size());
   m.strain_nis_mean = 1.9;
   m.strain_nis_max = 12.5;

@@ -1,0 +1,127 @@
+// Timing of the force estimators (issue 4 speed targets): one strain sample
+// (predict + update) per method, and the whole EstimatorPipeline over a
+// simulated 10 s `gentle` run (replay speed, as a real-time factor).
+// Median per sample:
+//   estimator_benchmark --benchmark_repetitions=10 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_pipeline.h"
+#include "simulator/scenario_yaml.h"
+#include "simulator/simulator.h"
+
+namespace birotor {
+namespace {
+
+struct Event {
+  enum Kind { kStrain, kMotor, kImu } kind = kStrain;
+  StrainSample strain;
+  MotorSample motor;
+  ImuSample imu;
+};
+
+class Recorder : public SampleSink {
+ public:
+  void OnStrain(const StrainSample& s) override { Push(Event::kStrain).strain = s; }
+  void OnMotor(const MotorSample& s) override { Push(Event::kMotor).motor = s; }
+  void OnImu(const ImuSample& s) override { Push(Event::kImu).imu = s; }
+  std::vector<Event> events;
+
+ private:
+  Event& Push(Event::Kind kind) {
+    events.emplace_back();
+    events.back().kind = kind;
+    return events.back();
+  }
+};
+
+// The reference `gentle` scenario cut to duration_s, recorded once.
+const std::vector<Event>& GentleEvents(double duration_s) {
+  static std::vector<Event> events;
+  static double recorded_s = -1;
+  if (recorded_s != duration_s) {
+    Recorder recorder;
+    Simulator simulator(LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml",
+                                     {"scenario.duration_s=" + std::to_string(duration_s),
+                                      "sensors.pose.enabled=false", "sensors.truth.enabled=false"}));
+    simulator.Run(&recorder);
+    events = std::move(recorder.events);
+    recorded_s = duration_s;
+  }
+  return events;
+}
+
+// One strain sample through one method (with the motor and IMU samples that
+// precede it); the run is looped with utime shifted so time always advances.
+void BM_StrainSample(benchmark::State& state, const char* method) {
+  EstimatorConfig config;
+  config.method = method;
+  std::unique_ptr<ForceEstimator> estimator = MakeForceEstimator(config);
+  const std::vector<Event>& events = GentleEvents(10.0);
+  const int64_t period_us = 10000000;
+  size_t index = 0;
+  int64_t offset_us = 0;
+  ForceEstimate estimate;
+  StrainUpdateInfo info;
+  for (auto _ : state) {
+    while (true) {
+      if (index == events.size()) {
+        index = 0;
+        offset_us += period_us;
+      }
+      const Event& e = events[index++];
+      if (e.kind == Event::kMotor) {
+        MotorSample m = e.motor;
+        m.utime += offset_us;
+        estimator->AddMotor(m);
+      } else if (e.kind == Event::kImu) {
+        ImuSample i = e.imu;
+        i.utime += offset_us;
+        estimator->AddImu(i);
+      } else {
+        StrainSample s = e.strain;
+        s.utime += offset_us;
+        estimator->AddStrain(s, &estimate, &info);
+        break;
+      }
+    }
+    benchmark::DoNotOptimize(estimate);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf");
+BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
+BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
+
+// The whole pipeline (validation, counters, EKF) over 10 s of `gentle`:
+// real_time_factor = simulated seconds per wall-clock second.
+void BM_PipelineGentle10s(benchmark::State& state) {
+  const std::vector<Event>& events = GentleEvents(10.0);
+  int64_t strain_samples = 0;
+  for (auto _ : state) {
+    EstimatorPipeline pipeline((EstimatorConfig()));
+    ForceEstimate estimate;
+    for (const Event& e : events) {
+      switch (e.kind) {
+        case Event::kMotor: pipeline.OnMotor(e.motor); break;
+        case Event::kImu: pipeline.OnImu(e.imu); break;
+        case Event::kStrain:
+          pipeline.OnStrain(e.strain, &estimate);
+          ++strain_samples;
+          break;
+      }
+    }
+    benchmark::DoNotOptimize(estimate);
+  }
+  state.SetItemsProcessed(strain_samples);
+  state.counters["real_time_factor"] =
+      benchmark::Counter(10.0 * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PipelineGentle10s)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace birotor
+
+BENCHMARK_MAIN();

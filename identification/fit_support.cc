@@ -1,0 +1,161 @@
+#include "identification/fit_support.h"
+
+#include <ceres/covariance.h>
+#include <ceres/solver.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace birotor {
+
+std::vector<std::pair<size_t, size_t>> ContiguousWindows(const std::vector<int64_t>& utime,
+                                                         const std::vector<bool>& valid, double window_s,
+                                                         int64_t max_gap_us, size_t min_samples) {
+  std::vector<std::pair<size_t, size_t>> windows;
+  const int64_t window_us = static_cast<int64_t>(std::llround(window_s * 1e6));
+  size_t begin = 0;
+  auto close = [&](size_t end) {
+    if (end > begin && end - begin >= min_samples) windows.emplace_back(begin, end);
+  };
+  while (begin < utime.size() && !valid[begin]) ++begin;
+  for (size_t i = begin + 1; i <= utime.size(); ++i) {
+    if (begin >= utime.size()) break;
+    const bool end_of_data = i == utime.size();
+    const bool breaks = end_of_data || !valid[i] || utime[i] - utime[i - 1] > max_gap_us ||
+                        utime[i] - utime[i - 1] <= 0 || utime[i] - utime[begin] >= window_us;
+    if (!breaks) continue;
+    close(i);
+    begin = i;
+    while (begin < utime.size() && !valid[begin]) ++begin;
+    i = begin;
+  }
+  return windows;
+}
+
+int64_t MedianIntervalUs(const std::vector<int64_t>& utime) {
+  if (utime.size() < 2) return 0;
+  std::vector<int64_t> dt(utime.size() - 1);
+  for (size_t i = 1; i < utime.size(); ++i) dt[i - 1] = utime[i] - utime[i - 1];
+  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
+  return dt[dt.size() / 2];
+}
+
+void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem) {
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_SCHUR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = options.num_threads;
+  solver.function_tolerance = 1e-10;
+  solver.parameter_tolerance = 1e-10;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, problem, &summary);
+}
+
+ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem,
+                                             const std::vector<ceres::ResidualBlockId>& blocks, int stride,
+                                             int channel) {
+  ResidualStatistics stats;
+  if (blocks.empty()) return stats;
+  std::vector<double> abs_values;
+  double sum_sq = 0.0;
+  // Autocorrelation from per-block series, residuals clipped at 5 sigma so a
+  // spike does not dominate.
+  constexpr int kMaxLag = 200;
+  std::vector<double> lag_sum(kMaxLag + 1, 0.0);
+  std::vector<double> lag_count(kMaxLag + 1, 0.0);
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.apply_loss_function = false;
+  std::vector<double> residuals;
+  for (const ceres::ResidualBlockId id : blocks) {
+    evaluate.residual_blocks = {id};
+    double cost = 0.0;
+    problem->Evaluate(evaluate, &cost, &residuals, nullptr, nullptr);
+    std::vector<double> series;
+    for (size_t i = channel; i < residuals.size(); i += stride) {
+      const double r = residuals[i];
+      if (r == 0.0) continue;  // missing measurement
+      series.push_back(std::clamp(r, -5.0, 5.0));
+      abs_values.push_back(std::abs(r));
+      sum_sq += r * r;
+    }
+    for (int lag = 0; lag <= kMaxLag && lag < static_cast<int>(series.size()); ++lag) {
+      for (size_t i = lag; i < series.size(); ++i) lag_sum[lag] += series[i] * series[i - lag];
+      lag_count[lag] += static_cast<double>(series.size() - lag);
+    }
+  }
+  stats.count = static_cast<int>(abs_values.size());
+  if (stats.count == 0) return stats;
+  stats.rms_whitened = std::sqrt(sum_sq / stats.count);
+  std::nth_element(abs_values.begin(), abs_values.begin() + abs_values.size() / 2, abs_values.end());
+  stats.robust_scale = 1.4826 * abs_values[abs_values.size() / 2];
+  if (lag_count[0] > 0 && lag_sum[0] > 0) {
+    const double c0 = lag_sum[0] / lag_count[0];
+    double tau = 1.0;
+    for (int lag = 1; lag <= kMaxLag && lag_count[lag] > 0; ++lag) {
+      const double rho = lag_sum[lag] / lag_count[lag] / c0;
+      if (rho <= 0.0) break;
+      tau += 2.0 * rho;
+    }
+    stats.correlation_time = tau;
+  }
+  return stats;
+}
+
+double VarianceInflation(const ResidualStatistics& stats) {
+  return std::max(1.0, stats.robust_scale * stats.robust_scale) * std::max(1.0, stats.correlation_time);
+}
+
+namespace {
+
+bool TryCovariance(ceres::Problem* problem, const std::vector<double*>& blocks, const std::vector<bool>& use,
+                   int num_threads, std::vector<double>* variances) {
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  options.num_threads = num_threads;
+  ceres::Covariance covariance(options);
+  std::vector<std::pair<const double*, const double*>> pairs;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    if (use[i]) pairs.emplace_back(blocks[i], blocks[i]);
+  }
+  if (pairs.empty()) return true;
+  if (!covariance.Compute(pairs, problem)) return false;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    if (!use[i]) continue;
+    double v = 0.0;
+    covariance.GetCovarianceBlock(blocks[i], blocks[i], &v);
+    (*variances)[i] = v;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<BlockSigma> ComputeBlockSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
+                                           double variance_inflation, int num_threads) {
+  std::vector<BlockSigma> out(blocks.size());
+  std::vector<double> variances(blocks.size(), 0.0);
+  std::vector<bool> use(blocks.size(), true);
+  for (size_t i = 0; i < blocks.size(); ++i) use[i] = !problem->IsParameterBlockConstant(blocks[i]);
+  bool computed = TryCovariance(problem, blocks, use, num_threads, &variances);
+  // Singular: find the blocks whose removal makes it regular, one at a time.
+  for (size_t i = 0; !computed && i < blocks.size(); ++i) {
+    if (!use[i]) continue;
+    problem->SetParameterBlockConstant(blocks[i]);
+    std::vector<bool> others = use;
+    others[i] = false;
+    if (TryCovariance(problem, blocks, others, num_threads, &variances)) {
+      use = others;
+      computed = true;
+    }
+    problem->SetParameterBlockVariable(blocks[i]);
+  }
+  if (!computed) return out;  // nothing determined
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    out[i].determined = use[i];
+    out[i].sigma = use[i] ? std::sqrt(std::max(0.0, variances[i]) * variance_inflation) : 0.0;
+  }
+  return out;
+}
+
+}  // namespace birotor

@@ -1,0 +1,57 @@
+// What an identification run produced: the identified vehicle parameters with
+// one-sigma uncertainties, residual statistics per residual block, the static
+// deflection-force maps, and the reasons when the data could not give numbers.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "estimator/vehicle_params.h"
+
+namespace birotor {
+
+// One identified scalar.
+struct ParameterEstimate {
+  std::string key;       // YAML key of the `vehicle:` section, e.g. "arm_stiffness_n_m_rad"
+  std::string symbol;    // k, d, c_T, tau_m
+  double value = std::numeric_limits<double>::quiet_NaN();  // SI, unit in the key
+  double sigma = std::numeric_limits<double>::quiet_NaN();  // one sigma, same unit
+  bool determined = false;  // false: the data could not determine it; base value kept
+  std::string note;         // why not determined, or how sigma was obtained
+};
+
+// Residuals of one kind of block after the fit (without the robust loss).
+struct ResidualSummary {
+  std::string name;             // e.g. "motor telemetry"
+  std::string unit;             // unit of rms_si
+  int count = 0;                // scalar residuals
+  double rms_whitened = 0.0;    // [sigma]
+  double rms_si = 0.0;          // [unit]
+  double variance_inflation = 1.0;  // factor applied to the covariance (chi2/dof, correlation)
+};
+
+// Static map force_n = sum_j coeff[j] deflection_rad^j of one arm (bench).
+struct DeflectionForceMap {
+  int arm = 0;                       // 0: arm 1, 1: arm 2
+  std::vector<double> coefficients;  // [N / rad^j]
+  std::vector<double> sigmas;        // one sigma of each coefficient
+  double residual_rms_n = 0.0;       // RMS of force - map(deflection) [N]
+  double deflection_min_rad = 0.0;   // range of the data [rad]
+  double deflection_max_rad = 0.0;
+  int samples = 0;
+};
+
+struct IdentificationResult {
+  bool ok = false;                    // false: `errors` says what is missing; no numbers
+  std::string mode;                   // "bench" or "flight"
+  std::vector<std::string> errors;    // what the data lacks, one line each
+  std::vector<std::string> warnings;  // e.g. parameter kept at its base value
+  VehicleParams params;               // base parameters with the identified values
+  std::vector<ParameterEstimate> estimates;
+  std::vector<ResidualSummary> residuals;
+  std::vector<DeflectionForceMap> maps;
+  std::vector<std::string> sources;   // logs used
+};
+
+}  // namespace birotor

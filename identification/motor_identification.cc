@@ -1,0 +1,88 @@
+// tau_m from MOTOR telemetry against commands (bench and flight).
+#include <ceres/ceres.h>
+
+#include <cmath>
+#include <deque>
+#include <sstream>
+
+#include "identification/fit_support.h"
+#include "identification/identify.h"
+#include "identification/motor_residual.h"
+#include "estimator/plant.h"
+
+namespace birotor {
+
+void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const VehicleParams& base,
+                               const IdentificationOptions& options, IdentificationResult* result) {
+  ceres::Problem::Options problem_options;
+  ceres::Problem problem(problem_options);
+  double tau_ratio = 1.0;
+  std::deque<double> omega0;
+  std::vector<ceres::ResidualBlockId> blocks;
+  int steps[2] = {0, 0};
+  for (const SensorLog& log : logs) {
+    std::vector<int64_t> utime;
+    utime.reserve(log.motor.size());
+    for (const MotorSample& m : log.motor) utime.push_back(m.utime);
+    const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(utime), 1);
+    for (int rotor = 0; rotor < 2; ++rotor) {
+      std::vector<bool> valid(log.motor.size());
+      for (size_t i = 0; i < log.motor.size(); ++i) {
+        valid[i] = std::isfinite(log.motor[i].omega_meas_rad_s[rotor]) &&
+                   std::isfinite(log.motor[i].omega_cmd_rad_s[rotor]);
+        if (i > 0 && std::abs(log.motor[i].omega_cmd_rad_s[rotor] - log.motor[i - 1].omega_cmd_rad_s[rotor]) >
+                         options.command_step_rad_s) {
+          ++steps[rotor];
+        }
+      }
+      for (const auto& [begin, end] : ContiguousWindows(utime, valid, options.motor_window_s, max_gap_us, 10)) {
+        std::vector<MotorWindowResidual::Sample> samples;
+        samples.reserve(end - begin);
+        for (size_t i = begin; i < end; ++i) {
+          const MotorSample& m = log.motor[i];
+          const double dt_s = (i + 1 < end) ? 1e-6 * static_cast<double>(log.motor[i + 1].utime - m.utime) : 0.0;
+          samples.push_back({dt_s, ClampCommand(base, m.omega_cmd_rad_s[rotor]), m.omega_meas_rad_s[rotor]});
+        }
+        omega0.push_back(samples.front().omega_meas_rad_s);
+        blocks.push_back(problem.AddResidualBlock(
+            MotorWindowResidual::Create(std::move(samples), options.telemetry_noise_rad_s,
+                                        base.motor_time_constant_s, options.huber_threshold),
+            nullptr, &tau_ratio, &omega0.back()));
+      }
+    }
+  }
+  ParameterEstimate tau;
+  tau.key = "motor_time_constant_s";
+  tau.symbol = "tau_m";
+  if (blocks.empty()) {
+    result->errors.push_back("tau_m: no MOTOR samples with both a command and telemetry (omega_meas) in any log");
+    result->estimates.push_back(tau);
+    return;
+  }
+  problem.SetParameterLowerBound(&tau_ratio, 0, 1e-3);
+  problem.SetParameterUpperBound(&tau_ratio, 0, 1e3);
+  SolveProblem(options, &problem);
+
+  const ResidualStatistics stats = ComputeResidualStatistics(&problem, blocks, 1, 0);
+  const double inflation = VarianceInflation(stats);
+  const std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, {&tau_ratio}, inflation, options.num_threads);
+  tau.value = tau_ratio * base.motor_time_constant_s;
+  tau.sigma = sigma[0].sigma * base.motor_time_constant_s;
+  tau.determined = sigma[0].determined && tau.sigma <= options.max_relative_sigma * std::abs(tau.value);
+  std::ostringstream note;
+  if (!tau.determined) {
+    note << "tau_m cannot be identified: no excitation (the commands have " << steps[0] << " and " << steps[1]
+         << " steps larger than " << options.command_step_rad_s
+         << " rad/s; record motor command steps or a chirp)";
+    result->errors.push_back(note.str());
+  } else {
+    note << "output error over " << blocks.size() << " windows; " << steps[0] + steps[1] << " command steps";
+  }
+  tau.note = note.str();
+  result->estimates.push_back(tau);
+  result->residuals.push_back({"motor telemetry (omega_meas - model)", "rad/s", stats.count, stats.rms_whitened,
+                               stats.rms_whitened * options.telemetry_noise_rad_s, inflation});
+  if (tau.determined) result->params.motor_time_constant_s = tau.value;
+}
+
+}  // namespace birotor

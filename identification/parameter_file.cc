@@ -1,0 +1,147 @@
+#include "identification/parameter_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+#include <vector>
+
+#include "params/vehicle_params_yaml.h"
+
+namespace birotor {
+namespace {
+
+std::string MapText(const DeflectionForceMap& map) {
+  std::ostringstream out;
+  out << std::setprecision(8) << "force_n = ";
+  for (size_t j = 0; j < map.coefficients.size(); ++j) {
+    if (j > 0) out << " + ";
+    out << map.coefficients[j] << " (+-" << std::setprecision(3) << map.sigmas[j] << std::setprecision(8) << ")";
+    if (j == 1) out << " b";
+    if (j > 1) out << " b^" << j;
+  }
+  out << std::setprecision(4) << "; residual RMS " << map.residual_rms_n << " N over " << map.samples
+      << " samples, b in [" << map.deflection_min_rad << ", " << map.deflection_max_rad << "] rad";
+  return out.str();
+}
+
+}  // namespace
+
+std::string IdentifiedParameterYaml(const IdentificationResult& result) {
+  std::ostringstream out;
+  out << "# Identified by birotor-identify (" << result.mode << " mode) from:\n";
+  for (const std::string& s : result.sources) out << "#   " << s << "\n";
+  out << "# One-sigma uncertainties (parameters not listed are taken from the base file):\n";
+  out << std::setprecision(6);
+  for (const ParameterEstimate& e : result.estimates) {
+    out << "#   " << e.key << ": " << e.value << " +- " << e.sigma;
+    if (!e.determined) out << "  (NOT DETERMINED: base value kept)";
+    out << "\n";
+  }
+  if (!result.maps.empty()) {
+    out << "# Static deflection-force maps (b in rad):\n";
+    for (const DeflectionForceMap& m : result.maps) out << "#   arm " << m.arm + 1 << ": " << MapText(m) << "\n";
+  }
+  for (const std::string& w : result.warnings) out << "# warning: " << w << "\n";
+  out << VehicleParamsYaml(result.params);
+  return out.str();
+}
+
+std::string IdentificationReport(const IdentificationResult& result) {
+  std::ostringstream out;
+  out << "# Identification report (" << result.mode << " mode)\n\n";
+  out << "Logs:\n";
+  for (const std::string& s : result.sources) out << "- " << s << "\n";
+  if (!result.ok) {
+    out << "\n**No parameters: the data lacks what the identification needs.**\n\n";
+    for (const std::string& e : result.errors) out << "- " << e << "\n";
+  }
+  out << "\n## Parameters\n\n| parameter | key | value | one sigma | relative sigma | status |\n|---|---|---|---|---|---|\n";
+  out << std::setprecision(6);
+  for (const ParameterEstimate& e : result.estimates) {
+    const double rel = std::abs(e.value) > 0 ? e.sigma / std::abs(e.value) : NAN;
+    out << "| " << e.symbol << " | " << e.key << " | " << e.value << " | " << e.sigma << " | " << std::setprecision(3)
+        << 100.0 * rel << " % | " << (e.determined ? "determined" : "NOT determined") << std::setprecision(6)
+        << " |\n";
+  }
+  out << "\nNotes:\n";
+  for (const ParameterEstimate& e : result.estimates) out << "- " << e.symbol << ": " << e.note << "\n";
+  out << "\n## Residuals (after the fit)\n\n| block | count | RMS [sigma] | RMS | covariance inflation |\n|---|---|---|---|---|\n";
+  for (const ResidualSummary& r : result.residuals) {
+    out << "| " << r.name << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened << " | "
+        << r.rms_si << " " << r.unit << " | " << r.variance_inflation << " |\n";
+  }
+  if (!result.maps.empty()) {
+    out << "\n## Static deflection-force maps\n\n";
+    for (const DeflectionForceMap& m : result.maps) out << "- arm " << m.arm + 1 << ": " << MapText(m) << "\n";
+  }
+  out << "\n## Undetermined parameters\n\n";
+  bool any = false;
+  for (const ParameterEstimate& e : result.estimates) {
+    if (!e.determined) {
+      out << "- " << e.symbol << " (" << e.key << ")\n";
+      any = true;
+    }
+  }
+  if (!any) out << "None.\n";
+  if (!result.warnings.empty()) {
+    out << "\n## Warnings\n\n";
+    for (const std::string& w : result.warnings) out << "- " << w << "\n";
+  }
+  return out.str();
+}
+
+bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error) {
+  const size_t slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  std::string temp = path + ".tmp.XXXXXX";
+  std::vector<char> name(temp.begin(), temp.end());
+  name.push_back('\0');
+  const int fd = mkstemp(name.data());
+  if (fd < 0) {
+    *error = "cannot create a temporary file next to " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  temp = name.data();
+  auto fail = [&](const std::string& what) {
+    *error = what + " " + temp + ": " + std::strerror(errno);
+    ::close(fd);
+    ::unlink(temp.c_str());
+    return false;
+  };
+  size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return fail("cannot write");
+    }
+    written += static_cast<size_t>(n);
+  }
+  if (::fchmod(fd, 0644) != 0) return fail("cannot set the mode of");
+  if (::fsync(fd) != 0) return fail("cannot fsync");
+  if (::close(fd) != 0) {
+    *error = "cannot close " + temp + ": " + std::strerror(errno);
+    ::unlink(temp.c_str());
+    return false;
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    *error = "cannot rename " + temp + " to " + path + ": " + std::strerror(errno);
+    ::unlink(temp.c_str());
+    return false;
+  }
+  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dir_fd >= 0) {
+    ::fsync(dir_fd);
+    ::close(dir_fd);
+  }
+  return true;
+}
+
+}  // namespace birotor

@@ -1,0 +1,86 @@
+#include "params/estimator_config_yaml.h"
+
+#include "params/vehicle_params_yaml.h"
+
+namespace birotor {
+namespace {
+
+void ReadEkfOptions(YamlSection s, EkfOptions* o) {
+  s.Double("strain_noise_rad", 1e-9, 1e-1, &o->strain_noise_rad);
+  s.Double("motor_speed_noise_rad_s", 1e-3, 1e3, &o->motor_speed_noise_rad_s);
+  s.Double("gyro_noise_rad_s", 1e-6, 10.0, &o->gyro_noise_rad_s);
+  s.Bool("use_motor_telemetry", &o->use_motor_telemetry);
+  s.Bool("use_gyro", &o->use_gyro);
+  s.Double("thrust_scale_psd_1_s", 0.0, 10.0, &o->thrust_scale_psd_1_s);
+  s.Double("deflection_rate_psd_rad2_s3", 0.0, 1e4, &o->deflection_rate_psd_rad2_s3);
+  s.Double("pitch_rate_psd_rad2_s3", 0.0, 1e4, &o->pitch_rate_psd_rad2_s3);
+  s.Double("omega_psd_rad2_s", 0.0, 1e8, &o->omega_psd_rad2_s);
+  s.Double("initial_thrust_scale_std", 1e-4, 2.0, &o->initial_thrust_scale_std);
+  s.Double("initial_omega_std_rad_s", 1e-3, 1e3, &o->initial_omega_std_rad_s);
+  s.Double("initial_deflection_rate_std_rad_s", 1e-6, 100.0, &o->initial_deflection_rate_std_rad_s);
+  s.Double("initial_pitch_rate_std_rad_s", 1e-6, 100.0, &o->initial_pitch_rate_std_rad_s);
+  s.Double("gate_nis_threshold", 1.0, 1e12, &o->gate_nis_threshold);
+  s.Int("gate_consecutive_limit", 1, 1000000, &o->gate_consecutive_limit);
+  s.Double("gate_inflation_thrust_scale_std", 0.0, 2.0, &o->gate_inflation_thrust_scale_std);
+  s.Double("converged_force_std_n", 1e-6, 1e3, &o->converged_force_std_n);
+  s.Double("fault_thrust_scale", 0.0, 1.0, &o->fault_thrust_scale);
+  s.Double("fault_clear_thrust_scale", 0.0, 1.0, &o->fault_clear_thrust_scale);
+  s.Double("fault_n_sigma", 0.0, 10.0, &o->fault_n_sigma);
+  s.Double("fault_persistence_s", 0.0, 10.0, &o->fault_persistence_s);
+  s.Double("max_dt_s", 1e-4, 10.0, &o->max_dt_s);
+  if (o->fault_clear_thrust_scale < o->fault_thrust_scale) {
+    s.Fail("fault_clear_thrust_scale", "below fault_thrust_scale (no hysteresis)",
+           RangeText(o->fault_thrust_scale, 1.0));
+  }
+  s.Finish();
+}
+
+void ReadInversionOptions(YamlSection s, InversionOptions* o) {
+  s.Int("window_samples", 3, 64, &o->window_samples);
+  s.Double("force_std_n", 0.0, 1e3, &o->force_std_n);
+  s.Finish();
+}
+
+void ReadMotorMapOptions(YamlSection s, MotorMapOptions* o) {
+  s.Double("motor_speed_noise_rad_s", 0.0, 1e3, &o->motor_speed_noise_rad_s);
+  s.Double("model_speed_std_rad_s", 0.0, 1e3, &o->model_speed_std_rad_s);
+  s.Finish();
+}
+
+void ReadPipelineOptions(YamlSection s, PipelineOptions* o) {
+  s.Double("reset_gap_s", 1e-3, 100.0, &o->reset_gap_s);
+  s.Double("time_backwards_reset_s", 0.0, 1e6, &o->time_backwards_reset_s);
+  s.Double("motor_timeout_s", 1e-3, 100.0, &o->motor_timeout_s);
+  s.Double("strain_timeout_s", 1e-4, 100.0, &o->strain_timeout_s);
+  s.Double("max_deflection_rad", 1e-4, 3.2, &o->max_deflection_rad);
+  s.Double("max_omega_rad_s", 1.0, 1e6, &o->max_omega_rad_s);
+  s.Double("max_gyro_rad_s", 1e-3, 1e4, &o->max_gyro_rad_s);
+  s.Finish();
+}
+
+EstimatorConfig ReadRoot(YamlSection root) {
+  EstimatorConfig config;
+  if (root.Has("vehicle")) ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
+  if (root.Has("estimator")) ReadEstimatorOptions(root.Section("estimator"), &config);
+  root.Finish();
+  return config;
+}
+
+}  // namespace
+
+void ReadEstimatorOptions(YamlSection s, EstimatorConfig* config) {
+  s.String("method", {"ekf", "inversion", "motor_map"}, &config->method);
+  ReadEkfOptions(s.Section("ekf"), &config->ekf);
+  ReadInversionOptions(s.Section("inversion"), &config->inversion);
+  ReadMotorMapOptions(s.Section("motor_map"), &config->motor_map);
+  ReadPipelineOptions(s.Section("pipeline"), &config->pipeline);
+  s.Finish();
+}
+
+EstimatorConfig LoadEstimatorConfig(const std::string& file) { return ReadRoot(YamlSection::LoadFile(file)); }
+
+EstimatorConfig ParseEstimatorConfig(const std::string& text, const std::string& file) {
+  return ReadRoot(YamlSection::LoadString(text, file));
+}
+
+}  // namespace birotor

@@ -1,0 +1,163 @@
+// birotor-sim: runs a scenario of simulator/ and puts its samples on LCM, live
+// (paced by the wall clock times --speed) or offline (as fast as possible into
+// an LCM log file whose event timestamps are the sample times, so lcm-logplayer
+// replays it at the right pace). SIGINT/SIGTERM stop it with the log closed.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "simulator/scenario_yaml.h"
+#include "simulator/simulator.h"
+#include "transport/channels.h"
+#include "transport/lcm_session.h"
+#include "transport/log_io.h"
+#include "transport/logging.h"
+#include "transport/message_conversion.h"
+#include "transport/program_options.h"
+#include "transport/shutdown.h"
+
+namespace birotor {
+namespace {
+
+struct SimOptions {
+  CommonOptions common;
+  std::string scenario_file;           // scenario YAML (config/scenarios/*.yaml)
+  std::vector<std::string> param_files;  // --params: partial scenario files, applied in order
+  std::vector<std::string> overrides;    // --set section.key=value, applied in order after them
+  std::string output;                  // log file (offline mode); empty: live on LCM
+  double speed = 1.0;                  // live mode: simulated seconds per wall second
+  bool wall_clock = false;             // utime = wall clock at start + simulated time
+};
+
+// Converts each sample to its wire type and hands it to Publish(channel, utime, msg).
+template <class Publisher>
+class WireSink : public SampleSink {
+ public:
+  WireSink(const ChannelNames& channels, Publisher publisher) : channels_(channels), publish_(publisher) {}
+  void OnStrain(const StrainSample& s) override { publish_(channels_.strain, s.utime, ToMessage(s)); }
+  void OnMotor(const MotorSample& s) override { publish_(channels_.motor, s.utime, ToMessage(s)); }
+  void OnImu(const ImuSample& s) override { publish_(channels_.imu, s.utime, ToMessage(s)); }
+  void OnPose(const PoseSample& s) override { publish_(channels_.pose, s.utime, ToMessage(s)); }
+  void OnLoadCell(const LoadCellSample& s) override { publish_(channels_.loadcell, s.utime, ToMessage(s)); }
+  void OnTruth(const TruthSample& s) override { publish_(channels_.truth, s.utime, ToMessage(s)); }
+
+ private:
+  ChannelNames channels_;
+  Publisher publish_;
+};
+
+int64_t WallClockMicroseconds() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Offline: every sample into the log, as fast as possible.
+bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path) {
+  LogWriter writer;
+  std::string error;
+  if (!writer.Open(path, &error)) {
+    spdlog::error("cannot open the output log: {}", error);
+    return false;
+  }
+  bool write_failed = false;
+  auto publish = [&](const std::string& channel, int64_t utime, const auto& message) {
+    if (!writer.WriteMessage(channel, utime, message)) write_failed = true;
+  };
+  WireSink<decltype(publish)> sink(channels, publish);
+  while (!write_failed && !ShutdownRequested() && sim->Step(&sink)) {
+  }
+  if (!writer.Close()) write_failed = true;
+  if (write_failed) spdlog::error("writing {} failed (disk full?); the log ends early", path);
+  if (ShutdownRequested()) spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
+  spdlog::info("wrote {} events to {}", writer.events_written(), path);
+  return !write_failed;
+}
+
+// Live: publish on LCM, paced so that simulated time runs at speed x wall time.
+bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& url, double speed) {
+  std::string error;
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(url, &error);
+  if (!lcm) {
+    spdlog::error("cannot open LCM: {}", error);
+    return false;
+  }
+  int64_t publish_failures = 0;
+  auto publish = [&](const std::string& channel, int64_t /*utime*/, const auto& message) {
+    if (lcm->publish(channel, &message) != 0) ++publish_failures;
+  };
+  WireSink<decltype(publish)> sink(channels, publish);
+  const auto start = std::chrono::steady_clock::now();
+  // Sleep at most once per millisecond of simulated time (4 steps at 4 kHz).
+  const int64_t steps_per_check = std::max<int64_t>(1, std::llround(1e-3 / sim->scenario().step_s));
+  int64_t steps = 0;
+  while (!ShutdownRequested() && sim->Step(&sink)) {
+    if (++steps % steps_per_check != 0) continue;
+    const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(sim->time_s() / speed));
+    std::this_thread::sleep_until(due);
+  }
+  if (publish_failures > 0) spdlog::warn("{} LCM publish calls failed", publish_failures);
+  if (ShutdownRequested()) spdlog::info("stopped by a signal at t = {:.3f} s", sim->time_s());
+  return true;
+}
+
+int Main(int argc, char** argv) {
+  SimOptions options;
+  CLI::App app{"birotor-sim: simulated birotor sensors and truth over LCM, live or into a log file"};
+  AddCommonOptions(app, &options.common);
+  app.add_option("--scenario", options.scenario_file, "Scenario file (config/scenarios/*.yaml)")->required();
+  app.add_option("--params", options.param_files, "Partial scenario file applied on top of --scenario (repeatable)");
+  app.add_option("--set", options.overrides, "Override section.key=value (YAML value; repeatable)");
+  app.add_option("--output", options.output, "Write an LCM log file as fast as possible instead of publishing live");
+  app.add_option("--speed", options.speed, "Live mode: simulated seconds per wall-clock second")
+      ->check(CLI::Range(1e-3, 1e6));
+  app.add_flag("--wall-clock", options.wall_clock, "Stamp samples with the wall clock instead of simulated time from 0");
+  if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-sim", options.common.log_level);
+
+  Scenario scenario;
+  try {
+    std::vector<std::string> overrides;
+    for (const std::string& file : options.param_files) {
+      const std::vector<std::string> from_file = OverridesFromFile(file);
+      overrides.insert(overrides.end(), from_file.begin(), from_file.end());
+    }
+    overrides.insert(overrides.end(), options.overrides.begin(), options.overrides.end());
+    scenario = LoadScenario(options.scenario_file, overrides);
+  } catch (const ParamError& e) {
+    std::fprintf(stderr, "birotor-sim: error: %s\n", e.what());
+    return 1;
+  }
+  spdlog::info("scenario '{}' from {} (checksum {}), {:.3f} s, seed {}, step {} s{}", scenario.name,
+               options.scenario_file, FileChecksum(options.scenario_file), scenario.duration_s, scenario.seed,
+               scenario.step_s, options.overrides.empty() && options.param_files.empty()
+                   ? ""
+                   : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
+
+  InstallShutdownHandlers();
+  Simulator sim(scenario);
+  if (options.wall_clock) sim.set_utime_offset_us(WallClockMicroseconds());
+  const ChannelNames channels = MakeChannelNames(options.common.prefix);
+
+  const auto start = std::chrono::steady_clock::now();
+  const bool ok = options.output.empty() ? RunLive(&sim, channels, options.common.lcm_url, options.speed)
+                                         : RunOffline(&sim, channels, options.output);
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const ChannelCounts& n = sim.emitted();
+  spdlog::info("simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
+               "pose {}, loadcell {}, truth {}; {} fault events",
+               sim.time_s(), wall_s, wall_s > 0 ? sim.time_s() / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose,
+               n.loadcell, n.truth, sim.fault_events().size());
+  return ok ? 0 : 1;
+}
+
+}  // namespace
+}  // namespace birotor
+
+int main(int argc, char** argv) { return birotor::Main(argc, argv); }

@@ -1,0 +1,179 @@
+// Test helper: runs a simulator scenario in-process through EstimatorPipeline
+// and pairs every estimate with the truth sample of the same utime.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_pipeline.h"
+#include "params/estimator_config_yaml.h"
+#include "simulator/scenario_yaml.h"
+#include "simulator/simulator.h"
+
+namespace birotor {
+namespace testing_support {
+
+// One estimate paired with its truth.
+struct PairedSample {
+  int64_t utime = 0;
+  double force_error_n[2] = {0, 0};       // estimate - truth [N]
+  double thrust_scale[2] = {1, 1};        // estimated
+  double true_thrust_scale[2] = {1, 1};
+  int32_t status = 0;
+  bool finite = true;
+};
+
+struct ScenarioRun {
+  std::vector<PairedSample> pairs;
+  std::vector<FaultEvent> faults;
+  PipelineHealth health;
+  int64_t published = 0;
+  int64_t non_finite = 0;
+};
+
+class PairingSink : public SampleSink {
+ public:
+  explicit PairingSink(EstimatorPipeline* pipeline) : pipeline_(pipeline) {}
+  void OnStrain(const StrainSample& s) override {
+    pipeline_->CountReceived(InputChannel::kStrain);
+    ForceEstimate e;
+    if (pipeline_->OnStrain(s, &e)) {
+      last_ = e;
+      has_ = true;
+      ++run.published;
+      for (int i = 0; i < 2; ++i) {
+        if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) || !std::isfinite(e.thrust_scale[i])) {
+          ++run.non_finite;
+        }
+      }
+    }
+  }
+  void OnMotor(const MotorSample& s) override {
+    pipeline_->CountReceived(InputChannel::kMotor);
+    pipeline_->OnMotor(s);
+  }
+  void OnImu(const ImuSample& s) override {
+    pipeline_->CountReceived(InputChannel::kImu);
+    pipeline_->OnImu(s);
+  }
+  void OnPose(const PoseSample& s) override {
+    pipeline_->CountReceived(InputChannel::kPose);
+    pipeline_->OnPose(s);
+  }
+  void OnTruth(const TruthSample& t) override {
+    if (!has_ || last_.utime != t.utime) return;
+    PairedSample p;
+    p.utime = t.utime;
+    p.status = last_.status;
+    for (int i = 0; i < 2; ++i) {
+      p.force_error_n[i] = last_.force_n[i] - t.force_n[i];
+      p.thrust_scale[i] = last_.thrust_scale[i];
+      p.true_thrust_scale[i] = t.thrust_scale[i];
+      p.finite = p.finite && std::isfinite(last_.force_n[i]);
+    }
+    run.pairs.push_back(p);
+  }
+  ScenarioRun run;
+
+ private:
+  EstimatorPipeline* pipeline_;
+  ForceEstimate last_;
+  bool has_ = false;
+};
+
+inline std::string ScenarioFile(const std::string& name) {
+  return std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml";
+}
+
+// config/estimator.yaml, or the file named by $BIROTOR_ESTIMATOR_CONFIG (for tuning runs).
+inline EstimatorConfig ReferenceConfig(const std::string& method = "ekf") {
+  const char* file = std::getenv("BIROTOR_ESTIMATOR_CONFIG");
+  EstimatorConfig config = LoadEstimatorConfig(file != nullptr ? std::string(file)
+                                                               : std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  config.method = method;
+  return config;
+}
+
+inline ScenarioRun RunScenario(const Scenario& scenario, const EstimatorConfig& config) {
+  EstimatorPipeline pipeline(config);
+  PairingSink sink(&pipeline);
+  Simulator simulator(scenario);
+  simulator.Run(&sink);
+  sink.run.faults = simulator.fault_events();
+  sink.run.health = pipeline.health();
+  return sink.run;
+}
+
+// Mean absolute force error of rotor i over pairs with utime >= from_utime
+// and not within exclude_s after any excluded time.
+inline double ForceMae(const ScenarioRun& run, int rotor, int64_t from_utime = 0,
+                       const std::vector<int64_t>& exclude_after = {}, double exclude_s = 0) {
+  double sum = 0;
+  int64_t count = 0;
+  for (const PairedSample& p : run.pairs) {
+    if (p.utime < from_utime) continue;
+    bool excluded = false;
+    for (int64_t t : exclude_after) {
+      if (p.utime >= t && (p.utime - t) * 1e-6 < exclude_s) excluded = true;
+    }
+    if (excluded) continue;
+    sum += std::abs(p.force_error_n[rotor]);
+    ++count;
+  }
+  return count > 0 ? sum / count : NAN;
+}
+
+}  // namespace testing_support
+}  // namespace birotor
+
+namespace birotor {
+namespace testing_support {
+
+// A simulated run recorded as a time-ordered list of inputs, so that tests can
+// replay it into a pipeline with faults of their own.
+struct InputEvent {
+  enum Kind { kStrain, kMotor, kImu, kTruth } kind = kStrain;
+  StrainSample strain;
+  MotorSample motor;
+  ImuSample imu;
+  TruthSample truth;
+  int64_t utime() const {
+    switch (kind) {
+      case kStrain: return strain.utime;
+      case kMotor: return motor.utime;
+      case kImu: return imu.utime;
+      case kTruth: return truth.utime;
+    }
+    return 0;
+  }
+};
+
+class RecordingSink : public SampleSink {
+ public:
+  void OnStrain(const StrainSample& s) override { Push(InputEvent::kStrain).strain = s; }
+  void OnMotor(const MotorSample& s) override { Push(InputEvent::kMotor).motor = s; }
+  void OnImu(const ImuSample& s) override { Push(InputEvent::kImu).imu = s; }
+  void OnTruth(const TruthSample& s) override { Push(InputEvent::kTruth).truth = s; }
+  std::vector<InputEvent> events;
+
+ private:
+  InputEvent& Push(InputEvent::Kind kind) {
+    events.emplace_back();
+    events.back().kind = kind;
+    return events.back();
+  }
+};
+
+// Records `scenario` (a file under config/scenarios) with overrides.
+inline std::vector<InputEvent> RecordScenario(const std::string& name, const std::vector<std::string>& overrides) {
+  RecordingSink sink;
+  Simulator simulator(LoadScenario(ScenarioFile(name), overrides));
+  simulator.Run(&sink);
+  return sink.events;
+}
+
+}  // namespace testing_support
+}  // namespace birotor

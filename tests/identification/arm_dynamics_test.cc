@@ -1,0 +1,84 @@
+// The identification's arm models against the estimator's full model.
+#include "identification/arm_dynamics.h"
+
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
+#include "estimator/plant.h"
+#include "simulator/bench_dynamics.h"
+
+namespace birotor {
+namespace {
+
+TEST(FreeArmDerivativeTest, MatchesFullModelAtAnyPoseAndVelocity) {
+  const VehicleParams p;
+  Coords<double> q, v;
+  q << 0.3, -0.2, 0.25, -0.004, 0.003;   // phi and position arbitrary
+  v << 0.7, -0.4, 0.6, 0.05, -0.08;      // body velocity arbitrary
+  const double f1 = 21.0, f2 = 24.5;
+  const Coords<double> full = GeneralizedAcceleration<double>(p, q, v, f1, f2);
+  FreeArmState<double> x;
+  x(kFreePhiDot) = v(kPhi);
+  x(kFreeB1) = q(kB1);
+  x(kFreeB2) = q(kB2);
+  x(kFreeB1Dot) = v(kB1);
+  x(kFreeB2Dot) = v(kB2);
+  Eigen::Vector2d specific_force;
+  const FreeArmState<double> x_dot =
+      FreeArmDerivative<double>(p, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad, x, f1, f2, &specific_force);
+  EXPECT_NEAR(x_dot(kFreePhiDot), full(kPhi), 1e-9 * std::abs(full(kPhi)) + 1e-9);
+  EXPECT_NEAR(x_dot(kFreeB1Dot), full(kB1), 1e-9 * std::abs(full(kB1)));
+  EXPECT_NEAR(x_dot(kFreeB2Dot), full(kB2), 1e-9 * std::abs(full(kB2)));
+  EXPECT_EQ(x_dot(kFreeB1), v(kB1));
+  // Specific force in body axes: R(phi)^T (p_ddot + [0, g]).
+  const double c = std::cos(q(kPhi)), s = std::sin(q(kPhi));
+  const double ax = full(kX), az = full(kZ) + p.gravity_m_s2;
+  EXPECT_NEAR(specific_force(0), c * ax + s * az, 1e-9);
+  EXPECT_NEAR(specific_force(1), -s * ax + c * az, 1e-9);
+}
+
+TEST(ClampedArmAccelerationTest, MatchesSimulatorBenchModel) {
+  const VehicleParams p;
+  PlantState x = PlantState::Zero();
+  x(kPlantQ + kB1) = -0.002;
+  x(kPlantQ + kB2) = 0.0015;
+  x(kPlantV + kB1) = 0.03;
+  x(kPlantV + kB2) = -0.02;
+  x(kPlantOmega1) = 650.0;
+  x(kPlantOmega2) = 720.0;
+  const PlantInput u;
+  const PlantState x_dot = ClampedBodyDerivative(p, x, u);
+  for (int arm = 0; arm < 2; ++arm) {
+    const double f = RotorThrust(p, x(kPlantOmega1 + arm), 1.0);
+    const double acc = ClampedArmAcceleration<double>(p, arm, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad,
+                                                      x(kPlantQ + kB1 + arm), x(kPlantV + kB1 + arm), f);
+    EXPECT_NEAR(acc, x_dot(kPlantV + kB1 + arm), 1e-9 * std::abs(acc));
+  }
+}
+
+TEST(FreeArmDerivativeTest, JetDerivativeInStiffnessMatchesFiniteDifference) {
+  using Jet = ceres::Jet<double, 1>;
+  const VehicleParams p;
+  FreeArmState<double> x;
+  x << 0.2, -0.002, 0.0025, 0.01, -0.02;
+  const FreeArmState<Jet> xj = x.cast<Jet>();
+  const Jet k(p.arm_stiffness_n_m_rad, 0);
+  const FreeArmState<Jet> dj = FreeArmDerivative<Jet>(p, k, Jet(p.arm_damping_n_m_s_rad), xj, Jet(22.0), Jet(23.0));
+  const double h = 1e-3;
+  const FreeArmState<double> plus =
+      FreeArmDerivative<double>(p, p.arm_stiffness_n_m_rad + h, p.arm_damping_n_m_s_rad, x, 22.0, 23.0);
+  const FreeArmState<double> minus =
+      FreeArmDerivative<double>(p, p.arm_stiffness_n_m_rad - h, p.arm_damping_n_m_s_rad, x, 22.0, 23.0);
+  for (int i = 0; i < kFreeArmStateSize; ++i) {
+    const double fd = (plus(i) - minus(i)) / (2 * h);
+    EXPECT_NEAR(dj(i).v(0), fd, 1e-6 * std::abs(fd) + 1e-9) << i;
+  }
+}
+
+TEST(MotorStepTest, ExactFirstOrderResponse) {
+  // After one time constant a step has covered 1 - 1/e of the way.
+  EXPECT_NEAR(MotorStep(300.0, 1100.0, 0.035, 0.035), 1100.0 - 800.0 / std::exp(1.0), 1e-9);
+}
+
+}  // namespace
+}  // namespace birotor

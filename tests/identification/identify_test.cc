@@ -1,0 +1,192 @@
+// Recovery of known parameters from simulated bench and flight logs,
+// consistency of the reported uncertainties, and the refusals on bad input.
+#include "identification/identify.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "tests/identification/simulated_logs.h"
+
+namespace birotor {
+namespace {
+
+const ParameterEstimate* Find(const IdentificationResult& r, const std::string& symbol) {
+  for (const ParameterEstimate& e : r.estimates) {
+    if (e.symbol == symbol) return &e;
+  }
+  return nullptr;
+}
+
+std::string Errors(const IdentificationResult& r) {
+  std::string text;
+  for (const std::string& e : r.errors) text += e + "\n";
+  return text;
+}
+
+// Checks |value - truth| <= rel_tol truth and, when n_sigma > 0, <= n_sigma sigma.
+void ExpectRecovered(const IdentificationResult& r, const std::string& symbol, double truth, double rel_tol,
+                     double n_sigma) {
+  const ParameterEstimate* e = Find(r, symbol);
+  ASSERT_NE(e, nullptr) << symbol;
+  EXPECT_TRUE(e->determined) << symbol;
+  EXPECT_NEAR(e->value, truth, rel_tol * truth) << symbol << " sigma " << e->sigma;
+  EXPECT_GT(e->sigma, 0.0) << symbol;
+  if (n_sigma > 0) {
+    EXPECT_LE(std::abs(e->value - truth), n_sigma * e->sigma) << symbol << " sigma " << e->sigma;
+  }
+}
+
+// A base file that is wrong by a few percent, so the fits have to move.
+VehicleParams PerturbedBase(const VehicleParams& truth) {
+  VehicleParams base = truth;
+  base.arm_stiffness_n_m_rad *= 1.05;
+  base.thrust_coeff_n_s2_rad2 *= 0.95;
+  base.motor_time_constant_s *= 1.1;
+  base.arm_damping_n_m_s_rad *= 1.5;
+  return base;
+}
+
+class BenchTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    log_ = new SensorLog(testing::SimulateScenario("bench", {"scenario.duration_s=30"}, &truth_));
+  }
+  static void TearDownTestSuite() { delete log_; }
+  static SensorLog* log_;
+  static VehicleParams truth_;
+};
+SensorLog* BenchTest::log_ = nullptr;
+VehicleParams BenchTest::truth_;
+
+TEST_F(BenchTest, RecoversThrustMotorAndStiffnessWithin1PercentAnd3Sigma) {
+  const IdentificationResult r = Identify({*log_}, PerturbedBase(truth_), IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  EXPECT_EQ(r.mode, "bench");
+  ExpectRecovered(r, "c_T", truth_.thrust_coeff_n_s2_rad2, 0.01, 3.0);
+  ExpectRecovered(r, "tau_m", truth_.motor_time_constant_s, 0.01, 3.0);
+  ExpectRecovered(r, "k", truth_.arm_stiffness_n_m_rad, 0.01, 3.0);
+  EXPECT_DOUBLE_EQ(r.params.arm_stiffness_n_m_rad, Find(r, "k")->value);
+  EXPECT_DOUBLE_EQ(r.params.body_mass_kg, truth_.body_mass_kg);  // known, untouched
+}
+
+TEST_F(BenchTest, DeflectionForceMapMatchesStatics) {
+  IdentificationOptions options;
+  options.map_degree = 2;
+  const IdentificationResult r = Identify({*log_}, truth_, options);
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ASSERT_EQ(r.maps.size(), 2u);
+  for (const DeflectionForceMap& map : r.maps) {
+    ASSERT_EQ(map.coefficients.size(), 3u);
+    // Statics k b = s L (f - m_p g): f = m_p g + s k b / L.
+    const double slope = kArmSign[map.arm] * truth_.arm_stiffness_n_m_rad / truth_.arm_length_m;
+    EXPECT_NEAR(map.coefficients[1], slope, 0.01 * std::abs(slope));
+    EXPECT_NEAR(map.coefficients[0], truth_.tip_mass_kg * truth_.gravity_m_s2, 0.1);
+    EXPECT_LT(map.residual_rms_n, 0.5);  // strain noise and arm dynamics
+  }
+}
+
+TEST_F(BenchTest, SpikesDoNotMoveTheEstimates) {
+  SensorLog spiked = *log_;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (StrainSample& s : spiked.strain) {
+    if (u(rng) < 0.005) s.deflection_rad[u(rng) < 0.5 ? 0 : 1] += (u(rng) < 0.5 ? 50 : -50) * 2e-5;
+  }
+  const IdentificationResult r = Identify({spiked}, truth_, IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ExpectRecovered(r, "k", truth_.arm_stiffness_n_m_rad, 0.01, 0.0);
+}
+
+TEST_F(BenchTest, NoLoadCellsInBenchModeSaysWhatIsMissing) {
+  SensorLog log = *log_;
+  log.loadcell.clear();
+  const IdentificationResult r = Identify({log}, truth_, IdentificationOptions(), IdentificationMode::kBench);
+  EXPECT_FALSE(r.ok);
+  ASSERT_FALSE(r.errors.empty());
+  EXPECT_NE(Errors(r).find("LOADCELL"), std::string::npos) << Errors(r);
+  EXPECT_TRUE(r.estimates.empty());  // no numbers
+}
+
+TEST_F(BenchTest, NoTelemetrySaysWhatIsMissing) {
+  SensorLog log = *log_;
+  for (MotorSample& m : log.motor) m.omega_meas_rad_s[0] = m.omega_meas_rad_s[1] = std::nan("");
+  const IdentificationResult r = Identify({log}, truth_, IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("telemetry"), std::string::npos) << Errors(r);
+}
+
+TEST_F(BenchTest, TooShortLogIsRefused) {
+  SensorLog log = *log_;
+  const int64_t end_us = log.strain.front().utime + 2000000;
+  auto cut = [end_us](auto* v) {
+    while (!v->empty() && v->back().utime > end_us) v->pop_back();
+  };
+  cut(&log.strain);
+  cut(&log.motor);
+  cut(&log.loadcell);
+  const IdentificationResult r = Identify({log}, truth_, IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("too short"), std::string::npos) << Errors(r);
+}
+
+// Constant commands: the speed never moves, so tau_m has no information.
+TEST(IdentifyBadInputTest, NoMotorStepsMeansTauCannotBeIdentified) {
+  const VehicleParams p;
+  SensorLog log;
+  log.source = "constant";
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const double omega = 700.0, force = p.thrust_coeff_n_s2_rad2 * omega * omega;
+  for (int i = 0; i < 10000; ++i) {
+    const int64_t t = 1000 * static_cast<int64_t>(i);
+    StrainSample s;
+    s.utime = t;
+    LoadCellSample c;
+    c.utime = t;
+    for (int a = 0; a < 2; ++a) {
+      s.deflection_rad[a] =
+          kArmSign[a] * p.arm_length_m * (force - p.tip_mass_kg * p.gravity_m_s2) / p.arm_stiffness_n_m_rad +
+          2e-5 * n(rng);
+      c.force_n[a] = force + 0.02 * n(rng);
+    }
+    log.strain.push_back(s);
+    log.loadcell.push_back(c);
+    if (i % 2 == 0) {
+      MotorSample m;
+      m.utime = t;
+      for (int a = 0; a < 2; ++a) {
+        m.omega_cmd_rad_s[a] = omega;
+        m.omega_meas_rad_s[a] = omega + 5.0 * n(rng);
+      }
+      log.motor.push_back(m);
+    }
+  }
+  const IdentificationResult r = Identify({log}, p, IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("tau_m cannot be identified"), std::string::npos) << Errors(r);
+  EXPECT_NE(Errors(r).find("steps"), std::string::npos) << Errors(r);
+}
+
+TEST(IdentifyBadInputTest, EmptyLogSaysWhichChannelsAreMissing) {
+  SensorLog log;
+  log.source = "empty.lcm";
+  const IdentificationResult r = Identify({log}, VehicleParams(), IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("empty.lcm: no STRAIN"), std::string::npos) << Errors(r);
+  EXPECT_NE(Errors(r).find("no MOTOR"), std::string::npos) << Errors(r);
+}
+
+TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
+  VehicleParams truth;
+  const SensorLog log = testing::SimulateScenario("flight_id", {"scenario.duration_s=8"}, &truth);
+  const IdentificationResult r = Identify({log}, PerturbedBase(truth), IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  EXPECT_EQ(r.mode, "flight");
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.03, 0.0);
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.03, 0.0);
+  ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.05, 0.0);
+}
+
+}  // namespace
+}  // namespace birotor

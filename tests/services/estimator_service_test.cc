@@ -1,0 +1,270 @@
+// The daemon's glue over a real LCM transport (memq://, in-process): inputs in,
+// FORCE and ESTIMATOR_STATUS out, and every kind of bad input counted,
+// flagged, kept finite and recovered from.
+#include "services/estimator_service.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "estimator/equilibrium.h"
+#include "transport/lcm_codec.h"
+#include "transport/message_conversion.h"
+
+namespace birotor {
+namespace {
+
+constexpr int64_t kStrainPeriodUs = 1000;  // 1 kHz
+
+// A service on memq:// with subscriptions capturing its output.
+class ServiceHarness {
+ public:
+  ServiceHarness()
+      : lcm_("memq://"),
+        channels_(MakeChannelNames("TEST_")),
+        sink_(&lcm_),
+        service_(config_, channels_, EstimatorServiceOptions{}, &sink_),
+        hover_(SolveHoverEquilibrium(config_.vehicle)) {
+    service_.Subscribe(&lcm_);
+    lcm_.subscribeFunction(channels_.force, &ServiceHarness::OnForce, this);
+    lcm_.subscribeFunction(channels_.estimator_status, &ServiceHarness::OnStatus, this);
+  }
+
+  // Publishes raw bytes on an input channel and runs the handlers.
+  void PublishRaw(const std::string& channel, const void* data, size_t size) {
+    lcm_.publish(channel, data, static_cast<unsigned>(size));
+    HandleAll();
+  }
+  template <class Msg>
+  void Publish(const std::string& channel, const Msg& message) {
+    std::vector<uint8_t> buffer;
+    EncodeMessage(message, &buffer);
+    PublishRaw(channel, buffer.data(), buffer.size());
+  }
+  void HandleAll() {
+    while (lcm_.handleTimeout(0) > 0) {
+    }
+  }
+
+  // Hover inputs: strain at 1 kHz, motor at 500 Hz, from utime for count samples.
+  void FeedHover(int64_t utime, int32_t seq, int count) {
+    for (int k = 0; k < count; ++k) {
+      const int64_t t = utime + k * kStrainPeriodUs;
+      if (k % 2 == 0) {
+        MotorSample motor;
+        motor.utime = t;
+        motor.seq = motor_seq_++;
+        for (int i = 0; i < 2; ++i) {
+          motor.omega_cmd_rad_s[i] = hover_.omega_rad_s[i];
+          motor.omega_meas_rad_s[i] = hover_.omega_rad_s[i];
+        }
+        Publish(channels_.motor, ToMessage(motor));
+      }
+      Publish(channels_.strain, ToMessage(Strain(t, seq + k)));
+    }
+  }
+  StrainSample Strain(int64_t utime, int32_t seq) const {
+    StrainSample strain;
+    strain.utime = utime;
+    strain.seq = seq;
+    strain.deflection_rad[0] = hover_.deflection_rad[0];
+    strain.deflection_rad[1] = hover_.deflection_rad[1];
+    return strain;
+  }
+
+  // The status message as published now.
+  estimator_status_t Status() {
+    service_.PublishStatus(0, 1.0);
+    HandleAll();
+    EXPECT_FALSE(statuses_.empty());
+    return statuses_.back();
+  }
+  const input_health_t& StrainHealth(const estimator_status_t& status) const {
+    return status.inputs[static_cast<int>(InputChannel::kStrain)];
+  }
+
+  bool AllForcesFinite() const {
+    for (const force_estimate_t& f : forces_) {
+      for (int i = 0; i < 2; ++i) {
+        if (!std::isfinite(f.force_n[i]) || !std::isfinite(f.force_std_n[i]) ||
+            !std::isfinite(f.thrust_scale[i])) {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  lcm::LCM lcm_;
+  EstimatorConfig config_;
+  ChannelNames channels_;
+  LcmSink sink_;
+  EstimatorService service_;
+  Equilibrium hover_;
+  int32_t motor_seq_ = 0;
+  std::vector<force_estimate_t> forces_;
+  std::vector<estimator_status_t> statuses_;
+
+ private:
+  static void OnForce(const lcm::ReceiveBuffer* buffer, const std::string&, ServiceHarness* self) {
+    force_estimate_t message;
+    ASSERT_EQ(DecodeMessage(buffer->data, buffer->data_size, &message), DecodeError::kNone);
+    self->forces_.push_back(message);
+  }
+  static void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string&, ServiceHarness* self) {
+    estimator_status_t message;
+    ASSERT_EQ(DecodeMessage(buffer->data, buffer->data_size, &message), DecodeError::kNone);
+    self->statuses_.push_back(message);
+  }
+};
+
+TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
+  ServiceHarness h;
+  ASSERT_TRUE(h.lcm_.good());
+  h.FeedHover(1'000'000, 0, 400);
+  ASSERT_EQ(h.forces_.size(), 400u);
+  for (size_t k = 0; k < h.forces_.size(); ++k) {
+    EXPECT_EQ(h.forces_[k].seq, static_cast<int32_t>(k));
+    EXPECT_EQ(h.forces_[k].utime, 1'000'000 + static_cast<int64_t>(k) * kStrainPeriodUs);
+  }
+  const force_estimate_t& last = h.forces_.back();
+  EXPECT_TRUE(last.status & kStatusValid) << last.status;
+  EXPECT_FALSE(last.status & (kStatusRotor1Fault | kStatusRotor2Fault));
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 0.2);
+    EXPECT_NEAR(last.thrust_scale[i], 1.0, 0.02);
+  }
+  const estimator_status_t status = h.Status();
+  EXPECT_EQ(status.method, "ekf");
+  ASSERT_EQ(status.num_inputs, 4);
+  EXPECT_EQ(h.StrainHealth(status).channel, "STRAIN");
+  EXPECT_EQ(h.StrainHealth(status).received, 400);
+  EXPECT_EQ(h.StrainHealth(status).fused, 400);
+  EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].received, 200);
+  EXPECT_EQ(status.published, 400);
+  EXPECT_EQ(status.utime, h.forces_.back().utime);
+  EXPECT_NEAR(h.StrainHealth(status).rate_hz, 400.0, 1e-9);  // 400 samples in a 1 s period
+  EXPECT_GT(status.processing_time_max_us, 0.0);
+  EXPECT_LE(status.processing_time_p99_us, status.processing_time_max_us);
+  EXPECT_TRUE(std::isfinite(status.strain_nis_mean));
+  EXPECT_EQ(status.strain_gate, h.config_.ekf.gate_nis_threshold);
+}
+
+TEST(EstimatorServiceTest, BadInputIsCountedFlaggedFiniteAndRecoveredFrom) {
+  ServiceHarness h;
+  int64_t t = 1'000'000;
+  int32_t seq = 0;
+  h.FeedHover(t, seq, 300);
+  t += 300 * kStrainPeriodUs;
+  seq += 300;
+  const size_t forces_before = h.forces_.size();
+
+  // Garbage bytes, a wrong fingerprint (a motor message on STRAIN), a truncated strain message.
+  const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07};
+  h.PublishRaw(h.channels_.strain, garbage, sizeof(garbage));
+  h.Publish(h.channels_.strain, ToMessage(MotorSample{}));
+  std::vector<uint8_t> truncated;
+  EncodeMessage(ToMessage(h.Strain(t, seq)), &truncated);
+  truncated.resize(truncated.size() - 5);
+  h.PublishRaw(h.channels_.strain, truncated.data(), truncated.size());
+  h.PublishRaw(h.channels_.motor, garbage, 3);  // shorter than a fingerprint
+  EXPECT_EQ(h.forces_.size(), forces_before);
+
+  // A NaN deflection.
+  StrainSample nan_sample = h.Strain(t, seq);
+  nan_sample.deflection_rad[1] = std::nan("");
+  h.Publish(h.channels_.strain, ToMessage(nan_sample));
+  t += kStrainPeriodUs;
+  ++seq;
+  h.FeedHover(t, seq, 10);
+  t += 10 * kStrainPeriodUs;
+  seq += 10;
+  // Out of order (older than the newest) and duplicate (same utime).
+  h.Publish(h.channels_.strain, ToMessage(h.Strain(t - 5 * kStrainPeriodUs, seq - 5)));
+  h.Publish(h.channels_.strain, ToMessage(h.Strain(t - kStrainPeriodUs, seq - 1)));
+
+  estimator_status_t status = h.Status();
+  const input_health_t& strain = h.StrainHealth(status);
+  EXPECT_EQ(strain.decode_errors, 3);
+  EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].decode_errors, 1);
+  EXPECT_EQ(strain.rejected_invalid, 1);
+  EXPECT_EQ(strain.out_of_order, 1);
+  EXPECT_EQ(strain.duplicates, 1);
+  const int64_t resets_before = status.resets;
+
+  // A 2 s gap: the first sample after it is flagged as a filter reset.
+  t += 2'000'000;
+  seq += 2000;
+  const size_t gap_index = h.forces_.size();
+  h.FeedHover(t, seq, 300);
+  ASSERT_GT(h.forces_.size(), gap_index);
+  EXPECT_TRUE(h.forces_[gap_index].status & kStatusFilterReset) << h.forces_[gap_index].status;
+  status = h.Status();
+  EXPECT_EQ(status.resets, resets_before + 1);
+  EXPECT_EQ(status.last_reset_reason, "gap");
+  EXPECT_GE(h.StrainHealth(status).gaps, 1);
+  EXPECT_GE(h.StrainHealth(status).missing_samples, 1999);
+  EXPECT_TRUE(h.forces_.back().status & kStatusValid);
+  t += 300 * kStrainPeriodUs;
+  seq += 300;
+
+  // A jump 10 s backwards (a log played again): reset, flagged, recovered.
+  t -= 10'000'000;
+  const size_t back_index = h.forces_.size();
+  h.FeedHover(t, seq, 300);
+  ASSERT_GT(h.forces_.size(), back_index);
+  EXPECT_TRUE(h.forces_[back_index].status & kStatusFilterReset);
+  status = h.Status();
+  EXPECT_EQ(status.resets, resets_before + 2);
+  EXPECT_EQ(status.last_reset_reason, "time_backwards");
+
+  EXPECT_TRUE(h.AllForcesFinite());
+  const force_estimate_t& last = h.forces_.back();
+  EXPECT_TRUE(last.status & kStatusValid) << last.status;
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 0.2);
+}
+
+TEST(EstimatorServiceTest, InputChannelOfMapsOnlyInputs) {
+  EstimatorConfig config;
+  const ChannelNames channels = MakeChannelNames("X_");
+  LcmSink sink(nullptr);
+  EstimatorService service(config, channels, EstimatorServiceOptions{}, &sink);
+  InputChannel input;
+  ASSERT_TRUE(service.InputChannelOf("X_MOTOR", &input));
+  EXPECT_EQ(input, InputChannel::kMotor);
+  ASSERT_TRUE(service.InputChannelOf("X_POSE", &input));
+  EXPECT_EQ(input, InputChannel::kPose);
+  EXPECT_FALSE(service.InputChannelOf("X_TRUTH", &input));
+  EXPECT_FALSE(service.InputChannelOf("BIROTOR_STRAIN", &input));
+}
+
+TEST(EstimatorServiceTest, OverloadedStrainPacketsAreDroppedAndCounted) {
+  EstimatorConfig config;
+  struct CountingSink : MessageSink {
+    int64_t count = 0;
+    void Publish(const std::string&, int64_t, const void*, size_t) override { ++count; }
+  } sink;
+  EstimatorServiceOptions options;
+  options.overload_max_delay_s = 0.2;
+  EstimatorService service(config, MakeChannelNames(), options, &sink);
+  std::vector<uint8_t> buffer;
+  StrainSample strain;
+  strain.utime = 1000;
+  EncodeMessage(ToMessage(strain), &buffer);
+  // Received 10 s ago on the host clock: far behind.
+  const int64_t now_us = std::chrono::duration_cast<std::chrono::microseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count();
+  EXPECT_FALSE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(),
+                                    now_us - 10'000'000));
+  EXPECT_EQ(service.health().inputs[0].dropped_overload, 1);
+  EXPECT_EQ(sink.count, 0);
+  EXPECT_TRUE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us));
+  EXPECT_EQ(sink.count, 1);
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,88 @@
+// ESTIMATOR_STATUS building and processing-time statistics.
+#include "services/status_message.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "transport/lcm_codec.h"
+
+namespace birotor {
+namespace {
+
+TEST(ProcessingTimeStatsTest, MeanP99MaxOverThePeriod) {
+  ProcessingTimeStats stats;
+  EXPECT_TRUE(std::isnan(stats.MeanUs()));
+  EXPECT_TRUE(std::isnan(stats.P99Us()));
+  for (int i = 1; i <= 1000; ++i) stats.Add(static_cast<double>(i));
+  EXPECT_DOUBLE_EQ(stats.MeanUs(), 500.5);
+  EXPECT_DOUBLE_EQ(stats.MaxUs(), 1000.0);
+  EXPECT_DOUBLE_EQ(stats.P99Us(), 990.0);
+  stats.TakePeriod();
+  EXPECT_TRUE(std::isnan(stats.MaxUs()));
+  stats.Add(7.0);
+  EXPECT_DOUBLE_EQ(stats.P99Us(), 7.0);
+}
+
+TEST(ProcessingTimeStatsTest, PercentileUsesTheNewestSamplesWhenTheRingWraps) {
+  ProcessingTimeStats stats;
+  for (int i = 0; i < ProcessingTimeStats::kCapacity; ++i) stats.Add(1000.0);
+  for (int i = 0; i < ProcessingTimeStats::kCapacity; ++i) stats.Add(1.0);
+  EXPECT_DOUBLE_EQ(stats.P99Us(), 1.0);
+  EXPECT_DOUBLE_EQ(stats.MaxUs(), 1000.0);  // the max is exact over the period
+}
+
+TEST(StatusMessageTest, CarriesCountersRatesAndAges) {
+  PipelineHealth health;
+  health.newest_utime = 3'000'000;
+  InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
+  strain.received = 10;
+  strain.fused = 7;
+  strain.decode_errors = 2;
+  strain.gaps = 1;
+  strain.missing_samples = 4;
+  strain.last_utime = 2'500'000;
+  strain.accepted_in_period = 100;
+  health.resets = 2;
+  health.last_reset_reason = "gap";
+  health.nis_sum = 6.0;
+  health.nis_count = 3;
+  health.nis_max = 4.0;
+  health.last_estimate.force_n[1] = 21.5;
+  StatusContext context;
+  context.period_s = 0.2;
+  context.seq = 5;
+  context.strain_gate = 30;
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", context, &message);
+  EXPECT_EQ(message.seq, 5);
+  EXPECT_EQ(message.num_inputs, 4);
+  ASSERT_EQ(message.inputs.size(), 4u);
+  EXPECT_EQ(message.inputs[0].channel, "STRAIN");
+  EXPECT_EQ(message.inputs[3].channel, "POSE");
+  EXPECT_EQ(message.inputs[0].decode_errors, 2);
+  EXPECT_EQ(message.inputs[0].missing_samples, 4);
+  EXPECT_DOUBLE_EQ(message.inputs[0].age_s, 0.5);
+  EXPECT_DOUBLE_EQ(message.inputs[0].rate_hz, 500.0);
+  EXPECT_TRUE(std::isnan(message.inputs[1].age_s));  // never received
+  EXPECT_DOUBLE_EQ(message.strain_nis_mean, 2.0);
+  EXPECT_DOUBLE_EQ(message.strain_nis_max, 4.0);
+  EXPECT_EQ(message.last_reset_reason, "gap");
+  EXPECT_DOUBLE_EQ(message.force_n[1], 21.5);
+  // The message encodes and decodes through the checked codec.
+  std::vector<uint8_t> buffer;
+  EncodeMessage(message, &buffer);
+  estimator_status_t decoded;
+  ASSERT_EQ(DecodeMessage(buffer.data(), buffer.size(), &decoded), DecodeError::kNone);
+  EXPECT_EQ(decoded.inputs[0].fused, 7);
+}
+
+TEST(StatusMessageTest, GateIsNanForTheBaselines) {
+  EstimatorConfig config;
+  EXPECT_EQ(StrainGateOf(config), config.ekf.gate_nis_threshold);
+  config.method = "motor_map";
+  EXPECT_TRUE(std::isnan(StrainGateOf(config)));
+}
+
+}  // namespace
+}  // namespace birotor

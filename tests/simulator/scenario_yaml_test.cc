@@ -1,0 +1,124 @@
+// Tests of simulator/scenario_yaml.h: every reference scenario loads, bad
+// files are refused with the file and the key named, overrides apply.
+#include "simulator/scenario_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "test_support.h"
+
+namespace birotor {
+namespace {
+
+// Message of the ParamError thrown by loading text (with overrides), or "".
+std::string LoadError(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    LoadScenarioFromString(text, "bad.yaml", overrides);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScenarioYamlTest, EveryReferenceScenarioLoads) {
+  for (const char* name :
+       {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults", "bench", "flight_id"}) {
+    const Scenario scenario = LoadScenario(ScenarioPath(name));
+    EXPECT_EQ(scenario.name, name);
+  }
+  EXPECT_EQ(LoadScenario(ScenarioPath("bench")).mode, "bench");
+  EXPECT_TRUE(LoadScenario(ScenarioPath("bench")).sensors.loadcell.enabled);
+  const Scenario loss = LoadScenario(ScenarioPath("thrust_loss"));
+  ASSERT_EQ(loss.faults.thrust_steps.size(), 1u);
+  EXPECT_EQ(loss.faults.thrust_steps[0].rotor, 2);
+  EXPECT_DOUBLE_EQ(loss.faults.thrust_steps[0].scale, 0.75);
+  EXPECT_DOUBLE_EQ(LoadScenario(ScenarioPath("density")).faults.initial_thrust_scale[1], 0.9);
+}
+
+TEST(ScenarioYamlTest, DefaultsAreTheReferenceVehicleAndSensors) {
+  const Scenario s = LoadScenarioFromString("", "empty.yaml");
+  EXPECT_DOUBLE_EQ(s.vehicle.arm_stiffness_n_m_rad, 2628.0);
+  EXPECT_DOUBLE_EQ(s.step_s, 0.00025);
+  EXPECT_DOUBLE_EQ(s.sensors.strain.rate_hz, 1000.0);
+  EXPECT_DOUBLE_EQ(s.sensors.strain_noise_rad, 2e-5);
+  EXPECT_DOUBLE_EQ(s.sensors.motor.rate_hz, 500.0);
+  EXPECT_DOUBLE_EQ(s.sensors.pose.rate_hz, 100.0);
+  EXPECT_FALSE(s.sensors.loadcell.enabled);
+}
+
+TEST(ScenarioYamlTest, UnknownKeyIsRefusedNamingFileAndKey) {
+  const std::string error = LoadError("sensors:\n  strain:\n    noise_rads: 1e-5\n");
+  EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("sensors.strain.noise_rads"), std::string::npos) << error;
+  EXPECT_NE(LoadError("scenaro:\n  name: x\n").find("'scenaro'"), std::string::npos);
+}
+
+TEST(ScenarioYamlTest, NegativeRateIsRefused) {
+  const std::string error = LoadError("sensors:\n  imu: {rate_hz: -100}\n");
+  EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("sensors.imu.rate_hz"), std::string::npos) << error;
+}
+
+TEST(ScenarioYamlTest, RateThatIsNotAWholeNumberOfStepsIsRefused) {
+  const std::string error = LoadError("sensors:\n  strain: {rate_hz: 1500}\n");
+  EXPECT_NE(error.find("sensors.strain.rate_hz"), std::string::npos) << error;
+}
+
+TEST(ScenarioYamlTest, FaultTimePastTheEndIsRefused) {
+  const std::string base = "scenario: {duration_s: 10}\n";
+  std::string error = LoadError(base + "faults:\n  thrust_steps:\n    - {time_s: 12, rotor: 2, scale: 0.75}\n");
+  EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("faults.thrust_steps[0].time_s"), std::string::npos) << error;
+  error = LoadError(base + "faults:\n  strain_nan_times_s: [3, 11]\n");
+  EXPECT_NE(error.find("faults.strain_nan_times_s"), std::string::npos) << error;
+  error = LoadError(base + "faults:\n  motor_telemetry_gap: {start_s: 10.5, duration_s: 1}\n");
+  EXPECT_NE(error.find("faults.motor_telemetry_gap.start_s"), std::string::npos) << error;
+}
+
+TEST(ScenarioYamlTest, BadFileOnDiskIsRefusedNamingTheFile) {
+  try {
+    LoadScenario("/nonexistent/scenario.yaml");
+    FAIL() << "no error";
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scenario.yaml"), std::string::npos);
+  }
+}
+
+TEST(ScenarioYamlTest, OverridesApplyOnTopOfTheFileAndAreValidated) {
+  const Scenario s = LoadScenario(ScenarioPath("gentle"), {"sensors.strain.noise_rad=0", "scenario.seed=99",
+                                                           "faults.strain_nan_times_s=[1.5, 2.5]",
+                                                           "vehicle.turbulence_std=0"});
+  EXPECT_EQ(s.sensors.strain_noise_rad, 0.0);
+  EXPECT_EQ(s.seed, 99u);
+  EXPECT_EQ(s.faults.strain_nan_times_s.size(), 2u);
+  EXPECT_EQ(s.vehicle.turbulence_std, 0.0);
+  EXPECT_EQ(s.trajectory.waypoints.size(), 1u);  // untouched parts of the file stay
+
+  const std::string unknown = LoadError("", {"sensors.strain.noise=1"});
+  EXPECT_NE(unknown.find("sensors.strain.noise"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("--set"), std::string::npos) << unknown;
+  EXPECT_NE(LoadError("", {"sensors.pose.rate_hz=-1"}).find("sensors.pose.rate_hz"), std::string::npos);
+  EXPECT_NE(LoadError("", {"no_equals_sign"}).find("no_equals_sign"), std::string::npos);
+}
+
+TEST(ScenarioYamlTest, ParameterFileBecomesOverrides) {
+  const std::string path = ::testing::TempDir() + "scenario_yaml_test_params.yaml";
+  std::ofstream(path) << "vehicle:\n  arm_stiffness_n_m_rad: 2500\nsensors:\n  strain: {noise_rad: 0}\n"
+                         "faults:\n  thrust_steps:\n    - {time_s: 3, rotor: 1, scale: 0.8}\n";
+  const std::vector<std::string> overrides = OverridesFromFile(path);
+  EXPECT_EQ(overrides.size(), 3u);
+  const Scenario s = LoadScenario(ScenarioPath("hover"), overrides);
+  EXPECT_EQ(s.vehicle.arm_stiffness_n_m_rad, 2500.0);
+  EXPECT_EQ(s.vehicle.body_mass_kg, 4.0);
+  EXPECT_EQ(s.sensors.strain_noise_rad, 0.0);
+  EXPECT_TRUE(s.sensors.strain.enabled);
+  ASSERT_EQ(s.faults.thrust_steps.size(), 1u);
+  EXPECT_EQ(s.faults.thrust_steps[0].rotor, 1);
+  EXPECT_EQ(s.faults.thrust_steps[0].scale, 0.8);
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,115 @@
+// birotor-identify: reads lcm-logger files (bench or flight), identifies c_T,
+// tau_m, k, d and the deflection-force maps with Ceres, and writes the
+// parameter file the estimator and simulator load, plus a readable report.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "identification/identify.h"
+#include "identification/parameter_file.h"
+#include "params/vehicle_params_yaml.h"
+#include "tools/identification_log_loader.h"
+#include "transport/logging.h"
+#include "transport/program_options.h"
+
+namespace {
+
+constexpr int kExitFailure = 1;
+
+struct IdentifyOptions {
+  std::vector<std::string> logs;
+  std::string mode = "auto";
+  std::string params = std::string(BIROTOR_SOURCE_DIR) + "/config/reference_vehicle.yaml";
+  std::string config;   // optional file with an `identification:` section
+  std::string output;
+  std::string report;
+  std::string plot;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace birotor;
+  CommonOptions common;
+  IdentifyOptions cli;
+  CLI::App app("Identify the birotor's c_T, tau_m, k, d and deflection-force maps from LCM logs", "birotor-identify");
+  AddCommonOptions(app, &common);
+  app.add_option("--log", cli.logs, "LCM log file (repeat for several)")->required()->check(CLI::ExistingFile);
+  app.add_option("--mode", cli.mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
+      ->check(CLI::IsMember({"auto", "bench", "flight"}));
+  app.add_option("--params", cli.params, "Base parameter file: masses, lengths, inertia are taken as known");
+  app.add_option("--config", cli.config, "Optional YAML file with an `identification:` section of options");
+  app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
+  app.add_option("--report", cli.report, "Readable report (Markdown)");
+  app.add_option("--plot", cli.plot, "PNG of fit versus data (not implemented)");
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-identify", common.log_level);
+
+  VehicleParams base;
+  IdentificationOptions options;
+  try {
+    base = LoadVehicleParams(cli.params);
+    if (!cli.config.empty()) {
+      YamlSection root = YamlSection::LoadFile(cli.config);
+      ReadIdentificationOptions(root.Section("identification"), &options);
+    }
+  } catch (const ParamError& e) {
+    spdlog::error("{}", e.what());
+    return kExitFailure;
+  }
+  spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
+
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<SensorLog> logs;
+  for (const std::string& path : cli.logs) {
+    SensorLog log;
+    LogLoadReport load;
+    std::string error;
+    if (!LoadSensorLog(path, common.prefix, &log, &load, &error)) {
+      spdlog::error("{}", error);
+      return kExitFailure;
+    }
+    if (load.truncated_tail) {
+      spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest",
+                   path, load.tail_offset, load.file_size, load.events);
+    }
+    if (load.decode_errors > 0) spdlog::warn("{}: {} events did not decode and were skipped", path, load.decode_errors);
+    spdlog::info("{}: {} strain, {} motor, {} imu, {} loadcell samples", path, log.strain.size(), log.motor.size(),
+                 log.imu.size(), log.loadcell.size());
+    logs.push_back(std::move(log));
+  }
+  const IdentificationMode mode = cli.mode == "bench"    ? IdentificationMode::kBench
+                                  : cli.mode == "flight" ? IdentificationMode::kFlight
+                                                         : IdentificationMode::kAuto;
+  const IdentificationResult result = Identify(std::move(logs), base, options, mode);
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (!cli.report.empty()) {
+    std::string error;
+    if (!WriteFileAtomically(cli.report, IdentificationReport(result), &error)) spdlog::error("{}", error);
+  }
+  if (!result.ok) {
+    spdlog::error("identification refused ({} mode): the data lacks what is needed:", result.mode);
+    for (const std::string& e : result.errors) spdlog::error("  {}", e);
+    return kExitFailure;
+  }
+  for (const std::string& w : result.warnings) spdlog::warn("{}", w);
+  for (const ParameterEstimate& e : result.estimates) {
+    spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %){}", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value,
+                 e.determined ? "" : " NOT DETERMINED, base value kept");
+  }
+  for (const DeflectionForceMap& m : result.maps) {
+    spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
+                 m.residual_rms_n);
+  }
+  if (!cli.plot.empty()) spdlog::warn("--plot is not implemented; no PNG written");
+  std::string error;
+  if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) {
+    spdlog::error("{}", error);
+    return kExitFailure;
+  }
+  spdlog::info("wrote {} ({} mode, {:.2f} s)", cli.output, result.mode, elapsed_s);
+  return 0;
+}

@@ -1,0 +1,188 @@
+// birotor-latency-probe: publishes synthetic STRAIN (and MOTOR at half rate)
+// samples on LCM at a fixed rate, listens for the daemon's FORCE messages,
+// pairs them by seq and prints the publish-to-FORCE latency distribution and
+// the samples that never got a FORCE. Run birotor-estimator with the same
+// --lcm-url and --prefix.
+#include <lcm/lcm-cpp.hpp>
+#include <sched.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "birotor/force_estimate_t.hpp"
+#include "birotor/motor_t.hpp"
+#include "birotor/strain_t.hpp"
+#include "transport/channels.h"
+#include "transport/lcm_codec.h"
+#include "transport/lcm_session.h"
+#include "transport/logging.h"
+#include "transport/program_options.h"
+#include "transport/shutdown.h"
+
+namespace {
+
+// Reference hover (shared/spec/reference-vehicle.md).
+constexpr double kHoverDeflectionRad = 0.0018664;
+constexpr double kHoverOmegaRadS = 698.55;
+
+int64_t SteadyNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+struct Probe {
+  std::vector<int64_t> publish_ns;   // per seq; 0 before publication
+  std::vector<int64_t> latency_ns;   // per seq; -1 until FORCE arrives
+  std::atomic<int64_t> received{0};
+  std::atomic<int64_t> unmatched{0};  // FORCE with an unknown seq or not decodable
+  std::atomic<int64_t> duplicates{0};
+};
+
+void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
+  const int64_t now_ns = SteadyNowNs();
+  birotor::force_estimate_t message;
+  if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) !=
+          birotor::DecodeError::kNone ||
+      message.seq < 0 || static_cast<size_t>(message.seq) >= probe->publish_ns.size() ||
+      probe->publish_ns[message.seq] == 0) {
+    ++probe->unmatched;
+    return;
+  }
+  if (probe->latency_ns[message.seq] >= 0) {
+    ++probe->duplicates;
+    return;
+  }
+  probe->latency_ns[message.seq] = now_ns - probe->publish_ns[message.seq];
+  ++probe->received;
+}
+
+double Percentile(const std::vector<int64_t>& sorted, double fraction) {
+  if (sorted.empty()) return std::nan("");
+  const size_t rank = std::min(
+      sorted.size() - 1,
+      static_cast<size_t>(std::ceil(fraction * static_cast<double>(sorted.size()))) - 1);
+  return static_cast<double>(sorted[rank]) * 1e-3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace birotor;
+  CLI::App app{"birotor-latency-probe: publish-to-FORCE latency of a running birotor-estimator"};
+  CommonOptions common;
+  common.prefix = "LATENCY_PROBE_";  // keep away from a real vehicle's channels
+  AddCommonOptions(app, &common);
+  double rate_hz = 1000;
+  double duration_s = 10;
+  double drain_s = 1.0;
+  app.add_option("--rate-hz", rate_hz, "STRAIN rate [Hz]; MOTOR at half of it")
+      ->check(CLI::Range(1.0, 100000.0));
+  app.add_option("--duration-s", duration_s, "Publishing time [s]")
+      ->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--drain-s", drain_s, "Time to wait for the last FORCE messages [s]")
+      ->check(CLI::Range(0.0, 60.0));
+  int realtime_priority = 0;
+  app.add_option("--realtime-priority", realtime_priority,
+                 "SCHED_FIFO priority (1-99) for the probe's threads; 0: normal scheduler")
+      ->check(CLI::Range(0, 99));
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-latency-probe", common.log_level);
+  if (realtime_priority > 0) {
+    sched_param param{};
+    param.sched_priority = realtime_priority;  // inherited by the receiver thread
+    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+      std::fprintf(stderr, "birotor-latency-probe: warning: cannot set SCHED_FIFO\n");
+    }
+  }
+
+  std::string error;
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
+  if (!lcm) {
+    std::fprintf(stderr, "birotor-latency-probe: error: %s\n", error.c_str());
+    return 1;
+  }
+  InstallShutdownHandlers();
+  const ChannelNames channels = MakeChannelNames(common.prefix);
+  const int64_t count = static_cast<int64_t>(std::llround(rate_hz * duration_s));
+  Probe probe;
+  probe.publish_ns.assign(static_cast<size_t>(count), 0);
+  probe.latency_ns.assign(static_cast<size_t>(count), -1);
+  lcm::Subscription* subscription =
+      lcm->subscribeFunction(channels.force, &OnForce, &probe);
+  subscription->setQueueCapacity(100000);
+
+  std::atomic<bool> stop_receiving{false};
+  std::thread receiver([&] {
+    while (!stop_receiving.load()) lcm->handleTimeout(50);
+  });
+
+  const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / rate_hz));
+  const int64_t period_us = std::max<int64_t>(1, period_ns / 1000);
+  // Vehicle clock of the synthetic samples: the wall clock at start, so a
+  // second run moves forward in time for the daemon.
+  const int64_t utime0 = std::chrono::duration_cast<std::chrono::microseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count();
+  strain_t strain;
+  motor_t motor;
+  std::vector<uint8_t> strain_buffer, motor_buffer;
+  const int64_t start_ns = SteadyNowNs();
+  int64_t published = 0;
+  for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
+    const int64_t due_ns = start_ns + k * period_ns;
+    std::this_thread::sleep_until(
+        std::chrono::steady_clock::time_point(std::chrono::nanoseconds(due_ns)));
+    const int64_t utime = utime0 + k * period_us;
+    if (k % 2 == 0) {
+      motor.utime = utime;
+      motor.seq = static_cast<int32_t>(k / 2);
+      for (int i = 0; i < 2; ++i) {
+        motor.omega_cmd_rad_s[i] = kHoverOmegaRadS;
+        motor.omega_meas_rad_s[i] = kHoverOmegaRadS;
+      }
+      EncodeMessage(motor, &motor_buffer);
+      lcm->publish(channels.motor, motor_buffer.data(), static_cast<unsigned>(motor_buffer.size()));
+    }
+    strain.utime = utime;
+    strain.seq = static_cast<int32_t>(k);
+    // A small deterministic ripple (1e-6 rad) so the filter sees changing data.
+    const double ripple_rad = 1e-6 * std::sin(0.01 * static_cast<double>(k));
+    strain.deflection_rad[0] = -kHoverDeflectionRad + ripple_rad;
+    strain.deflection_rad[1] = kHoverDeflectionRad + ripple_rad;
+    EncodeMessage(strain, &strain_buffer);
+    probe.publish_ns[k] = SteadyNowNs();
+    lcm->publish(channels.strain, strain_buffer.data(), static_cast<unsigned>(strain_buffer.size()));
+    ++published;
+  }
+  const double publish_s = static_cast<double>(SteadyNowNs() - start_ns) * 1e-9;
+  std::this_thread::sleep_for(std::chrono::duration<double>(drain_s));
+  stop_receiving = true;
+  receiver.join();
+
+  std::vector<int64_t> latencies;
+  latencies.reserve(static_cast<size_t>(published));
+  for (int64_t k = 0; k < published; ++k) {
+    if (probe.latency_ns[k] >= 0) latencies.push_back(probe.latency_ns[k]);
+  }
+  std::sort(latencies.begin(), latencies.end());
+  const int64_t dropped = published - static_cast<int64_t>(latencies.size());
+  std::printf("url %s prefix %s: %" PRId64 " STRAIN published at %.0f Hz in %.2f s (achieved %.1f Hz)\n",
+              common.lcm_url.c_str(), common.prefix.c_str(), published, rate_hz, publish_s,
+              static_cast<double>(published) / publish_s);
+  std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64
+              ", duplicates %" PRId64 "\n",
+              latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
+  std::printf("latency publish->FORCE [us]: p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  max %.1f\n",
+              Percentile(latencies, 0.50), Percentile(latencies, 0.90),
+              Percentile(latencies, 0.99), Percentile(latencies, 0.999),
+              latencies.empty() ? std::nan("") : static_cast<double>(latencies.back()) * 1e-3);
+  return dropped == 0 ? 0 : 3;
+}
