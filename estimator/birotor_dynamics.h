@@ -70,25 +70,38 @@ DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q
     const T a_dot = v(kPhi) + v(b);
     const T c = cos(a), s = sin(a);
     const double sL = kArmSign[i] * L;
-    // Tip Jacobian J_i (2x5): columns x, z are the identity; phi and b_i are s_i L n_i.
-    Eigen::Matrix<T, 2, kNumCoordinates> tip_jac;
-    tip_jac.setZero();
-    tip_jac(0, kX) = T(1.0);
-    tip_jac(1, kZ) = T(1.0);
-    tip_jac(0, kPhi) = tip_jac(0, b) = -sL * s;
-    tip_jac(1, kPhi) = tip_jac(1, b) = sL * c;
-    out.mass.noalias() += mp * tip_jac.transpose() * tip_jac;
+    // Tip Jacobian J_i (2x5): columns x, z are the identity; columns phi and
+    // b_i are both s_i L n_i = s_i L [-sin a, cos a]. m_p J_i^T J_i, written
+    // out entry by entry (|n_i| = 1):
+    const T jx = -sL * s, jz = sL * c;
+    out.mass(kX, kX) += mp;
+    out.mass(kZ, kZ) += mp;
+    out.mass(kX, kPhi) += mp * jx;
+    out.mass(kX, b) += mp * jx;
+    out.mass(kZ, kPhi) += mp * jz;
+    out.mass(kZ, b) += mp * jz;
+    out.mass(kPhi, kPhi) += mp * L * L;
+    out.mass(kPhi, b) += mp * L * L;
+    out.mass(b, b) += mp * L * L;
     // Centripetal: m_p J_i^T (J_i_dot v), J_i_dot v = -s_i L a_dot^2 r_i; only x, z rows survive.
-    out.coriolis(kX) += -mp * sL * a_dot * a_dot * c;
-    out.coriolis(kZ) += -mp * sL * a_dot * a_dot * s;
+    const T centripetal = -mp * sL * a_dot * a_dot;
+    out.coriolis(kX) += centripetal * c;
+    out.coriolis(kZ) += centripetal * s;
     // Gravity on the tip mass: m_p g J_i^T [0, 1].
-    out.gravity_spring += (mp * g) * tip_jac.row(1).transpose();
+    out.gravity_spring(kZ) += mp * g;
+    out.gravity_spring(kPhi) += (mp * g) * jz;
+    out.gravity_spring(b) += (mp * g) * jz;
     // Hinge spring and damping.
     out.gravity_spring(b) += p.arm_stiffness_n_m_rad * q(b) + p.arm_damping_n_m_s_rad * v(b);
-    // Thrust f_i n_i at p_i: tau = J_i^T n_i f_i.
-    const Eigen::Matrix<T, 2, 1> n(-s, c);
-    out.generalized_thrust += (tip_jac.transpose() * n) * forces[i];
+    // Thrust f_i n_i at p_i: tau = J_i^T n_i f_i = f_i [n_i; s_i L; s_i L] (n_i . n_i = 1).
+    out.generalized_thrust(kX) += -s * forces[i];
+    out.generalized_thrust(kZ) += c * forces[i];
+    out.generalized_thrust(kPhi) += sL * forces[i];
+    out.generalized_thrust(b) += sL * forces[i];
   }
+  // Symmetric lower triangle.
+  for (int r = 0; r < kNumCoordinates; ++r)
+    for (int col = r + 1; col < kNumCoordinates; ++col) out.mass(col, r) = out.mass(r, col);
   return out;
 }
 

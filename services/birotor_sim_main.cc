@@ -73,7 +73,9 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   }
   if (!writer.Close()) write_failed = true;
   if (write_failed) spdlog::error("writing {} failed (disk full?); the log ends early", path);
-  if (ShutdownRequested()) spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
+  if (ShutdownRequested()) {
+    spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
+  }
   spdlog::info("wrote {} events to {}", writer.events_written(), path);
   return !write_failed;
 }
@@ -116,7 +118,8 @@ int Main(int argc, char** argv) {
   app.add_option("--output", options.output, "Write an LCM log file as fast as possible instead of publishing live");
   app.add_option("--speed", options.speed, "Live mode: simulated seconds per wall-clock second")
       ->check(CLI::Range(1e-3, 1e6));
-  app.add_flag("--wall-clock", options.wall_clock, "Stamp samples with the wall clock instead of simulated time from 0");
+  app.add_flag("--wall-clock", options.wall_clock,
+               "Stamp samples with the wall clock instead of simulated time from 0");
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -137,7 +140,8 @@ int Main(int argc, char** argv) {
                options.scenario_file, FileChecksum(options.scenario_file), scenario.duration_s, scenario.seed,
                scenario.step_s, options.overrides.empty() && options.param_files.empty()
                    ? ""
-                   : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
+                   : fmt::format(", {} parameter files, {} --set", options.param_files.size(),
+                                 options.overrides.size()));
 
   InstallShutdownHandlers();
   Simulator sim(scenario);

@@ -19,7 +19,9 @@ void SetPath(YAML::Node node, const std::vector<std::string>& parts, size_t inde
     node[parts[index]] = value;
     return;
   }
-  if (!node[parts[index]].IsDefined() || node[parts[index]].IsNull()) node[parts[index]] = YAML::Node(YAML::NodeType::Map);
+  if (!node[parts[index]].IsDefined() || node[parts[index]].IsNull()) {
+    node[parts[index]] = YAML::Node(YAML::NodeType::Map);
+  }
   SetPath(node[parts[index]], parts, index + 1, value, label, path);
 }
 

@@ -40,8 +40,9 @@ Simulator::Simulator(const Scenario& scenario)
       trajectory_(scenario),
       controller_(scenario.vehicle, scenario.controller, 0.5 * (equilibrium_.force_n[0] + equilibrium_.force_n[1])),
       bench_(scenario.bench, scenario.seed),
-      turbulence_{GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s),
-                  GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s)},
+      turbulence_{
+          GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s),
+          GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s)},
       turbulence_noise_(scenario.seed, kTurbulenceStream),
       strain_noise_(scenario.seed, kStrainStream),
       motor_noise_(scenario.seed, kMotorStream),

@@ -9,7 +9,12 @@ seconds="${1:-60}"
 shift || true
 tools/setup.sh --no-build
 BUILD_DIR="${BIROTOR_FUZZ_BUILD_DIR:-build-fuzz}"
+# Every library the harnesses link is instrumented too (coverage for the
+# fuzzer, ASan + UBSan for the bugs), not only the harness file itself.
+SANITIZE_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined"
 CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS="$SANITIZE_FLAGS" -DCMAKE_CXX_FLAGS="$SANITIZE_FLAGS" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DBIROTOR_FUZZ=ON -DBIROTOR_BUILD_TESTS=OFF -DBIROTOR_BUILD_BENCHMARKS=OFF > "$BUILD_DIR.cmake.log" 2>&1 \
   || { cat "$BUILD_DIR.cmake.log"; exit 1; }
 harnesses=("$@")

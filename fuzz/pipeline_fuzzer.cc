@@ -1,0 +1,287 @@
+// libFuzzer harness for the estimator's input path: a byte string becomes a
+// stream of packets on STRAIN, MOTOR, IMU and POSE (raw bytes through the
+// checked decoder, or structured samples whose fields may be NaN, +-Inf, huge,
+// negative or jumping backwards in time), fed to EstimatorPipeline with any
+// of the three methods. No estimate may carry a non-finite number, no status
+// bit outside the documented set, no counter may go backwards, nothing may
+// crash, leak or trip a sanitizer.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+
+#include "birotor/imu_t.hpp"
+#include "birotor/motor_t.hpp"
+#include "birotor/pose_t.hpp"
+#include "birotor/strain_t.hpp"
+#include "estimator/estimator_pipeline.h"
+#include "transport/lcm_codec.h"
+#include "transport/message_conversion.h"
+
+namespace {
+
+using birotor::EstimatorPipeline;
+using birotor::InputChannel;
+
+// Every bit of force_estimate_t.status (lcmtypes/force_estimate_t.lcm).
+constexpr int32_t kKnownStatusBits = 255;
+// Reference hover (shared/spec/reference-vehicle.md).
+constexpr double kHoverDeflectionRad = 0.0018664;
+constexpr double kHoverOmegaRadS = 698.55;
+constexpr int64_t kStrainPeriodUs = 1000;
+// Upper bound on packets per input, so one input stays fast (~ms).
+constexpr int kMaxPackets = 4096;
+
+// Reads the fuzz input front to back; past the end it yields zeros.
+class ByteReader {
+ public:
+  ByteReader(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  bool empty() const { return offset_ >= size_; }
+  uint8_t Byte() { return offset_ < size_ ? data_[offset_++] : 0; }
+  uint64_t Bits64() {
+    uint64_t value = 0;
+    for (int i = 0; i < 8; ++i) value = (value << 8) | Byte();
+    return value;
+  }
+  // Up to max_size bytes of the input, in place.
+  const uint8_t* Take(size_t max_size, size_t* size) {
+    const size_t left = size_ - (offset_ < size_ ? offset_ : size_);
+    *size = max_size < left ? max_size : left;
+    const uint8_t* begin = data_ + offset_;
+    offset_ += *size;
+    return begin;
+  }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+  size_t offset_ = 0;
+};
+
+// A field value: mostly near `nominal` (so the filter runs on plausible data
+// and reaches deep states), sometimes hostile.
+double FieldValue(ByteReader* in, double nominal, double scale) {
+  const uint8_t kind = in->Byte();
+  switch (kind % 12) {
+    case 0: return std::numeric_limits<double>::quiet_NaN();
+    case 1: return std::numeric_limits<double>::infinity();
+    case 2: return -std::numeric_limits<double>::infinity();
+    case 3: return std::numeric_limits<double>::max();
+    case 4: return -std::numeric_limits<double>::denorm_min();
+    case 5: {  // any bit pattern
+      const uint64_t bits = in->Bits64();
+      double value;
+      std::memcpy(&value, &bits, sizeof value);
+      return value;
+    }
+    case 6: return -nominal;
+    case 7: return nominal * (static_cast<int8_t>(in->Byte()) / 8.0);  // up to 16x off
+    default: return nominal + scale * (static_cast<int8_t>(in->Byte()) / 128.0);
+  }
+}
+
+// a + b with two's-complement wrap-around (no signed-overflow UB in the harness).
+int64_t WrapAdd(int64_t a, int64_t b) {
+  return static_cast<int64_t>(static_cast<uint64_t>(a) + static_cast<uint64_t>(b));
+}
+
+// Sample time: usually the next period of the channel, sometimes a duplicate,
+// an out-of-order sample, a gap, a jump backwards, a negative or a huge stamp.
+int64_t NextUtime(ByteReader* in, int64_t* clock_us, int64_t period_us) {
+  const uint8_t kind = in->Byte();
+  switch (kind % 16) {
+    case 0: break;                                                    // duplicate
+    case 1: *clock_us = WrapAdd(*clock_us, -period_us * (1 + in->Byte())); break;         // out of order
+    case 2: *clock_us = WrapAdd(*clock_us, 1000 * period_us * (1 + in->Byte())); break;  // gap
+    case 3: *clock_us = WrapAdd(*clock_us, -1000000LL * (1 + in->Byte())); break;         // backwards
+    case 4: *clock_us = -static_cast<int64_t>(in->Bits64() >> 1); break;
+    case 5: *clock_us = std::numeric_limits<int64_t>::max() - in->Byte(); break;
+    case 6: *clock_us = std::numeric_limits<int64_t>::min() + in->Byte(); break;
+    case 7: *clock_us = static_cast<int64_t>(in->Bits64()); break;
+    case 8: *clock_us = WrapAdd(*clock_us, in->Byte()); break;  // jitter
+    default: *clock_us = WrapAdd(*clock_us, period_us); break;
+  }
+  return *clock_us;
+}
+
+int32_t NextSeq(ByteReader* in, int32_t* seq) {
+  const uint8_t kind = in->Byte();
+  if (kind % 8 == 0) *seq = static_cast<int32_t>(in->Bits64());   // anything, incl. wrap
+  else if (kind % 8 == 1) *seq = static_cast<int32_t>(static_cast<uint32_t>(*seq) + 1u + in->Byte());  // gap
+  else *seq = static_cast<int32_t>(static_cast<uint32_t>(*seq) + 1u);  // wraps
+  return *seq;
+}
+
+void CheckEstimate(const birotor::ForceEstimate& estimate) {
+  for (int i = 0; i < 2; ++i) {
+    if (!std::isfinite(estimate.force_n[i]) || !std::isfinite(estimate.force_std_n[i]) ||
+        !std::isfinite(estimate.thrust_scale[i]) || estimate.force_std_n[i] < 0) {
+      std::abort();
+    }
+  }
+  if ((estimate.status & ~kKnownStatusBits) != 0) std::abort();
+}
+
+// Counters only ever grow; an accepted sample never exceeds what was received.
+void CheckHealth(const birotor::PipelineHealth& health, const int64_t (&received)[birotor::kNumInputChannels]) {
+  for (int i = 0; i < birotor::kNumInputChannels; ++i) {
+    const birotor::InputCounters& c = health.inputs[i];
+    if (c.received != received[i] || c.fused < 0 || c.fused > c.received) std::abort();
+    if (c.gaps < 0 || c.missing_samples < 0 || c.gaps > c.missing_samples) std::abort();
+  }
+  if (health.resets < 0 || health.published < 0) std::abort();
+}
+
+// Raw bytes of one channel through the checked decoder, as the daemon does.
+template <class Msg>
+bool DecodeRaw(ByteReader* in, Msg* message) {
+  size_t size = 0;
+  const uint8_t* bytes = in->Take(in->Byte(), &size);
+  // Half the time put the right fingerprint in front so the fields get fuzzed.
+  if (in->Byte() % 2 == 0 && size >= 8) {
+    uint8_t packet[256];
+    std::memcpy(packet, bytes, size);
+    const uint64_t hash = static_cast<uint64_t>(Msg::getHash());
+    for (int i = 0; i < 8; ++i) packet[i] = static_cast<uint8_t>(hash >> (56 - 8 * i));
+    return birotor::DecodeMessage(packet, size, message) == birotor::DecodeError::kNone;
+  }
+  return birotor::DecodeMessage(bytes, size, message) == birotor::DecodeError::kNone;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  ByteReader in(data, size);
+  birotor::EstimatorConfig config;
+  const uint8_t method = in.Byte();
+  config.method = method % 3 == 0 ? "ekf" : method % 3 == 1 ? "inversion" : "motor_map";
+  EstimatorPipeline pipeline(config);
+
+  int64_t clock_us[birotor::kNumInputChannels] = {0, 0, 0, 0};
+  int32_t seq[birotor::kNumInputChannels] = {0, 0, 0, 0};
+  int64_t received[birotor::kNumInputChannels] = {0, 0, 0, 0};
+  const int64_t period_us[birotor::kNumInputChannels] = {kStrainPeriodUs, 2 * kStrainPeriodUs,
+                                                         kStrainPeriodUs, 10 * kStrainPeriodUs};
+  birotor::strain_t strain_message;
+  birotor::motor_t motor_message;
+  birotor::imu_t imu_message;
+  birotor::pose_t pose_message;
+  birotor::ForceEstimate estimate;
+
+  for (int packet = 0; packet < kMaxPackets && !in.empty(); ++packet) {
+    const uint8_t header = in.Byte();
+    const int channel_index = header % birotor::kNumInputChannels;
+    const InputChannel channel = static_cast<InputChannel>(channel_index);
+    const bool raw = (header / birotor::kNumInputChannels) % 8 == 0;  // 1 in 8 packets raw
+    // A run of identical well-formed strain+motor samples lets the filter
+    // converge cheaply (a byte buys up to 255 samples).
+    const bool burst = (header / birotor::kNumInputChannels) % 8 == 1;
+    if (burst) {
+      const int count = in.Byte();
+      for (int k = 0; k < count; ++k) {
+        birotor::StrainSample s;
+        clock_us[0] = WrapAdd(clock_us[0], kStrainPeriodUs);
+        s.utime = clock_us[0];
+        s.seq = seq[0] = static_cast<int32_t>(static_cast<uint32_t>(seq[0]) + 1u);
+        s.deflection_rad[0] = -kHoverDeflectionRad;
+        s.deflection_rad[1] = kHoverDeflectionRad;
+        if (k % 2 == 0) {
+          birotor::MotorSample m;
+          clock_us[1] = clock_us[0];
+          m.utime = clock_us[1];
+          m.seq = seq[1] = static_cast<int32_t>(static_cast<uint32_t>(seq[1]) + 1u);
+          m.omega_cmd_rad_s[0] = m.omega_cmd_rad_s[1] = kHoverOmegaRadS;
+          m.omega_meas_rad_s[0] = m.omega_meas_rad_s[1] = kHoverOmegaRadS;
+          pipeline.CountReceived(InputChannel::kMotor);
+          ++received[1];
+          pipeline.OnMotor(m);
+        }
+        pipeline.CountReceived(InputChannel::kStrain);
+        ++received[0];
+        if (pipeline.OnStrain(s, &estimate)) CheckEstimate(estimate);
+      }
+      continue;
+    }
+    pipeline.CountReceived(channel);
+    ++received[channel_index];
+
+    switch (channel) {
+      case InputChannel::kStrain: {
+        birotor::StrainSample s;
+        if (raw) {
+          if (!DecodeRaw(&in, &strain_message)) {
+            pipeline.CountDecodeError(channel);
+            break;
+          }
+          s = birotor::FromMessage(strain_message);
+        } else {
+          s.utime = NextUtime(&in, &clock_us[0], period_us[0]);
+          s.seq = NextSeq(&in, &seq[0]);
+          s.deflection_rad[0] = FieldValue(&in, -kHoverDeflectionRad, 1e-3);
+          s.deflection_rad[1] = FieldValue(&in, kHoverDeflectionRad, 1e-3);
+        }
+        if (pipeline.OnStrain(s, &estimate)) CheckEstimate(estimate);
+        break;
+      }
+      case InputChannel::kMotor: {
+        birotor::MotorSample m;
+        if (raw) {
+          if (!DecodeRaw(&in, &motor_message)) {
+            pipeline.CountDecodeError(channel);
+            break;
+          }
+          m = birotor::FromMessage(motor_message);
+        } else {
+          m.utime = NextUtime(&in, &clock_us[1], period_us[1]);
+          m.seq = NextSeq(&in, &seq[1]);
+          for (int i = 0; i < 2; ++i) m.omega_cmd_rad_s[i] = FieldValue(&in, kHoverOmegaRadS, 200.0);
+          for (int i = 0; i < 2; ++i) m.omega_meas_rad_s[i] = FieldValue(&in, kHoverOmegaRadS, 200.0);
+        }
+        pipeline.OnMotor(m);
+        break;
+      }
+      case InputChannel::kImu: {
+        birotor::ImuSample s;
+        if (raw) {
+          if (!DecodeRaw(&in, &imu_message)) {
+            pipeline.CountDecodeError(channel);
+            break;
+          }
+          s = birotor::FromMessage(imu_message);
+        } else {
+          s.utime = NextUtime(&in, &clock_us[2], period_us[2]);
+          s.seq = NextSeq(&in, &seq[2]);
+          s.gyro_y_rad_s = FieldValue(&in, 0.0, 1.0);
+          s.accel_x_m_s2 = FieldValue(&in, 0.0, 1.0);
+          s.accel_z_m_s2 = FieldValue(&in, 9.81, 1.0);
+        }
+        pipeline.OnImu(s);
+        break;
+      }
+      case InputChannel::kPose: {
+        birotor::PoseSample s;
+        if (raw) {
+          if (!DecodeRaw(&in, &pose_message)) {
+            pipeline.CountDecodeError(channel);
+            break;
+          }
+          s = birotor::FromMessage(pose_message);
+        } else {
+          s.utime = NextUtime(&in, &clock_us[3], period_us[3]);
+          s.seq = NextSeq(&in, &seq[3]);
+          s.x_m = FieldValue(&in, 0.0, 1.0);
+          s.z_m = FieldValue(&in, 0.0, 1.0);
+          s.phi_rad = FieldValue(&in, 0.0, 0.3);
+        }
+        pipeline.OnPose(s);
+        break;
+      }
+    }
+    if (packet % 64 == 0) pipeline.TakePeriod();
+  }
+  CheckHealth(pipeline.health(), received);
+  if (pipeline.health().published > 0) CheckEstimate(pipeline.health().last_estimate);
+  return 0;
+}

@@ -1,0 +1,207 @@
+// Test helpers for the live reliability tests: start the real programs
+// (birotor-estimator, birotor-sim, lcm-logplayer) as child processes, signal
+// and reap only those, and record what the daemon publishes on a private
+// udpm URL (ttl=0, one port per test, so ctest -j2 has no crosstalk).
+#pragma once
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_t.hpp"
+#include "transport/channels.h"
+#include "transport/lcm_codec.h"
+
+namespace birotor::reliability {
+
+inline double SteadyNowS() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Private udpm URL on loopback-only multicast (ttl=0) for one test.
+inline std::string PrivateUrl(int port) {
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+}
+
+// A child process; the destructor SIGKILLs and reaps it if it still runs.
+class ChildProcess {
+ public:
+  ChildProcess() = default;
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  ~ChildProcess() { Kill(SIGKILL); }
+
+  // Starts argv[0] with stdout and stderr appended to log_path. False on failure.
+  bool Start(const std::vector<std::string>& argv, const std::string& log_path) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    pid_ = fork();
+    if (pid_ < 0) return false;
+    if (pid_ == 0) {
+      const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      if (fd >= 0) {
+        dup2(fd, 1);
+        dup2(fd, 2);
+      }
+      execv(args[0], args.data());
+      _exit(127);
+    }
+    return true;
+  }
+  int pid() const { return pid_; }
+  bool running() const { return pid_ > 0; }
+  void Signal(int signal_number) const {
+    if (pid_ > 0) kill(pid_, signal_number);
+  }
+  // Sends signal_number and reaps the process.
+  void Kill(int signal_number) {
+    if (pid_ <= 0) return;
+    kill(pid_, signal_number);
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+  // SIGTERM, then SIGKILL after timeout_s. Returns the exit status (or -1).
+  int Stop(double timeout_s = 5.0) {
+    if (pid_ <= 0) return -1;
+    kill(pid_, SIGTERM);
+    const double deadline = SteadyNowS() + timeout_s;
+    int status = 0;
+    while (SteadyNowS() < deadline) {
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    Kill(SIGKILL);
+    return -1;
+  }
+  // True while the process has not exited (reaps it if it has).
+  bool Alive() {
+    if (pid_ <= 0) return false;
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+// One FORCE or ESTIMATOR_STATUS as received, with the host arrival time.
+struct ForceRecord {
+  double arrival_s = 0;  // steady clock [s]
+  force_estimate_t message;
+};
+struct StatusRecord {
+  double arrival_s = 0;
+  estimator_status_t message;
+};
+
+// Subscribes to FORCE and ESTIMATOR_STATUS of a prefix on its own thread.
+class DaemonListener {
+ public:
+  DaemonListener(const std::string& url, const std::string& prefix)
+      : lcm_(url), channels_(MakeChannelNames(prefix)) {
+    lcm_.subscribe(channels_.force, &DaemonListener::OnForce, this)->setQueueCapacity(100000);
+    lcm_.subscribe(channels_.estimator_status, &DaemonListener::OnStatus, this)->setQueueCapacity(1000);
+    thread_ = std::thread([this] {
+      while (!stop_.load()) lcm_.handleTimeout(20);
+    });
+  }
+  ~DaemonListener() {
+    stop_ = true;
+    thread_.join();
+  }
+  bool good() { return lcm_.good(); }
+  const ChannelNames& channels() const { return channels_; }
+
+  // Copies of everything received so far.
+  std::vector<ForceRecord> Forces() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return forces_;
+  }
+  std::vector<StatusRecord> Statuses() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return statuses_;
+  }
+  // Polls predicate every 10 ms until it holds or timeout_s passes.
+  static bool WaitUntil(const std::function<bool()>& predicate, double timeout_s) {
+    const double deadline = SteadyNowS() + timeout_s;
+    while (SteadyNowS() < deadline) {
+      if (predicate()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return predicate();
+  }
+  // First FORCE arriving at or after since_s whose status has all of `bits`;
+  // nullptr-like (arrival_s < 0) if none.
+  ForceRecord FirstForceWith(int32_t bits, double since_s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const ForceRecord& r : forces_) {
+      if (r.arrival_s >= since_s && (r.message.status & bits) == bits) return r;
+    }
+    ForceRecord none;
+    none.arrival_s = -1;
+    return none;
+  }
+
+ private:
+  void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    ForceRecord record;
+    record.arrival_s = SteadyNowS();
+    if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    forces_.push_back(record);
+  }
+  void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    StatusRecord record;
+    record.arrival_s = SteadyNowS();
+    if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    statuses_.push_back(record);
+  }
+
+  lcm::LCM lcm_;
+  ChannelNames channels_;
+  std::mutex mutex_;
+  std::vector<ForceRecord> forces_;
+  std::vector<StatusRecord> statuses_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// Command lines of the programs under test (paths from CMake).
+inline std::vector<std::string> DaemonCommand(const std::string& url, const std::string& prefix) {
+  return {BIROTOR_ESTIMATOR_BIN, "--lcm-url", url, "--prefix", prefix, "--status-rate-hz", "20"};
+}
+inline std::vector<std::string> SimCommand(const std::string& url, const std::string& prefix,
+                                           double duration_s) {
+  return {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
+          "--lcm-url", url, "--prefix", prefix, "--set",
+          "scenario.duration_s=" + std::to_string(duration_s), "--log-level", "warn"};
+}
+
+// Temporary file path for a test's logs.
+inline std::string TempPath(const std::string& name) {
+  return "/tmp/birotor_reliability_" + std::to_string(getpid()) + "_" + name;
+}
+
+}  // namespace birotor::reliability

@@ -1,0 +1,345 @@
+// birotor-soak-monitor: watches a live simulator + estimator pair for a fixed
+// time. Pairs STRAIN and FORCE by seq on the host clock (publish->FORCE
+// latency), counts strain samples that never got a FORCE and the daemon's own
+// drop counters (ESTIMATOR_STATUS), samples the daemon's CPU and resident
+// memory from /proc/<pid>, prints a time series and a summary, and exits 1
+// when a target fails (zero drops, memory growth below a bound).
+#include <lcm/lcm-cpp.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_t.hpp"
+#include "birotor/strain_t.hpp"
+#include "transport/channels.h"
+#include "transport/lcm_codec.h"
+#include "transport/lcm_session.h"
+#include "transport/logging.h"
+#include "transport/program_options.h"
+#include "transport/shutdown.h"
+
+namespace birotor {
+namespace {
+
+int64_t SteadyNowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// CPU time [s] and resident memory [kB] of a process from /proc; false once it is gone.
+struct ProcessSample {
+  double cpu_s = 0;
+  int64_t rss_kb = 0;
+};
+
+bool ReadProcess(int pid, ProcessSample* sample) {
+  std::ifstream stat_file("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat_line;
+  if (!std::getline(stat_file, stat_line)) return false;
+  // Fields after the command name (which may contain spaces) start after ')'.
+  const size_t close = stat_line.rfind(')');
+  if (close == std::string::npos) return false;
+  std::istringstream fields(stat_line.substr(close + 2));
+  std::string field;
+  double utime_ticks = 0, stime_ticks = 0;
+  for (int index = 3; fields >> field; ++index) {  // field 3 is the state
+    if (index == 14) utime_ticks = std::stod(field);
+    if (index == 15) {
+      stime_ticks = std::stod(field);
+      break;
+    }
+  }
+  sample->cpu_s = (utime_ticks + stime_ticks) / static_cast<double>(sysconf(_SC_CLK_TCK));
+  std::ifstream status_file("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status_file, line)) {
+    if (line.rfind("VmRSS:", 0) == 0) {
+      sample->rss_kb = std::stoll(line.substr(6));
+      return true;
+    }
+  }
+  return false;
+}
+
+double Percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  const size_t rank = std::min(values.size() - 1,
+                               static_cast<size_t>(std::ceil(fraction * static_cast<double>(values.size()))) - 1);
+  return values[rank];
+}
+
+// Drop counters of the STRAIN input as the daemon reports them.
+struct StrainHealth {
+  int64_t received = 0, fused = 0, gaps = 0, missing_samples = 0, dropped_overload = 0;
+  int64_t decode_errors = 0, out_of_order = 0, resets = 0;
+};
+
+class Monitor {
+ public:
+  static constexpr int kRingSize = 1 << 17;  // > 2 min of strain at 1 kHz
+
+  Monitor() : ring_(kRingSize) {
+    latencies_us_.reserve(1 << 20);
+    period_latencies_us_.reserve(1 << 16);
+  }
+
+  void OnStrain(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    if (DecodeMessage(buffer->data, buffer->data_size, &strain_) != DecodeError::kNone) {
+      ++undecodable_;
+      return;
+    }
+    if (strain_count_ > 0) {
+      const int32_t jump = static_cast<int32_t>(static_cast<uint32_t>(strain_.seq) -
+                                                static_cast<uint32_t>(last_strain_seq_) - 1u);
+      if (jump > 0) monitor_strain_missing_ += jump;
+    }
+    last_strain_seq_ = strain_.seq;
+    ++strain_count_;
+    Entry& entry = ring_[static_cast<uint32_t>(strain_.seq) % kRingSize];
+    if (entry.used && !entry.force_seen) ++force_missing_;  // overwritten without a FORCE
+    entry = Entry{true, false, strain_.seq, buffer->recv_utime};
+  }
+
+  void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    if (DecodeMessage(buffer->data, buffer->data_size, &force_) != DecodeError::kNone) {
+      ++undecodable_;
+      return;
+    }
+    ++force_count_;
+    if ((force_.status & force_estimate_t::STATUS_VALID) != 0) ++force_valid_;
+    for (int i = 0; i < 2; ++i) {
+      if (!std::isfinite(force_.force_n[i])) ++force_non_finite_;
+    }
+    Entry& entry = ring_[static_cast<uint32_t>(force_.seq) % kRingSize];
+    if (!entry.used || entry.seq != force_.seq || entry.force_seen) {
+      ++force_unmatched_;
+      return;
+    }
+    entry.force_seen = true;
+    const double latency_us = static_cast<double>(buffer->recv_utime - entry.strain_recv_utime);
+    latencies_us_.push_back(latency_us);
+    period_latencies_us_.push_back(latency_us);
+  }
+
+  void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    if (DecodeMessage(buffer->data, buffer->data_size, &status_) != DecodeError::kNone) {
+      ++undecodable_;
+      return;
+    }
+    for (const input_health_t& input : status_.inputs) {
+      if (input.channel != kStrainChannel) continue;
+      StrainHealth health;
+      health.received = input.received;
+      health.fused = input.fused;
+      health.gaps = input.gaps;
+      health.missing_samples = input.missing_samples;
+      health.dropped_overload = input.dropped_overload;
+      health.decode_errors = input.decode_errors;
+      health.out_of_order = input.out_of_order;
+      health.resets = status_.resets;
+      if (!has_status_) first_health_ = health;
+      last_health_ = health;
+      has_status_ = true;
+    }
+    processing_p99_us_ = std::max(processing_p99_us_, std::isfinite(status_.processing_time_p99_us)
+                                                          ? status_.processing_time_p99_us
+                                                          : 0.0);
+  }
+
+  // Strain samples older than min_age_us whose FORCE never came.
+  int64_t PendingWithoutForce(int64_t now_recv_utime, int64_t min_age_us) const {
+    int64_t count = 0;
+    for (const Entry& entry : ring_) {
+      if (entry.used && !entry.force_seen && now_recv_utime - entry.strain_recv_utime > min_age_us) ++count;
+    }
+    return count;
+  }
+
+  std::vector<double> TakePeriodLatencies() {
+    std::vector<double> out;
+    out.swap(period_latencies_us_);
+    period_latencies_us_.reserve(1 << 16);
+    return out;
+  }
+
+  int64_t strain_count_ = 0, force_count_ = 0, force_valid_ = 0, force_non_finite_ = 0;
+  int64_t force_missing_ = 0, force_unmatched_ = 0, monitor_strain_missing_ = 0, undecodable_ = 0;
+  bool has_status_ = false;
+  StrainHealth first_health_, last_health_;
+  double processing_p99_us_ = 0;  // worst per-period p99 reported by the daemon
+  std::vector<double> latencies_us_;
+
+ private:
+  struct Entry {
+    bool used = false;
+    bool force_seen = false;
+    int32_t seq = 0;
+    int64_t strain_recv_utime = 0;  // host clock at arrival [us]
+  };
+  std::vector<Entry> ring_;
+  std::vector<double> period_latencies_us_;
+  int32_t last_strain_seq_ = 0;
+  strain_t strain_;
+  force_estimate_t force_;
+  estimator_status_t status_;
+};
+
+int64_t WallNowUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+}  // namespace birotor
+
+int main(int argc, char** argv) {
+  using namespace birotor;
+  CLI::App app{"birotor-soak-monitor: drops, latency, CPU and memory of a live birotor-estimator"};
+  CommonOptions common;
+  AddCommonOptions(app, &common);
+  double duration_s = 60;
+  int pid = 0;
+  double interval_s = 5;
+  double warmup_s = 10;
+  double max_growth_mb = 1.0;
+  std::string csv_path;
+  app.add_option("--duration-s", duration_s, "Monitoring time [s]")->check(CLI::Range(1.0, 86400.0));
+  app.add_option("--pid", pid, "PID of the birotor-estimator to sample (CPU, RSS); 0: none");
+  app.add_option("--interval-s", interval_s, "Sampling interval of the time series [s]")
+      ->check(CLI::Range(0.5, 600.0));
+  app.add_option("--warmup-s", warmup_s, "Memory baseline taken at the first sample after this [s]")
+      ->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--max-memory-growth-mb", max_growth_mb, "Allowed RSS growth after warm-up [MB]")
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--csv", csv_path, "Write the time series to this CSV file");
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-soak-monitor", common.log_level);
+
+  std::string error;
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
+  if (!lcm) {
+    std::fprintf(stderr, "birotor-soak-monitor: error: %s\n", error.c_str());
+    return 2;
+  }
+  InstallShutdownHandlers();
+  const ChannelNames channels = MakeChannelNames(common.prefix);
+  Monitor monitor;
+  lcm->subscribe(channels.strain, &Monitor::OnStrain, &monitor)->setQueueCapacity(100000);
+  lcm->subscribe(channels.force, &Monitor::OnForce, &monitor)->setQueueCapacity(100000);
+  lcm->subscribe(channels.estimator_status, &Monitor::OnStatus, &monitor)->setQueueCapacity(1000);
+
+  std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
+  if (csv) std::fprintf(csv, "t_s,cpu_percent,rss_kb,strain_hz,force_hz,latency_p50_us,latency_p99_us\n");
+  std::printf("%8s %8s %10s %10s %10s %12s %12s\n", "t_s", "cpu_%", "rss_kB", "strain_Hz", "force_Hz",
+              "lat_p50_us", "lat_p99_us");
+
+  const int64_t start_us = SteadyNowUs();
+  int64_t next_sample_us = start_us + static_cast<int64_t>(interval_s * 1e6);
+  ProcessSample previous_process;
+  const bool has_process = pid > 0 && ReadProcess(pid, &previous_process);
+  if (pid > 0 && !has_process) std::fprintf(stderr, "birotor-soak-monitor: warning: no process %d\n", pid);
+  bool process_alive = has_process;
+  int64_t baseline_rss_kb = -1, peak_rss_kb = 0, last_rss_kb = 0;
+  double cpu_sum_percent = 0, cpu_max_percent = 0;
+  int cpu_samples = 0;
+  int64_t previous_strain = 0, previous_force = 0;
+  int64_t previous_sample_us = start_us;
+  while (!ShutdownRequested()) {
+    const int64_t now_us = SteadyNowUs();
+    if (now_us - start_us >= static_cast<int64_t>(duration_s * 1e6)) break;
+    HandleFor(*lcm, std::min(0.1, (next_sample_us - now_us) * 1e-6));
+    if (SteadyNowUs() < next_sample_us) continue;
+    const int64_t sample_us = SteadyNowUs();
+    const double dt_s = (sample_us - previous_sample_us) * 1e-6;
+    const double t_s = (sample_us - start_us) * 1e-6;
+    double cpu_percent = std::nan("");
+    ProcessSample process;
+    if (process_alive && ReadProcess(pid, &process)) {
+      cpu_percent = 100.0 * (process.cpu_s - previous_process.cpu_s) / dt_s;
+      previous_process = process;
+      last_rss_kb = process.rss_kb;
+      peak_rss_kb = std::max(peak_rss_kb, process.rss_kb);
+      if (baseline_rss_kb < 0 && t_s >= warmup_s) baseline_rss_kb = process.rss_kb;
+      cpu_sum_percent += cpu_percent;
+      cpu_max_percent = std::max(cpu_max_percent, cpu_percent);
+      ++cpu_samples;
+    } else if (process_alive) {
+      process_alive = false;
+      std::fprintf(stderr, "birotor-soak-monitor: process %d is gone at t = %.1f s\n", pid, t_s);
+    }
+    const std::vector<double> period = monitor.TakePeriodLatencies();
+    const double strain_hz = (monitor.strain_count_ - previous_strain) / dt_s;
+    const double force_hz = (monitor.force_count_ - previous_force) / dt_s;
+    const double p50 = Percentile(period, 0.5), p99 = Percentile(period, 0.99);
+    std::printf("%8.1f %8.1f %10" PRId64 " %10.1f %10.1f %12.1f %12.1f\n", t_s, cpu_percent,
+                process_alive ? process.rss_kb : int64_t{-1}, strain_hz, force_hz, p50, p99);
+    std::fflush(stdout);
+    if (csv) {
+      std::fprintf(csv, "%.1f,%.2f,%" PRId64 ",%.1f,%.1f,%.1f,%.1f\n", t_s, cpu_percent,
+                   process_alive ? process.rss_kb : int64_t{-1}, strain_hz, force_hz, p50, p99);
+      std::fflush(csv);
+    }
+    previous_strain = monitor.strain_count_;
+    previous_force = monitor.force_count_;
+    previous_sample_us = sample_us;
+    next_sample_us += static_cast<int64_t>(interval_s * 1e6);
+  }
+  // Let the last FORCE messages arrive; ignore strain samples younger than that.
+  const int64_t drain_end_us = SteadyNowUs() + 500000;
+  while (SteadyNowUs() < drain_end_us) HandleFor(*lcm, 0.05);
+  if (csv) std::fclose(csv);
+
+  const int64_t force_missing =
+      monitor.force_missing_ + monitor.PendingWithoutForce(WallNowUs(), 1000000);
+  const StrainHealth& a = monitor.first_health_;
+  const StrainHealth& b = monitor.last_health_;
+  const int64_t daemon_missing = b.missing_samples - a.missing_samples;
+  const int64_t daemon_overload = b.dropped_overload - a.dropped_overload;
+  const int64_t daemon_decode = b.decode_errors - a.decode_errors;
+  const double growth_mb = baseline_rss_kb >= 0 ? (last_rss_kb - baseline_rss_kb) / 1024.0 : std::nan("");
+  const std::vector<double>& lat = monitor.latencies_us_;
+
+  std::printf("\nsoak summary (%s, prefix %s, %.0f s)\n", common.lcm_url.c_str(), common.prefix.c_str(), duration_s);
+  std::printf("  %-44s %" PRId64 "\n", "STRAIN seen by the monitor", monitor.strain_count_);
+  std::printf("  %-44s %" PRId64 " (valid %" PRId64 ", non-finite forces %" PRId64 ")\n", "FORCE received",
+              monitor.force_count_, monitor.force_valid_, monitor.force_non_finite_);
+  std::printf("  %-44s %" PRId64 "\n", "STRAIN without a FORCE", force_missing);
+  std::printf("  %-44s %" PRId64 "\n", "STRAIN seq gaps seen by the monitor", monitor.monitor_strain_missing_);
+  std::printf("  %-44s %" PRId64 " missing, %" PRId64 " overload, %" PRId64 " decode errors, %" PRId64 " resets\n",
+              "daemon STRAIN drops (ESTIMATOR_STATUS)", daemon_missing, daemon_overload, daemon_decode,
+              b.resets - a.resets);
+  std::printf("  %-44s p50 %.0f  p90 %.0f  p99 %.0f  p99.9 %.0f  max %.0f\n", "latency STRAIN->FORCE [us]",
+              Percentile(lat, 0.5), Percentile(lat, 0.9), Percentile(lat, 0.99), Percentile(lat, 0.999),
+              lat.empty() ? std::nan("") : *std::max_element(lat.begin(), lat.end()));
+  std::printf("  %-44s %.1f (worst period)\n", "daemon processing time p99 [us]", monitor.processing_p99_us_);
+  std::printf("  %-44s mean %.1f  max %.1f\n", "daemon CPU [% of one core]",
+              cpu_samples > 0 ? cpu_sum_percent / cpu_samples : std::nan(""), cpu_max_percent);
+  std::printf("  %-44s baseline %" PRId64 "  end %" PRId64 "  peak %" PRId64 "  growth %.3f MB\n",
+              "daemon RSS [kB]", baseline_rss_kb, last_rss_kb, peak_rss_kb, growth_mb);
+
+  bool ok = true;
+  auto check = [&](bool pass, const char* what) {
+    std::printf("  %-44s %s\n", what, pass ? "PASS" : "FAIL");
+    ok = ok && pass;
+  };
+  check(monitor.force_count_ > 0 && monitor.force_non_finite_ == 0, "target: FORCE published, all finite");
+  check(force_missing == 0 && daemon_missing == 0 && daemon_overload == 0 && monitor.monitor_strain_missing_ == 0,
+        "target: zero dropped samples");
+  if (pid > 0) {
+    check(process_alive, "target: daemon alive at the end");
+    check(std::isfinite(growth_mb) && growth_mb < max_growth_mb, "target: memory growth below bound");
+  }
+  return ok ? 0 : 1;
+}

@@ -1,0 +1,178 @@
+#!/usr/bin/env bash
+# The live demo: installs what is missing and builds (tools/setup.sh), then runs
+# birotor-estimator and birotor-sim as separate processes over LCM on loopback,
+# shows birotor-monitor's live view, prints the error figures, writes a PNG.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo="$(pwd)"
+
+usage() {
+  cat <<'EOF'
+Usage: tools/demo.sh [options] [scenario]
+
+Runs a scenario live: birotor-estimator and birotor-sim as two processes talking
+LCM over loopback multicast (ttl=0, nothing leaves the machine), with a live view
+of time, true and estimated force per rotor, thrust efficiency, status and
+progress (a refreshing block on a terminal, one plain line per second otherwise).
+At the end it prints the error figures (the same as
+`birotor-eval --scenarios <scenario> --methods <method>`), writes
+out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
+
+  scenario            name in config/scenarios/ (default: gentle) or a .yaml path;
+                      names: hover gentle aggressive thrust_loss density sensor_faults ...
+  --speed X           simulated seconds per wall second (default: 1)
+  --method M          ekf, inversion or motor_map (default: the one in config/estimator.yaml)
+  --lcm-url URL       LCM URL (default: LCM's own default udpm://239.255.76.67:7667?ttl=0,
+                      so tools/lcm-spy.sh without options sees the demo's channels)
+  --out DIR           output folder for the PNG and the process logs (default: out)
+  --no-setup          skip tools/setup.sh (no install, no build); use the existing build
+  -h, --help          this help
+
+Environment: BIROTOR_BUILD_DIR (default: build), BIROTOR_JOBS (build jobs), as tools/setup.sh.
+Logs: <out>/demo-<scenario>-{setup,estimator,sim,monitor}.log.
+Exit status: 0 when every step succeeded, 1 when one failed, 2 on wrong usage.
+EOF
+}
+
+die_usage() { echo "demo.sh: error: $1 (see --help)" >&2; exit 2; }
+fail() { echo "demo.sh: error: $1" >&2; exit 1; }
+
+scenario="gentle"
+speed="1"
+method=""
+lcm_url="udpm://239.255.76.67:7667?ttl=0"
+out_dir="out"
+run_setup=1
+scenario_given=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -h|--help) usage; exit 0 ;;
+    --speed) [ $# -ge 2 ] || die_usage "--speed needs a value"; speed="$2"; shift 2 ;;
+    --speed=*) speed="${1#*=}"; shift ;;
+    --method) [ $# -ge 2 ] || die_usage "--method needs a value"; method="$2"; shift 2 ;;
+    --method=*) method="${1#*=}"; shift ;;
+    --lcm-url) [ $# -ge 2 ] || die_usage "--lcm-url needs a value"; lcm_url="$2"; shift 2 ;;
+    --lcm-url=*) lcm_url="${1#*=}"; shift ;;
+    --out) [ $# -ge 2 ] || die_usage "--out needs a value"; out_dir="$2"; shift 2 ;;
+    --out=*) out_dir="${1#*=}"; shift ;;
+    --no-setup) run_setup=0; shift ;;
+    -*) die_usage "unknown option $1" ;;
+    *) [ "$scenario_given" -eq 0 ] || die_usage "more than one scenario given ($scenario, $1)"
+       scenario="$1"; scenario_given=1; shift ;;
+  esac
+done
+
+# Arguments are checked before anything is installed or built.
+case "$scenario" in
+  *.yaml|*/*) scenario_file="$scenario"; scenario="$(basename "$scenario" .yaml)" ;;
+  *) scenario_file="config/scenarios/$scenario.yaml" ;;
+esac
+if [ ! -f "$scenario_file" ]; then
+  names="$(cd config/scenarios && ls ./*.yaml | sed 's|^\./||; s|\.yaml$||' | tr '\n' ' ')"
+  die_usage "no scenario '$scenario' ($scenario_file not found); available: $names"
+fi
+[[ "$speed" =~ ^[0-9]*\.?[0-9]+$ ]] && awk "BEGIN{exit !($speed > 0)}" \
+  || die_usage "--speed must be a positive number, got '$speed'"
+case "$method" in ""|ekf|inversion|motor_map) ;; *) die_usage "--method must be ekf, inversion or motor_map, got '$method'" ;; esac
+mkdir -p "$out_dir" 2>/dev/null || fail "cannot create the output folder $out_dir"
+[ -w "$out_dir" ] || fail "cannot write to the output folder $out_dir"
+out_dir="$(cd "$out_dir" && pwd)"
+png="$out_dir/demo-$scenario.png"
+log_prefix="$out_dir/demo-$scenario"
+
+# 1. Install what is missing and build (idempotent; quick when up to date).
+build_dir="${BIROTOR_BUILD_DIR:-build}"
+if [ "$run_setup" -eq 1 ]; then
+  echo "demo: installing missing packages and building into $build_dir (tools/setup.sh, log: $log_prefix-setup.log) ..."
+  if ! tools/setup.sh > "$log_prefix-setup.log" 2>&1; then
+    tail -n 30 "$log_prefix-setup.log" >&2
+    fail "tools/setup.sh failed; full log: $log_prefix-setup.log"
+  fi
+fi
+find_program() {
+  local path
+  path="$(find "$build_dir" -name "$1" -type f -perm -u+x 2>/dev/null | head -n 1)"
+  [ -n "$path" ] || fail "$1 not found under $build_dir; build first (tools/setup.sh) or drop --no-setup"
+  echo "$path"
+}
+sim_bin="$(find_program birotor-sim)"
+estimator_bin="$(find_program birotor-estimator)"
+monitor_bin="$(find_program birotor-monitor)"
+
+# 2. Processes: started here, stopped here by PID (SIGTERM, wait, SIGKILL after 5 s).
+estimator_pid=""
+sim_pid=""
+monitor_pid=""
+stop_process() {  # name pid
+  local pid="$2"
+  [ -n "$pid" ] || return 0
+  kill -0 "$pid" 2>/dev/null || { wait "$pid" 2>/dev/null || true; return 0; }
+  kill -TERM "$pid" 2>/dev/null || true
+  for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+  if kill -0 "$pid" 2>/dev/null; then
+    echo "demo: $1 (pid $pid) did not stop on SIGTERM; killing it" >&2
+    kill -KILL "$pid" 2>/dev/null || true
+  fi
+  wait "$pid" 2>/dev/null || true
+}
+cleanup() {
+  stop_process birotor-sim "$sim_pid"; sim_pid=""
+  stop_process birotor-monitor "$monitor_pid"; monitor_pid=""
+  stop_process birotor-estimator "$estimator_pid"; estimator_pid=""
+}
+trap cleanup EXIT
+trap 'echo "demo: interrupted; stopping" >&2; cleanup; exit 130' INT TERM
+
+# Waits until a process's log contains a pattern; fails if it exits first.
+wait_for_log() {  # name pid logfile pattern timeout_s
+  local deadline=$((SECONDS + $5))
+  until grep -q "$4" "$3" 2>/dev/null; do
+    if ! kill -0 "$2" 2>/dev/null; then
+      tail -n 5 "$3" >&2
+      fail "$1 stopped during start-up (log: $3)"
+    fi
+    [ $SECONDS -lt "$deadline" ] || fail "$1 did not start within $5 s (log: $3)"
+    sleep 0.1
+  done
+}
+
+duration_s="$(awk '/^[[:space:]]*duration_s:/ {print $2; exit}' "$scenario_file")"
+echo "demo: scenario $scenario (${duration_s:-?} s at speed $speed), LCM $lcm_url"
+estimator_args=(--lcm-url "$lcm_url" --params "$repo/config/estimator.yaml")
+[ -n "$method" ] && estimator_args+=(--method "$method")
+"$estimator_bin" "${estimator_args[@]}" > "$log_prefix-estimator.log" 2>&1 &
+estimator_pid=$!
+wait_for_log birotor-estimator "$estimator_pid" "$log_prefix-estimator.log" "lcm .*: in " 20
+
+# The monitor's stdout is this terminal (live view) or the CI log (plain lines).
+"$monitor_bin" --lcm-url "$lcm_url" --scenario "$scenario_file" --label "$scenario" --until-sim-ends \
+  --idle-s 1.5 --startup-timeout-s 30 --png "$png" --markdown 2> "$log_prefix-monitor.log" &
+monitor_pid=$!
+wait_for_log birotor-monitor "$monitor_pid" "$log_prefix-monitor.log" "listening on" 20
+
+"$sim_bin" --scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed" > "$log_prefix-sim.log" 2>&1 &
+sim_pid=$!
+
+status=0
+wait "$sim_pid" || { echo "demo: birotor-sim failed (log: $log_prefix-sim.log)" >&2; tail -n 5 "$log_prefix-sim.log" >&2; status=1; }
+sim_pid=""
+wait "$monitor_pid" || { echo "demo: birotor-monitor failed (log: $log_prefix-monitor.log)" >&2; tail -n 5 "$log_prefix-monitor.log" >&2; status=1; }
+monitor_pid=""
+if ! kill -0 "$estimator_pid" 2>/dev/null; then
+  echo "demo: birotor-estimator stopped before the end (log: $log_prefix-estimator.log)" >&2
+  status=1
+fi
+stop_process birotor-estimator "$estimator_pid"
+estimator_pid=""
+grep -h "stopped:" "$log_prefix-estimator.log" | sed 's/^.*\] /estimator: /' || true
+grep -h "simulated " "$log_prefix-sim.log" | sed 's/^.*\] /simulator: /' || true
+if grep -q "overload drops [1-9]" "$log_prefix-estimator.log"; then
+  echo "demo: note: the estimator shed samples under load, so the figures differ from birotor-eval's" >&2
+fi
+[ -f "$png" ] || { echo "demo: no plot was written ($png)" >&2; status=1; }
+if [ "$status" -eq 0 ]; then
+  echo "demo: done. Plot: $png"
+  eval_bin="$(find "$build_dir" -name birotor-eval -type f -perm -u+x 2>/dev/null | head -n 1)"
+  [ -z "$eval_bin" ] || echo "demo: same figures in-process: ${eval_bin#"$repo/"} --scenarios $scenario --methods ${method:-$(awk '/^[[:space:]]*method:/ {print $2; exit}' config/estimator.yaml)}"
+fi
+exit "$status"

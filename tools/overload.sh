@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Overload measurement: one birotor-estimator on a private loopback udpm URL,
+# fed by birotor-latency-probe at a sequence of strain rates (default 1 kHz,
+# 20 kHz, 50 kHz, then 1 kHz again to show recovery), with
+# birotor-soak-monitor recording what the daemon says it dropped
+# (ESTIMATOR_STATUS: dropped_overload, missing samples from seq gaps), its CPU
+# and memory. Prints one block per rate. Measures; asserts nothing.
+# Usage: tools/overload.sh [seconds per rate, default 10] [--bin-dir DIR]
+#          [--port N] [--rates "1000 20000 50000 1000"]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds=10
+bin_dir="${BIROTOR_BUILD_DIR:-build}"
+port=7696
+rates="1000 20000 50000 1000"
+if [[ $# -gt 0 && "$1" != --* ]]; then seconds="$1"; shift; fi
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --bin-dir) bin_dir="$2"; shift 2 ;;
+    --port) port="$2"; shift 2 ;;
+    --rates) rates="$2"; shift 2 ;;
+    *) echo "overload.sh: error: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+find_program() {
+  local name="$1" path
+  for path in "$bin_dir/$name" "$bin_dir/tools/$name" "$bin_dir/services/$name" "$bin_dir/bin/$name"; do
+    [[ -x "$path" ]] && { echo "$path"; return; }
+  done
+  echo "overload.sh: error: $name not found under $bin_dir" >&2
+  exit 2
+}
+estimator=$(find_program birotor-estimator)
+probe=$(find_program birotor-latency-probe)
+monitor=$(find_program birotor-soak-monitor)
+rmem_max=$(cat /proc/sys/net/core/rmem_max 2>/dev/null || echo 212992)
+buffer=$(( rmem_max < 4194304 ? rmem_max : 4194304 ))
+url="udpm://239.255.76.67:${port}?ttl=0&recv_buf_size=${buffer}"
+prefix=OVERLOAD_
+out="$bin_dir/overload"
+mkdir -p "$out"
+
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
+}
+trap cleanup EXIT INT TERM
+
+"$estimator" --lcm-url "$url" --prefix "$prefix" > "$out/estimator.log" 2>&1 &
+estimator_pid=$!
+pids+=("$estimator_pid")
+sleep 1
+for rate in $rates; do
+  echo "=== strain at ${rate} Hz for ${seconds} s ($url) ==="
+  "$monitor" --lcm-url "$url" --prefix "$prefix" --pid "$estimator_pid" --duration-s "$((seconds + 2))" \
+    --interval-s 2 --warmup-s 0 --max-memory-growth-mb 1e6 > "$out/monitor-$rate.txt" 2>&1 &
+  monitor_pid=$!
+  sleep 0.5
+  "$probe" --lcm-url "$url" --prefix "$prefix" --rate-hz "$rate" --duration-s "$seconds" --drain-s 1 \
+    > "$out/probe-$rate.txt" 2>&1 || true
+  wait "$monitor_pid" || true
+  cat "$out/probe-$rate.txt"
+  grep -E "FORCE received|daemon STRAIN drops|daemon CPU|daemon RSS|processing time" "$out/monitor-$rate.txt"
+  kill -0 "$estimator_pid" 2>/dev/null && echo "daemon alive" || echo "daemon DIED"
+done
+grep -E "overload" "$out/estimator.log" | tail -3 || true
