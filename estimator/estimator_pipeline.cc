@@ -117,6 +117,7 @@ void EstimatorPipeline::OnMotor(const MotorSample& sample) {
     return;
   }
   Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+  if (std::isnan(sample.omega_meas_rad_s[0]) || std::isnan(sample.omega_meas_rad_s[1])) ++c.telemetry_missing;
   last_motor_ = sample;
   has_motor_ = true;
   method_->AddMotor(sample);

@@ -31,6 +31,7 @@ struct InputCounters {
   int64_t gaps = 0;              // forward seq jumps
   int64_t missing_samples = 0;   // sum of jump sizes
   int64_t dropped_overload = 0;  // CountOverloadDrop
+  int64_t telemetry_missing = 0;  // MOTOR only: accepted samples with a NaN omega_meas
   int64_t last_utime = -1;       // newest accepted sample [us]; -1 if none
   int32_t last_seq = 0;
   int64_t accepted_in_period = 0;  // for rate_hz; cleared by TakePeriod()

@@ -91,9 +91,6 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 100.0));
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-monitor", options.common.log_level);
-  if (!options.duration_s && !options.until_sim_ends) {
-    spdlog::info("neither --duration-s nor --until-sim-ends: runs until SIGINT/SIGTERM");
-  }
 
   double scenario_duration_s = options.duration_s;
   std::string label = options.label;
@@ -127,6 +124,9 @@ int Main(int argc, char** argv) {
   }
   spdlog::info("birotor-monitor {} listening on {}: {} {} {}", BIROTOR_VERSION, options.common.lcm_url,
                channels.truth, channels.force, channels.estimator_status);
+  if (options.duration_s <= 0 && !options.until_sim_ends) {
+    spdlog::info("neither --duration-s nor --until-sim-ends: runs until SIGINT/SIGTERM");
+  }
 
   const bool terminal = isatty(STDOUT_FILENO) && !options.plain && !options.quiet;
   const double interval_s = options.interval_s > 0 ? options.interval_s : (terminal ? 0.2 : 1.0);
@@ -194,6 +194,12 @@ int Main(int argc, char** argv) {
               static_cast<long long>(collector.decode_errors()));
   std::printf("error figures (%s, %s; as birotor-eval):\n%s", label.c_str(), method.c_str(),
               SummaryText(result).c_str());
+  if (!collector.fault_utimes().empty() || collector.truth_gaps() > 0) {
+    // Live UDP can drop packets on a busy machine; birotor-eval never does.
+    std::printf("note: %zu FORCE seq discontinuities or resets, %lld TRUTH gaps: input faults, or packets "
+                "lost on the way to this monitor; the latter make the figures differ slightly from birotor-eval's\n",
+                collector.fault_utimes().size(), static_cast<long long>(collector.truth_gaps()));
+  }
   if (options.markdown) {
     std::printf("%s%s", MarkdownTableHeader().c_str(), MarkdownTableRow(label, method, result).c_str());
   }

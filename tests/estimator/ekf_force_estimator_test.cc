@@ -25,7 +25,9 @@ TEST(EkfForceEstimatorTest, TracksTheForcesAtHover) {
   EXPECT_LT(ForceMae(run, 1, 500000), 0.12);
   for (const auto& p : run.pairs) {
     EXPECT_EQ(p.status & (kStatusRotor1Fault | kStatusRotor2Fault), 0);
-    if (p.utime > 500000) EXPECT_TRUE(p.status & kStatusValid);
+    if (p.utime > 500000) {
+      EXPECT_TRUE(p.status & kStatusValid);
+    }
   }
 }
 
@@ -45,8 +47,12 @@ TEST(EkfForceEstimatorTest, FlagsTheRotorThatLostThrust) {
   for (const auto& p : run.pairs) {
     EXPECT_EQ(p.status & kStatusRotor1Fault, 0);
     if ((p.status & kStatusRotor2Fault) && first_flag < 0) first_flag = p.utime;
-    if (p.utime == 1100000) EXPECT_NEAR(p.thrust_scale[1], p.true_thrust_scale[1], 0.04);
-    if (p.utime > 1200000) EXPECT_TRUE(p.status & kStatusRotor2Fault);
+    if (p.utime == 1100000) {
+      EXPECT_NEAR(p.thrust_scale[1], p.true_thrust_scale[1], 0.04);
+    }
+    if (p.utime > 1200000) {
+      EXPECT_TRUE(p.status & kStatusRotor2Fault);
+    }
   }
   ASSERT_GE(first_flag, 1000000);  // never before the step
   EXPECT_LE(first_flag, 1000000 + 80000);  // measured ~35 ms
@@ -98,6 +104,7 @@ TEST(EkfForceEstimatorTest, SensorFaultsStayFiniteAndCounted) {
   EXPECT_GE(strain.missing_samples, 150);
   EXPECT_GT(strain.rejected_gate, 20);     // ~0.5 % spikes
   EXPECT_GE(run.health.resets, 2);         // start + the gap
+  EXPECT_EQ(run.health.inputs[static_cast<int>(InputChannel::kMotor)].telemetry_missing, 500);  // 1 s at 500 Hz
   std::vector<int64_t> fault_times;
   for (const FaultEvent& f : run.faults) fault_times.push_back(f.utime);
   EXPECT_LT(ForceMae(run, 0, 500000, fault_times, 0.2), 0.15);
