@@ -257,7 +257,14 @@ void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* est
     return;
   }
   if (dt_s > 0) {
-    Predict(dt_s, CommandAt(last_utime_));
+    // Equal sub-steps no longer than max_prediction_step_s (one step at the
+    // nominal 1 kHz; several across a short gap in the strain stream).
+    const int steps = static_cast<int>(std::ceil(dt_s / options_.max_prediction_step_s - 1e-9));
+    const double step_s = dt_s / steps;
+    for (int k = 0; k < steps; ++k) {
+      const int64_t step_start_utime = last_utime_ + static_cast<int64_t>(std::llround(k * step_s / kMicrosecond));
+      Predict(step_s, CommandAt(step_start_utime));
+    }
     last_utime_ = sample.utime;
   }
   FuseTelemetry(sample.utime);

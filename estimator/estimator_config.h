@@ -45,6 +45,10 @@ struct EkfOptions {
   double fault_persistence_s = 0.01;              // [s]
   // Strain interval bounds: dt > max_dt_s re-initialises the filter.
   double max_dt_s = 0.1;                          // [s]
+  // Longer strain intervals (a gap shorter than max_dt_s) are predicted in
+  // RK4 steps of at most this: one RK4 step is only stable and accurate for
+  // omega_arm dt well below 2.8 (arm modes ~500 rad/s).
+  double max_prediction_step_s = 0.002;           // [s]
 };
 
 // The thesis's open-loop model inversion (thesis eq. 5.1-5.2).

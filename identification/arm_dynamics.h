@@ -40,38 +40,80 @@ using FreeArmState = Eigen::Matrix<T, kFreeArmStateSize, 1>;
 
 // Derivative of the free-flight arm state and the specific force at the body
 // centre in body axes [m/s^2] (what the accelerometer measures). Evaluates
-// q_ddot = M^-1 (tau - C - G) of thesis eq. 3.14 (estimator/birotor_dynamics.h)
-// at q = (0, 0, 0, b1, b2), v = (0, 0, phi_dot, b1_dot, b2_dot) with gravity
-// removed: with phi = 0 the world axes are the body axes, and uniform gravity
-// only adds -g to every z acceleration, so (x_ddot, z_ddot) with g = 0 is the
-// specific force. k and d enter G linearly: G_b += k b + d b_dot.
+// M q_ddot = tau - C - G of thesis eq. 3.14 (same terms as
+// estimator/birotor_dynamics.h ComputeDynamicsTerms) at q = (0, 0, 0, b1, b2),
+// v = (0, 0, phi_dot, b1_dot, b2_dot) with gravity removed: with phi = 0 the
+// world axes are the body axes, and uniform gravity only adds -g to every z
+// acceleration, so (x_ddot, z_ddot) with g = 0 is the specific force.
+//
+// The translational block of M is (m + 2 m_p) I, so x, z are eliminated by
+// the Schur complement: with M = [M_t I, B; B^T, D] (B: 2x3, D: 3x3 over
+// phi, b1, b2) and rhs [r_t; r_r],
+//   (D - B^T B / M_t) w = r_r - B^T r_t / M_t,   w = (phi_ddot, b1_ddot, b2_ddot),
+//   u = (x_ddot, z_ddot) = (r_t - B w) / M_t,
+// a 3x3 SPD system solved by LDL^T in closed form (this runs per RK4 stage on
+// Jets, so it is written out entry by entry). k and d enter the b rows of G:
+// G_b = k b + d b_dot.
 template <typename T>
 FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d,
                                   const FreeArmState<T>& x, const T& force1_n, const T& force2_n,
                                   Eigen::Matrix<T, 2, 1>* specific_force_m_s2 = nullptr) {
-  VehicleParams p = known;
-  p.arm_stiffness_n_m_rad = 0.0;
-  p.arm_damping_n_m_s_rad = 0.0;
-  p.gravity_m_s2 = 0.0;
-  Coords<T> q = Coords<T>::Zero();
-  Coords<T> v = Coords<T>::Zero();
-  q(kB1) = x(kFreeB1);
-  q(kB2) = x(kFreeB2);
-  v(kPhi) = x(kFreePhiDot);
-  v(kB1) = x(kFreeB1Dot);
-  v(kB2) = x(kFreeB2Dot);
-  DynamicsTerms<T> terms = ComputeDynamicsTerms<T>(p, q, v, force1_n, force2_n);
-  terms.gravity_spring(kB1) += k * q(kB1) + d * v(kB1);
-  terms.gravity_spring(kB2) += k * q(kB2) + d * v(kB2);
-  const Coords<T> rhs = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
-  const Coords<T> acc = terms.mass.llt().solve(rhs);
+  using std::cos;
+  using std::sin;
+  const double mp = known.tip_mass_kg, L = known.arm_length_m;
+  const double mt = known.body_mass_kg + 2.0 * mp;  // translational mass M_t [kg]
+  const double mp_l2 = mp * L * L;                  // [kg m^2]
+  const double s1L = kArmSign[0] * L, s2L = kArmSign[1] * L;
+  const T& b1 = x(kFreeB1);
+  const T& b2 = x(kFreeB2);
+  const T c1 = cos(b1), sn1 = sin(b1), c2 = cos(b2), sn2 = sin(b2);
+  // Tip Jacobian entries d p_i / d a_i = s_i L n_i = s_i L [-sin b_i, cos b_i] [m].
+  const T jx1 = -s1L * sn1, jz1 = s1L * c1, jx2 = -s2L * sn2, jz2 = s2L * c2;
+  // B = m_p [jx1 + jx2, jx1, jx2; jz1 + jz2, jz1, jz2] [kg m].
+  const T bx0 = mp * (jx1 + jx2), bx1 = mp * jx1, bx2 = mp * jx2;
+  const T bz0 = mp * (jz1 + jz2), bz1 = mp * jz1, bz2 = mp * jz2;
+  // Right-hand side tau - C - G (g = 0): thrust f_i n_i, centripetal
+  // -m_p s_i L a_dot_i^2 r_i on x, z; torques s_i L f_i; hinge k b + d b_dot.
+  const T a1_dot = x(kFreePhiDot) + x(kFreeB1Dot), a2_dot = x(kFreePhiDot) + x(kFreeB2Dot);
+  const T cen1 = mp * s1L * a1_dot * a1_dot, cen2 = mp * s2L * a2_dot * a2_dot;
+  const T rx = -sn1 * force1_n - sn2 * force2_n + cen1 * c1 + cen2 * c2;
+  const T rz = c1 * force1_n + c2 * force2_n + cen1 * sn1 + cen2 * sn2;
+  const T t1 = s1L * force1_n, t2 = s2L * force2_n;
+  const T r_phi = t1 + t2;
+  const T r_b1 = t1 - k * b1 - d * x(kFreeB1Dot);
+  const T r_b2 = t2 - k * b2 - d * x(kFreeB2Dot);
+  // Reduced system S w = y, S = D - B^T B / M_t (symmetric), y = r_r - B^T r_t / M_t.
+  const double inv_mt = 1.0 / mt;
+  const T s00 = (known.body_inertia_kg_m2 + 2.0 * mp_l2) - (bx0 * bx0 + bz0 * bz0) * inv_mt;
+  const T s01 = mp_l2 - (bx0 * bx1 + bz0 * bz1) * inv_mt;
+  const T s02 = mp_l2 - (bx0 * bx2 + bz0 * bz2) * inv_mt;
+  const T s11 = mp_l2 - (bx1 * bx1 + bz1 * bz1) * inv_mt;
+  const T s12 = -(bx1 * bx2 + bz1 * bz2) * inv_mt;
+  const T s22 = mp_l2 - (bx2 * bx2 + bz2 * bz2) * inv_mt;
+  const T y0 = r_phi - (bx0 * rx + bz0 * rz) * inv_mt;
+  const T y1 = r_b1 - (bx1 * rx + bz1 * rz) * inv_mt;
+  const T y2 = r_b2 - (bx2 * rx + bz2 * rz) * inv_mt;
+  // LDL^T: S = L D L^T with unit lower L.
+  const T d0 = s00;
+  const T l10 = s01 / d0, l20 = s02 / d0;
+  const T d1 = s11 - l10 * s01;
+  const T l21 = (s12 - l20 * s01) / d1;
+  const T d2 = s22 - l20 * s02 - l21 * l21 * d1;
+  const T z1 = y1 - l10 * y0;
+  const T z2 = y2 - l20 * y0 - l21 * z1;
+  const T b2_ddot = z2 / d2;
+  const T b1_ddot = z1 / d1 - l21 * b2_ddot;
+  const T phi_ddot = y0 / d0 - l10 * b1_ddot - l20 * b2_ddot;
   FreeArmState<T> x_dot;
-  x_dot(kFreePhiDot) = acc(kPhi);
+  x_dot(kFreePhiDot) = phi_ddot;
   x_dot(kFreeB1) = x(kFreeB1Dot);
   x_dot(kFreeB2) = x(kFreeB2Dot);
-  x_dot(kFreeB1Dot) = acc(kB1);
-  x_dot(kFreeB2Dot) = acc(kB2);
-  if (specific_force_m_s2 != nullptr) *specific_force_m_s2 = Eigen::Matrix<T, 2, 1>(acc(kX), acc(kZ));
+  x_dot(kFreeB1Dot) = b1_ddot;
+  x_dot(kFreeB2Dot) = b2_ddot;
+  if (specific_force_m_s2 != nullptr) {
+    (*specific_force_m_s2)(0) = (rx - bx0 * phi_ddot - bx1 * b1_ddot - bx2 * b2_ddot) * inv_mt;
+    (*specific_force_m_s2)(1) = (rz - bz0 * phi_ddot - bz1 * b1_ddot - bz2 * b2_ddot) * inv_mt;
+  }
   return x_dot;
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <deque>
 #include <sstream>
+#include <string>
 
 #include "identification/clamped_arm_residual.h"
 #include "identification/deflection_force_map.h"
@@ -19,6 +20,7 @@ namespace birotor {
 namespace {
 
 constexpr int64_t kMaxLoadCellGapUs = 5000;  // interpolate load cells over at most 5 ms
+constexpr size_t kMaxPlotPoints = 2000;      // per plot panel
 
 double LoadCellForce(const LoadCellSample& s, int rotor) { return s.force_n[rotor]; }
 
@@ -29,6 +31,7 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   ceres::Problem problem;
   double ratio = 1.0;
   std::vector<ceres::ResidualBlockId> blocks;
+  std::vector<double> plot_omega, plot_force;
   const int64_t spacing_us = static_cast<int64_t>(options.thrust_sample_spacing_s * 1e6);
   for (const SensorLog& log : logs) {
     for (int rotor = 0; rotor < 2; ++rotor) {
@@ -44,6 +47,8 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
           continue;
         }
         next_us = m.utime + spacing_us;
+        plot_omega.push_back(omega);
+        plot_force.push_back(force);
         const double f_model = base.thrust_coeff_n_s2_rad2 * omega * omega;
         const double dfdw = 2.0 * base.thrust_coeff_n_s2_rad2 * std::abs(omega) * options.telemetry_noise_rad_s;
         const double sigma = std::sqrt(options.loadcell_noise_n * options.loadcell_noise_n +
@@ -98,6 +103,17 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   }
   result->residuals.back().rms_si = count > 0 ? std::sqrt(sum_sq / count) : 0.0;
   if (c_t.determined) result->params.thrust_coeff_n_s2_rad2 = c_t.value;
+  FitPlot plot;
+  plot.title = "thrust: load cell vs c_T omega^2 (both rotors)";
+  plot.x_label = "omega (telemetry) [rad/s]";
+  plot.y_label = "force [N]";
+  const size_t stride = plot_omega.size() / kMaxPlotPoints + 1;
+  for (size_t i = 0; i < plot_omega.size(); i += stride) {
+    plot.x.push_back(plot_omega[i]);
+    plot.data.push_back(plot_force[i]);
+    plot.model.push_back(c_t.value * plot_omega[i] * plot_omega[i]);
+  }
+  result->plots.push_back(std::move(plot));
 }
 
 void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
@@ -144,7 +160,29 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   }
   for (int arm = 0; arm < 2; ++arm) {
     DeflectionForceMap map = FitDeflectionForceMap(arm, map_b[arm], map_f[arm], options.map_degree);
-    if (map.samples > 0) result->maps.push_back(map);
+    if (map.samples == 0) continue;
+    result->maps.push_back(map);
+    // Map and its residuals against deflection.
+    FitPlot fit, residual;
+    fit.title = "arm " + std::to_string(arm + 1) + ": load cell force vs deflection map (degree " +
+                std::to_string(options.map_degree) + ")";
+    residual.title = "arm " + std::to_string(arm + 1) + ": map residual (RMS " +
+                     std::to_string(map.residual_rms_n) + " N)";
+    fit.x_label = residual.x_label = "deflection b" + std::to_string(arm + 1) + " [mrad]";
+    fit.y_label = "force [N]";
+    residual.y_label = "force - map [N]";
+    const size_t stride = map_b[arm].size() / kMaxPlotPoints + 1;
+    for (size_t i = 0; i < map_b[arm].size(); i += stride) {
+      const double model = EvaluateMap(map, map_b[arm][i]);
+      fit.x.push_back(1e3 * map_b[arm][i]);
+      fit.data.push_back(map_f[arm][i]);
+      fit.model.push_back(model);
+      residual.x.push_back(1e3 * map_b[arm][i]);
+      residual.data.push_back(map_f[arm][i] - model);
+      residual.model.push_back(0.0);
+    }
+    result->plots.push_back(std::move(fit));
+    result->plots.push_back(std::move(residual));
   }
 
   ceres::Problem problem;

@@ -1,15 +1,18 @@
 // Flight identification (no load cells): k, d and c_T from the free-flight
-// arm dynamics driven by the rotor speed telemetry, predicting deflections
+// arm dynamics driven by the motor model's rotor speeds, predicting deflections
 // and, when the IMU is present, pitch rate and specific force.
 #include <ceres/ceres.h>
 
 #include <array>
 #include <cmath>
 #include <deque>
+#include <limits>
+#include <string>
 
 #include "identification/fit_support.h"
 #include "identification/free_arm_residual.h"
 #include "identification/identify.h"
+#include "estimator/plant.h"
 
 namespace birotor {
 namespace {
@@ -17,6 +20,50 @@ namespace {
 constexpr int64_t kMaxMotorGapUs = 10000;  // interpolate telemetry over at most 10 ms
 constexpr int64_t kMaxImuGapUs = 5000;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMotorSettleTimeConstants = 6.0;  // model speed trusted after 6 tau_m (0.25 % of the start error)
+
+// Rotor speeds of the first-order motor model driven by the recorded
+// commands (ZOH), at every motor sample: omega_{j+1} = MotorStep(omega_j,
+// cmd_j, tau_m, dt). Telemetry noise (5 rad/s, white at 500 Hz) would
+// otherwise drive the model arm modes with about 0.3 N of broadband force
+// noise that the real, smooth rotor speed does not have. The model starts
+// from the telemetry (or the command when there is none) after every gap and
+// is marked settled kMotorSettleTimeConstants tau_m later.
+struct ModelSpeeds {
+  std::vector<double> omega_rad_s[2];
+  std::vector<bool> settled;
+};
+
+ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const VehicleParams& params) {
+  const double tau_s = params.motor_time_constant_s;
+  const int64_t settle_us = static_cast<int64_t>(kMotorSettleTimeConstants * tau_s * 1e6);
+  ModelSpeeds out;
+  out.omega_rad_s[0].assign(motor.size(), kNaN);
+  out.omega_rad_s[1].assign(motor.size(), kNaN);
+  out.settled.assign(motor.size(), false);
+  int64_t start_us = 0;
+  for (size_t j = 0; j < motor.size(); ++j) {
+    const MotorSample& m = motor[j];
+    const bool commands_ok = std::isfinite(m.omega_cmd_rad_s[0]) && std::isfinite(m.omega_cmd_rad_s[1]);
+    const bool continues = j > 0 && std::isfinite(out.omega_rad_s[0][j - 1]) &&
+                           m.utime - motor[j - 1].utime <= kMaxMotorGapUs && m.utime > motor[j - 1].utime;
+    if (!commands_ok) continue;
+    if (!continues) start_us = m.utime;
+    for (int rotor = 0; rotor < 2; ++rotor) {
+      double omega;
+      if (continues) {
+        omega = MotorStep(out.omega_rad_s[rotor][j - 1], ClampCommand(params, motor[j - 1].omega_cmd_rad_s[rotor]),
+                          tau_s, 1e-6 * static_cast<double>(m.utime - motor[j - 1].utime));
+      } else {
+        omega = std::isfinite(m.omega_meas_rad_s[rotor]) ? m.omega_meas_rad_s[rotor]
+                                                         : ClampCommand(params, m.omega_cmd_rad_s[rotor]);
+      }
+      out.omega_rad_s[rotor][j] = omega;
+    }
+    out.settled[j] = m.utime - start_us >= settle_us;
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -29,20 +76,33 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   FreeArmWindowResidual::Noise noise{options.strain_noise_rad, options.gyro_noise_rad_s, options.accel_noise_m_s2,
                                      options.huber_threshold};
 
+  // The motor time constant identified just before (IdentifyMotorTimeConstant), else the base value.
+  const VehicleParams& motor_params = result->params;
   ceres::Problem problem;
   double k_ratio = 1.0;
   double d_ratio = base.arm_damping_n_m_s_rad / scales.damping_n_m_s_rad;
   double c_ratio = 1.0;
-  std::deque<std::array<double, kFreeArmStateSize>> states;
-  std::vector<ceres::ResidualBlockId> blocks;
+  // Candidate windows over every log, then at most flight_max_windows of
+  // them spread evenly (the arm modes ring after every manoeuvre, so a
+  // subset carries nearly all the information at a fraction of the cost).
+  struct Window {
+    size_t log, begin, end;
+  };
+  std::vector<std::vector<int64_t>> utimes(logs.size());
+  std::vector<std::vector<FreeArmWindowResidual::Sample>> all_samples(logs.size());
+  std::vector<Window> candidates;
   bool any_imu = false;
-  for (const SensorLog& log : logs) {
+  for (size_t l = 0; l < logs.size(); ++l) {
+    const SensorLog& log = logs[l];
     const bool use_imu = options.use_imu && !log.imu.empty();
     any_imu = any_imu || use_imu;
     const size_t n = log.strain.size();
-    std::vector<int64_t> utime(n);
+    std::vector<int64_t>& utime = utimes[l];
+    utime.resize(n);
     std::vector<bool> valid(n);
-    std::vector<FreeArmWindowResidual::Sample> all(n);
+    std::vector<FreeArmWindowResidual::Sample>& all = all_samples[l];
+    all.resize(n);
+    const ModelSpeeds speeds = ModelRotorSpeeds(log.motor, motor_params);
     size_t motor_hint = 0, imu_hint = 0;
     for (size_t i = 0; i < n; ++i) {
       const StrainSample& s = log.strain[i];
@@ -51,13 +111,17 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
       out.deflection_rad[0] = s.deflection_rad[0];
       out.deflection_rad[1] = s.deflection_rad[1];
       bool ok = std::isfinite(s.deflection_rad[0]) && std::isfinite(s.deflection_rad[1]);
+      // Exact ZOH motor response from the last motor sample at or before t.
+      while (motor_hint + 1 < log.motor.size() && log.motor[motor_hint + 1].utime <= s.utime) ++motor_hint;
+      const bool motor_ok = !log.motor.empty() && log.motor[motor_hint].utime <= s.utime &&
+                            s.utime - log.motor[motor_hint].utime <= kMaxMotorGapUs && speeds.settled[motor_hint];
+      ok = ok && motor_ok;
       for (int rotor = 0; rotor < 2 && ok; ++rotor) {
-        size_t hint = motor_hint;
-        ok = InterpolateAt(log.motor, s.utime, kMaxMotorGapUs, &hint,
-                           [rotor](const MotorSample& m) { return m.omega_meas_rad_s[rotor]; },
-                           &out.omega_rad_s[rotor]) &&
-             std::isfinite(out.omega_rad_s[rotor]);
-        if (rotor == 1) motor_hint = hint;
+        const MotorSample& m = log.motor[motor_hint];
+        out.omega_rad_s[rotor] =
+            MotorStep(speeds.omega_rad_s[rotor][motor_hint], ClampCommand(motor_params, m.omega_cmd_rad_s[rotor]),
+                      motor_params.motor_time_constant_s, 1e-6 * static_cast<double>(s.utime - m.utime));
+        ok = std::isfinite(out.omega_rad_s[rotor]);
       }
       out.gyro_rad_s = out.accel_m_s2[0] = out.accel_m_s2[1] = kNaN;
       if (use_imu) {
@@ -76,18 +140,54 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     }
     const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(utime), 1);
     for (const auto& [begin, end] : ContiguousWindows(utime, valid, options.flight_window_s, max_gap_us, 20)) {
-      std::vector<FreeArmWindowResidual::Sample> samples(all.begin() + begin, all.begin() + end);
-      for (size_t i = 0; i + 1 < samples.size(); ++i) {
-        samples[i].dt_s = 1e-6 * static_cast<double>(utime[begin + i + 1] - utime[begin + i]);
-      }
-      samples.back().dt_s = 0.0;
-      const FreeArmWindowResidual::Sample& first = samples.front();
-      states.push_back({std::isfinite(first.gyro_rad_s) ? first.gyro_rad_s : 0.0, first.deflection_rad[0],
-                        first.deflection_rad[1], 0.0, 0.0});
-      blocks.push_back(problem.AddResidualBlock(
-          FreeArmWindowResidual::Create(base, std::move(samples), noise, options.integration_substeps, scales),
-          nullptr, &k_ratio, &d_ratio, &c_ratio, states.back().data()));
+      candidates.push_back({l, begin, end});
     }
+  }
+  std::vector<Window> windows = candidates;
+  const size_t max_windows = static_cast<size_t>(options.flight_max_windows);
+  if (max_windows > 0 && candidates.size() > max_windows) {
+    windows.clear();
+    for (size_t w = 0; w < max_windows; ++w) {
+      windows.push_back(candidates[(2 * w + 1) * candidates.size() / (2 * max_windows)]);
+    }
+  }
+  std::deque<std::array<double, kFreeArmStateSize>> states;
+  std::vector<ceres::ResidualBlockId> blocks;
+  std::vector<const FreeArmWindowResidual*> functors;
+  for (const Window& w : windows) {
+    const std::vector<int64_t>& utime = utimes[w.log];
+    std::vector<FreeArmWindowResidual::Sample> samples(all_samples[w.log].begin() + w.begin,
+                                                       all_samples[w.log].begin() + w.end);
+    for (size_t i = 0; i + 1 < samples.size(); ++i) {
+      samples[i].dt_s = 1e-6 * static_cast<double>(utime[w.begin + i + 1] - utime[w.begin + i]);
+    }
+    samples.back().dt_s = 0.0;
+    // Initial state: measured pitch rate and deflections; deflection rates
+    // from a least-squares line through the first samples (strain noise
+    // 2e-5 rad gives a few mrad/s), so the solver starts near the optimum.
+    const FreeArmWindowResidual::Sample& first = samples.front();
+    std::array<double, kFreeArmStateSize> x0 = {std::isfinite(first.gyro_rad_s) ? first.gyro_rad_s : 0.0,
+                                                first.deflection_rad[0], first.deflection_rad[1], 0.0, 0.0};
+    const size_t fit_n = std::min<size_t>(samples.size(), 5);
+    for (int arm = 0; arm < 2; ++arm) {
+      double st = 0.0, sb = 0.0, stt = 0.0, stb = 0.0, t = 0.0;
+      for (size_t i = 0; i < fit_n; ++i) {
+        st += t;
+        sb += samples[i].deflection_rad[arm];
+        stt += t * t;
+        stb += t * samples[i].deflection_rad[arm];
+        t += samples[i].dt_s;
+      }
+      const double det = fit_n * stt - st * st;
+      if (det > 0.0) x0[arm == 0 ? kFreeB1Dot : kFreeB2Dot] = (fit_n * stb - st * sb) / det;
+    }
+    states.push_back(x0);
+    const FreeArmWindowResidual* functor = nullptr;
+    blocks.push_back(problem.AddResidualBlock(
+        FreeArmWindowResidual::Create(base, std::move(samples), noise, options.flight_integration_substeps, scales,
+                                      &functor),
+        nullptr, &k_ratio, &d_ratio, &c_ratio, states.back().data()));
+    functors.push_back(functor);
   }
   ParameterEstimate k, damping, c_t;
   k.key = "arm_stiffness_n_m_rad";
@@ -104,6 +204,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   problem.SetParameterLowerBound(&k_ratio, 0, 1e-3);
   problem.SetParameterLowerBound(&c_ratio, 0, 1e-3);
   problem.SetParameterLowerBound(&d_ratio, 0, 0.0);
+  if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
   SolveProblem(options, &problem);
 
   // Strain residuals carry the unmodelled turbulence (correlated over ~0.1 s):
@@ -129,7 +230,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   const std::vector<BlockSigma> sigma =
       ComputeBlockSigmas(&problem, {&k_ratio, &d_ratio, &c_ratio}, inflation, options.num_threads);
   const std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) +
-                           " windows" + (any_imu ? " with IMU" : " without IMU");
+                           " of " + std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
   auto fill = [&](ParameterEstimate* e, double ratio, double scale, const BlockSigma& s) {
     e->value = ratio * scale;
     e->sigma = s.sigma * scale;
@@ -144,7 +245,34 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     result->errors.push_back(std::string("c_T: not determined by the flight data") +
                              (any_imu ? "" : " (no IMU: only c_T / k is seen by the strain gauges)"));
   }
+  if (!options.flight_fit_damping) {
+    damping.determined = false;
+    damping.sigma = kNaN;
+    damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
+  }
   if (!damping.determined) result->warnings.push_back("d: not determined by the flight data; base value kept");
+  // Fit versus data: measured and predicted deflections over two windows,
+  // at one third and two thirds of the data.
+  for (size_t n = 1; n <= 2 && n < functors.size(); ++n) {
+    const size_t w = n * functors.size() / 3;
+    const FreeArmWindowResidual& f = *functors[w];
+    const std::vector<FreeArmState<double>> predicted = f.Predict(k_ratio, d_ratio, c_ratio, states[w].data());
+    for (int arm = 0; arm < 2; ++arm) {
+      FitPlot plot;
+      plot.title = "free flight, window " + std::to_string(w + 1) + " of " + std::to_string(functors.size()) +
+                   ": arm " + std::to_string(arm + 1) + " deflection";
+      plot.x_label = "time in window [s]";
+      plot.y_label = "b" + std::to_string(arm + 1) + " [mrad]";
+      double t_s = 0.0;
+      for (size_t j = 0; j < predicted.size(); ++j) {
+        plot.x.push_back(t_s);
+        plot.data.push_back(1e3 * f.samples()[j].deflection_rad[arm]);
+        plot.model.push_back(1e3 * predicted[j](arm == 0 ? kFreeB1 : kFreeB2));
+        t_s += f.samples()[j].dt_s;
+      }
+      result->plots.push_back(std::move(plot));
+    }
+  }
   result->estimates.insert(result->estimates.end(), {k, damping, c_t});
   if (k.determined) result->params.arm_stiffness_n_m_rad = k.value;
   if (damping.determined) result->params.arm_damping_n_m_s_rad = damping.value;

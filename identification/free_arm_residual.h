@@ -1,6 +1,6 @@
 // Ceres residual of stiffness, damping and thrust coefficient in free flight:
-// output error of the arm and pitch-rate dynamics driven by the measured rotor
-// speeds, predicting deflections, pitch rate and specific force over one window.
+// output error of the arm and pitch-rate dynamics driven by the rotor speeds
+// of the motor model (recorded commands, identified tau_m), predicting deflections, pitch rate and specific force over one window.
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
@@ -37,7 +37,7 @@ constexpr int kFreeArmResidualsPerSample = 5;
 struct FreeArmWindowResidual {
   struct Sample {
     double dt_s;              // time to the next sample [s] (unused for the last)
-    double omega_rad_s[2];    // rotor speeds [rad/s]
+    double omega_rad_s[2];    // rotor speeds (motor model from the commands) [rad/s]
     double deflection_rad[2]; // strain gauges [rad]
     double gyro_rad_s;        // pitch rate, NaN when not used [rad/s]
     double accel_m_s2[2];     // specific force body x, z, NaN when not used [m/s^2]
@@ -61,12 +61,55 @@ struct FreeArmWindowResidual {
   template <typename T>
   bool operator()(const T* k_ratio, const T* d_ratio, const T* thrust_ratio, const T* state0,
                   T* residual) const {
+    const double c = noise_.huber;
+    Integrate<T>(k_ratio[0], d_ratio[0], thrust_ratio[0], state0,
+                 [&](size_t j, const FreeArmState<T>& x, const T& k, const T& d, const T& c_t) {
+                   const Sample& m = samples_[j];
+                   T* r = residual + kFreeArmResidualsPerSample * j;
+                   r[kResB1] = HuberResidual(T((m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad), c);
+                   r[kResB2] = HuberResidual(T((m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad), c);
+                   r[kResGyro] = std::isfinite(m.gyro_rad_s)
+                                     ? HuberResidual(T((m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s), c)
+                                     : T(0.0);
+                   if (std::isfinite(m.accel_m_s2[0]) && std::isfinite(m.accel_m_s2[1])) {
+                     const T f1 = c_t * (m.omega_rad_s[0] * m.omega_rad_s[0]);
+                     const T f2 = c_t * (m.omega_rad_s[1] * m.omega_rad_s[1]);
+                     Eigen::Matrix<T, 2, 1> specific_force;
+                     FreeArmDerivative<T>(known_, k, d, x, f1, f2, &specific_force);
+                     r[kResAccelX] = HuberResidual(T((m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2), c);
+                     r[kResAccelZ] = HuberResidual(T((m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2), c);
+                   } else {
+                     r[kResAccelX] = T(0.0);
+                     r[kResAccelZ] = T(0.0);
+                   }
+                 });
+    return true;
+  }
+
+  // Model state at every sample time of the window (for plots), with the
+  // fitted ratios and initial state.
+  std::vector<FreeArmState<double>> Predict(double k_ratio, double d_ratio, double thrust_ratio,
+                                            const double* state0) const {
+    std::vector<FreeArmState<double>> states(samples_.size());
+    Integrate<double>(k_ratio, d_ratio, thrust_ratio, state0,
+                      [&](size_t j, const FreeArmState<double>& x, double, double, double) { states[j] = x; });
+    return states;
+  }
+
+  const std::vector<Sample>& samples() const { return samples_; }
+
+ private:
+  // RK4 over the window from state0; visit(j, x_j, k, d, c_T) at every sample.
+  template <typename T, class Visit>
+  void Integrate(const T& k_ratio, const T& d_ratio, const T& thrust_ratio, const T* state0,
+                 const Visit& visit) const {
     using State = FreeArmState<T>;
-    const T k = k_ratio[0] * scales_.stiffness_n_m_rad;
-    const T d = d_ratio[0] * scales_.damping_n_m_s_rad;
-    const T c_t = thrust_ratio[0] * scales_.thrust_coeff_n_s2_rad2;
+    const T k = k_ratio * scales_.stiffness_n_m_rad;
+    const T d = d_ratio * scales_.damping_n_m_s_rad;
+    const T c_t = thrust_ratio * scales_.thrust_coeff_n_s2_rad2;
     State x;
     for (int i = 0; i < kFreeArmStateSize; ++i) x(i) = state0[i];
+    // f_i = c_T omega_i^2 with omega linear between samples.
     auto forces = [&](const Sample& a, const Sample& b, double alpha, T* f1, T* f2) {
       const double w1 = a.omega_rad_s[0] + alpha * (b.omega_rad_s[0] - a.omega_rad_s[0]);
       const double w2 = a.omega_rad_s[1] + alpha * (b.omega_rad_s[1] - a.omega_rad_s[1]);
@@ -92,36 +135,23 @@ struct FreeArmWindowResidual {
           x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
         }
       }
-      const Sample& m = samples_[j];
-      T* r = residual + kFreeArmResidualsPerSample * j;
-      const double c = noise_.huber;
-      r[kResB1] = HuberResidual(T((m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad), c);
-      r[kResB2] = HuberResidual(T((m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad), c);
-      r[kResGyro] = std::isfinite(m.gyro_rad_s)
-                        ? HuberResidual(T((m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s), c)
-                        : T(0.0);
-      if (std::isfinite(m.accel_m_s2[0]) && std::isfinite(m.accel_m_s2[1])) {
-        T f1, f2;
-        forces(m, m, 0.0, &f1, &f2);
-        Eigen::Matrix<T, 2, 1> specific_force;
-        FreeArmDerivative<T>(known_, k, d, x, f1, f2, &specific_force);
-        r[kResAccelX] = HuberResidual(T((m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2), c);
-        r[kResAccelZ] = HuberResidual(T((m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2), c);
-      } else {
-        r[kResAccelX] = T(0.0);
-        r[kResAccelZ] = T(0.0);
-      }
+      visit(j, x, k, d, c_t);
     }
-    return true;
   }
 
+ public:
+  // *functor (optional) keeps a view of the functor, owned by the cost function.
   static ceres::CostFunction* Create(const VehicleParams& known, std::vector<Sample> samples,
-                                     const Noise& noise, int substeps, const Scales& scales) {
+                                     const Noise& noise, int substeps, const Scales& scales,
+                                     const FreeArmWindowResidual** functor = nullptr) {
     const int n = kFreeArmResidualsPerSample * static_cast<int>(samples.size());
+    auto* residual = new FreeArmWindowResidual(known, std::move(samples), noise, substeps, scales);
+    if (functor != nullptr) *functor = residual;
     return new ceres::AutoDiffCostFunction<FreeArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, kFreeArmStateSize>(
-        new FreeArmWindowResidual(known, std::move(samples), noise, substeps, scales), n);
+        residual, n);
   }
 
+ private:
   const VehicleParams known_;  // m, m_p, L, J (k, d, c_T are parameters)
   const std::vector<Sample> samples_;
   const Noise noise_;

@@ -13,6 +13,9 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Double("bench_arm_window_s", 0.01, 100.0, &o->bench_arm_window_s);
   s.Double("flight_window_s", 0.01, 100.0, &o->flight_window_s);
   s.Int("integration_substeps", 1, 20, &o->integration_substeps);
+  s.Int("flight_integration_substeps", 1, 20, &o->flight_integration_substeps);
+  s.Int("flight_max_windows", 0, 1000000, &o->flight_max_windows);
+  s.Bool("flight_fit_damping", &o->flight_fit_damping);
   s.Double("huber_threshold", 0.1, 1e3, &o->huber_threshold);
   s.Int("map_degree", 1, 3, &o->map_degree);
   s.Bool("use_imu", &o->use_imu);

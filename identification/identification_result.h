@@ -42,6 +42,17 @@ struct DeflectionForceMap {
   int samples = 0;
 };
 
+// One panel of fit versus data for the --plot figure: measured points and
+// the fitted model at the same abscissae.
+struct FitPlot {
+  std::string title;
+  std::string x_label;   // with unit
+  std::string y_label;   // with unit
+  std::vector<double> x;
+  std::vector<double> data;   // measured
+  std::vector<double> model;  // fitted model (NaN where there is none)
+};
+
 struct IdentificationResult {
   bool ok = false;                    // false: `errors` says what is missing; no numbers
   std::string mode;                   // "bench" or "flight"
@@ -52,6 +63,7 @@ struct IdentificationResult {
   std::vector<ResidualSummary> residuals;
   std::vector<DeflectionForceMap> maps;
   std::vector<std::string> sources;   // logs used
+  std::vector<FitPlot> plots;         // fit versus data, a few panels
 };
 
 }  // namespace birotor

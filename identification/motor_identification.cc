@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <sstream>
+#include <string>
 
 #include "identification/fit_support.h"
 #include "identification/identify.h"
@@ -20,6 +21,10 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   std::deque<double> omega0;
   std::vector<ceres::ResidualBlockId> blocks;
   int steps[2] = {0, 0};
+  // For the plot: the window with the largest command step.
+  std::vector<MotorWindowResidual::Sample> plot_samples;
+  size_t plot_block = 0;
+  double plot_step_rad_s = 0.0;
   for (const SensorLog& log : logs) {
     std::vector<int64_t> utime;
     utime.reserve(log.motor.size());
@@ -44,6 +49,14 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
           samples.push_back({dt_s, ClampCommand(base, m.omega_cmd_rad_s[rotor]), m.omega_meas_rad_s[rotor]});
         }
         omega0.push_back(samples.front().omega_meas_rad_s);
+        for (size_t i = 1; i < samples.size(); ++i) {
+          const double step = std::abs(samples[i].omega_cmd_rad_s - samples[i - 1].omega_cmd_rad_s);
+          if (step > plot_step_rad_s) {
+            plot_step_rad_s = step;
+            plot_samples = samples;
+            plot_block = blocks.size();
+          }
+        }
         blocks.push_back(problem.AddResidualBlock(
             MotorWindowResidual::Create(std::move(samples), options.telemetry_noise_rad_s,
                                         base.motor_time_constant_s, options.huber_threshold),
@@ -83,6 +96,27 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   result->residuals.push_back({"motor telemetry (omega_meas - model)", "rad/s", stats.count, stats.rms_whitened,
                                stats.rms_whitened * options.telemetry_noise_rad_s, inflation});
   if (tau.determined) result->params.motor_time_constant_s = tau.value;
+  if (!plot_samples.empty()) {
+    // Fitted ZOH first-order response from the window's fitted initial speed.
+    FitPlot plot;
+    std::ostringstream title;
+    title.precision(4);
+    title << "motor: telemetry vs first-order model (tau_m = " << 1e3 * tau.value << " ms)";
+    plot.title = title.str();
+    plot.x_label = "time in window [s]";
+    plot.y_label = "omega [rad/s]";
+    double omega = omega0[plot_block], t_s = 0.0;
+    for (size_t j = 0; j < plot_samples.size(); ++j) {
+      if (j > 0) {
+        omega = MotorStep(omega, plot_samples[j - 1].omega_cmd_rad_s, tau.value, plot_samples[j - 1].dt_s);
+        t_s += plot_samples[j - 1].dt_s;
+      }
+      plot.x.push_back(t_s);
+      plot.data.push_back(plot_samples[j].omega_meas_rad_s);
+      plot.model.push_back(omega);
+    }
+    result->plots.push_back(std::move(plot));
+  }
 }
 
 }  // namespace birotor

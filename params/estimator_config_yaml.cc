@@ -28,6 +28,7 @@ void ReadEkfOptions(YamlSection s, EkfOptions* o) {
   s.Double("fault_n_sigma", 0.0, 10.0, &o->fault_n_sigma);
   s.Double("fault_persistence_s", 0.0, 10.0, &o->fault_persistence_s);
   s.Double("max_dt_s", 1e-4, 10.0, &o->max_dt_s);
+  s.Double("max_prediction_step_s", 1e-5, 0.004, &o->max_prediction_step_s);
   if (o->fault_clear_thrust_scale < o->fault_thrust_scale) {
     s.Fail("fault_clear_thrust_scale", "below fault_thrust_scale (no hysteresis)",
            RangeText(o->fault_thrust_scale, 1.0));

@@ -69,6 +69,7 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method,
     out.duplicates = in.duplicates;
     out.gaps = in.gaps;
     out.missing_samples = in.missing_samples;
+    out.reading_missing = in.telemetry_missing;
     out.dropped_overload = in.dropped_overload;
     out.age_s = (in.last_utime >= 0 && health.newest_utime >= 0)
                     ? static_cast<double>(health.newest_utime - in.last_utime) /

@@ -11,6 +11,7 @@
 #include "identification/parameter_file.h"
 #include "params/vehicle_params_yaml.h"
 #include "tools/identification_log_loader.h"
+#include "tools/identification_plot.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", cli.config, "Optional YAML file with an `identification:` section of options");
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
   app.add_option("--report", cli.report, "Readable report (Markdown)");
-  app.add_option("--plot", cli.plot, "PNG of fit versus data (not implemented)");
+  app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
 
@@ -104,11 +105,18 @@ int main(int argc, char** argv) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
-  if (!cli.plot.empty()) spdlog::warn("--plot is not implemented; no PNG written");
   std::string error;
   if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) {
     spdlog::error("{}", error);
     return kExitFailure;
+  }
+  // The plot is optional: a failure is reported but the parameter file stands.
+  if (!cli.plot.empty()) {
+    if (WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
+      spdlog::info("wrote {}", cli.plot);
+    } else {
+      spdlog::warn("--plot {}: {}", cli.plot, error);
+    }
   }
   spdlog::info("wrote {} ({} mode, {:.2f} s)", cli.output, result.mode, elapsed_s);
   return 0;

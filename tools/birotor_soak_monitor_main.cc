@@ -83,6 +83,7 @@ double Percentile(std::vector<double> values, double fraction) {
 struct StrainHealth {
   int64_t received = 0, fused = 0, gaps = 0, missing_samples = 0, dropped_overload = 0;
   int64_t decode_errors = 0, out_of_order = 0, resets = 0;
+  int64_t published = 0;  // FORCE published by the daemon (same snapshot as received)
 };
 
 class Monitor {
@@ -148,6 +149,7 @@ class Monitor {
       health.decode_errors = input.decode_errors;
       health.out_of_order = input.out_of_order;
       health.resets = status_.resets;
+      health.published = status_.published;
       if (!has_status_) first_health_ = health;
       last_health_ = health;
       has_status_ = true;
@@ -303,11 +305,15 @@ int main(int argc, char** argv) {
 
   const int64_t force_missing =
       monitor.force_missing_ + monitor.PendingWithoutForce(WallNowUs(), 1000000);
+  const bool has_status = monitor.has_status_;
   const StrainHealth& a = monitor.first_health_;
   const StrainHealth& b = monitor.last_health_;
   const int64_t daemon_missing = b.missing_samples - a.missing_samples;
   const int64_t daemon_overload = b.dropped_overload - a.dropped_overload;
   const int64_t daemon_decode = b.decode_errors - a.decode_errors;
+  // Strain packets the daemon received but published no FORCE for (rejected,
+  // dropped or undecodable), from one consistent snapshot of its counters.
+  const int64_t daemon_unpublished = (b.received - a.received) - (b.published - a.published);
   const double growth_mb = baseline_rss_kb >= 0 ? (last_rss_kb - baseline_rss_kb) / 1024.0 : std::nan("");
   const std::vector<double>& lat = monitor.latencies_us_;
 
@@ -315,7 +321,10 @@ int main(int argc, char** argv) {
   std::printf("  %-44s %" PRId64 "\n", "STRAIN seen by the monitor", monitor.strain_count_);
   std::printf("  %-44s %" PRId64 " (valid %" PRId64 ", non-finite forces %" PRId64 ")\n", "FORCE received",
               monitor.force_count_, monitor.force_valid_, monitor.force_non_finite_);
-  std::printf("  %-44s %" PRId64 "\n", "STRAIN without a FORCE", force_missing);
+  std::printf("  %-44s %" PRId64 " (FORCE unmatched %" PRId64 ")\n", "STRAIN without a FORCE at the monitor",
+              force_missing, monitor.force_unmatched_);
+  std::printf("  %-44s %" PRId64 " received, %" PRId64 " without FORCE\n", "daemon STRAIN (ESTIMATOR_STATUS)",
+              b.received - a.received, daemon_unpublished);
   std::printf("  %-44s %" PRId64 "\n", "STRAIN seq gaps seen by the monitor", monitor.monitor_strain_missing_);
   std::printf("  %-44s %" PRId64 " missing, %" PRId64 " overload, %" PRId64 " decode errors, %" PRId64 " resets\n",
               "daemon STRAIN drops (ESTIMATOR_STATUS)", daemon_missing, daemon_overload, daemon_decode,
@@ -335,8 +344,11 @@ int main(int argc, char** argv) {
     ok = ok && pass;
   };
   check(monitor.force_count_ > 0 && monitor.force_non_finite_ == 0, "target: FORCE published, all finite");
-  check(force_missing == 0 && daemon_missing == 0 && daemon_overload == 0 && monitor.monitor_strain_missing_ == 0,
-        "target: zero dropped samples");
+  // Drops are judged on the daemon's own counters: a seq gap at its input, an
+  // overload drop, or a received strain sample without a FORCE. What the
+  // monitor misses on its own socket is reported above, not held against it.
+  check(has_status && daemon_missing == 0 && daemon_overload == 0 && daemon_decode == 0 && daemon_unpublished == 0,
+        "target: zero dropped samples (daemon)");
   if (pid > 0) {
     check(process_alive, "target: daemon alive at the end");
     check(std::isfinite(growth_mb) && growth_mb < max_growth_mb, "target: memory growth below bound");

@@ -4,7 +4,8 @@ add_library(birotor_identification_logs STATIC ${CMAKE_CURRENT_LIST_DIR}/identif
 target_include_directories(birotor_identification_logs PUBLIC ${PROJECT_SOURCE_DIR})
 target_link_libraries(birotor_identification_logs PUBLIC birotor_identification birotor_transport)
 
-add_executable(birotor-identify ${CMAKE_CURRENT_LIST_DIR}/birotor_identify_main.cc)
+add_executable(birotor-identify ${CMAKE_CURRENT_LIST_DIR}/birotor_identify_main.cc
+               ${CMAKE_CURRENT_LIST_DIR}/identification_plot.cc)
 target_link_libraries(birotor-identify PRIVATE birotor_identification_logs birotor_identification
                       birotor_transport birotor_params)
 install(TARGETS birotor-identify RUNTIME DESTINATION bin)

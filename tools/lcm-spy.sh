@@ -13,7 +13,9 @@ if [ -z "$jar" ]; then
   echo "lcm-spy.sh: error: birotor_lcmtypes.jar not found; build first (tools/setup.sh) or set BIROTOR_TYPES_JAR" >&2
   exit 1
 fi
-command -v lcm-spy > /dev/null || { echo "lcm-spy.sh: error: lcm-spy not installed (apt-get install liblcm-bin liblcm-java)" >&2; exit 1; }
+lcm_jar=/usr/share/java/lcm.jar
+[ -f "$lcm_jar" ] || { echo "lcm-spy.sh: error: $lcm_jar not found (apt-get install liblcm-java)" >&2; exit 1; }
+command -v java > /dev/null || { echo "lcm-spy.sh: error: java not found (apt-get install default-jre-headless)" >&2; exit 1; }
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -23,5 +25,8 @@ while [ $# -gt 0 ]; do
     *) args+=("$1"); shift ;;
   esac
 done
-export CLASSPATH="$jar${CLASSPATH:+:$CLASSPATH}"
-exec lcm-spy "${args[@]}"
+# Debian's /usr/bin/lcm-spy passes -Xincgc, which Java 17 rejects; start the
+# class directly. jchart2d draws the per-channel charts.
+classpath="$jar:$lcm_jar"
+[ -f /usr/share/java/jchart2d.jar ] && classpath="$classpath:/usr/share/java/jchart2d.jar"
+exec java -Djava.net.preferIPv4Stack=true -Xmx128m -cp "$classpath${CLASSPATH:+:$CLASSPATH}" lcm.spy.Spy "${args[@]}"

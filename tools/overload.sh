@@ -54,12 +54,16 @@ pids+=("$estimator_pid")
 sleep 1
 for rate in $rates; do
   echo "=== strain at ${rate} Hz for ${seconds} s ($url) ==="
-  "$monitor" --lcm-url "$url" --prefix "$prefix" --pid "$estimator_pid" --duration-s "$((seconds + 2))" \
+  # The monitor runs until SIGINT after the probe (a probe that cannot reach
+  # its rate publishes for longer than --duration-s).
+  "$monitor" --lcm-url "$url" --prefix "$prefix" --pid "$estimator_pid" --duration-s 86400 \
     --interval-s 2 --warmup-s 0 --max-memory-growth-mb 1e6 > "$out/monitor-$rate.txt" 2>&1 &
   monitor_pid=$!
   sleep 0.5
   "$probe" --lcm-url "$url" --prefix "$prefix" --rate-hz "$rate" --duration-s "$seconds" --drain-s 1 \
     > "$out/probe-$rate.txt" 2>&1 || true
+  sleep 1  # one more ESTIMATOR_STATUS with the final counters
+  kill -INT "$monitor_pid" 2>/dev/null || true
   wait "$monitor_pid" || true
   cat "$out/probe-$rate.txt"
   grep -E "FORCE received|daemon STRAIN drops|daemon CPU|daemon RSS|processing time" "$out/monitor-$rate.txt"

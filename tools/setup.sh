@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libceres-dev libgoogle-glog-dev
-  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless
+  liblcm-dev liblcm-bin liblcm-java libjchart2d-java libglib2.0-dev default-jdk-headless
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox clang libclang-rt-14-dev procps

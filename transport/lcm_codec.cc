@@ -75,7 +75,7 @@ class WireCursor {
 
 // Field layout of lcmtypes/input_health_t.lcm.
 bool SkipInputHealth(WireCursor* cursor) {
-  constexpr size_t kInt64Counters = 10;  // received .. dropped_overload
+  constexpr size_t kInt64Counters = 11;  // received .. reading_missing
   constexpr size_t kDoubles = 2;         // age_s, rate_hz
   return cursor->SkipString() && cursor->Skip(8 * kInt64Counters + 8 * kDoubles);
 }

@@ -124,6 +124,7 @@ inline input_health_t MakeInputHealth(const char* channel, int64_t base) {
   h.duplicates = base + 7;
   h.gaps = base + 8;
   h.missing_samples = base + 9;
+  h.reading_missing = base + 12;
   h.dropped_overload = base + 10;
   h.age_s = 0.001 * static_cast<double>(base);
   h.rate_hz = 1000.0;
