@@ -3,6 +3,8 @@
 # build-fuzz/ and runs each for a while on its seed corpus (copied, so the
 # repository's corpus only changes by hand).
 # Usage: tools/fuzz.sh [seconds per harness, default 60] [harness ...]
+# Extra libFuzzer flags in BIROTOR_FUZZ_ARGS, e.g. "-fork=1 -ignore_crashes=1"
+# to keep going after a finding and collect every distinct one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -29,7 +31,7 @@ for h in "${harnesses[@]}"; do
   cp -n "fuzz/corpus/$h/"* "$work/" 2>/dev/null || true
   echo "fuzz: $h for ${seconds}s"
   if ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-     "$BUILD_DIR/fuzz/$h" -max_total_time="$seconds" -rss_limit_mb=2048 -print_final_stats=1 \
+     "$BUILD_DIR/fuzz/$h" -max_total_time="$seconds" -rss_limit_mb=2048 -print_final_stats=1 ${BIROTOR_FUZZ_ARGS:-} \
        -artifact_prefix="$BUILD_DIR/artifacts-$h/" "$work" > "$BUILD_DIR/fuzz-$h.log" 2>&1; then
     echo "fuzz: $h: $(grep -E '^stat::number_of_executed_units' "$BUILD_DIR/fuzz-$h.log" | awk '{print $2}') runs, no crash, no leak, no sanitizer report"
   else

@@ -23,12 +23,13 @@ while [[ $# -gt 0 ]]; do
     *) echo "overload.sh: error: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
+# The newest build of a program under the build directory (targets have moved
+# between folders, so an old copy may still lie around).
 find_program() {
   local name="$1" path
-  for path in "$bin_dir/$name" "$bin_dir/tools/$name" "$bin_dir/services/$name" "$bin_dir/bin/$name"; do
-    [[ -x "$path" ]] && { echo "$path"; return; }
-  done
-  echo "overload.sh: error: $name not found under $bin_dir" >&2
+  path=$(ls -t "$bin_dir/$name" "$bin_dir"/*/"$name" 2>/dev/null | head -1 || true)
+  [[ -n "$path" && -x "$path" ]] && { echo "$path"; return; }
+  echo "overload.sh: error: $name not found under $bin_dir (build it first)" >&2
   exit 2
 }
 estimator=$(find_program birotor-estimator)
@@ -37,7 +38,7 @@ monitor=$(find_program birotor-soak-monitor)
 rmem_max=$(cat /proc/sys/net/core/rmem_max 2>/dev/null || echo 212992)
 buffer=$(( rmem_max < 4194304 ? rmem_max : 4194304 ))
 url="udpm://239.255.76.67:${port}?ttl=0&recv_buf_size=${buffer}"
-prefix=OVERLOAD_
+prefix="OVERLOAD_$$_"  # unique per run
 out="$bin_dir/overload"
 mkdir -p "$out"
 
@@ -52,6 +53,7 @@ trap cleanup EXIT INT TERM
 estimator_pid=$!
 pids+=("$estimator_pid")
 sleep 1
+kill -0 "$estimator_pid" 2>/dev/null || { echo "overload.sh: error: birotor-estimator did not start:" >&2; cat "$out/estimator.log" >&2; exit 2; }
 for rate in $rates; do
   echo "=== strain at ${rate} Hz for ${seconds} s ($url) ==="
   # The monitor runs until SIGINT after the probe (a probe that cannot reach

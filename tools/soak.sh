@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 seconds=600
 bin_dir="${BIROTOR_BUILD_DIR:-build}"
 port=7695
-prefix=SOAK_
+prefix="SOAK_$$_"  # unique per run: concurrent soaks on one host do not mix
 scenario=config/scenarios/hover.yaml
 out=""
 interval_s=""
@@ -32,11 +32,12 @@ done
 [[ -n "$interval_s" ]] || interval_s=$(( seconds >= 300 ? 30 : 5 ))
 mkdir -p "$out"
 
+# The newest build of a program under the build directory (targets have moved
+# between folders, so an old copy may still lie around).
 find_program() {
   local name="$1" path
-  for path in "$bin_dir/$name" "$bin_dir/tools/$name" "$bin_dir/services/$name" "$bin_dir/bin/$name"; do
-    [[ -x "$path" ]] && { echo "$path"; return; }
-  done
+  path=$(ls -t "$bin_dir/$name" "$bin_dir"/*/"$name" 2>/dev/null | head -1 || true)
+  [[ -n "$path" && -x "$path" ]] && { echo "$path"; return; }
   echo "soak.sh: error: $name not found under $bin_dir (build it first)" >&2
   exit 2
 }
@@ -61,6 +62,7 @@ echo "soak: ${seconds}s on $url prefix $prefix, scenario $scenario; logs in $out
 estimator_pid=$!
 pids+=("$estimator_pid")
 sleep 1
+kill -0 "$estimator_pid" 2>/dev/null || { echo "soak.sh: error: birotor-estimator did not start:" >&2; cat "$out/estimator.log" >&2; exit 2; }
 "$monitor" --lcm-url "$url" --prefix "$prefix" --pid "$estimator_pid" --duration-s "$seconds" \
   --interval-s "$interval_s" --warmup-s "$(( seconds >= 60 ? 10 : 2 ))" --csv "$out/timeseries.csv" \
   > "$out/monitor.txt" 2> "$out/monitor.log" &

@@ -28,7 +28,7 @@ bool AllFinite(const force_estimate_t& m) {
 
 TEST(LiveDaemonTest, RestartAfterSigkillPublishesValidEstimatesWithinHalfASecond) {
   const std::string url = PrivateUrl(7691);
-  const std::string prefix = "REL_CRASH_";
+  const std::string prefix = UniquePrefix("REL_CRASH_");
   DaemonListener listener(url, prefix);
   ASSERT_TRUE(listener.good());
   ChildProcess daemon, sim;
@@ -124,7 +124,7 @@ FreezeRun RunFreeze(int port, const std::string& prefix) {
 }
 
 TEST(LiveDaemonTest, FrozenSimulatorRecoversWithoutRestart) {
-  const FreezeRun run = RunFreeze(7692, "REL_STALE_");
+  const FreezeRun run = RunFreeze(7692, UniquePrefix("REL_STALE_"));
   ASSERT_TRUE(run.valid_before) << "no valid FORCE before the freeze";
   EXPECT_TRUE(run.status_during_freeze) << "the daemon must keep publishing ESTIMATOR_STATUS while inputs stop";
   // The health message shows the stopped input through its rate.
@@ -141,7 +141,7 @@ TEST(LiveDaemonTest, FrozenSimulatorRecoversWithoutRestart) {
 // built (services/estimator_service.cc, not owned here). Enable this test with
 // --gtest_also_run_disabled_tests, or drop DISABLED_ once the daemon does it.
 TEST(LiveDaemonTest, DISABLED_FrozenSimulatorIsFlaggedStale) {
-  const FreezeRun run = RunFreeze(7697, "REL_STALE2_");
+  const FreezeRun run = RunFreeze(7697, UniquePrefix("REL_STALE2_"));
   ASSERT_TRUE(run.valid_before);
   EXPECT_TRUE(run.stale_in_status || run.stale_in_force)
       << "INPUT_STALE never set, neither in ESTIMATOR_STATUS during the freeze nor in FORCE after it";
@@ -150,7 +150,7 @@ TEST(LiveDaemonTest, DISABLED_FrozenSimulatorIsFlaggedStale) {
 
 TEST(LiveDaemonTest, LogPlayedInALoopResetsTheFilterAndSaysSo) {
   const std::string url = PrivateUrl(7693);
-  const std::string prefix = "REL_LOOP_";
+  const std::string prefix = UniquePrefix("REL_LOOP_");
   const std::string log_path = TempPath("loop.lcm");
   {
     ChildProcess writer;

@@ -199,6 +199,10 @@ inline std::vector<std::string> SimCommand(const std::string& url, const std::st
           "scenario.duration_s=" + std::to_string(duration_s), "--log-level", "warn"};
 }
 
+// Channel prefix unique to this test process: the same test running from
+// another build directory at the same time (a shared machine) does not mix in.
+inline std::string UniquePrefix(const std::string& base) { return base + std::to_string(getpid()) + "_"; }
+
 // Temporary file path for a test's logs.
 inline std::string TempPath(const std::string& name) {
   return "/tmp/birotor_reliability_" + std::to_string(getpid()) + "_" + name;
