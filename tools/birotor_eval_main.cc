@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,22 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!log_path.empty()) scenarios = {log_path};
+  // Refuse unwritable outputs before minutes of simulation, not after.
+  std::error_code fs_error;
+  if (!plot_dir.empty() && !std::filesystem::is_directory(plot_dir) &&
+      !std::filesystem::create_directories(plot_dir, fs_error)) {
+    std::fprintf(stderr, "birotor-eval: error: cannot create --plot-dir %s\n", plot_dir.c_str());
+    return 1;
+  }
+  if (!markdown_out.empty()) {
+    std::FILE* probe = std::fopen(markdown_out.c_str(), "a");
+    if (probe == nullptr) {
+      std::fprintf(stderr, "birotor-eval: error: cannot write %s\n", markdown_out.c_str());
+      return 1;
+    }
+    std::fclose(probe);
+  }
+  int exit_code = 0;
 
   std::string table = MarkdownTableHeader();
   std::string error;
@@ -95,7 +112,8 @@ int main(int argc, char** argv) {
       if (!plot_dir.empty()) {
         const std::string png = plot_dir + "/" + label + "_" + method + ".png";
         if (!WriteForcePlot(run.forces, run.truth, label + " - " + method, png, &error)) {
-          spdlog::error("plot {}: {}", png, error);
+          std::fprintf(stderr, "birotor-eval: error: plot %s: %s\n", png.c_str(), error.c_str());
+          exit_code = 1;
         }
       }
     }
@@ -110,5 +128,5 @@ int main(int argc, char** argv) {
     std::fprintf(out, "%s", table.c_str());
     std::fclose(out);
   }
-  return 0;
+  return exit_code;
 }

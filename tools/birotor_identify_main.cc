@@ -3,7 +3,10 @@
 // parameter file the estimator and simulator load, plus a readable report.
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
+
 #include <chrono>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -61,6 +64,14 @@ int main(int argc, char** argv) {
     return kExitFailure;
   }
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
+  // Refuse an output folder we cannot write before the fit, not after it.
+  {
+    const std::filesystem::path folder = std::filesystem::absolute(cli.output).parent_path();
+    if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0) {
+      spdlog::error("cannot write --output {}: folder {} is missing or not writable", cli.output, folder.string());
+      return kExitFailure;
+    }
+  }
 
   const auto start = std::chrono::steady_clock::now();
   std::vector<SensorLog> logs;
