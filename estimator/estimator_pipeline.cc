@@ -11,6 +11,12 @@ namespace {
 
 bool FiniteWithin(double value, double limit) { return std::isfinite(value) && std::abs(value) <= limit; }
 
+// Stamps are microseconds on the vehicle clock: never negative, and below
+// 2^53 us (285 years) so that every difference of two stamps is exact in a
+// double and cannot overflow int64.
+constexpr int64_t kMaxUtime = int64_t{1} << 53;
+bool UtimeValid(int64_t utime) { return utime >= 0 && utime < kMaxUtime; }
+
 bool IsFinite(const ForceEstimate& e) {
   for (int i = 0; i < 2; ++i) {
     if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) || !std::isfinite(e.thrust_scale[i])) {
@@ -100,6 +106,10 @@ void EstimatorPipeline::ResetMethod(const char* reason, int64_t utime) {
 
 void EstimatorPipeline::OnMotor(const MotorSample& sample) {
   InputCounters& c = Counters(&health_, InputChannel::kMotor);
+  if (!UtimeValid(sample.utime)) {
+    ++c.rejected_invalid;
+    return;
+  }
   const double limit = config_.pipeline.max_omega_rad_s;
   bool valid = FiniteWithin(sample.omega_cmd_rad_s[0], limit) && FiniteWithin(sample.omega_cmd_rad_s[1], limit);
   for (double meas : sample.omega_meas_rad_s) valid = valid && (std::isnan(meas) || FiniteWithin(meas, limit));
@@ -126,6 +136,10 @@ void EstimatorPipeline::OnMotor(const MotorSample& sample) {
 
 void EstimatorPipeline::OnImu(const ImuSample& sample) {
   InputCounters& c = Counters(&health_, InputChannel::kImu);
+  if (!UtimeValid(sample.utime)) {
+    ++c.rejected_invalid;
+    return;
+  }
   if (!FiniteWithin(sample.gyro_y_rad_s, config_.pipeline.max_gyro_rad_s)) {
     ++c.rejected_invalid;
     return;
@@ -146,6 +160,10 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
 
 void EstimatorPipeline::OnPose(const PoseSample& sample) {
   InputCounters& c = Counters(&health_, InputChannel::kPose);
+  if (!UtimeValid(sample.utime)) {
+    ++c.rejected_invalid;
+    return;
+  }
   if (!std::isfinite(sample.x_m) || !std::isfinite(sample.z_m) || !std::isfinite(sample.phi_rad)) {
     ++c.rejected_invalid;
     return;
@@ -165,6 +183,10 @@ void EstimatorPipeline::OnPose(const PoseSample& sample) {
 
 bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* estimate) {
   InputCounters& c = Counters(&health_, InputChannel::kStrain);
+  if (!UtimeValid(sample.utime)) {
+    ++c.rejected_invalid;
+    return false;
+  }
   const double limit = config_.pipeline.max_deflection_rad;
   if (!FiniteWithin(sample.deflection_rad[0], limit) || !FiniteWithin(sample.deflection_rad[1], limit)) {
     ++c.rejected_invalid;

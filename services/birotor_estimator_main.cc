@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
   app.add_option("--overload-max-delay-s", options.overload_max_delay_s,
                  "Strain packets queued longer than this are dropped and counted [s]")
       ->check(CLI::Range(0.001, 60.0));
+  app.add_option("--stale-input-s", options.stale_input_wall_s,
+                 "No strain packet for this long (host clock): ESTIMATOR_STATUS says INPUT_STALE [s]")
+      ->check(CLI::Range(0.001, 60.0));
   int realtime_priority = 0;
   app.add_option("--realtime-priority", realtime_priority,
                  "SCHED_FIFO priority (1-99) and locked memory; 0 keeps the normal scheduler")

@@ -148,6 +148,7 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
     return false;
   }
   if (receive_wall_utime >= 0) {
+    last_strain_arrival_wall_us_ = receive_wall_utime;
     const int64_t queued_us = WallNowUs() - receive_wall_utime;
     if (static_cast<double>(queued_us) > options_.overload_max_delay_s * 1e6) {
       pipeline_.CountOverloadDrop(InputChannel::kStrain);
@@ -188,6 +189,10 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
     context.processing_time_max_us = kNaN;
   }
   BuildStatusMessage(pipeline_.health(), pipeline_.method_name(), context, &status_message_);
+  if (last_strain_arrival_wall_us_ >= 0 &&
+      static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6) {
+    status_message_.status = (status_message_.status | kStatusInputStale) & ~kStatusValid;
+  }
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) {
     const int64_t timestamp_us = pipeline_.health().newest_utime >= 0

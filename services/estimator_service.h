@@ -60,6 +60,10 @@ struct EstimatorServiceOptions {
   bool report_processing_time = true;
   // Shortest interval between two warnings of the same kind [s].
   double warning_interval_s = 1.0;
+  // Live only: when no strain packet has arrived for this long on the host
+  // clock, ESTIMATOR_STATUS says INPUT_STALE (and not VALID). FORCE cannot
+  // say it, since there is no strain sample to publish one for [s].
+  double stale_input_wall_s = 0.1;
 };
 
 class EstimatorService {
@@ -135,6 +139,7 @@ class EstimatorService {
   int32_t status_seq_ = 0;
   int64_t forces_published_ = 0;
   int64_t next_status_utime_ = -1;  // vehicle-clock status schedule [us]
+  int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
 };

@@ -140,7 +140,7 @@ TEST(LiveDaemonTest, FrozenSimulatorRecoversWithoutRestart) {
 // flagged: it needs a wall-clock input-age check when ESTIMATOR_STATUS is
 // built (services/estimator_service.cc, not owned here). Enable this test with
 // --gtest_also_run_disabled_tests, or drop DISABLED_ once the daemon does it.
-TEST(LiveDaemonTest, DISABLED_FrozenSimulatorIsFlaggedStale) {
+TEST(LiveDaemonTest, FrozenSimulatorIsFlaggedStale) {
   const FreezeRun run = RunFreeze(7697, UniquePrefix("REL_STALE2_"));
   ASSERT_TRUE(run.valid_before);
   EXPECT_TRUE(run.stale_in_status || run.stale_in_force)
