@@ -77,6 +77,21 @@ EstimatorPipeline::TimeOrder EstimatorPipeline::CheckTime(const InputCounters& c
   return back_s > config_.pipeline.time_backwards_reset_s ? TimeOrder::kBackwardsJump : TimeOrder::kOutOfOrder;
 }
 
+bool EstimatorPipeline::Admit(InputCounters* c, int64_t utime, int32_t seq, bool* backwards_jump) {
+  const TimeOrder order = CheckTime(*c, utime);
+  if (order == TimeOrder::kDuplicate) {
+    ++c->duplicates;
+    return false;
+  }
+  if (order == TimeOrder::kOutOfOrder) {
+    ++c->out_of_order;
+    return false;
+  }
+  *backwards_jump = order == TimeOrder::kBackwardsJump;
+  Accept(c, utime, seq, *backwards_jump);
+  return true;
+}
+
 void EstimatorPipeline::Accept(InputCounters* c, int64_t utime, int32_t seq, bool backwards_jump) {
   if (c->last_utime >= 0 && !backwards_jump) {
     // seq wraps at int32: compare in unsigned arithmetic.
@@ -117,16 +132,8 @@ void EstimatorPipeline::OnMotor(const MotorSample& sample) {
     ++c.rejected_invalid;
     return;
   }
-  const TimeOrder order = CheckTime(c, sample.utime);
-  if (order == TimeOrder::kDuplicate) {
-    ++c.duplicates;
-    return;
-  }
-  if (order == TimeOrder::kOutOfOrder) {
-    ++c.out_of_order;
-    return;
-  }
-  Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+  bool backwards = false;
+  if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
   if (std::isnan(sample.omega_meas_rad_s[0]) || std::isnan(sample.omega_meas_rad_s[1])) ++c.telemetry_missing;
   last_motor_ = sample;
   has_motor_ = true;
@@ -144,16 +151,8 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
     ++c.rejected_invalid;
     return;
   }
-  const TimeOrder order = CheckTime(c, sample.utime);
-  if (order == TimeOrder::kDuplicate) {
-    ++c.duplicates;
-    return;
-  }
-  if (order == TimeOrder::kOutOfOrder) {
-    ++c.out_of_order;
-    return;
-  }
-  Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+  bool backwards = false;
+  if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
   method_->AddImu(sample);
   if (config_.method == "ekf" && config_.ekf.use_gyro) ++c.fused;
 }
@@ -168,17 +167,9 @@ void EstimatorPipeline::OnPose(const PoseSample& sample) {
     ++c.rejected_invalid;
     return;
   }
-  const TimeOrder order = CheckTime(c, sample.utime);
-  if (order == TimeOrder::kDuplicate) {
-    ++c.duplicates;
-    return;
-  }
-  if (order == TimeOrder::kOutOfOrder) {
-    ++c.out_of_order;
-    return;
-  }
   // Accepted for the health counters; no method uses the pose yet.
-  Accept(&c, sample.utime, sample.seq, order == TimeOrder::kBackwardsJump);
+  bool backwards = false;
+  Admit(&c, sample.utime, sample.seq, &backwards);
 }
 
 bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* estimate) {
@@ -192,18 +183,9 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     ++c.rejected_invalid;
     return false;
   }
-  const TimeOrder order = CheckTime(c, sample.utime);
-  if (order == TimeOrder::kDuplicate) {
-    ++c.duplicates;
-    return false;
-  }
-  if (order == TimeOrder::kOutOfOrder) {
-    ++c.out_of_order;
-    return false;
-  }
   const int64_t previous_utime = c.last_utime;
-  const bool backwards = order == TimeOrder::kBackwardsJump;
-  Accept(&c, sample.utime, sample.seq, backwards);
+  bool backwards = false;
+  if (!Admit(&c, sample.utime, sample.seq, &backwards)) return false;
 
   bool stale = false;
   if (!started_) {

@@ -85,6 +85,9 @@ class EstimatorPipeline {
   enum class TimeOrder { kInOrder, kDuplicate, kOutOfOrder, kBackwardsJump };
   // Classifies utime against the newest accepted sample of the channel.
   TimeOrder CheckTime(const InputCounters& counters, int64_t utime) const;
+  // Drops and counts duplicate and out-of-order samples (false); otherwise
+  // accepts the sample and says whether it jumped back in time.
+  bool Admit(InputCounters* counters, int64_t utime, int32_t seq, bool* backwards_jump);
   // Accepts a sample: seq gap book-keeping, last_utime/last_seq, rates.
   void Accept(InputCounters* counters, int64_t utime, int32_t seq, bool backwards_jump);
   // Re-initialises the method and re-feeds the newest motor command if it is
