@@ -44,8 +44,8 @@ const std::vector<Event>& GentleEvents(double duration_s) {
   if (recorded_s != duration_s) {
     Recorder recorder;
     Simulator simulator(LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml",
-                                     {"scenario.duration_s=" + std::to_string(duration_s),
-                                      "sensors.pose.enabled=false", "sensors.truth.enabled=false"}));
+                                     {"scenario.duration_s=" + std::to_string(duration_s), "sensors.pose.enabled=false",
+                                      "sensors.truth.enabled=false"}));
     simulator.Run(&recorder);
     events = std::move(recorder.events);
     recorded_s = duration_s;
@@ -105,8 +105,12 @@ void BM_PipelineGentle10s(benchmark::State& state) {
     ForceEstimate estimate;
     for (const Event& e : events) {
       switch (e.kind) {
-        case Event::kMotor: pipeline.OnMotor(e.motor); break;
-        case Event::kImu: pipeline.OnImu(e.imu); break;
+        case Event::kMotor:
+          pipeline.OnMotor(e.motor);
+          break;
+        case Event::kImu:
+          pipeline.OnImu(e.imu);
+          break;
         case Event::kStrain:
           pipeline.OnStrain(e.strain, &estimate);
           ++strain_samples;
@@ -116,8 +120,7 @@ void BM_PipelineGentle10s(benchmark::State& state) {
     benchmark::DoNotOptimize(estimate);
   }
   state.SetItemsProcessed(strain_samples);
-  state.counters["real_time_factor"] =
-      benchmark::Counter(10.0 * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["real_time_factor"] = benchmark::Counter(10.0 * state.iterations(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PipelineGentle10s)->Unit(benchmark::kMillisecond);
 

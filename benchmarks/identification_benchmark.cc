@@ -48,8 +48,7 @@ SensorLog ScenarioLog(const std::string& name, const char* env_var, VehicleParam
   return log;
 }
 
-void BM_Identify(benchmark::State& state, const std::string& name, const char* env_var,
-                 IdentificationMode mode) {
+void BM_Identify(benchmark::State& state, const std::string& name, const char* env_var, IdentificationMode mode) {
   VehicleParams truth;
   const SensorLog log = ScenarioLog(name, env_var, &truth);
   // The reference file is the base, as `birotor-identify --params` defaults to.
@@ -63,12 +62,9 @@ void BM_Identify(benchmark::State& state, const std::string& name, const char* e
     state.SkipWithError("identification refused");
     return;
   }
-  state.counters["k_error_pct"] =
-      100.0 * (result.params.arm_stiffness_n_m_rad / truth.arm_stiffness_n_m_rad - 1.0);
-  state.counters["c_T_error_pct"] =
-      100.0 * (result.params.thrust_coeff_n_s2_rad2 / truth.thrust_coeff_n_s2_rad2 - 1.0);
-  state.counters["tau_m_error_pct"] =
-      100.0 * (result.params.motor_time_constant_s / truth.motor_time_constant_s - 1.0);
+  state.counters["k_error_pct"] = 100.0 * (result.params.arm_stiffness_n_m_rad / truth.arm_stiffness_n_m_rad - 1.0);
+  state.counters["c_T_error_pct"] = 100.0 * (result.params.thrust_coeff_n_s2_rad2 / truth.thrust_coeff_n_s2_rad2 - 1.0);
+  state.counters["tau_m_error_pct"] = 100.0 * (result.params.motor_time_constant_s / truth.motor_time_constant_s - 1.0);
 }
 
 BENCHMARK_CAPTURE(BM_Identify, bench_120s, std::string("bench"), "BIROTOR_BENCH_LOG", IdentificationMode::kBench)

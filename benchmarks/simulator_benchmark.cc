@@ -22,9 +22,7 @@ std::string ScenarioFile(const std::string& name) {
 }
 
 // 60 s of the named scenario (the figure is for gentle).
-Scenario SixtySeconds(const std::string& name) {
-  return LoadScenario(ScenarioFile(name), {"scenario.duration_s=60"});
-}
+Scenario SixtySeconds(const std::string& name) { return LoadScenario(ScenarioFile(name), {"scenario.duration_s=60"}); }
 
 struct LogSink : SampleSink {
   LogWriter* writer;
@@ -34,9 +32,7 @@ struct LogSink : SampleSink {
   void OnMotor(const MotorSample& s) override { writer->WriteMessage(channels.motor, s.utime, ToMessage(s)); }
   void OnImu(const ImuSample& s) override { writer->WriteMessage(channels.imu, s.utime, ToMessage(s)); }
   void OnPose(const PoseSample& s) override { writer->WriteMessage(channels.pose, s.utime, ToMessage(s)); }
-  void OnLoadCell(const LoadCellSample& s) override {
-    writer->WriteMessage(channels.loadcell, s.utime, ToMessage(s));
-  }
+  void OnLoadCell(const LoadCellSample& s) override { writer->WriteMessage(channels.loadcell, s.utime, ToMessage(s)); }
   void OnTruth(const TruthSample& s) override { writer->WriteMessage(channels.truth, s.utime, ToMessage(s)); }
 };
 
@@ -49,8 +45,7 @@ void BM_Simulate60s(benchmark::State& state, const std::string& name) {
     sim.Run(&sink);
     benchmark::DoNotOptimize(sim.state());
   }
-  state.counters["realtime_factor"] =
-      benchmark::Counter(60.0 * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["realtime_factor"] = benchmark::Counter(60.0 * state.iterations(), benchmark::Counter::kIsRate);
 }
 
 // Engine plus the LCM log, as birotor-sim --output does.
@@ -73,8 +68,7 @@ void BM_WriteLog60s(benchmark::State& state, const std::string& name) {
   }
   std::remove(path.c_str());
   state.counters["events"] = static_cast<double>(events);
-  state.counters["realtime_factor"] =
-      benchmark::Counter(60.0 * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["realtime_factor"] = benchmark::Counter(60.0 * state.iterations(), benchmark::Counter::kIsRate);
 }
 
 BENCHMARK_CAPTURE(BM_Simulate60s, gentle, std::string("gentle"))->Unit(benchmark::kMillisecond)->UseRealTime();

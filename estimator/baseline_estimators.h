@@ -33,15 +33,15 @@ class InversionEstimator : public ForceEstimator {
   VehicleParams params_;
   InversionOptions options_;
   MotorSpeedTracker motor_;
-  Eigen::Matrix<double, 2, 4> a2_;   // rows bs_dd, bd_dd; columns bs, bd, bs_dot, bd_dot
-  Eigen::Matrix2d b2_inverse_;       // (d[bs_dd; bd_dd] / d[f1; f2])^-1
-  double bd0_rad_ = 0;               // b_d at hover
-  double bs0_rad_ = 0;               // b_s at hover
-  double f0_n_ = 0;                  // hover force per rotor
+  Eigen::Matrix<double, 2, 4> a2_;  // rows bs_dd, bd_dd; columns bs, bd, bs_dot, bd_dot
+  Eigen::Matrix2d b2_inverse_;      // (d[bs_dd; bd_dd] / d[f1; f2])^-1
+  double bd0_rad_ = 0;              // b_d at hover
+  double bs0_rad_ = 0;              // b_s at hover
+  double f0_n_ = 0;                 // hover force per rotor
   // Ring buffer of the newest strain samples.
   int64_t utime_[kMaxWindow] = {};
   double deflection_rad_[kMaxWindow][2] = {};
-  int head_ = 0;    // next slot to write
+  int head_ = 0;  // next slot to write
   int count_ = 0;
 };
 

@@ -17,8 +17,8 @@
 // so that M q_ddot + C + G = tau. G matches thesis eq. 3.12 row by row.
 #pragma once
 
-#include <Eigen/Core>
 #include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <cmath>
 
 #include "estimator/vehicle_params.h"
@@ -40,15 +40,15 @@ using CoordMatrix = Eigen::Matrix<T, kNumCoordinates, kNumCoordinates>;
 // generalized thrust of thesis eq. 3.10, evaluated at one (q, v, f).
 template <typename T>
 struct DynamicsTerms {
-  CoordMatrix<T> mass;            // M(q) [kg, kg m, kg m^2]
-  Coords<T> coriolis;             // C(q, v) [N, N m]
-  Coords<T> gravity_spring;       // G(q) plus hinge damping d b_i_dot [N, N m]
-  Coords<T> generalized_thrust;   // tau(q, f) [N, N m]
+  CoordMatrix<T> mass;           // M(q) [kg, kg m, kg m^2]
+  Coords<T> coriolis;            // C(q, v) [N, N m]
+  Coords<T> gravity_spring;      // G(q) plus hinge damping d b_i_dot [N, N m]
+  Coords<T> generalized_thrust;  // tau(q, f) [N, N m]
 };
 
 template <typename T>
-DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v,
-                                      const T& force1_n, const T& force2_n) {
+DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
+                                      const T& force2_n) {
   using std::cos;
   using std::sin;
   const double m = p.body_mass_kg, mp = p.tip_mass_kg, L = p.arm_length_m, g = p.gravity_m_s2;
@@ -107,8 +107,8 @@ DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q
 
 // Generalized acceleration q_ddot = M^-1 (tau - C - G) (thesis eq. 3.14).
 template <typename T>
-Coords<T> GeneralizedAcceleration(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v,
-                                  const T& force1_n, const T& force2_n) {
+Coords<T> GeneralizedAcceleration(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
+                                  const T& force2_n) {
   const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, force1_n, force2_n);
   const Coords<T> rhs = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
   return terms.mass.llt().solve(rhs);

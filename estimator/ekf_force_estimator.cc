@@ -12,15 +12,15 @@ constexpr double kVarianceFloor[kEkfStateSize] = {
     1e-16, 1e-16,  // b [rad^2]
     1e-12,         // phi_dot [(rad/s)^2]
     1e-12, 1e-12,  // b_dot [(rad/s)^2]
-    1e-6, 1e-6,    // omega [(rad/s)^2]
+    1e-6,  1e-6,   // omega [(rad/s)^2]
     1e-10, 1e-10,  // mu [1]
 };
 constexpr double kVarianceCeiling[kEkfStateSize] = {
-    1e-2, 1e-2,    // b: 0.1 rad
-    1e4,           // phi_dot: 100 rad/s
-    1e4, 1e4,      // b_dot
-    1e6, 1e6,      // omega: 1000 rad/s
-    4.0, 4.0,      // mu: 2
+    1e-2, 1e-2,  // b: 0.1 rad
+    1e4,         // phi_dot: 100 rad/s
+    1e4,  1e4,   // b_dot
+    1e6,  1e6,   // omega: 1000 rad/s
+    4.0,  4.0,   // mu: 2
 };
 constexpr double kMicrosecond = 1e-6;
 
@@ -100,8 +100,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     covariance_(kDeflectionIndex[i], kDeflectionIndex[i]) = strain_model_.noise(i, i);
     covariance_(kDeflectionRateIndex[i], kDeflectionRateIndex[i]) =
         options_.initial_deflection_rate_std_rad_s * options_.initial_deflection_rate_std_rad_s;
-    covariance_(kOmegaIndex[i], kOmegaIndex[i]) =
-        options_.initial_omega_std_rad_s * options_.initial_omega_std_rad_s;
+    covariance_(kOmegaIndex[i], kOmegaIndex[i]) = options_.initial_omega_std_rad_s * options_.initial_omega_std_rad_s;
     covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) =
         options_.initial_thrust_scale_std * options_.initial_thrust_scale_std;
   }

@@ -48,7 +48,7 @@ class EkfForceEstimator : public ForceEstimator {
   StrainMeasurementModel strain_model_;
   MotorSpeedMeasurementModel motor_model_;
   GyroMeasurementModel gyro_model_;
-  EkfMatrix process_noise_psd_;   // diagonal Qc; Q = Qc dt
+  EkfMatrix process_noise_psd_;  // diagonal Qc; Q = Qc dt
 
   bool initialized_ = false;
   bool converged_ = false;

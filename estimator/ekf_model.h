@@ -4,10 +4,11 @@
 // scales mu_i, so that f_i = mu_i c_T omega_i^2.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <ceres/jet.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "estimator/birotor_dynamics.h"
 #include "estimator/plant.h"
@@ -108,8 +109,8 @@ struct StrainMeasurementModel {
     noise = Covariance::Identity() * (noise_rad * noise_rad);
   }
   static Vector Predict(const EkfState& x) { return Vector(x(kDeflection1), x(kDeflection2)); }
-  Jacobian h_jacobian;   // H [1]
-  Covariance noise;      // R [rad^2]
+  Jacobian h_jacobian;  // H [1]
+  Covariance noise;     // R [rad^2]
 };
 
 // Motor telemetry: z = (omega1, omega2).
@@ -125,8 +126,8 @@ struct MotorSpeedMeasurementModel {
     noise = Covariance::Identity() * (noise_rad_s * noise_rad_s);
   }
   static Vector Predict(const EkfState& x) { return Vector(x(kOmega1), x(kOmega2)); }
-  Jacobian h_jacobian;   // H [1]
-  Covariance noise;      // R [(rad/s)^2]
+  Jacobian h_jacobian;  // H [1]
+  Covariance noise;     // R [(rad/s)^2]
 };
 
 // Gyro: z = phi_dot (body pitch rate; the body rate of a rigid body is the
@@ -142,8 +143,8 @@ struct GyroMeasurementModel {
     noise(0, 0) = noise_rad_s * noise_rad_s;
   }
   static Vector Predict(const EkfState& x) { return Vector(x(kPitchRate)); }
-  Jacobian h_jacobian;   // H [1]
-  Covariance noise;      // R [(rad/s)^2]
+  Jacobian h_jacobian;  // H [1]
+  Covariance noise;     // R [(rad/s)^2]
 };
 
 // Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
@@ -222,8 +223,7 @@ inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& /*
   Coords<Jet> q, v;
   q << Jet(0.0), Jet(0.0), Jet(0.0), Jet(x(kDeflection1), 0), Jet(x(kDeflection2), 1);
   v << Jet(0.0), Jet(0.0), Jet(x(kPitchRate), 2), Jet(x(kDeflectionRate1), 3), Jet(x(kDeflectionRate2), 4);
-  const DynamicsTerms<Jet> terms =
-      ComputeDynamicsTerms<Jet>(params_, q, v, Jet(Force(x, 0), 5), Jet(Force(x, 1), 6));
+  const DynamicsTerms<Jet> terms = ComputeDynamicsTerms<Jet>(params_, q, v, Jet(Force(x, 0), 5), Jet(Force(x, 1), 6));
   CoordMatrix<double> mass;
   Coords<double> rhs;
   Eigen::Matrix<double, kNumCoordinates, kJetSize> d_rhs;

@@ -1,7 +1,8 @@
 #include "estimator/equilibrium.h"
 
-#include <Eigen/LU>
 #include <ceres/jet.h>
+
+#include <Eigen/LU>
 #include <cmath>
 
 namespace birotor {

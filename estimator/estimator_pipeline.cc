@@ -34,10 +34,14 @@ InputCounters& Counters(PipelineHealth* health, InputChannel channel) {
 
 const char* InputChannelName(InputChannel channel) {
   switch (channel) {
-    case InputChannel::kStrain: return "STRAIN";
-    case InputChannel::kMotor: return "MOTOR";
-    case InputChannel::kImu: return "IMU";
-    case InputChannel::kPose: return "POSE";
+    case InputChannel::kStrain:
+      return "STRAIN";
+    case InputChannel::kMotor:
+      return "MOTOR";
+    case InputChannel::kImu:
+      return "IMU";
+    case InputChannel::kPose:
+      return "POSE";
   }
   return "?";
 }

@@ -21,30 +21,30 @@ const char* InputChannelName(InputChannel channel);  // "STRAIN", "MOTOR", "IMU"
 
 // Counters for one input since start-up (fields as in lcmtypes/input_health_t.lcm).
 struct InputCounters {
-  int64_t received = 0;          // every packet, good or bad (CountReceived)
+  int64_t received = 0;  // every packet, good or bad (CountReceived)
   int64_t fused = 0;
   int64_t rejected_gate = 0;
-  int64_t rejected_invalid = 0;  // non-finite / out-of-range fields
-  int64_t decode_errors = 0;     // CountDecodeError
-  int64_t out_of_order = 0;      // utime older than the newest accepted
-  int64_t duplicates = 0;        // utime equal to the newest accepted
-  int64_t gaps = 0;              // forward seq jumps
-  int64_t missing_samples = 0;   // sum of jump sizes
-  int64_t dropped_overload = 0;  // CountOverloadDrop
+  int64_t rejected_invalid = 0;   // non-finite / out-of-range fields
+  int64_t decode_errors = 0;      // CountDecodeError
+  int64_t out_of_order = 0;       // utime older than the newest accepted
+  int64_t duplicates = 0;         // utime equal to the newest accepted
+  int64_t gaps = 0;               // forward seq jumps
+  int64_t missing_samples = 0;    // sum of jump sizes
+  int64_t dropped_overload = 0;   // CountOverloadDrop
   int64_t telemetry_missing = 0;  // MOTOR only: accepted samples with a NaN omega_meas
-  int64_t last_utime = -1;       // newest accepted sample [us]; -1 if none
+  int64_t last_utime = -1;        // newest accepted sample [us]; -1 if none
   int32_t last_seq = 0;
   int64_t accepted_in_period = 0;  // for rate_hz; cleared by TakePeriod()
 };
 
 struct PipelineHealth {
   InputCounters inputs[kNumInputChannels];
-  int64_t newest_utime = -1;      // newest sample time over all inputs [us]
+  int64_t newest_utime = -1;  // newest sample time over all inputs [us]
   int64_t resets = 0;
   // "start" (the first strain sample counts as a reset), "gap",
   // "time_backwards", "numerical"; empty before any.
   std::string last_reset_reason;
-  int64_t published = 0;          // force estimates produced
+  int64_t published = 0;  // force estimates produced
   int32_t last_status = 0;
   ForceEstimate last_estimate;
   // Strain NIS over the current period (cleared by TakePeriod()).
@@ -94,7 +94,7 @@ class EstimatorPipeline {
   // still current at utime. reason must be a string literal.
   void ResetMethod(const char* reason, int64_t utime);
 
-  bool started_ = false;          // a strain sample has been accepted
+  bool started_ = false;             // a strain sample has been accepted
   bool reset_flag_pending_ = false;  // kStatusFilterReset on the next estimate
   bool has_motor_ = false;
   MotorSample last_motor_;

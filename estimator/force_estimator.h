@@ -9,10 +9,10 @@ namespace birotor {
 
 // Outcome of a strain update, for health reporting.
 struct StrainUpdateInfo {
-  bool fused = false;             // the sample changed the estimate
-  bool gated = false;             // rejected by the chi-square innovation gate
-  double nis = 0;                 // normalised innovation squared (2 dof); NaN if none
-  bool reset = false;             // the method re-initialised itself on this sample
+  bool fused = false;  // the sample changed the estimate
+  bool gated = false;  // rejected by the chi-square innovation gate
+  double nis = 0;      // normalised innovation squared (2 dof); NaN if none
+  bool reset = false;  // the method re-initialised itself on this sample
 };
 
 // One estimation method. Samples arrive already validated and in time order

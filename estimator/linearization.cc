@@ -1,14 +1,15 @@
 #include "estimator/linearization.h"
 
+#include <ceres/jet.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <ceres/jet.h>
 #include <cmath>
 
 namespace birotor {
 
-LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Coords<double>& v0,
-                      double force1_n, double force2_n) {
+LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Coords<double>& v0, double force1_n,
+                      double force2_n) {
   using Jet = ceres::Jet<double, kMechStateSize + 2>;
   Coords<Jet> q, v;
   for (int i = 0; i < kNumCoordinates; ++i) {
@@ -40,9 +41,9 @@ LinearModel LinearizeAtHover(const VehicleParams& p) {
 LinearModel ToSumDifferenceCoordinates(const LinearModel& model) {
   MechMatrix t = MechMatrix::Identity();
   for (int offset : {0, kNumCoordinates}) {
-    t(offset + kB1, offset + kB1) = 1.0;   // b_s = b1 + b2
+    t(offset + kB1, offset + kB1) = 1.0;  // b_s = b1 + b2
     t(offset + kB1, offset + kB2) = 1.0;
-    t(offset + kB2, offset + kB1) = 1.0;   // b_d = b1 - b2
+    t(offset + kB2, offset + kB1) = 1.0;  // b_d = b1 - b2
     t(offset + kB2, offset + kB2) = -1.0;
   }
   LinearModel out;
@@ -59,7 +60,7 @@ AugMatrix AugmentWithForces(const LinearModel& model) {
 }
 
 const std::vector<std::string>& AugmentedStateNames() {
-  static const std::vector<std::string> names = {"x",     "z",     "phi",     "b1",     "b2", "x_dot",
+  static const std::vector<std::string> names = {"x",     "z",       "phi",    "b1",     "b2", "x_dot",
                                                  "z_dot", "phi_dot", "b1_dot", "b2_dot", "f1", "f2"};
   return names;
 }

@@ -12,8 +12,8 @@
 
 namespace birotor {
 
-constexpr int kMechStateSize = 10;   // x = [q; v]
-constexpr int kAugStateSize = 12;    // x~ = [q; v; f1; f2]
+constexpr int kMechStateSize = 10;  // x = [q; v]
+constexpr int kAugStateSize = 12;   // x~ = [q; v; f1; f2]
 enum AugmentedIndex : int { kAugForce1 = 10, kAugForce2 = 11 };
 
 using MechMatrix = Eigen::Matrix<double, kMechStateSize, kMechStateSize>;
@@ -27,8 +27,8 @@ struct LinearModel {
 };
 
 // Exact Jacobians of [v; M^-1 (tau - C - G)] with respect to x and f (Jets).
-LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Coords<double>& v0,
-                      double force1_n, double force2_n);
+LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Coords<double>& v0, double force1_n,
+                      double force2_n);
 
 // Linearization at the hover equilibrium of SolveHoverEquilibrium().
 LinearModel LinearizeAtHover(const VehicleParams& p);

@@ -44,8 +44,7 @@ void MotorSpeedTracker::Advance(int64_t utime) {
     model_utime_ = utime;
   }
   for (int i = 0; i < 2; ++i) {
-    from_telemetry_[i] =
-        telemetry_utime_[i] >= 0 && (utime - telemetry_utime_[i]) * 1e-6 <= telemetry_timeout_s_;
+    from_telemetry_[i] = telemetry_utime_[i] >= 0 && (utime - telemetry_utime_[i]) * 1e-6 <= telemetry_timeout_s_;
     omega_rad_s_[i] = from_telemetry_[i] ? telemetry_rad_s_[i] : model_rad_s_[i];
   }
 }

@@ -31,8 +31,8 @@ class MotorSpeedTracker {
   double telemetry_timeout_s_;
   bool has_motor_ = false;
   int64_t model_utime_ = 0;
-  double command_rad_s_[2] = {0, 0};     // clamped command in effect
-  double model_rad_s_[2] = {0, 0};       // motor-model speed at model_utime_
+  double command_rad_s_[2] = {0, 0};  // clamped command in effect
+  double model_rad_s_[2] = {0, 0};    // motor-model speed at model_utime_
   double telemetry_rad_s_[2] = {0, 0};
   int64_t telemetry_utime_[2] = {-1, -1};
   double omega_rad_s_[2] = {0, 0};

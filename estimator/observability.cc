@@ -31,8 +31,16 @@ Eigen::VectorXd BalancingScale(const Eigen::MatrixXd& a) {
       if (col == 0 || row == 0) continue;
       double f = 1.0;
       const double s = col + row;
-      while (col < row / 2.0) { col *= 2.0; row /= 2.0; f *= 2.0; }
-      while (col >= row * 2.0) { col /= 2.0; row *= 2.0; f /= 2.0; }
+      while (col < row / 2.0) {
+        col *= 2.0;
+        row /= 2.0;
+        f *= 2.0;
+      }
+      while (col >= row * 2.0) {
+        col /= 2.0;
+        row *= 2.0;
+        f /= 2.0;
+      }
       if ((col + row) < 0.95 * s) {
         changed = true;
         d(i) *= f;
@@ -85,8 +93,8 @@ SubspaceReport Analyze(const Eigen::MatrixXd& a, const Eigen::MatrixXd& c, const
 
   // Back to original coordinates: x = D x_s.
   Eigen::MatrixXd hidden = d.asDiagonal() * basis;
-  if (hidden.cols() > 0) hidden = Eigen::HouseholderQR<Eigen::MatrixXd>(hidden).householderQ() *
-                                  Eigen::MatrixXd::Identity(n, hidden.cols());
+  if (hidden.cols() > 0)
+    hidden = Eigen::HouseholderQR<Eigen::MatrixXd>(hidden).householderQ() * Eigen::MatrixXd::Identity(n, hidden.cols());
   report.hidden_basis = hidden;
   for (int j = 0; j < n; ++j) {
     if (basis.cols() == 0) break;

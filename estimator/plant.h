@@ -25,8 +25,8 @@ using PlantState = Eigen::Matrix<double, kPlantStateSize, 1>;
 
 // Inputs held constant over one integration step.
 struct PlantInput {
-  double omega_cmd_rad_s[2] = {0, 0};   // rotor speed commands (clamped inside)
-  double thrust_scale[2] = {1, 1};      // mu_i = s_i (1 + eta_i) [1]
+  double omega_cmd_rad_s[2] = {0, 0};  // rotor speed commands (clamped inside)
+  double thrust_scale[2] = {1, 1};     // mu_i = s_i (1 + eta_i) [1]
 };
 
 inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {

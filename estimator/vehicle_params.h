@@ -6,18 +6,18 @@
 namespace birotor {
 
 struct VehicleParams {
-  double body_mass_kg = 4.0;                  // m: body mass
-  double tip_mass_kg = 0.28812;               // m_p: lumped motor+prop+arm mass at each tip
-  double arm_length_m = 0.25;                 // L: hinge to rotor axis
-  double body_inertia_kg_m2 = 0.05;           // J: body inertia about its centre (y axis)
-  double arm_stiffness_n_m_rad = 2628.0;      // k: torsional stiffness of each strain-gauge hinge
-  double arm_damping_n_m_s_rad = 0.25;        // d: viscous damping of each hinge
-  double gravity_m_s2 = 9.81;                 // g
-  double thrust_coeff_n_s2_rad2 = 4.6e-5;     // c_T: nominal thrust map f = c_T omega^2
-  double motor_time_constant_s = 0.035;       // tau_m: first-order rotor speed response
-  double omega_max_rad_s = 1200.0;            // command clamp [0, omega_max]
-  double turbulence_std = 0.01;               // eta: std of the relative thrust turbulence
-  double turbulence_corr_time_s = 0.1;        // eta: Gauss-Markov correlation time
+  double body_mass_kg = 4.0;               // m: body mass
+  double tip_mass_kg = 0.28812;            // m_p: lumped motor+prop+arm mass at each tip
+  double arm_length_m = 0.25;              // L: hinge to rotor axis
+  double body_inertia_kg_m2 = 0.05;        // J: body inertia about its centre (y axis)
+  double arm_stiffness_n_m_rad = 2628.0;   // k: torsional stiffness of each strain-gauge hinge
+  double arm_damping_n_m_s_rad = 0.25;     // d: viscous damping of each hinge
+  double gravity_m_s2 = 9.81;              // g
+  double thrust_coeff_n_s2_rad2 = 4.6e-5;  // c_T: nominal thrust map f = c_T omega^2
+  double motor_time_constant_s = 0.035;    // tau_m: first-order rotor speed response
+  double omega_max_rad_s = 1200.0;         // command clamp [0, omega_max]
+  double turbulence_std = 0.01;            // eta: std of the relative thrust turbulence
+  double turbulence_corr_time_s = 0.1;     // eta: Gauss-Markov correlation time
 
   // Total mass m + 2 m_p [kg].
   double TotalMass() const { return body_mass_kg + 2.0 * tip_mass_kg; }

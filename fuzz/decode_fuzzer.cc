@@ -47,15 +47,33 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ++data;
   --size;
   switch (selector % 9) {
-    case 0: DecodeAndCheck<birotor::strain_t>(data, size); break;
-    case 1: DecodeAndCheck<birotor::motor_t>(data, size); break;
-    case 2: DecodeAndCheck<birotor::imu_t>(data, size); break;
-    case 3: DecodeAndCheck<birotor::pose_t>(data, size); break;
-    case 4: DecodeAndCheck<birotor::loadcell_t>(data, size); break;
-    case 5: DecodeAndCheck<birotor::truth_t>(data, size); break;
-    case 6: DecodeAndCheck<birotor::force_estimate_t>(data, size); break;
-    case 7: DecodeAndCheck<birotor::estimator_status_t>(data, size); break;
-    default: DecodeAndCheck<birotor::input_health_t>(data, size); break;
+    case 0:
+      DecodeAndCheck<birotor::strain_t>(data, size);
+      break;
+    case 1:
+      DecodeAndCheck<birotor::motor_t>(data, size);
+      break;
+    case 2:
+      DecodeAndCheck<birotor::imu_t>(data, size);
+      break;
+    case 3:
+      DecodeAndCheck<birotor::pose_t>(data, size);
+      break;
+    case 4:
+      DecodeAndCheck<birotor::loadcell_t>(data, size);
+      break;
+    case 5:
+      DecodeAndCheck<birotor::truth_t>(data, size);
+      break;
+    case 6:
+      DecodeAndCheck<birotor::force_estimate_t>(data, size);
+      break;
+    case 7:
+      DecodeAndCheck<birotor::estimator_status_t>(data, size);
+      break;
+    default:
+      DecodeAndCheck<birotor::input_health_t>(data, size);
+      break;
   }
   return 0;
 }

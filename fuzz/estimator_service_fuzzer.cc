@@ -36,8 +36,7 @@ constexpr int kMaxBurstSamples = 256;
 class CheckingSink : public birotor::MessageSink {
  public:
   explicit CheckingSink(const birotor::ChannelNames& channels) : channels_(channels) {}
-  void Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data,
-               size_t size) override {
+  void Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data, size_t size) override {
     if (channel == channels_.force) {
       if (birotor::DecodeMessage(data, size, &force_) != birotor::DecodeError::kNone) std::abort();
       for (int i = 0; i < 2; ++i) {
@@ -68,16 +67,23 @@ void WriteFingerprint(uint8_t* packet) {
 
 void SetFingerprint(birotor::InputChannel channel, uint8_t* packet) {
   switch (channel) {
-    case birotor::InputChannel::kStrain: WriteFingerprint<birotor::strain_t>(packet); break;
-    case birotor::InputChannel::kMotor: WriteFingerprint<birotor::motor_t>(packet); break;
-    case birotor::InputChannel::kImu: WriteFingerprint<birotor::imu_t>(packet); break;
-    case birotor::InputChannel::kPose: WriteFingerprint<birotor::pose_t>(packet); break;
+    case birotor::InputChannel::kStrain:
+      WriteFingerprint<birotor::strain_t>(packet);
+      break;
+    case birotor::InputChannel::kMotor:
+      WriteFingerprint<birotor::motor_t>(packet);
+      break;
+    case birotor::InputChannel::kImu:
+      WriteFingerprint<birotor::imu_t>(packet);
+      break;
+    case birotor::InputChannel::kPose:
+      WriteFingerprint<birotor::pose_t>(packet);
+      break;
   }
 }
 
 int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 

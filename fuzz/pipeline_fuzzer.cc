@@ -68,20 +68,28 @@ class ByteReader {
 double FieldValue(ByteReader* in, double nominal, double scale) {
   const uint8_t kind = in->Byte();
   switch (kind % 12) {
-    case 0: return std::numeric_limits<double>::quiet_NaN();
-    case 1: return std::numeric_limits<double>::infinity();
-    case 2: return -std::numeric_limits<double>::infinity();
-    case 3: return std::numeric_limits<double>::max();
-    case 4: return -std::numeric_limits<double>::denorm_min();
+    case 0:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 1:
+      return std::numeric_limits<double>::infinity();
+    case 2:
+      return -std::numeric_limits<double>::infinity();
+    case 3:
+      return std::numeric_limits<double>::max();
+    case 4:
+      return -std::numeric_limits<double>::denorm_min();
     case 5: {  // any bit pattern
       const uint64_t bits = in->Bits64();
       double value;
       std::memcpy(&value, &bits, sizeof value);
       return value;
     }
-    case 6: return -nominal;
-    case 7: return nominal * (static_cast<int8_t>(in->Byte()) / 8.0);  // up to 16x off
-    default: return nominal + scale * (static_cast<int8_t>(in->Byte()) / 128.0);
+    case 6:
+      return -nominal;
+    case 7:
+      return nominal * (static_cast<int8_t>(in->Byte()) / 8.0);  // up to 16x off
+    default:
+      return nominal + scale * (static_cast<int8_t>(in->Byte()) / 128.0);
   }
 }
 
@@ -95,25 +103,47 @@ int64_t WrapAdd(int64_t a, int64_t b) {
 int64_t NextUtime(ByteReader* in, int64_t* clock_us, int64_t period_us) {
   const uint8_t kind = in->Byte();
   switch (kind % 16) {
-    case 0: break;                                                    // duplicate
-    case 1: *clock_us = WrapAdd(*clock_us, -period_us * (1 + in->Byte())); break;         // out of order
-    case 2: *clock_us = WrapAdd(*clock_us, 1000 * period_us * (1 + in->Byte())); break;  // gap
-    case 3: *clock_us = WrapAdd(*clock_us, -1000000LL * (1 + in->Byte())); break;         // backwards
-    case 4: *clock_us = -static_cast<int64_t>(in->Bits64() >> 1); break;
-    case 5: *clock_us = std::numeric_limits<int64_t>::max() - in->Byte(); break;
-    case 6: *clock_us = std::numeric_limits<int64_t>::min() + in->Byte(); break;
-    case 7: *clock_us = static_cast<int64_t>(in->Bits64()); break;
-    case 8: *clock_us = WrapAdd(*clock_us, in->Byte()); break;  // jitter
-    default: *clock_us = WrapAdd(*clock_us, period_us); break;
+    case 0:
+      break;  // duplicate
+    case 1:
+      *clock_us = WrapAdd(*clock_us, -period_us * (1 + in->Byte()));
+      break;  // out of order
+    case 2:
+      *clock_us = WrapAdd(*clock_us, 1000 * period_us * (1 + in->Byte()));
+      break;  // gap
+    case 3:
+      *clock_us = WrapAdd(*clock_us, -1000000LL * (1 + in->Byte()));
+      break;  // backwards
+    case 4:
+      *clock_us = -static_cast<int64_t>(in->Bits64() >> 1);
+      break;
+    case 5:
+      *clock_us = std::numeric_limits<int64_t>::max() - in->Byte();
+      break;
+    case 6:
+      *clock_us = std::numeric_limits<int64_t>::min() + in->Byte();
+      break;
+    case 7:
+      *clock_us = static_cast<int64_t>(in->Bits64());
+      break;
+    case 8:
+      *clock_us = WrapAdd(*clock_us, in->Byte());
+      break;  // jitter
+    default:
+      *clock_us = WrapAdd(*clock_us, period_us);
+      break;
   }
   return *clock_us;
 }
 
 int32_t NextSeq(ByteReader* in, int32_t* seq) {
   const uint8_t kind = in->Byte();
-  if (kind % 8 == 0) *seq = static_cast<int32_t>(in->Bits64());   // anything, incl. wrap
-  else if (kind % 8 == 1) *seq = static_cast<int32_t>(static_cast<uint32_t>(*seq) + 1u + in->Byte());  // gap
-  else *seq = static_cast<int32_t>(static_cast<uint32_t>(*seq) + 1u);  // wraps
+  if (kind % 8 == 0)
+    *seq = static_cast<int32_t>(in->Bits64());  // anything, incl. wrap
+  else if (kind % 8 == 1)
+    *seq = static_cast<int32_t>(static_cast<uint32_t>(*seq) + 1u + in->Byte());  // gap
+  else
+    *seq = static_cast<int32_t>(static_cast<uint32_t>(*seq) + 1u);  // wraps
   return *seq;
 }
 
@@ -165,8 +195,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   int64_t clock_us[birotor::kNumInputChannels] = {0, 0, 0, 0};
   int32_t seq[birotor::kNumInputChannels] = {0, 0, 0, 0};
   int64_t received[birotor::kNumInputChannels] = {0, 0, 0, 0};
-  const int64_t period_us[birotor::kNumInputChannels] = {kStrainPeriodUs, 2 * kStrainPeriodUs,
-                                                         kStrainPeriodUs, 10 * kStrainPeriodUs};
+  const int64_t period_us[birotor::kNumInputChannels] = {kStrainPeriodUs, 2 * kStrainPeriodUs, kStrainPeriodUs,
+                                                         10 * kStrainPeriodUs};
   birotor::strain_t strain_message;
   birotor::motor_t motor_message;
   birotor::imu_t imu_message;

@@ -38,10 +38,18 @@ int main(int argc, char** argv) {
     const int edits = 1 + static_cast<int>(rng() % 8);
     for (int e = 0; e < edits; ++e) {
       switch (rng() % 4) {
-        case 0: if (!data.empty()) data[rng() % data.size()] = static_cast<uint8_t>(rng()); break;
-        case 1: if (!data.empty()) data.resize(rng() % data.size()); break;
-        case 2: data.push_back(static_cast<uint8_t>(rng())); break;
-        default: if (!data.empty()) data[rng() % data.size()] ^= static_cast<uint8_t>(1u << (rng() % 8)); break;
+        case 0:
+          if (!data.empty()) data[rng() % data.size()] = static_cast<uint8_t>(rng());
+          break;
+        case 1:
+          if (!data.empty()) data.resize(rng() % data.size());
+          break;
+        case 2:
+          data.push_back(static_cast<uint8_t>(rng()));
+          break;
+        default:
+          if (!data.empty()) data[rng() % data.size()] ^= static_cast<uint8_t>(1u << (rng() % 8));
+          break;
       }
     }
     LLVMFuzzerTestOneInput(data.data(), data.size());

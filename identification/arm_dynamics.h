@@ -16,8 +16,8 @@ namespace birotor {
 //   m_p L^2 b_ddot + d b_dot + k b + s_i m_p g L cos(b) = s_i L f_i.
 // Returns b_ddot [rad/s^2]. Uses m_p, L, g of `known`; k, d are parameters.
 template <typename T>
-T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& b,
-                         const T& b_dot, const T& force_n) {
+T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& b, const T& b_dot,
+                         const T& force_n) {
   using std::cos;
   const double s = kArmSign[arm];
   const double mp = known.tip_mass_kg, L = known.arm_length_m, g = known.gravity_m_s2;
@@ -28,11 +28,11 @@ T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const 
 // arm and pitch-rate dynamics do not depend on x, z, phi nor on the body
 // velocity, so this is the whole state they need.
 enum FreeArmIndex : int {
-  kFreePhiDot = 0,   // body pitch rate [rad/s]
-  kFreeB1 = 1,       // deflection of arm 1 [rad]
-  kFreeB2 = 2,       // deflection of arm 2 [rad]
-  kFreeB1Dot = 3,    // [rad/s]
-  kFreeB2Dot = 4,    // [rad/s]
+  kFreePhiDot = 0,  // body pitch rate [rad/s]
+  kFreeB1 = 1,      // deflection of arm 1 [rad]
+  kFreeB2 = 2,      // deflection of arm 2 [rad]
+  kFreeB1Dot = 3,   // [rad/s]
+  kFreeB2Dot = 4,   // [rad/s]
 };
 constexpr int kFreeArmStateSize = 5;
 template <typename T>
@@ -55,8 +55,8 @@ using FreeArmState = Eigen::Matrix<T, kFreeArmStateSize, 1>;
 // Jets, so it is written out entry by entry). k and d enter the b rows of G:
 // G_b = k b + d b_dot.
 template <typename T>
-FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d,
-                                  const FreeArmState<T>& x, const T& force1_n, const T& force2_n,
+FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d, const FreeArmState<T>& x,
+                                  const T& force1_n, const T& force2_n,
                                   Eigen::Matrix<T, 2, 1>* specific_force_m_s2 = nullptr) {
   using std::cos;
   using std::sin;

@@ -5,8 +5,8 @@
 
 #include <array>
 #include <cmath>
-#include <limits>
 #include <deque>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -41,8 +41,9 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
         const double omega = m.omega_meas_rad_s[rotor];
         if (m.utime < next_us || !std::isfinite(omega)) continue;
         double force = 0.0;
-        if (!InterpolateAt(log.loadcell, m.utime, kMaxLoadCellGapUs, &hint,
-                           [rotor](const LoadCellSample& s) { return LoadCellForce(s, rotor); }, &force) ||
+        if (!InterpolateAt(
+                log.loadcell, m.utime, kMaxLoadCellGapUs, &hint,
+                [rotor](const LoadCellSample& s) { return LoadCellForce(s, rotor); }, &force) ||
             !std::isfinite(force)) {
           continue;
         }
@@ -53,9 +54,9 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
         const double dfdw = 2.0 * base.thrust_coeff_n_s2_rad2 * std::abs(omega) * options.telemetry_noise_rad_s;
         const double sigma = std::sqrt(options.loadcell_noise_n * options.loadcell_noise_n +
                                        std::pow(base.turbulence_std * f_model, 2) + dfdw * dfdw);
-        blocks.push_back(problem.AddResidualBlock(
-            ThrustResidual::Create(force, omega, sigma, base.thrust_coeff_n_s2_rad2),
-            new ceres::HuberLoss(options.huber_threshold), &ratio));
+        blocks.push_back(
+            problem.AddResidualBlock(ThrustResidual::Create(force, omega, sigma, base.thrust_coeff_n_s2_rad2),
+                                     new ceres::HuberLoss(options.huber_threshold), &ratio));
       }
     }
   }
@@ -80,8 +81,8 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   c_t.note = note.str();
   if (!c_t.determined) result->errors.push_back("c_T: not determined by the load-cell data (no thrust variation)");
   result->estimates.push_back(c_t);
-  result->residuals.push_back({"load cell (force - c_T omega^2)", "N", stats.count, stats.rms_whitened,
-                               0.0, inflation});
+  result->residuals.push_back(
+      {"load cell (force - c_T omega^2)", "N", stats.count, stats.rms_whitened, 0.0, inflation});
   // RMS in newtons, without whitening (sigma differs per sample).
   double sum_sq = 0.0;
   int count = 0;
@@ -92,8 +93,9 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
         double force = 0.0;
         const double omega = m.omega_meas_rad_s[rotor];
         if (!std::isfinite(omega) ||
-            !InterpolateAt(log.loadcell, m.utime, kMaxLoadCellGapUs, &hint,
-                           [rotor](const LoadCellSample& s) { return LoadCellForce(s, rotor); }, &force)) {
+            !InterpolateAt(
+                log.loadcell, m.utime, kMaxLoadCellGapUs, &hint,
+                [rotor](const LoadCellSample& s) { return LoadCellForce(s, rotor); }, &force)) {
           continue;
         }
         sum_sq += std::pow(force - c_t.value * omega * omega, 2);
@@ -139,9 +141,9 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
       size_t hint = 0;
       for (const StrainSample& s : log.strain) {
         double force = 0.0;
-        const bool ok = InterpolateAt(log.loadcell, s.utime, kMaxLoadCellGapUs, &hint,
-                                      [arm](const LoadCellSample& c) { return LoadCellForce(c, arm); },
-                                      &force) &&
+        const bool ok = InterpolateAt(
+                            log.loadcell, s.utime, kMaxLoadCellGapUs, &hint,
+                            [arm](const LoadCellSample& c) { return LoadCellForce(c, arm); }, &force) &&
                         std::isfinite(force) && std::isfinite(s.deflection_rad[arm]);
         d.utime.push_back(s.utime);
         d.deflection_rad.push_back(s.deflection_rad[arm]);
@@ -166,8 +168,8 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     FitPlot fit, residual;
     fit.title = "arm " + std::to_string(arm + 1) + ": load cell force vs deflection map (degree " +
                 std::to_string(options.map_degree) + ")";
-    residual.title = "arm " + std::to_string(arm + 1) + ": map residual (RMS " +
-                     std::to_string(map.residual_rms_n) + " N)";
+    residual.title =
+        "arm " + std::to_string(arm + 1) + ": map residual (RMS " + std::to_string(map.residual_rms_n) + " N)";
     fit.x_label = residual.x_label = "deflection b" + std::to_string(arm + 1) + " [mrad]";
     fit.y_label = "force [N]";
     residual.y_label = "force - map [N]";
@@ -194,8 +196,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     const int arm = static_cast<int>(n % 2);
     const ArmData& d = data[n];
     const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(d.utime), 1);
-    for (const auto& [begin, end] :
-         ContiguousWindows(d.utime, d.valid, options.bench_arm_window_s, max_gap_us, 20)) {
+    for (const auto& [begin, end] : ContiguousWindows(d.utime, d.valid, options.bench_arm_window_s, max_gap_us, 20)) {
       std::vector<ClampedArmWindowResidual::Sample> samples;
       samples.reserve(end - begin);
       for (size_t i = begin; i < end; ++i) {
@@ -206,8 +207,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
       states.push_back({kArmSign[arm] * L * (d.force_n[begin] - mp_g) / (k_ratio * k_scale), 0.0});
       blocks.push_back(problem.AddResidualBlock(
           ClampedArmWindowResidual::Create(base, arm, std::move(samples), options.strain_noise_rad,
-                                           options.integration_substeps, k_scale, d_scale,
-                                           options.huber_threshold),
+                                           options.integration_substeps, k_scale, d_scale, options.huber_threshold),
           nullptr, &k_ratio, &d_ratio, states.back().data()));
     }
   }

@@ -19,15 +19,21 @@ namespace birotor {
 //   r_j = Huber((b_meas_j - b_j) / sigma_b)                         [1, whitened]
 struct ClampedArmWindowResidual {
   struct Sample {
-    double dt_s;          // time to the next sample [s] (unused for the last)
-    double force_n;       // load-cell force at this sample [N]
+    double dt_s;            // time to the next sample [s] (unused for the last)
+    double force_n;         // load-cell force at this sample [N]
     double deflection_rad;  // strain-gauge deflection at this sample [rad]
   };
 
-  ClampedArmWindowResidual(const VehicleParams& known, int arm, std::vector<Sample> samples,
-                           double sigma_rad, int substeps, double k_scale, double d_scale, double huber)
-      : known_(known), arm_(arm), samples_(std::move(samples)), inv_sigma_(1.0 / sigma_rad),
-        substeps_(substeps), k_scale_(k_scale), d_scale_(d_scale), huber_(huber) {}
+  ClampedArmWindowResidual(const VehicleParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
+                           int substeps, double k_scale, double d_scale, double huber)
+      : known_(known),
+        arm_(arm),
+        samples_(std::move(samples)),
+        inv_sigma_(1.0 / sigma_rad),
+        substeps_(substeps),
+        k_scale_(k_scale),
+        d_scale_(d_scale),
+        huber_(huber) {}
 
   template <typename T>
   bool operator()(const T* k_ratio, const T* d_ratio, const T* state0, T* residual) const {
@@ -59,23 +65,21 @@ struct ClampedArmWindowResidual {
     return true;
   }
 
-  static ceres::CostFunction* Create(const VehicleParams& known, int arm, std::vector<Sample> samples,
-                                     double sigma_rad, int substeps, double k_scale, double d_scale,
-                                     double huber) {
+  static ceres::CostFunction* Create(const VehicleParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
+                                     int substeps, double k_scale, double d_scale, double huber) {
     const int n = static_cast<int>(samples.size());
     return new ceres::AutoDiffCostFunction<ClampedArmWindowResidual, ceres::DYNAMIC, 1, 1, 2>(
-        new ClampedArmWindowResidual(known, arm, std::move(samples), sigma_rad, substeps, k_scale, d_scale, huber),
-        n);
+        new ClampedArmWindowResidual(known, arm, std::move(samples), sigma_rad, substeps, k_scale, d_scale, huber), n);
   }
 
   const VehicleParams known_;  // m_p, L, g (k and d are parameters)
   const int arm_;              // 0: arm 1, 1: arm 2
   const std::vector<Sample> samples_;
-  const double inv_sigma_;     // [1/rad]
+  const double inv_sigma_;  // [1/rad]
   const int substeps_;
-  const double k_scale_;       // [N m/rad]
-  const double d_scale_;       // [N m s/rad]
-  const double huber_;         // Huber threshold [sigma]
+  const double k_scale_;  // [N m/rad]
+  const double d_scale_;  // [N m s/rad]
+  const double huber_;    // Huber threshold [sigma]
 };
 
 }  // namespace birotor

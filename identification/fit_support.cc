@@ -52,9 +52,8 @@ void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem)
   ceres::Solve(solver, problem, &summary);
 }
 
-ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem,
-                                             const std::vector<ceres::ResidualBlockId>& blocks, int stride,
-                                             int channel) {
+ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem, const std::vector<ceres::ResidualBlockId>& blocks,
+                                             int stride, int channel) {
   ResidualStatistics stats;
   if (blocks.empty()) return stats;
   std::vector<double> abs_values;

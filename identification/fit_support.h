@@ -56,12 +56,11 @@ void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem)
 // time series (stride = channels interleaved per sample) for the correlation.
 struct ResidualStatistics {
   int count = 0;
-  double rms_whitened = 0.0;   // [sigma]
-  double robust_scale = 1.0;   // 1.4826 median |r| [sigma]
+  double rms_whitened = 0.0;      // [sigma]
+  double robust_scale = 1.0;      // 1.4826 median |r| [sigma]
   double correlation_time = 1.0;  // 1 + 2 sum of autocorrelations [samples]
 };
-ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem,
-                                             const std::vector<ceres::ResidualBlockId>& blocks,
+ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem, const std::vector<ceres::ResidualBlockId>& blocks,
                                              int stride, int channel);
 
 // Variance inflation that makes the covariance honest when the residuals are

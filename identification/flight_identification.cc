@@ -9,10 +9,10 @@
 #include <limits>
 #include <string>
 
+#include "estimator/plant.h"
 #include "identification/fit_support.h"
 #include "identification/free_arm_residual.h"
 #include "identification/identify.h"
-#include "estimator/plant.h"
 
 namespace birotor {
 namespace {
@@ -127,9 +127,12 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
       if (use_imu) {
         size_t h0 = imu_hint, h1 = imu_hint, h2 = imu_hint;
         double g = kNaN, ax = kNaN, az = kNaN;
-        if (InterpolateAt(log.imu, s.utime, kMaxImuGapUs, &h0, [](const ImuSample& m) { return m.gyro_y_rad_s; }, &g) &&
-            InterpolateAt(log.imu, s.utime, kMaxImuGapUs, &h1, [](const ImuSample& m) { return m.accel_x_m_s2; }, &ax) &&
-            InterpolateAt(log.imu, s.utime, kMaxImuGapUs, &h2, [](const ImuSample& m) { return m.accel_z_m_s2; }, &az)) {
+        if (InterpolateAt(
+                log.imu, s.utime, kMaxImuGapUs, &h0, [](const ImuSample& m) { return m.gyro_y_rad_s; }, &g) &&
+            InterpolateAt(
+                log.imu, s.utime, kMaxImuGapUs, &h1, [](const ImuSample& m) { return m.accel_x_m_s2; }, &ax) &&
+            InterpolateAt(
+                log.imu, s.utime, kMaxImuGapUs, &h2, [](const ImuSample& m) { return m.accel_z_m_s2; }, &az)) {
           out.gyro_rad_s = g;
           out.accel_m_s2[0] = ax;
           out.accel_m_s2[1] = az;
@@ -183,10 +186,10 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     }
     states.push_back(x0);
     const FreeArmWindowResidual* functor = nullptr;
-    blocks.push_back(problem.AddResidualBlock(
-        FreeArmWindowResidual::Create(base, std::move(samples), noise, options.flight_integration_substeps, scales,
-                                      &functor),
-        nullptr, &k_ratio, &d_ratio, &c_ratio, states.back().data()));
+    blocks.push_back(
+        problem.AddResidualBlock(FreeArmWindowResidual::Create(base, std::move(samples), noise,
+                                                               options.flight_integration_substeps, scales, &functor),
+                                 nullptr, &k_ratio, &d_ratio, &c_ratio, states.back().data()));
     functors.push_back(functor);
   }
   ParameterEstimate k, damping, c_t;
@@ -219,8 +222,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
                                                      options.accel_noise_m_s2};
   for (int channel = 0; channel < kFreeArmResidualsPerSample; ++channel) {
     if (channel >= kResGyro && !any_imu) continue;
-    const ResidualStatistics stats =
-        ComputeResidualStatistics(&problem, blocks, kFreeArmResidualsPerSample, channel);
+    const ResidualStatistics stats = ComputeResidualStatistics(&problem, blocks, kFreeArmResidualsPerSample, channel);
     if (stats.count == 0) continue;
     const double channel_inflation = VarianceInflation(stats);
     inflation = std::max(inflation, channel_inflation);
@@ -229,8 +231,8 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   }
   const std::vector<BlockSigma> sigma =
       ComputeBlockSigmas(&problem, {&k_ratio, &d_ratio, &c_ratio}, inflation, options.num_threads);
-  const std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) +
-                           " of " + std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
+  const std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
+                           std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
   auto fill = [&](ParameterEstimate* e, double ratio, double scale, const BlockSigma& s) {
     e->value = ratio * scale;
     e->sigma = s.sigma * scale;

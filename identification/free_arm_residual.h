@@ -1,6 +1,7 @@
 // Ceres residual of stiffness, damping and thrust coefficient in free flight:
 // output error of the arm and pitch-rate dynamics driven by the rotor speeds
-// of the motor model (recorded commands, identified tau_m), predicting deflections, pitch rate and specific force over one window.
+// of the motor model (recorded commands, identified tau_m), predicting deflections, pitch rate and specific force over
+// one window.
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
@@ -15,11 +16,11 @@ namespace birotor {
 
 // Residual layout per sample.
 enum FreeArmResidualIndex : int {
-  kResB1 = 0,       // strain gauge arm 1
-  kResB2 = 1,       // strain gauge arm 2
-  kResGyro = 2,     // IMU pitch rate
-  kResAccelX = 3,   // IMU specific force, body x
-  kResAccelZ = 4,   // IMU specific force, body z
+  kResB1 = 0,      // strain gauge arm 1
+  kResB2 = 1,      // strain gauge arm 2
+  kResGyro = 2,    // IMU pitch rate
+  kResAccelX = 3,  // IMU specific force, body x
+  kResAccelZ = 4,  // IMU specific force, body z
 };
 constexpr int kFreeArmResidualsPerSample = 5;
 
@@ -36,11 +37,11 @@ constexpr int kFreeArmResidualsPerSample = 5;
 // their scales: k = theta_k k_scale, d = theta_d d_scale, c_T = theta_c c_scale.
 struct FreeArmWindowResidual {
   struct Sample {
-    double dt_s;              // time to the next sample [s] (unused for the last)
-    double omega_rad_s[2];    // rotor speeds (motor model from the commands) [rad/s]
-    double deflection_rad[2]; // strain gauges [rad]
-    double gyro_rad_s;        // pitch rate, NaN when not used [rad/s]
-    double accel_m_s2[2];     // specific force body x, z, NaN when not used [m/s^2]
+    double dt_s;               // time to the next sample [s] (unused for the last)
+    double omega_rad_s[2];     // rotor speeds (motor model from the commands) [rad/s]
+    double deflection_rad[2];  // strain gauges [rad]
+    double gyro_rad_s;         // pitch rate, NaN when not used [rad/s]
+    double accel_m_s2[2];      // specific force body x, z, NaN when not used [m/s^2]
   };
   struct Scales {
     double stiffness_n_m_rad;
@@ -54,13 +55,12 @@ struct FreeArmWindowResidual {
     double huber;  // Huber threshold on whitened residuals [sigma]
   };
 
-  FreeArmWindowResidual(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise,
-                        int substeps, const Scales& scales)
+  FreeArmWindowResidual(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise, int substeps,
+                        const Scales& scales)
       : known_(known), samples_(std::move(samples)), noise_(noise), substeps_(substeps), scales_(scales) {}
 
   template <typename T>
-  bool operator()(const T* k_ratio, const T* d_ratio, const T* thrust_ratio, const T* state0,
-                  T* residual) const {
+  bool operator()(const T* k_ratio, const T* d_ratio, const T* thrust_ratio, const T* state0, T* residual) const {
     const double c = noise_.huber;
     Integrate<T>(k_ratio[0], d_ratio[0], thrust_ratio[0], state0,
                  [&](size_t j, const FreeArmState<T>& x, const T& k, const T& d, const T& c_t) {
@@ -101,8 +101,7 @@ struct FreeArmWindowResidual {
  private:
   // RK4 over the window from state0; visit(j, x_j, k, d, c_T) at every sample.
   template <typename T, class Visit>
-  void Integrate(const T& k_ratio, const T& d_ratio, const T& thrust_ratio, const T* state0,
-                 const Visit& visit) const {
+  void Integrate(const T& k_ratio, const T& d_ratio, const T& thrust_ratio, const T* state0, const Visit& visit) const {
     using State = FreeArmState<T>;
     const T k = k_ratio * scales_.stiffness_n_m_rad;
     const T d = d_ratio * scales_.damping_n_m_s_rad;
@@ -141,14 +140,14 @@ struct FreeArmWindowResidual {
 
  public:
   // *functor (optional) keeps a view of the functor, owned by the cost function.
-  static ceres::CostFunction* Create(const VehicleParams& known, std::vector<Sample> samples,
-                                     const Noise& noise, int substeps, const Scales& scales,
+  static ceres::CostFunction* Create(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise,
+                                     int substeps, const Scales& scales,
                                      const FreeArmWindowResidual** functor = nullptr) {
     const int n = kFreeArmResidualsPerSample * static_cast<int>(samples.size());
     auto* residual = new FreeArmWindowResidual(known, std::move(samples), noise, substeps, scales);
     if (functor != nullptr) *functor = residual;
-    return new ceres::AutoDiffCostFunction<FreeArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, kFreeArmStateSize>(
-        residual, n);
+    return new ceres::AutoDiffCostFunction<FreeArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, kFreeArmStateSize>(residual,
+                                                                                                              n);
   }
 
  private:

@@ -13,21 +13,21 @@ namespace birotor {
 
 // One identified scalar.
 struct ParameterEstimate {
-  std::string key;       // YAML key of the `vehicle:` section, e.g. "arm_stiffness_n_m_rad"
-  std::string symbol;    // k, d, c_T, tau_m
+  std::string key;     // YAML key of the `vehicle:` section, e.g. "arm_stiffness_n_m_rad"
+  std::string symbol;  // k, d, c_T, tau_m
   double value = std::numeric_limits<double>::quiet_NaN();  // SI, unit in the key
   double sigma = std::numeric_limits<double>::quiet_NaN();  // one sigma, same unit
-  bool determined = false;  // false: the data could not determine it; base value kept
-  std::string note;         // why not determined, or how sigma was obtained
+  bool determined = false;                                  // false: the data could not determine it; base value kept
+  std::string note;                                         // why not determined, or how sigma was obtained
 };
 
 // Residuals of one kind of block after the fit (without the robust loss).
 struct ResidualSummary {
-  std::string name;             // e.g. "motor telemetry"
-  std::string unit;             // unit of rms_si
-  int count = 0;                // scalar residuals
-  double rms_whitened = 0.0;    // [sigma]
-  double rms_si = 0.0;          // [unit]
+  std::string name;                 // e.g. "motor telemetry"
+  std::string unit;                 // unit of rms_si
+  int count = 0;                    // scalar residuals
+  double rms_whitened = 0.0;        // [sigma]
+  double rms_si = 0.0;              // [unit]
   double variance_inflation = 1.0;  // factor applied to the covariance (chi2/dof, correlation)
 };
 
@@ -46,8 +46,8 @@ struct DeflectionForceMap {
 // the fitted model at the same abscissae.
 struct FitPlot {
   std::string title;
-  std::string x_label;   // with unit
-  std::string y_label;   // with unit
+  std::string x_label;  // with unit
+  std::string y_label;  // with unit
   std::vector<double> x;
   std::vector<double> data;   // measured
   std::vector<double> model;  // fitted model (NaN where there is none)
@@ -62,8 +62,8 @@ struct IdentificationResult {
   std::vector<ParameterEstimate> estimates;
   std::vector<ResidualSummary> residuals;
   std::vector<DeflectionForceMap> maps;
-  std::vector<std::string> sources;   // logs used
-  std::vector<FitPlot> plots;         // fit versus data, a few panels
+  std::vector<std::string> sources;  // logs used
+  std::vector<FitPlot> plots;        // fit versus data, a few panels
 };
 
 }  // namespace birotor

@@ -28,12 +28,14 @@ void CheckInputs(const std::vector<SensorLog>& logs, IdentificationMode mode, co
   for (const SensorLog& log : logs) {
     const std::string name = log.source.empty() ? "log" : log.source;
     if (log.strain.empty()) result->errors.push_back(name + ": no STRAIN samples (arm deflections are needed)");
-    if (log.motor.empty()) result->errors.push_back(name + ": no MOTOR samples (rotor commands are needed)");
+    if (log.motor.empty())
+      result->errors.push_back(name + ": no MOTOR samples (rotor commands are needed)");
     else if (!HasMotorTelemetry(log)) {
       result->errors.push_back(name + ": MOTOR telemetry omega_meas is NaN throughout (ESC speed telemetry is needed)");
     }
     if (mode == IdentificationMode::kBench && log.loadcell.empty()) {
-      result->errors.push_back(name + ": no LOADCELL samples (bench identification needs the load cells; use --mode flight)");
+      result->errors.push_back(name +
+                               ": no LOADCELL samples (bench identification needs the load cells; use --mode flight)");
     }
     const double duration_s = StrainDurationS(log);
     if (!log.strain.empty() && duration_s < options.min_duration_s) {

@@ -6,10 +6,10 @@
 #include <sstream>
 #include <string>
 
+#include "estimator/plant.h"
 #include "identification/fit_support.h"
 #include "identification/identify.h"
 #include "identification/motor_residual.h"
-#include "estimator/plant.h"
 
 namespace birotor {
 
@@ -33,8 +33,8 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
     for (int rotor = 0; rotor < 2; ++rotor) {
       std::vector<bool> valid(log.motor.size());
       for (size_t i = 0; i < log.motor.size(); ++i) {
-        valid[i] = std::isfinite(log.motor[i].omega_meas_rad_s[rotor]) &&
-                   std::isfinite(log.motor[i].omega_cmd_rad_s[rotor]);
+        valid[i] =
+            std::isfinite(log.motor[i].omega_meas_rad_s[rotor]) && std::isfinite(log.motor[i].omega_cmd_rad_s[rotor]);
         if (i > 0 && std::abs(log.motor[i].omega_cmd_rad_s[rotor] - log.motor[i - 1].omega_cmd_rad_s[rotor]) >
                          options.command_step_rad_s) {
           ++steps[rotor];
@@ -57,10 +57,10 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
             plot_block = blocks.size();
           }
         }
-        blocks.push_back(problem.AddResidualBlock(
-            MotorWindowResidual::Create(std::move(samples), options.telemetry_noise_rad_s,
-                                        base.motor_time_constant_s, options.huber_threshold),
-            nullptr, &tau_ratio, &omega0.back()));
+        blocks.push_back(
+            problem.AddResidualBlock(MotorWindowResidual::Create(std::move(samples), options.telemetry_noise_rad_s,
+                                                                 base.motor_time_constant_s, options.huber_threshold),
+                                     nullptr, &tau_ratio, &omega0.back()));
       }
     }
   }
@@ -85,8 +85,7 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   std::ostringstream note;
   if (!tau.determined) {
     note << "tau_m cannot be identified: no excitation (the commands have " << steps[0] << " and " << steps[1]
-         << " steps larger than " << options.command_step_rad_s
-         << " rad/s; record motor command steps or a chirp)";
+         << " steps larger than " << options.command_step_rad_s << " rad/s; record motor command steps or a chirp)";
     result->errors.push_back(note.str());
   } else {
     note << "output error over " << blocks.size() << " windows; " << steps[0] + steps[1] << " command steps";

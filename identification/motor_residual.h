@@ -21,8 +21,8 @@ namespace birotor {
 // A sample without telemetry (NaN) gives r_j = 0.
 struct MotorWindowResidual {
   struct Sample {
-    double dt_s;            // time to the next sample [s] (unused for the last)
-    double omega_cmd_rad_s; // clamped command, held until the next sample
+    double dt_s;              // time to the next sample [s] (unused for the last)
+    double omega_cmd_rad_s;   // clamped command, held until the next sample
     double omega_meas_rad_s;  // telemetry, NaN when absent
   };
 

@@ -62,20 +62,21 @@ std::string IdentificationReport(const IdentificationResult& result) {
     out << "\n**No parameters: the data lacks what the identification needs.**\n\n";
     for (const std::string& e : result.errors) out << "- " << e << "\n";
   }
-  out << "\n## Parameters\n\n| parameter | key | value | one sigma | relative sigma | status |\n|---|---|---|---|---|---|\n";
+  out << "\n## Parameters\n\n| parameter | key | value | one sigma | relative sigma | status "
+         "|\n|---|---|---|---|---|---|\n";
   out << std::setprecision(6);
   for (const ParameterEstimate& e : result.estimates) {
     const double rel = std::abs(e.value) > 0 ? e.sigma / std::abs(e.value) : NAN;
     out << "| " << e.symbol << " | " << e.key << " | " << e.value << " | " << e.sigma << " | " << std::setprecision(3)
-        << 100.0 * rel << " % | " << (e.determined ? "determined" : "NOT determined") << std::setprecision(6)
-        << " |\n";
+        << 100.0 * rel << " % | " << (e.determined ? "determined" : "NOT determined") << std::setprecision(6) << " |\n";
   }
   out << "\nNotes:\n";
   for (const ParameterEstimate& e : result.estimates) out << "- " << e.symbol << ": " << e.note << "\n";
-  out << "\n## Residuals (after the fit)\n\n| block | count | RMS [sigma] | RMS | covariance inflation |\n|---|---|---|---|---|\n";
+  out << "\n## Residuals (after the fit)\n\n| block | count | RMS [sigma] | RMS | covariance inflation "
+         "|\n|---|---|---|---|---|\n";
   for (const ResidualSummary& r : result.residuals) {
-    out << "| " << r.name << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened << " | "
-        << r.rms_si << " " << r.unit << " | " << r.variance_inflation << " |\n";
+    out << "| " << r.name << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened << " | " << r.rms_si
+        << " " << r.unit << " | " << r.variance_inflation << " |\n";
   }
   if (!result.maps.empty()) {
     out << "\n## Static deflection-force maps\n\n";

@@ -11,13 +11,13 @@
 namespace birotor {
 
 struct SensorLog {
-  std::string source;                  // file name or test label, for messages
-  std::vector<StrainSample> strain;    // STRAIN, 1 kHz reference
-  std::vector<MotorSample> motor;      // MOTOR, 500 Hz reference
-  std::vector<ImuSample> imu;          // IMU (optional)
-  std::vector<PoseSample> pose;        // POSE (optional, unused by the fits)
+  std::string source;                    // file name or test label, for messages
+  std::vector<StrainSample> strain;      // STRAIN, 1 kHz reference
+  std::vector<MotorSample> motor;        // MOTOR, 500 Hz reference
+  std::vector<ImuSample> imu;            // IMU (optional)
+  std::vector<PoseSample> pose;          // POSE (optional, unused by the fits)
   std::vector<LoadCellSample> loadcell;  // LOADCELL (bench only)
-  std::vector<TruthSample> truth;      // TRUTH (simulator only; never used by the fits)
+  std::vector<TruthSample> truth;        // TRUTH (simulator only; never used by the fits)
 };
 
 // Span covered by the strain samples [s] (0 when fewer than two).

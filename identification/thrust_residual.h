@@ -12,7 +12,9 @@ namespace birotor {
 // covers load-cell noise, turbulence and telemetry noise.
 struct ThrustResidual {
   ThrustResidual(double force_n, double omega_rad_s, double sigma_n, double thrust_coeff_scale)
-      : force_n_(force_n), omega_sq_(omega_rad_s * omega_rad_s), inv_sigma_(1.0 / sigma_n),
+      : force_n_(force_n),
+        omega_sq_(omega_rad_s * omega_rad_s),
+        inv_sigma_(1.0 / sigma_n),
         scale_(thrust_coeff_scale) {}
 
   template <typename T>
@@ -21,8 +23,7 @@ struct ThrustResidual {
     return true;
   }
 
-  static ceres::CostFunction* Create(double force_n, double omega_rad_s, double sigma_n,
-                                     double thrust_coeff_scale) {
+  static ceres::CostFunction* Create(double force_n, double omega_rad_s, double sigma_n, double thrust_coeff_scale) {
     return new ceres::AutoDiffCostFunction<ThrustResidual, 1, 1>(
         new ThrustResidual(force_n, omega_rad_s, sigma_n, thrust_coeff_scale));
   }

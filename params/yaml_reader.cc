@@ -68,7 +68,8 @@ void YamlSection::Double(const std::string& key, double min, double max, double*
   if (!n.IsScalar() || !YAML::convert<double>::decode(n, x))
     Fail(key, "expected a number, got '" + (n.IsScalar() ? n.Scalar() : std::string("a structure")) + "'",
          RangeText(min, max));
-  if (!std::isfinite(x) || x < min || x > max) Fail(key, "value " + Number(x) + " is out of range", RangeText(min, max));
+  if (!std::isfinite(x) || x < min || x > max)
+    Fail(key, "value " + Number(x) + " is out of range", RangeText(min, max));
   *value = x;
 }
 
@@ -125,10 +126,12 @@ void YamlSection::DoubleArray(const std::string& key, int count, double min, dou
   const YAML::Node n = Get(key);
   if (!n.IsDefined() || n.IsNull()) return;
   const std::string allowed = std::to_string(count) + " numbers, each in " + RangeText(min, max);
-  if (!n.IsSequence() || static_cast<int>(n.size()) != count) Fail(key, "expected a list of " + std::to_string(count), allowed);
+  if (!n.IsSequence() || static_cast<int>(n.size()) != count)
+    Fail(key, "expected a list of " + std::to_string(count), allowed);
   for (int i = 0; i < count; ++i) {
     double x = 0;
-    if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], x)) Fail(key, "element " + std::to_string(i) + " is not a number", allowed);
+    if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], x))
+      Fail(key, "element " + std::to_string(i) + " is not a number", allowed);
     if (!std::isfinite(x) || x < min || x > max)
       Fail(key, "element " + std::to_string(i) + " = " + Number(x) + " is out of range", allowed);
     values[i] = x;
@@ -143,7 +146,8 @@ void YamlSection::DoubleList(const std::string& key, double min, double max, std
   values->clear();
   for (size_t i = 0; i < n.size(); ++i) {
     double x = 0;
-    if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], x)) Fail(key, "element " + std::to_string(i) + " is not a number", allowed);
+    if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], x))
+      Fail(key, "element " + std::to_string(i) + " is not a number", allowed);
     if (!std::isfinite(x) || x < min || x > max)
       Fail(key, "element " + std::to_string(i) + " = " + Number(x) + " is out of range", allowed);
     values->push_back(x);

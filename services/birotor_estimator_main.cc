@@ -7,9 +7,9 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -25,14 +25,12 @@
 namespace {
 
 int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
 double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -81,8 +79,7 @@ int main(int argc, char** argv) {
     sched_param param{};
     param.sched_priority = realtime_priority;
     if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-      spdlog::warn("cannot set SCHED_FIFO priority {} (needs CAP_SYS_NICE); normal scheduler",
-                   realtime_priority);
+      spdlog::warn("cannot set SCHED_FIFO priority {} (needs CAP_SYS_NICE); normal scheduler", realtime_priority);
     }
     if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) spdlog::warn("cannot lock memory (mlockall)");
   }
@@ -99,11 +96,10 @@ int main(int argc, char** argv) {
   LcmSink sink(lcm.get());
   EstimatorService service(config, channels, options, &sink);
   service.Subscribe(lcm.get());
-  spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION,
-               config.method, params_file, FileChecksum(params_file));
-  spdlog::info("lcm {}: in {} {} {} {}, out {} {}", common.lcm_url, channels.strain,
-               channels.motor, channels.imu, channels.pose, channels.force,
-               channels.estimator_status);
+  spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION, config.method, params_file,
+               FileChecksum(params_file));
+  spdlog::info("lcm {}: in {} {} {} {}, out {} {}", common.lcm_url, channels.strain, channels.motor, channels.imu,
+               channels.pose, channels.force, channels.estimator_status);
   bool buffer_ok = true;
   const std::string buffer_report = ReceiveBufferReport(common.lcm_url, ReadRmemMax(), &buffer_ok);
   if (buffer_ok) {
@@ -139,7 +135,7 @@ int main(int argc, char** argv) {
   spdlog::info(
       "stopped: {} FORCE published; strain received {} fused {} decode errors {} out of order {} "
       "overload drops {}; resets {}",
-      service.forces_published(), strain.received, strain.fused, strain.decode_errors,
-      strain.out_of_order, strain.dropped_overload, health.resets);
+      service.forces_published(), strain.received, strain.fused, strain.decode_errors, strain.out_of_order,
+      strain.dropped_overload, health.resets);
   return 0;
 }

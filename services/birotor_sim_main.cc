@@ -26,12 +26,12 @@ namespace {
 
 struct SimOptions {
   CommonOptions common;
-  std::string scenario_file;           // scenario YAML (config/scenarios/*.yaml)
+  std::string scenario_file;             // scenario YAML (config/scenarios/*.yaml)
   std::vector<std::string> param_files;  // --params: partial scenario files, applied in order
   std::vector<std::string> overrides;    // --set section.key=value, applied in order after them
-  std::string output;                  // log file (offline mode); empty: live on LCM
-  double speed = 1.0;                  // live mode: simulated seconds per wall second
-  bool wall_clock = false;             // utime = wall clock at start + simulated time
+  std::string output;                    // log file (offline mode); empty: live on LCM
+  double speed = 1.0;                    // live mode: simulated seconds per wall second
+  bool wall_clock = false;               // utime = wall clock at start + simulated time
 };
 
 // Converts each sample to its wire type and hands it to Publish(channel, utime, msg).
@@ -136,12 +136,12 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "birotor-sim: error: %s\n", e.what());
     return 1;
   }
-  spdlog::info("scenario '{}' from {} (checksum {}), {:.3f} s, seed {}, step {} s{}", scenario.name,
-               options.scenario_file, FileChecksum(options.scenario_file), scenario.duration_s, scenario.seed,
-               scenario.step_s, options.overrides.empty() && options.param_files.empty()
-                   ? ""
-                   : fmt::format(", {} parameter files, {} --set", options.param_files.size(),
-                                 options.overrides.size()));
+  spdlog::info(
+      "scenario '{}' from {} (checksum {}), {:.3f} s, seed {}, step {} s{}", scenario.name, options.scenario_file,
+      FileChecksum(options.scenario_file), scenario.duration_s, scenario.seed, scenario.step_s,
+      options.overrides.empty() && options.param_files.empty()
+          ? ""
+          : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
 
   InstallShutdownHandlers();
   Simulator sim(scenario);
@@ -154,10 +154,11 @@ int Main(int argc, char** argv) {
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const ChannelCounts& n = sim.emitted();
-  spdlog::info("simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
-               "pose {}, loadcell {}, truth {}; {} fault events",
-               sim.time_s(), wall_s, wall_s > 0 ? sim.time_s() / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose,
-               n.loadcell, n.truth, sim.fault_events().size());
+  spdlog::info(
+      "simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
+      "pose {}, loadcell {}, truth {}; {} fault events",
+      sim.time_s(), wall_s, wall_s > 0 ? sim.time_s() / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose, n.loadcell,
+      n.truth, sim.fault_events().size());
   return ok ? 0 : 1;
 }
 

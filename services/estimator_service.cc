@@ -17,21 +17,18 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int64_t SteadyNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
 
 int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
 }  // namespace
 
-void LcmSink::Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data,
-                      size_t size) {
+void LcmSink::Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data, size_t size) {
   lcm_->publish(channel, data, static_cast<unsigned int>(size));
 }
 
@@ -60,8 +57,7 @@ void EstimatorService::Subscribe(lcm::LCM* lcm) {
     RawSubscription& context = subscriptions_[i];
     context.service = this;
     context.channel = static_cast<InputChannel>(i);
-    context.subscription = lcm->subscribeFunction(*input_channel_names_[i],
-                                                  &EstimatorService::OnRawMessage, &context);
+    context.subscription = lcm->subscribeFunction(*input_channel_names_[i], &EstimatorService::OnRawMessage, &context);
     // Keep a burst of 1 kHz strain samples while a status message is built.
     if (context.subscription != nullptr) context.subscription->setQueueCapacity(10000);
   }
@@ -76,10 +72,9 @@ void EstimatorService::Unsubscribe() {
   lcm_ = nullptr;
 }
 
-void EstimatorService::OnRawMessage(const lcm::ReceiveBuffer* buffer,
-                                    const std::string& /*channel*/, RawSubscription* context) {
-  context->service->HandlePacket(context->channel, buffer->data, buffer->data_size,
-                                 buffer->recv_utime);
+void EstimatorService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/,
+                                    RawSubscription* context) {
+  context->service->HandlePacket(context->channel, buffer->data, buffer->data_size, buffer->recv_utime);
 }
 
 bool EstimatorService::InputChannelOf(const std::string& channel, InputChannel* input) const {
@@ -94,13 +89,12 @@ bool EstimatorService::InputChannelOf(const std::string& channel, InputChannel* 
 
 void EstimatorService::WarnDecodeError(InputChannel channel, const char* error) {
   if (decode_warning_.ShouldLog(SteadyNowUs())) {
-    spdlog::warn("undecodable {} packet ({}); {} similar warnings suppressed",
-                 InputChannelName(channel), error, decode_warning_.suppressed());
+    spdlog::warn("undecodable {} packet ({}); {} similar warnings suppressed", InputChannelName(channel), error,
+                 decode_warning_.suppressed());
   }
 }
 
-bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size_t size,
-                                    int64_t receive_wall_utime) {
+bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime) {
   pipeline_.CountReceived(channel);
   switch (channel) {
     case InputChannel::kStrain:
@@ -153,8 +147,8 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
     if (static_cast<double>(queued_us) > options_.overload_max_delay_s * 1e6) {
       pipeline_.CountOverloadDrop(InputChannel::kStrain);
       if (overload_warning_.ShouldLog(SteadyNowUs())) {
-        spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed",
-                     strain_message_.seq, queued_us, overload_warning_.suppressed());
+        spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed", strain_message_.seq,
+                     queued_us, overload_warning_.suppressed());
       }
       return false;
     }
@@ -195,9 +189,7 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   }
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) {
-    const int64_t timestamp_us = pipeline_.health().newest_utime >= 0
-                                     ? pipeline_.health().newest_utime
-                                     : 0;
+    const int64_t timestamp_us = pipeline_.health().newest_utime >= 0 ? pipeline_.health().newest_utime : 0;
     sink_->Publish(channels_.estimator_status, timestamp_us, buffer_.data(), buffer_.size());
   }
   ++status_seq_;

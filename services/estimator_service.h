@@ -7,10 +7,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <vector>
-
-#include <lcm/lcm-cpp.hpp>
 
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
@@ -32,16 +31,14 @@ namespace birotor {
 class MessageSink {
  public:
   virtual ~MessageSink() = default;
-  virtual void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-                       size_t size) = 0;
+  virtual void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) = 0;
 };
 
 // Publishes on an LCM instance.
 class LcmSink : public MessageSink {
  public:
   explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
-  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-               size_t size) override;
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
 
  private:
   lcm::LCM* lcm_;
@@ -70,8 +67,8 @@ class EstimatorService {
  public:
   // sink must outlive the service. The pipeline is built from config (the
   // method is config.method).
-  EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
-                   const EstimatorServiceOptions& options, MessageSink* sink);
+  EstimatorService(const EstimatorConfig& config, const ChannelNames& channels, const EstimatorServiceOptions& options,
+                   MessageSink* sink);
   ~EstimatorService();
   EstimatorService(const EstimatorService&) = delete;
   EstimatorService& operator=(const EstimatorService&) = delete;
@@ -86,8 +83,7 @@ class EstimatorService {
   // accepted strain sample, publishes FORCE. receive_wall_utime is the host
   // time the packet arrived [us since epoch], or -1 when unknown (replay).
   // Returns true when a FORCE message was published. Never throws.
-  bool HandlePacket(InputChannel channel, const void* data, size_t size,
-                    int64_t receive_wall_utime = -1);
+  bool HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime = -1);
 
   // The input channel a full channel name belongs to; false for any other channel.
   bool InputChannelOf(const std::string& channel, InputChannel* input) const;
@@ -113,8 +109,7 @@ class EstimatorService {
     InputChannel channel = InputChannel::kStrain;
     lcm::Subscription* subscription = nullptr;
   };
-  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel,
-                           RawSubscription* context);
+  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
   bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
   void WarnDecodeError(InputChannel channel, const char* error);
 
@@ -138,7 +133,7 @@ class EstimatorService {
   ProcessingTimeStats processing_time_;
   int32_t status_seq_ = 0;
   int64_t forces_published_ = 0;
-  int64_t next_status_utime_ = -1;  // vehicle-clock status schedule [us]
+  int64_t next_status_utime_ = -1;            // vehicle-clock status schedule [us]
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;

@@ -19,9 +19,7 @@ void ProcessingTimeStats::Add(double time_us) {
   max_us_ = std::max(max_us_, time_us);
 }
 
-double ProcessingTimeStats::MeanUs() const {
-  return count_ > 0 ? sum_us_ / static_cast<double>(count_) : kNaN;
-}
+double ProcessingTimeStats::MeanUs() const { return count_ > 0 ? sum_us_ / static_cast<double>(count_) : kNaN; }
 
 double ProcessingTimeStats::MaxUs() const { return count_ > 0 ? max_us_ : kNaN; }
 
@@ -47,8 +45,8 @@ double StrainGateOf(const EstimatorConfig& config) {
   return config.method == "ekf" ? config.ekf.gate_nis_threshold : kNaN;
 }
 
-void BuildStatusMessage(const PipelineHealth& health, const char* method,
-                        const StatusContext& context, estimator_status_t* message) {
+void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
+                        estimator_status_t* message) {
   message->utime = health.newest_utime;
   message->wall_utime = context.wall_utime;
   message->seq = context.seq;
@@ -72,15 +70,11 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method,
     out.reading_missing = in.telemetry_missing;
     out.dropped_overload = in.dropped_overload;
     out.age_s = (in.last_utime >= 0 && health.newest_utime >= 0)
-                    ? static_cast<double>(health.newest_utime - in.last_utime) /
-                          kMicrosecondsPerSecond
+                    ? static_cast<double>(health.newest_utime - in.last_utime) / kMicrosecondsPerSecond
                     : kNaN;
-    out.rate_hz = context.period_s > 0
-                      ? static_cast<double>(in.accepted_in_period) / context.period_s
-                      : kNaN;
+    out.rate_hz = context.period_s > 0 ? static_cast<double>(in.accepted_in_period) / context.period_s : kNaN;
   }
-  message->strain_nis_mean =
-      health.nis_count > 0 ? health.nis_sum / static_cast<double>(health.nis_count) : kNaN;
+  message->strain_nis_mean = health.nis_count > 0 ? health.nis_sum / static_cast<double>(health.nis_count) : kNaN;
   message->strain_nis_max = health.nis_count > 0 ? health.nis_max : kNaN;
   message->strain_gate = context.strain_gate;
   message->processing_time_mean_us = context.processing_time_mean_us;

@@ -31,18 +31,18 @@ class ProcessingTimeStats {
  private:
   std::array<double, kCapacity> ring_{};
   std::array<double, kCapacity> scratch_{};
-  int next_ = 0;         // ring index the next sample goes to
-  int64_t count_ = 0;    // samples in the current period
+  int next_ = 0;       // ring index the next sample goes to
+  int64_t count_ = 0;  // samples in the current period
   double sum_us_ = 0;
   double max_us_ = 0;
 };
 
 // Inputs of one status message besides the pipeline's counters.
 struct StatusContext {
-  int64_t wall_utime = 0;         // host clock at publication [us since epoch]
-  int32_t seq = 0;                // status message counter
-  double period_s = 0;            // length of the reporting period, for rate_hz [s]
-  double strain_gate = 0;         // chi-square threshold of the strain update; NaN if none
+  int64_t wall_utime = 0;              // host clock at publication [us since epoch]
+  int32_t seq = 0;                     // status message counter
+  double period_s = 0;                 // length of the reporting period, for rate_hz [s]
+  double strain_gate = 0;              // chi-square threshold of the strain update; NaN if none
   double processing_time_mean_us = 0;  // NaN when not measured
   double processing_time_p99_us = 0;
   double processing_time_max_us = 0;
@@ -56,7 +56,7 @@ double StrainGateOf(const EstimatorConfig& config);
 // STRAIN, MOTOR, IMU, POSE; age_s on the vehicle clock relative to the newest
 // sample of any input; rates from accepted_in_period / period_s; NIS over the
 // period). Reuses the message's vectors, so steady state does not allocate.
-void BuildStatusMessage(const PipelineHealth& health, const char* method,
-                        const StatusContext& context, estimator_status_t* message);
+void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
+                        estimator_status_t* message);
 
 }  // namespace birotor

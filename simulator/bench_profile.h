@@ -21,7 +21,7 @@ class BenchCommander {
  private:
   BenchProfile profile_;
   GaussianSource source_;
-  int64_t step_index_ = -1;         // index of the current random step
+  int64_t step_index_ = -1;  // index of the current random step
   double step_level_rad_s_[2] = {0.0, 0.0};
 };
 

@@ -5,8 +5,7 @@
 
 namespace birotor {
 
-FlightController::FlightController(const VehicleParams& vehicle, const ControllerParams& params,
-                                   double hover_force_n)
+FlightController::FlightController(const VehicleParams& vehicle, const ControllerParams& params, double hover_force_n)
     : vehicle_(vehicle), params_(params), hover_total_force_n_(2.0 * hover_force_n), dt_s_(1.0 / params.rate_hz) {}
 
 RotorCommand FlightController::Update(const PlantState& state, const ReferencePoint& reference) {

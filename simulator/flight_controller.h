@@ -34,7 +34,7 @@ class FlightController {
   double hover_total_force_n_;
   double dt_s_;
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
-  double tilt_integral_rad_s_ = 0.0;                                // int(e_phi) [rad s]
+  double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
 };
 
 }  // namespace birotor

@@ -50,8 +50,7 @@ class GaussianSource {
 class GaussMarkov {
  public:
   GaussMarkov(double sigma, double correlation_time_s, double dt_s)
-      : sigma_(sigma), decay_(std::exp(-dt_s / correlation_time_s)),
-        drive_(sigma * std::sqrt(1.0 - decay_ * decay_)) {}
+      : sigma_(sigma), decay_(std::exp(-dt_s / correlation_time_s)), drive_(sigma * std::sqrt(1.0 - decay_ * decay_)) {}
 
   // Starts in the stationary distribution (or at 0 when sigma is 0).
   void Reset(GaussianSource* source) { value_ = source->Normal(sigma_); }

@@ -55,10 +55,10 @@ struct SensorRate {
 
 struct SensorParams {
   SensorRate strain{true, 1000.0};
-  double strain_noise_rad = 2e-5;            // white noise on each deflection, one sigma
+  double strain_noise_rad = 2e-5;  // white noise on each deflection, one sigma
   SensorRate motor{true, 500.0};
-  bool motor_telemetry = true;               // false: omega_meas is NaN throughout
-  double motor_speed_noise_rad_s = 5.0;      // on omega_meas, one sigma
+  bool motor_telemetry = true;           // false: omega_meas is NaN throughout
+  double motor_speed_noise_rad_s = 5.0;  // on omega_meas, one sigma
   SensorRate imu{true, 1000.0};
   double gyro_noise_rad_s = 0.005;
   double accel_noise_m_s2 = 0.05;
@@ -73,8 +73,8 @@ struct SensorParams {
 // A step of rotor i's thrust efficiency s_i at time_s.
 struct ThrustStep {
   double time_s = 0.0;
-  int rotor = 1;        // 1 or 2
-  double scale = 1.0;   // new s_i [1]
+  int rotor = 1;       // 1 or 2
+  double scale = 1.0;  // new s_i [1]
 };
 
 // A time window [start_s, start_s + duration_s); duration 0 means none.
@@ -86,12 +86,12 @@ struct TimeWindow {
 struct FaultParams {
   double initial_thrust_scale[2] = {1.0, 1.0};  // s_i at t = 0 (density: 0.9)
   std::vector<ThrustStep> thrust_steps;
-  TimeWindow strain_gap;                  // strain samples not emitted (seq advances)
-  double strain_spike_probability = 0.0;  // per strain sample
-  double strain_spike_sigmas = 50.0;      // spike size on one arm, in strain noise sigmas
+  TimeWindow strain_gap;                            // strain samples not emitted (seq advances)
+  double strain_spike_probability = 0.0;            // per strain sample
+  double strain_spike_sigmas = 50.0;                // spike size on one arm, in strain noise sigmas
   std::vector<double> strain_nan_times_s;           // sample at/after each time is NaN
   std::vector<double> strain_out_of_order_times_s;  // sample at/after each time swapped with the next
-  TimeWindow motor_telemetry_gap;         // omega_meas NaN, commands continue
+  TimeWindow motor_telemetry_gap;                   // omega_meas NaN, commands continue
 };
 
 // Cascaded PD (+ integral) on the rigid-body approximation, 500 Hz. Outer
@@ -107,17 +107,17 @@ struct ControllerParams {
   double attitude_kd_1_s = 32.0;
   double attitude_ki_1_s3 = 600.0;
   double max_tilt_rad = 0.5;
-  double max_integral_m_s2 = 3.0;     // clamp of the position integral term
+  double max_integral_m_s2 = 3.0;              // clamp of the position integral term
   double max_attitude_integral_rad_s2 = 40.0;  // clamp of the attitude integral term
 };
 
 struct Scenario {
-  std::string file;                 // where it was loaded from (messages only)
+  std::string file;  // where it was loaded from (messages only)
   std::string name = "hover";
-  std::string mode = "flight";      // "flight" or "bench" (body clamped)
+  std::string mode = "flight";  // "flight" or "bench" (body clamped)
   double duration_s = 20.0;
   uint64_t seed = 1;
-  double step_s = 0.00025;          // RK4 step; a whole number of microseconds
+  double step_s = 0.00025;                  // RK4 step; a whole number of microseconds
   double start_position_m[2] = {0.0, 0.0};  // x, z
   VehicleParams vehicle;
   TrajectoryParams trajectory;

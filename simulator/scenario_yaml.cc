@@ -151,9 +151,9 @@ Scenario ReadScenario(YamlSection root) {
     }
     ReadSensor(s, "imu", step, &sensors.imu,
                {{"gyro_noise_rad_s", &sensors.gyro_noise_rad_s}, {"accel_noise_m_s2", &sensors.accel_noise_m_s2}});
-    ReadSensor(s, "pose", step, &sensors.pose,
-               {{"position_noise_m", &sensors.pose_position_noise_m},
-                {"angle_noise_rad", &sensors.pose_angle_noise_rad}});
+    ReadSensor(
+        s, "pose", step, &sensors.pose,
+        {{"position_noise_m", &sensors.pose_position_noise_m}, {"angle_noise_rad", &sensors.pose_angle_noise_rad}});
     ReadSensor(s, "loadcell", step, &sensors.loadcell, {{"noise_n", &sensors.loadcell_noise_n}});
     ReadSensor(s, "truth", step, &sensors.truth, {});
     s.Finish();

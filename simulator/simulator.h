@@ -118,8 +118,7 @@ class Simulator {
   size_t next_thrust_step_ = 0;
 
   Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;
-  GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_,
-      fault_noise_;
+  GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_, fault_noise_;
 
   // Strain fault bookkeeping (sample indices are seq values).
   std::vector<int64_t> strain_nan_seq_;

@@ -2,7 +2,6 @@
 // file: hover equilibrium, linearized A and B, arm modes, and observability /
 // controllability tables that are numerically sound for this stiff system.
 #include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -66,8 +65,7 @@ int Run(int argc, char** argv) {
     std::fprintf(stderr, "birotor-analyze: error: %s\n", e.what());
     return 1;
   }
-  if (measure_sets.empty())
-    measure_sets = {"b1,b2", "x,z", "x,z,phi,b1,b2,x_dot,z_dot,phi_dot,b1_dot,b2_dot"};
+  if (measure_sets.empty()) measure_sets = {"b1,b2", "x,z", "x,z,phi,b1,b2,x_dot,z_dot,phi_dot,b1_dot,b2_dot"};
 
   const Equilibrium eq = SolveHoverEquilibrium(params);
   if (!eq.converged) {
@@ -117,10 +115,11 @@ int Run(int argc, char** argv) {
   }
 
   const SubspaceReport ctrb = AnalyzeControllability(LinearizeAtHover(params).a, LinearizeAtHover(params).b, row_names);
-  std::printf("\nControllability from [f1, f2] (10 mechanical states, thesis ch. 6): rank %d / %d; "
-              "uncontrollable: %s; sigma min %.3g, min PBH margin %.3g\n",
-              ctrb.rank, ctrb.state_size, Join(ctrb.hidden_states).c_str(), ctrb.singular_values.minCoeff(),
-              ctrb.pbh_margins.minCoeff());
+  std::printf(
+      "\nControllability from [f1, f2] (10 mechanical states, thesis ch. 6): rank %d / %d; "
+      "uncontrollable: %s; sigma min %.3g, min PBH margin %.3g\n",
+      ctrb.rank, ctrb.state_size, Join(ctrb.hidden_states).c_str(), ctrb.singular_values.minCoeff(),
+      ctrb.pbh_margins.minCoeff());
   return 0;
 }
 

@@ -22,8 +22,7 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-eval: estimator accuracy against simulator truth"};
   CommonOptions common;
   AddCommonOptions(app, &common);
-  std::vector<std::string> scenarios = {"hover",       "gentle",  "aggressive",
-                                        "thrust_loss", "density", "sensor_faults"};
+  std::vector<std::string> scenarios = {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults"};
   std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
   std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
   std::string scenario_dir = std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios";
@@ -32,20 +31,17 @@ int main(int argc, char** argv) {
   std::vector<std::string> estimator_sets;
   double duration_s = 0;
   EvalOptions eval_options;
-  app.add_option("--scenarios", scenarios, "Scenario names (files <scenario-dir>/<name>.yaml)")
-      ->delimiter(',');
+  app.add_option("--scenarios", scenarios, "Scenario names (files <scenario-dir>/<name>.yaml)")->delimiter(',');
   app.add_option("--methods", methods, "Methods: ekf, inversion, motor_map")
       ->delimiter(',')
       ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
   app.add_option("--params", params_file, "Estimator parameter file");
   app.add_option("--scenario-dir", scenario_dir, "Folder of the scenario files");
-  app.add_option("--set", overrides,
-                 "Simulator override section.key=value (repeatable), e.g. noise-free runs");
+  app.add_option("--set", overrides, "Simulator override section.key=value (repeatable), e.g. noise-free runs");
   app.add_option("--log", log_path, "Evaluate one input log (with TRUTH) instead of simulating");
   app.add_option("--duration-s", duration_s, "Simulate at most this long (0: whole scenario) [s]")
       ->check(CLI::Range(0.0, 1e6));
-  app.add_option("--warmup-s", eval_options.warmup_s, "Unscored start-up time [s]")
-      ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--warmup-s", eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
   app.add_option("--markdown-out", markdown_out, "Also write the table to this file");
   app.add_option("--plot-dir", plot_dir, "Write <scenario>_<method>.png plots here");
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
@@ -98,17 +94,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "birotor-eval: error: %s\n", error.c_str());
         return 1;
       }
-      const EvalResult result =
-          Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, eval_options);
+      const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, eval_options);
       const std::string label = log_path.empty() ? name : "log";
       table += MarkdownTableRow(label, method, result);
       const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
       spdlog::info(
           "{} {}: {:.1f} s simulated+estimated in {:.2f} s; strain received {} fused {} gated {} "
           "invalid {} out-of-order {} duplicates {} gaps {}; resets {}",
-          label, method, run.simulated_s, run.wall_s, strain.received, strain.fused,
-          strain.rejected_gate, strain.rejected_invalid, strain.out_of_order, strain.duplicates,
-          strain.gaps, run.health.resets);
+          label, method, run.simulated_s, run.wall_s, strain.received, strain.fused, strain.rejected_gate,
+          strain.rejected_invalid, strain.out_of_order, strain.duplicates, strain.gaps, run.health.resets);
       if (!plot_dir.empty()) {
         const std::string png = plot_dir + "/" + label + "_" + method + ".png";
         if (!WriteForcePlot(run.forces, run.truth, label + " - " + method, png, &error)) {

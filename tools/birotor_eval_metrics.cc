@@ -28,8 +28,7 @@ ErrorStats Summarize(std::vector<double>* errors) {
   stats.mae_n = sum / n;
   stats.rmse_n = std::sqrt(sum_sq / n);
   std::sort(errors->begin(), errors->end());
-  const size_t rank = std::min(errors->size() - 1,
-                               static_cast<size_t>(std::ceil(0.95 * n)) - 1);
+  const size_t rank = std::min(errors->size() - 1, static_cast<size_t>(std::ceil(0.95 * n)) - 1);
   stats.p95_n = (*errors)[rank];
   stats.max_n = errors->back();
   return stats;
@@ -37,8 +36,7 @@ ErrorStats Summarize(std::vector<double>* errors) {
 
 bool Finite(const ForceEstimate& e) {
   for (int i = 0; i < 2; ++i) {
-    if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) ||
-        !std::isfinite(e.thrust_scale[i])) {
+    if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) || !std::isfinite(e.thrust_scale[i])) {
       return false;
     }
   }
@@ -49,8 +47,7 @@ int32_t FaultBit(int rotor) { return rotor == 1 ? kStatusRotor1Fault : kStatusRo
 
 }  // namespace
 
-EvalResult Evaluate(const std::vector<ForceEstimate>& forces,
-                    const std::vector<TruthSample>& truth,
+EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
                     const std::vector<int64_t>& fault_utimes, const EvalOptions& options) {
   EvalResult result;
   std::unordered_map<int64_t, size_t> truth_index;
@@ -61,8 +58,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces,
   int64_t step_utime = -1;
   for (size_t i = 1; i < truth.size() && result.step_rotor == 0; ++i) {
     for (int r = 0; r < 2; ++r) {
-      if (std::abs(truth[i].thrust_scale[r] - truth[i - 1].thrust_scale[r]) >
-          options.step_threshold) {
+      if (std::abs(truth[i].thrust_scale[r] - truth[i - 1].thrust_scale[r]) > options.step_threshold) {
         result.step_rotor = r + 1;
         step_utime = truth[i].utime;
         break;
@@ -72,8 +68,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces,
   result.step_time_s = step_utime >= 0 ? static_cast<double>(step_utime) * 1e-6 : kNaN;
   result.detection_delay_s = kNaN;
   result.scale_error_after_step = kNaN;
-  const int64_t check_utime =
-      step_utime + static_cast<int64_t>(std::llround(options.scale_check_delay_s * 1e6));
+  const int64_t check_utime = step_utime + static_cast<int64_t>(std::llround(options.scale_check_delay_s * 1e6));
 
   const int64_t warmup_us = static_cast<int64_t>(std::llround(options.warmup_s * 1e6));
   const int64_t exclusion_us = static_cast<int64_t>(std::llround(options.fault_exclusion_s * 1e6));
@@ -113,9 +108,8 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces,
     const bool near_fault = e.utime - last_fault_utime < exclusion_us;
     for (int r = 0; r < 2; ++r) {
       // A non-finite estimate scores as an infinite error, never silently.
-      const double error = std::isfinite(e.force_n[r])
-                               ? std::abs(e.force_n[r] - t.force_n[r])
-                               : std::numeric_limits<double>::infinity();
+      const double error =
+          std::isfinite(e.force_n[r]) ? std::abs(e.force_n[r] - t.force_n[r]) : std::numeric_limits<double>::infinity();
       errors[r].push_back(error);
       if (!near_fault) errors_outside[r].push_back(error);
     }
@@ -134,8 +128,7 @@ std::string MarkdownTableHeader() {
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
-std::string MarkdownTableRow(const std::string& scenario, const std::string& method,
-                             const EvalResult& r) {
+std::string MarkdownTableRow(const std::string& scenario, const std::string& method, const EvalResult& r) {
   char delay[32] = "-", scale[32] = "-";
   if (r.step_rotor != 0) {
     if (std::isnan(r.detection_delay_s)) {
@@ -149,10 +142,9 @@ std::string MarkdownTableRow(const std::string& scenario, const std::string& met
   std::snprintf(row, sizeof(row),
                 "| %s | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | "
                 "%.4f / %.4f | %s | %s | %lld | %lld | %lld |\n",
-                scenario.c_str(), method.c_str(), r.rotor[0].mae_n, r.rotor[1].mae_n,
-                r.rotor[0].rmse_n, r.rotor[1].rmse_n, r.rotor[0].p95_n, r.rotor[1].p95_n,
-                r.rotor[0].max_n, r.rotor[1].max_n, r.mae_outside_faults_n[0],
-                r.mae_outside_faults_n[1], delay, scale,
+                scenario.c_str(), method.c_str(), r.rotor[0].mae_n, r.rotor[1].mae_n, r.rotor[0].rmse_n,
+                r.rotor[1].rmse_n, r.rotor[0].p95_n, r.rotor[1].p95_n, r.rotor[0].max_n, r.rotor[1].max_n,
+                r.mae_outside_faults_n[0], r.mae_outside_faults_n[1], delay, scale,
                 static_cast<long long>(r.false_alarms), static_cast<long long>(r.nonfinite),
                 static_cast<long long>(r.rotor[0].count));
   return row;

@@ -34,27 +34,25 @@ struct ErrorStats {
 struct EvalResult {
   ErrorStats rotor[2];
   double mae_outside_faults_n[2] = {0, 0};  // excluding fault_exclusion_s after each fault
-  int64_t paired = 0;            // estimates with a truth sample of the same utime
-  int64_t unpaired = 0;          // estimates without one
-  int64_t nonfinite = 0;         // estimates with a NaN/Inf force, std or scale
-  int64_t invalid = 0;           // scored estimates without kStatusValid
-  int64_t false_alarms = 0;      // estimates flagging rotor i while truth_i > threshold
-  int64_t fault_flags = 0;       // estimates with any rotor fault bit
+  int64_t paired = 0;                       // estimates with a truth sample of the same utime
+  int64_t unpaired = 0;                     // estimates without one
+  int64_t nonfinite = 0;                    // estimates with a NaN/Inf force, std or scale
+  int64_t invalid = 0;                      // scored estimates without kStatusValid
+  int64_t false_alarms = 0;                 // estimates flagging rotor i while truth_i > threshold
+  int64_t fault_flags = 0;                  // estimates with any rotor fault bit
   // First thrust_scale step in truth (none: step_rotor == 0).
-  int step_rotor = 0;            // 1 or 2
-  double step_time_s = 0;        // [s] since the first truth sample's utime 0
-  double detection_delay_s = 0;  // first fault flag of that rotor after the step; NaN if never
+  int step_rotor = 0;                 // 1 or 2
+  double step_time_s = 0;             // [s] since the first truth sample's utime 0
+  double detection_delay_s = 0;       // first fault flag of that rotor after the step; NaN if never
   double scale_error_after_step = 0;  // |estimated - true thrust_scale| scale_check_delay_s later
 };
 
 // fault_utimes: vehicle times of input faults (see ReplayStats).
-EvalResult Evaluate(const std::vector<ForceEstimate>& forces,
-                    const std::vector<TruthSample>& truth,
+EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
                     const std::vector<int64_t>& fault_utimes, const EvalOptions& options);
 
 // Markdown table: one header, one row per (scenario, method) result.
 std::string MarkdownTableHeader();
-std::string MarkdownTableRow(const std::string& scenario, const std::string& method,
-                             const EvalResult& result);
+std::string MarkdownTableRow(const std::string& scenario, const std::string& method, const EvalResult& result);
 
 }  // namespace birotor

@@ -40,8 +40,7 @@ class EncodingSink : public SampleSink {
 ForceTruthCollector::ForceTruthCollector(const ChannelNames& channels, MessageSink* next)
     : channels_(channels), next_(next) {}
 
-void ForceTruthCollector::Publish(const std::string& channel, int64_t timestamp_us,
-                                  const void* data, size_t size) {
+void ForceTruthCollector::Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
   if (channel == channels_.force) {
     if (DecodeMessage(data, size, &force_message_) == DecodeError::kNone) {
       forces.push_back(FromMessage(force_message_));
@@ -58,8 +57,8 @@ void ForceTruthCollector::Publish(const std::string& channel, int64_t timestamp_
   if (next_ != nullptr) next_->Publish(channel, timestamp_us, data, size);
 }
 
-EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& config,
-                             double max_duration_s, LogWriter* input_log) {
+EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& config, double max_duration_s,
+                             LogWriter* input_log) {
   const auto start = std::chrono::steady_clock::now();
   ReplayOptions options;
   const ChannelNames channels = MakeChannelNames(options.prefix);
@@ -80,8 +79,7 @@ EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& co
   return run;
 }
 
-bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run,
-            std::string* error) {
+bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run, std::string* error) {
   const auto start = std::chrono::steady_clock::now();
   ReplayOptions options;
   const ChannelNames channels = MakeChannelNames(options.prefix);

@@ -20,8 +20,7 @@ namespace birotor {
 class ForceTruthCollector : public MessageSink {
  public:
   ForceTruthCollector(const ChannelNames& channels, MessageSink* next = nullptr);
-  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-               size_t size) override;
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
 
   std::vector<ForceEstimate> forces;
   std::vector<TruthSample> truth;
@@ -46,11 +45,10 @@ struct EvalRun {
 // Simulates the scenario (up to max_duration_s, <= 0 for all of it) and
 // estimates with config. When log is given, the simulated inputs and TRUTH
 // are also written to it (a sim-to-log pipeline in one pass).
-EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& config,
-                             double max_duration_s = 0, LogWriter* input_log = nullptr);
+EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& config, double max_duration_s = 0,
+                             LogWriter* input_log = nullptr);
 
 // Estimates over an input log. False with *error if it cannot be read.
-bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run,
-            std::string* error);
+bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run, std::string* error);
 
 }  // namespace birotor

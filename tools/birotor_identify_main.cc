@@ -2,7 +2,6 @@
 // tau_m, k, d and the deflection-force maps with Ceres, and writes the
 // parameter file the estimator and simulator load, plus a readable report.
 #include <spdlog/spdlog.h>
-
 #include <unistd.h>
 
 #include <chrono>
@@ -26,7 +25,7 @@ struct IdentifyOptions {
   std::vector<std::string> logs;
   std::string mode = "auto";
   std::string params = std::string(BIROTOR_SOURCE_DIR) + "/config/reference_vehicle.yaml";
-  std::string config;   // optional file with an `identification:` section
+  std::string config;  // optional file with an `identification:` section
   std::string output;
   std::string report;
   std::string plot;
@@ -84,8 +83,8 @@ int main(int argc, char** argv) {
       return kExitFailure;
     }
     if (load.truncated_tail) {
-      spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest",
-                   path, load.tail_offset, load.file_size, load.events);
+      spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest", path,
+                   load.tail_offset, load.file_size, load.events);
     }
     if (load.decode_errors > 0) spdlog::warn("{}: {} events did not decode and were skipped", path, load.decode_errors);
     spdlog::info("{}: {} strain, {} motor, {} imu, {} loadcell samples", path, log.strain.size(), log.motor.size(),

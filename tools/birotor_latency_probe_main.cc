@@ -3,7 +3,6 @@
 // pairs them by seq and prints the publish-to-FORCE latency distribution and
 // the samples that never got a FORCE. Run birotor-estimator with the same
 // --lcm-url and --prefix.
-#include <lcm/lcm-cpp.hpp>
 #include <sched.h>
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -33,14 +33,13 @@ constexpr double kHoverDeflectionRad = 0.0018664;
 constexpr double kHoverOmegaRadS = 698.55;
 
 int64_t SteadyNowNs() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
 
 struct Probe {
-  std::vector<int64_t> publish_ns;   // per seq; 0 before publication
-  std::vector<int64_t> latency_ns;   // per seq; -1 until FORCE arrives
+  std::vector<int64_t> publish_ns;  // per seq; 0 before publication
+  std::vector<int64_t> latency_ns;  // per seq; -1 until FORCE arrives
   std::atomic<int64_t> received{0};
   std::atomic<int64_t> unmatched{0};  // FORCE with an unknown seq or not decodable
   std::atomic<int64_t> duplicates{0};
@@ -49,8 +48,7 @@ struct Probe {
 void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
   const int64_t now_ns = SteadyNowNs();
   birotor::force_estimate_t message;
-  if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) !=
-          birotor::DecodeError::kNone ||
+  if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) != birotor::DecodeError::kNone ||
       message.seq < 0 || static_cast<size_t>(message.seq) >= probe->publish_ns.size() ||
       probe->publish_ns[message.seq] == 0) {
     ++probe->unmatched;
@@ -66,9 +64,8 @@ void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, P
 
 double Percentile(const std::vector<int64_t>& sorted, double fraction) {
   if (sorted.empty()) return std::nan("");
-  const size_t rank = std::min(
-      sorted.size() - 1,
-      static_cast<size_t>(std::ceil(fraction * static_cast<double>(sorted.size()))) - 1);
+  const size_t rank =
+      std::min(sorted.size() - 1, static_cast<size_t>(std::ceil(fraction * static_cast<double>(sorted.size()))) - 1);
   return static_cast<double>(sorted[rank]) * 1e-3;
 }
 
@@ -83,12 +80,9 @@ int main(int argc, char** argv) {
   double rate_hz = 1000;
   double duration_s = 10;
   double drain_s = 1.0;
-  app.add_option("--rate-hz", rate_hz, "STRAIN rate [Hz]; MOTOR at half of it")
-      ->check(CLI::Range(1.0, 100000.0));
-  app.add_option("--duration-s", duration_s, "Publishing time [s]")
-      ->check(CLI::Range(0.1, 3600.0));
-  app.add_option("--drain-s", drain_s, "Time to wait for the last FORCE messages [s]")
-      ->check(CLI::Range(0.0, 60.0));
+  app.add_option("--rate-hz", rate_hz, "STRAIN rate [Hz]; MOTOR at half of it")->check(CLI::Range(1.0, 100000.0));
+  app.add_option("--duration-s", duration_s, "Publishing time [s]")->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--drain-s", drain_s, "Time to wait for the last FORCE messages [s]")->check(CLI::Range(0.0, 60.0));
   int realtime_priority = 0;
   app.add_option("--realtime-priority", realtime_priority,
                  "SCHED_FIFO priority (1-99) for the probe's threads; 0: normal scheduler")
@@ -115,8 +109,7 @@ int main(int argc, char** argv) {
   Probe probe;
   probe.publish_ns.assign(static_cast<size_t>(count), 0);
   probe.latency_ns.assign(static_cast<size_t>(count), -1);
-  lcm::Subscription* subscription =
-      lcm->subscribeFunction(channels.force, &OnForce, &probe);
+  lcm::Subscription* subscription = lcm->subscribeFunction(channels.force, &OnForce, &probe);
   subscription->setQueueCapacity(100000);
 
   std::atomic<bool> stop_receiving{false};
@@ -128,9 +121,9 @@ int main(int argc, char** argv) {
   const int64_t period_us = std::max<int64_t>(1, period_ns / 1000);
   // Vehicle clock of the synthetic samples: the wall clock at start, so a
   // second run moves forward in time for the daemon.
-  const int64_t utime0 = std::chrono::duration_cast<std::chrono::microseconds>(
-                             std::chrono::system_clock::now().time_since_epoch())
-                             .count();
+  const int64_t utime0 =
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();
   strain_t strain;
   motor_t motor;
   std::vector<uint8_t> strain_buffer, motor_buffer;
@@ -138,8 +131,7 @@ int main(int argc, char** argv) {
   int64_t published = 0;
   for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
     const int64_t due_ns = start_ns + k * period_ns;
-    std::this_thread::sleep_until(
-        std::chrono::steady_clock::time_point(std::chrono::nanoseconds(due_ns)));
+    std::this_thread::sleep_until(std::chrono::steady_clock::time_point(std::chrono::nanoseconds(due_ns)));
     const int64_t utime = utime0 + k * period_us;
     if (k % 2 == 0) {
       motor.utime = utime;
@@ -177,12 +169,11 @@ int main(int argc, char** argv) {
   std::printf("url %s prefix %s: %" PRId64 " STRAIN published at %.0f Hz in %.2f s (achieved %.1f Hz)\n",
               common.lcm_url.c_str(), common.prefix.c_str(), published, rate_hz, publish_s,
               static_cast<double>(published) / publish_s);
-  std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64
-              ", duplicates %" PRId64 "\n",
+  std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64 ", duplicates %" PRId64 "\n",
               latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
   std::printf("latency publish->FORCE [us]: p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  max %.1f\n",
-              Percentile(latencies, 0.50), Percentile(latencies, 0.90),
-              Percentile(latencies, 0.99), Percentile(latencies, 0.999),
+              Percentile(latencies, 0.50), Percentile(latencies, 0.90), Percentile(latencies, 0.99),
+              Percentile(latencies, 0.999),
               latencies.empty() ? std::nan("") : static_cast<double>(latencies.back()) * 1e-3);
   return dropped == 0 ? 0 : 3;
 }

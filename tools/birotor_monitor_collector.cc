@@ -17,8 +17,7 @@ constexpr double kTruthGapPeriods = 1.5;
 
 }  // namespace
 
-MonitorCollector::MonitorCollector(const ChannelNames& channels, double expected_duration_s)
-    : channels_(channels) {
+MonitorCollector::MonitorCollector(const ChannelNames& channels, double expected_duration_s) : channels_(channels) {
   const size_t capacity = static_cast<size_t>(std::max(1.0, expected_duration_s) * kSamplesPerSecond);
   forces_.reserve(capacity);
   truth_.reserve(capacity);
@@ -50,8 +49,7 @@ void MonitorCollector::HandlePacket(const std::string& channel, const void* data
 void MonitorCollector::OnForce(const ForceEstimate& estimate) {
   // seq wraps as int32 (interface.md); unsigned arithmetic keeps the wrap a +1 step.
   const bool seq_jump =
-      !forces_.empty() &&
-      static_cast<uint32_t>(estimate.seq) - static_cast<uint32_t>(forces_.back().seq) != 1u;
+      !forces_.empty() && static_cast<uint32_t>(estimate.seq) - static_cast<uint32_t>(forces_.back().seq) != 1u;
   if (seq_jump || (estimate.status & kStatusFilterReset)) fault_utimes_.push_back(estimate.utime);
   forces_.push_back(estimate);
 }
@@ -78,8 +76,8 @@ void MonitorCollector::OnStatus(const estimator_status_t& status) {
     if (input.channel != kStrainChannel) continue;
     health_.strain_received = input.received;
     health_.strain_fused = input.fused;
-    health_.strain_faults = input.gaps + input.out_of_order + input.duplicates +
-                            input.rejected_invalid + input.decode_errors;
+    health_.strain_faults =
+        input.gaps + input.out_of_order + input.duplicates + input.rejected_invalid + input.decode_errors;
     health_.dropped_overload = input.dropped_overload;
   }
 }

@@ -21,11 +21,11 @@ namespace birotor {
 // The newest estimator health, reduced to what the view shows.
 struct MonitorHealth {
   bool received = false;
-  std::string method;             // "ekf", "inversion" or "motor_map"
-  int64_t strain_received = 0;    // packets seen by the estimator
+  std::string method;           // "ekf", "inversion" or "motor_map"
+  int64_t strain_received = 0;  // packets seen by the estimator
   int64_t strain_fused = 0;
-  int64_t strain_faults = 0;      // gaps + out of order + duplicates + invalid + decode errors
-  int64_t dropped_overload = 0;   // strain packets the estimator shed under load
+  int64_t strain_faults = 0;     // gaps + out of order + duplicates + invalid + decode errors
+  int64_t dropped_overload = 0;  // strain packets the estimator shed under load
   int64_t resets = 0;
   double processing_time_p99_us = 0;  // [us]; NaN when not measured
 };

@@ -26,17 +26,17 @@ namespace {
 
 struct MonitorOptions {
   CommonOptions common;
-  std::string scenario_file;     // for the progress target and the table label; optional
-  std::string label;             // scenario column of the table; default: scenario name or "live"
-  double duration_s = 0;         // stop after this much vehicle time [s]; 0: no limit
-  bool until_sim_ends = false;   // stop when TRUTH has been silent for idle_s
-  double idle_s = 1.0;           // [s]
-  double startup_timeout_s = 30; // give up if no TRUTH arrives within this [s]
-  double interval_s = 0;         // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
-  bool plain = false;            // one plain line per refresh even on a terminal
-  bool quiet = false;            // no live view, final figures only
-  std::string png;               // plot file; empty: none
-  bool markdown = false;         // print birotor-eval's Markdown table too
+  std::string scenario_file;      // for the progress target and the table label; optional
+  std::string label;              // scenario column of the table; default: scenario name or "live"
+  double duration_s = 0;          // stop after this much vehicle time [s]; 0: no limit
+  bool until_sim_ends = false;    // stop when TRUTH has been silent for idle_s
+  double idle_s = 1.0;            // [s]
+  double startup_timeout_s = 30;  // give up if no TRUTH arrives within this [s]
+  double interval_s = 0;          // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
+  bool plain = false;             // one plain line per refresh even on a terminal
+  bool quiet = false;             // no live view, final figures only
+  std::string png;                // plot file; empty: none
+  bool markdown = false;          // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
 
@@ -65,8 +65,9 @@ bool CheckWritable(const std::string& path, std::string* error) {
 
 int Main(int argc, char** argv) {
   MonitorOptions options;
-  CLI::App app{"birotor-monitor: live view of TRUTH, FORCE and ESTIMATOR_STATUS, then the error "
-               "figures of birotor-eval over what was received"};
+  CLI::App app{
+      "birotor-monitor: live view of TRUTH, FORCE and ESTIMATOR_STATUS, then the error "
+      "figures of birotor-eval over what was received"};
   AddCommonOptions(app, &options.common);
   app.add_option("--scenario", options.scenario_file,
                  "Scenario file the simulator runs (progress target and table label)")
@@ -78,8 +79,7 @@ int Main(int argc, char** argv) {
                "Stop when TRUTH has been silent for --idle-s after the first one");
   app.add_option("--idle-s", options.idle_s, "Silence that means the simulator ended [s]")
       ->check(CLI::Range(0.05, 60.0));
-  app.add_option("--startup-timeout-s", options.startup_timeout_s,
-                 "Fail if no TRUTH arrives within this [s]")
+  app.add_option("--startup-timeout-s", options.startup_timeout_s, "Fail if no TRUTH arrives within this [s]")
       ->check(CLI::Range(0.1, 3600.0));
   app.add_option("--interval-s", options.interval_s, "View refresh period (0: 0.2 on a terminal, 1 otherwise) [s]")
       ->check(CLI::Range(0.0, 60.0));
@@ -122,8 +122,8 @@ int Main(int argc, char** argv) {
   for (const std::string* channel : {&channels.truth, &channels.force, &channels.estimator_status}) {
     lcm->subscribeFunction(*channel, &OnPacket, &collector);
   }
-  spdlog::info("birotor-monitor {} listening on {}: {} {} {}", BIROTOR_VERSION, options.common.lcm_url,
-               channels.truth, channels.force, channels.estimator_status);
+  spdlog::info("birotor-monitor {} listening on {}: {} {} {}", BIROTOR_VERSION, options.common.lcm_url, channels.truth,
+               channels.force, channels.estimator_status);
   if (options.duration_s <= 0 && !options.until_sim_ends) {
     spdlog::info("neither --duration-s nor --until-sim-ends: runs until SIGINT/SIGTERM");
   }
@@ -189,16 +189,16 @@ int Main(int argc, char** argv) {
   const MonitorHealth& health = collector.health();
   const std::string method = health.received ? health.method : std::string("unknown");
   std::printf("received: TRUTH %zu (gaps %lld), FORCE %zu, ESTIMATOR_STATUS %lld, decode errors %lld\n",
-              collector.truth().size(), static_cast<long long>(collector.truth_gaps()),
-              collector.forces().size(), static_cast<long long>(collector.status_messages()),
-              static_cast<long long>(collector.decode_errors()));
+              collector.truth().size(), static_cast<long long>(collector.truth_gaps()), collector.forces().size(),
+              static_cast<long long>(collector.status_messages()), static_cast<long long>(collector.decode_errors()));
   std::printf("error figures (%s, %s; as birotor-eval):\n%s", label.c_str(), method.c_str(),
               SummaryText(result).c_str());
   if (!collector.fault_utimes().empty() || collector.truth_gaps() > 0) {
     // Live UDP can drop packets on a busy machine; birotor-eval never does.
-    std::printf("note: %zu FORCE seq discontinuities or resets, %lld TRUTH gaps: input faults, or packets "
-                "lost on the way to this monitor; the latter make the figures differ slightly from birotor-eval's\n",
-                collector.fault_utimes().size(), static_cast<long long>(collector.truth_gaps()));
+    std::printf(
+        "note: %zu FORCE seq discontinuities or resets, %lld TRUTH gaps: input faults, or packets "
+        "lost on the way to this monitor; the latter make the figures differ slightly from birotor-eval's\n",
+        collector.fault_utimes().size(), static_cast<long long>(collector.truth_gaps()));
   }
   if (options.markdown) {
     std::printf("%s%s", MarkdownTableHeader().c_str(), MarkdownTableRow(label, method, result).c_str());
@@ -207,7 +207,9 @@ int Main(int argc, char** argv) {
 
   bool ok = true;
   if (result.paired == 0) {
-    std::fprintf(stderr, "birotor-monitor: error: no FORCE message could be paired with TRUTH (is birotor-estimator running?)\n");
+    std::fprintf(
+        stderr,
+        "birotor-monitor: error: no FORCE message could be paired with TRUTH (is birotor-estimator running?)\n");
     ok = false;
   }
   if (!options.png.empty() && result.paired > 0) {

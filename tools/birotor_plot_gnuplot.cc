@@ -8,9 +8,8 @@
 
 namespace birotor {
 
-bool WriteForcePlot(const std::vector<ForceEstimate>& forces,
-                    const std::vector<TruthSample>& truth, const std::string& title,
-                    const std::string& png_path, std::string* error) {
+bool WriteForcePlot(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
+                    const std::string& title, const std::string& png_path, std::string* error) {
   std::unordered_map<int64_t, size_t> truth_index;
   for (size_t i = 0; i < truth.size(); ++i) truth_index[truth[i].utime] = i;
   const std::string data_path = png_path + ".dat";
@@ -26,10 +25,9 @@ bool WriteForcePlot(const std::vector<ForceEstimate>& forces,
     auto it = truth_index.find(e.utime);
     if (it == truth_index.end()) continue;
     const TruthSample& t = truth[it->second];
-    std::fprintf(data, "%.6f %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n",
-                 static_cast<double>(e.utime) * 1e-6, e.force_n[0], e.force_n[1], t.force_n[0],
-                 t.force_n[1], e.force_n[0] - t.force_n[0], e.force_n[1] - t.force_n[1],
-                 e.force_std_n[0], e.force_std_n[1]);
+    std::fprintf(data, "%.6f %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", static_cast<double>(e.utime) * 1e-6,
+                 e.force_n[0], e.force_n[1], t.force_n[0], t.force_n[1], e.force_n[0] - t.force_n[0],
+                 e.force_n[1] - t.force_n[1], e.force_std_n[0], e.force_std_n[1]);
     ++rows;
   }
   std::fclose(data);
@@ -57,8 +55,7 @@ bool WriteForcePlot(const std::vector<ForceEstimate>& forces,
                "plot '%s' u 1:6 w l lc rgb '#d62728' t 'f1 est - true', "
                "'' u 1:7 w l lc rgb '#1f77b4' t 'f2 est - true'\n"
                "unset multiplot\n",
-               png_path.c_str(), title.c_str(), data_path.c_str(), data_path.c_str(),
-               data_path.c_str());
+               png_path.c_str(), title.c_str(), data_path.c_str(), data_path.c_str(), data_path.c_str());
   std::fclose(script);
   const std::string command = "gnuplot '" + script_path + "'";
   if (std::system(command.c_str()) != 0) {

@@ -13,8 +13,7 @@ namespace birotor {
 // panels: f1 estimated/true, f2 estimated/true, errors f_est - f_true.
 // Estimates are paired with truth by utime. False with *error if gnuplot
 // fails or nothing could be paired.
-bool WriteForcePlot(const std::vector<ForceEstimate>& forces,
-                    const std::vector<TruthSample>& truth, const std::string& title,
-                    const std::string& png_path, std::string* error);
+bool WriteForcePlot(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
+                    const std::string& title, const std::string& png_path, std::string* error);
 
 }  // namespace birotor

@@ -14,8 +14,7 @@ int main(int argc, char** argv) {
   CommonOptions common;
   AddCommonOptions(app, &common);
   std::string log_path, png_path, title;
-  app.add_option("--log", log_path, "LCM log with FORCE and TRUTH (birotor-replay output)")
-      ->required();
+  app.add_option("--log", log_path, "LCM log with FORCE and TRUTH (birotor-replay output)")->required();
   app.add_option("--png", png_path, "PNG file to write")->required();
   app.add_option("--title", title, "Plot title (default: the log name)");
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
@@ -33,12 +32,11 @@ int main(int argc, char** argv) {
   while (reader.Next(&event)) {
     collector.Publish(event.channel, event.timestamp_us, event.data.data(), event.data.size());
   }
-  if (!WriteForcePlot(collector.forces, collector.truth, title.empty() ? log_path : title,
-                      png_path, &error)) {
+  if (!WriteForcePlot(collector.forces, collector.truth, title.empty() ? log_path : title, png_path, &error)) {
     std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
     return 1;
   }
-  std::printf("%s: %zu estimates, %zu truth samples\n", png_path.c_str(),
-              collector.forces.size(), collector.truth.size());
+  std::printf("%s: %zu estimates, %zu truth samples\n", png_path.c_str(), collector.forces.size(),
+              collector.truth.size());
   return 0;
 }

@@ -22,19 +22,15 @@ int main(int argc, char** argv) {
   std::string input_path, output_path, csv_path, method;
   std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
   ReplayOptions options;
-  app.add_option("--log", input_path, "Input LCM log (STRAIN, MOTOR, IMU, POSE, TRUTH)")
-      ->required();
-  app.add_option("--output", output_path, "Output LCM log (FORCE, ESTIMATOR_STATUS, TRUTH)")
-      ->required();
+  app.add_option("--log", input_path, "Input LCM log (STRAIN, MOTOR, IMU, POSE, TRUTH)")->required();
+  app.add_option("--output", output_path, "Output LCM log (FORCE, ESTIMATOR_STATUS, TRUTH)")->required();
   app.add_option("--csv", csv_path, "Also write FORCE as CSV");
   app.add_option("--params", params_file, "Estimator parameter file");
   app.add_option("--method", method, "Estimation method, overrides the file")
       ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
-  app.add_option("--status-rate-hz", options.status_rate_hz,
-                 "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
+  app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
       ->check(CLI::Range(0.1, 100.0));
-  app.add_flag("--copy-truth,!--no-copy-truth", options.copy_truth,
-               "Copy TRUTH events to the output");
+  app.add_flag("--copy-truth,!--no-copy-truth", options.copy_truth, "Copy TRUTH events to the output");
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-replay", common.log_level);
   options.prefix = common.prefix;
@@ -77,8 +73,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
     return 1;
   }
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool closed = writer.Close();
   if (csv != nullptr) std::fclose(csv);
   if (log_sink.failed() || !closed) {
@@ -88,14 +83,11 @@ int main(int argc, char** argv) {
   if (truncated) spdlog::warn("{}: truncated or corrupt tail ignored", input_path);
 
   const ReplayStats& stats = replayer.stats();
-  const double log_s = stats.last_utime > stats.first_utime
-                           ? static_cast<double>(stats.last_utime - stats.first_utime) * 1e-6
-                           : 0.0;
+  const double log_s =
+      stats.last_utime > stats.first_utime ? static_cast<double>(stats.last_utime - stats.first_utime) * 1e-6 : 0.0;
   const PipelineHealth& health = replayer.service().health();
-  spdlog::info("method {}: {} events, {} FORCE, {} status, {} TRUTH; resets {}",
-               config.method, stats.events, stats.forces,
-               replayer.service().status_published(), stats.truth_copied, health.resets);
-  spdlog::info("{:.3f} s of log in {:.3f} s wall: {:.0f}x real time", log_s, wall_s,
-               wall_s > 0 ? log_s / wall_s : 0.0);
+  spdlog::info("method {}: {} events, {} FORCE, {} status, {} TRUTH; resets {}", config.method, stats.events,
+               stats.forces, replayer.service().status_published(), stats.truth_copied, health.resets);
+  spdlog::info("{:.3f} s of log in {:.3f} s wall: {:.0f}x real time", log_s, wall_s, wall_s > 0 ? log_s / wall_s : 0.0);
   return 0;
 }

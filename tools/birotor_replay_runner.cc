@@ -11,24 +11,24 @@ Replayer::Replayer(const EstimatorConfig& config, const ReplayOptions& options, 
     : options_(options),
       channels_(MakeChannelNames(options.prefix)),
       sink_(sink),
-      service_(config, channels_,
-               [&options] {
-                 EstimatorServiceOptions service_options;
-                 service_options.status_rate_hz = options.status_rate_hz;
-                 service_options.report_processing_time = false;  // deterministic output
-                 return service_options;
-               }(),
-               sink) {}
+      service_(
+          config, channels_,
+          [&options] {
+            EstimatorServiceOptions service_options;
+            service_options.status_rate_hz = options.status_rate_hz;
+            service_options.report_processing_time = false;  // deterministic output
+            return service_options;
+          }(),
+          sink) {}
 
 int64_t Replayer::StrainFaultCount() const {
   const PipelineHealth& health = service_.health();
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
-  return strain.gaps + strain.out_of_order + strain.duplicates + strain.rejected_invalid +
-         strain.decode_errors + health.resets;
+  return strain.gaps + strain.out_of_order + strain.duplicates + strain.rejected_invalid + strain.decode_errors +
+         health.resets;
 }
 
-void Replayer::Process(const std::string& channel, int64_t timestamp_us, const void* data,
-                       size_t size) {
+void Replayer::Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
   ++stats_.events;
   InputChannel input;
   if (service_.InputChannelOf(channel, &input)) {
@@ -51,8 +51,7 @@ void Replayer::Process(const std::string& channel, int64_t timestamp_us, const v
   }
 }
 
-bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail,
-                   std::string* error) {
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail, std::string* error) {
   LogReader reader;
   if (!reader.Open(input_path, error)) return false;
   LogEvent event;
@@ -63,8 +62,7 @@ bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* trun
   return true;
 }
 
-void LogSink::Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-                      size_t size) {
+void LogSink::Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
   if (!writer_->Write(channel, timestamp_us, data, size)) failed_ = true;
 }
 
@@ -73,8 +71,7 @@ ForceCsvSink::ForceCsvSink(std::FILE* file, const std::string& force_channel, Me
   std::fprintf(file_, "%s\n", ForceCsvHeader());
 }
 
-void ForceCsvSink::Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-                           size_t size) {
+void ForceCsvSink::Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
   if (channel == force_channel_ && DecodeMessage(data, size, &message_) == DecodeError::kNone) {
     std::fprintf(file_, "%s\n", ForceCsvRow(message_).c_str());
   }
@@ -88,9 +85,8 @@ const char* ForceCsvHeader() {
 
 std::string ForceCsvRow(const force_estimate_t& m) {
   char row[512];
-  std::snprintf(row, sizeof(row), "%" PRId64 ",%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d",
-                m.utime, m.seq, m.force_n[0], m.force_n[1], m.force_std_n[0], m.force_std_n[1],
-                m.thrust_scale[0], m.thrust_scale[1], m.status);
+  std::snprintf(row, sizeof(row), "%" PRId64 ",%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d", m.utime, m.seq, m.force_n[0],
+                m.force_n[1], m.force_std_n[0], m.force_std_n[1], m.thrust_scale[0], m.thrust_scale[1], m.status);
   return row;
 }
 

@@ -19,17 +19,17 @@ namespace birotor {
 
 struct ReplayOptions {
   std::string prefix = kDefaultChannelPrefix;  // channel prefix of input and output
-  bool copy_truth = true;       // copy TRUTH events to the output (for evaluation)
-  double status_rate_hz = 5.0;  // ESTIMATOR_STATUS rate on the vehicle clock [Hz]
+  bool copy_truth = true;                      // copy TRUTH events to the output (for evaluation)
+  double status_rate_hz = 5.0;                 // ESTIMATOR_STATUS rate on the vehicle clock [Hz]
 };
 
 // What a replay saw.
 struct ReplayStats {
-  int64_t events = 0;          // events offered to the replayer
-  int64_t input_packets = 0;   // STRAIN, MOTOR, IMU, POSE packets
+  int64_t events = 0;         // events offered to the replayer
+  int64_t input_packets = 0;  // STRAIN, MOTOR, IMU, POSE packets
   int64_t truth_copied = 0;
-  int64_t forces = 0;          // FORCE messages written
-  int64_t first_utime = -1;    // newest-sample utime range of the inputs [us]
+  int64_t forces = 0;        // FORCE messages written
+  int64_t first_utime = -1;  // newest-sample utime range of the inputs [us]
   int64_t last_utime = -1;
   // Vehicle times [us] at which the pipeline counted an input fault on the
   // strain channel (gap, out of order, duplicate, invalid, decode error) or
@@ -63,15 +63,13 @@ class Replayer {
 
 // Replays every event of the log at input_path. False with *error when the
 // log cannot be opened; a truncated tail is reported in *truncated_tail.
-bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail,
-                   std::string* error);
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail, std::string* error);
 
 // Writes every message to an LCM log (event time = the message's utime).
 class LogSink : public MessageSink {
  public:
   explicit LogSink(LogWriter* writer) : writer_(writer) {}
-  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-               size_t size) override;
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
   bool failed() const { return failed_; }
 
  private:
@@ -84,8 +82,7 @@ class LogSink : public MessageSink {
 class ForceCsvSink : public MessageSink {
  public:
   ForceCsvSink(std::FILE* file, const std::string& force_channel, MessageSink* next);
-  void Publish(const std::string& channel, int64_t timestamp_us, const void* data,
-               size_t size) override;
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
 
  private:
   std::FILE* file_;

@@ -4,7 +4,6 @@
 // drop counters (ESTIMATOR_STATUS), samples the daemon's CPU and resident
 // memory from /proc/<pid>, prints a time series and a summary, and exits 1
 // when a target fails (zero drops, memory growth below a bound).
-#include <lcm/lcm-cpp.hpp>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <lcm/lcm-cpp.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -31,8 +31,7 @@ namespace birotor {
 namespace {
 
 int64_t SteadyNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
 
@@ -74,8 +73,8 @@ bool ReadProcess(int pid, ProcessSample* sample) {
 double Percentile(std::vector<double> values, double fraction) {
   if (values.empty()) return std::nan("");
   std::sort(values.begin(), values.end());
-  const size_t rank = std::min(values.size() - 1,
-                               static_cast<size_t>(std::ceil(fraction * static_cast<double>(values.size()))) - 1);
+  const size_t rank =
+      std::min(values.size() - 1, static_cast<size_t>(std::ceil(fraction * static_cast<double>(values.size()))) - 1);
   return values[rank];
 }
 
@@ -101,8 +100,8 @@ class Monitor {
       return;
     }
     if (strain_count_ > 0) {
-      const int32_t jump = static_cast<int32_t>(static_cast<uint32_t>(strain_.seq) -
-                                                static_cast<uint32_t>(last_strain_seq_) - 1u);
+      const int32_t jump =
+          static_cast<int32_t>(static_cast<uint32_t>(strain_.seq) - static_cast<uint32_t>(last_strain_seq_) - 1u);
       if (jump > 0) monitor_strain_missing_ += jump;
     }
     last_strain_seq_ = strain_.seq;
@@ -154,9 +153,8 @@ class Monitor {
       last_health_ = health;
       has_status_ = true;
     }
-    processing_p99_us_ = std::max(processing_p99_us_, std::isfinite(status_.processing_time_p99_us)
-                                                          ? status_.processing_time_p99_us
-                                                          : 0.0);
+    processing_p99_us_ = std::max(processing_p99_us_,
+                                  std::isfinite(status_.processing_time_p99_us) ? status_.processing_time_p99_us : 0.0);
   }
 
   // Strain samples older than min_age_us whose FORCE never came.
@@ -198,8 +196,7 @@ class Monitor {
 };
 
 int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
@@ -219,8 +216,7 @@ int main(int argc, char** argv) {
   std::string csv_path;
   app.add_option("--duration-s", duration_s, "Monitoring time [s]")->check(CLI::Range(1.0, 86400.0));
   app.add_option("--pid", pid, "PID of the birotor-estimator to sample (CPU, RSS); 0: none");
-  app.add_option("--interval-s", interval_s, "Sampling interval of the time series [s]")
-      ->check(CLI::Range(0.5, 600.0));
+  app.add_option("--interval-s", interval_s, "Sampling interval of the time series [s]")->check(CLI::Range(0.5, 600.0));
   app.add_option("--warmup-s", warmup_s, "Memory baseline taken at the first sample after this [s]")
       ->check(CLI::Range(0.0, 3600.0));
   app.add_option("--max-memory-growth-mb", max_growth_mb, "Allowed RSS growth after warm-up [MB]")
@@ -244,8 +240,8 @@ int main(int argc, char** argv) {
 
   std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
   if (csv) std::fprintf(csv, "t_s,cpu_percent,rss_kb,strain_hz,force_hz,latency_p50_us,latency_p99_us\n");
-  std::printf("%8s %8s %10s %10s %10s %12s %12s\n", "t_s", "cpu_%", "rss_kB", "strain_Hz", "force_Hz",
-              "lat_p50_us", "lat_p99_us");
+  std::printf("%8s %8s %10s %10s %10s %12s %12s\n", "t_s", "cpu_%", "rss_kB", "strain_Hz", "force_Hz", "lat_p50_us",
+              "lat_p99_us");
 
   const int64_t start_us = SteadyNowUs();
   int64_t next_sample_us = start_us + static_cast<int64_t>(interval_s * 1e6);
@@ -303,8 +299,7 @@ int main(int argc, char** argv) {
   while (SteadyNowUs() < drain_end_us) HandleFor(*lcm, 0.05);
   if (csv) std::fclose(csv);
 
-  const int64_t force_missing =
-      monitor.force_missing_ + monitor.PendingWithoutForce(WallNowUs(), 1000000);
+  const int64_t force_missing = monitor.force_missing_ + monitor.PendingWithoutForce(WallNowUs(), 1000000);
   const bool has_status = monitor.has_status_;
   const StrainHealth& a = monitor.first_health_;
   const StrainHealth& b = monitor.last_health_;
@@ -335,8 +330,8 @@ int main(int argc, char** argv) {
   std::printf("  %-44s %.1f (worst period)\n", "daemon processing time p99 [us]", monitor.processing_p99_us_);
   std::printf("  %-44s mean %.1f  max %.1f\n", "daemon CPU [% of one core]",
               cpu_samples > 0 ? cpu_sum_percent / cpu_samples : std::nan(""), cpu_max_percent);
-  std::printf("  %-44s baseline %" PRId64 "  end %" PRId64 "  peak %" PRId64 "  growth %.3f MB\n",
-              "daemon RSS [kB]", baseline_rss_kb, last_rss_kb, peak_rss_kb, growth_mb);
+  std::printf("  %-44s baseline %" PRId64 "  end %" PRId64 "  peak %" PRId64 "  growth %.3f MB\n", "daemon RSS [kB]",
+              baseline_rss_kb, last_rss_kb, peak_rss_kb, growth_mb);
 
   bool ok = true;
   auto check = [&](bool pass, const char* what) {

@@ -11,11 +11,11 @@
 namespace birotor {
 
 struct LogLoadReport {
-  int64_t events = 0;          // events read
-  int64_t decode_errors = 0;   // events on a known channel that did not decode
-  bool truncated_tail = false; // the file ends in a partial or corrupt event
-  int64_t tail_offset = 0;     // bytes readable [bytes]
-  int64_t file_size = 0;       // [bytes]
+  int64_t events = 0;           // events read
+  int64_t decode_errors = 0;    // events on a known channel that did not decode
+  bool truncated_tail = false;  // the file ends in a partial or corrupt event
+  int64_t tail_offset = 0;      // bytes readable [bytes]
+  int64_t file_size = 0;        // [bytes]
 };
 
 // False (with *error) when the file cannot be opened or is not a log. A

@@ -90,8 +90,10 @@ bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, c
       std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return plot.x[a] < plot.x[b]; });
       for (size_t i : order) {
         data << plot.x[i] << ' ' << plot.data[i] << ' ';
-        if (std::isfinite(plot.model[i])) data << plot.model[i];
-        else data << "NaN";
+        if (std::isfinite(plot.model[i]))
+          data << plot.model[i];
+        else
+          data << "NaN";
         data << '\n';
       }
       data << "\n\n";

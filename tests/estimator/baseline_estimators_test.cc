@@ -15,10 +15,10 @@ using testing_support::RunScenario;
 using testing_support::ScenarioFile;
 using testing_support::ScenarioRun;
 
-const std::vector<std::string> kNoiseFree = {
-    "sensors.strain.noise_rad=0",       "sensors.motor.speed_noise_rad_s=0", "sensors.imu.gyro_noise_rad_s=0",
-    "sensors.imu.accel_noise_m_s2=0",   "sensors.pose.position_noise_m=0",   "sensors.pose.angle_noise_rad=0",
-    "vehicle.turbulence_std=0"};
+const std::vector<std::string> kNoiseFree = {"sensors.strain.noise_rad=0",      "sensors.motor.speed_noise_rad_s=0",
+                                             "sensors.imu.gyro_noise_rad_s=0",  "sensors.imu.accel_noise_m_s2=0",
+                                             "sensors.pose.position_noise_m=0", "sensors.pose.angle_noise_rad=0",
+                                             "vehicle.turbulence_std=0"};
 
 std::vector<std::string> With(std::vector<std::string> overrides, const std::string& extra) {
   overrides.push_back(extra);
@@ -32,8 +32,8 @@ EstimatorConfig NoiseFreeInversion() {
 }
 
 TEST(InversionEstimatorTest, NoiseFreeHoverMatchesTheThesis) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("hover"), With(kNoiseFree, "scenario.duration_s=2")),
-                                      NoiseFreeInversion());
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("hover"), With(kNoiseFree, "scenario.duration_s=2")), NoiseFreeInversion());
   RecordProperty("mae_f1_n", std::to_string(ForceMae(run, 0, 10000)));
   EXPECT_LE(ForceMae(run, 0, 10000), 0.017);
   EXPECT_LE(ForceMae(run, 1, 10000), 0.017);
@@ -41,9 +41,11 @@ TEST(InversionEstimatorTest, NoiseFreeHoverMatchesTheThesis) {
 
 TEST(InversionEstimatorTest, NoiseFreeQuinticManoeuvreMatchesTheThesis) {
   // gentle (thesis test 2: a quintic to (0.5, 0.5)), made 3 s long.
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gentle"), With(With(kNoiseFree, "scenario.duration_s=4"),
-                                                   "trajectory.waypoints=[{start_s: 0.5, duration_s: 3.0, x_m: 0.5, z_m: 0.5}]")),
-                                      NoiseFreeInversion());
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("gentle"),
+                               With(With(kNoiseFree, "scenario.duration_s=4"),
+                                    "trajectory.waypoints=[{start_s: 0.5, duration_s: 3.0, x_m: 0.5, z_m: 0.5}]")),
+                  NoiseFreeInversion());
   RecordProperty("mae_f1_n", std::to_string(ForceMae(run, 0, 10000)));
   EXPECT_LE(ForceMae(run, 0, 10000), 0.017);
   EXPECT_LE(ForceMae(run, 1, 10000), 0.017);
@@ -58,9 +60,10 @@ TEST(MotorMapEstimatorTest, ExactWhenTheMapIsRight) {
 }
 
 TEST(MotorMapEstimatorTest, FallsBackToTheMotorModelWithoutTelemetry) {
-  const ScenarioRun run = RunScenario(
-      LoadScenario(ScenarioFile("hover"), With(With(kNoiseFree, "scenario.duration_s=2"), "sensors.motor.telemetry=false")),
-      ReferenceConfig("motor_map"));
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("hover"),
+                               With(With(kNoiseFree, "scenario.duration_s=2"), "sensors.motor.telemetry=false")),
+                  ReferenceConfig("motor_map"));
   EXPECT_LE(ForceMae(run, 0, 100000), 0.02);
   EXPECT_LE(ForceMae(run, 1, 100000), 0.02);
 }

@@ -60,8 +60,8 @@ TEST(BirotorDynamics, AccelerationJacobianMatchesCentralDifferences) {
     xp(j) += h;
     xm(j) -= h;
     const Eigen::Matrix<double, 10, 1> fd = (eval(xp) - eval(xm)) / (2 * h);
-    const Eigen::Matrix<double, 10, 1> jet = (j < 10) ? Eigen::Matrix<double, 10, 1>(lin.a.col(j))
-                                                      : Eigen::Matrix<double, 10, 1>(lin.b.col(j - 10));
+    const Eigen::Matrix<double, 10, 1> jet =
+        (j < 10) ? Eigen::Matrix<double, 10, 1>(lin.a.col(j)) : Eigen::Matrix<double, 10, 1>(lin.b.col(j - 10));
     for (int i = 0; i < 10; ++i)
       EXPECT_NEAR(jet(i), fd(i), 1e-5 * std::max(1.0, std::abs(fd(i)))) << "row " << i << " col " << j;
   }

@@ -17,8 +17,8 @@ using testing_support::ScenarioFile;
 using testing_support::ScenarioRun;
 
 TEST(EkfForceEstimatorTest, TracksTheForcesAtHover) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("hover"), {"scenario.duration_s=3"}),
-                                      ReferenceConfig("ekf"));
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("hover"), {"scenario.duration_s=3"}), ReferenceConfig("ekf"));
   ASSERT_GT(run.pairs.size(), 2900u);
   EXPECT_EQ(run.non_finite, 0);
   EXPECT_LT(ForceMae(run, 0, 500000), 0.12);  // measured ~0.07 N
@@ -33,16 +33,17 @@ TEST(EkfForceEstimatorTest, TracksTheForcesAtHover) {
 
 TEST(EkfForceEstimatorTest, TracksTheForcesDuringAManoeuvre) {
   // The aggressive quintic (1 m in 2 s), cut to its move.
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("aggressive"), {"scenario.duration_s=3"}),
-                                      ReferenceConfig("ekf"));
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("aggressive"), {"scenario.duration_s=3"}), ReferenceConfig("ekf"));
   EXPECT_LT(ForceMae(run, 0, 500000), 0.12);
   EXPECT_LT(ForceMae(run, 1, 500000), 0.12);
 }
 
 TEST(EkfForceEstimatorTest, FlagsTheRotorThatLostThrust) {
-  const ScenarioRun run = RunScenario(
-      LoadScenario(ScenarioFile("thrust_loss"), {"scenario.duration_s=2", "faults.thrust_steps=[{time_s: 1.0, rotor: 2, scale: 0.75}]"}),
-      ReferenceConfig("ekf"));
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("thrust_loss"),
+                               {"scenario.duration_s=2", "faults.thrust_steps=[{time_s: 1.0, rotor: 2, scale: 0.75}]"}),
+                  ReferenceConfig("ekf"));
   int64_t first_flag = -1;
   for (const auto& p : run.pairs) {
     EXPECT_EQ(p.status & kStatusRotor1Fault, 0);
@@ -54,13 +55,14 @@ TEST(EkfForceEstimatorTest, FlagsTheRotorThatLostThrust) {
       EXPECT_TRUE(p.status & kStatusRotor2Fault);
     }
   }
-  ASSERT_GE(first_flag, 1000000);  // never before the step
+  ASSERT_GE(first_flag, 1000000);          // never before the step
   EXPECT_LE(first_flag, 1000000 + 80000);  // measured ~35 ms
 }
 
 TEST(EkfForceEstimatorTest, DoesNotFlagThinAir) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("hover"), {"scenario.duration_s=3", "faults.initial_thrust_scale=[0.9, 0.9]"}),
-                                      ReferenceConfig("ekf"));
+  const ScenarioRun run = RunScenario(
+      LoadScenario(ScenarioFile("hover"), {"scenario.duration_s=3", "faults.initial_thrust_scale=[0.9, 0.9]"}),
+      ReferenceConfig("ekf"));
   for (const auto& p : run.pairs) EXPECT_EQ(p.status & (kStatusRotor1Fault | kStatusRotor2Fault), 0);
   EXPECT_NEAR(run.pairs.back().thrust_scale[0], 0.9, 0.05);
   EXPECT_NEAR(run.pairs.back().thrust_scale[1], 0.9, 0.05);
@@ -94,16 +96,18 @@ TEST(EkfForceEstimatorTest, GateRejectsASpikeAndCountsIt) {
 }
 
 TEST(EkfForceEstimatorTest, SensorFaultsStayFiniteAndCounted) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("sensor_faults"), {"scenario.duration_s=11", "faults.motor_telemetry_gap={start_s: 9.0, duration_s: 1.0}"}),
-                                      ReferenceConfig("ekf"));
+  const ScenarioRun run = RunScenario(
+      LoadScenario(ScenarioFile("sensor_faults"),
+                   {"scenario.duration_s=11", "faults.motor_telemetry_gap={start_s: 9.0, duration_s: 1.0}"}),
+      ReferenceConfig("ekf"));
   EXPECT_EQ(run.non_finite, 0);
   const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
-  EXPECT_EQ(strain.rejected_invalid, 1);   // the NaN sample
-  EXPECT_EQ(strain.out_of_order, 1);       // the one delivered late
-  EXPECT_GE(strain.gaps, 1);               // the 150 ms gap
+  EXPECT_EQ(strain.rejected_invalid, 1);  // the NaN sample
+  EXPECT_EQ(strain.out_of_order, 1);      // the one delivered late
+  EXPECT_GE(strain.gaps, 1);              // the 150 ms gap
   EXPECT_GE(strain.missing_samples, 150);
-  EXPECT_GT(strain.rejected_gate, 20);     // ~0.5 % spikes
-  EXPECT_GE(run.health.resets, 2);         // start + the gap
+  EXPECT_GT(strain.rejected_gate, 20);                                                          // ~0.5 % spikes
+  EXPECT_GE(run.health.resets, 2);                                                              // start + the gap
   EXPECT_EQ(run.health.inputs[static_cast<int>(InputChannel::kMotor)].telemetry_missing, 500);  // 1 s at 500 Hz
   std::vector<int64_t> fault_times;
   for (const FaultEvent& f : run.faults) fault_times.push_back(f.utime);

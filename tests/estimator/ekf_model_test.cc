@@ -3,9 +3,9 @@
 // fourth-order transition matrix against the RK4 step.
 #include "estimator/ekf_model.h"
 
-#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <random>
 
 #include "estimator/equilibrium.h"

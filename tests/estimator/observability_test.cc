@@ -23,9 +23,7 @@ TEST(Observability, DeflectionsOnlyGiveRankSix) {
   EXPECT_EQ(r.hidden_states, (std::vector<std::string>{"x", "z", "phi", "x_dot", "z_dot", "phi_dot"}));
 }
 
-TEST(Observability, PositionGivesFullRank) {
-  EXPECT_EQ(Observe({"x", "z"}).rank, 12);
-}
+TEST(Observability, PositionGivesFullRank) { EXPECT_EQ(Observe({"x", "z"}).rank, 12); }
 
 TEST(Observability, AllMechanicalStatesGiveFullRank) {
   EXPECT_EQ(Observe({"x", "z", "phi", "b1", "b2", "x_dot", "z_dot", "phi_dot", "b1_dot", "b2_dot"}).rank, 12);

@@ -19,8 +19,8 @@ namespace testing_support {
 // One estimate paired with its truth.
 struct PairedSample {
   int64_t utime = 0;
-  double force_error_n[2] = {0, 0};       // estimate - truth [N]
-  double thrust_scale[2] = {1, 1};        // estimated
+  double force_error_n[2] = {0, 0};  // estimate - truth [N]
+  double thrust_scale[2] = {1, 1};   // estimated
   double true_thrust_scale[2] = {1, 1};
   int32_t status = 0;
   bool finite = true;
@@ -91,8 +91,8 @@ inline std::string ScenarioFile(const std::string& name) {
 // config/estimator.yaml, or the file named by $BIROTOR_ESTIMATOR_CONFIG (for tuning runs).
 inline EstimatorConfig ReferenceConfig(const std::string& method = "ekf") {
   const char* file = std::getenv("BIROTOR_ESTIMATOR_CONFIG");
-  EstimatorConfig config = LoadEstimatorConfig(file != nullptr ? std::string(file)
-                                                               : std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  EstimatorConfig config = LoadEstimatorConfig(
+      file != nullptr ? std::string(file) : std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
   config.method = method;
   return config;
 }
@@ -142,10 +142,14 @@ struct InputEvent {
   TruthSample truth;
   int64_t utime() const {
     switch (kind) {
-      case kStrain: return strain.utime;
-      case kMotor: return motor.utime;
-      case kImu: return imu.utime;
-      case kTruth: return truth.utime;
+      case kStrain:
+        return strain.utime;
+      case kMotor:
+        return motor.utime;
+      case kImu:
+        return imu.utime;
+      case kTruth:
+        return truth.utime;
     }
     return 0;
   }

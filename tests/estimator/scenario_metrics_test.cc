@@ -25,7 +25,9 @@ TEST(ScenarioMetrics, DISABLED_AllReferenceScenarios) {
   const char* only = std::getenv("BIROTOR_METHOD");  // restrict to one method (tuning)
   std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
   if (only != nullptr) methods = {only};
-  std::printf("| scenario | method | MAE f1 [N] | MAE f2 [N] | fault flags (r1, r2) | first r2 flag [s] | mu2 error 100 ms after the step |\n");
+  std::printf(
+      "| scenario | method | MAE f1 [N] | MAE f2 [N] | fault flags (r1, r2) | first r2 flag [s] | mu2 error 100 ms "
+      "after the step |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const char* name : kScenarios) {
     const Scenario scenario = LoadScenario(ScenarioFile(name));

@@ -13,8 +13,8 @@ namespace {
 TEST(FreeArmDerivativeTest, MatchesFullModelAtAnyPoseAndVelocity) {
   const VehicleParams p;
   Coords<double> q, v;
-  q << 0.3, -0.2, 0.25, -0.004, 0.003;   // phi and position arbitrary
-  v << 0.7, -0.4, 0.6, 0.05, -0.08;      // body velocity arbitrary
+  q << 0.3, -0.2, 0.25, -0.004, 0.003;  // phi and position arbitrary
+  v << 0.7, -0.4, 0.6, 0.05, -0.08;     // body velocity arbitrary
   const double f1 = 21.0, f2 = 24.5;
   const Coords<double> full = GeneralizedAcceleration<double>(p, q, v, f1, f2);
   FreeArmState<double> x;

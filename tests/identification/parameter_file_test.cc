@@ -55,7 +55,7 @@ TEST(ParameterFileTest, YamlLoadsBackAsTheIdentifiedValues) {
   const VehicleParams loaded = LoadVehicleParams(path);
   EXPECT_DOUBLE_EQ(loaded.arm_stiffness_n_m_rad, 3100.5);
   EXPECT_DOUBLE_EQ(loaded.thrust_coeff_n_s2_rad2, 5.01e-5);
-  EXPECT_NE(text.find("NOT DETERMINED"), std::string::npos);   // d
+  EXPECT_NE(text.find("NOT DETERMINED"), std::string::npos);    // d
   EXPECT_NE(text.find("arm 1: force_n ="), std::string::npos);  // the map, as a comment
 }
 

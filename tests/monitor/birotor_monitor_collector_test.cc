@@ -196,11 +196,9 @@ TEST(MonitorCollectorTest, FiguresOverLcmEqualBirotorEval) {
   }
   const EvalOptions options;
   const EvalResult monitor = collector.Evaluate(options);
-  const EvalResult reference =
-      Evaluate(eval.forces, eval.truth, eval.stats.strain_fault_utimes, options);
+  const EvalResult reference = Evaluate(eval.forces, eval.truth, eval.stats.strain_fault_utimes, options);
   EXPECT_GT(monitor.paired, 1400);
-  EXPECT_EQ(MarkdownTableRow("gentle", config.method, monitor),
-            MarkdownTableRow("gentle", config.method, reference));
+  EXPECT_EQ(MarkdownTableRow("gentle", config.method, monitor), MarkdownTableRow("gentle", config.method, reference));
 }
 
 }  // namespace

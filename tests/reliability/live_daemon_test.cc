@@ -45,8 +45,8 @@ TEST(LiveDaemonTest, RestartAfterSigkillPublishesValidEstimatesWithinHalfASecond
   const double restart_s = SteadyNowS();
   ASSERT_TRUE(daemon.Start(DaemonCommand(url, prefix), TempPath("crash_daemon.log")));
 
-  ASSERT_TRUE(DaemonListener::WaitUntil([&] { return listener.FirstForceWith(kValid, restart_s).arrival_s >= 0; },
-                                        30.0))
+  ASSERT_TRUE(
+      DaemonListener::WaitUntil([&] { return listener.FirstForceWith(kValid, restart_s).arrival_s >= 0; }, 30.0))
       << "no valid FORCE after the restart";
   const ForceRecord first = listener.FirstForceWith(0, restart_s);
   const ForceRecord first_valid = listener.FirstForceWith(kValid, restart_s);
@@ -68,12 +68,12 @@ TEST(LiveDaemonTest, RestartAfterSigkillPublishesValidEstimatesWithinHalfASecond
 // What the daemon published around a 2 s SIGSTOP of the simulator.
 struct FreezeRun {
   bool valid_before = false;
-  bool status_during_freeze = false;  // ESTIMATOR_STATUS kept coming on the wall clock
-  bool stale_in_status = false;       // INPUT_STALE in ESTIMATOR_STATUS during the freeze
-  bool stale_in_force = false;        // INPUT_STALE on a FORCE after the freeze
+  bool status_during_freeze = false;         // ESTIMATOR_STATUS kept coming on the wall clock
+  bool stale_in_status = false;              // INPUT_STALE in ESTIMATOR_STATUS during the freeze
+  bool stale_in_force = false;               // INPUT_STALE on a FORCE after the freeze
   double strain_rate_during_freeze_hz = -1;  // lowest STRAIN rate_hz reported
-  bool recovered = false;             // newest FORCE valid and not stale again
-  bool same_process = false;          // no restart
+  bool recovered = false;                    // newest FORCE valid and not stale again
+  bool same_process = false;                 // no restart
   bool all_finite = true;
 };
 
@@ -85,8 +85,7 @@ FreezeRun RunFreeze(int port, const std::string& prefix) {
   if (!listener.good() || !daemon.Start(DaemonCommand(url, prefix), TempPath("stale_daemon.log"))) return run;
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   if (!sim.Start(SimCommand(url, prefix, 60.0), TempPath("stale_sim.log"))) return run;
-  run.valid_before =
-      DaemonListener::WaitUntil([&] { return listener.FirstForceWith(kValid, 0).arrival_s >= 0; }, 30.0);
+  run.valid_before = DaemonListener::WaitUntil([&] { return listener.FirstForceWith(kValid, 0).arrival_s >= 0; }, 30.0);
   if (!run.valid_before) return run;
   const int daemon_pid = daemon.pid();
 
@@ -113,8 +112,8 @@ FreezeRun RunFreeze(int port, const std::string& prefix) {
   run.recovered = DaemonListener::WaitUntil(
       [&] {
         const std::vector<ForceRecord> forces = listener.Forces();
-        return !forces.empty() && forces.back().arrival_s > resume_s &&
-               (forces.back().message.status & kValid) != 0 && (forces.back().message.status & kStale) == 0;
+        return !forces.empty() && forces.back().arrival_s > resume_s && (forces.back().message.status & kValid) != 0 &&
+               (forces.back().message.status & kStale) == 0;
       },
       30.0);
   run.same_process = daemon.Alive() && daemon.pid() == daemon_pid;

@@ -13,12 +13,11 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <lcm/lcm-cpp.hpp>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <lcm/lcm-cpp.hpp>
 
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
@@ -118,8 +117,7 @@ struct StatusRecord {
 // Subscribes to FORCE and ESTIMATOR_STATUS of a prefix on its own thread.
 class DaemonListener {
  public:
-  DaemonListener(const std::string& url, const std::string& prefix)
-      : lcm_(url), channels_(MakeChannelNames(prefix)) {
+  DaemonListener(const std::string& url, const std::string& prefix) : lcm_(url), channels_(MakeChannelNames(prefix)) {
     lcm_.subscribe(channels_.force, &DaemonListener::OnForce, this)->setQueueCapacity(100000);
     lcm_.subscribe(channels_.estimator_status, &DaemonListener::OnStatus, this)->setQueueCapacity(1000);
     thread_ = std::thread([this] {
@@ -192,11 +190,11 @@ class DaemonListener {
 inline std::vector<std::string> DaemonCommand(const std::string& url, const std::string& prefix) {
   return {BIROTOR_ESTIMATOR_BIN, "--lcm-url", url, "--prefix", prefix, "--status-rate-hz", "20"};
 }
-inline std::vector<std::string> SimCommand(const std::string& url, const std::string& prefix,
-                                           double duration_s) {
+inline std::vector<std::string> SimCommand(const std::string& url, const std::string& prefix, double duration_s) {
   return {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
-          "--lcm-url", url, "--prefix", prefix, "--set",
-          "scenario.duration_s=" + std::to_string(duration_s), "--log-level", "warn"};
+          "--lcm-url",     url,          "--prefix",
+          prefix,          "--set",      "scenario.duration_s=" + std::to_string(duration_s),
+          "--log-level",   "warn"};
 }
 
 // Channel prefix unique to this test process: the same test running from

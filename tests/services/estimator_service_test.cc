@@ -89,8 +89,7 @@ class ServiceHarness {
   bool AllForcesFinite() const {
     for (const force_estimate_t& f : forces_) {
       for (int i = 0; i < 2; ++i) {
-        if (!std::isfinite(f.force_n[i]) || !std::isfinite(f.force_std_n[i]) ||
-            !std::isfinite(f.thrust_scale[i])) {
+        if (!std::isfinite(f.force_n[i]) || !std::isfinite(f.force_std_n[i]) || !std::isfinite(f.thrust_scale[i])) {
           return false;
         }
       }
@@ -257,11 +256,10 @@ TEST(EstimatorServiceTest, OverloadedStrainPacketsAreDroppedAndCounted) {
   strain.utime = 1000;
   EncodeMessage(ToMessage(strain), &buffer);
   // Received 10 s ago on the host clock: far behind.
-  const int64_t now_us = std::chrono::duration_cast<std::chrono::microseconds>(
-                             std::chrono::system_clock::now().time_since_epoch())
-                             .count();
-  EXPECT_FALSE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(),
-                                    now_us - 10'000'000));
+  const int64_t now_us =
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();
+  EXPECT_FALSE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us - 10'000'000));
   EXPECT_EQ(service.health().inputs[0].dropped_overload, 1);
   EXPECT_EQ(sink.count, 0);
   EXPECT_TRUE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us));

@@ -78,8 +78,8 @@ TEST(ClosedLoopTest, ThrustLossKeepsFlying) {
   ASSERT_FALSE(sim.fault_events().empty());
   EXPECT_EQ(sim.fault_events().front().kind, FaultKind::kThrustStep);
   EXPECT_EQ(sim.fault_events().front().utime, 5000000);
-  std::printf("thrust_loss: max error %.4f m, max tilt %.2f deg, final (%.4f, %.4f)\n",
-              sink.stats.max_position_error_m, sink.stats.max_tilt_rad / kDegree, sink.last.x_m, sink.last.z_m);
+  std::printf("thrust_loss: max error %.4f m, max tilt %.2f deg, final (%.4f, %.4f)\n", sink.stats.max_position_error_m,
+              sink.stats.max_tilt_rad / kDegree, sink.last.x_m, sink.last.z_m);
   EXPECT_LT(sink.stats.max_position_error_m, 0.3);
   EXPECT_LT(sink.stats.max_tilt_rad, 10.0 * kDegree);
   // Back near the hold point at the end, with the lost thrust made up.

@@ -87,9 +87,9 @@ TEST(ScenarioYamlTest, BadFileOnDiskIsRefusedNamingTheFile) {
 }
 
 TEST(ScenarioYamlTest, OverridesApplyOnTopOfTheFileAndAreValidated) {
-  const Scenario s = LoadScenario(ScenarioPath("gentle"), {"sensors.strain.noise_rad=0", "scenario.seed=99",
-                                                           "faults.strain_nan_times_s=[1.5, 2.5]",
-                                                           "vehicle.turbulence_std=0"});
+  const Scenario s =
+      LoadScenario(ScenarioPath("gentle"), {"sensors.strain.noise_rad=0", "scenario.seed=99",
+                                            "faults.strain_nan_times_s=[1.5, 2.5]", "vehicle.turbulence_std=0"});
   EXPECT_EQ(s.sensors.strain_noise_rad, 0.0);
   EXPECT_EQ(s.seed, 99u);
   EXPECT_EQ(s.faults.strain_nan_times_s.size(), 2u);

@@ -45,9 +45,7 @@ struct LogSink : SampleSink {
   void OnMotor(const MotorSample& s) override { writer->WriteMessage(channels.motor, s.utime, ToMessage(s)); }
   void OnImu(const ImuSample& s) override { writer->WriteMessage(channels.imu, s.utime, ToMessage(s)); }
   void OnPose(const PoseSample& s) override { writer->WriteMessage(channels.pose, s.utime, ToMessage(s)); }
-  void OnLoadCell(const LoadCellSample& s) override {
-    writer->WriteMessage(channels.loadcell, s.utime, ToMessage(s));
-  }
+  void OnLoadCell(const LoadCellSample& s) override { writer->WriteMessage(channels.loadcell, s.utime, ToMessage(s)); }
   void OnTruth(const TruthSample& s) override { writer->WriteMessage(channels.truth, s.utime, ToMessage(s)); }
 };
 
@@ -161,8 +159,8 @@ TEST(SimLogTest, SigtermClosesTheLogWithEveryEventComplete) {
   if (pid == 0) {
     // A bench run of 5 simulated minutes (seconds of CPU) that the signal cuts short.
     const std::string scenario = ScenarioPath("bench");
-    ::execl(BIROTOR_SIM_PATH, BIROTOR_SIM_PATH, "--scenario", scenario.c_str(), "--set",
-            "scenario.duration_s=300", "--output", path.c_str(), "--log-level", "error", nullptr);
+    ::execl(BIROTOR_SIM_PATH, BIROTOR_SIM_PATH, "--scenario", scenario.c_str(), "--set", "scenario.duration_s=300",
+            "--output", path.c_str(), "--log-level", "error", nullptr);
     ::_exit(127);
   }
   // Signal once the log has data (the handlers are installed before it is opened).

@@ -50,8 +50,8 @@ TEST(SimulatorTest, ChannelRatesMatchTheReference) {
   sim.Run(&sink);
   const double duration_s = 2.0;
   const std::map<std::string, std::pair<size_t, double>> rates = {
-      {"strain", {sink.strain.size(), 1000.0}}, {"motor", {sink.motor.size(), 500.0}},
-      {"imu", {sink.imu.size(), 1000.0}},       {"pose", {sink.pose.size(), 100.0}},
+      {"strain", {sink.strain.size(), 1000.0}},     {"motor", {sink.motor.size(), 500.0}},
+      {"imu", {sink.imu.size(), 1000.0}},           {"pose", {sink.pose.size(), 100.0}},
       {"loadcell", {sink.loadcell.size(), 1000.0}}, {"truth", {sink.truth.size(), 1000.0}}};
   for (const auto& [name, count_and_rate] : rates) {
     const double rate_hz = count_and_rate.first / duration_s;
@@ -143,9 +143,9 @@ TEST(SimulatorTest, NoiseFreeRunMeasuresTheTruth) {
 TEST(SimulatorTest, TurbulenceHasTheConfiguredStandardDeviation) {
   // mu = 1 + eta with eta Gauss-Markov, std 0.01, 0.1 s: 60 s give ~300
   // correlation times per rotor, so the sample std is within ~6 %.
-  Simulator sim(LoadScenario(ScenarioPath("hover"), {"scenario.duration_s=60", "sensors.strain.enabled=false",
-                                                     "sensors.imu.enabled=false", "sensors.pose.enabled=false",
-                                                     "sensors.motor.enabled=false"}));
+  Simulator sim(LoadScenario(ScenarioPath("hover"),
+                             {"scenario.duration_s=60", "sensors.strain.enabled=false", "sensors.imu.enabled=false",
+                              "sensors.pose.enabled=false", "sensors.motor.enabled=false"}));
   TruthSink sink;
   sim.Run(&sink);
   std::vector<double> eta;

@@ -17,8 +17,7 @@ TruthSample Truth(int64_t utime, double f1, double f2, double s2 = 1.0) {
   return t;
 }
 
-ForceEstimate Estimate(int64_t utime, double f1, double f2, int32_t status = kStatusValid,
-                       double s2 = 1.0) {
+ForceEstimate Estimate(int64_t utime, double f1, double f2, int32_t status = kStatusValid, double s2 = 1.0) {
   ForceEstimate e;
   e.utime = utime;
   e.force_n[0] = f1;
@@ -59,8 +58,8 @@ TEST(EvalMetricsTest, FaultDelayScaleErrorFalseAlarmsAndExclusion) {
     const double s2 = k < 500 ? 1.0 : 0.75;
     truth.push_back(Truth(t, 20, 20 * s2, s2));
     int32_t status = kStatusValid;
-    if (k == 100) status |= kStatusRotor1Fault;  // false alarm (truth s1 = 1)
-    if (k >= 520) status |= kStatusRotor2Fault;  // detected 20 ms after the step
+    if (k == 100) status |= kStatusRotor1Fault;              // false alarm (truth s1 = 1)
+    if (k >= 520) status |= kStatusRotor2Fault;              // detected 20 ms after the step
     const double error = (k >= 300 && k < 310) ? 5.0 : 0.0;  // a fault transient
     forces.push_back(Estimate(t, 20 + error, 20 * s2, status, k >= 600 ? 0.76 : 1.0));
   }

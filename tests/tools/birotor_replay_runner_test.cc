@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "tests/tools/replay_test_support.h"
 #include "tools/birotor_eval_metrics.h"
 #include "tools/birotor_eval_runner.h"
-#include "tests/tools/replay_test_support.h"
 
 namespace birotor {
 namespace {
@@ -26,8 +26,7 @@ EvalRun SimulateToLog(const std::string& scenario, double duration_s, const std:
   return run;
 }
 
-void ReplayToFile(const std::string& input, const std::string& output,
-                  const EstimatorConfig& config) {
+void ReplayToFile(const std::string& input, const std::string& output, const EstimatorConfig& config) {
   LogWriter writer;
   std::string error;
   ASSERT_TRUE(writer.Open(output, &error)) << error;
@@ -94,7 +93,7 @@ TEST(ReplayPipelineTest, ThrustLossIsTrackedAndFlaggedThroughTheLog) {
   ASSERT_EQ(result.step_rotor, 2);
   EXPECT_NEAR(result.step_time_s, 5.0, 1e-3);
   ASSERT_FALSE(std::isnan(result.detection_delay_s)) << "fault never flagged";
-  EXPECT_LT(result.detection_delay_s, 0.2);   // target 0.05 s
+  EXPECT_LT(result.detection_delay_s, 0.2);        // target 0.05 s
   EXPECT_LT(result.scale_error_after_step, 0.08);  // target 0.02
   EXPECT_EQ(result.false_alarms, 0);
   EXPECT_EQ(result.nonfinite, 0);

@@ -103,8 +103,8 @@ TEST(EkfRegressionTraceTest, ReplayReproducesTheCommittedTrace) {
     ASSERT_EQ(a.size(), e.size()) << "row " << k;
     for (size_t i = 0; i < e.size(); ++i) {
       const double tolerance = 1e-9 * std::max(1.0, std::abs(e[i]));
-      ASSERT_NEAR(a[i], e[i], tolerance) << "row " << k << " column " << i << "\n  expected "
-                                         << expected[k] << "\n  actual   " << actual[k];
+      ASSERT_NEAR(a[i], e[i], tolerance) << "row " << k << " column " << i << "\n  expected " << expected[k]
+                                         << "\n  actual   " << actual[k];
     }
   }
 }

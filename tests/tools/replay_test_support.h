@@ -14,9 +14,7 @@
 
 namespace birotor {
 
-inline std::string TempPath(const std::string& name) {
-  return ::testing::TempDir() + "/birotor_replay_test_" + name;
-}
+inline std::string TempPath(const std::string& name) { return ::testing::TempDir() + "/birotor_replay_test_" + name; }
 
 inline std::string ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -28,8 +26,7 @@ inline Scenario ReferenceScenario(const std::string& name) {
 }
 
 // Encoded messages of one channel of a log, in order.
-inline std::vector<std::vector<uint8_t>> ChannelPayloads(const std::string& path,
-                                                         const std::string& channel) {
+inline std::vector<std::vector<uint8_t>> ChannelPayloads(const std::string& path, const std::string& channel) {
   std::vector<std::vector<uint8_t>> payloads;
   LogReader reader;
   std::string error;
