@@ -9,8 +9,13 @@
 namespace birotor {
 namespace {
 
+// One file per test and call: CTest runs the tests of this file as parallel
+// processes, so a shared name would let one test read another's file.
 std::string WriteTemp(const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/vehicle_params_test.yaml";
+  static int counter = 0;
+  const std::string path = ::testing::TempDir() + "/vehicle_params_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                           std::to_string(counter++) + ".yaml";
   std::ofstream(path) << text;
   return path;
 }
