@@ -19,30 +19,42 @@ std::string RangeText(double min, double max) { return "[" + Number(min) + ", " 
 YamlSection::YamlSection(std::string file, std::string path, YAML::Node node)
     : file_(std::move(file)), path_(std::move(path)), node_(std::move(node)) {}
 
-YamlSection YamlSection::LoadFile(const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw ParamError(file + ": cannot open the parameter file");
-  } catch (const YAML::Exception& e) {
-    throw ParamError(file + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  if (!root.IsMap()) throw ParamError(file + ": the top level must be a mapping of keys");
-  return YamlSection(file, "", root);
+namespace {
+
+YAML::Node RequireMapping(YAML::Node root, const std::string& label) {
+  if (root.IsNull()) return YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap()) throw ParamError(label + ": the top level must be a mapping of keys");
+  return root;
 }
 
-YamlSection YamlSection::LoadString(const std::string& text, const std::string& file) {
-  YAML::Node root;
+ParamError SyntaxError(const std::string& label, const YAML::Exception& e) {
+  return ParamError(label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+}
+
+}  // namespace
+
+YAML::Node LoadYamlMapping(const std::string& file) {
   try {
-    root = YAML::Load(text);
+    return RequireMapping(YAML::LoadFile(file), file);
+  } catch (const YAML::BadFile&) {
+    throw ParamError(file + ": cannot open the file");
   } catch (const YAML::Exception& e) {
-    throw ParamError(file + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    throw SyntaxError(file, e);
   }
-  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  if (!root.IsMap()) throw ParamError(file + ": the top level must be a mapping of keys");
-  return YamlSection(file, "", root);
+}
+
+YAML::Node ParseYamlMapping(const std::string& text, const std::string& label) {
+  try {
+    return RequireMapping(YAML::Load(text), label);
+  } catch (const YAML::Exception& e) {
+    throw SyntaxError(label, e);
+  }
+}
+
+YamlSection YamlSection::LoadFile(const std::string& file) { return YamlSection(file, "", LoadYamlMapping(file)); }
+
+YamlSection YamlSection::LoadString(const std::string& text, const std::string& file) {
+  return YamlSection(file, "", ParseYamlMapping(text, file));
 }
 
 std::string YamlSection::KeyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }

@@ -66,6 +66,11 @@ class YamlSection {
   std::set<std::string> read_keys_;
 };
 
+// Parses a YAML file (or text) whose top level must be a mapping; an empty
+// file gives an empty mapping. ParamError names the file (or label) on failure.
+YAML::Node LoadYamlMapping(const std::string& file);
+YAML::Node ParseYamlMapping(const std::string& text, const std::string& label);
+
 // "[min, max]" with compact number formatting.
 std::string RangeText(double min, double max);
 

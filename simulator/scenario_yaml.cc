@@ -218,31 +218,15 @@ void Flatten(const YAML::Node& node, const std::string& path, std::vector<std::s
 }  // namespace
 
 std::vector<std::string> OverridesFromFile(const std::string& file) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw ParamError(file + ": cannot open the parameter file");
-  } catch (const YAML::Exception& e) {
-    throw ParamError(file + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = LoadYamlMapping(file);
   std::vector<std::string> overrides;
-  if (root.IsNull()) return overrides;
-  if (!root.IsMap()) throw ParamError(file + ": the top level must be a mapping of keys");
   Flatten(root, "", &overrides);
   return overrides;
 }
 
 Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
                                 const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw ParamError(file_label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  if (!root.IsMap()) throw ParamError(file_label + ": the top level must be a mapping of keys");
+  YAML::Node root = ParseYamlMapping(text, file_label);
   const std::string label = overrides.empty() ? file_label : file_label + " (with --set overrides)";
   for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
   Scenario scenario = ReadScenario(YamlSection(label, "", root));
@@ -251,16 +235,7 @@ Scenario LoadScenarioFromString(const std::string& text, const std::string& file
 }
 
 Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::BadFile&) {
-    throw ParamError(file + ": cannot open the scenario file");
-  } catch (const YAML::Exception& e) {
-    throw ParamError(file + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
-  if (!root.IsMap()) throw ParamError(file + ": the top level must be a mapping of keys");
+  YAML::Node root = LoadYamlMapping(file);
   const std::string label = overrides.empty() ? file : file + " (with --set overrides)";
   for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
   Scenario scenario = ReadScenario(YamlSection(label, "", root));
