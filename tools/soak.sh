@@ -48,6 +48,7 @@ monitor=$(find_program birotor-soak-monitor)
 # Receive buffer: 4 MB if the kernel allows it (net.core.rmem_max), else its limit.
 rmem_max=$(cat /proc/sys/net/core/rmem_max 2>/dev/null || echo 212992)
 buffer=$(( rmem_max < 4194304 ? rmem_max : 4194304 ))
+port=$(( port + ${BIROTOR_TEST_PORT_OFFSET:-0} ))  # several checkouts testing at once
 url="udpm://239.255.76.67:${port}?ttl=0&recv_buf_size=${buffer}"
 
 pids=()

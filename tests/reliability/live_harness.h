@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <mutex>
@@ -30,8 +31,12 @@ inline double SteadyNowS() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Private udpm URL on loopback-only multicast (ttl=0) for one test.
+// Private udpm URL on loopback-only multicast (ttl=0) for one test. The
+// environment variable BIROTOR_TEST_PORT_OFFSET shifts every port, so two
+// checkouts can run the live tests at the same time without crosstalk.
 inline std::string PrivateUrl(int port) {
+  const char* offset = std::getenv("BIROTOR_TEST_PORT_OFFSET");
+  if (offset != nullptr) port += std::atoi(offset);
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
 }
 
