@@ -1,11 +1,16 @@
 # Small helpers shared by every folder.
 
-# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l])
+# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE])
 # One GoogleTest executable registered with CTest through gtest_discover_tests.
+# SOURCE_TREE: the test reads files of the source tree (config/, tests/data/)
+# through BIROTOR_SOURCE_DIR; programs and libraries never get that path.
 function(birotor_add_test)
-  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "SOURCE_TREE" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  if(T_SOURCE_TREE)
+    target_compile_definitions(${T_NAME} PRIVATE BIROTOR_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  endif()
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()

@@ -28,4 +28,14 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Finish();
 }
 
+IdentificationOptions LoadIdentificationOptions(const std::string& file) {
+  IdentificationOptions options;
+  WithFileErrors(file, [&] {
+    YamlSection root = YamlSection::LoadFile(file);
+    ReadIdentificationOptions(root.Section("identification"), &options);
+    root.Finish();
+  });
+  return options;
+}
+
 }  // namespace birotor

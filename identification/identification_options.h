@@ -53,8 +53,13 @@ struct IdentificationOptions {
   int num_threads = 2;
 };
 
-// Overrides the fields present in the section (keys are the field names);
-// unknown keys and values out of range throw ParamError.
+// Reads every field from the section (keys are the field names; each is
+// required); unknown keys and values out of range throw ParamError.
 void ReadIdentificationOptions(YamlSection section, IdentificationOptions* options);
+
+// Loads the `identification:` section of a file (config/identification.yaml
+// has every key at its default); throws ParamError naming the file and every
+// missing key.
+IdentificationOptions LoadIdentificationOptions(const std::string& file);
 
 }  // namespace birotor

@@ -49,7 +49,12 @@ std::string IdentifiedParameterYaml(const IdentificationResult& result) {
     for (const DeflectionForceMap& m : result.maps) out << "#   arm " << m.arm + 1 << ": " << MapText(m) << "\n";
   }
   for (const std::string& w : result.warnings) out << "# warning: " << w << "\n";
-  out << VehicleParamsYaml(result.params);
+  // An undetermined parameter keeps the base file's value, marked on its own line.
+  std::vector<std::pair<std::string, std::string>> marks;
+  for (const ParameterEstimate& e : result.estimates) {
+    if (!e.determined) marks.emplace_back(e.key, "NOT DETERMINED by these logs: value of the base file");
+  }
+  out << VehicleParamsYaml(result.params, marks);
   return out.str();
 }
 

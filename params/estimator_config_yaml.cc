@@ -59,10 +59,11 @@ void ReadPipelineOptions(YamlSection s, PipelineOptions* o) {
   s.Finish();
 }
 
+// Both sections are required, with every key (the file is complete or refused).
 EstimatorConfig ReadRoot(YamlSection root) {
   EstimatorConfig config;
-  if (root.Has("vehicle")) ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
-  if (root.Has("estimator")) ReadEstimatorOptions(root.Section("estimator"), &config);
+  ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
+  ReadEstimatorOptions(root.Section("estimator"), &config);
   root.Finish();
   return config;
 }
@@ -78,10 +79,16 @@ void ReadEstimatorOptions(YamlSection s, EstimatorConfig* config) {
   s.Finish();
 }
 
-EstimatorConfig LoadEstimatorConfig(const std::string& file) { return ReadRoot(YamlSection::LoadFile(file)); }
+EstimatorConfig LoadEstimatorConfig(const std::string& file) {
+  EstimatorConfig config;
+  WithFileErrors(file, [&] { config = ReadRoot(YamlSection::LoadFile(file)); });
+  return config;
+}
 
 EstimatorConfig ParseEstimatorConfig(const std::string& text, const std::string& file) {
-  return ReadRoot(YamlSection::LoadString(text, file));
+  EstimatorConfig config;
+  WithFileErrors(file, [&] { config = ReadRoot(YamlSection::LoadString(text, file)); });
+  return config;
 }
 
 }  // namespace birotor

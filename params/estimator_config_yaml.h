@@ -10,13 +10,14 @@
 
 namespace birotor {
 
-// Overrides the fields of *config present in the `estimator:` section; every
-// key is range-checked, unknown keys are errors. Throws ParamError.
+// Reads every key of the `estimator:` section into *config; each key is
+// required and range-checked, unknown keys are errors. Throws ParamError.
 void ReadEstimatorOptions(YamlSection section, EstimatorConfig* config);
 
-// Loads `vehicle:` (optional, defaults: reference vehicle) and `estimator:`
-// (optional, defaults as documented in estimator_config.h) from a file;
-// any other top-level key is an error. Throws ParamError.
+// Loads `vehicle:` and `estimator:` from a file, both complete (the shipped
+// config/estimator.yaml has every key at its documented default); any other
+// top-level key is an error. Throws ParamError naming the file and every
+// missing key.
 EstimatorConfig LoadEstimatorConfig(const std::string& file);
 
 // Same from YAML text (file is only used in messages).

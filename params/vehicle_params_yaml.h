@@ -1,23 +1,42 @@
 // Reads and validates the `vehicle:` section of a parameter file into
-// VehicleParams (defaults: the reference vehicle), and writes it back.
+// VehicleParams, and writes it back. The keys, their ranges and their units
+// are one table (kVehicleKeys), used by the reader and the writer: a new
+// vehicle parameter is one line there plus the key in the shipped files.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "estimator/vehicle_params.h"
 #include "params/yaml_reader.h"
 
 namespace birotor {
 
-// Overrides the fields of *params present in the section; every key is
-// range-checked (masses and stiffness strictly positive). Unknown keys are
-// errors.
+// One key of the `vehicle:` section: name, allowed range and field.
+struct VehicleKey {
+  const char* name;
+  double min;
+  double max;
+  double VehicleParams::*field;
+};
+
+// Every key of the `vehicle:` section, in file order.
+const std::vector<VehicleKey>& VehicleKeys();
+
+// Reads every key of the section (each is required); ranges are checked
+// (masses and stiffness strictly positive). Unknown keys are errors.
 void ReadVehicleParams(YamlSection section, VehicleParams* params);
 
-// Loads `vehicle:` from a file; throws ParamError.
+// Loads `vehicle:` from a file (other top-level sections are allowed, so an
+// estimator file can serve as a vehicle file); throws ParamError naming the
+// file and every missing key.
 VehicleParams LoadVehicleParams(const std::string& file);
 
-// YAML text of a `vehicle:` section (full precision), for identification output.
+// YAML text of a `vehicle:` section (full precision), for identification
+// output. comments[key] (optional) is appended to that key's line as `# ...`.
 std::string VehicleParamsYaml(const VehicleParams& params, const std::string& indent = "  ");
+std::string VehicleParamsYaml(const VehicleParams& params,
+                              const std::vector<std::pair<std::string, std::string>>& comments,
+                              const std::string& indent = "  ");
 
 }  // namespace birotor

@@ -1,10 +1,15 @@
 #include "params/yaml_reader.h"
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace birotor {
 namespace {
+
+// Deeper nesting than this is refused before it is walked (no schema nests
+// more than four levels).
+constexpr int kMaxNestingDepth = 32;
 
 std::string Number(double x) {
   std::ostringstream out;
@@ -12,14 +17,19 @@ std::string Number(double x) {
   return out.str();
 }
 
-}  // namespace
+std::string Join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
 
-std::string RangeText(double min, double max) { return "[" + Number(min) + ", " + Number(max) + "]"; }
-
-YamlSection::YamlSection(std::string file, std::string path, YAML::Node node)
-    : file_(std::move(file)), path_(std::move(path)), node_(std::move(node)) {}
-
-namespace {
+// What a node holds, for "expected a number, got ..." messages.
+std::string Describe(const YAML::Node& node) {
+  if (node.IsScalar()) return Quoted(node.Scalar());
+  if (node.IsSequence()) return "a list";
+  if (node.IsMap()) return "a mapping";
+  return "nothing";
+}
 
 YAML::Node RequireMapping(YAML::Node root, const std::string& label) {
   if (root.IsNull()) return YAML::Node(YAML::NodeType::Map);
@@ -27,76 +37,152 @@ YAML::Node RequireMapping(YAML::Node root, const std::string& label) {
   return root;
 }
 
+// Refuses, anywhere in the document, keys that are not plain names (e.g.
+// `? [a, b] : 1`) and keys that appear twice in one mapping.
+void CheckKeys(const YAML::Node& node, const std::string& label, const std::string& path, int depth) {
+  if (depth > kMaxNestingDepth) {
+    throw ParamError(label + ": " + (path.empty() ? "the file" : "key " + Quoted(path)) + " is nested deeper than " +
+                     std::to_string(kMaxNestingDepth) + " levels");
+  }
+  if (node.IsSequence()) {
+    for (size_t i = 0; i < node.size(); ++i) {
+      CheckKeys(node[i], label, path + "[" + std::to_string(i) + "]", depth + 1);
+    }
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::set<std::string> seen;
+  for (const auto& item : node) {
+    if (!item.first.IsScalar()) {
+      throw ParamError(label + ": " + (path.empty() ? "the top level" : "key " + Quoted(path)) +
+                       " has a key that is not a plain name (a list or a mapping used as a key)");
+    }
+    const std::string key = item.first.Scalar();
+    const std::string key_path = path.empty() ? key : path + "." + key;
+    if (!seen.insert(key).second) {
+      throw ParamError(label + ": key " + Quoted(key_path) + ": appears twice (each key may be given once)");
+    }
+    CheckKeys(item.second, label, key_path, depth + 1);
+  }
+}
+
 ParamError SyntaxError(const std::string& label, const YAML::Exception& e) {
-  return ParamError(label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  return ParamError(label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + Quoted(e.msg));
 }
 
 }  // namespace
 
-YAML::Node LoadYamlMapping(const std::string& file) {
-  try {
-    return RequireMapping(YAML::LoadFile(file), file);
-  } catch (const YAML::BadFile&) {
-    throw ParamError(file + ": cannot open the file");
-  } catch (const YAML::Exception& e) {
-    throw SyntaxError(file, e);
+std::string Quoted(const std::string& text) {
+  if (text.size() <= kMaxQuotedChars) return "'" + text + "'";
+  return "'" + text.substr(0, kMaxQuotedChars) + "...' (" + std::to_string(text.size()) + " characters)";
+}
+
+std::string RangeText(double min, double max) { return "[" + Number(min) + ", " + Number(max) + "]"; }
+
+std::string ReadParameterFileText(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ParamError(file + ": cannot open the file");
+  // Read one byte more than allowed, so a larger file (or /dev/zero) is
+  // recognised without reading it all.
+  std::string text(kMaxParameterFileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw ParamError(file + ": cannot read the file");
+  text.resize(static_cast<size_t>(in.gcount()));
+  if (text.size() > kMaxParameterFileBytes) {
+    throw ParamError(file + ": larger than " + std::to_string(kMaxParameterFileBytes) +
+                     " bytes; a parameter or scenario file is a few kB: refused");
   }
+  return text;
 }
 
 YAML::Node ParseYamlMapping(const std::string& text, const std::string& label) {
+  if (text.size() > kMaxParameterFileBytes) {
+    throw ParamError(label + ": larger than " + std::to_string(kMaxParameterFileBytes) + " bytes: refused");
+  }
+  YAML::Node root;
   try {
-    return RequireMapping(YAML::Load(text), label);
+    root = RequireMapping(YAML::Load(text), label);
+    CheckKeys(root, label, "", 0);
+  } catch (const ParamError&) {
+    throw;
   } catch (const YAML::Exception& e) {
     throw SyntaxError(label, e);
+  } catch (const std::exception& e) {
+    throw ParamError(label + ": cannot be read: " + Quoted(e.what()));
+  }
+  return root;
+}
+
+YAML::Node LoadYamlMapping(const std::string& file) { return ParseYamlMapping(ReadParameterFileText(file), file); }
+
+void WithFileErrors(const std::string& file, const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const ParamError&) {
+    throw;
+  } catch (const YAML::Exception& e) {
+    throw ParamError(file + ": cannot be read: " + Quoted(e.what()));
+  } catch (const std::exception& e) {
+    throw ParamError(file + ": cannot be read: " + Quoted(e.what()));
   }
 }
 
-YamlSection YamlSection::LoadFile(const std::string& file) { return YamlSection(file, "", LoadYamlMapping(file)); }
+YamlSection::YamlSection(std::string file, YAML::Node root)
+    : YamlSection(std::move(file), "", std::move(root), std::make_shared<std::vector<std::string>>(), false) {}
+
+YamlSection::YamlSection(std::string file, std::string path, YAML::Node node, MissingKeys missing, bool absent)
+    : file_(std::move(file)),
+      path_(std::move(path)),
+      node_(std::move(node)),
+      missing_(std::move(missing)),
+      absent_(absent) {}
+
+YamlSection YamlSection::LoadFile(const std::string& file) { return YamlSection(file, LoadYamlMapping(file)); }
 
 YamlSection YamlSection::LoadString(const std::string& text, const std::string& file) {
-  return YamlSection(file, "", ParseYamlMapping(text, file));
+  return YamlSection(file, ParseYamlMapping(text, file));
 }
 
 std::string YamlSection::KeyPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
 void YamlSection::Fail(const std::string& key, const std::string& problem, const std::string& allowed) const {
-  std::string message = file_ + ": key '" + KeyPath(key) + "': " + problem;
+  std::string message = file_ + ": key " + Quoted(KeyPath(key)) + ": " + problem;
   if (!allowed.empty()) message += " (allowed: " + allowed + ")";
   throw ParamError(message);
 }
 
-bool YamlSection::Has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined(); }
+bool YamlSection::Has(const std::string& key) const {
+  return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+}
 
 YAML::Node YamlSection::Get(const std::string& key) {
   read_keys_.insert(key);
-  if (!node_.IsMap()) return YAML::Node();
-  return node_[key];
+  if (Has(key)) return node_[key];
+  if (!absent_) missing_->push_back(KeyPath(key));
+  return YAML::Node(YAML::NodeType::Undefined);
 }
 
 void YamlSection::Double(const std::string& key, double min, double max, double* value) {
   const YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return;
+  if (!n.IsDefined()) return;
   double x = 0;
   if (!n.IsScalar() || !YAML::convert<double>::decode(n, x))
-    Fail(key, "expected a number, got '" + (n.IsScalar() ? n.Scalar() : std::string("a structure")) + "'",
-         RangeText(min, max));
+    Fail(key, "expected a number, got " + Describe(n), RangeText(min, max));
   if (!std::isfinite(x) || x < min || x > max)
     Fail(key, "value " + Number(x) + " is out of range", RangeText(min, max));
   *value = x;
 }
 
 void YamlSection::RequiredDouble(const std::string& key, double min, double max, double* value) {
-  if (!Has(key)) Fail(key, "missing", "a number in " + RangeText(min, max));
   Double(key, min, max, value);
 }
 
 void YamlSection::Int(const std::string& key, int64_t min, int64_t max, int64_t* value) {
   const YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return;
+  if (!n.IsDefined()) return;
   int64_t x = 0;
   if (!n.IsScalar() || !YAML::convert<int64_t>::decode(n, x))
-    Fail(key, "expected an integer, got '" + (n.IsScalar() ? n.Scalar() : std::string("a structure")) + "'",
-         RangeText(static_cast<double>(min), static_cast<double>(max)));
+    Fail(key, "expected an integer, got " + Describe(n), RangeText(static_cast<double>(min), static_cast<double>(max)));
   if (x < min || x > max)
     Fail(key, "value " + std::to_string(x) + " is out of range",
          RangeText(static_cast<double>(min), static_cast<double>(max)));
@@ -111,24 +197,23 @@ void YamlSection::Int(const std::string& key, int min, int max, int* value) {
 
 void YamlSection::Bool(const std::string& key, bool* value) {
   const YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return;
+  if (!n.IsDefined()) return;
   bool x = false;
   if (!n.IsScalar() || !YAML::convert<bool>::decode(n, x))
-    Fail(key, "expected true or false, got '" + (n.IsScalar() ? n.Scalar() : std::string("a structure")) + "'",
-         "true, false");
+    Fail(key, "expected true or false, got " + Describe(n), "true, false");
   *value = x;
 }
 
 void YamlSection::String(const std::string& key, const std::vector<std::string>& allowed, std::string* value) {
   const YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return;
-  std::string list;
-  for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  if (!n.IsScalar()) Fail(key, "expected a string", list);
+  if (!n.IsDefined()) return;
+  const std::string list = Join(allowed);
+  if (!n.IsScalar()) Fail(key, "expected a string, got " + Describe(n), list);
   const std::string x = n.Scalar();
   bool ok = allowed.empty();
   for (const std::string& a : allowed) ok = ok || (a == x);
-  if (!ok) Fail(key, "unknown value '" + x + "'", list);
+  if (!ok) Fail(key, "unknown value " + Quoted(x), list);
+  if (x.size() > kMaxQuotedChars) Fail(key, "longer than " + std::to_string(kMaxQuotedChars) + " characters", "");
   *value = x;
 }
 
@@ -136,14 +221,14 @@ void YamlSection::AnyString(const std::string& key, std::string* value) { String
 
 void YamlSection::DoubleArray(const std::string& key, int count, double min, double max, double* values) {
   const YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return;
+  if (!n.IsDefined()) return;
   const std::string allowed = std::to_string(count) + " numbers, each in " + RangeText(min, max);
   if (!n.IsSequence() || static_cast<int>(n.size()) != count)
-    Fail(key, "expected a list of " + std::to_string(count), allowed);
+    Fail(key, "expected a list of " + std::to_string(count) + ", got " + Describe(n), allowed);
   for (int i = 0; i < count; ++i) {
     double x = 0;
     if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], x))
-      Fail(key, "element " + std::to_string(i) + " is not a number", allowed);
+      Fail(key, "element " + std::to_string(i) + " is not a number: " + Describe(n[i]), allowed);
     if (!std::isfinite(x) || x < min || x > max)
       Fail(key, "element " + std::to_string(i) + " = " + Number(x) + " is out of range", allowed);
     values[i] = x;
@@ -152,14 +237,14 @@ void YamlSection::DoubleArray(const std::string& key, int count, double min, dou
 
 void YamlSection::DoubleList(const std::string& key, double min, double max, std::vector<double>* values) {
   const YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return;
+  if (!n.IsDefined()) return;
   const std::string allowed = "a list of numbers, each in " + RangeText(min, max);
-  if (!n.IsSequence()) Fail(key, "expected a list", allowed);
+  if (!n.IsSequence()) Fail(key, "expected a list, got " + Describe(n), allowed);
   values->clear();
   for (size_t i = 0; i < n.size(); ++i) {
     double x = 0;
     if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], x))
-      Fail(key, "element " + std::to_string(i) + " is not a number", allowed);
+      Fail(key, "element " + std::to_string(i) + " is not a number: " + Describe(n[i]), allowed);
     if (!std::isfinite(x) || x < min || x > max)
       Fail(key, "element " + std::to_string(i) + " = " + Number(x) + " is out of range", allowed);
     values->push_back(x);
@@ -167,35 +252,45 @@ void YamlSection::DoubleList(const std::string& key, double min, double max, std
 }
 
 YamlSection YamlSection::Section(const std::string& key) {
+  const bool parent_absent = absent_;
   YAML::Node n = Get(key);
-  if (!n.IsDefined() || n.IsNull()) return YamlSection(file_, KeyPath(key), YAML::Node(YAML::NodeType::Map));
-  if (!n.IsMap()) Fail(key, "expected a mapping of keys", "");
-  return YamlSection(file_, KeyPath(key), n);
+  if (!n.IsDefined()) {
+    return YamlSection(file_, KeyPath(key), YAML::Node(YAML::NodeType::Map), missing_, true);
+  }
+  if (!n.IsMap()) Fail(key, "expected a mapping of keys, got " + Describe(n), "");
+  return YamlSection(file_, KeyPath(key), n, missing_, parent_absent);
 }
 
 std::vector<YamlSection> YamlSection::SectionList(const std::string& key) {
   YAML::Node n = Get(key);
   std::vector<YamlSection> out;
-  if (!n.IsDefined() || n.IsNull()) return out;
-  if (!n.IsSequence()) Fail(key, "expected a list", "");
+  if (!n.IsDefined()) return out;
+  if (!n.IsSequence()) Fail(key, "expected a list (may be []), got " + Describe(n), "");
   for (size_t i = 0; i < n.size(); ++i) {
     const std::string path = KeyPath(key) + "[" + std::to_string(i) + "]";
-    if (!n[i].IsMap()) throw ParamError(file_ + ": key '" + path + "': expected a mapping of keys");
-    out.emplace_back(file_, path, n[i]);
+    if (!n[i].IsMap()) throw ParamError(file_ + ": key " + Quoted(path) + ": expected a mapping of keys");
+    out.push_back(YamlSection(file_, path, n[i], missing_, absent_));
   }
   return out;
 }
 
 void YamlSection::Finish() const {
-  if (!node_.IsMap()) return;
-  for (const auto& item : node_) {
-    const std::string key = item.first.as<std::string>();
-    if (read_keys_.count(key) == 0) {
-      std::string known;
-      for (const std::string& k : read_keys_) known += (known.empty() ? "" : ", ") + k;
-      throw ParamError(file_ + ": key '" + KeyPath(key) + "': unknown key (allowed: " + known + ")");
+  if (node_.IsMap()) {
+    for (const auto& item : node_) {
+      const std::string key = item.first.Scalar();  // plain names only (CheckKeys)
+      if (read_keys_.count(key) == 0) {
+        std::vector<std::string> known(read_keys_.begin(), read_keys_.end());
+        throw ParamError(file_ + ": key " + Quoted(KeyPath(key)) + ": unknown key (allowed: " + Join(known) + ")");
+      }
     }
   }
+  if (path_.empty()) CheckComplete();
+}
+
+void YamlSection::CheckComplete() const {
+  if (missing_->empty()) return;
+  throw ParamError(file_ + ": missing " + (missing_->size() == 1 ? "key" : std::to_string(missing_->size()) + " keys") +
+                   ": " + Join(*missing_) + " (every key is required; the shipped reference files have them all)");
 }
 
 }  // namespace birotor

@@ -17,6 +17,7 @@
 #include "params/yaml_reader.h"
 #include "services/estimator_service.h"
 #include "transport/channels.h"
+#include "transport/config_files.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
@@ -40,10 +41,12 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-estimator: rotor-force estimation daemon (EKF or baselines) over LCM"};
   CommonOptions common;
   AddCommonOptions(app, &common);
-  std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
+  std::string params_file = FindConfigFile("estimator.yaml");
   std::string method;
   EstimatorServiceOptions options;
-  app.add_option("--params", params_file, "Estimator parameter file (vehicle: and estimator:)");
+  app.add_option("--params", params_file,
+                 "Estimator parameter file (vehicle: and estimator:, every key); default: the " +
+                     ConfigSearchText("estimator.yaml"));
   app.add_option("--method", method, "Estimation method, overrides the file")
       ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate [Hz]")
@@ -66,11 +69,9 @@ int main(int argc, char** argv) {
   try {
     config = LoadEstimatorConfig(params_file);
   } catch (const ParamError& error) {
-    std::fprintf(stderr, "birotor-estimator: error: %s\n", error.what());
-    return 1;
+    return ReportError(error.what());
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "birotor-estimator: error: %s: %s\n", params_file.c_str(), error.what());
-    return 1;
+    return ReportError(params_file + ": " + error.what());
   }
   if (!method.empty()) config.method = method;
 
@@ -86,10 +87,7 @@ int main(int argc, char** argv) {
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
-  if (!lcm) {
-    std::fprintf(stderr, "birotor-estimator: error: %s\n", error.c_str());
-    return 1;
-  }
+  if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
 
   const ChannelNames channels = MakeChannelNames(common.prefix);

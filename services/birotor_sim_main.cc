@@ -1,7 +1,8 @@
 // birotor-sim: runs a scenario of simulator/ and puts its samples on LCM, live
 // (paced by the wall clock times --speed) or offline (as fast as possible into
 // an LCM log file whose event timestamps are the sample times, so lcm-logplayer
-// replays it at the right pace). SIGINT/SIGTERM stop it with the log closed.
+// replays it at the right pace). --loop repeats the scenario until stopped,
+// time continuing. SIGINT/SIGTERM stop it with the log closed.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "transport/channels.h"
+#include "transport/config_files.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
@@ -32,6 +34,7 @@ struct SimOptions {
   std::string output;                    // log file (offline mode); empty: live on LCM
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
+  bool loop = false;                     // repeat the scenario until stopped, time continuing
 };
 
 // Converts each sample to its wire type and hands it to Publish(channel, utime, msg).
@@ -61,7 +64,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   LogWriter writer;
   std::string error;
   if (!writer.Open(path, &error)) {
-    spdlog::error("cannot open the output log: {}", error);
+    ReportError("cannot open the output log: " + error);
     return false;
   }
   bool write_failed = false;
@@ -72,7 +75,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   while (!write_failed && !ShutdownRequested() && sim->Step(&sink)) {
   }
   if (!writer.Close()) write_failed = true;
-  if (write_failed) spdlog::error("writing {} failed (disk full?); the log ends early", path);
+  if (write_failed) ReportError("writing " + path + " failed (disk full?); the log ends early");
   if (ShutdownRequested()) {
     spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
   }
@@ -81,13 +84,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
 }
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& url, double speed) {
-  std::string error;
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(url, &error);
-  if (!lcm) {
-    spdlog::error("cannot open LCM: {}", error);
-    return false;
-  }
+bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double speed) {
   int64_t publish_failures = 0;
   auto publish = [&](const std::string& channel, int64_t /*utime*/, const auto& message) {
     if (lcm->publish(channel, &message) != 0) ++publish_failures;
@@ -112,7 +109,9 @@ int Main(int argc, char** argv) {
   SimOptions options;
   CLI::App app{"birotor-sim: simulated birotor sensors and truth over LCM, live or into a log file"};
   AddCommonOptions(app, &options.common);
-  app.add_option("--scenario", options.scenario_file, "Scenario file (config/scenarios/*.yaml)")->required();
+  app.add_option("--scenario", options.scenario_file,
+                 "Scenario file, or a scenario name such as hover (" + ConfigSearchText("scenarios/<name>.yaml") + ")")
+      ->required();
   app.add_option("--params", options.param_files, "Partial scenario file applied on top of --scenario (repeatable)");
   app.add_option("--set", options.overrides, "Override section.key=value (YAML value; repeatable)");
   app.add_option("--output", options.output, "Write an LCM log file as fast as possible instead of publishing live");
@@ -120,6 +119,8 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 1e6));
   app.add_flag("--wall-clock", options.wall_clock,
                "Stamp samples with the wall clock instead of simulated time from 0");
+  app.add_flag("--loop", options.loop,
+               "Repeat the scenario until stopped (SIGINT/SIGTERM), time continuing: run n starts at n x duration");
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -131,10 +132,10 @@ int Main(int argc, char** argv) {
       overrides.insert(overrides.end(), from_file.begin(), from_file.end());
     }
     overrides.insert(overrides.end(), options.overrides.begin(), options.overrides.end());
+    options.scenario_file = ResolveScenario(options.scenario_file);
     scenario = LoadScenario(options.scenario_file, overrides);
   } catch (const ParamError& e) {
-    std::fprintf(stderr, "birotor-sim: error: %s\n", e.what());
-    return 1;
+    return ReportError(e.what());
   }
   spdlog::info(
       "scenario '{}' from {} (checksum {}), {:.3f} s, seed {}, step {} s{}", scenario.name, options.scenario_file,
@@ -143,23 +144,50 @@ int Main(int argc, char** argv) {
           ? ""
           : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
 
-  InstallShutdownHandlers();
-  Simulator sim(scenario);
-  if (options.wall_clock) sim.set_utime_offset_us(WallClockMicroseconds());
-  const ChannelNames channels = MakeChannelNames(options.common.prefix);
+  if (options.loop && !options.output.empty()) {
+    return ReportError("--loop runs until stopped: it is for live mode, not with --output (see --help)", kExitUsage);
+  }
 
+  std::unique_ptr<lcm::LCM> lcm;
+  if (options.output.empty()) {
+    std::string error;
+    lcm = OpenLcm(options.common.lcm_url, &error);
+    if (!lcm) return ReportError("cannot open LCM: " + error);
+  }
+  InstallShutdownHandlers();
+  const ChannelNames channels = MakeChannelNames(options.common.prefix);
+  const int64_t start_utime = options.wall_clock ? WallClockMicroseconds() : 0;
   const auto start = std::chrono::steady_clock::now();
-  const bool ok = options.output.empty() ? RunLive(&sim, channels, options.common.lcm_url, options.speed)
-                                         : RunOffline(&sim, channels, options.output);
+  bool ok = true;
+  double simulated_s = 0.0;
+  ChannelCounts n;
+  size_t fault_events = 0;
+  // Each run starts where the previous one ended on the clock (the state
+  // starts over from the scenario's initial state); the live pacing of run k
+  // is relative to its own start, which is when run k - 1 ended.
+  for (int64_t run = 0; ok && (run == 0 || (options.loop && !ShutdownRequested())); ++run) {
+    Simulator sim(scenario);
+    sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
+    ok = options.output.empty() ? RunLive(&sim, channels, lcm.get(), options.speed)
+                                : RunOffline(&sim, channels, options.output);
+    simulated_s += sim.time_s();
+    const ChannelCounts& emitted = sim.emitted();
+    n.strain += emitted.strain;
+    n.motor += emitted.motor;
+    n.imu += emitted.imu;
+    n.pose += emitted.pose;
+    n.loadcell += emitted.loadcell;
+    n.truth += emitted.truth;
+    fault_events += sim.fault_events().size();
+  }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const ChannelCounts& n = sim.emitted();
   spdlog::info(
       "simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
       "pose {}, loadcell {}, truth {}; {} fault events",
-      sim.time_s(), wall_s, wall_s > 0 ? sim.time_s() / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose, n.loadcell,
-      n.truth, sim.fault_events().size());
-  return ok ? 0 : 1;
+      simulated_s, wall_s, wall_s > 0 ? simulated_s / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose, n.loadcell,
+      n.truth, fault_events);
+  return ok ? 0 : kExitFailure;
 }
 
 }  // namespace

@@ -14,7 +14,8 @@ constexpr double kMaxRateHz = 1e5;
 // Sets the node at a dotted path to the YAML value text, creating mappings on the way.
 void SetPath(YAML::Node node, const std::vector<std::string>& parts, size_t index, const YAML::Node& value,
              const std::string& label, const std::string& path) {
-  if (!node.IsMap()) throw ParamError(label + ": key '" + path + "': --set reaches into a value that is not a mapping");
+  if (!node.IsMap())
+    throw ParamError(label + ": key " + Quoted(path) + ": --set reaches into a value that is not a mapping");
   if (index + 1 == parts.size()) {
     node[parts[index]] = value;
     return;
@@ -28,14 +29,14 @@ void SetPath(YAML::Node node, const std::vector<std::string>& parts, size_t inde
 void ApplyOverride(YAML::Node root, const std::string& text, const std::string& label) {
   const size_t equals = text.find('=');
   if (equals == std::string::npos || equals == 0)
-    throw ParamError(label + ": override '" + text + "': expected section.key=value");
+    throw ParamError(label + ": override " + Quoted(text) + ": expected section.key=value");
   const std::string path = text.substr(0, equals);
   std::vector<std::string> parts;
   size_t begin = 0;
   while (true) {
     const size_t dot = path.find('.', begin);
     parts.push_back(path.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
-    if (parts.back().empty()) throw ParamError(label + ": override '" + text + "': empty key in the path");
+    if (parts.back().empty()) throw ParamError(label + ": override " + Quoted(text) + ": empty key in the path");
     if (dot == std::string::npos) break;
     begin = dot + 1;
   }
@@ -43,7 +44,7 @@ void ApplyOverride(YAML::Node root, const std::string& text, const std::string& 
   try {
     value = YAML::Load(text.substr(equals + 1));
   } catch (const YAML::Exception& e) {
-    throw ParamError(label + ": key '" + path + "': value is not valid YAML: " + e.msg);
+    throw ParamError(label + ": key " + Quoted(path) + ": value is not valid YAML: " + Quoted(e.msg));
   }
   SetPath(root, parts, 0, value, label, path);
 }
@@ -167,7 +168,6 @@ Scenario ReadScenario(YamlSection root) {
       ThrustStep step;
       t.RequiredDouble("time_s", 0.0, end_s, &step.time_s);
       t.Int("rotor", 1, 2, &step.rotor);
-      if (!t.Has("rotor")) t.Fail("rotor", "missing", "1 or 2");
       t.RequiredDouble("scale", 0.0, 10.0, &step.scale);
       t.Finish();
       faults.thrust_steps.push_back(step);
@@ -203,7 +203,7 @@ Scenario ReadScenario(YamlSection root) {
 void Flatten(const YAML::Node& node, const std::string& path, std::vector<std::string>* out) {
   if (node.IsMap() && node.size() > 0) {
     for (const auto& item : node) {
-      const std::string key = item.first.as<std::string>();
+      const std::string key = item.first.Scalar();  // plain names only (LoadYamlMapping)
       Flatten(item.second, path.empty() ? key : path + "." + key, out);
     }
     return;
@@ -218,29 +218,26 @@ void Flatten(const YAML::Node& node, const std::string& path, std::vector<std::s
 }  // namespace
 
 std::vector<std::string> OverridesFromFile(const std::string& file) {
-  const YAML::Node root = LoadYamlMapping(file);
   std::vector<std::string> overrides;
-  Flatten(root, "", &overrides);
+  WithFileErrors(file, [&] { Flatten(LoadYamlMapping(file), "", &overrides); });
   return overrides;
 }
 
 Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
                                 const std::vector<std::string>& overrides) {
-  YAML::Node root = ParseYamlMapping(text, file_label);
   const std::string label = overrides.empty() ? file_label : file_label + " (with --set overrides)";
-  for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
-  Scenario scenario = ReadScenario(YamlSection(label, "", root));
+  Scenario scenario;
+  WithFileErrors(label, [&] {
+    YAML::Node root = ParseYamlMapping(text, file_label);
+    for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
+    scenario = ReadScenario(YamlSection(label, root));
+  });
   scenario.file = file_label;
   return scenario;
 }
 
 Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides) {
-  YAML::Node root = LoadYamlMapping(file);
-  const std::string label = overrides.empty() ? file : file + " (with --set overrides)";
-  for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
-  Scenario scenario = ReadScenario(YamlSection(label, "", root));
-  scenario.file = file;
-  return scenario;
+  return LoadScenarioFromString(ReadParameterFileText(file), file, overrides);
 }
 
 }  // namespace birotor

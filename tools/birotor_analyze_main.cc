@@ -13,6 +13,7 @@
 #include "estimator/linearization.h"
 #include "estimator/observability.h"
 #include "params/vehicle_params_yaml.h"
+#include "transport/config_files.h"
 #include "transport/program_options.h"
 
 namespace birotor {
@@ -47,10 +48,12 @@ std::string Join(const std::vector<std::string>& items) {
 int Run(int argc, char** argv) {
   CLI::App app{"Model analysis of the birotor: equilibrium, linearization, modes, observability, controllability"};
   app.option_defaults()->always_capture_default();
-  std::string params_file = "config/reference_vehicle.yaml";
+  std::string params_file = FindConfigFile("reference_vehicle.yaml");
   std::vector<std::string> measure_sets;
   bool thesis_coordinates = false;
-  app.add_option("--params", params_file, "Parameter file with a vehicle: section");
+  app.add_option(
+      "--params", params_file,
+      "Parameter file with a complete vehicle: section; default: the " + ConfigSearchText("reference_vehicle.yaml"));
   app.add_option("--measure", measure_sets,
                  "Measured states, comma separated (repeatable), from: x,z,phi,b1,b2,x_dot,z_dot,phi_dot,"
                  "b1_dot,b2_dot,f1,f2. Default: the thesis's sets b1,b2 | x,z | all ten mechanical states");
@@ -62,15 +65,13 @@ int Run(int argc, char** argv) {
   try {
     params = LoadVehicleParams(params_file);
   } catch (const ParamError& e) {
-    std::fprintf(stderr, "birotor-analyze: error: %s\n", e.what());
-    return 1;
+    return ReportError(e.what());
   }
   if (measure_sets.empty()) measure_sets = {"b1,b2", "x,z", "x,z,phi,b1,b2,x_dot,z_dot,phi_dot,b1_dot,b2_dot"};
 
   const Equilibrium eq = SolveHoverEquilibrium(params);
   if (!eq.converged) {
-    std::fprintf(stderr, "birotor-analyze: error: no hover equilibrium found (residual %g)\n", eq.residual);
-    return 1;
+    return ReportError("no hover equilibrium found (residual " + std::to_string(eq.residual) + ")");
   }
   std::printf("Parameter file: %s\n\nHover equilibrium (phi = 0)\n", params_file.c_str());
   std::printf("  f1 = %.6f N, f2 = %.6f N   (g (m + 2 m_p) / 2 = %.6f N)\n", eq.force_n[0], eq.force_n[1],
@@ -104,9 +105,7 @@ int Run(int argc, char** argv) {
     Eigen::MatrixXd c;
     std::string unknown;
     if (!SelectionMatrix(names, SplitComma(set), &c, &unknown)) {
-      std::fprintf(stderr, "birotor-analyze: error: --measure: unknown state '%s' (allowed: %s)\n", unknown.c_str(),
-                   Join(names).c_str());
-      return 2;
+      return ReportError("--measure: unknown state '" + unknown + "' (allowed: " + Join(names) + ")", kExitUsage);
     }
     const SubspaceReport r = AnalyzeObservability(aug, c, names);
     std::printf("| %s | %d / %d | %s | %.3g | %.3g | %.3g |\n", set.c_str(), r.rank, r.state_size,

@@ -14,6 +14,7 @@
 #include "tools/birotor_eval_metrics.h"
 #include "tools/birotor_eval_runner.h"
 #include "tools/birotor_plot_gnuplot.h"
+#include "transport/config_files.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
@@ -24,18 +25,22 @@ int main(int argc, char** argv) {
   AddCommonOptions(app, &common);
   std::vector<std::string> scenarios = {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults"};
   std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
-  std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
-  std::string scenario_dir = std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios";
+  std::string params_file = FindConfigFile("estimator.yaml");
+  std::string scenario_dir;  // empty: each scenario is looked up as scenarios/<name>.yaml
   std::string log_path, markdown_out, plot_dir;
   std::vector<std::string> overrides;
   std::vector<std::string> estimator_sets;
   double duration_s = 0;
   EvalOptions eval_options;
-  app.add_option("--scenarios", scenarios, "Scenario names (files <scenario-dir>/<name>.yaml)")->delimiter(',');
+  app.add_option("--scenarios", scenarios,
+                 "Scenario names: files <scenario-dir>/<name>.yaml, or without --scenario-dir the " +
+                     ConfigSearchText("scenarios/<name>.yaml"))
+      ->delimiter(',');
   app.add_option("--methods", methods, "Methods: ekf, inversion, motor_map")
       ->delimiter(',')
       ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
-  app.add_option("--params", params_file, "Estimator parameter file");
+  app.add_option("--params", params_file,
+                 "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
   app.add_option("--scenario-dir", scenario_dir, "Folder of the scenario files");
   app.add_option("--set", overrides, "Simulator override section.key=value (repeatable), e.g. noise-free runs");
   app.add_option("--log", log_path, "Evaluate one input log (with TRUTH) instead of simulating");
@@ -51,22 +56,19 @@ int main(int argc, char** argv) {
   try {
     base_config = LoadEstimatorConfig(params_file);
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "birotor-eval: error: %s\n", error.what());
-    return 1;
+    return ReportError(error.what());
   }
   if (!log_path.empty()) scenarios = {log_path};
   // Refuse unwritable outputs before minutes of simulation, not after.
   std::error_code fs_error;
   if (!plot_dir.empty() && !std::filesystem::is_directory(plot_dir) &&
       !std::filesystem::create_directories(plot_dir, fs_error)) {
-    std::fprintf(stderr, "birotor-eval: error: cannot create --plot-dir %s\n", plot_dir.c_str());
-    return 1;
+    return ReportError("cannot create --plot-dir " + plot_dir);
   }
   if (!markdown_out.empty()) {
     std::FILE* probe = std::fopen(markdown_out.c_str(), "a");
     if (probe == nullptr) {
-      std::fprintf(stderr, "birotor-eval: error: cannot write %s\n", markdown_out.c_str());
-      return 1;
+      return ReportError("cannot write " + markdown_out);
     }
     std::fclose(probe);
   }
@@ -78,10 +80,11 @@ int main(int argc, char** argv) {
     Scenario scenario;
     if (log_path.empty()) {
       try {
-        scenario = LoadScenario(scenario_dir + "/" + name + ".yaml", overrides);
+        const std::string file =
+            scenario_dir.empty() ? FindConfigFile("scenarios/" + name + ".yaml") : scenario_dir + "/" + name + ".yaml";
+        scenario = LoadScenario(file, overrides);
       } catch (const std::exception& e) {
-        std::fprintf(stderr, "birotor-eval: error: %s\n", e.what());
-        return 1;
+        return ReportError(e.what());
       }
     }
     for (const std::string& method : methods) {
@@ -91,8 +94,7 @@ int main(int argc, char** argv) {
       if (log_path.empty()) {
         run = RunSimulatedScenario(scenario, config, duration_s);
       } else if (!RunLog(log_path, config, &run, &error)) {
-        std::fprintf(stderr, "birotor-eval: error: %s\n", error.c_str());
-        return 1;
+        return ReportError(error);
       }
       const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, eval_options);
       const std::string label = log_path.empty() ? name : "log";
@@ -106,7 +108,7 @@ int main(int argc, char** argv) {
       if (!plot_dir.empty()) {
         const std::string png = plot_dir + "/" + label + "_" + method + ".png";
         if (!WriteForcePlot(run.forces, run.truth, label + " - " + method, png, &error)) {
-          std::fprintf(stderr, "birotor-eval: error: plot %s: %s\n", png.c_str(), error.c_str());
+          ReportError("plot " + png + ": " + error);
           exit_code = 1;
         }
       }
@@ -116,8 +118,7 @@ int main(int argc, char** argv) {
   if (!markdown_out.empty()) {
     std::FILE* out = std::fopen(markdown_out.c_str(), "w");
     if (out == nullptr) {
-      std::fprintf(stderr, "birotor-eval: error: cannot write %s\n", markdown_out.c_str());
-      return 1;
+      return ReportError("cannot write " + markdown_out);
     }
     std::fprintf(out, "%s", table.c_str());
     std::fclose(out);

@@ -14,17 +14,16 @@
 #include "params/vehicle_params_yaml.h"
 #include "tools/identification_log_loader.h"
 #include "tools/identification_plot.h"
+#include "transport/config_files.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
 namespace {
 
-constexpr int kExitFailure = 1;
-
 struct IdentifyOptions {
   std::vector<std::string> logs;
   std::string mode = "auto";
-  std::string params = std::string(BIROTOR_SOURCE_DIR) + "/config/reference_vehicle.yaml";
+  std::string params = birotor::FindConfigFile("reference_vehicle.yaml");
   std::string config;  // optional file with an `identification:` section
   std::string output;
   std::string report;
@@ -42,8 +41,13 @@ int main(int argc, char** argv) {
   app.add_option("--log", cli.logs, "LCM log file (repeat for several)")->required()->check(CLI::ExistingFile);
   app.add_option("--mode", cli.mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
-  app.add_option("--params", cli.params, "Base parameter file: masses, lengths, inertia are taken as known");
-  app.add_option("--config", cli.config, "Optional YAML file with an `identification:` section of options");
+  app.add_option("--params", cli.params,
+                 "Base parameter file (complete vehicle: section): masses, lengths, inertia are taken as known; "
+                 "default: the " +
+                     ConfigSearchText("reference_vehicle.yaml"));
+  app.add_option("--config", cli.config,
+                 "YAML file with a complete `identification:` section of options (the shipped identification.yaml "
+                 "has every key at its default); none: the built-in defaults");
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
@@ -54,21 +58,17 @@ int main(int argc, char** argv) {
   IdentificationOptions options;
   try {
     base = LoadVehicleParams(cli.params);
-    if (!cli.config.empty()) {
-      YamlSection root = YamlSection::LoadFile(cli.config);
-      ReadIdentificationOptions(root.Section("identification"), &options);
-    }
+    if (!cli.config.empty()) options = LoadIdentificationOptions(cli.config);
   } catch (const ParamError& e) {
-    spdlog::error("{}", e.what());
-    return kExitFailure;
+    return ReportError(e.what());
   }
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
   // Refuse an output folder we cannot write before the fit, not after it.
   {
     const std::filesystem::path folder = std::filesystem::absolute(cli.output).parent_path();
     if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0) {
-      spdlog::error("cannot write --output {}: folder {} is missing or not writable", cli.output, folder.string());
-      return kExitFailure;
+      return ReportError("cannot write --output " + cli.output + ": folder " + folder.string() +
+                         " is missing or not writable");
     }
   }
 
@@ -78,10 +78,7 @@ int main(int argc, char** argv) {
     SensorLog log;
     LogLoadReport load;
     std::string error;
-    if (!LoadSensorLog(path, common.prefix, &log, &load, &error)) {
-      spdlog::error("{}", error);
-      return kExitFailure;
-    }
+    if (!LoadSensorLog(path, common.prefix, &log, &load, &error)) return ReportError(error);
     if (load.truncated_tail) {
       spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest", path,
                    load.tail_offset, load.file_size, load.events);
@@ -99,27 +96,28 @@ int main(int argc, char** argv) {
 
   if (!cli.report.empty()) {
     std::string error;
-    if (!WriteFileAtomically(cli.report, IdentificationReport(result), &error)) spdlog::error("{}", error);
+    if (!WriteFileAtomically(cli.report, IdentificationReport(result), &error)) return ReportError(error);
   }
   if (!result.ok) {
-    spdlog::error("identification refused ({} mode): the data lacks what is needed:", result.mode);
-    for (const std::string& e : result.errors) spdlog::error("  {}", e);
-    return kExitFailure;
+    std::string reasons;
+    for (const std::string& e : result.errors) reasons += (reasons.empty() ? "" : "; ") + e;
+    return ReportError("identification refused (" + result.mode + " mode), no parameter file written: " + reasons);
   }
   for (const std::string& w : result.warnings) spdlog::warn("{}", w);
   for (const ParameterEstimate& e : result.estimates) {
-    spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %){}", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value,
-                 e.determined ? "" : " NOT DETERMINED, base value kept");
+    if (e.determined) {
+      spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %)", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value);
+    } else {
+      spdlog::warn("{:6s} NOT DETERMINED by these logs: {} keeps the base file's value, marked so in {}", e.symbol,
+                   e.key, cli.output);
+    }
   }
   for (const DeflectionForceMap& m : result.maps) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
   std::string error;
-  if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) {
-    spdlog::error("{}", error);
-    return kExitFailure;
-  }
+  if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) return ReportError(error);
   // The plot is optional: a failure is reported but the parameter file stands.
   if (!cli.plot.empty()) {
     if (WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {

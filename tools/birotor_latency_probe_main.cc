@@ -62,8 +62,8 @@ void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, P
   ++probe->received;
 }
 
+// Of a non-empty sorted list [us].
 double Percentile(const std::vector<int64_t>& sorted, double fraction) {
-  if (sorted.empty()) return std::nan("");
   const size_t rank =
       std::min(sorted.size() - 1, static_cast<size_t>(std::ceil(fraction * static_cast<double>(sorted.size()))) - 1);
   return static_cast<double>(sorted[rank]) * 1e-3;
@@ -93,15 +93,14 @@ int main(int argc, char** argv) {
     sched_param param{};
     param.sched_priority = realtime_priority;  // inherited by the receiver thread
     if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-      std::fprintf(stderr, "birotor-latency-probe: warning: cannot set SCHED_FIFO\n");
+      std::fprintf(stderr, "birotor-latency-probe: warning: cannot set SCHED_FIFO (needs CAP_SYS_NICE)\n");
     }
   }
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
   if (!lcm) {
-    std::fprintf(stderr, "birotor-latency-probe: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
   InstallShutdownHandlers();
   const ChannelNames channels = MakeChannelNames(common.prefix);
@@ -171,9 +170,14 @@ int main(int argc, char** argv) {
               static_cast<double>(published) / publish_s);
   std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64 ", duplicates %" PRId64 "\n",
               latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
+  if (latencies.empty()) {
+    return ReportError("no FORCE received on " + channels.force + " for " + std::to_string(published) +
+                       " STRAIN published on " + channels.strain + ": is birotor-estimator running with --lcm-url " +
+                       common.lcm_url + " --prefix " + common.prefix + "?");
+  }
   std::printf("latency publish->FORCE [us]: p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  max %.1f\n",
               Percentile(latencies, 0.50), Percentile(latencies, 0.90), Percentile(latencies, 0.99),
-              Percentile(latencies, 0.999),
-              latencies.empty() ? std::nan("") : static_cast<double>(latencies.back()) * 1e-3);
+              Percentile(latencies, 0.999), static_cast<double>(latencies.back()) * 1e-3);
+  // 3: the figures are real but some samples got no FORCE (see "dropped").
   return dropped == 0 ? 0 : 3;
 }

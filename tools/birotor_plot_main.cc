@@ -25,16 +25,14 @@ int main(int argc, char** argv) {
   LogReader reader;
   std::string error;
   if (!reader.Open(log_path, &error)) {
-    std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
   LogEvent event;
   while (reader.Next(&event)) {
     collector.Publish(event.channel, event.timestamp_us, event.data.data(), event.data.size());
   }
   if (!WriteForcePlot(collector.forces, collector.truth, title.empty() ? log_path : title, png_path, &error)) {
-    std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
   std::printf("%s: %zu estimates, %zu truth samples\n", png_path.c_str(), collector.forces.size(),
               collector.truth.size());

@@ -11,6 +11,7 @@
 #include "params/estimator_config_yaml.h"
 #include "params/yaml_reader.h"
 #include "tools/birotor_replay_runner.h"
+#include "transport/config_files.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
@@ -20,17 +21,22 @@ int main(int argc, char** argv) {
   CommonOptions common;
   AddCommonOptions(app, &common);
   std::string input_path, output_path, csv_path, method;
-  std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
+  std::string params_file = FindConfigFile("estimator.yaml");
   ReplayOptions options;
   app.add_option("--log", input_path, "Input LCM log (STRAIN, MOTOR, IMU, POSE, TRUTH)")->required();
   app.add_option("--output", output_path, "Output LCM log (FORCE, ESTIMATOR_STATUS, TRUTH)")->required();
   app.add_option("--csv", csv_path, "Also write FORCE as CSV");
-  app.add_option("--params", params_file, "Estimator parameter file");
+  app.add_option("--params", params_file,
+                 "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
   app.add_option("--method", method, "Estimation method, overrides the file")
       ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
       ->check(CLI::Range(0.1, 100.0));
-  app.add_flag("--copy-truth,!--no-copy-truth", options.copy_truth, "Copy TRUTH events to the output");
+  // Two callback flags, so --help shows no misleading {false} default.
+  app.add_flag_callback(
+      "--copy-truth", [&options] { options.copy_truth = true; }, "Copy TRUTH events to the output (the default)");
+  app.add_flag_callback(
+      "--no-copy-truth", [&options] { options.copy_truth = false; }, "Leave TRUTH events out of the output");
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-replay", common.log_level);
   options.prefix = common.prefix;
@@ -39,24 +45,21 @@ int main(int argc, char** argv) {
   try {
     config = LoadEstimatorConfig(params_file);
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "birotor-replay: error: %s\n", error.what());
-    return 1;
+    return ReportError(error.what());
   }
   if (!method.empty()) config.method = method;
 
   std::string error;
   LogWriter writer;
   if (!writer.Open(output_path, &error)) {
-    std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
   LogSink log_sink(&writer);
   std::FILE* csv = nullptr;
   if (!csv_path.empty()) {
     csv = std::fopen(csv_path.c_str(), "w");
     if (csv == nullptr) {
-      std::fprintf(stderr, "birotor-replay: error: cannot write %s\n", csv_path.c_str());
-      return 1;
+      return ReportError("cannot write " + csv_path);
     }
   }
   std::unique_ptr<ForceCsvSink> csv_sink;
@@ -70,15 +73,13 @@ int main(int argc, char** argv) {
   Replayer replayer(config, options, sink);
   bool truncated = false;
   if (!ReplayLogFile(input_path, &replayer, &truncated, &error)) {
-    std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool closed = writer.Close();
   if (csv != nullptr) std::fclose(csv);
   if (log_sink.failed() || !closed) {
-    std::fprintf(stderr, "birotor-replay: error: writing %s failed\n", output_path.c_str());
-    return 1;
+    return ReportError("writing " + output_path + " failed");
   }
   if (truncated) spdlog::warn("{}: truncated or corrupt tail ignored", input_path);
 

@@ -227,10 +227,7 @@ int main(int argc, char** argv) {
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
-  if (!lcm) {
-    std::fprintf(stderr, "birotor-soak-monitor: error: %s\n", error.c_str());
-    return 2;
-  }
+  if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
   const ChannelNames channels = MakeChannelNames(common.prefix);
   Monitor monitor;

@@ -1,6 +1,8 @@
 // Shared CLI11 options and parsing.
 #include "transport/program_options.h"
 
+#include <errno.h>  // program_invocation_short_name (glibc)
+
 #include <iostream>
 
 namespace birotor {
@@ -37,13 +39,29 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* 
       return app.exit(e, out, err);  // --help, --help-all, --version
     }
     std::string message = e.what();
-    for (char& c : message) {
-      if (c == '\n') c = ' ';  // one line, whatever CLI11 formats
+    // CLI11 checks required options before it looks at unknown arguments:
+    // name the unknown one, which is usually the cause (a misspelt option).
+    const std::vector<std::string> extras = app.remaining();
+    if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && !extras.empty()) {
+      message =
+          "unknown argument '" + extras.front() + "'" + (extras.size() > 1 ? " (and more)" : "") + "; also: " + message;
     }
-    err << ProgramName(app) << ": error: " << message << " (see --help)" << std::endl;
-    return 2;
+    return ReportError(err, ProgramName(app), message + " (see --help)", kExitUsage);
   }
   return std::nullopt;
+}
+
+int ReportError(const std::string& message, int exit_status) {
+  return ReportError(std::cerr, program_invocation_short_name, message, exit_status);
+}
+
+int ReportError(std::ostream& err, const std::string& program, const std::string& message, int exit_status) {
+  std::string line = message;
+  for (char& c : line) {
+    if (c == '\n' || c == '\r') c = ' ';  // one line, whatever the message holds
+  }
+  err << program << ": error: " << line << std::endl;
+  return exit_status;
 }
 
 }  // namespace birotor

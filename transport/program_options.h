@@ -1,6 +1,8 @@
 // Command-line options every program shares (--lcm-url, --prefix,
-// --log-level, --version) and one way to parse with CLI11: help to stdout and
-// exit 0, an error as one line on stderr and exit 2.
+// --log-level, --version), one way to parse with CLI11 (help to stdout and
+// exit 0, a usage error as one line on stderr and exit 2), and the one error
+// format of every program: "<program>: error: <message>" on one line, exit 1
+// for bad files or data, 2 for bad usage.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -16,6 +18,10 @@
 #endif
 
 namespace birotor {
+
+// Exit statuses shared by every program.
+constexpr int kExitFailure = 1;  // a bad file, bad data, a failed write, no input
+constexpr int kExitUsage = 2;    // a bad command line
 
 struct CommonOptions {
   // LCM URL to publish and subscribe on.
@@ -34,8 +40,17 @@ void AddCommonOptions(CLI::App& app, CommonOptions* options);
 // Parses the command line. Returns the exit code when the program should stop
 // (0 after --help or --version, 2 after a usage error, reported as one line
 // "<program>: error: <message> (see --help)"), std::nullopt to continue.
+// An unknown option is named even when a required option is missing too.
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv);
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, const char* const* argv, std::ostream& out,
                                     std::ostream& err);
+
+// Writes "<program>: error: <message>" as one line to err (line breaks in
+// message become spaces) and returns exit_status, so a program ends with
+// `return ReportError(...)`. The program is the name the process was
+// started with (basename of argv[0]) unless given.
+int ReportError(const std::string& message, int exit_status = kExitFailure);
+int ReportError(std::ostream& err, const std::string& program, const std::string& message,
+                int exit_status = kExitFailure);
 
 }  // namespace birotor

@@ -38,12 +38,37 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.pipeline.max_deflection_rad, defaults.pipeline.max_deflection_rad);
 }
 
-TEST(EstimatorConfigYamlTest, EmptyFileGivesDefaultsAndOverridesApply) {
-  EXPECT_EQ(ParseEstimatorConfig("{}", "x.yaml").method, "ekf");
-  const EstimatorConfig c =
-      ParseEstimatorConfig("estimator:\n  method: inversion\n  inversion: {window_samples: 3}\n", "x.yaml");
+TEST(EstimatorConfigYamlTest, EmptyOrPartialFileIsRefusedNamingEachMissingKey) {
+  // Issue 14: these used to start the daemon on the reference values.
+  EXPECT_EQ(ErrorOf("{}"),
+            "bad.yaml: missing 2 keys: vehicle, estimator (every key is required; the shipped reference files have "
+            "them all)");
+  EXPECT_EQ(ErrorOf("estimator:\n"), ErrorOf("{}"));
+  // The whole reference file without one vehicle key and one EKF key.
+  YAML::Node reference = YAML::LoadFile(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  reference["vehicle"].remove("body_mass_kg");
+  reference["estimator"]["ekf"].remove("use_gyro");
+  YAML::Emitter emitter;
+  emitter << reference;
+  EXPECT_EQ(ErrorOf(emitter.c_str()),
+            "bad.yaml: missing 2 keys: vehicle.body_mass_kg, estimator.ekf.use_gyro (every key is required; the "
+            "shipped reference files have them all)");
+}
+
+TEST(EstimatorConfigYamlTest, ReferenceTextWithOneValueChangedLoads) {
+  YAML::Node reference = YAML::LoadFile(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  reference["estimator"]["method"] = "inversion";
+  reference["estimator"]["inversion"]["window_samples"] = 3;
+  YAML::Emitter emitter;
+  emitter << reference;
+  const EstimatorConfig c = ParseEstimatorConfig(emitter.c_str(), "x.yaml");
   EXPECT_EQ(c.method, "inversion");
   EXPECT_EQ(c.inversion.window_samples, 3);
+}
+
+TEST(EstimatorConfigYamlTest, MisspeltSectionListsTheSchemasSections) {
+  // Issue 14: the list used to be built from the keys the file had.
+  EXPECT_EQ(ErrorOf("estimater: {}\n"), "bad.yaml: key 'estimater': unknown key (allowed: estimator, vehicle)");
 }
 
 TEST(EstimatorConfigYamlTest, ErrorsNameFileKeyAndRange) {

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 
 #include "test_support.h"
 
@@ -37,15 +38,34 @@ TEST(ScenarioYamlTest, EveryReferenceScenarioLoads) {
   EXPECT_DOUBLE_EQ(LoadScenario(ScenarioPath("density")).faults.initial_thrust_scale[1], 0.9);
 }
 
-TEST(ScenarioYamlTest, DefaultsAreTheReferenceVehicleAndSensors) {
-  const Scenario s = LoadScenarioFromString("", "empty.yaml");
-  EXPECT_DOUBLE_EQ(s.vehicle.arm_stiffness_n_m_rad, 2628.0);
+TEST(ScenarioYamlTest, HoverHoldsTheReferenceVehicleAndSensors) {
+  const Scenario s = LoadScenario(ScenarioPath("hover"));
+  EXPECT_DOUBLE_EQ(s.vehicle.arm_stiffness_n_m_rad, 2628.0);  // reference-vehicle.md
   EXPECT_DOUBLE_EQ(s.step_s, 0.00025);
   EXPECT_DOUBLE_EQ(s.sensors.strain.rate_hz, 1000.0);
   EXPECT_DOUBLE_EQ(s.sensors.strain_noise_rad, 2e-5);
   EXPECT_DOUBLE_EQ(s.sensors.motor.rate_hz, 500.0);
   EXPECT_DOUBLE_EQ(s.sensors.pose.rate_hz, 100.0);
   EXPECT_FALSE(s.sensors.loadcell.enabled);
+}
+
+TEST(ScenarioYamlTest, EmptyOrPartialFileIsRefusedNamingEachMissingKey) {
+  // Issue 14: an empty scenario file used to run as `hover`.
+  const std::string empty = LoadError("");
+  EXPECT_EQ(empty,
+            "bad.yaml: missing 7 keys: scenario, vehicle, trajectory, bench, sensors, faults, controller (every key "
+            "is required; the shipped reference files have them all)");
+  const std::string partial = LoadError("scenario: {name: x, mode: flight, duration_s: 1, seed: 1, step_s: 0.001}\n");
+  EXPECT_NE(partial.find("missing 7 keys: scenario.start_position_m, vehicle, trajectory,"), std::string::npos)
+      << partial;
+}
+
+TEST(ScenarioYamlTest, DuplicateKeyIsRefused) {
+  std::ifstream in(ScenarioPath("hover"));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(LoadError(text), "");
+  const std::string error = LoadError(text + "controller:\n  rate_hz: 250\n");
+  EXPECT_NE(error.find("bad.yaml: key 'controller': appears twice"), std::string::npos) << error;
 }
 
 TEST(ScenarioYamlTest, UnknownKeyIsRefusedNamingFileAndKey) {

@@ -1,7 +1,8 @@
 // Tests of the simulator's wire output: a scenario written into an LCM log
 // (library + transport's LogWriter, and the real birotor-sim program) decodes
 // on every channel with the wire types, gives the same bytes for the same
-// seed, refuses a bad scenario file and closes its log cleanly on SIGTERM.
+// seed, refuses a bad scenario file, closes its log cleanly on SIGTERM, and
+// with --loop repeats the scenario with time continuing.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include <iterator>
 #include <map>
 #include <thread>
+#include <vector>
 
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
@@ -182,6 +184,55 @@ TEST(SimLogTest, SigtermClosesTheLogWithEveryEventComplete) {
   EXPECT_EQ(failures, 0);
   EXPECT_GT(counts.count("BIROTOR_STRAIN"), 0u);
   std::remove(path.c_str());
+}
+
+TEST(SimLogTest, LoopRepeatsTheScenarioWithTimeContinuing) {
+  // Live mode at 10x real time into LCM's log-file provider (the live
+  // publishing path, recorded): runs of 0.25 s until SIGTERM after 0.6 s.
+  const std::string path = TempPath("loop.lcm");
+  const std::string url = "file://" + path + "?mode=w";
+  const std::string scenario = ScenarioPath("hover");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl(BIROTOR_SIM_PATH, BIROTOR_SIM_PATH, "--scenario", scenario.c_str(), "--set", "scenario.duration_s=0.25",
+            "--loop", "--speed", "10", "--lcm-url", url.c_str(), "--log-level", "error", nullptr);
+    ::_exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+
+  LogReader reader;
+  std::string error;
+  ASSERT_TRUE(reader.Open(path, &error)) << error;
+  LogEvent event;
+  std::vector<int64_t> utimes;
+  while (reader.Next(&event)) {
+    if (event.channel != "BIROTOR_STRAIN") continue;
+    strain_t m;
+    ASSERT_EQ(DecodeMessage(event.data.data(), event.data.size(), &m), DecodeError::kNone);
+    utimes.push_back(m.utime);
+  }
+  // 0.6 s at 10x is about 6 s of simulated time: at least 3 runs of 250
+  // samples, whatever the load on the machine.
+  ASSERT_GT(utimes.size(), 750u);
+  EXPECT_EQ(utimes.front(), 0);
+  for (size_t i = 1; i < utimes.size(); ++i) {
+    ASSERT_EQ(utimes[i] - utimes[i - 1], 1000) << "strain sample " << i << " (1 kHz: 1000 us apart across runs)";
+  }
+  std::remove(path.c_str());
+}
+
+TEST(SimLogTest, UnknownOptionIsNamedEvenWithoutTheRequiredScenario) {
+  std::string err;
+  EXPECT_EQ(RunSim("--bogus-option", &err), 2);
+  EXPECT_EQ(err.rfind("birotor-sim: error: ", 0), 0u) << err;
+  EXPECT_NE(err.find("--bogus-option"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }
 
 }  // namespace

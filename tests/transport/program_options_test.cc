@@ -81,5 +81,24 @@ TEST(ParseCommandLineTest, VersionPrintsProgramAndVersion) {
   EXPECT_EQ(run.out.str(), std::string("prog ") + BIROTOR_VERSION + "\n");
 }
 
+TEST(ParseCommandLineTest, UnknownOptionIsNamedEvenWhenARequiredOneIsMissing) {
+  // Issue 14: `birotor-sim --bogus-option` said "--scenario is required".
+  std::vector<const char*> args = {"/usr/bin/prog", "--bogus-option"};
+  CLI::App app("A test program", "prog");
+  std::string scenario;
+  app.add_option("--scenario", scenario, "Scenario")->required();
+  std::ostringstream out, err;
+  EXPECT_EQ(ParseCommandLine(app, static_cast<int>(args.size()), args.data(), out, err), kExitUsage);
+  EXPECT_EQ(err.str(), "prog: error: unknown argument '--bogus-option'; also: --scenario is required (see --help)\n");
+}
+
+TEST(ReportErrorTest, OneLineInTheCommonFormatWithTheGivenStatus) {
+  std::ostringstream err;
+  EXPECT_EQ(ReportError(err, "birotor-x", "bad file\nsecond line"), kExitFailure);
+  EXPECT_EQ(err.str(), "birotor-x: error: bad file second line\n");
+  std::ostringstream usage;
+  EXPECT_EQ(ReportError(usage, "birotor-x", "--rate-hz: out of range", kExitUsage), 2);
+}
+
 }  // namespace
 }  // namespace birotor

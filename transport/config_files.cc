@@ -1,0 +1,61 @@
+#include "transport/config_files.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace birotor {
+namespace {
+
+// <dir of the running executable>/../share/birotor/config, from /proc/self/exe
+// (the real file, whatever link or relative path started it).
+std::string ShippedConfigDir() {
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error || exe.empty()) return "share/birotor/config";
+  return (exe.parent_path().parent_path() / "share" / "birotor" / "config").string();
+}
+
+std::string UserConfigDir() {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  if (xdg != nullptr && xdg[0] == '/') return std::string(xdg) + "/birotor";
+  const char* home = std::getenv("HOME");
+  if (home != nullptr && home[0] == '/') return std::string(home) + "/.config/birotor";
+  return "";
+}
+
+}  // namespace
+
+std::vector<std::string> ConfigSearchDirs() {
+  std::vector<std::string> dirs;
+  const std::string user = UserConfigDir();
+  if (!user.empty()) dirs.push_back(user);
+  dirs.push_back("/etc/birotor");
+  dirs.push_back(ShippedConfigDir());
+  return dirs;
+}
+
+std::string FindConfigFile(const std::string& name) {
+  const std::vector<std::string> dirs = ConfigSearchDirs();
+  for (const std::string& dir : dirs) {
+    const std::string path = dir + "/" + name;
+    std::error_code error;
+    if (std::filesystem::is_regular_file(path, error)) return path;
+  }
+  return dirs.back() + "/" + name;
+}
+
+std::string ConfigSearchText(const std::string& name) {
+  std::string text;
+  for (const std::string& dir : ConfigSearchDirs()) text += (text.empty() ? "" : ", ") + dir + "/" + name;
+  return "first of " + text;
+}
+
+std::string ResolveScenario(const std::string& name_or_path) {
+  const bool bare_name = name_or_path.find('/') == std::string::npos &&
+                         (name_or_path.size() < 5 || name_or_path.substr(name_or_path.size() - 5) != ".yaml");
+  return bare_name && !name_or_path.empty() ? FindConfigFile("scenarios/" + name_or_path + ".yaml") : name_or_path;
+}
+
+}  // namespace birotor
