@@ -75,7 +75,7 @@ TEST(YamlReader, LongValuesAndKeysAreQuotedWithAtMost80Characters) {
   const std::string error = ErrorOf("a: {x: '" + long_value + "z', n: 3, mode: ekf}");
   EXPECT_EQ(error, "test.yaml: key 'a.x': expected a number, got '" + std::string(80, '7') +
                        "...' (100001 characters) (allowed: [0, 10])");
-  const std::string long_key(5000, 'k');
+  const std::string long_key(1000, 'k');  // YAML allows implicit keys up to 1024 characters
   const std::string key_error = ErrorOf("a: {x: 1, n: 3, mode: ekf, " + long_key + ": 1}");
   EXPECT_LT(key_error.size(), 300u) << key_error.substr(0, 300);
   EXPECT_NE(key_error.find("unknown key (allowed: mode, n, x)"), std::string::npos) << key_error.substr(0, 300);
