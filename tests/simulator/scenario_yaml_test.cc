@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "test_support.h"
+#include "tests/simulator/test_support.h"
 
 namespace birotor {
 namespace {
