@@ -7,5 +7,5 @@ target_link_libraries(birotor_identification_logs PUBLIC birotor_identification 
 add_executable(birotor-identify ${CMAKE_CURRENT_LIST_DIR}/birotor_identify_main.cc
                ${CMAKE_CURRENT_LIST_DIR}/identification_plot.cc)
 target_link_libraries(birotor-identify PRIVATE birotor_identification_logs birotor_identification
-                      birotor_transport birotor_params)
+                      birotor_transport birotor_params birotor_plotting)
 install(TARGETS birotor-identify RUNTIME DESTINATION bin)

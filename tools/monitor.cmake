@@ -5,7 +5,7 @@ add_library(birotor_monitor STATIC
   ${CMAKE_CURRENT_LIST_DIR}/birotor_monitor_collector.cc
   ${CMAKE_CURRENT_LIST_DIR}/birotor_monitor_view.cc)
 target_include_directories(birotor_monitor PUBLIC ${PROJECT_SOURCE_DIR})
-target_link_libraries(birotor_monitor PUBLIC birotor_replay birotor_transport)
+target_link_libraries(birotor_monitor PUBLIC birotor_replay birotor_plotting birotor_transport)
 
 add_executable(birotor-monitor ${CMAKE_CURRENT_LIST_DIR}/birotor_monitor_main.cc)
 target_link_libraries(birotor-monitor PRIVATE birotor_monitor)
