@@ -1,13 +1,13 @@
 // birotor-plot: PNG of a log holding FORCE (the output of birotor-replay or a
 // flight): estimated rotor forces with 1 sigma, against TRUTH and with the
 // error when the log has it, thrust efficiency with the fault threshold, and
-// the status flags with their first times (plotting/force_plot.h).
+// the status flags with their first times (plot/force_plot.h).
 #include <cstdio>
 #include <string>
 
-#include "plotting/force_plot.h"
-#include "tools/birotor_eval_metrics.h"
-#include "tools/birotor_eval_runner.h"
+#include "evaluation/eval_metrics.h"
+#include "evaluation/eval_runner.h"
+#include "plot/force_plot.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 

@@ -10,7 +10,7 @@
 #include <regex>
 #include <string>
 
-#include "tests/plotting/plot_test_support.h"
+#include "tests/plot/plot_test_support.h"
 #include "tests/reliability/live_harness.h"
 
 namespace birotor::reliability {
