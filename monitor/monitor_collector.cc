@@ -49,7 +49,8 @@ void MonitorCollector::HandlePacket(const std::string& channel, const void* data
 void MonitorCollector::OnForce(const ForceEstimate& estimate) {
   const bool first = forces_.empty();
   // seq wraps as int32 (interface.md); unsigned arithmetic keeps the wrap a +1 step.
-  const uint32_t seq_step = first ? 1u : static_cast<uint32_t>(estimate.seq) - static_cast<uint32_t>(forces_.back().seq);
+  const uint32_t seq_step =
+      first ? 1u : static_cast<uint32_t>(estimate.seq) - static_cast<uint32_t>(forces_.back().seq);
   const bool seq_jump = seq_step != 1u;
   if (seq_jump || (estimate.status & kStatusFilterReset)) fault_utimes_.push_back(estimate.utime);
   if (seq_jump && seq_step < 0x80000000u) {
@@ -66,7 +67,8 @@ void MonitorCollector::OnForce(const ForceEstimate& estimate) {
              std::isfinite(estimate.thrust_scale[r]);
   }
   if (!finite) ++force_stats_.nonfinite;
-  const uint32_t previous_status = first ? static_cast<uint32_t>(estimate.status) : static_cast<uint32_t>(forces_.back().status);
+  const uint32_t previous_status =
+      first ? static_cast<uint32_t>(estimate.status) : static_cast<uint32_t>(forces_.back().status);
   const uint32_t risen = static_cast<uint32_t>(estimate.status) & ~previous_status;
   for (int bit = 0; bit < 32; ++bit) {
     if (!(risen & (1u << bit))) continue;

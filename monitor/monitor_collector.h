@@ -31,12 +31,12 @@ struct FlagRises {
 
 // The FORCE stream's own bookkeeping, with or without TRUTH.
 struct ForceStreamStats {
-  int64_t seq_gaps = 0;          // seq jumps forward by more than 1
-  int64_t seq_missing = 0;       // messages missing according to seq (sum of the jumps)
-  int64_t seq_backwards = 0;     // seq going back (estimator restarted, or reordering)
+  int64_t seq_gaps = 0;            // seq jumps forward by more than 1
+  int64_t seq_missing = 0;         // messages missing according to seq (sum of the jumps)
+  int64_t seq_backwards = 0;       // seq going back (estimator restarted, or reordering)
   int64_t resets_after_start = 0;  // FILTER_RESET on any message but the first (the start-up one)
-  int64_t valid = 0;             // messages with VALID
-  int64_t nonfinite = 0;         // messages with a NaN/Inf force, std or thrust scale
+  int64_t valid = 0;               // messages with VALID
+  int64_t nonfinite = 0;           // messages with a NaN/Inf force, std or thrust scale
 };
 
 class MonitorCollector {

@@ -69,8 +69,8 @@ std::string InputRow(const char* name, const input_health_t* input, const ViewCo
 std::string EstimatorLine(const MonitorCollector& c) {
   if (!c.has_status()) return "estimator: no ESTIMATOR_STATUS yet";
   const estimator_status_t& s = c.latest_status();
-  return fmt::format("estimator {}  resets {} (last: {})  strain NIS mean {} max {} gate {}  time p99 {} us",
-                     s.method, s.resets, s.last_reset_reason.empty() ? "none" : s.last_reset_reason,
+  return fmt::format("estimator {}  resets {} (last: {})  strain NIS mean {} max {} gate {}  time p99 {} us", s.method,
+                     s.resets, s.last_reset_reason.empty() ? "none" : s.last_reset_reason,
                      Number(s.strain_nis_mean, 0, 2), Number(s.strain_nis_max, 0, 1), Number(s.strain_gate, 0, 1),
                      Number(s.processing_time_p99_us, 0, 0));
 }
@@ -128,9 +128,9 @@ std::string PlainViewLine(const MonitorCollector& c, const ViewContext& context)
 }
 
 std::string TerminalView(const MonitorCollector& c, const ViewContext& context) {
-  std::string view = fmt::format("{}  FORCE {:.0f} Hz  STATUS {:.1f} Hz{}{}", TimeAndProgress(c, context),
-                                 context.force_rate_hz, context.status_rate_hz,
-                                 context.truth_expected ? "" : "  (no TRUTH: vehicle view)", kEnd);
+  std::string view =
+      fmt::format("{}  FORCE {:.0f} Hz  STATUS {:.1f} Hz{}{}", TimeAndProgress(c, context), context.force_rate_hz,
+                  context.status_rate_hz, context.truth_expected ? "" : "  (no TRUTH: vehicle view)", kEnd);
   int lines = 1;
   const auto add = [&](const std::string& line) {
     view += line + kEnd;
@@ -204,9 +204,10 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
   std::string text = fmt::format("FORCE {} messages over {:.2f} s ({} Hz), VALID {:.1f} %, non-finite {}\n",
                                  c.forces().size(), span_s, Number(span_s > 0 ? (n - 1) / span_s : NAN, 0, 1),
                                  100.0 * static_cast<double>(f.valid) / n, f.nonfinite);
-  text += fmt::format("mean 1-sigma f1 {:.4f} N f2 {:.4f} N; at the end f1 {:.3f} N f2 {:.3f} N, mu {:.3f} {:.3f}, {}\n",
-                      std_sum_n[0] / n, std_sum_n[1] / n, last.force_n[0], last.force_n[1], last.thrust_scale[0],
-                      last.thrust_scale[1], StatusWords(last.status));
+  text +=
+      fmt::format("mean 1-sigma f1 {:.4f} N f2 {:.4f} N; at the end f1 {:.3f} N f2 {:.3f} N, mu {:.3f} {:.3f}, {}\n",
+                  std_sum_n[0] / n, std_sum_n[1] / n, last.force_n[0], last.force_n[1], last.thrust_scale[0],
+                  last.thrust_scale[1], StatusWords(last.status));
   text += fmt::format("first alarms: {}\n", FirstAlarms(c));
   text += EstimatorLine(c) + "\n";
   if (const input_health_t* strain = c.input(kStrainChannel)) {
@@ -234,8 +235,8 @@ std::string DeliveryNote(const MonitorCollector& c) {
         f.seq_gaps, f.seq_missing, upstream, lost_forces);
   }
   if (f.seq_backwards > 0) {
-    note += fmt::format("{}FORCE seq went back {} times (estimator restarted?)", note.empty() ? "" : "; ",
-                        f.seq_backwards);
+    note +=
+        fmt::format("{}FORCE seq went back {} times (estimator restarted?)", note.empty() ? "" : "; ", f.seq_backwards);
   }
   if (c.truth_gaps() > 0) {
     note += fmt::format("{}{} TRUTH gaps (packets lost on the way to this monitor)", note.empty() ? "" : "; ",

@@ -38,9 +38,9 @@ bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, c
   }
   const int columns = plots.size() > 1 ? 2 : 1;
   const int rows = static_cast<int>((plots.size() + columns - 1) / columns);
-  std::string script = fmt::format(
-      "set terminal pngcairo size {},{} noenhanced font 'sans,9'\nset grid\nset key top left box opaque\n",
-      700 * columns, 380 * rows);
+  std::string script =
+      fmt::format("set terminal pngcairo size {},{} noenhanced font 'sans,9'\nset grid\nset key top left box opaque\n",
+                  700 * columns, 380 * rows);
   for (size_t n = 0; n < plots.size(); ++n) script += DataBlock(plots[n], n);
   script += fmt::format("set multiplot layout {},{} title {}\n", rows, columns, GnuplotQuoted(title));
   for (size_t n = 0; n < plots.size(); ++n) {

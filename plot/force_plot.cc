@@ -199,13 +199,15 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   std::sort(markers.begin(), markers.end());
   std::string marker_labels;
   for (size_t k = 0; k < markers.size(); ++k) {
-    script += fmt::format("set arrow {} from first {:.6f}, graph 0 to first {:.6f}, graph 1 nohead front lw 1.5 "
-                          "dt 2 lc rgb '{}'\n",
-                          k + 1, markers[k].first, markers[k].first, kMarkerColor);
-    marker_labels += fmt::format("set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front "
-                                 "textcolor rgb '{}' font ',9'\n",
-                                 k + 10, GnuplotQuoted(markers[k].second), markers[k].first,
-                                 0.93 - 0.085 * static_cast<double>(k % 6), kMarkerColor);
+    script += fmt::format(
+        "set arrow {} from first {:.6f}, graph 0 to first {:.6f}, graph 1 nohead front lw 1.5 "
+        "dt 2 lc rgb '{}'\n",
+        k + 1, markers[k].first, markers[k].first, kMarkerColor);
+    marker_labels += fmt::format(
+        "set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front "
+        "textcolor rgb '{}' font ',9'\n",
+        k + 10, GnuplotQuoted(markers[k].second), markers[k].first, 0.93 - 0.085 * static_cast<double>(k % 6),
+        kMarkerColor);
   }
 
   const double status_height = 0.15;
@@ -216,27 +218,30 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   for (int r = 0; r < 2; ++r) {
     script += Panel(&top, force_height, false) + YRangeCommands(force_range[r]);
     if (r == 0) script += marker_labels;
-    script += fmt::format("set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
-                          "fs transparent solid 0.25 noborder t 'estimate ±1σ'",
-                          r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r]);
+    script += fmt::format(
+        "set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
+        "fs transparent solid 0.25 noborder t 'estimate ±1σ'",
+        r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r]);
     if (with_truth) script += fmt::format(", $data u 1:{} w l lw 2 lc rgb '{}' t 'true'", 9 + r, kTrueColor);
-    script += fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r,
-                          kRotorColor[r], r + 1);
+    script += fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r, kRotorColor[r],
+                          r + 1);
   }
   if (with_truth) {
     script += Panel(&top, error_height, false) + YRangeCommands(error_range);
     script += "set ylabel 'error [N]'\nplot ";
     for (int r = 0; r < 2; ++r) {
-      script += fmt::format("$data u 1:(-${}):(${}) w filledcurves fc rgb '{}' fs transparent solid 0.15 noborder "
-                            "t '±1σ f{}', $data u 1:{} w l lc rgb '{}' t 'f{} est - true'{}",
-                            4 + r, 4 + r, kRotorColor[r], r + 1, 13 + r, kRotorColor[r], r + 1, r == 0 ? ", " : "\n");
+      script += fmt::format(
+          "$data u 1:(-${}):(${}) w filledcurves fc rgb '{}' fs transparent solid 0.15 noborder "
+          "t '±1σ f{}', $data u 1:{} w l lc rgb '{}' t 'f{} est - true'{}",
+          4 + r, 4 + r, kRotorColor[r], r + 1, 13 + r, kRotorColor[r], r + 1, r == 0 ? ", " : "\n");
     }
     script += "unset label\n";
   }
   script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
-  script += fmt::format("set ylabel 'thrust efficiency μ [1]'\nplot {:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' "
-                        "t 'fault threshold {:.2f}'",
-                        options.fault_thrust_scale, options.fault_thrust_scale);
+  script += fmt::format(
+      "set ylabel 'thrust efficiency μ [1]'\nplot {:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' "
+      "t 'fault threshold {:.2f}'",
+      options.fault_thrust_scale, options.fault_thrust_scale);
   for (int r = 0; r < 2; ++r) {
     if (with_truth) {
       script += fmt::format(", $data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}'", 11 + r, kTrueColor, r + 1);
@@ -254,9 +259,9 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   script += ") font ',8'\nunset ylabel\nplot ";
   for (int i = 0; i < kStatusBitCount; ++i) {
     const bool alarm = kStatusBitNames[i].bit & kAlarmStatusBits;
-    script += fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w l lw 5 lc rgb '{}' notitle{}",
-                          kStatusBitNames[i].bit, kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c",
-                          i + 1 < kStatusBitCount ? ", " : "\n");
+    script +=
+        fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w l lw 5 lc rgb '{}' notitle{}", kStatusBitNames[i].bit,
+                    kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c", i + 1 < kStatusBitCount ? ", " : "\n");
   }
   script += "unset multiplot\n";
   return script;

@@ -123,7 +123,8 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 1e6));
   app.add_flag("--wall-clock", options.wall_clock,
                "Stamp samples with the wall clock instead of simulated time from 0");
-  app.add_flag("--no-truth", options.no_truth, "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
+  app.add_flag("--no-truth", options.no_truth,
+               "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -154,8 +155,8 @@ int Main(int argc, char** argv) {
 
   const auto start = std::chrono::steady_clock::now();
   const bool ok = options.output.empty()
-                       ? RunLive(&sim, channels, options.common.lcm_url, options.speed, !options.no_truth)
-                       : RunOffline(&sim, channels, options.output, !options.no_truth);
+                      ? RunLive(&sim, channels, options.common.lcm_url, options.speed, !options.no_truth)
+                      : RunOffline(&sim, channels, options.output, !options.no_truth);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const ChannelCounts& n = sim.emitted();

@@ -40,11 +40,11 @@ struct MonitorOptions {
   double truth_wait_s = 3.0;      // FORCE but no TRUTH for this long: vehicle view [s]
   double stale_age_s = 0.1;       // an input older than this shows as stale [s]
   double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;  // threshold line in view and plot [1]
-  double interval_s = 0;          // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
-  bool plain = false;             // one plain line per refresh even on a terminal
-  bool quiet = false;             // no live view, final figures only
-  std::string png;                // plot file; empty: none
-  bool markdown = false;          // print birotor-eval's Markdown table too
+  double interval_s = 0;                                        // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
+  bool plain = false;                                           // one plain line per refresh even on a terminal
+  bool quiet = false;                                           // no live view, final figures only
+  std::string png;                                              // plot file; empty: none
+  bool markdown = false;                                        // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
 
@@ -106,7 +106,8 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--plain", options.plain, "One plain line per refresh, even on a terminal");
   app.add_flag("--quiet", options.quiet, "No live view; final figures only");
-  app.add_option("--png", options.png, "Write the force plot (estimates with 1 sigma, truth, errors, thrust efficiency, flags) to this PNG");
+  app.add_option("--png", options.png,
+                 "Write the force plot (estimates with 1 sigma, truth, errors, thrust efficiency, flags) to this PNG");
   app.add_flag("--markdown", options.markdown, "Also print the figures as birotor-eval's Markdown table");
   app.add_option("--warmup-s", options.eval.warmup_s, "Unscored start-up time, as birotor-eval [s]")
       ->check(CLI::Range(0.0, 100.0));
@@ -199,7 +200,8 @@ int Main(int argc, char** argv) {
     }
     if (now_s - last_view_s >= interval_s) {
       context.force_rate_hz = static_cast<double>(collector.forces().size() - last_view_forces) / (now_s - last_view_s);
-      context.status_rate_hz = static_cast<double>(collector.status_messages() - last_view_status) / (now_s - last_view_s);
+      context.status_rate_hz =
+          static_cast<double>(collector.status_messages() - last_view_status) / (now_s - last_view_s);
       last_view_forces = collector.forces().size();
       last_view_status = collector.status_messages();
       last_view_s = now_s;

@@ -112,7 +112,7 @@ TEST(MonitorCollectorTest, InfersFaultsFromSeqJumpsAndResets) {
 TEST(MonitorCollectorTest, KeepsNewestEstimatorHealth) {
   const ChannelNames channels = MakeChannelNames();
   MonitorCollector collector(channels, 1.0);
-  EXPECT_FALSE(collector.health().received);
+  EXPECT_FALSE(collector.has_status());
   estimator_status_t status{};
   status.method = "ekf";
   status.num_inputs = 2;

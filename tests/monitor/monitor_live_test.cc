@@ -31,10 +31,10 @@ TEST(MonitorLiveTest, VehicleViewWithoutTruthOverUdpm) {
 
   ChildProcess daemon, monitor, sim;
   ASSERT_TRUE(daemon.Start(DaemonCommand(url, prefix), TempPath("monitor_live_daemon.log")));
-  ASSERT_TRUE(monitor.Start({BIROTOR_MONITOR_BIN, "--lcm-url", url, "--prefix", prefix, "--until-sim-ends",
-                             "--idle-s", "1.0", "--truth-wait-s", "0.5", "--interval-s", "0.5", "--plain", "--png",
-                             png, "--label", "vehicle"},
-                            monitor_log));
+  ASSERT_TRUE(
+      monitor.Start({BIROTOR_MONITOR_BIN, "--lcm-url", url, "--prefix", prefix, "--until-sim-ends", "--idle-s", "1.0",
+                     "--truth-wait-s", "0.5", "--interval-s", "0.5", "--plain", "--png", png, "--label", "vehicle"},
+                    monitor_log));
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let both subscribe
   std::vector<std::string> sim_command = SimCommand(url, prefix, 2.0);
   sim_command.push_back("--no-truth");
