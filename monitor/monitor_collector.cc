@@ -108,6 +108,18 @@ void MonitorCollector::OnTruth(const TruthSample& sample) {
 void MonitorCollector::OnStatus(const estimator_status_t& status) {
   ++status_messages_;
   latest_status_ = status;
+  if (std::isfinite(status.strain_nis_mean)) {  // NaN: no strain sample in the period
+    strain_nis_sum_ += status.strain_nis_mean;
+    ++strain_nis_reports_;
+  }
+  if (std::isfinite(status.strain_nis_max) && !(status.strain_nis_max <= strain_nis_max_)) {
+    strain_nis_max_ = status.strain_nis_max;
+  }
+}
+
+double MonitorCollector::strain_nis_mean_over_run() const {
+  return strain_nis_reports_ > 0 ? strain_nis_sum_ / static_cast<double>(strain_nis_reports_)
+                                 : std::numeric_limits<double>::quiet_NaN();
 }
 
 EvalResult MonitorCollector::Evaluate(const EvalOptions& options) const {

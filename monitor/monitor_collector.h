@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,10 @@ class MonitorCollector {
   // The newest ESTIMATOR_STATUS counters of one input ("STRAIN", "MOTOR",
   // "IMU", "POSE"); nullptr if it has none.
   const input_health_t* input(const std::string& channel) const;
+  // Strain NIS over every ESTIMATOR_STATUS that had strain samples: the mean
+  // of the reported period means and the largest period max (NaN if none).
+  double strain_nis_mean_over_run() const;
+  double strain_nis_max_over_run() const { return strain_nis_max_; }
 
   // TRUTH samples whose utime jumped by more than 1.5 truth periods: packets
   // lost on the way to the monitor (the simulator never skips TRUTH).
@@ -95,6 +100,9 @@ class MonitorCollector {
   ForceStreamStats force_stats_;
   FlagRises rises_[32];  // by bit position
   estimator_status_t latest_status_;
+  double strain_nis_sum_ = 0;
+  int64_t strain_nis_reports_ = 0;
+  double strain_nis_max_ = std::numeric_limits<double>::quiet_NaN();
   int64_t decode_errors_ = 0;
   int64_t status_messages_ = 0;
   int64_t truth_gaps_ = 0;

@@ -210,6 +210,8 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
                   last.thrust_scale[1], StatusWords(last.status));
   text += fmt::format("first alarms: {}\n", FirstAlarms(c));
   text += EstimatorLine(c) + "\n";
+  text += fmt::format("strain NIS over the run: mean {} (2 expected for a consistent filter), max {}\n",
+                      Number(c.strain_nis_mean_over_run(), 0, 2), Number(c.strain_nis_max_over_run(), 0, 1));
   if (const input_health_t* strain = c.input(kStrainChannel)) {
     text += fmt::format("strain: fused {}, gate-rejected {}, invalid {}, missing {}, bad packets {}, overload {}\n",
                         strain->fused, strain->rejected_gate, strain->rejected_invalid, strain->missing_samples,

@@ -17,11 +17,13 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kRotorColor[2] = {"#d62728", "#1f77b4"};
+constexpr const char* kSigmaColor[2] = {"#67000d", "#08306b"};  // darker rotor colours
 constexpr const char* kTrueColor = "#303030";
 constexpr const char* kMarkerColor = "#8c2d04";
-// Panel edges on the page [fraction of the height], top to bottom; the left
-// and right edges are shared so that the time axes line up.
-constexpr double kLeftEdge = 0.075, kRightEdge = 0.975, kTopEdge = 0.945, kBottomEdge = 0.05;
+// Panel edges on the page [fraction of the width and height]; the left and
+// right edges are shared so that the time axes line up, and the keys sit to
+// the right of the panels, where they never cover data.
+constexpr double kLeftEdge = 0.075, kRightEdge = 0.83, kTopEdge = 0.945, kBottomEdge = 0.05;
 
 // One row of the datablock: a FORCE message and its TRUTH pair (NaN if none).
 struct Row {
@@ -64,10 +66,10 @@ YRange RangeOf(std::vector<std::pair<double, double>> values_and_times, double c
   const auto max_it = std::max_element(values_and_times.begin(), values_and_times.end(), by_value);
   std::vector<std::string> clipped;
   if (max_it->first > range.high) {
-    clipped.push_back(fmt::format("peak {:.2f} {} at {:.3f} s", max_it->first, unit, max_it->second));
+    clipped.push_back(fmt::format("peak {:.2f}{} at {:.3f} s", max_it->first, unit, max_it->second));
   }
   if (min_it->first < range.low) {
-    clipped.push_back(fmt::format("low {:.2f} {} at {:.3f} s", min_it->first, unit, min_it->second));
+    clipped.push_back(fmt::format("low {:.2f}{} at {:.3f} s", min_it->first, unit, min_it->second));
   }
   if (!clipped.empty()) {
     range.note = "clipped to the bulk of the data: " + clipped[0] + (clipped.size() > 1 ? ", " + clipped[1] : "");
@@ -131,7 +133,7 @@ std::string YRangeCommands(const YRange& range) {
   std::string text = fmt::format("set yrange [{:.6g}:{:.6g}]\n", range.low, range.high);
   if (!range.note.empty()) {
     text += "set label 1 " + GnuplotQuoted(range.note) +
-            " at graph 0.01, graph 0.07 left front textcolor rgb '#b00000' font ',9'\n";
+            " at graph 0.01, graph 0.07 left front boxed textcolor rgb '#b00000' font ',9'\n";
   }
   return text;
 }
@@ -161,6 +163,18 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     rows.push_back({seconds(e.utime), &e, t});
   }
   const bool with_truth = paired > 0;
+  double median_std_n[2];
+  for (int r = 0; r < 2; ++r) {
+    std::vector<double> stds;
+    stds.reserve(rows.size());
+    for (const Row& row : rows) {
+      if (std::isfinite(row.estimate->force_std_n[r])) stds.push_back(row.estimate->force_std_n[r]);
+    }
+    median_std_n[r] = kNaN;
+    if (stds.empty()) continue;
+    std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
+    median_std_n[r] = stds[stds.size() / 2];
+  }
 
   // y-ranges from the data, per panel.
   std::vector<std::pair<double, double>> force_values[2], error_values, scale_values;
@@ -177,14 +191,15 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   // The threshold is always in view, and 1.0 (healthy) too.
   scale_values.emplace_back(options.fault_thrust_scale, rows.front().t_s);
   scale_values.emplace_back(1.0, rows.front().t_s);
-  const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, "N"),
-                                 RangeOf(force_values[1], options.clip_fraction, 0.5, "N")};
-  const YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, "N");
+  const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, " N"),
+                                 RangeOf(force_values[1], options.clip_fraction, 0.5, " N")};
+  const YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
   const YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
 
   std::string script = fmt::format(
       "set terminal pngcairo size {},{} noenhanced font 'sans,10'\n"
-      "set encoding utf8\nset grid\nset key top right opaque box font ',9' maxrows 2\n"
+      "set encoding utf8\nset grid\nset key outside right top vertical Left reverse font ',9'\n"
+      "set style textbox opaque noborder\n"
       "set multiplot title {}\n",
       options.width_px, options.height_px,
       GnuplotQuoted(options.title + (with_truth ? "" : "  (no TRUTH: estimates only)")));
@@ -204,7 +219,7 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
         "dt 2 lc rgb '{}'\n",
         k + 1, markers[k].first, markers[k].first, kMarkerColor);
     marker_labels += fmt::format(
-        "set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front "
+        "set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front boxed "
         "textcolor rgb '{}' font ',9'\n",
         k + 10, GnuplotQuoted(markers[k].second), markers[k].first, 0.93 - 0.085 * static_cast<double>(k % 6),
         kMarkerColor);
@@ -220,21 +235,25 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     if (r == 0) script += marker_labels;
     script += fmt::format(
         "set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
-        "fs transparent solid 0.25 noborder t 'estimate ±1σ'",
-        r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r]);
+        "fs transparent solid 0.25 noborder t 'estimate ±1σ (median σ {:.3f} N)'",
+        r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r], median_std_n[r]);
     if (with_truth) script += fmt::format(", $data u 1:{} w l lw 2 lc rgb '{}' t 'true'", 9 + r, kTrueColor);
     script += fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r, kRotorColor[r],
                           r + 1);
   }
   if (with_truth) {
     script += Panel(&top, error_height, false) + YRangeCommands(error_range);
-    script += "set ylabel 'error [N]'\nplot ";
+    // The errors first, the ±1σ envelopes drawn over them so that they stay visible.
+    script += fmt::format(
+        "set ylabel 'error [N]'\nplot $data u 1:13 w l lc rgb '{}' t 'f1 est - true', "
+        "$data u 1:14 w l lc rgb '{}' t 'f2 est - true'",
+        kRotorColor[0], kRotorColor[1]);
     for (int r = 0; r < 2; ++r) {
       script += fmt::format(
-          "$data u 1:(-${}):(${}) w filledcurves fc rgb '{}' fs transparent solid 0.15 noborder "
-          "t '±1σ f{}', $data u 1:{} w l lc rgb '{}' t 'f{} est - true'{}",
-          4 + r, 4 + r, kRotorColor[r], r + 1, 13 + r, kRotorColor[r], r + 1, r == 0 ? ", " : "\n");
+          ", $data u 1:{} w l lw 1.5 lc rgb '{}' t '±1σ f{}', $data u 1:(-${}) w l lw 1.5 lc rgb '{}' notitle", 4 + r,
+          kSigmaColor[r], r + 1, 4 + r, kSigmaColor[r]);
     }
+    script += "\n";
     script += "unset label\n";
   }
   script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
@@ -252,7 +271,7 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
 
   // Status strip: one row per bit, a thick line where it is set.
   script += Panel(&top, status_height, true);
-  script += fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nset ytics (", kStatusBitCount);
+  script += fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nunset key\nset ytics (", kStatusBitCount);
   for (int i = 0; i < kStatusBitCount; ++i) {
     script += fmt::format("{}{} {}", i == 0 ? "" : ", ", GnuplotQuoted(kStatusBitNames[i].word), kStatusBitCount - i);
   }
