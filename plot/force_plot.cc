@@ -23,7 +23,7 @@ constexpr const char* kMarkerColor = "#8c2d04";
 // Panel edges on the page [fraction of the width and height]; the left and
 // right edges are shared so that the time axes line up, and the keys sit to
 // the right of the panels, where they never cover data.
-constexpr double kLeftEdge = 0.075, kRightEdge = 0.83, kTopEdge = 0.945, kBottomEdge = 0.05;
+constexpr double kLeftEdge = 0.075, kRightEdge = 0.82, kTopEdge = 0.945, kBottomEdge = 0.05;
 
 // One row of the datablock: a FORCE message and its TRUTH pair (NaN if none).
 struct Row {
@@ -198,10 +198,10 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
 
   std::string script = fmt::format(
       "set terminal pngcairo size {},{} noenhanced font 'sans,10'\n"
-      "set encoding utf8\nset grid\nset key outside right top vertical Left reverse font ',9'\n"
+      "set encoding utf8\nset grid\nset key at screen {:.3f}, graph 1 left top vertical Left reverse font ',9'\n"
       "set style textbox opaque noborder\n"
       "set multiplot title {}\n",
-      options.width_px, options.height_px,
+      options.width_px, options.height_px, kRightEdge + 0.01,
       GnuplotQuoted(options.title + (with_truth ? "" : "  (no TRUTH: estimates only)")));
   script += DataBlock(rows);
   script += fmt::format("set xrange [{:.6f}:{:.6f}]\n", rows.front().t_s, rows.back().t_s);
@@ -235,7 +235,7 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     if (r == 0) script += marker_labels;
     script += fmt::format(
         "set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
-        "fs transparent solid 0.25 noborder t 'estimate ±1σ (median σ {:.3f} N)'",
+        "fs transparent solid 0.25 noborder t '±1σ, median {:.3f} N'",
         r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r], median_std_n[r]);
     if (with_truth) script += fmt::format(", $data u 1:{} w l lw 2 lc rgb '{}' t 'true'", 9 + r, kTrueColor);
     script += fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r, kRotorColor[r],

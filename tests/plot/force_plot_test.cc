@@ -60,7 +60,7 @@ TEST(ForcePlotTest, MarksFaultsStepAndClippedTransient) {
   EXPECT_TRUE(Has(script, "clipped to the bulk of the data: peak 9.00 N at 1.001 s"));
   EXPECT_TRUE(Has(script, "fault threshold 0.85"));  // EkfOptions default
   EXPECT_TRUE(Has(script, "f2 est - true"));
-  EXPECT_TRUE(Has(script, "estimate ±1σ (median σ 0.020 N)"));  // MakeThrustLoss's std
+  EXPECT_TRUE(Has(script, "±1σ, median 0.020 N"));  // MakeThrustLoss's std
 
   TemporaryFolder folder("birotor_force_plot_test_");
   std::string error;
