@@ -35,6 +35,7 @@ struct SimOptions {
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
   bool loop = false;                     // repeat the scenario until stopped, time continuing
+  bool no_truth = false;                 // do not publish TRUTH (stands in for a real vehicle)
 };
 
 // Converts each sample to its wire type and hands it to Publish(channel, utime, msg).
@@ -60,7 +61,7 @@ int64_t WallClockMicroseconds() {
 }
 
 // Offline: every sample into the log, as fast as possible.
-bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path) {
+bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
   LogWriter writer;
   std::string error;
   if (!writer.Open(path, &error)) {
@@ -69,6 +70,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   }
   bool write_failed = false;
   auto publish = [&](const std::string& channel, int64_t utime, const auto& message) {
+    if (!publish_truth && channel == channels.truth) return;
     if (!writer.WriteMessage(channel, utime, message)) write_failed = true;
   };
   WireSink<decltype(publish)> sink(channels, publish);
@@ -84,9 +86,10 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
 }
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double speed) {
+bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double speed, bool publish_truth) {
   int64_t publish_failures = 0;
   auto publish = [&](const std::string& channel, int64_t /*utime*/, const auto& message) {
+    if (!publish_truth && channel == channels.truth) return;
     if (lcm->publish(channel, &message) != 0) ++publish_failures;
   };
   WireSink<decltype(publish)> sink(channels, publish);
@@ -121,6 +124,8 @@ int Main(int argc, char** argv) {
                "Stamp samples with the wall clock instead of simulated time from 0");
   app.add_flag("--loop", options.loop,
                "Repeat the scenario until stopped (SIGINT/SIGTERM), time continuing: run n starts at n x duration");
+  app.add_flag("--no-truth", options.no_truth,
+               "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -168,8 +173,8 @@ int Main(int argc, char** argv) {
   for (int64_t run = 0; ok && (run == 0 || (options.loop && !ShutdownRequested())); ++run) {
     Simulator sim(scenario);
     sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
-    ok = options.output.empty() ? RunLive(&sim, channels, lcm.get(), options.speed)
-                                : RunOffline(&sim, channels, options.output);
+    ok = options.output.empty() ? RunLive(&sim, channels, lcm.get(), options.speed, !options.no_truth)
+                                : RunOffline(&sim, channels, options.output, !options.no_truth);
     simulated_s += sim.time_s();
     const ChannelCounts& emitted = sim.emitted();
     n.strain += emitted.strain;
