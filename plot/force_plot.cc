@@ -19,6 +19,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kRotorColor[2] = {"#d62728", "#1f77b4"};
 constexpr const char* kSigmaColor[2] = {"#67000d", "#08306b"};  // darker rotor colours
 constexpr const char* kTrueColor = "#303030";
+// FORCE silent for more than this many typical intervals is drawn as a gap [1].
+constexpr double kGapPeriods = 10.0;
 constexpr const char* kMarkerColor = "#8c2d04";
 // Panel edges on the page [fraction of the width and height]; the left and
 // right edges are shared so that the time axes line up, and the keys sit to
@@ -79,11 +81,24 @@ YRange RangeOf(std::vector<std::pair<double, double>> values_and_times, double c
 
 std::string Number(double value) { return std::isfinite(value) ? fmt::format("{:.7g}", value) : "NaN"; }
 
-// $data: t f1 f2 std1 std2 mu1 mu2 status f1_true f2_true mu1_true mu2_true err1 err2.
-std::string DataBlock(const std::vector<Row>& rows) {
+// $data: t f1 f2 std1 std2 mu1 mu2 status f1_true f2_true mu1_true mu2_true err1
+// err2. A blank line before a row that follows a gap of more than kGapPeriods
+// typical intervals breaks every line there: no FORCE, no line.
+double GapS(const std::vector<Row>& rows) {
+  std::vector<double> steps_s;
+  steps_s.reserve(rows.size());
+  for (size_t k = 1; k < rows.size(); ++k) steps_s.push_back(rows[k].t_s - rows[k - 1].t_s);
+  if (steps_s.empty()) return std::numeric_limits<double>::infinity();
+  std::nth_element(steps_s.begin(), steps_s.begin() + steps_s.size() / 2, steps_s.end());
+  return kGapPeriods * steps_s[steps_s.size() / 2];
+}
+
+std::string DataBlock(const std::vector<Row>& rows, double gap_s) {
   std::string block = "$data << EOD\n";
   block.reserve(rows.size() * 120);
-  for (const Row& row : rows) {
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const Row& row = rows[k];
+    if (k > 0 && row.t_s - rows[k - 1].t_s > gap_s) block += '\n';
     const ForceEstimate& e = *row.estimate;
     const TruthSample* t = row.truth;
     fmt::format_to(std::back_inserter(block), "{:.6f} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", row.t_s,
@@ -115,6 +130,20 @@ std::vector<std::pair<double, std::string>> StatusMarkers(const std::vector<Row>
                                               rises > 1 ? fmt::format(" ({}x)", rises) : std::string()));
   }
   return markers;
+}
+
+// The first silence of FORCE longer than gap_s, with the number of such
+// silences: "no FORCE for 151 ms from 5.999 s (2x)".
+void AddGapMarker(const std::vector<Row>& rows, double gap_s, std::vector<std::pair<double, std::string>>* markers) {
+  int gaps = 0;
+  size_t first = 0;
+  for (size_t k = 1; k < rows.size(); ++k) {
+    if (rows[k].t_s - rows[k - 1].t_s > gap_s && gaps++ == 0) first = k;
+  }
+  if (gaps == 0) return;
+  const double from_s = rows[first - 1].t_s;
+  markers->emplace_back(from_s, fmt::format("no FORCE for {:.0f} ms from {:.3f} s{}", (rows[first].t_s - from_s) * 1e3,
+                                            from_s, gaps > 1 ? fmt::format(" ({}x)", gaps) : std::string()));
 }
 
 // Places the next panel: `height` of the page below *top.
@@ -188,13 +217,13 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
       error_values.emplace_back(row.estimate->force_n[r] - row.truth->force_n[r], row.t_s);
     }
   }
-  // The threshold is always in view, and 1.0 (healthy) too.
-  scale_values.emplace_back(options.fault_thrust_scale, rows.front().t_s);
-  scale_values.emplace_back(1.0, rows.front().t_s);
   const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, " N"),
                                  RangeOf(force_values[1], options.clip_fraction, 0.5, " N")};
   const YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
-  const YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
+  YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
+  // The fault threshold is always in view, and 1.0 (healthy) too.
+  scale_range.low = std::min(scale_range.low, options.fault_thrust_scale - 0.03);
+  scale_range.high = std::max(scale_range.high, 1.03);
 
   std::string script = fmt::format(
       "set terminal pngcairo size {},{} noenhanced font 'sans,10'\n"
@@ -203,11 +232,13 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
       "set multiplot title {}\n",
       options.width_px, options.height_px, kRightEdge + 0.01,
       GnuplotQuoted(options.title + (with_truth ? "" : "  (no TRUTH: estimates only)")));
-  script += DataBlock(rows);
+  const double gap_s = GapS(rows);
+  script += DataBlock(rows, gap_s);
   script += fmt::format("set xrange [{:.6f}:{:.6f}]\n", rows.front().t_s, rows.back().t_s);
 
   // Vertical lines in every panel (arrows persist), labels in the top panel.
   std::vector<std::pair<double, std::string>> markers = StatusMarkers(rows);
+  AddGapMarker(rows, gap_s, &markers);
   for (const PlotMarker& m : options.markers) {
     markers.emplace_back(seconds(m.utime), fmt::format("{} {:.3f} s", m.label, seconds(m.utime)));
   }
@@ -269,7 +300,8 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   }
   script += "\nunset label\n";
 
-  // Status strip: one row per bit, a thick line where it is set.
+  // Status strip: one row per bit, a thick line where it is set (a square
+  // for a single message, e.g. a RESET).
   script += Panel(&top, status_height, true);
   script += fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nunset key\nset ytics (", kStatusBitCount);
   for (int i = 0; i < kStatusBitCount; ++i) {
@@ -278,9 +310,9 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   script += ") font ',8'\nunset ylabel\nplot ";
   for (int i = 0; i < kStatusBitCount; ++i) {
     const bool alarm = kStatusBitNames[i].bit & kAlarmStatusBits;
-    script +=
-        fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w l lw 5 lc rgb '{}' notitle{}", kStatusBitNames[i].bit,
-                    kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c", i + 1 < kStatusBitCount ? ", " : "\n");
+    script += fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w lp lw 5 pt 5 ps 0.3 lc rgb '{}' notitle{}",
+                          kStatusBitNames[i].bit, kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c",
+                          i + 1 < kStatusBitCount ? ", " : "\n");
   }
   script += "unset multiplot\n";
   return script;

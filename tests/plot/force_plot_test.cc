@@ -90,6 +90,16 @@ TEST(ForcePlotTest, WithoutTruthShowsEstimatesOnly) {
   EXPECT_EQ(folder.Entries(), std::vector<std::string>{"vehicle.png"});
 }
 
+// A strain dropout leaves FORCE silent: the plot breaks its lines there and
+// says so (sensor_faults.yaml drops strain for 150 ms at 6 s).
+TEST(ForcePlotTest, MarksASilenceOfForce) {
+  ThrustLoss run = MakeThrustLoss();
+  run.forces.erase(run.forces.begin() + 600, run.forces.begin() + 750);  // 0.600 to 0.749 s missing
+  const std::string script = ForcePlotScript(run.forces, run.truth, ForcePlotOptions{});
+  EXPECT_TRUE(Has(script, "'no FORCE for 151 ms from 0.599 s'"));
+  EXPECT_TRUE(Has(script, "\n\n0.750000 "));  // a blank line breaks every line at the gap
+}
+
 TEST(ForcePlotTest, RefusesAnEmptyStream) {
   TemporaryFolder folder("birotor_force_plot_test_");
   std::string error;
