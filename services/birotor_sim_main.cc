@@ -189,9 +189,9 @@ int Main(int argc, char** argv) {
 
   spdlog::info(
       "simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
-      "pose {}, loadcell {}, truth {}; {} fault events",
+      "pose {}, loadcell {}, truth {}{}; {} fault events",
       simulated_s, wall_s, wall_s > 0 ? simulated_s / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose, n.loadcell,
-      n.truth, fault_events);
+      n.truth, options.no_truth ? " (not published: --no-truth)" : "", fault_events);
   return ok ? 0 : kExitFailure;
 }
 

@@ -33,8 +33,7 @@ int main(int argc, char** argv) {
     try {
       plot.scale_lines = ThrustScaleLines(LoadEstimatorConfig(params_file).ekf);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "birotor-plot: error: %s\n", e.what());
-      return 1;
+      return ReportError(e.what());
     }
   }
   const ChannelNames channels = MakeChannelNames(common.prefix);
