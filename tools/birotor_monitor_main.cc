@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -16,6 +15,7 @@
 #include "monitor/monitor_view.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
@@ -39,10 +39,6 @@ struct MonitorOptions {
   bool markdown = false;          // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Raw subscription: hands every packet to the collector.
 void OnPacket(const lcm::ReceiveBuffer* buffer, const std::string& channel, MonitorCollector* collector) {
@@ -130,7 +126,7 @@ int Main(int argc, char** argv) {
 
   const bool terminal = isatty(STDOUT_FILENO) && !options.plain && !options.quiet;
   const double interval_s = options.interval_s > 0 ? options.interval_s : (terminal ? 0.2 : 1.0);
-  const double start_s = SteadyNowS();
+  const double start_s = SteadyClockS();
   double last_truth_arrival_s = start_s;
   size_t last_truth_count = 0;
   double last_view_s = start_s;
@@ -145,7 +141,7 @@ int Main(int argc, char** argv) {
       spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
       break;
     }
-    const double now_s = SteadyNowS();
+    const double now_s = SteadyClockS();
     if (collector.truth().size() != last_truth_count) {
       last_truth_count = collector.truth().size();
       last_truth_arrival_s = now_s;

@@ -14,6 +14,8 @@
 #include "services/estimator_service.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
@@ -133,25 +135,6 @@ TEST(MonitorCollectorTest, KeepsNewestEstimatorHealth) {
   EXPECT_EQ(collector.status_messages(), 1);
 }
 
-// Publishes every simulated sample on LCM, as birotor-sim does live.
-class LcmPublishingSink : public SampleSink {
- public:
-  LcmPublishingSink(lcm::LCM* lcm, const ChannelNames& channels) : lcm_(lcm), channels_(channels) {}
-  void OnStrain(const StrainSample& s) override { Publish(channels_.strain, ToMessage(s)); }
-  void OnMotor(const MotorSample& s) override { Publish(channels_.motor, ToMessage(s)); }
-  void OnImu(const ImuSample& s) override { Publish(channels_.imu, ToMessage(s)); }
-  void OnPose(const PoseSample& s) override { Publish(channels_.pose, ToMessage(s)); }
-  void OnTruth(const TruthSample& s) override { Publish(channels_.truth, ToMessage(s)); }
-
- private:
-  template <class Msg>
-  void Publish(const std::string& channel, const Msg& message) {
-    lcm_->publish(channel, &message);
-  }
-  lcm::LCM* lcm_;
-  const ChannelNames& channels_;
-};
-
 void Drain(lcm::LCM* lcm) {
   while (lcm->handleTimeout(0) > 0) {
   }
@@ -180,7 +163,8 @@ TEST(MonitorCollectorTest, FiguresOverLcmEqualBirotorEval) {
         },
         &collector);
   }
-  LcmPublishingSink sink(&lcm, channels);
+  LcmSink simulator_output(&lcm);
+  WireSampleSink sink(channels, &simulator_output);  // as birotor-sim does live
   Simulator simulator(scenario);
   while (simulator.Step(&sink)) Drain(&lcm);
   Drain(&lcm);
