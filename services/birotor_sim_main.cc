@@ -34,10 +34,11 @@ struct SimOptions {
   std::string output;                    // log file (offline mode); empty: live on LCM
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
+  bool no_truth = false;                 // do not publish TRUTH (stands in for a real vehicle)
 };
 
 // Offline: every sample into the log, as fast as possible.
-bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path) {
+bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
   LogWriter writer;
   std::string error;
   if (!writer.Open(path, &error)) {
@@ -45,7 +46,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
     return false;
   }
   LogSink log_sink(&writer);
-  WireSampleSink sink(channels, &log_sink);
+  WireSampleSink sink(channels, &log_sink, publish_truth);
   while (!log_sink.failed() && !ShutdownRequested() && sim->Step(&sink)) {
   }
   bool write_failed = log_sink.failed() || sink.encode_failures() > 0;
@@ -59,7 +60,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
 }
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& url, double speed) {
+bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& url, double speed, bool publish_truth) {
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(url, &error);
   if (!lcm) {
@@ -67,7 +68,7 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& ur
     return false;
   }
   LcmSink lcm_sink(lcm.get());
-  WireSampleSink sink(channels, &lcm_sink);
+  WireSampleSink sink(channels, &lcm_sink, publish_truth);
   const auto start = std::chrono::steady_clock::now();
   // Sleep at most once per millisecond of simulated time (4 steps at 4 kHz).
   const int64_t steps_per_check = std::max<int64_t>(1, std::llround(1e-3 / sim->scenario().step_s));
@@ -95,6 +96,8 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 1e6));
   app.add_flag("--wall-clock", options.wall_clock,
                "Stamp samples with the wall clock instead of simulated time from 0");
+  app.add_flag("--no-truth", options.no_truth,
+               "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -124,8 +127,9 @@ int Main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
 
   const Stopwatch stopwatch;
-  const bool ok = options.output.empty() ? RunLive(&sim, channels, options.common.lcm_url, options.speed)
-                                         : RunOffline(&sim, channels, options.output);
+  const bool ok = options.output.empty()
+                      ? RunLive(&sim, channels, options.common.lcm_url, options.speed, !options.no_truth)
+                      : RunOffline(&sim, channels, options.output, !options.no_truth);
   const double wall_s = stopwatch.ElapsedS();
 
   const ChannelCounts& n = sim.emitted();

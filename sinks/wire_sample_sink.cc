@@ -21,6 +21,8 @@ void WireSampleSink::OnMotor(const MotorSample& s) { Publish(channels_.motor, s.
 void WireSampleSink::OnImu(const ImuSample& s) { Publish(channels_.imu, s.utime, ToMessage(s)); }
 void WireSampleSink::OnPose(const PoseSample& s) { Publish(channels_.pose, s.utime, ToMessage(s)); }
 void WireSampleSink::OnLoadCell(const LoadCellSample& s) { Publish(channels_.loadcell, s.utime, ToMessage(s)); }
-void WireSampleSink::OnTruth(const TruthSample& s) { Publish(channels_.truth, s.utime, ToMessage(s)); }
+void WireSampleSink::OnTruth(const TruthSample& s) {
+  if (publish_truth_) Publish(channels_.truth, s.utime, ToMessage(s));
+}
 
 }  // namespace birotor

@@ -17,8 +17,10 @@ namespace birotor {
 
 class WireSampleSink : public SampleSink {
  public:
-  // sink must outlive the adapter.
-  WireSampleSink(const ChannelNames& channels, MessageSink* sink) : channels_(channels), sink_(sink) {}
+  // sink must outlive the adapter. Without publish_truth, TRUTH is not
+  // published (the simulator standing in for a real vehicle).
+  WireSampleSink(const ChannelNames& channels, MessageSink* sink, bool publish_truth = true)
+      : channels_(channels), sink_(sink), publish_truth_(publish_truth) {}
 
   void OnStrain(const StrainSample& sample) override;
   void OnMotor(const MotorSample& sample) override;
@@ -36,6 +38,7 @@ class WireSampleSink : public SampleSink {
 
   ChannelNames channels_;
   MessageSink* sink_;
+  bool publish_truth_;
   std::vector<uint8_t> buffer_;
   int64_t encode_failures_ = 0;
 };
