@@ -177,6 +177,18 @@ std::string YRangeCommands(const YRange& range) {
 
 }  // namespace
 
+std::vector<ThresholdLine> ThrustScaleLines(const EkfOptions& ekf) {
+  // EkfOptions: a rotor is flagged when mu_i + n_sigma std(mu_i) stays below
+  // fault_thrust_scale, so mu itself is below it then.
+  return {{ekf.fault_thrust_scale, fmt::format("rotor fault below {:.2f}", ekf.fault_thrust_scale)}};
+}
+
+std::string ThresholdWords(const std::vector<ThresholdLine>& lines) {
+  std::string words;
+  for (const ThresholdLine& line : lines) words += (words.empty() ? "" : ", ") + line.label;
+  return words;
+}
+
 PlotMarker ThrustStepMarker(int rotor, double step_time_s) {
   return {static_cast<int64_t>(std::llround(step_time_s * 1e6)), fmt::format("true thrust step rotor {}", rotor)};
 }
@@ -235,8 +247,10 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     error_range.high = std::max(error_range.high, 1.15 * widest_median_std_n);
   }
   YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
-  // The fault threshold is always in view, and 1.0 (healthy) too.
-  scale_range.low = std::min(scale_range.low, options.fault_thrust_scale - 0.03);
+  // The thresholds are always in view, and 1.0 (healthy) too.
+  for (const ThresholdLine& line : options.scale_lines) {
+    scale_range.low = std::min(scale_range.low, line.value - 0.03);
+  }
   scale_range.high = std::max(scale_range.high, 1.03);
 
   std::string script = fmt::format(
@@ -302,15 +316,16 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     script += "unset label\n";
   }
   script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
-  script += fmt::format(
-      "set ylabel 'thrust efficiency μ [1]'\nplot {:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' "
-      "t 'fault threshold {:.2f}'",
-      options.fault_thrust_scale, options.fault_thrust_scale);
+  script += "set ylabel 'thrust efficiency μ [1]'\nplot ";
+  for (const ThresholdLine& line : options.scale_lines) {
+    script += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
+  }
   for (int r = 0; r < 2; ++r) {
     if (with_truth) {
-      script += fmt::format(", $data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}'", 11 + r, kTrueColor, r + 1);
+      script += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
     }
-    script += fmt::format(", $data u 1:{} w l lc rgb '{}' t 'estimated μ{}'", 6 + r, kRotorColor[r], r + 1);
+    script += fmt::format("$data u 1:{} w l lc rgb '{}' t 'estimated μ{}'{}", 6 + r, kRotorColor[r], r + 1,
+                          r == 0 ? ", " : "");
   }
   script += "\nunset label\n";
 
