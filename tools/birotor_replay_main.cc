@@ -3,7 +3,6 @@
 // TRUTH to an output log, optionally FORCE as CSV. Same log in, same bytes out.
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -13,6 +12,7 @@
 #include "replay/replayer.h"
 #include "sinks/force_csv_sink.h"
 #include "transport/config_files.h"
+#include "transport/host_clock.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
@@ -70,13 +70,13 @@ int main(int argc, char** argv) {
     sink = csv_sink.get();
   }
 
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   Replayer replayer(config, options, sink);
   bool truncated = false;
   if (!ReplayLogFile(input_path, &replayer, &truncated, &error)) {
     return ReportError(error);
   }
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall_s = stopwatch.ElapsedS();
   const bool closed = writer.Close();
   if (csv != nullptr) std::fclose(csv);
   if (log_sink.failed() || !closed) {
