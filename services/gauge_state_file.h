@@ -9,7 +9,7 @@
 #include <string>
 
 #include "estimator/gauge_calibration.h"
-#include "estimator/vehicle_params.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 
