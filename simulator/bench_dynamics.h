@@ -7,7 +7,7 @@
 
 namespace birotor {
 
-// Arm rows from SupportedArmAcceleration (estimator/birotor_dynamics.h).
+// Arm rows from SupportedArmAcceleration (model/birotor_dynamics.h).
 inline PlantState ClampedBodyDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
   const double f1 = RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]);
   const double f2 = RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1]);
