@@ -86,7 +86,8 @@ TEST(GroundContactTest, SupportForceSaysGroundOrAir) {
   // In the air the rotors carry the vehicle: M a_z = f1 + f2, N = 0.
   for (int k = 100; k < 300; ++k) contact.Update(1000 * k, 9.81, p.TotalMass() * 9.81);
   EXPECT_FALSE(contact.supported());
-  EXPECT_NEAR(contact.support_force_n(), 0.0, 1e-3);
+  // First-order decay from M g with tau = 20 ms over 200 ms: M g e^-10.
+  EXPECT_NEAR(contact.support_force_n(), p.TotalMass() * 9.81 * std::exp(-10.0), 1e-9);
   // Hysteresis: 3 N (between off 2 N and on 4.5 N) keeps the state.
   for (int k = 300; k < 500; ++k) contact.Update(1000 * k, 9.81, p.TotalMass() * 9.81 - 3.0);
   EXPECT_FALSE(contact.supported());

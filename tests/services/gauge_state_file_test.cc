@@ -58,9 +58,9 @@ TEST(GaugeStateFileTest, ACorruptFileIsRefusedAndChangesNothing) {
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error));
   std::string text = Slurp(path);
-  const size_t digit = text.find("1.4937");
-  ASSERT_NE(digit, std::string::npos);
-  text[digit + 2] = '5';  // one flipped digit
+  const size_t field = text.find("gauge_offset_rad: 1.");
+  ASSERT_NE(field, std::string::npos) << text;
+  text[field + 18] = '2';  // one changed digit: 1.49e-05 -> 2.49e-05
   Spit(path, text);
   GaugeCalibration read;
   EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
