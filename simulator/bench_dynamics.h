@@ -3,21 +3,23 @@
 // and the rotor speeds evolve. Same 12-entry state as model/plant.h.
 #pragma once
 
+#include "model/arm_dynamics.h"
 #include "model/plant.h"
 
 namespace birotor {
 
-// Arm rows from SupportedArmAcceleration (model/birotor_dynamics.h).
+// b_i_ddot from the clamped-arm row of thesis eq. 3.10 (model/arm_dynamics.h)
+// with the vehicle's k and d; omega_i_dot from the first-order motor model.
 inline PlantState ClampedBodyDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
-  const double f1 = RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]);
-  const double f2 = RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1]);
-  const Eigen::Vector2d b_ddot = SupportedArmAcceleration<double>(p, x(kPlantQ + kB1), x(kPlantQ + kB2),
-                                                                  x(kPlantV + kB1), x(kPlantV + kB2), f1, f2);
   PlantState x_dot = PlantState::Zero();
-  x_dot(kPlantQ + kB1) = x(kPlantV + kB1);
-  x_dot(kPlantQ + kB2) = x(kPlantV + kB2);
-  x_dot(kPlantV + kB1) = b_ddot(0);
-  x_dot(kPlantV + kB2) = b_ddot(1);
+  const double forces_n[2] = {RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]),
+                              RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1])};
+  for (int arm = 0; arm < 2; ++arm) {
+    const int b = arm == 0 ? kB1 : kB2;
+    x_dot(kPlantQ + b) = x(kPlantV + b);
+    x_dot(kPlantV + b) = ClampedArmAcceleration<double>(p, arm, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad,
+                                                        x(kPlantQ + b), x(kPlantV + b), forces_n[arm]);
+  }
   x_dot(kPlantOmega1) = (ClampCommand(p, u.omega_cmd_rad_s[0]) - x(kPlantOmega1)) / p.motor_time_constant_s;
   x_dot(kPlantOmega2) = (ClampCommand(p, u.omega_cmd_rad_s[1]) - x(kPlantOmega2)) / p.motor_time_constant_s;
   return x_dot;

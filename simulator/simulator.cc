@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "model/rk4.h"
 #include "simulator/bench_dynamics.h"
-#include "simulator/flight_dynamics.h"
 
 namespace birotor {
 namespace {
@@ -124,7 +124,7 @@ PlantState Simulator::Derivative(const PlantState& x) const {
   // On the ground the support holds the body level and still (x and z do not
   // enter the arm equations: a translated clamped body is the bench).
   return (clamped_body_ || on_ground_) ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
-                                       : FlightDerivative(scenario_.vehicle, x, input_);
+                                       : PlantDerivative(scenario_.vehicle, x, input_);
 }
 
 RotorCommand Simulator::Command(double t_s) {
@@ -161,7 +161,7 @@ void Simulator::UpdateGroundContact(int64_t now_us) {
   if (!on_ground_) return;
   // The support only pushes: the body leaves it when the free body would
   // accelerate upwards (thrust above the weight).
-  if (FlightDerivative(scenario_.vehicle, state_, input_)(kPlantV + kZ) > 0.0) {
+  if (PlantDerivative(scenario_.vehicle, state_, input_)(kPlantV + kZ) > 0.0) {
     on_ground_ = false;
     if (liftoff_utime_ < 0) liftoff_utime_ = now_us;
   }
@@ -220,11 +220,8 @@ bool Simulator::Step(SampleSink* sink) {
     if (truth_.Due(k)) EmitTruth(now_us, sink);
   }
 
-  const PlantState k2 = Derivative(state_ + (0.5 * dt) * k1);
-  const PlantState k3 = Derivative(state_ + (0.5 * dt) * k2);
-  const PlantState k4 = Derivative(state_ + dt * k3);
   const double omega_before[2] = {state_(kPlantOmega1), state_(kPlantOmega2)};
-  state_ += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  state_ = Rk4StepFrom(state_, k1, dt, [this](const PlantState& x) { return Derivative(x); });
   for (int i = 0; i < 2; ++i) {
     // Trapezoidal rotor angle, kept in [0, 2 pi) so its precision does not decay.
     const double angle = rotor_angle_rad_[i] + 0.5 * dt * (omega_before[i] + state_(kPlantOmega1 + i));
