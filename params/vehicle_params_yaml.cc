@@ -19,12 +19,16 @@ const std::vector<VehicleKey>& VehicleKeys() {
       {"omega_max_rad_s", 1.0, 1e5, &VehicleParams::omega_max_rad_s},
       {"turbulence_std", 0.0, 1.0, &VehicleParams::turbulence_std},
       {"turbulence_corr_time_s", 1e-4, 100.0, &VehicleParams::turbulence_corr_time_s},
+      {"gauge_offset_std_rad", 1e-9, 1e-2, &VehicleParams::gauge_offset_std_rad},
+      {"gauge_drift_psd_rad2_s", 0.0, 1e-6, &VehicleParams::gauge_drift_psd_rad2_s},
   };
   return keys;
 }
 
 void ReadVehicleParams(YamlSection s, VehicleParams* p) {
   for (const VehicleKey& key : VehicleKeys()) s.Double(key.name, key.min, key.max, &(p->*key.field));
+  s.DoubleArray("gauge_scale", 2, 0.5, 2.0, p->gauge_scale);
+  s.DoubleArray("gauge_offset_rad", 2, -1e-2, 1e-2, p->gauge_offset_rad);
   s.Finish();
 }
 
@@ -54,6 +58,8 @@ std::string VehicleParamsYaml(const VehicleParams& p, const std::vector<std::pai
     }
     out << "\n";
   }
+  out << indent << "gauge_scale: [" << p.gauge_scale[0] << ", " << p.gauge_scale[1] << "]\n";
+  out << indent << "gauge_offset_rad: [" << p.gauge_offset_rad[0] << ", " << p.gauge_offset_rad[1] << "]\n";
   return out.str();
 }
 

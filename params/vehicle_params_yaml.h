@@ -20,7 +20,8 @@ struct VehicleKey {
   double VehicleParams::*field;
 };
 
-// Every key of the `vehicle:` section, in file order.
+// Every scalar key of the `vehicle:` section, in file order (the two-element
+// gauge_scale and gauge_offset_rad follow them).
 const std::vector<VehicleKey>& VehicleKeys();
 
 // Reads every key of the section (each is required); ranges are checked

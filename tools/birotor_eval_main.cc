@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-eval: estimator accuracy against simulator truth"};
   CommonOptions common;
   AddCommonOptions(app, &common);
-  std::vector<std::string> scenarios = {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults"};
+  std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
+                                        "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
+                                        "gauge_vibration", "gauge_airborne", "bench_gauge"};
   std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
   std::string params_file = FindConfigFile("estimator.yaml");
   std::string scenario_dir;  // empty: each scenario is looked up as scenarios/<name>.yaml
@@ -90,13 +92,18 @@ int main(int argc, char** argv) {
     for (const std::string& method : methods) {
       EstimatorConfig config = base_config;
       config.method = method;
+      // On a test stand the operator knows the body is held.
+      if (scenario.mode == "bench") config.ekf.body_held = true;
       EvalRun run;
       if (log_path.empty()) {
         run = RunSimulatedScenario(scenario, config, duration_s);
       } else if (!RunLog(log_path, config, &run, &error)) {
         return ReportError(error);
       }
-      const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, eval_options);
+      // A flight with a ground phase is scored from its lift-off.
+      EvalOptions options = eval_options;
+      options.score_from_utime = run.liftoff_utime;
+      const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, options);
       const std::string label = log_path.empty() ? name : "log";
       table += MarkdownTableRow(label, method, result);
       const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
