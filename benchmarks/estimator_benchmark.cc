@@ -94,6 +94,8 @@ void BM_StrainSample(benchmark::State& state, const char* method) {
 BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf");
 BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
 BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
+BENCHMARK_CAPTURE(BM_StrainSample, linear_kf, "linear_kf");
+BENCHMARK_CAPTURE(BM_StrainSample, luenberger, "luenberger");
 
 // The whole pipeline (validation, counters, EKF) over 10 s of `gentle`:
 // real_time_factor = simulated seconds per wall-clock second.

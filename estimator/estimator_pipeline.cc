@@ -5,6 +5,7 @@
 
 #include "estimator/baseline_estimators.h"
 #include "estimator/ekf_force_estimator.h"
+#include "estimator/linear_force_estimator.h"
 
 namespace birotor {
 namespace {
@@ -50,6 +51,12 @@ std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config
   if (config.method == "ekf") return std::make_unique<EkfForceEstimator>(config.vehicle, config.ekf);
   if (config.method == "inversion") return std::make_unique<InversionEstimator>(config.vehicle, config.inversion);
   if (config.method == "motor_map") return std::make_unique<MotorMapEstimator>(config.vehicle, config.motor_map);
+  if (config.method == "linear_kf") {
+    return std::make_unique<LinearForceEstimator>(config.vehicle, config.ekf, config.linear_model);
+  }
+  if (config.method == "luenberger") {
+    return std::make_unique<LinearForceEstimator>(config.vehicle, config.ekf, config.linear_model, config.luenberger);
+  }
   return nullptr;
 }
 

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   CommonOptions common;
   AddCommonOptions(app, &common);
   std::vector<std::string> scenarios = {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults"};
-  std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
+  std::vector<std::string> methods = EstimationMethodNames();
   std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
   std::string scenario_dir = std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios";
   std::string log_path, markdown_out, plot_dir;
@@ -32,9 +32,9 @@ int main(int argc, char** argv) {
   double duration_s = 0;
   EvalOptions eval_options;
   app.add_option("--scenarios", scenarios, "Scenario names (files <scenario-dir>/<name>.yaml)")->delimiter(',');
-  app.add_option("--methods", methods, "Methods: ekf, inversion, motor_map")
+  app.add_option("--methods", methods, "Methods (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--params", params_file, "Estimator parameter file");
   app.add_option("--scenario-dir", scenario_dir, "Folder of the scenario files");
   app.add_option("--set", overrides, "Simulator override section.key=value (repeatable), e.g. noise-free runs");
