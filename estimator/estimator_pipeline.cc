@@ -165,7 +165,8 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
   bool backwards = false;
   if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
   method_->AddImu(sample);
-  if (config_.method == "ekf" && config_.ekf.use_gyro) ++c.fused;
+  const bool fuses_gyro = config_.method == "ekf" || config_.method == "linear_kf" || config_.method == "luenberger";
+  if (fuses_gyro && config_.ekf.use_gyro) ++c.fused;
 }
 
 void EstimatorPipeline::OnPose(const PoseSample& sample) {

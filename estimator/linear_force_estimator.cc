@@ -23,8 +23,12 @@ LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const Ek
   q_ = s_inv * model_.noise_discrete * s_inv;
   const double deflection_scale = scale_(kLinDeflection1);
   measurement_variance_ = (noise.strain_noise_rad / deflection_scale) * (noise.strain_noise_rad / deflection_scale);
-  fixed_gain_.setZero();
+  const double gyro_std = noise.gyro_noise_rad_s / scale_(kLinPitchRate);
+  gyro_variance_ = gyro_std * gyro_std;
+  fixed_gains_.strain.setZero();
+  fixed_gains_.gyro.setZero();
   fixed_gain_s_.setZero();
+  fixed_gyro_gain_s_.setZero();
   state_.setZero();
   covariance_.setIdentity();
 }
@@ -33,13 +37,21 @@ LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const Ek
                                            const LinearModelOptions& options, const LuenbergerOptions& observer)
     : LinearForceEstimator(params, noise, options) {
   kalman_ = false;
-  fixed_gain_ = PlaceObserverPoles(model_, observer);
-  // Scaled: x_s += diag(1/scale) L scale_b y_s.
-  fixed_gain_s_ = scale_.cwiseInverse().asDiagonal() * fixed_gain_ * scale_(kLinDeflection1);
+  fixed_gains_ = PlaceObserverPoles(model_, observer);
+  // Scaled: x_s += diag(1/scale) L scale_y y_s.
+  fixed_gain_s_ = scale_.cwiseInverse().asDiagonal() * fixed_gains_.strain * scale_(kLinDeflection1);
+  fixed_gyro_gain_s_ = scale_.cwiseInverse().asDiagonal() * fixed_gains_.gyro * scale_(kLinPitchRate);
+}
+
+void LinearForceEstimator::AddImu(const ImuSample& sample) {
+  if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) return;
+  gyro_rad_s_ = sample.gyro_y_rad_s;
+  gyro_pending_ = true;
 }
 
 void LinearForceEstimator::Reset() {
   motor_.Reset();
+  gyro_pending_ = false;
   initialized_ = false;
   converged_ = false;
   consecutive_gated_ = 0;
@@ -58,6 +70,9 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
     const double force_std = noise_.initial_thrust_scale_std * model_.force_hover_n[i] / scale_(kLinForceIndex[i]);
     covariance_(kLinForceIndex[i], kLinForceIndex[i]) = force_std * force_std;
   }
+  const double pitch_rate_std = noise_.initial_pitch_rate_std_rad_s / scale_(kLinPitchRate);
+  covariance_(kLinPitchRate, kLinPitchRate) = pitch_rate_std * pitch_rate_std;
+  gyro_pending_ = false;
   consecutive_gated_ = 0;
   converged_ = false;
   last_utime_ = sample.utime;
@@ -73,6 +88,22 @@ void LinearForceEstimator::Predict(int periods) {
     covariance_.noalias() = temp.lazyProduct(a_.transpose());
     covariance_ += q_;
   }
+}
+
+void LinearForceEstimator::UpdateGyro() {
+  if (!gyro_pending_) return;
+  gyro_pending_ = false;
+  // y = phi_dot_meas - phi_dot, s = P_ww + R; gain K = P c^T / s (Kalman) or L_g.
+  const double residual = gyro_rad_s_ / scale_(kLinPitchRate) - state_(kLinPitchRate);
+  const LinearGyroGain p_ct = covariance_.col(kLinPitchRate);
+  const double innovation_variance = p_ct(kLinPitchRate) + gyro_variance_;
+  const LinearGyroGain gain = kalman_ ? LinearGyroGain(p_ct / innovation_variance) : fixed_gyro_gain_s_;
+  state_.noalias() += gain * residual;
+  // Joseph form for any gain (see Update).
+  const LinearGyroGain half = 0.5 * innovation_variance * gain - p_ct;
+  LinearMatrix delta;
+  delta.noalias() = half.lazyProduct(gain.transpose());
+  covariance_ += delta + delta.transpose();
 }
 
 void LinearForceEstimator::Update(const StrainSample& sample, StrainUpdateInfo* info) {
@@ -158,6 +189,7 @@ void LinearForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* 
     Predict(std::max(1, static_cast<int>(std::lround(dt_s / model_.period_s))));
     last_utime_ = sample.utime;
   }
+  UpdateGyro();
   Update(sample, info);
   if (!state_.allFinite() || !covariance_.allFinite()) {
     // Numerical failure: start again from this sample.

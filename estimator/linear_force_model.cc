@@ -18,9 +18,22 @@ namespace {
 
 // Axes of the 12-state augmented model (AugmentedStateNames()) kept as the
 // observable part, in LinearIndex order, and the axes that must be hidden.
-constexpr int kObservableAxes[kLinearStateSize] = {kB1, kB2, kNumCoordinates + kB1, kNumCoordinates + kB2,
-                                                   kAugForce1, kAugForce2};
-const std::vector<std::string> kExpectedHidden = {"x", "z", "phi", "x_dot", "z_dot", "phi_dot"};
+constexpr int kObservableAxes[kLinearStateSize] = {kB1,        kB2,        kNumCoordinates + kB1, kNumCoordinates + kB2,
+                                                   kAugForce1, kAugForce2, kNumCoordinates + kPhi};
+const std::vector<std::string> kHiddenFromStrain = {"x", "z", "phi", "x_dot", "z_dot", "phi_dot"};
+const std::vector<std::string> kHiddenFromStrainAndGyro = {"x", "z", "phi", "x_dot", "z_dot"};
+
+void CheckHidden(const AugMatrix& a, const std::vector<std::string>& measured,
+                 const std::vector<std::string>& expected_hidden) {
+  Eigen::MatrixXd c;
+  std::string unknown;
+  SelectionMatrix(AugmentedStateNames(), measured, &c, &unknown);
+  const SubspaceReport report = AnalyzeObservability(a, c, AugmentedStateNames());
+  if (report.rank != kAugStateSize - static_cast<int>(expected_hidden.size()) ||
+      report.hidden_states != expected_hidden) {
+    throw std::invalid_argument("linear model: unexpected observable part (rank " + std::to_string(report.rank) + ")");
+  }
+}
 
 }  // namespace
 
@@ -30,14 +43,8 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
     throw std::invalid_argument("linear model: strain_rate_hz out of [1, 1e6]");
   }
   const AugMatrix a_aug = AugmentWithForces(LinearizeAtHover(params));
-  Eigen::MatrixXd c_aug;
-  std::string unknown;
-  SelectionMatrix(AugmentedStateNames(), {"b1", "b2"}, &c_aug, &unknown);
-  const SubspaceReport report = AnalyzeObservability(a_aug, c_aug, AugmentedStateNames());
-  if (report.rank != kLinearStateSize || report.hidden_states != kExpectedHidden) {
-    throw std::invalid_argument("linear model: the strain gauges do not observe exactly b, b_dot, f (rank " +
-                                std::to_string(report.rank) + ")");
-  }
+  CheckHidden(a_aug, {"b1", "b2"}, kHiddenFromStrain);
+  CheckHidden(a_aug, {"b1", "b2", "phi_dot"}, kHiddenFromStrainAndGyro);
   // Orthogonal Kalman decomposition with the axis basis: W selects the
   // observable axes, N the hidden ones. A_o = W^T A W is the observable
   // block when W^T A N = 0 (the hidden subspace is A-invariant).
@@ -56,6 +63,11 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
   model.c.setZero();
   model.c(0, kLinDeflection1) = 1.0;
   model.c(1, kLinDeflection2) = 1.0;
+  model.c_gyro.setZero();
+  model.c_gyro(0, kLinPitchRate) = 1.0;
+  if (model.a_continuous.topRightCorner<kStrainObservableSize, 1>().cwiseAbs().maxCoeff() != 0.0) {
+    throw std::invalid_argument("linear model: phi_dot drives the arms at hover");
+  }
   model.period_s = 1.0 / options.strain_rate_hz;
 
   const Equilibrium eq = SolveHoverEquilibrium(params);
@@ -72,6 +84,7 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
   model.noise_continuous(kLinDeflectionRate2, kLinDeflectionRate2) = noise.deflection_rate_psd_rad2_s3;
   model.noise_continuous(kLinForce1, kLinForce1) = model.force_psd_n2_s;
   model.noise_continuous(kLinForce2, kLinForce2) = model.force_psd_n2_s;
+  model.noise_continuous(kLinPitchRate, kLinPitchRate) = noise.pitch_rate_psd_rad2_s3;
 
   // Scaling: forces in newtons; deflections in the static deflection of one
   // newton, |A_bb^-1 A_bf| (about 1e-4 rad); rates in that deflection times
@@ -81,8 +94,8 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
   const Eigen::Matrix2d a_bf = model.a_continuous.block<2, 2>(kLinDeflectionRate1, kLinForce1);
   const double deflection_per_newton = (a_bb.inverse() * a_bf).cwiseAbs().maxCoeff();
   const double arm_rad_s = std::sqrt(a_bb.eigenvalues().cwiseAbs().maxCoeff());
-  model.scale << deflection_per_newton, deflection_per_newton, deflection_per_newton * arm_rad_s,
-      deflection_per_newton * arm_rad_s, 1.0, 1.0;
+  const double rate_scale = deflection_per_newton * arm_rad_s;
+  model.scale << deflection_per_newton, deflection_per_newton, rate_scale, rate_scale, 1.0, 1.0, rate_scale;
 
   // Exact discretisation in scaled coordinates (Van Loan):
   //   expm([[-A, Q_c], [0, A^T]] T) = [[., F12], [0, F22]],  A_d = F22^T,  Q_d = A_d F12.

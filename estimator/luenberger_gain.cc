@@ -10,10 +10,12 @@ namespace {
 
 constexpr int kChannelSize = 3;  // b, b_dot, force combination
 using ChannelMatrix = Eigen::Matrix<double, kChannelSize, kChannelSize>;
+using StrainMatrix = Eigen::Matrix<double, kStrainObservableSize, kStrainObservableSize>;
+using StrainVector = Eigen::Matrix<double, kStrainObservableSize, 1>;
 
 // z = T x: [b_s, b_s_dot, f1 - f2, b_d, b_d_dot, f1 + f2].
-LinearMatrix ChannelTransform() {
-  LinearMatrix t = LinearMatrix::Zero();
+StrainMatrix ChannelTransform() {
+  StrainMatrix t = StrainMatrix::Zero();
   const int pairs[3][2] = {{kLinDeflection1, kLinDeflection2},
                            {kLinDeflectionRate1, kLinDeflectionRate2},
                            {kLinForce1, kLinForce2}};
@@ -28,7 +30,7 @@ LinearMatrix ChannelTransform() {
 }
 
 // Natural frequency of the arm pair of channel j in continuous time [rad/s].
-double ChannelArmFrequency(const LinearMatrix& a_channels_continuous, int channel) {
+double ChannelArmFrequency(const StrainMatrix& a_channels_continuous, int channel) {
   const Eigen::Matrix2d arm = a_channels_continuous.block<2, 2>(channel * kChannelSize, channel * kChannelSize);
   return std::abs(arm.eigenvalues()(0));
 }
@@ -47,8 +49,9 @@ void CheckOptions(const LinearForceModel& model, const LuenbergerOptions& option
 
 std::array<std::complex<double>, kLinearStateSize> DesiredObserverPoles(const LinearForceModel& model,
                                                                         const LuenbergerOptions& options) {
-  const LinearMatrix t = ChannelTransform();
-  const LinearMatrix a_channels = t * model.a_continuous * t.inverse();
+  const StrainMatrix t = ChannelTransform();
+  const StrainMatrix a_channels =
+      t * model.a_continuous.topLeftCorner<kStrainObservableSize, kStrainObservableSize>() * t.inverse();
   const double zeta = options.arm_damping_ratio;
   std::array<std::complex<double>, kLinearStateSize> poles;
   for (int channel = 0; channel < 2; ++channel) {
@@ -58,20 +61,22 @@ std::array<std::complex<double>, kLinearStateSize> DesiredObserverPoles(const Li
     poles[channel * kChannelSize + 1] = std::exp(std::conj(s) * model.period_s);
     poles[channel * kChannelSize + 2] = std::exp(-2.0 * M_PI * options.force_bandwidth_hz * model.period_s);
   }
+  poles[kLinPitchRate] = poles[2];
   return poles;
 }
 
-LinearGain PlaceObserverPoles(const LinearForceModel& model, const LuenbergerOptions& options) {
+ObserverGains PlaceObserverPoles(const LinearForceModel& model, const LuenbergerOptions& options) {
   CheckOptions(model, options);
-  const LinearMatrix t = ChannelTransform();
-  const LinearMatrix t_inv = t.inverse();
+  const StrainMatrix t = ChannelTransform();
+  const StrainMatrix t_inv = t.inverse();
   // Scaled channel coordinates z = D z_s, D = (deflection, rate, force) scale per channel.
-  LinearState channel_scale;
+  StrainVector channel_scale;
   for (int r = 0; r < kChannelSize; ++r) {
     channel_scale(r) = channel_scale(kChannelSize + r) = model.scale(kLinDeflection1 + 2 * r);
   }
-  const LinearMatrix a_channels_scaled =
-      channel_scale.cwiseInverse().asDiagonal() * (t * model.a_discrete * t_inv) * channel_scale.asDiagonal();
+  const StrainMatrix a_strain = model.a_discrete.topLeftCorner<kStrainObservableSize, kStrainObservableSize>();
+  const StrainMatrix a_channels_scaled =
+      channel_scale.cwiseInverse().asDiagonal() * (t * a_strain * t_inv) * channel_scale.asDiagonal();
   // The channels must not drive each other (mirror symmetry of the vehicle).
   const double coupling =
       std::max(a_channels_scaled.topRightCorner<kChannelSize, kChannelSize>().cwiseAbs().maxCoeff(),
@@ -84,8 +89,8 @@ LinearGain PlaceObserverPoles(const LinearForceModel& model, const LuenbergerOpt
   // y_z = (b_s, b_d) = T_y y.
   Eigen::Matrix2d t_y;
   t_y << 1.0, 1.0, 1.0, -1.0;
-  Eigen::Matrix<double, kLinearStateSize, kLinearOutputSize> gain_channels =
-      Eigen::Matrix<double, kLinearStateSize, kLinearOutputSize>::Zero();
+  Eigen::Matrix<double, kStrainObservableSize, kLinearOutputSize> gain_channels =
+      Eigen::Matrix<double, kStrainObservableSize, kLinearOutputSize>::Zero();
   for (int channel = 0; channel < 2; ++channel) {
     const int offset = channel * kChannelSize;
     // Scaled channel: states in (deflection, rate, force) scale, output in deflection scale.
@@ -105,11 +110,18 @@ LinearGain PlaceObserverPoles(const LinearForceModel& model, const LuenbergerOpt
       gain_channels(offset + r, channel) = channel_scale(r) * gain_scaled(r) / channel_scale(0);
     }
   }
-  return t_inv * gain_channels * t_y;
+  ObserverGains gains;
+  gains.strain.setZero();
+  gains.strain.topRows<kStrainObservableSize>() = t_inv * gain_channels * t_y;
+  // phi_dot: e+ = (1 - l) (phi_dot error after the prediction): pole 1 - l.
+  gains.gyro.setZero();
+  gains.gyro(kLinPitchRate) = 1.0 - poles[kLinPitchRate].real();
+  return gains;
 }
 
-LinearMatrix ObserverErrorMatrix(const LinearForceModel& model, const LinearGain& gain) {
-  return (LinearMatrix::Identity() - gain * model.c) * model.a_discrete;
+LinearMatrix ObserverErrorMatrix(const LinearForceModel& model, const ObserverGains& gains) {
+  const LinearMatrix identity = LinearMatrix::Identity();
+  return (identity - gains.strain * model.c) * (identity - gains.gyro * model.c_gyro) * model.a_discrete;
 }
 
 }  // namespace birotor

@@ -41,6 +41,9 @@ TEST(LinearForceModel, IsTheObservableBlockOfTheAugmentedModel) {
   EXPECT_NEAR(model.deflection_hover_rad[0], -0.0018664, 1e-7);
   // Force noise from the EKF's figures at hover: (c_T w0^2)^2 2e-3 + (2 c_T w0)^2 100 = 1.421 N^2/s.
   EXPECT_NEAR(model.force_psd_n2_s, 1.421, 0.002);
+  // phi_dot is driven by b1 + b2 only (reference-vehicle.md: d(phi_ddot)/d(b_i) = 5.256e4) and drives nothing.
+  EXPECT_NEAR(model.a_continuous(kLinPitchRate, kLinDeflection1), 5.256e4, 1.0);
+  EXPECT_EQ(model.a_continuous.col(kLinPitchRate).norm(), 0.0);
 }
 
 TEST(LinearForceModel, DiscretisationIsTheMatrixExponential) {
@@ -52,7 +55,7 @@ TEST(LinearForceModel, DiscretisationIsTheMatrixExponential) {
   x(kLinForce2) = 1.0;
   const Eigen::Matrix2d a_bb = model.a_continuous.block<2, 2>(kLinDeflectionRate1, kLinDeflection1);
   const Eigen::Matrix2d a_bf = model.a_continuous.block<2, 2>(kLinDeflectionRate1, kLinForce1);
-  x.head<2>() = -a_bb.inverse() * a_bf * x.tail<2>();
+  x.head<2>() = -a_bb.inverse() * a_bf * x.segment<2>(kLinForce1);
   const LinearState next = model.a_discrete * x;
   EXPECT_LT((next - x).cwiseQuotient(model.scale).cwiseAbs().maxCoeff(), 1e-9);
   // Q_d ~ Q_c T on the forces (random walk) [N^2].
@@ -62,12 +65,12 @@ TEST(LinearForceModel, DiscretisationIsTheMatrixExponential) {
 TEST(LuenbergerObserver, ErrorDynamicsAreStableWithThePlacedPoles) {
   const LinearForceModel model = ReferenceModel();
   const LuenbergerOptions options;
-  const LinearGain gain = PlaceObserverPoles(model, options);
-  const Eigen::VectorXcd eigenvalues = ObserverErrorMatrix(model, gain).eigenvalues();
+  const ObserverGains gains = PlaceObserverPoles(model, options);
+  const Eigen::VectorXcd eigenvalues = ObserverErrorMatrix(model, gains).eigenvalues();
   // Thesis eq. 5.8 in discrete time: e[k] = ((I - L C) A_d)^k e[0] decays iff
   // every eigenvalue is inside the unit circle.
   EXPECT_LT(eigenvalues.cwiseAbs().maxCoeff(), 1.0);
-  // The slowest is the force pole exp(-2 pi 5 Hz 1 ms) = 0.96907.
+  // The slowest are the force and phi_dot poles exp(-2 pi 5 Hz 1 ms) = 0.96907.
   EXPECT_NEAR(eigenvalues.cwiseAbs().maxCoeff(), std::exp(-2.0 * M_PI * 5.0 * 1e-3), 1e-6);
   // And they are the placed poles.
   for (const std::complex<double>& pole : DesiredObserverPoles(model, options)) {
