@@ -9,9 +9,9 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
-#include "estimator/equilibrium.h"
-#include "estimator/linearization.h"
-#include "estimator/observability.h"
+#include "model/equilibrium.h"
+#include "model/linearization.h"
+#include "model/observability.h"
 
 namespace birotor {
 namespace {

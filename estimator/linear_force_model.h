@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "estimator/estimator_config.h"
-#include "estimator/vehicle_params.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

@@ -9,10 +9,10 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "estimator/equilibrium.h"
-#include "estimator/linearization.h"
+#include "model/equilibrium.h"
+#include "model/linearization.h"
 #include "estimator/luenberger_gain.h"
-#include "estimator/plant.h"
+#include "model/plant.h"
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
