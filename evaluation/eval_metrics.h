@@ -29,6 +29,9 @@ struct EvalOptions {
 struct ErrorStats {
   int64_t count = 0;
   double mae_n = 0, rmse_n = 0, p95_n = 0, max_n = 0;
+  // Share of scored estimates with |error| <= 2 force_std_n: 0.95 for an
+  // honest Gaussian one sigma [1].
+  double share_within_2sigma = 0;
 };
 
 struct EvalResult {
