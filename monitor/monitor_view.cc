@@ -155,8 +155,7 @@ std::string TerminalView(const MonitorCollector& c, const ViewContext& context) 
     if (truth) {
       scale += fmt::format("true {:.3f} {:.3f}   ", c.latest_truth().thrust_scale[0], c.latest_truth().thrust_scale[1]);
     }
-    add(scale + fmt::format("est {:.3f} {:.3f}   (rotor fault below {:.2f})", e.thrust_scale[0], e.thrust_scale[1],
-                            context.fault_thrust_scale));
+    add(scale + fmt::format("est {:.3f} {:.3f}   ({})", e.thrust_scale[0], e.thrust_scale[1], context.thresholds));
     add(fmt::format("status {}   first alarms: {}", StatusWords(e.status), FirstAlarms(c)));
     const ForceStreamStats& f = c.force_stats();
     add(fmt::format("FORCE valid {:.1f} %  non-finite {}  seq gaps {} ({} missing)  resets after start {}",

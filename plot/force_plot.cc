@@ -19,6 +19,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kRotorColor[2] = {"#d62728", "#1f77b4"};
 constexpr const char* kSigmaColor[2] = {"#67000d", "#08306b"};  // darker rotor colours
 constexpr const char* kTrueColor = "#303030";
+// An extreme further than this many bulk spans from the bulk is clipped [1].
+constexpr double kOutlierSpans = 0.5;
+// FORCE silent for more than this many typical intervals is drawn as a gap [1].
+constexpr double kGapPeriods = 10.0;
 constexpr const char* kMarkerColor = "#8c2d04";
 // Panel edges on the page [fraction of the width and height]; the left and
 // right edges are shared so that the time axes line up, and the keys sit to
@@ -32,8 +36,10 @@ struct Row {
   const TruthSample* truth;
 };
 
-// A panel's y-range from its data: the clip_fraction quantiles at each end,
-// widened by 8 % of the span; what lies outside is reported in note.
+// A panel's y-range from its data: the clip_fraction quantiles at each end
+// (the bulk), stretched to the extremes unless they lie more than
+// kOutlierSpans bulk spans beyond it, widened by 8 % of the span; what lies
+// outside is reported in note.
 struct YRange {
   double low = 0, high = 1;
   std::string note;
@@ -58,12 +64,16 @@ YRange RangeOf(std::vector<std::pair<double, double>> values_and_times, double c
   const double high_quantile = values[high_index];
   const double span = std::max(high_quantile - low_quantile, min_span);
   const double middle = 0.5 * (high_quantile + low_quantile);
-  range.low = std::min(low_quantile, middle - 0.5 * span) - 0.08 * span;
-  range.high = std::max(high_quantile, middle + 0.5 * span) + 0.08 * span;
+  const double bulk_low = std::min(low_quantile, middle - 0.5 * span);
+  const double bulk_high = std::max(high_quantile, middle + 0.5 * span);
   // The first extreme in time (values_and_times is in time order).
   const auto by_value = [](const auto& a, const auto& b) { return a.first < b.first; };
   const auto min_it = std::min_element(values_and_times.begin(), values_and_times.end(), by_value);
   const auto max_it = std::max_element(values_and_times.begin(), values_and_times.end(), by_value);
+  // An extreme within kOutlierSpans of the bulk stays in view; a further one
+  // (a transient) is clipped and noted.
+  range.low = (min_it->first >= bulk_low - kOutlierSpans * span ? min_it->first : bulk_low) - 0.08 * span;
+  range.high = (max_it->first <= bulk_high + kOutlierSpans * span ? max_it->first : bulk_high) + 0.08 * span;
   std::vector<std::string> clipped;
   if (max_it->first > range.high) {
     clipped.push_back(fmt::format("peak {:.2f}{} at {:.3f} s", max_it->first, unit, max_it->second));
@@ -79,11 +89,24 @@ YRange RangeOf(std::vector<std::pair<double, double>> values_and_times, double c
 
 std::string Number(double value) { return std::isfinite(value) ? fmt::format("{:.7g}", value) : "NaN"; }
 
-// $data: t f1 f2 std1 std2 mu1 mu2 status f1_true f2_true mu1_true mu2_true err1 err2.
-std::string DataBlock(const std::vector<Row>& rows) {
+// $data: t f1 f2 std1 std2 mu1 mu2 status f1_true f2_true mu1_true mu2_true err1
+// err2. A blank line before a row that follows a gap of more than kGapPeriods
+// typical intervals breaks every line there: no FORCE, no line.
+double GapS(const std::vector<Row>& rows) {
+  std::vector<double> steps_s;
+  steps_s.reserve(rows.size());
+  for (size_t k = 1; k < rows.size(); ++k) steps_s.push_back(rows[k].t_s - rows[k - 1].t_s);
+  if (steps_s.empty()) return std::numeric_limits<double>::infinity();
+  std::nth_element(steps_s.begin(), steps_s.begin() + steps_s.size() / 2, steps_s.end());
+  return kGapPeriods * steps_s[steps_s.size() / 2];
+}
+
+std::string DataBlock(const std::vector<Row>& rows, double gap_s) {
   std::string block = "$data << EOD\n";
   block.reserve(rows.size() * 120);
-  for (const Row& row : rows) {
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const Row& row = rows[k];
+    if (k > 0 && row.t_s - rows[k - 1].t_s > gap_s) block += '\n';
     const ForceEstimate& e = *row.estimate;
     const TruthSample* t = row.truth;
     fmt::format_to(std::back_inserter(block), "{:.6f} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", row.t_s,
@@ -117,6 +140,20 @@ std::vector<std::pair<double, std::string>> StatusMarkers(const std::vector<Row>
   return markers;
 }
 
+// The first silence of FORCE longer than gap_s, with the number of such
+// silences: "no FORCE for 151 ms from 5.999 s (2x)".
+void AddGapMarker(const std::vector<Row>& rows, double gap_s, std::vector<std::pair<double, std::string>>* markers) {
+  int gaps = 0;
+  size_t first = 0;
+  for (size_t k = 1; k < rows.size(); ++k) {
+    if (rows[k].t_s - rows[k - 1].t_s > gap_s && gaps++ == 0) first = k;
+  }
+  if (gaps == 0) return;
+  const double from_s = rows[first - 1].t_s;
+  markers->emplace_back(from_s, fmt::format("no FORCE for {:.0f} ms from {:.3f} s{}", (rows[first].t_s - from_s) * 1e3,
+                                            from_s, gaps > 1 ? fmt::format(" ({}x)", gaps) : std::string()));
+}
+
 // Places the next panel: `height` of the page below *top.
 std::string Panel(double* top, double height, bool bottom_axis) {
   const double bottom = *top - height;
@@ -139,6 +176,18 @@ std::string YRangeCommands(const YRange& range) {
 }
 
 }  // namespace
+
+std::vector<ThresholdLine> ThrustScaleLines(const EkfOptions& ekf) {
+  // EkfOptions: a rotor is flagged when mu_i + n_sigma std(mu_i) stays below
+  // fault_thrust_scale, so mu itself is below it then.
+  return {{ekf.fault_thrust_scale, fmt::format("rotor fault below {:.2f}", ekf.fault_thrust_scale)}};
+}
+
+std::string ThresholdWords(const std::vector<ThresholdLine>& lines) {
+  std::string words;
+  for (const ThresholdLine& line : lines) words += (words.empty() ? "" : ", ") + line.label;
+  return words;
+}
 
 PlotMarker ThrustStepMarker(int rotor, double step_time_s) {
   return {static_cast<int64_t>(std::llround(step_time_s * 1e6)), fmt::format("true thrust step rotor {}", rotor)};
@@ -188,13 +237,21 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
       error_values.emplace_back(row.estimate->force_n[r] - row.truth->force_n[r], row.t_s);
     }
   }
-  // The threshold is always in view, and 1.0 (healthy) too.
-  scale_values.emplace_back(options.fault_thrust_scale, rows.front().t_s);
-  scale_values.emplace_back(1.0, rows.front().t_s);
   const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, " N"),
                                  RangeOf(force_values[1], options.clip_fraction, 0.5, " N")};
-  const YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
-  const YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
+  YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
+  // The ±1σ envelopes stay in view, so an overstated sigma shows as such.
+  const double widest_median_std_n = std::max(median_std_n[0], median_std_n[1]);
+  if (std::isfinite(widest_median_std_n)) {
+    error_range.low = std::min(error_range.low, -1.15 * widest_median_std_n);
+    error_range.high = std::max(error_range.high, 1.15 * widest_median_std_n);
+  }
+  YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
+  // The thresholds are always in view, and 1.0 (healthy) too.
+  for (const ThresholdLine& line : options.scale_lines) {
+    scale_range.low = std::min(scale_range.low, line.value - 0.03);
+  }
+  scale_range.high = std::max(scale_range.high, 1.03);
 
   std::string script = fmt::format(
       "set terminal pngcairo size {},{} noenhanced font 'sans,10'\n"
@@ -203,11 +260,13 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
       "set multiplot title {}\n",
       options.width_px, options.height_px, kRightEdge + 0.01,
       GnuplotQuoted(options.title + (with_truth ? "" : "  (no TRUTH: estimates only)")));
-  script += DataBlock(rows);
+  const double gap_s = GapS(rows);
+  script += DataBlock(rows, gap_s);
   script += fmt::format("set xrange [{:.6f}:{:.6f}]\n", rows.front().t_s, rows.back().t_s);
 
   // Vertical lines in every panel (arrows persist), labels in the top panel.
   std::vector<std::pair<double, std::string>> markers = StatusMarkers(rows);
+  AddGapMarker(rows, gap_s, &markers);
   for (const PlotMarker& m : options.markers) {
     markers.emplace_back(seconds(m.utime), fmt::format("{} {:.3f} s", m.label, seconds(m.utime)));
   }
@@ -257,19 +316,21 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     script += "unset label\n";
   }
   script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
-  script += fmt::format(
-      "set ylabel 'thrust efficiency μ [1]'\nplot {:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' "
-      "t 'fault threshold {:.2f}'",
-      options.fault_thrust_scale, options.fault_thrust_scale);
+  script += "set ylabel 'thrust efficiency μ [1]'\nplot ";
+  for (const ThresholdLine& line : options.scale_lines) {
+    script += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
+  }
   for (int r = 0; r < 2; ++r) {
     if (with_truth) {
-      script += fmt::format(", $data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}'", 11 + r, kTrueColor, r + 1);
+      script += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
     }
-    script += fmt::format(", $data u 1:{} w l lc rgb '{}' t 'estimated μ{}'", 6 + r, kRotorColor[r], r + 1);
+    script += fmt::format("$data u 1:{} w l lc rgb '{}' t 'estimated μ{}'{}", 6 + r, kRotorColor[r], r + 1,
+                          r == 0 ? ", " : "");
   }
   script += "\nunset label\n";
 
-  // Status strip: one row per bit, a thick line where it is set.
+  // Status strip: one row per bit, a thick line where it is set (a square
+  // for a single message, e.g. a RESET).
   script += Panel(&top, status_height, true);
   script += fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nunset key\nset ytics (", kStatusBitCount);
   for (int i = 0; i < kStatusBitCount; ++i) {
@@ -278,9 +339,9 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   script += ") font ',8'\nunset ylabel\nplot ";
   for (int i = 0; i < kStatusBitCount; ++i) {
     const bool alarm = kStatusBitNames[i].bit & kAlarmStatusBits;
-    script +=
-        fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w l lw 5 lc rgb '{}' notitle{}", kStatusBitNames[i].bit,
-                    kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c", i + 1 < kStatusBitCount ? ", " : "\n");
+    script += fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w lp lw 5 pt 5 ps 0.3 lc rgb '{}' notitle{}",
+                          kStatusBitNames[i].bit, kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c",
+                          i + 1 < kStatusBitCount ? ", " : "\n");
   }
   script += "unset multiplot\n";
   return script;

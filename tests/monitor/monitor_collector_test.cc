@@ -183,6 +183,34 @@ void Drain(lcm::LCM* lcm) {
   }
 }
 
+// Simulator -> estimator daemon -> collector over memq:// (in order, nothing
+// lost), with ESTIMATOR_STATUS on the vehicle clock; TRUTH only if publish_truth.
+void FlyOverMemq(const Scenario& scenario, const EstimatorConfig& config, bool publish_truth,
+                 MonitorCollector* collector) {
+  lcm::LCM lcm("memq://");
+  ASSERT_TRUE(lcm.good());
+  const ChannelNames channels = MakeChannelNames();
+  LcmSink daemon_output(&lcm);
+  EstimatorService daemon(config, channels, EstimatorServiceOptions{}, &daemon_output);
+  daemon.Subscribe(&lcm);
+  for (const std::string* channel : {&channels.truth, &channels.force, &channels.estimator_status}) {
+    lcm.subscribeFunction(
+        *channel,
+        +[](const lcm::ReceiveBuffer* buffer, const std::string& name, MonitorCollector* c) {
+          c->HandlePacket(name, buffer->data, buffer->data_size);
+        },
+        collector);
+  }
+  LcmPublishingSink sink(&lcm, channels, publish_truth);
+  Simulator simulator(scenario);
+  while (simulator.Step(&sink)) {
+    Drain(&lcm);
+    daemon.PublishStatusOnVehicleClock();
+  }
+  Drain(&lcm);
+  daemon.Unsubscribe();
+}
+
 // The demo's claim: simulator, daemon and monitor connected by LCM give the
 // numbers birotor-eval computes for the same scenario and seed. memq:// keeps
 // the order and loses nothing, as loopback UDP does when no buffer overflows.
@@ -191,26 +219,8 @@ TEST(MonitorCollectorTest, FiguresOverLcmEqualBirotorEval) {
       LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml", {"scenario.duration_s=1.5"});
   const EstimatorConfig config = LoadEstimatorConfig(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
 
-  lcm::LCM lcm("memq://");
-  ASSERT_TRUE(lcm.good());
-  const ChannelNames channels = MakeChannelNames();
-  LcmSink daemon_output(&lcm);
-  EstimatorService daemon(config, channels, EstimatorServiceOptions{}, &daemon_output);
-  daemon.Subscribe(&lcm);
-  MonitorCollector collector(channels, scenario.duration_s);
-  for (const std::string* channel : {&channels.truth, &channels.force}) {
-    lcm.subscribeFunction(
-        *channel,
-        +[](const lcm::ReceiveBuffer* buffer, const std::string& name, MonitorCollector* c) {
-          c->HandlePacket(name, buffer->data, buffer->data_size);
-        },
-        &collector);
-  }
-  LcmPublishingSink sink(&lcm, channels);
-  Simulator simulator(scenario);
-  while (simulator.Step(&sink)) Drain(&lcm);
-  Drain(&lcm);
-  daemon.Unsubscribe();
+  MonitorCollector collector(MakeChannelNames(), scenario.duration_s);
+  FlyOverMemq(scenario, config, /*publish_truth=*/true, &collector);
 
   const EvalRun eval = RunSimulatedScenario(scenario, config);
   ASSERT_EQ(collector.forces().size(), eval.forces.size());
@@ -236,29 +246,8 @@ TEST(MonitorCollectorTest, VehicleViewOverLcmWithoutTruth) {
       LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml", {"scenario.duration_s=1.5"});
   const EstimatorConfig config = LoadEstimatorConfig(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
 
-  lcm::LCM lcm("memq://");
-  ASSERT_TRUE(lcm.good());
-  const ChannelNames channels = MakeChannelNames();
-  LcmSink daemon_output(&lcm);
-  EstimatorService daemon(config, channels, EstimatorServiceOptions{}, &daemon_output);
-  daemon.Subscribe(&lcm);
-  MonitorCollector collector(channels, scenario.duration_s);
-  for (const std::string* channel : {&channels.truth, &channels.force, &channels.estimator_status}) {
-    lcm.subscribeFunction(
-        *channel,
-        +[](const lcm::ReceiveBuffer* buffer, const std::string& name, MonitorCollector* c) {
-          c->HandlePacket(name, buffer->data, buffer->data_size);
-        },
-        &collector);
-  }
-  LcmPublishingSink sink(&lcm, channels, /*publish_truth=*/false);
-  Simulator simulator(scenario);
-  while (simulator.Step(&sink)) {
-    Drain(&lcm);
-    daemon.PublishStatusOnVehicleClock();
-  }
-  Drain(&lcm);
-  daemon.Unsubscribe();
+  MonitorCollector collector(MakeChannelNames(), scenario.duration_s);
+  FlyOverMemq(scenario, config, /*publish_truth=*/false, &collector);
 
   const EvalRun eval = RunSimulatedScenario(scenario, config);
   EXPECT_FALSE(collector.has_truth());

@@ -133,7 +133,7 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
   const std::string view = TerminalView(collector, context);
   EXPECT_EQ(std::count(view.begin(), view.end(), '\n'), kTerminalViewLines);
   EXPECT_NE(view.find("(no TRUTH: vehicle view)"), std::string::npos) << view;
-  EXPECT_NE(view.find("rotor fault below 0.85"), std::string::npos) << view;
+  EXPECT_NE(view.find("(rotor fault below 0.85)"), std::string::npos) << view;
   EXPECT_NE(view.find("strain NIS mean 2.04"), std::string::npos) << view;
   EXPECT_NE(view.find("resets 1 (last: start)"), std::string::npos) << view;
   EXPECT_NE(view.find("resets after start 0"), std::string::npos) << view;
