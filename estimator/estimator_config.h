@@ -114,14 +114,14 @@ inline const std::vector<std::string>& EstimationMethodNames() {
 }
 
 struct EstimatorConfig {
-  VehicleParams vehicle;       // `vehicle:` section
-  std::string method = "ekf";  // one of EstimationMethodNames()
-  EkfOptions ekf;              // `estimator.ekf:`
-  InversionOptions inversion;  // `estimator.inversion:`
-  MotorMapOptions motor_map;   // `estimator.motor_map:`
+  VehicleParams vehicle;            // `vehicle:` section
+  std::string method = "ekf";       // one of EstimationMethodNames()
+  EkfOptions ekf;                   // `estimator.ekf:`
+  InversionOptions inversion;       // `estimator.inversion:`
+  MotorMapOptions motor_map;        // `estimator.motor_map:`
   LinearModelOptions linear_model;  // `estimator.linear_model:` (luenberger, linear_kf)
   LuenbergerOptions luenberger;     // `estimator.luenberger:`
-  PipelineOptions pipeline;    // `estimator.pipeline:`
+  PipelineOptions pipeline;         // `estimator.pipeline:`
 };
 
 }  // namespace birotor

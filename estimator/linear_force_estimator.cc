@@ -63,7 +63,8 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
   state_.setZero();
   covariance_.setZero();
   for (int i = 0; i < 2; ++i) {
-    state_(kLinDeflectionIndex[i]) = (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / scale_(kLinDeflection1);
+    state_(kLinDeflectionIndex[i]) =
+        (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / scale_(kLinDeflection1);
     covariance_(kLinDeflectionIndex[i], kLinDeflectionIndex[i]) = measurement_variance_;
     const double rate_std = noise_.initial_deflection_rate_std_rad_s / scale_(kLinDeflectionRate1);
     covariance_(kLinDeflectionRate1 + i, kLinDeflectionRate1 + i) = rate_std * rate_std;

@@ -56,13 +56,13 @@ class LinearForceEstimator : public ForceEstimator {
   // Everything below runs in scaled coordinates x = diag(scale_) x_s, y = scale_(b) y_s,
   // so that every matrix is O(1) (the physical one spans 1e-10 to 1e2).
   LinearState scale_;
-  LinearMatrix a_;           // A_d
-  LinearMatrix q_;           // Q_d
-  ObserverGains fixed_gains_;           // physical units
-  LinearGain fixed_gain_s_;            // strain, scaled
-  LinearGyroGain fixed_gyro_gain_s_;   // gyro, scaled
-  double measurement_variance_ = 1;    // R / scale_b^2, both gauges [1]
-  double gyro_variance_ = 1;           // R_gyro / scale_phi_dot^2 [1]
+  LinearMatrix a_;                    // A_d
+  LinearMatrix q_;                    // Q_d
+  ObserverGains fixed_gains_;         // physical units
+  LinearGain fixed_gain_s_;           // strain, scaled
+  LinearGyroGain fixed_gyro_gain_s_;  // gyro, scaled
+  double measurement_variance_ = 1;   // R / scale_b^2, both gauges [1]
+  double gyro_variance_ = 1;          // R_gyro / scale_phi_dot^2 [1]
   bool gyro_pending_ = false;
   double gyro_rad_s_ = 0;
 

@@ -48,7 +48,8 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
   // Orthogonal Kalman decomposition with the axis basis: W selects the
   // observable axes, N the hidden ones. A_o = W^T A W is the observable
   // block when W^T A N = 0 (the hidden subspace is A-invariant).
-  Eigen::Matrix<double, kAugStateSize, kLinearStateSize> w = Eigen::Matrix<double, kAugStateSize, kLinearStateSize>::Zero();
+  Eigen::Matrix<double, kAugStateSize, kLinearStateSize> w =
+      Eigen::Matrix<double, kAugStateSize, kLinearStateSize>::Zero();
   for (int j = 0; j < kLinearStateSize; ++j) w(kObservableAxes[j], j) = 1.0;
   const Eigen::Matrix<double, kAugStateSize, kLinearStateSize> a_w = a_aug * w;
   // W^T A N: observable rows, hidden columns.

@@ -40,17 +40,17 @@ using LinearGyroMatrix = Eigen::Matrix<double, 1, kLinearStateSize>;
 // x_dot = A x + w, y = C x + v in physical units (the rows above), and the
 // same system sampled every period_s: x[k+1] = A_d x[k] + w_d, w_d ~ N(0, Q_d).
 struct LinearForceModel {
-  LinearMatrix a_continuous;         // observable block of thesis eq. 4.2 [1/s, 1/s^2, rad/(N s^2)]
-  LinearMatrix noise_continuous;     // Q_c: spectral densities of w [unit^2/s]
-  LinearMatrix a_discrete;           // A_d = exp(A period_s)
-  LinearMatrix noise_discrete;       // Q_d = int_0^T exp(A s) Q_c exp(A^T s) ds (Van Loan)
-  LinearOutputMatrix c;              // strain: y = (b1 - b1_hover, b2 - b2_hover) [1]
-  LinearGyroMatrix c_gyro;           // gyro: y = phi_dot [1]
-  LinearState scale;                 // x = diag(scale) x_s makes every block O(1) [unit]
-  double period_s = 1e-3;            // 1 / strain rate [s]
+  LinearMatrix a_continuous;      // observable block of thesis eq. 4.2 [1/s, 1/s^2, rad/(N s^2)]
+  LinearMatrix noise_continuous;  // Q_c: spectral densities of w [unit^2/s]
+  LinearMatrix a_discrete;        // A_d = exp(A period_s)
+  LinearMatrix noise_discrete;    // Q_d = int_0^T exp(A s) Q_c exp(A^T s) ds (Van Loan)
+  LinearOutputMatrix c;           // strain: y = (b1 - b1_hover, b2 - b2_hover) [1]
+  LinearGyroMatrix c_gyro;        // gyro: y = phi_dot [1]
+  LinearState scale;              // x = diag(scale) x_s makes every block O(1) [unit]
+  double period_s = 1e-3;         // 1 / strain rate [s]
   double deflection_hover_rad[2] = {0, 0};
   double force_hover_n[2] = {0, 0};
-  double force_psd_n2_s = 0;         // Q_c on each force (random walk) [N^2/s]
+  double force_psd_n2_s = 0;  // Q_c on each force (random walk) [N^2/s]
 };
 
 // Builds the model at the hover equilibrium:

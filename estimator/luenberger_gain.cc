@@ -16,9 +16,8 @@ using StrainVector = Eigen::Matrix<double, kStrainObservableSize, 1>;
 // z = T x: [b_s, b_s_dot, f1 - f2, b_d, b_d_dot, f1 + f2].
 StrainMatrix ChannelTransform() {
   StrainMatrix t = StrainMatrix::Zero();
-  const int pairs[3][2] = {{kLinDeflection1, kLinDeflection2},
-                           {kLinDeflectionRate1, kLinDeflectionRate2},
-                           {kLinForce1, kLinForce2}};
+  const int pairs[3][2] = {
+      {kLinDeflection1, kLinDeflection2}, {kLinDeflectionRate1, kLinDeflectionRate2}, {kLinForce1, kLinForce2}};
   for (int r = 0; r < kChannelSize; ++r) {
     // Sum channel: b1 + b2 is driven by f1 - f2; difference channel: b1 - b2 by f1 + f2.
     t(r, pairs[r][0]) = 1.0;
@@ -102,8 +101,7 @@ ObserverGains PlaceObserverPoles(const LinearForceModel& model, const Luenberger
     const std::complex<double> z_arm = poles[offset];
     const double z_force = poles[offset + 2].real();
     const ChannelMatrix identity = ChannelMatrix::Identity();
-    const ChannelMatrix phi =
-        (a * a - 2.0 * z_arm.real() * a + std::norm(z_arm) * identity) * (a - z_force * identity);
+    const ChannelMatrix phi = (a * a - 2.0 * z_arm.real() * a + std::norm(z_arm) * identity) * (a - z_force * identity);
     const Eigen::Vector3d gain_scaled = phi * observability.inverse() * Eigen::Vector3d::UnitZ();
     // Back to physical units: x = D x_s, y_z = deflection_scale y_zs.
     for (int r = 0; r < kChannelSize; ++r) {

@@ -9,9 +9,9 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+#include "estimator/luenberger_gain.h"
 #include "model/equilibrium.h"
 #include "model/linearization.h"
-#include "estimator/luenberger_gain.h"
 #include "model/plant.h"
 #include "tests/estimator/scenario_harness.h"
 
