@@ -102,7 +102,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
         result.scale_error_after_step = std::abs(e.thrust_scale[r] - t.thrust_scale[r]);
       }
     }
-    if (e.utime - first_utime < warmup_us) continue;
+    if (e.utime - first_utime < warmup_us || e.utime < options.score_from_utime) continue;
     if (!(e.status & kStatusValid)) ++result.invalid;
     while (next_fault < fault_utimes.size() && fault_utimes[next_fault] <= e.utime) {
       last_fault_utime = fault_utimes[next_fault++];

@@ -23,6 +23,9 @@ struct EvalOptions {
   double false_alarm_truth_scale = 0.9;
   // thrust_scale error is checked this long after a step [s].
   double scale_check_delay_s = 0.1;
+  // Scoring starts no earlier than this (e.g. the lift-off of a flight with a
+  // ground phase); -1: from the first estimate plus warmup_s [us].
+  int64_t score_from_utime = -1;
 };
 
 // Error statistics of one rotor [N].

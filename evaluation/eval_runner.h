@@ -38,8 +38,9 @@ struct EvalRun {
   std::vector<TruthSample> truth;
   ReplayStats stats;
   PipelineHealth health;
-  double simulated_s = 0;  // [s]
-  double wall_s = 0;       // simulation and estimation [s]
+  double simulated_s = 0;      // [s]
+  double wall_s = 0;           // simulation and estimation [s]
+  int64_t liftoff_utime = -1;  // first lift-off of a scenario with a ground phase [us]; -1 if none
 };
 
 // Simulates the scenario (up to max_duration_s, <= 0 for all of it) and
