@@ -107,6 +107,8 @@ void BM_StrainSample(benchmark::State& state, const char* method) {
 BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf");
 BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
 BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
+BENCHMARK_CAPTURE(BM_StrainSample, linear_kf, "linear_kf");
+BENCHMARK_CAPTURE(BM_StrainSample, luenberger, "luenberger");
 
 // The rotor-harmonic rejection the pipeline adds before the method, per
 // strain sample: the tracked rotor speeds advanced to the sample and the four

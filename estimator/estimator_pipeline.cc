@@ -5,6 +5,7 @@
 
 #include "estimator/baseline_estimators.h"
 #include "estimator/ekf_force_estimator.h"
+#include "estimator/linear_force_estimator.h"
 
 namespace birotor {
 namespace {
@@ -50,6 +51,12 @@ std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config
   if (config.method == "ekf") return std::make_unique<EkfForceEstimator>(config.vehicle, config.ekf);
   if (config.method == "inversion") return std::make_unique<InversionEstimator>(config.vehicle, config.inversion);
   if (config.method == "motor_map") return std::make_unique<MotorMapEstimator>(config.vehicle, config.motor_map);
+  if (config.method == "linear_kf") {
+    return std::make_unique<LinearForceEstimator>(config.vehicle, config.ekf, config.linear_model);
+  }
+  if (config.method == "luenberger") {
+    return std::make_unique<LinearForceEstimator>(config.vehicle, config.ekf, config.linear_model, config.luenberger);
+  }
   return nullptr;
 }
 
@@ -174,7 +181,8 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
   if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
   tare_.AddImu(sample);
   method_->AddImu(sample);
-  if (config_.method == "ekf" && config_.ekf.use_gyro) ++c.fused;
+  const bool fuses_gyro = config_.method == "ekf" || config_.method == "linear_kf" || config_.method == "luenberger";
+  if (fuses_gyro && config_.ekf.use_gyro) ++c.fused;
 }
 
 void EstimatorPipeline::OnPose(const PoseSample& sample) {

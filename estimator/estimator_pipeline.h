@@ -118,7 +118,7 @@ class EstimatorPipeline {
   ForceEstimate last_finite_estimate_;
 };
 
-// Creates the method named in config.method ("ekf", "inversion", "motor_map");
+// Creates the method named in config.method (EstimationMethodNames());
 // nullptr for an unknown name (the EstimatorPipeline constructor then throws
 // std::invalid_argument; the config loader refuses such names earlier).
 std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config);

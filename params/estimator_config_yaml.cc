@@ -52,6 +52,19 @@ void ReadMotorMapOptions(YamlSection s, MotorMapOptions* o) {
   s.Finish();
 }
 
+void ReadLinearModelOptions(YamlSection s, LinearModelOptions* o) {
+  s.Double("strain_rate_hz", 10.0, 1e5, &o->strain_rate_hz);
+  s.Finish();
+}
+
+// force_bandwidth_hz at most a fifth of the strain rate (the placed pole
+// stays on the positive real axis, well inside the unit circle).
+void ReadLuenbergerOptions(YamlSection s, double strain_rate_hz, LuenbergerOptions* o) {
+  s.Double("force_bandwidth_hz", 0.01, 0.2 * strain_rate_hz, &o->force_bandwidth_hz);
+  s.Double("arm_damping_ratio", 0.05, 0.99, &o->arm_damping_ratio);
+  s.Finish();
+}
+
 void ReadPipelineOptions(YamlSection s, PipelineOptions* o) {
   s.Double("reset_gap_s", 1e-3, 100.0, &o->reset_gap_s);
   s.Double("time_backwards_reset_s", 0.0, 1e6, &o->time_backwards_reset_s);
@@ -96,10 +109,12 @@ EstimatorConfig ReadRoot(YamlSection root) {
 }  // namespace
 
 void ReadEstimatorOptions(YamlSection s, EstimatorConfig* config) {
-  s.String("method", {"ekf", "inversion", "motor_map"}, &config->method);
+  s.String("method", EstimationMethodNames(), &config->method);
   ReadEkfOptions(s.Section("ekf"), &config->ekf);
   ReadInversionOptions(s.Section("inversion"), &config->inversion);
   ReadMotorMapOptions(s.Section("motor_map"), &config->motor_map);
+  ReadLinearModelOptions(s.Section("linear_model"), &config->linear_model);
+  ReadLuenbergerOptions(s.Section("luenberger"), config->linear_model.strain_rate_hz, &config->luenberger);
   ReadPipelineOptions(s.Section("pipeline"), &config->pipeline);
   ReadTareOptions(s.Section("tare"), &config->tare);
   ReadHarmonicNotchOptions(s.Section("harmonic_notch"), &config->harmonic_notch);

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
                  "Estimator parameter file (vehicle: and estimator:, every key); default: the " +
                      ConfigSearchText("estimator.yaml"));
   app.add_option("--method", method, "Estimation method, overrides the file")
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate [Hz]")
       ->check(CLI::Range(0.1, 100.0));
   app.add_option("--overload-max-delay-s", options.overload_max_delay_s,

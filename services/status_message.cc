@@ -42,7 +42,9 @@ void ProcessingTimeStats::TakePeriod() {
 }
 
 double StrainGateOf(const EstimatorConfig& config) {
-  return config.method == "ekf" ? config.ekf.gate_nis_threshold : kNaN;
+  // The EKF and the two linear methods gate the strain innovation (the same option).
+  const bool gated = config.method == "ekf" || config.method == "linear_kf" || config.method == "luenberger";
+  return gated ? config.ekf.gate_nis_threshold : kNaN;
 }
 
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
                                         "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
                                         "gauge_vibration", "gauge_airborne", "bench_gauge"};
-  std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
+  std::vector<std::string> methods = EstimationMethodNames();
   std::string params_file = FindConfigFile("estimator.yaml");
   std::string scenario_dir;  // empty: each scenario is looked up as scenarios/<name>.yaml
   std::string log_path, markdown_out, plot_dir;
@@ -38,9 +38,9 @@ int main(int argc, char** argv) {
                  "Scenario names: files <scenario-dir>/<name>.yaml, or without --scenario-dir the " +
                      ConfigSearchText("scenarios/<name>.yaml"))
       ->delimiter(',');
-  app.add_option("--methods", methods, "Methods: ekf, inversion, motor_map")
+  app.add_option("--methods", methods, "Methods (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--params", params_file,
                  "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
   app.add_option("--scenario-dir", scenario_dir, "Folder of the scenario files");

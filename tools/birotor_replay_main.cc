@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   app.add_option("--params", params_file,
                  "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
   app.add_option("--method", method, "Estimation method, overrides the file")
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
       ->check(CLI::Range(0.1, 100.0));
   // Two callback flags, so --help shows no misleading {false} default.
