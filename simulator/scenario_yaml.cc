@@ -190,12 +190,15 @@ Scenario ReadScenario(YamlSection root) {
     YamlSection g = root.Section("ground");
     GroundParams& ground = sc.ground;
     g.Bool("enabled", &ground.enabled);
-    g.Double("rest_s", 0.0, end_s, &ground.rest_s);
-    g.Double("spool_up_s", 0.0, end_s, &ground.spool_up_s);
+    // The phase times must fit the scenario only when the phase is on: a
+    // complete file keeps its defaults when it is off, whatever its duration.
+    const double phase_end_s = ground.enabled ? end_s : 1e6;
+    g.Double("rest_s", 0.0, phase_end_s, &ground.rest_s);
+    g.Double("spool_up_s", 0.0, phase_end_s, &ground.spool_up_s);
     g.Double("idle_rad_s", 0.0, 1e5, &ground.idle_rad_s);
     g.Bool("land", &ground.land);
-    g.Double("landing_duration_s", 1e-2, end_s, &ground.landing_duration_s);
-    g.Double("rest_after_s", 0.0, end_s, &ground.rest_after_s);
+    g.Double("landing_duration_s", 1e-2, phase_end_s, &ground.landing_duration_s);
+    g.Double("rest_after_s", 0.0, phase_end_s, &ground.rest_after_s);
     if (ground.enabled && sc.mode != "flight") g.Fail("enabled", "the ground phase needs mode flight", "false");
     const double flight_start_s = ground.FlightStartS();
     if (ground.enabled && flight_start_s >= end_s)
