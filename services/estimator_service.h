@@ -19,6 +19,7 @@
 #include "birotor/strain_t.hpp"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
+#include "services/input_rejection_log.h"
 #include "services/status_message.h"
 #include "transport/channels.h"
 #include "transport/logging.h"
@@ -111,6 +112,8 @@ class EstimatorService {
   };
   static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
   bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
+  // HandlePacket without the rejection log lines.
+  bool DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime);
   void WarnDecodeError(InputChannel channel, const char* error);
 
   EstimatorPipeline pipeline_;
@@ -137,6 +140,7 @@ class EstimatorService {
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
+  InputRejectionLog rejection_log_;
 };
 
 }  // namespace birotor

@@ -20,6 +20,7 @@ namespace testing_support {
 struct PairedSample {
   int64_t utime = 0;
   double force_error_n[2] = {0, 0};  // estimate - truth [N]
+  double force_std_n[2] = {0, 0};    // the estimate's one sigma [N]
   double thrust_scale[2] = {1, 1};   // estimated
   double true_thrust_scale[2] = {1, 1};
   int32_t status = 0;
@@ -70,6 +71,7 @@ class PairingSink : public SampleSink {
     p.status = last_.status;
     for (int i = 0; i < 2; ++i) {
       p.force_error_n[i] = last_.force_n[i] - t.force_n[i];
+      p.force_std_n[i] = last_.force_std_n[i];
       p.thrust_scale[i] = last_.thrust_scale[i];
       p.true_thrust_scale[i] = t.thrust_scale[i];
       p.finite = p.finite && std::isfinite(last_.force_n[i]);
