@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "estimator/vehicle_params.h"
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
 #include "identification/sensor_log.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/eval_metrics.h"
+#include "evaluation/eval_runner.h"
 #include "params/estimator_config_yaml.h"
+#include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
-#include "tools/birotor_eval_metrics.h"
-#include "tools/birotor_eval_runner.h"
-#include "tools/birotor_plot_gnuplot.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
@@ -105,7 +105,11 @@ int main(int argc, char** argv) {
           strain.rejected_invalid, strain.out_of_order, strain.duplicates, strain.gaps, run.health.resets);
       if (!plot_dir.empty()) {
         const std::string png = plot_dir + "/" + label + "_" + method + ".png";
-        if (!WriteForcePlot(run.forces, run.truth, label + " - " + method, png, &error)) {
+        ForcePlotOptions plot;
+        plot.title = label + " - " + method;
+        plot.fault_thrust_scale = config.ekf.fault_thrust_scale;
+        if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
+        if (!WriteForcePlot(run.forces, run.truth, plot, png, &error)) {
           std::fprintf(stderr, "birotor-eval: error: plot %s: %s\n", png.c_str(), error.c_str());
           exit_code = 1;
         }

@@ -12,8 +12,8 @@
 #include "identification/identify.h"
 #include "identification/parameter_file.h"
 #include "params/vehicle_params_yaml.h"
-#include "tools/identification_log_loader.h"
-#include "tools/identification_plot.h"
+#include "plot/fit_plot.h"
+#include "replay/identification_log_loader.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 

@@ -1,22 +1,29 @@
-// birotor-plot: PNG of estimated versus true rotor force and the error over
-// time from a log holding FORCE and TRUTH (the output of birotor-replay).
+// birotor-plot: PNG of a log holding FORCE (the output of birotor-replay or a
+// flight): estimated rotor forces with 1 sigma, against TRUTH and with the
+// error when the log has it, thrust efficiency with the fault threshold, and
+// the status flags with their first times (plot/force_plot.h).
 #include <cstdio>
 #include <string>
 
-#include "tools/birotor_eval_runner.h"
-#include "tools/birotor_plot_gnuplot.h"
+#include "evaluation/eval_metrics.h"
+#include "evaluation/eval_runner.h"
+#include "plot/force_plot.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;
-  CLI::App app{"birotor-plot: estimated vs true rotor force (thesis figures 5.1, 5.2)"};
+  CLI::App app{"birotor-plot: estimated (and true) rotor force, thrust efficiency and flags (thesis figures 5.1, 5.2)"};
   CommonOptions common;
   AddCommonOptions(app, &common);
-  std::string log_path, png_path, title;
-  app.add_option("--log", log_path, "LCM log with FORCE and TRUTH (birotor-replay output)")->required();
-  app.add_option("--png", png_path, "PNG file to write")->required();
-  app.add_option("--title", title, "Plot title (default: the log name)");
+  std::string log_path, png_path;
+  ForcePlotOptions plot;
+  app.add_option("--log", log_path, "LCM log with FORCE, and TRUTH if simulated (birotor-replay output)")->required();
+  app.add_option("--png", png_path, "PNG file to write (temporary file + rename)")->required();
+  app.add_option("--title", plot.title, "Plot title (default: the log name)");
+  app.add_option("--fault-thrust-scale", plot.fault_thrust_scale,
+                 "Rotor-fault threshold line on thrust efficiency (the estimator's ekf.fault_thrust_scale) [1]")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-plot", common.log_level);
 
@@ -32,7 +39,12 @@ int main(int argc, char** argv) {
   while (reader.Next(&event)) {
     collector.Publish(event.channel, event.timestamp_us, event.data.data(), event.data.size());
   }
-  if (!WriteForcePlot(collector.forces, collector.truth, title.empty() ? log_path : title, png_path, &error)) {
+  if (plot.title.empty()) plot.title = log_path;
+  if (!collector.truth.empty()) {
+    const EvalResult result = Evaluate(collector.forces, collector.truth, {}, EvalOptions{});
+    if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
+  }
+  if (!WriteForcePlot(collector.forces, collector.truth, plot, png_path, &error)) {
     std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
     return 1;
   }

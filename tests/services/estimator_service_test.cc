@@ -14,7 +14,7 @@
 #include <sstream>
 #include <vector>
 
-#include "estimator/equilibrium.h"
+#include "model/equilibrium.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
