@@ -26,7 +26,7 @@ struct ViewContext {
   double status_rate_hz = 0;       // ESTIMATOR_STATUS messages per wall second [Hz]
   bool truth_expected = true;      // false: vehicle view, never waits for TRUTH
   // Shown next to the thrust efficiency: the estimator's fault threshold [1].
-  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;
+  double fault_thrust_scale = 1.0 - EkfOptions{}.rotor_fault_asymmetry;
   // An input whose newest sample is older than this is shown as stale [s].
   double stale_age_s = 0.1;
 };

@@ -29,8 +29,9 @@ PlotMarker ThrustStepMarker(int rotor, double step_time_s);
 struct ForcePlotOptions {
   std::string title;
   // Thrust efficiency below which the estimator flags a rotor fault (the
-  // estimator's ekf.fault_thrust_scale), drawn as a line [1].
-  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;
+  // 1 - the estimator's ekf.rotor_fault_asymmetry: a rotor is flagged below it when the other is at 1; a rotor fault is
+  // relative), drawn as a line [1].
+  double fault_thrust_scale = 1.0 - EkfOptions{}.rotor_fault_asymmetry;
   // Extra vertical lines, e.g. the thrust step found in truth.
   std::vector<PlotMarker> markers;
   // Share of a panel's samples that may fall outside its y-range at each end:

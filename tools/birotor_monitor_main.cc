@@ -39,12 +39,12 @@ struct MonitorOptions {
   bool no_truth = false;          // vehicle view from FORCE and ESTIMATOR_STATUS only
   double truth_wait_s = 3.0;      // FORCE but no TRUTH for this long: vehicle view [s]
   double stale_age_s = 0.1;       // an input older than this shows as stale [s]
-  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;  // threshold line in view and plot [1]
-  double interval_s = 0;                                        // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
-  bool plain = false;                                           // one plain line per refresh even on a terminal
-  bool quiet = false;                                           // no live view, final figures only
-  std::string png;                                              // plot file; empty: none
-  bool markdown = false;                                        // print birotor-eval's Markdown table too
+  double fault_thrust_scale = 1.0 - EkfOptions{}.rotor_fault_asymmetry;  // threshold line in view and plot [1]
+  double interval_s = 0;  // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
+  bool plain = false;     // one plain line per refresh even on a terminal
+  bool quiet = false;     // no live view, final figures only
+  std::string png;        // plot file; empty: none
+  bool markdown = false;  // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
 
@@ -100,7 +100,7 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 3600.0));
   app.add_option("--fault-thrust-scale", options.fault_thrust_scale,
                  "Rotor-fault threshold on thrust efficiency shown in the view and plot (the estimator's "
-                 "ekf.fault_thrust_scale) [1]")
+                 "1 - ekf.rotor_fault_asymmetry) [1]")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--interval-s", options.interval_s, "View refresh period (0: 0.2 on a terminal, 1 otherwise) [s]")
       ->check(CLI::Range(0.0, 60.0));

@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
   app.add_option("--png", png_path, "PNG file to write (temporary file + rename)")->required();
   app.add_option("--title", plot.title, "Plot title (default: the log name)");
   app.add_option("--fault-thrust-scale", plot.fault_thrust_scale,
-                 "Rotor-fault threshold line on thrust efficiency (the estimator's ekf.fault_thrust_scale) [1]")
+                 "Rotor-fault threshold line on thrust efficiency (1 - the estimator's ekf.rotor_fault_asymmetry: a "
+                 "rotor below it while the other is at 1 is flagged) [1]")
       ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-plot", common.log_level);

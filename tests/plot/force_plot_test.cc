@@ -58,7 +58,7 @@ TEST(ForcePlotTest, MarksFaultsStepAndClippedTransient) {
   EXPECT_FALSE(Has(script, "'ROTOR1_FAULT "));
   // 3 of 2000 samples (0.15 %) at 9 N are outside the bulk (clip_fraction 0.2 %).
   EXPECT_TRUE(Has(script, "clipped to the bulk of the data: peak 9.00 N at 1.001 s"));
-  EXPECT_TRUE(Has(script, "fault threshold 0.85"));  // EkfOptions default
+  EXPECT_TRUE(Has(script, "fault threshold 0.90"));  // 1 - EkfOptions::rotor_fault_asymmetry
   EXPECT_TRUE(Has(script, "f2 est - true"));
   EXPECT_TRUE(Has(script, "±1σ, median 0.020 N"));  // MakeThrustLoss's std
 
