@@ -6,7 +6,6 @@
 #include <sys/mman.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -17,23 +16,13 @@
 #include "params/yaml_reader.h"
 #include "services/estimator_service.h"
 #include "transport/channels.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
 
-namespace {
-
-int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   using namespace birotor;
@@ -109,9 +98,9 @@ int main(int argc, char** argv) {
   }
 
   const double status_period_s = 1.0 / options.status_rate_hz;
-  double last_status_s = SteadyNowS();
+  double last_status_s = SteadyClockS();
   while (!ShutdownRequested()) {
-    const double wait_s = last_status_s + status_period_s - SteadyNowS();
+    const double wait_s = last_status_s + status_period_s - SteadyClockS();
     const int handled = HandleFor(*lcm, std::min(std::max(wait_s, 0.0), 0.1));
     if (handled < 0) {
       if (ShutdownRequested() || errno == EINTR) continue;  // a signal interrupted the wait
@@ -123,9 +112,9 @@ int main(int argc, char** argv) {
       while (!ShutdownRequested() && lcm->handleTimeout(0) > 0) {
       }
     }
-    const double now_s = SteadyNowS();
+    const double now_s = SteadyClockS();
     if (now_s - last_status_s >= status_period_s) {
-      service.PublishStatus(WallNowUs(), now_s - last_status_s);
+      service.PublishStatus(WallClockUs(), now_s - last_status_s);
       last_status_s = now_s;
     }
   }

@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,6 +13,7 @@
 #include "params/vehicle_params_yaml.h"
 #include "plot/fit_plot.h"
 #include "replay/identification_log_loader.h"
+#include "transport/host_clock.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   std::vector<SensorLog> logs;
   for (const std::string& path : cli.logs) {
     SensorLog log;
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
                                   : cli.mode == "flight" ? IdentificationMode::kFlight
                                                          : IdentificationMode::kAuto;
   const IdentificationResult result = Identify(std::move(logs), base, options, mode);
-  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed_s = stopwatch.ElapsedS();
 
   if (!cli.report.empty()) {
     std::string error;

@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -18,8 +17,10 @@
 #include "evaluation/eval_metrics.h"
 #include "monitor/monitor_collector.h"
 #include "monitor/monitor_view.h"
+#include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
@@ -39,18 +40,14 @@ struct MonitorOptions {
   bool no_truth = false;          // vehicle view from FORCE and ESTIMATOR_STATUS only
   double truth_wait_s = 3.0;      // FORCE but no TRUTH for this long: vehicle view [s]
   double stale_age_s = 0.1;       // an input older than this shows as stale [s]
-  double fault_thrust_scale = 1.0 - EkfOptions{}.rotor_fault_asymmetry;  // threshold line in view and plot [1]
-  double interval_s = 0;  // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
-  bool plain = false;     // one plain line per refresh even on a terminal
-  bool quiet = false;     // no live view, final figures only
-  std::string png;        // plot file; empty: none
-  bool markdown = false;  // print birotor-eval's Markdown table too
+  std::string params_file;        // the estimator's parameter file, for its thresholds; empty: defaults
+  double interval_s = 0;          // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
+  bool plain = false;             // one plain line per refresh even on a terminal
+  bool quiet = false;             // no live view, final figures only
+  std::string png;                // plot file; empty: none
+  bool markdown = false;          // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Raw subscription: hands every packet to the collector.
 void OnPacket(const lcm::ReceiveBuffer* buffer, const std::string& channel, MonitorCollector* collector) {
@@ -98,10 +95,10 @@ int Main(int argc, char** argv) {
   app.add_option("--stale-age-s", options.stale_age_s,
                  "Show an input as STALE when its newest sample is older than this (vehicle clock) [s]")
       ->check(CLI::Range(1e-3, 3600.0));
-  app.add_option("--fault-thrust-scale", options.fault_thrust_scale,
-                 "Rotor-fault threshold on thrust efficiency shown in the view and plot (the estimator's "
-                 "1 - ekf.rotor_fault_asymmetry) [1]")
-      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--params", options.params_file,
+                 "Estimator parameter file the daemon runs, for its fault thresholds in the view and plot "
+                 "(default: the built-in estimator defaults)")
+      ->check(CLI::ExistingFile);
   app.add_option("--interval-s", options.interval_s, "View refresh period (0: 0.2 on a terminal, 1 otherwise) [s]")
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--plain", options.plain, "One plain line per refresh, even on a terminal");
@@ -127,6 +124,15 @@ int Main(int argc, char** argv) {
     }
   }
   if (label.empty()) label = "live";
+  EkfOptions ekf;
+  if (!options.params_file.empty()) {
+    try {
+      ekf = LoadEstimatorConfig(options.params_file).ekf;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "birotor-monitor: error: %s\n", e.what());
+      return 1;
+    }
+  }
   std::string error;
   if (!options.png.empty() && !CheckWritable(options.png, &error)) {
     std::fprintf(stderr, "birotor-monitor: error: %s\n", error.c_str());
@@ -152,7 +158,7 @@ int Main(int argc, char** argv) {
 
   const bool terminal = isatty(STDOUT_FILENO) && !options.plain && !options.quiet;
   const double interval_s = options.interval_s > 0 ? options.interval_s : (terminal ? 0.2 : 1.0);
-  const double start_s = SteadyNowS();
+  const double start_s = SteadyClockS();
   double last_arrival_s = start_s;  // of the clock stream: TRUTH, or FORCE without truth
   size_t last_clock_count = 0;
   double first_force_s = -1;
@@ -165,7 +171,7 @@ int Main(int argc, char** argv) {
   context.scenario_duration_s = scenario_duration_s;
   context.truth_expected = !options.no_truth;
   context.stale_age_s = options.stale_age_s;
-  context.fault_thrust_scale = options.fault_thrust_scale;
+  context.thresholds = ThresholdWords(ThrustScaleLines(ekf));
   // A notice printed once above the live view (it scrolls with plain lines).
   const auto notice = [&](const std::string& text) {
     if (options.quiet) return;
@@ -181,7 +187,7 @@ int Main(int argc, char** argv) {
       spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
       break;
     }
-    const double now_s = SteadyNowS();
+    const double now_s = SteadyClockS();
     if (first_force_s < 0 && collector.has_force()) first_force_s = now_s;
     if (context.truth_expected && !collector.has_truth() && first_force_s >= 0 &&
         now_s - first_force_s >= options.truth_wait_s) {
@@ -268,7 +274,7 @@ int Main(int argc, char** argv) {
   if (!options.png.empty() && collector.has_force()) {
     ForcePlotOptions plot;
     plot.title = label + " - " + method + " (live)";
-    plot.fault_thrust_scale = options.fault_thrust_scale;
+    plot.scale_lines = ThrustScaleLines(ekf);
     if (result.step_rotor != 0) {
       plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
     }

@@ -7,6 +7,7 @@
 
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
@@ -21,13 +22,21 @@ int main(int argc, char** argv) {
   app.add_option("--log", log_path, "LCM log with FORCE, and TRUTH if simulated (birotor-replay output)")->required();
   app.add_option("--png", png_path, "PNG file to write (temporary file + rename)")->required();
   app.add_option("--title", plot.title, "Plot title (default: the log name)");
-  app.add_option("--fault-thrust-scale", plot.fault_thrust_scale,
-                 "Rotor-fault threshold line on thrust efficiency (1 - the estimator's ekf.rotor_fault_asymmetry: a "
-                 "rotor below it while the other is at 1 is flagged) [1]")
-      ->check(CLI::Range(0.0, 1.0));
+  std::string params_file;
+  app.add_option("--params", params_file,
+                 "Estimator parameter file of the run, for its fault thresholds (default: the built-in defaults)")
+      ->check(CLI::ExistingFile);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-plot", common.log_level);
 
+  if (!params_file.empty()) {
+    try {
+      plot.scale_lines = ThrustScaleLines(LoadEstimatorConfig(params_file).ekf);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "birotor-plot: error: %s\n", e.what());
+      return 1;
+    }
+  }
   const ChannelNames channels = MakeChannelNames(common.prefix);
   ForceTruthCollector collector(channels);
   LogReader reader;
