@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "estimator/vehicle_params.h"
+#include "identification/sample_cleaning.h"
 
 namespace birotor {
 
@@ -64,6 +65,7 @@ struct IdentificationResult {
   std::vector<DeflectionForceMap> maps;
   std::vector<std::string> sources;  // logs used
   std::vector<FitPlot> plots;        // fit versus data, a few panels
+  SampleCleaningReport dropped;      // bad samples dropped before fitting, all logs
 };
 
 }  // namespace birotor

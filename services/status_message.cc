@@ -87,6 +87,10 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
     message->force_n[rotor] = health.last_estimate.force_n[rotor];
     message->thrust_scale[rotor] = health.last_estimate.thrust_scale[rotor];
   }
+  message->udp_datagrams = context.udp.datagrams;
+  message->udp_fragments_dropped = context.udp.fragments_dropped;
+  message->udp_malformed_dropped = context.udp.malformed_dropped;
+  message->udp_kernel_dropped = context.udp.kernel_dropped;
 }
 
 }  // namespace birotor
