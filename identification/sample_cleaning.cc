@@ -11,6 +11,9 @@ namespace {
 // 2^53 us (285 years): the stamps the estimator pipeline accepts too.
 constexpr int64_t kMaxUtime = int64_t{1} << 53;
 
+// Copies of one sample looked past when checking that a forward jump is confirmed.
+constexpr size_t kMaxDuplicatesSkipped = 8;
+
 bool StampInRange(int64_t utime) { return utime >= 0 && utime < kMaxUtime; }
 
 bool Finite(const StrainSample& s) { return std::isfinite(s.deflection_rad[0]) && std::isfinite(s.deflection_rad[1]); }
@@ -51,8 +54,15 @@ DroppedSamples CleanStream(std::vector<Sample>* samples, int64_t max_forward_jum
     }
     // Differences of stamps in [0, 2^53) cannot overflow.
     const bool jumps = kept.empty() || sample.utime - kept.back().utime > max_forward_jump_us;
-    if (jumps && i + 1 < count) {
-      const int64_t next = (*samples)[i + 1].utime;
+    // The confirming sample is the next one with another stamp (duplicates of
+    // this one are skipped; a few at most, so the scan is bounded).
+    size_t next_index = i + 1;
+    while (next_index < count && next_index - i <= kMaxDuplicatesSkipped &&
+           (*samples)[next_index].utime == sample.utime) {
+      ++next_index;
+    }
+    if (jumps && next_index < count) {
+      const int64_t next = (*samples)[next_index].utime;
       const bool confirmed = StampInRange(next) && next > sample.utime && next - sample.utime <= max_forward_jump_us;
       if (!confirmed) {
         ++dropped.bad_stamp;

@@ -17,6 +17,7 @@
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/message_conversion.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
@@ -58,10 +59,11 @@ int64_t WallClockMicroseconds() {
 
 // Offline: every sample into the log, as fast as possible.
 bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path) {
+  // A temporary file next to path, renamed when the log is complete.
   LogWriter writer;
   std::string error;
   if (!writer.Open(path, &error)) {
-    spdlog::error("cannot open the output log: {}", error);
+    std::fprintf(stderr, "birotor-sim: error: %s\n", error.c_str());
     return false;
   }
   bool write_failed = false;
@@ -71,8 +73,12 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   WireSink<decltype(publish)> sink(channels, publish);
   while (!write_failed && !ShutdownRequested() && sim->Step(&sink)) {
   }
-  if (!writer.Close()) write_failed = true;
-  if (write_failed) spdlog::error("writing {} failed (disk full?); the log ends early", path);
+  if (write_failed || !writer.Close()) {
+    writer.Abandon();  // no partial log is left behind
+    std::fprintf(stderr, "birotor-sim: error: writing %s failed%s%s\n", path.c_str(),
+                 writer.error().empty() ? "" : ": ", writer.error().c_str());
+    return false;
+  }
   if (ShutdownRequested()) {
     spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
   }
@@ -143,6 +149,13 @@ int Main(int argc, char** argv) {
           ? ""
           : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
 
+  std::string error;
+  std::vector<std::string> inputs = options.param_files;
+  inputs.push_back(options.scenario_file);
+  if (!CheckOutputs({options.output}, inputs, &error)) {
+    std::fprintf(stderr, "birotor-sim: error: %s\n", error.c_str());
+    return 1;
+  }
   InstallShutdownHandlers();
   Simulator sim(scenario);
   if (options.wall_clock) sim.set_utime_offset_us(WallClockMicroseconds());

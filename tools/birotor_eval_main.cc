@@ -14,7 +14,9 @@
 #include "tools/birotor_eval_metrics.h"
 #include "tools/birotor_eval_runner.h"
 #include "tools/birotor_plot_gnuplot.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 int main(int argc, char** argv) {
@@ -44,6 +46,10 @@ int main(int argc, char** argv) {
   app.add_option("--warmup-s", eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
   app.add_option("--markdown-out", markdown_out, "Also write the table to this file");
   app.add_option("--plot-dir", plot_dir, "Write <scenario>_<method>.png plots here");
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+  app.add_option("--min-usable-fraction", min_usable_fraction,
+                 "Refuse a --log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-eval", common.log_level);
 
@@ -62,18 +68,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "birotor-eval: error: cannot create --plot-dir %s\n", plot_dir.c_str());
     return 1;
   }
-  if (!markdown_out.empty()) {
-    std::FILE* probe = std::fopen(markdown_out.c_str(), "a");
-    if (probe == nullptr) {
-      std::fprintf(stderr, "birotor-eval: error: cannot write %s\n", markdown_out.c_str());
-      return 1;
-    }
-    std::fclose(probe);
+  // The Markdown goes to a temporary file next to it, renamed at the end.
+  OutputFile markdown;
+  std::string error;
+  if (!CheckOutputs({markdown_out}, {log_path, params_file}, &error) ||
+      (!markdown_out.empty() && !markdown.Open(markdown_out, &error))) {
+    std::fprintf(stderr, "birotor-eval: error: %s\n", error.c_str());
+    return 1;
   }
   int exit_code = 0;
 
   std::string table = MarkdownTableHeader();
-  std::string error;
   for (const std::string& name : scenarios) {
     Scenario scenario;
     if (log_path.empty()) {
@@ -90,12 +95,22 @@ int main(int argc, char** argv) {
       EvalRun run;
       if (log_path.empty()) {
         run = RunSimulatedScenario(scenario, config, duration_s);
-      } else if (!RunLog(log_path, config, &run, &error)) {
+      } else if (!RunLog(log_path, config, &run, &error, min_usable_fraction)) {
         std::fprintf(stderr, "birotor-eval: error: %s\n", error.c_str());
         return 1;
       }
+      if (!run.log_damage.empty() && method == methods.front()) spdlog::warn("{}", run.log_damage);
       const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, eval_options);
       const std::string label = log_path.empty() ? name : "log";
+      // Nothing scored (no TRUTH, no FORCE, or all within the warm-up): a
+      // table of NaN would look like a result.
+      if (result.rotor[0].count == 0) {
+        std::fprintf(stderr,
+                     "birotor-eval: error: %s %s: no FORCE estimate paired with TRUTH after the %.2f s warm-up "
+                     "(%zu FORCE, %zu TRUTH): nothing to score\n",
+                     label.c_str(), method.c_str(), eval_options.warmup_s, run.forces.size(), run.truth.size());
+        return 1;
+      }
       table += MarkdownTableRow(label, method, result);
       const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
       spdlog::info(
@@ -113,14 +128,16 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("%s", table.c_str());
-  if (!markdown_out.empty()) {
-    std::FILE* out = std::fopen(markdown_out.c_str(), "w");
-    if (out == nullptr) {
-      std::fprintf(stderr, "birotor-eval: error: cannot write %s\n", markdown_out.c_str());
+  if (std::fflush(stdout) != 0) {
+    std::fprintf(stderr, "birotor-eval: error: writing the table to standard output failed\n");
+    return 1;
+  }
+  if (markdown.is_open()) {
+    markdown.Write(table);
+    if (!markdown.Commit(&error)) {
+      std::fprintf(stderr, "birotor-eval: error: %s\n", error.c_str());
       return 1;
     }
-    std::fprintf(out, "%s", table.c_str());
-    std::fclose(out);
   }
   return exit_code;
 }

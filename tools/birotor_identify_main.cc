@@ -2,10 +2,9 @@
 // tau_m, k, d and the deflection-force maps with Ceres, and writes the
 // parameter file the estimator and simulator load, plus a readable report.
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -14,12 +13,20 @@
 #include "params/vehicle_params_yaml.h"
 #include "tools/identification_log_loader.h"
 #include "tools/identification_plot.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 namespace {
 
 constexpr int kExitFailure = 1;
+
+// One line "birotor-identify: error: ..." and the failure exit status.
+int Fail(const std::string& message) {
+  std::fprintf(stderr, "birotor-identify: error: %s\n", message.c_str());
+  return kExitFailure;
+}
 
 struct IdentifyOptions {
   std::vector<std::string> logs;
@@ -29,6 +36,7 @@ struct IdentifyOptions {
   std::string output;
   std::string report;
   std::string plot;
+  double min_usable_fraction = birotor::kDefaultMinUsableLogFraction;
 };
 
 }  // namespace
@@ -47,6 +55,9 @@ int main(int argc, char** argv) {
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
+  app.add_option("--min-usable-fraction", cli.min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
 
@@ -59,17 +70,19 @@ int main(int argc, char** argv) {
       ReadIdentificationOptions(root.Section("identification"), &options);
     }
   } catch (const ParamError& e) {
-    spdlog::error("{}", e.what());
-    return kExitFailure;
+    return Fail(e.what());
   }
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
-  // Refuse an output folder we cannot write before the fit, not after it.
-  {
-    const std::filesystem::path folder = std::filesystem::absolute(cli.output).parent_path();
-    if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0) {
-      spdlog::error("cannot write --output {}: folder {} is missing or not writable", cli.output, folder.string());
-      return kExitFailure;
-    }
+  // Outputs: never an input, each through a temporary file renamed at the
+  // end; opened now so an unwritable folder is refused before the fit.
+  std::string error;
+  std::vector<std::string> inputs = cli.logs;
+  inputs.push_back(cli.params);
+  inputs.push_back(cli.config);
+  OutputFile output, report;
+  if (!CheckOutputs({cli.output, cli.report, cli.plot}, inputs, &error) || !output.Open(cli.output, &error) ||
+      (!cli.report.empty() && !report.Open(cli.report, &error))) {
+    return Fail(error);
   }
 
   const auto start = std::chrono::steady_clock::now();
@@ -77,15 +90,8 @@ int main(int argc, char** argv) {
   for (const std::string& path : cli.logs) {
     SensorLog log;
     LogLoadReport load;
-    std::string error;
-    if (!LoadSensorLog(path, common.prefix, &log, &load, &error)) {
-      spdlog::error("{}", error);
-      return kExitFailure;
-    }
-    if (load.truncated_tail) {
-      spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest", path,
-                   load.tail_offset, load.file_size, load.events);
-    }
+    if (!LoadSensorLog(path, common.prefix, &log, &load, &error, cli.min_usable_fraction)) return Fail(error);
+    if (!load.damage.empty()) spdlog::warn("{}", load.damage);
     if (load.decode_errors > 0) spdlog::warn("{}: {} events did not decode and were skipped", path, load.decode_errors);
     spdlog::info("{}: {} strain, {} motor, {} imu, {} loadcell samples", path, log.strain.size(), log.motor.size(),
                  log.imu.size(), log.loadcell.size());
@@ -96,15 +102,18 @@ int main(int argc, char** argv) {
                                                          : IdentificationMode::kAuto;
   const IdentificationResult result = Identify(std::move(logs), base, options, mode);
   const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (result.dropped.total() > 0) {
+    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
+  }
 
-  if (!cli.report.empty()) {
-    std::string error;
-    if (!WriteFileAtomically(cli.report, IdentificationReport(result), &error)) spdlog::error("{}", error);
+  if (report.is_open()) {
+    report.Write(IdentificationReport(result));
+    if (!report.Commit(&error)) return Fail(error);
   }
   if (!result.ok) {
-    spdlog::error("identification refused ({} mode): the data lacks what is needed:", result.mode);
-    for (const std::string& e : result.errors) spdlog::error("  {}", e);
-    return kExitFailure;
+    std::string missing;
+    for (const std::string& e : result.errors) missing += (missing.empty() ? "" : "; ") + e;
+    return Fail("identification refused (" + result.mode + " mode), the data lacks what is needed: " + missing);
   }
   for (const std::string& w : result.warnings) spdlog::warn("{}", w);
   for (const ParameterEstimate& e : result.estimates) {
@@ -115,18 +124,13 @@ int main(int argc, char** argv) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
-  std::string error;
-  if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) {
-    spdlog::error("{}", error);
-    return kExitFailure;
-  }
-  // The plot is optional: a failure is reported but the parameter file stands.
+  output.Write(IdentifiedParameterYaml(result));
+  if (!output.Commit(&error)) return Fail(error);
   if (!cli.plot.empty()) {
-    if (WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
-      spdlog::info("wrote {}", cli.plot);
-    } else {
-      spdlog::warn("--plot {}: {}", cli.plot, error);
+    if (!WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
+      return Fail("--plot " + cli.plot + ": " + error);
     }
+    spdlog::info("wrote {}", cli.plot);
   }
   spdlog::info("wrote {} ({} mode, {:.2f} s)", cli.output, result.mode, elapsed_s);
   return 0;

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <unordered_map>
 
+#include "transport/output_file.h"
+
 namespace birotor {
 
 bool WriteForcePlot(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
@@ -35,6 +37,9 @@ bool WriteForcePlot(const std::vector<ForceEstimate>& forces, const std::vector<
     *error = "no FORCE message pairs with a TRUTH message by utime";
     return false;
   }
+  // gnuplot draws into a temporary file next to the PNG, renamed on success.
+  OutputFile png;
+  if (!png.Open(png_path, error)) return false;
   std::FILE* script = std::fopen(script_path.c_str(), "w");
   if (script == nullptr) {
     *error = "cannot write " + script_path;
@@ -55,14 +60,14 @@ bool WriteForcePlot(const std::vector<ForceEstimate>& forces, const std::vector<
                "plot '%s' u 1:6 w l lc rgb '#d62728' t 'f1 est - true', "
                "'' u 1:7 w l lc rgb '#1f77b4' t 'f2 est - true'\n"
                "unset multiplot\n",
-               png_path.c_str(), title.c_str(), data_path.c_str(), data_path.c_str(), data_path.c_str());
+               png.write_path().c_str(), title.c_str(), data_path.c_str(), data_path.c_str(), data_path.c_str());
   std::fclose(script);
   const std::string command = "gnuplot '" + script_path + "'";
   if (std::system(command.c_str()) != 0) {
     *error = "gnuplot failed on " + script_path + " (is gnuplot with pngcairo installed?)";
     return false;
   }
-  return true;
+  return png.Commit(error);
 }
 
 }  // namespace birotor

@@ -1,11 +1,15 @@
 // birotor-plot: PNG of estimated versus true rotor force and the error over
 // time from a log holding FORCE and TRUTH (the output of birotor-replay).
+#include <spdlog/spdlog.h>
+
 #include <cstdio>
 #include <string>
 
 #include "tools/birotor_eval_runner.h"
 #include "tools/birotor_plot_gnuplot.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 int main(int argc, char** argv) {
@@ -17,6 +21,10 @@ int main(int argc, char** argv) {
   app.add_option("--log", log_path, "LCM log with FORCE and TRUTH (birotor-replay output)")->required();
   app.add_option("--png", png_path, "PNG file to write")->required();
   app.add_option("--title", title, "Plot title (default: the log name)");
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+  app.add_option("--min-usable-fraction", min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-plot", common.log_level);
 
@@ -24,7 +32,7 @@ int main(int argc, char** argv) {
   ForceTruthCollector collector(channels);
   LogReader reader;
   std::string error;
-  if (!reader.Open(log_path, &error)) {
+  if (!CheckOutputs({png_path}, {log_path}, &error) || !reader.Open(log_path, &error)) {
     std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
     return 1;
   }
@@ -32,6 +40,12 @@ int main(int argc, char** argv) {
   while (reader.Next(&event)) {
     collector.Publish(event.channel, event.timestamp_us, event.data.data(), event.data.size());
   }
+  std::string damage;
+  if (!CheckLogUsable(reader, log_path, min_usable_fraction, &error, &damage)) {
+    std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
+    return 1;
+  }
+  if (!damage.empty()) spdlog::warn("{}", damage);
   if (!WriteForcePlot(collector.forces, collector.truth, title.empty() ? log_path : title, png_path, &error)) {
     std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
     return 1;

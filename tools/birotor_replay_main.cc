@@ -12,6 +12,7 @@
 #include "params/yaml_reader.h"
 #include "tools/birotor_replay_runner.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 int main(int argc, char** argv) {
@@ -31,6 +32,10 @@ int main(int argc, char** argv) {
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
       ->check(CLI::Range(0.1, 100.0));
   app.add_flag("--copy-truth,!--no-copy-truth", options.copy_truth, "Copy TRUTH events to the output");
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+  app.add_option("--min-usable-fraction", min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-replay", common.log_level);
   options.prefix = common.prefix;
@@ -45,42 +50,53 @@ int main(int argc, char** argv) {
   if (!method.empty()) config.method = method;
 
   std::string error;
+  // An output never overwrites an input, and outputs go to temporary files
+  // renamed only when everything was written (transport/output_file.h).
+  if (!CheckOutputs({output_path, csv_path}, {input_path, params_file}, &error)) {
+    std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
+    return 1;
+  }
   LogWriter writer;
   if (!writer.Open(output_path, &error)) {
     std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
     return 1;
   }
   LogSink log_sink(&writer);
-  std::FILE* csv = nullptr;
-  if (!csv_path.empty()) {
-    csv = std::fopen(csv_path.c_str(), "w");
-    if (csv == nullptr) {
-      std::fprintf(stderr, "birotor-replay: error: cannot write %s\n", csv_path.c_str());
-      return 1;
-    }
+  OutputFile csv;
+  if (!csv_path.empty() && !csv.Open(csv_path, &error)) {
+    std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
+    return 1;
   }
   std::unique_ptr<ForceCsvSink> csv_sink;
   MessageSink* sink = &log_sink;
-  if (csv != nullptr) {
-    csv_sink = std::make_unique<ForceCsvSink>(csv, MakeChannelNames(common.prefix).force, &log_sink);
+  if (csv.is_open()) {
+    csv_sink = std::make_unique<ForceCsvSink>(csv.stream(), MakeChannelNames(common.prefix).force, &log_sink);
     sink = csv_sink.get();
   }
 
   const auto start = std::chrono::steady_clock::now();
   Replayer replayer(config, options, sink);
-  bool truncated = false;
-  if (!ReplayLogFile(input_path, &replayer, &truncated, &error)) {
+  std::string damage;
+  if (!ReplayLogFile(input_path, &replayer, &damage, &error, min_usable_fraction)) {
     std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
+    return 1;  // writer and csv are abandoned: no output file is left
+  }
+  if (!damage.empty()) spdlog::warn("{}", damage);
+  if (replayer.stats().input_packets == 0 || replayer.stats().forces == 0) {
+    std::fprintf(stderr, "birotor-replay: error: %s: %lld events but no %s input produced a FORCE estimate\n",
+                 input_path.c_str(), static_cast<long long>(replayer.stats().events), common.prefix.c_str());
     return 1;
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool closed = writer.Close();
-  if (csv != nullptr) std::fclose(csv);
-  if (log_sink.failed() || !closed) {
+  if (log_sink.failed()) {
     std::fprintf(stderr, "birotor-replay: error: writing %s failed\n", output_path.c_str());
     return 1;
   }
-  if (truncated) spdlog::warn("{}: truncated or corrupt tail ignored", input_path);
+  if ((csv.is_open() && !csv.Commit(&error)) || !writer.Close()) {
+    if (error.empty()) error = writer.error();
+    std::fprintf(stderr, "birotor-replay: error: %s\n", error.c_str());
+    return 1;
+  }
 
   const ReplayStats& stats = replayer.stats();
   const double log_s =

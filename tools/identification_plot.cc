@@ -13,6 +13,8 @@
 #include <numeric>
 #include <sstream>
 
+#include "transport/output_file.h"
+
 extern char** environ;
 
 namespace birotor {
@@ -99,12 +101,15 @@ bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, c
       data << "\n\n";
     }
   }
+  // gnuplot draws into a temporary file next to the PNG, renamed on success.
+  OutputFile png;
+  if (!png.Open(png_path, error)) return false;
   const int columns = plots.size() > 1 ? 2 : 1;
   const int rows = static_cast<int>((plots.size() + columns - 1) / columns);
   {
     std::ofstream script(script_path);
     script << "set terminal pngcairo size " << 700 * columns << "," << 380 * rows << " font 'sans,9'\n"
-           << "set output " << Quoted(png_path) << "\n"
+           << "set output " << Quoted(png.write_path()) << "\n"
            << "set datafile missing 'NaN'\n"
            << "set grid\nset key top left box opaque\n"
            << "set multiplot layout " << rows << "," << columns << " title " << Quoted(title) << "\n";
@@ -123,7 +128,7 @@ bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, c
   std::remove(data_path.c_str());
   std::remove(script_path.c_str());
   std::remove(error_path.c_str());
-  return ok;
+  return ok && png.Commit(error);
 }
 
 }  // namespace birotor

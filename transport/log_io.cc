@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -14,8 +15,10 @@ namespace birotor {
 namespace {
 
 // Read-ahead window of the reader [bytes]: large enough that a log of small
-// messages costs one read call per thousand events.
+// messages costs one read call per thousand events; a smaller file gets a
+// window of its own size (at least kMinWindowBytes).
 constexpr int64_t kWindowBytes = 1 << 20;
+constexpr int64_t kMinWindowBytes = 4096;
 
 uint32_t ReadU32(const uint8_t* p) {
   return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
@@ -51,6 +54,38 @@ int64_t SizeOf(int fd) {
 }
 
 }  // namespace
+
+bool CheckLogUsable(const LogReader& reader, const std::string& path, double min_fraction, std::string* error,
+                    std::string* damage) {
+  const int64_t size = reader.file_size();
+  if (damage != nullptr) {
+    damage->clear();
+    if (reader.corrupt_events() > 0 || reader.TruncatedTail()) {
+      *damage = path + ": damaged log: " + std::to_string(reader.corrupt_events()) + " corrupt event headers, " +
+                std::to_string(reader.skipped_bytes()) + " bytes skipped, " +
+                std::to_string(size - reader.tail_offset()) + " bytes of unreadable tail; " +
+                std::to_string(reader.events_read()) + " events read";
+    }
+  }
+  if (size == 0) {
+    *error = path + ": empty log (0 bytes)";
+    return false;
+  }
+  if (reader.events_read() == 0) {
+    *error = path + ": no readable event in " + std::to_string(size) + " bytes";
+    return false;
+  }
+  const double usable = static_cast<double>(reader.event_bytes()) / static_cast<double>(size);
+  if (usable < min_fraction) {
+    char text[160];
+    std::snprintf(text, sizeof(text), ": only %.1f %% of the file is readable events (%lld of %lld bytes; minimum %.0f %%)",
+                  100.0 * usable, static_cast<long long>(reader.event_bytes()), static_cast<long long>(size),
+                  100.0 * min_fraction);
+    *error = path + text;
+    return false;
+  }
+  return true;
+}
 
 bool LogWriter::Open(const std::string& path, std::string* error) {
   events_written_ = 0;
@@ -125,7 +160,7 @@ bool LogReader::OpenDescriptor(int fd, const std::string& name, std::string* err
     return false;
   }
   file_size_ = static_cast<int64_t>(info.st_size);
-  window_.resize(kWindowBytes);
+  window_.resize(static_cast<size_t>(std::clamp(file_size_, kMinWindowBytes, kWindowBytes)));
   if (file_size_ > 0) {
     const uint8_t* head = Bytes(0, 4);
     if (head == nullptr || ReadU32(head) != kLogSyncWord) {
@@ -140,8 +175,10 @@ bool LogReader::OpenDescriptor(int fd, const std::string& name, std::string* err
 const uint8_t* LogReader::Bytes(int64_t offset, int64_t size) {
   if (offset < 0 || size > kWindowBytes || offset > file_size_ - size) return nullptr;
   if (offset < window_offset_ || offset + size > window_offset_ + window_bytes_) {
+    if (size > static_cast<int64_t>(window_.size())) window_.resize(static_cast<size_t>(kWindowBytes));
     window_offset_ = offset;
-    window_bytes_ = ReadAt(fd_, window_.data(), std::min(kWindowBytes, file_size_ - offset), offset);
+    const int64_t capacity = static_cast<int64_t>(window_.size());
+    window_bytes_ = ReadAt(fd_, window_.data(), std::min(capacity, file_size_ - offset), offset);
     if (window_bytes_ < size) return nullptr;
   }
   return window_.data() + (offset - window_offset_);
@@ -155,7 +192,7 @@ int64_t LogReader::FindSyncWord(int64_t offset) {
     const off_t data = ::lseek(fd_, static_cast<off_t>(offset), SEEK_DATA);
     if (data < 0 && errno == ENXIO) return -1;  // only a hole remains
     if (data > offset) offset = static_cast<int64_t>(data);
-    const int64_t chunk = std::min(kWindowBytes, file_size_ - offset);
+    const int64_t chunk = std::min(static_cast<int64_t>(window_.size()), file_size_ - offset);
     if (chunk < 4) return -1;
     const uint8_t* bytes = Bytes(offset, chunk);
     if (bytes == nullptr) return -1;

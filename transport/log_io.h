@@ -36,6 +36,20 @@ inline constexpr int32_t kLogMaxChannelBytes = 63;
 // 1 kB; anything larger than this is a corrupt length field, not data.
 inline constexpr int32_t kLogMaxEventDataBytes = 16 << 20;
 
+// Default least share of a log's bytes that must be readable events for a
+// tool to use it: a logger killed mid-write loses one event, a damaged log
+// more; below this the tool refuses the log (option --min-usable-fraction).
+inline constexpr double kDefaultMinUsableLogFraction = 0.9;
+
+class LogReader;
+
+// After a log was read to its end: false (with a one-line *error naming the
+// file) when it is empty, has no readable event, or its events cover less
+// than min_fraction of its bytes. *damage (optional) gets a one-line warning
+// when anything was skipped or cut ("" for an intact log).
+bool CheckLogUsable(const LogReader& reader, const std::string& path, double min_fraction, std::string* error,
+                    std::string* damage = nullptr);
+
 class LogWriter {
  public:
   LogWriter() = default;

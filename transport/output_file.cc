@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 namespace birotor {
 namespace {
@@ -41,11 +42,35 @@ bool CheckOutputIsNotInput(const std::string& output, const std::vector<std::str
   return true;
 }
 
+bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
+                  std::string* error) {
+  std::vector<std::string> given_inputs;
+  for (const std::string& input : inputs) {
+    if (!input.empty()) given_inputs.push_back(input);
+  }
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].empty()) continue;
+    if (!CheckOutputIsNotInput(outputs[i], given_inputs, error)) return false;
+    for (size_t j = i + 1; j < outputs.size(); ++j) {
+      if (outputs[j].empty()) continue;
+      std::error_code code;
+      const bool same_path = std::filesystem::weakly_canonical(outputs[i], code) ==
+                             std::filesystem::weakly_canonical(outputs[j], code);
+      if (same_path || !CheckOutputIsNotInput(outputs[j], {outputs[i]}, error)) {
+        *error = "outputs " + outputs[i] + " and " + outputs[j] + " are the same file";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 OutputFile::~OutputFile() { Abandon(); }
 
 bool OutputFile::Open(const std::string& path, std::string* error) {
   Abandon();
   path_ = path;
+  write_errno_ = 0;
   struct stat info;
   in_place_ = ::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode);
   if (in_place_) {
@@ -85,7 +110,10 @@ bool OutputFile::Open(const std::string& path, std::string* error) {
 
 bool OutputFile::Write(const void* data, size_t size) {
   if (stream_ == nullptr) return false;
-  if (size > 0 && std::fwrite(data, 1, size, stream_) != size) return false;
+  if (size > 0 && std::fwrite(data, 1, size, stream_) != size) {
+    if (write_errno_ == 0) write_errno_ = errno;
+    return false;
+  }
   return std::ferror(stream_) == 0;
 }
 
@@ -101,9 +129,13 @@ bool OutputFile::Commit(std::string* error) {
     if (!in_place_) ::unlink(write_path_.c_str());
     return false;
   };
+  // After a failed write, fflush tries the buffered bytes again and sets
+  // errno to the reason (ENOSPC on a full disk).
   errno = 0;
-  if (std::ferror(stream_) != 0) return fail("write", errno != 0 ? errno : EIO);
-  if (std::fflush(stream_) != 0) return fail("flush", errno);
+  const bool flushed = std::fflush(stream_) == 0;
+  if (!flushed || std::ferror(stream_) != 0) {
+    return fail("write", errno != 0 ? errno : (write_errno_ != 0 ? write_errno_ : EIO));
+  }
   // A device or FIFO cannot be synced (EINVAL): only regular files need it.
   if (!in_place_ && ::fsync(::fileno(stream_)) != 0) return fail("fsync", errno);
   const int closed = std::fclose(stream_);

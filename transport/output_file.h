@@ -21,6 +21,12 @@ namespace birotor {
 // file as one of `inputs`. Inputs that do not exist are ignored.
 bool CheckOutputIsNotInput(const std::string& output, const std::vector<std::string>& inputs, std::string* error);
 
+// Every program's check before it writes: no output is an input, and no two
+// outputs are the same file (same inode, or the same normalised path when
+// they do not exist yet). Empty paths (options not given) are skipped.
+bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
+                  std::string* error);
+
 class OutputFile {
  public:
   OutputFile() = default;
@@ -58,6 +64,7 @@ class OutputFile {
   std::string write_path_;
   std::FILE* stream_ = nullptr;
   bool in_place_ = false;  // target is not a regular file: no temporary, no rename
+  int write_errno_ = 0;    // errno of the first failed Write, for the message
 };
 
 // text to path through an OutputFile. False (with *error) on any failure.

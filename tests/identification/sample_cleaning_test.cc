@@ -70,6 +70,15 @@ TEST(SampleCleaningTest, FirstSampleFromTheFutureDoesNotHideTheLog) {
   EXPECT_EQ(report.strain.bad_stamp, 1);
 }
 
+TEST(SampleCleaningTest, DuplicatedFirstSampleIsADuplicateNotABadStamp) {
+  SensorLog log;
+  log.strain = Strain({1000, 1000, 2000, 2000, 3000});
+  const SampleCleaningReport report = CleanLog(&log, kJumpUs);
+  EXPECT_EQ(Utimes(log.strain), (std::vector<int64_t>{1000, 2000, 3000}));
+  EXPECT_EQ(report.strain.duplicate, 2);
+  EXPECT_EQ(report.strain.bad_stamp, 0);
+}
+
 TEST(SampleCleaningTest, MissingTelemetryIsNotBadButInfiniteIs) {
   SensorLog log;
   log.motor.resize(3);
