@@ -11,9 +11,9 @@
 #include <string>
 
 #include "identification/identify.h"
+#include "replay/identification_log_loader.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
-#include "tools/identification_log_loader.h"
 
 namespace birotor {
 namespace {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "estimator/equilibrium.h"
-#include "estimator/linearization.h"
+#include "model/equilibrium.h"
+#include "model/linearization.h"
 
 namespace birotor {
 

@@ -10,9 +10,9 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-#include "estimator/birotor_dynamics.h"
-#include "estimator/plant.h"
-#include "estimator/vehicle_params.h"
+#include "model/birotor_dynamics.h"
+#include "model/plant.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

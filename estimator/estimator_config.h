@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "estimator/vehicle_params.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "estimator/plant.h"
+#include "model/plant.h"
 
 namespace birotor {
 

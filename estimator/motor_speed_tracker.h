@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "estimator/samples.h"
-#include "estimator/vehicle_params.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
-#include "estimator/birotor_dynamics.h"
-#include "estimator/vehicle_params.h"
+#include "model/birotor_dynamics.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 
@@ -41,7 +41,7 @@ using FreeArmState = Eigen::Matrix<T, kFreeArmStateSize, 1>;
 // Derivative of the free-flight arm state and the specific force at the body
 // centre in body axes [m/s^2] (what the accelerometer measures). Evaluates
 // M q_ddot = tau - C - G of thesis eq. 3.14 (same terms as
-// estimator/birotor_dynamics.h ComputeDynamicsTerms) at q = (0, 0, 0, b1, b2),
+// model/birotor_dynamics.h ComputeDynamicsTerms) at q = (0, 0, 0, b1, b2),
 // v = (0, 0, phi_dot, b1_dot, b2_dot) with gravity removed: with phi = 0 the
 // world axes are the body axes, and uniform gravity only adds -g to every z
 // acceleration, so (x_ddot, z_ddot) with g = 0 is the specific force.

@@ -9,10 +9,10 @@
 #include <limits>
 #include <string>
 
-#include "estimator/plant.h"
 #include "identification/fit_support.h"
 #include "identification/free_arm_residual.h"
 #include "identification/identify.h"
+#include "model/plant.h"
 
 namespace birotor {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "estimator/vehicle_params.h"
 #include "identification/sample_cleaning.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "estimator/vehicle_params.h"
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
 #include "identification/sample_cleaning.h"
 #include "identification/sensor_log.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

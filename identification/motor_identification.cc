@@ -6,10 +6,10 @@
 #include <sstream>
 #include <string>
 
-#include "estimator/plant.h"
 #include "identification/fit_support.h"
 #include "identification/identify.h"
 #include "identification/motor_residual.h"
+#include "model/plant.h"
 
 namespace birotor {
 

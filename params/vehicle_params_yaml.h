@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "estimator/vehicle_params.h"
+#include "model/vehicle_params.h"
 #include "params/yaml_reader.h"
 
 namespace birotor {

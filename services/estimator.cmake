@@ -5,8 +5,9 @@ add_library(birotor_estimator_service STATIC
   ${CMAKE_CURRENT_LIST_DIR}/status_message.cc)
 target_include_directories(birotor_estimator_service PUBLIC ${PROJECT_SOURCE_DIR})
 target_link_libraries(birotor_estimator_service PUBLIC
-  birotor_estimator birotor_params birotor_transport)
+  birotor_estimator birotor_params birotor_sinks birotor_transport)
+target_link_libraries(birotor_estimator_service PRIVATE birotor_warnings)
 
 add_executable(birotor-estimator ${CMAKE_CURRENT_LIST_DIR}/birotor_estimator_main.cc)
-target_link_libraries(birotor-estimator PRIVATE birotor_estimator_service)
+target_link_libraries(birotor-estimator PRIVATE birotor_estimator_service birotor_warnings)
 install(TARGETS birotor-estimator RUNTIME DESTINATION bin)

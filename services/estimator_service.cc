@@ -28,10 +28,6 @@ int64_t WallNowUs() {
 
 }  // namespace
 
-void LcmSink::Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data, size_t size) {
-  lcm_->publish(channel, data, static_cast<unsigned int>(size));
-}
-
 EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
                                    const EstimatorServiceOptions& options, MessageSink* sink)
     : pipeline_(config),

@@ -20,30 +20,12 @@
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
 #include "services/status_message.h"
+#include "sinks/message_sink.h"
 #include "transport/channels.h"
 #include "transport/logging.h"
 #include "transport/udpm_receiver.h"
 
 namespace birotor {
-
-// Where the service's output goes: LCM when live, a log file in replay, a
-// vector in tests. timestamp_us is the event time written to a log (the
-// message's utime); LCM ignores it.
-class MessageSink {
- public:
-  virtual ~MessageSink() = default;
-  virtual void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) = 0;
-};
-
-// Publishes on an LCM instance.
-class LcmSink : public MessageSink {
- public:
-  explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
-  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
-
- private:
-  lcm::LCM* lcm_;
-};
 
 struct EstimatorServiceOptions {
   // ESTIMATOR_STATUS rate [Hz]: wall clock in the daemon, vehicle clock in replay.

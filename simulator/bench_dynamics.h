@@ -1,9 +1,9 @@
 // Plant derivative with the body clamped on a test stand (scenario `bench`):
 // x, z, phi and their rates are held at 0; only the arm deflections b1, b2
-// and the rotor speeds evolve. Same 12-entry state as estimator/plant.h.
+// and the rotor speeds evolve. Same 12-entry state as model/plant.h.
 #pragma once
 
-#include "estimator/plant.h"
+#include "model/plant.h"
 
 namespace birotor {
 

@@ -4,7 +4,7 @@
 // (a perfect state estimate) but knows nothing of s_i or eta_i.
 #pragma once
 
-#include "estimator/plant.h"
+#include "model/plant.h"
 #include "simulator/scenario.h"
 #include "simulator/trajectory.h"
 

@@ -1,10 +1,10 @@
 // The free-flight plant derivative the simulator integrates: the same
-// equations as PlantDerivative of estimator/plant.h (ComputeDynamicsTerms,
+// equations as PlantDerivative of model/plant.h (ComputeDynamicsTerms,
 // thesis eq. 3.14), with the 5x5 mass-matrix solve done by an unrolled LDL^T
 // instead of Eigen's generic LLT, which took ~40 % of the simulation time.
 #pragma once
 
-#include "estimator/plant.h"
+#include "model/plant.h"
 
 namespace birotor {
 
@@ -39,7 +39,7 @@ inline Coords<double> SolveMassMatrix(const CoordMatrix<double>& M, const Coords
   return x;
 }
 
-// PlantDerivative (estimator/plant.h) with SolveMassMatrix:
+// PlantDerivative (model/plant.h) with SolveMassMatrix:
 //   q_dot = v,  v_dot = M^-1 (tau - C - G),  omega_i_dot = (clamp(omega_cmd_i) - omega_i) / tau_m.
 inline PlantState FlightDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
   const Coords<double> q = x.segment<kNumCoordinates>(kPlantQ);

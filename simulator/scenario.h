@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "estimator/vehicle_params.h"
+#include "model/vehicle_params.h"
 
 namespace birotor {
 

@@ -1,4 +1,4 @@
-// The simulation engine: integrates the 12-state plant of estimator/plant.h
+// The simulation engine: integrates the 12-state plant of model/plant.h
 // with RK4 at a fixed step, drives it with the flight controller (or the bench
 // profile), and emits noisy sensor samples, truth and configured faults at
 // exact multiples of the step. Deterministic from the scenario seed.
@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "estimator/equilibrium.h"
-#include "estimator/plant.h"
+#include "model/equilibrium.h"
+#include "model/plant.h"
 #include "simulator/bench_profile.h"
 #include "simulator/flight_controller.h"
 #include "simulator/noise.h"

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "estimator/equilibrium.h"
-#include "estimator/linearization.h"
-#include "estimator/observability.h"
+#include "model/equilibrium.h"
+#include "model/linearization.h"
+#include "model/observability.h"
 #include "params/vehicle_params_yaml.h"
 #include "transport/program_options.h"
 

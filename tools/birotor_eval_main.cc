@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/eval_metrics.h"
+#include "evaluation/eval_runner.h"
 #include "params/estimator_config_yaml.h"
+#include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
-#include "tools/birotor_eval_metrics.h"
-#include "tools/birotor_eval_runner.h"
-#include "tools/birotor_plot_gnuplot.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
 #include "transport/output_file.h"

@@ -11,11 +11,11 @@
 #include <memory>
 #include <string>
 
+#include "evaluation/eval_metrics.h"
+#include "monitor/monitor_collector.h"
+#include "monitor/monitor_view.h"
+#include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
-#include "tools/birotor_eval_metrics.h"
-#include "tools/birotor_monitor_collector.h"
-#include "tools/birotor_monitor_view.h"
-#include "tools/birotor_plot_gnuplot.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
-#include "tools/birotor_eval_runner.h"
-#include "tools/birotor_plot_gnuplot.h"
+#include "evaluation/eval_runner.h"
+#include "plot/force_plot.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
 #include "transport/output_file.h"

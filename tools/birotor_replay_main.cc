@@ -10,7 +10,8 @@
 
 #include "params/estimator_config_yaml.h"
 #include "params/yaml_reader.h"
-#include "tools/birotor_replay_runner.h"
+#include "replay/replayer.h"
+#include "sinks/force_csv_sink.h"
 #include "transport/logging.h"
 #include "transport/output_file.h"
 #include "transport/program_options.h"

@@ -8,7 +8,7 @@
 #include <Eigen/Cholesky>
 #include <random>
 
-#include "estimator/equilibrium.h"
+#include "model/equilibrium.h"
 
 namespace birotor {
 namespace {

@@ -2,6 +2,7 @@
 // and pairs every estimate with the truth sample of the same utime.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "estimator/estimator_pipeline.h"
+#include "evaluation/eval_metrics.h"
 #include "params/estimator_config_yaml.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
@@ -28,6 +30,8 @@ struct PairedSample {
 
 struct ScenarioRun {
   std::vector<PairedSample> pairs;
+  std::vector<ForceEstimate> forces;  // every published estimate
+  std::vector<TruthSample> truth;     // every truth sample
   std::vector<FaultEvent> faults;
   PipelineHealth health;
   int64_t published = 0;
@@ -42,6 +46,7 @@ class PairingSink : public SampleSink {
     ForceEstimate e;
     if (pipeline_->OnStrain(s, &e)) {
       last_ = e;
+      run.forces.push_back(e);
       has_ = true;
       ++run.published;
       for (int i = 0; i < 2; ++i) {
@@ -64,6 +69,7 @@ class PairingSink : public SampleSink {
     pipeline_->OnPose(s);
   }
   void OnTruth(const TruthSample& t) override {
+    run.truth.push_back(t);
     if (!has_ || last_.utime != t.utime) return;
     PairedSample p;
     p.utime = t.utime;
@@ -107,23 +113,16 @@ inline ScenarioRun RunScenario(const Scenario& scenario, const EstimatorConfig& 
   return sink.run;
 }
 
-// Mean absolute force error of rotor i over pairs with utime >= from_utime
-// and not within exclude_s after any excluded time.
+// Mean absolute force error of rotor i [N], scored by evaluation/'s Evaluate()
+// as birotor-eval scores it: estimates paired with truth by utime, from
+// from_utime on, and not within exclude_s after an excluded time (sorted).
 inline double ForceMae(const ScenarioRun& run, int rotor, int64_t from_utime = 0,
                        const std::vector<int64_t>& exclude_after = {}, double exclude_s = 0) {
-  double sum = 0;
-  int64_t count = 0;
-  for (const PairedSample& p : run.pairs) {
-    if (p.utime < from_utime) continue;
-    bool excluded = false;
-    for (int64_t t : exclude_after) {
-      if (p.utime >= t && (p.utime - t) * 1e-6 < exclude_s) excluded = true;
-    }
-    if (excluded) continue;
-    sum += std::abs(p.force_error_n[rotor]);
-    ++count;
-  }
-  return count > 0 ? sum / count : NAN;
+  if (run.forces.empty()) return NAN;
+  EvalOptions options;
+  options.warmup_s = std::max<int64_t>(0, from_utime - run.forces.front().utime) * 1e-6;
+  options.fault_exclusion_s = exclude_s;
+  return Evaluate(run.forces, run.truth, exclude_after, options).mae_outside_faults_n[rotor];
 }
 
 }  // namespace testing_support

@@ -4,7 +4,7 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
-#include "estimator/plant.h"
+#include "model/plant.h"
 #include "simulator/bench_dynamics.h"
 
 namespace birotor {

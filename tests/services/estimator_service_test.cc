@@ -10,7 +10,7 @@
 #include <cstring>
 #include <vector>
 
-#include "estimator/equilibrium.h"
+#include "model/equilibrium.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 

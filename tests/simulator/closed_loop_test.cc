@@ -7,7 +7,7 @@
 
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
-#include "test_support.h"
+#include "tests/simulator/test_support.h"
 
 namespace birotor {
 namespace {

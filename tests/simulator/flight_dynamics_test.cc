@@ -1,10 +1,10 @@
 // Tests of simulator/flight_dynamics.h: the simulator's derivative equals the
-// model's PlantDerivative (estimator/plant.h) up to rounding.
+// model's PlantDerivative (model/plant.h) up to rounding.
 #include "simulator/flight_dynamics.h"
 
 #include <gtest/gtest.h>
 
-#include "estimator/equilibrium.h"
+#include "model/equilibrium.h"
 
 namespace birotor {
 namespace {

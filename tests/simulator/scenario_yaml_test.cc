@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "test_support.h"
+#include "tests/simulator/test_support.h"
 
 namespace birotor {
 namespace {

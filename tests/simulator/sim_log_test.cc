@@ -18,7 +18,7 @@
 
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
-#include "test_support.h"
+#include "tests/simulator/test_support.h"
 #include "transport/channels.h"
 #include "transport/lcm_codec.h"
 #include "transport/log_io.h"

@@ -9,7 +9,7 @@
 #include <map>
 
 #include "simulator/scenario_yaml.h"
-#include "test_support.h"
+#include "tests/simulator/test_support.h"
 
 namespace birotor {
 namespace {

@@ -1,0 +1,143 @@
+// Closed-form Euler-Lagrange dynamics of the planar birotor with elastic arms
+// (thesis eq. 3.10-3.14, reference-vehicle.md "Physical model"), templated on
+// the scalar type so that Ceres Jets give exact Jacobians.
+//
+// Coordinates q = [x, z, phi, b1, b2], velocities v = q_dot. World frame: x
+// right, z up. Arm i points along s_i * body x with s_1 = -1, s_2 = +1, so
+//   p_i = p + s_i L r_i,   r_i = [cos a_i, sin a_i],   a_i = phi + b_i,
+//   n_i = [-sin a_i, cos a_i]   (thrust direction, perpendicular to the arm),
+//   p_i_dot = p_dot + s_i L a_i_dot n_i.
+// With the tip Jacobian J_i = d p_i_dot / d v (2x5):
+//   M = diag(m, m, J, 0, 0) + m_p sum_i J_i^T J_i
+//   C = m_p sum_i J_i^T J_i_dot v = -m_p sum_i s_i L a_i_dot^2 [r_i; 0; 0; 0]
+//       (centripetal; n_i . r_i = 0 removes it from the phi and b rows)
+//   G = [0, (m + 2 m_p) g, ...] + m_p g sum_i J_i^T [0, 1] + [0, 0, 0, k b1, k b2]
+//       + damping [0, 0, 0, d b1_dot, d b2_dot]
+//   tau = sum_i f_i J_i^T n_i = [sum f_i n_i ; sum s_i L f_i ; s_1 L f_1 ; s_2 L f_2]
+// so that M q_ddot + C + G = tau. G matches thesis eq. 3.12 row by row.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cmath>
+
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+// Named indices of the generalized coordinates q (and of v = q_dot).
+enum Coordinate : int { kX = 0, kZ = 1, kPhi = 2, kB1 = 3, kB2 = 4 };
+constexpr int kNumCoordinates = 5;
+// Arm direction along body x: arm 1 along -x, arm 2 along +x.
+constexpr double kArmSign[2] = {-1.0, 1.0};
+
+template <typename T>
+using Coords = Eigen::Matrix<T, kNumCoordinates, 1>;
+template <typename T>
+using CoordMatrix = Eigen::Matrix<T, kNumCoordinates, kNumCoordinates>;
+
+// Mass matrix, Coriolis/centripetal vector, gravity+spring+damping vector and
+// generalized thrust of thesis eq. 3.10, evaluated at one (q, v, f).
+template <typename T>
+struct DynamicsTerms {
+  CoordMatrix<T> mass;           // M(q) [kg, kg m, kg m^2]
+  Coords<T> coriolis;            // C(q, v) [N, N m]
+  Coords<T> gravity_spring;      // G(q) plus hinge damping d b_i_dot [N, N m]
+  Coords<T> generalized_thrust;  // tau(q, f) [N, N m]
+};
+
+template <typename T>
+DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
+                                      const T& force2_n) {
+  using std::cos;
+  using std::sin;
+  const double m = p.body_mass_kg, mp = p.tip_mass_kg, L = p.arm_length_m, g = p.gravity_m_s2;
+  const T forces[2] = {force1_n, force2_n};
+
+  DynamicsTerms<T> out;
+  out.mass.setZero();
+  out.mass(kX, kX) = T(m);
+  out.mass(kZ, kZ) = T(m);
+  out.mass(kPhi, kPhi) = T(p.body_inertia_kg_m2);
+  out.coriolis.setZero();
+  out.gravity_spring.setZero();
+  out.gravity_spring(kZ) = T(m * g);
+  out.generalized_thrust.setZero();
+
+  for (int i = 0; i < 2; ++i) {
+    const int b = (i == 0) ? kB1 : kB2;
+    const T a = q(kPhi) + q(b);
+    const T a_dot = v(kPhi) + v(b);
+    const T c = cos(a), s = sin(a);
+    const double sL = kArmSign[i] * L;
+    // Tip Jacobian J_i (2x5): columns x, z are the identity; columns phi and
+    // b_i are both s_i L n_i = s_i L [-sin a, cos a]. m_p J_i^T J_i, written
+    // out entry by entry (|n_i| = 1):
+    const T jx = -sL * s, jz = sL * c;
+    out.mass(kX, kX) += mp;
+    out.mass(kZ, kZ) += mp;
+    out.mass(kX, kPhi) += mp * jx;
+    out.mass(kX, b) += mp * jx;
+    out.mass(kZ, kPhi) += mp * jz;
+    out.mass(kZ, b) += mp * jz;
+    out.mass(kPhi, kPhi) += mp * L * L;
+    out.mass(kPhi, b) += mp * L * L;
+    out.mass(b, b) += mp * L * L;
+    // Centripetal: m_p J_i^T (J_i_dot v), J_i_dot v = -s_i L a_dot^2 r_i; only x, z rows survive.
+    const T centripetal = -mp * sL * a_dot * a_dot;
+    out.coriolis(kX) += centripetal * c;
+    out.coriolis(kZ) += centripetal * s;
+    // Gravity on the tip mass: m_p g J_i^T [0, 1].
+    out.gravity_spring(kZ) += mp * g;
+    out.gravity_spring(kPhi) += (mp * g) * jz;
+    out.gravity_spring(b) += (mp * g) * jz;
+    // Hinge spring and damping.
+    out.gravity_spring(b) += p.arm_stiffness_n_m_rad * q(b) + p.arm_damping_n_m_s_rad * v(b);
+    // Thrust f_i n_i at p_i: tau = J_i^T n_i f_i = f_i [n_i; s_i L; s_i L] (n_i . n_i = 1).
+    out.generalized_thrust(kX) += -s * forces[i];
+    out.generalized_thrust(kZ) += c * forces[i];
+    out.generalized_thrust(kPhi) += sL * forces[i];
+    out.generalized_thrust(b) += sL * forces[i];
+  }
+  // Symmetric lower triangle.
+  for (int r = 0; r < kNumCoordinates; ++r)
+    for (int col = r + 1; col < kNumCoordinates; ++col) out.mass(col, r) = out.mass(r, col);
+  return out;
+}
+
+// Generalized acceleration q_ddot = M^-1 (tau - C - G) (thesis eq. 3.14).
+template <typename T>
+Coords<T> GeneralizedAcceleration(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
+                                  const T& force2_n) {
+  const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, force1_n, force2_n);
+  const Coords<T> rhs = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
+  return terms.mass.llt().solve(rhs);
+}
+
+// Mechanical energy T + U [J] (kinetic, gravitational and elastic), used to
+// check the integrator: with d = 0 and no thrust it is conserved.
+template <typename T>
+T MechanicalEnergy(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v) {
+  const T zero(0.0);
+  const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, zero, zero);
+  T energy = T(0.5) * v.dot(terms.mass * v) + p.body_mass_kg * p.gravity_m_s2 * q(kZ);
+  for (int i = 0; i < 2; ++i) {
+    const int b = (i == 0) ? kB1 : kB2;
+    using std::sin;
+    const T tip_z = q(kZ) + kArmSign[i] * p.arm_length_m * sin(q(kPhi) + q(b));
+    energy += p.tip_mass_kg * p.gravity_m_s2 * tip_z + 0.5 * p.arm_stiffness_n_m_rad * q(b) * q(b);
+  }
+  return energy;
+}
+
+// Position of rotor i's hub in the world frame [m].
+template <typename T>
+Eigen::Matrix<T, 2, 1> TipPosition(const VehicleParams& p, const Coords<T>& q, int rotor) {
+  using std::cos;
+  using std::sin;
+  const T a = q(kPhi) + q(rotor == 0 ? kB1 : kB2);
+  const double sL = kArmSign[rotor] * p.arm_length_m;
+  return Eigen::Matrix<T, 2, 1>(q(kX) + sL * cos(a), q(kZ) + sL * sin(a));
+}
+
+}  // namespace birotor

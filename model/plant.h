@@ -1,0 +1,69 @@
+// The birotor plant as a first-order system for integration: mechanical
+// state [q, v] plus the two rotor speeds, driven by rotor speed commands and
+// the thrust-scale factors mu_i (efficiency times turbulence).
+//   q_dot = v,  v_dot = M^-1 (tau - C - G)          (thesis eq. 3.14)
+//   omega_i_dot = (clamp(omega_cmd_i, 0, omega_max) - omega_i) / tau_m
+//   f_i = mu_i c_T omega_i^2
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+
+#include "model/birotor_dynamics.h"
+
+namespace birotor {
+
+// Named blocks of the plant state vector.
+enum PlantIndex : int {
+  kPlantQ = 0,        // q = [x, z, phi, b1, b2]: 5 entries
+  kPlantV = 5,        // v = q_dot: 5 entries
+  kPlantOmega1 = 10,  // rotor 1 speed [rad/s]
+  kPlantOmega2 = 11,  // rotor 2 speed [rad/s]
+};
+constexpr int kPlantStateSize = 12;
+using PlantState = Eigen::Matrix<double, kPlantStateSize, 1>;
+
+// Inputs held constant over one integration step.
+struct PlantInput {
+  double omega_cmd_rad_s[2] = {0, 0};  // rotor speed commands (clamped inside)
+  double thrust_scale[2] = {1, 1};     // mu_i = s_i (1 + eta_i) [1]
+};
+
+inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
+  return std::clamp(omega_cmd_rad_s, 0.0, p.omega_max_rad_s);
+}
+
+// Rotor thrust f = mu c_T omega^2 [N].
+inline double RotorThrust(const VehicleParams& p, double omega_rad_s, double thrust_scale) {
+  return thrust_scale * p.thrust_coeff_n_s2_rad2 * omega_rad_s * omega_rad_s;
+}
+
+// Time derivative of the plant state.
+inline PlantState PlantDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
+  const Coords<double> q = x.segment<kNumCoordinates>(kPlantQ);
+  const Coords<double> v = x.segment<kNumCoordinates>(kPlantV);
+  const double f1 = RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]);
+  const double f2 = RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1]);
+  PlantState x_dot;
+  x_dot.segment<kNumCoordinates>(kPlantQ) = v;
+  x_dot.segment<kNumCoordinates>(kPlantV) = GeneralizedAcceleration<double>(p, q, v, f1, f2);
+  x_dot(kPlantOmega1) = (ClampCommand(p, u.omega_cmd_rad_s[0]) - x(kPlantOmega1)) / p.motor_time_constant_s;
+  x_dot(kPlantOmega2) = (ClampCommand(p, u.omega_cmd_rad_s[1]) - x(kPlantOmega2)) / p.motor_time_constant_s;
+  return x_dot;
+}
+
+// One classical fourth-order Runge-Kutta step of x_dot = f(x) over dt_s.
+template <typename State, typename Derivative>
+State Rk4Step(const State& x, double dt_s, const Derivative& f) {
+  const State k1 = f(x);
+  const State k2 = f(x + (0.5 * dt_s) * k1);
+  const State k3 = f(x + (0.5 * dt_s) * k2);
+  const State k4 = f(x + dt_s * k3);
+  return x + (dt_s / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+}
+
+inline PlantState StepPlant(const VehicleParams& p, const PlantState& x, const PlantInput& u, double dt_s) {
+  return Rk4Step(x, dt_s, [&](const PlantState& s) { return PlantDerivative(p, s, u); });
+}
+
+}  // namespace birotor

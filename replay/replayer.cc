@@ -1,0 +1,63 @@
+// birotor-replay core: log events through the daemon's EstimatorService.
+#include "replay/replayer.h"
+
+#include "transport/log_io.h"
+
+namespace birotor {
+
+Replayer::Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink)
+    : options_(options),
+      channels_(MakeChannelNames(options.prefix)),
+      sink_(sink),
+      service_(
+          config, channels_,
+          [&options] {
+            EstimatorServiceOptions service_options;
+            service_options.status_rate_hz = options.status_rate_hz;
+            service_options.report_processing_time = false;  // deterministic output
+            return service_options;
+          }(),
+          sink) {}
+
+int64_t Replayer::StrainFaultCount() const {
+  const PipelineHealth& health = service_.health();
+  const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
+  return strain.gaps + strain.out_of_order + strain.duplicates + strain.rejected_invalid + strain.decode_errors +
+         health.resets;
+}
+
+void Replayer::Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
+  ++stats_.events;
+  InputChannel input;
+  if (service_.InputChannelOf(channel, &input)) {
+    ++stats_.input_packets;
+    if (service_.HandlePacket(input, data, size)) ++stats_.forces;
+    const int64_t newest = service_.health().newest_utime;
+    if (newest >= 0) {
+      if (stats_.first_utime < 0) stats_.first_utime = newest;
+      stats_.last_utime = newest;
+    }
+    const int64_t faults = StrainFaultCount();
+    if (faults != strain_fault_count_) {
+      strain_fault_count_ = faults;
+      stats_.strain_fault_utimes.push_back(newest);
+    }
+    service_.PublishStatusOnVehicleClock();
+  } else if (options_.copy_truth && channel == channels_.truth) {
+    sink_->Publish(channel, timestamp_us, data, size);
+    ++stats_.truth_copied;
+  }
+}
+
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
+                   double min_usable_fraction) {
+  LogReader reader;
+  if (!reader.Open(input_path, error)) return false;
+  LogEvent event;
+  while (reader.Next(&event)) {
+    replayer->Process(event.channel, event.timestamp_us, event.data.data(), event.data.size());
+  }
+  return CheckLogUsable(reader, input_path, min_usable_fraction, error, damage);
+}
+
+}  // namespace birotor

@@ -1,0 +1,71 @@
+// The core of birotor-replay, shared with birotor-eval and the tests: feeds
+// recorded (or freshly simulated) input packets through the daemon's own
+// EstimatorService as fast as possible, with ESTIMATOR_STATUS on the vehicle
+// clock, so the output is deterministic. Its output goes to a MessageSink
+// (sinks/: a log, the CSV trace, a test collector).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_config.h"
+#include "services/estimator_service.h"
+#include "sinks/message_sink.h"
+#include "transport/channels.h"
+
+namespace birotor {
+
+struct ReplayOptions {
+  std::string prefix = kDefaultChannelPrefix;  // channel prefix of input and output
+  bool copy_truth = true;                      // copy TRUTH events to the output (for evaluation)
+  double status_rate_hz = 5.0;                 // ESTIMATOR_STATUS rate on the vehicle clock [Hz]
+};
+
+// What a replay saw.
+struct ReplayStats {
+  int64_t events = 0;         // events offered to the replayer
+  int64_t input_packets = 0;  // STRAIN, MOTOR, IMU, POSE packets
+  int64_t truth_copied = 0;
+  int64_t forces = 0;        // FORCE messages written
+  int64_t first_utime = -1;  // newest-sample utime range of the inputs [us]
+  int64_t last_utime = -1;
+  // Vehicle times [us] at which the pipeline counted an input fault on the
+  // strain channel (gap, out of order, duplicate, invalid, decode error) or
+  // reset: for evaluating accuracy away from faults.
+  std::vector<int64_t> strain_fault_utimes;
+};
+
+// Runs packets through one EstimatorService. Not thread-safe.
+class Replayer {
+ public:
+  Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink);
+
+  // One event of a log (or a simulated packet): inputs go to the estimator,
+  // TRUTH is copied through when asked, anything else is ignored.
+  void Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size);
+
+  const ReplayStats& stats() const { return stats_; }
+  const EstimatorService& service() const { return service_; }
+  const ChannelNames& channels() const { return channels_; }
+
+ private:
+  int64_t StrainFaultCount() const;
+
+  ReplayOptions options_;
+  ChannelNames channels_;
+  MessageSink* sink_;
+  EstimatorService service_;
+  ReplayStats stats_;
+  int64_t strain_fault_count_ = 0;
+};
+
+// Replays every event of the log at input_path. False with a one-line *error
+// when the log cannot be opened or is not usable (CheckLogUsable of
+// transport/log_io.h: empty, no readable event, less than
+// min_usable_fraction of its bytes readable). *damage (optional) gets a
+// warning line when a usable log had corrupt events or a cut tail.
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
+                   double min_usable_fraction = kDefaultMinUsableLogFraction);
+
+}  // namespace birotor
