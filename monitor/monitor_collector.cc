@@ -47,11 +47,51 @@ void MonitorCollector::HandlePacket(const std::string& channel, const void* data
 }
 
 void MonitorCollector::OnForce(const ForceEstimate& estimate) {
+  const bool first = forces_.empty();
   // seq wraps as int32 (interface.md); unsigned arithmetic keeps the wrap a +1 step.
-  const bool seq_jump =
-      !forces_.empty() && static_cast<uint32_t>(estimate.seq) - static_cast<uint32_t>(forces_.back().seq) != 1u;
+  const uint32_t seq_step =
+      first ? 1u : static_cast<uint32_t>(estimate.seq) - static_cast<uint32_t>(forces_.back().seq);
+  const bool seq_jump = seq_step != 1u;
   if (seq_jump || (estimate.status & kStatusFilterReset)) fault_utimes_.push_back(estimate.utime);
+  if (seq_jump && seq_step < 0x80000000u) {
+    ++force_stats_.seq_gaps;
+    force_stats_.seq_missing += seq_step - 1;
+  } else if (seq_jump) {
+    ++force_stats_.seq_backwards;
+  }
+  if (!first && (estimate.status & kStatusFilterReset)) ++force_stats_.resets_after_start;
+  if (estimate.status & kStatusValid) ++force_stats_.valid;
+  bool finite = true;
+  for (int r = 0; r < 2; ++r) {
+    finite = finite && std::isfinite(estimate.force_n[r]) && std::isfinite(estimate.force_std_n[r]) &&
+             std::isfinite(estimate.thrust_scale[r]);
+  }
+  if (!finite) ++force_stats_.nonfinite;
+  const uint32_t previous_status =
+      first ? static_cast<uint32_t>(estimate.status) : static_cast<uint32_t>(forces_.back().status);
+  const uint32_t risen = static_cast<uint32_t>(estimate.status) & ~previous_status;
+  for (int bit = 0; bit < 32; ++bit) {
+    if (!(risen & (1u << bit))) continue;
+    FlagRises& r = rises_[bit];
+    if (r.count++ == 0) r.first_utime = estimate.utime;
+    r.last_utime = estimate.utime;
+  }
   forces_.push_back(estimate);
+}
+
+const FlagRises& MonitorCollector::rises(int32_t bit) const {
+  static const FlagRises kNone;
+  for (int position = 0; position < 32; ++position) {
+    if (static_cast<uint32_t>(bit) == (1u << position)) return rises_[position];
+  }
+  return kNone;
+}
+
+const input_health_t* MonitorCollector::input(const std::string& channel) const {
+  for (const input_health_t& input : latest_status_.inputs) {
+    if (input.channel == channel) return &input;
+  }
+  return nullptr;
 }
 
 void MonitorCollector::OnTruth(const TruthSample& sample) {
@@ -67,19 +107,19 @@ void MonitorCollector::OnTruth(const TruthSample& sample) {
 
 void MonitorCollector::OnStatus(const estimator_status_t& status) {
   ++status_messages_;
-  health_.received = true;
-  health_.method = status.method;
-  health_.resets = status.resets;
-  health_.processing_time_p99_us = status.processing_time_p99_us;
-  // inputs[] are STRAIN, MOTOR, IMU, POSE in this order (estimator_status_t.lcm).
-  for (const input_health_t& input : status.inputs) {
-    if (input.channel != kStrainChannel) continue;
-    health_.strain_received = input.received;
-    health_.strain_fused = input.fused;
-    health_.strain_faults =
-        input.gaps + input.out_of_order + input.duplicates + input.rejected_invalid + input.decode_errors;
-    health_.dropped_overload = input.dropped_overload;
+  latest_status_ = status;
+  if (std::isfinite(status.strain_nis_mean)) {  // NaN: no strain sample in the period
+    strain_nis_sum_ += status.strain_nis_mean;
+    ++strain_nis_reports_;
   }
+  if (std::isfinite(status.strain_nis_max) && !(status.strain_nis_max <= strain_nis_max_)) {
+    strain_nis_max_ = status.strain_nis_max;
+  }
+}
+
+double MonitorCollector::strain_nis_mean_over_run() const {
+  return strain_nis_reports_ > 0 ? strain_nis_sum_ / static_cast<double>(strain_nis_reports_)
+                                 : std::numeric_limits<double>::quiet_NaN();
 }
 
 EvalResult MonitorCollector::Evaluate(const EvalOptions& options) const {

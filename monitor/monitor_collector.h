@@ -1,11 +1,14 @@
 // birotor-monitor's bookkeeping, free of any LCM instance: decodes TRUTH, FORCE
-// and ESTIMATOR_STATUS packets, keeps the newest of each for the live view and
-// every FORCE/TRUTH pair for the final figures, which are computed with
-// birotor-eval's own Evaluate() so that the two tools report the same numbers.
+// and ESTIMATOR_STATUS packets, keeps the newest of each for the live view,
+// the history of every status bit and of the FORCE seq, and every FORCE/TRUTH
+// pair for the final figures, which are computed with birotor-eval's own
+// Evaluate() so that the two tools report the same numbers. Without TRUTH (a
+// real vehicle) the FORCE and ESTIMATOR_STATUS parts stand alone.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,16 +21,23 @@
 
 namespace birotor {
 
-// The newest estimator health, reduced to what the view shows.
-struct MonitorHealth {
-  bool received = false;
-  std::string method;           // "ekf", "inversion" or "motor_map"
-  int64_t strain_received = 0;  // packets seen by the estimator
-  int64_t strain_fused = 0;
-  int64_t strain_faults = 0;     // gaps + out of order + duplicates + invalid + decode errors
-  int64_t dropped_overload = 0;  // strain packets the estimator shed under load
-  int64_t resets = 0;
-  double processing_time_p99_us = 0;  // [us]; NaN when not measured
+// Rises of one status bit in the FORCE stream: set on a message after a
+// message without it. The first message received is the starting state, not
+// a rise (its FILTER_RESET is the estimator's start-up initialisation).
+struct FlagRises {
+  int64_t count = 0;
+  int64_t first_utime = 0;  // vehicle clock [us]; valid when count > 0
+  int64_t last_utime = 0;   // the newest rise [us]
+};
+
+// The FORCE stream's own bookkeeping, with or without TRUTH.
+struct ForceStreamStats {
+  int64_t seq_gaps = 0;            // seq jumps forward by more than 1
+  int64_t seq_missing = 0;         // messages missing according to seq (sum of the jumps)
+  int64_t seq_backwards = 0;       // seq going back (estimator restarted, or reordering)
+  int64_t resets_after_start = 0;  // FILTER_RESET on any message but the first (the start-up one)
+  int64_t valid = 0;               // messages with VALID
+  int64_t nonfinite = 0;           // messages with a NaN/Inf force, std or thrust scale
 };
 
 class MonitorCollector {
@@ -57,9 +67,22 @@ class MonitorCollector {
   bool has_truth() const { return !truth_.empty(); }
   const ForceEstimate& latest_force() const { return forces_.back(); }
   const TruthSample& latest_truth() const { return truth_.back(); }
-  const MonitorHealth& health() const { return health_; }
   int64_t decode_errors() const { return decode_errors_; }
   int64_t status_messages() const { return status_messages_; }
+
+  const ForceStreamStats& force_stats() const { return force_stats_; }
+  // Rises of bit (one of the kStatus* constants) in the FORCE stream.
+  const FlagRises& rises(int32_t bit) const;
+  // The newest ESTIMATOR_STATUS; meaningful when has_status().
+  bool has_status() const { return status_messages_ > 0; }
+  const estimator_status_t& latest_status() const { return latest_status_; }
+  // The newest ESTIMATOR_STATUS counters of one input ("STRAIN", "MOTOR",
+  // "IMU", "POSE"); nullptr if it has none.
+  const input_health_t* input(const std::string& channel) const;
+  // Strain NIS over every ESTIMATOR_STATUS that had strain samples: the mean
+  // of the reported period means and the largest period max (NaN if none).
+  double strain_nis_mean_over_run() const;
+  double strain_nis_max_over_run() const { return strain_nis_max_; }
 
   // TRUTH samples whose utime jumped by more than 1.5 truth periods: packets
   // lost on the way to the monitor (the simulator never skips TRUTH).
@@ -74,7 +97,12 @@ class MonitorCollector {
   std::vector<ForceEstimate> forces_;
   std::vector<TruthSample> truth_;
   std::vector<int64_t> fault_utimes_;
-  MonitorHealth health_;
+  ForceStreamStats force_stats_;
+  FlagRises rises_[32];  // by bit position
+  estimator_status_t latest_status_;
+  double strain_nis_sum_ = 0;
+  int64_t strain_nis_reports_ = 0;
+  double strain_nis_max_ = std::numeric_limits<double>::quiet_NaN();
   int64_t decode_errors_ = 0;
   int64_t status_messages_ = 0;
   int64_t truth_gaps_ = 0;

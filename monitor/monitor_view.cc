@@ -7,28 +7,23 @@
 #include <cmath>
 
 #include "estimator/samples.h"
+#include "transport/channels.h"
 
 namespace birotor {
 namespace {
 
-struct StatusName {
-  int32_t bit;
-  const char* word;
-};
+// Every terminal line is cleared to its end (ESC[K) so a shorter redraw leaves no debris.
+constexpr const char* kEnd = "\x1b[K\n";
+// The estimator's inputs in the order of estimator_status_t.inputs.
+constexpr const char* kInputs[] = {kStrainChannel, kMotorChannel, kImuChannel, kPoseChannel};
 
-// Order and meaning as in lcmtypes/force_estimate_t.lcm.
-constexpr StatusName kStatusNames[] = {
-    {kStatusValid, "VALID"},       {kStatusConverging, "CONVERGING"},    {kStatusMeasurementRejected, "REJECTED"},
-    {kStatusInputStale, "STALE"},  {kStatusRotor1Fault, "ROTOR1_FAULT"}, {kStatusRotor2Fault, "ROTOR2_FAULT"},
-    {kStatusFilterReset, "RESET"}, {kStatusNoMotorInput, "NO_MOTOR"},
-};
+int64_t OriginUtime(const MonitorCollector& c) {
+  if (c.has_truth()) return c.truth().front().utime;
+  return c.has_force() ? c.forces().front().utime : 0;
+}
 
-// Vehicle time of the newest sample of either stream, since the first TRUTH [s].
-double ElapsedS(const MonitorCollector& c) {
-  if (!c.has_truth()) return 0.0;
-  int64_t newest = c.latest_truth().utime;
-  if (c.has_force()) newest = std::max(newest, c.latest_force().utime);
-  return static_cast<double>(newest - c.truth().front().utime) * 1e-6;
+double SecondsSinceOrigin(const MonitorCollector& c, int64_t utime) {
+  return static_cast<double>(utime - OriginUtime(c)) * 1e-6;
 }
 
 std::string TimeAndProgress(const MonitorCollector& c, const ViewContext& context) {
@@ -40,23 +35,53 @@ std::string TimeAndProgress(const MonitorCollector& c, const ViewContext& contex
   return fmt::format("t={:6.2f} s", elapsed_s);
 }
 
-std::string Force(double force_n) {
-  return std::isfinite(force_n) ? fmt::format("{:6.3f}", force_n) : std::string("   nan");
+std::string Number(double value, int width, int decimals) {
+  return std::isfinite(value) ? fmt::format("{:{}.{}f}", value, width, decimals) : fmt::format("{:>{}}", "-", width);
+}
+
+std::string Force(double force_n) { return Number(force_n, 6, 3); }
+
+bool Waiting(const MonitorCollector& c, const ViewContext& context) {
+  return !c.has_force() || (context.truth_expected && !c.has_truth());
+}
+
+std::string WaitingText(const MonitorCollector& c, const ViewContext& context) {
+  if (context.truth_expected) {
+    return fmt::format("waiting: TRUTH {} FORCE {} STATUS {}", c.truth().size(), c.forces().size(),
+                       c.status_messages());
+  }
+  return fmt::format("waiting: FORCE {} STATUS {}", c.forces().size(), c.status_messages());
+}
+
+// Samples an input lost or had refused before fusion: out of order,
+// duplicates, undecodable packets.
+int64_t BadPackets(const input_health_t& input) { return input.out_of_order + input.duplicates + input.decode_errors; }
+
+std::string InputRow(const char* name, const input_health_t* input, const ViewContext& context) {
+  if (input == nullptr) return fmt::format("{:<7} (not in ESTIMATOR_STATUS)", name);
+  const bool stale = !std::isfinite(input->age_s) || input->age_s > context.stale_age_s;
+  return fmt::format("{:<7} {:>8} {:>8} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9}{}", name, Number(input->rate_hz, 8, 1),
+                     Number(input->age_s * 1e3, 8, 1), input->fused, input->rejected_gate, input->rejected_invalid,
+                     input->missing_samples, BadPackets(*input), input->dropped_overload,
+                     stale && input->received > 0 ? "  STALE" : (input->received == 0 ? "  none received" : ""));
+}
+
+std::string EstimatorLine(const MonitorCollector& c) {
+  if (!c.has_status()) return "estimator: no ESTIMATOR_STATUS yet";
+  const estimator_status_t& s = c.latest_status();
+  return fmt::format("estimator {}  resets {} (last: {})  strain NIS mean {} max {} gate {}  time p99 {} us", s.method,
+                     s.resets, s.last_reset_reason.empty() ? "none" : s.last_reset_reason,
+                     Number(s.strain_nis_mean, 0, 2), Number(s.strain_nis_max, 0, 1), Number(s.strain_gate, 0, 1),
+                     Number(s.processing_time_p99_us, 0, 0));
 }
 
 }  // namespace
 
-std::string StatusWords(int32_t status) {
-  std::string words;
-  int32_t known = 0;
-  for (const StatusName& name : kStatusNames) {
-    known |= name.bit;
-    if (!(status & name.bit)) continue;
-    if (!words.empty()) words += '|';
-    words += name.word;
-  }
-  if (status & ~known) words += fmt::format("{}0x{:x}", words.empty() ? "" : "|", status & ~known);
-  return words.empty() ? "none" : words;
+double ElapsedS(const MonitorCollector& c) {
+  int64_t newest = OriginUtime(c);
+  if (c.has_truth()) newest = std::max(newest, c.latest_truth().utime);
+  if (c.has_force()) newest = std::max(newest, c.latest_force().utime);
+  return SecondsSinceOrigin(c, newest);
 }
 
 std::string ProgressBar(double elapsed_s, double total_s, int width) {
@@ -66,43 +91,85 @@ std::string ProgressBar(double elapsed_s, double total_s, int width) {
   return fmt::format("[{}{}] {:3.0f}%", std::string(filled, '#'), std::string(width - filled, '-'), fraction * 100.0);
 }
 
+std::string FirstAlarms(const MonitorCollector& c) {
+  std::string text;
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    const StatusBitName& name = kStatusBitNames[i];
+    if (!(name.bit & kAlarmStatusBits)) continue;
+    const FlagRises& rises = c.rises(name.bit);
+    if (rises.count == 0) continue;
+    if (!text.empty()) text += ", ";
+    text += fmt::format("{} {:.3f} s", name.word, SecondsSinceOrigin(c, rises.first_utime));
+    if (rises.count > 1) text += fmt::format(" ({}x)", rises.count);
+  }
+  return text.empty() ? "none" : text;
+}
+
 std::string PlainViewLine(const MonitorCollector& c, const ViewContext& context) {
   std::string line = TimeAndProgress(c, context);
-  if (!c.has_truth() || !c.has_force()) {
-    return line + fmt::format("  waiting: TRUTH {} FORCE {} STATUS {}", c.truth().size(), c.forces().size(),
-                              c.status_messages());
-  }
-  const TruthSample& t = c.latest_truth();
+  if (Waiting(c, context)) return line + "  " + WaitingText(c, context);
   const ForceEstimate& e = c.latest_force();
-  line +=
-      fmt::format("  f1 true {} est {} N  f2 true {} est {} N  mu1 {:.3f}/{:.3f} mu2 {:.3f}/{:.3f}  {}",
-                  Force(t.force_n[0]), Force(e.force_n[0]), Force(t.force_n[1]), Force(e.force_n[1]), t.thrust_scale[0],
-                  e.thrust_scale[0], t.thrust_scale[1], e.thrust_scale[1], StatusWords(e.status));
+  const bool truth = c.has_truth();
+  for (int r = 0; r < 2; ++r) {
+    line += fmt::format("  f{} ", r + 1);
+    if (truth) line += fmt::format("true {} est ", Force(c.latest_truth().force_n[r]));
+    line += fmt::format("{} ±{:.3f} N", Force(e.force_n[r]), e.force_std_n[r]);
+  }
+  for (int r = 0; r < 2; ++r) {
+    line += truth ? fmt::format("  mu{} {:.3f}/{:.3f}", r + 1, c.latest_truth().thrust_scale[r], e.thrust_scale[r])
+                  : fmt::format("  mu{} {:.3f}", r + 1, e.thrust_scale[r]);
+  }
+  line += fmt::format("  {}  first alarms: {}", StatusWords(e.status), FirstAlarms(c));
+  if (const input_health_t* strain = c.input(kStrainChannel)) {
+    line += fmt::format("  strain {} Hz gate-rejected {} bad packets {}  resets {}", Number(strain->rate_hz, 0, 0),
+                        strain->rejected_gate, BadPackets(*strain), c.latest_status().resets);
+  }
   return line;
 }
 
 std::string TerminalView(const MonitorCollector& c, const ViewContext& context) {
-  // Every line is cleared to its end (ESC[K) so a shorter redraw leaves no debris.
-  constexpr const char* kEnd = "\x1b[K\n";
-  std::string view = fmt::format("{}  FORCE {:.0f} Hz{}", TimeAndProgress(c, context), context.force_rate_hz, kEnd);
-  if (!c.has_truth() || !c.has_force()) {
-    view += fmt::format("waiting for TRUTH ({}) and FORCE ({}) ...{}", c.truth().size(), c.forces().size(), kEnd);
-    for (int i = 2; i < kTerminalViewLines; ++i) view += kEnd;
-    return view;
+  std::string view =
+      fmt::format("{}  FORCE {:.0f} Hz  STATUS {:.1f} Hz{}{}", TimeAndProgress(c, context), context.force_rate_hz,
+                  context.status_rate_hz, context.truth_expected ? "" : "  (no TRUTH: vehicle view)", kEnd);
+  int lines = 1;
+  const auto add = [&](const std::string& line) {
+    view += line + kEnd;
+    ++lines;
+  };
+  if (Waiting(c, context)) {
+    add(WaitingText(c, context) + " ...");
+  } else {
+    const ForceEstimate& e = c.latest_force();
+    const bool truth = c.has_truth();
+    add(truth ? "           true   estimated   ±1 sigma      error" : "         estimated   ±1 sigma");
+    for (int r = 0; r < 2; ++r) {
+      if (truth) {
+        const double true_n = c.latest_truth().force_n[r];
+        add(fmt::format("f{} [N]   {}    {}    ±{:.3f}    {:+.3f}", r + 1, Force(true_n), Force(e.force_n[r]),
+                        e.force_std_n[r], e.force_n[r] - true_n));
+      } else {
+        add(fmt::format("f{} [N]     {}    ±{:.3f}", r + 1, Force(e.force_n[r]), e.force_std_n[r]));
+      }
+    }
+    std::string scale = "thrust efficiency mu  ";
+    if (truth) {
+      scale += fmt::format("true {:.3f} {:.3f}   ", c.latest_truth().thrust_scale[0], c.latest_truth().thrust_scale[1]);
+    }
+    add(scale + fmt::format("est {:.3f} {:.3f}   (rotor fault below {:.2f})", e.thrust_scale[0], e.thrust_scale[1],
+                            context.fault_thrust_scale));
+    add(fmt::format("status {}   first alarms: {}", StatusWords(e.status), FirstAlarms(c)));
+    const ForceStreamStats& f = c.force_stats();
+    add(fmt::format("FORCE valid {:.1f} %  non-finite {}  seq gaps {} ({} missing)  resets after start {}",
+                    100.0 * static_cast<double>(f.valid) / static_cast<double>(c.forces().size()), f.nonfinite,
+                    f.seq_gaps, f.seq_missing, f.resets_after_start));
   }
-  const TruthSample& t = c.latest_truth();
-  const ForceEstimate& e = c.latest_force();
-  view += fmt::format("           true      estimated  (+- 1 sigma)   error{}", kEnd);
-  for (int r = 0; r < 2; ++r) {
-    view += fmt::format("f{} [N]   {}    {}     (+- {:.3f})    {:+.3f}{}", r + 1, Force(t.force_n[r]),
-                        Force(e.force_n[r]), e.force_std_n[r], e.force_n[r] - t.force_n[r], kEnd);
+  add(EstimatorLine(c));
+  add(fmt::format("{:<7} {:>8} {:>8} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9}", "input", "rate Hz", "age ms", "fused",
+                  "gate rej", "invalid", "missing", "bad pkts", "overload"));
+  for (const char* name : kInputs) {
+    add(c.has_status() ? InputRow(name, c.input(name), context) : std::string(name));
   }
-  view += fmt::format("thrust efficiency mu  true {:.3f} {:.3f}   est {:.3f} {:.3f}{}", t.thrust_scale[0],
-                      t.thrust_scale[1], e.thrust_scale[0], e.thrust_scale[1], kEnd);
-  const MonitorHealth& h = c.health();
-  view += fmt::format("status {}  | {} strain recv {} fused {} faults {} overload {} resets {}{}",
-                      StatusWords(e.status), h.received ? h.method : std::string("(no status yet)"), h.strain_received,
-                      h.strain_fused, h.strain_faults, h.dropped_overload, h.resets, kEnd);
+  while (lines < kTerminalViewLines) add("");
   return view;
 }
 
@@ -122,6 +189,65 @@ std::string SummaryText(const EvalResult& r) {
         r.scale_error_after_step);
   }
   return text + "\n";
+}
+
+std::string VehicleSummaryText(const MonitorCollector& c) {
+  if (!c.has_force()) return "no FORCE received\n";
+  const ForceStreamStats& f = c.force_stats();
+  const double n = static_cast<double>(c.forces().size());
+  const double span_s = ElapsedS(c);
+  double std_sum_n[2] = {0, 0};
+  for (const ForceEstimate& e : c.forces()) {
+    for (int r = 0; r < 2; ++r) std_sum_n[r] += std::isfinite(e.force_std_n[r]) ? e.force_std_n[r] : 0.0;
+  }
+  const ForceEstimate& last = c.latest_force();
+  std::string text = fmt::format("FORCE {} messages over {:.2f} s ({} Hz), VALID {:.1f} %, non-finite {}\n",
+                                 c.forces().size(), span_s, Number(span_s > 0 ? (n - 1) / span_s : NAN, 0, 1),
+                                 100.0 * static_cast<double>(f.valid) / n, f.nonfinite);
+  text +=
+      fmt::format("mean 1-sigma f1 {:.4f} N f2 {:.4f} N; at the end f1 {:.3f} N f2 {:.3f} N, mu {:.3f} {:.3f}, {}\n",
+                  std_sum_n[0] / n, std_sum_n[1] / n, last.force_n[0], last.force_n[1], last.thrust_scale[0],
+                  last.thrust_scale[1], StatusWords(last.status));
+  text += fmt::format("first alarms: {}\n", FirstAlarms(c));
+  text += EstimatorLine(c) + "\n";
+  text += fmt::format("strain NIS over the run: mean {} (2 expected for a consistent filter), max {}\n",
+                      Number(c.strain_nis_mean_over_run(), 0, 2), Number(c.strain_nis_max_over_run(), 0, 1));
+  if (const input_health_t* strain = c.input(kStrainChannel)) {
+    text += fmt::format("strain: fused {}, gate-rejected {}, invalid {}, missing {}, bad packets {}, overload {}\n",
+                        strain->fused, strain->rejected_gate, strain->rejected_invalid, strain->missing_samples,
+                        BadPackets(*strain), strain->dropped_overload);
+  }
+  return text;
+}
+
+std::string DeliveryNote(const MonitorCollector& c) {
+  const ForceStreamStats& f = c.force_stats();
+  std::string note;
+  int64_t lost_forces = 0;
+  if (f.seq_missing > 0) {
+    // A strain sample the estimator never fused leaves a hole in FORCE seq too.
+    int64_t upstream = 0;
+    if (const input_health_t* strain = c.input(kStrainChannel)) {
+      upstream = strain->missing_samples + strain->rejected_invalid + strain->dropped_overload;
+    }
+    lost_forces = std::max<int64_t>(0, f.seq_missing - upstream);
+    note += fmt::format(
+        "FORCE seq: {} gaps, {} messages missing; the estimator reports {} strain samples missing, invalid or shed "
+        "(input faults), so about {} FORCE messages were lost on the way to this monitor",
+        f.seq_gaps, f.seq_missing, upstream, lost_forces);
+  }
+  if (f.seq_backwards > 0) {
+    note +=
+        fmt::format("{}FORCE seq went back {} times (estimator restarted?)", note.empty() ? "" : "; ", f.seq_backwards);
+  }
+  if (c.truth_gaps() > 0) {
+    note += fmt::format("{}{} TRUTH gaps (packets lost on the way to this monitor)", note.empty() ? "" : "; ",
+                        c.truth_gaps());
+  }
+  if ((lost_forces > 0 || c.truth_gaps() > 0) && c.has_truth()) {
+    note += "; the figures differ slightly from birotor-eval's";
+  }
+  return note;
 }
 
 }  // namespace birotor

@@ -1,6 +1,7 @@
 // PNG of fit versus data for birotor-identify --plot: one panel per FitPlot of
 // the identification result (measured points, fitted model as a line), drawn
-// by gnuplot (Debian gnuplot-nox) from a temporary data file.
+// by the project's gnuplot driver (plot/gnuplot_driver.h): no shell, no
+// files beside the PNG.
 #pragma once
 
 #include <string>
@@ -10,10 +11,8 @@
 
 namespace birotor {
 
-// Writes png_path with the panels in a two-column grid. The data file and
-// the gnuplot script are temporary files in $TMPDIR (or /tmp), removed
-// afterwards. False with *error when there is nothing to plot, gnuplot cannot
-// be run or fails.
+// Writes png_path (temporary file + rename) with the panels in a two-column
+// grid. False with *error when there is nothing to plot or gnuplot fails.
 bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, const std::string& png_path,
                   std::string* error);
 

@@ -1,73 +1,330 @@
-// gnuplot-driven force plots.
+// gnuplot script of the force plot; drawn by plot/gnuplot_driver.
 #include "plot/force_plot.h"
 
-#include <cinttypes>
-#include <cstdio>
-#include <cstdlib>
-#include <unordered_map>
+#include <fmt/format.h>
 
-#include "transport/output_file.h"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <utility>
+
+#include "plot/gnuplot_driver.h"
+#include "plot/status_words.h"
 
 namespace birotor {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr const char* kRotorColor[2] = {"#d62728", "#1f77b4"};
+constexpr const char* kSigmaColor[2] = {"#67000d", "#08306b"};  // darker rotor colours
+constexpr const char* kTrueColor = "#303030";
+// FORCE silent for more than this many typical intervals is drawn as a gap [1].
+constexpr double kGapPeriods = 10.0;
+constexpr const char* kMarkerColor = "#8c2d04";
+// Panel edges on the page [fraction of the width and height]; the left and
+// right edges are shared so that the time axes line up, and the keys sit to
+// the right of the panels, where they never cover data.
+constexpr double kLeftEdge = 0.075, kRightEdge = 0.82, kTopEdge = 0.945, kBottomEdge = 0.05;
+
+// One row of the datablock: a FORCE message and its TRUTH pair (NaN if none).
+struct Row {
+  double t_s;
+  const ForceEstimate* estimate;
+  const TruthSample* truth;
+};
+
+// A panel's y-range from its data: the clip_fraction quantiles at each end,
+// widened by 8 % of the span; what lies outside is reported in note.
+struct YRange {
+  double low = 0, high = 1;
+  std::string note;
+};
+
+YRange RangeOf(std::vector<std::pair<double, double>> values_and_times, double clip_fraction, double min_span,
+               const std::string& unit) {
+  YRange range;
+  values_and_times.erase(std::remove_if(values_and_times.begin(), values_and_times.end(),
+                                        [](const auto& v) { return !std::isfinite(v.first); }),
+                         values_and_times.end());
+  if (values_and_times.empty()) return range;
+  std::vector<double> values;
+  values.reserve(values_and_times.size());
+  for (const auto& v : values_and_times) values.push_back(v.first);
+  const size_t n = values.size();
+  const size_t low_index = static_cast<size_t>(clip_fraction * static_cast<double>(n - 1));
+  const size_t high_index = n - 1 - low_index;
+  std::nth_element(values.begin(), values.begin() + low_index, values.end());
+  const double low_quantile = values[low_index];
+  std::nth_element(values.begin(), values.begin() + high_index, values.end());
+  const double high_quantile = values[high_index];
+  const double span = std::max(high_quantile - low_quantile, min_span);
+  const double middle = 0.5 * (high_quantile + low_quantile);
+  range.low = std::min(low_quantile, middle - 0.5 * span) - 0.08 * span;
+  range.high = std::max(high_quantile, middle + 0.5 * span) + 0.08 * span;
+  // The first extreme in time (values_and_times is in time order).
+  const auto by_value = [](const auto& a, const auto& b) { return a.first < b.first; };
+  const auto min_it = std::min_element(values_and_times.begin(), values_and_times.end(), by_value);
+  const auto max_it = std::max_element(values_and_times.begin(), values_and_times.end(), by_value);
+  std::vector<std::string> clipped;
+  if (max_it->first > range.high) {
+    clipped.push_back(fmt::format("peak {:.2f}{} at {:.3f} s", max_it->first, unit, max_it->second));
+  }
+  if (min_it->first < range.low) {
+    clipped.push_back(fmt::format("low {:.2f}{} at {:.3f} s", min_it->first, unit, min_it->second));
+  }
+  if (!clipped.empty()) {
+    range.note = "clipped to the bulk of the data: " + clipped[0] + (clipped.size() > 1 ? ", " + clipped[1] : "");
+  }
+  return range;
+}
+
+std::string Number(double value) { return std::isfinite(value) ? fmt::format("{:.7g}", value) : "NaN"; }
+
+// $data: t f1 f2 std1 std2 mu1 mu2 status f1_true f2_true mu1_true mu2_true err1
+// err2. A blank line before a row that follows a gap of more than kGapPeriods
+// typical intervals breaks every line there: no FORCE, no line.
+double GapS(const std::vector<Row>& rows) {
+  std::vector<double> steps_s;
+  steps_s.reserve(rows.size());
+  for (size_t k = 1; k < rows.size(); ++k) steps_s.push_back(rows[k].t_s - rows[k - 1].t_s);
+  if (steps_s.empty()) return std::numeric_limits<double>::infinity();
+  std::nth_element(steps_s.begin(), steps_s.begin() + steps_s.size() / 2, steps_s.end());
+  return kGapPeriods * steps_s[steps_s.size() / 2];
+}
+
+std::string DataBlock(const std::vector<Row>& rows, double gap_s) {
+  std::string block = "$data << EOD\n";
+  block.reserve(rows.size() * 120);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const Row& row = rows[k];
+    if (k > 0 && row.t_s - rows[k - 1].t_s > gap_s) block += '\n';
+    const ForceEstimate& e = *row.estimate;
+    const TruthSample* t = row.truth;
+    fmt::format_to(std::back_inserter(block), "{:.6f} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", row.t_s,
+                   Number(e.force_n[0]), Number(e.force_n[1]), Number(e.force_std_n[0]), Number(e.force_std_n[1]),
+                   Number(e.thrust_scale[0]), Number(e.thrust_scale[1]), e.status, Number(t ? t->force_n[0] : kNaN),
+                   Number(t ? t->force_n[1] : kNaN), Number(t ? t->thrust_scale[0] : kNaN),
+                   Number(t ? t->thrust_scale[1] : kNaN), Number(t ? e.force_n[0] - t->force_n[0] : kNaN),
+                   Number(t ? e.force_n[1] - t->force_n[1] : kNaN));
+  }
+  return block + "EOD\n";
+}
+
+// The first rise of every marked status bit after the first message, with the
+// number of rises: "ROTOR2_FAULT 10.037 s" or "RESET 5.000 s (3x)".
+std::vector<std::pair<double, std::string>> StatusMarkers(const std::vector<Row>& rows) {
+  std::vector<std::pair<double, std::string>> markers;
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    const StatusBitName& name = kStatusBitNames[i];
+    if (!(name.bit & kAlarmStatusBits)) continue;
+    double first_s = kNaN;
+    int rises = 0;
+    for (size_t k = 1; k < rows.size(); ++k) {
+      if ((rows[k].estimate->status & name.bit) && !(rows[k - 1].estimate->status & name.bit)) {
+        if (rises++ == 0) first_s = rows[k].t_s;
+      }
+    }
+    if (rises == 0) continue;
+    markers.emplace_back(first_s, fmt::format("{} {:.3f} s{}", name.word, first_s,
+                                              rises > 1 ? fmt::format(" ({}x)", rises) : std::string()));
+  }
+  return markers;
+}
+
+// The first silence of FORCE longer than gap_s, with the number of such
+// silences: "no FORCE for 151 ms from 5.999 s (2x)".
+void AddGapMarker(const std::vector<Row>& rows, double gap_s, std::vector<std::pair<double, std::string>>* markers) {
+  int gaps = 0;
+  size_t first = 0;
+  for (size_t k = 1; k < rows.size(); ++k) {
+    if (rows[k].t_s - rows[k - 1].t_s > gap_s && gaps++ == 0) first = k;
+  }
+  if (gaps == 0) return;
+  const double from_s = rows[first - 1].t_s;
+  markers->emplace_back(from_s, fmt::format("no FORCE for {:.0f} ms from {:.3f} s{}", (rows[first].t_s - from_s) * 1e3,
+                                            from_s, gaps > 1 ? fmt::format(" ({}x)", gaps) : std::string()));
+}
+
+// Places the next panel: `height` of the page below *top.
+std::string Panel(double* top, double height, bool bottom_axis) {
+  const double bottom = *top - height;
+  std::string text = fmt::format(
+      "set tmargin at screen {:.4f}\nset bmargin at screen {:.4f}\nset lmargin at screen {}\nset rmargin at screen "
+      "{}\n",
+      *top, bottom + 0.012, kLeftEdge, kRightEdge);
+  text += bottom_axis ? "set format x '%g'\nset xlabel 't [s]'\n" : "set format x ''\nunset xlabel\n";
+  *top = bottom;
+  return text;
+}
+
+std::string YRangeCommands(const YRange& range) {
+  std::string text = fmt::format("set yrange [{:.6g}:{:.6g}]\n", range.low, range.high);
+  if (!range.note.empty()) {
+    text += "set label 1 " + GnuplotQuoted(range.note) +
+            " at graph 0.01, graph 0.07 left front boxed textcolor rgb '#b00000' font ',9'\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+PlotMarker ThrustStepMarker(int rotor, double step_time_s) {
+  return {static_cast<int64_t>(std::llround(step_time_s * 1e6)), fmt::format("true thrust step rotor {}", rotor)};
+}
+
+std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
+                            const ForcePlotOptions& options) {
+  std::unordered_map<int64_t, const TruthSample*> truth_by_utime;
+  truth_by_utime.reserve(truth.size());
+  for (const TruthSample& t : truth) truth_by_utime[t.utime] = &t;
+  int64_t origin_utime = forces.front().utime;
+  if (!truth.empty()) origin_utime = std::min(origin_utime, truth.front().utime);
+  const auto seconds = [origin_utime](int64_t utime) { return static_cast<double>(utime - origin_utime) * 1e-6; };
+
+  std::vector<Row> rows;
+  rows.reserve(forces.size());
+  int64_t paired = 0;
+  for (const ForceEstimate& e : forces) {
+    const auto it = truth_by_utime.find(e.utime);
+    const TruthSample* t = it == truth_by_utime.end() ? nullptr : it->second;
+    paired += t != nullptr;
+    rows.push_back({seconds(e.utime), &e, t});
+  }
+  const bool with_truth = paired > 0;
+  double median_std_n[2];
+  for (int r = 0; r < 2; ++r) {
+    std::vector<double> stds;
+    stds.reserve(rows.size());
+    for (const Row& row : rows) {
+      if (std::isfinite(row.estimate->force_std_n[r])) stds.push_back(row.estimate->force_std_n[r]);
+    }
+    median_std_n[r] = kNaN;
+    if (stds.empty()) continue;
+    std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
+    median_std_n[r] = stds[stds.size() / 2];
+  }
+
+  // y-ranges from the data, per panel.
+  std::vector<std::pair<double, double>> force_values[2], error_values, scale_values;
+  for (const Row& row : rows) {
+    for (int r = 0; r < 2; ++r) {
+      force_values[r].emplace_back(row.estimate->force_n[r], row.t_s);
+      scale_values.emplace_back(row.estimate->thrust_scale[r], row.t_s);
+      if (row.truth == nullptr) continue;
+      force_values[r].emplace_back(row.truth->force_n[r], row.t_s);
+      scale_values.emplace_back(row.truth->thrust_scale[r], row.t_s);
+      error_values.emplace_back(row.estimate->force_n[r] - row.truth->force_n[r], row.t_s);
+    }
+  }
+  const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, " N"),
+                                 RangeOf(force_values[1], options.clip_fraction, 0.5, " N")};
+  const YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
+  YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
+  // The fault threshold is always in view, and 1.0 (healthy) too.
+  scale_range.low = std::min(scale_range.low, options.fault_thrust_scale - 0.03);
+  scale_range.high = std::max(scale_range.high, 1.03);
+
+  std::string script = fmt::format(
+      "set terminal pngcairo size {},{} noenhanced font 'sans,10'\n"
+      "set encoding utf8\nset grid\nset key at screen {:.3f}, graph 1 left top vertical Left reverse font ',9'\n"
+      "set style textbox opaque noborder\n"
+      "set multiplot title {}\n",
+      options.width_px, options.height_px, kRightEdge + 0.01,
+      GnuplotQuoted(options.title + (with_truth ? "" : "  (no TRUTH: estimates only)")));
+  const double gap_s = GapS(rows);
+  script += DataBlock(rows, gap_s);
+  script += fmt::format("set xrange [{:.6f}:{:.6f}]\n", rows.front().t_s, rows.back().t_s);
+
+  // Vertical lines in every panel (arrows persist), labels in the top panel.
+  std::vector<std::pair<double, std::string>> markers = StatusMarkers(rows);
+  AddGapMarker(rows, gap_s, &markers);
+  for (const PlotMarker& m : options.markers) {
+    markers.emplace_back(seconds(m.utime), fmt::format("{} {:.3f} s", m.label, seconds(m.utime)));
+  }
+  std::sort(markers.begin(), markers.end());
+  std::string marker_labels;
+  for (size_t k = 0; k < markers.size(); ++k) {
+    script += fmt::format(
+        "set arrow {} from first {:.6f}, graph 0 to first {:.6f}, graph 1 nohead front lw 1.5 "
+        "dt 2 lc rgb '{}'\n",
+        k + 1, markers[k].first, markers[k].first, kMarkerColor);
+    marker_labels += fmt::format(
+        "set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front boxed "
+        "textcolor rgb '{}' font ',9'\n",
+        k + 10, GnuplotQuoted(markers[k].second), markers[k].first, 0.93 - 0.085 * static_cast<double>(k % 6),
+        kMarkerColor);
+  }
+
+  const double status_height = 0.15;
+  const double scale_height = 0.17;
+  const double error_height = with_truth ? 0.17 : 0.0;
+  const double force_height = (kTopEdge - kBottomEdge - status_height - scale_height - error_height) / 2.0;
+  double top = kTopEdge;
+  for (int r = 0; r < 2; ++r) {
+    script += Panel(&top, force_height, false) + YRangeCommands(force_range[r]);
+    if (r == 0) script += marker_labels;
+    script += fmt::format(
+        "set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
+        "fs transparent solid 0.25 noborder t '±1σ, median {:.3f} N'",
+        r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r], median_std_n[r]);
+    if (with_truth) script += fmt::format(", $data u 1:{} w l lw 2 lc rgb '{}' t 'true'", 9 + r, kTrueColor);
+    script += fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r, kRotorColor[r],
+                          r + 1);
+  }
+  if (with_truth) {
+    script += Panel(&top, error_height, false) + YRangeCommands(error_range);
+    // The errors first, the ±1σ envelopes drawn over them so that they stay visible.
+    script += fmt::format(
+        "set ylabel 'error [N]'\nplot $data u 1:13 w l lc rgb '{}' t 'f1 est - true', "
+        "$data u 1:14 w l lc rgb '{}' t 'f2 est - true'",
+        kRotorColor[0], kRotorColor[1]);
+    for (int r = 0; r < 2; ++r) {
+      script += fmt::format(
+          ", $data u 1:{} w l lw 1.5 lc rgb '{}' t '±1σ f{}', $data u 1:(-${}) w l lw 1.5 lc rgb '{}' notitle", 4 + r,
+          kSigmaColor[r], r + 1, 4 + r, kSigmaColor[r]);
+    }
+    script += "\n";
+    script += "unset label\n";
+  }
+  script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
+  script += fmt::format(
+      "set ylabel 'thrust efficiency μ [1]'\nplot {:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' "
+      "t 'fault threshold {:.2f}'",
+      options.fault_thrust_scale, options.fault_thrust_scale);
+  for (int r = 0; r < 2; ++r) {
+    if (with_truth) {
+      script += fmt::format(", $data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}'", 11 + r, kTrueColor, r + 1);
+    }
+    script += fmt::format(", $data u 1:{} w l lc rgb '{}' t 'estimated μ{}'", 6 + r, kRotorColor[r], r + 1);
+  }
+  script += "\nunset label\n";
+
+  // Status strip: one row per bit, a thick line where it is set (a square
+  // for a single message, e.g. a RESET).
+  script += Panel(&top, status_height, true);
+  script += fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nunset key\nset ytics (", kStatusBitCount);
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    script += fmt::format("{}{} {}", i == 0 ? "" : ", ", GnuplotQuoted(kStatusBitNames[i].word), kStatusBitCount - i);
+  }
+  script += ") font ',8'\nunset ylabel\nplot ";
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    const bool alarm = kStatusBitNames[i].bit & kAlarmStatusBits;
+    script += fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w lp lw 5 pt 5 ps 0.3 lc rgb '{}' notitle{}",
+                          kStatusBitNames[i].bit, kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c",
+                          i + 1 < kStatusBitCount ? ", " : "\n");
+  }
+  script += "unset multiplot\n";
+  return script;
+}
 
 bool WriteForcePlot(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
-                    const std::string& title, const std::string& png_path, std::string* error) {
-  std::unordered_map<int64_t, size_t> truth_index;
-  for (size_t i = 0; i < truth.size(); ++i) truth_index[truth[i].utime] = i;
-  const std::string data_path = png_path + ".dat";
-  const std::string script_path = png_path + ".gp";
-  std::FILE* data = std::fopen(data_path.c_str(), "w");
-  if (data == nullptr) {
-    *error = "cannot write " + data_path;
+                    const ForcePlotOptions& options, const std::string& png_path, std::string* error) {
+  if (forces.empty()) {
+    *error = "no FORCE message to plot";
     return false;
   }
-  std::fprintf(data, "# t_s f1_est f2_est f1_true f2_true err1 err2 std1 std2\n");
-  int64_t rows = 0;
-  for (const ForceEstimate& e : forces) {
-    auto it = truth_index.find(e.utime);
-    if (it == truth_index.end()) continue;
-    const TruthSample& t = truth[it->second];
-    std::fprintf(data, "%.6f %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", static_cast<double>(e.utime) * 1e-6,
-                 e.force_n[0], e.force_n[1], t.force_n[0], t.force_n[1], e.force_n[0] - t.force_n[0],
-                 e.force_n[1] - t.force_n[1], e.force_std_n[0], e.force_std_n[1]);
-    ++rows;
-  }
-  std::fclose(data);
-  if (rows == 0) {
-    *error = "no FORCE message pairs with a TRUTH message by utime";
-    return false;
-  }
-  // gnuplot draws into a temporary file next to the PNG, renamed on success.
-  OutputFile png;
-  if (!png.Open(png_path, error)) return false;
-  std::FILE* script = std::fopen(script_path.c_str(), "w");
-  if (script == nullptr) {
-    *error = "cannot write " + script_path;
-    return false;
-  }
-  std::fprintf(script,
-               "set terminal pngcairo size 1200,1000 noenhanced font ',10'\n"
-               "set output '%s'\n"
-               "set multiplot layout 3,1 title '%s'\n"
-               "set grid\nset key top right\n"
-               "set ylabel 'f1 [N]'\n"
-               "plot '%s' u 1:4 w l lw 2 lc rgb '#404040' t 'true', "
-               "'' u 1:2 w l lc rgb '#d62728' t 'estimated'\n"
-               "set ylabel 'f2 [N]'\n"
-               "plot '%s' u 1:5 w l lw 2 lc rgb '#404040' t 'true', "
-               "'' u 1:3 w l lc rgb '#1f77b4' t 'estimated'\n"
-               "set ylabel 'error [N]'\nset xlabel 't [s]'\n"
-               "plot '%s' u 1:6 w l lc rgb '#d62728' t 'f1 est - true', "
-               "'' u 1:7 w l lc rgb '#1f77b4' t 'f2 est - true'\n"
-               "unset multiplot\n",
-               png.write_path().c_str(), title.c_str(), data_path.c_str(), data_path.c_str(), data_path.c_str());
-  std::fclose(script);
-  const std::string command = "gnuplot '" + script_path + "'";
-  if (std::system(command.c_str()) != 0) {
-    *error = "gnuplot failed on " + script_path + " (is gnuplot with pngcairo installed?)";
-    return false;
-  }
-  return png.Commit(error);
+  return RenderGnuplotPng(ForcePlotScript(forces, truth, options), png_path, error);
 }
 
 }  // namespace birotor

@@ -33,6 +33,7 @@ struct SimOptions {
   std::string output;                    // log file (offline mode); empty: live on LCM
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
+  bool no_truth = false;                 // do not publish TRUTH (stands in for a real vehicle)
 };
 
 // Converts each sample to its wire type and hands it to Publish(channel, utime, msg).
@@ -58,7 +59,7 @@ int64_t WallClockMicroseconds() {
 }
 
 // Offline: every sample into the log, as fast as possible.
-bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path) {
+bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
   // A temporary file next to path, renamed when the log is complete.
   LogWriter writer;
   std::string error;
@@ -68,6 +69,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   }
   bool write_failed = false;
   auto publish = [&](const std::string& channel, int64_t utime, const auto& message) {
+    if (!publish_truth && channel == channels.truth) return;
     if (!writer.WriteMessage(channel, utime, message)) write_failed = true;
   };
   WireSink<decltype(publish)> sink(channels, publish);
@@ -87,7 +89,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
 }
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& url, double speed) {
+bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& url, double speed, bool publish_truth) {
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(url, &error);
   if (!lcm) {
@@ -96,6 +98,7 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& ur
   }
   int64_t publish_failures = 0;
   auto publish = [&](const std::string& channel, int64_t /*utime*/, const auto& message) {
+    if (!publish_truth && channel == channels.truth) return;
     if (lcm->publish(channel, &message) != 0) ++publish_failures;
   };
   WireSink<decltype(publish)> sink(channels, publish);
@@ -126,6 +129,8 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 1e6));
   app.add_flag("--wall-clock", options.wall_clock,
                "Stamp samples with the wall clock instead of simulated time from 0");
+  app.add_flag("--no-truth", options.no_truth,
+               "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -162,8 +167,9 @@ int Main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
 
   const auto start = std::chrono::steady_clock::now();
-  const bool ok = options.output.empty() ? RunLive(&sim, channels, options.common.lcm_url, options.speed)
-                                         : RunOffline(&sim, channels, options.output);
+  const bool ok = options.output.empty()
+                      ? RunLive(&sim, channels, options.common.lcm_url, options.speed, !options.no_truth)
+                      : RunOffline(&sim, channels, options.output, !options.no_truth);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const ChannelCounts& n = sim.emitted();

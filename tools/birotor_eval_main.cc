@@ -120,7 +120,11 @@ int main(int argc, char** argv) {
           strain.rejected_invalid, strain.out_of_order, strain.duplicates, strain.gaps, run.health.resets);
       if (!plot_dir.empty()) {
         const std::string png = plot_dir + "/" + label + "_" + method + ".png";
-        if (!WriteForcePlot(run.forces, run.truth, label + " - " + method, png, &error)) {
+        ForcePlotOptions plot;
+        plot.title = label + " - " + method;
+        plot.fault_thrust_scale = config.ekf.fault_thrust_scale;
+        if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
+        if (!WriteForcePlot(run.forces, run.truth, plot, png, &error)) {
           std::fprintf(stderr, "birotor-eval: error: plot %s: %s\n", png.c_str(), error.c_str());
           exit_code = 1;
         }

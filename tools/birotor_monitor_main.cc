@@ -1,11 +1,15 @@
-// birotor-monitor: a compact live view of a running simulator and estimator
-// (TRUTH, FORCE, ESTIMATOR_STATUS), and at the end the error figures of
-// birotor-eval over every FORCE/TRUTH pair it received, plus an optional PNG.
+// birotor-monitor: a compact live view of a running estimator (FORCE,
+// ESTIMATOR_STATUS) and, with a simulator, of its TRUTH; at the end the error
+// figures of birotor-eval over every FORCE/TRUTH pair it received, or without
+// TRUTH (a real vehicle, --no-truth or none within --truth-wait-s) a summary of
+// the FORCE stream and the estimator's health; plus an optional PNG.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -29,14 +33,18 @@ struct MonitorOptions {
   std::string scenario_file;      // for the progress target and the table label; optional
   std::string label;              // scenario column of the table; default: scenario name or "live"
   double duration_s = 0;          // stop after this much vehicle time [s]; 0: no limit
-  bool until_sim_ends = false;    // stop when TRUTH has been silent for idle_s
+  bool until_sim_ends = false;    // stop when TRUTH (FORCE without truth) has been silent for idle_s
   double idle_s = 1.0;            // [s]
-  double startup_timeout_s = 30;  // give up if no TRUTH arrives within this [s]
-  double interval_s = 0;          // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
-  bool plain = false;             // one plain line per refresh even on a terminal
-  bool quiet = false;             // no live view, final figures only
-  std::string png;                // plot file; empty: none
-  bool markdown = false;          // print birotor-eval's Markdown table too
+  double startup_timeout_s = 30;  // give up if neither TRUTH nor FORCE arrives within this [s]
+  bool no_truth = false;          // vehicle view from FORCE and ESTIMATOR_STATUS only
+  double truth_wait_s = 3.0;      // FORCE but no TRUTH for this long: vehicle view [s]
+  double stale_age_s = 0.1;       // an input older than this shows as stale [s]
+  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;  // threshold line in view and plot [1]
+  double interval_s = 0;                                        // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
+  bool plain = false;                                           // one plain line per refresh even on a terminal
+  bool quiet = false;                                           // no live view, final figures only
+  std::string png;                                              // plot file; empty: none
+  bool markdown = false;                                        // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
 
@@ -66,8 +74,8 @@ bool CheckWritable(const std::string& path, std::string* error) {
 int Main(int argc, char** argv) {
   MonitorOptions options;
   CLI::App app{
-      "birotor-monitor: live view of TRUTH, FORCE and ESTIMATOR_STATUS, then the error "
-      "figures of birotor-eval over what was received"};
+      "birotor-monitor: live view of FORCE and ESTIMATOR_STATUS (and TRUTH from a simulator), then the error "
+      "figures of birotor-eval over what was received, or without TRUTH a summary of the estimates and health"};
   AddCommonOptions(app, &options.common);
   app.add_option("--scenario", options.scenario_file,
                  "Scenario file the simulator runs (progress target and table label)")
@@ -76,16 +84,30 @@ int Main(int argc, char** argv) {
   app.add_option("--duration-s", options.duration_s, "Stop after this much vehicle time (0: no limit) [s]")
       ->check(CLI::Range(0.0, 1e6));
   app.add_flag("--until-sim-ends", options.until_sim_ends,
-               "Stop when TRUTH has been silent for --idle-s after the first one");
-  app.add_option("--idle-s", options.idle_s, "Silence that means the simulator ended [s]")
+               "Stop when TRUTH (FORCE without truth) has been silent for --idle-s after the first one");
+  app.add_option("--idle-s", options.idle_s, "Silence that means the simulator (or vehicle) stopped [s]")
       ->check(CLI::Range(0.05, 60.0));
-  app.add_option("--startup-timeout-s", options.startup_timeout_s, "Fail if no TRUTH arrives within this [s]")
+  app.add_option("--startup-timeout-s", options.startup_timeout_s,
+                 "Fail if neither TRUTH nor FORCE arrives within this [s]")
       ->check(CLI::Range(0.1, 3600.0));
+  app.add_flag("--no-truth", options.no_truth,
+               "Vehicle view: FORCE and ESTIMATOR_STATUS only, never wait for TRUTH (a real vehicle)");
+  app.add_option("--truth-wait-s", options.truth_wait_s,
+                 "FORCE arrives but no TRUTH within this: switch to the vehicle view, said on screen [s]")
+      ->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--stale-age-s", options.stale_age_s,
+                 "Show an input as STALE when its newest sample is older than this (vehicle clock) [s]")
+      ->check(CLI::Range(1e-3, 3600.0));
+  app.add_option("--fault-thrust-scale", options.fault_thrust_scale,
+                 "Rotor-fault threshold on thrust efficiency shown in the view and plot (the estimator's "
+                 "ekf.fault_thrust_scale) [1]")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--interval-s", options.interval_s, "View refresh period (0: 0.2 on a terminal, 1 otherwise) [s]")
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--plain", options.plain, "One plain line per refresh, even on a terminal");
   app.add_flag("--quiet", options.quiet, "No live view; final figures only");
-  app.add_option("--png", options.png, "Write the force plot (estimated vs true, errors) to this PNG");
+  app.add_option("--png", options.png,
+                 "Write the force plot (estimates with 1 sigma, truth, errors, thrust efficiency, flags) to this PNG");
   app.add_flag("--markdown", options.markdown, "Also print the figures as birotor-eval's Markdown table");
   app.add_option("--warmup-s", options.eval.warmup_s, "Unscored start-up time, as birotor-eval [s]")
       ->check(CLI::Range(0.0, 100.0));
@@ -131,14 +153,28 @@ int Main(int argc, char** argv) {
   const bool terminal = isatty(STDOUT_FILENO) && !options.plain && !options.quiet;
   const double interval_s = options.interval_s > 0 ? options.interval_s : (terminal ? 0.2 : 1.0);
   const double start_s = SteadyNowS();
-  double last_truth_arrival_s = start_s;
-  size_t last_truth_count = 0;
+  double last_arrival_s = start_s;  // of the clock stream: TRUTH, or FORCE without truth
+  size_t last_clock_count = 0;
+  double first_force_s = -1;
   double last_view_s = start_s;
   size_t last_view_forces = 0;
+  int64_t last_view_status = 0;
   bool view_drawn = false;
   bool timed_out = false;
   ViewContext context;
   context.scenario_duration_s = scenario_duration_s;
+  context.truth_expected = !options.no_truth;
+  context.stale_age_s = options.stale_age_s;
+  context.fault_thrust_scale = options.fault_thrust_scale;
+  // A notice printed once above the live view (it scrolls with plain lines).
+  const auto notice = [&](const std::string& text) {
+    if (options.quiet) return;
+    if (terminal && view_drawn) std::printf("\x1b[%dA", kTerminalViewLines);
+    std::printf("%s%s\n", terminal ? "\x1b[K" : "", text.c_str());
+    view_drawn = false;  // the view is drawn again below the notice
+    std::fflush(stdout);
+  };
+  if (options.no_truth) notice("birotor-monitor: vehicle view (--no-truth): FORCE and ESTIMATOR_STATUS only");
 
   while (!ShutdownRequested()) {
     if (HandleFor(*lcm, 0.05) < 0 && !ShutdownRequested() && errno != EINTR) {
@@ -146,17 +182,28 @@ int Main(int argc, char** argv) {
       break;
     }
     const double now_s = SteadyNowS();
-    if (collector.truth().size() != last_truth_count) {
-      last_truth_count = collector.truth().size();
-      last_truth_arrival_s = now_s;
+    if (first_force_s < 0 && collector.has_force()) first_force_s = now_s;
+    if (context.truth_expected && !collector.has_truth() && first_force_s >= 0 &&
+        now_s - first_force_s >= options.truth_wait_s) {
+      context.truth_expected = false;
+      notice(fmt::format("birotor-monitor: no {} within {:.1f} s of the first FORCE: vehicle view from {} and {} only",
+                         channels.truth, options.truth_wait_s, channels.force, channels.estimator_status));
     }
-    if (!collector.has_truth() && now_s - start_s > options.startup_timeout_s) {
+    const size_t clock_count = context.truth_expected ? collector.truth().size() : collector.forces().size();
+    if (clock_count != last_clock_count) {
+      last_clock_count = clock_count;
+      last_arrival_s = now_s;
+    }
+    if (!collector.has_truth() && !collector.has_force() && now_s - start_s > options.startup_timeout_s) {
       timed_out = true;
       break;
     }
     if (now_s - last_view_s >= interval_s) {
       context.force_rate_hz = static_cast<double>(collector.forces().size() - last_view_forces) / (now_s - last_view_s);
+      context.status_rate_hz =
+          static_cast<double>(collector.status_messages() - last_view_status) / (now_s - last_view_s);
       last_view_forces = collector.forces().size();
+      last_view_status = collector.status_messages();
       last_view_s = now_s;
       if (terminal) {
         if (view_drawn) std::printf("\x1b[%dA", kTerminalViewLines);
@@ -167,11 +214,9 @@ int Main(int argc, char** argv) {
       }
       std::fflush(stdout);
     }
-    if (collector.has_truth()) {
-      const double vehicle_s =
-          static_cast<double>(collector.latest_truth().utime - collector.truth().front().utime) * 1e-6;
-      if (options.duration_s > 0 && vehicle_s >= options.duration_s) break;
-      if (options.until_sim_ends && now_s - last_truth_arrival_s >= options.idle_s) break;
+    if (clock_count > 0) {
+      if (options.duration_s > 0 && ElapsedS(collector) >= options.duration_s) break;
+      if (options.until_sim_ends && now_s - last_arrival_s >= options.idle_s) break;
     }
   }
   lcm.reset();  // no more packets from here on
@@ -180,41 +225,54 @@ int Main(int argc, char** argv) {
     std::fputs(TerminalView(collector, context).c_str(), stdout);
   }
   if (timed_out) {
-    std::fprintf(stderr, "birotor-monitor: error: no %s received on %s within %.1f s (is the simulator running?)\n",
-                 channels.truth.c_str(), options.common.lcm_url.c_str(), options.startup_timeout_s);
+    std::fprintf(stderr,
+                 "birotor-monitor: error: neither %s nor %s received on %s within %.1f s (are birotor-estimator "
+                 "and the vehicle or simulator running?)\n",
+                 channels.force.c_str(), channels.truth.c_str(), options.common.lcm_url.c_str(),
+                 options.startup_timeout_s);
     return 1;
   }
 
-  const EvalResult result = collector.Evaluate(options.eval);
-  const MonitorHealth& health = collector.health();
-  const std::string method = health.received ? health.method : std::string("unknown");
+  const std::string method = collector.has_status() ? collector.latest_status().method : std::string("unknown");
   std::printf("received: TRUTH %zu (gaps %lld), FORCE %zu, ESTIMATOR_STATUS %lld, decode errors %lld\n",
               collector.truth().size(), static_cast<long long>(collector.truth_gaps()), collector.forces().size(),
               static_cast<long long>(collector.status_messages()), static_cast<long long>(collector.decode_errors()));
-  std::printf("error figures (%s, %s; as birotor-eval):\n%s", label.c_str(), method.c_str(),
-              SummaryText(result).c_str());
-  if (!collector.fault_utimes().empty() || collector.truth_gaps() > 0) {
-    // Live UDP can drop packets on a busy machine; birotor-eval never does.
-    std::printf(
-        "note: %zu FORCE seq discontinuities or resets, %lld TRUTH gaps: input faults, or packets "
-        "lost on the way to this monitor; the latter make the figures differ slightly from birotor-eval's\n",
-        collector.fault_utimes().size(), static_cast<long long>(collector.truth_gaps()));
+  bool ok = true;
+  EvalResult result;
+  if (collector.has_truth()) {
+    result = collector.Evaluate(options.eval);
+    std::printf("error figures (%s, %s; as birotor-eval):\n%s", label.c_str(), method.c_str(),
+                SummaryText(result).c_str());
+    if (options.markdown) {
+      std::printf("%s%s", MarkdownTableHeader().c_str(), MarkdownTableRow(label, method, result).c_str());
+    }
+    if (result.paired == 0) {
+      std::fprintf(
+          stderr,
+          "birotor-monitor: error: no FORCE message could be paired with TRUTH (is birotor-estimator running?)\n");
+      ok = false;
+    }
+  } else {
+    std::printf("vehicle summary (%s, %s; no TRUTH, so no errors):\n%s", label.c_str(), method.c_str(),
+                VehicleSummaryText(collector).c_str());
+    if (!collector.has_force()) {
+      std::fprintf(stderr, "birotor-monitor: error: no %s received (is birotor-estimator running?)\n",
+                   channels.force.c_str());
+      ok = false;
+    }
   }
-  if (options.markdown) {
-    std::printf("%s%s", MarkdownTableHeader().c_str(), MarkdownTableRow(label, method, result).c_str());
-  }
+  const std::string note = DeliveryNote(collector);
+  if (!note.empty()) std::printf("note: %s\n", note.c_str());
   std::fflush(stdout);
 
-  bool ok = true;
-  if (result.paired == 0) {
-    std::fprintf(
-        stderr,
-        "birotor-monitor: error: no FORCE message could be paired with TRUTH (is birotor-estimator running?)\n");
-    ok = false;
-  }
-  if (!options.png.empty() && result.paired > 0) {
-    if (WriteForcePlot(collector.forces(), collector.truth(), label + " - " + method + " (live)", options.png,
-                       &error)) {
+  if (!options.png.empty() && collector.has_force()) {
+    ForcePlotOptions plot;
+    plot.title = label + " - " + method + " (live)";
+    plot.fault_thrust_scale = options.fault_thrust_scale;
+    if (result.step_rotor != 0) {
+      plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
+    }
+    if (WriteForcePlot(collector.forces(), collector.truth(), plot, options.png, &error)) {
       std::printf("plot: %s\n", options.png.c_str());
     } else {
       std::fprintf(stderr, "birotor-monitor: error: plot %s: %s\n", options.png.c_str(), error.c_str());

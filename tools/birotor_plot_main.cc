@@ -1,10 +1,13 @@
-// birotor-plot: PNG of estimated versus true rotor force and the error over
-// time from a log holding FORCE and TRUTH (the output of birotor-replay).
+// birotor-plot: PNG of a log holding FORCE (the output of birotor-replay or a
+// flight): estimated rotor forces with 1 sigma, against TRUTH and with the
+// error when the log has it, thrust efficiency with the fault threshold, and
+// the status flags with their first times (plot/force_plot.h).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
 #include <string>
 
+#include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
 #include "plot/force_plot.h"
 #include "transport/log_io.h"
@@ -14,13 +17,17 @@
 
 int main(int argc, char** argv) {
   using namespace birotor;
-  CLI::App app{"birotor-plot: estimated vs true rotor force (thesis figures 5.1, 5.2)"};
+  CLI::App app{"birotor-plot: estimated (and true) rotor force, thrust efficiency and flags (thesis figures 5.1, 5.2)"};
   CommonOptions common;
   AddCommonOptions(app, &common);
-  std::string log_path, png_path, title;
-  app.add_option("--log", log_path, "LCM log with FORCE and TRUTH (birotor-replay output)")->required();
-  app.add_option("--png", png_path, "PNG file to write")->required();
-  app.add_option("--title", title, "Plot title (default: the log name)");
+  std::string log_path, png_path;
+  ForcePlotOptions plot;
+  app.add_option("--log", log_path, "LCM log with FORCE, and TRUTH if simulated (birotor-replay output)")->required();
+  app.add_option("--png", png_path, "PNG file to write (temporary file + rename)")->required();
+  app.add_option("--title", plot.title, "Plot title (default: the log name)");
+  app.add_option("--fault-thrust-scale", plot.fault_thrust_scale,
+                 "Rotor-fault threshold line on thrust efficiency (the estimator's ekf.fault_thrust_scale) [1]")
+      ->check(CLI::Range(0.0, 1.0));
   double min_usable_fraction = kDefaultMinUsableLogFraction;
   app.add_option("--min-usable-fraction", min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
@@ -46,7 +53,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!damage.empty()) spdlog::warn("{}", damage);
-  if (!WriteForcePlot(collector.forces, collector.truth, title.empty() ? log_path : title, png_path, &error)) {
+  if (plot.title.empty()) plot.title = log_path;
+  if (!collector.truth.empty()) {
+    const EvalResult result = Evaluate(collector.forces, collector.truth, {}, EvalOptions{});
+    if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
+  }
+  if (!WriteForcePlot(collector.forces, collector.truth, plot, png_path, &error)) {
     std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
     return 1;
   }

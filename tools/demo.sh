@@ -27,6 +27,9 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
                       the demo's channels; the 2 MB receive buffer rides out scheduling
                       stalls on a busy machine, up to the kernel's net.core.rmem_max)
   --out DIR           output folder for the PNG and the process logs (default: out)
+  --no-truth          the simulator publishes no TRUTH, as a real vehicle: the monitor shows
+                      its vehicle view (estimates with 1 sigma, flags, input health) and a
+                      summary instead of the error figures
   --no-setup          skip tools/setup.sh (no install, no build); use the existing build
   -h, --help          this help
 
@@ -45,6 +48,7 @@ method=""
 lcm_url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"
 out_dir="out"
 run_setup=1
+no_truth=0
 scenario_given=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -58,6 +62,7 @@ while [ $# -gt 0 ]; do
     --out) [ $# -ge 2 ] || die_usage "--out needs a value"; out_dir="$2"; shift 2 ;;
     --out=*) out_dir="${1#*=}"; shift ;;
     --no-setup) run_setup=0; shift ;;
+    --no-truth) no_truth=1; shift ;;
     -*) die_usage "unknown option $1" ;;
     *) [ "$scenario_given" -eq 0 ] || die_usage "more than one scenario given ($scenario, $1)"
        scenario="$1"; scenario_given=1; shift ;;
@@ -152,12 +157,18 @@ estimator_pid=$!
 wait_for_log birotor-estimator "$estimator_pid" "$log_prefix-estimator.log" "lcm .*: in " 20
 
 # The monitor's stdout is this terminal (live view) or the CI log (plain lines).
-"$monitor_bin" --lcm-url "$lcm_url" --scenario "$scenario_file" --label "$scenario" --until-sim-ends \
-  --idle-s 1.5 --startup-timeout-s 30 --png "$png" --markdown 2> "$log_prefix-monitor.log" &
+monitor_args=(--lcm-url "$lcm_url" --scenario "$scenario_file" --label "$scenario" --until-sim-ends
+  --idle-s 1.5 --startup-timeout-s 30 --png "$png" --markdown)
+sim_args=(--scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed")
+if [ "$no_truth" -eq 1 ]; then
+  monitor_args+=(--no-truth)
+  sim_args+=(--no-truth)
+fi
+"$monitor_bin" "${monitor_args[@]}" 2> "$log_prefix-monitor.log" &
 monitor_pid=$!
 wait_for_log birotor-monitor "$monitor_pid" "$log_prefix-monitor.log" "listening on" 20
 
-"$sim_bin" --scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed" > "$log_prefix-sim.log" 2>&1 &
+"$sim_bin" "${sim_args[@]}" > "$log_prefix-sim.log" 2>&1 &
 sim_pid=$!
 
 status=0
@@ -187,6 +198,6 @@ fi
 if [ "$status" -eq 0 ]; then
   echo "demo: done. Plot: $png"
   eval_bin="$(find "$build_dir" -name birotor-eval -type f -perm -u+x 2>/dev/null | head -n 1)"
-  [ -z "$eval_bin" ] || echo "demo: same figures in-process: ${eval_bin#"$repo/"} --scenarios $scenario --methods ${method:-$(awk '/^[[:space:]]*method:/ {print $2; exit}' config/estimator.yaml)}"
+  [ -z "$eval_bin" ] || [ "$no_truth" -eq 1 ] || echo "demo: same figures in-process: ${eval_bin#"$repo/"} --scenarios $scenario --methods ${method:-$(awk '/^[[:space:]]*method:/ {print $2; exit}' config/estimator.yaml)}"
 fi
 exit "$status"

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "evaluation/eval_runner.h"
+#include "monitor/monitor_view.h"
 #include "params/estimator_config_yaml.h"
 #include "services/estimator_service.h"
 #include "simulator/scenario_yaml.h"
@@ -93,6 +94,11 @@ TEST(MonitorCollectorTest, InfersFaultsFromSeqJumpsAndResets) {
   Feed(&collector, channels.force, ToMessage(Estimate(4000, -2147483647 + 1, 1, 1)));  // one missing
   Feed(&collector, channels.force, ToMessage(Estimate(5000, -2147483647 + 2, 1, 1, kStatusFilterReset)));
   EXPECT_EQ(collector.fault_utimes(), (std::vector<int64_t>{4000, 5000}));
+  EXPECT_EQ(collector.force_stats().seq_gaps, 1);
+  EXPECT_EQ(collector.force_stats().seq_missing, 1);
+  EXPECT_EQ(collector.force_stats().resets_after_start, 1);
+  EXPECT_EQ(collector.rises(kStatusFilterReset).count, 1);
+  EXPECT_EQ(collector.rises(kStatusFilterReset).first_utime, 5000);
 
   // TRUTH at 1 kHz with one lost packet; other prefixes are ignored.
   for (int64_t utime : {0, 1000, 2000, 4000, 5000}) {
@@ -106,7 +112,7 @@ TEST(MonitorCollectorTest, InfersFaultsFromSeqJumpsAndResets) {
 TEST(MonitorCollectorTest, KeepsNewestEstimatorHealth) {
   const ChannelNames channels = MakeChannelNames();
   MonitorCollector collector(channels, 1.0);
-  EXPECT_FALSE(collector.health().received);
+  EXPECT_FALSE(collector.has_status());
   estimator_status_t status{};
   status.method = "ekf";
   status.num_inputs = 2;
@@ -122,26 +128,45 @@ TEST(MonitorCollectorTest, KeepsNewestEstimatorHealth) {
   status.resets = 4;
   status.last_reset_reason = "gap";
   Feed(&collector, channels.estimator_status, status);
-  const MonitorHealth& health = collector.health();
-  ASSERT_TRUE(health.received);
-  EXPECT_EQ(health.method, "ekf");
-  EXPECT_EQ(health.strain_received, 100);
-  EXPECT_EQ(health.strain_fused, 97);
-  EXPECT_EQ(health.strain_faults, 3);
-  EXPECT_EQ(health.dropped_overload, 3);
-  EXPECT_EQ(health.resets, 4);
+  ASSERT_TRUE(collector.has_status());
+  EXPECT_EQ(collector.latest_status().method, "ekf");
+  EXPECT_EQ(collector.latest_status().resets, 4);
+  ASSERT_NE(collector.input("STRAIN"), nullptr);
+  EXPECT_EQ(collector.input("STRAIN")->received, 100);
+  EXPECT_EQ(collector.input("STRAIN")->fused, 97);
+  EXPECT_EQ(collector.input("STRAIN")->dropped_overload, 3);
+  EXPECT_EQ(collector.input("MOTOR")->received, 50);
+  EXPECT_EQ(collector.input("IMU"), nullptr);
   EXPECT_EQ(collector.status_messages(), 1);
+}
+
+// issue 14: a perfect run starts with the estimator's FILTER_RESET (reason
+// "start"); that is neither a loss nor a fault.
+TEST(MonitorCollectorTest, StartUpResetIsNeitherALossNorAnAlarm) {
+  const ChannelNames channels = MakeChannelNames();
+  MonitorCollector collector(channels, 1.0);
+  Feed(&collector, channels.force, ToMessage(Estimate(0, 0, 1, 1, kStatusFilterReset | kStatusConverging)));
+  for (int k = 1; k < 100; ++k) Feed(&collector, channels.force, ToMessage(Estimate(1000 * k, k, 1, 1)));
+  EXPECT_EQ(collector.force_stats().resets_after_start, 0);
+  EXPECT_EQ(collector.force_stats().seq_gaps, 0);
+  EXPECT_EQ(collector.rises(kStatusFilterReset).count, 0);
+  EXPECT_EQ(collector.rises(kStatusValid).count, 1);  // VALID rose at 1 ms
+  EXPECT_EQ(collector.rises(kStatusValid).first_utime, 1000);
+  EXPECT_EQ(collector.force_stats().valid, 99);
 }
 
 // Publishes every simulated sample on LCM, as birotor-sim does live.
 class LcmPublishingSink : public SampleSink {
  public:
-  LcmPublishingSink(lcm::LCM* lcm, const ChannelNames& channels) : lcm_(lcm), channels_(channels) {}
+  LcmPublishingSink(lcm::LCM* lcm, const ChannelNames& channels, bool publish_truth = true)
+      : lcm_(lcm), channels_(channels), publish_truth_(publish_truth) {}
   void OnStrain(const StrainSample& s) override { Publish(channels_.strain, ToMessage(s)); }
   void OnMotor(const MotorSample& s) override { Publish(channels_.motor, ToMessage(s)); }
   void OnImu(const ImuSample& s) override { Publish(channels_.imu, ToMessage(s)); }
   void OnPose(const PoseSample& s) override { Publish(channels_.pose, ToMessage(s)); }
-  void OnTruth(const TruthSample& s) override { Publish(channels_.truth, ToMessage(s)); }
+  void OnTruth(const TruthSample& s) override {
+    if (publish_truth_) Publish(channels_.truth, ToMessage(s));
+  }
 
  private:
   template <class Msg>
@@ -150,11 +175,40 @@ class LcmPublishingSink : public SampleSink {
   }
   lcm::LCM* lcm_;
   const ChannelNames& channels_;
+  bool publish_truth_;
 };
 
 void Drain(lcm::LCM* lcm) {
   while (lcm->handleTimeout(0) > 0) {
   }
+}
+
+// Simulator -> estimator daemon -> collector over memq:// (in order, nothing
+// lost), with ESTIMATOR_STATUS on the vehicle clock; TRUTH only if publish_truth.
+void FlyOverMemq(const Scenario& scenario, const EstimatorConfig& config, bool publish_truth,
+                 MonitorCollector* collector) {
+  lcm::LCM lcm("memq://");
+  ASSERT_TRUE(lcm.good());
+  const ChannelNames channels = MakeChannelNames();
+  LcmSink daemon_output(&lcm);
+  EstimatorService daemon(config, channels, EstimatorServiceOptions{}, &daemon_output);
+  daemon.Subscribe(&lcm);
+  for (const std::string* channel : {&channels.truth, &channels.force, &channels.estimator_status}) {
+    lcm.subscribeFunction(
+        *channel,
+        +[](const lcm::ReceiveBuffer* buffer, const std::string& name, MonitorCollector* c) {
+          c->HandlePacket(name, buffer->data, buffer->data_size);
+        },
+        collector);
+  }
+  LcmPublishingSink sink(&lcm, channels, publish_truth);
+  Simulator simulator(scenario);
+  while (simulator.Step(&sink)) {
+    Drain(&lcm);
+    daemon.PublishStatusOnVehicleClock();
+  }
+  Drain(&lcm);
+  daemon.Unsubscribe();
 }
 
 // The demo's claim: simulator, daemon and monitor connected by LCM give the
@@ -165,26 +219,8 @@ TEST(MonitorCollectorTest, FiguresOverLcmEqualBirotorEval) {
       LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml", {"scenario.duration_s=1.5"});
   const EstimatorConfig config = LoadEstimatorConfig(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
 
-  lcm::LCM lcm("memq://");
-  ASSERT_TRUE(lcm.good());
-  const ChannelNames channels = MakeChannelNames();
-  LcmSink daemon_output(&lcm);
-  EstimatorService daemon(config, channels, EstimatorServiceOptions{}, &daemon_output);
-  daemon.Subscribe(&lcm);
-  MonitorCollector collector(channels, scenario.duration_s);
-  for (const std::string* channel : {&channels.truth, &channels.force}) {
-    lcm.subscribeFunction(
-        *channel,
-        +[](const lcm::ReceiveBuffer* buffer, const std::string& name, MonitorCollector* c) {
-          c->HandlePacket(name, buffer->data, buffer->data_size);
-        },
-        &collector);
-  }
-  LcmPublishingSink sink(&lcm, channels);
-  Simulator simulator(scenario);
-  while (simulator.Step(&sink)) Drain(&lcm);
-  Drain(&lcm);
-  daemon.Unsubscribe();
+  MonitorCollector collector(MakeChannelNames(), scenario.duration_s);
+  FlyOverMemq(scenario, config, /*publish_truth=*/true, &collector);
 
   const EvalRun eval = RunSimulatedScenario(scenario, config);
   ASSERT_EQ(collector.forces().size(), eval.forces.size());
@@ -199,6 +235,42 @@ TEST(MonitorCollectorTest, FiguresOverLcmEqualBirotorEval) {
   const EvalResult reference = Evaluate(eval.forces, eval.truth, eval.stats.strain_fault_utimes, options);
   EXPECT_GT(monitor.paired, 1400);
   EXPECT_EQ(MarkdownTableRow("gentle", config.method, monitor), MarkdownTableRow("gentle", config.method, reference));
+}
+
+// issue 14 item 3: a real vehicle has no TRUTH. Simulator (TRUTH switched
+// off) -> estimator daemon -> monitor over memq://: the monitor holds every
+// FORCE the in-process run makes, the estimator's health, and calls a clean
+// run clean.
+TEST(MonitorCollectorTest, VehicleViewOverLcmWithoutTruth) {
+  const Scenario scenario =
+      LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml", {"scenario.duration_s=1.5"});
+  const EstimatorConfig config = LoadEstimatorConfig(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+
+  MonitorCollector collector(MakeChannelNames(), scenario.duration_s);
+  FlyOverMemq(scenario, config, /*publish_truth=*/false, &collector);
+
+  const EvalRun eval = RunSimulatedScenario(scenario, config);
+  EXPECT_FALSE(collector.has_truth());
+  ASSERT_EQ(collector.forces().size(), eval.forces.size());
+  int64_t valid = 0;
+  for (size_t i = 0; i < eval.forces.size(); ++i) {
+    ASSERT_EQ(collector.forces()[i].force_n[1], eval.forces[i].force_n[1]) << i;
+    ASSERT_EQ(collector.forces()[i].force_std_n[1], eval.forces[i].force_std_n[1]) << i;
+    valid += (eval.forces[i].status & kStatusValid) != 0;
+  }
+  EXPECT_EQ(collector.force_stats().valid, valid);
+  // 1.5 s at the vehicle-clock status rate of 5 Hz (EstimatorServiceOptions).
+  EXPECT_GE(collector.status_messages(), 7);
+  ASSERT_NE(collector.input("STRAIN"), nullptr);
+  // The newest status is at most one 5 Hz period (200 strain samples at 1 kHz) old.
+  EXPECT_LE(collector.input("STRAIN")->received, static_cast<int64_t>(eval.forces.size()));
+  EXPECT_GE(collector.input("STRAIN")->received, static_cast<int64_t>(eval.forces.size()) - 200);
+  EXPECT_EQ(collector.force_stats().seq_gaps, 0);
+  EXPECT_EQ(collector.force_stats().resets_after_start, 0);
+  EXPECT_EQ(DeliveryNote(collector), "");  // a perfect run has nothing to excuse
+  const std::string summary = VehicleSummaryText(collector);
+  EXPECT_NE(summary.find("FORCE " + std::to_string(eval.forces.size()) + " messages"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("estimator ekf"), std::string::npos) << summary;
 }
 
 }  // namespace

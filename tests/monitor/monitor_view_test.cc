@@ -1,5 +1,6 @@
 // birotor-monitor's text: status words, progress bar, the plain line and the
-// terminal block (fixed line count, so the redraw lands in place).
+// terminal block (fixed line count, so the redraw lands in place), with and
+// without TRUTH, and the closing words.
 #include "monitor/monitor_view.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +15,7 @@
 namespace birotor {
 namespace {
 
-TEST(MonitorViewTest, StatusWords) {
+TEST(MonitorViewTest, StatusWords) {  // plot/status_words.h, shared with the plots
   EXPECT_EQ(StatusWords(0), "none");
   EXPECT_EQ(StatusWords(kStatusValid), "VALID");
   EXPECT_EQ(StatusWords(kStatusConverging | kStatusNoMotorInput), "CONVERGING|NO_MOTOR");
@@ -70,14 +71,102 @@ TEST(MonitorViewTest, LinesShowTruthEstimateAndStatus) {
   EXPECT_EQ(line.find('\x1b'), std::string::npos);
   EXPECT_NE(line.find("t=  5.00/10.00 s"), std::string::npos) << line;
   EXPECT_NE(line.find("50%"), std::string::npos) << line;
-  EXPECT_NE(line.find("f1 true  3.250 est  3.200 N"), std::string::npos) << line;
+  EXPECT_NE(line.find("f1 true  3.250 est  3.200 ±0.000 N"), std::string::npos) << line;
   EXPECT_NE(line.find("mu2 0.750/0.800"), std::string::npos) << line;
   EXPECT_NE(line.find("VALID|ROTOR2_FAULT"), std::string::npos) << line;
 
   const std::string view = TerminalView(collector, context);
   EXPECT_EQ(std::count(view.begin(), view.end(), '\n'), kTerminalViewLines);
   EXPECT_NE(view.find("+0.100"), std::string::npos) << view;  // f2 error
-  EXPECT_NE(view.find("(no status yet)"), std::string::npos) << view;
+  EXPECT_NE(view.find("no ESTIMATOR_STATUS yet"), std::string::npos) << view;
+}
+
+// issue 14: the vehicle view (no TRUTH) and the words "faults 0" next to
+// ROTOR2_FAULT, which counted bad strain packets, not rotor faults.
+TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
+  const ChannelNames channels = MakeChannelNames();
+  MonitorCollector collector(channels, 10.0);
+  ViewContext context;
+  context.truth_expected = false;
+  EXPECT_NE(PlainViewLine(collector, context).find("waiting: FORCE 0 STATUS 0"), std::string::npos);
+
+  ForceEstimate estimate;
+  estimate.force_n[0] = 3.2;
+  estimate.force_n[1] = 2.6;
+  estimate.force_std_n[1] = 0.025;
+  estimate.thrust_scale[1] = 0.76;
+  estimate.status = kStatusValid | kStatusFilterReset;  // start-up
+  Feed(&collector, channels.force, Encode(ToMessage(estimate)));
+  estimate.utime = 2500000;
+  estimate.seq = 1;
+  estimate.status = kStatusValid | kStatusRotor2Fault;
+  Feed(&collector, channels.force, Encode(ToMessage(estimate)));
+  estimator_status_t status{};
+  status.method = "ekf";
+  status.resets = 1;
+  status.last_reset_reason = "start";
+  status.strain_nis_mean = 2.04;
+  status.strain_gate = 30;
+  for (const char* name : {"STRAIN", "MOTOR", "IMU", "POSE"}) {
+    input_health_t input{};
+    input.channel = name;
+    input.received = 2;
+    input.fused = 2;
+    input.rate_hz = 1000;
+    input.age_s = 0.0004;
+    status.inputs.push_back(input);
+  }
+  status.inputs[0].rejected_gate = 3;
+  status.inputs[3].age_s = 0.5;  // POSE stale
+  status.num_inputs = 4;
+  Feed(&collector, channels.estimator_status, Encode(status));
+
+  const std::string line = PlainViewLine(collector, context);
+  EXPECT_EQ(line.find("waiting"), std::string::npos) << line;
+  EXPECT_EQ(line.find("true"), std::string::npos) << line;
+  EXPECT_EQ(line.find("faults 0"), std::string::npos) << line;
+  EXPECT_NE(line.find("t=  2.50 s"), std::string::npos) << line;  // since the first FORCE
+  EXPECT_NE(line.find("f2  2.600 ±0.025 N"), std::string::npos) << line;
+  EXPECT_NE(line.find("VALID|ROTOR2_FAULT  first alarms: ROTOR2_FAULT 2.500 s"), std::string::npos) << line;
+  EXPECT_NE(line.find("strain 1000 Hz gate-rejected 3 bad packets 0"), std::string::npos) << line;
+
+  const std::string view = TerminalView(collector, context);
+  EXPECT_EQ(std::count(view.begin(), view.end(), '\n'), kTerminalViewLines);
+  EXPECT_NE(view.find("(no TRUTH: vehicle view)"), std::string::npos) << view;
+  EXPECT_NE(view.find("rotor fault below 0.85"), std::string::npos) << view;
+  EXPECT_NE(view.find("strain NIS mean 2.04"), std::string::npos) << view;
+  EXPECT_NE(view.find("resets 1 (last: start)"), std::string::npos) << view;
+  EXPECT_NE(view.find("resets after start 0"), std::string::npos) << view;
+  EXPECT_NE(view.find("STALE"), std::string::npos) << view;  // POSE 500 ms old > stale_age_s 0.1 s
+
+  const std::string summary = VehicleSummaryText(collector);
+  EXPECT_NE(summary.find("FORCE 2 messages over 2.50 s"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("VALID 100.0 %"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("first alarms: ROTOR2_FAULT 2.500 s"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("strain NIS over the run: mean 2.04"), std::string::npos) << summary;
+  EXPECT_EQ(DeliveryNote(collector), "");
+}
+
+TEST(MonitorViewTest, DeliveryNoteSeparatesUpstreamFaultsFromLostPackets) {
+  const ChannelNames channels = MakeChannelNames();
+  MonitorCollector collector(channels, 10.0);
+  ForceEstimate estimate;
+  for (int seq : {0, 1, 2, 6, 7}) {  // 3 missing
+    estimate.seq = seq;
+    estimate.utime = 1000 * seq;
+    Feed(&collector, channels.force, Encode(ToMessage(estimate)));
+  }
+  estimator_status_t status{};
+  input_health_t strain{};
+  strain.channel = "STRAIN";
+  strain.missing_samples = 2;  // the estimator itself missed 2
+  status.inputs.push_back(strain);
+  status.num_inputs = 1;
+  Feed(&collector, channels.estimator_status, Encode(status));
+  const std::string note = DeliveryNote(collector);
+  EXPECT_NE(note.find("FORCE seq: 1 gaps, 3 messages missing"), std::string::npos) << note;
+  EXPECT_NE(note.find("reports 2 strain samples missing"), std::string::npos) << note;
+  EXPECT_NE(note.find("about 1 FORCE messages were lost"), std::string::npos) << note;
 }
 
 TEST(MonitorViewTest, SummaryNamesEveryFigure) {
