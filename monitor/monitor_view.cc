@@ -155,8 +155,7 @@ std::string TerminalView(const MonitorCollector& c, const ViewContext& context) 
     if (truth) {
       scale += fmt::format("true {:.3f} {:.3f}   ", c.latest_truth().thrust_scale[0], c.latest_truth().thrust_scale[1]);
     }
-    add(scale + fmt::format("est {:.3f} {:.3f}   (rotor fault below {:.2f})", e.thrust_scale[0], e.thrust_scale[1],
-                            context.fault_thrust_scale));
+    add(scale + fmt::format("est {:.3f} {:.3f}   ({})", e.thrust_scale[0], e.thrust_scale[1], context.thresholds));
     add(fmt::format("status {}   first alarms: {}", StatusWords(e.status), FirstAlarms(c)));
     const ForceStreamStats& f = c.force_stats();
     add(fmt::format("FORCE valid {:.1f} %  non-finite {}  seq gaps {} ({} missing)  resets after start {}",
@@ -209,9 +208,19 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
                   std_sum_n[0] / n, std_sum_n[1] / n, last.force_n[0], last.force_n[1], last.thrust_scale[0],
                   last.thrust_scale[1], StatusWords(last.status));
   text += fmt::format("first alarms: {}\n", FirstAlarms(c));
-  text += EstimatorLine(c) + "\n";
-  text += fmt::format("strain NIS over the run: mean {} (2 expected for a consistent filter), max {}\n",
-                      Number(c.strain_nis_mean_over_run(), 0, 2), Number(c.strain_nis_max_over_run(), 0, 1));
+  if (c.has_status()) {
+    // The last report may cover a period after the inputs stopped (NIS NaN),
+    // so the NIS is the run's, not the last period's.
+    const estimator_status_t& s = c.latest_status();
+    text += fmt::format(
+        "estimator {}: resets {} (last: {}); strain NIS over the run mean {} (2 for a consistent "
+        "filter), max {}, gate {}\n",
+        s.method, s.resets, s.last_reset_reason.empty() ? "none" : s.last_reset_reason,
+        Number(c.strain_nis_mean_over_run(), 0, 2), Number(c.strain_nis_max_over_run(), 0, 1),
+        Number(s.strain_gate, 0, 1));
+  } else {
+    text += "estimator: no ESTIMATOR_STATUS received\n";
+  }
   if (const input_health_t* strain = c.input(kStrainChannel)) {
     text += fmt::format("strain: fused {}, gate-rejected {}, invalid {}, missing {}, bad packets {}, overload {}\n",
                         strain->fused, strain->rejected_gate, strain->rejected_invalid, strain->missing_samples,

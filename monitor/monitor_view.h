@@ -11,6 +11,7 @@
 #include "estimator/estimator_config.h"
 #include "evaluation/eval_metrics.h"
 #include "monitor/monitor_collector.h"
+#include "plot/force_plot.h"
 #include "plot/status_words.h"
 
 namespace birotor {
@@ -25,8 +26,8 @@ struct ViewContext {
   double force_rate_hz = 0;        // FORCE messages per wall second, last interval [Hz]
   double status_rate_hz = 0;       // ESTIMATOR_STATUS messages per wall second [Hz]
   bool truth_expected = true;      // false: vehicle view, never waits for TRUTH
-  // Shown next to the thrust efficiency: the estimator's fault threshold [1].
-  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;
+  // Shown next to the thrust efficiency: the estimator's thresholds in words.
+  std::string thresholds = ThresholdWords(ThrustScaleLines(EkfOptions{}));
   // An input whose newest sample is older than this is shown as stale [s].
   double stale_age_s = 0.1;
 };

@@ -19,6 +19,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kRotorColor[2] = {"#d62728", "#1f77b4"};
 constexpr const char* kSigmaColor[2] = {"#67000d", "#08306b"};  // darker rotor colours
 constexpr const char* kTrueColor = "#303030";
+// An extreme further than this many bulk spans from the bulk is clipped [1].
+constexpr double kOutlierSpans = 0.5;
 // FORCE silent for more than this many typical intervals is drawn as a gap [1].
 constexpr double kGapPeriods = 10.0;
 constexpr const char* kMarkerColor = "#8c2d04";
@@ -34,8 +36,10 @@ struct Row {
   const TruthSample* truth;
 };
 
-// A panel's y-range from its data: the clip_fraction quantiles at each end,
-// widened by 8 % of the span; what lies outside is reported in note.
+// A panel's y-range from its data: the clip_fraction quantiles at each end
+// (the bulk), stretched to the extremes unless they lie more than
+// kOutlierSpans bulk spans beyond it, widened by 8 % of the span; what lies
+// outside is reported in note.
 struct YRange {
   double low = 0, high = 1;
   std::string note;
@@ -60,12 +64,16 @@ YRange RangeOf(std::vector<std::pair<double, double>> values_and_times, double c
   const double high_quantile = values[high_index];
   const double span = std::max(high_quantile - low_quantile, min_span);
   const double middle = 0.5 * (high_quantile + low_quantile);
-  range.low = std::min(low_quantile, middle - 0.5 * span) - 0.08 * span;
-  range.high = std::max(high_quantile, middle + 0.5 * span) + 0.08 * span;
+  const double bulk_low = std::min(low_quantile, middle - 0.5 * span);
+  const double bulk_high = std::max(high_quantile, middle + 0.5 * span);
   // The first extreme in time (values_and_times is in time order).
   const auto by_value = [](const auto& a, const auto& b) { return a.first < b.first; };
   const auto min_it = std::min_element(values_and_times.begin(), values_and_times.end(), by_value);
   const auto max_it = std::max_element(values_and_times.begin(), values_and_times.end(), by_value);
+  // An extreme within kOutlierSpans of the bulk stays in view; a further one
+  // (a transient) is clipped and noted.
+  range.low = (min_it->first >= bulk_low - kOutlierSpans * span ? min_it->first : bulk_low) - 0.08 * span;
+  range.high = (max_it->first <= bulk_high + kOutlierSpans * span ? max_it->first : bulk_high) + 0.08 * span;
   std::vector<std::string> clipped;
   if (max_it->first > range.high) {
     clipped.push_back(fmt::format("peak {:.2f}{} at {:.3f} s", max_it->first, unit, max_it->second));
@@ -169,6 +177,18 @@ std::string YRangeCommands(const YRange& range) {
 
 }  // namespace
 
+std::vector<ThresholdLine> ThrustScaleLines(const EkfOptions& ekf) {
+  // EkfOptions: a rotor is flagged when mu_i + n_sigma std(mu_i) stays below
+  // fault_thrust_scale, so mu itself is below it then.
+  return {{ekf.fault_thrust_scale, fmt::format("rotor fault below {:.2f}", ekf.fault_thrust_scale)}};
+}
+
+std::string ThresholdWords(const std::vector<ThresholdLine>& lines) {
+  std::string words;
+  for (const ThresholdLine& line : lines) words += (words.empty() ? "" : ", ") + line.label;
+  return words;
+}
+
 PlotMarker ThrustStepMarker(int rotor, double step_time_s) {
   return {static_cast<int64_t>(std::llround(step_time_s * 1e6)), fmt::format("true thrust step rotor {}", rotor)};
 }
@@ -219,10 +239,18 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   }
   const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, " N"),
                                  RangeOf(force_values[1], options.clip_fraction, 0.5, " N")};
-  const YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
+  YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
+  // The ±1σ envelopes stay in view, so an overstated sigma shows as such.
+  const double widest_median_std_n = std::max(median_std_n[0], median_std_n[1]);
+  if (std::isfinite(widest_median_std_n)) {
+    error_range.low = std::min(error_range.low, -1.15 * widest_median_std_n);
+    error_range.high = std::max(error_range.high, 1.15 * widest_median_std_n);
+  }
   YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
-  // The fault threshold is always in view, and 1.0 (healthy) too.
-  scale_range.low = std::min(scale_range.low, options.fault_thrust_scale - 0.03);
+  // The thresholds are always in view, and 1.0 (healthy) too.
+  for (const ThresholdLine& line : options.scale_lines) {
+    scale_range.low = std::min(scale_range.low, line.value - 0.03);
+  }
   scale_range.high = std::max(scale_range.high, 1.03);
 
   std::string script = fmt::format(
@@ -288,15 +316,16 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
     script += "unset label\n";
   }
   script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
-  script += fmt::format(
-      "set ylabel 'thrust efficiency μ [1]'\nplot {:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' "
-      "t 'fault threshold {:.2f}'",
-      options.fault_thrust_scale, options.fault_thrust_scale);
+  script += "set ylabel 'thrust efficiency μ [1]'\nplot ";
+  for (const ThresholdLine& line : options.scale_lines) {
+    script += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
+  }
   for (int r = 0; r < 2; ++r) {
     if (with_truth) {
-      script += fmt::format(", $data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}'", 11 + r, kTrueColor, r + 1);
+      script += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
     }
-    script += fmt::format(", $data u 1:{} w l lc rgb '{}' t 'estimated μ{}'", 6 + r, kRotorColor[r], r + 1);
+    script += fmt::format("$data u 1:{} w l lc rgb '{}' t 'estimated μ{}'{}", 6 + r, kRotorColor[r], r + 1,
+                          r == 0 ? ", " : "");
   }
   script += "\nunset label\n";
 

@@ -22,15 +22,27 @@ struct PlotMarker {
   std::string label;  // e.g. "thrust step rotor 2"; the time is appended
 };
 
+// A horizontal line on the thrust-efficiency panel.
+struct ThresholdLine {
+  double value = 0;   // [1]
+  std::string label;  // e.g. "rotor fault below 0.85"
+};
+
+// The estimator's thrust-efficiency thresholds (its fault semantics, from
+// ekf) as lines: the one place that knows what the status bits mean in mu.
+std::vector<ThresholdLine> ThrustScaleLines(const EkfOptions& ekf);
+
+// The labels of lines joined with ", " (the monitor's words).
+std::string ThresholdWords(const std::vector<ThresholdLine>& lines);
+
 // The step of true thrust efficiency that birotor-eval finds (EvalResult's
 // step_rotor 1 or 2, step_time_s on the vehicle clock [s]).
 PlotMarker ThrustStepMarker(int rotor, double step_time_s);
 
 struct ForcePlotOptions {
   std::string title;
-  // Thrust efficiency below which the estimator flags a rotor fault (the
-  // estimator's ekf.fault_thrust_scale), drawn as a line [1].
-  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;
+  // The estimator's thresholds on the thrust-efficiency panel.
+  std::vector<ThresholdLine> scale_lines = ThrustScaleLines(EkfOptions{});
   // Extra vertical lines, e.g. the thrust step found in truth.
   std::vector<PlotMarker> markers;
   // Share of a panel's samples that may fall outside its y-range at each end:

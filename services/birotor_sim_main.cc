@@ -175,9 +175,9 @@ int Main(int argc, char** argv) {
   const ChannelCounts& n = sim.emitted();
   spdlog::info(
       "simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
-      "pose {}, loadcell {}, truth {}; {} fault events",
+      "pose {}, loadcell {}, truth {}{}; {} fault events",
       sim.time_s(), wall_s, wall_s > 0 ? sim.time_s() / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose, n.loadcell,
-      n.truth, sim.fault_events().size());
+      n.truth, options.no_truth ? " (not published: --no-truth)" : "", sim.fault_events().size());
   return ok ? 0 : 1;
 }
 

@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
         const std::string png = plot_dir + "/" + label + "_" + method + ".png";
         ForcePlotOptions plot;
         plot.title = label + " - " + method;
-        plot.fault_thrust_scale = config.ekf.fault_thrust_scale;
+        plot.scale_lines = ThrustScaleLines(config.ekf);
         if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
         if (!WriteForcePlot(run.forces, run.truth, plot, png, &error)) {
           std::fprintf(stderr, "birotor-eval: error: plot %s: %s\n", png.c_str(), error.c_str());

@@ -18,6 +18,7 @@
 #include "evaluation/eval_metrics.h"
 #include "monitor/monitor_collector.h"
 #include "monitor/monitor_view.h"
+#include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
 #include "transport/lcm_session.h"
@@ -39,12 +40,12 @@ struct MonitorOptions {
   bool no_truth = false;          // vehicle view from FORCE and ESTIMATOR_STATUS only
   double truth_wait_s = 3.0;      // FORCE but no TRUTH for this long: vehicle view [s]
   double stale_age_s = 0.1;       // an input older than this shows as stale [s]
-  double fault_thrust_scale = EkfOptions{}.fault_thrust_scale;  // threshold line in view and plot [1]
-  double interval_s = 0;                                        // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
-  bool plain = false;                                           // one plain line per refresh even on a terminal
-  bool quiet = false;                                           // no live view, final figures only
-  std::string png;                                              // plot file; empty: none
-  bool markdown = false;                                        // print birotor-eval's Markdown table too
+  std::string params_file;        // the estimator's parameter file, for its thresholds; empty: defaults
+  double interval_s = 0;          // view refresh [s]; 0: 0.2 on a terminal, 1.0 otherwise
+  bool plain = false;             // one plain line per refresh even on a terminal
+  bool quiet = false;             // no live view, final figures only
+  std::string png;                // plot file; empty: none
+  bool markdown = false;          // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
 
@@ -98,10 +99,10 @@ int Main(int argc, char** argv) {
   app.add_option("--stale-age-s", options.stale_age_s,
                  "Show an input as STALE when its newest sample is older than this (vehicle clock) [s]")
       ->check(CLI::Range(1e-3, 3600.0));
-  app.add_option("--fault-thrust-scale", options.fault_thrust_scale,
-                 "Rotor-fault threshold on thrust efficiency shown in the view and plot (the estimator's "
-                 "ekf.fault_thrust_scale) [1]")
-      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--params", options.params_file,
+                 "Estimator parameter file the daemon runs, for its fault thresholds in the view and plot "
+                 "(default: the built-in estimator defaults)")
+      ->check(CLI::ExistingFile);
   app.add_option("--interval-s", options.interval_s, "View refresh period (0: 0.2 on a terminal, 1 otherwise) [s]")
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--plain", options.plain, "One plain line per refresh, even on a terminal");
@@ -127,6 +128,15 @@ int Main(int argc, char** argv) {
     }
   }
   if (label.empty()) label = "live";
+  EkfOptions ekf;
+  if (!options.params_file.empty()) {
+    try {
+      ekf = LoadEstimatorConfig(options.params_file).ekf;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "birotor-monitor: error: %s\n", e.what());
+      return 1;
+    }
+  }
   std::string error;
   if (!options.png.empty() && !CheckWritable(options.png, &error)) {
     std::fprintf(stderr, "birotor-monitor: error: %s\n", error.c_str());
@@ -165,7 +175,7 @@ int Main(int argc, char** argv) {
   context.scenario_duration_s = scenario_duration_s;
   context.truth_expected = !options.no_truth;
   context.stale_age_s = options.stale_age_s;
-  context.fault_thrust_scale = options.fault_thrust_scale;
+  context.thresholds = ThresholdWords(ThrustScaleLines(ekf));
   // A notice printed once above the live view (it scrolls with plain lines).
   const auto notice = [&](const std::string& text) {
     if (options.quiet) return;
@@ -268,7 +278,7 @@ int Main(int argc, char** argv) {
   if (!options.png.empty() && collector.has_force()) {
     ForcePlotOptions plot;
     plot.title = label + " - " + method + " (live)";
-    plot.fault_thrust_scale = options.fault_thrust_scale;
+    plot.scale_lines = ThrustScaleLines(ekf);
     if (result.step_rotor != 0) {
       plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
     }

@@ -9,6 +9,7 @@
 
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
@@ -25,9 +26,10 @@ int main(int argc, char** argv) {
   app.add_option("--log", log_path, "LCM log with FORCE, and TRUTH if simulated (birotor-replay output)")->required();
   app.add_option("--png", png_path, "PNG file to write (temporary file + rename)")->required();
   app.add_option("--title", plot.title, "Plot title (default: the log name)");
-  app.add_option("--fault-thrust-scale", plot.fault_thrust_scale,
-                 "Rotor-fault threshold line on thrust efficiency (the estimator's ekf.fault_thrust_scale) [1]")
-      ->check(CLI::Range(0.0, 1.0));
+  std::string params_file;
+  app.add_option("--params", params_file,
+                 "Estimator parameter file of the run, for its fault thresholds (default: the built-in defaults)")
+      ->check(CLI::ExistingFile);
   double min_usable_fraction = kDefaultMinUsableLogFraction;
   app.add_option("--min-usable-fraction", min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
@@ -35,11 +37,19 @@ int main(int argc, char** argv) {
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-plot", common.log_level);
 
+  if (!params_file.empty()) {
+    try {
+      plot.scale_lines = ThrustScaleLines(LoadEstimatorConfig(params_file).ekf);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "birotor-plot: error: %s\n", e.what());
+      return 1;
+    }
+  }
   const ChannelNames channels = MakeChannelNames(common.prefix);
   ForceTruthCollector collector(channels);
   LogReader reader;
   std::string error;
-  if (!CheckOutputs({png_path}, {log_path}, &error) || !reader.Open(log_path, &error)) {
+  if (!CheckOutputs({png_path}, {log_path, params_file}, &error) || !reader.Open(log_path, &error)) {
     std::fprintf(stderr, "birotor-plot: error: %s\n", error.c_str());
     return 1;
   }

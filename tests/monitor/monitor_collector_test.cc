@@ -270,7 +270,7 @@ TEST(MonitorCollectorTest, VehicleViewOverLcmWithoutTruth) {
   EXPECT_EQ(DeliveryNote(collector), "");  // a perfect run has nothing to excuse
   const std::string summary = VehicleSummaryText(collector);
   EXPECT_NE(summary.find("FORCE " + std::to_string(eval.forces.size()) + " messages"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("estimator ekf"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("estimator ekf: resets 1 (last: start)"), std::string::npos) << summary;
 }
 
 }  // namespace
