@@ -115,9 +115,12 @@ class HostileFilesTest : public ::testing::Test {
     WriteBytes(Path("empty.lcm"), {});
     WriteBytes(Path("sparse.lcm"), {});
     ASSERT_EQ(truncate(Path("sparse.lcm").c_str(), int64_t{2} << 30), 0);
-    // The first half of the hover log: less than 90 % of it is readable.
+    // Half of the hover log, then as many bytes of garbage: only 50 % of the
+    // file is readable events, below the 90 % minimum.
     std::vector<uint8_t> bytes = ReadBytes(Path("hover.lcm"));
-    WriteBytes(Path("cut.lcm"), std::vector<uint8_t>(bytes.begin(), bytes.begin() + bytes.size() / 2));
+    bytes.resize(bytes.size() / 2);
+    bytes.resize(bytes.size() * 2, 0xAB);
+    WriteBytes(Path("cut.lcm"), bytes);
   }
   static void TearDownTestSuite() {
     std::filesystem::remove_all(*dir_);
