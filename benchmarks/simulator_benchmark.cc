@@ -10,9 +10,10 @@
 
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "transport/channels.h"
 #include "transport/log_io.h"
-#include "transport/message_conversion.h"
 
 namespace birotor {
 namespace {
@@ -23,18 +24,6 @@ std::string ScenarioFile(const std::string& name) {
 
 // 60 s of the named scenario (the figure is for gentle).
 Scenario SixtySeconds(const std::string& name) { return LoadScenario(ScenarioFile(name), {"scenario.duration_s=60"}); }
-
-struct LogSink : SampleSink {
-  LogWriter* writer;
-  ChannelNames channels = MakeChannelNames();
-  explicit LogSink(LogWriter* w) : writer(w) {}
-  void OnStrain(const StrainSample& s) override { writer->WriteMessage(channels.strain, s.utime, ToMessage(s)); }
-  void OnMotor(const MotorSample& s) override { writer->WriteMessage(channels.motor, s.utime, ToMessage(s)); }
-  void OnImu(const ImuSample& s) override { writer->WriteMessage(channels.imu, s.utime, ToMessage(s)); }
-  void OnPose(const PoseSample& s) override { writer->WriteMessage(channels.pose, s.utime, ToMessage(s)); }
-  void OnLoadCell(const LoadCellSample& s) override { writer->WriteMessage(channels.loadcell, s.utime, ToMessage(s)); }
-  void OnTruth(const TruthSample& s) override { writer->WriteMessage(channels.truth, s.utime, ToMessage(s)); }
-};
 
 // Engine only: samples are produced and dropped by a no-op sink.
 void BM_Simulate60s(benchmark::State& state, const std::string& name) {
@@ -61,7 +50,8 @@ void BM_WriteLog60s(benchmark::State& state, const std::string& name) {
       state.SkipWithError(error.c_str());
       break;
     }
-    LogSink sink(&writer);
+    LogSink log_sink(&writer);
+    WireSampleSink sink(MakeChannelNames(), &log_sink);
     sim.Run(&sink);
     writer.Close();
     events = writer.events_written();

@@ -10,8 +10,10 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "model/arm_dynamics.h"
 #include "model/birotor_dynamics.h"
 #include "model/plant.h"
+#include "model/rk4.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
@@ -37,28 +39,15 @@ constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
 using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
 using EkfMatrix = Eigen::Matrix<double, kEkfStateSize, kEkfStateSize>;
 
-// Accelerations of the arm-relative coordinates (phi_ddot, b1_ddot, b2_ddot).
-// For a free body in uniform gravity they do not depend on x, z, phi, x_dot
-// or z_dot (gravity cancels in the relative motion: the Schur complement of M
-// eliminates it), so they are the phi, b1, b2 rows of thesis eq. 3.14 at
-// q = (0, 0, 0, b1, b2), v = (0, 0, phi_dot, b1_dot, b2_dot).
-template <typename T>
-Eigen::Matrix<T, 3, 1> ArmAcceleration(const VehicleParams& p, const T& b1, const T& b2, const T& phi_dot,
-                                       const T& b1_dot, const T& b2_dot, const T& force1_n, const T& force2_n) {
-  Coords<T> q, v;
-  q << T(0.0), T(0.0), T(0.0), b1, b2;
-  v << T(0.0), T(0.0), phi_dot, b1_dot, b2_dot;
-  const Coords<T> acc = GeneralizedAcceleration<T>(p, q, v, force1_n, force2_n);
-  return Eigen::Matrix<T, 3, 1>(acc(kPhi), acc(kB1), acc(kB2));
-}
-
 // Input held over one prediction interval: clamped rotor speed commands.
 struct EkfInput {
   double omega_cmd_rad_s[2] = {0, 0};
 };
 
 // Process model x_dot = f(x, u):
-//   [b_dot; phi_ddot, b_ddot] from ArmAcceleration with f_i = mu_i c_T omega_i^2,
+//   [phi_ddot, b_dot, b_ddot] from FreeArmDerivative (model/arm_dynamics.h: the
+//   phi, b1, b2 rows of thesis eq. 3.14, which for a free body in uniform
+//   gravity do not depend on x, z, phi, x_dot, z_dot) with f_i = mu_i c_T omega_i^2,
 //   omega_i_dot = (clamp(omega_cmd_i) - omega_i) / tau_m,
 //   mu_i_dot = 0 (random walk, driven by process noise).
 class EkfProcessModel {
@@ -194,15 +183,20 @@ void JosephUpdate(const Model& model, const Innovation<Model::kSize>& innovation
 // ---- inline implementation of EkfProcessModel ----
 
 inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u) const {
-  const Eigen::Vector3d acc =
-      ArmAcceleration<double>(params_, x(kDeflection1), x(kDeflection2), x(kPitchRate), x(kDeflectionRate1),
-                              x(kDeflectionRate2), Force(x, 0), Force(x, 1));
+  FreeArmState<double> arm;
+  arm(kFreePhiDot) = x(kPitchRate);
+  arm(kFreeB1) = x(kDeflection1);
+  arm(kFreeB2) = x(kDeflection2);
+  arm(kFreeB1Dot) = x(kDeflectionRate1);
+  arm(kFreeB2Dot) = x(kDeflectionRate2);
+  const FreeArmState<double> arm_dot = FreeArmDerivative<double>(
+      params_, params_.arm_stiffness_n_m_rad, params_.arm_damping_n_m_s_rad, arm, Force(x, 0), Force(x, 1));
   EkfState x_dot;
-  x_dot(kDeflection1) = x(kDeflectionRate1);
-  x_dot(kDeflection2) = x(kDeflectionRate2);
-  x_dot(kPitchRate) = acc(0);
-  x_dot(kDeflectionRate1) = acc(1);
-  x_dot(kDeflectionRate2) = acc(2);
+  x_dot(kDeflection1) = arm_dot(kFreeB1);
+  x_dot(kDeflection2) = arm_dot(kFreeB2);
+  x_dot(kPitchRate) = arm_dot(kFreePhiDot);
+  x_dot(kDeflectionRate1) = arm_dot(kFreeB1Dot);
+  x_dot(kDeflectionRate2) = arm_dot(kFreeB2Dot);
   for (int i = 0; i < 2; ++i) {
     x_dot(kOmegaIndex[i]) =
         (ClampCommand(params_, u.omega_cmd_rad_s[i]) - x(kOmegaIndex[i])) / params_.motor_time_constant_s;

@@ -39,8 +39,10 @@ void MotorSpeedTracker::AddMotor(const MotorSample& sample) {
 void MotorSpeedTracker::Advance(int64_t utime) {
   if (!has_motor_) return;
   if (utime > model_utime_) {
-    const double decay = std::exp(-(utime - model_utime_) * 1e-6 / params_.motor_time_constant_s);
-    for (int i = 0; i < 2; ++i) model_rad_s_[i] = command_rad_s_[i] + (model_rad_s_[i] - command_rad_s_[i]) * decay;
+    const double dt_s = static_cast<double>(utime - model_utime_) * 1e-6;
+    for (int i = 0; i < 2; ++i) {
+      model_rad_s_[i] = MotorStep(model_rad_s_[i], command_rad_s_[i], params_.motor_time_constant_s, dt_s);
+    }
     model_utime_ = utime;
   }
   for (int i = 0; i < 2; ++i) {

@@ -7,6 +7,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "numerics/percentile.h"
+
 namespace birotor {
 namespace {
 
@@ -27,10 +29,8 @@ ErrorStats Summarize(std::vector<double>* errors) {
   const double n = static_cast<double>(errors->size());
   stats.mae_n = sum / n;
   stats.rmse_n = std::sqrt(sum_sq / n);
-  std::sort(errors->begin(), errors->end());
-  const size_t rank = std::min(errors->size() - 1, static_cast<size_t>(std::ceil(0.95 * n)) - 1);
-  stats.p95_n = (*errors)[rank];
-  stats.max_n = errors->back();
+  stats.max_n = *std::max_element(errors->begin(), errors->end());
+  stats.p95_n = Percentile(errors->begin(), errors->end(), 0.95);
   return stats;
 }
 

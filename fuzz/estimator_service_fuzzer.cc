@@ -6,7 +6,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +21,7 @@
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "services/estimator_service.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 
 namespace {
@@ -82,11 +82,6 @@ void SetFingerprint(birotor::InputChannel channel, uint8_t* packet) {
   }
 }
 
-int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -138,7 +133,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       continue;
     }
     if (kind == 1) {  // status message, as the daemon's timer does
-      service.PublishStatus(WallNowUs(), 0.2);
+      service.PublishStatus(birotor::WallClockUs(), 0.2);
       continue;
     }
     // A raw packet of up to 255 bytes; kinds 2-4 get the right fingerprint so
@@ -150,9 +145,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     offset += available;
     if (kind <= 4 && available >= 8) SetFingerprint(channel, raw);
     // kind 7: an old packet as seen live (receive time one second ago): overload drop path.
-    const int64_t receive_wall_utime = kind == 7 ? WallNowUs() - 1000000 : -1;
+    const int64_t receive_wall_utime = kind == 7 ? birotor::WallClockUs() - 1000000 : -1;
     service.HandlePacket(channel, raw, available, receive_wall_utime);
   }
-  service.PublishStatus(WallNowUs(), 0.2);
+  service.PublishStatus(birotor::WallClockUs(), 0.2);
   return 0;
 }

@@ -4,10 +4,12 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include <Eigen/Core>
 #include <vector>
 
-#include "identification/arm_dynamics.h"
 #include "identification/robust_residual.h"
+#include "model/arm_dynamics.h"
+#include "model/rk4.h"
 
 namespace birotor {
 
@@ -39,7 +41,8 @@ struct ClampedArmWindowResidual {
   bool operator()(const T* k_ratio, const T* d_ratio, const T* state0, T* residual) const {
     const T k = k_ratio[0] * k_scale_;
     const T d = d_ratio[0] * d_scale_;
-    T b = state0[0], b_dot = state0[1];
+    using State = Eigen::Matrix<T, 2, 1>;  // (b [rad], b_dot [rad/s])
+    State x(state0[0], state0[1]);
     for (size_t j = 0; j < samples_.size(); ++j) {
       if (j > 0) {
         const Sample& s0 = samples_[j - 1];
@@ -48,19 +51,14 @@ struct ClampedArmWindowResidual {
         for (int s = 0; s < substeps_; ++s) {
           const double a0 = static_cast<double>(s) / substeps_;
           const double a1 = static_cast<double>(s + 1) / substeps_;
-          const T fa(f0 + df * a0), fm(f0 + df * 0.5 * (a0 + a1)), fb(f0 + df * a1);
-          const T k1b = b_dot, k1v = ClampedArmAcceleration(known_, arm_, k, d, b, b_dot, fa);
-          const T b2 = b + 0.5 * h * k1b, v2 = b_dot + 0.5 * h * k1v;
-          const T k2b = v2, k2v = ClampedArmAcceleration(known_, arm_, k, d, b2, v2, fm);
-          const T b3 = b + 0.5 * h * k2b, v3 = b_dot + 0.5 * h * k2v;
-          const T k3b = v3, k3v = ClampedArmAcceleration(known_, arm_, k, d, b3, v3, fm);
-          const T b4 = b + h * k3b, v4 = b_dot + h * k3v;
-          const T k4b = v4, k4v = ClampedArmAcceleration(known_, arm_, k, d, b4, v4, fb);
-          b = b + (h / 6.0) * (k1b + 2.0 * k2b + 2.0 * k3b + k4b);
-          b_dot = b_dot + (h / 6.0) * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+          // Force at the start, middle and end of the substep (Rk4Stage order).
+          const T force[3] = {T(f0 + df * a0), T(f0 + df * 0.5 * (a0 + a1)), T(f0 + df * a1)};
+          x = Rk4Step(x, h, [&](const State& y, Rk4Stage stage) {
+            return State(y(1), ClampedArmAcceleration(known_, arm_, k, d, y(0), y(1), force[static_cast<int>(stage)]));
+          });
         }
       }
-      residual[j] = HuberResidual(T((samples_[j].deflection_rad - b) * inv_sigma_), huber_);
+      residual[j] = HuberResidual(T((samples_[j].deflection_rad - x(0)) * inv_sigma_), huber_);
     }
     return true;
   }

@@ -9,8 +9,9 @@
 #include <cmath>
 #include <vector>
 
-#include "identification/arm_dynamics.h"
 #include "identification/robust_residual.h"
+#include "model/arm_dynamics.h"
+#include "model/rk4.h"
 
 namespace birotor {
 
@@ -123,15 +124,15 @@ struct FreeArmWindowResidual {
         for (int s = 0; s < substeps_; ++s) {
           const double a0 = static_cast<double>(s) / substeps_;
           const double a1 = static_cast<double>(s + 1) / substeps_;
-          T fa1, fa2, fm1, fm2, fb1, fb2;
-          forces(s0, s1, a0, &fa1, &fa2);
-          forces(s0, s1, 0.5 * (a0 + a1), &fm1, &fm2);
-          forces(s0, s1, a1, &fb1, &fb2);
-          const State k1 = FreeArmDerivative<T>(known_, k, d, x, fa1, fa2);
-          const State k2 = FreeArmDerivative<T>(known_, k, d, State(x + (0.5 * h) * k1), fm1, fm2);
-          const State k3 = FreeArmDerivative<T>(known_, k, d, State(x + (0.5 * h) * k2), fm1, fm2);
-          const State k4 = FreeArmDerivative<T>(known_, k, d, State(x + h * k3), fb1, fb2);
-          x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+          // Forces at the start, middle and end of the substep (Rk4Stage order).
+          T force1[3], force2[3];
+          forces(s0, s1, a0, &force1[0], &force2[0]);
+          forces(s0, s1, 0.5 * (a0 + a1), &force1[1], &force2[1]);
+          forces(s0, s1, a1, &force1[2], &force2[2]);
+          x = Rk4Step(x, h, [&](const State& y, Rk4Stage stage) {
+            const int at = static_cast<int>(stage);
+            return FreeArmDerivative<T>(known_, k, d, y, force1[at], force2[at]);
+          });
         }
       }
       visit(j, x, k, d, c_t);

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "identification/arm_dynamics.h"
 #include "identification/robust_residual.h"
+#include "model/plant.h"
 
 namespace birotor {
 

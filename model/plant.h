@@ -8,8 +8,10 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 
 #include "model/birotor_dynamics.h"
+#include "model/rk4.h"
 
 namespace birotor {
 
@@ -52,16 +54,16 @@ inline PlantState PlantDerivative(const VehicleParams& p, const PlantState& x, c
   return x_dot;
 }
 
-// One classical fourth-order Runge-Kutta step of x_dot = f(x) over dt_s.
-template <typename State, typename Derivative>
-State Rk4Step(const State& x, double dt_s, const Derivative& f) {
-  const State k1 = f(x);
-  const State k2 = f(x + (0.5 * dt_s) * k1);
-  const State k3 = f(x + (0.5 * dt_s) * k2);
-  const State k4 = f(x + dt_s * k3);
-  return x + (dt_s / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+// Exact zero-order-hold step of the first-order motor model
+//   omega_dot = (omega_cmd - omega) / tau_m
+// over dt_s with the (clamped) command held: omega+ = c + (omega - c) exp(-dt / tau_m).
+template <typename T>
+T MotorStep(const T& omega_rad_s, double omega_cmd_rad_s, const T& tau_m_s, double dt_s) {
+  using std::exp;
+  return omega_cmd_rad_s + (omega_rad_s - omega_cmd_rad_s) * exp(-dt_s / tau_m_s);
 }
 
+// One RK4 step of the plant over dt_s [s] with u held.
 inline PlantState StepPlant(const VehicleParams& p, const PlantState& x, const PlantInput& u, double dt_s) {
   return Rk4Step(x, dt_s, [&](const PlantState& s) { return PlantDerivative(p, s, u); });
 }

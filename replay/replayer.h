@@ -36,14 +36,19 @@ struct ReplayStats {
   std::vector<int64_t> strain_fault_utimes;
 };
 
-// Runs packets through one EstimatorService. Not thread-safe.
-class Replayer {
+// Runs packets through one EstimatorService. Not thread-safe. It is itself a
+// MessageSink, so a producer (the simulator through WireSampleSink) can
+// publish straight into it.
+class Replayer : public MessageSink {
  public:
   Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink);
 
   // One event of a log (or a simulated packet): inputs go to the estimator,
   // TRUTH is copied through when asked, anything else is ignored.
   void Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size);
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override {
+    Process(channel, timestamp_us, data, size);
+  }
 
   const ReplayStats& stats() const { return stats_; }
   const EstimatorService& service() const { return service_; }

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -18,24 +17,14 @@
 #include "params/yaml_reader.h"
 #include "services/estimator_service.h"
 #include "transport/channels.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
 #include "transport/udpm_receiver.h"
 
-namespace {
-
-int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   using namespace birotor;
@@ -132,14 +121,14 @@ int main(int argc, char** argv) {
   // at any input rate (a backlog waits in the socket, and the overload guard
   // sheds what waited too long).
   const double status_period_s = 1.0 / options.status_rate_hz;
-  double last_status_s = SteadyNowS();
+  double last_status_s = SteadyClockS();
   double next_status_s = last_status_s + status_period_s;
   ReceivedDatagram datagram;
   while (!ShutdownRequested()) {
-    const double wait_s = std::min(std::max(next_status_s - SteadyNowS(), 0.0), 0.1);
+    const double wait_s = std::min(std::max(next_status_s - SteadyClockS(), 0.0), 0.1);
     if (receiver) {
       if (receiver->Wait(wait_s)) {
-        while (!ShutdownRequested() && SteadyNowS() < next_status_s && receiver->Receive(&datagram)) {
+        while (!ShutdownRequested() && SteadyClockS() < next_status_s && receiver->Receive(&datagram)) {
           service.HandleDatagram(datagram);
         }
       }
@@ -151,13 +140,13 @@ int main(int argc, char** argv) {
         break;
       }
       if (handled > 0) {
-        while (!ShutdownRequested() && SteadyNowS() < next_status_s && lcm->handleTimeout(0) > 0) {
+        while (!ShutdownRequested() && SteadyClockS() < next_status_s && lcm->handleTimeout(0) > 0) {
         }
       }
     }
-    const double now_s = SteadyNowS();
+    const double now_s = SteadyClockS();
     if (now_s >= next_status_s) {
-      service.PublishStatus(WallNowUs(), now_s - last_status_s);
+      service.PublishStatus(WallClockUs(), now_s - last_status_s);
       last_status_s = now_s;
       next_status_s += status_period_s;
       if (next_status_s <= now_s) next_status_s = now_s + status_period_s;  // a stall longer than a period

@@ -13,12 +13,14 @@
 
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "transport/channels.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
 #include "transport/output_file.h"
-#include "transport/message_conversion.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
 
@@ -36,28 +38,6 @@ struct SimOptions {
   bool no_truth = false;                 // do not publish TRUTH (stands in for a real vehicle)
 };
 
-// Converts each sample to its wire type and hands it to Publish(channel, utime, msg).
-template <class Publisher>
-class WireSink : public SampleSink {
- public:
-  WireSink(const ChannelNames& channels, Publisher publisher) : channels_(channels), publish_(publisher) {}
-  void OnStrain(const StrainSample& s) override { publish_(channels_.strain, s.utime, ToMessage(s)); }
-  void OnMotor(const MotorSample& s) override { publish_(channels_.motor, s.utime, ToMessage(s)); }
-  void OnImu(const ImuSample& s) override { publish_(channels_.imu, s.utime, ToMessage(s)); }
-  void OnPose(const PoseSample& s) override { publish_(channels_.pose, s.utime, ToMessage(s)); }
-  void OnLoadCell(const LoadCellSample& s) override { publish_(channels_.loadcell, s.utime, ToMessage(s)); }
-  void OnTruth(const TruthSample& s) override { publish_(channels_.truth, s.utime, ToMessage(s)); }
-
- private:
-  ChannelNames channels_;
-  Publisher publish_;
-};
-
-int64_t WallClockMicroseconds() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 // Offline: every sample into the log, as fast as possible.
 bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
   // A temporary file next to path, renamed when the log is complete.
@@ -67,15 +47,11 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
     std::fprintf(stderr, "birotor-sim: error: %s\n", error.c_str());
     return false;
   }
-  bool write_failed = false;
-  auto publish = [&](const std::string& channel, int64_t utime, const auto& message) {
-    if (!publish_truth && channel == channels.truth) return;
-    if (!writer.WriteMessage(channel, utime, message)) write_failed = true;
-  };
-  WireSink<decltype(publish)> sink(channels, publish);
-  while (!write_failed && !ShutdownRequested() && sim->Step(&sink)) {
+  LogSink log_sink(&writer);
+  WireSampleSink sink(channels, &log_sink, publish_truth);
+  while (!log_sink.failed() && !ShutdownRequested() && sim->Step(&sink)) {
   }
-  if (write_failed || !writer.Close()) {
+  if (log_sink.failed() || sink.encode_failures() > 0 || !writer.Close()) {
     writer.Abandon();  // no partial log is left behind
     std::fprintf(stderr, "birotor-sim: error: writing %s failed%s%s\n", path.c_str(),
                  writer.error().empty() ? "" : ": ", writer.error().c_str());
@@ -85,7 +61,7 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
     spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
   }
   spdlog::info("wrote {} events to {}", writer.events_written(), path);
-  return !write_failed;
+  return true;
 }
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
@@ -96,12 +72,8 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& ur
     spdlog::error("cannot open LCM: {}", error);
     return false;
   }
-  int64_t publish_failures = 0;
-  auto publish = [&](const std::string& channel, int64_t /*utime*/, const auto& message) {
-    if (!publish_truth && channel == channels.truth) return;
-    if (lcm->publish(channel, &message) != 0) ++publish_failures;
-  };
-  WireSink<decltype(publish)> sink(channels, publish);
+  LcmSink lcm_sink(lcm.get());
+  WireSampleSink sink(channels, &lcm_sink, publish_truth);
   const auto start = std::chrono::steady_clock::now();
   // Sleep at most once per millisecond of simulated time (4 steps at 4 kHz).
   const int64_t steps_per_check = std::max<int64_t>(1, std::llround(1e-3 / sim->scenario().step_s));
@@ -112,7 +84,7 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, const std::string& ur
                                  std::chrono::duration<double>(sim->time_s() / speed));
     std::this_thread::sleep_until(due);
   }
-  if (publish_failures > 0) spdlog::warn("{} LCM publish calls failed", publish_failures);
+  if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());
   if (ShutdownRequested()) spdlog::info("stopped by a signal at t = {:.3f} s", sim->time_s());
   return true;
 }
@@ -163,14 +135,14 @@ int Main(int argc, char** argv) {
   }
   InstallShutdownHandlers();
   Simulator sim(scenario);
-  if (options.wall_clock) sim.set_utime_offset_us(WallClockMicroseconds());
+  if (options.wall_clock) sim.set_utime_offset_us(WallClockUs());
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
 
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const bool ok = options.output.empty()
                       ? RunLive(&sim, channels, options.common.lcm_url, options.speed, !options.no_truth)
                       : RunOffline(&sim, channels, options.output, !options.no_truth);
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall_s = stopwatch.ElapsedS();
 
   const ChannelCounts& n = sim.emitted();
   spdlog::info(

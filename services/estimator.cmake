@@ -5,7 +5,7 @@ add_library(birotor_estimator_service STATIC
   ${CMAKE_CURRENT_LIST_DIR}/status_message.cc)
 target_include_directories(birotor_estimator_service PUBLIC ${PROJECT_SOURCE_DIR})
 target_link_libraries(birotor_estimator_service PUBLIC
-  birotor_estimator birotor_params birotor_sinks birotor_transport)
+  birotor_estimator birotor_numerics birotor_params birotor_sinks birotor_transport)
 target_link_libraries(birotor_estimator_service PRIVATE birotor_warnings)
 
 add_executable(birotor-estimator ${CMAKE_CURRENT_LIST_DIR}/birotor_estimator_main.cc)

@@ -4,10 +4,10 @@
 
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
@@ -15,16 +15,6 @@ namespace birotor {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-int64_t SteadyNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 }  // namespace
 
@@ -95,7 +85,7 @@ bool EstimatorService::InputChannelOf(const std::string& channel, InputChannel* 
 }
 
 void EstimatorService::WarnDecodeError(InputChannel channel, const char* error) {
-  if (decode_warning_.ShouldLog(SteadyNowUs())) {
+  if (decode_warning_.ShouldLog(SteadyClockUs())) {
     spdlog::warn("undecodable {} packet ({}); {} similar warnings suppressed", InputChannelName(channel), error,
                  decode_warning_.suppressed());
   }
@@ -141,7 +131,7 @@ bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size
 }
 
 bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t receive_wall_utime) {
-  const int64_t start_us = options_.report_processing_time ? SteadyNowUs() : 0;
+  const int64_t start_us = options_.report_processing_time ? SteadyClockUs() : 0;
   const DecodeError error = DecodeMessage(data, size, &strain_message_);
   if (error != DecodeError::kNone) {
     pipeline_.CountDecodeError(InputChannel::kStrain);
@@ -150,10 +140,10 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
   }
   if (receive_wall_utime >= 0) {
     last_strain_arrival_wall_us_ = receive_wall_utime;
-    const int64_t queued_us = WallNowUs() - receive_wall_utime;
+    const int64_t queued_us = WallClockUs() - receive_wall_utime;
     if (static_cast<double>(queued_us) > options_.overload_max_delay_s * 1e6) {
       pipeline_.CountOverloadDrop(InputChannel::kStrain);
-      if (overload_warning_.ShouldLog(SteadyNowUs())) {
+      if (overload_warning_.ShouldLog(SteadyClockUs())) {
         spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed", strain_message_.seq,
                      queued_us, overload_warning_.suppressed());
       }
@@ -169,7 +159,7 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
     ++forces_published_;
   }
   if (options_.report_processing_time) {
-    processing_time_.Add(static_cast<double>(SteadyNowUs() - start_us));
+    processing_time_.Add(static_cast<double>(SteadyClockUs() - start_us));
   }
   return true;
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "numerics/percentile.h"
+
 namespace birotor {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -30,9 +32,7 @@ double ProcessingTimeStats::P99Us() {
   for (int i = 0; i < n; ++i) {
     scratch_[i] = ring_[(next_ - n + i + kCapacity) % kCapacity];
   }
-  const int rank = std::min(n - 1, static_cast<int>(std::ceil(0.99 * n)) - 1);
-  std::nth_element(scratch_.begin(), scratch_.begin() + rank, scratch_.begin() + n);
-  return scratch_[rank];
+  return Percentile(scratch_.begin(), scratch_.begin() + n, 0.99);
 }
 
 void ProcessingTimeStats::TakePeriod() {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "model/rk4.h"
 #include "simulator/bench_dynamics.h"
-#include "simulator/flight_dynamics.h"
 
 namespace birotor {
 namespace {
@@ -109,7 +109,7 @@ Simulator::Simulator(const Scenario& scenario)
 
 PlantState Simulator::Derivative(const PlantState& x) const {
   return clamped_body_ ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
-                       : FlightDerivative(scenario_.vehicle, x, input_);
+                       : PlantDerivative(scenario_.vehicle, x, input_);
 }
 
 double Simulator::TrueForce(int rotor) const {
@@ -165,10 +165,7 @@ bool Simulator::Step(SampleSink* sink) {
     if (truth_.Due(k)) EmitTruth(now_us, sink);
   }
 
-  const PlantState k2 = Derivative(state_ + (0.5 * dt) * k1);
-  const PlantState k3 = Derivative(state_ + (0.5 * dt) * k2);
-  const PlantState k4 = Derivative(state_ + dt * k3);
-  state_ += (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  state_ = Rk4StepFrom(state_, k1, dt, [this](const PlantState& x) { return Derivative(x); });
 
   for (GaussMarkov& eta : turbulence_) eta.Advance(&turbulence_noise_);
   ++step_index_;

@@ -27,9 +27,12 @@ class LcmSink : public MessageSink {
  public:
   explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
   void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
+  // Publish calls LCM refused (e.g. a full socket buffer).
+  int64_t failures() const { return failures_; }
 
  private:
   lcm::LCM* lcm_;
+  int64_t failures_ = 0;
 };
 
 // Writes every message to an LCM log (event time = the message's utime).
@@ -42,6 +45,17 @@ class LogSink : public MessageSink {
  private:
   LogWriter* writer_;
   bool failed_ = false;
+};
+
+// Publishes every message to first, then to second (either may be null).
+class TeeSink : public MessageSink {
+ public:
+  TeeSink(MessageSink* first, MessageSink* second) : first_(first), second_(second) {}
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override;
+
+ private:
+  MessageSink* first_;
+  MessageSink* second_;
 };
 
 }  // namespace birotor

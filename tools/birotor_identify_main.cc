@@ -3,7 +3,6 @@
 // parameter file the estimator and simulator load, plus a readable report.
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "params/vehicle_params_yaml.h"
 #include "plot/fit_plot.h"
 #include "replay/identification_log_loader.h"
+#include "transport/host_clock.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
 #include "transport/output_file.h"
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     return Fail(error);
   }
 
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   std::vector<SensorLog> logs;
   for (const std::string& path : cli.logs) {
     SensorLog log;
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
                                   : cli.mode == "flight" ? IdentificationMode::kFlight
                                                          : IdentificationMode::kAuto;
   const IdentificationResult result = Identify(std::move(logs), base, options, mode);
-  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed_s = stopwatch.ElapsedS();
   if (result.dropped.total() > 0) {
     spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
   }

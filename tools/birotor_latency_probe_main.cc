@@ -19,7 +19,9 @@
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/motor_t.hpp"
 #include "birotor/strain_t.hpp"
+#include "numerics/percentile.h"
 #include "transport/channels.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
@@ -32,11 +34,6 @@ namespace {
 constexpr double kHoverDeflectionRad = 0.0018664;
 constexpr double kHoverOmegaRadS = 698.55;
 
-int64_t SteadyNowNs() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
 struct Probe {
   std::vector<int64_t> publish_ns;  // per seq; 0 before publication
   std::vector<int64_t> latency_ns;  // per seq; -1 until FORCE arrives
@@ -46,7 +43,7 @@ struct Probe {
 };
 
 void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
-  const int64_t now_ns = SteadyNowNs();
+  const int64_t now_ns = birotor::SteadyClockNs();
   birotor::force_estimate_t message;
   if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) != birotor::DecodeError::kNone ||
       message.seq < 0 || static_cast<size_t>(message.seq) >= probe->publish_ns.size() ||
@@ -60,13 +57,6 @@ void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, P
   }
   probe->latency_ns[message.seq] = now_ns - probe->publish_ns[message.seq];
   ++probe->received;
-}
-
-double Percentile(const std::vector<int64_t>& sorted, double fraction) {
-  if (sorted.empty()) return std::nan("");
-  const size_t rank =
-      std::min(sorted.size() - 1, static_cast<size_t>(std::ceil(fraction * static_cast<double>(sorted.size()))) - 1);
-  return static_cast<double>(sorted[rank]) * 1e-3;
 }
 
 }  // namespace
@@ -121,13 +111,11 @@ int main(int argc, char** argv) {
   const int64_t period_us = std::max<int64_t>(1, period_ns / 1000);
   // Vehicle clock of the synthetic samples: the wall clock at start, so a
   // second run moves forward in time for the daemon.
-  const int64_t utime0 =
-      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-          .count();
+  const int64_t utime0 = WallClockUs();
   strain_t strain;
   motor_t motor;
   std::vector<uint8_t> strain_buffer, motor_buffer;
-  const int64_t start_ns = SteadyNowNs();
+  const int64_t start_ns = SteadyClockNs();
   int64_t published = 0;
   for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
     const int64_t due_ns = start_ns + k * period_ns;
@@ -150,11 +138,11 @@ int main(int argc, char** argv) {
     strain.deflection_rad[0] = -kHoverDeflectionRad + ripple_rad;
     strain.deflection_rad[1] = kHoverDeflectionRad + ripple_rad;
     EncodeMessage(strain, &strain_buffer);
-    probe.publish_ns[k] = SteadyNowNs();
+    probe.publish_ns[k] = SteadyClockNs();
     lcm->publish(channels.strain, strain_buffer.data(), static_cast<unsigned>(strain_buffer.size()));
     ++published;
   }
-  const double publish_s = static_cast<double>(SteadyNowNs() - start_ns) * 1e-9;
+  const double publish_s = static_cast<double>(SteadyClockNs() - start_ns) * 1e-9;
   std::this_thread::sleep_for(std::chrono::duration<double>(drain_s));
   stop_receiving = true;
   receiver.join();
@@ -172,8 +160,8 @@ int main(int argc, char** argv) {
   std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64 ", duplicates %" PRId64 "\n",
               latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
   std::printf("latency publish->FORCE [us]: p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  max %.1f\n",
-              Percentile(latencies, 0.50), Percentile(latencies, 0.90), Percentile(latencies, 0.99),
-              Percentile(latencies, 0.999),
+              Percentile(latencies, 0.50) * 1e-3, Percentile(latencies, 0.90) * 1e-3,
+              Percentile(latencies, 0.99) * 1e-3, Percentile(latencies, 0.999) * 1e-3,
               latencies.empty() ? std::nan("") : static_cast<double>(latencies.back()) * 1e-3);
   return dropped == 0 ? 0 : 3;
 }

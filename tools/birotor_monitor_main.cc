@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -21,6 +20,7 @@
 #include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
@@ -48,10 +48,6 @@ struct MonitorOptions {
   bool markdown = false;          // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Raw subscription: hands every packet to the collector.
 void OnPacket(const lcm::ReceiveBuffer* buffer, const std::string& channel, MonitorCollector* collector) {
@@ -162,7 +158,7 @@ int Main(int argc, char** argv) {
 
   const bool terminal = isatty(STDOUT_FILENO) && !options.plain && !options.quiet;
   const double interval_s = options.interval_s > 0 ? options.interval_s : (terminal ? 0.2 : 1.0);
-  const double start_s = SteadyNowS();
+  const double start_s = SteadyClockS();
   double last_arrival_s = start_s;  // of the clock stream: TRUTH, or FORCE without truth
   size_t last_clock_count = 0;
   double first_force_s = -1;
@@ -191,7 +187,7 @@ int Main(int argc, char** argv) {
       spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
       break;
     }
-    const double now_s = SteadyNowS();
+    const double now_s = SteadyClockS();
     if (first_force_s < 0 && collector.has_force()) first_force_s = now_s;
     if (context.truth_expected && !collector.has_truth() && first_force_s >= 0 &&
         now_s - first_force_s >= options.truth_wait_s) {

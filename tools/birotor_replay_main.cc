@@ -3,7 +3,6 @@
 // TRUTH to an output log, optionally FORCE as CSV. Same log in, same bytes out.
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -12,6 +11,7 @@
 #include "params/yaml_reader.h"
 #include "replay/replayer.h"
 #include "sinks/force_csv_sink.h"
+#include "transport/host_clock.h"
 #include "transport/logging.h"
 #include "transport/output_file.h"
 #include "transport/program_options.h"
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     sink = csv_sink.get();
   }
 
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   Replayer replayer(config, options, sink);
   std::string damage;
   if (!ReplayLogFile(input_path, &replayer, &damage, &error, min_usable_fraction)) {
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
                  input_path.c_str(), static_cast<long long>(replayer.stats().events), common.prefix.c_str());
     return 1;
   }
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall_s = stopwatch.ElapsedS();
   if (log_sink.failed()) {
     std::fprintf(stderr, "birotor-replay: error: writing %s failed\n", output_path.c_str());
     return 1;

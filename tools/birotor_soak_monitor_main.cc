@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -20,7 +19,9 @@
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/strain_t.hpp"
+#include "numerics/percentile.h"
 #include "transport/channels.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
@@ -29,11 +30,6 @@
 
 namespace birotor {
 namespace {
-
-int64_t SteadyNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 // CPU time [s] and resident memory [kB] of a process from /proc; false once it is gone.
 struct ProcessSample {
@@ -68,14 +64,6 @@ bool ReadProcess(int pid, ProcessSample* sample) {
     }
   }
   return false;
-}
-
-double Percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return std::nan("");
-  std::sort(values.begin(), values.end());
-  const size_t rank =
-      std::min(values.size() - 1, static_cast<size_t>(std::ceil(fraction * static_cast<double>(values.size()))) - 1);
-  return values[rank];
 }
 
 // Drop counters of the STRAIN input as the daemon reports them.
@@ -195,11 +183,6 @@ class Monitor {
   estimator_status_t status_;
 };
 
-int64_t WallNowUs() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 }  // namespace
 }  // namespace birotor
 
@@ -243,7 +226,7 @@ int main(int argc, char** argv) {
   std::printf("%8s %8s %10s %10s %10s %12s %12s\n", "t_s", "cpu_%", "rss_kB", "strain_Hz", "force_Hz", "lat_p50_us",
               "lat_p99_us");
 
-  const int64_t start_us = SteadyNowUs();
+  const int64_t start_us = SteadyClockUs();
   int64_t next_sample_us = start_us + static_cast<int64_t>(interval_s * 1e6);
   ProcessSample previous_process;
   const bool has_process = pid > 0 && ReadProcess(pid, &previous_process);
@@ -255,11 +238,11 @@ int main(int argc, char** argv) {
   int64_t previous_strain = 0, previous_force = 0;
   int64_t previous_sample_us = start_us;
   while (!ShutdownRequested()) {
-    const int64_t now_us = SteadyNowUs();
+    const int64_t now_us = SteadyClockUs();
     if (now_us - start_us >= static_cast<int64_t>(duration_s * 1e6)) break;
     HandleFor(*lcm, std::min(0.1, (next_sample_us - now_us) * 1e-6));
-    if (SteadyNowUs() < next_sample_us) continue;
-    const int64_t sample_us = SteadyNowUs();
+    if (SteadyClockUs() < next_sample_us) continue;
+    const int64_t sample_us = SteadyClockUs();
     const double dt_s = (sample_us - previous_sample_us) * 1e-6;
     const double t_s = (sample_us - start_us) * 1e-6;
     double cpu_percent = std::nan("");
@@ -295,11 +278,11 @@ int main(int argc, char** argv) {
     next_sample_us += static_cast<int64_t>(interval_s * 1e6);
   }
   // Let the last FORCE messages arrive; ignore strain samples younger than that.
-  const int64_t drain_end_us = SteadyNowUs() + 500000;
-  while (SteadyNowUs() < drain_end_us) HandleFor(*lcm, 0.05);
+  const int64_t drain_end_us = SteadyClockUs() + 500000;
+  while (SteadyClockUs() < drain_end_us) HandleFor(*lcm, 0.05);
   if (csv) std::fclose(csv);
 
-  const int64_t force_missing = monitor.force_missing_ + monitor.PendingWithoutForce(WallNowUs(), 1000000);
+  const int64_t force_missing = monitor.force_missing_ + monitor.PendingWithoutForce(WallClockUs(), 1000000);
   const bool has_status = monitor.has_status_;
   const StrainHealth& a = monitor.first_health_;
   const StrainHealth& b = monitor.last_health_;

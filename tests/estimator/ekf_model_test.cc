@@ -28,26 +28,6 @@ EkfState HoverLikeState(std::mt19937* rng) {
   return x;
 }
 
-// Free body in uniform gravity: the phi, b1, b2 accelerations do not depend on
-// x, z, phi, x_dot, z_dot (thesis ch. 4: these are the unobservable states).
-TEST(ArmAccelerationTest, GravityCancelsInTheRelativeMotion) {
-  const VehicleParams p;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int trial = 0; trial < 50; ++trial) {
-    Coords<double> q, v;
-    q << 10.0 * u(rng), 10.0 * u(rng), 1.5 * u(rng), 0.01 * u(rng), 0.01 * u(rng);
-    v << 5.0 * u(rng), 5.0 * u(rng), 2.0 * u(rng), 0.1 * u(rng), 0.1 * u(rng);
-    const double f1 = 22.0 + 10.0 * u(rng), f2 = 22.0 + 10.0 * u(rng);
-    const Coords<double> full = GeneralizedAcceleration<double>(p, q, v, f1, f2);
-    const Eigen::Vector3d reduced = ArmAcceleration<double>(p, q(kB1), q(kB2), v(kPhi), v(kB1), v(kB2), f1, f2);
-    const double scale = 1.0 + full.cwiseAbs().maxCoeff();
-    EXPECT_NEAR(reduced(0), full(kPhi), 1e-12 * scale);
-    EXPECT_NEAR(reduced(1), full(kB1), 1e-12 * scale);
-    EXPECT_NEAR(reduced(2), full(kB2), 1e-12 * scale);
-  }
-}
-
 TEST(EkfProcessModelTest, JacobianMatchesCentralDifferences) {
   const VehicleParams p;
   const EkfProcessModel model(p);

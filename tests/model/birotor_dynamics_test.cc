@@ -5,6 +5,10 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "model/equilibrium.h"
 #include "model/linearization.h"
 #include "model/plant.h"
 
@@ -40,6 +44,34 @@ TEST(BirotorDynamics, MassMatrixIsSymmetricPositiveDefinite) {
   const DynamicsTerms<double> t = ComputeDynamicsTerms<double>(p, SomeQ(), SomeV(), 20.0, 21.0);
   EXPECT_TRUE(t.mass.isApprox(t.mass.transpose(), 1e-14));
   EXPECT_GT(t.mass.llt().matrixL().toDenseMatrix().diagonal().minCoeff(), 0.0);
+}
+
+// The unrolled LDL^T solve against Eigen's LLT at an arbitrary pose, velocity
+// and thrust (rounding only: 1e-10 relative).
+TEST(BirotorDynamics, MassMatrixSolveMatchesCholesky) {
+  const VehicleParams p;
+  const DynamicsTerms<double> t = ComputeDynamicsTerms<double>(p, SomeQ(), SomeV(), 21.0, 24.5);
+  const Coords<double> rhs = t.generalized_thrust - t.coriolis - t.gravity_spring;
+  const Coords<double> expected = t.mass.llt().solve(rhs);
+  const Coords<double> actual = SolveMassMatrix<double>(t.mass, rhs);
+  for (int i = 0; i < kNumCoordinates; ++i) {
+    EXPECT_NEAR(actual(i), expected(i), 1e-10 * (1.0 + std::abs(expected(i)))) << i;
+  }
+}
+
+// The hover equilibrium of model/equilibrium.h is a fixed point of the plant.
+TEST(BirotorDynamics, HoverEquilibriumIsAFixedPointOfThePlant) {
+  const VehicleParams p;
+  const Equilibrium eq = SolveHoverEquilibrium(p);
+  PlantState x = PlantState::Zero();
+  x(kPlantQ + kB1) = eq.deflection_rad[0];
+  x(kPlantQ + kB2) = eq.deflection_rad[1];
+  x(kPlantOmega1) = eq.omega_rad_s[0];
+  x(kPlantOmega2) = eq.omega_rad_s[1];
+  PlantInput u;
+  u.omega_cmd_rad_s[0] = eq.omega_rad_s[0];
+  u.omega_cmd_rad_s[1] = eq.omega_rad_s[1];
+  EXPECT_LT(PlantDerivative(p, x, u).cwiseAbs().maxCoeff(), 1e-8);
 }
 
 TEST(BirotorDynamics, AccelerationJacobianMatchesCentralDifferences) {

@@ -15,6 +15,8 @@
 #include "services/estimator_service.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
@@ -155,29 +157,6 @@ TEST(MonitorCollectorTest, StartUpResetIsNeitherALossNorAnAlarm) {
   EXPECT_EQ(collector.force_stats().valid, 99);
 }
 
-// Publishes every simulated sample on LCM, as birotor-sim does live.
-class LcmPublishingSink : public SampleSink {
- public:
-  LcmPublishingSink(lcm::LCM* lcm, const ChannelNames& channels, bool publish_truth = true)
-      : lcm_(lcm), channels_(channels), publish_truth_(publish_truth) {}
-  void OnStrain(const StrainSample& s) override { Publish(channels_.strain, ToMessage(s)); }
-  void OnMotor(const MotorSample& s) override { Publish(channels_.motor, ToMessage(s)); }
-  void OnImu(const ImuSample& s) override { Publish(channels_.imu, ToMessage(s)); }
-  void OnPose(const PoseSample& s) override { Publish(channels_.pose, ToMessage(s)); }
-  void OnTruth(const TruthSample& s) override {
-    if (publish_truth_) Publish(channels_.truth, ToMessage(s));
-  }
-
- private:
-  template <class Msg>
-  void Publish(const std::string& channel, const Msg& message) {
-    lcm_->publish(channel, &message);
-  }
-  lcm::LCM* lcm_;
-  const ChannelNames& channels_;
-  bool publish_truth_;
-};
-
 void Drain(lcm::LCM* lcm) {
   while (lcm->handleTimeout(0) > 0) {
   }
@@ -201,7 +180,8 @@ void FlyOverMemq(const Scenario& scenario, const EstimatorConfig& config, bool p
         },
         collector);
   }
-  LcmPublishingSink sink(&lcm, channels, publish_truth);
+  LcmSink simulator_output(&lcm);
+  WireSampleSink sink(channels, &simulator_output, publish_truth);  // as birotor-sim does live
   Simulator simulator(scenario);
   while (simulator.Step(&sink)) {
     Drain(&lcm);

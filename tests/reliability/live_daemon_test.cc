@@ -42,7 +42,7 @@ TEST(LiveDaemonTest, RestartAfterSigkillPublishesValidEstimatesWithinHalfASecond
   std::this_thread::sleep_for(std::chrono::seconds(1));
   daemon.Kill(SIGKILL);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const double restart_s = SteadyNowS();
+  const double restart_s = SteadyClockS();
   ASSERT_TRUE(daemon.Start(DaemonCommand(url, prefix), TempPath("crash_daemon.log")));
 
   ASSERT_TRUE(
@@ -90,10 +90,10 @@ FreezeRun RunFreeze(int port, const std::string& prefix) {
   const int daemon_pid = daemon.pid();
 
   std::this_thread::sleep_for(std::chrono::seconds(1));
-  const double freeze_s = SteadyNowS();
+  const double freeze_s = SteadyClockS();
   sim.Signal(SIGSTOP);
   std::this_thread::sleep_for(std::chrono::seconds(2));
-  const double resume_s = SteadyNowS();
+  const double resume_s = SteadyClockS();
   sim.Signal(SIGCONT);
 
   for (const StatusRecord& r : listener.Statuses()) {

@@ -27,14 +27,11 @@
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "transport/channels.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/lcm_packet.h"
 
 namespace birotor::reliability {
-
-inline double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // Private udpm URL on loopback-only multicast (ttl=0) for one test. The
 // environment variable BIROTOR_TEST_PORT_OFFSET shifts every port, so two
@@ -161,9 +158,9 @@ class ChildProcess {
   int Stop(double timeout_s = 5.0) {
     if (pid_ <= 0) return -1;
     kill(pid_, SIGTERM);
-    const double deadline = SteadyNowS() + timeout_s;
+    const double deadline = SteadyClockS() + timeout_s;
     int status = 0;
-    while (SteadyNowS() < deadline) {
+    while (SteadyClockS() < deadline) {
       if (waitpid(pid_, &status, WNOHANG) == pid_) {
         pid_ = -1;
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -226,8 +223,8 @@ class DaemonListener {
   }
   // Polls predicate every 10 ms until it holds or timeout_s passes.
   static bool WaitUntil(const std::function<bool()>& predicate, double timeout_s) {
-    const double deadline = SteadyNowS() + timeout_s;
-    while (SteadyNowS() < deadline) {
+    const double deadline = SteadyClockS() + timeout_s;
+    while (SteadyClockS() < deadline) {
       if (predicate()) return true;
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
@@ -248,14 +245,14 @@ class DaemonListener {
  private:
   void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
     ForceRecord record;
-    record.arrival_s = SteadyNowS();
+    record.arrival_s = SteadyClockS();
     if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
     std::lock_guard<std::mutex> lock(mutex_);
     forces_.push_back(record);
   }
   void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
     StatusRecord record;
-    record.arrival_s = SteadyNowS();
+    record.arrival_s = SteadyClockS();
     if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
     std::lock_guard<std::mutex> lock(mutex_);
     statuses_.push_back(record);

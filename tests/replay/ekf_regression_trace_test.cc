@@ -15,8 +15,9 @@
 #include "replay/replayer.h"
 #include "simulator/simulator.h"
 #include "sinks/force_csv_sink.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "tests/replay/replay_test_support.h"
-#include "transport/message_conversion.h"
 
 namespace birotor {
 namespace {
@@ -27,28 +28,27 @@ const std::string kTraceCsv = kDataDir + "/ekf_trace.csv";
 constexpr int64_t kWindowStartUs = 4'750'000;
 constexpr double kWindowEndS = 5.25;
 
-// Writes STRAIN, MOTOR and IMU samples of the window to the input log.
-class WindowSink : public SampleSink {
+// Passes the STRAIN, MOTOR and IMU messages of the window on to next.
+class WindowFilter : public MessageSink {
  public:
-  explicit WindowSink(LogWriter* log) : log_(log), channels_(MakeChannelNames()) {}
-  void OnStrain(const StrainSample& s) override { Write(channels_.strain, s.utime, ToMessage(s)); }
-  void OnMotor(const MotorSample& s) override { Write(channels_.motor, s.utime, ToMessage(s)); }
-  void OnImu(const ImuSample& s) override { Write(channels_.imu, s.utime, ToMessage(s)); }
+  WindowFilter(const ChannelNames& channels, MessageSink* next) : channels_(channels), next_(next) {}
+  void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override {
+    const bool input = channel == channels_.strain || channel == channels_.motor || channel == channels_.imu;
+    if (input && timestamp_us >= kWindowStartUs) next_->Publish(channel, timestamp_us, data, size);
+  }
 
  private:
-  template <class Msg>
-  void Write(const std::string& channel, int64_t utime, const Msg& message) {
-    if (utime >= kWindowStartUs) log_->WriteMessage(channel, utime, message);
-  }
-  LogWriter* log_;
   ChannelNames channels_;
+  MessageSink* next_;
 };
 
 void RegenerateInputLog() {
   LogWriter writer;
   std::string error;
   ASSERT_TRUE(writer.Open(kInputLog, &error)) << error;
-  WindowSink sink(&writer);
+  LogSink log_sink(&writer);
+  WindowFilter window(MakeChannelNames(), &log_sink);
+  WireSampleSink sink(MakeChannelNames(), &window);
   Simulator simulator(ReferenceScenario("thrust_loss"));
   while (!simulator.done() && simulator.time_s() < kWindowEndS) simulator.Step(&sink);
   ASSERT_TRUE(writer.Close());

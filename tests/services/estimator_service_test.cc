@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <vector>
 
 #include "model/equilibrium.h"
+#include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
@@ -256,9 +256,7 @@ TEST(EstimatorServiceTest, OverloadedStrainPacketsAreDroppedAndCounted) {
   strain.utime = 1000;
   EncodeMessage(ToMessage(strain), &buffer);
   // Received 10 s ago on the host clock: far behind.
-  const int64_t now_us =
-      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-          .count();
+  const int64_t now_us = WallClockUs();
   EXPECT_FALSE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us - 10'000'000));
   EXPECT_EQ(service.health().inputs[0].dropped_overload, 1);
   EXPECT_EQ(sink.count, 0);

@@ -18,6 +18,8 @@
 
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "tests/simulator/test_support.h"
 #include "transport/channels.h"
 #include "transport/lcm_codec.h"
@@ -35,19 +37,6 @@ std::string ReadBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
-
-// Writes every sample into a log, as birotor-sim does.
-struct LogSink : SampleSink {
-  LogWriter* writer;
-  ChannelNames channels = MakeChannelNames();
-  explicit LogSink(LogWriter* w) : writer(w) {}
-  void OnStrain(const StrainSample& s) override { writer->WriteMessage(channels.strain, s.utime, ToMessage(s)); }
-  void OnMotor(const MotorSample& s) override { writer->WriteMessage(channels.motor, s.utime, ToMessage(s)); }
-  void OnImu(const ImuSample& s) override { writer->WriteMessage(channels.imu, s.utime, ToMessage(s)); }
-  void OnPose(const PoseSample& s) override { writer->WriteMessage(channels.pose, s.utime, ToMessage(s)); }
-  void OnLoadCell(const LoadCellSample& s) override { writer->WriteMessage(channels.loadcell, s.utime, ToMessage(s)); }
-  void OnTruth(const TruthSample& s) override { writer->WriteMessage(channels.truth, s.utime, ToMessage(s)); }
-};
 
 // Decodes every event with the type of its channel; returns events per channel.
 std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failures, bool* truncated) {
@@ -94,7 +83,8 @@ TEST(SimLogTest, EveryChannelDecodesWithTheWireTypes) {
     LogWriter writer;
     std::string error;
     ASSERT_TRUE(writer.Open(path, &error)) << error;
-    LogSink sink(&writer);
+    LogSink log_sink(&writer);
+    WireSampleSink sink(MakeChannelNames(), &log_sink);
     sim.Run(&sink);
     ASSERT_TRUE(writer.Close());
   }

@@ -15,14 +15,8 @@
 namespace birotor {
 namespace {
 
+using transport_test::Encode;
 using transport_test::MakeTestMessage;
-
-template <class Msg>
-std::vector<uint8_t> Encode(const Msg& msg) {
-  std::vector<uint8_t> bytes;
-  EncodeMessage(msg, &bytes);
-  return bytes;
-}
 
 template <class Msg>
 class CodecTest : public ::testing::Test {};

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
@@ -14,8 +16,17 @@
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "birotor/truth_t.hpp"
+#include "transport/lcm_codec.h"
 
 namespace birotor::transport_test {
+
+// The wire bytes of msg (transport/lcm_codec.h).
+template <class Msg>
+std::vector<uint8_t> Encode(const Msg& msg) {
+  std::vector<uint8_t> bytes;
+  EncodeMessage(msg, &bytes);
+  return bytes;
+}
 
 template <class Msg>
 Msg MakeTestMessage();

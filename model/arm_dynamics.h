@@ -1,6 +1,9 @@
-// Arm dynamics with the identified parameters (stiffness k, damping d) as
-// template scalars, so Ceres Jets differentiate through them: the arm of a
-// body clamped on the bench, and the arms of the free-flying vehicle.
+// The arm dynamics of model/birotor_dynamics.h reduced to what the arms need,
+// with stiffness k and damping d as template scalars so that Ceres Jets
+// differentiate through them (identification): the arm of a body clamped on
+// the bench (the simulator's bench scenario, identification's bench fit) and
+// the arms of the free-flying vehicle (the EKF's process model,
+// identification's flight fit). Tests check both against the full model.
 #pragma once
 
 #include <Eigen/Core>
@@ -115,15 +118,6 @@ FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const 
     (*specific_force_m_s2)(1) = (rz - bz0 * phi_ddot - bz1 * b1_ddot - bz2 * b2_ddot) * inv_mt;
   }
   return x_dot;
-}
-
-// Exact zero-order-hold step of the first-order motor model
-//   omega_dot = (omega_cmd - omega) / tau_m
-// over dt_s with the (clamped) command held: omega+ = c + (omega - c) exp(-dt / tau_m).
-template <typename T>
-T MotorStep(const T& omega_rad_s, double omega_cmd_rad_s, const T& tau_m_s, double dt_s) {
-  using std::exp;
-  return omega_cmd_rad_s + (omega_rad_s - omega_cmd_rad_s) * exp(-dt_s / tau_m_s);
 }
 
 }  // namespace birotor

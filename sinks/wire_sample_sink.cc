@@ -1,0 +1,28 @@
+// Simulated samples as encoded wire messages.
+#include "sinks/wire_sample_sink.h"
+
+#include "transport/lcm_codec.h"
+#include "transport/message_conversion.h"
+
+namespace birotor {
+
+template <class Message>
+void WireSampleSink::Publish(const std::string& channel, int64_t utime, const Message& message) {
+  EncodeMessage(message, &buffer_);
+  if (buffer_.empty()) {
+    ++encode_failures_;
+    return;
+  }
+  sink_->Publish(channel, utime, buffer_.data(), buffer_.size());
+}
+
+void WireSampleSink::OnStrain(const StrainSample& s) { Publish(channels_.strain, s.utime, ToMessage(s)); }
+void WireSampleSink::OnMotor(const MotorSample& s) { Publish(channels_.motor, s.utime, ToMessage(s)); }
+void WireSampleSink::OnImu(const ImuSample& s) { Publish(channels_.imu, s.utime, ToMessage(s)); }
+void WireSampleSink::OnPose(const PoseSample& s) { Publish(channels_.pose, s.utime, ToMessage(s)); }
+void WireSampleSink::OnLoadCell(const LoadCellSample& s) { Publish(channels_.loadcell, s.utime, ToMessage(s)); }
+void WireSampleSink::OnTruth(const TruthSample& s) {
+  if (publish_truth_) Publish(channels_.truth, s.utime, ToMessage(s));
+}
+
+}  // namespace birotor

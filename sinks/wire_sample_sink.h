@@ -1,0 +1,46 @@
+// The one sample-to-wire adapter: each simulated sample (estimator/samples.h)
+// converted to its wire message, encoded into a buffer kept between calls and
+// published on its channel through a MessageSink. birotor-sim (LCM or a log),
+// birotor-eval (into the replay), the simulator benchmark and the tests all
+// use it, so a new channel is one edit here.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "simulator/sample_sink.h"
+#include "sinks/message_sink.h"
+#include "transport/channels.h"
+
+namespace birotor {
+
+class WireSampleSink : public SampleSink {
+ public:
+  // sink must outlive the adapter. Without publish_truth, TRUTH is not
+  // published (the simulator standing in for a real vehicle).
+  WireSampleSink(const ChannelNames& channels, MessageSink* sink, bool publish_truth = true)
+      : channels_(channels), sink_(sink), publish_truth_(publish_truth) {}
+
+  void OnStrain(const StrainSample& sample) override;
+  void OnMotor(const MotorSample& sample) override;
+  void OnImu(const ImuSample& sample) override;
+  void OnPose(const PoseSample& sample) override;
+  void OnLoadCell(const LoadCellSample& sample) override;
+  void OnTruth(const TruthSample& sample) override;
+
+  // Samples whose message could not be encoded (not published).
+  int64_t encode_failures() const { return encode_failures_; }
+
+ private:
+  template <class Message>
+  void Publish(const std::string& channel, int64_t utime, const Message& message);
+
+  ChannelNames channels_;
+  MessageSink* sink_;
+  bool publish_truth_;
+  std::vector<uint8_t> buffer_;
+  int64_t encode_failures_ = 0;
+};
+
+}  // namespace birotor
