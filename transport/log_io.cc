@@ -78,9 +78,9 @@ bool CheckLogUsable(const LogReader& reader, const std::string& path, double min
   const double usable = static_cast<double>(reader.event_bytes()) / static_cast<double>(size);
   if (usable < min_fraction) {
     char text[160];
-    std::snprintf(text, sizeof(text), ": only %.1f %% of the file is readable events (%lld of %lld bytes; minimum %.0f %%)",
-                  100.0 * usable, static_cast<long long>(reader.event_bytes()), static_cast<long long>(size),
-                  100.0 * min_fraction);
+    std::snprintf(text, sizeof(text),
+                  ": only %.1f %% of the file is readable events (%lld of %lld bytes; minimum %.0f %%)", 100.0 * usable,
+                  static_cast<long long>(reader.event_bytes()), static_cast<long long>(size), 100.0 * min_fraction);
     *error = path + text;
     return false;
   }

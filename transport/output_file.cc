@@ -42,8 +42,7 @@ bool CheckOutputIsNotInput(const std::string& output, const std::vector<std::str
   return true;
 }
 
-bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
-                  std::string* error) {
+bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs, std::string* error) {
   std::vector<std::string> given_inputs;
   for (const std::string& input : inputs) {
     if (!input.empty()) given_inputs.push_back(input);
@@ -54,8 +53,8 @@ bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std
     for (size_t j = i + 1; j < outputs.size(); ++j) {
       if (outputs[j].empty()) continue;
       std::error_code code;
-      const bool same_path = std::filesystem::weakly_canonical(outputs[i], code) ==
-                             std::filesystem::weakly_canonical(outputs[j], code);
+      const bool same_path =
+          std::filesystem::weakly_canonical(outputs[i], code) == std::filesystem::weakly_canonical(outputs[j], code);
       if (same_path || !CheckOutputIsNotInput(outputs[j], {outputs[i]}, error)) {
         *error = "outputs " + outputs[i] + " and " + outputs[j] + " are the same file";
         return false;

@@ -24,8 +24,7 @@ bool CheckOutputIsNotInput(const std::string& output, const std::vector<std::str
 // Every program's check before it writes: no output is an input, and no two
 // outputs are the same file (same inode, or the same normalised path when
 // they do not exist yet). Empty paths (options not given) are skipped.
-bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs,
-                  std::string* error);
+bool CheckOutputs(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs, std::string* error);
 
 class OutputFile {
  public:

@@ -92,7 +92,7 @@ TEST(HostilePacketsTest, FragmentAttacksNeitherCrashNorBloatTheDaemonAndAreCount
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   lcm::LCM publisher(url);
   ASSERT_TRUE(publisher.good());
-  const double honest_s = SteadyNowS();
+  const double honest_s = SteadyClockS();
   for (int i = 0; i < 50; ++i) {
     const std::vector<uint8_t> strain = EncodedStrain(1000000 + 1000 * i, i);
     publisher.publish(channel, strain.data(), static_cast<unsigned>(strain.size()));
@@ -101,7 +101,7 @@ TEST(HostilePacketsTest, FragmentAttacksNeitherCrashNorBloatTheDaemonAndAreCount
   ASSERT_TRUE(DaemonListener::WaitUntil([&] { return listener.FirstForceWith(0, honest_s).arrival_s >= 0; }, 10.0))
       << "no FORCE after the attack";
   // The counters of a status published after everything was read.
-  const double counted_s = SteadyNowS() + 0.2;
+  const double counted_s = SteadyClockS() + 0.2;
   ASSERT_TRUE(DaemonListener::WaitUntil(
       [&] {
         const std::vector<StatusRecord> statuses = listener.Statuses();
@@ -172,10 +172,10 @@ TEST(HostilePacketsTest, StatusStaysOnScheduleUnderA50kHzBurst) {
   RawMulticastSender sender(port);
   const double rate_hz = 50000;
   const double burst_s = 2.0;
-  const double start_s = SteadyNowS();
+  const double start_s = SteadyClockS();
   int64_t sent = 0;
   while (true) {
-    const double now_s = SteadyNowS();
+    const double now_s = SteadyClockS();
     if (now_s - start_s >= burst_s) break;
     const int64_t due = static_cast<int64_t>((now_s - start_s) * rate_hz);
     for (; sent < due; ++sent) {
@@ -186,7 +186,7 @@ TEST(HostilePacketsTest, StatusStaysOnScheduleUnderA50kHzBurst) {
     // with the daemon under test.
     std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
-  const double achieved_hz = static_cast<double>(sent) / (SteadyNowS() - start_s);
+  const double achieved_hz = static_cast<double>(sent) / (SteadyClockS() - start_s);
   std::this_thread::sleep_for(std::chrono::milliseconds(1200));
   stop = true;
   reader.join();

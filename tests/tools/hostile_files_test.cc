@@ -102,9 +102,9 @@ class HostileFilesTest : public ::testing::Test {
     ASSERT_NE(mkdtemp(pattern.data()), nullptr);
     dir_ = new std::string(pattern);
     // A real 1.5 s hover log from the simulator (STRAIN, MOTOR, IMU, POSE, TRUTH).
-    const ToolRun sim = RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) +
-                             "/config/scenarios/hover.yaml", "--set", "scenario.duration_s=1.5", "--output",
-                             Path("hover.lcm"), "--log-level", "warn"});
+    const ToolRun sim =
+        RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
+                 "--set", "scenario.duration_s=1.5", "--output", Path("hover.lcm"), "--log-level", "warn"});
     ASSERT_EQ(sim.exit_code, 0) << sim.output;
     // Issue 16 item 2: 138 bytes, one header declaring 0x7fffffff data bytes.
     std::vector<uint8_t> attack = EventHeader(0, 14, 0x7fffffff);
@@ -197,11 +197,13 @@ TEST_F(HostileFilesTest, FailedWritesAreErrorsAndLeaveNoPartialFile) {
                 "--markdown-out /dev/full");
   ExpectRefused(RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", "/nonexistent/out.lcm"}), "birotor-replay",
                 "missing folder");
-  ExpectRefused(RunTool({BIROTOR_IDENTIFY_BIN, "--log", log, "--output", Path("v.yaml"), "--report", "/nonexistent/r.md"}),
-                "birotor-identify", "--report /nonexistent/r.md");
-  ExpectRefused(RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
-                     "--set", "scenario.duration_s=0.5", "--output", "/dev/full"}),
-                "birotor-sim", "sim --output /dev/full");
+  ExpectRefused(
+      RunTool({BIROTOR_IDENTIFY_BIN, "--log", log, "--output", Path("v.yaml"), "--report", "/nonexistent/r.md"}),
+      "birotor-identify", "--report /nonexistent/r.md");
+  ExpectRefused(
+      RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml", "--set",
+               "scenario.duration_s=0.5", "--output", "/dev/full"}),
+      "birotor-sim", "sim --output /dev/full");
   // The replay itself works and leaves exactly its outputs.
   run = RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", Path("replayed.lcm"), "--csv", Path("replayed.csv")});
   EXPECT_EQ(run.exit_code, 0) << run.output;
