@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "estimator/estimator_pipeline.h"
+#include "estimator/harmonic_notch.h"
+#include "estimator/motor_speed_tracker.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 
@@ -53,40 +55,51 @@ const std::vector<Event>& GentleEvents(double duration_s) {
   return events;
 }
 
+// Walks the recording to its next strain sample, handing the motor and IMU
+// samples before it to on_motor / on_imu; the recording loops with utime
+// shifted by its length so that time always advances.
+template <class OnMotor, class OnImu>
+StrainSample NextStrain(const std::vector<Event>& events, size_t* index, int64_t* offset_us, OnMotor on_motor,
+                        OnImu on_imu) {
+  const int64_t period_us = 10000000;
+  while (true) {
+    if (*index == events.size()) {
+      *index = 0;
+      *offset_us += period_us;
+    }
+    const Event& e = events[(*index)++];
+    if (e.kind == Event::kMotor) {
+      MotorSample m = e.motor;
+      m.utime += *offset_us;
+      on_motor(m);
+    } else if (e.kind == Event::kImu) {
+      ImuSample i = e.imu;
+      i.utime += *offset_us;
+      on_imu(i);
+    } else {
+      StrainSample s = e.strain;
+      s.utime += *offset_us;
+      return s;
+    }
+  }
+}
+
 // One strain sample through one method (with the motor and IMU samples that
-// precede it); the run is looped with utime shifted so time always advances.
+// precede it).
 void BM_StrainSample(benchmark::State& state, const char* method) {
   EstimatorConfig config;
   config.method = method;
   std::unique_ptr<ForceEstimator> estimator = MakeForceEstimator(config);
   const std::vector<Event>& events = GentleEvents(10.0);
-  const int64_t period_us = 10000000;
   size_t index = 0;
   int64_t offset_us = 0;
   ForceEstimate estimate;
   StrainUpdateInfo info;
   for (auto _ : state) {
-    while (true) {
-      if (index == events.size()) {
-        index = 0;
-        offset_us += period_us;
-      }
-      const Event& e = events[index++];
-      if (e.kind == Event::kMotor) {
-        MotorSample m = e.motor;
-        m.utime += offset_us;
-        estimator->AddMotor(m);
-      } else if (e.kind == Event::kImu) {
-        ImuSample i = e.imu;
-        i.utime += offset_us;
-        estimator->AddImu(i);
-      } else {
-        StrainSample s = e.strain;
-        s.utime += offset_us;
-        estimator->AddStrain(s, &estimate, &info);
-        break;
-      }
-    }
+    const StrainSample s = NextStrain(
+        events, &index, &offset_us, [&](const MotorSample& m) { estimator->AddMotor(m); },
+        [&](const ImuSample& i) { estimator->AddImu(i); });
+    estimator->AddStrain(s, &estimate, &info);
     benchmark::DoNotOptimize(estimate);
   }
   state.SetItemsProcessed(state.iterations());
@@ -94,6 +107,31 @@ void BM_StrainSample(benchmark::State& state, const char* method) {
 BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf");
 BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
 BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
+BENCHMARK_CAPTURE(BM_StrainSample, linear_kf, "linear_kf");
+BENCHMARK_CAPTURE(BM_StrainSample, luenberger, "luenberger");
+
+// The rotor-harmonic rejection the pipeline adds before the method, per
+// strain sample: the tracked rotor speeds advanced to the sample and the four
+// notches (1x, 2x on each arm) re-tuned and applied.
+void BM_HarmonicNotchSample(benchmark::State& state) {
+  const EstimatorConfig config;
+  MotorSpeedTracker speeds(config.vehicle, config.pipeline.motor_timeout_s);
+  HarmonicNotch notch(config.harmonic_notch);
+  const std::vector<Event>& events = GentleEvents(10.0);
+  size_t index = 0;
+  int64_t offset_us = 0, last_utime = 0;
+  for (auto _ : state) {
+    StrainSample s = NextStrain(
+        events, &index, &offset_us, [&](const MotorSample& m) { speeds.AddMotor(m); }, [](const ImuSample&) {});
+    speeds.Advance(s.utime);
+    const double omega_rad_s[2] = {speeds.omega_rad_s(0), speeds.omega_rad_s(1)};
+    notch.Apply((s.utime - last_utime) * 1e-6, omega_rad_s, &s);
+    last_utime = s.utime;
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_HarmonicNotchSample);
 
 // The whole pipeline (validation, counters, EKF) over 10 s of `gentle`:
 // real_time_factor = simulated seconds per wall-clock second.

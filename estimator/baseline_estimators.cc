@@ -84,11 +84,9 @@ void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* es
   const Eigen::Vector2d df = b2_inverse_ * (acc - a2_ * x);  // thesis eq. 5.2
   for (int i = 0; i < 2; ++i) {
     const double force = f0_n_ + df(i);
-    const double omega = motor_.omega_rad_s(i);
-    const double nominal = params_.thrust_coeff_n_s2_rad2 * omega * omega;
     estimate->force_n[i] = force;
     estimate->force_std_n[i] = options_.force_std_n;
-    estimate->thrust_scale[i] = (motor_.has_motor() && nominal > 1e-6) ? force / nominal : 1.0;
+    estimate->thrust_scale[i] = motor_.ThrustScale(i, force);
   }
   estimate->status = status | kStatusValid;
 }

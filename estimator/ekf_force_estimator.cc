@@ -32,7 +32,8 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
       process_(params),
       strain_model_(options.strain_noise_rad),
       motor_model_(options.motor_speed_noise_rad_s),
-      gyro_model_(options.gyro_noise_rad_s) {
+      gyro_model_(options.gyro_noise_rad_s),
+      contact_(params, options) {
   process_noise_psd_.setZero();
   process_noise_psd_(kPitchRate, kPitchRate) = options.pitch_rate_psd_rad2_s3;
   for (int i = 0; i < 2; ++i) {
@@ -71,6 +72,10 @@ void EkfForceEstimator::AddMotor(const MotorSample& sample) {
 }
 
 void EkfForceEstimator::AddImu(const ImuSample& sample) {
+  // Thrust of the current estimate (hover before the first strain sample).
+  const double total_force_n =
+      initialized_ ? process_.Force(state_, 0) + process_.Force(state_, 1) : 2.0 * params_.HoverForceN();
+  contact_.Update(sample.utime, sample.accel_z_m_s2, total_force_n);
   if (!options_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) return;
   gyro_rad_s_ = sample.gyro_y_rad_s;
   gyro_pending_ = true;
@@ -78,6 +83,7 @@ void EkfForceEstimator::AddImu(const ImuSample& sample) {
 
 EkfInput EkfForceEstimator::CommandAt(int64_t utime) const {
   EkfInput input;
+  input.body_supported = options_.body_held || contact_.supported();
   const MotorSample* source = nullptr;
   if (has_motor_) source = (motor_.utime <= utime || !has_previous_motor_) ? &motor_ : &previous_motor_;
   for (int i = 0; i < 2; ++i) {

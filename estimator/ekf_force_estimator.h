@@ -8,6 +8,7 @@
 #include "estimator/ekf_model.h"
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
+#include "estimator/ground_contact.h"
 
 namespace birotor {
 
@@ -25,6 +26,7 @@ class EkfForceEstimator : public ForceEstimator {
   const EkfState& state() const { return state_; }
   const EkfMatrix& covariance() const { return covariance_; }
   const EkfProcessModel& process_model() const { return process_; }
+  const GroundContact& ground_contact() const { return contact_; }
 
  private:
   // Motor command in effect at time utime (zero-order hold of the newest
@@ -48,6 +50,7 @@ class EkfForceEstimator : public ForceEstimator {
   StrainMeasurementModel strain_model_;
   MotorSpeedMeasurementModel motor_model_;
   GyroMeasurementModel gyro_model_;
+  GroundContact contact_;        // from the IMU: selects the supported-body model
   EkfMatrix process_noise_psd_;  // diagonal Qc; Q = Qc dt
 
   bool initialized_ = false;

@@ -39,9 +39,11 @@ constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
 using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
 using EkfMatrix = Eigen::Matrix<double, kEkfStateSize, kEkfStateSize>;
 
-// Input held over one prediction interval: clamped rotor speed commands.
+// Input held over one prediction interval: clamped rotor speed commands, and
+// whether a support (the ground) holds the body (GroundContact decides).
 struct EkfInput {
   double omega_cmd_rad_s[2] = {0, 0};
+  bool body_supported = false;
 };
 
 // Process model x_dot = f(x, u):
@@ -50,6 +52,8 @@ struct EkfInput {
 //   gravity do not depend on x, z, phi, x_dot, z_dot) with f_i = mu_i c_T omega_i^2,
 //   omega_i_dot = (clamp(omega_cmd_i) - omega_i) / tau_m,
 //   mu_i_dot = 0 (random walk, driven by process noise).
+// On the ground (u.body_supported) the body is held still: phi_ddot = 0 and
+// b_ddot from SupportedArmAcceleration, where the arms also carry their weight.
 class EkfProcessModel {
  public:
   explicit EkfProcessModel(const VehicleParams& params) : params_(params) {}
@@ -58,6 +62,9 @@ class EkfProcessModel {
   // A = df/dx at (x, u): Jets over (b1, b2, phi_dot, b1_dot, b2_dot, f1, f2)
   // and the chain rule df/domega = 2 mu c_T omega, df/dmu = c_T omega^2.
   EkfMatrix Jacobian(const EkfState& x, const EkfInput& u) const;
+  // A for a body held by the ground: Jets through SupportedArmAcceleration
+  // over (b1, b2, b1_dot, b2_dot, f1, f2); the phi_dot row is zero.
+  EkfMatrix SupportedJacobian(const EkfState& x) const;
   // One RK4 step over dt_s with u held.
   EkfState Step(const EkfState& x, const EkfInput& u, double dt_s) const;
   // Transition matrix Phi = exp(A dt) to fourth order:
@@ -197,6 +204,13 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
   x_dot(kPitchRate) = arm_dot(kFreePhiDot);
   x_dot(kDeflectionRate1) = arm_dot(kFreeB1Dot);
   x_dot(kDeflectionRate2) = arm_dot(kFreeB2Dot);
+  if (u.body_supported) {
+    const Eigen::Vector2d b_ddot = SupportedArmAcceleration<double>(
+        params_, x(kDeflection1), x(kDeflection2), x(kDeflectionRate1), x(kDeflectionRate2), Force(x, 0), Force(x, 1));
+    x_dot(kPitchRate) = 0.0;
+    x_dot(kDeflectionRate1) = b_ddot(0);
+    x_dot(kDeflectionRate2) = b_ddot(1);
+  }
   for (int i = 0; i < 2; ++i) {
     x_dot(kOmegaIndex[i]) =
         (ClampCommand(params_, u.omega_cmd_rad_s[i]) - x(kOmegaIndex[i])) / params_.motor_time_constant_s;
@@ -205,7 +219,8 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
   return x_dot;
 }
 
-inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& /*u*/) const {
+inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u) const {
+  if (u.body_supported) return SupportedJacobian(x);
   // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2; the
   // eighth is padding so that the derivative part vectorises (4 SSE packets).
   // The terms of thesis eq. 3.10 are differentiated with Jets; the solve is
@@ -247,6 +262,29 @@ inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& /*
     for (int i = 0; i < 2; ++i) {
       a(kAccRow[r], kOmegaIndex[i]) = d_acc(row, 5 + i) * grad[i](0);
       a(kAccRow[r], kThrustScaleIndex[i]) = d_acc(row, 5 + i) * grad[i](1);
+    }
+  }
+  a(kOmega1, kOmega1) = -1.0 / params_.motor_time_constant_s;
+  a(kOmega2, kOmega2) = -1.0 / params_.motor_time_constant_s;
+  return a;
+}
+
+inline EkfMatrix EkfProcessModel::SupportedJacobian(const EkfState& x) const {
+  using Jet = ceres::Jet<double, 6>;
+  const Eigen::Matrix<Jet, 2, 1> acc = SupportedArmAcceleration<Jet>(
+      params_, Jet(x(kDeflection1), 0), Jet(x(kDeflection2), 1), Jet(x(kDeflectionRate1), 2),
+      Jet(x(kDeflectionRate2), 3), Jet(Force(x, 0), 4), Jet(Force(x, 1), 5));
+  constexpr EkfIndex kJetState[4] = {kDeflection1, kDeflection2, kDeflectionRate1, kDeflectionRate2};
+  EkfMatrix a = EkfMatrix::Zero();
+  a(kDeflection1, kDeflectionRate1) = 1.0;
+  a(kDeflection2, kDeflectionRate2) = 1.0;
+  const Eigen::Vector2d grad[2] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
+  for (int r = 0; r < 2; ++r) {
+    const int row = kDeflectionRateIndex[r];
+    for (int c = 0; c < 4; ++c) a(row, kJetState[c]) = acc(r).v(c);
+    for (int i = 0; i < 2; ++i) {
+      a(row, kOmegaIndex[i]) = acc(r).v(4 + i) * grad[i](0);
+      a(row, kThrustScaleIndex[i]) = acc(r).v(4 + i) * grad[i](1);
     }
   }
   a(kOmega1, kOmega1) = -1.0 / params_.motor_time_constant_s;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "model/vehicle_params.h"
 
@@ -49,6 +50,36 @@ struct EkfOptions {
   // RK4 steps of at most this: one RK4 step is only stable and accurate for
   // omega_arm dt well below 2.8 (arm modes ~500 rad/s).
   double max_prediction_step_s = 0.002;  // [s]
+  // Ground contact (estimator/ground_contact.h): the support force
+  // N = (m + 2 m_p) a_z - (f1 + f2), low-passed with this time constant, puts
+  // the body on the ground above contact_on_n and back in the air below
+  // contact_off_n. 4.5 N is a tenth of the reference weight; the model error
+  // of the free-body model on the ground is m_p N / (m + 2 m_p) per rotor
+  // (0.14 N at 2 N), so the hysteresis band is where the models nearly agree.
+  double ground_contact_on_n = 4.5;       // [N]
+  double ground_contact_off_n = 2.0;      // [N]
+  double ground_contact_filter_s = 0.02;  // [s] (arm modes 65-80 Hz attenuated ~8x)
+  // The body is held on a test stand (scenario bench): the supported-body
+  // model throughout, whatever the IMU says.
+  bool body_held = false;
+};
+
+// The tare of the strain gauges (estimator/gauge_tare.h): while the motors
+// are stopped and the body rests, each gauge reads s_i b_rest_i + o_i with the
+// known rest deflection b_rest_i = -/+ m_p g L / k (birotor_dynamics.h), so
+// o_i is the mean reading minus s_i b_rest_i.
+struct TareOptions {
+  bool enabled = true;
+  double window_s = 1.0;              // rest needed for a tare; then refined every window_s [s]
+  double motor_stopped_rad_s = 20.0;  // motors stopped: both commands and telemetry below [rad/s]
+  double rest_gyro_rad_s = 0.05;      // at rest: |gyro_y| below [rad/s] (10 sigma of the gyro noise)
+  double rest_accel_m_s2 = 0.3;       // at rest: ||a| - g| below [m/s^2] (6 sigma of the accel noise)
+  double input_timeout_s = 0.05;      // MOTOR and IMU older than this: not judged, no tare [s]
+  double max_offset_rad = 5.0e-4;     // |o_i| above this: reading outside the physical range [rad]
+  double model_std_rad = 1.0e-6;      // uncertainty of s_i b_rest_i (m_p, k, s_i), added to the mean's [rad]
+  // birotor-estimator writes the offsets in use here at a clean stop and
+  // starts from them (services/gauge_state_file.h); "" for none.
+  std::string state_file = "";
 };
 
 // The thesis's open-loop model inversion (thesis eq. 5.1-5.2).
@@ -60,6 +91,32 @@ struct InversionOptions {
   int window_samples = 63;
   // One sigma reported as force_std_n (the inversion has no covariance) [N].
   double force_std_n = 1.0;
+};
+
+// The thesis's linear hover model with the forces as random-walk states
+// (thesis eq. 4.2, observable part only), discretised at the strain rate;
+// shared by the Luenberger observer and the linear Kalman filter. Its noise
+// figures are the EKF's (EkfOptions), not options of its own.
+struct LinearModelOptions {
+  // Nominal strain-gauge sample rate: the model is discretised at 1 / rate;
+  // a longer interval is predicted in whole periods (rounded) [Hz].
+  double strain_rate_hz = 1000.0;
+};
+
+// Gain of the Luenberger observer by pole placement (thesis section 5.4.2,
+// made to work): the discrete error matrix (I - L C) A_d gets, in each of the
+// two decoupled channels (b_s with f1 - f2, b_d with f1 + f2), the poles
+// exp(s T) of the continuous poles below.
+struct LuenbergerOptions {
+  // Force-error pole s = -2 pi force_bandwidth_hz: how fast a force error
+  // decays, against how much strain noise reaches the estimate. 30 Hz is the
+  // best hover MAE at the reference noise among 1 to 80 Hz (0.19 N at 1 Hz,
+  // 0.14 at 5, 0.091 at 30, 0.106 at 80: turbulence and control move the
+  // forces faster than a slow observer follows) [Hz].
+  double force_bandwidth_hz = 30.0;
+  // Arm-error poles: the channel's own arm mode frequency with this damping
+  // ratio (the open arm modes have 0.02) [1].
+  double arm_damping_ratio = 0.7;
 };
 
 // The nominal motor map f = c_T omega^2.
@@ -79,13 +136,35 @@ struct PipelineOptions {
   double max_gyro_rad_s = 100.0;        // |gyro| above this is an invalid sample [rad/s]
 };
 
+// Tracked notches against the rotor-harmonic pickup (estimator/harmonic_notch.h).
+struct HarmonicNotchOptions {
+  bool enabled = true;  // off: the deflection reaches the method unfiltered
+  // -3 dB width of each notch [Hz]. 4 Hz: wide against the telemetry noise
+  // (5 rad/s is 0.8 Hz at 1x, 1.6 Hz at 2x), narrow enough to leave the arm
+  // modes and the thrust_loss detection delay unchanged (8 Hz: +4 ms).
+  double bandwidth_hz = 4.0;
+  double min_speed_rad_s = 100.0;  // below this rotor speed the notches pass (motors stopped or idling) [rad/s]
+  double max_dt_s = 0.01;          // a longer strain interval restarts the notches [s]
+};
+
+// Names of the estimation methods (--method, `estimator.method`), in the
+// order of the thesis's ladder and the evaluation table.
+inline const std::vector<std::string>& EstimationMethodNames() {
+  static const std::vector<std::string> names = {"ekf", "linear_kf", "luenberger", "inversion", "motor_map"};
+  return names;
+}
+
 struct EstimatorConfig {
-  VehicleParams vehicle;       // `vehicle:` section
-  std::string method = "ekf";  // "ekf", "inversion" or "motor_map"
-  EkfOptions ekf;              // `estimator.ekf:`
-  InversionOptions inversion;  // `estimator.inversion:`
-  MotorMapOptions motor_map;   // `estimator.motor_map:`
-  PipelineOptions pipeline;    // `estimator.pipeline:`
+  VehicleParams vehicle;                // `vehicle:` section
+  std::string method = "ekf";           // one of EstimationMethodNames()
+  EkfOptions ekf;                       // `estimator.ekf:`
+  InversionOptions inversion;           // `estimator.inversion:`
+  MotorMapOptions motor_map;            // `estimator.motor_map:`
+  LinearModelOptions linear_model;      // `estimator.linear_model:` (luenberger, linear_kf)
+  LuenbergerOptions luenberger;         // `estimator.luenberger:`
+  PipelineOptions pipeline;             // `estimator.pipeline:`
+  TareOptions tare;                     // `estimator.tare:`
+  HarmonicNotchOptions harmonic_notch;  // `estimator.harmonic_notch:`
 };
 
 }  // namespace birotor

@@ -5,6 +5,7 @@
 
 #include "estimator/baseline_estimators.h"
 #include "estimator/ekf_force_estimator.h"
+#include "estimator/linear_force_estimator.h"
 
 namespace birotor {
 namespace {
@@ -50,12 +51,23 @@ std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config
   if (config.method == "ekf") return std::make_unique<EkfForceEstimator>(config.vehicle, config.ekf);
   if (config.method == "inversion") return std::make_unique<InversionEstimator>(config.vehicle, config.inversion);
   if (config.method == "motor_map") return std::make_unique<MotorMapEstimator>(config.vehicle, config.motor_map);
+  if (config.method == "linear_kf") {
+    return std::make_unique<LinearForceEstimator>(config.vehicle, config.ekf, config.linear_model);
+  }
+  if (config.method == "luenberger") {
+    return std::make_unique<LinearForceEstimator>(config.vehicle, config.ekf, config.linear_model, config.luenberger);
+  }
   return nullptr;
 }
 
 EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
-    : config_(config), method_(MakeForceEstimator(config)) {
+    : config_(config),
+      method_(MakeForceEstimator(config)),
+      tare_(config.vehicle, config.tare),
+      rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
+      notch_(config.harmonic_notch) {
   if (!method_) throw std::invalid_argument("unknown estimation method '" + config.method + "'");
+  health_.gauge = GaugeCalibration::FromVehicle(config.vehicle);
   health_.last_reset_reason.reserve(32);  // no allocation when a reason is set later
 }
 
@@ -66,6 +78,14 @@ const char* EstimatorPipeline::method_name() const { return method_->Name(); }
 void EstimatorPipeline::CountReceived(InputChannel channel) { ++Counters(&health_, channel).received; }
 void EstimatorPipeline::CountDecodeError(InputChannel channel) { ++Counters(&health_, channel).decode_errors; }
 void EstimatorPipeline::CountOverloadDrop(InputChannel channel) { ++Counters(&health_, channel).dropped_overload; }
+
+void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
+  for (int i = 0; i < 2; ++i) {
+    health_.gauge.offset_rad[i] = calibration.offset_rad[i];
+    health_.gauge.offset_std_rad[i] = calibration.offset_std_rad[i];
+  }
+  health_.gauge.source = calibration.source;
+}
 
 void EstimatorPipeline::TakePeriod() {
   for (InputCounters& c : health_.inputs) c.accepted_in_period = 0;
@@ -141,6 +161,8 @@ void EstimatorPipeline::OnMotor(const MotorSample& sample) {
   if (std::isnan(sample.omega_meas_rad_s[0]) || std::isnan(sample.omega_meas_rad_s[1])) ++c.telemetry_missing;
   last_motor_ = sample;
   has_motor_ = true;
+  tare_.AddMotor(sample);
+  rotor_speed_.AddMotor(sample);
   method_->AddMotor(sample);
   ++c.fused;
 }
@@ -157,8 +179,10 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
   }
   bool backwards = false;
   if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
+  tare_.AddImu(sample);
   method_->AddImu(sample);
-  if (config_.method == "ekf" && config_.ekf.use_gyro) ++c.fused;
+  const bool fuses_gyro = config_.method == "ekf" || config_.method == "linear_kf" || config_.method == "luenberger";
+  if (fuses_gyro && config_.ekf.use_gyro) ++c.fused;
 }
 
 void EstimatorPipeline::OnPose(const PoseSample& sample) {
@@ -206,8 +230,25 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     }
   }
 
+  if (tare_.AddStrain(sample) == TareEvent::kAccepted) {
+    for (int i = 0; i < 2; ++i) {
+      health_.gauge.offset_rad[i] = tare_.offset_rad()[i];
+      health_.gauge.offset_std_rad[i] = tare_.offset_std_rad()[i];
+    }
+    health_.gauge.source = GaugeOffsetSource::kTare;
+  }
+  health_.tare = tare_.counters();
+
+  StrainSample deflection = health_.gauge.Apply(sample);
+  if (config_.harmonic_notch.enabled) {
+    rotor_speed_.Advance(sample.utime);
+    const double omega_rad_s[2] = {rotor_speed_.omega_rad_s(0), rotor_speed_.omega_rad_s(1)};
+    const double dt_s = previous_utime >= 0 && !backwards ? (sample.utime - previous_utime) * 1e-6 : 0.0;
+    notch_.Apply(dt_s, omega_rad_s, &deflection);
+  }
+
   StrainUpdateInfo info;
-  method_->AddStrain(sample, estimate, &info);
+  method_->AddStrain(deflection, estimate, &info);
   if (info.reset) {
     // The method re-initialised itself (its own dt bound or a numerical guard).
     ++health_.resets;

@@ -1,6 +1,8 @@
 // The estimator's input path, shared by the live daemon and the replay tool so
 // both give the same numbers: validates every sample (finite fields, time
-// order, duplicates, seq gaps), detects stale inputs and long gaps, resets the
+// order, duplicates, seq gaps), calibrates the strain gauges (scale, and the
+// offset from the parameters or a tare on the ground: gauge_tare.h), detects
+// stale inputs and long gaps, resets the
 // method after a gap or a backwards time jump, and keeps the health counters
 // published on ESTIMATOR_STATUS. No LCM here; no allocation per sample.
 #pragma once
@@ -11,6 +13,10 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
+#include "estimator/gauge_calibration.h"
+#include "estimator/gauge_tare.h"
+#include "estimator/harmonic_notch.h"
+#include "estimator/motor_speed_tracker.h"
 #include "estimator/samples.h"
 
 namespace birotor {
@@ -51,6 +57,10 @@ struct PipelineHealth {
   double nis_sum = 0;
   double nis_max = 0;
   int64_t nis_count = 0;
+  // Strain-gauge calibration in use (every method sees (b_meas - o) / s) and
+  // the tare's counters.
+  GaugeCalibration gauge;
+  TareCounters tare;
 };
 
 class EstimatorPipeline {
@@ -72,6 +82,9 @@ class EstimatorPipeline {
   bool OnStrain(const StrainSample& sample, ForceEstimate* estimate);
 
   const PipelineHealth& health() const { return health_; }
+  // Replaces the gauge offsets in use (e.g. from the persisted state file);
+  // the scale stays the parameter file's. A later tare replaces them again.
+  void SetGaugeOffsets(const GaugeCalibration& calibration);
   // Clears the per-period fields (rates, NIS) after a status message.
   void TakePeriod();
   const char* method_name() const;
@@ -81,6 +94,9 @@ class EstimatorPipeline {
   EstimatorConfig config_;
   std::unique_ptr<ForceEstimator> method_;
   PipelineHealth health_;
+  GaugeTare tare_;
+  MotorSpeedTracker rotor_speed_;  // for the harmonic notches
+  HarmonicNotch notch_;
 
   enum class TimeOrder { kInOrder, kDuplicate, kOutOfOrder, kBackwardsJump };
   // Classifies utime against the newest accepted sample of the channel.
@@ -102,7 +118,7 @@ class EstimatorPipeline {
   ForceEstimate last_finite_estimate_;
 };
 
-// Creates the method named in config.method ("ekf", "inversion", "motor_map");
+// Creates the method named in config.method (EstimationMethodNames());
 // nullptr for an unknown name (the EstimatorPipeline constructor then throws
 // std::invalid_argument; the config loader refuses such names earlier).
 std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config);

@@ -21,7 +21,7 @@ struct StrainUpdateInfo {
 class ForceEstimator {
  public:
   virtual ~ForceEstimator() = default;
-  // Short name: "ekf", "inversion" or "motor_map".
+  // Short name: one of EstimationMethodNames() (estimator_config.h).
   virtual const char* Name() const = 0;
   // Forget everything (start, long gap, time jump backwards).
   virtual void Reset() = 0;

@@ -25,6 +25,12 @@ class MotorSpeedTracker {
   bool has_motor() const { return has_motor_; }
   double omega_rad_s(int rotor) const { return omega_rad_s_[rotor]; }
   bool from_telemetry(int rotor) const { return from_telemetry_[rotor]; }
+  // Thrust efficiency of an estimated force against the nominal map,
+  // force_n / (c_T omega_i^2) [1]; 1 without motor input or below 1 uN nominal.
+  double ThrustScale(int rotor, double force_n) const {
+    const double nominal = params_.thrust_coeff_n_s2_rad2 * omega_rad_s_[rotor] * omega_rad_s_[rotor];
+    return (has_motor_ && nominal > 1e-6) ? force_n / nominal : 1.0;
+  }
 
  private:
   VehicleParams params_;

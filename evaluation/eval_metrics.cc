@@ -14,13 +14,14 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-ErrorStats Summarize(std::vector<double>* errors) {
+ErrorStats Summarize(std::vector<double>* errors, int64_t within_2sigma = 0) {
   ErrorStats stats;
   stats.count = static_cast<int64_t>(errors->size());
   if (errors->empty()) {
-    stats.mae_n = stats.rmse_n = stats.p95_n = stats.max_n = kNaN;
+    stats.mae_n = stats.rmse_n = stats.p95_n = stats.max_n = stats.share_within_2sigma = kNaN;
     return stats;
   }
+  stats.share_within_2sigma = static_cast<double>(within_2sigma) / static_cast<double>(errors->size());
   double sum = 0, sum_sq = 0;
   for (double e : *errors) {
     sum += e;
@@ -73,6 +74,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
   const int64_t warmup_us = static_cast<int64_t>(std::llround(options.warmup_s * 1e6));
   const int64_t exclusion_us = static_cast<int64_t>(std::llround(options.fault_exclusion_s * 1e6));
   std::vector<double> errors[2], errors_outside[2];
+  int64_t within_2sigma[2] = {0, 0};
   int64_t first_utime = forces.empty() ? 0 : forces.front().utime;
   size_t next_fault = 0;
   int64_t last_fault_utime = std::numeric_limits<int64_t>::min() / 2;
@@ -100,7 +102,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
         result.scale_error_after_step = std::abs(e.thrust_scale[r] - t.thrust_scale[r]);
       }
     }
-    if (e.utime - first_utime < warmup_us) continue;
+    if (e.utime - first_utime < warmup_us || e.utime < options.score_from_utime) continue;
     if (!(e.status & kStatusValid)) ++result.invalid;
     while (next_fault < fault_utimes.size() && fault_utimes[next_fault] <= e.utime) {
       last_fault_utime = fault_utimes[next_fault++];
@@ -111,11 +113,12 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
       const double error =
           std::isfinite(e.force_n[r]) ? std::abs(e.force_n[r] - t.force_n[r]) : std::numeric_limits<double>::infinity();
       errors[r].push_back(error);
+      if (error <= 2.0 * e.force_std_n[r]) ++within_2sigma[r];
       if (!near_fault) errors_outside[r].push_back(error);
     }
   }
   for (int r = 0; r < 2; ++r) {
-    result.rotor[r] = Summarize(&errors[r]);
+    result.rotor[r] = Summarize(&errors[r], within_2sigma[r]);
     result.mae_outside_faults_n[r] = Summarize(&errors_outside[r]).mae_n;
   }
   return result;
@@ -124,8 +127,9 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
 std::string MarkdownTableHeader() {
   return "| scenario | method | MAE f1 [N] | MAE f2 [N] | RMSE f1 [N] | RMSE f2 [N] | "
          "p95 f1 [N] | p95 f2 [N] | max f1 [N] | max f2 [N] | MAE excl. faults [N] | "
-         "fault delay [ms] | scale err +100 ms | false alarms | non-finite | scored |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "fault delay [ms] | scale err +100 ms | false alarms | non-finite | scored | "
+         "within 2 sigma f1 / f2 |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string MarkdownTableRow(const std::string& scenario, const std::string& method, const EvalResult& r) {
@@ -141,12 +145,13 @@ std::string MarkdownTableRow(const std::string& scenario, const std::string& met
   char row[1024];
   std::snprintf(row, sizeof(row),
                 "| %s | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | "
-                "%.4f / %.4f | %s | %s | %lld | %lld | %lld |\n",
+                "%.4f / %.4f | %s | %s | %lld | %lld | %lld | %.3f / %.3f |\n",
                 scenario.c_str(), method.c_str(), r.rotor[0].mae_n, r.rotor[1].mae_n, r.rotor[0].rmse_n,
                 r.rotor[1].rmse_n, r.rotor[0].p95_n, r.rotor[1].p95_n, r.rotor[0].max_n, r.rotor[1].max_n,
                 r.mae_outside_faults_n[0], r.mae_outside_faults_n[1], delay, scale,
                 static_cast<long long>(r.false_alarms), static_cast<long long>(r.nonfinite),
-                static_cast<long long>(r.rotor[0].count));
+                static_cast<long long>(r.rotor[0].count), r.rotor[0].share_within_2sigma,
+                r.rotor[1].share_within_2sigma);
   return row;
 }
 

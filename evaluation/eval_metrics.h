@@ -23,12 +23,18 @@ struct EvalOptions {
   double false_alarm_truth_scale = 0.9;
   // thrust_scale error is checked this long after a step [s].
   double scale_check_delay_s = 0.1;
+  // Scoring starts no earlier than this (e.g. the lift-off of a flight with a
+  // ground phase); -1: from the first estimate plus warmup_s [us].
+  int64_t score_from_utime = -1;
 };
 
 // Error statistics of one rotor [N].
 struct ErrorStats {
   int64_t count = 0;
   double mae_n = 0, rmse_n = 0, p95_n = 0, max_n = 0;
+  // Share of scored estimates with |error| <= 2 force_std_n: 0.95 for an
+  // honest Gaussian one sigma [1].
+  double share_within_2sigma = 0;
 };
 
 struct EvalResult {

@@ -46,6 +46,7 @@ EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& co
   }
   EvalRun run;
   run.simulated_s = simulator.time_s();
+  run.liftoff_utime = simulator.liftoff_utime();
   run.forces = std::move(collector.forces);
   run.truth = std::move(collector.truth);
   run.stats = replayer.stats();

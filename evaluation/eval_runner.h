@@ -38,9 +38,10 @@ struct EvalRun {
   std::vector<TruthSample> truth;
   ReplayStats stats;
   PipelineHealth health;
-  double simulated_s = 0;  // [s]
-  double wall_s = 0;       // simulation and estimation [s]
-  std::string log_damage;  // input log only: corrupt events or a cut tail ("" if intact)
+  double simulated_s = 0;      // [s]
+  double wall_s = 0;           // simulation and estimation [s]
+  int64_t liftoff_utime = -1;  // first lift-off of a scenario with a ground phase [us]; -1 if none
+  std::string log_damage;      // input log only: corrupt events or a cut tail ("" if intact)
 };
 
 // Simulates the scenario (up to max_duration_s, <= 0 for all of it) and

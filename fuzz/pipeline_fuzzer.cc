@@ -189,7 +189,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ByteReader in(data, size);
   birotor::EstimatorConfig config;
   const uint8_t method = in.Byte();
-  config.method = method % 3 == 0 ? "ekf" : method % 3 == 1 ? "inversion" : "motor_map";
+  const std::vector<std::string>& methods = birotor::EstimationMethodNames();
+  config.method = methods[method % methods.size()];
   EstimatorPipeline pipeline(config);
 
   int64_t clock_us[birotor::kNumInputChannels] = {0, 0, 0, 0};

@@ -29,6 +29,10 @@ void ReadEkfOptions(YamlSection s, EkfOptions* o) {
   s.Double("fault_persistence_s", 0.0, 10.0, &o->fault_persistence_s);
   s.Double("max_dt_s", 1e-4, 10.0, &o->max_dt_s);
   s.Double("max_prediction_step_s", 1e-5, 0.004, &o->max_prediction_step_s);
+  s.Double("ground_contact_on_n", 0.0, 1e5, &o->ground_contact_on_n);
+  s.Double("ground_contact_off_n", 0.0, o->ground_contact_on_n, &o->ground_contact_off_n);
+  s.Double("ground_contact_filter_s", 1e-4, 10.0, &o->ground_contact_filter_s);
+  s.Bool("body_held", &o->body_held);
   if (o->fault_clear_thrust_scale < o->fault_thrust_scale) {
     s.Fail("fault_clear_thrust_scale", "below fault_thrust_scale (no hysteresis)",
            RangeText(o->fault_thrust_scale, 1.0));
@@ -48,6 +52,19 @@ void ReadMotorMapOptions(YamlSection s, MotorMapOptions* o) {
   s.Finish();
 }
 
+void ReadLinearModelOptions(YamlSection s, LinearModelOptions* o) {
+  s.Double("strain_rate_hz", 10.0, 1e5, &o->strain_rate_hz);
+  s.Finish();
+}
+
+// force_bandwidth_hz at most a fifth of the strain rate (the placed pole
+// stays on the positive real axis, well inside the unit circle).
+void ReadLuenbergerOptions(YamlSection s, double strain_rate_hz, LuenbergerOptions* o) {
+  s.Double("force_bandwidth_hz", 0.01, 0.2 * strain_rate_hz, &o->force_bandwidth_hz);
+  s.Double("arm_damping_ratio", 0.05, 0.99, &o->arm_damping_ratio);
+  s.Finish();
+}
+
 void ReadPipelineOptions(YamlSection s, PipelineOptions* o) {
   s.Double("reset_gap_s", 1e-3, 100.0, &o->reset_gap_s);
   s.Double("time_backwards_reset_s", 0.0, 1e6, &o->time_backwards_reset_s);
@@ -56,6 +73,27 @@ void ReadPipelineOptions(YamlSection s, PipelineOptions* o) {
   s.Double("max_deflection_rad", 1e-4, 3.2, &o->max_deflection_rad);
   s.Double("max_omega_rad_s", 1.0, 1e6, &o->max_omega_rad_s);
   s.Double("max_gyro_rad_s", 1e-3, 1e4, &o->max_gyro_rad_s);
+  s.Finish();
+}
+
+void ReadTareOptions(YamlSection s, TareOptions* o) {
+  s.Bool("enabled", &o->enabled);
+  s.Double("window_s", 1e-2, 1e3, &o->window_s);
+  s.Double("motor_stopped_rad_s", 0.0, 1e4, &o->motor_stopped_rad_s);
+  s.Double("rest_gyro_rad_s", 0.0, 100.0, &o->rest_gyro_rad_s);
+  s.Double("rest_accel_m_s2", 0.0, 100.0, &o->rest_accel_m_s2);
+  s.Double("input_timeout_s", 1e-3, 100.0, &o->input_timeout_s);
+  s.Double("max_offset_rad", 1e-7, 0.1, &o->max_offset_rad);
+  s.Double("model_std_rad", 0.0, 0.1, &o->model_std_rad);
+  s.AnyString("state_file", &o->state_file);
+  s.Finish();
+}
+
+void ReadHarmonicNotchOptions(YamlSection s, HarmonicNotchOptions* o) {
+  s.Bool("enabled", &o->enabled);
+  s.Double("bandwidth_hz", 0.1, 200.0, &o->bandwidth_hz);
+  s.Double("min_speed_rad_s", 0.0, 1e5, &o->min_speed_rad_s);
+  s.Double("max_dt_s", 1e-4, 1.0, &o->max_dt_s);
   s.Finish();
 }
 
@@ -70,11 +108,15 @@ EstimatorConfig ReadRoot(YamlSection root) {
 }  // namespace
 
 void ReadEstimatorOptions(YamlSection s, EstimatorConfig* config) {
-  s.String("method", {"ekf", "inversion", "motor_map"}, &config->method);
+  s.String("method", EstimationMethodNames(), &config->method);
   ReadEkfOptions(s.Section("ekf"), &config->ekf);
   ReadInversionOptions(s.Section("inversion"), &config->inversion);
   ReadMotorMapOptions(s.Section("motor_map"), &config->motor_map);
+  ReadLinearModelOptions(s.Section("linear_model"), &config->linear_model);
+  ReadLuenbergerOptions(s.Section("luenberger"), config->linear_model.strain_rate_hz, &config->luenberger);
   ReadPipelineOptions(s.Section("pipeline"), &config->pipeline);
+  ReadTareOptions(s.Section("tare"), &config->tare);
+  ReadHarmonicNotchOptions(s.Section("harmonic_notch"), &config->harmonic_notch);
   s.Finish();
 }
 

@@ -18,6 +18,10 @@ void ReadVehicleParams(YamlSection s, VehicleParams* p) {
   s.Double("omega_max_rad_s", 1.0, 1e5, &p->omega_max_rad_s);
   s.Double("turbulence_std", 0.0, 1.0, &p->turbulence_std);
   s.Double("turbulence_corr_time_s", 1e-4, 100.0, &p->turbulence_corr_time_s);
+  s.DoubleArray("gauge_scale", 2, 0.5, 2.0, p->gauge_scale);
+  s.DoubleArray("gauge_offset_rad", 2, -1e-2, 1e-2, p->gauge_offset_rad);
+  s.Double("gauge_offset_std_rad", 1e-9, 1e-2, &p->gauge_offset_std_rad);
+  s.Double("gauge_drift_psd_rad2_s", 0.0, 1e-6, &p->gauge_drift_psd_rad2_s);
   s.Finish();
 }
 
@@ -45,6 +49,10 @@ std::string VehicleParamsYaml(const VehicleParams& p, const std::string& indent)
   out << indent << "omega_max_rad_s: " << p.omega_max_rad_s << "\n";
   out << indent << "turbulence_std: " << p.turbulence_std << "\n";
   out << indent << "turbulence_corr_time_s: " << p.turbulence_corr_time_s << "\n";
+  out << indent << "gauge_scale: [" << p.gauge_scale[0] << ", " << p.gauge_scale[1] << "]\n";
+  out << indent << "gauge_offset_rad: [" << p.gauge_offset_rad[0] << ", " << p.gauge_offset_rad[1] << "]\n";
+  out << indent << "gauge_offset_std_rad: " << p.gauge_offset_std_rad << "\n";
+  out << indent << "gauge_drift_psd_rad2_s: " << p.gauge_drift_psd_rad2_s << "\n";
   return out.str();
 }
 

@@ -4,6 +4,7 @@
 #include <sched.h>
 #include <spdlog/spdlog.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -16,6 +17,7 @@
 #include "params/estimator_config_yaml.h"
 #include "params/yaml_reader.h"
 #include "services/estimator_service.h"
+#include "services/gauge_state_file.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
@@ -36,7 +38,7 @@ int main(int argc, char** argv) {
   EstimatorServiceOptions options;
   app.add_option("--params", params_file, "Estimator parameter file (vehicle: and estimator:)");
   app.add_option("--method", method, "Estimation method, overrides the file")
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate [Hz]")
       ->check(CLI::Range(0.1, 100.0));
   app.add_option("--overload-max-delay-s", options.overload_max_delay_s,
@@ -85,6 +87,21 @@ int main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(common.prefix);
   LcmSink sink(lcm.get());
   EstimatorService service(config, channels, options, &sink);
+  const std::string& state_file = config.tare.state_file;
+  const std::string vehicle_checksum = VehicleChecksum(config.vehicle);
+  if (!state_file.empty()) {
+    // A missing file is a first start; a corrupt or foreign one is refused.
+    GaugeCalibration persisted = GaugeCalibration::FromVehicle(config.vehicle);
+    if (access(state_file.c_str(), F_OK) != 0) {
+      spdlog::info("gauge state file {} absent: gauge offsets from the parameter file", state_file);
+    } else if (ReadGaugeState(state_file, vehicle_checksum, config.tare.max_offset_rad, &persisted, &error)) {
+      service.SetGaugeOffsets(persisted);
+      spdlog::info("gauge offsets {:.3e} {:.3e} rad from the state file {}", persisted.offset_rad[0],
+                   persisted.offset_rad[1], state_file);
+    } else {
+      spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
+    }
+  }
   // Inputs. On udpm our own small-message reader, and LCM only publishes (it
   // opens no receive socket until something subscribes): LCM's fragment
   // reassembly, which two crafted datagrams crash, is never reached
@@ -161,5 +178,12 @@ int main(int argc, char** argv) {
       service.forces_published(), strain.received, strain.fused, strain.decode_errors, strain.out_of_order,
       strain.dropped_overload, health.resets, receiver ? receiver->counters().fragments_dropped : 0,
       receiver ? receiver->counters().malformed_dropped : 0, receiver ? receiver->counters().kernel_dropped : 0);
+  if (!state_file.empty()) {
+    if (!WriteGaugeState(state_file, health.gauge, vehicle_checksum, &error)) {
+      std::fprintf(stderr, "birotor-estimator: error: gauge state: %s\n", error.c_str());
+      return 1;
+    }
+    spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(health.gauge.source), state_file);
+  }
   return 0;
 }

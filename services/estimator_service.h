@@ -89,6 +89,8 @@ class EstimatorService {
   void PublishStatusOnVehicleClock();
 
   const PipelineHealth& health() const { return pipeline_.health(); }
+  // Gauge offsets to start from (persisted state file); see EstimatorPipeline.
+  void SetGaugeOffsets(const GaugeCalibration& calibration) { pipeline_.SetGaugeOffsets(calibration); }
   const EstimatorPipeline& pipeline() const { return pipeline_; }
   const ChannelNames& channels() const { return channels_; }
   int32_t status_published() const { return status_seq_; }

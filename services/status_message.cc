@@ -42,7 +42,9 @@ void ProcessingTimeStats::TakePeriod() {
 }
 
 double StrainGateOf(const EstimatorConfig& config) {
-  return config.method == "ekf" ? config.ekf.gate_nis_threshold : kNaN;
+  // The EKF and the two linear methods gate the strain innovation (the same option).
+  const bool gated = config.method == "ekf" || config.method == "linear_kf" || config.method == "luenberger";
+  return gated ? config.ekf.gate_nis_threshold : kNaN;
 }
 
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
@@ -86,7 +88,15 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   for (int rotor = 0; rotor < 2; ++rotor) {
     message->force_n[rotor] = health.last_estimate.force_n[rotor];
     message->thrust_scale[rotor] = health.last_estimate.thrust_scale[rotor];
+    message->gauge_offset_rad[rotor] = health.gauge.offset_rad[rotor];
+    message->gauge_offset_std_rad[rotor] = health.gauge.offset_std_rad[rotor];
   }
+  message->gauge_offset_source = GaugeOffsetSourceName(health.gauge.source);
+  message->tares = health.tare.accepted;
+  message->tares_refused_motors_running = health.tare.refused_motors_running;
+  message->tares_refused_body_moving = health.tare.refused_body_moving;
+  message->tares_refused_out_of_range = health.tare.refused_out_of_range;
+  message->last_tare_refusal = TareRefusalName(health.tare.last_refusal);
   message->udp_datagrams = context.udp.datagrams;
   message->udp_fragments_dropped = context.udp.fragments_dropped;
   message->udp_malformed_dropped = context.udp.malformed_dropped;

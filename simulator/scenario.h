@@ -94,6 +94,43 @@ struct FaultParams {
   TimeWindow motor_telemetry_gap;                   // omega_meas NaN, commands continue
 };
 
+// A real strain gauge (shared/spec/gauges.md):
+//   b_meas_i(t) = s_i b_i(t) + o_i(t) + v_i(t) + n_i(t)
+// with o_i(t) = offset_i + drift_i * (time spent inside drift_window) and the
+// rotor-harmonic pickup v_i = a1_i sin(theta_i) + a2_i sin(2 theta_i + phase2_i),
+// theta_i the angle of rotor i (integrated from its own speed). n_i is
+// sensors.strain.noise_rad. Defaults: the ideal gauge of reference-vehicle.md.
+struct GaugeParams {
+  double scale[2] = {1.0, 1.0};                  // s_i [1]
+  double offset_rad[2] = {0.0, 0.0};             // o_i at power-up [rad]
+  double drift_rad_s[2] = {0.0, 0.0};            // do_i/dt inside drift_window [rad/s]
+  TimeWindow drift_window;                       // duration 0: no drift
+  double harmonic_1x_rad[2] = {0.0, 0.0};        // a1_i, pickup at the rotor speed [rad]
+  double harmonic_2x_rad[2] = {0.0, 0.0};        // a2_i, pickup at twice the rotor speed [rad]
+  double harmonic_2x_phase_rad[2] = {0.0, 0.0};  // phase2_i [rad]
+  double rotor_angle_rad[2] = {0.0, 0.0};        // theta_i at t = 0 [rad]
+};
+
+// The ground phase of a real flight (shared/spec/gauges.md): rest on the
+// ground with the motors stopped, arm and spool up to idle, then the flight
+// controller takes over (trajectory times count from then); lift-off happens
+// when the thrust exceeds the weight. Optionally the flight ends with a
+// vertical descent to the start height, motors stopped, and rest. The ground
+// is a support under the body at the start height: it holds x, z and phi
+// (level) while the vertical acceleration of the free body would be
+// downwards; the arms still bend under their weight and the thrust.
+struct GroundParams {
+  bool enabled = false;             // false: the flight starts in hover (as the existing scenarios)
+  double rest_s = 3.0;              // at rest with the motors stopped before arming [s]
+  double spool_up_s = 1.0;          // command ramp from 0 to idle [s]
+  double idle_rad_s = 300.0;        // rotor speed at idle [rad/s]
+  bool land = false;                // end the flight with a landing
+  double landing_duration_s = 3.0;  // quintic descent to the start height [s]
+  double rest_after_s = 2.0;        // motors stopped on the ground at the end [s]
+  // Time the flight controller takes over (trajectory time 0) [s].
+  double FlightStartS() const { return enabled ? rest_s + spool_up_s : 0.0; }
+};
+
 // Cascaded PD (+ integral) on the rigid-body approximation, 500 Hz. Outer
 // loop: desired acceleration from the position error (critically damped,
 // 3 rad/s); inner loop: desired pitch acceleration from the tilt error
@@ -123,6 +160,8 @@ struct Scenario {
   TrajectoryParams trajectory;
   BenchProfile bench;
   SensorParams sensors;
+  GaugeParams gauge;
+  GroundParams ground;
   FaultParams faults;
   ControllerParams controller;
 };

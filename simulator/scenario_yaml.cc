@@ -95,6 +95,18 @@ Scenario ReadScenario(YamlSection root) {
   const double end_s = sc.duration_s;
 
   ReadVehicleParams(root.Section("vehicle"), &sc.vehicle);
+  {
+    // The vehicle's gauge_* keys are what an estimator believes; the true
+    // gauge of a simulation is the gauge: section, so they must stay ideal here.
+    const VehicleParams ideal;
+    const VehicleParams& v = sc.vehicle;
+    for (int i = 0; i < 2; ++i) {
+      if (v.gauge_scale[i] != ideal.gauge_scale[i] || v.gauge_offset_rad[i] != ideal.gauge_offset_rad[i]) {
+        root.Section("vehicle").Fail("gauge_scale", "the simulated gauge is set in the gauge: section",
+                                     "gauge_scale [1, 1] and gauge_offset_rad [0, 0] here");
+      }
+    }
+  }
 
   YamlSection trajectory = root.Section("trajectory");
   trajectory.String("kind", {"hold", "waypoints", "random_steps"}, &sc.trajectory.kind);
@@ -157,6 +169,41 @@ Scenario ReadScenario(YamlSection root) {
     ReadSensor(s, "loadcell", step, &sensors.loadcell, {{"noise_n", &sensors.loadcell_noise_n}});
     ReadSensor(s, "truth", step, &sensors.truth, {});
     s.Finish();
+  }
+
+  {
+    YamlSection g = root.Section("gauge");
+    GaugeParams& gauge = sc.gauge;
+    g.DoubleArray("scale", 2, 0.5, 2.0, gauge.scale);
+    g.DoubleArray("offset_rad", 2, -0.01, 0.01, gauge.offset_rad);
+    g.DoubleArray("drift_rad_s", 2, -1e-3, 1e-3, gauge.drift_rad_s);
+    ReadWindow(g, "drift_window", end_s, &gauge.drift_window);
+    g.DoubleArray("harmonic_1x_rad", 2, 0.0, 0.01, gauge.harmonic_1x_rad);
+    g.DoubleArray("harmonic_2x_rad", 2, 0.0, 0.01, gauge.harmonic_2x_rad);
+    g.DoubleArray("harmonic_2x_phase_rad", 2, -10.0, 10.0, gauge.harmonic_2x_phase_rad);
+    g.DoubleArray("rotor_angle_rad", 2, -10.0, 10.0, gauge.rotor_angle_rad);
+    g.Finish();
+  }
+
+  {
+    YamlSection g = root.Section("ground");
+    GroundParams& ground = sc.ground;
+    g.Bool("enabled", &ground.enabled);
+    g.Double("rest_s", 0.0, end_s, &ground.rest_s);
+    g.Double("spool_up_s", 0.0, end_s, &ground.spool_up_s);
+    g.Double("idle_rad_s", 0.0, 1e5, &ground.idle_rad_s);
+    g.Bool("land", &ground.land);
+    g.Double("landing_duration_s", 1e-2, end_s, &ground.landing_duration_s);
+    g.Double("rest_after_s", 0.0, end_s, &ground.rest_after_s);
+    if (ground.enabled && sc.mode != "flight") g.Fail("enabled", "the ground phase needs mode flight", "false");
+    const double flight_start_s = ground.FlightStartS();
+    if (ground.enabled && flight_start_s >= end_s)
+      g.Fail("rest_s", "rest_s + spool_up_s leaves no flight", "rest_s + spool_up_s < " + std::to_string(end_s));
+    if (ground.enabled && ground.land && flight_start_s + ground.landing_duration_s + ground.rest_after_s > end_s) {
+      g.Fail("landing_duration_s", "the landing does not fit after the ground phase",
+             "rest_s + spool_up_s + landing_duration_s + rest_after_s <= " + std::to_string(end_s));
+    }
+    g.Finish();
   }
 
   {

@@ -83,18 +83,31 @@ Simulator::Simulator(const Scenario& scenario)
   fault_events_.reserve(4096);
 
   // Initial state: the exact hover equilibrium at the start position (flight),
-  // or the static arm deflection under the first bench command (bench).
+  // at rest on the ground with the motors stopped (ground phase), or the
+  // static arm deflection under the first bench command (bench).
   const VehicleParams& p = scenario_.vehicle;
   state_.setZero();
-  if (clamped_body_) {
-    command_ = bench_.At(0.0);
+  for (int i = 0; i < 2; ++i) rotor_angle_rad_[i] = scenario_.gauge.rotor_angle_rad[i];
+  const GroundParams& ground = scenario_.ground;
+  if (ground.enabled) {
+    on_ground_ = true;
+    ground_z_m_ = scenario_.start_position_m[1];
+    if (ground.land) {
+      disarm_s_ = scenario_.duration_s - ground.rest_after_s;
+      land_start_s_ = disarm_s_ - ground.landing_duration_s;
+    }
+  }
+  if (clamped_body_ || ground.enabled) {
+    command_ = clamped_body_ ? bench_.At(0.0) : RotorCommand();
+    if (!clamped_body_) {
+      state_(kPlantQ + kX) = scenario_.start_position_m[0];
+      state_(kPlantQ + kZ) = scenario_.start_position_m[1];
+    }
     for (int i = 0; i < 2; ++i) {
       const double omega = ClampCommand(p, command_.omega_cmd_rad_s[i]);
       const double force = RotorThrust(p, omega, efficiency_[i]);
       state_(kPlantOmega1 + i) = omega;
-      // k b = s_i L (f - m_p g) for small b (b row of eq. 3.10 with the body still).
-      state_(kPlantQ + kB1 + i) =
-          kArmSign[i] * p.arm_length_m * (force - p.tip_mass_kg * p.gravity_m_s2) / p.arm_stiffness_n_m_rad;
+      state_(kPlantQ + kB1 + i) = StaticDeflectionRad(p, i, force);
     }
   } else {
     state_(kPlantQ + kX) = scenario_.start_position_m[0];
@@ -108,8 +121,56 @@ Simulator::Simulator(const Scenario& scenario)
 }
 
 PlantState Simulator::Derivative(const PlantState& x) const {
-  return clamped_body_ ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
-                       : PlantDerivative(scenario_.vehicle, x, input_);
+  // On the ground the support holds the body level and still (x and z do not
+  // enter the arm equations: a translated clamped body is the bench).
+  return (clamped_body_ || on_ground_) ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
+                                       : PlantDerivative(scenario_.vehicle, x, input_);
+}
+
+RotorCommand Simulator::Command(double t_s) {
+  if (clamped_body_) return bench_.At(t_s);
+  const GroundParams& ground = scenario_.ground;
+  RotorCommand command;
+  if (ground.enabled) {
+    if (t_s < ground.rest_s || (ground.land && t_s >= disarm_s_)) return command;  // stopped: 0 rad/s
+    if (t_s < ground.FlightStartS()) {
+      const double ramp = ground.spool_up_s > 0 ? (t_s - ground.rest_s) / ground.spool_up_s : 1.0;
+      command.omega_cmd_rad_s[0] = command.omega_cmd_rad_s[1] = ground.idle_rad_s * ramp;
+      return command;
+    }
+  }
+  const double flight_s = t_s - ground.FlightStartS();
+  if (ground.enabled && ground.land && t_s >= land_start_s_) {
+    if (!landing_planned_) {
+      // Vertical descent from where the reference is to the support height.
+      const ReferencePoint from = trajectory_.At(flight_s);
+      landing_.start_s = land_start_s_;
+      landing_.duration_s = ground.landing_duration_s;
+      landing_.from_m = from.position_m;
+      landing_.to_m = Eigen::Vector2d(from.position_m.x(), ground_z_m_);
+      landing_planned_ = true;
+    }
+    reference_ = EvaluateQuintic(landing_, t_s);
+  } else {
+    reference_ = trajectory_.At(flight_s);
+  }
+  return controller_.Update(state_, reference_);
+}
+
+void Simulator::UpdateGroundContact(int64_t now_us) {
+  if (!on_ground_) return;
+  // The support only pushes: the body leaves it when the free body would
+  // accelerate upwards (thrust above the weight).
+  if (PlantDerivative(scenario_.vehicle, state_, input_)(kPlantV + kZ) > 0.0) {
+    on_ground_ = false;
+    if (liftoff_utime_ < 0) liftoff_utime_ = now_us;
+  }
+}
+
+double Simulator::GaugeOffsetRad(int gauge, double t_s) const {
+  const GaugeParams& g = scenario_.gauge;
+  const double drift_s = std::clamp(t_s - g.drift_window.start_s, 0.0, g.drift_window.duration_s);
+  return g.offset_rad[gauge] + g.drift_rad_s[gauge] * drift_s;
 }
 
 double Simulator::TrueForce(int rotor) const {
@@ -141,16 +202,10 @@ bool Simulator::Step(SampleSink* sink) {
   for (int i = 0; i < 2; ++i) input_.thrust_scale[i] = efficiency_[i] * (1.0 + turbulence_[i].value());
 
   // Controller (or bench profile) at its own rate; commands are held (ZOH).
-  if (control_.Due(k)) {
-    if (clamped_body_) {
-      command_ = bench_.At(t_s);
-    } else {
-      reference_ = trajectory_.At(t_s);
-      command_ = controller_.Update(state_, reference_);
-    }
-  }
+  if (control_.Due(k)) command_ = Command(t_s);
   input_.omega_cmd_rad_s[0] = command_.omega_cmd_rad_s[0];
   input_.omega_cmd_rad_s[1] = command_.omega_cmd_rad_s[1];
+  UpdateGroundContact(now_us);
 
   // RK4, keeping k1 = f(x_k, u_k) for the accelerometer.
   const double dt = scenario_.step_s;
@@ -165,7 +220,20 @@ bool Simulator::Step(SampleSink* sink) {
     if (truth_.Due(k)) EmitTruth(now_us, sink);
   }
 
+  const double omega_before[2] = {state_(kPlantOmega1), state_(kPlantOmega2)};
   state_ = Rk4StepFrom(state_, k1, dt, [this](const PlantState& x) { return Derivative(x); });
+  for (int i = 0; i < 2; ++i) {
+    // Trapezoidal rotor angle, kept in [0, 2 pi) so its precision does not decay.
+    const double angle = rotor_angle_rad_[i] + 0.5 * dt * (omega_before[i] + state_(kPlantOmega1 + i));
+    rotor_angle_rad_[i] = angle - 2.0 * M_PI * std::floor(angle / (2.0 * M_PI));
+  }
+  if (scenario_.ground.enabled && !on_ground_ && state_(kPlantQ + kZ) <= ground_z_m_) {
+    // Touchdown: an inelastic contact that levels the body (arms keep their state).
+    on_ground_ = true;
+    state_(kPlantQ + kZ) = ground_z_m_;
+    state_(kPlantQ + kPhi) = 0.0;
+    for (int c : {kX, kZ, kPhi}) state_(kPlantV + c) = 0.0;
+  }
 
   for (GaussMarkov& eta : turbulence_) eta.Advance(&turbulence_noise_);
   ++step_index_;
@@ -184,7 +252,18 @@ void Simulator::EmitStrain(int64_t utime, SampleSink* sink) {
   StrainSample sample;
   sample.utime = utime;
   sample.seq = seq;
-  for (int i = 0; i < 2; ++i) sample.deflection_rad[i] = state_(kPlantQ + kB1 + i) + strain_noise_.Normal(sigma);
+  const GaugeParams& gauge = scenario_.gauge;
+  const double t_s = static_cast<double>(utime - utime_offset_us_) * 1e-6;
+  for (int i = 0; i < 2; ++i) {
+    // b_meas = s b + o(t) + v(t) + n (scenario.h); exactly b + n for the ideal gauge.
+    double reading = gauge.scale[i] * state_(kPlantQ + kB1 + i) + GaugeOffsetRad(i, t_s);
+    if (gauge.harmonic_1x_rad[i] != 0.0 || gauge.harmonic_2x_rad[i] != 0.0) {
+      const double theta = rotor_angle_rad_[i];
+      reading += gauge.harmonic_1x_rad[i] * std::sin(theta) +
+                 gauge.harmonic_2x_rad[i] * std::sin(2.0 * theta + gauge.harmonic_2x_phase_rad[i]);
+    }
+    sample.deflection_rad[i] = reading + strain_noise_.Normal(sigma);
+  }
 
   // Fault draws happen for every sample so the fault pattern does not depend
   // on which other faults are configured.
@@ -233,7 +312,9 @@ void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
   for (int i = 0; i < 2; ++i) {
     sample.omega_cmd_rad_s[i] = ClampCommand(scenario_.vehicle, command_.omega_cmd_rad_s[i]);
     const double noise = motor_noise_.Normal(sensors.motor_speed_noise_rad_s);
-    sample.omega_meas_rad_s[i] = (sensors.motor_telemetry && !in_gap) ? state_(kPlantOmega1 + i) + noise : kNaN;
+    // An ESC reports no negative speed (near 0 while the motors are stopped).
+    sample.omega_meas_rad_s[i] =
+        (sensors.motor_telemetry && !in_gap) ? std::max(0.0, state_(kPlantOmega1 + i) + noise) : kNaN;
   }
   sink->OnMotor(sample);
   ++emitted_.motor;

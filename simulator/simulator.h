@@ -71,6 +71,13 @@ class Simulator {
   const Equilibrium& hover_equilibrium() const { return equilibrium_; }
   const ReferencePoint& reference() const { return reference_; }
   const std::vector<FaultEvent>& fault_events() const { return fault_events_; }
+  // Ground phase: true while the ground supports the body.
+  bool on_ground() const { return on_ground_; }
+  // Time of the first lift-off [us] (with the offset); -1 before it or
+  // without a ground phase.
+  int64_t liftoff_utime() const { return liftoff_utime_; }
+  // Zero offset o_i(t) of gauge i at time t_s (gauge model, scenario.h) [rad].
+  double GaugeOffsetRad(int gauge, double t_s) const;
   const ChannelCounts& emitted() const { return emitted_; }
 
  private:
@@ -93,6 +100,11 @@ class Simulator {
   void EmitTruth(int64_t utime, SampleSink* sink);
   double TrueForce(int rotor) const;
   PlantState Derivative(const PlantState& x) const;
+  // Rotor speed commands of the ground phase and the landing, or the
+  // controller's; t_s is the simulated time of the step.
+  RotorCommand Command(double t_s);
+  // Lift-off before the step, touchdown after it (ground phase only).
+  void UpdateGroundContact(int64_t now_us);
   bool InWindow(const TimeWindow& window, int64_t t_us) const;
   void RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value);
 
@@ -116,6 +128,16 @@ class Simulator {
   GaussMarkov turbulence_[2];
   std::vector<ScheduledStep> thrust_steps_;
   size_t next_thrust_step_ = 0;
+
+  // Ground phase (scenario.ground).
+  bool on_ground_ = false;
+  int64_t liftoff_utime_ = -1;
+  double ground_z_m_ = 0.0;    // height of the support [m]
+  double land_start_s_ = 0.0;  // descent starts [s] (land only)
+  double disarm_s_ = 0.0;      // motors stopped [s] (land only)
+  QuinticMove landing_;        // descent, in simulated time
+  bool landing_planned_ = false;
+  double rotor_angle_rad_[2] = {0.0, 0.0};  // theta_i for the harmonic pickup, in [0, 2 pi)
 
   Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;
   GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_, fault_noise_;

@@ -24,8 +24,10 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-eval: estimator accuracy against simulator truth"};
   CommonOptions common;
   AddCommonOptions(app, &common);
-  std::vector<std::string> scenarios = {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults"};
-  std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
+  std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
+                                        "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
+                                        "gauge_vibration", "gauge_airborne", "bench_gauge"};
+  std::vector<std::string> methods = EstimationMethodNames();
   std::string params_file = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
   std::string scenario_dir = std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios";
   std::string log_path, markdown_out, plot_dir;
@@ -34,9 +36,9 @@ int main(int argc, char** argv) {
   double duration_s = 0;
   EvalOptions eval_options;
   app.add_option("--scenarios", scenarios, "Scenario names (files <scenario-dir>/<name>.yaml)")->delimiter(',');
-  app.add_option("--methods", methods, "Methods: ekf, inversion, motor_map")
+  app.add_option("--methods", methods, "Methods (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--params", params_file, "Estimator parameter file");
   app.add_option("--scenario-dir", scenario_dir, "Folder of the scenario files");
   app.add_option("--set", overrides, "Simulator override section.key=value (repeatable), e.g. noise-free runs");
@@ -92,6 +94,8 @@ int main(int argc, char** argv) {
     for (const std::string& method : methods) {
       EstimatorConfig config = base_config;
       config.method = method;
+      // On a test stand the operator knows the body is held.
+      if (scenario.mode == "bench") config.ekf.body_held = true;
       EvalRun run;
       if (log_path.empty()) {
         run = RunSimulatedScenario(scenario, config, duration_s);
@@ -100,7 +104,10 @@ int main(int argc, char** argv) {
         return 1;
       }
       if (!run.log_damage.empty() && method == methods.front()) spdlog::warn("{}", run.log_damage);
-      const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, eval_options);
+      // A flight with a ground phase is scored from its lift-off.
+      EvalOptions options = eval_options;
+      options.score_from_utime = run.liftoff_utime;
+      const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, options);
       const std::string label = log_path.empty() ? name : "log";
       // Nothing scored (no TRUTH, no FORCE, or all within the warm-up): a
       // table of NaN would look like a result.

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv_path, "Also write FORCE as CSV");
   app.add_option("--params", params_file, "Estimator parameter file");
   app.add_option("--method", method, "Estimation method, overrides the file")
-      ->check(CLI::IsMember({"ekf", "inversion", "motor_map"}));
+      ->check(CLI::IsMember(EstimationMethodNames()));
   app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
       ->check(CLI::Range(0.1, 100.0));
   app.add_flag("--copy-truth,!--no-copy-truth", options.copy_truth, "Copy TRUTH events to the output");

@@ -40,5 +40,7 @@ class RateLimitedLog {
 // FNV-1a 64-bit hash of a file's bytes as 16 lower-case hex digits, or "" if
 // the file cannot be read. Identifies a file in a log line, not a security check.
 std::string FileChecksum(const std::string& path);
+// The same hash of a text.
+std::string TextChecksum(const std::string& text);
 
 }  // namespace birotor

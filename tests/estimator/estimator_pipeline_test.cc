@@ -264,10 +264,10 @@ TEST(EstimatorPipelineTest, BadMotorAndImuSamplesAreCounted) {
 }
 
 TEST(EstimatorPipelineTest, EveryMethodRunsBehindTheSameInterface) {
-  for (const char* method : {"ekf", "inversion", "motor_map"}) {
+  for (const std::string& method : EstimationMethodNames()) {
     Feeder f(ReferenceConfig(method));
     f.Feed(HoverEvents(), 0);
-    EXPECT_STREQ(f.pipeline.method_name(), method);
+    EXPECT_EQ(f.pipeline.method_name(), method);
     ExpectRecovered(f, 2.0);
   }
   EstimatorConfig bad = ReferenceConfig("ekf");

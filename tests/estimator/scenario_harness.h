@@ -22,6 +22,7 @@ namespace testing_support {
 struct PairedSample {
   int64_t utime = 0;
   double force_error_n[2] = {0, 0};  // estimate - truth [N]
+  double force_std_n[2] = {0, 0};    // reported one sigma [N]
   double thrust_scale[2] = {1, 1};   // estimated
   double true_thrust_scale[2] = {1, 1};
   int32_t status = 0;
@@ -36,6 +37,7 @@ struct ScenarioRun {
   PipelineHealth health;
   int64_t published = 0;
   int64_t non_finite = 0;
+  int64_t liftoff_utime = -1;  // first lift-off of a scenario with a ground phase [us]
 };
 
 class PairingSink : public SampleSink {
@@ -76,6 +78,7 @@ class PairingSink : public SampleSink {
     p.status = last_.status;
     for (int i = 0; i < 2; ++i) {
       p.force_error_n[i] = last_.force_n[i] - t.force_n[i];
+      p.force_std_n[i] = last_.force_std_n[i];
       p.thrust_scale[i] = last_.thrust_scale[i];
       p.true_thrust_scale[i] = t.thrust_scale[i];
       p.finite = p.finite && std::isfinite(last_.force_n[i]);
@@ -109,6 +112,7 @@ inline ScenarioRun RunScenario(const Scenario& scenario, const EstimatorConfig& 
   Simulator simulator(scenario);
   simulator.Run(&sink);
   sink.run.faults = simulator.fault_events();
+  sink.run.liftoff_utime = simulator.liftoff_utime();
   sink.run.health = pipeline.health();
   return sink.run;
 }
@@ -123,6 +127,27 @@ inline double ForceMae(const ScenarioRun& run, int rotor, int64_t from_utime = 0
   options.warmup_s = std::max<int64_t>(0, from_utime - run.forces.front().utime) * 1e-6;
   options.fault_exclusion_s = exclude_s;
   return Evaluate(run.forces, run.truth, exclude_after, options).mae_outside_faults_n[rotor];
+}
+
+// Share of pairs with utime >= from_utime whose rotor-i error lies inside the
+// reported 2 sigma (0.95 for an honest Gaussian sigma).
+inline double ShareWithin2Sigma(const ScenarioRun& run, int rotor, int64_t from_utime = 0) {
+  int64_t inside = 0, count = 0;
+  for (const PairedSample& p : run.pairs) {
+    if (p.utime < from_utime) continue;
+    ++count;
+    if (std::abs(p.force_error_n[rotor]) <= 2.0 * p.force_std_n[rotor]) ++inside;
+  }
+  return count > 0 ? static_cast<double>(inside) / static_cast<double>(count) : NAN;
+}
+
+// Estimates with a rotor fault bit.
+inline int64_t FaultFlags(const ScenarioRun& run) {
+  int64_t flags = 0;
+  for (const PairedSample& p : run.pairs) {
+    if (p.status & (kStatusRotor1Fault | kStatusRotor2Fault)) ++flags;
+  }
+  return flags;
 }
 
 }  // namespace testing_support

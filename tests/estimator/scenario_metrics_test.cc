@@ -23,7 +23,7 @@ using testing_support::ScenarioRun;
 TEST(ScenarioMetrics, DISABLED_AllReferenceScenarios) {
   const char* kScenarios[] = {"hover", "gentle", "aggressive", "density", "thrust_loss", "sensor_faults"};
   const char* only = std::getenv("BIROTOR_METHOD");  // restrict to one method (tuning)
-  std::vector<std::string> methods = {"ekf", "inversion", "motor_map"};
+  std::vector<std::string> methods = EstimationMethodNames();
   if (only != nullptr) methods = {only};
   std::printf(
       "| scenario | method | MAE f1 [N] | MAE f2 [N] | fault flags (r1, r2) | first r2 flag [s] | mu2 error 100 ms "

@@ -36,6 +36,15 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.pipeline.time_backwards_reset_s, defaults.pipeline.time_backwards_reset_s);
   EXPECT_EQ(config.pipeline.motor_timeout_s, defaults.pipeline.motor_timeout_s);
   EXPECT_EQ(config.pipeline.max_deflection_rad, defaults.pipeline.max_deflection_rad);
+  EXPECT_EQ(config.ekf.ground_contact_on_n, defaults.ekf.ground_contact_on_n);
+  EXPECT_EQ(config.ekf.ground_contact_off_n, defaults.ekf.ground_contact_off_n);
+  EXPECT_EQ(config.ekf.body_held, defaults.ekf.body_held);
+  EXPECT_EQ(config.tare.window_s, defaults.tare.window_s);
+  EXPECT_EQ(config.tare.motor_stopped_rad_s, defaults.tare.motor_stopped_rad_s);
+  EXPECT_EQ(config.tare.max_offset_rad, defaults.tare.max_offset_rad);
+  EXPECT_EQ(config.tare.state_file, defaults.tare.state_file);
+  EXPECT_EQ(config.harmonic_notch.enabled, defaults.harmonic_notch.enabled);
+  EXPECT_EQ(config.harmonic_notch.bandwidth_hz, defaults.harmonic_notch.bandwidth_hz);
 }
 
 TEST(EstimatorConfigYamlTest, EmptyFileGivesDefaultsAndOverridesApply) {
@@ -70,6 +79,13 @@ TEST(EstimatorConfigYamlTest, ErrorsNameFileKeyAndRange) {
 
   e = ErrorOf("estimator:\n  ekf: {fault_thrust_scale: 0.9, fault_clear_thrust_scale: 0.8}\n");
   EXPECT_NE(e.find("fault_clear_thrust_scale"), std::string::npos) << e;
+
+  e = ErrorOf("estimator:\n  tare: {window_s: 0}\n");
+  EXPECT_NE(e.find("estimator.tare.window_s"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  ekf: {ground_contact_on_n: 2.0, ground_contact_off_n: 3.0}\n");
+  EXPECT_NE(e.find("ground_contact_off_n"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  harmonic_notch: {bandwidth_hz: 0}\n");
+  EXPECT_NE(e.find("estimator.harmonic_notch.bandwidth_hz"), std::string::npos) << e;
 
   EXPECT_THROW(LoadEstimatorConfig("/nonexistent/estimator.yaml"), ParamError);
 }

@@ -56,5 +56,39 @@ TEST(VehicleParamsYaml, ZeroStiffnessWrongTypeAndMissingSectionAreRefused) {
   EXPECT_THROW(LoadVehicleParams(WriteTemp("other: 1\n")), ParamError);
 }
 
+TEST(VehicleParamsYaml, GaugeKeysDefaultToTheIdealGaugeAndRoundTrip) {
+  const VehicleParams reference = LoadVehicleParams("config/reference_vehicle.yaml");
+  EXPECT_EQ(reference.gauge_scale[0], 1.0);  // shared/spec/gauges.md "Parameter keys"
+  EXPECT_EQ(reference.gauge_offset_rad[1], 0.0);
+  EXPECT_EQ(reference.gauge_offset_std_rad, 5.0e-5);
+  EXPECT_EQ(reference.gauge_drift_psd_rad2_s, 1.0e-10);
+  VehicleParams p;
+  p.gauge_scale[0] = 1.03;
+  p.gauge_scale[1] = 0.98;
+  p.gauge_offset_rad[0] = 1.5e-5;
+  p.gauge_offset_std_rad = 2e-6;
+  const VehicleParams q = LoadVehicleParams(WriteTemp(VehicleParamsYaml(p)));
+  EXPECT_EQ(q.gauge_scale[0], 1.03);
+  EXPECT_EQ(q.gauge_scale[1], 0.98);
+  EXPECT_EQ(q.gauge_offset_rad[0], 1.5e-5);
+  EXPECT_EQ(q.gauge_offset_std_rad, 2e-6);
+}
+
+TEST(VehicleParamsYaml, GaugeKeysOutOfRangeNameTheKeyAndRange) {
+  const std::string path = WriteTemp("vehicle:\n  gauge_scale: [1.03, 3.0]\n");
+  try {
+    LoadVehicleParams(path);
+    FAIL() << "accepted a scale of 3";
+  } catch (const ParamError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find("vehicle.gauge_scale"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[0.5, 2]"), std::string::npos) << msg;
+  }
+  EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  gauge_offset_rad: [0.0]\n")), ParamError);
+  EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  gauge_offset_std_rad: 0\n")), ParamError);
+  EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  gauge_drift_psd_rad2_s: -1e-10\n")), ParamError);
+}
+
 }  // namespace
 }  // namespace birotor

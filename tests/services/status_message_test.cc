@@ -77,6 +77,31 @@ TEST(StatusMessageTest, CarriesCountersRatesAndAges) {
   EXPECT_EQ(decoded.inputs[0].fused, 7);
 }
 
+TEST(StatusMessageTest, CarriesTheGaugeOffsetsAndTheTareCounters) {
+  PipelineHealth health;
+  health.gauge.offset_rad[0] = 1.5e-5;
+  health.gauge.offset_std_rad[1] = 1.1e-6;
+  health.gauge.source = GaugeOffsetSource::kTare;
+  health.tare.accepted = 3;
+  health.tare.refused_body_moving = 2;
+  health.tare.refused_out_of_range = 1;
+  health.tare.last_refusal = TareRefusal::kOutOfRange;
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", StatusContext(), &message);
+  std::vector<uint8_t> buffer;
+  EncodeMessage(message, &buffer);
+  estimator_status_t decoded;
+  ASSERT_EQ(DecodeMessage(buffer.data(), buffer.size(), &decoded), DecodeError::kNone);
+  EXPECT_EQ(decoded.gauge_offset_rad[0], 1.5e-5);
+  EXPECT_EQ(decoded.gauge_offset_std_rad[1], 1.1e-6);
+  EXPECT_EQ(decoded.gauge_offset_source, "tare");
+  EXPECT_EQ(decoded.tares, 3);
+  EXPECT_EQ(decoded.tares_refused_motors_running, 0);
+  EXPECT_EQ(decoded.tares_refused_body_moving, 2);
+  EXPECT_EQ(decoded.tares_refused_out_of_range, 1);
+  EXPECT_EQ(decoded.last_tare_refusal, "out_of_range");
+}
+
 TEST(StatusMessageTest, GateIsNanForTheBaselines) {
   EstimatorConfig config;
   EXPECT_EQ(StrainGateOf(config), config.ekf.gate_nis_threshold);

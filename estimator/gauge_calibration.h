@@ -1,0 +1,47 @@
+// Strain-gauge calibration (shared/spec/gauges.md): a gauge reads
+// b_meas_i = s_i b_i + o_i, so the deflection the models use is
+// b_i = (b_meas_i - o_i) / s_i. The scale comes from the vehicle parameter
+// file; the offset from the file, a tare on the ground or the persisted state.
+#pragma once
+
+#include "estimator/samples.h"
+#include "model/birotor_dynamics.h"
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+// Where the offset in use comes from (ESTIMATOR_STATUS gauge_offset_source).
+enum class GaugeOffsetSource : int { kParameters = 0, kTare = 1, kStateFile = 2 };
+const char* GaugeOffsetSourceName(GaugeOffsetSource source);  // "params", "tare", "state_file"
+
+struct GaugeCalibration {
+  double scale[2] = {1.0, 1.0};       // s_i [1]
+  double offset_rad[2] = {0.0, 0.0};  // o_i [rad]
+  double offset_std_rad[2] = {0, 0};  // one sigma of o_i [rad]
+  GaugeOffsetSource source = GaugeOffsetSource::kParameters;
+
+  // gauge_scale, gauge_offset_rad and gauge_offset_std_rad of the vehicle.
+  static GaugeCalibration FromVehicle(const VehicleParams& params) {
+    GaugeCalibration c;
+    for (int i = 0; i < 2; ++i) {
+      c.scale[i] = params.gauge_scale[i];
+      c.offset_rad[i] = params.gauge_offset_rad[i];
+      c.offset_std_rad[i] = params.gauge_offset_std_rad;
+    }
+    return c;
+  }
+  // b_i = (b_meas_i - o_i) / s_i for both arms; utime and seq are kept.
+  StrainSample Apply(const StrainSample& reading) const {
+    StrainSample out = reading;
+    for (int i = 0; i < 2; ++i) out.deflection_rad[i] = (reading.deflection_rad[i] - offset_rad[i]) / scale[i];
+    return out;
+  }
+};
+
+// What gauge i reads at rest on the ground with the motors stopped, before
+// its offset: s_i b_rest_i with b_rest_i = StaticDeflectionRad(f = 0) [rad].
+inline double RestReadingRad(const VehicleParams& params, int arm) {
+  return params.gauge_scale[arm] * StaticDeflectionRad(params, arm, 0.0);
+}
+
+}  // namespace birotor

@@ -1,0 +1,38 @@
+#include "estimator/ground_contact.h"
+
+#include <cmath>
+
+namespace birotor {
+
+GroundContact::GroundContact(const VehicleParams& params, const EkfOptions& options)
+    : total_mass_kg_(params.TotalMass()),
+      on_n_(options.ground_contact_on_n),
+      off_n_(options.ground_contact_off_n),
+      filter_s_(options.ground_contact_filter_s) {}
+
+void GroundContact::Reset() {
+  has_sample_ = false;
+  support_force_n_ = 0;
+  supported_ = false;
+}
+
+void GroundContact::Update(int64_t utime, double accel_z_m_s2, double total_force_n) {
+  if (!std::isfinite(accel_z_m_s2) || !std::isfinite(total_force_n)) return;
+  const double support_n = total_mass_kg_ * accel_z_m_s2 - total_force_n;
+  if (!has_sample_) {
+    support_force_n_ = support_n;
+  } else if (utime > last_utime_) {
+    // Exact discretisation of N_f_dot = (N - N_f) / tau over the sample interval.
+    const double alpha = 1.0 - std::exp(-static_cast<double>(utime - last_utime_) * 1e-6 / filter_s_);
+    support_force_n_ += alpha * (support_n - support_force_n_);
+  }
+  has_sample_ = true;
+  last_utime_ = utime;
+  if (support_force_n_ > on_n_) {
+    supported_ = true;
+  } else if (support_force_n_ < off_n_) {
+    supported_ = false;
+  }
+}
+
+}  // namespace birotor

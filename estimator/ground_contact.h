@@ -1,0 +1,37 @@
+// Whether the ground holds the vehicle, judged from the support force it must
+// be providing. The accelerometer reads the specific force a_z along body z;
+// in flight the rotors carry the whole vehicle, M a_z = f1 + f2 (M = m + 2 m_p),
+// while on the ground the support adds N = M a_z - (f1 + f2) (M g - F at rest).
+// No LCM, no allocation.
+#pragma once
+
+#include <cstdint>
+
+#include "estimator/estimator_config.h"
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+class GroundContact {
+ public:
+  GroundContact(const VehicleParams& params, const EkfOptions& options);
+
+  // One IMU sample (specific force along body z [m/s^2]) with the current
+  // thrust estimate f1 + f2 [N]. N is low-passed (first order, time constant
+  // ground_contact_filter_s) and compared with the hysteresis thresholds.
+  void Update(int64_t utime, double accel_z_m_s2, double total_force_n);
+  void Reset();
+
+  bool supported() const { return supported_; }
+  double support_force_n() const { return support_force_n_; }  // low-passed N [N]
+
+ private:
+  double total_mass_kg_;
+  double on_n_, off_n_, filter_s_;
+  bool has_sample_ = false;
+  int64_t last_utime_ = 0;
+  double support_force_n_ = 0;
+  bool supported_ = false;
+};
+
+}  // namespace birotor

@@ -1,0 +1,77 @@
+// The two middle steps of the thesis's plan (section 5.4.2 and 7.3.1) behind
+// the ForceEstimator interface, on the linear hover model with the forces as
+// random-walk states (estimator/linear_force_model.h):
+//   "luenberger": fixed gain by pole placement (estimator/luenberger_gain.h);
+//   "linear_kf":  Kalman filter, gain from the propagated covariance.
+// Both fuse the gyro (phi_dot) when IMU samples arrive and ekf.use_gyro is
+// set; the observer uses it only for phi_dot (estimator/luenberger_gain.h).
+// Both propagate the error covariance with the same model and noise (for the
+// observer: through its own error dynamics, Joseph form for its fixed gain),
+// which gives force_std_n and the strain innovation gate.
+#pragma once
+
+#include <cstdint>
+
+#include "estimator/estimator_config.h"
+#include "estimator/force_estimator.h"
+#include "estimator/linear_force_model.h"
+#include "estimator/luenberger_gain.h"
+#include "estimator/motor_speed_tracker.h"
+
+namespace birotor {
+
+class LinearForceEstimator : public ForceEstimator {
+ public:
+  // Linear Kalman filter ("linear_kf").
+  LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise, const LinearModelOptions& options);
+  // Luenberger observer ("luenberger").
+  LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise, const LinearModelOptions& options,
+                       const LuenbergerOptions& observer);
+
+  const char* Name() const override { return kalman_ ? "linear_kf" : "luenberger"; }
+  void Reset() override;
+  void AddMotor(const MotorSample& sample) override { motor_.AddMotor(sample); }
+  void AddImu(const ImuSample& sample) override;
+  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) override;
+
+  const LinearForceModel& model() const { return model_; }
+  // The observer's fixed gains (physical units); unused by the Kalman filter.
+  const ObserverGains& fixed_gains() const { return fixed_gains_; }
+  // State and covariance in physical units (deviation from hover).
+  LinearState state() const { return scale_.asDiagonal() * state_; }
+  LinearMatrix covariance() const { return scale_.asDiagonal() * covariance_ * scale_.asDiagonal(); }
+
+ private:
+  void Initialize(const StrainSample& sample);
+  void Predict(int periods);
+  // Gyro update (no gate, as the EKF's), then the gated strain update.
+  void UpdateGyro();
+  void Update(const StrainSample& sample, StrainUpdateInfo* info);
+  void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
+
+  bool kalman_;
+  EkfOptions noise_;
+  LinearForceModel model_;
+  MotorSpeedTracker motor_;
+  // Everything below runs in scaled coordinates x = diag(scale_) x_s, y = scale_(b) y_s,
+  // so that every matrix is O(1) (the physical one spans 1e-10 to 1e2).
+  LinearState scale_;
+  LinearMatrix a_;                    // A_d
+  LinearMatrix q_;                    // Q_d
+  ObserverGains fixed_gains_;         // physical units
+  LinearGain fixed_gain_s_;           // strain, scaled
+  LinearGyroGain fixed_gyro_gain_s_;  // gyro, scaled
+  double measurement_variance_ = 1;   // R / scale_b^2, both gauges [1]
+  double gyro_variance_ = 1;          // R_gyro / scale_phi_dot^2 [1]
+  bool gyro_pending_ = false;
+  double gyro_rad_s_ = 0;
+
+  bool initialized_ = false;
+  bool converged_ = false;
+  int64_t last_utime_ = 0;
+  int consecutive_gated_ = 0;
+  LinearState state_;
+  LinearMatrix covariance_;
+};
+
+}  // namespace birotor
