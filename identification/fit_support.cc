@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace birotor {
 
@@ -102,7 +103,61 @@ ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem, const std:
 }
 
 double VarianceInflation(const ResidualStatistics& stats) {
-  return std::max(1.0, stats.robust_scale * stats.robust_scale) * std::max(1.0, stats.correlation_time);
+  const double scale_sq =
+      std::max({1.0, stats.robust_scale * stats.robust_scale, stats.rms_whitened * stats.rms_whitened});
+  return scale_sq * std::max(1.0, stats.correlation_time);
+}
+
+std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* problem, const std::vector<double*>& blocks,
+                                                          int num_threads) {
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  options.num_threads = num_threads;
+  ceres::Covariance covariance(options);
+  std::vector<std::pair<const double*, const double*>> pairs;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    for (size_t j = i; j < blocks.size(); ++j) pairs.emplace_back(blocks[i], blocks[j]);
+  }
+  if (blocks.empty() || !covariance.Compute(pairs, problem)) return {};
+  const size_t n = blocks.size();
+  std::vector<std::vector<double>> c(n, std::vector<double>(n, 0.0));
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i; j < n; ++j) {
+      covariance.GetCovarianceBlock(blocks[i], blocks[j], &c[i][j]);
+      c[j][i] = c[i][j];
+    }
+  }
+  std::vector<std::vector<double>> rho(n, std::vector<double>(n, 0.0));
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = 0; j < n; ++j) {
+      const double denominator = std::sqrt(std::max(0.0, c[i][i]) * std::max(0.0, c[j][j]));
+      rho[i][j] = denominator > 0.0 ? c[i][j] / denominator : (i == j ? 1.0 : 0.0);
+    }
+  }
+  return rho;
+}
+
+std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
+                                              const std::vector<std::string>& names,
+                                              const std::vector<double>& values, const std::vector<double>& sigmas,
+                                              double threshold) {
+  std::vector<std::string> lines;
+  for (size_t i = 0; i < correlation.size(); ++i) {
+    for (size_t j = i + 1; j < correlation.size(); ++j) {
+      const double rho = correlation[i][j];
+      if (std::abs(rho) < threshold || values[i] == 0.0 || values[j] == 0.0) continue;
+      const double ra = sigmas[i] / std::abs(values[i]), rb = sigmas[j] / std::abs(values[j]);
+      const double sign = rho > 0.0 ? -1.0 : 1.0;  // ratio for rho > 0, product for rho < 0
+      const double rel = std::sqrt(std::max(0.0, ra * ra + rb * rb + 2.0 * sign * rho * ra * rb));
+      std::ostringstream line;
+      line.precision(3);
+      line << names[i] << " and " << names[j] << " are not separated by the data (correlation " << rho << "); "
+           << (rho > 0.0 ? names[i] + " / " + names[j] : names[i] + " * " + names[j]) << " is determined to "
+           << 100.0 * rel << " % (one sigma)";
+      lines.push_back(line.str());
+    }
+  }
+  return lines;
 }
 
 namespace {

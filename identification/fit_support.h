@@ -65,8 +65,25 @@ ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem, const std:
 
 // Variance inflation that makes the covariance honest when the residuals are
 // larger than their assumed sigma or correlated in time:
-// max(1, robust_scale^2) * max(1, correlation_time).
+// max(1, robust_scale^2, rms_whitened^2) * max(1, correlation_time).
+// A model that does not fit the data (RMS well above one) widens every sigma.
 double VarianceInflation(const ResidualStatistics& stats);
+
+// Correlation matrix of the listed one-scalar parameter blocks (none of them
+// constant), from ceres::Covariance; empty when the information matrix is
+// singular.
+std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* problem, const std::vector<double*>& blocks,
+                                                          int num_threads);
+
+// Lines naming the parameter pairs the data cannot separate (|rho| above
+// `threshold`) and the combination that is determined: the ratio a / b for
+// rho > 0, the product a b for rho < 0, with its relative one sigma
+//   var(ln a -+ ln b) = (sa/a)^2 + (sb/b)^2 -+ 2 rho (sa/a)(sb/b).
+// names, values, sigmas: per block, in the order of `correlation`.
+std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
+                                              const std::vector<std::string>& names,
+                                              const std::vector<double>& values, const std::vector<double>& sigmas,
+                                              double threshold);
 
 // One-sigma of the listed one-scalar parameter blocks (ratios to their
 // scales), from ceres::Covariance (sparse QR). A block along which the

@@ -3,11 +3,31 @@
 // documented default; ReadIdentificationOptions loads the `identification:` section.
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "params/yaml_reader.h"
 
 namespace birotor {
+
+// The one fact that bench statics and dynamics cannot give (shared/spec/gauges.md:
+// they fix s_i / k, k / m_p and the offsets; one of s_i, k, m_p must come from
+// elsewhere). From the command line (birotor-identify --tip-mass-kg,
+// --tip-mass-std-kg, --gauge-scale-std), not from the options file.
+struct CalibrationFact {
+  // Weighed tip mass m_p [kg]; NaN: not weighed, then the gauge scales are
+  // taken as the base file's gauge_scale (the factory scale, 1 for an ideal
+  // gauge) and m_p is identified.
+  double tip_mass_kg = std::numeric_limits<double>::quiet_NaN();
+  // One sigma of the weighed tip mass [kg]; 0 holds m_p at tip_mass_kg.
+  double tip_mass_std_kg = 0.0;
+  // One sigma of the factory gauge scale [1]; 0 holds s_i at the base file's
+  // value when the tip mass is not weighed (and leaves s_i free when it is).
+  double gauge_scale_std = 0.0;
+
+  bool TipMassWeighed() const { return std::isfinite(tip_mass_kg); }
+};
 
 struct IdentificationOptions {
   // Sensor noise, one sigma (reference sensors of reference-vehicle.md).
@@ -48,9 +68,14 @@ struct IdentificationOptions {
   double max_relative_sigma = 0.2;   // above: the parameter is not determined [1]
   double command_step_rad_s = 30.0;  // a command change this large in one sample is a step [rad/s]
   int min_command_steps = 2;         // fewer steps per rotor: no excitation for tau_m
+  // Whitened residual RMS above this is a model misfit (or heavy outliers):
+  // the report says so and the sigmas are widened by the RMS [sigma].
+  double misfit_rms_warn = 1.5;
   // Solver.
   int max_iterations = 50;
   int num_threads = 2;
+  // The missing calibration fact (command line only, see CalibrationFact).
+  CalibrationFact calibration;
 };
 
 // Reads every field from the section (keys are the field names; each is

@@ -63,6 +63,11 @@ struct IdentificationResult {
   std::vector<ResidualSummary> residuals;
   std::vector<DeflectionForceMap> maps;
   std::vector<std::string> sources;  // logs used
+  // The calibration fact used (bench: factory gauge scale or weighed tip mass).
+  std::string calibration_fact;
+  // Parameters the data cannot separate, with the combination that is
+  // determined (from the correlation of the fitted parameters), one line each.
+  std::vector<std::string> correlations;
   std::vector<FitPlot> plots;        // fit versus data, a few panels
 };
 

@@ -37,6 +37,7 @@ std::string IdentifiedParameterYaml(const IdentificationResult& result) {
   std::ostringstream out;
   out << "# Identified by birotor-identify (" << result.mode << " mode) from:\n";
   for (const std::string& s : result.sources) out << "#   " << s << "\n";
+  if (!result.calibration_fact.empty()) out << "# Calibration fact used: " << result.calibration_fact << "\n";
   out << "# One-sigma uncertainties (parameters not listed are taken from the base file):\n";
   out << std::setprecision(6);
   for (const ParameterEstimate& e : result.estimates) {
@@ -67,6 +68,10 @@ std::string IdentificationReport(const IdentificationResult& result) {
     out << "\n**No parameters: the data lacks what the identification needs.**\n\n";
     for (const std::string& e : result.errors) out << "- " << e << "\n";
   }
+  if (!result.calibration_fact.empty()) {
+    out << "\nCalibration fact (the one of gauge scale, stiffness, tip mass that statics and dynamics cannot give): "
+        << result.calibration_fact << "\n";
+  }
   out << "\n## Parameters\n\n| parameter | key | value | one sigma | relative sigma | status "
          "|\n|---|---|---|---|---|---|\n";
   out << std::setprecision(6);
@@ -86,6 +91,10 @@ std::string IdentificationReport(const IdentificationResult& result) {
   if (!result.maps.empty()) {
     out << "\n## Static deflection-force maps\n\n";
     for (const DeflectionForceMap& m : result.maps) out << "- arm " << m.arm + 1 << ": " << MapText(m) << "\n";
+  }
+  if (!result.correlations.empty()) {
+    out << "\n## Parameters the data cannot separate\n\n";
+    for (const std::string& c : result.correlations) out << "- " << c << "\n";
   }
   out << "\n## Undetermined parameters\n\n";
   bool any = false;

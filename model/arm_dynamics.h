@@ -17,14 +17,22 @@ namespace birotor {
 // Clamped body (bench), arm i with sign s_i (s_1 = -1, s_2 = +1): the b row of
 // thesis eq. 3.10 with x, z, phi held,
 //   m_p L^2 b_ddot + d b_dot + k b + s_i m_p g L cos(b) = s_i L f_i.
-// Returns b_ddot [rad/s^2]. Uses m_p, L, g of `known`; k, d are parameters.
+// Returns b_ddot [rad/s^2]. Uses L, g of `known`; k, d and the tip mass m_p
+// [kg] are parameters (identification fits all three on the bench).
+template <typename T>
+T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& tip_mass_kg,
+                         const T& b, const T& b_dot, const T& force_n) {
+  using std::cos;
+  const double s = kArmSign[arm];
+  const double L = known.arm_length_m, g = known.gravity_m_s2;
+  return (s * L * force_n - s * tip_mass_kg * g * L * cos(b) - k * b - d * b_dot) / (tip_mass_kg * L * L);
+}
+
+// The same with m_p of `known`.
 template <typename T>
 T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& b, const T& b_dot,
                          const T& force_n) {
-  using std::cos;
-  const double s = kArmSign[arm];
-  const double mp = known.tip_mass_kg, L = known.arm_length_m, g = known.gravity_m_s2;
-  return (s * L * force_n - s * mp * g * L * cos(b) - k * b - d * b_dot) / (mp * L * L);
+  return ClampedArmAcceleration<T>(known, arm, k, d, T(known.tip_mass_kg), b, b_dot, force_n);
 }
 
 // State of the free-flight arm model. For a free body in uniform gravity the

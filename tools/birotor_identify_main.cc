@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   using namespace birotor;
   CommonOptions common;
   IdentifyOptions cli;
+  IdentificationOptions options;
   CLI::App app("Identify the birotor's c_T, tau_m, k, d and deflection-force maps from LCM logs", "birotor-identify");
   AddCommonOptions(app, &common);
   app.add_option("--log", cli.logs, "LCM log file (repeat for several)")->required()->check(CLI::ExistingFile);
@@ -48,6 +49,17 @@ int main(int argc, char** argv) {
   app.add_option("--config", cli.config,
                  "YAML file with a complete `identification:` section of options (the shipped identification.yaml "
                  "has every key at its default); none: the built-in defaults");
+  app.add_option("--tip-mass-kg", options.calibration.tip_mass_kg,
+                 "Weighed tip mass m_p [kg] (bench): the gauge scales are then identified; default: not weighed, "
+                 "the gauge scales are the base file's gauge_scale and m_p is identified")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--tip-mass-std-kg", options.calibration.tip_mass_std_kg,
+                 "One sigma of the weighed tip mass [kg]; default 0: m_p held at --tip-mass-kg")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--gauge-scale-std", options.calibration.gauge_scale_std,
+                 "One sigma of the factory gauge scale [1]; default 0: held at the base file's gauge_scale "
+                 "(unless --tip-mass-kg is given)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
@@ -55,10 +67,13 @@ int main(int argc, char** argv) {
   SetupLogging("birotor-identify", common.log_level);
 
   VehicleParams base;
-  IdentificationOptions options;
   try {
     base = LoadVehicleParams(cli.params);
-    if (!cli.config.empty()) options = LoadIdentificationOptions(cli.config);
+    if (!cli.config.empty()) {
+      const CalibrationFact calibration = options.calibration;  // from the command line
+      options = LoadIdentificationOptions(cli.config);
+      options.calibration = calibration;
+    }
   } catch (const ParamError& e) {
     return ReportError(e.what());
   }
