@@ -359,9 +359,8 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     const size_t count = std::min(kScanWindows, windows.size());
     for (size_t w = 0; w < count; ++w) {
       const WindowSpec& spec = windows[(2 * w + 1) * windows.size() / (2 * count)];
-      probes.push_back(std::make_unique<ClampedArmWindowResidual>(base, data[spec.data_index].arm,
-                                                                  window_samples(spec), sigma_b,
-                                                                  options.integration_substeps, scales,
+      probes.push_back(std::make_unique<ClampedArmWindowResidual>(base, data[spec.data_index].arm, window_samples(spec),
+                                                                  sigma_b, options.integration_substeps, scales,
                                                                   options.huber_threshold));
       scan.push_back(probes.back().get());
     }
@@ -435,10 +434,10 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     }
   }
   const std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, free_blocks, inflation, options.num_threads);
-  const double units[kBenchArmParameters] = {scales.stiffness_n_m_rad, scales.damping_n_m_s_rad, scales.tip_mass_kg,
-                                             1.0, 1.0, sigma_b, sigma_b};
-  ParameterEstimate* estimates[kBenchArmParameters] = {&k, &damping, &tip_mass, &scale[0], &scale[1], &offset[0],
-                                                       &offset[1]};
+  const double units[kBenchArmParameters] = {
+      scales.stiffness_n_m_rad, scales.damping_n_m_s_rad, scales.tip_mass_kg, 1.0, 1.0, sigma_b, sigma_b};
+  ParameterEstimate* estimates[kBenchArmParameters] = {&k,        &damping,   &tip_mass, &scale[0],
+                                                       &scale[1], &offset[0], &offset[1]};
   const std::string note = "output error of the clamped arm over " + std::to_string(blocks.size()) + " windows";
   for (size_t n = 0; n < free_blocks.size(); ++n) {
     const int i = free_index[n];
@@ -449,6 +448,21 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     const double size = (i == kBenchOffset1 || i == kBenchOffset2) ? sigma_b : std::abs(e->value);
     e->determined = sigma[n].determined && e->sigma <= options.max_relative_sigma * size;
     e->note = note;
+  }
+  // Floors for what the sampled load-cell input cannot give better (options).
+  auto add_floor = [](ParameterEstimate* e, double relative, const char* what) {
+    if (!std::isfinite(e->value) || relative <= 0.0) return;
+    e->sigma = std::hypot(e->sigma, relative * e->value);
+    e->note += std::string("; sigma includes the ") + what;
+  };
+  add_floor(&damping, options.bench_damping_floor, "damping floor (bench_damping_floor)");
+  if (mass_free && !weighed) {
+    add_floor(&tip_mass, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+  } else {
+    add_floor(&k, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+    for (int arm = 0; arm < 2; ++arm) {
+      if (scale_free) add_floor(&scale[arm], options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+    }
   }
   if (stats.rms_whitened > options.misfit_rms_warn) {
     std::ostringstream warning;
@@ -466,8 +480,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
       values.push_back(estimates[i]->value);
       sigmas.push_back(estimates[i]->sigma);
     }
-    const std::vector<std::vector<double>> rho =
-        ComputeBlockCorrelations(&problem, free_blocks, options.num_threads);
+    const std::vector<std::vector<double>> rho = ComputeBlockCorrelations(&problem, free_blocks, options.num_threads);
     const std::vector<std::string> lines_text = DescribeCorrelations(rho, names, values, sigmas, 0.99);
     result->correlations.insert(result->correlations.end(), lines_text.begin(), lines_text.end());
   }
@@ -491,8 +504,8 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     if (!offset[arm].determined) result->errors.push_back(offset[arm].symbol + ": gauge offset not determined");
     result->estimates.push_back(offset[arm]);
   }
-  result->residuals.push_back({"strain (clamped arm model)", "rad", stats.count, stats.rms_whitened,
-                               stats.rms_whitened * sigma_b, inflation});
+  result->residuals.push_back(
+      {"strain (clamped arm model)", "rad", stats.count, stats.rms_whitened, stats.rms_whitened * sigma_b, inflation});
   if (k.determined) result->params.arm_stiffness_n_m_rad = k.value;
   if (damping.determined) result->params.arm_damping_n_m_s_rad = damping.value;
   if (mass_free && tip_mass.determined) result->params.tip_mass_kg = tip_mass.value;

@@ -72,8 +72,8 @@ struct ClampedArmWindowResidual {
           });
         }
       }
-      residual[j] = HuberResidual(T((samples_[j].deflection_rad - (gauge_scale[0] * x(0) + offset_rad)) * inv_sigma),
-                                  huber_);
+      residual[j] =
+          HuberResidual(T((samples_[j].deflection_rad - (gauge_scale[0] * x(0) + offset_rad)) * inv_sigma), huber_);
     }
     return true;
   }

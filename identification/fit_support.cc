@@ -138,9 +138,8 @@ std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* proble
 }
 
 std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
-                                              const std::vector<std::string>& names,
-                                              const std::vector<double>& values, const std::vector<double>& sigmas,
-                                              double threshold) {
+                                              const std::vector<std::string>& names, const std::vector<double>& values,
+                                              const std::vector<double>& sigmas, double threshold) {
   std::vector<std::string> lines;
   for (size_t i = 0; i < correlation.size(); ++i) {
     for (size_t j = i + 1; j < correlation.size(); ++j) {

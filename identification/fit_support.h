@@ -81,9 +81,8 @@ std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* proble
 //   var(ln a -+ ln b) = (sa/a)^2 + (sb/b)^2 -+ 2 rho (sa/a)(sb/b).
 // names, values, sigmas: per block, in the order of `correlation`.
 std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
-                                              const std::vector<std::string>& names,
-                                              const std::vector<double>& values, const std::vector<double>& sigmas,
-                                              double threshold);
+                                              const std::vector<std::string>& names, const std::vector<double>& values,
+                                              const std::vector<double>& sigmas, double threshold);
 
 // One-sigma of the listed one-scalar parameter blocks (ratios to their
 // scales), from ceres::Covariance (sparse QR). A block along which the

@@ -23,6 +23,8 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Double("max_relative_sigma", 1e-6, 1e3, &o->max_relative_sigma);
   s.Double("command_step_rad_s", 1e-3, 1e4, &o->command_step_rad_s);
   s.Int("min_command_steps", 0, 1000000, &o->min_command_steps);
+  s.Double("bench_frequency_floor", 0.0, 1.0, &o->bench_frequency_floor);
+  s.Double("bench_damping_floor", 0.0, 1.0, &o->bench_damping_floor);
   s.Double("misfit_rms_warn", 1.0, 100.0, &o->misfit_rms_warn);
   s.Int("max_iterations", 1, 10000, &o->max_iterations);
   s.Int("num_threads", 1, 64, &o->num_threads);

@@ -68,7 +68,7 @@ struct IdentificationResult {
   // Parameters the data cannot separate, with the combination that is
   // determined (from the correlation of the fitted parameters), one line each.
   std::vector<std::string> correlations;
-  std::vector<FitPlot> plots;        // fit versus data, a few panels
+  std::vector<FitPlot> plots;  // fit versus data, a few panels
 };
 
 }  // namespace birotor

@@ -20,8 +20,8 @@ namespace birotor {
 // Returns b_ddot [rad/s^2]. Uses L, g of `known`; k, d and the tip mass m_p
 // [kg] are parameters (identification fits all three on the bench).
 template <typename T>
-T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& tip_mass_kg,
-                         const T& b, const T& b_dot, const T& force_n) {
+T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& tip_mass_kg, const T& b,
+                         const T& b_dot, const T& force_n) {
   using std::cos;
   const double s = kArmSign[arm];
   const double L = known.arm_length_m, g = known.gravity_m_s2;
