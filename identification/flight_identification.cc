@@ -73,6 +73,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   scales.stiffness_n_m_rad = base.arm_stiffness_n_m_rad;
   scales.damping_n_m_s_rad = base.arm_damping_n_m_s_rad > 0.0 ? base.arm_damping_n_m_s_rad : 0.1;
   scales.thrust_coeff_n_s2_rad2 = base.thrust_coeff_n_s2_rad2;
+  scales.tip_mass_kg = base.tip_mass_kg;
   FreeArmWindowResidual::Noise noise{options.strain_noise_rad, options.gyro_noise_rad_s, options.accel_noise_m_s2,
                                      options.huber_threshold};
 
@@ -82,6 +83,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   double k_ratio = 1.0;
   double d_ratio = base.arm_damping_n_m_s_rad / scales.damping_n_m_s_rad;
   double c_ratio = 1.0;
+  double m_ratio = 1.0;
   // Candidate windows over every log, then at most flight_max_windows of
   // them spread evenly (the arm modes ring after every manoeuvre, so a
   // subset carries nearly all the information at a fraction of the cost).
@@ -108,8 +110,11 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
       const StrainSample& s = log.strain[i];
       utime[i] = s.utime;
       FreeArmWindowResidual::Sample& out = all[i];
-      out.deflection_rad[0] = s.deflection_rad[0];
-      out.deflection_rad[1] = s.deflection_rad[1];
+      // Deflections through the base file's gauge calibration (gauges.md:
+      // b = (b_meas - o_i) / s_i; a bench identification gives s_i and o_i).
+      for (int arm = 0; arm < 2; ++arm) {
+        out.deflection_rad[arm] = (s.deflection_rad[arm] - base.gauge_offset_rad[arm]) / base.gauge_scale[arm];
+      }
       bool ok = std::isfinite(s.deflection_rad[0]) && std::isfinite(s.deflection_rad[1]);
       // Exact ZOH motor response from the last motor sample at or before t.
       while (motor_hint + 1 < log.motor.size() && log.motor[motor_hint + 1].utime <= s.utime) ++motor_hint;
@@ -189,10 +194,12 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     blocks.push_back(
         problem.AddResidualBlock(FreeArmWindowResidual::Create(base, std::move(samples), noise,
                                                                options.flight_integration_substeps, scales, &functor),
-                                 nullptr, &k_ratio, &d_ratio, &c_ratio, states.back().data()));
+                                 nullptr, &k_ratio, &d_ratio, &c_ratio, &m_ratio, states.back().data()));
     functors.push_back(functor);
   }
-  ParameterEstimate k, damping, c_t;
+  ParameterEstimate k, damping, c_t, tip_mass;
+  tip_mass.key = "tip_mass_kg";
+  tip_mass.symbol = "m_p";
   k.key = "arm_stiffness_n_m_rad";
   k.symbol = "k";
   damping.key = "arm_damping_n_m_s_rad";
@@ -207,7 +214,9 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   problem.SetParameterLowerBound(&k_ratio, 0, 1e-3);
   problem.SetParameterLowerBound(&c_ratio, 0, 1e-3);
   problem.SetParameterLowerBound(&d_ratio, 0, 0.0);
+  problem.SetParameterLowerBound(&m_ratio, 0, 1e-3);
   if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
+  if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&m_ratio);
   SolveProblem(options, &problem);
 
   // Strain residuals carry the unmodelled turbulence (correlated over ~0.1 s):
@@ -230,7 +239,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
                                  stats.rms_whitened * sigmas[channel], channel_inflation});
   }
   const std::vector<BlockSigma> sigma =
-      ComputeBlockSigmas(&problem, {&k_ratio, &d_ratio, &c_ratio}, inflation, options.num_threads);
+      ComputeBlockSigmas(&problem, {&k_ratio, &d_ratio, &c_ratio, &m_ratio}, inflation, options.num_threads);
   const std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
                            std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
   auto fill = [&](ParameterEstimate* e, double ratio, double scale, const BlockSigma& s) {
@@ -242,6 +251,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   fill(&k, k_ratio, scales.stiffness_n_m_rad, sigma[0]);
   fill(&damping, d_ratio, scales.damping_n_m_s_rad, sigma[1]);
   fill(&c_t, c_ratio, scales.thrust_coeff_n_s2_rad2, sigma[2]);
+  fill(&tip_mass, m_ratio, scales.tip_mass_kg, sigma[3]);
   if (!k.determined) result->errors.push_back("k: not determined by the flight data (arm dynamics not excited)");
   if (!c_t.determined) {
     result->errors.push_back(std::string("c_T: not determined by the flight data") +
@@ -258,7 +268,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   for (size_t n = 1; n <= 2 && n < functors.size(); ++n) {
     const size_t w = n * functors.size() / 3;
     const FreeArmWindowResidual& f = *functors[w];
-    const std::vector<FreeArmState<double>> predicted = f.Predict(k_ratio, d_ratio, c_ratio, states[w].data());
+    const std::vector<FreeArmState<double>> predicted = f.Predict(k_ratio, d_ratio, c_ratio, m_ratio, states[w].data());
     for (int arm = 0; arm < 2; ++arm) {
       FitPlot plot;
       plot.title = "free flight, window " + std::to_string(w + 1) + " of " + std::to_string(functors.size()) +
@@ -276,6 +286,13 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     }
   }
   result->estimates.insert(result->estimates.end(), {k, damping, c_t});
+  if (options.flight_fit_tip_mass) {
+    if (!tip_mass.determined) {
+      result->warnings.push_back("m_p: not determined by the flight data; base value kept");
+    }
+    result->estimates.push_back(tip_mass);
+    if (tip_mass.determined) result->params.tip_mass_kg = tip_mass.value;
+  }
   if (k.determined) result->params.arm_stiffness_n_m_rad = k.value;
   if (damping.determined) result->params.arm_damping_n_m_s_rad = damping.value;
   if (c_t.determined) result->params.thrust_coeff_n_s2_rad2 = c_t.value;

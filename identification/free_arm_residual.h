@@ -35,7 +35,8 @@ constexpr int kFreeArmResidualsPerSample = 5;
 //         (gyro_meas - phi_dot) / sigma_gyro,
 //         (a_meas - a_model(x_j, f_j)) / sigma_a                    [1, whitened]
 // each passed through HuberResidual. A missing measurement (NaN) gives a zero residual. Parameters are ratios to
-// their scales: k = theta_k k_scale, d = theta_d d_scale, c_T = theta_c c_scale.
+// their scales: k = theta_k k_scale, d = theta_d d_scale, c_T = theta_c c_scale,
+// m_p = theta_m m_scale.
 struct FreeArmWindowResidual {
   struct Sample {
     double dt_s;               // time to the next sample [s] (unused for the last)
@@ -48,6 +49,7 @@ struct FreeArmWindowResidual {
     double stiffness_n_m_rad;
     double damping_n_m_s_rad;
     double thrust_coeff_n_s2_rad2;
+    double tip_mass_kg;
   };
   struct Noise {
     double strain_rad;
@@ -61,10 +63,11 @@ struct FreeArmWindowResidual {
       : known_(known), samples_(std::move(samples)), noise_(noise), substeps_(substeps), scales_(scales) {}
 
   template <typename T>
-  bool operator()(const T* k_ratio, const T* d_ratio, const T* thrust_ratio, const T* state0, T* residual) const {
+  bool operator()(const T* k_ratio, const T* d_ratio, const T* thrust_ratio, const T* tip_mass_ratio, const T* state0,
+                  T* residual) const {
     const double c = noise_.huber;
-    Integrate<T>(k_ratio[0], d_ratio[0], thrust_ratio[0], state0,
-                 [&](size_t j, const FreeArmState<T>& x, const T& k, const T& d, const T& c_t) {
+    Integrate<T>(k_ratio[0], d_ratio[0], thrust_ratio[0], tip_mass_ratio[0], state0,
+                 [&](size_t j, const FreeArmState<T>& x, const T& k, const T& d, const T& c_t, const T& mp) {
                    const Sample& m = samples_[j];
                    T* r = residual + kFreeArmResidualsPerSample * j;
                    r[kResB1] = HuberResidual(T((m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad), c);
@@ -76,7 +79,7 @@ struct FreeArmWindowResidual {
                      const T f1 = c_t * (m.omega_rad_s[0] * m.omega_rad_s[0]);
                      const T f2 = c_t * (m.omega_rad_s[1] * m.omega_rad_s[1]);
                      Eigen::Matrix<T, 2, 1> specific_force;
-                     FreeArmDerivative<T>(known_, k, d, x, f1, f2, &specific_force);
+                     FreeArmDerivative<T>(known_, k, d, mp, x, f1, f2, &specific_force);
                      r[kResAccelX] = HuberResidual(T((m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2), c);
                      r[kResAccelZ] = HuberResidual(T((m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2), c);
                    } else {
@@ -89,24 +92,26 @@ struct FreeArmWindowResidual {
 
   // Model state at every sample time of the window (for plots), with the
   // fitted ratios and initial state.
-  std::vector<FreeArmState<double>> Predict(double k_ratio, double d_ratio, double thrust_ratio,
+  std::vector<FreeArmState<double>> Predict(double k_ratio, double d_ratio, double thrust_ratio, double tip_mass_ratio,
                                             const double* state0) const {
     std::vector<FreeArmState<double>> states(samples_.size());
-    Integrate<double>(k_ratio, d_ratio, thrust_ratio, state0,
-                      [&](size_t j, const FreeArmState<double>& x, double, double, double) { states[j] = x; });
+    Integrate<double>(k_ratio, d_ratio, thrust_ratio, tip_mass_ratio, state0,
+                      [&](size_t j, const FreeArmState<double>& x, double, double, double, double) { states[j] = x; });
     return states;
   }
 
   const std::vector<Sample>& samples() const { return samples_; }
 
  private:
-  // RK4 over the window from state0; visit(j, x_j, k, d, c_T) at every sample.
+  // RK4 over the window from state0; visit(j, x_j, k, d, c_T, m_p) at every sample.
   template <typename T, class Visit>
-  void Integrate(const T& k_ratio, const T& d_ratio, const T& thrust_ratio, const T* state0, const Visit& visit) const {
+  void Integrate(const T& k_ratio, const T& d_ratio, const T& thrust_ratio, const T& tip_mass_ratio, const T* state0,
+                 const Visit& visit) const {
     using State = FreeArmState<T>;
     const T k = k_ratio * scales_.stiffness_n_m_rad;
     const T d = d_ratio * scales_.damping_n_m_s_rad;
     const T c_t = thrust_ratio * scales_.thrust_coeff_n_s2_rad2;
+    const T mp = tip_mass_ratio * scales_.tip_mass_kg;
     State x;
     for (int i = 0; i < kFreeArmStateSize; ++i) x(i) = state0[i];
     // f_i = c_T omega_i^2 with omega linear between samples.
@@ -131,11 +136,11 @@ struct FreeArmWindowResidual {
           forces(s0, s1, a1, &force1[2], &force2[2]);
           x = Rk4Step(x, h, [&](const State& y, Rk4Stage stage) {
             const int at = static_cast<int>(stage);
-            return FreeArmDerivative<T>(known_, k, d, y, force1[at], force2[at]);
+            return FreeArmDerivative<T>(known_, k, d, mp, y, force1[at], force2[at]);
           });
         }
       }
-      visit(j, x, k, d, c_t);
+      visit(j, x, k, d, c_t, mp);
     }
   }
 
@@ -147,8 +152,8 @@ struct FreeArmWindowResidual {
     const int n = kFreeArmResidualsPerSample * static_cast<int>(samples.size());
     auto* residual = new FreeArmWindowResidual(known, std::move(samples), noise, substeps, scales);
     if (functor != nullptr) *functor = residual;
-    return new ceres::AutoDiffCostFunction<FreeArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, kFreeArmStateSize>(residual,
-                                                                                                              n);
+    return new ceres::AutoDiffCostFunction<FreeArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, 1, kFreeArmStateSize>(
+        residual, n);
   }
 
  private:

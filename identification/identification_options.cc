@@ -16,6 +16,7 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Int("flight_integration_substeps", 1, 20, &o->flight_integration_substeps);
   s.Int("flight_max_windows", 0, 1000000, &o->flight_max_windows);
   s.Bool("flight_fit_damping", &o->flight_fit_damping);
+  s.Bool("flight_fit_tip_mass", &o->flight_fit_tip_mass);
   s.Double("huber_threshold", 0.1, 1e3, &o->huber_threshold);
   s.Int("map_degree", 1, 3, &o->map_degree);
   s.Bool("use_imu", &o->use_imu);
@@ -25,6 +26,7 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Int("min_command_steps", 0, 1000000, &o->min_command_steps);
   s.Double("bench_frequency_floor", 0.0, 1.0, &o->bench_frequency_floor);
   s.Double("bench_damping_floor", 0.0, 1.0, &o->bench_damping_floor);
+  s.Double("consistency_sigmas", 1.0, 1e6, &o->consistency_sigmas);
   s.Double("misfit_rms_warn", 1.0, 100.0, &o->misfit_rms_warn);
   s.Int("max_iterations", 1, 10000, &o->max_iterations);
   s.Int("num_threads", 1, 64, &o->num_threads);

@@ -68,6 +68,9 @@ struct IdentificationResult {
   // Parameters the data cannot separate, with the combination that is
   // determined (from the correlation of the fitted parameters), one line each.
   std::vector<std::string> correlations;
+  // Several logs: per parameter, each log's share of the information
+  // (1 / sigma^2 of that log alone), e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
+  std::vector<std::string> log_shares;
   std::vector<FitPlot> plots;  // fit versus data, a few panels
 };
 

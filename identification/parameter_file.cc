@@ -92,6 +92,10 @@ std::string IdentificationReport(const IdentificationResult& result) {
     out << "\n## Static deflection-force maps\n\n";
     for (const DeflectionForceMap& m : result.maps) out << "- arm " << m.arm + 1 << ": " << MapText(m) << "\n";
   }
+  if (!result.log_shares.empty()) {
+    out << "\n## Which log determines which parameter (share of the information, each log alone)\n\n";
+    for (const std::string& line : result.log_shares) out << "- " << line << "\n";
+  }
   if (!result.correlations.empty()) {
     out << "\n## Parameters the data cannot separate\n\n";
     for (const std::string& c : result.correlations) out << "- " << c << "\n";

@@ -65,15 +65,17 @@ using FreeArmState = Eigen::Matrix<T, kFreeArmStateSize, 1>;
 // a 3x3 SPD system solved by LDL^T in closed form (this runs per RK4 stage on
 // Jets, so it is written out entry by entry). k and d enter the b rows of G:
 // G_b = k b + d b_dot.
+// The tip mass m_p [kg] is a parameter too (flight identification fits it).
 template <typename T>
-FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d, const FreeArmState<T>& x,
-                                  const T& force1_n, const T& force2_n,
+FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d, const T& tip_mass_kg,
+                                  const FreeArmState<T>& x, const T& force1_n, const T& force2_n,
                                   Eigen::Matrix<T, 2, 1>* specific_force_m_s2 = nullptr) {
   using std::cos;
   using std::sin;
-  const double mp = known.tip_mass_kg, L = known.arm_length_m;
-  const double mt = known.body_mass_kg + 2.0 * mp;  // translational mass M_t [kg]
-  const double mp_l2 = mp * L * L;                  // [kg m^2]
+  const T& mp = tip_mass_kg;
+  const double L = known.arm_length_m;
+  const T mt = known.body_mass_kg + 2.0 * mp;  // translational mass M_t [kg]
+  const T mp_l2 = mp * L * L;                  // [kg m^2]
   const double s1L = kArmSign[0] * L, s2L = kArmSign[1] * L;
   const T& b1 = x(kFreeB1);
   const T& b2 = x(kFreeB2);
@@ -94,7 +96,7 @@ FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const 
   const T r_b1 = t1 - k * b1 - d * x(kFreeB1Dot);
   const T r_b2 = t2 - k * b2 - d * x(kFreeB2Dot);
   // Reduced system S w = y, S = D - B^T B / M_t (symmetric), y = r_r - B^T r_t / M_t.
-  const double inv_mt = 1.0 / mt;
+  const T inv_mt = 1.0 / mt;
   const T s00 = (known.body_inertia_kg_m2 + 2.0 * mp_l2) - (bx0 * bx0 + bz0 * bz0) * inv_mt;
   const T s01 = mp_l2 - (bx0 * bx1 + bz0 * bz1) * inv_mt;
   const T s02 = mp_l2 - (bx0 * bx2 + bz0 * bz2) * inv_mt;
@@ -126,6 +128,14 @@ FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const 
     (*specific_force_m_s2)(1) = (rz - bz0 * phi_ddot - bz1 * b1_ddot - bz2 * b2_ddot) * inv_mt;
   }
   return x_dot;
+}
+
+// The same with m_p of `known` (the EKF's process model).
+template <typename T>
+FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d, const FreeArmState<T>& x,
+                                  const T& force1_n, const T& force2_n,
+                                  Eigen::Matrix<T, 2, 1>* specific_force_m_s2 = nullptr) {
+  return FreeArmDerivative<T>(known, k, d, T(known.tip_mass_kg), x, force1_n, force2_n, specific_force_m_s2);
 }
 
 }  // namespace birotor

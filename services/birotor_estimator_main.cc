@@ -14,6 +14,7 @@
 #include <string>
 
 #include "params/estimator_config_yaml.h"
+#include "params/vehicle_section_update.h"
 #include "params/yaml_reader.h"
 #include "services/estimator_service.h"
 #include "services/gauge_state_file.h"
@@ -102,6 +103,11 @@ int main(int argc, char** argv) {
   service.Subscribe(lcm.get());
   spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION, config.method, params_file,
                FileChecksum(params_file));
+  {
+    const std::string stamp = ReadIdentificationStamp(params_file);
+    spdlog::info("vehicle checksum {}, identified {}", vehicle_checksum,
+                 stamp.empty() ? "never (no birotor-identify stamp in the vehicle section)" : stamp);
+  }
   spdlog::info("lcm {}: in {} {} {} {}, out {} {}", common.lcm_url, channels.strain, channels.motor, channels.imu,
                channels.pose, channels.force, channels.estimator_status);
   bool buffer_ok = true;

@@ -4,13 +4,17 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <ctime>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "identification/identify.h"
 #include "identification/parameter_file.h"
 #include "params/vehicle_params_yaml.h"
+#include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
 #include "replay/identification_log_loader.h"
 #include "transport/config_files.h"
@@ -26,9 +30,32 @@ struct IdentifyOptions {
   std::string params = birotor::FindConfigFile("reference_vehicle.yaml");
   std::string config;  // optional file with an `identification:` section
   std::string output;
+  std::string update_params;  // complete parameter file updated in place (FILE.bak keeps the old one)
   std::string report;
   std::string plot;
 };
+
+// Current UTC time as 2026-12-01T02:55:00Z.
+std::string UtcDateTime() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+bool ReadWholeFile(const std::string& path, std::string* text, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = "cannot read " + path;
+    return false;
+  }
+  std::ostringstream content;
+  content << in.rdbuf();
+  *text = content.str();
+  return true;
+}
 
 }  // namespace
 
@@ -60,11 +87,20 @@ int main(int argc, char** argv) {
                  "One sigma of the factory gauge scale [1]; default 0: held at the base file's gauge_scale "
                  "(unless --tip-mass-kg is given)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
+  app.add_option("--output", cli.output, "Identified parameter file (written atomically)");
+  app.add_option("--update-params", cli.update_params,
+                 "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
+                 "in place, comments and other sections kept, atomically, the old file kept as FILE.bak; also the "
+                 "base file unless --params is given")
+      ->check(CLI::ExistingFile);
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
+  if (cli.output.empty() && cli.update_params.empty()) {
+    return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
+  }
+  if (!cli.update_params.empty() && app.get_option("--params")->count() == 0) cli.params = cli.update_params;
 
   VehicleParams base;
   try {
@@ -79,11 +115,22 @@ int main(int argc, char** argv) {
   }
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
   // Refuse an output folder we cannot write before the fit, not after it.
-  {
-    const std::filesystem::path folder = std::filesystem::absolute(cli.output).parent_path();
+  for (const auto& [option, path] :
+       {std::pair<std::string, std::string>{"--output", cli.output}, {"--update-params", cli.update_params}}) {
+    if (path.empty()) continue;
+    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
     if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0) {
-      return ReportError("cannot write --output " + cli.output + ": folder " + folder.string() +
+      return ReportError("cannot write " + option + " " + path + ": folder " + folder.string() +
                          " is missing or not writable");
+    }
+  }
+  // The file to update must be complete before the fit, so a fit is never lost to it.
+  std::string update_text;
+  if (!cli.update_params.empty()) {
+    std::string updated, error;
+    if (!ReadWholeFile(cli.update_params, &update_text, &error)) return ReportError(error);
+    if (!UpdateVehicleSection(update_text, base, "", &updated, &error)) {
+      return ReportError("--update-params " + cli.update_params + ": " + error);
     }
   }
 
@@ -131,8 +178,45 @@ int main(int argc, char** argv) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
+  // Stamp: the date and what the values came from; the estimator logs it at start-up.
+  std::string stamp = UtcDateTime() + " by birotor-identify (" + result.mode + " mode) from";
+  for (const std::string& source : result.sources) stamp += " " + std::filesystem::path(source).filename().string();
+  if (!result.calibration_fact.empty()) stamp += "; " + result.calibration_fact;
   std::string error;
-  if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) return ReportError(error);
+  if (!cli.output.empty()) {
+    std::string text;
+    if (!UpdateVehicleSection(IdentifiedParameterYaml(result), result.params, stamp, &text, &error) ||
+        !WriteFileAtomically(cli.output, text, &error)) {
+      return ReportError(error);
+    }
+    spdlog::info("wrote {}", cli.output);
+  }
+  if (!cli.update_params.empty()) {
+    std::string updated;
+    if (!UpdateVehicleSection(update_text, result.params, stamp, &updated, &error)) {
+      return ReportError("--update-params " + cli.update_params + ": " + error);
+    }
+    // The new text must load back as the identified vehicle before it replaces the old file.
+    try {
+      VehicleParams check;
+      WithFileErrors(cli.update_params, [&] {
+        YamlSection root = YamlSection::LoadString(updated, cli.update_params);
+        ReadVehicleParams(root.Section("vehicle"), &check);
+      });
+      if (VehicleParamsYaml(check) != VehicleParamsYaml(result.params)) {
+        return ReportError("--update-params " + cli.update_params +
+                           ": the updated text does not read back as the "
+                           "identified values; file left unchanged");
+      }
+    } catch (const ParamError& e) {
+      return ReportError(std::string(e.what()) + "; file left unchanged");
+    }
+    const std::string backup = cli.update_params + ".bak";
+    if (!WriteFileAtomically(backup, update_text, &error) || !WriteFileAtomically(cli.update_params, updated, &error)) {
+      return ReportError(error);
+    }
+    spdlog::info("updated the vehicle section of {} in place (previous file: {})", cli.update_params, backup);
+  }
   // The plot is optional: a failure is reported but the parameter file stands.
   if (!cli.plot.empty()) {
     if (WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
@@ -141,6 +225,9 @@ int main(int argc, char** argv) {
       spdlog::warn("--plot {}: {}", cli.plot, error);
     }
   }
-  spdlog::info("wrote {} ({} mode, {:.2f} s)", cli.output, result.mode, elapsed_s);
+  for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
+  for (const std::string& line : result.correlations) spdlog::warn("{}", line);
+  spdlog::info("identified in {} mode in {:.2f} s; calibration fact: {}", result.mode, elapsed_s,
+               result.calibration_fact.empty() ? "none needed" : result.calibration_fact);
   return 0;
 }

@@ -176,6 +176,41 @@ TEST(BenchGaugeTest, IdentifiesGaugeScaleAndOffsetWithAWeighedTipMass) {
   EXPECT_NE(r.calibration_fact.find("weighed tip mass"), std::string::npos) << r.calibration_fact;
 }
 
+// Several logs (issue 11 item 4): two runs of one vehicle give one joint fit
+// and each log's share of every parameter; two vehicles are refused.
+TEST(SeveralLogsTest, SameVehicleJointFitSaysWhichLogDeterminesWhat) {
+  VehicleParams truth;
+  SensorLog a = testing::SimulateScenario("bench", {"scenario.duration_s=12", "scenario.seed=21"}, &truth);
+  SensorLog b = testing::SimulateScenario("bench", {"scenario.duration_s=12", "scenario.seed=22"});
+  a.source = "a.lcm";
+  b.source = "b.lcm";
+  const IdentificationResult r = Identify({a, b}, truth, IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.005, 3.0);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 0.01, 3.0);
+  bool found = false;
+  for (const std::string& line : r.log_shares) {
+    if (line.rfind("k: ", 0) == 0) {
+      found = true;
+      EXPECT_NE(line.find("a.lcm"), std::string::npos) << line;
+      EXPECT_NE(line.find("b.lcm"), std::string::npos) << line;
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(SeveralLogsTest, TwoVehiclesAreRefusedAsInconsistent) {
+  SensorLog a = testing::SimulateScenario("bench", {"scenario.duration_s=12"});
+  SensorLog b = testing::SimulateScenario(
+      "bench", {"scenario.duration_s=12", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.30"});
+  a.source = "reference.lcm";
+  b.source = "other.lcm";
+  const IdentificationResult r = Identify({a, b}, VehicleParams(), IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
+  EXPECT_NE(Errors(r).find("reference.lcm"), std::string::npos) << Errors(r);
+}
+
 // Constant commands: the speed never moves, so tau_m has no information.
 TEST(IdentifyBadInputTest, NoMotorStepsMeansTauCannotBeIdentified) {
   const VehicleParams p;
