@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "identification/sample_cleaning.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
@@ -71,7 +72,8 @@ struct IdentificationResult {
   // Several logs: per parameter, each log's share of the information
   // (1 / sigma^2 of that log alone), e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
   std::vector<std::string> log_shares;
-  std::vector<FitPlot> plots;  // fit versus data, a few panels
+  std::vector<FitPlot> plots;    // fit versus data, a few panels
+  SampleCleaningReport dropped;  // bad samples dropped before fitting, all logs
 };
 
 }  // namespace birotor

@@ -1,8 +1,8 @@
 // birotor-identify: reads lcm-logger files (bench or flight), identifies c_T,
-// tau_m, k, d and the deflection-force maps with Ceres, and writes the
-// parameter file the estimator and simulator load, plus a readable report.
+// tau_m, k, d, the tip mass, the gauge calibration and the deflection-force
+// maps with Ceres, and writes the parameter file the estimator and simulator
+// load (or updates a complete one in place), plus a readable report.
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include <ctime>
 #include <filesystem>
@@ -19,7 +19,9 @@
 #include "replay/identification_log_loader.h"
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 namespace {
@@ -33,6 +35,7 @@ struct IdentifyOptions {
   std::string update_params;  // complete parameter file updated in place (FILE.bak keeps the old one)
   std::string report;
   std::string plot;
+  double min_usable_fraction = birotor::kDefaultMinUsableLogFraction;
 };
 
 // Current UTC time as 2026-12-01T02:55:00Z.
@@ -64,14 +67,19 @@ int main(int argc, char** argv) {
   CommonOptions common;
   IdentifyOptions cli;
   IdentificationOptions options;
-  CLI::App app("Identify the birotor's c_T, tau_m, k, d and deflection-force maps from LCM logs", "birotor-identify");
+  CLI::App app(
+      "Identify the birotor's c_T, tau_m, k, d, tip mass, gauge calibration and deflection-force maps from "
+      "LCM logs",
+      "birotor-identify");
   AddCommonOptions(app, &common);
-  app.add_option("--log", cli.logs, "LCM log file (repeat for several)")->required()->check(CLI::ExistingFile);
+  app.add_option("--log", cli.logs, "LCM log file (repeat for several: one joint fit)")
+      ->required()
+      ->check(CLI::ExistingFile);
   app.add_option("--mode", cli.mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
   app.add_option("--params", cli.params,
                  "Base parameter file (complete vehicle: section): masses, lengths, inertia are taken as known; "
-                 "default: the " +
+                 "default: the --update-params file if given, else the " +
                      ConfigSearchText("reference_vehicle.yaml"));
   app.add_option("--config", cli.config,
                  "YAML file with a complete `identification:` section of options (the shipped identification.yaml "
@@ -90,11 +98,13 @@ int main(int argc, char** argv) {
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)");
   app.add_option("--update-params", cli.update_params,
                  "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
-                 "in place, comments and other sections kept, atomically, the old file kept as FILE.bak; also the "
-                 "base file unless --params is given")
+                 "in place, comments and other sections kept, atomically, the old file kept as FILE.bak")
       ->check(CLI::ExistingFile);
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
+  app.add_option("--min-usable-fraction", cli.min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
   if (cli.output.empty() && cli.update_params.empty()) {
@@ -114,22 +124,31 @@ int main(int argc, char** argv) {
     return ReportError(e.what());
   }
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
-  // Refuse an output folder we cannot write before the fit, not after it.
-  for (const auto& [option, path] :
-       {std::pair<std::string, std::string>{"--output", cli.output}, {"--update-params", cli.update_params}}) {
-    if (path.empty()) continue;
-    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0) {
-      return ReportError("cannot write " + option + " " + path + ": folder " + folder.string() +
-                         " is missing or not writable");
-    }
+  // Outputs: never an input, each through a temporary file renamed at the
+  // end; opened now so an unwritable folder is refused before the fit. The
+  // --update-params file is the one deliberate exception: it is updated in
+  // place, its old content kept as FILE.bak.
+  std::string error;
+  std::vector<std::string> inputs = cli.logs;
+  inputs.push_back(cli.params);
+  inputs.push_back(cli.config);
+  const std::string backup = cli.update_params.empty() ? "" : cli.update_params + ".bak";
+  OutputFile output, report, updated_params, backup_file;
+  if (!CheckOutputs({cli.output, cli.report, cli.plot, backup}, inputs, &error) ||
+      (!cli.update_params.empty() && !CheckOutputs({cli.update_params, cli.output, cli.report, cli.plot},
+                                                   {cli.logs.begin(), cli.logs.end()}, &error)) ||
+      (!cli.output.empty() && !output.Open(cli.output, &error)) ||
+      (!cli.report.empty() && !report.Open(cli.report, &error)) ||
+      (!cli.update_params.empty() &&
+       (!updated_params.Open(cli.update_params, &error) || !backup_file.Open(backup, &error)))) {
+    return ReportError(error);
   }
   // The file to update must be complete before the fit, so a fit is never lost to it.
   std::string update_text;
   if (!cli.update_params.empty()) {
-    std::string updated, error;
+    std::string unused;
     if (!ReadWholeFile(cli.update_params, &update_text, &error)) return ReportError(error);
-    if (!UpdateVehicleSection(update_text, base, "", &updated, &error)) {
+    if (!UpdateVehicleSection(update_text, base, "", &unused, &error)) {
       return ReportError("--update-params " + cli.update_params + ": " + error);
     }
   }
@@ -139,12 +158,8 @@ int main(int argc, char** argv) {
   for (const std::string& path : cli.logs) {
     SensorLog log;
     LogLoadReport load;
-    std::string error;
-    if (!LoadSensorLog(path, common.prefix, &log, &load, &error)) return ReportError(error);
-    if (load.truncated_tail) {
-      spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest", path,
-                   load.tail_offset, load.file_size, load.events);
-    }
+    if (!LoadSensorLog(path, common.prefix, &log, &load, &error, cli.min_usable_fraction)) return ReportError(error);
+    if (!load.damage.empty()) spdlog::warn("{}", load.damage);
     if (load.decode_errors > 0) spdlog::warn("{}: {} events did not decode and were skipped", path, load.decode_errors);
     spdlog::info("{}: {} strain, {} motor, {} imu, {} loadcell samples", path, log.strain.size(), log.motor.size(),
                  log.imu.size(), log.loadcell.size());
@@ -155,10 +170,13 @@ int main(int argc, char** argv) {
                                                          : IdentificationMode::kAuto;
   const IdentificationResult result = Identify(std::move(logs), base, options, mode);
   const double elapsed_s = stopwatch.ElapsedS();
+  if (result.dropped.total() > 0) {
+    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
+  }
 
-  if (!cli.report.empty()) {
-    std::string error;
-    if (!WriteFileAtomically(cli.report, IdentificationReport(result), &error)) return ReportError(error);
+  if (report.is_open()) {
+    report.Write(IdentificationReport(result));
+    if (!report.Commit(&error)) return ReportError(error);
   }
   if (!result.ok) {
     std::string reasons;
@@ -170,28 +188,30 @@ int main(int argc, char** argv) {
     if (e.determined) {
       spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %)", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value);
     } else {
-      spdlog::warn("{:6s} NOT DETERMINED by these logs: {} keeps the base file's value, marked so in {}", e.symbol,
-                   e.key, cli.output);
+      spdlog::warn("{:6s} NOT DETERMINED by these logs: {} keeps the base file's value, marked so in the output",
+                   e.symbol, e.key);
     }
   }
   for (const DeflectionForceMap& m : result.maps) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
+  for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
+  for (const std::string& line : result.correlations) spdlog::warn("{}", line);
   // Stamp: the date and what the values came from; the estimator logs it at start-up.
   std::string stamp = UtcDateTime() + " by birotor-identify (" + result.mode + " mode) from";
   for (const std::string& source : result.sources) stamp += " " + std::filesystem::path(source).filename().string();
   if (!result.calibration_fact.empty()) stamp += "; " + result.calibration_fact;
-  std::string error;
-  if (!cli.output.empty()) {
+  if (output.is_open()) {
     std::string text;
-    if (!UpdateVehicleSection(IdentifiedParameterYaml(result), result.params, stamp, &text, &error) ||
-        !WriteFileAtomically(cli.output, text, &error)) {
+    if (!UpdateVehicleSection(IdentifiedParameterYaml(result), result.params, stamp, &text, &error)) {
       return ReportError(error);
     }
+    output.Write(text);
+    if (!output.Commit(&error)) return ReportError(error);
     spdlog::info("wrote {}", cli.output);
   }
-  if (!cli.update_params.empty()) {
+  if (updated_params.is_open()) {
     std::string updated;
     if (!UpdateVehicleSection(update_text, result.params, stamp, &updated, &error)) {
       return ReportError("--update-params " + cli.update_params + ": " + error);
@@ -205,28 +225,24 @@ int main(int argc, char** argv) {
       });
       if (VehicleParamsYaml(check) != VehicleParamsYaml(result.params)) {
         return ReportError("--update-params " + cli.update_params +
-                           ": the updated text does not read back as the "
-                           "identified values; file left unchanged");
+                           ": the updated text does not read back as the identified values; file left unchanged");
       }
     } catch (const ParamError& e) {
       return ReportError(std::string(e.what()) + "; file left unchanged");
     }
-    const std::string backup = cli.update_params + ".bak";
-    if (!WriteFileAtomically(backup, update_text, &error) || !WriteFileAtomically(cli.update_params, updated, &error)) {
-      return ReportError(error);
-    }
+    backup_file.Write(update_text);
+    if (!backup_file.Commit(&error)) return ReportError(error);
+    updated_params.Write(updated);
+    if (!updated_params.Commit(&error)) return ReportError(error);
     spdlog::info("updated the vehicle section of {} in place (previous file: {})", cli.update_params, backup);
   }
-  // The plot is optional: a failure is reported but the parameter file stands.
+  // A failed plot is an error (exit 1), but the parameter file stands.
   if (!cli.plot.empty()) {
-    if (WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
-      spdlog::info("wrote {}", cli.plot);
-    } else {
-      spdlog::warn("--plot {}: {}", cli.plot, error);
+    if (!WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
+      return ReportError("--plot " + cli.plot + ": " + error);
     }
+    spdlog::info("wrote {}", cli.plot);
   }
-  for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
-  for (const std::string& line : result.correlations) spdlog::warn("{}", line);
   spdlog::info("identified in {} mode in {:.2f} s; calibration fact: {}", result.mode, elapsed_s,
                result.calibration_fact.empty() ? "none needed" : result.calibration_fact);
   return 0;
