@@ -458,6 +458,15 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   add_floor(&damping, options.bench_damping_floor, "damping floor (bench_damping_floor)");
   if (mass_free && !weighed) {
     add_floor(&tip_mass, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+    // The offsets follow m_p through the static intercept, o_i = a_i + s_i sign_i L m_p g / k.
+    for (int arm = 0; arm < 2; ++arm) {
+      const double floor_rad =
+          options.bench_frequency_floor * p[kBenchScale1 + arm] * L * tip_mass.value * g / k.value;
+      if (std::isfinite(offset[arm].value) && std::isfinite(floor_rad)) {
+        offset[arm].sigma = std::hypot(offset[arm].sigma, floor_rad);
+        offset[arm].note += "; sigma includes m_p's frequency floor through the static intercept";
+      }
+    }
   } else {
     add_floor(&k, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
     for (int arm = 0; arm < 2; ++arm) {
