@@ -266,13 +266,10 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     result->plots.push_back(std::move(residual));
   }
 
-  ParameterEstimate k, damping, tip_mass, scale[2], offset[2];
-  k.key = "arm_stiffness_n_m_rad";
-  k.symbol = "k";
-  damping.key = "arm_damping_n_m_s_rad";
-  damping.symbol = "d";
-  tip_mass.key = "tip_mass_kg";
-  tip_mass.symbol = "m_p";
+  ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
+  ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
+  ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
+  ParameterEstimate scale[2], offset[2];
   for (int arm = 0; arm < 2; ++arm) {
     scale[arm].key = "gauge_scale[" + std::to_string(arm) + "]";
     scale[arm].symbol = "s_" + std::to_string(arm + 1);
@@ -460,8 +457,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     add_floor(&tip_mass, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
     // The offsets follow m_p through the static intercept, o_i = a_i + s_i sign_i L m_p g / k.
     for (int arm = 0; arm < 2; ++arm) {
-      const double floor_rad =
-          options.bench_frequency_floor * p[kBenchScale1 + arm] * L * tip_mass.value * g / k.value;
+      const double floor_rad = options.bench_frequency_floor * p[kBenchScale1 + arm] * L * tip_mass.value * g / k.value;
       if (std::isfinite(offset[arm].value) && std::isfinite(floor_rad)) {
         offset[arm].sigma = std::hypot(offset[arm].sigma, floor_rad);
         offset[arm].note += "; sigma includes m_p's frequency floor through the static intercept";

@@ -102,6 +102,18 @@ ResidualStatistics ComputeResidualStatistics(ceres::Problem* problem, const std:
   return stats;
 }
 
+namespace {
+
+// Sparse QR: robust to the near-singular blocks ComputeBlockSigmas probes.
+ceres::Covariance::Options CovarianceOptions(int num_threads) {
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  options.num_threads = num_threads;
+  return options;
+}
+
+}  // namespace
+
 double VarianceInflation(const ResidualStatistics& stats) {
   const double scale_sq =
       std::max({1.0, stats.robust_scale * stats.robust_scale, stats.rms_whitened * stats.rms_whitened});
@@ -110,10 +122,7 @@ double VarianceInflation(const ResidualStatistics& stats) {
 
 std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* problem, const std::vector<double*>& blocks,
                                                           int num_threads) {
-  ceres::Covariance::Options options;
-  options.algorithm_type = ceres::SPARSE_QR;
-  options.num_threads = num_threads;
-  ceres::Covariance covariance(options);
+  ceres::Covariance covariance(CovarianceOptions(num_threads));
   std::vector<std::pair<const double*, const double*>> pairs;
   for (size_t i = 0; i < blocks.size(); ++i) {
     for (size_t j = i; j < blocks.size(); ++j) pairs.emplace_back(blocks[i], blocks[j]);
@@ -163,10 +172,7 @@ namespace {
 
 bool TryCovariance(ceres::Problem* problem, const std::vector<double*>& blocks, const std::vector<bool>& use,
                    int num_threads, std::vector<double>* variances) {
-  ceres::Covariance::Options options;
-  options.algorithm_type = ceres::SPARSE_QR;
-  options.num_threads = num_threads;
-  ceres::Covariance covariance(options);
+  ceres::Covariance covariance(CovarianceOptions(num_threads));
   std::vector<std::pair<const double*, const double*>> pairs;
   for (size_t i = 0; i < blocks.size(); ++i) {
     if (use[i]) pairs.emplace_back(blocks[i], blocks[i]);

@@ -197,15 +197,10 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
                                  nullptr, &k_ratio, &d_ratio, &c_ratio, &m_ratio, states.back().data()));
     functors.push_back(functor);
   }
-  ParameterEstimate k, damping, c_t, tip_mass;
-  tip_mass.key = "tip_mass_kg";
-  tip_mass.symbol = "m_p";
-  k.key = "arm_stiffness_n_m_rad";
-  k.symbol = "k";
-  damping.key = "arm_damping_n_m_s_rad";
-  damping.symbol = "d";
-  c_t.key = "thrust_coeff_n_s2_rad2";
-  c_t.symbol = "c_T";
+  ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
+  ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
+  ParameterEstimate c_t = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T");
+  ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
   if (blocks.empty()) {
     result->errors.push_back("k, d, c_T: no STRAIN samples with MOTOR telemetry (omega_meas) at the same time");
     result->estimates.insert(result->estimates.end(), {k, damping, c_t});

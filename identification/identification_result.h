@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "identification/sample_cleaning.h"
@@ -20,6 +21,13 @@ struct ParameterEstimate {
   double sigma = std::numeric_limits<double>::quiet_NaN();  // one sigma, same unit
   bool determined = false;                                  // false: the data could not determine it; base value kept
   std::string note;                                         // why not determined, or how sigma was obtained
+
+  static ParameterEstimate Named(std::string key_name, std::string symbol_name) {
+    ParameterEstimate e;
+    e.key = std::move(key_name);
+    e.symbol = std::move(symbol_name);
+    return e;
+  }
 };
 
 // Residuals of one kind of block after the fit (without the robust loss).
