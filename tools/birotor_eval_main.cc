@@ -1,6 +1,7 @@
 // birotor-eval: force error against TRUTH for every method on every reference
 // scenario (simulated in-process) or on one input log, as a Markdown table;
-// optional PNG plots (thesis figures 5.1, 5.2).
+// optional PNG plots (thesis figures 5.1, 5.2). --control: the closed-loop
+// control figures of both controller modes instead.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -9,14 +10,59 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/closed_loop.h"
+#include "evaluation/control_metrics.h"
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
 #include "transport/config_files.h"
 #include "transport/logging.h"
 #include "transport/program_options.h"
+
+namespace birotor {
+namespace {
+
+// --control: every scenario flown closed loop in both modes, one table.
+int RunControlTable(const std::vector<std::string>& scenarios, const std::string& scenario_dir,
+                    const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
+                    const ControllerConfig& controller, const std::string& markdown_out) {
+  std::string table = ControlTableHeader();
+  for (const std::string& name : scenarios) {
+    Scenario scenario;
+    try {
+      const std::string file =
+          scenario_dir.empty() ? FindConfigFile("scenarios/" + name + ".yaml") : scenario_dir + "/" + name + ".yaml";
+      scenario = LoadScenario(file, overrides);
+    } catch (const std::exception& e) {
+      return ReportError(e.what());
+    }
+    for (const bool force_feedback : {false, true}) {
+      ControllerConfig config = controller;
+      config.force_feedback = force_feedback;
+      const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
+      const ControlMetrics metrics = EvaluateControl(run);
+      const char* mode = force_feedback ? "force_feedback" : "nominal";
+      table += ControlTableRow(name, mode, metrics, run);
+      spdlog::info("{} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated", name,
+                   mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
+                   run.controller.descents, run.controller.saturated);
+    }
+  }
+  std::printf("%s", table.c_str());
+  if (!markdown_out.empty()) {
+    std::FILE* out = std::fopen(markdown_out.c_str(), "w");
+    if (out == nullptr) return ReportError("cannot write " + markdown_out);
+    std::fprintf(out, "%s", table.c_str());
+    std::fclose(out);
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace birotor
 
 int main(int argc, char** argv) {
   using namespace birotor;
@@ -51,6 +97,16 @@ int main(int argc, char** argv) {
   app.add_option("--warmup-s", eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
   app.add_option("--markdown-out", markdown_out, "Also write the table to this file");
   app.add_option("--plot-dir", plot_dir, "Write <scenario>_<method>.png plots here");
+  bool control = false;
+  std::string controller_params = FindConfigFile("controller.yaml");
+  std::vector<std::string> control_scenarios = {"hover",       "gentle",  "aggressive",
+                                                "thrust_loss", "density", "thrust_loss_severe"};
+  app.add_flag("--control", control,
+               "Control figures instead: fly each scenario closed loop (birotor-sim --controller) in both "
+               "controller modes with the same gains and report RMS position error, peak tilt, altitude loss "
+               "after the fault and the time back within 5 cm");
+  app.add_option("--controller-params", controller_params,
+                 "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-eval", common.log_level);
 
@@ -59,6 +115,17 @@ int main(int argc, char** argv) {
     base_config = LoadEstimatorConfig(params_file);
   } catch (const std::exception& error) {
     return ReportError(error.what());
+  }
+  if (control) {
+    ControllerConfig controller;
+    try {
+      controller = LoadControllerConfig(controller_params);
+    } catch (const std::exception& error) {
+      return ReportError(error.what());
+    }
+    // The default list is the estimator's; the control table has its own.
+    if (app.count("--scenarios") == 0) scenarios = control_scenarios;
+    return RunControlTable(scenarios, scenario_dir, overrides, base_config, controller, markdown_out);
   }
   if (!log_path.empty()) scenarios = {log_path};
   // Refuse unwritable outputs before minutes of simulation, not after.

@@ -158,4 +158,24 @@ force_estimate_t ToMessage(const ForceEstimate& estimate) {
   return message;
 }
 
+MotorCommand FromMessage(const motor_command_t& message) {
+  MotorCommand command;
+  command.utime = message.utime;
+  command.seq = message.seq;
+  CopyPair(message.omega_cmd_rad_s, command.omega_cmd_rad_s);
+  command.mode = message.mode;
+  command.status = message.status;
+  return command;
+}
+
+motor_command_t ToMessage(const MotorCommand& command) {
+  motor_command_t message{};
+  message.utime = command.utime;
+  message.seq = command.seq;
+  CopyPair(command.omega_cmd_rad_s, message.omega_cmd_rad_s);
+  message.mode = command.mode;
+  message.status = command.status;
+  return message;
+}
+
 }  // namespace birotor
