@@ -55,14 +55,14 @@ EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& co
   return run;
 }
 
-bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run, std::string* error) {
+bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run, std::string* error,
+            double min_usable_fraction) {
   const Stopwatch stopwatch;
   ReplayOptions options;
   const ChannelNames channels = MakeChannelNames(options.prefix);
   ForceTruthCollector collector(channels);
   Replayer replayer(config, options, &collector);
-  bool truncated = false;
-  if (!ReplayLogFile(path, &replayer, &truncated, error)) return false;
+  if (!ReplayLogFile(path, &replayer, &run->log_damage, error, min_usable_fraction)) return false;
   run->forces = std::move(collector.forces);
   run->truth = std::move(collector.truth);
   run->stats = replayer.stats();

@@ -41,6 +41,7 @@ struct EvalRun {
   double simulated_s = 0;      // [s]
   double wall_s = 0;           // simulation and estimation [s]
   int64_t liftoff_utime = -1;  // first lift-off of a scenario with a ground phase [us]; -1 if none
+  std::string log_damage;      // input log only: corrupt events or a cut tail ("" if intact)
 };
 
 // Simulates the scenario (up to max_duration_s, <= 0 for all of it) and
@@ -49,7 +50,9 @@ struct EvalRun {
 EvalRun RunSimulatedScenario(const Scenario& scenario, const EstimatorConfig& config, double max_duration_s = 0,
                              LogWriter* input_log = nullptr);
 
-// Estimates over an input log. False with *error if it cannot be read.
-bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run, std::string* error);
+// Estimates over an input log. False with *error if it cannot be read or is
+// not usable (see ReplayLogFile); run->log_damage warns of a damaged log.
+bool RunLog(const std::string& path, const EstimatorConfig& config, EvalRun* run, std::string* error,
+            double min_usable_fraction = kDefaultMinUsableLogFraction);
 
 }  // namespace birotor

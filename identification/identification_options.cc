@@ -20,6 +20,7 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Int("map_degree", 1, 3, &o->map_degree);
   s.Bool("use_imu", &o->use_imu);
   s.Double("min_duration_s", 0.0, 1e5, &o->min_duration_s);
+  s.Double("max_time_jump_s", 0.001, 1e5, &o->max_time_jump_s);
   s.Double("max_relative_sigma", 1e-6, 1e3, &o->max_relative_sigma);
   s.Double("command_step_rad_s", 1e-3, 1e4, &o->command_step_rad_s);
   s.Int("min_command_steps", 0, 1000000, &o->min_command_steps);

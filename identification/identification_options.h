@@ -44,7 +44,12 @@ struct IdentificationOptions {
   // Use the IMU (gyro and accelerometer) in flight identification when present.
   bool use_imu = true;
   // Refusal thresholds.
-  double min_duration_s = 5.0;       // shorter logs are refused [s]
+  double min_duration_s = 5.0;  // shorter logs are refused [s]
+  // A sample stamped more than this after the previous one is kept only if
+  // the next sample continues from it; otherwise it is a lone stamp from the
+  // future, dropped as a bad stamp. Ten intervals of the slowest stream
+  // (POSE, 100 Hz) [s].
+  double max_time_jump_s = 0.1;
   double max_relative_sigma = 0.2;   // above: the parameter is not determined [1]
   double command_step_rad_s = 30.0;  // a command change this large in one sample is a step [rad/s]
   int min_command_steps = 2;         // fewer steps per rotor: no excitation for tau_m

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "identification/sample_cleaning.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
@@ -64,6 +65,7 @@ struct IdentificationResult {
   std::vector<DeflectionForceMap> maps;
   std::vector<std::string> sources;  // logs used
   std::vector<FitPlot> plots;        // fit versus data, a few panels
+  SampleCleaningReport dropped;      // bad samples dropped before fitting, all logs
 };
 
 }  // namespace birotor

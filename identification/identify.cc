@@ -7,12 +7,6 @@
 namespace birotor {
 namespace {
 
-template <class Sample>
-void SortByTime(std::vector<Sample>* samples) {
-  std::stable_sort(samples->begin(), samples->end(),
-                   [](const Sample& a, const Sample& b) { return a.utime < b.utime; });
-}
-
 std::string Fixed(double value, int digits) {
   std::ostringstream out;
   out.setf(std::ios::fixed);
@@ -55,18 +49,8 @@ IdentificationMode DetectMode(const std::vector<SensorLog>& logs) {
   return IdentificationMode::kBench;
 }
 
-void SanitizeLog(SensorLog* log) {
-  SortByTime(&log->strain);
-  SortByTime(&log->motor);
-  SortByTime(&log->imu);
-  SortByTime(&log->pose);
-  SortByTime(&log->loadcell);
-  SortByTime(&log->truth);
-  log->strain.erase(std::remove_if(log->strain.begin(), log->strain.end(),
-                                   [](const StrainSample& s) {
-                                     return !std::isfinite(s.deflection_rad[0]) || !std::isfinite(s.deflection_rad[1]);
-                                   }),
-                    log->strain.end());
+SampleCleaningReport SanitizeLog(SensorLog* log, const IdentificationOptions& options) {
+  return CleanLog(log, static_cast<int64_t>(std::llround(options.max_time_jump_s * 1e6)));
 }
 
 IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& base,
@@ -74,7 +58,7 @@ IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& 
   IdentificationResult result;
   result.params = base;
   for (SensorLog& log : logs) {
-    SanitizeLog(&log);
+    result.dropped += SanitizeLog(&log, options);
     result.sources.push_back(log.source);
   }
   if (mode == IdentificationMode::kAuto) mode = DetectMode(logs);

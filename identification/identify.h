@@ -8,6 +8,7 @@
 
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
+#include "identification/sample_cleaning.h"
 #include "identification/sensor_log.h"
 #include "model/vehicle_params.h"
 
@@ -18,8 +19,9 @@ enum class IdentificationMode { kAuto, kBench, kFlight };
 // Bench when every log has load-cell samples, flight otherwise.
 IdentificationMode DetectMode(const std::vector<SensorLog>& logs);
 
-// Sorts every stream by utime and drops non-finite strain samples (in place).
-void SanitizeLog(SensorLog* log);
+// Drops and counts the bad samples of every stream (CleanLog of
+// sample_cleaning.h with options.max_time_jump_s), in place.
+SampleCleaningReport SanitizeLog(SensorLog* log, const IdentificationOptions& options);
 
 // Identifies c_T, tau_m, k, d (and, on the bench, the deflection-force maps).
 // The masses, lengths and inertia of `base` are taken as known. When the data

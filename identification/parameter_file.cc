@@ -1,13 +1,6 @@
 #include "identification/parameter_file.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <iomanip>
 #include <sstream>
 #include <vector>
@@ -63,6 +56,7 @@ std::string IdentificationReport(const IdentificationResult& result) {
   out << "# Identification report (" << result.mode << " mode)\n\n";
   out << "Logs:\n";
   for (const std::string& s : result.sources) out << "- " << s << "\n";
+  out << "\nBad samples (non-finite, bad stamp, out of order, duplicate): " << result.dropped.Summary() << ".\n";
   if (!result.ok) {
     out << "\n**No parameters: the data lacks what the identification needs.**\n\n";
     for (const std::string& e : result.errors) out << "- " << e << "\n";
@@ -101,53 +95,6 @@ std::string IdentificationReport(const IdentificationResult& result) {
     for (const std::string& w : result.warnings) out << "- " << w << "\n";
   }
   return out.str();
-}
-
-bool WriteFileAtomically(const std::string& path, const std::string& text, std::string* error) {
-  const size_t slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-  std::string temp = path + ".tmp.XXXXXX";
-  std::vector<char> name(temp.begin(), temp.end());
-  name.push_back('\0');
-  const int fd = mkstemp(name.data());
-  if (fd < 0) {
-    *error = "cannot create a temporary file next to " + path + ": " + std::strerror(errno);
-    return false;
-  }
-  temp = name.data();
-  auto fail = [&](const std::string& what) {
-    *error = what + " " + temp + ": " + std::strerror(errno);
-    ::close(fd);
-    ::unlink(temp.c_str());
-    return false;
-  };
-  size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return fail("cannot write");
-    }
-    written += static_cast<size_t>(n);
-  }
-  if (::fchmod(fd, 0644) != 0) return fail("cannot set the mode of");
-  if (::fsync(fd) != 0) return fail("cannot fsync");
-  if (::close(fd) != 0) {
-    *error = "cannot close " + temp + ": " + std::strerror(errno);
-    ::unlink(temp.c_str());
-    return false;
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    *error = "cannot rename " + temp + " to " + path + ": " + std::strerror(errno);
-    ::unlink(temp.c_str());
-    return false;
-  }
-  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (dir_fd >= 0) {
-    ::fsync(dir_fd);
-    ::close(dir_fd);
-  }
-  return true;
 }
 
 }  // namespace birotor

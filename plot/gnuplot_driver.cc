@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "transport/output_file.h"
+
 extern char** environ;
 
 namespace birotor {
@@ -52,28 +54,6 @@ std::string ReadAll(std::FILE* file) {
   size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof(buffer), file)) > 0) text.append(buffer, n);
   return text;
-}
-
-// "<folder>/.<name>.XXXXXX", created by mkstemp beside png_path so that the
-// final rename stays on one file system. Returns the descriptor or -1.
-int CreateTemporaryBeside(const std::string& png_path, std::string* temporary_path) {
-  const size_t slash = png_path.rfind('/');
-  const std::string folder = slash == std::string::npos ? std::string(".") : png_path.substr(0, slash);
-  const std::string name = slash == std::string::npos ? png_path : png_path.substr(slash + 1);
-  std::string pattern = (slash == 0 ? std::string() : folder) + "/." + name + ".XXXXXX";
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  const int fd = ::mkstemp(buffer.data());
-  if (fd >= 0) *temporary_path = buffer.data();
-  return fd;
-}
-
-// Read and write for everyone the umask allows, as fopen would create the file
-// (mkstemp creates 0600).
-void SetDefaultPermissions(int fd) {
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
 }
 
 bool StartsWithPngSignature(int fd) {
@@ -144,33 +124,24 @@ bool RenderGnuplotPng(const std::string& script, const std::string& png_path, st
   }
   std::rewind(script_file.get());
 
-  std::string temporary_path;
-  const int output_fd = CreateTemporaryBeside(png_path, &temporary_path);
-  if (output_fd < 0) {
-    *error = "cannot write " + png_path + ": " + std::strerror(errno);
-    return false;
-  }
-  SetDefaultPermissions(output_fd);
+  // The PNG goes through transport/output_file.h: a temporary file beside
+  // png_path, renamed only when gnuplot succeeded and wrote a PNG.
+  OutputFile png;
+  if (!png.Open(png_path, error)) return false;
+  const int output_fd = fileno(png.stream());
   const int status = RunGnuplot(fileno(script_file.get()), output_fd, fileno(messages.get()), error);
-  bool ok = false;
   if (status > 0) {
     const std::string text = OneLine(ReadAll(messages.get()));
     *error = "gnuplot failed (exit status " + std::to_string(status) + ")" + (text.empty() ? "" : ": " + text);
-  } else if (status == 0 && !StartsWithPngSignature(output_fd)) {
+    return false;
+  }
+  if (status < 0) return false;
+  const bool temporary = png.write_path() != png.path();  // a regular file, not a device
+  if (temporary && !StartsWithPngSignature(output_fd)) {
     *error = "gnuplot wrote no PNG (is the pngcairo terminal installed? Debian package gnuplot-nox)";
-  } else if (status == 0) {
-    ok = true;
+    return false;
   }
-  if (::close(output_fd) != 0 && ok) {
-    *error = "cannot write " + png_path + ": " + std::strerror(errno);
-    ok = false;
-  }
-  if (ok && std::rename(temporary_path.c_str(), png_path.c_str()) != 0) {
-    *error = "cannot rename the plot to " + png_path + ": " + std::strerror(errno);
-    ok = false;
-  }
-  if (!ok) std::remove(temporary_path.c_str());
-  return ok;
+  return png.Commit(error);
 }
 
 }  // namespace birotor

@@ -21,7 +21,7 @@ void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* repo
 }  // namespace
 
 bool LoadSensorLog(const std::string& path, const std::string& prefix, SensorLog* log, LogLoadReport* report,
-                   std::string* error) {
+                   std::string* error, double min_usable_fraction) {
   LogReader reader;
   if (!reader.Open(path, error)) return false;
   const ChannelNames channels = MakeChannelNames(prefix);
@@ -48,11 +48,7 @@ bool LoadSensorLog(const std::string& path, const std::string& prefix, SensorLog
   report->truncated_tail = reader.TruncatedTail();
   report->tail_offset = reader.tail_offset();
   report->file_size = reader.file_size();
-  if (report->events == 0 && report->truncated_tail) {
-    *error = path + ": not an LCM log (no readable event)";
-    return false;
-  }
-  return true;
+  return CheckLogUsable(reader, path, min_usable_fraction, error, &report->damage);
 }
 
 }  // namespace birotor

@@ -7,10 +7,12 @@
 #include <string>
 
 #include "identification/sensor_log.h"
+#include "transport/log_io.h"
 
 namespace birotor {
 
 struct LogLoadReport {
+  std::string damage;           // warning line for corrupt events or a cut tail ("" if intact)
   int64_t events = 0;           // events read
   int64_t decode_errors = 0;    // events on a known channel that did not decode
   bool truncated_tail = false;  // the file ends in a partial or corrupt event
@@ -18,10 +20,12 @@ struct LogLoadReport {
   int64_t file_size = 0;        // [bytes]
 };
 
-// False (with *error) when the file cannot be opened or is not a log. A
-// corrupt tail is not an error: the events up to the damage are kept and
-// report->truncated_tail is set.
+// False (with a one-line *error) when the file cannot be opened, is not a
+// regular file or not a log, or is not usable (CheckLogUsable of
+// transport/log_io.h with min_usable_fraction). Corrupt events and a cut
+// tail in a usable log are not errors: they are skipped, counted and
+// described in report->damage.
 bool LoadSensorLog(const std::string& path, const std::string& prefix, SensorLog* log, LogLoadReport* report,
-                   std::string* error);
+                   std::string* error, double min_usable_fraction = kDefaultMinUsableLogFraction);
 
 }  // namespace birotor

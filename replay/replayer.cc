@@ -49,15 +49,15 @@ void Replayer::Process(const std::string& channel, int64_t timestamp_us, const v
   }
 }
 
-bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail, std::string* error) {
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
+                   double min_usable_fraction) {
   LogReader reader;
   if (!reader.Open(input_path, error)) return false;
   LogEvent event;
   while (reader.Next(&event)) {
     replayer->Process(event.channel, event.timestamp_us, event.data.data(), event.data.size());
   }
-  if (truncated_tail != nullptr) *truncated_tail = reader.TruncatedTail();
-  return true;
+  return CheckLogUsable(reader, input_path, min_usable_fraction, error, damage);
 }
 
 }  // namespace birotor

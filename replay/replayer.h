@@ -65,8 +65,12 @@ class Replayer : public MessageSink {
   int64_t strain_fault_count_ = 0;
 };
 
-// Replays every event of the log at input_path. False with *error when the
-// log cannot be opened; a truncated tail is reported in *truncated_tail.
-bool ReplayLogFile(const std::string& input_path, Replayer* replayer, bool* truncated_tail, std::string* error);
+// Replays every event of the log at input_path. False with a one-line *error
+// when the log cannot be opened or is not usable (CheckLogUsable of
+// transport/log_io.h: empty, no readable event, less than
+// min_usable_fraction of its bytes readable). *damage (optional) gets a
+// warning line when a usable log had corrupt events or a cut tail.
+bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
+                   double min_usable_fraction = kDefaultMinUsableLogFraction);
 
 }  // namespace birotor

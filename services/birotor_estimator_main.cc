@@ -6,9 +6,9 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -24,6 +24,7 @@
 #include "transport/logging.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
+#include "transport/udpm_receiver.h"
 
 namespace {}  // namespace
 
@@ -99,11 +100,25 @@ int main(int argc, char** argv) {
       spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
     }
   }
-  service.Subscribe(lcm.get());
+  // Inputs. On udpm our own small-message reader, and LCM only publishes (it
+  // opens no receive socket until something subscribes): LCM's fragment
+  // reassembly, which two crafted datagrams crash, is never reached
+  // (docs/lcm-udpm-fragment-bug.md). Other providers (memq:// in tests) go
+  // through LCM's subscription.
+  std::unique_ptr<UdpmReceiver> receiver;
+  if (common.lcm_url.rfind("udpm://", 0) == 0) {
+    UdpmUrl udpm;
+    receiver = std::make_unique<UdpmReceiver>();
+    if (!ParseUdpmUrl(common.lcm_url, &udpm, &error) || !receiver->Open(udpm, &error)) return ReportError(error);
+    service.AttachUdpCounters(&receiver->counters());
+  } else {
+    service.Subscribe(lcm.get());
+  }
   spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION, config.method, params_file,
                FileChecksum(params_file));
-  spdlog::info("lcm {}: in {} {} {} {}, out {} {}", common.lcm_url, channels.strain, channels.motor, channels.imu,
-               channels.pose, channels.force, channels.estimator_status);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.strain, channels.motor, channels.imu,
+               channels.pose, receiver ? "own LC02 reader, fragments dropped" : "LCM subscription", channels.force,
+               channels.estimator_status);
   bool buffer_ok = true;
   const std::string buffer_report = ReceiveBufferReport(common.lcm_url, ReadRmemMax(), &buffer_ok);
   if (buffer_ok) {
@@ -112,25 +127,40 @@ int main(int argc, char** argv) {
     spdlog::warn("{}", buffer_report);
   }
 
+  // ESTIMATOR_STATUS on a fixed wall-clock grid. Packets are handled until
+  // the next status is due and never past it, so the status stays on time
+  // at any input rate (a backlog waits in the socket, and the overload guard
+  // sheds what waited too long).
   const double status_period_s = 1.0 / options.status_rate_hz;
   double last_status_s = SteadyClockS();
+  double next_status_s = last_status_s + status_period_s;
+  ReceivedDatagram datagram;
   while (!ShutdownRequested()) {
-    const double wait_s = last_status_s + status_period_s - SteadyClockS();
-    const int handled = HandleFor(*lcm, std::min(std::max(wait_s, 0.0), 0.1));
-    if (handled < 0) {
-      if (ShutdownRequested() || errno == EINTR) continue;  // a signal interrupted the wait
-      spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
-      break;
-    }
-    // Drain everything already queued before looking at the clock again.
-    if (handled > 0) {
-      while (!ShutdownRequested() && lcm->handleTimeout(0) > 0) {
+    const double wait_s = std::min(std::max(next_status_s - SteadyClockS(), 0.0), 0.1);
+    if (receiver) {
+      if (receiver->Wait(wait_s)) {
+        while (!ShutdownRequested() && SteadyClockS() < next_status_s && receiver->Receive(&datagram)) {
+          service.HandleDatagram(datagram);
+        }
+      }
+    } else {
+      const int handled = HandleFor(*lcm, wait_s);
+      if (handled < 0) {
+        if (ShutdownRequested() || errno == EINTR) continue;  // a signal interrupted the wait
+        spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
+        break;
+      }
+      if (handled > 0) {
+        while (!ShutdownRequested() && SteadyClockS() < next_status_s && lcm->handleTimeout(0) > 0) {
+        }
       }
     }
     const double now_s = SteadyClockS();
-    if (now_s - last_status_s >= status_period_s) {
+    if (now_s >= next_status_s) {
       service.PublishStatus(WallClockUs(), now_s - last_status_s);
       last_status_s = now_s;
+      next_status_s += status_period_s;
+      if (next_status_s <= now_s) next_status_s = now_s + status_period_s;  // a stall longer than a period
     }
   }
   service.Unsubscribe();
@@ -138,13 +168,13 @@ int main(int argc, char** argv) {
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
   spdlog::info(
       "stopped: {} FORCE published; strain received {} fused {} decode errors {} out of order {} "
-      "overload drops {}; resets {}",
+      "overload drops {}; resets {}; udp fragments dropped {} malformed {} kernel drops {}",
       service.forces_published(), strain.received, strain.fused, strain.decode_errors, strain.out_of_order,
-      strain.dropped_overload, health.resets);
+      strain.dropped_overload, health.resets, receiver ? receiver->counters().fragments_dropped : 0,
+      receiver ? receiver->counters().malformed_dropped : 0, receiver ? receiver->counters().kernel_dropped : 0);
   if (!state_file.empty()) {
     if (!WriteGaugeState(state_file, health.gauge, vehicle_checksum, &error)) {
-      std::fprintf(stderr, "birotor-estimator: error: gauge state: %s\n", error.c_str());
-      return 1;
+      return ReportError("gauge state: " + error);
     }
     spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(health.gauge.source), state_file);
   }

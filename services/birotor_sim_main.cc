@@ -9,7 +9,6 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cstdio>
 #include <memory>
 #include <string>
 #include <thread>
@@ -31,6 +30,7 @@
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
 
@@ -80,10 +80,10 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
   loop.command_timeout_s = options.command_timeout_s;
   loop.prefix = channels.prefix;
   const ClosedLoopRun run = RunClosedLoop(scenario, estimator, controller, loop, &log_sink);
-  bool write_failed = log_sink.failed();
-  if (!writer.Close()) write_failed = true;
-  if (write_failed) {
-    ReportError("writing " + options.output + " failed (disk full?)");
+  if (log_sink.failed() || !writer.Close()) {
+    writer.Abandon();  // no partial log is left behind
+    ReportError("writing " + options.output + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
+                "; no log is left behind");
     return false;
   }
   const ControlMetrics metrics = EvaluateControl(run);
@@ -98,6 +98,7 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
 
 // Offline: every sample into the log, as fast as possible.
 bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
+  // A temporary file next to path, renamed when the log is complete.
   LogWriter writer;
   std::string error;
   if (!writer.Open(path, &error)) {
@@ -108,14 +109,17 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   WireSampleSink sink(channels, &log_sink, publish_truth);
   while (!log_sink.failed() && !ShutdownRequested() && sim->Step(&sink)) {
   }
-  bool write_failed = log_sink.failed() || sink.encode_failures() > 0;
-  if (!writer.Close()) write_failed = true;
-  if (write_failed) ReportError("writing " + path + " failed (disk full?); the log ends early");
+  if (log_sink.failed() || sink.encode_failures() > 0 || !writer.Close()) {
+    writer.Abandon();  // no partial log is left behind
+    ReportError("writing " + path + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
+                "; no log is left behind");
+    return false;
+  }
   if (ShutdownRequested()) {
     spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
   }
   spdlog::info("wrote {} events to {}", writer.events_written(), path);
-  return !write_failed;
+  return true;
 }
 
 // --external-controller: MOTOR_COMMAND from LCM to the simulator's ESCs,
@@ -257,9 +261,13 @@ int Main(int argc, char** argv) {
     return ReportError("--loop runs until stopped: it is for live mode, not with --output (see --help)", kExitUsage);
   }
 
+  std::string error;
+  std::vector<std::string> inputs = options.param_files;
+  inputs.push_back(options.scenario_file);
+  if (!CheckOutputs({options.output}, inputs, &error)) return ReportError(error);
+
   std::unique_ptr<lcm::LCM> lcm;
   if (options.output.empty()) {
-    std::string error;
     lcm = OpenLcm(options.common.lcm_url, &error);
     if (!lcm) return ReportError("cannot open LCM: " + error);
   }

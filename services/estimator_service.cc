@@ -63,6 +63,17 @@ void EstimatorService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std:
   context->service->HandlePacket(context->channel, buffer->data, buffer->data_size, buffer->recv_utime);
 }
 
+bool EstimatorService::HandleDatagram(const ReceivedDatagram& datagram) {
+  if (datagram.packet.kind != LcmPacketKind::kSmallMessage) return false;
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    if (datagram.packet.channel == *input_channel_names_[i]) {
+      return HandlePacket(static_cast<InputChannel>(i), datagram.packet.payload, datagram.packet.payload_size,
+                          datagram.receive_wall_utime);
+    }
+  }
+  return false;
+}
+
 bool EstimatorService::InputChannelOf(const std::string& channel, InputChannel* input) const {
   for (int i = 0; i < kNumInputChannels; ++i) {
     if (channel == *input_channel_names_[i]) {
@@ -168,6 +179,7 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
     context.processing_time_p99_us = kNaN;
     context.processing_time_max_us = kNaN;
   }
+  if (udp_counters_ != nullptr) context.udp = *udp_counters_;
   BuildStatusMessage(pipeline_.health(), pipeline_.method_name(), context, &status_message_);
   if (last_strain_arrival_wall_us_ >= 0 &&
       static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6) {

@@ -23,6 +23,7 @@
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
 #include "transport/logging.h"
+#include "transport/udpm_receiver.h"
 
 namespace birotor {
 
@@ -54,6 +55,15 @@ class EstimatorService {
   ~EstimatorService();
   EstimatorService(const EstimatorService&) = delete;
   EstimatorService& operator=(const EstimatorService&) = delete;
+
+  // The daemon's UDP reader: its counters go into ESTIMATOR_STATUS (they must
+  // outlive the service), and HandleDatagram feeds its small messages in.
+  void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
+  // One datagram of the UDP reader: a small message on an input channel goes
+  // to HandlePacket with its kernel arrival time; anything else (other
+  // channels, our own FORCE looped back, fragments and malformed datagrams,
+  // which the reader has counted) is ignored. Returns HandlePacket's result.
+  bool HandleDatagram(const ReceivedDatagram& datagram);
 
   // Raw subscriptions to the four input channels on lcm (which must outlive
   // the service or Unsubscribe()).
@@ -119,6 +129,7 @@ class EstimatorService {
   int64_t forces_published_ = 0;
   int64_t next_status_utime_ = -1;            // vehicle-clock status schedule [us]
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
+  const UdpReceiveCounters* udp_counters_ = nullptr;
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
 };

@@ -97,6 +97,10 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->tares_refused_body_moving = health.tare.refused_body_moving;
   message->tares_refused_out_of_range = health.tare.refused_out_of_range;
   message->last_tare_refusal = TareRefusalName(health.tare.last_refusal);
+  message->udp_datagrams = context.udp.datagrams;
+  message->udp_fragments_dropped = context.udp.fragments_dropped;
+  message->udp_malformed_dropped = context.udp.malformed_dropped;
+  message->udp_kernel_dropped = context.udp.kernel_dropped;
 }
 
 }  // namespace birotor

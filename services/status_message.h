@@ -9,6 +9,7 @@
 
 #include "birotor/estimator_status_t.hpp"
 #include "estimator/estimator_pipeline.h"
+#include "transport/udpm_receiver.h"
 
 namespace birotor {
 
@@ -46,6 +47,7 @@ struct StatusContext {
   double processing_time_mean_us = 0;  // NaN when not measured
   double processing_time_p99_us = 0;
   double processing_time_max_us = 0;
+  UdpReceiveCounters udp;  // the daemon's UDP reader; zeros without one
 };
 
 // Chi-square gate the method compares the strain NIS with (NaN for the

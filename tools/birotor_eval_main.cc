@@ -19,7 +19,9 @@
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
 #include "transport/config_files.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 namespace birotor {
@@ -52,12 +54,8 @@ int RunControlTable(const std::vector<std::string>& scenarios, const std::string
     }
   }
   std::printf("%s", table.c_str());
-  if (!markdown_out.empty()) {
-    std::FILE* out = std::fopen(markdown_out.c_str(), "w");
-    if (out == nullptr) return ReportError("cannot write " + markdown_out);
-    std::fprintf(out, "%s", table.c_str());
-    std::fclose(out);
-  }
+  std::string error;
+  if (!markdown_out.empty() && !WriteFileAtomically(markdown_out, table, &error)) return ReportError(error);
   return 0;
 }
 
@@ -107,6 +105,10 @@ int main(int argc, char** argv) {
                "after the fault and the time back within 5 cm");
   app.add_option("--controller-params", controller_params,
                  "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+  app.add_option("--min-usable-fraction", min_usable_fraction,
+                 "Refuse a --log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-eval", common.log_level);
 
@@ -134,17 +136,16 @@ int main(int argc, char** argv) {
       !std::filesystem::create_directories(plot_dir, fs_error)) {
     return ReportError("cannot create --plot-dir " + plot_dir);
   }
-  if (!markdown_out.empty()) {
-    std::FILE* probe = std::fopen(markdown_out.c_str(), "a");
-    if (probe == nullptr) {
-      return ReportError("cannot write " + markdown_out);
-    }
-    std::fclose(probe);
+  // The Markdown goes to a temporary file next to it, renamed at the end.
+  OutputFile markdown;
+  std::string error;
+  if (!CheckOutputs({markdown_out}, {log_path, params_file}, &error) ||
+      (!markdown_out.empty() && !markdown.Open(markdown_out, &error))) {
+    return ReportError(error);
   }
   int exit_code = 0;
 
   std::string table = MarkdownTableHeader();
-  std::string error;
   for (const std::string& name : scenarios) {
     Scenario scenario;
     if (log_path.empty()) {
@@ -164,14 +165,23 @@ int main(int argc, char** argv) {
       EvalRun run;
       if (log_path.empty()) {
         run = RunSimulatedScenario(scenario, config, duration_s);
-      } else if (!RunLog(log_path, config, &run, &error)) {
+      } else if (!RunLog(log_path, config, &run, &error, min_usable_fraction)) {
         return ReportError(error);
       }
+      if (!run.log_damage.empty() && method == methods.front()) spdlog::warn("{}", run.log_damage);
       // A flight with a ground phase is scored from its lift-off.
       EvalOptions options = eval_options;
       options.score_from_utime = run.liftoff_utime;
       const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, options);
       const std::string label = log_path.empty() ? name : "log";
+      // Nothing scored (no TRUTH, no FORCE, or all within the warm-up): a
+      // table of NaN would look like a result.
+      if (result.rotor[0].count == 0) {
+        return ReportError(
+            fmt::format("{} {}: no FORCE estimate paired with TRUTH after the {:.2f} s warm-up ({} FORCE, {} TRUTH): "
+                        "nothing to score",
+                        label, method, eval_options.warmup_s, run.forces.size(), run.truth.size()));
+      }
       table += MarkdownTableRow(label, method, result);
       const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
       spdlog::info(
@@ -193,13 +203,10 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("%s", table.c_str());
-  if (!markdown_out.empty()) {
-    std::FILE* out = std::fopen(markdown_out.c_str(), "w");
-    if (out == nullptr) {
-      return ReportError("cannot write " + markdown_out);
-    }
-    std::fprintf(out, "%s", table.c_str());
-    std::fclose(out);
+  if (std::fflush(stdout) != 0) return ReportError("writing the table to standard output failed");
+  if (markdown.is_open()) {
+    markdown.Write(table);
+    if (!markdown.Commit(&error)) return ReportError(error);
   }
   return exit_code;
 }

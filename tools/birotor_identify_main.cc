@@ -2,9 +2,7 @@
 // tau_m, k, d and the deflection-force maps with Ceres, and writes the
 // parameter file the estimator and simulator load, plus a readable report.
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -15,7 +13,9 @@
 #include "replay/identification_log_loader.h"
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 namespace {
@@ -28,6 +28,7 @@ struct IdentifyOptions {
   std::string output;
   std::string report;
   std::string plot;
+  double min_usable_fraction = birotor::kDefaultMinUsableLogFraction;
 };
 
 }  // namespace
@@ -51,6 +52,9 @@ int main(int argc, char** argv) {
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)")->required();
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
+  app.add_option("--min-usable-fraction", cli.min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
 
@@ -63,13 +67,16 @@ int main(int argc, char** argv) {
     return ReportError(e.what());
   }
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
-  // Refuse an output folder we cannot write before the fit, not after it.
-  {
-    const std::filesystem::path folder = std::filesystem::absolute(cli.output).parent_path();
-    if (!std::filesystem::is_directory(folder) || access(folder.c_str(), W_OK) != 0) {
-      return ReportError("cannot write --output " + cli.output + ": folder " + folder.string() +
-                         " is missing or not writable");
-    }
+  // Outputs: never an input, each through a temporary file renamed at the
+  // end; opened now so an unwritable folder is refused before the fit.
+  std::string error;
+  std::vector<std::string> inputs = cli.logs;
+  inputs.push_back(cli.params);
+  inputs.push_back(cli.config);
+  OutputFile output, report;
+  if (!CheckOutputs({cli.output, cli.report, cli.plot}, inputs, &error) || !output.Open(cli.output, &error) ||
+      (!cli.report.empty() && !report.Open(cli.report, &error))) {
+    return ReportError(error);
   }
 
   const Stopwatch stopwatch;
@@ -77,12 +84,8 @@ int main(int argc, char** argv) {
   for (const std::string& path : cli.logs) {
     SensorLog log;
     LogLoadReport load;
-    std::string error;
-    if (!LoadSensorLog(path, common.prefix, &log, &load, &error)) return ReportError(error);
-    if (load.truncated_tail) {
-      spdlog::warn("{}: corrupt or truncated tail: read the first {} of {} bytes ({} events), ignoring the rest", path,
-                   load.tail_offset, load.file_size, load.events);
-    }
+    if (!LoadSensorLog(path, common.prefix, &log, &load, &error, cli.min_usable_fraction)) return ReportError(error);
+    if (!load.damage.empty()) spdlog::warn("{}", load.damage);
     if (load.decode_errors > 0) spdlog::warn("{}: {} events did not decode and were skipped", path, load.decode_errors);
     spdlog::info("{}: {} strain, {} motor, {} imu, {} loadcell samples", path, log.strain.size(), log.motor.size(),
                  log.imu.size(), log.loadcell.size());
@@ -93,10 +96,13 @@ int main(int argc, char** argv) {
                                                          : IdentificationMode::kAuto;
   const IdentificationResult result = Identify(std::move(logs), base, options, mode);
   const double elapsed_s = stopwatch.ElapsedS();
+  if (result.dropped.total() > 0) {
+    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
+  }
 
-  if (!cli.report.empty()) {
-    std::string error;
-    if (!WriteFileAtomically(cli.report, IdentificationReport(result), &error)) return ReportError(error);
+  if (report.is_open()) {
+    report.Write(IdentificationReport(result));
+    if (!report.Commit(&error)) return ReportError(error);
   }
   if (!result.ok) {
     std::string reasons;
@@ -116,15 +122,14 @@ int main(int argc, char** argv) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
-  std::string error;
-  if (!WriteFileAtomically(cli.output, IdentifiedParameterYaml(result), &error)) return ReportError(error);
-  // The plot is optional: a failure is reported but the parameter file stands.
+  output.Write(IdentifiedParameterYaml(result));
+  if (!output.Commit(&error)) return ReportError(error);
+  // A failed plot is an error (exit 1), but the parameter file stands.
   if (!cli.plot.empty()) {
-    if (WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
-      spdlog::info("wrote {}", cli.plot);
-    } else {
-      spdlog::warn("--plot {}: {}", cli.plot, error);
+    if (!WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
+      return ReportError("--plot " + cli.plot + ": " + error);
     }
+    spdlog::info("wrote {}", cli.plot);
   }
   spdlog::info("wrote {} ({} mode, {:.2f} s)", cli.output, result.mode, elapsed_s);
   return 0;

@@ -2,6 +2,8 @@
 // flight): estimated rotor forces with 1 sigma, against TRUTH and with the
 // error when the log has it, thrust efficiency with the fault threshold, and
 // the status flags with their first times (plot/force_plot.h).
+#include <spdlog/spdlog.h>
+
 #include <cstdio>
 #include <string>
 
@@ -9,7 +11,9 @@
 #include "evaluation/eval_runner.h"
 #include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
+#include "transport/log_io.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 int main(int argc, char** argv) {
@@ -26,6 +30,10 @@ int main(int argc, char** argv) {
   app.add_option("--params", params_file,
                  "Estimator parameter file of the run, for its fault thresholds (default: the built-in defaults)")
       ->check(CLI::ExistingFile);
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+  app.add_option("--min-usable-fraction", min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-plot", common.log_level);
 
@@ -40,13 +48,18 @@ int main(int argc, char** argv) {
   ForceTruthCollector collector(channels);
   LogReader reader;
   std::string error;
-  if (!reader.Open(log_path, &error)) {
+  if (!CheckOutputs({png_path}, {log_path, params_file}, &error) || !reader.Open(log_path, &error)) {
     return ReportError(error);
   }
   LogEvent event;
   while (reader.Next(&event)) {
     collector.Publish(event.channel, event.timestamp_us, event.data.data(), event.data.size());
   }
+  std::string damage;
+  if (!CheckLogUsable(reader, log_path, min_usable_fraction, &error, &damage)) {
+    return ReportError(error);
+  }
+  if (!damage.empty()) spdlog::warn("{}", damage);
   if (plot.title.empty()) plot.title = log_path;
   if (!collector.truth.empty()) {
     const EvalResult result = Evaluate(collector.forces, collector.truth, {}, EvalOptions{});

@@ -3,7 +3,6 @@
 // TRUTH to an output log, optionally FORCE as CSV. Same log in, same bytes out.
 #include <spdlog/spdlog.h>
 
-#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -14,6 +13,7 @@
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
 #include "transport/logging.h"
+#include "transport/output_file.h"
 #include "transport/program_options.h"
 
 int main(int argc, char** argv) {
@@ -38,6 +38,10 @@ int main(int argc, char** argv) {
       "--copy-truth", [&options] { options.copy_truth = true; }, "Copy TRUTH events to the output (the default)");
   app.add_flag_callback(
       "--no-copy-truth", [&options] { options.copy_truth = false; }, "Leave TRUTH events out of the output");
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+  app.add_option("--min-usable-fraction", min_usable_fraction,
+                 "Refuse a log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-replay", common.log_level);
   options.prefix = common.prefix;
@@ -51,38 +55,38 @@ int main(int argc, char** argv) {
   if (!method.empty()) config.method = method;
 
   std::string error;
+  // An output never overwrites an input, and outputs go to temporary files
+  // renamed only when everything was written (transport/output_file.h).
+  if (!CheckOutputs({output_path, csv_path}, {input_path, params_file}, &error)) return ReportError(error);
   LogWriter writer;
   if (!writer.Open(output_path, &error)) {
     return ReportError(error);
   }
   LogSink log_sink(&writer);
-  std::FILE* csv = nullptr;
-  if (!csv_path.empty()) {
-    csv = std::fopen(csv_path.c_str(), "w");
-    if (csv == nullptr) {
-      return ReportError("cannot write " + csv_path);
-    }
-  }
+  OutputFile csv;
+  if (!csv_path.empty() && !csv.Open(csv_path, &error)) return ReportError(error);
   std::unique_ptr<ForceCsvSink> csv_sink;
   MessageSink* sink = &log_sink;
-  if (csv != nullptr) {
-    csv_sink = std::make_unique<ForceCsvSink>(csv, MakeChannelNames(common.prefix).force, &log_sink);
+  if (csv.is_open()) {
+    csv_sink = std::make_unique<ForceCsvSink>(csv.stream(), MakeChannelNames(common.prefix).force, &log_sink);
     sink = csv_sink.get();
   }
 
   const Stopwatch stopwatch;
   Replayer replayer(config, options, sink);
-  bool truncated = false;
-  if (!ReplayLogFile(input_path, &replayer, &truncated, &error)) {
-    return ReportError(error);
+  std::string damage;
+  if (!ReplayLogFile(input_path, &replayer, &damage, &error, min_usable_fraction)) {
+    return ReportError(error);  // writer and csv are abandoned: no output file is left
+  }
+  if (!damage.empty()) spdlog::warn("{}", damage);
+  if (replayer.stats().input_packets == 0 || replayer.stats().forces == 0) {
+    return ReportError(fmt::format("{}: {} events but no {} input produced a FORCE estimate", input_path,
+                                   replayer.stats().events, common.prefix));
   }
   const double wall_s = stopwatch.ElapsedS();
-  const bool closed = writer.Close();
-  if (csv != nullptr) std::fclose(csv);
-  if (log_sink.failed() || !closed) {
-    return ReportError("writing " + output_path + " failed");
-  }
-  if (truncated) spdlog::warn("{}: truncated or corrupt tail ignored", input_path);
+  if (log_sink.failed()) return ReportError("writing " + output_path + " failed");
+  if (csv.is_open() && !csv.Commit(&error)) return ReportError(error);
+  if (!writer.Close()) return ReportError(writer.error());
 
   const ReplayStats& stats = replayer.stats();
   const double log_s =

@@ -99,6 +99,47 @@ std::string ReceiveBufferReport(const std::string& url, int64_t rmem_max_bytes, 
   return request;
 }
 
+bool ParseUdpmUrl(const std::string& url, UdpmUrl* parsed, std::string* error) {
+  *parsed = UdpmUrl();
+  if (Provider(url) != "udpm") {
+    *error = "not a udpm:// URL: '" + url.substr(0, 80) + "'";
+    return false;
+  }
+  const size_t address_begin = url.find("://") + 3;
+  const size_t query = url.find('?', address_begin);
+  const std::string address =
+      url.substr(address_begin, query == std::string::npos ? std::string::npos : query - address_begin);
+  if (!address.empty()) {
+    const size_t colon = address.rfind(':');
+    parsed->group = address.substr(0, colon);
+    if (colon != std::string::npos) {
+      const std::optional<int64_t> port = ParsePositiveInteger(address.substr(colon + 1));
+      if (!port || *port > 65535) {
+        *error = "bad port in udpm URL '" + url.substr(0, 80) + "'";
+        return false;
+      }
+      parsed->port = static_cast<int>(*port);
+    }
+  }
+  if (const std::optional<std::string> ttl = UrlOption(url, "ttl")) {
+    const std::optional<int64_t> value = *ttl == "0" ? std::optional<int64_t>(0) : ParsePositiveInteger(*ttl);
+    if (!value || *value > 255) {
+      *error = "bad ttl in udpm URL '" + url.substr(0, 80) + "' (0..255)";
+      return false;
+    }
+    parsed->ttl = static_cast<int>(*value);
+  }
+  if (UrlOption(url, "recv_buf_size")) {
+    const std::optional<int64_t> size = RequestedReceiveBuffer(url);
+    if (!size || *size > INT_MAX) {
+      *error = "bad recv_buf_size in udpm URL '" + url.substr(0, 80) + "'";
+      return false;
+    }
+    parsed->recv_buf_size = *size;
+  }
+  return true;
+}
+
 int HandleFor(lcm::LCM& lcm, double timeout_s) {
   const double timeout_ms = std::isnan(timeout_s) ? 0.0 : timeout_s * 1e3;
   const double clamped_ms = std::min(std::max(timeout_ms, 0.0), double{INT_MAX});

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "tests/identification/simulated_logs.h"
@@ -128,6 +130,38 @@ TEST_F(BenchTest, TooShortLogIsRefused) {
   const IdentificationResult r = Identify({log}, truth_, IdentificationOptions());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(Errors(r).find("too short"), std::string::npos) << Errors(r);
+}
+
+// Issue 16 item 10: one STRAIN stamped INT64_MIN, duplicated STRAIN events,
+// a sample from the future, two out of order and a NaN command made the
+// identification refuse the log. They are dropped and counted; the fit stands.
+TEST_F(BenchTest, BadSamplesAreDroppedAndCountedNotFatal) {
+  SensorLog log = *log_;
+  std::swap(log.strain[20000], log.strain[20001]);
+  std::vector<StrainSample> doubled;
+  for (const StrainSample& s : log.strain) {
+    doubled.push_back(s);
+    doubled.push_back(s);  // every event logged twice
+  }
+  const size_t n = log.strain.size();
+  StrainSample future = doubled[10000];
+  future.utime += 400000;  // 0.4 s ahead, nothing confirms it
+  doubled.insert(doubled.begin() + 10000, future);
+  StrainSample absurd = doubled[3000];
+  absurd.utime = std::numeric_limits<int64_t>::min();
+  doubled.insert(doubled.begin() + 3000, absurd);
+  log.strain = doubled;
+  log.motor[700].omega_cmd_rad_s[1] = std::nan("");
+
+  const IdentificationResult r = Identify({log}, truth_, IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ExpectRecovered(r, "k", truth_.arm_stiffness_n_m_rad, 0.01, 3.0);
+  EXPECT_EQ(r.dropped.strain.bad_stamp, 2);
+  EXPECT_EQ(r.dropped.strain.duplicate, static_cast<int64_t>(n) - 1);
+  EXPECT_EQ(r.dropped.strain.out_of_order, 2);  // both copies of the late sample
+  EXPECT_EQ(r.dropped.strain.non_finite, 0);
+  EXPECT_EQ(r.dropped.motor.non_finite, 1);
+  EXPECT_EQ(r.dropped.total(), static_cast<int64_t>(n) - 1 + 2 + 2 + 1);
 }
 
 // Constant commands: the speed never moves, so tau_m has no information.

@@ -40,18 +40,10 @@ IdentificationResult SampleResult() {
   return r;
 }
 
-std::string Read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 TEST(ParameterFileTest, YamlLoadsBackAsTheIdentifiedValues) {
   const std::string text = IdentifiedParameterYaml(SampleResult());
   const std::string path = ::testing::TempDir() + "/identified_roundtrip.yaml";
-  std::string error;
-  ASSERT_TRUE(WriteFileAtomically(path, text, &error)) << error;
+  std::ofstream(path) << text;
   const VehicleParams loaded = LoadVehicleParams(path);
   EXPECT_DOUBLE_EQ(loaded.arm_stiffness_n_m_rad, 3100.5);
   EXPECT_DOUBLE_EQ(loaded.thrust_coeff_n_s2_rad2, 5.01e-5);
@@ -63,26 +55,6 @@ TEST(ParameterFileTest, ReportListsParametersResidualsAndUndetermined) {
   const std::string report = IdentificationReport(SampleResult());
   EXPECT_NE(report.find("| k | arm_stiffness_n_m_rad | 3100.5 | 2.5 |"), std::string::npos) << report;
   EXPECT_NE(report.find("## Undetermined parameters\n\n- d"), std::string::npos) << report;
-}
-
-TEST(WriteFileAtomicallyTest, ReplacesTheFileAndLeavesNoTemporary) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "atomic_write_test";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "out.yaml").string();
-  std::string error;
-  ASSERT_TRUE(WriteFileAtomically(path, "old\n", &error)) << error;
-  ASSERT_TRUE(WriteFileAtomically(path, "new\n", &error)) << error;
-  EXPECT_EQ(Read(path), "new\n");
-  int files = 0;
-  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++files;
-  EXPECT_EQ(files, 1);
-}
-
-TEST(WriteFileAtomicallyTest, FailureLeavesTheOldFileAlone) {
-  std::string error;
-  EXPECT_FALSE(WriteFileAtomically("/nonexistent_dir_for_test/out.yaml", "x", &error));
-  EXPECT_NE(error.find("/nonexistent_dir_for_test/out.yaml"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -4,8 +4,11 @@
 // udpm URL (ttl=0, one port per test, so ctest -j2 has no crosstalk).
 #pragma once
 
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <mutex>
@@ -25,16 +29,91 @@
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
+#include "transport/lcm_packet.h"
 
 namespace birotor::reliability {
 
 // Private udpm URL on loopback-only multicast (ttl=0) for one test. The
 // environment variable BIROTOR_TEST_PORT_OFFSET shifts every port, so two
 // checkouts can run the live tests at the same time without crosstalk.
-inline std::string PrivateUrl(int port) {
+inline int PrivatePort(int port) {
   const char* offset = std::getenv("BIROTOR_TEST_PORT_OFFSET");
-  if (offset != nullptr) port += std::atoi(offset);
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+  return offset != nullptr ? port + std::atoi(offset) : port;
+}
+inline std::string PrivateUrl(int port) {
+  return "udpm://239.255.76.67:" + std::to_string(PrivatePort(port)) + "?ttl=0&recv_buf_size=4194304";
+}
+
+// Sends raw datagrams to the LCM group on a port (ttl=0), as an attacker on
+// the host would: crafted LC02/LC03 packets that no LCM publisher makes.
+class RawMulticastSender {
+ public:
+  explicit RawMulticastSender(int port) : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {
+    const unsigned char ttl = 0;
+    setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
+    const int size = 4 << 20;
+    setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &size, sizeof(size));
+    to_.sin_family = AF_INET;
+    to_.sin_port = htons(static_cast<uint16_t>(port));
+    inet_pton(AF_INET, "239.255.76.67", &to_.sin_addr);
+  }
+  ~RawMulticastSender() { close(fd_); }
+  RawMulticastSender(const RawMulticastSender&) = delete;
+  RawMulticastSender& operator=(const RawMulticastSender&) = delete;
+  bool Send(const std::vector<uint8_t>& bytes) {
+    return sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to_), sizeof(to_)) ==
+           static_cast<ssize_t>(bytes.size());
+  }
+
+ private:
+  int fd_;
+  sockaddr_in to_{};
+};
+
+inline void PutBigEndian(uint64_t value, int bytes, std::vector<uint8_t>* out) {
+  for (int i = bytes - 1; i >= 0; --i) out->push_back(static_cast<uint8_t>(value >> (8 * i)));
+}
+
+// An LC02 datagram: header, channel, NUL, payload.
+inline std::vector<uint8_t> SmallMessageDatagram(const std::string& channel, const std::vector<uint8_t>& payload,
+                                                 uint32_t seqno) {
+  std::vector<uint8_t> packet;
+  PutBigEndian(kLcmSmallMessageMagic, 4, &packet);
+  PutBigEndian(seqno, 4, &packet);
+  packet.insert(packet.end(), channel.begin(), channel.end());
+  packet.push_back(0);
+  packet.insert(packet.end(), payload.begin(), payload.end());
+  return packet;
+}
+
+// An LC03 fragment header (20 bytes) followed by body.
+inline std::vector<uint8_t> FragmentDatagram(uint32_t seqno, uint32_t message_size, uint32_t fragment_offset,
+                                             uint16_t fragment_no, uint16_t fragments_in_message,
+                                             const std::vector<uint8_t>& body) {
+  std::vector<uint8_t> packet;
+  PutBigEndian(kLcmFragmentMagic, 4, &packet);
+  PutBigEndian(seqno, 4, &packet);
+  PutBigEndian(message_size, 4, &packet);
+  PutBigEndian(fragment_offset, 4, &packet);
+  PutBigEndian(fragment_no, 2, &packet);
+  PutBigEndian(fragments_in_message, 2, &packet);
+  packet.insert(packet.end(), body.begin(), body.end());
+  return packet;
+}
+
+// Resident set size of a process [kB] (VmRSS in /proc/<pid>/status); -1 if unknown.
+inline int64_t ResidentKb(int pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmRSS:") {
+      int64_t kb = -1;
+      status >> kb;
+      return kb;
+    }
+    status.ignore(1 << 12, '\n');
+  }
+  return -1;
 }
 
 // A child process; the destructor SIGKILLs and reaps it if it still runs.

@@ -32,9 +32,9 @@ void ReplayToFile(const std::string& input, const std::string& output, const Est
   ASSERT_TRUE(writer.Open(output, &error)) << error;
   LogSink sink(&writer);
   Replayer replayer(config, ReplayOptions{}, &sink);
-  bool truncated = true;
-  ASSERT_TRUE(ReplayLogFile(input, &replayer, &truncated, &error)) << error;
-  EXPECT_FALSE(truncated);
+  std::string damage = "unset";
+  ASSERT_TRUE(ReplayLogFile(input, &replayer, &damage, &error)) << error;
+  EXPECT_EQ(damage, "");
   ASSERT_TRUE(writer.Close());
   EXPECT_FALSE(sink.failed());
   EXPECT_GT(replayer.stats().forces, 0);

@@ -4,6 +4,7 @@
 #include "transport/log_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -218,19 +219,148 @@ TEST_F(LogIoTest, LogCutMidEventKeepsTheCompleteEvents) {
   }
 }
 
-TEST_F(LogIoTest, LeadingGarbageIsSkippedAndCounted) {
+TEST_F(LogIoTest, LeadingGarbageIsNotALog) {
   const std::string path = Path("garbage.lcmlog");
-  const std::vector<Expected> expected = WriteExampleLog(path);
+  WriteExampleLog(path);
   std::vector<uint8_t> bytes = ReadBytes(path);
   bytes.insert(bytes.begin(), {0x00, 0x11, 0xED, 0xA1, 0x42});
   WriteBytes(path, bytes);
 
   LogReader reader;
   std::string error;
+  EXPECT_FALSE(reader.Open(path, &error));
+  EXPECT_NE(error.find("not an LCM log"), std::string::npos) << error;
+}
+
+TEST_F(LogIoTest, GarbageBetweenEventsIsSkippedAndCounted) {
+  const std::string path = Path("garbage_mid.lcmlog");
+  const std::vector<Expected> expected = WriteExampleLog(path);
+  std::vector<int64_t> event_ends;
+  {
+    LogReader reader;
+    std::string error;
+    ASSERT_TRUE(reader.Open(path, &error));
+    LogEvent event;
+    while (reader.Next(&event)) event_ends.push_back(reader.tail_offset());
+  }
+  std::vector<uint8_t> bytes = ReadBytes(path);
+  // After event 4: 5 bytes that are not an event (one starts like a sync word).
+  bytes.insert(bytes.begin() + event_ends[4], {0x00, 0x11, 0xED, 0xA1, 0x42});
+  WriteBytes(path, bytes);
+
+  LogReader reader;
+  std::string error;
   ASSERT_TRUE(reader.Open(path, &error)) << error;
-  ExpectEvents(ReadAll(&reader), expected, expected.size());
-  EXPECT_EQ(reader.skipped_bytes(), 5);
+  const std::vector<LogEvent> events = ReadAll(&reader);
+  // Event 4 is dropped too: no sync word follows it, so its length cannot be trusted.
+  ASSERT_EQ(events.size(), expected.size() - 1);
+  EXPECT_EQ(events[4].event_number, 5);
+  EXPECT_EQ(reader.corrupt_events(), 1);
+  EXPECT_GT(reader.skipped_bytes(), 5);
   EXPECT_FALSE(reader.TruncatedTail());
+}
+
+// Writes one event header (big-endian fields) followed by `extra` bytes.
+std::vector<uint8_t> EventHeader(int64_t number, int64_t timestamp_us, int32_t channel_bytes, int32_t data_bytes) {
+  std::vector<uint8_t> bytes;
+  auto put = [&](uint64_t value, int size) {
+    for (int i = size - 1; i >= 0; --i) bytes.push_back(static_cast<uint8_t>(value >> (8 * i)));
+  };
+  put(kLogSyncWord, 4);
+  put(static_cast<uint64_t>(number), 8);
+  put(static_cast<uint64_t>(timestamp_us), 8);
+  put(static_cast<uint32_t>(channel_bytes), 4);
+  put(static_cast<uint32_t>(data_bytes), 4);
+  return bytes;
+}
+
+// Issue 16 item 2: a 138-byte log whose one event declares 0x7fffffff data
+// bytes made LCM's reader fread into a NULL buffer (exit 139).
+TEST_F(LogIoTest, DataLengthBeyondTheFileIsRejectedBeforeAllocating) {
+  const std::string path = Path("huge_datalen.lcmlog");
+  std::vector<uint8_t> bytes = EventHeader(0, 1000, 14, 0x7fffffff);
+  const std::string channel = "BIROTOR_STRAIN";
+  bytes.insert(bytes.end(), channel.begin(), channel.end());
+  bytes.resize(138, 0xAB);
+  WriteBytes(path, bytes);
+
+  LogReader reader;
+  std::string error;
+  ASSERT_TRUE(reader.Open(path, &error)) << error;
+  LogEvent event;
+  EXPECT_FALSE(reader.Next(&event));
+  EXPECT_EQ(reader.events_read(), 0);
+  EXPECT_EQ(reader.corrupt_events(), 1);
+  EXPECT_TRUE(reader.TruncatedTail());
+  EXPECT_EQ(reader.tail_offset(), 0);
+  EXPECT_EQ(reader.file_size(), 138);
+}
+
+// Issue 16 item 8: a zero-length channel name mid-log stopped replay.
+TEST_F(LogIoTest, ZeroLengthChannelMidLogIsSkippedAndTheRestRead) {
+  const std::string path = Path("zero_channel.lcmlog");
+  const std::vector<Expected> expected = WriteExampleLog(path);
+  std::vector<int64_t> event_ends;
+  {
+    LogReader reader;
+    std::string error;
+    ASSERT_TRUE(reader.Open(path, &error));
+    LogEvent event;
+    while (reader.Next(&event)) event_ends.push_back(reader.tail_offset());
+  }
+  std::vector<uint8_t> bytes = ReadBytes(path);
+  const std::vector<uint8_t> bad = EventHeader(99, 5, 0, 4);
+  bytes.insert(bytes.begin() + event_ends[9], bad.begin(), bad.end());
+  bytes.insert(bytes.begin() + event_ends[9] + static_cast<int64_t>(bad.size()), {1, 2, 3, 4});
+  WriteBytes(path, bytes);
+
+  LogReader reader;
+  std::string error;
+  ASSERT_TRUE(reader.Open(path, &error));
+  const std::vector<LogEvent> events = ReadAll(&reader);
+  ASSERT_EQ(events.size(), expected.size());
+  ExpectEvents(events, expected, expected.size());
+  EXPECT_EQ(reader.corrupt_events(), 1);
+  EXPECT_EQ(reader.skipped_bytes(), static_cast<int64_t>(bad.size()) + 4);
+}
+
+TEST_F(LogIoTest, SpecialFilesAreRefused) {
+  for (const std::string path : {"/dev/zero", "/dev/null", "/"}) {
+    LogReader reader;
+    std::string error;
+    EXPECT_FALSE(reader.Open(path, &error)) << path;
+    EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+  }
+  const std::string fifo = Path("fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  LogReader reader;
+  std::string error;
+  EXPECT_FALSE(reader.Open(fifo, &error));  // and does not block waiting for a writer
+  EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+}
+
+// A 2 GB sparse file: one valid event, then a 2 GB hole. The reader jumps
+// over the hole (SEEK_DATA) instead of reading 2 GB of zeros.
+TEST_F(LogIoTest, SparseHoleAfterAnEventEndsTheLogQuickly) {
+  const std::string path = Path("sparse.lcmlog");
+  const std::vector<Expected> expected = WriteExampleLog(path);
+  const int64_t intact = static_cast<int64_t>(ReadBytes(path).size());
+  ASSERT_EQ(truncate(path.c_str(), int64_t{2} << 30), 0);
+  LogReader reader;
+  std::string error;
+  ASSERT_TRUE(reader.Open(path, &error)) << error;
+  const std::vector<LogEvent> events = ReadAll(&reader);
+  EXPECT_EQ(events.size(), expected.size() - 1);  // the last event has zeros, not a sync word, after it
+  EXPECT_TRUE(reader.TruncatedTail());
+  EXPECT_LT(reader.tail_offset(), intact);
+  EXPECT_EQ(reader.file_size(), int64_t{2} << 30);
+  // A sparse file of zeros only is not a log at all.
+  const std::string zeros = Path("zeros.lcmlog");
+  WriteBytes(zeros, {});
+  ASSERT_EQ(truncate(zeros.c_str(), int64_t{2} << 30), 0);
+  LogReader zero_reader;
+  EXPECT_FALSE(zero_reader.Open(zeros, &error));
+  EXPECT_NE(error.find("not an LCM log"), std::string::npos) << error;
 }
 
 TEST_F(LogIoTest, CorruptEventInTheMiddleIsReported) {

@@ -1,0 +1,240 @@
+// Issue 16, items 2, 4 and 8: the real programs (birotor-replay, -eval,
+// -identify, -plot, -sim) on crafted files in a temporary folder. Every case:
+// no death by signal, no hang (special and 2 GB sparse files answered within
+// 2 s), no silent success (exit status 1 and one "program: error: ..." line),
+// and an input is never overwritten by an output.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace birotor {
+namespace {
+
+struct ToolRun {
+  bool signaled = false;  // killed by a signal (e.g. SIGSEGV: exit 139 in a shell)
+  int exit_code = -1;
+  double seconds = 0;
+  std::string output;  // stdout and stderr
+};
+
+// Runs argv with stdout+stderr captured; kills it after timeout_s.
+ToolRun RunTool(const std::vector<std::string>& argv, double timeout_s = 60) {
+  const std::string capture = ::testing::TempDir() + "/hostile_files_" + std::to_string(getpid()) + ".out";
+  ToolRun run;
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(capture.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      break;
+    }
+    usleep(2000);
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.signaled = WIFSIGNALED(status);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(capture);
+  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::remove(capture.c_str());
+  return run;
+}
+
+// The failure every case expects: exit 1 (not a signal) and the one-line
+// "<program>: error: " message.
+void ExpectRefused(const ToolRun& run, const std::string& program, const std::string& what) {
+  EXPECT_FALSE(run.signaled) << what << "\n" << run.output;
+  EXPECT_EQ(run.exit_code, 1) << what << "\n" << run.output;
+  EXPECT_NE(run.output.find(program + ": error: "), std::string::npos) << what << "\n" << run.output;
+}
+
+std::vector<uint8_t> ReadBytes(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::vector<uint8_t> EventHeader(int64_t number, int32_t channel_bytes, int32_t data_bytes) {
+  std::vector<uint8_t> bytes;
+  auto put = [&](uint64_t value, int size) {
+    for (int i = size - 1; i >= 0; --i) bytes.push_back(static_cast<uint8_t>(value >> (8 * i)));
+  };
+  put(0xEDA1DA01, 4);
+  put(static_cast<uint64_t>(number), 8);
+  put(1000, 8);
+  put(static_cast<uint32_t>(channel_bytes), 4);
+  put(static_cast<uint32_t>(data_bytes), 4);
+  return bytes;
+}
+
+class HostileFilesTest : public ::testing::Test {
+ public:
+  static std::string Path(const std::string& name) { return *dir_ + "/" + name; }
+
+ protected:
+  static void SetUpTestSuite() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "hostile_files_test.XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir_ = new std::string(pattern);
+    // A real 1.5 s hover log from the simulator (STRAIN, MOTOR, IMU, POSE, TRUTH).
+    const ToolRun sim =
+        RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
+                 "--set", "scenario.duration_s=1.5", "--output", Path("hover.lcm"), "--log-level", "warn"});
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    // Issue 16 item 2: 138 bytes, one header declaring 0x7fffffff data bytes.
+    std::vector<uint8_t> attack = EventHeader(0, 14, 0x7fffffff);
+    const std::string channel = "BIROTOR_STRAIN";
+    attack.insert(attack.end(), channel.begin(), channel.end());
+    attack.resize(138, 0xAB);
+    WriteBytes(Path("datalen.lcm"), attack);
+    WriteBytes(Path("empty.lcm"), {});
+    WriteBytes(Path("sparse.lcm"), {});
+    ASSERT_EQ(truncate(Path("sparse.lcm").c_str(), int64_t{2} << 30), 0);
+    // Half of the hover log, then as many bytes of garbage: only 50 % of the
+    // file is readable events, below the 90 % minimum.
+    std::vector<uint8_t> bytes = ReadBytes(Path("hover.lcm"));
+    bytes.resize(bytes.size() / 2);
+    bytes.resize(bytes.size() * 2, 0xAB);
+    WriteBytes(Path("cut.lcm"), bytes);
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*dir_);
+    delete dir_;
+  }
+  static std::string* dir_;
+};
+std::string* HostileFilesTest::dir_ = nullptr;
+
+const std::vector<std::string> kUselessLogs = {"datalen.lcm", "empty.lcm", "sparse.lcm", "/dev/zero", "cut.lcm"};
+
+std::string LogPath(const std::string& name) { return name[0] == '/' ? name : HostileFilesTest::Path(name); }
+
+TEST_F(HostileFilesTest, ReplayRefusesUselessLogsQuickly) {
+  for (const std::string& name : kUselessLogs) {
+    const ToolRun run = RunTool({BIROTOR_REPLAY_BIN, "--log", LogPath(name), "--output", Path("out.lcm")});
+    ExpectRefused(run, "birotor-replay", name);
+    EXPECT_LT(run.seconds, 2.0) << name;  // issue 16 target: /dev/zero, 2 GB sparse within 2 s
+    EXPECT_FALSE(std::filesystem::exists(Path("out.lcm"))) << name << ": a partial output was left";
+  }
+}
+
+TEST_F(HostileFilesTest, EvalIdentifyAndPlotRefuseUselessLogsQuickly) {
+  for (const std::string& name : kUselessLogs) {
+    const ToolRun eval = RunTool({BIROTOR_EVAL_BIN, "--log", LogPath(name)});
+    ExpectRefused(eval, "birotor-eval", name);
+    EXPECT_LT(eval.seconds, 2.0) << name;
+    const ToolRun identify = RunTool({BIROTOR_IDENTIFY_BIN, "--log", LogPath(name), "--output", Path("v.yaml")});
+    ExpectRefused(identify, "birotor-identify", name);
+    EXPECT_LT(identify.seconds, 2.0) << name;
+    EXPECT_FALSE(std::filesystem::exists(Path("v.yaml"))) << name;
+    const ToolRun plot = RunTool({BIROTOR_PLOT_BIN, "--log", LogPath(name), "--png", Path("p.png")});
+    ExpectRefused(plot, "birotor-plot", name);
+    EXPECT_LT(plot.seconds, 2.0) << name;
+  }
+}
+
+// Issue 16 item 4: --output equal to --log turned 800 kB into 0 bytes.
+TEST_F(HostileFilesTest, OutputsNeverOverwriteTheInputThroughAnyName) {
+  const std::string log = Path("hover.lcm");
+  const std::vector<uint8_t> before = ReadBytes(log);
+  ASSERT_EQ(link(log.c_str(), Path("hard.lcm").c_str()), 0);
+  ASSERT_EQ(symlink(log.c_str(), Path("soft.lcm").c_str()), 0);
+  for (const std::string& alias : {log, Path("hard.lcm"), Path("soft.lcm")}) {
+    ExpectRefused(RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", alias}), "birotor-replay", alias);
+    ExpectRefused(RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", Path("o.lcm"), "--csv", alias}),
+                  "birotor-replay", alias);
+    ExpectRefused(RunTool({BIROTOR_IDENTIFY_BIN, "--log", log, "--output", alias}), "birotor-identify", alias);
+    ExpectRefused(RunTool({BIROTOR_IDENTIFY_BIN, "--log", log, "--output", Path("v.yaml"), "--report", alias}),
+                  "birotor-identify", alias);
+    ExpectRefused(RunTool({BIROTOR_EVAL_BIN, "--log", log, "--markdown-out", alias}), "birotor-eval", alias);
+    ExpectRefused(RunTool({BIROTOR_PLOT_BIN, "--log", log, "--png", alias}), "birotor-plot", alias);
+  }
+  std::filesystem::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml", Path("scenario.yaml"));
+  ASSERT_EQ(symlink(Path("scenario.yaml").c_str(), Path("scenario_link.lcm").c_str()), 0);
+  const std::vector<uint8_t> scenario = ReadBytes(Path("scenario.yaml"));
+  ExpectRefused(RunTool({BIROTOR_SIM_BIN, "--scenario", Path("scenario.yaml"), "--output", Path("scenario_link.lcm")}),
+                "birotor-sim", "sim --output over its scenario");
+  EXPECT_EQ(ReadBytes(Path("scenario.yaml")), scenario);
+  EXPECT_EQ(ReadBytes(log), before);
+  ExpectRefused(RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", Path("x.lcm"), "--csv", Path("x.lcm")}),
+                "birotor-replay", "two outputs, one file");
+}
+
+// Issue 16 item 8: failed writes exited 0.
+TEST_F(HostileFilesTest, FailedWritesAreErrorsAndLeaveNoPartialFile) {
+  const std::string log = Path("hover.lcm");
+  ToolRun run = RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", Path("replayed.lcm"), "--csv", "/dev/full"});
+  ExpectRefused(run, "birotor-replay", "--csv /dev/full");
+  EXPECT_NE(run.output.find("No space left on device"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(Path("replayed.lcm")));
+  ExpectRefused(RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", "/dev/full"}), "birotor-replay", "/dev/full");
+  ExpectRefused(RunTool({BIROTOR_EVAL_BIN, "--log", log, "--markdown-out", "/dev/full"}), "birotor-eval",
+                "--markdown-out /dev/full");
+  ExpectRefused(RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", "/nonexistent/out.lcm"}), "birotor-replay",
+                "missing folder");
+  ExpectRefused(
+      RunTool({BIROTOR_IDENTIFY_BIN, "--log", log, "--output", Path("v.yaml"), "--report", "/nonexistent/r.md"}),
+      "birotor-identify", "--report /nonexistent/r.md");
+  ExpectRefused(
+      RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml", "--set",
+               "scenario.duration_s=0.5", "--output", "/dev/full"}),
+      "birotor-sim", "sim --output /dev/full");
+  // The replay itself works and leaves exactly its outputs.
+  run = RunTool({BIROTOR_REPLAY_BIN, "--log", log, "--output", Path("replayed.lcm"), "--csv", Path("replayed.csv")});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(Path("replayed.lcm")));
+  EXPECT_TRUE(std::filesystem::exists(Path("replayed.csv")));
+  for (const auto& entry : std::filesystem::directory_iterator(*dir_)) {
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path() << " left behind";
+  }
+}
+
+// Issue 16 item 8: a zero-length channel name mid-log stopped the replay at
+// 3000 of 7200 events with exit 0. Now the bad event is skipped and counted,
+// every other event is replayed, and the damage is reported.
+TEST_F(HostileFilesTest, ZeroLengthChannelMidLogIsSkippedAndReported) {
+  std::vector<uint8_t> bytes = ReadBytes(Path("hover.lcm"));
+  // Find an event boundary near 30 % of the file: the offset of a sync word.
+  size_t at = bytes.size() * 3 / 10;
+  while (!(bytes[at] == 0xED && bytes[at + 1] == 0xA1 && bytes[at + 2] == 0xDA && bytes[at + 3] == 0x01)) ++at;
+  std::vector<uint8_t> bad = EventHeader(9999, 0, 4);
+  bad.insert(bad.end(), {1, 2, 3, 4});
+  bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), bad.begin(), bad.end());
+  WriteBytes(Path("zero_channel.lcm"), bytes);
+
+  const ToolRun intact = RunTool({BIROTOR_REPLAY_BIN, "--log", Path("hover.lcm"), "--output", Path("a.lcm")});
+  const ToolRun damaged = RunTool({BIROTOR_REPLAY_BIN, "--log", Path("zero_channel.lcm"), "--output", Path("b.lcm")});
+  ASSERT_EQ(intact.exit_code, 0) << intact.output;
+  ASSERT_EQ(damaged.exit_code, 0) << damaged.output;
+  EXPECT_NE(damaged.output.find("damaged log: 1 corrupt event headers, 32 bytes skipped"), std::string::npos)
+      << damaged.output;
+  EXPECT_EQ(ReadBytes(Path("a.lcm")), ReadBytes(Path("b.lcm")));  // every good event replayed
+}
+
+}  // namespace
+}  // namespace birotor
