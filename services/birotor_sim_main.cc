@@ -253,10 +253,6 @@ int Main(int argc, char** argv) {
   if (options.external_controller && !options.output.empty()) {
     return ReportError("--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller", kExitUsage);
   }
-  if (!options.controller_mode.empty()) {
-    InstallShutdownHandlers();
-    return RunClosedLoopOffline(scenario, options, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
-  }
   if (options.loop && !options.output.empty()) {
     return ReportError("--loop runs until stopped: it is for live mode, not with --output (see --help)", kExitUsage);
   }
@@ -264,7 +260,15 @@ int Main(int argc, char** argv) {
   std::string error;
   std::vector<std::string> inputs = options.param_files;
   inputs.push_back(options.scenario_file);
+  if (!options.controller_mode.empty()) {
+    inputs.push_back(options.controller_params);
+    inputs.push_back(options.estimator_params);
+  }
   if (!CheckOutputs({options.output}, inputs, &error)) return ReportError(error);
+  if (!options.controller_mode.empty()) {
+    InstallShutdownHandlers();
+    return RunClosedLoopOffline(scenario, options, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
+  }
 
   std::unique_ptr<lcm::LCM> lcm;
   if (options.output.empty()) {
