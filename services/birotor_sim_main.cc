@@ -147,8 +147,7 @@ class EscCommandInput {
   int64_t decode_errors() const { return decode_errors_; }
 
  private:
-  static void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, void* context) {
-    EscCommandInput* self = static_cast<EscCommandInput*>(context);
+  static void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, EscCommandInput* self) {
     motor_command_t message;
     if (DecodeMessage(buffer->data, buffer->data_size, &message) != DecodeError::kNone) {
       ++self->decode_errors_;
@@ -160,7 +159,7 @@ class EscCommandInput {
   lcm::LCM* lcm_;
   Simulator* sim_;
   lcm::Subscription* subscription_ = nullptr;
-  bool timed_out_ = true;  // no command yet
+  bool timed_out_ = false;  // the start state's speeds count as a command
   int64_t decode_errors_ = 0;
 };
 

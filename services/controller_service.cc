@@ -56,8 +56,8 @@ void ControllerService::Unsubscribe() {
   lcm_ = nullptr;
 }
 
-void ControllerService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, void* context) {
-  RawSubscription* subscription = static_cast<RawSubscription*>(context);
+void ControllerService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/,
+                                     RawSubscription* subscription) {
   subscription->service->HandlePacket(subscription->input, buffer->data, buffer->data_size, SteadyClockUs());
 }
 
@@ -100,8 +100,10 @@ void ControllerService::HandlePacket(ControllerInput input, const void* data, si
       NoteInputTime(message.utime, host_us);
       last_force_host_us_ = host_us;
       if (!controller_.has_pose()) return;  // nothing to fly on yet: the ESCs hold what they have
-      if (last_period_host_us_ < 0 || host_us - last_period_host_us_ >= period_us_ - kForceTriggerEarlyUs) {
-        RunControlPeriod(std::max(message.utime, VehicleTimeUs(host_us)), host_us);
+      // Triggered on the vehicle clock (strain stamps have no jitter): every
+      // other FORCE at 1 kHz.
+      if (last_period_vehicle_us_ < 0 || message.utime - last_period_vehicle_us_ >= period_us_ - kForceTriggerEarlyUs) {
+        RunControlPeriod(message.utime, host_us);  // the command carries its FORCE's (strain's) utime
       }
       return;
     }

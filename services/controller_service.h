@@ -36,8 +36,9 @@ class ControllerService {
   void Unsubscribe();
 
   // One encoded packet of an input, arrived at host_us (steady clock [us]).
-  // A FORCE that comes at least a period minus half a FORCE interval after
-  // the last command runs a control period at once, stamped with its utime.
+  // A FORCE stamped at least a period minus half a FORCE interval after the
+  // last command (vehicle clock) runs a control period at once, stamped with
+  // its utime.
   // Never throws.
   void HandlePacket(ControllerInput input, const void* data, size_t size, int64_t host_us);
 
@@ -63,7 +64,7 @@ class ControllerService {
     ControllerInput input = ControllerInput::kPose;
     lcm::Subscription* subscription = nullptr;
   };
-  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, void* context);
+  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
   void RunControlPeriod(int64_t vehicle_us, int64_t trigger_host_us);
   void NoteInputTime(int64_t utime, int64_t host_us);
 

@@ -79,27 +79,23 @@ class ClosedLoopListener {
   std::thread thread_;
 };
 
-std::string TempPath(const std::string& name) {
-  return ::testing::TempDir() + "live_controller_" + std::to_string(::getpid()) + "_" + name;
-}
-
 TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
   const std::string url = PrivateUrl(7697);
-  const std::string prefix = "CTL_KILL_" + std::to_string(::getpid()) + "_";
+  const std::string prefix = UniquePrefix("CTL_KILL_");
   DaemonListener forces(url, prefix);
   ClosedLoopListener loop(url, prefix);
   ASSERT_TRUE(forces.good());
   ASSERT_TRUE(loop.good());
   ChildProcess estimator, controller, sim;
-  ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("estimator.log")));
+  ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("controller_test_estimator.log")));
   ASSERT_TRUE(controller.Start(
       {BIROTOR_CONTROLLER_BIN, "--lcm-url", url, "--prefix", prefix, "--mode", "force_feedback", "--log-level", "warn"},
-      TempPath("controller.log")));
+      TempPath("controller_test_controller.log")));
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let them subscribe
   ASSERT_TRUE(sim.Start(
       {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml", "--lcm-url",
        url, "--prefix", prefix, "--set", "scenario.duration_s=6", "--external-controller", "--log-level", "warn"},
-      TempPath("sim.log")));
+      TempPath("controller_test_sim.log")));
   // Flying in force feedback.
   ASSERT_TRUE(DaemonListener::WaitUntil(
       [&] {
@@ -113,7 +109,7 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
   estimator.Kill(SIGKILL);
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   const double restart_s = SteadyClockS();
-  ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("estimator.log")));
+  ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("controller_test_estimator.log")));
   ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 30.0)) << "the simulator did not finish";
 
   // The last FORCE of the killed estimator, and the first fallback after it.

@@ -142,7 +142,7 @@ TEST(SimLogTest, SameSeedGivesAByteIdenticalLog) {
 
 TEST(SimLogTest, ClosedLoopLogHasEveryChannelAndIsByteIdenticalForTheSameSeed) {
   const std::string a = TempPath("closed_a.lcm"), b = TempPath("closed_b.lcm");
-  const std::string args = "--scenario " + ScenarioPath("thrust_loss") +
+  const std::string args = "--scenario " + ScenarioPath("hover") +
                            " --set scenario.duration_s=1 --controller force_feedback --log-level warn --output ";
   ASSERT_EQ(RunSim(args + a, nullptr), 0);
   ASSERT_EQ(RunSim(args + b, nullptr), 0);
