@@ -29,7 +29,10 @@ double HoverForce(const VehicleParams& p) {
 // reports thrust scales (1, scale2) with the given status.
 class HoverFeed {
  public:
-  explicit HoverFeed(VehicleController* controller) : controller_(controller) {}
+  // A controller of config that has seen the first POSE (at the origin, t = 0).
+  explicit HoverFeed(const ControllerConfig& config) : controller_(config) {
+    controller_.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
+  }
   bool send_pose = true;
   bool send_force = true;
   int32_t force_status = kStatusValid;
@@ -38,23 +41,30 @@ class HoverFeed {
   // Feeds the samples of (now - period, now] and runs one control period.
   MotorCommand Period() {
     for (int64_t t = now_us_ + 1000; t <= now_us_ + kPeriodUs; t += 1000) {
-      controller_->OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81});
+      controller_.OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81});
       if (send_force) {
         ForceEstimate force;
         force.utime = t;
         force.thrust_scale[1] = scale2;
         force.status = force_status;
-        controller_->OnForce(force);
+        controller_.OnForce(force);
       }
-      if (send_pose && t % 10000 == 0) controller_->OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0});
+      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0});
     }
     now_us_ += kPeriodUs;
-    return controller_->Update(now_us_, ReferencePoint());
+    return controller_.Update(now_us_, ReferencePoint());
+  }
+  // 0.2 s of hover: past force_recovery_s, in force feedback when asked for.
+  MotorCommand Settle() {
+    MotorCommand c;
+    for (int k = 0; k < 100; ++k) c = Period();
+    return c;
   }
   int64_t now_us() const { return now_us_; }
+  const VehicleController& controller() const { return controller_; }
 
  private:
-  VehicleController* controller_;
+  VehicleController controller_;
   int64_t now_us_ = 0;
   int32_t imu_seq_ = 0, pose_seq_ = 0;
 };
@@ -69,11 +79,8 @@ TEST(VehicleControllerTest, NoPoseMeansRotorsAtZero) {
 
 TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarder) {
   const ControllerConfig config;
-  VehicleController controller(config);
-  controller.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
-  HoverFeed feed(&controller);
-  MotorCommand c;
-  for (int k = 0; k < 100; ++k) c = feed.Period();  // 0.2 s: past force_recovery_s
+  HoverFeed feed(config);
+  MotorCommand c = feed.Settle();
   EXPECT_EQ(c.mode, kModeForceFeedback);
   EXPECT_EQ(c.status, 0);
   // At rest on the reference each rotor must make the hover force:
@@ -84,20 +91,16 @@ TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarder) {
 
   ControllerConfig nominal_config = config;
   nominal_config.force_feedback = false;
-  VehicleController nominal(nominal_config);
-  nominal.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
-  HoverFeed nominal_feed(&nominal);
-  for (int k = 0; k < 100; ++k) c = nominal_feed.Period();
+  HoverFeed nominal_feed(nominal_config);
+  c = nominal_feed.Settle();
   EXPECT_EQ(c.mode, kModeNominal);
   EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
 }
 
 TEST(VehicleControllerTest, FallsBackWithinOnePeriodOfABadForceAndReturns) {
   const ControllerConfig config;
-  VehicleController controller(config);
-  controller.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
-  HoverFeed feed(&controller);
-  for (int k = 0; k < 100; ++k) feed.Period();
+  HoverFeed feed(config);
+  feed.Settle();
   const double nominal_omega = std::sqrt(HoverForce(config.vehicle) / config.vehicle.thrust_coeff_n_s2_rad2);
 
   for (const auto& [scale2, status] :
@@ -117,16 +120,14 @@ TEST(VehicleControllerTest, FallsBackWithinOnePeriodOfABadForceAndReturns) {
     } while ((c.status & kCommandFallbackActive) && periods_to_return < 1000);
     EXPECT_EQ(periods_to_return, 26);  // first good sample + 50 ms, on the 2 ms grid
   }
-  EXPECT_EQ(controller.health().fallbacks, 2);
-  EXPECT_EQ(controller.health().force_unhealthy, 4);
+  EXPECT_EQ(feed.controller().health().fallbacks, 2);
+  EXPECT_EQ(feed.controller().health().force_unhealthy, 4);
 }
 
 TEST(VehicleControllerTest, StaleForceFallsBackWithinTimeoutPlusOnePeriod) {
   const ControllerConfig config;
-  VehicleController controller(config);
-  controller.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
-  HoverFeed feed(&controller);
-  for (int k = 0; k < 100; ++k) feed.Period();
+  HoverFeed feed(config);
+  feed.Settle();
   const int64_t last_force_us = feed.now_us();
   feed.send_force = false;
   MotorCommand c;
@@ -139,15 +140,13 @@ TEST(VehicleControllerTest, StaleForceFallsBackWithinTimeoutPlusOnePeriod) {
 
 TEST(VehicleControllerTest, LostPoseGivesAControlledDescent) {
   const ControllerConfig config;
-  VehicleController controller(config);
-  controller.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
-  HoverFeed feed(&controller);
-  for (int k = 0; k < 100; ++k) feed.Period();
+  HoverFeed feed(config);
+  feed.Settle();
   feed.send_pose = false;
   MotorCommand c;
   for (int k = 0; k < 30; ++k) c = feed.Period();  // 60 ms > pose_timeout_s
   EXPECT_TRUE(c.status & kCommandDescending);
-  EXPECT_EQ(controller.health().descents, 1);
+  EXPECT_EQ(feed.controller().health().descents, 1);
   // Sink-rate reference -0.3 m/s at rest: a_z = Kd (-0.3) < 0, less thrust than hover.
   const double c_t = config.vehicle.thrust_coeff_n_s2_rad2;
   EXPECT_LT(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t));
