@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <vector>
 
 #include "birotor/estimator_status_t.hpp"
@@ -39,41 +40,26 @@ void DecodeAndCheck(const uint8_t* data, size_t size) {
   if (again != encoded) std::abort();
 }
 
+// One decoder per selector value (data[0] % 9: the seed corpus depends on
+// this order).
+using DecodeCheck = void (*)(const uint8_t*, size_t);
+constexpr DecodeCheck kDecodeChecks[] = {
+    DecodeAndCheck<birotor::strain_t>,
+    DecodeAndCheck<birotor::motor_t>,
+    DecodeAndCheck<birotor::imu_t>,
+    DecodeAndCheck<birotor::pose_t>,
+    DecodeAndCheck<birotor::loadcell_t>,
+    DecodeAndCheck<birotor::truth_t>,
+    DecodeAndCheck<birotor::force_estimate_t>,
+    DecodeAndCheck<birotor::estimator_status_t>,
+    DecodeAndCheck<birotor::input_health_t>,
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const uint8_t selector = data[0];
-  ++data;
-  --size;
-  switch (selector % 9) {
-    case 0:
-      DecodeAndCheck<birotor::strain_t>(data, size);
-      break;
-    case 1:
-      DecodeAndCheck<birotor::motor_t>(data, size);
-      break;
-    case 2:
-      DecodeAndCheck<birotor::imu_t>(data, size);
-      break;
-    case 3:
-      DecodeAndCheck<birotor::pose_t>(data, size);
-      break;
-    case 4:
-      DecodeAndCheck<birotor::loadcell_t>(data, size);
-      break;
-    case 5:
-      DecodeAndCheck<birotor::truth_t>(data, size);
-      break;
-    case 6:
-      DecodeAndCheck<birotor::force_estimate_t>(data, size);
-      break;
-    case 7:
-      DecodeAndCheck<birotor::estimator_status_t>(data, size);
-      break;
-    default:
-      DecodeAndCheck<birotor::input_health_t>(data, size);
-      break;
-  }
+  kDecodeChecks[selector % std::size(kDecodeChecks)](data + 1, size - 1);
   return 0;
 }

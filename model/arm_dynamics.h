@@ -1,7 +1,8 @@
 // The arm dynamics of model/birotor_dynamics.h reduced to what the arms need,
 // with stiffness k and damping d as template scalars so that Ceres Jets
 // differentiate through them (identification): the arm of a body clamped on
-// the bench (the simulator's bench scenario, identification's bench fit) and
+// the bench or held on the ground (the simulator's bench scenario,
+// identification's bench fit, the EKF on the ground) and
 // the arms of the free-flying vehicle (the EKF's process model,
 // identification's flight fit). Tests check both against the full model.
 #pragma once
@@ -25,6 +26,18 @@ T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const 
   const double s = kArmSign[arm];
   const double mp = known.tip_mass_kg, L = known.arm_length_m, g = known.gravity_m_s2;
   return (s * L * force_n - s * mp * g * L * cos(b) - k * b - d * b_dot) / (mp * L * L);
+}
+
+// Arm accelerations (b1_ddot, b2_ddot) of a body held still and level by a
+// support (a test stand, or the ground under a landed vehicle), with the
+// vehicle's own k and d: the clamped-arm row above for each arm (M_bb =
+// m_p L^2, no b1-b2 coupling, C_b = 0 with the body still) [rad/s^2].
+template <typename T>
+Eigen::Matrix<T, 2, 1> SupportedArmAcceleration(const VehicleParams& p, const T& b1, const T& b2, const T& b1_dot,
+                                                const T& b2_dot, const T& force1_n, const T& force2_n) {
+  const T k(p.arm_stiffness_n_m_rad), d(p.arm_damping_n_m_s_rad);
+  return Eigen::Matrix<T, 2, 1>(ClampedArmAcceleration(p, 0, k, d, b1, b1_dot, force1_n),
+                                ClampedArmAcceleration(p, 1, k, d, b2, b2_dot, force2_n));
 }
 
 // State of the free-flight arm model. For a free body in uniform gravity the

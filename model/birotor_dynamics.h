@@ -146,24 +146,6 @@ Coords<T> GeneralizedAcceleration(const VehicleParams& p, const Coords<T>& q, co
   return SolveMassMatrix<T>(terms.mass, terms.generalized_thrust - terms.coriolis - terms.gravity_spring);
 }
 
-// Arm accelerations (b1_ddot, b2_ddot) of a body held still and level by a
-// support (a test stand, or the ground under a landed vehicle): the b rows of
-// thesis eq. 3.10 with q_body = v_body = 0. M_bb = m_p L^2 on the diagonal
-// (no b1-b2 coupling) and C_b = 0, so b_i_ddot = (tau_b_i - G_b_i) / (m_p L^2).
-template <typename T>
-Eigen::Matrix<T, 2, 1> SupportedArmAcceleration(const VehicleParams& p, const T& b1, const T& b2, const T& b1_dot,
-                                                const T& b2_dot, const T& force1_n, const T& force2_n) {
-  Coords<T> q = Coords<T>::Constant(T(0.0));
-  Coords<T> v = Coords<T>::Constant(T(0.0));
-  q(kB1) = b1;
-  q(kB2) = b2;
-  v(kB1) = b1_dot;
-  v(kB2) = b2_dot;
-  const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, force1_n, force2_n);
-  const Coords<T> rhs = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
-  return Eigen::Matrix<T, 2, 1>(rhs(kB1) / terms.mass(kB1, kB1), rhs(kB2) / terms.mass(kB2, kB2));
-}
-
 // Static deflection of arm i on a held level body under its own tip weight
 // and thrust force_n: k b_i = s_i L (f_i - m_p g), s_i = kArmSign (small angle,
 // cos b ~ 1 to 2e-6 relative). With the motors stopped b1 = +m_p g L / k and

@@ -119,8 +119,7 @@ int Main(int argc, char** argv) {
       if (scenario_duration_s <= 0) scenario_duration_s = scenario.duration_s;
       if (label.empty()) label = scenario.name;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "birotor-monitor: error: %s\n", e.what());
-      return 1;
+      return ReportError(e.what());
     }
   }
   if (label.empty()) label = "live";
@@ -129,20 +128,17 @@ int Main(int argc, char** argv) {
     try {
       ekf = LoadEstimatorConfig(options.params_file).ekf;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "birotor-monitor: error: %s\n", e.what());
-      return 1;
+      return ReportError(e.what());
     }
   }
   std::string error;
   if (!options.png.empty() && !CheckWritable(options.png, &error)) {
-    std::fprintf(stderr, "birotor-monitor: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
 
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
   if (!lcm) {
-    std::fprintf(stderr, "birotor-monitor: error: %s\n", error.c_str());
-    return 1;
+    return ReportError(error);
   }
   InstallShutdownHandlers();
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
@@ -231,19 +227,17 @@ int Main(int argc, char** argv) {
     std::fputs(TerminalView(collector, context).c_str(), stdout);
   }
   if (timed_out) {
-    std::fprintf(stderr,
-                 "birotor-monitor: error: neither %s nor %s received on %s within %.1f s (are birotor-estimator "
-                 "and the vehicle or simulator running?)\n",
-                 channels.force.c_str(), channels.truth.c_str(), options.common.lcm_url.c_str(),
-                 options.startup_timeout_s);
-    return 1;
+    return ReportError(fmt::format(
+        "neither {} nor {} received on {} within {:.1f} s (are birotor-estimator and the vehicle or simulator "
+        "running?)",
+        channels.force, channels.truth, options.common.lcm_url, options.startup_timeout_s));
   }
 
   const std::string method = collector.has_status() ? collector.latest_status().method : std::string("unknown");
   std::printf("received: TRUTH %zu (gaps %lld), FORCE %zu, ESTIMATOR_STATUS %lld, decode errors %lld\n",
               collector.truth().size(), static_cast<long long>(collector.truth_gaps()), collector.forces().size(),
               static_cast<long long>(collector.status_messages()), static_cast<long long>(collector.decode_errors()));
-  bool ok = true;
+  int exit_status = 0;  // an error below is reported, the rest of the summary still printed
   EvalResult result;
   if (collector.has_truth()) {
     result = collector.Evaluate(options.eval);
@@ -253,18 +247,13 @@ int Main(int argc, char** argv) {
       std::printf("%s%s", MarkdownTableHeader().c_str(), MarkdownTableRow(label, method, result).c_str());
     }
     if (result.paired == 0) {
-      std::fprintf(
-          stderr,
-          "birotor-monitor: error: no FORCE message could be paired with TRUTH (is birotor-estimator running?)\n");
-      ok = false;
+      exit_status = ReportError("no FORCE message could be paired with TRUTH (is birotor-estimator running?)");
     }
   } else {
     std::printf("vehicle summary (%s, %s; no TRUTH, so no errors):\n%s", label.c_str(), method.c_str(),
                 VehicleSummaryText(collector).c_str());
     if (!collector.has_force()) {
-      std::fprintf(stderr, "birotor-monitor: error: no %s received (is birotor-estimator running?)\n",
-                   channels.force.c_str());
-      ok = false;
+      exit_status = ReportError("no " + channels.force + " received (is birotor-estimator running?)");
     }
   }
   const std::string note = DeliveryNote(collector);
@@ -281,11 +270,10 @@ int Main(int argc, char** argv) {
     if (WriteForcePlot(collector.forces(), collector.truth(), plot, options.png, &error)) {
       std::printf("plot: %s\n", options.png.c_str());
     } else {
-      std::fprintf(stderr, "birotor-monitor: error: plot %s: %s\n", options.png.c_str(), error.c_str());
-      ok = false;
+      exit_status = ReportError("plot " + options.png + ": " + error);
     }
   }
-  return ok ? 0 : 1;
+  return exit_status;
 }
 
 }  // namespace

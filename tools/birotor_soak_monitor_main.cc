@@ -125,6 +125,17 @@ class Monitor {
       ++undecodable_;
       return;
     }
+    // Cadence on the daemon's own publication stamps (wall_utime), so the
+    // monitor's lateness does not count; a seq jump is a status this monitor
+    // missed, and that gap is not measured.
+    if (status_count_ > 0 && status_.seq == last_status_seq_ + 1) {
+      status_gaps_ms_.push_back(1e-3 * static_cast<double>(status_.wall_utime - last_status_wall_utime_));
+    } else if (status_count_ > 0) {
+      ++status_missed_;
+    }
+    ++status_count_;
+    last_status_seq_ = status_.seq;
+    last_status_wall_utime_ = status_.wall_utime;
     for (const input_health_t& input : status_.inputs) {
       if (input.channel != kStrainChannel) continue;
       StrainHealth health;
@@ -167,6 +178,8 @@ class Monitor {
   StrainHealth first_health_, last_health_;
   double processing_p99_us_ = 0;  // worst per-period p99 reported by the daemon
   std::vector<double> latencies_us_;
+  int64_t status_count_ = 0, status_missed_ = 0;  // ESTIMATOR_STATUS received, seq jumps at the monitor
+  std::vector<double> status_gaps_ms_;            // between consecutive ESTIMATOR_STATUS (daemon stamps) [ms]
 
  private:
   struct Entry {
@@ -178,6 +191,8 @@ class Monitor {
   std::vector<Entry> ring_;
   std::vector<double> period_latencies_us_;
   int32_t last_strain_seq_ = 0;
+  int32_t last_status_seq_ = 0;
+  int64_t last_status_wall_utime_ = 0;
   strain_t strain_;
   force_estimate_t force_;
   estimator_status_t status_;
@@ -197,6 +212,7 @@ int main(int argc, char** argv) {
   double warmup_s = 10;
   double max_growth_mb = 1.0;
   std::string csv_path;
+  double status_rate_hz = 5.0;
   app.add_option("--duration-s", duration_s, "Monitoring time [s]")->check(CLI::Range(1.0, 86400.0));
   app.add_option("--pid", pid, "PID of the birotor-estimator to sample (CPU, RSS); 0: none");
   app.add_option("--interval-s", interval_s, "Sampling interval of the time series [s]")->check(CLI::Range(0.5, 600.0));
@@ -205,6 +221,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-memory-growth-mb", max_growth_mb, "Allowed RSS growth after warm-up [MB]")
       ->check(CLI::Range(0.0, 1e6));
   app.add_option("--csv", csv_path, "Write the time series to this CSV file");
+  app.add_option("--status-rate-hz", status_rate_hz,
+                 "The daemon's ESTIMATOR_STATUS rate (its --status-rate-hz), for the schedule figures [Hz]")
+      ->check(CLI::Range(0.1, 100.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-soak-monitor", common.log_level);
 
@@ -312,6 +331,20 @@ int main(int argc, char** argv) {
               cpu_samples > 0 ? cpu_sum_percent / cpu_samples : std::nan(""), cpu_max_percent);
   std::printf("  %-44s baseline %" PRId64 "  end %" PRId64 "  peak %" PRId64 "  growth %.3f MB\n", "daemon RSS [kB]",
               baseline_rss_kb, last_rss_kb, peak_rss_kb, growth_mb);
+  // Issue 16: ESTIMATOR_STATUS on a fixed grid, every gap within 50 ms of
+  // the period (late by at most 50 ms, or early by at most 50 ms after a late
+  // one) and none above 250 ms at 5 Hz.
+  std::vector<double> gaps = monitor.status_gaps_ms_;
+  std::sort(gaps.begin(), gaps.end());
+  const double period_ms = 1e3 / status_rate_hz;
+  const auto off_schedule =
+      std::count_if(gaps.begin(), gaps.end(), [&](double gap_ms) { return std::abs(gap_ms - period_ms) > 50.0; });
+  std::printf("  %-44s %" PRId64 " gaps (%" PRId64
+              " not measured: missed here); min %.1f  p50 %.1f  max %.1f; "
+              "%td more than 50 ms off the %.0f ms period\n",
+              "ESTIMATOR_STATUS gaps [ms] (daemon stamps)", static_cast<int64_t>(gaps.size()), monitor.status_missed_,
+              gaps.empty() ? std::nan("") : gaps.front(), Percentile(gaps, 0.5),
+              gaps.empty() ? std::nan("") : gaps.back(), off_schedule, period_ms);
 
   bool ok = true;
   auto check = [&](bool pass, const char* what) {

@@ -225,6 +225,10 @@ fi
 if [ "$status" -eq 0 ]; then
   echo "demo: done. Plot: $png"
   eval_bin="$(find "$build_dir" -name birotor-eval -type f -perm -u+x 2>/dev/null | head -n 1)"
-  [ -z "$eval_bin" ] || [ "$no_truth" -eq 1 ] || echo "demo: same figures in-process: ${eval_bin#"$repo/"} --scenarios $scenario --methods ${method:-$(awk '/^[[:space:]]*method:/ {print $2; exit}' config/estimator.yaml)}"
+  # birotor-eval takes scenario names, looked up in --scenario-dir when the
+  # scenario was given as a file outside config/scenarios/.
+  eval_scenario="--scenarios $scenario"
+  [ "$scenario_file" = "config/scenarios/$scenario.yaml" ] || eval_scenario="--scenario-dir $(dirname "$scenario_file") $eval_scenario"
+  [ -z "$eval_bin" ] || [ "$no_truth" -eq 1 ] || echo "demo: same figures in-process: ${eval_bin#"$repo/"} $eval_scenario --methods ${method:-$(awk '/^[[:space:]]*method:/ {print $2; exit}' config/estimator.yaml)}"
 fi
 exit "$status"

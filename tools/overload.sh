@@ -68,7 +68,7 @@ for rate in $rates; do
   kill -INT "$monitor_pid" 2>/dev/null || true
   wait "$monitor_pid" || true
   cat "$out/probe-$rate.txt"
-  grep -E "FORCE received|daemon STRAIN drops|daemon CPU|daemon RSS|processing time" "$out/monitor-$rate.txt"
+  grep -E "FORCE received|daemon STRAIN drops|daemon CPU|daemon RSS|processing time|ESTIMATOR_STATUS gaps" "$out/monitor-$rate.txt"
   kill -0 "$estimator_pid" 2>/dev/null && echo "daemon alive" || echo "daemon DIED"
 done
 grep -E "overload" "$out/estimator.log" | tail -3 || true

@@ -1,4 +1,6 @@
-// Field-by-field copies between wire messages and sample structs.
+// Field-by-field copies between wire messages and sample structs. Both sides
+// use the same field names, so one field list per type serves both
+// directions (a field added to a type is added in one place).
 #include "transport/message_conversion.h"
 
 namespace birotor {
@@ -10,153 +12,96 @@ void CopyPair(const double (&from)[2], double (&to)[2]) {
   to[1] = from[1];
 }
 
+template <typename From, typename To>
+void CopyStrainFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  CopyPair(from.deflection_rad, to->deflection_rad);
+}
+
+template <typename From, typename To>
+void CopyMotorFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  CopyPair(from.omega_cmd_rad_s, to->omega_cmd_rad_s);
+  CopyPair(from.omega_meas_rad_s, to->omega_meas_rad_s);
+}
+
+template <typename From, typename To>
+void CopyImuFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  to->gyro_y_rad_s = from.gyro_y_rad_s;
+  to->accel_x_m_s2 = from.accel_x_m_s2;
+  to->accel_z_m_s2 = from.accel_z_m_s2;
+}
+
+template <typename From, typename To>
+void CopyPoseFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  to->x_m = from.x_m;
+  to->z_m = from.z_m;
+  to->phi_rad = from.phi_rad;
+}
+
+template <typename From, typename To>
+void CopyLoadCellFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  CopyPair(from.force_n, to->force_n);
+}
+
+template <typename From, typename To>
+void CopyTruthFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->x_m = from.x_m;
+  to->z_m = from.z_m;
+  to->phi_rad = from.phi_rad;
+  CopyPair(from.deflection_rad, to->deflection_rad);
+  to->x_dot_m_s = from.x_dot_m_s;
+  to->z_dot_m_s = from.z_dot_m_s;
+  to->phi_dot_rad_s = from.phi_dot_rad_s;
+  CopyPair(from.deflection_dot_rad_s, to->deflection_dot_rad_s);
+  CopyPair(from.omega_rad_s, to->omega_rad_s);
+  CopyPair(from.force_n, to->force_n);
+  CopyPair(from.thrust_scale, to->thrust_scale);
+}
+
+template <typename From, typename To>
+void CopyForceFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  CopyPair(from.force_n, to->force_n);
+  CopyPair(from.force_std_n, to->force_std_n);
+  CopyPair(from.thrust_scale, to->thrust_scale);
+  to->status = from.status;
+}
+
+// To{} zero-initialises the message's fields that the list does not name.
+template <typename To, typename From>
+To Converted(const From& from, void (*copy)(const From&, To*)) {
+  To to{};
+  copy(from, &to);
+  return to;
+}
+
 }  // namespace
 
-StrainSample FromMessage(const strain_t& message) {
-  StrainSample sample;
-  sample.utime = message.utime;
-  sample.seq = message.seq;
-  CopyPair(message.deflection_rad, sample.deflection_rad);
-  return sample;
-}
-
-strain_t ToMessage(const StrainSample& sample) {
-  strain_t message{};
-  message.utime = sample.utime;
-  message.seq = sample.seq;
-  CopyPair(sample.deflection_rad, message.deflection_rad);
-  return message;
-}
-
-MotorSample FromMessage(const motor_t& message) {
-  MotorSample sample;
-  sample.utime = message.utime;
-  sample.seq = message.seq;
-  CopyPair(message.omega_cmd_rad_s, sample.omega_cmd_rad_s);
-  CopyPair(message.omega_meas_rad_s, sample.omega_meas_rad_s);
-  return sample;
-}
-
-motor_t ToMessage(const MotorSample& sample) {
-  motor_t message{};
-  message.utime = sample.utime;
-  message.seq = sample.seq;
-  CopyPair(sample.omega_cmd_rad_s, message.omega_cmd_rad_s);
-  CopyPair(sample.omega_meas_rad_s, message.omega_meas_rad_s);
-  return message;
-}
-
-ImuSample FromMessage(const imu_t& message) {
-  ImuSample sample;
-  sample.utime = message.utime;
-  sample.seq = message.seq;
-  sample.gyro_y_rad_s = message.gyro_y_rad_s;
-  sample.accel_x_m_s2 = message.accel_x_m_s2;
-  sample.accel_z_m_s2 = message.accel_z_m_s2;
-  return sample;
-}
-
-imu_t ToMessage(const ImuSample& sample) {
-  imu_t message{};
-  message.utime = sample.utime;
-  message.seq = sample.seq;
-  message.gyro_y_rad_s = sample.gyro_y_rad_s;
-  message.accel_x_m_s2 = sample.accel_x_m_s2;
-  message.accel_z_m_s2 = sample.accel_z_m_s2;
-  return message;
-}
-
-PoseSample FromMessage(const pose_t& message) {
-  PoseSample sample;
-  sample.utime = message.utime;
-  sample.seq = message.seq;
-  sample.x_m = message.x_m;
-  sample.z_m = message.z_m;
-  sample.phi_rad = message.phi_rad;
-  return sample;
-}
-
-pose_t ToMessage(const PoseSample& sample) {
-  pose_t message{};
-  message.utime = sample.utime;
-  message.seq = sample.seq;
-  message.x_m = sample.x_m;
-  message.z_m = sample.z_m;
-  message.phi_rad = sample.phi_rad;
-  return message;
-}
-
-LoadCellSample FromMessage(const loadcell_t& message) {
-  LoadCellSample sample;
-  sample.utime = message.utime;
-  sample.seq = message.seq;
-  CopyPair(message.force_n, sample.force_n);
-  return sample;
-}
-
-loadcell_t ToMessage(const LoadCellSample& sample) {
-  loadcell_t message{};
-  message.utime = sample.utime;
-  message.seq = sample.seq;
-  CopyPair(sample.force_n, message.force_n);
-  return message;
-}
-
-TruthSample FromMessage(const truth_t& message) {
-  TruthSample sample;
-  sample.utime = message.utime;
-  sample.x_m = message.x_m;
-  sample.z_m = message.z_m;
-  sample.phi_rad = message.phi_rad;
-  CopyPair(message.deflection_rad, sample.deflection_rad);
-  sample.x_dot_m_s = message.x_dot_m_s;
-  sample.z_dot_m_s = message.z_dot_m_s;
-  sample.phi_dot_rad_s = message.phi_dot_rad_s;
-  CopyPair(message.deflection_dot_rad_s, sample.deflection_dot_rad_s);
-  CopyPair(message.omega_rad_s, sample.omega_rad_s);
-  CopyPair(message.force_n, sample.force_n);
-  CopyPair(message.thrust_scale, sample.thrust_scale);
-  return sample;
-}
-
-truth_t ToMessage(const TruthSample& sample) {
-  truth_t message{};
-  message.utime = sample.utime;
-  message.x_m = sample.x_m;
-  message.z_m = sample.z_m;
-  message.phi_rad = sample.phi_rad;
-  CopyPair(sample.deflection_rad, message.deflection_rad);
-  message.x_dot_m_s = sample.x_dot_m_s;
-  message.z_dot_m_s = sample.z_dot_m_s;
-  message.phi_dot_rad_s = sample.phi_dot_rad_s;
-  CopyPair(sample.deflection_dot_rad_s, message.deflection_dot_rad_s);
-  CopyPair(sample.omega_rad_s, message.omega_rad_s);
-  CopyPair(sample.force_n, message.force_n);
-  CopyPair(sample.thrust_scale, message.thrust_scale);
-  return message;
-}
-
-ForceEstimate FromMessage(const force_estimate_t& message) {
-  ForceEstimate estimate;
-  estimate.utime = message.utime;
-  estimate.seq = message.seq;
-  CopyPair(message.force_n, estimate.force_n);
-  CopyPair(message.force_std_n, estimate.force_std_n);
-  CopyPair(message.thrust_scale, estimate.thrust_scale);
-  estimate.status = message.status;
-  return estimate;
-}
-
-force_estimate_t ToMessage(const ForceEstimate& estimate) {
-  force_estimate_t message{};
-  message.utime = estimate.utime;
-  message.seq = estimate.seq;
-  CopyPair(estimate.force_n, message.force_n);
-  CopyPair(estimate.force_std_n, message.force_std_n);
-  CopyPair(estimate.thrust_scale, message.thrust_scale);
-  message.status = estimate.status;
-  return message;
-}
+StrainSample FromMessage(const strain_t& m) { return Converted<StrainSample>(m, CopyStrainFields); }
+strain_t ToMessage(const StrainSample& s) { return Converted<strain_t>(s, CopyStrainFields); }
+MotorSample FromMessage(const motor_t& m) { return Converted<MotorSample>(m, CopyMotorFields); }
+motor_t ToMessage(const MotorSample& s) { return Converted<motor_t>(s, CopyMotorFields); }
+ImuSample FromMessage(const imu_t& m) { return Converted<ImuSample>(m, CopyImuFields); }
+imu_t ToMessage(const ImuSample& s) { return Converted<imu_t>(s, CopyImuFields); }
+PoseSample FromMessage(const pose_t& m) { return Converted<PoseSample>(m, CopyPoseFields); }
+pose_t ToMessage(const PoseSample& s) { return Converted<pose_t>(s, CopyPoseFields); }
+LoadCellSample FromMessage(const loadcell_t& m) { return Converted<LoadCellSample>(m, CopyLoadCellFields); }
+loadcell_t ToMessage(const LoadCellSample& s) { return Converted<loadcell_t>(s, CopyLoadCellFields); }
+TruthSample FromMessage(const truth_t& m) { return Converted<TruthSample>(m, CopyTruthFields); }
+truth_t ToMessage(const TruthSample& s) { return Converted<truth_t>(s, CopyTruthFields); }
+ForceEstimate FromMessage(const force_estimate_t& m) { return Converted<ForceEstimate>(m, CopyForceFields); }
+force_estimate_t ToMessage(const ForceEstimate& e) { return Converted<force_estimate_t>(e, CopyForceFields); }
 
 MotorCommand FromMessage(const motor_command_t& message) {
   MotorCommand command;

@@ -40,7 +40,8 @@ TEST(FreeArmDerivativeTest, MatchesFullModelAtAnyPoseAndVelocity) {
 
 // With x, z, phi held (their rows carry the clamp's reaction) the b rows of
 // M q_ddot = tau - C - G read M_bb b_ddot = (tau - C - G)_b: the full model's
-// terms at the clamped pose give the closed form's acceleration.
+// terms at the clamped pose give the closed form's acceleration, for one arm
+// and for both (SupportedArmAcceleration, the EKF's model on the ground).
 TEST(ClampedArmAccelerationTest, MatchesTheFullModelsArmRows) {
   const VehicleParams p;
   Coords<double> q = Coords<double>::Zero(), v = Coords<double>::Zero();
@@ -56,6 +57,9 @@ TEST(ClampedArmAccelerationTest, MatchesTheFullModelsArmRows) {
     const double acc = ClampedArmAcceleration<double>(p, arm, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad, q(b),
                                                       v(b), forces_n[arm]);
     EXPECT_NEAR(acc, expected, 1e-9 * std::abs(expected));
+    const Eigen::Vector2d supported =
+        SupportedArmAcceleration<double>(p, q(kB1), q(kB2), v(kB1), v(kB2), forces_n[0], forces_n[1]);
+    EXPECT_NEAR(supported(arm), expected, 1e-9 * std::abs(expected));
   }
 }
 

@@ -147,6 +147,7 @@ TEST(HostilePacketsTest, StatusStaysOnScheduleUnderA50kHzBurst) {
   UdpmReceiver status_reader;
   ASSERT_TRUE(status_reader.Open(parsed, &error)) << error;
   std::vector<int64_t> status_wall_us;
+  std::vector<int32_t> status_seq;
   std::atomic<bool> stop{false};
   std::thread reader([&] {
     ReceivedDatagram datagram;
@@ -160,6 +161,7 @@ TEST(HostilePacketsTest, StatusStaysOnScheduleUnderA50kHzBurst) {
         }
         if (DecodeMessage(datagram.packet.payload, datagram.packet.payload_size, &status) == DecodeError::kNone) {
           status_wall_us.push_back(status.wall_utime);
+          status_seq.push_back(status.seq);
         }
       }
     }
@@ -169,21 +171,22 @@ TEST(HostilePacketsTest, StatusStaysOnScheduleUnderA50kHzBurst) {
                            TempPath("burst_daemon.log")));
   std::this_thread::sleep_for(std::chrono::milliseconds(800));
 
-  RawMulticastSender sender(port);
+  // Every datagram encoded before the burst, sent in batches (sendmmsg) every
+  // 0.5 ms: the sender's cost is the kernel's, so the daemon gets the cores.
   const double rate_hz = 50000;
   const double burst_s = 2.0;
+  std::vector<std::vector<uint8_t>> packets(static_cast<size_t>(rate_hz * burst_s));
+  for (size_t k = 0; k < packets.size(); ++k) {
+    packets[k] = SmallMessageDatagram(channels.strain,
+                                      EncodedStrain(1000000 + static_cast<int64_t>(k) * 20, static_cast<int32_t>(k)),
+                                      static_cast<uint32_t>(k));
+  }
+  RawMulticastSender sender(port);
   const double start_s = SteadyClockS();
-  int64_t sent = 0;
-  while (true) {
-    const double now_s = SteadyClockS();
-    if (now_s - start_s >= burst_s) break;
-    const int64_t due = static_cast<int64_t>((now_s - start_s) * rate_hz);
-    for (; sent < due; ++sent) {
-      sender.Send(SmallMessageDatagram(channels.strain, EncodedStrain(1000000 + sent * 20, static_cast<int32_t>(sent)),
-                                       static_cast<uint32_t>(sent)));
-    }
-    // Batches every 0.5 ms instead of a busy loop: the 2 cores are shared
-    // with the daemon under test.
+  size_t sent = 0;
+  while (sent < packets.size() && SteadyClockS() - start_s < 2 * burst_s) {
+    const size_t due = std::min(packets.size(), static_cast<size_t>((SteadyClockS() - start_s) * rate_hz));
+    if (due > sent) sent += sender.SendBatch(packets, sent, due);
     std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
   const double achieved_hz = static_cast<double>(sent) / (SteadyClockS() - start_s);
@@ -191,16 +194,33 @@ TEST(HostilePacketsTest, StatusStaysOnScheduleUnderA50kHzBurst) {
   stop = true;
   reader.join();
   EXPECT_TRUE(daemon.Alive());
+  const int64_t rss_kb = ResidentKb(daemon.pid());
   EXPECT_EQ(daemon.Stop(), 0);
 
   ASSERT_GE(status_wall_us.size(), 15u) << "expected about 5 status messages per second over 3.2 s";
+  // Gaps between consecutive seq only: a status this reader missed (its own
+  // socket buffer is shared with the burst) is not a late status.
   double max_gap_ms = 0;
+  int off_schedule = 0, measured = 0;
   for (size_t i = 1; i < status_wall_us.size(); ++i) {
-    max_gap_ms = std::max(max_gap_ms, 1e-3 * static_cast<double>(status_wall_us[i] - status_wall_us[i - 1]));
+    if (status_seq[i] != status_seq[i - 1] + 1) continue;
+    const double gap_ms = 1e-3 * static_cast<double>(status_wall_us[i] - status_wall_us[i - 1]);
+    max_gap_ms = std::max(max_gap_ms, gap_ms);
+    off_schedule += std::abs(gap_ms - 200.0) > 50.0 ? 1 : 0;
+    ++measured;
   }
-  std::printf("burst: %lld strain packets at %.0f Hz; %zu status messages, largest gap %.1f ms\n",
-              static_cast<long long>(sent), achieved_hz, status_wall_us.size(), max_gap_ms);
+  std::printf(
+      "burst: %zu strain packets at %.0f Hz; %zu status messages, %d gaps measured, largest %.1f ms, %d more than "
+      "50 ms off the 200 ms period; daemon RSS %lld kB\n",
+      sent, achieved_hz, status_wall_us.size(), measured, max_gap_ms, off_schedule, static_cast<long long>(rss_kb));
+  EXPECT_GE(measured, 12);
+  // Issue 16 targets: no gap above 250 ms, every status within 50 ms of the
+  // 5 Hz schedule (measured: largest gap 205-209 ms at 49-50 kHz), RSS under
+  // 20 MB after the attack.
   EXPECT_LE(max_gap_ms, 250.0);
+  EXPECT_EQ(off_schedule, 0);
+  EXPECT_GT(rss_kb, 0);
+  EXPECT_LT(rss_kb, 20 * 1024);
 }
 
 }  // namespace

@@ -64,6 +64,29 @@ class RawMulticastSender {
     return sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to_), sizeof(to_)) ==
            static_cast<ssize_t>(bytes.size());
   }
+  // Sends packets[first, last) with as few system calls as sendmmsg allows
+  // (a burst sender that leaves the cores to the daemon under test). Returns
+  // how many were sent.
+  size_t SendBatch(const std::vector<std::vector<uint8_t>>& packets, size_t first, size_t last) {
+    std::vector<iovec> iov(last - first);
+    std::vector<mmsghdr> headers(last - first);
+    for (size_t i = first; i < last; ++i) {
+      iov[i - first] = {const_cast<uint8_t*>(packets[i].data()), packets[i].size()};
+      msghdr& h = headers[i - first].msg_hdr;
+      h = msghdr{};
+      h.msg_name = &to_;
+      h.msg_namelen = sizeof(to_);
+      h.msg_iov = &iov[i - first];
+      h.msg_iovlen = 1;
+    }
+    size_t sent = 0;
+    while (sent < headers.size()) {
+      const int n = sendmmsg(fd_, headers.data() + sent, static_cast<unsigned>(headers.size() - sent), 0);
+      if (n <= 0) break;
+      sent += static_cast<size_t>(n);
+    }
+    return sent;
+  }
 
  private:
   int fd_;

@@ -17,8 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "tests/transport/test_files.h"
+
 namespace birotor {
 namespace {
+
+using test_files::HugeDataLengthLog;
+using test_files::MakeTempDirectory;
+using test_files::ReadBytes;
+using test_files::WriteBytes;
 
 struct ToolRun {
   bool signaled = false;  // killed by a signal (e.g. SIGSEGV: exit 139 in a shell)
@@ -69,49 +76,21 @@ void ExpectRefused(const ToolRun& run, const std::string& program, const std::st
   EXPECT_NE(run.output.find(program + ": error: "), std::string::npos) << what << "\n" << run.output;
 }
 
-std::vector<uint8_t> ReadBytes(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
-
-std::vector<uint8_t> EventHeader(int64_t number, int32_t channel_bytes, int32_t data_bytes) {
-  std::vector<uint8_t> bytes;
-  auto put = [&](uint64_t value, int size) {
-    for (int i = size - 1; i >= 0; --i) bytes.push_back(static_cast<uint8_t>(value >> (8 * i)));
-  };
-  put(0xEDA1DA01, 4);
-  put(static_cast<uint64_t>(number), 8);
-  put(1000, 8);
-  put(static_cast<uint32_t>(channel_bytes), 4);
-  put(static_cast<uint32_t>(data_bytes), 4);
-  return bytes;
-}
-
 class HostileFilesTest : public ::testing::Test {
  public:
   static std::string Path(const std::string& name) { return *dir_ + "/" + name; }
 
  protected:
   static void SetUpTestSuite() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "hostile_files_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = new std::string(pattern);
+    dir_ = new std::string(MakeTempDirectory("hostile_files_test"));
+    ASSERT_FALSE(dir_->empty());
     // A real 1.5 s hover log from the simulator (STRAIN, MOTOR, IMU, POSE, TRUTH).
     const ToolRun sim =
         RunTool({BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
                  "--set", "scenario.duration_s=1.5", "--output", Path("hover.lcm"), "--log-level", "warn"});
     ASSERT_EQ(sim.exit_code, 0) << sim.output;
     // Issue 16 item 2: 138 bytes, one header declaring 0x7fffffff data bytes.
-    std::vector<uint8_t> attack = EventHeader(0, 14, 0x7fffffff);
-    const std::string channel = "BIROTOR_STRAIN";
-    attack.insert(attack.end(), channel.begin(), channel.end());
-    attack.resize(138, 0xAB);
-    WriteBytes(Path("datalen.lcm"), attack);
+    WriteBytes(Path("datalen.lcm"), HugeDataLengthLog());
     WriteBytes(Path("empty.lcm"), {});
     WriteBytes(Path("sparse.lcm"), {});
     ASSERT_EQ(truncate(Path("sparse.lcm").c_str(), int64_t{2} << 30), 0);
@@ -222,7 +201,7 @@ TEST_F(HostileFilesTest, ZeroLengthChannelMidLogIsSkippedAndReported) {
   // Find an event boundary near 30 % of the file: the offset of a sync word.
   size_t at = bytes.size() * 3 / 10;
   while (!(bytes[at] == 0xED && bytes[at + 1] == 0xA1 && bytes[at + 2] == 0xDA && bytes[at + 3] == 0x01)) ++at;
-  std::vector<uint8_t> bad = EventHeader(9999, 0, 4);
+  std::vector<uint8_t> bad = test_files::LogEventHeader(9999, 1000, 0, 4);
   bad.insert(bad.end(), {1, 2, 3, 4});
   bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), bad.begin(), bad.end());
   WriteBytes(Path("zero_channel.lcm"), bytes);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/transport/test_files.h"
 #include "tests/transport/test_messages.h"
 
 namespace birotor {
@@ -23,20 +24,13 @@ namespace {
 
 using transport_test::MakeTestMessage;
 
-// A file path in a fresh temporary directory, removed with the fixture.
-class LogIoTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string pattern = (std::filesystem::temp_directory_path() / "log_io_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    directory_ = pattern;
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
+using test_files::HugeDataLengthLog;
+using test_files::LogEventHeader;
+using test_files::ReadBytes;
+using test_files::WriteBytes;
 
-  std::string Path(const std::string& name) const { return (directory_ / name).string(); }
-
-  std::filesystem::path directory_;
-};
+// A fresh temporary directory per test.
+class LogIoTest : public test_files::TempDirTest {};
 
 // The events WriteExampleLog writes, in order.
 struct Expected {
@@ -86,14 +80,15 @@ void ExpectEvents(const std::vector<LogEvent>& events, const std::vector<Expecte
   }
 }
 
-std::vector<uint8_t> ReadBytes(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-void WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+// Byte offset of the end of each event of the log at path.
+std::vector<int64_t> EventEnds(const std::string& path) {
+  std::vector<int64_t> ends;
+  LogReader reader;
+  std::string error;
+  EXPECT_TRUE(reader.Open(path, &error)) << error;
+  LogEvent event;
+  while (reader.Next(&event)) ends.push_back(reader.tail_offset());
+  return ends;
 }
 
 TEST_F(LogIoTest, WriteThenReadBack) {
@@ -187,14 +182,7 @@ TEST_F(LogIoTest, LogCutMidEventKeepsTheCompleteEvents) {
   const std::vector<uint8_t> bytes = ReadBytes(path);
 
   // Offsets where each event ends, from a reading of the intact log.
-  std::vector<int64_t> event_ends;
-  {
-    LogReader reader;
-    std::string error;
-    ASSERT_TRUE(reader.Open(path, &error));
-    LogEvent event;
-    while (reader.Next(&event)) event_ends.push_back(reader.tail_offset());
-  }
+  const std::vector<int64_t> event_ends = EventEnds(path);
   ASSERT_EQ(event_ends.size(), expected.size());
   ASSERT_EQ(event_ends.back(), static_cast<int64_t>(bytes.size()));
 
@@ -235,14 +223,7 @@ TEST_F(LogIoTest, LeadingGarbageIsNotALog) {
 TEST_F(LogIoTest, GarbageBetweenEventsIsSkippedAndCounted) {
   const std::string path = Path("garbage_mid.lcmlog");
   const std::vector<Expected> expected = WriteExampleLog(path);
-  std::vector<int64_t> event_ends;
-  {
-    LogReader reader;
-    std::string error;
-    ASSERT_TRUE(reader.Open(path, &error));
-    LogEvent event;
-    while (reader.Next(&event)) event_ends.push_back(reader.tail_offset());
-  }
+  const std::vector<int64_t> event_ends = EventEnds(path);
   std::vector<uint8_t> bytes = ReadBytes(path);
   // After event 4: 5 bytes that are not an event (one starts like a sync word).
   bytes.insert(bytes.begin() + event_ends[4], {0x00, 0x11, 0xED, 0xA1, 0x42});
@@ -260,29 +241,11 @@ TEST_F(LogIoTest, GarbageBetweenEventsIsSkippedAndCounted) {
   EXPECT_FALSE(reader.TruncatedTail());
 }
 
-// Writes one event header (big-endian fields) followed by `extra` bytes.
-std::vector<uint8_t> EventHeader(int64_t number, int64_t timestamp_us, int32_t channel_bytes, int32_t data_bytes) {
-  std::vector<uint8_t> bytes;
-  auto put = [&](uint64_t value, int size) {
-    for (int i = size - 1; i >= 0; --i) bytes.push_back(static_cast<uint8_t>(value >> (8 * i)));
-  };
-  put(kLogSyncWord, 4);
-  put(static_cast<uint64_t>(number), 8);
-  put(static_cast<uint64_t>(timestamp_us), 8);
-  put(static_cast<uint32_t>(channel_bytes), 4);
-  put(static_cast<uint32_t>(data_bytes), 4);
-  return bytes;
-}
-
 // Issue 16 item 2: a 138-byte log whose one event declares 0x7fffffff data
 // bytes made LCM's reader fread into a NULL buffer (exit 139).
 TEST_F(LogIoTest, DataLengthBeyondTheFileIsRejectedBeforeAllocating) {
   const std::string path = Path("huge_datalen.lcmlog");
-  std::vector<uint8_t> bytes = EventHeader(0, 1000, 14, 0x7fffffff);
-  const std::string channel = "BIROTOR_STRAIN";
-  bytes.insert(bytes.end(), channel.begin(), channel.end());
-  bytes.resize(138, 0xAB);
-  WriteBytes(path, bytes);
+  WriteBytes(path, HugeDataLengthLog());
 
   LogReader reader;
   std::string error;
@@ -300,16 +263,9 @@ TEST_F(LogIoTest, DataLengthBeyondTheFileIsRejectedBeforeAllocating) {
 TEST_F(LogIoTest, ZeroLengthChannelMidLogIsSkippedAndTheRestRead) {
   const std::string path = Path("zero_channel.lcmlog");
   const std::vector<Expected> expected = WriteExampleLog(path);
-  std::vector<int64_t> event_ends;
-  {
-    LogReader reader;
-    std::string error;
-    ASSERT_TRUE(reader.Open(path, &error));
-    LogEvent event;
-    while (reader.Next(&event)) event_ends.push_back(reader.tail_offset());
-  }
+  const std::vector<int64_t> event_ends = EventEnds(path);
   std::vector<uint8_t> bytes = ReadBytes(path);
-  const std::vector<uint8_t> bad = EventHeader(99, 5, 0, 4);
+  const std::vector<uint8_t> bad = LogEventHeader(99, 5, 0, 4);
   bytes.insert(bytes.begin() + event_ends[9], bad.begin(), bad.end());
   bytes.insert(bytes.begin() + event_ends[9] + static_cast<int64_t>(bad.size()), {1, 2, 3, 4});
   WriteBytes(path, bytes);
@@ -366,14 +322,7 @@ TEST_F(LogIoTest, SparseHoleAfterAnEventEndsTheLogQuickly) {
 TEST_F(LogIoTest, CorruptEventInTheMiddleIsReported) {
   const std::string path = Path("corrupt.lcmlog");
   const std::vector<Expected> expected = WriteExampleLog(path);
-  std::vector<int64_t> event_ends;
-  {
-    LogReader reader;
-    std::string error;
-    ASSERT_TRUE(reader.Open(path, &error));
-    LogEvent event;
-    while (reader.Next(&event)) event_ends.push_back(reader.tail_offset());
-  }
+  const std::vector<int64_t> event_ends = EventEnds(path);
   std::vector<uint8_t> bytes = ReadBytes(path);
   const size_t corrupt = 10;
   bytes[static_cast<size_t>(event_ends[corrupt - 1])] = 0;  // sync word of event 10

@@ -11,30 +11,14 @@
 #include <iterator>
 #include <string>
 
+#include "tests/transport/test_files.h"
+
 namespace birotor {
 namespace {
 
-class OutputFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string pattern = (std::filesystem::temp_directory_path() / "output_file_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    directory_ = pattern;
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-  std::string Path(const std::string& name) const { return (directory_ / name).string(); }
-  int FilesInDirectory() const {
-    int count = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(directory_)) count += entry.exists() ? 1 : 0;
-    return count;
-  }
-  std::filesystem::path directory_;
-};
+class OutputFileTest : public test_files::TempDirTest {};
 
-std::string Read(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
+using test_files::ReadText;
 
 TEST_F(OutputFileTest, CommitReplacesTheTargetAndLeavesNoTemporary) {
   const std::string path = Path("out.txt");
@@ -45,9 +29,9 @@ TEST_F(OutputFileTest, CommitReplacesTheTargetAndLeavesNoTemporary) {
   EXPECT_NE(file.write_path(), path);
   EXPECT_EQ(file.write_path().rfind(path + ".tmp.", 0), 0u);
   ASSERT_TRUE(file.Write("new\n"));
-  EXPECT_EQ(Read(path), "old\n");  // untouched until Commit
+  EXPECT_EQ(ReadText(path), "old\n");  // untouched until Commit
   ASSERT_TRUE(file.Commit(&error)) << error;
-  EXPECT_EQ(Read(path), "new\n");
+  EXPECT_EQ(ReadText(path), "new\n");
   EXPECT_EQ(FilesInDirectory(), 1);
 }
 
@@ -60,7 +44,7 @@ TEST_F(OutputFileTest, AbandonKeepsTheOldContent) {
     ASSERT_TRUE(file.Open(path, &error)) << error;
     file.Write("half");
   }  // destroyed without Commit: a program that failed half-way
-  EXPECT_EQ(Read(path), "old\n");
+  EXPECT_EQ(ReadText(path), "old\n");
   EXPECT_EQ(FilesInDirectory(), 1);
 }
 
