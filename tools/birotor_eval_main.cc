@@ -16,6 +16,7 @@
 #include "evaluation/eval_runner.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
+#include "plot/control_plot.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
 #include "transport/config_files.h"
@@ -27,10 +28,27 @@
 namespace birotor {
 namespace {
 
-// --control: every scenario flown closed loop in both modes, one table.
+// The flight as the control figure draws it: every 10th TRUTH sample (10 ms).
+ControlTrace TraceOf(const ClosedLoopRun& run, const std::string& label) {
+  ControlTrace trace;
+  trace.label = label;
+  if (run.samples.empty()) return trace;
+  const int64_t start_utime = run.samples.front().truth.utime;
+  for (size_t i = 0; i < run.samples.size(); i += 10) {
+    const TrackedSample& s = run.samples[i];
+    trace.t_s.push_back(1e-6 * static_cast<double>(s.truth.utime - start_utime));
+    trace.x_error_m.push_back(s.truth.x_m - s.reference_m.x());
+    trace.z_error_m.push_back(s.truth.z_m - s.reference_m.y());
+    trace.tilt_rad.push_back(s.truth.phi_rad);
+  }
+  return trace;
+}
+
+// --control: every scenario flown closed loop in both modes, one table, and
+// with plot_dir one figure per scenario (<scenario>_control.png).
 int RunControlTable(const std::vector<std::string>& scenarios, const std::string& scenario_dir,
                     const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
-                    const ControllerConfig& controller, const std::string& markdown_out) {
+                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir) {
   std::string table = ControlTableHeader();
   for (const std::string& name : scenarios) {
     Scenario scenario;
@@ -41,6 +59,8 @@ int RunControlTable(const std::vector<std::string>& scenarios, const std::string
     } catch (const std::exception& e) {
       return ReportError(e.what());
     }
+    std::vector<ControlTrace> traces;
+    double fault_time_s = -1;
     for (const bool force_feedback : {false, true}) {
       ControllerConfig config = controller;
       config.force_feedback = force_feedback;
@@ -51,6 +71,14 @@ int RunControlTable(const std::vector<std::string>& scenarios, const std::string
       spdlog::info("{} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated", name,
                    mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
                    run.controller.descents, run.controller.saturated);
+      traces.push_back(TraceOf(run, mode));
+      if (run.fault_utime >= 0) fault_time_s = metrics.fault_time_s;
+    }
+    std::string error;
+    const std::string png = plot_dir + "/" + name + "_control.png";
+    if (!plot_dir.empty() &&
+        !WriteControlPlot(traces, name + ": nominal vs force_feedback", fault_time_s, png, &error)) {
+      return ReportError("plot " + png + ": " + error);
     }
   }
   std::printf("%s", table.c_str());
@@ -118,7 +146,15 @@ int main(int argc, char** argv) {
   } catch (const std::exception& error) {
     return ReportError(error.what());
   }
+  if (!log_path.empty()) scenarios = {log_path};
+  // Refuse unwritable outputs before minutes of simulation, not after.
+  std::error_code fs_error;
+  if (!plot_dir.empty() && !std::filesystem::is_directory(plot_dir) &&
+      !std::filesystem::create_directories(plot_dir, fs_error)) {
+    return ReportError("cannot create --plot-dir " + plot_dir);
+  }
   if (control) {
+    if (!log_path.empty()) return ReportError("--control flies scenarios; it does not take --log", kExitUsage);
     ControllerConfig controller;
     try {
       controller = LoadControllerConfig(controller_params);
@@ -127,14 +163,7 @@ int main(int argc, char** argv) {
     }
     // The default list is the estimator's; the control table has its own.
     if (app.count("--scenarios") == 0) scenarios = control_scenarios;
-    return RunControlTable(scenarios, scenario_dir, overrides, base_config, controller, markdown_out);
-  }
-  if (!log_path.empty()) scenarios = {log_path};
-  // Refuse unwritable outputs before minutes of simulation, not after.
-  std::error_code fs_error;
-  if (!plot_dir.empty() && !std::filesystem::is_directory(plot_dir) &&
-      !std::filesystem::create_directories(plot_dir, fs_error)) {
-    return ReportError("cannot create --plot-dir " + plot_dir);
+    return RunControlTable(scenarios, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir);
   }
   // The Markdown goes to a temporary file next to it, renamed at the end.
   OutputFile markdown;

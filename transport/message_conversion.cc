@@ -78,6 +78,15 @@ void CopyForceFields(const From& from, To* to) {
   to->status = from.status;
 }
 
+template <typename From, typename To>
+void CopyMotorCommandFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  CopyPair(from.omega_cmd_rad_s, to->omega_cmd_rad_s);
+  to->mode = from.mode;
+  to->status = from.status;
+}
+
 // To{} zero-initialises the message's fields that the list does not name.
 template <typename To, typename From>
 To Converted(const From& from, void (*copy)(const From&, To*)) {
@@ -103,24 +112,7 @@ truth_t ToMessage(const TruthSample& s) { return Converted<truth_t>(s, CopyTruth
 ForceEstimate FromMessage(const force_estimate_t& m) { return Converted<ForceEstimate>(m, CopyForceFields); }
 force_estimate_t ToMessage(const ForceEstimate& e) { return Converted<force_estimate_t>(e, CopyForceFields); }
 
-MotorCommand FromMessage(const motor_command_t& message) {
-  MotorCommand command;
-  command.utime = message.utime;
-  command.seq = message.seq;
-  CopyPair(message.omega_cmd_rad_s, command.omega_cmd_rad_s);
-  command.mode = message.mode;
-  command.status = message.status;
-  return command;
-}
-
-motor_command_t ToMessage(const MotorCommand& command) {
-  motor_command_t message{};
-  message.utime = command.utime;
-  message.seq = command.seq;
-  CopyPair(command.omega_cmd_rad_s, message.omega_cmd_rad_s);
-  message.mode = command.mode;
-  message.status = command.status;
-  return message;
-}
+MotorCommand FromMessage(const motor_command_t& m) { return Converted<MotorCommand>(m, CopyMotorCommandFields); }
+motor_command_t ToMessage(const MotorCommand& c) { return Converted<motor_command_t>(c, CopyMotorCommandFields); }
 
 }  // namespace birotor
