@@ -1,5 +1,6 @@
 #include "params/yaml_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -73,8 +74,25 @@ ParamError SyntaxError(const std::string& label, const YAML::Exception& e) {
 }  // namespace
 
 std::string Quoted(const std::string& text) {
-  if (text.size() <= kMaxQuotedChars) return "'" + text + "'";
-  return "'" + text.substr(0, kMaxQuotedChars) + "...' (" + std::to_string(text.size()) + " characters)";
+  // Control characters (a line break in a quoted YAML scalar, or in a YAML
+  // syntax message about such a byte) are written as escapes, so that the
+  // message stays one line.
+  std::string out = "'";
+  for (size_t i = 0; i < std::min(text.size(), kMaxQuotedChars); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c < 0x20 || c == 0x7f) {
+      static const char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xf];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (text.size() <= kMaxQuotedChars) return out + "'";
+  return out + "...' (" + std::to_string(text.size()) + " characters)";
 }
 
 std::string RangeText(double min, double max) { return "[" + Number(min) + ", " + Number(max) + "]"; }

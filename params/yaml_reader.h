@@ -32,7 +32,8 @@ constexpr size_t kMaxParameterFileBytes = 1 << 20;
 constexpr size_t kMaxQuotedChars = 80;
 
 // 'text', or its first characters and "... (N characters)" when it is longer
-// than kMaxQuotedChars.
+// than kMaxQuotedChars; control characters as escapes (\n, \xNN), so a
+// message stays one line.
 std::string Quoted(const std::string& text);
 
 // A view on one YAML mapping of a file, with the dotted path that leads to it.

@@ -37,17 +37,23 @@ TEST(VehicleParamsYaml, RoundTripsThroughText) {
   EXPECT_DOUBLE_EQ(q.motor_time_constant_s, 0.045);
 }
 
-TEST(VehicleParamsYaml, NegativeMassIsRefusedWithKeyAndRange) {
-  const std::string path = WriteTemp("vehicle:\n  body_mass_kg: -4.0\n");
+// The file text is refused with a message naming the file, the key and the
+// allowed range.
+void ExpectRefusedNaming(const std::string& text, const std::string& key, const std::string& range) {
+  const std::string path = WriteTemp(text);
   try {
     LoadVehicleParams(path);
-    FAIL() << "accepted a negative mass";
+    ADD_FAILURE() << "accepted " << text;
   } catch (const ParamError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    EXPECT_NE(msg.find("vehicle.body_mass_kg"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("allowed: [0.001, 1000]"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(key), std::string::npos) << msg;
+    EXPECT_NE(msg.find(range), std::string::npos) << msg;
   }
+}
+
+TEST(VehicleParamsYaml, NegativeMassIsRefusedWithKeyAndRange) {
+  ExpectRefusedNaming("vehicle:\n  body_mass_kg: -4.0\n", "vehicle.body_mass_kg", "allowed: [0.001, 1000]");
 }
 
 TEST(VehicleParamsYaml, ZeroStiffnessWrongTypeAndMissingSectionAreRefused) {
@@ -75,16 +81,7 @@ TEST(VehicleParamsYaml, GaugeKeysDefaultToTheIdealGaugeAndRoundTrip) {
 }
 
 TEST(VehicleParamsYaml, GaugeKeysOutOfRangeNameTheKeyAndRange) {
-  const std::string path = WriteTemp("vehicle:\n  gauge_scale: [1.03, 3.0]\n");
-  try {
-    LoadVehicleParams(path);
-    FAIL() << "accepted a scale of 3";
-  } catch (const ParamError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    EXPECT_NE(msg.find("vehicle.gauge_scale"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("[0.5, 2]"), std::string::npos) << msg;
-  }
+  ExpectRefusedNaming("vehicle:\n  gauge_scale: [1.03, 3.0]\n", "vehicle.gauge_scale", "[0.5, 2]");
   EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  gauge_offset_rad: [0.0]\n")), ParamError);
   EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  gauge_offset_std_rad: 0\n")), ParamError);
   EXPECT_THROW(LoadVehicleParams(WriteTemp("vehicle:\n  gauge_drift_psd_rad2_s: -1e-10\n")), ParamError);

@@ -34,7 +34,7 @@ TEST(YamlReader, AcceptsValidFile) { EXPECT_EQ(ErrorOf("a: {x: 2.5, n: 3, mode: 
 // The schema of ErrorOf with one key of section a.
 std::string WithoutKey(const std::string& key) {
   std::string text = "a: {";
-  for (const std::string& item : {"x: 2.5", "n: 3", "mode: ekf"}) {
+  for (const std::string item : {"x: 2.5", "n: 3", "mode: ekf"}) {
     if (item.rfind(key + ":", 0) != 0) text += item + ", ";
   }
   return text + "}";
@@ -80,6 +80,16 @@ TEST(YamlReader, LongValuesAndKeysAreQuotedWithAtMost80Characters) {
   EXPECT_LT(key_error.size(), 300u) << key_error.substr(0, 300);
   EXPECT_NE(key_error.find("unknown key (allowed: mode, n, x)"), std::string::npos) << key_error.substr(0, 300);
   EXPECT_EQ(Quoted(std::string(80, 'q')), "'" + std::string(80, 'q') + "'");
+}
+
+TEST(YamlReader, ControlCharactersAreEscapedSoEveryMessageIsOneLine) {
+  // libFuzzer (param_file_fuzzer, fuzz/corpus/param_file_fuzzer/
+  // escape_in_syntax_error.yaml): yaml-cpp's "unknown escape character"
+  // message carried the raw byte, a line break, into ParamError.
+  EXPECT_EQ(Quoted("a\nb\tc\x7f"), "'a\\nb\\x09c\\x7f'");
+  const std::string value_error = ErrorOf("a: {x: 1, n: 3, mode: \"ek\\nf\"}");
+  EXPECT_EQ(value_error.find('\n'), std::string::npos) << value_error;
+  EXPECT_NE(value_error.find("'ek\\nf'"), std::string::npos) << value_error;
 }
 
 TEST(YamlReader, FilesAboveOneMegabyteAreRefusedBeforeParsing) {
