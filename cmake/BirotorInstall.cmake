@@ -8,7 +8,7 @@ install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/lcm-spy.sh DESTINATION bin RENAME b
 
 # configure_file at install time, so a `--prefix` given to cmake --install is
 # the one written into the units.
-foreach(deploy_file birotor-estimator.service birotor-sim.service birotor.env)
+foreach(deploy_file birotor-estimator.service birotor-controller.service birotor-sim.service birotor.env)
   install(CODE "
     set(deploy_target \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/share/birotor/deploy/${deploy_file}\")
     message(STATUS \"Installing: \${deploy_target}\")

@@ -2,7 +2,10 @@
 // (paced by the wall clock times --speed) or offline (as fast as possible into
 // an LCM log file whose event timestamps are the sample times, so lcm-logplayer
 // replays it at the right pace). --loop repeats the scenario until stopped,
-// time continuing. SIGINT/SIGTERM stop it with the log closed.
+// time continuing. --controller flies the lock-step closed loop (simulator,
+// estimator and controller in one process) into the log. SIGINT/SIGTERM stop
+// it with the log closed. --external-controller (live) makes the simulator
+// the vehicle's ESCs: it runs MOTOR_COMMAND from LCM instead of its autopilot.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -11,6 +14,11 @@
 #include <thread>
 #include <vector>
 
+#include "birotor/motor_command_t.hpp"
+#include "evaluation/closed_loop.h"
+#include "evaluation/control_metrics.h"
+#include "params/controller_config_yaml.h"
+#include "params/estimator_config_yaml.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
@@ -18,6 +26,7 @@
 #include "transport/channels.h"
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
+#include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
@@ -38,7 +47,54 @@ struct SimOptions {
   bool wall_clock = false;               // utime = wall clock at start + simulated time
   bool loop = false;                     // repeat the scenario until stopped, time continuing
   bool no_truth = false;                 // do not publish TRUTH (stands in for a real vehicle)
+  // Lock-step closed loop (--controller): simulator, estimator and controller
+  // in one process; empty: the built-in autopilot.
+  std::string controller_mode;
+  std::string controller_params;     // default: the installed config/controller.yaml
+  std::string estimator_params;      // default: the installed config/estimator.yaml
+  double command_timeout_s = 0.1;    // ESCs command 0 after this long without MOTOR_COMMAND [s]
+  bool external_controller = false;  // live: the ESCs run MOTOR_COMMAND from LCM
 };
+
+// Offline lock-step closed loop: every channel, FORCE and MOTOR_COMMAND
+// included, into the log.
+bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, const ChannelNames& channels) {
+  ControllerConfig controller;
+  EstimatorConfig estimator;
+  try {
+    controller = LoadControllerConfig(options.controller_params);
+    estimator = LoadEstimatorConfig(options.estimator_params);
+  } catch (const ParamError& e) {
+    ReportError(e.what());
+    return false;
+  }
+  controller.force_feedback = options.controller_mode == "force_feedback";
+  LogWriter writer;
+  std::string error;
+  if (!writer.Open(options.output, &error)) {
+    ReportError("cannot open the output log: " + error);
+    return false;
+  }
+  LogSink log_sink(&writer);
+  ClosedLoopOptions loop;
+  loop.command_timeout_s = options.command_timeout_s;
+  loop.prefix = channels.prefix;
+  const ClosedLoopRun run = RunClosedLoop(scenario, estimator, controller, loop, &log_sink);
+  if (log_sink.failed() || !writer.Close()) {
+    writer.Abandon();  // no partial log is left behind
+    ReportError("writing " + options.output + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
+                "; no log is left behind");
+    return false;
+  }
+  const ControlMetrics metrics = EvaluateControl(run);
+  spdlog::info(
+      "closed loop ({}): {:.3f} s simulated in {:.3f} s wall; {} commands, {} fallbacks, {} descents; "
+      "RMS position error {:.4f} m, peak tilt {:.4f} rad, peak altitude loss {:.4f} m; wrote {} events to {}",
+      options.controller_mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
+      run.controller.descents, metrics.rms_position_error_m, metrics.peak_tilt_rad, metrics.peak_altitude_loss_m,
+      writer.events_written(), options.output);
+  return true;
+}
 
 // Offline: every sample into the log, as fast as possible.
 bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
@@ -66,21 +122,69 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   return true;
 }
 
+// --external-controller: MOTOR_COMMAND from LCM to the simulator's ESCs,
+// each command taken at the step it is handled (a corrupt packet is counted).
+class EscCommandInput {
+ public:
+  EscCommandInput(lcm::LCM* lcm, const std::string& channel, Simulator* sim) : lcm_(lcm), sim_(sim) {
+    subscription_ = lcm->subscribeFunction(channel, &EscCommandInput::OnMessage, this);
+  }
+  ~EscCommandInput() { lcm_->unsubscribe(subscription_); }
+  // Handles every command already queued.
+  void Poll() {
+    while (lcm_->handleTimeout(0) > 0) {
+    }
+    if (sim_->command_timed_out() != timed_out_) {
+      timed_out_ = sim_->command_timed_out();
+      if (timed_out_) {
+        spdlog::warn("no MOTOR_COMMAND for the command timeout at t = {:.3f} s: the ESCs spool the motors down",
+                     sim_->time_s());
+      } else {
+        spdlog::info("MOTOR_COMMAND back at t = {:.3f} s", sim_->time_s());
+      }
+    }
+  }
+  int64_t decode_errors() const { return decode_errors_; }
+
+ private:
+  static void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, EscCommandInput* self) {
+    motor_command_t message;
+    if (DecodeMessage(buffer->data, buffer->data_size, &message) != DecodeError::kNone) {
+      ++self->decode_errors_;
+      return;
+    }
+    self->sim_->SetMotorCommand(message.omega_cmd_rad_s, self->sim_->utime());
+  }
+
+  lcm::LCM* lcm_;
+  Simulator* sim_;
+  lcm::Subscription* subscription_ = nullptr;
+  bool timed_out_ = false;  // the start state's speeds count as a command
+  int64_t decode_errors_ = 0;
+};
+
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double speed, bool publish_truth) {
+bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double speed, bool publish_truth,
+             bool external_controller) {
   LcmSink lcm_sink(lcm);
   WireSampleSink sink(channels, &lcm_sink, publish_truth);
+  std::unique_ptr<EscCommandInput> commands;
+  if (external_controller) commands = std::make_unique<EscCommandInput>(lcm, channels.motor_command, sim);
   const auto start = std::chrono::steady_clock::now();
   // Sleep at most once per millisecond of simulated time (4 steps at 4 kHz).
   const int64_t steps_per_check = std::max<int64_t>(1, std::llround(1e-3 / sim->scenario().step_s));
   int64_t steps = 0;
   while (!ShutdownRequested() && sim->Step(&sink)) {
+    if (commands) commands->Poll();
     if (++steps % steps_per_check != 0) continue;
     const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                  std::chrono::duration<double>(sim->time_s() / speed));
     std::this_thread::sleep_until(due);
   }
   if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());
+  if (commands && commands->decode_errors() > 0) {
+    spdlog::warn("{} MOTOR_COMMAND packets could not be decoded", commands->decode_errors());
+  }
   if (ShutdownRequested()) spdlog::info("stopped by a signal at t = {:.3f} s", sim->time_s());
   return true;
 }
@@ -103,6 +207,21 @@ int Main(int argc, char** argv) {
                "Repeat the scenario until stopped (SIGINT/SIGTERM), time continuing: run n starts at n x duration");
   app.add_flag("--no-truth", options.no_truth,
                "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
+  app.add_option("--controller", options.controller_mode,
+                 "Lock-step closed loop (with --output): fly the scenario with the controller of "
+                 "birotor-controller in this mode, on the estimator's FORCE, and log every channel")
+      ->check(CLI::IsMember({"nominal", "force_feedback"}));
+  options.controller_params = FindConfigFile("controller.yaml");
+  options.estimator_params = FindConfigFile("estimator.yaml");
+  app.add_option("--controller-params", options.controller_params,
+                 "Controller parameter file for --controller; default: the " + ConfigSearchText("controller.yaml"));
+  app.add_option("--estimator-params", options.estimator_params,
+                 "Estimator parameter file for --controller; default: the " + ConfigSearchText("estimator.yaml"));
+  app.add_flag("--external-controller", options.external_controller,
+               "Live: the ESCs run MOTOR_COMMAND from LCM (birotor-controller) instead of the built-in autopilot");
+  app.add_option("--command-timeout-s", options.command_timeout_s,
+                 "With a controller: the ESCs spool the motors down after this long without MOTOR_COMMAND [s]")
+      ->check(CLI::Range(1e-3, 10.0));
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
@@ -126,6 +245,13 @@ int Main(int argc, char** argv) {
           ? ""
           : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
 
+  if (!options.controller_mode.empty() && (options.output.empty() || options.loop)) {
+    return ReportError("--controller runs the lock-step closed loop offline: it needs --output and no --loop",
+                       kExitUsage);
+  }
+  if (options.external_controller && !options.output.empty()) {
+    return ReportError("--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller", kExitUsage);
+  }
   if (options.loop && !options.output.empty()) {
     return ReportError("--loop runs until stopped: it is for live mode, not with --output (see --help)", kExitUsage);
   }
@@ -133,7 +259,15 @@ int Main(int argc, char** argv) {
   std::string error;
   std::vector<std::string> inputs = options.param_files;
   inputs.push_back(options.scenario_file);
+  if (!options.controller_mode.empty()) {
+    inputs.push_back(options.controller_params);
+    inputs.push_back(options.estimator_params);
+  }
   if (!CheckOutputs({options.output}, inputs, &error)) return ReportError(error);
+  if (!options.controller_mode.empty()) {
+    InstallShutdownHandlers();
+    return RunClosedLoopOffline(scenario, options, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
+  }
 
   std::unique_ptr<lcm::LCM> lcm;
   if (options.output.empty()) {
@@ -154,8 +288,10 @@ int Main(int argc, char** argv) {
   for (int64_t run = 0; ok && (run == 0 || (options.loop && !ShutdownRequested())); ++run) {
     Simulator sim(scenario);
     sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
-    ok = options.output.empty() ? RunLive(&sim, channels, lcm.get(), options.speed, !options.no_truth)
-                                : RunOffline(&sim, channels, options.output, !options.no_truth);
+    if (options.external_controller) sim.UseExternalCommands(options.command_timeout_s);
+    ok = options.output.empty()
+             ? RunLive(&sim, channels, lcm.get(), options.speed, !options.no_truth, options.external_controller)
+             : RunOffline(&sim, channels, options.output, !options.no_truth);
     simulated_s += sim.time_s();
     const ChannelCounts& emitted = sim.emitted();
     n.strain += emitted.strain;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "controller/controller_params.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
@@ -131,23 +132,6 @@ struct GroundParams {
   double FlightStartS() const { return enabled ? rest_s + spool_up_s : 0.0; }
 };
 
-// Cascaded PD (+ integral) on the rigid-body approximation, 500 Hz. Outer
-// loop: desired acceleration from the position error (critically damped,
-// 3 rad/s); inner loop: desired pitch acceleration from the tilt error
-// (20 rad/s, below the motor lag and far below the 65/80 Hz arm modes).
-struct ControllerParams {
-  double rate_hz = 500.0;
-  double position_kp_1_s2 = 9.0;
-  double position_kd_1_s = 6.0;
-  double position_ki_1_s3 = 3.0;
-  double attitude_kp_1_s2 = 400.0;
-  double attitude_kd_1_s = 32.0;
-  double attitude_ki_1_s3 = 600.0;
-  double max_tilt_rad = 0.5;
-  double max_integral_m_s2 = 3.0;              // clamp of the position integral term
-  double max_attitude_integral_rad_s2 = 40.0;  // clamp of the attitude integral term
-};
-
 struct Scenario {
   std::string file;  // where it was loaded from (messages only)
   std::string name = "hover";
@@ -163,7 +147,7 @@ struct Scenario {
   GaugeParams gauge;
   GroundParams ground;
   FaultParams faults;
-  ControllerParams controller;
+  ControllerParams controller;  // gains of the built-in autopilot
 };
 
 }  // namespace birotor

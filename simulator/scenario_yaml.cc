@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "params/controller_config_yaml.h"
 #include "params/vehicle_params_yaml.h"
 
 namespace birotor {
@@ -235,15 +236,7 @@ Scenario ReadScenario(YamlSection root) {
     YamlSection c = root.Section("controller");
     ControllerParams& ctrl = sc.controller;
     ReadRate(c, "rate_hz", sc.step_s, &ctrl.rate_hz);
-    c.Double("position_kp_1_s2", 0.0, 1e4, &ctrl.position_kp_1_s2);
-    c.Double("position_kd_1_s", 0.0, 1e4, &ctrl.position_kd_1_s);
-    c.Double("position_ki_1_s3", 0.0, 1e4, &ctrl.position_ki_1_s3);
-    c.Double("attitude_kp_1_s2", 0.0, 1e6, &ctrl.attitude_kp_1_s2);
-    c.Double("attitude_kd_1_s", 0.0, 1e4, &ctrl.attitude_kd_1_s);
-    c.Double("attitude_ki_1_s3", 0.0, 1e6, &ctrl.attitude_ki_1_s3);
-    c.Double("max_tilt_rad", 1e-3, 1.5, &ctrl.max_tilt_rad);
-    c.Double("max_integral_m_s2", 0.0, 100.0, &ctrl.max_integral_m_s2);
-    c.Double("max_attitude_integral_rad_s2", 0.0, 1e4, &ctrl.max_attitude_integral_rad_s2);
+    ReadControllerGains(c, &ctrl);
     c.Finish();
   }
   root.Finish();

@@ -140,6 +140,19 @@ RotorCommand Simulator::Command(double t_s) {
     }
   }
   const double flight_s = t_s - ground.FlightStartS();
+  if (external_commands_) {
+    reference_ = trajectory_.At(flight_s);
+    if (last_external_utime_ < 0) {
+      // Before the first command the ESCs run the speeds of the start state
+      // (hover), for at most the timeout.
+      last_external_utime_ = utime();
+      for (int i = 0; i < 2; ++i) external_command_.omega_cmd_rad_s[i] = state_(kPlantOmega1 + i);
+    }
+    const bool timed_out = utime() - last_external_utime_ > command_timeout_us_;
+    if (timed_out && !command_timed_out_) ++command_timeouts_;
+    command_timed_out_ = timed_out;
+    return timed_out ? RotorCommand() : external_command_;
+  }
   if (ground.enabled && ground.land && t_s >= land_start_s_) {
     if (!landing_planned_) {
       // Vertical descent from where the reference is to the support height.
@@ -155,6 +168,17 @@ RotorCommand Simulator::Command(double t_s) {
     reference_ = trajectory_.At(flight_s);
   }
   return controller_.Update(state_, reference_);
+}
+
+void Simulator::UseExternalCommands(double command_timeout_s) {
+  external_commands_ = true;
+  command_timeout_us_ = Microseconds(command_timeout_s);
+}
+
+void Simulator::SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime) {
+  for (int i = 0; i < 2; ++i)
+    external_command_.omega_cmd_rad_s[i] = std::isfinite(omega_cmd_rad_s[i]) ? omega_cmd_rad_s[i] : 0.0;
+  last_external_utime_ = utime;
 }
 
 void Simulator::UpdateGroundContact(int64_t now_us) {
@@ -202,7 +226,8 @@ bool Simulator::Step(SampleSink* sink) {
   for (int i = 0; i < 2; ++i) input_.thrust_scale[i] = efficiency_[i] * (1.0 + turbulence_[i].value());
 
   // Controller (or bench profile) at its own rate; commands are held (ZOH).
-  if (control_.Due(k)) command_ = Command(t_s);
+  // External commands reach the ESCs at the step they arrive.
+  if (control_.Due(k) || external_commands_) command_ = Command(t_s);
   input_.omega_cmd_rad_s[0] = command_.omega_cmd_rad_s[0];
   input_.omega_cmd_rad_s[1] = command_.omega_cmd_rad_s[1];
   UpdateGroundContact(now_us);

@@ -63,6 +63,24 @@ class Simulator {
   // Added to every utime (for --wall-clock); call before the first step.
   void set_utime_offset_us(int64_t offset_us) { utime_offset_us_ = offset_us; }
 
+  // The simulator as the vehicle's ESCs: after the ground phase (if any) the
+  // rotor commands come from SetMotorCommand (an external controller,
+  // MOTOR_COMMAND) instead of the built-in autopilot. The ESCs hold the last
+  // command (before the first one: the rotor speeds of the start state);
+  // when none arrived for command_timeout_s they command 0 (the motors spool
+  // down with tau_m) and command_timed_out() says so until the next command.
+  // Call before the first step.
+  void UseExternalCommands(double command_timeout_s);
+  // A command received at vehicle time utime [us] (clipped to [0, omega_max]
+  // by the motor model; a non-finite value is taken as 0).
+  void SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime);
+  bool external_commands() const { return external_commands_; }
+  bool command_timed_out() const { return command_timed_out_; }
+  int64_t command_timeouts() const { return command_timeouts_; }
+  // The scenario's position reference at simulated time t_s (trajectory
+  // time counts from the end of the ground phase).
+  ReferencePoint ReferenceAt(double t_s) const { return trajectory_.At(t_s - scenario_.ground.FlightStartS()); }
+
   const Scenario& scenario() const { return scenario_; }
   const PlantState& state() const { return state_; }
   // mu_i = s_i (1 + eta_i) over the step about to be taken.
@@ -141,6 +159,14 @@ class Simulator {
 
   Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;
   GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_, fault_noise_;
+
+  // External commands (UseExternalCommands).
+  bool external_commands_ = false;
+  int64_t command_timeout_us_ = 0;
+  int64_t last_external_utime_ = -1;  // vehicle time of the newest command; -1 before any
+  RotorCommand external_command_;
+  bool command_timed_out_ = false;
+  int64_t command_timeouts_ = 0;
 
   // Strain fault bookkeeping (sample indices are seq values).
   std::vector<int64_t> strain_nan_seq_;

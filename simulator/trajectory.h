@@ -6,16 +6,10 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "controller/reference_point.h"
 #include "simulator/scenario.h"
 
 namespace birotor {
-
-// Reference position, velocity and acceleration, world frame [m, m/s, m/s^2].
-struct ReferencePoint {
-  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
-  Eigen::Vector2d velocity_m_s = Eigen::Vector2d::Zero();
-  Eigen::Vector2d acceleration_m_s2 = Eigen::Vector2d::Zero();
-};
 
 struct QuinticMove {
   double start_s = 0.0;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "controller/motor_command.h"
 #include "simulator/sample_sink.h"
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
@@ -28,6 +29,9 @@ class WireSampleSink : public SampleSink {
   void OnPose(const PoseSample& sample) override;
   void OnLoadCell(const LoadCellSample& sample) override;
   void OnTruth(const TruthSample& sample) override;
+  // The outputs of an in-process estimator and controller (lock-step closed loop).
+  void OnForce(const ForceEstimate& estimate);
+  void OnMotorCommand(const MotorCommand& command);
 
   // Samples whose message could not be encoded (not published).
   int64_t encode_failures() const { return encode_failures_; }

@@ -1,6 +1,7 @@
 // birotor-eval: force error against TRUTH for every method on every reference
 // scenario (simulated in-process) or on one input log, as a Markdown table;
-// optional PNG plots (thesis figures 5.1, 5.2).
+// optional PNG plots (thesis figures 5.1, 5.2). --control: the closed-loop
+// control figures of both controller modes instead.
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -9,9 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/closed_loop.h"
+#include "evaluation/control_metrics.h"
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
+#include "plot/control_plot.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
 #include "transport/config_files.h"
@@ -19,6 +24,71 @@
 #include "transport/logging.h"
 #include "transport/output_file.h"
 #include "transport/program_options.h"
+
+namespace birotor {
+namespace {
+
+// The flight as the control figure draws it: every 10th TRUTH sample (10 ms).
+ControlTrace TraceOf(const ClosedLoopRun& run, const std::string& label) {
+  ControlTrace trace;
+  trace.label = label;
+  if (run.samples.empty()) return trace;
+  const int64_t start_utime = run.samples.front().truth.utime;
+  for (size_t i = 0; i < run.samples.size(); i += 10) {
+    const TrackedSample& s = run.samples[i];
+    trace.t_s.push_back(1e-6 * static_cast<double>(s.truth.utime - start_utime));
+    trace.x_error_m.push_back(s.truth.x_m - s.reference_m.x());
+    trace.z_error_m.push_back(s.truth.z_m - s.reference_m.y());
+    trace.tilt_rad.push_back(s.truth.phi_rad);
+  }
+  return trace;
+}
+
+// --control: every scenario flown closed loop in both modes, one table, and
+// with plot_dir one figure per scenario (<scenario>_control.png).
+int RunControlTable(const std::vector<std::string>& scenarios, const std::string& scenario_dir,
+                    const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
+                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir) {
+  std::string table = ControlTableHeader();
+  for (const std::string& name : scenarios) {
+    Scenario scenario;
+    try {
+      const std::string file =
+          scenario_dir.empty() ? FindConfigFile("scenarios/" + name + ".yaml") : scenario_dir + "/" + name + ".yaml";
+      scenario = LoadScenario(file, overrides);
+    } catch (const std::exception& e) {
+      return ReportError(e.what());
+    }
+    std::vector<ControlTrace> traces;
+    double fault_time_s = -1;
+    for (const bool force_feedback : {false, true}) {
+      ControllerConfig config = controller;
+      config.force_feedback = force_feedback;
+      const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
+      const ControlMetrics metrics = EvaluateControl(run);
+      const char* mode = force_feedback ? "force_feedback" : "nominal";
+      table += ControlTableRow(name, mode, metrics, run);
+      spdlog::info("{} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated", name,
+                   mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
+                   run.controller.descents, run.controller.saturated);
+      traces.push_back(TraceOf(run, mode));
+      if (run.fault_utime >= 0) fault_time_s = metrics.fault_time_s;
+    }
+    std::string error;
+    const std::string png = plot_dir + "/" + name + "_control.png";
+    if (!plot_dir.empty() &&
+        !WriteControlPlot(traces, name + ": nominal vs force_feedback", fault_time_s, png, &error)) {
+      return ReportError("plot " + png + ": " + error);
+    }
+  }
+  std::printf("%s", table.c_str());
+  std::string error;
+  if (!markdown_out.empty() && !WriteFileAtomically(markdown_out, table, &error)) return ReportError(error);
+  return 0;
+}
+
+}  // namespace
+}  // namespace birotor
 
 int main(int argc, char** argv) {
   using namespace birotor;
@@ -53,6 +123,16 @@ int main(int argc, char** argv) {
   app.add_option("--warmup-s", eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
   app.add_option("--markdown-out", markdown_out, "Also write the table to this file");
   app.add_option("--plot-dir", plot_dir, "Write <scenario>_<method>.png plots here");
+  bool control = false;
+  std::string controller_params = FindConfigFile("controller.yaml");
+  std::vector<std::string> control_scenarios = {"hover",       "gentle",  "aggressive",
+                                                "thrust_loss", "density", "thrust_loss_severe"};
+  app.add_flag("--control", control,
+               "Control figures instead: fly each scenario closed loop (birotor-sim --controller) in both "
+               "controller modes with the same gains and report RMS position error, peak tilt, altitude loss "
+               "after the fault and the time back within 5 cm");
+  app.add_option("--controller-params", controller_params,
+                 "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
   double min_usable_fraction = kDefaultMinUsableLogFraction;
   app.add_option("--min-usable-fraction", min_usable_fraction,
                  "Refuse a --log whose readable events are less than this share of its bytes")
@@ -72,6 +152,18 @@ int main(int argc, char** argv) {
   if (!plot_dir.empty() && !std::filesystem::is_directory(plot_dir) &&
       !std::filesystem::create_directories(plot_dir, fs_error)) {
     return ReportError("cannot create --plot-dir " + plot_dir);
+  }
+  if (control) {
+    if (!log_path.empty()) return ReportError("--control flies scenarios; it does not take --log", kExitUsage);
+    ControllerConfig controller;
+    try {
+      controller = LoadControllerConfig(controller_params);
+    } catch (const std::exception& error) {
+      return ReportError(error.what());
+    }
+    // The default list is the estimator's; the control table has its own.
+    if (app.count("--scenarios") == 0) scenarios = control_scenarios;
+    return RunControlTable(scenarios, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir);
   }
   // The Markdown goes to a temporary file next to it, renamed at the end.
   OutputFile markdown;

@@ -2,7 +2,10 @@
 // samples on LCM at a fixed rate, listens for the daemon's FORCE messages,
 // pairs them by seq and prints the publish-to-FORCE latency distribution and
 // the samples that never got a FORCE. Run birotor-estimator with the same
-// --lcm-url and --prefix.
+// --lcm-url and --prefix. --through-controller also publishes IMU and POSE
+// and measures STRAIN published -> MOTOR_COMMAND of a running
+// birotor-controller (paired by utime: a command carries the utime of the
+// FORCE, hence of the strain sample, that triggered it).
 #include <sched.h>
 
 #include <algorithm>
@@ -17,7 +20,10 @@
 #include <vector>
 
 #include "birotor/force_estimate_t.hpp"
+#include "birotor/imu_t.hpp"
+#include "birotor/motor_command_t.hpp"
 #include "birotor/motor_t.hpp"
+#include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "numerics/percentile.h"
 #include "transport/channels.h"
@@ -40,7 +46,42 @@ struct Probe {
   std::atomic<int64_t> received{0};
   std::atomic<int64_t> unmatched{0};  // FORCE with an unknown seq or not decodable
   std::atomic<int64_t> duplicates{0};
+  // --through-controller: per seq, STRAIN published -> MOTOR_COMMAND with its utime.
+  int64_t utime0 = 0;
+  int64_t period_us = 1;
+  std::vector<int64_t> command_latency_ns;  // -1 until a command with that utime arrives
+  std::atomic<int64_t> commands{0};
+  std::atomic<int64_t> commands_unmatched{0};  // timer-triggered commands (no FORCE) and others
 };
+
+void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
+  const int64_t now_ns = birotor::SteadyClockNs();
+  birotor::motor_command_t message;
+  ++probe->commands;
+  if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) != birotor::DecodeError::kNone ||
+      (message.utime - probe->utime0) % probe->period_us != 0) {
+    ++probe->commands_unmatched;
+    return;
+  }
+  const int64_t k = (message.utime - probe->utime0) / probe->period_us;
+  if (k < 0 || static_cast<size_t>(k) >= probe->publish_ns.size() || probe->publish_ns[k] == 0 ||
+      probe->command_latency_ns[k] >= 0) {
+    ++probe->commands_unmatched;
+    return;
+  }
+  probe->command_latency_ns[k] = now_ns - probe->publish_ns[k];
+}
+
+// "p50 .. max" of latencies [ns] in us; sorts them.
+std::string LatencyText(std::vector<int64_t>* latencies) {
+  std::sort(latencies->begin(), latencies->end());
+  char text[200];
+  std::snprintf(text, sizeof text, "p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  max %.1f",
+                birotor::Percentile(*latencies, 0.50) * 1e-3, birotor::Percentile(*latencies, 0.90) * 1e-3,
+                birotor::Percentile(*latencies, 0.99) * 1e-3, birotor::Percentile(*latencies, 0.999) * 1e-3,
+                static_cast<double>(latencies->back()) * 1e-3);
+  return text;
+}
 
 void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
   const int64_t now_ns = birotor::SteadyClockNs();
@@ -73,6 +114,10 @@ int main(int argc, char** argv) {
   app.add_option("--rate-hz", rate_hz, "STRAIN rate [Hz]; MOTOR at half of it")->check(CLI::Range(1.0, 100000.0));
   app.add_option("--duration-s", duration_s, "Publishing time [s]")->check(CLI::Range(0.1, 3600.0));
   app.add_option("--drain-s", drain_s, "Time to wait for the last FORCE messages [s]")->check(CLI::Range(0.0, 60.0));
+  bool through_controller = false;
+  app.add_flag("--through-controller", through_controller,
+               "Also publish IMU (every sample) and POSE (every 10th) of a hover and measure STRAIN published -> "
+               "MOTOR_COMMAND of a running birotor-controller");
   int realtime_priority = 0;
   app.add_option("--realtime-priority", realtime_priority,
                  "SCHED_FIFO priority (1-99) for the probe's threads; 0: normal scheduler")
@@ -100,6 +145,10 @@ int main(int argc, char** argv) {
   probe.latency_ns.assign(static_cast<size_t>(count), -1);
   lcm::Subscription* subscription = lcm->subscribeFunction(channels.force, &OnForce, &probe);
   subscription->setQueueCapacity(100000);
+  probe.command_latency_ns.assign(static_cast<size_t>(count), -1);
+  if (through_controller) {
+    lcm->subscribeFunction(channels.motor_command, &OnCommand, &probe)->setQueueCapacity(100000);
+  }
 
   std::atomic<bool> stop_receiving{false};
   std::thread receiver([&] {
@@ -111,9 +160,13 @@ int main(int argc, char** argv) {
   // Vehicle clock of the synthetic samples: the wall clock at start, so a
   // second run moves forward in time for the daemon.
   const int64_t utime0 = WallClockUs();
+  probe.utime0 = utime0;
+  probe.period_us = period_us;
   strain_t strain;
   motor_t motor;
-  std::vector<uint8_t> strain_buffer, motor_buffer;
+  imu_t imu{};
+  pose_t pose{};
+  std::vector<uint8_t> strain_buffer, motor_buffer, imu_buffer, pose_buffer;
   const int64_t start_ns = SteadyClockNs();
   int64_t published = 0;
   for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
@@ -129,6 +182,20 @@ int main(int argc, char** argv) {
       }
       EncodeMessage(motor, &motor_buffer);
       lcm->publish(channels.motor, motor_buffer.data(), static_cast<unsigned>(motor_buffer.size()));
+    }
+    if (through_controller) {
+      // Level hover at the origin: the controller's inputs besides FORCE.
+      imu.utime = utime;
+      imu.seq = static_cast<int32_t>(k);
+      imu.accel_z_m_s2 = 9.81;
+      EncodeMessage(imu, &imu_buffer);
+      lcm->publish(channels.imu, imu_buffer.data(), static_cast<unsigned>(imu_buffer.size()));
+      if (k % 10 == 0) {
+        pose.utime = utime;
+        pose.seq = static_cast<int32_t>(k / 10);
+        EncodeMessage(pose, &pose_buffer);
+        lcm->publish(channels.pose, pose_buffer.data(), static_cast<unsigned>(pose_buffer.size()));
+      }
     }
     strain.utime = utime;
     strain.seq = static_cast<int32_t>(k);
@@ -163,10 +230,21 @@ int main(int argc, char** argv) {
                        " STRAIN published on " + channels.strain + ": is birotor-estimator running with --lcm-url " +
                        common.lcm_url + " --prefix " + common.prefix + "?");
   }
-  std::printf("latency publish->FORCE [us]: p50 %.1f  p90 %.1f  p99 %.1f  p99.9 %.1f  max %.1f\n",
-              Percentile(latencies, 0.50) * 1e-3, Percentile(latencies, 0.90) * 1e-3,
-              Percentile(latencies, 0.99) * 1e-3, Percentile(latencies, 0.999) * 1e-3,
-              static_cast<double>(latencies.back()) * 1e-3);
+  std::printf("latency publish->FORCE [us]: %s\n", LatencyText(&latencies).c_str());
+  if (through_controller) {
+    std::vector<int64_t> command_latencies;
+    for (int64_t k = 0; k < published; ++k) {
+      if (probe.command_latency_ns[k] >= 0) command_latencies.push_back(probe.command_latency_ns[k]);
+    }
+    std::printf("MOTOR_COMMAND received %" PRId64 ", paired with a STRAIN %zu, unpaired %" PRId64 "\n",
+                probe.commands.load(), command_latencies.size(), probe.commands_unmatched.load());
+    if (command_latencies.empty()) {
+      return ReportError("no MOTOR_COMMAND paired on " + channels.motor_command +
+                         ": is birotor-controller running with --lcm-url " + common.lcm_url + " --prefix " +
+                         common.prefix + "?");
+    }
+    std::printf("latency STRAIN publish->MOTOR_COMMAND [us]: %s\n", LatencyText(&command_latencies).c_str());
+  }
   // 3: the figures are real but some samples got no FORCE (see "dropped").
   return dropped == 0 ? 0 : 3;
 }

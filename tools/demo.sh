@@ -2,6 +2,8 @@
 # The live demo: installs what is missing and builds (tools/setup.sh), then runs
 # birotor-estimator and birotor-sim as separate processes over LCM on loopback,
 # shows birotor-monitor's live view, prints the error figures, writes a PNG.
+# --controller MODE adds birotor-controller: the vehicle flies closed loop on
+# the three processes (e.g. tools/demo.sh --controller force_feedback thrust_loss).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo="$(pwd)"
@@ -30,11 +32,14 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
   --no-truth          the simulator publishes no TRUTH, as a real vehicle: the monitor shows
                       its vehicle view (estimates with 1 sigma, flags, input health) and a
                       summary instead of the error figures
+  --controller MODE   fly closed loop through three processes: birotor-controller (MODE
+                      nominal or force_feedback) publishes MOTOR_COMMAND, birotor-sim
+                      --external-controller runs it as the vehicle's ESCs
   --no-setup          skip tools/setup.sh (no install, no build); use the existing build
   -h, --help          this help
 
 Environment: BIROTOR_BUILD_DIR (default: build), BIROTOR_JOBS (build jobs), as tools/setup.sh.
-Logs: <out>/demo-<scenario>-{setup,estimator,sim,monitor}.log.
+Logs: <out>/demo-<scenario>-{setup,estimator,controller,sim,monitor}.log.
 Exit status: 0 when every step succeeded, 1 when one failed, 2 on wrong usage.
 EOF
 }
@@ -49,6 +54,7 @@ lcm_url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=2097152"
 out_dir="out"
 run_setup=1
 no_truth=0
+controller_mode=""
 scenario_given=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -61,6 +67,8 @@ while [ $# -gt 0 ]; do
     --lcm-url=*) lcm_url="${1#*=}"; shift ;;
     --out) [ $# -ge 2 ] || die_usage "--out needs a value"; out_dir="$2"; shift 2 ;;
     --out=*) out_dir="${1#*=}"; shift ;;
+    --controller) [ $# -ge 2 ] || die_usage "--controller needs a value"; controller_mode="$2"; shift 2 ;;
+    --controller=*) controller_mode="${1#*=}"; shift ;;
     --no-setup) run_setup=0; shift ;;
     --no-truth) no_truth=1; shift ;;
     -*) die_usage "unknown option $1" ;;
@@ -81,6 +89,7 @@ fi
 [[ "$speed" =~ ^[0-9]*\.?[0-9]+$ ]] && awk "BEGIN{exit !($speed > 0)}" \
   || die_usage "--speed must be a positive number, got '$speed'"
 case "$method" in ""|ekf|inversion|motor_map) ;; *) die_usage "--method must be ekf, inversion or motor_map, got '$method'" ;; esac
+case "$controller_mode" in ""|nominal|force_feedback) ;; *) die_usage "--controller must be nominal or force_feedback, got '$controller_mode'" ;; esac
 mkdir -p "$out_dir" 2>/dev/null || fail "cannot create the output folder $out_dir"
 [ -w "$out_dir" ] || fail "cannot write to the output folder $out_dir"
 out_dir="$(cd "$out_dir" && pwd)"
@@ -105,9 +114,11 @@ find_program() {
 sim_bin="$(find_program birotor-sim)"
 estimator_bin="$(find_program birotor-estimator)"
 monitor_bin="$(find_program birotor-monitor)"
+[ -z "$controller_mode" ] || controller_bin="$(find_program birotor-controller)"
 
 # 2. Processes: started here, stopped here by PID (SIGTERM, wait, SIGKILL after 5 s).
 estimator_pid=""
+controller_pid=""
 sim_pid=""
 monitor_pid=""
 stop_process() {  # name pid
@@ -126,6 +137,7 @@ cleanup() {
   stop_process birotor-sim "$sim_pid"; sim_pid=""
   stop_process birotor-monitor "$monitor_pid"; monitor_pid=""
   stop_process birotor-estimator "$estimator_pid"; estimator_pid=""
+  stop_process birotor-controller "$controller_pid"; controller_pid=""
 }
 trap cleanup EXIT
 trap 'echo "demo: interrupted; stopping" >&2; cleanup; exit 130' INT TERM
@@ -164,6 +176,14 @@ if [ "$no_truth" -eq 1 ]; then
   monitor_args+=(--no-truth)
   sim_args+=(--no-truth)
 fi
+if [ -n "$controller_mode" ]; then
+  "$controller_bin" --lcm-url "$lcm_url" --params "$repo/config/controller.yaml" --mode "$controller_mode" \
+    > "$log_prefix-controller.log" 2>&1 &
+  controller_pid=$!
+  wait_for_log birotor-controller "$controller_pid" "$log_prefix-controller.log" "lcm .*: in " 20
+  sim_args+=(--external-controller)
+  echo "demo: closed loop: birotor-controller ($controller_mode) flies the simulator on MOTOR_COMMAND"
+fi
 "$monitor_bin" "${monitor_args[@]}" 2> "$log_prefix-monitor.log" &
 monitor_pid=$!
 wait_for_log birotor-monitor "$monitor_pid" "$log_prefix-monitor.log" "listening on" 20
@@ -183,6 +203,13 @@ fi
 stop_process birotor-estimator "$estimator_pid"
 estimator_pid=""
 grep -h "stopped:" "$log_prefix-estimator.log" | sed 's/^.*\] /estimator: /' || true
+if [ -n "$controller_mode" ]; then
+  kill -0 "$controller_pid" 2>/dev/null || { echo "demo: birotor-controller stopped before the end (log: $log_prefix-controller.log)" >&2; status=1; }
+  stop_process birotor-controller "$controller_pid"
+  controller_pid=""
+  grep -h "stopped:" "$log_prefix-controller.log" | sed 's/^.*\] /controller: /' || true
+  echo "demo: the same flight in-process (lock-step, figures of both modes): birotor-eval --control --scenarios $scenario"
+fi
 grep -h "simulated " "$log_prefix-sim.log" | sed 's/^.*\] /simulator: /' || true
 # Identical figures to birotor-eval need every strain packet delivered and fused in order.
 sent="$(sed -n 's/.*samples: strain \([0-9]*\),.*/\1/p' "$log_prefix-sim.log" | tail -n 1)"

@@ -15,6 +15,8 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.force = prefix + kForceChannel;
   names.estimator_status = prefix + kEstimatorStatusChannel;
   names.sim_status = prefix + kSimStatusChannel;
+  names.motor_command = prefix + kMotorCommandChannel;
+  names.controller_status = prefix + kControllerStatusChannel;
   return names;
 }
 

@@ -18,19 +18,23 @@ inline constexpr char kTruthChannel[] = "TRUTH";
 inline constexpr char kForceChannel[] = "FORCE";
 inline constexpr char kEstimatorStatusChannel[] = "ESTIMATOR_STATUS";
 inline constexpr char kSimStatusChannel[] = "SIM_STATUS";
+inline constexpr char kMotorCommandChannel[] = "MOTOR_COMMAND";
+inline constexpr char kControllerStatusChannel[] = "CONTROLLER_STATUS";
 
 // Full channel names for one prefix.
 struct ChannelNames {
   std::string prefix;
-  std::string strain;            // strain_t
-  std::string motor;             // motor_t
-  std::string imu;               // imu_t
-  std::string pose;              // pose_t
-  std::string loadcell;          // loadcell_t
-  std::string truth;             // truth_t
-  std::string force;             // force_estimate_t
-  std::string estimator_status;  // estimator_status_t
-  std::string sim_status;        // simulator health, owned by simulator/
+  std::string strain;             // strain_t
+  std::string motor;              // motor_t
+  std::string imu;                // imu_t
+  std::string pose;               // pose_t
+  std::string loadcell;           // loadcell_t
+  std::string truth;              // truth_t
+  std::string force;              // force_estimate_t
+  std::string estimator_status;   // estimator_status_t
+  std::string sim_status;         // simulator health, owned by simulator/
+  std::string motor_command;      // motor_command_t
+  std::string controller_status;  // controller_status_t
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);

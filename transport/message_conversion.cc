@@ -78,6 +78,15 @@ void CopyForceFields(const From& from, To* to) {
   to->status = from.status;
 }
 
+template <typename From, typename To>
+void CopyMotorCommandFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  CopyPair(from.omega_cmd_rad_s, to->omega_cmd_rad_s);
+  to->mode = from.mode;
+  to->status = from.status;
+}
+
 // To{} zero-initialises the message's fields that the list does not name.
 template <typename To, typename From>
 To Converted(const From& from, void (*copy)(const From&, To*)) {
@@ -102,5 +111,8 @@ TruthSample FromMessage(const truth_t& m) { return Converted<TruthSample>(m, Cop
 truth_t ToMessage(const TruthSample& s) { return Converted<truth_t>(s, CopyTruthFields); }
 ForceEstimate FromMessage(const force_estimate_t& m) { return Converted<ForceEstimate>(m, CopyForceFields); }
 force_estimate_t ToMessage(const ForceEstimate& e) { return Converted<force_estimate_t>(e, CopyForceFields); }
+
+MotorCommand FromMessage(const motor_command_t& m) { return Converted<MotorCommand>(m, CopyMotorCommandFields); }
+motor_command_t ToMessage(const MotorCommand& c) { return Converted<motor_command_t>(c, CopyMotorCommandFields); }
 
 }  // namespace birotor

@@ -6,10 +6,12 @@
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
 #include "birotor/loadcell_t.hpp"
+#include "birotor/motor_command_t.hpp"
 #include "birotor/motor_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "birotor/truth_t.hpp"
+#include "controller/motor_command.h"
 #include "estimator/samples.h"
 
 namespace birotor {
@@ -34,5 +36,8 @@ truth_t ToMessage(const TruthSample& sample);
 
 ForceEstimate FromMessage(const force_estimate_t& message);
 force_estimate_t ToMessage(const ForceEstimate& estimate);
+
+MotorCommand FromMessage(const motor_command_t& message);
+motor_command_t ToMessage(const MotorCommand& command);
 
 }  // namespace birotor

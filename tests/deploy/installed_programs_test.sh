@@ -77,11 +77,12 @@ unit="$prefix/share/birotor/deploy/birotor-estimator.service"
 env_file="$prefix/share/birotor/deploy/birotor.env"
 grep -q "^ExecStart=$prefix/bin/birotor-estimator " "$unit" || fail "ExecStart of $unit is not under $prefix"
 if command -v systemd-analyze > /dev/null; then
-  for u in "$unit" "$prefix/share/birotor/deploy/birotor-sim.service"; do
+  for u in "$unit" "$prefix/share/birotor/deploy/birotor-sim.service" \
+           "$prefix/share/birotor/deploy/birotor-controller.service"; do
     systemd-analyze verify "$u" > verify.txt 2>&1 || fail "systemd-analyze verify $u: $(cat verify.txt)"
     if grep -v "^$" verify.txt | grep -q .; then fail "systemd-analyze verify $u: $(cat verify.txt)"; fi
   done
-  echo "ok: systemd-analyze verify of both units"
+  echo "ok: systemd-analyze verify of the units"
 else
   echo "note: no systemd-analyze here; the units were not verified"
 fi

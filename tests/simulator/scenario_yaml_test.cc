@@ -24,8 +24,8 @@ std::string LoadError(const std::string& text, const std::vector<std::string>& o
 }
 
 TEST(ScenarioYamlTest, EveryReferenceScenarioLoads) {
-  for (const char* name :
-       {"hover", "gentle", "aggressive", "thrust_loss", "density", "sensor_faults", "bench", "flight_id"}) {
+  for (const char* name : {"hover", "gentle", "aggressive", "thrust_loss", "thrust_loss_severe", "density",
+                           "sensor_faults", "bench", "flight_id"}) {
     const Scenario scenario = LoadScenario(ScenarioPath(name));
     EXPECT_EQ(scenario.name, name);
   }
@@ -35,6 +35,7 @@ TEST(ScenarioYamlTest, EveryReferenceScenarioLoads) {
   ASSERT_EQ(loss.faults.thrust_steps.size(), 1u);
   EXPECT_EQ(loss.faults.thrust_steps[0].rotor, 2);
   EXPECT_DOUBLE_EQ(loss.faults.thrust_steps[0].scale, 0.75);
+  EXPECT_DOUBLE_EQ(LoadScenario(ScenarioPath("thrust_loss_severe")).faults.thrust_steps.at(0).scale, 0.6);
   EXPECT_DOUBLE_EQ(LoadScenario(ScenarioPath("density")).faults.initial_thrust_scale[1], 0.9);
 }
 

@@ -70,6 +70,13 @@ std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failur
     } else if (event.channel == c.truth) {
       truth_t m;
       result = DecodeMessage(event.data.data(), event.data.size(), &m);
+    } else if (event.channel == c.force) {
+      force_estimate_t m;
+      result = DecodeMessage(event.data.data(), event.data.size(), &m);
+    } else if (event.channel == c.motor_command) {
+      motor_command_t m;
+      result = DecodeMessage(event.data.data(), event.data.size(), &m);
+      if (m.utime != event.timestamp_us) ++*decode_failures;
     }
     if (result != DecodeError::kNone) ++*decode_failures;
     ++counts[event.channel];
@@ -131,6 +138,35 @@ TEST(SimLogTest, SameSeedGivesAByteIdenticalLog) {
   EXPECT_EQ(failures, 0);
   EXPECT_FALSE(truncated);
   for (const std::string& path : {a, b, c}) std::remove(path.c_str());
+}
+
+TEST(SimLogTest, ClosedLoopLogHasEveryChannelAndIsByteIdenticalForTheSameSeed) {
+  const std::string a = TempPath("closed_a.lcm"), b = TempPath("closed_b.lcm");
+  const std::string args = "--scenario " + ScenarioPath("hover") +
+                           " --set scenario.duration_s=1 --controller force_feedback --log-level warn --output ";
+  ASSERT_EQ(RunSim(args + a, nullptr), 0);
+  ASSERT_EQ(RunSim(args + b, nullptr), 0);
+  EXPECT_EQ(ReadBytes(a), ReadBytes(b));
+  int decode_failures = 0;
+  bool truncated = false;
+  std::map<std::string, int> counts = DecodeLog(a, &decode_failures, &truncated);
+  EXPECT_EQ(decode_failures, 0);
+  EXPECT_FALSE(truncated);
+  const ChannelNames c = MakeChannelNames();
+  // 1 s: MOTOR_COMMAND at 500 Hz, one FORCE per strain sample (1 kHz).
+  EXPECT_EQ(counts[c.motor_command], 500);
+  EXPECT_EQ(counts[c.force], 1000);
+  EXPECT_EQ(counts[c.strain], 1000);
+  EXPECT_EQ(counts[c.motor], 500);
+  EXPECT_EQ(counts[c.truth], 1000);
+  std::remove(a.c_str());
+  std::remove(b.c_str());
+}
+
+TEST(SimLogTest, ClosedLoopNeedsAnOutputLog) {
+  std::string err;
+  EXPECT_EQ(RunSim("--scenario " + ScenarioPath("hover") + " --controller nominal", &err), 2);
+  EXPECT_NE(err.find("birotor-sim: error: --controller"), std::string::npos) << err;
 }
 
 TEST(SimLogTest, BadScenarioFileExitsNonZeroWithOneLineNamingFileAndKey) {

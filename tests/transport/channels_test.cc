@@ -18,6 +18,8 @@ TEST(ChannelsTest, DefaultPrefix) {
   EXPECT_EQ(names.force, "BIROTOR_FORCE");
   EXPECT_EQ(names.estimator_status, "BIROTOR_ESTIMATOR_STATUS");
   EXPECT_EQ(names.sim_status, "BIROTOR_SIM_STATUS");
+  EXPECT_EQ(names.motor_command, "BIROTOR_MOTOR_COMMAND");
+  EXPECT_EQ(names.controller_status, "BIROTOR_CONTROLLER_STATUS");
 }
 
 TEST(ChannelsTest, CustomAndEmptyPrefix) {

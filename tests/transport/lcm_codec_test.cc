@@ -22,7 +22,7 @@ template <class Msg>
 class CodecTest : public ::testing::Test {};
 
 using AllMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t,
-                                     input_health_t, estimator_status_t>;
+                                     motor_command_t, input_health_t, estimator_status_t>;
 TYPED_TEST_SUITE(CodecTest, AllMessages);
 
 TYPED_TEST(CodecTest, RoundTripReproducesTheBytes) {

@@ -19,7 +19,8 @@ using transport_test::MakeTestMessage;
 template <class Msg>
 class ConversionTest : public ::testing::Test {};
 
-using ConvertedMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t>;
+using ConvertedMessages =
+    ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t, motor_command_t>;
 TYPED_TEST_SUITE(ConversionTest, ConvertedMessages);
 
 TYPED_TEST(ConversionTest, MessageSampleMessageKeepsEveryField) {
@@ -98,6 +99,16 @@ TEST(ConversionTest, StatusBitsMatchTheWireConstants) {
   EXPECT_EQ(kStatusRotor2Fault, force_estimate_t::STATUS_ROTOR2_FAULT);
   EXPECT_EQ(kStatusFilterReset, force_estimate_t::STATUS_FILTER_RESET);
   EXPECT_EQ(kStatusNoMotorInput, force_estimate_t::STATUS_NO_MOTOR_INPUT);
+}
+
+TEST(ConversionTest, MotorCommandConstantsMatchTheLcmFile) {
+  EXPECT_EQ(kModeNominal, motor_command_t::MODE_NOMINAL);
+  EXPECT_EQ(kModeForceFeedback, motor_command_t::MODE_FORCE_FEEDBACK);
+  EXPECT_EQ(kCommandFallbackActive, motor_command_t::STATUS_FALLBACK_ACTIVE);
+  EXPECT_EQ(kCommandInputStale, motor_command_t::STATUS_INPUT_STALE);
+  EXPECT_EQ(kCommandDescending, motor_command_t::STATUS_DESCENDING);
+  EXPECT_EQ(kCommandSaturated, motor_command_t::STATUS_SATURATED);
+  EXPECT_EQ(kCommandNoPoseYet, motor_command_t::STATUS_NO_POSE_YET);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/input_health_t.hpp"
 #include "birotor/loadcell_t.hpp"
+#include "birotor/motor_command_t.hpp"
 #include "birotor/motor_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
@@ -50,6 +51,18 @@ inline motor_t MakeTestMessage<motor_t>() {
   m.omega_cmd_rad_s[1] = 799.25;
   m.omega_meas_rad_s[0] = std::numeric_limits<double>::quiet_NaN();
   m.omega_meas_rad_s[1] = 801.0;
+  return m;
+}
+
+template <>
+inline motor_command_t MakeTestMessage<motor_command_t>() {
+  motor_command_t m{};
+  m.utime = 2500004;
+  m.seq = -9;
+  m.omega_cmd_rad_s[0] = 705.5;
+  m.omega_cmd_rad_s[1] = 744.125;
+  m.mode = motor_command_t::MODE_FORCE_FEEDBACK;
+  m.status = motor_command_t::STATUS_FALLBACK_ACTIVE | motor_command_t::STATUS_INPUT_STALE;
   return m;
 }
 

@@ -1,0 +1,33 @@
+// The controller's output as a plain struct (channel MOTOR_COMMAND), with the
+// mode and status constants of lcmtypes/motor_command_t.lcm (equality checked
+// by tests/transport/message_conversion_test.cc). No LCM here.
+#pragma once
+
+#include <cstdint>
+
+namespace birotor {
+
+// Values of MotorCommand::mode.
+enum ControlMode : int32_t {
+  kModeNominal = 0,        // omega = sqrt(f / c_T)
+  kModeForceFeedback = 1,  // omega_i = sqrt(f_i / (c_T thrust_scale_i)), thrust_scale_i from FORCE
+};
+
+// Bits of MotorCommand::status.
+enum CommandStatusBit : int32_t {
+  kCommandFallbackActive = 1,  // force feedback asked for, FORCE unhealthy: nominal map in use
+  kCommandInputStale = 2,      // POSE, IMU or (in force feedback) FORCE older than its timeout
+  kCommandDescending = 4,      // POSE lost: controlled descent on the IMU-propagated state
+  kCommandSaturated = 8,       // a rotor speed was clipped to [0, omega_max]
+  kCommandNoPoseYet = 16,      // no POSE received yet: rotors at 0
+};
+
+struct MotorCommand {
+  int64_t utime = 0;                   // vehicle time the command is for [us]
+  int32_t seq = 0;                     // command counter, wraps
+  double omega_cmd_rad_s[2] = {0, 0};  // rotor 1, 2 [rad/s], finite, in [0, omega_max]
+  int32_t mode = kModeNominal;         // ControlMode actually in use
+  int32_t status = 0;                  // CommandStatusBit set
+};
+
+}  // namespace birotor

@@ -1,0 +1,62 @@
+// The cascaded position and pitch law shared by the simulator's autopilot and
+// the controller service: from a body state and a position reference to the
+// thrust each rotor must make. Pure, allocation-free; how the forces become
+// rotor speeds (nominal map or force feedback) is the caller's choice.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "controller/controller_params.h"
+#include "controller/reference_point.h"
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+// Rigid-body state the law needs, world frame.
+struct BodyState {
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();    // x, z [m]
+  Eigen::Vector2d velocity_m_s = Eigen::Vector2d::Zero();  // x_dot, z_dot [m/s]
+  double phi_rad = 0.0;                                    // tilt [rad]
+  double phi_dot_rad_s = 0.0;                              // pitch rate [rad/s]
+};
+
+// Thrust each rotor must make [N] (rotor 1, rotor 2), and the world
+// acceleration the outer loop asked for [m/s^2].
+struct RotorForces {
+  double force_n[2] = {0.0, 0.0};
+  Eigen::Vector2d accel_des_m_s2 = Eigen::Vector2d::Zero();
+};
+
+class PositionAttitudeLaw {
+ public:
+  // hover_force_n: per-rotor feed-forward thrust at hover (the equilibrium
+  // solution of the nominal vehicle).
+  PositionAttitudeLaw(const VehicleParams& vehicle, const ControllerParams& gains, double hover_force_n);
+
+  // One control period dt_s = 1 / rate_hz:
+  //   a_des = a_ref + Kp e_p + Kd e_v + Ki int(e_p)                    (world)
+  //   phi_des = atan2(-a_des_x, g + a_des_z), F = F_hover (g + a_des_z) / (g cos phi)
+  //   alpha_des = Kp_phi e_phi - Kd_phi phi_dot + Ki_phi int(e_phi)
+  //   f_1,2 = F / 2 -+ J_eff alpha_des / (2 L)    (tau_phi = L (f2 - f1), eq. 3.12)
+  // with J_eff = J + 2 m_p L^2 (rigid arms).
+  RotorForces Update(const BodyState& state, const ReferencePoint& reference);
+
+  // Clears both integrators (e.g. after a numerical guard).
+  void Reset();
+
+ private:
+  VehicleParams vehicle_;
+  ControllerParams gains_;
+  double hover_total_force_n_;
+  double dt_s_;
+  Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
+  double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
+};
+
+// Rotor speed that makes force_n with thrust scale mu (f = mu c_T omega^2):
+// omega = sqrt(max(f, 0) / (mu c_T)), clipped to [0, omega_max] [rad/s].
+// *saturated (optional) is set when the clip changed the value.
+double RotorSpeedForThrust(const VehicleParams& vehicle, double force_n, double thrust_scale,
+                           bool* saturated = nullptr);
+
+}  // namespace birotor

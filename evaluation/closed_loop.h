@@ -1,0 +1,57 @@
+// The lock-step closed loop: simulator (as the vehicle and its ESCs), the
+// estimator pipeline (the daemon's code) and the flight controller in one
+// process on one virtual clock. Every step the simulator's samples go to the
+// estimator and the controller (and, encoded, to an optional log); at the
+// controller's rate its MOTOR_COMMAND goes to the simulator's ESCs. The same
+// scenario and seed give the same bytes. birotor-sim --controller and
+// birotor-eval --control use it.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "controller/controller_params.h"
+#include "controller/motor_command.h"
+#include "controller/vehicle_controller.h"
+#include "estimator/estimator_config.h"
+#include "estimator/estimator_pipeline.h"
+#include "estimator/samples.h"
+#include "simulator/scenario.h"
+#include "sinks/message_sink.h"
+
+namespace birotor {
+
+struct ClosedLoopOptions {
+  // The ESCs command 0 after this long without a MOTOR_COMMAND [s].
+  double command_timeout_s = 0.1;
+  // Channel prefix of the log.
+  std::string prefix = "BIROTOR_";
+};
+
+// One truth sample with the reference the controller was tracking then.
+struct TrackedSample {
+  TruthSample truth;
+  Eigen::Vector2d reference_m = Eigen::Vector2d::Zero();  // world x, z [m]
+};
+
+struct ClosedLoopRun {
+  std::vector<TrackedSample> samples;  // one per TRUTH sample
+  std::vector<MotorCommand> commands;
+  ControllerHealth controller;
+  PipelineHealth estimator;
+  int64_t fault_utime = -1;      // first thrust step [us]; -1 if none
+  int64_t command_timeouts = 0;  // ESC command timeouts
+  double simulated_s = 0;        // [s]
+  double wall_s = 0;             // [s]
+};
+
+// Flies the scenario closed loop. log (may be null) receives every channel:
+// the simulator's (STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE and
+// MOTOR_COMMAND. The scenario's own controller: section is not used (the
+// gains are controller's).
+ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& estimator,
+                            const ControllerConfig& controller, const ClosedLoopOptions& options,
+                            MessageSink* log = nullptr);
+
+}  // namespace birotor

@@ -1,0 +1,71 @@
+#include "params/controller_config_yaml.h"
+
+#include "params/vehicle_params_yaml.h"
+
+namespace birotor {
+namespace {
+
+void ReadObserverParams(YamlSection s, ObserverParams* o) {
+  s.Double("position_bandwidth_rad_s", 0.1, 50.0, &o->position_bandwidth_rad_s);
+  s.Double("attitude_crossover_rad_s", 0.01, 50.0, &o->attitude_crossover_rad_s);
+  s.Finish();
+}
+
+void ReadSupervisionParams(YamlSection s, SupervisionParams* o) {
+  s.Double("pose_timeout_s", 1e-3, 10.0, &o->pose_timeout_s);
+  s.Double("imu_timeout_s", 1e-4, 10.0, &o->imu_timeout_s);
+  s.Double("force_timeout_s", 1e-4, 10.0, &o->force_timeout_s);
+  s.Double("force_recovery_s", 0.0, 10.0, &o->force_recovery_s);
+  s.Double("min_thrust_scale", 0.05, 1.0, &o->min_thrust_scale);
+  s.Double("max_thrust_scale", 1.0, 10.0, &o->max_thrust_scale);
+  s.Double("descent_rate_m_s", 0.0, 5.0, &o->descent_rate_m_s);
+  s.Finish();
+}
+
+ControllerConfig ReadRoot(YamlSection root) {
+  ControllerConfig config;
+  ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
+  YamlSection c = root.Section("controller");
+  std::string mode;
+  c.String("mode", {"nominal", "force_feedback"}, &mode);
+  config.force_feedback = mode == "force_feedback";
+  c.Double("rate_hz", 10.0, 1e4, &config.gains.rate_hz);
+  {
+    YamlSection gains = c.Section("gains");
+    ReadControllerGains(gains, &config.gains);
+    gains.Finish();
+  }
+  ReadObserverParams(c.Section("observer"), &config.observer);
+  ReadSupervisionParams(c.Section("supervision"), &config.supervision);
+  c.Finish();
+  root.Finish();
+  return config;
+}
+
+}  // namespace
+
+void ReadControllerGains(YamlSection& c, ControllerParams* gains) {
+  c.Double("position_kp_1_s2", 0.0, 1e4, &gains->position_kp_1_s2);
+  c.Double("position_kd_1_s", 0.0, 1e4, &gains->position_kd_1_s);
+  c.Double("position_ki_1_s3", 0.0, 1e4, &gains->position_ki_1_s3);
+  c.Double("attitude_kp_1_s2", 0.0, 1e6, &gains->attitude_kp_1_s2);
+  c.Double("attitude_kd_1_s", 0.0, 1e4, &gains->attitude_kd_1_s);
+  c.Double("attitude_ki_1_s3", 0.0, 1e6, &gains->attitude_ki_1_s3);
+  c.Double("max_tilt_rad", 1e-3, 1.5, &gains->max_tilt_rad);
+  c.Double("max_integral_m_s2", 0.0, 100.0, &gains->max_integral_m_s2);
+  c.Double("max_attitude_integral_rad_s2", 0.0, 1e4, &gains->max_attitude_integral_rad_s2);
+}
+
+ControllerConfig LoadControllerConfig(const std::string& file) {
+  ControllerConfig config;
+  WithFileErrors(file, [&] { config = ReadRoot(YamlSection::LoadFile(file)); });
+  return config;
+}
+
+ControllerConfig ParseControllerConfig(const std::string& text, const std::string& file) {
+  ControllerConfig config;
+  WithFileErrors(file, [&] { config = ReadRoot(YamlSection::LoadString(text, file)); });
+  return config;
+}
+
+}  // namespace birotor

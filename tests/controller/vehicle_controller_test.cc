@@ -1,0 +1,225 @@
+// The supervised controller (vehicle_controller.h): force feedback makes
+// omega_i = sqrt(f_i / (c_T mu_i)), the fallback to the nominal map comes
+// within one control period of a bad FORCE and goes after force_recovery_s of
+// good ones, a lost POSE gives a controlled descent, and no input sequence
+// (NaN, infinities, huge values, out of order) gives a command that is not
+// finite or outside [0, omega_max].
+#include "controller/vehicle_controller.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "model/equilibrium.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int64_t kPeriodUs = 2000;  // 500 Hz (ControllerParams::rate_hz)
+
+double HoverForce(const VehicleParams& p) {
+  const Equilibrium e = SolveHoverEquilibrium(p);
+  return 0.5 * (e.force_n[0] + e.force_n[1]);
+}
+
+// A vehicle at rest at the origin, level, seen by every sensor; FORCE
+// reports thrust scales (1, scale2) with the given status.
+class HoverFeed {
+ public:
+  // A controller of config that has seen the first POSE (at the origin, t = 0).
+  explicit HoverFeed(const ControllerConfig& config) : controller_(config) {
+    controller_.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
+  }
+  bool send_pose = true;
+  bool send_force = true;
+  int32_t force_status = kStatusValid;
+  double scale2 = 0.75;
+
+  // Feeds the samples of (now - period, now] and runs one control period.
+  MotorCommand Period() {
+    for (int64_t t = now_us_ + 1000; t <= now_us_ + kPeriodUs; t += 1000) {
+      controller_.OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81});
+      if (send_force) {
+        ForceEstimate force;
+        force.utime = t;
+        force.thrust_scale[1] = scale2;
+        force.status = force_status;
+        controller_.OnForce(force);
+      }
+      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0});
+    }
+    now_us_ += kPeriodUs;
+    return controller_.Update(now_us_, ReferencePoint());
+  }
+  // 0.2 s of hover: past force_recovery_s, in force feedback when asked for.
+  MotorCommand Settle() {
+    MotorCommand c;
+    for (int k = 0; k < 100; ++k) c = Period();
+    return c;
+  }
+  int64_t now_us() const { return now_us_; }
+  const VehicleController& controller() const { return controller_; }
+
+ private:
+  VehicleController controller_;
+  int64_t now_us_ = 0;
+  int32_t imu_seq_ = 0, pose_seq_ = 0;
+};
+
+TEST(VehicleControllerTest, NoPoseMeansRotorsAtZero) {
+  VehicleController controller{ControllerConfig()};
+  const MotorCommand c = controller.Update(1000, ReferencePoint());
+  EXPECT_EQ(c.omega_cmd_rad_s[0], 0.0);
+  EXPECT_EQ(c.omega_cmd_rad_s[1], 0.0);
+  EXPECT_TRUE(c.status & kCommandNoPoseYet);
+}
+
+TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarder) {
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  MotorCommand c = feed.Settle();
+  EXPECT_EQ(c.mode, kModeForceFeedback);
+  EXPECT_EQ(c.status, 0);
+  // At rest on the reference each rotor must make the hover force:
+  // omega_i = sqrt(f_hover / (c_T mu_i)).
+  const double c_t = config.vehicle.thrust_coeff_n_s2_rad2;
+  EXPECT_NEAR(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / (0.75 * c_t)), 1e-6);
+
+  ControllerConfig nominal_config = config;
+  nominal_config.force_feedback = false;
+  HoverFeed nominal_feed(nominal_config);
+  c = nominal_feed.Settle();
+  EXPECT_EQ(c.mode, kModeNominal);
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
+}
+
+TEST(VehicleControllerTest, FallsBackWithinOnePeriodOfABadForceAndReturns) {
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  feed.Settle();
+  const double nominal_omega = std::sqrt(HoverForce(config.vehicle) / config.vehicle.thrust_coeff_n_s2_rad2);
+
+  for (const auto& [scale2, status] :
+       {std::pair<double, int32_t>{kNaN, kStatusValid}, std::pair<double, int32_t>{0.75, kStatusConverging}}) {
+    feed.scale2 = scale2;
+    feed.force_status = status;
+    MotorCommand c = feed.Period();  // the first period with bad FORCE
+    EXPECT_TRUE(c.status & kCommandFallbackActive);
+    EXPECT_NEAR(c.omega_cmd_rad_s[1], nominal_omega, 1e-6);
+    // Healthy again: nominal until force_recovery_s (50 ms) of good FORCE.
+    feed.scale2 = 0.75;
+    feed.force_status = kStatusValid;
+    int periods_to_return = 0;
+    do {
+      c = feed.Period();
+      ++periods_to_return;
+    } while ((c.status & kCommandFallbackActive) && periods_to_return < 1000);
+    EXPECT_EQ(periods_to_return, 26);  // first good sample + 50 ms, on the 2 ms grid
+  }
+  EXPECT_EQ(feed.controller().health().fallbacks, 2);
+  EXPECT_EQ(feed.controller().health().force_unhealthy, 4);
+}
+
+TEST(VehicleControllerTest, StaleForceFallsBackWithinTimeoutPlusOnePeriod) {
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  feed.Settle();
+  const int64_t last_force_us = feed.now_us();
+  feed.send_force = false;
+  MotorCommand c;
+  do {
+    c = feed.Period();
+  } while (!(c.status & kCommandFallbackActive) && feed.now_us() < last_force_us + 100000);
+  EXPECT_TRUE(c.status & kCommandInputStale);
+  EXPECT_LE(feed.now_us() - last_force_us, static_cast<int64_t>(config.supervision.force_timeout_s * 1e6) + kPeriodUs);
+}
+
+TEST(VehicleControllerTest, LostPoseGivesAControlledDescent) {
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  feed.Settle();
+  feed.send_pose = false;
+  MotorCommand c;
+  for (int k = 0; k < 30; ++k) c = feed.Period();  // 60 ms > pose_timeout_s
+  EXPECT_TRUE(c.status & kCommandDescending);
+  EXPECT_EQ(feed.controller().health().descents, 1);
+  // Sink-rate reference -0.3 m/s at rest: a_z = Kd (-0.3) < 0, less thrust than hover.
+  const double c_t = config.vehicle.thrust_coeff_n_s2_rad2;
+  EXPECT_LT(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t));
+  feed.send_pose = true;
+  for (int k = 0; k < 10; ++k) c = feed.Period();
+  EXPECT_FALSE(c.status & kCommandDescending);
+}
+
+TEST(VehicleControllerTest, OutOfOrderSamplesAreDropped) {
+  VehicleController controller{ControllerConfig()};
+  ForceEstimate force;
+  force.utime = 5000;
+  force.status = kStatusValid;
+  controller.OnForce(force);
+  force.utime = 4000;
+  controller.OnForce(force);
+  controller.OnPose(PoseSample{3000, 0, 0.0, 0.0, 0.0});
+  controller.OnPose(PoseSample{3000, 1, 0.0, 0.0, 0.0});
+  EXPECT_EQ(controller.health().force.rejected_out_of_order, 1);
+  EXPECT_EQ(controller.health().pose.rejected_out_of_order, 1);
+  EXPECT_EQ(controller.health().force.last_utime, 5000);
+}
+
+TEST(VehicleControllerTest, AnyInputSequenceGivesFiniteBoundedCommands) {
+  for (const bool force_feedback : {false, true}) {
+    ControllerConfig config;
+    config.force_feedback = force_feedback;
+    VehicleController controller(config);
+    std::mt19937_64 random(12);
+    const double specials[] = {kNaN, std::numeric_limits<double>::infinity(), -1e300, 1e300, 0.0, -0.0, 1e-300};
+    auto value = [&](double typical) {
+      const uint64_t draw = random() % 8;
+      if (draw < 6) return typical * std::uniform_real_distribution<double>(-2.0, 2.0)(random);
+      return specials[random() % 7];
+    };
+    auto utime = [&](int64_t now) { return now + static_cast<int64_t>(random() % 20000) - 10000; };
+    int64_t now = 0;
+    for (int k = 0; k < 20000; ++k) {
+      now += 1000;
+      switch (random() % 4) {
+        case 0:
+          controller.OnPose(PoseSample{utime(now), 0, value(1.0), value(1.0), value(0.5)});
+          break;
+        case 1:
+          controller.OnImu(ImuSample{utime(now), 0, value(5.0), value(20.0), value(20.0)});
+          break;
+        case 2: {
+          ForceEstimate f;
+          f.utime = utime(now);
+          f.status = static_cast<int32_t>(random() % 256);
+          for (int i = 0; i < 2; ++i) {
+            f.force_n[i] = value(20.0);
+            f.thrust_scale[i] = value(1.0);
+          }
+          controller.OnForce(f);
+          break;
+        }
+        default: {
+          ReferencePoint r;
+          r.position_m = Eigen::Vector2d(value(2.0), value(2.0));
+          // Out-of-order control times too.
+          const MotorCommand c = controller.Update(utime(now), r);
+          for (double omega : c.omega_cmd_rad_s) {
+            ASSERT_TRUE(std::isfinite(omega));
+            ASSERT_GE(omega, 0.0);
+            ASSERT_LE(omega, config.vehicle.omega_max_rad_s);
+          }
+        }
+      }
+    }
+    EXPECT_GT(controller.health().commands, 4000);
+  }
+}
+
+}  // namespace
+}  // namespace birotor

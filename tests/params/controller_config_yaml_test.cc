@@ -1,0 +1,64 @@
+// Loading config/controller.yaml and refusing bad files with file/key/range errors.
+#include "params/controller_config_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace birotor {
+namespace {
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    ParseControllerConfig(text, "bad.yaml");
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string ReferenceFile() { return std::string(BIROTOR_SOURCE_DIR) + "/config/controller.yaml"; }
+
+TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
+  const ControllerConfig config = LoadControllerConfig(ReferenceFile());
+  const ControllerConfig defaults;
+  EXPECT_EQ(config.force_feedback, defaults.force_feedback);
+  EXPECT_EQ(config.vehicle.thrust_coeff_n_s2_rad2, defaults.vehicle.thrust_coeff_n_s2_rad2);
+  EXPECT_EQ(config.gains.rate_hz, defaults.gains.rate_hz);
+  EXPECT_EQ(config.gains.position_kp_1_s2, defaults.gains.position_kp_1_s2);
+  EXPECT_EQ(config.gains.attitude_ki_1_s3, defaults.gains.attitude_ki_1_s3);
+  EXPECT_EQ(config.gains.max_attitude_integral_rad_s2, defaults.gains.max_attitude_integral_rad_s2);
+  EXPECT_EQ(config.observer.position_bandwidth_rad_s, defaults.observer.position_bandwidth_rad_s);
+  EXPECT_EQ(config.observer.attitude_crossover_rad_s, defaults.observer.attitude_crossover_rad_s);
+  EXPECT_EQ(config.supervision.pose_timeout_s, defaults.supervision.pose_timeout_s);
+  EXPECT_EQ(config.supervision.imu_timeout_s, defaults.supervision.imu_timeout_s);
+  EXPECT_EQ(config.supervision.force_timeout_s, defaults.supervision.force_timeout_s);
+  EXPECT_EQ(config.supervision.force_recovery_s, defaults.supervision.force_recovery_s);
+  EXPECT_EQ(config.supervision.min_thrust_scale, defaults.supervision.min_thrust_scale);
+  EXPECT_EQ(config.supervision.max_thrust_scale, defaults.supervision.max_thrust_scale);
+  EXPECT_EQ(config.supervision.descent_rate_m_s, defaults.supervision.descent_rate_m_s);
+}
+
+TEST(ControllerConfigYamlTest, MissingKeysAreNamed) {
+  YAML::Node reference = YAML::LoadFile(ReferenceFile());
+  reference["controller"]["gains"].remove("attitude_kd_1_s");
+  reference["controller"]["supervision"].remove("force_timeout_s");
+  YAML::Emitter emitter;
+  emitter << reference;
+  EXPECT_EQ(ErrorOf(emitter.c_str()),
+            "bad.yaml: missing 2 keys: controller.gains.attitude_kd_1_s, controller.supervision.force_timeout_s "
+            "(every key is required; the shipped reference files have them all)");
+}
+
+TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
+  std::string e = ErrorOf("controller:\n  mode: fast\n");
+  EXPECT_NE(e.find("bad.yaml: key 'controller.mode'"), std::string::npos) << e;
+  EXPECT_NE(e.find("force_feedback"), std::string::npos) << e;
+  e = ErrorOf("controller:\n  supervision: {min_thrust_scale: 0}\n");
+  EXPECT_NE(e.find("controller.supervision.min_thrust_scale"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0.05, 1]"), std::string::npos) << e;
+  EXPECT_THROW(LoadControllerConfig("/nonexistent/controller.yaml"), ParamError);
+}
+
+}  // namespace
+}  // namespace birotor
