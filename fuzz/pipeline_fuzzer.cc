@@ -190,6 +190,35 @@ bool DecodeRaw(ByteReader* in, Msg* message) {
   return birotor::DecodeMessage(bytes, size, message) == birotor::DecodeError::kNone;
 }
 
+// A channel's synthetic stream: its last stamp, period and seq.
+struct ChannelClock {
+  int64_t* clock_us;  // last stamp of the channel [us]
+  int64_t period_us;
+  int32_t* seq;  // last seq of the channel
+};
+
+// The next sample of a channel: 1 in 8 packets raw bytes through the checked
+// decoder (a decode error is counted, as the daemon does, and false
+// returned), the others stamped and numbered on the channel's clock and
+// filled by `make` from the fuzzer's bytes.
+template <class Msg, class Sample, class Make>
+bool NextSample(ByteReader* in, bool raw, InputChannel channel, const ChannelClock& clock, EstimatorPipeline* pipeline,
+                Make make, Sample* sample) {
+  if (!raw) {
+    sample->utime = NextUtime(in, clock.clock_us, clock.period_us);
+    sample->seq = NextSeq(in, clock.seq);
+    make(sample);
+    return true;
+  }
+  Msg message;
+  if (!DecodeRaw(in, &message)) {
+    pipeline->CountDecodeError(channel);
+    return false;
+  }
+  *sample = birotor::FromMessage(message);
+  return true;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -205,10 +234,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   int64_t received[birotor::kNumInputChannels] = {0, 0, 0, 0};
   const int64_t period_us[birotor::kNumInputChannels] = {kStrainPeriodUs, 2 * kStrainPeriodUs, kStrainPeriodUs,
                                                          10 * kStrainPeriodUs};
-  birotor::strain_t strain_message;
-  birotor::motor_t motor_message;
-  birotor::imu_t imu_message;
-  birotor::pose_t pose_message;
   birotor::ForceEstimate estimate;
 
   int burst_samples = 0;
@@ -250,75 +275,47 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     pipeline.CountReceived(channel);
     ++received[channel_index];
 
+    const ChannelClock clock{&clock_us[channel_index], period_us[channel_index], &seq[channel_index]};
     switch (channel) {
       case InputChannel::kStrain: {
         birotor::StrainSample s;
-        if (raw) {
-          if (!DecodeRaw(&in, &strain_message)) {
-            pipeline.CountDecodeError(channel);
-            break;
-          }
-          s = birotor::FromMessage(strain_message);
-        } else {
-          s.utime = NextUtime(&in, &clock_us[0], period_us[0]);
-          s.seq = NextSeq(&in, &seq[0]);
-          s.deflection_rad[0] = FieldValue(&in, -kHoverDeflectionRad, 1e-3);
-          s.deflection_rad[1] = FieldValue(&in, kHoverDeflectionRad, 1e-3);
+        const auto make = [&](birotor::StrainSample* x) {
+          x->deflection_rad[0] = FieldValue(&in, -kHoverDeflectionRad, 1e-3);
+          x->deflection_rad[1] = FieldValue(&in, kHoverDeflectionRad, 1e-3);
+        };
+        if (NextSample<birotor::strain_t>(&in, raw, channel, clock, &pipeline, make, &s) &&
+            pipeline.OnStrain(s, &estimate)) {
+          CheckEstimate(estimate);
         }
-        if (pipeline.OnStrain(s, &estimate)) CheckEstimate(estimate);
         break;
       }
       case InputChannel::kMotor: {
         birotor::MotorSample m;
-        if (raw) {
-          if (!DecodeRaw(&in, &motor_message)) {
-            pipeline.CountDecodeError(channel);
-            break;
-          }
-          m = birotor::FromMessage(motor_message);
-        } else {
-          m.utime = NextUtime(&in, &clock_us[1], period_us[1]);
-          m.seq = NextSeq(&in, &seq[1]);
-          for (int i = 0; i < 2; ++i) m.omega_cmd_rad_s[i] = FieldValue(&in, kHoverOmegaRadS, 200.0);
-          for (int i = 0; i < 2; ++i) m.omega_meas_rad_s[i] = FieldValue(&in, kHoverOmegaRadS, 200.0);
-        }
-        pipeline.OnMotor(m);
+        const auto make = [&](birotor::MotorSample* x) {
+          for (int i = 0; i < 2; ++i) x->omega_cmd_rad_s[i] = FieldValue(&in, kHoverOmegaRadS, 200.0);
+          for (int i = 0; i < 2; ++i) x->omega_meas_rad_s[i] = FieldValue(&in, kHoverOmegaRadS, 200.0);
+        };
+        if (NextSample<birotor::motor_t>(&in, raw, channel, clock, &pipeline, make, &m)) pipeline.OnMotor(m);
         break;
       }
       case InputChannel::kImu: {
         birotor::ImuSample s;
-        if (raw) {
-          if (!DecodeRaw(&in, &imu_message)) {
-            pipeline.CountDecodeError(channel);
-            break;
-          }
-          s = birotor::FromMessage(imu_message);
-        } else {
-          s.utime = NextUtime(&in, &clock_us[2], period_us[2]);
-          s.seq = NextSeq(&in, &seq[2]);
-          s.gyro_y_rad_s = FieldValue(&in, 0.0, 1.0);
-          s.accel_x_m_s2 = FieldValue(&in, 0.0, 1.0);
-          s.accel_z_m_s2 = FieldValue(&in, 9.81, 1.0);
-        }
-        pipeline.OnImu(s);
+        const auto make = [&](birotor::ImuSample* x) {
+          x->gyro_y_rad_s = FieldValue(&in, 0.0, 1.0);
+          x->accel_x_m_s2 = FieldValue(&in, 0.0, 1.0);
+          x->accel_z_m_s2 = FieldValue(&in, 9.81, 1.0);
+        };
+        if (NextSample<birotor::imu_t>(&in, raw, channel, clock, &pipeline, make, &s)) pipeline.OnImu(s);
         break;
       }
       case InputChannel::kPose: {
         birotor::PoseSample s;
-        if (raw) {
-          if (!DecodeRaw(&in, &pose_message)) {
-            pipeline.CountDecodeError(channel);
-            break;
-          }
-          s = birotor::FromMessage(pose_message);
-        } else {
-          s.utime = NextUtime(&in, &clock_us[3], period_us[3]);
-          s.seq = NextSeq(&in, &seq[3]);
-          s.x_m = FieldValue(&in, 0.0, 1.0);
-          s.z_m = FieldValue(&in, 0.0, 1.0);
-          s.phi_rad = FieldValue(&in, 0.0, 0.3);
-        }
-        pipeline.OnPose(s);
+        const auto make = [&](birotor::PoseSample* x) {
+          x->x_m = FieldValue(&in, 0.0, 1.0);
+          x->z_m = FieldValue(&in, 0.0, 1.0);
+          x->phi_rad = FieldValue(&in, 0.0, 0.3);
+        };
+        if (NextSample<birotor::pose_t>(&in, raw, channel, clock, &pipeline, make, &s)) pipeline.OnPose(s);
         break;
       }
     }

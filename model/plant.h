@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "model/birotor_dynamics.h"
+#include "model/equilibrium.h"
 #include "model/rk4.h"
 
 namespace birotor {
@@ -38,6 +39,18 @@ inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
 // Rotor thrust f = mu c_T omega^2 [N].
 inline double RotorThrust(const VehicleParams& p, double omega_rad_s, double thrust_scale) {
   return thrust_scale * p.thrust_coeff_n_s2_rad2 * omega_rad_s * omega_rad_s;
+}
+
+// The plant at rest in hover at the origin: the equilibrium's deflections and
+// rotor speeds, every position, tilt and rate zero (a fixed point of
+// PlantDerivative with the equilibrium's speeds as commands).
+inline PlantState HoverPlantState(const Equilibrium& eq) {
+  PlantState x = PlantState::Zero();
+  x(kPlantQ + kB1) = eq.deflection_rad[0];
+  x(kPlantQ + kB2) = eq.deflection_rad[1];
+  x(kPlantOmega1) = eq.omega_rad_s[0];
+  x(kPlantOmega2) = eq.omega_rad_s[1];
+  return x;
 }
 
 // Time derivative of the plant state.

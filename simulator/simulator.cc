@@ -110,12 +110,9 @@ Simulator::Simulator(const Scenario& scenario)
       state_(kPlantQ + kB1 + i) = StaticDeflectionRad(p, i, force);
     }
   } else {
+    state_ = HoverPlantState(equilibrium_);
     state_(kPlantQ + kX) = scenario_.start_position_m[0];
     state_(kPlantQ + kZ) = scenario_.start_position_m[1];
-    state_(kPlantQ + kB1) = equilibrium_.deflection_rad[0];
-    state_(kPlantQ + kB2) = equilibrium_.deflection_rad[1];
-    state_(kPlantOmega1) = equilibrium_.omega_rad_s[0];
-    state_(kPlantOmega2) = equilibrium_.omega_rad_s[1];
   }
   for (GaussMarkov& eta : turbulence_) eta.Reset(&turbulence_noise_);
 }

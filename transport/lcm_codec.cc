@@ -108,11 +108,16 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
   for (int32_t i = 0; i < num_inputs; ++i) {
     if (!SkipInputHealth(&cursor)) return cursor.error();
   }
-  const bool tail_ok = cursor.Skip(6 * 8)              // nis mean/max/gate, processing times
-                       && cursor.Skip(8)               // resets
-                       && cursor.SkipString()          // last_reset_reason
-                       && cursor.Skip(8)               // published
-                       && cursor.Skip(2 * 8 + 2 * 8);  // force_n, thrust_scale
+  const bool tail_ok = cursor.Skip(6 * 8)             // nis mean/max/gate, processing times
+                       && cursor.Skip(8)              // resets
+                       && cursor.SkipString()         // last_reset_reason
+                       && cursor.Skip(8)              // published
+                       && cursor.Skip(2 * 8 + 2 * 8)  // force_n, thrust_scale
+                       && cursor.Skip(2 * 8 + 2 * 8)  // gauge_offset_rad, gauge_offset_std_rad
+                       && cursor.SkipString()         // gauge_offset_source
+                       && cursor.Skip(4 * 8)          // tares, tares_refused_*
+                       && cursor.SkipString()         // last_tare_refusal
+                       && cursor.Skip(4 * 8);         // udp_datagrams .. udp_kernel_dropped
   return tail_ok ? DecodeError::kNone : cursor.error();
 }
 

@@ -137,11 +137,7 @@ ConstantForceRun RunConstantForces(const std::string& method, double force1_n, d
   EstimatorPipeline pipeline(config);
   const VehicleParams& p = config.vehicle;
   const Equilibrium eq = SolveHoverEquilibrium(p);
-  PlantState x = PlantState::Zero();
-  x(kPlantQ + kB1) = eq.deflection_rad[0];
-  x(kPlantQ + kB2) = eq.deflection_rad[1];
-  x(kPlantOmega1) = eq.omega_rad_s[0];
-  x(kPlantOmega2) = eq.omega_rad_s[1];
+  PlantState x = HoverPlantState(eq);
   PlantInput u;
   u.omega_cmd_rad_s[0] = std::sqrt(force1_n / p.thrust_coeff_n_s2_rad2);
   u.omega_cmd_rad_s[1] = std::sqrt(force2_n / p.thrust_coeff_n_s2_rad2);

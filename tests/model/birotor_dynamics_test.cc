@@ -63,11 +63,7 @@ TEST(BirotorDynamics, MassMatrixSolveMatchesCholesky) {
 TEST(BirotorDynamics, HoverEquilibriumIsAFixedPointOfThePlant) {
   const VehicleParams p;
   const Equilibrium eq = SolveHoverEquilibrium(p);
-  PlantState x = PlantState::Zero();
-  x(kPlantQ + kB1) = eq.deflection_rad[0];
-  x(kPlantQ + kB2) = eq.deflection_rad[1];
-  x(kPlantOmega1) = eq.omega_rad_s[0];
-  x(kPlantOmega2) = eq.omega_rad_s[1];
+  const PlantState x = HoverPlantState(eq);
   PlantInput u;
   u.omega_cmd_rad_s[0] = eq.omega_rad_s[0];
   u.omega_cmd_rad_s[1] = eq.omega_rad_s[1];

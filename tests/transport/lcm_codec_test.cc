@@ -118,6 +118,24 @@ TEST(CodecTest, CorruptStringLengthIsRejected) {
   EXPECT_EQ(DecodeStatus(no_terminator), DecodeError::kMalformed);
 }
 
+// libFuzzer (decode_fuzzer, 10-minute run): the strings added after
+// thrust_scale (gauge_offset_source, last_tare_refusal) were not walked, so a
+// length of INT_MIN reached the generated decoder (signed overflow, then a
+// 2 GB copy). Offsets from the end: four int64 udp counters close the message.
+TEST(CodecTest, CorruptLengthOfTheLaterStringsIsRejected) {
+  const estimator_status_t message = MakeTestMessage<estimator_status_t>();
+  const std::vector<uint8_t> valid = Encode(message);
+  const size_t refusal_length_offset = valid.size() - 4 * 8 - (message.last_tare_refusal.size() + 1) - 4;
+  const size_t source_length_offset = refusal_length_offset - 4 * 8 - (message.gauge_offset_source.size() + 1) - 4;
+  for (const size_t offset : {refusal_length_offset, source_length_offset}) {
+    for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
+      std::vector<uint8_t> bytes = valid;
+      WriteInt32(&bytes, offset, length);
+      EXPECT_NE(DecodeStatus(bytes), DecodeError::kNone) << "offset " << offset << " length " << length;
+    }
+  }
+}
+
 TEST(CodecTest, CorruptStringLengthInAStandaloneInputHealthIsRejected) {
   const std::vector<uint8_t> valid = Encode(MakeTestMessage<input_health_t>());
   for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
