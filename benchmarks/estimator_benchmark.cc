@@ -94,7 +94,7 @@ void BM_StrainSample(benchmark::State& state, const char* method) {
   size_t index = 0;
   int64_t offset_us = 0;
   ForceEstimate estimate;
-  StrainUpdateInfo info;
+  StrainStepInfo info;
   for (auto _ : state) {
     const StrainSample s = NextStrain(
         events, &index, &offset_us, [&](const MotorSample& m) { estimator->AddMotor(m); },

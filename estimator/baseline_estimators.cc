@@ -9,6 +9,13 @@
 #include "model/linearization.h"
 
 namespace birotor {
+namespace {
+
+bool HasTelemetry(const MotorSample& sample) {
+  return std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1]);
+}
+
+}  // namespace
 
 InversionEstimator::InversionEstimator(const VehicleParams& params, const InversionOptions& options)
     : params_(params), options_(options), motor_(params) {
@@ -36,10 +43,14 @@ void InversionEstimator::Reset() {
   count_ = 0;
 }
 
-void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) {
-  *info = StrainUpdateInfo();
-  info->nis = std::nan("");
-  info->fused = true;
+void InversionEstimator::AddMotor(const MotorSample& sample) {
+  motor_.AddMotor(sample);
+  if (HasTelemetry(sample)) Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
+}
+
+void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+  *info = StrainStepInfo();
+  Report(MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused));
   utime_[head_] = sample.utime;
   deflection_rad_[head_][0] = sample.deflection_rad[0];
   deflection_rad_[head_][1] = sample.deflection_rad[1];
@@ -94,10 +105,14 @@ void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* es
 MotorMapEstimator::MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options)
     : params_(params), options_(options), motor_(params) {}
 
-void MotorMapEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) {
-  *info = StrainUpdateInfo();
-  info->nis = std::nan("");
-  info->fused = true;
+void MotorMapEstimator::AddMotor(const MotorSample& sample) {
+  motor_.AddMotor(sample);
+  if (HasTelemetry(sample)) Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
+}
+
+void MotorMapEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+  *info = StrainStepInfo();
+  Report(MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kNotFused));
   motor_.Advance(sample.utime);
   estimate->utime = sample.utime;
   estimate->seq = sample.seq;

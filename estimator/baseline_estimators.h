@@ -26,8 +26,9 @@ class InversionEstimator : public ForceEstimator {
   InversionEstimator(const VehicleParams& params, const InversionOptions& options);
   const char* Name() const override { return "inversion"; }
   void Reset() override;
-  void AddMotor(const MotorSample& sample) override { motor_.AddMotor(sample); }
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) override;
+  // Telemetry is used as the rotor speed of thrust_scale: reported fused.
+  void AddMotor(const MotorSample& sample) override;
+  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
  private:
   VehicleParams params_;
@@ -52,8 +53,10 @@ class MotorMapEstimator : public ForceEstimator {
   MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options);
   const char* Name() const override { return "motor_map"; }
   void Reset() override { motor_.Reset(); }
-  void AddMotor(const MotorSample& sample) override { motor_.AddMotor(sample); }
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) override;
+  // Telemetry is the rotor speed of the map: reported fused. The strain
+  // gauges are not used: each strain sample is reported not fused.
+  void AddMotor(const MotorSample& sample) override;
+  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
  private:
   VehicleParams params_;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "estimator/filter_status.h"
 
 namespace birotor {
 namespace {
@@ -40,68 +43,101 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
     process_noise_psd_(kDeflectionRateIndex[i], kDeflectionRateIndex[i]) = options.deflection_rate_psd_rad2_s3;
     process_noise_psd_(kOmegaIndex[i], kOmegaIndex[i]) = options.omega_psd_rad2_s;
     process_noise_psd_(kThrustScaleIndex[i], kThrustScaleIndex[i]) = options.thrust_scale_psd_1_s;
+    hover_input_.omega_cmd_rad_s[i] =
+        ClampCommand(params_, std::sqrt(params_.HoverForceN() / params_.thrust_coeff_n_s2_rad2));
   }
+  command_ = hover_input_;
   state_.setZero();
   covariance_.setIdentity();
 }
 
 void EkfForceEstimator::Reset() {
+  DiscardQueued();
   initialized_ = false;
   converged_ = false;
   consecutive_gated_ = 0;
   has_motor_ = false;
-  has_previous_motor_ = false;
-  telemetry_pending_ = false;
-  gyro_pending_ = false;
+  command_ = hover_input_;
   for (int i = 0; i < 2; ++i) {
     fault_[i] = false;
-    below_since_utime_[i] = -1;
+    fault_since_utime_[i] = -1;
   }
+  deficit_ = false;
+  deficit_since_utime_ = -1;
+}
+
+bool EkfForceEstimator::TelemetryUsable(const MotorSample& sample) const {
+  return options_.use_motor_telemetry && std::isfinite(sample.omega_meas_rad_s[0]) &&
+         std::isfinite(sample.omega_meas_rad_s[1]);
+}
+
+void EkfForceEstimator::ReportNotFused(FusionSource source, int64_t utime) const {
+  Report(MakeFusionReport(source, utime, FusionOutcome::kNotFused));
 }
 
 void EkfForceEstimator::AddMotor(const MotorSample& sample) {
-  if (has_motor_ && sample.utime < motor_.utime) return;  // the pipeline keeps order; be safe
-  if (has_motor_) {
-    previous_motor_ = motor_;
-    has_previous_motor_ = true;
+  // Telemetry switched off is a measurement the filter does not use: said at once.
+  const bool has_telemetry = std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1]);
+  if (has_telemetry && !options_.use_motor_telemetry) ReportNotFused(FusionSource::kTelemetry, sample.utime);
+  MotorSample dropped;
+  if (motor_queue_.push(sample, &dropped) && TelemetryUsable(dropped)) {
+    ReportNotFused(FusionSource::kTelemetry, dropped.utime);
   }
-  motor_ = sample;
-  has_motor_ = true;
-  telemetry_pending_ = options_.use_motor_telemetry && std::isfinite(sample.omega_meas_rad_s[0]) &&
-                       std::isfinite(sample.omega_meas_rad_s[1]);
 }
 
 void EkfForceEstimator::AddImu(const ImuSample& sample) {
-  // Thrust of the current estimate (hover before the first strain sample).
+  // Ground contact on arrival, with the thrust of the current estimate
+  // (hover before the first strain sample); it selects the model of the
+  // next predictions.
   const double total_force_n =
       initialized_ ? process_.Force(state_, 0) + process_.Force(state_, 1) : 2.0 * params_.HoverForceN();
   contact_.Update(sample.utime, sample.accel_z_m_s2, total_force_n);
-  if (!options_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) return;
-  gyro_rad_s_ = sample.gyro_y_rad_s;
-  gyro_pending_ = true;
+  if (!options_.use_gyro) {
+    ReportNotFused(FusionSource::kGyro, sample.utime);
+    return;
+  }
+  ImuSample dropped;
+  if (imu_queue_.push(sample, &dropped)) ReportNotFused(FusionSource::kGyro, dropped.utime);
 }
 
-EkfInput EkfForceEstimator::CommandAt(int64_t utime) const {
-  EkfInput input;
-  input.body_supported = options_.body_held || contact_.supported();
-  const MotorSample* source = nullptr;
-  if (has_motor_) source = (motor_.utime <= utime || !has_previous_motor_) ? &motor_ : &previous_motor_;
-  for (int i = 0; i < 2; ++i) {
-    input.omega_cmd_rad_s[i] = source ? ClampCommand(params_, source->omega_cmd_rad_s[i])
-                                      : std::sqrt(params_.HoverForceN() / params_.thrust_coeff_n_s2_rad2);
+void EkfForceEstimator::DiscardQueued() {
+  while (!motor_queue_.empty()) {
+    if (TelemetryUsable(motor_queue_.front())) ReportNotFused(FusionSource::kTelemetry, motor_queue_.front().utime);
+    motor_queue_.pop();
   }
-  return input;
+  while (!imu_queue_.empty()) {
+    ReportNotFused(FusionSource::kGyro, imu_queue_.front().utime);
+    imu_queue_.pop();
+  }
 }
 
 void EkfForceEstimator::Initialize(const StrainSample& sample) {
-  // b from the measurement, rates 0, omega from telemetry, else the newest
-  // command, else hover; mu = 1 with a large variance.
-  const EkfInput input = CommandAt(sample.utime);
+  // Commands stamped up to the sample: the newest holds. The newest
+  // telemetry sets omega (else the command); older telemetry and queued gyro
+  // samples are not fused. b from the measurement, rates 0, mu = 1 with a
+  // large variance.
+  bool has_telemetry = false;
+  MotorSample telemetry;
+  while (!motor_queue_.empty() && motor_queue_.front().utime <= sample.utime) {
+    const MotorSample& m = motor_queue_.front();
+    for (int i = 0; i < 2; ++i) command_.omega_cmd_rad_s[i] = ClampCommand(params_, m.omega_cmd_rad_s[i]);
+    has_motor_ = true;
+    if (TelemetryUsable(m)) {
+      if (has_telemetry) ReportNotFused(FusionSource::kTelemetry, telemetry.utime);
+      telemetry = m;
+      has_telemetry = true;
+    }
+    motor_queue_.pop();
+  }
+  while (!imu_queue_.empty() && imu_queue_.front().utime <= sample.utime) {
+    ReportNotFused(FusionSource::kGyro, imu_queue_.front().utime);
+    imu_queue_.pop();
+  }
   state_.setZero();
   covariance_.setZero();
   for (int i = 0; i < 2; ++i) {
     state_(kDeflectionIndex[i]) = sample.deflection_rad[i];
-    state_(kOmegaIndex[i]) = telemetry_pending_ ? motor_.omega_meas_rad_s[i] : input.omega_cmd_rad_s[i];
+    state_(kOmegaIndex[i]) = has_telemetry ? telemetry.omega_meas_rad_s[i] : command_.omega_cmd_rad_s[i];
     state_(kThrustScaleIndex[i]) = 1.0;
     covariance_(kDeflectionIndex[i], kDeflectionIndex[i]) = strain_model_.noise(i, i);
     covariance_(kDeflectionRateIndex[i], kDeflectionRateIndex[i]) =
@@ -111,14 +147,18 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
         options_.initial_thrust_scale_std * options_.initial_thrust_scale_std;
   }
   covariance_(kPitchRate, kPitchRate) = options_.initial_pitch_rate_std_rad_s * options_.initial_pitch_rate_std_rad_s;
-  telemetry_pending_ = false;
-  gyro_pending_ = false;
+  if (has_telemetry) {
+    // The state was set from it: fused, without an innovation.
+    Report(MakeFusionReport(FusionSource::kTelemetry, telemetry.utime, FusionOutcome::kFused));
+  }
   consecutive_gated_ = 0;
   converged_ = false;
   for (int i = 0; i < 2; ++i) {
     fault_[i] = false;
-    below_since_utime_[i] = -1;
+    fault_since_utime_[i] = -1;
   }
+  deficit_ = false;
+  deficit_since_utime_ = -1;
   last_utime_ = sample.utime;
   initialized_ = true;
 }
@@ -135,52 +175,101 @@ void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   covariance_ += process_noise_psd_ * dt_s;
 }
 
-void EkfForceEstimator::FuseTelemetry(int64_t utime) {
-  if (!telemetry_pending_) return;
-  telemetry_pending_ = false;
-  // Carry the telemetry from its own time to the strain time with the motor
-  // model: omega(t) ~ omega_meas + (cmd - omega_meas) / tau_m (t - t_meas).
-  const double lead_s = (utime - motor_.utime) * kMicrosecond;
-  if (lead_s < 0 || lead_s > 0.05) return;
-  const EkfInput input = CommandAt(motor_.utime);
-  MotorSpeedMeasurementModel::Vector z;
-  for (int i = 0; i < 2; ++i) {
-    const double meas = motor_.omega_meas_rad_s[i];
-    z(i) = meas + (input.omega_cmd_rad_s[i] - meas) / params_.motor_time_constant_s * lead_s;
+void EkfForceEstimator::PredictTo(int64_t utime) {
+  if (utime <= last_utime_) return;
+  const double dt_s = (utime - last_utime_) * kMicrosecond;
+  // Equal sub-steps no longer than max_prediction_step_s (one step at the
+  // nominal 1 kHz; several across a short gap in the strain stream).
+  const int steps = static_cast<int>(std::ceil(dt_s / options_.max_prediction_step_s - 1e-9));
+  const double step_s = dt_s / steps;
+  EkfInput input = command_;
+  input.body_supported = options_.body_held || contact_.supported();
+  for (int k = 0; k < steps; ++k) Predict(step_s, input);
+  last_utime_ = utime;
+}
+
+void EkfForceEstimator::ApplyQueuedUpTo(int64_t utime) {
+  while (true) {
+    const bool motor_due = !motor_queue_.empty() && motor_queue_.front().utime <= utime;
+    const bool imu_due = !imu_queue_.empty() && imu_queue_.front().utime <= utime;
+    if (!motor_due && !imu_due) return;
+    if (motor_due && (!imu_due || motor_queue_.front().utime <= imu_queue_.front().utime)) {
+      const MotorSample sample = motor_queue_.front();
+      motor_queue_.pop();
+      ApplyMotor(sample);
+    } else {
+      const ImuSample sample = imu_queue_.front();
+      imu_queue_.pop();
+      ApplyImu(sample);
+    }
   }
-  const Innovation<2> innovation = ComputeInnovation(motor_model_, state_, covariance_, z);
-  JosephUpdate(motor_model_, innovation, &state_, &covariance_);
 }
 
-void EkfForceEstimator::FuseGyro() {
-  if (!gyro_pending_) return;
-  gyro_pending_ = false;
-  const Innovation<1> innovation =
-      ComputeInnovation(gyro_model_, state_, covariance_, GyroMeasurementModel::Vector(gyro_rad_s_));
-  JosephUpdate(gyro_model_, innovation, &state_, &covariance_);
+void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
+  const bool late = sample.utime < last_utime_;
+  if (TelemetryUsable(sample)) {
+    if (late) {
+      ReportNotFused(FusionSource::kTelemetry, sample.utime);
+    } else {
+      PredictTo(sample.utime);
+      const MotorSpeedMeasurementModel::Vector z(sample.omega_meas_rad_s[0], sample.omega_meas_rad_s[1]);
+      Report(Fuse(motor_model_, z, options_.telemetry_gate_nis, FusionSource::kTelemetry, sample.utime));
+    }
+  } else if (!late) {
+    PredictTo(sample.utime);  // the previous command holds up to this stamp
+  }
+  for (int i = 0; i < 2; ++i) command_.omega_cmd_rad_s[i] = ClampCommand(params_, sample.omega_cmd_rad_s[i]);
+  has_motor_ = true;
 }
 
-void EkfForceEstimator::FuseStrain(const StrainSample& sample, StrainUpdateInfo* info) {
+void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
+  if (sample.utime < last_utime_) {
+    ReportNotFused(FusionSource::kGyro, sample.utime);
+    return;
+  }
+  PredictTo(sample.utime);
+  Report(Fuse(gyro_model_, GyroMeasurementModel::Vector(sample.gyro_y_rad_s), options_.gyro_gate_nis,
+              FusionSource::kGyro, sample.utime));
+}
+
+template <typename Model>
+FusionReport EkfForceEstimator::Fuse(const Model& model, const typename Model::Vector& z, double gate,
+                                     FusionSource source, int64_t utime) {
+  const Innovation<Model::kSize> innovation = ComputeInnovation(model, state_, covariance_, z);
+  FusionReport report;
+  report.source = source;
+  report.utime = utime;
+  report.size = Model::kSize;
+  report.innovation.template head<Model::kSize>() = innovation.residual;
+  report.innovation_covariance.template topLeftCorner<Model::kSize, Model::kSize>() = innovation.covariance;
+  report.nis = innovation.nis;
+  report.gate = gate;
+  if (!(innovation.nis <= gate)) {  // a NaN NIS is rejected too
+    report.outcome = FusionOutcome::kRejectedGate;
+    return report;
+  }
+  KalmanUpdate(model, innovation, &state_, &covariance_);
+  report.outcome = FusionOutcome::kFused;
+  return report;
+}
+
+FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
-  Innovation<2> innovation = ComputeInnovation(strain_model_, state_, covariance_, z);
-  info->nis = innovation.nis;
-  if (!(innovation.nis <= options_.gate_nis_threshold)) {
-    ++consecutive_gated_;
-    if (consecutive_gated_ < options_.gate_consecutive_limit) {
-      info->gated = true;
-      return;
-    }
-    // A persistent change is real (e.g. a lost propeller blade): open up mu
-    // and the arm rates, then fuse.
-    const double extra = options_.gate_inflation_thrust_scale_std;
-    for (int i = 0; i < 2; ++i) {
-      covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
-    }
-    innovation = ComputeInnovation(strain_model_, state_, covariance_, z);
+  FusionReport report = Fuse(strain_model_, z, options_.strain_gate_nis, FusionSource::kStrain, sample.utime);
+  if (report.outcome == FusionOutcome::kFused) {
+    consecutive_gated_ = 0;
+    return report;
   }
-  consecutive_gated_ = 0;
-  JosephUpdate(strain_model_, innovation, &state_, &covariance_);
-  info->fused = true;
+  if (++consecutive_gated_ < options_.gate_consecutive_limit) return report;
+  // A persistent change is real (e.g. a lost propeller blade): open up the
+  // thrust scales (var(mu_i) += inflation^2), then fuse without the gate.
+  const double extra = options_.gate_inflation_thrust_scale_std;
+  for (int i = 0; i < 2; ++i) covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
+  report = Fuse(strain_model_, z, std::numeric_limits<double>::infinity(), FusionSource::kStrain, sample.utime);
+  report.gate = options_.strain_gate_nis;
+  report.fused_after_inflation = report.outcome == FusionOutcome::kFused;
+  if (report.fused_after_inflation) consecutive_gated_ = 0;
+  return report;
 }
 
 bool EkfForceEstimator::ConditionCovariance() {
@@ -205,30 +294,52 @@ bool EkfForceEstimator::ConditionCovariance() {
   return true;
 }
 
-void EkfForceEstimator::UpdateFaults(int64_t utime) {
-  const int64_t persistence_us = static_cast<int64_t>(options_.fault_persistence_s * 1e6);
-  for (int i = 0; i < 2; ++i) {
-    const double mu = state_(kThrustScaleIndex[i]);
-    const double margin = options_.fault_n_sigma * std::sqrt(covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]));
-    if (!fault_[i]) {
-      if (mu + margin < options_.fault_thrust_scale) {
-        if (below_since_utime_[i] < 0) below_since_utime_[i] = utime;
-        if (utime - below_since_utime_[i] >= persistence_us) fault_[i] = true;
-      } else {
-        below_since_utime_[i] = -1;
-      }
-    } else if (mu - margin > options_.fault_clear_thrust_scale) {
-      fault_[i] = false;
-      below_since_utime_[i] = -1;
+namespace {
+
+// Persistence and hysteresis of one flag: raised after `raise` held for
+// persistence_us, lowered as soon as `lower` holds.
+void UpdateFlag(bool raise, bool lower, int64_t utime, int64_t persistence_us, bool* flag, int64_t* since_utime) {
+  if (!*flag) {
+    if (!raise) {
+      *since_utime = -1;
+      return;
     }
+    if (*since_utime < 0) *since_utime = utime;
+    if (utime - *since_utime >= persistence_us) *flag = true;
+  } else if (lower) {
+    *flag = false;
+    *since_utime = -1;
   }
 }
 
-void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
-  estimate->utime = sample.utime;
-  estimate->seq = sample.seq;
-  double max_std_n = 0;
+}  // namespace
+
+void EkfForceEstimator::UpdateFaults(int64_t utime) {
+  const int64_t persistence_us = static_cast<int64_t>(options_.fault_persistence_s * 1e6);
+  const double n = options_.fault_n_sigma;
+  const EkfIndex m1 = kThrustScale1, m2 = kThrustScale2;
+  // Rotor i weaker than rotor j: d = mu_j - mu_i, var d = P_jj + P_ii - 2 P_ij.
+  const double std_d = std::sqrt(std::max(covariance_(m1, m1) + covariance_(m2, m2) - 2.0 * covariance_(m1, m2), 0.0));
   for (int i = 0; i < 2; ++i) {
+    const double d = state_(kThrustScaleIndex[1 - i]) - state_(kThrustScaleIndex[i]);
+    UpdateFlag(d - n * std_d > options_.rotor_fault_asymmetry, d + n * std_d < options_.rotor_fault_clear_asymmetry,
+               utime, persistence_us, &fault_[i], &fault_since_utime_[i]);
+  }
+  // Shared deficit: even the stronger rotor is below the threshold.
+  double upper = -1e9, lower = -1e9;  // max over rotors of mu + n std, mu - n std
+  for (int i = 0; i < 2; ++i) {
+    const double mu = state_(kThrustScaleIndex[i]);
+    const double std_mu = std::sqrt(covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]));
+    upper = std::max(upper, mu + n * std_mu);
+    lower = std::max(lower, mu - n * std_mu);
+  }
+  UpdateFlag(upper<options_.thrust_deficit_scale, lower> options_.thrust_deficit_clear_scale, utime, persistence_us,
+             &deficit_, &deficit_since_utime_);
+}
+
+void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
+  for (int i = 0; i < 2; ++i) {
+    // var f_i = g^T P_(omega_i, mu_i) g with g = (df/domega, df/dmu).
     const Eigen::Vector2d grad = process_.ForceGradient(state_, i);
     const int w = kOmegaIndex[i], m = kThrustScaleIndex[i];
     const double variance = grad(0) * grad(0) * covariance_(w, w) + 2.0 * grad(0) * grad(1) * covariance_(w, m) +
@@ -236,53 +347,33 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     estimate->force_n[i] = process_.Force(state_, i);
     estimate->force_std_n[i] = std::sqrt(std::max(variance, 0.0));
     estimate->thrust_scale[i] = state_(m);
-    max_std_n = std::max(max_std_n, estimate->force_std_n[i]);
   }
-  if (max_std_n < options_.converged_force_std_n) converged_ = true;
-  int32_t status = converged_ ? kStatusValid : kStatusConverging;
-  if (gated) status |= kStatusMeasurementRejected;
-  if (fault_[0]) status |= kStatusRotor1Fault;
-  if (fault_[1]) status |= kStatusRotor2Fault;
-  if (!has_motor_) status |= kStatusNoMotorInput;
-  estimate->status = status;
+  SetFilterStatus(sample, options_.converged_force_std_n, gated, has_motor_, &converged_, estimate);
+  if (fault_[0]) estimate->status |= kStatusRotor1Fault;
+  if (fault_[1]) estimate->status |= kStatusRotor2Fault;
+  if (deficit_) estimate->status |= kStatusThrustDeficit;
 }
 
-void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) {
-  *info = StrainUpdateInfo();
-  info->nis = std::nan("");
-  const double dt_s = (sample.utime - last_utime_) * kMicrosecond;
-  if (initialized_ && dt_s > options_.max_dt_s) {
-    initialized_ = false;
-    info->reset = true;
-  }
+void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+  *info = StrainStepInfo();
+  // At (re-)initialisation the state is set from the sample: fused, without an innovation.
+  FusionReport strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
   if (!initialized_) {
     Initialize(sample);
-    info->fused = true;
-    FillEstimate(sample, false, estimate);
-    return;
-  }
-  if (dt_s > 0) {
-    // Equal sub-steps no longer than max_prediction_step_s (one step at the
-    // nominal 1 kHz; several across a short gap in the strain stream).
-    const int steps = static_cast<int>(std::ceil(dt_s / options_.max_prediction_step_s - 1e-9));
-    const double step_s = dt_s / steps;
-    for (int k = 0; k < steps; ++k) {
-      const int64_t step_start_utime = last_utime_ + static_cast<int64_t>(std::llround(k * step_s / kMicrosecond));
-      Predict(step_s, CommandAt(step_start_utime));
+  } else {
+    ApplyQueuedUpTo(sample.utime);
+    PredictTo(sample.utime);
+    strain = FuseStrain(sample);
+    if (!ConditionCovariance()) {
+      // Numerical failure: start again from this sample.
+      Initialize(sample);
+      info->reset = ResetReason::kNumerical;
+      strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
     }
-    last_utime_ = sample.utime;
+    UpdateFaults(sample.utime);
   }
-  FuseTelemetry(sample.utime);
-  FuseGyro();
-  FuseStrain(sample, info);
-  if (!ConditionCovariance()) {
-    // Numerical failure: start again from this sample.
-    Initialize(sample);
-    info->reset = true;
-    info->fused = true;
-  }
-  UpdateFaults(sample.utime);
-  FillEstimate(sample, info->gated, estimate);
+  Report(strain);
+  FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
 }
 
 }  // namespace birotor

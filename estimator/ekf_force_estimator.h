@@ -1,6 +1,7 @@
 // The extended Kalman filter that estimates each rotor's thrust and its
 // efficiency mu_i against the nominal map from the strain gauges, with the
 // motor commands as inputs and motor telemetry and gyro as extra measurements.
+// Every measurement is fused at its own time stamp and reported (FusionReport).
 #pragma once
 
 #include <cstdint>
@@ -9,35 +10,60 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/ground_contact.h"
+#include "estimator/sample_queue.h"
 
 namespace birotor {
 
+// MOTOR and IMU samples wait in a queue until the next strain sample; the
+// filter is then predicted to each one's stamp in time order (the command of
+// a MOTOR sample holds from its stamp on), fuses it, and is predicted on to
+// the strain sample. A measurement stamped before the filter's time (it
+// arrived after a newer strain sample had been processed) cannot be fused at
+// its stamp: it is reported kNotFused (its command still takes effect). The
+// filter predicts across any strain interval in sub-steps; the pipeline
+// re-initialises it after PipelineOptions::reset_gap_s.
 class EkfForceEstimator : public ForceEstimator {
  public:
+  // Queued samples per input: more than 0.1 s (the default reset gap) of IMU at 1 kHz.
+  static constexpr int kQueueCapacity = 128;
+
   EkfForceEstimator(const VehicleParams& params, const EkfOptions& options);
 
   const char* Name() const override { return "ekf"; }
   void Reset() override;
   void AddMotor(const MotorSample& sample) override;
   void AddImu(const ImuSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) override;
+  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
   const EkfMatrix& covariance() const { return covariance_; }
   const EkfProcessModel& process_model() const { return process_; }
   const GroundContact& ground_contact() const { return contact_; }
+  int64_t utime() const { return last_utime_; }  // time of the state [us]
 
  private:
-  // Motor command in effect at time utime (zero-order hold of the newest
-  // command not newer than utime).
-  EkfInput CommandAt(int64_t utime) const;
+  bool TelemetryUsable(const MotorSample& sample) const;
   void Initialize(const StrainSample& sample);
+  // Predicts from the state's time to utime in equal RK4 sub-steps of at
+  // most max_prediction_step_s with the held command; nothing if not later.
+  void PredictTo(int64_t utime);
   void Predict(double dt_s, const EkfInput& input);
-  void FuseTelemetry(int64_t utime);
-  void FuseGyro();
-  // Strain update with the chi-square gate; fills info.
-  void FuseStrain(const StrainSample& sample, StrainUpdateInfo* info);
+  // Applies the queued MOTOR and IMU samples stamped up to utime, oldest
+  // first (MOTOR first on equal stamps).
+  void ApplyQueuedUpTo(int64_t utime);
+  void ApplyMotor(const MotorSample& sample);
+  void ApplyImu(const ImuSample& sample);
+  // Computes the innovation of z, gates it and, when it passes, updates the
+  // state and covariance (Joseph form). Returns what happened.
+  template <typename Model>
+  FusionReport Fuse(const Model& model, const typename Model::Vector& z, double gate, FusionSource source,
+                    int64_t utime);
+  // Strain update with its gate and the inflation after persistent rejection.
+  FusionReport FuseStrain(const StrainSample& sample);
+  void ReportNotFused(FusionSource source, int64_t utime) const;
+  // Empties both queues, reporting each waiting measurement as not fused.
+  void DiscardQueued();
   // Symmetrises P and applies the variance floors and ceilings; false if the
   // state or covariance is not finite (or a variance is negative).
   bool ConditionCovariance();
@@ -52,26 +78,25 @@ class EkfForceEstimator : public ForceEstimator {
   GyroMeasurementModel gyro_model_;
   GroundContact contact_;        // from the IMU: selects the supported-body model
   EkfMatrix process_noise_psd_;  // diagonal Qc; Q = Qc dt
+  EkfInput hover_input_;         // command assumed before any MOTOR sample
 
   bool initialized_ = false;
   bool converged_ = false;
-  int64_t last_utime_ = 0;
+  int64_t last_utime_ = 0;  // time of state_ [us]
   EkfState state_;
   EkfMatrix covariance_;
   int consecutive_gated_ = 0;
 
-  // Two newest motor samples (commands and telemetry).
   bool has_motor_ = false;
-  bool has_previous_motor_ = false;
-  MotorSample motor_;
-  MotorSample previous_motor_;
-  bool telemetry_pending_ = false;
-  bool gyro_pending_ = false;
-  double gyro_rad_s_ = 0;
+  EkfInput command_;  // held from the newest applied MOTOR sample's stamp
+  SampleQueue<MotorSample, kQueueCapacity> motor_queue_;
+  SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
 
-  // Rotor fault detection with persistence and hysteresis.
+  // Rotor faults and the shared thrust deficit, with persistence and hysteresis.
   bool fault_[2] = {false, false};
-  int64_t below_since_utime_[2] = {-1, -1};
+  int64_t fault_since_utime_[2] = {-1, -1};
+  bool deficit_ = false;
+  int64_t deficit_since_utime_ = -1;
 };
 
 }  // namespace birotor

@@ -164,27 +164,40 @@ Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfState& x
   return out;
 }
 
-// Kalman update in Joseph form, which keeps P symmetric positive
-// semi-definite under round-off and for any gain:
-//   K = P H^T S^-1,  x += K y,  P = (I - K H) P (I - K H)^T + K R K^T.
-// Expanded with S = H P H^T + R it is the same matrix,
-//   P = P - K (P H^T)^T - (P H^T) K^T + K S K^T,
-// computed in O(n^2 m) instead of O(n^3); the result is symmetrised.
+// Covariance update in Joseph form, for any gain K (optimal or not):
+//   P+ = (I - K H) P (I - K H)^T + K R K^T.
+// The factor (I - K H) is applied as two rank-m corrections, A = P - K (H P)
+// and A (I - K H)^T = A - (A H^T) K^T, so the product costs O(n^2 m) instead
+// of O(n^3); it is the same product as the dense form, not the expanded
+// P - K S K^T (which only equals it at the optimal gain and loses the
+// positive semi-definite structure to round-off). Not symmetrised here.
+template <int M>
+EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEkfStateSize, M>& gain,
+                           const Eigen::Matrix<double, M, kEkfStateSize>& h_jacobian,
+                           const Eigen::Matrix<double, M, M>& noise) {
+  Eigen::Matrix<double, M, kEkfStateSize> h_p;
+  h_p.noalias() = h_jacobian * cov;
+  EkfMatrix a = cov;
+  a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
+  Eigen::Matrix<double, kEkfStateSize, M> a_ht;
+  a_ht.noalias() = a * h_jacobian.transpose();
+  EkfMatrix out = a;
+  out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T
+  Eigen::Matrix<double, kEkfStateSize, M> k_r;
+  k_r.noalias() = gain * noise;
+  out.noalias() += k_r.lazyProduct(gain.transpose());  // + K R K^T
+  return out;
+}
+
+// Kalman update with the optimal gain K = P H^T S^-1: x += K y, and P by
+// JosephCovariance.
 template <typename Model>
-void JosephUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
+void KalmanUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
   using Gain = Eigen::Matrix<double, kEkfStateSize, Model::kSize>;
-  Gain p_ht;
-  p_ht.noalias() = (*cov) * model.h_jacobian.transpose();
   Gain gain;
-  gain.noalias() = p_ht * innovation.covariance_inverse;
+  gain.noalias() = (*cov) * model.h_jacobian.transpose() * innovation.covariance_inverse;
   x->noalias() += gain * innovation.residual;
-  Gain k_s;
-  k_s.noalias() = gain * innovation.covariance;
-  // -K (P H^T)^T - (P H^T) K^T + K S K^T = K (S K^T - (P H^T)^T) - (P H^T) K^T
-  Gain half = 0.5 * k_s - p_ht;  // symmetric split: (K S/2 - P H^T) K^T, plus its transpose
-  EkfMatrix delta;
-  delta.noalias() = half.lazyProduct(gain.transpose());
-  *cov += delta + delta.transpose();
+  *cov = JosephCovariance<Model::kSize>(*cov, gain, model.h_jacobian, model.noise);
 }
 
 // ---- inline implementation of EkfProcessModel ----

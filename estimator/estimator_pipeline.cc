@@ -1,6 +1,8 @@
 #include "estimator/estimator_pipeline.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "estimator/baseline_estimators.h"
@@ -47,6 +49,34 @@ const char* InputChannelName(InputChannel channel) {
   return "?";
 }
 
+const char* ResetReasonName(ResetReason reason) {
+  switch (reason) {
+    case ResetReason::kNone:
+      return "";
+    case ResetReason::kStart:
+      return "start";
+    case ResetReason::kGap:
+      return "gap";
+    case ResetReason::kTimeBackwards:
+      return "time_backwards";
+    case ResetReason::kNumerical:
+      return "numerical";
+  }
+  return "?";
+}
+
+InputChannel InputChannelOf(FusionSource source) {
+  switch (source) {
+    case FusionSource::kStrain:
+      return InputChannel::kStrain;
+    case FusionSource::kTelemetry:
+      return InputChannel::kMotor;
+    case FusionSource::kGyro:
+      return InputChannel::kImu;
+  }
+  return InputChannel::kStrain;
+}
+
 std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config) {
   if (config.method == "ekf") return std::make_unique<EkfForceEstimator>(config.vehicle, config.ekf);
   if (config.method == "inversion") return std::make_unique<InversionEstimator>(config.vehicle, config.inversion);
@@ -60,15 +90,36 @@ std::unique_ptr<ForceEstimator> MakeForceEstimator(const EstimatorConfig& config
   return nullptr;
 }
 
+double GateOf(const EstimatorConfig& config, InputChannel channel) {
+  constexpr double kNoGate = std::numeric_limits<double>::quiet_NaN();
+  // The linear methods (linear_kf, luenberger) gate strain and gyro with the
+  // EKF's options; they use telemetry without a filter update.
+  const bool linear = config.method == "linear_kf" || config.method == "luenberger";
+  if (config.method != "ekf" && !linear) return kNoGate;
+  switch (channel) {
+    case InputChannel::kStrain:
+      return config.ekf.strain_gate_nis;
+    case InputChannel::kMotor:
+      return linear ? kNoGate : config.ekf.telemetry_gate_nis;
+    case InputChannel::kImu:
+      return config.ekf.gyro_gate_nis;
+    case InputChannel::kPose:
+      return kNoGate;
+  }
+  return kNoGate;
+}
+
 EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
     : config_(config),
       method_(MakeForceEstimator(config)),
       tare_(config.vehicle, config.tare),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
-      notch_(config.harmonic_notch) {
+      notch_(config.harmonic_notch),
+      max_forward_jump_us_(static_cast<int64_t>(std::llround(config.pipeline.max_forward_jump_s * 1e6))) {
   if (!method_) throw std::invalid_argument("unknown estimation method '" + config.method + "'");
+  method_->set_fusion_sink(this);
   health_.gauge = GaugeCalibration::FromVehicle(config.vehicle);
-  health_.last_reset_reason.reserve(32);  // no allocation when a reason is set later
+  for (int i = 0; i < kNumInputChannels; ++i) health_.inputs[i].gate = GateOf(config, static_cast<InputChannel>(i));
 }
 
 EstimatorPipeline::~EstimatorPipeline() = default;
@@ -88,10 +139,32 @@ void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
 }
 
 void EstimatorPipeline::TakePeriod() {
-  for (InputCounters& c : health_.inputs) c.accepted_in_period = 0;
-  health_.nis_sum = 0;
-  health_.nis_max = 0;
-  health_.nis_count = 0;
+  for (InputCounters& c : health_.inputs) {
+    c.accepted_in_period = 0;
+    c.nis_sum = 0;
+    c.nis_max = 0;
+    c.nis_count = 0;
+  }
+}
+
+void EstimatorPipeline::OnFusion(const FusionReport& report) {
+  InputCounters& c = Counters(&health_, InputChannelOf(report.source));
+  switch (report.outcome) {
+    case FusionOutcome::kFused:
+      ++c.fused;
+      break;
+    case FusionOutcome::kRejectedGate:
+      ++c.rejected_gate;
+      break;
+    case FusionOutcome::kNotFused:
+      ++c.not_fused;
+      break;
+  }
+  if (std::isfinite(report.nis)) {
+    c.nis_sum += report.nis;
+    if (report.nis > c.nis_max) c.nis_max = report.nis;
+    ++c.nis_count;
+  }
 }
 
 EstimatorPipeline::TimeOrder EstimatorPipeline::CheckTime(const InputCounters& counters, int64_t utime) const {
@@ -101,22 +174,50 @@ EstimatorPipeline::TimeOrder EstimatorPipeline::CheckTime(const InputCounters& c
   return back_s > config_.pipeline.time_backwards_reset_s ? TimeOrder::kBackwardsJump : TimeOrder::kOutOfOrder;
 }
 
-bool EstimatorPipeline::Admit(InputCounters* c, int64_t utime, int32_t seq, bool* backwards_jump) {
+bool EstimatorPipeline::IsTimeOutlier(InputCounters* c, int64_t utime) {
+  if (health_.newest_utime < 0 || utime - health_.newest_utime <= max_forward_jump_us_) {
+    jump_candidate_utime_ = -1;
+    jump_confirmations_ = 0;
+    return false;
+  }
+  // Ahead of every input. Consecutive outliers within the bound of each other
+  // (any input) confirm a jump of every stream.
+  if (jump_confirmations_ > 0 && std::abs(utime - jump_candidate_utime_) <= max_forward_jump_us_) {
+    ++jump_confirmations_;
+  } else {
+    jump_confirmations_ = 1;
+  }
+  jump_candidate_utime_ = utime;
+  if (jump_confirmations_ >= config_.pipeline.forward_jump_confirm_samples) {
+    jump_candidate_utime_ = -1;
+    jump_confirmations_ = 0;
+    return false;
+  }
+  ++c->time_outliers;
+  return true;
+}
+
+bool EstimatorPipeline::Admit(InputChannel channel, int64_t utime, int32_t seq, bool* backwards_jump) {
+  InputCounters* c = &Counters(&health_, channel);
   const TimeOrder order = CheckTime(*c, utime);
   if (order == TimeOrder::kDuplicate) {
     ++c->duplicates;
+    CountViolation(channel, c->last_utime);
     return false;
   }
   if (order == TimeOrder::kOutOfOrder) {
     ++c->out_of_order;
+    CountViolation(channel, c->last_utime);
     return false;
   }
+  if (order == TimeOrder::kInOrder && IsTimeOutlier(c, utime)) return false;
   *backwards_jump = order == TimeOrder::kBackwardsJump;
-  Accept(c, utime, seq, *backwards_jump);
+  Accept(channel, utime, seq, *backwards_jump);
   return true;
 }
 
-void EstimatorPipeline::Accept(InputCounters* c, int64_t utime, int32_t seq, bool backwards_jump) {
+void EstimatorPipeline::Accept(InputChannel channel, int64_t utime, int32_t seq, bool backwards_jump) {
+  InputCounters* c = &Counters(&health_, channel);
   if (c->last_utime >= 0 && !backwards_jump) {
     // seq wraps at int32: compare in unsigned arithmetic.
     const uint32_t expected = static_cast<uint32_t>(c->last_seq) + 1u;
@@ -124,22 +225,62 @@ void EstimatorPipeline::Accept(InputCounters* c, int64_t utime, int32_t seq, boo
     if (jump > 0) {
       ++c->gaps;
       c->missing_samples += jump;
+    } else if (jump < 0) {
+      CountViolation(channel, utime);  // seq went backwards with a newer stamp: a second sender?
     }
   }
   c->last_utime = utime;
   c->last_seq = seq;
   ++c->accepted_in_period;
-  if (backwards_jump || utime > health_.newest_utime) health_.newest_utime = utime;
+  ConflictDetector& d = conflict_[static_cast<int>(channel)];
+  if (c->conflict_active && utime - d.last_violation_utime > config_.pipeline.conflict_clear_s * 1e6) {
+    c->conflict_active = false;
+    d.count = 0;
+  }
+  // The strain clock is the estimator's: a strain stamp far behind the newest
+  // (a first sample of another input stamped in the future) takes it back.
+  const bool strain_far_behind = channel == InputChannel::kStrain &&
+                                 (health_.newest_utime - utime) * 1e-6 > config_.pipeline.time_backwards_reset_s;
+  if (backwards_jump || strain_far_behind || utime > health_.newest_utime) health_.newest_utime = utime;
 }
 
-void EstimatorPipeline::ResetMethod(const char* reason, int64_t utime) {
-  method_->Reset();
+void EstimatorPipeline::CountViolation(InputChannel channel, int64_t utime) {
+  ConflictDetector& d = conflict_[static_cast<int>(channel)];
+  InputCounters& c = Counters(&health_, channel);
+  const int needed = std::clamp(config_.pipeline.conflict_min_violations, 2, kMaxConflictViolations);
+  d.violation_utime[d.next] = utime;
+  d.next = (d.next + 1) % kMaxConflictViolations;
+  d.count = std::min(d.count + 1, kMaxConflictViolations);
+  d.last_violation_utime = utime;
+  if (c.conflict_active || d.count < needed) return;
+  // The needed-th newest violation, within the window of this one?
+  const int64_t oldest = d.violation_utime[(d.next - needed + 2 * kMaxConflictViolations) % kMaxConflictViolations];
+  if ((utime - oldest) * 1e-6 <= config_.pipeline.conflict_window_s) {
+    c.conflict_active = true;
+    ++c.conflicts;
+  }
+}
+
+bool EstimatorPipeline::AnyConflictActive() const {
+  // POSE is not used by any method: a conflict there is counted, not flagged.
+  for (InputChannel channel : {InputChannel::kStrain, InputChannel::kMotor, InputChannel::kImu}) {
+    if (health_.inputs[static_cast<int>(channel)].conflict_active) return true;
+  }
+  return false;
+}
+
+void EstimatorPipeline::ResetMethod(ResetReason reason, int64_t utime) {
   ++health_.resets;
-  health_.last_reset_reason = reason;  // short literals: fits the reserved capacity
+  health_.last_reset_reason = reason;
   reset_flag_pending_ = true;
+  if (reason == ResetReason::kStart) return;  // the method is new: it keeps what it was given so far
+  method_->Reset();
   if (has_motor_ && last_motor_.utime <= utime &&
       (utime - last_motor_.utime) * 1e-6 <= config_.pipeline.motor_timeout_s) {
-    method_->AddMotor(last_motor_);
+    // The command only: its telemetry was already given to (and reported by) the method.
+    MotorSample command = last_motor_;
+    command.omega_meas_rad_s[0] = command.omega_meas_rad_s[1] = std::numeric_limits<double>::quiet_NaN();
+    method_->AddMotor(command);
   }
 }
 
@@ -157,14 +298,13 @@ void EstimatorPipeline::OnMotor(const MotorSample& sample) {
     return;
   }
   bool backwards = false;
-  if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
-  if (std::isnan(sample.omega_meas_rad_s[0]) || std::isnan(sample.omega_meas_rad_s[1])) ++c.telemetry_missing;
+  if (!Admit(InputChannel::kMotor, sample.utime, sample.seq, &backwards)) return;
+  if (std::isnan(sample.omega_meas_rad_s[0]) || std::isnan(sample.omega_meas_rad_s[1])) ++c.reading_missing;
   last_motor_ = sample;
   has_motor_ = true;
   tare_.AddMotor(sample);
   rotor_speed_.AddMotor(sample);
-  method_->AddMotor(sample);
-  ++c.fused;
+  method_->AddMotor(sample);  // fused / rejected / not fused: counted from its report
 }
 
 void EstimatorPipeline::OnImu(const ImuSample& sample) {
@@ -178,11 +318,12 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
     return;
   }
   bool backwards = false;
-  if (!Admit(&c, sample.utime, sample.seq, &backwards)) return;
+  if (!Admit(InputChannel::kImu, sample.utime, sample.seq, &backwards)) return;
+  // The accelerometer feeds the tare and the ground contact, which both skip
+  // a NaN there (a missing reading); the gyro still counts.
+  if (!std::isfinite(sample.accel_x_m_s2) || !std::isfinite(sample.accel_z_m_s2)) ++c.reading_missing;
   tare_.AddImu(sample);
   method_->AddImu(sample);
-  const bool fuses_gyro = config_.method == "ekf" || config_.method == "linear_kf" || config_.method == "luenberger";
-  if (fuses_gyro && config_.ekf.use_gyro) ++c.fused;
 }
 
 void EstimatorPipeline::OnPose(const PoseSample& sample) {
@@ -197,7 +338,7 @@ void EstimatorPipeline::OnPose(const PoseSample& sample) {
   }
   // Accepted for the health counters; no method uses the pose yet.
   bool backwards = false;
-  Admit(&c, sample.utime, sample.seq, &backwards);
+  Admit(InputChannel::kPose, sample.utime, sample.seq, &backwards);
 }
 
 bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* estimate) {
@@ -213,18 +354,18 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   }
   const int64_t previous_utime = c.last_utime;
   bool backwards = false;
-  if (!Admit(&c, sample.utime, sample.seq, &backwards)) return false;
+  if (!Admit(InputChannel::kStrain, sample.utime, sample.seq, &backwards)) return false;
 
   bool stale = false;
   if (!started_) {
-    ResetMethod("start", sample.utime);
+    ResetMethod(ResetReason::kStart, sample.utime);
     started_ = true;
   } else if (backwards) {
-    ResetMethod("time_backwards", sample.utime);
+    ResetMethod(ResetReason::kTimeBackwards, sample.utime);
   } else {
     const double interval_s = (sample.utime - previous_utime) * 1e-6;
     if (interval_s > config_.pipeline.reset_gap_s) {
-      ResetMethod("gap", sample.utime);
+      ResetMethod(ResetReason::kGap, sample.utime);
     } else if (interval_s > config_.pipeline.strain_timeout_s) {
       stale = true;
     }
@@ -247,16 +388,16 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     notch_.Apply(dt_s, omega_rad_s, &deflection);
   }
 
-  StrainUpdateInfo info;
+  StrainStepInfo info;
   method_->AddStrain(deflection, estimate, &info);
-  if (info.reset) {
-    // The method re-initialised itself (its own dt bound or a numerical guard).
+  if (info.reset != ResetReason::kNone) {
+    // The method re-initialised itself (its numerical guard).
     ++health_.resets;
-    health_.last_reset_reason = "numerical";
+    health_.last_reset_reason = info.reset;
     reset_flag_pending_ = true;
   }
   if (!IsFinite(*estimate)) {
-    ResetMethod("numerical", sample.utime);
+    ResetMethod(ResetReason::kNumerical, sample.utime);
     if (has_finite_estimate_) {
       *estimate = last_finite_estimate_;
     } else {
@@ -269,7 +410,6 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     estimate->utime = sample.utime;
     estimate->seq = sample.seq;
     estimate->status = kStatusConverging;
-    info.fused = false;
   } else {
     last_finite_estimate_ = *estimate;
     has_finite_estimate_ = true;
@@ -280,19 +420,14 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   } else if ((sample.utime - last_motor_.utime) * 1e-6 > config_.pipeline.motor_timeout_s) {
     stale = true;
   }
-  if (stale) estimate->status |= kStatusInputStale;
+  // VALID means converged, fresh and from one publisher per input.
+  if (stale) estimate->status = (estimate->status | kStatusInputStale) & ~kStatusValid;
+  if (AnyConflictActive()) estimate->status = (estimate->status | kStatusInputConflict) & ~kStatusValid;
   if (reset_flag_pending_) {
     estimate->status |= kStatusFilterReset;
     reset_flag_pending_ = false;
   }
 
-  if (info.fused) ++c.fused;
-  if (info.gated) ++c.rejected_gate;
-  if (std::isfinite(info.nis)) {
-    health_.nis_sum += info.nis;
-    if (info.nis > health_.nis_max) health_.nis_max = info.nis;
-    ++health_.nis_count;
-  }
   ++health_.published;
   health_.last_status = estimate->status;
   health_.last_estimate = *estimate;

@@ -3,16 +3,27 @@
 // the evaluation run any of them through the same code path.
 #pragma once
 
+#include "estimator/fusion_report.h"
 #include "estimator/samples.h"
 
 namespace birotor {
 
-// Outcome of a strain update, for health reporting.
-struct StrainUpdateInfo {
-  bool fused = false;  // the sample changed the estimate
-  bool gated = false;  // rejected by the chi-square innovation gate
-  double nis = 0;      // normalised innovation squared (2 dof); NaN if none
-  bool reset = false;  // the method re-initialised itself on this sample
+// Why a method was re-initialised (ESTIMATOR_STATUS last_reset_reason).
+enum class ResetReason : int {
+  kNone = 0,
+  kStart,          // the first strain sample
+  kGap,            // strain interval longer than PipelineOptions::reset_gap_s
+  kTimeBackwards,  // strain stamp jumped back more than time_backwards_reset_s
+  kNumerical,      // the method's state or covariance stopped being finite or positive
+};
+// "", "start", "gap", "time_backwards", "numerical" (string literals).
+const char* ResetReasonName(ResetReason reason);
+
+// What a strain step did besides its fusion reports.
+struct StrainStepInfo {
+  // kNumerical when the method re-initialised itself on this sample (the
+  // pipeline owns every other reason); kNone otherwise.
+  ResetReason reset = ResetReason::kNone;
 };
 
 // One estimation method. Samples arrive already validated and in time order
@@ -29,8 +40,22 @@ class ForceEstimator {
   virtual void AddImu(const ImuSample& /*sample*/) {}
   // Processes one strain sample and writes the estimate for its utime.
   // status bits kStatusValid / kStatusConverging / kStatusMeasurementRejected /
-  // rotor faults are set by the method; the pipeline adds stale/reset bits.
-  virtual void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) = 0;
+  // rotor faults / thrust deficit are set by the method; the pipeline adds
+  // the stale, conflict and reset bits (and withholds VALID with them).
+  virtual void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) = 0;
+
+  // Every measurement given to the method ends in exactly one FusionReport
+  // (fused, rejected by its gate, or not fused), sent here as it happens
+  // (possibly later than the Add call that delivered it). nullptr: none sent.
+  void set_fusion_sink(FusionReportSink* sink) { fusion_sink_ = sink; }
+
+ protected:
+  void Report(const FusionReport& report) const {
+    if (fusion_sink_ != nullptr) fusion_sink_->OnFusion(report);
+  }
+
+ private:
+  FusionReportSink* fusion_sink_ = nullptr;
 };
 
 }  // namespace birotor

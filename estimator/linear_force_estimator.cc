@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "estimator/filter_status.h"
 #include "estimator/luenberger_gain.h"
 
 namespace birotor {
@@ -43,14 +44,26 @@ LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const Ek
   fixed_gyro_gain_s_ = scale_.cwiseInverse().asDiagonal() * fixed_gains_.gyro * scale_(kLinPitchRate);
 }
 
+void LinearForceEstimator::AddMotor(const MotorSample& sample) {
+  motor_.AddMotor(sample);
+  if (std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1])) {
+    Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
+  }
+}
+
 void LinearForceEstimator::AddImu(const ImuSample& sample) {
-  if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) return;
-  gyro_rad_s_ = sample.gyro_y_rad_s;
+  if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) {
+    Report(MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused));
+    return;
+  }
+  if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
+  gyro_ = sample;
   gyro_pending_ = true;
 }
 
 void LinearForceEstimator::Reset() {
   motor_.Reset();
+  if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
   initialized_ = false;
   converged_ = false;
@@ -73,6 +86,7 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
   }
   const double pitch_rate_std = noise_.initial_pitch_rate_std_rad_s / scale_(kLinPitchRate);
   covariance_(kLinPitchRate, kLinPitchRate) = pitch_rate_std * pitch_rate_std;
+  if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
   consecutive_gated_ = 0;
   converged_ = false;
@@ -95,19 +109,34 @@ void LinearForceEstimator::UpdateGyro() {
   if (!gyro_pending_) return;
   gyro_pending_ = false;
   // y = phi_dot_meas - phi_dot, s = P_ww + R; gain K = P c^T / s (Kalman) or L_g.
-  const double residual = gyro_rad_s_ / scale_(kLinPitchRate) - state_(kLinPitchRate);
+  const double residual = gyro_.gyro_y_rad_s / scale_(kLinPitchRate) - state_(kLinPitchRate);
   const LinearGyroGain p_ct = covariance_.col(kLinPitchRate);
   const double innovation_variance = p_ct(kLinPitchRate) + gyro_variance_;
+  FusionReport report;
+  report.source = FusionSource::kGyro;
+  report.utime = gyro_.utime;
+  report.size = 1;
+  report.innovation(0) = residual * scale_(kLinPitchRate);
+  report.innovation_covariance(0, 0) = innovation_variance * scale_(kLinPitchRate) * scale_(kLinPitchRate);
+  report.nis = residual * residual / innovation_variance;
+  report.gate = noise_.gyro_gate_nis;
+  if (!(report.nis <= report.gate)) {  // a NaN NIS is rejected too
+    report.outcome = FusionOutcome::kRejectedGate;
+    Report(report);
+    return;
+  }
   const LinearGyroGain gain = kalman_ ? LinearGyroGain(p_ct / innovation_variance) : fixed_gyro_gain_s_;
   state_.noalias() += gain * residual;
-  // Joseph form for any gain (see Update).
+  // Joseph form for any gain (see UpdateStrain).
   const LinearGyroGain half = 0.5 * innovation_variance * gain - p_ct;
   LinearMatrix delta;
   delta.noalias() = half.lazyProduct(gain.transpose());
   covariance_ += delta + delta.transpose();
+  report.outcome = FusionOutcome::kFused;
+  Report(report);
 }
 
-void LinearForceEstimator::Update(const StrainSample& sample, StrainUpdateInfo* info) {
+FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
   // Innovation y = z - C x, S = C P C^T + R (C selects the deflections).
   Eigen::Vector2d residual;
   for (int i = 0; i < 2; ++i) {
@@ -118,19 +147,28 @@ void LinearForceEstimator::Update(const StrainSample& sample, StrainUpdateInfo* 
   OutputMatrix innovation_covariance = p_ct.topRows<kLinearOutputSize>();
   innovation_covariance.diagonal().array() += measurement_variance_;
   const OutputMatrix innovation_inverse = innovation_covariance.inverse();
-  info->nis = residual.dot(innovation_inverse * residual);
-  if (!(info->nis <= noise_.gate_nis_threshold)) {
+  const double deflection_scale = scale_(kLinDeflection1);
+  FusionReport report;
+  report.source = FusionSource::kStrain;
+  report.utime = sample.utime;
+  report.size = kLinearOutputSize;
+  report.innovation = residual * deflection_scale;
+  report.innovation_covariance = innovation_covariance * (deflection_scale * deflection_scale);
+  report.nis = residual.dot(innovation_inverse * residual);
+  report.gate = noise_.strain_gate_nis;
+  if (!(report.nis <= report.gate)) {  // a NaN NIS is rejected too
     ++consecutive_gated_;
     if (consecutive_gated_ < noise_.gate_consecutive_limit) {
-      info->gated = true;
-      return;
+      report.outcome = FusionOutcome::kRejectedGate;
+      return report;
     }
     // A persistent change is real: open up the forces (the EKF's inflation of
-    // std(mu) at the hover force), then fuse.
+    // var(mu_i), at the hover force), then fuse.
     for (int i = 0; i < 2; ++i) {
       const double extra = noise_.gate_inflation_thrust_scale_std * model_.force_hover_n[i] / scale_(kLinForceIndex[i]);
       covariance_(kLinForceIndex[i], kLinForceIndex[i]) += extra * extra;
     }
+    report.fused_after_inflation = true;
   }
   consecutive_gated_ = 0;
   LinearGain gain;
@@ -141,64 +179,55 @@ void LinearForceEstimator::Update(const StrainSample& sample, StrainUpdateInfo* 
   }
   state_.noalias() += gain * residual;
   // Joseph form for any gain: (I - K C) P (I - K C)^T + K R K^T
-  //   = P - K (P C^T)^T - (P C^T) K^T + K S K^T.
+  //   = P - K (P C^T)^T - (P C^T) K^T + K S K^T (the inflation changes only
+  // the force variances, not P C^T or S).
   const LinearGain k_s = gain * innovation_covariance;
   const LinearGain half = 0.5 * k_s - p_ct;
   LinearMatrix delta;
   delta.noalias() = half.lazyProduct(gain.transpose());
   covariance_ += delta + delta.transpose();
-  info->fused = true;
+  report.outcome = FusionOutcome::kFused;
+  return report;
 }
 
 void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
-  estimate->utime = sample.utime;
-  estimate->seq = sample.seq;
-  double max_std_n = 0;
   for (int i = 0; i < 2; ++i) {
     const int f = kLinForceIndex[i];
     const double force = model_.force_hover_n[i] + scale_(f) * state_(f);
     estimate->force_n[i] = force;
     estimate->force_std_n[i] = scale_(f) * std::sqrt(std::max(covariance_(f, f), 0.0));
     estimate->thrust_scale[i] = motor_.ThrustScale(i, force);
-    max_std_n = std::max(max_std_n, estimate->force_std_n[i]);
   }
-  if (max_std_n < noise_.converged_force_std_n) converged_ = true;
-  int32_t status = converged_ ? kStatusValid : kStatusConverging;
-  if (gated) status |= kStatusMeasurementRejected;
-  if (!motor_.has_motor()) status |= kStatusNoMotorInput;
-  estimate->status = status;
+  SetFilterStatus(sample, noise_.converged_force_std_n, gated, motor_.has_motor(), &converged_, estimate);
 }
 
-void LinearForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) {
-  *info = StrainUpdateInfo();
-  info->nis = std::nan("");
+void LinearForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+  *info = StrainStepInfo();
   motor_.Advance(sample.utime);
-  const double dt_s = (sample.utime - last_utime_) * kMicrosecond;
-  if (initialized_ && dt_s > noise_.max_dt_s) {
-    initialized_ = false;
-    info->reset = true;
-  }
+  // At (re-)initialisation the state is set from the sample: fused, without an innovation.
+  FusionReport strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
   if (!initialized_) {
     Initialize(sample);
-    info->fused = true;
-    FillEstimate(sample, false, estimate);
-    return;
+  } else {
+    const double dt_s = (sample.utime - last_utime_) * kMicrosecond;
+    if (dt_s > 0) {
+      // The model is sampled at the nominal strain period: an interval is
+      // predicted in whole periods (a gap of n samples is n periods; the
+      // pipeline re-initialises after reset_gap_s).
+      Predict(std::max(1, static_cast<int>(std::lround(dt_s / model_.period_s))));
+      last_utime_ = sample.utime;
+    }
+    UpdateGyro();
+    strain = UpdateStrain(sample);
+    if (!state_.allFinite() || !covariance_.allFinite()) {
+      // Numerical failure: start again from this sample.
+      Initialize(sample);
+      info->reset = ResetReason::kNumerical;
+      strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
+    }
   }
-  if (dt_s > 0) {
-    // The model is sampled at the nominal strain period: an interval is
-    // predicted in whole periods (a gap of n samples is n periods).
-    Predict(std::max(1, static_cast<int>(std::lround(dt_s / model_.period_s))));
-    last_utime_ = sample.utime;
-  }
-  UpdateGyro();
-  Update(sample, info);
-  if (!state_.allFinite() || !covariance_.allFinite()) {
-    // Numerical failure: start again from this sample.
-    Initialize(sample);
-    info->reset = true;
-    info->fused = true;
-  }
-  FillEstimate(sample, info->gated, estimate);
+  Report(strain);
+  FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
 }
 
 }  // namespace birotor

@@ -5,9 +5,14 @@
 //   "linear_kf":  Kalman filter, gain from the propagated covariance.
 // Both fuse the gyro (phi_dot) when IMU samples arrive and ekf.use_gyro is
 // set; the observer uses it only for phi_dot (estimator/luenberger_gain.h).
-// Both propagate the error covariance with the same model and noise (for the
-// observer: through its own error dynamics, Joseph form for its fixed gain),
-// which gives force_std_n and the strain innovation gate.
+// The model is discretised at the strain period, so the newest gyro sample is
+// fused at the next strain sample's time (an older one it replaces is
+// reported not fused). Both propagate the error covariance with the same
+// model and noise (for the observer: through its own error dynamics, Joseph
+// form for its fixed gain), which gives force_std_n and the gates of the
+// strain (ekf.strain_gate_nis) and gyro (ekf.gyro_gate_nis) innovations.
+// Telemetry is the rotor speed of thrust_scale (MotorSpeedTracker): reported
+// fused, as by the baselines.
 #pragma once
 
 #include <cstdint>
@@ -30,9 +35,9 @@ class LinearForceEstimator : public ForceEstimator {
 
   const char* Name() const override { return kalman_ ? "linear_kf" : "luenberger"; }
   void Reset() override;
-  void AddMotor(const MotorSample& sample) override { motor_.AddMotor(sample); }
+  void AddMotor(const MotorSample& sample) override;
   void AddImu(const ImuSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainUpdateInfo* info) override;
+  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
   const LinearForceModel& model() const { return model_; }
   // The observer's fixed gains (physical units); unused by the Kalman filter.
@@ -44,9 +49,11 @@ class LinearForceEstimator : public ForceEstimator {
  private:
   void Initialize(const StrainSample& sample);
   void Predict(int periods);
-  // Gyro update (no gate, as the EKF's), then the gated strain update.
+  // The pending gyro sample's update, gated; reported.
   void UpdateGyro();
-  void Update(const StrainSample& sample, StrainUpdateInfo* info);
+  // The strain update with its gate and the inflation after persistent
+  // rejection; returns what happened.
+  FusionReport UpdateStrain(const StrainSample& sample);
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
 
   bool kalman_;
@@ -64,7 +71,7 @@ class LinearForceEstimator : public ForceEstimator {
   double measurement_variance_ = 1;   // R / scale_b^2, both gauges [1]
   double gyro_variance_ = 1;          // R_gyro / scale_phi_dot^2 [1]
   bool gyro_pending_ = false;
-  double gyro_rad_s_ = 0;
+  ImuSample gyro_;  // the pending gyro sample
 
   bool initialized_ = false;
   bool converged_ = false;

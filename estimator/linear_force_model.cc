@@ -72,14 +72,11 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
   model.period_s = 1.0 / options.strain_rate_hz;
 
   const Equilibrium eq = SolveHoverEquilibrium(params);
-  const double c_t = params.thrust_coeff_n_s2_rad2;
   for (int i = 0; i < 2; ++i) {
     model.deflection_hover_rad[i] = eq.deflection_rad[i];
     model.force_hover_n[i] = eq.force_n[i];
   }
-  const double omega0 = std::sqrt(0.5 * (eq.force_n[0] + eq.force_n[1]) / c_t);
-  const double df_dmu = c_t * omega0 * omega0, df_domega = 2.0 * c_t * omega0;
-  model.force_psd_n2_s = df_dmu * df_dmu * noise.thrust_scale_psd_1_s + df_domega * df_domega * noise.omega_psd_rad2_s;
+  model.force_psd_n2_s = options.force_psd_n2_s;
   model.noise_continuous.setZero();
   model.noise_continuous(kLinDeflectionRate1, kLinDeflectionRate1) = noise.deflection_rate_psd_rad2_s3;
   model.noise_continuous(kLinDeflectionRate2, kLinDeflectionRate2) = noise.deflection_rate_psd_rad2_s3;

@@ -70,6 +70,8 @@ enum StatusBit : int32_t {
   kStatusRotor2Fault = 32,
   kStatusFilterReset = 64,
   kStatusNoMotorInput = 128,
+  kStatusThrustDeficit = 256,
+  kStatusInputConflict = 512,
 };
 
 // One per-rotor force estimate (channel FORCE).

@@ -27,7 +27,7 @@ using birotor::EstimatorPipeline;
 using birotor::InputChannel;
 
 // Every bit of force_estimate_t.status (lcmtypes/force_estimate_t.lcm).
-constexpr int32_t kKnownStatusBits = 255;
+constexpr int32_t kKnownStatusBits = 1023;  // STATUS_VALID .. STATUS_INPUT_CONFLICT
 // Reference hover (shared/spec/reference-vehicle.md).
 constexpr double kHoverDeflectionRad = 0.0018664;
 constexpr double kHoverOmegaRadS = 698.55;
@@ -155,6 +155,11 @@ void CheckEstimate(const birotor::ForceEstimate& estimate) {
     }
   }
   if ((estimate.status & ~kKnownStatusBits) != 0) std::abort();
+  // VALID is never set with INPUT_STALE or INPUT_CONFLICT (force_estimate_t.lcm).
+  if ((estimate.status & birotor::kStatusValid) &&
+      (estimate.status & (birotor::kStatusInputStale | birotor::kStatusInputConflict))) {
+    std::abort();
+  }
 }
 
 // Counters only ever grow; an accepted sample never exceeds what was received.
@@ -162,6 +167,8 @@ void CheckHealth(const birotor::PipelineHealth& health, const int64_t (&received
   for (int i = 0; i < birotor::kNumInputChannels; ++i) {
     const birotor::InputCounters& c = health.inputs[i];
     if (c.received != received[i] || c.fused < 0 || c.fused > c.received) std::abort();
+    // One fusion report at most per accepted sample.
+    if (c.fused + c.rejected_gate + c.not_fused > c.received) std::abort();
     if (c.gaps < 0 || c.missing_samples < 0 || c.gaps > c.missing_samples) std::abort();
   }
   if (health.resets < 0 || health.published < 0) std::abort();

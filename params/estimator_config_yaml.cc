@@ -19,23 +19,30 @@ void ReadEkfOptions(YamlSection s, EkfOptions* o) {
   s.Double("initial_omega_std_rad_s", 1e-3, 1e3, &o->initial_omega_std_rad_s);
   s.Double("initial_deflection_rate_std_rad_s", 1e-6, 100.0, &o->initial_deflection_rate_std_rad_s);
   s.Double("initial_pitch_rate_std_rad_s", 1e-6, 100.0, &o->initial_pitch_rate_std_rad_s);
-  s.Double("gate_nis_threshold", 1.0, 1e12, &o->gate_nis_threshold);
+  s.Double("strain_gate_nis", 1.0, 1e12, &o->strain_gate_nis);
+  s.Double("telemetry_gate_nis", 1.0, 1e12, &o->telemetry_gate_nis);
+  s.Double("gyro_gate_nis", 1.0, 1e12, &o->gyro_gate_nis);
   s.Int("gate_consecutive_limit", 1, 1000000, &o->gate_consecutive_limit);
   s.Double("gate_inflation_thrust_scale_std", 0.0, 2.0, &o->gate_inflation_thrust_scale_std);
   s.Double("converged_force_std_n", 1e-6, 1e3, &o->converged_force_std_n);
-  s.Double("fault_thrust_scale", 0.0, 1.0, &o->fault_thrust_scale);
-  s.Double("fault_clear_thrust_scale", 0.0, 1.0, &o->fault_clear_thrust_scale);
+  s.Double("rotor_fault_asymmetry", 0.0, 1.0, &o->rotor_fault_asymmetry);
+  s.Double("rotor_fault_clear_asymmetry", 0.0, 1.0, &o->rotor_fault_clear_asymmetry);
+  s.Double("thrust_deficit_scale", 0.0, 1.0, &o->thrust_deficit_scale);
+  s.Double("thrust_deficit_clear_scale", 0.0, 1.0, &o->thrust_deficit_clear_scale);
   s.Double("fault_n_sigma", 0.0, 10.0, &o->fault_n_sigma);
   s.Double("fault_persistence_s", 0.0, 10.0, &o->fault_persistence_s);
-  s.Double("max_dt_s", 1e-4, 10.0, &o->max_dt_s);
   s.Double("max_prediction_step_s", 1e-5, 0.004, &o->max_prediction_step_s);
   s.Double("ground_contact_on_n", 0.0, 1e5, &o->ground_contact_on_n);
   s.Double("ground_contact_off_n", 0.0, o->ground_contact_on_n, &o->ground_contact_off_n);
   s.Double("ground_contact_filter_s", 1e-4, 10.0, &o->ground_contact_filter_s);
   s.Bool("body_held", &o->body_held);
-  if (o->fault_clear_thrust_scale < o->fault_thrust_scale) {
-    s.Fail("fault_clear_thrust_scale", "below fault_thrust_scale (no hysteresis)",
-           RangeText(o->fault_thrust_scale, 1.0));
+  if (o->rotor_fault_clear_asymmetry > o->rotor_fault_asymmetry) {
+    s.Fail("rotor_fault_clear_asymmetry", "above rotor_fault_asymmetry (no hysteresis)",
+           RangeText(0.0, o->rotor_fault_asymmetry));
+  }
+  if (o->thrust_deficit_clear_scale < o->thrust_deficit_scale) {
+    s.Fail("thrust_deficit_clear_scale", "below thrust_deficit_scale (no hysteresis)",
+           RangeText(o->thrust_deficit_scale, 1.0));
   }
   s.Finish();
 }
@@ -54,6 +61,7 @@ void ReadMotorMapOptions(YamlSection s, MotorMapOptions* o) {
 
 void ReadLinearModelOptions(YamlSection s, LinearModelOptions* o) {
   s.Double("strain_rate_hz", 10.0, 1e5, &o->strain_rate_hz);
+  s.Double("force_psd_n2_s", 1e-6, 1e4, &o->force_psd_n2_s);
   s.Finish();
 }
 
@@ -73,6 +81,11 @@ void ReadPipelineOptions(YamlSection s, PipelineOptions* o) {
   s.Double("max_deflection_rad", 1e-4, 3.2, &o->max_deflection_rad);
   s.Double("max_omega_rad_s", 1.0, 1e6, &o->max_omega_rad_s);
   s.Double("max_gyro_rad_s", 1e-3, 1e4, &o->max_gyro_rad_s);
+  s.Double("max_forward_jump_s", 1e-3, 1e3, &o->max_forward_jump_s);
+  s.Int("forward_jump_confirm_samples", 1, 1000, &o->forward_jump_confirm_samples);
+  s.Int("conflict_min_violations", 2, 16, &o->conflict_min_violations);
+  s.Double("conflict_window_s", 1e-3, 100.0, &o->conflict_window_s);
+  s.Double("conflict_clear_s", 1e-3, 1e4, &o->conflict_clear_s);
   s.Finish();
 }
 

@@ -178,9 +178,11 @@ std::string YRangeCommands(const YRange& range) {
 }  // namespace
 
 std::vector<ThresholdLine> ThrustScaleLines(const EkfOptions& ekf) {
-  // EkfOptions: a rotor is flagged when mu_i + n_sigma std(mu_i) stays below
-  // fault_thrust_scale, so mu itself is below it then.
-  return {{ekf.fault_thrust_scale, fmt::format("rotor fault below {:.2f}", ekf.fault_thrust_scale)}};
+  // EkfOptions: a rotor fault is relative, rotor i is flagged when it is
+  // rotor_fault_asymmetry (plus n_sigma std) below the other; against a rotor
+  // at 1 that is the line 1 - asymmetry. THRUST_DEFICIT: both below thrust_deficit_scale.
+  const double rotor_line = 1.0 - ekf.rotor_fault_asymmetry;
+  return {{rotor_line, fmt::format("rotor fault below {:.2f}", rotor_line)}};
 }
 
 std::string ThresholdWords(const std::vector<ThresholdLine>& lines) {

@@ -8,9 +8,16 @@
 namespace birotor {
 
 const StatusBitName kStatusBitNames[] = {
-    {kStatusValid, "VALID"},       {kStatusConverging, "CONVERGING"},    {kStatusMeasurementRejected, "REJECTED"},
-    {kStatusInputStale, "STALE"},  {kStatusRotor1Fault, "ROTOR1_FAULT"}, {kStatusRotor2Fault, "ROTOR2_FAULT"},
-    {kStatusFilterReset, "RESET"}, {kStatusNoMotorInput, "NO_MOTOR"},
+    {kStatusValid, "VALID"},
+    {kStatusConverging, "CONVERGING"},
+    {kStatusMeasurementRejected, "REJECTED"},
+    {kStatusInputStale, "STALE"},
+    {kStatusRotor1Fault, "ROTOR1_FAULT"},
+    {kStatusRotor2Fault, "ROTOR2_FAULT"},
+    {kStatusFilterReset, "RESET"},
+    {kStatusNoMotorInput, "NO_MOTOR"},
+    {kStatusThrustDeficit, "THRUST_DEFICIT"},
+    {kStatusInputConflict, "CONFLICT"},
 };
 const int kStatusBitCount = sizeof(kStatusBitNames) / sizeof(kStatusBitNames[0]);
 

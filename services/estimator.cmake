@@ -3,6 +3,7 @@
 add_library(birotor_estimator_service STATIC
   ${CMAKE_CURRENT_LIST_DIR}/estimator_service.cc
   ${CMAKE_CURRENT_LIST_DIR}/gauge_state_file.cc
+  ${CMAKE_CURRENT_LIST_DIR}/input_rejection_log.cc
   ${CMAKE_CURRENT_LIST_DIR}/status_message.cc)
 target_include_directories(birotor_estimator_service PUBLIC ${PROJECT_SOURCE_DIR})
 target_link_libraries(birotor_estimator_service PUBLIC

@@ -25,7 +25,8 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
       options_(options),
       sink_(sink),
       decode_warning_(options.warning_interval_s),
-      overload_warning_(options.warning_interval_s) {
+      overload_warning_(options.warning_interval_s),
+      rejection_log_(options.warning_interval_s, input_channel_names_) {
   input_channel_names_[static_cast<int>(InputChannel::kStrain)] = &channels_.strain;
   input_channel_names_[static_cast<int>(InputChannel::kMotor)] = &channels_.motor;
   input_channel_names_[static_cast<int>(InputChannel::kImu)] = &channels_.imu;
@@ -92,6 +93,12 @@ void EstimatorService::WarnDecodeError(InputChannel channel, const char* error) 
 }
 
 bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime) {
+  const bool published = DispatchPacket(channel, data, size, receive_wall_utime);
+  rejection_log_.Check(pipeline_.health(), channel);
+  return published;
+}
+
+bool EstimatorService::DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime) {
   pipeline_.CountReceived(channel);
   switch (channel) {
     case InputChannel::kStrain:
@@ -169,7 +176,6 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   context.wall_utime = wall_utime;
   context.seq = status_seq_;
   context.period_s = period_s;
-  context.strain_gate = StrainGateOf(pipeline_.config());
   if (options_.report_processing_time) {
     context.processing_time_mean_us = processing_time_.MeanUs();
     context.processing_time_p99_us = processing_time_.P99Us();

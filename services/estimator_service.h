@@ -19,6 +19,7 @@
 #include "birotor/strain_t.hpp"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
+#include "services/input_rejection_log.h"
 #include "services/status_message.h"
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
@@ -105,6 +106,8 @@ class EstimatorService {
   };
   static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
   bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
+  // HandlePacket without the rejection log lines.
+  bool DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime);
   void WarnDecodeError(InputChannel channel, const char* error);
 
   EstimatorPipeline pipeline_;
@@ -132,6 +135,7 @@ class EstimatorService {
   const UdpReceiveCounters* udp_counters_ = nullptr;
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
+  InputRejectionLog rejection_log_;
 };
 
 }  // namespace birotor

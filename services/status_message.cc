@@ -41,12 +41,6 @@ void ProcessingTimeStats::TakePeriod() {
   max_us_ = 0;
 }
 
-double StrainGateOf(const EstimatorConfig& config) {
-  // The EKF and the two linear methods gate the strain innovation (the same option).
-  const bool gated = config.method == "ekf" || config.method == "linear_kf" || config.method == "luenberger";
-  return gated ? config.ekf.gate_nis_threshold : kNaN;
-}
-
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message) {
   message->utime = health.newest_utime;
@@ -69,21 +63,31 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
     out.duplicates = in.duplicates;
     out.gaps = in.gaps;
     out.missing_samples = in.missing_samples;
-    out.reading_missing = in.telemetry_missing;
+    out.reading_missing = in.reading_missing;
     out.dropped_overload = in.dropped_overload;
-    out.age_s = (in.last_utime >= 0 && health.newest_utime >= 0)
+    // Ages on the vehicle clock; a sample newer than that clock (the clock
+    // went back after it) has no meaningful age.
+    out.age_s = (in.last_utime >= 0 && health.newest_utime >= in.last_utime)
                     ? static_cast<double>(health.newest_utime - in.last_utime) / kMicrosecondsPerSecond
                     : kNaN;
     out.rate_hz = context.period_s > 0 ? static_cast<double>(in.accepted_in_period) / context.period_s : kNaN;
+    out.not_fused = in.not_fused;
+    out.time_outliers = in.time_outliers;
+    out.conflicts = in.conflicts;
+    out.conflict_active = in.conflict_active ? 1 : 0;
+    out.nis_mean = in.nis_count > 0 ? in.nis_sum / static_cast<double>(in.nis_count) : kNaN;
+    out.nis_max = in.nis_count > 0 ? in.nis_max : kNaN;
+    out.gate = in.gate;
   }
-  message->strain_nis_mean = health.nis_count > 0 ? health.nis_sum / static_cast<double>(health.nis_count) : kNaN;
-  message->strain_nis_max = health.nis_count > 0 ? health.nis_max : kNaN;
-  message->strain_gate = context.strain_gate;
+  const input_health_t& strain = message->inputs[static_cast<int>(InputChannel::kStrain)];
+  message->strain_nis_mean = strain.nis_mean;
+  message->strain_nis_max = strain.nis_max;
+  message->strain_gate = strain.gate;
   message->processing_time_mean_us = context.processing_time_mean_us;
   message->processing_time_p99_us = context.processing_time_p99_us;
   message->processing_time_max_us = context.processing_time_max_us;
   message->resets = health.resets;
-  message->last_reset_reason = health.last_reset_reason;
+  message->last_reset_reason = ResetReasonName(health.last_reset_reason);
   message->published = health.published;
   for (int rotor = 0; rotor < 2; ++rotor) {
     message->force_n[rotor] = health.last_estimate.force_n[rotor];

@@ -43,21 +43,17 @@ struct StatusContext {
   int64_t wall_utime = 0;              // host clock at publication [us since epoch]
   int32_t seq = 0;                     // status message counter
   double period_s = 0;                 // length of the reporting period, for rate_hz [s]
-  double strain_gate = 0;              // chi-square threshold of the strain update; NaN if none
   double processing_time_mean_us = 0;  // NaN when not measured
   double processing_time_p99_us = 0;
   double processing_time_max_us = 0;
   UdpReceiveCounters udp;  // the daemon's UDP reader; zeros without one
 };
 
-// Chi-square gate the method compares the strain NIS with (NaN for the
-// baselines, which have no gate).
-double StrainGateOf(const EstimatorConfig& config);
-
 // Fills *message from the pipeline's health (per-input counters in the order
 // STRAIN, MOTOR, IMU, POSE; age_s on the vehicle clock relative to the newest
-// sample of any input; rates from accepted_in_period / period_s; NIS over the
-// period). Reuses the message's vectors, so steady state does not allocate.
+// sample of any input; rates from accepted_in_period / period_s; NIS mean and
+// max per input over the period, and its gate; strain_nis_* and strain_gate
+// repeat the STRAIN input's). Reuses the message's vectors, so steady state does not allocate.
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message);
 

@@ -77,7 +77,11 @@ class WireCursor {
 bool SkipInputHealth(WireCursor* cursor) {
   constexpr size_t kInt64Counters = 11;  // received .. reading_missing
   constexpr size_t kDoubles = 2;         // age_s, rate_hz
-  return cursor->SkipString() && cursor->Skip(8 * kInt64Counters + 8 * kDoubles);
+  constexpr size_t kTailInt64 = 3;       // not_fused, time_outliers, conflicts
+  constexpr size_t kTailInt8 = 1;        // conflict_active
+  constexpr size_t kTailDoubles = 3;     // nis_mean, nis_max, gate
+  return cursor->SkipString() &&
+         cursor->Skip(8 * kInt64Counters + 8 * kDoubles + 8 * kTailInt64 + kTailInt8 + 8 * kTailDoubles);
 }
 
 }  // namespace

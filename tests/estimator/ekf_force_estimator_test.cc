@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <functional>
+#include <vector>
+
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
@@ -92,7 +96,7 @@ TEST(EkfForceEstimatorTest, GateRejectsASpikeAndCountsIt) {
   EXPECT_NEAR(spiked.force_n[0], before.force_n[0], 0.05);
   EXPECT_EQ(pipeline.health().inputs[static_cast<int>(InputChannel::kStrain)].rejected_gate, 1);
   EXPECT_FALSE(after.status & kStatusMeasurementRejected);
-  EXPECT_GT(pipeline.health().nis_max, 1000.0);
+  EXPECT_GT(pipeline.health().inputs[static_cast<int>(InputChannel::kStrain)].nis_max, 1000.0);
 }
 
 TEST(EkfForceEstimatorTest, SensorFaultsStayFiniteAndCounted) {
@@ -106,13 +110,239 @@ TEST(EkfForceEstimatorTest, SensorFaultsStayFiniteAndCounted) {
   EXPECT_EQ(strain.out_of_order, 1);      // the one delivered late
   EXPECT_GE(strain.gaps, 1);              // the 150 ms gap
   EXPECT_GE(strain.missing_samples, 150);
-  EXPECT_GT(strain.rejected_gate, 20);                                                          // ~0.5 % spikes
-  EXPECT_GE(run.health.resets, 2);                                                              // start + the gap
-  EXPECT_EQ(run.health.inputs[static_cast<int>(InputChannel::kMotor)].telemetry_missing, 500);  // 1 s at 500 Hz
+  EXPECT_GT(strain.rejected_gate, 20);                                                        // ~0.5 % spikes
+  EXPECT_GE(run.health.resets, 2);                                                            // start + the gap
+  EXPECT_EQ(run.health.inputs[static_cast<int>(InputChannel::kMotor)].reading_missing, 500);  // 1 s at 500 Hz
   std::vector<int64_t> fault_times;
   for (const FaultEvent& f : run.faults) fault_times.push_back(f.utime);
   EXPECT_LT(ForceMae(run, 0, 500000, fault_times, 0.2), 0.15);
   EXPECT_LT(ForceMae(run, 1, 500000, fault_times, 0.2), 0.15);
+}
+
+}  // namespace
+}  // namespace birotor
+
+// ---- EkfForceEstimator built directly (no pipeline) ----
+
+namespace birotor {
+namespace {
+
+using testing_support::InputEvent;
+
+struct ReportLog : FusionReportSink {
+  void OnFusion(const FusionReport& report) override { reports.push_back(report); }
+  int64_t Count(FusionSource source, FusionOutcome outcome) const {
+    int64_t n = 0;
+    for (const FusionReport& r : reports) n += (r.source == source && r.outcome == outcome) ? 1 : 0;
+    return n;
+  }
+  double NisMean(FusionSource source) const {
+    double sum = 0;
+    int64_t n = 0;
+    for (const FusionReport& r : reports) {
+      if (r.source == source && std::isfinite(r.nis)) {
+        sum += r.nis;
+        ++n;
+      }
+    }
+    return sum / static_cast<double>(n);
+  }
+  std::vector<FusionReport> reports;
+};
+
+const std::vector<InputEvent>& HoverEvents() {
+  static const std::vector<InputEvent> events =
+      testing_support::RecordScenario("hover", {"scenario.duration_s=3", "sensors.pose.enabled=false"});
+  return events;
+}
+
+// Feeds events straight into an EkfForceEstimator; `edit` may change or drop
+// (return false) a strain sample. Accumulates the force MAE after 0.5 s.
+struct DirectRun {
+  explicit DirectRun(const EkfOptions& options = ReferenceConfig("ekf").ekf)
+      : ekf(ReferenceConfig("ekf").vehicle, options) {
+    ekf.set_fusion_sink(&log);
+  }
+  void Feed(const std::vector<InputEvent>& events, const std::function<bool(StrainSample*)>& edit = nullptr) {
+    for (const InputEvent& e : events) {
+      if (e.kind == InputEvent::kMotor) {
+        ekf.AddMotor(e.motor);
+        ++motor_samples;
+      } else if (e.kind == InputEvent::kImu) {
+        ekf.AddImu(e.imu);
+        ++imu_samples;
+      } else if (e.kind == InputEvent::kTruth) {
+        if (has_estimate && last.utime == e.truth.utime && e.truth.utime >= 500000) {
+          for (int i = 0; i < 2; ++i) error_sum_n[i] += std::abs(last.force_n[i] - e.truth.force_n[i]);
+          ++scored;
+        }
+      } else {
+        StrainSample s = e.strain;
+        if (edit && !edit(&s)) continue;
+        ekf.AddStrain(s, &last, &info);
+        EXPECT_EQ(ekf.utime(), s.utime);
+        has_estimate = true;
+        if (info.reset != ResetReason::kNone) ++resets;
+      }
+    }
+  }
+  double Mae(int rotor) const { return error_sum_n[rotor] / static_cast<double>(scored); }
+
+  ReportLog log;
+  EkfForceEstimator ekf;
+  ForceEstimate last;
+  StrainStepInfo info;
+  bool has_estimate = false;
+  int64_t motor_samples = 0, imu_samples = 0, scored = 0, resets = 0;
+  double error_sum_n[2] = {0, 0};
+};
+
+// Every measurement ends in one report, stamped with its own time: MOTOR(t)
+// and IMU(t) arrive after STRAIN(t) and are fused at t before the filter is
+// predicted to t + 1 ms. Only the samples after the last strain sample wait.
+TEST(EkfForceEstimatorDirectTest, ReportsEveryMeasurementAtItsOwnStamp) {
+  DirectRun run;
+  run.Feed(HoverEvents());
+  const int64_t telemetry = run.log.Count(FusionSource::kTelemetry, FusionOutcome::kFused);
+  const int64_t gyro = run.log.Count(FusionSource::kGyro, FusionOutcome::kFused);
+  EXPECT_GE(telemetry, run.motor_samples - 1);
+  EXPECT_LE(telemetry, run.motor_samples);
+  EXPECT_EQ(gyro, run.imu_samples - 1);  // the last one waits for a strain sample
+  EXPECT_EQ(run.log.Count(FusionSource::kStrain, FusionOutcome::kFused), 3000);
+  EXPECT_EQ(run.log.Count(FusionSource::kTelemetry, FusionOutcome::kRejectedGate), 0);
+  EXPECT_EQ(run.log.Count(FusionSource::kGyro, FusionOutcome::kRejectedGate), 0);
+  for (const FusionReport& r : run.log.reports) {
+    EXPECT_EQ(r.utime % 1000, 0);  // every input is sampled on the 1 ms grid
+    if (r.source == FusionSource::kTelemetry) {
+      EXPECT_EQ(r.utime % 2000, 0);  // MOTOR at 500 Hz
+    }
+  }
+  // Each measurement's NIS averages its degrees of freedom (strain 2,
+  // telemetry 2, gyro 1), measured 2.0 / 2.0 / 1.0 to within 10 %.
+  EXPECT_NEAR(run.log.NisMean(FusionSource::kStrain), 2.0, 0.2);
+  EXPECT_NEAR(run.log.NisMean(FusionSource::kTelemetry), 2.0, 0.2);
+  EXPECT_NEAR(run.log.NisMean(FusionSource::kGyro), 1.0, 0.1);
+  EXPECT_LT(run.Mae(0), 0.11);  // README: hover 0.072 N (1.5x)
+  EXPECT_LT(run.Mae(1), 0.11);
+}
+
+TEST(EkfForceEstimatorDirectTest, WithoutGyroEveryImuSampleIsNotFused) {
+  EkfOptions options = ReferenceConfig("ekf").ekf;
+  options.use_gyro = false;
+  DirectRun run(options);
+  run.Feed(HoverEvents());
+  EXPECT_EQ(run.log.Count(FusionSource::kGyro, FusionOutcome::kNotFused), run.imu_samples);
+  EXPECT_EQ(run.log.Count(FusionSource::kGyro, FusionOutcome::kFused), 0);
+  std::printf("without gyro: MAE %.4f / %.4f N\n", run.Mae(0), run.Mae(1));
+  EXPECT_LT(run.Mae(0), 0.11);
+  EXPECT_LT(run.Mae(1), 0.11);
+}
+
+TEST(EkfForceEstimatorDirectTest, WithoutTelemetryTheCommandsAlone) {
+  EkfOptions options = ReferenceConfig("ekf").ekf;
+  options.use_motor_telemetry = false;
+  DirectRun run(options);
+  run.Feed(HoverEvents());
+  EXPECT_EQ(run.log.Count(FusionSource::kTelemetry, FusionOutcome::kNotFused), run.motor_samples);
+  EXPECT_EQ(run.log.Count(FusionSource::kTelemetry, FusionOutcome::kFused), 0);
+  std::printf("without telemetry: MAE %.4f / %.4f N\n", run.Mae(0), run.Mae(1));
+  EXPECT_LT(run.Mae(0), 0.11);
+  EXPECT_LT(run.Mae(1), 0.11);
+}
+
+// A deflection the model cannot explain, let through a gate opened wide,
+// drives mu out of its physical range: the numerical guard re-initialises
+// from the sample and says so.
+TEST(EkfForceEstimatorDirectTest, NumericalGuardReinitialisesWithItsReason) {
+  EkfOptions options = ReferenceConfig("ekf").ekf;
+  options.strain_gate_nis = 1e12;
+  DirectRun run(options);
+  int k = 0;
+  run.Feed(HoverEvents(), [&](StrainSample* s) {
+    if (++k == 1000) s->deflection_rad[0] = 0.19;
+    return k <= 1000;
+  });
+  EXPECT_EQ(run.resets, 1);
+  EXPECT_EQ(run.info.reset, ResetReason::kNumerical);
+  EXPECT_TRUE(run.last.status & kStatusConverging);
+  EXPECT_DOUBLE_EQ(run.ekf.state()(kDeflection1), 0.19);  // re-initialised from the sample
+  EXPECT_DOUBLE_EQ(run.ekf.state()(kThrustScale1), 1.0);
+  EXPECT_TRUE(std::isfinite(run.last.force_n[0]) && std::isfinite(run.last.force_std_n[0]));
+}
+
+// A persistent step of 40 sigma in one arm: gated gate_consecutive_limit - 1
+// times, then var(mu_i) is inflated by 0.1^2 and the sample fused.
+TEST(EkfForceEstimatorDirectTest, PersistentRejectionInflatesThrustScaleVarianceThenFuses) {
+  DirectRun run;
+  int k = 0;
+  double mu_variance_before = 0;
+  run.Feed(HoverEvents(), [&](StrainSample* s) {
+    ++k;
+    if (k == 1500) mu_variance_before = run.ekf.covariance()(kThrustScale1, kThrustScale1);
+    if (k >= 1500) s->deflection_rad[0] += 40 * 2e-5;
+    return k <= 1502;
+  });
+  std::vector<FusionReport> strain;
+  for (const FusionReport& r : run.log.reports) {
+    if (r.source == FusionSource::kStrain) strain.push_back(r);
+  }
+  ASSERT_EQ(strain.size(), 1502u);
+  // strain[n] is the sample k = n + 1: k = 1500 and 1501 gated, 1502 fused.
+  EXPECT_EQ(strain[1498].outcome, FusionOutcome::kFused);
+  EXPECT_EQ(strain[1499].outcome, FusionOutcome::kRejectedGate);
+  EXPECT_EQ(strain[1500].outcome, FusionOutcome::kRejectedGate);
+  EXPECT_GT(strain[1500].nis, 30.0);
+  EXPECT_EQ(strain[1501].outcome, FusionOutcome::kFused);
+  EXPECT_TRUE(strain[1501].fused_after_inflation);
+  EXPECT_DOUBLE_EQ(strain[1501].gate, 30.0);
+  // Inflated by 0.01 before the update; the update takes back part of it.
+  EXPECT_GT(run.ekf.covariance()(kThrustScale1, kThrustScale1), mu_variance_before + 1e-3);
+}
+
+// A 40 ms strain gap (below the 0.1 s reset gap) while MOTOR and IMU go on:
+// the next strain sample predicts through every queued sample in sub-steps
+// and fuses each at its own stamp.
+TEST(EkfForceEstimatorDirectTest, GapIsPredictedInSubStepsThroughTheQueuedSamples) {
+  DirectRun run;
+  int64_t reports_before_gap = 0;
+  run.Feed(HoverEvents(), [&](StrainSample* s) {
+    if (s->utime == 1000000) reports_before_gap = static_cast<int64_t>(run.log.reports.size());
+    return s->utime <= 1000000 || s->utime > 1040000;
+  });
+  int64_t telemetry_in_gap = 0, gyro_in_gap = 0;
+  for (size_t i = reports_before_gap; i < run.log.reports.size(); ++i) {
+    const FusionReport& r = run.log.reports[i];
+    if (r.utime < 1000000 || r.utime > 1040000) continue;
+    EXPECT_EQ(r.outcome, FusionOutcome::kFused);
+    telemetry_in_gap += r.source == FusionSource::kTelemetry ? 1 : 0;
+    gyro_in_gap += r.source == FusionSource::kGyro ? 1 : 0;
+  }
+  EXPECT_EQ(telemetry_in_gap, 21);  // MOTOR at 500 Hz over [1.000, 1.040] s
+  EXPECT_EQ(gyro_in_gap, 41);       // IMU at 1 kHz
+  EXPECT_EQ(run.resets, 0);
+  EXPECT_LT(run.Mae(0), 0.11);
+  EXPECT_LT(run.Mae(1), 0.11);
+}
+
+// A MOTOR sample stamped before the filter's time cannot be fused at its
+// stamp: reported not fused; its command still holds from now on.
+TEST(EkfForceEstimatorDirectTest, LateMeasurementIsNotFused) {
+  DirectRun run;
+  std::vector<InputEvent> events(HoverEvents().begin(), HoverEvents().begin() + 400);
+  run.Feed(events);
+  const int64_t not_fused_before = run.log.Count(FusionSource::kTelemetry, FusionOutcome::kNotFused);
+  MotorSample late;
+  late.utime = run.ekf.utime() - 3000;
+  late.omega_cmd_rad_s[0] = late.omega_cmd_rad_s[1] = 700.0;
+  late.omega_meas_rad_s[0] = late.omega_meas_rad_s[1] = 700.0;
+  run.ekf.AddMotor(late);
+  StrainSample next;
+  next.utime = run.ekf.utime() + 1000;
+  next.deflection_rad[0] = run.ekf.state()(kDeflection1);
+  next.deflection_rad[1] = run.ekf.state()(kDeflection2);
+  run.ekf.AddStrain(next, &run.last, &run.info);
+  EXPECT_EQ(run.log.Count(FusionSource::kTelemetry, FusionOutcome::kNotFused), not_fused_before + 1);
+  EXPECT_EQ(run.log.reports.back().source, FusionSource::kStrain);
 }
 
 }  // namespace

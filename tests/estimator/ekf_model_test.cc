@@ -114,34 +114,97 @@ TEST(MeasurementModelTest, JacobiansMatchCentralDifferences) {
   ExpectJacobianMatchesPredict(GyroMeasurementModel(0.005));
 }
 
-TEST(JosephUpdateTest, KeepsCovarianceSymmetricPositiveDefinite) {
-  std::mt19937 rng(13);
+// A badly scaled but valid covariance, as in the filter (b ~ 1e-5, omega ~ 10).
+EkfMatrix RandomCovariance(std::mt19937* rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  // A badly scaled but valid covariance, as in the filter (b ~ 1e-5, omega ~ 10).
   const double kScale[kEkfStateSize] = {1e-5, 1e-5, 0.1, 0.01, 0.01, 10.0, 10.0, 0.1, 0.1};
   EkfMatrix root;
   for (int i = 0; i < kEkfStateSize; ++i) {
-    for (int j = 0; j < kEkfStateSize; ++j) root(i, j) = n(rng) * kScale[i];
+    for (int j = 0; j < kEkfStateSize; ++j) root(i, j) = n(*rng) * kScale[i];
   }
-  EkfMatrix cov = root * root.transpose();
+  return root * root.transpose();
+}
+
+// The textbook Joseph form, dense: (I - K H) P (I - K H)^T + K R K^T.
+template <int M>
+EkfMatrix TextbookJoseph(const EkfMatrix& p, const Eigen::Matrix<double, kEkfStateSize, M>& k,
+                         const Eigen::Matrix<double, M, kEkfStateSize>& h, const Eigen::Matrix<double, M, M>& r) {
+  const EkfMatrix i_kh = EkfMatrix::Identity() - k * h;
+  return i_kh * p * i_kh.transpose() + k * r * k.transpose();
+}
+
+// With a gain that is NOT the Kalman gain the expanded form P - K S K^T is
+// wrong; the Joseph form holds for any gain, so this is what tells them apart.
+TEST(JosephCovarianceTest, MatchesTheTextbookFormForANonOptimalGain) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const StrainMeasurementModel strain(2e-5);
+  const MotorSpeedMeasurementModel motor(5.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const EkfMatrix p = RandomCovariance(&rng);
+    const Eigen::Matrix2d s = strain.h_jacobian * p * strain.h_jacobian.transpose() + strain.noise;
+    Eigen::Matrix<double, kEkfStateSize, 2> k = p * strain.h_jacobian.transpose() * s.inverse();
+    for (int i = 0; i < kEkfStateSize; ++i) {
+      for (int j = 0; j < 2; ++j) k(i, j) *= 1.0 + 0.3 * n(rng);  // 30 % off the optimum
+    }
+    const EkfMatrix joseph = JosephCovariance<2>(p, k, strain.h_jacobian, strain.noise);
+    const EkfMatrix textbook = TextbookJoseph<2>(p, k, strain.h_jacobian, strain.noise);
+    const EkfMatrix expanded = p - k * s * k.transpose();  // only right at the optimal gain
+    for (int i = 0; i < kEkfStateSize; ++i) {
+      for (int j = 0; j < kEkfStateSize; ++j) {
+        // Round-off relative to the scale of the entry's row and column.
+        const double scale = std::sqrt(p(i, i) * p(j, j));
+        EXPECT_NEAR(joseph(i, j), textbook(i, j), 1e-12 * scale) << i << ", " << j;
+      }
+    }
+    EXPECT_GT((expanded - textbook).cwiseAbs().maxCoeff(), 1e-3 * textbook.cwiseAbs().maxCoeff());
+
+    const Eigen::Matrix<double, kEkfStateSize, 2> k2 = Eigen::Matrix<double, kEkfStateSize, 2>::Random() * 0.01;
+    const EkfMatrix joseph2 = JosephCovariance<2>(p, k2, motor.h_jacobian, motor.noise);
+    const EkfMatrix textbook2 = TextbookJoseph<2>(p, k2, motor.h_jacobian, motor.noise);
+    EXPECT_LE((joseph2 - textbook2).cwiseAbs().maxCoeff(), 1e-12 * textbook2.cwiseAbs().maxCoeff());
+  }
+}
+
+// At the optimal gain all forms agree: P+ = P - K S K^T.
+TEST(JosephCovarianceTest, EqualsTheStandardUpdateAtTheKalmanGain) {
+  std::mt19937 rng(17);
+  const GyroMeasurementModel gyro(0.005);
+  const EkfMatrix p = RandomCovariance(&rng);
+  const Eigen::Matrix<double, 1, 1> s = gyro.h_jacobian * p * gyro.h_jacobian.transpose() + gyro.noise;
+  const Eigen::Matrix<double, kEkfStateSize, 1> k = p * gyro.h_jacobian.transpose() * s.inverse();
+  const EkfMatrix joseph = JosephCovariance<1>(p, k, gyro.h_jacobian, gyro.noise);
+  const EkfMatrix standard = p - k * s * k.transpose();
+  for (int i = 0; i < kEkfStateSize; ++i) {
+    for (int j = 0; j < kEkfStateSize; ++j) {
+      EXPECT_NEAR(joseph(i, j), standard(i, j), 1e-10 * std::sqrt(p(i, i) * p(j, j))) << i << ", " << j;
+    }
+  }
+}
+
+// 1500 updates of a badly scaled covariance: symmetric to round-off (the
+// factored product is not symmetric by construction) and positive definite.
+TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0.0, 1.0);
+  EkfMatrix cov = RandomCovariance(&rng);
   EkfState x = EkfState::Zero();
   const StrainMeasurementModel strain(2e-5);
   const MotorSpeedMeasurementModel motor(5.0);
   for (int k = 0; k < 1000; ++k) {
     const StrainMeasurementModel::Vector z(1e-5 * n(rng), 1e-5 * n(rng));
-    JosephUpdate(strain, ComputeInnovation(strain, x, cov, z), &x, &cov);
+    KalmanUpdate(strain, ComputeInnovation(strain, x, cov, z), &x, &cov);
     if (k % 2 == 0) {
       const MotorSpeedMeasurementModel::Vector w(5.0 * n(rng), 5.0 * n(rng));
-      JosephUpdate(motor, ComputeInnovation(motor, x, cov, w), &x, &cov);
+      KalmanUpdate(motor, ComputeInnovation(motor, x, cov, w), &x, &cov);
     }
   }
-  EXPECT_LE((cov - cov.transpose()).cwiseAbs().maxCoeff(), 1e-12 * cov.cwiseAbs().maxCoeff());
-  // Positive definite: Cholesky of the diagonally scaled matrix succeeds.
   const EkfState d = cov.diagonal().cwiseSqrt().cwiseInverse();
-  const EkfMatrix scaled = d.asDiagonal() * cov * d.asDiagonal();
+  const EkfMatrix scaled = d.asDiagonal() * cov * d.asDiagonal();  // correlations
+  EXPECT_LE((scaled - scaled.transpose()).cwiseAbs().maxCoeff(), 1e-9);
   Eigen::LLT<EkfMatrix> llt(0.5 * (scaled + scaled.transpose()));
   EXPECT_EQ(llt.info(), Eigen::Success);
-  EXPECT_LE(cov(kDeflection1, kDeflection1), 4e-10);  // cannot exceed R after an update
+  EXPECT_LE(cov(kDeflection1, kDeflection1), 4e-10);  // cannot exceed R = (2e-5)^2 after an update
 }
 
 }  // namespace

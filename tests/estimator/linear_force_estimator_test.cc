@@ -39,8 +39,8 @@ TEST(LinearForceModel, IsTheObservableBlockOfTheAugmentedModel) {
   // Hover (reference-vehicle.md): 22.4465 N, b1 = -0.0018664 rad.
   EXPECT_NEAR(model.force_hover_n[0], 22.4465, 1e-3);
   EXPECT_NEAR(model.deflection_hover_rad[0], -0.0018664, 1e-7);
-  // Force noise from the EKF's figures at hover: (c_T w0^2)^2 2e-3 + (2 c_T w0)^2 100 = 1.421 N^2/s.
-  EXPECT_NEAR(model.force_psd_n2_s, 1.421, 0.002);
+  // Force noise: linear_model.force_psd_n2_s.
+  EXPECT_EQ(model.force_psd_n2_s, LinearModelOptions().force_psd_n2_s);
   // phi_dot is driven by b1 + b2 only (reference-vehicle.md: d(phi_ddot)/d(b_i) = 5.256e4) and drives nothing.
   EXPECT_NEAR(model.a_continuous(kLinPitchRate, kLinDeflection1), 5.256e4, 1.0);
   EXPECT_EQ(model.a_continuous.col(kLinPitchRate).norm(), 0.0);
@@ -239,7 +239,7 @@ TEST(LinearKalmanFilter, CovarianceConvergesToTheSteadyState) {
   const LinearForceModel& model = filter.model();
   StrainSample s;
   ForceEstimate e;
-  StrainUpdateInfo info;
+  StrainStepInfo info;
   for (int k = 0; k < 5000; ++k) {
     s.utime = k * 1000;
     s.deflection_rad[0] = model.deflection_hover_rad[0];

@@ -22,7 +22,7 @@ namespace testing_support {
 struct PairedSample {
   int64_t utime = 0;
   double force_error_n[2] = {0, 0};  // estimate - truth [N]
-  double force_std_n[2] = {0, 0};    // reported one sigma [N]
+  double force_std_n[2] = {0, 0};    // the estimate's one sigma [N]
   double thrust_scale[2] = {1, 1};   // estimated
   double true_thrust_scale[2] = {1, 1};
   int32_t status = 0;

@@ -22,7 +22,8 @@ TEST(MonitorViewTest, StatusWords) {  // plot/status_words.h, shared with the pl
   EXPECT_EQ(StatusWords(kStatusValid | kStatusRotor2Fault), "VALID|ROTOR2_FAULT");
   EXPECT_EQ(StatusWords(kStatusInputStale | kStatusMeasurementRejected | kStatusFilterReset | kStatusRotor1Fault),
             "REJECTED|STALE|ROTOR1_FAULT|RESET");
-  EXPECT_EQ(StatusWords(256 | kStatusValid), "VALID|0x100");
+  EXPECT_EQ(StatusWords(1024 | kStatusValid), "VALID|0x400");
+  EXPECT_EQ(StatusWords(kStatusThrustDeficit | kStatusInputConflict), "THRUST_DEFICIT|CONFLICT");
 }
 
 TEST(MonitorViewTest, ProgressBar) {
@@ -133,7 +134,7 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
   const std::string view = TerminalView(collector, context);
   EXPECT_EQ(std::count(view.begin(), view.end(), '\n'), kTerminalViewLines);
   EXPECT_NE(view.find("(no TRUTH: vehicle view)"), std::string::npos) << view;
-  EXPECT_NE(view.find("(rotor fault below 0.85)"), std::string::npos) << view;
+  EXPECT_NE(view.find("(rotor fault below 0.90)"), std::string::npos) << view;
   EXPECT_NE(view.find("strain NIS mean 2.04"), std::string::npos) << view;
   EXPECT_NE(view.find("resets 1 (last: start)"), std::string::npos) << view;
   EXPECT_NE(view.find("resets after start 0"), std::string::npos) << view;

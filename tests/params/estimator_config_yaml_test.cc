@@ -25,11 +25,15 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.ekf.strain_noise_rad, defaults.ekf.strain_noise_rad);
   EXPECT_EQ(config.ekf.thrust_scale_psd_1_s, defaults.ekf.thrust_scale_psd_1_s);
   EXPECT_EQ(config.ekf.deflection_rate_psd_rad2_s3, defaults.ekf.deflection_rate_psd_rad2_s3);
-  EXPECT_EQ(config.ekf.gate_nis_threshold, defaults.ekf.gate_nis_threshold);
+  EXPECT_EQ(config.ekf.strain_gate_nis, defaults.ekf.strain_gate_nis);
+  EXPECT_EQ(config.ekf.telemetry_gate_nis, defaults.ekf.telemetry_gate_nis);
+  EXPECT_EQ(config.ekf.gyro_gate_nis, defaults.ekf.gyro_gate_nis);
   EXPECT_EQ(config.ekf.gate_consecutive_limit, defaults.ekf.gate_consecutive_limit);
-  EXPECT_EQ(config.ekf.fault_thrust_scale, defaults.ekf.fault_thrust_scale);
-  EXPECT_EQ(config.ekf.fault_clear_thrust_scale, defaults.ekf.fault_clear_thrust_scale);
-  EXPECT_EQ(config.ekf.max_dt_s, defaults.ekf.max_dt_s);
+  EXPECT_EQ(config.ekf.rotor_fault_asymmetry, defaults.ekf.rotor_fault_asymmetry);
+  EXPECT_EQ(config.ekf.rotor_fault_clear_asymmetry, defaults.ekf.rotor_fault_clear_asymmetry);
+  EXPECT_EQ(config.ekf.thrust_deficit_scale, defaults.ekf.thrust_deficit_scale);
+  EXPECT_EQ(config.ekf.thrust_deficit_clear_scale, defaults.ekf.thrust_deficit_clear_scale);
+  EXPECT_EQ(config.ekf.fault_persistence_s, defaults.ekf.fault_persistence_s);
   EXPECT_EQ(config.inversion.window_samples, defaults.inversion.window_samples);
   EXPECT_EQ(config.motor_map.model_speed_std_rad_s, defaults.motor_map.model_speed_std_rad_s);
   EXPECT_EQ(config.pipeline.reset_gap_s, defaults.pipeline.reset_gap_s);
@@ -45,6 +49,11 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.tare.state_file, defaults.tare.state_file);
   EXPECT_EQ(config.harmonic_notch.enabled, defaults.harmonic_notch.enabled);
   EXPECT_EQ(config.harmonic_notch.bandwidth_hz, defaults.harmonic_notch.bandwidth_hz);
+  EXPECT_EQ(config.pipeline.max_forward_jump_s, defaults.pipeline.max_forward_jump_s);
+  EXPECT_EQ(config.pipeline.forward_jump_confirm_samples, defaults.pipeline.forward_jump_confirm_samples);
+  EXPECT_EQ(config.pipeline.conflict_min_violations, defaults.pipeline.conflict_min_violations);
+  EXPECT_EQ(config.pipeline.conflict_window_s, defaults.pipeline.conflict_window_s);
+  EXPECT_EQ(config.pipeline.conflict_clear_s, defaults.pipeline.conflict_clear_s);
 }
 
 TEST(EstimatorConfigYamlTest, EmptyOrPartialFileIsRefusedNamingEachMissingKey) {
@@ -102,8 +111,12 @@ TEST(EstimatorConfigYamlTest, ErrorsNameFileKeyAndRange) {
   e = ErrorOf("vehicle: {arm_stiffness_n_m_rad: 0}\n");
   EXPECT_NE(e.find("vehicle.arm_stiffness_n_m_rad"), std::string::npos) << e;
 
-  e = ErrorOf("estimator:\n  ekf: {fault_thrust_scale: 0.9, fault_clear_thrust_scale: 0.8}\n");
-  EXPECT_NE(e.find("fault_clear_thrust_scale"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  ekf: {rotor_fault_asymmetry: 0.1, rotor_fault_clear_asymmetry: 0.2}\n");
+  EXPECT_NE(e.find("rotor_fault_clear_asymmetry"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  ekf: {thrust_deficit_scale: 0.95, thrust_deficit_clear_scale: 0.9}\n");
+  EXPECT_NE(e.find("thrust_deficit_clear_scale"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  ekf: {max_dt_s: 0.1}\n");  // one reset gap: estimator.pipeline.reset_gap_s
+  EXPECT_NE(e.find("max_dt_s"), std::string::npos) << e;
 
   e = ErrorOf("estimator:\n  tare: {window_s: 0}\n");
   EXPECT_NE(e.find("estimator.tare.window_s"), std::string::npos) << e;

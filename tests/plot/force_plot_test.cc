@@ -58,7 +58,7 @@ TEST(ForcePlotTest, MarksFaultsStepAndClippedTransient) {
   EXPECT_FALSE(Has(script, "'ROTOR1_FAULT "));
   // 3 of 2000 samples (0.15 %) at 9 N are outside the bulk (clip_fraction 0.2 %).
   EXPECT_TRUE(Has(script, "clipped to the bulk of the data: peak 9.00 N at 1.001 s"));
-  EXPECT_TRUE(Has(script, "rotor fault below 0.85"));  // EkfOptions default
+  EXPECT_TRUE(Has(script, "rotor fault below 0.90"));  // 1 - EkfOptions::rotor_fault_asymmetry
   EXPECT_TRUE(Has(script, "f2 est - true"));
   EXPECT_TRUE(Has(script, "±1σ, median 0.020 N"));  // MakeThrustLoss's std
 
@@ -76,7 +76,7 @@ TEST(ForcePlotTest, WithoutTruthShowsEstimatesOnly) {
   ForcePlotOptions options;
   options.title = "vehicle";
   EkfOptions ekf;
-  ekf.fault_thrust_scale = 0.8;
+  ekf.rotor_fault_asymmetry = 0.2;
   options.scale_lines = ThrustScaleLines(ekf);
   const std::string script = ForcePlotScript(run.forces, {}, options);
   EXPECT_TRUE(Has(script, "(no TRUTH: estimates only)"));

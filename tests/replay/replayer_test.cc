@@ -1,5 +1,5 @@
-// The simulator -> log -> replay pipeline (hover, thrust_loss) with loose
-// accuracy bounds, byte-identical repeated replays, and the daemon fed the
+// The simulator -> log -> replay pipeline (hover, thrust_loss) with accuracy
+// bounds at 1.5x the measured figures, byte-identical repeated replays, and the daemon fed the
 // log over LCM (memq://) giving exactly the replay's estimates.
 #include "replay/replayer.h"
 
@@ -50,7 +50,7 @@ TEST(ReplayPipelineTest, HoverSimToLogToReplayIsAccurateAndDeterministic) {
   EXPECT_EQ(result.nonfinite, 0);
   EXPECT_EQ(result.fault_flags, 0);
   for (int r = 0; r < 2; ++r) {
-    EXPECT_LT(result.rotor[r].mae_n, 0.25) << "rotor " << r + 1;  // target 0.10
+    EXPECT_LT(result.rotor[r].mae_n, 1.5 * 0.0737) << "rotor " << r + 1;  // measured 0.0732 / 0.0737 N
   }
 
   // Same log twice: identical bytes.
@@ -93,11 +93,12 @@ TEST(ReplayPipelineTest, ThrustLossIsTrackedAndFlaggedThroughTheLog) {
   ASSERT_EQ(result.step_rotor, 2);
   EXPECT_NEAR(result.step_time_s, 5.0, 1e-3);
   ASSERT_FALSE(std::isnan(result.detection_delay_s)) << "fault never flagged";
-  EXPECT_LT(result.detection_delay_s, 0.2);        // target 0.05 s
-  EXPECT_LT(result.scale_error_after_step, 0.08);  // target 0.02
+  // Measured: delay 27.0 ms, scale error 0.0114, MAE 0.0742 / 0.0946 N; bounds 1.5x.
+  EXPECT_LT(result.detection_delay_s, 1.5 * 0.027);
+  EXPECT_LT(result.scale_error_after_step, 1.5 * 0.0114);
   EXPECT_EQ(result.false_alarms, 0);
   EXPECT_EQ(result.nonfinite, 0);
-  for (int r = 0; r < 2; ++r) EXPECT_LT(result.rotor[r].mae_n, 0.3);
+  for (int r = 0; r < 2; ++r) EXPECT_LT(result.rotor[r].mae_n, 1.5 * 0.0946);
 }
 
 // The daemon's glue fed the log's events over LCM, as lcm-logplayer would,

@@ -4,9 +4,13 @@
 #include "services/estimator_service.h"
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <cstring>
+#include <memory>
+#include <sstream>
 #include <vector>
 
 #include "model/equilibrium.h"
@@ -132,9 +136,12 @@ TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
   const force_estimate_t& last = h.forces_.back();
   EXPECT_TRUE(last.status & kStatusValid) << last.status;
   EXPECT_FALSE(last.status & (kStatusRotor1Fault | kStatusRotor2Fault));
+  // Noise-free inputs at the hover equilibrium (equilibrium.h): the filter
+  // stays on it to round-off; its one sigma after 0.4 s is 0.100 N (measured).
   for (int i = 0; i < 2; ++i) {
-    EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 0.2);
-    EXPECT_NEAR(last.thrust_scale[i], 1.0, 0.02);
+    EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 1e-9);
+    EXPECT_NEAR(last.thrust_scale[i], 1.0, 1e-12);
+    EXPECT_NEAR(last.force_std_n[i], 0.1001, 0.0015);
   }
   const estimator_status_t status = h.Status();
   EXPECT_EQ(status.method, "ekf");
@@ -146,10 +153,17 @@ TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
   EXPECT_EQ(status.published, 400);
   EXPECT_EQ(status.utime, h.forces_.back().utime);
   EXPECT_NEAR(h.StrainHealth(status).rate_hz, 400.0, 1e-9);  // 400 samples in a 1 s period
-  EXPECT_GT(status.processing_time_max_us, 0.0);
+  // Times are measured (their size is the benchmark's business): ordered.
+  EXPECT_GT(status.processing_time_mean_us, 0.0);
+  EXPECT_LE(status.processing_time_mean_us, status.processing_time_max_us);
   EXPECT_LE(status.processing_time_p99_us, status.processing_time_max_us);
-  EXPECT_TRUE(std::isfinite(status.strain_nis_mean));
-  EXPECT_EQ(status.strain_gate, h.config_.ekf.gate_nis_threshold);
+  // The innovations of noise-free equilibrium inputs vanish (measured 5e-32).
+  EXPECT_LT(status.strain_nis_mean, 1e-20);
+  EXPECT_LT(status.strain_nis_max, 1e-20);
+  EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].fused, 200);  // each MOTOR(t) before STRAIN(t)
+  EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].not_fused, 0);
+  EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].gate, h.config_.ekf.telemetry_gate_nis);
+  EXPECT_EQ(status.strain_gate, h.config_.ekf.strain_gate_nis);
 }
 
 TEST(EstimatorServiceTest, BadInputIsCountedFlaggedFiniteAndRecoveredFrom) {
@@ -262,6 +276,28 @@ TEST(EstimatorServiceTest, OverloadedStrainPacketsAreDroppedAndCounted) {
   EXPECT_EQ(sink.count, 0);
   EXPECT_TRUE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us));
   EXPECT_EQ(sink.count, 1);
+}
+
+// Issue 16 item 5: every rejection class that can stop FORCE logs a line
+// naming the channel, at most once per warning_interval_s.
+TEST(EstimatorServiceTest, RejectionsThatCanStopForceAreLoggedRateLimited) {
+  std::ostringstream out;
+  auto logger = std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_st>(out));
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(logger);
+  ServiceHarness h;
+  h.FeedHover(1'000'000, 0, 100);
+  for (int k = 0; k < 3; ++k) h.Publish(h.channels_.strain, ToMessage(h.Strain(1'500'000 + k * 100'000, 1000 + k)));
+  h.Publish(h.channels_.strain, ToMessage(h.Strain(1'050'000, 50)));  // out of order
+  spdlog::set_default_logger(previous);
+  const std::string log = out.str();
+  // The first outlier is logged; the next two within the interval are not.
+  EXPECT_NE(log.find("TEST_STRAIN: 1 samples stamped too far ahead of every input dropped"), std::string::npos) << log;
+  EXPECT_EQ(log.find("TEST_STRAIN: 2 samples stamped"), std::string::npos) << log;
+  EXPECT_NE(log.find("TEST_STRAIN: 1 samples older than the newest dropped"), std::string::npos) << log;
+  const estimator_status_t status = h.Status();
+  EXPECT_EQ(h.StrainHealth(status).time_outliers, 3);
+  EXPECT_EQ(h.StrainHealth(status).out_of_order, 1);
 }
 
 }  // namespace

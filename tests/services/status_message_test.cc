@@ -44,15 +44,19 @@ TEST(StatusMessageTest, CarriesCountersRatesAndAges) {
   strain.last_utime = 2'500'000;
   strain.accepted_in_period = 100;
   health.resets = 2;
-  health.last_reset_reason = "gap";
-  health.nis_sum = 6.0;
-  health.nis_count = 3;
-  health.nis_max = 4.0;
+  health.last_reset_reason = ResetReason::kGap;
+  strain.nis_sum = 6.0;
+  strain.nis_count = 3;
+  strain.nis_max = 4.0;
+  strain.gate = 30;
+  strain.not_fused = 3;
+  strain.time_outliers = 1;
+  strain.conflicts = 2;
+  strain.conflict_active = true;
   health.last_estimate.force_n[1] = 21.5;
   StatusContext context;
   context.period_s = 0.2;
   context.seq = 5;
-  context.strain_gate = 30;
   estimator_status_t message;
   BuildStatusMessage(health, "ekf", context, &message);
   EXPECT_EQ(message.seq, 5);
@@ -67,6 +71,14 @@ TEST(StatusMessageTest, CarriesCountersRatesAndAges) {
   EXPECT_TRUE(std::isnan(message.inputs[1].age_s));  // never received
   EXPECT_DOUBLE_EQ(message.strain_nis_mean, 2.0);
   EXPECT_DOUBLE_EQ(message.strain_nis_max, 4.0);
+  EXPECT_DOUBLE_EQ(message.strain_gate, 30.0);
+  EXPECT_DOUBLE_EQ(message.inputs[0].nis_mean, 2.0);
+  EXPECT_DOUBLE_EQ(message.inputs[0].gate, 30.0);
+  EXPECT_TRUE(std::isnan(message.inputs[1].nis_mean));  // no report this period
+  EXPECT_EQ(message.inputs[0].not_fused, 3);
+  EXPECT_EQ(message.inputs[0].time_outliers, 1);
+  EXPECT_EQ(message.inputs[0].conflicts, 2);
+  EXPECT_EQ(message.inputs[0].conflict_active, 1);
   EXPECT_EQ(message.last_reset_reason, "gap");
   EXPECT_DOUBLE_EQ(message.force_n[1], 21.5);
   // The message encodes and decodes through the checked codec.
@@ -102,11 +114,24 @@ TEST(StatusMessageTest, CarriesTheGaugeOffsetsAndTheTareCounters) {
   EXPECT_EQ(decoded.last_tare_refusal, "out_of_range");
 }
 
-TEST(StatusMessageTest, GateIsNanForTheBaselines) {
+TEST(StatusMessageTest, EveryInputHasItsGateAndTheBaselinesNone) {
   EstimatorConfig config;
-  EXPECT_EQ(StrainGateOf(config), config.ekf.gate_nis_threshold);
+  EXPECT_EQ(GateOf(config, InputChannel::kStrain), config.ekf.strain_gate_nis);
+  EXPECT_EQ(GateOf(config, InputChannel::kMotor), config.ekf.telemetry_gate_nis);
+  EXPECT_EQ(GateOf(config, InputChannel::kImu), config.ekf.gyro_gate_nis);
+  EXPECT_TRUE(std::isnan(GateOf(config, InputChannel::kPose)));
   config.method = "motor_map";
-  EXPECT_TRUE(std::isnan(StrainGateOf(config)));
+  EXPECT_TRUE(std::isnan(GateOf(config, InputChannel::kStrain)));
+}
+
+TEST(StatusMessageTest, AgeIsNanForASampleNewerThanTheClock) {
+  PipelineHealth health;
+  health.newest_utime = 1'000'000;
+  health.inputs[static_cast<int>(InputChannel::kPose)].last_utime = (int64_t{1} << 53) - 1;
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", StatusContext{}, &message);
+  EXPECT_EQ(message.utime, 1'000'000);
+  EXPECT_TRUE(std::isnan(message.inputs[static_cast<int>(InputChannel::kPose)].age_s));
 }
 
 }  // namespace

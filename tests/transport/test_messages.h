@@ -152,6 +152,13 @@ inline input_health_t MakeInputHealth(const char* channel, int64_t base) {
   h.dropped_overload = base + 10;
   h.age_s = 0.001 * static_cast<double>(base);
   h.rate_hz = 1000.0;
+  h.not_fused = base + 13;
+  h.time_outliers = base + 14;
+  h.conflicts = base + 15;
+  h.conflict_active = 1;
+  h.nis_mean = 2.0;
+  h.nis_max = 9.5;
+  h.gate = 30.0;
   return h;
 }
 

@@ -1,0 +1,71 @@
+// What one measurement fusion did: the innovation, its covariance, the
+// normalised innovation squared (NIS) against that measurement's chi-square
+// gate, and the outcome. Every method reports one per measurement it is given
+// (as PX4 EKF2 keeps a status per aiding source), so the health message counts
+// what was really fused, per input.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+
+namespace birotor {
+
+// The measurements a method can fuse. A new measurement (a gauge offset, a
+// harmonic) is appended before kNumFusionSources and mapped to the input
+// channel it comes from in EstimatorPipeline.
+enum class FusionSource : int {
+  kStrain = 0,     // arm deflections b1, b2 [rad] (STRAIN)
+  kTelemetry = 1,  // ESC rotor speeds omega1, omega2 [rad/s] (MOTOR)
+  kGyro = 2,       // body pitch rate phi_dot [rad/s] (IMU)
+};
+constexpr int kNumFusionSources = 3;
+
+enum class FusionOutcome : int {
+  kFused = 0,         // the state (and covariance) were updated with it
+  kRejectedGate = 1,  // NIS above the gate: not fused
+  kNotFused = 2,      // not attempted: older than the filter's time, pushed out
+                      // of a full queue, discarded by a re-initialisation, or
+                      // not used by the method
+};
+
+// Largest measurement dimension of any model (strain and telemetry: 2).
+constexpr int kMaxMeasurementSize = 2;
+
+struct FusionReport {
+  FusionSource source = FusionSource::kStrain;
+  FusionOutcome outcome = FusionOutcome::kNotFused;
+  int64_t utime = 0;  // stamp of the measurement; the filter was predicted to it [us]
+  int size = 0;       // measurement dimension m (0: no innovation computed)
+  // y = z - h(x) and S = H P H^T + R, in the measurement's unit (top-left m
+  // entries valid).
+  Eigen::Matrix<double, kMaxMeasurementSize, 1> innovation = Eigen::Matrix<double, kMaxMeasurementSize, 1>::Zero();
+  Eigen::Matrix<double, kMaxMeasurementSize, kMaxMeasurementSize> innovation_covariance =
+      Eigen::Matrix<double, kMaxMeasurementSize, kMaxMeasurementSize>::Zero();
+  // y^T S^-1 y, chi-square with m degrees of freedom; NaN when not computed.
+  double nis = std::numeric_limits<double>::quiet_NaN();
+  // The threshold nis was compared with; NaN when the method has no gate.
+  double gate = std::numeric_limits<double>::quiet_NaN();
+  // Fused only after the covariance was inflated, because the gate had
+  // rejected this input gate_consecutive_limit times in a row.
+  bool fused_after_inflation = false;
+};
+
+// A report without an innovation (not fused, or used without a gate).
+inline FusionReport MakeFusionReport(FusionSource source, int64_t utime, FusionOutcome outcome) {
+  FusionReport report;
+  report.source = source;
+  report.utime = utime;
+  report.outcome = outcome;
+  return report;
+}
+
+// Receives every report; the pipeline implements it to keep the counters.
+// OnFusion must not allocate, throw or log (it runs per sample).
+class FusionReportSink {
+ public:
+  virtual ~FusionReportSink() = default;
+  virtual void OnFusion(const FusionReport& report) = 0;
+};
+
+}  // namespace birotor
