@@ -92,39 +92,28 @@ class EkfProcessModel {
 // One measurement model per sensor: z = h(x) + noise, noise ~ N(0, R).
 // H is constant for all three (they read states directly).
 
-// Strain gauges: z = (b1, b2).
-struct StrainMeasurementModel {
+// A pair of states read directly: z = (x[first], x[second]), R = sigma^2 I.
+template <int kFirst, int kSecond>
+struct DirectPairMeasurementModel {
   static constexpr int kSize = 2;
   using Vector = Eigen::Matrix<double, kSize, 1>;
   using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
   using Covariance = Eigen::Matrix<double, kSize, kSize>;
-  explicit StrainMeasurementModel(double noise_rad) {
+  explicit DirectPairMeasurementModel(double noise_std) {
     h_jacobian.setZero();
-    h_jacobian(0, kDeflection1) = 1.0;
-    h_jacobian(1, kDeflection2) = 1.0;
-    noise = Covariance::Identity() * (noise_rad * noise_rad);
+    h_jacobian(0, kFirst) = 1.0;
+    h_jacobian(1, kSecond) = 1.0;
+    noise = Covariance::Identity() * (noise_std * noise_std);
   }
-  static Vector Predict(const EkfState& x) { return Vector(x(kDeflection1), x(kDeflection2)); }
+  static Vector Predict(const EkfState& x) { return Vector(x(kFirst), x(kSecond)); }
   Jacobian h_jacobian;  // H [1]
-  Covariance noise;     // R [rad^2]
+  Covariance noise;     // R [unit of the states squared]
 };
 
-// Motor telemetry: z = (omega1, omega2).
-struct MotorSpeedMeasurementModel {
-  static constexpr int kSize = 2;
-  using Vector = Eigen::Matrix<double, kSize, 1>;
-  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
-  using Covariance = Eigen::Matrix<double, kSize, kSize>;
-  explicit MotorSpeedMeasurementModel(double noise_rad_s) {
-    h_jacobian.setZero();
-    h_jacobian(0, kOmega1) = 1.0;
-    h_jacobian(1, kOmega2) = 1.0;
-    noise = Covariance::Identity() * (noise_rad_s * noise_rad_s);
-  }
-  static Vector Predict(const EkfState& x) { return Vector(x(kOmega1), x(kOmega2)); }
-  Jacobian h_jacobian;  // H [1]
-  Covariance noise;     // R [(rad/s)^2]
-};
+// Strain gauges: z = (b1, b2) [rad], noise_std in rad.
+using StrainMeasurementModel = DirectPairMeasurementModel<kDeflection1, kDeflection2>;
+// Motor telemetry: z = (omega1, omega2) [rad/s], noise_std in rad/s.
+using MotorSpeedMeasurementModel = DirectPairMeasurementModel<kOmega1, kOmega2>;
 
 // Gyro: z = phi_dot (body pitch rate; the body rate of a rigid body is the
 // same in every frame of the plane).
