@@ -62,7 +62,7 @@ class ClosedLoopListener {
     commands_.push_back(record);
   }
   void OnTruth(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    truth_t truth;
+    truth_t truth{};  // value-initialised: the decoder fills every field or fails
     if (DecodeMessage(buffer->data, buffer->data_size, &truth) != DecodeError::kNone) return;
     std::lock_guard<std::mutex> lock(mutex_);
     ++truth_count_;
@@ -149,7 +149,7 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
   EXPECT_LE(back_vehicle_s, 0.5);
   EXPECT_LE(back->arrival_s - restart_s, 10.0);  // generous: start-up on a shared, loaded machine
   EXPECT_LT(loop.max_altitude_error_m(), 0.5);   // no crash
-  EXPECT_GT(loop.truth_count(), 3000);  // 6000 sent; a loaded machine drops some
+  EXPECT_GT(loop.truth_count(), 3000);           // 6000 sent; a loaded machine drops some
   EXPECT_TRUE(controller.Alive());
   EXPECT_EQ(controller.Stop(), 0);
   EXPECT_EQ(estimator.Stop(), 0);
