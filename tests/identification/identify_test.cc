@@ -303,5 +303,26 @@ TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
   ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.05, 0.0);
 }
 
+// Issue 11: the tip mass from a 60 s flight alone (flight_id, the command of
+// the README's table: reference base file). Measured with the rotor
+// turbulence modelled: m_p +1.25 % (1.44 sigma, sigma 0.86 %), c_T +0.24 %,
+// k -0.005 %, tau_m -0.23 %; asserted with a 1.5x margin on the m_p error
+// (target 2 %) and truth within 3 sigma.
+TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
+  VehicleParams truth;
+  const SensorLog log = testing::SimulateScenario("flight_id", {}, &truth);
+  const IdentificationResult r = Identify({log}, VehicleParams(), IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 1.5 * 0.0125, 3.0);
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.02, 3.0);
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.02, 3.0);
+  ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.03, 3.0);
+  // The sandwich sigma from the scatter of the 40 windows, not the 0.29 %
+  // of the inflated information matrix the errors contradict.
+  const ParameterEstimate* m_p = Find(r, "m_p");
+  ASSERT_NE(m_p, nullptr);
+  EXPECT_GT(m_p->sigma, 0.005 * truth.tip_mass_kg);
+}
+
 }  // namespace
 }  // namespace birotor
