@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "identification/bench_residuals.h"
 #include "identification/fit_support.h"
 #include "identification/free_arm_residual.h"
 #include "identification/identify.h"
@@ -74,7 +75,9 @@ ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const Vehicl
 }  // namespace
 
 void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                        const IdentificationOptions& options, IdentificationResult* result) {
+                        const IdentificationOptions& options, IdentificationResult* result,
+                        const std::vector<SensorLog>* bench_logs) {
+  const bool joint = bench_logs != nullptr && !bench_logs->empty();
   FreeArmWindowResidual::Scales scales;
   scales.stiffness_n_m_rad = base.arm_stiffness_n_m_rad;
   scales.damping_n_m_s_rad = base.arm_damping_n_m_s_rad > 0.0 ? base.arm_damping_n_m_s_rad : 0.1;
@@ -229,8 +232,15 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   problem.SetParameterLowerBound(&c_ratio, 0, 1e-3);
   problem.SetParameterLowerBound(&d_ratio, 0, 0.0);
   problem.SetParameterLowerBound(&m_ratio, 0, 1e-3);
-  if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
-  if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&m_ratio);
+  // Joint fit: the bench residuals on the same blocks; the bench
+  // determines d and m_p, so both are free whatever the flight options say.
+  BenchResiduals bench;
+  if (joint) {
+    AddBenchResiduals(*bench_logs, base, options, &problem, {&k_ratio, &d_ratio, &c_ratio, &m_ratio}, &bench);
+  } else {
+    if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
+    if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&m_ratio);
+  }
   // Two stages: the turbulence knots held at 0 first (the initial states and
   // the vehicle parameters then converge in a few iterations), then free.
   // Started at once from zero turbulence, the Huber-weighted misfit of the
@@ -261,6 +271,21 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     result->residuals.push_back({names[channel], units[channel], stats.count, stats.rms_whitened,
                                  stats.rms_whitened * sigmas[channel], channel_inflation});
   }
+  std::vector<ceres::ResidualBlockId> clusters = blocks;
+  if (joint) {
+    // The bench blocks: each load-cell pair and each clamped-arm window is
+    // a cluster of the sandwich too; the flight channels' inflation is not
+    // applied to what the bench determines.
+    inflation = 1.0;
+    clusters.insert(clusters.end(), bench.thrust.begin(), bench.thrust.end());
+    clusters.insert(clusters.end(), bench.arms.begin(), bench.arms.end());
+    const ResidualStatistics thrust = ComputeResidualStatistics(&problem, bench.thrust, 1, 0);
+    const ResidualStatistics arms = ComputeResidualStatistics(&problem, bench.arms, 1, 0);
+    result->residuals.push_back({"load cell (force - c_T omega^2), joint fit", "N", thrust.count, thrust.rms_whitened,
+                                 0.0, VarianceInflation(thrust)});
+    result->residuals.push_back({"strain (clamped arm model), joint fit", "rad", arms.count, arms.rms_whitened,
+                                 arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
+  }
   const std::vector<double*> shared = {&k_ratio, &d_ratio, &c_ratio, &m_ratio};
   Eigen::MatrixXd covariance;
   std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, shared, inflation, options.num_threads, &covariance);
@@ -270,10 +295,14 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   // independent (1.5 s apart on flight_id, 15 turbulence correlation times),
   // so their scatter bounds the sigma from below (sandwich estimate).
   const std::vector<double> robust =
-      ComputeClusterRobustSigmas(&problem, shared, covariance, blocks, options.num_threads);
+      ComputeClusterRobustSigmas(&problem, shared, covariance, clusters, options.num_threads);
   for (size_t i = 0; i < robust.size(); ++i) sigma[i].sigma = std::max(sigma[i].sigma, robust[i]);
-  const std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
-                           std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
+  std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
+                     std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
+  if (joint) {
+    note = "joint fit (one problem): " + std::to_string(bench.thrust.size()) + " load-cell pairs, " +
+           std::to_string(bench.arms.size()) + " clamped-arm windows and " + note;
+  }
   auto fill = [&](ParameterEstimate* e, double ratio, double scale, const BlockSigma& s) {
     e->value = ratio * scale;
     e->sigma = s.sigma * scale;
@@ -289,7 +318,14 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     result->errors.push_back(std::string("c_T: not determined by the flight data") +
                              (any_imu ? "" : " (no IMU: only c_T / k is seen by the strain gauges)"));
   }
-  if (!options.flight_fit_damping) {
+  if (joint) {
+    // The bench floors (options): what the 1 kHz load-cell input cannot give better.
+    damping.sigma = std::hypot(damping.sigma, options.bench_damping_floor * damping.value);
+    ParameterEstimate& floored = options.calibration.TipMassWeighed() ? k : tip_mass;
+    floored.sigma = std::hypot(floored.sigma, options.bench_frequency_floor * floored.value);
+    damping.note += "; sigma includes bench_damping_floor";
+    floored.note += "; sigma includes bench_frequency_floor";
+  } else if (!options.flight_fit_damping) {
     damping.determined = false;
     damping.sigma = kNaN;
     damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
@@ -319,7 +355,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     }
   }
   result->estimates.insert(result->estimates.end(), {k, damping, c_t});
-  if (options.flight_fit_tip_mass) {
+  if (options.flight_fit_tip_mass || joint) {
     if (!tip_mass.determined) {
       result->warnings.push_back("m_p: not determined by the flight data; base value kept");
     }

@@ -324,5 +324,50 @@ TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
   EXPECT_GT(m_p->sigma, 0.005 * truth.tip_mass_kg);
 }
 
+// Issue 11 item 4: a bench log and a flight log of one vehicle in one Ceres
+// problem (12 s bench, 8 s flight, reference file as base). Measured: k
+// +0.0095 % (2.0 sigma), c_T -0.008 % (0.1), m_p +0.104 % (1.0), tau_m
+// +0.23 % (2.1), d -3.4 % (1.2); shares c_T bench 54.8 % / flight 45.2 %,
+// k 84.6 / 15.4, m_p 98.6 / 1.4. Asserted with a 1.5x margin (d: its 5 %
+// target) and truth within 3 sigma.
+TEST(JointBenchFlightTest, OneProblemOverBothLogsSaysWhichLogDeterminesWhat) {
+  VehicleParams truth;
+  SensorLog bench = testing::SimulateScenario("bench", {"scenario.duration_s=12"}, &truth);
+  SensorLog flight = testing::SimulateScenario("flight_id", {"scenario.duration_s=8"});
+  bench.source = "bench.lcm";
+  flight.source = "flight.lcm";
+  const IdentificationResult r = Identify({bench, flight}, VehicleParams(), IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  EXPECT_EQ(r.mode, "bench+flight");
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 1.5 * 0.000095, 3.0);
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 1.5 * 0.00008, 3.0);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 1.5 * 0.00104, 3.0);
+  ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 1.5 * 0.0023, 3.0);
+  ExpectRecovered(r, "d", truth.arm_damping_n_m_s_rad, 0.05, 3.0);
+  const ParameterEstimate* c_t = Find(r, "c_T");
+  ASSERT_NE(c_t, nullptr);
+  EXPECT_NE(c_t->note.find("joint fit (one problem)"), std::string::npos) << c_t->note;
+  bool found = false;
+  for (const std::string& line : r.log_shares) {
+    if (line.rfind("c_T: ", 0) != 0) continue;
+    found = true;
+    EXPECT_NE(line.find("bench.lcm"), std::string::npos) << line;
+    EXPECT_NE(line.find("flight.lcm"), std::string::npos) << line;
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(JointBenchFlightTest, BenchAndFlightOfDifferentVehiclesAreRefused) {
+  SensorLog bench = testing::SimulateScenario("bench", {"scenario.duration_s=12"});
+  SensorLog flight = testing::SimulateScenario(
+      "flight_id", {"scenario.duration_s=8", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.31"});
+  bench.source = "reference_bench.lcm";
+  flight.source = "other_flight.lcm";
+  const IdentificationResult r = Identify({bench, flight}, VehicleParams(), IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
+  EXPECT_NE(Errors(r).find("other_flight.lcm"), std::string::npos) << Errors(r);
+}
+
 }  // namespace
 }  // namespace birotor
