@@ -39,6 +39,19 @@ void ExpectRecovered(const IdentificationResult& r, const std::string& symbol, d
   }
 }
 
+// The information-share line of `symbol` names both logs.
+void ExpectShareOfBothLogs(const IdentificationResult& r, const std::string& symbol, const std::string& log_a,
+                           const std::string& log_b) {
+  bool found = false;
+  for (const std::string& line : r.log_shares) {
+    if (line.rfind(symbol + ": ", 0) != 0) continue;
+    found = true;
+    EXPECT_NE(line.find(log_a), std::string::npos) << line;
+    EXPECT_NE(line.find(log_b), std::string::npos) << line;
+  }
+  EXPECT_TRUE(found) << symbol;
+}
+
 // A base file that is wrong by a few percent, so the fits have to move.
 VehicleParams PerturbedBase(const VehicleParams& truth) {
   VehicleParams base = truth;
@@ -190,15 +203,7 @@ TEST(SeveralLogsTest, SameVehicleJointFitSaysWhichLogDeterminesWhat) {
   ASSERT_TRUE(r.ok) << Errors(r);
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.005, 3.0);
   ExpectRecovered(r, "m_p", truth.tip_mass_kg, 0.01, 3.0);
-  bool found = false;
-  for (const std::string& line : r.log_shares) {
-    if (line.rfind("k: ", 0) == 0) {
-      found = true;
-      EXPECT_NE(line.find("a.lcm"), std::string::npos) << line;
-      EXPECT_NE(line.find("b.lcm"), std::string::npos) << line;
-    }
-  }
-  EXPECT_TRUE(found);
+  ExpectShareOfBothLogs(r, "k", "a.lcm", "b.lcm");
 }
 
 TEST(SeveralLogsTest, TwoVehiclesAreRefusedAsInconsistent) {
@@ -347,14 +352,7 @@ TEST(JointBenchFlightTest, OneProblemOverBothLogsSaysWhichLogDeterminesWhat) {
   const ParameterEstimate* c_t = Find(r, "c_T");
   ASSERT_NE(c_t, nullptr);
   EXPECT_NE(c_t->note.find("joint fit (one problem)"), std::string::npos) << c_t->note;
-  bool found = false;
-  for (const std::string& line : r.log_shares) {
-    if (line.rfind("c_T: ", 0) != 0) continue;
-    found = true;
-    EXPECT_NE(line.find("bench.lcm"), std::string::npos) << line;
-    EXPECT_NE(line.find("flight.lcm"), std::string::npos) << line;
-  }
-  EXPECT_TRUE(found);
+  ExpectShareOfBothLogs(r, "c_T", "bench.lcm", "flight.lcm");
 }
 
 TEST(JointBenchFlightTest, BenchAndFlightOfDifferentVehiclesAreRefused) {
