@@ -52,6 +52,14 @@ void ExpectShareOfBothLogs(const IdentificationResult& r, const std::string& sym
   EXPECT_TRUE(found) << symbol;
 }
 
+// Logs of two vehicles: refused, the error names the disagreement on k and the log.
+void ExpectRefusedAsTwoVehicles(const std::vector<SensorLog>& logs, const std::string& named_log) {
+  const IdentificationResult r = Identify(logs, VehicleParams(), IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
+  EXPECT_NE(Errors(r).find(named_log), std::string::npos) << Errors(r);
+}
+
 // A base file that is wrong by a few percent, so the fits have to move.
 VehicleParams PerturbedBase(const VehicleParams& truth) {
   VehicleParams base = truth;
@@ -212,10 +220,7 @@ TEST(SeveralLogsTest, TwoVehiclesAreRefusedAsInconsistent) {
       "bench", {"scenario.duration_s=12", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.30"});
   a.source = "reference.lcm";
   b.source = "other.lcm";
-  const IdentificationResult r = Identify({a, b}, VehicleParams(), IdentificationOptions());
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
-  EXPECT_NE(Errors(r).find("reference.lcm"), std::string::npos) << Errors(r);
+  ExpectRefusedAsTwoVehicles({a, b}, "reference.lcm");
 }
 
 // Issue 16 item 10: one STRAIN stamped INT64_MIN, duplicated STRAIN events,
@@ -361,10 +366,7 @@ TEST(JointBenchFlightTest, BenchAndFlightOfDifferentVehiclesAreRefused) {
       "flight_id", {"scenario.duration_s=8", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.31"});
   bench.source = "reference_bench.lcm";
   flight.source = "other_flight.lcm";
-  const IdentificationResult r = Identify({bench, flight}, VehicleParams(), IdentificationOptions());
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
-  EXPECT_NE(Errors(r).find("other_flight.lcm"), std::string::npos) << Errors(r);
+  ExpectRefusedAsTwoVehicles({bench, flight}, "other_flight.lcm");
 }
 
 }  // namespace
