@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "identification/bench_residuals.h"
 #include "identification/clamped_arm_residual.h"
 #include "identification/deflection_force_map.h"
 #include "identification/fit_support.h"
@@ -26,14 +27,13 @@ constexpr size_t kMaxPlotPoints = 2000;      // per plot panel
 
 double LoadCellForce(const LoadCellSample& s, int rotor) { return s.force_n[rotor]; }
 
-}  // namespace
-
-void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                         const IdentificationOptions& options, IdentificationResult* result) {
-  ceres::Problem problem;
-  double ratio = 1.0;
+// Load-cell/telemetry pairs thrust_sample_spacing_s apart on the c_T ratio
+// block (ThrustResidual, Huber loss), with their data for the plot (may be null).
+std::vector<ceres::ResidualBlockId> AddThrustResiduals(const std::vector<SensorLog>& logs, const VehicleParams& base,
+                                                       const IdentificationOptions& options, ceres::Problem* problem,
+                                                       double* c_ratio, std::vector<double>* plot_omega,
+                                                       std::vector<double>* plot_force) {
   std::vector<ceres::ResidualBlockId> blocks;
-  std::vector<double> plot_omega, plot_force;
   const int64_t spacing_us = static_cast<int64_t>(options.thrust_sample_spacing_s * 1e6);
   for (const SensorLog& log : logs) {
     for (int rotor = 0; rotor < 2; ++rotor) {
@@ -50,18 +50,30 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
           continue;
         }
         next_us = m.utime + spacing_us;
-        plot_omega.push_back(omega);
-        plot_force.push_back(force);
+        if (plot_omega != nullptr) plot_omega->push_back(omega);
+        if (plot_force != nullptr) plot_force->push_back(force);
         const double f_model = base.thrust_coeff_n_s2_rad2 * omega * omega;
         const double dfdw = 2.0 * base.thrust_coeff_n_s2_rad2 * std::abs(omega) * options.telemetry_noise_rad_s;
         const double sigma = std::sqrt(options.loadcell_noise_n * options.loadcell_noise_n +
                                        std::pow(base.turbulence_std * f_model, 2) + dfdw * dfdw);
         blocks.push_back(
-            problem.AddResidualBlock(ThrustResidual::Create(force, omega, sigma, base.thrust_coeff_n_s2_rad2),
-                                     new ceres::HuberLoss(options.huber_threshold), &ratio));
+            problem->AddResidualBlock(ThrustResidual::Create(force, omega, sigma, base.thrust_coeff_n_s2_rad2),
+                                      new ceres::HuberLoss(options.huber_threshold), c_ratio));
       }
     }
   }
+  return blocks;
+}
+
+}  // namespace
+
+void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams& base,
+                         const IdentificationOptions& options, IdentificationResult* result) {
+  ceres::Problem problem;
+  double ratio = 1.0;
+  std::vector<double> plot_omega, plot_force;
+  const std::vector<ceres::ResidualBlockId> blocks =
+      AddThrustResiduals(logs, base, options, &problem, &ratio, &plot_omega, &plot_force);
   ParameterEstimate c_t;
   c_t.key = "thrust_coeff_n_s2_rad2";
   c_t.symbol = "c_T";
@@ -142,6 +154,66 @@ struct ArmData {
   std::vector<bool> valid;
 };
 
+// Strain samples of every (log, arm) with the load-cell force at the same
+// time; the valid pairs also go to map_b, map_f (the static map's data).
+std::vector<ArmData> CollectArmData(const std::vector<SensorLog>& logs, std::vector<double> map_b[2],
+                                    std::vector<double> map_f[2]) {
+  std::vector<ArmData> data;  // per (log, arm)
+  for (const SensorLog& log : logs) {
+    for (int arm = 0; arm < 2; ++arm) {
+      ArmData d;
+      d.arm = arm;
+      size_t hint = 0;
+      for (const StrainSample& s : log.strain) {
+        double force = 0.0;
+        const bool ok = InterpolateAt(
+                            log.loadcell, s.utime, kMaxLoadCellGapUs, &hint,
+                            [arm](const LoadCellSample& c) { return LoadCellForce(c, arm); }, &force) &&
+                        std::isfinite(force) && std::isfinite(s.deflection_rad[arm]);
+        d.utime.push_back(s.utime);
+        d.deflection_rad.push_back(s.deflection_rad[arm]);
+        d.force_n.push_back(ok ? force : 0.0);
+        d.valid.push_back(ok);
+        if (ok) {
+          map_b[arm].push_back(s.deflection_rad[arm]);
+          map_f[arm].push_back(force);
+        }
+      }
+      data.push_back(std::move(d));
+    }
+  }
+  return data;
+}
+
+// One output-error window [begin, end) of data[data_index].
+struct ArmWindow {
+  size_t data_index, begin, end;
+};
+
+// Windows of bench_arm_window_s over every (log, arm) run of valid pairs.
+std::vector<ArmWindow> ArmWindows(const std::vector<ArmData>& data, const IdentificationOptions& options) {
+  std::vector<ArmWindow> windows;
+  for (size_t n = 0; n < data.size(); ++n) {
+    const ArmData& d = data[n];
+    const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(d.utime), 1);
+    for (const auto& [begin, end] : ContiguousWindows(d.utime, d.valid, options.bench_arm_window_s, max_gap_us, 20)) {
+      windows.push_back({n, begin, end});
+    }
+  }
+  return windows;
+}
+
+std::vector<ClampedArmWindowResidual::Sample> ArmWindowSamples(const std::vector<ArmData>& data, const ArmWindow& w) {
+  const ArmData& d = data[w.data_index];
+  std::vector<ClampedArmWindowResidual::Sample> samples;
+  samples.reserve(w.end - w.begin);
+  for (size_t i = w.begin; i < w.end; ++i) {
+    const double dt_s = (i + 1 < w.end) ? 1e-6 * static_cast<double>(d.utime[i + 1] - d.utime[i]) : 0.0;
+    samples.push_back({dt_s, d.force_n[i], d.deflection_rad[i]});
+  }
+  return samples;
+}
+
 // Static line reading = a + c f of one arm by least squares (gauges.md:
 // a = o_i - s_i sign_i L m_p g / k, c = s_i sign_i L / k).
 struct StaticLine {
@@ -214,31 +286,8 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   const double L = base.arm_length_m, g = base.gravity_m_s2;
   const double sigma_b = options.strain_noise_rad;
 
-  std::vector<ArmData> data;  // per (log, arm)
   std::vector<double> map_b[2], map_f[2];
-  for (const SensorLog& log : logs) {
-    for (int arm = 0; arm < 2; ++arm) {
-      ArmData d;
-      d.arm = arm;
-      size_t hint = 0;
-      for (const StrainSample& s : log.strain) {
-        double force = 0.0;
-        const bool ok = InterpolateAt(
-                            log.loadcell, s.utime, kMaxLoadCellGapUs, &hint,
-                            [arm](const LoadCellSample& c) { return LoadCellForce(c, arm); }, &force) &&
-                        std::isfinite(force) && std::isfinite(s.deflection_rad[arm]);
-        d.utime.push_back(s.utime);
-        d.deflection_rad.push_back(s.deflection_rad[arm]);
-        d.force_n.push_back(ok ? force : 0.0);
-        d.valid.push_back(ok);
-        if (ok) {
-          map_b[arm].push_back(s.deflection_rad[arm]);
-          map_f[arm].push_back(force);
-        }
-      }
-      data.push_back(std::move(d));
-    }
-  }
+  const std::vector<ArmData> data = CollectArmData(logs, map_b, map_f);
   for (int arm = 0; arm < 2; ++arm) {
     DeflectionForceMap map = FitDeflectionForceMap(arm, map_b[arm], map_f[arm], options.map_degree);
     if (map.samples == 0) continue;
@@ -325,27 +374,8 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
 
   // Windows of every (log, arm).
   std::vector<std::unique_ptr<ClampedArmWindowResidual>> probes;  // for the frequency scan
-  struct WindowSpec {
-    size_t data_index, begin, end;
-  };
-  std::vector<WindowSpec> windows;
-  for (size_t n = 0; n < data.size(); ++n) {
-    const ArmData& d = data[n];
-    const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(d.utime), 1);
-    for (const auto& [begin, end] : ContiguousWindows(d.utime, d.valid, options.bench_arm_window_s, max_gap_us, 20)) {
-      windows.push_back({n, begin, end});
-    }
-  }
-  auto window_samples = [&](const WindowSpec& w) {
-    const ArmData& d = data[w.data_index];
-    std::vector<ClampedArmWindowResidual::Sample> samples;
-    samples.reserve(w.end - w.begin);
-    for (size_t i = w.begin; i < w.end; ++i) {
-      const double dt_s = (i + 1 < w.end) ? 1e-6 * static_cast<double>(d.utime[i + 1] - d.utime[i]) : 0.0;
-      samples.push_back({dt_s, d.force_n[i], d.deflection_rad[i]});
-    }
-    return samples;
-  };
+  const std::vector<ArmWindow> windows = ArmWindows(data, options);
+  auto window_samples = [&](const ArmWindow& w) { return ArmWindowSamples(data, w); };
 
   // Frequency scan: the ratio k / m_p over a factor 4 in 3 % steps on up to 24
   // windows, holding the static slope s_i / k. Scale held: m_p moves; scale
@@ -355,7 +385,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     std::vector<ClampedArmWindowResidual*> scan;
     const size_t count = std::min(kScanWindows, windows.size());
     for (size_t w = 0; w < count; ++w) {
-      const WindowSpec& spec = windows[(2 * w + 1) * windows.size() / (2 * count)];
+      const ArmWindow& spec = windows[(2 * w + 1) * windows.size() / (2 * count)];
       probes.push_back(std::make_unique<ClampedArmWindowResidual>(base, data[spec.data_index].arm, window_samples(spec),
                                                                   sigma_b, options.integration_substeps, scales,
                                                                   options.huber_threshold));
@@ -387,7 +417,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   std::deque<std::array<double, 2>> states;
   std::vector<ceres::ResidualBlockId> blocks;
   double* p = theta.data();
-  for (const WindowSpec& w : windows) {
+  for (const ArmWindow& w : windows) {
     const ArmData& d = data[w.data_index];
     const int arm = d.arm;
     // Initial state: static deflection under the first force, at rest.
@@ -518,6 +548,49 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   for (int arm = 0; arm < 2; ++arm) {
     if (scale_free && scale[arm].determined) result->params.gauge_scale[arm] = scale[arm].value;
     if (offset[arm].determined) result->params.gauge_offset_rad[arm] = offset[arm].value;
+  }
+}
+
+void AddBenchResiduals(const std::vector<SensorLog>& logs, const VehicleParams& bench,
+                       const IdentificationOptions& options, ceres::Problem* problem, const SharedRatioBlocks& shared,
+                       BenchResiduals* out) {
+  out->thrust = AddThrustResiduals(logs, bench, options, problem, shared.thrust_coeff, nullptr, nullptr);
+  std::vector<double> map_b[2], map_f[2];
+  const std::vector<ArmData> data = CollectArmData(logs, map_b, map_f);
+  const double sigma_b = options.strain_noise_rad;
+  ClampedArmWindowResidual::Scales scales;
+  scales.stiffness_n_m_rad = bench.arm_stiffness_n_m_rad;
+  scales.damping_n_m_s_rad = bench.arm_damping_n_m_s_rad > 0.0 ? bench.arm_damping_n_m_s_rad : 0.1;
+  scales.tip_mass_kg = bench.tip_mass_kg;
+  for (int arm = 0; arm < 2; ++arm) {
+    out->gauge_scale[arm] = bench.gauge_scale[arm];
+    out->offset_ratio[arm] = bench.gauge_offset_rad[arm] / sigma_b;
+  }
+  for (const ArmWindow& w : ArmWindows(data, options)) {
+    const ArmData& d = data[w.data_index];
+    const int arm = d.arm;
+    // Initial state: the first reading through the gauge, at rest.
+    out->states.push_back({(d.deflection_rad[w.begin] - bench.gauge_offset_rad[arm]) / bench.gauge_scale[arm], 0.0});
+    out->arms.push_back(problem->AddResidualBlock(
+        ClampedArmWindowResidual::Create(bench, arm, ArmWindowSamples(data, w), sigma_b, options.integration_substeps,
+                                         scales, options.huber_threshold),
+        nullptr, shared.stiffness, shared.damping, shared.tip_mass, &out->gauge_scale[arm], &out->offset_ratio[arm],
+        out->states.back().data()));
+  }
+  for (int arm = 0; arm < 2; ++arm) {
+    if (!problem->HasParameterBlock(&out->gauge_scale[arm])) continue;
+    problem->SetParameterBlockConstant(&out->gauge_scale[arm]);
+    problem->SetParameterBlockConstant(&out->offset_ratio[arm]);
+  }
+  const CalibrationFact& fact = options.calibration;
+  if (fact.TipMassWeighed() && problem->HasParameterBlock(shared.tip_mass)) {
+    if (fact.tip_mass_std_kg > 0.0) {
+      problem->AddResidualBlock(
+          PriorResidual::Create(fact.tip_mass_kg / scales.tip_mass_kg, fact.tip_mass_std_kg / scales.tip_mass_kg),
+          nullptr, shared.tip_mass);
+    } else {
+      problem->SetParameterBlockConstant(shared.tip_mass);
+    }
   }
 }
 

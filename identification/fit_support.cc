@@ -3,6 +3,7 @@
 #include <ceres/covariance.h>
 #include <ceres/solver.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -41,12 +42,12 @@ int64_t MedianIntervalUs(const std::vector<int64_t>& utime) {
   return dt[dt.size() / 2];
 }
 
-void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem) {
+void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem, double function_tolerance) {
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
   solver.max_num_iterations = options.max_iterations;
   solver.num_threads = options.num_threads;
-  solver.function_tolerance = 1e-10;
+  solver.function_tolerance = function_tolerance;
   solver.parameter_tolerance = 1e-10;
   solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -171,19 +172,26 @@ std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<doub
 namespace {
 
 bool TryCovariance(ceres::Problem* problem, const std::vector<double*>& blocks, const std::vector<bool>& use,
-                   int num_threads, std::vector<double>* variances) {
+                   int num_threads, std::vector<double>* variances, Eigen::MatrixXd* full = nullptr) {
   ceres::Covariance covariance(CovarianceOptions(num_threads));
   std::vector<std::pair<const double*, const double*>> pairs;
   for (size_t i = 0; i < blocks.size(); ++i) {
-    if (use[i]) pairs.emplace_back(blocks[i], blocks[i]);
+    for (size_t j = i; j < blocks.size() && use[i]; ++j) {
+      if (use[j] && (j == i || full != nullptr)) pairs.emplace_back(blocks[i], blocks[j]);
+    }
   }
   if (pairs.empty()) return true;
   if (!covariance.Compute(pairs, problem)) return false;
+  if (full != nullptr)
+    full->setZero(static_cast<Eigen::Index>(blocks.size()), static_cast<Eigen::Index>(blocks.size()));
   for (size_t i = 0; i < blocks.size(); ++i) {
-    if (!use[i]) continue;
-    double v = 0.0;
-    covariance.GetCovarianceBlock(blocks[i], blocks[i], &v);
-    (*variances)[i] = v;
+    for (size_t j = i; j < blocks.size() && use[i]; ++j) {
+      if (!use[j] || (j != i && full == nullptr)) continue;
+      double v = 0.0;
+      covariance.GetCovarianceBlock(blocks[i], blocks[j], &v);
+      if (i == j) (*variances)[i] = v;
+      if (full != nullptr) (*full)(i, j) = (*full)(j, i) = v;
+    }
   }
   return true;
 }
@@ -191,12 +199,13 @@ bool TryCovariance(ceres::Problem* problem, const std::vector<double*>& blocks, 
 }  // namespace
 
 std::vector<BlockSigma> ComputeBlockSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
-                                           double variance_inflation, int num_threads) {
+                                           double variance_inflation, int num_threads, Eigen::MatrixXd* covariance) {
   std::vector<BlockSigma> out(blocks.size());
   std::vector<double> variances(blocks.size(), 0.0);
   std::vector<bool> use(blocks.size(), true);
   for (size_t i = 0; i < blocks.size(); ++i) use[i] = !problem->IsParameterBlockConstant(blocks[i]);
-  bool computed = TryCovariance(problem, blocks, use, num_threads, &variances);
+  bool computed = TryCovariance(problem, blocks, use, num_threads, &variances, covariance);
+  if (!computed && covariance != nullptr) covariance->resize(0, 0);
   // Singular: find the blocks whose removal makes it regular, one at a time.
   for (size_t i = 0; !computed && i < blocks.size(); ++i) {
     if (!use[i]) continue;
@@ -215,6 +224,41 @@ std::vector<BlockSigma> ComputeBlockSigmas(ceres::Problem* problem, const std::v
     out[i].sigma = use[i] ? std::sqrt(std::max(0.0, variances[i]) * variance_inflation) : 0.0;
   }
   return out;
+}
+
+std::vector<double> ComputeClusterRobustSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
+                                               const Eigen::MatrixXd& covariance,
+                                               const std::vector<ceres::ResidualBlockId>& clusters, int num_threads) {
+  std::vector<double*> active;
+  std::vector<Eigen::Index> index;
+  for (size_t i = 0; i < blocks.size() && covariance.rows() == static_cast<Eigen::Index>(blocks.size()); ++i) {
+    if (problem->IsParameterBlockConstant(blocks[i]) || covariance(i, i) <= 0.0) continue;
+    active.push_back(blocks[i]);
+    index.push_back(static_cast<Eigen::Index>(i));
+  }
+  const size_t p = active.size();
+  if (p == 0 || clusters.size() <= p) return {};
+  Eigen::MatrixXd c(p, p);
+  for (size_t i = 0; i < p; ++i) {
+    for (size_t j = 0; j < p; ++j) c(i, j) = covariance(index[i], index[j]);
+  }
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(p, p);
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.parameter_blocks = active;
+  evaluate.num_threads = num_threads;
+  std::vector<double> gradient;
+  for (const ceres::ResidualBlockId id : clusters) {
+    evaluate.residual_blocks = {id};
+    double cost = 0.0;
+    if (!problem->Evaluate(evaluate, &cost, nullptr, &gradient, nullptr)) return {};
+    const Eigen::Map<const Eigen::VectorXd> g(gradient.data(), static_cast<Eigen::Index>(p));
+    meat += g * g.transpose();
+  }
+  const double clusters_n = static_cast<double>(clusters.size());
+  const Eigen::MatrixXd v = c * meat * c * (clusters_n / (clusters_n - static_cast<double>(p)));
+  std::vector<double> sigma(blocks.size(), 0.0);
+  for (size_t i = 0; i < p; ++i) sigma[index[i]] = std::sqrt(std::max(0.0, v(i, i)));
+  return sigma;
 }
 
 }  // namespace birotor

@@ -5,6 +5,7 @@
 
 #include <ceres/problem.h>
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -48,8 +49,10 @@ std::vector<std::pair<size_t, size_t>> ContiguousWindows(const std::vector<int64
 // Median interval of a sorted time stamp list [us] (0 when fewer than two).
 int64_t MedianIntervalUs(const std::vector<int64_t>& utime);
 
-// Ceres solver options shared by the fits (trust region, sparse Schur).
-void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem);
+// Ceres solver options shared by the fits (trust region, sparse Schur); the
+// solve stops when an iteration changes the cost by less than
+// function_tolerance times the cost.
+void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem, double function_tolerance = 1e-10);
 
 // Residual statistics of the given residual blocks after the fit, without the
 // robust loss. sequence_length groups consecutive residuals of one channel into
@@ -88,11 +91,29 @@ std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<doub
 // scales), from ceres::Covariance (sparse QR). A block along which the
 // information matrix is singular gets determined = false; the others are
 // computed with it held. sigma is multiplied by sqrt(variance_inflation).
+// *covariance (optional): the un-inflated covariance of the blocks from the
+// same factorization (rows of blocks held or constant are 0; empty when
+// the information matrix is singular).
 struct BlockSigma {
   bool determined = false;
   double sigma = 0.0;  // in units of the block value
 };
 std::vector<BlockSigma> ComputeBlockSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
-                                           double variance_inflation, int num_threads);
+                                           double variance_inflation, int num_threads,
+                                           Eigen::MatrixXd* covariance = nullptr);
+
+// Cluster-robust ("sandwich") one-sigma of the listed one-scalar parameter
+// blocks (the shared parameters) when the residual blocks `clusters` are
+// statistically independent of each other (flight windows 1.5 s apart)
+// but their residuals are not white inside a block (unmodelled turbulence):
+//   V = C (G / (G - p)) sum_w g_w g_w^T C,
+// C the covariance of the blocks from the information matrix (every other
+// parameter profiled out; `covariance` of ComputeBlockSigmas), g_w the gradient of cluster w's cost with
+// respect to the blocks at the optimum (the profiled score: the window's own
+// parameters are at their optimum), G clusters, p blocks. Constant blocks
+// get 0; an empty vector when C is empty or G <= p.
+std::vector<double> ComputeClusterRobustSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
+                                               const Eigen::MatrixXd& covariance,
+                                               const std::vector<ceres::ResidualBlockId>& clusters, int num_threads);
 
 }  // namespace birotor

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "identification/bench_residuals.h"
 #include "identification/fit_support.h"
 #include "identification/free_arm_residual.h"
 #include "identification/identify.h"
@@ -20,6 +21,12 @@ namespace {
 constexpr int64_t kMaxMotorGapUs = 10000;  // interpolate telemetry over at most 10 ms
 constexpr int64_t kMaxImuGapUs = 5000;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Relative cost change that ends the first solve (knots held: only a start
+// for the second) and the final one: on flight_id the parameters move by
+// less than 0.02 sigma after it, and the whole fit takes a third of the time
+// of a 1e-10 tolerance.
+constexpr double kStartTolerance = 1e-3;
+constexpr double kFinalTolerance = 1e-6;
 constexpr double kMotorSettleTimeConstants = 6.0;  // model speed trusted after 6 tau_m (0.25 % of the start error)
 
 // Rotor speeds of the first-order motor model driven by the recorded
@@ -68,7 +75,9 @@ ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const Vehicl
 }  // namespace
 
 void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                        const IdentificationOptions& options, IdentificationResult* result) {
+                        const IdentificationOptions& options, IdentificationResult* result,
+                        const std::vector<SensorLog>* bench_logs) {
+  const bool joint = bench_logs != nullptr && !bench_logs->empty();
   FreeArmWindowResidual::Scales scales;
   scales.stiffness_n_m_rad = base.arm_stiffness_n_m_rad;
   scales.damping_n_m_s_rad = base.arm_damping_n_m_s_rad > 0.0 ? base.arm_damping_n_m_s_rad : 0.1;
@@ -159,7 +168,14 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
       windows.push_back(candidates[(2 * w + 1) * candidates.size() / (2 * max_windows)]);
     }
   }
+  // Rotor turbulence knots (FreeArmWindowResidual): only when the base file
+  // gives the vehicle a turbulence to model.
+  const bool model_turbulence =
+      options.flight_turbulence_knot_s > 0.0 && base.turbulence_std > 0.0 && base.turbulence_corr_time_s > 0.0;
+  const double knot_s = model_turbulence ? options.flight_turbulence_knot_s : 0.0;
+  // Per window: x_0 and the knots [eta_1 knots, eta_2 knots] (may be empty).
   std::deque<std::array<double, kFreeArmStateSize>> states;
+  std::deque<std::vector<double>> knots;
   std::vector<ceres::ResidualBlockId> blocks;
   std::vector<const FreeArmWindowResidual*> functors;
   for (const Window& w : windows) {
@@ -173,6 +189,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     // Initial state: measured pitch rate and deflections; deflection rates
     // from a least-squares line through the first samples (strain noise
     // 2e-5 rad gives a few mrad/s), so the solver starts near the optimum.
+    // Turbulence knots start at 0 (its mean).
     const FreeArmWindowResidual::Sample& first = samples.front();
     std::array<double, kFreeArmStateSize> x0 = {std::isfinite(first.gyro_rad_s) ? first.gyro_rad_s : 0.0,
                                                 first.deflection_rad[0], first.deflection_rad[1], 0.0, 0.0};
@@ -189,12 +206,17 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
       const double det = fit_n * stt - st * st;
       if (det > 0.0) x0[arm == 0 ? kFreeB1Dot : kFreeB2Dot] = (fit_n * stb - st * sb) / det;
     }
-    states.push_back(x0);
     const FreeArmWindowResidual* functor = nullptr;
-    blocks.push_back(
-        problem.AddResidualBlock(FreeArmWindowResidual::Create(base, std::move(samples), noise,
-                                                               options.flight_integration_substeps, scales, &functor),
-                                 nullptr, &k_ratio, &d_ratio, &c_ratio, &m_ratio, states.back().data()));
+    ceres::CostFunction* cost = FreeArmWindowResidual::Create(
+        base, std::move(samples), noise, options.flight_integration_substeps, scales, knot_s, &functor);
+    states.push_back(x0);
+    std::vector<double>& window_knots = knots.emplace_back(functor->KnotBlockSize(), 0.0);
+    std::vector<double*> parameters = {&k_ratio, &d_ratio, &c_ratio, &m_ratio, states.back().data()};
+    if (!window_knots.empty()) parameters.push_back(window_knots.data());
+    blocks.push_back(problem.AddResidualBlock(cost, nullptr, parameters));
+    if (ceres::CostFunction* prior = functor->TurbulencePrior(base.turbulence_std, base.turbulence_corr_time_s)) {
+      problem.AddResidualBlock(prior, nullptr, window_knots.data());
+    }
     functors.push_back(functor);
   }
   ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
@@ -210,9 +232,25 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   problem.SetParameterLowerBound(&c_ratio, 0, 1e-3);
   problem.SetParameterLowerBound(&d_ratio, 0, 0.0);
   problem.SetParameterLowerBound(&m_ratio, 0, 1e-3);
-  if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
-  if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&m_ratio);
-  SolveProblem(options, &problem);
+  // Joint fit: the bench residuals on the same blocks; the bench
+  // determines d and m_p, so both are free whatever the flight options say.
+  BenchResiduals bench;
+  if (joint) {
+    AddBenchResiduals(*bench_logs, base, options, &problem, {&k_ratio, &d_ratio, &c_ratio, &m_ratio}, &bench);
+  } else {
+    if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
+    if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&m_ratio);
+  }
+  // Two stages: the turbulence knots held at 0 first (the initial states and
+  // the vehicle parameters then converge in a few iterations), then free.
+  // Started at once from zero turbulence, the Huber-weighted misfit of the
+  // whole 1 % thrust noise keeps the trust region small for ~20 iterations.
+  if (model_turbulence) {
+    for (std::vector<double>& window_knots : knots) problem.SetParameterBlockConstant(window_knots.data());
+    SolveProblem(options, &problem, kStartTolerance);
+    for (std::vector<double>& window_knots : knots) problem.SetParameterBlockVariable(window_knots.data());
+  }
+  SolveProblem(options, &problem, kFinalTolerance);
 
   // Strain residuals carry the unmodelled turbulence (correlated over ~0.1 s):
   // the inflation from their autocorrelation keeps the covariance honest.
@@ -233,10 +271,38 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     result->residuals.push_back({names[channel], units[channel], stats.count, stats.rms_whitened,
                                  stats.rms_whitened * sigmas[channel], channel_inflation});
   }
-  const std::vector<BlockSigma> sigma =
-      ComputeBlockSigmas(&problem, {&k_ratio, &d_ratio, &c_ratio, &m_ratio}, inflation, options.num_threads);
-  const std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
-                           std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
+  std::vector<ceres::ResidualBlockId> clusters = blocks;
+  if (joint) {
+    // The bench blocks: each load-cell pair and each clamped-arm window is
+    // a cluster of the sandwich too; the flight channels' inflation is not
+    // applied to what the bench determines.
+    inflation = 1.0;
+    clusters.insert(clusters.end(), bench.thrust.begin(), bench.thrust.end());
+    clusters.insert(clusters.end(), bench.arms.begin(), bench.arms.end());
+    const ResidualStatistics thrust = ComputeResidualStatistics(&problem, bench.thrust, 1, 0);
+    const ResidualStatistics arms = ComputeResidualStatistics(&problem, bench.arms, 1, 0);
+    result->residuals.push_back({"load cell (force - c_T omega^2), joint fit", "N", thrust.count, thrust.rms_whitened,
+                                 0.0, VarianceInflation(thrust)});
+    result->residuals.push_back({"strain (clamped arm model), joint fit", "rad", arms.count, arms.rms_whitened,
+                                 arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
+  }
+  const std::vector<double*> shared = {&k_ratio, &d_ratio, &c_ratio, &m_ratio};
+  Eigen::MatrixXd covariance;
+  std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, shared, inflation, options.num_threads, &covariance);
+  // The inflation above assumes one correlation time for the whole misfit;
+  // what is left of the turbulence between the knots is correlated across
+  // channels and windows' parameters alike. The windows themselves are
+  // independent (1.5 s apart on flight_id, 15 turbulence correlation times),
+  // so their scatter bounds the sigma from below (sandwich estimate).
+  const std::vector<double> robust =
+      ComputeClusterRobustSigmas(&problem, shared, covariance, clusters, options.num_threads);
+  for (size_t i = 0; i < robust.size(); ++i) sigma[i].sigma = std::max(sigma[i].sigma, robust[i]);
+  std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
+                     std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
+  if (joint) {
+    note = "joint fit (one problem): " + std::to_string(bench.thrust.size()) + " load-cell pairs, " +
+           std::to_string(bench.arms.size()) + " clamped-arm windows and " + note;
+  }
   auto fill = [&](ParameterEstimate* e, double ratio, double scale, const BlockSigma& s) {
     e->value = ratio * scale;
     e->sigma = s.sigma * scale;
@@ -252,7 +318,14 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     result->errors.push_back(std::string("c_T: not determined by the flight data") +
                              (any_imu ? "" : " (no IMU: only c_T / k is seen by the strain gauges)"));
   }
-  if (!options.flight_fit_damping) {
+  if (joint) {
+    // The bench floors (options): what the 1 kHz load-cell input cannot give better.
+    damping.sigma = std::hypot(damping.sigma, options.bench_damping_floor * damping.value);
+    ParameterEstimate& floored = options.calibration.TipMassWeighed() ? k : tip_mass;
+    floored.sigma = std::hypot(floored.sigma, options.bench_frequency_floor * floored.value);
+    damping.note += "; sigma includes bench_damping_floor";
+    floored.note += "; sigma includes bench_frequency_floor";
+  } else if (!options.flight_fit_damping) {
     damping.determined = false;
     damping.sigma = kNaN;
     damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
@@ -263,7 +336,8 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
   for (size_t n = 1; n <= 2 && n < functors.size(); ++n) {
     const size_t w = n * functors.size() / 3;
     const FreeArmWindowResidual& f = *functors[w];
-    const std::vector<FreeArmState<double>> predicted = f.Predict(k_ratio, d_ratio, c_ratio, m_ratio, states[w].data());
+    const std::vector<FreeArmState<double>> predicted =
+        f.Predict(k_ratio, d_ratio, c_ratio, m_ratio, states[w].data(), knots[w].empty() ? nullptr : knots[w].data());
     for (int arm = 0; arm < 2; ++arm) {
       FitPlot plot;
       plot.title = "free flight, window " + std::to_string(w + 1) + " of " + std::to_string(functors.size()) +
@@ -281,7 +355,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     }
   }
   result->estimates.insert(result->estimates.end(), {k, damping, c_t});
-  if (options.flight_fit_tip_mass) {
+  if (options.flight_fit_tip_mass || joint) {
     if (!tip_mass.determined) {
       result->warnings.push_back("m_p: not determined by the flight data; base value kept");
     }

@@ -64,7 +64,7 @@ struct FitPlot {
 
 struct IdentificationResult {
   bool ok = false;                    // false: `errors` says what is missing; no numbers
-  std::string mode;                   // "bench" or "flight"
+  std::string mode;                   // "bench", "flight" or "bench+flight"
   std::vector<std::string> errors;    // what the data lacks, one line each
   std::vector<std::string> warnings;  // e.g. parameter kept at its base value
   VehicleParams params;               // base parameters with the identified values
@@ -80,6 +80,9 @@ struct IdentificationResult {
   // Several logs: per parameter, each log's share of the information
   // (1 / sigma^2 of that log alone), e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
   std::vector<std::string> log_shares;
+  // Joint bench + flight fit: the bench logs' own fit (the flight logs' base
+  // in the per-log comparison).
+  VehicleParams bench_params;
   std::vector<FitPlot> plots;    // fit versus data, a few panels
   SampleCleaningReport dropped;  // bad samples dropped before fitting, all logs
 };

@@ -44,10 +44,16 @@ void CheckInputs(const std::vector<SensorLog>& logs, IdentificationMode mode, co
 // parameter (its share of the information 1 / sigma^2) and to refuse logs
 // that disagree by more than consistency_sigmas combined sigmas (two
 // vehicles, a changed vehicle, a broken sensor).
-void CompareLogs(const std::vector<SensorLog>& logs, const VehicleParams& base, const IdentificationOptions& options,
-                 IdentificationMode mode, IdentificationResult* result) {
+// In a joint bench + flight run (mode kAuto) each log is fitted in its own
+// mode, a flight log on flight_base (the bench logs' fit: its gauge
+// calibration is the one the flight reads its deflections through).
+void CompareLogs(const std::vector<SensorLog>& logs, const VehicleParams& base, const VehicleParams& flight_base,
+                 const IdentificationOptions& options, IdentificationMode mode, IdentificationResult* result) {
   std::vector<IdentificationResult> singles;
-  for (const SensorLog& log : logs) singles.push_back(Identify({log}, base, options, mode));
+  for (const SensorLog& log : logs) {
+    const IdentificationMode own = mode == IdentificationMode::kAuto ? DetectMode({log}) : mode;
+    singles.push_back(Identify({log}, own == IdentificationMode::kFlight ? flight_base : base, options, own));
+  }
   for (const ParameterEstimate& joint : result->estimates) {
     std::string shares;
     double information = 0.0;
@@ -100,6 +106,52 @@ SampleCleaningReport SanitizeLog(SensorLog* log, const IdentificationOptions& op
   return CleanLog(log, static_cast<int64_t>(std::llround(options.max_time_jump_s * 1e6)));
 }
 
+void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std::vector<SensorLog>& flight_logs,
+                            const VehicleParams& base, const IdentificationOptions& options,
+                            IdentificationResult* result) {
+  result->mode = "bench+flight";
+  result->bench_params = base;
+  CheckInputs(bench_logs, IdentificationMode::kBench, options, result);
+  CheckInputs(flight_logs, IdentificationMode::kFlight, options, result);
+  if (!result->errors.empty()) return;
+  std::vector<SensorLog> all = bench_logs;
+  all.insert(all.end(), flight_logs.begin(), flight_logs.end());
+  IdentifyMotorTimeConstant(all, base, options, result);
+  // The bench logs alone first: the start of the joint fit, the static maps,
+  // the gauge calibration (bench only) and the calibration fact.
+  IdentificationResult bench;
+  bench.params = result->params;
+  IdentifyBenchThrust(bench_logs, bench.params, options, &bench);
+  IdentifyBenchArms(bench_logs, bench.params, options, &bench);
+  result->errors.insert(result->errors.end(), bench.errors.begin(), bench.errors.end());
+  result->warnings.insert(result->warnings.end(), bench.warnings.begin(), bench.warnings.end());
+  result->maps = bench.maps;
+  result->plots = bench.plots;
+  result->calibration_fact = bench.calibration_fact;
+  result->correlations = bench.correlations;
+  result->bench_params = bench.params;
+  if (!result->errors.empty()) return;
+  // Each log alone before the joint fit: its share of every parameter, and
+  // logs of two vehicles are refused without a joint fit of both.
+  IdentificationResult each;
+  each.estimates = result->estimates;
+  each.estimates.insert(each.estimates.end(), bench.estimates.begin(), bench.estimates.end());
+  CompareLogs(all, base, bench.params, options, IdentificationMode::kAuto, &each);
+  result->log_shares = each.log_shares;
+  if (!each.errors.empty()) {
+    result->errors = each.errors;
+    return;
+  }
+  result->params = bench.params;
+  IdentifyFlightArms(flight_logs, bench.params, options, result, &bench_logs);
+  // The gauge calibration has no flight information: the bench's, held in the joint fit.
+  for (ParameterEstimate e : bench.estimates) {
+    if (e.symbol.rfind("s_", 0) != 0 && e.symbol.rfind("o_", 0) != 0) continue;
+    e.note += "; bench logs alone (held in the joint fit: the flight reads its deflections through it)";
+    result->estimates.push_back(e);
+  }
+}
+
 IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& base,
                               const IdentificationOptions& options, IdentificationMode mode) {
   IdentificationResult result;
@@ -109,18 +161,15 @@ IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& 
     result.sources.push_back(log.source);
   }
   if (mode == IdentificationMode::kAuto) {
-    mode = DetectMode(logs);
-    if (mode == IdentificationMode::kFlight) {
-      for (const SensorLog& log : logs) {
-        if (!log.loadcell.empty()) {
-          result.errors.push_back(
-              "bench and flight logs mixed (" + log.source +
-              " has LOADCELL samples, another log has none): identify them separately or pass --mode");
-          result.mode = "mixed";
-          return result;
-        }
-      }
+    std::vector<SensorLog> bench_logs, flight_logs;
+    for (SensorLog& log : logs) (log.loadcell.empty() ? flight_logs : bench_logs).push_back(log);
+    if (!bench_logs.empty() && !flight_logs.empty()) {
+      IdentifyBenchAndFlight(bench_logs, flight_logs, base, options, &result);
+      result.ok = result.errors.empty();
+      if (!result.ok) result.params = base;
+      return result;
     }
+    mode = DetectMode(logs);
   }
   result.mode = mode == IdentificationMode::kBench ? "bench" : "flight";
   CheckInputs(logs, mode, options, &result);
@@ -135,7 +184,7 @@ IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& 
   }
   // Also when the joint fit failed: two vehicles make a joint fit misfit, and
   // the disagreement is the reason to report first.
-  if (logs.size() > 1) CompareLogs(logs, base, options, mode, &result);
+  if (logs.size() > 1) CompareLogs(logs, base, base, options, mode, &result);
   result.ok = result.errors.empty();
   if (!result.ok) result.params = base;  // no numbers from data that could not give them
   return result;

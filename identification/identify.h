@@ -16,7 +16,8 @@ namespace birotor {
 
 enum class IdentificationMode { kAuto, kBench, kFlight };
 
-// Bench when every log has load-cell samples, flight otherwise.
+// Bench when every log has load-cell samples, flight otherwise (Identify in
+// kAuto with both kinds of logs fits them jointly, IdentifyBenchAndFlight).
 IdentificationMode DetectMode(const std::vector<SensorLog>& logs);
 
 // Drops and counts the bad samples of every stream (CleanLog of
@@ -32,13 +33,23 @@ IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& 
                               IdentificationMode mode = IdentificationMode::kAuto);
 
 // Parts, exposed for tests. Each appends to *result.
+// Bench logs (load cells) and flight logs of one vehicle in one Ceres problem
+// over k, d, c_T, m_p (the bench logs alone give the start and the gauge
+// calibration); tau_m from the motor data of every log.
+void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std::vector<SensorLog>& flight_logs,
+                            const VehicleParams& base, const IdentificationOptions& options,
+                            IdentificationResult* result);
 void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const VehicleParams& base,
                                const IdentificationOptions& options, IdentificationResult* result);
 void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams& base,
                          const IdentificationOptions& options, IdentificationResult* result);
 void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
                        const IdentificationOptions& options, IdentificationResult* result);
+// With bench_logs (a joint bench + flight fit), `base` is the bench logs' own
+// fit and their residuals join the flight's in one Ceres problem over k, d,
+// c_T, m_p (bench_residuals.h).
 void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                        const IdentificationOptions& options, IdentificationResult* result);
+                        const IdentificationOptions& options, IdentificationResult* result,
+                        const std::vector<SensorLog>* bench_logs = nullptr);
 
 }  // namespace birotor

@@ -39,6 +39,27 @@ void ExpectRecovered(const IdentificationResult& r, const std::string& symbol, d
   }
 }
 
+// The information-share line of `symbol` names both logs.
+void ExpectShareOfBothLogs(const IdentificationResult& r, const std::string& symbol, const std::string& log_a,
+                           const std::string& log_b) {
+  bool found = false;
+  for (const std::string& line : r.log_shares) {
+    if (line.rfind(symbol + ": ", 0) != 0) continue;
+    found = true;
+    EXPECT_NE(line.find(log_a), std::string::npos) << line;
+    EXPECT_NE(line.find(log_b), std::string::npos) << line;
+  }
+  EXPECT_TRUE(found) << symbol;
+}
+
+// Logs of two vehicles: refused, the error names the disagreement on k and the log.
+void ExpectRefusedAsTwoVehicles(const std::vector<SensorLog>& logs, const std::string& named_log) {
+  const IdentificationResult r = Identify(logs, VehicleParams(), IdentificationOptions());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
+  EXPECT_NE(Errors(r).find(named_log), std::string::npos) << Errors(r);
+}
+
 // A base file that is wrong by a few percent, so the fits have to move.
 VehicleParams PerturbedBase(const VehicleParams& truth) {
   VehicleParams base = truth;
@@ -190,15 +211,7 @@ TEST(SeveralLogsTest, SameVehicleJointFitSaysWhichLogDeterminesWhat) {
   ASSERT_TRUE(r.ok) << Errors(r);
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.005, 3.0);
   ExpectRecovered(r, "m_p", truth.tip_mass_kg, 0.01, 3.0);
-  bool found = false;
-  for (const std::string& line : r.log_shares) {
-    if (line.rfind("k: ", 0) == 0) {
-      found = true;
-      EXPECT_NE(line.find("a.lcm"), std::string::npos) << line;
-      EXPECT_NE(line.find("b.lcm"), std::string::npos) << line;
-    }
-  }
-  EXPECT_TRUE(found);
+  ExpectShareOfBothLogs(r, "k", "a.lcm", "b.lcm");
 }
 
 TEST(SeveralLogsTest, TwoVehiclesAreRefusedAsInconsistent) {
@@ -207,10 +220,7 @@ TEST(SeveralLogsTest, TwoVehiclesAreRefusedAsInconsistent) {
       "bench", {"scenario.duration_s=12", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.30"});
   a.source = "reference.lcm";
   b.source = "other.lcm";
-  const IdentificationResult r = Identify({a, b}, VehicleParams(), IdentificationOptions());
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
-  EXPECT_NE(Errors(r).find("reference.lcm"), std::string::npos) << Errors(r);
+  ExpectRefusedAsTwoVehicles({a, b}, "reference.lcm");
 }
 
 // Issue 16 item 10: one STRAIN stamped INT64_MIN, duplicated STRAIN events,
@@ -301,6 +311,62 @@ TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.03, 0.0);
   ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.03, 0.0);
   ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.05, 0.0);
+}
+
+// Issue 11: the tip mass from a 60 s flight alone (flight_id, the command of
+// the README's table: reference base file). Measured with the rotor
+// turbulence modelled: m_p +1.25 % (1.44 sigma, sigma 0.86 %), c_T +0.24 %,
+// k -0.005 %, tau_m -0.23 %; asserted with a 1.5x margin on the m_p error
+// (target 2 %) and truth within 3 sigma.
+TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
+  VehicleParams truth;
+  const SensorLog log = testing::SimulateScenario("flight_id", {}, &truth);
+  const IdentificationResult r = Identify({log}, VehicleParams(), IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 1.5 * 0.0125, 3.0);
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.02, 3.0);
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.02, 3.0);
+  ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.03, 3.0);
+  // The sandwich sigma from the scatter of the 40 windows, not the 0.29 %
+  // of the inflated information matrix the errors contradict.
+  const ParameterEstimate* m_p = Find(r, "m_p");
+  ASSERT_NE(m_p, nullptr);
+  EXPECT_GT(m_p->sigma, 0.005 * truth.tip_mass_kg);
+}
+
+// Issue 11 item 4: a bench log and a flight log of one vehicle in one Ceres
+// problem (12 s bench, 8 s flight, reference file as base). Measured: k
+// +0.0095 % (2.0 sigma), c_T -0.008 % (0.1), m_p +0.104 % (1.0), tau_m
+// +0.23 % (2.1), d -3.4 % (1.2); shares c_T bench 54.8 % / flight 45.2 %,
+// k 84.6 / 15.4, m_p 98.6 / 1.4. Asserted with a 1.5x margin (d: its 5 %
+// target) and truth within 3 sigma.
+TEST(JointBenchFlightTest, OneProblemOverBothLogsSaysWhichLogDeterminesWhat) {
+  VehicleParams truth;
+  SensorLog bench = testing::SimulateScenario("bench", {"scenario.duration_s=12"}, &truth);
+  SensorLog flight = testing::SimulateScenario("flight_id", {"scenario.duration_s=8"});
+  bench.source = "bench.lcm";
+  flight.source = "flight.lcm";
+  const IdentificationResult r = Identify({bench, flight}, VehicleParams(), IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  EXPECT_EQ(r.mode, "bench+flight");
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 1.5 * 0.000095, 3.0);
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 1.5 * 0.00008, 3.0);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 1.5 * 0.00104, 3.0);
+  ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 1.5 * 0.0023, 3.0);
+  ExpectRecovered(r, "d", truth.arm_damping_n_m_s_rad, 0.05, 3.0);
+  const ParameterEstimate* c_t = Find(r, "c_T");
+  ASSERT_NE(c_t, nullptr);
+  EXPECT_NE(c_t->note.find("joint fit (one problem)"), std::string::npos) << c_t->note;
+  ExpectShareOfBothLogs(r, "c_T", "bench.lcm", "flight.lcm");
+}
+
+TEST(JointBenchFlightTest, BenchAndFlightOfDifferentVehiclesAreRefused) {
+  SensorLog bench = testing::SimulateScenario("bench", {"scenario.duration_s=12"});
+  SensorLog flight = testing::SimulateScenario(
+      "flight_id", {"scenario.duration_s=8", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.31"});
+  bench.source = "reference_bench.lcm";
+  flight.source = "other_flight.lcm";
+  ExpectRefusedAsTwoVehicles({bench, flight}, "other_flight.lcm");
 }
 
 }  // namespace
