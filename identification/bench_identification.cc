@@ -67,6 +67,29 @@ std::vector<ceres::ResidualBlockId> AddThrustResiduals(const std::vector<SensorL
 
 }  // namespace
 
+double ThrustResidualRmsN(const std::vector<SensorLog>& logs, double thrust_coeff_n_s2_rad2) {
+  double sum_sq = 0.0;
+  int count = 0;
+  for (const SensorLog& log : logs) {
+    for (int rotor = 0; rotor < 2; ++rotor) {
+      size_t hint = 0;
+      for (const MotorSample& m : log.motor) {
+        double force = 0.0;
+        const double omega = m.omega_meas_rad_s[rotor];
+        if (!std::isfinite(omega) ||
+            !InterpolateAt(
+                log.loadcell, m.utime, kMaxLoadCellGapUs, &hint,
+                [rotor](const LoadCellSample& s) { return LoadCellForce(s, rotor); }, &force)) {
+          continue;
+        }
+        sum_sq += std::pow(force - thrust_coeff_n_s2_rad2 * omega * omega, 2);
+        ++count;
+      }
+    }
+  }
+  return count > 0 ? std::sqrt(sum_sq / count) : 0.0;
+}
+
 void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams& base,
                          const IdentificationOptions& options, IdentificationResult* result) {
   ceres::Problem problem;
@@ -97,27 +120,7 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   result->estimates.push_back(c_t);
   result->residuals.push_back(
       {"load cell (force - c_T omega^2)", "N", stats.count, stats.rms_whitened, 0.0, inflation});
-  // RMS in newtons, without whitening (sigma differs per sample).
-  double sum_sq = 0.0;
-  int count = 0;
-  for (const SensorLog& log : logs) {
-    for (int rotor = 0; rotor < 2; ++rotor) {
-      size_t hint = 0;
-      for (const MotorSample& m : log.motor) {
-        double force = 0.0;
-        const double omega = m.omega_meas_rad_s[rotor];
-        if (!std::isfinite(omega) ||
-            !InterpolateAt(
-                log.loadcell, m.utime, kMaxLoadCellGapUs, &hint,
-                [rotor](const LoadCellSample& s) { return LoadCellForce(s, rotor); }, &force)) {
-          continue;
-        }
-        sum_sq += std::pow(force - c_t.value * omega * omega, 2);
-        ++count;
-      }
-    }
-  }
-  result->residuals.back().rms_si = count > 0 ? std::sqrt(sum_sq / count) : 0.0;
+  result->residuals.back().rms_si = ThrustResidualRmsN(logs, c_t.value);
   if (c_t.determined) result->params.thrust_coeff_n_s2_rad2 = c_t.value;
   FitPlot plot;
   plot.title = "thrust: load cell vs c_T omega^2 (both rotors)";

@@ -43,4 +43,8 @@ void AddBenchResiduals(const std::vector<SensorLog>& logs, const VehicleParams& 
                        const IdentificationOptions& options, ceres::Problem* problem, const SharedRatioBlocks& shared,
                        BenchResiduals* out);
 
+// RMS of load-cell force - c_T omega^2 over every paired sample of the logs
+// [N] (not whitened: the sigma differs per sample).
+double ThrustResidualRmsN(const std::vector<SensorLog>& logs, double thrust_coeff_n_s2_rad2);
+
 }  // namespace birotor

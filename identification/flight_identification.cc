@@ -282,7 +282,8 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     const ResidualStatistics thrust = ComputeResidualStatistics(&problem, bench.thrust, 1, 0);
     const ResidualStatistics arms = ComputeResidualStatistics(&problem, bench.arms, 1, 0);
     result->residuals.push_back({"load cell (force - c_T omega^2), joint fit", "N", thrust.count, thrust.rms_whitened,
-                                 0.0, VarianceInflation(thrust)});
+                                 ThrustResidualRmsN(*bench_logs, c_ratio * scales.thrust_coeff_n_s2_rad2),
+                                 VarianceInflation(thrust)});
     result->residuals.push_back({"strain (clamped arm model), joint fit", "rad", arms.count, arms.rms_whitened,
                                  arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
   }
