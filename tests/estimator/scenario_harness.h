@@ -122,8 +122,12 @@ inline EstimatorConfig ReferenceConfig(const std::string& method = "ekf") {
   return config;
 }
 
-inline ScenarioRun RunScenario(const Scenario& scenario, const EstimatorConfig& config) {
+// persisted: gauge offsets the pipeline starts from (as birotor-estimator
+// does from its state file); nullptr: the parameter file's.
+inline ScenarioRun RunScenario(const Scenario& scenario, const EstimatorConfig& config,
+                               const GaugeCalibration* persisted = nullptr) {
   EstimatorPipeline pipeline(config);
+  if (persisted != nullptr) pipeline.SetGaugeOffsets(*persisted);
   PairingSink sink(&pipeline);
   Simulator simulator(scenario);
   simulator.Run(&sink);
