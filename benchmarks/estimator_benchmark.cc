@@ -85,10 +85,13 @@ StrainSample NextStrain(const std::vector<Event>& events, size_t* index, int64_t
 }
 
 // One strain sample through one method (with the motor and IMU samples that
-// precede it).
-void BM_StrainSample(benchmark::State& state, const char* method) {
+// precede it). The EKF also without its accelerometer fusion and without its
+// gauge offset states, to show what each costs.
+void BM_StrainSample(benchmark::State& state, const char* method, bool accelerometer = true, bool offsets = true) {
   EstimatorConfig config;
   config.method = method;
+  config.ekf.use_accelerometer = accelerometer;
+  config.ekf.estimate_gauge_offsets = offsets;
   std::unique_ptr<ForceEstimator> estimator = MakeForceEstimator(config);
   const std::vector<Event>& events = GentleEvents(10.0);
   size_t index = 0;
@@ -105,6 +108,8 @@ void BM_StrainSample(benchmark::State& state, const char* method) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf");
+BENCHMARK_CAPTURE(BM_StrainSample, ekf_without_accelerometer, "ekf", false);
+BENCHMARK_CAPTURE(BM_StrainSample, ekf_without_accelerometer_and_offsets, "ekf", false, false);
 BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
 BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
 BENCHMARK_CAPTURE(BM_StrainSample, linear_kf, "linear_kf");

@@ -17,6 +17,7 @@ constexpr double kVarianceFloor[kEkfStateSize] = {
     1e-12, 1e-12,  // b_dot [(rad/s)^2]
     1e-6,  1e-6,   // omega [(rad/s)^2]
     1e-10, 1e-10,  // mu [1]
+    1e-16, 1e-16,  // e [rad^2]
 };
 constexpr double kVarianceCeiling[kEkfStateSize] = {
     1e-2, 1e-2,  // b: 0.1 rad
@@ -24,6 +25,7 @@ constexpr double kVarianceCeiling[kEkfStateSize] = {
     1e4,  1e4,   // b_dot
     1e6,  1e6,   // omega: 1000 rad/s
     4.0,  4.0,   // mu: 2
+    1e-6, 1e-6,  // e: 1 mrad (the tare refuses 0.5 mrad)
 };
 constexpr double kMicrosecond = 1e-6;
 
@@ -36,13 +38,19 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
       strain_model_(options.strain_noise_rad),
       motor_model_(options.motor_speed_noise_rad_s),
       gyro_model_(options.gyro_noise_rad_s),
+      accel_model_(options.accel_noise_m_s2),
       contact_(params, options) {
   process_noise_psd_.setZero();
-  process_noise_psd_(kPitchRate, kPitchRate) = options.pitch_rate_psd_rad2_s3;
+  process_noise_psd_(kPitchRate) = options.pitch_rate_psd_rad2_s3;
   for (int i = 0; i < 2; ++i) {
-    process_noise_psd_(kDeflectionRateIndex[i], kDeflectionRateIndex[i]) = options.deflection_rate_psd_rad2_s3;
-    process_noise_psd_(kOmegaIndex[i], kOmegaIndex[i]) = options.omega_psd_rad2_s;
-    process_noise_psd_(kThrustScaleIndex[i], kThrustScaleIndex[i]) = options.thrust_scale_psd_1_s;
+    process_noise_psd_(kDeflectionRateIndex[i]) = options.deflection_rate_psd_rad2_s3;
+    process_noise_psd_(kOmegaIndex[i]) = options.omega_psd_rad2_s;
+    process_noise_psd_(kThrustScaleIndex[i]) = options.thrust_scale_psd_1_s;
+    // The gauge reads s_i (b_i + e_i): a raw offset drift of q [rad^2/s] is q / s_i^2 in e_i.
+    const double scale = params.gauge_scale[i];
+    process_noise_psd_(kGaugeOffsetIndex[i]) =
+        options.estimate_gauge_offsets ? params.gauge_drift_psd_rad2_s / (scale * scale) : 0.0;
+    offset_prior_std_rad_[i] = options.estimate_gauge_offsets ? params.gauge_offset_std_rad / scale : 0.0;
     hover_input_.omega_cmd_rad_s[i] =
         ClampCommand(params_, std::sqrt(params_.HoverForceN() / params_.thrust_coeff_n_s2_rad2));
   }
@@ -85,6 +93,17 @@ void EkfForceEstimator::AddMotor(const MotorSample& sample) {
   }
 }
 
+bool EkfForceEstimator::AccelerometerUsable(const ImuSample& sample) const {
+  return std::isfinite(sample.accel_z_m_s2);
+}
+
+void EkfForceEstimator::ReportImuNotFused(const ImuSample& sample) const {
+  if (options_.use_gyro) ReportNotFused(FusionSource::kGyro, sample.utime);
+  if (options_.use_accelerometer && AccelerometerUsable(sample)) {
+    ReportNotFused(FusionSource::kAccelerometer, sample.utime);
+  }
+}
+
 void EkfForceEstimator::AddImu(const ImuSample& sample) {
   // Ground contact on arrival, with the thrust of the current estimate
   // (hover before the first strain sample); it selects the model of the
@@ -92,12 +111,14 @@ void EkfForceEstimator::AddImu(const ImuSample& sample) {
   const double total_force_n =
       initialized_ ? process_.Force(state_, 0) + process_.Force(state_, 1) : 2.0 * params_.HoverForceN();
   contact_.Update(sample.utime, sample.accel_z_m_s2, total_force_n);
-  if (!options_.use_gyro) {
-    ReportNotFused(FusionSource::kGyro, sample.utime);
-    return;
+  // A reading switched off is a measurement the filter does not use: said at once.
+  if (!options_.use_gyro) ReportNotFused(FusionSource::kGyro, sample.utime);
+  if (!options_.use_accelerometer && AccelerometerUsable(sample)) {
+    ReportNotFused(FusionSource::kAccelerometer, sample.utime);
   }
+  if (!options_.use_gyro && !options_.use_accelerometer) return;
   ImuSample dropped;
-  if (imu_queue_.push(sample, &dropped)) ReportNotFused(FusionSource::kGyro, dropped.utime);
+  if (imu_queue_.push(sample, &dropped)) ReportImuNotFused(dropped);
 }
 
 void EkfForceEstimator::DiscardQueued() {
@@ -106,7 +127,7 @@ void EkfForceEstimator::DiscardQueued() {
     motor_queue_.pop();
   }
   while (!imu_queue_.empty()) {
-    ReportNotFused(FusionSource::kGyro, imu_queue_.front().utime);
+    ReportImuNotFused(imu_queue_.front());
     imu_queue_.pop();
   }
 }
@@ -114,7 +135,8 @@ void EkfForceEstimator::DiscardQueued() {
 void EkfForceEstimator::Initialize(const StrainSample& sample) {
   // Commands stamped up to the sample: the newest holds. The newest
   // telemetry sets omega (else the command); older telemetry and queued gyro
-  // samples are not fused. b from the measurement, rates 0, mu = 1 with a
+  // samples are not fused. Offsets e = 0 with their prior sigma, b = z - e
+  // (so var b = R + var e and cov(b, e) = -var e), rates 0, mu = 1 with a
   // large variance.
   bool has_telemetry = false;
   MotorSample telemetry;
@@ -130,19 +152,27 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     motor_queue_.pop();
   }
   while (!imu_queue_.empty() && imu_queue_.front().utime <= sample.utime) {
-    ReportNotFused(FusionSource::kGyro, imu_queue_.front().utime);
+    ReportImuNotFused(imu_queue_.front());
     imu_queue_.pop();
   }
   state_.setZero();
   covariance_.setZero();
   for (int i = 0; i < 2; ++i) {
-    state_(kDeflectionIndex[i]) = sample.deflection_rad[i];
+    const int b = kDeflectionIndex[i], e = kGaugeOffsetIndex[i];
+    const double offset_variance = offset_prior_std_rad_[i] * offset_prior_std_rad_[i];
+    state_(b) = sample.deflection_rad[i];
+    covariance_(b, b) = strain_model_.noise(i, i) + offset_variance;
+    covariance_(b, e) = covariance_(e, b) = -offset_variance;
+    covariance_(e, e) = offset_variance;
     state_(kOmegaIndex[i]) = has_telemetry ? telemetry.omega_meas_rad_s[i] : command_.omega_cmd_rad_s[i];
     state_(kThrustScaleIndex[i]) = 1.0;
-    covariance_(kDeflectionIndex[i], kDeflectionIndex[i]) = strain_model_.noise(i, i);
     covariance_(kDeflectionRateIndex[i], kDeflectionRateIndex[i]) =
         options_.initial_deflection_rate_std_rad_s * options_.initial_deflection_rate_std_rad_s;
-    covariance_(kOmegaIndex[i], kOmegaIndex[i]) = options_.initial_omega_std_rad_s * options_.initial_omega_std_rad_s;
+    // Without any MOTOR sample omega is the assumed hover speed: known no
+    // better than that speed itself (a bench starts anywhere in its range).
+    const double omega_std = has_motor_ ? options_.initial_omega_std_rad_s
+                                        : std::max(options_.initial_omega_std_rad_s, hover_input_.omega_cmd_rad_s[i]);
+    covariance_(kOmegaIndex[i], kOmegaIndex[i]) = omega_std * omega_std;
     covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) =
         options_.initial_thrust_scale_std * options_.initial_thrust_scale_std;
   }
@@ -159,20 +189,27 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
   }
   deficit_ = false;
   deficit_since_utime_ = -1;
+  accel_linearization_.valid = false;  // from before the re-initialisation
   last_utime_ = sample.utime;
   initialized_ = true;
 }
 
 void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   // Linearise at the prior, then propagate the state with RK4 and
-  // P = Phi P Phi^T + Qc dt.
-  const EkfMatrix a = process_.Jacobian(state_, input);
-  const EkfMatrix phi = EkfProcessModel::Transition(a, dt_s);
+  // P = Phi P Phi^T + Qc dt with Phi = blockdiag(Phi_d, I) (the offsets are
+  // random walks): P_dd = Phi_d P_dd Phi_d^T, P_de = Phi_d P_de, P_ee kept.
+  constexpr int n = kDynamicStateSize, m = kEkfStateSize - kDynamicStateSize;
+  const DynamicMatrix a = process_.Jacobian(state_, input, &accel_linearization_);
+  const DynamicMatrix phi = EkfProcessModel::Transition(a, dt_s);
   state_ = process_.Step(state_, input, dt_s);
-  EkfMatrix temp;
-  temp.noalias() = phi.lazyProduct(covariance_);
-  covariance_.noalias() = temp.lazyProduct(phi.transpose());
-  covariance_ += process_noise_psd_ * dt_s;
+  DynamicMatrix temp;
+  temp.noalias() = phi.lazyProduct(covariance_.topLeftCorner<n, n>());
+  covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
+  Eigen::Matrix<double, n, m> p_de;
+  p_de.noalias() = phi.lazyProduct(covariance_.topRightCorner<n, m>());
+  covariance_.topRightCorner<n, m>() = p_de;
+  covariance_.bottomLeftCorner<m, n>() = p_de.transpose();
+  covariance_.diagonal() += process_noise_psd_ * dt_s;
 }
 
 void EkfForceEstimator::PredictTo(int64_t utime) {
@@ -213,7 +250,8 @@ void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
     } else {
       PredictTo(sample.utime);
       const MotorSpeedMeasurementModel::Vector z(sample.omega_meas_rad_s[0], sample.omega_meas_rad_s[1]);
-      Report(Fuse(motor_model_, z, options_.telemetry_gate_nis, FusionSource::kTelemetry, sample.utime));
+      Report(Fuse(motor_model_, z, MotorSpeedMeasurementModel::Predict(state_), options_.telemetry_gate_nis,
+                  FusionSource::kTelemetry, sample.utime));
     }
   } else if (!late) {
     PredictTo(sample.utime);  // the previous command holds up to this stamp
@@ -224,18 +262,32 @@ void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
 
 void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   if (sample.utime < last_utime_) {
-    ReportNotFused(FusionSource::kGyro, sample.utime);
+    ReportImuNotFused(sample);
     return;
   }
   PredictTo(sample.utime);
-  Report(Fuse(gyro_model_, GyroMeasurementModel::Vector(sample.gyro_y_rad_s), options_.gyro_gate_nis,
-              FusionSource::kGyro, sample.utime));
+  if (options_.use_gyro) {
+    Report(Fuse(gyro_model_, GyroMeasurementModel::Vector(sample.gyro_y_rad_s), GyroMeasurementModel::Predict(state_),
+                options_.gyro_gate_nis, FusionSource::kGyro, sample.utime));
+  }
+  if (!options_.use_accelerometer || !AccelerometerUsable(sample)) return;
+  if (options_.body_held || contact_.supported()) {
+    // On the ground a_z is the support, not the thrust.
+    ReportNotFused(FusionSource::kAccelerometer, sample.utime);
+    return;
+  }
+  const AccelerometerMeasurementModel::Vector predicted = accel_linearization_.valid
+                                                              ? accel_model_.Linearize(accel_linearization_, state_)
+                                                              : accel_model_.Linearize(process_, state_);
+  Report(Fuse(accel_model_, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2), predicted,
+              options_.accel_gate_nis, FusionSource::kAccelerometer, sample.utime));
 }
 
 template <typename Model>
-FusionReport EkfForceEstimator::Fuse(const Model& model, const typename Model::Vector& z, double gate,
-                                     FusionSource source, int64_t utime) {
-  const Innovation<Model::kSize> innovation = ComputeInnovation(model, state_, covariance_, z);
+FusionReport EkfForceEstimator::Fuse(const Model& model, const typename Model::Vector& z,
+                                     const typename Model::Vector& z_predicted, double gate, FusionSource source,
+                                     int64_t utime) {
+  const Innovation<Model::kSize> innovation = ComputeInnovation(model, covariance_, z, z_predicted);
   FusionReport report;
   report.source = source;
   report.utime = utime;
@@ -255,7 +307,8 @@ FusionReport EkfForceEstimator::Fuse(const Model& model, const typename Model::V
 
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
-  FusionReport report = Fuse(strain_model_, z, options_.strain_gate_nis, FusionSource::kStrain, sample.utime);
+  FusionReport report = Fuse(strain_model_, z, StrainMeasurementModel::Predict(state_), options_.strain_gate_nis,
+                             FusionSource::kStrain, sample.utime);
   if (report.outcome == FusionOutcome::kFused) {
     consecutive_gated_ = 0;
     return report;
@@ -265,7 +318,8 @@ FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   // thrust scales (var(mu_i) += inflation^2), then fuse without the gate.
   const double extra = options_.gate_inflation_thrust_scale_std;
   for (int i = 0; i < 2; ++i) covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
-  report = Fuse(strain_model_, z, std::numeric_limits<double>::infinity(), FusionSource::kStrain, sample.utime);
+  report = Fuse(strain_model_, z, StrainMeasurementModel::Predict(state_), std::numeric_limits<double>::infinity(),
+                FusionSource::kStrain, sample.utime);
   report.gate = options_.strain_gate_nis;
   report.fused_after_inflation = report.outcome == FusionOutcome::kFused;
   if (report.fused_after_inflation) consecutive_gated_ = 0;
@@ -352,6 +406,30 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
   if (fault_[0]) estimate->status |= kStatusRotor1Fault;
   if (fault_[1]) estimate->status |= kStatusRotor2Fault;
   if (deficit_) estimate->status |= kStatusThrustDeficit;
+}
+
+void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
+  if (!options_.estimate_gauge_offsets) return;
+  for (int i = 0; i < 2; ++i) {
+    offset_prior_std_rad_[i] = offset_std_rad[i];
+    if (!initialized_) continue;
+    // The calibration moved by what was learned: start e_i again from 0.
+    const int e = kGaugeOffsetIndex[i];
+    state_(e) = 0.0;
+    covariance_.row(e).setZero();
+    covariance_.col(e).setZero();
+    covariance_(e, e) = std::max(offset_std_rad[i] * offset_std_rad[i], kVarianceFloor[e]);
+  }
+}
+
+bool EkfForceEstimator::LearnedGaugeOffset(double offset_rad[2], double offset_std_rad[2]) const {
+  if (!initialized_ || !options_.estimate_gauge_offsets) return false;
+  for (int i = 0; i < 2; ++i) {
+    const int e = kGaugeOffsetIndex[i];
+    offset_rad[i] = state_(e);
+    offset_std_rad[i] = std::sqrt(std::max(covariance_(e, e), 0.0));
+  }
+  return true;
 }
 
 void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {

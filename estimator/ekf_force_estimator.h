@@ -34,6 +34,8 @@ class EkfForceEstimator : public ForceEstimator {
   void AddMotor(const MotorSample& sample) override;
   void AddImu(const ImuSample& sample) override;
   void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
+  void SetGaugeOffsetPrior(const double offset_std_rad[2]) override;
+  bool LearnedGaugeOffset(double offset_rad[2], double offset_std_rad[2]) const override;
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
@@ -54,14 +56,17 @@ class EkfForceEstimator : public ForceEstimator {
   void ApplyQueuedUpTo(int64_t utime);
   void ApplyMotor(const MotorSample& sample);
   void ApplyImu(const ImuSample& sample);
+  bool AccelerometerUsable(const ImuSample& sample) const;
   // Computes the innovation of z, gates it and, when it passes, updates the
   // state and covariance (Joseph form). Returns what happened.
   template <typename Model>
-  FusionReport Fuse(const Model& model, const typename Model::Vector& z, double gate, FusionSource source,
-                    int64_t utime);
+  FusionReport Fuse(const Model& model, const typename Model::Vector& z, const typename Model::Vector& z_predicted,
+                    double gate, FusionSource source, int64_t utime);
   // Strain update with its gate and the inflation after persistent rejection.
   FusionReport FuseStrain(const StrainSample& sample);
   void ReportNotFused(FusionSource source, int64_t utime) const;
+  // The gyro and accelerometer readings of an IMU sample the filter would have used.
+  void ReportImuNotFused(const ImuSample& sample) const;
   // Empties both queues, reporting each waiting measurement as not fused.
   void DiscardQueued();
   // Symmetrises P and applies the variance floors and ceilings; false if the
@@ -76,9 +81,12 @@ class EkfForceEstimator : public ForceEstimator {
   StrainMeasurementModel strain_model_;
   MotorSpeedMeasurementModel motor_model_;
   GyroMeasurementModel gyro_model_;
-  GroundContact contact_;        // from the IMU: selects the supported-body model
-  EkfMatrix process_noise_psd_;  // diagonal Qc; Q = Qc dt
-  EkfInput hover_input_;         // command assumed before any MOTOR sample
+  AccelerometerMeasurementModel accel_model_;
+  AccelerometerLinearization accel_linearization_;  // from the newest prediction step
+  GroundContact contact_;                           // from the IMU: selects the supported-body model
+  EkfState process_noise_psd_;                      // diagonal of Qc; Q = Qc dt
+  double offset_prior_std_rad_[2];                  // sigma of e_i at (re-)initialisation [rad]
+  EkfInput hover_input_;                            // command assumed before any MOTOR sample
 
   bool initialized_ = false;
   bool converged_ = false;

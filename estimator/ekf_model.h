@@ -1,7 +1,9 @@
 // State, process model and measurement models of the rotor-force EKF.
 // The state holds what the strain gauges observe (thesis ch. 4): the arm
 // deflections and rates, the body pitch rate, the rotor speeds and the thrust
-// scales mu_i, so that f_i = mu_i c_T omega_i^2.
+// scales mu_i, so that f_i = mu_i c_T omega_i^2; and the zero offset e_i that
+// each calibrated gauge still has (shared/spec/gauges.md: power-up offset
+// left by the tare, thermal drift), so that a gauge reads b_i + e_i.
 #pragma once
 
 #include <ceres/jet.h>
@@ -29,15 +31,24 @@ enum EkfIndex : int {
   kOmega2 = 6,           // rotor 2 speed [rad/s]
   kThrustScale1 = 7,     // mu1 [1]
   kThrustScale2 = 8,     // mu2 [1]
+  kGaugeOffset1 = 9,     // e1: offset of calibrated gauge 1, in deflection [rad]
+  kGaugeOffset2 = 10,    // e2 [rad]
 };
-constexpr int kEkfStateSize = 9;
+constexpr int kEkfStateSize = 11;
+// The states with dynamics come first; the offsets are random walks
+// (e_dot = 0), so the transition matrix is blockdiag(Phi_d, I) and the
+// prediction works on the dynamic block (the model's structure pays for the
+// two extra states).
+constexpr int kDynamicStateSize = 9;
 constexpr EkfIndex kDeflectionIndex[2] = {kDeflection1, kDeflection2};
 constexpr EkfIndex kDeflectionRateIndex[2] = {kDeflectionRate1, kDeflectionRate2};
 constexpr EkfIndex kOmegaIndex[2] = {kOmega1, kOmega2};
 constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
+constexpr EkfIndex kGaugeOffsetIndex[2] = {kGaugeOffset1, kGaugeOffset2};
 
 using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
 using EkfMatrix = Eigen::Matrix<double, kEkfStateSize, kEkfStateSize>;
+using DynamicMatrix = Eigen::Matrix<double, kDynamicStateSize, kDynamicStateSize>;
 
 // Input held over one prediction interval: clamped rotor speed commands, and
 // whether a support (the ground) holds the body (GroundContact decides).
@@ -46,12 +57,22 @@ struct EkfInput {
   bool body_supported = false;
 };
 
+// The accelerometer's model linearised where the process was (free body):
+// a_z(x) ~ a_z0 + H (x - x0), a by-product of the process Jacobian (the z row
+// of the same solve), so the IMU fusion costs no second evaluation.
+struct AccelerometerLinearization {
+  bool valid = false;  // false after a supported-body step (no free-body solve)
+  EkfState x0 = EkfState::Zero();
+  double a_z0_m_s2 = 0;                                                                         // a_z(x0)
+  Eigen::Matrix<double, 1, kEkfStateSize> h = Eigen::Matrix<double, 1, kEkfStateSize>::Zero();  // d a_z / dx
+};
+
 // Process model x_dot = f(x, u):
 //   [phi_ddot, b_dot, b_ddot] from FreeArmDerivative (model/arm_dynamics.h: the
 //   phi, b1, b2 rows of thesis eq. 3.14, which for a free body in uniform
 //   gravity do not depend on x, z, phi, x_dot, z_dot) with f_i = mu_i c_T omega_i^2,
 //   omega_i_dot = (clamp(omega_cmd_i) - omega_i) / tau_m,
-//   mu_i_dot = 0 (random walk, driven by process noise).
+//   mu_i_dot = 0 and e_i_dot = 0 (random walks, driven by process noise).
 // On the ground (u.body_supported) the body is held still: phi_ddot = 0 and
 // b_ddot from SupportedArmAcceleration, where the arms also carry their weight.
 class EkfProcessModel {
@@ -59,18 +80,21 @@ class EkfProcessModel {
   explicit EkfProcessModel(const VehicleParams& params) : params_(params) {}
 
   EkfState Derivative(const EkfState& x, const EkfInput& u) const;
-  // A = df/dx at (x, u): Jets over (b1, b2, phi_dot, b1_dot, b2_dot, f1, f2)
-  // and the chain rule df/domega = 2 mu c_T omega, df/dmu = c_T omega^2.
-  EkfMatrix Jacobian(const EkfState& x, const EkfInput& u) const;
-  // A for a body held by the ground: Jets through SupportedArmAcceleration
+  // A_d = df/dx on the dynamic block (the offset rows and columns of A are
+  // zero): Jets over (b1, b2, phi_dot, b1_dot, b2_dot, f1, f2) and the chain
+  // rule df/domega = 2 mu c_T omega, df/dmu = c_T omega^2.
+  // With accel non-null it also gets a_z and its gradient at x (free body;
+  // marked invalid on the ground).
+  DynamicMatrix Jacobian(const EkfState& x, const EkfInput& u, AccelerometerLinearization* accel = nullptr) const;
+  // A_d for a body held by the ground: Jets through SupportedArmAcceleration
   // over (b1, b2, b1_dot, b2_dot, f1, f2); the phi_dot row is zero.
-  EkfMatrix SupportedJacobian(const EkfState& x) const;
+  DynamicMatrix SupportedJacobian(const EkfState& x) const;
   // One RK4 step over dt_s with u held.
   EkfState Step(const EkfState& x, const EkfInput& u, double dt_s) const;
-  // Transition matrix Phi = exp(A dt) to fourth order:
+  // Transition matrix of the dynamic block, Phi_d = exp(A_d dt) to fourth order:
   //   I + A dt + (A dt)^2/2 + (A dt)^3/6 + (A dt)^4/24
   // (arm modes ~500 rad/s, dt = 1 ms: |A dt| ~ 0.5, truncation ~ 3e-4).
-  static EkfMatrix Transition(const EkfMatrix& a, double dt_s);
+  static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
 
   // f_i = mu_i c_T omega_i^2 [N].
   double Force(const EkfState& x, int rotor) const {
@@ -90,7 +114,8 @@ class EkfProcessModel {
 };
 
 // One measurement model per sensor: z = h(x) + noise, noise ~ N(0, R).
-// H is constant for all three (they read states directly).
+// H is constant for strain, telemetry and gyro (they read states directly);
+// the accelerometer's is evaluated at the state.
 
 // A pair of states read directly: z = (x[first], x[second]), R = sigma^2 I.
 template <int kFirst, int kSecond>
@@ -110,8 +135,26 @@ struct DirectPairMeasurementModel {
   Covariance noise;     // R [unit of the states squared]
 };
 
-// Strain gauges: z = (b1, b2) [rad], noise_std in rad.
-using StrainMeasurementModel = DirectPairMeasurementModel<kDeflection1, kDeflection2>;
+// Strain gauges after calibration: z_i = b_i + e_i [rad], noise_std in rad.
+struct StrainMeasurementModel {
+  static constexpr int kSize = 2;
+  using Vector = Eigen::Matrix<double, kSize, 1>;
+  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
+  using Covariance = Eigen::Matrix<double, kSize, kSize>;
+  explicit StrainMeasurementModel(double noise_std) {
+    h_jacobian.setZero();
+    for (int i = 0; i < 2; ++i) {
+      h_jacobian(i, kDeflectionIndex[i]) = 1.0;
+      h_jacobian(i, kGaugeOffsetIndex[i]) = 1.0;
+    }
+    noise = Covariance::Identity() * (noise_std * noise_std);
+  }
+  static Vector Predict(const EkfState& x) {
+    return Vector(x(kDeflection1) + x(kGaugeOffset1), x(kDeflection2) + x(kGaugeOffset2));
+  }
+  Jacobian h_jacobian;  // H [1]
+  Covariance noise;     // R [rad^2]
+};
 // Motor telemetry: z = (omega1, omega2) [rad/s], noise_std in rad/s.
 using MotorSpeedMeasurementModel = DirectPairMeasurementModel<kOmega1, kOmega2>;
 
@@ -132,6 +175,36 @@ struct GyroMeasurementModel {
   Covariance noise;     // R [(rad/s)^2]
 };
 
+// Accelerometer: z = a_z, the specific force along the body z axis at the
+// body centre [m/s^2] in free flight (FreeArmDerivative's specific force:
+// (f1 + f2) / (m + 2 m_p) at rest, plus the arms' reaction while they swing).
+// It weighs the total thrust independently of the gauges, which is what
+// separates e1 - e2 from f1 + f2: the strain alone sees b1 - b2, which both
+// move (thesis eq. 3.34). h and H are evaluated at the state (Linearize);
+// not used while the ground holds the body (then a_z is the support).
+struct AccelerometerMeasurementModel {
+  static constexpr int kSize = 1;
+  using Vector = Eigen::Matrix<double, kSize, 1>;
+  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
+  using Covariance = Eigen::Matrix<double, kSize, kSize>;
+  explicit AccelerometerMeasurementModel(double noise_m_s2) {
+    h_jacobian.setZero();
+    noise(0, 0) = noise_m_s2 * noise_m_s2;
+  }
+  // Sets h_jacobian at x and returns h(x) (Jets over b1, b2, phi_dot, b1_dot,
+  // b2_dot, f1, f2; chain rule to omega_i, mu_i as in the process Jacobian).
+  Vector Linearize(const EkfProcessModel& process, const EkfState& x);
+  // The same from the process Jacobian's by-product at x0 (valid): sets
+  // h_jacobian and returns a_z0 + H (x - x0), first order in the <= 1 ms
+  // the state moved since (the filter's usual linearisation at the prior).
+  Vector Linearize(const AccelerometerLinearization& at, const EkfState& x) {
+    h_jacobian = at.h;
+    return Vector(at.a_z0_m_s2 + at.h.dot(x - at.x0));
+  }
+  Jacobian h_jacobian;  // H [m/s^2 per unit of each state]
+  Covariance noise;     // R [(m/s^2)^2]
+};
+
 // Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
 template <int M>
 struct Innovation {
@@ -141,12 +214,17 @@ struct Innovation {
   double nis = 0;
 };
 
+// z_predicted = h(x) at the prior.
 template <typename Model>
-Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfState& x, const EkfMatrix& cov,
-                                           const typename Model::Vector& z) {
+Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfMatrix& cov, const typename Model::Vector& z,
+                                           const typename Model::Vector& z_predicted) {
   Innovation<Model::kSize> out;
-  out.residual = z - Model::Predict(x);
-  out.covariance.noalias() = model.h_jacobian * cov * model.h_jacobian.transpose();
+  out.residual = z - z_predicted;
+  // lazyProduct: coefficient-based; at 11 states Eigen's default would take
+  // its blocked GEMM path (packing dominates at this size).
+  Eigen::Matrix<double, Model::kSize, kEkfStateSize> h_p;
+  h_p.noalias() = model.h_jacobian.lazyProduct(cov);
+  out.covariance.noalias() = h_p.lazyProduct(model.h_jacobian.transpose());
   out.covariance += model.noise;
   out.covariance_inverse = out.covariance.inverse();
   out.nis = out.residual.dot(out.covariance_inverse * out.residual);
@@ -165,15 +243,15 @@ EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEk
                            const Eigen::Matrix<double, M, kEkfStateSize>& h_jacobian,
                            const Eigen::Matrix<double, M, M>& noise) {
   Eigen::Matrix<double, M, kEkfStateSize> h_p;
-  h_p.noalias() = h_jacobian * cov;
+  h_p.noalias() = h_jacobian.lazyProduct(cov);
   EkfMatrix a = cov;
   a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
   Eigen::Matrix<double, kEkfStateSize, M> a_ht;
-  a_ht.noalias() = a * h_jacobian.transpose();
+  a_ht.noalias() = a.lazyProduct(h_jacobian.transpose());
   EkfMatrix out = a;
   out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T
   Eigen::Matrix<double, kEkfStateSize, M> k_r;
-  k_r.noalias() = gain * noise;
+  k_r.noalias() = gain.lazyProduct(noise);
   out.noalias() += k_r.lazyProduct(gain.transpose());  // + K R K^T
   return out;
 }
@@ -183,9 +261,11 @@ EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEk
 template <typename Model>
 void KalmanUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
   using Gain = Eigen::Matrix<double, kEkfStateSize, Model::kSize>;
+  Eigen::Matrix<double, kEkfStateSize, Model::kSize> p_ht;
+  p_ht.noalias() = cov->lazyProduct(model.h_jacobian.transpose());
   Gain gain;
-  gain.noalias() = (*cov) * model.h_jacobian.transpose() * innovation.covariance_inverse;
-  x->noalias() += gain * innovation.residual;
+  gain.noalias() = p_ht.lazyProduct(innovation.covariance_inverse);
+  x->noalias() += gain.lazyProduct(innovation.residual);
   *cov = JosephCovariance<Model::kSize>(*cov, gain, model.h_jacobian, model.noise);
 }
 
@@ -206,6 +286,8 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
   x_dot(kPitchRate) = arm_dot(kFreePhiDot);
   x_dot(kDeflectionRate1) = arm_dot(kFreeB1Dot);
   x_dot(kDeflectionRate2) = arm_dot(kFreeB2Dot);
+  x_dot(kGaugeOffset1) = 0.0;
+  x_dot(kGaugeOffset2) = 0.0;
   if (u.body_supported) {
     const Eigen::Vector2d b_ddot = SupportedArmAcceleration<double>(
         params_, x(kDeflection1), x(kDeflection2), x(kDeflectionRate1), x(kDeflectionRate2), Force(x, 0), Force(x, 1));
@@ -221,8 +303,12 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
   return x_dot;
 }
 
-inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u) const {
-  if (u.body_supported) return SupportedJacobian(x);
+inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u,
+                                               AccelerometerLinearization* accel) const {
+  if (u.body_supported) {
+    if (accel != nullptr) accel->valid = false;
+    return SupportedJacobian(x);
+  }
   // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2; the
   // eighth is padding so that the derivative part vectorises (4 SSE packets).
   // The terms of thesis eq. 3.10 are differentiated with Jets; the solve is
@@ -254,7 +340,7 @@ inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u)
   constexpr EkfIndex kJetState[5] = {kDeflection1, kDeflection2, kPitchRate, kDeflectionRate1, kDeflectionRate2};
   constexpr EkfIndex kAccRow[3] = {kPitchRate, kDeflectionRate1, kDeflectionRate2};
   constexpr Coordinate kAccCoordinate[3] = {kPhi, kB1, kB2};
-  EkfMatrix a = EkfMatrix::Zero();
+  DynamicMatrix a = DynamicMatrix::Zero();
   a(kDeflection1, kDeflectionRate1) = 1.0;
   a(kDeflection2, kDeflectionRate2) = 1.0;
   const Eigen::Vector2d grad[2] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
@@ -268,16 +354,28 @@ inline EkfMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u)
   }
   a(kOmega1, kOmega1) = -1.0 / params_.motor_time_constant_s;
   a(kOmega2, kOmega2) = -1.0 / params_.motor_time_constant_s;
+  if (accel != nullptr) {
+    // Specific force along body z at phi = 0: z_ddot + g (gravity is in the solve).
+    accel->valid = true;
+    accel->x0 = x;
+    accel->a_z0_m_s2 = acc_full(kZ) + params_.gravity_m_s2;
+    accel->h.setZero();
+    for (int c = 0; c < 5; ++c) accel->h(kJetState[c]) = d_acc(kZ, c);
+    for (int i = 0; i < 2; ++i) {
+      accel->h(kOmegaIndex[i]) = d_acc(kZ, 5 + i) * grad[i](0);
+      accel->h(kThrustScaleIndex[i]) = d_acc(kZ, 5 + i) * grad[i](1);
+    }
+  }
   return a;
 }
 
-inline EkfMatrix EkfProcessModel::SupportedJacobian(const EkfState& x) const {
+inline DynamicMatrix EkfProcessModel::SupportedJacobian(const EkfState& x) const {
   using Jet = ceres::Jet<double, 6>;
   const Eigen::Matrix<Jet, 2, 1> acc = SupportedArmAcceleration<Jet>(
       params_, Jet(x(kDeflection1), 0), Jet(x(kDeflection2), 1), Jet(x(kDeflectionRate1), 2),
       Jet(x(kDeflectionRate2), 3), Jet(Force(x, 0), 4), Jet(Force(x, 1), 5));
   constexpr EkfIndex kJetState[4] = {kDeflection1, kDeflection2, kDeflectionRate1, kDeflectionRate2};
-  EkfMatrix a = EkfMatrix::Zero();
+  DynamicMatrix a = DynamicMatrix::Zero();
   a(kDeflection1, kDeflectionRate1) = 1.0;
   a(kDeflection2, kDeflectionRate2) = 1.0;
   const Eigen::Vector2d grad[2] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
@@ -298,18 +396,46 @@ inline EkfState EkfProcessModel::Step(const EkfState& x, const EkfInput& u, doub
   return Rk4Step(x, dt_s, [&](const EkfState& s) { return Derivative(s, u); });
 }
 
-inline EkfMatrix EkfProcessModel::Transition(const EkfMatrix& a, double dt_s) {
+inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s) {
   // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))).
   // lazyProduct: coefficient-based products, faster than GEMM at 9x9.
-  const EkfMatrix a_dt = a * dt_s;
-  EkfMatrix phi = EkfMatrix::Identity() + a_dt * 0.25;
-  EkfMatrix temp;
+  const DynamicMatrix a_dt = a * dt_s;
+  DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
+  DynamicMatrix temp;
   temp.noalias() = a_dt.lazyProduct(phi);
-  phi = EkfMatrix::Identity() + temp * (1.0 / 3.0);
+  phi = DynamicMatrix::Identity() + temp * (1.0 / 3.0);
   temp.noalias() = a_dt.lazyProduct(phi);
-  phi = EkfMatrix::Identity() + temp * 0.5;
+  phi = DynamicMatrix::Identity() + temp * 0.5;
   temp.noalias() = a_dt.lazyProduct(phi);
-  return EkfMatrix::Identity() + temp;
+  return DynamicMatrix::Identity() + temp;
+}
+
+inline AccelerometerMeasurementModel::Vector AccelerometerMeasurementModel::Linearize(const EkfProcessModel& process,
+                                                                                      const EkfState& x) {
+  constexpr int kJetSize = 8;  // 7 variables and one of padding (vectorises)
+  using Jet = ceres::Jet<double, kJetSize>;
+  const VehicleParams& params = process.params();
+  FreeArmState<Jet> arm;
+  arm(kFreeB1) = Jet(x(kDeflection1), 0);
+  arm(kFreeB2) = Jet(x(kDeflection2), 1);
+  arm(kFreePhiDot) = Jet(x(kPitchRate), 2);
+  arm(kFreeB1Dot) = Jet(x(kDeflectionRate1), 3);
+  arm(kFreeB2Dot) = Jet(x(kDeflectionRate2), 4);
+  Eigen::Matrix<Jet, 2, 1> specific_force;
+  FreeArmDerivative<Jet>(params, Jet(params.arm_stiffness_n_m_rad), Jet(params.arm_damping_n_m_s_rad), arm,
+                         Jet(process.Force(x, 0), 5), Jet(process.Force(x, 1), 6), &specific_force);
+  const Jet& a_z = specific_force(1);
+  h_jacobian(0, kDeflection1) = a_z.v(0);
+  h_jacobian(0, kDeflection2) = a_z.v(1);
+  h_jacobian(0, kPitchRate) = a_z.v(2);
+  h_jacobian(0, kDeflectionRate1) = a_z.v(3);
+  h_jacobian(0, kDeflectionRate2) = a_z.v(4);
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::Vector2d grad = process.ForceGradient(x, i);  // (df/domega, df/dmu)
+    h_jacobian(0, kOmegaIndex[i]) = a_z.v(5 + i) * grad(0);
+    h_jacobian(0, kThrustScaleIndex[i]) = a_z.v(5 + i) * grad(1);
+  }
+  return Vector(a_z.a);
 }
 
 }  // namespace birotor

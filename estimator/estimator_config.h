@@ -19,6 +19,17 @@ struct EkfOptions {
   double gyro_noise_rad_s = 0.005;       // IMU pitch-rate noise [rad/s]
   bool use_motor_telemetry = true;       // fuse omega_meas when finite
   bool use_gyro = true;                  // fuse IMU gyro_y when IMU samples arrive
+  // Accelerometer a_z in free flight (the total thrust, independent of the
+  // gauges: what makes the gauge offsets observable in the air). Its noise
+  // is the white noise of the reference sensor; a real vehicle's IMU also
+  // sees frame vibration: raise this to the a_z scatter measured in hover.
+  bool use_accelerometer = true;
+  double accel_noise_m_s2 = 0.05;  // [m/s^2]
+  // Gauge offsets e_i as filter states (random walks): their prior sigma is
+  // the vehicle's gauge_offset_std_rad (or the tare's, or the state file's)
+  // and their driving noise its gauge_drift_psd_rad2_s, both divided by the
+  // gauge scale. false: the offsets stay at the calibration, exactly known.
+  bool estimate_gauge_offsets = true;
   // Process noise. Thrust scale mu: random walk standing in for the
   // Gauss-Markov turbulence. Its driving noise 2 sigma^2 / tau (2e-3 /s for
   // the reference) made the filter pessimistic (98 % of force errors inside
@@ -39,6 +50,7 @@ struct EkfOptions {
   double strain_gate_nis = 30.0;     // m = 2; p(false reject) = exp(-15) ~ 3e-7 [1]
   double telemetry_gate_nis = 30.0;  // m = 2; as strain [1]
   double gyro_gate_nis = 25.0;       // m = 1; p(false reject) ~ 6e-7 [1]
+  double accel_gate_nis = 25.0;      // m = 1; as gyro [1]
   // After this many consecutive gated strain samples the change is taken as
   // real (a step in thrust): var(mu_i) is inflated and the sample fused.
   int gate_consecutive_limit = 3;

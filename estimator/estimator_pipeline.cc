@@ -72,6 +72,7 @@ InputChannel InputChannelOf(FusionSource source) {
     case FusionSource::kTelemetry:
       return InputChannel::kMotor;
     case FusionSource::kGyro:
+    case FusionSource::kAccelerometer:
       return InputChannel::kImu;
   }
   return InputChannel::kStrain;
@@ -118,8 +119,11 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       max_forward_jump_us_(static_cast<int64_t>(std::llround(config.pipeline.max_forward_jump_s * 1e6))) {
   if (!method_) throw std::invalid_argument("unknown estimation method '" + config.method + "'");
   method_->set_fusion_sink(this);
-  health_.gauge = GaugeCalibration::FromVehicle(config.vehicle);
+  calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
+  health_.gauge = calibration_;
   for (int i = 0; i < kNumInputChannels; ++i) health_.inputs[i].gate = GateOf(config, static_cast<InputChannel>(i));
+  health_.accelerometer.gate =
+      config.method == "ekf" ? config.ekf.accel_gate_nis : std::numeric_limits<double>::quiet_NaN();
 }
 
 EstimatorPipeline::~EstimatorPipeline() = default;
@@ -131,24 +135,46 @@ void EstimatorPipeline::CountDecodeError(InputChannel channel) { ++Counters(&hea
 void EstimatorPipeline::CountOverloadDrop(InputChannel channel) { ++Counters(&health_, channel).dropped_overload; }
 
 void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
+  UseGaugeOffsets(calibration.offset_rad, calibration.offset_std_rad, calibration.source);
+}
+
+void EstimatorPipeline::UseGaugeOffsets(const double offset_rad[2], const double offset_std_rad[2],
+                                        GaugeOffsetSource source) {
+  double prior_std_rad[2];  // in deflection: o_i / s_i
   for (int i = 0; i < 2; ++i) {
-    health_.gauge.offset_rad[i] = calibration.offset_rad[i];
-    health_.gauge.offset_std_rad[i] = calibration.offset_std_rad[i];
+    calibration_.offset_rad[i] = offset_rad[i];
+    calibration_.offset_std_rad[i] = offset_std_rad[i];
+    prior_std_rad[i] = offset_std_rad[i] / calibration_.scale[i];
   }
-  health_.gauge.source = calibration.source;
+  calibration_.source = source;
+  health_.gauge = calibration_;
+  method_->SetGaugeOffsetPrior(prior_std_rad);
+}
+
+void EstimatorPipeline::UpdateReportedGaugeOffsets() {
+  // o_i in use = calibration + s_i e_i, one sigma s_i std(e_i).
+  double learned_rad[2], learned_std_rad[2];
+  if (!method_->LearnedGaugeOffset(learned_rad, learned_std_rad)) return;
+  for (int i = 0; i < 2; ++i) {
+    health_.gauge.offset_rad[i] = calibration_.offset_rad[i] + calibration_.scale[i] * learned_rad[i];
+    health_.gauge.offset_std_rad[i] = calibration_.scale[i] * learned_std_rad[i];
+  }
 }
 
 void EstimatorPipeline::TakePeriod() {
-  for (InputCounters& c : health_.inputs) {
-    c.accepted_in_period = 0;
-    c.nis_sum = 0;
-    c.nis_max = 0;
-    c.nis_count = 0;
-  }
+  const auto clear = [](InputCounters* c) {
+    c->accepted_in_period = 0;
+    c->nis_sum = 0;
+    c->nis_max = 0;
+    c->nis_count = 0;
+  };
+  for (InputCounters& c : health_.inputs) clear(&c);
+  clear(&health_.accelerometer);
 }
 
 void EstimatorPipeline::OnFusion(const FusionReport& report) {
-  InputCounters& c = Counters(&health_, InputChannelOf(report.source));
+  InputCounters& c = report.source == FusionSource::kAccelerometer ? health_.accelerometer
+                                                                   : Counters(&health_, InputChannelOf(report.source));
   switch (report.outcome) {
     case FusionOutcome::kFused:
       ++c.fused;
@@ -274,7 +300,10 @@ void EstimatorPipeline::ResetMethod(ResetReason reason, int64_t utime) {
   health_.last_reset_reason = reason;
   reset_flag_pending_ = true;
   if (reason == ResetReason::kStart) return;  // the method is new: it keeps what it was given so far
+  // What the method learned about the gauge offsets survives the reset.
+  const GaugeCalibration learned = health_.gauge;
   method_->Reset();
+  UseGaugeOffsets(learned.offset_rad, learned.offset_std_rad, learned.source);
   if (has_motor_ && last_motor_.utime <= utime &&
       (utime - last_motor_.utime) * 1e-6 <= config_.pipeline.motor_timeout_s) {
     // The command only: its telemetry was already given to (and reported by) the method.
@@ -322,6 +351,13 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
   // The accelerometer feeds the tare and the ground contact, which both skip
   // a NaN there (a missing reading); the gyro still counts.
   if (!std::isfinite(sample.accel_x_m_s2) || !std::isfinite(sample.accel_z_m_s2)) ++c.reading_missing;
+  if (std::isfinite(sample.accel_z_m_s2)) {
+    InputCounters& a = health_.accelerometer;
+    ++a.received;
+    ++a.accepted_in_period;
+    a.last_utime = sample.utime;
+    a.last_seq = sample.seq;
+  }
   tare_.AddImu(sample);
   method_->AddImu(sample);
 }
@@ -372,15 +408,11 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   }
 
   if (tare_.AddStrain(sample) == TareEvent::kAccepted) {
-    for (int i = 0; i < 2; ++i) {
-      health_.gauge.offset_rad[i] = tare_.offset_rad()[i];
-      health_.gauge.offset_std_rad[i] = tare_.offset_std_rad()[i];
-    }
-    health_.gauge.source = GaugeOffsetSource::kTare;
+    UseGaugeOffsets(tare_.offset_rad(), tare_.offset_std_rad(), GaugeOffsetSource::kTare);
   }
   health_.tare = tare_.counters();
 
-  StrainSample deflection = health_.gauge.Apply(sample);
+  StrainSample deflection = calibration_.Apply(sample);
   if (config_.harmonic_notch.enabled) {
     rotor_speed_.Advance(sample.utime);
     const double omega_rad_s[2] = {rotor_speed_.omega_rad_s(0), rotor_speed_.omega_rad_s(1)};
@@ -390,6 +422,7 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
 
   StrainStepInfo info;
   method_->AddStrain(deflection, estimate, &info);
+  UpdateReportedGaugeOffsets();
   if (info.reset != ResetReason::kNone) {
     // The method re-initialised itself (its numerical guard).
     ++health_.resets;

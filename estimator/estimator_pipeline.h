@@ -58,6 +58,10 @@ struct InputCounters {
 
 struct PipelineHealth {
   InputCounters inputs[kNumInputChannels];
+  // The IMU's a_z as a measurement of its own (the EKF fuses it in flight):
+  // received = accepted IMU samples with a finite a_z, the fusion counters
+  // and NIS of its reports, its gate; the other fields stay 0.
+  InputCounters accelerometer;
   // Newest accepted sample time over all inputs [us] (time outliers are not
   // accepted; a STRAIN stamp more than time_backwards_reset_s behind it resets it).
   int64_t newest_utime = -1;
@@ -67,8 +71,10 @@ struct PipelineHealth {
   int64_t published = 0;  // force estimates produced
   int32_t last_status = 0;
   ForceEstimate last_estimate;
-  // Strain-gauge calibration in use (every method sees (b_meas - o) / s) and
-  // the tare's counters.
+  // Strain-gauge calibration: the scale in use and the offsets o_i as now
+  // known (the calibration the method is given, from the file, a tare or
+  // the state file, plus what the method learned in flight, with its sigma;
+  // the daemon persists these), and the tare's counters.
   GaugeCalibration gauge;
   TareCounters tare;
 };
@@ -130,10 +136,16 @@ class EstimatorPipeline : private FusionReportSink {
   // Re-initialises the method and re-feeds the newest motor command (without
   // its telemetry) if it is still current at utime.
   void ResetMethod(ResetReason reason, int64_t utime);
+  // Gives the method a new calibration offset (file, tare, state file, or
+  // what it learned before a reset) and reports it.
+  void UseGaugeOffsets(const double offset_rad[2], const double offset_std_rad[2], GaugeOffsetSource source);
+  // health_.gauge = calibration_ + what the method learned (scaled to the raw reading).
+  void UpdateReportedGaugeOffsets();
   void OnFusion(const FusionReport& report) override;
 
   EstimatorConfig config_;
   std::unique_ptr<ForceEstimator> method_;
+  GaugeCalibration calibration_;  // applied to every strain reading: b = (b_meas - o) / s
   PipelineHealth health_;
   GaugeTare tare_;
   MotorSpeedTracker rotor_speed_;  // for the harmonic notches

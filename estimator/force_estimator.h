@@ -44,6 +44,14 @@ class ForceEstimator {
   // the stale, conflict and reset bits (and withholds VALID with them).
   virtual void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) = 0;
 
+  // The gauges' calibration changed (a tare, the persisted state): the
+  // deflections given from now on have a zero offset known to one sigma of
+  // offset_std_rad [rad, in deflection]. Methods without offset states ignore it.
+  virtual void SetGaugeOffsetPrior(const double /*offset_std_rad*/[2]) {}
+  // The offset e_i the method has learned on top of the calibration and its
+  // one sigma [rad, in deflection]; false when it has no offset states or
+  // no estimate yet.
+  virtual bool LearnedGaugeOffset(double /*offset_rad*/[2], double /*offset_std_rad*/[2]) const { return false; }
   // Every measurement given to the method ends in exactly one FusionReport
   // (fused, rejected by its gate, or not fused), sent here as it happens
   // (possibly later than the Add call that delivered it). nullptr: none sent.

@@ -15,11 +15,12 @@ namespace birotor {
 // harmonic) is appended before kNumFusionSources and mapped to the input
 // channel it comes from in EstimatorPipeline.
 enum class FusionSource : int {
-  kStrain = 0,     // arm deflections b1, b2 [rad] (STRAIN)
-  kTelemetry = 1,  // ESC rotor speeds omega1, omega2 [rad/s] (MOTOR)
-  kGyro = 2,       // body pitch rate phi_dot [rad/s] (IMU)
+  kStrain = 0,         // arm deflections b1, b2 [rad] (STRAIN)
+  kTelemetry = 1,      // ESC rotor speeds omega1, omega2 [rad/s] (MOTOR)
+  kGyro = 2,           // body pitch rate phi_dot [rad/s] (IMU)
+  kAccelerometer = 3,  // specific force a_z in free flight [m/s^2] (IMU)
 };
-constexpr int kNumFusionSources = 3;
+constexpr int kNumFusionSources = 4;
 
 enum class FusionOutcome : int {
   kFused = 0,         // the state (and covariance) were updated with it

@@ -11,6 +11,9 @@ void ReadEkfOptions(YamlSection s, EkfOptions* o) {
   s.Double("gyro_noise_rad_s", 1e-6, 10.0, &o->gyro_noise_rad_s);
   s.Bool("use_motor_telemetry", &o->use_motor_telemetry);
   s.Bool("use_gyro", &o->use_gyro);
+  s.Bool("use_accelerometer", &o->use_accelerometer);
+  s.Double("accel_noise_m_s2", 1e-5, 100.0, &o->accel_noise_m_s2);
+  s.Bool("estimate_gauge_offsets", &o->estimate_gauge_offsets);
   s.Double("thrust_scale_psd_1_s", 0.0, 10.0, &o->thrust_scale_psd_1_s);
   s.Double("deflection_rate_psd_rad2_s3", 0.0, 1e4, &o->deflection_rate_psd_rad2_s3);
   s.Double("pitch_rate_psd_rad2_s3", 0.0, 1e4, &o->pitch_rate_psd_rad2_s3);
@@ -22,6 +25,7 @@ void ReadEkfOptions(YamlSection s, EkfOptions* o) {
   s.Double("strain_gate_nis", 1.0, 1e12, &o->strain_gate_nis);
   s.Double("telemetry_gate_nis", 1.0, 1e12, &o->telemetry_gate_nis);
   s.Double("gyro_gate_nis", 1.0, 1e12, &o->gyro_gate_nis);
+  s.Double("accel_gate_nis", 1.0, 1e12, &o->accel_gate_nis);
   s.Int("gate_consecutive_limit", 1, 1000000, &o->gate_consecutive_limit);
   s.Double("gate_inflation_thrust_scale_std", 0.0, 2.0, &o->gate_inflation_thrust_scale_std);
   s.Double("converged_force_std_n", 1e-6, 1e3, &o->converged_force_std_n);

@@ -41,6 +41,40 @@ void ProcessingTimeStats::TakePeriod() {
   max_us_ = 0;
 }
 
+namespace {
+
+// One input's counters as published; ages on the vehicle clock.
+void FillInputHealth(const InputCounters& in, const char* channel, const PipelineHealth& health,
+                     const StatusContext& context, input_health_t* out) {
+  out->channel = channel;
+  out->received = in.received;
+  out->fused = in.fused;
+  out->rejected_gate = in.rejected_gate;
+  out->rejected_invalid = in.rejected_invalid;
+  out->decode_errors = in.decode_errors;
+  out->out_of_order = in.out_of_order;
+  out->duplicates = in.duplicates;
+  out->gaps = in.gaps;
+  out->missing_samples = in.missing_samples;
+  out->reading_missing = in.reading_missing;
+  out->dropped_overload = in.dropped_overload;
+  // A sample newer than the vehicle clock (the clock went back after it) has
+  // no meaningful age.
+  out->age_s = (in.last_utime >= 0 && health.newest_utime >= in.last_utime)
+                   ? static_cast<double>(health.newest_utime - in.last_utime) / kMicrosecondsPerSecond
+                   : kNaN;
+  out->rate_hz = context.period_s > 0 ? static_cast<double>(in.accepted_in_period) / context.period_s : kNaN;
+  out->not_fused = in.not_fused;
+  out->time_outliers = in.time_outliers;
+  out->conflicts = in.conflicts;
+  out->conflict_active = in.conflict_active ? 1 : 0;
+  out->nis_mean = in.nis_count > 0 ? in.nis_sum / static_cast<double>(in.nis_count) : kNaN;
+  out->nis_max = in.nis_count > 0 ? in.nis_max : kNaN;
+  out->gate = in.gate;
+}
+
+}  // namespace
+
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message) {
   message->utime = health.newest_utime;
@@ -51,34 +85,10 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->num_inputs = kNumInputChannels;
   message->inputs.resize(kNumInputChannels);
   for (int i = 0; i < kNumInputChannels; ++i) {
-    const InputCounters& in = health.inputs[i];
-    input_health_t& out = message->inputs[i];
-    out.channel = InputChannelName(static_cast<InputChannel>(i));
-    out.received = in.received;
-    out.fused = in.fused;
-    out.rejected_gate = in.rejected_gate;
-    out.rejected_invalid = in.rejected_invalid;
-    out.decode_errors = in.decode_errors;
-    out.out_of_order = in.out_of_order;
-    out.duplicates = in.duplicates;
-    out.gaps = in.gaps;
-    out.missing_samples = in.missing_samples;
-    out.reading_missing = in.reading_missing;
-    out.dropped_overload = in.dropped_overload;
-    // Ages on the vehicle clock; a sample newer than that clock (the clock
-    // went back after it) has no meaningful age.
-    out.age_s = (in.last_utime >= 0 && health.newest_utime >= in.last_utime)
-                    ? static_cast<double>(health.newest_utime - in.last_utime) / kMicrosecondsPerSecond
-                    : kNaN;
-    out.rate_hz = context.period_s > 0 ? static_cast<double>(in.accepted_in_period) / context.period_s : kNaN;
-    out.not_fused = in.not_fused;
-    out.time_outliers = in.time_outliers;
-    out.conflicts = in.conflicts;
-    out.conflict_active = in.conflict_active ? 1 : 0;
-    out.nis_mean = in.nis_count > 0 ? in.nis_sum / static_cast<double>(in.nis_count) : kNaN;
-    out.nis_max = in.nis_count > 0 ? in.nis_max : kNaN;
-    out.gate = in.gate;
+    FillInputHealth(health.inputs[i], InputChannelName(static_cast<InputChannel>(i)), health, context,
+                    &message->inputs[i]);
   }
+  FillInputHealth(health.accelerometer, "IMU accel_z", health, context, &message->accelerometer);
   const input_health_t& strain = message->inputs[static_cast<int>(InputChannel::kStrain)];
   message->strain_nis_mean = strain.nis_mean;
   message->strain_nis_max = strain.nis_max;

@@ -1,6 +1,7 @@
 // The EKF's process and measurement models: the gravity-cancellation fact that
 // lets the filter drop x, z, phi; Jacobians against central differences; the
-// fourth-order transition matrix against the RK4 step.
+// fourth-order transition matrix against the RK4 step; the accelerometer
+// model against the hover equilibrium.
 #include "estimator/ekf_model.h"
 
 #include <gtest/gtest.h>
@@ -25,6 +26,8 @@ EkfState HoverLikeState(std::mt19937* rng) {
   x(kOmega2) = 700.0 + 100.0 * u(*rng);
   x(kThrustScale1) = 1.0 + 0.2 * u(*rng);
   x(kThrustScale2) = 1.0 + 0.2 * u(*rng);
+  x(kGaugeOffset1) = 3e-5 * u(*rng);
+  x(kGaugeOffset2) = 3e-5 * u(*rng);
   return x;
 }
 
@@ -33,13 +36,15 @@ TEST(EkfProcessModelTest, JacobianMatchesCentralDifferences) {
   const EkfProcessModel model(p);
   std::mt19937 rng(3);
   // Steps per state, in its unit.
-  const double kStep[kEkfStateSize] = {1e-7, 1e-7, 1e-5, 1e-5, 1e-5, 1e-3, 1e-3, 1e-6, 1e-6};
+  const double kStep[kEkfStateSize] = {1e-7, 1e-7, 1e-5, 1e-5, 1e-5, 1e-3, 1e-3, 1e-6, 1e-6, 1e-7, 1e-7};
   for (int trial = 0; trial < 10; ++trial) {
     const EkfState x = HoverLikeState(&rng);
     EkfInput u;
     u.omega_cmd_rad_s[0] = 650.0;
     u.omega_cmd_rad_s[1] = 1300.0;  // above omega_max: clamped, still differentiable in x
-    const EkfMatrix a = model.Jacobian(x, u);
+    // The offsets have no dynamics: A = blockdiag(A_d, 0).
+    EkfMatrix a = EkfMatrix::Zero();
+    a.topLeftCorner<kDynamicStateSize, kDynamicStateSize>() = model.Jacobian(x, u);
     for (int j = 0; j < kEkfStateSize; ++j) {
       EkfState plus = x, minus = x;
       plus(j) += kStep[j];
@@ -59,14 +64,16 @@ TEST(EkfProcessModelTest, TransitionMatchesTheDerivativeOfTheRk4Step) {
   const VehicleParams p;
   const EkfProcessModel model(p);
   std::mt19937 rng(5);
-  const double kStep[kEkfStateSize] = {1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-6, 1e-6};
+  const double kStep[kEkfStateSize] = {1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-6, 1e-6, 1e-8, 1e-8};
   const EkfState x = HoverLikeState(&rng);
   EkfInput u;
   // Rotors at their command: the rotor speed (and so df/dmu) is constant over the step.
   u.omega_cmd_rad_s[0] = x(kOmega1);
   u.omega_cmd_rad_s[1] = x(kOmega2);
   const double dt_s = 0.001;
-  const EkfMatrix phi = EkfProcessModel::Transition(model.Jacobian(x, u), dt_s);
+  // The offsets are random walks: Phi = blockdiag(Phi_d, I).
+  EkfMatrix phi = EkfMatrix::Identity();
+  phi.topLeftCorner<kDynamicStateSize, kDynamicStateSize>() = EkfProcessModel::Transition(model.Jacobian(x, u), dt_s);
   for (int j = 0; j < kEkfStateSize; ++j) {
     EkfState plus = x, minus = x;
     plus(j) += kStep[j];
@@ -114,10 +121,90 @@ TEST(MeasurementModelTest, JacobiansMatchCentralDifferences) {
   ExpectJacobianMatchesPredict(GyroMeasurementModel(0.005));
 }
 
+TEST(MeasurementModelTest, AccelerometerJacobianMatchesCentralDifferences) {
+  const VehicleParams p;
+  const EkfProcessModel process(p);
+  AccelerometerMeasurementModel model(0.05);
+  std::mt19937 rng(19);
+  const double kStep[kEkfStateSize] = {1e-7, 1e-7, 1e-5, 1e-5, 1e-5, 1e-3, 1e-3, 1e-6, 1e-6, 1e-7, 1e-7};
+  for (int trial = 0; trial < 5; ++trial) {
+    const EkfState x = HoverLikeState(&rng);
+    model.Linearize(process, x);
+    const AccelerometerMeasurementModel::Jacobian h = model.h_jacobian;
+    for (int j = 0; j < kEkfStateSize; ++j) {
+      EkfState plus = x, minus = x;
+      plus(j) += kStep[j];
+      minus(j) -= kStep[j];
+      AccelerometerMeasurementModel scratch(0.05);
+      const double column =
+          (scratch.Linearize(process, plus)(0) - scratch.Linearize(process, minus)(0)) / (2.0 * kStep[j]);
+      EXPECT_NEAR(h(0, j), column, 1e-6 * (1.0 + std::abs(column))) << "col " << j;
+    }
+  }
+}
+
+// The process Jacobian's by-product (the z row of the same solve) is the
+// accelerometer model at x0, and to first order near it.
+TEST(MeasurementModelTest, AccelerometerFromTheProcessJacobianMatchesTheDirectModel) {
+  const VehicleParams p;
+  const EkfProcessModel process(p);
+  std::mt19937 rng(23);
+  for (int trial = 0; trial < 5; ++trial) {
+    const EkfState x = HoverLikeState(&rng);
+    EkfInput u;
+    u.omega_cmd_rad_s[0] = u.omega_cmd_rad_s[1] = 700.0;
+    AccelerometerLinearization at;
+    process.Jacobian(x, u, &at);
+    ASSERT_TRUE(at.valid);
+    AccelerometerMeasurementModel direct(0.05), cached(0.05);
+    const double a_direct = direct.Linearize(process, x)(0);
+    EXPECT_NEAR(cached.Linearize(at, x)(0), a_direct, 1e-9 * std::abs(a_direct));
+    for (int j = 0; j < kEkfStateSize; ++j) {
+      EXPECT_NEAR(cached.h_jacobian(0, j), direct.h_jacobian(0, j), 1e-9 * (1.0 + std::abs(direct.h_jacobian(0, j))));
+    }
+    // One millisecond of typical motion later: first order holds to 1e-3 m/s^2
+    // (the accelerometer's noise is 0.05).
+    const EkfState moved = process.Step(x, u, 0.001);
+    EXPECT_NEAR(cached.Linearize(at, moved)(0), direct.Linearize(process, moved)(0), 1e-3);
+  }
+  EkfInput ground;
+  ground.body_supported = true;
+  AccelerometerLinearization at;
+  process.Jacobian(HoverLikeState(&rng), ground, &at);
+  EXPECT_FALSE(at.valid);
+}
+
+// At the hover equilibrium the arms are still: a_z = (f1 + f2) / (m + 2 m_p) = g,
+// whatever the gauge offsets. The thrust reaches the body only through the
+// hinge springs: a_z does not move with f_i at once (d a_z / d mu_i = 0) but
+// with the deflections, d a_z / d b_i = -/+ k / (L m) (reference-vehicle.md:
+// z_ddot = -k / (L m) b_d + ..., b_d = b1 - b2); the offsets do not enter.
+TEST(MeasurementModelTest, AccelerometerReadsTheThrustThroughTheHinges) {
+  const VehicleParams p;
+  const EkfProcessModel process(p);
+  AccelerometerMeasurementModel model(0.05);
+  const Equilibrium eq = SolveHoverEquilibrium(p);
+  EkfState x = EkfState::Zero();
+  for (int i = 0; i < 2; ++i) {
+    x(kDeflectionIndex[i]) = eq.deflection_rad[i];
+    x(kOmegaIndex[i]) = eq.omega_rad_s[i];
+    x(kThrustScaleIndex[i]) = 1.0;
+    x(kGaugeOffsetIndex[i]) = 1e-4;
+  }
+  EXPECT_NEAR(model.Linearize(process, x)(0), p.gravity_m_s2, 1e-9);
+  const double k_over_lm = p.arm_stiffness_n_m_rad / (p.arm_length_m * p.body_mass_kg);  // [m/s^2 per rad]
+  EXPECT_NEAR(model.h_jacobian(0, kDeflection1), -k_over_lm, 0.01 * k_over_lm);
+  EXPECT_NEAR(model.h_jacobian(0, kDeflection2), k_over_lm, 0.01 * k_over_lm);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(model.h_jacobian(0, kThrustScaleIndex[i]), 0.0, 1e-9);
+    EXPECT_EQ(model.h_jacobian(0, kGaugeOffsetIndex[i]), 0.0);
+  }
+}
+
 // A badly scaled but valid covariance, as in the filter (b ~ 1e-5, omega ~ 10).
 EkfMatrix RandomCovariance(std::mt19937* rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  const double kScale[kEkfStateSize] = {1e-5, 1e-5, 0.1, 0.01, 0.01, 10.0, 10.0, 0.1, 0.1};
+  const double kScale[kEkfStateSize] = {1e-5, 1e-5, 0.1, 0.01, 0.01, 10.0, 10.0, 0.1, 0.1, 1e-5, 1e-5};
   EkfMatrix root;
   for (int i = 0; i < kEkfStateSize; ++i) {
     for (int j = 0; j < kEkfStateSize; ++j) root(i, j) = n(*rng) * kScale[i];
@@ -193,10 +280,10 @@ TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
   const MotorSpeedMeasurementModel motor(5.0);
   for (int k = 0; k < 1000; ++k) {
     const StrainMeasurementModel::Vector z(1e-5 * n(rng), 1e-5 * n(rng));
-    KalmanUpdate(strain, ComputeInnovation(strain, x, cov, z), &x, &cov);
+    KalmanUpdate(strain, ComputeInnovation(strain, cov, z, StrainMeasurementModel::Predict(x)), &x, &cov);
     if (k % 2 == 0) {
       const MotorSpeedMeasurementModel::Vector w(5.0 * n(rng), 5.0 * n(rng));
-      KalmanUpdate(motor, ComputeInnovation(motor, x, cov, w), &x, &cov);
+      KalmanUpdate(motor, ComputeInnovation(motor, cov, w, MotorSpeedMeasurementModel::Predict(x)), &x, &cov);
     }
   }
   const EkfState d = cov.diagonal().cwiseSqrt().cwiseInverse();
@@ -204,7 +291,9 @@ TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
   EXPECT_LE((scaled - scaled.transpose()).cwiseAbs().maxCoeff(), 1e-9);
   Eigen::LLT<EkfMatrix> llt(0.5 * (scaled + scaled.transpose()));
   EXPECT_EQ(llt.info(), Eigen::Success);
-  EXPECT_LE(cov(kDeflection1, kDeflection1), 4e-10);  // cannot exceed R = (2e-5)^2 after an update
+  // The gauge reading b1 + e1 cannot be less certain than R = (2e-5)^2 after an update.
+  const Eigen::Matrix2d reading_cov = strain.h_jacobian * cov * strain.h_jacobian.transpose();
+  EXPECT_LE(reading_cov(0, 0), 4e-10);
 }
 
 }  // namespace

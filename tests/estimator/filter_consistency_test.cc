@@ -88,21 +88,21 @@ void ExpectConsistent(const Consistency& c) {
 TEST(FilterConsistencyTest, Hover) {
   const Consistency c = RunAndMeasure("hover");
   ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0716, 0.0713);
+  ExpectReadmeMae(c, 0.0674, 0.0660);
   EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1] + c.deficit_flags, 0);
 }
 
 TEST(FilterConsistencyTest, Gentle) {
   const Consistency c = RunAndMeasure("gentle");
   ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0714, 0.0714);
+  ExpectReadmeMae(c, 0.0667, 0.0670);
   EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1] + c.deficit_flags, 0);
 }
 
 TEST(FilterConsistencyTest, Aggressive) {
   const Consistency c = RunAndMeasure("aggressive");
   ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0696, 0.0736);
+  ExpectReadmeMae(c, 0.0661, 0.0684);
   EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1] + c.deficit_flags, 0);
 }
 
@@ -111,7 +111,7 @@ TEST(FilterConsistencyTest, Aggressive) {
 TEST(FilterConsistencyTest, Density) {
   const Consistency c = RunAndMeasure("density");
   ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0731, 0.0706);
+  ExpectReadmeMae(c, 0.0683, 0.0671);
   EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1], 0);
   EXPECT_GT(c.deficit_flags, 14900);  // of 15000 estimates: from convergence on
 }
@@ -137,7 +137,7 @@ TEST(FilterConsistencyTest, ThrustLoss) {
       c.share_inside_2sigma[0], c.share_inside_2sigma[1], c.strain_nis_mean, c.mae_n[0], c.mae_n[1],
       (c.first_fault_utime[1] - step_utime) * 1e-3, static_cast<long long>(c.fault_flags[0]));
   ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0740, 0.0813);
+  ExpectReadmeMae(c, 0.0693, 0.0788);
   EXPECT_EQ(c.fault_flags[0], 0);
   EXPECT_EQ(c.deficit_flags, 0);  // rotor 1 is at full thrust: not a shared deficit
   ASSERT_GE(c.first_fault_utime[1], step_utime);

@@ -29,10 +29,18 @@ struct PairedSample {
   bool finite = true;
 };
 
+// The gauge offsets the pipeline reports (ESTIMATOR_STATUS) after one strain sample.
+struct GaugeOffsetSample {
+  int64_t utime = 0;
+  double offset_rad[2] = {0, 0};
+  double offset_std_rad[2] = {0, 0};
+};
+
 struct ScenarioRun {
   std::vector<PairedSample> pairs;
-  std::vector<ForceEstimate> forces;  // every published estimate
-  std::vector<TruthSample> truth;     // every truth sample
+  std::vector<GaugeOffsetSample> gauge_offsets;  // after every strain sample
+  std::vector<ForceEstimate> forces;             // every published estimate
+  std::vector<TruthSample> truth;                // every truth sample
   std::vector<FaultEvent> faults;
   PipelineHealth health;
   int64_t published = 0;
@@ -46,7 +54,15 @@ class PairingSink : public SampleSink {
   void OnStrain(const StrainSample& s) override {
     pipeline_->CountReceived(InputChannel::kStrain);
     ForceEstimate e;
-    if (pipeline_->OnStrain(s, &e)) {
+    const bool published = pipeline_->OnStrain(s, &e);
+    GaugeOffsetSample offsets;
+    offsets.utime = s.utime;
+    for (int i = 0; i < 2; ++i) {
+      offsets.offset_rad[i] = pipeline_->health().gauge.offset_rad[i];
+      offsets.offset_std_rad[i] = pipeline_->health().gauge.offset_std_rad[i];
+    }
+    run.gauge_offsets.push_back(offsets);
+    if (published) {
       last_ = e;
       run.forces.push_back(e);
       has_ = true;

@@ -53,10 +53,15 @@ class ServiceHarness {
     }
   }
 
-  // Hover inputs: strain at 1 kHz, motor at 500 Hz, from utime for count samples.
+  // Hover inputs: strain and IMU at 1 kHz, motor at 500 Hz, from utime for count samples.
   void FeedHover(int64_t utime, int32_t seq, int count) {
     for (int k = 0; k < count; ++k) {
       const int64_t t = utime + k * kStrainPeriodUs;
+      ImuSample imu;  // still, level, thrust = weight: a_z = g
+      imu.utime = t;
+      imu.seq = imu_seq_++;
+      imu.accel_z_m_s2 = config_.vehicle.gravity_m_s2;
+      Publish(channels_.imu, ToMessage(imu));
       if (k % 2 == 0) {
         MotorSample motor;
         motor.utime = t;
@@ -108,6 +113,7 @@ class ServiceHarness {
   EstimatorService service_;
   Equilibrium hover_;
   int32_t motor_seq_ = 0;
+  int32_t imu_seq_ = 0;
   std::vector<force_estimate_t> forces_;
   std::vector<estimator_status_t> statuses_;
 
@@ -137,11 +143,11 @@ TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
   EXPECT_TRUE(last.status & kStatusValid) << last.status;
   EXPECT_FALSE(last.status & (kStatusRotor1Fault | kStatusRotor2Fault));
   // Noise-free inputs at the hover equilibrium (equilibrium.h): the filter
-  // stays on it to round-off; its one sigma after 0.4 s is 0.100 N (measured).
+  // stays on it to round-off; its one sigma after 0.4 s is 0.0839 N (measured).
   for (int i = 0; i < 2; ++i) {
     EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 1e-9);
     EXPECT_NEAR(last.thrust_scale[i], 1.0, 1e-12);
-    EXPECT_NEAR(last.force_std_n[i], 0.1001, 0.0015);
+    EXPECT_NEAR(last.force_std_n[i], 0.0839, 0.0015);
   }
   const estimator_status_t status = h.Status();
   EXPECT_EQ(status.method, "ekf");
@@ -164,6 +170,15 @@ TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
   EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].not_fused, 0);
   EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kMotor)].gate, h.config_.ekf.telemetry_gate_nis);
   EXPECT_EQ(status.strain_gate, h.config_.ekf.strain_gate_nis);
+  // The accelerometer: each IMU(t) before STRAIN(t), in the air, fused; the
+  // first one arrives before the filter starts (at the first strain sample).
+  EXPECT_EQ(status.accelerometer.channel, "IMU accel_z");
+  EXPECT_EQ(status.accelerometer.received, 400);
+  EXPECT_EQ(status.accelerometer.fused, 399);
+  EXPECT_EQ(status.accelerometer.not_fused, 1);
+  EXPECT_EQ(status.accelerometer.rejected_gate, 0);
+  EXPECT_EQ(status.accelerometer.gate, h.config_.ekf.accel_gate_nis);
+  EXPECT_EQ(status.inputs[static_cast<int>(InputChannel::kImu)].fused, 399);  // the gyro, likewise
 }
 
 TEST(EstimatorServiceTest, BadInputIsCountedFlaggedFiniteAndRecoveredFrom) {

@@ -191,6 +191,7 @@ inline estimator_status_t MakeTestMessage<estimator_status_t>() {
   m.force_n[1] = 5.1;
   m.thrust_scale[0] = 1.0;
   m.thrust_scale[1] = 0.99;
+  m.accelerometer = MakeInputHealth("IMU accel_z", 50);
   return m;
 }
 
