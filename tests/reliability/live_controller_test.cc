@@ -142,10 +142,26 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
   const double back_vehicle_s = 1e-6 * static_cast<double>(back->message.utime - first_new.message.utime);
   std::printf(
       "fallback %.1f ms after the last FORCE (vehicle clock; %.1f ms host); force feedback back %.3f s after the "
-      "first FORCE of the restarted estimator (%.3f s after exec, host); max |z| %.4f m; %zu commands\n",
+      "first FORCE of the restarted estimator (%.3f s after exec, host); max |z| %.4f m; %zu commands, %lld truth\n",
       1e3 * fallback_vehicle_s, 1e3 * (fallback->arrival_s - last_force.arrival_s), back_vehicle_s,
-      back->arrival_s - restart_s, loop.max_altitude_error_m(), commands.size());
-  EXPECT_LE(fallback_vehicle_s, 0.010);
+      back->arrival_s - restart_s, loop.max_altitude_error_m(), commands.size(),
+      static_cast<long long>(loop.truth_count()));
+  // The rule, independent of scheduling: no command decided on a FORCE older
+  // than force_timeout_s (5 ms, config/controller.yaml) is force feedback, from
+  // the kill until the restarted estimator's first FORCE. (How soon the first
+  // fallback command goes out also depends on when the controller gets the CPU:
+  // 5-8 ms on a quiet machine, 11 ms measured with five busy loops beside it;
+  // the figure is the README's, the bound here is only a sanity check.)
+  constexpr int64_t kForceTimeoutUs = 5000;
+  int64_t stale_commands = 0;
+  for (const CommandRecord& c : commands) {
+    if (c.message.utime > last_force.message.utime + kForceTimeoutUs && c.message.utime < first_new.message.utime) {
+      ++stale_commands;
+      EXPECT_TRUE(c.message.status & motor_command_t::STATUS_FALLBACK_ACTIVE) << "command at " << c.message.utime;
+    }
+  }
+  EXPECT_GT(stale_commands, 100);  // the 0.7 s without an estimator, at 500 Hz
+  EXPECT_LE(fallback_vehicle_s, 0.05);
   EXPECT_LE(back_vehicle_s, 0.5);
   EXPECT_LE(back->arrival_s - restart_s, 10.0);  // generous: start-up on a shared, loaded machine
   EXPECT_LT(loop.max_altitude_error_m(), 0.5);   // no crash
