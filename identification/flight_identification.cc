@@ -326,7 +326,26 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     floored.sigma = std::hypot(floored.sigma, options.bench_frequency_floor * floored.value);
     damping.note += "; sigma includes bench_damping_floor";
     floored.note += "; sigma includes bench_frequency_floor";
-  } else if (!options.flight_fit_damping) {
+  } else {
+    // A flight reads its deflections through the base file's gauge scales:
+    // a relative scale error delta moves k by -delta (statics, b = f L / k)
+    // and m_p with it (the arm frequency fixes k / m_p); c_T comes from the
+    // accelerometer against the rotor speeds and does not move. What the
+    // flight determines is k / s and m_p / s.
+    const double scale = 0.5 * (base.gauge_scale[0] + base.gauge_scale[1]);
+    const double relative = options.calibration.gauge_scale_std / scale;
+    for (ParameterEstimate* e : {&k, &tip_mass}) {
+      if (relative > 0.0) {
+        e->sigma = std::hypot(e->sigma, relative * e->value);
+        e->note += "; sigma includes the gauge scale's (--gauge-scale-std)";
+      } else {
+        e->note +=
+            "; relative to the base file's gauge_scale (the flight determines it over s_i; "
+            "--gauge-scale-std adds the scale's uncertainty)";
+      }
+    }
+  }
+  if (!joint && !options.flight_fit_damping) {
     damping.determined = false;
     damping.sigma = kNaN;
     damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";

@@ -24,6 +24,7 @@ struct CalibrationFact {
   double tip_mass_std_kg = 0.0;
   // One sigma of the factory gauge scale [1]; 0 holds s_i at the base file's
   // value when the tip mass is not weighed (and leaves s_i free when it is).
+  // A flight fit holds s_i and adds this (relative) to the sigma of k and m_p.
   double gauge_scale_std = 0.0;
 
   bool TipMassWeighed() const { return std::isfinite(tip_mass_kg); }

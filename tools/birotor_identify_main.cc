@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--gauge-scale-std", options.calibration.gauge_scale_std,
                  "One sigma of the factory gauge scale [1]; default 0: held at the base file's gauge_scale "
-                 "(unless --tip-mass-kg is given)")
+                 "(unless --tip-mass-kg is given). Flight: added to the sigma of k and m_p, which the "
+                 "flight sees through the scale")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)");
   app.add_option("--update-params", cli.update_params,

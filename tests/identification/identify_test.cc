@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -332,6 +333,29 @@ TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
   const ParameterEstimate* m_p = Find(r, "m_p");
   ASSERT_NE(m_p, nullptr);
   EXPECT_GT(m_p->sigma, 0.005 * truth.tip_mass_kg);
+}
+
+// A flight reads its deflections through the base file's gauge scale: with
+// gauges 1 % stronger than the file says, k and m_p come out ~1 % low at a
+// sigma that knows nothing of it; --gauge-scale-std puts the scale's
+// uncertainty into their sigma (c_T, from the accelerometer, stays right).
+TEST(FlightIdentificationTest, GaugeScaleUncertaintyReachesTheSigmaOfKAndTipMass) {
+  VehicleParams truth;
+  const SensorLog log =
+      testing::SimulateScenario("flight_id", {"scenario.duration_s=8", "gauge.scale=[1.01, 1.01]"}, &truth);
+  IdentificationOptions options;
+  options.calibration.gauge_scale_std = 0.01;
+  const IdentificationResult r = Identify({log}, VehicleParams(), options);
+  ASSERT_TRUE(r.ok) << Errors(r);
+  const ParameterEstimate* k = Find(r, "k");
+  ASSERT_NE(k, nullptr);
+  std::printf("gauges 1 %% strong: k %+.3f %% (sigma %.3f %%)\n",
+              100.0 * (k->value / truth.arm_stiffness_n_m_rad - 1.0), 100.0 * k->sigma / k->value);
+  EXPECT_LT(k->value, truth.arm_stiffness_n_m_rad);  // seen through the scale
+  ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.03, 3.0);
+  EXPECT_GE(k->sigma, 0.01 * k->value);
+  EXPECT_NE(k->note.find("gauge scale"), std::string::npos) << k->note;
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.03, 3.0);
 }
 
 // Issue 11 item 4: a bench log and a flight log of one vehicle in one Ceres
