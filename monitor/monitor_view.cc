@@ -226,6 +226,15 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
                         strain->fused, strain->rejected_gate, strain->rejected_invalid, strain->missing_samples,
                         BadPackets(*strain), strain->dropped_overload);
   }
+  if (c.has_status()) {
+    const estimator_status_t& s = c.latest_status();
+    const input_health_t& a = s.accelerometer;
+    text += fmt::format(
+        "gauge offsets {:.2e} / {:.2e} rad +- {:.1e} / {:.1e} (from {}, learned in flight); accelerometer: fused {}, "
+        "gate-rejected {}, not fused {} (on the ground or off)\n",
+        s.gauge_offset_rad[0], s.gauge_offset_rad[1], s.gauge_offset_std_rad[0], s.gauge_offset_std_rad[1],
+        s.gauge_offset_source.empty() ? "-" : s.gauge_offset_source, a.fused, a.rejected_gate, a.not_fused);
+  }
   return text;
 }
 

@@ -120,6 +120,10 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
   status.inputs[0].rejected_gate = 3;
   status.inputs[3].age_s = 0.5;  // POSE stale
   status.num_inputs = 4;
+  status.gauge_offset_rad[0] = 1.5e-5;
+  status.gauge_offset_std_rad[0] = 2.7e-6;
+  status.gauge_offset_source = "params";
+  status.accelerometer.fused = 2;
   Feed(&collector, channels.estimator_status, Encode(status));
 
   const std::string line = PlainViewLine(collector, context);
@@ -145,6 +149,10 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
   EXPECT_NE(summary.find("VALID 100.0 %"), std::string::npos) << summary;
   EXPECT_NE(summary.find("first alarms: ROTOR2_FAULT 2.500 s"), std::string::npos) << summary;
   EXPECT_NE(summary.find("estimator ekf: resets 1 (last: start); strain NIS over the run mean 2.04"), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("gauge offsets 1.50e-05 / 0.00e+00 rad +- 2.7e-06 / 0.0e+00 (from params, learned in flight); "
+                         "accelerometer: fused 2"),
+            std::string::npos)
       << summary;
   EXPECT_EQ(DeliveryNote(collector), "");
 }
