@@ -86,9 +86,11 @@ struct EkfOptions {
   // contact_off_n. 4.5 N is a tenth of the reference weight; the model error
   // of the free-body model on the ground is m_p N / (m + 2 m_p) per rotor
   // (0.14 N at 2 N), so the hysteresis band is where the models nearly agree.
-  double ground_contact_on_n = 4.5;       // [N]
-  double ground_contact_off_n = 2.0;      // [N]
-  double ground_contact_filter_s = 0.02;  // [s] (arm modes 65-80 Hz attenuated ~8x)
+  double ground_contact_on_n = 4.5;   // [N]
+  double ground_contact_off_n = 2.0;  // [N]
+  // [s] (arm modes 65-80 Hz attenuated ~8x); lengthened automatically for a
+  // noisy accelerometer (GroundContact::TimeConstantS, from accel_noise_m_s2).
+  double ground_contact_filter_s = 0.02;
   // The body is held on a test stand (scenario bench): the supported-body
   // model throughout, whatever the IMU says.
   bool body_held = false;

@@ -1,5 +1,6 @@
 #include "estimator/ground_contact.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace birotor {
@@ -8,7 +9,19 @@ GroundContact::GroundContact(const VehicleParams& params, const EkfOptions& opti
     : total_mass_kg_(params.TotalMass()),
       on_n_(options.ground_contact_on_n),
       off_n_(options.ground_contact_off_n),
-      filter_s_(options.ground_contact_filter_s) {}
+      filter_s_(options.ground_contact_filter_s),
+      support_noise_n_(params.TotalMass() * options.accel_noise_m_s2) {}
+
+double GroundContact::TimeConstantS(double dt_s) const {
+  // A first-order low-pass of white noise of sigma M sigma_a sampled every dt
+  // has sigma M sigma_a sqrt(dt / (2 tau)) (tau >> dt). Keep it at a sixth
+  // of the hysteresis band, so a noisy accelerometer cannot flip the contact:
+  //   tau >= dt (6 M sigma_a / (on - off))^2 / 2.
+  const double band_n = on_n_ - off_n_;
+  if (!(band_n > 0.0)) return filter_s_;  // no hysteresis: nothing to protect
+  const double ratio = 6.0 * support_noise_n_ / band_n;
+  return std::max(filter_s_, 0.5 * dt_s * ratio * ratio);
+}
 
 void GroundContact::Reset() {
   has_sample_ = false;
@@ -23,7 +36,8 @@ void GroundContact::Update(int64_t utime, double accel_z_m_s2, double total_forc
     support_force_n_ = support_n;
   } else if (utime > last_utime_) {
     // Exact discretisation of N_f_dot = (N - N_f) / tau over the sample interval.
-    const double alpha = 1.0 - std::exp(-static_cast<double>(utime - last_utime_) * 1e-6 / filter_s_);
+    const double dt_s = static_cast<double>(utime - last_utime_) * 1e-6;
+    const double alpha = 1.0 - std::exp(-dt_s / TimeConstantS(dt_s));
     support_force_n_ += alpha * (support_n - support_force_n_);
   }
   has_sample_ = true;
