@@ -117,62 +117,52 @@ class EkfProcessModel {
 // H is constant for strain, telemetry and gyro (they read states directly);
 // the accelerometer's is evaluated at the state.
 
-// A pair of states read directly: z = (x[first], x[second]), R = sigma^2 I.
+// What every model has: its size M, H (set by the model) and R = sigma^2 I
+// (independent readings of one noise sigma, in the measurement's unit).
+template <int M>
+struct MeasurementModel {
+  static constexpr int kSize = M;
+  using Vector = Eigen::Matrix<double, M, 1>;
+  using Jacobian = Eigen::Matrix<double, M, kEkfStateSize>;
+  using Covariance = Eigen::Matrix<double, M, M>;
+  explicit MeasurementModel(double noise_std)
+      : h_jacobian(Jacobian::Zero()), noise(Covariance::Identity() * (noise_std * noise_std)) {}
+  Jacobian h_jacobian;  // H [unit of z per unit of each state]
+  Covariance noise;     // R [unit of z squared]
+};
+
+// A pair of states read directly: z = (x[first], x[second]).
 template <int kFirst, int kSecond>
-struct DirectPairMeasurementModel {
-  static constexpr int kSize = 2;
-  using Vector = Eigen::Matrix<double, kSize, 1>;
-  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
-  using Covariance = Eigen::Matrix<double, kSize, kSize>;
-  explicit DirectPairMeasurementModel(double noise_std) {
-    h_jacobian.setZero();
+struct DirectPairMeasurementModel : MeasurementModel<2> {
+  explicit DirectPairMeasurementModel(double noise_std) : MeasurementModel<2>(noise_std) {
     h_jacobian(0, kFirst) = 1.0;
     h_jacobian(1, kSecond) = 1.0;
-    noise = Covariance::Identity() * (noise_std * noise_std);
   }
   static Vector Predict(const EkfState& x) { return Vector(x(kFirst), x(kSecond)); }
-  Jacobian h_jacobian;  // H [1]
-  Covariance noise;     // R [unit of the states squared]
 };
 
 // Strain gauges after calibration: z_i = b_i + e_i [rad], noise_std in rad.
-struct StrainMeasurementModel {
-  static constexpr int kSize = 2;
-  using Vector = Eigen::Matrix<double, kSize, 1>;
-  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
-  using Covariance = Eigen::Matrix<double, kSize, kSize>;
-  explicit StrainMeasurementModel(double noise_std) {
-    h_jacobian.setZero();
+struct StrainMeasurementModel : MeasurementModel<2> {
+  explicit StrainMeasurementModel(double noise_std) : MeasurementModel<2>(noise_std) {
     for (int i = 0; i < 2; ++i) {
       h_jacobian(i, kDeflectionIndex[i]) = 1.0;
       h_jacobian(i, kGaugeOffsetIndex[i]) = 1.0;
     }
-    noise = Covariance::Identity() * (noise_std * noise_std);
   }
   static Vector Predict(const EkfState& x) {
     return Vector(x(kDeflection1) + x(kGaugeOffset1), x(kDeflection2) + x(kGaugeOffset2));
   }
-  Jacobian h_jacobian;  // H [1]
-  Covariance noise;     // R [rad^2]
 };
 // Motor telemetry: z = (omega1, omega2) [rad/s], noise_std in rad/s.
 using MotorSpeedMeasurementModel = DirectPairMeasurementModel<kOmega1, kOmega2>;
 
 // Gyro: z = phi_dot (body pitch rate; the body rate of a rigid body is the
 // same in every frame of the plane).
-struct GyroMeasurementModel {
-  static constexpr int kSize = 1;
-  using Vector = Eigen::Matrix<double, kSize, 1>;
-  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
-  using Covariance = Eigen::Matrix<double, kSize, kSize>;
-  explicit GyroMeasurementModel(double noise_rad_s) {
-    h_jacobian.setZero();
+struct GyroMeasurementModel : MeasurementModel<1> {
+  explicit GyroMeasurementModel(double noise_rad_s) : MeasurementModel<1>(noise_rad_s) {
     h_jacobian(0, kPitchRate) = 1.0;
-    noise(0, 0) = noise_rad_s * noise_rad_s;
   }
   static Vector Predict(const EkfState& x) { return Vector(x(kPitchRate)); }
-  Jacobian h_jacobian;  // H [1]
-  Covariance noise;     // R [(rad/s)^2]
 };
 
 // Accelerometer: z = a_z, the specific force along the body z axis at the
@@ -182,15 +172,8 @@ struct GyroMeasurementModel {
 // separates e1 - e2 from f1 + f2: the strain alone sees b1 - b2, which both
 // move (thesis eq. 3.34). h and H are evaluated at the state (Linearize);
 // not used while the ground holds the body (then a_z is the support).
-struct AccelerometerMeasurementModel {
-  static constexpr int kSize = 1;
-  using Vector = Eigen::Matrix<double, kSize, 1>;
-  using Jacobian = Eigen::Matrix<double, kSize, kEkfStateSize>;
-  using Covariance = Eigen::Matrix<double, kSize, kSize>;
-  explicit AccelerometerMeasurementModel(double noise_m_s2) {
-    h_jacobian.setZero();
-    noise(0, 0) = noise_m_s2 * noise_m_s2;
-  }
+struct AccelerometerMeasurementModel : MeasurementModel<1> {
+  explicit AccelerometerMeasurementModel(double noise_m_s2) : MeasurementModel<1>(noise_m_s2) {}
   // Sets h_jacobian at x and returns h(x) (Jets over b1, b2, phi_dot, b1_dot,
   // b2_dot, f1, f2; chain rule to omega_i, mu_i as in the process Jacobian).
   Vector Linearize(const EkfProcessModel& process, const EkfState& x);
@@ -201,13 +184,12 @@ struct AccelerometerMeasurementModel {
     h_jacobian = at.h;
     return Vector(at.a_z0_m_s2 + at.h.dot(x - at.x0));
   }
-  Jacobian h_jacobian;  // H [m/s^2 per unit of each state]
-  Covariance noise;     // R [(m/s^2)^2]
 };
 
 // Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
 template <int M>
 struct Innovation {
+  Eigen::Matrix<double, M, kEkfStateSize> h_p;  // H P, shared by S, the gain and the Joseph update
   Eigen::Matrix<double, M, 1> residual;
   Eigen::Matrix<double, M, M> covariance;
   Eigen::Matrix<double, M, M> covariance_inverse;
@@ -222,9 +204,8 @@ Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfMatrix& 
   out.residual = z - z_predicted;
   // lazyProduct: coefficient-based; at 11 states Eigen's default would take
   // its blocked GEMM path (packing dominates at this size).
-  Eigen::Matrix<double, Model::kSize, kEkfStateSize> h_p;
-  h_p.noalias() = model.h_jacobian.lazyProduct(cov);
-  out.covariance.noalias() = h_p.lazyProduct(model.h_jacobian.transpose());
+  out.h_p.noalias() = model.h_jacobian.lazyProduct(cov);
+  out.covariance.noalias() = out.h_p.lazyProduct(model.h_jacobian.transpose());
   out.covariance += model.noise;
   out.covariance_inverse = out.covariance.inverse();
   out.nis = out.residual.dot(out.covariance_inverse * out.residual);
@@ -238,12 +219,12 @@ Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfMatrix& 
 // of O(n^3); it is the same product as the dense form, not the expanded
 // P - K S K^T (which only equals it at the optimal gain and loses the
 // positive semi-definite structure to round-off). Not symmetrised here.
+// h_p = H P, as the innovation computed it.
 template <int M>
 EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEkfStateSize, M>& gain,
+                           const Eigen::Matrix<double, M, kEkfStateSize>& h_p,
                            const Eigen::Matrix<double, M, kEkfStateSize>& h_jacobian,
                            const Eigen::Matrix<double, M, M>& noise) {
-  Eigen::Matrix<double, M, kEkfStateSize> h_p;
-  h_p.noalias() = h_jacobian.lazyProduct(cov);
   EkfMatrix a = cov;
   a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
   Eigen::Matrix<double, kEkfStateSize, M> a_ht;
@@ -256,17 +237,23 @@ EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEk
   return out;
 }
 
-// Kalman update with the optimal gain K = P H^T S^-1: x += K y, and P by
-// JosephCovariance.
+template <int M>
+EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEkfStateSize, M>& gain,
+                           const Eigen::Matrix<double, M, kEkfStateSize>& h_jacobian,
+                           const Eigen::Matrix<double, M, M>& noise) {
+  Eigen::Matrix<double, M, kEkfStateSize> h_p;
+  h_p.noalias() = h_jacobian.lazyProduct(cov);
+  return JosephCovariance<M>(cov, gain, h_p, h_jacobian, noise);
+}
+
+// Kalman update with the optimal gain K = P H^T S^-1 = (H P)^T S^-1 (P is
+// symmetric): x += K y, and P by JosephCovariance, all from the innovation's H P.
 template <typename Model>
 void KalmanUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
-  using Gain = Eigen::Matrix<double, kEkfStateSize, Model::kSize>;
-  Eigen::Matrix<double, kEkfStateSize, Model::kSize> p_ht;
-  p_ht.noalias() = cov->lazyProduct(model.h_jacobian.transpose());
-  Gain gain;
-  gain.noalias() = p_ht.lazyProduct(innovation.covariance_inverse);
+  Eigen::Matrix<double, kEkfStateSize, Model::kSize> gain;
+  gain.noalias() = innovation.h_p.transpose().lazyProduct(innovation.covariance_inverse);
   x->noalias() += gain.lazyProduct(innovation.residual);
-  *cov = JosephCovariance<Model::kSize>(*cov, gain, model.h_jacobian, model.noise);
+  *cov = JosephCovariance<Model::kSize>(*cov, gain, innovation.h_p, model.h_jacobian, model.noise);
 }
 
 // ---- inline implementation of EkfProcessModel ----

@@ -85,26 +85,17 @@ void ExpectConsistent(const Consistency& c) {
   EXPECT_NEAR(c.strain_nis_mean, 2.0, 0.2);
 }
 
-TEST(FilterConsistencyTest, Hover) {
-  const Consistency c = RunAndMeasure("hover");
+// A healthy flight: consistent, the README's MAE, and no flag at all.
+void ExpectHealthyFlight(const std::string& scenario, double rotor1_mae_n, double rotor2_mae_n) {
+  const Consistency c = RunAndMeasure(scenario);
   ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0674, 0.0660);
+  ExpectReadmeMae(c, rotor1_mae_n, rotor2_mae_n);
   EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1] + c.deficit_flags, 0);
 }
 
-TEST(FilterConsistencyTest, Gentle) {
-  const Consistency c = RunAndMeasure("gentle");
-  ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0667, 0.0670);
-  EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1] + c.deficit_flags, 0);
-}
-
-TEST(FilterConsistencyTest, Aggressive) {
-  const Consistency c = RunAndMeasure("aggressive");
-  ExpectConsistent(c);
-  ExpectReadmeMae(c, 0.0661, 0.0684);
-  EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1] + c.deficit_flags, 0);
-}
+TEST(FilterConsistencyTest, Hover) { ExpectHealthyFlight("hover", 0.0674, 0.0660); }
+TEST(FilterConsistencyTest, Gentle) { ExpectHealthyFlight("gentle", 0.0667, 0.0670); }
+TEST(FilterConsistencyTest, Aggressive) { ExpectHealthyFlight("aggressive", 0.0661, 0.0684); }
 
 // Both rotors at 0.9 of the nominal map (thin air): a shared deficit, not a
 // rotor fault.
