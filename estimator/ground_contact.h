@@ -17,7 +17,8 @@ class GroundContact {
   GroundContact(const VehicleParams& params, const EkfOptions& options);
 
   // One IMU sample (specific force along body z [m/s^2]) with the current
-  // thrust estimate f1 + f2 [N]. N is low-passed (first order, time constant
+  // thrust estimate f1 + f2 [N]. N, clamped to +-M g per sample (a reading
+  // spike cannot flip the contact), is low-passed (first order, time constant
   // ground_contact_filter_s, lengthened for a noisy accelerometer: see
   // TimeConstantS) and compared with the hysteresis thresholds.
   void Update(int64_t utime, double accel_z_m_s2, double total_force_n);
@@ -34,6 +35,7 @@ class GroundContact {
   double total_mass_kg_;
   double on_n_, off_n_, filter_s_;
   double support_noise_n_;  // M sigma_a: one sigma of N per sample [N]
+  double weight_n_;         // M g: each sample's N is clamped to +-this [N]
   bool has_sample_ = false;
   int64_t last_utime_ = 0;
   double support_force_n_ = 0;

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "tests/estimator/scenario_harness.h"
@@ -360,6 +363,47 @@ TEST(EkfForceEstimatorDirectTest, LateMeasurementIsNotFused) {
   run.ekf.AddStrain(next, &run.last, &run.info);
   EXPECT_EQ(run.log.Count(FusionSource::kTelemetry, FusionOutcome::kNotFused), not_fused_before + 1);
   EXPECT_EQ(run.log.reports.back().source, FusionSource::kStrain);
+}
+
+// Garbage on the accelerometer in flight: a 1e6 m/s^2 reading is rejected by
+// its gate and counted (and does not put the vehicle on the ground: the
+// ground contact clamps each sample's support force), a NaN one is no
+// measurement at all (the pipeline counts it as reading_missing); the gyro of
+// both samples is still fused and the forces stay where they were.
+TEST(EkfForceEstimatorDirectTest, AbsurdOrMissingAccelerometerReadingIsNotFused) {
+  DirectRun run;
+  std::vector<InputEvent> events(HoverEvents().begin(), HoverEvents().begin() + 2000);
+  run.Feed(events);
+  const ForceEstimate before = run.last;
+  const int64_t gyro_before = run.log.Count(FusionSource::kGyro, FusionOutcome::kFused);
+  const int64_t accel_reports_before =
+      static_cast<int64_t>(std::count_if(run.log.reports.begin(), run.log.reports.end(), [](const FusionReport& r) {
+        return r.source == FusionSource::kAccelerometer;
+      }));
+  for (double accel : {1e6, std::numeric_limits<double>::quiet_NaN()}) {
+    ImuSample imu;
+    imu.utime = run.ekf.utime() + 1000;
+    imu.gyro_y_rad_s = run.ekf.state()(kPitchRate);
+    imu.accel_z_m_s2 = accel;
+    run.ekf.AddImu(imu);
+    StrainSample next;
+    next.utime = imu.utime;
+    next.deflection_rad[0] = run.ekf.state()(kDeflection1) + run.ekf.state()(kGaugeOffset1);
+    next.deflection_rad[1] = run.ekf.state()(kDeflection2) + run.ekf.state()(kGaugeOffset2);
+    run.ekf.AddStrain(next, &run.last, &run.info);
+  }
+  EXPECT_EQ(run.log.Count(FusionSource::kAccelerometer, FusionOutcome::kRejectedGate), 1);
+  const int64_t accel_reports_after =
+      static_cast<int64_t>(std::count_if(run.log.reports.begin(), run.log.reports.end(), [](const FusionReport& r) {
+        return r.source == FusionSource::kAccelerometer;
+      }));
+  EXPECT_EQ(accel_reports_after, accel_reports_before + 1);  // the NaN one is no measurement
+  EXPECT_FALSE(run.ekf.ground_contact().supported());
+  EXPECT_EQ(run.log.Count(FusionSource::kGyro, FusionOutcome::kFused), gyro_before + 2);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_TRUE(std::isfinite(run.last.force_n[i]));
+    EXPECT_NEAR(run.last.force_n[i], before.force_n[i], 0.5);
+  }
 }
 
 }  // namespace
