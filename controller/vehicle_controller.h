@@ -15,7 +15,7 @@
 #include "controller/motor_command.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

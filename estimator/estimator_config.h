@@ -110,7 +110,7 @@ struct TareOptions {
   double max_offset_rad = 5.0e-4;     // |o_i| above this: reading outside the physical range [rad]
   double model_std_rad = 1.0e-6;      // uncertainty of s_i b_rest_i (m_p, k, s_i), added to the mean's [rad]
   // birotor-estimator writes the offsets in use here at a clean stop and
-  // starts from them (services/gauge_state_file.h); "" for none.
+  // starts from them (nodes/gauge_state_file.h); "" for none.
   std::string state_file = "";
 };
 

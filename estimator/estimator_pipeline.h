@@ -5,7 +5,7 @@
 // stale inputs and long gaps, resets the method after a gap or a backwards
 // time jump, rejects time outliers, detects conflicting publishers, and keeps
 // the health counters published on ESTIMATOR_STATUS (per input, from the
-// method's fusion reports). No LCM and no logging here (services/ logs from
+// method's fusion reports). No LCM and no logging here (nodes/ logs from
 // the counters); no allocation per sample.
 #pragma once
 
@@ -18,7 +18,7 @@
 #include "estimator/gauge_tare.h"
 #include "estimator/harmonic_notch.h"
 #include "estimator/motor_speed_tracker.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -3,7 +3,7 @@
 // MEASUREMENT_REJECTED and NO_MOTOR_INPUT mean the same for each of them.
 #pragma once
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

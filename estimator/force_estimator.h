@@ -4,7 +4,7 @@
 #pragma once
 
 #include "estimator/fusion_report.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -4,7 +4,7 @@
 // file; the offset from the file, a tare on the ground or the persisted state.
 #pragma once
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 #include "model/birotor_dynamics.h"
 #include "model/vehicle_params.h"
 

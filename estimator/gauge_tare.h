@@ -20,7 +20,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/gauge_calibration.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

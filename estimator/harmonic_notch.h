@@ -6,7 +6,7 @@
 #pragma once
 
 #include "estimator/estimator_config.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

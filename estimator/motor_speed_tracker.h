@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {

@@ -16,7 +16,7 @@
 #include "controller/vehicle_controller.h"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 #include "simulator/scenario.h"
 #include "sinks/message_sink.h"
 

@@ -10,7 +10,7 @@
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/truth_t.hpp"
 #include "estimator/estimator_config.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 #include "replay/replayer.h"
 #include "simulator/scenario.h"
 

@@ -18,7 +18,7 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/motor_command_t.hpp"
 #include "birotor/pose_t.hpp"
-#include "services/controller_service.h"
+#include "nodes/controller_service.h"
 #include "transport/lcm_codec.h"
 
 namespace {

@@ -20,7 +20,7 @@
 #include "birotor/motor_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
-#include "services/estimator_service.h"
+#include "nodes/estimator_service.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "identification/identification_options.h"
-#include "identification/sensor_log.h"
+#include "samples/sensor_log.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {

@@ -9,7 +9,7 @@
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
 #include "identification/sample_cleaning.h"
-#include "identification/sensor_log.h"
+#include "samples/sensor_log.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {

@@ -15,7 +15,7 @@
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/truth_t.hpp"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 #include "evaluation/eval_metrics.h"
 #include "transport/channels.h"
 

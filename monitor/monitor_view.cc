@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 #include "transport/channels.h"
 
 namespace birotor {

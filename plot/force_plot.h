@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "estimator/estimator_config.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

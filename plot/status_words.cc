@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "identification/sensor_log.h"
+#include "samples/sensor_log.h"
 #include "transport/log_io.h"
 
 namespace birotor {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "estimator/estimator_config.h"
-#include "services/estimator_service.h"
+#include "nodes/estimator_service.h"
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
 

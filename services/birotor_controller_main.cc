@@ -11,7 +11,7 @@
 #include <string>
 
 #include "params/controller_config_yaml.h"
-#include "services/controller_service.h"
+#include "nodes/controller_service.h"
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
 #include "transport/config_files.h"

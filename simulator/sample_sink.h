@@ -1,9 +1,9 @@
 // Where the simulator delivers its samples: one callback per channel, with
-// the plain structs of estimator/samples.h. The service forwards them to LCM
+// the plain structs of samples/samples.h. The service forwards them to LCM
 // or a log file; tests collect them. Default callbacks ignore the sample.
 #pragma once
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -1,4 +1,4 @@
-// The one sample-to-wire adapter: each simulated sample (estimator/samples.h)
+// The one sample-to-wire adapter: each simulated sample (samples/samples.h)
 // converted to its wire message, encoded into a buffer kept between calls and
 // published on its channel through a MessageSink. birotor-sim (LCM or a log),
 // birotor-eval (into the replay), the simulator benchmark and the tests all

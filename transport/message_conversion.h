@@ -1,5 +1,5 @@
 // Conversions between the LCM wire messages of lcmtypes/ and the plain sample
-// structs of estimator/samples.h, so the libraries never see an LCM type.
+// structs of samples/samples.h, so the libraries never see an LCM type.
 // Field for field, no unit changes: both sides use SI units and the same names.
 #pragma once
 
@@ -12,7 +12,7 @@
 #include "birotor/strain_t.hpp"
 #include "birotor/truth_t.hpp"
 #include "controller/motor_command.h"
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "identification/sensor_log.h"
+#include "samples/sensor_log.h"
 #include "simulator/sample_sink.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"

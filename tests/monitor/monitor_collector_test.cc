@@ -12,7 +12,7 @@
 #include "evaluation/eval_runner.h"
 #include "monitor/monitor_view.h"
 #include "params/estimator_config_yaml.h"
-#include "services/estimator_service.h"
+#include "nodes/estimator_service.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"

@@ -137,7 +137,7 @@ TEST(LiveDaemonTest, FrozenSimulatorRecoversWithoutRestart) {
 // judges staleness on the vehicle clock only (intervals between samples), and
 // the live simulator resumes with contiguous sample times, so nothing is
 // flagged: it needs a wall-clock input-age check when ESTIMATOR_STATUS is
-// built (services/estimator_service.cc, not owned here). Enable this test with
+// built (nodes/estimator_service.cc, not owned here). Enable this test with
 // --gtest_also_run_disabled_tests, or drop DISABLED_ once the daemon does it.
 TEST(LiveDaemonTest, FrozenSimulatorIsFlaggedStale) {
   const FreezeRun run = RunFreeze(7697, UniquePrefix("REL_STALE2_"));

@@ -1,6 +1,6 @@
 // LCM glue of the flight controller: raw subscriptions, checked decoding,
 // the vehicle clock, MOTOR_COMMAND and CONTROLLER_STATUS.
-#include "services/controller_service.h"
+#include "nodes/controller_service.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "services/gauge_state_file.h"
+#include "nodes/gauge_state_file.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,6 +1,6 @@
-// The persisted gauge offsets (services/gauge_state_file.h): round trip,
+// The persisted gauge offsets (nodes/gauge_state_file.h): round trip,
 // atomic replacement, and refusal of corrupt and foreign files.
-#include "services/gauge_state_file.h"
+#include "nodes/gauge_state_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
 // ESTIMATOR_STATUS building and processing-time statistics.
-#include "services/status_message.h"
+#include "nodes/status_message.h"
 
 #include <gtest/gtest.h>
 

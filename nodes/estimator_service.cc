@@ -1,6 +1,6 @@
 // LCM glue of the estimator: raw subscriptions, checked decoding, FORCE and
 // ESTIMATOR_STATUS publication.
-#include "services/estimator_service.h"
+#include "nodes/estimator_service.h"
 
 #include <spdlog/spdlog.h>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "estimator/samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

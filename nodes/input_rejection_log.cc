@@ -1,4 +1,4 @@
-#include "services/input_rejection_log.h"
+#include "nodes/input_rejection_log.h"
 
 #include <spdlog/spdlog.h>
 

@@ -1,7 +1,7 @@
 // The daemon's glue over a real LCM transport (memq://, in-process): inputs in,
 // FORCE and ESTIMATOR_STATUS out, and every kind of bad input counted,
 // flagged, kept finite and recovered from.
-#include "services/estimator_service.h"
+#include "nodes/estimator_service.h"
 
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>

@@ -1,5 +1,5 @@
 // ESTIMATOR_STATUS message building and processing-time statistics.
-#include "services/status_message.h"
+#include "nodes/status_message.h"
 
 #include <algorithm>
 #include <cmath>

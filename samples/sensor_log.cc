@@ -1,4 +1,4 @@
-#include "identification/sensor_log.h"
+#include "samples/sensor_log.h"
 
 #include <cmath>
 
