@@ -21,6 +21,9 @@
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
 
+// systemd Type=notify and WatchdogSec (package engineer, issue 24).
+#include "deploy/systemd_notify.h"
+
 int main(int argc, char** argv) {
   using namespace birotor;
   CLI::App app{"birotor-controller: flight controller on POSE, IMU and the estimated rotor forces (FORCE) over LCM"};
@@ -61,7 +64,9 @@ int main(int argc, char** argv) {
 
   const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
   int64_t last_status_us = SteadyClockUs();
+  NotifyReady();  // systemd Type=notify: serving now
   while (!ShutdownRequested()) {
+    NotifyWatchdog();  // WatchdogSec: this loop is alive
     const int64_t now_us = SteadyClockUs();
     const int64_t deadline_us = std::min(service.NextPeriodHostUs(), last_status_us + status_period_us);
     const int handled =
@@ -78,6 +83,7 @@ int main(int argc, char** argv) {
       last_status_us = after_us;
     }
   }
+  NotifyStopping();
   service.Unsubscribe();
   const ControllerHealth& h = service.health();
   spdlog::info("stopped: {} MOTOR_COMMAND published; {} fallbacks, {} descents, {} saturated; FORCE received {}",

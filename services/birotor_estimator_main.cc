@@ -27,6 +27,9 @@
 #include "transport/shutdown.h"
 #include "transport/udpm_receiver.h"
 
+// systemd Type=notify and WatchdogSec (package engineer, issue 24).
+#include "deploy/systemd_notify.h"
+
 namespace {}  // namespace
 
 int main(int argc, char** argv) {
@@ -141,7 +144,9 @@ int main(int argc, char** argv) {
   double last_status_s = SteadyClockS();
   double next_status_s = last_status_s + status_period_s;
   ReceivedDatagram datagram;
+  NotifyReady();  // systemd Type=notify: serving now
   while (!ShutdownRequested()) {
+    NotifyWatchdog();  // WatchdogSec: this loop is alive
     const double wait_s = std::min(std::max(next_status_s - SteadyClockS(), 0.0), 0.1);
     if (receiver) {
       if (receiver->Wait(wait_s)) {
@@ -169,6 +174,7 @@ int main(int argc, char** argv) {
       if (next_status_s <= now_s) next_status_s = now_s + status_period_s;  // a stall longer than a period
     }
   }
+  NotifyStopping();
   service.Unsubscribe();
   const PipelineHealth& health = service.health();
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
