@@ -1,0 +1,23 @@
+// The flight review page of birotor-review: one self-contained HTML file
+// (dygraphs inlined from Debian's libjs-dygraphs at build time, the data as
+// JSON) that opens offline: forces with their one-sigma band and the truth,
+// thrust efficiencies, status bits as lanes, per-input NIS and fusion counts,
+// input rates and gaps, position, controller commands, modes and fallbacks,
+// all on one time axis that zooms and pans together; tables of the channels,
+// the first rise of each alarm and the controller's fallbacks.
+#pragma once
+
+#include <string>
+
+#include "review/flight_data.h"
+
+namespace birotor {
+
+// The page for data. Presentation text (titles, labels) lives here.
+std::string ReviewPageHtml(const FlightData& data);
+
+// The dygraphs library and style sheet, from libjs-dygraphs (generated file).
+extern const char* const kDygraphJs;
+extern const char* const kDygraphCss;
+
+}  // namespace birotor
