@@ -43,7 +43,10 @@ for path in /usr/bin/birotor-estimator /usr/bin/birotor-controller /usr/bin/biro
             /usr/lib/systemd/system/birotor-sim.service \
             /usr/share/birotor/config/estimator.yaml /usr/share/birotor/config/scenarios/hover.yaml \
             /usr/share/birotor/lcmtypes/force_estimate_t.lcm /usr/share/birotor/lcmtypes/estimator_status_t.lcm \
-            /usr/share/java/birotor_lcmtypes.jar; do
+            /usr/share/java/birotor_lcmtypes.jar /usr/bin/birotor-review /usr/bin/birotor-export \
+            /usr/lib/python3/dist-packages/birotor/__init__.py /usr/lib/python3/dist-packages/birotor/log_reader.py \
+            /usr/lib/python3/dist-packages/birotor/force_estimate_t.py \
+            /usr/lib/python3/dist-packages/birotor/lcmtypes/force_estimate_t.lcm; do
   grep -qxF "$path" "$work/contents.txt" || fail "the package lacks $path"
 done
 for lcm_file in "$source_dir"/lcmtypes/*.lcm; do
@@ -94,6 +97,14 @@ echo "ok: --help of $(ls "$bin" | wc -l) installed programs"
 "$bin/birotor-replay" --log hover.lcm --output est.lcm --csv est.csv --log-level warn || fail "installed birotor-replay"
 [ "$(wc -l < est.csv)" -gt 1900 ] || fail "birotor-replay wrote $(wc -l < est.csv) CSV lines for 2 s"
 echo "ok: installed birotor-sim and birotor-replay: $(($(wc -l < est.csv) - 1)) FORCE rows"
+"$bin/birotor-review" est.lcm --output est.html > est.counts || fail "installed birotor-review"
+PYTHONPATH="$root/usr/lib/python3/dist-packages" "$bin/birotor-export" est.lcm --output-dir est-csv > /dev/null \
+  || fail "installed birotor-export"
+forces="$(PYTHONPATH="$root/usr/lib/python3/dist-packages" /usr/bin/python3 -c \
+  'import birotor; print(len(birotor.read_log("est.lcm")["BIROTOR_FORCE"]))')" || fail "installed Python package"
+[ "$forces" = "$(sed -n 's/^BIROTOR_FORCE //p' est.counts)" ] && [ "$forces" = "$(($(wc -l < est-csv/BIROTOR_FORCE.csv) - 1))" ] \
+  || fail "FORCE: $forces in the DataFrame, review $(cat est.counts), CSV $(wc -l < est-csv/BIROTOR_FORCE.csv) lines"
+echo "ok: installed birotor-review, birotor-export and Python package: $forces FORCE each"
 
 # 5. The units verify: copies whose /usr/bin is the scratch root's, so that
 # systemd-analyze finds the programs (and this machine's targets).
