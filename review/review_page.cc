@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "plot/status_words.h"
@@ -177,6 +178,24 @@ std::string ControllerSummary(const FlightData& d) {
                      d.motor_command.rows(), total, total > 0 ? " at t [s] = " : "", times);
 }
 
+// "x max |dev| ... rms ..." of columns x and z of table, from its first row.
+std::string PositionHold(const Table& table, int x_column, int z_column, const char* source) {
+  double max_dev[2] = {0.0, 0.0}, sum_sq[2] = {0.0, 0.0};
+  const int columns[2] = {x_column, z_column};
+  for (size_t row = 0; row < table.rows(); ++row) {
+    for (int i = 0; i < 2; ++i) {
+      const double dev = table.columns[columns[i]][row] - table.columns[columns[i]][0];
+      max_dev[i] = std::max(max_dev[i], std::abs(dev));
+      sum_sq[i] += dev * dev;
+    }
+  }
+  const double n = static_cast<double>(table.rows());
+  return fmt::format(
+      "flight: position held ({}, from t = {:.3f} s): x max |dev| {:.4f} m, rms {:.4f} m; "
+      "z max |dev| {:.4f} m, rms {:.4f} m\n",
+      source, table.t_s[0], max_dev[0], std::sqrt(sum_sq[0] / n), max_dev[1], std::sqrt(sum_sq[1] / n));
+}
+
 std::string InputTable(const FlightData& d) {
   std::string out =
       "<table><tr><th>input</th><th>messages</th><th>mean rate [Hz]</th><th>longest gap [ms]</th>"
@@ -260,6 +279,33 @@ tr.alarm td { background: #fdd; }
 )CSS";
 
 }  // namespace
+
+std::string FlightSummaryText(const FlightData& d) {
+  std::string out = fmt::format("flight: {} events over {:.3f} s\n", d.events, d.duration_s);
+  if (d.truth.rows() > 0) {
+    out += PositionHold(d.truth, 4, 5, "TRUTH");
+  } else if (d.pose.rows() > 0) {
+    out += PositionHold(d.pose, 0, 1, "POSE");
+  }
+  if (d.motor_command.rows() > 0) {
+    int64_t fallbacks = 0;
+    const std::vector<double> at = BitRises(d.motor_command, 3, kFallbackBit, 20, &fallbacks);
+    int64_t force_feedback = 0;
+    for (const double mode : d.motor_command.columns[2]) force_feedback += mode == 1.0 ? 1 : 0;
+    std::string times;
+    for (const double t : at) times += fmt::format("{}{:.3f}", times.empty() ? "" : ", ", t);
+    if (static_cast<int64_t>(at.size()) < fallbacks) times += ", ...";
+    out += fmt::format("flight: {} MOTOR_COMMAND ({:.1f} % in force_feedback mode); {} fallbacks{}{}\n",
+                       d.motor_command.rows(), 100.0 * force_feedback / d.motor_command.rows(), fallbacks,
+                       fallbacks > 0 ? " at t [s] = " : "", times);
+  }
+  if (d.controller_status.rows() > 0) {
+    const Table& c = d.controller_status;
+    out += fmt::format("flight: CONTROLLER_STATUS at the end: {:.0f} fallbacks, {:.0f} descents, {:.0f} saturated\n",
+                       c.columns[0].back(), c.columns[1].back(), c.columns[2].back());
+  }
+  return out;
+}
 
 std::string ReviewPageHtml(const FlightData& d) {
   const Table rates = InputRatesAndGaps(d, std::clamp(static_cast<int>(d.duration_s * 10.0), 10, 600));

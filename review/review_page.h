@@ -16,6 +16,12 @@ namespace birotor {
 // The page for data. Presentation text (titles, labels) lives here.
 std::string ReviewPageHtml(const FlightData& data);
 
+// Flight figures as text lines for a terminal (birotor-review prints them;
+// tools/demo.sh --controller shows them): the position held (deviation from
+// the first TRUTH sample, else the first POSE: max and RMS of x and z) and
+// the controller's commands and fallbacks with their times.
+std::string FlightSummaryText(const FlightData& data);
+
 // The dygraphs library and style sheet, from libjs-dygraphs (generated file).
 extern const char* const kDygraphJs;
 extern const char* const kDygraphCss;

@@ -233,7 +233,10 @@ int Main(int argc, char** argv) {
       overrides.insert(overrides.end(), from_file.begin(), from_file.end());
     }
     overrides.insert(overrides.end(), options.overrides.begin(), options.overrides.end());
-    options.scenario_file = ResolveScenario(options.scenario_file);
+    std::string scenario_error;  // a misspelt name lists the scenarios (issue 24)
+    if (!FindScenario(options.scenario_file, &options.scenario_file, &scenario_error)) {
+      return ReportError(scenario_error);
+    }
     scenario = LoadScenario(options.scenario_file, overrides);
   } catch (const ParamError& e) {
     return ReportError(e.what());

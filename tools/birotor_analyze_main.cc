@@ -69,6 +69,16 @@ int Run(int argc, char** argv) {
   }
   if (measure_sets.empty()) measure_sets = {"b1,b2", "x,z", "x,z,phi,b1,b2,x_dot,z_dot,phi_dot,b1_dot,b2_dot"};
 
+  // Every --measure set is checked before anything is printed.
+  const std::vector<std::string> names = AugmentedStateNames();
+  std::vector<Eigen::MatrixXd> selections(measure_sets.size());
+  for (size_t i = 0; i < measure_sets.size(); ++i) {
+    std::string unknown;
+    if (!SelectionMatrix(names, SplitComma(measure_sets[i]), &selections[i], &unknown)) {
+      return ReportError("--measure: unknown state '" + unknown + "' (allowed: " + Join(names) + ")", kExitUsage);
+    }
+  }
+
   const Equilibrium eq = SolveHoverEquilibrium(params);
   if (!eq.converged) {
     return ReportError("no hover equilibrium found (residual " + std::to_string(eq.residual) + ")");
@@ -81,7 +91,6 @@ int Run(int argc, char** argv) {
               params.thrust_coeff_n_s2_rad2);
 
   LinearModel lin = LinearizeAtHover(params);
-  std::vector<std::string> names = AugmentedStateNames();
   std::vector<std::string> row_names(names.begin(), names.begin() + kMechStateSize);
   if (thesis_coordinates) {
     lin = ToSumDifferenceCoordinates(lin);
@@ -101,14 +110,9 @@ int Run(int argc, char** argv) {
   std::printf("PBH = smallest singular value of [A - lambda I; C] over the eigenvalues (0 means a hidden mode).\n\n");
   std::printf("| measured | rank | unobservable states | sigma max | sigma min | min PBH margin |\n");
   std::printf("|---|---|---|---|---|---|\n");
-  for (const std::string& set : measure_sets) {
-    Eigen::MatrixXd c;
-    std::string unknown;
-    if (!SelectionMatrix(names, SplitComma(set), &c, &unknown)) {
-      return ReportError("--measure: unknown state '" + unknown + "' (allowed: " + Join(names) + ")", kExitUsage);
-    }
-    const SubspaceReport r = AnalyzeObservability(aug, c, names);
-    std::printf("| %s | %d / %d | %s | %.3g | %.3g | %.3g |\n", set.c_str(), r.rank, r.state_size,
+  for (size_t i = 0; i < measure_sets.size(); ++i) {
+    const SubspaceReport r = AnalyzeObservability(aug, selections[i], names);
+    std::printf("| %s | %d / %d | %s | %.3g | %.3g | %.3g |\n", measure_sets[i].c_str(), r.rank, r.state_size,
                 Join(r.hidden_states).c_str(), r.singular_values.maxCoeff(), r.singular_values.minCoeff(),
                 r.pbh_margins.minCoeff());
   }

@@ -53,8 +53,8 @@ int RunControlTable(const std::vector<std::string>& scenarios, const std::string
   for (const std::string& name : scenarios) {
     Scenario scenario;
     try {
-      const std::string file =
-          scenario_dir.empty() ? FindConfigFile("scenarios/" + name + ".yaml") : scenario_dir + "/" + name + ".yaml";
+      std::string file = scenario_dir + "/" + name + ".yaml", scenario_error;  // a misspelt name lists them
+      if (scenario_dir.empty() && !FindScenario(name, &file, &scenario_error)) return ReportError(scenario_error);
       scenario = LoadScenario(file, overrides);
     } catch (const std::exception& e) {
       return ReportError(e.what());
@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-eval: estimator accuracy against simulator truth"};
   CommonOptions common;
   AddCommonOptions(app, &common);
+  app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
   std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
                                         "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
                                         "gauge_vibration", "gauge_airborne", "bench_gauge"};
@@ -179,8 +180,8 @@ int main(int argc, char** argv) {
     Scenario scenario;
     if (log_path.empty()) {
       try {
-        const std::string file =
-            scenario_dir.empty() ? FindConfigFile("scenarios/" + name + ".yaml") : scenario_dir + "/" + name + ".yaml";
+        std::string file = scenario_dir + "/" + name + ".yaml", scenario_error;  // a misspelt name lists them
+        if (scenario_dir.empty() && !FindScenario(name, &file, &scenario_error)) return ReportError(scenario_error);
         scenario = LoadScenario(file, overrides);
       } catch (const std::exception& e) {
         return ReportError(e.what());
@@ -205,6 +206,13 @@ int main(int argc, char** argv) {
       const std::string label = log_path.empty() ? name : "log";
       // Nothing scored (no TRUTH, no FORCE, or all within the warm-up): a
       // table of NaN would look like a result.
+      if (!log_path.empty() && run.stats.input_packets == 0) {  // e.g. a birotor-replay output (issue 24)
+        return ReportError(
+            fmt::format("{}: no STRAIN, MOTOR, IMU or POSE input ({} events): --log re-runs the "
+                        "estimator on a recorded flight's inputs; a birotor-replay output has none "
+                        "(look at it with birotor-review or birotor-plot)",
+                        log_path, run.stats.events));
+      }
       if (result.rotor[0].count == 0) {
         return ReportError(
             fmt::format("{} {}: no FORCE estimate paired with TRUTH after the {:.2f} s warm-up ({} FORCE, {} TRUTH): "

@@ -72,9 +72,8 @@ int main(int argc, char** argv) {
       "LCM logs",
       "birotor-identify");
   AddCommonOptions(app, &common);
-  app.add_option("--log", cli.logs, "LCM log file (repeat for several: one joint fit)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
+  app.add_option("--log", cli.logs, "LCM log file (repeat for several: one joint fit)")->required();
   app.add_option("--mode", cli.mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
   app.add_option("--params", cli.params,
@@ -99,8 +98,7 @@ int main(int argc, char** argv) {
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)");
   app.add_option("--update-params", cli.update_params,
                  "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
-                 "in place, comments and other sections kept, atomically, the old file kept as FILE.bak")
-      ->check(CLI::ExistingFile);
+                 "in place, comments and other sections kept, atomically, the old file kept as FILE.bak");
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
   app.add_option("--min-usable-fraction", cli.min_usable_fraction,

@@ -75,8 +75,7 @@ int Main(int argc, char** argv) {
       "figures of birotor-eval over what was received, or without TRUTH a summary of the estimates and health"};
   AddCommonOptions(app, &options.common);
   app.add_option("--scenario", options.scenario_file,
-                 "Scenario file the simulator runs (progress target and table label)")
-      ->check(CLI::ExistingFile);
+                 "Scenario file the simulator runs (progress target and table label)");
   app.add_option("--label", options.label, "Scenario column of the table (default: scenario name or 'live')");
   app.add_option("--duration-s", options.duration_s, "Stop after this much vehicle time (0: no limit) [s]")
       ->check(CLI::Range(0.0, 1e6));
@@ -97,8 +96,7 @@ int Main(int argc, char** argv) {
       ->check(CLI::Range(1e-3, 3600.0));
   app.add_option("--params", options.params_file,
                  "Estimator parameter file the daemon runs, for its fault thresholds in the view and plot "
-                 "(default: the built-in estimator defaults)")
-      ->check(CLI::ExistingFile);
+                 "(default: the built-in estimator defaults)");
   app.add_option("--interval-s", options.interval_s, "View refresh period (0: 0.2 on a terminal, 1 otherwise) [s]")
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--plain", options.plain, "One plain line per refresh, even on a terminal");

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-plot: estimated (and true) rotor force, thrust efficiency and flags (thesis figures 5.1, 5.2)"};
   CommonOptions common;
   AddCommonOptions(app, &common);
+  app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
   std::string log_path, png_path;
   ForcePlotOptions plot;
   app.add_option("--log", log_path, "LCM log with FORCE, and TRUTH if simulated (birotor-replay output)")->required();
@@ -28,8 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("--title", plot.title, "Plot title (default: the log name)");
   std::string params_file;
   app.add_option("--params", params_file,
-                 "Estimator parameter file of the run, for its fault thresholds (default: the built-in defaults)")
-      ->check(CLI::ExistingFile);
+                 "Estimator parameter file of the run, for its fault thresholds (default: the built-in defaults)");
   double min_usable_fraction = kDefaultMinUsableLogFraction;
   app.add_option("--min-usable-fraction", min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   CLI::App app{"birotor-replay: the estimator over an LCM log, as fast as possible"};
   CommonOptions common;
   AddCommonOptions(app, &common);
+  app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
   std::string input_path, output_path, csv_path, method;
   std::string params_file = FindConfigFile("estimator.yaml");
   ReplayOptions options;

@@ -1,6 +1,7 @@
 // birotor-review: one self-contained HTML page (works offline) to look into a
 // flight log: what the estimator and the controller did, on one zoomable time
-// axis (review/review_page.h). Prints each channel's message count.
+// axis (review/review_page.h). Prints each channel's message count, then the
+// flight figures ("flight: ..." lines).
 #include <spdlog/spdlog.h>
 
 #include <iostream>
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
   for (const auto& [channel, count] : data.channels) {
     std::cout << channel << " " << count.messages << "\n";
   }
+  std::cout << FlightSummaryText(data);
   spdlog::info("{}: {} events, {:.3f} s; {} written ({:.2f} MB) in {:.3f} s (read {:.3f} s)", log_path, data.events,
                data.duration_s, output_path, 1e-6 * static_cast<double>(html.size()), stopwatch.ElapsedS(), read_s);
   return 0;

@@ -34,12 +34,16 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
                       summary instead of the error figures
   --controller MODE   fly closed loop through three processes: birotor-controller (MODE
                       nominal or force_feedback) publishes MOTOR_COMMAND, birotor-sim
-                      --external-controller runs it as the vehicle's ESCs
+                      --external-controller runs it as the vehicle's ESCs; the flight is
+                      recorded (lcm-logger) and its figures printed: position held,
+                      commands, fallbacks with their times (birotor-review, which also
+                      writes <out>/demo-<scenario>-review.html)
   --no-setup          skip tools/setup.sh (no install, no build); use the existing build
   -h, --help          this help
 
 Environment: BIROTOR_BUILD_DIR (default: build), BIROTOR_JOBS (build jobs), as tools/setup.sh.
-Logs: <out>/demo-<scenario>-{setup,estimator,controller,sim,monitor}.log.
+Logs: <out>/demo-<scenario>-{setup,estimator,controller,sim,monitor,logger}.log; with --controller
+also <out>/demo-<scenario>-flight.lcm and -review.html.
 Exit status: 0 when every step succeeded, 1 when one failed, 2 on wrong usage.
 EOF
 }
@@ -114,11 +118,16 @@ find_program() {
 sim_bin="$(find_program birotor-sim)"
 estimator_bin="$(find_program birotor-estimator)"
 monitor_bin="$(find_program birotor-monitor)"
-[ -z "$controller_mode" ] || controller_bin="$(find_program birotor-controller)"
+if [ -n "$controller_mode" ]; then
+  controller_bin="$(find_program birotor-controller)"
+  review_bin="$(find_program birotor-review)"
+  command -v lcm-logger > /dev/null || fail "lcm-logger not found (apt-get install liblcm-bin; tools/setup.sh)"
+fi
 
 # 2. Processes: started here, stopped here by PID (SIGTERM, wait, SIGKILL after 5 s).
 estimator_pid=""
 controller_pid=""
+logger_pid=""
 sim_pid=""
 monitor_pid=""
 stop_process() {  # name pid
@@ -138,6 +147,7 @@ cleanup() {
   stop_process birotor-monitor "$monitor_pid"; monitor_pid=""
   stop_process birotor-estimator "$estimator_pid"; estimator_pid=""
   stop_process birotor-controller "$controller_pid"; controller_pid=""
+  stop_process lcm-logger "$logger_pid"; logger_pid=""
 }
 trap cleanup EXIT
 trap 'echo "demo: interrupted; stopping" >&2; cleanup; exit 130' INT TERM
@@ -183,6 +193,10 @@ if [ -n "$controller_mode" ]; then
   wait_for_log birotor-controller "$controller_pid" "$log_prefix-controller.log" "lcm .*: in " 20
   sim_args+=(--external-controller)
   echo "demo: closed loop: birotor-controller ($controller_mode) flies the simulator on MOTOR_COMMAND"
+  # The flight is recorded for its figures and review page (birotor-review).
+  flight_log="$log_prefix-flight.lcm"
+  lcm-logger --lcm-url "$lcm_url" --channel "BIROTOR_.*" --force "$flight_log" > "$log_prefix-logger.log" 2>&1 &
+  logger_pid=$!
 fi
 "$monitor_bin" "${monitor_args[@]}" 2> "$log_prefix-monitor.log" &
 monitor_pid=$!
@@ -208,6 +222,16 @@ if [ -n "$controller_mode" ]; then
   stop_process birotor-controller "$controller_pid"
   controller_pid=""
   grep -h "stopped:" "$log_prefix-controller.log" | sed 's/^.*\] /controller: /' || true
+  stop_process lcm-logger "$logger_pid"
+  logger_pid=""
+  # Flight figures (position held, commands, fallbacks with their times) and the review page.
+  if "$review_bin" "$flight_log" --output "$log_prefix-review.html" --log-level warn > "$log_prefix-review.txt"; then
+    grep "^flight: " "$log_prefix-review.txt" | sed 's/^flight: /flight: /'
+    echo "demo: review page: $log_prefix-review.html (recorded flight: $flight_log)"
+  else
+    echo "demo: birotor-review failed on $flight_log" >&2
+    status=1
+  fi
   echo "demo: the same flight in-process (lock-step, figures of both modes): birotor-eval --control --scenarios $scenario"
 fi
 grep -h "simulated " "$log_prefix-sim.log" | sed 's/^.*\] /simulator: /' || true

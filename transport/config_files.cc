@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -56,6 +57,35 @@ std::string ResolveScenario(const std::string& name_or_path) {
   const bool bare_name = name_or_path.find('/') == std::string::npos &&
                          (name_or_path.size() < 5 || name_or_path.substr(name_or_path.size() - 5) != ".yaml");
   return bare_name && !name_or_path.empty() ? FindConfigFile("scenarios/" + name_or_path + ".yaml") : name_or_path;
+}
+
+std::vector<std::string> ScenarioNames() {
+  std::vector<std::string> names;
+  for (const std::string& dir : ConfigSearchDirs()) {
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(dir + "/scenarios", error)) {
+      if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+bool FindScenario(const std::string& name_or_path_in, std::string* path, std::string* error) {
+  const std::string name_or_path = name_or_path_in;  // path may be the argument itself
+  *path = ResolveScenario(name_or_path);
+  std::error_code exists_error;
+  if (std::filesystem::is_regular_file(*path, exists_error)) return true;
+  if (*path == name_or_path) {
+    *error = name_or_path + ": no such scenario file";
+    return false;
+  }
+  std::string names;
+  for (const std::string& name : ScenarioNames()) names += (names.empty() ? "" : ", ") + name;
+  *error = "unknown scenario '" + name_or_path + "' (scenarios: " + (names.empty() ? "none found" : names) +
+           "; searched " + ConfigSearchText("scenarios/" + name_or_path + ".yaml") + ")";
+  return false;
 }
 
 }  // namespace birotor

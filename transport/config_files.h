@@ -28,4 +28,12 @@ std::string ConfigSearchText(const std::string& name);
 // '/' and no ".yaml") looked up as scenarios/<name>.yaml.
 std::string ResolveScenario(const std::string& name_or_path);
 
+// Names of the scenarios (scenarios/<name>.yaml) in every folder of
+// ConfigSearchDirs(), sorted, each once.
+std::vector<std::string> ScenarioNames();
+
+// ResolveScenario, and false with a one-line *error when the file does not
+// exist; for a bare name the error lists ScenarioNames() (issue 24).
+bool FindScenario(const std::string& name_or_path, std::string* path, std::string* error);
+
 }  // namespace birotor

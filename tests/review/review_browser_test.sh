@@ -32,6 +32,10 @@ for name in flight replay; do
   load_in_chromium "$name"
 done
 
+grep -q "^flight: position held (TRUTH" flight.counts || fail "no position figure: $(cat flight.counts)"
+grep -q "^flight: [0-9]* MOTOR_COMMAND (100.0 % in force_feedback mode); [0-9]* fallbacks" flight.counts \
+  || fail "no controller figure: $(cat flight.counts)"
+
 python3 - "$work" <<'PY'
 import html, json, re, struct, sys
 from collections import Counter
@@ -51,7 +55,7 @@ def log_counts(path):  # messages per channel, read with the format alone
 
 def check(name, must_have):
     counts = log_counts(f"{work}/{name}.lcm")
-    printed = dict(line.split() for line in open(f"{work}/{name}.counts"))
+    printed = dict(line.split() for line in open(f"{work}/{name}.counts") if not line.startswith("flight:"))
     assert {k: int(v) for k, v in printed.items()} == dict(counts), f"{name}: printed {printed}, log {dict(counts)}"
     dom = open(f"{work}/{name}.dom").read()
     m = re.search(r'<pre id="review-summary">(.*?)</pre>', dom, re.S)

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Issue 24 item 5: the programs' error paths say one line and the documented
+# exit status, before doing any work: 1 for a missing or bad file or data, 2
+# for a bad command line (transport/program_options.h).
+# Usage: program_errors_test.sh TOOLS_BIN_DIR SIM_BIN_DIR
+set -euo pipefail
+tools="$1"; sim="$2"
+work="$(mktemp -d /tmp/birotor-errors-XXXXXX)"
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+# expect STATUS PATTERN command...: exit status, stderr one line matching PATTERN, nothing on stdout.
+expect() {
+  local want="$1" pattern="$2"; shift 2
+  local status=0
+  timeout 60 "$@" > out.txt 2> err.txt || status=$?
+  local shown="$(basename "$1") ${*:2}"
+  [ "$status" -eq "$want" ] || { fail "$shown: exit $status, want $want: $(head -c 300 err.txt)"; return; }
+  [ "$(grep -c . err.txt)" -eq 1 ] || fail "$shown: stderr is not one line: $(head -c 300 err.txt)"
+  grep -qE "$pattern" err.txt || fail "$shown: stderr '$(cat err.txt)' lacks /$pattern/"
+  [ ! -s out.txt ] || fail "$shown: printed before the error: $(head -c 200 out.txt)"
+}
+"$sim/birotor-sim" --scenario hover --set scenario.duration_s=0.5 --output in.lcm --log-level warn
+"$tools/birotor-replay" --log in.lcm --output replay.lcm --log-level warn
+
+# birotor-analyze --measure with an unknown state: the error, and nothing of the analysis.
+expect 2 "^birotor-analyze: error: --measure: unknown state 'b3'" "$tools/birotor-analyze" --measure b1,b3
+
+# Offline programs have no --lcm-url (it was listed and ignored: garbage://x exited 0).
+for program in birotor-replay birotor-plot birotor-eval birotor-identify; do
+  expect 2 "^$program: error: .*--lcm-url" "$tools/$program" --lcm-url garbage://x --log in.lcm
+done
+
+# A missing file exits 1 everywhere, naming the file.
+expect 1 "^birotor-replay: error: .*missing.lcm" "$tools/birotor-replay" --log missing.lcm --output o.lcm
+expect 1 "^birotor-plot: error: .*missing.lcm" "$tools/birotor-plot" --log missing.lcm --png o.png
+expect 1 "^birotor-plot: error: .*missing.yaml" "$tools/birotor-plot" --log replay.lcm --png o.png --params missing.yaml
+expect 1 "^birotor-eval: error: .*missing.lcm" "$tools/birotor-eval" --log missing.lcm
+expect 1 "^birotor-identify: error: .*missing.lcm" "$tools/birotor-identify" --log missing.lcm --output v.yaml \
+  --log-level warn
+expect 1 "^birotor-identify: error: .*missing.yaml" "$tools/birotor-identify" --log in.lcm --update-params missing.yaml \
+  --log-level warn
+expect 1 "^birotor-monitor: error: .*missing.yaml" "$tools/birotor-monitor" --scenario missing.yaml \
+  --lcm-url "udpm://239.255.76.67:7799?ttl=0"
+expect 1 "^birotor-analyze: error: .*missing.yaml" "$tools/birotor-analyze" --params missing.yaml
+expect 1 "^birotor-review: error: .*missing.lcm" "$tools/birotor-review" missing.lcm --output o.html
+expect 1 "^birotor-sim: error: .*missing.yaml" "$sim/birotor-sim" --scenario missing.yaml --output o.lcm
+
+# A misspelt scenario name lists the scenarios.
+expect 1 "^birotor-sim: error: unknown scenario 'hovr' \(scenarios: .*hover.*\)" \
+  "$sim/birotor-sim" --scenario hovr --output o.lcm
+expect 1 "^birotor-eval: error: unknown scenario 'hovr' \(scenarios: .*hover.*\)" "$tools/birotor-eval" --scenarios hovr
+
+# birotor-eval --log on a replay output: no inputs to estimate from (it said "0 FORCE").
+expect 1 "^birotor-eval: error: replay.lcm: no STRAIN, MOTOR, IMU or POSE input .*birotor-replay output" \
+  "$tools/birotor-eval" --log replay.lcm
+
+[ "$failures" -eq 0 ] || { echo "$failures failures" >&2; exit 1; }
+echo PASS
