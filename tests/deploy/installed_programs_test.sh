@@ -86,21 +86,9 @@ if command -v systemd-analyze > /dev/null; then
 else
   echo "note: no systemd-analyze here; the units were not verified"
 fi
-set -a
-. "$env_file"
-set +a
-BIROTOR_LCM_URL="$url"
-BIROTOR_ESTIMATOR_ARGS="--status-rate-hz 5"
-exec_start="$(sed -n 's/^ExecStart=//p' "$unit")"
-# systemd's rules for this line: ${VAR} is one word, $VAR is split into words.
-command_line=()
-for word in $exec_start; do
-  case "$word" in
-    '${'*'}') name="${word#\$\{}"; name="${name%\}}"; command_line+=("${!name}") ;;
-    '$'*) name="${word#\$}"; for part in ${!name}; do command_line+=("$part"); done ;;
-    *) command_line+=("$word") ;;
-  esac
-done
+. "$prefix/../unit_command_line.sh"
+UNIT_OVERRIDES="BIROTOR_LCM_URL=$url BIROTOR_ESTIMATOR_ARGS=--status-rate-hz=5"
+unit_command_line "$unit" "$env_file"
 "${command_line[@]}" 2> estimator.log &
 daemon=$!
 sleep 1.5
@@ -112,5 +100,6 @@ grep -qF "params $prefix/share/birotor/config/estimator.yaml" estimator.log \
   || fail "the daemon did not load the installed estimator.yaml: $(cat estimator.log)"
 echo "ok: the unit's ExecStart started birotor-estimator and it stopped cleanly on SIGTERM"
 INSIDE
+cp "$source_dir/tests/deploy/unit_command_line.sh" "$work/"
 unshare -m --propagation private bash "$work/inside.sh" "$prefix" "$source_dir" "$build_dir" "$port"
 echo "PASS"

@@ -25,22 +25,9 @@ XDG_CONFIG_HOME="$work/xdg" "$root/usr/bin/birotor-replay" --log hover.lcm --out
 grep -q "method inversion:" replay.log || fail "birotor-replay did not run the site's method: $(cat replay.log)"
 
 # The unit's ExecStart line with /etc/default/birotor, as systemd splits it.
-unit="$root/usr/lib/systemd/system/birotor-estimator.service"
-set -a
-. /etc/default/birotor
-set +a
-BIROTOR_LCM_URL="udpm://239.255.76.67:$port?ttl=0"
-BIROTOR_ESTIMATOR_ARGS="--status-rate-hz 5"
-exec_start="$(sed -n 's/^ExecStart=//p' "$unit")"
-command_line=()
-for word in $exec_start; do
-  case "$word" in
-    /usr/bin/*) command_line+=("$root$word") ;;
-    '${'*'}') name="${word#\$\{}"; name="${name%\}}"; command_line+=("${!name}") ;;
-    '$'*) name="${word#\$}"; for part in ${!name}; do command_line+=("$part"); done ;;
-    *) command_line+=("$word") ;;
-  esac
-done
+. "$work/unit_command_line.sh"
+UNIT_OVERRIDES="BIROTOR_LCM_URL=udpm://239.255.76.67:$port?ttl=0 BIROTOR_ESTIMATOR_ARGS=--status-rate-hz=5"
+unit_command_line "$root/usr/lib/systemd/system/birotor-estimator.service" /etc/default/birotor "$root"
 
 # Stands in for systemd's notification socket: every message, one a line.
 cat > notify_listener.py <<'PY'

@@ -127,6 +127,6 @@ if [ "$(id -u)" -ne 0 ] || ! unshare -m true 2> /dev/null; then
   echo "SKIPPED: the /etc/birotor and state directory checks need root and unshare -m"
   exit 77
 fi
-cp "$source_dir/tests/deploy/package_daemon_check.sh" "$work/"
+cp "$source_dir/tests/deploy/package_daemon_check.sh" "$source_dir/tests/deploy/unit_command_line.sh" "$work/"
 unshare -m --propagation private bash "$work/package_daemon_check.sh" "$work" "$root" "$port"
 echo "PASS"
