@@ -23,27 +23,29 @@ void Table::Add(double t, std::initializer_list<double> values) {
   for (const double value : values) columns[c++].push_back(value);
 }
 
+FlightData::FlightData() {
+  force = Table({"force 1 [N]", "force 2 [N]", "sigma 1 [N]", "sigma 2 [N]", "thrust scale 1 [1]", "thrust scale 2 [1]",
+                 "status [bits]"});
+  truth = Table({"true force 1 [N]", "true force 2 [N]", "true thrust scale 1 [1]", "true thrust scale 2 [1]",
+                 "true x [m]", "true z [m]", "true pitch [rad]"});
+  std::vector<std::string> status_labels;
+  for (const char* what : {"NIS mean", "fused", "rejected", "received"}) {
+    for (const char* input : kReviewInputNames) status_labels.push_back(std::string(input) + " " + what);
+  }
+  status_labels.push_back("resets");
+  status = Table(status_labels);
+  pose = Table({"x [m]", "z [m]", "pitch [rad]"});
+  motor_command = Table({"omega cmd 1 [rad/s]", "omega cmd 2 [rad/s]", "mode", "status [bits]"});
+  controller_status = Table({"fallbacks", "descents", "saturated", "commands", "mode"});
+}
+
 namespace {
 
 // Decodes the channels the page shows; every message's time goes through
 // Time(), which fixes t = 0 at the first decoded message.
 class FlightDecoder {
  public:
-  FlightDecoder(const std::string& prefix, FlightData* data) : channels_(MakeChannelNames(prefix)), data_(data) {
-    data_->force = Table({"force 1 [N]", "force 2 [N]", "sigma 1 [N]", "sigma 2 [N]", "thrust scale 1 [1]",
-                          "thrust scale 2 [1]", "status [bits]"});
-    data_->truth = Table({"true force 1 [N]", "true force 2 [N]", "true thrust scale 1 [1]", "true thrust scale 2 [1]",
-                          "true x [m]", "true z [m]", "true pitch [rad]"});
-    std::vector<std::string> status_labels;
-    for (const char* what : {"NIS mean", "fused", "rejected", "received"}) {
-      for (const char* input : kReviewInputNames) status_labels.push_back(std::string(input) + " " + what);
-    }
-    status_labels.push_back("resets");
-    data_->status = Table(status_labels);
-    data_->pose = Table({"x [m]", "z [m]", "pitch [rad]"});
-    data_->motor_command = Table({"omega cmd 1 [rad/s]", "omega cmd 2 [rad/s]", "mode", "status [bits]"});
-    data_->controller_status = Table({"fallbacks", "descents", "saturated", "commands", "mode"});
-  }
+  FlightDecoder(const std::string& prefix, FlightData* data) : channels_(MakeChannelNames(prefix)), data_(data) {}
 
   void Handle(const LogEvent& event) {
     ChannelCount& count = data_->channels[event.channel];

@@ -38,6 +38,8 @@ inline constexpr int kReviewInputs = 5;
 extern const char* const kReviewInputNames[kReviewInputs];  // "STRAIN", ..., "IMU accel_z"
 
 struct FlightData {
+  FlightData();  // every table with its labels, no rows
+
   std::string path;
   int64_t events = 0;
   int64_t t0_utime = 0;  // utime of the first decoded message; t = 0 there
