@@ -237,7 +237,7 @@ if [ "$latency" -eq 1 ]; then
   url="udpm://239.255.76.67:$port?ttl=0&recv_buf_size=4194304"
   "$estimator" --lcm-url "$url" --prefix FIGURES_ > "$work/latency_estimator.log" 2>&1 &
   estimator_pid=$!
-  for _ in $(seq 100); do grep -q "lcm .*: in " "$work/latency_estimator.log" && break; sleep 0.1; done
+  for _ in $(seq 100); do grep -q "lcm .*: in " "$work/latency_estimator.log" 2>/dev/null && break; sleep 0.1; done
   # Exit status 3: measured, but some samples got no FORCE (the output says how many).
   latency_status=0
   "$build/tools/birotor-latency-probe" --lcm-url "$url" --prefix FIGURES_ --rate-hz 1000 --duration-s 10 \
