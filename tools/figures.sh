@@ -33,10 +33,7 @@ Exit status: 0 on success, 1 when a step failed, 2 on wrong usage.
 EOF
 }
 
-quick=0
-latency=1
-readme=1
-output="docs/figures.md"
+quick=0; latency=1; readme=1; output="docs/figures.md"
 while [ $# -gt 0 ]; do
   case "$1" in
     -h|--help) usage; exit 0 ;;
@@ -56,11 +53,9 @@ for program in services/birotor-sim services/birotor-estimator tools/birotor-ana
                benchmarks/estimator_benchmark; do
   [ -x "$build/$program" ] || fail "$build/$program not built (run tools/setup.sh)"
 done
-sim="$build/services/birotor-sim"
-estimator="$build/services/birotor-estimator"
+sim="$build/services/birotor-sim"; estimator="$build/services/birotor-estimator"
 
-work="$(mktemp -d)"
-estimator_pid=""
+work="$(mktemp -d)"; estimator_pid=""
 cleanup() {
   if [ -n "$estimator_pid" ] && kill -0 "$estimator_pid" 2>/dev/null; then
     kill -TERM "$estimator_pid" 2>/dev/null || true
