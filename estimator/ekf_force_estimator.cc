@@ -39,7 +39,8 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
       motor_model_(options.motor_speed_noise_rad_s),
       gyro_model_(options.gyro_noise_rad_s),
       accel_model_(options.accel_noise_m_s2),
-      contact_(params, options) {
+      contact_(params, options),
+      strain_gate_(options.gate_consecutive_limit) {
   process_noise_psd_.setZero();
   process_noise_psd_(kPitchRate) = options.pitch_rate_psd_rad2_s3;
   for (int i = 0; i < 2; ++i) {
@@ -63,7 +64,7 @@ void EkfForceEstimator::Reset() {
   DiscardQueued();
   initialized_ = false;
   converged_ = false;
-  consecutive_gated_ = 0;
+  strain_gate_.Reset();
   has_motor_ = false;
   command_ = hover_input_;
   for (int i = 0; i < 2; ++i) {
@@ -181,7 +182,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     // The state was set from it: fused, without an innovation.
     Report(MakeFusionReport(FusionSource::kTelemetry, telemetry.utime, FusionOutcome::kFused));
   }
-  consecutive_gated_ = 0;
+  strain_gate_.Reset();
   converged_ = false;
   for (int i = 0; i < 2; ++i) {
     fault_[i] = false;
@@ -250,8 +251,9 @@ void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
     } else {
       PredictTo(sample.utime);
       const MotorSpeedMeasurementModel::Vector z(sample.omega_meas_rad_s[0], sample.omega_meas_rad_s[1]);
-      Report(Fuse(motor_model_, z, MotorSpeedMeasurementModel::Predict(state_), options_.telemetry_gate_nis,
-                  FusionSource::kTelemetry, sample.utime));
+      Report(FuseMeasurement(motor_model_.Linearize(state_), motor_model_.noise, z,
+                             {FusionSource::kTelemetry, sample.utime, options_.telemetry_gate_nis}, &state_,
+                             &covariance_));
     }
   } else if (!late) {
     PredictTo(sample.utime);  // the previous command holds up to this stamp
@@ -267,8 +269,9 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   }
   PredictTo(sample.utime);
   if (options_.use_gyro) {
-    Report(Fuse(gyro_model_, GyroMeasurementModel::Vector(sample.gyro_y_rad_s), GyroMeasurementModel::Predict(state_),
-                options_.gyro_gate_nis, FusionSource::kGyro, sample.utime));
+    Report(FuseMeasurement(gyro_model_.Linearize(state_), gyro_model_.noise,
+                           GyroMeasurementModel::Vector(sample.gyro_y_rad_s),
+                           {FusionSource::kGyro, sample.utime, options_.gyro_gate_nis}, &state_, &covariance_));
   }
   if (!options_.use_accelerometer || !AccelerometerUsable(sample)) return;
   if (options_.body_held || contact_.supported()) {
@@ -276,54 +279,26 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
     ReportNotFused(FusionSource::kAccelerometer, sample.utime);
     return;
   }
-  const AccelerometerMeasurementModel::Vector predicted = accel_linearization_.valid
-                                                              ? accel_model_.Linearize(accel_linearization_, state_)
-                                                              : accel_model_.Linearize(process_, state_);
-  Report(Fuse(accel_model_, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2), predicted,
-              options_.accel_gate_nis, FusionSource::kAccelerometer, sample.utime));
-}
-
-template <typename Model>
-FusionReport EkfForceEstimator::Fuse(const Model& model, const typename Model::Vector& z,
-                                     const typename Model::Vector& z_predicted, double gate, FusionSource source,
-                                     int64_t utime) {
-  const Innovation<Model::kSize> innovation = ComputeInnovation(model, covariance_, z, z_predicted);
-  FusionReport report;
-  report.source = source;
-  report.utime = utime;
-  report.size = Model::kSize;
-  report.innovation.template head<Model::kSize>() = innovation.residual;
-  report.innovation_covariance.template topLeftCorner<Model::kSize, Model::kSize>() = innovation.covariance;
-  report.nis = innovation.nis;
-  report.gate = gate;
-  if (!(innovation.nis <= gate)) {  // a NaN NIS is rejected too
-    report.outcome = FusionOutcome::kRejectedGate;
-    return report;
-  }
-  KalmanUpdate(model, innovation, &state_, &covariance_);
-  report.outcome = FusionOutcome::kFused;
-  return report;
+  const AccelerometerMeasurementModel::Linearization at =
+      accel_linearization_.valid ? AccelerometerMeasurementModel::Linearize(accel_linearization_, state_)
+                                 : AccelerometerMeasurementModel::Linearize(process_, state_);
+  Report(FuseMeasurement(at, accel_model_.noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
+                         {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis}, &state_, &covariance_));
 }
 
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
-  FusionReport report = Fuse(strain_model_, z, StrainMeasurementModel::Predict(state_), options_.strain_gate_nis,
-                             FusionSource::kStrain, sample.utime);
-  if (report.outcome == FusionOutcome::kFused) {
-    consecutive_gated_ = 0;
-    return report;
-  }
-  if (++consecutive_gated_ < options_.gate_consecutive_limit) return report;
-  // A persistent change is real (e.g. a lost propeller blade): open up the
-  // thrust scales (var(mu_i) += inflation^2), then fuse without the gate.
+  // After gate_consecutive_limit rejections in a row the change is taken as
+  // real (e.g. a lost propeller blade): the thrust scales open up
+  // (var(mu_i) += inflation^2) and the sample is fused without the gate.
   const double extra = options_.gate_inflation_thrust_scale_std;
-  for (int i = 0; i < 2; ++i) covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
-  report = Fuse(strain_model_, z, StrainMeasurementModel::Predict(state_), std::numeric_limits<double>::infinity(),
-                FusionSource::kStrain, sample.utime);
-  report.gate = options_.strain_gate_nis;
-  report.fused_after_inflation = report.outcome == FusionOutcome::kFused;
-  if (report.fused_after_inflation) consecutive_gated_ = 0;
-  return report;
+  return strain_gate_.Fuse(strain_model_.Linearize(state_), strain_model_.noise, z,
+                           {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, &state_, &covariance_,
+                           [extra](EkfMatrix* cov) {
+                             for (int i = 0; i < 2; ++i) {
+                               (*cov)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
+                             }
+                           });
 }
 
 bool EkfForceEstimator::ConditionCovariance() {

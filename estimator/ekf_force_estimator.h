@@ -57,11 +57,6 @@ class EkfForceEstimator : public ForceEstimator {
   void ApplyMotor(const MotorSample& sample);
   void ApplyImu(const ImuSample& sample);
   bool AccelerometerUsable(const ImuSample& sample) const;
-  // Computes the innovation of z, gates it and, when it passes, updates the
-  // state and covariance (Joseph form). Returns what happened.
-  template <typename Model>
-  FusionReport Fuse(const Model& model, const typename Model::Vector& z, const typename Model::Vector& z_predicted,
-                    double gate, FusionSource source, int64_t utime);
   // Strain update with its gate and the inflation after persistent rejection.
   FusionReport FuseStrain(const StrainSample& sample);
   void ReportNotFused(FusionSource source, int64_t utime) const;
@@ -93,7 +88,7 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t last_utime_ = 0;  // time of state_ [us]
   EkfState state_;
   EkfMatrix covariance_;
-  int consecutive_gated_ = 0;
+  GateWithInflation strain_gate_;  // strain gate and its inflation policy
 
   bool has_motor_ = false;
   EkfInput command_;  // held from the newest applied MOTOR sample's stamp
