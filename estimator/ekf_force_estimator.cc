@@ -60,7 +60,7 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
   covariance_.setIdentity();
 }
 
-void EkfForceEstimator::Reset() {
+void EkfForceEstimator::DoReset() {
   DiscardQueued();
   initialized_ = false;
   converged_ = false;
@@ -84,7 +84,7 @@ void EkfForceEstimator::ReportNotFused(FusionSource source, int64_t utime) const
   Report(MakeFusionReport(source, utime, FusionOutcome::kNotFused));
 }
 
-void EkfForceEstimator::AddMotor(const MotorSample& sample) {
+void EkfForceEstimator::DoAddMotor(const MotorSample& sample) {
   // Telemetry switched off is a measurement the filter does not use: said at once.
   const bool has_telemetry = std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1]);
   if (has_telemetry && !options_.use_motor_telemetry) ReportNotFused(FusionSource::kTelemetry, sample.utime);
@@ -105,7 +105,7 @@ void EkfForceEstimator::ReportImuNotFused(const ImuSample& sample) const {
   }
 }
 
-void EkfForceEstimator::AddImu(const ImuSample& sample) {
+void EkfForceEstimator::DoAddImu(const ImuSample& sample) {
   // Ground contact on arrival, with the thrust of the current estimate
   // (hover before the first strain sample); it selects the model of the
   // next predictions.
@@ -377,7 +377,7 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     estimate->force_std_n[i] = std::sqrt(std::max(variance, 0.0));
     estimate->thrust_scale[i] = state_(m);
   }
-  SetFilterStatus(sample, options_.converged_force_std_n, gated, has_motor_, &converged_, estimate);
+  SetFilterStatus(sample, options_.converged_force_std_n, gated, &converged_, estimate);
   if (fault_[0]) estimate->status |= kStatusRotor1Fault;
   if (fault_[1]) estimate->status |= kStatusRotor2Fault;
   if (deficit_) estimate->status |= kStatusThrustDeficit;
@@ -397,17 +397,31 @@ void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
   }
 }
 
-bool EkfForceEstimator::LearnedGaugeOffset(double offset_rad[2], double offset_std_rad[2]) const {
-  if (!initialized_ || !options_.estimate_gauge_offsets) return false;
-  for (int i = 0; i < 2; ++i) {
-    const int e = kGaugeOffsetIndex[i];
-    offset_rad[i] = state_(e);
-    offset_std_rad[i] = std::sqrt(std::max(covariance_(e, e), 0.0));
+double EkfForceEstimator::Gate(FusionSource source) const {
+  switch (source) {
+    case FusionSource::kStrain:
+      return options_.strain_gate_nis;
+    case FusionSource::kTelemetry:
+      return options_.telemetry_gate_nis;
+    case FusionSource::kGyro:
+      return options_.gyro_gate_nis;
+    case FusionSource::kAccelerometer:
+      return options_.accel_gate_nis;
   }
-  return true;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
-void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+void EkfForceEstimator::FillLearnedOffsets(StrainStepInfo* info) const {
+  info->has_learned_gauge_offset = options_.estimate_gauge_offsets;
+  if (!info->has_learned_gauge_offset) return;
+  for (int i = 0; i < 2; ++i) {
+    const int e = kGaugeOffsetIndex[i];
+    info->learned_gauge_offset_rad[i] = state_(e);
+    info->learned_gauge_offset_std_rad[i] = std::sqrt(std::max(covariance_(e, e), 0.0));
+  }
+}
+
+void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
   *info = StrainStepInfo();
   // At (re-)initialisation the state is set from the sample: fused, without an innovation.
   FusionReport strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
@@ -427,6 +441,7 @@ void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* est
   }
   Report(strain);
   FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
+  FillLearnedOffsets(info);
 }
 
 }  // namespace birotor

@@ -30,12 +30,8 @@ class EkfForceEstimator : public ForceEstimator {
   EkfForceEstimator(const VehicleParams& params, const EkfOptions& options);
 
   const char* Name() const override { return "ekf"; }
-  void Reset() override;
-  void AddMotor(const MotorSample& sample) override;
-  void AddImu(const ImuSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
   void SetGaugeOffsetPrior(const double offset_std_rad[2]) override;
-  bool LearnedGaugeOffset(double offset_rad[2], double offset_std_rad[2]) const override;
+  double Gate(FusionSource source) const override;
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
@@ -45,6 +41,10 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t utime() const { return last_utime_; }  // time of the state [us]
 
  private:
+  void DoReset() override;
+  void DoAddMotor(const MotorSample& sample) override;
+  void DoAddImu(const ImuSample& sample) override;
+  void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
   bool TelemetryUsable(const MotorSample& sample) const;
   void Initialize(const StrainSample& sample);
   // Predicts from the state's time to utime in equal RK4 sub-steps of at
@@ -69,6 +69,8 @@ class EkfForceEstimator : public ForceEstimator {
   bool ConditionCovariance();
   void UpdateFaults(int64_t utime);
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
+  // e_i and its sigma into the step result (the pipeline reports them).
+  void FillLearnedOffsets(StrainStepInfo* info) const;
 
   VehicleParams params_;
   EkfOptions options_;

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "estimator/filter_status.h"
 #include "estimator/luenberger_gain.h"
@@ -48,14 +49,14 @@ LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const Ek
   fixed_gyro_gain_s_ = scale_.cwiseInverse().asDiagonal() * fixed_gains_.gyro * scale_(kLinPitchRate);
 }
 
-void LinearForceEstimator::AddMotor(const MotorSample& sample) {
+void LinearForceEstimator::DoAddMotor(const MotorSample& sample) {
   motor_.AddMotor(sample);
   if (std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1])) {
     Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
   }
 }
 
-void LinearForceEstimator::AddImu(const ImuSample& sample) {
+void LinearForceEstimator::DoAddImu(const ImuSample& sample) {
   if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) {
     Report(MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused));
     return;
@@ -65,7 +66,13 @@ void LinearForceEstimator::AddImu(const ImuSample& sample) {
   gyro_pending_ = true;
 }
 
-void LinearForceEstimator::Reset() {
+double LinearForceEstimator::Gate(FusionSource source) const {
+  if (source == FusionSource::kStrain) return noise_.strain_gate_nis;
+  if (source == FusionSource::kGyro) return noise_.gyro_gate_nis;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void LinearForceEstimator::DoReset() {
   motor_.Reset();
   if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
@@ -164,10 +171,10 @@ void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, 
     estimate->force_std_n[i] = scale_(f) * std::sqrt(std::max(covariance_(f, f), 0.0));
     estimate->thrust_scale[i] = motor_.ThrustScale(i, force);
   }
-  SetFilterStatus(sample, noise_.converged_force_std_n, gated, motor_.has_motor(), &converged_, estimate);
+  SetFilterStatus(sample, noise_.converged_force_std_n, gated, &converged_, estimate);
 }
 
-void LinearForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+void LinearForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
   *info = StrainStepInfo();
   motor_.Advance(sample.utime);
   // At (re-)initialisation the state is set from the sample: fused, without an innovation.

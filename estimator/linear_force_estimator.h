@@ -35,10 +35,8 @@ class LinearForceEstimator : public ForceEstimator {
                        const LuenbergerOptions& observer);
 
   const char* Name() const override { return kalman_ ? "linear_kf" : "luenberger"; }
-  void Reset() override;
-  void AddMotor(const MotorSample& sample) override;
-  void AddImu(const ImuSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
+  // Strain and gyro with the EKF's gates; telemetry is used without an update.
+  double Gate(FusionSource source) const override;
 
   const LinearForceModel& model() const { return model_; }
   // The observer's fixed gains (physical units); unused by the Kalman filter.
@@ -48,6 +46,10 @@ class LinearForceEstimator : public ForceEstimator {
   LinearMatrix covariance() const { return scale_.asDiagonal() * covariance_ * scale_.asDiagonal(); }
 
  private:
+  void DoReset() override;
+  void DoAddMotor(const MotorSample& sample) override;
+  void DoAddImu(const ImuSample& sample) override;
+  void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
   void Initialize(const StrainSample& sample);
   void Predict(int periods);
   // The pending gyro sample's update, gated; reported.
