@@ -40,7 +40,8 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
       gyro_model_(options.gyro_noise_rad_s),
       accel_model_(options.accel_noise_m_s2),
       contact_(params, options),
-      strain_gate_(options.gate_consecutive_limit) {
+      strain_gate_(options.gate_consecutive_limit),
+      faults_(options) {
   process_noise_psd_.setZero();
   process_noise_psd_(kPitchRate) = options.pitch_rate_psd_rad2_s3;
   for (int i = 0; i < 2; ++i) {
@@ -67,12 +68,7 @@ void EkfForceEstimator::DoReset() {
   strain_gate_.Reset();
   has_motor_ = false;
   command_ = hover_input_;
-  for (int i = 0; i < 2; ++i) {
-    fault_[i] = false;
-    fault_since_utime_[i] = -1;
-  }
-  deficit_ = false;
-  deficit_since_utime_ = -1;
+  faults_.Reset();
 }
 
 bool EkfForceEstimator::TelemetryUsable(const MotorSample& sample) const {
@@ -184,12 +180,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
   }
   strain_gate_.Reset();
   converged_ = false;
-  for (int i = 0; i < 2; ++i) {
-    fault_[i] = false;
-    fault_since_utime_[i] = -1;
-  }
-  deficit_ = false;
-  deficit_since_utime_ = -1;
+  faults_.Reset();
   accel_linearization_.valid = false;  // from before the re-initialisation
   last_utime_ = sample.utime;
   initialized_ = true;
@@ -323,49 +314,6 @@ bool EkfForceEstimator::ConditionCovariance() {
   return true;
 }
 
-namespace {
-
-// Persistence and hysteresis of one flag: raised after `raise` held for
-// persistence_us, lowered as soon as `lower` holds.
-void UpdateFlag(bool raise, bool lower, int64_t utime, int64_t persistence_us, bool* flag, int64_t* since_utime) {
-  if (!*flag) {
-    if (!raise) {
-      *since_utime = -1;
-      return;
-    }
-    if (*since_utime < 0) *since_utime = utime;
-    if (utime - *since_utime >= persistence_us) *flag = true;
-  } else if (lower) {
-    *flag = false;
-    *since_utime = -1;
-  }
-}
-
-}  // namespace
-
-void EkfForceEstimator::UpdateFaults(int64_t utime) {
-  const int64_t persistence_us = static_cast<int64_t>(options_.fault_persistence_s * 1e6);
-  const double n = options_.fault_n_sigma;
-  const EkfIndex m1 = kThrustScale1, m2 = kThrustScale2;
-  // Rotor i weaker than rotor j: d = mu_j - mu_i, var d = P_jj + P_ii - 2 P_ij.
-  const double std_d = std::sqrt(std::max(covariance_(m1, m1) + covariance_(m2, m2) - 2.0 * covariance_(m1, m2), 0.0));
-  for (int i = 0; i < 2; ++i) {
-    const double d = state_(kThrustScaleIndex[1 - i]) - state_(kThrustScaleIndex[i]);
-    UpdateFlag(d - n * std_d > options_.rotor_fault_asymmetry, d + n * std_d < options_.rotor_fault_clear_asymmetry,
-               utime, persistence_us, &fault_[i], &fault_since_utime_[i]);
-  }
-  // Shared deficit: even the stronger rotor is below the threshold.
-  double upper = -1e9, lower = -1e9;  // max over rotors of mu + n std, mu - n std
-  for (int i = 0; i < 2; ++i) {
-    const double mu = state_(kThrustScaleIndex[i]);
-    const double std_mu = std::sqrt(covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]));
-    upper = std::max(upper, mu + n * std_mu);
-    lower = std::max(lower, mu - n * std_mu);
-  }
-  UpdateFlag(upper<options_.thrust_deficit_scale, lower> options_.thrust_deficit_clear_scale, utime, persistence_us,
-             &deficit_, &deficit_since_utime_);
-}
-
 void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
   for (int i = 0; i < 2; ++i) {
     // var f_i = g^T P_(omega_i, mu_i) g with g = (df/domega, df/dmu).
@@ -378,9 +326,7 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     estimate->thrust_scale[i] = state_(m);
   }
   SetFilterStatus(sample, options_.converged_force_std_n, gated, &converged_, estimate);
-  if (fault_[0]) estimate->status |= kStatusRotor1Fault;
-  if (fault_[1]) estimate->status |= kStatusRotor2Fault;
-  if (deficit_) estimate->status |= kStatusThrustDeficit;
+  estimate->status |= faults_.StatusBits();
 }
 
 void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
@@ -437,7 +383,8 @@ void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
       info->reset = ResetReason::kNumerical;
       strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
     }
-    UpdateFaults(sample.utime);
+    faults_.Update(sample.utime, Eigen::Vector2d(state_(kThrustScale1), state_(kThrustScale2)),
+                   covariance_.block<2, 2>(kThrustScale1, kThrustScale1));
   }
   Report(strain);
   FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);

@@ -10,6 +10,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/ground_contact.h"
+#include "estimator/rotor_fault_monitor.h"
 #include "estimator/sample_queue.h"
 
 namespace birotor {
@@ -67,7 +68,6 @@ class EkfForceEstimator : public ForceEstimator {
   // Symmetrises P and applies the variance floors and ceilings; false if the
   // state or covariance is not finite (or a variance is negative).
   bool ConditionCovariance();
-  void UpdateFaults(int64_t utime);
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
   // e_i and its sigma into the step result (the pipeline reports them).
   void FillLearnedOffsets(StrainStepInfo* info) const;
@@ -97,11 +97,7 @@ class EkfForceEstimator : public ForceEstimator {
   SampleQueue<MotorSample, kQueueCapacity> motor_queue_;
   SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
 
-  // Rotor faults and the shared thrust deficit, with persistence and hysteresis.
-  bool fault_[2] = {false, false};
-  int64_t fault_since_utime_[2] = {-1, -1};
-  bool deficit_ = false;
-  int64_t deficit_since_utime_ = -1;
+  RotorFaultMonitor faults_;  // rotor faults and the shared thrust deficit, from mu and P
 };
 
 }  // namespace birotor
