@@ -202,11 +202,9 @@ struct HarmonicNotchOptions {
 };
 
 // Names of the estimation methods (--method, `estimator.method`), in the
-// order of the thesis's ladder and the evaluation table.
-inline const std::vector<std::string>& EstimationMethodNames() {
-  static const std::vector<std::string> names = {"ekf", "linear_kf", "luenberger", "inversion", "motor_map"};
-  return names;
-}
+// order of the thesis's ladder and the evaluation table: the registry's
+// (estimator/estimation_method.cc).
+const std::vector<std::string>& EstimationMethodNames();
 
 struct EstimatorConfig {
   VehicleParams vehicle;                // `vehicle:` section
