@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "params/regular_file.h"
 
 namespace birotor {
 namespace {
@@ -98,17 +99,11 @@ std::string Quoted(const std::string& text) {
 std::string RangeText(double min, double max) { return "[" + Number(min) + ", " + Number(max) + "]"; }
 
 std::string ReadParameterFileText(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ParamError(file + ": cannot open the file");
-  // Read one byte more than allowed, so a larger file (or /dev/zero) is
-  // recognised without reading it all.
-  std::string text(kMaxParameterFileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw ParamError(file + ": cannot read the file");
-  text.resize(static_cast<size_t>(in.gcount()));
-  if (text.size() > kMaxParameterFileBytes) {
-    throw ParamError(file + ": larger than " + std::to_string(kMaxParameterFileBytes) +
-                     " bytes; a parameter or scenario file is a few kB: refused");
+  // A regular file only (a FIFO is refused without waiting for a writer,
+  // /dev/zero before a byte is read); a symbolic link to one is followed.
+  std::string text, error;
+  if (!ReadRegularFile(file, kMaxParameterFileBytes, LinkPolicy::kFollow, &text, &error)) {
+    throw ParamError(error + "; a parameter or scenario file is a regular file of a few kB");
   }
   return text;
 }

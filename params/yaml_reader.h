@@ -2,8 +2,9 @@
 // refused: every key a reader asks for must be present (all missing keys are
 // named in one line), keys nobody asks for are refused with the schema's list,
 // duplicate keys and keys that are not plain names are refused, files above
-// 1 MB are refused, and values are quoted with at most 80 characters. Every
-// error names the file, the key (as a dotted path) and the allowed range.
+// 1 MB and files that are not regular (a FIFO, a device) are refused, and
+// values are quoted with at most 80 characters. Every error names the file,
+// the key (as a dotted path) and the allowed range.
 // Used once at start-up; never on a per-sample path.
 #pragma once
 
