@@ -1,7 +1,10 @@
 #include "params/yaml_reader.h"
 
+#include <yaml-cpp/eventhandler.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "params/regular_file.h"
@@ -68,6 +71,73 @@ void CheckKeys(const YAML::Node& node, const std::string& label, const std::stri
   }
 }
 
+// Counts the nodes of a document as its readers would walk them: an alias
+// counts as every node of what it names. Throws once the count passes
+// kMaxYamlNodes, so a 7.9 kB alias bomb of 1e10 leaves is refused while it
+// is parsed (linear in its text), before any tree is built or walked.
+class NodeBudget : public YAML::EventHandler {
+ public:
+  explicit NodeBudget(std::string label) : label_(std::move(label)) {}
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t anchor) override { Leaf(anchor); }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t anchor, const std::string&) override {
+    Leaf(anchor);
+  }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t anchor) override { Add(anchor < sizes_.size() ? sizes_[anchor] : 1); }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor,
+                       YAML::EmitterStyle::value) override {
+    Open(anchor);
+  }
+  void OnSequenceEnd() override { Close(); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+    Open(anchor);
+  }
+  void OnMapEnd() override { Close(); }
+
+ private:
+  struct Collection {
+    YAML::anchor_t anchor;
+    uint64_t nodes;  // itself and everything in it so far
+  };
+  void Leaf(YAML::anchor_t anchor) {
+    Remember(anchor, 1);
+    Add(1);
+  }
+  void Open(YAML::anchor_t anchor) {
+    Count(1);
+    open_.push_back({anchor, 1});
+  }
+  void Close() {
+    const Collection done = open_.back();
+    open_.pop_back();
+    Remember(done.anchor, done.nodes);
+    if (!open_.empty()) open_.back().nodes += done.nodes;
+  }
+  // n nodes inside the innermost open collection (sizes stay <= the budget).
+  void Add(uint64_t n) {
+    Count(n);
+    if (!open_.empty()) open_.back().nodes += n;
+  }
+  void Count(uint64_t n) {
+    total_ += n;
+    if (total_ > kMaxYamlNodes) {
+      throw ParamError(label_ + ": more than " + std::to_string(kMaxYamlNodes) +
+                       " YAML nodes once aliases are expanded (an alias bomb?): refused");
+    }
+  }
+  void Remember(YAML::anchor_t anchor, uint64_t nodes) {
+    if (anchor == YAML::NullAnchor) return;
+    if (sizes_.size() <= anchor) sizes_.resize(anchor + 1, 1);
+    sizes_[anchor] = nodes;
+  }
+
+  std::string label_;
+  std::vector<uint64_t> sizes_;  // nodes of each anchored node, by anchor id
+  std::vector<Collection> open_;
+  uint64_t total_ = 0;
+};
+
 ParamError SyntaxError(const std::string& label, const YAML::Exception& e) {
   return ParamError(label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + Quoted(e.msg));
 }
@@ -114,7 +184,7 @@ YAML::Node ParseYamlMapping(const std::string& text, const std::string& label) {
   }
   YAML::Node root;
   try {
-    root = RequireMapping(YAML::Load(text), label);
+    root = RequireMapping(LoadYamlWithinBudget(text, label), label);
     CheckKeys(root, label, "", 0);
   } catch (const ParamError&) {
     throw;
@@ -124,6 +194,17 @@ YAML::Node ParseYamlMapping(const std::string& text, const std::string& label) {
     throw ParamError(label + ": cannot be read: " + Quoted(e.what()));
   }
   return root;
+}
+
+YAML::Node LoadYamlWithinBudget(const std::string& text, const std::string& label) {
+  {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    NodeBudget budget(label);
+    while (parser.HandleNextDocument(budget)) {
+    }
+  }
+  return YAML::Load(text);
 }
 
 YAML::Node LoadYamlMapping(const std::string& file) { return ParseYamlMapping(ReadParameterFileText(file), file); }

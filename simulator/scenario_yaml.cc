@@ -43,7 +43,7 @@ void ApplyOverride(YAML::Node root, const std::string& text, const std::string& 
   }
   YAML::Node value;
   try {
-    value = YAML::Load(text.substr(equals + 1));
+    value = LoadYamlWithinBudget(text.substr(equals + 1), label + ": key " + Quoted(path));
   } catch (const YAML::Exception& e) {
     throw ParamError(label + ": key " + Quoted(path) + ": value is not valid YAML: " + Quoted(e.msg));
   }
