@@ -28,6 +28,44 @@ std::string Join(const std::vector<std::string>& items) {
   return out;
 }
 
+// Edit distance of two keys: insertions, deletions, substitutions and
+// swaps of two neighbouring characters ("mdoe" is one edit from "mode").
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[a.size()][b.size()];
+}
+
+// The known key a misspelt one most likely meant: the nearest within a third
+// of its length (at most 3 edits; none for keys of one or two characters), or
+// "" when none is that close or two are equally close.
+std::string ClosestKey(const std::string& key, const std::set<std::string>& known) {
+  const size_t limit = std::min<size_t>(3, key.size() / 3);
+  if (limit == 0) return "";
+  std::string best;
+  size_t best_distance = limit + 1;
+  bool tie = false;
+  for (const std::string& candidate : known) {
+    const size_t distance = EditDistance(key, candidate);
+    if (distance < best_distance) {
+      best = candidate;
+      best_distance = distance;
+      tie = false;
+    } else if (distance == best_distance) {
+      tie = true;
+    }
+  }
+  return tie ? "" : best;
+}
+
 // What a node holds, for "expected a number, got ..." messages.
 std::string Describe(const YAML::Node& node) {
   if (node.IsScalar()) return Quoted(node.Scalar());
@@ -373,6 +411,11 @@ void YamlSection::Finish() const {
     for (const auto& item : node_) {
       const std::string key = item.first.Scalar();  // plain names only (CheckKeys)
       if (read_keys_.count(key) == 0) {
+        const std::string close = ClosestKey(key, read_keys_);
+        if (!close.empty()) {
+          throw ParamError(file_ + ": key " + Quoted(KeyPath(key)) + ": unknown key; did you mean " + Quoted(close) +
+                           "?");
+        }
         std::vector<std::string> known(read_keys_.begin(), read_keys_.end());
         throw ParamError(file_ + ": key " + Quoted(KeyPath(key)) + ": unknown key (allowed: " + Join(known) + ")");
       }

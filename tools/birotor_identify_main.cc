@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "identification/identify.h"
-#include "identification/parameter_file.h"
+#include "params/identification_options_yaml.h"
+#include "params/identified_parameter_file.h"
 #include "params/vehicle_params_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"

@@ -200,5 +200,15 @@ TEST(YamlReader, AFewAliasesWithinTheBudgetAreRead) {
   EXPECT_EQ(c[1], 2.0);
 }
 
+// Issue 22 item 6: a misspelt key names the key it most likely meant, in one
+// short line; a key close to none (or to two) lists the allowed keys.
+TEST(YamlReader, AMisspeltKeySaysWhichKeyItMeant) {
+  EXPECT_EQ(ErrorOf("a: {x: 1, n: 3, mdoe: ekf}"), "test.yaml: key 'a.mdoe': unknown key; did you mean 'mode'?");
+  EXPECT_EQ(ErrorOf("a: {x: 1, n: 3, mode: ekf, modes: 1}"),
+            "test.yaml: key 'a.modes': unknown key; did you mean 'mode'?");
+  EXPECT_EQ(ErrorOf("a: {x: 1, n: 3, mode: ekf, speed: 1}"),
+            "test.yaml: key 'a.speed': unknown key (allowed: mode, n, x)");
+}
+
 }  // namespace
 }  // namespace birotor
