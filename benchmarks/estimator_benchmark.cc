@@ -11,7 +11,7 @@
 #include "estimator/estimator_pipeline.h"
 #include "estimator/harmonic_notch.h"
 #include "estimator/motor_speed_tracker.h"
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 
 namespace birotor {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "identification/identify.h"
+#include "params/scenario_yaml.h"
 #include "replay/identification_log_loader.h"
-#include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 
 namespace birotor {

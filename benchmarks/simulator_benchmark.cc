@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"

@@ -229,8 +229,7 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
     x_dot(kDeflectionRate2) = b_ddot(1);
   }
   for (int i = 0; i < 2; ++i) {
-    x_dot(kOmegaIndex[i]) =
-        (ClampCommand(params_, u.omega_cmd_rad_s[i]) - x(kOmegaIndex[i])) / params_.motor_time_constant_s;
+    x_dot(kOmegaIndex[i]) = MotorLagRate(params_, x(kOmegaIndex[i]), u.omega_cmd_rad_s[i]);
     x_dot(kThrustScaleIndex[i]) = 0.0;
   }
   return x_dot;

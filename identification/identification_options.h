@@ -1,13 +1,12 @@
 // Options of the identification (noise levels used to whiten the residuals,
 // window lengths, robust loss, acceptance thresholds). Every field has a
-// documented default; ReadIdentificationOptions loads the `identification:` section.
+// documented default; params/identification_options_yaml.h loads the
+// `identification:` section.
 #pragma once
 
 #include <cmath>
 #include <limits>
 #include <string>
-
-#include "params/yaml_reader.h"
 
 namespace birotor {
 
@@ -105,14 +104,5 @@ struct IdentificationOptions {
   // The missing calibration fact (command line only, see CalibrationFact).
   CalibrationFact calibration;
 };
-
-// Reads every field from the section (keys are the field names; each is
-// required); unknown keys and values out of range throw ParamError.
-void ReadIdentificationOptions(YamlSection section, IdentificationOptions* options);
-
-// Loads the `identification:` section of a file (config/identification.yaml
-// has every key at its default); throws ParamError naming the file and every
-// missing key.
-IdentificationOptions LoadIdentificationOptions(const std::string& file);
 
 }  // namespace birotor

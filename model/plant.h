@@ -36,6 +36,15 @@ inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
   return std::clamp(omega_cmd_rad_s, 0.0, p.omega_max_rad_s);
 }
 
+// The first-order rotor speed lag (shared/spec/reference-vehicle.md), the one
+// copy used by the plant, the clamped bench plant and the EKF's process model:
+//   omega_dot = (clamp(omega_cmd) - omega) / tau_m   [rad/s^2]
+// Its exact zero-order-hold step is MotorStep below; d(omega_dot)/d(omega) =
+// -1 / tau_m.
+inline double MotorLagRate(const VehicleParams& p, double omega_rad_s, double omega_cmd_rad_s) {
+  return (ClampCommand(p, omega_cmd_rad_s) - omega_rad_s) / p.motor_time_constant_s;
+}
+
 // Rotor thrust f = mu c_T omega^2 [N].
 inline double RotorThrust(const VehicleParams& p, double omega_rad_s, double thrust_scale) {
   return thrust_scale * p.thrust_coeff_n_s2_rad2 * omega_rad_s * omega_rad_s;
@@ -62,8 +71,8 @@ inline PlantState PlantDerivative(const VehicleParams& p, const PlantState& x, c
   PlantState x_dot;
   x_dot.segment<kNumCoordinates>(kPlantQ) = v;
   x_dot.segment<kNumCoordinates>(kPlantV) = GeneralizedAcceleration<double>(p, q, v, f1, f2);
-  x_dot(kPlantOmega1) = (ClampCommand(p, u.omega_cmd_rad_s[0]) - x(kPlantOmega1)) / p.motor_time_constant_s;
-  x_dot(kPlantOmega2) = (ClampCommand(p, u.omega_cmd_rad_s[1]) - x(kPlantOmega2)) / p.motor_time_constant_s;
+  x_dot(kPlantOmega1) = MotorLagRate(p, x(kPlantOmega1), u.omega_cmd_rad_s[0]);
+  x_dot(kPlantOmega2) = MotorLagRate(p, x(kPlantOmega2), u.omega_cmd_rad_s[1]);
   return x_dot;
 }
 

@@ -1,12 +1,12 @@
 #include "nodes/gauge_state_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 
+#include "params/regular_file.h"
 #include "params/vehicle_params_yaml.h"
 #include "transport/logging.h"
 
@@ -14,6 +14,22 @@ namespace birotor {
 namespace {
 
 constexpr const char* kHeader = "# birotor-estimator gauge offset state\n";
+// A state file is about 250 bytes; anything larger is not one.
+constexpr size_t kMaxStateFileBytes = 4096;
+
+struct StdRange {
+  double min;
+  double max;
+};
+
+// The allowed one-sigma of an offset: the range of the vehicle key
+// gauge_offset_std_rad (one table, params/vehicle_params_yaml.cc).
+StdRange OffsetStdRange() {
+  for (const VehicleKey& key : VehicleKeys()) {
+    if (std::string(key.name) == "gauge_offset_std_rad") return {key.min, key.max};
+  }
+  return {0.0, 0.0};  // not reached: the key is in the table
+}
 
 // Two finite numbers from "a b"; false otherwise.
 bool ParsePair(const std::string& text, double out[2]) {
@@ -38,37 +54,51 @@ std::string GaugeStateText(const GaugeCalibration& calibration, const std::strin
 
 bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
                      std::string* error) {
-  const std::string temp = path + ".tmp";
-  const std::string text = GaugeStateText(calibration, vehicle_checksum);
-  std::FILE* file = std::fopen(temp.c_str(), "w");
-  if (file == nullptr) {
-    *error = "cannot write " + temp;
-    return false;
+  // Only a state file is replaced: an existing path that is a link, a FIFO,
+  // a device or another file (the parameter file given as state_file) is
+  // left alone, refused here whatever happened at start-up.
+  FileAttributes attributes;
+  std::string kind;
+  switch (InspectPath(path, &attributes, &kind)) {
+    case PathKind::kOther:
+      *error = path + ": exists and is " + kind + ", not a gauge state file: not overwritten";
+      return false;
+    case PathKind::kRegular: {
+      std::string old_text;
+      if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &old_text, error)) {
+        *error += ": not a gauge state file, not overwritten";
+        return false;
+      }
+      if (old_text.compare(0, std::char_traits<char>::length(kHeader), kHeader) != 0) {
+        *error = path + ": exists and is not a gauge state file (no '" +
+                 std::string(kHeader, std::char_traits<char>::length(kHeader) - 1) + "' line): not overwritten";
+        return false;
+      }
+      break;
+    }
+    case PathKind::kAbsent:
+      attributes = FileAttributes();  // 0644, the daemon's user
+      break;
   }
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed || std::rename(temp.c_str(), path.c_str()) != 0) {
-    std::remove(temp.c_str());
-    *error = "cannot write " + path;
-    return false;
+  GaugeCalibration written = calibration;
+  const StdRange std_range = OffsetStdRange();
+  for (int i = 0; i < 2; ++i) {
+    if (!std::isfinite(calibration.offset_rad[i]) || !std::isfinite(calibration.offset_std_rad[i])) {
+      *error = path + ": gauge offset " + std::to_string(calibration.offset_rad[i]) + " +- " +
+               std::to_string(calibration.offset_std_rad[i]) + " rad is not finite: not written";
+      return false;
+    }
+    // A std outside the reader's range is written at its bound (a learned
+    // std below 1e-9 rad is floored: the file then claims less, never more).
+    written.offset_std_rad[i] = std::min(std::max(calibration.offset_std_rad[i], std_range.min), std_range.max);
   }
-  return true;
+  return ReplaceRegularFile(path, GaugeStateText(written, vehicle_checksum), attributes, error);
 }
 
 bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
                     GaugeCalibration* calibration, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *error = path + ": cannot read";
-    return false;
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  if (text.size() > 4096) {
-    *error = path + ": corrupt (larger than a state file)";
-    return false;
-  }
+  std::string text;
+  if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &text, error)) return false;
   const size_t checksum_at = text.rfind("checksum: ");
   if (checksum_at == std::string::npos || checksum_at == 0 || text[checksum_at - 1] != '\n' ||
       text.compare(0, std::char_traits<char>::length(kHeader), kHeader) != 0) {
@@ -94,12 +124,26 @@ bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum
              ", expected " + vehicle_checksum + ")";
     return false;
   }
+  // The checksum is no defence against a forged file (anyone can recompute
+  // it): every value is range-checked as the parameter file's would be.
   double offset[2], std_rad[2];
-  if (!ParsePair(fields["gauge_offset_rad"], offset) || !ParsePair(fields["gauge_offset_std_rad"], std_rad) ||
-      std::abs(offset[0]) > max_offset_rad || std::abs(offset[1]) > max_offset_rad || std_rad[0] <= 0 ||
-      std_rad[1] <= 0) {
-    *error = path + ": corrupt (gauge_offset_rad or gauge_offset_std_rad missing or out of range)";
+  const StdRange std_range = OffsetStdRange();
+  if (!ParsePair(fields["gauge_offset_rad"], offset) || !ParsePair(fields["gauge_offset_std_rad"], std_rad)) {
+    *error = path + ": corrupt (gauge_offset_rad or gauge_offset_std_rad missing or not two finite numbers)";
     return false;
+  }
+  for (int i = 0; i < 2; ++i) {
+    if (!(std::abs(offset[i]) <= max_offset_rad)) {
+      *error = path + ": gauge_offset_rad " + fields["gauge_offset_rad"] + " outside [-" +
+               std::to_string(max_offset_rad) + ", " + std::to_string(max_offset_rad) +
+               "] rad (tare.max_offset_rad): refused";
+      return false;
+    }
+    if (!(std_rad[i] >= std_range.min && std_rad[i] <= std_range.max)) {
+      *error = path + ": gauge_offset_std_rad " + fields["gauge_offset_std_rad"] + " outside " +
+               RangeText(std_range.min, std_range.max) + " rad (the range of vehicle.gauge_offset_std_rad): refused";
+      return false;
+    }
   }
   for (int i = 0; i < 2; ++i) {
     calibration->offset_rad[i] = offset[i];

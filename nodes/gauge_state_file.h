@@ -24,15 +24,25 @@ std::string VehicleChecksum(const VehicleParams& params);
 //   checksum: <16 hex of the lines above>
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum);
 
-// Writes the text to path through a temporary file in the same folder and a
-// rename (atomic: a reader sees the old or the new file, never half of one).
+// Writes the text to path through a uniquely named temporary file in the same
+// folder (O_CREAT | O_EXCL | O_NOFOLLOW) and a rename: a reader sees the old or
+// the new file, and a pre-planted link is never written through. Refused
+// (false, *error, nothing written) when path exists and is not a gauge state
+// file (a link, a FIFO, a device, or a regular file without the header line:
+// the parameter file given as state_file survives), or when an offset or its
+// std is not finite. A std outside the reader's range is written at its bound.
+// An existing state file keeps its mode and owner; a new one is 0644.
 bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
                      std::string* error);
 
 // Reads offsets and std into *calibration (source kStateFile). False with a
-// one-line *error for an unreadable, corrupt (bad checksum, bad or missing
-// field, value outside [-max_offset_rad, max_offset_rad]) or foreign (other
-// vehicle checksum) file; *calibration is then unchanged.
+// one-line *error, *calibration unchanged, for: a path that is not a regular
+// file (a symbolic link, a FIFO: refused without waiting, a device such as
+// /dev/zero: refused before a byte is read) or larger than 4 kB; a corrupt file
+// (bad checksum, bad or missing field); a value out of range (|o_i| above
+// max_offset_rad, a std outside the range of vehicle.gauge_offset_std_rad,
+// [1e-9, 1e-2] rad: the checksum does not stop a forged file); or a foreign
+// file (other vehicle checksum).
 bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
                     GaugeCalibration* calibration, std::string* error);
 

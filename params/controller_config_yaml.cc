@@ -1,25 +1,51 @@
 #include "params/controller_config_yaml.h"
 
+#include "params/option_table.h"
 #include "params/vehicle_params_yaml.h"
 
 namespace birotor {
 namespace {
 
-void ReadObserverParams(YamlSection s, ObserverParams* o) {
-  s.Double("position_bandwidth_rad_s", 0.1, 50.0, &o->position_bandwidth_rad_s);
-  s.Double("attitude_crossover_rad_s", 0.01, 50.0, &o->attitude_crossover_rad_s);
-  s.Finish();
+// The keys of controller.observer and controller.supervision (defaults:
+// controller/controller_params.h).
+const OptionTable<ObserverParams>& ObserverKeys() {
+  using O = ObserverParams;
+  static const OptionTable<O> keys = {
+      Real("position_bandwidth_rad_s", &O::position_bandwidth_rad_s, 0.1, 50.0),
+      Real("attitude_crossover_rad_s", &O::attitude_crossover_rad_s, 0.01, 50.0),
+  };
+  return keys;
 }
 
-void ReadSupervisionParams(YamlSection s, SupervisionParams* o) {
-  s.Double("pose_timeout_s", 1e-3, 10.0, &o->pose_timeout_s);
-  s.Double("imu_timeout_s", 1e-4, 10.0, &o->imu_timeout_s);
-  s.Double("force_timeout_s", 1e-4, 10.0, &o->force_timeout_s);
-  s.Double("force_recovery_s", 0.0, 10.0, &o->force_recovery_s);
-  s.Double("min_thrust_scale", 0.05, 1.0, &o->min_thrust_scale);
-  s.Double("max_thrust_scale", 1.0, 10.0, &o->max_thrust_scale);
-  s.Double("descent_rate_m_s", 0.0, 5.0, &o->descent_rate_m_s);
-  s.Finish();
+const OptionTable<SupervisionParams>& SupervisionKeys() {
+  using O = SupervisionParams;
+  static const OptionTable<O> keys = {
+      Real("pose_timeout_s", &O::pose_timeout_s, 1e-3, 10.0),
+      Real("imu_timeout_s", &O::imu_timeout_s, 1e-4, 10.0),
+      Real("force_timeout_s", &O::force_timeout_s, 1e-4, 10.0),
+      Real("force_recovery_s", &O::force_recovery_s, 0.0, 10.0),
+      Real("min_thrust_scale", &O::min_thrust_scale, 0.05, 1.0),
+      Real("max_thrust_scale", &O::max_thrust_scale, 1.0, 10.0),
+      Real("descent_rate_m_s", &O::descent_rate_m_s, 0.0, 5.0),
+  };
+  return keys;
+}
+
+// The gain keys (every key of ControllerParams but rate_hz).
+const OptionTable<ControllerParams>& GainKeys() {
+  using O = ControllerParams;
+  static const OptionTable<O> keys = {
+      Real("position_kp_1_s2", &O::position_kp_1_s2, 0.0, 1e4),
+      Real("position_kd_1_s", &O::position_kd_1_s, 0.0, 1e4),
+      Real("position_ki_1_s3", &O::position_ki_1_s3, 0.0, 1e4),
+      Real("attitude_kp_1_s2", &O::attitude_kp_1_s2, 0.0, 1e6),
+      Real("attitude_kd_1_s", &O::attitude_kd_1_s, 0.0, 1e4),
+      Real("attitude_ki_1_s3", &O::attitude_ki_1_s3, 0.0, 1e6),
+      Real("max_tilt_rad", &O::max_tilt_rad, 1e-3, 1.5),
+      Real("max_integral_m_s2", &O::max_integral_m_s2, 0.0, 100.0),
+      Real("max_attitude_integral_rad_s2", &O::max_attitude_integral_rad_s2, 0.0, 1e4),
+  };
+  return keys;
 }
 
 ControllerConfig ReadRoot(YamlSection root) {
@@ -35,8 +61,8 @@ ControllerConfig ReadRoot(YamlSection root) {
     ReadControllerGains(gains, &config.gains);
     gains.Finish();
   }
-  ReadObserverParams(c.Section("observer"), &config.observer);
-  ReadSupervisionParams(c.Section("supervision"), &config.supervision);
+  ReadOptionSection(c.Section("observer"), ObserverKeys(), &config.observer);
+  ReadOptionSection(c.Section("supervision"), SupervisionKeys(), &config.supervision);
   c.Finish();
   root.Finish();
   return config;
@@ -44,17 +70,7 @@ ControllerConfig ReadRoot(YamlSection root) {
 
 }  // namespace
 
-void ReadControllerGains(YamlSection& c, ControllerParams* gains) {
-  c.Double("position_kp_1_s2", 0.0, 1e4, &gains->position_kp_1_s2);
-  c.Double("position_kd_1_s", 0.0, 1e4, &gains->position_kd_1_s);
-  c.Double("position_ki_1_s3", 0.0, 1e4, &gains->position_ki_1_s3);
-  c.Double("attitude_kp_1_s2", 0.0, 1e6, &gains->attitude_kp_1_s2);
-  c.Double("attitude_kd_1_s", 0.0, 1e4, &gains->attitude_kd_1_s);
-  c.Double("attitude_ki_1_s3", 0.0, 1e6, &gains->attitude_ki_1_s3);
-  c.Double("max_tilt_rad", 1e-3, 1.5, &gains->max_tilt_rad);
-  c.Double("max_integral_m_s2", 0.0, 100.0, &gains->max_integral_m_s2);
-  c.Double("max_attitude_integral_rad_s2", 0.0, 1e4, &gains->max_attitude_integral_rad_s2);
-}
+void ReadControllerGains(YamlSection& c, ControllerParams* gains) { ReadOptions(c, GainKeys(), gains); }
 
 ControllerConfig LoadControllerConfig(const std::string& file) {
   ControllerConfig config;

@@ -1,12 +1,19 @@
 #include "params/vehicle_section_update.h"
 
-#include <fstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
 #include <iomanip>
 #include <set>
 #include <sstream>
 #include <vector>
 
 #include "params/vehicle_params_yaml.h"
+#include "params/yaml_reader.h"
 
 namespace birotor {
 namespace {
@@ -143,7 +150,9 @@ bool UpdateVehicleSection(const std::string& text, const VehicleParams& params, 
 }
 
 std::string ReadIdentificationStamp(const std::string& file) {
-  std::ifstream in(file);
+  std::string text, error;
+  if (!ReadRegularFile(file, kMaxParameterFileBytes, LinkPolicy::kFollow, &text, &error)) return "";
+  std::istringstream in(text);
   std::string line;
   bool in_vehicle = false;
   while (std::getline(in, line)) {
@@ -156,6 +165,58 @@ std::string ReadIdentificationStamp(const std::string& file) {
     }
   }
   return "";
+}
+
+namespace {
+
+// False with *error when the backup slot holds anything but a regular file.
+bool BackupSlotFree(const std::string& backup, std::string* error) {
+  std::string kind;
+  if (InspectPath(backup, nullptr, &kind) != PathKind::kOther) return true;
+  *error = backup + " exists and is " + kind + "; only a regular file is replaced there (remove it): refused";
+  return false;
+}
+
+}  // namespace
+
+bool PrepareParameterFileUpdate(const std::string& path, ParameterFileUpdate* update, std::string* error) {
+  char resolved[PATH_MAX];
+  if (::realpath(path.c_str(), resolved) == nullptr) {
+    *error = path + ": cannot resolve: " + std::strerror(errno);
+    return false;
+  }
+  update->path = path;
+  update->target = resolved;
+  update->backup = update->target + ".bak";
+  if (!ReadRegularFile(update->target, kMaxParameterFileBytes, LinkPolicy::kRefuse, &update->text, error)) return false;
+  struct stat info {};
+  if (InspectPath(update->target, &update->attributes, nullptr) != PathKind::kRegular ||
+      ::lstat(update->target.c_str(), &info) != 0) {
+    *error = update->target + ": changed while checked: refused";
+    return false;
+  }
+  update->device = info.st_dev;
+  update->inode = info.st_ino;
+  const std::string folder = update->target.substr(0, update->target.rfind('/') + 1);
+  if (::access(folder.c_str(), W_OK) != 0) {
+    *error = update->target + ": its folder " + folder + " is not writable: " + std::strerror(errno);
+    return false;
+  }
+  return BackupSlotFree(update->backup, error);
+}
+
+bool CommitParameterFileUpdate(const ParameterFileUpdate& update, const std::string& updated_text, std::string* error) {
+  std::string now;
+  struct stat info {};
+  if (::lstat(update.target.c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_dev != update.device ||
+      info.st_ino != update.inode ||
+      !ReadRegularFile(update.target, kMaxParameterFileBytes, LinkPolicy::kRefuse, &now, error) || now != update.text) {
+    *error = update.target + ": replaced or changed since it was checked: left unchanged";
+    return false;
+  }
+  if (!BackupSlotFree(update.backup, error)) return false;
+  if (!ReplaceRegularFile(update.backup, update.text, update.attributes, error)) return false;
+  return ReplaceRegularFile(update.target, updated_text, update.attributes, error);
 }
 
 }  // namespace birotor

@@ -5,9 +5,12 @@
 // `birotor-identify --update-params` for one-step deployment.
 #pragma once
 
+#include <sys/types.h>
+
 #include <string>
 
 #include "model/vehicle_params.h"
+#include "params/regular_file.h"
 
 namespace birotor {
 
@@ -26,5 +29,34 @@ bool UpdateVehicleSection(const std::string& text, const VehicleParams& params, 
 // The identification stamp of a parameter file's vehicle section, or an
 // empty string when it has none (or the file cannot be read).
 std::string ReadIdentificationStamp(const std::string& file);
+
+// A parameter file updated in place (birotor-identify --update-params),
+// checked before the fit and written after it (docs/files.md):
+//  - a symbolic link is updated through its target: `target` is the file at
+//    the end of the links (realpath), replaced in its own folder, and the
+//    link is kept; the backup is `<target>.bak`;
+//  - the target must be a regular file of at most 1 MB (a FIFO or a device is
+//    refused without waiting), in a folder the tool may write;
+//  - `<target>.bak` may be absent or a regular file; anything else there (a
+//    link to a block device, a FIFO) is refused and left alone;
+//  - both files are written whole through a unique temporary file and a
+//    rename (regular files only), with the target's mode and owner.
+struct ParameterFileUpdate {
+  std::string path;           // as given
+  std::string target;         // the file replaced (path without links)
+  std::string backup;         // target + ".bak"
+  std::string text;           // the target's content when checked
+  FileAttributes attributes;  // the target's mode and owner, given to both files
+  dev_t device = 0;           // the target's identity, checked again at commit
+  ino_t inode = 0;
+};
+
+// Checks path as above and reads it. False with a one-line *error otherwise.
+bool PrepareParameterFileUpdate(const std::string& path, ParameterFileUpdate* update, std::string* error);
+
+// Writes update.text to update.backup and updated_text over update.target.
+// Refused (nothing written) when the target is no longer the file checked
+// (another inode, other content) or the backup slot is no longer free.
+bool CommitParameterFileUpdate(const ParameterFileUpdate& update, const std::string& updated_text, std::string* error);
 
 }  // namespace birotor

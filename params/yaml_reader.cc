@@ -1,9 +1,13 @@
 #include "params/yaml_reader.h"
 
+#include <yaml-cpp/eventhandler.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
 #include <sstream>
+
+#include "params/regular_file.h"
 
 namespace birotor {
 namespace {
@@ -22,6 +26,44 @@ std::string Join(const std::vector<std::string>& items) {
   std::string out;
   for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
   return out;
+}
+
+// Edit distance of two keys: insertions, deletions, substitutions and
+// swaps of two neighbouring characters ("mdoe" is one edit from "mode").
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[a.size()][b.size()];
+}
+
+// The known key a misspelt one most likely meant: the nearest within a third
+// of its length (at most 3 edits; none for keys of one or two characters), or
+// "" when none is that close or two are equally close.
+std::string ClosestKey(const std::string& key, const std::set<std::string>& known) {
+  const size_t limit = std::min<size_t>(3, key.size() / 3);
+  if (limit == 0) return "";
+  std::string best;
+  size_t best_distance = limit + 1;
+  bool tie = false;
+  for (const std::string& candidate : known) {
+    const size_t distance = EditDistance(key, candidate);
+    if (distance < best_distance) {
+      best = candidate;
+      best_distance = distance;
+      tie = false;
+    } else if (distance == best_distance) {
+      tie = true;
+    }
+  }
+  return tie ? "" : best;
 }
 
 // What a node holds, for "expected a number, got ..." messages.
@@ -67,6 +109,73 @@ void CheckKeys(const YAML::Node& node, const std::string& label, const std::stri
   }
 }
 
+// Counts the nodes of a document as its readers would walk them: an alias
+// counts as every node of what it names. Throws once the count passes
+// kMaxYamlNodes, so a 7.9 kB alias bomb of 1e10 leaves is refused while it
+// is parsed (linear in its text), before any tree is built or walked.
+class NodeBudget : public YAML::EventHandler {
+ public:
+  explicit NodeBudget(std::string label) : label_(std::move(label)) {}
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t anchor) override { Leaf(anchor); }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t anchor, const std::string&) override {
+    Leaf(anchor);
+  }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t anchor) override { Add(anchor < sizes_.size() ? sizes_[anchor] : 1); }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor,
+                       YAML::EmitterStyle::value) override {
+    Open(anchor);
+  }
+  void OnSequenceEnd() override { Close(); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+    Open(anchor);
+  }
+  void OnMapEnd() override { Close(); }
+
+ private:
+  struct Collection {
+    YAML::anchor_t anchor;
+    uint64_t nodes;  // itself and everything in it so far
+  };
+  void Leaf(YAML::anchor_t anchor) {
+    Remember(anchor, 1);
+    Add(1);
+  }
+  void Open(YAML::anchor_t anchor) {
+    Count(1);
+    open_.push_back({anchor, 1});
+  }
+  void Close() {
+    const Collection done = open_.back();
+    open_.pop_back();
+    Remember(done.anchor, done.nodes);
+    if (!open_.empty()) open_.back().nodes += done.nodes;
+  }
+  // n nodes inside the innermost open collection (sizes stay <= the budget).
+  void Add(uint64_t n) {
+    Count(n);
+    if (!open_.empty()) open_.back().nodes += n;
+  }
+  void Count(uint64_t n) {
+    total_ += n;
+    if (total_ > kMaxYamlNodes) {
+      throw ParamError(label_ + ": more than " + std::to_string(kMaxYamlNodes) +
+                       " YAML nodes once aliases are expanded (an alias bomb?): refused");
+    }
+  }
+  void Remember(YAML::anchor_t anchor, uint64_t nodes) {
+    if (anchor == YAML::NullAnchor) return;
+    if (sizes_.size() <= anchor) sizes_.resize(anchor + 1, 1);
+    sizes_[anchor] = nodes;
+  }
+
+  std::string label_;
+  std::vector<uint64_t> sizes_;  // nodes of each anchored node, by anchor id
+  std::vector<Collection> open_;
+  uint64_t total_ = 0;
+};
+
 ParamError SyntaxError(const std::string& label, const YAML::Exception& e) {
   return ParamError(label + ": not valid YAML at line " + std::to_string(e.mark.line + 1) + ": " + Quoted(e.msg));
 }
@@ -98,17 +207,11 @@ std::string Quoted(const std::string& text) {
 std::string RangeText(double min, double max) { return "[" + Number(min) + ", " + Number(max) + "]"; }
 
 std::string ReadParameterFileText(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ParamError(file + ": cannot open the file");
-  // Read one byte more than allowed, so a larger file (or /dev/zero) is
-  // recognised without reading it all.
-  std::string text(kMaxParameterFileBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw ParamError(file + ": cannot read the file");
-  text.resize(static_cast<size_t>(in.gcount()));
-  if (text.size() > kMaxParameterFileBytes) {
-    throw ParamError(file + ": larger than " + std::to_string(kMaxParameterFileBytes) +
-                     " bytes; a parameter or scenario file is a few kB: refused");
+  // A regular file only (a FIFO is refused without waiting for a writer,
+  // /dev/zero before a byte is read); a symbolic link to one is followed.
+  std::string text, error;
+  if (!ReadRegularFile(file, kMaxParameterFileBytes, LinkPolicy::kFollow, &text, &error)) {
+    throw ParamError(error + "; a parameter or scenario file is a regular file of a few kB");
   }
   return text;
 }
@@ -119,7 +222,7 @@ YAML::Node ParseYamlMapping(const std::string& text, const std::string& label) {
   }
   YAML::Node root;
   try {
-    root = RequireMapping(YAML::Load(text), label);
+    root = RequireMapping(LoadYamlWithinBudget(text, label), label);
     CheckKeys(root, label, "", 0);
   } catch (const ParamError&) {
     throw;
@@ -129,6 +232,17 @@ YAML::Node ParseYamlMapping(const std::string& text, const std::string& label) {
     throw ParamError(label + ": cannot be read: " + Quoted(e.what()));
   }
   return root;
+}
+
+YAML::Node LoadYamlWithinBudget(const std::string& text, const std::string& label) {
+  {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    NodeBudget budget(label);
+    while (parser.HandleNextDocument(budget)) {
+    }
+  }
+  return YAML::Load(text);
 }
 
 YAML::Node LoadYamlMapping(const std::string& file) { return ParseYamlMapping(ReadParameterFileText(file), file); }
@@ -297,6 +411,11 @@ void YamlSection::Finish() const {
     for (const auto& item : node_) {
       const std::string key = item.first.Scalar();  // plain names only (CheckKeys)
       if (read_keys_.count(key) == 0) {
+        const std::string close = ClosestKey(key, read_keys_);
+        if (!close.empty()) {
+          throw ParamError(file_ + ": key " + Quoted(KeyPath(key)) + ": unknown key; did you mean " + Quoted(close) +
+                           "?");
+        }
         std::vector<std::string> known(read_keys_.begin(), read_keys_.end());
         throw ParamError(file_ + ": key " + Quoted(KeyPath(key)) + ": unknown key (allowed: " + Join(known) + ")");
       }

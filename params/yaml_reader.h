@@ -2,8 +2,10 @@
 // refused: every key a reader asks for must be present (all missing keys are
 // named in one line), keys nobody asks for are refused with the schema's list,
 // duplicate keys and keys that are not plain names are refused, files above
-// 1 MB are refused, and values are quoted with at most 80 characters. Every
-// error names the file, the key (as a dotted path) and the allowed range.
+// 1 MB, files that are not regular (a FIFO, a device) and documents above
+// 100 000 nodes once aliases are expanded (an alias bomb) are refused, and
+// values are quoted with at most 80 characters. Every error names the file,
+// the key (as a dotted path) and the allowed range.
 // Used once at start-up; never on a per-sample path.
 #pragma once
 
@@ -98,6 +100,17 @@ class YamlSection {
   bool absent_ = false;  // the section itself is missing: do not report its keys
   std::set<std::string> read_keys_;
 };
+
+// Documents with more nodes than this, counting each alias as the nodes it
+// names, are refused (the shipped files have under 600).
+constexpr uint64_t kMaxYamlNodes = 100000;
+
+// YAML::Load(text) after counting its nodes, aliases expanded, in one pass
+// over the parser's events: ParamError naming label when the count passes
+// kMaxYamlNodes (an alias bomb), so no caller ever walks such a tree. YAML
+// syntax errors escape as YAML::Exception. Every YAML text the programs read
+// goes through here.
+YAML::Node LoadYamlWithinBudget(const std::string& text, const std::string& label);
 
 // Reads a parameter file of at most kMaxParameterFileBytes into text.
 // ParamError names the file when it cannot be read or is too large.

@@ -1,6 +1,6 @@
 // A simulation scenario as plain data: vehicle, trajectory or bench profile,
 // sensors, faults and controller gains. Defaults are the reference vehicle and
-// sensors of shared/spec/reference-vehicle.md; scenario_yaml.h loads it.
+// sensors of shared/spec/reference-vehicle.md; params/scenario_yaml.h loads it.
 #pragma once
 
 #include <cstdint>

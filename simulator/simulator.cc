@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "model/rk4.h"
-#include "simulator/bench_dynamics.h"
+#include "model/bench_dynamics.h"
 
 namespace birotor {
 namespace {

@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "identification/identify.h"
-#include "identification/parameter_file.h"
+#include "params/identification_options_yaml.h"
+#include "params/identified_parameter_file.h"
 #include "params/vehicle_params_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
@@ -46,18 +47,6 @@ std::string UtcDateTime() {
   char text[32];
   std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
   return text;
-}
-
-bool ReadWholeFile(const std::string& path, std::string* text, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    *error = "cannot read " + path;
-    return false;
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
-  *text = content.str();
-  return true;
 }
 
 }  // namespace
@@ -98,7 +87,9 @@ int main(int argc, char** argv) {
   app.add_option("--output", cli.output, "Identified parameter file (written atomically)");
   app.add_option("--update-params", cli.update_params,
                  "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
-                 "in place, comments and other sections kept, atomically, the old file kept as FILE.bak");
+                 "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
+                 "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
+                 "absent or a regular file");
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
   app.add_option("--min-usable-fraction", cli.min_usable_fraction,
@@ -126,27 +117,27 @@ int main(int argc, char** argv) {
   // Outputs: never an input, each through a temporary file renamed at the
   // end; opened now so an unwritable folder is refused before the fit. The
   // --update-params file is the one deliberate exception: it is updated in
-  // place, its old content kept as FILE.bak.
+  // place (through its link, docs/files.md), its old content kept as FILE.bak.
   std::string error;
   std::vector<std::string> inputs = cli.logs;
   inputs.push_back(cli.params);
   inputs.push_back(cli.config);
-  const std::string backup = cli.update_params.empty() ? "" : cli.update_params + ".bak";
-  OutputFile output, report, updated_params, backup_file;
-  if (!CheckOutputs({cli.output, cli.report, cli.plot, backup}, inputs, &error) ||
+  OutputFile output, report;
+  ParameterFileUpdate update;
+  if ((!cli.update_params.empty() && !PrepareParameterFileUpdate(cli.update_params, &update, &error)) ||
+      !CheckOutputs({cli.output, cli.report, cli.plot, update.backup}, inputs, &error) ||
       (!cli.update_params.empty() && !CheckOutputs({cli.update_params, cli.output, cli.report, cli.plot},
                                                    {cli.logs.begin(), cli.logs.end()}, &error)) ||
       (!cli.output.empty() && !output.Open(cli.output, &error)) ||
-      (!cli.report.empty() && !report.Open(cli.report, &error)) ||
-      (!cli.update_params.empty() &&
-       (!updated_params.Open(cli.update_params, &error) || !backup_file.Open(backup, &error)))) {
-    return ReportError(error);
+      (!cli.report.empty() && !report.Open(cli.report, &error))) {
+    return ReportError(error.rfind("--update-params", 0) == 0 || cli.update_params.empty()
+                           ? error
+                           : "--update-params " + cli.update_params + ": " + error);
   }
   // The file to update must be complete before the fit, so a fit is never lost to it.
-  std::string update_text;
+  const std::string& update_text = update.text;
   if (!cli.update_params.empty()) {
     std::string unused;
-    if (!ReadWholeFile(cli.update_params, &update_text, &error)) return ReportError(error);
     if (!UpdateVehicleSection(update_text, base, "", &unused, &error)) {
       return ReportError("--update-params " + cli.update_params + ": " + error);
     }
@@ -210,7 +201,7 @@ int main(int argc, char** argv) {
     if (!output.Commit(&error)) return ReportError(error);
     spdlog::info("wrote {}", cli.output);
   }
-  if (updated_params.is_open()) {
+  if (!cli.update_params.empty()) {
     std::string updated;
     if (!UpdateVehicleSection(update_text, result.params, stamp, &updated, &error)) {
       return ReportError("--update-params " + cli.update_params + ": " + error);
@@ -229,11 +220,8 @@ int main(int argc, char** argv) {
     } catch (const ParamError& e) {
       return ReportError(std::string(e.what()) + "; file left unchanged");
     }
-    backup_file.Write(update_text);
-    if (!backup_file.Commit(&error)) return ReportError(error);
-    updated_params.Write(updated);
-    if (!updated_params.Commit(&error)) return ReportError(error);
-    spdlog::info("updated the vehicle section of {} in place (previous file: {})", cli.update_params, backup);
+    if (!CommitParameterFileUpdate(update, updated, &error)) return ReportError("--update-params: " + error);
+    spdlog::info("updated the vehicle section of {} in place (previous file: {})", update.target, update.backup);
   }
   // A failed plot is an error (exit 1), but the parameter file stands.
   if (!cli.plot.empty()) {

@@ -12,7 +12,7 @@
 #include "estimator/estimator_pipeline.h"
 #include "evaluation/eval_metrics.h"
 #include "params/estimator_config_yaml.h"
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 
 namespace birotor {

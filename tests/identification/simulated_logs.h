@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "params/scenario_yaml.h"
 #include "samples/sensor_log.h"
 #include "simulator/sample_sink.h"
-#include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 
 namespace birotor::testing {

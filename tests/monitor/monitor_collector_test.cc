@@ -11,9 +11,9 @@
 
 #include "evaluation/eval_runner.h"
 #include "monitor/monitor_view.h"
-#include "params/estimator_config_yaml.h"
 #include "nodes/estimator_service.h"
-#include "simulator/scenario_yaml.h"
+#include "params/estimator_config_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"

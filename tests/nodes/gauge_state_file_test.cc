@@ -1,13 +1,20 @@
 // The persisted gauge offsets (nodes/gauge_state_file.h): round trip,
-// atomic replacement, and refusal of corrupt and foreign files.
+// atomic replacement, refusal of corrupt and foreign files, and the attacks
+// of issue 23 item 6 (planted temporary links, a link, /dev/zero or a FIFO as
+// the state file, a forged sigma, the parameter file as the state file).
 #include "nodes/gauge_state_file.h"
 
+#include <dirent.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <vector>
 
 namespace birotor {
 namespace {
@@ -40,7 +47,6 @@ TEST(GaugeStateFileTest, RoundTripKeepsEveryBitAndSaysWhereItCameFrom) {
   const std::string vehicle = VehicleChecksum(VehicleParams());
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
-  EXPECT_NE(access((path + ".tmp").c_str(), F_OK), 0);  // the temporary file was renamed
   GaugeCalibration read;
   ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &read, &error)) << error;
   for (int i = 0; i < 2; ++i) {
@@ -95,8 +101,178 @@ TEST(GaugeStateFileTest, AnOffsetOutsideThePhysicalRangeIsRefused) {
   ASSERT_TRUE(WriteGaugeState(path, wild, vehicle, &error));
   GaugeCalibration read;
   EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
-  EXPECT_NE(error.find("out of range"), std::string::npos) << error;
+  EXPECT_NE(error.find("gauge_offset_rad"), std::string::npos) << error;
+  EXPECT_NE(error.find("refused"), std::string::npos) << error;
   std::remove(path.c_str());
+}
+
+// Issue 23 item 6: a forged file whose checksum was recomputed. The sigma
+// 1e300 gave 3798 numerical resets and `inf` written back; every value is
+// now range-checked against vehicle.gauge_offset_std_rad's [1e-9, 1e-2] rad.
+TEST(GaugeStateFileTest, AForgedSigmaIsRefusedWhateverTheChecksum) {
+  const std::string path = TempStatePath("forged");
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  for (const double sigma : {1e300, 1e-300, 0.0, -1e-6, 0.011}) {
+    GaugeCalibration forged = Learned();
+    forged.offset_std_rad[1] = sigma;
+    Spit(path, GaugeStateText(forged, vehicle));  // a valid checksum
+    GaugeCalibration read;
+    std::string error;
+    EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error)) << sigma;
+    EXPECT_NE(error.find("gauge_offset_std_rad"), std::string::npos) << error;
+    EXPECT_EQ(read.offset_std_rad[1], 0.0);  // unchanged
+  }
+  GaugeCalibration forged = Learned();
+  forged.offset_rad[0] = std::numeric_limits<double>::infinity();
+  Spit(path, GaugeStateText(forged, vehicle));
+  GaugeCalibration read;
+  std::string error;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
+  std::remove(path.c_str());
+}
+
+// A value that cannot be read back is never written: inf refused, a std
+// below the reader's 1e-9 rad floored to it.
+TEST(GaugeStateFileTest, WhatIsWrittenReadsBack) {
+  const std::string path = TempStatePath("write_range");
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  GaugeCalibration bad = Learned();
+  bad.offset_std_rad[0] = std::numeric_limits<double>::infinity();
+  std::string error;
+  EXPECT_FALSE(WriteGaugeState(path, bad, vehicle, &error));
+  EXPECT_NE(access(path.c_str(), F_OK), 0);
+  GaugeCalibration tiny = Learned();
+  tiny.offset_std_rad[0] = 1e-12;
+  ASSERT_TRUE(WriteGaugeState(path, tiny, vehicle, &error)) << error;
+  GaugeCalibration read;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &read, &error)) << error;
+  EXPECT_EQ(read.offset_std_rad[0], 1e-9);
+  std::remove(path.c_str());
+}
+
+std::vector<std::string> FolderEntries(const std::string& folder) {
+  std::vector<std::string> names;
+  DIR* dir = opendir(folder.c_str());
+  while (dirent* entry = readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (name != "." && name != "..") names.push_back(name);
+  }
+  closedir(dir);
+  return names;
+}
+
+std::string MakeFolder(const std::string& name) {
+  std::string folder = ::testing::TempDir() + "/gauge_state_" + name + "_XXXXXX";
+  EXPECT_NE(mkdtemp(folder.data()), nullptr);
+  return folder;
+}
+
+// The old writer used the fixed name <state>.tmp with fopen("w"): a planted
+// symlink or hard link of that name made the root daemon overwrite its
+// target. The temporary name is now unique and created with O_EXCL.
+TEST(GaugeStateFileTest, APlantedTemporaryLinkIsNeverWrittenThrough) {
+  const std::string folder = MakeFolder("planted");
+  const std::string path = folder + "/gauge.state";
+  const std::string victim = folder + "/victim";
+  Spit(victim, "precious\n");
+  ASSERT_EQ(symlink(victim.c_str(), (path + ".tmp").c_str()), 0);
+  ASSERT_EQ(link(victim.c_str(), (folder + "/.gauge.state.tmp").c_str()), 0);
+  std::string error;
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;  // over the existing state
+  EXPECT_EQ(Slurp(victim), "precious\n");
+  GaugeCalibration read;
+  EXPECT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &read, &error)) << error;
+  EXPECT_EQ(FolderEntries(folder).size(), 4u);  // no temporary left behind
+  std::filesystem::remove_all(folder);
+}
+
+// A state_file that is a symbolic link (to a victim, or to /dev/zero) is
+// neither read nor written through.
+TEST(GaugeStateFileTest, AStateFileThatIsALinkIsRefused) {
+  const std::string folder = MakeFolder("link");
+  const std::string path = folder + "/gauge.state";
+  const std::string victim = folder + "/victim";
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  std::string error;
+  ASSERT_TRUE(WriteGaugeState(victim, Learned(), vehicle, &error)) << error;  // even a valid state file
+  const std::string victim_text = Slurp(victim);
+  ASSERT_EQ(symlink(victim.c_str(), path.c_str()), 0);
+  GaugeCalibration read;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
+  EXPECT_NE(error.find("symbolic link"), std::string::npos) << error;
+  GaugeCalibration other = Learned();
+  other.offset_rad[0] = 0.0;
+  EXPECT_FALSE(WriteGaugeState(path, other, vehicle, &error));
+  EXPECT_NE(error.find("symbolic link"), std::string::npos) << error;
+  EXPECT_EQ(Slurp(victim), victim_text);
+  struct stat info {};
+  ASSERT_EQ(lstat(path.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode));  // the link itself is left too
+  std::filesystem::remove_all(folder);
+}
+
+// /dev/zero grew the daemon to 1 GB before the size check; a FIFO hung the
+// start-up. Both are refused by type before a byte is read (a hang here
+// would be the test's time-out).
+TEST(GaugeStateFileTest, DevicesAndFifosAreRefusedWithoutReadingOrWaiting) {
+  const std::string folder = MakeFolder("special");
+  const std::string fifo = folder + "/gauge.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  GaugeCalibration read;
+  std::string error;
+  EXPECT_FALSE(ReadGaugeState(fifo, vehicle, 5e-4, &read, &error));
+  EXPECT_NE(error.find("a FIFO"), std::string::npos) << error;
+  EXPECT_FALSE(WriteGaugeState(fifo, Learned(), vehicle, &error));  // would block on open
+  EXPECT_NE(error.find("a FIFO"), std::string::npos) << error;
+  EXPECT_FALSE(ReadGaugeState("/dev/zero", vehicle, 5e-4, &read, &error));
+  EXPECT_NE(error.find("character device"), std::string::npos) << error;
+  EXPECT_FALSE(WriteGaugeState("/dev/null", Learned(), vehicle, &error));
+  EXPECT_FALSE(ReadGaugeState(folder, vehicle, 5e-4, &read, &error));
+  EXPECT_NE(error.find("a folder"), std::string::npos) << error;
+  const std::string big = folder + "/big.state";
+  Spit(big, "# birotor-estimator gauge offset state\n" + std::string(5000, '#'));
+  EXPECT_FALSE(ReadGaugeState(big, vehicle, 5e-4, &read, &error));
+  EXPECT_NE(error.find("larger than 4096 bytes"), std::string::npos) << error;
+  EXPECT_EQ(read.source, GaugeOffsetSource::kParameters);
+  std::filesystem::remove_all(folder);
+}
+
+// state_file pointed at the parameter file: refused at start-up as not a
+// state file, and (whatever the start-up did) never replaced at stop.
+TEST(GaugeStateFileTest, AFileThatIsNotAStateFileIsNeverOverwritten) {
+  const std::string folder = MakeFolder("params");
+  const std::string path = folder + "/estimator.yaml";
+  const std::string params = "vehicle:\n  body_mass_kg: 1.2\n";
+  Spit(path, params);
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  GaugeCalibration read;
+  std::string error;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
+  EXPECT_FALSE(WriteGaugeState(path, Learned(), vehicle, &error));
+  EXPECT_NE(error.find("is not a gauge state file"), std::string::npos) << error;
+  EXPECT_NE(error.find("not overwritten"), std::string::npos) << error;
+  EXPECT_EQ(Slurp(path), params);
+  std::filesystem::remove_all(folder);
+}
+
+// A replaced state file keeps its mode (the old writer gave 0644 or 0666).
+TEST(GaugeStateFileTest, AReplacedStateFileKeepsItsMode) {
+  const std::string folder = MakeFolder("mode");
+  const std::string path = folder + "/gauge.state";
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  std::string error;
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
+  struct stat info {};
+  ASSERT_EQ(stat(path.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 07777, 0644u);  // a new file
+  ASSERT_EQ(chmod(path.c_str(), 0600), 0);
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
+  ASSERT_EQ(stat(path.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 07777, 0600u);
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

@@ -86,7 +86,7 @@ TEST(EstimatorConfigYamlTest, ReferenceTextWithOneValueChangedLoads) {
 
 TEST(EstimatorConfigYamlTest, MisspeltSectionListsTheSchemasSections) {
   // Issue 14: the list used to be built from the keys the file had.
-  EXPECT_EQ(ErrorOf("estimater: {}\n"), "bad.yaml: key 'estimater': unknown key (allowed: estimator, vehicle)");
+  EXPECT_EQ(ErrorOf("estimater: {}\n"), "bad.yaml: key 'estimater': unknown key; did you mean 'estimator'?");
 }
 
 TEST(EstimatorConfigYamlTest, ErrorsNameFileKeyAndRange) {

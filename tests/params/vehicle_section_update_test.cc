@@ -3,7 +3,10 @@
 #include "params/vehicle_section_update.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -83,6 +86,113 @@ TEST(VehicleSectionUpdateTest, IncompleteFileIsRefusedNamingTheKey) {
 
 TEST(VehicleSectionUpdateTest, FileWithoutStampHasNone) {
   EXPECT_EQ(ReadIdentificationStamp("config/reference_vehicle.yaml"), "");
+}
+
+// Issue 23 item 7: the --update-params file and its FILE.bak.
+class ParameterFileUpdateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = ::testing::TempDir() + "/parameter_file_update_XXXXXX";
+    ASSERT_NE(mkdtemp(folder_.data()), nullptr);
+    path_ = folder_ + "/estimator.yaml";
+    std::ofstream(path_) << kOld;
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+  static mode_t Mode(const std::string& path) {
+    struct stat info {};
+    EXPECT_EQ(stat(path.c_str(), &info), 0) << path;
+    return info.st_mode & 07777;
+  }
+  static constexpr const char* kOld = "vehicle:\n  tip_mass_kg: 0.25\n";
+  static constexpr const char* kNew = "vehicle:\n  tip_mass_kg: 0.3\n";
+  std::string folder_;
+  std::string path_;
+};
+
+TEST_F(ParameterFileUpdateTest, BothFilesKeepModeAndOwner) {
+  ASSERT_EQ(chmod(path_.c_str(), 0444), 0);  // was 0444 -> 0644
+  const bool root = geteuid() == 0;
+  if (root) {
+    ASSERT_EQ(chown(path_.c_str(), 0, 1), 0);  // root:daemon became root:root
+  }
+  ParameterFileUpdate update;
+  std::string error;
+  ASSERT_TRUE(PrepareParameterFileUpdate(path_, &update, &error)) << error;
+  EXPECT_EQ(update.text, kOld);
+  EXPECT_EQ(update.backup, update.target + ".bak");
+  ASSERT_TRUE(CommitParameterFileUpdate(update, kNew, &error)) << error;
+  EXPECT_EQ(ReadText(path_), kNew);
+  EXPECT_EQ(ReadText(path_ + ".bak"), kOld);
+  for (const std::string& file : {path_, path_ + ".bak"}) {
+    EXPECT_EQ(Mode(file), 0444u) << file;
+    struct stat info {};
+    ASSERT_EQ(stat(file.c_str(), &info), 0);
+    if (root) {
+      EXPECT_EQ(info.st_gid, 1u) << file;
+    }
+    EXPECT_TRUE(S_ISREG(info.st_mode));
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder_), {}), 2);  // no temporary left
+}
+
+// A pre-planted FILE.bak that is a link (to a device or a victim) or a FIFO
+// was written through (the FIFO hung): refused before the fit, and again at
+// commit if planted during it; nothing is written.
+TEST_F(ParameterFileUpdateTest, APlantedBackupThatIsNotARegularFileIsRefusedAndLeftAlone) {
+  const std::string victim = folder_ + "/victim";
+  std::ofstream(victim) << "precious\n";
+  const std::string backup = path_ + ".bak";
+  std::string error;
+  ParameterFileUpdate update;
+  for (const std::string& target : {victim, std::string("/dev/null")}) {
+    ASSERT_EQ(symlink(target.c_str(), backup.c_str()), 0);
+    EXPECT_FALSE(PrepareParameterFileUpdate(path_, &update, &error));
+    EXPECT_NE(error.find("a symbolic link"), std::string::npos) << error;
+    ASSERT_EQ(unlink(backup.c_str()), 0);
+  }
+  ASSERT_EQ(mkfifo(backup.c_str(), 0600), 0);
+  EXPECT_FALSE(PrepareParameterFileUpdate(path_, &update, &error));
+  EXPECT_NE(error.find("a FIFO"), std::string::npos) << error;
+  ASSERT_EQ(unlink(backup.c_str()), 0);
+  // Planted between the check and the commit.
+  ASSERT_TRUE(PrepareParameterFileUpdate(path_, &update, &error)) << error;
+  ASSERT_EQ(symlink(victim.c_str(), backup.c_str()), 0);
+  EXPECT_FALSE(CommitParameterFileUpdate(update, kNew, &error));
+  EXPECT_EQ(ReadText(victim), "precious\n");
+  EXPECT_EQ(ReadText(path_), kOld);
+}
+
+// A symbolic link is updated through its target (the link stays a link, the
+// backup sits beside the target).
+TEST_F(ParameterFileUpdateTest, ASymbolicLinkIsUpdatedThroughItsTarget) {
+  const std::string link = folder_ + "/current.yaml";
+  ASSERT_EQ(symlink("estimator.yaml", link.c_str()), 0);
+  ParameterFileUpdate update;
+  std::string error;
+  ASSERT_TRUE(PrepareParameterFileUpdate(link, &update, &error)) << error;
+  EXPECT_EQ(update.target, std::filesystem::canonical(path_).string());
+  ASSERT_TRUE(CommitParameterFileUpdate(update, kNew, &error)) << error;
+  struct stat info {};
+  ASSERT_EQ(lstat(link.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISLNK(info.st_mode));
+  EXPECT_EQ(ReadText(link), kNew);
+  EXPECT_EQ(ReadText(path_ + ".bak"), kOld);
+}
+
+// Not a regular file, or replaced between the check and the commit: refused.
+TEST_F(ParameterFileUpdateTest, ASpecialOrChangedFileIsRefused) {
+  const std::string fifo = folder_ + "/fifo.yaml";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ParameterFileUpdate update;
+  std::string error;
+  EXPECT_FALSE(PrepareParameterFileUpdate(fifo, &update, &error));
+  EXPECT_NE(error.find("a FIFO"), std::string::npos) << error;
+  EXPECT_FALSE(PrepareParameterFileUpdate("/dev/zero", &update, &error));
+  ASSERT_TRUE(PrepareParameterFileUpdate(path_, &update, &error)) << error;
+  std::ofstream(path_) << "vehicle:\n  tip_mass_kg: 0.26\n";  // edited during the fit
+  EXPECT_FALSE(CommitParameterFileUpdate(update, kNew, &error));
+  EXPECT_NE(error.find("changed since it was checked"), std::string::npos) << error;
+  EXPECT_NE(access((path_ + ".bak").c_str(), F_OK), 0);
 }
 
 }  // namespace

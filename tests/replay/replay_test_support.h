@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "transport/log_io.h"
 
 namespace birotor {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "tests/simulator/test_support.h"
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "test_support.h"
 

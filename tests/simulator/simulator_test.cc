@@ -8,7 +8,7 @@
 #include <cstring>
 #include <map>
 
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "tests/simulator/test_support.h"
 
 namespace birotor {

@@ -215,5 +215,37 @@ TEST_F(HostileFilesTest, ZeroLengthChannelMidLogIsSkippedAndReported) {
   EXPECT_EQ(ReadBytes(Path("a.lcm")), ReadBytes(Path("b.lcm")));  // every good event replayed
 }
 
+// Issue 23 item 7: --update-params with a pre-planted FILE.bak (a link to a
+// victim or a device, a FIFO) wrote through it or hung; a FIFO as the
+// parameter file hung. Each is refused before the fit in one line, a hang
+// being the run's time-out (exit -1), and nothing is written.
+TEST_F(HostileFilesTest, UpdateParamsRefusesPlantedBackupsAndSpecialFiles) {
+  const std::string params = Path("update.yaml");
+  std::filesystem::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params,
+                             std::filesystem::copy_options::overwrite_existing);
+  const std::vector<uint8_t> original = ReadBytes(params);
+  const std::string victim = Path("victim.txt");
+  WriteBytes(victim, {'o', 'k'});
+  const std::string backup = params + ".bak";
+  auto identify = [&](const std::string& file) {
+    return RunTool({BIROTOR_IDENTIFY_BIN, "--log", Path("hover.lcm"), "--update-params", file}, 20);
+  };
+  for (const std::string& target : {victim, std::string("/dev/null")}) {
+    ASSERT_EQ(symlink(target.c_str(), backup.c_str()), 0);
+    const ToolRun run = identify(params);
+    ExpectRefused(run, "birotor-identify", "FILE.bak -> " + target);
+    EXPECT_NE(run.output.find("is a symbolic link"), std::string::npos) << run.output;
+    ASSERT_EQ(unlink(backup.c_str()), 0);
+  }
+  ASSERT_EQ(mkfifo(backup.c_str(), 0600), 0);
+  ExpectRefused(identify(params), "birotor-identify", "FILE.bak a FIFO");
+  ASSERT_EQ(unlink(backup.c_str()), 0);
+  const std::string fifo = Path("fifo.yaml");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ExpectRefused(identify(fifo), "birotor-identify", "--update-params a FIFO");
+  EXPECT_EQ(ReadBytes(victim), std::vector<uint8_t>({'o', 'k'}));
+  EXPECT_EQ(ReadBytes(params), original);
+}
+
 }  // namespace
 }  // namespace birotor

@@ -1,6 +1,6 @@
 // The identified parameter file loads back as the identified values, and is
 // written atomically.
-#include "identification/parameter_file.h"
+#include "params/identified_parameter_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,7 +1,8 @@
 // Output of the identification: the parameter file the estimator and the
 // simulator load (a full `vehicle:` section, uncertainties and the
 // deflection-force maps as comments) and a readable report. The tool writes
-// them through transport/output_file.h.
+// them through transport/output_file.h. Here, beside the reader of the same
+// file, so that the keys are written from the reader's table.
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
 // Tests of simulator/scenario_yaml.h: every reference scenario loads, bad
 // files are refused with the file and the key named, overrides apply.
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // Plant derivative with the body clamped on a test stand (scenario `bench`):
 // x, z, phi and their rates are held at 0; only the arm deflections b1, b2
-// and the rotor speeds evolve. Same 12-entry state as model/plant.h.
+// and the rotor speeds evolve. Same 12-entry state as model/plant.h, used by
+// the simulator's bench scenarios.
 #pragma once
 
 #include "model/arm_dynamics.h"
@@ -20,8 +21,8 @@ inline PlantState ClampedBodyDerivative(const VehicleParams& p, const PlantState
     x_dot(kPlantV + b) = ClampedArmAcceleration<double>(p, arm, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad,
                                                         x(kPlantQ + b), x(kPlantV + b), forces_n[arm]);
   }
-  x_dot(kPlantOmega1) = (ClampCommand(p, u.omega_cmd_rad_s[0]) - x(kPlantOmega1)) / p.motor_time_constant_s;
-  x_dot(kPlantOmega2) = (ClampCommand(p, u.omega_cmd_rad_s[1]) - x(kPlantOmega2)) / p.motor_time_constant_s;
+  x_dot(kPlantOmega1) = MotorLagRate(p, x(kPlantOmega1), u.omega_cmd_rad_s[0]);
+  x_dot(kPlantOmega2) = MotorLagRate(p, x(kPlantOmega2), u.omega_cmd_rad_s[1]);
   return x_dot;
 }
 

@@ -1,4 +1,4 @@
-#include "identification/parameter_file.h"
+#include "params/identified_parameter_file.h"
 
 #include <cmath>
 #include <iomanip>
