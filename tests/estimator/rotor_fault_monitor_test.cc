@@ -1,6 +1,7 @@
 // Rotor faults and the thrust deficit (estimator/rotor_fault_monitor.h) with
 // the EkfOptions defaults: asymmetry 0.1 (cleared below 0.07), deficit 0.95
-// (cleared above 0.97), 3 sigma, persistence 10 ms.
+// (cleared above 0.97), 3 sigma; the persistence set to 10 ms here (default
+// 2 ms) so that its count shows.
 #include "estimator/rotor_fault_monitor.h"
 
 #include <gtest/gtest.h>
@@ -12,10 +13,16 @@ namespace {
 
 const Eigen::Matrix2d kSure = Eigen::Matrix2d::Identity() * 1e-6;  // std(mu) = 1e-3
 
+EkfOptions TenMilliseconds() {
+  EkfOptions options;
+  options.fault_persistence_s = 0.01;
+  return options;
+}
+
 // Rotor 2 at 0.8 of rotor 1: d - 3 std(d) = 0.2 - 0.0042 > 0.1. Flagged once
 // it held for 10 ms (at 10 ms, not at 9), cleared at once below 0.07.
 TEST(RotorFaultMonitorTest, AWeakRotorIsFlaggedAfterThePersistenceAndClears) {
-  RotorFaultMonitor monitor{EkfOptions()};
+  RotorFaultMonitor monitor{TenMilliseconds()};
   for (int64_t t = 0; t < 10000; t += 1000) {
     monitor.Update(t, Eigen::Vector2d(1.0, 0.8), kSure);
     EXPECT_EQ(monitor.StatusBits(), 0) << t;
@@ -33,11 +40,11 @@ TEST(RotorFaultMonitorTest, AWeakRotorIsFlaggedAfterThePersistenceAndClears) {
 // d - 3 std(d) < 0.1 for d = 0.2. Correlation counts: with P12 = P11 the
 // difference is known exactly and the same d is a fault.
 TEST(RotorFaultMonitorTest, TheDifferenceIsJudgedWithItsSigma) {
-  RotorFaultMonitor loose{EkfOptions()};
+  RotorFaultMonitor loose{TenMilliseconds()};
   const Eigen::Matrix2d independent = Eigen::Matrix2d::Identity() * 0.01;
   for (int64_t t = 0; t <= 20000; t += 1000) loose.Update(t, Eigen::Vector2d(0.8, 1.0), independent);
   EXPECT_EQ(loose.StatusBits(), 0);
-  RotorFaultMonitor correlated{EkfOptions()};
+  RotorFaultMonitor correlated{TenMilliseconds()};
   const Eigen::Matrix2d same = Eigen::Matrix2d::Constant(0.01);
   for (int64_t t = 0; t <= 20000; t += 1000) correlated.Update(t, Eigen::Vector2d(0.8, 1.0), same);
   EXPECT_EQ(correlated.StatusBits(), kStatusRotor1Fault);
@@ -46,7 +53,7 @@ TEST(RotorFaultMonitorTest, TheDifferenceIsJudgedWithItsSigma) {
 // Both rotors at 0.9: the stronger one's 0.9 + 0.003 < 0.95 is a deficit, not
 // a rotor fault; an interruption restarts the persistence; Reset forgets it.
 TEST(RotorFaultMonitorTest, ASharedDeficitIsNotARotorFault) {
-  RotorFaultMonitor monitor{EkfOptions()};
+  RotorFaultMonitor monitor{TenMilliseconds()};
   monitor.Update(0, Eigen::Vector2d(0.9, 0.9), kSure);
   monitor.Update(5000, Eigen::Vector2d(1.0, 1.0), kSure);  // interrupted
   monitor.Update(6000, Eigen::Vector2d(0.9, 0.9), kSure);
