@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -34,8 +35,10 @@ struct ToolRun {
   std::string output;  // stdout and stderr
 };
 
-// Runs argv with stdout+stderr captured; kills it after timeout_s.
-ToolRun RunTool(const std::vector<std::string>& argv, double timeout_s = 60) {
+// Runs argv with stdout+stderr captured; kills it after timeout_s. A daemon
+// is stopped with SIGINT (its clean stop) once its output holds
+// interrupt_when (when not empty).
+ToolRun RunTool(const std::vector<std::string>& argv, double timeout_s = 60, const std::string& interrupt_when = "") {
   const std::string capture = ::testing::TempDir() + "/hostile_files_" + std::to_string(getpid()) + ".out";
   ToolRun run;
   const auto start = std::chrono::steady_clock::now();
@@ -51,8 +54,18 @@ ToolRun RunTool(const std::vector<std::string>& argv, double timeout_s = 60) {
     _exit(127);
   }
   int status = 0;
+  bool interrupted = false;
   while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout_s) {
+    const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!interrupt_when.empty() && !interrupted) {
+      std::ifstream in(capture);
+      const std::string so_far((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (so_far.find(interrupt_when) != std::string::npos) {
+        kill(pid, SIGINT);
+        interrupted = true;
+      }
+    }
+    if (elapsed_s > timeout_s) {
       kill(pid, SIGKILL);
       waitpid(pid, &status, 0);
       break;
@@ -245,6 +258,44 @@ TEST_F(HostileFilesTest, UpdateParamsRefusesPlantedBackupsAndSpecialFiles) {
   ExpectRefused(identify(fifo), "birotor-identify", "--update-params a FIFO");
   EXPECT_EQ(ReadBytes(victim), std::vector<uint8_t>({'o', 'k'}));
   EXPECT_EQ(ReadBytes(params), original);
+}
+
+// Issue 23 item 6 on the daemon itself: a FIFO as state_file hung the
+// start-up (no status), /dev/zero grew it to 1 GB, and the parameter file as
+// state_file was replaced at stop. Each is refused at start (the daemon runs
+// on the parameter file's offsets) and left alone at stop, which says so and
+// exits 1; a hang would be the run's time-out (exit -1, no stop line).
+TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
+  const std::string fifo = Path("gauge.fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string params_copy = Path("state_is_params.yaml");
+  std::string reference;
+  {
+    std::ifstream in(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+    reference.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t at = reference.find("state_file: \"\"");
+  ASSERT_NE(at, std::string::npos);
+  for (const std::string& state : {fifo, std::string("/dev/zero"), params_copy}) {
+    std::string text = reference;
+    text.replace(at, 14, "state_file: \"" + state + "\"");
+    const std::string params = Path("estimator_state.yaml");
+    std::ofstream(params) << text;
+    if (state == params_copy) std::ofstream(params_copy) << text;
+    // Stopped once running (its "lcm memq://: in ..." line follows the state file).
+    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://"}, 30, "lcm memq://");
+    ExpectRefused(run, "birotor-estimator", "state_file " + state);
+    EXPECT_NE(run.output.find("gauge state file refused: " + state), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("stopped:"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("not overwritten"), std::string::npos) << run.output;
+    if (state == params_copy) {
+      std::ifstream in(params_copy);
+      EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), text);
+    }
+  }
+  struct stat info {};
+  ASSERT_EQ(lstat(fifo.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISFIFO(info.st_mode));
 }
 
 }  // namespace
