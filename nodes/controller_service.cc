@@ -79,7 +79,7 @@ void ControllerService::HandlePacket(ControllerInput input, const void* data, si
       pose_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
       const int64_t accepted_before = health().pose.accepted;
-      controller_.OnPose(FromMessage(message));
+      controller_.OnPose(FromMessage(message), std::max(VehicleTimeUs(host_us), message.utime));
       if (health().pose.accepted > accepted_before) NoteInputTime(message.utime, host_us);
       return;
     }
@@ -87,7 +87,7 @@ void ControllerService::HandlePacket(ControllerInput input, const void* data, si
       imu_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
       const int64_t accepted_before = health().imu.accepted;
-      controller_.OnImu(FromMessage(message));
+      controller_.OnImu(FromMessage(message), std::max(VehicleTimeUs(host_us), message.utime));
       if (health().imu.accepted > accepted_before) NoteInputTime(message.utime, host_us);
       return;
     }
@@ -95,7 +95,7 @@ void ControllerService::HandlePacket(ControllerInput input, const void* data, si
       force_estimate_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
       const int64_t accepted_before = health().force.accepted;
-      controller_.OnForce(FromMessage(message));
+      controller_.OnForce(FromMessage(message), std::max(VehicleTimeUs(host_us), message.utime));
       if (health().force.accepted == accepted_before) return;
       NoteInputTime(message.utime, host_us);
       last_force_host_us_ = host_us;

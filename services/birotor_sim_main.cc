@@ -127,7 +127,9 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
 }
 
 // --external-controller: MOTOR_COMMAND from LCM to the simulator's ESCs,
-// each command taken at the step it is handled (a corrupt packet is counted).
+// each command offered at the step it is handled (a corrupt packet is
+// counted; the ESCs' rules are Simulator::OfferMotorCommand's, and a second
+// commander or a refused command is said in a log line, at most once a second).
 class EscCommandInput {
  public:
   EscCommandInput(lcm::LCM* lcm, const std::string& channel, Simulator* sim) : lcm_(lcm), sim_(sim) {
@@ -157,7 +159,22 @@ class EscCommandInput {
       ++self->decode_errors_;
       return;
     }
-    self->sim_->SetMotorCommand(message.omega_cmd_rad_s, self->sim_->utime());
+    const EscVerdict verdict = self->sim_->OfferMotorCommand(message.seq, message.utime, message.omega_cmd_rad_s);
+    if (verdict != EscVerdict::kAccepted) self->NoteRefused(verdict, message);
+  }
+  void NoteRefused(EscVerdict verdict, const motor_command_t& message) {
+    const int64_t now_us = SteadyClockUs();
+    if (last_warning_us_ >= 0 && now_us - last_warning_us_ < 1000000) return;
+    last_warning_us_ = now_us;
+    const EscCounters& n = sim_->esc_counters();
+    const char* why = verdict == EscVerdict::kForeign      ? "from a second commander (another seq stream): ignored"
+                      : verdict == EscVerdict::kOutOfRange ? "with a speed not finite or outside [0, omega_max]"
+                      : verdict == EscVerdict::kFuture     ? "stamped ahead of the ESCs' clock"
+                                                           : "stamped too old or not newer than the last one run";
+    spdlog::warn(
+        "MOTOR_COMMAND seq {} utime {} {} at t = {:.3f} s; refused so far: {} second commander, {} out of range, "
+        "{} future, {} stale",
+        message.seq, message.utime, why, sim_->time_s(), n.foreign, n.out_of_range, n.future, n.stale);
   }
 
   lcm::LCM* lcm_;
@@ -165,6 +182,7 @@ class EscCommandInput {
   lcm::Subscription* subscription_ = nullptr;
   bool timed_out_ = false;  // the start state's speeds count as a command
   int64_t decode_errors_ = 0;
+  int64_t last_warning_us_ = -1;  // host time of the last refusal warning
 };
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
