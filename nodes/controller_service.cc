@@ -1,4 +1,4 @@
-// LCM glue of the flight controller: raw subscriptions, checked decoding,
+// The controller node: checked decoding,
 // the vehicle clock, MOTOR_COMMAND and CONTROLLER_STATUS.
 #include "nodes/controller_service.h"
 
@@ -32,33 +32,21 @@ ControllerService::ControllerService(const ControllerConfig& config, const Chann
   buffer_.reserve(256);
 }
 
-ControllerService::~ControllerService() { Unsubscribe(); }
+ControllerService::~ControllerService() = default;
 
-void ControllerService::Subscribe(lcm::LCM* lcm) {
-  Unsubscribe();
-  lcm_ = lcm;
+std::vector<std::string> ControllerService::InputChannels() const {
+  return {channels_.pose, channels_.imu, channels_.force};
+}
+
+void ControllerService::HandlePacket(std::string_view channel, const void* data, size_t size,
+                                     int64_t /*receive_wall_utime*/) {
   const std::string* names[kNumControllerInputs] = {&channels_.pose, &channels_.imu, &channels_.force};
   for (int i = 0; i < kNumControllerInputs; ++i) {
-    RawSubscription& context = subscriptions_[i];
-    context.service = this;
-    context.input = static_cast<ControllerInput>(i);
-    context.subscription = lcm->subscribeFunction(*names[i], &ControllerService::OnRawMessage, &context);
-    if (context.subscription != nullptr) context.subscription->setQueueCapacity(10000);
+    if (channel == *names[i]) {
+      HandlePacket(static_cast<ControllerInput>(i), data, size, SteadyClockUs());
+      return;
+    }
   }
-}
-
-void ControllerService::Unsubscribe() {
-  if (lcm_ == nullptr) return;
-  for (RawSubscription& context : subscriptions_) {
-    if (context.subscription != nullptr) lcm_->unsubscribe(context.subscription);
-    context.subscription = nullptr;
-  }
-  lcm_ = nullptr;
-}
-
-void ControllerService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/,
-                                     RawSubscription* subscription) {
-  subscription->service->HandlePacket(subscription->input, buffer->data, buffer->data_size, SteadyClockUs());
 }
 
 void ControllerService::NoteInputTime(int64_t utime, int64_t host_us) {

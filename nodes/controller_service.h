@@ -1,5 +1,5 @@
-// The flight-controller daemon's glue between LCM and VehicleController: raw
-// subscriptions to POSE, IMU and FORCE with checked decoding (a corrupt
+// The controller node: a PacketHandler (sources/message_source.h) for POSE,
+// IMU and FORCE over VehicleController, with checked decoding (a corrupt
 // packet is counted, never trusted), the vehicle clock (newest input utime
 // plus the host time since it arrived), control periods triggered by FORCE
 // (so a command follows its strain sample at once) or by the period timer
@@ -9,14 +9,15 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <lcm/lcm-cpp.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "birotor/controller_status_t.hpp"
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
 #include "sinks/message_sink.h"
+#include "sources/message_source.h"
 #include "transport/channels.h"
 
 namespace birotor {
@@ -24,7 +25,7 @@ namespace birotor {
 enum class ControllerInput : int { kPose = 0, kImu = 1, kForce = 2 };
 constexpr int kNumControllerInputs = 3;
 
-class ControllerService {
+class ControllerService : public PacketHandler {
  public:
   // sink must outlive the service.
   ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink);
@@ -32,8 +33,13 @@ class ControllerService {
   ControllerService(const ControllerService&) = delete;
   ControllerService& operator=(const ControllerService&) = delete;
 
-  void Subscribe(lcm::LCM* lcm);
-  void Unsubscribe();
+  // The full names of the input channels (POSE, IMU, FORCE), to subscribe a
+  // source to.
+  std::vector<std::string> InputChannels() const;
+  // PacketHandler: a packet of an input channel goes to HandlePacket below,
+  // stamped with the host's steady clock when it is handled; any other
+  // channel is ignored.
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
 
   // One encoded packet of an input, arrived at host_us (steady clock [us]).
   // A FORCE stamped at least a period minus half a FORCE interval after the
@@ -59,20 +65,12 @@ class ControllerService {
   int64_t decode_errors(ControllerInput input) const { return decode_errors_[static_cast<int>(input)]; }
 
  private:
-  struct RawSubscription {
-    ControllerService* service = nullptr;
-    ControllerInput input = ControllerInput::kPose;
-    lcm::Subscription* subscription = nullptr;
-  };
-  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
   void RunControlPeriod(int64_t vehicle_us, int64_t trigger_host_us);
   void NoteInputTime(int64_t utime, int64_t host_us);
 
   VehicleController controller_;
   ChannelNames channels_;
   MessageSink* sink_;
-  lcm::LCM* lcm_ = nullptr;
-  std::array<RawSubscription, kNumControllerInputs> subscriptions_;
   int64_t period_us_;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
 
