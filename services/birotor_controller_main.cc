@@ -1,8 +1,8 @@
-// birotor-controller: the flight-controller daemon. Subscribes to POSE, IMU
-// and FORCE, holds the position of the first POSE, publishes MOTOR_COMMAND at
-// the controller's rate (500 Hz; each period triggered by FORCE, or by the
-// timer when FORCE stops) and CONTROLLER_STATUS at --status-rate-hz (host
-// clock); stops on SIGINT/SIGTERM.
+// birotor-controller: the flight-controller daemon. Subscribes to POSE, IMU,
+// FORCE and SETPOINT, flies the setpoint (before one: holds the first POSE;
+// after setpoint.timeout_s without one: hovers where it is), publishes
+// MOTOR_COMMAND at the controller's rate on its own timer (500 Hz) and
+// CONTROLLER_STATUS at --status-rate-hz (host clock); stops on SIGINT/SIGTERM.
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -23,7 +23,9 @@
 
 int main(int argc, char** argv) {
   using namespace birotor;
-  CLI::App app{"birotor-controller: flight controller on POSE, IMU and the estimated rotor forces (FORCE) over LCM"};
+  CLI::App app{
+      "birotor-controller: flight controller on POSE, IMU and the estimated rotor forces (FORCE) over LCM, "
+      "flying SETPOINT"};
   CommonOptions common;
   AddCommonOptions(app, &common);
   std::string params_file = FindConfigFile("controller.yaml");
@@ -59,10 +61,10 @@ int main(int argc, char** argv) {
   if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
   spdlog::info("birotor-controller {} mode {} params {} (checksum {})", BIROTOR_VERSION,
                config.force_feedback ? "force_feedback" : "nominal", params_file, FileChecksum(params_file));
-  spdlog::info("lcm {}: in {} {} {} ({}), out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
-               source->Describe(), channels.motor_command, channels.controller_status);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
+               channels.setpoint, source->Describe(), channels.motor_command, channels.controller_status);
 
-  // Control periods by the timer when FORCE stops, CONTROLLER_STATUS on the host clock.
+  // Control periods on the controller's own timer, CONTROLLER_STATUS on the host clock.
   const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
   int64_t next_status_us = SteadyClockUs() + status_period_us;
   const bool source_ok = RunReceiveLoop(source.get(), [&](int64_t now_us) {
