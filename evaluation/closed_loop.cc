@@ -83,6 +83,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
       std::max<int64_t>(1, std::llround(1.0 / (controller_config.gains.rate_hz * scenario.step_s)));
   int64_t step = 0;
   while (!simulator.done()) {
+    if (options.before_step) options.before_step(&simulator, &controller);
     if (step % control_every == 0) {
       const int64_t now_us = simulator.utime();
       const MotorCommand command = controller.Update(now_us);

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "controller/controller_params.h"
@@ -24,6 +25,8 @@
 
 namespace birotor {
 
+class Simulator;
+
 struct ClosedLoopOptions {
   // The ESCs command 0 after this long without a MOTOR_COMMAND [s].
   double command_timeout_s = 0.1;
@@ -31,6 +34,9 @@ struct ClosedLoopOptions {
   std::string prefix = "BIROTOR_";
   // The trajectory is sent as SETPOINT at this rate [Hz].
   double setpoint_rate_hz = 100.0;
+  // Called before every simulator step (tests: an attacker's messages to
+  // the controller or the ESCs at the simulator's current time).
+  std::function<void(Simulator* simulator, VehicleController* controller)> before_step;
 };
 
 // One truth sample with the reference the controller was tracking then.

@@ -58,7 +58,7 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
       if (error > options.return_tolerance_m) last_outside_utime = s.truth.utime;
       if (std::isnan(m.touchdown_speed_m_s)) {
         tilt_since_event = std::max(tilt_since_event, tilt);
-        if (run.has_ground && previous != nullptr && previous->truth.z_m > ground_z_m + 1e-9 &&
+        if (run.has_ground && run.fault_utime >= 0 && previous != nullptr && previous->truth.z_m > ground_z_m + 1e-9 &&
             s.truth.z_m <= ground_z_m + 1e-9) {
           m.touchdown_speed_m_s = std::max(-previous->truth.z_dot_m_s, 0.0);
           m.tilt_before_touchdown_rad = tilt_since_event;
