@@ -84,6 +84,8 @@ struct EfficiencyParams {
   double fault_tau_s = 0.01;             // first order towards mu / mu0 while flagged [s]
   double max_rate_1_s = 50.0;            // rate limit of the efficiency [1/s]
   double max_relative_sigma = 1.0;       // a sample with force_std / force above this is not followed [1]
+  double blend_after_s = 0.2;            // a fallback at least this long is blended out of [s]
+  double blend_s = 1.5;                  // back from a fallback: blended in (time constant blend_s / 3) [s]
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
   double feasibility_margin = 1.02;      // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
   double infeasible_s = 0.1;             // infeasible this long: level controlled descent [s]

@@ -39,10 +39,19 @@ void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
 
 void EfficiencyConditioner::Advance(double dt_s, bool usable) {
   const bool follow = usable && airborne_ && has_baseline_;
+  // Back from a fallback longer than blend_after_s: the integrators have
+  // absorbed what FORCE could not tell, so the estimate is blended in over
+  // blend_s instead of at once (a short dropout returns at once).
+  if (follow && !was_following_ && unusable_s_ >= params_.blend_after_s) blend_left_s_ = params_.blend_s;
+  unusable_s_ = follow ? 0.0 : unusable_s_ + dt_s;
+  was_following_ = follow;
+  const double flagged_tau_s =
+      blend_left_s_ > 0.0 ? std::max(params_.fault_tau_s, params_.blend_s / 3.0) : params_.fault_tau_s;
+  blend_left_s_ = std::max(0.0, blend_left_s_ - dt_s);
   for (int i = 0; i < 2; ++i) {
     const bool flagged = follow && flagged_[i];
     const double goal = flagged ? target_[i] : 1.0;
-    const double tau_s = flagged ? params_.fault_tau_s : params_.decay_s;
+    const double tau_s = flagged ? flagged_tau_s : params_.decay_s;
     const double step = (goal - efficiency_[i]) * std::min(1.0, dt_s / tau_s);
     const double max_step = params_.max_rate_1_s * dt_s;
     efficiency_[i] += std::clamp(step, -max_step, max_step);

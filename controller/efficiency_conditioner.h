@@ -15,8 +15,9 @@
 //  - first-order towards the target with fault_tau_s, rate limited: a
 //    ringing estimate cannot drive the rotors;
 //  - when FORCE is unusable or the flag clears, the efficiency decays towards
-//    1 over decay_s (no jump to the nominal map), and comes back with the
-//    same filter (no jump back): the handover is bumpless both ways.
+//    1 over decay_s (no jump to the nominal map); back from a fallback longer
+//    than blend_after_s it is blended in with a time constant of blend_s / 3
+//    for blend_s (no jump back): the handover is bumpless both ways.
 // No allocation, no throw.
 #pragma once
 
@@ -53,7 +54,10 @@ class EfficiencyConditioner {
   int64_t above_since_us_ = -1;
   int64_t last_utime_ = -1;
   bool has_baseline_ = false;
-  double settled_s_ = 0.0;  // airborne FORCE time seen [s]
+  bool was_following_ = false;
+  double blend_left_s_ = 0.0;  // time left of the blend after a fallback [s]
+  double unusable_s_ = 0.0;    // length of the current fallback [s]
+  double settled_s_ = 0.0;     // airborne FORCE time seen [s]
   double baseline_[2] = {1.0, 1.0};
 };
 

@@ -38,6 +38,8 @@ void ReadEfficiencyParams(YamlSection s, EfficiencyParams* o) {
   s.Double("fault_tau_s", 1e-3, 100.0, &o->fault_tau_s);
   s.Double("max_rate_1_s", 1e-3, 1e3, &o->max_rate_1_s);
   s.Double("max_relative_sigma", 1e-4, 10.0, &o->max_relative_sigma);
+  s.Double("blend_after_s", 0.0, 100.0, &o->blend_after_s);
+  s.Double("blend_s", 0.0, 100.0, &o->blend_s);
   s.Double("decay_s", 1e-3, 1e3, &o->decay_s);
   s.Double("feasibility_margin", 0.5, 2.0, &o->feasibility_margin);
   s.Double("infeasible_s", 0.0, 10.0, &o->infeasible_s);

@@ -155,6 +155,24 @@ TEST(VehicleControllerTest, BadForceFallsBackWithinOnePeriodAndReturnsWithoutAJu
   EXPECT_EQ(feed.controller().health().force.rejected_invalid, 6);  // NaN, 99, 0.01: refused, not clamped
 }
 
+TEST(VehicleControllerTest, LongFallbackIsBlendedOutOf) {
+  HoverFeed feed{ControllerConfig()};
+  feed.Settle();
+  feed.scale2 = 0.75;
+  feed.Run(1000);  // e_2 = 0.75
+  feed.send_force = false;
+  feed.Run(250);  // 0.5 s without FORCE: e_2 -> 0.75 + 0.25 (1 - exp(-0.5 / decay_s 3)) = 0.788
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 0.788, 2e-3);
+  feed.send_force = true;
+  feed.Run(26 + 50);  // back after force_recovery_s, then 0.1 s blended with blend_s / 3 = 0.5 s
+  // The decay goes on through the 50 ms recovery (0.790), then
+  // 0.790 - 0.040 (1 - exp(-0.1 / 0.5)) = 0.783; measured 0.7839 (without
+  // the blend: 0.75 within 0.01 s).
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 0.7839, 2e-3);
+  feed.Run(1000);
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 0.75, 1e-3);
+}
+
 TEST(VehicleControllerTest, StaleForceFallsBackWithinTimeoutPlusOnePeriod) {
   const ControllerConfig config;
   HoverFeed feed(config);

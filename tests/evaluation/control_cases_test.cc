@@ -36,10 +36,10 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"stiffness_-20", {0.0034, 0.0135, 0.0072, true}},
       {"mass_-15", {0.0559, 0.0125, 0.1141, true}},
       {"motor_tau_+70", {0.0035, 0.0345, 0.0054, true}},
-      {"gauge_scale_0.7", {0.0857, 0.0134, 0.0252, false}},  // NOT met: RMS 25x nominal
-      {"untared_loss", {0.0734, 0.0313, 0.1313, true}},      // met by the rule, but climbs 0.13 m
+      {"gauge_scale_0.7", {0.1062, 0.0186, 0.0519, false}},  // NOT met: RMS 31x nominal
+      {"untared_loss", {0.0736, 0.0314, 0.1322, true}},      // met by the rule, but climbs 0.13 m
       {"ground_start", {0.0025, 0.0113, 0.0035, true}},
-      {"severe_gap", {0.0585, 0.1489, 0.2177, false}},  // NOT met: tilt 1.38x nominal
+      {"severe_gap", {0.0880, 0.1082, 0.2659, true}},
       {"imu_noise", {0.0078, 0.0242, 0.0092, true}},
       {"loss_70", {0.3023, 0.2003, 0.4000, true}},
   };
