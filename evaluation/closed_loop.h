@@ -1,7 +1,9 @@
 // The lock-step closed loop: simulator (as the vehicle and its ESCs), the
 // estimator pipeline (the daemon's code) and the flight controller in one
 // process on one virtual clock. Every step the simulator's samples go to the
-// estimator and the controller (and, encoded, to an optional log); at the
+// estimator and the controller (and, encoded, to an optional log); the
+// scenario's trajectory reaches the controller as SETPOINT messages (as
+// birotor-sim --publish-setpoints sends them to birotor-controller); at the
 // controller's rate its MOTOR_COMMAND goes to the simulator's ESCs. The same
 // scenario and seed give the same bytes. birotor-sim --controller and
 // birotor-eval --control use it.
@@ -9,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "controller/controller_params.h"
@@ -22,11 +25,18 @@
 
 namespace birotor {
 
+class Simulator;
+
 struct ClosedLoopOptions {
   // The ESCs command 0 after this long without a MOTOR_COMMAND [s].
   double command_timeout_s = 0.1;
   // Channel prefix of the log.
   std::string prefix = "BIROTOR_";
+  // The trajectory is sent as SETPOINT at this rate [Hz].
+  double setpoint_rate_hz = 100.0;
+  // Called before every simulator step (tests: an attacker's messages to
+  // the controller or the ESCs at the simulator's current time).
+  std::function<void(Simulator* simulator, VehicleController* controller)> before_step;
 };
 
 // One truth sample with the reference the controller was tracking then.
@@ -41,14 +51,17 @@ struct ClosedLoopRun {
   ControllerHealth controller;
   PipelineHealth estimator;
   int64_t fault_utime = -1;      // first thrust step [us]; -1 if none
+  int64_t liftoff_utime = -1;    // first lift-off of a ground start [us]; -1 if none
+  bool has_ground = false;       // the scenario has a ground phase (a support at ground_z_m)
+  double ground_z_m = 0;         // height of the support [m]
   int64_t command_timeouts = 0;  // ESC command timeouts
   double simulated_s = 0;        // [s]
   double wall_s = 0;             // [s]
 };
 
 // Flies the scenario closed loop. log (may be null) receives every channel:
-// the simulator's (STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE and
-// MOTOR_COMMAND. The scenario's own controller: section is not used (the
+// the simulator's (SETPOINT, STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE
+// and MOTOR_COMMAND. The scenario's own controller: section is not used (the
 // gains are controller's).
 ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& estimator,
                             const ControllerConfig& controller, const ClosedLoopOptions& options,

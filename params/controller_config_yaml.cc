@@ -24,9 +24,53 @@ const OptionTable<SupervisionParams>& SupervisionKeys() {
       Real("imu_timeout_s", &O::imu_timeout_s, 1e-4, 10.0),
       Real("force_timeout_s", &O::force_timeout_s, 1e-4, 10.0),
       Real("force_recovery_s", &O::force_recovery_s, 0.0, 10.0),
-      Real("min_thrust_scale", &O::min_thrust_scale, 0.05, 1.0),
-      Real("max_thrust_scale", &O::max_thrust_scale, 1.0, 10.0),
       Real("descent_rate_m_s", &O::descent_rate_m_s, 0.0, 5.0),
+      Real("clock_future_window_s", &O::clock_future_window_s, 0.0, 10.0),
+      Real("clock_past_window_s", &O::clock_past_window_s, 1e-3, 100.0),
+      Integer("stream_max_seq_step", &O::stream_max_seq_step, 1, 1000000),
+      Real("stream_silence_s", &O::stream_silence_s, 1e-3, 100.0),
+      Real("conflict_hold_s", &O::conflict_hold_s, 0.0, 100.0),
+      Real("min_plausible_thrust_scale", &O::min_plausible_thrust_scale, 0.01, 1.0),
+      Real("max_plausible_thrust_scale", &O::max_plausible_thrust_scale, 1.0, 10.0),
+      Real("pose_gate_position_m", &O::pose_gate_position_m, 1e-3, 1e4),
+      Real("pose_gate_angle_rad", &O::pose_gate_angle_rad, 1e-3, 10.0),
+      Real("pose_gate_reset_s", &O::pose_gate_reset_s, 0.0, 100.0),
+  };
+  return keys;
+}
+
+// controller.efficiency (defaults: controller/controller_params.h).
+const OptionTable<EfficiencyParams>& EfficiencyKeys() {
+  using O = EfficiencyParams;
+  static const OptionTable<O> keys = {
+      Real("airborne_force_fraction", &O::airborne_force_fraction, 0.0, 2.0),
+      Real("airborne_s", &O::airborne_s, 0.0, 100.0),
+      Real("baseline_tau_s", &O::baseline_tau_s, 1e-3, 1e3),
+      Real("change_threshold", &O::change_threshold, 0.0, 10.0),
+      Real("fault_tau_s", &O::fault_tau_s, 1e-3, 100.0),
+      Real("max_rate_1_s", &O::max_rate_1_s, 1e-3, 1e3),
+      Real("max_relative_sigma", &O::max_relative_sigma, 1e-4, 10.0),
+      Real("blend_after_s", &O::blend_after_s, 0.0, 100.0),
+      Real("blend_s", &O::blend_s, 0.0, 100.0),
+      Real("decay_s", &O::decay_s, 1e-3, 1e3),
+      Real("feasibility_margin", &O::feasibility_margin, 0.5, 2.0),
+      Real("infeasible_s", &O::infeasible_s, 0.0, 10.0),
+  };
+  return keys;
+}
+
+// controller.setpoint (defaults: controller/controller_params.h).
+const OptionTable<SetpointParams>& SetpointKeys() {
+  using O = SetpointParams;
+  static const OptionTable<O> keys = {
+      Real("timeout_s", &O::timeout_s, 0.01, 60.0),
+      Real("max_extrapolation_s", &O::max_extrapolation_s, 0.0, 1.0),
+      Real("future_window_s", &O::future_window_s, 0.0, 10.0),
+      Real("min_interval_s", &O::min_interval_s, 0.0, 1.0),
+      Real("max_abs_position_m", &O::max_abs_position_m, 0.1, 1e4),
+      Real("max_speed_m_s", &O::max_speed_m_s, 0.0, 100.0),
+      Real("max_accel_m_s2", &O::max_accel_m_s2, 0.0, 100.0),
+      Real("max_jump_m", &O::max_jump_m, 0.0, 100.0),
   };
   return keys;
 }
@@ -63,6 +107,8 @@ ControllerConfig ReadRoot(YamlSection root) {
   }
   ReadOptionSection(c.Section("observer"), ObserverKeys(), &config.observer);
   ReadOptionSection(c.Section("supervision"), SupervisionKeys(), &config.supervision);
+  ReadOptionSection(c.Section("efficiency"), EfficiencyKeys(), &config.efficiency);
+  ReadOptionSection(c.Section("setpoint"), SetpointKeys(), &config.setpoint);
   c.Finish();
   root.Finish();
   return config;

@@ -170,12 +170,52 @@ RotorCommand Simulator::Command(double t_s) {
 void Simulator::UseExternalCommands(double command_timeout_s) {
   external_commands_ = true;
   command_timeout_us_ = Microseconds(command_timeout_s);
+  SeqStreamLockParams lock;
+  lock.silence_s = command_timeout_s;
+  commander_ = SeqStreamLock(lock);
 }
 
-void Simulator::SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime) {
-  for (int i = 0; i < 2; ++i)
-    external_command_.omega_cmd_rad_s[i] = std::isfinite(omega_cmd_rad_s[i]) ? omega_cmd_rad_s[i] : 0.0;
-  last_external_utime_ = utime;
+EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[2]) {
+  EscCounters& n = esc_counters_;
+  ++n.received;
+  const int64_t now_us = this->utime();
+  if (utime > now_us + Microseconds(kEscFutureWindowS)) {
+    ++n.future;
+    return EscVerdict::kFuture;
+  }
+  if (utime < now_us - command_timeout_us_ || (newest_command_utime_ >= 0 && utime <= newest_command_utime_)) {
+    ++n.stale;
+    return EscVerdict::kStale;
+  }
+  for (double omega : omega_cmd_rad_s) {
+    if (!(omega >= 0.0 && omega <= scenario_.vehicle.omega_max_rad_s)) {
+      ++n.out_of_range;
+      return EscVerdict::kOutOfRange;
+    }
+  }
+  const SeqStreamLock::Verdict verdict = commander_.Admit(seq, now_us);
+  if (verdict == SeqStreamLock::Verdict::kForeign) {
+    ++n.foreign;
+    return EscVerdict::kForeign;
+  }
+  if (verdict == SeqStreamLock::Verdict::kDuplicate) {
+    ++n.stale;
+    return EscVerdict::kStale;
+  }
+  ++n.accepted;
+  for (int i = 0; i < 2; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];
+  newest_command_utime_ = utime;
+  last_external_utime_ = now_us;
+  return EscVerdict::kAccepted;
+}
+
+void Simulator::EmitSetpoints(double rate_hz) {
+  setpoint_.enabled = true;
+  setpoint_.every_steps = std::max<int64_t>(1, std::llround(1.0 / (rate_hz * scenario_.step_s)));
+}
+
+void Simulator::EmitSetpoint(int64_t utime, double t_s, SampleSink* sink) {
+  sink->OnSetpoint(SetpointFromReference(ReferenceAt(t_s), utime, setpoint_seq_++));
 }
 
 void Simulator::UpdateGroundContact(int64_t now_us) {
@@ -234,6 +274,7 @@ bool Simulator::Step(SampleSink* sink) {
   const PlantState k1 = Derivative(state_);
 
   if (sink != nullptr) {
+    if (setpoint_.Due(k)) EmitSetpoint(now_us, t_s, sink);
     if (strain_.Due(k)) EmitStrain(now_us, sink);
     if (motor_.Due(k)) EmitMotor(now_us, sink);
     if (imu_.Due(k)) EmitImu(now_us, k1, sink);
