@@ -13,7 +13,7 @@
 #include "evaluation/closed_loop.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 
 namespace birotor {

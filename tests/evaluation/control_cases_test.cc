@@ -14,7 +14,7 @@
 #include "evaluation/control_metrics.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 
 namespace birotor {
 namespace {

@@ -1,4 +1,4 @@
-// Tests of simulator/scenario_yaml.h: every reference scenario loads, bad
+// Tests of params/scenario_yaml.h: every reference scenario loads, bad
 // files are refused with the file and the key named, overrides apply.
 #include "params/scenario_yaml.h"
 

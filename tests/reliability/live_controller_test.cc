@@ -20,7 +20,7 @@
 #include "evaluation/control_metrics.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "tests/reliability/live_harness.h"
 #include "transport/message_conversion.h"
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/wire_sample_sink.h"
 #include "tests/simulator/test_support.h"
