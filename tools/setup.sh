@@ -11,6 +11,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox clang libclang-rt-14-dev procps
+  libalglib-dev
 )
 
 missing=()
