@@ -49,6 +49,18 @@ struct SupervisionParams {
   double descent_rate_m_s = 0.3;   // sink rate of the controlled descent [m/s]
 };
 
+// What the controller accepts on SETPOINT (controller/setpoint_input.h).
+struct SetpointParams {
+  double timeout_s = 0.5;             // newest setpoint held this long, then hover where the vehicle is [s]
+  double max_extrapolation_s = 0.05;  // a held setpoint moves on with its feed-forward this long [s]
+  double future_window_s = 0.1;       // stamps later than the controller's clock plus this are refused [s]
+  double min_interval_s = 0.002;      // rate limit: stamps closer than this to the newest are refused [s]
+  double max_abs_position_m = 100.0;  // |x|, |z| accepted [m]
+  double max_speed_m_s = 5.0;         // |velocity feed-forward| accepted, per axis [m/s]
+  double max_accel_m_s2 = 10.0;       // |acceleration feed-forward| accepted, per axis [m/s^2]
+  double max_jump_m = 0.5;            // distance from the reference flown now accepted [m]
+};
+
 // Everything birotor-controller (and the lock-step closed loop) needs.
 struct ControllerConfig {
   VehicleParams vehicle;       // the controller's model of the vehicle
@@ -60,6 +72,7 @@ struct ControllerConfig {
   ControllerParams gains;
   ObserverParams observer;
   SupervisionParams supervision;
+  SetpointParams setpoint;
 };
 
 }  // namespace birotor

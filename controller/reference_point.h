@@ -3,6 +3,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+
+#include "controller/setpoint.h"
 
 namespace birotor {
 
@@ -12,5 +15,13 @@ struct ReferencePoint {
   Eigen::Vector2d velocity_m_s = Eigen::Vector2d::Zero();
   Eigen::Vector2d acceleration_m_s2 = Eigen::Vector2d::Zero();
 };
+
+// The setpoint of a reference at utime (every feed-forward given).
+Setpoint SetpointFromReference(const ReferencePoint& reference, int64_t utime, int32_t seq);
+
+// The reference of a setpoint extrapolated by dt_s [s] (0: as it is):
+//   p = p0 + v dt + a dt^2 / 2,  v = v0 + a dt,  a = a0
+// with a feed-forward that is not given (NaN) taken as 0 (controller/setpoint.cc).
+ReferencePoint ReferenceFromSetpoint(const Setpoint& setpoint, double dt_s = 0.0);
 
 }  // namespace birotor

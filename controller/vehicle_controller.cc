@@ -44,7 +44,10 @@ double HoverForce(const VehicleParams& vehicle) {
 }  // namespace
 
 VehicleController::VehicleController(const ControllerConfig& config)
-    : config_(config), law_(config.vehicle, config.gains, HoverForce(config.vehicle)), observer_(config.observer) {
+    : config_(config),
+      law_(config.vehicle, config.gains, HoverForce(config.vehicle)),
+      observer_(config.observer),
+      setpoint_(config.setpoint) {
   // Force feedback starts in the fallback until FORCE has been healthy for
   // force_recovery_s; that start is not counted as a fallback.
   health_.fallback_active = config.force_feedback;
@@ -56,8 +59,9 @@ void VehicleController::OnPose(const PoseSample& sample) {
   if (!Admit(&health_.pose, sample.utime, valid)) return;
   if (!has_pose_) {
     has_pose_ = true;
-    first_pose_m_ = Eigen::Vector2d(sample.x_m, sample.z_m);
-    observer_.Initialize(first_pose_m_, sample.phi_rad);
+    const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
+    observer_.Initialize(position_m, sample.phi_rad);
+    setpoint_.SetStart(position_m);
     last_fused_pose_utime_ = sample.utime;
     return;
   }
@@ -102,13 +106,7 @@ bool VehicleController::ForceHealthy(int64_t now_us) const {
          force_healthy_since_us_ >= 0 && AgeS(force_healthy_since_us_, now_us) >= s.force_recovery_s;
 }
 
-ReferencePoint VehicleController::HoldReference() const {
-  ReferencePoint reference;
-  reference.position_m = first_pose_m_;
-  return reference;
-}
-
-MotorCommand VehicleController::Update(int64_t now_us, const ReferencePoint& reference) {
+MotorCommand VehicleController::Update(int64_t now_us) {
   const SupervisionParams& s = config_.supervision;
   const VehicleParams& vehicle = config_.vehicle;
   MotorCommand command;
@@ -160,7 +158,8 @@ MotorCommand VehicleController::Update(int64_t now_us, const ReferencePoint& ref
   // POSE lost: a level descent at a fixed sink rate on the propagated state
   // (the position error is held at zero, so the integrators stay put).
   const bool pose_lost = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
-  ReferencePoint target = reference;
+  reference_ = setpoint_.At(now_us, observer_.state().position_m);
+  ReferencePoint target = reference_;
   if (pose_lost) {
     target.position_m = observer_.state().position_m;
     target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);

@@ -15,6 +15,8 @@
 #include "controller/motor_command.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
+#include "controller/setpoint.h"
+#include "controller/setpoint_input.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -48,14 +50,18 @@ class VehicleController {
   void OnPose(const PoseSample& sample);
   void OnImu(const ImuSample& sample);
   void OnForce(const ForceEstimate& estimate);
+  // A setpoint arrived when the controller's clock read now_us [us]
+  // (SetpointInput: checked, counted, followed, held, then hover here).
+  void OnSetpoint(const Setpoint& setpoint, int64_t now_us) { setpoint_.Offer(setpoint, now_us); }
 
-  // One control period at vehicle time now_us [us], tracking reference.
-  // The command is finite and within [0, omega_max] whatever the inputs.
-  MotorCommand Update(int64_t now_us, const ReferencePoint& reference);
+  // One control period at vehicle time now_us [us], tracking the setpoint
+  // (before any: the first POSE). The command is finite and within
+  // [0, omega_max] whatever the inputs.
+  MotorCommand Update(int64_t now_us);
 
-  // Hold reference at the first accepted POSE (the daemon's setpoint); zero
-  // before any POSE.
-  ReferencePoint HoldReference() const;
+  // The reference flown in the newest control period.
+  const ReferencePoint& reference() const { return reference_; }
+  const SetpointInput& setpoint() const { return setpoint_; }
   bool has_pose() const { return has_pose_; }
   const BodyState& state() const { return observer_.state(); }
   const ControllerHealth& health() const { return health_; }
@@ -71,13 +77,14 @@ class VehicleController {
   PositionAttitudeLaw law_;
   BodyStateObserver observer_;
   ControllerHealth health_;
+  SetpointInput setpoint_;
+  ReferencePoint reference_;
 
   // POSE: the newest accepted sample not yet fused.
   bool has_pose_ = false;
   bool pose_pending_ = false;
   PoseSample pending_pose_;
   int64_t last_fused_pose_utime_ = -1;
-  Eigen::Vector2d first_pose_m_ = Eigen::Vector2d::Zero();
 
   // IMU: sums over the samples since the last control period.
   int imu_count_ = 0;

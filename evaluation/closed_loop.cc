@@ -40,6 +40,10 @@ class LockStepSink : public SampleSink {
     estimator_->OnPose(sample);
     controller_->OnPose(sample);
   }
+  void OnSetpoint(const Setpoint& setpoint) override {
+    if (wire_ != nullptr) wire_->OnSetpoint(setpoint);
+    controller_->OnSetpoint(setpoint, simulator_->utime());
+  }
   void OnLoadCell(const LoadCellSample& sample) override {
     if (wire_ != nullptr) wire_->OnLoadCell(sample);
   }
@@ -65,6 +69,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   ClosedLoopRun run;
   Simulator simulator(scenario);
   simulator.UseExternalCommands(options.command_timeout_s);
+  simulator.EmitSetpoints(options.setpoint_rate_hz);
   EstimatorPipeline estimator(estimator_config);
   VehicleController controller(controller_config);
   const ChannelNames channels = MakeChannelNames(options.prefix);
@@ -80,7 +85,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   while (!simulator.done()) {
     if (step % control_every == 0) {
       const int64_t now_us = simulator.utime();
-      const MotorCommand command = controller.Update(now_us, simulator.ReferenceAt(simulator.time_s()));
+      const MotorCommand command = controller.Update(now_us);
       simulator.SetMotorCommand(command.omega_cmd_rad_s, now_us);
       if (log != nullptr) wire.OnMotorCommand(command);
       run.commands.push_back(command);

@@ -1,7 +1,9 @@
 // The lock-step closed loop: simulator (as the vehicle and its ESCs), the
 // estimator pipeline (the daemon's code) and the flight controller in one
 // process on one virtual clock. Every step the simulator's samples go to the
-// estimator and the controller (and, encoded, to an optional log); at the
+// estimator and the controller (and, encoded, to an optional log); the
+// scenario's trajectory reaches the controller as SETPOINT messages (as
+// birotor-sim --publish-setpoints sends them to birotor-controller); at the
 // controller's rate its MOTOR_COMMAND goes to the simulator's ESCs. The same
 // scenario and seed give the same bytes. birotor-sim --controller and
 // birotor-eval --control use it.
@@ -27,6 +29,8 @@ struct ClosedLoopOptions {
   double command_timeout_s = 0.1;
   // Channel prefix of the log.
   std::string prefix = "BIROTOR_";
+  // The trajectory is sent as SETPOINT at this rate [Hz].
+  double setpoint_rate_hz = 100.0;
 };
 
 // One truth sample with the reference the controller was tracking then.
@@ -47,8 +51,8 @@ struct ClosedLoopRun {
 };
 
 // Flies the scenario closed loop. log (may be null) receives every channel:
-// the simulator's (STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE and
-// MOTOR_COMMAND. The scenario's own controller: section is not used (the
+// the simulator's (SETPOINT, STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE
+// and MOTOR_COMMAND. The scenario's own controller: section is not used (the
 // gains are controller's).
 ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& estimator,
                             const ControllerConfig& controller, const ClosedLoopOptions& options,

@@ -125,7 +125,7 @@ void ControllerService::RunIfDue(int64_t host_us) {
 void ControllerService::RunControlPeriod(int64_t vehicle_us, int64_t trigger_host_us) {
   // The vehicle clock never runs backwards between commands.
   vehicle_us = std::max(vehicle_us, last_period_vehicle_us_);
-  last_command_ = controller_.Update(vehicle_us, controller_.HoldReference());
+  last_command_ = controller_.Update(vehicle_us);
   EncodeMessage(ToMessage(last_command_), &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.motor_command, last_command_.utime, buffer_.data(), buffer_.size());
   const int64_t done_us = SteadyClockUs();

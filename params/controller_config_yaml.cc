@@ -54,6 +54,18 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Finish();
 }
 
+void ReadSetpointParams(YamlSection s, SetpointParams* o) {
+  s.Double("timeout_s", 0.01, 60.0, &o->timeout_s);
+  s.Double("max_extrapolation_s", 0.0, 1.0, &o->max_extrapolation_s);
+  s.Double("future_window_s", 0.0, 10.0, &o->future_window_s);
+  s.Double("min_interval_s", 0.0, 1.0, &o->min_interval_s);
+  s.Double("max_abs_position_m", 0.1, 1e4, &o->max_abs_position_m);
+  s.Double("max_speed_m_s", 0.0, 100.0, &o->max_speed_m_s);
+  s.Double("max_accel_m_s2", 0.0, 100.0, &o->max_accel_m_s2);
+  s.Double("max_jump_m", 0.0, 100.0, &o->max_jump_m);
+  s.Finish();
+}
+
 ControllerConfig ReadRoot(YamlSection root) {
   ControllerConfig config;
   ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
@@ -70,6 +82,7 @@ ControllerConfig ReadRoot(YamlSection root) {
   }
   ReadObserverParams(c.Section("observer"), &config.observer);
   ReadSupervisionParams(c.Section("supervision"), &config.supervision);
+  ReadSetpointParams(c.Section("setpoint"), &config.setpoint);
   c.Finish();
   ReadMpcParams(root.Section("mpc"), &config.mpc);
   root.Finish();

@@ -5,7 +5,8 @@
 // time continuing. --controller flies the lock-step closed loop (simulator,
 // estimator and controller in one process) into the log. SIGINT/SIGTERM stop
 // it with the log closed. --external-controller (live) makes the simulator
-// the vehicle's ESCs: it runs MOTOR_COMMAND from LCM instead of its autopilot.
+// the vehicle's ESCs: it runs MOTOR_COMMAND from LCM instead of its autopilot;
+// --publish-setpoints sends the scenario's trajectory on SETPOINT for it.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -54,6 +55,8 @@ struct SimOptions {
   std::string estimator_params;      // default: the installed config/estimator.yaml
   double command_timeout_s = 0.1;    // ESCs command 0 after this long without MOTOR_COMMAND [s]
   bool external_controller = false;  // live: the ESCs run MOTOR_COMMAND from LCM
+  bool publish_setpoints = false;    // the trajectory on SETPOINT (an external controller flies it)
+  double setpoint_rate_hz = 100.0;   // SETPOINT rate [Hz]
 };
 
 // Offline lock-step closed loop: every channel, FORCE and MOTOR_COMMAND
@@ -79,6 +82,7 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
   ClosedLoopOptions loop;
   loop.command_timeout_s = options.command_timeout_s;
   loop.prefix = channels.prefix;
+  loop.setpoint_rate_hz = options.setpoint_rate_hz;
   const ClosedLoopRun run = RunClosedLoop(scenario, estimator, controller, loop, &log_sink);
   if (log_sink.failed() || !writer.Close()) {
     writer.Abandon();  // no partial log is left behind
@@ -219,6 +223,11 @@ int Main(int argc, char** argv) {
                  "Estimator parameter file for --controller; default: the " + ConfigSearchText("estimator.yaml"));
   app.add_flag("--external-controller", options.external_controller,
                "Live: the ESCs run MOTOR_COMMAND from LCM (birotor-controller) instead of the built-in autopilot");
+  app.add_flag("--publish-setpoints", options.publish_setpoints,
+               "Publish the scenario's trajectory on SETPOINT (birotor-controller flies it; the lock-step "
+               "--controller loop always sends it into the log)");
+  app.add_option("--setpoint-rate-hz", options.setpoint_rate_hz, "SETPOINT rate with --publish-setpoints [Hz]")
+      ->check(CLI::Range(1.0, 1000.0));
   app.add_option("--command-timeout-s", options.command_timeout_s,
                  "With a controller: the ESCs spool the motors down after this long without MOTOR_COMMAND [s]")
       ->check(CLI::Range(1e-3, 10.0));
@@ -289,6 +298,7 @@ int Main(int argc, char** argv) {
     Simulator sim(scenario);
     sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
     if (options.external_controller) sim.UseExternalCommands(options.command_timeout_s);
+    if (options.publish_setpoints) sim.EmitSetpoints(options.setpoint_rate_hz);
     ok = options.output.empty()
              ? RunLive(&sim, channels, lcm.get(), options.speed, !options.no_truth, options.external_controller)
              : RunOffline(&sim, channels, options.output, !options.no_truth);

@@ -3,6 +3,7 @@
 // or a log file; tests collect them. Default callbacks ignore the sample.
 #pragma once
 
+#include "controller/setpoint.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -16,6 +17,8 @@ class SampleSink {
   virtual void OnPose(const PoseSample& /*sample*/) {}
   virtual void OnLoadCell(const LoadCellSample& /*sample*/) {}
   virtual void OnTruth(const TruthSample& /*sample*/) {}
+  // The reference as a setpoint (only with Simulator::EmitSetpoints).
+  virtual void OnSetpoint(const Setpoint& /*setpoint*/) {}
 };
 
 }  // namespace birotor

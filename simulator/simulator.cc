@@ -172,6 +172,15 @@ void Simulator::UseExternalCommands(double command_timeout_s) {
   command_timeout_us_ = Microseconds(command_timeout_s);
 }
 
+void Simulator::EmitSetpoints(double rate_hz) {
+  setpoint_.enabled = true;
+  setpoint_.every_steps = std::max<int64_t>(1, std::llround(1.0 / (rate_hz * scenario_.step_s)));
+}
+
+void Simulator::EmitSetpoint(int64_t utime, double t_s, SampleSink* sink) {
+  sink->OnSetpoint(SetpointFromReference(ReferenceAt(t_s), utime, setpoint_seq_++));
+}
+
 void Simulator::SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime) {
   for (int i = 0; i < 2; ++i)
     external_command_.omega_cmd_rad_s[i] = std::isfinite(omega_cmd_rad_s[i]) ? omega_cmd_rad_s[i] : 0.0;
@@ -234,6 +243,7 @@ bool Simulator::Step(SampleSink* sink) {
   const PlantState k1 = Derivative(state_);
 
   if (sink != nullptr) {
+    if (setpoint_.Due(k)) EmitSetpoint(now_us, t_s, sink);
     if (strain_.Due(k)) EmitStrain(now_us, sink);
     if (motor_.Due(k)) EmitMotor(now_us, sink);
     if (imu_.Due(k)) EmitImu(now_us, k1, sink);

@@ -71,6 +71,11 @@ class Simulator {
   // down with tau_m) and command_timed_out() says so until the next command.
   // Call before the first step.
   void UseExternalCommands(double command_timeout_s);
+  // Emits the scenario's position reference (ReferenceAt) as a Setpoint
+  // (SampleSink::OnSetpoint, channel SETPOINT) every 1 / rate_hz, stamped
+  // with the time it is meant for: the trajectory as a planner would send
+  // it to an external controller. Call before the first step.
+  void EmitSetpoints(double rate_hz);
   // A command received at vehicle time utime [us] (clipped to [0, omega_max]
   // by the motor model; a non-finite value is taken as 0).
   void SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime);
@@ -116,6 +121,7 @@ class Simulator {
   void EmitPose(int64_t utime, SampleSink* sink);
   void EmitLoadCell(int64_t utime, SampleSink* sink);
   void EmitTruth(int64_t utime, SampleSink* sink);
+  void EmitSetpoint(int64_t utime, double t_s, SampleSink* sink);
   double TrueForce(int rotor) const;
   PlantState Derivative(const PlantState& x) const;
   // Rotor speed commands of the ground phase and the landing, or the
@@ -157,6 +163,7 @@ class Simulator {
   bool landing_planned_ = false;
   double rotor_angle_rad_[2] = {0.0, 0.0};  // theta_i for the harmonic pickup, in [0, 2 pi)
 
+  Decimation setpoint_;
   Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;
   GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_, fault_noise_;
 
@@ -174,6 +181,7 @@ class Simulator {
   bool has_held_strain_ = false;
   StrainSample held_strain_;
 
+  int32_t setpoint_seq_ = 0;
   int32_t strain_seq_ = 0, motor_seq_ = 0, imu_seq_ = 0, pose_seq_ = 0, loadcell_seq_ = 0;
   ChannelCounts emitted_;
   std::vector<FaultEvent> fault_events_;

@@ -24,6 +24,7 @@ void WireSampleSink::OnLoadCell(const LoadCellSample& s) { Publish(channels_.loa
 void WireSampleSink::OnTruth(const TruthSample& s) {
   if (publish_truth_) Publish(channels_.truth, s.utime, ToMessage(s));
 }
+void WireSampleSink::OnSetpoint(const Setpoint& s) { Publish(channels_.setpoint, s.utime, ToMessage(s)); }
 void WireSampleSink::OnForce(const ForceEstimate& e) { Publish(channels_.force, e.utime, ToMessage(e)); }
 void WireSampleSink::OnMotorCommand(const MotorCommand& c) { Publish(channels_.motor_command, c.utime, ToMessage(c)); }
 

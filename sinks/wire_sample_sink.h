@@ -29,6 +29,7 @@ class WireSampleSink : public SampleSink {
   void OnPose(const PoseSample& sample) override;
   void OnLoadCell(const LoadCellSample& sample) override;
   void OnTruth(const TruthSample& sample) override;
+  void OnSetpoint(const Setpoint& setpoint) override;
   // The outputs of an in-process estimator and controller (lock-step closed loop).
   void OnForce(const ForceEstimate& estimate);
   void OnMotorCommand(const MotorCommand& command);

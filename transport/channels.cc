@@ -17,6 +17,7 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.sim_status = prefix + kSimStatusChannel;
   names.motor_command = prefix + kMotorCommandChannel;
   names.controller_status = prefix + kControllerStatusChannel;
+  names.setpoint = prefix + kSetpointChannel;
   return names;
 }
 

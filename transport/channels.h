@@ -20,6 +20,7 @@ inline constexpr char kEstimatorStatusChannel[] = "ESTIMATOR_STATUS";
 inline constexpr char kSimStatusChannel[] = "SIM_STATUS";
 inline constexpr char kMotorCommandChannel[] = "MOTOR_COMMAND";
 inline constexpr char kControllerStatusChannel[] = "CONTROLLER_STATUS";
+inline constexpr char kSetpointChannel[] = "SETPOINT";
 
 // Full channel names for one prefix.
 struct ChannelNames {
@@ -35,6 +36,7 @@ struct ChannelNames {
   std::string sim_status;         // simulator health, owned by simulator/
   std::string motor_command;      // motor_command_t
   std::string controller_status;  // controller_status_t
+  std::string setpoint;           // setpoint_t
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);

@@ -87,6 +87,18 @@ void CopyMotorCommandFields(const From& from, To* to) {
   to->status = from.status;
 }
 
+template <typename From, typename To>
+void CopySetpointFields(const From& from, To* to) {
+  to->utime = from.utime;
+  to->seq = from.seq;
+  to->x_m = from.x_m;
+  to->z_m = from.z_m;
+  to->x_dot_m_s = from.x_dot_m_s;
+  to->z_dot_m_s = from.z_dot_m_s;
+  to->x_ddot_m_s2 = from.x_ddot_m_s2;
+  to->z_ddot_m_s2 = from.z_ddot_m_s2;
+}
+
 // To{} zero-initialises the message's fields that the list does not name.
 template <typename To, typename From>
 To Converted(const From& from, void (*copy)(const From&, To*)) {
@@ -114,5 +126,7 @@ force_estimate_t ToMessage(const ForceEstimate& e) { return Converted<force_esti
 
 MotorCommand FromMessage(const motor_command_t& m) { return Converted<MotorCommand>(m, CopyMotorCommandFields); }
 motor_command_t ToMessage(const MotorCommand& c) { return Converted<motor_command_t>(c, CopyMotorCommandFields); }
+Setpoint FromMessage(const setpoint_t& m) { return Converted<Setpoint>(m, CopySetpointFields); }
+setpoint_t ToMessage(const Setpoint& s) { return Converted<setpoint_t>(s, CopySetpointFields); }
 
 }  // namespace birotor

@@ -9,9 +9,11 @@
 #include "birotor/motor_command_t.hpp"
 #include "birotor/motor_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "birotor/setpoint_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "birotor/truth_t.hpp"
 #include "controller/motor_command.h"
+#include "controller/setpoint.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -39,5 +41,8 @@ force_estimate_t ToMessage(const ForceEstimate& estimate);
 
 MotorCommand FromMessage(const motor_command_t& message);
 motor_command_t ToMessage(const MotorCommand& command);
+
+Setpoint FromMessage(const setpoint_t& message);
+setpoint_t ToMessage(const Setpoint& setpoint);
 
 }  // namespace birotor

@@ -52,7 +52,7 @@ class HoverFeed {
       if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0});
     }
     now_us_ += kPeriodUs;
-    return controller_.Update(now_us_, ReferencePoint());
+    return controller_.Update(now_us_);
   }
   // 0.2 s of hover: past force_recovery_s, in force feedback when asked for.
   MotorCommand Settle() {
@@ -71,7 +71,7 @@ class HoverFeed {
 
 TEST(VehicleControllerTest, NoPoseMeansRotorsAtZero) {
   VehicleController controller{ControllerConfig()};
-  const MotorCommand c = controller.Update(1000, ReferencePoint());
+  const MotorCommand c = controller.Update(1000);
   EXPECT_EQ(c.omega_cmd_rad_s[0], 0.0);
   EXPECT_EQ(c.omega_cmd_rad_s[1], 0.0);
   EXPECT_TRUE(c.status & kCommandNoPoseYet);
@@ -205,10 +205,15 @@ TEST(VehicleControllerTest, AnyInputSequenceGivesFiniteBoundedCommands) {
           break;
         }
         default: {
-          ReferencePoint r;
-          r.position_m = Eigen::Vector2d(value(2.0), value(2.0));
+          Setpoint setpoint;
+          setpoint.utime = utime(now);
+          setpoint.x_m = value(2.0);
+          setpoint.z_m = value(2.0);
+          setpoint.x_dot_m_s = value(2.0);
+          setpoint.z_ddot_m_s2 = value(5.0);
+          controller.OnSetpoint(setpoint, now);
           // Out-of-order control times too.
-          const MotorCommand c = controller.Update(utime(now), r);
+          const MotorCommand c = controller.Update(utime(now));
           for (double omega : c.omega_cmd_rad_s) {
             ASSERT_TRUE(std::isfinite(omega));
             ASSERT_GE(omega, 0.0);

@@ -77,6 +77,10 @@ std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failur
       motor_command_t m;
       result = DecodeMessage(event.data.data(), event.data.size(), &m);
       if (m.utime != event.timestamp_us) ++*decode_failures;
+    } else if (event.channel == c.setpoint) {
+      setpoint_t m;
+      result = DecodeMessage(event.data.data(), event.data.size(), &m);
+      if (m.utime != event.timestamp_us) ++*decode_failures;
     }
     if (result != DecodeError::kNone) ++*decode_failures;
     ++counts[event.channel];
@@ -158,6 +162,7 @@ TEST(SimLogTest, ClosedLoopLogHasEveryChannelAndIsByteIdenticalForTheSameSeed) {
   EXPECT_EQ(counts[c.force], 1000);
   EXPECT_EQ(counts[c.strain], 1000);
   EXPECT_EQ(counts[c.motor], 500);
+  EXPECT_EQ(counts[c.setpoint], 100);  // the trajectory at 100 Hz (ClosedLoopOptions)
   EXPECT_EQ(counts[c.truth], 1000);
   std::remove(a.c_str());
   std::remove(b.c_str());
