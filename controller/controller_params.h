@@ -75,4 +75,9 @@ struct ControllerConfig {
   SetpointParams setpoint;
 };
 
+// MOTOR_COMMAND rate [Hz]: the cascade's rate_hz, or in mode mpc the MPC's.
+inline double CommandRateHz(const ControllerConfig& config) {
+  return config.model_predictive ? config.mpc.rate_hz : config.gains.rate_hz;
+}
+
 }  // namespace birotor

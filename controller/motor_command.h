@@ -11,6 +11,7 @@ namespace birotor {
 enum ControlMode : int32_t {
   kModeNominal = 0,        // omega = sqrt(f / c_T)
   kModeForceFeedback = 1,  // omega_i = sqrt(f_i / (c_T thrust_scale_i)), thrust_scale_i from FORCE
+  kModeMpc = 2,            // model predictive control (controller/mpc_controller.h)
 };
 
 // Bits of MotorCommand::status.
@@ -20,6 +21,7 @@ enum CommandStatusBit : int32_t {
   kCommandDescending = 4,      // POSE lost: controlled descent on the IMU-propagated state
   kCommandSaturated = 8,       // a rotor speed was clipped to [0, omega_max]
   kCommandNoPoseYet = 16,      // no POSE received yet: rotors at 0
+  kCommandMpcFallback = 32,    // mode mpc: the solve failed, was late or bad; the cascade's command
 };
 
 struct MotorCommand {

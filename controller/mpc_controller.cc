@@ -154,6 +154,27 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
   return plan;
 }
 
+MpcPeriod MpcController::Fly(MpcPlanInput input, const Eigen::Vector2d& cascade_rad_s, bool attempt) {
+  MpcPeriod out;
+  const bool first = !flown_;
+  if (first) input.last_command_rad_s = omega_estimate_rad_s_;
+  out.omega_cmd_rad_s = cascade_rad_s;
+  if (attempt) {
+    out.planned = true;
+    out.plan = Plan(input);
+    out.fell_back = out.plan.outcome != MpcOutcome::kSolved;
+    if (!out.fell_back) out.omega_cmd_rad_s = out.plan.omega_cmd_rad_s;
+  }
+  const double change = params_.max_omega_rate_rad_s2 * input.period_s;
+  for (int i = 0; i < kMpcInputSize; ++i) {
+    double omega = std::isfinite(out.omega_cmd_rad_s(i)) ? out.omega_cmd_rad_s(i) : input.last_command_rad_s(i);
+    if (!first) omega = std::clamp(omega, input.last_command_rad_s(i) - change, input.last_command_rad_s(i) + change);
+    out.omega_cmd_rad_s(i) = std::clamp(omega, 0.0, vehicle_.omega_max_rad_s);
+  }
+  flown_ = true;
+  return out;
+}
+
 void MpcController::Record(const MpcPlan& plan) {
   ++stats_.solves;
   switch (plan.outcome) {

@@ -64,6 +64,16 @@ struct MpcStats {
 };
 constexpr int kMpcTimeWindow = 4096;
 
+// What one period of mode mpc sends (MpcController::Fly).
+struct MpcPeriod {
+  // Finite, within [0, omega_max] and within max_omega_rate_rad_s2 * period_s
+  // of the last command (except the first command in flight, see Fly).
+  Eigen::Vector2d omega_cmd_rad_s = Eigen::Vector2d::Zero();
+  bool planned = false;    // a solve was attempted
+  bool fell_back = false;  // it failed, was late or bad: the cascade's command was sent
+  MpcPlan plan;            // the attempt (when planned)
+};
+
 class MpcController {
  public:
   MpcController(const VehicleParams& vehicle, const MpcParams& params);
@@ -73,6 +83,15 @@ class MpcController {
   // After every command sent (the MPC's or the fallback's), held for dt_s [s]:
   // runs the motor lag on it (model/plant.h MotorStep).
   void Advance(const Eigen::Vector2d& omega_cmd_rad_s, double dt_s);
+
+  // One period of mode mpc: Plan (when attempt; the caller does not attempt
+  // in its controlled descent), the plan's first command if it solved in
+  // time, else cascade_rad_s (the fallback, counted in Stats); either is
+  // rate-limited against input.last_command_rad_s and clamped to
+  // [0, omega_max]. The first period in flight plans from the rotor speeds
+  // the motor model believes in, not from the zero commands sent before the
+  // first POSE, and its command is the only one exempt from the rate limit.
+  MpcPeriod Fly(MpcPlanInput input, const Eigen::Vector2d& cascade_rad_s, bool attempt);
 
   // Statistics; fills the percentiles (copies the window, no allocation).
   MpcStats Stats() const;
@@ -104,6 +123,7 @@ class MpcController {
   Eigen::Vector2d sent_since_previous_ = Eigen::Vector2d::Zero();
   double elapsed_since_previous_s_ = 0.0;
   int advances_since_previous_ = 0;
+  bool flown_ = false;  // Fly has sent a command
 
   MpcStats stats_;
   std::array<double, kMpcTimeWindow> times_s_{};

@@ -36,6 +36,13 @@ bool Admit(ControllerInputCounters* counters, int64_t utime, bool valid) {
   return true;
 }
 
+// The law's gains at the rate it runs (mode mpc: the MPC's, for the fallback).
+ControllerParams LawGains(const ControllerConfig& config) {
+  ControllerParams gains = config.gains;
+  gains.rate_hz = CommandRateHz(config);
+  return gains;
+}
+
 double HoverForce(const VehicleParams& vehicle) {
   const Equilibrium hover = SolveHoverEquilibrium(vehicle);
   return 0.5 * (hover.force_n[0] + hover.force_n[1]);
@@ -45,9 +52,10 @@ double HoverForce(const VehicleParams& vehicle) {
 
 VehicleController::VehicleController(const ControllerConfig& config)
     : config_(config),
-      law_(config.vehicle, config.gains, HoverForce(config.vehicle)),
+      law_(config.vehicle, LawGains(config), HoverForce(config.vehicle)),
       observer_(config.observer),
       setpoint_(config.setpoint) {
+  if (config.model_predictive) mpc_ = std::make_unique<MpcController>(config.vehicle, config.mpc);
   // Force feedback starts in the fallback until FORCE has been healthy for
   // force_recovery_s; that start is not counted as a fallback.
   health_.fallback_active = config.force_feedback;
@@ -113,11 +121,13 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   command.utime = now_us;
   command.seq = seq_++;
   ++health_.commands;
-  const double nominal_dt_s = 1.0 / config_.gains.rate_hz;
+  const double nominal_dt_s = 1.0 / CommandRateHz(config_);
   const double dt_s = last_update_us_ < 0
                           ? nominal_dt_s
                           : std::clamp(1e-6 * static_cast<double>(now_us - last_update_us_), 0.0, 10.0 * nominal_dt_s);
   last_update_us_ = now_us;
+  // Mode mpc: the rotors have run the last command for dt_s.
+  if (mpc_) mpc_->Advance(Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]), dt_s);
 
   if (!has_pose_) {
     command.mode = kModeNominal;
@@ -199,6 +209,20 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     law_.Reset();
     omega_rad_s[0] = last_good_omega_rad_s_[0];
     omega_rad_s[1] = last_good_omega_rad_s_[1];
+  }
+  if (mpc_) {
+    // Mode mpc: the MPC flies; the cascade's speeds above are its fallback.
+    MpcPlanInput in;
+    in.state = observer_.state();
+    in.reference = target;
+    if (use_force) in.thrust_scale = Eigen::Vector2d(thrust_scale_[0], thrust_scale_[1]);
+    in.last_command_rad_s = Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
+    in.period_s = nominal_dt_s;
+    const MpcPeriod period = mpc_->Fly(in, Eigen::Vector2d(omega_rad_s[0], omega_rad_s[1]), !pose_lost);
+    omega_rad_s[0] = period.omega_cmd_rad_s(0);
+    omega_rad_s[1] = period.omega_cmd_rad_s(1);
+    command.mode = kModeMpc;
+    if (period.fell_back) status |= kCommandMpcFallback;
   }
   for (int i = 0; i < 2; ++i) {
     command.omega_cmd_rad_s[i] = std::clamp(omega_rad_s[i], 0.0, vehicle.omega_max_rad_s);

@@ -80,7 +80,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   // The controller runs on the samples of the steps before this one (a
   // quarter-step sensor latency at 4 kHz) and its command holds until the next.
   const int64_t control_every =
-      std::max<int64_t>(1, std::llround(1.0 / (controller_config.gains.rate_hz * scenario.step_s)));
+      std::max<int64_t>(1, std::llround(1.0 / (CommandRateHz(controller_config) * scenario.step_s)));
   int64_t step = 0;
   while (!simulator.done()) {
     if (step % control_every == 0) {

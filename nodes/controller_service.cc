@@ -28,7 +28,7 @@ ControllerService::ControllerService(const ControllerConfig& config, const Chann
     : controller_(config),
       channels_(channels),
       sink_(sink),
-      period_us_(std::max<int64_t>(1, std::llround(1e6 / config.gains.rate_hz))) {
+      period_us_(std::max<int64_t>(1, std::llround(1e6 / CommandRateHz(config)))) {
   buffer_.reserve(256);
 }
 

@@ -10,8 +10,8 @@
 #include <memory>
 #include <string>
 
-#include "params/controller_config_yaml.h"
 #include "nodes/controller_service.h"
+#include "params/controller_config_yaml.h"
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
 #include "transport/config_files.h"
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
                  "Controller parameter file (vehicle: and controller:, every key); default: the " +
                      ConfigSearchText("controller.yaml"));
   app.add_option("--mode", mode, "Controller mode, overrides the file")
-      ->check(CLI::IsMember({"nominal", "force_feedback"}));
+      ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
   app.add_option("--status-rate-hz", status_rate_hz, "CONTROLLER_STATUS rate [Hz]")->check(CLI::Range(0.1, 100.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-controller", common.log_level);
@@ -44,7 +44,10 @@ int main(int argc, char** argv) {
   } catch (const ParamError& error) {
     return ReportError(error.what());
   }
-  if (!mode.empty()) config.force_feedback = mode == "force_feedback";
+  if (!mode.empty()) {
+    config.force_feedback = mode != "nominal";  // mpc falls back to the force-feedback cascade
+    config.model_predictive = mode == "mpc";
+  }
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
@@ -55,7 +58,10 @@ int main(int argc, char** argv) {
   ControllerService service(config, channels, &sink);
   service.Subscribe(lcm.get());
   spdlog::info("birotor-controller {} mode {} params {} (checksum {})", BIROTOR_VERSION,
-               config.force_feedback ? "force_feedback" : "nominal", params_file, FileChecksum(params_file));
+               config.model_predictive ? "mpc"
+               : config.force_feedback ? "force_feedback"
+                                       : "nominal",
+               params_file, FileChecksum(params_file));
   spdlog::info("lcm {}: in {} {} {}, out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
                channels.motor_command, channels.controller_status);
 

@@ -71,7 +71,8 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
     ReportError(e.what());
     return false;
   }
-  controller.force_feedback = options.controller_mode == "force_feedback";
+  controller.force_feedback = options.controller_mode != "nominal";
+  controller.model_predictive = options.controller_mode == "mpc";
   LogWriter writer;
   std::string error;
   if (!writer.Open(options.output, &error)) {
@@ -213,8 +214,9 @@ int Main(int argc, char** argv) {
                "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
   app.add_option("--controller", options.controller_mode,
                  "Lock-step closed loop (with --output): fly the scenario with the controller of "
-                 "birotor-controller in this mode, on the estimator's FORCE, and log every channel")
-      ->check(CLI::IsMember({"nominal", "force_feedback"}));
+                 "birotor-controller in this mode, on the estimator's FORCE, and log every channel (mpc: the "
+                 "model predictive controller of the mpc: section, the force-feedback cascade its fallback)")
+      ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
   options.controller_params = FindConfigFile("controller.yaml");
   options.estimator_params = FindConfigFile("estimator.yaml");
   app.add_option("--controller-params", options.controller_params,
