@@ -37,16 +37,16 @@ struct MpcParams {
   // State weights of the stage cost (per squared unit). Position dominates
   // (what is tracked); velocity damps it; tilt towards the tilt the reference
   // acceleration needs, and a little pitch rate for a smooth attitude.
-  double position_weight_1_m2 = 400.0;
-  double velocity_weight_s2_m2 = 40.0;
+  double position_weight_1_m2 = 1e5;
+  double velocity_weight_s2_m2 = 3000.0;
   double tilt_weight_1_rad2 = 20.0;
   double pitch_rate_weight_s2_rad2 = 1.0;
   // Input weights [1/(rad/s)^2]: on the distance from the feed-forward speed
   // (the speed that holds the reference acceleration with the rotor's
   // efficiency), and on the step-to-step change (smoothness, below the arm
   // modes). Small: the constraints, not these, bound the commands.
-  double input_weight_s2_rad2 = 1e-5;
-  double input_rate_weight_s2_rad2 = 1e-5;
+  double input_weight_s2_rad2 = 1e-6;
+  double input_rate_weight_s2_rad2 = 1e-6;
 
   // Command rate limit [rad/s^2]: 30000 rad/s^2 takes a rotor from hover
   // (699 rad/s) to omega_max in 17 ms, half the motor time constant, so it
@@ -57,7 +57,7 @@ struct MpcParams {
   // limit is infeasible whenever the vehicle is already past it, e.g. at a
   // rotor fault). Same value as the cascade's max_tilt_rad.
   double max_tilt_rad = 0.5;
-  double tilt_slack_weight = 1e5;  // per rad^2 of excess over the whole horizon [1/rad^2]
+  double tilt_slack_weight = 1e8;  // per rad^2 of excess, far above the tracking terms [1/rad^2]
 
   // Offset-free tracking: the one-step prediction error of the model is
   // low-passed into a constant acceleration disturbance (x, z, pitch) that
@@ -70,11 +70,17 @@ struct MpcParams {
   // Real time: a solve longer than this falls back to the cascade for the
   // period [s]. Half the period leaves the other half for the rest of it.
   double deadline_s = 0.005;
-  // BLEIC: starts from the previous plan (warm start) and reports its
-  // iterations; median solve 0.25 ms against DENSE-AUL's 0.20 ms (no
-  // iteration count) and DENSE-IPM's 0.42 ms (no warm start) in
-  // benchmarks/controller_benchmark.cc (docs/mpc.md).
-  MpcQpAlgorithm algorithm = MpcQpAlgorithm::kBleic;
+  // Which clock the deadline and the solve-time statistics use: false, the
+  // wall clock (the live daemon: a late command is late however it got late);
+  // true, this thread's CPU time (the lock-step loop, whose virtual clock does
+  // not run during a solve: on a shared machine preemption would otherwise
+  // decide the flight, and the same seed would not fly the same).
+  bool deadline_on_thread_cpu_time = false;
+  // DENSE-AUL: starts from the previous plan (warm start) and is the
+  // cheapest of the three in the lock-step aggressive flight (CPU per solve
+  // p50/p99: 170/330 us against DENSE-IPM's 340/650 us, no warm start, and
+  // BLEIC's 420/850 us; docs/mpc.md, benchmarks/controller_benchmark.cc).
+  MpcQpAlgorithm algorithm = MpcQpAlgorithm::kDenseAul;
   double solver_tolerance = 1e-6;  // alglib stopping tolerance (scaled) [1]
   int max_iterations = 200;        // BLEIC's iteration cap (the answer at the cap is still checked)
 

@@ -71,7 +71,10 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   simulator.UseExternalCommands(options.command_timeout_s);
   simulator.EmitSetpoints(options.setpoint_rate_hz);
   EstimatorPipeline estimator(estimator_config);
-  VehicleController controller(controller_config);
+  // The virtual clock stands still during a solve: the MPC's deadline is on CPU time.
+  ControllerConfig lock_step_config = controller_config;
+  lock_step_config.mpc.deadline_on_thread_cpu_time = true;
+  VehicleController controller(lock_step_config);
   const ChannelNames channels = MakeChannelNames(options.prefix);
   WireSampleSink wire(channels, log);
   LockStepSink sink(&estimator, &controller, log != nullptr ? &wire : nullptr, &simulator, &run);
@@ -100,6 +103,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
     }
   }
   run.controller = controller.health();
+  run.mpc = controller.MpcStatistics();
   run.estimator = estimator.health();
   run.command_timeouts = simulator.command_timeouts();
   run.simulated_s = simulator.time_s();

@@ -41,6 +41,9 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Double("max_disturbance_m_s2", 0.0, 50.0, &o->max_disturbance_m_s2);
   s.Double("max_disturbance_rad_s2", 0.0, 500.0, &o->max_disturbance_rad_s2);
   s.Double("deadline_s", 0.0, 1.0, &o->deadline_s);
+  std::string clock;
+  s.String("deadline_clock", {"wall", "thread_cpu"}, &clock);
+  o->deadline_on_thread_cpu_time = clock == "thread_cpu";
   std::string algorithm;
   s.String("algorithm", {"bleic", "dense_aul", "dense_ipm"}, &algorithm);
   o->algorithm = algorithm == "bleic"       ? MpcQpAlgorithm::kBleic

@@ -98,6 +98,14 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
       options.controller_mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
       run.controller.descents, metrics.rms_position_error_m, metrics.peak_tilt_rad, metrics.peak_altitude_loss_m,
       writer.events_written(), options.output);
+  if (controller.model_predictive) {
+    spdlog::info(
+        "mpc: {} solves, {} fallbacks ({} failed, {} non-finite, {} infeasible, {} late); solve time p50 "
+        "{:.0f} us, p99 {:.0f} us, max {:.0f} us; iterations max {}",
+        run.mpc.solves, run.mpc.Fallbacks(), run.mpc.solver_failed, run.mpc.non_finite, run.mpc.infeasible,
+        run.mpc.late, 1e6 * run.mpc.solve_p50_s, 1e6 * run.mpc.solve_p99_s, 1e6 * run.mpc.solve_max_s,
+        run.mpc.max_iterations);
+  }
   return true;
 }
 

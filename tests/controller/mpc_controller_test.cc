@@ -92,7 +92,8 @@ TEST(MpcControllerTest, WeakRotorKnownAndDisturbanceLearned) {
 
 TEST(MpcControllerTest, LateSolvesAreCountedAndTimed) {
   MpcParams params;
-  params.deadline_s = 0.0;  // every solve is late
+  params.deadline_s = 0.0;                    // every solve is late
+  params.algorithm = MpcQpAlgorithm::kBleic;  // reports its iterations
   MpcController mpc(VehicleParams(), params);
   const LoopResult r = Fly(&mpc, Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
                            Eigen::Vector3d::Zero(), 0.1);
