@@ -37,16 +37,57 @@ struct ObserverParams {
   double attitude_crossover_rad_s = 5.0;   // gyro/POSE complementary-filter crossover [rad/s]
 };
 
-// What the controller service does with FORCE, and when it stops trusting
-// an input.
+// What the controller service does with its inputs, and when it stops
+// trusting one (issue 23: its own clock, one publisher per input, plausible
+// values only, a POSE gate).
 struct SupervisionParams {
   double pose_timeout_s = 0.05;    // POSE older than this: controlled descent [s]
   double imu_timeout_s = 0.01;     // IMU older than this: propagate without it [s]
-  double force_timeout_s = 0.005;  // FORCE older than this: fall back to the nominal map [s]
-  double force_recovery_s = 0.05;  // FORCE healthy this long before force feedback resumes [s]
-  double min_thrust_scale = 0.3;   // estimated thrust_scale used is clamped to [min, max] [1]
-  double max_thrust_scale = 1.5;   // [1]
+  double force_timeout_s = 0.005;  // FORCE older than this: fall back towards the nominal map [s]
+  double force_recovery_s = 0.05;  // FORCE healthy and on time this long before force feedback resumes [s]
   double descent_rate_m_s = 0.3;   // sink rate of the controlled descent [m/s]
+  // Input stamps against the controller's own clock: later than now + future
+  // or earlier than now - past are refused and counted; they never move the
+  // clock. An input whose newest stamp is ahead of the clock (negative age)
+  // is stale.
+  double clock_future_window_s = 0.01;  // [s]
+  double clock_past_window_s = 0.2;     // [s]
+  // One publisher per input (controller/seq_stream_lock.h): FORCE and POSE
+  // locked to the first seq stream; another stream's message is refused and
+  // counted, and force feedback is dropped (STATUS_INPUT_CONFLICT) until
+  // conflict_hold_s after the last one.
+  int32_t stream_max_seq_step = 100;  // seq steps within one stream (drops) [1]
+  double stream_silence_s = 0.2;      // a silent stream is given up after this long [s]
+  double conflict_hold_s = 0.3;       // [s]
+  // FORCE thrust_scale outside this band is refused (not clamped): no
+  // healthy or faulty rotor of this vehicle is outside it [1].
+  double min_plausible_thrust_scale = 0.2;
+  double max_plausible_thrust_scale = 2.0;
+  // POSE innovation gate against the controller's own observer: a sample
+  // farther than this is refused; when every sample has been refused for
+  // pose_gate_reset_s the observer is re-initialised on POSE (the vehicle
+  // really is there).
+  double pose_gate_position_m = 0.3;  // [m]
+  double pose_gate_angle_rad = 0.3;   // [rad]
+  double pose_gate_reset_s = 0.2;     // [s]
+};
+
+// How FORCE's thrust_scale becomes the efficiency the rotor map uses
+// (controller/efficiency_conditioner.h, issue 25): followed only while FORCE
+// flags a rotor fault or a thrust deficit, relative to the unflagged flight
+// before, filtered and rate limited, frozen until airborne, decaying towards
+// 1 otherwise.
+struct EfficiencyParams {
+  double airborne_force_fraction = 0.8;  // airborne: FORCE's total thrust above this share of the weight [1]
+  double airborne_s = 0.3;               // ... for this long [s]
+  double baseline_tau_s = 1.0;           // low-pass of the unflagged thrust_scale (the reference) [s]
+  double change_threshold = 0.1;         // |mu / mu0 - 1| above this is a real change too [1]
+  double fault_tau_s = 0.01;             // first order towards mu / mu0 while flagged [s]
+  double max_rate_1_s = 50.0;            // rate limit of the efficiency [1/s]
+  double max_relative_sigma = 1.0;       // a sample with force_std / force above this is not followed [1]
+  double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
+  double feasibility_margin = 1.02;      // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
+  double infeasible_s = 0.1;             // infeasible this long: level controlled descent [s]
 };
 
 // What the controller accepts on SETPOINT (controller/setpoint_input.h).
@@ -72,6 +113,7 @@ struct ControllerConfig {
   ControllerParams gains;
   ObserverParams observer;
   SupervisionParams supervision;
+  EfficiencyParams efficiency;
   SetpointParams setpoint;
 };
 

@@ -10,18 +10,20 @@ namespace birotor {
 // Values of MotorCommand::mode.
 enum ControlMode : int32_t {
   kModeNominal = 0,        // omega = sqrt(f / c_T)
-  kModeForceFeedback = 1,  // omega_i = sqrt(f_i / (c_T thrust_scale_i)), thrust_scale_i from FORCE
+  kModeForceFeedback = 1,  // omega_i = sqrt(f_i / (c_T e_i)), e_i FORCE's thrust_scale conditioned
   kModeMpc = 2,            // model predictive control (controller/mpc_controller.h)
 };
 
 // Bits of MotorCommand::status.
 enum CommandStatusBit : int32_t {
-  kCommandFallbackActive = 1,  // force feedback asked for, FORCE unhealthy: nominal map in use
-  kCommandInputStale = 2,      // POSE, IMU or (in force feedback) FORCE older than its timeout
-  kCommandDescending = 4,      // POSE lost: controlled descent on the IMU-propagated state
-  kCommandSaturated = 8,       // a rotor speed was clipped to [0, omega_max]
-  kCommandNoPoseYet = 16,      // no POSE received yet: rotors at 0
-  kCommandMpcFallback = 32,    // mode mpc: the solve failed, was late or bad; the cascade's command
+  kCommandFallbackActive = 1,    // force feedback asked for, FORCE unusable: efficiency decaying towards 1
+  kCommandInputStale = 2,        // POSE, IMU or (in force feedback) FORCE older than its timeout
+  kCommandDescending = 4,        // POSE lost: controlled descent on the IMU-propagated state
+  kCommandSaturated = 8,         // the allocation was limited by [0, omega_max] (integrators held)
+  kCommandNoPoseYet = 16,        // no POSE received yet: rotors at 0
+  kCommandInputConflict = 32,    // a second publisher on FORCE or POSE: force feedback dropped
+  kCommandHoverInfeasible = 64,  // the efficiency cannot hold the weight level: controlled descent
+  kCommandMpcFallback = 128,     // mode mpc: the solve failed, was late or bad; the cascade's command
 };
 
 struct MotorCommand {

@@ -14,13 +14,13 @@ void PositionAttitudeLaw::Reset() {
   tilt_integral_rad_s_ = 0.0;
 }
 
-RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferencePoint& reference) {
+RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferencePoint& reference, bool integrate) {
   const VehicleParams& p = vehicle_;
   const double g = p.gravity_m_s2;
 
   // Outer loop (world frame).
   const Eigen::Vector2d position_error = reference.position_m - state.position_m;
-  position_integral_m_s_ += dt_s_ * position_error;
+  if (integrate) position_integral_m_s_ += dt_s_ * position_error;
   const double integral_limit = gains_.max_integral_m_s2 / std::max(gains_.position_ki_1_s3, 1e-9);
   position_integral_m_s_ = position_integral_m_s_.cwiseMax(-integral_limit).cwiseMin(integral_limit);
   RotorForces out;
@@ -35,7 +35,7 @@ RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferenceP
 
   // Inner loop (pitch).
   const double tilt_error = phi_des - state.phi_rad;
-  tilt_integral_rad_s_ += dt_s_ * tilt_error;
+  if (integrate) tilt_integral_rad_s_ += dt_s_ * tilt_error;
   const double tilt_limit = gains_.max_attitude_integral_rad_s2 / std::max(gains_.attitude_ki_1_s3, 1e-9);
   tilt_integral_rad_s_ = std::clamp(tilt_integral_rad_s_, -tilt_limit, tilt_limit);
   const double alpha_des = gains_.attitude_kp_1_s2 * tilt_error - gains_.attitude_kd_1_s * state.phi_dot_rad_s +
@@ -44,6 +44,8 @@ RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferenceP
   const double inertia = p.body_inertia_kg_m2 + 2.0 * p.tip_mass_kg * L * L;
   const double force_difference_n = inertia * alpha_des / L;  // f2 - f1
 
+  out.total_force_n = total_force_n;
+  out.force_difference_n = force_difference_n;
   out.force_n[0] = 0.5 * (total_force_n - force_difference_n);
   out.force_n[1] = 0.5 * (total_force_n + force_difference_n);
   return out;

@@ -20,10 +20,13 @@ struct BodyState {
   double phi_dot_rad_s = 0.0;                              // pitch rate [rad/s]
 };
 
-// Thrust each rotor must make [N] (rotor 1, rotor 2), and the world
-// acceleration the outer loop asked for [m/s^2].
+// Thrust each rotor must make [N] (rotor 1, rotor 2), as a total and a
+// difference f2 - f1 (for an allocation within the rotors' limits), and the
+// world acceleration the outer loop asked for [m/s^2].
 struct RotorForces {
   double force_n[2] = {0.0, 0.0};
+  double total_force_n = 0.0;       // f1 + f2 [N]
+  double force_difference_n = 0.0;  // f2 - f1 [N]
   Eigen::Vector2d accel_des_m_s2 = Eigen::Vector2d::Zero();
 };
 
@@ -39,7 +42,9 @@ class PositionAttitudeLaw {
   //   alpha_des = Kp_phi e_phi - Kd_phi phi_dot + Ki_phi int(e_phi)
   //   f_1,2 = F / 2 -+ J_eff alpha_des / (2 L)    (tau_phi = L (f2 - f1), eq. 3.12)
   // with J_eff = J + 2 m_p L^2 (rigid arms).
-  RotorForces Update(const BodyState& state, const ReferencePoint& reference);
+  // integrate false: the integrators hold (anti-windup: the caller's
+  // commands saturated in the previous period).
+  RotorForces Update(const BodyState& state, const ReferencePoint& reference, bool integrate = true);
 
   // Clears both integrators (e.g. after a numerical guard).
   void Reset();

@@ -4,37 +4,22 @@
 #include <cmath>
 #include <limits>
 
+#include "controller/rotor_allocation.h"
 #include "model/equilibrium.h"
 
 namespace birotor {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Plausibility limits of the inputs: beyond them a sample is a corrupt one,
 // not a state of this vehicle (dropped and counted as invalid).
 constexpr double kMaxPositionM = 1e4;          // |x|, |z| of POSE [m]
 constexpr double kMaxAngleRad = 10.0;          // |phi| of POSE [rad]
 constexpr double kMaxRateRadS = 100.0;         // |gyro| [rad/s]
 constexpr double kMaxSpecificForceM_S2 = 1e3;  // |accel| [m/s^2]
-constexpr double kMaxThrustScale = 100.0;      // thrust_scale of FORCE [1]
 
 bool Within(double value, double limit) { return std::isfinite(value) && std::fabs(value) <= limit; }
-
-// Accepts a sample newer than the newest accepted one.
-bool Admit(ControllerInputCounters* counters, int64_t utime, bool valid) {
-  ++counters->received;
-  if (!valid) {
-    ++counters->rejected_invalid;
-    return false;
-  }
-  if (counters->last_utime >= 0 && utime <= counters->last_utime) {
-    ++counters->rejected_out_of_order;
-    return false;
-  }
-  ++counters->accepted;
-  counters->last_utime = utime;
-  return true;
-}
 
 // The law's gains at the rate it runs (mode mpc: the MPC's, for the fallback).
 ControllerParams LawGains(const ControllerConfig& config) {
@@ -48,24 +33,73 @@ double HoverForce(const VehicleParams& vehicle) {
   return 0.5 * (hover.force_n[0] + hover.force_n[1]);
 }
 
+SeqStreamLockParams LockParams(const SupervisionParams& s) {
+  SeqStreamLockParams params;
+  params.max_seq_step = s.stream_max_seq_step;
+  params.silence_s = s.stream_silence_s;
+  return params;
+}
+
 }  // namespace
 
 VehicleController::VehicleController(const ControllerConfig& config)
     : config_(config),
       law_(config.vehicle, LawGains(config), HoverForce(config.vehicle)),
       observer_(config.observer),
-      setpoint_(config.setpoint) {
+      efficiency_(config.efficiency, 2.0 * HoverForce(config.vehicle)),
+      force_lock_(LockParams(config.supervision)),
+      pose_lock_(LockParams(config.supervision)),
+      setpoint_(config.setpoint),
+      weight_n_(2.0 * HoverForce(config.vehicle)) {
   if (config.model_predictive) mpc_ = std::make_unique<MpcController>(config.vehicle, config.mpc);
   // Force feedback starts in the fallback until FORCE has been healthy for
   // force_recovery_s; that start is not counted as a fallback.
   health_.fallback_active = config.force_feedback;
 }
 
-void VehicleController::OnPose(const PoseSample& sample) {
+bool VehicleController::Admit(ControllerInputCounters* counters, SeqStreamLock* lock, int64_t utime, int32_t seq,
+                              bool valid, int64_t now_us) {
+  const SupervisionParams& s = config_.supervision;
+  ++counters->received;
+  if (!valid) {
+    ++counters->rejected_invalid;
+    return false;
+  }
+  const double age_s = 1e-6 * static_cast<double>(now_us - utime);
+  if (-age_s > s.clock_future_window_s) {
+    ++counters->rejected_future;
+    return false;
+  }
+  if (age_s > s.clock_past_window_s) {
+    ++counters->rejected_past;
+    return false;
+  }
+  if (lock != nullptr) {
+    const SeqStreamLock::Verdict verdict = lock->Admit(seq, now_us);
+    if (verdict == SeqStreamLock::Verdict::kForeign) {
+      ++counters->rejected_foreign;
+      return false;
+    }
+    if (verdict == SeqStreamLock::Verdict::kDuplicate) {
+      ++counters->rejected_out_of_order;
+      return false;
+    }
+  }
+  if (counters->last_utime >= 0 && utime <= counters->last_utime) {
+    ++counters->rejected_out_of_order;
+    return false;
+  }
+  ++counters->accepted;
+  counters->last_utime = utime;
+  return true;
+}
+
+void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
+  const SupervisionParams& s = config_.supervision;
   const bool valid = Within(sample.x_m, kMaxPositionM) && Within(sample.z_m, kMaxPositionM) &&
                      Within(sample.phi_rad, kMaxAngleRad) && sample.utime >= 0;
-  if (!Admit(&health_.pose, sample.utime, valid)) return;
   if (!has_pose_) {
+    if (!Admit(&health_.pose, &pose_lock_, sample.utime, sample.seq, valid, now_us)) return;
     has_pose_ = true;
     const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
     observer_.Initialize(position_m, sample.phi_rad);
@@ -73,74 +107,94 @@ void VehicleController::OnPose(const PoseSample& sample) {
     last_fused_pose_utime_ = sample.utime;
     return;
   }
+  // Innovation gate against the observer, before the sample counts as
+  // accepted (a refused sample does not become the newest).
+  const BodyState& state = observer_.state();
+  const bool inside = valid &&
+                      (Eigen::Vector2d(sample.x_m, sample.z_m) - state.position_m).norm() <= s.pose_gate_position_m &&
+                      std::fabs(sample.phi_rad - state.phi_rad) <= s.pose_gate_angle_rad;
+  bool reset = false;
+  if (valid && !inside) {
+    if (gated_since_us_ < 0) gated_since_us_ = now_us;
+    reset = 1e-6 * static_cast<double>(now_us - gated_since_us_) >= s.pose_gate_reset_s;
+    if (!reset) {
+      ++health_.pose.received;
+      ++health_.pose.rejected_gate;
+      return;
+    }
+  }
+  if (!Admit(&health_.pose, &pose_lock_, sample.utime, sample.seq, valid, now_us)) return;
+  if (inside) gated_since_us_ = -1;
+  if (reset) {
+    // Every POSE refused for pose_gate_reset_s: the vehicle really is there.
+    ++health_.pose_gate_resets;
+    gated_since_us_ = -1;
+    observer_.Initialize(Eigen::Vector2d(sample.x_m, sample.z_m), sample.phi_rad);
+    last_fused_pose_utime_ = sample.utime;
+    pose_pending_ = false;
+    return;
+  }
   pending_pose_ = sample;
   pose_pending_ = true;
 }
 
-void VehicleController::OnImu(const ImuSample& sample) {
+void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
   const bool valid = Within(sample.gyro_y_rad_s, kMaxRateRadS) && Within(sample.accel_x_m_s2, kMaxSpecificForceM_S2) &&
                      Within(sample.accel_z_m_s2, kMaxSpecificForceM_S2) && sample.utime >= 0;
-  if (!Admit(&health_.imu, sample.utime, valid)) return;
+  if (!Admit(&health_.imu, nullptr, sample.utime, sample.seq, valid, now_us)) return;
   ++imu_count_;
   gyro_sum_rad_s_ += sample.gyro_y_rad_s;
   accel_sum_m_s2_[0] += sample.accel_x_m_s2;
   accel_sum_m_s2_[1] += sample.accel_z_m_s2;
 }
 
-void VehicleController::OnForce(const ForceEstimate& estimate) {
-  if (!Admit(&health_.force, estimate.utime, estimate.utime >= 0)) return;
-  const bool healthy = (estimate.status & kStatusValid) != 0 && Within(estimate.thrust_scale[0], kMaxThrustScale) &&
-                       Within(estimate.thrust_scale[1], kMaxThrustScale) && estimate.thrust_scale[0] > 0.0 &&
-                       estimate.thrust_scale[1] > 0.0;
+void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
+  const SupervisionParams& s = config_.supervision;
+  // A scale outside the plausible band is refused, not clamped.
+  bool plausible = estimate.utime >= 0;
+  for (int i = 0; i < 2; ++i) {
+    plausible = plausible && std::isfinite(estimate.force_n[i]) && std::isfinite(estimate.force_std_n[i]) &&
+                estimate.thrust_scale[i] >= s.min_plausible_thrust_scale &&
+                estimate.thrust_scale[i] <= s.max_plausible_thrust_scale;
+  }
+  const int64_t previous_utime = health_.force.last_utime;
+  if (!Admit(&health_.force, &force_lock_, estimate.utime, estimate.seq, plausible, now_us)) {
+    if (!plausible) {
+      newest_force_healthy_ = false;  // an implausible estimate ends the healthy run
+      force_healthy_since_us_ = -1;
+    }
+    return;
+  }
+  const bool healthy = (estimate.status & kStatusValid) != 0;
   newest_force_healthy_ = healthy;
   if (!healthy) {
     ++health_.force_unhealthy;
     force_healthy_since_us_ = -1;
     return;
   }
-  if (force_healthy_since_us_ < 0) force_healthy_since_us_ = estimate.utime;
-  const SupervisionParams& s = config_.supervision;
-  for (int i = 0; i < 2; ++i)
-    thrust_scale_[i] = std::clamp(estimate.thrust_scale[i], s.min_thrust_scale, s.max_thrust_scale);
+  // A late FORCE starts a new healthy run: recovery needs force_recovery_s
+  // of on-time samples.
+  const bool on_time =
+      previous_utime >= 0 && 1e-6 * static_cast<double>(estimate.utime - previous_utime) <= s.force_timeout_s;
+  if (force_healthy_since_us_ < 0 || !on_time) force_healthy_since_us_ = estimate.utime;
+  efficiency_.OnForce(estimate);
 }
 
 double VehicleController::AgeS(int64_t last_utime, int64_t now_us) const {
-  return last_utime < 0 ? kInf : 1e-6 * static_cast<double>(now_us - last_utime);
+  if (last_utime < 0 || now_us < last_utime) return kInf;
+  return 1e-6 * static_cast<double>(now_us - last_utime);
 }
 
-bool VehicleController::ForceHealthy(int64_t now_us) const {
+bool VehicleController::ForceUsable(int64_t now_us) const {
   const SupervisionParams& s = config_.supervision;
-  return newest_force_healthy_ && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s &&
+  return newest_force_healthy_ && !health_.conflict && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s &&
          force_healthy_since_us_ >= 0 && AgeS(force_healthy_since_us_, now_us) >= s.force_recovery_s;
 }
 
-MotorCommand VehicleController::Update(int64_t now_us) {
+void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status) {
   const SupervisionParams& s = config_.supervision;
-  const VehicleParams& vehicle = config_.vehicle;
-  MotorCommand command;
-  command.utime = now_us;
-  command.seq = seq_++;
-  ++health_.commands;
-  const double nominal_dt_s = 1.0 / CommandRateHz(config_);
-  const double dt_s = last_update_us_ < 0
-                          ? nominal_dt_s
-                          : std::clamp(1e-6 * static_cast<double>(now_us - last_update_us_), 0.0, 10.0 * nominal_dt_s);
-  last_update_us_ = now_us;
-  // Mode mpc: the rotors have run the last command for dt_s.
-  if (mpc_) mpc_->Advance(Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]), dt_s);
-
-  if (!has_pose_) {
-    command.mode = kModeNominal;
-    command.status = kCommandNoPoseYet | kCommandInputStale;
-    imu_count_ = 0;
-    gyro_sum_rad_s_ = accel_sum_m_s2_[0] = accel_sum_m_s2_[1] = 0.0;
-    return command;  // rotors at 0: nothing to fly on yet
-  }
-
-  // State: propagate with the mean IMU reading of the period, then fuse POSE.
-  int32_t status = 0;
   const bool imu_fresh = AgeS(health_.imu.last_utime, now_us) <= s.imu_timeout_s;
-  double pitch_rate_rad_s = std::numeric_limits<double>::quiet_NaN();
+  double pitch_rate_rad_s = kNaN;
   if (imu_count_ > 0) {
     last_specific_force_m_s2_[0] = accel_sum_m_s2_[0] / imu_count_;
     last_specific_force_m_s2_[1] = accel_sum_m_s2_[1] / imu_count_;
@@ -153,10 +207,10 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   // Without the IMU the commanded acceleration stands in for the measured one.
   const Eigen::Vector2d accel_world_m_s2 =
       imu_fresh ? WorldAcceleration(observer_.state().phi_rad, last_specific_force_m_s2_[0],
-                                    last_specific_force_m_s2_[1], vehicle.gravity_m_s2)
+                                    last_specific_force_m_s2_[1], config_.vehicle.gravity_m_s2)
                 : last_accel_des_m_s2_;
-  if (!imu_fresh) status |= kCommandInputStale;
-  observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : std::numeric_limits<double>::quiet_NaN());
+  if (!imu_fresh) *status |= kCommandInputStale;
+  observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : kNaN);
   if (pose_pending_) {
     const double interval_s = 1e-6 * static_cast<double>(pending_pose_.utime - last_fused_pose_utime_);
     observer_.CorrectPose(Eigen::Vector2d(pending_pose_.x_m, pending_pose_.z_m), pending_pose_.phi_rad, interval_s,
@@ -164,43 +218,26 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     last_fused_pose_utime_ = pending_pose_.utime;
     pose_pending_ = false;
   }
+}
 
-  // POSE lost: a level descent at a fixed sink rate on the propagated state
-  // (the position error is held at zero, so the integrators stay put).
-  const bool pose_lost = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
-  reference_ = setpoint_.At(now_us, observer_.state().position_m);
-  ReferencePoint target = reference_;
-  if (pose_lost) {
-    target.position_m = observer_.state().position_m;
-    target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);
-    target.acceleration_m_s2.setZero();
-    status |= kCommandDescending | kCommandInputStale;
-    if (!health_.descending) ++health_.descents;
+void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency, MotorCommand* command,
+                                 int32_t* status) {
+  const VehicleParams& vehicle = config_.vehicle;
+  double efficiency[2] = {1.0, 1.0};
+  double max_force_n[2];
+  for (int i = 0; i < 2; ++i) {
+    if (use_efficiency) efficiency[i] = efficiency_.efficiency(i);
+    max_force_n[i] = efficiency[i] * vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
+    health_.efficiency[i] = efficiency[i];
   }
-  health_.descending = pose_lost;
-
-  const RotorForces forces = law_.Update(observer_.state(), target);
-  last_accel_des_m_s2_ = forces.accel_des_m_s2;
-  if (!last_accel_des_m_s2_.allFinite()) last_accel_des_m_s2_.setZero();
-
-  // Rotor speeds: nominal map, or each rotor's estimated thrust scale.
-  bool use_force = false;
-  if (config_.force_feedback) {
-    use_force = ForceHealthy(now_us);
-    if (!use_force) {
-      status |= kCommandFallbackActive;
-      if (AgeS(health_.force.last_utime, now_us) > s.force_timeout_s) status |= kCommandInputStale;
-      if (!health_.fallback_active) ++health_.fallbacks;
-    }
-    health_.fallback_active = !use_force;
-  }
-  command.mode = config_.force_feedback ? kModeForceFeedback : kModeNominal;
-  bool saturated = false;
+  const RotorAllocation allocation =
+      AllocateAttitudeFirst(forces.total_force_n, forces.force_difference_n, max_force_n);
+  bool clipped = allocation.total_limited || allocation.difference_limited;
   double omega_rad_s[2];
   for (int i = 0; i < 2; ++i) {
-    bool clipped = false;
-    omega_rad_s[i] = RotorSpeedForThrust(vehicle, forces.force_n[i], use_force ? thrust_scale_[i] : 1.0, &clipped);
-    saturated = saturated || clipped;
+    bool clip = false;
+    omega_rad_s[i] = RotorSpeedForThrust(vehicle, allocation.force_n[i], efficiency[i], &clip);
+    clipped = clipped || (clip && allocation.force_n[i] > 0.0);
   }
   if (!std::isfinite(omega_rad_s[0]) || !std::isfinite(omega_rad_s[1])) {
     // Cannot happen with finite inputs; if it does, repeat the last good
@@ -210,27 +247,112 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     omega_rad_s[0] = last_good_omega_rad_s_[0];
     omega_rad_s[1] = last_good_omega_rad_s_[1];
   }
+  for (int i = 0; i < 2; ++i) {
+    command->omega_cmd_rad_s[i] = std::clamp(omega_rad_s[i], 0.0, vehicle.omega_max_rad_s);
+    last_good_omega_rad_s_[i] = command->omega_cmd_rad_s[i];
+  }
+  saturated_ = clipped;
+  if (clipped) {
+    *status |= kCommandSaturated;
+    ++health_.saturated;
+  }
+}
+
+MotorCommand VehicleController::Update(int64_t now_us) {
+  const SupervisionParams& s = config_.supervision;
+  MotorCommand command;
+  command.utime = now_us;
+  command.seq = seq_++;
+  command.mode = config_.force_feedback ? kModeForceFeedback : kModeNominal;
+  ++health_.commands;
+  const double nominal_dt_s = 1.0 / CommandRateHz(config_);
+  const double dt_s = last_update_us_ < 0
+                          ? nominal_dt_s
+                          : std::clamp(1e-6 * static_cast<double>(now_us - last_update_us_), 0.0, 10.0 * nominal_dt_s);
+  last_update_us_ = now_us;
+  // Mode mpc: the rotors have run the last command for dt_s.
+  if (mpc_) mpc_->Advance(Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]), dt_s);
+
+  if (!has_pose_) {
+    command.status = kCommandNoPoseYet | kCommandInputStale;
+    imu_count_ = 0;
+    gyro_sum_rad_s_ = accel_sum_m_s2_[0] = accel_sum_m_s2_[1] = 0.0;
+    return command;  // rotors at 0: nothing to fly on yet
+  }
+  int32_t status = 0;
+  UpdateState(now_us, dt_s, &status);
+
+  // A second publisher on FORCE or POSE: force feedback is dropped.
+  const bool conflict =
+      force_lock_.ConflictWithin(now_us, s.conflict_hold_s) || pose_lock_.ConflictWithin(now_us, s.conflict_hold_s);
+  if (conflict && !health_.conflict) ++health_.conflicts;
+  health_.conflict = conflict;
+  if (conflict) status |= kCommandInputConflict;
+
+  // The efficiency: follows FORCE while it is usable, decays towards 1 when not.
+  bool use_force = false;
+  if (config_.force_feedback) {
+    use_force = ForceUsable(now_us);
+    if (!use_force) {
+      status |= kCommandFallbackActive;
+      if (AgeS(health_.force.last_utime, now_us) > s.force_timeout_s) status |= kCommandInputStale;
+      if (!health_.fallback_active) ++health_.fallbacks;
+    }
+    health_.fallback_active = !use_force;
+    efficiency_.Advance(dt_s, use_force);
+  }
+
+  // Feasibility: level hover needs both rotors at the hover force.
+  const VehicleParams& vehicle = config_.vehicle;
+  const double weakest = config_.force_feedback ? std::min(efficiency_.efficiency(0), efficiency_.efficiency(1)) : 1.0;
+  const double max_total_n =
+      2.0 * weakest * vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
+  if (max_total_n >= config_.efficiency.feasibility_margin * weight_n_) {
+    infeasible_since_us_ = -1;
+  } else if (infeasible_since_us_ < 0) {
+    infeasible_since_us_ = now_us;
+  }
+  const bool infeasible =
+      infeasible_since_us_ >= 0 && AgeS(infeasible_since_us_, now_us) >= config_.efficiency.infeasible_s;
+  if (infeasible) status |= kCommandHoverInfeasible;
+
+  // POSE lost or hover impossible: a level descent at a fixed sink rate on
+  // the propagated state (the position error is held at zero).
+  const bool pose_lost = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
+  reference_ = setpoint_.At(now_us, observer_.state().position_m);
+  ReferencePoint target = reference_;
+  const bool descend = pose_lost || infeasible;
+  if (descend) {
+    target.position_m = observer_.state().position_m;
+    target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);
+    target.acceleration_m_s2.setZero();
+    status |= kCommandDescending;
+    if (pose_lost) status |= kCommandInputStale;
+    if (!health_.descending) ++health_.descents;
+    if (infeasible && !(health_.descending)) ++health_.infeasible;
+  }
+  health_.descending = descend;
+
+  // Anti-windup: the integrators hold while the previous allocation was limited.
+  const RotorForces forces = law_.Update(observer_.state(), target, !saturated_);
+  last_accel_des_m_s2_ = forces.accel_des_m_s2;
+  if (!last_accel_des_m_s2_.allFinite()) last_accel_des_m_s2_.setZero();
+  const Eigen::Vector2d last_rad_s(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
+  Allocate(forces, config_.force_feedback, &command, &status);
   if (mpc_) {
-    // Mode mpc: the MPC flies; the cascade's speeds above are its fallback.
+    // Mode mpc: the MPC flies (the descent target too, not without POSE); the
+    // cascade's speeds just allocated are its fallback.
     MpcPlanInput in;
     in.state = observer_.state();
     in.reference = target;
-    if (use_force) in.thrust_scale = Eigen::Vector2d(thrust_scale_[0], thrust_scale_[1]);
-    in.last_command_rad_s = Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
+    in.thrust_scale = Eigen::Vector2d(health_.efficiency[0], health_.efficiency[1]);
+    in.last_command_rad_s = last_rad_s;
     in.period_s = nominal_dt_s;
-    const MpcPeriod period = mpc_->Fly(in, Eigen::Vector2d(omega_rad_s[0], omega_rad_s[1]), !pose_lost);
-    omega_rad_s[0] = period.omega_cmd_rad_s(0);
-    omega_rad_s[1] = period.omega_cmd_rad_s(1);
+    const MpcPeriod period =
+        mpc_->Fly(in, Eigen::Vector2d(command.omega_cmd_rad_s[0], command.omega_cmd_rad_s[1]), !pose_lost);
+    for (int i = 0; i < 2; ++i) command.omega_cmd_rad_s[i] = last_good_omega_rad_s_[i] = period.omega_cmd_rad_s(i);
     command.mode = kModeMpc;
     if (period.fell_back) status |= kCommandMpcFallback;
-  }
-  for (int i = 0; i < 2; ++i) {
-    command.omega_cmd_rad_s[i] = std::clamp(omega_rad_s[i], 0.0, vehicle.omega_max_rad_s);
-    last_good_omega_rad_s_[i] = command.omega_cmd_rad_s[i];
-  }
-  if (saturated) {
-    status |= kCommandSaturated;
-    ++health_.saturated;
   }
   command.status = status;
   return command;

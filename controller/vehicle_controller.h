@@ -1,11 +1,16 @@
 // The controller service's flight law: body state from POSE and the IMU
-// (BodyStateObserver), the shared position/pitch law, and the rotor speeds
-// from the nominal map or from each rotor's estimated thrust_scale (FORCE).
-// Supervises its inputs: falls back to the nominal map within one control
-// period when FORCE is stale, not VALID or not finite (and returns when it is
-// healthy again), flies a controlled descent when POSE is lost, and never
-// emits a command that is not finite or outside [0, omega_max]. No LCM, no
-// allocation, no throw after construction.
+// (BodyStateObserver), the shared position/pitch law, an allocation that
+// keeps attitude before altitude, and the rotor speeds from the nominal map
+// or from each rotor's conditioned thrust efficiency (FORCE through
+// EfficiencyConditioner). It flies the setpoint (SetpointInput).
+// Supervises its inputs on the caller's clock (issue 23): stamps outside the
+// clock windows, a second publisher on FORCE or POSE, implausible thrust
+// scales and POSE outside the innovation gate are refused and counted; a
+// second publisher drops force feedback; FORCE stale, not VALID or refused
+// lets the efficiency decay towards the nominal map; a lost POSE or a hover
+// the rotors cannot make gives a level controlled descent; a command is never
+// non-finite or outside [0, omega_max]. No LCM, no allocation, no throw after
+// construction.
 #pragma once
 
 #include <cstdint>
@@ -13,10 +18,12 @@
 
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
+#include "controller/efficiency_conditioner.h"
 #include "controller/motor_command.h"
 #include "controller/mpc_controller.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
+#include "controller/seq_stream_lock.h"
 #include "controller/setpoint.h"
 #include "controller/setpoint_input.h"
 #include "samples/samples.h"
@@ -27,33 +34,43 @@ namespace birotor {
 struct ControllerInputCounters {
   int64_t received = 0;
   int64_t accepted = 0;
-  int64_t rejected_invalid = 0;       // non-finite or implausible fields
-  int64_t rejected_out_of_order = 0;  // utime not newer than the newest accepted
+  int64_t rejected_invalid = 0;       // non-finite or implausible fields (FORCE: scale outside the band)
+  int64_t rejected_out_of_order = 0;  // utime not newer than the newest accepted, or a repeated seq
+  int64_t rejected_future = 0;        // stamp ahead of the clock by more than clock_future_window_s
+  int64_t rejected_past = 0;          // stamp behind the clock by more than clock_past_window_s
+  int64_t rejected_foreign = 0;       // a second publisher's seq stream (FORCE, POSE)
+  int64_t rejected_gate = 0;          // POSE outside the innovation gate
   int64_t last_utime = -1;            // newest accepted [us]; -1 if none
 };
 
 struct ControllerHealth {
   ControllerInputCounters pose, imu, force;
   int64_t commands = 0;
-  int64_t fallbacks = 0;         // entries into the nominal-map fallback
-  int64_t descents = 0;          // entries into the controlled descent
-  int64_t saturated = 0;         // commands with a clipped rotor speed
+  int64_t fallbacks = 0;         // entries into the fallback (efficiency decaying towards the nominal map)
+  int64_t descents = 0;          // entries into the controlled descent (POSE lost or hover infeasible)
+  int64_t saturated = 0;         // commands whose allocation was limited (or a speed clipped)
   int64_t numerical_guards = 0;  // non-finite law outputs replaced by the last good command
-  int64_t force_unhealthy = 0;   // accepted FORCE samples without VALID or with a non-finite scale
+  int64_t force_unhealthy = 0;   // accepted FORCE samples without VALID
+  int64_t conflicts = 0;         // entries into STATUS_INPUT_CONFLICT
+  int64_t pose_gate_resets = 0;  // observer re-initialised after pose_gate_reset_s of gated POSE
+  int64_t infeasible = 0;        // entries into the hover-infeasible descent
   bool fallback_active = false;
   bool descending = false;
+  bool conflict = false;
+  double efficiency[2] = {1.0, 1.0};  // efficiency used by the rotor map in the newest period [1]
 };
 
 class VehicleController {
  public:
   explicit VehicleController(const ControllerConfig& config);
 
-  // Inputs, in any order and at any rate; bad samples are counted and dropped.
-  void OnPose(const PoseSample& sample);
-  void OnImu(const ImuSample& sample);
-  void OnForce(const ForceEstimate& estimate);
-  // A setpoint arrived when the controller's clock read now_us [us]
-  // (SetpointInput: checked, counted, followed, held, then hover here).
+  // Inputs, in any order and at any rate, each arrived when the controller's
+  // clock read now_us [us]; bad samples are counted and dropped. The clock
+  // is the caller's; no input moves it.
+  void OnPose(const PoseSample& sample, int64_t now_us);
+  void OnImu(const ImuSample& sample, int64_t now_us);
+  void OnForce(const ForceEstimate& estimate, int64_t now_us);
+  // A setpoint (SetpointInput: checked, counted, followed, held, then hover here).
   void OnSetpoint(const Setpoint& setpoint, int64_t now_us) { setpoint_.Offer(setpoint, now_us); }
 
   // One control period at vehicle time now_us [us], tracking the setpoint
@@ -72,23 +89,38 @@ class VehicleController {
   MpcStats MpcStatistics() const { return mpc_ ? mpc_->Stats() : MpcStats(); }
 
  private:
-  // True when FORCE may be flown on at now_us (fresh, VALID, finite scales).
-  bool ForceHealthy(int64_t now_us) const;
-  // Age of an input at now_us [s]; +inf before its first sample.
+  // The common checks of every input: plausible, stamp within the clock
+  // windows, in the locked seq stream (lock may be null), newer than the
+  // newest accepted.
+  bool Admit(ControllerInputCounters* counters, SeqStreamLock* lock, int64_t utime, int32_t seq, bool valid,
+             int64_t now_us);
+  // True when FORCE may be flown on at now_us (fresh, on time, VALID, no conflict).
+  bool ForceUsable(int64_t now_us) const;
+  // Age of an input at now_us [s]; +inf before its first sample or when its
+  // stamp is ahead of the clock (negative age: stale).
   double AgeS(int64_t last_utime, int64_t now_us) const;
+  // Observer: propagate with the period's IMU mean, then fuse a pending POSE.
+  void UpdateState(int64_t now_us, double dt_s, int32_t* status);
+  // Rotor speeds from the law's forces: allocation within the rotors'
+  // limits, the map with the efficiency in use.
+  void Allocate(const RotorForces& forces, bool use_efficiency, MotorCommand* command, int32_t* status);
 
   ControllerConfig config_;
   PositionAttitudeLaw law_;
   BodyStateObserver observer_;
+  EfficiencyConditioner efficiency_;
+  SeqStreamLock force_lock_, pose_lock_;
   ControllerHealth health_;
   SetpointInput setpoint_;
   ReferencePoint reference_;
+  double weight_n_;
 
-  // POSE: the newest accepted sample not yet fused.
+  // POSE: the newest accepted sample not yet fused; the gate's run of refusals.
   bool has_pose_ = false;
   bool pose_pending_ = false;
   PoseSample pending_pose_;
   int64_t last_fused_pose_utime_ = -1;
+  int64_t gated_since_us_ = -1;
 
   // IMU: sums over the samples since the last control period.
   int imu_count_ = 0;
@@ -96,12 +128,14 @@ class VehicleController {
   double accel_sum_m_s2_[2] = {0.0, 0.0};
   double last_specific_force_m_s2_[2] = {0.0, 0.0};
 
-  // FORCE: the thrust scales of the newest healthy estimate.
+  // FORCE: health of the newest sample and the start of the current healthy,
+  // on-time run (-1 while unhealthy).
   bool newest_force_healthy_ = false;
-  double thrust_scale_[2] = {1.0, 1.0};
-  int64_t force_healthy_since_us_ = -1;  // start of the current healthy run; -1 while unhealthy
+  int64_t force_healthy_since_us_ = -1;
 
   int64_t last_update_us_ = -1;
+  int64_t infeasible_since_us_ = -1;
+  bool saturated_ = false;  // the previous period's allocation was limited (anti-windup)
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
   double last_good_omega_rad_s_[2] = {0.0, 0.0};
   int32_t seq_ = 0;

@@ -21,7 +21,7 @@ class LockStepSink : public SampleSink {
     ForceEstimate estimate;
     if (!estimator_->OnStrain(sample, &estimate)) return;
     if (wire_ != nullptr) wire_->OnForce(estimate);
-    controller_->OnForce(estimate);
+    controller_->OnForce(estimate, simulator_->utime());
   }
   void OnMotor(const MotorSample& sample) override {
     if (wire_ != nullptr) wire_->OnMotor(sample);
@@ -32,13 +32,13 @@ class LockStepSink : public SampleSink {
     if (wire_ != nullptr) wire_->OnImu(sample);
     estimator_->CountReceived(InputChannel::kImu);
     estimator_->OnImu(sample);
-    controller_->OnImu(sample);
+    controller_->OnImu(sample, simulator_->utime());
   }
   void OnPose(const PoseSample& sample) override {
     if (wire_ != nullptr) wire_->OnPose(sample);
     estimator_->CountReceived(InputChannel::kPose);
     estimator_->OnPose(sample);
-    controller_->OnPose(sample);
+    controller_->OnPose(sample, simulator_->utime());
   }
   void OnSetpoint(const Setpoint& setpoint) override {
     if (wire_ != nullptr) wire_->OnSetpoint(setpoint);
@@ -86,10 +86,11 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
       std::max<int64_t>(1, std::llround(1.0 / (CommandRateHz(controller_config) * scenario.step_s)));
   int64_t step = 0;
   while (!simulator.done()) {
+    if (options.before_step) options.before_step(&simulator, &controller);
     if (step % control_every == 0) {
       const int64_t now_us = simulator.utime();
       const MotorCommand command = controller.Update(now_us);
-      simulator.SetMotorCommand(command.omega_cmd_rad_s, now_us);
+      simulator.OfferMotorCommand(command.seq, command.utime, command.omega_cmd_rad_s);
       if (log != nullptr) wire.OnMotorCommand(command);
       run.commands.push_back(command);
     }
@@ -102,6 +103,9 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
       break;
     }
   }
+  run.liftoff_utime = simulator.liftoff_utime();
+  run.has_ground = scenario.ground.enabled;
+  run.ground_z_m = scenario.start_position_m[1];
   run.controller = controller.health();
   run.mpc = controller.MpcStatistics();
   run.estimator = estimator.health();

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "controller/controller_params.h"
@@ -24,6 +25,8 @@
 
 namespace birotor {
 
+class Simulator;
+
 struct ClosedLoopOptions {
   // The ESCs command 0 after this long without a MOTOR_COMMAND [s].
   double command_timeout_s = 0.1;
@@ -31,6 +34,9 @@ struct ClosedLoopOptions {
   std::string prefix = "BIROTOR_";
   // The trajectory is sent as SETPOINT at this rate [Hz].
   double setpoint_rate_hz = 100.0;
+  // Called before every simulator step (tests: an attacker's messages to
+  // the controller or the ESCs at the simulator's current time).
+  std::function<void(Simulator* simulator, VehicleController* controller)> before_step;
 };
 
 // One truth sample with the reference the controller was tracking then.
@@ -46,6 +52,9 @@ struct ClosedLoopRun {
   MpcStats mpc;  // mode mpc: solves, fallbacks, solve times (zeros in other modes)
   PipelineHealth estimator;
   int64_t fault_utime = -1;      // first thrust step [us]; -1 if none
+  int64_t liftoff_utime = -1;    // first lift-off of a ground start [us]; -1 if none
+  bool has_ground = false;       // the scenario has a ground phase (a support at ground_z_m)
+  double ground_z_m = 0;         // height of the support [m]
   int64_t command_timeouts = 0;  // ESC command timeouts
   double simulated_s = 0;        // [s]
   double wall_s = 0;             // [s]

@@ -6,11 +6,20 @@
 #include <cmath>
 #include <limits>
 
+#include "numerics/percentile.h"
+
 namespace birotor {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Altitude loss at which the vehicle counts as crashed (issue 12) [m].
 constexpr double kCrashAltitudeLossM = 0.5;
+// Issue 25: medians within 5 %, no seed worse by more than 25 %.
+constexpr double kMedianTolerance = 1.05;
+constexpr double kSeedTolerance = 1.25;
+// Figures below these are noise floors, not differences: a ratio is taken
+// against at least this much [m, rad, m].
+constexpr double kFloor[3] = {1e-3, 2e-3, 2e-3};
 
 }  // namespace
 
@@ -18,46 +27,122 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
   ControlMetrics m;
   if (run.samples.empty()) return m;
   const int64_t start_utime = run.samples.front().truth.utime;
-  const int64_t fault_utime = run.fault_utime >= 0 ? run.fault_utime : start_utime;
-  m.fault_time_s = 1e-6 * static_cast<double>(fault_utime - start_utime);
+  const int64_t flight_utime = run.liftoff_utime >= 0 ? run.liftoff_utime : start_utime;
+  const int64_t event_utime = run.fault_utime >= 0 ? run.fault_utime : flight_utime;
+  const int64_t window_end_utime = event_utime + std::llround(options.window_s * 1e6);
+  m.fault_time_s = 1e-6 * static_cast<double>(event_utime - start_utime);
+  m.touchdown_speed_m_s = m.tilt_before_touchdown_rad = kNaN;
+  const double ground_z_m = run.ground_z_m;
   double sum_squared = 0;
-  int64_t last_outside_utime = -1;  // newest sample after the fault outside the tolerance
+  int64_t scored = 0;
+  int64_t last_outside_utime = -1;  // newest sample after the event outside the tolerance
+  double tilt_since_event = 0;
+  const TrackedSample* previous = nullptr;
   for (const TrackedSample& s : run.samples) {
     const double dx = s.truth.x_m - s.reference_m.x();
     const double dz = s.truth.z_m - s.reference_m.y();
     const double error = std::hypot(dx, dz);
-    sum_squared += error * error;
-    m.max_position_error_m = std::max(m.max_position_error_m, error);
-    m.peak_tilt_rad = std::max(m.peak_tilt_rad, std::fabs(s.truth.phi_rad));
-    if (s.truth.utime < fault_utime) continue;
-    m.peak_altitude_loss_m = std::max(m.peak_altitude_loss_m, -dz);
-    if (error > options.return_tolerance_m) last_outside_utime = s.truth.utime;
+    const double tilt = std::fabs(s.truth.phi_rad);
+    m.peak_tilt_rad = std::max(m.peak_tilt_rad, tilt);
+    if (s.truth.utime >= flight_utime) {
+      sum_squared += error * error;
+      ++scored;
+      m.max_position_error_m = std::max(m.max_position_error_m, error);
+    }
+    if (s.truth.utime >= event_utime) {
+      if (s.truth.utime <= window_end_utime) {
+        m.fault_peak_tilt_rad = std::max(m.fault_peak_tilt_rad, tilt);
+        m.peak_altitude_deviation_m = std::max(m.peak_altitude_deviation_m, std::fabs(dz));
+      }
+      m.peak_altitude_loss_m = std::max(m.peak_altitude_loss_m, -dz);
+      if (error > options.return_tolerance_m) last_outside_utime = s.truth.utime;
+      if (std::isnan(m.touchdown_speed_m_s)) {
+        tilt_since_event = std::max(tilt_since_event, tilt);
+        if (run.has_ground && run.fault_utime >= 0 && previous != nullptr && previous->truth.z_m > ground_z_m + 1e-9 &&
+            s.truth.z_m <= ground_z_m + 1e-9) {
+          m.touchdown_speed_m_s = std::max(-previous->truth.z_dot_m_s, 0.0);
+          m.tilt_before_touchdown_rad = tilt_since_event;
+        }
+      }
+    }
+    previous = &s;
   }
   m.samples = static_cast<int64_t>(run.samples.size());
-  m.rms_position_error_m = std::sqrt(sum_squared / static_cast<double>(m.samples));
+  m.rms_position_error_m = scored > 0 ? std::sqrt(sum_squared / static_cast<double>(scored)) : kNaN;
   if (last_outside_utime < 0) {
     m.return_time_s = 0;
   } else if (last_outside_utime == run.samples.back().truth.utime) {
-    m.return_time_s = std::numeric_limits<double>::quiet_NaN();
+    m.return_time_s = kNaN;
   } else {
-    m.return_time_s = 1e-6 * static_cast<double>(last_outside_utime - fault_utime);
+    m.return_time_s = 1e-6 * static_cast<double>(last_outside_utime - event_utime);
   }
   m.crashed = m.peak_altitude_loss_m >= kCrashAltitudeLossM;
   return m;
 }
 
+ControlFigures FiguresOf(const ControlMetrics& m) {
+  return ControlFigures{m.rms_position_error_m, m.fault_peak_tilt_rad, m.peak_altitude_deviation_m};
+}
+
+ControlComparison CompareControl(const std::vector<ControlFigures>& nominal,
+                                 const std::vector<ControlFigures>& feedback, const std::vector<int>& seeds) {
+  ControlComparison c;
+  c.seeds = static_cast<int>(std::min(nominal.size(), feedback.size()));
+  if (c.seeds == 0) return c;
+  double ControlFigures::*fields[3] = {&ControlFigures::rms_m, &ControlFigures::tilt_rad, &ControlFigures::altitude_m};
+  c.met = true;
+  for (int f = 0; f < 3; ++f) {
+    std::vector<double> n, b;
+    double worst = -1;
+    for (int k = 0; k < c.seeds; ++k) {
+      n.push_back(nominal[k].*fields[f]);
+      b.push_back(feedback[k].*fields[f]);
+      const double ratio = feedback[k].*fields[f] / std::max(nominal[k].*fields[f], kFloor[f]);
+      if (!(ratio <= worst)) {
+        worst = ratio;
+        c.worst_seed[f] = seeds[k];
+      }
+    }
+    c.nominal_median.*fields[f] = Percentile(n, 0.5);
+    c.feedback_median.*fields[f] = Percentile(b, 0.5);
+    c.worst_ratio.*fields[f] = worst;
+    const double median_nominal = std::max(c.nominal_median.*fields[f], kFloor[f]);
+    c.met = c.met && c.feedback_median.*fields[f] <= kMedianTolerance * median_nominal && worst <= kSeedTolerance;
+  }
+  return c;
+}
+
 std::string ControlTableHeader() {
-  return "| scenario | controller | RMS position error [m] | peak tilt [rad] | fault at [s] | "
-         "peak altitude loss [m] | back within 5 cm [s] | fallbacks | crashed |\n"
-         "|---|---|---|---|---|---|---|---|---|\n";
+  return "| scenario | controller | RMS position error [m] | peak tilt [rad] | event at [s] | tilt after event [rad] "
+         "| altitude deviation [m] | peak altitude loss [m] | back within 5 cm [s] | touchdown [m/s] | fallbacks | "
+         "crashed |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string ControlTableRow(const std::string& scenario, const std::string& mode, const ControlMetrics& m,
                             const ClosedLoopRun& run) {
   const std::string back = std::isnan(m.return_time_s) ? "never" : fmt::format("{:.2f}", m.return_time_s);
-  return fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.4f} | {} | {} | {} |\n", scenario, mode,
-                     m.rms_position_error_m, m.peak_tilt_rad, m.fault_time_s, m.peak_altitude_loss_m, back,
-                     run.controller.fallbacks, m.crashed ? "yes" : "no");
+  const std::string touchdown = std::isnan(m.touchdown_speed_m_s) ? "-" : fmt::format("{:.2f}", m.touchdown_speed_m_s);
+  return fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} |\n",
+                     scenario, mode, m.rms_position_error_m, m.peak_tilt_rad, m.fault_time_s, m.fault_peak_tilt_rad,
+                     m.peak_altitude_deviation_m, m.peak_altitude_loss_m, back, touchdown, run.controller.fallbacks,
+                     m.crashed ? "yes" : "no");
+}
+
+std::string ComparisonTableHeader() {
+  return "| case | seeds | RMS position [m] nominal / FF | tilt after event [rad] nominal / FF | altitude deviation "
+         "[m] "
+         "nominal / FF | worst seed FF/nominal (RMS, tilt, altitude) | met |\n|---|---|---|---|---|---|---|\n";
+}
+
+std::string ComparisonTableRow(const std::string& name, const ControlComparison& c) {
+  const ControlFigures& n = c.nominal_median;
+  const ControlFigures& b = c.feedback_median;
+  return fmt::format(
+      "| {} | {} | {:.4f} / {:.4f} | {:.4f} / {:.4f} | {:.4f} / {:.4f} | {:.2f} (seed {}), {:.2f} (seed {}), {:.2f} "
+      "(seed {}) | {} |\n",
+      name, c.seeds, n.rms_m, b.rms_m, n.tilt_rad, b.tilt_rad, n.altitude_m, b.altitude_m, c.worst_ratio.rms_m,
+      c.worst_seed[0], c.worst_ratio.tilt_rad, c.worst_seed[1], c.worst_ratio.altitude_m, c.worst_seed[2],
+      c.met ? "yes" : "NO");
 }
 
 }  // namespace birotor

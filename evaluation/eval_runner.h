@@ -10,8 +10,8 @@
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/truth_t.hpp"
 #include "estimator/estimator_config.h"
-#include "samples/samples.h"
 #include "replay/replayer.h"
+#include "samples/samples.h"
 #include "simulator/scenario.h"
 
 namespace birotor {

@@ -24,7 +24,7 @@ MonitorCollector::MonitorCollector(const ChannelNames& channels, double expected
   fault_utimes_.reserve(1024);
 }
 
-void MonitorCollector::HandlePacket(const std::string& channel, const void* data, size_t size) {
+void MonitorCollector::HandlePacket(std::string_view channel, const void* data, size_t size) {
   if (channel == channels_.force) {
     if (DecodeMessage(data, size, &force_message_) == DecodeError::kNone) {
       OnForce(FromMessage(force_message_));

@@ -10,13 +10,15 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/truth_t.hpp"
-#include "samples/samples.h"
 #include "evaluation/eval_metrics.h"
+#include "samples/samples.h"
+#include "sources/message_source.h"
 #include "transport/channels.h"
 
 namespace birotor {
@@ -40,7 +42,7 @@ struct ForceStreamStats {
   int64_t nonfinite = 0;           // messages with a NaN/Inf force, std or thrust scale
 };
 
-class MonitorCollector {
+class MonitorCollector : public PacketHandler {
  public:
   // expected_duration_s sizes the sample buffers (1 kHz TRUTH and FORCE), so
   // that a run of that length does not reallocate; longer runs still work.
@@ -48,7 +50,15 @@ class MonitorCollector {
 
   // One packet of any channel; other channels are ignored. Never throws; an
   // undecodable packet is counted in decode_errors().
-  void HandlePacket(const std::string& channel, const void* data, size_t size);
+  void HandlePacket(std::string_view channel, const void* data, size_t size);
+  // PacketHandler (the arrival time is not used).
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t /*receive_wall_utime*/) override {
+    HandlePacket(channel, data, size);
+  }
+  // The channels it reads (TRUTH, FORCE, ESTIMATOR_STATUS), to subscribe a source to.
+  std::vector<std::string> InputChannels() const {
+    return {channels_.truth, channels_.force, channels_.estimator_status};
+  }
 
   // Final figures over everything received, as birotor-eval computes them.
   // Input-fault times are inferred from the FORCE stream (see fault_utimes()).

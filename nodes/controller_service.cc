@@ -1,5 +1,5 @@
-// LCM glue of the flight controller: raw subscriptions, checked decoding,
-// the vehicle clock, MOTOR_COMMAND and CONTROLLER_STATUS.
+// The controller node: checked decoding, the own clock and timer,
+// MOTOR_COMMAND and CONTROLLER_STATUS.
 #include "nodes/controller_service.h"
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "birotor/setpoint_t.hpp"
 #include "numerics/percentile.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
@@ -18,9 +19,10 @@ namespace birotor {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// FORCE comes once per strain sample (1 kHz reference): a FORCE this much
-// before the period is due still triggers it, so every other one does [us].
-constexpr int64_t kForceTriggerEarlyUs = 500;
+// The clock follows the earliest-arriving input this long after it is set [us].
+constexpr int64_t kClockAcquireUs = 500000;
+// No input accepted for this long: the next input sets the clock again [us].
+constexpr int64_t kClockRelatchUs = 2000000;
 
 }  // namespace
 
@@ -32,79 +34,77 @@ ControllerService::ControllerService(const ControllerConfig& config, const Chann
   buffer_.reserve(256);
 }
 
-ControllerService::~ControllerService() { Unsubscribe(); }
+ControllerService::~ControllerService() = default;
 
-void ControllerService::Subscribe(lcm::LCM* lcm) {
-  Unsubscribe();
-  lcm_ = lcm;
+std::vector<std::string> ControllerService::InputChannels() const {
+  return {channels_.pose, channels_.imu, channels_.force, channels_.setpoint};
+}
+
+void ControllerService::HandlePacket(std::string_view channel, const void* data, size_t size,
+                                     int64_t /*receive_wall_utime*/) {
   const std::string* names[kNumControllerInputs] = {&channels_.pose, &channels_.imu, &channels_.force};
+  if (channel == channels_.setpoint) {
+    const int64_t host_us = SteadyClockUs();
+    setpoint_t message;
+    if (DecodeMessage(data, size, &message) != DecodeError::kNone) {
+      ++setpoint_decode_errors_;
+      return;
+    }
+    // A setpoint does not set the clock (a planner's clock is not the vehicle's).
+    if (clock_set_) controller_.OnSetpoint(FromMessage(message), VehicleTimeUs(host_us));
+    return;
+  }
   for (int i = 0; i < kNumControllerInputs; ++i) {
-    RawSubscription& context = subscriptions_[i];
-    context.service = this;
-    context.input = static_cast<ControllerInput>(i);
-    context.subscription = lcm->subscribeFunction(*names[i], &ControllerService::OnRawMessage, &context);
-    if (context.subscription != nullptr) context.subscription->setQueueCapacity(10000);
+    if (channel == *names[i]) {
+      HandlePacket(static_cast<ControllerInput>(i), data, size, SteadyClockUs());
+      return;
+    }
   }
 }
 
-void ControllerService::Unsubscribe() {
-  if (lcm_ == nullptr) return;
-  for (RawSubscription& context : subscriptions_) {
-    if (context.subscription != nullptr) lcm_->unsubscribe(context.subscription);
-    context.subscription = nullptr;
+int64_t ControllerService::ClockForInput(int64_t utime, int64_t host_us) {
+  const bool restart = clock_set_ && host_us - last_accepted_host_us_ > kClockRelatchUs;
+  if ((!clock_set_ || restart) && utime >= 0) {
+    if (restart) ++clock_relatches_;
+    clock_set_ = true;
+    clock_offset_us_ = utime - host_us;
+    clock_set_host_us_ = last_accepted_host_us_ = host_us;
+  } else if (clock_set_ && host_us - clock_set_host_us_ < kClockAcquireUs) {
+    // Acquisition: the offset of the input that arrived soonest, forward
+    // only and never by more than the future window at a time.
+    const int64_t lead_us = utime - host_us - clock_offset_us_;
+    const int64_t window_us = std::llround(controller_.config().supervision.clock_future_window_s * 1e6);
+    if (lead_us > 0 && lead_us <= window_us) clock_offset_us_ += lead_us;
   }
-  lcm_ = nullptr;
+  return VehicleTimeUs(host_us);
 }
 
-void ControllerService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/,
-                                     RawSubscription* subscription) {
-  subscription->service->HandlePacket(subscription->input, buffer->data, buffer->data_size, SteadyClockUs());
-}
-
-void ControllerService::NoteInputTime(int64_t utime, int64_t host_us) {
-  if (utime > newest_utime_) {
-    newest_utime_ = utime;
-    newest_host_us_ = host_us;
-  }
-}
-
-int64_t ControllerService::VehicleTimeUs(int64_t host_us) const {
-  return newest_utime_ < 0 ? -1 : newest_utime_ + std::max<int64_t>(0, host_us - newest_host_us_);
-}
+int64_t ControllerService::VehicleTimeUs(int64_t host_us) const { return clock_set_ ? host_us + clock_offset_us_ : -1; }
 
 void ControllerService::HandlePacket(ControllerInput input, const void* data, size_t size, int64_t host_us) {
   const int index = static_cast<int>(input);
+  const ControllerInputCounters* counters[kNumControllerInputs] = {&health().pose, &health().imu, &health().force};
+  const int64_t accepted_before = counters[index]->accepted;
   switch (input) {
     case ControllerInput::kPose: {
       pose_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      const int64_t accepted_before = health().pose.accepted;
-      controller_.OnPose(FromMessage(message));
-      if (health().pose.accepted > accepted_before) NoteInputTime(message.utime, host_us);
+      controller_.OnPose(FromMessage(message), ClockForInput(message.utime, host_us));
+      if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
     case ControllerInput::kImu: {
       imu_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      const int64_t accepted_before = health().imu.accepted;
-      controller_.OnImu(FromMessage(message));
-      if (health().imu.accepted > accepted_before) NoteInputTime(message.utime, host_us);
+      controller_.OnImu(FromMessage(message), ClockForInput(message.utime, host_us));
+      if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
     case ControllerInput::kForce: {
       force_estimate_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      const int64_t accepted_before = health().force.accepted;
-      controller_.OnForce(FromMessage(message));
-      if (health().force.accepted == accepted_before) return;
-      NoteInputTime(message.utime, host_us);
-      last_force_host_us_ = host_us;
-      if (!controller_.has_pose()) return;  // nothing to fly on yet: the ESCs hold what they have
-      // Triggered on the vehicle clock (strain stamps have no jitter): every
-      // other FORCE at 1 kHz.
-      if (last_period_vehicle_us_ < 0 || message.utime - last_period_vehicle_us_ >= period_us_ - kForceTriggerEarlyUs) {
-        RunControlPeriod(message.utime, host_us);  // the command carries its FORCE's (strain's) utime
-      }
+      controller_.OnForce(FromMessage(message), ClockForInput(message.utime, host_us));
+      if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
   }
@@ -112,26 +112,28 @@ void ControllerService::HandlePacket(ControllerInput input, const void* data, si
 }
 
 int64_t ControllerService::NextPeriodHostUs() const {
-  if (last_period_host_us_ < 0) return controller_.has_pose() ? 0 : std::numeric_limits<int64_t>::max();
-  const bool force_flowing = last_force_host_us_ >= 0 && last_period_host_us_ - last_force_host_us_ < period_us_;
-  return last_period_host_us_ + period_us_ + (force_flowing ? period_us_ / 2 : 0);
+  if (!controller_.has_pose()) return std::numeric_limits<int64_t>::max();
+  return next_period_host_us_ < 0 ? 0 : next_period_host_us_;
 }
 
 void ControllerService::RunIfDue(int64_t host_us) {
   if (!controller_.has_pose() || host_us < NextPeriodHostUs()) return;
-  RunControlPeriod(VehicleTimeUs(host_us), host_us);
+  RunControlPeriod(host_us);
+  // The next period on the grid; after a stall longer than a period the
+  // grid starts again from now (no burst of catch-up commands).
+  next_period_host_us_ = next_period_host_us_ < 0 ? host_us + period_us_ : next_period_host_us_ + period_us_;
+  if (next_period_host_us_ <= host_us) next_period_host_us_ = host_us + period_us_;
 }
 
-void ControllerService::RunControlPeriod(int64_t vehicle_us, int64_t trigger_host_us) {
-  // The vehicle clock never runs backwards between commands.
-  vehicle_us = std::max(vehicle_us, last_period_vehicle_us_);
+void ControllerService::RunControlPeriod(int64_t host_us) {
+  // The clock is monotonic; the guard keeps a command's stamp from going back.
+  const int64_t vehicle_us = std::max(VehicleTimeUs(host_us), last_period_vehicle_us_);
   last_command_ = controller_.Update(vehicle_us);
   EncodeMessage(ToMessage(last_command_), &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.motor_command, last_command_.utime, buffer_.data(), buffer_.size());
   const int64_t done_us = SteadyClockUs();
-  loop_times_us_[loop_time_count_ % kLoopTimeCapacity] = static_cast<double>(done_us - trigger_host_us);
+  loop_times_us_[loop_time_count_ % kLoopTimeCapacity] = static_cast<double>(done_us - host_us);
   ++loop_time_count_;
-  last_period_host_us_ = trigger_host_us;
   last_period_vehicle_us_ = vehicle_us;
 }
 
@@ -162,7 +164,30 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
     m.decode_errors[i] = decode_errors_[i];
     m.rejected_invalid[i] = counters[i]->rejected_invalid;
     m.rejected_out_of_order[i] = counters[i]->rejected_out_of_order;
+    m.rejected_future[i] = counters[i]->rejected_future;
+    m.rejected_past[i] = counters[i]->rejected_past;
+    m.rejected_foreign[i] = counters[i]->rejected_foreign;
   }
+  m.pose_rejected_gate = h.pose.rejected_gate;
+  m.pose_gate_resets = h.pose_gate_resets;
+  m.conflicts = h.conflicts;
+  m.infeasible = h.infeasible;
+  m.clock_relatches = clock_relatches_;
+  m.efficiency[0] = h.efficiency[0];
+  m.efficiency[1] = h.efficiency[1];
+  const SetpointInput& setpoint = controller_.setpoint();
+  const SetpointCounters& sc = setpoint.counters();
+  m.setpoint_state = static_cast<int32_t>(setpoint.state());
+  m.setpoint_age_s =
+      setpoint.last_utime() < 0 || now_us < 0 ? kNaN : 1e-6 * static_cast<double>(now_us - setpoint.last_utime());
+  m.setpoint_received = sc.received + setpoint_decode_errors_;
+  m.setpoint_decode_errors = setpoint_decode_errors_;
+  m.setpoint_rejected_invalid = sc.rejected_invalid;
+  m.setpoint_rejected_stamp = sc.rejected_stamp;
+  m.setpoint_rejected_out_of_order = sc.rejected_out_of_order;
+  m.setpoint_rejected_rate = sc.rejected_rate;
+  m.setpoint_rejected_jump = sc.rejected_jump;
+  m.setpoint_timeouts = sc.timeouts;
   const size_t n = std::min(loop_time_count_, kLoopTimeCapacity);
   m.loop_time_p99_us = Percentile(loop_times_us_.begin(), loop_times_us_.begin() + n, 0.99);
   m.loop_time_max_us = n == 0 ? kNaN : *std::max_element(loop_times_us_.begin(), loop_times_us_.begin() + n);

@@ -1,22 +1,23 @@
-// The flight-controller daemon's glue between LCM and VehicleController: raw
-// subscriptions to POSE, IMU and FORCE with checked decoding (a corrupt
-// packet is counted, never trusted), the vehicle clock (newest input utime
-// plus the host time since it arrived), control periods triggered by FORCE
-// (so a command follows its strain sample at once) or by the period timer
-// when FORCE stops, MOTOR_COMMAND and the CONTROLLER_STATUS health message.
+// The controller node: a PacketHandler (sources/message_source.h) for POSE,
+// IMU, FORCE and SETPOINT over VehicleController, with checked decoding (a
+// corrupt packet is counted, never trusted), the controller's own clock (the
+// host's steady clock, put on the vehicle's time base by the first input and
+// never moved by a later one), control periods on its own timer at rate_hz,
+// MOTOR_COMMAND and the CONTROLLER_STATUS health message.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <lcm/lcm-cpp.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "birotor/controller_status_t.hpp"
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
 #include "sinks/message_sink.h"
+#include "sources/message_source.h"
 #include "transport/channels.h"
 
 namespace birotor {
@@ -24,7 +25,7 @@ namespace birotor {
 enum class ControllerInput : int { kPose = 0, kImu = 1, kForce = 2 };
 constexpr int kNumControllerInputs = 3;
 
-class ControllerService {
+class ControllerService : public PacketHandler {
  public:
   // sink must outlive the service.
   ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink);
@@ -32,56 +33,61 @@ class ControllerService {
   ControllerService(const ControllerService&) = delete;
   ControllerService& operator=(const ControllerService&) = delete;
 
-  void Subscribe(lcm::LCM* lcm);
-  void Unsubscribe();
+  // The full names of the input channels (POSE, IMU, FORCE), to subscribe a
+  // source to.
+  std::vector<std::string> InputChannels() const;
+  // PacketHandler: a packet of an input channel goes to HandlePacket below,
+  // stamped with the host's steady clock when it is handled; any other
+  // channel is ignored.
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
 
   // One encoded packet of an input, arrived at host_us (steady clock [us]).
-  // A FORCE stamped at least a period minus half a FORCE interval after the
-  // last command (vehicle clock) runs a control period at once, stamped with
-  // its utime.
-  // Never throws.
+  // Never throws; never runs a control period (the timer does).
   void HandlePacket(ControllerInput input, const void* data, size_t size, int64_t host_us);
 
-  // Host time [us] by which the next control period must run: one period
-  // after the last, plus half a period while FORCE flows (the FORCE trigger
-  // normally comes first). No period runs before the first POSE (nothing to
-  // fly on: the ESCs keep what they run).
+  // Host time [us] of the next control period: a fixed grid of 1 / rate_hz
+  // on the host clock, whatever the inputs do. No period runs before the
+  // first POSE (nothing to fly on: the ESCs keep what they run).
   int64_t NextPeriodHostUs() const;
-  // Runs a control period at host_us if it is due (timer path).
+  // Runs a control period at host_us if it is due.
   void RunIfDue(int64_t host_us);
 
   // Publishes CONTROLLER_STATUS and starts a new reporting period.
   void PublishStatus(int64_t wall_utime, int64_t host_us);
 
-  // The vehicle clock at host_us [us]; -1 before any input.
+  // The controller's clock at host_us [us]: host time plus the offset set by
+  // the first decoded input (advanced, never more than the future window at
+  // a time, to the earliest-arriving input during the first
+  // kClockAcquireUs, so inputs do not look younger than they are); -1
+  // before. No later input moves it, except when no input at all has been
+  // accepted for kClockRelatchUs (a restarted vehicle clock): then the next
+  // one sets it again (counted).
   int64_t VehicleTimeUs(int64_t host_us) const;
+  int64_t clock_relatches() const { return clock_relatches_; }
   const ControllerHealth& health() const { return controller_.health(); }
   int64_t decode_errors(ControllerInput input) const { return decode_errors_[static_cast<int>(input)]; }
 
  private:
-  struct RawSubscription {
-    ControllerService* service = nullptr;
-    ControllerInput input = ControllerInput::kPose;
-    lcm::Subscription* subscription = nullptr;
-  };
-  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
-  void RunControlPeriod(int64_t vehicle_us, int64_t trigger_host_us);
-  void NoteInputTime(int64_t utime, int64_t host_us);
+  void RunControlPeriod(int64_t host_us);
+  // The clock for an input stamped utime arriving at host_us (sets it first).
+  int64_t ClockForInput(int64_t utime, int64_t host_us);
+  void FillStatus(int64_t now_us);
 
   VehicleController controller_;
   ChannelNames channels_;
   MessageSink* sink_;
-  lcm::LCM* lcm_ = nullptr;
-  std::array<RawSubscription, kNumControllerInputs> subscriptions_;
   int64_t period_us_;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
+  int64_t setpoint_decode_errors_ = 0;
 
-  // Vehicle clock: the newest input utime and when it arrived.
-  int64_t newest_utime_ = -1;
-  int64_t newest_host_us_ = 0;
-  int64_t last_period_host_us_ = -1;
+  // The own clock: vehicle time = host time + offset.
+  bool clock_set_ = false;
+  int64_t clock_offset_us_ = 0;
+  int64_t clock_set_host_us_ = 0;
+  int64_t last_accepted_host_us_ = 0;  // host time of the newest accepted input of any kind
+  int64_t clock_relatches_ = 0;
+  int64_t next_period_host_us_ = -1;  // the timer grid; -1 before the first period
   int64_t last_period_vehicle_us_ = -1;
-  int64_t last_force_host_us_ = -1;
   MotorCommand last_command_;
 
   // Loop times of the current reporting period (a fixed ring; the newest win).

@@ -1,5 +1,4 @@
-// LCM glue of the estimator: raw subscriptions, checked decoding, FORCE and
-// ESTIMATOR_STATUS publication.
+// The estimator node: checked decoding, FORCE and ESTIMATOR_STATUS publication.
 #include "nodes/estimator_service.h"
 
 #include <spdlog/spdlog.h>
@@ -35,47 +34,21 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
   status_message_.inputs.resize(kNumInputChannels);
 }
 
-EstimatorService::~EstimatorService() { Unsubscribe(); }
+EstimatorService::~EstimatorService() = default;
 
-void EstimatorService::Subscribe(lcm::LCM* lcm) {
-  Unsubscribe();
-  lcm_ = lcm;
-  for (int i = 0; i < kNumInputChannels; ++i) {
-    RawSubscription& context = subscriptions_[i];
-    context.service = this;
-    context.channel = static_cast<InputChannel>(i);
-    context.subscription = lcm->subscribeFunction(*input_channel_names_[i], &EstimatorService::OnRawMessage, &context);
-    // Keep a burst of 1 kHz strain samples while a status message is built.
-    if (context.subscription != nullptr) context.subscription->setQueueCapacity(10000);
-  }
+std::vector<std::string> EstimatorService::InputChannels() const {
+  std::vector<std::string> names;
+  for (const std::string* name : input_channel_names_) names.push_back(*name);
+  return names;
 }
 
-void EstimatorService::Unsubscribe() {
-  if (lcm_ == nullptr) return;
-  for (RawSubscription& context : subscriptions_) {
-    if (context.subscription != nullptr) lcm_->unsubscribe(context.subscription);
-    context.subscription = nullptr;
-  }
-  lcm_ = nullptr;
+void EstimatorService::HandlePacket(std::string_view channel, const void* data, size_t size,
+                                    int64_t receive_wall_utime) {
+  InputChannel input;
+  if (InputChannelOf(channel, &input)) HandlePacket(input, data, size, receive_wall_utime);
 }
 
-void EstimatorService::OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/,
-                                    RawSubscription* context) {
-  context->service->HandlePacket(context->channel, buffer->data, buffer->data_size, buffer->recv_utime);
-}
-
-bool EstimatorService::HandleDatagram(const ReceivedDatagram& datagram) {
-  if (datagram.packet.kind != LcmPacketKind::kSmallMessage) return false;
-  for (int i = 0; i < kNumInputChannels; ++i) {
-    if (datagram.packet.channel == *input_channel_names_[i]) {
-      return HandlePacket(static_cast<InputChannel>(i), datagram.packet.payload, datagram.packet.payload_size,
-                          datagram.receive_wall_utime);
-    }
-  }
-  return false;
-}
-
-bool EstimatorService::InputChannelOf(const std::string& channel, InputChannel* input) const {
+bool EstimatorService::InputChannelOf(std::string_view channel, InputChannel* input) const {
   for (int i = 0; i < kNumInputChannels; ++i) {
     if (channel == *input_channel_names_[i]) {
       *input = static_cast<InputChannel>(i);

@@ -1,14 +1,15 @@
-// The estimator daemon's glue between LCM and EstimatorPipeline: raw
-// subscriptions to STRAIN, MOTOR, IMU and POSE, checked decoding that counts a
-// malformed packet instead of dropping it, one FORCE per accepted strain
-// sample and the ESTIMATOR_STATUS health message. birotor-replay drives the
-// same class from a log file, so the daemon and the replay give the same numbers.
+// The estimator node: a PacketHandler (sources/message_source.h) for STRAIN,
+// MOTOR, IMU and POSE with checked decoding that counts a malformed packet
+// instead of dropping it, one FORCE per accepted strain sample and the
+// ESTIMATOR_STATUS health message. The daemon feeds it from its live source,
+// birotor-replay from a log file, so the daemon and the replay give the same
+// numbers.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <lcm/lcm-cpp.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "birotor/estimator_status_t.hpp"
@@ -22,6 +23,7 @@
 #include "nodes/input_rejection_log.h"
 #include "nodes/status_message.h"
 #include "sinks/message_sink.h"
+#include "sources/message_source.h"
 #include "transport/channels.h"
 #include "transport/logging.h"
 #include "transport/udpm_receiver.h"
@@ -47,7 +49,7 @@ struct EstimatorServiceOptions {
   double stale_input_wall_s = 0.1;
 };
 
-class EstimatorService {
+class EstimatorService : public PacketHandler {
  public:
   // sink must outlive the service. The pipeline is built from config (the
   // method is config.method).
@@ -57,21 +59,17 @@ class EstimatorService {
   EstimatorService(const EstimatorService&) = delete;
   EstimatorService& operator=(const EstimatorService&) = delete;
 
-  // The daemon's UDP reader: its counters go into ESTIMATOR_STATUS (they must
-  // outlive the service), and HandleDatagram feeds its small messages in.
+  // The live source's UDP counters (MessageSource::udp_counters, nullptr for
+  // other sources) go into ESTIMATOR_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
-  // One datagram of the UDP reader: a small message on an input channel goes
-  // to HandlePacket with its kernel arrival time; anything else (other
-  // channels, our own FORCE looped back, fragments and malformed datagrams,
-  // which the reader has counted) is ignored. Returns HandlePacket's result.
-  bool HandleDatagram(const ReceivedDatagram& datagram);
 
-  // Raw subscriptions to the four input channels on lcm (which must outlive
-  // the service or Unsubscribe()).
-  void Subscribe(lcm::LCM* lcm);
-  void Unsubscribe();
+  // The full names of the four input channels, to subscribe a source to.
+  std::vector<std::string> InputChannels() const;
+  // PacketHandler: a packet of an input channel goes to HandlePacket below;
+  // any other channel is ignored.
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
 
-  // One encoded packet of an input channel, from LCM or a log. Decodes it
+  // One encoded packet of an input channel, from a source or a test. Decodes it
   // (counting a failure as a decode error), feeds the pipeline and, for an
   // accepted strain sample, publishes FORCE. receive_wall_utime is the host
   // time the packet arrived [us since epoch], or -1 when unknown (replay).
@@ -79,7 +77,7 @@ class EstimatorService {
   bool HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime = -1);
 
   // The input channel a full channel name belongs to; false for any other channel.
-  bool InputChannelOf(const std::string& channel, InputChannel* input) const;
+  bool InputChannelOf(std::string_view channel, InputChannel* input) const;
 
   // Publishes ESTIMATOR_STATUS for a reporting period of period_s and starts
   // a new period.
@@ -98,13 +96,6 @@ class EstimatorService {
   int64_t forces_published() const { return forces_published_; }
 
  private:
-  // Context of one raw subscription: which input it feeds.
-  struct RawSubscription {
-    EstimatorService* service = nullptr;
-    InputChannel channel = InputChannel::kStrain;
-    lcm::Subscription* subscription = nullptr;
-  };
-  static void OnRawMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel, RawSubscription* context);
   bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
   // HandlePacket without the rejection log lines.
   bool DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime);
@@ -114,8 +105,6 @@ class EstimatorService {
   ChannelNames channels_;
   EstimatorServiceOptions options_;
   MessageSink* sink_;
-  lcm::LCM* lcm_ = nullptr;
-  RawSubscription subscriptions_[kNumInputChannels];
   const std::string* input_channel_names_[kNumInputChannels];
 
   // Decoded messages and the output buffer, reused for every packet.

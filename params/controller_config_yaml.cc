@@ -16,9 +16,31 @@ void ReadSupervisionParams(YamlSection s, SupervisionParams* o) {
   s.Double("imu_timeout_s", 1e-4, 10.0, &o->imu_timeout_s);
   s.Double("force_timeout_s", 1e-4, 10.0, &o->force_timeout_s);
   s.Double("force_recovery_s", 0.0, 10.0, &o->force_recovery_s);
-  s.Double("min_thrust_scale", 0.05, 1.0, &o->min_thrust_scale);
-  s.Double("max_thrust_scale", 1.0, 10.0, &o->max_thrust_scale);
   s.Double("descent_rate_m_s", 0.0, 5.0, &o->descent_rate_m_s);
+  s.Double("clock_future_window_s", 0.0, 10.0, &o->clock_future_window_s);
+  s.Double("clock_past_window_s", 1e-3, 100.0, &o->clock_past_window_s);
+  s.Int("stream_max_seq_step", 1, 1000000, &o->stream_max_seq_step);
+  s.Double("stream_silence_s", 1e-3, 100.0, &o->stream_silence_s);
+  s.Double("conflict_hold_s", 0.0, 100.0, &o->conflict_hold_s);
+  s.Double("min_plausible_thrust_scale", 0.01, 1.0, &o->min_plausible_thrust_scale);
+  s.Double("max_plausible_thrust_scale", 1.0, 10.0, &o->max_plausible_thrust_scale);
+  s.Double("pose_gate_position_m", 1e-3, 1e4, &o->pose_gate_position_m);
+  s.Double("pose_gate_angle_rad", 1e-3, 10.0, &o->pose_gate_angle_rad);
+  s.Double("pose_gate_reset_s", 0.0, 100.0, &o->pose_gate_reset_s);
+  s.Finish();
+}
+
+void ReadEfficiencyParams(YamlSection s, EfficiencyParams* o) {
+  s.Double("airborne_force_fraction", 0.0, 2.0, &o->airborne_force_fraction);
+  s.Double("airborne_s", 0.0, 100.0, &o->airborne_s);
+  s.Double("baseline_tau_s", 1e-3, 1e3, &o->baseline_tau_s);
+  s.Double("change_threshold", 0.0, 10.0, &o->change_threshold);
+  s.Double("fault_tau_s", 1e-3, 100.0, &o->fault_tau_s);
+  s.Double("max_rate_1_s", 1e-3, 1e3, &o->max_rate_1_s);
+  s.Double("max_relative_sigma", 1e-4, 10.0, &o->max_relative_sigma);
+  s.Double("decay_s", 1e-3, 1e3, &o->decay_s);
+  s.Double("feasibility_margin", 0.5, 2.0, &o->feasibility_margin);
+  s.Double("infeasible_s", 0.0, 10.0, &o->infeasible_s);
   s.Finish();
 }
 
@@ -85,6 +107,7 @@ ControllerConfig ReadRoot(YamlSection root) {
   }
   ReadObserverParams(c.Section("observer"), &config.observer);
   ReadSupervisionParams(c.Section("supervision"), &config.supervision);
+  ReadEfficiencyParams(c.Section("efficiency"), &config.efficiency);
   ReadSetpointParams(c.Section("setpoint"), &config.setpoint);
   c.Finish();
   ReadMpcParams(root.Section("mpc"), &config.mpc);

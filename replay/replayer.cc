@@ -1,7 +1,7 @@
 // birotor-replay core: log events through the daemon's EstimatorService.
 #include "replay/replayer.h"
 
-#include "transport/log_io.h"
+#include "sources/log_source.h"
 
 namespace birotor {
 
@@ -26,7 +26,7 @@ int64_t Replayer::StrainFaultCount() const {
          health.resets;
 }
 
-void Replayer::Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) {
+void Replayer::Process(std::string_view channel, int64_t timestamp_us, const void* data, size_t size) {
   ++stats_.events;
   InputChannel input;
   if (service_.InputChannelOf(channel, &input)) {
@@ -44,20 +44,18 @@ void Replayer::Process(const std::string& channel, int64_t timestamp_us, const v
     }
     service_.PublishStatusOnVehicleClock();
   } else if (options_.copy_truth && channel == channels_.truth) {
-    sink_->Publish(channel, timestamp_us, data, size);
+    sink_->Publish(channels_.truth, timestamp_us, data, size);
     ++stats_.truth_copied;
   }
 }
 
 bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
                    double min_usable_fraction) {
-  LogReader reader;
-  if (!reader.Open(input_path, error)) return false;
-  LogEvent event;
-  while (reader.Next(&event)) {
-    replayer->Process(event.channel, event.timestamp_us, event.data.data(), event.data.size());
+  LogSource source;
+  if (!source.Open(input_path, error) || !source.Subscribe({}, replayer, error)) return false;
+  while (source.DeliverOne()) {
   }
-  return CheckLogUsable(reader, input_path, min_usable_fraction, error, damage);
+  return CheckLogUsable(source.reader(), input_path, min_usable_fraction, error, damage);
 }
 
 }  // namespace birotor

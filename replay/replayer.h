@@ -12,6 +12,7 @@
 #include "estimator/estimator_config.h"
 #include "nodes/estimator_service.h"
 #include "sinks/message_sink.h"
+#include "sources/message_source.h"
 #include "transport/channels.h"
 
 namespace birotor {
@@ -36,18 +37,25 @@ struct ReplayStats {
   std::vector<int64_t> strain_fault_utimes;
 };
 
-// Runs packets through one EstimatorService. Not thread-safe. It is itself a
+// Runs packets through one EstimatorService. Not thread-safe. It is a
+// PacketHandler, so a MessageSource (a log file) feeds it, and a
 // MessageSink, so a producer (the simulator through WireSampleSink) can
 // publish straight into it.
-class Replayer : public MessageSink {
+class Replayer : public MessageSink, public PacketHandler {
  public:
   Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink);
 
   // One event of a log (or a simulated packet): inputs go to the estimator,
   // TRUTH is copied through when asked, anything else is ignored.
-  void Process(const std::string& channel, int64_t timestamp_us, const void* data, size_t size);
+  void Process(std::string_view channel, int64_t timestamp_us, const void* data, size_t size);
   void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override {
     Process(channel, timestamp_us, data, size);
+  }
+  // From a source: receive_wall_utime (a log's recorded time) stamps the
+  // copied TRUTH; the estimator gets no receive time, so its overload guard
+  // stays off and the output is deterministic.
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override {
+    Process(channel, receive_wall_utime, data, size);
   }
 
   const ReplayStats& stats() const { return stats_; }

@@ -1,18 +1,18 @@
-// birotor-controller: the flight-controller daemon. Subscribes to POSE, IMU
-// and FORCE, holds the position of the first POSE, publishes MOTOR_COMMAND at
-// the controller's rate (500 Hz; each period triggered by FORCE, or by the
-// timer when FORCE stops) and CONTROLLER_STATUS at --status-rate-hz (host
-// clock); stops on SIGINT/SIGTERM.
+// birotor-controller: the flight-controller daemon. Subscribes to POSE, IMU,
+// FORCE and SETPOINT, flies the setpoint (before one: holds the first POSE;
+// after setpoint.timeout_s without one: hovers where it is), publishes
+// MOTOR_COMMAND at the controller's rate on its own timer (500 Hz) and
+// CONTROLLER_STATUS at --status-rate-hz (host clock); stops on SIGINT/SIGTERM.
 #include <spdlog/spdlog.h>
 
-#include <cerrno>
-#include <cstring>
 #include <memory>
 #include <string>
 
 #include "nodes/controller_service.h"
 #include "params/controller_config_yaml.h"
 #include "sinks/message_sink.h"
+#include "sources/message_source.h"
+#include "sources/receive_loop.h"
 #include "transport/channels.h"
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
@@ -23,7 +23,9 @@
 
 int main(int argc, char** argv) {
   using namespace birotor;
-  CLI::App app{"birotor-controller: flight controller on POSE, IMU and the estimated rotor forces (FORCE) over LCM"};
+  CLI::App app{
+      "birotor-controller: flight controller on POSE, IMU and the estimated rotor forces (FORCE) over LCM, "
+      "flying SETPOINT"};
   CommonOptions common;
   AddCommonOptions(app, &common);
   std::string params_file = FindConfigFile("controller.yaml");
@@ -56,37 +58,33 @@ int main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(common.prefix);
   LcmSink sink(lcm.get());
   ControllerService service(config, channels, &sink);
-  service.Subscribe(lcm.get());
+  // Inputs through the shared message source: on udpm our own LC02 reader,
+  // which drops and counts fragments instead of reassembling them.
+  std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
+  if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
   spdlog::info("birotor-controller {} mode {} params {} (checksum {})", BIROTOR_VERSION,
                config.model_predictive ? "mpc"
                : config.force_feedback ? "force_feedback"
                                        : "nominal",
                params_file, FileChecksum(params_file));
-  spdlog::info("lcm {}: in {} {} {}, out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
-               channels.motor_command, channels.controller_status);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
+               channels.setpoint, source->Describe(), channels.motor_command, channels.controller_status);
 
+  // Control periods on the controller's own timer, CONTROLLER_STATUS on the host clock.
   const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
-  int64_t last_status_us = SteadyClockUs();
-  while (!ShutdownRequested()) {
-    const int64_t now_us = SteadyClockUs();
-    const int64_t deadline_us = std::min(service.NextPeriodHostUs(), last_status_us + status_period_us);
-    const int handled =
-        HandleFor(*lcm, 1e-6 * static_cast<double>(std::clamp<int64_t>(deadline_us - now_us, 0, 100000)));
-    if (handled < 0) {
-      if (ShutdownRequested() || errno == EINTR) continue;
-      spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
-      break;
+  int64_t next_status_us = SteadyClockUs() + status_period_us;
+  const bool source_ok = RunReceiveLoop(source.get(), [&](int64_t now_us) {
+    service.RunIfDue(now_us);
+    if (now_us >= next_status_us) {
+      service.PublishStatus(WallClockUs(), now_us);
+      next_status_us += status_period_us;
+      if (next_status_us <= now_us) next_status_us = now_us + status_period_us;  // a stall longer than a period
     }
-    const int64_t after_us = SteadyClockUs();
-    service.RunIfDue(after_us);
-    if (after_us - last_status_us >= status_period_us) {
-      service.PublishStatus(WallClockUs(), after_us);
-      last_status_us = after_us;
-    }
-  }
-  service.Unsubscribe();
+    return std::min(service.NextPeriodHostUs(), next_status_us);
+  });
+  if (!source_ok) spdlog::error("{}; stopping", source->error());
   const ControllerHealth& h = service.health();
   spdlog::info("stopped: {} MOTOR_COMMAND published; {} fallbacks, {} descents, {} saturated; FORCE received {}",
                h.commands, h.fallbacks, h.descents, h.saturated, h.force.received);
-  return 0;
+  return source_ok ? 0 : kExitFailure;
 }

@@ -7,17 +7,17 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <string>
 
+#include "nodes/estimator_service.h"
+#include "nodes/gauge_state_file.h"
 #include "params/estimator_config_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "params/yaml_reader.h"
-#include "nodes/estimator_service.h"
-#include "nodes/gauge_state_file.h"
+#include "sources/message_source.h"
+#include "sources/receive_loop.h"
 #include "transport/channels.h"
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
@@ -25,9 +25,6 @@
 #include "transport/logging.h"
 #include "transport/program_options.h"
 #include "transport/shutdown.h"
-#include "transport/udpm_receiver.h"
-
-namespace {}  // namespace
 
 int main(int argc, char** argv) {
   using namespace birotor;
@@ -101,20 +98,14 @@ int main(int argc, char** argv) {
       spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
     }
   }
-  // Inputs. On udpm our own small-message reader, and LCM only publishes (it
-  // opens no receive socket until something subscribes): LCM's fragment
-  // reassembly, which two crafted datagrams crash, is never reached
-  // (docs/lcm-udpm-fragment-bug.md). Other providers (memq:// in tests) go
-  // through LCM's subscription.
-  std::unique_ptr<UdpmReceiver> receiver;
-  if (common.lcm_url.rfind("udpm://", 0) == 0) {
-    UdpmUrl udpm;
-    receiver = std::make_unique<UdpmReceiver>();
-    if (!ParseUdpmUrl(common.lcm_url, &udpm, &error) || !receiver->Open(udpm, &error)) return ReportError(error);
-    service.AttachUdpCounters(&receiver->counters());
-  } else {
-    service.Subscribe(lcm.get());
-  }
+  // Inputs through the shared message source. On udpm our own small-message
+  // reader, and LCM only publishes (it opens no receive socket until
+  // something subscribes): LCM's fragment reassembly, which two crafted
+  // datagrams crash, is never reached (docs/lcm-udpm-fragment-bug.md). Other
+  // providers (memq:// in tests) go through LCM's subscription.
+  std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
+  if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
+  service.AttachUdpCounters(source->udp_counters());
   spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION, config.method, params_file,
                FileChecksum(params_file));
   {
@@ -123,8 +114,7 @@ int main(int argc, char** argv) {
                  stamp.empty() ? "never (no birotor-identify stamp in the vehicle section)" : stamp);
   }
   spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.strain, channels.motor, channels.imu,
-               channels.pose, receiver ? "own LC02 reader, fragments dropped" : "LCM subscription", channels.force,
-               channels.estimator_status);
+               channels.pose, source->Describe(), channels.force, channels.estimator_status);
   bool buffer_ok = true;
   const std::string buffer_report = ReceiveBufferReport(common.lcm_url, ReadRmemMax(), &buffer_ok);
   if (buffer_ok) {
@@ -133,51 +123,32 @@ int main(int argc, char** argv) {
     spdlog::warn("{}", buffer_report);
   }
 
-  // ESTIMATOR_STATUS on a fixed wall-clock grid. Packets are handled until
-  // the next status is due and never past it, so the status stays on time
-  // at any input rate (a backlog waits in the socket, and the overload guard
-  // sheds what waited too long).
-  const double status_period_s = 1.0 / options.status_rate_hz;
-  double last_status_s = SteadyClockS();
-  double next_status_s = last_status_s + status_period_s;
-  ReceivedDatagram datagram;
-  while (!ShutdownRequested()) {
-    const double wait_s = std::min(std::max(next_status_s - SteadyClockS(), 0.0), 0.1);
-    if (receiver) {
-      if (receiver->Wait(wait_s)) {
-        while (!ShutdownRequested() && SteadyClockS() < next_status_s && receiver->Receive(&datagram)) {
-          service.HandleDatagram(datagram);
-        }
-      }
-    } else {
-      const int handled = HandleFor(*lcm, wait_s);
-      if (handled < 0) {
-        if (ShutdownRequested() || errno == EINTR) continue;  // a signal interrupted the wait
-        spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
-        break;
-      }
-      if (handled > 0) {
-        while (!ShutdownRequested() && SteadyClockS() < next_status_s && lcm->handleTimeout(0) > 0) {
-        }
-      }
+  // ESTIMATOR_STATUS on a fixed grid of the host clock. The loop hands
+  // packets over until the next status is due and never past it, so the
+  // status stays on time at any input rate (a backlog waits in the socket,
+  // and the overload guard sheds what waited too long).
+  const int64_t status_period_us = std::llround(1e6 / options.status_rate_hz);
+  int64_t last_status_us = SteadyClockUs();
+  int64_t next_status_us = last_status_us + status_period_us;
+  const bool source_ok = RunReceiveLoop(source.get(), [&](int64_t now_us) {
+    if (now_us >= next_status_us) {
+      service.PublishStatus(WallClockUs(), 1e-6 * static_cast<double>(now_us - last_status_us));
+      last_status_us = now_us;
+      next_status_us += status_period_us;
+      if (next_status_us <= now_us) next_status_us = now_us + status_period_us;  // a stall longer than a period
     }
-    const double now_s = SteadyClockS();
-    if (now_s >= next_status_s) {
-      service.PublishStatus(WallClockUs(), now_s - last_status_s);
-      last_status_s = now_s;
-      next_status_s += status_period_s;
-      if (next_status_s <= now_s) next_status_s = now_s + status_period_s;  // a stall longer than a period
-    }
-  }
-  service.Unsubscribe();
+    return next_status_us;
+  });
+  if (!source_ok) spdlog::error("{}; stopping", source->error());
   const PipelineHealth& health = service.health();
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
+  const UdpReceiveCounters* udp = source->udp_counters();
   spdlog::info(
       "stopped: {} FORCE published; strain received {} fused {} decode errors {} out of order {} "
       "overload drops {}; resets {}; udp fragments dropped {} malformed {} kernel drops {}",
       service.forces_published(), strain.received, strain.fused, strain.decode_errors, strain.out_of_order,
-      strain.dropped_overload, health.resets, receiver ? receiver->counters().fragments_dropped : 0,
-      receiver ? receiver->counters().malformed_dropped : 0, receiver ? receiver->counters().kernel_dropped : 0);
+      strain.dropped_overload, health.resets, udp ? udp->fragments_dropped : 0, udp ? udp->malformed_dropped : 0,
+      udp ? udp->kernel_dropped : 0);
   if (!state_file.empty()) {
     if (!WriteGaugeState(state_file, health.gauge, vehicle_checksum, &error)) {
       return ReportError("gauge state: " + error);

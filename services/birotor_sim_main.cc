@@ -15,19 +15,20 @@
 #include <thread>
 #include <vector>
 
-#include "birotor/motor_command_t.hpp"
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
+#include "nodes/esc_command_node.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
+#include "sources/dropped_datagram_log.h"
+#include "sources/message_source.h"
 #include "transport/channels.h"
 #include "transport/config_files.h"
 #include "transport/host_clock.h"
-#include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/logging.h"
@@ -135,17 +136,21 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
   return true;
 }
 
-// --external-controller: MOTOR_COMMAND from LCM to the simulator's ESCs,
-// each command taken at the step it is handled (a corrupt packet is counted).
+// --external-controller: MOTOR_COMMAND from the message source to the
+// simulator's ESCs (nodes/esc_command_node.h), every queued command offered
+// at each step (the ESCs' rules are Simulator::OfferMotorCommand's); the
+// command time-out, a second commander and refused commands said in the log
+// (refusals at most once a second).
 class EscCommandInput {
  public:
-  EscCommandInput(lcm::LCM* lcm, const std::string& channel, Simulator* sim) : lcm_(lcm), sim_(sim) {
-    subscription_ = lcm->subscribeFunction(channel, &EscCommandInput::OnMessage, this);
+  EscCommandInput(MessageSource* source, const std::string& channel, Simulator* sim)
+      : source_(source), node_(channel, sim), sim_(sim) {
+    std::string error;
+    if (!source_->Subscribe(node_.InputChannels(), &node_, &error)) spdlog::error("{}", error);
   }
-  ~EscCommandInput() { lcm_->unsubscribe(subscription_); }
   // Handles every command already queued.
   void Poll() {
-    while (lcm_->handleTimeout(0) > 0) {
+    while (source_->DeliverOne()) {
     }
     if (sim_->command_timed_out() != timed_out_) {
       timed_out_ = sim_->command_timed_out();
@@ -156,33 +161,43 @@ class EscCommandInput {
         spdlog::info("MOTOR_COMMAND back at t = {:.3f} s", sim_->time_s());
       }
     }
+    NoteRefused();
+    dropped_.Check(source_->udp_counters());
   }
-  int64_t decode_errors() const { return decode_errors_; }
+  const EscCommandNode& node() const { return node_; }
 
  private:
-  static void OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, EscCommandInput* self) {
-    motor_command_t message;
-    if (DecodeMessage(buffer->data, buffer->data_size, &message) != DecodeError::kNone) {
-      ++self->decode_errors_;
-      return;
-    }
-    self->sim_->SetMotorCommand(message.omega_cmd_rad_s, self->sim_->utime());
+  // A line when the ESCs refused commands since the last one (at most once a second).
+  void NoteRefused() {
+    const EscCounters& n = sim_->esc_counters();
+    const int64_t refused = n.received - n.accepted;
+    if (refused == reported_refused_) return;
+    const int64_t now_us = SteadyClockUs();
+    if (last_warning_us_ >= 0 && now_us - last_warning_us_ < 1000000) return;
+    last_warning_us_ = now_us;
+    reported_refused_ = refused;
+    spdlog::warn(
+        "ESCs at t = {:.3f} s refused MOTOR_COMMAND: {} from a second commander (another seq stream, ignored), {} "
+        "with a speed not finite or outside [0, omega_max], {} stamped ahead of their clock, {} stale",
+        sim_->time_s(), n.foreign, n.out_of_range, n.future, n.stale);
   }
 
-  lcm::LCM* lcm_;
+  MessageSource* source_;
+  EscCommandNode node_;
   Simulator* sim_;
-  lcm::Subscription* subscription_ = nullptr;
   bool timed_out_ = false;  // the start state's speeds count as a command
-  int64_t decode_errors_ = 0;
+  DroppedDatagramLog dropped_;
+  int64_t reported_refused_ = 0;
+  int64_t last_warning_us_ = -1;  // host time of the last refusal warning
 };
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double speed, bool publish_truth,
-             bool external_controller) {
+bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, MessageSource* source, double speed,
+             bool publish_truth) {
   LcmSink lcm_sink(lcm);
   WireSampleSink sink(channels, &lcm_sink, publish_truth);
   std::unique_ptr<EscCommandInput> commands;
-  if (external_controller) commands = std::make_unique<EscCommandInput>(lcm, channels.motor_command, sim);
+  if (source != nullptr) commands = std::make_unique<EscCommandInput>(source, channels.motor_command, sim);
   const auto start = std::chrono::steady_clock::now();
   // Sleep at most once per millisecond of simulated time (4 steps at 4 kHz).
   const int64_t steps_per_check = std::max<int64_t>(1, std::llround(1e-3 / sim->scenario().step_s));
@@ -195,8 +210,11 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, double
     std::this_thread::sleep_until(due);
   }
   if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());
-  if (commands && commands->decode_errors() > 0) {
-    spdlog::warn("{} MOTOR_COMMAND packets could not be decoded", commands->decode_errors());
+  if (commands) {
+    const UdpReceiveCounters* udp = source->udp_counters();
+    spdlog::info("MOTOR_COMMAND received {}, decode errors {}; udp fragments dropped {} malformed {} kernel drops {}",
+                 commands->node().received(), commands->node().decode_errors(), udp ? udp->fragments_dropped : 0,
+                 udp ? udp->malformed_dropped : 0, udp ? udp->kernel_dropped : 0);
   }
   if (ShutdownRequested()) spdlog::info("stopped by a signal at t = {:.3f} s", sim->time_s());
   return true;
@@ -293,6 +311,13 @@ int Main(int argc, char** argv) {
     lcm = OpenLcm(options.common.lcm_url, &error);
     if (!lcm) return ReportError("cannot open LCM: " + error);
   }
+  // --external-controller: MOTOR_COMMAND through the shared message source
+  // (on udpm our own LC02 reader, which drops and counts fragments).
+  std::unique_ptr<MessageSource> source;
+  if (options.external_controller) {
+    source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
+    if (!source) return ReportError(error);
+  }
   InstallShutdownHandlers();
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
   const int64_t start_utime = options.wall_clock ? WallClockUs() : 0;
@@ -309,9 +334,8 @@ int Main(int argc, char** argv) {
     sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
     if (options.external_controller) sim.UseExternalCommands(options.command_timeout_s);
     if (options.publish_setpoints) sim.EmitSetpoints(options.setpoint_rate_hz);
-    ok = options.output.empty()
-             ? RunLive(&sim, channels, lcm.get(), options.speed, !options.no_truth, options.external_controller)
-             : RunOffline(&sim, channels, options.output, !options.no_truth);
+    ok = options.output.empty() ? RunLive(&sim, channels, lcm.get(), source.get(), options.speed, !options.no_truth)
+                                : RunOffline(&sim, channels, options.output, !options.no_truth);
     simulated_s += sim.time_s();
     const ChannelCounts& emitted = sim.emitted();
     n.strain += emitted.strain;

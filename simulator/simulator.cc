@@ -170,6 +170,43 @@ RotorCommand Simulator::Command(double t_s) {
 void Simulator::UseExternalCommands(double command_timeout_s) {
   external_commands_ = true;
   command_timeout_us_ = Microseconds(command_timeout_s);
+  SeqStreamLockParams lock;
+  lock.silence_s = command_timeout_s;
+  commander_ = SeqStreamLock(lock);
+}
+
+EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[2]) {
+  EscCounters& n = esc_counters_;
+  ++n.received;
+  const int64_t now_us = this->utime();
+  if (utime > now_us + Microseconds(kEscFutureWindowS)) {
+    ++n.future;
+    return EscVerdict::kFuture;
+  }
+  if (utime < now_us - command_timeout_us_ || (newest_command_utime_ >= 0 && utime <= newest_command_utime_)) {
+    ++n.stale;
+    return EscVerdict::kStale;
+  }
+  for (double omega : omega_cmd_rad_s) {
+    if (!(omega >= 0.0 && omega <= scenario_.vehicle.omega_max_rad_s)) {
+      ++n.out_of_range;
+      return EscVerdict::kOutOfRange;
+    }
+  }
+  const SeqStreamLock::Verdict verdict = commander_.Admit(seq, now_us);
+  if (verdict == SeqStreamLock::Verdict::kForeign) {
+    ++n.foreign;
+    return EscVerdict::kForeign;
+  }
+  if (verdict == SeqStreamLock::Verdict::kDuplicate) {
+    ++n.stale;
+    return EscVerdict::kStale;
+  }
+  ++n.accepted;
+  for (int i = 0; i < 2; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];
+  newest_command_utime_ = utime;
+  last_external_utime_ = now_us;
+  return EscVerdict::kAccepted;
 }
 
 void Simulator::EmitSetpoints(double rate_hz) {
@@ -179,12 +216,6 @@ void Simulator::EmitSetpoints(double rate_hz) {
 
 void Simulator::EmitSetpoint(int64_t utime, double t_s, SampleSink* sink) {
   sink->OnSetpoint(SetpointFromReference(ReferenceAt(t_s), utime, setpoint_seq_++));
-}
-
-void Simulator::SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime) {
-  for (int i = 0; i < 2; ++i)
-    external_command_.omega_cmd_rad_s[i] = std::isfinite(omega_cmd_rad_s[i]) ? omega_cmd_rad_s[i] : 0.0;
-  last_external_utime_ = utime;
 }
 
 void Simulator::UpdateGroundContact(int64_t now_us) {

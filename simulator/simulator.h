@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "controller/seq_stream_lock.h"
 #include "model/equilibrium.h"
 #include "model/plant.h"
 #include "simulator/bench_profile.h"
@@ -36,6 +37,22 @@ struct FaultEvent {
   double value = 0.0;
 };
 
+// What the ESCs did with the commands offered to them (OfferMotorCommand).
+enum class EscVerdict {
+  kAccepted,
+  kForeign,     // a second commander's seq stream: ignored
+  kStale,       // stamp older than the command timeout, or not newer than the newest run
+  kFuture,      // stamp ahead of the ESCs' clock by more than kEscFutureWindowS
+  kOutOfRange,  // a speed not finite or outside [0, omega_max]: the last good one is held
+};
+struct EscCounters {
+  int64_t received = 0, accepted = 0, foreign = 0, stale = 0, future = 0, out_of_range = 0;
+};
+// A command stamped later than the ESCs' clock plus this is refused [s]
+// (the controller's clock runs on its host; a lagging simulator sees its
+// stamps a little ahead).
+inline constexpr double kEscFutureWindowS = 0.25;
+
 // Samples emitted per channel (a strain sample lost in a gap is not counted).
 struct ChannelCounts {
   int64_t strain = 0, motor = 0, imu = 0, pose = 0, loadcell = 0, truth = 0;
@@ -64,21 +81,28 @@ class Simulator {
   void set_utime_offset_us(int64_t offset_us) { utime_offset_us_ = offset_us; }
 
   // The simulator as the vehicle's ESCs: after the ground phase (if any) the
-  // rotor commands come from SetMotorCommand (an external controller,
+  // rotor commands come from OfferMotorCommand (an external controller,
   // MOTOR_COMMAND) instead of the built-in autopilot. The ESCs hold the last
-  // command (before the first one: the rotor speeds of the start state);
-  // when none arrived for command_timeout_s they command 0 (the motors spool
-  // down with tau_m) and command_timed_out() says so until the next command.
-  // Call before the first step.
+  // good command (before the first one: the rotor speeds of the start
+  // state); when none was accepted for command_timeout_s they command 0 (the
+  // motors spool down with tau_m) and command_timed_out() says so until the
+  // next one. Call before the first step.
   void UseExternalCommands(double command_timeout_s);
   // Emits the scenario's position reference (ReferenceAt) as a Setpoint
   // (SampleSink::OnSetpoint, channel SETPOINT) every 1 / rate_hz, stamped
   // with the time it is meant for: the trajectory as a planner would send
   // it to an external controller. Call before the first step.
   void EmitSetpoints(double rate_hz);
-  // A command received at vehicle time utime [us] (clipped to [0, omega_max]
-  // by the motor model; a non-finite value is taken as 0).
-  void SetMotorCommand(const double (&omega_cmd_rad_s)[2], int64_t utime);
+  // A command (seq, stamp utime [us], speeds [rad/s]) arrived at the current
+  // step. The contract's rule for any motor interface: one commander at a
+  // time (the first seq stream; another is counted and ignored until the
+  // first has been silent for the command timeout), stamps checked against
+  // the ESCs' clock (older than the timeout, not newer than the newest run,
+  // or later than kEscFutureWindowS: refused), a speed that is not finite or
+  // outside [0, omega_max] refused (the last good command is held, then the
+  // timeout spools the motors down).
+  EscVerdict OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[2]);
+  const EscCounters& esc_counters() const { return esc_counters_; }
   bool external_commands() const { return external_commands_; }
   bool command_timed_out() const { return command_timed_out_; }
   int64_t command_timeouts() const { return command_timeouts_; }
@@ -172,6 +196,9 @@ class Simulator {
   int64_t command_timeout_us_ = 0;
   int64_t last_external_utime_ = -1;  // vehicle time of the newest command; -1 before any
   RotorCommand external_command_;
+  SeqStreamLock commander_{SeqStreamLockParams()};
+  EscCounters esc_counters_;
+  int64_t newest_command_utime_ = -1;  // stamp of the newest accepted command; -1 before any
   bool command_timed_out_ = false;
   int64_t command_timeouts_ = 0;
 

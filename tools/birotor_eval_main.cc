@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "evaluation/closed_loop.h"
+#include "evaluation/control_cases.h"
 #include "evaluation/control_metrics.h"
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
@@ -44,43 +45,77 @@ ControlTrace TraceOf(const ClosedLoopRun& run, const std::string& label) {
   return trace;
 }
 
-// --control: every scenario flown closed loop in both modes, one table, and
-// with plot_dir one figure per scenario (<scenario>_control.png).
-int RunControlTable(const std::vector<std::string>& scenarios, const std::string& scenario_dir,
+// One case flown in both modes on each seed: the per-run rows, the
+// comparison row and, with plot_dir, the first seed's figure.
+bool RunControlCase(const ControlCase& c, int seeds, const std::string& scenario_dir,
                     const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
-                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir) {
-  std::string table = ControlTableHeader();
-  for (const std::string& name : scenarios) {
+                    const ControllerConfig& controller, const std::string& plot_dir, std::string* runs_table,
+                    std::string* comparison_table) {
+  std::vector<ControlFigures> figures[2];
+  std::vector<int> seed_list;
+  std::vector<ControlTrace> traces;
+  double fault_time_s = -1;
+  for (int seed = 1; seed <= seeds; ++seed) {
     Scenario scenario;
     try {
-      const std::string file =
-          scenario_dir.empty() ? FindConfigFile("scenarios/" + name + ".yaml") : scenario_dir + "/" + name + ".yaml";
-      scenario = LoadScenario(file, overrides);
+      const std::string file = scenario_dir.empty() ? FindConfigFile("scenarios/" + c.scenario + ".yaml")
+                                                    : scenario_dir + "/" + c.scenario + ".yaml";
+      std::vector<std::string> all = c.overrides;
+      all.insert(all.end(), overrides.begin(), overrides.end());
+      if (seeds > 1) all.push_back("scenario.seed=" + std::to_string(seed));
+      scenario = LoadScenario(file, all);
     } catch (const std::exception& e) {
-      return ReportError(e.what());
+      ReportError(e.what());
+      return false;
     }
-    std::vector<ControlTrace> traces;
-    double fault_time_s = -1;
+    seed_list.push_back(static_cast<int>(scenario.seed));
     for (const bool force_feedback : {false, true}) {
       ControllerConfig config = controller;
       config.force_feedback = force_feedback;
       const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
       const ControlMetrics metrics = EvaluateControl(run);
       const char* mode = force_feedback ? "force_feedback" : "nominal";
-      table += ControlTableRow(name, mode, metrics, run);
-      spdlog::info("{} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated", name,
-                   mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
-                   run.controller.descents, run.controller.saturated);
-      traces.push_back(TraceOf(run, mode));
-      if (run.fault_utime >= 0) fault_time_s = metrics.fault_time_s;
-    }
-    std::string error;
-    const std::string png = plot_dir + "/" + name + "_control.png";
-    if (!plot_dir.empty() &&
-        !WriteControlPlot(traces, name + ": nominal vs force_feedback", fault_time_s, png, &error)) {
-      return ReportError("plot " + png + ": " + error);
+      *runs_table += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), mode, metrics, run);
+      figures[force_feedback ? 1 : 0].push_back(FiguresOf(metrics));
+      spdlog::info(
+          "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated; final "
+          "efficiency {:.3f} {:.3f}",
+          c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
+          run.controller.descents, run.controller.saturated, run.controller.efficiency[0],
+          run.controller.efficiency[1]);
+      if (seed == 1) {
+        traces.push_back(TraceOf(run, mode));
+        fault_time_s = metrics.fault_time_s;
+      }
     }
   }
+  *comparison_table += ComparisonTableRow(c.name, CompareControl(figures[0], figures[1], seed_list));
+  std::string error;
+  const std::string png = plot_dir + "/" + c.name + "_control.png";
+  if (!plot_dir.empty() &&
+      !WriteControlPlot(traces, c.name + ": nominal vs force_feedback", fault_time_s, png, &error)) {
+    ReportError("plot " + png + ": " + error);
+    return false;
+  }
+  return true;
+}
+
+// --control: every case flown closed loop in both modes on each seed; the
+// per-run table, then the comparison over seeds.
+int RunControlTable(const std::vector<std::string>& names, int seeds, const std::string& scenario_dir,
+                    const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
+                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir) {
+  std::string runs = ControlTableHeader();
+  std::string comparison = ComparisonTableHeader();
+  for (const std::string& name : names) {
+    // A case name, or a bare scenario flown as it is.
+    const ControlCase* known = FindControlCase(name);
+    const ControlCase c = known != nullptr ? *known : ControlCase{name, name, {}, name};
+    if (!RunControlCase(c, seeds, scenario_dir, overrides, estimator, controller, plot_dir, &runs, &comparison)) {
+      return kExitFailure;
+    }
+  }
+  const std::string table = runs + "\n" + comparison;
   std::printf("%s", table.c_str());
   std::string error;
   if (!markdown_out.empty() && !WriteFileAtomically(markdown_out, table, &error)) return ReportError(error);
@@ -125,12 +160,17 @@ int main(int argc, char** argv) {
   app.add_option("--plot-dir", plot_dir, "Write <scenario>_<method>.png plots here");
   bool control = false;
   std::string controller_params = FindConfigFile("controller.yaml");
-  std::vector<std::string> control_scenarios = {"hover",       "gentle",  "aggressive",
-                                                "thrust_loss", "density", "thrust_loss_severe"};
+  std::vector<std::string> control_scenarios;
+  for (const ControlCase& c : ControlCases()) control_scenarios.push_back(c.name);
+  int seeds = 1;
   app.add_flag("--control", control,
-               "Control figures instead: fly each scenario closed loop (birotor-sim --controller) in both "
-               "controller modes with the same gains and report RMS position error, peak tilt, altitude loss "
-               "after the fault and the time back within 5 cm");
+               "Control figures instead: fly each case (--scenarios: a case name of docs/controller.md or a "
+               "scenario name; default every case) closed loop (birotor-sim --controller) in both controller "
+               "modes with the same gains on the same seeds; report RMS position error, and from the fault (or "
+               "lift-off) over 3 s the peak tilt and altitude deviation, the time back within 5 cm and the "
+               "touchdown speed; then nominal vs force feedback per case (medians and worst seed)");
+  app.add_option("--seeds", seeds, "--control: fly seeds 1..N of each case (1: the scenario's own seed)")
+      ->check(CLI::Range(1, 1000));
   app.add_option("--controller-params", controller_params,
                  "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
   double min_usable_fraction = kDefaultMinUsableLogFraction;
@@ -163,7 +203,7 @@ int main(int argc, char** argv) {
     }
     // The default list is the estimator's; the control table has its own.
     if (app.count("--scenarios") == 0) scenarios = control_scenarios;
-    return RunControlTable(scenarios, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir);
+    return RunControlTable(scenarios, seeds, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir);
   }
   // The Markdown goes to a temporary file next to it, renamed at the end.
   OutputFile markdown;

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -26,6 +27,9 @@
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "numerics/percentile.h"
+#include "sources/dropped_datagram_log.h"
+#include "sources/message_source.h"
+#include "sources/receive_loop.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
@@ -54,11 +58,11 @@ struct Probe {
   std::atomic<int64_t> commands_unmatched{0};  // timer-triggered commands (no FORCE) and others
 };
 
-void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
+void OnCommand(const void* data, size_t size, Probe* probe) {
   const int64_t now_ns = birotor::SteadyClockNs();
   birotor::motor_command_t message;
   ++probe->commands;
-  if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) != birotor::DecodeError::kNone ||
+  if (birotor::DecodeMessage(data, size, &message) != birotor::DecodeError::kNone ||
       (message.utime - probe->utime0) % probe->period_us != 0) {
     ++probe->commands_unmatched;
     return;
@@ -83,12 +87,11 @@ std::string LatencyText(std::vector<int64_t>* latencies) {
   return text;
 }
 
-void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, Probe* probe) {
+void OnForce(const void* data, size_t size, Probe* probe) {
   const int64_t now_ns = birotor::SteadyClockNs();
   birotor::force_estimate_t message;
-  if (birotor::DecodeMessage(buffer->data, buffer->data_size, &message) != birotor::DecodeError::kNone ||
-      message.seq < 0 || static_cast<size_t>(message.seq) >= probe->publish_ns.size() ||
-      probe->publish_ns[message.seq] == 0) {
+  if (birotor::DecodeMessage(data, size, &message) != birotor::DecodeError::kNone || message.seq < 0 ||
+      static_cast<size_t>(message.seq) >= probe->publish_ns.size() || probe->publish_ns[message.seq] == 0) {
     ++probe->unmatched;
     return;
   }
@@ -99,6 +102,20 @@ void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/, P
   probe->latency_ns[message.seq] = now_ns - probe->publish_ns[message.seq];
   ++probe->received;
 }
+
+// FORCE and MOTOR_COMMAND from the message source to the probe.
+class ProbeInput : public birotor::PacketHandler {
+ public:
+  ProbeInput(Probe* probe, const birotor::ChannelNames& channels) : probe_(probe), channels_(channels) {}
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t /*receive_wall_utime*/) override {
+    if (channel == channels_.force) OnForce(data, size, probe_);
+    if (channel == channels_.motor_command) OnCommand(data, size, probe_);
+  }
+
+ private:
+  Probe* probe_;
+  birotor::ChannelNames channels_;
+};
 
 }  // namespace
 
@@ -143,16 +160,23 @@ int main(int argc, char** argv) {
   Probe probe;
   probe.publish_ns.assign(static_cast<size_t>(count), 0);
   probe.latency_ns.assign(static_cast<size_t>(count), -1);
-  lcm::Subscription* subscription = lcm->subscribeFunction(channels.force, &OnForce, &probe);
-  subscription->setQueueCapacity(100000);
   probe.command_latency_ns.assign(static_cast<size_t>(count), -1);
-  if (through_controller) {
-    lcm->subscribeFunction(channels.motor_command, &OnCommand, &probe)->setQueueCapacity(100000);
-  }
+  // FORCE (and MOTOR_COMMAND) through the shared message source on a
+  // receiver thread: on udpm our own LC02 reader, which drops and counts
+  // fragments instead of reassembling them.
+  ProbeInput input(&probe, channels);
+  std::vector<std::string> inputs = {channels.force};
+  if (through_controller) inputs.push_back(channels.motor_command);
+  std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
+  if (!source || !source->Subscribe(inputs, &input, &error)) return ReportError(error);
 
   std::atomic<bool> stop_receiving{false};
   std::thread receiver([&] {
-    while (!stop_receiving.load()) lcm->handleTimeout(50);
+    DroppedDatagramLog dropped;
+    while (!stop_receiving.load()) {
+      ReceiveUntil(source.get(), 0.05, SteadyClockUs() + 50000);
+      dropped.Check(source->udp_counters());
+    }
   });
 
   const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / rate_hz));
@@ -225,6 +249,7 @@ int main(int argc, char** argv) {
               static_cast<double>(published) / publish_s);
   std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64 ", duplicates %" PRId64 "\n",
               latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
+  if (source->udp_counters() != nullptr) std::printf("input: %s\n", UdpCountersText(source->udp_counters()).c_str());
   if (latencies.empty()) {
     return ReportError("no FORCE received on " + channels.force + " for " + std::to_string(published) +
                        " STRAIN published on " + channels.strain + ": is birotor-estimator running with --lcm-url " +

@@ -20,6 +20,9 @@
 #include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
 #include "simulator/scenario_yaml.h"
+#include "sources/dropped_datagram_log.h"
+#include "sources/message_source.h"
+#include "sources/receive_loop.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/logging.h"
@@ -48,11 +51,6 @@ struct MonitorOptions {
   bool markdown = false;          // print birotor-eval's Markdown table too
   EvalOptions eval;
 };
-
-// Raw subscription: hands every packet to the collector.
-void OnPacket(const lcm::ReceiveBuffer* buffer, const std::string& channel, MonitorCollector* collector) {
-  collector->HandlePacket(channel, buffer->data, buffer->data_size);
-}
 
 // True if path can be written (creating it if needed); a file created by the
 // check is removed again, so a failed run leaves nothing behind.
@@ -143,11 +141,13 @@ int Main(int argc, char** argv) {
   InstallShutdownHandlers();
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
   MonitorCollector collector(channels, scenario_duration_s > 0 ? scenario_duration_s + 5.0 : 60.0);
-  for (const std::string* channel : {&channels.truth, &channels.force, &channels.estimator_status}) {
-    lcm->subscribeFunction(*channel, &OnPacket, &collector);
-  }
-  spdlog::info("birotor-monitor {} listening on {}: {} {} {}", BIROTOR_VERSION, options.common.lcm_url, channels.truth,
-               channels.force, channels.estimator_status);
+  // Inputs through the shared message source: on udpm our own LC02 reader,
+  // which drops and counts fragments instead of reassembling them.
+  std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
+  if (!source || !source->Subscribe(collector.InputChannels(), &collector, &error)) return ReportError(error);
+  DroppedDatagramLog dropped;
+  spdlog::info("birotor-monitor {} listening on {} ({}): {} {} {}", BIROTOR_VERSION, options.common.lcm_url,
+               source->Describe(), channels.truth, channels.force, channels.estimator_status);
   if (options.duration_s <= 0 && !options.until_sim_ends) {
     spdlog::info("neither --duration-s nor --until-sim-ends: runs until SIGINT/SIGTERM");
   }
@@ -179,10 +179,12 @@ int Main(int argc, char** argv) {
   if (options.no_truth) notice("birotor-monitor: vehicle view (--no-truth): FORCE and ESTIMATOR_STATUS only");
 
   while (!ShutdownRequested()) {
-    if (HandleFor(*lcm, 0.05) < 0 && !ShutdownRequested() && errno != EINTR) {
-      spdlog::error("lcm handle failed: {}; stopping", std::strerror(errno));
+    ReceiveUntil(source.get(), 0.05, SteadyClockUs() + 50000);
+    if (source->finished()) {
+      spdlog::error("{}; stopping", source->error());
       break;
     }
+    dropped.Check(source->udp_counters());
     const double now_s = SteadyClockS();
     if (first_force_s < 0 && collector.has_force()) first_force_s = now_s;
     if (context.truth_expected && !collector.has_truth() && first_force_s >= 0 &&
@@ -258,6 +260,7 @@ int Main(int argc, char** argv) {
   }
   const std::string note = DeliveryNote(collector);
   if (!note.empty()) std::printf("note: %s\n", note.c_str());
+  if (source->udp_counters() != nullptr) std::printf("input: %s\n", UdpCountersText(source->udp_counters()).c_str());
   std::fflush(stdout);
 
   if (!options.png.empty() && collector.has_force()) {

@@ -14,12 +14,16 @@
 #include <lcm/lcm-cpp.hpp>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "numerics/percentile.h"
+#include "sources/dropped_datagram_log.h"
+#include "sources/message_source.h"
+#include "sources/receive_loop.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
@@ -73,17 +77,26 @@ struct StrainHealth {
   int64_t published = 0;  // FORCE published by the daemon (same snapshot as received)
 };
 
-class Monitor {
+class Monitor : public PacketHandler {
  public:
   static constexpr int kRingSize = 1 << 17;  // > 2 min of strain at 1 kHz
 
-  Monitor() : ring_(kRingSize) {
+  explicit Monitor(const ChannelNames& channels) : channels_(channels), ring_(kRingSize) {
     latencies_us_.reserve(1 << 20);
     period_latencies_us_.reserve(1 << 16);
   }
 
-  void OnStrain(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    if (DecodeMessage(buffer->data, buffer->data_size, &strain_) != DecodeError::kNone) {
+  std::vector<std::string> InputChannels() const {
+    return {channels_.strain, channels_.force, channels_.estimator_status};
+  }
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override {
+    if (channel == channels_.strain) OnStrain(data, size, receive_wall_utime);
+    if (channel == channels_.force) OnForce(data, size, receive_wall_utime);
+    if (channel == channels_.estimator_status) OnStatus(data, size);
+  }
+
+  void OnStrain(const void* data, size_t size, int64_t recv_utime) {
+    if (DecodeMessage(data, size, &strain_) != DecodeError::kNone) {
       ++undecodable_;
       return;
     }
@@ -96,11 +109,11 @@ class Monitor {
     ++strain_count_;
     Entry& entry = ring_[static_cast<uint32_t>(strain_.seq) % kRingSize];
     if (entry.used && !entry.force_seen) ++force_missing_;  // overwritten without a FORCE
-    entry = Entry{true, false, strain_.seq, buffer->recv_utime};
+    entry = Entry{true, false, strain_.seq, recv_utime};
   }
 
-  void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    if (DecodeMessage(buffer->data, buffer->data_size, &force_) != DecodeError::kNone) {
+  void OnForce(const void* data, size_t size, int64_t recv_utime) {
+    if (DecodeMessage(data, size, &force_) != DecodeError::kNone) {
       ++undecodable_;
       return;
     }
@@ -115,13 +128,13 @@ class Monitor {
       return;
     }
     entry.force_seen = true;
-    const double latency_us = static_cast<double>(buffer->recv_utime - entry.strain_recv_utime);
+    const double latency_us = static_cast<double>(recv_utime - entry.strain_recv_utime);
     latencies_us_.push_back(latency_us);
     period_latencies_us_.push_back(latency_us);
   }
 
-  void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    if (DecodeMessage(buffer->data, buffer->data_size, &status_) != DecodeError::kNone) {
+  void OnStatus(const void* data, size_t size) {
+    if (DecodeMessage(data, size, &status_) != DecodeError::kNone) {
       ++undecodable_;
       return;
     }
@@ -188,6 +201,7 @@ class Monitor {
     int32_t seq = 0;
     int64_t strain_recv_utime = 0;  // host clock at arrival [us]
   };
+  ChannelNames channels_;
   std::vector<Entry> ring_;
   std::vector<double> period_latencies_us_;
   int32_t last_strain_seq_ = 0;
@@ -232,10 +246,12 @@ int main(int argc, char** argv) {
   if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
   const ChannelNames channels = MakeChannelNames(common.prefix);
-  Monitor monitor;
-  lcm->subscribe(channels.strain, &Monitor::OnStrain, &monitor)->setQueueCapacity(100000);
-  lcm->subscribe(channels.force, &Monitor::OnForce, &monitor)->setQueueCapacity(100000);
-  lcm->subscribe(channels.estimator_status, &Monitor::OnStatus, &monitor)->setQueueCapacity(1000);
+  Monitor monitor(channels);
+  // Inputs through the shared message source: on udpm our own LC02 reader,
+  // which drops and counts fragments instead of reassembling them.
+  std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
+  if (!source || !source->Subscribe(monitor.InputChannels(), &monitor, &error)) return ReportError(error);
+  DroppedDatagramLog dropped;
 
   std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
   if (csv) std::fprintf(csv, "t_s,cpu_percent,rss_kb,strain_hz,force_hz,latency_p50_us,latency_p99_us\n");
@@ -256,7 +272,8 @@ int main(int argc, char** argv) {
   while (!ShutdownRequested()) {
     const int64_t now_us = SteadyClockUs();
     if (now_us - start_us >= static_cast<int64_t>(duration_s * 1e6)) break;
-    HandleFor(*lcm, std::min(0.1, (next_sample_us - now_us) * 1e-6));
+    ReceiveUntil(source.get(), std::min(0.1, (next_sample_us - now_us) * 1e-6), next_sample_us);
+    dropped.Check(source->udp_counters());
     if (SteadyClockUs() < next_sample_us) continue;
     const int64_t sample_us = SteadyClockUs();
     const double dt_s = (sample_us - previous_sample_us) * 1e-6;
@@ -295,7 +312,7 @@ int main(int argc, char** argv) {
   }
   // Let the last FORCE messages arrive; ignore strain samples younger than that.
   const int64_t drain_end_us = SteadyClockUs() + 500000;
-  while (SteadyClockUs() < drain_end_us) HandleFor(*lcm, 0.05);
+  while (SteadyClockUs() < drain_end_us) ReceiveUntil(source.get(), 0.05, drain_end_us);
   if (csv) std::fclose(csv);
 
   const int64_t force_missing = monitor.force_missing_ + monitor.PendingWithoutForce(WallClockUs(), 1000000);
@@ -320,6 +337,9 @@ int main(int argc, char** argv) {
   std::printf("  %-44s %" PRId64 " received, %" PRId64 " without FORCE\n", "daemon STRAIN (ESTIMATOR_STATUS)",
               b.received - a.received, daemon_unpublished);
   std::printf("  %-44s %" PRId64 "\n", "STRAIN seq gaps seen by the monitor", monitor.monitor_strain_missing_);
+  if (source->udp_counters() != nullptr) {
+    std::printf("  %-44s %s\n", "monitor input", UdpCountersText(source->udp_counters()).c_str());
+  }
   std::printf("  %-44s %" PRId64 " missing, %" PRId64 " overload, %" PRId64 " decode errors, %" PRId64 " resets\n",
               "daemon STRAIN drops (ESTIMATOR_STATUS)", daemon_missing, daemon_overload, daemon_decode,
               b.resets - a.resets);

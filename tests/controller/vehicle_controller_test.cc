@@ -26,47 +26,56 @@ double HoverForce(const VehicleParams& p) {
 }
 
 // A vehicle at rest at the origin, level, seen by every sensor; FORCE
-// reports thrust scales (1, scale2) with the given status.
+// reports the hover force on both rotors and thrust scales (1, scale2) with
+// the given status.
 class HoverFeed {
  public:
   // A controller of config that has seen the first POSE (at the origin, t = 0).
-  explicit HoverFeed(const ControllerConfig& config) : controller_(config) {
-    controller_.OnPose(PoseSample{0, 0, 0.0, 0.0, 0.0});
+  explicit HoverFeed(const ControllerConfig& config) : controller_(config), hover_force_n_(HoverForce(config.vehicle)) {
+    controller_.OnPose(PoseSample{0, pose_seq_++, 0.0, 0.0, 0.0}, 0);
   }
   bool send_pose = true;
   bool send_force = true;
   int32_t force_status = kStatusValid;
-  double scale2 = 0.75;
+  double scale2 = 1.0;
 
   // Feeds the samples of (now - period, now] and runs one control period.
   MotorCommand Period() {
     for (int64_t t = now_us_ + 1000; t <= now_us_ + kPeriodUs; t += 1000) {
-      controller_.OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81});
+      controller_.OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81}, t);
       if (send_force) {
         ForceEstimate force;
         force.utime = t;
+        force.seq = force_seq_;
+        force.force_n[0] = force.force_n[1] = hover_force_n_;
+        force.force_std_n[0] = force.force_std_n[1] = 0.01 * hover_force_n_;
         force.thrust_scale[1] = scale2;
         force.status = force_status;
-        controller_.OnForce(force);
+        controller_.OnForce(force, t);
       }
-      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0});
+      ++force_seq_;
+      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0}, t);
     }
     now_us_ += kPeriodUs;
     return controller_.Update(now_us_);
   }
-  // 0.2 s of hover: past force_recovery_s, in force feedback when asked for.
-  MotorCommand Settle() {
+  // n periods; returns the last command.
+  MotorCommand Run(int periods) {
     MotorCommand c;
-    for (int k = 0; k < 100; ++k) c = Period();
+    for (int k = 0; k < periods; ++k) c = Period();
     return c;
   }
+  // 2 s of hover: airborne (airborne_s 0.3 s) and the baseline settled
+  // (baseline_tau_s 1 s), in force feedback when asked for.
+  MotorCommand Settle() { return Run(1000); }
   int64_t now_us() const { return now_us_; }
-  const VehicleController& controller() const { return controller_; }
+  VehicleController& controller() { return controller_; }
 
  private:
   VehicleController controller_;
+  double hover_force_n_;
   int64_t now_us_ = 0;
-  int32_t imu_seq_ = 0, pose_seq_ = 0;
+  int32_t imu_seq_ = 0, pose_seq_ = 0, force_seq_ = 0;
 };
 
 TEST(VehicleControllerTest, NoPoseMeansRotorsAtZero) {
@@ -77,40 +86,60 @@ TEST(VehicleControllerTest, NoPoseMeansRotorsAtZero) {
   EXPECT_TRUE(c.status & kCommandNoPoseYet);
 }
 
-TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarder) {
+TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarderAfterALoss) {
   const ControllerConfig config;
   HoverFeed feed(config);
   MotorCommand c = feed.Settle();
   EXPECT_EQ(c.mode, kModeForceFeedback);
   EXPECT_EQ(c.status, 0);
-  // At rest on the reference each rotor must make the hover force:
-  // omega_i = sqrt(f_hover / (c_T mu_i)).
+  // Rotor 2 loses a quarter after take-off (a change beyond
+  // change_threshold 0.1): e_2 -> 0.75 relative to the flight before, at
+  // most max_rate_1_s 50/s. 2 s later (>> fault_tau_s) each rotor makes the
+  // hover force: omega_i = sqrt(f_hover / (c_T e_i)).
+  feed.scale2 = 0.75;
+  const MotorCommand first = feed.Period();
+  EXPECT_GE(feed.controller().health().efficiency[1], 1.0 - 50.0 * 0.002 - 1e-9);
+  EXPECT_GT(first.omega_cmd_rad_s[1], 0.0);
+  c = feed.Run(1000);
   const double c_t = config.vehicle.thrust_coeff_n_s2_rad2;
-  EXPECT_NEAR(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
-  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / (0.75 * c_t)), 1e-6);
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 0.75, 1e-4);
+  EXPECT_NEAR(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t), 0.5);
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / (0.75 * c_t)), 0.5);
 
   ControllerConfig nominal_config = config;
   nominal_config.force_feedback = false;
   HoverFeed nominal_feed(nominal_config);
+  nominal_feed.scale2 = 0.75;
   c = nominal_feed.Settle();
   EXPECT_EQ(c.mode, kModeNominal);
   EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
 }
 
-TEST(VehicleControllerTest, FallsBackWithinOnePeriodOfABadForceAndReturns) {
+TEST(VehicleControllerTest, ConstantScaleFromTakeOffIsLeftToTheIntegrators) {
+  // A constant bias from take-off on (gauge scale, stiffness), unflagged, is
+  // the nominal loop's business: e stays 1.
+  HoverFeed feed{ControllerConfig()};
+  feed.scale2 = 0.7;
+  feed.Run(2000);
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 1.0, 1e-9);
+}
+
+TEST(VehicleControllerTest, BadForceFallsBackWithinOnePeriodAndReturnsWithoutAJump) {
   const ControllerConfig config;
   HoverFeed feed(config);
   feed.Settle();
-  const double nominal_omega = std::sqrt(HoverForce(config.vehicle) / config.vehicle.thrust_coeff_n_s2_rad2);
-
+  feed.scale2 = 0.75;
+  feed.Run(1000);  // e_2 = 0.75
   for (const auto& [scale2, status] :
-       {std::pair<double, int32_t>{kNaN, kStatusValid}, std::pair<double, int32_t>{0.75, kStatusConverging}}) {
+       {std::pair<double, int32_t>{kNaN, kStatusValid}, std::pair<double, int32_t>{0.75, kStatusConverging},
+        std::pair<double, int32_t>{99.0, kStatusValid}, std::pair<double, int32_t>{0.01, kStatusValid}}) {
     feed.scale2 = scale2;
     feed.force_status = status;
+    const double before = feed.controller().health().efficiency[1];
     MotorCommand c = feed.Period();  // the first period with bad FORCE
     EXPECT_TRUE(c.status & kCommandFallbackActive);
-    EXPECT_NEAR(c.omega_cmd_rad_s[1], nominal_omega, 1e-6);
-    // Healthy again: nominal until force_recovery_s (50 ms) of good FORCE.
+    // Decays towards 1 with decay_s 3 s: one period moves it by 0.25 x 0.002 / 3.
+    EXPECT_NEAR(feed.controller().health().efficiency[1], before + (1.0 - before) * 0.002 / 3.0, 1e-9);
     feed.scale2 = 0.75;
     feed.force_status = kStatusValid;
     int periods_to_return = 0;
@@ -118,10 +147,12 @@ TEST(VehicleControllerTest, FallsBackWithinOnePeriodOfABadForceAndReturns) {
       c = feed.Period();
       ++periods_to_return;
     } while ((c.status & kCommandFallbackActive) && periods_to_return < 1000);
-    EXPECT_EQ(periods_to_return, 26);  // first good sample + 50 ms, on the 2 ms grid
+    EXPECT_EQ(periods_to_return, 26);  // first good sample + force_recovery_s 50 ms, on the 2 ms grid
+    feed.Run(1000);
   }
-  EXPECT_EQ(feed.controller().health().fallbacks, 2);
-  EXPECT_EQ(feed.controller().health().force_unhealthy, 4);
+  EXPECT_EQ(feed.controller().health().fallbacks, 4);
+  EXPECT_EQ(feed.controller().health().force_unhealthy, 2);         // the CONVERGING samples
+  EXPECT_EQ(feed.controller().health().force.rejected_invalid, 6);  // NaN, 99, 0.01: refused, not clamped
 }
 
 TEST(VehicleControllerTest, StaleForceFallsBackWithinTimeoutPlusOnePeriod) {
@@ -160,11 +191,12 @@ TEST(VehicleControllerTest, OutOfOrderSamplesAreDropped) {
   ForceEstimate force;
   force.utime = 5000;
   force.status = kStatusValid;
-  controller.OnForce(force);
+  controller.OnForce(force, 5000);
   force.utime = 4000;
-  controller.OnForce(force);
-  controller.OnPose(PoseSample{3000, 0, 0.0, 0.0, 0.0});
-  controller.OnPose(PoseSample{3000, 1, 0.0, 0.0, 0.0});
+  force.seq = 1;
+  controller.OnForce(force, 5000);
+  controller.OnPose(PoseSample{3000, 0, 0.0, 0.0, 0.0}, 5000);
+  controller.OnPose(PoseSample{3000, 1, 0.0, 0.0, 0.0}, 5000);
   EXPECT_EQ(controller.health().force.rejected_out_of_order, 1);
   EXPECT_EQ(controller.health().pose.rejected_out_of_order, 1);
   EXPECT_EQ(controller.health().force.last_utime, 5000);
@@ -188,20 +220,22 @@ TEST(VehicleControllerTest, AnyInputSequenceGivesFiniteBoundedCommands) {
       now += 1000;
       switch (random() % 4) {
         case 0:
-          controller.OnPose(PoseSample{utime(now), 0, value(1.0), value(1.0), value(0.5)});
+          controller.OnPose(PoseSample{utime(now), static_cast<int32_t>(random()), value(1.0), value(1.0), value(0.5)},
+                            now);
           break;
         case 1:
-          controller.OnImu(ImuSample{utime(now), 0, value(5.0), value(20.0), value(20.0)});
+          controller.OnImu(ImuSample{utime(now), 0, value(5.0), value(20.0), value(20.0)}, now);
           break;
         case 2: {
           ForceEstimate f;
           f.utime = utime(now);
+          f.seq = static_cast<int32_t>(random() % 4);
           f.status = static_cast<int32_t>(random() % 256);
           for (int i = 0; i < 2; ++i) {
             f.force_n[i] = value(20.0);
             f.thrust_scale[i] = value(1.0);
           }
-          controller.OnForce(f);
+          controller.OnForce(f, now);
           break;
         }
         default: {

@@ -11,12 +11,13 @@
 
 #include "evaluation/eval_runner.h"
 #include "monitor/monitor_view.h"
-#include "params/estimator_config_yaml.h"
 #include "nodes/estimator_service.h"
+#include "params/estimator_config_yaml.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
+#include "sources/lcm_source.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
@@ -171,7 +172,9 @@ void FlyOverMemq(const Scenario& scenario, const EstimatorConfig& config, bool p
   const ChannelNames channels = MakeChannelNames();
   LcmSink daemon_output(&lcm);
   EstimatorService daemon(config, channels, EstimatorServiceOptions{}, &daemon_output);
-  daemon.Subscribe(&lcm);
+  LcmSource source(&lcm);
+  std::string error;
+  ASSERT_TRUE(source.Subscribe(daemon.InputChannels(), &daemon, &error)) << error;
   for (const std::string* channel : {&channels.truth, &channels.force, &channels.estimator_status}) {
     lcm.subscribeFunction(
         *channel,
@@ -188,7 +191,6 @@ void FlyOverMemq(const Scenario& scenario, const EstimatorConfig& config, bool p
     daemon.PublishStatusOnVehicleClock();
   }
   Drain(&lcm);
-  daemon.Unsubscribe();
 }
 
 // The demo's claim: simulator, daemon and monitor connected by LCM give the

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "model/equilibrium.h"
+#include "sources/lcm_source.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
@@ -31,8 +32,10 @@ class ServiceHarness {
         channels_(MakeChannelNames("TEST_")),
         sink_(&lcm_),
         service_(config_, channels_, EstimatorServiceOptions{}, &sink_),
+        source_(&lcm_),
         hover_(SolveHoverEquilibrium(config_.vehicle)) {
-    service_.Subscribe(&lcm_);
+    std::string error;
+    EXPECT_TRUE(source_.Subscribe(service_.InputChannels(), &service_, &error)) << error;
     lcm_.subscribeFunction(channels_.force, &ServiceHarness::OnForce, this);
     lcm_.subscribeFunction(channels_.estimator_status, &ServiceHarness::OnStatus, this);
   }
@@ -111,6 +114,7 @@ class ServiceHarness {
   ChannelNames channels_;
   LcmSink sink_;
   EstimatorService service_;
+  LcmSource source_;
   Equilibrium hover_;
   int32_t motor_seq_ = 0;
   int32_t imu_seq_ = 0;

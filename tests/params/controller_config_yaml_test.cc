@@ -34,8 +34,8 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.supervision.imu_timeout_s, defaults.supervision.imu_timeout_s);
   EXPECT_EQ(config.supervision.force_timeout_s, defaults.supervision.force_timeout_s);
   EXPECT_EQ(config.supervision.force_recovery_s, defaults.supervision.force_recovery_s);
-  EXPECT_EQ(config.supervision.min_thrust_scale, defaults.supervision.min_thrust_scale);
-  EXPECT_EQ(config.supervision.max_thrust_scale, defaults.supervision.max_thrust_scale);
+  EXPECT_EQ(config.supervision.min_plausible_thrust_scale, defaults.supervision.min_plausible_thrust_scale);
+  EXPECT_EQ(config.supervision.max_plausible_thrust_scale, defaults.supervision.max_plausible_thrust_scale);
   EXPECT_EQ(config.supervision.descent_rate_m_s, defaults.supervision.descent_rate_m_s);
 }
 
@@ -54,9 +54,9 @@ TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
   std::string e = ErrorOf("controller:\n  mode: fast\n");
   EXPECT_NE(e.find("bad.yaml: key 'controller.mode'"), std::string::npos) << e;
   EXPECT_NE(e.find("force_feedback"), std::string::npos) << e;
-  e = ErrorOf("controller:\n  supervision: {min_thrust_scale: 0}\n");
-  EXPECT_NE(e.find("controller.supervision.min_thrust_scale"), std::string::npos) << e;
-  EXPECT_NE(e.find("allowed: [0.05, 1]"), std::string::npos) << e;
+  e = ErrorOf("controller:\n  supervision: {min_plausible_thrust_scale: 0}\n");
+  EXPECT_NE(e.find("controller.supervision.min_plausible_thrust_scale"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0.01, 1]"), std::string::npos) << e;
   EXPECT_THROW(LoadControllerConfig("/nonexistent/controller.yaml"), ParamError);
 }
 

@@ -13,8 +13,16 @@
 #include <string>
 
 #include "birotor/motor_command_t.hpp"
+#include "birotor/setpoint_t.hpp"
 #include "birotor/truth_t.hpp"
+#include "controller/reference_point.h"
+#include "evaluation/closed_loop.h"
+#include "evaluation/control_metrics.h"
+#include "params/controller_config_yaml.h"
+#include "params/estimator_config_yaml.h"
+#include "simulator/scenario_yaml.h"
 #include "tests/reliability/live_harness.h"
+#include "transport/message_conversion.h"
 
 namespace birotor::reliability {
 namespace {
@@ -169,6 +177,112 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
   EXPECT_TRUE(controller.Alive());
   EXPECT_EQ(controller.Stop(), 0);
   EXPECT_EQ(estimator.Stop(), 0);
+}
+
+// TRUTH and SETPOINT of a live flight: the RMS position error against the
+// setpoint the controller was sent (extrapolated with its feed-forward, as
+// the controller does).
+class SetpointFlightListener {
+ public:
+  SetpointFlightListener(const std::string& url, const std::string& prefix)
+      : lcm_(url), channels_(MakeChannelNames(prefix)) {
+    lcm_.subscribe(channels_.truth, &SetpointFlightListener::OnTruth, this)->setQueueCapacity(100000);
+    lcm_.subscribe(channels_.setpoint, &SetpointFlightListener::OnSetpoint, this)->setQueueCapacity(100000);
+    thread_ = std::thread([this] {
+      while (!stop_.load()) lcm_.handleTimeout(20);
+    });
+  }
+  ~SetpointFlightListener() {
+    stop_ = true;
+    thread_.join();
+  }
+  bool good() { return lcm_.good(); }
+  // RMS |p - p_ref| over the TRUTH samples that have a setpoint [m]; *count: how many.
+  double RmsPositionErrorM(int64_t* count) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    *count = count_;
+    return count_ > 0 ? std::sqrt(sum_squared_m2_ / static_cast<double>(count_)) : -1.0;
+  }
+  int64_t setpoints() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return setpoints_;
+  }
+
+ private:
+  void OnSetpoint(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    setpoint_t message;
+    if (DecodeMessage(buffer->data, buffer->data_size, &message) != DecodeError::kNone) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    newest_ = FromMessage(message);
+    ++setpoints_;
+  }
+  void OnTruth(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    truth_t m;
+    if (DecodeMessage(buffer->data, buffer->data_size, &m) != DecodeError::kNone) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (setpoints_ == 0 || m.utime < newest_.utime) return;
+    const ReferencePoint r = ReferenceFromSetpoint(newest_, 1e-6 * static_cast<double>(m.utime - newest_.utime));
+    const double dx = m.x_m - r.position_m.x(), dz = m.z_m - r.position_m.y();
+    sum_squared_m2_ += dx * dx + dz * dz;
+    ++count_;
+  }
+
+  lcm::LCM lcm_;
+  ChannelNames channels_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  Setpoint newest_;
+  int64_t setpoints_ = 0;
+  double sum_squared_m2_ = 0;
+  int64_t count_ = 0;
+};
+
+// The lock-step RMS position error of a scenario with overrides [m].
+double LockStepRms(const std::string& scenario_name, const std::vector<std::string>& overrides) {
+  const std::string config = std::string(BIROTOR_SOURCE_DIR) + "/config/";
+  const Scenario scenario = LoadScenario(config + "scenarios/" + scenario_name + ".yaml", overrides);
+  ControllerConfig controller = LoadControllerConfig(config + "controller.yaml");
+  controller.force_feedback = true;
+  const ClosedLoopRun run =
+      RunClosedLoop(scenario, LoadEstimatorConfig(config + "estimator.yaml"), controller, ClosedLoopOptions());
+  return EvaluateControl(run).rms_position_error_m;
+}
+
+// Issue 25: birotor-sim --external-controller --publish-setpoints, the
+// estimator and the controller over udpm fly gentle and aggressive with the
+// RMS position error within 10 % of the lock-step figure.
+TEST(LiveControllerTest, SetpointsFlownLiveAsInLockStep) {
+  for (const std::string name : {"gentle", "aggressive"}) {
+    const std::string url = PrivateUrl(7699);
+    const std::string prefix = UniquePrefix("CTL_SP_" + name + "_");
+    const std::vector<std::string> overrides = {"scenario.duration_s=8"};
+    SetpointFlightListener listener(url, prefix);
+    ASSERT_TRUE(listener.good());
+    ChildProcess estimator, controller, sim;
+    ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("setpoint_test_estimator.log")));
+    ASSERT_TRUE(controller.Start({BIROTOR_CONTROLLER_BIN, "--lcm-url", url, "--prefix", prefix, "--mode",
+                                  "force_feedback", "--log-level", "warn"},
+                                 TempPath("setpoint_test_controller.log")));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let them subscribe
+    ASSERT_TRUE(sim.Start(
+        {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml",
+         "--lcm-url", url, "--prefix", prefix, "--set", overrides[0], "--external-controller", "--publish-setpoints",
+         "--log-level", "warn"},
+        TempPath("setpoint_test_sim.log")));
+    ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 60.0)) << "the simulator did not finish";
+    int64_t count = 0;
+    const double live_rms = listener.RmsPositionErrorM(&count);
+    const double lock_step_rms = LockStepRms(name, overrides);
+    std::printf("%s: live RMS %.4f m over %lld TRUTH samples (%lld setpoints), lock-step %.4f m (ratio %.3f)\n",
+                name.c_str(), live_rms, static_cast<long long>(count), static_cast<long long>(listener.setpoints()),
+                lock_step_rms, live_rms / lock_step_rms);
+    EXPECT_GT(count, 4000);  // 8000 sent; a loaded machine drops some
+    EXPECT_LE(live_rms, 1.10 * lock_step_rms) << name;
+    EXPECT_TRUE(controller.Alive());
+    EXPECT_EQ(controller.Stop(), 0);
+    EXPECT_EQ(estimator.Stop(), 0);
+  }
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "sources/lcm_source.h"
 #include "tests/replay/replay_test_support.h"
 
 namespace birotor {
@@ -116,7 +117,9 @@ TEST(ReplayPipelineTest, DaemonFedTheLogOverLcmMatchesTheReplay) {
   LcmSink sink(&lcm);
   EstimatorConfig config;
   EstimatorService service(config, channels, EstimatorServiceOptions{}, &sink);
-  service.Subscribe(&lcm);
+  LcmSource source(&lcm);
+  std::string error;
+  ASSERT_TRUE(source.Subscribe(service.InputChannels(), &service, &error)) << error;
   struct Capture {
     std::vector<std::vector<uint8_t>> forces;
     static void On(const lcm::ReceiveBuffer* b, const std::string&, Capture* self) {
@@ -126,7 +129,6 @@ TEST(ReplayPipelineTest, DaemonFedTheLogOverLcmMatchesTheReplay) {
   } capture;
   lcm.subscribeFunction(channels.force, &Capture::On, &capture);
   LogReader reader;
-  std::string error;
   ASSERT_TRUE(reader.Open(input, &error)) << error;
   LogEvent event;
   while (reader.Next(&event)) {

@@ -1,0 +1,52 @@
+#include "controller/efficiency_conditioner.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace birotor {
+
+void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
+  const double dt_s = last_utime_ < 0 ? 0.0 : 1e-6 * static_cast<double>(e.utime - last_utime_);
+  last_utime_ = e.utime;
+  if (!airborne_) {
+    if (e.force_n[0] + e.force_n[1] < params_.airborne_force_fraction * weight_n_) {
+      above_since_us_ = -1;
+      return;
+    }
+    if (above_since_us_ < 0) above_since_us_ = e.utime;
+    airborne_ = 1e-6 * static_cast<double>(e.utime - above_since_us_) >= params_.airborne_s;
+    return;
+  }
+  const bool deficit = (e.status & kStatusThrustDeficit) != 0;
+  const int32_t fault_bits[2] = {kStatusRotor1Fault, kStatusRotor2Fault};
+  const double baseline_gain = std::min(1.0, dt_s / params_.baseline_tau_s);
+  for (int i = 0; i < 2; ++i) {
+    // An uncertain sample is not followed: the target holds.
+    if (!(e.force_std_n[i] <= params_.max_relative_sigma * std::fabs(e.force_n[i]))) continue;
+    if (!has_baseline_) baseline_[i] = e.thrust_scale[i];
+    // A change is real when FORCE flags it, or when it is larger than
+    // change_threshold relative to the baseline; neither counts before
+    // the baseline has settled (a mismatch flagged from take-off on).
+    const bool settled = settled_s_ >= params_.baseline_tau_s;
+    flagged_[i] = settled && (deficit || (e.status & fault_bits[i]) != 0 ||
+                              std::fabs(e.thrust_scale[i] / baseline_[i] - 1.0) > params_.change_threshold);
+    if (!flagged_[i]) baseline_[i] += baseline_gain * (e.thrust_scale[i] - baseline_[i]);
+    target_[i] = flagged_[i] ? e.thrust_scale[i] / baseline_[i] : 1.0;
+  }
+  has_baseline_ = true;
+  settled_s_ += std::min(dt_s, 0.1);  // a gap does not count
+}
+
+void EfficiencyConditioner::Advance(double dt_s, bool usable) {
+  const bool follow = usable && airborne_ && has_baseline_;
+  for (int i = 0; i < 2; ++i) {
+    const bool flagged = follow && flagged_[i];
+    const double goal = flagged ? target_[i] : 1.0;
+    const double tau_s = flagged ? params_.fault_tau_s : params_.decay_s;
+    const double step = (goal - efficiency_[i]) * std::min(1.0, dt_s / tau_s);
+    const double max_step = params_.max_rate_1_s * dt_s;
+    efficiency_[i] += std::clamp(step, -max_step, max_step);
+  }
+}
+
+}  // namespace birotor

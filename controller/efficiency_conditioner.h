@@ -1,0 +1,60 @@
+// The thrust efficiency e_i the force-feedback rotor map uses,
+// omega_i = sqrt(f_i / (e_i c_T)), from FORCE's thrust_scale mu_i, used only
+// as far as it is good (issue 25):
+//  - frozen at 1 until airborne (FORCE's total thrust above a share of the
+//    weight for a while: no ground-phase fault flag reaches the rotors);
+//  - followed only while the change is real: FORCE flags rotor i's fault
+//    or the shared thrust deficit, or mu_i moved by more than
+//    change_threshold from its baseline (a step; a mismatch drifts), and
+//    only once the baseline has settled (baseline_tau_s airborne). Then e_i = mu_i / mu0_i, mu0_i the
+//    low-passed mu_i of the unflagged flight before (baseline_tau_s), so a
+//    model mismatch (stiffness, gauge scale, mass, motor lag, noise), which
+//    moves mu slowly and unflagged, is left to the nominal loop's
+//    integrators instead of being applied as a disturbance;
+//  - a sample whose force sigma is large is not followed;
+//  - first-order towards the target with fault_tau_s, rate limited: a
+//    ringing estimate cannot drive the rotors;
+//  - when FORCE is unusable or the flag clears, the efficiency decays towards
+//    1 over decay_s (no jump to the nominal map), and comes back with the
+//    same filter (no jump back): the handover is bumpless both ways.
+// No allocation, no throw.
+#pragma once
+
+#include <cstdint>
+
+#include "controller/controller_params.h"
+#include "samples/samples.h"
+
+namespace birotor {
+
+class EfficiencyConditioner {
+ public:
+  // weight_n: the vehicle's weight [N] (airborne test).
+  EfficiencyConditioner(const EfficiencyParams& params, double weight_n) : params_(params), weight_n_(weight_n) {}
+
+  // One healthy FORCE sample (VALID, plausible scales).
+  void OnForce(const ForceEstimate& estimate);
+  // One control period of dt_s [s]; usable: FORCE may be flown on now.
+  void Advance(double dt_s, bool usable);
+
+  double efficiency(int rotor) const { return efficiency_[rotor]; }
+  bool airborne() const { return airborne_; }
+  // The unflagged thrust_scale mu0_i the efficiency is relative to [1].
+  double baseline(int rotor) const { return baseline_[rotor]; }
+
+ private:
+  EfficiencyParams params_;
+  double weight_n_;
+  double efficiency_[2] = {1.0, 1.0};
+  double target_[2] = {1.0, 1.0};
+  bool flagged_[2] = {false, false};  // FORCE says rotor i's change is real
+  // Airborne test on FORCE stamps.
+  bool airborne_ = false;
+  int64_t above_since_us_ = -1;
+  int64_t last_utime_ = -1;
+  bool has_baseline_ = false;
+  double settled_s_ = 0.0;  // airborne FORCE time seen [s]
+  double baseline_[2] = {1.0, 1.0};
+};
+
+}  // namespace birotor

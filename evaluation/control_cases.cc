@@ -1,0 +1,52 @@
+#include "evaluation/control_cases.h"
+
+namespace birotor {
+
+const std::vector<ControlCase>& ControlCases() {
+  // Durations are cut to what the figure needs (the fault plus its 3 s window).
+  static const std::vector<ControlCase> cases = {
+      {"hover", "hover", {"scenario.duration_s=10"}, "reference hover"},
+      {"gentle", "gentle", {}, "reference gentle manoeuvres"},
+      {"aggressive", "aggressive", {}, "reference aggressive manoeuvre"},
+      {"thrust_loss", "thrust_loss", {"scenario.duration_s=10"}, "rotor 2 loses 25 % at 5 s"},
+      {"stiffness_-20",
+       "hover",
+       {"scenario.duration_s=10", "vehicle.arm_stiffness_n_m_rad=2102.4"},
+       "arm stiffness -20 % (plant only), hover"},
+      {"mass_-15", "hover", {"scenario.duration_s=10", "vehicle.body_mass_kg=3.4"}, "body mass -15 %, hover"},
+      {"motor_tau_+70", "gentle", {"vehicle.motor_time_constant_s=0.0595"}, "motor time constant +70 %, gentle"},
+      {"gauge_scale_0.7",
+       "hover",
+       {"scenario.duration_s=10", "gauge.scale=[0.7, 1.0]"},
+       "gauge scale 0.7 on arm 1, hover"},
+      {"untared_loss",
+       "thrust_loss",
+       {"scenario.duration_s=10", "gauge.offset_rad=[5.0e-4, 0.0]"},
+       "untared offset 5e-4 rad on arm 1, rotor 2 loses 25 % at 5 s"},
+      {"ground_start", "gauge_offset", {"scenario.duration_s=12"}, "ground start with gauge offsets (gauge_offset)"},
+      {"severe_gap",
+       "thrust_loss_severe",
+       {"scenario.duration_s=10", "faults.strain_gap={start_s: 5.0, duration_s: 0.5}"},
+       "rotor 2 loses 40 % at 5 s with a 0.5 s strain gap from the fault"},
+      {"imu_noise",
+       "hover",
+       {"scenario.duration_s=10", "sensors.imu.accel_noise_m_s2=1.0"},
+       "IMU accelerometer noise 1 m/s^2, hover"},
+      {"loss_70",
+       "thrust_loss",
+       {"scenario.duration_s=12", "ground.enabled=true", "ground.rest_s=1.0", "trajectory.kind=waypoints",
+        "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 0.4}]",
+        "faults.thrust_steps=[{time_s: 6.0, rotor: 2, scale: 0.3}]"},
+       "take off to 0.4 m, rotor 2 loses 70 % at 6 s (hover impossible: level descent)"},
+  };
+  return cases;
+}
+
+const ControlCase* FindControlCase(const std::string& name) {
+  for (const ControlCase& c : ControlCases()) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+}  // namespace birotor

@@ -1,0 +1,90 @@
+// Every case of birotor-eval --control (evaluation/control_cases.cc) flown
+// lock-step in both modes on the scenario's own seed: force feedback within
+// 1.5x of the figures measured on the development VM (docs/controller.md,
+// seed 1 of the table), and no worse than nominal where issue 25's target is
+// met (5 % on RMS position, fault-relative tilt and altitude deviation).
+#include "evaluation/control_cases.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "evaluation/closed_loop.h"
+#include "evaluation/control_metrics.h"
+#include "params/controller_config_yaml.h"
+#include "params/estimator_config_yaml.h"
+#include "simulator/scenario_yaml.h"
+
+namespace birotor {
+namespace {
+
+std::string ConfigFile(const std::string& name) { return std::string(BIROTOR_SOURCE_DIR) + "/config/" + name; }
+
+struct Measured {
+  double rms_m, tilt_rad, altitude_m;  // force feedback, measured
+  bool no_worse;                       // issue 25's target met on this seed
+};
+
+// birotor-eval --control (one seed each), commit of this test.
+const std::map<std::string, Measured>& MeasuredFigures() {
+  static const std::map<std::string, Measured> figures = {
+      {"hover", {0.0034, 0.0134, 0.0072, true}},
+      {"gentle", {0.0031, 0.0108, 0.0049, true}},
+      {"aggressive", {0.0099, 0.1917, 0.0151, true}},
+      {"thrust_loss", {0.0047, 0.0290, 0.0078, true}},
+      {"stiffness_-20", {0.0034, 0.0135, 0.0072, true}},
+      {"mass_-15", {0.0559, 0.0125, 0.1141, true}},
+      {"motor_tau_+70", {0.0035, 0.0345, 0.0054, true}},
+      {"gauge_scale_0.7", {0.0857, 0.0134, 0.0252, false}},  // NOT met: RMS 25x nominal
+      {"untared_loss", {0.0734, 0.0313, 0.1313, true}},      // met by the rule, but climbs 0.13 m
+      {"ground_start", {0.0025, 0.0113, 0.0035, true}},
+      {"severe_gap", {0.0585, 0.1489, 0.2177, false}},  // NOT met: tilt 1.38x nominal
+      {"imu_noise", {0.0078, 0.0242, 0.0092, true}},
+      {"loss_70", {0.3023, 0.2003, 0.4000, true}},
+  };
+  return figures;
+}
+
+TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
+  const ControllerConfig base = LoadControllerConfig(ConfigFile("controller.yaml"));
+  const EstimatorConfig estimator = LoadEstimatorConfig(ConfigFile("estimator.yaml"));
+  ASSERT_EQ(ControlCases().size(), MeasuredFigures().size());
+  for (const ControlCase& c : ControlCases()) {
+    const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c.scenario + ".yaml"), c.overrides);
+    ControlMetrics m[2];
+    for (const bool force_feedback : {false, true}) {
+      ControllerConfig config = base;
+      config.force_feedback = force_feedback;
+      m[force_feedback] = EvaluateControl(RunClosedLoop(scenario, estimator, config, ClosedLoopOptions()));
+    }
+    const Measured& expected = MeasuredFigures().at(c.name);
+    EXPECT_LT(m[1].rms_position_error_m, 1.5 * expected.rms_m) << c.name;
+    EXPECT_LT(m[1].fault_peak_tilt_rad, 1.5 * expected.tilt_rad) << c.name;
+    EXPECT_LT(m[1].peak_altitude_deviation_m, 1.5 * expected.altitude_m) << c.name;
+    if (expected.no_worse) {
+      EXPECT_LE(m[1].rms_position_error_m, 1.05 * m[0].rms_position_error_m) << c.name;
+      EXPECT_LE(m[1].fault_peak_tilt_rad, 1.05 * m[0].fault_peak_tilt_rad) << c.name;
+      EXPECT_LE(m[1].peak_altitude_deviation_m, 1.05 * m[0].peak_altitude_deviation_m) << c.name;
+    }
+  }
+}
+
+TEST(ControlCasesTest, SeventyPercentLossDescendsLevel) {
+  // Issue 25: a level descent (|tilt| < 0.3 rad) to the ground. Measured
+  // 0.200 rad and 1.23 m/s at touchdown: the 1 m/s target is NOT met (with the
+  // weaker rotor at 30 % both rotors together make 0.89 of the weight level,
+  // so the body sinks at >= 1.1 m/s^2 from 0.4 m whatever the controller does).
+  const ControlCase* c = FindControlCase("loss_70");
+  ASSERT_NE(c, nullptr);
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+  const ClosedLoopRun run = RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")),
+                                          LoadControllerConfig(ConfigFile("controller.yaml")), ClosedLoopOptions());
+  const ControlMetrics m = EvaluateControl(run);
+  EXPECT_LT(m.tilt_before_touchdown_rad, 0.3);
+  EXPECT_LT(m.touchdown_speed_m_s, 1.23 * 1.5);
+  EXPECT_EQ(run.controller.infeasible, 1);
+}
+
+}  // namespace
+}  // namespace birotor
