@@ -5,6 +5,7 @@
 // params/controller_config_yaml.h loads them.
 #pragma once
 
+#include "controller/mpc_params.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
@@ -107,11 +108,20 @@ struct SetpointParams {
 struct ControllerConfig {
   VehicleParams vehicle;       // the controller's model of the vehicle
   bool force_feedback = true;  // mode: force_feedback (true) or nominal (false)
+  // mode: mpc: the model predictive controller (controller/mpc_controller.h)
+  // flies, the cascade (on force feedback) is its per-period fallback.
+  bool model_predictive = false;
+  MpcParams mpc;  // the mpc: section
   ControllerParams gains;
   ObserverParams observer;
   SupervisionParams supervision;
   EfficiencyParams efficiency;
   SetpointParams setpoint;
 };
+
+// MOTOR_COMMAND rate [Hz]: the cascade's rate_hz, or in mode mpc the MPC's.
+inline double CommandRateHz(const ControllerConfig& config) {
+  return config.model_predictive ? config.mpc.rate_hz : config.gains.rate_hz;
+}
 
 }  // namespace birotor

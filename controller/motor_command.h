@@ -11,6 +11,7 @@ namespace birotor {
 enum ControlMode : int32_t {
   kModeNominal = 0,        // omega = sqrt(f / c_T)
   kModeForceFeedback = 1,  // omega_i = sqrt(f_i / (c_T e_i)), e_i FORCE's thrust_scale conditioned
+  kModeMpc = 2,            // model predictive control (controller/mpc_controller.h)
 };
 
 // Bits of MotorCommand::status.
@@ -22,6 +23,7 @@ enum CommandStatusBit : int32_t {
   kCommandNoPoseYet = 16,        // no POSE received yet: rotors at 0
   kCommandInputConflict = 32,    // a second publisher on FORCE or POSE: force feedback dropped
   kCommandHoverInfeasible = 64,  // the efficiency cannot hold the weight level: controlled descent
+  kCommandMpcFallback = 128,     // mode mpc: the solve failed, was late or bad; the cascade's command
 };
 
 struct MotorCommand {

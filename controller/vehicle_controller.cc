@@ -21,6 +21,13 @@ constexpr double kMaxSpecificForceM_S2 = 1e3;  // |accel| [m/s^2]
 
 bool Within(double value, double limit) { return std::isfinite(value) && std::fabs(value) <= limit; }
 
+// The law's gains at the rate it runs (mode mpc: the MPC's, for the fallback).
+ControllerParams LawGains(const ControllerConfig& config) {
+  ControllerParams gains = config.gains;
+  gains.rate_hz = CommandRateHz(config);
+  return gains;
+}
+
 double HoverForce(const VehicleParams& vehicle) {
   const Equilibrium hover = SolveHoverEquilibrium(vehicle);
   return 0.5 * (hover.force_n[0] + hover.force_n[1]);
@@ -37,13 +44,14 @@ SeqStreamLockParams LockParams(const SupervisionParams& s) {
 
 VehicleController::VehicleController(const ControllerConfig& config)
     : config_(config),
-      law_(config.vehicle, config.gains, HoverForce(config.vehicle)),
+      law_(config.vehicle, LawGains(config), HoverForce(config.vehicle)),
       observer_(config.observer),
       efficiency_(config.efficiency, 2.0 * HoverForce(config.vehicle)),
       force_lock_(LockParams(config.supervision)),
       pose_lock_(LockParams(config.supervision)),
       setpoint_(config.setpoint),
       weight_n_(2.0 * HoverForce(config.vehicle)) {
+  if (config.model_predictive) mpc_ = std::make_unique<MpcController>(config.vehicle, config.mpc);
   // Force feedback starts in the fallback until FORCE has been healthy for
   // force_recovery_s; that start is not counted as a fallback.
   health_.fallback_active = config.force_feedback;
@@ -257,11 +265,13 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   command.seq = seq_++;
   command.mode = config_.force_feedback ? kModeForceFeedback : kModeNominal;
   ++health_.commands;
-  const double nominal_dt_s = 1.0 / config_.gains.rate_hz;
+  const double nominal_dt_s = 1.0 / CommandRateHz(config_);
   const double dt_s = last_update_us_ < 0
                           ? nominal_dt_s
                           : std::clamp(1e-6 * static_cast<double>(now_us - last_update_us_), 0.0, 10.0 * nominal_dt_s);
   last_update_us_ = now_us;
+  // Mode mpc: the rotors have run the last command for dt_s.
+  if (mpc_) mpc_->Advance(Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]), dt_s);
 
   if (!has_pose_) {
     command.status = kCommandNoPoseYet | kCommandInputStale;
@@ -327,7 +337,23 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   const RotorForces forces = law_.Update(observer_.state(), target, !saturated_);
   last_accel_des_m_s2_ = forces.accel_des_m_s2;
   if (!last_accel_des_m_s2_.allFinite()) last_accel_des_m_s2_.setZero();
+  const Eigen::Vector2d last_rad_s(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
   Allocate(forces, config_.force_feedback, &command, &status);
+  if (mpc_) {
+    // Mode mpc: the MPC flies (the descent target too, not without POSE); the
+    // cascade's speeds just allocated are its fallback.
+    MpcPlanInput in;
+    in.state = observer_.state();
+    in.reference = target;
+    in.thrust_scale = Eigen::Vector2d(health_.efficiency[0], health_.efficiency[1]);
+    in.last_command_rad_s = last_rad_s;
+    in.period_s = nominal_dt_s;
+    const MpcPeriod period =
+        mpc_->Fly(in, Eigen::Vector2d(command.omega_cmd_rad_s[0], command.omega_cmd_rad_s[1]), !pose_lost);
+    for (int i = 0; i < 2; ++i) command.omega_cmd_rad_s[i] = last_good_omega_rad_s_[i] = period.omega_cmd_rad_s(i);
+    command.mode = kModeMpc;
+    if (period.fell_back) status |= kCommandMpcFallback;
+  }
   command.status = status;
   return command;
 }

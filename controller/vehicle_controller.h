@@ -14,11 +14,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
 #include "controller/efficiency_conditioner.h"
 #include "controller/motor_command.h"
+#include "controller/mpc_controller.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
 #include "controller/seq_stream_lock.h"
@@ -83,6 +85,8 @@ class VehicleController {
   const BodyState& state() const { return observer_.state(); }
   const ControllerHealth& health() const { return health_; }
   const ControllerConfig& config() const { return config_; }
+  // Mode mpc: solves, fallbacks, solve times, iterations (zeros in other modes).
+  MpcStats MpcStatistics() const { return mpc_ ? mpc_->Stats() : MpcStats(); }
 
  private:
   // The common checks of every input: plausible, stamp within the clock
@@ -135,6 +139,7 @@ class VehicleController {
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
   double last_good_omega_rad_s_[2] = {0.0, 0.0};
   int32_t seq_ = 0;
+  std::unique_ptr<MpcController> mpc_;  // mode mpc only
 };
 
 }  // namespace birotor

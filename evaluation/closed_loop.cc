@@ -71,7 +71,10 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   simulator.UseExternalCommands(options.command_timeout_s);
   simulator.EmitSetpoints(options.setpoint_rate_hz);
   EstimatorPipeline estimator(estimator_config);
-  VehicleController controller(controller_config);
+  // The virtual clock stands still during a solve: the MPC's deadline is on CPU time.
+  ControllerConfig lock_step_config = controller_config;
+  lock_step_config.mpc.deadline_on_thread_cpu_time = true;
+  VehicleController controller(lock_step_config);
   const ChannelNames channels = MakeChannelNames(options.prefix);
   WireSampleSink wire(channels, log);
   LockStepSink sink(&estimator, &controller, log != nullptr ? &wire : nullptr, &simulator, &run);
@@ -80,7 +83,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   // The controller runs on the samples of the steps before this one (a
   // quarter-step sensor latency at 4 kHz) and its command holds until the next.
   const int64_t control_every =
-      std::max<int64_t>(1, std::llround(1.0 / (controller_config.gains.rate_hz * scenario.step_s)));
+      std::max<int64_t>(1, std::llround(1.0 / (CommandRateHz(controller_config) * scenario.step_s)));
   int64_t step = 0;
   while (!simulator.done()) {
     if (options.before_step) options.before_step(&simulator, &controller);
@@ -104,6 +107,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   run.has_ground = scenario.ground.enabled;
   run.ground_z_m = scenario.start_position_m[1];
   run.controller = controller.health();
+  run.mpc = controller.MpcStatistics();
   run.estimator = estimator.health();
   run.command_timeouts = simulator.command_timeouts();
   run.simulated_s = simulator.time_s();

@@ -49,6 +49,7 @@ struct ClosedLoopRun {
   std::vector<TrackedSample> samples;  // one per TRUTH sample
   std::vector<MotorCommand> commands;
   ControllerHealth controller;
+  MpcStats mpc;  // mode mpc: solves, fallbacks, solve times (zeros in other modes)
   PipelineHealth estimator;
   int64_t fault_utime = -1;      // first thrust step [us]; -1 if none
   int64_t liftoff_utime = -1;    // first lift-off of a ground start [us]; -1 if none

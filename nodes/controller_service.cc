@@ -30,7 +30,7 @@ ControllerService::ControllerService(const ControllerConfig& config, const Chann
     : controller_(config),
       channels_(channels),
       sink_(sink),
-      period_us_(std::max<int64_t>(1, std::llround(1e6 / config.gains.rate_hz))) {
+      period_us_(std::max<int64_t>(1, std::llround(1e6 / CommandRateHz(config)))) {
   buffer_.reserve(256);
 }
 
@@ -144,7 +144,9 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   m.utime = now_us;
   m.wall_utime = wall_utime;
   ++m.seq;
-  m.mode = controller_.config().force_feedback ? kModeForceFeedback : kModeNominal;
+  m.mode = controller_.config().model_predictive ? kModeMpc
+           : controller_.config().force_feedback ? kModeForceFeedback
+                                                 : kModeNominal;
   m.status = last_command_.status;
   m.fallbacks = h.fallbacks;
   m.descents = h.descents;
@@ -190,6 +192,15 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   m.loop_time_p99_us = Percentile(loop_times_us_.begin(), loop_times_us_.begin() + n, 0.99);
   m.loop_time_max_us = n == 0 ? kNaN : *std::max_element(loop_times_us_.begin(), loop_times_us_.begin() + n);
   loop_time_count_ = 0;
+  const MpcStats mpc = controller_.MpcStatistics();
+  const bool solved = mpc.solves > 0;
+  m.mpc_solves = mpc.solves;
+  m.mpc_fallbacks = mpc.Fallbacks();
+  m.mpc_solve_p50_us = solved ? 1e6 * mpc.solve_p50_s : kNaN;
+  m.mpc_solve_p99_us = solved ? 1e6 * mpc.solve_p99_s : kNaN;
+  m.mpc_solve_max_us = solved ? 1e6 * mpc.solve_max_s : kNaN;
+  m.mpc_iterations = mpc.last_iterations;
+  m.mpc_max_iterations = mpc.max_iterations;
   EncodeMessage(m, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.controller_status, now_us, buffer_.data(), buffer_.size());
 }

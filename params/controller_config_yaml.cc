@@ -59,6 +59,43 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
   return keys;
 }
 
+// controller.mpc (defaults and the reason for each: controller/mpc_params.h). A
+// reader of its own: it has choices and a cross-key check beside its ranges.
+void ReadMpcParams(YamlSection s, MpcParams* o) {
+  s.Double("rate_hz", 10.0, 1000.0, &o->rate_hz);
+  s.Double("step_s", 1e-3, 0.2, &o->step_s);
+  s.Int("horizon_steps", 2, 100, &o->horizon_steps);
+  s.Int("input_blocks", 1, 100, &o->input_blocks);
+  s.Int("tilt_check_every_steps", 1, 100, &o->tilt_check_every_steps);
+  s.Double("position_weight_1_m2", 0.0, 1e8, &o->position_weight_1_m2);
+  s.Double("velocity_weight_s2_m2", 0.0, 1e8, &o->velocity_weight_s2_m2);
+  s.Double("tilt_weight_1_rad2", 0.0, 1e8, &o->tilt_weight_1_rad2);
+  s.Double("pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->pitch_rate_weight_s2_rad2);
+  s.Double("input_weight_s2_rad2", 1e-9, 1.0, &o->input_weight_s2_rad2);
+  s.Double("input_rate_weight_s2_rad2", 0.0, 1.0, &o->input_rate_weight_s2_rad2);
+  s.Double("max_omega_rate_rad_s2", 100.0, 1e7, &o->max_omega_rate_rad_s2);
+  s.Double("max_tilt_rad", 0.01, 1.5, &o->max_tilt_rad);
+  s.Double("tilt_slack_weight", 1.0, 1e10, &o->tilt_slack_weight);
+  s.Double("disturbance_time_constant_s", 0.01, 100.0, &o->disturbance_time_constant_s);
+  s.Double("max_disturbance_m_s2", 0.0, 50.0, &o->max_disturbance_m_s2);
+  s.Double("max_disturbance_rad_s2", 0.0, 500.0, &o->max_disturbance_rad_s2);
+  s.Double("deadline_s", 0.0, 1.0, &o->deadline_s);
+  std::string clock;
+  s.String("deadline_clock", {"wall", "thread_cpu"}, &clock);
+  o->deadline_on_thread_cpu_time = clock == "thread_cpu";
+  std::string algorithm;
+  s.String("algorithm", {"bleic", "dense_aul", "dense_ipm"}, &algorithm);
+  o->algorithm = algorithm == "bleic"       ? MpcQpAlgorithm::kBleic
+                 : algorithm == "dense_aul" ? MpcQpAlgorithm::kDenseAul
+                                            : MpcQpAlgorithm::kDenseIpm;
+  s.Double("solver_tolerance", 1e-12, 1e-2, &o->solver_tolerance);
+  s.Int("max_iterations", 0, 100000, &o->max_iterations);
+  s.Bool("use_thrust_scale", &o->use_thrust_scale);
+  if (o->input_blocks > o->horizon_steps)
+    s.Fail("input_blocks", "more blocks than horizon_steps", "[1, horizon_steps]");
+  s.Finish();
+}
+
 // controller.setpoint (defaults: controller/controller_params.h).
 const OptionTable<SetpointParams>& SetpointKeys() {
   using O = SetpointParams;
@@ -97,8 +134,9 @@ ControllerConfig ReadRoot(YamlSection root) {
   ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
   YamlSection c = root.Section("controller");
   std::string mode;
-  c.String("mode", {"nominal", "force_feedback"}, &mode);
-  config.force_feedback = mode == "force_feedback";
+  c.String("mode", {"nominal", "force_feedback", "mpc"}, &mode);
+  config.force_feedback = mode != "nominal";  // mpc falls back to the force-feedback cascade
+  config.model_predictive = mode == "mpc";
   c.Double("rate_hz", 10.0, 1e4, &config.gains.rate_hz);
   {
     YamlSection gains = c.Section("gains");
@@ -110,6 +148,7 @@ ControllerConfig ReadRoot(YamlSection root) {
   ReadOptionSection(c.Section("efficiency"), EfficiencyKeys(), &config.efficiency);
   ReadOptionSection(c.Section("setpoint"), SetpointKeys(), &config.setpoint);
   c.Finish();
+  ReadMpcParams(root.Section("mpc"), &config.mpc);
   root.Finish();
   return config;
 }

@@ -1,6 +1,6 @@
 // Reads and validates the controller parameter file (config/controller.yaml):
-// the `vehicle:` section (the controller's model of the vehicle) and the
-// `controller:` section into ControllerConfig, and the gain keys shared with
+// the `vehicle:` section (the controller's model of the vehicle), the
+// `controller:` section and the `mpc:` section (MpcParams) into ControllerConfig, and the gain keys shared with
 // the `controller:` section of a scenario (the simulator's autopilot).
 // Errors name the file, the key and the allowed range.
 #pragma once

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
                  "Controller parameter file (vehicle: and controller:, every key); default: the " +
                      ConfigSearchText("controller.yaml"));
   app.add_option("--mode", mode, "Controller mode, overrides the file")
-      ->check(CLI::IsMember({"nominal", "force_feedback"}));
+      ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
   app.add_option("--status-rate-hz", status_rate_hz, "CONTROLLER_STATUS rate [Hz]")->check(CLI::Range(0.1, 100.0));
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-controller", common.log_level);
@@ -49,7 +49,10 @@ int main(int argc, char** argv) {
   } catch (const ParamError& error) {
     return ReportError(error.what());
   }
-  if (!mode.empty()) config.force_feedback = mode == "force_feedback";
+  if (!mode.empty()) {
+    config.force_feedback = mode != "nominal";  // mpc falls back to the force-feedback cascade
+    config.model_predictive = mode == "mpc";
+  }
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
@@ -63,7 +66,10 @@ int main(int argc, char** argv) {
   std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
   if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
   spdlog::info("birotor-controller {} mode {} params {} (checksum {})", BIROTOR_VERSION,
-               config.force_feedback ? "force_feedback" : "nominal", params_file, FileChecksum(params_file));
+               config.model_predictive ? "mpc"
+               : config.force_feedback ? "force_feedback"
+                                       : "nominal",
+               params_file, FileChecksum(params_file));
   spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
                channels.setpoint, source->Describe(), channels.motor_command, channels.controller_status);
 

@@ -72,7 +72,8 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
     ReportError(e.what());
     return false;
   }
-  controller.force_feedback = options.controller_mode == "force_feedback";
+  controller.force_feedback = options.controller_mode != "nominal";
+  controller.model_predictive = options.controller_mode == "mpc";
   LogWriter writer;
   std::string error;
   if (!writer.Open(options.output, &error)) {
@@ -98,6 +99,14 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
       options.controller_mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
       run.controller.descents, metrics.rms_position_error_m, metrics.peak_tilt_rad, metrics.peak_altitude_loss_m,
       writer.events_written(), options.output);
+  if (controller.model_predictive) {
+    spdlog::info(
+        "mpc: {} solves, {} fallbacks ({} failed, {} non-finite, {} infeasible, {} late); solve time p50 "
+        "{:.0f} us, p99 {:.0f} us, max {:.0f} us; iterations max {}",
+        run.mpc.solves, run.mpc.Fallbacks(), run.mpc.solver_failed, run.mpc.non_finite, run.mpc.infeasible,
+        run.mpc.late, 1e6 * run.mpc.solve_p50_s, 1e6 * run.mpc.solve_p99_s, 1e6 * run.mpc.solve_max_s,
+        run.mpc.max_iterations);
+  }
   return true;
 }
 
@@ -231,8 +240,9 @@ int Main(int argc, char** argv) {
                "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
   app.add_option("--controller", options.controller_mode,
                  "Lock-step closed loop (with --output): fly the scenario with the controller of "
-                 "birotor-controller in this mode, on the estimator's FORCE, and log every channel")
-      ->check(CLI::IsMember({"nominal", "force_feedback"}));
+                 "birotor-controller in this mode, on the estimator's FORCE, and log every channel (mpc: the "
+                 "model predictive controller of the mpc: section, the force-feedback cascade its fallback)")
+      ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
   options.controller_params = FindConfigFile("controller.yaml");
   options.estimator_params = FindConfigFile("estimator.yaml");
   app.add_option("--controller-params", options.controller_params,

@@ -15,6 +15,7 @@
 #include "evaluation/control_metrics.h"
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "evaluation/mpc_comparison.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
@@ -50,8 +51,11 @@ ControlTrace TraceOf(const ClosedLoopRun& run, const std::string& label) {
 bool RunControlCase(const ControlCase& c, int seeds, const std::string& scenario_dir,
                     const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
                     const ControllerConfig& controller, const std::string& plot_dir, std::string* runs_table,
-                    std::string* comparison_table) {
+                    std::string* comparison_table, std::string* mpc_table, int64_t* mpc_violations) {
   std::vector<ControlFigures> figures[2];
+  // --mpc: the force-feedback cascade and the MPC without / with the efficiencies.
+  const std::vector<std::string> mpc_modes = {"force_feedback", "mpc_nominal", "mpc"};
+  std::vector<MpcRunFigures> mpc_figures[3];
   std::vector<int> seed_list;
   std::vector<ControlTrace> traces;
   double fault_time_s = -1;
@@ -90,8 +94,24 @@ bool RunControlCase(const ControlCase& c, int seeds, const std::string& scenario
         traces.push_back(TraceOf(run, mode));
         fault_time_s = metrics.fault_time_s;
       }
+      if (mpc_table != nullptr && force_feedback) mpc_figures[0].push_back(MpcFiguresOf(run, metrics, config));
+    }
+    for (size_t m = 1; mpc_table != nullptr && m < mpc_modes.size(); ++m) {
+      ControllerConfig config = controller;
+      config.force_feedback = config.model_predictive = true;
+      config.mpc.use_thrust_scale = mpc_modes[m] == "mpc";
+      const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
+      const ControlMetrics metrics = EvaluateControl(run);
+      mpc_figures[m].push_back(MpcFiguresOf(run, metrics, config));
+      *mpc_violations += mpc_figures[m].back().commands_out_of_bounds + mpc_figures[m].back().commands_over_rate;
+      *runs_table += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), mpc_modes[m], metrics, run);
+      spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, {} fallbacks, solve p99 {:.0f} us", c.name,
+                   scenario.seed, mpc_modes[m], run.simulated_s, run.wall_s, run.mpc.solves, run.mpc.Fallbacks(),
+                   1e6 * run.mpc.solve_p99_s);
     }
   }
+  for (size_t m = 0; mpc_table != nullptr && m < mpc_modes.size(); ++m)
+    *mpc_table += MpcComparisonRow(c.name, mpc_modes[m], mpc_figures[m]);
   *comparison_table += ComparisonTableRow(c.name, CompareControl(figures[0], figures[1], seed_list));
   std::string error;
   const std::string png = plot_dir + "/" + c.name + "_control.png";
@@ -107,21 +127,29 @@ bool RunControlCase(const ControlCase& c, int seeds, const std::string& scenario
 // per-run table, then the comparison over seeds.
 int RunControlTable(const std::vector<std::string>& names, int seeds, const std::string& scenario_dir,
                     const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
-                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir) {
+                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir,
+                    bool mpc) {
   std::string runs = ControlTableHeader();
   std::string comparison = ComparisonTableHeader();
+  std::string mpc_table = MpcComparisonHeader();
+  int64_t mpc_violations = 0;
   for (const std::string& name : names) {
     // A case name, or a bare scenario flown as it is.
     const ControlCase* known = FindControlCase(name);
     const ControlCase c = known != nullptr ? *known : ControlCase{name, name, {}, name};
-    if (!RunControlCase(c, seeds, scenario_dir, overrides, estimator, controller, plot_dir, &runs, &comparison)) {
+    if (!RunControlCase(c, seeds, scenario_dir, overrides, estimator, controller, plot_dir, &runs, &comparison,
+                        mpc ? &mpc_table : nullptr, &mpc_violations)) {
       return kExitFailure;
     }
   }
-  const std::string table = runs + "\n" + comparison;
+  const std::string table = runs + "\n" + comparison + (mpc ? "\n" + mpc_table : std::string());
+
   std::printf("%s", table.c_str());
   std::string error;
   if (!markdown_out.empty() && !WriteFileAtomically(markdown_out, table, &error)) return ReportError(error);
+  // Issue 21: no MPC command outside [0, omega_max] or above the rate limit, ever.
+  if (mpc_violations > 0)
+    return ReportError(fmt::format("{} MPC commands out of bounds or over the rate limit", mpc_violations));
   return 0;
 }
 
@@ -167,6 +195,11 @@ int main(int argc, char** argv) {
   std::vector<std::string> control_scenarios;
   for (const ControlCase& c : ControlCases()) control_scenarios.push_back(c.name);
   int seeds = 1;
+  bool mpc = false;
+  app.add_flag("--mpc", mpc,
+               "--control: also fly the model predictive controller without and with the estimated efficiencies "
+               "(mode mpc, docs/mpc.md) and add its comparison with the force-feedback cascade; fails if any MPC "
+               "command is outside [0, omega_max] or over the rate limit");
   app.add_flag("--control", control,
                "Control figures instead: fly each case (--scenarios: a case name of docs/controller.md or a "
                "scenario name; default every case) closed loop (birotor-sim --controller) in both controller "
@@ -207,7 +240,8 @@ int main(int argc, char** argv) {
     }
     // The default list is the estimator's; the control table has its own.
     if (app.count("--scenarios") == 0) scenarios = control_scenarios;
-    return RunControlTable(scenarios, seeds, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir);
+    return RunControlTable(scenarios, seeds, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir,
+                           mpc);
   }
   // The Markdown goes to a temporary file next to it, renamed at the end.
   OutputFile markdown;

@@ -109,6 +109,8 @@ TEST(ConversionTest, MotorCommandConstantsMatchTheLcmFile) {
   EXPECT_EQ(kCommandDescending, motor_command_t::STATUS_DESCENDING);
   EXPECT_EQ(kCommandSaturated, motor_command_t::STATUS_SATURATED);
   EXPECT_EQ(kCommandNoPoseYet, motor_command_t::STATUS_NO_POSE_YET);
+  EXPECT_EQ(kModeMpc, motor_command_t::MODE_MPC);
+  EXPECT_EQ(kCommandMpcFallback, motor_command_t::STATUS_MPC_FALLBACK);
 }
 
 }  // namespace

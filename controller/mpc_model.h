@@ -1,0 +1,71 @@
+// The prediction model of the model predictive controller: the planar body
+// with its arms held rigid at their hover deflection (the 65/80 Hz arm modes
+// are far above what a 100 Hz controller can act on) and a first-order motor
+// lag per rotor, with rotor speed commands as inputs and each rotor's thrust
+// f_i = thrust_scale_i c_T omega_i^2. The physics is model/'s: the rows x, z,
+// phi of the Euler-Lagrange terms (model/birotor_dynamics.h) with b = b_hover,
+// b_dot = 0, the thrust map and the motor lag of model/plant.h. No allocation.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+// Named indices of the prediction state.
+enum MpcStateIndex : int {
+  kMpcX = 0,       // [m], world
+  kMpcZ = 1,       // [m], world, up
+  kMpcPhi = 2,     // tilt [rad]
+  kMpcXDot = 3,    // [m/s]
+  kMpcZDot = 4,    // [m/s]
+  kMpcPhiDot = 5,  // [rad/s]
+  kMpcOmega1 = 6,  // rotor 1 speed [rad/s]
+  kMpcOmega2 = 7,  // rotor 2 speed [rad/s]
+};
+constexpr int kMpcStateSize = 8;
+constexpr int kMpcInputSize = 2;  // rotor speed commands [rad/s]
+using MpcState = Eigen::Matrix<double, kMpcStateSize, 1>;
+using MpcStateMatrix = Eigen::Matrix<double, kMpcStateSize, kMpcStateSize>;
+using MpcInputMatrix = Eigen::Matrix<double, kMpcStateSize, kMpcInputSize>;
+
+// What the prediction holds constant over the horizon besides the commands.
+struct MpcModelContext {
+  Eigen::Vector2d thrust_scale = Eigen::Vector2d::Ones();  // mu_i [1]
+  // Unmodelled accelerations (x, z [m/s^2], pitch [rad/s^2]) added to the model's.
+  Eigen::Vector3d disturbance = Eigen::Vector3d::Zero();
+};
+
+// One discrete step s+ = A s + B u + c, exact at the point it was taken about.
+struct MpcLinearStep {
+  MpcStateMatrix a;  // d s+ / d s [1, s, ...]
+  MpcInputMatrix b;  // d s+ / d u
+  MpcState c;        // offset: F(s0, u0) - A s0 - B u0
+};
+
+class MpcPredictionModel {
+ public:
+  explicit MpcPredictionModel(const VehicleParams& vehicle);
+
+  // s_dot = [v; M33^-1 (tau - C - G)_33 + d; (u - omega) / tau_m], the rows x,
+  // z, phi of thesis eq. 3.14 with the arms rigid (M33: the top-left block of M).
+  MpcState Derivative(const MpcState& s, const Eigen::Vector2d& omega_cmd_rad_s, const MpcModelContext& context) const;
+  // One RK4 step over dt_s with the commands held.
+  MpcState Step(const MpcState& s, const Eigen::Vector2d& omega_cmd_rad_s, const MpcModelContext& context,
+                double dt_s) const;
+  // Jacobians of Step about (s0, u0) by central differences.
+  MpcLinearStep Linearize(const MpcState& s0, const Eigen::Vector2d& u0, const MpcModelContext& context,
+                          double dt_s) const;
+
+  // Per-rotor thrust that holds the level vehicle still [N] (the hover equilibrium's).
+  double hover_force_n() const { return hover_force_n_; }
+  const VehicleParams& vehicle() const { return vehicle_; }
+
+ private:
+  VehicleParams vehicle_;
+  double hover_deflection_rad_[2] = {0.0, 0.0};
+  double hover_force_n_ = 0.0;
+};
+
+}  // namespace birotor

@@ -1,0 +1,92 @@
+// Options of the model predictive controller (controller/mpc_controller.h):
+// horizon, weights, limits, rate and real-time budget, each with its default
+// and the reason for it. Read from the `mpc:` section of config/controller.yaml
+// by params/controller_config_yaml.cc.
+#pragma once
+
+namespace birotor {
+
+// The QP algorithm of alglib's minqp used for the condensed problem.
+enum class MpcQpAlgorithm : int {
+  kDenseIpm = 0,  // primal-dual interior point, dense; no warm start (alglib ignores the start point)
+  kBleic = 1,     // active set on L-BFGS steps; warm-started from the shifted previous plan
+  kDenseAul = 2,  // augmented Lagrangian with a dense preconditioner; warm-started
+};
+
+struct MpcParams {
+  // Solve rate [Hz]. 100 Hz: the floor; the pitch loop it closes has a
+  // bandwidth near 20 rad/s (the cascade's), a tenth of the 628 rad/s Nyquist
+  // frequency, and the slowest solve (p99 well under 1 ms) leaves the period 10x spare.
+  double rate_hz = 100.0;
+  // Prediction step [s] and number of steps. 20 ms x 20 = 0.4 s: the motor lag
+  // (35 ms) spans two steps, the pitch response (~0.15 s) is inside the
+  // horizon, the position response (~1 s) is carried by the terminal cost (the
+  // discrete Riccati solution at hover). 40 inputs keep the dense QP small.
+  double step_s = 0.02;
+  int horizon_steps = 20;
+  // Move blocking: the commands change only at the starts of this many blocks
+  // whose lengths grow along the horizon (block b starts at step
+  // round(N (b / B)^2), at least one step after the previous): 1, 1, 2, 3, 3,
+  // 5, 5 steps for N = 20, B = 7. Early moves stay free, late ones matter
+  // only in sum; 15 variables instead of 41 make the solve ~5x cheaper.
+  int input_blocks = 7;
+  // The tilt limit is imposed at every this many prediction steps (and the
+  // last): every 40 ms, against a pitch response of ~150 ms.
+  int tilt_check_every_steps = 2;
+
+  // State weights of the stage cost (per squared unit). Position dominates
+  // (what is tracked); velocity damps it; tilt towards the tilt the reference
+  // acceleration needs, and a little pitch rate for a smooth attitude.
+  double position_weight_1_m2 = 1e5;
+  double velocity_weight_s2_m2 = 3000.0;
+  double tilt_weight_1_rad2 = 20.0;
+  double pitch_rate_weight_s2_rad2 = 1.0;
+  // Input weights [1/(rad/s)^2]: on the distance from the feed-forward speed
+  // (the speed that holds the reference acceleration with the rotor's
+  // efficiency), and on the step-to-step change (smoothness, below the arm
+  // modes). Small: the constraints, not these, bound the commands.
+  double input_weight_s2_rad2 = 1e-6;
+  double input_rate_weight_s2_rad2 = 1e-6;
+
+  // Command rate limit [rad/s^2]: 30000 rad/s^2 takes a rotor from hover
+  // (699 rad/s) to omega_max in 17 ms, half the motor time constant, so it
+  // hardly slows the response but rules out the bang-bang steps that ring
+  // the 65/80 Hz arm modes.
+  double max_omega_rate_rad_s2 = 30000.0;
+  // Tilt limit [rad], soft: a slack variable with the weight below (a hard
+  // limit is infeasible whenever the vehicle is already past it, e.g. at a
+  // rotor fault). Same value as the cascade's max_tilt_rad.
+  double max_tilt_rad = 0.5;
+  double tilt_slack_weight = 1e8;  // per rad^2 of excess, far above the tracking terms [1/rad^2]
+
+  // Offset-free tracking: the one-step prediction error of the model is
+  // low-passed into a constant acceleration disturbance (x, z, pitch) that
+  // the prediction carries. 0.3 s: slower than the pitch loop, faster than
+  // the cascade's integrator (Ki/Kp = 1/3 s).
+  double disturbance_time_constant_s = 0.3;
+  double max_disturbance_m_s2 = 5.0;     // clamp of the x, z disturbance [m/s^2]
+  double max_disturbance_rad_s2 = 50.0;  // clamp of the pitch disturbance [rad/s^2]
+
+  // Real time: a solve longer than this falls back to the cascade for the
+  // period [s]. Half the period leaves the other half for the rest of it.
+  double deadline_s = 0.005;
+  // Which clock the deadline and the solve-time statistics use: false, the
+  // wall clock (the live daemon: a late command is late however it got late);
+  // true, this thread's CPU time (the lock-step loop, whose virtual clock does
+  // not run during a solve: on a shared machine preemption would otherwise
+  // decide the flight, and the same seed would not fly the same).
+  bool deadline_on_thread_cpu_time = false;
+  // DENSE-AUL: starts from the previous plan (warm start) and is the
+  // cheapest of the three in the lock-step aggressive flight (CPU per solve
+  // p50/p99: 170/330 us against DENSE-IPM's 340/650 us, no warm start, and
+  // BLEIC's 420/850 us; docs/mpc.md, benchmarks/controller_benchmark.cc).
+  MpcQpAlgorithm algorithm = MpcQpAlgorithm::kDenseAul;
+  double solver_tolerance = 1e-6;  // alglib stopping tolerance (scaled) [1]
+  int max_iterations = 200;        // BLEIC's iteration cap (the answer at the cap is still checked)
+
+  // True: the prediction uses FORCE's thrust_scale per rotor (a weak rotor is
+  // planned for); false: the nominal map (thrust_scale 1).
+  bool use_thrust_scale = true;
+};
+
+}  // namespace birotor

@@ -1,0 +1,111 @@
+// The model predictive controller closed around its own prediction model
+// (the arms rigid, no sensors): it reaches a step, holds a weak rotor level
+// when it knows the rotor's efficiency, learns a constant disturbance, and
+// reports late solves and its solve-time statistics.
+#include "controller/mpc_controller.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+namespace birotor {
+namespace {
+
+struct LoopResult {
+  MpcState final_state;
+  double peak_tilt_rad = 0.0;
+  double max_command_rad_s = 0.0;
+  double max_command_change_rad_s = 0.0;
+  int64_t fallbacks = 0;
+};
+
+// Flies for duration_s: the plant is the prediction model stepped at 1 ms
+// with the true thrust scales and disturbance; the controller plans with
+// planned_scale.
+LoopResult Fly(MpcController* mpc, const Eigen::Vector2d& target_m, const Eigen::Vector2d& true_scale,
+               const Eigen::Vector2d& planned_scale, const Eigen::Vector3d& true_disturbance, double duration_s) {
+  const MpcPredictionModel plant{VehicleParams()};
+  MpcModelContext truth;
+  truth.thrust_scale = true_scale;
+  truth.disturbance = true_disturbance;
+  MpcState s = MpcState::Zero();
+  s(kMpcOmega1) = s(kMpcOmega2) = mpc->rotor_speed_estimate_rad_s()(0);
+  const double period = 1.0 / mpc->params().rate_hz;
+  Eigen::Vector2d command = s.tail<2>();
+  LoopResult out;
+  for (int step = 0; step * period < duration_s; ++step) {
+    MpcPlanInput in;
+    in.state.position_m = s.head<2>();
+    in.state.phi_rad = s(kMpcPhi);
+    in.state.velocity_m_s = s.segment<2>(kMpcXDot);
+    in.state.phi_dot_rad_s = s(kMpcPhiDot);
+    in.reference.position_m = target_m;
+    in.thrust_scale = planned_scale;
+    in.last_command_rad_s = command;
+    in.period_s = period;
+    const MpcPlan plan = mpc->Plan(in);
+    Eigen::Vector2d next = command;
+    if (plan.outcome == MpcOutcome::kSolved)
+      next = plan.omega_cmd_rad_s;
+    else
+      ++out.fallbacks;
+    out.max_command_change_rad_s = std::max(out.max_command_change_rad_s, (next - command).cwiseAbs().maxCoeff());
+    out.max_command_rad_s = std::max(out.max_command_rad_s, next.maxCoeff());
+    command = next;
+    for (int i = 0; i < 10; ++i) s = plant.Step(s, command, truth, period / 10.0);
+    mpc->Advance(command, period);
+    out.peak_tilt_rad = std::max(out.peak_tilt_rad, std::fabs(s(kMpcPhi)));
+  }
+  out.final_state = s;
+  return out;
+}
+
+TEST(MpcControllerTest, ReachesAStepWithinTheLimits) {
+  MpcParams params;
+  params.deadline_s = 10.0;  // no timing in unit tests: only failed or bad answers count here
+  MpcController mpc(VehicleParams(), params);
+  const LoopResult r = Fly(&mpc, Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
+                           Eigen::Vector3d::Zero(), 3.0);
+  std::printf("step: final %.4f %.4f tilt %.3f max cmd %.1f change %.1f fallbacks %ld\n", r.final_state(0),
+              r.final_state(1), r.peak_tilt_rad, r.max_command_rad_s, r.max_command_change_rad_s, r.fallbacks);
+  EXPECT_NEAR(r.final_state(kMpcX), 0.5, 2e-4);  // measured 1e-4
+  EXPECT_NEAR(r.final_state(kMpcZ), 0.5, 2e-4);
+  EXPECT_LE(r.max_command_rad_s, 1200.0);
+  EXPECT_LE(r.max_command_change_rad_s, params.max_omega_rate_rad_s2 / params.rate_hz + 1e-9);
+  EXPECT_EQ(r.fallbacks, 0);
+}
+
+TEST(MpcControllerTest, WeakRotorKnownAndDisturbanceLearned) {
+  MpcParams params;
+  params.deadline_s = 10.0;
+  MpcController mpc(VehicleParams(), params);
+  const Eigen::Vector2d weak(1.0, 0.6);
+  const LoopResult r = Fly(&mpc, Eigen::Vector2d::Zero(), weak, weak, Eigen::Vector3d(0.5, -0.5, 2.0), 5.0);
+  std::printf("weak: final %.4f %.4f tilt %.3f d %.3f %.3f %.3f\n", r.final_state(0), r.final_state(1), r.peak_tilt_rad,
+              mpc.disturbance()(0), mpc.disturbance()(1), mpc.disturbance()(2));
+  EXPECT_NEAR(mpc.disturbance()(0), 0.5, 1e-3);  // measured < 5e-4
+  EXPECT_NEAR(mpc.disturbance()(1), -0.5, 1e-3);
+  EXPECT_NEAR(mpc.disturbance()(2), 2.0, 5e-3);
+  EXPECT_NEAR(r.final_state(kMpcX), 0.0, 0.0045);  // measured -0.0030
+  EXPECT_NEAR(r.final_state(kMpcZ), 0.0, 1e-3);
+}
+
+TEST(MpcControllerTest, LateSolvesAreCountedAndTimed) {
+  MpcParams params;
+  params.deadline_s = 0.0;                    // every solve is late
+  params.algorithm = MpcQpAlgorithm::kBleic;  // reports its iterations
+  MpcController mpc(VehicleParams(), params);
+  const LoopResult r = Fly(&mpc, Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
+                           Eigen::Vector3d::Zero(), 0.1);
+  const MpcStats stats = mpc.Stats();
+  EXPECT_EQ(stats.solves, 10);
+  EXPECT_EQ(stats.late, 10);
+  EXPECT_EQ(stats.Fallbacks(), 10);
+  EXPECT_EQ(r.fallbacks, 10);
+  EXPECT_LE(stats.solve_p50_s, stats.solve_p99_s);
+  EXPECT_LE(stats.solve_p99_s, stats.solve_max_s);
+  EXPECT_GT(stats.max_iterations, 0);
+}
+
+}  // namespace
+}  // namespace birotor
