@@ -17,6 +17,7 @@ void ReadIdentificationOptions(YamlSection s, IdentificationOptions* o) {
   s.Int("flight_max_windows", 0, 1000000, &o->flight_max_windows);
   s.Bool("flight_fit_damping", &o->flight_fit_damping);
   s.Bool("flight_fit_tip_mass", &o->flight_fit_tip_mass);
+  s.Double("flight_min_data_share", 0.0, 1.0, &o->flight_min_data_share);
   s.Double("flight_turbulence_knot_s", 0.0, 100.0, &o->flight_turbulence_knot_s);
   s.Double("huber_threshold", 0.1, 1e3, &o->huber_threshold);
   s.Int("map_degree", 1, 3, &o->map_degree);
