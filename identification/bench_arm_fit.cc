@@ -233,6 +233,38 @@ std::string CalibrationFactText(const CalibrationFact& fact, const VehicleParams
   return text.str();
 }
 
+// Floor stage of the bench arm fit: what the sampled load-cell input cannot
+// give better (options), on d and on k / m_p; the offsets follow m_p through
+// the static intercept, the scales follow k when the tip mass is weighed.
+void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& theta, const VehicleParams& base,
+                       ParameterEstimate* k, ParameterEstimate* damping, ParameterEstimate* tip_mass,
+                       ParameterEstimate scale[2], ParameterEstimate offset[2]) {
+  const CalibrationFact& fact = options.calibration;
+  const bool weighed = fact.TipMassWeighed();
+  const bool mass_free = !weighed || fact.tip_mass_std_kg > 0.0;
+  const bool scale_free = weighed || fact.gauge_scale_std > 0.0;
+  if (mass_free && !weighed) {
+    AddBenchFloors(options, k, damping, tip_mass);
+    // The offsets follow m_p through the static intercept, o_i = a_i + s_i sign_i L m_p g / k.
+    for (int arm = 0; arm < 2; ++arm) {
+      const double floor_rad = options.bench_frequency_floor * theta[kBenchScale1 + arm] * base.arm_length_m *
+                               tip_mass->value * base.gravity_m_s2 / k->value;
+      if (std::isfinite(offset[arm].value) && std::isfinite(floor_rad)) {
+        offset[arm].sigma = std::hypot(offset[arm].sigma, floor_rad);
+        offset[arm].note += "; sigma includes m_p's frequency floor through the static intercept";
+      }
+    }
+  } else {
+    AddRelativeFloor(damping, options.bench_damping_floor, "damping floor (bench_damping_floor)");
+    AddRelativeFloor(k, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+    for (int arm = 0; arm < 2; ++arm) {
+      if (scale_free) {
+        AddRelativeFloor(&scale[arm], options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
@@ -297,27 +329,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   const std::vector<BlockSigma> sigma = SharedSigmas(&fit.problem, free_blocks, inflation, {}, options.num_threads);
   const std::string note = "output error of the clamped arm over " + std::to_string(fit.blocks.size()) + " windows";
   for (size_t n = 0; n < free.size(); ++n) FillEstimate(free[n], sigma[n], options.max_relative_sigma, note);
-  // Floors for what the sampled load-cell input cannot give better (options).
-  if (mass_free && !weighed) {
-    AddBenchFloors(options, &k, &damping, &tip_mass);
-    // The offsets follow m_p through the static intercept, o_i = a_i + s_i sign_i L m_p g / k.
-    for (int arm = 0; arm < 2; ++arm) {
-      const double floor_rad = options.bench_frequency_floor * fit.theta[kBenchScale1 + arm] * base.arm_length_m *
-                               tip_mass.value * base.gravity_m_s2 / k.value;
-      if (std::isfinite(offset[arm].value) && std::isfinite(floor_rad)) {
-        offset[arm].sigma = std::hypot(offset[arm].sigma, floor_rad);
-        offset[arm].note += "; sigma includes m_p's frequency floor through the static intercept";
-      }
-    }
-  } else {
-    AddRelativeFloor(&damping, options.bench_damping_floor, "damping floor (bench_damping_floor)");
-    AddRelativeFloor(&k, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
-    for (int arm = 0; arm < 2; ++arm) {
-      if (scale_free) {
-        AddRelativeFloor(&scale[arm], options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
-      }
-    }
-  }
+  AddBenchArmFloors(options, fit.theta, base, &k, &damping, &tip_mass, scale, offset);
   if (stats.rms_whitened > options.misfit_rms_warn) {
     std::ostringstream warning;
     warning.precision(3);

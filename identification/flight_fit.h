@@ -7,12 +7,14 @@
 
 #include <ceres/problem.h>
 
+#include <algorithm>
 #include <array>
 #include <deque>
 #include <memory>
 #include <vector>
 
 #include "identification/bench_residuals.h"
+#include "identification/fit_support.h"
 #include "identification/free_arm_residual.h"
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
@@ -125,6 +127,14 @@ struct TipMassCheck {
   bool free = false;            // m_p is free in the problem now
   double relative_sigma = 0.0;  // at the held optimum, not inflated [1]
   double data_share = 0.0;      // DataInformationShare [1]
+  // Set by IdentifyFlightArms after the solve with m_p free: the flight's
+  // value and sigma, its distance from the base value [sigma], and whether
+  // that is within options.consistency_sigmas (then m_p keeps the base
+  // value: a flight that agrees with the base file does not replace it).
+  double flight_value_kg = 0.0;
+  double flight_sigma_kg = 0.0;
+  double sigmas_from_base = 0.0;
+  bool agrees_with_base = false;
 };
 TipMassCheck CheckTipMass(const IdentificationOptions& options, FlightProblem* fit);
 

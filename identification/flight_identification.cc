@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -248,42 +249,6 @@ void ResolveFlightProblem(const IdentificationOptions& options, FlightProblem* f
   SolveProblem(options, &fit->problem, kFinalTolerance, &at);
 }
 
-namespace {
-
-// Replaces every window's turbulence prior by one of std turbulence_std * widen.
-void SetTurbulencePriors(double widen, FlightProblem* fit) {
-  for (size_t w = 0; w < fit->priors.size(); ++w) {
-    if (fit->priors[w] == nullptr) continue;
-    fit->problem.RemoveResidualBlock(fit->priors[w]);
-    fit->priors[w] = fit->problem.AddResidualBlock(
-        fit->functors[w]->TurbulencePrior(fit->turbulence_std * widen, fit->turbulence_corr_time_s), nullptr,
-        fit->knots[w].data());
-  }
-}
-
-double RelativeSigma(const IdentificationOptions& options, int block, FlightProblem* fit) {
-  const std::vector<BlockSigma> sigma = ComputeBlockSigmas(&fit->problem, fit->Blocks(), 1.0, options.num_threads);
-  const double ratio = std::abs(fit->ratio[block]);
-  if (!sigma[block].determined || ratio <= 0.0) return std::numeric_limits<double>::infinity();
-  return sigma[block].sigma / ratio;
-}
-
-}  // namespace
-
-PriorSensitivity RatioPriorSensitivity(const IdentificationOptions& options, int block, double widen,
-                                       FlightProblem* fit) {
-  double* ratio = &fit->ratio[block];
-  const bool was_constant = fit->problem.IsParameterBlockConstant(ratio);
-  fit->problem.SetParameterBlockVariable(ratio);
-  PriorSensitivity out;
-  out.relative_sigma = RelativeSigma(options, block, fit);
-  SetTurbulencePriors(widen, fit);
-  out.relative_sigma_widened = RelativeSigma(options, block, fit);
-  SetTurbulencePriors(1.0, fit);
-  if (was_constant) fit->problem.SetParameterBlockConstant(ratio);
-  return out;
-}
-
 std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool any_imu,
                                      const std::vector<SensorLog>* bench_logs, FlightProblem* fit,
                                      std::vector<ResidualSummary>* residuals) {
@@ -362,55 +327,41 @@ std::vector<FitPlot> FlightPlots(const FlightProblem& fit) {
   return plots;
 }
 
-TipMassCheck CheckTipMass(const IdentificationOptions& options, FlightProblem* fit) {
-  TipMassCheck check;
-  double* tip_mass = &fit->ratio[kFlightTipMass];
-  check.applies = !fit->joint && options.flight_fit_tip_mass && fit->model_turbulence &&
-                  !fit->problem.IsParameterBlockConstant(tip_mass);
-  if (!check.applies) {
-    SolveFlightProblem(options, fit, 0.15);
-    check.free = !fit->problem.IsParameterBlockConstant(tip_mass);
-    return check;
-  }
-  fit->problem.SetParameterBlockConstant(tip_mass);
-  SolveFlightProblem(options, fit, 0.15);
-  ReportProgress(options, {"flight: determinability of m_p", static_cast<int>(fit->windows.size()), 0, 0.6});
-  const PriorSensitivity s = RatioPriorSensitivity(options, kFlightTipMass, kPriorWidening, fit);
-  check.relative_sigma = s.relative_sigma;
-  check.data_share = DataInformationShare(s, kPriorWidening);
-  check.free = std::isfinite(s.relative_sigma) && s.relative_sigma <= options.max_relative_sigma &&
-               check.data_share >= options.flight_min_data_share;
-  if (check.free) fit->problem.SetParameterBlockVariable(tip_mass);
-  return check;
-}
-
-double DataInformationShare(const PriorSensitivity& s, double widen) {
-  if (!std::isfinite(s.relative_sigma) || !std::isfinite(s.relative_sigma_widened) || s.relative_sigma <= 0.0) {
-    return 0.0;
-  }
-  const double r = s.relative_sigma_widened / s.relative_sigma;
-  const double w2 = 1.0 / (widen * widen);
-  return std::clamp((1.0 / (r * r) - w2) / (1.0 - w2), 0.0, 1.0);
-}
-
 namespace {
 
 // The words of the advice on what to fly (issue 26 item 2).
 constexpr const char* kTipMassAdvice =
-    "to determine it, fly steps of 0.4 m, horizontal and vertical (birotor-sim --scenario mass_id), weigh the tip "
-    "mass (--tip-mass-kg with a bench log) or identify it on the bench";
+    "to determine it, fly 30 s of 0.4 m steps, horizontal and vertical (birotor-sim --scenario mass_id: m_p sigma "
+    "0.7 %), weigh the tip mass (--tip-mass-kg with a bench log) or identify it on the bench (0.1 %)";
 
-// m_p held at the base value by CheckTipMass: the estimate says why, the
-// warning what to fly, and the combination the flight does determine is named.
+// m_p kept at the base value (CheckTipMass held it, or the flight agrees
+// with the base file): the estimate says why, the warning what to fly, and,
+// when m_p was held in the fit, the combination the flight determines is named.
 void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, const ParameterEstimate& c_t,
                         ParameterEstimate* tip_mass, IdentificationResult* result) {
   std::ostringstream why;
-  why.precision(3);
+  why.precision(4);
+  tip_mass->value = base.tip_mass_kg;
+  tip_mass->determined = false;
+  tip_mass->sigma = std::numeric_limits<double>::quiet_NaN();
+  if (check.agrees_with_base) {
+    why << "base value kept: the flight's m_p = " << check.flight_value_kg << " +- " << check.flight_sigma_kg
+        << " kg is " << std::setprecision(3) << check.sigmas_from_base
+        << " sigma from it (consistency_sigmas): this flight does not show the base file wrong, and its sigma is "
+           "wider than a bench's";
+    tip_mass->note = why.str();
+    std::ostringstream warning;
+    warning.precision(4);
+    warning << "m_p: this flight gives " << check.flight_value_kg << " +- " << check.flight_sigma_kg << " kg, "
+            << std::setprecision(3) << check.sigmas_from_base
+            << " sigma from the base file's value, which is kept (not written by --update-params)";
+    result->warnings.push_back(warning.str());
+    return;  // k and c_T are those of the fit with m_p free
+  }
   why << "held at the base value: at the fit with m_p held its relative sigma would be " << 100.0 * check.relative_sigma
       << " % with " << 100.0 * check.data_share
       << " % of its information from the data (the rest from the assumed rotor turbulence)";
   tip_mass->note = why.str();
-  tip_mass->sigma = std::numeric_limits<double>::quiet_NaN();
   result->warnings.push_back("m_p: not determined by this flight; base value kept; " + std::string(kTipMassAdvice));
   std::ostringstream named;
   named.precision(3);
@@ -509,10 +460,31 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     result->estimates.push_back(ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T"));
     return;
   }
-  SolveFlightProblem(options, &fit, 0.15);
-  const TipMassCheck tip_check;
+  // Determinability of m_p (issue 26): the fit with m_p held first (the
+  // default is never worse than holding it; from zero turbulence with m_p
+  // free the solver can fall into a far minimum: hover 12 s, m_p +173 %),
+  // then m_p freed only when the log's own excitation determines it.
+  TipMassCheck tip_check = CheckTipMass(options, &fit);
+  if (tip_check.applies && tip_check.free) ResolveFlightProblem(options, &fit, 0.7);
   ReportProgress(options, {"flight: sigmas", static_cast<int>(fit.windows.size()), 0, 0.9});
-  const std::vector<BlockSigma> sigma = FlightSigmas(options, data.any_imu, bench_logs, &fit, &result->residuals);
+  std::vector<ResidualSummary> residuals;
+  const std::vector<BlockSigma> sigma = FlightSigmas(options, data.any_imu, bench_logs, &fit, &residuals);
+  if (tip_check.applies && tip_check.free) {
+    // The base file's m_p (a bench's, 0.1 %) stands unless this flight shows
+    // it wrong: m_p g enters every force the estimator gives, so a flight
+    // m_p of 0.5 % sigma that agrees with it would only add its own error
+    // (gentle 15 s: m_p +1.7 %, estimator MAE +16 %). k and c_T stay those
+    // of the fit with m_p free (their sigmas carry m_p's uncertainty).
+    const double sigma_ratio = sigma[kFlightTipMass].sigma;
+    tip_check.flight_value_kg = fit.ratio[kFlightTipMass] * fit.scales.tip_mass_kg;
+    tip_check.flight_sigma_kg = sigma_ratio * fit.scales.tip_mass_kg;
+    tip_check.sigmas_from_base = sigma_ratio > 0.0 ? std::abs(fit.ratio[kFlightTipMass] - 1.0) / sigma_ratio : kNaN;
+    if (!(tip_check.sigmas_from_base > options.consistency_sigmas)) {
+      tip_check.agrees_with_base = true;
+      tip_check.free = false;
+    }
+  }
+  result->residuals.insert(result->residuals.end(), residuals.begin(), residuals.end());
   StoreFlightResult(fit, data, sigma, tip_check, base, options, result);
   const std::vector<FitPlot> plots = FlightPlots(fit);
   result->plots.insert(result->plots.end(), plots.begin(), plots.end());
