@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "identification/identification_options.h"
-#include "samples/sensor_log.h"
 #include "model/vehicle_params.h"
+#include "samples/sensor_log.h"
 
 namespace birotor {
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 namespace birotor {
@@ -42,7 +43,31 @@ int64_t MedianIntervalUs(const std::vector<int64_t>& utime) {
   return dt[dt.size() / 2];
 }
 
-void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem, double function_tolerance) {
+namespace {
+
+// Reports each solver iteration through options.progress.
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  ProgressCallback(const IdentificationOptions& options, const FitProgress& at) : options_(options), at_(at) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    at_.iteration = summary.iteration;
+    options_.progress(at_);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const IdentificationOptions& options_;
+  FitProgress at_;
+};
+
+}  // namespace
+
+void ReportProgress(const IdentificationOptions& options, const FitProgress& at) {
+  if (options.progress) options.progress(at);
+}
+
+void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem, double function_tolerance,
+                  const FitProgress* at) {
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_SCHUR;
   solver.max_num_iterations = options.max_iterations;
@@ -50,6 +75,12 @@ void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem,
   solver.function_tolerance = function_tolerance;
   solver.parameter_tolerance = 1e-10;
   solver.logging_type = ceres::SILENT;
+  std::unique_ptr<ProgressCallback> callback;
+  if (at != nullptr && options.progress) {
+    ReportProgress(options, *at);
+    callback = std::make_unique<ProgressCallback>(options, *at);
+    solver.callbacks.push_back(callback.get());
+  }
   ceres::Solver::Summary summary;
   ceres::Solve(solver, problem, &summary);
 }

@@ -52,7 +52,12 @@ int64_t MedianIntervalUs(const std::vector<int64_t>& utime);
 // Ceres solver options shared by the fits (trust region, sparse Schur); the
 // solve stops when an iteration changes the cost by less than
 // function_tolerance times the cost.
-void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem, double function_tolerance = 1e-10);
+// With `at` and options.progress, the progress is reported at every iteration.
+void SolveProblem(const IdentificationOptions& options, ceres::Problem* problem, double function_tolerance = 1e-10,
+                  const FitProgress* at = nullptr);
+
+// Reports `at` through options.progress when there is one.
+void ReportProgress(const IdentificationOptions& options, const FitProgress& at);
 
 // Residual statistics of the given residual blocks after the fit, without the
 // robust loss. sequence_length groups consecutive residuals of one channel into

@@ -5,13 +5,16 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <deque>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <string>
 
-#include "identification/bench_residuals.h"
+#include "identification/fit_stages.h"
 #include "identification/fit_support.h"
-#include "identification/free_arm_residual.h"
+#include "identification/flight_fit.h"
 #include "identification/identify.h"
 #include "model/plant.h"
 
@@ -74,44 +77,20 @@ ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const Vehicl
 
 }  // namespace
 
-void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                        const IdentificationOptions& options, IdentificationResult* result,
-                        const std::vector<SensorLog>* bench_logs) {
-  const bool joint = bench_logs != nullptr && !bench_logs->empty();
-  FreeArmWindowResidual::Scales scales;
-  scales.stiffness_n_m_rad = base.arm_stiffness_n_m_rad;
-  scales.damping_n_m_s_rad = base.arm_damping_n_m_s_rad > 0.0 ? base.arm_damping_n_m_s_rad : 0.1;
-  scales.thrust_coeff_n_s2_rad2 = base.thrust_coeff_n_s2_rad2;
-  scales.tip_mass_kg = base.tip_mass_kg;
-  FreeArmWindowResidual::Noise noise{options.strain_noise_rad, options.gyro_noise_rad_s, options.accel_noise_m_s2,
-                                     options.huber_threshold};
-
-  // The motor time constant identified just before (IdentifyMotorTimeConstant), else the base value.
-  const VehicleParams& motor_params = result->params;
-  ceres::Problem problem;
-  double k_ratio = 1.0;
-  double d_ratio = base.arm_damping_n_m_s_rad / scales.damping_n_m_s_rad;
-  double c_ratio = 1.0;
-  double m_ratio = 1.0;
-  // Candidate windows over every log, then at most flight_max_windows of
-  // them spread evenly (the arm modes ring after every manoeuvre, so a
-  // subset carries nearly all the information at a fraction of the cost).
-  struct Window {
-    size_t log, begin, end;
-  };
-  std::vector<std::vector<int64_t>> utimes(logs.size());
-  std::vector<std::vector<FreeArmWindowResidual::Sample>> all_samples(logs.size());
-  std::vector<Window> candidates;
-  bool any_imu = false;
+FlightSamples CollectFlightSamples(const std::vector<SensorLog>& logs, const VehicleParams& base,
+                                   const VehicleParams& motor_params, const IdentificationOptions& options) {
+  FlightSamples data;
+  data.utime.resize(logs.size());
+  data.samples.resize(logs.size());
   for (size_t l = 0; l < logs.size(); ++l) {
     const SensorLog& log = logs[l];
     const bool use_imu = options.use_imu && !log.imu.empty();
-    any_imu = any_imu || use_imu;
+    data.any_imu = data.any_imu || use_imu;
     const size_t n = log.strain.size();
-    std::vector<int64_t>& utime = utimes[l];
+    std::vector<int64_t>& utime = data.utime[l];
     utime.resize(n);
     std::vector<bool> valid(n);
-    std::vector<FreeArmWindowResidual::Sample>& all = all_samples[l];
+    std::vector<FreeArmWindowResidual::Sample>& all = data.samples[l];
     all.resize(n);
     const ModelSpeeds speeds = ModelRotorSpeeds(log.motor, motor_params);
     size_t motor_hint = 0, imu_hint = 0;
@@ -157,101 +136,123 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     }
     const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(utime), 1);
     for (const auto& [begin, end] : ContiguousWindows(utime, valid, options.flight_window_s, max_gap_us, 20)) {
-      candidates.push_back({l, begin, end});
+      data.candidates.push_back({l, begin, end});
     }
   }
-  std::vector<Window> windows = candidates;
-  const size_t max_windows = static_cast<size_t>(options.flight_max_windows);
-  if (max_windows > 0 && candidates.size() > max_windows) {
-    windows.clear();
-    for (size_t w = 0; w < max_windows; ++w) {
-      windows.push_back(candidates[(2 * w + 1) * candidates.size() / (2 * max_windows)]);
+  return data;
+}
+
+std::vector<FlightWindow> SelectFlightWindows(const std::vector<FlightWindow>& candidates, int max_windows) {
+  const size_t max_n = static_cast<size_t>(std::max(0, max_windows));
+  if (max_n == 0 || candidates.size() <= max_n) return candidates;
+  std::vector<FlightWindow> windows;
+  for (size_t w = 0; w < max_n; ++w) windows.push_back(candidates[(2 * w + 1) * candidates.size() / (2 * max_n)]);
+  return windows;
+}
+
+std::array<double, kFreeArmStateSize> InitialWindowState(const std::vector<FreeArmWindowResidual::Sample>& samples) {
+  const FreeArmWindowResidual::Sample& first = samples.front();
+  std::array<double, kFreeArmStateSize> x0 = {std::isfinite(first.gyro_rad_s) ? first.gyro_rad_s : 0.0,
+                                              first.deflection_rad[0], first.deflection_rad[1], 0.0, 0.0};
+  const size_t fit_n = std::min<size_t>(samples.size(), 5);
+  for (int arm = 0; arm < 2; ++arm) {
+    double st = 0.0, sb = 0.0, stt = 0.0, stb = 0.0, t = 0.0;
+    for (size_t i = 0; i < fit_n; ++i) {
+      st += t;
+      sb += samples[i].deflection_rad[arm];
+      stt += t * t;
+      stb += t * samples[i].deflection_rad[arm];
+      t += samples[i].dt_s;
     }
+    const double det = fit_n * stt - st * st;
+    if (det > 0.0) x0[arm == 0 ? kFreeB1Dot : kFreeB2Dot] = (fit_n * stb - st * sb) / det;
   }
+  return x0;
+}
+
+void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindow>& windows, const VehicleParams& base,
+                        const IdentificationOptions& options, const std::vector<SensorLog>* bench_logs,
+                        FlightProblem* fit) {
+  fit->joint = bench_logs != nullptr && !bench_logs->empty();
+  FreeArmWindowResidual::Scales& scales = fit->scales;
+  scales.stiffness_n_m_rad = base.arm_stiffness_n_m_rad;
+  scales.damping_n_m_s_rad = base.arm_damping_n_m_s_rad > 0.0 ? base.arm_damping_n_m_s_rad : 0.1;
+  scales.thrust_coeff_n_s2_rad2 = base.thrust_coeff_n_s2_rad2;
+  scales.tip_mass_kg = base.tip_mass_kg;
+  fit->ratio = {1.0, base.arm_damping_n_m_s_rad / scales.damping_n_m_s_rad, 1.0, 1.0};
+  const FreeArmWindowResidual::Noise noise{options.strain_noise_rad, options.gyro_noise_rad_s, options.accel_noise_m_s2,
+                                           options.huber_threshold};
   // Rotor turbulence knots (FreeArmWindowResidual): only when the base file
   // gives the vehicle a turbulence to model.
-  const bool model_turbulence =
+  fit->model_turbulence =
       options.flight_turbulence_knot_s > 0.0 && base.turbulence_std > 0.0 && base.turbulence_corr_time_s > 0.0;
-  const double knot_s = model_turbulence ? options.flight_turbulence_knot_s : 0.0;
-  // Per window: x_0 and the knots [eta_1 knots, eta_2 knots] (may be empty).
-  std::deque<std::array<double, kFreeArmStateSize>> states;
-  std::deque<std::vector<double>> knots;
-  std::vector<ceres::ResidualBlockId> blocks;
-  std::vector<const FreeArmWindowResidual*> functors;
-  for (const Window& w : windows) {
-    const std::vector<int64_t>& utime = utimes[w.log];
-    std::vector<FreeArmWindowResidual::Sample> samples(all_samples[w.log].begin() + w.begin,
-                                                       all_samples[w.log].begin() + w.end);
+  fit->turbulence_std = base.turbulence_std;
+  fit->turbulence_corr_time_s = base.turbulence_corr_time_s;
+  const double knot_s = fit->model_turbulence ? options.flight_turbulence_knot_s : 0.0;
+  ceres::Problem& problem = fit->problem;
+  for (const FlightWindow& w : windows) {
+    const std::vector<int64_t>& utime = data.utime[w.log];
+    std::vector<FreeArmWindowResidual::Sample> samples(data.samples[w.log].begin() + w.begin,
+                                                       data.samples[w.log].begin() + w.end);
     for (size_t i = 0; i + 1 < samples.size(); ++i) {
       samples[i].dt_s = 1e-6 * static_cast<double>(utime[w.begin + i + 1] - utime[w.begin + i]);
     }
     samples.back().dt_s = 0.0;
-    // Initial state: measured pitch rate and deflections; deflection rates
-    // from a least-squares line through the first samples (strain noise
-    // 2e-5 rad gives a few mrad/s), so the solver starts near the optimum.
     // Turbulence knots start at 0 (its mean).
-    const FreeArmWindowResidual::Sample& first = samples.front();
-    std::array<double, kFreeArmStateSize> x0 = {std::isfinite(first.gyro_rad_s) ? first.gyro_rad_s : 0.0,
-                                                first.deflection_rad[0], first.deflection_rad[1], 0.0, 0.0};
-    const size_t fit_n = std::min<size_t>(samples.size(), 5);
-    for (int arm = 0; arm < 2; ++arm) {
-      double st = 0.0, sb = 0.0, stt = 0.0, stb = 0.0, t = 0.0;
-      for (size_t i = 0; i < fit_n; ++i) {
-        st += t;
-        sb += samples[i].deflection_rad[arm];
-        stt += t * t;
-        stb += t * samples[i].deflection_rad[arm];
-        t += samples[i].dt_s;
-      }
-      const double det = fit_n * stt - st * st;
-      if (det > 0.0) x0[arm == 0 ? kFreeB1Dot : kFreeB2Dot] = (fit_n * stb - st * sb) / det;
-    }
+    fit->states.push_back(InitialWindowState(samples));
     const FreeArmWindowResidual* functor = nullptr;
     ceres::CostFunction* cost = FreeArmWindowResidual::Create(
         base, std::move(samples), noise, options.flight_integration_substeps, scales, knot_s, &functor);
-    states.push_back(x0);
-    std::vector<double>& window_knots = knots.emplace_back(functor->KnotBlockSize(), 0.0);
-    std::vector<double*> parameters = {&k_ratio, &d_ratio, &c_ratio, &m_ratio, states.back().data()};
+    std::vector<double>& window_knots = fit->knots.emplace_back(functor->KnotBlockSize(), 0.0);
+    std::vector<double*> parameters = fit->Blocks();
+    parameters.push_back(fit->states.back().data());
     if (!window_knots.empty()) parameters.push_back(window_knots.data());
-    blocks.push_back(problem.AddResidualBlock(cost, nullptr, parameters));
-    if (ceres::CostFunction* prior = functor->TurbulencePrior(base.turbulence_std, base.turbulence_corr_time_s)) {
-      problem.AddResidualBlock(prior, nullptr, window_knots.data());
-    }
-    functors.push_back(functor);
+    fit->windows.push_back(problem.AddResidualBlock(cost, nullptr, parameters));
+    ceres::CostFunction* prior = functor->TurbulencePrior(base.turbulence_std, base.turbulence_corr_time_s);
+    fit->priors.push_back(prior != nullptr ? problem.AddResidualBlock(prior, nullptr, window_knots.data()) : nullptr);
+    fit->functors.push_back(functor);
   }
-  ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
-  ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
-  ParameterEstimate c_t = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T");
-  ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
-  if (blocks.empty()) {
-    result->errors.push_back("k, d, c_T: no STRAIN samples with MOTOR telemetry (omega_meas) at the same time");
-    result->estimates.insert(result->estimates.end(), {k, damping, c_t});
-    return;
-  }
-  problem.SetParameterLowerBound(&k_ratio, 0, 1e-3);
-  problem.SetParameterLowerBound(&c_ratio, 0, 1e-3);
-  problem.SetParameterLowerBound(&d_ratio, 0, 0.0);
-  problem.SetParameterLowerBound(&m_ratio, 0, 1e-3);
+  if (fit->windows.empty()) return;
+  for (const int i : {kFlightK, kFlightThrust, kFlightTipMass}) problem.SetParameterLowerBound(&fit->ratio[i], 0, 1e-3);
+  problem.SetParameterLowerBound(&fit->ratio[kFlightD], 0, 0.0);
   // Joint fit: the bench residuals on the same blocks; the bench
   // determines d and m_p, so both are free whatever the flight options say.
-  BenchResiduals bench;
-  if (joint) {
-    AddBenchResiduals(*bench_logs, base, options, &problem, {&k_ratio, &d_ratio, &c_ratio, &m_ratio}, &bench);
+  if (fit->joint) {
+    AddBenchResiduals(
+        *bench_logs, base, options, &problem,
+        {&fit->ratio[kFlightK], &fit->ratio[kFlightD], &fit->ratio[kFlightThrust], &fit->ratio[kFlightTipMass]},
+        &fit->bench);
   } else {
-    if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&d_ratio);
-    if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&m_ratio);
+    if (!options.flight_fit_damping) problem.SetParameterBlockConstant(&fit->ratio[kFlightD]);
+    if (!options.flight_fit_tip_mass) problem.SetParameterBlockConstant(&fit->ratio[kFlightTipMass]);
   }
+}
+
+void SolveFlightProblem(const IdentificationOptions& options, FlightProblem* fit, double fraction) {
+  FitProgress at{"flight: solve, turbulence held", static_cast<int>(fit->windows.size()), 0, fraction};
   // Two stages: the turbulence knots held at 0 first (the initial states and
   // the vehicle parameters then converge in a few iterations), then free.
   // Started at once from zero turbulence, the Huber-weighted misfit of the
   // whole 1 % thrust noise keeps the trust region small for ~20 iterations.
-  if (model_turbulence) {
-    for (std::vector<double>& window_knots : knots) problem.SetParameterBlockConstant(window_knots.data());
-    SolveProblem(options, &problem, kStartTolerance);
-    for (std::vector<double>& window_knots : knots) problem.SetParameterBlockVariable(window_knots.data());
+  if (fit->model_turbulence) {
+    for (std::vector<double>& window_knots : fit->knots) fit->problem.SetParameterBlockConstant(window_knots.data());
+    SolveProblem(options, &fit->problem, kStartTolerance, &at);
+    for (std::vector<double>& window_knots : fit->knots) fit->problem.SetParameterBlockVariable(window_knots.data());
+    at.fraction += 0.05;
   }
-  SolveProblem(options, &problem, kFinalTolerance);
+  at.stage = "flight: solve";
+  SolveProblem(options, &fit->problem, kFinalTolerance, &at);
+}
 
+void ResolveFlightProblem(const IdentificationOptions& options, FlightProblem* fit, double fraction) {
+  const FitProgress at{"flight: solve, m_p free", static_cast<int>(fit->windows.size()), 0, fraction};
+  SolveProblem(options, &fit->problem, kFinalTolerance, &at);
+}
+
+std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool any_imu,
+                                     const std::vector<SensorLog>* bench_logs, FlightProblem* fit,
+                                     std::vector<ResidualSummary>* residuals) {
+  ceres::Problem* problem = &fit->problem;
   // Strain residuals carry the unmodelled turbulence (correlated over ~0.1 s):
   // the inflation from their autocorrelation keeps the covariance honest.
   double inflation = 1.0;
@@ -264,68 +265,148 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
                                                      options.accel_noise_m_s2};
   for (int channel = 0; channel < kFreeArmResidualsPerSample; ++channel) {
     if (channel >= kResGyro && !any_imu) continue;
-    const ResidualStatistics stats = ComputeResidualStatistics(&problem, blocks, kFreeArmResidualsPerSample, channel);
+    const ResidualStatistics stats =
+        ComputeResidualStatistics(problem, fit->windows, kFreeArmResidualsPerSample, channel);
     if (stats.count == 0) continue;
     const double channel_inflation = VarianceInflation(stats);
     inflation = std::max(inflation, channel_inflation);
-    result->residuals.push_back({names[channel], units[channel], stats.count, stats.rms_whitened,
-                                 stats.rms_whitened * sigmas[channel], channel_inflation});
+    residuals->push_back({names[channel], units[channel], stats.count, stats.rms_whitened,
+                          stats.rms_whitened * sigmas[channel], channel_inflation});
   }
-  std::vector<ceres::ResidualBlockId> clusters = blocks;
-  if (joint) {
-    // The bench blocks: each load-cell pair and each clamped-arm window is
-    // a cluster of the sandwich too; the flight channels' inflation is not
-    // applied to what the bench determines.
-    inflation = 1.0;
-    clusters.insert(clusters.end(), bench.thrust.begin(), bench.thrust.end());
-    clusters.insert(clusters.end(), bench.arms.begin(), bench.arms.end());
-    const ResidualStatistics thrust = ComputeResidualStatistics(&problem, bench.thrust, 1, 0);
-    const ResidualStatistics arms = ComputeResidualStatistics(&problem, bench.arms, 1, 0);
-    result->residuals.push_back({"load cell (force - c_T omega^2), joint fit", "N", thrust.count, thrust.rms_whitened,
-                                 ThrustResidualRmsN(*bench_logs, c_ratio * scales.thrust_coeff_n_s2_rad2),
-                                 VarianceInflation(thrust)});
-    result->residuals.push_back({"strain (clamped arm model), joint fit", "rad", arms.count, arms.rms_whitened,
-                                 arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
-  }
-  const std::vector<double*> shared = {&k_ratio, &d_ratio, &c_ratio, &m_ratio};
-  Eigen::MatrixXd covariance;
-  std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, shared, inflation, options.num_threads, &covariance);
   // The inflation above assumes one correlation time for the whole misfit;
   // what is left of the turbulence between the knots is correlated across
   // channels and windows' parameters alike. The windows themselves are
   // independent (1.5 s apart on flight_id, 15 turbulence correlation times),
   // so their scatter bounds the sigma from below (sandwich estimate).
-  const std::vector<double> robust =
-      ComputeClusterRobustSigmas(&problem, shared, covariance, clusters, options.num_threads);
-  for (size_t i = 0; i < robust.size(); ++i) sigma[i].sigma = std::max(sigma[i].sigma, robust[i]);
-  std::string note = "output error of the free-flight arm model over " + std::to_string(blocks.size()) + " of " +
-                     std::to_string(candidates.size()) + " windows" + (any_imu ? " with IMU" : " without IMU");
-  if (joint) {
-    note = "joint fit (one problem): " + std::to_string(bench.thrust.size()) + " load-cell pairs, " +
-           std::to_string(bench.arms.size()) + " clamped-arm windows and " + note;
+  std::vector<ceres::ResidualBlockId> clusters = fit->windows;
+  if (fit->joint) {
+    // The bench blocks: each load-cell pair and each clamped-arm window is
+    // a cluster of the sandwich too; the flight channels' inflation is not
+    // applied to what the bench determines.
+    inflation = 1.0;
+    const BenchResiduals& bench = fit->bench;
+    clusters.insert(clusters.end(), bench.thrust.begin(), bench.thrust.end());
+    clusters.insert(clusters.end(), bench.arms.begin(), bench.arms.end());
+    const ResidualStatistics thrust = ComputeResidualStatistics(problem, bench.thrust, 1, 0);
+    const ResidualStatistics arms = ComputeResidualStatistics(problem, bench.arms, 1, 0);
+    residuals->push_back(
+        {"load cell (force - c_T omega^2), joint fit", "N", thrust.count, thrust.rms_whitened,
+         ThrustResidualRmsN(*bench_logs, fit->ratio[kFlightThrust] * fit->scales.thrust_coeff_n_s2_rad2),
+         VarianceInflation(thrust)});
+    residuals->push_back({"strain (clamped arm model), joint fit", "rad", arms.count, arms.rms_whitened,
+                          arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
   }
-  auto fill = [&](ParameterEstimate* e, double ratio, double scale, const BlockSigma& s) {
-    e->value = ratio * scale;
-    e->sigma = s.sigma * scale;
-    e->determined = s.determined && e->sigma <= options.max_relative_sigma * std::abs(e->value);
-    e->note = note;
-  };
-  fill(&k, k_ratio, scales.stiffness_n_m_rad, sigma[0]);
-  fill(&damping, d_ratio, scales.damping_n_m_s_rad, sigma[1]);
-  fill(&c_t, c_ratio, scales.thrust_coeff_n_s2_rad2, sigma[2]);
-  fill(&tip_mass, m_ratio, scales.tip_mass_kg, sigma[3]);
+  return SharedSigmas(problem, fit->Blocks(), inflation, clusters, options.num_threads);
+}
+
+std::vector<FitPlot> FlightPlots(const FlightProblem& fit) {
+  std::vector<FitPlot> plots;
+  const size_t count = fit.functors.size();
+  for (size_t n = 1; n <= 2 && n < count; ++n) {
+    const size_t w = n * count / 3;
+    const FreeArmWindowResidual& f = *fit.functors[w];
+    const std::vector<FreeArmState<double>> predicted =
+        f.Predict(fit.ratio[kFlightK], fit.ratio[kFlightD], fit.ratio[kFlightThrust], fit.ratio[kFlightTipMass],
+                  fit.states[w].data(), fit.knots[w].empty() ? nullptr : fit.knots[w].data());
+    for (int arm = 0; arm < 2; ++arm) {
+      FitPlot plot;
+      plot.panel = FitPanel::kFlightDeflection;
+      plot.arm = arm;
+      plot.window = static_cast<int>(w);
+      plot.windows = static_cast<int>(count);
+      double t_s = 0.0;
+      for (size_t j = 0; j < predicted.size(); ++j) {
+        plot.x.push_back(t_s);
+        plot.data.push_back(1e3 * f.samples()[j].deflection_rad[arm]);
+        plot.model.push_back(1e3 * predicted[j](arm == 0 ? kFreeB1 : kFreeB2));
+        t_s += f.samples()[j].dt_s;
+      }
+      plots.push_back(std::move(plot));
+    }
+  }
+  return plots;
+}
+
+namespace {
+
+// The words of the advice on what to fly (issue 26 item 2).
+constexpr const char* kTipMassAdvice =
+    "to determine it, fly 30 s of 0.4 m steps, horizontal and vertical (birotor-sim --scenario mass_id: m_p sigma "
+    "0.7 %), weigh the tip mass (--tip-mass-kg with a bench log) or identify it on the bench (0.1 %)";
+
+// m_p kept at the base value (CheckTipMass held it, or the flight agrees
+// with the base file): the estimate says why, the warning what to fly, and,
+// when m_p was held in the fit, the combination the flight determines is named.
+void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, const ParameterEstimate& c_t,
+                        ParameterEstimate* tip_mass, IdentificationResult* result) {
+  std::ostringstream why;
+  why.precision(4);
+  tip_mass->value = base.tip_mass_kg;
+  tip_mass->determined = false;
+  tip_mass->sigma = std::numeric_limits<double>::quiet_NaN();
+  if (check.agrees_with_base) {
+    why << "base value kept: the flight's m_p = " << check.flight_value_kg << " +- " << check.flight_sigma_kg
+        << " kg is " << std::setprecision(3) << check.sigmas_from_base
+        << " sigma from it (consistency_sigmas): this flight does not show the base file wrong, and its sigma is "
+           "wider than a bench's";
+    tip_mass->note = why.str();
+    std::ostringstream warning;
+    warning.precision(4);
+    warning << "m_p: this flight gives " << check.flight_value_kg << " +- " << check.flight_sigma_kg << " kg, "
+            << std::setprecision(3) << check.sigmas_from_base
+            << " sigma from the base file's value, which is kept (not written by --update-params)";
+    result->warnings.push_back(warning.str());
+    return;  // k and c_T are those of the fit with m_p free
+  }
+  why << "held at the base value: at the fit with m_p held its relative sigma would be " << 100.0 * check.relative_sigma
+      << " % with " << 100.0 * check.data_share
+      << " % of its information from the data (the rest from the assumed rotor turbulence)";
+  tip_mass->note = why.str();
+  result->warnings.push_back("m_p: not determined by this flight; base value kept; " + std::string(kTipMassAdvice));
+  std::ostringstream named;
+  named.precision(3);
+  named << "c_T is determined relative to the total mass: c_T / (m + 2 m_p) to " << 100.0 * c_t.sigma / c_t.value
+        << " % (one sigma; the accelerometer sees thrust over mass), c_T itself with m_p = " << base.tip_mass_kg
+        << " kg of the base file";
+  result->correlations.push_back(named.str());
+}
+
+}  // namespace
+
+void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, const std::vector<BlockSigma>& sigma,
+                       const TipMassCheck& tip_check, const VehicleParams& base, const IdentificationOptions& options,
+                       IdentificationResult* result) {
+  ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
+  ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
+  ParameterEstimate c_t = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T");
+  ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
+  std::string note = "output error of the free-flight arm model over " + std::to_string(fit.windows.size()) + " of " +
+                     std::to_string(data.candidates.size()) + " windows" +
+                     (data.any_imu ? " with IMU" : " without IMU");
+  if (fit.joint) {
+    note = "joint fit (one problem): " + std::to_string(fit.bench.thrust.size()) + " load-cell pairs, " +
+           std::to_string(fit.bench.arms.size()) + " clamped-arm windows and " + note;
+  }
+  const FreeArmWindowResidual::Scales& scales = fit.scales;
+  std::array<double, kFlightParameters> ratio = fit.ratio;
+  const RatioParameter parameters[kFlightParameters] = {{&k, &ratio[kFlightK], scales.stiffness_n_m_rad},
+                                                        {&damping, &ratio[kFlightD], scales.damping_n_m_s_rad},
+                                                        {&c_t, &ratio[kFlightThrust], scales.thrust_coeff_n_s2_rad2},
+                                                        {&tip_mass, &ratio[kFlightTipMass], scales.tip_mass_kg}};
+  for (int i = 0; i < kFlightParameters; ++i) FillEstimate(parameters[i], sigma[i], options.max_relative_sigma, note);
+  if (tip_check.applies && tip_check.free) {
+    std::ostringstream share;
+    share.precision(3);
+    share << "; " << 100.0 * tip_check.data_share << " % of m_p's information from the data";
+    tip_mass.note += share.str();
+  }
   if (!k.determined) result->errors.push_back("k: not determined by the flight data (arm dynamics not excited)");
   if (!c_t.determined) {
     result->errors.push_back(std::string("c_T: not determined by the flight data") +
-                             (any_imu ? "" : " (no IMU: only c_T / k is seen by the strain gauges)"));
+                             (data.any_imu ? "" : " (no IMU: only c_T / k is seen by the strain gauges)"));
   }
-  if (joint) {
-    // The bench floors (options): what the 1 kHz load-cell input cannot give better.
-    damping.sigma = std::hypot(damping.sigma, options.bench_damping_floor * damping.value);
-    ParameterEstimate& floored = options.calibration.TipMassWeighed() ? k : tip_mass;
-    floored.sigma = std::hypot(floored.sigma, options.bench_frequency_floor * floored.value);
-    damping.note += "; sigma includes bench_damping_floor";
-    floored.note += "; sigma includes bench_frequency_floor";
+  if (fit.joint) {
+    AddBenchFloors(options, &k, &damping, &tip_mass);
   } else {
     // A flight reads its deflections through the base file's gauge scales:
     // a relative scale error delta moves k by -delta (statics, b = f L / k)
@@ -336,8 +417,7 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
     const double relative = options.calibration.gauge_scale_std / scale;
     for (ParameterEstimate* e : {&k, &tip_mass}) {
       if (relative > 0.0) {
-        e->sigma = std::hypot(e->sigma, relative * e->value);
-        e->note += "; sigma includes the gauge scale's (--gauge-scale-std)";
+        AddRelativeFloor(e, relative, "gauge scale's (--gauge-scale-std)");
       } else {
         e->note +=
             "; relative to the base file's gauge_scale (the flight determines it over s_i; "
@@ -345,46 +425,69 @@ void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams&
       }
     }
   }
-  if (!joint && !options.flight_fit_damping) {
+  if (!fit.joint && !options.flight_fit_damping) {
     damping.determined = false;
     damping.sigma = kNaN;
     damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
   }
   if (!damping.determined) result->warnings.push_back("d: not determined by the flight data; base value kept");
-  // Fit versus data: measured and predicted deflections over two windows,
-  // at one third and two thirds of the data.
-  for (size_t n = 1; n <= 2 && n < functors.size(); ++n) {
-    const size_t w = n * functors.size() / 3;
-    const FreeArmWindowResidual& f = *functors[w];
-    const std::vector<FreeArmState<double>> predicted =
-        f.Predict(k_ratio, d_ratio, c_ratio, m_ratio, states[w].data(), knots[w].empty() ? nullptr : knots[w].data());
-    for (int arm = 0; arm < 2; ++arm) {
-      FitPlot plot;
-      plot.title = "free flight, window " + std::to_string(w + 1) + " of " + std::to_string(functors.size()) +
-                   ": arm " + std::to_string(arm + 1) + " deflection";
-      plot.x_label = "time in window [s]";
-      plot.y_label = "b" + std::to_string(arm + 1) + " [mrad]";
-      double t_s = 0.0;
-      for (size_t j = 0; j < predicted.size(); ++j) {
-        plot.x.push_back(t_s);
-        plot.data.push_back(1e3 * f.samples()[j].deflection_rad[arm]);
-        plot.model.push_back(1e3 * predicted[j](arm == 0 ? kFreeB1 : kFreeB2));
-        t_s += f.samples()[j].dt_s;
-      }
-      result->plots.push_back(std::move(plot));
+  std::vector<ParameterEstimate> estimates = {k, damping, c_t};
+  if (options.flight_fit_tip_mass || fit.joint) {
+    if (tip_check.applies && !tip_check.free) {
+      ExplainHeldTipMass(tip_check, base, c_t, &tip_mass, result);
+    } else if (!tip_mass.determined) {
+      result->warnings.push_back("m_p: not determined by the flight data; base value kept; " +
+                                 std::string(kTipMassAdvice));
+    }
+    estimates.push_back(tip_mass);
+  }
+  StoreEstimates(estimates, result);
+}
+
+void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
+                        const IdentificationOptions& options, IdentificationResult* result,
+                        const std::vector<SensorLog>* bench_logs) {
+  // The motor time constant identified just before (IdentifyMotorTimeConstant), else the base value.
+  ReportProgress(options, {"flight: samples and windows", 0, 0, 0.1});
+  const FlightSamples data = CollectFlightSamples(logs, base, result->params, options);
+  const std::vector<FlightWindow> windows = SelectFlightWindows(data.candidates, options.flight_max_windows);
+  FlightProblem fit;
+  BuildFlightProblem(data, windows, base, options, bench_logs, &fit);
+  if (fit.windows.empty()) {
+    result->errors.push_back("k, d, c_T: no STRAIN samples with MOTOR telemetry (omega_meas) at the same time");
+    result->estimates.push_back(ParameterEstimate::Named("arm_stiffness_n_m_rad", "k"));
+    result->estimates.push_back(ParameterEstimate::Named("arm_damping_n_m_s_rad", "d"));
+    result->estimates.push_back(ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T"));
+    return;
+  }
+  // Determinability of m_p (issue 26): the fit with m_p held first (the
+  // default is never worse than holding it; from zero turbulence with m_p
+  // free the solver can fall into a far minimum: hover 12 s, m_p +173 %),
+  // then m_p freed only when the log's own excitation determines it.
+  TipMassCheck tip_check = CheckTipMass(options, &fit);
+  if (tip_check.applies && tip_check.free) ResolveFlightProblem(options, &fit, 0.7);
+  ReportProgress(options, {"flight: sigmas", static_cast<int>(fit.windows.size()), 0, 0.9});
+  std::vector<ResidualSummary> residuals;
+  const std::vector<BlockSigma> sigma = FlightSigmas(options, data.any_imu, bench_logs, &fit, &residuals);
+  if (tip_check.applies && tip_check.free) {
+    // The base file's m_p (a bench's, 0.1 %) stands unless this flight shows
+    // it wrong: m_p g enters every force the estimator gives, so a flight
+    // m_p of 0.5 % sigma that agrees with it would only add its own error
+    // (gentle 15 s: m_p +1.7 %, estimator MAE +16 %). k and c_T stay those
+    // of the fit with m_p free (their sigmas carry m_p's uncertainty).
+    const double sigma_ratio = sigma[kFlightTipMass].sigma;
+    tip_check.flight_value_kg = fit.ratio[kFlightTipMass] * fit.scales.tip_mass_kg;
+    tip_check.flight_sigma_kg = sigma_ratio * fit.scales.tip_mass_kg;
+    tip_check.sigmas_from_base = sigma_ratio > 0.0 ? std::abs(fit.ratio[kFlightTipMass] - 1.0) / sigma_ratio : kNaN;
+    if (!(tip_check.sigmas_from_base > options.consistency_sigmas)) {
+      tip_check.agrees_with_base = true;
+      tip_check.free = false;
     }
   }
-  result->estimates.insert(result->estimates.end(), {k, damping, c_t});
-  if (options.flight_fit_tip_mass || joint) {
-    if (!tip_mass.determined) {
-      result->warnings.push_back("m_p: not determined by the flight data; base value kept");
-    }
-    result->estimates.push_back(tip_mass);
-    if (tip_mass.determined) result->params.tip_mass_kg = tip_mass.value;
-  }
-  if (k.determined) result->params.arm_stiffness_n_m_rad = k.value;
-  if (damping.determined) result->params.arm_damping_n_m_s_rad = damping.value;
-  if (c_t.determined) result->params.thrust_coeff_n_s2_rad2 = c_t.value;
+  result->residuals.insert(result->residuals.end(), residuals.begin(), residuals.end());
+  StoreFlightResult(fit, data, sigma, tip_check, base, options, result);
+  const std::vector<FitPlot> plots = FlightPlots(fit);
+  result->plots.insert(result->plots.end(), plots.begin(), plots.end());
 }
 
 }  // namespace birotor

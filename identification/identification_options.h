@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -27,6 +28,14 @@ struct CalibrationFact {
   double gauge_scale_std = 0.0;
 
   bool TipMassWeighed() const { return std::isfinite(tip_mass_kg); }
+};
+
+// Where a fit is, for a progress line (birotor-identify prints it on stderr).
+struct FitProgress {
+  std::string stage;      // what runs, e.g. "flight: solve, m_p held"
+  int windows = 0;        // output-error windows in the problem (0: none)
+  int iteration = 0;      // solver iteration in this stage (0: the stage starts)
+  double fraction = 0.0;  // share of the whole fit done before this stage, a rough estimate [0, 1]
 };
 
 struct IdentificationOptions {
@@ -63,6 +72,11 @@ struct IdentificationOptions {
   // a 0.86 % sigma once the rotor turbulence is modelled (flight_turbulence_knot_s);
   // off: m_p is held at the base value (a bench identification's, 0.1 %).
   bool flight_fit_tip_mass = true;
+  // Free flight: the tip mass is fitted only when, at the fit with m_p held,
+  // at least this share of its information comes from the recorded data
+  // rather than from the assumed turbulence statistics (flight_fit.h
+  // CheckTipMass; measured share: 1.00 on hover, gentle and flight_id) [1].
+  double flight_min_data_share = 0.5;
   // Free flight: spacing of the rotor-turbulence knots in each window [s]
   // (FreeArmWindowResidual: eta_i piecewise linear under the base file's
   // Gauss-Markov prior turbulence_std, turbulence_corr_time_s); 0, or a base
@@ -103,6 +117,9 @@ struct IdentificationOptions {
   int num_threads = 2;
   // The missing calibration fact (command line only, see CalibrationFact).
   CalibrationFact calibration;
+  // Called at every stage and solver iteration (command line only; empty:
+  // nothing is reported). Must not throw.
+  std::function<void(const FitProgress&)> progress;
 };
 
 }  // namespace birotor

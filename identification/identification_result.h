@@ -51,12 +51,24 @@ struct DeflectionForceMap {
   int samples = 0;
 };
 
+// What a panel of fit versus data shows (its title and axes are written by
+// plot/fit_plot.cc, not here).
+enum class FitPanel {
+  kMotorResponse,     // x: time in window [s]; telemetry vs first-order model [rad/s]; value: tau_m [s]
+  kThrustMap,         // x: telemetry speed [rad/s]; load cell vs c_T omega^2 [N]
+  kArmMap,            // x: deflection of `arm` [mrad]; load-cell force vs map [N]; value: map degree
+  kArmMapResidual,    // x: deflection of `arm` [mrad]; force - map [N]; value: residual RMS [N]
+  kFlightDeflection,  // x: time in window [s]; deflection of `arm` [mrad]; window of windows
+};
+
 // One panel of fit versus data for the --plot figure: measured points and
 // the fitted model at the same abscissae.
 struct FitPlot {
-  std::string title;
-  std::string x_label;  // with unit
-  std::string y_label;  // with unit
+  FitPanel panel = FitPanel::kMotorResponse;
+  int arm = 0;         // 0: arm 1, 1: arm 2 (arm panels)
+  int window = 0;      // kFlightDeflection: window index (0-based) ...
+  int windows = 0;     // ... of this many
+  double value = 0.0;  // see FitPanel
   std::vector<double> x;
   std::vector<double> data;   // measured
   std::vector<double> model;  // fitted model (NaN where there is none)

@@ -9,8 +9,8 @@
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
 #include "identification/sample_cleaning.h"
-#include "samples/sensor_log.h"
 #include "model/vehicle_params.h"
+#include "samples/sensor_log.h"
 
 namespace birotor {
 

@@ -74,7 +74,8 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   }
   problem.SetParameterLowerBound(&tau_ratio, 0, 1e-3);
   problem.SetParameterUpperBound(&tau_ratio, 0, 1e3);
-  SolveProblem(options, &problem);
+  const FitProgress at{"motor: tau_m", static_cast<int>(blocks.size()), 0, 0.0};
+  SolveProblem(options, &problem, 1e-10, &at);
 
   const ResidualStatistics stats = ComputeResidualStatistics(&problem, blocks, 1, 0);
   const double inflation = VarianceInflation(stats);
@@ -98,12 +99,8 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   if (!plot_samples.empty()) {
     // Fitted ZOH first-order response from the window's fitted initial speed.
     FitPlot plot;
-    std::ostringstream title;
-    title.precision(4);
-    title << "motor: telemetry vs first-order model (tau_m = " << 1e3 * tau.value << " ms)";
-    plot.title = title.str();
-    plot.x_label = "time in window [s]";
-    plot.y_label = "omega [rad/s]";
+    plot.panel = FitPanel::kMotorResponse;
+    plot.value = tau.value;
     double omega = omega0[plot_block], t_s = 0.0;
     for (size_t j = 0; j < plot_samples.size(); ++j) {
       if (j > 0) {

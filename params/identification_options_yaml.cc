@@ -25,6 +25,7 @@ const OptionTable<IdentificationOptions>& IdentificationKeys() {
       Integer("flight_max_windows", &O::flight_max_windows, 0, 1000000),
       Flag("flight_fit_damping", &O::flight_fit_damping),
       Flag("flight_fit_tip_mass", &O::flight_fit_tip_mass),
+      Real("flight_min_data_share", &O::flight_min_data_share, 0.0, 1.0),
       Real("flight_turbulence_knot_s", &O::flight_turbulence_knot_s, 0.0, 100.0),
       Real("huber_threshold", &O::huber_threshold, 0.1, 1e3),
       Integer("map_degree", &O::map_degree, 1, 3),

@@ -30,6 +30,27 @@ std::string DataBlock(const FitPlot& plot, size_t index) {
 
 }  // namespace
 
+FitPlotText FitPlotLabels(const FitPlot& plot) {
+  const std::string arm = std::to_string(plot.arm + 1);
+  switch (plot.panel) {
+    case FitPanel::kMotorResponse:
+      return {fmt::format("motor: telemetry vs first-order model (tau_m = {:.4g} ms)", 1e3 * plot.value),
+              "time in window [s]", "omega [rad/s]"};
+    case FitPanel::kThrustMap:
+      return {"thrust: load cell vs c_T omega^2 (both rotors)", "omega (telemetry) [rad/s]", "force [N]"};
+    case FitPanel::kArmMap:
+      return {fmt::format("arm {}: load cell force vs deflection map (degree {})", arm, plot.value),
+              "deflection b" + arm + " [mrad]", "force [N]"};
+    case FitPanel::kArmMapResidual:
+      return {fmt::format("arm {}: map residual (RMS {:.4g} N)", arm, plot.value), "deflection b" + arm + " [mrad]",
+              "force - map [N]"};
+    case FitPanel::kFlightDeflection:
+      return {fmt::format("free flight, window {} of {}: arm {} deflection", plot.window + 1, plot.windows, arm),
+              "time in window [s]", "b" + arm + " [mrad]"};
+  }
+  return {};
+}
+
 bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, const std::string& png_path,
                   std::string* error) {
   if (plots.empty()) {
@@ -44,12 +65,12 @@ bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, c
   for (size_t n = 0; n < plots.size(); ++n) script += DataBlock(plots[n], n);
   script += fmt::format("set multiplot layout {},{} title {}\n", rows, columns, GnuplotQuoted(title));
   for (size_t n = 0; n < plots.size(); ++n) {
-    const FitPlot& plot = plots[n];
+    const FitPlotText text = FitPlotLabels(plots[n]);
     script += fmt::format(
         "set title {}\nset xlabel {}\nset ylabel {}\n"
         "plot $fit{} using 1:2 with points pt 7 ps 0.3 lc rgb '#1f77b4' title 'data', "
         "$fit{} using 1:3 with lines lw 2 lc rgb '#d62728' title 'fit'\n",
-        GnuplotQuoted(plot.title), GnuplotQuoted(plot.x_label), GnuplotQuoted(plot.y_label), n, n);
+        GnuplotQuoted(text.title), GnuplotQuoted(text.x_label), GnuplotQuoted(text.y_label), n, n);
   }
   script += "unset multiplot\n";
   return RenderGnuplotPng(script, png_path, error);

@@ -11,6 +11,14 @@
 
 namespace birotor {
 
+// Title and axis labels of one panel (with units).
+struct FitPlotText {
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+};
+FitPlotText FitPlotLabels(const FitPlot& plot);
+
 // Writes png_path (temporary file + rename) with the panels in a two-column
 // grid. False with *error when there is nothing to plot or gnuplot fails.
 bool WriteFitPlot(const std::vector<FitPlot>& plots, const std::string& title, const std::string& png_path,

@@ -3,7 +3,9 @@
 // maps with Ceres, and writes the parameter file the estimator and simulator
 // load (or updates a complete one in place), plus a readable report.
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "identification/fit_stages.h"
 #include "identification/identify.h"
 #include "params/identification_options_yaml.h"
 #include "params/identified_parameter_file.h"
@@ -37,6 +40,33 @@ struct IdentifyOptions {
   std::string report;
   std::string plot;
   double min_usable_fraction = birotor::kDefaultMinUsableLogFraction;
+  bool progress = false;  // progress line on stderr even when it is not a terminal
+};
+
+// One progress line on stderr (stage, windows, elapsed, ETA), rewritten in
+// place, from 2 s into the fit and at most every 0.2 s; ended by Finish().
+class ProgressLine {
+ public:
+  void operator()(const birotor::FitProgress& at) {
+    const double elapsed_s = clock_.ElapsedS();
+    if (elapsed_s < 2.0 || elapsed_s - last_s_ < 0.2) return;
+    last_s_ = elapsed_s;
+    char eta[32] = "?";
+    if (at.fraction > 0.05) std::snprintf(eta, sizeof(eta), "%.0f s", elapsed_s * (1.0 - at.fraction) / at.fraction);
+    std::fprintf(stderr, "\r%-36s windows %3d  iteration %3d  elapsed %5.1f s  ETA %-8s", at.stage.c_str(), at.windows,
+                 at.iteration, elapsed_s, eta);
+    std::fflush(stderr);
+    printed_ = true;
+  }
+  void Finish() {
+    if (printed_) std::fprintf(stderr, "\n");
+    printed_ = false;
+  }
+
+ private:
+  birotor::Stopwatch clock_;
+  double last_s_ = 0.0;
+  bool printed_ = false;
 };
 
 // Current UTC time as 2026-12-01T02:55:00Z.
@@ -92,6 +122,9 @@ int main(int argc, char** argv) {
                  "absent or a regular file");
   app.add_option("--report", cli.report, "Readable report (Markdown)");
   app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
+  app.add_flag("--progress", cli.progress,
+               "Progress line on stderr (stage, windows, elapsed, ETA) for fits over 2 s even when stderr is not a "
+               "terminal (on a terminal it is always shown)");
   app.add_option("--min-usable-fraction", cli.min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
       ->check(CLI::Range(0.0, 1.0));
@@ -136,7 +169,16 @@ int main(int argc, char** argv) {
   }
   // The file to update must be complete before the fit, so a fit is never lost to it.
   const std::string& update_text = update.text;
+  VehicleParams update_vehicle;  // the vehicle the file describes now
   if (!cli.update_params.empty()) {
+    try {  // from the text already read (a regular file, docs/files.md), not a second read
+      WithFileErrors(cli.update_params, [&] {
+        YamlSection root = YamlSection::LoadString(update_text, cli.update_params);
+        ReadVehicleParams(root.Section("vehicle"), &update_vehicle);
+      });
+    } catch (const ParamError& e) {
+      return ReportError(e.what());
+    }
     std::string unused;
     if (!UpdateVehicleSection(update_text, base, "", &unused, &error)) {
       return ReportError("--update-params " + cli.update_params + ": " + error);
@@ -158,7 +200,10 @@ int main(int argc, char** argv) {
   const IdentificationMode mode = cli.mode == "bench"    ? IdentificationMode::kBench
                                   : cli.mode == "flight" ? IdentificationMode::kFlight
                                                          : IdentificationMode::kAuto;
+  ProgressLine progress;
+  if (cli.progress || isatty(STDERR_FILENO)) options.progress = [&progress](const FitProgress& at) { progress(at); };
   const IdentificationResult result = Identify(std::move(logs), base, options, mode);
+  progress.Finish();
   const double elapsed_s = stopwatch.ElapsedS();
   if (result.dropped.total() > 0) {
     spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
@@ -202,8 +247,15 @@ int main(int argc, char** argv) {
     spdlog::info("wrote {}", cli.output);
   }
   if (!cli.update_params.empty()) {
+    // Only what these logs determined is deployed: every other value stays
+    // the file's own, whatever the base (--params) said.
+    VehicleParams deployed = update_vehicle;
+    for (const ParameterEstimate& e : result.estimates) {
+      if (e.determined) SetVehicleValue(e.key, e.value, &deployed);
+    }
+    if (options.calibration.TipMassWeighed()) deployed.tip_mass_kg = result.params.tip_mass_kg;  // the weighed fact
     std::string updated;
-    if (!UpdateVehicleSection(update_text, result.params, stamp, &updated, &error)) {
+    if (!UpdateVehicleSection(update_text, deployed, stamp, &updated, &error)) {
       return ReportError("--update-params " + cli.update_params + ": " + error);
     }
     // The new text must load back as the identified vehicle before it replaces the old file.
@@ -213,7 +265,7 @@ int main(int argc, char** argv) {
         YamlSection root = YamlSection::LoadString(updated, cli.update_params);
         ReadVehicleParams(root.Section("vehicle"), &check);
       });
-      if (VehicleParamsYaml(check) != VehicleParamsYaml(result.params)) {
+      if (VehicleParamsYaml(check) != VehicleParamsYaml(deployed)) {
         return ReportError("--update-params " + cli.update_params +
                            ": the updated text does not read back as the identified values; file left unchanged");
       }

@@ -17,10 +17,7 @@
 namespace birotor {
 namespace {
 
-// Uniform in [lo, hi) from the raw generator (portable, unlike the std distributions).
-double Uniform(std::mt19937* rng, double lo, double hi) {
-  return lo + (hi - lo) * (static_cast<double>((*rng)()) / 4294967296.0);
-}
+using testing::Uniform;
 
 struct Tally {
   int cases = 0;
@@ -63,23 +60,7 @@ CoverageCase MakeCase(int n, double duration_s) {
     c.fact.tip_mass_std_kg = 0.0005;
     c.fact.tip_mass_kg = v.tip_mass_kg + c.fact.tip_mass_std_kg * z;
   }
-  auto set = [&](const std::string& key, double value) {
-    char text[128];
-    std::snprintf(text, sizeof(text), "%s=%.10g", key.c_str(), value);
-    c.overrides.push_back(text);
-  };
-  set("scenario.duration_s", duration_s);
-  set("scenario.seed", 100 + n);
-  set("vehicle.arm_stiffness_n_m_rad", v.arm_stiffness_n_m_rad);
-  set("vehicle.arm_damping_n_m_s_rad", v.arm_damping_n_m_s_rad);
-  set("vehicle.tip_mass_kg", v.tip_mass_kg);
-  set("vehicle.thrust_coeff_n_s2_rad2", v.thrust_coeff_n_s2_rad2);
-  set("vehicle.motor_time_constant_s", v.motor_time_constant_s);
-  char gauge[160];
-  std::snprintf(gauge, sizeof(gauge), "gauge.scale=[%.10g, %.10g]", c.gauge_scale[0], c.gauge_scale[1]);
-  c.overrides.push_back(gauge);
-  std::snprintf(gauge, sizeof(gauge), "gauge.offset_rad=[%.10g, %.10g]", c.gauge_offset_rad[0], c.gauge_offset_rad[1]);
-  c.overrides.push_back(gauge);
+  c.overrides = testing::VehicleOverrides(v, duration_s, 100 + n, c.gauge_scale, c.gauge_offset_rad);
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <random>
 
+#include "identification/flight_fit.h"
 #include "tests/identification/simulated_logs.h"
 
 namespace birotor {
@@ -312,19 +313,29 @@ TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.03, 0.0);
   ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.03, 0.0);
   ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.05, 0.0);
+  // The base file's m_p is the truth: the flight agrees with it, so it is
+  // kept, marked not determined, and the warning says so (issue 26).
+  const ParameterEstimate* m_p = Find(r, "m_p");
+  ASSERT_NE(m_p, nullptr);
+  EXPECT_FALSE(m_p->determined) << m_p->note;
+  EXPECT_DOUBLE_EQ(r.params.tip_mass_kg, truth.tip_mass_kg);
+  EXPECT_NE(m_p->note.find("sigma from it"), std::string::npos) << m_p->note;
 }
 
-// Issue 11: the tip mass from a 60 s flight alone (flight_id, the command of
-// the README's table: reference base file). Measured with the rotor
-// turbulence modelled: m_p +1.25 % (1.44 sigma, sigma 0.86 %), c_T +0.24 %,
-// k -0.005 %, tau_m -0.23 %; asserted with a 1.5x margin on the m_p error
-// (target 2 %) and truth within 3 sigma.
+// Issue 11: the tip mass from a 60 s flight alone (flight_id). Measured with
+// the rotor turbulence modelled and the reference base file: m_p +1.22 %
+// (1.4 sigma, sigma 0.86 %), c_T +0.23 %, k -0.005 %, tau_m -0.23 %. A
+// flight m_p that agrees with the base file within consistency_sigmas keeps
+// the base value (issue 26), so the base here has m_p 5 % low: the flight
+// must show it wrong and bring it within the 2 % target, within 3 sigma.
 TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
   VehicleParams truth;
   const SensorLog log = testing::SimulateScenario("flight_id", {}, &truth);
-  const IdentificationResult r = Identify({log}, VehicleParams(), IdentificationOptions());
+  VehicleParams base;
+  base.tip_mass_kg *= 0.95;
+  const IdentificationResult r = Identify({log}, base, IdentificationOptions());
   ASSERT_TRUE(r.ok) << Errors(r);
-  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 1.5 * 0.0125, 3.0);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 0.02, 3.0);
   ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.02, 3.0);
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.02, 3.0);
   ExpectRecovered(r, "tau_m", truth.motor_time_constant_s, 0.03, 3.0);
@@ -391,6 +402,88 @@ TEST(JointBenchFlightTest, BenchAndFlightOfDifferentVehiclesAreRefused) {
   bench.source = "reference_bench.lcm";
   flight.source = "other_flight.lcm";
   ExpectRefusedAsTwoVehicles({bench, flight}, "other_flight.lcm");
+}
+
+// Issue 26: the 12 s hover of the issue's table gave m_p 0.675..0.788 kg
+// (+134..+173 %) and c_T +17..+22 %, "determined" at 1.7 % / 0.5 %: the
+// solver, started from zero turbulence with m_p free, fell into a far
+// minimum. Solved with m_p held first, then judged (CheckTipMass) and freed.
+// Measured on the reference base file (birotor-identify on birotor-sim
+// --scenario hover --set scenario.duration_s=12): m_p +0.45 % (sigma 0.70 %),
+// c_T -0.04 % (sigma 0.17 %), 100 % of m_p's information from the data. Here
+// the base has m_p 5 % low (else the flight, agreeing with it, keeps it):
+// asserted within the 2 % flight_id target and 3 sigma.
+TEST(FlightDeterminabilityTest, HoverGivesTheTipMassWithinThreeSigmaNotAFarMinimum) {
+  VehicleParams truth;
+  const SensorLog log = testing::SimulateScenario("hover", {"scenario.duration_s=12"}, &truth);
+  VehicleParams base;
+  base.tip_mass_kg *= 0.95;
+  const IdentificationResult r = Identify({log}, base, IdentificationOptions());
+  ASSERT_TRUE(r.ok) << Errors(r);
+  ExpectRecovered(r, "m_p", truth.tip_mass_kg, 0.02, 3.0);
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.02, 3.0);
+  const ParameterEstimate* m_p = Find(r, "m_p");
+  ASSERT_NE(m_p, nullptr);
+  EXPECT_NE(m_p->note.find("information from the data"), std::string::npos) << m_p->note;
+}
+
+// When the data's share of m_p's information is below flight_min_data_share
+// (here above 1, which no log gives), m_p keeps the base value, is marked not determined, the
+// warning says what to fly and the determined combination is named; c_T is
+// that of the fit with m_p held, within 3 sigma (the default is never worse
+// than holding m_p).
+TEST(FlightDeterminabilityTest, UndeterminedTipMassKeepsTheBaseValueAndSaysWhatToFly) {
+  VehicleParams truth;
+  const SensorLog log = testing::SimulateScenario("hover", {"scenario.duration_s=8"}, &truth);
+  IdentificationOptions options;
+  options.flight_min_data_share = 1.01;  // no log can give more than all of the information
+  const IdentificationResult r = Identify({log}, VehicleParams(), options);
+  ASSERT_TRUE(r.ok) << Errors(r);
+  const ParameterEstimate* m_p = Find(r, "m_p");
+  ASSERT_NE(m_p, nullptr);
+  EXPECT_FALSE(m_p->determined);
+  EXPECT_DOUBLE_EQ(r.params.tip_mass_kg, VehicleParams().tip_mass_kg);
+  std::string warnings;
+  for (const std::string& w : r.warnings) warnings += w + "\n";
+  EXPECT_NE(warnings.find("--scenario mass_id"), std::string::npos) << warnings;
+  ASSERT_FALSE(r.correlations.empty());
+  EXPECT_NE(r.correlations.back().find("c_T / (m + 2 m_p)"), std::string::npos) << r.correlations.back();
+  ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.01, 3.0);
+}
+
+// Stages a test can call (issue 22 item 5).
+TEST(FlightStagesTest, WindowScanSpreadsTheWindowsEvenly) {
+  std::vector<FlightWindow> candidates(10);
+  for (size_t i = 0; i < candidates.size(); ++i) candidates[i].begin = i;
+  const std::vector<FlightWindow> picked = SelectFlightWindows(candidates, 4);
+  ASSERT_EQ(picked.size(), 4u);
+  // (2 w + 1) 10 / 8 for w = 0..3: 1, 3, 6, 8.
+  EXPECT_EQ(picked[0].begin, 1u);
+  EXPECT_EQ(picked[1].begin, 3u);
+  EXPECT_EQ(picked[2].begin, 6u);
+  EXPECT_EQ(picked[3].begin, 8u);
+  EXPECT_EQ(SelectFlightWindows(candidates, 0).size(), 10u);
+}
+
+TEST(FlightStagesTest, DataShareFromThePriorSensitivity) {
+  // Unchanged sigma: all information from the data; sigma x4 under a x4
+  // prior: none; r^2 = 2 / (1 + 1/16): half (D = P).
+  EXPECT_DOUBLE_EQ(DataInformationShare({0.001, 0.001}, 4.0), 1.0);
+  EXPECT_NEAR(DataInformationShare({0.001, 0.004}, 4.0), 0.0, 1e-12);
+  EXPECT_NEAR(DataInformationShare({0.001, 0.001 * std::sqrt(2.0 / (1.0 + 1.0 / 16.0))}, 4.0), 0.5, 1e-12);
+  EXPECT_EQ(DataInformationShare({std::numeric_limits<double>::infinity(), 1.0}, 4.0), 0.0);
+}
+
+TEST(FlightStagesTest, InitialWindowStateFromALineThroughTheFirstSamples) {
+  std::vector<FreeArmWindowResidual::Sample> samples(10);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    samples[i] = {0.001, {700.0, 700.0}, {1e-3 + 0.02 * 0.001 * i, -2e-3}, 0.3, {0.0, 9.81}};
+  }
+  const std::array<double, kFreeArmStateSize> x0 = InitialWindowState(samples);
+  EXPECT_DOUBLE_EQ(x0[kFreePhiDot], 0.3);
+  EXPECT_DOUBLE_EQ(x0[kFreeB1], 1e-3);
+  EXPECT_NEAR(x0[kFreeB1Dot], 0.02, 1e-12);  // the slope of the line [rad/s]
+  EXPECT_NEAR(x0[kFreeB2Dot], 0.0, 1e-12);
 }
 
 }  // namespace

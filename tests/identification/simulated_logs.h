@@ -2,6 +2,8 @@
 // scenario file with overrides and collects its samples into a SensorLog.
 #pragma once
 
+#include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,33 @@ inline SensorLog SimulateScenario(const std::string& name, const std::vector<std
   Simulator simulator(scenario);
   simulator.Run(&sink);
   return log;
+}
+
+// Uniform in [lo, hi) from the raw generator (portable, unlike the std distributions).
+inline double Uniform(std::mt19937* rng, double lo, double hi) {
+  return lo + (hi - lo) * (static_cast<double>((*rng)()) / 4294967296.0);
+}
+
+// Scenario overrides that fly vehicle v (its identified parameters k, d,
+// m_p, c_T, tau_m) with the true gauge (scale, offset) for duration_s with seed.
+inline std::vector<std::string> VehicleOverrides(const VehicleParams& v, double duration_s, int seed,
+                                                 const double gauge_scale[2], const double gauge_offset_rad[2]) {
+  std::vector<std::string> overrides;
+  auto add = [&](const char* format, double a, double b = 0.0) {
+    char text[160];
+    std::snprintf(text, sizeof(text), format, a, b);
+    overrides.push_back(text);
+  };
+  add("scenario.duration_s=%.10g", duration_s);
+  add("scenario.seed=%.10g", seed);
+  add("vehicle.arm_stiffness_n_m_rad=%.10g", v.arm_stiffness_n_m_rad);
+  add("vehicle.arm_damping_n_m_s_rad=%.10g", v.arm_damping_n_m_s_rad);
+  add("vehicle.tip_mass_kg=%.10g", v.tip_mass_kg);
+  add("vehicle.thrust_coeff_n_s2_rad2=%.10g", v.thrust_coeff_n_s2_rad2);
+  add("vehicle.motor_time_constant_s=%.10g", v.motor_time_constant_s);
+  add("gauge.scale=[%.10g, %.10g]", gauge_scale[0], gauge_scale[1]);
+  add("gauge.offset_rad=[%.10g, %.10g]", gauge_offset_rad[0], gauge_offset_rad[1]);
+  return overrides;
 }
 
 }  // namespace birotor::testing
