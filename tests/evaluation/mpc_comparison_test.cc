@@ -12,7 +12,7 @@
 
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
-#include "simulator/scenario_yaml.h"
+#include "params/scenario_yaml.h"
 
 namespace birotor {
 namespace {
