@@ -153,6 +153,8 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   m.loop_time_p99_us = Percentile(loop_times_us_.begin(), loop_times_us_.begin() + n, 0.99);
   m.loop_time_max_us = n == 0 ? kNaN : *std::max_element(loop_times_us_.begin(), loop_times_us_.begin() + n);
   loop_time_count_ = 0;
+  m.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
+  m.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
   EncodeMessage(m, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.controller_status, now_us, buffer_.data(), buffer_.size());
 }

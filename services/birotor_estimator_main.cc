@@ -16,15 +16,15 @@
 #include "params/estimator_config_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "params/yaml_reader.h"
+#include "program/config_files.h"
+#include "program/logging.h"
+#include "program/program_options.h"
+#include "program/shutdown.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/channels.h"
-#include "transport/config_files.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
-#include "transport/logging.h"
-#include "transport/program_options.h"
-#include "transport/shutdown.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;

@@ -19,6 +19,10 @@
 #include "nodes/esc_command_node.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
+#include "program/config_files.h"
+#include "program/logging.h"
+#include "program/program_options.h"
+#include "program/shutdown.h"
 #include "simulator/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
@@ -26,14 +30,10 @@
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
-#include "transport/config_files.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
-#include "transport/logging.h"
 #include "transport/output_file.h"
-#include "transport/program_options.h"
-#include "transport/shutdown.h"
 
 namespace birotor {
 namespace {

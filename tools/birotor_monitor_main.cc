@@ -19,15 +19,15 @@
 #include "monitor/monitor_view.h"
 #include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
+#include "program/logging.h"
+#include "program/program_options.h"
+#include "program/shutdown.h"
 #include "simulator/scenario_yaml.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
-#include "transport/logging.h"
-#include "transport/program_options.h"
-#include "transport/shutdown.h"
 
 namespace birotor {
 namespace {
