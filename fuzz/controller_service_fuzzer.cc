@@ -18,6 +18,8 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/motor_command_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "fuzz/datagram_input.h"
+#include "fuzz/motor_command_check.h"
 #include "nodes/controller_service.h"
 #include "transport/lcm_codec.h"
 
@@ -27,37 +29,8 @@ using birotor::ControllerInput;
 
 constexpr int kMaxOperations = 4096;
 
-// Checks every MOTOR_COMMAND the service publishes.
-class CheckingSink : public birotor::MessageSink {
- public:
-  CheckingSink(std::string channel, double omega_max) : channel_(std::move(channel)), omega_max_(omega_max) {}
-  void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
-    if (channel != channel_) return;
-    birotor::motor_command_t command;
-    if (birotor::DecodeMessage(data, size, &command) != birotor::DecodeError::kNone) std::abort();
-    for (double omega : command.omega_cmd_rad_s) {
-      if (!std::isfinite(omega) || omega < 0.0 || omega > omega_max_) std::abort();
-    }
-  }
-
- private:
-  std::string channel_;
-  double omega_max_;
-};
-
-// Consumes the input front to back; zeros past its end.
-struct Input {
-  const uint8_t* data;
-  size_t size;
-  size_t offset = 0;
-  uint8_t Byte() { return offset < size ? data[offset++] : 0; }
-  double AnyDouble() {
-    uint64_t bits = 0;
-    for (int i = 0; i < 8; ++i) bits = (bits << 8) | Byte();
-    double value;
-    std::memcpy(&value, &bits, sizeof value);
-    return value;
-  }
+// The byte reader of fuzz/datagram_input.h with hostile fields and stamps.
+struct Input : birotor::fuzz::ByteReader {
   // Near nominal (scale: the spread), or hostile.
   double Field(double nominal, double scale) {
     const uint8_t kind = Byte();
@@ -96,9 +69,9 @@ struct Input {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const birotor::ControllerConfig config;
   const birotor::ChannelNames channels = birotor::MakeChannelNames();
-  CheckingSink sink(channels.motor_command, config.vehicle.omega_max_rad_s);
+  birotor::fuzz::MotorCommandCheck sink(channels.motor_command, config.vehicle.omega_max_rad_s);
   birotor::ControllerService service(config, channels, &sink);
-  Input in{data, size};
+  Input in{{data, size}};
   int64_t clock_us = 0, host_us = 0;
   std::vector<uint8_t> packet;
   for (int op = 0; op < kMaxOperations && in.offset < in.size; ++op) {

@@ -1,6 +1,6 @@
 // libFuzzer harness for the daemon's packet handler: raw byte strings on
-// STRAIN, MOTOR, IMU and POSE go through EstimatorService::HandlePacket (the
-// code the LCM callback runs), interleaved with ESTIMATOR_STATUS publication.
+// STRAIN, MOTOR, IMU and POSE go through EstimatorService::HandlePacket(channel,
+// ...) (the PacketHandler entry its message source calls), interleaved with ESTIMATOR_STATUS publication.
 // Every FORCE and ESTIMATOR_STATUS it publishes must decode and carry only
 // finite forces; nothing may crash, leak or trip a sanitizer.
 #include <spdlog/spdlog.h>
@@ -96,6 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   birotor::EstimatorServiceOptions options;
   options.report_processing_time = (size % 2) == 0;
   birotor::EstimatorService service(config, channels, options, &sink);
+  const std::vector<std::string> names = service.InputChannels();  // STRAIN, MOTOR, IMU, POSE, FORCE
 
   // Well-formed hover packets, to reach the filter's deeper states.
   birotor::strain_t strain{};
@@ -146,7 +147,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (kind <= 4 && available >= 8) SetFingerprint(channel, raw);
     // kind 7: an old packet as seen live (receive time one second ago): overload drop path.
     const int64_t receive_wall_utime = kind == 7 ? birotor::WallClockUs() - 1000000 : -1;
-    service.HandlePacket(channel, raw, available, receive_wall_utime);
+    // Through the PacketHandler entry a message source calls (by channel name).
+    service.HandlePacket(names[static_cast<int>(channel)], raw, available, receive_wall_utime);
   }
   service.PublishStatus(birotor::WallClockUs(), 0.2);
   return 0;

@@ -201,6 +201,8 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   m.mpc_solve_max_us = solved ? 1e6 * mpc.solve_max_s : kNaN;
   m.mpc_iterations = mpc.last_iterations;
   m.mpc_max_iterations = mpc.max_iterations;
+  m.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
+  m.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
   EncodeMessage(m, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.controller_status, now_us, buffer_.data(), buffer_.size());
 }

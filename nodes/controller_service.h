@@ -36,6 +36,9 @@ class ControllerService : public PacketHandler {
   // The full names of the input channels (POSE, IMU, FORCE), to subscribe a
   // source to.
   std::vector<std::string> InputChannels() const;
+  // The live source's UDP counters (MessageSource::udp_counters, nullptr for
+  // other sources) go into CONTROLLER_STATUS; they must outlive the service.
+  void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
   // PacketHandler: a packet of an input channel goes to HandlePacket below,
   // stamped with the host's steady clock when it is handled; any other
   // channel is ignored.
@@ -96,6 +99,7 @@ class ControllerService : public PacketHandler {
   size_t loop_time_count_ = 0;
   std::vector<uint8_t> buffer_;
   controller_status_t status_message_;
+  const UdpReceiveCounters* udp_counters_ = nullptr;
 };
 
 }  // namespace birotor

@@ -15,6 +15,15 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// FNV-1a over a payload: tells our own FORCE from another publisher's (not a
+// security check; a forger can always send our exact bytes).
+uint64_t PayloadHash(const void* data, size_t size) {
+  uint64_t hash = 14695981039346656037ull;
+  const uint8_t* bytes = static_cast<const uint8_t*>(data);
+  for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+  return hash;
+}
+
 }  // namespace
 
 EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
@@ -23,6 +32,7 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
       channels_(channels),
       options_(options),
       sink_(sink),
+      foreign_warning_(options.warning_interval_s),
       decode_warning_(options.warning_interval_s),
       overload_warning_(options.warning_interval_s),
       rejection_log_(options.warning_interval_s, input_channel_names_) {
@@ -39,13 +49,44 @@ EstimatorService::~EstimatorService() = default;
 std::vector<std::string> EstimatorService::InputChannels() const {
   std::vector<std::string> names;
   for (const std::string* name : input_channel_names_) names.push_back(*name);
+  names.push_back(channels_.force);
   return names;
 }
 
 void EstimatorService::HandlePacket(std::string_view channel, const void* data, size_t size,
                                     int64_t receive_wall_utime) {
   InputChannel input;
-  if (InputChannelOf(channel, &input)) HandlePacket(input, data, size, receive_wall_utime);
+  if (InputChannelOf(channel, &input)) {
+    HandlePacket(input, data, size, receive_wall_utime);
+  } else if (channel == channels_.force) {
+    CheckOwnForceChannel(data, size);
+  }
+}
+
+void EstimatorService::CheckOwnForceChannel(const void* data, size_t size) {
+  const uint64_t hash = PayloadHash(data, size);
+  for (size_t i = 0; i < kPublishedHashCount; ++i) {
+    if (published_hashes_[i] != hash) continue;
+    if (!published_seen_[i]) {
+      published_seen_[i] = true;  // our own, looped back
+      return;
+    }
+    break;  // the same bytes a second time: another publisher
+  }
+  ++foreign_forces_;
+  const int64_t now_us = SteadyClockUs();
+  last_foreign_force_us_ = now_us;
+  if (foreign_warning_.ShouldLog(now_us)) {
+    spdlog::warn(
+        "a FORCE this estimator did not publish arrived on {} (a second estimator on the prefix?): "
+        "FORCE says INPUT_CONFLICT, not VALID; {} foreign FORCE so far",
+        channels_.force, foreign_forces_);
+  }
+}
+
+bool EstimatorService::ForeignForceActive() const {
+  return last_foreign_force_us_ >= 0 &&
+         static_cast<double>(SteadyClockUs() - last_foreign_force_us_) < options_.foreign_force_hold_s * 1e6;
 }
 
 bool EstimatorService::InputChannelOf(std::string_view channel, InputChannel* input) const {
@@ -133,8 +174,14 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
   ForceEstimate estimate;
   if (!pipeline_.OnStrain(FromMessage(strain_message_), &estimate)) return false;
   force_message_ = ToMessage(estimate);
+  if (foreign_forces_ > 0 && ForeignForceActive()) {
+    force_message_.status = (force_message_.status | kStatusInputConflict) & ~kStatusValid;
+  }
   EncodeMessage(force_message_, &buffer_);
   if (!buffer_.empty()) {
+    published_hashes_[published_hash_next_] = PayloadHash(buffer_.data(), buffer_.size());
+    published_seen_[published_hash_next_] = false;
+    published_hash_next_ = (published_hash_next_ + 1) % kPublishedHashCount;
     sink_->Publish(channels_.force, estimate.utime, buffer_.data(), buffer_.size());
     ++forces_published_;
   }
@@ -163,6 +210,10 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   if (last_strain_arrival_wall_us_ >= 0 &&
       static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6) {
     status_message_.status = (status_message_.status | kStatusInputStale) & ~kStatusValid;
+  }
+  status_message_.foreign_force = foreign_forces_;
+  if (foreign_forces_ > 0 && ForeignForceActive()) {
+    status_message_.status = (status_message_.status | kStatusInputConflict) & ~kStatusValid;
   }
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) {

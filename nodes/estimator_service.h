@@ -6,6 +6,7 @@
 // numbers.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -22,10 +23,10 @@
 #include "estimator/estimator_pipeline.h"
 #include "nodes/input_rejection_log.h"
 #include "nodes/status_message.h"
+#include "program/logging.h"
 #include "sinks/message_sink.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
-#include "transport/logging.h"
 #include "transport/udpm_receiver.h"
 
 namespace birotor {
@@ -47,6 +48,10 @@ struct EstimatorServiceOptions {
   // clock, ESTIMATOR_STATUS says INPUT_STALE (and not VALID). FORCE cannot
   // say it, since there is no strain sample to publish one for [s].
   double stale_input_wall_s = 0.1;
+  // After a FORCE this daemon did not publish arrived on its FORCE channel,
+  // its FORCE says STATUS_INPUT_CONFLICT (and not VALID) for this long on
+  // the host clock [s].
+  double foreign_force_hold_s = 1.0;
 };
 
 class EstimatorService : public PacketHandler {
@@ -63,10 +68,13 @@ class EstimatorService : public PacketHandler {
   // other sources) go into ESTIMATOR_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
 
-  // The full names of the four input channels, to subscribe a source to.
+  // The channels to subscribe a source to: the four inputs and the node's
+  // own FORCE (to see a second publisher on it).
   std::vector<std::string> InputChannels() const;
   // PacketHandler: a packet of an input channel goes to HandlePacket below;
-  // any other channel is ignored.
+  // a FORCE it did not publish itself (a second estimator on the prefix)
+  // flags every FORCE with STATUS_INPUT_CONFLICT, not VALID, for
+  // foreign_force_hold_s; any other channel is ignored.
   void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
 
   // One encoded packet of an input channel, from a source or a test. Decodes it
@@ -94,12 +102,17 @@ class EstimatorService : public PacketHandler {
   const ChannelNames& channels() const { return channels_; }
   int32_t status_published() const { return status_seq_; }
   int64_t forces_published() const { return forces_published_; }
+  // FORCE messages on the own FORCE channel that this node did not publish.
+  int64_t foreign_forces() const { return foreign_forces_; }
 
  private:
   bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
   // HandlePacket without the rejection log lines.
   bool DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime);
   void WarnDecodeError(InputChannel channel, const char* error);
+  // A FORCE on the own channel: ours looped back, or a foreign publisher's.
+  void CheckOwnForceChannel(const void* data, size_t size);
+  bool ForeignForceActive() const;
 
   EstimatorPipeline pipeline_;
   ChannelNames channels_;
@@ -122,6 +135,17 @@ class EstimatorService : public PacketHandler {
   int64_t next_status_utime_ = -1;            // vehicle-clock status schedule [us]
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   const UdpReceiveCounters* udp_counters_ = nullptr;
+  // Hashes of the last published FORCE payloads (FNV-1a), to tell our own
+  // looped-back FORCE from another publisher's: 1 s of FORCE at 1 kHz. Each
+  // comes back once; a second copy is a second publisher of the same bytes
+  // (two estimators on the same inputs).
+  static constexpr size_t kPublishedHashCount = 1024;
+  std::array<uint64_t, kPublishedHashCount> published_hashes_{};
+  std::array<bool, kPublishedHashCount> published_seen_{};
+  size_t published_hash_next_ = 0;
+  int64_t foreign_forces_ = 0;
+  int64_t last_foreign_force_us_ = -1;  // steady clock [us]
+  RateLimitedLog foreign_warning_;
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
   InputRejectionLog rejection_log_;

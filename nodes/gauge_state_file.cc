@@ -8,7 +8,7 @@
 
 #include "params/regular_file.h"
 #include "params/vehicle_params_yaml.h"
-#include "transport/logging.h"
+#include "program/logging.h"
 
 namespace birotor {
 namespace {

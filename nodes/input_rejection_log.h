@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "estimator/estimator_pipeline.h"
-#include "transport/logging.h"
+#include "program/logging.h"
 
 namespace birotor {
 

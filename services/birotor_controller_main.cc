@@ -10,16 +10,16 @@
 
 #include "nodes/controller_service.h"
 #include "params/controller_config_yaml.h"
+#include "program/config_files.h"
+#include "program/logging.h"
+#include "program/program_options.h"
+#include "program/shutdown.h"
 #include "sinks/message_sink.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/channels.h"
-#include "transport/config_files.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
-#include "transport/logging.h"
-#include "transport/program_options.h"
-#include "transport/shutdown.h"
 
 // systemd Type=notify and WatchdogSec (package engineer, issue 24).
 #include "deploy/systemd_notify.h"
@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   // which drops and counts fragments instead of reassembling them.
   std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
   if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
+  service.AttachUdpCounters(source->udp_counters());
   spdlog::info("birotor-controller {} mode {} params {} (checksum {})", BIROTOR_VERSION,
                config.model_predictive ? "mpc"
                : config.force_feedback ? "force_feedback"

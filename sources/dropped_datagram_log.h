@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "transport/logging.h"
+#include "program/logging.h"
 #include "transport/udpm_receiver.h"
 
 namespace birotor {

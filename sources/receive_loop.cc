@@ -1,10 +1,14 @@
 // The shared receive loop.
 #include "sources/receive_loop.h"
 
-#include <algorithm>
+#include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <string>
+
+#include "program/shutdown.h"
+#include "sources/dropped_datagram_log.h"
 #include "transport/host_clock.h"
-#include "transport/shutdown.h"
 
 namespace birotor {
 
@@ -21,6 +25,7 @@ int64_t ReceiveUntil(MessageSource* source, double wait_s, int64_t until_us) {
 }
 
 bool RunReceiveLoop(MessageSource* source, const PeriodicWork& work, const ReceiveLoopOptions& options) {
+  DroppedDatagramLog dropped;
   int64_t deadline_us = work(SteadyClockUs());
   while (!ShutdownRequested() && !source->finished()) {
     const double wait_s =
@@ -29,6 +34,9 @@ bool RunReceiveLoop(MessageSource* source, const PeriodicWork& work, const Recei
     // Also after packets: one may have moved the node's deadline (the first
     // POSE makes the controller's first period due at once).
     deadline_us = work(SteadyClockUs());
+    dropped.Check(source->udp_counters());
+    const std::string signals = TakeIgnoredSignalReport();
+    if (!signals.empty()) spdlog::info("{} (no meaning for this program)", signals);
   }
   return source->error().empty();
 }

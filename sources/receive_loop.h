@@ -3,7 +3,8 @@
 // ready packet without running past the deadline (a flood waits in the socket
 // and the periodic work, status messages and timer-driven commands, stays on
 // time), then call the node's periodic work, which does what is due and
-// returns its next deadline.
+// returns its next deadline. Dropped datagrams are said in the log
+// (DroppedDatagramLog, at most once a second).
 #pragma once
 
 #include <cstdint>

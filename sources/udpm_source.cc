@@ -13,16 +13,20 @@ bool UdpmSource::Subscribe(const std::vector<std::string>& channels, PacketHandl
   return true;
 }
 
+bool RouteDatagram(const ReceivedDatagram& datagram, const std::vector<std::string>& channels, PacketHandler* handler) {
+  const LcmPacket& packet = datagram.packet;
+  if (packet.kind != LcmPacketKind::kSmallMessage || handler == nullptr) return false;
+  if (std::find(channels.begin(), channels.end(), packet.channel) == channels.end()) return false;
+  handler->HandlePacket(packet.channel, packet.payload, packet.payload_size, datagram.receive_wall_utime);
+  return true;
+}
+
 bool UdpmSource::DeliverOne() {
   if (!receiver_.Receive(&datagram_)) return false;
-  const LcmPacket& packet = datagram_.packet;
-  if (packet.kind != LcmPacketKind::kSmallMessage) return true;  // counted by the reader
-  const bool subscribed = std::find(channels_.begin(), channels_.end(), packet.channel) != channels_.end();
-  if (!subscribed || handler_ == nullptr) {
+  // Fragments and malformed datagrams are counted by the reader.
+  if (!RouteDatagram(datagram_, channels_, handler_) && datagram_.packet.kind == LcmPacketKind::kSmallMessage) {
     ++other_channel_;
-    return true;
   }
-  handler_->HandlePacket(packet.channel, packet.payload, packet.payload_size, datagram_.receive_wall_utime);
   return true;
 }
 

@@ -13,6 +13,12 @@
 
 namespace birotor {
 
+// The routing step of UdpmSource on its own, for the fuzzers that feed the
+// nodes datagrams from memory: a small message of one of channels goes to
+// handler (true); a fragment, a malformed datagram or another channel does
+// not (false).
+bool RouteDatagram(const ReceivedDatagram& datagram, const std::vector<std::string>& channels, PacketHandler* handler);
+
 class UdpmSource : public MessageSource {
  public:
   UdpmSource() = default;

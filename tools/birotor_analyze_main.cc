@@ -13,8 +13,8 @@
 #include "model/linearization.h"
 #include "model/observability.h"
 #include "params/vehicle_params_yaml.h"
-#include "transport/config_files.h"
-#include "transport/program_options.h"
+#include "program/config_files.h"
+#include "program/program_options.h"
 
 namespace birotor {
 namespace {

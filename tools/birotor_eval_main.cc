@@ -21,11 +21,12 @@
 #include "params/scenario_yaml.h"
 #include "plot/control_plot.h"
 #include "plot/force_plot.h"
-#include "transport/config_files.h"
+#include "params/scenario_yaml.h"
+#include "program/config_files.h"
+#include "program/logging.h"
+#include "program/program_options.h"
 #include "transport/log_io.h"
-#include "transport/logging.h"
 #include "transport/output_file.h"
-#include "transport/program_options.h"
 
 namespace birotor {
 namespace {

@@ -20,13 +20,13 @@
 #include "params/vehicle_params_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
+#include "program/config_files.h"
+#include "program/logging.h"
+#include "program/program_options.h"
 #include "replay/identification_log_loader.h"
-#include "transport/config_files.h"
 #include "transport/host_clock.h"
 #include "transport/log_io.h"
-#include "transport/logging.h"
 #include "transport/output_file.h"
-#include "transport/program_options.h"
 
 namespace {
 

@@ -27,6 +27,9 @@
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "numerics/percentile.h"
+#include "program/logging.h"
+#include "program/program_options.h"
+#include "program/shutdown.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
@@ -34,9 +37,6 @@
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
-#include "transport/logging.h"
-#include "transport/program_options.h"
-#include "transport/shutdown.h"
 
 namespace {
 

@@ -21,14 +21,14 @@
 #include "params/scenario_yaml.h"
 #include "plot/force_plot.h"
 #include "params/scenario_yaml.h"
+#include "program/logging.h"
+#include "program/program_options.h"
+#include "program/shutdown.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
-#include "transport/logging.h"
-#include "transport/program_options.h"
-#include "transport/shutdown.h"
 
 namespace birotor {
 namespace {

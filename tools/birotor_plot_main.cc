@@ -11,10 +11,10 @@
 #include "evaluation/eval_runner.h"
 #include "params/estimator_config_yaml.h"
 #include "plot/force_plot.h"
+#include "program/logging.h"
+#include "program/program_options.h"
 #include "transport/log_io.h"
-#include "transport/logging.h"
 #include "transport/output_file.h"
-#include "transport/program_options.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;

@@ -8,13 +8,13 @@
 
 #include "params/estimator_config_yaml.h"
 #include "params/yaml_reader.h"
+#include "program/config_files.h"
+#include "program/logging.h"
+#include "program/program_options.h"
 #include "replay/replayer.h"
 #include "sinks/force_csv_sink.h"
-#include "transport/config_files.h"
 #include "transport/host_clock.h"
-#include "transport/logging.h"
 #include "transport/output_file.h"
-#include "transport/program_options.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;

@@ -12,9 +12,9 @@
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/log_io.h"
-#include "transport/logging.h"
+#include "program/logging.h"
 #include "transport/output_file.h"
-#include "transport/program_options.h"
+#include "program/program_options.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;

@@ -21,4 +21,16 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   return names;
 }
 
+std::string ChannelPrefixProblem(const std::string& prefix) {
+  if (prefix.size() > kMaxChannelPrefixBytes) {
+    return "channel prefix of " + std::to_string(prefix.size()) + " bytes is longer than " +
+           std::to_string(kMaxChannelPrefixBytes) + " (LCM channel names are at most 63 bytes, " +
+           kControllerStatusChannel + " takes " + std::to_string(sizeof(kControllerStatusChannel) - 1) + ")";
+  }
+  for (const char c : prefix) {
+    if (c <= ' ' || c > '~') return "channel prefix has a byte outside printable ASCII (or a space)";
+  }
+  return "";
+}
+
 }  // namespace birotor

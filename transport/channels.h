@@ -2,6 +2,7 @@
 // vehicles can share one LCM network (see shared/spec/interface.md).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace birotor {
@@ -40,5 +41,16 @@ struct ChannelNames {
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);
+
+// Longest prefix whose every channel fits LCM's channel-name limit
+// (LCM_MAX_CHANNEL_NAME_LENGTH, 63 bytes) with the longest base name,
+// CONTROLLER_STATUS: 63 - 17 = 46 bytes.
+inline constexpr size_t kMaxChannelPrefixBytes = 63 - (sizeof(kControllerStatusChannel) - 1);
+
+// "" when prefix is usable, else one line saying why: longer than
+// kMaxChannelPrefixBytes (LCM would refuse every publish on the longest
+// channels), or a byte outside printable ASCII without space (LC02 channel
+// names are read as printable ASCII; such a channel would be dropped).
+std::string ChannelPrefixProblem(const std::string& prefix);
 
 }  // namespace birotor

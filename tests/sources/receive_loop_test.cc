@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "program/shutdown.h"
 #include "tests/sources/packet_recorder.h"
-#include "transport/shutdown.h"
 
 namespace birotor {
 namespace {

@@ -1,5 +1,5 @@
 // Tests of transport/config_files.h: the search order of default files.
-#include "transport/config_files.h"
+#include "program/config_files.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -40,7 +40,7 @@ TEST_F(ConfigFilesTest, SearchOrderIsUserThenSiteThenShipped) {
   ASSERT_EQ(dirs.size(), 3u);
   EXPECT_EQ(dirs[0], xdg_ + "/birotor");
   EXPECT_EQ(dirs[1], "/etc/birotor");
-  // The test executable is build/tests/transport/transport_test: the shipped
+  // The test executable is build/tests/program/program_test: the shipped
   // folder is relative to it, never a compiled-in path.
   const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
   EXPECT_EQ(dirs[2], std::filesystem::path(exe).parent_path().parent_path().string() + "/share/birotor/config");

@@ -1,5 +1,5 @@
 // spdlog set-up, warning rate limiter and file checksum.
-#include "transport/logging.h"
+#include "program/logging.h"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -8,9 +8,14 @@
 #include <cstdio>
 #include <memory>
 
+#include "program/shutdown.h"
+
 namespace birotor {
 
 void SetupLogging(const std::string& program, const std::string& level) {
+  // Closed standard streams: /dev/null in their place, before any socket or
+  // pipe can take descriptor 2 and receive the log lines.
+  KeepStandardStreamsOpen();
   std::string escaped_program;  // '%' would start a pattern flag
   for (char c : program) {
     escaped_program += c;

@@ -8,7 +8,8 @@
 
 namespace birotor {
 
-// Makes the spdlog default logger write to stderr as
+// First keeps descriptors 0-2 open (KeepStandardStreamsOpen of
+// transport/shutdown.h), then makes the spdlog default logger write to stderr as
 // "[2024-01-01 12:00:00.000] [program] [info] message" at `level` (trace,
 // debug, info, warn, error, off; anything else means info, with a warning).
 void SetupLogging(const std::string& program, const std::string& level);

@@ -1,5 +1,5 @@
 // Tests of transport/logging.h.
-#include "transport/logging.h"
+#include "program/logging.h"
 
 #include <gtest/gtest.h>
 #include <spdlog/spdlog.h>

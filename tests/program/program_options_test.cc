@@ -1,5 +1,5 @@
 // Tests of transport/program_options.h.
-#include "transport/program_options.h"
+#include "program/program_options.h"
 
 #include <gtest/gtest.h>
 

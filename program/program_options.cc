@@ -1,5 +1,5 @@
 // Shared CLI11 options and parsing.
-#include "transport/program_options.h"
+#include "program/program_options.h"
 
 #include <errno.h>  // program_invocation_short_name (glibc)
 
@@ -20,7 +20,10 @@ std::string ProgramName(const CLI::App& app) {
 void AddCommonOptions(CLI::App& app, CommonOptions* options) {
   app.option_defaults()->always_capture_default();
   app.add_option("--lcm-url", options->lcm_url, "LCM URL (memq:// for tests, file:// for logs)");
-  app.add_option("--prefix", options->prefix, "Channel name prefix");
+  app.add_option("--prefix", options->prefix,
+                 "Channel name prefix (at most " + std::to_string(kMaxChannelPrefixBytes) +
+                     " printable ASCII bytes: LCM channel names are at most 63)")
+      ->check(CLI::Validator(ChannelPrefixProblem, "PREFIX", "ChannelPrefix"));
   app.add_option("--log-level", options->log_level, "Log level")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
   app.set_version_flag("--version", [&app] { return ProgramName(app) + " " + BIROTOR_VERSION; });

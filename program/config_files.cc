@@ -1,4 +1,4 @@
-#include "transport/config_files.h"
+#include "program/config_files.h"
 
 #include <unistd.h>
 
