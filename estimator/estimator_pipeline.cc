@@ -173,6 +173,7 @@ void EstimatorPipeline::TakePeriod() {
 }
 
 void EstimatorPipeline::OnFusion(const FusionReport& report) {
+  consistency_.Add(report);
   InputCounters& c = report.source == FusionSource::kAccelerometer ? health_.accelerometer
                                                                    : Counters(&health_, InputChannelOf(report.source));
   switch (report.outcome) {
@@ -299,6 +300,7 @@ void EstimatorPipeline::ResetMethod(ResetReason reason, int64_t utime) {
   ++health_.resets;
   health_.last_reset_reason = reason;
   reset_flag_pending_ = true;
+  consistency_.Restart();
   if (reason == ResetReason::kStart) return;  // the method is new: it keeps what it was given so far
   // What the method learned about the gauge offsets survives the reset.
   const GaugeCalibration learned = health_.gauge;
@@ -456,6 +458,8 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   // VALID means converged, fresh and from one publisher per input.
   if (stale) estimate->status = (estimate->status | kStatusInputStale) & ~kStatusValid;
   if (AnyConflictActive()) estimate->status = (estimate->status | kStatusInputConflict) & ~kStatusValid;
+  consistency_.ApplyStatus(estimate);  // MODEL_MISMATCH withdraws VALID (docs/mismatch.md)
+  health_.consistency = consistency_.state();
   if (reset_flag_pending_) {
     estimate->status |= kStatusFilterReset;
     reset_flag_pending_ = false;

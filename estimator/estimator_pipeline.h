@@ -17,6 +17,7 @@
 #include "estimator/gauge_calibration.h"
 #include "estimator/gauge_tare.h"
 #include "estimator/harmonic_notch.h"
+#include "estimator/model_consistency.h"
 #include "estimator/motor_speed_tracker.h"
 #include "samples/samples.h"
 
@@ -77,6 +78,8 @@ struct PipelineHealth {
   // the daemon persists these), and the tare's counters.
   GaugeCalibration gauge;
   TareCounters tare;
+  // Model consistency (issue 27): STATUS_MODEL_MISMATCH and its statistic.
+  ModelConsistencyState consistency;
 };
 
 class EstimatorPipeline : private FusionReportSink {
@@ -150,6 +153,7 @@ class EstimatorPipeline : private FusionReportSink {
   GaugeTare tare_;
   MotorSpeedTracker rotor_speed_;  // for the harmonic notches
   HarmonicNotch notch_;
+  ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
   ConflictDetector conflict_[kNumInputChannels];
   int64_t max_forward_jump_us_ = 0;
   int64_t jump_candidate_utime_ = -1;  // stamp of the newest time outlier [us]

@@ -135,6 +135,7 @@ class EstimatorService {
   const UdpReceiveCounters* udp_counters_ = nullptr;
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
+  RateLimitedLog mismatch_warning_;  // STATUS_MODEL_MISMATCH (issue 27)
   InputRejectionLog rejection_log_;
 };
 
