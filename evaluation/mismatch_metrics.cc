@@ -13,7 +13,7 @@ struct Scored {
   int64_t utime;
   int32_t status;
   double error_n[2];
-  bool inside;  // both rotors within 2 sigma
+  bool inside[2];  // rotor i within 2 sigma
 };
 
 }  // namespace
@@ -29,17 +29,17 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
   for (const ForceEstimate& e : forces) {
     const auto it = truth_index.find(e.utime);
     if (it == truth_index.end()) continue;
-    Scored s{e.utime, e.status, {0, 0}, true};
+    Scored s{e.utime, e.status, {0, 0}, {true, true}};
     for (int i = 0; i < 2; ++i) {
       s.error_n[i] = e.force_n[i] - truth[it->second].force_n[i];
-      s.inside = s.inside && std::fabs(s.error_n[i]) <= 2.0 * e.force_std_n[i];
+      s.inside[i] = std::fabs(s.error_n[i]) <= 2.0 * e.force_std_n[i];
     }
     scored.push_back(s);
   }
   if (scored.empty()) return r;
   const int64_t start = options.airborne_utime >= 0 ? options.airborne_utime : scored.front().utime;
   const int64_t settle = start + static_cast<int64_t>(options.settle_s * 1e6);
-  int64_t valid = 0, counted = 0, after = 0, inside_after = 0;
+  int64_t valid = 0, counted = 0, after = 0, inside_after[2] = {0, 0};
   double sum[2] = {0, 0};
   for (const Scored& s : scored) {
     if (s.utime < start) continue;
@@ -53,27 +53,30 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
     }
     if (s.utime >= settle) {
       ++after;
-      if (s.inside) ++inside_after;
-      for (int i = 0; i < 2; ++i) sum[i] += std::fabs(s.error_n[i]);
+      for (int i = 0; i < 2; ++i) {
+        sum[i] += std::fabs(s.error_n[i]);
+        if (s.inside[i]) ++inside_after[i];
+      }
     }
   }
   r.valid_share = counted > 0 ? static_cast<double>(valid) / counted : 0.0;
   for (int i = 0; i < 2; ++i) r.mae_after_settle_n[i] = after > 0 ? sum[i] / after : NAN;
-  r.share_after_settle = after > 0 ? static_cast<double>(inside_after) / after : NAN;
+  r.share_after_settle = after > 0 ? static_cast<double>(std::min(inside_after[0], inside_after[1])) / after : NAN;
   // Sliding windows over the VALID estimates (two pointers over time).
   const int64_t window_us = static_cast<int64_t>(options.window_s * 1e6);
   const int64_t step_us = static_cast<int64_t>(options.window_step_s * 1e6);
   for (int64_t w = start; w + window_us <= scored.back().utime; w += step_us) {
-    int64_t n = 0, inside = 0;
+    int64_t n = 0, inside[2] = {0, 0};
     for (auto it =
              std::lower_bound(scored.begin(), scored.end(), w, [](const Scored&s, int64_t t) { return s.utime < t; });
          it != scored.end() && it->utime < w + window_us; ++it) {
       if (!(it->status & kStatusValid)) continue;
       ++n;
-      if (it->inside) ++inside;
+      for (int i = 0; i < 2; ++i) inside[i] += it->inside[i] ? 1 : 0;
     }
     if (n >= options.min_window_valid)
-      r.worst_valid_window_share = std::min(r.worst_valid_window_share, static_cast<double>(inside) / n);
+      r.worst_valid_window_share =
+          std::min(r.worst_valid_window_share, static_cast<double>(std::min(inside[0], inside[1])) / n);
   }
   return r;
 }

@@ -174,9 +174,12 @@ ParameterObservability AnalyzeParameterObservability(const VehicleParams& params
     Eigen::Index best;
     if (rows.col(col).tail(rows.rows() - pivot_row).cwiseAbs().maxCoeff(&best) < 1e-6) continue;
     rows.row(pivot_row).swap(rows.row(pivot_row + best));
-    rows.row(pivot_row) /= rows(pivot_row, col);
-    for (int r = 0; r < rows.rows(); ++r)
-      if (r != pivot_row) rows.row(r) -= rows(r, col) * rows.row(pivot_row);
+    const double pivot = rows(pivot_row, col);  // copies: the rows change below
+    rows.row(pivot_row) /= pivot;
+    for (int r = 0; r < rows.rows(); ++r) {
+      const double factor = rows(r, col);
+      if (r != pivot_row) rows.row(r) -= factor * rows.row(pivot_row);
+    }
     ++pivot_row;
   }
   for (int r = 0; r < rows.rows(); ++r) {

@@ -57,7 +57,8 @@ void PrintParameterObservability(const VehicleParams& params) {
   std::printf(
       "\nSlow parameters as constant states (24 states: the 10 mechanical ones, omega_i, thrust scales mu_i,\n"
       "gauge offsets o_i, and relative deviations of k1, k2, m, m_p, c_T, tau_m, s1, s2; hover, held commands)\n\n");
-  std::printf("| measured | rank | single axes determined | determined combinations (of 12) | sigma min / max |\n");
+  std::printf(
+      "| measured | rank | single axes determined | determined combinations (of 12) | sigma_rank / sigma_max |\n");
   std::printf("|---|---|---|---|---|\n");
   for (const auto& set : sets) {
     const ParameterObservability r = AnalyzeParameterObservability(params, set.measured);
@@ -65,7 +66,7 @@ void PrintParameterObservability(const VehicleParams& params) {
     for (const std::string& c : r.determined_combinations) combinations += "[" + c + "] ";
     std::printf("| %s | %d / %d | %s | %s | %.3g |\n", set.name, r.report.rank, r.report.state_size,
                 Join(r.observable_parameters).c_str(), combinations.c_str(),
-                r.report.singular_values.minCoeff() / r.report.singular_values.maxCoeff());
+                r.report.singular_values(r.report.rank - 1) / r.report.singular_values(0));
   }
   std::printf(
       "At one hover point with held commands only steady effects count: tau_m (it scales omega - command = 0)\n"

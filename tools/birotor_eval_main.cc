@@ -82,7 +82,6 @@ int RunControlTable(const std::vector<std::string>& scenarios, const std::string
       return ReportError("plot " + png + ": " + error);
     }
   }
-  table += consistency_table;
   std::printf("%s", table.c_str());
   std::string error;
   if (!markdown_out.empty() && !WriteFileAtomically(markdown_out, table, &error)) return ReportError(error);
@@ -253,6 +252,7 @@ int main(int argc, char** argv) {
       }
     }
   }
+  table += consistency_table;
   std::printf("%s", table.c_str());
   if (std::fflush(stdout) != 0) return ReportError("writing the table to standard output failed");
   if (markdown.is_open()) {

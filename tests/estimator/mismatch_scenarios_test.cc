@@ -48,21 +48,34 @@ TEST(MismatchScenarios, MatchingFileNeverRaises) {
 }
 
 TEST(MismatchScenarios, PayloadIsMass) {
-  const MismatchFigures f = Fly("mismatch_payload_plus15");
-  EXPECT_GE(f.raised_s, 0.0);
-  EXPECT_LE(f.raised_s, 0.75);  // measured 0.50 s (two 0.25 s windows)
-  EXPECT_EQ(f.parameter, "mass");
-  EXPECT_EQ(f.deficit, 0);
+  for (const char* name : {"mismatch_payload_plus15", "mismatch_payload_minus15"}) {
+    const MismatchFigures f = Fly(name);
+    EXPECT_GE(f.raised_s, 0.0) << name;
+    EXPECT_LE(f.raised_s, 0.75) << name;  // measured 0.50 s (two 0.25 s windows)
+    EXPECT_EQ(f.parameter, "mass") << name;
+    EXPECT_EQ(f.valid, 0) << name;  // never confirmed: VALID withdrawn throughout
+    EXPECT_EQ(f.deficit, 0) << name;
+  }
 }
 
 TEST(MismatchScenarios, StiffArmAndGaugeScaleAreStiffnessOrGaugeScale) {
-  for (const char* name : {"mismatch_stiffness_plus20", "mismatch_gauge_scale_1p3"}) {
+  for (const char* name : {"mismatch_stiffness_plus20", "mismatch_stiffness_minus20", "mismatch_gauge_scale_0p7",
+                           "mismatch_gauge_scale_1p3"}) {
     const MismatchFigures f = Fly(name);
     EXPECT_GE(f.raised_s, 0.0) << name;
     EXPECT_LE(f.raised_s, 0.75) << name;  // measured 0.50 s
     EXPECT_EQ(f.parameter, "stiffness_or_gauge_scale") << name;
     EXPECT_EQ(f.deficit, 0) << name;
   }
+}
+
+TEST(MismatchScenarios, AllAtOnceWithinOneSecond) {
+  const MismatchFigures f = Fly("mismatch_all");
+  EXPECT_GE(f.raised_s, 0.0);
+  EXPECT_LE(f.raised_s, 1.0);  // measured 0.75 s; the bound (1 s)
+  EXPECT_EQ(f.parameter, "stiffness_or_gauge_scale");
+  EXPECT_EQ(f.valid, 0);
+  EXPECT_EQ(f.deficit, 0);
 }
 
 TEST(MismatchScenarios, MotorLagAndThrustMapAreLearnedNotRaised) {
