@@ -40,22 +40,30 @@ TEST(ParameterObservability, ColumnsAreThePhysics) {
   EXPECT_NEAR(a.col(Index("tau_m")).norm(), 0.0, 1e-6);
 }
 
-TEST(ParameterObservability, WithoutTheAccelerometer) {
+// Measured on the reference vehicle (exact ranks of the staircase test; the
+// combinations are the reduced row echelon form, docs/mismatch.md).
+TEST(ParameterObservability, WithoutTheAccelerometerThreeCombinations) {
   const ParameterObservability r =
       AnalyzeParameterObservability(VehicleParams(), {M::kStrain, M::kTelemetry, M::kGyro});
-  for (const auto& h : r.determined_combinations) std::printf("determined: %s\n", h.c_str());
-  std::printf("rank %d observable:", r.report.rank);
-  for (const auto& s : r.observable_parameters) std::printf(" %s", s.c_str());
-  std::printf("\n");
+  EXPECT_EQ(r.report.rank, 10);
+  EXPECT_EQ(r.determined, 3);
+  EXPECT_TRUE(r.observable_parameters.empty());  // no parameter on its own
+  ASSERT_EQ(r.determined_combinations.size(), 3u);
+  // mu_i against the strain's force: c_T, the other arm's k, s and o (never tau_m).
+  EXPECT_EQ(r.determined_combinations[0], "1.00 mu1 + 1.00 o2 + -1.00 k2 + 0.13 m + -0.13 m_p + 1.00 c_T + 1.00 s2");
+  for (const std::string& c : r.determined_combinations) EXPECT_EQ(c.find("tau_m"), std::string::npos) << c;
 }
 
-TEST(ParameterObservability, WithTheAccelerometer) {
+TEST(ParameterObservability, TheAccelerometerAddsTheTotalForceOverTheMass) {
   const ParameterObservability r =
       AnalyzeParameterObservability(VehicleParams(), {M::kStrain, M::kTelemetry, M::kGyro, M::kAccelerometer});
-  for (const auto& h : r.determined_combinations) std::printf("determined: %s\n", h.c_str());
-  std::printf("rank %d observable:", r.report.rank);
-  for (const auto& s : r.observable_parameters) std::printf(" %s", s.c_str());
-  std::printf("\n");
+  EXPECT_EQ(r.report.rank, 11);
+  EXPECT_EQ(r.determined, 4);
+  ASSERT_EQ(r.determined_combinations.size(), 4u);
+  // Thrust over weight, per rotor: mu_i c_T against m (0.87) and m_p (0.13),
+  // the body's and the tips' shares of the total mass 4.576 kg.
+  EXPECT_EQ(r.determined_combinations[0], "1.00 mu1 + -0.87 m + -0.13 m_p + 1.00 c_T");
+  EXPECT_EQ(r.determined_combinations[2], "1.00 o1 + 1.00 k1 + -1.00 m + -1.00 s1");
 }
 
 }  // namespace
