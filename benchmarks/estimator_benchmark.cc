@@ -98,11 +98,20 @@ void BM_StrainSample(benchmark::State& state, const char* method, bool accelerom
   int64_t offset_us = 0;
   ForceEstimate estimate;
   StrainStepInfo info;
+  FusionReports reports;  // as the pipeline keeps them: one buffer, cleared per call
   for (auto _ : state) {
     const StrainSample s = NextStrain(
-        events, &index, &offset_us, [&](const MotorSample& m) { estimator->AddMotor(m); },
-        [&](const ImuSample& i) { estimator->AddImu(i); });
-    estimator->AddStrain(s, &estimate, &info);
+        events, &index, &offset_us,
+        [&](const MotorSample& m) {
+          reports.clear();
+          estimator->AddMotor(m, &reports);
+        },
+        [&](const ImuSample& i) {
+          reports.clear();
+          estimator->AddImu(i, &reports);
+        });
+    reports.clear();
+    estimator->AddStrain(s, &estimate, &info, &reports);
     benchmark::DoNotOptimize(estimate);
   }
   state.SetItemsProcessed(state.iterations());

@@ -37,18 +37,18 @@ InversionEstimator::InversionEstimator(const VehicleParams& params, const Invers
   f0_n_ = 0.5 * (eq.force_n[0] + eq.force_n[1]);
 }
 
-void InversionEstimator::Reset() {
+void InversionEstimator::DoReset() {
   motor_.Reset();
   head_ = 0;
   count_ = 0;
 }
 
-void InversionEstimator::AddMotor(const MotorSample& sample) {
+void InversionEstimator::DoAddMotor(const MotorSample& sample) {
   motor_.AddMotor(sample);
   if (HasTelemetry(sample)) Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
 }
 
-void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+void InversionEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
   *info = StrainStepInfo();
   Report(MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused));
   utime_[head_] = sample.utime;
@@ -60,7 +60,8 @@ void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* es
 
   estimate->utime = sample.utime;
   estimate->seq = sample.seq;
-  int32_t status = motor_.has_motor() ? 0 : kStatusNoMotorInput;
+  // Without motor input (the pipeline flags it) the thrust scale is 1.
+  const int32_t status = 0;
   const int n = options_.window_samples;
   if (count_ < n) {
     for (int i = 0; i < 2; ++i) {
@@ -105,12 +106,12 @@ void InversionEstimator::AddStrain(const StrainSample& sample, ForceEstimate* es
 MotorMapEstimator::MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options)
     : params_(params), options_(options), motor_(params) {}
 
-void MotorMapEstimator::AddMotor(const MotorSample& sample) {
+void MotorMapEstimator::DoAddMotor(const MotorSample& sample) {
   motor_.AddMotor(sample);
   if (HasTelemetry(sample)) Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
 }
 
-void MotorMapEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+void MotorMapEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
   *info = StrainStepInfo();
   Report(MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kNotFused));
   motor_.Advance(sample.utime);
@@ -126,7 +127,8 @@ void MotorMapEstimator::AddStrain(const StrainSample& sample, ForceEstimate* est
     estimate->force_std_n[i] = 2.0 * c_t * std::abs(omega) * speed_std;
     estimate->thrust_scale[i] = 1.0;
   }
-  estimate->status = motor_.has_motor() ? kStatusValid : (kStatusNoMotorInput | kStatusConverging);
+  // Converging until the first command: the forces are the assumed hover.
+  estimate->status = motor_.has_motor() ? kStatusValid : kStatusConverging;
 }
 
 }  // namespace birotor

@@ -25,12 +25,13 @@ class InversionEstimator : public ForceEstimator {
 
   InversionEstimator(const VehicleParams& params, const InversionOptions& options);
   const char* Name() const override { return "inversion"; }
-  void Reset() override;
-  // Telemetry is used as the rotor speed of thrust_scale: reported fused.
-  void AddMotor(const MotorSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
  private:
+  void DoReset() override;
+  // Telemetry is used as the rotor speed of thrust_scale: reported fused.
+  void DoAddMotor(const MotorSample& sample) override;
+  void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
+
   VehicleParams params_;
   InversionOptions options_;
   MotorSpeedTracker motor_;
@@ -52,13 +53,14 @@ class MotorMapEstimator : public ForceEstimator {
  public:
   MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options);
   const char* Name() const override { return "motor_map"; }
-  void Reset() override { motor_.Reset(); }
-  // Telemetry is the rotor speed of the map: reported fused. The strain
-  // gauges are not used: each strain sample is reported not fused.
-  void AddMotor(const MotorSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
  private:
+  void DoReset() override { motor_.Reset(); }
+  // Telemetry is the rotor speed of the map: reported fused. The strain
+  // gauges are not used: each strain sample is reported not fused.
+  void DoAddMotor(const MotorSample& sample) override;
+  void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
+
   VehicleParams params_;
   MotorMapOptions options_;
   MotorSpeedTracker motor_;

@@ -39,7 +39,9 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
       motor_model_(options.motor_speed_noise_rad_s),
       gyro_model_(options.gyro_noise_rad_s),
       accel_model_(options.accel_noise_m_s2),
-      contact_(params, options) {
+      contact_(params, options),
+      strain_gate_(options.gate_consecutive_limit),
+      faults_(options) {
   process_noise_psd_.setZero();
   process_noise_psd_(kPitchRate) = options.pitch_rate_psd_rad2_s3;
   for (int i = 0; i < 2; ++i) {
@@ -59,19 +61,14 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
   covariance_.setIdentity();
 }
 
-void EkfForceEstimator::Reset() {
+void EkfForceEstimator::DoReset() {
   DiscardQueued();
   initialized_ = false;
   converged_ = false;
-  consecutive_gated_ = 0;
+  strain_gate_.Reset();
   has_motor_ = false;
   command_ = hover_input_;
-  for (int i = 0; i < 2; ++i) {
-    fault_[i] = false;
-    fault_since_utime_[i] = -1;
-  }
-  deficit_ = false;
-  deficit_since_utime_ = -1;
+  faults_.Reset();
 }
 
 bool EkfForceEstimator::TelemetryUsable(const MotorSample& sample) const {
@@ -83,7 +80,7 @@ void EkfForceEstimator::ReportNotFused(FusionSource source, int64_t utime) const
   Report(MakeFusionReport(source, utime, FusionOutcome::kNotFused));
 }
 
-void EkfForceEstimator::AddMotor(const MotorSample& sample) {
+void EkfForceEstimator::DoAddMotor(const MotorSample& sample) {
   // Telemetry switched off is a measurement the filter does not use: said at once.
   const bool has_telemetry = std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1]);
   if (has_telemetry && !options_.use_motor_telemetry) ReportNotFused(FusionSource::kTelemetry, sample.utime);
@@ -104,7 +101,7 @@ void EkfForceEstimator::ReportImuNotFused(const ImuSample& sample) const {
   }
 }
 
-void EkfForceEstimator::AddImu(const ImuSample& sample) {
+void EkfForceEstimator::DoAddImu(const ImuSample& sample) {
   // Ground contact on arrival, with the thrust of the current estimate
   // (hover before the first strain sample); it selects the model of the
   // next predictions.
@@ -181,14 +178,9 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     // The state was set from it: fused, without an innovation.
     Report(MakeFusionReport(FusionSource::kTelemetry, telemetry.utime, FusionOutcome::kFused));
   }
-  consecutive_gated_ = 0;
+  strain_gate_.Reset();
   converged_ = false;
-  for (int i = 0; i < 2; ++i) {
-    fault_[i] = false;
-    fault_since_utime_[i] = -1;
-  }
-  deficit_ = false;
-  deficit_since_utime_ = -1;
+  faults_.Reset();
   accel_linearization_.valid = false;  // from before the re-initialisation
   last_utime_ = sample.utime;
   initialized_ = true;
@@ -250,8 +242,9 @@ void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
     } else {
       PredictTo(sample.utime);
       const MotorSpeedMeasurementModel::Vector z(sample.omega_meas_rad_s[0], sample.omega_meas_rad_s[1]);
-      Report(Fuse(motor_model_, z, MotorSpeedMeasurementModel::Predict(state_), options_.telemetry_gate_nis,
-                  FusionSource::kTelemetry, sample.utime));
+      Report(FuseMeasurement(motor_model_.Linearize(state_), motor_model_.noise, z,
+                             {FusionSource::kTelemetry, sample.utime, options_.telemetry_gate_nis}, &state_,
+                             &covariance_));
     }
   } else if (!late) {
     PredictTo(sample.utime);  // the previous command holds up to this stamp
@@ -267,8 +260,9 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   }
   PredictTo(sample.utime);
   if (options_.use_gyro) {
-    Report(Fuse(gyro_model_, GyroMeasurementModel::Vector(sample.gyro_y_rad_s), GyroMeasurementModel::Predict(state_),
-                options_.gyro_gate_nis, FusionSource::kGyro, sample.utime));
+    Report(FuseMeasurement(gyro_model_.Linearize(state_), gyro_model_.noise,
+                           GyroMeasurementModel::Vector(sample.gyro_y_rad_s),
+                           {FusionSource::kGyro, sample.utime, options_.gyro_gate_nis}, &state_, &covariance_));
   }
   if (!options_.use_accelerometer || !AccelerometerUsable(sample)) return;
   if (options_.body_held || contact_.supported()) {
@@ -276,54 +270,26 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
     ReportNotFused(FusionSource::kAccelerometer, sample.utime);
     return;
   }
-  const AccelerometerMeasurementModel::Vector predicted = accel_linearization_.valid
-                                                              ? accel_model_.Linearize(accel_linearization_, state_)
-                                                              : accel_model_.Linearize(process_, state_);
-  Report(Fuse(accel_model_, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2), predicted,
-              options_.accel_gate_nis, FusionSource::kAccelerometer, sample.utime));
-}
-
-template <typename Model>
-FusionReport EkfForceEstimator::Fuse(const Model& model, const typename Model::Vector& z,
-                                     const typename Model::Vector& z_predicted, double gate, FusionSource source,
-                                     int64_t utime) {
-  const Innovation<Model::kSize> innovation = ComputeInnovation(model, covariance_, z, z_predicted);
-  FusionReport report;
-  report.source = source;
-  report.utime = utime;
-  report.size = Model::kSize;
-  report.innovation.template head<Model::kSize>() = innovation.residual;
-  report.innovation_covariance.template topLeftCorner<Model::kSize, Model::kSize>() = innovation.covariance;
-  report.nis = innovation.nis;
-  report.gate = gate;
-  if (!(innovation.nis <= gate)) {  // a NaN NIS is rejected too
-    report.outcome = FusionOutcome::kRejectedGate;
-    return report;
-  }
-  KalmanUpdate(model, innovation, &state_, &covariance_);
-  report.outcome = FusionOutcome::kFused;
-  return report;
+  const AccelerometerMeasurementModel::Linearization at =
+      accel_linearization_.valid ? AccelerometerMeasurementModel::Linearize(accel_linearization_, state_)
+                                 : AccelerometerMeasurementModel::Linearize(process_, state_);
+  Report(FuseMeasurement(at, accel_model_.noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
+                         {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis}, &state_, &covariance_));
 }
 
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
-  FusionReport report = Fuse(strain_model_, z, StrainMeasurementModel::Predict(state_), options_.strain_gate_nis,
-                             FusionSource::kStrain, sample.utime);
-  if (report.outcome == FusionOutcome::kFused) {
-    consecutive_gated_ = 0;
-    return report;
-  }
-  if (++consecutive_gated_ < options_.gate_consecutive_limit) return report;
-  // A persistent change is real (e.g. a lost propeller blade): open up the
-  // thrust scales (var(mu_i) += inflation^2), then fuse without the gate.
+  // After gate_consecutive_limit rejections in a row the change is taken as
+  // real (e.g. a lost propeller blade): the thrust scales open up
+  // (var(mu_i) += inflation^2) and the sample is fused without the gate.
   const double extra = options_.gate_inflation_thrust_scale_std;
-  for (int i = 0; i < 2; ++i) covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
-  report = Fuse(strain_model_, z, StrainMeasurementModel::Predict(state_), std::numeric_limits<double>::infinity(),
-                FusionSource::kStrain, sample.utime);
-  report.gate = options_.strain_gate_nis;
-  report.fused_after_inflation = report.outcome == FusionOutcome::kFused;
-  if (report.fused_after_inflation) consecutive_gated_ = 0;
-  return report;
+  return strain_gate_.Fuse(strain_model_.Linearize(state_), strain_model_.noise, z,
+                           {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, &state_, &covariance_,
+                           [extra](EkfMatrix* cov) {
+                             for (int i = 0; i < 2; ++i) {
+                               (*cov)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
+                             }
+                           });
 }
 
 bool EkfForceEstimator::ConditionCovariance() {
@@ -348,49 +314,6 @@ bool EkfForceEstimator::ConditionCovariance() {
   return true;
 }
 
-namespace {
-
-// Persistence and hysteresis of one flag: raised after `raise` held for
-// persistence_us, lowered as soon as `lower` holds.
-void UpdateFlag(bool raise, bool lower, int64_t utime, int64_t persistence_us, bool* flag, int64_t* since_utime) {
-  if (!*flag) {
-    if (!raise) {
-      *since_utime = -1;
-      return;
-    }
-    if (*since_utime < 0) *since_utime = utime;
-    if (utime - *since_utime >= persistence_us) *flag = true;
-  } else if (lower) {
-    *flag = false;
-    *since_utime = -1;
-  }
-}
-
-}  // namespace
-
-void EkfForceEstimator::UpdateFaults(int64_t utime) {
-  const int64_t persistence_us = static_cast<int64_t>(options_.fault_persistence_s * 1e6);
-  const double n = options_.fault_n_sigma;
-  const EkfIndex m1 = kThrustScale1, m2 = kThrustScale2;
-  // Rotor i weaker than rotor j: d = mu_j - mu_i, var d = P_jj + P_ii - 2 P_ij.
-  const double std_d = std::sqrt(std::max(covariance_(m1, m1) + covariance_(m2, m2) - 2.0 * covariance_(m1, m2), 0.0));
-  for (int i = 0; i < 2; ++i) {
-    const double d = state_(kThrustScaleIndex[1 - i]) - state_(kThrustScaleIndex[i]);
-    UpdateFlag(d - n * std_d > options_.rotor_fault_asymmetry, d + n * std_d < options_.rotor_fault_clear_asymmetry,
-               utime, persistence_us, &fault_[i], &fault_since_utime_[i]);
-  }
-  // Shared deficit: even the stronger rotor is below the threshold.
-  double upper = -1e9, lower = -1e9;  // max over rotors of mu + n std, mu - n std
-  for (int i = 0; i < 2; ++i) {
-    const double mu = state_(kThrustScaleIndex[i]);
-    const double std_mu = std::sqrt(covariance_(kThrustScaleIndex[i], kThrustScaleIndex[i]));
-    upper = std::max(upper, mu + n * std_mu);
-    lower = std::max(lower, mu - n * std_mu);
-  }
-  UpdateFlag(upper<options_.thrust_deficit_scale, lower> options_.thrust_deficit_clear_scale, utime, persistence_us,
-             &deficit_, &deficit_since_utime_);
-}
-
 void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
   for (int i = 0; i < 2; ++i) {
     // var f_i = g^T P_(omega_i, mu_i) g with g = (df/domega, df/dmu).
@@ -402,10 +325,8 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     estimate->force_std_n[i] = std::sqrt(std::max(variance, 0.0));
     estimate->thrust_scale[i] = state_(m);
   }
-  SetFilterStatus(sample, options_.converged_force_std_n, gated, has_motor_, &converged_, estimate);
-  if (fault_[0]) estimate->status |= kStatusRotor1Fault;
-  if (fault_[1]) estimate->status |= kStatusRotor2Fault;
-  if (deficit_) estimate->status |= kStatusThrustDeficit;
+  SetFilterStatus(sample, options_.converged_force_std_n, gated, &converged_, estimate);
+  estimate->status |= faults_.StatusBits();
 }
 
 void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
@@ -422,17 +343,31 @@ void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
   }
 }
 
-bool EkfForceEstimator::LearnedGaugeOffset(double offset_rad[2], double offset_std_rad[2]) const {
-  if (!initialized_ || !options_.estimate_gauge_offsets) return false;
-  for (int i = 0; i < 2; ++i) {
-    const int e = kGaugeOffsetIndex[i];
-    offset_rad[i] = state_(e);
-    offset_std_rad[i] = std::sqrt(std::max(covariance_(e, e), 0.0));
+double EkfForceEstimator::Gate(FusionSource source) const {
+  switch (source) {
+    case FusionSource::kStrain:
+      return options_.strain_gate_nis;
+    case FusionSource::kTelemetry:
+      return options_.telemetry_gate_nis;
+    case FusionSource::kGyro:
+      return options_.gyro_gate_nis;
+    case FusionSource::kAccelerometer:
+      return options_.accel_gate_nis;
   }
-  return true;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
-void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+void EkfForceEstimator::FillLearnedOffsets(StrainStepInfo* info) const {
+  info->has_learned_gauge_offset = options_.estimate_gauge_offsets;
+  if (!info->has_learned_gauge_offset) return;
+  for (int i = 0; i < 2; ++i) {
+    const int e = kGaugeOffsetIndex[i];
+    info->learned_gauge_offset_rad[i] = state_(e);
+    info->learned_gauge_offset_std_rad[i] = std::sqrt(std::max(covariance_(e, e), 0.0));
+  }
+}
+
+void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
   *info = StrainStepInfo();
   // At (re-)initialisation the state is set from the sample: fused, without an innovation.
   FusionReport strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
@@ -448,10 +383,12 @@ void EkfForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* est
       info->reset = ResetReason::kNumerical;
       strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
     }
-    UpdateFaults(sample.utime);
+    faults_.Update(sample.utime, Eigen::Vector2d(state_(kThrustScale1), state_(kThrustScale2)),
+                   covariance_.block<2, 2>(kThrustScale1, kThrustScale1));
   }
   Report(strain);
   FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
+  FillLearnedOffsets(info);
 }
 
 }  // namespace birotor

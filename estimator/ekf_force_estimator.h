@@ -10,6 +10,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/ground_contact.h"
+#include "estimator/rotor_fault_monitor.h"
 #include "estimator/sample_queue.h"
 
 namespace birotor {
@@ -30,12 +31,8 @@ class EkfForceEstimator : public ForceEstimator {
   EkfForceEstimator(const VehicleParams& params, const EkfOptions& options);
 
   const char* Name() const override { return "ekf"; }
-  void Reset() override;
-  void AddMotor(const MotorSample& sample) override;
-  void AddImu(const ImuSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
   void SetGaugeOffsetPrior(const double offset_std_rad[2]) override;
-  bool LearnedGaugeOffset(double offset_rad[2], double offset_std_rad[2]) const override;
+  double Gate(FusionSource source) const override;
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
@@ -45,6 +42,10 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t utime() const { return last_utime_; }  // time of the state [us]
 
  private:
+  void DoReset() override;
+  void DoAddMotor(const MotorSample& sample) override;
+  void DoAddImu(const ImuSample& sample) override;
+  void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
   bool TelemetryUsable(const MotorSample& sample) const;
   void Initialize(const StrainSample& sample);
   // Predicts from the state's time to utime in equal RK4 sub-steps of at
@@ -57,11 +58,6 @@ class EkfForceEstimator : public ForceEstimator {
   void ApplyMotor(const MotorSample& sample);
   void ApplyImu(const ImuSample& sample);
   bool AccelerometerUsable(const ImuSample& sample) const;
-  // Computes the innovation of z, gates it and, when it passes, updates the
-  // state and covariance (Joseph form). Returns what happened.
-  template <typename Model>
-  FusionReport Fuse(const Model& model, const typename Model::Vector& z, const typename Model::Vector& z_predicted,
-                    double gate, FusionSource source, int64_t utime);
   // Strain update with its gate and the inflation after persistent rejection.
   FusionReport FuseStrain(const StrainSample& sample);
   void ReportNotFused(FusionSource source, int64_t utime) const;
@@ -72,8 +68,9 @@ class EkfForceEstimator : public ForceEstimator {
   // Symmetrises P and applies the variance floors and ceilings; false if the
   // state or covariance is not finite (or a variance is negative).
   bool ConditionCovariance();
-  void UpdateFaults(int64_t utime);
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
+  // e_i and its sigma into the step result (the pipeline reports them).
+  void FillLearnedOffsets(StrainStepInfo* info) const;
 
   VehicleParams params_;
   EkfOptions options_;
@@ -93,18 +90,14 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t last_utime_ = 0;  // time of state_ [us]
   EkfState state_;
   EkfMatrix covariance_;
-  int consecutive_gated_ = 0;
+  GateWithInflation strain_gate_;  // strain gate and its inflation policy
 
   bool has_motor_ = false;
   EkfInput command_;  // held from the newest applied MOTOR sample's stamp
   SampleQueue<MotorSample, kQueueCapacity> motor_queue_;
   SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
 
-  // Rotor faults and the shared thrust deficit, with persistence and hysteresis.
-  bool fault_[2] = {false, false};
-  int64_t fault_since_utime_[2] = {-1, -1};
-  bool deficit_ = false;
-  int64_t deficit_since_utime_ = -1;
+  RotorFaultMonitor faults_;  // rotor faults and the shared thrust deficit, from mu and P
 };
 
 }  // namespace birotor

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "estimator/kalman_fusion.h"
 #include "model/arm_dynamics.h"
 #include "model/birotor_dynamics.h"
 #include "model/plant.h"
@@ -114,55 +115,68 @@ class EkfProcessModel {
 };
 
 // One measurement model per sensor: z = h(x) + noise, noise ~ N(0, R).
-// H is constant for strain, telemetry and gyro (they read states directly);
-// the accelerometer's is evaluated at the state.
+// Each returns h(x) and H at the prior (Linearize, const: a model never
+// changes itself); estimator/kalman_fusion.h fuses them. H is constant for
+// strain, telemetry and gyro (they read states directly); the
+// accelerometer's is evaluated at the state.
 
-// What every model has: its size M, H (set by the model) and R = sigma^2 I
-// (independent readings of one noise sigma, in the measurement's unit).
+// What every model has: its size M and R = sigma^2 I (independent readings
+// of one noise sigma, in the measurement's unit).
 template <int M>
 struct MeasurementModel {
   static constexpr int kSize = M;
   using Vector = Eigen::Matrix<double, M, 1>;
   using Jacobian = Eigen::Matrix<double, M, kEkfStateSize>;
   using Covariance = Eigen::Matrix<double, M, M>;
-  explicit MeasurementModel(double noise_std)
-      : h_jacobian(Jacobian::Zero()), noise(Covariance::Identity() * (noise_std * noise_std)) {}
-  Jacobian h_jacobian;  // H [unit of z per unit of each state]
-  Covariance noise;     // R [unit of z squared]
+  using Linearization = MeasurementLinearization<M, kEkfStateSize>;
+  explicit MeasurementModel(double noise_std) : noise(Covariance::Identity() * (noise_std * noise_std)) {}
+  const Covariance noise;  // R [unit of z squared]
 };
 
-// A pair of states read directly: z = (x[first], x[second]).
-template <int kFirst, int kSecond>
-struct DirectPairMeasurementModel : MeasurementModel<2> {
-  explicit DirectPairMeasurementModel(double noise_std) : MeasurementModel<2>(noise_std) {
-    h_jacobian(0, kFirst) = 1.0;
-    h_jacobian(1, kSecond) = 1.0;
+// A model that reads states directly: H constant, set once by the model.
+template <int M>
+struct LinearMeasurementModel : MeasurementModel<M> {
+  using typename MeasurementModel<M>::Jacobian;
+  using typename MeasurementModel<M>::Linearization;
+  LinearMeasurementModel(double noise_std, const Jacobian& h) : MeasurementModel<M>(noise_std), h_jacobian(h) {}
+  // h(x) = H x.
+  Linearization Linearize(const EkfState& x) const {
+    Linearization at;
+    at.predicted.noalias() = h_jacobian.lazyProduct(x);
+    at.jacobian = h_jacobian;
+    return at;
   }
-  static Vector Predict(const EkfState& x) { return Vector(x(kFirst), x(kSecond)); }
+  const Jacobian h_jacobian;  // H [unit of z per unit of each state]
 };
+
+// H of a model reading the sum of the listed states, one row per reading.
+template <int M>
+Eigen::Matrix<double, M, kEkfStateSize> SelectionJacobian(const EkfIndex (&first)[M],
+                                                          const EkfIndex (*second)[M] = nullptr) {
+  Eigen::Matrix<double, M, kEkfStateSize> h = Eigen::Matrix<double, M, kEkfStateSize>::Zero();
+  for (int i = 0; i < M; ++i) {
+    h(i, first[i]) = 1.0;
+    if (second != nullptr) h(i, (*second)[i]) = 1.0;
+  }
+  return h;
+}
 
 // Strain gauges after calibration: z_i = b_i + e_i [rad], noise_std in rad.
-struct StrainMeasurementModel : MeasurementModel<2> {
-  explicit StrainMeasurementModel(double noise_std) : MeasurementModel<2>(noise_std) {
-    for (int i = 0; i < 2; ++i) {
-      h_jacobian(i, kDeflectionIndex[i]) = 1.0;
-      h_jacobian(i, kGaugeOffsetIndex[i]) = 1.0;
-    }
-  }
-  static Vector Predict(const EkfState& x) {
-    return Vector(x(kDeflection1) + x(kGaugeOffset1), x(kDeflection2) + x(kGaugeOffset2));
-  }
+struct StrainMeasurementModel : LinearMeasurementModel<2> {
+  explicit StrainMeasurementModel(double noise_std)
+      : LinearMeasurementModel<2>(noise_std, SelectionJacobian<2>(kDeflectionIndex, &kGaugeOffsetIndex)) {}
 };
 // Motor telemetry: z = (omega1, omega2) [rad/s], noise_std in rad/s.
-using MotorSpeedMeasurementModel = DirectPairMeasurementModel<kOmega1, kOmega2>;
+struct MotorSpeedMeasurementModel : LinearMeasurementModel<2> {
+  explicit MotorSpeedMeasurementModel(double noise_std)
+      : LinearMeasurementModel<2>(noise_std, SelectionJacobian<2>(kOmegaIndex)) {}
+};
 
 // Gyro: z = phi_dot (body pitch rate; the body rate of a rigid body is the
 // same in every frame of the plane).
-struct GyroMeasurementModel : MeasurementModel<1> {
-  explicit GyroMeasurementModel(double noise_rad_s) : MeasurementModel<1>(noise_rad_s) {
-    h_jacobian(0, kPitchRate) = 1.0;
-  }
-  static Vector Predict(const EkfState& x) { return Vector(x(kPitchRate)); }
+struct GyroMeasurementModel : LinearMeasurementModel<1> {
+  explicit GyroMeasurementModel(double noise_rad_s)
+      : LinearMeasurementModel<1>(noise_rad_s, SelectionJacobian<1>({kPitchRate})) {}
 };
 
 // Accelerometer: z = a_z, the specific force along the body z axis at the
@@ -174,87 +188,19 @@ struct GyroMeasurementModel : MeasurementModel<1> {
 // not used while the ground holds the body (then a_z is the support).
 struct AccelerometerMeasurementModel : MeasurementModel<1> {
   explicit AccelerometerMeasurementModel(double noise_m_s2) : MeasurementModel<1>(noise_m_s2) {}
-  // Sets h_jacobian at x and returns h(x) (Jets over b1, b2, phi_dot, b1_dot,
-  // b2_dot, f1, f2; chain rule to omega_i, mu_i as in the process Jacobian).
-  Vector Linearize(const EkfProcessModel& process, const EkfState& x);
-  // The same from the process Jacobian's by-product at x0 (valid): sets
-  // h_jacobian and returns a_z0 + H (x - x0), first order in the <= 1 ms
+  // h(x) and H at x (Jets over b1, b2, phi_dot, b1_dot, b2_dot, f1, f2; chain
+  // rule to omega_i, mu_i as in the process Jacobian).
+  static Linearization Linearize(const EkfProcessModel& process, const EkfState& x);
+  // The same from the process Jacobian's by-product at x0 (valid): H = the
+  // gradient there and h(x) = a_z0 + H (x - x0), first order in the <= 1 ms
   // the state moved since (the filter's usual linearisation at the prior).
-  Vector Linearize(const AccelerometerLinearization& at, const EkfState& x) {
-    h_jacobian = at.h;
-    return Vector(at.a_z0_m_s2 + at.h.dot(x - at.x0));
+  static Linearization Linearize(const AccelerometerLinearization& at, const EkfState& x) {
+    Linearization out;
+    out.jacobian = at.h;
+    out.predicted(0) = at.a_z0_m_s2 + at.h.dot(x - at.x0);
+    return out;
   }
 };
-
-// Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
-template <int M>
-struct Innovation {
-  Eigen::Matrix<double, M, kEkfStateSize> h_p;  // H P, shared by S, the gain and the Joseph update
-  Eigen::Matrix<double, M, 1> residual;
-  Eigen::Matrix<double, M, M> covariance;
-  Eigen::Matrix<double, M, M> covariance_inverse;
-  double nis = 0;
-};
-
-// z_predicted = h(x) at the prior.
-template <typename Model>
-Innovation<Model::kSize> ComputeInnovation(const Model& model, const EkfMatrix& cov, const typename Model::Vector& z,
-                                           const typename Model::Vector& z_predicted) {
-  Innovation<Model::kSize> out;
-  out.residual = z - z_predicted;
-  // lazyProduct: coefficient-based; at 11 states Eigen's default would take
-  // its blocked GEMM path (packing dominates at this size).
-  out.h_p.noalias() = model.h_jacobian.lazyProduct(cov);
-  out.covariance.noalias() = out.h_p.lazyProduct(model.h_jacobian.transpose());
-  out.covariance += model.noise;
-  out.covariance_inverse = out.covariance.inverse();
-  out.nis = out.residual.dot(out.covariance_inverse * out.residual);
-  return out;
-}
-
-// Covariance update in Joseph form, for any gain K (optimal or not):
-//   P+ = (I - K H) P (I - K H)^T + K R K^T.
-// The factor (I - K H) is applied as two rank-m corrections, A = P - K (H P)
-// and A (I - K H)^T = A - (A H^T) K^T, so the product costs O(n^2 m) instead
-// of O(n^3); it is the same product as the dense form, not the expanded
-// P - K S K^T (which only equals it at the optimal gain and loses the
-// positive semi-definite structure to round-off). Not symmetrised here.
-// h_p = H P, as the innovation computed it.
-template <int M>
-EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEkfStateSize, M>& gain,
-                           const Eigen::Matrix<double, M, kEkfStateSize>& h_p,
-                           const Eigen::Matrix<double, M, kEkfStateSize>& h_jacobian,
-                           const Eigen::Matrix<double, M, M>& noise) {
-  EkfMatrix a = cov;
-  a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
-  Eigen::Matrix<double, kEkfStateSize, M> a_ht;
-  a_ht.noalias() = a.lazyProduct(h_jacobian.transpose());
-  EkfMatrix out = a;
-  out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T
-  Eigen::Matrix<double, kEkfStateSize, M> k_r;
-  k_r.noalias() = gain.lazyProduct(noise);
-  out.noalias() += k_r.lazyProduct(gain.transpose());  // + K R K^T
-  return out;
-}
-
-template <int M>
-EkfMatrix JosephCovariance(const EkfMatrix& cov, const Eigen::Matrix<double, kEkfStateSize, M>& gain,
-                           const Eigen::Matrix<double, M, kEkfStateSize>& h_jacobian,
-                           const Eigen::Matrix<double, M, M>& noise) {
-  Eigen::Matrix<double, M, kEkfStateSize> h_p;
-  h_p.noalias() = h_jacobian.lazyProduct(cov);
-  return JosephCovariance<M>(cov, gain, h_p, h_jacobian, noise);
-}
-
-// Kalman update with the optimal gain K = P H^T S^-1 = (H P)^T S^-1 (P is
-// symmetric): x += K y, and P by JosephCovariance, all from the innovation's H P.
-template <typename Model>
-void KalmanUpdate(const Model& model, const Innovation<Model::kSize>& innovation, EkfState* x, EkfMatrix* cov) {
-  Eigen::Matrix<double, kEkfStateSize, Model::kSize> gain;
-  gain.noalias() = innovation.h_p.transpose().lazyProduct(innovation.covariance_inverse);
-  x->noalias() += gain.lazyProduct(innovation.residual);
-  *cov = JosephCovariance<Model::kSize>(*cov, gain, innovation.h_p, model.h_jacobian, model.noise);
-}
 
 // ---- inline implementation of EkfProcessModel ----
 
@@ -397,8 +343,8 @@ inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double 
   return DynamicMatrix::Identity() + temp;
 }
 
-inline AccelerometerMeasurementModel::Vector AccelerometerMeasurementModel::Linearize(const EkfProcessModel& process,
-                                                                                      const EkfState& x) {
+inline AccelerometerMeasurementModel::Linearization AccelerometerMeasurementModel::Linearize(
+    const EkfProcessModel& process, const EkfState& x) {
   constexpr int kJetSize = 8;  // 7 variables and one of padding (vectorises)
   using Jet = ceres::Jet<double, kJetSize>;
   const VehicleParams& params = process.params();
@@ -412,17 +358,20 @@ inline AccelerometerMeasurementModel::Vector AccelerometerMeasurementModel::Line
   FreeArmDerivative<Jet>(params, Jet(params.arm_stiffness_n_m_rad), Jet(params.arm_damping_n_m_s_rad), arm,
                          Jet(process.Force(x, 0), 5), Jet(process.Force(x, 1), 6), &specific_force);
   const Jet& a_z = specific_force(1);
-  h_jacobian(0, kDeflection1) = a_z.v(0);
-  h_jacobian(0, kDeflection2) = a_z.v(1);
-  h_jacobian(0, kPitchRate) = a_z.v(2);
-  h_jacobian(0, kDeflectionRate1) = a_z.v(3);
-  h_jacobian(0, kDeflectionRate2) = a_z.v(4);
+  Linearization out;
+  out.jacobian.setZero();
+  out.jacobian(0, kDeflection1) = a_z.v(0);
+  out.jacobian(0, kDeflection2) = a_z.v(1);
+  out.jacobian(0, kPitchRate) = a_z.v(2);
+  out.jacobian(0, kDeflectionRate1) = a_z.v(3);
+  out.jacobian(0, kDeflectionRate2) = a_z.v(4);
   for (int i = 0; i < 2; ++i) {
     const Eigen::Vector2d grad = process.ForceGradient(x, i);  // (df/domega, df/dmu)
-    h_jacobian(0, kOmegaIndex[i]) = a_z.v(5 + i) * grad(0);
-    h_jacobian(0, kThrustScaleIndex[i]) = a_z.v(5 + i) * grad(1);
+    out.jacobian(0, kOmegaIndex[i]) = a_z.v(5 + i) * grad(0);
+    out.jacobian(0, kThrustScaleIndex[i]) = a_z.v(5 + i) * grad(1);
   }
-  return Vector(a_z.a);
+  out.predicted(0) = a_z.a;
+  return out;
 }
 
 }  // namespace birotor

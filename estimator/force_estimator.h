@@ -3,6 +3,8 @@
 // the evaluation run any of them through the same code path.
 #pragma once
 
+#include <limits>
+
 #include "estimator/fusion_report.h"
 #include "samples/samples.h"
 
@@ -19,51 +21,81 @@ enum class ResetReason : int {
 // "", "start", "gap", "time_backwards", "numerical" (string literals).
 const char* ResetReasonName(ResetReason reason);
 
-// What a strain step did besides its fusion reports.
+// What a strain step did besides its fusion reports and the estimate.
 struct StrainStepInfo {
   // kNumerical when the method re-initialised itself on this sample (the
   // pipeline owns every other reason); kNone otherwise.
   ResetReason reset = ResetReason::kNone;
+  // The offset e_i the method has learned on top of the calibration it was
+  // given, and its one sigma [rad, in deflection]; valid only when
+  // has_learned_gauge_offset (methods with offset states, once initialised).
+  bool has_learned_gauge_offset = false;
+  double learned_gauge_offset_rad[2] = {0, 0};
+  double learned_gauge_offset_std_rad[2] = {0, 0};
 };
 
 // One estimation method. Samples arrive already validated and in time order
 // per channel (EstimatorPipeline does that). No method allocates, throws or
-// logs in these calls.
+// logs in these calls. Every measurement given to a method ends in exactly
+// one FusionReport (fused, rejected by its gate, or not fused), appended to
+// the `reports` of the call in which it happened (possibly a later call than
+// the one that delivered it: the EKF fuses a MOTOR sample at the next strain
+// sample). reports may be nullptr: none kept.
 class ForceEstimator {
  public:
   virtual ~ForceEstimator() = default;
-  // Short name: one of EstimationMethodNames() (estimator_config.h).
+  // Short name: one of EstimationMethodNames() (estimation_method.h).
   virtual const char* Name() const = 0;
-  // Forget everything (start, long gap, time jump backwards).
-  virtual void Reset() = 0;
-  virtual void AddMotor(const MotorSample& sample) = 0;
-  virtual void AddImu(const ImuSample& /*sample*/) {}
-  // Processes one strain sample and writes the estimate for its utime.
-  // status bits kStatusValid / kStatusConverging / kStatusMeasurementRejected /
-  // rotor faults / thrust deficit are set by the method; the pipeline adds
-  // the stale, conflict and reset bits (and withholds VALID with them).
-  virtual void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) = 0;
 
+  // Forget everything (start, long gap, time jump backwards).
+  void Reset(FusionReports* reports) {
+    Call(reports, [&] { DoReset(); });
+  }
+  void AddMotor(const MotorSample& sample, FusionReports* reports) {
+    Call(reports, [&] { DoAddMotor(sample); });
+  }
+  void AddImu(const ImuSample& sample, FusionReports* reports) {
+    Call(reports, [&] { DoAddImu(sample); });
+  }
+  // Processes one strain sample and writes the estimate for its utime and
+  // what else the step did (*info).
+  // One owner per status bit: the method sets the filter's bits
+  // (kStatusValid, kStatusConverging, kStatusMeasurementRejected, the rotor
+  // faults, kStatusThrustDeficit) and nothing else; the pipeline adds the
+  // input bits (stale, no motor input, conflict) and the reset bit, and
+  // withholds VALID with them.
+  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info, FusionReports* reports) {
+    Call(reports, [&] { DoAddStrain(sample, estimate, info); });
+  }
+
+  // The NIS gate the method applies to a measurement source; NaN where it
+  // has none (it does not use the source, or uses it without a gate).
+  virtual double Gate(FusionSource /*source*/) const { return std::numeric_limits<double>::quiet_NaN(); }
   // The gauges' calibration changed (a tare, the persisted state): the
   // deflections given from now on have a zero offset known to one sigma of
-  // offset_std_rad [rad, in deflection]. Methods without offset states ignore it.
+  // offset_std_rad [rad, in deflection]. Methods without offset states ignore
+  // it; the others say what they learn on top of it in StrainStepInfo.
   virtual void SetGaugeOffsetPrior(const double /*offset_std_rad*/[2]) {}
-  // The offset e_i the method has learned on top of the calibration and its
-  // one sigma [rad, in deflection]; false when it has no offset states or
-  // no estimate yet.
-  virtual bool LearnedGaugeOffset(double /*offset_rad*/[2], double /*offset_std_rad*/[2]) const { return false; }
-  // Every measurement given to the method ends in exactly one FusionReport
-  // (fused, rejected by its gate, or not fused), sent here as it happens
-  // (possibly later than the Add call that delivered it). nullptr: none sent.
-  void set_fusion_sink(FusionReportSink* sink) { fusion_sink_ = sink; }
 
  protected:
+  // A report of the call in progress.
   void Report(const FusionReport& report) const {
-    if (fusion_sink_ != nullptr) fusion_sink_->OnFusion(report);
+    if (reports_ != nullptr) reports_->Add(report);
   }
 
  private:
-  FusionReportSink* fusion_sink_ = nullptr;
+  virtual void DoReset() = 0;
+  virtual void DoAddMotor(const MotorSample& sample) = 0;
+  virtual void DoAddImu(const ImuSample& /*sample*/) {}
+  virtual void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) = 0;
+  template <typename F>
+  void Call(FusionReports* reports, F&& body) {
+    reports_ = reports;
+    body();
+    reports_ = nullptr;
+  }
+
+  FusionReports* reports_ = nullptr;  // of the call in progress only
 };
 
 }  // namespace birotor

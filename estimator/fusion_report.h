@@ -1,8 +1,8 @@
 // What one measurement fusion did: the innovation, its covariance, the
 // normalised innovation squared (NIS) against that measurement's chi-square
 // gate, and the outcome. Every method reports one per measurement it is given
-// (as PX4 EKF2 keeps a status per aiding source), so the health message counts
-// what was really fused, per input.
+// (as PX4 EKF2 keeps a status per aiding source), returned with the call that
+// fused it, so the health message counts what was really fused, per input.
 #pragma once
 
 #include <Eigen/Core>
@@ -61,12 +61,33 @@ inline FusionReport MakeFusionReport(FusionSource source, int64_t utime, FusionO
   return report;
 }
 
-// Receives every report; the pipeline implements it to keep the counters.
-// OnFusion must not allocate, throw or log (it runs per sample).
-class FusionReportSink {
+// The reports one call of a method produced, in the order they happened: the
+// call's output (the method never calls back into its caller). Fixed
+// capacity, no allocation: one strain step of the EKF reports at most its
+// queued MOTOR and IMU samples (2 x 128, the IMU with two readings each) and
+// the strain sample, 385 in all.
+class FusionReports {
  public:
-  virtual ~FusionReportSink() = default;
-  virtual void OnFusion(const FusionReport& report) = 0;
+  static constexpr int kCapacity = 512;
+  void clear() { size_ = 0; }
+  int size() const { return size_; }
+  const FusionReport& operator[](int i) const { return reports_[i]; }
+  const FusionReport* begin() const { return reports_; }
+  const FusionReport* end() const { return reports_ + size_; }
+  // Appends; beyond the capacity the report is counted in overflowed() only.
+  void Add(const FusionReport& report) {
+    if (size_ < kCapacity) {
+      reports_[size_++] = report;
+    } else {
+      ++overflowed_;
+    }
+  }
+  int64_t overflowed() const { return overflowed_; }
+
+ private:
+  FusionReport reports_[kCapacity];
+  int size_ = 0;
+  int64_t overflowed_ = 0;
 };
 
 }  // namespace birotor

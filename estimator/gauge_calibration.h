@@ -4,9 +4,9 @@
 // file; the offset from the file, a tare on the ground or the persisted state.
 #pragma once
 
-#include "samples/samples.h"
 #include "model/birotor_dynamics.h"
 #include "model/vehicle_params.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

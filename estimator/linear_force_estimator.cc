@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "estimator/filter_status.h"
 #include "estimator/luenberger_gain.h"
@@ -11,21 +12,25 @@ namespace birotor {
 namespace {
 
 constexpr double kMicrosecond = 1e-6;
-using OutputMatrix = Eigen::Matrix2d;
 
 }  // namespace
 
 LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise,
                                            const LinearModelOptions& options)
-    : kalman_(true), noise_(noise), model_(BuildLinearForceModel(params, noise, options)), motor_(params) {
+    : kalman_(true),
+      noise_(noise),
+      model_(BuildLinearForceModel(params, noise, options)),
+      motor_(params),
+      strain_gate_(noise.gate_consecutive_limit) {
   scale_ = model_.scale;
   const LinearMatrix s_inv = scale_.cwiseInverse().asDiagonal();
   a_ = s_inv * model_.a_discrete * scale_.asDiagonal();
   q_ = s_inv * model_.noise_discrete * s_inv;
   const double deflection_scale = scale_(kLinDeflection1);
-  measurement_variance_ = (noise.strain_noise_rad / deflection_scale) * (noise.strain_noise_rad / deflection_scale);
+  const double strain_std = noise.strain_noise_rad / deflection_scale;
+  strain_noise_ = Eigen::Matrix2d::Identity() * (strain_std * strain_std);
   const double gyro_std = noise.gyro_noise_rad_s / scale_(kLinPitchRate);
-  gyro_variance_ = gyro_std * gyro_std;
+  gyro_noise_(0, 0) = gyro_std * gyro_std;
   fixed_gains_.strain.setZero();
   fixed_gains_.gyro.setZero();
   fixed_gain_s_.setZero();
@@ -44,14 +49,14 @@ LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const Ek
   fixed_gyro_gain_s_ = scale_.cwiseInverse().asDiagonal() * fixed_gains_.gyro * scale_(kLinPitchRate);
 }
 
-void LinearForceEstimator::AddMotor(const MotorSample& sample) {
+void LinearForceEstimator::DoAddMotor(const MotorSample& sample) {
   motor_.AddMotor(sample);
   if (std::isfinite(sample.omega_meas_rad_s[0]) && std::isfinite(sample.omega_meas_rad_s[1])) {
     Report(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
   }
 }
 
-void LinearForceEstimator::AddImu(const ImuSample& sample) {
+void LinearForceEstimator::DoAddImu(const ImuSample& sample) {
   if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) {
     Report(MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused));
     return;
@@ -61,13 +66,19 @@ void LinearForceEstimator::AddImu(const ImuSample& sample) {
   gyro_pending_ = true;
 }
 
-void LinearForceEstimator::Reset() {
+double LinearForceEstimator::Gate(FusionSource source) const {
+  if (source == FusionSource::kStrain) return noise_.strain_gate_nis;
+  if (source == FusionSource::kGyro) return noise_.gyro_gate_nis;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void LinearForceEstimator::DoReset() {
   motor_.Reset();
   if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
   initialized_ = false;
   converged_ = false;
-  consecutive_gated_ = 0;
+  strain_gate_.Reset();
 }
 
 void LinearForceEstimator::Initialize(const StrainSample& sample) {
@@ -78,7 +89,7 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
   for (int i = 0; i < 2; ++i) {
     state_(kLinDeflectionIndex[i]) =
         (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / scale_(kLinDeflection1);
-    covariance_(kLinDeflectionIndex[i], kLinDeflectionIndex[i]) = measurement_variance_;
+    covariance_(kLinDeflectionIndex[i], kLinDeflectionIndex[i]) = strain_noise_(i, i);
     const double rate_std = noise_.initial_deflection_rate_std_rad_s / scale_(kLinDeflectionRate1);
     covariance_(kLinDeflectionRate1 + i, kLinDeflectionRate1 + i) = rate_std * rate_std;
     const double force_std = noise_.initial_thrust_scale_std * model_.force_hover_n[i] / scale_(kLinForceIndex[i]);
@@ -88,7 +99,7 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
   covariance_(kLinPitchRate, kLinPitchRate) = pitch_rate_std * pitch_rate_std;
   if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
-  consecutive_gated_ = 0;
+  strain_gate_.Reset();
   converged_ = false;
   last_utime_ = sample.utime;
   initialized_ = true;
@@ -105,89 +116,51 @@ void LinearForceEstimator::Predict(int periods) {
   }
 }
 
+// The report in physical units: y and S scaled back from the scaled
+// coordinates (the NIS is the same in both).
+FusionReport LinearForceEstimator::PhysicalReport(FusionReport report, double scale) {
+  report.innovation *= scale;
+  report.innovation_covariance *= scale * scale;
+  return report;
+}
+
 void LinearForceEstimator::UpdateGyro() {
   if (!gyro_pending_) return;
   gyro_pending_ = false;
-  // y = phi_dot_meas - phi_dot, s = P_ww + R; gain K = P c^T / s (Kalman) or L_g.
-  const double residual = gyro_.gyro_y_rad_s / scale_(kLinPitchRate) - state_(kLinPitchRate);
-  const LinearGyroGain p_ct = covariance_.col(kLinPitchRate);
-  const double innovation_variance = p_ct(kLinPitchRate) + gyro_variance_;
-  FusionReport report;
-  report.source = FusionSource::kGyro;
-  report.utime = gyro_.utime;
-  report.size = 1;
-  report.innovation(0) = residual * scale_(kLinPitchRate);
-  report.innovation_covariance(0, 0) = innovation_variance * scale_(kLinPitchRate) * scale_(kLinPitchRate);
-  report.nis = residual * residual / innovation_variance;
-  report.gate = noise_.gyro_gate_nis;
-  if (!(report.nis <= report.gate)) {  // a NaN NIS is rejected too
-    report.outcome = FusionOutcome::kRejectedGate;
-    Report(report);
-    return;
-  }
-  const LinearGyroGain gain = kalman_ ? LinearGyroGain(p_ct / innovation_variance) : fixed_gyro_gain_s_;
-  state_.noalias() += gain * residual;
-  // Joseph form for any gain (see UpdateStrain).
-  const LinearGyroGain half = 0.5 * innovation_variance * gain - p_ct;
-  LinearMatrix delta;
-  delta.noalias() = half.lazyProduct(gain.transpose());
-  covariance_ += delta + delta.transpose();
-  report.outcome = FusionOutcome::kFused;
-  Report(report);
+  // y = phi_dot_meas - phi_dot; the Kalman gain, or the observer's L_g.
+  const double pitch_rate_scale = scale_(kLinPitchRate);
+  MeasurementLinearization<1, kLinearStateSize> at;
+  at.jacobian = model_.c_gyro;
+  at.predicted(0) = state_(kLinPitchRate);
+  const Eigen::Matrix<double, 1, 1> z(gyro_.gyro_y_rad_s / pitch_rate_scale);
+  const FusionReport report =
+      FuseMeasurement(at, gyro_noise_, z, {FusionSource::kGyro, gyro_.utime, noise_.gyro_gate_nis}, &state_,
+                      &covariance_, kalman_ ? nullptr : &fixed_gyro_gain_s_);
+  Report(PhysicalReport(report, pitch_rate_scale));
 }
 
 FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
-  // Innovation y = z - C x, S = C P C^T + R (C selects the deflections).
-  Eigen::Vector2d residual;
-  for (int i = 0; i < 2; ++i) {
-    residual(i) = (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / scale_(kLinDeflection1) -
-                  state_(kLinDeflectionIndex[i]);
-  }
-  const LinearGain p_ct = covariance_.leftCols<kLinearOutputSize>();
-  OutputMatrix innovation_covariance = p_ct.topRows<kLinearOutputSize>();
-  innovation_covariance.diagonal().array() += measurement_variance_;
-  const OutputMatrix innovation_inverse = innovation_covariance.inverse();
+  // y = z - C x (C selects the deflections); the Kalman gain, or the observer's L.
   const double deflection_scale = scale_(kLinDeflection1);
-  FusionReport report;
-  report.source = FusionSource::kStrain;
-  report.utime = sample.utime;
-  report.size = kLinearOutputSize;
-  report.innovation = residual * deflection_scale;
-  report.innovation_covariance = innovation_covariance * (deflection_scale * deflection_scale);
-  report.nis = residual.dot(innovation_inverse * residual);
-  report.gate = noise_.strain_gate_nis;
-  if (!(report.nis <= report.gate)) {  // a NaN NIS is rejected too
-    ++consecutive_gated_;
-    if (consecutive_gated_ < noise_.gate_consecutive_limit) {
-      report.outcome = FusionOutcome::kRejectedGate;
-      return report;
-    }
-    // A persistent change is real: open up the forces (the EKF's inflation of
-    // var(mu_i), at the hover force), then fuse.
+  MeasurementLinearization<kLinearOutputSize, kLinearStateSize> at;
+  at.jacobian = model_.c;
+  Eigen::Vector2d z;
+  for (int i = 0; i < 2; ++i) {
+    at.predicted(i) = state_(kLinDeflectionIndex[i]);
+    z(i) = (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / deflection_scale;
+  }
+  // After gate_consecutive_limit rejections in a row: open up the forces
+  // (the EKF's inflation of var(mu_i), at the hover force), then fuse.
+  const auto inflate = [this](LinearMatrix* cov) {
     for (int i = 0; i < 2; ++i) {
       const double extra = noise_.gate_inflation_thrust_scale_std * model_.force_hover_n[i] / scale_(kLinForceIndex[i]);
-      covariance_(kLinForceIndex[i], kLinForceIndex[i]) += extra * extra;
+      (*cov)(kLinForceIndex[i], kLinForceIndex[i]) += extra * extra;
     }
-    report.fused_after_inflation = true;
-  }
-  consecutive_gated_ = 0;
-  LinearGain gain;
-  if (kalman_) {
-    gain.noalias() = p_ct * innovation_inverse;  // K = P C^T S^-1
-  } else {
-    gain = fixed_gain_s_;  // L by pole placement
-  }
-  state_.noalias() += gain * residual;
-  // Joseph form for any gain: (I - K C) P (I - K C)^T + K R K^T
-  //   = P - K (P C^T)^T - (P C^T) K^T + K S K^T (the inflation changes only
-  // the force variances, not P C^T or S).
-  const LinearGain k_s = gain * innovation_covariance;
-  const LinearGain half = 0.5 * k_s - p_ct;
-  LinearMatrix delta;
-  delta.noalias() = half.lazyProduct(gain.transpose());
-  covariance_ += delta + delta.transpose();
-  report.outcome = FusionOutcome::kFused;
-  return report;
+  };
+  const FusionReport report =
+      strain_gate_.Fuse(at, strain_noise_, z, {FusionSource::kStrain, sample.utime, noise_.strain_gate_nis}, &state_,
+                        &covariance_, inflate, kalman_ ? nullptr : &fixed_gain_s_);
+  return PhysicalReport(report, deflection_scale);
 }
 
 void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
@@ -198,10 +171,10 @@ void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, 
     estimate->force_std_n[i] = scale_(f) * std::sqrt(std::max(covariance_(f, f), 0.0));
     estimate->thrust_scale[i] = motor_.ThrustScale(i, force);
   }
-  SetFilterStatus(sample, noise_.converged_force_std_n, gated, motor_.has_motor(), &converged_, estimate);
+  SetFilterStatus(sample, noise_.converged_force_std_n, gated, &converged_, estimate);
 }
 
-void LinearForceEstimator::AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
+void LinearForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
   *info = StrainStepInfo();
   motor_.Advance(sample.utime);
   // At (re-)initialisation the state is set from the sample: fused, without an innovation.

@@ -19,6 +19,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
+#include "estimator/kalman_fusion.h"
 #include "estimator/linear_force_model.h"
 #include "estimator/luenberger_gain.h"
 #include "estimator/motor_speed_tracker.h"
@@ -34,10 +35,8 @@ class LinearForceEstimator : public ForceEstimator {
                        const LuenbergerOptions& observer);
 
   const char* Name() const override { return kalman_ ? "linear_kf" : "luenberger"; }
-  void Reset() override;
-  void AddMotor(const MotorSample& sample) override;
-  void AddImu(const ImuSample& sample) override;
-  void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
+  // Strain and gyro with the EKF's gates; telemetry is used without an update.
+  double Gate(FusionSource source) const override;
 
   const LinearForceModel& model() const { return model_; }
   // The observer's fixed gains (physical units); unused by the Kalman filter.
@@ -47,10 +46,15 @@ class LinearForceEstimator : public ForceEstimator {
   LinearMatrix covariance() const { return scale_.asDiagonal() * covariance_ * scale_.asDiagonal(); }
 
  private:
+  void DoReset() override;
+  void DoAddMotor(const MotorSample& sample) override;
+  void DoAddImu(const ImuSample& sample) override;
+  void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
   void Initialize(const StrainSample& sample);
   void Predict(int periods);
   // The pending gyro sample's update, gated; reported.
   void UpdateGyro();
+  static FusionReport PhysicalReport(FusionReport report, double scale);
   // The strain update with its gate and the inflation after persistent
   // rejection; returns what happened.
   FusionReport UpdateStrain(const StrainSample& sample);
@@ -63,20 +67,20 @@ class LinearForceEstimator : public ForceEstimator {
   // Everything below runs in scaled coordinates x = diag(scale_) x_s, y = scale_(b) y_s,
   // so that every matrix is O(1) (the physical one spans 1e-10 to 1e2).
   LinearState scale_;
-  LinearMatrix a_;                    // A_d
-  LinearMatrix q_;                    // Q_d
-  ObserverGains fixed_gains_;         // physical units
-  LinearGain fixed_gain_s_;           // strain, scaled
-  LinearGyroGain fixed_gyro_gain_s_;  // gyro, scaled
-  double measurement_variance_ = 1;   // R / scale_b^2, both gauges [1]
-  double gyro_variance_ = 1;          // R_gyro / scale_phi_dot^2 [1]
+  LinearMatrix a_;                          // A_d
+  LinearMatrix q_;                          // Q_d
+  ObserverGains fixed_gains_;               // physical units
+  LinearGain fixed_gain_s_;                 // strain, scaled
+  LinearGyroGain fixed_gyro_gain_s_;        // gyro, scaled
+  Eigen::Matrix2d strain_noise_;            // R / scale_b^2, both gauges [1]
+  Eigen::Matrix<double, 1, 1> gyro_noise_;  // R_gyro / scale_phi_dot^2 [1]
+  GateWithInflation strain_gate_;           // strain gate and its inflation policy
   bool gyro_pending_ = false;
   ImuSample gyro_;  // the pending gyro sample
 
   bool initialized_ = false;
   bool converged_ = false;
   int64_t last_utime_ = 0;
-  int consecutive_gated_ = 0;
   LinearState state_;
   LinearMatrix covariance_;
 };

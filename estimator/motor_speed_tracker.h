@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "samples/samples.h"
 #include "model/vehicle_params.h"
+#include "samples/samples.h"
 
 namespace birotor {
 

@@ -132,8 +132,15 @@ namespace {
 
 using testing_support::InputEvent;
 
-struct ReportLog : FusionReportSink {
-  void OnFusion(const FusionReport& report) override { reports.push_back(report); }
+// Every report of the calls made through it, in order.
+struct ReportLog {
+  template <typename Call>
+  void operator()(Call&& call) {
+    scratch.clear();
+    call(&scratch);
+    EXPECT_EQ(scratch.overflowed(), 0);
+    reports.insert(reports.end(), scratch.begin(), scratch.end());
+  }
   int64_t Count(FusionSource source, FusionOutcome outcome) const {
     int64_t n = 0;
     for (const FusionReport& r : reports) n += (r.source == source && r.outcome == outcome) ? 1 : 0;
@@ -151,6 +158,7 @@ struct ReportLog : FusionReportSink {
     return sum / static_cast<double>(n);
   }
   std::vector<FusionReport> reports;
+  FusionReports scratch;
 };
 
 const std::vector<InputEvent>& HoverEvents() {
@@ -163,16 +171,14 @@ const std::vector<InputEvent>& HoverEvents() {
 // (return false) a strain sample. Accumulates the force MAE after 0.5 s.
 struct DirectRun {
   explicit DirectRun(const EkfOptions& options = ReferenceConfig("ekf").ekf)
-      : ekf(ReferenceConfig("ekf").vehicle, options) {
-    ekf.set_fusion_sink(&log);
-  }
+      : ekf(ReferenceConfig("ekf").vehicle, options) {}
   void Feed(const std::vector<InputEvent>& events, const std::function<bool(StrainSample*)>& edit = nullptr) {
     for (const InputEvent& e : events) {
       if (e.kind == InputEvent::kMotor) {
-        ekf.AddMotor(e.motor);
+        log([&](FusionReports* r) { ekf.AddMotor(e.motor, r); });
         ++motor_samples;
       } else if (e.kind == InputEvent::kImu) {
-        ekf.AddImu(e.imu);
+        log([&](FusionReports* r) { ekf.AddImu(e.imu, r); });
         ++imu_samples;
       } else if (e.kind == InputEvent::kTruth) {
         if (has_estimate && last.utime == e.truth.utime && e.truth.utime >= 500000) {
@@ -182,7 +188,7 @@ struct DirectRun {
       } else {
         StrainSample s = e.strain;
         if (edit && !edit(&s)) continue;
-        ekf.AddStrain(s, &last, &info);
+        log([&](FusionReports* r) { ekf.AddStrain(s, &last, &info, r); });
         EXPECT_EQ(ekf.utime(), s.utime);
         has_estimate = true;
         if (info.reset != ResetReason::kNone) ++resets;
@@ -355,12 +361,12 @@ TEST(EkfForceEstimatorDirectTest, LateMeasurementIsNotFused) {
   late.utime = run.ekf.utime() - 3000;
   late.omega_cmd_rad_s[0] = late.omega_cmd_rad_s[1] = 700.0;
   late.omega_meas_rad_s[0] = late.omega_meas_rad_s[1] = 700.0;
-  run.ekf.AddMotor(late);
+  run.log([&](FusionReports* r) { run.ekf.AddMotor(late, r); });
   StrainSample next;
   next.utime = run.ekf.utime() + 1000;
   next.deflection_rad[0] = run.ekf.state()(kDeflection1);
   next.deflection_rad[1] = run.ekf.state()(kDeflection2);
-  run.ekf.AddStrain(next, &run.last, &run.info);
+  run.log([&](FusionReports* r) { run.ekf.AddStrain(next, &run.last, &run.info, r); });
   EXPECT_EQ(run.log.Count(FusionSource::kTelemetry, FusionOutcome::kNotFused), not_fused_before + 1);
   EXPECT_EQ(run.log.reports.back().source, FusionSource::kStrain);
 }
@@ -385,12 +391,12 @@ TEST(EkfForceEstimatorDirectTest, AbsurdOrMissingAccelerometerReadingIsNotFused)
     imu.utime = run.ekf.utime() + 1000;
     imu.gyro_y_rad_s = run.ekf.state()(kPitchRate);
     imu.accel_z_m_s2 = accel;
-    run.ekf.AddImu(imu);
+    run.log([&](FusionReports* r) { run.ekf.AddImu(imu, r); });
     StrainSample next;
     next.utime = imu.utime;
     next.deflection_rad[0] = run.ekf.state()(kDeflection1) + run.ekf.state()(kGaugeOffset1);
     next.deflection_rad[1] = run.ekf.state()(kDeflection2) + run.ekf.state()(kGaugeOffset2);
-    run.ekf.AddStrain(next, &run.last, &run.info);
+    run.log([&](FusionReports* r) { run.ekf.AddStrain(next, &run.last, &run.info, r); });
   }
   EXPECT_EQ(run.log.Count(FusionSource::kAccelerometer, FusionOutcome::kRejectedGate), 1);
   const int64_t accel_reports_after =

@@ -344,6 +344,40 @@ TEST(EstimatorPipelineTest, OneSampleStampedFarAheadIsAnOutlierAndMovesNoClock) 
   ExpectRecovered(f);
 }
 
+// Issue 23 item 5: three STRAIN samples stamped 0.4 s ahead and 1 us apart
+// (a burst) agree with each other but not with MOTOR and IMU: time outliers,
+// not "every stream jumped". Before, they moved the clocks: FORCE was silent
+// for 0.4 s and not VALID for 1.4 s. Now every honest sample after them is
+// published, and VALID stays.
+TEST(EstimatorPipelineTest, ABurstOfFutureStampedOutliersKeepsForceAndValid) {
+  Feeder f;
+  int k = 0;
+  int after = 0, valid_after = 0;
+  f.Feed(HoverEvents(), 0, [&](StrainSample* s) {
+    ++k;
+    if (k == 1000) {
+      EXPECT_TRUE(f.last.status & kStatusValid);
+      for (int j = 0; j < 3; ++j) {
+        StrainSample ahead = *s;
+        ahead.utime += 400000 + j;
+        ForceEstimate e;
+        EXPECT_FALSE(f.pipeline.OnStrain(ahead, &e));
+      }
+    } else if (k > 1001) {
+      ++after;  // f.last: the estimate of the honest sample before this one
+      if (f.last.status & kStatusValid) ++valid_after;
+    }
+    return true;
+  });
+  EXPECT_EQ(f.strain().time_outliers, 3);
+  EXPECT_EQ(f.strain().out_of_order, 0);
+  EXPECT_EQ(f.published, 2000);
+  EXPECT_EQ(after, 999);
+  EXPECT_EQ(valid_after, after);
+  EXPECT_EQ(f.pipeline.health().resets, 1);
+  ExpectRecovered(f);
+}
+
 // Issue 16 item 11: a lone POSE stamped 2^53 - 1 us, after the streams
 // started or before any of them, leaves the status clock on the strain stream.
 TEST(EstimatorPipelineTest, LonePoseStampedFarAheadDoesNotPoisonTheClock) {

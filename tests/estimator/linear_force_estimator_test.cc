@@ -250,7 +250,7 @@ TEST(LinearKalmanFilter, CovarianceConvergesToTheSteadyState) {
     s.utime = k * 1000;
     s.deflection_rad[0] = model.deflection_hover_rad[0];
     s.deflection_rad[1] = model.deflection_hover_rad[1];
-    filter.AddStrain(s, &e, &info);
+    filter.AddStrain(s, &e, &info, nullptr);
   }
   const LinearMatrix p = filter.covariance();
   const LinearMatrix prior = model.a_discrete * p * model.a_discrete.transpose() + model.noise_discrete;

@@ -1,0 +1,178 @@
+// The one fusion path of every filter (the EKF and the linear methods),
+// generic over the state size N and the measurement size M: innovation, chi-
+// square gate, the inflation policy after persistent rejection, the update
+// with the Kalman gain or a fixed gain, the covariance in Joseph form, and the
+// FusionReport of what happened. A measurement model only says h(x) and H at
+// the prior (MeasurementLinearization) and its noise R; it is never mutated.
+// Header-only and fixed-size: no allocation, no throw, no log.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <cstdint>
+#include <limits>
+
+#include "estimator/fusion_report.h"
+
+namespace birotor {
+
+// A measurement model linearised at the prior x: z ~ h(x) + H (x' - x).
+template <int M, int N>
+struct MeasurementLinearization {
+  Eigen::Matrix<double, M, 1> predicted;  // h(x), in the measurement's unit
+  Eigen::Matrix<double, M, N> jacobian;   // H [unit of z per unit of each state]
+};
+
+// Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
+template <int M, int N>
+struct Innovation {
+  Eigen::Matrix<double, M, N> h_p;  // H P, shared by S, the gain and the Joseph update
+  Eigen::Matrix<double, M, 1> residual;
+  Eigen::Matrix<double, M, M> covariance;
+  Eigen::Matrix<double, M, M> covariance_inverse;
+  double nis = 0;
+};
+
+template <int M, int N>
+Innovation<M, N> ComputeInnovation(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
+                                   const Eigen::Matrix<double, N, N>& cov, const Eigen::Matrix<double, M, 1>& z) {
+  Innovation<M, N> out;
+  out.residual = z - at.predicted;
+  // lazyProduct: coefficient-based; at 11 states Eigen's default would take
+  // its blocked GEMM path (packing dominates at this size).
+  out.h_p.noalias() = at.jacobian.lazyProduct(cov);
+  out.covariance.noalias() = out.h_p.lazyProduct(at.jacobian.transpose());
+  out.covariance += noise;
+  out.covariance_inverse = out.covariance.inverse();
+  out.nis = out.residual.dot(out.covariance_inverse * out.residual);
+  return out;
+}
+
+// Covariance update in Joseph form, for any gain K (optimal or not):
+//   P+ = (I - K H) P (I - K H)^T + K R K^T.
+// The factor (I - K H) is applied as two rank-m corrections, A = P - K (H P)
+// and A (I - K H)^T = A - (A H^T) K^T, so the product costs O(n^2 m) instead
+// of O(n^3); it is the same product as the dense form, not the expanded
+// P - K S K^T (which only equals it at the optimal gain and loses the
+// positive semi-definite structure to round-off). Not symmetrised here.
+// h_p = H P, as the innovation computed it.
+template <int N, int M>
+Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& cov,
+                                             const Eigen::Matrix<double, N, M>& gain,
+                                             const Eigen::Matrix<double, M, N>& h_p,
+                                             const Eigen::Matrix<double, M, N>& h_jacobian,
+                                             const Eigen::Matrix<double, M, M>& noise) {
+  Eigen::Matrix<double, N, N> a = cov;
+  a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
+  Eigen::Matrix<double, N, M> a_ht;
+  a_ht.noalias() = a.lazyProduct(h_jacobian.transpose());
+  Eigen::Matrix<double, N, N> out = a;
+  out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T
+  Eigen::Matrix<double, N, M> k_r;
+  k_r.noalias() = gain.lazyProduct(noise);
+  out.noalias() += k_r.lazyProduct(gain.transpose());  // + K R K^T
+  return out;
+}
+
+template <int N, int M>
+Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& cov,
+                                             const Eigen::Matrix<double, N, M>& gain,
+                                             const Eigen::Matrix<double, M, N>& h_jacobian,
+                                             const Eigen::Matrix<double, M, M>& noise) {
+  Eigen::Matrix<double, M, N> h_p;
+  h_p.noalias() = h_jacobian.lazyProduct(cov);
+  return JosephCovariance<N, M>(cov, gain, h_p, h_jacobian, noise);
+}
+
+// x += K y and P by JosephCovariance, all from the innovation's H P. The gain
+// is the optimal K = P H^T S^-1 = (H P)^T S^-1 (P is symmetric), or
+// *fixed_gain when given (an observer's gain by pole placement).
+template <int M, int N>
+void KalmanUpdate(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
+                  const Innovation<M, N>& innovation, Eigen::Matrix<double, N, 1>* x, Eigen::Matrix<double, N, N>* cov,
+                  const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
+  Eigen::Matrix<double, N, M> gain;
+  if (fixed_gain != nullptr) {
+    gain = *fixed_gain;
+  } else {
+    gain.noalias() = innovation.h_p.transpose().lazyProduct(innovation.covariance_inverse);
+  }
+  x->noalias() += gain.lazyProduct(innovation.residual);
+  *cov = JosephCovariance<N, M>(*cov, gain, innovation.h_p, at.jacobian, noise);
+}
+
+// What one measurement is fused with: its stamp, source and gate.
+struct FusionRequest {
+  FusionSource source = FusionSource::kStrain;
+  int64_t utime = 0;  // [us]
+  // Chi-square gate on the NIS; +infinity fuses whatever is finite. A NaN
+  // NIS (a NaN reading, a broken covariance) is always rejected.
+  double gate_nis = std::numeric_limits<double>::infinity();
+};
+
+// Computes the innovation of z, gates it and, when it passes, updates *x and
+// *cov. Returns what happened, with the innovation in z's unit.
+template <int M, int N>
+FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
+                             const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request,
+                             Eigen::Matrix<double, N, 1>* x, Eigen::Matrix<double, N, N>* cov,
+                             const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
+  static_assert(M <= kMaxMeasurementSize, "FusionReport holds at most kMaxMeasurementSize values");
+  const Innovation<M, N> innovation = ComputeInnovation(at, noise, *cov, z);
+  FusionReport report;
+  report.source = request.source;
+  report.utime = request.utime;
+  report.size = M;
+  report.innovation.template head<M>() = innovation.residual;
+  report.innovation_covariance.template topLeftCorner<M, M>() = innovation.covariance;
+  report.nis = innovation.nis;
+  report.gate = request.gate_nis;
+  if (!(innovation.nis <= request.gate_nis)) {  // a NaN NIS is rejected too
+    report.outcome = FusionOutcome::kRejectedGate;
+    return report;
+  }
+  KalmanUpdate(at, noise, innovation, x, cov, fixed_gain);
+  report.outcome = FusionOutcome::kFused;
+  return report;
+}
+
+// The policy against a persistent change (a lost propeller blade): after
+// consecutive_limit measurements in a row rejected by the gate, the change is
+// taken as real: the covariance is inflated (the method says how) and the
+// measurement is fused without the gate (a NaN NIS is still rejected).
+class GateWithInflation {
+ public:
+  explicit GateWithInflation(int consecutive_limit) : consecutive_limit_(consecutive_limit) {}
+  void Reset() { consecutive_rejected_ = 0; }
+  int consecutive_rejected() const { return consecutive_rejected_; }
+
+  // inflate(cov) widens the covariance before the ungated fusion. The report
+  // keeps request.gate_nis as its gate, and fused_after_inflation says how it
+  // was fused.
+  template <int M, int N, typename Inflate>
+  FusionReport Fuse(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
+                    const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, Eigen::Matrix<double, N, 1>* x,
+                    Eigen::Matrix<double, N, N>* cov, Inflate&& inflate,
+                    const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
+    FusionReport report = FuseMeasurement(at, noise, z, request, x, cov, fixed_gain);
+    if (report.outcome == FusionOutcome::kFused) {
+      consecutive_rejected_ = 0;
+      return report;
+    }
+    if (++consecutive_rejected_ < consecutive_limit_) return report;
+    inflate(cov);
+    FusionRequest ungated = request;
+    ungated.gate_nis = std::numeric_limits<double>::infinity();
+    report = FuseMeasurement(at, noise, z, ungated, x, cov, fixed_gain);
+    report.gate = request.gate_nis;
+    report.fused_after_inflation = report.outcome == FusionOutcome::kFused;
+    if (report.fused_after_inflation) consecutive_rejected_ = 0;
+    return report;
+  }
+
+ private:
+  int consecutive_limit_;
+  int consecutive_rejected_ = 0;
+};
+
+}  // namespace birotor

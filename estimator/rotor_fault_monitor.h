@@ -1,0 +1,43 @@
+// Rotor faults and the thrust deficit shared by both rotors, judged from the
+// filter's thrust scales mu_i and their covariance, with persistence and
+// hysteresis (EkfOptions: rotor_fault_*, thrust_deficit_*, fault_n_sigma,
+// fault_persistence_s). The last stage of the EKF's strain step; its bits are
+// the method's. No allocation, no throw, no log.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "estimator/estimator_config.h"
+
+namespace birotor {
+
+class RotorFaultMonitor {
+ public:
+  explicit RotorFaultMonitor(const EkfOptions& options);
+  void Reset();
+  // thrust_scale = (mu1, mu2) [1] at utime [us], covariance their 2x2 block of P.
+  // Rotor i weaker than rotor j: d = mu_j - mu_i with var d = P_jj + P_ii - 2 P_ij,
+  // flagged when d - n std(d) > rotor_fault_asymmetry held for
+  // fault_persistence_s, cleared when d + n std(d) < rotor_fault_clear_asymmetry.
+  // Deficit: even the stronger rotor has mu + n std(mu) < thrust_deficit_scale
+  // (held as long), cleared when its mu - n std(mu) > thrust_deficit_clear_scale.
+  void Update(int64_t utime, const Eigen::Vector2d& thrust_scale, const Eigen::Matrix2d& covariance);
+  // kStatusRotor1Fault, kStatusRotor2Fault, kStatusThrustDeficit as flagged.
+  int32_t StatusBits() const;
+
+ private:
+  // One flag: raised after `raise` held for persistence_us_, lowered as soon as `lower` holds.
+  struct Flag {
+    bool on = false;
+    int64_t since_utime = -1;  // start of the current `raise` run [us]; -1 if none
+    void Update(bool raise, bool lower, int64_t utime, int64_t persistence_us);
+  };
+
+  EkfOptions options_;
+  int64_t persistence_us_;
+  Flag fault_[2];
+  Flag deficit_;
+};
+
+}  // namespace birotor

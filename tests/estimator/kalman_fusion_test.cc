@@ -1,0 +1,244 @@
+// The one fusion path (estimator/kalman_fusion.h): the Joseph form against
+// the textbook product for any gain, the Kalman update's numbers on a case
+// worked by hand, the gate (a NaN NIS is never fused, before or after the
+// rejection limit, with the Kalman gain or a fixed gain) and the inflation
+// policy. The EKF's models give the badly scaled 11-state case; a 3-state
+// case shows the path is generic over the state size.
+#include "estimator/kalman_fusion.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "estimator/ekf_model.h"
+
+namespace birotor {
+namespace {
+
+using State3 = Eigen::Matrix<double, 3, 1>;
+using Matrix3 = Eigen::Matrix<double, 3, 3>;
+using Reading1 = Eigen::Matrix<double, 1, 1>;
+
+// z = x0, R = 1, P = diag(3, 2, 1) with P01 = 1, x = 0, z = 2. By hand:
+// S = P00 + R = 4, NIS = 2^2 / 4 = 1, K = P H^T / S = (0.75, 0.25, 0),
+// x+ = K z = (1.5, 0.5, 0), P+ = P - K S K^T: P00 = 3 - 2.25 = 0.75,
+// P01 = 1 - 0.75 = 0.25, P11 = 2 - 0.25 = 1.75, P22 = 1.
+struct ScalarCase {
+  MeasurementLinearization<1, 3> at;
+  Reading1 noise = Reading1::Constant(1.0);
+  State3 x = State3::Zero();
+  Matrix3 cov;
+  ScalarCase() {
+    at.jacobian << 1.0, 0.0, 0.0;
+    at.predicted(0) = 0.0;
+    cov << 3.0, 1.0, 0.0, 1.0, 2.0, 0.0, 0.0, 0.0, 1.0;
+  }
+};
+
+TEST(FuseMeasurementTest, MatchesTheKalmanUpdateWorkedByHand) {
+  ScalarCase c;
+  const FusionReport report =
+      FuseMeasurement(c.at, c.noise, Reading1(2.0), {FusionSource::kGyro, 123, 25.0}, &c.x, &c.cov);
+  EXPECT_EQ(report.outcome, FusionOutcome::kFused);
+  EXPECT_EQ(report.source, FusionSource::kGyro);
+  EXPECT_EQ(report.utime, 123);
+  EXPECT_EQ(report.size, 1);
+  EXPECT_DOUBLE_EQ(report.innovation(0), 2.0);
+  EXPECT_DOUBLE_EQ(report.innovation_covariance(0, 0), 4.0);
+  EXPECT_DOUBLE_EQ(report.nis, 1.0);
+  EXPECT_EQ(report.gate, 25.0);
+  EXPECT_FALSE(report.fused_after_inflation);
+  EXPECT_NEAR(c.x(0), 1.5, 1e-15);
+  EXPECT_NEAR(c.x(1), 0.5, 1e-15);
+  EXPECT_EQ(c.x(2), 0.0);
+  EXPECT_NEAR(c.cov(0, 0), 0.75, 1e-15);
+  EXPECT_NEAR(c.cov(0, 1), 0.25, 1e-15);
+  EXPECT_NEAR(c.cov(1, 1), 1.75, 1e-15);
+  EXPECT_NEAR(c.cov(2, 2), 1.0, 1e-15);
+}
+
+// A fixed gain (an observer's) is used as given; P by the Joseph form:
+// K = (0.5, 0, 0): x+ = (1, 0, 0), P00+ = (1 - 0.5)^2 3 + 0.5^2 1 = 1,
+// P01+ = (1 - 0.5) 1 = 0.5, P11 unchanged.
+TEST(FuseMeasurementTest, UsesAFixedGainWithTheJosephForm) {
+  ScalarCase c;
+  const Eigen::Matrix<double, 3, 1> gain(0.5, 0.0, 0.0);
+  const FusionReport report =
+      FuseMeasurement(c.at, c.noise, Reading1(2.0), {FusionSource::kGyro, 1, 25.0}, &c.x, &c.cov, &gain);
+  EXPECT_EQ(report.outcome, FusionOutcome::kFused);
+  EXPECT_NEAR(c.x(0), 1.0, 1e-15);
+  EXPECT_EQ(c.x(1), 0.0);
+  EXPECT_NEAR(c.cov(0, 0), 1.0, 1e-15);
+  EXPECT_NEAR(c.cov(0, 1), 0.5, 1e-15);
+  EXPECT_NEAR(c.cov(1, 1), 2.0, 1e-15);
+}
+
+// NIS 9 / 4 = 2.25 against a gate of 2: rejected, nothing changes; a NaN
+// reading is rejected even without a gate.
+TEST(FuseMeasurementTest, TheGateRejectsLargeAndNanInnovations) {
+  ScalarCase c;
+  const Matrix3 before = c.cov;
+  FusionReport report = FuseMeasurement(c.at, c.noise, Reading1(3.0), {FusionSource::kStrain, 1, 2.0}, &c.x, &c.cov);
+  EXPECT_EQ(report.outcome, FusionOutcome::kRejectedGate);
+  EXPECT_DOUBLE_EQ(report.nis, 2.25);
+  EXPECT_EQ(c.x, State3::Zero());
+  EXPECT_EQ(c.cov, before);
+  report = FuseMeasurement(c.at, c.noise, Reading1(std::numeric_limits<double>::quiet_NaN()),
+                           {FusionSource::kStrain, 2, std::numeric_limits<double>::infinity()}, &c.x, &c.cov);
+  EXPECT_EQ(report.outcome, FusionOutcome::kRejectedGate);
+  EXPECT_TRUE(c.x.allFinite());
+}
+
+// Limit 3: two rejections, then the third is fused after the inflation; the
+// count starts again.
+TEST(GateWithInflationTest, FusesAfterTheLimitWithTheInflatedCovariance) {
+  ScalarCase c;
+  GateWithInflation gate(3);
+  int inflations = 0;
+  const auto inflate = [&inflations](Matrix3* cov) {
+    ++inflations;
+    (*cov)(1, 1) += 1.0;
+  };
+  const FusionRequest request{FusionSource::kStrain, 1, 2.0};
+  for (int k = 0; k < 2; ++k) {
+    const FusionReport report = gate.Fuse(c.at, c.noise, Reading1(3.0), request, &c.x, &c.cov, inflate);
+    EXPECT_EQ(report.outcome, FusionOutcome::kRejectedGate);
+    EXPECT_EQ(gate.consecutive_rejected(), k + 1);
+  }
+  EXPECT_EQ(inflations, 0);
+  const FusionReport report = gate.Fuse(c.at, c.noise, Reading1(3.0), request, &c.x, &c.cov, inflate);
+  EXPECT_EQ(report.outcome, FusionOutcome::kFused);
+  EXPECT_TRUE(report.fused_after_inflation);
+  EXPECT_EQ(report.gate, 2.0);  // the gate it failed, not the ungated fusion's
+  EXPECT_DOUBLE_EQ(report.nis, 2.25);
+  EXPECT_EQ(inflations, 1);
+  EXPECT_EQ(gate.consecutive_rejected(), 0);
+  // K = (0.75, 0.25, 0) (the inflated P11 is not in P H^T): x0 = 0.75 * 3.
+  EXPECT_NEAR(c.x(0), 2.25, 1e-15);
+}
+
+// The disagreement of the two former copies: after the rejection limit a NaN
+// NIS was rejected by the EKF and fused by the linear methods. One path: it
+// is rejected, with the Kalman gain and with a fixed gain, and the state
+// stays finite.
+TEST(GateWithInflationTest, ANanReadingIsNeverFusedAfterTheLimit) {
+  const Eigen::Matrix<double, 3, 1> fixed_gain(0.5, 0.0, 0.0);
+  for (const Eigen::Matrix<double, 3, 1>* gain :
+       {static_cast<const Eigen::Matrix<double, 3, 1>*>(nullptr), &fixed_gain}) {
+    ScalarCase c;
+    GateWithInflation gate(2);
+    const Reading1 nan(std::numeric_limits<double>::quiet_NaN());
+    for (int k = 0; k < 5; ++k) {
+      const FusionReport report = gate.Fuse(
+          c.at, c.noise, nan, {FusionSource::kStrain, k, 30.0}, &c.x, &c.cov, [](Matrix3* cov) { (*cov)(1, 1) += 1.0; },
+          gain);
+      EXPECT_EQ(report.outcome, FusionOutcome::kRejectedGate) << k;
+      EXPECT_FALSE(report.fused_after_inflation);
+    }
+    EXPECT_TRUE(c.x.allFinite());
+    EXPECT_TRUE(c.cov.allFinite());
+  }
+}
+
+// A badly scaled but valid covariance, as in the filter (b ~ 1e-5, omega ~ 10).
+EkfMatrix RandomCovariance(std::mt19937* rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  const double kScale[kEkfStateSize] = {1e-5, 1e-5, 0.1, 0.01, 0.01, 10.0, 10.0, 0.1, 0.1, 1e-5, 1e-5};
+  EkfMatrix root;
+  for (int i = 0; i < kEkfStateSize; ++i) {
+    for (int j = 0; j < kEkfStateSize; ++j) root(i, j) = n(*rng) * kScale[i];
+  }
+  return root * root.transpose();
+}
+
+// The textbook Joseph form, dense: (I - K H) P (I - K H)^T + K R K^T.
+template <int M>
+EkfMatrix TextbookJoseph(const EkfMatrix& p, const Eigen::Matrix<double, kEkfStateSize, M>& k,
+                         const Eigen::Matrix<double, M, kEkfStateSize>& h, const Eigen::Matrix<double, M, M>& r) {
+  const EkfMatrix i_kh = EkfMatrix::Identity() - k * h;
+  return i_kh * p * i_kh.transpose() + k * r * k.transpose();
+}
+
+// With a gain that is NOT the Kalman gain the expanded form P - K S K^T is
+// wrong; the Joseph form holds for any gain, so this is what tells them apart.
+TEST(JosephCovarianceTest, MatchesTheTextbookFormForANonOptimalGain) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const StrainMeasurementModel strain(2e-5);
+  const MotorSpeedMeasurementModel motor(5.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const EkfMatrix p = RandomCovariance(&rng);
+    const Eigen::Matrix2d s = strain.h_jacobian * p * strain.h_jacobian.transpose() + strain.noise;
+    Eigen::Matrix<double, kEkfStateSize, 2> k = p * strain.h_jacobian.transpose() * s.inverse();
+    for (int i = 0; i < kEkfStateSize; ++i) {
+      for (int j = 0; j < 2; ++j) k(i, j) *= 1.0 + 0.3 * n(rng);  // 30 % off the optimum
+    }
+    const EkfMatrix joseph = JosephCovariance<kEkfStateSize, 2>(p, k, strain.h_jacobian, strain.noise);
+    const EkfMatrix textbook = TextbookJoseph<2>(p, k, strain.h_jacobian, strain.noise);
+    const EkfMatrix expanded = p - k * s * k.transpose();  // only right at the optimal gain
+    for (int i = 0; i < kEkfStateSize; ++i) {
+      for (int j = 0; j < kEkfStateSize; ++j) {
+        // Round-off relative to the scale of the entry's row and column.
+        const double scale = std::sqrt(p(i, i) * p(j, j));
+        EXPECT_NEAR(joseph(i, j), textbook(i, j), 1e-12 * scale) << i << ", " << j;
+      }
+    }
+    EXPECT_GT((expanded - textbook).cwiseAbs().maxCoeff(), 1e-3 * textbook.cwiseAbs().maxCoeff());
+
+    const Eigen::Matrix<double, kEkfStateSize, 2> k2 = Eigen::Matrix<double, kEkfStateSize, 2>::Random() * 0.01;
+    const EkfMatrix joseph2 = JosephCovariance<kEkfStateSize, 2>(p, k2, motor.h_jacobian, motor.noise);
+    const EkfMatrix textbook2 = TextbookJoseph<2>(p, k2, motor.h_jacobian, motor.noise);
+    EXPECT_LE((joseph2 - textbook2).cwiseAbs().maxCoeff(), 1e-12 * textbook2.cwiseAbs().maxCoeff());
+  }
+}
+
+// At the optimal gain all forms agree: P+ = P - K S K^T.
+TEST(JosephCovarianceTest, EqualsTheStandardUpdateAtTheKalmanGain) {
+  std::mt19937 rng(17);
+  const GyroMeasurementModel gyro(0.005);
+  const EkfMatrix p = RandomCovariance(&rng);
+  const Eigen::Matrix<double, 1, 1> s = gyro.h_jacobian * p * gyro.h_jacobian.transpose() + gyro.noise;
+  const Eigen::Matrix<double, kEkfStateSize, 1> k = p * gyro.h_jacobian.transpose() * s.inverse();
+  const EkfMatrix joseph = JosephCovariance<kEkfStateSize, 1>(p, k, gyro.h_jacobian, gyro.noise);
+  const EkfMatrix standard = p - k * s * k.transpose();
+  for (int i = 0; i < kEkfStateSize; ++i) {
+    for (int j = 0; j < kEkfStateSize; ++j) {
+      EXPECT_NEAR(joseph(i, j), standard(i, j), 1e-10 * std::sqrt(p(i, i) * p(j, j))) << i << ", " << j;
+    }
+  }
+}
+
+// 1500 updates of a badly scaled covariance: symmetric to round-off (the
+// factored product is not symmetric by construction) and positive definite.
+TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0.0, 1.0);
+  EkfMatrix cov = RandomCovariance(&rng);
+  EkfState x = EkfState::Zero();
+  const StrainMeasurementModel strain(2e-5);
+  const MotorSpeedMeasurementModel motor(5.0);
+  for (int k = 0; k < 1000; ++k) {
+    const StrainMeasurementModel::Vector z(1e-5 * n(rng), 1e-5 * n(rng));
+    const StrainMeasurementModel::Linearization s = strain.Linearize(x);
+    KalmanUpdate(s, strain.noise, ComputeInnovation(s, strain.noise, cov, z), &x, &cov);
+    if (k % 2 == 0) {
+      const MotorSpeedMeasurementModel::Vector w(5.0 * n(rng), 5.0 * n(rng));
+      const MotorSpeedMeasurementModel::Linearization m = motor.Linearize(x);
+      KalmanUpdate(m, motor.noise, ComputeInnovation(m, motor.noise, cov, w), &x, &cov);
+    }
+  }
+  const EkfState d = cov.diagonal().cwiseSqrt().cwiseInverse();
+  const EkfMatrix scaled = d.asDiagonal() * cov * d.asDiagonal();  // correlations
+  EXPECT_LE((scaled - scaled.transpose()).cwiseAbs().maxCoeff(), 1e-9);
+  Eigen::LLT<EkfMatrix> llt(0.5 * (scaled + scaled.transpose()));
+  EXPECT_EQ(llt.info(), Eigen::Success);
+  // The gauge reading b1 + e1 cannot be less certain than R = (2e-5)^2 after an update.
+  const Eigen::Matrix2d reading_cov = strain.h_jacobian * cov * strain.h_jacobian.transpose();
+  EXPECT_LE(reading_cov(0, 0), 4e-10);
+}
+
+}  // namespace
+}  // namespace birotor
