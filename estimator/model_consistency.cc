@@ -28,8 +28,6 @@ void ModelConsistencyMonitor::Restart() {
   for (Accumulator& a : acc_) a = Accumulator();
   thrust_scale_sum_[0] = thrust_scale_sum_[1] = 0;
   estimates_ = 0;
-  consistent_run_ = 0;
-  state_.confirmed = false;
 }
 
 void ModelConsistencyMonitor::Advance(int64_t utime) {

@@ -55,9 +55,10 @@ struct ModelConsistencyOptions {
   // mismatch); cleared after clear_windows consistent ones.
   int raise_windows = 2;
   int clear_windows = 8;
-  // After start or a filter reset the model counts as confirmed (VALID may
-  // be set) after this many consistent windows in a row: an estimate from a
-  // model not yet checked is not VALID.
+  // After start the model counts as confirmed (VALID may be set) after
+  // this many consistent windows in a row: an estimate from a model not yet
+  // checked is not VALID. A filter reset (gap, time jump) keeps what was
+  // confirmed or raised: the vehicle did not change.
   int confirm_windows = 2;
   // Attribution: with the accelerometer (or gyro) inconsistent, a window
   // mean of a thrust scale mu_i further than this from 1 points at the
@@ -80,8 +81,8 @@ struct SourceWindowStats {
 struct ModelConsistencyState {
   bool mismatch = false;  // raised (STATUS_MODEL_MISMATCH)
   MismatchParameter parameter = MismatchParameter::kNone;
-  // The estimate is confirmed consistent: confirm_windows consistent
-  // windows since the last start/reset, and no mismatch (VALID needs it).
+  // The model is confirmed: confirm_windows consistent windows in a row
+  // since start, and no mismatch (VALID needs it).
   bool confirmed = false;
   // The decision statistic of the newest window: the largest of
   // nis_ratio / nis_ratio_limit, |bias| / bias_limit and rejected share /
@@ -106,9 +107,9 @@ class ModelConsistencyMonitor {
   // explain) while a mismatch holds, and clears both before the model is
   // confirmed.
   bool ApplyStatus(ForceEstimate* estimate);
-  // Forgets the window in progress and the confirmation (filter
-  // re-initialised); a raised mismatch stays until clear_windows
-  // consistent windows.
+  // Forgets the window in progress (filter re-initialised); the
+  // confirmation and a raised mismatch stay (cleared after clear_windows
+  // consistent windows).
   void Restart();
   const ModelConsistencyState& state() const { return state_; }
   const ModelConsistencyOptions& options() const { return options_; }

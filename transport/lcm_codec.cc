@@ -118,7 +118,9 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
                        && cursor.Skip(4 * 8)          // tares, tares_refused_*
                        && cursor.SkipString()         // last_tare_refusal
                        && cursor.Skip(4 * 8)          // udp_datagrams .. udp_kernel_dropped
-                       && SkipInputHealth(&cursor);   // accelerometer
+                       && SkipInputHealth(&cursor)    // accelerometer
+                       && cursor.Skip(8)              // model_consistency_statistic
+                       && cursor.SkipString();        // mismatch_parameter
   return tail_ok ? DecodeError::kNone : cursor.error();
 }
 
