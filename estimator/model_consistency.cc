@@ -44,8 +44,10 @@ bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
   if (state_.mismatch) {
     estimate->status = (estimate->status | kStatusModelMismatch) & ~(kStatusValid | kStatusThrustDeficit);
   } else if (!state_.confirmed) {
-    // Not yet checked: neither VALID nor a deficit a mismatch may explain.
-    estimate->status &= ~(kStatusValid | kStatusThrustDeficit);
+    // Not yet checked: no deficit a mismatch may explain, and VALID only
+    // where the controller must not wait for the check (option).
+    estimate->status &= ~kStatusThrustDeficit;
+    if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
   }
   return state_.confirmed;
 }

@@ -82,7 +82,9 @@ TEST(ModelConsistency, InflatedTelemetryNamesMotorLag) {
 }
 
 TEST(ModelConsistency, ValidWaitsForTwoConsistentWindowsAndAMismatchWithdrawsIt) {
-  ModelConsistencyMonitor monitor;
+  ModelConsistencyOptions options;
+  options.valid_needs_confirmation = true;  // default false (the closed loop)
+  ModelConsistencyMonitor monitor(options);
   std::mt19937 rng(5);
   ForceEstimate e;
   e.status = kStatusValid | kStatusThrustDeficit;
@@ -113,6 +115,17 @@ TEST(ModelConsistency, ValidWaitsForTwoConsistentWindowsAndAMismatchWithdrawsIt)
   // A filter reset (gap, time jump) does not change the vehicle: the mismatch stays.
   monitor.Restart();
   EXPECT_TRUE(monitor.state().mismatch);
+}
+
+TEST(ModelConsistency, ByDefaultOnlyTheDeficitWaitsForTheConfirmation) {
+  ModelConsistencyMonitor monitor;
+  std::mt19937 rng(7);
+  const int64_t t = Feed(&monitor, FusionSource::kStrain, 0, 0.3, 1.0, 0.0, &rng);
+  ForceEstimate e;
+  e.utime = t;
+  e.status = kStatusValid | kStatusThrustDeficit;
+  EXPECT_FALSE(monitor.ApplyStatus(&e));
+  EXPECT_EQ(e.status, kStatusValid);
 }
 
 TEST(ModelConsistency, SparseGatedSpikesAreInputFaultsNotAMismatch) {
