@@ -89,7 +89,8 @@ struct ModelConsistencyState {
   bool mismatch = false;  // raised (STATUS_MODEL_MISMATCH)
   MismatchParameter parameter = MismatchParameter::kNone;
   // The model is confirmed: confirm_windows consistent windows in a row
-  // since start, and no mismatch (VALID needs it).
+  // since start, and no mismatch (THRUST_DEFICIT needs it; VALID with
+  // valid_needs_confirmation).
   bool confirmed = false;
   // The decision statistic of the newest window: the largest of
   // nis_ratio / nis_ratio_limit, |bias| / bias_limit and rejected share /
@@ -111,8 +112,9 @@ class ModelConsistencyMonitor {
   // Every force estimate (its thrust scales, for the attribution); returns
   // whether VALID may stand (confirmed). Sets kStatusModelMismatch and
   // clears kStatusValid and kStatusThrustDeficit (which the mismatch would
-  // explain) while a mismatch holds, and clears both before the model is
-  // confirmed.
+  // explain) while a mismatch holds; before the model is confirmed it
+  // clears kStatusThrustDeficit (and kStatusValid with
+  // valid_needs_confirmation).
   bool ApplyStatus(ForceEstimate* estimate);
   // Forgets the window in progress (filter re-initialised); the
   // confirmation and a raised mismatch stay (cleared after clear_windows
