@@ -156,6 +156,7 @@ void EstimatorPipeline::CountReports() {
 }
 
 void EstimatorPipeline::Count(const FusionReport& report) {
+  consistency_.Add(report);
   InputCounters& c = report.source == FusionSource::kAccelerometer ? health_.accelerometer
                                                                    : Counters(&health_, InputChannelOf(report.source));
   switch (report.outcome) {
@@ -186,6 +187,7 @@ void EstimatorPipeline::ResetMethod(ResetReason reason, int64_t utime) {
   ++health_.resets;
   health_.last_reset_reason = reason;
   reset_flag_pending_ = true;
+  consistency_.Restart();
   if (reason == ResetReason::kStart) return;  // the method is new: it keeps what it was given so far
   // What the method learned about the gauge offsets survives the reset.
   const GaugeCalibration learned = health_.gauge;
@@ -293,6 +295,8 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     has_finite_estimate_ = true;
   }
   SetInputStatus(sample, stale, estimate);
+  consistency_.ApplyStatus(estimate);  // MODEL_MISMATCH withdraws VALID (docs/mismatch.md)
+  health_.consistency = consistency_.state();
   ++health_.published;
   health_.last_status = estimate->status;
   health_.last_estimate = *estimate;

@@ -20,6 +20,7 @@
 #include "estimator/gauge_tare.h"
 #include "estimator/harmonic_notch.h"
 #include "estimator/input_admission.h"
+#include "estimator/model_consistency.h"
 #include "estimator/motor_speed_tracker.h"
 #include "samples/samples.h"
 
@@ -50,6 +51,8 @@ struct PipelineHealth {
   // the daemon persists these), and the tare's counters.
   GaugeCalibration gauge;
   TareCounters tare;
+  // Model consistency (issue 27): STATUS_MODEL_MISMATCH and its statistic.
+  ModelConsistencyState consistency;
 };
 
 class EstimatorPipeline {
@@ -116,6 +119,7 @@ class EstimatorPipeline {
   MotorSpeedTracker rotor_speed_;  // for the harmonic notches
   HarmonicNotch notch_;
   FusionReports reports_;  // of the newest method call
+  ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
 
   bool started_ = false;             // a strain sample has been accepted
   bool reset_flag_pending_ = false;  // kStatusFilterReset on the next estimate

@@ -27,7 +27,7 @@ using birotor::EstimatorPipeline;
 using birotor::InputChannel;
 
 // Every bit of force_estimate_t.status (lcmtypes/force_estimate_t.lcm).
-constexpr int32_t kKnownStatusBits = 1023;  // STATUS_VALID .. STATUS_INPUT_CONFLICT
+constexpr int32_t kKnownStatusBits = 2047;  // STATUS_VALID .. STATUS_MODEL_MISMATCH
 // Reference hover (shared/spec/reference-vehicle.md).
 constexpr double kHoverDeflectionRad = 0.0018664;
 constexpr double kHoverOmegaRadS = 698.55;

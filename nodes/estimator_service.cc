@@ -35,6 +35,7 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
       foreign_warning_(options.warning_interval_s),
       decode_warning_(options.warning_interval_s),
       overload_warning_(options.warning_interval_s),
+      mismatch_warning_(options.warning_interval_s),
       rejection_log_(options.warning_interval_s, input_channel_names_) {
   input_channel_names_[static_cast<int>(InputChannel::kStrain)] = &channels_.strain;
   input_channel_names_[static_cast<int>(InputChannel::kMotor)] = &channels_.motor;
@@ -207,6 +208,14 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   }
   if (udp_counters_ != nullptr) context.udp = *udp_counters_;
   BuildStatusMessage(pipeline_.health(), pipeline_.method_name(), context, &status_message_);
+  const ModelConsistencyState& consistency = pipeline_.health().consistency;
+  if (consistency.mismatch && mismatch_warning_.ShouldLog(SteadyClockUs())) {
+    spdlog::warn(
+        "model mismatch: the vehicle does not match its parameter file (statistic {:.2f}, most likely {}); "
+        "fix: birotor-identify on this flight's log or on a bench run, then fly with the identified file "
+        "(docs/mismatch.md); forces are not VALID meanwhile ({} similar lines suppressed)",
+        consistency.statistic, MismatchParameterName(consistency.parameter), mismatch_warning_.suppressed());
+  }
   if (last_strain_arrival_wall_us_ >= 0 &&
       static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6) {
     status_message_.status = (status_message_.status | kStatusInputStale) & ~kStatusValid;

@@ -148,6 +148,7 @@ class EstimatorService : public PacketHandler {
   RateLimitedLog foreign_warning_;
   RateLimitedLog decode_warning_;
   RateLimitedLog overload_warning_;
+  RateLimitedLog mismatch_warning_;  // STATUS_MODEL_MISMATCH (issue 27)
   InputRejectionLog rejection_log_;
 };
 

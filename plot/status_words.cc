@@ -18,6 +18,7 @@ const StatusBitName kStatusBitNames[] = {
     {kStatusNoMotorInput, "NO_MOTOR"},
     {kStatusThrustDeficit, "THRUST_DEFICIT"},
     {kStatusInputConflict, "CONFLICT"},
+    {kStatusModelMismatch, "MODEL_MISMATCH"},
 };
 const int kStatusBitCount = sizeof(kStatusBitNames) / sizeof(kStatusBitNames[0]);
 

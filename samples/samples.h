@@ -72,6 +72,7 @@ enum StatusBit : int32_t {
   kStatusNoMotorInput = 128,
   kStatusThrustDeficit = 256,
   kStatusInputConflict = 512,
+  kStatusModelMismatch = 1024,
 };
 
 // One per-rotor force estimate (channel FORCE).

@@ -15,6 +15,7 @@
 #include "evaluation/control_metrics.h"
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
+#include "evaluation/mismatch_metrics.h"
 #include "evaluation/mpc_comparison.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
@@ -166,6 +167,14 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
                                         "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
                                         "gauge_vibration", "gauge_airborne", "bench_gauge"};
+  // Issue 27: vehicles that differ from the reference file the estimator keeps.
+  for (const char* name :
+       {"mismatch_stiffness_plus20", "mismatch_stiffness_minus20", "mismatch_tip_mass_plus20",
+        "mismatch_tip_mass_minus20", "mismatch_payload_plus15", "mismatch_payload_minus15", "mismatch_gauge_scale_0p7",
+        "mismatch_gauge_scale_1p3", "mismatch_thrust_coeff_plus20", "mismatch_thrust_coeff_minus20",
+        "mismatch_motor_lag_plus30", "mismatch_motor_lag_minus30", "mismatch_all"}) {
+    scenarios.push_back(name);
+  }
   std::vector<std::string> methods = EstimationMethodNames();
   std::string params_file = FindConfigFile("estimator.yaml");
   std::string scenario_dir;  // empty: each scenario is looked up as scenarios/<name>.yaml
@@ -254,6 +263,7 @@ int main(int argc, char** argv) {
   int exit_code = 0;
 
   std::string table = MarkdownTableHeader();
+  std::string consistency_table = "\n" + MismatchTableHeader();  // issue 27 (docs/mismatch.md)
   for (const std::string& name : scenarios) {
     Scenario scenario;
     if (log_path.empty()) {
@@ -298,6 +308,9 @@ int main(int argc, char** argv) {
                         label, method, eval_options.warmup_s, run.forces.size(), run.truth.size()));
       }
       table += MarkdownTableRow(label, method, result);
+      MismatchEvalOptions mismatch_options;
+      mismatch_options.airborne_utime = run.liftoff_utime;
+      consistency_table += MismatchTableRow(label, method, EvaluateMismatch(run.forces, run.truth, mismatch_options));
       const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
       spdlog::info(
           "{} {}: {:.1f} s simulated+estimated in {:.2f} s; strain received {} fused {} gated {} "
@@ -317,6 +330,7 @@ int main(int argc, char** argv) {
       }
     }
   }
+  table += consistency_table;
   std::printf("%s", table.c_str());
   if (std::fflush(stdout) != 0) return ReportError("writing the table to standard output failed");
   if (markdown.is_open()) {

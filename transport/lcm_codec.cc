@@ -119,7 +119,9 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
                        && cursor.SkipString()         // last_tare_refusal
                        && cursor.Skip(4 * 8)          // udp_datagrams .. udp_kernel_dropped
                        && SkipInputHealth(&cursor)    // accelerometer
-                       && cursor.Skip(8);             // foreign_force
+                       && cursor.Skip(8)              // foreign_force
+                       && cursor.Skip(8)              // model_consistency_statistic
+                       && cursor.SkipString();        // mismatch_parameter
   return tail_ok ? DecodeError::kNone : cursor.error();
 }
 

@@ -104,7 +104,9 @@ TEST(FilterConsistencyTest, Density) {
   ExpectConsistent(c);
   ExpectReadmeMae(c, 0.0683, 0.0671);
   EXPECT_EQ(c.fault_flags[0] + c.fault_flags[1], 0);
-  EXPECT_GT(c.deficit_flags, 14900);  // of 15000 estimates: from convergence on
+  // Of 15000 estimates: from the model's confirmation on (two consistent
+  // 0.25 s windows, docs/mismatch.md); measured 14500.
+  EXPECT_GE(c.deficit_flags, 14500);
 }
 
 TEST(FilterConsistencyTest, DensityAt085FlagsNoRotor) {

@@ -22,7 +22,8 @@ TEST(MonitorViewTest, StatusWords) {  // plot/status_words.h, shared with the pl
   EXPECT_EQ(StatusWords(kStatusValid | kStatusRotor2Fault), "VALID|ROTOR2_FAULT");
   EXPECT_EQ(StatusWords(kStatusInputStale | kStatusMeasurementRejected | kStatusFilterReset | kStatusRotor1Fault),
             "REJECTED|STALE|ROTOR1_FAULT|RESET");
-  EXPECT_EQ(StatusWords(1024 | kStatusValid), "VALID|0x400");
+  EXPECT_EQ(StatusWords(kStatusModelMismatch), "MODEL_MISMATCH");
+  EXPECT_EQ(StatusWords(2048 | kStatusValid), "VALID|0x800");
   EXPECT_EQ(StatusWords(kStatusThrustDeficit | kStatusInputConflict), "THRUST_DEFICIT|CONFLICT");
 }
 

@@ -114,6 +114,21 @@ TEST(StatusMessageTest, CarriesTheGaugeOffsetsAndTheTareCounters) {
   EXPECT_EQ(decoded.last_tare_refusal, "out_of_range");
 }
 
+TEST(StatusMessageTest, CarriesTheModelConsistencyStatisticAndParameter) {
+  PipelineHealth health;
+  health.consistency.statistic = 3.25;
+  health.consistency.mismatch = true;
+  health.consistency.parameter = MismatchParameter::kMass;
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", StatusContext(), &message);
+  std::vector<uint8_t> buffer;
+  EncodeMessage(message, &buffer);
+  estimator_status_t decoded;
+  ASSERT_EQ(DecodeMessage(buffer.data(), buffer.size(), &decoded), DecodeError::kNone);
+  EXPECT_EQ(decoded.model_consistency_statistic, 3.25);
+  EXPECT_EQ(decoded.mismatch_parameter, "mass");
+}
+
 TEST(StatusMessageTest, EveryInputHasItsGateAndTheBaselinesNone) {
   EstimatorConfig config;
   EXPECT_EQ(GateOf(config, InputChannel::kStrain), config.ekf.strain_gate_nis);

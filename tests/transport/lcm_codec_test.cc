@@ -125,12 +125,15 @@ TEST(CodecTest, CorruptStringLengthIsRejected) {
 TEST(CodecTest, CorruptLengthOfTheLaterStringsIsRejected) {
   const estimator_status_t message = MakeTestMessage<estimator_status_t>();
   const std::vector<uint8_t> valid = Encode(message);
-  // The message ends with the udp counters, the accelerometer's input_health_t
-  // and foreign_force (8 bytes).
-  const size_t accelerometer_offset = valid.size() - 8 - (message.accelerometer.getEncodedSize() - 8);
+  // The message ends with the udp counters, the accelerometer's
+  // input_health_t, foreign_force (8 bytes), model_consistency_statistic
+  // (8 bytes) and mismatch_parameter.
+  const size_t parameter_length_offset = valid.size() - (message.mismatch_parameter.size() + 1) - 4;
+  const size_t accelerometer_offset = parameter_length_offset - 8 - 8 - (message.accelerometer.getEncodedSize() - 8);
   const size_t refusal_length_offset = accelerometer_offset - 4 * 8 - (message.last_tare_refusal.size() + 1) - 4;
   const size_t source_length_offset = refusal_length_offset - 4 * 8 - (message.gauge_offset_source.size() + 1) - 4;
-  for (const size_t offset : {accelerometer_offset, refusal_length_offset, source_length_offset}) {
+  for (const size_t offset :
+       {parameter_length_offset, accelerometer_offset, refusal_length_offset, source_length_offset}) {
     for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
       std::vector<uint8_t> bytes = valid;
       WriteInt32(&bytes, offset, length);

@@ -98,6 +98,7 @@ TEST(ConversionTest, StatusBitsMatchTheWireConstants) {
   EXPECT_EQ(kStatusRotor1Fault, force_estimate_t::STATUS_ROTOR1_FAULT);
   EXPECT_EQ(kStatusRotor2Fault, force_estimate_t::STATUS_ROTOR2_FAULT);
   EXPECT_EQ(kStatusFilterReset, force_estimate_t::STATUS_FILTER_RESET);
+  EXPECT_EQ(kStatusModelMismatch, force_estimate_t::STATUS_MODEL_MISMATCH);
   EXPECT_EQ(kStatusNoMotorInput, force_estimate_t::STATUS_NO_MOTOR_INPUT);
 }
 

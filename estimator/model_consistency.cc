@@ -1,0 +1,150 @@
+// Windowed NIS, bias and whiteness of the fusion reports; the decision.
+#include "estimator/model_consistency.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace birotor {
+
+const char* MismatchParameterName(MismatchParameter parameter) {
+  switch (parameter) {
+    case MismatchParameter::kNone:
+      return "";
+    case MismatchParameter::kStiffnessOrGaugeScale:
+      return "stiffness_or_gauge_scale";
+    case MismatchParameter::kMass:
+      return "mass";
+    case MismatchParameter::kMotorLag:
+      return "motor_lag";
+  }
+  return "";
+}
+
+ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& options)
+    : options_(options), window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {}
+
+void ModelConsistencyMonitor::Restart() {
+  window_start_utime_ = -1;
+  for (Accumulator& a : acc_) a = Accumulator();
+  thrust_scale_sum_[0] = thrust_scale_sum_[1] = 0;
+  estimates_ = 0;
+}
+
+void ModelConsistencyMonitor::Advance(int64_t utime) {
+  if (window_start_utime_ < 0) window_start_utime_ = utime;
+  if (utime - window_start_utime_ >= window_us_) CloseWindow(utime);
+}
+
+bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
+  // A method without innovations (the baselines) is not judged.
+  if (!options_.enabled || !judging_) return true;
+  Advance(estimate->utime);
+  for (int i = 0; i < 2; ++i) thrust_scale_sum_[i] += estimate->thrust_scale[i];
+  ++estimates_;
+  if (state_.mismatch) {
+    estimate->status = (estimate->status | kStatusModelMismatch) & ~(kStatusValid | kStatusThrustDeficit);
+  } else if (!state_.confirmed) {
+    // Not yet checked: no deficit a mismatch may explain, and VALID only
+    // where the controller must not wait for the check (option).
+    estimate->status &= ~kStatusThrustDeficit;
+    if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
+  }
+  return state_.confirmed;
+}
+
+void ModelConsistencyMonitor::Add(const FusionReport& report) {
+  if (!options_.enabled || report.size <= 0 || !std::isfinite(report.nis)) return;
+  judging_ = true;
+  Advance(report.utime);
+  Accumulator& a = acc_[static_cast<int>(report.source)];
+  ++a.reports;
+  if (report.outcome == FusionOutcome::kRejectedGate) ++a.rejected;
+  // Gated outliers (spikes) are input faults, judged by their share only.
+  if (report.outcome != FusionOutcome::kFused) return;
+  a.nis_ratio_sum += report.nis / report.size;
+  for (int j = 0; j < std::min(report.size, 2); ++j) {
+    const double s = report.innovation_covariance(j, j);
+    const double z = s > 0 ? report.innovation(j) / std::sqrt(s) : 0.0;
+    a.z_sum[j] += z;
+    a.z2_sum[j] += z * z;
+    if (a.count > 0) a.zz_lag_sum[j] += z * a.z_previous[j];
+    a.z_previous[j] = z;
+  }
+  ++a.count;
+}
+
+void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
+  double statistic = 0;
+  FusionSource worst = FusionSource::kStrain;
+  for (int k = 0; k < kNumFusionSources; ++k) {
+    Accumulator& a = acc_[k];
+    SourceWindowStats& s = state_.last[k];
+    s = SourceWindowStats();
+    s.count = a.count;
+    s.reports = a.reports;
+    s.rejected = a.rejected;
+    if (a.count > 0) {
+      const double n = static_cast<double>(a.count);
+      s.nis_ratio = a.nis_ratio_sum / n;
+      for (int j = 0; j < 2; ++j) {
+        s.bias[j] = a.z_sum[j] / n;
+        const double variance = a.z2_sum[j] / n - s.bias[j] * s.bias[j];
+        s.lag1[j] = variance > 0 && a.count > 1 ? (a.zz_lag_sum[j] / (n - 1) - s.bias[j] * s.bias[j]) / variance : 0.0;
+      }
+    }
+    if (a.reports >= options_.min_reports) {
+      double score = static_cast<double>(a.rejected) / a.reports / options_.rejected_share_limit;
+      if (a.count >= options_.min_reports) score = std::max(score, s.nis_ratio / options_.nis_ratio_limit[k]);
+      for (int j = 0; j < 2; ++j) score = std::max(score, std::fabs(s.bias[j]) / options_.bias_limit[k]);
+      if (score > statistic) {
+        statistic = score;
+        worst = static_cast<FusionSource>(k);
+      }
+    }
+    a = Accumulator();
+  }
+  window_start_utime_ = utime;
+  for (int i = 0; i < 2; ++i) {
+    state_.thrust_scale_mean[i] = estimates_ > 0 ? thrust_scale_sum_[i] / estimates_ : 1.0;
+    thrust_scale_sum_[i] = 0;
+  }
+  estimates_ = 0;
+  ++state_.windows;
+  state_.statistic = statistic;
+  state_.worst_source = worst;
+  if (statistic > 1.0) {
+    consistent_run_ = 0;
+    if (++inconsistent_run_ >= options_.raise_windows && !state_.mismatch) {
+      state_.mismatch = true;
+      state_.raised_utime = utime;
+      ++state_.raised_count;
+      state_.parameter = Attribute();
+    }
+  } else {
+    inconsistent_run_ = 0;
+    ++consistent_run_;
+    if (state_.mismatch && consistent_run_ >= options_.clear_windows) state_.mismatch = false;
+  }
+  state_.confirmed = !state_.mismatch && consistent_run_ >= options_.confirm_windows;
+}
+
+MismatchParameter ModelConsistencyMonitor::Attribute() const {
+  switch (state_.worst_source) {
+    case FusionSource::kTelemetry:
+      return MismatchParameter::kMotorLag;
+    case FusionSource::kStrain:
+      return MismatchParameter::kStiffnessOrGaugeScale;
+    case FusionSource::kAccelerometer:
+    case FusionSource::kGyro: {
+      // Total force wrong: the strain's forces or the mass. If the strain's
+      // forces also disagree with the thrust map, the strain is wrong.
+      const double deviation =
+          std::max(std::fabs(state_.thrust_scale_mean[0] - 1.0), std::fabs(state_.thrust_scale_mean[1] - 1.0));
+      return deviation > options_.thrust_scale_deviation ? MismatchParameter::kStiffnessOrGaugeScale
+                                                         : MismatchParameter::kMass;
+    }
+  }
+  return MismatchParameter::kNone;
+}
+
+}  // namespace birotor

@@ -1,0 +1,101 @@
+// Model-consistency figures of one run.
+#include "evaluation/mismatch_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+namespace birotor {
+namespace {
+
+struct Scored {
+  int64_t utime;
+  int32_t status;
+  double error_n[2];
+  bool inside[2];  // rotor i within 2 sigma
+};
+
+}  // namespace
+
+MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
+                                    const MismatchEvalOptions& options) {
+  MismatchEvalResult r;
+  std::unordered_map<int64_t, size_t> truth_index;
+  truth_index.reserve(truth.size());
+  for (size_t i = 0; i < truth.size(); ++i) truth_index[truth[i].utime] = i;
+  std::vector<Scored> scored;
+  scored.reserve(forces.size());
+  for (const ForceEstimate& e : forces) {
+    const auto it = truth_index.find(e.utime);
+    if (it == truth_index.end()) continue;
+    Scored s{e.utime, e.status, {0, 0}, {true, true}};
+    for (int i = 0; i < 2; ++i) {
+      s.error_n[i] = e.force_n[i] - truth[it->second].force_n[i];
+      s.inside[i] = std::fabs(s.error_n[i]) <= 2.0 * e.force_std_n[i];
+    }
+    scored.push_back(s);
+  }
+  if (scored.empty()) return r;
+  const int64_t start = options.airborne_utime >= 0 ? options.airborne_utime : scored.front().utime;
+  const int64_t settle = start + static_cast<int64_t>(options.settle_s * 1e6);
+  int64_t valid = 0, counted = 0, after = 0, inside_after[2] = {0, 0};
+  double sum[2] = {0, 0};
+  for (const Scored& s : scored) {
+    if (s.utime < start) continue;
+    ++counted;
+    if (s.status & kStatusValid) ++valid;
+    if (s.status & kStatusThrustDeficit) ++r.thrust_deficit;
+    if (s.status & (kStatusRotor1Fault | kStatusRotor2Fault)) ++r.rotor_fault;
+    if (s.status & kStatusModelMismatch) {
+      ++r.mismatch_estimates;
+      if (r.mismatch_raised_s < 0) r.mismatch_raised_s = (s.utime - start) * 1e-6;
+    }
+    if (s.utime >= settle) {
+      ++after;
+      for (int i = 0; i < 2; ++i) {
+        sum[i] += std::fabs(s.error_n[i]);
+        if (s.inside[i]) ++inside_after[i];
+      }
+    }
+  }
+  r.valid_share = counted > 0 ? static_cast<double>(valid) / counted : 0.0;
+  for (int i = 0; i < 2; ++i) r.mae_after_settle_n[i] = after > 0 ? sum[i] / after : NAN;
+  r.share_after_settle = after > 0 ? static_cast<double>(std::min(inside_after[0], inside_after[1])) / after : NAN;
+  // Sliding windows over the VALID estimates (two pointers over time).
+  const int64_t window_us = static_cast<int64_t>(options.window_s * 1e6);
+  const int64_t step_us = static_cast<int64_t>(options.window_step_s * 1e6);
+  for (int64_t w = start; w + window_us <= scored.back().utime; w += step_us) {
+    int64_t n = 0, inside[2] = {0, 0};
+    for (auto it =
+             std::lower_bound(scored.begin(), scored.end(), w, [](const Scored&s, int64_t t) { return s.utime < t; });
+         it != scored.end() && it->utime < w + window_us; ++it) {
+      if (!(it->status & kStatusValid)) continue;
+      ++n;
+      for (int i = 0; i < 2; ++i) inside[i] += it->inside[i] ? 1 : 0;
+    }
+    if (n >= options.min_window_valid)
+      r.worst_valid_window_share =
+          std::min(r.worst_valid_window_share, static_cast<double>(std::min(inside[0], inside[1])) / n);
+  }
+  return r;
+}
+
+std::string MismatchTableHeader() {
+  return "| scenario | method | MAE f1 / f2 after 5 s [N] | 2-sigma share after 5 s | MODEL_MISMATCH raised [s] | "
+         "VALID share | worst 2 s VALID share | THRUST_DEFICIT | rotor fault |\n"
+         "|---|---|---|---|---|---|---|---|---|\n";
+}
+
+std::string MismatchTableRow(const std::string& scenario, const std::string& method, const MismatchEvalResult& r) {
+  char raised[32] = "never";
+  if (r.mismatch_raised_s >= 0) std::snprintf(raised, sizeof(raised), "%.2f", r.mismatch_raised_s);
+  char row[512];
+  std::snprintf(row, sizeof(row), "| %s | %s | %.3f / %.3f | %.3f | %s | %.3f | %.3f | %lld | %lld |\n",
+                scenario.c_str(), method.c_str(), r.mae_after_settle_n[0], r.mae_after_settle_n[1],
+                r.share_after_settle, raised, r.valid_share, r.worst_valid_window_share,
+                static_cast<long long>(r.thrust_deficit), static_cast<long long>(r.rotor_fault));
+  return row;
+}
+
+}  // namespace birotor
