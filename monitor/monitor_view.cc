@@ -238,10 +238,23 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
   return text;
 }
 
+// seq going back this many times means interleaved publishers, not restarts.
+constexpr int64_t kSeveralPublishersBackwardSteps = 3;
+
 std::string DeliveryNote(const MonitorCollector& c) {
   const ForceStreamStats& f = c.force_stats();
   std::string note;
   int64_t lost_forces = 0;
+  // Two publishers on one FORCE channel (a log played back beside the
+  // daemon, a second estimator on the prefix) interleave two seq streams:
+  // seq goes back on every switch and the forward jumps are the distance
+  // between the streams, not lost messages. A restart goes back once.
+  if (f.seq_backwards >= kSeveralPublishersBackwardSteps) {
+    return fmt::format(
+        "FORCE comes from more than one publisher: seq went back {} times (two interleaved streams, e.g. a log played "
+        "back beside the daemon or a second estimator on this prefix); its seq gaps are not losses",
+        f.seq_backwards);
+  }
   if (f.seq_missing > 0) {
     // A strain sample the estimator never fused leaves a hole in FORCE seq too.
     int64_t upstream = 0;

@@ -180,6 +180,23 @@ TEST(MonitorViewTest, DeliveryNoteSeparatesUpstreamFaultsFromLostPackets) {
   EXPECT_NE(note.find("about 1 FORCE messages were lost"), std::string::npos) << note;
 }
 
+TEST(MonitorViewTest, DeliveryNoteNamesTwoForcePublishersInsteadOfMissingMessages) {
+  const ChannelNames channels = MakeChannelNames();
+  MonitorCollector collector(channels, 10.0);
+  ForceEstimate estimate;
+  // The daemon's stream near 50 and a replayed log's near 10000, interleaved.
+  for (int i = 0; i < 5; ++i) {
+    for (int seq : {50 + i, 10000 + i}) {
+      estimate.seq = seq;
+      estimate.utime = 1000 * i;
+      Feed(&collector, channels.force, Encode(ToMessage(estimate)));
+    }
+  }
+  const std::string note = DeliveryNote(collector);
+  EXPECT_NE(note.find("FORCE comes from more than one publisher: seq went back 4 times"), std::string::npos) << note;
+  EXPECT_EQ(note.find("missing"), std::string::npos) << note;
+}
+
 TEST(MonitorViewTest, SummaryNamesEveryFigure) {
   EvalResult result;
   result.rotor[0].mae_n = 0.05;
