@@ -37,7 +37,10 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"mass_-15", {0.0559, 0.0125, 0.1141, true}},
       {"motor_tau_+70", {0.0035, 0.0345, 0.0054, true}},
       {"gauge_scale_0.7", {0.1062, 0.0186, 0.0519, false}},  // NOT met: RMS 31x nominal
-      {"untared_loss", {0.0736, 0.0314, 0.1322, true}},      // met by the rule, but climbs 0.13 m
+      // Seed 4 (the scenario's): the estimate loses VALID, force feedback falls back once and flies exactly the
+      // nominal map. Over 10 seeds (birotor-eval --control --scenarios untared_loss --seeds 10) the median is
+      // RMS 0.0056 m, tilt 0.0306 rad, altitude 0.0146 m against nominal 0.0726 / 0.0572 / 0.1546.
+      {"untared_loss", {0.0739, 0.0605, 0.1600, true}},
       {"ground_start", {0.0025, 0.0113, 0.0035, true}},
       {"severe_gap", {0.0880, 0.1082, 0.2659, true}},
       {"imu_noise", {0.0078, 0.0242, 0.0092, true}},
