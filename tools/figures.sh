@@ -123,7 +123,8 @@ cell() {  # file column1 column2 header
     /^\| scenario/ && !n { n = split($0, h, "|"); for (i = 2; i < n; ++i) col[trim(h[i])] = i; next }
     n && /^\|/ {
       split($0, f, "|")
-      if (trim(f[2]) == a && trim(f[3]) == b && (header in col)) { print trim(f[col[header]]); found = 1; exit }
+      row = trim(f[2]); sub(/ seed [0-9]+$/, "", row)  # "thrust_loss seed 4": the case flown on its own seed
+      if (row == a && trim(f[3]) == b && (header in col)) { print trim(f[col[header]]); found = 1; exit }
     }
     END { if (!found) { print "?"; print "figures.sh: warning: no cell " a " / " b " / " header > "/dev/stderr" } }
   ' "$1"
@@ -298,14 +299,14 @@ fault alarms of the EKF over every scenario: **$ekf_false_alarms**.
 
 **Closed-loop control** (\`birotor-eval --control\`, \`thrust_loss\`, the same gains in both modes):
 
-| controller | RMS position error [m] | peak tilt [rad] | peak altitude loss [m] | back within 5 cm [s] |
+| controller | RMS position error [m] | peak tilt after the fault [rad] | altitude deviation after the fault [m] | back within 5 cm [s] |
 |---|---|---|---|---|
 EOF
   for controller in nominal force_feedback; do
     printf '| %s | %s | %s | %s | %s |\n' "$controller" \
       "$(cell "$work/control.out" thrust_loss "$controller" 'RMS position error [m]')" \
-      "$(cell "$work/control.out" thrust_loss "$controller" 'peak tilt [rad]')" \
-      "$(cell "$work/control.out" thrust_loss "$controller" 'peak altitude loss [m]')" \
+      "$(cell "$work/control.out" thrust_loss "$controller" 'tilt after event [rad]')" \
+      "$(cell "$work/control.out" thrust_loss "$controller" 'altitude deviation [m]')" \
       "$(cell "$work/control.out" thrust_loss "$controller" 'back within 5 cm [s]')"
   done
   cat <<EOF
@@ -320,7 +321,7 @@ EOF
     cat <<EOF
 From a 60 s flight on top of the bench result (${flight_id_s} s wall): c_T $(id_error "$work/flight_table.md" thrust_coeff_n_s2_rad2),
 tau_m $(id_error "$work/flight_table.md" motor_time_constant_s), k $(id_error "$work/flight_table.md" arm_stiffness_n_m_rad),
-m_p $(id_error "$work/flight_table.md" tip_mass_kg).
+m_p $(flight_mp="$(id_error "$work/flight_table.md" tip_mass_kg)"; [ "$flight_mp" != "?" ] && echo "$flight_mp" || echo "kept at the bench value (the flight fit writes it only when it disagrees by more than 5 sigma)").
 EOF
   fi
   cat <<EOF
