@@ -118,7 +118,7 @@ class EstimatorPipeline {
   GaugeTare tare_;
   MotorSpeedTracker rotor_speed_;  // for the harmonic notches
   HarmonicNotch notch_;
-  FusionReports reports_;  // of the newest method call
+  FusionReports reports_;                // of the newest method call
   ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
 
   bool started_ = false;             // a strain sample has been accepted

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "model/rk4.h"
 #include "model/bench_dynamics.h"
+#include "model/rk4.h"
 
 namespace birotor {
 namespace {

@@ -22,7 +22,6 @@
 #include "params/scenario_yaml.h"
 #include "plot/control_plot.h"
 #include "plot/force_plot.h"
-#include "params/scenario_yaml.h"
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"

@@ -20,7 +20,6 @@
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "plot/force_plot.h"
-#include "params/scenario_yaml.h"
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/shutdown.h"

@@ -7,14 +7,14 @@
 #include <iostream>
 #include <string>
 
+#include "program/logging.h"
+#include "program/program_options.h"
 #include "review/flight_data.h"
 #include "review/review_page.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/log_io.h"
-#include "program/logging.h"
 #include "transport/output_file.h"
-#include "program/program_options.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;

@@ -54,7 +54,7 @@ TEST(SystemdNotifyTest, ReadyAndWatchdogAtHalfThePeriod) {
   EXPECT_FALSE(NotifyWatchdog());
   EXPECT_EQ(systemd.Next(), "");
   const int64_t start_us = int64_t{1} << 50;  // after any steady-clock reading
-  EXPECT_TRUE(NotifyWatchdogAt(start_us));  // sends, and is the reference time
+  EXPECT_TRUE(NotifyWatchdogAt(start_us));    // sends, and is the reference time
   systemd.Next();
   EXPECT_FALSE(NotifyWatchdogAt(start_us + 1'999'999));
   EXPECT_TRUE(NotifyWatchdogAt(start_us + 2'000'000));
