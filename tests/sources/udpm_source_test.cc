@@ -15,29 +15,14 @@
 #include <vector>
 
 #include "tests/sources/packet_recorder.h"
+#include "tests/transport/raw_datagram.h"
 #include "transport/host_clock.h"
 
 namespace birotor {
 namespace {
 
-int TestPort(int base) {
-  const char* offset = std::getenv("BIROTOR_TEST_PORT_OFFSET");
-  return base + (offset != nullptr ? std::atoi(offset) : 0);
-}
-
-void SendRaw(int port, const std::vector<uint8_t>& bytes) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  ASSERT_GE(fd, 0);
-  const unsigned char ttl = 0;
-  setsockopt(fd, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(static_cast<uint16_t>(port));
-  inet_pton(AF_INET, "239.255.76.67", &to.sin_addr);
-  EXPECT_EQ(sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)),
-            static_cast<ssize_t>(bytes.size()));
-  close(fd);
-}
+using testing::SendRaw;
+using testing::TestPort;
 
 std::vector<uint8_t> Small(const std::string& channel, std::vector<uint8_t> payload) {
   std::vector<uint8_t> packet = {0x4c, 0x43, 0x30, 0x32, 0, 0, 0, 1};  // LC02, seqno 1

@@ -17,28 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/transport/raw_datagram.h"
+
 namespace birotor {
 namespace {
 
-int TestPort(int base) {
-  const char* offset = std::getenv("BIROTOR_TEST_PORT_OFFSET");
-  return base + (offset != nullptr ? std::atoi(offset) : 0);
-}
-
-// Sends raw datagrams to the group, as an attacker on the host would.
-void SendRaw(int port, const std::vector<uint8_t>& bytes) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  ASSERT_GE(fd, 0);
-  const unsigned char ttl = 0;
-  setsockopt(fd, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(static_cast<uint16_t>(port));
-  inet_pton(AF_INET, "239.255.76.67", &to.sin_addr);
-  EXPECT_EQ(sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)),
-            static_cast<ssize_t>(bytes.size()));
-  close(fd);
-}
+using testing::SendRaw;
+using testing::TestPort;
 
 // Reads until `count` datagrams were seen or 2 s passed; returns the small messages.
 std::vector<std::string> ReceiveAll(UdpmReceiver* receiver, int64_t count) {
