@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "numerics/time_units.h"
+
 namespace birotor {
 
 void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
-  const double dt_s = last_utime_ < 0 ? 0.0 : 1e-6 * static_cast<double>(e.utime - last_utime_);
+  const double dt_s = last_utime_ < 0 ? 0.0 : ElapsedSeconds(e.utime, last_utime_);
   last_utime_ = e.utime;
   if (!airborne_) {
     if (e.force_n[0] + e.force_n[1] < params_.airborne_force_fraction * weight_n_) {
@@ -14,7 +16,7 @@ void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
       return;
     }
     if (above_since_us_ < 0) above_since_us_ = e.utime;
-    airborne_ = 1e-6 * static_cast<double>(e.utime - above_since_us_) >= params_.airborne_s;
+    airborne_ = ElapsedSeconds(e.utime, above_since_us_) >= params_.airborne_s;
     return;
   }
   const bool deficit = (e.status & kStatusThrustDeficit) != 0;

@@ -1,9 +1,11 @@
 #include "controller/seq_stream_lock.h"
 
+#include "numerics/time_units.h"
+
 namespace birotor {
 
 SeqStreamLock::Verdict SeqStreamLock::Admit(int32_t seq, int64_t now_us) {
-  const bool silent = !locked_ || static_cast<double>(now_us - last_in_stream_us_) > 1e6 * params_.silence_s;
+  const bool silent = !locked_ || ElapsedSeconds(now_us, last_in_stream_us_) > params_.silence_s;
   if (silent) {
     if (locked_) ++relocks_;
     locked_ = true;
@@ -25,7 +27,7 @@ SeqStreamLock::Verdict SeqStreamLock::Admit(int32_t seq, int64_t now_us) {
 }
 
 bool SeqStreamLock::ConflictWithin(int64_t now_us, double hold_s) const {
-  return foreign_ > 0 && static_cast<double>(now_us - last_foreign_us_) <= 1e6 * hold_s;
+  return foreign_ > 0 && ElapsedSeconds(now_us, last_foreign_us_) <= hold_s;
 }
 
 }  // namespace birotor

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "numerics/time_units.h"
+
 namespace birotor {
 namespace {
 
@@ -31,7 +33,7 @@ bool SetpointInput::Offer(const Setpoint& setpoint, int64_t now_us) {
     ++counters_.rejected_invalid;
     return false;
   }
-  const double age_s = 1e-6 * static_cast<double>(now_us - setpoint.utime);
+  const double age_s = ElapsedSeconds(now_us, setpoint.utime);
   if (age_s > params_.timeout_s || -age_s > params_.future_window_s) {
     ++counters_.rejected_stamp;
     return false;
@@ -41,7 +43,7 @@ bool SetpointInput::Offer(const Setpoint& setpoint, int64_t now_us) {
       ++counters_.rejected_out_of_order;
       return false;
     }
-    if (1e-6 * static_cast<double>(setpoint.utime - newest_.utime) < params_.min_interval_s) {
+    if (ElapsedSeconds(setpoint.utime, newest_.utime) < params_.min_interval_s) {
       ++counters_.rejected_rate;
       return false;
     }
@@ -59,7 +61,7 @@ bool SetpointInput::Offer(const Setpoint& setpoint, int64_t now_us) {
 ReferencePoint SetpointInput::At(int64_t now_us, const Eigen::Vector2d& position_m) {
   ReferencePoint reference;
   if (has_setpoint_) {
-    const double age_s = 1e-6 * static_cast<double>(now_us - newest_.utime);
+    const double age_s = ElapsedSeconds(now_us, newest_.utime);
     if (age_s <= params_.timeout_s) {
       state_ = SetpointState::kFollowing;
       last_reference_ = ReferenceFromSetpoint(newest_, std::clamp(age_s, 0.0, params_.max_extrapolation_s));

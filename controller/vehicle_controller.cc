@@ -6,6 +6,7 @@
 
 #include "controller/rotor_allocation.h"
 #include "model/equilibrium.h"
+#include "numerics/time_units.h"
 
 namespace birotor {
 namespace {
@@ -65,7 +66,7 @@ bool VehicleController::Admit(ControllerInputCounters* counters, SeqStreamLock* 
     ++counters->rejected_invalid;
     return false;
   }
-  const double age_s = 1e-6 * static_cast<double>(now_us - utime);
+  const double age_s = ElapsedSeconds(now_us, utime);
   if (-age_s > s.clock_future_window_s) {
     ++counters->rejected_future;
     return false;
@@ -116,7 +117,7 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
   bool reset = false;
   if (valid && !inside) {
     if (gated_since_us_ < 0) gated_since_us_ = now_us;
-    reset = 1e-6 * static_cast<double>(now_us - gated_since_us_) >= s.pose_gate_reset_s;
+    reset = ElapsedSeconds(now_us, gated_since_us_) >= s.pose_gate_reset_s;
     if (!reset) {
       ++health_.pose.received;
       ++health_.pose.rejected_gate;
@@ -174,15 +175,14 @@ void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
   }
   // A late FORCE starts a new healthy run: recovery needs force_recovery_s
   // of on-time samples.
-  const bool on_time =
-      previous_utime >= 0 && 1e-6 * static_cast<double>(estimate.utime - previous_utime) <= s.force_timeout_s;
+  const bool on_time = previous_utime >= 0 && ElapsedSeconds(estimate.utime, previous_utime) <= s.force_timeout_s;
   if (force_healthy_since_us_ < 0 || !on_time) force_healthy_since_us_ = estimate.utime;
   efficiency_.OnForce(estimate);
 }
 
 double VehicleController::AgeS(int64_t last_utime, int64_t now_us) const {
   if (last_utime < 0 || now_us < last_utime) return kInf;
-  return 1e-6 * static_cast<double>(now_us - last_utime);
+  return ElapsedSeconds(now_us, last_utime);
 }
 
 bool VehicleController::ForceUsable(int64_t now_us) const {
@@ -212,7 +212,7 @@ void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status
   if (!imu_fresh) *status |= kCommandInputStale;
   observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : kNaN);
   if (pose_pending_) {
-    const double interval_s = 1e-6 * static_cast<double>(pending_pose_.utime - last_fused_pose_utime_);
+    const double interval_s = ElapsedSeconds(pending_pose_.utime, last_fused_pose_utime_);
     observer_.CorrectPose(Eigen::Vector2d(pending_pose_.x_m, pending_pose_.z_m), pending_pose_.phi_rad, interval_s,
                           imu_fresh);
     last_fused_pose_utime_ = pending_pose_.utime;
@@ -268,7 +268,7 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   const double nominal_dt_s = 1.0 / CommandRateHz(config_);
   const double dt_s = last_update_us_ < 0
                           ? nominal_dt_s
-                          : std::clamp(1e-6 * static_cast<double>(now_us - last_update_us_), 0.0, 10.0 * nominal_dt_s);
+                          : std::clamp(ElapsedSeconds(now_us, last_update_us_), 0.0, 10.0 * nominal_dt_s);
   last_update_us_ = now_us;
   // Mode mpc: the rotors have run the last command for dt_s.
   if (mpc_) mpc_->Advance(Eigen::Vector2d(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]), dt_s);

@@ -27,7 +27,9 @@ constexpr int kMaxDatagrams = 2048;
 // A well-formed message for channel index i (POSE, IMU, FORCE) with fields
 // from the input: stamps near a running clock or wild, values any bit pattern.
 std::vector<uint8_t> Message(size_t i, birotor::fuzz::ByteReader* in, int64_t* clock_us) {
-  *clock_us += in->Byte() < 220 ? 1000 : static_cast<int64_t>(in->AnyDouble());
+  // Wrapping addition: a wild step may overflow int64_t without undefined behaviour.
+  const uint64_t step_us = in->Byte() < 220 ? 1000 : static_cast<uint64_t>(in->AnyInt64());
+  *clock_us = static_cast<int64_t>(static_cast<uint64_t>(*clock_us) + step_us);
   std::vector<uint8_t> bytes;
   if (i % 3 == 0) {
     birotor::pose_t m{};

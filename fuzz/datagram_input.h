@@ -31,9 +31,21 @@ struct ByteReader {
     offset += available;
     return out;
   }
-  double AnyDouble() {
+  uint64_t AnyBits() {
     uint64_t bits = 0;
     for (int i = 0; i < 8; ++i) bits = (bits << 8) | Byte();
+    return bits;
+  }
+  // Any 64-bit stamp, wild ones included (a double cast would be undefined
+  // outside int64_t's range: the harness must not be the one misbehaving).
+  int64_t AnyInt64() {
+    const uint64_t bits = AnyBits();
+    int64_t value;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+  }
+  double AnyDouble() {
+    const uint64_t bits = AnyBits();
     double value;
     std::memcpy(&value, &bits, sizeof value);
     return value;

@@ -50,7 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       for (int s = in.Byte() % 16; s >= 0 && !sim.done(); --s) sim.Step(&sink);
       continue;
     }
-    command.utime = in.Byte() < 200 ? sim.utime() : static_cast<int64_t>(in.AnyDouble());
+    command.utime = in.Byte() < 200 ? sim.utime() : in.AnyInt64();
     command.seq = in.Byte();
     for (double& omega : command.omega_cmd_rad_s) omega = in.Byte() < 128 ? 698.55 : in.AnyDouble();
     birotor::EncodeMessage(command, &payload);

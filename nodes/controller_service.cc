@@ -11,6 +11,7 @@
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
 #include "numerics/percentile.h"
+#include "numerics/time_units.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
@@ -64,7 +65,7 @@ void ControllerService::HandlePacket(std::string_view channel, const void* data,
 
 int64_t ControllerService::ClockForInput(int64_t utime, int64_t host_us) {
   const bool restart = clock_set_ && host_us - last_accepted_host_us_ > kClockRelatchUs;
-  if ((!clock_set_ || restart) && utime >= 0) {
+  if ((!clock_set_ || restart) && utime >= 0 && utime <= kLatestPlausibleUtime) {
     if (restart) ++clock_relatches_;
     clock_set_ = true;
     clock_offset_us_ = utime - host_us;
@@ -72,9 +73,11 @@ int64_t ControllerService::ClockForInput(int64_t utime, int64_t host_us) {
   } else if (clock_set_ && host_us - clock_set_host_us_ < kClockAcquireUs) {
     // Acquisition: the offset of the input that arrived soonest, forward
     // only and never by more than the future window at a time.
-    const int64_t lead_us = utime - host_us - clock_offset_us_;
-    const int64_t window_us = std::llround(controller_.config().supervision.clock_future_window_s * 1e6);
-    if (lead_us > 0 && lead_us <= window_us) clock_offset_us_ += lead_us;
+    // In seconds: a wild stamp must not overflow the subtraction.
+    const double lead_s = ElapsedSeconds(utime, VehicleTimeUs(host_us));
+    if (lead_s > 0 && lead_s <= controller_.config().supervision.clock_future_window_s) {
+      clock_offset_us_ += SecondsToUtime(lead_s);
+    }
   }
   return VehicleTimeUs(host_us);
 }
@@ -153,7 +156,7 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   m.commands = h.commands;
   m.saturated = h.saturated;
   auto age = [&](const ControllerInputCounters& c) {
-    return c.last_utime < 0 || now_us < 0 ? kNaN : 1e-6 * static_cast<double>(now_us - c.last_utime);
+    return c.last_utime < 0 || now_us < 0 ? kNaN : ElapsedSeconds(now_us, c.last_utime);
   };
   m.pose_age_s = age(h.pose);
   m.imu_age_s = age(h.imu);
@@ -178,8 +181,7 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   const SetpointInput& setpoint = controller_.setpoint();
   const SetpointCounters& sc = setpoint.counters();
   m.setpoint_state = static_cast<int32_t>(setpoint.state());
-  m.setpoint_age_s =
-      setpoint.last_utime() < 0 || now_us < 0 ? kNaN : 1e-6 * static_cast<double>(now_us - setpoint.last_utime());
+  m.setpoint_age_s = setpoint.last_utime() < 0 || now_us < 0 ? kNaN : ElapsedSeconds(now_us, setpoint.last_utime());
   m.setpoint_received = sc.received + setpoint_decode_errors_;
   m.setpoint_decode_errors = setpoint_decode_errors_;
   m.setpoint_rejected_invalid = sc.rejected_invalid;

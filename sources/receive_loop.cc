@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <string>
 
+#include "numerics/time_units.h"
 #include "program/shutdown.h"
 #include "sources/dropped_datagram_log.h"
 #include "transport/host_clock.h"
@@ -28,8 +29,7 @@ bool RunReceiveLoop(MessageSource* source, const PeriodicWork& work, const Recei
   DroppedDatagramLog dropped;
   int64_t deadline_us = work(SteadyClockUs());
   while (!ShutdownRequested() && !source->finished()) {
-    const double wait_s =
-        std::clamp(1e-6 * static_cast<double>(deadline_us - SteadyClockUs()), 0.0, options.max_wait_s);
+    const double wait_s = std::clamp(ElapsedSeconds(deadline_us, SteadyClockUs()), 0.0, options.max_wait_s);
     ReceiveUntil(source, wait_s, deadline_us);
     // Also after packets: one may have moved the node's deadline (the first
     // POSE makes the controller's first period due at once).

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <limits>
+
 namespace birotor {
 namespace {
 
@@ -15,6 +18,18 @@ TEST(TimeUnitsTest, UtimeIsMicroseconds) {
   // A day of utime since the epoch of 2026 survives the round trip exactly.
   const int64_t utime = 1796083200000000 + 86399999999;
   EXPECT_EQ(SecondsToUtime(UtimeToSeconds(utime)), utime);
+}
+
+TEST(TimeUnitsTest, ElapsedSecondsIsDefinedForAnyTwoStamps) {
+  EXPECT_EQ(ElapsedSeconds(1500000, 500000), 1.0);
+  EXPECT_EQ(ElapsedSeconds(500000, 1500000), -1.0);
+  // The extremes a hostile packet can carry: huge, finite, no overflow.
+  const int64_t lowest = std::numeric_limits<int64_t>::min();
+  const int64_t highest = std::numeric_limits<int64_t>::max();
+  EXPECT_NEAR(ElapsedSeconds(highest, lowest), 1.8446744073709552e13, 0.01);  // 2^64 us
+  EXPECT_NEAR(ElapsedSeconds(lowest, 1000000), -9.223372036855776e12, 0.01);  // -2^63 us - 1 s
+  // Exact to the microsecond below kLatestPlausibleUtime.
+  EXPECT_EQ(ElapsedSeconds(kLatestPlausibleUtime, kLatestPlausibleUtime - 1), 1e-6);
 }
 
 TEST(TimeUnitsTest, WholeMicroseconds) {
