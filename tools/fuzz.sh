@@ -33,9 +33,10 @@ for h in "${harnesses[@]}"; do
   if ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
      "$BUILD_DIR/fuzz/$h" -max_total_time="$seconds" -rss_limit_mb=2048 -print_final_stats=1 ${BIROTOR_FUZZ_ARGS:-} \
        -artifact_prefix="$BUILD_DIR/artifacts-$h/" "$work" > "$BUILD_DIR/fuzz-$h.log" 2>&1; then
-    runs=$(grep -E '^stat::number_of_executed_units' "$BUILD_DIR/fuzz-$h.log" | awk '{print $2}')
+    # (|| true: with pipefail a missing line must not end the script silently.)
+    runs=$(grep -E '^stat::number_of_executed_units' "$BUILD_DIR/fuzz-$h.log" | awk '{print $2}' || true)
     # -fork=1 prints no final stats; its last status line starts with "#<runs>:".
-    [ -n "$runs" ] || runs=$(grep -oE '^#[0-9]+:' "$BUILD_DIR/fuzz-$h.log" | tail -1 | tr -d '#:')
+    [ -n "$runs" ] || runs=$(grep -oE '^#[0-9]+:' "$BUILD_DIR/fuzz-$h.log" | tail -1 | tr -d '#:' || true)
     echo "fuzz: $h: $runs runs, no crash, no leak, no sanitizer report"
   else
     echo "fuzz: $h FAILED; see $BUILD_DIR/fuzz-$h.log and $BUILD_DIR/artifacts-$h/"
