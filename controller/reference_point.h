@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "controller/setpoint.h"
+#include "samples/setpoint.h"
 
 namespace birotor {
 

@@ -1,4 +1,4 @@
-#include "controller/setpoint.h"
+#include "samples/setpoint.h"
 
 #include <cmath>
 

@@ -12,7 +12,7 @@
 
 #include "controller/controller_params.h"
 #include "controller/reference_point.h"
-#include "controller/setpoint.h"
+#include "samples/setpoint.h"
 
 namespace birotor {
 

@@ -19,14 +19,14 @@
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
 #include "controller/efficiency_conditioner.h"
-#include "controller/motor_command.h"
 #include "controller/mpc_controller.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
 #include "controller/seq_stream_lock.h"
-#include "controller/setpoint.h"
 #include "controller/setpoint_input.h"
+#include "samples/motor_command.h"
 #include "samples/samples.h"
+#include "samples/setpoint.h"
 
 namespace birotor {
 

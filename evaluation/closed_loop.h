@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "controller/controller_params.h"
-#include "controller/motor_command.h"
 #include "controller/vehicle_controller.h"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
+#include "samples/motor_command.h"
 #include "samples/samples.h"
 #include "simulator/scenario.h"
 #include "sinks/message_sink.h"

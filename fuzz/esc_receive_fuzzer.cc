@@ -16,7 +16,7 @@
 #include "birotor/motor_command_t.hpp"
 #include "fuzz/datagram_input.h"
 #include "nodes/esc_command_node.h"
-#include "simulator/sample_sink.h"
+#include "samples/sample_sink.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"

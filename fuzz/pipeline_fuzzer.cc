@@ -219,6 +219,35 @@ bool NextSample(ByteReader* in, bool raw, InputChannel channel, const ChannelClo
   return true;
 }
 
+// count identical well-formed hover STRAIN samples, with a MOTOR sample at
+// every second one, on the channels' clocks and seq counters (index 0: STRAIN,
+// 1: MOTOR), counted in received.
+void FeedHoverBurst(int count, int64_t* clock_us, int32_t* seq, int64_t* received, EstimatorPipeline* pipeline,
+                    birotor::ForceEstimate* estimate) {
+  for (int k = 0; k < count; ++k) {
+    birotor::StrainSample s;
+    clock_us[0] = WrapAdd(clock_us[0], kStrainPeriodUs);
+    s.utime = clock_us[0];
+    s.seq = seq[0] = static_cast<int32_t>(static_cast<uint32_t>(seq[0]) + 1u);
+    s.deflection_rad[0] = -kHoverDeflectionRad;
+    s.deflection_rad[1] = kHoverDeflectionRad;
+    if (k % 2 == 0) {
+      birotor::MotorSample m;
+      clock_us[1] = clock_us[0];
+      m.utime = clock_us[1];
+      m.seq = seq[1] = static_cast<int32_t>(static_cast<uint32_t>(seq[1]) + 1u);
+      m.omega_cmd_rad_s[0] = m.omega_cmd_rad_s[1] = kHoverOmegaRadS;
+      m.omega_meas_rad_s[0] = m.omega_meas_rad_s[1] = kHoverOmegaRadS;
+      pipeline->CountReceived(InputChannel::kMotor);
+      ++received[1];
+      pipeline->OnMotor(m);
+    }
+    pipeline->CountReceived(InputChannel::kStrain);
+    ++received[0];
+    if (pipeline->OnStrain(s, estimate)) CheckEstimate(*estimate);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -248,28 +277,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (burst) {
       const int count = std::min<int>(in.Byte(), kMaxBurstSamples - burst_samples);
       burst_samples += count;
-      for (int k = 0; k < count; ++k) {
-        birotor::StrainSample s;
-        clock_us[0] = WrapAdd(clock_us[0], kStrainPeriodUs);
-        s.utime = clock_us[0];
-        s.seq = seq[0] = static_cast<int32_t>(static_cast<uint32_t>(seq[0]) + 1u);
-        s.deflection_rad[0] = -kHoverDeflectionRad;
-        s.deflection_rad[1] = kHoverDeflectionRad;
-        if (k % 2 == 0) {
-          birotor::MotorSample m;
-          clock_us[1] = clock_us[0];
-          m.utime = clock_us[1];
-          m.seq = seq[1] = static_cast<int32_t>(static_cast<uint32_t>(seq[1]) + 1u);
-          m.omega_cmd_rad_s[0] = m.omega_cmd_rad_s[1] = kHoverOmegaRadS;
-          m.omega_meas_rad_s[0] = m.omega_meas_rad_s[1] = kHoverOmegaRadS;
-          pipeline.CountReceived(InputChannel::kMotor);
-          ++received[1];
-          pipeline.OnMotor(m);
-        }
-        pipeline.CountReceived(InputChannel::kStrain);
-        ++received[0];
-        if (pipeline.OnStrain(s, &estimate)) CheckEstimate(estimate);
-      }
+      FeedHoverBurst(count, clock_us, seq, received, &pipeline, &estimate);
       continue;
     }
     pipeline.CountReceived(channel);

@@ -100,11 +100,14 @@ bool EstimatorService::InputChannelOf(std::string_view channel, InputChannel* in
   return false;
 }
 
-void EstimatorService::WarnDecodeError(InputChannel channel, const char* error) {
+bool EstimatorService::Decoded(InputChannel channel, DecodeError error) {
+  if (error == DecodeError::kNone) return true;
+  pipeline_.CountDecodeError(channel);
   if (decode_warning_.ShouldLog(SteadyClockUs())) {
-    spdlog::warn("undecodable {} packet ({}); {} similar warnings suppressed", InputChannelName(channel), error,
-                 decode_warning_.suppressed());
+    spdlog::warn("undecodable {} packet ({}); {} similar warnings suppressed", InputChannelName(channel),
+                 DecodeErrorName(error), decode_warning_.suppressed());
   }
+  return false;
 }
 
 bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime) {
@@ -118,48 +121,22 @@ bool EstimatorService::DispatchPacket(InputChannel channel, const void* data, si
   switch (channel) {
     case InputChannel::kStrain:
       return HandleStrain(data, size, receive_wall_utime);
-    case InputChannel::kMotor: {
-      const DecodeError error = DecodeMessage(data, size, &motor_message_);
-      if (error != DecodeError::kNone) {
-        pipeline_.CountDecodeError(channel);
-        WarnDecodeError(channel, DecodeErrorName(error));
-        return false;
-      }
-      pipeline_.OnMotor(FromMessage(motor_message_));
+    case InputChannel::kMotor:
+      if (Decoded(channel, DecodeMessage(data, size, &motor_message_))) pipeline_.OnMotor(FromMessage(motor_message_));
       return false;
-    }
-    case InputChannel::kImu: {
-      const DecodeError error = DecodeMessage(data, size, &imu_message_);
-      if (error != DecodeError::kNone) {
-        pipeline_.CountDecodeError(channel);
-        WarnDecodeError(channel, DecodeErrorName(error));
-        return false;
-      }
-      pipeline_.OnImu(FromMessage(imu_message_));
+    case InputChannel::kImu:
+      if (Decoded(channel, DecodeMessage(data, size, &imu_message_))) pipeline_.OnImu(FromMessage(imu_message_));
       return false;
-    }
-    case InputChannel::kPose: {
-      const DecodeError error = DecodeMessage(data, size, &pose_message_);
-      if (error != DecodeError::kNone) {
-        pipeline_.CountDecodeError(channel);
-        WarnDecodeError(channel, DecodeErrorName(error));
-        return false;
-      }
-      pipeline_.OnPose(FromMessage(pose_message_));
+    case InputChannel::kPose:
+      if (Decoded(channel, DecodeMessage(data, size, &pose_message_))) pipeline_.OnPose(FromMessage(pose_message_));
       return false;
-    }
   }
   return false;
 }
 
 bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t receive_wall_utime) {
   const int64_t start_us = options_.report_processing_time ? SteadyClockUs() : 0;
-  const DecodeError error = DecodeMessage(data, size, &strain_message_);
-  if (error != DecodeError::kNone) {
-    pipeline_.CountDecodeError(InputChannel::kStrain);
-    WarnDecodeError(InputChannel::kStrain, DecodeErrorName(error));
-    return false;
-  }
+  if (!Decoded(InputChannel::kStrain, DecodeMessage(data, size, &strain_message_))) return false;
   if (receive_wall_utime >= 0) {
     last_strain_arrival_wall_us_ = receive_wall_utime;
     const int64_t queued_us = WallClockUs() - receive_wall_utime;

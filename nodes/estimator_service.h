@@ -27,6 +27,7 @@
 #include "sinks/message_sink.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
+#include "transport/lcm_codec.h"
 #include "transport/udpm_receiver.h"
 
 namespace birotor {
@@ -109,7 +110,9 @@ class EstimatorService : public PacketHandler {
   bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
   // HandlePacket without the rejection log lines.
   bool DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime);
-  void WarnDecodeError(InputChannel channel, const char* error);
+  // True if the packet decoded; else it is counted as a decode error of
+  // channel and warned about (rate-limited).
+  bool Decoded(InputChannel channel, DecodeError error);
   // A FORCE on the own channel: ours looped back, or a foreign publisher's.
   void CheckOwnForceChannel(const void* data, size_t size);
   bool ForeignForceActive() const;

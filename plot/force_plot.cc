@@ -175,6 +175,157 @@ std::string YRangeCommands(const YRange& range) {
   return text;
 }
 
+// The estimates, each with the TRUTH sample of its stamp (if any).
+struct PairedRows {
+  std::vector<Row> rows;
+  bool with_truth = false;
+};
+
+PairedRows PairWithTruth(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
+                         int64_t origin_utime) {
+  std::unordered_map<int64_t, const TruthSample*> truth_by_utime;
+  truth_by_utime.reserve(truth.size());
+  for (const TruthSample& t : truth) truth_by_utime[t.utime] = &t;
+  PairedRows paired;
+  paired.rows.reserve(forces.size());
+  for (const ForceEstimate& e : forces) {
+    const auto it = truth_by_utime.find(e.utime);
+    const TruthSample* t = it == truth_by_utime.end() ? nullptr : it->second;
+    paired.with_truth = paired.with_truth || t != nullptr;
+    paired.rows.push_back({static_cast<double>(e.utime - origin_utime) * 1e-6, &e, t});
+  }
+  return paired;
+}
+
+// The median of rotor r's finite force sigmas [N]; NaN if none.
+double MedianStdN(const std::vector<Row>& rows, int r) {
+  std::vector<double> stds;
+  stds.reserve(rows.size());
+  for (const Row& row : rows) {
+    if (std::isfinite(row.estimate->force_std_n[r])) stds.push_back(row.estimate->force_std_n[r]);
+  }
+  if (stds.empty()) return kNaN;
+  std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
+  return stds[stds.size() / 2];
+}
+
+// y-ranges from the data, per panel.
+struct PanelRanges {
+  YRange force[2];
+  YRange error;
+  YRange scale;
+};
+
+PanelRanges RangesOf(const std::vector<Row>& rows, const double median_std_n[2], const ForcePlotOptions& options) {
+  std::vector<std::pair<double, double>> force_values[2], error_values, scale_values;
+  for (const Row& row : rows) {
+    for (int r = 0; r < 2; ++r) {
+      force_values[r].emplace_back(row.estimate->force_n[r], row.t_s);
+      scale_values.emplace_back(row.estimate->thrust_scale[r], row.t_s);
+      if (row.truth == nullptr) continue;
+      force_values[r].emplace_back(row.truth->force_n[r], row.t_s);
+      scale_values.emplace_back(row.truth->thrust_scale[r], row.t_s);
+      error_values.emplace_back(row.estimate->force_n[r] - row.truth->force_n[r], row.t_s);
+    }
+  }
+  PanelRanges ranges;
+  for (int r = 0; r < 2; ++r) ranges.force[r] = RangeOf(force_values[r], options.clip_fraction, 0.5, " N");
+  ranges.error = RangeOf(error_values, options.clip_fraction, 0.1, " N");
+  // The ±1σ envelopes stay in view, so an overstated sigma shows as such.
+  const double widest_median_std_n = std::max(median_std_n[0], median_std_n[1]);
+  if (std::isfinite(widest_median_std_n)) {
+    ranges.error.low = std::min(ranges.error.low, -1.15 * widest_median_std_n);
+    ranges.error.high = std::max(ranges.error.high, 1.15 * widest_median_std_n);
+  }
+  ranges.scale = RangeOf(scale_values, options.clip_fraction, 0.2, "");
+  // The thresholds are always in view, and 1.0 (healthy) too.
+  for (const ThresholdLine& line : options.scale_lines) {
+    ranges.scale.low = std::min(ranges.scale.low, line.value - 0.03);
+  }
+  ranges.scale.high = std::max(ranges.scale.high, 1.03);
+  return ranges;
+}
+
+// Vertical lines in every panel (arrows persist, appended to script); the
+// labels, for the top panel, returned.
+std::string MarkerCommands(std::vector<std::pair<double, std::string>> markers, std::string* script) {
+  std::sort(markers.begin(), markers.end());
+  std::string marker_labels;
+  for (size_t k = 0; k < markers.size(); ++k) {
+    *script += fmt::format(
+        "set arrow {} from first {:.6f}, graph 0 to first {:.6f}, graph 1 nohead front lw 1.5 "
+        "dt 2 lc rgb '{}'\n",
+        k + 1, markers[k].first, markers[k].first, kMarkerColor);
+    marker_labels += fmt::format(
+        "set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front boxed "
+        "textcolor rgb '{}' font ',9'\n",
+        k + 10, GnuplotQuoted(markers[k].second), markers[k].first, 0.93 - 0.085 * static_cast<double>(k % 6),
+        kMarkerColor);
+  }
+  return marker_labels;
+}
+
+// Rotor r's force panel: the ±1σ band, the truth and the estimate.
+std::string ForcePanelPlot(int r, double median_std_n, bool with_truth) {
+  std::string text = fmt::format(
+      "set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
+      "fs transparent solid 0.25 noborder t '±1σ, median {:.3f} N'",
+      r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r], median_std_n);
+  if (with_truth) text += fmt::format(", $data u 1:{} w l lw 2 lc rgb '{}' t 'true'", 9 + r, kTrueColor);
+  text +=
+      fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r, kRotorColor[r], r + 1);
+  return text;
+}
+
+// The error panel: the errors first, the ±1σ envelopes drawn over them so
+// that they stay visible.
+std::string ErrorPanelPlot() {
+  std::string text = fmt::format(
+      "set ylabel 'error [N]'\nplot $data u 1:13 w l lc rgb '{}' t 'f1 est - true', "
+      "$data u 1:14 w l lc rgb '{}' t 'f2 est - true'",
+      kRotorColor[0], kRotorColor[1]);
+  for (int r = 0; r < 2; ++r) {
+    text += fmt::format(
+        ", $data u 1:{} w l lw 1.5 lc rgb '{}' t '±1σ f{}', $data u 1:(-${}) w l lw 1.5 lc rgb '{}' notitle", 4 + r,
+        kSigmaColor[r], r + 1, 4 + r, kSigmaColor[r]);
+  }
+  return text + "\nunset label\n";
+}
+
+// The thrust-efficiency panel with the fault thresholds.
+std::string ScalePanelPlot(const std::vector<ThresholdLine>& scale_lines, bool with_truth) {
+  std::string text = "set ylabel 'thrust efficiency μ [1]'\nplot ";
+  for (const ThresholdLine& line : scale_lines) {
+    text += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
+  }
+  for (int r = 0; r < 2; ++r) {
+    if (with_truth) {
+      text += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
+    }
+    text += fmt::format("$data u 1:{} w l lc rgb '{}' t 'estimated μ{}'{}", 6 + r, kRotorColor[r], r + 1,
+                        r == 0 ? ", " : "");
+  }
+  return text + "\nunset label\n";
+}
+
+// Status strip: one row per bit, a thick line where it is set (a square
+// for a single message, e.g. a RESET).
+std::string StatusPanelPlot() {
+  std::string text =
+      fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nunset key\nset ytics (", kStatusBitCount);
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    text += fmt::format("{}{} {}", i == 0 ? "" : ", ", GnuplotQuoted(kStatusBitNames[i].word), kStatusBitCount - i);
+  }
+  text += ") font ',8'\nunset ylabel\nplot ";
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    const bool alarm = kStatusBitNames[i].bit & kAlarmStatusBits;
+    text += fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w lp lw 5 pt 5 ps 0.3 lc rgb '{}' notitle{}",
+                        kStatusBitNames[i].bit, kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c",
+                        i + 1 < kStatusBitCount ? ", " : "\n");
+  }
+  return text;
+}
+
 }  // namespace
 
 std::vector<ThresholdLine> ThrustScaleLines(const EkfOptions& ekf) {
@@ -197,63 +348,14 @@ PlotMarker ThrustStepMarker(int rotor, double step_time_s) {
 
 std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
                             const ForcePlotOptions& options) {
-  std::unordered_map<int64_t, const TruthSample*> truth_by_utime;
-  truth_by_utime.reserve(truth.size());
-  for (const TruthSample& t : truth) truth_by_utime[t.utime] = &t;
   int64_t origin_utime = forces.front().utime;
   if (!truth.empty()) origin_utime = std::min(origin_utime, truth.front().utime);
   const auto seconds = [origin_utime](int64_t utime) { return static_cast<double>(utime - origin_utime) * 1e-6; };
-
-  std::vector<Row> rows;
-  rows.reserve(forces.size());
-  int64_t paired = 0;
-  for (const ForceEstimate& e : forces) {
-    const auto it = truth_by_utime.find(e.utime);
-    const TruthSample* t = it == truth_by_utime.end() ? nullptr : it->second;
-    paired += t != nullptr;
-    rows.push_back({seconds(e.utime), &e, t});
-  }
-  const bool with_truth = paired > 0;
-  double median_std_n[2];
-  for (int r = 0; r < 2; ++r) {
-    std::vector<double> stds;
-    stds.reserve(rows.size());
-    for (const Row& row : rows) {
-      if (std::isfinite(row.estimate->force_std_n[r])) stds.push_back(row.estimate->force_std_n[r]);
-    }
-    median_std_n[r] = kNaN;
-    if (stds.empty()) continue;
-    std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
-    median_std_n[r] = stds[stds.size() / 2];
-  }
-
-  // y-ranges from the data, per panel.
-  std::vector<std::pair<double, double>> force_values[2], error_values, scale_values;
-  for (const Row& row : rows) {
-    for (int r = 0; r < 2; ++r) {
-      force_values[r].emplace_back(row.estimate->force_n[r], row.t_s);
-      scale_values.emplace_back(row.estimate->thrust_scale[r], row.t_s);
-      if (row.truth == nullptr) continue;
-      force_values[r].emplace_back(row.truth->force_n[r], row.t_s);
-      scale_values.emplace_back(row.truth->thrust_scale[r], row.t_s);
-      error_values.emplace_back(row.estimate->force_n[r] - row.truth->force_n[r], row.t_s);
-    }
-  }
-  const YRange force_range[2] = {RangeOf(force_values[0], options.clip_fraction, 0.5, " N"),
-                                 RangeOf(force_values[1], options.clip_fraction, 0.5, " N")};
-  YRange error_range = RangeOf(error_values, options.clip_fraction, 0.1, " N");
-  // The ±1σ envelopes stay in view, so an overstated sigma shows as such.
-  const double widest_median_std_n = std::max(median_std_n[0], median_std_n[1]);
-  if (std::isfinite(widest_median_std_n)) {
-    error_range.low = std::min(error_range.low, -1.15 * widest_median_std_n);
-    error_range.high = std::max(error_range.high, 1.15 * widest_median_std_n);
-  }
-  YRange scale_range = RangeOf(scale_values, options.clip_fraction, 0.2, "");
-  // The thresholds are always in view, and 1.0 (healthy) too.
-  for (const ThresholdLine& line : options.scale_lines) {
-    scale_range.low = std::min(scale_range.low, line.value - 0.03);
-  }
-  scale_range.high = std::max(scale_range.high, 1.03);
+  const PairedRows paired = PairWithTruth(forces, truth, origin_utime);
+  const std::vector<Row>& rows = paired.rows;
+  const bool with_truth = paired.with_truth;
+  const double median_std_n[2] = {MedianStdN(rows, 0), MedianStdN(rows, 1)};
+  const PanelRanges ranges = RangesOf(rows, median_std_n, options);
 
   std::string script = fmt::format(
       "set terminal pngcairo size {},{} noenhanced font 'sans,10'\n"
@@ -266,25 +368,12 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   script += DataBlock(rows, gap_s);
   script += fmt::format("set xrange [{:.6f}:{:.6f}]\n", rows.front().t_s, rows.back().t_s);
 
-  // Vertical lines in every panel (arrows persist), labels in the top panel.
   std::vector<std::pair<double, std::string>> markers = StatusMarkers(rows);
   AddGapMarker(rows, gap_s, &markers);
   for (const PlotMarker& m : options.markers) {
     markers.emplace_back(seconds(m.utime), fmt::format("{} {:.3f} s", m.label, seconds(m.utime)));
   }
-  std::sort(markers.begin(), markers.end());
-  std::string marker_labels;
-  for (size_t k = 0; k < markers.size(); ++k) {
-    script += fmt::format(
-        "set arrow {} from first {:.6f}, graph 0 to first {:.6f}, graph 1 nohead front lw 1.5 "
-        "dt 2 lc rgb '{}'\n",
-        k + 1, markers[k].first, markers[k].first, kMarkerColor);
-    marker_labels += fmt::format(
-        "set label {} {} at first {:.6f}, graph {:.3f} left offset 0.4,0 front boxed "
-        "textcolor rgb '{}' font ',9'\n",
-        k + 10, GnuplotQuoted(markers[k].second), markers[k].first, 0.93 - 0.085 * static_cast<double>(k % 6),
-        kMarkerColor);
-  }
+  const std::string marker_labels = MarkerCommands(std::move(markers), &script);
 
   const double status_height = 0.15;
   const double scale_height = 0.17;
@@ -292,59 +381,14 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   const double force_height = (kTopEdge - kBottomEdge - status_height - scale_height - error_height) / 2.0;
   double top = kTopEdge;
   for (int r = 0; r < 2; ++r) {
-    script += Panel(&top, force_height, false) + YRangeCommands(force_range[r]);
+    script += Panel(&top, force_height, false) + YRangeCommands(ranges.force[r]);
     if (r == 0) script += marker_labels;
-    script += fmt::format(
-        "set ylabel 'f{} [N]'\nplot $data u 1:(${}-${}):(${}+${}) w filledcurves fc rgb '{}' "
-        "fs transparent solid 0.25 noborder t '±1σ, median {:.3f} N'",
-        r + 1, 2 + r, 4 + r, 2 + r, 4 + r, kRotorColor[r], median_std_n[r]);
-    if (with_truth) script += fmt::format(", $data u 1:{} w l lw 2 lc rgb '{}' t 'true'", 9 + r, kTrueColor);
-    script += fmt::format(", $data u 1:{} w l lw 1 lc rgb '{}' t 'estimated f{}'\nunset label\n", 2 + r, kRotorColor[r],
-                          r + 1);
+    script += ForcePanelPlot(r, median_std_n[r], with_truth);
   }
-  if (with_truth) {
-    script += Panel(&top, error_height, false) + YRangeCommands(error_range);
-    // The errors first, the ±1σ envelopes drawn over them so that they stay visible.
-    script += fmt::format(
-        "set ylabel 'error [N]'\nplot $data u 1:13 w l lc rgb '{}' t 'f1 est - true', "
-        "$data u 1:14 w l lc rgb '{}' t 'f2 est - true'",
-        kRotorColor[0], kRotorColor[1]);
-    for (int r = 0; r < 2; ++r) {
-      script += fmt::format(
-          ", $data u 1:{} w l lw 1.5 lc rgb '{}' t '±1σ f{}', $data u 1:(-${}) w l lw 1.5 lc rgb '{}' notitle", 4 + r,
-          kSigmaColor[r], r + 1, 4 + r, kSigmaColor[r]);
-    }
-    script += "\n";
-    script += "unset label\n";
-  }
-  script += Panel(&top, scale_height, false) + YRangeCommands(scale_range);
-  script += "set ylabel 'thrust efficiency μ [1]'\nplot ";
-  for (const ThresholdLine& line : options.scale_lines) {
-    script += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
-  }
-  for (int r = 0; r < 2; ++r) {
-    if (with_truth) {
-      script += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
-    }
-    script += fmt::format("$data u 1:{} w l lc rgb '{}' t 'estimated μ{}'{}", 6 + r, kRotorColor[r], r + 1,
-                          r == 0 ? ", " : "");
-  }
-  script += "\nunset label\n";
-
-  // Status strip: one row per bit, a thick line where it is set (a square
-  // for a single message, e.g. a RESET).
-  script += Panel(&top, status_height, true);
-  script += fmt::format("set yrange [0.4:{}.6]\nunset grid\nset grid x\nunset key\nset ytics (", kStatusBitCount);
-  for (int i = 0; i < kStatusBitCount; ++i) {
-    script += fmt::format("{}{} {}", i == 0 ? "" : ", ", GnuplotQuoted(kStatusBitNames[i].word), kStatusBitCount - i);
-  }
-  script += ") font ',8'\nunset ylabel\nplot ";
-  for (int i = 0; i < kStatusBitCount; ++i) {
-    const bool alarm = kStatusBitNames[i].bit & kAlarmStatusBits;
-    script += fmt::format("$data u 1:((int($8) & {}) ? {} : NaN) w lp lw 5 pt 5 ps 0.3 lc rgb '{}' notitle{}",
-                          kStatusBitNames[i].bit, kStatusBitCount - i, alarm ? "#b00000" : "#2ca02c",
-                          i + 1 < kStatusBitCount ? ", " : "\n");
-  }
+  if (with_truth) script += Panel(&top, error_height, false) + YRangeCommands(ranges.error) + ErrorPanelPlot();
+  script += Panel(&top, scale_height, false) + YRangeCommands(ranges.scale);
+  script += ScalePanelPlot(options.scale_lines, with_truth);
+  script += Panel(&top, status_height, true) + StatusPanelPlot();
   script += "unset multiplot\n";
   return script;
 }

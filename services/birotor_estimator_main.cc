@@ -29,115 +29,114 @@
 // systemd Type=notify and WatchdogSec.
 #include "deploy/systemd_notify.h"
 
-int main(int argc, char** argv) {
-  using namespace birotor;
-  CLI::App app{"birotor-estimator: rotor-force estimation daemon (EKF or baselines) over LCM"};
+namespace birotor {
+namespace {
+
+struct DaemonOptions {
   CommonOptions common;
-  AddCommonOptions(app, &common);
   std::string params_file = FindConfigFile("estimator.yaml");
-  std::string method;
-  EstimatorServiceOptions options;
-  app.add_option("--params", params_file,
+  std::string method;  // overrides the file's; empty: the file's
+  EstimatorServiceOptions service;
+  int realtime_priority = 0;  // SCHED_FIFO priority and locked memory; 0: normal scheduler
+};
+
+void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
+  AddCommonOptions(app, &options->common);
+  app.add_option("--params", options->params_file,
                  "Estimator parameter file (vehicle: and estimator:, every key); default: the " +
                      ConfigSearchText("estimator.yaml"));
-  app.add_option("--method", method, "Estimation method, overrides the file")
+  app.add_option("--method", options->method, "Estimation method, overrides the file")
       ->check(CLI::IsMember(EstimationMethodNames()));
-  app.add_option("--status-rate-hz", options.status_rate_hz, "ESTIMATOR_STATUS rate [Hz]")
+  app.add_option("--status-rate-hz", options->service.status_rate_hz, "ESTIMATOR_STATUS rate [Hz]")
       ->check(CLI::Range(0.1, 100.0));
-  app.add_option("--overload-max-delay-s", options.overload_max_delay_s,
+  app.add_option("--overload-max-delay-s", options->service.overload_max_delay_s,
                  "Strain packets queued longer than this are dropped and counted [s]")
       ->check(CLI::Range(0.001, 60.0));
-  app.add_option("--stale-input-s", options.stale_input_wall_s,
+  app.add_option("--stale-input-s", options->service.stale_input_wall_s,
                  "No strain packet for this long (host clock): ESTIMATOR_STATUS says INPUT_STALE [s]")
       ->check(CLI::Range(0.001, 60.0));
-  int realtime_priority = 0;
-  app.add_option("--realtime-priority", realtime_priority,
+  app.add_option("--realtime-priority", options->realtime_priority,
                  "SCHED_FIFO priority (1-99) and locked memory; 0 keeps the normal scheduler")
       ->check(CLI::Range(0, 99));
-  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
-  SetupLogging("birotor-estimator", common.log_level);
+}
 
-  // The parameter file is checked before anything is subscribed.
-  EstimatorConfig config;
+// The parameter file, with --method over the file's; an error message, empty on success.
+std::string LoadConfig(const DaemonOptions& options, EstimatorConfig* config) {
   try {
-    config = LoadEstimatorConfig(params_file);
+    *config = LoadEstimatorConfig(options.params_file);
   } catch (const ParamError& error) {
-    return ReportError(error.what());
+    return error.what();
   } catch (const std::exception& error) {
-    return ReportError(params_file + ": " + error.what());
+    return options.params_file + ": " + error.what();
   }
-  if (!method.empty()) config.method = method;
+  if (!options.method.empty()) config->method = options.method;
+  return "";
+}
 
-  // Before LCM starts any thread, so that its threads inherit the policy.
-  if (realtime_priority > 0) {
-    sched_param param{};
-    param.sched_priority = realtime_priority;
-    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-      spdlog::warn("cannot set SCHED_FIFO priority {} (needs CAP_SYS_NICE); normal scheduler", realtime_priority);
-    }
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) spdlog::warn("cannot lock memory (mlockall)");
+// Before LCM starts any thread, so that its threads inherit the policy.
+void SetRealtimePriority(int priority) {
+  if (priority <= 0) return;
+  sched_param param{};
+  param.sched_priority = priority;
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    spdlog::warn("cannot set SCHED_FIFO priority {} (needs CAP_SYS_NICE); normal scheduler", priority);
   }
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) spdlog::warn("cannot lock memory (mlockall)");
+}
 
-  std::string error;
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
-  if (!lcm) return ReportError(error);
-  InstallShutdownHandlers();
-
-  const ChannelNames channels = MakeChannelNames(common.prefix);
-  LcmSink sink(lcm.get());
-  EstimatorService service(config, channels, options, &sink);
+// The learned gauge offsets of the last run, from the state file. A missing
+// file is a first start; a corrupt or foreign one is refused.
+void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehicle_checksum,
+                         EstimatorService* service) {
   const std::string& state_file = config.tare.state_file;
-  const std::string vehicle_checksum = VehicleChecksum(config.vehicle);
-  if (!state_file.empty()) {
-    // A missing file is a first start; a corrupt or foreign one is refused.
-    GaugeCalibration persisted = GaugeCalibration::FromVehicle(config.vehicle);
-    if (access(state_file.c_str(), F_OK) != 0) {
-      spdlog::info("gauge state file {} absent: gauge offsets from the parameter file", state_file);
-    } else if (ReadGaugeState(state_file, vehicle_checksum, config.tare.max_offset_rad, &persisted, &error)) {
-      service.SetGaugeOffsets(persisted);
-      spdlog::info("gauge offsets {:.3e} {:.3e} rad from the state file {}", persisted.offset_rad[0],
-                   persisted.offset_rad[1], state_file);
-    } else {
-      spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
-    }
+  if (state_file.empty()) return;
+  GaugeCalibration persisted = GaugeCalibration::FromVehicle(config.vehicle);
+  std::string error;
+  if (access(state_file.c_str(), F_OK) != 0) {
+    spdlog::info("gauge state file {} absent: gauge offsets from the parameter file", state_file);
+  } else if (ReadGaugeState(state_file, vehicle_checksum, config.tare.max_offset_rad, &persisted, &error)) {
+    service->SetGaugeOffsets(persisted);
+    spdlog::info("gauge offsets {:.3e} {:.3e} rad from the state file {}", persisted.offset_rad[0],
+                 persisted.offset_rad[1], state_file);
+  } else {
+    spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
   }
-  // Inputs through the shared message source. On udpm our own small-message
-  // reader, and LCM only publishes (it opens no receive socket until
-  // something subscribes): LCM's fragment reassembly, which two crafted
-  // datagrams crash, is never reached (docs/lcm-udpm-fragment-bug.md). Other
-  // providers (memq:// in tests) go through LCM's subscription.
-  std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
-  if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
-  service.AttachUdpCounters(source->udp_counters());
-  spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION, config.method, params_file,
-               FileChecksum(params_file));
-  {
-    const std::string stamp = ReadIdentificationStamp(params_file);
-    spdlog::info("vehicle checksum {}, identified {}", vehicle_checksum,
-                 stamp.empty() ? "never (no birotor-identify stamp in the vehicle section)" : stamp);
-  }
-  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.strain, channels.motor, channels.imu,
-               channels.pose, source->Describe(), channels.force, channels.estimator_status);
+}
+
+// What runs: version, method, parameter file and its stamp, channels, the
+// socket's receive buffer.
+void LogStartup(const DaemonOptions& options, const EstimatorConfig& config, const std::string& vehicle_checksum,
+                const ChannelNames& channels, const MessageSource& source) {
+  spdlog::info("birotor-estimator {} method {} params {} (checksum {})", BIROTOR_VERSION, config.method,
+               options.params_file, FileChecksum(options.params_file));
+  const std::string stamp = ReadIdentificationStamp(options.params_file);
+  spdlog::info("vehicle checksum {}, identified {}", vehicle_checksum,
+               stamp.empty() ? "never (no birotor-identify stamp in the vehicle section)" : stamp);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", options.common.lcm_url, channels.strain, channels.motor,
+               channels.imu, channels.pose, source.Describe(), channels.force, channels.estimator_status);
   bool buffer_ok = true;
-  const std::string buffer_report = ReceiveBufferReport(common.lcm_url, ReadRmemMax(), &buffer_ok);
+  const std::string buffer_report = ReceiveBufferReport(options.common.lcm_url, ReadRmemMax(), &buffer_ok);
   if (buffer_ok) {
     spdlog::info("{}", buffer_report);
   } else {
     spdlog::warn("{}", buffer_report);
   }
+}
 
-  // ESTIMATOR_STATUS on a fixed grid of the host clock. The loop hands
-  // packets over until the next status is due and never past it, so the
-  // status stays on time at any input rate (a backlog waits in the socket,
-  // and the overload guard sheds what waited too long).
-  const int64_t status_period_us = std::llround(1e6 / options.status_rate_hz);
+// Serves until a signal or a failed source; false if the source failed.
+// ESTIMATOR_STATUS on a fixed grid of the host clock. The loop hands packets
+// over until the next status is due and never past it, so the status stays
+// on time at any input rate (a backlog waits in the socket, and the overload
+// guard sheds what waited too long).
+bool Serve(MessageSource* source, double status_rate_hz, EstimatorService* service) {
+  const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
   int64_t last_status_us = SteadyClockUs();
   int64_t next_status_us = last_status_us + status_period_us;
   NotifyReady();  // systemd Type=notify: serving now
-  const bool source_ok = RunReceiveLoop(source.get(), [&](int64_t now_us) {
+  const bool source_ok = RunReceiveLoop(source, [&](int64_t now_us) {
     NotifyWatchdog();  // WatchdogSec: this loop is alive
     if (now_us >= next_status_us) {
-      service.PublishStatus(WallClockUs(), 1e-6 * static_cast<double>(now_us - last_status_us));
+      service->PublishStatus(WallClockUs(), 1e-6 * static_cast<double>(now_us - last_status_us));
       last_status_us = now_us;
       next_status_us += status_period_us;
       if (next_status_us <= now_us) next_status_us = now_us + status_period_us;  // a stall longer than a period
@@ -145,21 +144,64 @@ int main(int argc, char** argv) {
     return next_status_us;
   });
   NotifyStopping();
-  if (!source_ok) spdlog::error("{}; stopping", source->error());
+  return source_ok;
+}
+
+void LogStopped(const EstimatorService& service, const MessageSource& source) {
   const PipelineHealth& health = service.health();
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
-  const UdpReceiveCounters* udp = source->udp_counters();
+  const UdpReceiveCounters* udp = source.udp_counters();
   spdlog::info(
       "stopped: {} FORCE published; strain received {} fused {} decode errors {} out of order {} "
       "overload drops {}; resets {}; udp fragments dropped {} malformed {} kernel drops {}",
       service.forces_published(), strain.received, strain.fused, strain.decode_errors, strain.out_of_order,
       strain.dropped_overload, health.resets, udp ? udp->fragments_dropped : 0, udp ? udp->malformed_dropped : 0,
       udp ? udp->kernel_dropped : 0);
+}
+
+}  // namespace
+}  // namespace birotor
+
+int main(int argc, char** argv) {
+  using namespace birotor;
+  CLI::App app{"birotor-estimator: rotor-force estimation daemon (EKF or baselines) over LCM"};
+  DaemonOptions options;
+  AddDaemonOptions(app, &options);
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-estimator", options.common.log_level);
+
+  // The parameter file is checked before anything is subscribed.
+  EstimatorConfig config;
+  std::string error = LoadConfig(options, &config);
+  if (!error.empty()) return ReportError(error);
+  SetRealtimePriority(options.realtime_priority);
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
+  if (!lcm) return ReportError(error);
+  InstallShutdownHandlers();
+
+  const ChannelNames channels = MakeChannelNames(options.common.prefix);
+  LcmSink sink(lcm.get());
+  EstimatorService service(config, channels, options.service, &sink);
+  const std::string vehicle_checksum = VehicleChecksum(config.vehicle);
+  RestoreGaugeOffsets(config, vehicle_checksum, &service);
+  // Inputs through the shared message source. On udpm our own small-message
+  // reader, and LCM only publishes (it opens no receive socket until
+  // something subscribes): LCM's fragment reassembly, which two crafted
+  // datagrams crash, is never reached (docs/lcm-udpm-fragment-bug.md). Other
+  // providers (memq:// in tests) go through LCM's subscription.
+  std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
+  if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
+  service.AttachUdpCounters(source->udp_counters());
+  LogStartup(options, config, vehicle_checksum, channels, *source);
+
+  if (!Serve(source.get(), options.service.status_rate_hz, &service)) spdlog::error("{}; stopping", source->error());
+  LogStopped(service, *source);
+  const std::string& state_file = config.tare.state_file;
   if (!state_file.empty()) {
-    if (!WriteGaugeState(state_file, health.gauge, vehicle_checksum, &error)) {
+    if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, &error)) {
       return ReportError("gauge state: " + error);
     }
-    spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(health.gauge.source), state_file);
+    spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(service.health().gauge.source), state_file);
   }
   return 0;
 }

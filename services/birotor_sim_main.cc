@@ -220,83 +220,135 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, Messag
   return true;
 }
 
-int Main(int argc, char** argv) {
-  SimOptions options;
-  CLI::App app{"birotor-sim: simulated birotor sensors and truth over LCM, live or into a log file"};
-  AddCommonOptions(app, &options.common);
-  app.add_option("--scenario", options.scenario_file,
+void AddSimOptions(CLI::App& app, SimOptions* options) {
+  AddCommonOptions(app, &options->common);
+  app.add_option("--scenario", options->scenario_file,
                  "Scenario file, or a scenario name such as hover (" + ConfigSearchText("scenarios/<name>.yaml") + ")")
       ->required();
-  app.add_option("--params", options.param_files, "Partial scenario file applied on top of --scenario (repeatable)");
-  app.add_option("--set", options.overrides, "Override section.key=value (YAML value; repeatable)");
-  app.add_option("--output", options.output, "Write an LCM log file as fast as possible instead of publishing live");
-  app.add_option("--speed", options.speed, "Live mode: simulated seconds per wall-clock second")
+  app.add_option("--params", options->param_files, "Partial scenario file applied on top of --scenario (repeatable)");
+  app.add_option("--set", options->overrides, "Override section.key=value (YAML value; repeatable)");
+  app.add_option("--output", options->output, "Write an LCM log file as fast as possible instead of publishing live");
+  app.add_option("--speed", options->speed, "Live mode: simulated seconds per wall-clock second")
       ->check(CLI::Range(1e-3, 1e6));
-  app.add_flag("--wall-clock", options.wall_clock,
+  app.add_flag("--wall-clock", options->wall_clock,
                "Stamp samples with the wall clock instead of simulated time from 0");
-  app.add_flag("--loop", options.loop,
+  app.add_flag("--loop", options->loop,
                "Repeat the scenario until stopped (SIGINT/SIGTERM), time continuing: run n starts at n x duration");
-  app.add_flag("--no-truth", options.no_truth,
+  app.add_flag("--no-truth", options->no_truth,
                "Do not publish TRUTH, as a real vehicle (tests the monitor's vehicle view)");
-  app.add_option("--controller", options.controller_mode,
+  app.add_option("--controller", options->controller_mode,
                  "Lock-step closed loop (with --output): fly the scenario with the controller of "
                  "birotor-controller in this mode, on the estimator's FORCE, and log every channel (mpc: the "
                  "model predictive controller of the mpc: section, the force-feedback cascade its fallback)")
       ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
-  options.controller_params = FindConfigFile("controller.yaml");
-  options.estimator_params = FindConfigFile("estimator.yaml");
-  app.add_option("--controller-params", options.controller_params,
+  options->controller_params = FindConfigFile("controller.yaml");
+  options->estimator_params = FindConfigFile("estimator.yaml");
+  app.add_option("--controller-params", options->controller_params,
                  "Controller parameter file for --controller; default: the " + ConfigSearchText("controller.yaml"));
-  app.add_option("--estimator-params", options.estimator_params,
+  app.add_option("--estimator-params", options->estimator_params,
                  "Estimator parameter file for --controller; default: the " + ConfigSearchText("estimator.yaml"));
-  app.add_flag("--external-controller", options.external_controller,
+  app.add_flag("--external-controller", options->external_controller,
                "Live: the ESCs run MOTOR_COMMAND from LCM (birotor-controller) instead of the built-in autopilot");
-  app.add_flag("--publish-setpoints", options.publish_setpoints,
+  app.add_flag("--publish-setpoints", options->publish_setpoints,
                "Publish the scenario's trajectory on SETPOINT (birotor-controller flies it; the lock-step "
                "--controller loop always sends it into the log)");
-  app.add_option("--setpoint-rate-hz", options.setpoint_rate_hz, "SETPOINT rate with --publish-setpoints [Hz]")
+  app.add_option("--setpoint-rate-hz", options->setpoint_rate_hz, "SETPOINT rate with --publish-setpoints [Hz]")
       ->check(CLI::Range(1.0, 1000.0));
-  app.add_option("--command-timeout-s", options.command_timeout_s,
+  app.add_option("--command-timeout-s", options->command_timeout_s,
                  "With a controller: the ESCs spool the motors down after this long without MOTOR_COMMAND [s]")
       ->check(CLI::Range(1e-3, 10.0));
+}
+
+// The scenario with the --params files and --set overrides on top (the
+// scenario's name resolved to its file in options); an error message, empty on success.
+std::string LoadSimScenario(SimOptions* options, Scenario* scenario) {
+  try {
+    std::vector<std::string> overrides;
+    for (const std::string& file : options->param_files) {
+      const std::vector<std::string> from_file = OverridesFromFile(file);
+      overrides.insert(overrides.end(), from_file.begin(), from_file.end());
+    }
+    overrides.insert(overrides.end(), options->overrides.begin(), options->overrides.end());
+    std::string scenario_error;  // a misspelt name lists the scenarios (issue 24)
+    if (!FindScenario(options->scenario_file, &options->scenario_file, &scenario_error)) return scenario_error;
+    *scenario = LoadScenario(options->scenario_file, overrides);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  spdlog::info(
+      "scenario '{}' from {} (checksum {}), {:.3f} s, seed {}, step {} s{}", scenario->name, options->scenario_file,
+      FileChecksum(options->scenario_file), scenario->duration_s, scenario->seed, scenario->step_s,
+      options->overrides.empty() && options->param_files.empty()
+          ? ""
+          : fmt::format(", {} parameter files, {} --set", options->param_files.size(), options->overrides.size()));
+  return "";
+}
+
+// Options that do not go together; an error message (a usage error), empty if none.
+std::string ModeConflict(const SimOptions& options) {
+  if (!options.controller_mode.empty() && (options.output.empty() || options.loop)) {
+    return "--controller runs the lock-step closed loop offline: it needs --output and no --loop";
+  }
+  if (options.external_controller && !options.output.empty()) {
+    return "--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller";
+  }
+  if (options.loop && !options.output.empty()) {
+    return "--loop runs until stopped: it is for live mode, not with --output (see --help)";
+  }
+  return "";
+}
+
+// What the runs emitted, summed.
+struct SimTotals {
+  double simulated_s = 0.0;
+  ChannelCounts n;
+  size_t fault_events = 0;
+
+  void Add(const Simulator& sim) {
+    simulated_s += sim.time_s();
+    const ChannelCounts& emitted = sim.emitted();
+    n.strain += emitted.strain;
+    n.motor += emitted.motor;
+    n.imu += emitted.imu;
+    n.pose += emitted.pose;
+    n.loadcell += emitted.loadcell;
+    n.truth += emitted.truth;
+    fault_events += sim.fault_events().size();
+  }
+};
+
+// The scenario once, or with --loop until stopped, live or into the log.
+// Each run starts where the previous one ended on the clock (the state
+// starts over from the scenario's initial state); the live pacing of run k
+// is relative to its own start, which is when run k - 1 ended.
+bool RunScenario(const SimOptions& options, const Scenario& scenario, const ChannelNames& channels, lcm::LCM* lcm,
+                 MessageSource* source, SimTotals* totals) {
+  const int64_t start_utime = options.wall_clock ? WallClockUs() : 0;
+  bool ok = true;
+  for (int64_t run = 0; ok && (run == 0 || (options.loop && !ShutdownRequested())); ++run) {
+    Simulator sim(scenario);
+    sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
+    if (options.external_controller) sim.UseExternalCommands(options.command_timeout_s);
+    if (options.publish_setpoints) sim.EmitSetpoints(options.setpoint_rate_hz);
+    ok = options.output.empty() ? RunLive(&sim, channels, lcm, source, options.speed, !options.no_truth)
+                                : RunOffline(&sim, channels, options.output, !options.no_truth);
+    totals->Add(sim);
+  }
+  return ok;
+}
+
+int Main(int argc, char** argv) {
+  SimOptions options;
+  CLI::App app{"birotor-sim: simulated birotor sensors and truth over LCM, live or into a log file"};
+  AddSimOptions(app, &options);
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
   Scenario scenario;
-  try {
-    std::vector<std::string> overrides;
-    for (const std::string& file : options.param_files) {
-      const std::vector<std::string> from_file = OverridesFromFile(file);
-      overrides.insert(overrides.end(), from_file.begin(), from_file.end());
-    }
-    overrides.insert(overrides.end(), options.overrides.begin(), options.overrides.end());
-    std::string scenario_error;  // a misspelt name lists the scenarios (issue 24)
-    if (!FindScenario(options.scenario_file, &options.scenario_file, &scenario_error)) {
-      return ReportError(scenario_error);
-    }
-    scenario = LoadScenario(options.scenario_file, overrides);
-  } catch (const ParamError& e) {
-    return ReportError(e.what());
-  }
-  spdlog::info(
-      "scenario '{}' from {} (checksum {}), {:.3f} s, seed {}, step {} s{}", scenario.name, options.scenario_file,
-      FileChecksum(options.scenario_file), scenario.duration_s, scenario.seed, scenario.step_s,
-      options.overrides.empty() && options.param_files.empty()
-          ? ""
-          : fmt::format(", {} parameter files, {} --set", options.param_files.size(), options.overrides.size()));
-
-  if (!options.controller_mode.empty() && (options.output.empty() || options.loop)) {
-    return ReportError("--controller runs the lock-step closed loop offline: it needs --output and no --loop",
-                       kExitUsage);
-  }
-  if (options.external_controller && !options.output.empty()) {
-    return ReportError("--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller", kExitUsage);
-  }
-  if (options.loop && !options.output.empty()) {
-    return ReportError("--loop runs until stopped: it is for live mode, not with --output (see --help)", kExitUsage);
-  }
-
-  std::string error;
+  std::string error = LoadSimScenario(&options, &scenario);
+  if (!error.empty()) return ReportError(error);
+  error = ModeConflict(options);
+  if (!error.empty()) return ReportError(error, kExitUsage);
   std::vector<std::string> inputs = options.param_files;
   inputs.push_back(options.scenario_file);
   if (!options.controller_mode.empty()) {
@@ -322,40 +374,17 @@ int Main(int argc, char** argv) {
     if (!source) return ReportError(error);
   }
   InstallShutdownHandlers();
-  const ChannelNames channels = MakeChannelNames(options.common.prefix);
-  const int64_t start_utime = options.wall_clock ? WallClockUs() : 0;
   const Stopwatch stopwatch;
-  bool ok = true;
-  double simulated_s = 0.0;
-  ChannelCounts n;
-  size_t fault_events = 0;
-  // Each run starts where the previous one ended on the clock (the state
-  // starts over from the scenario's initial state); the live pacing of run k
-  // is relative to its own start, which is when run k - 1 ended.
-  for (int64_t run = 0; ok && (run == 0 || (options.loop && !ShutdownRequested())); ++run) {
-    Simulator sim(scenario);
-    sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
-    if (options.external_controller) sim.UseExternalCommands(options.command_timeout_s);
-    if (options.publish_setpoints) sim.EmitSetpoints(options.setpoint_rate_hz);
-    ok = options.output.empty() ? RunLive(&sim, channels, lcm.get(), source.get(), options.speed, !options.no_truth)
-                                : RunOffline(&sim, channels, options.output, !options.no_truth);
-    simulated_s += sim.time_s();
-    const ChannelCounts& emitted = sim.emitted();
-    n.strain += emitted.strain;
-    n.motor += emitted.motor;
-    n.imu += emitted.imu;
-    n.pose += emitted.pose;
-    n.loadcell += emitted.loadcell;
-    n.truth += emitted.truth;
-    fault_events += sim.fault_events().size();
-  }
+  SimTotals totals;
+  const bool ok =
+      RunScenario(options, scenario, MakeChannelNames(options.common.prefix), lcm.get(), source.get(), &totals);
   const double wall_s = stopwatch.ElapsedS();
-
+  const ChannelCounts& n = totals.n;
   spdlog::info(
       "simulated {:.3f} s in {:.3f} s wall ({:.0f}x real time); samples: strain {}, motor {}, imu {}, "
       "pose {}, loadcell {}, truth {}{}; {} fault events",
-      simulated_s, wall_s, wall_s > 0 ? simulated_s / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose, n.loadcell,
-      n.truth, options.no_truth ? " (not published: --no-truth)" : "", fault_events);
+      totals.simulated_s, wall_s, wall_s > 0 ? totals.simulated_s / wall_s : 0.0, n.strain, n.motor, n.imu, n.pose,
+      n.loadcell, n.truth, options.no_truth ? " (not published: --no-truth)" : "", totals.fault_events);
   return ok ? 0 : kExitFailure;
 }
 

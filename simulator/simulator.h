@@ -10,10 +10,10 @@
 #include "controller/seq_stream_lock.h"
 #include "model/equilibrium.h"
 #include "model/plant.h"
+#include "samples/sample_sink.h"
 #include "simulator/bench_profile.h"
 #include "simulator/flight_controller.h"
 #include "simulator/noise.h"
-#include "simulator/sample_sink.h"
 #include "simulator/scenario.h"
 #include "simulator/trajectory.h"
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "controller/motor_command.h"
-#include "simulator/sample_sink.h"
+#include "samples/motor_command.h"
+#include "samples/sample_sink.h"
 #include "sinks/message_sink.h"
 #include "transport/channels.h"
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -47,77 +48,199 @@ ControlTrace TraceOf(const ClosedLoopRun& run, const std::string& label) {
   return trace;
 }
 
-// One case flown in both modes on each seed: the per-run rows, the
-// comparison row and, with plot_dir, the first seed's figure.
-bool RunControlCase(const ControlCase& c, int seeds, const std::string& scenario_dir,
-                    const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
-                    const ControllerConfig& controller, const std::string& plot_dir, std::string* runs_table,
-                    std::string* comparison_table, std::string* mpc_table, int64_t* mpc_violations) {
-  std::vector<ControlFigures> figures[2];
-  // --mpc: the force-feedback cascade and the MPC without / with the efficiencies.
-  const std::vector<std::string> mpc_modes = {"force_feedback", "mpc_nominal", "mpc"};
-  std::vector<MpcRunFigures> mpc_figures[3];
+// The scenarios of the estimator table by default: the reference flights,
+// then (issue 27) vehicles that differ from the reference file the estimator keeps.
+std::vector<std::string> DefaultScenarios() {
+  std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
+                                        "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
+                                        "gauge_vibration", "gauge_airborne", "bench_gauge"};
+  for (const char* name :
+       {"mismatch_stiffness_plus20", "mismatch_stiffness_minus20", "mismatch_tip_mass_plus20",
+        "mismatch_tip_mass_minus20", "mismatch_payload_plus15", "mismatch_payload_minus15", "mismatch_gauge_scale_0p7",
+        "mismatch_gauge_scale_1p3", "mismatch_thrust_coeff_plus20", "mismatch_thrust_coeff_minus20",
+        "mismatch_motor_lag_plus30", "mismatch_motor_lag_minus30", "mismatch_all"}) {
+    scenarios.push_back(name);
+  }
+  return scenarios;
+}
+
+std::vector<std::string> ControlCaseNames() {
+  std::vector<std::string> names;
+  for (const ControlCase& c : ControlCases()) names.push_back(c.name);
+  return names;
+}
+
+// birotor-eval's own command line (the defaults are the ones --help shows).
+struct EvalCli {
+  std::vector<std::string> scenarios = DefaultScenarios();
+  std::vector<std::string> methods = EstimationMethodNames();
+  std::string params_file = FindConfigFile("estimator.yaml");
+  std::string scenario_dir;  // empty: each scenario is looked up as scenarios/<name>.yaml
+  std::string log_path, markdown_out, plot_dir;
+  std::vector<std::string> overrides;
+  double duration_s = 0;
+  EvalOptions eval_options;
+  bool control = false;
+  std::string controller_params = FindConfigFile("controller.yaml");
+  std::vector<std::string> control_scenarios = ControlCaseNames();
+  int seeds = 1;
+  bool mpc = false;
+  double min_usable_fraction = kDefaultMinUsableLogFraction;
+};
+
+void AddEstimatorTableOptions(CLI::App& app, EvalCli* cli) {
+  app.add_option("--scenarios", cli->scenarios,
+                 "Scenario names: files <scenario-dir>/<name>.yaml, or without --scenario-dir the " +
+                     ConfigSearchText("scenarios/<name>.yaml"))
+      ->delimiter(',');
+  app.add_option("--methods", cli->methods, "Methods (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(EstimationMethodNames()));
+  app.add_option("--params", cli->params_file,
+                 "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
+  app.add_option("--scenario-dir", cli->scenario_dir, "Folder of the scenario files");
+  app.add_option("--set", cli->overrides, "Simulator override section.key=value (repeatable), e.g. noise-free runs");
+  app.add_option("--log", cli->log_path, "Evaluate one input log (with TRUTH) instead of simulating");
+  app.add_option("--duration-s", cli->duration_s, "Simulate at most this long (0: whole scenario) [s]")
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--warmup-s", cli->eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
+  app.add_option("--markdown-out", cli->markdown_out, "Also write the table to this file");
+  app.add_option("--plot-dir", cli->plot_dir, "Write <scenario>_<method>.png plots here");
+}
+
+void AddControlOptions(CLI::App& app, EvalCli* cli) {
+  app.add_flag("--mpc", cli->mpc,
+               "--control: also fly the model predictive controller without and with the estimated efficiencies "
+               "(mode mpc, docs/mpc.md) and add its comparison with the force-feedback cascade; fails if any MPC "
+               "command is outside [0, omega_max] or over the rate limit");
+  app.add_flag("--control", cli->control,
+               "Control figures instead: fly each case (--scenarios: a case name of docs/controller.md or a "
+               "scenario name; default every case) closed loop (birotor-sim --controller) in both controller "
+               "modes with the same gains on the same seeds; report RMS position error, and from the fault (or "
+               "lift-off) over 3 s the peak tilt and altitude deviation, the time back within 5 cm and the "
+               "touchdown speed; then nominal vs force feedback per case (medians and worst seed)");
+  app.add_option("--seeds", cli->seeds, "--control: fly seeds 1..N of each case (1: the scenario's own seed)")
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--controller-params", cli->controller_params,
+                 "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
+}
+
+void AddEvalOptions(CLI::App& app, CommonOptions* common, EvalCli* cli) {
+  AddCommonOptions(app, common);
+  app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
+  AddEstimatorTableOptions(app, cli);
+  AddControlOptions(app, cli);
+  app.add_option("--min-usable-fraction", cli->min_usable_fraction,
+                 "Refuse a --log whose readable events are less than this share of its bytes")
+      ->check(CLI::Range(0.0, 1.0));
+}
+
+// A scenario by name: <scenario_dir>/<name>.yaml, or without a folder looked
+// up in the config search path (a misspelt name lists them).
+bool LoadNamedScenario(const std::string& name, const std::string& scenario_dir,
+                       const std::vector<std::string>& overrides, Scenario* scenario, std::string* error) {
+  try {
+    std::string file = scenario_dir + "/" + name + ".yaml";
+    if (scenario_dir.empty() && !FindScenario(name, &file, error)) return false;
+    *scenario = LoadScenario(file, overrides);
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return false;
+  }
+  return true;
+}
+
+// The tables of --control, filled case by case.
+struct ControlTables {
+  std::string runs = ControlTableHeader();
+  std::string comparison = ComparisonTableHeader();
+  std::string mpc = MpcComparisonHeader();
+  int64_t mpc_violations = 0;
+};
+
+// --mpc: the force-feedback cascade and the MPC without / with the efficiencies.
+constexpr const char* kMpcModes[] = {"force_feedback", "mpc_nominal", "mpc"};
+constexpr size_t kMpcModeCount = sizeof(kMpcModes) / sizeof(kMpcModes[0]);
+
+// What the seeds of one case gave: the figures per mode and the first seed's traces.
+struct CaseFigures {
+  std::vector<ControlFigures> cascade[2];  // nominal, force_feedback
+  std::vector<MpcRunFigures> mpc[kMpcModeCount];
   std::vector<int> seed_list;
   std::vector<ControlTrace> traces;
   double fault_time_s = -1;
-  for (int seed = 1; seed <= seeds; ++seed) {
+};
+
+// One seed of a case in both cascade modes: their rows, figures and (first
+// seed) traces; with --mpc the force-feedback run is the MPC table's baseline.
+void FlyCascadeModes(const ControlCase& c, const Scenario& scenario, bool first_seed, bool mpc,
+                     const EstimatorConfig& estimator, const ControllerConfig& controller, CaseFigures* figures,
+                     ControlTables* tables) {
+  for (const bool force_feedback : {false, true}) {
+    ControllerConfig config = controller;
+    config.force_feedback = force_feedback;
+    const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
+    const ControlMetrics metrics = EvaluateControl(run);
+    const char* mode = force_feedback ? "force_feedback" : "nominal";
+    tables->runs += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), mode, metrics, run);
+    figures->cascade[force_feedback ? 1 : 0].push_back(FiguresOf(metrics));
+    spdlog::info(
+        "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated; final "
+        "efficiency {:.3f} {:.3f}",
+        c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
+        run.controller.descents, run.controller.saturated, run.controller.efficiency[0], run.controller.efficiency[1]);
+    if (first_seed) {
+      figures->traces.push_back(TraceOf(run, mode));
+      figures->fault_time_s = metrics.fault_time_s;
+    }
+    if (mpc && force_feedback) figures->mpc[0].push_back(MpcFiguresOf(run, metrics, config));
+  }
+}
+
+// --mpc: one seed of a case with the MPC, without and with the efficiencies.
+void FlyMpcModes(const ControlCase& c, const Scenario& scenario, const EstimatorConfig& estimator,
+                 const ControllerConfig& controller, CaseFigures* figures, ControlTables* tables) {
+  for (size_t m = 1; m < kMpcModeCount; ++m) {
+    ControllerConfig config = controller;
+    config.force_feedback = config.model_predictive = true;
+    config.mpc.use_thrust_scale = std::strcmp(kMpcModes[m], "mpc") == 0;
+    const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
+    const ControlMetrics metrics = EvaluateControl(run);
+    figures->mpc[m].push_back(MpcFiguresOf(run, metrics, config));
+    tables->mpc_violations += figures->mpc[m].back().commands_out_of_bounds + figures->mpc[m].back().commands_over_rate;
+    tables->runs += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), kMpcModes[m], metrics, run);
+    spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, {} fallbacks, solve p99 {:.0f} us", c.name,
+                 scenario.seed, kMpcModes[m], run.simulated_s, run.wall_s, run.mpc.solves, run.mpc.Fallbacks(),
+                 1e6 * run.mpc.solve_p99_s);
+  }
+}
+
+// One case flown in both modes on each seed: the per-run rows, the
+// comparison row and, with --plot-dir, the first seed's figure.
+bool RunControlCase(const ControlCase& c, const EvalCli& cli, const EstimatorConfig& estimator,
+                    const ControllerConfig& controller, ControlTables* tables) {
+  CaseFigures figures;
+  std::string error;
+  for (int seed = 1; seed <= cli.seeds; ++seed) {
+    std::vector<std::string> overrides = c.overrides;
+    overrides.insert(overrides.end(), cli.overrides.begin(), cli.overrides.end());
+    if (cli.seeds > 1) overrides.push_back("scenario.seed=" + std::to_string(seed));
     Scenario scenario;
-    try {
-      std::string file = scenario_dir + "/" + c.scenario + ".yaml", scenario_error;  // a misspelt name lists them
-      if (scenario_dir.empty() && !FindScenario(c.scenario, &file, &scenario_error)) {
-        ReportError(scenario_error);
-        return false;
-      }
-      std::vector<std::string> all = c.overrides;
-      all.insert(all.end(), overrides.begin(), overrides.end());
-      if (seeds > 1) all.push_back("scenario.seed=" + std::to_string(seed));
-      scenario = LoadScenario(file, all);
-    } catch (const std::exception& e) {
-      ReportError(e.what());
+    if (!LoadNamedScenario(c.scenario, cli.scenario_dir, overrides, &scenario, &error)) {
+      ReportError(error);
       return false;
     }
-    seed_list.push_back(static_cast<int>(scenario.seed));
-    for (const bool force_feedback : {false, true}) {
-      ControllerConfig config = controller;
-      config.force_feedback = force_feedback;
-      const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
-      const ControlMetrics metrics = EvaluateControl(run);
-      const char* mode = force_feedback ? "force_feedback" : "nominal";
-      *runs_table += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), mode, metrics, run);
-      figures[force_feedback ? 1 : 0].push_back(FiguresOf(metrics));
-      spdlog::info(
-          "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated; final "
-          "efficiency {:.3f} {:.3f}",
-          c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
-          run.controller.descents, run.controller.saturated, run.controller.efficiency[0],
-          run.controller.efficiency[1]);
-      if (seed == 1) {
-        traces.push_back(TraceOf(run, mode));
-        fault_time_s = metrics.fault_time_s;
-      }
-      if (mpc_table != nullptr && force_feedback) mpc_figures[0].push_back(MpcFiguresOf(run, metrics, config));
-    }
-    for (size_t m = 1; mpc_table != nullptr && m < mpc_modes.size(); ++m) {
-      ControllerConfig config = controller;
-      config.force_feedback = config.model_predictive = true;
-      config.mpc.use_thrust_scale = mpc_modes[m] == "mpc";
-      const ClosedLoopRun run = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
-      const ControlMetrics metrics = EvaluateControl(run);
-      mpc_figures[m].push_back(MpcFiguresOf(run, metrics, config));
-      *mpc_violations += mpc_figures[m].back().commands_out_of_bounds + mpc_figures[m].back().commands_over_rate;
-      *runs_table += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), mpc_modes[m], metrics, run);
-      spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, {} fallbacks, solve p99 {:.0f} us", c.name,
-                   scenario.seed, mpc_modes[m], run.simulated_s, run.wall_s, run.mpc.solves, run.mpc.Fallbacks(),
-                   1e6 * run.mpc.solve_p99_s);
-    }
+    figures.seed_list.push_back(static_cast<int>(scenario.seed));
+    FlyCascadeModes(c, scenario, seed == 1, cli.mpc, estimator, controller, &figures, tables);
+    if (cli.mpc) FlyMpcModes(c, scenario, estimator, controller, &figures, tables);
   }
-  for (size_t m = 0; mpc_table != nullptr && m < mpc_modes.size(); ++m)
-    *mpc_table += MpcComparisonRow(c.name, mpc_modes[m], mpc_figures[m]);
-  *comparison_table += ComparisonTableRow(c.name, CompareControl(figures[0], figures[1], seed_list));
-  std::string error;
-  const std::string png = plot_dir + "/" + c.name + "_control.png";
-  if (!plot_dir.empty() &&
-      !WriteControlPlot(traces, c.name + ": nominal vs force_feedback", fault_time_s, png, &error)) {
+  for (size_t m = 0; cli.mpc && m < kMpcModeCount; ++m)
+    tables->mpc += MpcComparisonRow(c.name, kMpcModes[m], figures.mpc[m]);
+  tables->comparison +=
+      ComparisonTableRow(c.name, CompareControl(figures.cascade[0], figures.cascade[1], figures.seed_list));
+  const std::string png = cli.plot_dir + "/" + c.name + "_control.png";
+  if (!cli.plot_dir.empty() &&
+      !WriteControlPlot(figures.traces, c.name + ": nominal vs force_feedback", figures.fault_time_s, png, &error)) {
     ReportError("plot " + png + ": " + error);
     return false;
   }
@@ -126,32 +249,153 @@ bool RunControlCase(const ControlCase& c, int seeds, const std::string& scenario
 
 // --control: every case flown closed loop in both modes on each seed; the
 // per-run table, then the comparison over seeds.
-int RunControlTable(const std::vector<std::string>& names, int seeds, const std::string& scenario_dir,
-                    const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
-                    const ControllerConfig& controller, const std::string& markdown_out, const std::string& plot_dir,
-                    bool mpc) {
-  std::string runs = ControlTableHeader();
-  std::string comparison = ComparisonTableHeader();
-  std::string mpc_table = MpcComparisonHeader();
-  int64_t mpc_violations = 0;
+int RunControlTable(const std::vector<std::string>& names, const EvalCli& cli, const EstimatorConfig& estimator,
+                    const ControllerConfig& controller) {
+  ControlTables tables;
   for (const std::string& name : names) {
     // A case name, or a bare scenario flown as it is.
     const ControlCase* known = FindControlCase(name);
     const ControlCase c = known != nullptr ? *known : ControlCase{name, name, {}, name};
-    if (!RunControlCase(c, seeds, scenario_dir, overrides, estimator, controller, plot_dir, &runs, &comparison,
-                        mpc ? &mpc_table : nullptr, &mpc_violations)) {
-      return kExitFailure;
-    }
+    if (!RunControlCase(c, cli, estimator, controller, &tables)) return kExitFailure;
   }
-  const std::string table = runs + "\n" + comparison + (mpc ? "\n" + mpc_table : std::string());
+  const std::string table = tables.runs + "\n" + tables.comparison + (cli.mpc ? "\n" + tables.mpc : std::string());
 
   std::printf("%s", table.c_str());
   std::string error;
-  if (!markdown_out.empty() && !WriteFileAtomically(markdown_out, table, &error)) return ReportError(error);
+  if (!cli.markdown_out.empty() && !WriteFileAtomically(cli.markdown_out, table, &error)) return ReportError(error);
   // Issue 21: no MPC command outside [0, omega_max] or above the rate limit, ever.
-  if (mpc_violations > 0)
-    return ReportError(fmt::format("{} MPC commands out of bounds or over the rate limit", mpc_violations));
+  if (tables.mpc_violations > 0)
+    return ReportError(fmt::format("{} MPC commands out of bounds or over the rate limit", tables.mpc_violations));
   return 0;
+}
+
+// --control: the controller file, the cases (the default list is the
+// estimator's; the control table has its own), then the table.
+int RunControlMode(const EvalCli& cli, bool scenarios_given, const EstimatorConfig& estimator) {
+  if (!cli.log_path.empty()) return ReportError("--control flies scenarios; it does not take --log", kExitUsage);
+  ControllerConfig controller;
+  try {
+    controller = LoadControllerConfig(cli.controller_params);
+  } catch (const std::exception& error) {
+    return ReportError(error.what());
+  }
+  return RunControlTable(scenarios_given ? cli.scenarios : cli.control_scenarios, cli, estimator, controller);
+}
+
+// The estimator table: the accuracy rows and the consistency rows (issue 27, docs/mismatch.md).
+struct EstimatorTables {
+  std::string accuracy = MarkdownTableHeader();
+  std::string consistency = "\n" + MismatchTableHeader();
+};
+
+// One method on one scenario (or the log), scored.
+struct MethodRun {
+  std::string label;  // the scenario's name, or "log"
+  EstimatorConfig config;
+  EvalRun run;
+  EvalResult result;
+};
+
+// Runs and scores one method; false with the error when nothing can be scored.
+bool RunMethod(const EvalCli& cli, const std::string& name, const Scenario& scenario, const std::string& method,
+               const EstimatorConfig& base_config, MethodRun* out, std::string* error) {
+  out->config = base_config;
+  out->config.method = method;
+  // On a test stand the operator knows the body is held.
+  if (scenario.mode == "bench") out->config.ekf.body_held = true;
+  EvalRun& run = out->run;
+  if (cli.log_path.empty()) {
+    run = RunSimulatedScenario(scenario, out->config, cli.duration_s);
+  } else if (!RunLog(cli.log_path, out->config, &run, error, cli.min_usable_fraction)) {
+    return false;
+  }
+  if (!run.log_damage.empty() && method == cli.methods.front()) spdlog::warn("{}", run.log_damage);
+  // A flight with a ground phase is scored from its lift-off.
+  EvalOptions options = cli.eval_options;
+  options.score_from_utime = run.liftoff_utime;
+  out->result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, options);
+  out->label = cli.log_path.empty() ? name : "log";
+  // Nothing scored (no TRUTH, no FORCE, or all within the warm-up): a
+  // table of NaN would look like a result.
+  if (!cli.log_path.empty() && run.stats.input_packets == 0) {  // e.g. a birotor-replay output (issue 24)
+    *error = fmt::format(
+        "{}: no STRAIN, MOTOR, IMU or POSE input ({} events): --log re-runs the "
+        "estimator on a recorded flight's inputs; a birotor-replay output has none "
+        "(look at it with birotor-review or birotor-plot)",
+        cli.log_path, run.stats.events);
+    return false;
+  }
+  if (out->result.rotor[0].count == 0) {
+    *error = fmt::format(
+        "{} {}: no FORCE estimate paired with TRUTH after the {:.2f} s warm-up ({} FORCE, {} TRUTH): "
+        "nothing to score",
+        out->label, method, cli.eval_options.warmup_s, run.forces.size(), run.truth.size());
+    return false;
+  }
+  return true;
+}
+
+// The method's rows of both tables and its log line.
+void AddMethodRows(const MethodRun& r, const std::string& method, EstimatorTables* tables) {
+  tables->accuracy += MarkdownTableRow(r.label, method, r.result);
+  MismatchEvalOptions mismatch_options;
+  mismatch_options.airborne_utime = r.run.liftoff_utime;
+  tables->consistency +=
+      MismatchTableRow(r.label, method, EvaluateMismatch(r.run.forces, r.run.truth, mismatch_options));
+  const InputCounters& strain = r.run.health.inputs[static_cast<int>(InputChannel::kStrain)];
+  spdlog::info(
+      "{} {}: {:.1f} s simulated+estimated in {:.2f} s; strain received {} fused {} gated {} "
+      "invalid {} out-of-order {} duplicates {} gaps {}; resets {}",
+      r.label, method, r.run.simulated_s, r.run.wall_s, strain.received, strain.fused, strain.rejected_gate,
+      strain.rejected_invalid, strain.out_of_order, strain.duplicates, strain.gaps, r.run.health.resets);
+}
+
+// <plot_dir>/<label>_<method>.png; a failure is reported, and the run goes on.
+bool PlotMethod(const std::string& plot_dir, const MethodRun& r, const std::string& method) {
+  const std::string png = plot_dir + "/" + r.label + "_" + method + ".png";
+  ForcePlotOptions plot;
+  plot.title = r.label + " - " + method;
+  plot.scale_lines = ThrustScaleLines(r.config.ekf);
+  if (r.result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(r.result.step_rotor, r.result.step_time_s));
+  std::string error;
+  if (!WriteForcePlot(r.run.forces, r.run.truth, plot, png, &error)) {
+    ReportError("plot " + png + ": " + error);
+    return false;
+  }
+  return true;
+}
+
+// Every method on every scenario (or on the log): the table on standard
+// output and, through a temporary file renamed at the end, --markdown-out.
+int RunEstimatorTable(const EvalCli& cli, const EstimatorConfig& base_config) {
+  OutputFile markdown;
+  std::string error;
+  if (!CheckOutputs({cli.markdown_out}, {cli.log_path, cli.params_file}, &error) ||
+      (!cli.markdown_out.empty() && !markdown.Open(cli.markdown_out, &error))) {
+    return ReportError(error);
+  }
+  int exit_code = 0;
+  EstimatorTables tables;
+  for (const std::string& name : cli.scenarios) {
+    Scenario scenario;
+    if (cli.log_path.empty() && !LoadNamedScenario(name, cli.scenario_dir, cli.overrides, &scenario, &error)) {
+      return ReportError(error);
+    }
+    for (const std::string& method : cli.methods) {
+      MethodRun run;
+      if (!RunMethod(cli, name, scenario, method, base_config, &run, &error)) return ReportError(error);
+      AddMethodRows(run, method, &tables);
+      if (!cli.plot_dir.empty() && !PlotMethod(cli.plot_dir, run, method)) exit_code = 1;
+    }
+  }
+  const std::string table = tables.accuracy + tables.consistency;
+  std::printf("%s", table.c_str());
+  if (std::fflush(stdout) != 0) return ReportError("writing the table to standard output failed");
+  if (markdown.is_open()) {
+    markdown.Write(table);
+    if (!markdown.Commit(&error)) return ReportError(error);
+  }
+  return exit_code;
 }
 
 }  // namespace
@@ -161,180 +405,24 @@ int main(int argc, char** argv) {
   using namespace birotor;
   CLI::App app{"birotor-eval: estimator accuracy against simulator truth"};
   CommonOptions common;
-  AddCommonOptions(app, &common);
-  app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
-  std::vector<std::string> scenarios = {"hover",           "gentle",         "aggressive",   "thrust_loss",
-                                        "density",         "sensor_faults",  "gauge_offset", "gauge_drift",
-                                        "gauge_vibration", "gauge_airborne", "bench_gauge"};
-  // Issue 27: vehicles that differ from the reference file the estimator keeps.
-  for (const char* name :
-       {"mismatch_stiffness_plus20", "mismatch_stiffness_minus20", "mismatch_tip_mass_plus20",
-        "mismatch_tip_mass_minus20", "mismatch_payload_plus15", "mismatch_payload_minus15", "mismatch_gauge_scale_0p7",
-        "mismatch_gauge_scale_1p3", "mismatch_thrust_coeff_plus20", "mismatch_thrust_coeff_minus20",
-        "mismatch_motor_lag_plus30", "mismatch_motor_lag_minus30", "mismatch_all"}) {
-    scenarios.push_back(name);
-  }
-  std::vector<std::string> methods = EstimationMethodNames();
-  std::string params_file = FindConfigFile("estimator.yaml");
-  std::string scenario_dir;  // empty: each scenario is looked up as scenarios/<name>.yaml
-  std::string log_path, markdown_out, plot_dir;
-  std::vector<std::string> overrides;
-  std::vector<std::string> estimator_sets;
-  double duration_s = 0;
-  EvalOptions eval_options;
-  app.add_option("--scenarios", scenarios,
-                 "Scenario names: files <scenario-dir>/<name>.yaml, or without --scenario-dir the " +
-                     ConfigSearchText("scenarios/<name>.yaml"))
-      ->delimiter(',');
-  app.add_option("--methods", methods, "Methods (default: all)")
-      ->delimiter(',')
-      ->check(CLI::IsMember(EstimationMethodNames()));
-  app.add_option("--params", params_file,
-                 "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
-  app.add_option("--scenario-dir", scenario_dir, "Folder of the scenario files");
-  app.add_option("--set", overrides, "Simulator override section.key=value (repeatable), e.g. noise-free runs");
-  app.add_option("--log", log_path, "Evaluate one input log (with TRUTH) instead of simulating");
-  app.add_option("--duration-s", duration_s, "Simulate at most this long (0: whole scenario) [s]")
-      ->check(CLI::Range(0.0, 1e6));
-  app.add_option("--warmup-s", eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
-  app.add_option("--markdown-out", markdown_out, "Also write the table to this file");
-  app.add_option("--plot-dir", plot_dir, "Write <scenario>_<method>.png plots here");
-  bool control = false;
-  std::string controller_params = FindConfigFile("controller.yaml");
-  std::vector<std::string> control_scenarios;
-  for (const ControlCase& c : ControlCases()) control_scenarios.push_back(c.name);
-  int seeds = 1;
-  bool mpc = false;
-  app.add_flag("--mpc", mpc,
-               "--control: also fly the model predictive controller without and with the estimated efficiencies "
-               "(mode mpc, docs/mpc.md) and add its comparison with the force-feedback cascade; fails if any MPC "
-               "command is outside [0, omega_max] or over the rate limit");
-  app.add_flag("--control", control,
-               "Control figures instead: fly each case (--scenarios: a case name of docs/controller.md or a "
-               "scenario name; default every case) closed loop (birotor-sim --controller) in both controller "
-               "modes with the same gains on the same seeds; report RMS position error, and from the fault (or "
-               "lift-off) over 3 s the peak tilt and altitude deviation, the time back within 5 cm and the "
-               "touchdown speed; then nominal vs force feedback per case (medians and worst seed)");
-  app.add_option("--seeds", seeds, "--control: fly seeds 1..N of each case (1: the scenario's own seed)")
-      ->check(CLI::Range(1, 1000));
-  app.add_option("--controller-params", controller_params,
-                 "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
-  double min_usable_fraction = kDefaultMinUsableLogFraction;
-  app.add_option("--min-usable-fraction", min_usable_fraction,
-                 "Refuse a --log whose readable events are less than this share of its bytes")
-      ->check(CLI::Range(0.0, 1.0));
+  EvalCli cli;
+  AddEvalOptions(app, &common, &cli);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-eval", common.log_level);
 
   EstimatorConfig base_config;
   try {
-    base_config = LoadEstimatorConfig(params_file);
+    base_config = LoadEstimatorConfig(cli.params_file);
   } catch (const std::exception& error) {
     return ReportError(error.what());
   }
-  if (!log_path.empty()) scenarios = {log_path};
+  if (!cli.log_path.empty()) cli.scenarios = {cli.log_path};
   // Refuse unwritable outputs before minutes of simulation, not after.
   std::error_code fs_error;
-  if (!plot_dir.empty() && !std::filesystem::is_directory(plot_dir) &&
-      !std::filesystem::create_directories(plot_dir, fs_error)) {
-    return ReportError("cannot create --plot-dir " + plot_dir);
+  if (!cli.plot_dir.empty() && !std::filesystem::is_directory(cli.plot_dir) &&
+      !std::filesystem::create_directories(cli.plot_dir, fs_error)) {
+    return ReportError("cannot create --plot-dir " + cli.plot_dir);
   }
-  if (control) {
-    if (!log_path.empty()) return ReportError("--control flies scenarios; it does not take --log", kExitUsage);
-    ControllerConfig controller;
-    try {
-      controller = LoadControllerConfig(controller_params);
-    } catch (const std::exception& error) {
-      return ReportError(error.what());
-    }
-    // The default list is the estimator's; the control table has its own.
-    if (app.count("--scenarios") == 0) scenarios = control_scenarios;
-    return RunControlTable(scenarios, seeds, scenario_dir, overrides, base_config, controller, markdown_out, plot_dir,
-                           mpc);
-  }
-  // The Markdown goes to a temporary file next to it, renamed at the end.
-  OutputFile markdown;
-  std::string error;
-  if (!CheckOutputs({markdown_out}, {log_path, params_file}, &error) ||
-      (!markdown_out.empty() && !markdown.Open(markdown_out, &error))) {
-    return ReportError(error);
-  }
-  int exit_code = 0;
-
-  std::string table = MarkdownTableHeader();
-  std::string consistency_table = "\n" + MismatchTableHeader();  // issue 27 (docs/mismatch.md)
-  for (const std::string& name : scenarios) {
-    Scenario scenario;
-    if (log_path.empty()) {
-      try {
-        std::string file = scenario_dir + "/" + name + ".yaml", scenario_error;  // a misspelt name lists them
-        if (scenario_dir.empty() && !FindScenario(name, &file, &scenario_error)) return ReportError(scenario_error);
-        scenario = LoadScenario(file, overrides);
-      } catch (const std::exception& e) {
-        return ReportError(e.what());
-      }
-    }
-    for (const std::string& method : methods) {
-      EstimatorConfig config = base_config;
-      config.method = method;
-      // On a test stand the operator knows the body is held.
-      if (scenario.mode == "bench") config.ekf.body_held = true;
-      EvalRun run;
-      if (log_path.empty()) {
-        run = RunSimulatedScenario(scenario, config, duration_s);
-      } else if (!RunLog(log_path, config, &run, &error, min_usable_fraction)) {
-        return ReportError(error);
-      }
-      if (!run.log_damage.empty() && method == methods.front()) spdlog::warn("{}", run.log_damage);
-      // A flight with a ground phase is scored from its lift-off.
-      EvalOptions options = eval_options;
-      options.score_from_utime = run.liftoff_utime;
-      const EvalResult result = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, options);
-      const std::string label = log_path.empty() ? name : "log";
-      // Nothing scored (no TRUTH, no FORCE, or all within the warm-up): a
-      // table of NaN would look like a result.
-      if (!log_path.empty() && run.stats.input_packets == 0) {  // e.g. a birotor-replay output (issue 24)
-        return ReportError(
-            fmt::format("{}: no STRAIN, MOTOR, IMU or POSE input ({} events): --log re-runs the "
-                        "estimator on a recorded flight's inputs; a birotor-replay output has none "
-                        "(look at it with birotor-review or birotor-plot)",
-                        log_path, run.stats.events));
-      }
-      if (result.rotor[0].count == 0) {
-        return ReportError(
-            fmt::format("{} {}: no FORCE estimate paired with TRUTH after the {:.2f} s warm-up ({} FORCE, {} TRUTH): "
-                        "nothing to score",
-                        label, method, eval_options.warmup_s, run.forces.size(), run.truth.size()));
-      }
-      table += MarkdownTableRow(label, method, result);
-      MismatchEvalOptions mismatch_options;
-      mismatch_options.airborne_utime = run.liftoff_utime;
-      consistency_table += MismatchTableRow(label, method, EvaluateMismatch(run.forces, run.truth, mismatch_options));
-      const InputCounters& strain = run.health.inputs[static_cast<int>(InputChannel::kStrain)];
-      spdlog::info(
-          "{} {}: {:.1f} s simulated+estimated in {:.2f} s; strain received {} fused {} gated {} "
-          "invalid {} out-of-order {} duplicates {} gaps {}; resets {}",
-          label, method, run.simulated_s, run.wall_s, strain.received, strain.fused, strain.rejected_gate,
-          strain.rejected_invalid, strain.out_of_order, strain.duplicates, strain.gaps, run.health.resets);
-      if (!plot_dir.empty()) {
-        const std::string png = plot_dir + "/" + label + "_" + method + ".png";
-        ForcePlotOptions plot;
-        plot.title = label + " - " + method;
-        plot.scale_lines = ThrustScaleLines(config.ekf);
-        if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));
-        if (!WriteForcePlot(run.forces, run.truth, plot, png, &error)) {
-          ReportError("plot " + png + ": " + error);
-          exit_code = 1;
-        }
-      }
-    }
-  }
-  table += consistency_table;
-  std::printf("%s", table.c_str());
-  if (std::fflush(stdout) != 0) return ReportError("writing the table to standard output failed");
-  if (markdown.is_open()) {
-    markdown.Write(table);
-    if (!markdown.Commit(&error)) return ReportError(error);
-  }
-  return exit_code;
+  if (cli.control) return RunControlMode(cli, app.count("--scenarios") > 0, base_config);
+  return RunEstimatorTable(cli, base_config);
 }

@@ -79,145 +79,161 @@ std::string UtcDateTime() {
   return text;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line: the tool's own options, the shared ones and the
+// calibration facts that go straight into the identification options.
+void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyOptions* cli,
+                        birotor::IdentificationOptions* options) {
   using namespace birotor;
-  CommonOptions common;
-  IdentifyOptions cli;
-  IdentificationOptions options;
-  CLI::App app(
-      "Identify the birotor's c_T, tau_m, k, d, tip mass, gauge calibration and deflection-force maps from "
-      "LCM logs",
-      "birotor-identify");
-  AddCommonOptions(app, &common);
+  AddCommonOptions(app, common);
   app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
-  app.add_option("--log", cli.logs, "LCM log file (repeat for several: one joint fit)")->required();
-  app.add_option("--mode", cli.mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
+  app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit)")->required();
+  app.add_option("--mode", cli->mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
-  app.add_option("--params", cli.params,
+  app.add_option("--params", cli->params,
                  "Base parameter file (complete vehicle: section): masses, lengths, inertia are taken as known; "
                  "default: the --update-params file if given, else the " +
                      ConfigSearchText("reference_vehicle.yaml"));
-  app.add_option("--config", cli.config,
+  app.add_option("--config", cli->config,
                  "YAML file with a complete `identification:` section of options (the shipped identification.yaml "
                  "has every key at its default); none: the built-in defaults");
-  app.add_option("--tip-mass-kg", options.calibration.tip_mass_kg,
+  app.add_option("--tip-mass-kg", options->calibration.tip_mass_kg,
                  "Weighed tip mass m_p [kg] (bench): the gauge scales are then identified; default: not weighed, "
                  "the gauge scales are the base file's gauge_scale and m_p is identified")
       ->check(CLI::PositiveNumber);
-  app.add_option("--tip-mass-std-kg", options.calibration.tip_mass_std_kg,
+  app.add_option("--tip-mass-std-kg", options->calibration.tip_mass_std_kg,
                  "One sigma of the weighed tip mass [kg]; default 0: m_p held at --tip-mass-kg")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--gauge-scale-std", options.calibration.gauge_scale_std,
+  app.add_option("--gauge-scale-std", options->calibration.gauge_scale_std,
                  "One sigma of the factory gauge scale [1]; default 0: held at the base file's gauge_scale "
                  "(unless --tip-mass-kg is given). Flight: added to the sigma of k and m_p, which the "
                  "flight sees through the scale")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--output", cli.output, "Identified parameter file (written atomically)");
-  app.add_option("--update-params", cli.update_params,
+  app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
+  app.add_option("--update-params", cli->update_params,
                  "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
                  "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
                  "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
                  "absent or a regular file");
-  app.add_option("--report", cli.report, "Readable report (Markdown)");
-  app.add_option("--plot", cli.plot, "PNG of fit versus data (needs gnuplot)");
-  app.add_flag("--progress", cli.progress,
+  app.add_option("--report", cli->report, "Readable report (Markdown)");
+  app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
+  app.add_flag("--progress", cli->progress,
                "Progress line on stderr (stage, windows, elapsed, ETA) for fits over 2 s even when stderr is not a "
                "terminal (on a terminal it is always shown)");
-  app.add_option("--min-usable-fraction", cli.min_usable_fraction,
+  app.add_option("--min-usable-fraction", cli->min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
       ->check(CLI::Range(0.0, 1.0));
-  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
-  SetupLogging("birotor-identify", common.log_level);
-  if (cli.output.empty() && cli.update_params.empty()) {
-    return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
-  }
-  if (!cli.update_params.empty() && app.get_option("--params")->count() == 0) cli.params = cli.update_params;
+}
 
-  VehicleParams base;
+// The base vehicle and, with --config, the fit options (the calibration facts
+// of the command line kept). Returns an error message, empty on success.
+std::string LoadBaseAndOptions(const IdentifyOptions& cli, birotor::VehicleParams* base,
+                               birotor::IdentificationOptions* options) {
+  using namespace birotor;
   try {
-    base = LoadVehicleParams(cli.params);
+    *base = LoadVehicleParams(cli.params);
     if (!cli.config.empty()) {
-      const CalibrationFact calibration = options.calibration;  // from the command line
-      options = LoadIdentificationOptions(cli.config);
-      options.calibration = calibration;
+      const CalibrationFact calibration = options->calibration;  // from the command line
+      *options = LoadIdentificationOptions(cli.config);
+      options->calibration = calibration;
     }
   } catch (const ParamError& e) {
-    return ReportError(e.what());
+    return e.what();
   }
-  spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
-  // Outputs: never an input, each through a temporary file renamed at the
-  // end; opened now so an unwritable folder is refused before the fit. The
-  // --update-params file is the one deliberate exception: it is updated in
-  // place (through its link, docs/files.md), its old content kept as FILE.bak.
+  return "";
+}
+
+// Every output of the run, opened before the fit.
+struct Outputs {
+  birotor::OutputFile output, report;
+  birotor::ParameterFileUpdate update;
+  birotor::VehicleParams update_vehicle;  // the vehicle the --update-params file describes now
+};
+
+// Outputs: never an input, each through a temporary file renamed at the
+// end; opened now so an unwritable folder is refused before the fit. The
+// --update-params file is the one deliberate exception: it is updated in
+// place (through its link, docs/files.md), its old content kept as FILE.bak.
+// Returns an error message, empty on success.
+std::string OpenOutputs(const IdentifyOptions& cli, Outputs* out) {
+  using namespace birotor;
   std::string error;
   std::vector<std::string> inputs = cli.logs;
   inputs.push_back(cli.params);
   inputs.push_back(cli.config);
-  OutputFile output, report;
-  ParameterFileUpdate update;
-  if ((!cli.update_params.empty() && !PrepareParameterFileUpdate(cli.update_params, &update, &error)) ||
-      !CheckOutputs({cli.output, cli.report, cli.plot, update.backup}, inputs, &error) ||
+  if ((!cli.update_params.empty() && !PrepareParameterFileUpdate(cli.update_params, &out->update, &error)) ||
+      !CheckOutputs({cli.output, cli.report, cli.plot, out->update.backup}, inputs, &error) ||
       (!cli.update_params.empty() && !CheckOutputs({cli.update_params, cli.output, cli.report, cli.plot},
                                                    {cli.logs.begin(), cli.logs.end()}, &error)) ||
-      (!cli.output.empty() && !output.Open(cli.output, &error)) ||
-      (!cli.report.empty() && !report.Open(cli.report, &error))) {
-    return ReportError(error.rfind("--update-params", 0) == 0 || cli.update_params.empty()
-                           ? error
-                           : "--update-params " + cli.update_params + ": " + error);
+      (!cli.output.empty() && !out->output.Open(cli.output, &error)) ||
+      (!cli.report.empty() && !out->report.Open(cli.report, &error))) {
+    return error.rfind("--update-params", 0) == 0 || cli.update_params.empty()
+               ? error
+               : "--update-params " + cli.update_params + ": " + error;
   }
-  // The file to update must be complete before the fit, so a fit is never lost to it.
-  const std::string& update_text = update.text;
-  VehicleParams update_vehicle;  // the vehicle the file describes now
-  if (!cli.update_params.empty()) {
-    try {  // from the text already read (a regular file, docs/files.md), not a second read
-      WithFileErrors(cli.update_params, [&] {
-        YamlSection root = YamlSection::LoadString(update_text, cli.update_params);
-        ReadVehicleParams(root.Section("vehicle"), &update_vehicle);
-      });
-    } catch (const ParamError& e) {
-      return ReportError(e.what());
-    }
-    std::string unused;
-    if (!UpdateVehicleSection(update_text, base, "", &unused, &error)) {
-      return ReportError("--update-params " + cli.update_params + ": " + error);
-    }
-  }
+  return "";
+}
 
-  const Stopwatch stopwatch;
-  std::vector<SensorLog> logs;
+// The vehicle: section of text (named file) read into vehicle; throws ParamError.
+void ReadVehicleSection(const std::string& text, const std::string& file, birotor::VehicleParams* vehicle) {
+  using namespace birotor;
+  WithFileErrors(file, [&] {
+    YamlSection root = YamlSection::LoadString(text, file);
+    ReadVehicleParams(root.Section("vehicle"), vehicle);
+  });
+}
+
+// The file to update must be complete before the fit, so a fit is never lost
+// to it. Returns an error message, empty on success.
+std::string CheckUpdateTarget(const IdentifyOptions& cli, const birotor::VehicleParams& base, Outputs* out) {
+  using namespace birotor;
+  if (cli.update_params.empty()) return "";
+  try {  // from the text already read (a regular file, docs/files.md), not a second read
+    ReadVehicleSection(out->update.text, cli.update_params, &out->update_vehicle);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  std::string unused, error;
+  if (!UpdateVehicleSection(out->update.text, base, "", &unused, &error)) {
+    return "--update-params " + cli.update_params + ": " + error;
+  }
+  return "";
+}
+
+// Every log read into a SensorLog, its damage and decode errors logged.
+bool LoadLogs(const IdentifyOptions& cli, const std::string& prefix, std::vector<birotor::SensorLog>* logs,
+              std::string* error) {
+  using namespace birotor;
   for (const std::string& path : cli.logs) {
     SensorLog log;
     LogLoadReport load;
-    if (!LoadSensorLog(path, common.prefix, &log, &load, &error, cli.min_usable_fraction)) return ReportError(error);
+    if (!LoadSensorLog(path, prefix, &log, &load, error, cli.min_usable_fraction)) return false;
     if (!load.damage.empty()) spdlog::warn("{}", load.damage);
     if (load.decode_errors > 0) spdlog::warn("{}: {} events did not decode and were skipped", path, load.decode_errors);
     spdlog::info("{}: {} strain, {} motor, {} imu, {} loadcell samples", path, log.strain.size(), log.motor.size(),
                  log.imu.size(), log.loadcell.size());
-    logs.push_back(std::move(log));
+    logs->push_back(std::move(log));
   }
+  return true;
+}
+
+// The fit, with the progress line on a terminal or with --progress.
+birotor::IdentificationResult RunIdentification(const IdentifyOptions& cli, std::vector<birotor::SensorLog> logs,
+                                                const birotor::VehicleParams& base,
+                                                birotor::IdentificationOptions options) {
+  using namespace birotor;
   const IdentificationMode mode = cli.mode == "bench"    ? IdentificationMode::kBench
                                   : cli.mode == "flight" ? IdentificationMode::kFlight
                                                          : IdentificationMode::kAuto;
   ProgressLine progress;
   if (cli.progress || isatty(STDERR_FILENO)) options.progress = [&progress](const FitProgress& at) { progress(at); };
-  const IdentificationResult result = Identify(std::move(logs), base, options, mode);
+  IdentificationResult result = Identify(std::move(logs), base, options, mode);
   progress.Finish();
-  const double elapsed_s = stopwatch.ElapsedS();
-  if (result.dropped.total() > 0) {
-    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
-  }
+  return result;
+}
 
-  if (report.is_open()) {
-    report.Write(IdentificationReport(result));
-    if (!report.Commit(&error)) return ReportError(error);
-  }
-  if (!result.ok) {
-    std::string reasons;
-    for (const std::string& e : result.errors) reasons += (reasons.empty() ? "" : "; ") + e;
-    return ReportError("identification refused (" + result.mode + " mode), no parameter file written: " + reasons);
-  }
+// The identified values, the undetermined ones, the maps, shares and correlations.
+void LogEstimates(const birotor::IdentificationResult& result) {
+  using namespace birotor;
   for (const std::string& w : result.warnings) spdlog::warn("{}", w);
   for (const ParameterEstimate& e : result.estimates) {
     if (e.determined) {
@@ -233,55 +249,122 @@ int main(int argc, char** argv) {
   }
   for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
   for (const std::string& line : result.correlations) spdlog::warn("{}", line);
-  // Stamp: the date and what the values came from; the estimator logs it at start-up.
+}
+
+// Stamp: the date and what the values came from; the estimator logs it at start-up.
+std::string ProvenanceStamp(const birotor::IdentificationResult& result) {
   std::string stamp = UtcDateTime() + " by birotor-identify (" + result.mode + " mode) from";
   for (const std::string& source : result.sources) stamp += " " + std::filesystem::path(source).filename().string();
   if (!result.calibration_fact.empty()) stamp += "; " + result.calibration_fact;
-  if (output.is_open()) {
-    std::string text;
-    if (!UpdateVehicleSection(IdentifiedParameterYaml(result), result.params, stamp, &text, &error)) {
-      return ReportError(error);
+  return stamp;
+}
+
+// --update-params: only what these logs determined is deployed, every other
+// value stays the file's own, whatever the base (--params) said; the new text
+// must load back as the identified vehicle before it replaces the old file.
+// Returns an error message, empty on success.
+std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::IdentificationOptions& options,
+                                const birotor::IdentificationResult& result, const std::string& stamp,
+                                const Outputs& out) {
+  using namespace birotor;
+  VehicleParams deployed = out.update_vehicle;
+  for (const ParameterEstimate& e : result.estimates) {
+    if (e.determined) SetVehicleValue(e.key, e.value, &deployed);
+  }
+  if (options.calibration.TipMassWeighed()) deployed.tip_mass_kg = result.params.tip_mass_kg;  // the weighed fact
+  std::string updated, error;
+  if (!UpdateVehicleSection(out.update.text, deployed, stamp, &updated, &error)) {
+    return "--update-params " + cli.update_params + ": " + error;
+  }
+  try {
+    VehicleParams check;
+    ReadVehicleSection(updated, cli.update_params, &check);
+    if (VehicleParamsYaml(check) != VehicleParamsYaml(deployed)) {
+      return "--update-params " + cli.update_params +
+             ": the updated text does not read back as the identified values; file left unchanged";
     }
-    output.Write(text);
-    if (!output.Commit(&error)) return ReportError(error);
+  } catch (const ParamError& e) {
+    return std::string(e.what()) + "; file left unchanged";
+  }
+  if (!CommitParameterFileUpdate(out.update, updated, &error)) return "--update-params: " + error;
+  spdlog::info("updated the vehicle section of {} in place (previous file: {})", out.update.target, out.update.backup);
+  return "";
+}
+
+// The parameter file(s) and the plot. A failed plot is an error (exit 1),
+// but the parameter file stands. Returns an error message, empty on success.
+std::string WriteResults(const IdentifyOptions& cli, const birotor::IdentificationOptions& options,
+                         const birotor::IdentificationResult& result, Outputs* out) {
+  using namespace birotor;
+  const std::string stamp = ProvenanceStamp(result);
+  std::string error;
+  if (out->output.is_open()) {
+    std::string text;
+    if (!UpdateVehicleSection(IdentifiedParameterYaml(result), result.params, stamp, &text, &error)) return error;
+    out->output.Write(text);
+    if (!out->output.Commit(&error)) return error;
     spdlog::info("wrote {}", cli.output);
   }
   if (!cli.update_params.empty()) {
-    // Only what these logs determined is deployed: every other value stays
-    // the file's own, whatever the base (--params) said.
-    VehicleParams deployed = update_vehicle;
-    for (const ParameterEstimate& e : result.estimates) {
-      if (e.determined) SetVehicleValue(e.key, e.value, &deployed);
-    }
-    if (options.calibration.TipMassWeighed()) deployed.tip_mass_kg = result.params.tip_mass_kg;  // the weighed fact
-    std::string updated;
-    if (!UpdateVehicleSection(update_text, deployed, stamp, &updated, &error)) {
-      return ReportError("--update-params " + cli.update_params + ": " + error);
-    }
-    // The new text must load back as the identified vehicle before it replaces the old file.
-    try {
-      VehicleParams check;
-      WithFileErrors(cli.update_params, [&] {
-        YamlSection root = YamlSection::LoadString(updated, cli.update_params);
-        ReadVehicleParams(root.Section("vehicle"), &check);
-      });
-      if (VehicleParamsYaml(check) != VehicleParamsYaml(deployed)) {
-        return ReportError("--update-params " + cli.update_params +
-                           ": the updated text does not read back as the identified values; file left unchanged");
-      }
-    } catch (const ParamError& e) {
-      return ReportError(std::string(e.what()) + "; file left unchanged");
-    }
-    if (!CommitParameterFileUpdate(update, updated, &error)) return ReportError("--update-params: " + error);
-    spdlog::info("updated the vehicle section of {} in place (previous file: {})", update.target, update.backup);
+    error = UpdateParamsInPlace(cli, options, result, stamp, *out);
+    if (!error.empty()) return error;
   }
-  // A failed plot is an error (exit 1), but the parameter file stands.
   if (!cli.plot.empty()) {
     if (!WriteFitPlot(result.plots, "birotor-identify (" + result.mode + " mode): fit versus data", cli.plot, &error)) {
-      return ReportError("--plot " + cli.plot + ": " + error);
+      return "--plot " + cli.plot + ": " + error;
     }
     spdlog::info("wrote {}", cli.plot);
   }
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace birotor;
+  CommonOptions common;
+  IdentifyOptions cli;
+  IdentificationOptions options;
+  CLI::App app(
+      "Identify the birotor's c_T, tau_m, k, d, tip mass, gauge calibration and deflection-force maps from "
+      "LCM logs",
+      "birotor-identify");
+  AddIdentifyOptions(app, &common, &cli, &options);
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  SetupLogging("birotor-identify", common.log_level);
+  if (cli.output.empty() && cli.update_params.empty()) {
+    return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
+  }
+  if (!cli.update_params.empty() && app.get_option("--params")->count() == 0) cli.params = cli.update_params;
+
+  VehicleParams base;
+  std::string error = LoadBaseAndOptions(cli, &base, &options);
+  if (!error.empty()) return ReportError(error);
+  spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));
+  Outputs out;
+  if (!(error = OpenOutputs(cli, &out)).empty() || !(error = CheckUpdateTarget(cli, base, &out)).empty()) {
+    return ReportError(error);
+  }
+
+  const Stopwatch stopwatch;
+  std::vector<SensorLog> logs;
+  if (!LoadLogs(cli, common.prefix, &logs, &error)) return ReportError(error);
+  const IdentificationResult result = RunIdentification(cli, std::move(logs), base, options);
+  const double elapsed_s = stopwatch.ElapsedS();
+  if (result.dropped.total() > 0) {
+    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
+  }
+  if (out.report.is_open()) {
+    out.report.Write(IdentificationReport(result));
+    if (!out.report.Commit(&error)) return ReportError(error);
+  }
+  if (!result.ok) {
+    std::string reasons;
+    for (const std::string& e : result.errors) reasons += (reasons.empty() ? "" : "; ") + e;
+    return ReportError("identification refused (" + result.mode + " mode), no parameter file written: " + reasons);
+  }
+  LogEstimates(result);
+  if (!(error = WriteResults(cli, options, result, &out)).empty()) return ReportError(error);
   spdlog::info("identified in {} mode in {:.2f} s; calibration fact: {}", result.mode, elapsed_s,
                result.calibration_fact.empty() ? "none needed" : result.calibration_fact);
   return 0;

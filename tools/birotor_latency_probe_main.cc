@@ -117,46 +117,196 @@ class ProbeInput : public birotor::PacketHandler {
   birotor::ChannelNames channels_;
 };
 
+struct ProbeOptions {
+  birotor::CommonOptions common;
+  double rate_hz = 1000;            // STRAIN rate [Hz]; MOTOR at half of it
+  double duration_s = 10;           // publishing time [s]
+  double drain_s = 1.0;             // wait for the last FORCE messages [s]
+  bool through_controller = false;  // also IMU and POSE, and STRAIN -> MOTOR_COMMAND
+  int realtime_priority = 0;        // SCHED_FIFO priority; 0: normal scheduler
+};
+
+void AddProbeOptions(CLI::App& app, ProbeOptions* options) {
+  options->common.prefix = "LATENCY_PROBE_";  // keep away from a real vehicle's channels
+  birotor::AddCommonOptions(app, &options->common);
+  app.add_option("--rate-hz", options->rate_hz, "STRAIN rate [Hz]; MOTOR at half of it")
+      ->check(CLI::Range(1.0, 100000.0));
+  app.add_option("--duration-s", options->duration_s, "Publishing time [s]")->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--drain-s", options->drain_s, "Time to wait for the last FORCE messages [s]")
+      ->check(CLI::Range(0.0, 60.0));
+  app.add_flag("--through-controller", options->through_controller,
+               "Also publish IMU (every sample) and POSE (every 10th) of a hover and measure STRAIN published -> "
+               "MOTOR_COMMAND of a running birotor-controller");
+  app.add_option("--realtime-priority", options->realtime_priority,
+                 "SCHED_FIFO priority (1-99) for the probe's threads; 0: normal scheduler")
+      ->check(CLI::Range(0, 99));
+}
+
+void SetRealtimePriority(int priority) {
+  if (priority <= 0) return;
+  sched_param param{};
+  param.sched_priority = priority;  // inherited by the receiver thread
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    std::fprintf(stderr, "birotor-latency-probe: warning: cannot set SCHED_FIFO (needs CAP_SYS_NICE)\n");
+  }
+}
+
+// The synthetic hover the probe publishes, sample k at a time.
+class HoverPublisher {
+ public:
+  HoverPublisher(lcm::LCM* lcm, const birotor::ChannelNames& channels) : lcm_(lcm), channels_(channels) {}
+
+  // MOTOR at half the STRAIN rate.
+  void PublishMotor(int64_t k, int64_t utime) {
+    if (k % 2 != 0) return;
+    motor_.utime = utime;
+    motor_.seq = static_cast<int32_t>(k / 2);
+    for (int i = 0; i < 2; ++i) {
+      motor_.omega_cmd_rad_s[i] = kHoverOmegaRadS;
+      motor_.omega_meas_rad_s[i] = kHoverOmegaRadS;
+    }
+    Publish(channels_.motor, motor_, &motor_buffer_);
+  }
+
+  // Level hover at the origin: the controller's inputs besides FORCE (IMU
+  // every sample, POSE every 10th).
+  void PublishControllerInputs(int64_t k, int64_t utime) {
+    imu_.utime = utime;
+    imu_.seq = static_cast<int32_t>(k);
+    imu_.accel_z_m_s2 = 9.81;
+    Publish(channels_.imu, imu_, &imu_buffer_);
+    if (k % 10 == 0) {
+      pose_.utime = utime;
+      pose_.seq = static_cast<int32_t>(k / 10);
+      Publish(channels_.pose, pose_, &pose_buffer_);
+    }
+  }
+
+  // STRAIN sample k, its publication time recorded in the probe.
+  void PublishStrain(int64_t k, int64_t utime, Probe* probe) {
+    strain_.utime = utime;
+    strain_.seq = static_cast<int32_t>(k);
+    // A small deterministic ripple (1e-6 rad) so the filter sees changing data.
+    const double ripple_rad = 1e-6 * std::sin(0.01 * static_cast<double>(k));
+    strain_.deflection_rad[0] = -kHoverDeflectionRad + ripple_rad;
+    strain_.deflection_rad[1] = kHoverDeflectionRad + ripple_rad;
+    birotor::EncodeMessage(strain_, &strain_buffer_);
+    probe->publish_ns[k] = birotor::SteadyClockNs();
+    lcm_->publish(channels_.strain, strain_buffer_.data(), static_cast<unsigned>(strain_buffer_.size()));
+  }
+
+ private:
+  template <typename Message>
+  void Publish(const std::string& channel, const Message& message, std::vector<uint8_t>* buffer) {
+    birotor::EncodeMessage(message, buffer);
+    lcm_->publish(channel, buffer->data(), static_cast<unsigned>(buffer->size()));
+  }
+
+  lcm::LCM* lcm_;
+  const birotor::ChannelNames& channels_;
+  birotor::strain_t strain_;
+  birotor::motor_t motor_;
+  birotor::imu_t imu_{};
+  birotor::pose_t pose_{};
+  std::vector<uint8_t> strain_buffer_, motor_buffer_, imu_buffer_, pose_buffer_;
+};
+
+// Publishes the hover at --rate-hz for --duration-s (or until a signal);
+// returns the number of STRAIN samples published and their time [s].
+int64_t PublishHover(const ProbeOptions& options, lcm::LCM* lcm, const birotor::ChannelNames& channels, int64_t count,
+                     Probe* probe, double* publish_s) {
+  using namespace birotor;
+  const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / options.rate_hz));
+  const int64_t period_us = std::max<int64_t>(1, period_ns / 1000);
+  // Vehicle clock of the synthetic samples: the wall clock at start, so a
+  // second run moves forward in time for the daemon.
+  const int64_t utime0 = WallClockUs();
+  probe->utime0 = utime0;
+  probe->period_us = period_us;
+  HoverPublisher publisher(lcm, channels);
+  const int64_t start_ns = SteadyClockNs();
+  int64_t published = 0;
+  for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
+    const int64_t due_ns = start_ns + k * period_ns;
+    std::this_thread::sleep_until(std::chrono::steady_clock::time_point(std::chrono::nanoseconds(due_ns)));
+    const int64_t utime = utime0 + k * period_us;
+    publisher.PublishMotor(k, utime);
+    if (options.through_controller) publisher.PublishControllerInputs(k, utime);
+    publisher.PublishStrain(k, utime, probe);
+    ++published;
+  }
+  *publish_s = static_cast<double>(SteadyClockNs() - start_ns) * 1e-9;
+  return published;
+}
+
+// The latencies [ns] of the first `published` samples that got an answer.
+std::vector<int64_t> AnsweredLatencies(const std::vector<int64_t>& latency_ns, int64_t published) {
+  std::vector<int64_t> latencies;
+  latencies.reserve(static_cast<size_t>(published));
+  for (int64_t k = 0; k < published; ++k) {
+    if (latency_ns[k] >= 0) latencies.push_back(latency_ns[k]);
+  }
+  return latencies;
+}
+
+// --through-controller: the STRAIN -> MOTOR_COMMAND figures; false (reported)
+// if no command could be paired.
+bool ReportControllerLatency(const ProbeOptions& options, const birotor::ChannelNames& channels, const Probe& probe,
+                             int64_t published) {
+  std::vector<int64_t> command_latencies = AnsweredLatencies(probe.command_latency_ns, published);
+  std::printf("MOTOR_COMMAND received %" PRId64 ", paired with a STRAIN %zu, unpaired %" PRId64 "\n",
+              probe.commands.load(), command_latencies.size(), probe.commands_unmatched.load());
+  if (command_latencies.empty()) {
+    birotor::ReportError("no MOTOR_COMMAND paired on " + channels.motor_command +
+                         ": is birotor-controller running with --lcm-url " + options.common.lcm_url + " --prefix " +
+                         options.common.prefix + "?");
+    return false;
+  }
+  std::printf("latency STRAIN publish->MOTOR_COMMAND [us]: %s\n", LatencyText(&command_latencies).c_str());
+  return true;
+}
+
+// The figures; returns the exit status: 0, 1 when nothing came back, 3 when
+// the figures are real but some samples got no FORCE (see "dropped").
+int ReportLatency(const ProbeOptions& options, const birotor::ChannelNames& channels, const Probe& probe,
+                  const birotor::MessageSource& source, int64_t published, double publish_s) {
+  using namespace birotor;
+  std::vector<int64_t> latencies = AnsweredLatencies(probe.latency_ns, published);
+  std::sort(latencies.begin(), latencies.end());
+  const int64_t dropped = published - static_cast<int64_t>(latencies.size());
+  std::printf("url %s prefix %s: %" PRId64 " STRAIN published at %.0f Hz in %.2f s (achieved %.1f Hz)\n",
+              options.common.lcm_url.c_str(), options.common.prefix.c_str(), published, options.rate_hz, publish_s,
+              static_cast<double>(published) / publish_s);
+  std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64 ", duplicates %" PRId64 "\n",
+              latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
+  if (source.udp_counters() != nullptr) std::printf("input: %s\n", UdpCountersText(source.udp_counters()).c_str());
+  if (latencies.empty()) {
+    return ReportError("no FORCE received on " + channels.force + " for " + std::to_string(published) +
+                       " STRAIN published on " + channels.strain + ": is birotor-estimator running with --lcm-url " +
+                       options.common.lcm_url + " --prefix " + options.common.prefix + "?");
+  }
+  std::printf("latency publish->FORCE [us]: %s\n", LatencyText(&latencies).c_str());
+  if (options.through_controller && !ReportControllerLatency(options, channels, probe, published)) return kExitFailure;
+  return dropped == 0 ? 0 : 3;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace birotor;
   CLI::App app{"birotor-latency-probe: publish-to-FORCE latency of a running birotor-estimator"};
-  CommonOptions common;
-  common.prefix = "LATENCY_PROBE_";  // keep away from a real vehicle's channels
-  AddCommonOptions(app, &common);
-  double rate_hz = 1000;
-  double duration_s = 10;
-  double drain_s = 1.0;
-  app.add_option("--rate-hz", rate_hz, "STRAIN rate [Hz]; MOTOR at half of it")->check(CLI::Range(1.0, 100000.0));
-  app.add_option("--duration-s", duration_s, "Publishing time [s]")->check(CLI::Range(0.1, 3600.0));
-  app.add_option("--drain-s", drain_s, "Time to wait for the last FORCE messages [s]")->check(CLI::Range(0.0, 60.0));
-  bool through_controller = false;
-  app.add_flag("--through-controller", through_controller,
-               "Also publish IMU (every sample) and POSE (every 10th) of a hover and measure STRAIN published -> "
-               "MOTOR_COMMAND of a running birotor-controller");
-  int realtime_priority = 0;
-  app.add_option("--realtime-priority", realtime_priority,
-                 "SCHED_FIFO priority (1-99) for the probe's threads; 0: normal scheduler")
-      ->check(CLI::Range(0, 99));
+  ProbeOptions options;
+  AddProbeOptions(app, &options);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
-  SetupLogging("birotor-latency-probe", common.log_level);
-  if (realtime_priority > 0) {
-    sched_param param{};
-    param.sched_priority = realtime_priority;  // inherited by the receiver thread
-    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-      std::fprintf(stderr, "birotor-latency-probe: warning: cannot set SCHED_FIFO (needs CAP_SYS_NICE)\n");
-    }
-  }
+  SetupLogging("birotor-latency-probe", options.common.log_level);
+  SetRealtimePriority(options.realtime_priority);
 
   std::string error;
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
-  if (!lcm) {
-    return ReportError(error);
-  }
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
+  if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
-  const ChannelNames channels = MakeChannelNames(common.prefix);
-  const int64_t count = static_cast<int64_t>(std::llround(rate_hz * duration_s));
+  const ChannelNames channels = MakeChannelNames(options.common.prefix);
+  const int64_t count = static_cast<int64_t>(std::llround(options.rate_hz * options.duration_s));
   Probe probe;
   probe.publish_ns.assign(static_cast<size_t>(count), 0);
   probe.latency_ns.assign(static_cast<size_t>(count), -1);
@@ -166,10 +316,9 @@ int main(int argc, char** argv) {
   // fragments instead of reassembling them.
   ProbeInput input(&probe, channels);
   std::vector<std::string> inputs = {channels.force};
-  if (through_controller) inputs.push_back(channels.motor_command);
-  std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
+  if (options.through_controller) inputs.push_back(channels.motor_command);
+  std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
   if (!source || !source->Subscribe(inputs, &input, &error)) return ReportError(error);
-
   std::atomic<bool> stop_receiving{false};
   std::thread receiver([&] {
     DroppedDatagramLog dropped;
@@ -179,97 +328,10 @@ int main(int argc, char** argv) {
     }
   });
 
-  const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / rate_hz));
-  const int64_t period_us = std::max<int64_t>(1, period_ns / 1000);
-  // Vehicle clock of the synthetic samples: the wall clock at start, so a
-  // second run moves forward in time for the daemon.
-  const int64_t utime0 = WallClockUs();
-  probe.utime0 = utime0;
-  probe.period_us = period_us;
-  strain_t strain;
-  motor_t motor;
-  imu_t imu{};
-  pose_t pose{};
-  std::vector<uint8_t> strain_buffer, motor_buffer, imu_buffer, pose_buffer;
-  const int64_t start_ns = SteadyClockNs();
-  int64_t published = 0;
-  for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
-    const int64_t due_ns = start_ns + k * period_ns;
-    std::this_thread::sleep_until(std::chrono::steady_clock::time_point(std::chrono::nanoseconds(due_ns)));
-    const int64_t utime = utime0 + k * period_us;
-    if (k % 2 == 0) {
-      motor.utime = utime;
-      motor.seq = static_cast<int32_t>(k / 2);
-      for (int i = 0; i < 2; ++i) {
-        motor.omega_cmd_rad_s[i] = kHoverOmegaRadS;
-        motor.omega_meas_rad_s[i] = kHoverOmegaRadS;
-      }
-      EncodeMessage(motor, &motor_buffer);
-      lcm->publish(channels.motor, motor_buffer.data(), static_cast<unsigned>(motor_buffer.size()));
-    }
-    if (through_controller) {
-      // Level hover at the origin: the controller's inputs besides FORCE.
-      imu.utime = utime;
-      imu.seq = static_cast<int32_t>(k);
-      imu.accel_z_m_s2 = 9.81;
-      EncodeMessage(imu, &imu_buffer);
-      lcm->publish(channels.imu, imu_buffer.data(), static_cast<unsigned>(imu_buffer.size()));
-      if (k % 10 == 0) {
-        pose.utime = utime;
-        pose.seq = static_cast<int32_t>(k / 10);
-        EncodeMessage(pose, &pose_buffer);
-        lcm->publish(channels.pose, pose_buffer.data(), static_cast<unsigned>(pose_buffer.size()));
-      }
-    }
-    strain.utime = utime;
-    strain.seq = static_cast<int32_t>(k);
-    // A small deterministic ripple (1e-6 rad) so the filter sees changing data.
-    const double ripple_rad = 1e-6 * std::sin(0.01 * static_cast<double>(k));
-    strain.deflection_rad[0] = -kHoverDeflectionRad + ripple_rad;
-    strain.deflection_rad[1] = kHoverDeflectionRad + ripple_rad;
-    EncodeMessage(strain, &strain_buffer);
-    probe.publish_ns[k] = SteadyClockNs();
-    lcm->publish(channels.strain, strain_buffer.data(), static_cast<unsigned>(strain_buffer.size()));
-    ++published;
-  }
-  const double publish_s = static_cast<double>(SteadyClockNs() - start_ns) * 1e-9;
-  std::this_thread::sleep_for(std::chrono::duration<double>(drain_s));
+  double publish_s = 0;
+  const int64_t published = PublishHover(options, lcm.get(), channels, count, &probe, &publish_s);
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.drain_s));
   stop_receiving = true;
   receiver.join();
-
-  std::vector<int64_t> latencies;
-  latencies.reserve(static_cast<size_t>(published));
-  for (int64_t k = 0; k < published; ++k) {
-    if (probe.latency_ns[k] >= 0) latencies.push_back(probe.latency_ns[k]);
-  }
-  std::sort(latencies.begin(), latencies.end());
-  const int64_t dropped = published - static_cast<int64_t>(latencies.size());
-  std::printf("url %s prefix %s: %" PRId64 " STRAIN published at %.0f Hz in %.2f s (achieved %.1f Hz)\n",
-              common.lcm_url.c_str(), common.prefix.c_str(), published, rate_hz, publish_s,
-              static_cast<double>(published) / publish_s);
-  std::printf("FORCE received %zu, dropped (no FORCE) %" PRId64 ", unmatched %" PRId64 ", duplicates %" PRId64 "\n",
-              latencies.size(), dropped, probe.unmatched.load(), probe.duplicates.load());
-  if (source->udp_counters() != nullptr) std::printf("input: %s\n", UdpCountersText(source->udp_counters()).c_str());
-  if (latencies.empty()) {
-    return ReportError("no FORCE received on " + channels.force + " for " + std::to_string(published) +
-                       " STRAIN published on " + channels.strain + ": is birotor-estimator running with --lcm-url " +
-                       common.lcm_url + " --prefix " + common.prefix + "?");
-  }
-  std::printf("latency publish->FORCE [us]: %s\n", LatencyText(&latencies).c_str());
-  if (through_controller) {
-    std::vector<int64_t> command_latencies;
-    for (int64_t k = 0; k < published; ++k) {
-      if (probe.command_latency_ns[k] >= 0) command_latencies.push_back(probe.command_latency_ns[k]);
-    }
-    std::printf("MOTOR_COMMAND received %" PRId64 ", paired with a STRAIN %zu, unpaired %" PRId64 "\n",
-                probe.commands.load(), command_latencies.size(), probe.commands_unmatched.load());
-    if (command_latencies.empty()) {
-      return ReportError("no MOTOR_COMMAND paired on " + channels.motor_command +
-                         ": is birotor-controller running with --lcm-url " + common.lcm_url + " --prefix " +
-                         common.prefix + "?");
-    }
-    std::printf("latency STRAIN publish->MOTOR_COMMAND [us]: %s\n", LatencyText(&command_latencies).c_str());
-  }
-  // 3: the figures are real but some samples got no FORCE (see "dropped").
-  return dropped == 0 ? 0 : 3;
+  return ReportLatency(options, channels, probe, *source, published, publish_s);
 }

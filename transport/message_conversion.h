@@ -12,9 +12,9 @@
 #include "birotor/setpoint_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "birotor/truth_t.hpp"
-#include "controller/motor_command.h"
-#include "controller/setpoint.h"
+#include "samples/motor_command.h"
 #include "samples/samples.h"
+#include "samples/setpoint.h"
 
 namespace birotor {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "params/scenario_yaml.h"
+#include "samples/sample_sink.h"
 #include "samples/sensor_log.h"
-#include "simulator/sample_sink.h"
 #include "simulator/simulator.h"
 
 namespace birotor::testing {

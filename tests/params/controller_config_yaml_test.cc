@@ -5,16 +5,13 @@
 
 #include <string>
 
+#include "tests/params/param_error_of.h"
+
 namespace birotor {
 namespace {
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    ParseControllerConfig(text, "bad.yaml");
-  } catch (const ParamError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ParamErrorOf([&] { ParseControllerConfig(text, "bad.yaml"); });
 }
 
 std::string ReferenceFile() { return std::string(BIROTOR_SOURCE_DIR) + "/config/controller.yaml"; }

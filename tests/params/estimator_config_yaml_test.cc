@@ -5,16 +5,13 @@
 
 #include <string>
 
+#include "tests/params/param_error_of.h"
+
 namespace birotor {
 namespace {
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    ParseEstimatorConfig(text, "bad.yaml");
-  } catch (const ParamError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ParamErrorOf([&] { ParseEstimatorConfig(text, "bad.yaml"); });
 }
 
 TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {

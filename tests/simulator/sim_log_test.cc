@@ -40,6 +40,14 @@ std::string ReadBytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// True if event decodes as Message (and, with check_stamp, carries the event's stamp).
+template <typename Message>
+bool DecodesAs(const LogEvent& event, bool check_stamp = false) {
+  Message m;
+  if (DecodeMessage(event.data.data(), event.data.size(), &m) != DecodeError::kNone) return false;
+  return !check_stamp || m.utime == event.timestamp_us;
+}
+
 // Decodes every event with the type of its channel; returns events per channel.
 std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failures, bool* truncated) {
   LogReader reader;
@@ -50,39 +58,18 @@ std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failur
   LogEvent event;
   *decode_failures = 0;
   while (reader.Next(&event)) {
-    DecodeError result = DecodeError::kMalformed;
-    if (event.channel == c.strain) {
-      strain_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-      if (m.utime != event.timestamp_us) ++*decode_failures;
-    } else if (event.channel == c.motor) {
-      motor_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-    } else if (event.channel == c.imu) {
-      imu_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-    } else if (event.channel == c.pose) {
-      pose_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-    } else if (event.channel == c.loadcell) {
-      loadcell_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-    } else if (event.channel == c.truth) {
-      truth_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-    } else if (event.channel == c.force) {
-      force_estimate_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-    } else if (event.channel == c.motor_command) {
-      motor_command_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-      if (m.utime != event.timestamp_us) ++*decode_failures;
-    } else if (event.channel == c.setpoint) {
-      setpoint_t m;
-      result = DecodeMessage(event.data.data(), event.data.size(), &m);
-      if (m.utime != event.timestamp_us) ++*decode_failures;
-    }
-    if (result != DecodeError::kNone) ++*decode_failures;
+    const std::string& channel = event.channel;
+    const bool decoded = channel == c.strain          ? DecodesAs<strain_t>(event, true)
+                         : channel == c.motor         ? DecodesAs<motor_t>(event)
+                         : channel == c.imu           ? DecodesAs<imu_t>(event)
+                         : channel == c.pose          ? DecodesAs<pose_t>(event)
+                         : channel == c.loadcell      ? DecodesAs<loadcell_t>(event)
+                         : channel == c.truth         ? DecodesAs<truth_t>(event)
+                         : channel == c.force         ? DecodesAs<force_estimate_t>(event)
+                         : channel == c.motor_command ? DecodesAs<motor_command_t>(event, true)
+                         : channel == c.setpoint      ? DecodesAs<setpoint_t>(event, true)
+                                                      : false;  // a channel the simulator does not write
+    if (!decoded) ++*decode_failures;
     ++counts[event.channel];
   }
   *truncated = reader.TruncatedTail();

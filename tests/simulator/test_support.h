@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "simulator/sample_sink.h"
+#include "samples/sample_sink.h"
 
 namespace birotor {
 

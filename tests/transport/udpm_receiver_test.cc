@@ -40,6 +40,14 @@ std::vector<std::string> ReceiveAll(UdpmReceiver* receiver, int64_t count) {
   return channels;
 }
 
+// The receiver on url_text (a udpm:// URL).
+void OpenReceiver(const std::string& url_text, UdpmReceiver* receiver) {
+  UdpmUrl url;
+  std::string error;
+  ASSERT_TRUE(ParseUdpmUrl(url_text, &url, &error)) << error;
+  ASSERT_TRUE(receiver->Open(url, &error)) << error;
+}
+
 TEST(UdpmReceiverTest, ParsesTheUrlLikeLcm) {
   UdpmUrl url;
   std::string error;
@@ -63,11 +71,8 @@ TEST(UdpmReceiverTest, ParsesTheUrlLikeLcm) {
 TEST(UdpmReceiverTest, SmallMessagesArriveFragmentsAndGarbageAreCounted) {
   const int port = TestPort(7681);
   const std::string url_text = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
-  UdpmUrl url;
-  std::string error;
-  ASSERT_TRUE(ParseUdpmUrl(url_text, &url, &error)) << error;
   UdpmReceiver receiver;
-  ASSERT_TRUE(receiver.Open(url, &error)) << error;
+  ASSERT_NO_FATAL_FAILURE(OpenReceiver(url_text, &receiver));
   EXPECT_GT(receiver.granted_buffer_bytes(), 0);
 
   lcm::LCM publisher(url_text);
@@ -94,11 +99,8 @@ TEST(UdpmReceiverTest, SmallMessagesArriveFragmentsAndGarbageAreCounted) {
 TEST(UdpmReceiverTest, BackToBackLargeMessagesAreAllAccountedFor) {
   const int port = TestPort(7682);
   const std::string url_text = "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-  UdpmUrl url;
-  std::string error;
-  ASSERT_TRUE(ParseUdpmUrl(url_text, &url, &error)) << error;
   UdpmReceiver receiver;
-  ASSERT_TRUE(receiver.Open(url, &error)) << error;
+  ASSERT_NO_FATAL_FAILURE(OpenReceiver(url_text, &receiver));
   lcm::LCM publisher(url_text);
   ASSERT_TRUE(publisher.good());
   const std::vector<uint8_t> large(70000, 0x55);

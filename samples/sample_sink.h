@@ -3,8 +3,8 @@
 // or a log file; tests collect them. Default callbacks ignore the sample.
 #pragma once
 
-#include "controller/setpoint.h"
 #include "samples/samples.h"
+#include "samples/setpoint.h"
 
 namespace birotor {
 
