@@ -218,7 +218,7 @@ int main(int argc, char** argv) {
     for (const std::string& e : result.errors) reasons += (reasons.empty() ? "" : "; ") + e;
     return ReportError("identification refused (" + result.mode + " mode), no parameter file written: " + reasons);
   }
-  for (const std::string& w : result.warnings) spdlog::warn("{}", w);
+  for (const IdentificationWarning& w : result.warnings) spdlog::warn("{}", WarningText(w));
   for (const ParameterEstimate& e : result.estimates) {
     if (e.determined) {
       spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %)", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value);
@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
                  m.residual_rms_n);
   }
   for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
-  for (const std::string& line : result.correlations) spdlog::warn("{}", line);
+  for (const DeterminedCombination& c : result.correlations) spdlog::warn("{}", CombinationText(c));
   // Stamp: the date and what the values came from; the estimator logs it at start-up.
   std::string stamp = UtcDateTime() + " by birotor-identify (" + result.mode + " mode) from";
   for (const std::string& source : result.sources) stamp += " " + std::filesystem::path(source).filename().string();
