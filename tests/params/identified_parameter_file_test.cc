@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -88,20 +89,12 @@ TEST(ParameterFileTest, WarningWordsFromKindAndNumbers) {
 }
 
 TEST(ParameterFileTest, CombinationWordsFromKindAndNumbers) {
-  DeterminedCombination ratio;
-  ratio.a = "k";
-  ratio.b = "s_1";
-  ratio.correlation = 0.99912;
-  ratio.relative_sigma = 0.000213;
+  const DeterminedCombination ratio{CombinationKind::kRatio, "k", "s_1", 0.99912, 0.000213};
   EXPECT_EQ(CombinationText(ratio),
             "k and s_1 are not separated by the data (correlation 0.999); k / s_1 is determined to 0.0213 % (one "
             "sigma)");
-  DeterminedCombination thrust;
-  thrust.kind = CombinationKind::kThrustOverTotalMass;
-  thrust.a = "c_T";
-  thrust.b = "m_p";
-  thrust.relative_sigma = 0.0016717;
-  thrust.held_value = 0.28812;
+  const DeterminedCombination thrust{
+      CombinationKind::kThrustOverTotalMass, "c_T", "m_p", std::nan(""), 0.0016717, 0.28812};
   EXPECT_EQ(CombinationText(thrust),
             "c_T is determined relative to the total mass: c_T / (m + 2 m_p) to 0.167 % (one sigma; the "
             "accelerometer sees thrust over mass), c_T itself with m_p = 0.288 kg of the base file");
