@@ -80,6 +80,20 @@ double Mu(const FreeArmWindowResidual& w, const double* knots, int rotor, size_t
   return 1.0 + (k[s] + weight * (k[s + 1] - k[s]));
 }
 
+// The rows of sample j into Ceres' row-major blocks (k, d, c_T, m_p ratios,
+// x_0, knots; a null block is held constant).
+void WriteJacobianRows(const ResidualSensitivity& dr, size_t j, int knot_block_size, double** jacobians) {
+  const int block_sizes[6] = {1, 1, 1, 1, kFreeArmStateSize, knot_block_size};
+  int column = 0;
+  for (int b = 0; b < (knot_block_size > 0 ? 6 : 5); column += block_sizes[b], ++b) {
+    if (jacobians[b] == nullptr) continue;
+    for (int i = 0; i < kFreeArmResidualsPerSample; ++i) {
+      double* out = jacobians[b] + (kFreeArmResidualsPerSample * j + i) * block_sizes[b];
+      for (int c = 0; c < block_sizes[b]; ++c) out[c] = dr(i, column + c);
+    }
+  }
+}
+
 }  // namespace
 
 ceres::CostFunction* FreeArmWindowCost::Create(const VehicleParams& known,
@@ -194,16 +208,7 @@ bool FreeArmWindowCost::Evaluate(double const* const* parameters, double* residu
       residuals[kFreeArmResidualsPerSample * j + i] = r[i].a;
       ChainRow(r[i], z, du, i, &dr);
     }
-    // Scatter into the blocks (row-major, block columns from kColK / kColState / kColKnots).
-    const int block_sizes[6] = {1, 1, 1, 1, kFreeArmStateSize, w.KnotBlockSize()};
-    int column = 0;
-    for (int b = 0; b < (knots != nullptr ? 6 : 5); column += block_sizes[b], ++b) {
-      if (jacobians[b] == nullptr) continue;
-      for (int i = 0; i < kFreeArmResidualsPerSample; ++i) {
-        double* out = jacobians[b] + (kFreeArmResidualsPerSample * j + i) * block_sizes[b];
-        for (int c = 0; c < block_sizes[b]; ++c) out[c] = dr(i, column + c);
-      }
-    }
+    WriteJacobianRows(dr, j, w.KnotBlockSize(), jacobians);
   }
   return true;
 }
