@@ -331,24 +331,19 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   for (size_t n = 0; n < free.size(); ++n) FillEstimate(free[n], sigma[n], options.max_relative_sigma, note);
   AddBenchArmFloors(options, fit.theta, base, &k, &damping, &tip_mass, scale, offset);
   if (stats.rms_whitened > options.misfit_rms_warn) {
-    std::ostringstream warning;
-    warning.precision(3);
-    warning << "clamped-arm model misfit: strain residual RMS " << stats.rms_whitened
-            << " sigma; every arm sigma widened by that factor (check the vehicle model and the strain noise)";
-    result->warnings.push_back(warning.str());
+    IdentificationWarning misfit;
+    misfit.kind = WarningKind::kArmModelMisfit;
+    misfit.value = stats.rms_whitened;
+    result->warnings.push_back(misfit);
     for (ParameterEstimate* e : estimates) e->note += "; widened for the model misfit";
   }
-  const std::vector<std::string> correlations = CorrelationLines(&fit.problem, free, options.num_threads);
+  const std::vector<DeterminedCombination> correlations = CorrelationLines(&fit.problem, free, options.num_threads);
   result->correlations.insert(result->correlations.end(), correlations.begin(), correlations.end());
   if (!k.determined) result->errors.push_back("k: not determined by the bench strain data (no force variation)");
-  if (!damping.determined) {
-    result->warnings.push_back("d: not determined (the arm modes are barely excited); base value kept");
-  }
+  if (!damping.determined) result->warnings.push_back({WarningKind::kNotExcitedOnBench, "d"});
   std::vector<ParameterEstimate> stored = {k, damping};
   if (mass_free) {
-    if (!tip_mass.determined) {
-      result->warnings.push_back("m_p: not determined by the bench data (arm modes not excited); base value kept");
-    }
+    if (!tip_mass.determined) result->warnings.push_back({WarningKind::kNotExcitedOnBench, "m_p"});
     stored.push_back(tip_mass);
   }
   for (int arm = 0; arm < 2; ++arm) {

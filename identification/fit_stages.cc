@@ -39,8 +39,8 @@ void AddBenchFloors(const IdentificationOptions& options, ParameterEstimate* sti
   AddRelativeFloor(floored, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
 }
 
-std::vector<std::string> CorrelationLines(ceres::Problem* problem, const std::vector<RatioParameter>& parameters,
-                                          int num_threads) {
+std::vector<DeterminedCombination> CorrelationLines(ceres::Problem* problem,
+                                                    const std::vector<RatioParameter>& parameters, int num_threads) {
   std::vector<double*> blocks;
   std::vector<std::string> names;
   std::vector<double> values, sigmas;

@@ -49,9 +49,10 @@ void AddRelativeFloor(ParameterEstimate* e, double relative, const std::string& 
 void AddBenchFloors(const IdentificationOptions& options, ParameterEstimate* stiffness, ParameterEstimate* damping,
                     ParameterEstimate* tip_mass);
 
-// Correlation lines of the free blocks (DescribeCorrelations at |rho| > 0.99).
-std::vector<std::string> CorrelationLines(ceres::Problem* problem, const std::vector<RatioParameter>& parameters,
-                                          int num_threads);
+// The combinations of the free blocks the data determine where the blocks
+// themselves are not separated (DescribeCorrelations at |rho| > 0.99).
+std::vector<DeterminedCombination> CorrelationLines(ceres::Problem* problem,
+                                                    const std::vector<RatioParameter>& parameters, int num_threads);
 
 // Result stage: the determined estimates go into params (by key), all into
 // result->estimates in the given order.

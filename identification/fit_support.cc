@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 namespace birotor {
 
@@ -178,26 +177,27 @@ std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* proble
   return rho;
 }
 
-std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
-                                              const std::vector<std::string>& names, const std::vector<double>& values,
-                                              const std::vector<double>& sigmas, double threshold) {
-  std::vector<std::string> lines;
+std::vector<DeterminedCombination> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
+                                                        const std::vector<std::string>& names,
+                                                        const std::vector<double>& values,
+                                                        const std::vector<double>& sigmas, double threshold) {
+  std::vector<DeterminedCombination> combinations;
   for (size_t i = 0; i < correlation.size(); ++i) {
     for (size_t j = i + 1; j < correlation.size(); ++j) {
       const double rho = correlation[i][j];
       if (std::abs(rho) < threshold || values[i] == 0.0 || values[j] == 0.0) continue;
       const double ra = sigmas[i] / std::abs(values[i]), rb = sigmas[j] / std::abs(values[j]);
       const double sign = rho > 0.0 ? -1.0 : 1.0;  // ratio for rho > 0, product for rho < 0
-      const double rel = std::sqrt(std::max(0.0, ra * ra + rb * rb + 2.0 * sign * rho * ra * rb));
-      std::ostringstream line;
-      line.precision(3);
-      line << names[i] << " and " << names[j] << " are not separated by the data (correlation " << rho << "); "
-           << (rho > 0.0 ? names[i] + " / " + names[j] : names[i] + " * " + names[j]) << " is determined to "
-           << 100.0 * rel << " % (one sigma)";
-      lines.push_back(line.str());
+      DeterminedCombination c;
+      c.kind = rho > 0.0 ? CombinationKind::kRatio : CombinationKind::kProduct;
+      c.a = names[i];
+      c.b = names[j];
+      c.correlation = rho;
+      c.relative_sigma = std::sqrt(std::max(0.0, ra * ra + rb * rb + 2.0 * sign * rho * ra * rb));
+      combinations.push_back(c);
     }
   }
-  return lines;
+  return combinations;
 }
 
 namespace {

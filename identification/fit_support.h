@@ -83,14 +83,15 @@ double VarianceInflation(const ResidualStatistics& stats);
 std::vector<std::vector<double>> ComputeBlockCorrelations(ceres::Problem* problem, const std::vector<double*>& blocks,
                                                           int num_threads);
 
-// Lines naming the parameter pairs the data cannot separate (|rho| above
-// `threshold`) and the combination that is determined: the ratio a / b for
-// rho > 0, the product a b for rho < 0, with its relative one sigma
+// The parameter pairs the data cannot separate (|rho| above `threshold`)
+// and the combination that is determined: the ratio a / b for rho > 0, the
+// product a b for rho < 0, with its relative one sigma
 //   var(ln a -+ ln b) = (sa/a)^2 + (sb/b)^2 -+ 2 rho (sa/a)(sb/b).
 // names, values, sigmas: per block, in the order of `correlation`.
-std::vector<std::string> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
-                                              const std::vector<std::string>& names, const std::vector<double>& values,
-                                              const std::vector<double>& sigmas, double threshold);
+std::vector<DeterminedCombination> DescribeCorrelations(const std::vector<std::vector<double>>& correlation,
+                                                        const std::vector<std::string>& names,
+                                                        const std::vector<double>& values,
+                                                        const std::vector<double>& sigmas, double threshold);
 
 // One-sigma of the listed one-scalar parameter blocks (ratios to their
 // scales), from ceres::Covariance (sparse QR). A block along which the

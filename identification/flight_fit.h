@@ -66,6 +66,10 @@ struct FlightProblem {
   std::vector<ceres::ResidualBlockId> priors;                // per window: its knots' turbulence prior
   double turbulence_std = 0.0;                               // of the priors (base file) [1]
   double turbulence_corr_time_s = 0.0;
+  // The same windows and priors without the Huber weighting, over the same
+  // blocks (flight-only fits with turbulence knots; null otherwise): the
+  // start of SolveFlightProblem.
+  std::unique_ptr<ceres::Problem> start;
   BenchResiduals bench;  // joint fit only
   bool joint = false;
   bool model_turbulence = false;
@@ -80,7 +84,8 @@ void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindo
                         const IdentificationOptions& options, const std::vector<SensorLog>* bench_logs,
                         FlightProblem* fit);
 
-// Solve stage: knots held at 0 first (tolerance 1e-3), then free (1e-6).
+// Solve stage: the start problem (no Huber weighting; tolerance 1e-3), or
+// in a joint fit the knots held at 0 first (1e-3), then the problem (1e-6).
 // `fraction`: share of the whole fit done before it (progress).
 void SolveFlightProblem(const IdentificationOptions& options, FlightProblem* fit, double fraction = 0.0);
 

@@ -7,14 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <string>
 
 #include "identification/fit_stages.h"
 #include "identification/fit_support.h"
 #include "identification/flight_fit.h"
+#include "identification/free_arm_window_cost.h"
 #include "identification/identify.h"
 #include "model/plant.h"
 
@@ -190,6 +189,12 @@ void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindo
   fit->turbulence_corr_time_s = base.turbulence_corr_time_s;
   const double knot_s = fit->model_turbulence ? options.flight_turbulence_knot_s : 0.0;
   ceres::Problem& problem = fit->problem;
+  // The start problem (flight-only fits with turbulence knots): the same
+  // windows and priors without the Huber weighting, over the same blocks.
+  const bool quadratic_start = !fit->joint && fit->model_turbulence;
+  if (quadratic_start) fit->start = std::make_unique<ceres::Problem>();
+  FreeArmWindowResidual::Noise quadratic_noise = noise;
+  quadratic_noise.huber = 0.0;
   for (const FlightWindow& w : windows) {
     const std::vector<int64_t>& utime = data.utime[w.log];
     std::vector<FreeArmWindowResidual::Sample> samples(data.samples[w.log].begin() + w.begin,
@@ -201,7 +206,11 @@ void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindo
     // Turbulence knots start at 0 (its mean).
     fit->states.push_back(InitialWindowState(samples));
     const FreeArmWindowResidual* functor = nullptr;
-    ceres::CostFunction* cost = FreeArmWindowResidual::Create(
+    ceres::CostFunction* quadratic =
+        quadratic_start ? FreeArmWindowCost::Create(base, samples, quadratic_noise, options.flight_integration_substeps,
+                                                    scales, knot_s)
+                        : nullptr;
+    ceres::CostFunction* cost = FreeArmWindowCost::Create(
         base, std::move(samples), noise, options.flight_integration_substeps, scales, knot_s, &functor);
     std::vector<double>& window_knots = fit->knots.emplace_back(functor->KnotBlockSize(), 0.0);
     std::vector<double*> parameters = fit->Blocks();
@@ -211,10 +220,20 @@ void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindo
     ceres::CostFunction* prior = functor->TurbulencePrior(base.turbulence_std, base.turbulence_corr_time_s);
     fit->priors.push_back(prior != nullptr ? problem.AddResidualBlock(prior, nullptr, window_knots.data()) : nullptr);
     fit->functors.push_back(functor);
+    if (quadratic_start) {
+      fit->start->AddResidualBlock(quadratic, nullptr, parameters);
+      if (prior != nullptr) {
+        fit->start->AddResidualBlock(functor->TurbulencePrior(base.turbulence_std, base.turbulence_corr_time_s),
+                                     nullptr, window_knots.data());
+      }
+    }
   }
   if (fit->windows.empty()) return;
-  for (const int i : {kFlightK, kFlightThrust, kFlightTipMass}) problem.SetParameterLowerBound(&fit->ratio[i], 0, 1e-3);
-  problem.SetParameterLowerBound(&fit->ratio[kFlightD], 0, 0.0);
+  for (ceres::Problem* p : {&problem, fit->start.get()}) {
+    if (p == nullptr) continue;
+    for (const int i : {kFlightK, kFlightThrust, kFlightTipMass}) p->SetParameterLowerBound(&fit->ratio[i], 0, 1e-3);
+    p->SetParameterLowerBound(&fit->ratio[kFlightD], 0, 0.0);
+  }
   // Joint fit: the bench residuals on the same blocks; the bench
   // determines d and m_p, so both are free whatever the flight options say.
   if (fit->joint) {
@@ -229,12 +248,25 @@ void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindo
 }
 
 void SolveFlightProblem(const IdentificationOptions& options, FlightProblem* fit, double fraction) {
-  FitProgress at{"flight: solve, turbulence held", static_cast<int>(fit->windows.size()), 0, fraction};
-  // Two stages: the turbulence knots held at 0 first (the initial states and
-  // the vehicle parameters then converge in a few iterations), then free.
-  // Started at once from zero turbulence, the Huber-weighted misfit of the
-  // whole 1 % thrust noise keeps the trust region small for ~20 iterations.
-  if (fit->model_turbulence) {
+  FitProgress at{"flight: solve, start", static_cast<int>(fit->windows.size()), 0, fraction};
+  if (fit->start != nullptr) {
+    // The start without the Huber weighting: nearly linear in the states and
+    // knots, it converges in a few Gauss-Newton steps (gentle 15 s: 4, where
+    // from zero turbulence the Huber-weighted misfit of the whole 1 % thrust
+    // noise, linear in |r|, kept the steps at 0.4 of their prediction for 22
+    // iterations); the ratio blocks held or free as in the problem itself.
+    for (double* block : fit->Blocks()) {
+      if (fit->problem.IsParameterBlockConstant(block)) {
+        fit->start->SetParameterBlockConstant(block);
+      } else {
+        fit->start->SetParameterBlockVariable(block);
+      }
+    }
+    SolveProblem(options, fit->start.get(), kStartTolerance, &at);
+    at.fraction += 0.05;
+  } else if (fit->model_turbulence) {
+    // Joint fits: the turbulence knots held at 0 first (the initial states
+    // and the vehicle parameters then converge in a few iterations), then free.
     for (std::vector<double>& window_knots : fit->knots) fit->problem.SetParameterBlockConstant(window_knots.data());
     SolveProblem(options, &fit->problem, kStartTolerance, &at);
     for (std::vector<double>& window_knots : fit->knots) fit->problem.SetParameterBlockVariable(window_knots.data());
@@ -297,151 +329,6 @@ std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool 
                           arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
   }
   return SharedSigmas(problem, fit->Blocks(), inflation, clusters, options.num_threads);
-}
-
-std::vector<FitPlot> FlightPlots(const FlightProblem& fit) {
-  std::vector<FitPlot> plots;
-  const size_t count = fit.functors.size();
-  for (size_t n = 1; n <= 2 && n < count; ++n) {
-    const size_t w = n * count / 3;
-    const FreeArmWindowResidual& f = *fit.functors[w];
-    const std::vector<FreeArmState<double>> predicted =
-        f.Predict(fit.ratio[kFlightK], fit.ratio[kFlightD], fit.ratio[kFlightThrust], fit.ratio[kFlightTipMass],
-                  fit.states[w].data(), fit.knots[w].empty() ? nullptr : fit.knots[w].data());
-    for (int arm = 0; arm < 2; ++arm) {
-      FitPlot plot;
-      plot.panel = FitPanel::kFlightDeflection;
-      plot.arm = arm;
-      plot.window = static_cast<int>(w);
-      plot.windows = static_cast<int>(count);
-      double t_s = 0.0;
-      for (size_t j = 0; j < predicted.size(); ++j) {
-        plot.x.push_back(t_s);
-        plot.data.push_back(1e3 * f.samples()[j].deflection_rad[arm]);
-        plot.model.push_back(1e3 * predicted[j](arm == 0 ? kFreeB1 : kFreeB2));
-        t_s += f.samples()[j].dt_s;
-      }
-      plots.push_back(std::move(plot));
-    }
-  }
-  return plots;
-}
-
-namespace {
-
-// The words of the advice on what to fly (issue 26 item 2).
-constexpr const char* kTipMassAdvice =
-    "to determine it, fly 30 s of 0.4 m steps, horizontal and vertical (birotor-sim --scenario mass_id: m_p sigma "
-    "0.7 %), weigh the tip mass (--tip-mass-kg with a bench log) or identify it on the bench (0.1 %)";
-
-// m_p kept at the base value (CheckTipMass held it, or the flight agrees
-// with the base file): the estimate says why, the warning what to fly, and,
-// when m_p was held in the fit, the combination the flight determines is named.
-void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, const ParameterEstimate& c_t,
-                        ParameterEstimate* tip_mass, IdentificationResult* result) {
-  std::ostringstream why;
-  why.precision(4);
-  tip_mass->value = base.tip_mass_kg;
-  tip_mass->determined = false;
-  tip_mass->sigma = std::numeric_limits<double>::quiet_NaN();
-  if (check.agrees_with_base) {
-    why << "base value kept: the flight's m_p = " << check.flight_value_kg << " +- " << check.flight_sigma_kg
-        << " kg is " << std::setprecision(3) << check.sigmas_from_base
-        << " sigma from it (consistency_sigmas): this flight does not show the base file wrong, and its sigma is "
-           "wider than a bench's";
-    tip_mass->note = why.str();
-    std::ostringstream warning;
-    warning.precision(4);
-    warning << "m_p: this flight gives " << check.flight_value_kg << " +- " << check.flight_sigma_kg << " kg, "
-            << std::setprecision(3) << check.sigmas_from_base
-            << " sigma from the base file's value, which is kept (not written by --update-params)";
-    result->warnings.push_back(warning.str());
-    return;  // k and c_T are those of the fit with m_p free
-  }
-  why << "held at the base value: at the fit with m_p held its relative sigma would be " << 100.0 * check.relative_sigma
-      << " % with " << 100.0 * check.data_share
-      << " % of its information from the data (the rest from the assumed rotor turbulence)";
-  tip_mass->note = why.str();
-  result->warnings.push_back("m_p: not determined by this flight; base value kept; " + std::string(kTipMassAdvice));
-  std::ostringstream named;
-  named.precision(3);
-  named << "c_T is determined relative to the total mass: c_T / (m + 2 m_p) to " << 100.0 * c_t.sigma / c_t.value
-        << " % (one sigma; the accelerometer sees thrust over mass), c_T itself with m_p = " << base.tip_mass_kg
-        << " kg of the base file";
-  result->correlations.push_back(named.str());
-}
-
-}  // namespace
-
-void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, const std::vector<BlockSigma>& sigma,
-                       const TipMassCheck& tip_check, const VehicleParams& base, const IdentificationOptions& options,
-                       IdentificationResult* result) {
-  ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
-  ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
-  ParameterEstimate c_t = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T");
-  ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
-  std::string note = "output error of the free-flight arm model over " + std::to_string(fit.windows.size()) + " of " +
-                     std::to_string(data.candidates.size()) + " windows" +
-                     (data.any_imu ? " with IMU" : " without IMU");
-  if (fit.joint) {
-    note = "joint fit (one problem): " + std::to_string(fit.bench.thrust.size()) + " load-cell pairs, " +
-           std::to_string(fit.bench.arms.size()) + " clamped-arm windows and " + note;
-  }
-  const FreeArmWindowResidual::Scales& scales = fit.scales;
-  std::array<double, kFlightParameters> ratio = fit.ratio;
-  const RatioParameter parameters[kFlightParameters] = {{&k, &ratio[kFlightK], scales.stiffness_n_m_rad},
-                                                        {&damping, &ratio[kFlightD], scales.damping_n_m_s_rad},
-                                                        {&c_t, &ratio[kFlightThrust], scales.thrust_coeff_n_s2_rad2},
-                                                        {&tip_mass, &ratio[kFlightTipMass], scales.tip_mass_kg}};
-  for (int i = 0; i < kFlightParameters; ++i) FillEstimate(parameters[i], sigma[i], options.max_relative_sigma, note);
-  if (tip_check.applies && tip_check.free) {
-    std::ostringstream share;
-    share.precision(3);
-    share << "; " << 100.0 * tip_check.data_share << " % of m_p's information from the data";
-    tip_mass.note += share.str();
-  }
-  if (!k.determined) result->errors.push_back("k: not determined by the flight data (arm dynamics not excited)");
-  if (!c_t.determined) {
-    result->errors.push_back(std::string("c_T: not determined by the flight data") +
-                             (data.any_imu ? "" : " (no IMU: only c_T / k is seen by the strain gauges)"));
-  }
-  if (fit.joint) {
-    AddBenchFloors(options, &k, &damping, &tip_mass);
-  } else {
-    // A flight reads its deflections through the base file's gauge scales:
-    // a relative scale error delta moves k by -delta (statics, b = f L / k)
-    // and m_p with it (the arm frequency fixes k / m_p); c_T comes from the
-    // accelerometer against the rotor speeds and does not move. What the
-    // flight determines is k / s and m_p / s.
-    const double scale = 0.5 * (base.gauge_scale[0] + base.gauge_scale[1]);
-    const double relative = options.calibration.gauge_scale_std / scale;
-    for (ParameterEstimate* e : {&k, &tip_mass}) {
-      if (relative > 0.0) {
-        AddRelativeFloor(e, relative, "gauge scale's (--gauge-scale-std)");
-      } else {
-        e->note +=
-            "; relative to the base file's gauge_scale (the flight determines it over s_i; "
-            "--gauge-scale-std adds the scale's uncertainty)";
-      }
-    }
-  }
-  if (!fit.joint && !options.flight_fit_damping) {
-    damping.determined = false;
-    damping.sigma = kNaN;
-    damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
-  }
-  if (!damping.determined) result->warnings.push_back("d: not determined by the flight data; base value kept");
-  std::vector<ParameterEstimate> estimates = {k, damping, c_t};
-  if (options.flight_fit_tip_mass || fit.joint) {
-    if (tip_check.applies && !tip_check.free) {
-      ExplainHeldTipMass(tip_check, base, c_t, &tip_mass, result);
-    } else if (!tip_mass.determined) {
-      result->warnings.push_back("m_p: not determined by the flight data; base value kept; " +
-                                 std::string(kTipMassAdvice));
-    }
-    estimates.push_back(tip_mass);
-  }
-  StoreEstimates(estimates, result);
 }
 
 void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,

@@ -95,29 +95,35 @@ struct FreeArmWindowResidual {
   // parameters: k, d, c_T, m_p ratios, x_0, then the knot block (if any).
   template <typename T>
   bool operator()(T const* const* parameters, T* residual) const {
-    const double c = noise_.huber;
     Integrate<T>(
         parameters[0][0], parameters[1][0], parameters[2][0], parameters[3][0], parameters[4],
         num_knots() > 0 ? parameters[5] : nullptr,
         [&](size_t j, const FreeArmState<T>& x, const T& k, const T& d, const T& mp, const T& f1, const T& f2) {
-          const Sample& m = samples_[j];
-          T* r = residual + kFreeArmResidualsPerSample * j;
-          r[kResB1] = HuberResidual(T((m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad), c);
-          r[kResB2] = HuberResidual(T((m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad), c);
-          r[kResGyro] = std::isfinite(m.gyro_rad_s)
-                            ? HuberResidual(T((m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s), c)
-                            : T(0.0);
-          if (std::isfinite(m.accel_m_s2[0]) && std::isfinite(m.accel_m_s2[1])) {
-            Eigen::Matrix<T, 2, 1> specific_force;
-            FreeArmDerivative<T>(known_, k, d, mp, x, f1, f2, &specific_force);
-            r[kResAccelX] = HuberResidual(T((m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2), c);
-            r[kResAccelZ] = HuberResidual(T((m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2), c);
-          } else {
-            r[kResAccelX] = T(0.0);
-            r[kResAccelZ] = T(0.0);
-          }
+          SampleResiduals<T>(j, x, k, d, mp, f1, f2, residual + kFreeArmResidualsPerSample * j);
         });
     return true;
+  }
+
+  // The kFreeArmResidualsPerSample residuals r_j of sample j (above) from
+  // the model state x_j, the parameters and the forces f_i at t_j [N].
+  template <typename T>
+  void SampleResiduals(size_t j, const FreeArmState<T>& x, const T& k, const T& d, const T& mp, const T& f1,
+                       const T& f2, T* r) const {
+    const double c = noise_.huber;
+    const Sample& m = samples_[j];
+    r[kResB1] = HuberResidual(T((m.deflection_rad[0] - x(kFreeB1)) / noise_.strain_rad), c);
+    r[kResB2] = HuberResidual(T((m.deflection_rad[1] - x(kFreeB2)) / noise_.strain_rad), c);
+    r[kResGyro] =
+        std::isfinite(m.gyro_rad_s) ? HuberResidual(T((m.gyro_rad_s - x(kFreePhiDot)) / noise_.gyro_rad_s), c) : T(0.0);
+    if (std::isfinite(m.accel_m_s2[0]) && std::isfinite(m.accel_m_s2[1])) {
+      Eigen::Matrix<T, 2, 1> specific_force;
+      FreeArmDerivative<T>(known_, k, d, mp, x, f1, f2, &specific_force);
+      r[kResAccelX] = HuberResidual(T((m.accel_m_s2[0] - specific_force(0)) / noise_.accel_m_s2), c);
+      r[kResAccelZ] = HuberResidual(T((m.accel_m_s2[1] - specific_force(1)) / noise_.accel_m_s2), c);
+    } else {
+      r[kResAccelX] = T(0.0);
+      r[kResAccelZ] = T(0.0);
+    }
   }
 
   // Model state at every sample time of the window (for plots), with the
@@ -132,11 +138,21 @@ struct FreeArmWindowResidual {
   }
 
   const std::vector<Sample>& samples() const { return samples_; }
+  const VehicleParams& known() const { return known_; }
+  const Scales& scales() const { return scales_; }
+  int substeps() const { return substeps_; }
+  // eta_i at sample j is (1 - w) knot[s] + w knot[s + 1] of its rotor, s =
+  // KnotSegment(j), w = KnotWeight(j) (knots present only).
+  int KnotSegment(size_t j) const { return segment_[j]; }
+  double KnotWeight(size_t j) const { return weight_[j]; }
 
-  // *functor (optional) keeps a view of the functor, owned by the cost function.
-  static ceres::CostFunction* Create(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise,
-                                     int substeps, const Scales& scales, double turbulence_knot_s,
-                                     const FreeArmWindowResidual** functor = nullptr) {
+  // The cost function with Ceres' dynamic autodiff (the reference of
+  // FreeArmWindowCost, free_arm_window_cost.h, which the fits use). *functor
+  // (optional) keeps a view of the functor, owned by the cost function.
+  static ceres::CostFunction* CreateAutoDiff(const VehicleParams& known, std::vector<Sample> samples,
+                                             const Noise& noise, int substeps, const Scales& scales,
+                                             double turbulence_knot_s,
+                                             const FreeArmWindowResidual** functor = nullptr) {
     const int n = kFreeArmResidualsPerSample * static_cast<int>(samples.size());
     auto* residual = new FreeArmWindowResidual(known, std::move(samples), noise, substeps, scales, turbulence_knot_s);
     if (functor != nullptr) *functor = residual;

@@ -74,12 +74,56 @@ struct FitPlot {
   std::vector<double> model;  // fitted model (NaN where there is none)
 };
 
+// What a warning is about. The library gives the kind and the numbers; the
+// words are the presentation's (params/identified_parameter_file.h
+// WarningText, used by the report, the file header and the tool).
+enum class WarningKind {
+  kArmModelMisfit,         // bench: strain residual RMS `value` [sigma] above misfit_rms_warn; arm sigmas widened by it
+  kNotExcitedOnBench,      // bench: `symbol` (d or m_p) not determined, the arm modes barely excited; base value kept
+  kNotDeterminedInFlight,  // flight: `symbol` not determined by the flight data; base value kept
+  kTipMassHeldInFlight,    // flight: m_p held by the determinability check (issue 26); base value kept
+  kTipMassAgreesWithBase,  // flight: m_p `value` +- `sigma` [kg] is `distance_sigmas` from the base value (kept)
+};
+
+// What would determine a parameter that this log does not (issue 26 item 2).
+enum class ExcitationAdvice {
+  kNone,
+  // m_p: 30 s of 0.4 m steps, horizontal and vertical (birotor-sim
+  // --scenario mass_id: m_p sigma 0.7 %), a weighed tip mass with a bench
+  // log, or a bench identification (0.1 %).
+  kTipMassSteps,
+};
+
+struct IdentificationWarning {
+  WarningKind kind = WarningKind::kNotDeterminedInFlight;
+  std::string symbol;  // the parameter (k, d, c_T, m_p; empty for kArmModelMisfit)
+  ExcitationAdvice advice = ExcitationAdvice::kNone;
+  double value = std::numeric_limits<double>::quiet_NaN();            // see WarningKind
+  double sigma = std::numeric_limits<double>::quiet_NaN();            // one sigma of `value`
+  double distance_sigmas = std::numeric_limits<double>::quiet_NaN();  // |value - base| / sigma
+};
+
+// Two parameters the data cannot separate and the combination of them that
+// is determined (words: params/identified_parameter_file.h CombinationText).
+enum class CombinationKind {
+  kRatio,                // a / b (correlation above the threshold)
+  kProduct,              // a b (correlation below minus the threshold)
+  kThrustOverTotalMass,  // flight with m_p held: c_T / (m + 2 m_p) (the accelerometer sees thrust over mass)
+};
+struct DeterminedCombination {
+  CombinationKind kind = CombinationKind::kRatio;
+  std::string a, b;                                                  // the symbols, e.g. k and s_1; c_T and m_p
+  double correlation = std::numeric_limits<double>::quiet_NaN();     // of a and b (kRatio, kProduct) [1]
+  double relative_sigma = std::numeric_limits<double>::quiet_NaN();  // of the combination, one sigma [1]
+  double held_value = std::numeric_limits<double>::quiet_NaN();      // kThrustOverTotalMass: b held at this [kg]
+};
+
 struct IdentificationResult {
-  bool ok = false;                    // false: `errors` says what is missing; no numbers
-  std::string mode;                   // "bench", "flight" or "bench+flight"
-  std::vector<std::string> errors;    // what the data lacks, one line each
-  std::vector<std::string> warnings;  // e.g. parameter kept at its base value
-  VehicleParams params;               // base parameters with the identified values
+  bool ok = false;                              // false: `errors` says what is missing; no numbers
+  std::string mode;                             // "bench", "flight" or "bench+flight"
+  std::vector<std::string> errors;              // what the data lacks, one line each
+  std::vector<IdentificationWarning> warnings;  // e.g. parameter kept at its base value
+  VehicleParams params;                         // base parameters with the identified values
   std::vector<ParameterEstimate> estimates;
   std::vector<ResidualSummary> residuals;
   std::vector<DeflectionForceMap> maps;
@@ -87,8 +131,9 @@ struct IdentificationResult {
   // The calibration fact used (bench: factory gauge scale or weighed tip mass).
   std::string calibration_fact;
   // Parameters the data cannot separate, with the combination that is
-  // determined (from the correlation of the fitted parameters), one line each.
-  std::vector<std::string> correlations;
+  // determined (from the correlation of the fitted parameters, or named by
+  // the fit that held one of them).
+  std::vector<DeterminedCombination> correlations;
   // Several logs: per parameter, each log's share of the information
   // (1 / sigma^2 of that log alone), e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
   std::vector<std::string> log_shares;

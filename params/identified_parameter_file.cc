@@ -24,7 +24,67 @@ std::string MapText(const DeflectionForceMap& map) {
   return out.str();
 }
 
+// What would determine the parameter (issue 26 item 2).
+std::string AdviceText(ExcitationAdvice advice) {
+  switch (advice) {
+    case ExcitationAdvice::kTipMassSteps:
+      return "to determine it, fly 30 s of 0.4 m steps, horizontal and vertical (birotor-sim --scenario mass_id: m_p "
+             "sigma 0.7 %), weigh the tip mass (--tip-mass-kg with a bench log) or identify it on the bench (0.1 %)";
+    case ExcitationAdvice::kNone:
+      break;
+  }
+  return "";
+}
+
 }  // namespace
+
+std::string WarningText(const IdentificationWarning& w) {
+  std::ostringstream out;
+  switch (w.kind) {
+    case WarningKind::kArmModelMisfit:
+      out << std::setprecision(3) << "clamped-arm model misfit: strain residual RMS " << w.value
+          << " sigma; every arm sigma widened by that factor (check the vehicle model and the strain noise)";
+      break;
+    case WarningKind::kNotExcitedOnBench:
+      out << w.symbol
+          << (w.symbol == "d" ? ": not determined (the arm modes are barely excited)"
+                              : ": not determined by the bench data (arm modes not excited)")
+          << "; base value kept";
+      break;
+    case WarningKind::kNotDeterminedInFlight:
+      out << w.symbol << ": not determined by the flight data; base value kept";
+      break;
+    case WarningKind::kTipMassHeldInFlight:
+      out << w.symbol << ": not determined by this flight; base value kept";
+      break;
+    case WarningKind::kTipMassAgreesWithBase:
+      out << std::setprecision(4) << w.symbol << ": this flight gives " << w.value << " +- " << w.sigma << " kg, "
+          << std::setprecision(3) << w.distance_sigmas
+          << " sigma from the base file's value, which is kept (not written by --update-params)";
+      break;
+  }
+  if (w.advice != ExcitationAdvice::kNone) out << "; " << AdviceText(w.advice);
+  return out.str();
+}
+
+std::string CombinationText(const DeterminedCombination& c) {
+  std::ostringstream out;
+  out.precision(3);
+  switch (c.kind) {
+    case CombinationKind::kRatio:
+    case CombinationKind::kProduct:
+      out << c.a << " and " << c.b << " are not separated by the data (correlation " << c.correlation << "); " << c.a
+          << (c.kind == CombinationKind::kRatio ? " / " : " * ") << c.b << " is determined to "
+          << 100.0 * c.relative_sigma << " % (one sigma)";
+      break;
+    case CombinationKind::kThrustOverTotalMass:
+      out << c.a << " is determined relative to the total mass: " << c.a << " / (m + 2 " << c.b << ") to "
+          << 100.0 * c.relative_sigma << " % (one sigma; the accelerometer sees thrust over mass), " << c.a
+          << " itself with " << c.b << " = " << c.held_value << " kg of the base file";
+      break;
+  }
+  return out.str();
+}
 
 std::string IdentifiedParameterYaml(const IdentificationResult& result) {
   std::ostringstream out;
@@ -42,7 +102,7 @@ std::string IdentifiedParameterYaml(const IdentificationResult& result) {
     out << "# Static deflection-force maps (b in rad):\n";
     for (const DeflectionForceMap& m : result.maps) out << "#   arm " << m.arm + 1 << ": " << MapText(m) << "\n";
   }
-  for (const std::string& w : result.warnings) out << "# warning: " << w << "\n";
+  for (const IdentificationWarning& w : result.warnings) out << "# warning: " << WarningText(w) << "\n";
   // An undetermined parameter keeps the base file's value, marked on its own line.
   std::vector<std::pair<std::string, std::string>> marks;
   for (const ParameterEstimate& e : result.estimates) {
@@ -92,7 +152,7 @@ std::string IdentificationReport(const IdentificationResult& result) {
   }
   if (!result.correlations.empty()) {
     out << "\n## Parameters the data cannot separate\n\n";
-    for (const std::string& c : result.correlations) out << "- " << c << "\n";
+    for (const DeterminedCombination& c : result.correlations) out << "- " << CombinationText(c) << "\n";
   }
   out << "\n## Undetermined parameters\n\n";
   bool any = false;
@@ -105,7 +165,7 @@ std::string IdentificationReport(const IdentificationResult& result) {
   if (!any) out << "None.\n";
   if (!result.warnings.empty()) {
     out << "\n## Warnings\n\n";
-    for (const std::string& w : result.warnings) out << "- " << w << "\n";
+    for (const IdentificationWarning& w : result.warnings) out << "- " << WarningText(w) << "\n";
   }
   return out.str();
 }

@@ -11,6 +11,15 @@
 
 namespace birotor {
 
+// The words of a warning of the identification (the library gives its kind
+// and numbers): one line, as the report, the file header and birotor-identify
+// print it, with the advice on what to fly when there is one.
+std::string WarningText(const IdentificationWarning& warning);
+
+// The words of a combination the data determine where its parameters are
+// not separated (one line, as the report and birotor-identify print it).
+std::string CombinationText(const DeterminedCombination& combination);
+
 // YAML text: comment header (sources, one-sigma values, maps, residuals)
 // followed by VehicleParamsYaml(result.params).
 std::string IdentifiedParameterYaml(const IdentificationResult& result);

@@ -234,7 +234,7 @@ birotor::IdentificationResult RunIdentification(const IdentifyOptions& cli, std:
 // The identified values, the undetermined ones, the maps, shares and correlations.
 void LogEstimates(const birotor::IdentificationResult& result) {
   using namespace birotor;
-  for (const std::string& w : result.warnings) spdlog::warn("{}", w);
+  for (const IdentificationWarning& w : result.warnings) spdlog::warn("{}", WarningText(w));
   for (const ParameterEstimate& e : result.estimates) {
     if (e.determined) {
       spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %)", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value);
@@ -248,7 +248,7 @@ void LogEstimates(const birotor::IdentificationResult& result) {
                  m.residual_rms_n);
   }
   for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
-  for (const std::string& line : result.correlations) spdlog::warn("{}", line);
+  for (const DeterminedCombination& c : result.correlations) spdlog::warn("{}", CombinationText(c));
 }
 
 // Stamp: the date and what the values came from; the estimator logs it at start-up.

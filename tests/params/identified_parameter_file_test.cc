@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -55,6 +56,56 @@ TEST(ParameterFileTest, ReportListsParametersResidualsAndUndetermined) {
   const std::string report = IdentificationReport(SampleResult());
   EXPECT_NE(report.find("| k | arm_stiffness_n_m_rad | 3100.5 | 2.5 |"), std::string::npos) << report;
   EXPECT_NE(report.find("## Undetermined parameters\n\n- d"), std::string::npos) << report;
+}
+
+// The words of the warnings are the presentation's; the library gives the
+// kind and the numbers (issue 22 item 5). The lines are those the tool printed
+// before the wording moved here (gentle 15 s; the m_p advice of issue 26).
+TEST(ParameterFileTest, WarningWordsFromKindAndNumbers) {
+  IdentificationWarning agrees{WarningKind::kTipMassAgreesWithBase, "m_p"};
+  agrees.value = 0.293124;
+  agrees.sigma = 0.00161312;
+  agrees.distance_sigmas = 3.0612;
+  EXPECT_EQ(WarningText(agrees),
+            "m_p: this flight gives 0.2931 +- 0.001613 kg, 3.06 sigma from the base file's value, which is kept (not "
+            "written by --update-params)");
+  EXPECT_EQ(WarningText({WarningKind::kNotDeterminedInFlight, "d"}),
+            "d: not determined by the flight data; base value kept");
+  const std::string held = WarningText({WarningKind::kTipMassHeldInFlight, "m_p", ExcitationAdvice::kTipMassSteps});
+  EXPECT_EQ(
+      held.rfind("m_p: not determined by this flight; base value kept; to determine it, fly 30 s of 0.4 m steps", 0),
+      0u)
+      << held;
+  EXPECT_NE(held.find("birotor-sim --scenario mass_id"), std::string::npos) << held;
+  IdentificationWarning misfit{WarningKind::kArmModelMisfit, ""};
+  misfit.value = 1.7234;
+  EXPECT_EQ(WarningText(misfit),
+            "clamped-arm model misfit: strain residual RMS 1.72 sigma; every arm sigma widened by that factor (check "
+            "the vehicle model and the strain noise)");
+  EXPECT_EQ(WarningText({WarningKind::kNotExcitedOnBench, "d"}),
+            "d: not determined (the arm modes are barely excited); base value kept");
+  EXPECT_EQ(WarningText({WarningKind::kNotExcitedOnBench, "m_p"}),
+            "m_p: not determined by the bench data (arm modes not excited); base value kept");
+}
+
+TEST(ParameterFileTest, CombinationWordsFromKindAndNumbers) {
+  const DeterminedCombination ratio{CombinationKind::kRatio, "k", "s_1", 0.99912, 0.000213};
+  EXPECT_EQ(CombinationText(ratio),
+            "k and s_1 are not separated by the data (correlation 0.999); k / s_1 is determined to 0.0213 % (one "
+            "sigma)");
+  const DeterminedCombination thrust{
+      CombinationKind::kThrustOverTotalMass, "c_T", "m_p", std::nan(""), 0.0016717, 0.28812};
+  EXPECT_EQ(CombinationText(thrust),
+            "c_T is determined relative to the total mass: c_T / (m + 2 m_p) to 0.167 % (one sigma; the "
+            "accelerometer sees thrust over mass), c_T itself with m_p = 0.288 kg of the base file");
+}
+
+TEST(ParameterFileTest, ReportAndHeaderCarryTheWarningWords) {
+  IdentificationResult r = SampleResult();
+  r.warnings.push_back({WarningKind::kNotExcitedOnBench, "d"});
+  const std::string line = "d: not determined (the arm modes are barely excited); base value kept";
+  EXPECT_NE(IdentificationReport(r).find("## Warnings\n\n- " + line), std::string::npos);
+  EXPECT_NE(IdentifiedParameterYaml(r).find("# warning: " + line), std::string::npos);
 }
 
 }  // namespace
