@@ -32,7 +32,7 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"hover", {0.0034, 0.0134, 0.0072, true}},
       {"gentle", {0.0031, 0.0108, 0.0049, true}},
       {"aggressive", {0.0099, 0.1917, 0.0151, true}},
-      {"thrust_loss", {0.0047, 0.0290, 0.0078, true}},
+      {"thrust_loss", {0.0051, 0.0171, 0.0090, true}},
       {"stiffness_-20", {0.0034, 0.0135, 0.0072, true}},
       {"mass_-15", {0.0559, 0.0125, 0.1141, true}},
       {"motor_tau_+70", {0.0035, 0.0345, 0.0054, true}},
@@ -67,6 +67,12 @@ TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
     EXPECT_LT(m[1].rms_position_error_m, 1.5 * expected.rms_m) << c.name;
     EXPECT_LT(m[1].fault_peak_tilt_rad, 1.5 * expected.tilt_rad) << c.name;
     EXPECT_LT(m[1].peak_altitude_deviation_m, 1.5 * expected.altitude_m) << c.name;
+    if (c.name == "thrust_loss") {
+      // Issue 25 kept targets: tilt at least 2.5x and altitude deviation at
+      // least 10x smaller than nominal (measured on this seed: 3.5x, 18x).
+      EXPECT_GE(m[0].fault_peak_tilt_rad, 2.5 * m[1].fault_peak_tilt_rad);
+      EXPECT_GE(m[0].peak_altitude_deviation_m, 10.0 * m[1].peak_altitude_deviation_m);
+    }
     if (expected.no_worse) {
       EXPECT_LE(m[1].rms_position_error_m, 1.05 * m[0].rms_position_error_m) << c.name;
       EXPECT_LE(m[1].fault_peak_tilt_rad, 1.05 * m[0].fault_peak_tilt_rad) << c.name;
