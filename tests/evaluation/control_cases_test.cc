@@ -46,7 +46,7 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"ground_start", {0.0025, 0.0113, 0.0035, true}},
       {"severe_gap", {0.0880, 0.1082, 0.2659, true}},
       {"imu_noise", {0.0078, 0.0242, 0.0092, true}},
-      {"loss_70", {0.3023, 0.2003, 0.4000, true}},
+      {"loss_70", {0.3003, 0.0937, 0.4000, true}},
   };
   return figures;
 }
@@ -82,10 +82,14 @@ TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
 }
 
 TEST(ControlCasesTest, SeventyPercentLossDescendsLevel) {
-  // Issue 25: a level descent (|tilt| < 0.3 rad) to the ground. Measured
-  // 0.200 rad and 1.23 m/s at touchdown: the 1 m/s target is NOT met (with the
-  // weaker rotor at 30 % both rotors together make 0.89 of the weight level,
-  // so the body sinks at >= 1.1 m/s^2 from 0.4 m whatever the controller does).
+  // Issue 25: a level descent (|tilt| < 0.3 rad) to the ground. Measured on
+  // this seed 0.094 rad and 1.03 m/s at touchdown (10 seeds: 1.03-1.06). The
+  // 1 m/s target is NOT met and cannot be with this fault detection: level,
+  // the rotors make 2 x 0.3 c_T omega_max^2 = 39.7 N of the 44.9 N weight, so
+  // the body sinks at >= 1.13 m/s^2 from 0.39 m; with rotor 2 commanded to
+  // omega_max at the fault itself, its 35 ms lag alone gives 0.985 m/s, and
+  // 15-25 ms of detection (FORCE flags the fault then) 1.013-1.036 m/s
+  // (docs/controller.md).
   const ControlCase* c = FindControlCase("loss_70");
   ASSERT_NE(c, nullptr);
   const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
@@ -93,7 +97,8 @@ TEST(ControlCasesTest, SeventyPercentLossDescendsLevel) {
                                           LoadControllerConfig(ConfigFile("controller.yaml")), ClosedLoopOptions());
   const ControlMetrics m = EvaluateControl(run);
   EXPECT_LT(m.tilt_before_touchdown_rad, 0.3);
-  EXPECT_LT(m.touchdown_speed_m_s, 1.23 * 1.5);
+  EXPECT_LT(m.touchdown_speed_m_s, 1.03 * 1.5);
+  EXPECT_GT(m.touchdown_speed_m_s, 0.98);  // the physical floor above
   EXPECT_EQ(run.controller.infeasible, 1);
 }
 
