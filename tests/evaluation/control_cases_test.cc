@@ -46,6 +46,9 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"ground_start", {0.0025, 0.0113, 0.0035, true}},
       {"severe_gap", {0.0880, 0.1082, 0.2659, true}},
       {"imu_noise", {0.0078, 0.0242, 0.0092, true}},
+      // Issue 21's fault cases, flown by the cascade here (the MPC: mpc_comparison_test.cc).
+      {"loss_40", {0.0057, 0.0370, 0.0128, true}},
+      {"loss_60", {0.0189, 0.0800, 0.0696, true}},
       {"loss_70", {0.3003, 0.0937, 0.4000, true}},
   };
   return figures;
