@@ -32,7 +32,7 @@ TEST(MpcComparisonTest, AggressiveInModeMpc) {
   const MpcRunFigures f = MpcFiguresOf(run, metrics, controller);
   std::printf("aggressive mpc: rms %.4f m, max change %.0f rad/s, solves %lld, fallbacks %lld\n", f.control.rms_m,
               f.max_command_change_rad_s, static_cast<long long>(f.solves), static_cast<long long>(f.fallbacks));
-  // Measured 0.0066 m on seed 2 (the force-feedback cascade: 0.0099 m); the
+  // Measured 0.0064 m on seed 2 (the force-feedback cascade: 0.0099 m); the
   // bound is issue 21's target, 25 % below the cascade (tighter than 1.5x).
   EXPECT_LT(f.control.rms_m, 0.75 * 0.0099);
   EXPECT_EQ(f.commands_out_of_bounds, 0);
@@ -74,10 +74,10 @@ TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
     bool no_worse_than_nominal;
   };
   const std::vector<Expected> cases = {
-      {"stiffness_-20", {0.0010, 0.0100, 0.0029}, true},  // seed 1; nominal 0.0034, 0.0135, 0.0072
-      {"mass_-15", {0.0011, 0.0102, 0.0032}, true},       // seed 1; nominal 0.0559, 0.0125, 0.1141
-      {"loss_40", {0.0013, 0.0327, 0.0032}, false},       // seed 4; force feedback 0.0057, 0.0370, 0.0128
-      {"loss_60", {0.0074, 0.0559, 0.0349}, false},       // seed 4; force feedback 0.0189, 0.0800, 0.0696
+      {"stiffness_-20", {0.0011, 0.0099, 0.0029}, true},  // seed 1; nominal 0.0034, 0.0135, 0.0072
+      {"mass_-15", {0.0012, 0.0101, 0.0035}, true},       // seed 1; nominal 0.0559, 0.0125, 0.1141
+      {"loss_40", {0.0013, 0.0325, 0.0033}, false},       // seed 4; force feedback 0.0057, 0.0370, 0.0128
+      {"loss_60", {0.0075, 0.0547, 0.0353}, false},       // seed 4; force feedback 0.0189, 0.0800, 0.0696
   };
   for (const Expected& e : cases) {
     const ControlFigures mpc = FlyCase(e.name, true);
