@@ -90,6 +90,11 @@ struct EfficiencyParams {
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
   double feasibility_margin = 1.02;      // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
   double infeasible_s = 0.1;             // infeasible this long: level controlled descent [s]
+  // Motor-lag lead on a falling efficiency: omega_cmd = omega + lead_s d(omega)/dt
+  // with d(omega)/dt = -omega / (2 e) de/dt (de/dt < 0 only), the inverse of the
+  // first-order motor lag (tau_m, model/plant.h) for the efficiency's share of the
+  // command only (0: off) [s].
+  double motor_lead_s = 0.035;
 };
 
 // What the controller accepts on SETPOINT (controller/setpoint_input.h).

@@ -26,10 +26,13 @@ struct MpcParams {
   int horizon_steps = 20;
   // Move blocking: the commands change only at the starts of this many blocks
   // whose lengths grow along the horizon (block b starts at step
-  // round(N (b / B)^2), at least one step after the previous): 1, 1, 2, 3, 3,
-  // 5, 5 steps for N = 20, B = 7. Early moves stay free, late ones matter
-  // only in sum; 15 variables instead of 41 make the solve ~5x cheaper.
-  int input_blocks = 7;
+  // round(N (b / B)^2), at least one step after the previous): 1, 2, 4, 6, 7
+  // steps for N = 20, B = 5. Early moves stay free, late ones matter only in
+  // sum. 11 variables: with 7 blocks (15 variables) the saturated plans of the
+  // 70 % loss took p99 1010 us [631, 1631] CPU per solve, with 5 they take
+  // ~360 us, at the same tracking (aggressive RMS 0.0064 vs 0.0063 m);
+  // without blocking (41 variables) DENSE-IPM took 690 us CPU per solve.
+  int input_blocks = 5;
   // The tilt limit is imposed at every this many prediction steps (and the
   // last): every 40 ms, against a pitch response of ~150 ms.
   int tilt_check_every_steps = 2;
@@ -37,8 +40,16 @@ struct MpcParams {
   // State weights of the stage cost (per squared unit). Position dominates
   // (what is tracked); velocity damps it; tilt towards the tilt the reference
   // acceleration needs, and a little pitch rate for a smooth attitude.
-  double position_weight_1_m2 = 1e5;
-  double velocity_weight_s2_m2 = 3000.0;
+  // Position 3e3, velocity 1e3: at 1e5 / 3e3 the plan spent tilt on
+  // millimetres of position noise in hover (peak tilt 0.0154-0.0172 rad
+  // against the cascade's 0.0100, RMS 0.0006 m); here the tilt is the
+  // cascade's and the RMS still 3x below it (docs/mpc.md). Velocity 3e3 with
+  // position 3e3 was overdamped (a 0.5 m step 0.47 m after 3 s); 90 lost
+  // aggressive's tracking (RMS 0.0078 m). Raising the tilt weight instead
+  // (200, pitch rate 10) destabilised the hover (0.52 rad) and made
+  // DENSE-AUL late.
+  double position_weight_1_m2 = 3e3;
+  double velocity_weight_s2_m2 = 1000.0;
   double tilt_weight_1_rad2 = 20.0;
   double pitch_rate_weight_s2_rad2 = 1.0;
   // Input weights [1/(rad/s)^2]: on the distance from the feed-forward speed

@@ -102,8 +102,9 @@ class VehicleController {
   // Observer: propagate with the period's IMU mean, then fuse a pending POSE.
   void UpdateState(int64_t now_us, double dt_s, int32_t* status);
   // Rotor speeds from the law's forces: allocation within the rotors'
-  // limits, the map with the efficiency in use.
-  void Allocate(const RotorForces& forces, bool use_efficiency, MotorCommand* command, int32_t* status);
+  // limits, the map with the efficiency in use, the motor-lag lead on the
+  // efficiency's change over the period dt_s.
+  void Allocate(const RotorForces& forces, bool use_efficiency, double dt_s, MotorCommand* command, int32_t* status);
 
   ControllerConfig config_;
   PositionAttitudeLaw law_;
@@ -138,6 +139,7 @@ class VehicleController {
   bool saturated_ = false;  // the previous period's allocation was limited (anti-windup)
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
   double last_good_omega_rad_s_[2] = {0.0, 0.0};
+  double last_efficiency_[2] = {1.0, 1.0};  // efficiency of the previous period (motor-lag lead) [1]
   int32_t seq_ = 0;
   std::unique_ptr<MpcController> mpc_;  // mode mpc only
 };

@@ -20,6 +20,11 @@ constexpr double kSeedTolerance = 1.25;
 // Figures below these are noise floors, not differences: a ratio is taken
 // against at least this much [m, rad, m].
 constexpr double kFloor[3] = {1e-3, 2e-3, 2e-3};
+// A body within this of the support is on it: the simulator's contact is
+// inelastic and the body may hop off it within the next truth sample
+// (a 1 kHz truth misses the contact itself), so contact is the first sample
+// this close, not the first exactly on the support [m].
+constexpr double kContactToleranceM = 1e-3;
 
 }  // namespace
 
@@ -58,8 +63,8 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
       if (error > options.return_tolerance_m) last_outside_utime = s.truth.utime;
       if (std::isnan(m.touchdown_speed_m_s)) {
         tilt_since_event = std::max(tilt_since_event, tilt);
-        if (run.has_ground && run.fault_utime >= 0 && previous != nullptr && previous->truth.z_m > ground_z_m + 1e-9 &&
-            s.truth.z_m <= ground_z_m + 1e-9) {
+        if (run.has_ground && run.fault_utime >= 0 && previous != nullptr &&
+            previous->truth.z_m > ground_z_m + kContactToleranceM && s.truth.z_m <= ground_z_m + kContactToleranceM) {
           m.touchdown_speed_m_s = std::max(-previous->truth.z_dot_m_s, 0.0);
           m.tilt_before_touchdown_rad = tilt_since_event;
         }

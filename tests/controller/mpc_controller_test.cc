@@ -65,10 +65,12 @@ TEST(MpcControllerTest, ReachesAStepWithinTheLimits) {
   params.deadline_s = 10.0;  // no timing in unit tests: only failed or bad answers count here
   MpcController mpc(VehicleParams(), params);
   const LoopResult r = Fly(&mpc, Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
-                           Eigen::Vector3d::Zero(), 3.0);
+                           Eigen::Vector3d::Zero(), 5.0);
   std::printf("step: final %.4f %.4f tilt %.3f max cmd %.1f change %.1f fallbacks %ld\n", r.final_state(0),
               r.final_state(1), r.peak_tilt_rad, r.max_command_rad_s, r.max_command_change_rad_s, r.fallbacks);
-  EXPECT_NEAR(r.final_state(kMpcX), 0.5, 2e-4);  // measured 1e-4
+  // 5 s: position weight 3e3 / velocity 1e3 (mpc_params.h) reach a 0.5 m step
+  // more slowly than 1e5 / 3e3 did (0.4965 m after 3 s); measured 1e-4 at 5 s.
+  EXPECT_NEAR(r.final_state(kMpcX), 0.5, 2e-4);
   EXPECT_NEAR(r.final_state(kMpcZ), 0.5, 2e-4);
   EXPECT_LE(r.max_command_rad_s, 1200.0);
   EXPECT_LE(r.max_command_change_rad_s, params.max_omega_rate_rad_s2 / params.rate_hz + 1e-9);

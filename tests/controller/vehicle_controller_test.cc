@@ -115,6 +115,34 @@ TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarderAfterALoss) {
   EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
 }
 
+TEST(VehicleControllerTest, AFallingEfficiencyIsLedByTheMotorLagARisingOneIsNot) {
+  // The first period after the loss: e_2 = 1 - 0.25 x 2 ms / fault_tau_s 10 ms
+  // = 0.95 (under the 50/s rate limit), de/dt = -25 /s; the command leads by
+  // motor_lead_s omega / (2 e) |de/dt| = 0.035 x omega / 1.9 x 25 = 0.46 omega
+  // over the same law without the lead (motor_lead_s 0).
+  ControllerConfig config, no_lead_config;
+  no_lead_config.efficiency.motor_lead_s = 0.0;
+  HoverFeed feed(config), no_lead(no_lead_config);
+  feed.Settle();
+  no_lead.Settle();
+  feed.scale2 = no_lead.scale2 = 0.75;
+  const MotorCommand led = feed.Period();
+  const MotorCommand plain = no_lead.Period();
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 0.95, 1e-9);
+  EXPECT_NEAR(led.omega_cmd_rad_s[1], plain.omega_cmd_rad_s[1] * (1.0 + 0.035 / (2.0 * 0.95) * 25.0), 1e-6);
+  EXPECT_NEAR(led.omega_cmd_rad_s[0], plain.omega_cmd_rad_s[0], 1e-9);  // e_1 stays 1
+  // Settled at 0.75, then the rotor recovers: e_2 rises, no lead (equal commands).
+  feed.Run(1000);
+  no_lead.Run(1000);
+  feed.scale2 = no_lead.scale2 = 1.0;
+  feed.force_status = no_lead.force_status = kStatusValid | kStatusRotor2Fault;
+  for (int k = 0; k < 20; ++k) {
+    const MotorCommand a = feed.Period();
+    const MotorCommand b = no_lead.Period();
+    EXPECT_NEAR(a.omega_cmd_rad_s[1], b.omega_cmd_rad_s[1], 1e-6) << k;
+  }
+}
+
 TEST(VehicleControllerTest, ConstantScaleFromTakeOffIsLeftToTheIntegrators) {
   // A constant bias from take-off on (gauge scale, stiffness), unflagged, is
   // the nominal loop's business: e stays 1.
@@ -147,7 +175,10 @@ TEST(VehicleControllerTest, BadForceFallsBackWithinOnePeriodAndReturnsWithoutAJu
       c = feed.Period();
       ++periods_to_return;
     } while ((c.status & kCommandFallbackActive) && periods_to_return < 1000);
-    EXPECT_EQ(periods_to_return, 26);  // first good sample + force_recovery_s 50 ms, on the 2 ms grid
+    // Not VALID ends the healthy run: first good sample + force_recovery_s
+    // 50 ms, on the 2 ms grid. An implausible sample is an outlier: the next
+    // good one, on time (3 ms after the last accepted), resumes at once.
+    EXPECT_EQ(periods_to_return, status == kStatusConverging ? 26 : 1);
     feed.Run(1000);
   }
   EXPECT_EQ(feed.controller().health().fallbacks, 4);

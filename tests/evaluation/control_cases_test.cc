@@ -32,7 +32,7 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"hover", {0.0034, 0.0134, 0.0072, true}},
       {"gentle", {0.0031, 0.0108, 0.0049, true}},
       {"aggressive", {0.0099, 0.1917, 0.0151, true}},
-      {"thrust_loss", {0.0047, 0.0290, 0.0078, true}},
+      {"thrust_loss", {0.0051, 0.0171, 0.0090, true}},
       {"stiffness_-20", {0.0034, 0.0135, 0.0072, true}},
       {"mass_-15", {0.0559, 0.0125, 0.1141, true}},
       {"motor_tau_+70", {0.0035, 0.0345, 0.0054, true}},
@@ -46,7 +46,10 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"ground_start", {0.0025, 0.0113, 0.0035, true}},
       {"severe_gap", {0.0880, 0.1082, 0.2659, true}},
       {"imu_noise", {0.0078, 0.0242, 0.0092, true}},
-      {"loss_70", {0.3023, 0.2003, 0.4000, true}},
+      // Issue 21's fault cases, flown by the cascade here (the MPC: mpc_comparison_test.cc).
+      {"loss_40", {0.0057, 0.0370, 0.0128, true}},
+      {"loss_60", {0.0189, 0.0800, 0.0696, true}},
+      {"loss_70", {0.3003, 0.0937, 0.4000, true}},
   };
   return figures;
 }
@@ -67,6 +70,12 @@ TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
     EXPECT_LT(m[1].rms_position_error_m, 1.5 * expected.rms_m) << c.name;
     EXPECT_LT(m[1].fault_peak_tilt_rad, 1.5 * expected.tilt_rad) << c.name;
     EXPECT_LT(m[1].peak_altitude_deviation_m, 1.5 * expected.altitude_m) << c.name;
+    if (c.name == "thrust_loss") {
+      // Issue 25 kept targets: tilt at least 2.5x and altitude deviation at
+      // least 10x smaller than nominal (measured on this seed: 3.5x, 18x).
+      EXPECT_GE(m[0].fault_peak_tilt_rad, 2.5 * m[1].fault_peak_tilt_rad);
+      EXPECT_GE(m[0].peak_altitude_deviation_m, 10.0 * m[1].peak_altitude_deviation_m);
+    }
     if (expected.no_worse) {
       EXPECT_LE(m[1].rms_position_error_m, 1.05 * m[0].rms_position_error_m) << c.name;
       EXPECT_LE(m[1].fault_peak_tilt_rad, 1.05 * m[0].fault_peak_tilt_rad) << c.name;
@@ -76,10 +85,14 @@ TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
 }
 
 TEST(ControlCasesTest, SeventyPercentLossDescendsLevel) {
-  // Issue 25: a level descent (|tilt| < 0.3 rad) to the ground. Measured
-  // 0.200 rad and 1.23 m/s at touchdown: the 1 m/s target is NOT met (with the
-  // weaker rotor at 30 % both rotors together make 0.89 of the weight level,
-  // so the body sinks at >= 1.1 m/s^2 from 0.4 m whatever the controller does).
+  // Issue 25: a level descent (|tilt| < 0.3 rad) to the ground. Measured on
+  // this seed 0.094 rad and 1.03 m/s at touchdown (10 seeds: 1.03-1.06). The
+  // 1 m/s target is NOT met and cannot be with this fault detection: level,
+  // the rotors make 2 x 0.3 c_T omega_max^2 = 39.7 N of the 44.9 N weight, so
+  // the body sinks at >= 1.13 m/s^2 from 0.39 m; with rotor 2 commanded to
+  // omega_max at the fault itself, its 35 ms lag alone gives 0.985 m/s, and
+  // 15-25 ms of detection (FORCE flags the fault then) 1.013-1.036 m/s
+  // (docs/controller.md).
   const ControlCase* c = FindControlCase("loss_70");
   ASSERT_NE(c, nullptr);
   const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
@@ -87,7 +100,8 @@ TEST(ControlCasesTest, SeventyPercentLossDescendsLevel) {
                                           LoadControllerConfig(ConfigFile("controller.yaml")), ClosedLoopOptions());
   const ControlMetrics m = EvaluateControl(run);
   EXPECT_LT(m.tilt_before_touchdown_rad, 0.3);
-  EXPECT_LT(m.touchdown_speed_m_s, 1.23 * 1.5);
+  EXPECT_LT(m.touchdown_speed_m_s, 1.03 * 1.5);
+  EXPECT_GT(m.touchdown_speed_m_s, 0.98);  // the physical floor above
   EXPECT_EQ(run.controller.infeasible, 1);
 }
 

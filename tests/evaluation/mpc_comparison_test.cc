@@ -1,15 +1,18 @@
 // Mode mpc in the lock-step loop with the shipped config/controller.yaml and
 // config/estimator.yaml, scored by evaluation/mpc_comparison.h: the aggressive
 // manoeuvre (issue 21: RMS at least 25 % below the force-feedback cascade's),
-// every command within bounds and the rate limit, no fallback; and the
-// command checks counting a command they must refuse.
+// every command within bounds and the rate limit, no fallback; the command
+// checks counting a command they must refuse; and the mismatch and loss cases
+// within their measured figures.
 #include "evaluation/mpc_comparison.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
+#include "evaluation/control_cases.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
@@ -29,8 +32,9 @@ TEST(MpcComparisonTest, AggressiveInModeMpc) {
   const MpcRunFigures f = MpcFiguresOf(run, metrics, controller);
   std::printf("aggressive mpc: rms %.4f m, max change %.0f rad/s, solves %lld, fallbacks %lld\n", f.control.rms_m,
               f.max_command_change_rad_s, static_cast<long long>(f.solves), static_cast<long long>(f.fallbacks));
-  // Measured 0.0053 m on seed 2 (the force-feedback cascade: 0.0099 m); margin 1.5x.
-  EXPECT_LT(f.control.rms_m, 0.008);
+  // Measured 0.0064 m on seed 2 (the force-feedback cascade: 0.0099 m); the
+  // bound is issue 21's target, 25 % below the cascade (tighter than 1.5x).
+  EXPECT_LT(f.control.rms_m, 0.75 * 0.0099);
   EXPECT_EQ(f.commands_out_of_bounds, 0);
   EXPECT_EQ(f.commands_over_rate, 0);
   // 8 s at 100 Hz, the first period without POSE: 799 solves.
@@ -44,6 +48,48 @@ TEST(MpcComparisonTest, AggressiveInModeMpc) {
   const MpcRunFigures g = MpcFiguresOf(bad, metrics, controller);
   EXPECT_EQ(g.commands_out_of_bounds, 1);
   EXPECT_GE(g.commands_over_rate, 2);  // the jump to omega_max + 1 and the jump at 200 (and their returns)
+}
+
+// Figures of case c (evaluation/control_cases.cc, the scenario's own seed)
+// flown in mode mpc (model_predictive) or by the nominal cascade.
+ControlFigures FlyCase(const std::string& name, bool model_predictive) {
+  const ControlCase* c = FindControlCase(name);
+  EXPECT_NE(c, nullptr) << name;
+  if (c == nullptr) return ControlFigures();
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+  ControllerConfig controller = LoadControllerConfig(ConfigFile("controller.yaml"));
+  controller.force_feedback = controller.model_predictive = model_predictive;
+  return FiguresOf(EvaluateControl(
+      RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller, ClosedLoopOptions())));
+}
+
+TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
+  // birotor-eval --control --mpc --seeds 10 (docs/mpc.md), the scenario's own
+  // seed of each case: MPC with the efficiencies (RMS, fault tilt, altitude),
+  // bounds 1.5x those figures; in the mismatch cases (issue 21) no worse than
+  // the nominal cascade by more than 5 % (on these seeds it is better).
+  struct Expected {
+    std::string name;
+    ControlFigures mpc;
+    bool no_worse_than_nominal;
+  };
+  const std::vector<Expected> cases = {
+      {"stiffness_-20", {0.0011, 0.0099, 0.0029}, true},  // seed 1; nominal 0.0034, 0.0135, 0.0072
+      {"mass_-15", {0.0012, 0.0101, 0.0035}, true},       // seed 1; nominal 0.0559, 0.0125, 0.1141
+      {"loss_40", {0.0013, 0.0325, 0.0033}, false},       // seed 4; force feedback 0.0057, 0.0370, 0.0128
+      {"loss_60", {0.0075, 0.0547, 0.0353}, false},       // seed 4; force feedback 0.0189, 0.0800, 0.0696
+  };
+  for (const Expected& e : cases) {
+    const ControlFigures mpc = FlyCase(e.name, true);
+    EXPECT_LT(mpc.rms_m, 1.5 * e.mpc.rms_m) << e.name;
+    EXPECT_LT(mpc.tilt_rad, 1.5 * e.mpc.tilt_rad) << e.name;
+    EXPECT_LT(mpc.altitude_m, 1.5 * e.mpc.altitude_m) << e.name;
+    if (!e.no_worse_than_nominal) continue;
+    const ControlFigures nominal = FlyCase(e.name, false);
+    EXPECT_LE(mpc.rms_m, 1.05 * nominal.rms_m) << e.name;
+    EXPECT_LE(mpc.tilt_rad, 1.05 * nominal.tilt_rad) << e.name;
+    EXPECT_LE(mpc.altitude_m, 1.05 * nominal.altitude_m) << e.name;
+  }
 }
 
 }  // namespace
