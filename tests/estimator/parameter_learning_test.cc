@@ -1,5 +1,6 @@
-// Online learning of the strain scale g_i (issue 27 item 2, EkfOptions::
-// learn_strain_scale, docs/mismatch.md): the mismatch scenarios it fixes, the
+// Online learning of the strain scale g_i (issue 27 item 2,
+// estimator/ekf_parameter_learning.cc, EkfOptions::learn_strain_scale,
+// docs/mismatch.md): the mismatch scenarios it fixes, the
 // matching-file scenarios it leaves alone, no learning on the ground, and a
 // start from a persisted value. Figures measured on the development VM with
 // the shipped config/estimator.yaml plus learn_strain_scale (docs/mismatch.md);
