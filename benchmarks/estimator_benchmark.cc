@@ -86,12 +86,16 @@ StrainSample NextStrain(const std::vector<Event>& events, size_t* index, int64_t
 
 // One strain sample through one method (with the motor and IMU samples that
 // precede it). The EKF also without its accelerometer fusion and without its
-// gauge offset states, to show what each costs.
-void BM_StrainSample(benchmark::State& state, const char* method, bool accelerometer = true, bool offsets = true) {
+// gauge offset states, to show what each costs, and with the slow vehicle
+// parameters learned (issue 27: the strain scales; and the body mass).
+void BM_StrainSample(benchmark::State& state, const char* method, bool accelerometer = true, bool offsets = true,
+                     bool learn_strain_scale = false, bool learn_body_mass = false) {
   EstimatorConfig config;
   config.method = method;
   config.ekf.use_accelerometer = accelerometer;
   config.ekf.estimate_gauge_offsets = offsets;
+  config.ekf.learn_strain_scale = learn_strain_scale;
+  config.ekf.learn_body_mass = learn_body_mass;
   std::unique_ptr<ForceEstimator> estimator = MakeForceEstimator(config);
   const std::vector<Event>& events = GentleEvents(10.0);
   size_t index = 0;
@@ -119,6 +123,8 @@ void BM_StrainSample(benchmark::State& state, const char* method, bool accelerom
 BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf");
 BENCHMARK_CAPTURE(BM_StrainSample, ekf_without_accelerometer, "ekf", false);
 BENCHMARK_CAPTURE(BM_StrainSample, ekf_without_accelerometer_and_offsets, "ekf", false, false);
+BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale, "ekf", true, true, true);
+BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale_and_mass, "ekf", true, true, true, true);
 BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
 BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
 BENCHMARK_CAPTURE(BM_StrainSample, linear_kf, "linear_kf");

@@ -18,6 +18,8 @@ constexpr double kVarianceFloor[kEkfStateSize] = {
     1e-6,  1e-6,   // omega [(rad/s)^2]
     1e-10, 1e-10,  // mu [1]
     1e-16, 1e-16,  // e [rad^2]
+    1e-12, 1e-12,  // g [1] (0 when not learned: EkfForceEstimator's copy)
+    1e-12,         // r_m [1] (as g)
 };
 constexpr double kVarianceCeiling[kEkfStateSize] = {
     1e-2, 1e-2,  // b: 0.1 rad
@@ -26,7 +28,13 @@ constexpr double kVarianceCeiling[kEkfStateSize] = {
     1e6,  1e6,   // omega: 1000 rad/s
     4.0,  4.0,   // mu: 2
     1e-6, 1e-6,  // e: 1 mrad (the tare refuses 0.5 mrad)
+    0.25, 0.25,  // g: 0.5
+    0.25,        // r_m: 0.5
 };
+// The slow parameters are the last states (Predict skips them by head<>).
+static_assert(kStrainScale1 == kGaugeOffset2 + 1 && kBodyMassScale == kEkfStateSize - 1, "slow states last");
+// A learned scale outside this range is a numerical failure, not a vehicle [1].
+constexpr double kMinLearnedScale = 0.2, kMaxLearnedScale = 5.0;
 constexpr double kMicrosecond = 1e-6;
 
 }  // namespace
@@ -34,7 +42,7 @@ constexpr double kMicrosecond = 1e-6;
 EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptions& options)
     : params_(params),
       options_(options),
-      process_(params),
+      process_(params, options.learn_body_mass),
       strain_model_(options.strain_noise_rad),
       motor_model_(options.motor_speed_noise_rad_s),
       gyro_model_(options.gyro_noise_rad_s),
@@ -56,6 +64,20 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
     hover_input_.omega_cmd_rad_s[i] =
         ClampCommand(params_, std::sqrt(params_.HoverForceN() / params_.thrust_coeff_n_s2_rad2));
   }
+  const double g_std = options.learn_strain_scale ? options.strain_scale_prior_std : 0.0;
+  const double m_std = options.learn_body_mass ? options.body_mass_scale_prior_std : 0.0;
+  for (int i = 0; i < kEkfStateSize; ++i) variance_floor_[i] = kVarianceFloor[i];
+  for (int i = 0; i < 2; ++i) {
+    const int g = kStrainScaleIndex[i];
+    process_noise_psd_(g) = options.learn_strain_scale ? options.strain_scale_psd_1_s : 0.0;
+    learned_.value[g] = 1.0;
+    learned_.std[g] = g_std;
+    if (!options.learn_strain_scale) variance_floor_[g] = 0.0;
+  }
+  process_noise_psd_(kBodyMassScale) = options.learn_body_mass ? options.body_mass_scale_psd_1_s : 0.0;
+  learned_.value[kBodyMassScale] = 1.0;
+  learned_.std[kBodyMassScale] = m_std;
+  if (!options.learn_body_mass) variance_floor_[kBodyMassScale] = 0.0;
   command_ = hover_input_;
   state_.setZero();
   covariance_.setIdentity();
@@ -174,6 +196,15 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
         options_.initial_thrust_scale_std * options_.initial_thrust_scale_std;
   }
   covariance_(kPitchRate, kPitchRate) = options_.initial_pitch_rate_std_rad_s * options_.initial_pitch_rate_std_rad_s;
+  // The slow parameters start from what was learned (the vehicle did not
+  // change across a reset), or the file's value with the prior sigma.
+  for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) {
+    state_(p) = learned_.value[p];
+    covariance_(p, p) = learned_.std[p] * learned_.std[p];
+  }
+  slow_frozen_ = false;
+  flying_since_utime_ = kFlyingSinceStart;  // no lift-off seen (a start in the air): no delay
+  UpdateLearning();
   if (has_telemetry) {
     // The state was set from it: fused, without an innovation.
     Report(MakeFusionReport(FusionSource::kTelemetry, telemetry.utime, FusionOutcome::kFused));
@@ -188,23 +219,42 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
 
 void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   // Linearise at the prior, then propagate the state with RK4 and
-  // P = Phi P Phi^T + Qc dt with Phi = blockdiag(Phi_d, I) (the offsets are
-  // random walks): P_dd = Phi_d P_dd Phi_d^T, P_de = Phi_d P_de, P_ee kept.
-  constexpr int n = kDynamicStateSize, m = kEkfStateSize - kDynamicStateSize;
-  const DynamicMatrix a = process_.Jacobian(state_, input, &accel_linearization_);
+  // P = Phi P Phi^T + Qc dt with Phi = [Phi_d, Gamma; 0, I] (the slow states
+  // are random walks; Gamma is the body mass's column, zero unless learned):
+  //   R_d = Phi_d P_dd + Gamma P_md, R_s = Phi_d P_ds + Gamma P_ms,
+  //   P_dd = R_d Phi_d^T + R_s,m Gamma^T, P_ds = R_s, P_ss kept.
+  constexpr int n = kDynamicStateSize, m = kSlowStateSize;
+  constexpr int mass = kBodyMassScale - kDynamicStateSize;  // its column in the slow block
+  DynamicVector mass_column;
+  const DynamicMatrix a =
+      process_.Jacobian(state_, input, &accel_linearization_, process_.body_mass_is_state() ? &mass_column : nullptr);
   const DynamicMatrix phi = EkfProcessModel::Transition(a, dt_s);
   state_ = process_.Step(state_, input, dt_s);
   DynamicMatrix temp;
   temp.noalias() = phi.lazyProduct(covariance_.topLeftCorner<n, n>());
-  covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
-  Eigen::Matrix<double, n, m> p_de;
-  p_de.noalias() = phi.lazyProduct(covariance_.topRightCorner<n, m>());
-  covariance_.topRightCorner<n, m>() = p_de;
-  covariance_.bottomLeftCorner<m, n>() = p_de.transpose();
-  covariance_.diagonal() += process_noise_psd_ * dt_s;
+  Eigen::Matrix<double, n, m> p_ds;
+  p_ds.noalias() = phi.lazyProduct(covariance_.topRightCorner<n, m>());
+  if (process_.body_mass_is_state() && !input.body_supported) {
+    const DynamicVector gamma = EkfProcessModel::ParameterTransition(a, mass_column, dt_s);
+    temp.noalias() += gamma * covariance_.block<1, n>(kBodyMassScale, 0);
+    p_ds.noalias() += gamma * covariance_.block<1, m>(kBodyMassScale, n);
+    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
+    covariance_.topLeftCorner<n, n>().noalias() += p_ds.col(mass) * gamma.transpose();
+  } else {
+    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
+  }
+  covariance_.topRightCorner<n, m>() = p_ds;
+  covariance_.bottomLeftCorner<m, n>() = p_ds.transpose();
+  if (slow_frozen_) {
+    // Frozen slow parameters get no driving noise either (no gain at all).
+    covariance_.diagonal().head<kStrainScale1>() += process_noise_psd_.head<kStrainScale1>() * dt_s;
+  } else {
+    covariance_.diagonal() += process_noise_psd_ * dt_s;
+  }
 }
 
 void EkfForceEstimator::PredictTo(int64_t utime) {
+  UpdateLearning();  // before any fusion at this time
   if (utime <= last_utime_) return;
   const double dt_s = (utime - last_utime_) * kMicrosecond;
   // Equal sub-steps no longer than max_prediction_step_s (one step at the
@@ -298,8 +348,8 @@ bool EkfForceEstimator::ConditionCovariance() {
   for (int i = 0; i < kEkfStateSize; ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * kVarianceCeiling[i]) return false;  // clearly negative: broken
-    if (variance < kVarianceFloor[i]) {
-      covariance_(i, i) = kVarianceFloor[i];
+    if (variance < variance_floor_[i] && !(slow_frozen_ && i >= kStrainScale1)) {
+      covariance_(i, i) = variance_floor_[i];
     } else if (variance > kVarianceCeiling[i]) {
       // Scale row and column: keeps P positive semi-definite.
       const double s = std::sqrt(kVarianceCeiling[i] / variance);
@@ -310,6 +360,9 @@ bool EkfForceEstimator::ConditionCovariance() {
   for (int i = 0; i < 2; ++i) {
     const double mu = state_(kThrustScaleIndex[i]);
     if (mu < -1.0 || mu > 5.0 || state_(kOmegaIndex[i]) < -1e3) return false;
+  }
+  for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) {
+    if (state_(p) < kMinLearnedScale || state_(p) > kMaxLearnedScale) return false;
   }
   return true;
 }
@@ -389,6 +442,7 @@ void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
   Report(strain);
   FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
   FillLearnedOffsets(info);
+  FillLearnedParameters(info);
 }
 
 }  // namespace birotor

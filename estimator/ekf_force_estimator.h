@@ -33,6 +33,9 @@ class EkfForceEstimator : public ForceEstimator {
   const char* Name() const override { return "ekf"; }
   void SetGaugeOffsetPrior(const double offset_std_rad[2]) override;
   double Gate(FusionSource source) const override;
+  // Start the learned slow parameters from these (a state file) at the next
+  // (re-)initialisation; only the parameters being learned.
+  void SetLearnedParameters(const LearnedVehicleParameters& learned) override;
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
@@ -71,6 +74,18 @@ class EkfForceEstimator : public ForceEstimator {
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
   // e_i and its sigma into the step result (the pipeline reports them).
   void FillLearnedOffsets(StrainStepInfo* info) const;
+  // g_i and m into the step result, and kept for the next (re-)initialisation.
+  void FillLearnedParameters(StrainStepInfo* info);
+  // The slow parameters are learned in free flight only (airborne, and
+  // f1 + f2 above half the weight; after a lift-off only once that held for
+  // slow_learning_delay_s): on the ground (or a test stand) the
+  // accelerometer reads the support, and the rest deflection that the tare
+  // was computed from would be learned as a scale. Frozen: their rows and
+  // columns of P are zeroed (no gain; the value is kept) and their sigma
+  // kept; learning again: the sigma comes back, uncorrelated.
+  void FreezeSlowParameters(bool frozen);
+  // Decides whether the slow parameters learn now (see FreezeSlowParameters).
+  void UpdateLearning();
 
   VehicleParams params_;
   EkfOptions options_;
@@ -84,6 +99,17 @@ class EkfForceEstimator : public ForceEstimator {
   EkfState process_noise_psd_;                      // diagonal of Qc; Q = Qc dt
   double offset_prior_std_rad_[2];                  // sigma of e_i at (re-)initialisation [rad]
   EkfInput hover_input_;                            // command assumed before any MOTOR sample
+  double variance_floor_[kEkfStateSize];            // kVarianceFloor, 0 for slow states not learned
+  // The slow parameters (g_i, r_m) at the newest sample, or their start
+  // values: where a (re-)initialisation starts them (indexed by state).
+  struct {
+    double value[kEkfStateSize] = {};
+    double std[kEkfStateSize] = {};
+  } learned_;
+  bool slow_frozen_ = false;  // the slow parameters are frozen (not flying)
+  // Start of the current free flight [us], or one of these.
+  static constexpr int64_t kNotFlying = -1, kFlyingSinceStart = -2;
+  int64_t flying_since_utime_ = kFlyingSinceStart;
 
   bool initialized_ = false;
   bool converged_ = false;

@@ -34,22 +34,31 @@ enum EkfIndex : int {
   kThrustScale2 = 8,     // mu2 [1]
   kGaugeOffset1 = 9,     // e1: offset of calibrated gauge 1, in deflection [rad]
   kGaugeOffset2 = 10,    // e2 [rad]
+  // Slow vehicle parameters learned in flight (issue 27, docs/mismatch.md):
+  // random walks, exactly 1 with zero variance when not learned.
+  kStrainScale1 = 11,   // g1: calibrated gauge 1 reads g1 b1 + e1 [1] (s_true k_file / (s_file k_true))
+  kStrainScale2 = 12,   // g2 [1]
+  kBodyMassScale = 13,  // r_m: body mass m = r_m m_file [1] (a payload)
 };
-constexpr int kEkfStateSize = 11;
-// The states with dynamics come first; the offsets are random walks
-// (e_dot = 0), so the transition matrix is blockdiag(Phi_d, I) and the
-// prediction works on the dynamic block (the model's structure pays for the
-// two extra states).
+constexpr int kEkfStateSize = 14;
+// The states with dynamics come first; the offsets and the slow parameters
+// are random walks (x_dot = 0), so the transition matrix is
+// [Phi_d, Gamma; 0, I] with Gamma non-zero only in the body-mass column (the
+// mass enters the dynamics; the gauge offsets and scales only the strain
+// reading), and the prediction works on the dynamic block.
 constexpr int kDynamicStateSize = 9;
+constexpr int kSlowStateSize = kEkfStateSize - kDynamicStateSize;
 constexpr EkfIndex kDeflectionIndex[2] = {kDeflection1, kDeflection2};
 constexpr EkfIndex kDeflectionRateIndex[2] = {kDeflectionRate1, kDeflectionRate2};
 constexpr EkfIndex kOmegaIndex[2] = {kOmega1, kOmega2};
 constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
 constexpr EkfIndex kGaugeOffsetIndex[2] = {kGaugeOffset1, kGaugeOffset2};
+constexpr EkfIndex kStrainScaleIndex[2] = {kStrainScale1, kStrainScale2};
 
 using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
 using EkfMatrix = Eigen::Matrix<double, kEkfStateSize, kEkfStateSize>;
 using DynamicMatrix = Eigen::Matrix<double, kDynamicStateSize, kDynamicStateSize>;
+using DynamicVector = Eigen::Matrix<double, kDynamicStateSize, 1>;
 
 // Input held over one prediction interval: clamped rotor speed commands, and
 // whether a support (the ground) holds the body (GroundContact decides).
@@ -73,12 +82,16 @@ struct AccelerometerLinearization {
 //   phi, b1, b2 rows of thesis eq. 3.14, which for a free body in uniform
 //   gravity do not depend on x, z, phi, x_dot, z_dot) with f_i = mu_i c_T omega_i^2,
 //   omega_i_dot = (clamp(omega_cmd_i) - omega_i) / tau_m,
-//   mu_i_dot = 0 and e_i_dot = 0 (random walks, driven by process noise).
+//   mu_i_dot = 0, e_i_dot = 0, g_i_dot = 0, r_m_dot = 0 (random walks, driven
+//   by process noise); the body mass in the dynamics is r_m m_file.
 // On the ground (u.body_supported) the body is held still: phi_ddot = 0 and
 // b_ddot from SupportedArmAcceleration, where the arms also carry their weight.
 class EkfProcessModel {
  public:
-  explicit EkfProcessModel(const VehicleParams& params) : params_(params) {}
+  // body_mass_is_state: the body mass is r_m m_file (kBodyMassScale) and the
+  // Jacobian has its column; false: the file's mass, whatever r_m holds.
+  explicit EkfProcessModel(const VehicleParams& params, bool body_mass_is_state = false)
+      : params_(params), body_mass_is_state_(body_mass_is_state) {}
 
   EkfState Derivative(const EkfState& x, const EkfInput& u) const;
   // A_d = df/dx on the dynamic block (the offset rows and columns of A are
@@ -86,7 +99,12 @@ class EkfProcessModel {
   // rule df/domega = 2 mu c_T omega, df/dmu = c_T omega^2.
   // With accel non-null it also gets a_z and its gradient at x (free body;
   // marked invalid on the ground).
-  DynamicMatrix Jacobian(const EkfState& x, const EkfInput& u, AccelerometerLinearization* accel = nullptr) const;
+  // With mass_column non-null and the body mass a state, it also gets
+  // d f_d / d r_m (zero on the ground, where the body mass is carried), by
+  // central differences of FreeArmDerivative (the dynamics are smooth in
+  // 1 / M; two double evaluations instead of a ninth Jet variable).
+  DynamicMatrix Jacobian(const EkfState& x, const EkfInput& u, AccelerometerLinearization* accel = nullptr,
+                         DynamicVector* mass_column = nullptr) const;
   // A_d for a body held by the ground: Jets through SupportedArmAcceleration
   // over (b1, b2, b1_dot, b2_dot, f1, f2); the phi_dot row is zero.
   DynamicMatrix SupportedJacobian(const EkfState& x) const;
@@ -96,6 +114,10 @@ class EkfProcessModel {
   //   I + A dt + (A dt)^2/2 + (A dt)^3/6 + (A dt)^4/24
   // (arm modes ~500 rad/s, dt = 1 ms: |A dt| ~ 0.5, truncation ~ 3e-4).
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // The transition's column of a constant parameter p entering as
+  // x_d_dot = A x_d + c p: Gamma = int_0^dt exp(A s) ds c, to the same order
+  //   dt (I + A dt/2 (I + A dt/3 (I + A dt/4))) c.
+  static DynamicVector ParameterTransition(const DynamicMatrix& a, const DynamicVector& c, double dt_s);
 
   // f_i = mu_i c_T omega_i^2 [N].
   double Force(const EkfState& x, int rotor) const {
@@ -109,9 +131,20 @@ class EkfProcessModel {
     return Eigen::Vector2d(2.0 * x(kThrustScaleIndex[rotor]) * c_t * omega, c_t * omega * omega);
   }
   const VehicleParams& params() const { return params_; }
+  bool body_mass_is_state() const { return body_mass_is_state_; }
+  // The vehicle at x: the file's, with the body mass r_m m_file when it is a state.
+  VehicleParams ParamsAt(const EkfState& x) const {
+    VehicleParams p = params_;
+    if (body_mass_is_state_) p.body_mass_kg *= x(kBodyMassScale);
+    return p;
+  }
+  // d (arm rates, specific force z) / d r_m at x in free flight, central
+  // differences: (phi_ddot, b1_ddot, b2_ddot) into column rows, d a_z / d r_m returned.
+  double MassDerivative(const EkfState& x, DynamicVector* column) const;
 
  private:
   VehicleParams params_;
+  bool body_mass_is_state_ = false;
 };
 
 // One measurement model per sensor: z = h(x) + noise, noise ~ N(0, R).
@@ -161,10 +194,25 @@ Eigen::Matrix<double, M, kEkfStateSize> SelectionJacobian(const EkfIndex (&first
   return h;
 }
 
-// Strain gauges after calibration: z_i = b_i + e_i [rad], noise_std in rad.
-struct StrainMeasurementModel : LinearMeasurementModel<2> {
-  explicit StrainMeasurementModel(double noise_std)
-      : LinearMeasurementModel<2>(noise_std, SelectionJacobian<2>(kDeflectionIndex, &kGaugeOffsetIndex)) {}
+// Strain gauges after calibration: z_i = g_i b_i + e_i [rad], noise_std in
+// rad. g_i is 1 unless learned (kStrainScaleIndex): the true gauge scale over
+// the file's times the file's stiffness over the true one, which the strain
+// alone cannot tell apart (at steady state b_i is proportional to 1 / k_i).
+// H: dz_i/db_i = g_i, dz_i/dg_i = b_i, dz_i/de_i = 1.
+struct StrainMeasurementModel : MeasurementModel<2> {
+  explicit StrainMeasurementModel(double noise_std) : MeasurementModel<2>(noise_std) {}
+  static Linearization Linearize(const EkfState& x) {
+    Linearization at;
+    at.jacobian.setZero();
+    for (int i = 0; i < 2; ++i) {
+      const int b = kDeflectionIndex[i], e = kGaugeOffsetIndex[i], g = kStrainScaleIndex[i];
+      at.predicted(i) = x(g) * x(b) + x(e);
+      at.jacobian(i, b) = x(g);
+      at.jacobian(i, g) = x(b);
+      at.jacobian(i, e) = 1.0;
+    }
+    return at;
+  }
 };
 // Motor telemetry: z = (omega1, omega2) [rad/s], noise_std in rad/s.
 struct MotorSpeedMeasurementModel : LinearMeasurementModel<2> {
@@ -204,23 +252,30 @@ struct AccelerometerMeasurementModel : MeasurementModel<1> {
 
 // ---- inline implementation of EkfProcessModel ----
 
-inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u) const {
+// The (phi_dot, b1, b2, b1_dot, b2_dot) of FreeArmDerivative from the filter state.
+inline FreeArmState<double> ArmState(const EkfState& x) {
   FreeArmState<double> arm;
   arm(kFreePhiDot) = x(kPitchRate);
   arm(kFreeB1) = x(kDeflection1);
   arm(kFreeB2) = x(kDeflection2);
   arm(kFreeB1Dot) = x(kDeflectionRate1);
   arm(kFreeB2Dot) = x(kDeflectionRate2);
-  const FreeArmState<double> arm_dot = FreeArmDerivative<double>(
-      params_, params_.arm_stiffness_n_m_rad, params_.arm_damping_n_m_s_rad, arm, Force(x, 0), Force(x, 1));
-  EkfState x_dot;
+  return arm;
+}
+
+inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u) const {
+  const FreeArmState<double> arm = ArmState(x);
+  const FreeArmState<double> arm_dot =
+      body_mass_is_state_ ? FreeArmDerivative<double>(ParamsAt(x), params_.arm_stiffness_n_m_rad,
+                                                      params_.arm_damping_n_m_s_rad, arm, Force(x, 0), Force(x, 1))
+                          : FreeArmDerivative<double>(params_, params_.arm_stiffness_n_m_rad,
+                                                      params_.arm_damping_n_m_s_rad, arm, Force(x, 0), Force(x, 1));
+  EkfState x_dot = EkfState::Zero();  // the random walks (mu, e, g, r_m) stay 0
   x_dot(kDeflection1) = arm_dot(kFreeB1);
   x_dot(kDeflection2) = arm_dot(kFreeB2);
   x_dot(kPitchRate) = arm_dot(kFreePhiDot);
   x_dot(kDeflectionRate1) = arm_dot(kFreeB1Dot);
   x_dot(kDeflectionRate2) = arm_dot(kFreeB2Dot);
-  x_dot(kGaugeOffset1) = 0.0;
-  x_dot(kGaugeOffset2) = 0.0;
   if (u.body_supported) {
     const Eigen::Vector2d b_ddot = SupportedArmAcceleration<double>(
         params_, x(kDeflection1), x(kDeflection2), x(kDeflectionRate1), x(kDeflectionRate2), Force(x, 0), Force(x, 1));
@@ -230,16 +285,22 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
   }
   for (int i = 0; i < 2; ++i) {
     x_dot(kOmegaIndex[i]) = MotorLagRate(params_, x(kOmegaIndex[i]), u.omega_cmd_rad_s[i]);
-    x_dot(kThrustScaleIndex[i]) = 0.0;
   }
   return x_dot;
 }
 
-inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u,
-                                               AccelerometerLinearization* accel) const {
+inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput& u, AccelerometerLinearization* accel,
+                                               DynamicVector* mass_column) const {
+  if (mass_column != nullptr) mass_column->setZero();
   if (u.body_supported) {
     if (accel != nullptr) accel->valid = false;
     return SupportedJacobian(x);
+  }
+  double d_accel_d_mass = 0.0;
+  if (body_mass_is_state_ && (mass_column != nullptr || accel != nullptr)) {
+    DynamicVector column;
+    d_accel_d_mass = MassDerivative(x, &column);
+    if (mass_column != nullptr) *mass_column = column;
   }
   // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2; the
   // eighth is padding so that the derivative part vectorises (4 SSE packets).
@@ -252,7 +313,9 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
   Coords<Jet> q, v;
   q << Jet(0.0), Jet(0.0), Jet(0.0), Jet(x(kDeflection1), 0), Jet(x(kDeflection2), 1);
   v << Jet(0.0), Jet(0.0), Jet(x(kPitchRate), 2), Jet(x(kDeflectionRate1), 3), Jet(x(kDeflectionRate2), 4);
-  const DynamicsTerms<Jet> terms = ComputeDynamicsTerms<Jet>(params_, q, v, Jet(Force(x, 0), 5), Jet(Force(x, 1), 6));
+  const DynamicsTerms<Jet> terms =
+      body_mass_is_state_ ? ComputeDynamicsTerms<Jet>(ParamsAt(x), q, v, Jet(Force(x, 0), 5), Jet(Force(x, 1), 6))
+                          : ComputeDynamicsTerms<Jet>(params_, q, v, Jet(Force(x, 0), 5), Jet(Force(x, 1), 6));
   CoordMatrix<double> mass;
   Coords<double> rhs;
   Eigen::Matrix<double, kNumCoordinates, kJetSize> d_rhs;
@@ -297,8 +360,28 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
       accel->h(kOmegaIndex[i]) = d_acc(kZ, 5 + i) * grad[i](0);
       accel->h(kThrustScaleIndex[i]) = d_acc(kZ, 5 + i) * grad[i](1);
     }
+    accel->h(kBodyMassScale) = d_accel_d_mass;
   }
   return a;
+}
+
+inline double EkfProcessModel::MassDerivative(const EkfState& x, DynamicVector* column) const {
+  const FreeArmState<double> arm = ArmState(x);
+  constexpr double kStep = 1e-4;  // of r_m; truncation ~1e-8 relative, round-off ~1e-12
+  FreeArmState<double> arm_dot[2];
+  Eigen::Vector2d specific_force[2];
+  for (int side = 0; side < 2; ++side) {
+    VehicleParams p = params_;
+    p.body_mass_kg *= x(kBodyMassScale) + (side == 0 ? kStep : -kStep);
+    arm_dot[side] = FreeArmDerivative<double>(p, params_.arm_stiffness_n_m_rad, params_.arm_damping_n_m_s_rad, arm,
+                                              Force(x, 0), Force(x, 1), &specific_force[side]);
+  }
+  const double inv = 1.0 / (2.0 * kStep);
+  column->setZero();
+  (*column)(kPitchRate) = (arm_dot[0](kFreePhiDot) - arm_dot[1](kFreePhiDot)) * inv;
+  (*column)(kDeflectionRate1) = (arm_dot[0](kFreeB1Dot) - arm_dot[1](kFreeB1Dot)) * inv;
+  (*column)(kDeflectionRate2) = (arm_dot[0](kFreeB2Dot) - arm_dot[1](kFreeB2Dot)) * inv;
+  return (specific_force[0](1) - specific_force[1](1)) * inv;
 }
 
 inline DynamicMatrix EkfProcessModel::SupportedJacobian(const EkfState& x) const {
@@ -342,11 +425,21 @@ inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double 
   return DynamicMatrix::Identity() + temp;
 }
 
+inline DynamicVector EkfProcessModel::ParameterTransition(const DynamicMatrix& a, const DynamicVector& c, double dt_s) {
+  const DynamicMatrix a_dt = a * dt_s;
+  DynamicVector w = c + (a_dt * c) * 0.25;
+  DynamicVector temp;
+  temp.noalias() = a_dt * w;
+  w = c + temp * (1.0 / 3.0);
+  temp.noalias() = a_dt * w;
+  return (c + temp * 0.5) * dt_s;
+}
+
 inline AccelerometerMeasurementModel::Linearization AccelerometerMeasurementModel::Linearize(
     const EkfProcessModel& process, const EkfState& x) {
   constexpr int kJetSize = 8;  // 7 variables and one of padding (vectorises)
   using Jet = ceres::Jet<double, kJetSize>;
-  const VehicleParams& params = process.params();
+  const VehicleParams params = process.ParamsAt(x);
   FreeArmState<Jet> arm;
   arm(kFreeB1) = Jet(x(kDeflection1), 0);
   arm(kFreeB2) = Jet(x(kDeflection2), 1);
@@ -368,6 +461,10 @@ inline AccelerometerMeasurementModel::Linearization AccelerometerMeasurementMode
     const Eigen::Vector2d grad = process.ForceGradient(x, i);  // (df/domega, df/dmu)
     out.jacobian(0, kOmegaIndex[i]) = a_z.v(5 + i) * grad(0);
     out.jacobian(0, kThrustScaleIndex[i]) = a_z.v(5 + i) * grad(1);
+  }
+  if (process.body_mass_is_state()) {
+    DynamicVector unused;
+    out.jacobian(0, kBodyMassScale) = process.MassDerivative(x, &unused);
   }
   out.predicted(0) = a_z.a;
   return out;

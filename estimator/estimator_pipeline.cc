@@ -116,6 +116,15 @@ void EstimatorPipeline::CountOverloadDrop(InputChannel channel) { ++Counters(&he
 
 void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
   UseGaugeOffsets(calibration.offset_rad, calibration.offset_std_rad, calibration.source);
+  if (!calibration.has_strain_scale) return;
+  // Learned in an earlier run: the method starts from it (if it learns it).
+  LearnedVehicleParameters learned;
+  learned.has_strain_scale = true;
+  for (int i = 0; i < 2; ++i) {
+    learned.strain_scale[i] = calibration.strain_scale[i];
+    learned.strain_scale_std[i] = calibration.strain_scale_std[i];
+  }
+  method_->SetLearnedParameters(learned);
 }
 
 void EstimatorPipeline::UseGaugeOffsets(const double offset_rad[2], const double offset_std_rad[2],
@@ -133,6 +142,12 @@ void EstimatorPipeline::UseGaugeOffsets(const double offset_rad[2], const double
 
 void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
   // o_i in use = calibration + s_i e_i, one sigma s_i std(e_i).
+  // The learned strain scale g_i and its sigma, as learned (persisted with the offsets).
+  health_.gauge.has_strain_scale = info.has_learned_strain_scale;
+  for (int i = 0; i < 2 && info.has_learned_strain_scale; ++i) {
+    health_.gauge.strain_scale[i] = info.learned_strain_scale[i];
+    health_.gauge.strain_scale_std[i] = info.learned_strain_scale_std[i];
+  }
   if (!info.has_learned_gauge_offset) return;
   for (int i = 0; i < 2; ++i) {
     health_.gauge.offset_rad[i] = calibration_.offset_rad[i] + calibration_.scale[i] * info.learned_gauge_offset_rad[i];

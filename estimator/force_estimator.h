@@ -32,6 +32,25 @@ struct StrainStepInfo {
   bool has_learned_gauge_offset = false;
   double learned_gauge_offset_rad[2] = {0, 0};
   double learned_gauge_offset_std_rad[2] = {0, 0};
+  // The slow vehicle parameters the method learns (issue 27): the strain
+  // scale g_i per arm (the calibrated gauge reads g_i b_i + e_i) [1] and the
+  // body mass [kg], with their one sigma; valid only when has_learned_*.
+  bool has_learned_strain_scale = false;
+  double learned_strain_scale[2] = {1, 1};
+  double learned_strain_scale_std[2] = {0, 0};
+  bool has_learned_body_mass = false;
+  double learned_body_mass_kg = 0;
+  double learned_body_mass_std_kg = 0;
+};
+
+// Slow vehicle parameters to start learning from (a state file of an earlier run).
+struct LearnedVehicleParameters {
+  bool has_strain_scale = false;  // the fields below hold values to start from
+  bool has_body_mass = false;
+  double strain_scale[2] = {1, 1};      // g_i [1]
+  double strain_scale_std[2] = {0, 0};  // [1]
+  double body_mass_kg = 0;              // [kg]
+  double body_mass_std_kg = 0;          // [kg]
 };
 
 // One estimation method. Samples arrive already validated and in time order
@@ -76,6 +95,9 @@ class ForceEstimator {
   // offset_std_rad [rad, in deflection]. Methods without offset states ignore
   // it; the others say what they learn on top of it in StrainStepInfo.
   virtual void SetGaugeOffsetPrior(const double /*offset_std_rad*/[2]) {}
+  // Methods that learn slow vehicle parameters start from these at their
+  // next (re-)initialisation; the others ignore them.
+  virtual void SetLearnedParameters(const LearnedVehicleParameters& /*learned*/) {}
 
  protected:
   // A report of the call in progress.

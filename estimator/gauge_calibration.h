@@ -19,6 +19,13 @@ struct GaugeCalibration {
   double offset_rad[2] = {0.0, 0.0};  // o_i [rad]
   double offset_std_rad[2] = {0, 0};  // one sigma of o_i [rad]
   GaugeOffsetSource source = GaugeOffsetSource::kParameters;
+  // The strain scale g_i learned in flight (EkfOptions::learn_strain_scale,
+  // docs/mismatch.md): the calibrated gauge reads g_i b_i + e_i, g_i = true
+  // gauge scale over s_i times the file's stiffness over the true one.
+  // Persisted with the offsets; not applied by Apply (the filter holds it).
+  bool has_strain_scale = false;
+  double strain_scale[2] = {1.0, 1.0};      // g_i [1]
+  double strain_scale_std[2] = {0.0, 0.0};  // [1]
 
   // gauge_scale, gauge_offset_rad and gauge_offset_std_rad of the vehicle.
   static GaugeCalibration FromVehicle(const VehicleParams& params) {

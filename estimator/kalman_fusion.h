@@ -38,7 +38,7 @@ Innovation<M, N> ComputeInnovation(const MeasurementLinearization<M, N>& at, con
                                    const Eigen::Matrix<double, N, N>& cov, const Eigen::Matrix<double, M, 1>& z) {
   Innovation<M, N> out;
   out.residual = z - at.predicted;
-  // lazyProduct: coefficient-based; at 11 states Eigen's default would take
+  // lazyProduct: coefficient-based; at 11-14 states Eigen's default would take
   // its blocked GEMM path (packing dominates at this size).
   out.h_p.noalias() = at.jacobian.lazyProduct(cov);
   out.covariance.noalias() = out.h_p.lazyProduct(at.jacobian.transpose());

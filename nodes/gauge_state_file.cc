@@ -39,16 +39,47 @@ bool ParsePair(const std::string& text, double out[2]) {
   return std::isfinite(out[0]) && std::isfinite(out[1]);
 }
 
+// The learned strain scale g_i (optional lines, issue 27): the filter's
+// numerical range, and a sigma between "known" and its widest prior.
+constexpr StdRange kStrainScaleRange = {0.2, 5.0};
+constexpr StdRange kStrainScaleStdRange = {1e-6, 0.5};
+
+bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>& fields, double scale[2],
+                     double scale_std[2], std::string* error) {
+  if (!ParsePair(fields["strain_scale"], scale) || !ParsePair(fields["strain_scale_std"], scale_std)) {
+    *error = path + ": corrupt (strain_scale or strain_scale_std not two finite numbers)";
+    return false;
+  }
+  for (int i = 0; i < 2; ++i) {
+    if (!(scale[i] >= kStrainScaleRange.min && scale[i] <= kStrainScaleRange.max)) {
+      *error = path + ": strain_scale " + fields["strain_scale"] + " outside " +
+               RangeText(kStrainScaleRange.min, kStrainScaleRange.max) + ": refused";
+      return false;
+    }
+    if (!(scale_std[i] >= kStrainScaleStdRange.min && scale_std[i] <= kStrainScaleStdRange.max)) {
+      *error = path + ": strain_scale_std " + fields["strain_scale_std"] + " outside " +
+               RangeText(kStrainScaleStdRange.min, kStrainScaleStdRange.max) + ": refused";
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string VehicleChecksum(const VehicleParams& params) { return TextChecksum(VehicleParamsYaml(params)); }
 
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum) {
   char body[512];
-  std::snprintf(body, sizeof(body),
-                "%svehicle_checksum: %s\ngauge_offset_rad: %.17g %.17g\ngauge_offset_std_rad: %.17g %.17g\n", kHeader,
-                vehicle_checksum.c_str(), calibration.offset_rad[0], calibration.offset_rad[1],
-                calibration.offset_std_rad[0], calibration.offset_std_rad[1]);
+  int length = std::snprintf(
+      body, sizeof(body), "%svehicle_checksum: %s\ngauge_offset_rad: %.17g %.17g\ngauge_offset_std_rad: %.17g %.17g\n",
+      kHeader, vehicle_checksum.c_str(), calibration.offset_rad[0], calibration.offset_rad[1],
+      calibration.offset_std_rad[0], calibration.offset_std_rad[1]);
+  if (calibration.has_strain_scale && length > 0 && length < static_cast<int>(sizeof(body))) {
+    std::snprintf(body + length, sizeof(body) - length, "strain_scale: %.17g %.17g\nstrain_scale_std: %.17g %.17g\n",
+                  calibration.strain_scale[0], calibration.strain_scale[1], calibration.strain_scale_std[0],
+                  calibration.strain_scale_std[1]);
+  }
   return std::string(body) + "checksum: " + TextChecksum(body) + "\n";
 }
 
@@ -91,6 +122,14 @@ bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibratio
     // A std outside the reader's range is written at its bound (a learned
     // std below 1e-9 rad is floored: the file then claims less, never more).
     written.offset_std_rad[i] = std::min(std::max(calibration.offset_std_rad[i], std_range.min), std_range.max);
+    // A learned strain scale outside the reader's range is not written (the
+    // next start learns it again from the file's value).
+    if (!(calibration.strain_scale[i] >= kStrainScaleRange.min &&
+          calibration.strain_scale[i] <= kStrainScaleRange.max && std::isfinite(calibration.strain_scale_std[i]))) {
+      written.has_strain_scale = false;
+    }
+    written.strain_scale_std[i] =
+        std::min(std::max(calibration.strain_scale_std[i], kStrainScaleStdRange.min), kStrainScaleStdRange.max);
   }
   return ReplaceRegularFile(path, GaugeStateText(written, vehicle_checksum), attributes, error);
 }
@@ -145,10 +184,16 @@ bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum
       return false;
     }
   }
+  double scale[2] = {1.0, 1.0}, scale_std[2] = {0.0, 0.0};
+  const bool has_scale = fields.count("strain_scale") > 0 || fields.count("strain_scale_std") > 0;
+  if (has_scale && !ReadStrainScale(path, fields, scale, scale_std, error)) return false;
   for (int i = 0; i < 2; ++i) {
     calibration->offset_rad[i] = offset[i];
     calibration->offset_std_rad[i] = std_rad[i];
+    calibration->strain_scale[i] = scale[i];
+    calibration->strain_scale_std[i] = scale_std[i];
   }
+  calibration->has_strain_scale = has_scale;
   calibration->source = GaugeOffsetSource::kStateFile;
   return true;
 }

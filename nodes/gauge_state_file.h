@@ -21,6 +21,8 @@ std::string VehicleChecksum(const VehicleParams& params);
 //   vehicle_checksum: <16 hex>
 //   gauge_offset_rad: <o1> <o2>
 //   gauge_offset_std_rad: <s1> <s2>
+//   strain_scale: <g1> <g2>            (only when learned, EkfOptions::learn_strain_scale)
+//   strain_scale_std: <s1> <s2>        (its one sigma)
 //   checksum: <16 hex of the lines above>
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum);
 
@@ -39,7 +41,9 @@ bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibratio
 // one-line *error, *calibration unchanged, for: a path that is not a regular
 // file (a symbolic link, a FIFO: refused without waiting, a device such as
 // /dev/zero: refused before a byte is read) or larger than 4 kB; a corrupt file
-// (bad checksum, bad or missing field); a value out of range (|o_i| above
+// (bad checksum, bad or missing field; strain_scale and strain_scale_std
+// are optional, together, g_i in [0.2, 5] and its sigma in [1e-6, 0.5]:
+// has_strain_scale says whether they were there); a value out of range (|o_i| above
 // max_offset_rad, a std outside the range of vehicle.gauge_offset_std_rad,
 // [1e-9, 1e-2] rad: the checksum does not stop a forged file); or a foreign
 // file (other vehicle checksum).

@@ -146,7 +146,7 @@ TEST(GateWithInflationTest, ANanReadingIsNeverFusedAfterTheLimit) {
 // A badly scaled but valid covariance, as in the filter (b ~ 1e-5, omega ~ 10).
 EkfMatrix RandomCovariance(std::mt19937* rng) {
   std::normal_distribution<double> n(0.0, 1.0);
-  const double kScale[kEkfStateSize] = {1e-5, 1e-5, 0.1, 0.01, 0.01, 10.0, 10.0, 0.1, 0.1, 1e-5, 1e-5};
+  const double kScale[kEkfStateSize] = {1e-5, 1e-5, 0.1, 0.01, 0.01, 10.0, 10.0, 0.1, 0.1, 1e-5, 1e-5, 0.1, 0.1, 0.1};
   EkfMatrix root;
   for (int i = 0; i < kEkfStateSize; ++i) {
     for (int j = 0; j < kEkfStateSize; ++j) root(i, j) = n(*rng) * kScale[i];
@@ -169,15 +169,21 @@ TEST(JosephCovarianceTest, MatchesTheTextbookFormForANonOptimalGain) {
   std::normal_distribution<double> n(0.0, 1.0);
   const StrainMeasurementModel strain(2e-5);
   const MotorSpeedMeasurementModel motor(5.0);
+  // H of z_i = g_i b_i + e_i at g = 1.1, b = -/+ 2e-3 rad (the scale's column is not zero).
+  EkfState x0 = EkfState::Zero();
+  x0(kStrainScale1) = x0(kStrainScale2) = 1.1;
+  x0(kDeflection1) = -2e-3;
+  x0(kDeflection2) = 2e-3;
+  const StrainMeasurementModel::Jacobian strain_h = strain.Linearize(x0).jacobian;
   for (int trial = 0; trial < 20; ++trial) {
     const EkfMatrix p = RandomCovariance(&rng);
-    const Eigen::Matrix2d s = strain.h_jacobian * p * strain.h_jacobian.transpose() + strain.noise;
-    Eigen::Matrix<double, kEkfStateSize, 2> k = p * strain.h_jacobian.transpose() * s.inverse();
+    const Eigen::Matrix2d s = strain_h * p * strain_h.transpose() + strain.noise;
+    Eigen::Matrix<double, kEkfStateSize, 2> k = p * strain_h.transpose() * s.inverse();
     for (int i = 0; i < kEkfStateSize; ++i) {
       for (int j = 0; j < 2; ++j) k(i, j) *= 1.0 + 0.3 * n(rng);  // 30 % off the optimum
     }
-    const EkfMatrix joseph = JosephCovariance<kEkfStateSize, 2>(p, k, strain.h_jacobian, strain.noise);
-    const EkfMatrix textbook = TextbookJoseph<2>(p, k, strain.h_jacobian, strain.noise);
+    const EkfMatrix joseph = JosephCovariance<kEkfStateSize, 2>(p, k, strain_h, strain.noise);
+    const EkfMatrix textbook = TextbookJoseph<2>(p, k, strain_h, strain.noise);
     const EkfMatrix expanded = p - k * s * k.transpose();  // only right at the optimal gain
     for (int i = 0; i < kEkfStateSize; ++i) {
       for (int j = 0; j < kEkfStateSize; ++j) {
@@ -218,6 +224,7 @@ TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
   std::normal_distribution<double> n(0.0, 1.0);
   EkfMatrix cov = RandomCovariance(&rng);
   EkfState x = EkfState::Zero();
+  x(kStrainScale1) = x(kStrainScale2) = x(kBodyMassScale) = 1.0;
   const StrainMeasurementModel strain(2e-5);
   const MotorSpeedMeasurementModel motor(5.0);
   for (int k = 0; k < 1000; ++k) {
@@ -235,8 +242,9 @@ TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
   EXPECT_LE((scaled - scaled.transpose()).cwiseAbs().maxCoeff(), 1e-9);
   Eigen::LLT<EkfMatrix> llt(0.5 * (scaled + scaled.transpose()));
   EXPECT_EQ(llt.info(), Eigen::Success);
-  // The gauge reading b1 + e1 cannot be less certain than R = (2e-5)^2 after an update.
-  const Eigen::Matrix2d reading_cov = strain.h_jacobian * cov * strain.h_jacobian.transpose();
+  // The gauge reading g1 b1 + e1 cannot be less certain than R = (2e-5)^2 after an update.
+  const StrainMeasurementModel::Jacobian strain_h = strain.Linearize(x).jacobian;
+  const Eigen::Matrix2d reading_cov = strain_h * cov * strain_h.transpose();
   EXPECT_LE(reading_cov(0, 0), 4e-10);
 }
 

@@ -34,6 +34,7 @@ struct GaugeOffsetSample {
   int64_t utime = 0;
   double offset_rad[2] = {0, 0};
   double offset_std_rad[2] = {0, 0};
+  double strain_scale[2] = {1, 1};  // learned g_i (1 when not learned)
 };
 
 struct ScenarioRun {
@@ -60,6 +61,7 @@ class PairingSink : public SampleSink {
     for (int i = 0; i < 2; ++i) {
       offsets.offset_rad[i] = pipeline_->health().gauge.offset_rad[i];
       offsets.offset_std_rad[i] = pipeline_->health().gauge.offset_std_rad[i];
+      offsets.strain_scale[i] = pipeline_->health().gauge.strain_scale[i];
     }
     run.gauge_offsets.push_back(offsets);
     if (published) {

@@ -58,6 +58,45 @@ TEST(GaugeStateFileTest, RoundTripKeepsEveryBitAndSaysWhereItCameFrom) {
   std::remove(path.c_str());
 }
 
+// The learned strain scale (issue 27) rides along when there is one; a
+// file without it reads as before (has_strain_scale false), and a scale
+// outside [0.2, 5] is refused like an offset out of range.
+TEST(GaugeStateFileTest, ALearnedStrainScaleRoundTripsAndIsRangeChecked) {
+  const std::string path = TempStatePath("strain_scale");
+  const std::string vehicle = VehicleChecksum(VehicleParams());
+  std::string error;
+  GaugeCalibration learned = Learned();
+  learned.has_strain_scale = true;
+  learned.strain_scale[0] = 0.71234567890123;  // gauge scale 0.7 on arm 1 (mismatch_gauge_scale_0p7)
+  learned.strain_scale[1] = 1.0012;
+  learned.strain_scale_std[0] = 0.0081;
+  learned.strain_scale_std[1] = 0.0079;
+  ASSERT_TRUE(WriteGaugeState(path, learned, vehicle, &error)) << error;
+  EXPECT_NE(Slurp(path).find("strain_scale: 0.71234567890123"), std::string::npos) << Slurp(path);
+  GaugeCalibration read;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &read, &error)) << error;
+  EXPECT_TRUE(read.has_strain_scale);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(read.strain_scale[i], learned.strain_scale[i]);
+    EXPECT_EQ(read.strain_scale_std[i], learned.strain_scale_std[i]);
+    EXPECT_EQ(read.offset_rad[i], learned.offset_rad[i]);
+  }
+  // Without a learned scale: the old format, read as before.
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
+  EXPECT_EQ(Slurp(path).find("strain_scale"), std::string::npos);
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &read, &error)) << error;
+  EXPECT_FALSE(read.has_strain_scale);
+  // A forged scale with a valid checksum is refused and changes nothing.
+  learned.strain_scale[0] = 7.0;
+  Spit(path, GaugeStateText(learned, vehicle));
+  GaugeCalibration untouched;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &untouched, &error));
+  EXPECT_NE(error.find("strain_scale"), std::string::npos) << error;
+  EXPECT_FALSE(untouched.has_strain_scale);
+  EXPECT_EQ(untouched.offset_rad[0], 0.0);
+  std::remove(path.c_str());
+}
+
 TEST(GaugeStateFileTest, ACorruptFileIsRefusedAndChangesNothing) {
   const std::string path = TempStatePath("corrupt");
   const std::string vehicle = VehicleChecksum(VehicleParams());
