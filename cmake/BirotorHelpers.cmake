@@ -10,12 +10,12 @@
 add_library(birotor_warnings INTERFACE)
 target_compile_options(birotor_warnings INTERFACE -Wall -Wextra)
 
-# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE])
+# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE] [RUN_SERIAL])
 # One GoogleTest executable registered with CTest through gtest_discover_tests.
 # SOURCE_TREE: the test reads files of the source tree (config/, tests/data/)
 # through BIROTOR_SOURCE_DIR; programs and libraries never get that path.
 function(birotor_add_test)
-  cmake_parse_arguments(T "SOURCE_TREE" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "SOURCE_TREE;RUN_SERIAL" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main birotor_warnings)
   if(T_SOURCE_TREE)
@@ -24,8 +24,15 @@ function(birotor_add_test)
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
+  # RUN_SERIAL: tests that fly in real time on the wall clock (live daemons
+  # over udpm judged on flight figures) run with nothing else beside them, so
+  # a loaded machine does not decide their outcome.
+  set(serial FALSE)
+  if(T_RUN_SERIAL)
+    set(serial TRUE)
+  endif()
   gtest_discover_tests(${T_NAME}
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}"
+    PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}" RUN_SERIAL ${serial}
     DISCOVERY_TIMEOUT 60)
 endfunction()
