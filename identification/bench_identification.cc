@@ -8,7 +8,6 @@
 #include <deque>
 #include <limits>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "identification/bench_fit.h"
@@ -111,10 +110,9 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   c_t.value = ratio * base.thrust_coeff_n_s2_rad2;
   c_t.sigma = sigma[0].sigma * base.thrust_coeff_n_s2_rad2;
   c_t.determined = sigma[0].determined && c_t.sigma <= options.max_relative_sigma * std::abs(c_t.value);
-  std::ostringstream note;
-  note << blocks.size() << " load-cell/telemetry pairs " << options.thrust_sample_spacing_s
-       << " s apart (turbulence averaged)";
-  c_t.note = note.str();
+  c_t.note.basis = EstimateBasis::kThrustPairs;
+  c_t.note.windows = static_cast<int>(blocks.size());
+  c_t.note.spacing_s = options.thrust_sample_spacing_s;
   if (!c_t.determined) result->errors.push_back("c_T: not determined by the load-cell data (no thrust variation)");
   result->estimates.push_back(c_t);
   result->residuals.push_back(
