@@ -63,6 +63,22 @@ std::string RemarkText(EstimateRemark remark, const EstimateNote& note) {
   return "";
 }
 
+void AppendReason(const char* stream, const DroppedSamples& d, std::string* out) {
+  if (d.total() == 0) return;
+  std::string text;
+  auto add = [&](int64_t n, const char* what) {
+    if (n == 0) return;
+    if (!text.empty()) text += ", ";
+    text += std::to_string(n) + " " + what;
+  };
+  add(d.non_finite, "non-finite");
+  add(d.bad_stamp, "bad stamp");
+  add(d.out_of_order, "out of order");
+  add(d.duplicate, "duplicate");
+  if (!out->empty()) *out += "; ";
+  *out += std::string(stream) + " " + text;
+}
+
 std::string Percent(double fraction, int decimals) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(decimals) << 100.0 * fraction;
@@ -135,6 +151,17 @@ std::string CalibrationFactText(const IdentificationResult& result) {
     text << "; tip mass identified";
   }
   return text.str();
+}
+
+std::string DroppedSamplesText(const SampleCleaningReport& report) {
+  if (report.total() == 0) return "no sample dropped";
+  std::string reasons;
+  AppendReason("STRAIN", report.strain, &reasons);
+  AppendReason("MOTOR", report.motor, &reasons);
+  AppendReason("IMU", report.imu, &reasons);
+  AppendReason("POSE", report.pose, &reasons);
+  AppendReason("LOADCELL", report.loadcell, &reasons);
+  return std::to_string(report.total()) + " dropped: " + reasons;
 }
 
 std::string LogSharesText(const LogShares& shares) {
@@ -224,7 +251,8 @@ std::string IdentificationReport(const IdentificationResult& result) {
   out << "# Identification report (" << result.mode << " mode)\n\n";
   out << "Logs:\n";
   for (const std::string& s : result.sources) out << "- " << s << "\n";
-  out << "\nBad samples (non-finite, bad stamp, out of order, duplicate): " << result.dropped.Summary() << ".\n";
+  out << "\nBad samples (non-finite, bad stamp, out of order, duplicate): " << DroppedSamplesText(result.dropped)
+      << ".\n";
   if (!result.ok) {
     out << "\n**No parameters: the data lacks what the identification needs.**\n\n";
     for (const std::string& e : result.errors) out << "- " << e << "\n";

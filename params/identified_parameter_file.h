@@ -33,6 +33,10 @@ std::string CalibrationFactText(const IdentificationResult& result);
 // One parameter's information shares, e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
 std::string LogSharesText(const LogShares& shares);
 
+// The bad samples dropped before fitting: "12 dropped: STRAIN 1 bad stamp,
+// 10 duplicate; MOTOR 1 non-finite", or "no sample dropped".
+std::string DroppedSamplesText(const SampleCleaningReport& report);
+
 // YAML text: comment header (sources, one-sigma values, maps, residuals)
 // followed by VehicleParamsYaml(result.params).
 std::string IdentifiedParameterYaml(const IdentificationResult& result);

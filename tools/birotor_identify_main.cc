@@ -352,7 +352,8 @@ int main(int argc, char** argv) {
   const IdentificationResult result = RunIdentification(cli, std::move(logs), base, options);
   const double elapsed_s = stopwatch.ElapsedS();
   if (result.dropped.total() > 0) {
-    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
+    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}",
+                 DroppedSamplesText(result.dropped));
   }
   if (out.report.is_open()) {
     out.report.Write(IdentificationReport(result));

@@ -172,6 +172,19 @@ TEST(ParameterFileTest, CalibrationFactAndShareWords) {
   EXPECT_EQ(LogSharesText(shares), "c_T: bench.lcm 88.7 %, gentle.lcm 11.3 %");
 }
 
+// The counts of SampleCleaningTest.EachBadSampleIsDroppedAndCountedOnce.
+TEST(ParameterFileTest, DroppedSampleWordsFromCounts) {
+  SampleCleaningReport report;
+  EXPECT_EQ(DroppedSamplesText(report), "no sample dropped");
+  report.strain.non_finite = 1;
+  report.strain.bad_stamp = 2;
+  report.strain.duplicate = 1;
+  EXPECT_EQ(DroppedSamplesText(report), "4 dropped: STRAIN 1 non-finite, 2 bad stamp, 1 duplicate");
+  report.motor.out_of_order = 3;
+  EXPECT_EQ(DroppedSamplesText(report),
+            "7 dropped: STRAIN 1 non-finite, 2 bad stamp, 1 duplicate; MOTOR 3 out of order");
+}
+
 TEST(ParameterFileTest, ReportAndHeaderCarryTheWarningWords) {
   IdentificationResult r = SampleResult();
   r.warnings.push_back({WarningKind::kNotExcitedOnBench, "d"});
