@@ -343,7 +343,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     stored.push_back(offset[arm]);
   }
   result->residuals.push_back(
-      {"strain (clamped arm model)", "rad", stats.count, stats.rms_whitened, stats.rms_whitened * sigma_b, inflation});
+      {ResidualBlock::kClampedArm, stats.count, stats.rms_whitened, stats.rms_whitened * sigma_b, inflation});
   StoreEstimates(stored, result);
   if (!mass_free) result->params.tip_mass_kg = fact.tip_mass_kg;
 }

@@ -115,8 +115,7 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   c_t.note.spacing_s = options.thrust_sample_spacing_s;
   if (!c_t.determined) result->errors.push_back("c_T: not determined by the load-cell data (no thrust variation)");
   result->estimates.push_back(c_t);
-  result->residuals.push_back(
-      {"load cell (force - c_T omega^2)", "N", stats.count, stats.rms_whitened, 0.0, inflation});
+  result->residuals.push_back({ResidualBlock::kLoadCell, stats.count, stats.rms_whitened, 0.0, inflation});
   result->residuals.back().rms_si = ThrustResidualRmsN(logs, c_t.value);
   if (c_t.determined) result->params.thrust_coeff_n_s2_rad2 = c_t.value;
   FitPlot plot;

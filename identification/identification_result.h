@@ -82,13 +82,27 @@ struct ParameterEstimate {
   }
 };
 
+// Which residuals a ResidualSummary is about (words and unit:
+// params/identified_parameter_file.h ResidualBlockText, ResidualBlockUnit).
+enum class ResidualBlock {
+  kMotorTelemetry,      // omega_meas - first-order model [rad/s]
+  kLoadCell,            // bench: force - c_T omega^2 [N]
+  kClampedArm,          // bench: strain of the clamped arm model [rad]
+  kFreeFlightStrain1,   // flight: strain arm 1, free-flight model [rad]
+  kFreeFlightStrain2,   // flight: strain arm 2 [rad]
+  kGyroPitchRate,       // flight: IMU pitch rate [rad/s]
+  kAccelerometerX,      // flight: specific force x [m/s^2]
+  kAccelerometerZ,      // flight: specific force z [m/s^2]
+  kLoadCellJointFit,    // joint bench + flight fit: the bench's load cells [N]
+  kClampedArmJointFit,  // joint bench + flight fit: the bench's clamped arms [rad]
+};
+
 // Residuals of one kind of block after the fit (without the robust loss).
 struct ResidualSummary {
-  std::string name;                 // e.g. "motor telemetry"
-  std::string unit;                 // unit of rms_si
+  ResidualBlock block = ResidualBlock::kMotorTelemetry;
   int count = 0;                    // scalar residuals
   double rms_whitened = 0.0;        // [sigma]
-  double rms_si = 0.0;              // [unit]
+  double rms_si = 0.0;              // [unit of the block]
   double variance_inflation = 1.0;  // factor applied to the covariance (chi2/dof, correlation)
 };
 

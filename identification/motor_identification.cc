@@ -98,7 +98,7 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   tau.note.step_threshold_rad_s = options.command_step_rad_s;
   if (!tau.determined) result->errors.push_back(MotorNotExcitedError(tau.note));
   result->estimates.push_back(tau);
-  result->residuals.push_back({"motor telemetry (omega_meas - model)", "rad/s", stats.count, stats.rms_whitened,
+  result->residuals.push_back({ResidualBlock::kMotorTelemetry, stats.count, stats.rms_whitened,
                                stats.rms_whitened * options.telemetry_noise_rad_s, inflation});
   if (tau.determined) result->params.motor_time_constant_s = tau.value;
   if (!plot_samples.empty()) {

@@ -164,6 +164,52 @@ std::string DroppedSamplesText(const SampleCleaningReport& report) {
   return std::to_string(report.total()) + " dropped: " + reasons;
 }
 
+std::string ResidualBlockText(ResidualBlock block) {
+  switch (block) {
+    case ResidualBlock::kMotorTelemetry:
+      return "motor telemetry (omega_meas - model)";
+    case ResidualBlock::kLoadCell:
+      return "load cell (force - c_T omega^2)";
+    case ResidualBlock::kClampedArm:
+      return "strain (clamped arm model)";
+    case ResidualBlock::kFreeFlightStrain1:
+      return "strain arm 1 (free-flight model)";
+    case ResidualBlock::kFreeFlightStrain2:
+      return "strain arm 2 (free-flight model)";
+    case ResidualBlock::kGyroPitchRate:
+      return "gyro pitch rate";
+    case ResidualBlock::kAccelerometerX:
+      return "accelerometer x";
+    case ResidualBlock::kAccelerometerZ:
+      return "accelerometer z";
+    case ResidualBlock::kLoadCellJointFit:
+      return "load cell (force - c_T omega^2), joint fit";
+    case ResidualBlock::kClampedArmJointFit:
+      return "strain (clamped arm model), joint fit";
+  }
+  return "";
+}
+
+std::string ResidualBlockUnit(ResidualBlock block) {
+  switch (block) {
+    case ResidualBlock::kMotorTelemetry:
+    case ResidualBlock::kGyroPitchRate:
+      return "rad/s";
+    case ResidualBlock::kLoadCell:
+    case ResidualBlock::kLoadCellJointFit:
+      return "N";
+    case ResidualBlock::kClampedArm:
+    case ResidualBlock::kFreeFlightStrain1:
+    case ResidualBlock::kFreeFlightStrain2:
+    case ResidualBlock::kClampedArmJointFit:
+      return "rad";
+    case ResidualBlock::kAccelerometerX:
+    case ResidualBlock::kAccelerometerZ:
+      return "m/s^2";
+  }
+  return "";
+}
+
 std::string LogSharesText(const LogShares& shares) {
   std::string text = shares.symbol + ": ";
   for (size_t l = 0; l < shares.shares.size(); ++l) {
@@ -274,8 +320,8 @@ std::string IdentificationReport(const IdentificationResult& result) {
   out << "\n## Residuals (after the fit)\n\n| block | count | RMS [sigma] | RMS | covariance inflation "
          "|\n|---|---|---|---|---|\n";
   for (const ResidualSummary& r : result.residuals) {
-    out << "| " << r.name << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened << " | " << r.rms_si
-        << " " << r.unit << " | " << r.variance_inflation << " |\n";
+    out << "| " << ResidualBlockText(r.block) << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened
+        << " | " << r.rms_si << " " << ResidualBlockUnit(r.block) << " | " << r.variance_inflation << " |\n";
   }
   if (!result.maps.empty()) {
     out << "\n## Static deflection-force maps\n\n";

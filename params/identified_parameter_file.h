@@ -37,6 +37,11 @@ std::string LogSharesText(const LogShares& shares);
 // 10 duplicate; MOTOR 1 non-finite", or "no sample dropped".
 std::string DroppedSamplesText(const SampleCleaningReport& report);
 
+// The name of a block of residuals in the report's table, and the unit of
+// its rms_si.
+std::string ResidualBlockText(ResidualBlock block);
+std::string ResidualBlockUnit(ResidualBlock block);
+
 // YAML text: comment header (sources, one-sigma values, maps, residuals)
 // followed by VehicleParamsYaml(result.params).
 std::string IdentifiedParameterYaml(const IdentificationResult& result);

@@ -185,6 +185,17 @@ TEST(ParameterFileTest, DroppedSampleWordsFromCounts) {
             "7 dropped: STRAIN 1 non-finite, 2 bad stamp, 1 duplicate; MOTOR 3 out of order");
 }
 
+// The residual table's rows as birotor-identify wrote them before the names
+// moved here (hover 12 s).
+TEST(ParameterFileTest, ResidualRowWordsFromBlock) {
+  IdentificationResult r = SampleResult();
+  r.residuals.push_back({ResidualBlock::kAccelerometerZ, 11792, 1.3341, 0.066705, 5.3372});
+  EXPECT_NE(IdentificationReport(r).find("| accelerometer z | 11792 | 1.334 | 0.06671 m/s^2 | 5.337 |"),
+            std::string::npos);
+  EXPECT_EQ(ResidualBlockText(ResidualBlock::kClampedArmJointFit), "strain (clamped arm model), joint fit");
+  EXPECT_EQ(ResidualBlockUnit(ResidualBlock::kMotorTelemetry), "rad/s");
+}
+
 TEST(ParameterFileTest, ReportAndHeaderCarryTheWarningWords) {
   IdentificationResult r = SampleResult();
   r.warnings.push_back({WarningKind::kNotExcitedOnBench, "d"});
