@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "identification/bench_fit.h"
@@ -218,21 +217,6 @@ void BuildBenchArmProblem(const std::vector<ArmData>& data, const std::vector<Ar
 
 namespace {
 
-// The calibration fact used, for the report and the file header.
-std::string CalibrationFactText(const CalibrationFact& fact, const VehicleParams& base) {
-  std::ostringstream text;
-  if (fact.TipMassWeighed()) {
-    text << "weighed tip mass m_p = " << fact.tip_mass_kg << " +- " << fact.tip_mass_std_kg
-         << " kg; gauge scales identified";
-    if (fact.gauge_scale_std > 0.0) text << " with the factory scale prior +- " << fact.gauge_scale_std;
-  } else {
-    text << "factory gauge scale s = [" << base.gauge_scale[0] << ", " << base.gauge_scale[1] << "]";
-    text << (fact.gauge_scale_std > 0.0 ? " +- " + std::to_string(fact.gauge_scale_std) : " (held)");
-    text << "; tip mass identified";
-  }
-  return text.str();
-}
-
 // Floor stage of the bench arm fit: what the sampled load-cell input cannot
 // give better (options), on d and on k / m_p; the offsets follow m_p through
 // the static intercept, the scales follow k when the tip mass is weighed.
@@ -251,15 +235,15 @@ void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& t
                                tip_mass->value * base.gravity_m_s2 / k->value;
       if (std::isfinite(offset[arm].value) && std::isfinite(floor_rad)) {
         offset[arm].sigma = std::hypot(offset[arm].sigma, floor_rad);
-        offset[arm].note += "; sigma includes m_p's frequency floor through the static intercept";
+        offset[arm].note.remarks.push_back(EstimateRemark::kTipMassFloorThroughOffset);
       }
     }
   } else {
-    AddRelativeFloor(damping, options.bench_damping_floor, "damping floor (bench_damping_floor)");
-    AddRelativeFloor(k, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+    AddRelativeFloor(damping, options.bench_damping_floor, EstimateRemark::kDampingFloor);
+    AddRelativeFloor(k, options.bench_frequency_floor, EstimateRemark::kFrequencyFloor);
     for (int arm = 0; arm < 2; ++arm) {
       if (scale_free) {
-        AddRelativeFloor(&scale[arm], options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+        AddRelativeFloor(&scale[arm], options.bench_frequency_floor, EstimateRemark::kFrequencyFloor);
       }
     }
   }
@@ -293,7 +277,9 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   const bool weighed = fact.TipMassWeighed();
   const bool mass_free = !weighed || fact.tip_mass_std_kg > 0.0;
   const bool scale_free = weighed || fact.gauge_scale_std > 0.0;
-  result->calibration_fact = CalibrationFactText(fact, base);
+  result->has_calibration_fact = true;
+  result->calibration_fact = fact;
+  for (int arm = 0; arm < 2; ++arm) result->factory_gauge_scale[arm] = base.gauge_scale[arm];
 
   const BenchStatics statics = BenchArmStatics(map_b, map_f, base, fact);
   const std::vector<ArmWindow> windows = ArmWindows(data, options);
@@ -327,7 +313,9 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   std::vector<double*> free_blocks;
   for (const RatioParameter& p : free) free_blocks.push_back(p.ratio);
   const std::vector<BlockSigma> sigma = SharedSigmas(&fit.problem, free_blocks, inflation, {}, options.num_threads);
-  const std::string note = "output error of the clamped arm over " + std::to_string(fit.blocks.size()) + " windows";
+  EstimateNote note;
+  note.basis = EstimateBasis::kClampedArmFit;
+  note.windows = static_cast<int>(fit.blocks.size());
   for (size_t n = 0; n < free.size(); ++n) FillEstimate(free[n], sigma[n], options.max_relative_sigma, note);
   AddBenchArmFloors(options, fit.theta, base, &k, &damping, &tip_mass, scale, offset);
   if (stats.rms_whitened > options.misfit_rms_warn) {
@@ -335,7 +323,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     misfit.kind = WarningKind::kArmModelMisfit;
     misfit.value = stats.rms_whitened;
     result->warnings.push_back(misfit);
-    for (ParameterEstimate* e : estimates) e->note += "; widened for the model misfit";
+    for (ParameterEstimate* e : estimates) e->note.remarks.push_back(EstimateRemark::kWidenedForMisfit);
   }
   const std::vector<DeterminedCombination> correlations = CorrelationLines(&fit.problem, free, options.num_threads);
   result->correlations.insert(result->correlations.end(), correlations.begin(), correlations.end());
@@ -355,7 +343,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     stored.push_back(offset[arm]);
   }
   result->residuals.push_back(
-      {"strain (clamped arm model)", "rad", stats.count, stats.rms_whitened, stats.rms_whitened * sigma_b, inflation});
+      {ResidualBlock::kClampedArm, stats.count, stats.rms_whitened, stats.rms_whitened * sigma_b, inflation});
   StoreEstimates(stored, result);
   if (!mass_free) result->params.tip_mass_kg = fact.tip_mass_kg;
 }

@@ -8,7 +8,6 @@
 #include <deque>
 #include <limits>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "identification/bench_fit.h"
@@ -111,14 +110,12 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
   c_t.value = ratio * base.thrust_coeff_n_s2_rad2;
   c_t.sigma = sigma[0].sigma * base.thrust_coeff_n_s2_rad2;
   c_t.determined = sigma[0].determined && c_t.sigma <= options.max_relative_sigma * std::abs(c_t.value);
-  std::ostringstream note;
-  note << blocks.size() << " load-cell/telemetry pairs " << options.thrust_sample_spacing_s
-       << " s apart (turbulence averaged)";
-  c_t.note = note.str();
+  c_t.note.basis = EstimateBasis::kThrustPairs;
+  c_t.note.windows = static_cast<int>(blocks.size());
+  c_t.note.spacing_s = options.thrust_sample_spacing_s;
   if (!c_t.determined) result->errors.push_back("c_T: not determined by the load-cell data (no thrust variation)");
   result->estimates.push_back(c_t);
-  result->residuals.push_back(
-      {"load cell (force - c_T omega^2)", "N", stats.count, stats.rms_whitened, 0.0, inflation});
+  result->residuals.push_back({ResidualBlock::kLoadCell, stats.count, stats.rms_whitened, 0.0, inflation});
   result->residuals.back().rms_si = ThrustResidualRmsN(logs, c_t.value);
   if (c_t.determined) result->params.thrust_coeff_n_s2_rad2 = c_t.value;
   FitPlot plot;

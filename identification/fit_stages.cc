@@ -17,7 +17,7 @@ std::vector<BlockSigma> SharedSigmas(ceres::Problem* problem, const std::vector<
 }
 
 void FillEstimate(const RatioParameter& p, const BlockSigma& sigma, double max_relative_sigma,
-                  const std::string& note) {
+                  const EstimateNote& note) {
   ParameterEstimate* e = p.estimate;
   e->value = *p.ratio * p.scale;
   e->sigma = sigma.sigma * p.scale;
@@ -26,17 +26,17 @@ void FillEstimate(const RatioParameter& p, const BlockSigma& sigma, double max_r
   e->note = note;
 }
 
-void AddRelativeFloor(ParameterEstimate* e, double relative, const std::string& what) {
+void AddRelativeFloor(ParameterEstimate* e, double relative, EstimateRemark floor) {
   if (!std::isfinite(e->value) || relative <= 0.0) return;
   e->sigma = std::hypot(e->sigma, relative * e->value);
-  e->note += "; sigma includes the " + what;
+  e->note.remarks.push_back(floor);
 }
 
 void AddBenchFloors(const IdentificationOptions& options, ParameterEstimate* stiffness, ParameterEstimate* damping,
                     ParameterEstimate* tip_mass) {
-  AddRelativeFloor(damping, options.bench_damping_floor, "damping floor (bench_damping_floor)");
+  AddRelativeFloor(damping, options.bench_damping_floor, EstimateRemark::kDampingFloor);
   ParameterEstimate* floored = options.calibration.TipMassWeighed() ? stiffness : tip_mass;
-  AddRelativeFloor(floored, options.bench_frequency_floor, "frequency floor (bench_frequency_floor)");
+  AddRelativeFloor(floored, options.bench_frequency_floor, EstimateRemark::kFrequencyFloor);
 }
 
 std::vector<DeterminedCombination> CorrelationLines(ceres::Problem* problem,

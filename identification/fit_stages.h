@@ -36,11 +36,12 @@ std::vector<BlockSigma> SharedSigmas(ceres::Problem* problem, const std::vector<
 // Result stage: value and sigma in the key's unit, determined when the
 // information matrix is regular along it and sigma <= max_relative_sigma of
 // its size (RatioParameter::judge_size).
-void FillEstimate(const RatioParameter& p, const BlockSigma& sigma, double max_relative_sigma, const std::string& note);
+void FillEstimate(const RatioParameter& p, const BlockSigma& sigma, double max_relative_sigma,
+                  const EstimateNote& note);
 
 // Floor stage: sigma^2 += (relative value)^2 (no-op for a NaN value or a
-// floor of 0); `what` names the floor in the note.
-void AddRelativeFloor(ParameterEstimate* e, double relative, const std::string& what);
+// floor of 0); `floor` names it in the note.
+void AddRelativeFloor(ParameterEstimate* e, double relative, EstimateRemark floor);
 
 // The bench floors (options.bench_damping_floor on d, bench_frequency_floor
 // on k / m_p, given to m_p, or to k when the tip mass is weighed): what the

@@ -288,10 +288,9 @@ std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool 
   // Strain residuals carry the unmodelled turbulence (correlated over ~0.1 s):
   // the inflation from their autocorrelation keeps the covariance honest.
   double inflation = 1.0;
-  const char* names[kFreeArmResidualsPerSample] = {"strain arm 1 (free-flight model)",
-                                                   "strain arm 2 (free-flight model)", "gyro pitch rate",
-                                                   "accelerometer x", "accelerometer z"};
-  const char* units[kFreeArmResidualsPerSample] = {"rad", "rad", "rad/s", "m/s^2", "m/s^2"};
+  const ResidualBlock blocks[kFreeArmResidualsPerSample] = {
+      ResidualBlock::kFreeFlightStrain1, ResidualBlock::kFreeFlightStrain2, ResidualBlock::kGyroPitchRate,
+      ResidualBlock::kAccelerometerX, ResidualBlock::kAccelerometerZ};
   const double sigmas[kFreeArmResidualsPerSample] = {options.strain_noise_rad, options.strain_noise_rad,
                                                      options.gyro_noise_rad_s, options.accel_noise_m_s2,
                                                      options.accel_noise_m_s2};
@@ -302,8 +301,8 @@ std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool 
     if (stats.count == 0) continue;
     const double channel_inflation = VarianceInflation(stats);
     inflation = std::max(inflation, channel_inflation);
-    residuals->push_back({names[channel], units[channel], stats.count, stats.rms_whitened,
-                          stats.rms_whitened * sigmas[channel], channel_inflation});
+    residuals->push_back(
+        {blocks[channel], stats.count, stats.rms_whitened, stats.rms_whitened * sigmas[channel], channel_inflation});
   }
   // The inflation above assumes one correlation time for the whole misfit;
   // what is left of the turbulence between the knots is correlated across
@@ -322,10 +321,10 @@ std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool 
     const ResidualStatistics thrust = ComputeResidualStatistics(problem, bench.thrust, 1, 0);
     const ResidualStatistics arms = ComputeResidualStatistics(problem, bench.arms, 1, 0);
     residuals->push_back(
-        {"load cell (force - c_T omega^2), joint fit", "N", thrust.count, thrust.rms_whitened,
+        {ResidualBlock::kLoadCellJointFit, thrust.count, thrust.rms_whitened,
          ThrustResidualRmsN(*bench_logs, fit->ratio[kFlightThrust] * fit->scales.thrust_coeff_n_s2_rad2),
          VarianceInflation(thrust)});
-    residuals->push_back({"strain (clamped arm model), joint fit", "rad", arms.count, arms.rms_whitened,
+    residuals->push_back({ResidualBlock::kClampedArmJointFit, arms.count, arms.rms_whitened,
                           arms.rms_whitened * options.strain_noise_rad, VarianceInflation(arms)});
   }
   return SharedSigmas(problem, fit->Blocks(), inflation, clusters, options.num_threads);

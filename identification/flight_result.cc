@@ -2,9 +2,7 @@
 // their notes, floors and warnings, and the fit-versus-data plot panels.
 #include <array>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <string>
 
 #include "identification/fit_stages.h"
@@ -50,17 +48,15 @@ namespace {
 // when m_p was held in the fit, the combination the flight determines is named.
 void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, const ParameterEstimate& c_t,
                         ParameterEstimate* tip_mass, IdentificationResult* result) {
-  std::ostringstream why;
-  why.precision(4);
   tip_mass->value = base.tip_mass_kg;
   tip_mass->determined = false;
   tip_mass->sigma = std::numeric_limits<double>::quiet_NaN();
   if (check.agrees_with_base) {
-    why << "base value kept: the flight's m_p = " << check.flight_value_kg << " +- " << check.flight_sigma_kg
-        << " kg is " << std::setprecision(3) << check.sigmas_from_base
-        << " sigma from it (consistency_sigmas): this flight does not show the base file wrong, and its sigma is "
-           "wider than a bench's";
-    tip_mass->note = why.str();
+    tip_mass->note = EstimateNote();
+    tip_mass->note.basis = EstimateBasis::kTipMassAgreesWithBase;
+    tip_mass->note.value = check.flight_value_kg;
+    tip_mass->note.sigma = check.flight_sigma_kg;
+    tip_mass->note.distance_sigmas = check.sigmas_from_base;
     IdentificationWarning agrees{WarningKind::kTipMassAgreesWithBase, "m_p"};
     agrees.value = check.flight_value_kg;
     agrees.sigma = check.flight_sigma_kg;
@@ -68,10 +64,10 @@ void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, co
     result->warnings.push_back(agrees);
     return;  // k and c_T are those of the fit with m_p free
   }
-  why << "held at the base value: at the fit with m_p held its relative sigma would be " << 100.0 * check.relative_sigma
-      << " % with " << 100.0 * check.data_share
-      << " % of its information from the data (the rest from the assumed rotor turbulence)";
-  tip_mass->note = why.str();
+  tip_mass->note = EstimateNote();
+  tip_mass->note.basis = EstimateBasis::kTipMassHeld;
+  tip_mass->note.relative_sigma = check.relative_sigma;
+  tip_mass->note.data_share = check.data_share;
   result->warnings.push_back({WarningKind::kTipMassHeldInFlight, "m_p", ExcitationAdvice::kTipMassSteps});
   DeterminedCombination named;
   named.kind = CombinationKind::kThrustOverTotalMass;
@@ -91,12 +87,15 @@ void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, cons
   ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
   ParameterEstimate c_t = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T");
   ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
-  std::string note = "output error of the free-flight arm model over " + std::to_string(fit.windows.size()) + " of " +
-                     std::to_string(data.candidates.size()) + " windows" +
-                     (data.any_imu ? " with IMU" : " without IMU");
+  EstimateNote note;
+  note.basis = EstimateBasis::kFreeArmFit;
+  note.windows = static_cast<int>(fit.windows.size());
+  note.candidate_windows = static_cast<int>(data.candidates.size());
+  note.with_imu = data.any_imu;
+  note.joint = fit.joint;
   if (fit.joint) {
-    note = "joint fit (one problem): " + std::to_string(fit.bench.thrust.size()) + " load-cell pairs, " +
-           std::to_string(fit.bench.arms.size()) + " clamped-arm windows and " + note;
+    note.load_cell_pairs = static_cast<int>(fit.bench.thrust.size());
+    note.clamped_windows = static_cast<int>(fit.bench.arms.size());
   }
   const FreeArmWindowResidual::Scales& scales = fit.scales;
   std::array<double, kFlightParameters> ratio = fit.ratio;
@@ -106,10 +105,8 @@ void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, cons
                                                         {&tip_mass, &ratio[kFlightTipMass], scales.tip_mass_kg}};
   for (int i = 0; i < kFlightParameters; ++i) FillEstimate(parameters[i], sigma[i], options.max_relative_sigma, note);
   if (tip_check.applies && tip_check.free) {
-    std::ostringstream share;
-    share.precision(3);
-    share << "; " << 100.0 * tip_check.data_share << " % of m_p's information from the data";
-    tip_mass.note += share.str();
+    tip_mass.note.data_share = tip_check.data_share;
+    tip_mass.note.remarks.push_back(EstimateRemark::kTipMassDataShare);
   }
   if (!k.determined) result->errors.push_back("k: not determined by the flight data (arm dynamics not excited)");
   if (!c_t.determined) {
@@ -128,18 +125,17 @@ void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, cons
     const double relative = options.calibration.gauge_scale_std / scale;
     for (ParameterEstimate* e : {&k, &tip_mass}) {
       if (relative > 0.0) {
-        AddRelativeFloor(e, relative, "gauge scale's (--gauge-scale-std)");
+        AddRelativeFloor(e, relative, EstimateRemark::kGaugeScaleFloor);
       } else {
-        e->note +=
-            "; relative to the base file's gauge_scale (the flight determines it over s_i; "
-            "--gauge-scale-std adds the scale's uncertainty)";
+        e->note.remarks.push_back(EstimateRemark::kRelativeToGaugeScale);
       }
     }
   }
   if (!fit.joint && !options.flight_fit_damping) {
     damping.determined = false;
     damping.sigma = kNaN;
-    damping.note = "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
+    damping.note = EstimateNote();
+    damping.note.basis = EstimateBasis::kDampingNotFitted;
   }
   if (!damping.determined) result->warnings.push_back({WarningKind::kNotDeterminedInFlight, "d"});
   std::vector<ParameterEstimate> estimates = {k, damping, c_t};

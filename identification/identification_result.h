@@ -8,10 +8,62 @@
 #include <utility>
 #include <vector>
 
+#include "identification/identification_options.h"
 #include "identification/sample_cleaning.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
+
+// How an estimate was obtained, or why it was kept at the base value. The
+// library gives the kind and the numbers; the words are the presentation's
+// (params/identified_parameter_file.h NoteText, the report's notes).
+enum class EstimateBasis {
+  kNone,                   // no fit gave it (the fit was refused before)
+  kClampedArmFit,          // bench: output error of the clamped arm over `windows` windows
+  kThrustPairs,            // bench: `windows` load-cell/telemetry pairs `spacing_s` apart
+  kMotorFit,               // tau_m: output error over `windows` windows with `command_steps` steps
+  kMotorNotExcited,        // tau_m: `command_steps` per motor above `step_threshold_rad_s` (an error too)
+  kFreeArmFit,             // flight: `windows` of `candidate_windows` windows, `with_imu`; `joint`: with
+                           // `load_cell_pairs` pairs and `clamped_windows` bench windows in one problem
+  kTipMassAgreesWithBase,  // flight m_p: `value` +- `sigma` [kg] is `distance_sigmas` from the base (kept)
+  kTipMassHeld,            // flight m_p held: `relative_sigma` at the held fit, `data_share` from the data
+  kDampingNotFitted,       // flight d: flight_fit_damping is off, base value kept
+};
+
+// What was added to an estimate after its fit, in the order it was added.
+enum class EstimateRemark {
+  kDampingFloor,               // sigma includes bench_damping_floor
+  kFrequencyFloor,             // sigma includes bench_frequency_floor
+  kGaugeScaleFloor,            // flight: sigma includes --gauge-scale-std
+  kTipMassFloorThroughOffset,  // bench o_i: sigma includes m_p's frequency floor through the static intercept
+  kWidenedForMisfit,           // bench: sigma widened for the clamped-arm misfit (WarningKind::kArmModelMisfit)
+  kTipMassDataShare,           // flight m_p: `data_share` of its information from the data
+  kRelativeToGaugeScale,       // flight k, m_p: relative to the base file's gauge_scale (no --gauge-scale-std)
+  kBenchLogsAlone,             // joint fit s_i, o_i: the bench logs' own fit, held in the joint fit
+};
+
+struct EstimateNote {
+  EstimateBasis basis = EstimateBasis::kNone;
+  int windows = 0;                // fitted windows (kThrustPairs: pairs)
+  int candidate_windows = 0;      // kFreeArmFit: windows the logs offered
+  bool with_imu = false;          // kFreeArmFit
+  bool joint = false;             // kFreeArmFit: the joint bench + flight problem ...
+  int load_cell_pairs = 0;        // ... with this many thrust pairs ...
+  int clamped_windows = 0;        // ... and clamped-arm windows
+  int command_steps[2] = {0, 0};  // kMotorFit, kMotorNotExcited: per motor
+  double step_threshold_rad_s = std::numeric_limits<double>::quiet_NaN();  // kMotorNotExcited
+  double spacing_s = std::numeric_limits<double>::quiet_NaN();             // kThrustPairs [s]
+  double value = std::numeric_limits<double>::quiet_NaN();                 // kTipMassAgreesWithBase [kg]
+  double sigma = std::numeric_limits<double>::quiet_NaN();                 // kTipMassAgreesWithBase [kg]
+  double distance_sigmas = std::numeric_limits<double>::quiet_NaN();       // kTipMassAgreesWithBase
+  double relative_sigma = std::numeric_limits<double>::quiet_NaN();        // kTipMassHeld [1]
+  double data_share = std::numeric_limits<double>::quiet_NaN();            // kTipMassHeld, kTipMassDataShare [1]
+  std::vector<EstimateRemark> remarks;
+};
+
+// The refusal of tau_m for want of excitation (an error line of the result,
+// and the words of EstimateBasis::kMotorNotExcited).
+std::string MotorNotExcitedError(const EstimateNote& note);
 
 // One identified scalar.
 struct ParameterEstimate {
@@ -20,7 +72,7 @@ struct ParameterEstimate {
   double value = std::numeric_limits<double>::quiet_NaN();  // SI, unit in the key
   double sigma = std::numeric_limits<double>::quiet_NaN();  // one sigma, same unit
   bool determined = false;                                  // false: the data could not determine it; base value kept
-  std::string note;                                         // why not determined, or how sigma was obtained
+  EstimateNote note;                                        // how sigma was obtained, or why not determined
 
   static ParameterEstimate Named(std::string key_name, std::string symbol_name) {
     ParameterEstimate e;
@@ -30,13 +82,27 @@ struct ParameterEstimate {
   }
 };
 
+// Which residuals a ResidualSummary is about (words and unit:
+// params/identified_parameter_file.h ResidualBlockText, ResidualBlockUnit).
+enum class ResidualBlock {
+  kMotorTelemetry,      // omega_meas - first-order model [rad/s]
+  kLoadCell,            // bench: force - c_T omega^2 [N]
+  kClampedArm,          // bench: strain of the clamped arm model [rad]
+  kFreeFlightStrain1,   // flight: strain arm 1, free-flight model [rad]
+  kFreeFlightStrain2,   // flight: strain arm 2 [rad]
+  kGyroPitchRate,       // flight: IMU pitch rate [rad/s]
+  kAccelerometerX,      // flight: specific force x [m/s^2]
+  kAccelerometerZ,      // flight: specific force z [m/s^2]
+  kLoadCellJointFit,    // joint bench + flight fit: the bench's load cells [N]
+  kClampedArmJointFit,  // joint bench + flight fit: the bench's clamped arms [rad]
+};
+
 // Residuals of one kind of block after the fit (without the robust loss).
 struct ResidualSummary {
-  std::string name;                 // e.g. "motor telemetry"
-  std::string unit;                 // unit of rms_si
+  ResidualBlock block = ResidualBlock::kMotorTelemetry;
   int count = 0;                    // scalar residuals
   double rms_whitened = 0.0;        // [sigma]
-  double rms_si = 0.0;              // [unit]
+  double rms_si = 0.0;              // [unit of the block]
   double variance_inflation = 1.0;  // factor applied to the covariance (chi2/dof, correlation)
 };
 
@@ -118,6 +184,14 @@ struct DeterminedCombination {
   double held_value = std::numeric_limits<double>::quiet_NaN();      // kThrustOverTotalMass: b held at this [kg]
 };
 
+// One parameter's share of the information of each log (1 / sigma^2 of that
+// log alone over the sum; 0 where the log alone does not determine it).
+struct LogShares {
+  std::string symbol;
+  std::vector<std::string> logs;  // each log's source
+  std::vector<double> shares;     // [1], one per log
+};
+
 struct IdentificationResult {
   bool ok = false;                              // false: `errors` says what is missing; no numbers
   std::string mode;                             // "bench", "flight" or "bench+flight"
@@ -128,15 +202,18 @@ struct IdentificationResult {
   std::vector<ResidualSummary> residuals;
   std::vector<DeflectionForceMap> maps;
   std::vector<std::string> sources;  // logs used
-  // The calibration fact used (bench: factory gauge scale or weighed tip mass).
-  std::string calibration_fact;
+  // The calibration fact used (bench: factory gauge scale or weighed tip
+  // mass; words: params/identified_parameter_file.h CalibrationFactText).
+  bool has_calibration_fact = false;
+  CalibrationFact calibration_fact;
+  double factory_gauge_scale[2] = {1.0, 1.0};  // the base file's gauge_scale, the factory fact when not weighed
   // Parameters the data cannot separate, with the combination that is
   // determined (from the correlation of the fitted parameters, or named by
   // the fit that held one of them).
   std::vector<DeterminedCombination> correlations;
   // Several logs: per parameter, each log's share of the information
-  // (1 / sigma^2 of that log alone), e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
-  std::vector<std::string> log_shares;
+  // (1 / sigma^2 of that log alone; words: LogSharesText).
+  std::vector<LogShares> log_shares;
   // Joint bench + flight fit: the bench logs' own fit (the flight logs' base
   // in the per-log comparison).
   VehicleParams bench_params;

@@ -55,7 +55,7 @@ void CompareLogs(const std::vector<SensorLog>& logs, const VehicleParams& base, 
     singles.push_back(Identify({log}, own == IdentificationMode::kFlight ? flight_base : base, options, own));
   }
   for (const ParameterEstimate& joint : result->estimates) {
-    std::string shares;
+    LogShares shares{joint.symbol, {}, {}};
     double information = 0.0;
     std::vector<std::pair<size_t, const ParameterEstimate*>> alone;
     for (size_t l = 0; l < singles.size(); ++l) {
@@ -71,9 +71,10 @@ void CompareLogs(const std::vector<SensorLog>& logs, const VehicleParams& base, 
       for (const auto& [index, e] : alone) {
         if (index == l) share = 1.0 / (e->sigma * e->sigma) / information;
       }
-      shares += (l == 0 ? "" : ", ") + logs[l].source + " " + Fixed(100.0 * share, 1) + " %";
+      shares.logs.push_back(logs[l].source);
+      shares.shares.push_back(share);
     }
-    result->log_shares.push_back(joint.symbol + ": " + shares);
+    result->log_shares.push_back(shares);
     for (size_t a = 0; a < alone.size(); ++a) {
       for (size_t b = a + 1; b < alone.size(); ++b) {
         const ParameterEstimate& ea = *alone[a].second;
@@ -127,7 +128,9 @@ void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std:
   result->warnings.insert(result->warnings.end(), bench.warnings.begin(), bench.warnings.end());
   result->maps = bench.maps;
   result->plots = bench.plots;
+  result->has_calibration_fact = bench.has_calibration_fact;
   result->calibration_fact = bench.calibration_fact;
+  for (int arm = 0; arm < 2; ++arm) result->factory_gauge_scale[arm] = bench.factory_gauge_scale[arm];
   result->correlations = bench.correlations;
   result->bench_params = bench.params;
   if (!result->errors.empty()) return;
@@ -147,7 +150,7 @@ void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std:
   // The gauge calibration has no flight information: the bench's, held in the joint fit.
   for (ParameterEstimate e : bench.estimates) {
     if (e.symbol.rfind("s_", 0) != 0 && e.symbol.rfind("o_", 0) != 0) continue;
-    e.note += "; bench logs alone (held in the joint fit: the flight reads its deflections through it)";
+    e.note.remarks.push_back(EstimateRemark::kBenchLogsAlone);
     result->estimates.push_back(e);
   }
 }

@@ -13,6 +13,14 @@
 
 namespace birotor {
 
+std::string MotorNotExcitedError(const EstimateNote& note) {
+  std::ostringstream text;
+  text << "tau_m cannot be identified: no excitation (the commands have " << note.command_steps[0] << " and "
+       << note.command_steps[1] << " steps larger than " << note.step_threshold_rad_s
+       << " rad/s; record motor command steps or a chirp)";
+  return text.str();
+}
+
 void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const VehicleParams& base,
                                const IdentificationOptions& options, IdentificationResult* result) {
   ceres::Problem::Options problem_options;
@@ -83,17 +91,14 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   tau.value = tau_ratio * base.motor_time_constant_s;
   tau.sigma = sigma[0].sigma * base.motor_time_constant_s;
   tau.determined = sigma[0].determined && tau.sigma <= options.max_relative_sigma * std::abs(tau.value);
-  std::ostringstream note;
-  if (!tau.determined) {
-    note << "tau_m cannot be identified: no excitation (the commands have " << steps[0] << " and " << steps[1]
-         << " steps larger than " << options.command_step_rad_s << " rad/s; record motor command steps or a chirp)";
-    result->errors.push_back(note.str());
-  } else {
-    note << "output error over " << blocks.size() << " windows; " << steps[0] + steps[1] << " command steps";
-  }
-  tau.note = note.str();
+  tau.note.basis = tau.determined ? EstimateBasis::kMotorFit : EstimateBasis::kMotorNotExcited;
+  tau.note.windows = static_cast<int>(blocks.size());
+  tau.note.command_steps[0] = steps[0];
+  tau.note.command_steps[1] = steps[1];
+  tau.note.step_threshold_rad_s = options.command_step_rad_s;
+  if (!tau.determined) result->errors.push_back(MotorNotExcitedError(tau.note));
   result->estimates.push_back(tau);
-  result->residuals.push_back({"motor telemetry (omega_meas - model)", "rad/s", stats.count, stats.rms_whitened,
+  result->residuals.push_back({ResidualBlock::kMotorTelemetry, stats.count, stats.rms_whitened,
                                stats.rms_whitened * options.telemetry_noise_rad_s, inflation});
   if (tau.determined) result->params.motor_time_constant_s = tau.value;
   if (!plot_samples.empty()) {

@@ -75,22 +75,6 @@ DroppedSamples CleanStream(std::vector<Sample>* samples, int64_t max_forward_jum
   return dropped;
 }
 
-void AppendReason(const char* stream, const DroppedSamples& d, std::string* out) {
-  if (d.total() == 0) return;
-  std::string text;
-  auto add = [&](int64_t n, const char* what) {
-    if (n == 0) return;
-    if (!text.empty()) text += ", ";
-    text += std::to_string(n) + " " + what;
-  };
-  add(d.non_finite, "non-finite");
-  add(d.bad_stamp, "bad stamp");
-  add(d.out_of_order, "out of order");
-  add(d.duplicate, "duplicate");
-  if (!out->empty()) *out += "; ";
-  *out += std::string(stream) + " " + text;
-}
-
 }  // namespace
 
 DroppedSamples& DroppedSamples::operator+=(const DroppedSamples& other) {
@@ -112,17 +96,6 @@ SampleCleaningReport& SampleCleaningReport::operator+=(const SampleCleaningRepor
   pose += other.pose;
   loadcell += other.loadcell;
   return *this;
-}
-
-std::string SampleCleaningReport::Summary() const {
-  if (total() == 0) return "no sample dropped";
-  std::string reasons;
-  AppendReason("STRAIN", strain, &reasons);
-  AppendReason("MOTOR", motor, &reasons);
-  AppendReason("IMU", imu, &reasons);
-  AppendReason("POSE", pose, &reasons);
-  AppendReason("LOADCELL", loadcell, &reasons);
-  return std::to_string(total()) + " dropped: " + reasons;
 }
 
 SampleCleaningReport CleanLog(SensorLog* log, int64_t max_forward_jump_us) {

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 
 #include "samples/sensor_log.h"
 
@@ -20,14 +19,12 @@ struct DroppedSamples {
   DroppedSamples& operator+=(const DroppedSamples& other);
 };
 
-// Per stream, for the report.
+// Per stream, for the report (words: params/identified_parameter_file.h
+// DroppedSamplesText).
 struct SampleCleaningReport {
   DroppedSamples strain, motor, imu, pose, loadcell;
   int64_t total() const;
   SampleCleaningReport& operator+=(const SampleCleaningReport& other);
-  // "12 dropped: STRAIN 1 bad stamp, 10 duplicate; MOTOR 1 non-finite", or
-  // "no sample dropped".
-  std::string Summary() const;
 };
 
 // Keeps, per stream and in recorded order, the samples whose fields are

@@ -36,7 +36,187 @@ std::string AdviceText(ExcitationAdvice advice) {
   return "";
 }
 
+// The words of what a fit added to an estimate (EstimateNote::remarks).
+std::string RemarkText(EstimateRemark remark, const EstimateNote& note) {
+  switch (remark) {
+    case EstimateRemark::kDampingFloor:
+      return "; sigma includes the damping floor (bench_damping_floor)";
+    case EstimateRemark::kFrequencyFloor:
+      return "; sigma includes the frequency floor (bench_frequency_floor)";
+    case EstimateRemark::kGaugeScaleFloor:
+      return "; sigma includes the gauge scale's (--gauge-scale-std)";
+    case EstimateRemark::kTipMassFloorThroughOffset:
+      return "; sigma includes m_p's frequency floor through the static intercept";
+    case EstimateRemark::kWidenedForMisfit:
+      return "; widened for the model misfit";
+    case EstimateRemark::kTipMassDataShare: {
+      std::ostringstream out;
+      out << std::setprecision(3) << "; " << 100.0 * note.data_share << " % of m_p's information from the data";
+      return out.str();
+    }
+    case EstimateRemark::kRelativeToGaugeScale:
+      return "; relative to the base file's gauge_scale (the flight determines it over s_i; --gauge-scale-std adds "
+             "the scale's uncertainty)";
+    case EstimateRemark::kBenchLogsAlone:
+      return "; bench logs alone (held in the joint fit: the flight reads its deflections through it)";
+  }
+  return "";
+}
+
+void AppendReason(const char* stream, const DroppedSamples& d, std::string* out) {
+  if (d.total() == 0) return;
+  std::string text;
+  auto add = [&](int64_t n, const char* what) {
+    if (n == 0) return;
+    if (!text.empty()) text += ", ";
+    text += std::to_string(n) + " " + what;
+  };
+  add(d.non_finite, "non-finite");
+  add(d.bad_stamp, "bad stamp");
+  add(d.out_of_order, "out of order");
+  add(d.duplicate, "duplicate");
+  if (!out->empty()) *out += "; ";
+  *out += std::string(stream) + " " + text;
+}
+
+std::string Percent(double fraction, int decimals) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(decimals) << 100.0 * fraction;
+  return out.str();
+}
+
 }  // namespace
+
+std::string NoteText(const EstimateNote& n) {
+  std::ostringstream out;
+  switch (n.basis) {
+    case EstimateBasis::kNone:
+      break;
+    case EstimateBasis::kClampedArmFit:
+      out << "output error of the clamped arm over " << n.windows << " windows";
+      break;
+    case EstimateBasis::kThrustPairs:
+      out << n.windows << " load-cell/telemetry pairs " << n.spacing_s << " s apart (turbulence averaged)";
+      break;
+    case EstimateBasis::kMotorFit:
+      out << "output error over " << n.windows << " windows; " << n.command_steps[0] + n.command_steps[1]
+          << " command steps";
+      break;
+    case EstimateBasis::kMotorNotExcited:
+      out << MotorNotExcitedError(n);
+      break;
+    case EstimateBasis::kFreeArmFit:
+      if (n.joint) {
+        out << "joint fit (one problem): " << n.load_cell_pairs << " load-cell pairs, " << n.clamped_windows
+            << " clamped-arm windows and ";
+      }
+      out << "output error of the free-flight arm model over " << n.windows << " of " << n.candidate_windows
+          << " windows" << (n.with_imu ? " with IMU" : " without IMU");
+      break;
+    case EstimateBasis::kTipMassAgreesWithBase:
+      out << std::setprecision(4) << "base value kept: the flight's m_p = " << n.value << " +- " << n.sigma << " kg is "
+          << std::setprecision(3) << n.distance_sigmas
+          << " sigma from it (consistency_sigmas): this flight does not show the base file wrong, and its sigma is "
+             "wider than a bench's";
+      break;
+    case EstimateBasis::kTipMassHeld:
+      out << std::setprecision(4) << "held at the base value: at the fit with m_p held its relative sigma would be "
+          << 100.0 * n.relative_sigma << " % with " << 100.0 * n.data_share
+          << " % of its information from the data (the rest from the assumed rotor turbulence)";
+      break;
+    case EstimateBasis::kDampingNotFitted:
+      out << "held at the base value (flight_fit_damping is off: flight data barely constrain d)";
+      break;
+  }
+  for (EstimateRemark remark : n.remarks) out << RemarkText(remark, n);
+  return out.str();
+}
+
+std::string CalibrationFactText(const IdentificationResult& result) {
+  if (!result.has_calibration_fact) return "";
+  const CalibrationFact& fact = result.calibration_fact;
+  std::ostringstream text;
+  if (fact.TipMassWeighed()) {
+    text << "weighed tip mass m_p = " << fact.tip_mass_kg << " +- " << fact.tip_mass_std_kg
+         << " kg; gauge scales identified";
+    if (fact.gauge_scale_std > 0.0) text << " with the factory scale prior +- " << fact.gauge_scale_std;
+  } else {
+    text << "factory gauge scale s = [" << result.factory_gauge_scale[0] << ", " << result.factory_gauge_scale[1]
+         << "]";
+    if (fact.gauge_scale_std > 0.0) {
+      text << " +- " << std::fixed << std::setprecision(6) << fact.gauge_scale_std;  // as std::to_string
+    } else {
+      text << " (held)";
+    }
+    text << "; tip mass identified";
+  }
+  return text.str();
+}
+
+std::string DroppedSamplesText(const SampleCleaningReport& report) {
+  if (report.total() == 0) return "no sample dropped";
+  std::string reasons;
+  AppendReason("STRAIN", report.strain, &reasons);
+  AppendReason("MOTOR", report.motor, &reasons);
+  AppendReason("IMU", report.imu, &reasons);
+  AppendReason("POSE", report.pose, &reasons);
+  AppendReason("LOADCELL", report.loadcell, &reasons);
+  return std::to_string(report.total()) + " dropped: " + reasons;
+}
+
+std::string ResidualBlockText(ResidualBlock block) {
+  switch (block) {
+    case ResidualBlock::kMotorTelemetry:
+      return "motor telemetry (omega_meas - model)";
+    case ResidualBlock::kLoadCell:
+      return "load cell (force - c_T omega^2)";
+    case ResidualBlock::kClampedArm:
+      return "strain (clamped arm model)";
+    case ResidualBlock::kFreeFlightStrain1:
+      return "strain arm 1 (free-flight model)";
+    case ResidualBlock::kFreeFlightStrain2:
+      return "strain arm 2 (free-flight model)";
+    case ResidualBlock::kGyroPitchRate:
+      return "gyro pitch rate";
+    case ResidualBlock::kAccelerometerX:
+      return "accelerometer x";
+    case ResidualBlock::kAccelerometerZ:
+      return "accelerometer z";
+    case ResidualBlock::kLoadCellJointFit:
+      return "load cell (force - c_T omega^2), joint fit";
+    case ResidualBlock::kClampedArmJointFit:
+      return "strain (clamped arm model), joint fit";
+  }
+  return "";
+}
+
+std::string ResidualBlockUnit(ResidualBlock block) {
+  switch (block) {
+    case ResidualBlock::kMotorTelemetry:
+    case ResidualBlock::kGyroPitchRate:
+      return "rad/s";
+    case ResidualBlock::kLoadCell:
+    case ResidualBlock::kLoadCellJointFit:
+      return "N";
+    case ResidualBlock::kClampedArm:
+    case ResidualBlock::kFreeFlightStrain1:
+    case ResidualBlock::kFreeFlightStrain2:
+    case ResidualBlock::kClampedArmJointFit:
+      return "rad";
+    case ResidualBlock::kAccelerometerX:
+    case ResidualBlock::kAccelerometerZ:
+      return "m/s^2";
+  }
+  return "";
+}
+
+std::string LogSharesText(const LogShares& shares) {
+  std::string text = shares.symbol + ": ";
+  for (size_t l = 0; l < shares.shares.size(); ++l) {
+    text += (l == 0 ? "" : ", ") + shares.logs[l] + " " + Percent(shares.shares[l], 1) + " %";
+  }
+  return text;
+}
 
 std::string WarningText(const IdentificationWarning& w) {
   std::ostringstream out;
@@ -90,7 +270,7 @@ std::string IdentifiedParameterYaml(const IdentificationResult& result) {
   std::ostringstream out;
   out << "# Identified by birotor-identify (" << result.mode << " mode) from:\n";
   for (const std::string& s : result.sources) out << "#   " << s << "\n";
-  if (!result.calibration_fact.empty()) out << "# Calibration fact used: " << result.calibration_fact << "\n";
+  if (result.has_calibration_fact) out << "# Calibration fact used: " << CalibrationFactText(result) << "\n";
   out << "# One-sigma uncertainties (parameters not listed are taken from the base file):\n";
   out << std::setprecision(6);
   for (const ParameterEstimate& e : result.estimates) {
@@ -117,14 +297,15 @@ std::string IdentificationReport(const IdentificationResult& result) {
   out << "# Identification report (" << result.mode << " mode)\n\n";
   out << "Logs:\n";
   for (const std::string& s : result.sources) out << "- " << s << "\n";
-  out << "\nBad samples (non-finite, bad stamp, out of order, duplicate): " << result.dropped.Summary() << ".\n";
+  out << "\nBad samples (non-finite, bad stamp, out of order, duplicate): " << DroppedSamplesText(result.dropped)
+      << ".\n";
   if (!result.ok) {
     out << "\n**No parameters: the data lacks what the identification needs.**\n\n";
     for (const std::string& e : result.errors) out << "- " << e << "\n";
   }
-  if (!result.calibration_fact.empty()) {
+  if (result.has_calibration_fact) {
     out << "\nCalibration fact (the one of gauge scale, stiffness, tip mass that statics and dynamics cannot give): "
-        << result.calibration_fact << "\n";
+        << CalibrationFactText(result) << "\n";
   }
   out << "\n## Parameters\n\n| parameter | key | value | one sigma | relative sigma | status "
          "|\n|---|---|---|---|---|---|\n";
@@ -135,12 +316,12 @@ std::string IdentificationReport(const IdentificationResult& result) {
         << 100.0 * rel << " % | " << (e.determined ? "determined" : "NOT determined") << std::setprecision(6) << " |\n";
   }
   out << "\nNotes:\n";
-  for (const ParameterEstimate& e : result.estimates) out << "- " << e.symbol << ": " << e.note << "\n";
+  for (const ParameterEstimate& e : result.estimates) out << "- " << e.symbol << ": " << NoteText(e.note) << "\n";
   out << "\n## Residuals (after the fit)\n\n| block | count | RMS [sigma] | RMS | covariance inflation "
          "|\n|---|---|---|---|---|\n";
   for (const ResidualSummary& r : result.residuals) {
-    out << "| " << r.name << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened << " | " << r.rms_si
-        << " " << r.unit << " | " << r.variance_inflation << " |\n";
+    out << "| " << ResidualBlockText(r.block) << " | " << r.count << " | " << std::setprecision(4) << r.rms_whitened
+        << " | " << r.rms_si << " " << ResidualBlockUnit(r.block) << " | " << r.variance_inflation << " |\n";
   }
   if (!result.maps.empty()) {
     out << "\n## Static deflection-force maps\n\n";
@@ -148,7 +329,7 @@ std::string IdentificationReport(const IdentificationResult& result) {
   }
   if (!result.log_shares.empty()) {
     out << "\n## Which log determines which parameter (share of the information, each log alone)\n\n";
-    for (const std::string& line : result.log_shares) out << "- " << line << "\n";
+    for (const LogShares& shares : result.log_shares) out << "- " << LogSharesText(shares) << "\n";
   }
   if (!result.correlations.empty()) {
     out << "\n## Parameters the data cannot separate\n\n";

@@ -20,6 +20,28 @@ std::string WarningText(const IdentificationWarning& warning);
 // not separated (one line, as the report and birotor-identify print it).
 std::string CombinationText(const DeterminedCombination& combination);
 
+// The note of an estimate: how its value and sigma were obtained (the
+// basis, then each remark in the order the fit added it), or why it was kept
+// at the base value. One line, as the report prints it.
+std::string NoteText(const EstimateNote& note);
+
+// The calibration fact the bench fit used (weighed tip mass or factory gauge
+// scale); empty when the result has none (flight). As the report, the file
+// header, the --update-params stamp and birotor-identify print it.
+std::string CalibrationFactText(const IdentificationResult& result);
+
+// One parameter's information shares, e.g. "k: a.lcm 70.0 %, b.lcm 30.0 %".
+std::string LogSharesText(const LogShares& shares);
+
+// The bad samples dropped before fitting: "12 dropped: STRAIN 1 bad stamp,
+// 10 duplicate; MOTOR 1 non-finite", or "no sample dropped".
+std::string DroppedSamplesText(const SampleCleaningReport& report);
+
+// The name of a block of residuals in the report's table, and the unit of
+// its rms_si.
+std::string ResidualBlockText(ResidualBlock block);
+std::string ResidualBlockUnit(ResidualBlock block);
+
 // YAML text: comment header (sources, one-sigma values, maps, residuals)
 // followed by VehicleParamsYaml(result.params).
 std::string IdentifiedParameterYaml(const IdentificationResult& result);

@@ -247,7 +247,7 @@ void LogEstimates(const birotor::IdentificationResult& result) {
     spdlog::info("arm {} map: {} coefficients, residual RMS {:.4f} N", m.arm + 1, m.coefficients.size(),
                  m.residual_rms_n);
   }
-  for (const std::string& line : result.log_shares) spdlog::info("information share {}", line);
+  for (const LogShares& shares : result.log_shares) spdlog::info("information share {}", LogSharesText(shares));
   for (const DeterminedCombination& c : result.correlations) spdlog::warn("{}", CombinationText(c));
 }
 
@@ -255,7 +255,7 @@ void LogEstimates(const birotor::IdentificationResult& result) {
 std::string ProvenanceStamp(const birotor::IdentificationResult& result) {
   std::string stamp = UtcDateTime() + " by birotor-identify (" + result.mode + " mode) from";
   for (const std::string& source : result.sources) stamp += " " + std::filesystem::path(source).filename().string();
-  if (!result.calibration_fact.empty()) stamp += "; " + result.calibration_fact;
+  if (result.has_calibration_fact) stamp += "; " + birotor::CalibrationFactText(result);
   return stamp;
 }
 
@@ -352,7 +352,8 @@ int main(int argc, char** argv) {
   const IdentificationResult result = RunIdentification(cli, std::move(logs), base, options);
   const double elapsed_s = stopwatch.ElapsedS();
   if (result.dropped.total() > 0) {
-    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}", result.dropped.Summary());
+    spdlog::warn("bad samples (non-finite, bad stamp, out of order, duplicate): {}",
+                 DroppedSamplesText(result.dropped));
   }
   if (out.report.is_open()) {
     out.report.Write(IdentificationReport(result));
@@ -366,6 +367,6 @@ int main(int argc, char** argv) {
   LogEstimates(result);
   if (!(error = WriteResults(cli, options, result, &out)).empty()) return ReportError(error);
   spdlog::info("identified in {} mode in {:.2f} s; calibration fact: {}", result.mode, elapsed_s,
-               result.calibration_fact.empty() ? "none needed" : result.calibration_fact);
+               result.has_calibration_fact ? CalibrationFactText(result) : "none needed");
   return 0;
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -45,11 +46,13 @@ void ExpectRecovered(const IdentificationResult& r, const std::string& symbol, d
 void ExpectShareOfBothLogs(const IdentificationResult& r, const std::string& symbol, const std::string& log_a,
                            const std::string& log_b) {
   bool found = false;
-  for (const std::string& line : r.log_shares) {
-    if (line.rfind(symbol + ": ", 0) != 0) continue;
+  for (const LogShares& line : r.log_shares) {
+    if (line.symbol != symbol) continue;
     found = true;
-    EXPECT_NE(line.find(log_a), std::string::npos) << line;
-    EXPECT_NE(line.find(log_b), std::string::npos) << line;
+    ASSERT_TRUE(line.logs.size() == 2 && line.shares.size() == 2) << symbol;
+    EXPECT_NE(line.logs[0].find(log_a), std::string::npos) << line.logs[0];
+    EXPECT_NE(line.logs[1].find(log_b), std::string::npos) << line.logs[1];
+    EXPECT_NEAR(line.shares[0] + line.shares[1], 1.0, 1e-12) << symbol;  // shares of one information sum
   }
   EXPECT_TRUE(found) << symbol;
 }
@@ -172,8 +175,8 @@ TEST(BenchTipMassTest, IdentifiesTheTipMassWithTheFactoryGaugeScale) {
   ExpectRecovered(r, "k", 3100.0, 0.005, 3.0);
   ExpectRecovered(r, "d", truth.arm_damping_n_m_s_rad, 0.05, 3.0);
   EXPECT_DOUBLE_EQ(r.params.tip_mass_kg, Find(r, "m_p")->value);
-  EXPECT_NE(r.calibration_fact.find("factory gauge scale"), std::string::npos) << r.calibration_fact;
-  EXPECT_EQ(Find(r, "s_1"), nullptr);  // held: the factory scale is the input
+  EXPECT_TRUE(r.has_calibration_fact && !r.calibration_fact.TipMassWeighed());  // the factory gauge scale
+  EXPECT_EQ(Find(r, "s_1"), nullptr);                                           // held: the factory scale is the input
 }
 
 // bench_gauge (gauges.md: scales 1.03 / 0.98, offsets 1e-5 / -1e-5 rad) with
@@ -198,7 +201,7 @@ TEST(BenchGaugeTest, IdentifiesGaugeScaleAndOffsetWithAWeighedTipMass) {
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.005, 3.0);
   EXPECT_DOUBLE_EQ(r.params.gauge_scale[0], Find(r, "s_1")->value);
   EXPECT_DOUBLE_EQ(r.params.gauge_offset_rad[1], Find(r, "o_2")->value);
-  EXPECT_NE(r.calibration_fact.find("weighed tip mass"), std::string::npos) << r.calibration_fact;
+  EXPECT_TRUE(r.has_calibration_fact && r.calibration_fact.tip_mass_kg == truth.tip_mass_kg);
 }
 
 // Several logs (issue 11 item 4): two runs of one vehicle give one joint fit
@@ -317,9 +320,10 @@ TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
   // kept, marked not determined, and the warning says so (issue 26).
   const ParameterEstimate* m_p = Find(r, "m_p");
   ASSERT_NE(m_p, nullptr);
-  EXPECT_FALSE(m_p->determined) << m_p->note;
+  EXPECT_FALSE(m_p->determined);
   EXPECT_DOUBLE_EQ(r.params.tip_mass_kg, truth.tip_mass_kg);
-  EXPECT_NE(m_p->note.find("sigma from it"), std::string::npos) << m_p->note;
+  EXPECT_EQ(m_p->note.basis, EstimateBasis::kTipMassAgreesWithBase);
+  EXPECT_LE(m_p->note.distance_sigmas, IdentificationOptions().consistency_sigmas);
 }
 
 // Issue 11: the tip mass from a 60 s flight alone (flight_id). Measured with
@@ -365,7 +369,7 @@ TEST(FlightIdentificationTest, GaugeScaleUncertaintyReachesTheSigmaOfKAndTipMass
   EXPECT_LT(k->value, truth.arm_stiffness_n_m_rad);  // seen through the scale
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 0.03, 3.0);
   EXPECT_GE(k->sigma, 0.01 * k->value);
-  EXPECT_NE(k->note.find("gauge scale"), std::string::npos) << k->note;
+  EXPECT_EQ(k->note.remarks, std::vector<EstimateRemark>{EstimateRemark::kGaugeScaleFloor});
   ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.03, 3.0);
 }
 
@@ -391,7 +395,7 @@ TEST(JointBenchFlightTest, OneProblemOverBothLogsSaysWhichLogDeterminesWhat) {
   ExpectRecovered(r, "d", truth.arm_damping_n_m_s_rad, 0.05, 3.0);
   const ParameterEstimate* c_t = Find(r, "c_T");
   ASSERT_NE(c_t, nullptr);
-  EXPECT_NE(c_t->note.find("joint fit (one problem)"), std::string::npos) << c_t->note;
+  EXPECT_TRUE(c_t->note.basis == EstimateBasis::kFreeArmFit && c_t->note.joint);
   ExpectShareOfBothLogs(r, "c_T", "bench.lcm", "flight.lcm");
 }
 
@@ -424,7 +428,8 @@ TEST(FlightDeterminabilityTest, HoverGivesTheTipMassWithinThreeSigmaNotAFarMinim
   ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.02, 3.0);
   const ParameterEstimate* m_p = Find(r, "m_p");
   ASSERT_NE(m_p, nullptr);
-  EXPECT_NE(m_p->note.find("information from the data"), std::string::npos) << m_p->note;
+  EXPECT_EQ(std::count(m_p->note.remarks.begin(), m_p->note.remarks.end(), EstimateRemark::kTipMassDataShare), 1);
+  EXPECT_GT(m_p->note.data_share, 0.0);
 }
 
 // When the data's share of m_p's information is below flight_min_data_share

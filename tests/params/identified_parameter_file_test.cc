@@ -100,6 +100,102 @@ TEST(ParameterFileTest, CombinationWordsFromKindAndNumbers) {
             "accelerometer sees thrust over mass), c_T itself with m_p = 0.288 kg of the base file");
 }
 
+// The notes, information shares and calibration facts are worded here too
+// (issue 22 item 5). The lines are those birotor-identify wrote before the
+// wording moved here (hover 12 s, bench + gentle 15 s, bench with
+// --gauge-scale-std 0.01 and with --tip-mass-kg 0.25 --tip-mass-std-kg 0.002).
+TEST(ParameterFileTest, NoteWordsFromBasisRemarksAndNumbers) {
+  EstimateNote agrees;
+  agrees.basis = EstimateBasis::kTipMassAgreesWithBase;
+  agrees.value = 0.289412;
+  agrees.sigma = 0.0020213;
+  agrees.distance_sigmas = 0.64912;
+  EXPECT_EQ(NoteText(agrees),
+            "base value kept: the flight's m_p = 0.2894 +- 0.002021 kg is 0.649 sigma from it (consistency_sigmas): "
+            "this flight does not show the base file wrong, and its sigma is wider than a bench's");
+  EstimateNote joint;
+  joint.basis = EstimateBasis::kFreeArmFit;
+  joint.windows = 40;
+  joint.candidate_windows = 50;
+  joint.with_imu = true;
+  joint.joint = true;
+  joint.load_cell_pairs = 800;
+  joint.clamped_windows = 480;
+  joint.remarks = {EstimateRemark::kFrequencyFloor};
+  EXPECT_EQ(NoteText(joint),
+            "joint fit (one problem): 800 load-cell pairs, 480 clamped-arm windows and output error of the "
+            "free-flight arm model over 40 of 50 windows with IMU; sigma includes the frequency floor "
+            "(bench_frequency_floor)");
+  EstimateNote offset;
+  offset.basis = EstimateBasis::kClampedArmFit;
+  offset.windows = 480;
+  offset.remarks = {EstimateRemark::kTipMassFloorThroughOffset, EstimateRemark::kBenchLogsAlone};
+  EXPECT_EQ(NoteText(offset),
+            "output error of the clamped arm over 480 windows; sigma includes m_p's frequency floor through the static "
+            "intercept; bench logs alone (held in the joint fit: the flight reads its deflections through it)");
+  EstimateNote motor;
+  motor.basis = EstimateBasis::kMotorFit;
+  motor.windows = 24;
+  EXPECT_EQ(NoteText(motor), "output error over 24 windows; 0 command steps");
+  motor.basis = EstimateBasis::kMotorNotExcited;
+  motor.step_threshold_rad_s = 50.0;
+  EXPECT_EQ(NoteText(motor), MotorNotExcitedError(motor));  // the refusal's own words
+  EstimateNote thrust;
+  thrust.basis = EstimateBasis::kThrustPairs;
+  thrust.windows = 400;
+  thrust.spacing_s = 0.3;
+  EXPECT_EQ(NoteText(thrust), "400 load-cell/telemetry pairs 0.3 s apart (turbulence averaged)");
+  EstimateNote held;
+  held.basis = EstimateBasis::kTipMassHeld;
+  held.relative_sigma = 0.0123456;
+  held.data_share = 0.456789;
+  held.remarks = {EstimateRemark::kTipMassDataShare};
+  EXPECT_EQ(NoteText(held),
+            "held at the base value: at the fit with m_p held its relative sigma would be 1.235 % with 45.68 % of its "
+            "information from the data (the rest from the assumed rotor turbulence); 45.7 % of m_p's information "
+            "from the data");
+  EXPECT_EQ(NoteText(EstimateNote()), "");
+}
+
+TEST(ParameterFileTest, CalibrationFactAndShareWords) {
+  IdentificationResult r;
+  EXPECT_EQ(CalibrationFactText(r), "");  // flight: none
+  r.has_calibration_fact = true;
+  EXPECT_EQ(CalibrationFactText(r), "factory gauge scale s = [1, 1] (held); tip mass identified");
+  r.calibration_fact.gauge_scale_std = 0.01;
+  EXPECT_EQ(CalibrationFactText(r), "factory gauge scale s = [1, 1] +- 0.010000; tip mass identified");
+  r.calibration_fact.tip_mass_kg = 0.25;
+  r.calibration_fact.tip_mass_std_kg = 0.002;
+  EXPECT_EQ(CalibrationFactText(r),
+            "weighed tip mass m_p = 0.25 +- 0.002 kg; gauge scales identified with the factory scale prior +- 0.01");
+  const LogShares shares{"c_T", {"bench.lcm", "gentle.lcm"}, {0.88749, 0.11251}};
+  EXPECT_EQ(LogSharesText(shares), "c_T: bench.lcm 88.7 %, gentle.lcm 11.3 %");
+}
+
+// The counts of SampleCleaningTest.EachBadSampleIsDroppedAndCountedOnce.
+TEST(ParameterFileTest, DroppedSampleWordsFromCounts) {
+  SampleCleaningReport report;
+  EXPECT_EQ(DroppedSamplesText(report), "no sample dropped");
+  report.strain.non_finite = 1;
+  report.strain.bad_stamp = 2;
+  report.strain.duplicate = 1;
+  EXPECT_EQ(DroppedSamplesText(report), "4 dropped: STRAIN 1 non-finite, 2 bad stamp, 1 duplicate");
+  report.motor.out_of_order = 3;
+  EXPECT_EQ(DroppedSamplesText(report),
+            "7 dropped: STRAIN 1 non-finite, 2 bad stamp, 1 duplicate; MOTOR 3 out of order");
+}
+
+// The residual table's rows as birotor-identify wrote them before the names
+// moved here (hover 12 s).
+TEST(ParameterFileTest, ResidualRowWordsFromBlock) {
+  IdentificationResult r = SampleResult();
+  r.residuals.push_back({ResidualBlock::kAccelerometerZ, 11792, 1.3341, 0.066705, 5.3372});
+  EXPECT_NE(IdentificationReport(r).find("| accelerometer z | 11792 | 1.334 | 0.06671 m/s^2 | 5.337 |"),
+            std::string::npos);
+  EXPECT_EQ(ResidualBlockText(ResidualBlock::kClampedArmJointFit), "strain (clamped arm model), joint fit");
+  EXPECT_EQ(ResidualBlockUnit(ResidualBlock::kMotorTelemetry), "rad/s");
+}
+
 TEST(ParameterFileTest, ReportAndHeaderCarryTheWarningWords) {
   IdentificationResult r = SampleResult();
   r.warnings.push_back({WarningKind::kNotExcitedOnBench, "d"});

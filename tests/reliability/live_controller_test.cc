@@ -32,22 +32,46 @@ struct CommandRecord {
   motor_command_t message;
 };
 
-// Subscribes to MOTOR_COMMAND and TRUTH on its own thread.
-class ClosedLoopListener {
+// The plumbing of a test's listener: an LCM instance on the private URL whose
+// subscriptions are handled on its own thread from Start() until destruction.
+// A listener holds it as its last member, so that the thread stops before the
+// state its handlers write is destroyed.
+class ListenerThread {
  public:
-  ClosedLoopListener(const std::string& url, const std::string& prefix)
-      : lcm_(url), channels_(MakeChannelNames(prefix)) {
-    lcm_.subscribe(channels_.motor_command, &ClosedLoopListener::OnCommand, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels_.truth, &ClosedLoopListener::OnTruth, this)->setQueueCapacity(100000);
+  ListenerThread(const std::string& url, const std::string& prefix) : lcm_(url), channels_(MakeChannelNames(prefix)) {}
+  ~ListenerThread() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  const ChannelNames& channels() const { return channels_; }
+  template <class Listener>
+  void Subscribe(const std::string& channel, void (Listener::*handler)(const lcm::ReceiveBuffer*, const std::string&),
+                 Listener* listener) {
+    lcm_.subscribe(channel, handler, listener)->setQueueCapacity(100000);
+  }
+  void Start() {
     thread_ = std::thread([this] {
       while (!stop_.load()) lcm_.handleTimeout(20);
     });
   }
-  ~ClosedLoopListener() {
-    stop_ = true;
-    thread_.join();
-  }
   bool good() { return lcm_.good(); }
+
+ private:
+  lcm::LCM lcm_;
+  ChannelNames channels_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// Subscribes to MOTOR_COMMAND and TRUTH on its own thread.
+class ClosedLoopListener {
+ public:
+  ClosedLoopListener(const std::string& url, const std::string& prefix) : listener_(url, prefix) {
+    listener_.Subscribe(listener_.channels().motor_command, &ClosedLoopListener::OnCommand, this);
+    listener_.Subscribe(listener_.channels().truth, &ClosedLoopListener::OnTruth, this);
+    listener_.Start();
+  }
+  bool good() { return listener_.good(); }
   std::vector<CommandRecord> Commands() {
     std::lock_guard<std::mutex> lock(mutex_);
     return commands_;
@@ -77,14 +101,11 @@ class ClosedLoopListener {
     max_altitude_error_m_ = std::max(max_altitude_error_m_, std::fabs(truth.z_m));  // hold at z = 0
   }
 
-  lcm::LCM lcm_;
-  ChannelNames channels_;
   std::mutex mutex_;
   std::vector<CommandRecord> commands_;
   double max_altitude_error_m_ = 0;
   int64_t truth_count_ = 0;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
+  ListenerThread listener_;  // last: stops first
 };
 
 TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
@@ -184,19 +205,12 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
 // the controller does).
 class SetpointFlightListener {
  public:
-  SetpointFlightListener(const std::string& url, const std::string& prefix)
-      : lcm_(url), channels_(MakeChannelNames(prefix)) {
-    lcm_.subscribe(channels_.truth, &SetpointFlightListener::OnTruth, this)->setQueueCapacity(100000);
-    lcm_.subscribe(channels_.setpoint, &SetpointFlightListener::OnSetpoint, this)->setQueueCapacity(100000);
-    thread_ = std::thread([this] {
-      while (!stop_.load()) lcm_.handleTimeout(20);
-    });
+  SetpointFlightListener(const std::string& url, const std::string& prefix) : listener_(url, prefix) {
+    listener_.Subscribe(listener_.channels().truth, &SetpointFlightListener::OnTruth, this);
+    listener_.Subscribe(listener_.channels().setpoint, &SetpointFlightListener::OnSetpoint, this);
+    listener_.Start();
   }
-  ~SetpointFlightListener() {
-    stop_ = true;
-    thread_.join();
-  }
-  bool good() { return lcm_.good(); }
+  bool good() { return listener_.good(); }
   // RMS |p - p_ref| over the TRUTH samples that have a setpoint [m]; *count: how many.
   double RmsPositionErrorM(int64_t* count) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -217,7 +231,7 @@ class SetpointFlightListener {
     ++setpoints_;
   }
   void OnTruth(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    truth_t m;
+    truth_t m{};  // value-initialised: the decoder fills every field or fails
     if (DecodeMessage(buffer->data, buffer->data_size, &m) != DecodeError::kNone) return;
     std::lock_guard<std::mutex> lock(mutex_);
     if (setpoints_ == 0 || m.utime < newest_.utime) return;
@@ -227,15 +241,12 @@ class SetpointFlightListener {
     ++count_;
   }
 
-  lcm::LCM lcm_;
-  ChannelNames channels_;
-  std::thread thread_;
-  std::atomic<bool> stop_{false};
   std::mutex mutex_;
   Setpoint newest_;
   int64_t setpoints_ = 0;
   double sum_squared_m2_ = 0;
   int64_t count_ = 0;
+  ListenerThread listener_;  // last: stops first
 };
 
 // The lock-step RMS position error of a scenario with overrides, flown in
