@@ -87,11 +87,7 @@ class ClosedLoopListener {
 
  private:
   void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    CommandRecord record;
-    record.arrival_s = SteadyClockS();
-    if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
-    std::lock_guard<std::mutex> lock(mutex_);
-    commands_.push_back(record);
+    AppendDecoded(buffer, &mutex_, &commands_);
   }
   void OnTruth(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
     truth_t truth{};  // value-initialised: the decoder fills every field or fails

@@ -240,6 +240,18 @@ class ChildProcess {
 };
 
 // One FORCE or ESTIMATOR_STATUS as received, with the host arrival time.
+// Decodes an LCM message into a new record (arrival time on the steady
+// clock) and appends it under the lock; an undecodable message is skipped.
+// Record has arrival_s and message (of the channel's type).
+template <typename Record>
+void AppendDecoded(const lcm::ReceiveBuffer* buffer, std::mutex* mutex, std::vector<Record>* records) {
+  Record record;
+  record.arrival_s = SteadyClockS();
+  if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
+  std::lock_guard<std::mutex> lock(*mutex);
+  records->push_back(record);
+}
+
 struct ForceRecord {
   double arrival_s = 0;  // steady clock [s]
   force_estimate_t message;
@@ -298,18 +310,10 @@ class DaemonListener {
 
  private:
   void OnForce(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    ForceRecord record;
-    record.arrival_s = SteadyClockS();
-    if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
-    std::lock_guard<std::mutex> lock(mutex_);
-    forces_.push_back(record);
+    AppendDecoded(buffer, &mutex_, &forces_);
   }
   void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
-    StatusRecord record;
-    record.arrival_s = SteadyClockS();
-    if (DecodeMessage(buffer->data, buffer->data_size, &record.message) != DecodeError::kNone) return;
-    std::lock_guard<std::mutex> lock(mutex_);
-    statuses_.push_back(record);
+    AppendDecoded(buffer, &mutex_, &statuses_);
   }
 
   lcm::LCM lcm_;
