@@ -284,6 +284,40 @@ void EkfForceEstimator::ApplyQueuedUpTo(int64_t utime) {
   }
 }
 
+template <int N, int M>
+FusionReport EkfForceEstimator::FuseOn(const MeasurementLinearization<M, N>& at,
+                                       const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
+                                       const FusionRequest& request, bool strain_gate, Eigen::Matrix<double, N, 1>* x,
+                                       Eigen::Matrix<double, N, N>* cov) {
+  if (!strain_gate) return FuseMeasurement(at, noise, z, request, x, cov);
+  // After gate_consecutive_limit rejections in a row the change is taken as
+  // real (e.g. a lost propeller blade): the thrust scales open up
+  // (var(mu_i) += inflation^2) and the sample is fused without the gate.
+  const double extra = options_.gate_inflation_thrust_scale_std;
+  return strain_gate_.Fuse(at, noise, z, request, x, cov, [extra](Eigen::Matrix<double, N, N>* p) {
+    for (int i = 0; i < 2; ++i) (*p)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
+  });
+}
+
+template <int M>
+FusionReport EkfForceEstimator::Fuse(const MeasurementLinearization<M, kEkfStateSize>& at,
+                                     const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
+                                     const FusionRequest& request, bool strain_gate) {
+  if (SlowStatesLive()) return FuseOn(at, noise, z, request, strain_gate, &state_, &covariance_);
+  // No slow parameter learns: fused on the leading states (the thrust scales
+  // the inflation opens are among them), copied back. The update on all 14
+  // would give the same x and P (to round-off: sums over zero terms) at
+  // (14/11)^2 the cost of the Joseph update (issue 27: +16 % per sample).
+  constexpr int n = kStrainScale1;
+  static_assert(kThrustScale1 < n && kThrustScale2 < n, "the inflation's states lead");
+  Eigen::Matrix<double, n, 1> x = state_.head<n>();
+  Eigen::Matrix<double, n, n> cov = covariance_.topLeftCorner<n, n>();
+  const FusionReport report = FuseOn(LeadingStates<n>(at), noise, z, request, strain_gate, &x, &cov);
+  state_.head<n>() = x;
+  covariance_.topLeftCorner<n, n>() = cov;
+  return report;
+}
+
 void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
   const bool late = sample.utime < last_utime_;
   if (TelemetryUsable(sample)) {
@@ -292,9 +326,8 @@ void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
     } else {
       PredictTo(sample.utime);
       const MotorSpeedMeasurementModel::Vector z(sample.omega_meas_rad_s[0], sample.omega_meas_rad_s[1]);
-      Report(FuseMeasurement(motor_model_.Linearize(state_), motor_model_.noise, z,
-                             {FusionSource::kTelemetry, sample.utime, options_.telemetry_gate_nis}, &state_,
-                             &covariance_));
+      Report(Fuse(motor_model_.Linearize(state_), motor_model_.noise, z,
+                  {FusionSource::kTelemetry, sample.utime, options_.telemetry_gate_nis}));
     }
   } else if (!late) {
     PredictTo(sample.utime);  // the previous command holds up to this stamp
@@ -310,9 +343,8 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   }
   PredictTo(sample.utime);
   if (options_.use_gyro) {
-    Report(FuseMeasurement(gyro_model_.Linearize(state_), gyro_model_.noise,
-                           GyroMeasurementModel::Vector(sample.gyro_y_rad_s),
-                           {FusionSource::kGyro, sample.utime, options_.gyro_gate_nis}, &state_, &covariance_));
+    Report(Fuse(gyro_model_.Linearize(state_), gyro_model_.noise, GyroMeasurementModel::Vector(sample.gyro_y_rad_s),
+                {FusionSource::kGyro, sample.utime, options_.gyro_gate_nis}));
   }
   if (!options_.use_accelerometer || !AccelerometerUsable(sample)) return;
   if (options_.body_held || contact_.supported()) {
@@ -323,23 +355,14 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   const AccelerometerMeasurementModel::Linearization at =
       accel_linearization_.valid ? AccelerometerMeasurementModel::Linearize(accel_linearization_, state_)
                                  : AccelerometerMeasurementModel::Linearize(process_, state_);
-  Report(FuseMeasurement(at, accel_model_.noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
-                         {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis}, &state_, &covariance_));
+  Report(Fuse(at, accel_model_.noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
+              {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis}));
 }
 
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
-  // After gate_consecutive_limit rejections in a row the change is taken as
-  // real (e.g. a lost propeller blade): the thrust scales open up
-  // (var(mu_i) += inflation^2) and the sample is fused without the gate.
-  const double extra = options_.gate_inflation_thrust_scale_std;
-  return strain_gate_.Fuse(strain_model_.Linearize(state_), strain_model_.noise, z,
-                           {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, &state_, &covariance_,
-                           [extra](EkfMatrix* cov) {
-                             for (int i = 0; i < 2; ++i) {
-                               (*cov)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
-                             }
-                           });
+  return Fuse(strain_model_.Linearize(state_), strain_model_.noise, z,
+              {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, true);
 }
 
 bool EkfForceEstimator::ConditionCovariance() {

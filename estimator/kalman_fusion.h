@@ -23,6 +23,20 @@ struct MeasurementLinearization {
   Eigen::Matrix<double, M, N> jacobian;   // H [unit of z per unit of each state]
 };
 
+// The same linearisation on the leading K of the N states (H's first K
+// columns). For a filter whose trailing N - K states have zero rows and
+// columns in P: no fusion can move them (their gain P H^T S^-1 is zero, and
+// so are their rows and columns of the Joseph update), so fusing on the
+// leading block gives the same x and P at (K/N)^2 of the cost.
+template <int K, int M, int N>
+MeasurementLinearization<M, K> LeadingStates(const MeasurementLinearization<M, N>& at) {
+  static_assert(K <= N, "the leading states of the N");
+  MeasurementLinearization<M, K> out;
+  out.predicted = at.predicted;
+  out.jacobian = at.jacobian.template leftCols<K>();
+  return out;
+}
+
 // Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
 template <int M, int N>
 struct Innovation {
