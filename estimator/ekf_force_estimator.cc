@@ -232,6 +232,18 @@ void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   state_ = process_.Step(state_, input, dt_s);
   DynamicMatrix temp;
   temp.noalias() = phi.lazyProduct(covariance_.topLeftCorner<n, n>());
+  if (!SlowStatesLive()) {
+    // The slow parameters' rows and columns of P are zero and stay zero (their
+    // Gamma terms multiply them; no noise): P_de of the gauge offsets only.
+    constexpr int e = kStrainScale1 - n;
+    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
+    Eigen::Matrix<double, n, e> p_de;
+    p_de.noalias() = phi.lazyProduct(covariance_.block<n, e>(0, n));
+    covariance_.block<n, e>(0, n) = p_de;
+    covariance_.block<e, n>(n, 0) = p_de.transpose();
+    covariance_.diagonal().head<kStrainScale1>() += process_noise_psd_.head<kStrainScale1>() * dt_s;
+    return;
+  }
   Eigen::Matrix<double, n, m> p_ds;
   p_ds.noalias() = phi.lazyProduct(covariance_.topRightCorner<n, m>());
   if (process_.body_mass_is_state() && !input.body_supported) {
@@ -245,12 +257,7 @@ void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   }
   covariance_.topRightCorner<n, m>() = p_ds;
   covariance_.bottomLeftCorner<m, n>() = p_ds.transpose();
-  if (slow_frozen_) {
-    // Frozen slow parameters get no driving noise either (no gain at all).
-    covariance_.diagonal().head<kStrainScale1>() += process_noise_psd_.head<kStrainScale1>() * dt_s;
-  } else {
-    covariance_.diagonal() += process_noise_psd_ * dt_s;
-  }
+  covariance_.diagonal() += process_noise_psd_ * dt_s;
 }
 
 void EkfForceEstimator::PredictTo(int64_t utime) {
@@ -367,7 +374,13 @@ FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
 
 bool EkfForceEstimator::ConditionCovariance() {
   if (!state_.allFinite() || !covariance_.allFinite()) return false;
-  covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
+  if (SlowStatesLive()) {
+    covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
+  } else {  // the slow rows and columns are zero (SlowStatesLive)
+    constexpr int n = kStrainScale1;
+    const Eigen::Matrix<double, n, n> lead = covariance_.topLeftCorner<n, n>();
+    covariance_.topLeftCorner<n, n>() = 0.5 * (lead + lead.transpose());
+  }
   for (int i = 0; i < kEkfStateSize; ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * kVarianceCeiling[i]) return false;  // clearly negative: broken
