@@ -373,15 +373,20 @@ FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
 }
 
 bool EkfForceEstimator::ConditionCovariance() {
-  if (!state_.allFinite() || !covariance_.allFinite()) return false;
-  if (SlowStatesLive()) {
+  if (!state_.allFinite()) return false;
+  // With no slow parameter live their rows and columns of P are zero
+  // (SlowStatesLive): the leading block only (their floor is 0 or skipped).
+  const bool live = SlowStatesLive();
+  constexpr int n = kStrainScale1;
+  if (live) {
+    if (!covariance_.allFinite()) return false;
     covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
-  } else {  // the slow rows and columns are zero (SlowStatesLive)
-    constexpr int n = kStrainScale1;
+  } else {
     const Eigen::Matrix<double, n, n> lead = covariance_.topLeftCorner<n, n>();
+    if (!lead.allFinite()) return false;
     covariance_.topLeftCorner<n, n>() = 0.5 * (lead + lead.transpose());
   }
-  for (int i = 0; i < kEkfStateSize; ++i) {
+  for (int i = 0; i < (live ? kEkfStateSize : n); ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * kVarianceCeiling[i]) return false;  // clearly negative: broken
     if (variance < variance_floor_[i] && !(slow_frozen_ && i >= kStrainScale1)) {
