@@ -291,17 +291,16 @@ void EkfForceEstimator::ApplyQueuedUpTo(int64_t utime) {
   }
 }
 
-template <int N, int M>
+template <int N, int M, typename State, typename Cov>
 FusionReport EkfForceEstimator::FuseOn(const MeasurementLinearization<M, N>& at,
                                        const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                       const FusionRequest& request, bool strain_gate, Eigen::Matrix<double, N, 1>* x,
-                                       Eigen::Matrix<double, N, N>* cov) {
+                                       const FusionRequest& request, bool strain_gate, State* x, Cov* cov) {
   if (!strain_gate) return FuseMeasurement(at, noise, z, request, x, cov);
   // After gate_consecutive_limit rejections in a row the change is taken as
   // real (e.g. a lost propeller blade): the thrust scales open up
   // (var(mu_i) += inflation^2) and the sample is fused without the gate.
   const double extra = options_.gate_inflation_thrust_scale_std;
-  return strain_gate_.Fuse(at, noise, z, request, x, cov, [extra](Eigen::Matrix<double, N, N>* p) {
+  return strain_gate_.Fuse(at, noise, z, request, x, cov, [extra](Cov* p) {
     for (int i = 0; i < 2; ++i) (*p)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
   });
 }
@@ -312,17 +311,15 @@ FusionReport EkfForceEstimator::Fuse(const MeasurementLinearization<M, kEkfState
                                      const FusionRequest& request, bool strain_gate) {
   if (SlowStatesLive()) return FuseOn(at, noise, z, request, strain_gate, &state_, &covariance_);
   // No slow parameter learns: fused on the leading states (the thrust scales
-  // the inflation opens are among them), copied back. The update on all 14
-  // would give the same x and P (to round-off: sums over zero terms) at
-  // (14/11)^2 the cost of the Joseph update (issue 27: +16 % per sample).
+  // the inflation opens are among them), in place on the blocks of x and P.
+  // The update on all 14 would give the same x and P (to round-off: sums
+  // over zero terms) at (14/11)^2 the cost of the Joseph update (issue 27:
+  // main was +16 % per sample).
   constexpr int n = kStrainScale1;
   static_assert(kThrustScale1 < n && kThrustScale2 < n, "the inflation's states lead");
-  Eigen::Matrix<double, n, 1> x = state_.head<n>();
-  Eigen::Matrix<double, n, n> cov = covariance_.topLeftCorner<n, n>();
-  const FusionReport report = FuseOn(LeadingStates<n>(at), noise, z, request, strain_gate, &x, &cov);
-  state_.head<n>() = x;
-  covariance_.topLeftCorner<n, n>() = cov;
-  return report;
+  auto x = state_.head<n>();
+  auto cov = covariance_.topLeftCorner<n, n>();
+  return FuseOn(LeadingStates<n>(at), noise, z, request, strain_gate, &x, &cov);
 }
 
 void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {

@@ -66,15 +66,15 @@ class EkfForceEstimator : public ForceEstimator {
   // Every fusion of the filter goes through here: FuseMeasurement, or with
   // strain_gate the strain gate with its inflation. On all the states while
   // a slow parameter learns (SlowStatesLive), else on the leading
-  // kStrainScale1 only (their rows and columns of P are zero: the same x and
-  // P at (11/14)^2 of the cost).
+  // kStrainScale1 only, in place (their rows and columns of P are zero: the
+  // same x and P at (11/14)^2 of the cost).
   template <int M>
   FusionReport Fuse(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
                     const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate = false);
-  template <int N, int M>
+  template <int N, int M, typename State, typename Cov>
   FusionReport FuseOn(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                      const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate,
-                      Eigen::Matrix<double, N, 1>* x, Eigen::Matrix<double, N, N>* cov);
+                      const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate, State* x,
+                      Cov* cov);
   // A slow parameter is learned and not frozen: its rows and columns of P
   // may be non-zero. Otherwise they are exactly zero (not learned: zero
   // prior and process noise; frozen: FreezeSlowParameters zeroed them and
