@@ -63,6 +63,23 @@ class EkfForceEstimator : public ForceEstimator {
   bool AccelerometerUsable(const ImuSample& sample) const;
   // Strain update with its gate and the inflation after persistent rejection.
   FusionReport FuseStrain(const StrainSample& sample);
+  // Every fusion of the filter goes through here: FuseMeasurement, or with
+  // strain_gate the strain gate with its inflation. On all the states while
+  // a slow parameter learns (SlowStatesLive), else on the leading
+  // kStrainScale1 only, in place (their rows and columns of P are zero: the
+  // same x and P at (11/14)^2 of the cost).
+  template <int M>
+  FusionReport Fuse(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
+                    const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate = false);
+  template <int N, int M, typename State, typename Cov>
+  FusionReport FuseOn(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
+                      const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate, State* x,
+                      Cov* cov);
+  // A slow parameter is learned and not frozen: its rows and columns of P
+  // may be non-zero. Otherwise they are exactly zero (not learned: zero
+  // prior and process noise; frozen: FreezeSlowParameters zeroed them and
+  // Predict adds no noise to them).
+  bool SlowStatesLive() const { return (options_.learn_strain_scale || options_.learn_body_mass) && !slow_frozen_; }
   void ReportNotFused(FusionSource source, int64_t utime) const;
   // The gyro and accelerometer readings of an IMU sample the filter would have used.
   void ReportImuNotFused(const ImuSample& sample) const;

@@ -23,6 +23,21 @@ struct MeasurementLinearization {
   Eigen::Matrix<double, M, N> jacobian;   // H [unit of z per unit of each state]
 };
 
+// The same linearisation on the leading K of the N states (H's first K
+// columns). For a filter whose trailing N - K states have zero rows and
+// columns in P: no fusion can move them (their gain P H^T S^-1 is zero, and
+// so are their rows and columns of the Joseph update), so fusing on the
+// leading block gives the same x and P at (K/N)^2 of the cost. The fusion
+// takes the blocks x.head<K>() and P.topLeftCorner<K, K>() in place.
+template <int K, int M, int N>
+MeasurementLinearization<M, K> LeadingStates(const MeasurementLinearization<M, N>& at) {
+  static_assert(K <= N, "the leading states of the N");
+  MeasurementLinearization<M, K> out;
+  out.predicted = at.predicted;
+  out.jacobian = at.jacobian.template leftCols<K>();
+  return out;
+}
+
 // Innovation of one measurement: y = z - h(x), S = H P H^T + R, NIS = y^T S^-1 y.
 template <int M, int N>
 struct Innovation {
@@ -33,9 +48,10 @@ struct Innovation {
   double nis = 0;
 };
 
-template <int M, int N>
+// cov: an N x N matrix or a block of one (the leading states, in place).
+template <int M, int N, typename Cov>
 Innovation<M, N> ComputeInnovation(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                                   const Eigen::Matrix<double, N, N>& cov, const Eigen::Matrix<double, M, 1>& z) {
+                                   const Eigen::MatrixBase<Cov>& cov, const Eigen::Matrix<double, M, 1>& z) {
   Innovation<M, N> out;
   out.residual = z - at.predicted;
   // lazyProduct: coefficient-based; at 11-14 states Eigen's default would take
@@ -56,9 +72,8 @@ Innovation<M, N> ComputeInnovation(const MeasurementLinearization<M, N>& at, con
 // P - K S K^T (which only equals it at the optimal gain and loses the
 // positive semi-definite structure to round-off). Not symmetrised here.
 // h_p = H P, as the innovation computed it.
-template <int N, int M>
-Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& cov,
-                                             const Eigen::Matrix<double, N, M>& gain,
+template <int N, int M, typename Cov>
+Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::MatrixBase<Cov>& cov, const Eigen::Matrix<double, N, M>& gain,
                                              const Eigen::Matrix<double, M, N>& h_p,
                                              const Eigen::Matrix<double, M, N>& h_jacobian,
                                              const Eigen::Matrix<double, M, M>& noise) {
@@ -87,9 +102,10 @@ Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& 
 // x += K y and P by JosephCovariance, all from the innovation's H P. The gain
 // is the optimal K = P H^T S^-1 = (H P)^T S^-1 (P is symmetric), or
 // *fixed_gain when given (an observer's gain by pole placement).
-template <int M, int N>
+// x and cov: N-vector and N x N matrix, or blocks of them (in place).
+template <int M, int N, typename State, typename Cov>
 void KalmanUpdate(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                  const Innovation<M, N>& innovation, Eigen::Matrix<double, N, 1>* x, Eigen::Matrix<double, N, N>* cov,
+                  const Innovation<M, N>& innovation, State* x, Cov* cov,
                   const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
   Eigen::Matrix<double, N, M> gain;
   if (fixed_gain != nullptr) {
@@ -112,10 +128,10 @@ struct FusionRequest {
 
 // Computes the innovation of z, gates it and, when it passes, updates *x and
 // *cov. Returns what happened, with the innovation in z's unit.
-template <int M, int N>
+// *cov is P (an N x N matrix, or a block of one: see LeadingStates).
+template <int M, int N, typename State, typename Cov>
 FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                             const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request,
-                             Eigen::Matrix<double, N, 1>* x, Eigen::Matrix<double, N, N>* cov,
+                             const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, State* x, Cov* cov,
                              const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
   static_assert(M <= kMaxMeasurementSize, "FusionReport holds at most kMaxMeasurementSize values");
   const Innovation<M, N> innovation = ComputeInnovation(at, noise, *cov, z);
@@ -149,11 +165,10 @@ class GateWithInflation {
   // inflate(cov) widens the covariance before the ungated fusion. The report
   // keeps request.gate_nis as its gate, and fused_after_inflation says how it
   // was fused.
-  template <int M, int N, typename Inflate>
+  template <int M, int N, typename State, typename Cov, typename Inflate>
   FusionReport Fuse(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                    const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, Eigen::Matrix<double, N, 1>* x,
-                    Eigen::Matrix<double, N, N>* cov, Inflate&& inflate,
-                    const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
+                    const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, State* x, Cov* cov,
+                    Inflate&& inflate, const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
     FusionReport report = FuseMeasurement(at, noise, z, request, x, cov, fixed_gain);
     if (report.outcome == FusionOutcome::kFused) {
       consecutive_rejected_ = 0;

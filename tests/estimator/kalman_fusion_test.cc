@@ -248,5 +248,49 @@ TEST(JosephCovarianceTest, KeepsCovarianceSymmetricPositiveDefinite) {
   EXPECT_LE(reading_cov(0, 0), 4e-10);
 }
 
+// The EKF with no slow parameter learned (or frozen) fuses on its leading 11
+// states (LeadingStates): with the trailing rows and columns of P zero, x and
+// P come out as the fusion on all 14 gives them (the skipped terms are exact
+// zeros; only the order of the sums may differ: 1e-13 of the entry's scale),
+// and the trailing states are left alone.
+TEST(LeadingStatesTest, FusesAsAllStatesWhenTheTrailingOnesHaveZeroCovariance) {
+  constexpr int n = kStrainScale1;
+  std::mt19937 rng(29);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const StrainMeasurementModel strain(2e-5);
+  EkfState x = EkfState::Zero();
+  x(kDeflection1) = -2e-3;
+  x(kDeflection2) = 2e-3;
+  x(kStrainScale1) = 1.1;  // a frozen learned value: H has a non-zero column there
+  x(kStrainScale2) = 0.9;
+  x(kBodyMassScale) = 1.0;
+  for (int trial = 0; trial < 20; ++trial) {
+    EkfMatrix p = RandomCovariance(&rng);
+    p.rightCols<kEkfStateSize - n>().setZero();
+    p.bottomRows<kEkfStateSize - n>().setZero();
+    const StrainMeasurementModel::Vector z(x(kDeflection1) + 3e-5 * normal(rng), x(kDeflection2) + 3e-5 * normal(rng));
+    const StrainMeasurementModel::Linearization at = strain.Linearize(x);
+    EkfState x_all = x;
+    EkfMatrix p_all = p;
+    const FusionReport all = FuseMeasurement(at, strain.noise, z, {}, &x_all, &p_all);
+    Eigen::Matrix<double, n, 1> x_lead = x.head<n>();
+    Eigen::Matrix<double, n, n> p_lead = p.topLeftCorner<n, n>();
+    const FusionReport lead = FuseMeasurement(LeadingStates<n>(at), strain.noise, z, {}, &x_lead, &p_lead);
+    ASSERT_EQ(all.outcome, FusionOutcome::kFused);
+    ASSERT_EQ(lead.outcome, FusionOutcome::kFused);
+    EXPECT_NEAR(lead.nis, all.nis, 1e-12 * all.nis);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(x_lead(i), x_all(i), 1e-13 * std::sqrt(p(i, i))) << i;
+      for (int j = 0; j < n; ++j) {
+        EXPECT_NEAR(p_lead(i, j), p_all(i, j), 1e-13 * std::sqrt(p(i, i) * p(j, j))) << i << ", " << j;
+      }
+    }
+    // The fusion on all states leaves the trailing ones exactly as they were.
+    EXPECT_EQ(x_all.tail<kEkfStateSize - n>(), x.tail<kEkfStateSize - n>());
+    EXPECT_EQ(p_all.rightCols<kEkfStateSize - n>().cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(p_all.bottomRows<kEkfStateSize - n>().cwiseAbs().maxCoeff(), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace birotor
