@@ -12,39 +12,20 @@
 #include "estimator/harmonic_notch.h"
 #include "estimator/motor_speed_tracker.h"
 #include "params/scenario_yaml.h"
+#include "samples/sample_recorder.h"
 #include "simulator/simulator.h"
 
 namespace birotor {
 namespace {
 
-struct Event {
-  enum Kind { kStrain, kMotor, kImu } kind = kStrain;
-  StrainSample strain;
-  MotorSample motor;
-  ImuSample imu;
-};
-
-class Recorder : public SampleSink {
- public:
-  void OnStrain(const StrainSample& s) override { Push(Event::kStrain).strain = s; }
-  void OnMotor(const MotorSample& s) override { Push(Event::kMotor).motor = s; }
-  void OnImu(const ImuSample& s) override { Push(Event::kImu).imu = s; }
-  std::vector<Event> events;
-
- private:
-  Event& Push(Event::Kind kind) {
-    events.emplace_back();
-    events.back().kind = kind;
-    return events.back();
-  }
-};
+using Event = RecordedSample;
 
 // The reference `gentle` scenario cut to duration_s, recorded once.
 const std::vector<Event>& GentleEvents(double duration_s) {
   static std::vector<Event> events;
   static double recorded_s = -1;
   if (recorded_s != duration_s) {
-    Recorder recorder;
+    SampleRecorder recorder(/*record_truth=*/false);
     Simulator simulator(LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/gentle.yaml",
                                      {"scenario.duration_s=" + std::to_string(duration_s), "sensors.pose.enabled=false",
                                       "sensors.truth.enabled=false"}));
@@ -76,7 +57,7 @@ StrainSample NextStrain(const std::vector<Event>& events, size_t* index, int64_t
       ImuSample i = e.imu;
       i.utime += *offset_us;
       on_imu(i);
-    } else {
+    } else if (e.kind == Event::kStrain) {
       StrainSample s = e.strain;
       s.utime += *offset_us;
       return s;
@@ -172,6 +153,8 @@ void BM_PipelineGentle10s(benchmark::State& state) {
         case Event::kStrain:
           pipeline.OnStrain(e.strain, &estimate);
           ++strain_samples;
+          break;
+        case Event::kTruth:  // not recorded here
           break;
       }
     }

@@ -13,6 +13,7 @@
 #include "evaluation/eval_metrics.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
+#include "samples/sample_recorder.h"
 #include "simulator/simulator.h"
 
 namespace birotor {
@@ -179,43 +180,9 @@ namespace birotor {
 namespace testing_support {
 
 // A simulated run recorded as a time-ordered list of inputs, so that tests can
-// replay it into a pipeline with faults of their own.
-struct InputEvent {
-  enum Kind { kStrain, kMotor, kImu, kTruth } kind = kStrain;
-  StrainSample strain;
-  MotorSample motor;
-  ImuSample imu;
-  TruthSample truth;
-  int64_t utime() const {
-    switch (kind) {
-      case kStrain:
-        return strain.utime;
-      case kMotor:
-        return motor.utime;
-      case kImu:
-        return imu.utime;
-      case kTruth:
-        return truth.utime;
-    }
-    return 0;
-  }
-};
-
-class RecordingSink : public SampleSink {
- public:
-  void OnStrain(const StrainSample& s) override { Push(InputEvent::kStrain).strain = s; }
-  void OnMotor(const MotorSample& s) override { Push(InputEvent::kMotor).motor = s; }
-  void OnImu(const ImuSample& s) override { Push(InputEvent::kImu).imu = s; }
-  void OnTruth(const TruthSample& s) override { Push(InputEvent::kTruth).truth = s; }
-  std::vector<InputEvent> events;
-
- private:
-  InputEvent& Push(InputEvent::Kind kind) {
-    events.emplace_back();
-    events.back().kind = kind;
-    return events.back();
-  }
-};
+// replay it into a pipeline with faults of their own (samples/sample_recorder.h).
+using InputEvent = RecordedSample;
+using RecordingSink = SampleRecorder;
 
 // Records `scenario` (a file under config/scenarios) with overrides.
 inline std::vector<InputEvent> RecordScenario(const std::string& name, const std::vector<std::string>& overrides) {
