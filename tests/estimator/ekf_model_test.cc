@@ -14,6 +14,10 @@
 namespace birotor {
 namespace {
 
+// Central-difference steps per state, in its unit, for the Jacobian checks.
+constexpr double kStep[kEkfStateSize] = {1e-7, 1e-7, 1e-5, 1e-5, 1e-5, 1e-3, 1e-3,
+                                         1e-6, 1e-6, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6};
+
 EkfState HoverLikeState(std::mt19937* rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   EkfState x;
@@ -55,9 +59,6 @@ TEST(EkfProcessModelTest, JacobianMatchesCentralDifferences) {
   const VehicleParams p;
   const EkfProcessModel model(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(3);
-  // Steps per state, in its unit.
-  const double kStep[kEkfStateSize] = {1e-7, 1e-7, 1e-5, 1e-5, 1e-5, 1e-3, 1e-3,
-                                       1e-6, 1e-6, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6};
   for (int trial = 0; trial < 10; ++trial) {
     const EkfState x = HoverLikeState(&rng);
     EkfInput u;
@@ -87,8 +88,8 @@ TEST(EkfProcessModelTest, TransitionMatchesTheDerivativeOfTheRk4Step) {
   const VehicleParams p;
   const EkfProcessModel model(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(5);
-  const double kStep[kEkfStateSize] = {1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3,
-                                       1e-6, 1e-6, 1e-8, 1e-8, 1e-6, 1e-6, 1e-6};
+  const double kFineStep[kEkfStateSize] = {1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3,
+                                           1e-6, 1e-6, 1e-8, 1e-8, 1e-6, 1e-6, 1e-6};
   const EkfState x = HoverLikeState(&rng);
   EkfInput u;
   // Rotors at their command: the rotor speed (and so df/dmu) is constant over the step.
@@ -103,9 +104,9 @@ TEST(EkfProcessModelTest, TransitionMatchesTheDerivativeOfTheRk4Step) {
   phi.block<kDynamicStateSize, 1>(0, kBodyMassScale) = EkfProcessModel::ParameterTransition(a, mass_column, dt_s);
   for (int j = 0; j < kEkfStateSize; ++j) {
     EkfState plus = x, minus = x;
-    plus(j) += kStep[j];
-    minus(j) -= kStep[j];
-    const EkfState column = (model.Step(plus, u, dt_s) - model.Step(minus, u, dt_s)) / (2.0 * kStep[j]);
+    plus(j) += kFineStep[j];
+    minus(j) -= kFineStep[j];
+    const EkfState column = (model.Step(plus, u, dt_s) - model.Step(minus, u, dt_s)) / (2.0 * kFineStep[j]);
     for (int i = 0; i < kEkfStateSize; ++i) {
       // The body mass's column (entries ~0.06) carries the change of its
       // coefficient c along the step of this moving state (b changes by a few
@@ -207,8 +208,6 @@ TEST(MeasurementModelTest, AccelerometerJacobianMatchesCentralDifferences) {
   const VehicleParams p;
   const EkfProcessModel process(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(19);
-  const double kStep[kEkfStateSize] = {1e-7, 1e-7, 1e-5, 1e-5, 1e-5, 1e-3, 1e-3,
-                                       1e-6, 1e-6, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6};
   for (int trial = 0; trial < 5; ++trial) {
     const EkfState x = HoverLikeState(&rng);
     const AccelerometerMeasurementModel::Jacobian h = AccelerometerMeasurementModel::Linearize(process, x).jacobian;
