@@ -89,6 +89,15 @@ TEST(StatusMessageTest, CarriesCountersRatesAndAges) {
   EXPECT_EQ(decoded.inputs[0].fused, 7);
 }
 
+// ESTIMATOR_STATUS of an EKF with `health`, through the wire and back.
+bool BuildEncodeDecode(const PipelineHealth& health, estimator_status_t* decoded) {
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", StatusContext(), &message);
+  std::vector<uint8_t> buffer;
+  EncodeMessage(message, &buffer);
+  return DecodeMessage(buffer.data(), buffer.size(), decoded) == DecodeError::kNone;
+}
+
 TEST(StatusMessageTest, CarriesTheGaugeOffsetsAndTheTareCounters) {
   PipelineHealth health;
   health.gauge.offset_rad[0] = 1.5e-5;
@@ -98,12 +107,8 @@ TEST(StatusMessageTest, CarriesTheGaugeOffsetsAndTheTareCounters) {
   health.tare.refused_body_moving = 2;
   health.tare.refused_out_of_range = 1;
   health.tare.last_refusal = TareRefusal::kOutOfRange;
-  estimator_status_t message;
-  BuildStatusMessage(health, "ekf", StatusContext(), &message);
-  std::vector<uint8_t> buffer;
-  EncodeMessage(message, &buffer);
   estimator_status_t decoded;
-  ASSERT_EQ(DecodeMessage(buffer.data(), buffer.size(), &decoded), DecodeError::kNone);
+  ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
   EXPECT_EQ(decoded.gauge_offset_rad[0], 1.5e-5);
   EXPECT_EQ(decoded.gauge_offset_std_rad[1], 1.1e-6);
   EXPECT_EQ(decoded.gauge_offset_source, "tare");
@@ -119,12 +124,8 @@ TEST(StatusMessageTest, CarriesTheModelConsistencyStatisticAndParameter) {
   health.consistency.statistic = 3.25;
   health.consistency.mismatch = true;
   health.consistency.parameter = MismatchParameter::kMass;
-  estimator_status_t message;
-  BuildStatusMessage(health, "ekf", StatusContext(), &message);
-  std::vector<uint8_t> buffer;
-  EncodeMessage(message, &buffer);
   estimator_status_t decoded;
-  ASSERT_EQ(DecodeMessage(buffer.data(), buffer.size(), &decoded), DecodeError::kNone);
+  ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
   EXPECT_EQ(decoded.model_consistency_statistic, 3.25);
   EXPECT_EQ(decoded.mismatch_parameter, "mass");
 }
