@@ -34,6 +34,22 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.supervision.min_plausible_thrust_scale, defaults.supervision.min_plausible_thrust_scale);
   EXPECT_EQ(config.supervision.max_plausible_thrust_scale, defaults.supervision.max_plausible_thrust_scale);
   EXPECT_EQ(config.supervision.descent_rate_m_s, defaults.supervision.descent_rate_m_s);
+  EXPECT_EQ(config.efficiency.flare_tilt_rad, defaults.efficiency.flare_tilt_rad);
+  EXPECT_EQ(config.efficiency.flare_time_s, defaults.efficiency.flare_time_s);
+}
+
+TEST(ControllerConfigYamlTest, FlareKeysAreRequiredAndRanged) {
+  YAML::Node reference = YAML::LoadFile(ReferenceFile());
+  reference["controller"]["efficiency"].remove("flare_tilt_rad");
+  YAML::Emitter emitter;
+  emitter << reference;
+  EXPECT_EQ(ErrorOf(emitter.c_str()),
+            "bad.yaml: missing key: controller.efficiency.flare_tilt_rad (every key is required; the shipped "
+            "reference files have them all)");
+  // The budget stays inside issue 25's |tilt| < 0.3 rad.
+  const std::string e = ErrorOf("controller:\n  efficiency: {flare_tilt_rad: 0.4}\n");
+  EXPECT_NE(e.find("controller.efficiency.flare_tilt_rad"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0, 0.3]"), std::string::npos) << e;
 }
 
 TEST(ControllerConfigYamlTest, MissingKeysAreNamed) {
