@@ -283,7 +283,14 @@ void VehicleController::MaxForces(bool use_efficiency, double (&max_force_n)[2])
   }
 }
 
-bool VehicleController::Flare(RotorForces* forces) {
+bool VehicleController::Flare(bool infeasible_descent, RotorForces* forces) {
+  const bool flare = infeasible_descent && ApplyFlare(forces);
+  if (flare && !health_.flaring) ++health_.flares;
+  health_.flaring = flare;
+  return flare;
+}
+
+bool VehicleController::ApplyFlare(RotorForces* forces) const {
   const EfficiencyParams& e = config_.efficiency;
   const BodyState& body = observer_.state();
   FlareState state;
@@ -385,18 +392,14 @@ MotorCommand VehicleController::Update(int64_t now_us) {
 
   // Anti-windup: the integrators hold while the previous allocation was limited.
   RotorForces forces = law_.Update(observer_.state(), target, !saturated_);
-  // Near the ground in a descent the rotors cannot stop: the flare.
-  const bool flare = infeasible && !pose_lost && Flare(&forces);
-  if (flare && !health_.flaring) ++health_.flares;
-  health_.flaring = flare;
+  const bool flare = Flare(infeasible && !pose_lost, &forces);
   last_accel_des_m_s2_ = forces.accel_des_m_s2;
   if (!last_accel_des_m_s2_.allFinite()) last_accel_des_m_s2_.setZero();
   const Eigen::Vector2d last_rad_s(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
   Allocate(forces, config_.force_feedback, dt_s, &command, &status);
   if (mpc_) {
-    // Mode mpc: the MPC flies (the descent target too, not without POSE and
-    // not the flare: the cascade's flare allocation flies those periods); the
-    // cascade's speeds just allocated are its fallback.
+    // Mode mpc: the MPC flies (the descent too, not without POSE nor the
+    // flare); the cascade's speeds just allocated are its fallback.
     MpcPlanInput in;
     in.state = observer_.state();
     in.reference = target;

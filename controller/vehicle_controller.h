@@ -110,10 +110,11 @@ class VehicleController {
   void Allocate(const RotorForces& forces, bool use_efficiency, double dt_s, MotorCommand* command, int32_t* status);
   // What each rotor can make with the efficiency in use [N].
   void MaxForces(bool use_efficiency, double (&max_force_n)[2]) const;
-  // The hover-infeasible descent near the ground: replaces the law's total
-  // and difference by the flare's (FlareForcesFor) and returns true while it
-  // flares.
-  bool Flare(RotorForces* forces);
+  // The hover-infeasible descent (with POSE) near the ground: replaces the
+  // law's total and difference by the flare's (FlareForcesFor) and returns
+  // true while it flares; Flare also counts the flares.
+  bool Flare(bool infeasible_descent, RotorForces* forces);
+  bool ApplyFlare(RotorForces* forces) const;
 
   ControllerConfig config_;
   PositionAttitudeLaw law_;
