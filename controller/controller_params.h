@@ -90,6 +90,13 @@ struct EfficiencyParams {
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
   double feasibility_margin = 1.02;      // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
   double infeasible_s = 0.1;             // infeasible this long: level controlled descent [s]
+  // The flare of that descent (FlareForcesFor, controller/rotor_allocation.h):
+  // sinking faster than descent_rate_m_s and lower than the sink covers in
+  // flare_time_s above the ground (the first POSE: the take-off level), the
+  // strong rotor may exceed the weak one so that |tilt| reaches flare_tilt_rad
+  // at touchdown, trading tilt and pitch rate for touchdown speed (0: no flare).
+  double flare_tilt_rad = 0.08;  // tilt budget at touchdown [rad]
+  double flare_time_s = 0.1;     // flare height = sink rate x this [s]
   // Motor-lag lead on a falling efficiency: omega_cmd = omega + lead_s d(omega)/dt
   // with d(omega)/dt = -omega / (2 e) de/dt (de/dt < 0 only), the inverse of the
   // first-order motor lag (tau_m, model/plant.h) for the efficiency's share of the

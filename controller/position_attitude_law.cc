@@ -41,8 +41,7 @@ RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferenceP
   const double alpha_des = gains_.attitude_kp_1_s2 * tilt_error - gains_.attitude_kd_1_s * state.phi_dot_rad_s +
                            gains_.attitude_ki_1_s3 * tilt_integral_rad_s_;
   const double L = p.arm_length_m;
-  const double inertia = p.body_inertia_kg_m2 + 2.0 * p.tip_mass_kg * L * L;
-  const double force_difference_n = inertia * alpha_des / L;  // f2 - f1
+  const double force_difference_n = RigidPitchInertiaKgM2(p) * alpha_des / L;  // f2 - f1
 
   out.total_force_n = total_force_n;
   out.force_difference_n = force_difference_n;

@@ -58,6 +58,12 @@ class PositionAttitudeLaw {
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
 };
 
+// Pitch inertia of the rigid vehicle, J_eff = J + 2 m_p L^2 [kg m^2]: the
+// body and the two tip masses at the arm length (0.086 for the reference vehicle).
+inline double RigidPitchInertiaKgM2(const VehicleParams& p) {
+  return p.body_inertia_kg_m2 + 2.0 * p.tip_mass_kg * p.arm_length_m * p.arm_length_m;
+}
+
 // Rotor speed that makes force_n with thrust scale mu (f = mu c_T omega^2):
 // omega = sqrt(max(f, 0) / (mu c_T)), clipped to [0, omega_max] [rad/s].
 // *saturated (optional) is set when the clip changed the value.

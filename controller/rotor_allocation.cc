@@ -20,4 +20,22 @@ RotorAllocation AllocateAttitudeFirst(double total_force_n, double force_differe
   return out;
 }
 
+FlareForces FlareForcesFor(const FlareState& state, const FlareLimits& limits) {
+  FlareForces out;
+  const bool rotor2_strong = limits.max_force_n[1] > limits.max_force_n[0];
+  const double sign = rotor2_strong ? 1.0 : -1.0;
+  const double max_weak = std::max(std::min(limits.max_force_n[0], limits.max_force_n[1]), 0.0);
+  const double max_strong = std::max(limits.max_force_n[0], limits.max_force_n[1]);
+  const double sink_m_s = std::max(state.sink_rate_m_s, 1e-6);
+  out.time_to_go_s = std::max(std::max(state.height_m, 0.0) / sink_m_s, limits.min_time_to_go_s);
+  const double t = std::max(out.time_to_go_s, 1e-6);
+  const double tilt_left_rad = limits.tilt_budget_rad - sign * (state.tilt_rad + state.pitch_rate_rad_s * t);
+  const double extra_n = 2.0 * limits.pitch_inertia_kg_m2 * tilt_left_rad / (limits.arm_length_m * t * t);
+  // A non-finite state asks for nothing (the caller's guard sees the law's output).
+  out.extra_force_n = std::isfinite(extra_n) ? std::clamp(extra_n, 0.0, std::max(max_strong - max_weak, 0.0)) : 0.0;
+  out.total_force_n = 2.0 * max_weak + out.extra_force_n;
+  out.force_difference_n = sign * out.extra_force_n;
+  return out;
+}
+
 }  // namespace birotor

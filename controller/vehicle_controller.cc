@@ -105,6 +105,7 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
     const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
     observer_.Initialize(position_m, sample.phi_rad);
     setpoint_.SetStart(position_m);
+    ground_z_m_ = sample.z_m;
     last_fused_pose_utime_ = sample.utime;
     return;
   }
@@ -229,9 +230,9 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
   const VehicleParams& vehicle = config_.vehicle;
   double efficiency[2] = {1.0, 1.0};
   double max_force_n[2];
+  MaxForces(use_efficiency, max_force_n);
   for (int i = 0; i < 2; ++i) {
     if (use_efficiency) efficiency[i] = efficiency_.efficiency(i);
-    max_force_n[i] = efficiency[i] * vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
     health_.efficiency[i] = efficiency[i];
   }
   const RotorAllocation allocation =
@@ -272,6 +273,46 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
     *status |= kCommandSaturated;
     ++health_.saturated;
   }
+}
+
+void VehicleController::MaxForces(bool use_efficiency, double (&max_force_n)[2]) const {
+  const VehicleParams& vehicle = config_.vehicle;
+  for (int i = 0; i < 2; ++i) {
+    const double efficiency = use_efficiency ? efficiency_.efficiency(i) : 1.0;
+    max_force_n[i] = efficiency * vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
+  }
+}
+
+bool VehicleController::Flare(bool infeasible_descent, RotorForces* forces) {
+  const bool flare = infeasible_descent && ApplyFlare(forces);
+  if (flare && !health_.flaring) ++health_.flares;
+  health_.flaring = flare;
+  return flare;
+}
+
+bool VehicleController::ApplyFlare(RotorForces* forces) const {
+  const EfficiencyParams& e = config_.efficiency;
+  const BodyState& body = observer_.state();
+  FlareState state;
+  state.height_m = body.position_m.y() - ground_z_m_;
+  state.sink_rate_m_s = -body.velocity_m_s.y();
+  state.tilt_rad = body.phi_rad;
+  state.pitch_rate_rad_s = body.phi_dot_rad_s;
+  // Sinking faster than the descent asks, above the take-off level and within
+  // the flare height; on the ground (no sink) it ends by itself.
+  const bool flare = e.flare_tilt_rad > 0.0 && state.sink_rate_m_s > config_.supervision.descent_rate_m_s &&
+                     state.height_m > 0.0 && state.height_m <= state.sink_rate_m_s * e.flare_time_s;
+  if (!flare) return false;
+  FlareLimits limits;
+  limits.tilt_budget_rad = e.flare_tilt_rad;
+  limits.min_time_to_go_s = config_.vehicle.motor_time_constant_s;
+  limits.pitch_inertia_kg_m2 = RigidPitchInertiaKgM2(config_.vehicle);
+  limits.arm_length_m = config_.vehicle.arm_length_m;
+  MaxForces(config_.force_feedback, limits.max_force_n);
+  const FlareForces flare_forces = FlareForcesFor(state, limits);
+  forces->total_force_n = flare_forces.total_force_n;
+  forces->force_difference_n = flare_forces.force_difference_n;
+  return true;
 }
 
 MotorCommand VehicleController::Update(int64_t now_us) {
@@ -350,14 +391,15 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   health_.descending = descend;
 
   // Anti-windup: the integrators hold while the previous allocation was limited.
-  const RotorForces forces = law_.Update(observer_.state(), target, !saturated_);
+  RotorForces forces = law_.Update(observer_.state(), target, !saturated_);
+  const bool flare = Flare(infeasible && !pose_lost, &forces);
   last_accel_des_m_s2_ = forces.accel_des_m_s2;
   if (!last_accel_des_m_s2_.allFinite()) last_accel_des_m_s2_.setZero();
   const Eigen::Vector2d last_rad_s(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
   Allocate(forces, config_.force_feedback, dt_s, &command, &status);
   if (mpc_) {
-    // Mode mpc: the MPC flies (the descent target too, not without POSE); the
-    // cascade's speeds just allocated are its fallback.
+    // Mode mpc: the MPC flies (the descent too, not without POSE nor the
+    // flare); the cascade's speeds just allocated are its fallback.
     MpcPlanInput in;
     in.state = observer_.state();
     in.reference = target;
@@ -365,7 +407,7 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     in.last_command_rad_s = last_rad_s;
     in.period_s = nominal_dt_s;
     const MpcPeriod period =
-        mpc_->Fly(in, Eigen::Vector2d(command.omega_cmd_rad_s[0], command.omega_cmd_rad_s[1]), !pose_lost);
+        mpc_->Fly(in, Eigen::Vector2d(command.omega_cmd_rad_s[0], command.omega_cmd_rad_s[1]), !pose_lost && !flare);
     for (int i = 0; i < 2; ++i) command.omega_cmd_rad_s[i] = last_good_omega_rad_s_[i] = period.omega_cmd_rad_s(i);
     command.mode = kModeMpc;
     if (period.fell_back) status |= kCommandMpcFallback;

@@ -8,7 +8,8 @@
 // scales and POSE outside the innovation gate are refused and counted; a
 // second publisher drops force feedback; FORCE stale, not VALID or refused
 // lets the efficiency decay towards the nominal map; a lost POSE or a hover
-// the rotors cannot make gives a level controlled descent; a command is never
+// the rotors cannot make gives a level controlled descent (and a flare near
+// the ground, controller/rotor_allocation.h); a command is never
 // non-finite or outside [0, omega_max]. No LCM, no allocation, no throw after
 // construction.
 #pragma once
@@ -54,8 +55,10 @@ struct ControllerHealth {
   int64_t conflicts = 0;         // entries into STATUS_INPUT_CONFLICT
   int64_t pose_gate_resets = 0;  // observer re-initialised after pose_gate_reset_s of gated POSE
   int64_t infeasible = 0;        // entries into the hover-infeasible descent
+  int64_t flares = 0;            // entries into that descent's flare near the ground
   bool fallback_active = false;
   bool descending = false;
+  bool flaring = false;
   bool conflict = false;
   double efficiency[2] = {1.0, 1.0};  // efficiency used by the rotor map in the newest period [1]
 };
@@ -105,6 +108,13 @@ class VehicleController {
   // limits, the map with the efficiency in use, the motor-lag lead on the
   // efficiency's change over the period dt_s.
   void Allocate(const RotorForces& forces, bool use_efficiency, double dt_s, MotorCommand* command, int32_t* status);
+  // What each rotor can make with the efficiency in use [N].
+  void MaxForces(bool use_efficiency, double (&max_force_n)[2]) const;
+  // The hover-infeasible descent (with POSE) near the ground: replaces the
+  // law's total and difference by the flare's (FlareForcesFor) and returns
+  // true while it flares; Flare also counts the flares.
+  bool Flare(bool infeasible_descent, RotorForces* forces);
+  bool ApplyFlare(RotorForces* forces) const;
 
   ControllerConfig config_;
   PositionAttitudeLaw law_;
@@ -121,6 +131,7 @@ class VehicleController {
   bool pose_pending_ = false;
   PoseSample pending_pose_;
   int64_t last_fused_pose_utime_ = -1;
+  double ground_z_m_ = 0.0;  // the first POSE's z: the take-off level the flare lands on [m]
   int64_t gated_since_us_ = -1;
 
   // IMU: sums over the samples since the last control period.

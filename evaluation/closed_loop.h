@@ -55,6 +55,7 @@ struct ClosedLoopRun {
   int64_t liftoff_utime = -1;    // first lift-off of a ground start [us]; -1 if none
   bool has_ground = false;       // the scenario has a ground phase (a support at ground_z_m)
   double ground_z_m = 0;         // height of the support [m]
+  double arm_length_m = 0;       // the flown vehicle's L (where its tips are) [m]
   int64_t command_timeouts = 0;  // ESC command timeouts
   double simulated_s = 0;        // [s]
   double wall_s = 0;             // [s]

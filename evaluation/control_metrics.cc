@@ -26,6 +26,17 @@ constexpr double kFloor[3] = {1e-3, 2e-3, 2e-3};
 // this close, not the first exactly on the support [m].
 constexpr double kContactToleranceM = 1e-3;
 
+// The attitude at contact and the lower tip's downward speed: tip i is at
+// z -+ L sin(phi) (rigid arms), so the lower one is on the side sign(phi)
+// points down, moving at z_dot -+ L cos(phi) phi_dot.
+void SetTouchdownAttitude(const TruthSample& truth, double arm_length_m, ControlMetrics* m) {
+  const double side = truth.phi_rad >= 0.0 ? 1.0 : -1.0;
+  const double tip_z_dot_m_s = truth.z_dot_m_s - side * arm_length_m * std::cos(truth.phi_rad) * truth.phi_dot_rad_s;
+  m->tilt_at_touchdown_rad = std::fabs(truth.phi_rad);
+  m->pitch_rate_at_touchdown_rad_s = std::fabs(truth.phi_dot_rad_s);
+  m->tip_touchdown_speed_m_s = std::max(-tip_z_dot_m_s, 0.0);
+}
+
 }  // namespace
 
 ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOptions& options) {
@@ -37,6 +48,7 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
   const int64_t window_end_utime = event_utime + std::llround(options.window_s * 1e6);
   m.fault_time_s = 1e-6 * static_cast<double>(event_utime - start_utime);
   m.touchdown_speed_m_s = m.tilt_before_touchdown_rad = kNaN;
+  m.tilt_at_touchdown_rad = m.pitch_rate_at_touchdown_rad_s = m.tip_touchdown_speed_m_s = kNaN;
   const double ground_z_m = run.ground_z_m;
   double sum_squared = 0;
   int64_t scored = 0;
@@ -67,6 +79,7 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
             previous->truth.z_m > ground_z_m + kContactToleranceM && s.truth.z_m <= ground_z_m + kContactToleranceM) {
           m.touchdown_speed_m_s = std::max(-previous->truth.z_dot_m_s, 0.0);
           m.tilt_before_touchdown_rad = tilt_since_event;
+          SetTouchdownAttitude(previous->truth, run.arm_length_m, &m);
         }
       }
     }
@@ -119,18 +132,23 @@ ControlComparison CompareControl(const std::vector<ControlFigures>& nominal,
 
 std::string ControlTableHeader() {
   return "| scenario | controller | RMS position error [m] | peak tilt [rad] | event at [s] | tilt after event [rad] "
-         "| altitude deviation [m] | peak altitude loss [m] | back within 5 cm [s] | touchdown [m/s] | fallbacks | "
-         "crashed |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "| altitude deviation [m] | peak altitude loss [m] | back within 5 cm [s] | touchdown [m/s] | at touchdown: "
+         "tilt [rad], pitch rate [rad/s], lower tip [m/s] | fallbacks | crashed |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string ControlTableRow(const std::string& scenario, const std::string& mode, const ControlMetrics& m,
                             const ClosedLoopRun& run) {
   const std::string back = std::isnan(m.return_time_s) ? "never" : fmt::format("{:.2f}", m.return_time_s);
-  const std::string touchdown = std::isnan(m.touchdown_speed_m_s) ? "-" : fmt::format("{:.2f}", m.touchdown_speed_m_s);
-  return fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} |\n",
+  const bool landed = !std::isnan(m.touchdown_speed_m_s);
+  const std::string touchdown = landed ? fmt::format("{:.2f}", m.touchdown_speed_m_s) : "-";
+  const std::string attitude = landed ? fmt::format("{:.3f}, {:.2f}, {:.2f}", m.tilt_at_touchdown_rad,
+                                                    m.pitch_rate_at_touchdown_rad_s, m.tip_touchdown_speed_m_s)
+                                      : "-";
+  return fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.2f} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} |\n",
                      scenario, mode, m.rms_position_error_m, m.peak_tilt_rad, m.fault_time_s, m.fault_peak_tilt_rad,
-                     m.peak_altitude_deviation_m, m.peak_altitude_loss_m, back, touchdown, run.controller.fallbacks,
-                     m.crashed ? "yes" : "no");
+                     m.peak_altitude_deviation_m, m.peak_altitude_loss_m, back, touchdown, attitude,
+                     run.controller.fallbacks, m.crashed ? "yes" : "no");
 }
 
 std::string ComparisonTableHeader() {

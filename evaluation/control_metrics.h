@@ -39,6 +39,13 @@ struct ControlMetrics {
   // before contact [m/s] and the peak |tilt| until then [rad]; NaN otherwise.
   double touchdown_speed_m_s = 0;
   double tilt_before_touchdown_rad = 0;
+  // At that contact: |tilt| [rad], |pitch rate| [rad/s], and the downward
+  // speed of the lower tip (rigid arms: z_dot -+ L cos(phi) phi_dot, the tip
+  // L |sin(phi)| below the body) [m/s]; NaN without a touchdown. A flare
+  // (controller/rotor_allocation.h) trades these for the body's speed.
+  double tilt_at_touchdown_rad = 0;
+  double pitch_rate_at_touchdown_rad_s = 0;
+  double tip_touchdown_speed_m_s = 0;
 };
 
 ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOptions& options = {});

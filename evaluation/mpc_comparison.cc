@@ -33,6 +33,7 @@ MpcRunFigures MpcFiguresOf(const ClosedLoopRun& run, const ControlMetrics& metri
   out.control = FiguresOf(metrics);
   out.touchdown_speed_m_s = metrics.touchdown_speed_m_s;
   out.tilt_before_touchdown_rad = metrics.tilt_before_touchdown_rad;
+  out.tip_touchdown_speed_m_s = metrics.tip_touchdown_speed_m_s;
   const double omega_max = config.vehicle.omega_max_rad_s;
   const double max_change = config.mpc.max_omega_rate_rad_s2 / CommandRateHz(config) + 1e-9;
   bool previous_in_flight = false;
@@ -57,8 +58,9 @@ MpcRunFigures MpcFiguresOf(const ClosedLoopRun& run, const ControlMetrics& metri
 
 std::string MpcComparisonHeader() {
   return "| case | mode | RMS position [m] | fault peak tilt [rad] | altitude deviation [m] | touchdown speed [m/s] | "
-         "tilt before touchdown [rad] | max command change [rad/s] | out of bounds / over rate | solve p99 [us] | "
-         "fallbacks / solves |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "tilt before touchdown [rad] | lower tip at touchdown [m/s] | max command change [rad/s] | out of bounds / "
+         "over "
+         "rate | solve p99 [us] | fallbacks / solves |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string MpcComparisonRow(const std::string& name, const std::string& mode, const std::vector<MpcRunFigures>& runs) {
@@ -70,7 +72,7 @@ std::string MpcComparisonRow(const std::string& name, const std::string& mode, c
     solves += r.solves;
   }
   const bool mpc = solves > 0;
-  return fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} |\n", name, mode,
+  return fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} |\n", name, mode,
                      Spread(
                          runs, [](const MpcRunFigures& r) { return r.control.rms_m; }, "{:.4f}"),
                      Spread(
@@ -81,6 +83,8 @@ std::string MpcComparisonRow(const std::string& name, const std::string& mode, c
                          runs, [](const MpcRunFigures& r) { return r.touchdown_speed_m_s; }, "{:.2f}"),
                      Spread(
                          runs, [](const MpcRunFigures& r) { return r.tilt_before_touchdown_rad; }, "{:.3f}"),
+                     Spread(
+                         runs, [](const MpcRunFigures& r) { return r.tip_touchdown_speed_m_s; }, "{:.2f}"),
                      Spread(
                          runs, [](const MpcRunFigures& r) { return r.max_command_change_rad_s; }, "{:.0f}"),
                      out_of_bounds, mpc ? std::to_string(over_rate) : std::string("-"),

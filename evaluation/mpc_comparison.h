@@ -18,6 +18,7 @@ struct MpcRunFigures {
   ControlFigures control;          // RMS, fault-relative peak tilt, altitude deviation
   double touchdown_speed_m_s = 0;  // NaN without a touchdown
   double tilt_before_touchdown_rad = 0;
+  double tip_touchdown_speed_m_s = 0;  // the lower tip's (ControlMetrics); NaN without a touchdown
   int64_t commands_out_of_bounds = 0;  // outside [0, omega_max]
   int64_t commands_over_rate = 0;      // |change| > max_omega_rate_rad_s2 x period (+1e-9), first in flight exempt
   double max_command_change_rad_s = 0;

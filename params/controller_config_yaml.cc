@@ -55,6 +55,8 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("decay_s", &O::decay_s, 1e-3, 1e3),
       Real("feasibility_margin", &O::feasibility_margin, 0.5, 2.0),
       Real("infeasible_s", &O::infeasible_s, 0.0, 10.0),
+      Real("flare_tilt_rad", &O::flare_tilt_rad, 0.0, 0.3),
+      Real("flare_time_s", &O::flare_time_s, 0.0, 1.0),
       Real("motor_lead_s", &O::motor_lead_s, 0.0, 1.0),
   };
   return keys;

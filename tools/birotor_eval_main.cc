@@ -118,7 +118,8 @@ void AddControlOptions(CLI::App& app, EvalCli* cli) {
                "scenario name; default every case) closed loop (birotor-sim --controller) in both controller "
                "modes with the same gains on the same seeds; report RMS position error, and from the fault (or "
                "lift-off) over 3 s the peak tilt and altitude deviation, the time back within 5 cm and the "
-               "touchdown speed; then nominal vs force feedback per case (medians and worst seed)");
+               "touchdown speed (with the tilt, pitch rate and lower tip's speed at touchdown); then nominal vs "
+               "force feedback per case (medians and worst seed)");
   app.add_option("--seeds", cli->seeds, "--control: fly seeds 1..N of each case (1: the scenario's own seed)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--controller-params", cli->controller_params,

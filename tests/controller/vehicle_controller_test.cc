@@ -1,7 +1,8 @@
 // The supervised controller (vehicle_controller.h): force feedback makes
 // omega_i = sqrt(f_i / (c_T mu_i)), the fallback to the nominal map comes
 // within one control period of a bad FORCE and goes after force_recovery_s of
-// good ones, a lost POSE gives a controlled descent, and no input sequence
+// good ones, a lost POSE gives a controlled descent, a hover the rotors
+// cannot make a level one that flares near the ground, and no input sequence
 // (NaN, infinities, huge values, out of order) gives a command that is not
 // finite or outside [0, omega_max].
 #include "controller/vehicle_controller.h"
@@ -27,7 +28,8 @@ double HoverForce(const VehicleParams& p) {
 
 // A vehicle at rest at the origin, level, seen by every sensor; FORCE
 // reports the hover force on both rotors and thrust scales (1, scale2) with
-// the given status.
+// the given status. climb_m_s moves it up (down if negative) at that
+// constant speed.
 class HoverFeed {
  public:
   // A controller of config that has seen the first POSE (at the origin, t = 0).
@@ -38,10 +40,12 @@ class HoverFeed {
   bool send_force = true;
   int32_t force_status = kStatusValid;
   double scale2 = 1.0;
+  double climb_m_s = 0.0;
 
   // Feeds the samples of (now - period, now] and runs one control period.
   MotorCommand Period() {
     for (int64_t t = now_us_ + 1000; t <= now_us_ + kPeriodUs; t += 1000) {
+      z_m_ += 1e-3 * climb_m_s;
       controller_.OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81}, t);
       if (send_force) {
         ForceEstimate force;
@@ -54,7 +58,7 @@ class HoverFeed {
         controller_.OnForce(force, t);
       }
       ++force_seq_;
-      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, 0.0, 0.0}, t);
+      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, z_m_, 0.0}, t);
     }
     now_us_ += kPeriodUs;
     return controller_.Update(now_us_);
@@ -69,12 +73,14 @@ class HoverFeed {
   // (baseline_tau_s 1 s), in force feedback when asked for.
   MotorCommand Settle() { return Run(1000); }
   int64_t now_us() const { return now_us_; }
+  double z_m() const { return z_m_; }
   VehicleController& controller() { return controller_; }
 
  private:
   VehicleController controller_;
   double hover_force_n_;
   int64_t now_us_ = 0;
+  double z_m_ = 0.0;
   int32_t imu_seq_ = 0, pose_seq_ = 0, force_seq_ = 0;
 };
 
@@ -233,6 +239,47 @@ TEST(VehicleControllerTest, LostPoseGivesAControlledDescent) {
   feed.send_pose = true;
   for (int k = 0; k < 10; ++k) c = feed.Period();
   EXPECT_FALSE(c.status & kCommandDescending);
+}
+
+TEST(VehicleControllerTest, InfeasibleDescentFlaresOnlyNearTheGround) {
+  // Take off from z = 0 (the first POSE: the ground), climb to 0.5 m, rotor 2
+  // at 30 %: 2 x 0.3 c_T omega_max^2 = 39.7 N < 1.02 x 44.9 N, a level descent
+  // (rotor 1 matching rotor 2 at its maximum, omega_1 = sqrt(0.3) omega_max =
+  // 657 rad/s). Sinking at 1 m/s the flare starts below 1 m/s x flare_time_s
+  // = 0.1 m: rotor 2 stays at omega_max, rotor 1 makes more.
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  feed.Settle();
+  feed.climb_m_s = 0.5;
+  feed.Run(500);  // 1 s: z = 0.5 m
+  feed.climb_m_s = 0.0;
+  feed.scale2 = 0.3;
+  MotorCommand c = feed.Run(150);
+  EXPECT_TRUE(c.status & kCommandHoverInfeasible);
+  EXPECT_TRUE(c.status & kCommandDescending);
+  EXPECT_EQ(feed.controller().health().flares, 0);  // at rest 0.5 m up: no flare
+  const double omega_max = config.vehicle.omega_max_rad_s;
+  feed.climb_m_s = -1.0;
+  double level_omega1 = 0.0;
+  while (feed.z_m() > 0.15) {
+    c = feed.Period();
+    EXPECT_FALSE(feed.controller().health().flaring) << feed.z_m();
+    level_omega1 = c.omega_cmd_rad_s[0];
+  }
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], omega_max, 1e-9);
+  EXPECT_NEAR(level_omega1, std::sqrt(0.3) * omega_max, 0.05 * omega_max);
+  while (feed.z_m() > 0.05) c = feed.Period();
+  EXPECT_TRUE(feed.controller().health().flaring);
+  EXPECT_EQ(feed.controller().health().flares, 1);
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], omega_max, 1e-9);
+  // At 0.05 m and 1 m/s, t_go = 0.05 s: dF = 2 J_eff 0.08 / (L t_go^2) = 22 N,
+  // f1 = 19.9 + 22 N, omega_1 = 954 rad/s on the true state; measured 887
+  // rad/s (the observer's height and sink rate lag the POSE ramp).
+  EXPECT_GT(c.omega_cmd_rad_s[0], level_omega1 + (887.0 - 657.3) / 1.5);
+  EXPECT_LT(c.omega_cmd_rad_s[0], 954.0);
+  // Below the take-off level (the ground it assumed) the flare ends.
+  while (feed.z_m() > -0.01) c = feed.Period();
+  EXPECT_FALSE(feed.controller().health().flaring);
 }
 
 TEST(VehicleControllerTest, OutOfOrderSamplesAreDropped) {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -133,6 +134,39 @@ TEST(ControlMetricsTest, ReturnTimeAndAltitudeLossFromATrace) {
   // |z| > 0.05 while sin(pi (t - 1) / 0.5) > 0.5: t in (1 + 1/12, 1 + 5/12) s.
   EXPECT_NEAR(m.return_time_s, 5.0 / 12.0, 1.5e-3);
   EXPECT_FALSE(m.crashed);
+}
+
+TEST(ControlMetricsTest, TouchdownAttitudeAndLowerTipFromATrace) {
+  // Hand-made trace at 1 kHz: a ground run at z = 0 (has_ground), the body
+  // comes down at 0.9 m/s tilted phi = -0.06 rad and pitching at -2 rad/s,
+  // fault at 0.5 s, contact at 1 s. With phi < 0 the lower tip is at
+  // z + L sin(phi), moving at z_dot + L cos(phi) phi_dot:
+  // -0.9 + 0.25 cos(0.06) (-2) = -1.3996 m/s.
+  ClosedLoopRun run;
+  run.has_ground = true;
+  run.arm_length_m = 0.25;
+  for (int k = 0; k <= 1500; ++k) {
+    TrackedSample s;
+    s.truth.utime = k * 1000;
+    const double t = k * 1e-3;
+    s.truth.z_m = std::max(0.9 * (1.0 - t), 0.0);
+    s.truth.z_dot_m_s = t < 1.0 ? -0.9 : 0.0;
+    s.truth.phi_rad = -0.06;
+    s.truth.phi_dot_rad_s = t < 1.0 ? -2.0 : 0.0;
+    run.samples.push_back(s);
+  }
+  run.fault_utime = 500000;
+  const ControlMetrics m = EvaluateControl(run);
+  EXPECT_DOUBLE_EQ(m.touchdown_speed_m_s, 0.9);
+  EXPECT_DOUBLE_EQ(m.tilt_at_touchdown_rad, 0.06);
+  EXPECT_DOUBLE_EQ(m.pitch_rate_at_touchdown_rad_s, 2.0);
+  EXPECT_NEAR(m.tip_touchdown_speed_m_s, 0.9 + 0.25 * std::cos(0.06) * 2.0, 1e-12);
+  // Tilted the other way, pitching back up: that tip is the lower one and
+  // it rises relative to the body (0.9 - 0.4996 m/s).
+  for (TrackedSample& s : run.samples) {
+    s.truth.phi_rad = -s.truth.phi_rad;
+  }
+  EXPECT_NEAR(EvaluateControl(run).tip_touchdown_speed_m_s, 0.9 - 0.25 * std::cos(0.06) * 2.0, 1e-12);
 }
 
 }  // namespace

@@ -84,25 +84,30 @@ TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
   }
 }
 
-TEST(ControlCasesTest, SeventyPercentLossDescendsLevel) {
-  // Issue 25: a level descent (|tilt| < 0.3 rad) to the ground. Measured on
-  // this seed 0.094 rad and 1.03 m/s at touchdown (10 seeds: 1.03-1.06). The
-  // 1 m/s target is NOT met and cannot be with this fault detection: level,
-  // the rotors make 2 x 0.3 c_T omega_max^2 = 39.7 N of the 44.9 N weight, so
-  // the body sinks at >= 1.13 m/s^2 from 0.39 m; with rotor 2 commanded to
-  // omega_max at the fault itself, its 35 ms lag alone gives 0.985 m/s, and
-  // 15-25 ms of detection (FORCE flags the fault then) 1.013-1.036 m/s
-  // (docs/controller.md).
+TEST(ControlCasesTest, SeventyPercentLossDescendsLevelAndFlares) {
+  // Issue 25: a level descent (|tilt| < 0.3 rad) reaching the ground below
+  // 1 m/s. Level, the rotors make 2 x 0.3 c_T omega_max^2 = 39.7 N of the
+  // 44.9 N weight and the body comes down at 1.03-1.06 m/s (10 seeds); the
+  // flare (controller/rotor_allocation.h, flare_tilt_rad 0.08, flare_time_s
+  // 0.1) lets rotor 1 exceed rotor 2 in the last ~0.1 s. Measured on this
+  // seed (4): touchdown 0.91 m/s (10 seeds 0.91-0.95), tilt at touchdown
+  // 0.062 rad, pitch rate 1.92 rad/s, lower tip 1.39 m/s (10 seeds 1.33-1.39:
+  // the price, level it was 0.96-1.11), peak tilt since the fault 0.094 rad
+  // (the fault transient). docs/controller.md.
   const ControlCase* c = FindControlCase("loss_70");
   ASSERT_NE(c, nullptr);
   const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
   const ClosedLoopRun run = RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")),
                                           LoadControllerConfig(ConfigFile("controller.yaml")), ClosedLoopOptions());
   const ControlMetrics m = EvaluateControl(run);
-  EXPECT_LT(m.tilt_before_touchdown_rad, 0.3);
-  EXPECT_LT(m.touchdown_speed_m_s, 1.03 * 1.5);
-  EXPECT_GT(m.touchdown_speed_m_s, 0.98);  // the physical floor above
+  EXPECT_LT(m.tilt_before_touchdown_rad, 0.3);  // the target
+  EXPECT_LT(m.touchdown_speed_m_s, 0.98);       // the target < 1; 10 seeds at most 0.95
+  EXPECT_GT(m.touchdown_speed_m_s, 0.91 / 1.5);
+  EXPECT_LT(m.tilt_at_touchdown_rad, 1.5 * 0.062);
+  EXPECT_LT(m.pitch_rate_at_touchdown_rad_s, 1.5 * 1.92);
+  EXPECT_LT(m.tip_touchdown_speed_m_s, 1.45);
   EXPECT_EQ(run.controller.infeasible, 1);
+  EXPECT_EQ(run.controller.flares, 1);
 }
 
 }  // namespace

@@ -34,17 +34,21 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.supervision.min_plausible_thrust_scale, defaults.supervision.min_plausible_thrust_scale);
   EXPECT_EQ(config.supervision.max_plausible_thrust_scale, defaults.supervision.max_plausible_thrust_scale);
   EXPECT_EQ(config.supervision.descent_rate_m_s, defaults.supervision.descent_rate_m_s);
+  EXPECT_EQ(config.efficiency.flare_tilt_rad, defaults.efficiency.flare_tilt_rad);
+  EXPECT_EQ(config.efficiency.flare_time_s, defaults.efficiency.flare_time_s);
 }
 
 TEST(ControllerConfigYamlTest, MissingKeysAreNamed) {
   YAML::Node reference = YAML::LoadFile(ReferenceFile());
   reference["controller"]["gains"].remove("attitude_kd_1_s");
   reference["controller"]["supervision"].remove("force_timeout_s");
+  reference["controller"]["efficiency"].remove("flare_tilt_rad");
   YAML::Emitter emitter;
   emitter << reference;
   EXPECT_EQ(ErrorOf(emitter.c_str()),
-            "bad.yaml: missing 2 keys: controller.gains.attitude_kd_1_s, controller.supervision.force_timeout_s "
-            "(every key is required; the shipped reference files have them all)");
+            "bad.yaml: missing 3 keys: controller.gains.attitude_kd_1_s, controller.supervision.force_timeout_s, "
+            "controller.efficiency.flare_tilt_rad (every key is required; the shipped reference files have them "
+            "all)");
 }
 
 TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
@@ -54,6 +58,10 @@ TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
   e = ErrorOf("controller:\n  supervision: {min_plausible_thrust_scale: 0}\n");
   EXPECT_NE(e.find("controller.supervision.min_plausible_thrust_scale"), std::string::npos) << e;
   EXPECT_NE(e.find("allowed: [0.01, 1]"), std::string::npos) << e;
+  // The flare's tilt budget stays inside issue 25's |tilt| < 0.3 rad.
+  e = ErrorOf("controller:\n  efficiency: {flare_tilt_rad: 0.4}\n");
+  EXPECT_NE(e.find("controller.efficiency.flare_tilt_rad"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0, 0.3]"), std::string::npos) << e;
   EXPECT_THROW(LoadControllerConfig("/nonexistent/controller.yaml"), ParamError);
 }
 
