@@ -49,11 +49,19 @@ struct StatusContext {
   UdpReceiveCounters udp;  // the daemon's UDP reader; zeros without one
 };
 
+// Where a learned vehicle parameter of ESTIMATOR_STATUS comes from
+// (strain_scale_source, body_mass_source).
+inline constexpr const char* kLearnedSourceParams = "params";         // not learned: the file's value
+inline constexpr const char* kLearnedSourceLearned = "learned";       // learned in this run from the file's value
+inline constexpr const char* kLearnedSourceStateFile = "state_file";  // learned from an earlier run's value
+
 // Fills *message from the pipeline's health (per-input counters in the order
 // STRAIN, MOTOR, IMU, POSE; age_s on the vehicle clock relative to the newest
 // sample of any input; rates from accepted_in_period / period_s; NIS mean and
 // max per input over the period, and its gate; strain_nis_* and strain_gate
-// repeat the STRAIN input's). Reuses the message's vectors, so steady state does not allocate.
+// repeat the STRAIN input's; the learned strain scales and body mass with
+// their sigma, NaN and the file's value when not learned). Reuses the message's vectors, so steady state does not
+// allocate.
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message);
 
