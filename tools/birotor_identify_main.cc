@@ -1,7 +1,9 @@
 // birotor-identify: reads lcm-logger files (bench or flight), identifies c_T,
 // tau_m, k, d, the tip mass, the gauge calibration and the deflection-force
 // maps with Ceres, and writes the parameter file the estimator and simulator
-// load (or updates a complete one in place), plus a readable report.
+// load (or updates a complete one in place), plus a readable report. With
+// --learned it deploys instead what the estimator learned in flight (the
+// strain scales of its gauge state file) into the --update-params file.
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -9,14 +11,17 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "identification/fit_stages.h"
 #include "identification/identify.h"
+#include "nodes/gauge_state_file.h"
 #include "params/identification_options_yaml.h"
 #include "params/identified_parameter_file.h"
+#include "params/learned_parameter_update.h"
 #include "params/vehicle_params_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
@@ -37,6 +42,8 @@ struct IdentifyOptions {
   std::string config;  // optional file with an `identification:` section
   std::string output;
   std::string update_params;  // complete parameter file updated in place (FILE.bak keeps the old one)
+  std::string learned;        // gauge state file whose learned values go into update_params (no fit)
+  birotor::LearnedDeployOptions learned_options;
   std::string report;
   std::string plot;
   double min_usable_fraction = birotor::kDefaultMinUsableLogFraction;
@@ -86,7 +93,7 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
   using namespace birotor;
   AddCommonOptions(app, common);
   app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
-  app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit)")->required();
+  app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit); required unless --learned");
   app.add_option("--mode", cli->mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
   app.add_option("--params", cli->params,
@@ -114,6 +121,15 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                  "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
                  "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
                  "absent or a regular file");
+  app.add_option("--learned", cli->learned,
+                 "Deploy what the estimator learned in flight instead of fitting logs: the gauge state file "
+                 "(estimator state_file) written at a clean stop by a run with learn_strain_scale on, for the "
+                 "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). Its strain "
+                 "scale g_i multiplies gauge_scale[i] (docs/identification.md)");
+  app.add_option("--learned-max-std-fraction", cli->learned_options.max_std_fraction,
+                 "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
+                 "sigma (strain_scale_prior_std 0.1); otherwise refuse, file untouched")
+      ->check(CLI::Range(1e-3, 1.0));
   app.add_option("--report", cli->report, "Readable report (Markdown)");
   app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
   app.add_flag("--progress", cli->progress,
@@ -263,6 +279,9 @@ std::string ProvenanceStamp(const birotor::IdentificationResult& result) {
 // value stays the file's own, whatever the base (--params) said; the new text
 // must load back as the identified vehicle before it replaces the old file.
 // Returns an error message, empty on success.
+std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::VehicleParams& deployed,
+                                const std::string& stamp, const Outputs& out);
+
 std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::IdentificationOptions& options,
                                 const birotor::IdentificationResult& result, const std::string& stamp,
                                 const Outputs& out) {
@@ -272,6 +291,15 @@ std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::Ident
     if (e.determined) SetVehicleValue(e.key, e.value, &deployed);
   }
   if (options.calibration.TipMassWeighed()) deployed.tip_mass_kg = result.params.tip_mass_kg;  // the weighed fact
+  return WriteVehicleInPlace(cli, deployed, stamp, out);
+}
+
+// The --update-params file's vehicle section set to `deployed` (every other
+// byte kept), read back and checked, then committed with FILE.bak. Returns
+// an error message, empty on success.
+std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::VehicleParams& deployed,
+                                const std::string& stamp, const Outputs& out) {
+  using namespace birotor;
   std::string updated, error;
   if (!UpdateVehicleSection(out.update.text, deployed, stamp, &updated, &error)) {
     return "--update-params " + cli.update_params + ": " + error;
@@ -281,7 +309,7 @@ std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::Ident
     ReadVehicleSection(updated, cli.update_params, &check);
     if (VehicleParamsYaml(check) != VehicleParamsYaml(deployed)) {
       return "--update-params " + cli.update_params +
-             ": the updated text does not read back as the identified values; file left unchanged";
+             ": the updated text does not read back as the deployed values; file left unchanged";
     }
   } catch (const ParamError& e) {
     return std::string(e.what()) + "; file left unchanged";
@@ -318,6 +346,53 @@ std::string WriteResults(const IdentifyOptions& cli, const birotor::Identificati
   return "";
 }
 
+// --learned: the strain scales of the gauge state file into the
+// --update-params file. The state file names the vehicle it was learned on
+// (a checksum of the vehicle section): a file for another vehicle, or one
+// already updated with it (its gauge_scale changed), is refused, so a scale
+// is never applied twice. Returns an error message, empty on success.
+std::string DeployLearned(const IdentifyOptions& cli) {
+  using namespace birotor;
+  if (cli.update_params.empty()) return "--learned needs --update-params FILE (the file the values go into)";
+  if (!cli.logs.empty() || !cli.output.empty() || !cli.report.empty() || !cli.plot.empty()) {
+    return "--learned deploys a state file without a fit: --log, --output, --report and --plot do not apply";
+  }
+  Outputs out;
+  std::string error;
+  if (!PrepareParameterFileUpdate(cli.update_params, &out.update, &error) ||
+      !CheckOutputs({cli.update_params, out.update.backup}, {cli.learned}, &error)) {
+    return "--update-params " + cli.update_params + ": " + error;
+  }
+  try {
+    ReadVehicleSection(out.update.text, cli.update_params, &out.update_vehicle);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  // The offsets are not deployed (a tare measures them): no bound on them here.
+  GaugeCalibration state;
+  if (!ReadGaugeState(cli.learned, VehicleChecksum(out.update_vehicle), std::numeric_limits<double>::infinity(), &state,
+                      &error)) {
+    return "--learned " + error + " (the state file must come from a run on the vehicle " + cli.update_params +
+           " describes now)";
+  }
+  LearnedVehicleValues learned;
+  learned.has_strain_scale = state.has_strain_scale;
+  for (int i = 0; i < 2; ++i) {
+    learned.strain_scale[i] = state.strain_scale[i];
+    learned.strain_scale_std[i] = state.strain_scale_std[i];
+  }
+  VehicleParams deployed = out.update_vehicle;
+  std::vector<LearnedChange> changes;
+  if (!ApplyLearnedValues(learned, cli.learned_options, cli.learned, cli.update_params, &deployed, &changes, &error)) {
+    return error;
+  }
+  const std::string stamp = UtcDateTime() + " by birotor-identify from what the estimator learned (" +
+                            std::filesystem::path(cli.learned).filename().string() +
+                            "): " + LearnedChangesText(changes);
+  spdlog::info("learned: {}", LearnedChangesText(changes));
+  return WriteVehicleInPlace(cli, deployed, stamp, out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -332,6 +407,11 @@ int main(int argc, char** argv) {
   AddIdentifyOptions(app, &common, &cli, &options);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
+  if (!cli.learned.empty()) {
+    const std::string error = DeployLearned(cli);
+    return error.empty() ? 0 : ReportError(error);
+  }
+  if (cli.logs.empty()) return ReportError("--log is required (one or more LCM logs to fit), or --learned STATE");
   if (cli.output.empty() && cli.update_params.empty()) {
     return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
   }
