@@ -93,7 +93,8 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
   using namespace birotor;
   AddCommonOptions(app, common);
   app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
-  app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit); required unless --learned");
+  CLI::Option* log =
+      app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit); required unless --learned");
   app.add_option("--mode", cli->mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
   app.add_option("--params", cli->params,
@@ -115,26 +116,29 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                  "(unless --tip-mass-kg is given). Flight: added to the sigma of k and m_p, which the "
                  "flight sees through the scale")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
-  app.add_option("--update-params", cli->update_params,
-                 "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
-                 "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
-                 "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
-                 "absent or a regular file");
-  app.add_option("--learned", cli->learned,
-                 "Deploy what the estimator learned in flight instead of fitting logs: the gauge state file "
-                 "(estimator state_file) written at a clean stop by a run with learn_strain_scale on, for the "
-                 "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). Its strain "
-                 "scale g_i multiplies gauge_scale[i] (docs/identification.md)");
+  CLI::Option* output = app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
+  CLI::Option* update_params =
+      app.add_option("--update-params", cli->update_params,
+                     "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
+                     "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
+                     "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
+                     "absent or a regular file");
+  CLI::Option* learned =
+      app.add_option("--learned", cli->learned,
+                     "Deploy what the estimator learned in flight instead of fitting logs: the gauge state file "
+                     "(estimator state_file) written at a clean stop by a run with learn_strain_scale on, for the "
+                     "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). Its strain "
+                     "scale g_i multiplies gauge_scale[i] (docs/identification.md)");
   app.add_option("--learned-max-std-fraction", cli->learned_options.max_std_fraction,
                  "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
                  "sigma (strain_scale_prior_std 0.1); otherwise refuse, file untouched")
       ->check(CLI::Range(1e-3, 1.0));
-  app.add_option("--report", cli->report, "Readable report (Markdown)");
-  app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
+  CLI::Option* report = app.add_option("--report", cli->report, "Readable report (Markdown)");
+  CLI::Option* plot = app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
   app.add_flag("--progress", cli->progress,
                "Progress line on stderr (stage, windows, elapsed, ETA) for fits over 2 s even when stderr is not a "
                "terminal (on a terminal it is always shown)");
+  learned->needs(update_params)->excludes(log)->excludes(output)->excludes(report)->excludes(plot);
   app.add_option("--min-usable-fraction", cli->min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
       ->check(CLI::Range(0.0, 1.0));
@@ -353,10 +357,6 @@ std::string WriteResults(const IdentifyOptions& cli, const birotor::Identificati
 // is never applied twice. Returns an error message, empty on success.
 std::string DeployLearned(const IdentifyOptions& cli) {
   using namespace birotor;
-  if (cli.update_params.empty()) return "--learned needs --update-params FILE (the file the values go into)";
-  if (!cli.logs.empty() || !cli.output.empty() || !cli.report.empty() || !cli.plot.empty()) {
-    return "--learned deploys a state file without a fit: --log, --output, --report and --plot do not apply";
-  }
   Outputs out;
   std::string error;
   if (!PrepareParameterFileUpdate(cli.update_params, &out.update, &error) ||
@@ -411,7 +411,7 @@ int main(int argc, char** argv) {
     const std::string error = DeployLearned(cli);
     return error.empty() ? 0 : ReportError(error);
   }
-  if (cli.logs.empty()) return ReportError("--log is required (one or more LCM logs to fit), or --learned STATE");
+  if (cli.logs.empty()) return ReportError("--log is required (or --learned STATE) (see --help)", kExitUsage);
   if (cli.output.empty() && cli.update_params.empty()) {
     return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
   }
