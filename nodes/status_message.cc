@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "numerics/percentile.h"
+#include "transport/lcm_codec.h"
+#include "transport/log_io.h"
 
 namespace birotor {
 namespace {
@@ -134,6 +136,33 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->model_consistency_statistic = health.consistency.statistic;
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
   FillLearnedParameters(health, message);
+  message->vehicle_checksum = context.vehicle_checksum;
+}
+
+bool ReadLastLearnedStatus(const std::string& log_path, const std::string& channel, estimator_status_t* status,
+                           std::string* error) {
+  LogReader reader;
+  if (!reader.Open(log_path, error)) return false;
+  LogEvent event;
+  estimator_status_t message;
+  int64_t found = 0, undecodable = 0;
+  while (reader.Next(&event)) {
+    if (event.channel != channel) continue;
+    if (DecodeMessage(event.data.data(), event.data.size(), &message) != DecodeError::kNone) {
+      ++undecodable;  // another layout (an older estimator) or damage
+      continue;
+    }
+    if (message.strain_scale_source != kLearnedSourceParams || message.body_mass_source != kLearnedSourceParams) {
+      *status = message;
+      ++found;
+    }
+  }
+  if (found == 0) {
+    *error = log_path + ": no " + channel + " message with a learned value (" + std::to_string(undecodable) +
+             " undecodable; the estimator learns with estimator.ekf learn_strain_scale / learn_body_mass on)";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace birotor

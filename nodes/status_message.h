@@ -46,7 +46,8 @@ struct StatusContext {
   double processing_time_mean_us = 0;  // NaN when not measured
   double processing_time_p99_us = 0;
   double processing_time_max_us = 0;
-  UdpReceiveCounters udp;  // the daemon's UDP reader; zeros without one
+  UdpReceiveCounters udp;             // the daemon's UDP reader; zeros without one
+  const char* vehicle_checksum = "";  // VehicleChecksum of the configured vehicle (gauge_state_file.h)
 };
 
 // Where a learned vehicle parameter of ESTIMATOR_STATUS comes from
@@ -64,5 +65,13 @@ inline constexpr const char* kLearnedSourceStateFile = "state_file";  // learned
 // allocate.
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message);
+
+// The newest ESTIMATOR_STATUS on `channel` of the LCM log at log_path that
+// carries a learned value (strain_scale_source or body_mass_source other
+// than "params"), for `birotor-identify --learned LOG`. False with a
+// one-line *error naming the file when it is not a readable log or has no
+// such message (learning off, or another prefix).
+bool ReadLastLearnedStatus(const std::string& log_path, const std::string& channel, estimator_status_t* status,
+                           std::string* error);
 
 }  // namespace birotor

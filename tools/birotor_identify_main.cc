@@ -11,7 +11,6 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,6 +18,7 @@
 #include "identification/fit_stages.h"
 #include "identification/identify.h"
 #include "nodes/gauge_state_file.h"
+#include "nodes/learned_values_file.h"
 #include "params/identification_options_yaml.h"
 #include "params/identified_parameter_file.h"
 #include "params/learned_parameter_update.h"
@@ -125,13 +125,17 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                      "absent or a regular file");
   CLI::Option* learned =
       app.add_option("--learned", cli->learned,
-                     "Deploy what the estimator learned in flight instead of fitting logs: the gauge state file "
-                     "(estimator state_file) written at a clean stop by a run with learn_strain_scale on, for the "
-                     "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). Its strain "
-                     "scale g_i multiplies gauge_scale[i] (docs/identification.md)");
-  app.add_option("--learned-max-std-fraction", cli->learned_options.max_std_fraction,
-                 "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
-                 "sigma (strain_scale_prior_std 0.1); otherwise refuse, file untouched")
+                     "Deploy what the estimator learned in flight instead of fitting logs: its gauge state file "
+                     "(estimator state_file, written at a clean stop) or an LCM log of the flight (the newest "
+                     "ESTIMATOR_STATUS with a learned value, on --prefix), from a run with learn_strain_scale or "
+                     "learn_body_mass on, with the vehicle of the --update-params file (needs it; no --log, --output, "
+                     "--report, --plot). A strain scale g_i multiplies gauge_scale[i], a body mass replaces "
+                     "body_mass_kg (docs/identification.md)");
+  app.add_option(
+         "--learned-max-std-fraction", cli->learned_options.max_std_fraction,
+         "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
+         "sigma (strain_scale_prior_std 0.1, body_mass_scale_prior_std 0.1 of the mass); otherwise refuse, file "
+         "untouched")
       ->check(CLI::Range(1e-3, 1.0));
   CLI::Option* report = app.add_option("--report", cli->report, "Readable report (Markdown)");
   CLI::Option* plot = app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
@@ -350,12 +354,13 @@ std::string WriteResults(const IdentifyOptions& cli, const birotor::Identificati
   return "";
 }
 
-// --learned: the strain scales of the gauge state file into the
-// --update-params file. The state file names the vehicle it was learned on
-// (a checksum of the vehicle section): a file for another vehicle, or one
-// already updated with it (its gauge_scale changed), is refused, so a scale
-// is never applied twice. Returns an error message, empty on success.
-std::string DeployLearned(const IdentifyOptions& cli) {
+// --learned: what the estimator learned (its gauge state file, or the
+// newest ESTIMATOR_STATUS with a learned value of a flight log) into the
+// --update-params file. Both name the vehicle it was learned on (a checksum
+// of the vehicle section): a file for another vehicle, or one already
+// updated with it (its gauge_scale changed), is refused, so a value is
+// never applied twice. Returns an error message, empty on success.
+std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix) {
   using namespace birotor;
   Outputs out;
   std::string error;
@@ -368,18 +373,10 @@ std::string DeployLearned(const IdentifyOptions& cli) {
   } catch (const ParamError& e) {
     return e.what();
   }
-  // The offsets are not deployed (a tare measures them): no bound on them here.
-  GaugeCalibration state;
-  if (!ReadGaugeState(cli.learned, VehicleChecksum(out.update_vehicle), std::numeric_limits<double>::infinity(), &state,
-                      &error)) {
-    return "--learned " + error + " (the state file must come from a run on the vehicle " + cli.update_params +
-           " describes now)";
-  }
   LearnedVehicleValues learned;
-  learned.has_strain_scale = state.has_strain_scale;
-  for (int i = 0; i < 2; ++i) {
-    learned.strain_scale[i] = state.strain_scale[i];
-    learned.strain_scale_std[i] = state.strain_scale_std[i];
+  if (!ReadLearnedValues(cli.learned, prefix, VehicleChecksum(out.update_vehicle), &learned, &error)) {
+    return "--learned " + error + " (it must come from a flight with the vehicle " + cli.update_params +
+           " describes now)";
   }
   VehicleParams deployed = out.update_vehicle;
   std::vector<LearnedChange> changes;
@@ -408,7 +405,7 @@ int main(int argc, char** argv) {
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
   if (!cli.learned.empty()) {
-    const std::string error = DeployLearned(cli);
+    const std::string error = DeployLearned(cli, common.prefix);
     return error.empty() ? 0 : ReportError(error);
   }
   if (cli.logs.empty()) return ReportError("--log is required (or --learned STATE) (see --help)", kExitUsage);

@@ -125,7 +125,8 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
                        && cursor.Skip(2 * 8 + 2 * 8)  // strain_scale, strain_scale_std
                        && cursor.SkipString()         // strain_scale_source
                        && cursor.Skip(8 + 8)          // body_mass_kg, body_mass_std_kg
-                       && cursor.SkipString();        // body_mass_source
+                       && cursor.SkipString()         // body_mass_source
+                       && cursor.SkipString();        // vehicle_checksum
   return tail_ok ? DecodeError::kNone : cursor.error();
 }
 

@@ -168,6 +168,12 @@ TEST(StatusMessageTest, CarriesTheLearnedStrainScalesAndBodyMassWithTheirSource)
   health.strain_scale_from_state_file = true;  // learning started from an earlier run's value
   ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
   EXPECT_EQ(decoded.strain_scale_source, "state_file");
+  // The vehicle the values are relative to, as the context gives it.
+  StatusContext context;
+  context.vehicle_checksum = "913d0fa3ed23d161";
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", context, &message);
+  EXPECT_EQ(message.vehicle_checksum, "913d0fa3ed23d161");
 }
 
 TEST(StatusMessageTest, EveryInputHasItsGateAndTheBaselinesNone) {

@@ -17,8 +17,11 @@
 #include <string>
 
 #include "nodes/gauge_state_file.h"
+#include "nodes/status_message.h"
 #include "params/estimator_config_yaml.h"
 #include "tests/estimator/scenario_harness.h"
+#include "transport/channels.h"
+#include "transport/log_io.h"
 
 namespace birotor {
 namespace testing_support {
@@ -53,6 +56,19 @@ struct Folder {
   ~Folder() { fs::remove_all(path); }
   std::string path;
 };
+
+// A flight log holding the ESTIMATOR_STATUS the daemon publishes for `health`.
+void WriteStatusLog(const PipelineHealth& health, const std::string& vehicle_checksum, const std::string& path) {
+  StatusContext context;
+  context.vehicle_checksum = vehicle_checksum.c_str();
+  estimator_status_t status;
+  BuildStatusMessage(health, "ekf", context, &status);
+  LogWriter writer;
+  std::string error;
+  ASSERT_TRUE(writer.Open(path, &error)) << error;
+  ASSERT_TRUE(writer.WriteMessage(MakeChannelNames().estimator_status, 0, status));
+  ASSERT_TRUE(writer.Close()) << writer.error();
+}
 
 double WorseMae(const ScenarioRun& run, int64_t from_utime) {
   return std::max(ForceMae(run, 0, from_utime), ForceMae(run, 1, from_utime));
@@ -106,6 +122,13 @@ Figures LearnDeployAndCheck(const Case& c) {
     others.gauge_scale[i] = 1.0;
   }
   EXPECT_EQ(VehicleChecksum(others), VehicleChecksum(learning.vehicle));
+  // The flight's log (its last ESTIMATOR_STATUS) deploys the same values.
+  const std::string log_copy = folder.path + "/from_log.yaml", log = folder.path + "/flight.lcm";
+  fs::copy_file(shipped, log_copy);
+  WriteStatusLog(learned_run.health, VehicleChecksum(learning.vehicle), log);
+  EXPECT_EQ(RunIdentify({"--update-params", log_copy, "--learned", log}), 0);
+  for (int i = 0; i < 2; ++i)
+    EXPECT_EQ(LoadEstimatorConfig(log_copy).vehicle.gauge_scale[i], deployed.vehicle.gauge_scale[i]);
   // The same state again is refused (the file's vehicle changed): never applied twice.
   const std::string after = ReadText(params);
   EXPECT_NE(RunIdentify({"--update-params", params, "--learned", state}), 0);

@@ -200,6 +200,7 @@ inline estimator_status_t MakeTestMessage<estimator_status_t>() {
   m.body_mass_kg = 4.0;
   m.body_mass_std_kg = 0.05;
   m.body_mass_source = "learned";
+  m.vehicle_checksum = "0123456789abcdef";
   return m;
 }
 
