@@ -1,6 +1,7 @@
 // Issue 27 item 2 end to end: a mismatched vehicle (config/scenarios/
-// mismatch_gauge_scale_0p7.yaml, mismatch_stiffness_plus20.yaml) is flown
-// with learn_strain_scale on; the state file it leaves is deployed with
+// mismatch_gauge_scale_0p7.yaml, mismatch_stiffness_plus20.yaml,
+// mismatch_payload_plus15.yaml) is flown with learning on; the state file
+// (or the flight log's ESTIMATOR_STATUS) it leaves is deployed with
 // `birotor-identify --update-params COPY --learned STATE` into a copy of
 // config/estimator.yaml; the EKF WITHOUT learning on the updated copy is then
 // as accurate on that vehicle as with the true file (docs/identification.md,
@@ -91,6 +92,26 @@ struct Figures {
   int64_t mismatch_updated = 0;  // estimates with MODEL_MISMATCH on the updated file
 };
 
+// The EKF without learning on the check flight of c's vehicle: the updated
+// file, the true file and the unchanged config/estimator.yaml.
+void CheckUpdatedFile(const Case& c, const EstimatorConfig& deployed, Figures* f) {
+  const std::string shipped = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
+  EstimatorConfig true_file = LoadEstimatorConfig(shipped);
+  c.make_true(&true_file.vehicle);
+  const Scenario check = LoadScenario(ScenarioFile(c.scenario), kCheckFlight);
+
+  const ScenarioRun with_update = RunScenario(check, deployed);
+  const ScenarioRun with_truth = RunScenario(check, true_file);
+  const ScenarioRun unchanged = RunScenario(check, LoadEstimatorConfig(shipped));
+  const int64_t from = with_update.forces.front().utime + 1000000;
+  f->mae_updated_n = WorseMae(with_update, from);
+  f->mae_true_n = WorseMae(with_truth, from);
+  f->mae_unchanged_n = WorseMae(unchanged, from);
+  for (const ForceEstimate& e : with_update.forces) f->mismatch_updated += (e.status & kStatusModelMismatch) ? 1 : 0;
+  std::printf("%s: MAE from 1 s: updated %.4f N, true file %.4f N, unchanged %.4f N\n", c.scenario, f->mae_updated_n,
+              f->mae_true_n, f->mae_unchanged_n);
+}
+
 Figures LearnDeployAndCheck(const Case& c) {
   Figures f;
   Folder folder;
@@ -135,22 +156,9 @@ Figures LearnDeployAndCheck(const Case& c) {
   EXPECT_EQ(ReadText(params), after);
 
   // 3. Without learning, on another manoeuvre of that vehicle.
-  EstimatorConfig true_file = LoadEstimatorConfig(shipped);
-  c.make_true(&true_file.vehicle);
-  const Scenario check = LoadScenario(ScenarioFile(c.scenario), kCheckFlight);
-  const ScenarioRun with_update = RunScenario(check, deployed);
-  const ScenarioRun with_truth = RunScenario(check, true_file);
-  const ScenarioRun unchanged = RunScenario(check, LoadEstimatorConfig(shipped));
-  const int64_t from = with_update.forces.front().utime + 1000000;
-  f.mae_updated_n = WorseMae(with_update, from);
-  f.mae_true_n = WorseMae(with_truth, from);
-  f.mae_unchanged_n = WorseMae(unchanged, from);
-  for (const ForceEstimate& e : with_update.forces) f.mismatch_updated += (e.status & kStatusModelMismatch) ? 1 : 0;
-  std::printf(
-      "%s: learned g %.4f +- %.4f / %.4f +- %.4f; MAE from 1 s: updated %.4f N, true file %.4f N, "
-      "unchanged %.4f N\n",
-      c.scenario, learned.strain_scale[0], learned.strain_scale_std[0], learned.strain_scale[1],
-      learned.strain_scale_std[1], f.mae_updated_n, f.mae_true_n, f.mae_unchanged_n);
+  CheckUpdatedFile(c, deployed, &f);
+  std::printf("%s: learned g %.4f +- %.4f / %.4f +- %.4f\n", c.scenario, learned.strain_scale[0],
+              learned.strain_scale_std[0], learned.strain_scale[1], learned.strain_scale_std[1]);
   return f;
 }
 
@@ -161,7 +169,7 @@ Figures LearnDeployAndCheck(const Case& c) {
 TEST(LearnedDeploy, GaugeScaleMismatch) {
   const Figures f =
       LearnDeployAndCheck({"mismatch_gauge_scale_0p7", 4.0, [](VehicleParams* v) { v->gauge_scale[0] = 0.7; }});
-  EXPECT_LT(f.learned_g[0], 0.95);                     // the low gauge moves; measured 0.892
+  EXPECT_LT(f.learned_g[0], 0.93);                     // the low gauge moves by >= 1/1.5 of the measured 0.108
   EXPECT_LE(f.mae_updated_n, 1.15 * f.mae_true_n);     // the issue's 15 % (measured 1.085)
   EXPECT_GT(f.mae_unchanged_n, 20 * f.mae_updated_n);  // the update is what fixes it (measured 66x)
   EXPECT_EQ(f.mismatch_updated, 0);
@@ -181,6 +189,36 @@ TEST(LearnedDeploy, StiffnessMismatch) {
   EXPECT_LT(f.learned_g[1], 0.965);
   EXPECT_LE(f.mae_updated_n, 1.15 * f.mae_true_n);     // the issue's 15 % (measured 1.115)
   EXPECT_GT(f.mae_unchanged_n, 20 * f.mae_updated_n);  // measured 106x
+  EXPECT_EQ(f.mismatch_updated, 0);
+}
+
+// A payload: the body 15 % heavier (4.6 kg against the file's 4.0), learned
+// with learn_body_mass (off by default: not usable, docs/mismatch.md) over
+// the whole 15 s and deployed from the flight's log (the state file does not
+// persist it). Measured: 4.613 +- 0.032 kg; updated file 0.0910 N, true file
+// 0.0742 N (1.23x: NOT within the issue's 15 %, the 13 g left are 0.06 N
+// per rotor through the accelerometer), unchanged 0.381 N. After only 4 s:
+// 4.505 +- 0.050 kg and 0.470 N, worse than the unchanged file.
+TEST(LearnedDeploy, PayloadBodyMass) {
+  const Case c{"mismatch_payload_plus15", 15.0, [](VehicleParams* v) { v->body_mass_kg = 4.6; }};
+  Folder folder;
+  const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/flight.lcm";
+  fs::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
+  EstimatorConfig learning = LoadEstimatorConfig(params);
+  learning.ekf.learn_body_mass = true;
+  const ScenarioRun learned_run = RunScenario(
+      LoadScenario(ScenarioFile(c.scenario), {"scenario.duration_s=" + std::to_string(c.learning_flight_s)}), learning);
+  WriteStatusLog(learned_run.health, VehicleChecksum(learning.vehicle), log);
+  std::printf("learned mass %.4f +- %.4f kg\n", learned_run.health.body_mass_kg, learned_run.health.body_mass_std_kg);
+  EXPECT_NEAR(learned_run.health.body_mass_kg, 4.6, 0.02);  // measured 0.013 kg off
+  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", log}), 0);
+  const EstimatorConfig deployed = LoadEstimatorConfig(params);
+  EXPECT_NEAR(deployed.vehicle.body_mass_kg, learned_run.health.body_mass_kg, 1e-8);  // 10 digits written
+  EXPECT_EQ(deployed.vehicle.gauge_scale[0], 1.0);                                    // nothing else deployed
+  Figures f;
+  CheckUpdatedFile(c, deployed, &f);
+  EXPECT_LE(f.mae_updated_n, 1.35 * f.mae_true_n);      // measured 1.23
+  EXPECT_LT(f.mae_updated_n, 0.4 * f.mae_unchanged_n);  // measured 0.24
   EXPECT_EQ(f.mismatch_updated, 0);
 }
 
