@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "estimator/estimator_config.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
@@ -34,10 +35,10 @@ struct LearnedDeployOptions {
   // halved the prior's uncertainty.
   double max_std_fraction = 0.5;
   // The prior sigmas the estimator starts from (estimator.yaml ekf:
-  // strain_scale_prior_std, body_mass_scale_prior_std, relative; the
-  // shipped defaults).
-  double strain_scale_prior_std = 0.1;     // [1]
-  double body_mass_scale_prior_std = 0.1;  // relative to body_mass_kg [1]
+  // strain_scale_prior_std, body_mass_scale_prior_std, relative): the
+  // defaults of EkfOptions, 0.1 and 0.1.
+  double strain_scale_prior_std = EkfOptions{}.strain_scale_prior_std;        // [1]
+  double body_mass_scale_prior_std = EkfOptions{}.body_mass_scale_prior_std;  // relative to body_mass_kg [1]
 };
 
 // One key written, for the log and the stamp.
