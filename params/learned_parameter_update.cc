@@ -31,8 +31,8 @@ std::string CheckLearned(const std::string& learned_file, const std::string& nam
                          double prior_sigma, const LearnedDeployOptions& options, const std::string& key,
                          const std::string& file) {
   if (!std::isfinite(value) || !std::isfinite(sigma) || sigma < 0) {
-    return learned_file + ": " + name + " " + Number(value) + " +- " + Number(sigma) + " is not finite: " + file + " " +
-           key + " not updated";
+    return learned_file + ": " + name + " " + Number(value) + " +- " + Number(sigma) +
+           (sigma < 0 ? " has a negative sigma: " : " is not finite: ") + file + " " + key + " not updated";
   }
   const double limit = options.max_std_fraction * prior_sigma;
   if (!(sigma < limit)) {

@@ -90,6 +90,7 @@ TEST(LearnedParameterUpdate, RefusesNonFiniteAndOutOfRange) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   ExpectRefused(LearnedScales(1.0, nan, 0.01), "strain_scale of arm 2 nan +- 0.01 is not finite");
   ExpectRefused(LearnedScales(1.0, 1.0, nan), "is not finite: v.yaml vehicle.gauge_scale[0] not updated");
+  ExpectRefused(LearnedScales(1.0, 1.0, -0.01), "has a negative sigma: v.yaml vehicle.gauge_scale[0] not updated");
   // 1 x 0.4 is below gauge_scale's 0.5 (params/vehicle_params_yaml.h).
   ExpectRefused(LearnedScales(0.4, 1.0, 0.01),
                 "v.yaml: vehicle.gauge_scale[0] would become 0.4 (1 x learned strain scale 0.4), outside [0.5, 2]: "
