@@ -104,6 +104,7 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       notch_(config.harmonic_notch) {
   calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
   health_.gauge = calibration_;
+  health_.body_mass_kg = config.vehicle.body_mass_kg;
   for (int i = 0; i < kNumInputChannels; ++i) health_.inputs[i].gate = GateOf(*method_, static_cast<InputChannel>(i));
   health_.accelerometer.gate = method_->Gate(FusionSource::kAccelerometer);
 }
@@ -118,6 +119,7 @@ void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
   UseGaugeOffsets(calibration.offset_rad, calibration.offset_std_rad, calibration.source);
   if (!calibration.has_strain_scale) return;
   // Learned in an earlier run: the method starts from it (if it learns it).
+  health_.strain_scale_from_state_file = true;
   LearnedVehicleParameters learned;
   learned.has_strain_scale = true;
   for (int i = 0; i < 2; ++i) {
@@ -147,6 +149,11 @@ void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
   for (int i = 0; i < 2 && info.has_learned_strain_scale; ++i) {
     health_.gauge.strain_scale[i] = info.learned_strain_scale[i];
     health_.gauge.strain_scale_std[i] = info.learned_strain_scale_std[i];
+  }
+  health_.body_mass_learned = info.has_learned_body_mass;
+  if (info.has_learned_body_mass) {
+    health_.body_mass_kg = info.learned_body_mass_kg;
+    health_.body_mass_std_kg = info.learned_body_mass_std_kg;
   }
   if (!info.has_learned_gauge_offset) return;
   for (int i = 0; i < 2; ++i) {

@@ -50,6 +50,14 @@ struct PipelineHealth {
   // the state file, plus what the method learned in flight, with its sigma;
   // the daemon persists these), and the tare's counters.
   GaugeCalibration gauge;
+  // The body mass in use (issue 27; ESTIMATOR_STATUS): the file's until the
+  // method reports one it learns (body_mass_learned, with its one sigma),
+  // and whether learning g_i (gauge.strain_scale) started from the value of
+  // the state file (SetGaugeOffsets) rather than the file's 1.
+  bool body_mass_learned = false;
+  double body_mass_kg = 0;      // [kg]
+  double body_mass_std_kg = 0;  // [kg], when learned
+  bool strain_scale_from_state_file = false;
   TareCounters tare;
   // Model consistency (issue 27): STATUS_MODEL_MISMATCH and its statistic.
   ModelConsistencyState consistency;

@@ -75,7 +75,21 @@ std::string EstimatorLine(const MonitorCollector& c) {
                      Number(s.processing_time_p99_us, 0, 0));
 }
 
+// One learned value: "0.712 ±0.004", or "1.000" when its sigma is NaN (not learned).
+std::string LearnedValue(double value, double sigma, int decimals) {
+  return std::isfinite(sigma) ? fmt::format("{} ±{}", Number(value, 0, decimals), Number(sigma, 0, decimals))
+                              : Number(value, 0, decimals);
+}
+
 }  // namespace
+
+std::string LearnedLine(const estimator_status_t& s) {
+  auto source = [](const std::string& text) { return text.empty() ? std::string("-") : text; };
+  return fmt::format("learned: strain scale g {} / {} ({})  body mass {} kg ({})",
+                     LearnedValue(s.strain_scale[0], s.strain_scale_std[0], 3),
+                     LearnedValue(s.strain_scale[1], s.strain_scale_std[1], 3), source(s.strain_scale_source),
+                     LearnedValue(s.body_mass_kg, s.body_mass_std_kg, 3), source(s.body_mass_source));
+}
 
 double ElapsedS(const MonitorCollector& c) {
   int64_t newest = OriginUtime(c);
@@ -163,6 +177,7 @@ std::string TerminalView(const MonitorCollector& c, const ViewContext& context) 
                     f.seq_gaps, f.seq_missing, f.resets_after_start));
   }
   add(EstimatorLine(c));
+  add(c.has_status() ? LearnedLine(c.latest_status()) : std::string("learned: -"));
   add(fmt::format("{:<7} {:>8} {:>8} {:>9} {:>9} {:>8} {:>8} {:>9} {:>9}", "input", "rate Hz", "age ms", "fused",
                   "gate rej", "invalid", "missing", "bad pkts", "overload"));
   for (const char* name : kInputs) {
@@ -234,6 +249,7 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
         "gate-rejected {}, not fused {} (on the ground or off)\n",
         s.gauge_offset_rad[0], s.gauge_offset_rad[1], s.gauge_offset_std_rad[0], s.gauge_offset_std_rad[1],
         s.gauge_offset_source.empty() ? "-" : s.gauge_offset_source, a.fused, a.rejected_gate, a.not_fused);
+    text += LearnedLine(s) + "\n";
   }
   return text;
 }

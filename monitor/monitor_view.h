@@ -42,8 +42,13 @@ std::string PlainViewLine(const MonitorCollector& collector, const ViewContext& 
 
 // A block of exactly kTerminalViewLines lines for a terminal, each ending in
 // ESC[K '\n'; the caller moves the cursor back up that many lines to redraw.
-inline constexpr int kTerminalViewLines = 13;
+inline constexpr int kTerminalViewLines = 14;
 std::string TerminalView(const MonitorCollector& collector, const ViewContext& context);
+
+// The slow vehicle parameters of an ESTIMATOR_STATUS in one line:
+// "learned: strain scale g 0.712 ±0.004 / 1.000 (learned)  body mass 4.000 kg (params)"
+// (a value without sigma is the parameter file's: not learned).
+std::string LearnedLine(const estimator_status_t& status);
 
 // "ROTOR2_FAULT 10.037 s, STALE 3.100 s (4x)": the first rise of every alarm
 // bit, in seconds since the view's origin; "none" when nothing rose.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "nodes/gauge_state_file.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
@@ -29,6 +30,7 @@ uint64_t PayloadHash(const void* data, size_t size) {
 EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
                                    const EstimatorServiceOptions& options, MessageSink* sink)
     : pipeline_(config),
+      vehicle_checksum_(VehicleChecksum(config.vehicle)),
       channels_(channels),
       options_(options),
       sink_(sink),
@@ -174,6 +176,7 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   context.wall_utime = wall_utime;
   context.seq = status_seq_;
   context.period_s = period_s;
+  context.vehicle_checksum = vehicle_checksum_.c_str();
   if (options_.report_processing_time) {
     context.processing_time_mean_us = processing_time_.MeanUs();
     context.processing_time_p99_us = processing_time_.P99Us();

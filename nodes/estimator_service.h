@@ -118,6 +118,7 @@ class EstimatorService : public PacketHandler {
   bool ForeignForceActive() const;
 
   EstimatorPipeline pipeline_;
+  std::string vehicle_checksum_;  // of the configured vehicle, on ESTIMATOR_STATUS
   ChannelNames channels_;
   EstimatorServiceOptions options_;
   MessageSink* sink_;

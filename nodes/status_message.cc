@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "numerics/percentile.h"
+#include "transport/lcm_codec.h"
+#include "transport/log_io.h"
 
 namespace birotor {
 namespace {
@@ -73,6 +75,22 @@ void FillInputHealth(const InputCounters& in, const char* channel, const Pipelin
   out->gate = in.gate;
 }
 
+// The slow vehicle parameters in use: learned (value and sigma) or the
+// file's (scale 1, the file's body mass, sigma NaN).
+void FillLearnedParameters(const PipelineHealth& health, estimator_status_t* message) {
+  const bool scale_learned = health.gauge.has_strain_scale;
+  for (int arm = 0; arm < 2; ++arm) {
+    message->strain_scale[arm] = scale_learned ? health.gauge.strain_scale[arm] : 1.0;
+    message->strain_scale_std[arm] = scale_learned ? health.gauge.strain_scale_std[arm] : kNaN;
+  }
+  message->strain_scale_source = !scale_learned                        ? kLearnedSourceParams
+                                 : health.strain_scale_from_state_file ? kLearnedSourceStateFile
+                                                                       : kLearnedSourceLearned;
+  message->body_mass_kg = health.body_mass_kg;
+  message->body_mass_std_kg = health.body_mass_learned ? health.body_mass_std_kg : kNaN;
+  message->body_mass_source = health.body_mass_learned ? kLearnedSourceLearned : kLearnedSourceParams;
+}
+
 }  // namespace
 
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
@@ -117,6 +135,34 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->udp_kernel_dropped = context.udp.kernel_dropped;
   message->model_consistency_statistic = health.consistency.statistic;
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
+  FillLearnedParameters(health, message);
+  message->vehicle_checksum = context.vehicle_checksum;
+}
+
+bool ReadLastLearnedStatus(const std::string& log_path, const std::string& channel, estimator_status_t* status,
+                           std::string* error) {
+  LogReader reader;
+  if (!reader.Open(log_path, error)) return false;
+  LogEvent event;
+  estimator_status_t message;
+  int64_t found = 0, undecodable = 0;
+  while (reader.Next(&event)) {
+    if (event.channel != channel) continue;
+    if (DecodeMessage(event.data.data(), event.data.size(), &message) != DecodeError::kNone) {
+      ++undecodable;  // another layout (an older estimator) or damage
+      continue;
+    }
+    if (message.strain_scale_source != kLearnedSourceParams || message.body_mass_source != kLearnedSourceParams) {
+      *status = message;
+      ++found;
+    }
+  }
+  if (found == 0) {
+    *error = log_path + ": no " + channel + " message with a learned value (" + std::to_string(undecodable) +
+             " undecodable; the estimator learns with estimator.ekf learn_strain_scale / learn_body_mass on)";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace birotor

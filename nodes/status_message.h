@@ -46,15 +46,32 @@ struct StatusContext {
   double processing_time_mean_us = 0;  // NaN when not measured
   double processing_time_p99_us = 0;
   double processing_time_max_us = 0;
-  UdpReceiveCounters udp;  // the daemon's UDP reader; zeros without one
+  UdpReceiveCounters udp;             // the daemon's UDP reader; zeros without one
+  const char* vehicle_checksum = "";  // VehicleChecksum of the configured vehicle (gauge_state_file.h)
 };
+
+// Where a learned vehicle parameter of ESTIMATOR_STATUS comes from
+// (strain_scale_source, body_mass_source).
+inline constexpr const char* kLearnedSourceParams = "params";         // not learned: the file's value
+inline constexpr const char* kLearnedSourceLearned = "learned";       // learned in this run from the file's value
+inline constexpr const char* kLearnedSourceStateFile = "state_file";  // learned from an earlier run's value
 
 // Fills *message from the pipeline's health (per-input counters in the order
 // STRAIN, MOTOR, IMU, POSE; age_s on the vehicle clock relative to the newest
 // sample of any input; rates from accepted_in_period / period_s; NIS mean and
 // max per input over the period, and its gate; strain_nis_* and strain_gate
-// repeat the STRAIN input's). Reuses the message's vectors, so steady state does not allocate.
+// repeat the STRAIN input's; the learned strain scales and body mass with
+// their sigma, NaN and the file's value when not learned). Reuses the message's vectors, so steady state does not
+// allocate.
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message);
+
+// The newest ESTIMATOR_STATUS on `channel` of the LCM log at log_path that
+// carries a learned value (strain_scale_source or body_mass_source other
+// than "params"), for `birotor-identify --learned LOG`. False with a
+// one-line *error naming the file when it is not a readable log or has no
+// such message (learning off, or another prefix).
+bool ReadLastLearnedStatus(const std::string& log_path, const std::string& channel, estimator_status_t* status,
+                           std::string* error);
 
 }  // namespace birotor

@@ -27,7 +27,7 @@ const std::vector<VehicleKey>& VehicleKeys() {
 
 void ReadVehicleParams(YamlSection s, VehicleParams* p) {
   for (const VehicleKey& key : VehicleKeys()) s.Double(key.name, key.min, key.max, &(p->*key.field));
-  s.DoubleArray("gauge_scale", 2, 0.5, 2.0, p->gauge_scale);
+  s.DoubleArray("gauge_scale", 2, kGaugeScaleMin, kGaugeScaleMax, p->gauge_scale);
   s.DoubleArray("gauge_offset_rad", 2, -1e-2, 1e-2, p->gauge_offset_rad);
   s.Finish();
 }

@@ -20,6 +20,11 @@ struct VehicleKey {
   double VehicleParams::*field;
 };
 
+// The range of each element of gauge_scale [1] (the reader's, and what
+// birotor-identify may deploy there).
+inline constexpr double kGaugeScaleMin = 0.5;
+inline constexpr double kGaugeScaleMax = 2.0;
+
 // Every scalar key of the `vehicle:` section, in file order (the two-element
 // gauge_scale and gauge_offset_rad follow them).
 const std::vector<VehicleKey>& VehicleKeys();

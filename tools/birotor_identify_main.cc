@@ -1,7 +1,9 @@
 // birotor-identify: reads lcm-logger files (bench or flight), identifies c_T,
 // tau_m, k, d, the tip mass, the gauge calibration and the deflection-force
 // maps with Ceres, and writes the parameter file the estimator and simulator
-// load (or updates a complete one in place), plus a readable report.
+// load (or updates a complete one in place), plus a readable report. With
+// --learned it deploys instead what the estimator learned in flight (the
+// strain scales of its gauge state file) into the --update-params file.
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -15,8 +17,11 @@
 
 #include "identification/fit_stages.h"
 #include "identification/identify.h"
+#include "nodes/gauge_state_file.h"
+#include "nodes/learned_values_file.h"
 #include "params/identification_options_yaml.h"
 #include "params/identified_parameter_file.h"
+#include "params/learned_parameter_update.h"
 #include "params/vehicle_params_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
@@ -37,6 +42,8 @@ struct IdentifyOptions {
   std::string config;  // optional file with an `identification:` section
   std::string output;
   std::string update_params;  // complete parameter file updated in place (FILE.bak keeps the old one)
+  std::string learned;        // gauge state file whose learned values go into update_params (no fit)
+  birotor::LearnedDeployOptions learned_options;
   std::string report;
   std::string plot;
   double min_usable_fraction = birotor::kDefaultMinUsableLogFraction;
@@ -86,7 +93,8 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
   using namespace birotor;
   AddCommonOptions(app, common);
   app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
-  app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit)")->required();
+  CLI::Option* log =
+      app.add_option("--log", cli->logs, "LCM log file (repeat for several: one joint fit); required unless --learned");
   app.add_option("--mode", cli->mode, "bench (load cells), flight, or auto (bench if every log has load cells)")
       ->check(CLI::IsMember({"auto", "bench", "flight"}));
   app.add_option("--params", cli->params,
@@ -108,17 +116,33 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                  "(unless --tip-mass-kg is given). Flight: added to the sigma of k and m_p, which the "
                  "flight sees through the scale")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
-  app.add_option("--update-params", cli->update_params,
-                 "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
-                 "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
-                 "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
-                 "absent or a regular file");
-  app.add_option("--report", cli->report, "Readable report (Markdown)");
-  app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
+  CLI::Option* output = app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
+  CLI::Option* update_params =
+      app.add_option("--update-params", cli->update_params,
+                     "Complete parameter file (e.g. the estimator's) whose vehicle: section gets the identified values "
+                     "in place, comments and other sections kept, atomically, with its mode and owner, the old file "
+                     "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
+                     "absent or a regular file");
+  CLI::Option* learned =
+      app.add_option("--learned", cli->learned,
+                     "Deploy what the estimator learned in flight instead of fitting logs: its gauge state file "
+                     "(estimator state_file, written at a clean stop) or an LCM log of the flight (the newest "
+                     "ESTIMATOR_STATUS with a learned value, on --prefix), from a run with learn_strain_scale or "
+                     "learn_body_mass on, with the vehicle of the --update-params file (needs it; no --log, --output, "
+                     "--report, --plot). A strain scale g_i multiplies gauge_scale[i], a body mass replaces "
+                     "body_mass_kg (docs/identification.md)");
+  app.add_option(
+         "--learned-max-std-fraction", cli->learned_options.max_std_fraction,
+         "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
+         "sigma (strain_scale_prior_std 0.1, body_mass_scale_prior_std 0.1 of the mass); otherwise refuse, file "
+         "untouched")
+      ->check(CLI::Range(1e-3, 1.0));
+  CLI::Option* report = app.add_option("--report", cli->report, "Readable report (Markdown)");
+  CLI::Option* plot = app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");
   app.add_flag("--progress", cli->progress,
                "Progress line on stderr (stage, windows, elapsed, ETA) for fits over 2 s even when stderr is not a "
                "terminal (on a terminal it is always shown)");
+  learned->needs(update_params)->excludes(log)->excludes(output)->excludes(report)->excludes(plot);
   app.add_option("--min-usable-fraction", cli->min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
       ->check(CLI::Range(0.0, 1.0));
@@ -263,6 +287,9 @@ std::string ProvenanceStamp(const birotor::IdentificationResult& result) {
 // value stays the file's own, whatever the base (--params) said; the new text
 // must load back as the identified vehicle before it replaces the old file.
 // Returns an error message, empty on success.
+std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::VehicleParams& deployed,
+                                const std::string& stamp, const Outputs& out);
+
 std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::IdentificationOptions& options,
                                 const birotor::IdentificationResult& result, const std::string& stamp,
                                 const Outputs& out) {
@@ -272,6 +299,15 @@ std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::Ident
     if (e.determined) SetVehicleValue(e.key, e.value, &deployed);
   }
   if (options.calibration.TipMassWeighed()) deployed.tip_mass_kg = result.params.tip_mass_kg;  // the weighed fact
+  return WriteVehicleInPlace(cli, deployed, stamp, out);
+}
+
+// The --update-params file's vehicle section set to `deployed` (every other
+// byte kept), read back and checked, then committed with FILE.bak. Returns
+// an error message, empty on success.
+std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::VehicleParams& deployed,
+                                const std::string& stamp, const Outputs& out) {
+  using namespace birotor;
   std::string updated, error;
   if (!UpdateVehicleSection(out.update.text, deployed, stamp, &updated, &error)) {
     return "--update-params " + cli.update_params + ": " + error;
@@ -281,7 +317,7 @@ std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::Ident
     ReadVehicleSection(updated, cli.update_params, &check);
     if (VehicleParamsYaml(check) != VehicleParamsYaml(deployed)) {
       return "--update-params " + cli.update_params +
-             ": the updated text does not read back as the identified values; file left unchanged";
+             ": the updated text does not read back as the deployed values; file left unchanged";
     }
   } catch (const ParamError& e) {
     return std::string(e.what()) + "; file left unchanged";
@@ -318,6 +354,42 @@ std::string WriteResults(const IdentifyOptions& cli, const birotor::Identificati
   return "";
 }
 
+// --learned: what the estimator learned (its gauge state file, or the
+// newest ESTIMATOR_STATUS with a learned value of a flight log) into the
+// --update-params file. Both name the vehicle it was learned on (a checksum
+// of the vehicle section): a file for another vehicle, or one already
+// updated with it (its gauge_scale changed), is refused, so a value is
+// never applied twice. Returns an error message, empty on success.
+std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix) {
+  using namespace birotor;
+  Outputs out;
+  std::string error;
+  if (!PrepareParameterFileUpdate(cli.update_params, &out.update, &error) ||
+      !CheckOutputs({cli.update_params, out.update.backup}, {cli.learned}, &error)) {
+    return "--update-params " + cli.update_params + ": " + error;
+  }
+  try {
+    ReadVehicleSection(out.update.text, cli.update_params, &out.update_vehicle);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  LearnedVehicleValues learned;
+  if (!ReadLearnedValues(cli.learned, prefix, VehicleChecksum(out.update_vehicle), &learned, &error)) {
+    return "--learned " + error + " (it must come from a flight with the vehicle " + cli.update_params +
+           " describes now)";
+  }
+  VehicleParams deployed = out.update_vehicle;
+  std::vector<LearnedChange> changes;
+  if (!ApplyLearnedValues(learned, cli.learned_options, cli.learned, cli.update_params, &deployed, &changes, &error)) {
+    return error;
+  }
+  const std::string stamp = UtcDateTime() + " by birotor-identify from what the estimator learned (" +
+                            std::filesystem::path(cli.learned).filename().string() +
+                            "): " + LearnedChangesText(changes);
+  spdlog::info("learned: {}", LearnedChangesText(changes));
+  return WriteVehicleInPlace(cli, deployed, stamp, out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -332,6 +404,11 @@ int main(int argc, char** argv) {
   AddIdentifyOptions(app, &common, &cli, &options);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
+  if (!cli.learned.empty()) {
+    const std::string error = DeployLearned(cli, common.prefix);
+    return error.empty() ? 0 : ReportError(error);
+  }
+  if (cli.logs.empty()) return ReportError("--log is required (or --learned STATE) (see --help)", kExitUsage);
   if (cli.output.empty() && cli.update_params.empty()) {
     return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
   }

@@ -121,7 +121,12 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
                        && SkipInputHealth(&cursor)    // accelerometer
                        && cursor.Skip(8)              // foreign_force
                        && cursor.Skip(8)              // model_consistency_statistic
-                       && cursor.SkipString();        // mismatch_parameter
+                       && cursor.SkipString()         // mismatch_parameter
+                       && cursor.Skip(2 * 8 + 2 * 8)  // strain_scale, strain_scale_std
+                       && cursor.SkipString()         // strain_scale_source
+                       && cursor.Skip(8 + 8)          // body_mass_kg, body_mass_std_kg
+                       && cursor.SkipString()         // body_mass_source
+                       && cursor.SkipString();        // vehicle_checksum
   return tail_ok ? DecodeError::kNone : cursor.error();
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,14 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
   status.gauge_offset_std_rad[0] = 2.7e-6;
   status.gauge_offset_source = "params";
   status.accelerometer.fused = 2;
+  status.strain_scale[0] = 0.712;
+  status.strain_scale[1] = 1.0;
+  status.strain_scale_std[0] = 0.004;
+  status.strain_scale_std[1] = 0.005;
+  status.strain_scale_source = "learned";
+  status.body_mass_kg = 4.0;
+  status.body_mass_std_kg = std::numeric_limits<double>::quiet_NaN();  // not learned
+  status.body_mass_source = "params";
   Feed(&collector, channels.estimator_status, Encode(status));
 
   const std::string line = PlainViewLine(collector, context);
@@ -144,6 +153,9 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
   EXPECT_NE(view.find("resets 1 (last: start)"), std::string::npos) << view;
   EXPECT_NE(view.find("resets after start 0"), std::string::npos) << view;
   EXPECT_NE(view.find("STALE"), std::string::npos) << view;  // POSE 500 ms old > stale_age_s 0.1 s
+  EXPECT_NE(view.find("learned: strain scale g 0.712 ±0.004 / 1.000 ±0.005 (learned)  body mass 4.000 kg (params)"),
+            std::string::npos)
+      << view;
 
   const std::string summary = VehicleSummaryText(collector);
   EXPECT_NE(summary.find("FORCE 2 messages over 2.50 s"), std::string::npos) << summary;
@@ -155,6 +167,7 @@ TEST(MonitorViewTest, VehicleViewNamesFlagsWithTheirFirstTime) {
                          "accelerometer: fused 2"),
             std::string::npos)
       << summary;
+  EXPECT_NE(summary.find("learned: strain scale g 0.712 ±0.004"), std::string::npos) << summary;
   EXPECT_EQ(DeliveryNote(collector), "");
 }
 

@@ -130,6 +130,52 @@ TEST(StatusMessageTest, CarriesTheModelConsistencyStatisticAndParameter) {
   EXPECT_EQ(decoded.mismatch_parameter, "mass");
 }
 
+TEST(StatusMessageTest, NotLearnedParametersAreTheFilesWithNanSigma) {
+  PipelineHealth health;
+  health.body_mass_kg = 4.0;  // config/reference_vehicle.yaml body_mass_kg
+  estimator_status_t decoded;
+  ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
+  for (int arm = 0; arm < 2; ++arm) {
+    EXPECT_EQ(decoded.strain_scale[arm], 1.0);
+    EXPECT_TRUE(std::isnan(decoded.strain_scale_std[arm]));
+  }
+  EXPECT_EQ(decoded.strain_scale_source, "params");
+  EXPECT_EQ(decoded.body_mass_kg, 4.0);
+  EXPECT_TRUE(std::isnan(decoded.body_mass_std_kg));
+  EXPECT_EQ(decoded.body_mass_source, "params");
+}
+
+TEST(StatusMessageTest, CarriesTheLearnedStrainScalesAndBodyMassWithTheirSource) {
+  PipelineHealth health;
+  health.gauge.has_strain_scale = true;
+  health.gauge.strain_scale[0] = 0.71;
+  health.gauge.strain_scale[1] = 1.02;
+  health.gauge.strain_scale_std[0] = 0.004;
+  health.gauge.strain_scale_std[1] = 0.005;
+  health.body_mass_learned = true;
+  health.body_mass_kg = 4.6;
+  health.body_mass_std_kg = 0.03;
+  estimator_status_t decoded;
+  ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
+  EXPECT_EQ(decoded.strain_scale[0], 0.71);
+  EXPECT_EQ(decoded.strain_scale[1], 1.02);
+  EXPECT_EQ(decoded.strain_scale_std[0], 0.004);
+  EXPECT_EQ(decoded.strain_scale_std[1], 0.005);
+  EXPECT_EQ(decoded.strain_scale_source, "learned");
+  EXPECT_EQ(decoded.body_mass_kg, 4.6);
+  EXPECT_EQ(decoded.body_mass_std_kg, 0.03);
+  EXPECT_EQ(decoded.body_mass_source, "learned");
+  health.strain_scale_from_state_file = true;  // learning started from an earlier run's value
+  ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
+  EXPECT_EQ(decoded.strain_scale_source, "state_file");
+  // The vehicle the values are relative to, as the context gives it.
+  StatusContext context;
+  context.vehicle_checksum = "913d0fa3ed23d161";
+  estimator_status_t message;
+  BuildStatusMessage(health, "ekf", context, &message);
+  EXPECT_EQ(message.vehicle_checksum, "913d0fa3ed23d161");
+}
+
 TEST(StatusMessageTest, EveryInputHasItsGateAndTheBaselinesNone) {
   EstimatorConfig config;
   EXPECT_EQ(GateOf(config, InputChannel::kStrain), config.ekf.strain_gate_nis);

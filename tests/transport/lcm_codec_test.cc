@@ -127,13 +127,21 @@ TEST(CodecTest, CorruptLengthOfTheLaterStringsIsRejected) {
   const std::vector<uint8_t> valid = Encode(message);
   // The message ends with the udp counters, the accelerometer's
   // input_health_t, foreign_force (8 bytes), model_consistency_statistic
-  // (8 bytes) and mismatch_parameter.
-  const size_t parameter_length_offset = valid.size() - (message.mismatch_parameter.size() + 1) - 4;
+  // (8 bytes), mismatch_parameter, then the learned parameters:
+  // strain_scale[2], strain_scale_std[2], strain_scale_source, body_mass_kg,
+  // body_mass_std_kg, body_mass_source, and vehicle_checksum.
+  const size_t checksum_length_offset = valid.size() - (message.vehicle_checksum.size() + 1) - 4;
+  const size_t mass_source_length_offset = checksum_length_offset - (message.body_mass_source.size() + 1) - 4;
+  const size_t scale_source_length_offset =
+      mass_source_length_offset - 2 * 8 - (message.strain_scale_source.size() + 1) - 4;
+  const size_t parameter_length_offset =
+      scale_source_length_offset - 4 * 8 - (message.mismatch_parameter.size() + 1) - 4;
   const size_t accelerometer_offset = parameter_length_offset - 8 - 8 - (message.accelerometer.getEncodedSize() - 8);
   const size_t refusal_length_offset = accelerometer_offset - 4 * 8 - (message.last_tare_refusal.size() + 1) - 4;
   const size_t source_length_offset = refusal_length_offset - 4 * 8 - (message.gauge_offset_source.size() + 1) - 4;
   for (const size_t offset :
-       {parameter_length_offset, accelerometer_offset, refusal_length_offset, source_length_offset}) {
+       {checksum_length_offset, mass_source_length_offset, scale_source_length_offset, parameter_length_offset,
+        accelerometer_offset, refusal_length_offset, source_length_offset}) {
     for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
       std::vector<uint8_t> bytes = valid;
       WriteInt32(&bytes, offset, length);

@@ -192,6 +192,15 @@ inline estimator_status_t MakeTestMessage<estimator_status_t>() {
   m.thrust_scale[0] = 1.0;
   m.thrust_scale[1] = 0.99;
   m.accelerometer = MakeInputHealth("IMU accel_z", 50);
+  m.strain_scale[0] = 0.7;
+  m.strain_scale[1] = 1.0;
+  m.strain_scale_std[0] = 0.01;
+  m.strain_scale_std[1] = 0.02;
+  m.strain_scale_source = "learned";
+  m.body_mass_kg = 4.0;
+  m.body_mass_std_kg = 0.05;
+  m.body_mass_source = "learned";
+  m.vehicle_checksum = "0123456789abcdef";
   return m;
 }
 

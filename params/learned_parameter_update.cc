@@ -1,0 +1,116 @@
+// Learned strain scales and body mass into the vehicle parameters (docs/identification.md).
+#include "params/learned_parameter_update.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "params/vehicle_params_yaml.h"
+#include "params/yaml_reader.h"
+
+namespace birotor {
+namespace {
+
+std::string Number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.6g", value);
+  return text;
+}
+
+// The range of body_mass_kg in the vehicle key table (one table).
+void BodyMassRange(double* min, double* max) {
+  for (const VehicleKey& key : VehicleKeys()) {
+    if (std::string(key.name) == "body_mass_kg") {
+      *min = key.min;
+      *max = key.max;
+    }
+  }
+}
+
+// "not finite" / "not learned" check of one value; empty when it may be deployed.
+std::string CheckLearned(const std::string& learned_file, const std::string& name, double value, double sigma,
+                         double prior_sigma, const LearnedDeployOptions& options, const std::string& key,
+                         const std::string& file) {
+  if (!std::isfinite(value) || !std::isfinite(sigma) || sigma < 0) {
+    return learned_file + ": " + name + " " + Number(value) + " +- " + Number(sigma) +
+           (sigma < 0 ? " has a negative sigma: " : " is not finite: ") + file + " " + key + " not updated";
+  }
+  const double limit = options.max_std_fraction * prior_sigma;
+  if (!(sigma < limit)) {
+    return learned_file + ": " + name + " " + Number(value) + " +- " + Number(sigma) +
+           " was not learned (sigma not below " + Number(options.max_std_fraction) + " x the prior sigma " +
+           Number(prior_sigma) + " = " + Number(limit) +
+           ", --learned-max-std-fraction; fly longer in free flight): " + file + " " + key + " not updated";
+  }
+  return "";
+}
+
+std::string OutOfRange(const std::string& file, const std::string& key, double value, double min, double max,
+                       const std::string& why) {
+  return file + ": " + key + " would become " + Number(value) + " (" + why + "), outside " + RangeText(min, max) +
+         ": refused, file not updated";
+}
+
+}  // namespace
+
+bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
+                        const std::string& learned_file, const std::string& file, VehicleParams* vehicle,
+                        std::vector<LearnedChange>* changes, std::string* error) {
+  if (!learned.has_strain_scale && !learned.has_body_mass) {
+    *error = learned_file +
+             ": holds no learned strain scale or body mass (the estimator learns them with "
+             "estimator.ekf learn_strain_scale / learn_body_mass on): " +
+             file + " not updated";
+    return false;
+  }
+  VehicleParams updated = *vehicle;
+  std::vector<LearnedChange> made;
+  for (int arm = 0; learned.has_strain_scale && arm < 2; ++arm) {
+    const std::string key = "vehicle.gauge_scale[" + std::to_string(arm) + "]";
+    const double g = learned.strain_scale[arm], sigma = learned.strain_scale_std[arm];
+    *error = CheckLearned(learned_file, "strain_scale of arm " + std::to_string(arm + 1), g, sigma,
+                          options.strain_scale_prior_std, options, key, file);
+    if (!error->empty()) return false;
+    // z = g_i b + e_i in the calibrated deflection: a gauge scale of g_i s_i
+    // gives the deflection the file's stiffness predicts.
+    const double scale = vehicle->gauge_scale[arm] * g;
+    if (!(scale >= kGaugeScaleMin && scale <= kGaugeScaleMax)) {
+      *error = OutOfRange(file, key, scale, kGaugeScaleMin, kGaugeScaleMax,
+                          Number(vehicle->gauge_scale[arm]) + " x learned strain scale " + Number(g));
+      return false;
+    }
+    updated.gauge_scale[arm] = scale;
+    made.push_back({key.substr(8), vehicle->gauge_scale[arm], scale, g, sigma});
+  }
+  if (learned.has_body_mass) {
+    const std::string key = "vehicle.body_mass_kg";
+    const double mass_kg = learned.body_mass_kg, sigma_kg = learned.body_mass_std_kg;
+    // The prior is relative to the file's mass.
+    *error = CheckLearned(learned_file, "body_mass_kg", mass_kg, sigma_kg,
+                          options.body_mass_scale_prior_std * vehicle->body_mass_kg, options, key, file);
+    if (!error->empty()) return false;
+    double min = 0, max = 0;
+    BodyMassRange(&min, &max);
+    if (!(mass_kg >= min && mass_kg <= max)) {
+      *error = OutOfRange(file, key, mass_kg, min, max, "the learned body mass");
+      return false;
+    }
+    updated.body_mass_kg = mass_kg;
+    made.push_back({key.substr(8), vehicle->body_mass_kg, mass_kg, mass_kg, sigma_kg});
+  }
+  error->clear();
+  *vehicle = updated;
+  *changes = made;
+  return true;
+}
+
+std::string LearnedChangesText(const std::vector<LearnedChange>& changes) {
+  std::string text;
+  for (const LearnedChange& c : changes) {
+    if (!text.empty()) text += "; ";
+    text += c.key + " " + Number(c.old_value) + " -> " + Number(c.new_value) + " (learned " + Number(c.learned) +
+            " +- " + Number(c.learned_std) + ")";
+  }
+  return text;
+}
+
+}  // namespace birotor

@@ -1,0 +1,67 @@
+// Deploying what the estimator learned in flight (issue 27 item 2) into a
+// parameter file: `birotor-identify --update-params FILE --learned STATE`.
+// The flight determines per arm the strain scale g_i = (true gauge scale /
+// s_i) x (k_file / k_true) and the body mass, not gauge scale and stiffness
+// apart; the file keeps an equivalent model by multiplying gauge_scale[i] by
+// g_i (the calibrated deflection (z - o_i) / (g_i s_i) is then the one the
+// file's stiffness predicts) and by writing the learned body mass into
+// body_mass_kg. The reference file carries no sigma key for either, so no
+// sigma key is written (docs/identification.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_config.h"
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+// What the estimator learned, as read from a gauge state file or from the
+// last ESTIMATOR_STATUS of a flight log.
+struct LearnedVehicleValues {
+  bool has_strain_scale = false;
+  double strain_scale[2] = {1, 1};      // g_i [1]
+  double strain_scale_std[2] = {0, 0};  // one sigma [1]
+  bool has_body_mass = false;
+  double body_mass_kg = 0;      // [kg]
+  double body_mass_std_kg = 0;  // one sigma [kg]
+};
+
+// When a learned value counts as learned.
+struct LearnedDeployOptions {
+  // A value is deployed only when its sigma is below this fraction of its
+  // prior sigma (--learned-max-std-fraction): the flight must have at least
+  // halved the prior's uncertainty.
+  double max_std_fraction = 0.5;
+  // The prior sigmas the estimator starts from (estimator.yaml ekf:
+  // strain_scale_prior_std, body_mass_scale_prior_std, relative): the
+  // defaults of EkfOptions, 0.1 and 0.1.
+  double strain_scale_prior_std = EkfOptions{}.strain_scale_prior_std;        // [1]
+  double body_mass_scale_prior_std = EkfOptions{}.body_mass_scale_prior_std;  // relative to body_mass_kg [1]
+};
+
+// One key written, for the log and the stamp.
+struct LearnedChange {
+  std::string key;  // "gauge_scale[0]", "gauge_scale[1]", "body_mass_kg"
+  double old_value = 0;
+  double new_value = 0;
+  double learned = 0;      // g_i, or the body mass [kg]
+  double learned_std = 0;  // its one sigma
+};
+
+// Applies every learned value of `learned` (read from learned_file) to
+// *vehicle (the vehicle `file` describes now): gauge_scale[i] *= g_i,
+// body_mass_kg = the learned mass. All or nothing: false with a one-line
+// *error naming the file, the key and the range, *vehicle unchanged, when
+// nothing was learned, or a value is not finite, not learned (sigma not
+// below max_std_fraction x its prior sigma), or would leave its key's range
+// (gauge_scale [0.5, 2], body_mass_kg the vehicle table's range).
+bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
+                        const std::string& learned_file, const std::string& file, VehicleParams* vehicle,
+                        std::vector<LearnedChange>* changes, std::string* error);
+
+// "gauge_scale[0] 1 -> 0.7032 (g 0.7032 +- 0.0041)", one per change, "; " between.
+std::string LearnedChangesText(const std::vector<LearnedChange>& changes);
+
+}  // namespace birotor

@@ -1,0 +1,117 @@
+// Learned strain scales and body mass into the vehicle parameters
+// (params/learned_parameter_update.h): what is written where, and every
+// refusal naming the file, the key and the range. Values from
+// config/reference_vehicle.yaml (gauge_scale [1, 1], body_mass_kg 4.0) and
+// the estimator's shipped priors (0.1).
+#include "params/learned_parameter_update.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace birotor {
+namespace {
+
+LearnedVehicleValues LearnedScales(double g1, double g2, double sigma) {
+  LearnedVehicleValues learned;
+  learned.has_strain_scale = true;
+  learned.strain_scale[0] = g1;
+  learned.strain_scale[1] = g2;
+  learned.strain_scale_std[0] = learned.strain_scale_std[1] = sigma;
+  return learned;
+}
+
+VehicleParams Reference() {
+  VehicleParams vehicle;
+  vehicle.body_mass_kg = 4.0;
+  vehicle.gauge_scale[0] = vehicle.gauge_scale[1] = 1.0;
+  return vehicle;
+}
+
+TEST(LearnedParameterUpdate, TheStrainScaleMultipliesTheGaugeScale) {
+  VehicleParams vehicle = Reference();
+  vehicle.gauge_scale[1] = 1.2;  // a file with an identified gauge scale
+  std::vector<LearnedChange> changes;
+  std::string error;
+  ASSERT_TRUE(ApplyLearnedValues(LearnedScales(0.7, 0.9, 0.004), LearnedDeployOptions(), "state", "v.yaml", &vehicle,
+                                 &changes, &error))
+      << error;
+  EXPECT_DOUBLE_EQ(vehicle.gauge_scale[0], 0.7);
+  EXPECT_DOUBLE_EQ(vehicle.gauge_scale[1], 1.2 * 0.9);
+  EXPECT_EQ(vehicle.body_mass_kg, 4.0);  // not learned: untouched
+  ASSERT_EQ(changes.size(), 2u);
+  EXPECT_EQ(LearnedChangesText(changes),
+            "gauge_scale[0] 1 -> 0.7 (learned 0.7 +- 0.004); gauge_scale[1] 1.2 -> 1.08 (learned 0.9 +- 0.004)");
+}
+
+TEST(LearnedParameterUpdate, TheLearnedBodyMassIsWritten) {
+  VehicleParams vehicle = Reference();
+  LearnedVehicleValues learned;
+  learned.has_body_mass = true;
+  learned.body_mass_kg = 4.6;
+  learned.body_mass_std_kg = 0.03;  // below 0.5 x 0.1 x 4.0 kg = 0.2 kg
+  std::vector<LearnedChange> changes;
+  std::string error;
+  ASSERT_TRUE(ApplyLearnedValues(learned, LearnedDeployOptions(), "state", "v.yaml", &vehicle, &changes, &error));
+  EXPECT_EQ(vehicle.body_mass_kg, 4.6);
+  EXPECT_EQ(vehicle.gauge_scale[0], 1.0);
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_EQ(changes[0].key, "body_mass_kg");
+}
+
+// Each refusal leaves the vehicle as it was and names file, key and range.
+void ExpectRefused(const LearnedVehicleValues& learned, const std::string& words) {
+  VehicleParams vehicle = Reference();
+  std::vector<LearnedChange> changes;
+  std::string error;
+  EXPECT_FALSE(
+      ApplyLearnedValues(learned, LearnedDeployOptions(), "run/gauge_state", "v.yaml", &vehicle, &changes, &error));
+  EXPECT_NE(error.find(words), std::string::npos) << error;
+  EXPECT_EQ(vehicle.gauge_scale[0], 1.0);
+  EXPECT_EQ(vehicle.body_mass_kg, 4.0);
+  EXPECT_TRUE(changes.empty());
+}
+
+TEST(LearnedParameterUpdate, RefusesWhatWasNotLearned) {
+  // Sigma 0.05 is not below 0.5 x the prior 0.1.
+  ExpectRefused(LearnedScales(0.8, 1.0, 0.05),
+                "run/gauge_state: strain_scale of arm 1 0.8 +- 0.05 was not learned (sigma not below 0.5 x the prior "
+                "sigma 0.1 = 0.05, --learned-max-std-fraction; fly longer in free flight): v.yaml "
+                "vehicle.gauge_scale[0] not updated");
+  ExpectRefused(LearnedVehicleValues(), "run/gauge_state: holds no learned strain scale or body mass");
+  LearnedVehicleValues mass;
+  mass.has_body_mass = true;
+  mass.body_mass_kg = 4.4;
+  mass.body_mass_std_kg = 0.2;  // = 0.5 x 0.1 x 4 kg
+  ExpectRefused(mass, "v.yaml vehicle.body_mass_kg not updated");
+}
+
+TEST(LearnedParameterUpdate, RefusesNonFiniteAndOutOfRange) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ExpectRefused(LearnedScales(1.0, nan, 0.01), "strain_scale of arm 2 nan +- 0.01 is not finite");
+  ExpectRefused(LearnedScales(1.0, 1.0, nan), "is not finite: v.yaml vehicle.gauge_scale[0] not updated");
+  ExpectRefused(LearnedScales(1.0, 1.0, -0.01), "has a negative sigma: v.yaml vehicle.gauge_scale[0] not updated");
+  // 1 x 0.4 is below gauge_scale's 0.5 (params/vehicle_params_yaml.h).
+  ExpectRefused(LearnedScales(0.4, 1.0, 0.01),
+                "v.yaml: vehicle.gauge_scale[0] would become 0.4 (1 x learned strain scale 0.4), outside [0.5, 2]: "
+                "refused, file not updated");
+  LearnedVehicleValues mass;
+  mass.has_body_mass = true;
+  mass.body_mass_kg = 2000;
+  mass.body_mass_std_kg = 0.01;
+  ExpectRefused(mass, "v.yaml: vehicle.body_mass_kg would become 2000 (the learned body mass), outside [0.001, 1000]");
+}
+
+TEST(LearnedParameterUpdate, TheFractionIsAnOption) {
+  LearnedDeployOptions options;
+  options.max_std_fraction = 0.9;  // 0.05 < 0.09: accepted now
+  VehicleParams vehicle = Reference();
+  std::vector<LearnedChange> changes;
+  std::string error;
+  EXPECT_TRUE(
+      ApplyLearnedValues(LearnedScales(0.8, 1.0, 0.05), options, "state", "v.yaml", &vehicle, &changes, &error));
+  EXPECT_DOUBLE_EQ(vehicle.gauge_scale[0], 0.8);
+}
+
+}  // namespace
+}  // namespace birotor
