@@ -258,8 +258,9 @@ struct ModelConsistencyOptions {
   int clear_windows = 8;
   // Fast test for overwhelming evidence (the windows above take 0.5 s): a
   // two-sided CUSUM of the accelerometer's normalised innovation z =
-  // y/sqrt(S), over every report with an innovation (fused or gated), each
-  // z clipped to +-fast_cusum_clip,
+  // y/sqrt(S), over every report with an innovation (fused or gated: the
+  // mismatched vehicles are gated from the first sample), each z clipped to
+  // +-fast_cusum_clip,
   //   C+ = max(0, C+ + z - fast_cusum_drift),  C- = max(0, C- - z - fast_cusum_drift),
   // raised at once when C+ or C- exceeds fast_cusum_limit; 0 switches it
   // off. The accelerometer weighs the total force against the file's mass,
@@ -272,7 +273,7 @@ struct ModelConsistencyOptions {
   // thrust_loss, 11.0 gauge_offset's lift-off, <= 2.8 elsewhere), smallest
   // peak on the mismatched ones 51 (all at once; 63-75 where the gyro
   // diverges too, 45000 elsewhere): 30 is 1.9x above the one and 1.7x
-  // below the other, and raises 9-15 ms after the first estimate.
+  // below the other, and raises 11 ms after the first estimate.
   double fast_cusum_clip = 5.0;    // [1]
   double fast_cusum_drift = 2.0;   // [1]
   double fast_cusum_limit = 30.0;  // [1]
