@@ -101,7 +101,8 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       admission_(config.pipeline),
       tare_(config.vehicle, config.tare),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
-      notch_(config.harmonic_notch) {
+      notch_(config.harmonic_notch),
+      consistency_(config.model_consistency) {
   calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;

@@ -26,6 +26,7 @@ ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& 
 void ModelConsistencyMonitor::Restart() {
   window_start_utime_ = -1;
   for (Accumulator& a : acc_) a = Accumulator();
+  cusum_high_ = cusum_low_ = 0;
   thrust_scale_sum_[0] = thrust_scale_sum_[1] = 0;
   estimates_ = 0;
 }
@@ -39,7 +40,10 @@ bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
   // A method without innovations (the baselines) is not judged.
   if (!options_.enabled || !judging_) return true;
   Advance(estimate->utime);
-  for (int i = 0; i < 2; ++i) thrust_scale_sum_[i] += estimate->thrust_scale[i];
+  for (int i = 0; i < 2; ++i) {
+    thrust_scale_sum_[i] += estimate->thrust_scale[i];
+    newest_thrust_scale_[i] = estimate->thrust_scale[i];
+  }
   ++estimates_;
   if (state_.mismatch) {
     estimate->status = (estimate->status | kStatusModelMismatch) & ~(kStatusValid | kStatusThrustDeficit);
@@ -56,6 +60,7 @@ void ModelConsistencyMonitor::Add(const FusionReport& report) {
   if (!options_.enabled || report.size <= 0 || !std::isfinite(report.nis)) return;
   judging_ = true;
   Advance(report.utime);
+  AddToCusum(report);
   Accumulator& a = acc_[static_cast<int>(report.source)];
   ++a.reports;
   if (report.outcome == FusionOutcome::kRejectedGate) ++a.rejected;
@@ -71,6 +76,32 @@ void ModelConsistencyMonitor::Add(const FusionReport& report) {
     a.z_previous[j] = z;
   }
   ++a.count;
+}
+
+void ModelConsistencyMonitor::AddToCusum(const FusionReport& report) {
+  const double s = report.innovation_covariance(0, 0);
+  if (report.source != FusionSource::kAccelerometer || !(s > 0)) return;
+  const ModelConsistencyOptions& o = options_;
+  const double z = std::clamp(report.innovation(0) / std::sqrt(s), -o.fast_cusum_clip, o.fast_cusum_clip);
+  cusum_high_ = std::max(0.0, cusum_high_ + z - o.fast_cusum_drift);
+  cusum_low_ = std::max(0.0, cusum_low_ - z - o.fast_cusum_drift);
+  const double cusum = std::max(cusum_high_, cusum_low_);
+  state_.fast_cusum_peak = std::max(state_.fast_cusum_peak, cusum);
+  state_.fast_statistic = o.fast_cusum_limit > 0 ? cusum / o.fast_cusum_limit : 0.0;
+  if (state_.fast_statistic > 1.0 && !state_.mismatch) {
+    state_.worst_source = report.source;
+    state_.raised_fast = true;
+    Raise(report.utime, newest_thrust_scale_);
+    cusum_high_ = cusum_low_ = 0;  // fresh evidence for a raise after a clear
+  }
+}
+
+void ModelConsistencyMonitor::Raise(int64_t utime, const double thrust_scale[2]) {
+  state_.mismatch = true;
+  state_.confirmed = false;
+  state_.raised_utime = utime;
+  ++state_.raised_count;
+  state_.parameter = Attribute(thrust_scale);
 }
 
 void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
@@ -114,11 +145,14 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
   state_.worst_source = worst;
   if (statistic > 1.0) {
     consistent_run_ = 0;
-    if (++inconsistent_run_ >= options_.raise_windows && !state_.mismatch) {
-      state_.mismatch = true;
-      state_.raised_utime = utime;
-      ++state_.raised_count;
-      state_.parameter = Attribute();
+    ++inconsistent_run_;
+    if (inconsistent_run_ >= options_.raise_windows && !state_.mismatch) {
+      state_.raised_fast = false;
+      Raise(utime, state_.thrust_scale_mean);
+    } else if (inconsistent_run_ == options_.raise_windows && state_.raised_fast) {
+      // Raised by the fast test: the name is revised on the windows' evidence
+      // (a thrust scale moves away from 1 in the first tens of ms only).
+      state_.parameter = Attribute(state_.thrust_scale_mean);
     }
   } else {
     inconsistent_run_ = 0;
@@ -128,7 +162,7 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
   state_.confirmed = !state_.mismatch && consistent_run_ >= options_.confirm_windows;
 }
 
-MismatchParameter ModelConsistencyMonitor::Attribute() const {
+MismatchParameter ModelConsistencyMonitor::Attribute(const double thrust_scale[2]) const {
   switch (state_.worst_source) {
     case FusionSource::kTelemetry:
       return MismatchParameter::kMotorLag;
@@ -138,8 +172,7 @@ MismatchParameter ModelConsistencyMonitor::Attribute() const {
     case FusionSource::kGyro: {
       // Total force wrong: the strain's forces or the mass. If the strain's
       // forces also disagree with the thrust map, the strain is wrong.
-      const double deviation =
-          std::max(std::fabs(state_.thrust_scale_mean[0] - 1.0), std::fabs(state_.thrust_scale_mean[1] - 1.0));
+      const double deviation = std::max(std::fabs(thrust_scale[0] - 1.0), std::fabs(thrust_scale[1] - 1.0));
       return deviation > options_.thrust_scale_deviation ? MismatchParameter::kStiffnessOrGaugeScale
                                                          : MismatchParameter::kMass;
     }

@@ -1,12 +1,14 @@
 // Model-consistency monitor (issue 27): windowed statistics of the filter's
 // fusion reports that separate "noise as modelled" from "the vehicle does not
-// match its parameter file", with a decision (STATUS_MODEL_MISMATCH) and the
-// parameter most likely wrong. Pure library: no LCM, no logging, no
+// match its parameter file", a sequential (CUSUM) test on the accelerometer
+// for overwhelming evidence within milliseconds, with a decision
+// (STATUS_MODEL_MISMATCH) and the parameter most likely wrong. Pure library: no LCM, no logging, no
 // allocation per report (docs/mismatch.md).
 #pragma once
 
 #include <cstdint>
 
+#include "estimator/estimator_config.h"
 #include "estimator/fusion_report.h"
 #include "samples/samples.h"
 
@@ -30,50 +32,8 @@ enum class MismatchParameter : int {
 // "", "stiffness_or_gauge_scale", "mass", "motor_lag".
 const char* MismatchParameterName(MismatchParameter parameter);
 
-struct ModelConsistencyOptions {
-  // Master switch; false: never raises.
-  bool enabled = true;
-  // Statistics are taken over consecutive blocks of this length of
-  // measurement time (stamps of the reports) [s].
-  double window_s = 0.25;
-  // A window is inconsistent when, for a source (strain, telemetry, gyro,
-  // accelerometer), the mean of NIS/m over its fused reports exceeds its
-  // limit (chi-square: mean 1 when the model holds; the matching-file
-  // scenarios reach at most 1.52 per 0.25 s window, docs/mismatch.md) [1],
-  double nis_ratio_limit[kNumFusionSources] = {2.5, 2.5, 2.5, 2.5};
-  // ... or the mean of the normalised innovation y/sqrt(S) of its fused
-  // reports (0 +- 1/sqrt(n) when white; at most 0.29 on those scenarios)
-  // is biased beyond this [1],
-  double bias_limit[kNumFusionSources] = {1.0, 1.0, 1.0, 1.0};
-  // ... or more than this share of its reports was rejected by the gate
-  // (a model so wrong that the filter stops fusing the input) [1].
-  double rejected_share_limit = 0.2;
-  // Fewer reports than this in a window: that source is not judged.
-  int min_reports = 20;
-  // Raised after this many inconsistent windows in a row (2: a single
-  // window of a rotor fault's step or a lift-off transient is not a
-  // mismatch); cleared after clear_windows consistent ones.
-  int raise_windows = 2;
-  int clear_windows = 8;
-  // After start the model counts as confirmed (VALID may be set) after
-  // this many consistent windows in a row: an estimate from a model not yet
-  // checked is not VALID. A filter reset (gap, time jump) keeps what was
-  // confirmed or raised: the vehicle did not change.
-  int confirm_windows = 2;
-  // Whether VALID waits for that confirmation (THRUST_DEFICIT always does).
-  // false by default: the closed loop flies on VALID forces from the first
-  // tens of ms; waiting 0.5 s raised the peak altitude loss of the density
-  // flight from 0.0169 to 0.0725 m and of the severe loss from 0.0095 to
-  // 0.208 m (tests/evaluation/closed_loop_test.cc). The price: up to 0.5 s of
-  // VALID on a mismatched vehicle before the raise (docs/mismatch.md).
-  bool valid_needs_confirmation = false;
-  // Attribution: with the accelerometer (or gyro) inconsistent, a window
-  // mean of a thrust scale mu_i further than this from 1 points at the
-  // stiffness or gauge scale, closer at the mass (measured at the raise:
-  // body mass +-15 % at most 0.069, stiffness +-20 %, gauge scale 0.7 / 1.3
-  // and all at once at least 0.078; docs/mismatch.md) [1].
-  double thrust_scale_deviation = 0.075;
-};
+static_assert(sizeof(ModelConsistencyOptions::nis_ratio_limit) / sizeof(double) == kNumFusionSources,
+              "one limit per FusionSource");
 
 // Statistics of one source over one window.
 struct SourceWindowStats {
@@ -97,6 +57,12 @@ struct ModelConsistencyState {
   // rejected_share_limit over the sources (> 1: inconsistent) [1].
   double statistic = 0;
   FusionSource worst_source = FusionSource::kStrain;
+  // The fast test (options fast_cusum_*): the larger of the
+  // accelerometer's C+ and C- over fast_cusum_limit, now (> 1: raised); and
+  // the largest C+ or C- since start-up (the margins of docs/mismatch.md) [1].
+  double fast_statistic = 0;
+  double fast_cusum_peak = 0;
+  bool raised_fast = false;                   // the current (or last) mismatch was raised by the fast test
   int64_t raised_utime = -1;                  // when the current (or last) mismatch was raised [us]; -1 never
   int64_t raised_count = 0;                   // mismatches raised since start-up
   int64_t windows = 0;                        // windows completed
@@ -116,9 +82,9 @@ class ModelConsistencyMonitor {
   // clears kStatusThrustDeficit (and kStatusValid with
   // valid_needs_confirmation).
   bool ApplyStatus(ForceEstimate* estimate);
-  // Forgets the window in progress (filter re-initialised); the
-  // confirmation and a raised mismatch stay (cleared after clear_windows
-  // consistent windows).
+  // Forgets the window in progress and the fast test's CUSUM (filter
+  // re-initialised); the confirmation and a raised mismatch stay (cleared
+  // after clear_windows consistent windows).
   void Restart();
   const ModelConsistencyState& state() const { return state_; }
   const ModelConsistencyOptions& options() const { return options_; }
@@ -137,13 +103,20 @@ class ModelConsistencyMonitor {
   // Starts the first window or closes the current one at utime.
   void Advance(int64_t utime);
   void CloseWindow(int64_t utime);
-  MismatchParameter Attribute() const;
+  // An accelerometer report into the fast test's CUSUM; raises at its limit.
+  void AddToCusum(const FusionReport& report);
+  void Raise(int64_t utime, const double thrust_scale[2]);
+  // The parameter named for the worst source, given the thrust scales mu_i.
+  MismatchParameter Attribute(const double thrust_scale[2]) const;
 
   ModelConsistencyOptions options_;
   int64_t window_us_ = 0;
   int64_t window_start_utime_ = -1;
   bool judging_ = false;  // a report with an innovation has arrived
   Accumulator acc_[kNumFusionSources];
+  double cusum_high_ = 0;                   // C+ of the fast test [1]
+  double cusum_low_ = 0;                    // C- [1]
+  double newest_thrust_scale_[2] = {1, 1};  // of the newest estimate [1]
   double thrust_scale_sum_[2] = {0, 0};
   int64_t estimates_ = 0;
   int inconsistent_run_ = 0;

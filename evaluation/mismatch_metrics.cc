@@ -39,7 +39,7 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
   if (scored.empty()) return r;
   const int64_t start = options.airborne_utime >= 0 ? options.airborne_utime : scored.front().utime;
   const int64_t settle = start + static_cast<int64_t>(options.settle_s * 1e6);
-  int64_t valid = 0, counted = 0, after = 0, inside_after[2] = {0, 0};
+  int64_t valid = 0, counted = 0, after = 0, inside_after[2] = {0, 0}, valid_before = 0;
   double sum[2] = {0, 0};
   for (const Scored& s : scored) {
     if (s.utime < start) continue;
@@ -49,8 +49,12 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
     if (s.status & (kStatusRotor1Fault | kStatusRotor2Fault)) ++r.rotor_fault;
     if (s.status & kStatusModelMismatch) {
       ++r.mismatch_estimates;
-      if (r.mismatch_raised_s < 0) r.mismatch_raised_s = (s.utime - start) * 1e-6;
+      if (r.mismatch_raised_s < 0) {
+        r.mismatch_raised_s = (s.utime - start) * 1e-6;
+        r.valid_before_raise = valid_before;
+      }
     }
+    if (r.mismatch_raised_s < 0 && (s.status & kStatusValid)) ++valid_before;
     if (s.utime >= settle) {
       ++after;
       for (int i = 0; i < 2; ++i) {
@@ -83,17 +87,21 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
 
 std::string MismatchTableHeader() {
   return "| scenario | method | MAE f1 / f2 after 5 s [N] | 2-sigma share after 5 s | MODEL_MISMATCH raised [s] | "
-         "VALID share | worst 2 s VALID share | THRUST_DEFICIT | rotor fault |\n"
-         "|---|---|---|---|---|---|---|---|---|\n";
+         "VALID before it | VALID share | worst 2 s VALID share | THRUST_DEFICIT | rotor fault |\n"
+         "|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string MismatchTableRow(const std::string& scenario, const std::string& method, const MismatchEvalResult& r) {
   char raised[32] = "never";
-  if (r.mismatch_raised_s >= 0) std::snprintf(raised, sizeof(raised), "%.2f", r.mismatch_raised_s);
+  char valid_before[32] = "-";
+  if (r.mismatch_raised_s >= 0) {
+    std::snprintf(raised, sizeof(raised), "%.3f", r.mismatch_raised_s);
+    std::snprintf(valid_before, sizeof(valid_before), "%lld", static_cast<long long>(r.valid_before_raise));
+  }
   char row[512];
-  std::snprintf(row, sizeof(row), "| %s | %s | %.3f / %.3f | %.3f | %s | %.3f | %.3f | %lld | %lld |\n",
+  std::snprintf(row, sizeof(row), "| %s | %s | %.3f / %.3f | %.3f | %s | %s | %.3f | %.3f | %lld | %lld |\n",
                 scenario.c_str(), method.c_str(), r.mae_after_settle_n[0], r.mae_after_settle_n[1],
-                r.share_after_settle, raised, r.valid_share, r.worst_valid_window_share,
+                r.share_after_settle, raised, valid_before, r.valid_share, r.worst_valid_window_share,
                 static_cast<long long>(r.thrust_deficit), static_cast<long long>(r.rotor_fault));
   return row;
 }

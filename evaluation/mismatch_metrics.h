@@ -23,9 +23,12 @@ struct MismatchEvalOptions {
 
 struct MismatchEvalResult {
   double mae_after_settle_n[2] = {0, 0};
-  double share_after_settle = 0;        // both rotors within 2 sigma, after settle_s [1]
-  double mismatch_raised_s = -1;        // first MODEL_MISMATCH after the airborne start [s]; -1 never
-  int64_t mismatch_estimates = 0;       // estimates with MODEL_MISMATCH
+  double share_after_settle = 0;   // both rotors within 2 sigma, after settle_s [1]
+  double mismatch_raised_s = -1;   // first MODEL_MISMATCH after the airborne start [s]; -1 never
+  int64_t mismatch_estimates = 0;  // estimates with MODEL_MISMATCH
+  // VALID estimates after the airborne start and before the first
+  // MODEL_MISMATCH (the price of the time to raise); -1 when never raised.
+  int64_t valid_before_raise = -1;
   double valid_share = 0;               // estimates with VALID [1]
   double worst_valid_window_share = 1;  // min over windows of the VALID estimates' 2-sigma share [1]
   int64_t thrust_deficit = 0;           // estimates with THRUST_DEFICIT

@@ -1,5 +1,6 @@
 #include "params/estimator_config_yaml.h"
 
+#include "estimator/fusion_report.h"
 #include "params/option_table.h"
 #include "params/vehicle_params_yaml.h"
 
@@ -164,6 +165,40 @@ const OptionTable<HarmonicNotchOptions>& HarmonicNotchKeys() {
   return keys;
 }
 
+// The keys of estimator.model_consistency (defaults: ModelConsistencyOptions
+// in estimator/estimator_config.h; docs/mismatch.md).
+const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
+  using O = ModelConsistencyOptions;
+  static const OptionTable<O> keys = {
+      Flag("enabled", &O::enabled),
+      Real("window_s", &O::window_s, 0.01, 10.0),
+      Real("rejected_share_limit", &O::rejected_share_limit, 0.0, 1.0),
+      Integer("min_reports", &O::min_reports, 1, 1000000),
+      Integer("raise_windows", &O::raise_windows, 1, 1000),
+      Integer("clear_windows", &O::clear_windows, 1, 1000),
+      Real("fast_cusum_clip", &O::fast_cusum_clip, 0.0, 1e3),
+      Real("fast_cusum_drift", &O::fast_cusum_drift, 0.0, 1e3),
+      Real("fast_cusum_limit", &O::fast_cusum_limit, 0.0, 1e6),  // 0: off
+      Integer("confirm_windows", &O::confirm_windows, 1, 1000),
+      Flag("valid_needs_confirmation", &O::valid_needs_confirmation),
+      Real("thrust_scale_deviation", &O::thrust_scale_deviation, 0.0, 1.0),
+  };
+  return keys;
+}
+
+// The per-source limits (strain, telemetry, gyro, accelerometer) and the
+// fast test's rule: a clip at or below the drift could never raise.
+void ReadModelConsistencyOptions(YamlSection s, ModelConsistencyOptions* o) {
+  ReadOptions(s, ModelConsistencyKeys(), o);
+  s.DoubleArray("nis_ratio_limit", kNumFusionSources, 1.0, 1e6, o->nis_ratio_limit);
+  s.DoubleArray("bias_limit", kNumFusionSources, 0.01, 1e3, o->bias_limit);
+  if (o->fast_cusum_limit > 0 && o->fast_cusum_clip <= o->fast_cusum_drift) {
+    s.Fail("fast_cusum_clip", "not above fast_cusum_drift (the test could never raise)",
+           RangeText(o->fast_cusum_drift, 1e3));
+  }
+  s.Finish();
+}
+
 // Both sections are required, with every key (the file is complete or refused).
 EstimatorConfig ReadRoot(YamlSection root) {
   EstimatorConfig config;
@@ -185,6 +220,7 @@ void ReadEstimatorOptions(YamlSection s, EstimatorConfig* config) {
   ReadOptionSection(s.Section("pipeline"), PipelineKeys(), &config->pipeline);
   ReadOptionSection(s.Section("tare"), TareKeys(), &config->tare);
   ReadOptionSection(s.Section("harmonic_notch"), HarmonicNotchKeys(), &config->harmonic_notch);
+  ReadModelConsistencyOptions(s.Section("model_consistency"), &config->model_consistency);
   s.Finish();
 }
 

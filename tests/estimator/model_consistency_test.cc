@@ -54,7 +54,11 @@ TEST(ModelConsistency, WhiteInnovationsAsModelledNeverRaise) {
 }
 
 TEST(ModelConsistency, BiasedAccelerometerRaisesMassWithinOneWindowAndClears) {
-  ModelConsistencyMonitor monitor;
+  // The windows alone: a bias of 2 equals the fast test's drift, so its
+  // CUSUM is a random walk without drift that may or may not reach 30 in 0.5 s.
+  ModelConsistencyOptions options;
+  options.fast_cusum_limit = 0;
+  ModelConsistencyMonitor monitor(options);
   std::mt19937 rng(2);
   int64_t t = Feed(&monitor, FusionSource::kAccelerometer, 0, 1.0, 1.0, 0.0, &rng);
   EXPECT_FALSE(monitor.state().mismatch);
@@ -142,6 +146,88 @@ TEST(ModelConsistency, SparseGatedSpikesAreInputFaultsNotAMismatch) {
   }
   EXPECT_EQ(monitor.state().raised_count, 0);
   EXPECT_LT(monitor.state().statistic, 0.6);  // NIS/m 1 +- 0.09 over 2.5
+}
+
+// The fast test (ModelConsistencyOptions::fast_cusum_*): an accelerometer
+// biased beyond its gate adds clip - drift = 3 per sample, so the limit of 30
+// is exceeded at the 11th sample, 10 ms after the first (the mismatch
+// scenarios raise 11 ms after the first estimate, docs/mismatch.md); the
+// name comes from the newest estimate's thrust scales.
+TEST(ModelConsistency, AccelerometerBeyondItsGateRaisesAtTheEleventhSample) {
+  for (const double mu : {1.0, 0.85}) {
+    ModelConsistencyMonitor monitor;
+    ForceEstimate e;
+    for (int64_t k = 0; k < 20 && !monitor.state().mismatch; ++k) {
+      monitor.Add(Report(FusionSource::kAccelerometer, k * 1000, -7.0, 1.0));  // 7 sigma, as payload +15 %
+      e.utime = k * 1000;
+      e.status = kStatusValid;
+      e.thrust_scale[0] = e.thrust_scale[1] = mu;
+      monitor.ApplyStatus(&e);
+    }
+    EXPECT_TRUE(monitor.state().mismatch);
+    EXPECT_TRUE(monitor.state().raised_fast);
+    EXPECT_EQ(monitor.state().raised_utime, 10000);
+    EXPECT_DOUBLE_EQ(monitor.state().fast_statistic, 33.0 / 30.0);
+    EXPECT_EQ(monitor.state().worst_source, FusionSource::kAccelerometer);
+    // |mu - 1| against thrust_scale_deviation (0.075): the mass, or the strain.
+    EXPECT_EQ(monitor.state().parameter,
+              mu == 1.0 ? MismatchParameter::kMass : MismatchParameter::kStiffnessOrGaugeScale);
+    e.status = kStatusValid;
+    monitor.ApplyStatus(&e);
+    EXPECT_EQ(e.status, kStatusModelMismatch);
+  }
+}
+
+// A rotor's thrust step puts the accelerometer at its gate for a few samples
+// (thrust_loss_severe: C peaks at 15.9, 5.3 samples' worth); white noise
+// as modelled leaves C near 0 (matching-file flights: at most 2.8).
+TEST(ModelConsistency, AThrustStepsTransientAndWhiteNoiseStayBelowTheFastLimit) {
+  ModelConsistencyMonitor monitor;
+  std::mt19937 rng(8);
+  int64_t t = Feed(&monitor, FusionSource::kAccelerometer, 0, 10.0, 1.0, 0.0, &rng);
+  EXPECT_LT(monitor.state().fast_cusum_peak, 2.97);  // measured 1.98 over these 10 s; 1.5x
+  for (int k = 0; k < 6; ++k) monitor.Add(Report(FusionSource::kAccelerometer, t + k * 1000, 9.0, 1.0));
+  // 6 x (clip 5 - drift 2) on top of the white C (0 to 1.98): measured 18.0.
+  EXPECT_GE(monitor.state().fast_cusum_peak, 18.0);
+  EXPECT_LE(monitor.state().fast_cusum_peak, 18.0 + 1.98);
+  Feed(&monitor, FusionSource::kAccelerometer, t + 6000, 1.0, 1.0, 0.0, &rng);
+  EXPECT_FALSE(monitor.state().mismatch);
+  EXPECT_EQ(monitor.state().raised_count, 0);
+}
+
+// Raised by the fast test with the thrust scales still at 1 (named mass),
+// the name is revised once the windows judge it (raise_windows windows):
+// by then the strain scales have pulled mu away from 1.
+TEST(ModelConsistency, AFastRaiseIsRenamedOnTheWindowsEvidence) {
+  ModelConsistencyMonitor monitor;
+  ForceEstimate e;
+  for (int64_t k = 0; k < 600; ++k) {
+    monitor.Add(Report(FusionSource::kAccelerometer, k * 1000, 7.0, 1.0));
+    e.utime = k * 1000;
+    e.thrust_scale[0] = e.thrust_scale[1] = k < 100 ? 1.0 : 0.8;
+    monitor.ApplyStatus(&e);
+    if (k == 50) EXPECT_EQ(monitor.state().parameter, MismatchParameter::kMass);
+  }
+  EXPECT_TRUE(monitor.state().mismatch);
+  EXPECT_EQ(monitor.state().raised_count, 1);
+  EXPECT_EQ(monitor.state().parameter, MismatchParameter::kStiffnessOrGaugeScale);
+}
+
+TEST(ModelConsistency, FastTestOffOrRestartedDoesNotRaise) {
+  ModelConsistencyOptions options;
+  options.fast_cusum_limit = 0;  // off: the windows only
+  ModelConsistencyMonitor off(options);
+  ModelConsistencyMonitor restarted;
+  for (int64_t k = 0; k < 100; ++k) {
+    off.Add(Report(FusionSource::kAccelerometer, k * 1000, 7.0, 1.0));
+    // A filter reset (gap) every 9 samples: C starts again from 0 (27 < 30).
+    if (k % 9 == 0) restarted.Restart();
+    restarted.Add(Report(FusionSource::kAccelerometer, k * 1000, 7.0, 1.0));
+  }
+  EXPECT_FALSE(off.state().mismatch);
+  EXPECT_DOUBLE_EQ(off.state().fast_statistic, 0.0);
+  EXPECT_FALSE(restarted.state().mismatch);
+  EXPECT_DOUBLE_EQ(restarted.state().fast_cusum_peak, 27.0);
 }
 
 TEST(ModelConsistency, DisabledNeverRaises) {

@@ -81,6 +81,41 @@ TEST(EstimatorConfigYamlTest, ReferenceTextWithOneValueChangedLoads) {
   EXPECT_EQ(c.inversion.window_samples, 3);
 }
 
+// estimator.model_consistency (issue 27, docs/mismatch.md): the shipped
+// values are the compiled defaults, and a bad value is refused by name.
+TEST(EstimatorConfigYamlTest, ModelConsistencySectionHoldsTheDefaultsAndRefusesBadValues) {
+  const EstimatorConfig config = LoadEstimatorConfig(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  const ModelConsistencyOptions defaults;
+  const ModelConsistencyOptions& c = config.model_consistency;
+  EXPECT_EQ(c.enabled, defaults.enabled);
+  EXPECT_EQ(c.window_s, defaults.window_s);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(c.nis_ratio_limit[k], defaults.nis_ratio_limit[k]);
+    EXPECT_EQ(c.bias_limit[k], defaults.bias_limit[k]);
+  }
+  EXPECT_EQ(c.rejected_share_limit, defaults.rejected_share_limit);
+  EXPECT_EQ(c.min_reports, defaults.min_reports);
+  EXPECT_EQ(c.raise_windows, defaults.raise_windows);
+  EXPECT_EQ(c.clear_windows, defaults.clear_windows);
+  EXPECT_EQ(c.fast_cusum_clip, defaults.fast_cusum_clip);
+  EXPECT_EQ(c.fast_cusum_drift, defaults.fast_cusum_drift);
+  EXPECT_EQ(c.fast_cusum_limit, 30.0);  // docs/mismatch.md: matching files <= 15.9, mismatches >= 51
+  EXPECT_EQ(c.fast_cusum_limit, defaults.fast_cusum_limit);
+  EXPECT_EQ(c.confirm_windows, defaults.confirm_windows);
+  EXPECT_EQ(c.valid_needs_confirmation, defaults.valid_needs_confirmation);
+  EXPECT_EQ(c.thrust_scale_deviation, defaults.thrust_scale_deviation);
+
+  std::string e = ErrorOf("estimator:\n  model_consistency: {fast_cusum_limit: -1}\n");
+  EXPECT_NE(e.find("estimator.model_consistency.fast_cusum_limit"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  model_consistency: {bias_limit: [1, 1, 1]}\n");
+  EXPECT_NE(e.find("estimator.model_consistency.bias_limit"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  model_consistency: {nis_ratio_limit: [2.5, 2.5, 0.5, 2.5]}\n");
+  EXPECT_NE(e.find("estimator.model_consistency.nis_ratio_limit"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  model_consistency: {fast_cusum_clip: 2, fast_cusum_drift: 2, fast_cusum_limit: 30}\n");
+  EXPECT_NE(e.find("estimator.model_consistency.fast_cusum_clip"), std::string::npos) << e;
+  EXPECT_NE(e.find("not above fast_cusum_drift"), std::string::npos) << e;
+}
+
 TEST(EstimatorConfigYamlTest, MisspeltSectionListsTheSchemasSections) {
   // Issue 14: the list used to be built from the keys the file had.
   EXPECT_EQ(ErrorOf("estimater: {}\n"), "bad.yaml: key 'estimater': unknown key; did you mean 'estimator'?");
