@@ -62,6 +62,11 @@ struct ModelConsistencyState {
   // the largest C+ or C- since start-up (the margins of docs/mismatch.md) [1].
   double fast_statistic = 0;
   double fast_cusum_peak = 0;
+  // What ESTIMATOR_STATUS and the daemon's warning report: the larger of the
+  // window's and the fast test's statistic (> 1: that test says
+  // inconsistent) [1]. Right after a fast raise the first window has not
+  // closed yet and statistic alone still reads 0.
+  double ReportedStatistic() const { return statistic > fast_statistic ? statistic : fast_statistic; }
   bool raised_fast = false;                   // the current (or last) mismatch was raised by the fast test
   int64_t raised_utime = -1;                  // when the current (or last) mismatch was raised [us]; -1 never
   int64_t raised_count = 0;                   // mismatches raised since start-up

@@ -194,7 +194,7 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
         "model mismatch: the vehicle does not match its parameter file (statistic {:.2f}, most likely {}); "
         "fix: birotor-identify on this flight's log or on a bench run, then fly with the identified file "
         "(docs/mismatch.md); forces are not VALID meanwhile ({} similar lines suppressed)",
-        consistency.statistic, MismatchParameterName(consistency.parameter), mismatch_warning_.suppressed());
+        consistency.ReportedStatistic(), MismatchParameterName(consistency.parameter), mismatch_warning_.suppressed());
   }
   if (last_strain_arrival_wall_us_ >= 0 &&
       static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6) {

@@ -133,7 +133,7 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->udp_fragments_dropped = context.udp.fragments_dropped;
   message->udp_malformed_dropped = context.udp.malformed_dropped;
   message->udp_kernel_dropped = context.udp.kernel_dropped;
-  message->model_consistency_statistic = health.consistency.statistic;
+  message->model_consistency_statistic = health.consistency.ReportedStatistic();
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
   FillLearnedParameters(health, message);
   message->vehicle_checksum = context.vehicle_checksum;

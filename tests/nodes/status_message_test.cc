@@ -130,6 +130,22 @@ TEST(StatusMessageTest, CarriesTheModelConsistencyStatisticAndParameter) {
   EXPECT_EQ(decoded.mismatch_parameter, "mass");
 }
 
+// A fast raise (the accelerometer's CUSUM) comes 11 ms after the start, before
+// the first 0.25 s window closes: the statistic published is the fast test's,
+// not the window's 0 (docs/mismatch.md).
+TEST(StatusMessageTest, AFastRaiseReportsTheFastTestsStatistic) {
+  PipelineHealth health;
+  health.consistency.statistic = 0.0;
+  health.consistency.fast_statistic = 1.7;
+  health.consistency.mismatch = true;
+  health.consistency.raised_fast = true;
+  health.consistency.parameter = MismatchParameter::kStiffnessOrGaugeScale;
+  estimator_status_t decoded;
+  ASSERT_TRUE(BuildEncodeDecode(health, &decoded));
+  EXPECT_EQ(decoded.model_consistency_statistic, 1.7);
+  EXPECT_EQ(decoded.mismatch_parameter, "stiffness_or_gauge_scale");
+}
+
 TEST(StatusMessageTest, NotLearnedParametersAreTheFilesWithNanSigma) {
   PipelineHealth health;
   health.body_mass_kg = 4.0;  // config/reference_vehicle.yaml body_mass_kg
