@@ -4,6 +4,36 @@
 #include "estimator/ekf_force_estimator.h"
 
 namespace birotor {
+namespace {
+
+constexpr int kArm = kOmega1, kRotor = kDynamicStateSize - kOmega1;  // arm states; omega and mu
+
+// Phi_d has A's block structure [Phi_aa, Phi_au; 0, diagonal]
+// (EkfProcessModel::Transition: the motor lag and the thrust scales do not
+// depend on the arms).
+bool BlockTriangular(const DynamicMatrix& phi) {
+  return phi.bottomLeftCorner<kRotor, kArm>().isZero(0.0) && phi.bottomRightCorner<kRotor, kRotor>().isDiagonal(0.0);
+}
+
+// Phi_d X for a 9 x C matrix X, on those blocks when blocks (the same sums
+// less Phi's exact zeros: about half the dense product).
+template <int C, typename X>
+Eigen::Matrix<double, kDynamicStateSize, C> TransitionTimes(const DynamicMatrix& phi, const Eigen::MatrixBase<X>& x,
+                                                            bool blocks) {
+  Eigen::Matrix<double, kDynamicStateSize, C> out;
+  if (!blocks) {
+    out.noalias() = phi.lazyProduct(x);
+    return out;
+  }
+  auto top = out.template topRows<kArm>();
+  top.noalias() = phi.topLeftCorner<kArm, kArm>().lazyProduct(x.template topRows<kArm>());
+  top.noalias() += phi.topRightCorner<kArm, kRotor>().lazyProduct(x.template bottomRows<kRotor>());
+  out.template bottomRows<kRotor>() =
+      phi.bottomRightCorner<kRotor, kRotor>().diagonal().asDiagonal() * x.template bottomRows<kRotor>();
+  return out;
+}
+
+}  // namespace
 
 void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   // Linearise at the prior, then propagate the state with RK4 and
@@ -38,22 +68,20 @@ void EkfForceEstimator::PropagateCovariance(const DynamicMatrix& phi, const Dyna
   //   R_d = Phi_d P_dd + Gamma P_md, R_s = Phi_d P_ds + Gamma P_ms,
   //   P_dd = R_d Phi_d^T + R_s,m Gamma^T, P_ds = R_s, P_ss kept.
   constexpr int n = kDynamicStateSize, m = N - kDynamicStateSize;
-  DynamicMatrix temp;
-  temp.noalias() = phi.lazyProduct(covariance_.topLeftCorner<n, n>());
-  Eigen::Matrix<double, n, m> p_ds;
-  p_ds.noalias() = phi.lazyProduct(covariance_.block<n, m>(0, n));
+  const bool blocks = BlockTriangular(phi);
+  DynamicMatrix temp = TransitionTimes<n>(phi, covariance_.topLeftCorner<n, n>(), blocks);
+  Eigen::Matrix<double, n, m> p_ds = TransitionTimes<m>(phi, covariance_.block<n, m>(0, n), blocks);
   if constexpr (N == kEkfStateSize) {
     if (gamma != nullptr) {
-      constexpr int mass = kBodyMassScale - kDynamicStateSize;  // its column in the slow block
       temp.noalias() += *gamma * covariance_.block<1, n>(kBodyMassScale, 0);
       p_ds.noalias() += *gamma * covariance_.block<1, m>(kBodyMassScale, n);
-      covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
-      covariance_.topLeftCorner<n, n>().noalias() += p_ds.col(mass) * gamma->transpose();
-    } else {
-      covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
     }
-  } else {
-    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
+  }
+  // P_dd = R_d Phi_d^T = (Phi_d R_d^T)^T.
+  covariance_.topLeftCorner<n, n>() = TransitionTimes<n>(phi, temp.transpose(), blocks).transpose();
+  if constexpr (N == kEkfStateSize) {
+    constexpr int mass = kBodyMassScale - kDynamicStateSize;  // its column in the slow block
+    if (gamma != nullptr) covariance_.topLeftCorner<n, n>().noalias() += p_ds.col(mass) * gamma->transpose();
   }
   covariance_.block<n, m>(0, n) = p_ds;
   covariance_.block<m, n>(n, 0) = p_ds.transpose();
