@@ -302,12 +302,10 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
     d_accel_d_mass = MassDerivative(x, &column);
     if (mass_column != nullptr) *mass_column = column;
   }
-  // Jet variables: 0..4 = b1, b2, phi_dot, b1_dot, b2_dot; 5, 6 = f1, f2; the
-  // eighth is padding so that the derivative part vectorises (4 SSE packets).
-  // The terms of thesis eq. 3.10 are differentiated with Jets; the solve is
-  // differentiated by hand, d(M^-1 r) = M^-1 (dr - dM M^-1 r), so that the
-  // Cholesky factorisation runs on doubles (the same Jacobian as Jets through
-  // GeneralizedAcceleration, at a third of the cost).
+  // Jets over 0..4 = b1, b2, phi_dot, b1_dot, b2_dot, 5, 6 = f1, f2 and a
+  // padding (4 SSE packets) through the terms of thesis eq. 3.10; the solve
+  // differentiated by hand, d(M^-1 r) = M^-1 (dr - dM M^-1 r), on doubles
+  // (the Jacobian of Jets through GeneralizedAcceleration at a third of the cost).
   constexpr int kJetSize = 8;
   using Jet = ceres::Jet<double, kJetSize>;
   Coords<Jet> q, v;
@@ -330,13 +328,16 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
   for (int i = 0; i < kNumCoordinates; ++i) {
     for (int j = 0; j < kNumCoordinates; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_full(j);
   }
-  // Column by column: Eigen's unrolled solves for a fixed-size vector (a 5 x 8
-  // right-hand side takes its blocked GEMM path, a tenth of a strain sample).
-  Eigen::Matrix<double, kNumCoordinates, kJetSize> d_acc;
-  for (int j = 0; j < kJetSize; ++j) {
-    Coords<double> column = d_rhs.col(j);
-    llt.solveInPlace(column);
-    d_acc.col(j) = column;
+  // d_acc = L^-T L^-1 d_rhs on whole rows (8 independent columns; Eigen's 5 x 8 solve is a blocked GEMM).
+  const CoordMatrix<double>& l = llt.matrixLLT();  // L in the lower triangle
+  Eigen::Matrix<double, kNumCoordinates, kJetSize, Eigen::RowMajor> d_acc = d_rhs;
+  for (int i = 0; i < kNumCoordinates; ++i) {
+    for (int k = 0; k < i; ++k) d_acc.row(i) -= l(i, k) * d_acc.row(k);
+    d_acc.row(i) /= l(i, i);
+  }
+  for (int i = kNumCoordinates - 1; i >= 0; --i) {
+    for (int k = i + 1; k < kNumCoordinates; ++k) d_acc.row(i) -= l(k, i) * d_acc.row(k);
+    d_acc.row(i) /= l(i, i);
   }
 
   constexpr EkfIndex kJetState[5] = {kDeflection1, kDeflection2, kPitchRate, kDeflectionRate1, kDeflectionRate2};
@@ -419,11 +420,9 @@ inline EkfState EkfProcessModel::Step(const EkfState& x, const EkfInput& u, doub
 }
 
 inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s) {
-  // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))).
-  // lazyProduct: coefficient-based products, faster than GEMM at 9x9.
-  // A = [A_aa, A_au; 0, D] (arm states; omega and mu, whose rows are the
-  // diagonal motor lag and zero), so is every power: the steps run on its
-  // blocks (a third of the dense cost, the same sums less A's exact zeros).
+  // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))), lazyProduct (faster than GEMM at 9x9).
+  // A = [A_aa, A_au; 0, D] (the rows of omega and mu are the diagonal motor lag and zero), so is every
+  // power: the steps run on its blocks (a third of the cost, the same sums less A's exact zeros).
   constexpr int n = kOmega1, m = kDynamicStateSize - kOmega1;  // arm states; omega and mu
   const DynamicMatrix a_dt = a * dt_s;
   DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
