@@ -453,11 +453,11 @@ inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double 
 
 inline DynamicVector EkfProcessModel::ParameterTransition(const DynamicMatrix& a, const DynamicVector& c, double dt_s) {
   const DynamicMatrix a_dt = a * dt_s;
-  DynamicVector w = c + (a_dt * c) * 0.25;
+  DynamicVector w = c + a_dt.lazyProduct(c) * 0.25;  // lazyProduct: not Eigen's GEMV call at 9x9
   DynamicVector temp;
-  temp.noalias() = a_dt * w;
+  temp.noalias() = a_dt.lazyProduct(w);
   w = c + temp * (1.0 / 3.0);
-  temp.noalias() = a_dt * w;
+  temp.noalias() = a_dt.lazyProduct(w);
   return (c + temp * 0.5) * dt_s;
 }
 
