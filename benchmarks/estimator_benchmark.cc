@@ -106,6 +106,17 @@ BENCHMARK_CAPTURE(BM_StrainSample, ekf_without_accelerometer, "ekf", false);
 BENCHMARK_CAPTURE(BM_StrainSample, ekf_without_accelerometer_and_offsets, "ekf", false, false);
 BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale, "ekf", true, true, true);
 BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale_and_mass, "ekf", true, true, true, true);
+// The same three EKF runs over a fixed 30000 samples (3 passes of the
+// recording), for counting instructions per sample under callgrind (the
+// cost of a sample depends on the flight phase; a timed run's count varies):
+//   valgrind --tool=callgrind --toggle-collect='birotor::EkfForceEstimator::DoAdd*' \
+//     estimator_benchmark --benchmark_filter='StrainSample/ekf.*/iterations'
+// and divide the collected Ir by the SetFilterStatus calls (docs/mismatch.md).
+constexpr int kCountedSamples = 30000;
+BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf")->Iterations(kCountedSamples);
+BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale, "ekf", true, true, true)->Iterations(kCountedSamples);
+BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale_and_mass, "ekf", true, true, true, true)
+    ->Iterations(kCountedSamples);
 BENCHMARK_CAPTURE(BM_StrainSample, inversion, "inversion");
 BENCHMARK_CAPTURE(BM_StrainSample, motor_map, "motor_map");
 BENCHMARK_CAPTURE(BM_StrainSample, linear_kf, "linear_kf");

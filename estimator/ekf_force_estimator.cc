@@ -217,49 +217,6 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
   initialized_ = true;
 }
 
-void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
-  // Linearise at the prior, then propagate the state with RK4 and
-  // P = Phi P Phi^T + Qc dt with Phi = [Phi_d, Gamma; 0, I] (the slow states
-  // are random walks; Gamma is the body mass's column, zero unless learned):
-  //   R_d = Phi_d P_dd + Gamma P_md, R_s = Phi_d P_ds + Gamma P_ms,
-  //   P_dd = R_d Phi_d^T + R_s,m Gamma^T, P_ds = R_s, P_ss kept.
-  constexpr int n = kDynamicStateSize, m = kSlowStateSize;
-  constexpr int mass = kBodyMassScale - kDynamicStateSize;  // its column in the slow block
-  DynamicVector mass_column;
-  const DynamicMatrix a =
-      process_.Jacobian(state_, input, &accel_linearization_, process_.body_mass_is_state() ? &mass_column : nullptr);
-  const DynamicMatrix phi = EkfProcessModel::Transition(a, dt_s);
-  state_ = process_.Step(state_, input, dt_s);
-  DynamicMatrix temp;
-  temp.noalias() = phi.lazyProduct(covariance_.topLeftCorner<n, n>());
-  if (!SlowStatesLive()) {
-    // The slow parameters' rows and columns of P are zero and stay zero (their
-    // Gamma terms multiply them; no noise): P_de of the gauge offsets only.
-    constexpr int e = kStrainScale1 - n;
-    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
-    Eigen::Matrix<double, n, e> p_de;
-    p_de.noalias() = phi.lazyProduct(covariance_.block<n, e>(0, n));
-    covariance_.block<n, e>(0, n) = p_de;
-    covariance_.block<e, n>(n, 0) = p_de.transpose();
-    covariance_.diagonal().head<kStrainScale1>() += process_noise_psd_.head<kStrainScale1>() * dt_s;
-    return;
-  }
-  Eigen::Matrix<double, n, m> p_ds;
-  p_ds.noalias() = phi.lazyProduct(covariance_.topRightCorner<n, m>());
-  if (process_.body_mass_is_state() && !input.body_supported) {
-    const DynamicVector gamma = EkfProcessModel::ParameterTransition(a, mass_column, dt_s);
-    temp.noalias() += gamma * covariance_.block<1, n>(kBodyMassScale, 0);
-    p_ds.noalias() += gamma * covariance_.block<1, m>(kBodyMassScale, n);
-    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
-    covariance_.topLeftCorner<n, n>().noalias() += p_ds.col(mass) * gamma.transpose();
-  } else {
-    covariance_.topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
-  }
-  covariance_.topRightCorner<n, m>() = p_ds;
-  covariance_.bottomLeftCorner<m, n>() = p_ds.transpose();
-  covariance_.diagonal() += process_noise_psd_ * dt_s;
-}
-
 void EkfForceEstimator::PredictTo(int64_t utime) {
   UpdateLearning();  // before any fusion at this time
   if (utime <= last_utime_) return;
@@ -305,21 +262,55 @@ FusionReport EkfForceEstimator::FuseOn(const MeasurementLinearization<M, N>& at,
   });
 }
 
+template <int K, int N, int M>
+FusionReport EkfForceEstimator::FuseRead(const MeasurementLinearization<M, kEkfStateSize>& at,
+                                         const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
+                                         const FusionRequest& request, bool strain_gate) {
+  static_assert(K <= N, "the measurement reads the leading K of the N live states");
+  static_assert(kThrustScale1 < K && kThrustScale2 < K, "the inflation's states lead");
+  auto x = state_.head<N>();
+  auto cov = covariance_.topLeftCorner<N, N>();
+  return FuseOn(LeadingStates<K>(at), noise, z, request, strain_gate, &x, &cov);
+}
+
+template <int N, int M>
+FusionReport EkfForceEstimator::FuseLive(const MeasurementLinearization<M, kEkfStateSize>& at,
+                                         const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
+                                         const FusionRequest& request, bool strain_gate) {
+  // The leading states H reads: its last non-zero column, rounded up to a
+  // block boundary (the dynamic states, the offsets, the strain scales, the
+  // body mass), at most the live ones.
+  int read = 0;
+  for (int j = kEkfStateSize - 1; j >= 0 && read == 0; --j) {
+    if (!at.jacobian.col(j).isZero(0.0)) read = j + 1;
+  }
+  if (read <= kDynamicStateSize) return FuseRead<kDynamicStateSize, N>(at, noise, z, request, strain_gate);
+  if (read <= kStrainScale1 || N == kStrainScale1) {
+    return FuseRead<std::min(N, int{kStrainScale1}), N>(at, noise, z, request, strain_gate);
+  }
+  if (read <= kBodyMassScale || N == kBodyMassScale) {
+    return FuseRead<std::min(N, int{kBodyMassScale}), N>(at, noise, z, request, strain_gate);
+  }
+  return FuseRead<N, N>(at, noise, z, request, strain_gate);
+}
+
 template <int M>
 FusionReport EkfForceEstimator::Fuse(const MeasurementLinearization<M, kEkfStateSize>& at,
                                      const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                      const FusionRequest& request, bool strain_gate) {
-  if (SlowStatesLive()) return FuseOn(at, noise, z, request, strain_gate, &state_, &covariance_);
-  // No slow parameter learns: fused on the leading states (the thrust scales
-  // the inflation opens are among them), in place on the blocks of x and P.
+  // Only the live states (LiveStates: the rows and columns of P beyond them
+  // are zero, and no fusion moves them), in place on the blocks of x and P.
   // The update on all 14 would give the same x and P (to round-off: sums
-  // over zero terms) at (14/11)^2 the cost of the Joseph update (issue 27:
-  // main was +16 % per sample).
-  constexpr int n = kStrainScale1;
-  static_assert(kThrustScale1 < n && kThrustScale2 < n, "the inflation's states lead");
-  auto x = state_.head<n>();
-  auto cov = covariance_.topLeftCorner<n, n>();
-  return FuseOn(LeadingStates<n>(at), noise, z, request, strain_gate, &x, &cov);
+  // over zero terms) at up to (14/9)^2 the cost (issue 27: main was +16 %
+  // per sample with learning off, +14 % with it on).
+  switch (LiveStates()) {
+    case kStrainScale1:
+      return FuseLive<kStrainScale1>(at, noise, z, request, strain_gate);
+    case kBodyMassScale:
+      return FuseLive<kBodyMassScale>(at, noise, z, request, strain_gate);
+    default:
+      return FuseLive<kEkfStateSize>(at, noise, z, request, strain_gate);
+  }
 }
 
 void EkfForceEstimator::ApplyMotor(const MotorSample& sample) {
@@ -370,20 +361,25 @@ FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
 }
 
 bool EkfForceEstimator::ConditionCovariance() {
-  if (!state_.allFinite()) return false;
-  // With no slow parameter live their rows and columns of P are zero
-  // (SlowStatesLive): the leading block only (their floor is 0 or skipped).
-  const bool live = SlowStatesLive();
-  constexpr int n = kStrainScale1;
-  if (live) {
-    if (!covariance_.allFinite()) return false;
-    covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
-  } else {
-    const Eigen::Matrix<double, n, n> lead = covariance_.topLeftCorner<n, n>();
-    if (!lead.allFinite()) return false;
-    covariance_.topLeftCorner<n, n>() = 0.5 * (lead + lead.transpose());
+  switch (LiveStates()) {
+    case kStrainScale1:
+      return ConditionCovariance<kStrainScale1>();
+    case kBodyMassScale:
+      return ConditionCovariance<kBodyMassScale>();
+    default:
+      return ConditionCovariance<kEkfStateSize>();
   }
-  for (int i = 0; i < (live ? kEkfStateSize : n); ++i) {
+}
+
+template <int N>
+bool EkfForceEstimator::ConditionCovariance() {
+  if (!state_.allFinite()) return false;
+  // Beyond the N live states the rows and columns of P are zero
+  // (LiveStates): the leading block only (their floor is 0 or skipped).
+  const Eigen::Matrix<double, N, N> lead = covariance_.topLeftCorner<N, N>();
+  if (!lead.allFinite()) return false;
+  covariance_.topLeftCorner<N, N>() = 0.5 * (lead + lead.transpose());
+  for (int i = 0; i < N; ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * kVarianceCeiling[i]) return false;  // clearly negative: broken
     if (variance < variance_floor_[i] && !(slow_frozen_ && i >= kStrainScale1)) {

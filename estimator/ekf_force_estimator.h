@@ -64,13 +64,23 @@ class EkfForceEstimator : public ForceEstimator {
   // Strain update with its gate and the inflation after persistent rejection.
   FusionReport FuseStrain(const StrainSample& sample);
   // Every fusion of the filter goes through here: FuseMeasurement, or with
-  // strain_gate the strain gate with its inflation. On all the states while
-  // a slow parameter learns (SlowStatesLive), else on the leading
-  // kStrainScale1 only, in place (their rows and columns of P are zero: the
-  // same x and P at (11/14)^2 of the cost).
+  // strain_gate the strain gate with its inflation, in place on the blocks
+  // of x and P of the LiveStates (the rest of P is zero: no fusion moves
+  // it), with the live states that H does not read updated through their
+  // cross covariance (UpdateTrailingStates): the same x and P as the update
+  // on all the states, at the cost of what is learned and read.
   template <int M>
   FusionReport Fuse(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
                     const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate = false);
+  // On the N live states: FuseLive finds the leading K that H reads (the
+  // first block boundary, the dynamic states, the offsets, the strain
+  // scales or all, past H's last non-zero column; at most N), FuseRead fuses.
+  template <int N, int M>
+  FusionReport FuseLive(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
+                        const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate);
+  template <int K, int N, int M>
+  FusionReport FuseRead(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
+                        const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate);
   template <int N, int M, typename State, typename Cov>
   FusionReport FuseOn(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
                       const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate, State* x,
@@ -80,13 +90,28 @@ class EkfForceEstimator : public ForceEstimator {
   // prior and process noise; frozen: FreezeSlowParameters zeroed them and
   // Predict adds no noise to them).
   bool SlowStatesLive() const { return (options_.learn_strain_scale || options_.learn_body_mass) && !slow_frozen_; }
+  // The leading states whose rows and columns of P may be non-zero: up to
+  // the offsets (kStrainScale1) while no slow parameter is live, up to the
+  // strain scales (kBodyMassScale) while only they learn, else all.
+  int LiveStates() const {
+    if (!SlowStatesLive()) return kStrainScale1;
+    return options_.learn_body_mass ? kEkfStateSize : kBodyMassScale;
+  }
+  // P = Phi P Phi^T + Qc dt on the N live states; gamma: the transition's
+  // body-mass column (N = 14 in free flight with the mass learned), else
+  // null (estimator/ekf_prediction.cc, with Predict).
+  template <int N>
+  void PropagateCovariance(const DynamicMatrix& phi, const DynamicVector* gamma, double dt_s);
   void ReportNotFused(FusionSource source, int64_t utime) const;
   // The gyro and accelerometer readings of an IMU sample the filter would have used.
   void ReportImuNotFused(const ImuSample& sample) const;
   // Empties both queues, reporting each waiting measurement as not fused.
   void DiscardQueued();
   // Symmetrises P and applies the variance floors and ceilings; false if the
-  // state or covariance is not finite (or a variance is negative).
+  // state or covariance is not finite (or a variance is negative). On the N
+  // live states (the rest of P is zero).
+  bool ConditionCovariance();
+  template <int N>
   bool ConditionCovariance();
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
   // e_i and its sigma into the step result (the pipeline reports them).

@@ -24,11 +24,12 @@ struct MeasurementLinearization {
 };
 
 // The same linearisation on the leading K of the N states (H's first K
-// columns). For a filter whose trailing N - K states have zero rows and
-// columns in P: no fusion can move them (their gain P H^T S^-1 is zero, and
-// so are their rows and columns of the Joseph update), so fusing on the
-// leading block gives the same x and P at (K/N)^2 of the cost. The fusion
-// takes the blocks x.head<K>() and P.topLeftCorner<K, K>() in place.
+// columns), for a measurement that reads only those (H's other columns are
+// zero) or a filter whose trailing N - K states have zero rows and columns in
+// P (then no fusion can move them: their gain P H^T S^-1 is zero, and so are
+// their rows and columns of the Joseph update). The fusion takes blocks of x
+// and P in place (FuseMeasurement: trailing states H does not read are
+// updated through their cross covariance).
 template <int K, int M, int N>
 MeasurementLinearization<M, K> LeadingStates(const MeasurementLinearization<M, N>& at) {
   static_assert(K <= N, "the leading states of the N");
@@ -99,22 +100,74 @@ Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& 
   return JosephCovariance<N, M>(cov, gain, h_p, h_jacobian, noise);
 }
 
+// The trailing T states of a filter that the measurement does not read
+// (H = [H_K, 0]): their gain K_t = (H_K P_Kt)^T S^-1 and their rows of the
+// Joseph update, the blocks of the N = K + T state product with H's zero
+// columns left out (A = P - K H P, P+ = A - (A H^T) K^T + K R K^T):
+//   A_tK = P_tK - K_t (H P)_K,  A_tt = P_tt - K_t (H P)_t,
+//   P+_tK = A_tK - (A_tK H_K^T) K_K^T + K_t R K_K^T  (P+_Kt its transpose),
+//   P+_tt = A_tt - (A_tK H_K^T) K_t^T + K_t R K_t^T.
+// The leading block is JosephCovariance on the K states (the same product:
+// H's zero columns add nothing). O(T K M) on top of the K-state update
+// instead of O((N^2 - K^2) M): a random-walk parameter that only another
+// sensor reads costs this measurement next to nothing.
+template <int K, int M, typename State, typename Cov>
+void UpdateTrailingStates(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<double, M, M>& noise,
+                          const Innovation<M, K>& innovation, const Eigen::Matrix<double, K, M>& gain, State* x,
+                          Cov* cov) {
+  constexpr int T = State::RowsAtCompileTime - K;
+  Eigen::Matrix<double, M, T> h_p_t;
+  h_p_t.noalias() = at.jacobian.lazyProduct(cov->template topRightCorner<K, T>());
+  Eigen::Matrix<double, T, M> gain_t;
+  gain_t.noalias() = h_p_t.transpose().lazyProduct(innovation.covariance_inverse);
+  x->template tail<T>().noalias() += gain_t.lazyProduct(innovation.residual);
+  Eigen::Matrix<double, T, K> a_tk = cov->template bottomLeftCorner<T, K>();
+  a_tk.noalias() -= gain_t.lazyProduct(innovation.h_p);
+  Eigen::Matrix<double, T, T> a_tt = cov->template bottomRightCorner<T, T>();
+  a_tt.noalias() -= gain_t.lazyProduct(h_p_t);
+  Eigen::Matrix<double, T, M> a_ht;
+  a_ht.noalias() = a_tk.lazyProduct(at.jacobian.transpose());
+  Eigen::Matrix<double, T, M> k_r;
+  k_r.noalias() = gain_t.lazyProduct(noise);
+  a_tk.noalias() -= a_ht.lazyProduct(gain.transpose());
+  a_tk.noalias() += k_r.lazyProduct(gain.transpose());
+  a_tt.noalias() -= a_ht.lazyProduct(gain_t.transpose());
+  a_tt.noalias() += k_r.lazyProduct(gain_t.transpose());
+  cov->template bottomLeftCorner<T, K>() = a_tk;
+  cov->template topRightCorner<K, T>() = a_tk.transpose();
+  cov->template bottomRightCorner<T, T>() = a_tt;
+}
+
 // x += K y and P by JosephCovariance, all from the innovation's H P. The gain
 // is the optimal K = P H^T S^-1 = (H P)^T S^-1 (P is symmetric), or
 // *fixed_gain when given (an observer's gain by pole placement).
-// x and cov: N-vector and N x N matrix, or blocks of them (in place).
-template <int M, int N, typename State, typename Cov>
-void KalmanUpdate(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                  const Innovation<M, N>& innovation, State* x, Cov* cov,
-                  const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
-  Eigen::Matrix<double, N, M> gain;
+// x and cov: N-vector and N x N matrix, or blocks of them (in place), N >= K:
+// the measurement reads the leading K states (at is on them, the innovation
+// on P's leading K x K block); the trailing N - K states are updated through
+// their cross covariance (UpdateTrailingStates; optimal gain only).
+template <int M, int K, typename State, typename Cov>
+void KalmanUpdate(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<double, M, M>& noise,
+                  const Innovation<M, K>& innovation, State* x, Cov* cov,
+                  const Eigen::Matrix<double, K, M>* fixed_gain = nullptr) {
+  constexpr int N = State::RowsAtCompileTime;
+  static_assert(N >= K && Cov::RowsAtCompileTime == N && Cov::ColsAtCompileTime == N, "x and P of the N >= K states");
+  Eigen::Matrix<double, K, M> gain;
   if (fixed_gain != nullptr) {
     gain = *fixed_gain;
   } else {
     gain.noalias() = innovation.h_p.transpose().lazyProduct(innovation.covariance_inverse);
   }
-  x->noalias() += gain.lazyProduct(innovation.residual);
-  *cov = JosephCovariance<N, M>(*cov, gain, innovation.h_p, at.jacobian, noise);
+  if constexpr (N > K) {
+    // Before the leading block changes: the trailing update reads P_tK and P_Kt.
+    UpdateTrailingStates(at, noise, innovation, gain, x, cov);
+    auto x_lead = x->template head<K>();
+    x_lead.noalias() += gain.lazyProduct(innovation.residual);
+    auto cov_lead = cov->template topLeftCorner<K, K>();
+    cov_lead = JosephCovariance<K, M>(cov_lead, gain, innovation.h_p, at.jacobian, noise);
+  } else {
+    x->noalias() += gain.lazyProduct(innovation.residual);
+    *cov = JosephCovariance<N, M>(*cov, gain, innovation.h_p, at.jacobian, noise);
+  }
 }
 
 // What one measurement is fused with: its stamp, source and gate.
@@ -128,13 +181,14 @@ struct FusionRequest {
 
 // Computes the innovation of z, gates it and, when it passes, updates *x and
 // *cov. Returns what happened, with the innovation in z's unit.
-// *cov is P (an N x N matrix, or a block of one: see LeadingStates).
+// *cov is P (a matrix, or a block of one: see LeadingStates) of N or more
+// states; the measurement reads the leading N (see KalmanUpdate).
 template <int M, int N, typename State, typename Cov>
 FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
                              const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, State* x, Cov* cov,
                              const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
   static_assert(M <= kMaxMeasurementSize, "FusionReport holds at most kMaxMeasurementSize values");
-  const Innovation<M, N> innovation = ComputeInnovation(at, noise, *cov, z);
+  const Innovation<M, N> innovation = ComputeInnovation(at, noise, cov->template topLeftCorner<N, N>(), z);
   FusionReport report;
   report.source = request.source;
   report.utime = request.utime;

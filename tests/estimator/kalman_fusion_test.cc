@@ -3,7 +3,8 @@
 // worked by hand, the gate (a NaN NIS is never fused, before or after the
 // rejection limit, with the Kalman gain or a fixed gain) and the inflation
 // policy. The EKF's models give the badly scaled 11-state case; a 3-state
-// case shows the path is generic over the state size.
+// case shows the path is generic over the state size; the fusion on the
+// leading states (LeadingStates, UpdateTrailingStates) equals the one on all.
 #include "estimator/kalman_fusion.h"
 
 #include <gtest/gtest.h>
@@ -290,6 +291,69 @@ TEST(LeadingStatesTest, FusesAsAllStatesWhenTheTrailingOnesHaveZeroCovariance) {
     EXPECT_EQ(p_all.rightCols<kEkfStateSize - n>().cwiseAbs().maxCoeff(), 0.0);
     EXPECT_EQ(p_all.bottomRows<kEkfStateSize - n>().cwiseAbs().maxCoeff(), 0.0);
   }
+}
+
+// A measurement that reads only the leading K states, the trailing ones live
+// (learned, correlated): FuseMeasurement on the leading K with the trailing
+// states updated through their cross covariance (UpdateTrailingStates) gives
+// the x and P of the fusion on all 14 (the skipped terms are products with
+// H's exact zeros: 1e-13 of the entry's scale, as for LeadingStates). The
+// EKF's cases: gyro, telemetry and accelerometer on the 9 dynamic states with
+// the offsets and slow states trailing, the strain on 13 with the mass.
+template <int K, int M>
+void ExpectTrailingUpdateAsAllStates(const MeasurementLinearization<M, kEkfStateSize>& at,
+                                     const Eigen::Matrix<double, M, M>& noise, std::mt19937* rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  ASSERT_TRUE(at.jacobian.template rightCols<kEkfStateSize - K>().isZero(0.0));
+  for (int trial = 0; trial < 10; ++trial) {
+    const EkfMatrix p = RandomCovariance(rng);
+    EkfState x = EkfState::Zero();
+    for (int i = 0; i < kEkfStateSize; ++i) x(i) = 1e-3 * normal(*rng);
+    Eigen::Matrix<double, M, 1> z = at.predicted;
+    for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * normal(*rng);
+    EkfState x_all = x, x_split = x;
+    EkfMatrix p_all = p, p_split = p;
+    const FusionReport all = FuseMeasurement(at, noise, z, {}, &x_all, &p_all);
+    const FusionReport split = FuseMeasurement(LeadingStates<K>(at), noise, z, {}, &x_split, &p_split);
+    ASSERT_EQ(all.outcome, FusionOutcome::kFused);
+    ASSERT_EQ(split.outcome, FusionOutcome::kFused);
+    EXPECT_NEAR(split.nis, all.nis, 1e-12 * all.nis);
+    for (int i = 0; i < kEkfStateSize; ++i) {
+      EXPECT_NEAR(x_split(i), x_all(i), 1e-13 * std::sqrt(p(i, i))) << i;
+      for (int j = 0; j < kEkfStateSize; ++j) {
+        // The fusion on all states is not symmetric to round-off: its mean.
+        const double expected = 0.5 * (p_all(i, j) + p_all(j, i));
+        EXPECT_NEAR(p_split(i, j), expected, 1e-13 * std::sqrt(p(i, i) * p(j, j))) << i << ", " << j;
+      }
+    }
+    // The trailing block is changed (the test would pass trivially otherwise).
+    EXPECT_GT((p_split.bottomRightCorner<kEkfStateSize - K, kEkfStateSize - K>() -
+               p.bottomRightCorner<kEkfStateSize - K, kEkfStateSize - K>())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              0.0);
+  }
+}
+
+TEST(UpdateTrailingStatesTest, FusesAsAllStatesWhenHReadsOnlyTheLeadingOnes) {
+  std::mt19937 rng(31);
+  const GyroMeasurementModel gyro(0.005);
+  const MotorSpeedMeasurementModel motor(5.0);
+  const StrainMeasurementModel strain(2e-5);
+  EkfState x = EkfState::Zero();
+  x(kDeflection1) = -2e-3;
+  x(kDeflection2) = 2e-3;
+  x(kOmega1) = x(kOmega2) = 460.0;
+  x(kThrustScale1) = x(kThrustScale2) = 1.0;
+  x(kStrainScale1) = 1.1;
+  x(kStrainScale2) = 0.9;
+  x(kBodyMassScale) = 1.0;
+  const EkfProcessModel process((VehicleParams()));  // the reference vehicle; the mass not a state: no mass column
+  ExpectTrailingUpdateAsAllStates<kDynamicStateSize>(gyro.Linearize(x), gyro.noise, &rng);
+  ExpectTrailingUpdateAsAllStates<kDynamicStateSize>(motor.Linearize(x), motor.noise, &rng);
+  ExpectTrailingUpdateAsAllStates<kDynamicStateSize>(AccelerometerMeasurementModel::Linearize(process, x),
+                                                     AccelerometerMeasurementModel(0.05).noise, &rng);
+  ExpectTrailingUpdateAsAllStates<kBodyMassScale>(strain.Linearize(x), strain.noise, &rng);
 }
 
 }  // namespace
