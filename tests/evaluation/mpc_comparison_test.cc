@@ -22,12 +22,16 @@ namespace {
 
 std::string ConfigFile(const std::string& name) { return std::string(BIROTOR_SOURCE_DIR) + "/config/" + name; }
 
+// The scenario flown in mode mpc with the shipped configs (*controller: the one flown).
+ClosedLoopRun FlyInModeMpc(const Scenario& scenario, ControllerConfig* controller) {
+  *controller = LoadControllerConfig(ConfigFile("controller.yaml"));
+  controller->force_feedback = controller->model_predictive = true;
+  return RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), *controller, ClosedLoopOptions());
+}
+
 TEST(MpcComparisonTest, AggressiveInModeMpc) {
-  const Scenario scenario = LoadScenario(ConfigFile("scenarios/aggressive.yaml"));
-  ControllerConfig controller = LoadControllerConfig(ConfigFile("controller.yaml"));
-  controller.force_feedback = controller.model_predictive = true;
-  const ClosedLoopRun run =
-      RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller, ClosedLoopOptions());
+  ControllerConfig controller;
+  const ClosedLoopRun run = FlyInModeMpc(LoadScenario(ConfigFile("scenarios/aggressive.yaml")), &controller);
   const ControlMetrics metrics = EvaluateControl(run);
   const MpcRunFigures f = MpcFiguresOf(run, metrics, controller);
   std::printf("aggressive mpc: rms %.4f m, max change %.0f rad/s, solves %lld, fallbacks %lld\n", f.control.rms_m,
@@ -102,11 +106,9 @@ TEST(MpcComparisonTest, SeventyPercentLossDescendsLevelAndFlaresInModeMpc) {
   // lower tip 1.45 m/s, peak tilt since the fault 0.094 rad.
   const ControlCase* c = FindControlCase("loss_70");
   ASSERT_NE(c, nullptr);
-  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
-  ControllerConfig controller = LoadControllerConfig(ConfigFile("controller.yaml"));
-  controller.force_feedback = controller.model_predictive = true;
+  ControllerConfig controller;
   const ClosedLoopRun run =
-      RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller, ClosedLoopOptions());
+      FlyInModeMpc(LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides), &controller);
   const ControlMetrics m = EvaluateControl(run);
   const MpcRunFigures f = MpcFiguresOf(run, m, controller);
   std::printf("loss_70 mpc: touchdown %.3f m/s, tilt before %.4f, at touchdown %.4f rad, rate %.3f rad/s, tip %.3f\n",
