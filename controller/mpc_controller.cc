@@ -55,6 +55,7 @@ MpcController::MpcController(const VehicleParams& vehicle, const MpcParams& para
       model_(vehicle),
       qp_(params, vehicle.omega_max_rad_s, TerminalWeight(model_, params)) {
   data_.reference = Eigen::MatrixXd::Zero(kMpcStateSize, params.horizon_steps);
+  qp_.SetDescentTerminalWeight(TerminalWeight(model_, MpcQp::DescentParams(params)));
   omega_estimate_rad_s_.setConstant(RotorSpeedForThrust(vehicle, model_.hover_force_n(), 1.0));
 }
 
@@ -130,6 +131,7 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
   data_.feed_forward_rad_s = feed_forward;
   data_.last_command_rad_s = input.last_command_rad_s;
   data_.command_period_s = input.period_s;
+  data_.descent_weights = input.level_descent;
   FillReference(input, feed_forward);
   const MpcQpSolution solution = qp_.Solve(data_);
 

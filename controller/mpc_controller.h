@@ -29,6 +29,9 @@ struct MpcPlanInput {
   Eigen::Vector2d thrust_scale = Eigen::Vector2d::Ones();        // rotor efficiencies for the prediction [1]
   Eigen::Vector2d last_command_rad_s = Eigen::Vector2d::Zero();  // the command in force until now
   double period_s = 0.01;                                        // time to the next solve [s]
+  // The hover-infeasible descent: plan with the descent's state weights
+  // (MpcParams descent_*), level and calm first (docs/mpc.md, 70 % loss).
+  bool level_descent = false;
 };
 
 enum class MpcOutcome : int {

@@ -52,6 +52,20 @@ struct MpcParams {
   double velocity_weight_s2_m2 = 1000.0;
   double tilt_weight_1_rad2 = 20.0;
   double pitch_rate_weight_s2_rad2 = 1.0;
+  // The same weights in the hover-infeasible descent (MpcPlanInput::
+  // level_descent, a 70 % loss): its sink-rate reference cannot be flown,
+  // and with position dominant the plan bought vertical impulse with the
+  // strong rotor pulsed 0 <-> omega_max, the pitch swinging at +-2.5 rad/s
+  // into the flare (touchdown 0.97 m/s [0.87, 1.11], 4 of 10 seeds over 1).
+  // Position 10x lower, tilt 25x and pitch rate 50x higher: level and calm
+  // (|pitch rate| ~0.2 rad/s before the flare), touchdown 0.93 [0.87, 0.98].
+  // Tilt 1000 / rate 100 or position 100-1000 land alike (max 0.98); velocity
+  // 3000 made the solves late (p99 2.9 ms); position 3-30 sank faster (max
+  // 1.03-1.10). Docs/mpc.md.
+  double descent_position_weight_1_m2 = 300.0;
+  double descent_velocity_weight_s2_m2 = 1000.0;
+  double descent_tilt_weight_1_rad2 = 500.0;
+  double descent_pitch_rate_weight_s2_rad2 = 50.0;
   // Input weights [1/(rad/s)^2]: on the distance from the feed-forward speed
   // (the speed that holds the reference acceleration with the rotor's
   // efficiency), and on the step-to-step change (smoothness, below the arm

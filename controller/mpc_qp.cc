@@ -57,6 +57,15 @@ MpcStateMatrix MpcQp::StageWeight(const MpcParams& params) {
   return diagonal.asDiagonal();
 }
 
+MpcParams MpcQp::DescentParams(const MpcParams& params) {
+  MpcParams out = params;
+  out.position_weight_1_m2 = params.descent_position_weight_1_m2;
+  out.velocity_weight_s2_m2 = params.descent_velocity_weight_s2_m2;
+  out.tilt_weight_1_rad2 = params.descent_tilt_weight_1_rad2;
+  out.pitch_rate_weight_s2_rad2 = params.descent_pitch_rate_weight_s2_rad2;
+  return out;
+}
+
 MpcQp::MpcQp(const MpcParams& params, double omega_max_rad_s, const MpcStateMatrix& terminal_weight)
     : params_(params),
       omega_max_rad_s_(omega_max_rad_s),
@@ -67,6 +76,8 @@ MpcQp::MpcQp(const MpcParams& params, double omega_max_rad_s, const MpcStateMatr
       tilt_steps_(TiltSteps(n_, params.tilt_check_every_steps)),
       stage_weight_(StageWeight(params)),
       terminal_weight_(terminal_weight),
+      descent_stage_weight_(StageWeight(DescentParams(params))),
+      descent_terminal_weight_(terminal_weight),
       gamma_(Eigen::MatrixXd::Zero(kMpcStateSize * n_, kMpcInputSize * n_)),
       gamma_blocked_(Eigen::MatrixXd::Zero(kMpcStateSize * n_, kMpcInputSize * blocks_)),
       offset_(kMpcStateSize * n_),
@@ -149,7 +160,8 @@ void MpcQp::BuildCost(const MpcQpData& data) {
   // W = Qbar Gamma E, block row by block row; H = (Gamma E)^T W; g = W^T (o - r).
   for (int k = 0; k < n_; ++k) {
     const int r = kMpcStateSize * k;
-    const MpcStateMatrix& Q = (k == n_ - 1) ? terminal_weight_ : stage_weight_;
+    const MpcStateMatrix& Q = data.descent_weights ? ((k == n_ - 1) ? descent_terminal_weight_ : descent_stage_weight_)
+                                                   : ((k == n_ - 1) ? terminal_weight_ : stage_weight_);
     weighted_.middleRows(r, kMpcStateSize).noalias() = Q * gamma_blocked_.middleRows(r, kMpcStateSize);
     error_.segment<kMpcStateSize>(r) = offset_.segment<kMpcStateSize>(r) - data.reference.col(k);
   }

@@ -6,6 +6,7 @@
 // held over their blocks (move blocking, MpcParams::input_blocks). The cost is
 //   sum_(k=1..N-1) |s_k - r_k|_Q^2 + |s_N - r_N|_P^2 + sum_k |u_k - u_ff|_R^2
 //   + sum_b |v_b - v_(b-1)|_Rd^2 (v_(-1) = the last command) + w eps^2
+// (Q and P: the level descent's own when MpcQpData::descent_weights)
 // over V and the tilt slack eps >= 0, subject to
 //   0 <= v_b <= omega_max,   |v_0 - v_(-1)| <= r dt_command,
 //   |v_b - v_(b-1)| <= r dt_step,   -phi_max - eps <= phi_k <= phi_max + eps
@@ -31,6 +32,7 @@ struct MpcQpData {
   Eigen::Vector2d feed_forward_rad_s = Eigen::Vector2d::Zero();  // u_ff
   Eigen::Vector2d last_command_rad_s = Eigen::Vector2d::Zero();  // u_(-1)
   double command_period_s = 0.01;  // dt_command: time u_0 is held before the next solve [s]
+  bool descent_weights = false;    // plan with the level descent's weights (MpcQp::DescentParams)
 };
 
 enum class MpcSolveStatus : int {
@@ -55,11 +57,17 @@ class MpcQp {
   MpcQp(const MpcQp&) = delete;
   MpcQp& operator=(const MpcQp&) = delete;
 
+  // The terminal weight of the level descent's weights (DescentParams);
+  // until set, the descent plans with the terminal weight given above.
+  void SetDescentTerminalWeight(const MpcStateMatrix& terminal_weight) { descent_terminal_weight_ = terminal_weight; }
+
   // Builds and solves; warm-starts from the previous plan shifted by one step.
   MpcQpSolution Solve(const MpcQpData& data);
 
   // The stage weight Q (diagonal, from the options).
   static MpcStateMatrix StageWeight(const MpcParams& params);
+  // The options with the level descent's state weights in place of the others.
+  static MpcParams DescentParams(const MpcParams& params);
 
   // Predicted state k (1..N) of the last solve (for tests and plots).
   MpcState PredictedState(int k) const;
@@ -83,6 +91,8 @@ class MpcQp {
   std::vector<int> tilt_steps_;   // 0-based steps k (state s_(k+1)) with a tilt constraint
   MpcStateMatrix stage_weight_;
   MpcStateMatrix terminal_weight_;
+  MpcStateMatrix descent_stage_weight_;
+  MpcStateMatrix descent_terminal_weight_;
   Eigen::MatrixXd gamma_;          // 8N x 2N (per step)
   Eigen::MatrixXd gamma_blocked_;  // 8N x 2B (per block)
   Eigen::VectorXd offset_;         // 8N

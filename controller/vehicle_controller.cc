@@ -406,6 +406,7 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     in.thrust_scale = Eigen::Vector2d(health_.efficiency[0], health_.efficiency[1]);
     in.last_command_rad_s = last_rad_s;
     in.period_s = nominal_dt_s;
+    in.level_descent = infeasible;
     const MpcPeriod period =
         mpc_->Fly(in, Eigen::Vector2d(command.omega_cmd_rad_s[0], command.omega_cmd_rad_s[1]), !pose_lost && !flare);
     for (int i = 0; i < 2; ++i) command.omega_cmd_rad_s[i] = last_good_omega_rad_s_[i] = period.omega_cmd_rad_s(i);

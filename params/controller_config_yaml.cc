@@ -74,6 +74,10 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Double("velocity_weight_s2_m2", 0.0, 1e8, &o->velocity_weight_s2_m2);
   s.Double("tilt_weight_1_rad2", 0.0, 1e8, &o->tilt_weight_1_rad2);
   s.Double("pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->pitch_rate_weight_s2_rad2);
+  s.Double("descent_position_weight_1_m2", 0.0, 1e8, &o->descent_position_weight_1_m2);
+  s.Double("descent_velocity_weight_s2_m2", 0.0, 1e8, &o->descent_velocity_weight_s2_m2);
+  s.Double("descent_tilt_weight_1_rad2", 0.0, 1e8, &o->descent_tilt_weight_1_rad2);
+  s.Double("descent_pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->descent_pitch_rate_weight_s2_rad2);
   s.Double("input_weight_s2_rad2", 1e-9, 1.0, &o->input_weight_s2_rad2);
   s.Double("input_rate_weight_s2_rad2", 0.0, 1.0, &o->input_rate_weight_s2_rad2);
   s.Double("max_omega_rate_rad_s2", 100.0, 1e7, &o->max_omega_rate_rad_s2);

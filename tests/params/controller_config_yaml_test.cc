@@ -36,6 +36,10 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.supervision.descent_rate_m_s, defaults.supervision.descent_rate_m_s);
   EXPECT_EQ(config.efficiency.flare_tilt_rad, defaults.efficiency.flare_tilt_rad);
   EXPECT_EQ(config.efficiency.flare_time_s, defaults.efficiency.flare_time_s);
+  EXPECT_EQ(config.mpc.descent_position_weight_1_m2, defaults.mpc.descent_position_weight_1_m2);
+  EXPECT_EQ(config.mpc.descent_velocity_weight_s2_m2, defaults.mpc.descent_velocity_weight_s2_m2);
+  EXPECT_EQ(config.mpc.descent_tilt_weight_1_rad2, defaults.mpc.descent_tilt_weight_1_rad2);
+  EXPECT_EQ(config.mpc.descent_pitch_rate_weight_s2_rad2, defaults.mpc.descent_pitch_rate_weight_s2_rad2);
 }
 
 TEST(ControllerConfigYamlTest, MissingKeysAreNamed) {
