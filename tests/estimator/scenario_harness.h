@@ -127,6 +127,13 @@ inline EstimatorConfig ReferenceConfig(const std::string& method = "ekf") {
   return config;
 }
 
+// ReferenceConfig with the strain scales learned (EkfOptions::learn_strain_scale).
+inline EstimatorConfig StrainScaleLearningConfig() {
+  EstimatorConfig config = ReferenceConfig();
+  config.ekf.learn_strain_scale = true;
+  return config;
+}
+
 // persisted: gauge offsets the pipeline starts from (as birotor-estimator
 // does from its state file); nullptr: the parameter file's.
 inline ScenarioRun RunScenario(const Scenario& scenario, const EstimatorConfig& config,

@@ -18,12 +18,6 @@ namespace birotor {
 namespace testing_support {
 namespace {
 
-EstimatorConfig LearningConfig() {
-  EstimatorConfig config = ReferenceConfig();
-  config.ekf.learn_strain_scale = true;
-  return config;
-}
-
 // The published g_i at 2, 5, 10 and 15 s of the scenario (the last sample).
 struct Trace {
   double g[4][2] = {};
@@ -32,7 +26,7 @@ struct Trace {
 constexpr double kTimesS[4] = {2.0, 5.0, 10.0, 15.0};
 
 Trace Fly(const char* name, const double g_true[2]) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), LearningConfig());
+  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), StrainScaleLearningConfig());
   const int64_t start = run.gauge_offsets.front().utime;
   Trace trace;
   int k = 0;
