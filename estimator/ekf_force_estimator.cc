@@ -75,6 +75,7 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
     process_noise_psd_(g) = options.learn_strain_scale ? options.strain_scale_psd_1_s : 0.0;
     learned_.value[g] = 1.0;
     learned_.std[g] = g_std;
+    learned_.published_strain_scale_std[i] = g_std;
     if (!options.learn_strain_scale) variance_floor_[g] = 0.0;
   }
   process_noise_psd_(kBodyMassScale) = options.learn_body_mass ? options.body_mass_scale_psd_1_s : 0.0;

@@ -155,6 +155,7 @@ class EkfForceEstimator : public ForceEstimator {
   struct {
     double value[kEkfStateSize] = {};
     double std[kEkfStateSize] = {};
+    double published_strain_scale_std[2] = {};  // PublishedStrainScaleStd while learning
   } learned_;
   bool slow_frozen_ = false;  // the slow parameters are frozen (not flying)
   // Start of the current free flight [us], or one of these.

@@ -96,7 +96,10 @@ void EkfForceEstimator::FillLearnedParameters(StrainStepInfo* info) {
   }
   for (int i = 0; i < 2; ++i) {
     info->learned_strain_scale[i] = learned_.value[kStrainScaleIndex[i]];
-    info->learned_strain_scale_std[i] = PublishedStrainScaleStd(i);
+    // Frozen (on the ground): the sigma of the last learning sample (at rest
+    // the deflection is too small to weigh the offset by).
+    if (!slow_frozen_) learned_.published_strain_scale_std[i] = PublishedStrainScaleStd(i);
+    info->learned_strain_scale_std[i] = learned_.published_strain_scale_std[i];
   }
   info->learned_body_mass_kg = learned_.value[kBodyMassScale] * params_.body_mass_kg;
   info->learned_body_mass_std_kg = learned_.std[kBodyMassScale] * params_.body_mass_kg;
@@ -127,6 +130,7 @@ void EkfForceEstimator::SetLearnedParameters(const LearnedVehicleParameters& lea
   for (int i = 0; i < 2 && options_.learn_strain_scale && learned.has_strain_scale; ++i) {
     learned_.value[kStrainScaleIndex[i]] = learned.strain_scale[i];
     learned_.std[kStrainScaleIndex[i]] = learned.strain_scale_std[i];
+    learned_.published_strain_scale_std[i] = learned.strain_scale_std[i];
   }
   if (options_.learn_body_mass && learned.has_body_mass) {
     learned_.value[kBodyMassScale] = learned.body_mass_kg / params_.body_mass_kg;
