@@ -28,9 +28,12 @@ constexpr double kVarianceCeiling[kEkfStateSize] = {
     1e6,  1e6,   // omega: 1000 rad/s
     4.0,  4.0,   // mu: 2
     1e-6, 1e-6,  // e: 1 mrad (the tare refuses 0.5 mrad)
-    0.25, 0.25,  // g: 0.5
+    0.25, 0.25,  // g: 0.5 (kStrainScaleVarianceCeiling)
     0.25,        // r_m: 0.5
 };
+static_assert(kVarianceCeiling[kStrainScale1] == kStrainScaleVarianceCeiling &&
+                  kVarianceCeiling[kStrainScale2] == kStrainScaleVarianceCeiling,
+              "the published sigma of g has the ceiling of P");
 // The slow parameters are the last states (Predict skips them by head<>).
 static_assert(kStrainScale1 == kGaugeOffset2 + 1 && kBodyMassScale == kEkfStateSize - 1, "slow states last");
 // A learned scale outside this range is a numerical failure, not a vehicle [1].
@@ -72,6 +75,7 @@ EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptio
     process_noise_psd_(g) = options.learn_strain_scale ? options.strain_scale_psd_1_s : 0.0;
     learned_.value[g] = 1.0;
     learned_.std[g] = g_std;
+    learned_.published_strain_scale_std[i] = g_std;
     if (!options.learn_strain_scale) variance_floor_[g] = 0.0;
   }
   process_noise_psd_(kBodyMassScale) = options.learn_body_mass ? options.body_mass_scale_psd_1_s : 0.0;
@@ -214,6 +218,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
   faults_.Reset();
   accel_linearization_.valid = false;  // from before the re-initialisation
   last_utime_ = sample.utime;
+  StartSettling();  // a start in the air learns at once, and splits again once settled
   initialized_ = true;
 }
 

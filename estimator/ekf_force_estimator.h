@@ -118,6 +118,9 @@ class EkfForceEstimator : public ForceEstimator {
   void FillLearnedOffsets(StrainStepInfo* info) const;
   // g_i and m into the step result, and kept for the next (re-)initialisation.
   void FillLearnedParameters(StrainStepInfo* info);
+  // The sigma of g_i that is published: the filter's, widened by the part of
+  // the reading its offset holds (see the .cc).
+  double PublishedStrainScaleStd(int arm) const;
   // The slow parameters are learned in free flight only (airborne, and
   // f1 + f2 above half the weight; after a lift-off only once that held for
   // slow_learning_delay_s): on the ground (or a test stand) the
@@ -128,6 +131,11 @@ class EkfForceEstimator : public ForceEstimator {
   void FreezeSlowParameters(bool frozen);
   // Decides whether the slow parameters learn now (see FreezeSlowParameters).
   void UpdateLearning();
+  // Remembers the offsets and the strain scales' sigma at a start or a lift-off.
+  void StartSettling();
+  // At the end of the settling: the offsets and the strain scales from
+  // there, uncorrelated (see the .cc).
+  void SplitScaleAndOffsetAgain();
 
   VehicleParams params_;
   EkfOptions options_;
@@ -147,11 +155,21 @@ class EkfForceEstimator : public ForceEstimator {
   struct {
     double value[kEkfStateSize] = {};
     double std[kEkfStateSize] = {};
+    double published_strain_scale_std[2] = {};  // PublishedStrainScaleStd while learning
   } learned_;
   bool slow_frozen_ = false;  // the slow parameters are frozen (not flying)
   // Start of the current free flight [us], or one of these.
   static constexpr int64_t kNotFlying = -1, kFlyingSinceStart = -2;
   int64_t flying_since_utime_ = kFlyingSinceStart;
+  // The settling of the fast states after a start or a lift-off, at whose
+  // end the strain scales and offsets are split again (SplitScaleAndOffsetAgain).
+  struct {
+    bool pending = false;
+    int64_t until_utime = 0;
+    double offset_rad[2] = {0, 0};            // e_i at the start of the settling
+    double offset_variance_rad2[2] = {0, 0};  // and its variance
+    double scale_variance[2] = {0, 0};        // var(g_i) to learn from after it
+  } settling_;
 
   bool initialized_ = false;
   bool converged_ = false;

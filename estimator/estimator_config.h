@@ -49,7 +49,9 @@ struct EkfOptions {
   // weight), after a lift-off only once it lasted this long (a filter that
   // starts in the air learns at once): the lift-off transient (the ground contact's
   // 0.02 s filter, the arms ringing down) learned at once split gauge_drift's
-  // scales by 3.6 % (MAE 0.49 N and a MODEL_MISMATCH) [s].
+  // scales by 3.6 % (MAE 0.49 N and a MODEL_MISMATCH). Also the settling
+  // after a start or a lift-off at whose end the strain scales and the gauge
+  // offsets are split again (SplitScaleAndOffsetAgain, issue 27) [s].
   double slow_learning_delay_s = 0.5;
   // Process noise. Thrust scale mu: random walk standing in for the
   // Gauss-Markov turbulence. Its driving noise 2 sigma^2 / tau (2e-3 /s for

@@ -16,12 +16,6 @@ namespace birotor {
 namespace testing_support {
 namespace {
 
-EstimatorConfig LearningConfig() {
-  EstimatorConfig config = ReferenceConfig();
-  config.ekf.learn_strain_scale = true;
-  return config;
-}
-
 struct LearningFigures {
   double mae_n[2] = {0, 0};         // after 5 s [N]
   double share[2] = {0, 0};         // 2-sigma share after 5 s
@@ -56,7 +50,7 @@ TEST(StrainScaleLearning, StiffArmAndGaugeScaleAreLearned) {
   };
   for (const Case& c : {Case{"mismatch_stiffness_plus20", 0.071}, Case{"mismatch_gauge_scale_0p7", 0.072},
                         Case{"mismatch_gauge_scale_1p3", 0.067}}) {
-    const LearningFigures f = Fly(c.name, LearningConfig());
+    const LearningFigures f = Fly(c.name, StrainScaleLearningConfig());
     for (int i = 0; i < 2; ++i) {
       EXPECT_LE(f.mae_n[i], 0.077) << c.name;  // the bound: 1.15 x 0.067 N (tighter than 1.5x measured)
       EXPECT_GE(f.share[i], 0.90) << c.name;   // measured 0.948-0.958; the 0.90-0.99
@@ -69,7 +63,7 @@ TEST(StrainScaleLearning, StiffArmAndGaugeScaleAreLearned) {
 // The learned gauge-1 scale of a gauge reading 0.7 of the file: it points
 // the right way and arm 2's stays near 1 (measured g1 / g2 at 15 s below).
 TEST(StrainScaleLearning, TheLowGaugeIsTheOneThatMoves) {
-  const LearningFigures f = Fly("mismatch_gauge_scale_0p7", LearningConfig());
+  const LearningFigures f = Fly("mismatch_gauge_scale_0p7", StrainScaleLearningConfig());
   EXPECT_LT(f.strain_scale[0], 0.85);
   EXPECT_NEAR(f.strain_scale[1], 1.0, 0.05);
 }
@@ -81,7 +75,7 @@ TEST(StrainScaleLearning, TheLowGaugeIsTheOneThatMoves) {
 TEST(StrainScaleLearning, MatchingFileUnchanged) {
   for (const char* name : {"gentle", "gauge_drift"}) {
     const LearningFigures off = Fly(name, ReferenceConfig());
-    const LearningFigures on = Fly(name, LearningConfig());
+    const LearningFigures on = Fly(name, StrainScaleLearningConfig());
     for (int i = 0; i < 2; ++i) {
       EXPECT_LE(on.mae_n[i], 1.03 * off.mae_n[i]) << name;
       EXPECT_GE(on.share[i], 0.93) << name;
@@ -93,7 +87,7 @@ TEST(StrainScaleLearning, MatchingFileUnchanged) {
 }
 
 TEST(StrainScaleLearning, NothingIsLearnedOnTheGround) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gauge_drift")), LearningConfig());
+  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gauge_drift")), StrainScaleLearningConfig());
   ASSERT_GT(run.liftoff_utime, 0);
   for (const GaugeOffsetSample& s : run.gauge_offsets) {
     if (s.utime >= run.liftoff_utime - 1000000) break;  // rest and spool-up: supported
@@ -102,10 +96,30 @@ TEST(StrainScaleLearning, NothingIsLearnedOnTheGround) {
   }
 }
 
+// After a landing the published sigma stays the one learned in the air (what
+// a clean stop persists): at rest the deflection is too small to weigh the
+// offset by (e_i / b_i would widen it to the 0.5 ceiling). Measured: held
+// through the rest; g 0.9964 +- 0.0695 / 1.0010 +- 0.0575 (the gauges'
+// real drift is in the offsets, which the widening counts as a possible
+// scale: honest, not narrow).
+TEST(StrainScaleLearning, ALandingKeepsTheSigmaOfTheFlight) {
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("gauge_drift"), {"ground.land=true", "ground.rest_after_s=2"}),
+                  StrainScaleLearningConfig());
+  const GaugeOffsetSample& last = run.gauge_offsets.back();
+  std::printf("after the landing: g %.4f +- %.4f / %.4f +- %.4f\n", last.strain_scale[0], last.strain_scale_std[0],
+              last.strain_scale[1], last.strain_scale_std[1]);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(last.strain_scale[i], 1.0, 0.02) << i;  // matching file; measured 0.0036 off
+    EXPECT_LT(last.strain_scale_std[i], 0.1) << i;      // 1.5 x the measured 0.069 at most
+    EXPECT_EQ(last.strain_scale_std[i], run.gauge_offsets[run.gauge_offsets.size() - 1000].strain_scale_std[i]);
+  }
+}
+
 // A restart with the state file's strain scale (as birotor-estimator starts
 // from it): accurate from the first second instead of after the learning.
 TEST(StrainScaleLearning, APersistedScaleIsUsedFromTheStart) {
-  const EstimatorConfig config = LearningConfig();
+  const EstimatorConfig config = StrainScaleLearningConfig();
   const Scenario scenario = LoadScenario(ScenarioFile("mismatch_gauge_scale_0p7"));
   const ScenarioRun first = RunScenario(scenario, config);
   GaugeCalibration persisted = GaugeCalibration::FromVehicle(config.vehicle);

@@ -35,7 +35,8 @@ struct GaugeOffsetSample {
   int64_t utime = 0;
   double offset_rad[2] = {0, 0};
   double offset_std_rad[2] = {0, 0};
-  double strain_scale[2] = {1, 1};  // learned g_i (1 when not learned)
+  double strain_scale[2] = {1, 1};      // learned g_i (1 when not learned)
+  double strain_scale_std[2] = {0, 0};  // its published sigma
 };
 
 struct ScenarioRun {
@@ -63,6 +64,7 @@ class PairingSink : public SampleSink {
       offsets.offset_rad[i] = pipeline_->health().gauge.offset_rad[i];
       offsets.offset_std_rad[i] = pipeline_->health().gauge.offset_std_rad[i];
       offsets.strain_scale[i] = pipeline_->health().gauge.strain_scale[i];
+      offsets.strain_scale_std[i] = pipeline_->health().gauge.strain_scale_std[i];
     }
     run.gauge_offsets.push_back(offsets);
     if (published) {
@@ -122,6 +124,13 @@ inline EstimatorConfig ReferenceConfig(const std::string& method = "ekf") {
   EstimatorConfig config = LoadEstimatorConfig(
       file != nullptr ? std::string(file) : std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
   config.method = method;
+  return config;
+}
+
+// ReferenceConfig with the strain scales learned (EkfOptions::learn_strain_scale).
+inline EstimatorConfig StrainScaleLearningConfig() {
+  EstimatorConfig config = ReferenceConfig();
+  config.ekf.learn_strain_scale = true;
   return config;
 }
 
