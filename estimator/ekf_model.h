@@ -54,8 +54,7 @@ constexpr EkfIndex kOmegaIndex[2] = {kOmega1, kOmega2};
 constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
 constexpr EkfIndex kGaugeOffsetIndex[2] = {kGaugeOffset1, kGaugeOffset2};
 constexpr EkfIndex kStrainScaleIndex[2] = {kStrainScale1, kStrainScale2};
-// Ceiling of var(g_i) in P, and of its published sigma squared [1].
-constexpr double kStrainScaleVarianceCeiling = 0.25;
+constexpr double kStrainScaleVarianceCeiling = 0.25;  // of var(g_i) in P and of its published sigma^2 [1]
 
 using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
 using EkfMatrix = Eigen::Matrix<double, kEkfStateSize, kEkfStateSize>;
