@@ -55,7 +55,8 @@ MpcController::MpcController(const VehicleParams& vehicle, const MpcParams& para
       model_(vehicle),
       qp_(params, vehicle.omega_max_rad_s, TerminalWeight(model_, params)) {
   data_.reference = Eigen::MatrixXd::Zero(kMpcStateSize, params.horizon_steps);
-  qp_.SetDescentTerminalWeight(TerminalWeight(model_, MpcQp::DescentParams(params)));
+  for (const MpcWeightSet set : {MpcWeightSet::kRecovery, MpcWeightSet::kDescent})
+    qp_.SetTerminalWeight(set, TerminalWeight(model_, MpcQp::WeightParams(params, set)));
   omega_estimate_rad_s_.setConstant(RotorSpeedForThrust(vehicle, model_.hover_force_n(), 1.0));
 }
 
@@ -73,6 +74,7 @@ void MpcController::Advance(const Eigen::Vector2d& omega_cmd_rad_s, double dt_s)
 // the last period divided by its length, plus the disturbance it already had.
 void MpcController::UpdateDisturbance(const MpcState& now) {
   const double dt = elapsed_since_previous_s_;
+  recovery_left_s_ = std::max(0.0, recovery_left_s_ - dt);
   if (!has_previous_ || advances_since_previous_ != 1 || dt <= 0.0) return;
   const MpcState predicted = model_.Step(previous_state_, sent_since_previous_, previous_context_, dt);
   const Eigen::Vector3d seen =
@@ -80,10 +82,34 @@ void MpcController::UpdateDisturbance(const MpcState& now) {
   const double alpha = dt / (params_.disturbance_time_constant_s + dt);
   if (!seen.allFinite()) return;
   disturbance_ += alpha * (seen - disturbance_);
+  const double pitch_step = params_.disturbance_pitch_step_rad_s2;
+  if (pitch_step > 0.0 && std::abs(seen(2) - disturbance_(2)) > pitch_step) {
+    disturbance_(2) = seen(2);
+    recovery_left_s_ = params_.recovery_s;
+    ++stats_.recoveries;
+  }
   const double a = params_.max_disturbance_m_s2, w = params_.max_disturbance_rad_s2;
   disturbance_(0) = std::clamp(disturbance_(0), -a, a);
   disturbance_(1) = std::clamp(disturbance_(1), -a, a);
   disturbance_(2) = std::clamp(disturbance_(2), -w, w);
+}
+
+// The disturbance is what the model does not explain: when the model's
+// efficiencies change, the acceleration they now explain at this state
+// leaves it (d -= a(s, u, new) - a(s, u, old), at most down to 0), so a loss first taken as a
+// disturbance is not counted twice once FORCE reports it.
+void MpcController::RebaseDisturbance(const MpcState& now, const Eigen::Vector2d& command_rad_s,
+                                      const MpcModelContext& context) {
+  if (!has_previous_ || context.thrust_scale == previous_context_.thrust_scale) return;
+  MpcModelContext before = context;
+  before.thrust_scale = previous_context_.thrust_scale;
+  const MpcState explained =
+      model_.Derivative(now, command_rad_s, context) - model_.Derivative(now, command_rad_s, before);
+  for (int j = 0; j < 3; ++j) {
+    const double held = disturbance_(j), change = explained(kMpcXDot + j);
+    // Never more than it holds: d moves towards 0, not past it.
+    if (held * change > 0.0) disturbance_(j) = held - std::copysign(std::min(std::abs(change), std::abs(held)), held);
+  }
 }
 
 void MpcController::FillReference(const MpcPlanInput& input, const Eigen::Vector2d& feed_forward_rad_s) {
@@ -118,6 +144,8 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
   MpcModelContext context;
   context.thrust_scale = params_.use_thrust_scale ? input.thrust_scale : Eigen::Vector2d::Ones();
   context.disturbance = disturbance_;
+  RebaseDisturbance(s0, input.last_command_rad_s, context);
+  context.disturbance = disturbance_;
   // Feed-forward: the thrust that makes the reference acceleration, half per rotor.
   const Eigen::Vector2d a = input.reference.acceleration_m_s2;
   const double g = vehicle_.gravity_m_s2;
@@ -131,7 +159,9 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
   data_.feed_forward_rad_s = feed_forward;
   data_.last_command_rad_s = input.last_command_rad_s;
   data_.command_period_s = input.period_s;
-  data_.descent_weights = input.level_descent;
+  data_.weights = input.level_descent      ? MpcWeightSet::kDescent
+                  : recovery_left_s_ > 0.0 ? MpcWeightSet::kRecovery
+                                           : MpcWeightSet::kTracking;
   FillReference(input, feed_forward);
   const MpcQpSolution solution = qp_.Solve(data_);
 

@@ -58,6 +58,7 @@ struct MpcStats {
   int64_t non_finite = 0;
   int64_t infeasible = 0;
   int64_t late = 0;
+  int64_t recoveries = 0;  // sudden pitch disturbances taken (recovery weights started)
   int32_t last_iterations = 0;
   int32_t max_iterations = 0;
   double solve_p50_s = 0.0;
@@ -109,6 +110,7 @@ class MpcController {
 
  private:
   void UpdateDisturbance(const MpcState& now);
+  void RebaseDisturbance(const MpcState& now, const Eigen::Vector2d& command_rad_s, const MpcModelContext& context);
   void FillReference(const MpcPlanInput& input, const Eigen::Vector2d& feed_forward_rad_s);
   void Record(const MpcPlan& plan);
 
@@ -126,7 +128,8 @@ class MpcController {
   Eigen::Vector2d sent_since_previous_ = Eigen::Vector2d::Zero();
   double elapsed_since_previous_s_ = 0.0;
   int advances_since_previous_ = 0;
-  bool flown_ = false;  // Fly has sent a command
+  double recovery_left_s_ = 0.0;  // recovery weights this much longer [s]
+  bool flown_ = false;            // Fly has sent a command
 
   MpcStats stats_;
   std::array<double, kMpcTimeWindow> times_s_{};

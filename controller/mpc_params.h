@@ -14,10 +14,14 @@ enum class MpcQpAlgorithm : int {
 };
 
 struct MpcParams {
-  // Solve rate [Hz]. 100 Hz: the floor; the pitch loop it closes has a
-  // bandwidth near 20 rad/s (the cascade's), a tenth of the 628 rad/s Nyquist
-  // frequency, and the slowest solve (p99 well under 1 ms) leaves the period 10x spare.
-  double rate_hz = 100.0;
+  // Solve rate [Hz]. 200 Hz, twice the floor: the pitch loop it
+  // closes has a bandwidth near 20 rad/s (the cascade's), far below either
+  // rate, but a rotor loss is seen one period after it happens, and 5 ms
+  // instead of 10 ms of unopposed torque halved the fault's peak tilt with
+  // the recovery weights (docs/mpc.md); aggressive tracks at 0.0045 m
+  // instead of 0.0063. The slowest solve (p99 ~0.3 ms) leaves the 5 ms
+  // period 10x spare.
+  double rate_hz = 200.0;
   // Prediction step [s] and number of steps. 20 ms x 20 = 0.4 s: the motor lag
   // (35 ms) spans two steps, the pitch response (~0.15 s) is inside the
   // horizon, the position response (~1 s) is carried by the terminal cost (the
@@ -66,6 +70,17 @@ struct MpcParams {
   double descent_velocity_weight_s2_m2 = 1000.0;
   double descent_tilt_weight_1_rad2 = 500.0;
   double descent_pitch_rate_weight_s2_rad2 = 50.0;
+  // The same weights for recovery_s after a sudden pitch disturbance (a
+  // rotor losing thrust: disturbance_pitch_step_rad_s2 below): attitude
+  // first, the altitude it costs is won back after. With the tracking weights
+  // the plan lowered the strong rotor only as fast as the altitude allowed
+  // (60 % loss: 0.046 rad peak tilt); tilt 500 / rate 50 (the descent's)
+  // stop the rotation in ~60 ms (docs/mpc.md, rotor faults).
+  double recovery_position_weight_1_m2 = 3e3;
+  double recovery_velocity_weight_s2_m2 = 1000.0;
+  double recovery_tilt_weight_1_rad2 = 500.0;
+  double recovery_pitch_rate_weight_s2_rad2 = 50.0;
+  double recovery_s = 0.5;  // how long the recovery weights hold after the step [s]
   // Input weights [1/(rad/s)^2]: on the distance from the feed-forward speed
   // (the speed that holds the reference acceleration with the rotor's
   // efficiency), and on the step-to-step change (smoothness, below the arm
@@ -91,6 +106,12 @@ struct MpcParams {
   double disturbance_time_constant_s = 0.3;
   double max_disturbance_m_s2 = 5.0;     // clamp of the x, z disturbance [m/s^2]
   double max_disturbance_rad_s2 = 50.0;  // clamp of the pitch disturbance [rad/s^2]
+  // A pitch prediction error larger than this is taken into the disturbance
+  // at once, not low-passed, and starts recovery_s of the recovery weights
+  // [rad/s^2] (0: never). A rotor losing 40 % shows here as ~30 rad/s^2 one
+  // solve before FORCE's efficiency does; in flights without a fault the
+  // error stays below 8 rad/s^2 (docs/mpc.md).
+  double disturbance_pitch_step_rad_s2 = 15.0;
 
   // Real time: a solve longer than this falls back to the cascade for the
   // period [s]. Half the period leaves the other half for the rest of it.

@@ -57,12 +57,19 @@ MpcStateMatrix MpcQp::StageWeight(const MpcParams& params) {
   return diagonal.asDiagonal();
 }
 
-MpcParams MpcQp::DescentParams(const MpcParams& params) {
+MpcParams MpcQp::WeightParams(const MpcParams& params, MpcWeightSet set) {
   MpcParams out = params;
-  out.position_weight_1_m2 = params.descent_position_weight_1_m2;
-  out.velocity_weight_s2_m2 = params.descent_velocity_weight_s2_m2;
-  out.tilt_weight_1_rad2 = params.descent_tilt_weight_1_rad2;
-  out.pitch_rate_weight_s2_rad2 = params.descent_pitch_rate_weight_s2_rad2;
+  if (set == MpcWeightSet::kRecovery) {
+    out.position_weight_1_m2 = params.recovery_position_weight_1_m2;
+    out.velocity_weight_s2_m2 = params.recovery_velocity_weight_s2_m2;
+    out.tilt_weight_1_rad2 = params.recovery_tilt_weight_1_rad2;
+    out.pitch_rate_weight_s2_rad2 = params.recovery_pitch_rate_weight_s2_rad2;
+  } else if (set == MpcWeightSet::kDescent) {
+    out.position_weight_1_m2 = params.descent_position_weight_1_m2;
+    out.velocity_weight_s2_m2 = params.descent_velocity_weight_s2_m2;
+    out.tilt_weight_1_rad2 = params.descent_tilt_weight_1_rad2;
+    out.pitch_rate_weight_s2_rad2 = params.descent_pitch_rate_weight_s2_rad2;
+  }
   return out;
 }
 
@@ -74,10 +81,6 @@ MpcQp::MpcQp(const MpcParams& params, double omega_max_rad_s, const MpcStateMatr
       variables_(kMpcInputSize * blocks_ + 1),
       block_start_(BlockStarts(n_, blocks_)),
       tilt_steps_(TiltSteps(n_, params.tilt_check_every_steps)),
-      stage_weight_(StageWeight(params)),
-      terminal_weight_(terminal_weight),
-      descent_stage_weight_(StageWeight(DescentParams(params))),
-      descent_terminal_weight_(terminal_weight),
       gamma_(Eigen::MatrixXd::Zero(kMpcStateSize * n_, kMpcInputSize * n_)),
       gamma_blocked_(Eigen::MatrixXd::Zero(kMpcStateSize * n_, kMpcInputSize * blocks_)),
       offset_(kMpcStateSize * n_),
@@ -95,6 +98,10 @@ MpcQp::MpcQp(const MpcParams& params, double omega_max_rad_s, const MpcStateMatr
       solution_(Eigen::VectorXd::Zero(variables_)),
       last_x_(Eigen::VectorXd::Zero(variables_)),
       alglib_(std::make_unique<Alglib>()) {
+  for (int w = 0; w < kMpcWeightSets; ++w) {
+    stage_weight_[w] = StageWeight(WeightParams(params, static_cast<MpcWeightSet>(w)));
+    terminal_weight_[w] = terminal_weight;
+  }
   Alglib& a = *alglib_;
   const int rows = static_cast<int>(constraints_.rows());
   a.quadratic.setlength(variables_, variables_);
@@ -160,8 +167,8 @@ void MpcQp::BuildCost(const MpcQpData& data) {
   // W = Qbar Gamma E, block row by block row; H = (Gamma E)^T W; g = W^T (o - r).
   for (int k = 0; k < n_; ++k) {
     const int r = kMpcStateSize * k;
-    const MpcStateMatrix& Q = data.descent_weights ? ((k == n_ - 1) ? descent_terminal_weight_ : descent_stage_weight_)
-                                                   : ((k == n_ - 1) ? terminal_weight_ : stage_weight_);
+    const int w = static_cast<int>(data.weights);
+    const MpcStateMatrix& Q = (k == n_ - 1) ? terminal_weight_[w] : stage_weight_[w];
     weighted_.middleRows(r, kMpcStateSize).noalias() = Q * gamma_blocked_.middleRows(r, kMpcStateSize);
     error_.segment<kMpcStateSize>(r) = offset_.segment<kMpcStateSize>(r) - data.reference.col(k);
   }

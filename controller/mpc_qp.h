@@ -6,7 +6,7 @@
 // held over their blocks (move blocking, MpcParams::input_blocks). The cost is
 //   sum_(k=1..N-1) |s_k - r_k|_Q^2 + |s_N - r_N|_P^2 + sum_k |u_k - u_ff|_R^2
 //   + sum_b |v_b - v_(b-1)|_Rd^2 (v_(-1) = the last command) + w eps^2
-// (Q and P: the level descent's own when MpcQpData::descent_weights)
+// (Q and P: those of MpcQpData::weights)
 // over V and the tilt slack eps >= 0, subject to
 //   0 <= v_b <= omega_max,   |v_0 - v_(-1)| <= r dt_command,
 //   |v_b - v_(b-1)| <= r dt_step,   -phi_max - eps <= phi_k <= phi_max + eps
@@ -24,6 +24,12 @@
 
 namespace birotor {
 
+// Which state weights a solve plans with (MpcParams: the tracking ones, the
+// recovery_* ones after a sudden pitch disturbance, the descent_* ones in
+// the hover-infeasible descent).
+enum class MpcWeightSet : int { kTracking = 0, kRecovery = 1, kDescent = 2 };
+constexpr int kMpcWeightSets = 3;
+
 // Everything one solve needs besides the options.
 struct MpcQpData {
   MpcState initial;                                              // s0
@@ -31,8 +37,8 @@ struct MpcQpData {
   Eigen::MatrixXd reference;                                     // 8 x N: r_1 .. r_N (speeds: the feed-forward)
   Eigen::Vector2d feed_forward_rad_s = Eigen::Vector2d::Zero();  // u_ff
   Eigen::Vector2d last_command_rad_s = Eigen::Vector2d::Zero();  // u_(-1)
-  double command_period_s = 0.01;  // dt_command: time u_0 is held before the next solve [s]
-  bool descent_weights = false;    // plan with the level descent's weights (MpcQp::DescentParams)
+  double command_period_s = 0.01;                  // dt_command: time u_0 is held before the next solve [s]
+  MpcWeightSet weights = MpcWeightSet::kTracking;  // state weights of this solve (MpcQp::WeightParams)
 };
 
 enum class MpcSolveStatus : int {
@@ -57,17 +63,19 @@ class MpcQp {
   MpcQp(const MpcQp&) = delete;
   MpcQp& operator=(const MpcQp&) = delete;
 
-  // The terminal weight of the level descent's weights (DescentParams);
-  // until set, the descent plans with the terminal weight given above.
-  void SetDescentTerminalWeight(const MpcStateMatrix& terminal_weight) { descent_terminal_weight_ = terminal_weight; }
+  // The terminal weight of another weight set (WeightParams); until set,
+  // that set plans with the terminal weight given above.
+  void SetTerminalWeight(MpcWeightSet set, const MpcStateMatrix& terminal_weight) {
+    terminal_weight_[static_cast<int>(set)] = terminal_weight;
+  }
 
   // Builds and solves; warm-starts from the previous plan shifted by one step.
   MpcQpSolution Solve(const MpcQpData& data);
 
   // The stage weight Q (diagonal, from the options).
   static MpcStateMatrix StageWeight(const MpcParams& params);
-  // The options with the level descent's state weights in place of the others.
-  static MpcParams DescentParams(const MpcParams& params);
+  // The options with the state weights of `set` in place of the tracking ones.
+  static MpcParams WeightParams(const MpcParams& params, MpcWeightSet set);
 
   // Predicted state k (1..N) of the last solve (for tests and plots).
   MpcState PredictedState(int k) const;
@@ -84,19 +92,17 @@ class MpcQp {
 
   MpcParams params_;
   double omega_max_rad_s_;
-  int n_;                         // horizon steps
-  int blocks_;                    // input blocks B
-  int variables_;                 // 2 B + 1
-  std::vector<int> block_start_;  // B + 1 entries
-  std::vector<int> tilt_steps_;   // 0-based steps k (state s_(k+1)) with a tilt constraint
-  MpcStateMatrix stage_weight_;
-  MpcStateMatrix terminal_weight_;
-  MpcStateMatrix descent_stage_weight_;
-  MpcStateMatrix descent_terminal_weight_;
-  Eigen::MatrixXd gamma_;          // 8N x 2N (per step)
-  Eigen::MatrixXd gamma_blocked_;  // 8N x 2B (per block)
-  Eigen::VectorXd offset_;         // 8N
-  Eigen::MatrixXd hessian_;        // variables x variables
+  int n_;                                           // horizon steps
+  int blocks_;                                      // input blocks B
+  int variables_;                                   // 2 B + 1
+  std::vector<int> block_start_;                    // B + 1 entries
+  std::vector<int> tilt_steps_;                     // 0-based steps k (state s_(k+1)) with a tilt constraint
+  MpcStateMatrix stage_weight_[kMpcWeightSets];     // Q per weight set
+  MpcStateMatrix terminal_weight_[kMpcWeightSets];  // P per weight set
+  Eigen::MatrixXd gamma_;                           // 8N x 2N (per step)
+  Eigen::MatrixXd gamma_blocked_;                   // 8N x 2B (per block)
+  Eigen::VectorXd offset_;                          // 8N
+  Eigen::MatrixXd hessian_;                         // variables x variables
   Eigen::VectorXd gradient_;
   Eigen::MatrixXd constraints_;  // rows x variables
   Eigen::VectorXd lower_, upper_;

@@ -78,6 +78,11 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Double("descent_velocity_weight_s2_m2", 0.0, 1e8, &o->descent_velocity_weight_s2_m2);
   s.Double("descent_tilt_weight_1_rad2", 0.0, 1e8, &o->descent_tilt_weight_1_rad2);
   s.Double("descent_pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->descent_pitch_rate_weight_s2_rad2);
+  s.Double("recovery_position_weight_1_m2", 0.0, 1e8, &o->recovery_position_weight_1_m2);
+  s.Double("recovery_velocity_weight_s2_m2", 0.0, 1e8, &o->recovery_velocity_weight_s2_m2);
+  s.Double("recovery_tilt_weight_1_rad2", 0.0, 1e8, &o->recovery_tilt_weight_1_rad2);
+  s.Double("recovery_pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->recovery_pitch_rate_weight_s2_rad2);
+  s.Double("recovery_s", 0.0, 100.0, &o->recovery_s);
   s.Double("input_weight_s2_rad2", 1e-9, 1.0, &o->input_weight_s2_rad2);
   s.Double("input_rate_weight_s2_rad2", 0.0, 1.0, &o->input_rate_weight_s2_rad2);
   s.Double("max_omega_rate_rad_s2", 100.0, 1e7, &o->max_omega_rate_rad_s2);
@@ -86,6 +91,7 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Double("disturbance_time_constant_s", 0.01, 100.0, &o->disturbance_time_constant_s);
   s.Double("max_disturbance_m_s2", 0.0, 50.0, &o->max_disturbance_m_s2);
   s.Double("max_disturbance_rad_s2", 0.0, 500.0, &o->max_disturbance_rad_s2);
+  s.Double("disturbance_pitch_step_rad_s2", 0.0, 500.0, &o->disturbance_pitch_step_rad_s2);
   s.Double("deadline_s", 0.0, 1.0, &o->deadline_s);
   std::string clock;
   s.String("deadline_clock", {"wall", "thread_cpu"}, &clock);
