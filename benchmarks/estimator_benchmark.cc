@@ -109,7 +109,7 @@ BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale_and_mass, "ekf", tr
 // The same three EKF runs over a fixed 30000 samples (3 passes of the
 // recording), for counting instructions per sample under callgrind (the
 // cost of a sample depends on the flight phase; a timed run's count varies):
-//   valgrind --tool=callgrind --toggle-collect='birotor::EkfForceEstimator::DoAdd*' \
+//   valgrind --tool=callgrind --toggle-collect='birotor::EkfForceEstimator::DoAdd*'
 //     estimator_benchmark --benchmark_filter='StrainSample/ekf.*/iterations'
 // and divide the collected Ir by the SetFilterStatus calls (docs/mismatch.md).
 constexpr int kCountedSamples = 30000;

@@ -91,7 +91,9 @@ TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
     EXPECT_LT(mpc.rms_m, 1.5 * e.mpc.rms_m) << e.name;
     EXPECT_LT(mpc.tilt_rad, 1.5 * e.mpc.tilt_rad) << e.name;
     EXPECT_LT(mpc.altitude_m, 1.5 * e.mpc.altitude_m) << e.name;
-    if (e.half_feedback_tilt_rad > 0.0) EXPECT_LE(mpc.tilt_rad, e.half_feedback_tilt_rad) << e.name;
+    if (e.half_feedback_tilt_rad > 0.0) {
+      EXPECT_LE(mpc.tilt_rad, e.half_feedback_tilt_rad) << e.name;
+    }
     if (!e.no_worse_than_nominal) continue;
     const ControlFigures nominal = FlyCase(e.name, false);
     EXPECT_LE(mpc.rms_m, 1.05 * nominal.rms_m) << e.name;

@@ -186,7 +186,7 @@ Figures LearnDeployAndCheck(const Case& c) {
 // file 5.16 N.
 TEST(LearnedDeploy, GaugeScaleMismatch) {
   const Figures f =
-      LearnDeployAndCheck({"mismatch_gauge_scale_0p7", 4.0, [](VehicleParams* v) { v->gauge_scale[0] = 0.7; }});
+      LearnDeployAndCheck({"mismatch_gauge_scale_0p7", 4.0, [](VehicleParams* v) { v->gauge_scale[0] = 0.7; }, ""});
   EXPECT_NEAR(f.learned_g[0], 0.7, 0.022);  // 1.5 x the measured 0.0148
   EXPECT_NEAR(f.learned_g[1], 1.0, 0.02);   // 1.5 x 0.0025, at least the resolution of 0.02
   for (int i = 0; i < 2; ++i) EXPECT_LE(std::abs(f.learned_g[i] - (i == 0 ? 0.7 : 1.0)), 2 * f.learned_g_std[i]);
@@ -223,7 +223,7 @@ TEST(LearnedDeploy, StiffnessMismatch) {
 // per rotor through the accelerometer), unchanged 0.381 N. After only 4 s:
 // 4.505 +- 0.050 kg and 0.470 N, worse than the unchanged file.
 TEST(LearnedDeploy, PayloadBodyMass) {
-  const Case c{"mismatch_payload_plus15", 15.0, [](VehicleParams* v) { v->body_mass_kg = 4.6; }};
+  const Case c{"mismatch_payload_plus15", 15.0, [](VehicleParams* v) { v->body_mass_kg = 4.6; }, ""};
   Folder folder;
   const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/flight.lcm";
   fs::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
