@@ -41,16 +41,31 @@ void ResonanceFrequencyEstimator::Start(double centre_hz, double q, double time_
     s.a1 = -2.0 * std::cos(w0) / a0;
     s.a2 = (1.0 - alpha) / a0;
   }
+  // The noise gain: the squared impulse response summed until it has decayed
+  // (once per start, not per sample).
+  Biquad impulse[2] = {stage_[0], stage_[1]};
+  noise_gain_ = 0;
+  for (int n = 0; n < 4096; ++n) {
+    const double h = impulse[1].Apply(impulse[0].Apply(n == 0 ? 1.0 : 0.0));
+    noise_gain_ += h * h;
+  }
   stage_[0].x1 = stage_[0].x2 = first_sample;
   y1_ = y2_ = 0;
   ForgetSums();
 }
 
-void ResonanceFrequencyEstimator::ForgetSums() { s11_ = s12_ = s22_ = s01_ = s02_ = 0; }
+void ResonanceFrequencyEstimator::ForgetSums() { weight_sum_ = s00_ = s11_ = s12_ = s22_ = s01_ = s02_ = 0; }
+
+double ResonanceFrequencyEstimator::Excitation(double noise) const {
+  const double noise_power = noise * noise * noise_gain_;
+  return weight_sum_ > 0 && noise_power > 0 ? s00_ / weight_sum_ / noise_power : 0.0;
+}
 
 void ResonanceFrequencyEstimator::Add(double sample) {
   const double y = stage_[1].Apply(stage_[0].Apply(sample));
   const double f = forget_;
+  weight_sum_ = f * weight_sum_ + 1.0;
+  s00_ = f * s00_ + y * y;
   s11_ = f * s11_ + y1_ * y1_;
   s12_ = f * s12_ + y1_ * y2_;
   s22_ = f * s22_ + y2_ * y2_;
@@ -73,7 +88,8 @@ double ResonanceFrequencyEstimator::FrequencyHz() const {
   return std::acos(cos_w) / (2.0 * M_PI * dt_s_);
 }
 
-ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, double expected_hz) : options_(options) {
+ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, double expected_hz, double noise_rad)
+    : options_(options), noise_rad_(std::sqrt(2.0) * noise_rad) {
   state_.expected_hz = expected_hz;
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
 }
@@ -124,16 +140,22 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool air
     return state_.mismatch;
   }
   if (age_s < options_.arm_mode_settle_s + options_.arm_mode_time_constant_s) return state_.mismatch;
+  state_.excitation = estimator_.Excitation(noise_rad_);
   Judge(utime, estimator_.FrequencyHz());
   return state_.mismatch;
 }
 
 void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   state_.frequency_hz = frequency_hz;
-  if (!std::isfinite(frequency_hz)) {
+  // Too little of the mode above the noise: the fit sees the band-pass
+  // (white noise alone reads +10 %), no judgement.
+  if (!std::isfinite(frequency_hz) || state_.excitation < options_.arm_mode_min_excitation) {
+    state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
     state_.relative_error = state_.statistic = 0;
     return;
   }
+  state_.lowest_excitation =
+      state_.lowest_excitation > 0 ? std::min(state_.lowest_excitation, state_.excitation) : state_.excitation;
   state_.relative_error = frequency_hz / state_.expected_hz - 1.0;
   const double error = std::fabs(state_.relative_error);
   state_.statistic = error / options_.arm_mode_limit;

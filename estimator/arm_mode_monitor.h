@@ -35,6 +35,10 @@ class ResonanceFrequencyEstimator {
   void ForgetSums();
   // NaN while the weighted sums hold no resonance (no pole pair).
   double FrequencyHz() const;
+  // Weighted mean square of the band-passed signal over that of white noise
+  // of standard deviation noise through the same band-pass: 1 for noise
+  // alone, well above when the resonance is excited [1].
+  double Excitation(double noise) const;
   double time_constant_s() const { return time_constant_s_; }
 
  private:
@@ -46,7 +50,10 @@ class ResonanceFrequencyEstimator {
   Biquad stage_[2];
   double dt_s_ = 1e-3;
   double time_constant_s_ = 0.5;
-  double forget_ = 1.0;  // exp(-dt / time constant) per sample
+  double forget_ = 1.0;    // exp(-dt / time constant) per sample
+  double noise_gain_ = 1;  // sum of the band-pass's squared impulse response [1]
+  double weight_sum_ = 0;  // sum of the weights of the sums below [1]
+  double s00_ = 0;         // weighted sum of y^2
   double y1_ = 0, y2_ = 0;
   // Weighted sums: s11 = sum y1^2, s12 = sum y1 y2, s22 = sum y2^2,
   // s01 = sum y y1, s02 = sum y y2.
@@ -58,17 +65,22 @@ struct ArmModeState {
   // The newest estimate; NaN when none yet (on the ground, warming up) [Hz].
   double frequency_hz = 0;
   double relative_error = 0;  // frequency_hz / expected_hz - 1 [1]; 0 when none
-  double statistic = 0;       // |relative_error| / arm_mode_limit [1] (> 1: beyond the limit)
-  double peak_abs_error = 0;  // largest |relative_error| since start-up [1]
-  bool mismatch = false;      // a sustained error beyond the limit holds
-  int64_t raised_utime = -1;  // when the current (or last) one was raised [us]; -1 never
+  // The band's mean square over the gauge noise's (ResonanceFrequencyEstimator::
+  // Excitation); judged only above arm_mode_min_excitation [1].
+  double excitation = 0;
+  double lowest_excitation = 0;  // lowest judged since start-up (0: none) [1]
+  double statistic = 0;          // |relative_error| / arm_mode_limit [1] (> 1: beyond the limit)
+  double peak_abs_error = 0;     // largest |relative_error| since start-up [1]
+  bool mismatch = false;         // a sustained error beyond the limit holds
+  int64_t raised_utime = -1;     // when the current (or last) one was raised [us]; -1 never
   int64_t raised_count = 0;
 };
 
 class ArmModeMonitor {
  public:
-  // expected_hz: SymmetricArmModeHz of the file; the options arm_mode_*.
-  ArmModeMonitor(const ModelConsistencyOptions& options, double expected_hz);
+  // expected_hz: SymmetricArmModeHz of the file; noise_rad: the gauges'
+  // noise per arm (EkfOptions::strain_noise_rad); the options arm_mode_*.
+  ArmModeMonitor(const ModelConsistencyOptions& options, double expected_hz, double noise_rad);
   // One strain sample as the method got it (calibrated, notched) [rad];
   // airborne: the method's ground contact says free flight (on the ground
   // the modes are those of the contact: no test); outlier: the method's gate
@@ -84,6 +96,7 @@ class ArmModeMonitor {
   void Judge(int64_t utime, double frequency_hz);
 
   ModelConsistencyOptions options_;
+  double noise_rad_;  // of b1 - b2: sqrt(2) times a gauge's [rad]
   ResonanceFrequencyEstimator estimator_;
   ArmModeState state_;
   int64_t previous_utime_ = -1;
