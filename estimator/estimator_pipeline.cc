@@ -96,6 +96,11 @@ double ArmModeHzToJudge(const EstimatorConfig& config) {
 
 }  // namespace
 
+double GateOf(const EstimatorConfig& config, InputChannel channel) {
+  const std::unique_ptr<ForceEstimator> method = MakeForceEstimator(config);
+  return method ? GateOf(*method, channel) : std::numeric_limits<double>::quiet_NaN();
+}
+
 EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
     : config_(config),
       method_kind_(MethodOrThrow(config.method)),
