@@ -103,7 +103,7 @@ void ArmModeMonitor::Restart() {
 }
 
 bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier) {
-  if (!options_.arm_mode_enabled || !(state_.expected_hz > 0)) return false;
+  if (!active()) return false;
   const int64_t previous_utime = previous_utime_;
   previous_utime_ = utime;
   // b1 - b2: the symmetric mode (arm 1 reads -delta, arm 2 +delta at hover);
@@ -160,6 +160,7 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   const double error = std::fabs(state_.relative_error);
   state_.statistic = error / options_.arm_mode_limit;
   state_.peak_abs_error = std::max(state_.peak_abs_error, error);
+  if (error <= options_.arm_mode_limit) state_.agreed = true;
   beyond_since_ = error > options_.arm_mode_limit ? (beyond_since_ < 0 ? utime : beyond_since_) : -1;
   within_since_ = error < 0.5 * options_.arm_mode_limit ? (within_since_ < 0 ? utime : within_since_) : -1;
   if (!state_.mismatch && beyond_since_ >= 0 && (utime - beyond_since_) * 1e-6 >= options_.arm_mode_raise_s) {

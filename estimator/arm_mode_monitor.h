@@ -72,7 +72,10 @@ struct ArmModeState {
   double statistic = 0;          // |relative_error| / arm_mode_limit [1] (> 1: beyond the limit)
   double peak_abs_error = 0;     // largest |relative_error| since start-up [1]
   bool mismatch = false;         // a sustained error beyond the limit holds
-  int64_t raised_utime = -1;     // when the current (or last) one was raised [us]; -1 never
+  // A reading within the limit has been made since start-up (kept over
+  // resets and landings: the vehicle did not change).
+  bool agreed = false;
+  int64_t raised_utime = -1;  // when the current (or last) one was raised [us]; -1 never
   int64_t raised_count = 0;
 };
 
@@ -91,6 +94,8 @@ class ArmModeMonitor {
   // a raised mismatch stays (the vehicle did not change).
   void Restart();
   const ArmModeState& state() const { return state_; }
+  // The test runs (switched on, and a file's frequency to judge against).
+  bool active() const { return options_.arm_mode_enabled && state_.expected_hz > 0; }
 
  private:
   void Judge(int64_t utime, double frequency_hz);

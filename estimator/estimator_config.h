@@ -322,6 +322,12 @@ struct ModelConsistencyOptions {
   // strain_noise_rad): noise alone reads the band-pass, not the arm
   // (+10 % in tests/estimator/arm_mode_monitor_test.cc). MEASURED [1].
   double arm_mode_min_excitation = 1.5;
+  // Whether VALID waits for the arm-mode test's first reading within the
+  // limit (0.6 s after lift-off: settle + time constant). false by default,
+  // as valid_needs_confirmation and for the same reason (the closed loop
+  // flies on VALID forces from the first tens of ms); true keeps a tip-mass
+  // error from ever being VALID (docs/mismatch.md).
+  bool arm_mode_valid_needs_reading = false;
 };
 
 // Names of the estimation methods (--method, `estimator.method`), in the

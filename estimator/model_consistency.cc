@@ -79,6 +79,9 @@ bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
     estimate->status &= ~kStatusThrustDeficit;
     if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
   }
+  if (options_.arm_mode_valid_needs_reading && arm_mode_.active() && !state_.arm_mode.agreed) {
+    estimate->status &= ~kStatusValid;
+  }
   return state_.confirmed;
 }
 

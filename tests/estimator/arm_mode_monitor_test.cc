@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "estimator/model_consistency.h"
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
@@ -119,6 +120,36 @@ TEST(ArmMode, NoTestOnTheGround) {
   EXPECT_TRUE(monitor.state().mismatch);
   EXPECT_NEAR(monitor.state().raised_utime * 1e-6, 3.852, 0.002);
   EXPECT_LT(monitor.state().relative_error, -0.045);
+}
+
+TEST(ArmMode, ValidWaitsForTheFirstReadingWhenAsked) {
+  // arm_mode_valid_needs_reading: VALID withheld until the test has read the
+  // file's frequency (settle 0.1 s + time constant 0.5 s of airborne samples).
+  ModelConsistencyOptions options;
+  options.arm_mode_valid_needs_reading = true;
+  ModelConsistencyMonitor monitor(options, 65.03, 2e-5);
+  FusionReport report;  // one report with an innovation: the method is judged
+  report.source = FusionSource::kStrain;
+  report.outcome = FusionOutcome::kFused;
+  report.size = 1;
+  report.innovation_covariance(0, 0) = 1;
+  report.nis = 0;
+  monitor.Add(report);
+  int64_t first_valid_us = -1;
+  for (int n = 0; n < 1000; ++n) {
+    const double ring = 1e-4 * std::sin(2 * M_PI * 65.03 * n * kDt);
+    const double d[2] = {-1e-3 + ring, 1e-3};
+    monitor.AddStrain(n * 1000, d, true, false);
+    ForceEstimate estimate;
+    estimate.utime = n * 1000;
+    estimate.status = kStatusValid;
+    monitor.ApplyStatus(&estimate);
+    if (first_valid_us < 0 && (estimate.status & kStatusValid)) first_valid_us = estimate.utime;
+  }
+  EXPECT_TRUE(monitor.state().arm_mode.agreed);
+  EXPECT_FALSE(monitor.state().mismatch);
+  // The first reading at 0.6 s after the run's start (its first interval at 1 ms).
+  EXPECT_NEAR(first_valid_us * 1e-6, 0.601, 0.0015);
 }
 
 }  // namespace
