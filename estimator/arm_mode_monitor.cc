@@ -14,6 +14,19 @@ double SymmetricArmModeHz(const VehicleParams& params) {
   return modes.empty() ? 0.0 : modes.front().frequency_hz;
 }
 
+ArmModeExpectation ExpectedArmMode(const VehicleParams& params) {
+  ArmModeExpectation e = ArmModeExpectation::At(SymmetricArmModeHz(params));
+  for (double scale : params.gauge_scale) {
+    if (scale == 1.0 || !(scale > 0)) continue;
+    VehicleParams stiffness = params;  // the scale read as a stiffness k / s
+    stiffness.arm_stiffness_n_m_rad /= scale;
+    const double hz = SymmetricArmModeHz(stiffness);
+    e.low_hz = std::min(e.low_hz, hz);
+    e.high_hz = std::max(e.high_hz, hz);
+  }
+  return e;
+}
+
 double ResonanceFrequencyEstimator::Biquad::Apply(double x) {
   const double y = b0 * x + b2 * x2 - a1 * y1 - a2 * y2;
   x2 = x1;
@@ -88,9 +101,10 @@ double ResonanceFrequencyEstimator::FrequencyHz() const {
   return std::acos(cos_w) / (2.0 * M_PI * dt_s_);
 }
 
-ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, double expected_hz, double noise_rad)
+ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
+                               double noise_rad)
     : options_(options), noise_rad_(std::sqrt(2.0) * noise_rad) {
-  state_.expected_hz = expected_hz;
+  state_.expected = expected;
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -126,7 +140,7 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool air
     if (dt_s > 0 && dt_s < 0.01) {
       start_utime_ = utime;
       dt_s_ = dt_s;
-      estimator_.Start(state_.expected_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s,
+      estimator_.Start(state_.expected.file_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s,
                        difference);
     }
     return state_.mismatch;
@@ -156,7 +170,9 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   }
   state_.lowest_excitation =
       state_.lowest_excitation > 0 ? std::min(state_.lowest_excitation, state_.excitation) : state_.excitation;
-  state_.relative_error = frequency_hz / state_.expected_hz - 1.0;
+  const ArmModeExpectation& e = state_.expected;
+  state_.relative_error = frequency_hz < e.low_hz ? frequency_hz / e.low_hz - 1.0
+                                                  : (frequency_hz > e.high_hz ? frequency_hz / e.high_hz - 1.0 : 0.0);
   const double error = std::fabs(state_.relative_error);
   state_.statistic = error / options_.arm_mode_limit;
   state_.peak_abs_error = std::max(state_.peak_abs_error, error);

@@ -19,6 +19,20 @@ namespace birotor {
 // birotor-analyze prints): the lower of the two oscillatory modes [Hz].
 double SymmetricArmModeHz(const VehicleParams& params);
 
+// What the file lets the symmetric mode be [Hz]. A gauge scale s_i in the
+// file is ambiguous for the arm's dynamics: a gauge that really reads s_i
+// (the mode is the file's), or a stiffness k / s_i the static reading cannot
+// tell from it (birotor-identify --learned writes a learned strain scale,
+// which may be a stiffness, into gauge_scale; docs/mismatch.md). The mode
+// may lie anywhere between; with the ideal gauge the range is the point.
+struct ArmModeExpectation {
+  double file_hz = 0;  // the file's, gauges as they are (0: no test)
+  double low_hz = 0;   // lowest and highest the file allows
+  double high_hz = 0;
+  static ArmModeExpectation At(double hz) { return {hz, hz, hz}; }
+};
+ArmModeExpectation ExpectedArmMode(const VehicleParams& params);
+
 // The frequency of a damped resonance in a sampled signal: two band-pass
 // biquads (RBJ, centre centre_hz, quality q, in cascade) and an AR(2) fit by
 // exponentially weighted least squares, y[n] = c1 y[n-1] + c2 y[n-2]; the
@@ -61,10 +75,12 @@ class ResonanceFrequencyEstimator {
 };
 
 struct ArmModeState {
-  double expected_hz = 0;  // of the parameter file [Hz]
+  ArmModeExpectation expected;  // of the parameter file [Hz]
   // The newest estimate; NaN when none yet (on the ground, warming up) [Hz].
   double frequency_hz = 0;
-  double relative_error = 0;  // frequency_hz / expected_hz - 1 [1]; 0 when none
+  // frequency_hz / expected.low_hz - 1 below the range, frequency_hz /
+  // expected.high_hz - 1 above it, 0 within it or when none [1].
+  double relative_error = 0;
   // The band's mean square over the gauge noise's (ResonanceFrequencyEstimator::
   // Excitation); judged only above arm_mode_min_excitation [1].
   double excitation = 0;
@@ -81,9 +97,9 @@ struct ArmModeState {
 
 class ArmModeMonitor {
  public:
-  // expected_hz: SymmetricArmModeHz of the file; noise_rad: the gauges'
-  // noise per arm (EkfOptions::strain_noise_rad); the options arm_mode_*.
-  ArmModeMonitor(const ModelConsistencyOptions& options, double expected_hz, double noise_rad);
+  // expected: ExpectedArmMode of the file; noise_rad: the gauges' noise per
+  // arm (EkfOptions::strain_noise_rad); the options arm_mode_*.
+  ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected, double noise_rad);
   // One strain sample as the method got it (calibrated, notched) [rad];
   // airborne: the method's ground contact says free flight (on the ground
   // the modes are those of the contact: no test); outlier: the method's gate
@@ -95,7 +111,7 @@ class ArmModeMonitor {
   void Restart();
   const ArmModeState& state() const { return state_; }
   // The test runs (switched on, and a file's frequency to judge against).
-  bool active() const { return options_.arm_mode_enabled && state_.expected_hz > 0; }
+  bool active() const { return options_.arm_mode_enabled && state_.expected.file_hz > 0; }
 
  private:
   void Judge(int64_t utime, double frequency_hz);

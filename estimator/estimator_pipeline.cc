@@ -87,11 +87,11 @@ EstimationMethod MethodOrThrow(const std::string& name) {
   return method;
 }
 
-// The file's arm mode for the arm-mode test; 0 (no test) while the EKF
+// The file's arm mode for the arm-mode test; none (no test) while the EKF
 // learns strain scales: a learned scale may be a stiffness, which moves the
 // mode as a tip mass does (docs/mismatch.md).
-double ArmModeHzToJudge(const EstimatorConfig& config) {
-  return config.ekf.learn_strain_scale ? 0.0 : SymmetricArmModeHz(config.vehicle);
+ArmModeExpectation ArmModeToJudge(const EstimatorConfig& config) {
+  return config.ekf.learn_strain_scale ? ArmModeExpectation() : ExpectedArmMode(config.vehicle);
 }
 
 }  // namespace
@@ -109,7 +109,7 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       tare_(config.vehicle, config.tare),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
-      consistency_(config.model_consistency, ArmModeHzToJudge(config), config.ekf.strain_noise_rad) {
+      consistency_(config.model_consistency, ArmModeToJudge(config), config.ekf.strain_noise_rad) {
   calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;

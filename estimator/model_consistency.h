@@ -86,10 +86,11 @@ struct ModelConsistencyState {
 
 class ModelConsistencyMonitor {
  public:
-  // arm_mode_hz: the file's symmetric arm mode (SymmetricArmModeHz), 0: no
-  // arm-mode test; strain_noise_rad: the gauges' noise per arm.
+  // arm_mode: the file's symmetric arm mode (ExpectedArmMode), file_hz 0:
+  // no arm-mode test; strain_noise_rad: the gauges' noise per arm.
   explicit ModelConsistencyMonitor(const ModelConsistencyOptions& options = ModelConsistencyOptions(),
-                                   double arm_mode_hz = 0, double strain_noise_rad = 2e-5);
+                                   const ArmModeExpectation& arm_mode = ArmModeExpectation(),
+                                   double strain_noise_rad = 2e-5);
   // Every fusion report of the method (no allocation).
   void Add(const FusionReport& report);
   // Every strain sample the method got, for the arm-mode test (see

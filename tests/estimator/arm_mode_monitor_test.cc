@@ -77,7 +77,7 @@ TEST(ArmMode, NoiseAloneIsNotJudged) {
   // (+10 % measured), so the excitation guard (arm_mode_min_excitation 1.5)
   // keeps it from judging; noise alone has an excitation of about 1.
   ModelConsistencyOptions options;
-  ArmModeMonitor monitor(options, 65.03, 2e-5);
+  ArmModeMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
   std::mt19937 rng(7);
   std::normal_distribution<double> normal;
   double highest = 0;
@@ -102,9 +102,26 @@ TEST(ArmMode, FileModeFromTheModel) {
   EXPECT_NEAR(SymmetricArmModeHz(p), 60.11, 0.01);
 }
 
+TEST(ArmMode, AGaugeScaleInTheFileWidensWhatTheModeMayBe) {
+  // A scale s in the file may be a gauge that reads s (the mode stays) or a
+  // stiffness k / s (birotor-identify --learned writes a learned strain
+  // scale there): the mode may be anywhere between. Stiffness +20 % learned
+  // and deployed as s = 0.896 (tests/tools/learned_deploy_test.cc): the
+  // model gives 65.03-68.70 Hz (k / 0.896: +5.6 %, about sqrt(1 / 0.896)).
+  VehicleParams p = testing_support::ReferenceConfig().vehicle;
+  ArmModeExpectation ideal = ExpectedArmMode(p);
+  EXPECT_EQ(ideal.low_hz, ideal.file_hz);
+  EXPECT_EQ(ideal.high_hz, ideal.file_hz);
+  p.gauge_scale[0] = 0.896;
+  const ArmModeExpectation e = ExpectedArmMode(p);
+  EXPECT_NEAR(e.file_hz, 65.03, 0.01);
+  EXPECT_EQ(e.low_hz, e.file_hz);
+  EXPECT_NEAR(e.high_hz, 68.70, 0.01);
+}
+
 TEST(ArmMode, NoTestOnTheGround) {
   ModelConsistencyOptions options;
-  ArmModeMonitor monitor(options, 65.03, 2e-5);
+  ArmModeMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
   const double b[2] = {-1e-3, 1e-3};
   for (int n = 0; n < 3000; ++n) {
     // A ringing at 55 Hz that would raise in the air.
@@ -127,7 +144,7 @@ TEST(ArmMode, ValidWaitsForTheFirstReadingWhenAsked) {
   // file's frequency (settle 0.1 s + time constant 0.5 s of airborne samples).
   ModelConsistencyOptions options;
   options.arm_mode_valid_needs_reading = true;
-  ModelConsistencyMonitor monitor(options, 65.03, 2e-5);
+  ModelConsistencyMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
   FusionReport report;  // one report with an innovation: the method is judged
   report.source = FusionSource::kStrain;
   report.outcome = FusionOutcome::kFused;
