@@ -41,8 +41,8 @@ void ModelConsistencyMonitor::AddStrain(int64_t utime, const double deflection_r
     Raise(utime, newest_thrust_scale_);
     state_.parameter = MismatchParameter::kTipMass;
   } else if (!arm_mode_mismatch && state_.mismatch && state_.parameter == MismatchParameter::kTipMass &&
-             inconsistent_run_ == 0) {
-    // Cleared by the arm-mode test, the windows consistent meanwhile.
+             consistent_run_ >= options_.clear_windows) {
+    // Cleared by the arm-mode test, the windows as consistent as their own clearing needs.
     state_.mismatch = false;
   }
 }

@@ -139,6 +139,28 @@ TEST(ArmMode, NoTestOnTheGround) {
   EXPECT_LT(monitor.state().relative_error, -0.040);
 }
 
+TEST(ArmMode, RaisesOnADetunedModeAndClearsWhenItIsBack) {
+  // 2 s ringing at 55 Hz (-15 %: raised after settle 0.1 + time constant
+  // 0.5 + raise 0.25 s), then the file's 65.03 Hz: cleared once within half
+  // the limit for arm_mode_clear_s (2 s).
+  ArmModeMonitor monitor(ModelConsistencyOptions(), ArmModeExpectation::At(65.03), 2e-5);
+  int64_t cleared_us = -1;
+  for (int n = 0; n < 8000; ++n) {
+    const double hz = n < 2000 ? 55.0 : 65.03;
+    const double d[2] = {-1e-3 + 1e-4 * std::sin(2 * M_PI * hz * n * kDt), 1e-3};
+    const bool mismatch = monitor.Add(n * 1000, d, true, false);
+    if (n == 1999) EXPECT_TRUE(mismatch);
+    if (n >= 2000 && !mismatch && cleared_us < 0) cleared_us = n * 1000;
+  }
+  EXPECT_EQ(monitor.state().raised_count, 1);
+  EXPECT_NEAR(monitor.state().raised_utime * 1e-6, 0.851, 0.002);
+  // Measured 4.687 s: the weighted fit forgets 55 Hz with its 0.5 s time
+  // constant, then 2 s within 0.020.
+  std::printf("cleared at %.3f s\n", cleared_us * 1e-6);
+  EXPECT_GT(cleared_us * 1e-6, 4.0);
+  EXPECT_LT(cleared_us * 1e-6, 5.0);
+}
+
 TEST(ArmMode, ValidWaitsForTheFirstReadingWhenAsked) {
   // arm_mode_valid_needs_reading: VALID withheld until the test has read the
   // file's frequency (settle 0.1 s + time constant 0.5 s of airborne samples).
