@@ -482,6 +482,7 @@ void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
   FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
   FillLearnedOffsets(info);
   FillLearnedParameters(info);
+  info->body_supported = options_.body_held || contact_.supported();
 }
 
 }  // namespace birotor

@@ -87,6 +87,13 @@ EstimationMethod MethodOrThrow(const std::string& name) {
   return method;
 }
 
+// The file's arm mode for the arm-mode test; none (no test) while the EKF
+// learns strain scales: a learned scale may be a stiffness, which moves the
+// mode as a tip mass does (docs/mismatch.md).
+ArmModeExpectation ArmModeToJudge(const EstimatorConfig& config) {
+  return config.ekf.learn_strain_scale ? ArmModeExpectation() : ExpectedArmMode(config.vehicle);
+}
+
 }  // namespace
 
 double GateOf(const EstimatorConfig& config, InputChannel channel) {
@@ -102,7 +109,7 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       tare_(config.vehicle, config.tare),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
-      consistency_(config.model_consistency) {
+      consistency_(config.model_consistency, ArmModeToJudge(config), config.ekf.strain_noise_rad) {
   calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;
@@ -304,6 +311,11 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   reports_.clear();
   method_->AddStrain(deflection, estimate, &info, &reports_);
   CountReports();
+  bool outlier = false;  // a spike the method's gate rejected would ring the arm-mode test's band-pass
+  for (const FusionReport& report : reports_) {
+    outlier = outlier || (report.source == FusionSource::kStrain && report.outcome == FusionOutcome::kRejectedGate);
+  }
+  consistency_.AddStrain(deflection.utime, deflection.deflection_rad, !info.body_supported, outlier);
   UpdateReportedGaugeOffsets(info);
   if (info.reset != ResetReason::kNone) {
     // The method re-initialised itself (its numerical guard).

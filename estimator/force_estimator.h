@@ -26,6 +26,9 @@ struct StrainStepInfo {
   // kNumerical when the method re-initialised itself on this sample (the
   // pipeline owns every other reason); kNone otherwise.
   ResetReason reset = ResetReason::kNone;
+  // The method's ground contact: the body is held or supported (its arm
+  // modes are then the contact's). Methods without one report false.
+  bool body_supported = false;
   // The offset e_i the method has learned on top of the calibration it was
   // given, and its one sigma [rad, in deflection]; valid only when
   // has_learned_gauge_offset (methods with offset states, once initialised).

@@ -16,14 +16,40 @@ const char* MismatchParameterName(MismatchParameter parameter) {
       return "mass";
     case MismatchParameter::kMotorLag:
       return "motor_lag";
+    case MismatchParameter::kTipMass:
+      return "tip_mass";
   }
   return "";
 }
 
-ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& options)
-    : options_(options), window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {}
+ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& options,
+                                                 const ArmModeExpectation& arm_mode, double strain_noise_rad)
+    : options_(options),
+      arm_mode_(options, arm_mode, strain_noise_rad),
+      window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {
+  state_.arm_mode = arm_mode_.state();
+}
+
+void ModelConsistencyMonitor::AddStrain(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier) {
+  if (!options_.enabled || !judging_) return;
+  const bool arm_mode_mismatch = arm_mode_.Add(utime, deflection_rad, airborne, outlier);
+  state_.arm_mode = arm_mode_.state();
+  if (arm_mode_mismatch && !state_.mismatch) {
+    // The rigid body's tests see nothing of a tip-mass error: the name is
+    // the arm mode's.
+    state_.raised_fast = false;
+    Raise(utime, newest_thrust_scale_);
+    state_.parameter = MismatchParameter::kTipMass;
+  } else if (!arm_mode_mismatch && state_.mismatch && state_.parameter == MismatchParameter::kTipMass &&
+             consistent_run_ >= options_.clear_windows) {
+    // Cleared by the arm-mode test, the windows as consistent as their own clearing needs.
+    state_.mismatch = false;
+  }
+}
 
 void ModelConsistencyMonitor::Restart() {
+  arm_mode_.Restart();
+  state_.arm_mode = arm_mode_.state();
   window_start_utime_ = -1;
   for (Accumulator& a : acc_) a = Accumulator();
   cusum_high_ = cusum_low_ = 0;
@@ -52,6 +78,9 @@ bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
     // where the controller must not wait for the check (option).
     estimate->status &= ~kStatusThrustDeficit;
     if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
+  }
+  if (options_.arm_mode_valid_needs_reading && arm_mode_.active() && !state_.arm_mode.agreed) {
+    estimate->status &= ~kStatusValid;
   }
   return state_.confirmed;
 }
@@ -157,7 +186,9 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
   } else {
     inconsistent_run_ = 0;
     ++consistent_run_;
-    if (state_.mismatch && consistent_run_ >= options_.clear_windows) state_.mismatch = false;
+    if (state_.mismatch && consistent_run_ >= options_.clear_windows && !arm_mode_.state().mismatch) {
+      state_.mismatch = false;
+    }
   }
   state_.confirmed = !state_.mismatch && consistent_run_ >= options_.confirm_windows;
 }

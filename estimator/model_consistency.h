@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "estimator/arm_mode_monitor.h"
 #include "estimator/estimator_config.h"
 #include "estimator/fusion_report.h"
 #include "samples/samples.h"
@@ -25,11 +26,14 @@ enum class MismatchParameter : int {
   kMass = 2,
   // tau_m: the telemetry does not follow the commands as modelled.
   kMotorLag = 3,
+  // m_p: the arms' symmetric mode rings at another frequency than the
+  // file's (the arm-mode test; the rigid body cannot see a tip-mass error).
+  kTipMass = 4,
 };
 // The thrust map c_T is not named: a c_T error is learned by the thrust
 // scales mu_i (accurate forces; THRUST_DEFICIT when the rotors are weaker
 // than the map), it is not a mismatch (docs/mismatch.md).
-// "", "stiffness_or_gauge_scale", "mass", "motor_lag".
+// "", "stiffness_or_gauge_scale", "mass", "motor_lag", "tip_mass".
 const char* MismatchParameterName(MismatchParameter parameter);
 
 static_assert(sizeof(ModelConsistencyOptions::nis_ratio_limit) / sizeof(double) == kNumFusionSources,
@@ -66,20 +70,32 @@ struct ModelConsistencyState {
   // window's and the fast test's statistic (> 1: that test says
   // inconsistent) [1]. Right after a fast raise the first window has not
   // closed yet and statistic alone still reads 0.
-  double ReportedStatistic() const { return statistic > fast_statistic ? statistic : fast_statistic; }
+  // The arm-mode test's statistic counts too (its own > 1: beyond its limit).
+  double ReportedStatistic() const {
+    const double s = statistic > fast_statistic ? statistic : fast_statistic;
+    return s > arm_mode.statistic ? s : arm_mode.statistic;
+  }
   bool raised_fast = false;                   // the current (or last) mismatch was raised by the fast test
   int64_t raised_utime = -1;                  // when the current (or last) mismatch was raised [us]; -1 never
   int64_t raised_count = 0;                   // mismatches raised since start-up
   int64_t windows = 0;                        // windows completed
   SourceWindowStats last[kNumFusionSources];  // the newest completed window
   double thrust_scale_mean[2] = {1, 1};       // window mean of mu_i of the estimates [1]
+  ArmModeState arm_mode;                      // the arm-mode test (options arm_mode_*)
 };
 
 class ModelConsistencyMonitor {
  public:
-  explicit ModelConsistencyMonitor(const ModelConsistencyOptions& options = ModelConsistencyOptions());
+  // arm_mode: the file's symmetric arm mode (ExpectedArmMode), file_hz 0:
+  // no arm-mode test; strain_noise_rad: the gauges' noise per arm.
+  explicit ModelConsistencyMonitor(const ModelConsistencyOptions& options = ModelConsistencyOptions(),
+                                   const ArmModeExpectation& arm_mode = ArmModeExpectation(),
+                                   double strain_noise_rad = 2e-5);
   // Every fusion report of the method (no allocation).
   void Add(const FusionReport& report);
+  // Every strain sample the method got, for the arm-mode test (see
+  // ArmModeMonitor::Add). A method without innovations is not judged.
+  void AddStrain(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier);
   // Every force estimate (its thrust scales, for the attribution); returns
   // whether VALID may stand (confirmed). Sets kStatusModelMismatch and
   // clears kStatusValid and kStatusThrustDeficit (which the mismatch would
@@ -115,6 +131,7 @@ class ModelConsistencyMonitor {
   MismatchParameter Attribute(const double thrust_scale[2]) const;
 
   ModelConsistencyOptions options_;
+  ArmModeMonitor arm_mode_;
   int64_t window_us_ = 0;
   int64_t window_start_utime_ = -1;
   bool judging_ = false;  // a report with an innovation has arrived

@@ -182,6 +182,15 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Integer("confirm_windows", &O::confirm_windows, 1, 1000),
       Flag("valid_needs_confirmation", &O::valid_needs_confirmation),
       Real("thrust_scale_deviation", &O::thrust_scale_deviation, 0.0, 1.0),
+      Flag("arm_mode_enabled", &O::arm_mode_enabled),
+      Real("arm_mode_limit", &O::arm_mode_limit, 0.001, 1.0),
+      Real("arm_mode_raise_s", &O::arm_mode_raise_s, 0.0, 100.0),
+      Real("arm_mode_clear_s", &O::arm_mode_clear_s, 0.0, 1000.0),
+      Real("arm_mode_band_q", &O::arm_mode_band_q, 0.5, 20.0),
+      Real("arm_mode_time_constant_s", &O::arm_mode_time_constant_s, 0.01, 100.0),
+      Real("arm_mode_settle_s", &O::arm_mode_settle_s, 0.0, 10.0),
+      Real("arm_mode_min_excitation", &O::arm_mode_min_excitation, 0.0, 1e6),
+      Flag("arm_mode_valid_needs_reading", &O::arm_mode_valid_needs_reading),
   };
   return keys;
 }

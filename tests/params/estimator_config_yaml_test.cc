@@ -104,6 +104,17 @@ TEST(EstimatorConfigYamlTest, ModelConsistencySectionHoldsTheDefaultsAndRefusesB
   EXPECT_EQ(c.confirm_windows, defaults.confirm_windows);
   EXPECT_EQ(c.valid_needs_confirmation, defaults.valid_needs_confirmation);
   EXPECT_EQ(c.thrust_scale_deviation, defaults.thrust_scale_deviation);
+  EXPECT_EQ(c.arm_mode_enabled, defaults.arm_mode_enabled);
+  EXPECT_EQ(c.arm_mode_limit,
+            0.040);  // docs/mismatch.md: sustained on the matching files < 0.025, tip mass +20 % > 0.055
+  EXPECT_EQ(c.arm_mode_limit, defaults.arm_mode_limit);
+  EXPECT_EQ(c.arm_mode_raise_s, defaults.arm_mode_raise_s);
+  EXPECT_EQ(c.arm_mode_clear_s, defaults.arm_mode_clear_s);
+  EXPECT_EQ(c.arm_mode_band_q, defaults.arm_mode_band_q);
+  EXPECT_EQ(c.arm_mode_time_constant_s, defaults.arm_mode_time_constant_s);
+  EXPECT_EQ(c.arm_mode_settle_s, defaults.arm_mode_settle_s);
+  EXPECT_EQ(c.arm_mode_min_excitation, defaults.arm_mode_min_excitation);
+  EXPECT_EQ(c.arm_mode_valid_needs_reading, defaults.arm_mode_valid_needs_reading);
 
   std::string e = ErrorOf("estimator:\n  model_consistency: {fast_cusum_limit: -1}\n");
   EXPECT_NE(e.find("estimator.model_consistency.fast_cusum_limit"), std::string::npos) << e;
@@ -114,6 +125,10 @@ TEST(EstimatorConfigYamlTest, ModelConsistencySectionHoldsTheDefaultsAndRefusesB
   e = ErrorOf("estimator:\n  model_consistency: {fast_cusum_clip: 2, fast_cusum_drift: 2, fast_cusum_limit: 30}\n");
   EXPECT_NE(e.find("estimator.model_consistency.fast_cusum_clip"), std::string::npos) << e;
   EXPECT_NE(e.find("not above fast_cusum_drift"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  model_consistency: {arm_mode_limit: 0}\n");
+  EXPECT_NE(e.find("estimator.model_consistency.arm_mode_limit"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  model_consistency: {arm_mode_band_q: 0.1}\n");
+  EXPECT_NE(e.find("estimator.model_consistency.arm_mode_band_q"), std::string::npos) << e;
 }
 
 TEST(EstimatorConfigYamlTest, MisspeltSectionListsTheSchemasSections) {

@@ -1,0 +1,191 @@
+// The symmetric arm mode's frequency in flight against the file's.
+#include "estimator/arm_mode_monitor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "model/linearization.h"
+
+namespace birotor {
+
+double SymmetricArmModeHz(const VehicleParams& params) {
+  const std::vector<Mode> modes = OscillatoryModes(LinearizeAtHover(params).a);
+  return modes.empty() ? 0.0 : modes.front().frequency_hz;
+}
+
+ArmModeExpectation ExpectedArmMode(const VehicleParams& params) {
+  ArmModeExpectation e = ArmModeExpectation::At(SymmetricArmModeHz(params));
+  for (double scale : params.gauge_scale) {
+    if (scale == 1.0 || !(scale > 0)) continue;
+    VehicleParams stiffness = params;  // the scale read as a stiffness k / s
+    stiffness.arm_stiffness_n_m_rad /= scale;
+    const double hz = SymmetricArmModeHz(stiffness);
+    e.low_hz = std::min(e.low_hz, hz);
+    e.high_hz = std::max(e.high_hz, hz);
+  }
+  return e;
+}
+
+double ResonanceFrequencyEstimator::Biquad::Apply(double x) {
+  const double y = b0 * x + b2 * x2 - a1 * y1 - a2 * y2;
+  x2 = x1;
+  x1 = x;
+  y2 = y1;
+  y1 = y;
+  return y;
+}
+
+void ResonanceFrequencyEstimator::Start(double centre_hz, double q, double time_constant_s, double dt_s,
+                                        double first_sample) {
+  dt_s_ = dt_s;
+  time_constant_s_ = time_constant_s;
+  forget_ = std::exp(-dt_s / time_constant_s);
+  // RBJ band-pass (constant 0 dB peak gain): H = alpha (1 - z^-2) / (a0 + a1 z^-1 + a2 z^-2),
+  // alpha = sin(w0) / (2 q). Started in the steady state of a constant input
+  // first_sample (its output is 0: no zero at DC), so the start does not ring.
+  const double w0 = 2.0 * M_PI * centre_hz * dt_s;
+  const double alpha = std::sin(w0) / (2.0 * q);
+  const double a0 = 1.0 + alpha;
+  for (Biquad& s : stage_) {
+    s = Biquad();
+    s.b0 = alpha / a0;
+    s.b2 = -alpha / a0;
+    s.a1 = -2.0 * std::cos(w0) / a0;
+    s.a2 = (1.0 - alpha) / a0;
+  }
+  // The noise gain: the squared impulse response summed until it has decayed
+  // (once per start, not per sample).
+  Biquad impulse[2] = {stage_[0], stage_[1]};
+  noise_gain_ = 0;
+  for (int n = 0; n < 4096; ++n) {
+    const double h = impulse[1].Apply(impulse[0].Apply(n == 0 ? 1.0 : 0.0));
+    noise_gain_ += h * h;
+  }
+  stage_[0].x1 = stage_[0].x2 = first_sample;
+  y1_ = y2_ = 0;
+  ForgetSums();
+}
+
+void ResonanceFrequencyEstimator::ForgetSums() { weight_sum_ = s00_ = s11_ = s12_ = s22_ = s01_ = s02_ = 0; }
+
+double ResonanceFrequencyEstimator::Excitation(double noise) const {
+  const double noise_power = noise * noise * noise_gain_;
+  return weight_sum_ > 0 && noise_power > 0 ? s00_ / weight_sum_ / noise_power : 0.0;
+}
+
+void ResonanceFrequencyEstimator::Add(double sample) {
+  const double y = stage_[1].Apply(stage_[0].Apply(sample));
+  const double f = forget_;
+  weight_sum_ = f * weight_sum_ + 1.0;
+  s00_ = f * s00_ + y * y;
+  s11_ = f * s11_ + y1_ * y1_;
+  s12_ = f * s12_ + y1_ * y2_;
+  s22_ = f * s22_ + y2_ * y2_;
+  s01_ = f * s01_ + y * y1_;
+  s02_ = f * s02_ + y * y2_;
+  y2_ = y1_;
+  y1_ = y;
+}
+
+double ResonanceFrequencyEstimator::FrequencyHz() const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Normal equations [s11 s12; s12 s22] [c1; c2] = [s01; s02] (Cramer).
+  const double det = s11_ * s22_ - s12_ * s12_;
+  if (!(det > 0)) return nan;
+  const double c1 = (s01_ * s22_ - s02_ * s12_) / det;
+  const double c2 = (s11_ * s02_ - s12_ * s01_) / det;
+  if (!(c2 < 0)) return nan;  // no complex pole pair
+  const double cos_w = c1 / (2.0 * std::sqrt(-c2));
+  if (!(std::fabs(cos_w) < 1.0)) return nan;
+  return std::acos(cos_w) / (2.0 * M_PI * dt_s_);
+}
+
+ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
+                               double noise_rad)
+    : options_(options), noise_rad_(std::sqrt(2.0) * noise_rad) {
+  state_.expected = expected;
+  state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
+}
+
+void ArmModeMonitor::Restart() {
+  previous_utime_ = -1;
+  start_utime_ = -1;
+  beyond_since_ = within_since_ = -1;
+  state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
+  state_.relative_error = state_.statistic = 0;
+}
+
+bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier) {
+  if (!active()) return false;
+  const int64_t previous_utime = previous_utime_;
+  previous_utime_ = utime;
+  // b1 - b2: the symmetric mode (arm 1 reads -delta, arm 2 +delta at hover);
+  // the antisymmetric one (79.75 Hz on the file) cancels.
+  const double difference = outlier ? previous_difference_ : deflection_rad[0] - deflection_rad[1];
+  previous_difference_ = difference;
+  if (!airborne) {
+    Restart();  // on the ground the modes are the contact's: no test
+    return state_.mismatch;
+  }
+  const double dt_s = previous_utime >= 0 ? (utime - previous_utime) * 1e-6 : 0.0;
+  if (start_utime_ < 0 || !(std::fabs(dt_s - dt_s_) <= 0.25 * dt_s_)) {
+    // A new run of samples: after lift-off, a reset, a gap or a change of
+    // rate (25 % off the run's interval). The filters are designed for this
+    // interval (a regular one: under 10 ms).
+    start_utime_ = -1;
+    beyond_since_ = within_since_ = -1;
+    state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
+    state_.relative_error = state_.statistic = 0;
+    if (dt_s > 0 && dt_s < 0.01) {
+      start_utime_ = utime;
+      dt_s_ = dt_s;
+      estimator_.Start(state_.expected.file_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s,
+                       difference);
+    }
+    return state_.mismatch;
+  }
+  estimator_.Add(difference);
+  // The band-pass settles (a lift-off's transient) before the sums count,
+  // then they need a time constant of samples before the fit means anything.
+  const double age_s = (utime - start_utime_) * 1e-6;
+  if (age_s < options_.arm_mode_settle_s) {
+    estimator_.ForgetSums();
+    return state_.mismatch;
+  }
+  if (age_s < options_.arm_mode_settle_s + options_.arm_mode_time_constant_s) return state_.mismatch;
+  state_.excitation = estimator_.Excitation(noise_rad_);
+  Judge(utime, estimator_.FrequencyHz());
+  return state_.mismatch;
+}
+
+void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
+  state_.frequency_hz = frequency_hz;
+  // Too little of the mode above the noise: the fit sees the band-pass
+  // (white noise alone reads +10 %), no judgement.
+  if (!std::isfinite(frequency_hz) || state_.excitation < options_.arm_mode_min_excitation) {
+    state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
+    state_.relative_error = state_.statistic = 0;
+    return;
+  }
+  state_.lowest_excitation =
+      state_.lowest_excitation > 0 ? std::min(state_.lowest_excitation, state_.excitation) : state_.excitation;
+  const ArmModeExpectation& e = state_.expected;
+  state_.relative_error = frequency_hz < e.low_hz ? frequency_hz / e.low_hz - 1.0
+                                                  : (frequency_hz > e.high_hz ? frequency_hz / e.high_hz - 1.0 : 0.0);
+  const double error = std::fabs(state_.relative_error);
+  state_.statistic = error / options_.arm_mode_limit;
+  state_.peak_abs_error = std::max(state_.peak_abs_error, error);
+  if (error <= options_.arm_mode_limit) state_.agreed = true;
+  beyond_since_ = error > options_.arm_mode_limit ? (beyond_since_ < 0 ? utime : beyond_since_) : -1;
+  within_since_ = error < 0.5 * options_.arm_mode_limit ? (within_since_ < 0 ? utime : within_since_) : -1;
+  if (!state_.mismatch && beyond_since_ >= 0 && (utime - beyond_since_) * 1e-6 >= options_.arm_mode_raise_s) {
+    state_.mismatch = true;
+    state_.raised_utime = utime;
+    ++state_.raised_count;
+  } else if (state_.mismatch && within_since_ >= 0 && (utime - within_since_) * 1e-6 >= options_.arm_mode_clear_s) {
+    state_.mismatch = false;
+  }
+}
+
+}  // namespace birotor

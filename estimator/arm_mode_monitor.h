@@ -1,0 +1,131 @@
+// Arm-mode frequency monitor (issue 27): the one mismatch the rigid body
+// cannot see. A tip-mass error reads as a thrust-map error to the
+// accelerometer and the gyro (docs/mismatch.md), but it moves the arms'
+// symmetric mode (k over the tip inertia, 65.03 Hz on the reference file)
+// by sqrt(m_p / m_p_true). This monitor estimates that frequency from the
+// strain samples in free flight and flags a sustained departure from the
+// file's. Pure library: no LCM, no logging, no allocation per sample.
+#pragma once
+
+#include <cstdint>
+
+#include "estimator/estimator_config.h"
+#include "model/vehicle_params.h"
+
+namespace birotor {
+
+// The symmetric arm mode (both arms flapping together, seen in b1 - b2) of
+// the hover linearisation of params (model/linearization.h, the figure
+// birotor-analyze prints): the lower of the two oscillatory modes [Hz].
+double SymmetricArmModeHz(const VehicleParams& params);
+
+// What the file lets the symmetric mode be [Hz]. A gauge scale s_i in the
+// file is ambiguous for the arm's dynamics: a gauge that really reads s_i
+// (the mode is the file's), or a stiffness k / s_i the static reading cannot
+// tell from it (birotor-identify --learned writes a learned strain scale,
+// which may be a stiffness, into gauge_scale; docs/mismatch.md). The mode
+// may lie anywhere between; with the ideal gauge the range is the point.
+struct ArmModeExpectation {
+  double file_hz = 0;  // the file's, gauges as they are (0: no test)
+  double low_hz = 0;   // lowest and highest the file allows
+  double high_hz = 0;
+  static ArmModeExpectation At(double hz) { return {hz, hz, hz}; }
+};
+ArmModeExpectation ExpectedArmMode(const VehicleParams& params);
+
+// The frequency of a damped resonance in a sampled signal: two band-pass
+// biquads (RBJ, centre centre_hz, quality q, in cascade) and an AR(2) fit by
+// exponentially weighted least squares, y[n] = c1 y[n-1] + c2 y[n-2]; the
+// pole pair r e^(+-j w) gives f = w / (2 pi dt) (c1 = 2 r cos w, c2 = -r^2).
+// The band-pass pulls the estimate towards its centre (on the reference
+// flights a true shift of -8.7 % / +11.8 % reads -6.5 % / +7.7 %), which
+// the limit of the monitor accounts for.
+class ResonanceFrequencyEstimator {
+ public:
+  // Designs the filters for sample interval dt_s; forgets everything.
+  void Start(double centre_hz, double q, double time_constant_s, double dt_s, double first_sample);
+  void Add(double sample);
+  // Forgets the fit's sums (the filters keep their state).
+  void ForgetSums();
+  // NaN while the weighted sums hold no resonance (no pole pair).
+  double FrequencyHz() const;
+  // Weighted mean square of the band-passed signal over that of white noise
+  // of standard deviation noise through the same band-pass: 1 for noise
+  // alone, well above when the resonance is excited [1].
+  double Excitation(double noise) const;
+  double time_constant_s() const { return time_constant_s_; }
+
+ private:
+  struct Biquad {
+    double b0 = 0, b2 = 0, a1 = 0, a2 = 0;  // b1 = 0 (band-pass)
+    double x1 = 0, x2 = 0, y1 = 0, y2 = 0;  // direct form I
+    double Apply(double x);
+  };
+  Biquad stage_[2];
+  double dt_s_ = 1e-3;
+  double time_constant_s_ = 0.5;
+  double forget_ = 1.0;    // exp(-dt / time constant) per sample
+  double noise_gain_ = 1;  // sum of the band-pass's squared impulse response [1]
+  double weight_sum_ = 0;  // sum of the weights of the sums below [1]
+  double s00_ = 0;         // weighted sum of y^2
+  double y1_ = 0, y2_ = 0;
+  // Weighted sums: s11 = sum y1^2, s12 = sum y1 y2, s22 = sum y2^2,
+  // s01 = sum y y1, s02 = sum y y2.
+  double s11_ = 0, s12_ = 0, s22_ = 0, s01_ = 0, s02_ = 0;
+};
+
+struct ArmModeState {
+  ArmModeExpectation expected;  // of the parameter file [Hz]
+  // The newest estimate; NaN when none yet (on the ground, warming up) [Hz].
+  double frequency_hz = 0;
+  // frequency_hz / expected.low_hz - 1 below the range, frequency_hz /
+  // expected.high_hz - 1 above it, 0 within it or when none [1].
+  double relative_error = 0;
+  // The band's mean square over the gauge noise's (ResonanceFrequencyEstimator::
+  // Excitation); judged only above arm_mode_min_excitation [1].
+  double excitation = 0;
+  double lowest_excitation = 0;  // lowest judged since start-up (0: none) [1]
+  double statistic = 0;          // |relative_error| / arm_mode_limit [1] (> 1: beyond the limit)
+  double peak_abs_error = 0;     // largest |relative_error| since start-up [1]
+  bool mismatch = false;         // a sustained error beyond the limit holds
+  // A reading within the limit has been made since start-up (kept over
+  // resets and landings: the vehicle did not change).
+  bool agreed = false;
+  int64_t raised_utime = -1;  // when the current (or last) one was raised [us]; -1 never
+  int64_t raised_count = 0;
+};
+
+class ArmModeMonitor {
+ public:
+  // expected: ExpectedArmMode of the file; noise_rad: the gauges' noise per
+  // arm (EkfOptions::strain_noise_rad); the options arm_mode_*.
+  ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected, double noise_rad);
+  // One strain sample as the method got it (calibrated, notched) [rad];
+  // airborne: the method's ground contact says free flight (on the ground
+  // the modes are those of the contact: no test); outlier: the method's gate
+  // rejected it (a spike would ring the band-pass; the previous value is
+  // used). Returns whether a mismatch holds.
+  bool Add(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier);
+  // The filter was re-initialised (gap, time jump): the estimate restarts;
+  // a raised mismatch stays (the vehicle did not change).
+  void Restart();
+  const ArmModeState& state() const { return state_; }
+  // The test runs (switched on, and a file's frequency to judge against).
+  bool active() const { return options_.arm_mode_enabled && state_.expected.file_hz > 0; }
+
+ private:
+  void Judge(int64_t utime, double frequency_hz);
+
+  ModelConsistencyOptions options_;
+  double noise_rad_;  // of b1 - b2: sqrt(2) times a gauge's [rad]
+  ResonanceFrequencyEstimator estimator_;
+  ArmModeState state_;
+  int64_t previous_utime_ = -1;
+  int64_t start_utime_ = -1;  // of the current airborne run of samples; -1 none
+  double dt_s_ = 0;           // sample interval the filters were designed for [s]
+  double previous_difference_ = 0;
+  int64_t beyond_since_ = -1;  // first utime of the current run beyond the limit; -1 none
+  int64_t within_since_ = -1;  // ... within half the limit; -1 none
+};
+
+}  // namespace birotor

@@ -1,0 +1,259 @@
+// The arm-mode test (estimator/arm_mode_monitor.h, issue 27): the frequency
+// estimate on synthetic resonances, the file's mode from the model, the
+// ground phase, and the scenarios: tip mass +-20 % raised and named, no raise
+// on the matching files and on c_T / tau_m mismatches. Figures measured on
+// the development VM (docs/mismatch.md); bounds at most 1.5x.
+#include "estimator/arm_mode_monitor.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "estimator/model_consistency.h"
+#include "tests/estimator/scenario_harness.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kDt = 1e-3;  // the gauges' 1 kHz (reference-vehicle.md)
+
+// A resonance of frequency f_hz and damping ratio zeta driven by white noise
+// (the AR(2) of its impulse-invariant poles), amplitude sigma_drive per
+// sample, plus white measurement noise sigma_noise, through the estimator
+// centred at centre_hz for duration_s; returns its last estimate.
+double EstimateOnResonance(double f_hz, double zeta, double centre_hz, double sigma_drive, double sigma_noise,
+                           double duration_s, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  const double w = 2 * M_PI * f_hz;
+  const double r = std::exp(-zeta * w * kDt);
+  const double c1 = 2 * r * std::cos(w * kDt * std::sqrt(1 - zeta * zeta)), c2 = -r * r;
+  ResonanceFrequencyEstimator estimator;
+  estimator.Start(centre_hz, 2.0, 0.5, kDt, 0.0);
+  double x1 = 0, x2 = 0;
+  for (int n = 0; n < static_cast<int>(duration_s / kDt); ++n) {
+    const double x = c1 * x1 + c2 * x2 + sigma_drive * normal(rng);
+    x2 = x1;
+    x1 = x;
+    estimator.Add(x + sigma_noise * normal(rng));
+  }
+  return estimator.FrequencyHz();
+}
+
+TEST(ResonanceFrequency, FindsTheModeInNoise) {
+  // The file's mode (65.03 Hz, damping ratio 0.019: reference-vehicle.md)
+  // under the gauges' noise (2e-5 rad per arm, sqrt(2) of it in b1 - b2),
+  // driven to an excitation of about 5 (the flights: 2.5-6.8, printed by
+  // ArmModeScenarios below). Measured over seeds 1-5: up to 0.0093.
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const double f = EstimateOnResonance(65.03, 0.019, 65.03, 2e-6, 2.8e-5, 3.0, seed);
+    std::printf("seed %u: mode 65.03 Hz read %.2f Hz\n", seed, f);
+    EXPECT_NEAR(f / 65.03 - 1, 0.0, 0.014) << seed;
+  }
+}
+
+TEST(ResonanceFrequency, ShiftedModeReadsShiftedButPulledToTheCentre) {
+  // Tip mass +20 %: 65.03 / sqrt(1.2) = 59.36 Hz seen through the band-pass
+  // at 65.03 Hz; -20 %: 72.71 Hz. The band-pass pulls towards its centre but
+  // the reading stays beyond the limit (arm_mode_limit 0.040) and short of
+  // the true shift (-8.7 %, +11.8 %).
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const double heavy = EstimateOnResonance(59.36, 0.019, 65.03, 2e-6, 2.8e-5, 3.0, seed) / 65.03 - 1;
+    const double light = EstimateOnResonance(72.71, 0.019, 65.03, 2e-6, 2.8e-5, 3.0, seed) / 65.03 - 1;
+    std::printf("seed %u: +20 %% reads %+.4f, -20 %% reads %+.4f\n", seed, heavy, light);
+    EXPECT_LT(heavy, -0.040) << seed;
+    EXPECT_GT(heavy, -0.0872) << seed;
+    EXPECT_GT(light, 0.040) << seed;
+    EXPECT_LT(light, 0.1182) << seed;
+  }
+}
+
+TEST(ArmMode, NoiseAloneIsNotJudged) {
+  // White gauge noise only (no resonance): the fit would read the band-pass
+  // (+10 % measured), so the excitation guard (arm_mode_min_excitation 1.5)
+  // keeps it from judging; noise alone has an excitation of about 1.
+  ModelConsistencyOptions options;
+  ArmModeMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  double highest = 0;
+  for (int n = 0; n < 5000; ++n) {
+    const double d[2] = {-1e-3 + 2e-5 * normal(rng), 1e-3 + 2e-5 * normal(rng)};
+    EXPECT_FALSE(monitor.Add(n * 1000, d, true, false));
+    highest = std::max(highest, monitor.state().excitation);
+  }
+  std::printf("noise alone: highest excitation %.2f\n", highest);
+  EXPECT_NEAR(highest, 1.0, 0.3);
+  EXPECT_TRUE(std::isnan(monitor.state().frequency_hz));
+  EXPECT_EQ(monitor.state().peak_abs_error, 0.0);
+}
+
+TEST(ArmMode, FileModeFromTheModel) {
+  // reference-vehicle.md (/work/shared/spec) and birotor-analyze: 65.03 Hz.
+  VehicleParams p = testing_support::ReferenceConfig().vehicle;
+  EXPECT_NEAR(SymmetricArmModeHz(p), 65.03, 0.01);
+  // The tip mass +20 %: 60.11 Hz (birotor-analyze --params with m_p
+  // 0.345744 kg; the body takes part: sqrt(1 / 1.2) alone would be 59.36 Hz).
+  p.tip_mass_kg *= 1.2;
+  EXPECT_NEAR(SymmetricArmModeHz(p), 60.11, 0.01);
+}
+
+TEST(ArmMode, AGaugeScaleInTheFileWidensWhatTheModeMayBe) {
+  // A scale s in the file may be a gauge that reads s (the mode stays) or a
+  // stiffness k / s (birotor-identify --learned writes a learned strain
+  // scale there): the mode may be anywhere between. Stiffness +20 % learned
+  // and deployed as s = 0.896 (tests/tools/learned_deploy_test.cc): the
+  // model gives 65.03-68.70 Hz (k / 0.896: +5.6 %, about sqrt(1 / 0.896)).
+  VehicleParams p = testing_support::ReferenceConfig().vehicle;
+  ArmModeExpectation ideal = ExpectedArmMode(p);
+  EXPECT_EQ(ideal.low_hz, ideal.file_hz);
+  EXPECT_EQ(ideal.high_hz, ideal.file_hz);
+  p.gauge_scale[0] = 0.896;
+  const ArmModeExpectation e = ExpectedArmMode(p);
+  EXPECT_NEAR(e.file_hz, 65.03, 0.01);
+  EXPECT_EQ(e.low_hz, e.file_hz);
+  EXPECT_NEAR(e.high_hz, 68.70, 0.01);
+}
+
+TEST(ArmMode, NoTestOnTheGround) {
+  ModelConsistencyOptions options;
+  ArmModeMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
+  const double b[2] = {-1e-3, 1e-3};
+  for (int n = 0; n < 3000; ++n) {
+    // A ringing at 55 Hz that would raise in the air.
+    const double d[2] = {b[0] + 1e-4 * std::sin(2 * M_PI * 55 * n * kDt), b[1]};
+    EXPECT_FALSE(monitor.Add(n * 1000, d, false, false));
+  }
+  EXPECT_TRUE(std::isnan(monitor.state().frequency_hz));
+  // In the air the same ringing raises after settle + time constant + raise_s (0.85 s).
+  for (int n = 3000; n < 5000; ++n) {
+    const double d[2] = {b[0] + 1e-4 * std::sin(2 * M_PI * 55 * n * kDt), b[1]};
+    monitor.Add(n * 1000, d, true, false);
+  }
+  EXPECT_TRUE(monitor.state().mismatch);
+  EXPECT_NEAR(monitor.state().raised_utime * 1e-6, 3.852, 0.002);
+  EXPECT_LT(monitor.state().relative_error, -0.040);
+}
+
+TEST(ArmMode, RaisesOnADetunedModeAndClearsWhenItIsBack) {
+  // 2 s ringing at 55 Hz (-15 %: raised after settle 0.1 + time constant
+  // 0.5 + raise 0.25 s), then the file's 65.03 Hz: cleared once within half
+  // the limit for arm_mode_clear_s (2 s).
+  ArmModeMonitor monitor(ModelConsistencyOptions(), ArmModeExpectation::At(65.03), 2e-5);
+  int64_t cleared_us = -1;
+  for (int n = 0; n < 8000; ++n) {
+    const double hz = n < 2000 ? 55.0 : 65.03;
+    const double d[2] = {-1e-3 + 1e-4 * std::sin(2 * M_PI * hz * n * kDt), 1e-3};
+    const bool mismatch = monitor.Add(n * 1000, d, true, false);
+    if (n == 1999) EXPECT_TRUE(mismatch);
+    if (n >= 2000 && !mismatch && cleared_us < 0) cleared_us = n * 1000;
+  }
+  EXPECT_EQ(monitor.state().raised_count, 1);
+  EXPECT_NEAR(monitor.state().raised_utime * 1e-6, 0.851, 0.002);
+  // Measured 4.687 s: the weighted fit forgets 55 Hz with its 0.5 s time
+  // constant, then 2 s within 0.020.
+  std::printf("cleared at %.3f s\n", cleared_us * 1e-6);
+  EXPECT_GT(cleared_us * 1e-6, 4.0);
+  EXPECT_LT(cleared_us * 1e-6, 5.0);
+}
+
+TEST(ArmMode, ValidWaitsForTheFirstReadingWhenAsked) {
+  // arm_mode_valid_needs_reading: VALID withheld until the test has read the
+  // file's frequency (settle 0.1 s + time constant 0.5 s of airborne samples).
+  ModelConsistencyOptions options;
+  options.arm_mode_valid_needs_reading = true;
+  ModelConsistencyMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
+  FusionReport report;  // one report with an innovation: the method is judged
+  report.source = FusionSource::kStrain;
+  report.outcome = FusionOutcome::kFused;
+  report.size = 1;
+  report.innovation_covariance(0, 0) = 1;
+  report.nis = 0;
+  monitor.Add(report);
+  int64_t first_valid_us = -1;
+  for (int n = 0; n < 1000; ++n) {
+    const double ring = 1e-4 * std::sin(2 * M_PI * 65.03 * n * kDt);
+    const double d[2] = {-1e-3 + ring, 1e-3};
+    monitor.AddStrain(n * 1000, d, true, false);
+    ForceEstimate estimate;
+    estimate.utime = n * 1000;
+    estimate.status = kStatusValid;
+    monitor.ApplyStatus(&estimate);
+    if (first_valid_us < 0 && (estimate.status & kStatusValid)) first_valid_us = estimate.utime;
+  }
+  EXPECT_TRUE(monitor.state().arm_mode.agreed);
+  EXPECT_FALSE(monitor.state().mismatch);
+  // The first reading at 0.6 s after the run's start (its first interval at 1 ms).
+  EXPECT_NEAR(first_valid_us * 1e-6, 0.601, 0.0015);
+}
+
+}  // namespace
+
+namespace testing_support {
+namespace {
+
+struct ArmModeFigures {
+  double raised_s = -1;  // first MODEL_MISMATCH after the first estimate [s]; -1 never
+  int64_t mismatch = 0, valid_after_raise = 0;
+  std::string parameter;
+  double peak_abs_error = 0;  // the arm-mode test's largest |f / f_file - 1| [1]
+};
+
+ArmModeFigures Fly(const std::string& name) {
+  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), ReferenceConfig());
+  ArmModeFigures f;
+  const int64_t start = run.forces.front().utime;
+  for (const ForceEstimate& e : run.forces) {
+    if (e.status & kStatusModelMismatch) {
+      if (f.raised_s < 0) f.raised_s = (e.utime - start) * 1e-6;
+      ++f.mismatch;
+    }
+    if (f.raised_s >= 0 && (e.status & kStatusValid)) ++f.valid_after_raise;
+  }
+  f.parameter = MismatchParameterName(run.health.consistency.parameter);
+  f.peak_abs_error = run.health.consistency.arm_mode.peak_abs_error;
+  std::printf(
+      "%s: raised %.3f s, %s, mismatch %lld, VALID after %lld, arm-mode peak |error| %.4f, last %.4f, lowest "
+      "excitation %.1f\n",
+      name.c_str(), f.raised_s, f.parameter.c_str(), static_cast<long long>(f.mismatch),
+      static_cast<long long>(f.valid_after_raise), f.peak_abs_error, run.health.consistency.arm_mode.relative_error,
+      run.health.consistency.arm_mode.lowest_excitation);
+  return f;
+}
+
+TEST(ArmModeScenarios, TipMassIsRaisedAndNamed) {
+  for (const char* name : {"mismatch_tip_mass_plus20", "mismatch_tip_mass_minus20"}) {
+    const ArmModeFigures f = Fly(name);
+    EXPECT_GE(f.raised_s, 0.0) << name;
+    EXPECT_LE(f.raised_s, 1.0) << name;  // measured 0.852 s; the target: within 1 s
+    EXPECT_EQ(f.parameter, "tip_mass") << name;
+    EXPECT_EQ(f.valid_after_raise, 0) << name;  // VALID withdrawn from the raise to the end
+  }
+}
+
+TEST(ArmModeScenarios, MatchingFileAndOtherParametersNeverRaise) {
+  struct Case {
+    const char* name;
+    double peak_abs_error;  // measured
+  };
+  // The measured peaks are below the limit (0.040) everywhere; what keeps
+  // the test quiet is that none lasts arm_mode_raise_s (0.25 s): with a limit
+  // of 0.025 none of the default list raises either (docs/mismatch.md).
+  for (const Case& c :
+       {Case{"hover", 0.0235}, Case{"gentle", 0.0280}, Case{"aggressive", 0.0246}, Case{"thrust_loss_severe", 0.0328},
+        Case{"sensor_faults", 0.0391}, Case{"gauge_offset", 0.0214}, Case{"gauge_vibration", 0.0245},
+        Case{"mismatch_thrust_coeff_plus20", 0.0221}, Case{"mismatch_thrust_coeff_minus20", 0.0398},
+        Case{"mismatch_motor_lag_plus30", 0.0173}, Case{"mismatch_motor_lag_minus30", 0.0236}}) {
+    const ArmModeFigures f = Fly(c.name);
+    EXPECT_EQ(f.mismatch, 0) << c.name;
+    EXPECT_LE(f.peak_abs_error, 1.5 * c.peak_abs_error) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace testing_support
+}  // namespace birotor
