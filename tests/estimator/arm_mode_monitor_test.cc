@@ -149,7 +149,9 @@ TEST(ArmMode, RaisesOnADetunedModeAndClearsWhenItIsBack) {
     const double hz = n < 2000 ? 55.0 : 65.03;
     const double d[2] = {-1e-3 + 1e-4 * std::sin(2 * M_PI * hz * n * kDt), 1e-3};
     const bool mismatch = monitor.Add(n * 1000, d, true, false);
-    if (n == 1999) EXPECT_TRUE(mismatch);
+    if (n == 1999) {
+      EXPECT_TRUE(mismatch);
+    }
     if (n >= 2000 && !mismatch && cleared_us < 0) cleared_us = n * 1000;
   }
   EXPECT_EQ(monitor.state().raised_count, 1);

@@ -206,7 +206,9 @@ TEST(ModelConsistency, AFastRaiseIsRenamedOnTheWindowsEvidence) {
     e.utime = k * 1000;
     e.thrust_scale[0] = e.thrust_scale[1] = k < 100 ? 1.0 : 0.8;
     monitor.ApplyStatus(&e);
-    if (k == 50) EXPECT_EQ(monitor.state().parameter, MismatchParameter::kMass);
+    if (k == 50) {
+      EXPECT_EQ(monitor.state().parameter, MismatchParameter::kMass);
+    }
   }
   EXPECT_TRUE(monitor.state().mismatch);
   EXPECT_EQ(monitor.state().raised_count, 1);
