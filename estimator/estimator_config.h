@@ -329,13 +329,11 @@ struct ModelConsistencyOptions {
   // 1.0-1.25, the flights 2.5-6.8 (docs/mismatch.md) [1].
   double arm_mode_min_excitation = 1.5;
   // Whether VALID waits for the arm-mode test's first reading within the
-  // limit (0.6 s after lift-off: settle + time constant). true: a tip-mass
-  // error is never VALID (the reading takes 0.85 s; before it 847 estimates
-  // 0.56 N off were VALID), and a body held on a bench (never read) is not
-  // VALID either. The closed loop is unchanged by it (birotor-eval
-  // --control --mpc --seeds 10: 71 of 600 per-seed rows move, by at most
-  // 1e-4 m or rad, or a fallback count; docs/mismatch.md).
-  bool arm_mode_valid_needs_reading = true;
+  // limit (0.6 s after lift-off: settle + time constant). false by default,
+  // as valid_needs_confirmation and for the same reason (the closed loop
+  // flies on VALID forces from the first tens of ms); true keeps a tip-mass
+  // error from ever being VALID (docs/mismatch.md).
+  bool arm_mode_valid_needs_reading = false;
 };
 
 // Names of the estimation methods (--method, `estimator.method`), in the
