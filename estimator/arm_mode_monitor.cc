@@ -16,6 +16,10 @@ double SymmetricArmModeHz(const VehicleParams& params) {
 
 ArmModeExpectation ExpectedArmMode(const VehicleParams& params) {
   ArmModeExpectation e = ArmModeExpectation::At(SymmetricArmModeHz(params));
+  VehicleParams stiffer = params;  // d ln f / d ln k from a 10 % stiffer arm
+  stiffer.arm_stiffness_n_m_rad *= 1.1;
+  const double stiffer_hz = SymmetricArmModeHz(stiffer);
+  if (e.file_hz > 0 && stiffer_hz > 0) e.stiffness_exponent = std::log(stiffer_hz / e.file_hz) / std::log(1.1);
   for (double scale : params.gauge_scale) {
     if (scale == 1.0 || !(scale > 0)) continue;
     VehicleParams stiffness = params;  // the scale read as a stiffness k / s
@@ -23,6 +27,19 @@ ArmModeExpectation ExpectedArmMode(const VehicleParams& params) {
     const double hz = SymmetricArmModeHz(stiffness);
     e.low_hz = std::min(e.low_hz, hz);
     e.high_hz = std::max(e.high_hz, hz);
+  }
+  return e;
+}
+
+ArmModeExpectation WithLearnedStrainScales(const ArmModeExpectation& file, const double g[2], const double g_std[2]) {
+  ArmModeExpectation e = file;
+  for (int i = 0; i < 2; ++i) {
+    if (!std::isfinite(g[i]) || !std::isfinite(g_std[i])) continue;
+    for (const double edge : {g[i] - 2.0 * g_std[i], g[i] + 2.0 * g_std[i]}) {
+      const double hz = file.file_hz * std::pow(std::max(edge, 0.05), -file.stiffness_exponent);
+      e.low_hz = std::min(e.low_hz, hz);
+      e.high_hz = std::max(e.high_hz, hz);
+    }
   }
   return e;
 }

@@ -29,9 +29,18 @@ struct ArmModeExpectation {
   double file_hz = 0;  // the file's, gauges as they are (0: no test)
   double low_hz = 0;   // lowest and highest the file allows
   double high_hz = 0;
-  static ArmModeExpectation At(double hz) { return {hz, hz, hz}; }
+  // d ln f / d ln k at the file: how the mode moves with the arm stiffness
+  // (0.5 for a lone spring and mass; the body's coupling moves it) [1].
+  double stiffness_exponent = 0.5;
+  static ArmModeExpectation At(double hz) { return {hz, hz, hz, 0.5}; }
 };
 ArmModeExpectation ExpectedArmMode(const VehicleParams& params);
+
+// The same while the EKF learns strain scales g_i (learn_strain_scale): a
+// learned g_i is a gauge scale (the mode stays) or a stiffness k / g_i (the
+// mode moves by g_i^-stiffness_exponent) or anything between, for every g_i
+// within two sigma of the learned value. Widens `file` (no allocation).
+ArmModeExpectation WithLearnedStrainScales(const ArmModeExpectation& file, const double g[2], const double g_std[2]);
 
 // The frequency of a damped resonance in a sampled signal: two band-pass
 // biquads (RBJ, centre centre_hz, quality q, in cascade) and an AR(2) fit by
@@ -110,6 +119,9 @@ class ArmModeMonitor {
   // a raised mismatch stays (the vehicle did not change).
   void Restart();
   const ArmModeState& state() const { return state_; }
+  // What the mode may be now (WithLearnedStrainScales while the EKF learns
+  // strain scales); the band-pass stays centred on the file's.
+  void SetExpected(const ArmModeExpectation& expected) { state_.expected = expected; }
   // The test runs (switched on, and a file's frequency to judge against).
   bool active() const { return options_.arm_mode_enabled && state_.expected.file_hz > 0; }
 

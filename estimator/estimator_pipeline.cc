@@ -87,12 +87,9 @@ EstimationMethod MethodOrThrow(const std::string& name) {
   return method;
 }
 
-// The file's arm mode for the arm-mode test; none (no test) while the EKF
-// learns strain scales: a learned scale may be a stiffness, which moves the
-// mode as a tip mass does (docs/mismatch.md).
-ArmModeExpectation ArmModeToJudge(const EstimatorConfig& config) {
-  return config.ekf.learn_strain_scale ? ArmModeExpectation() : ExpectedArmMode(config.vehicle);
-}
+// The file's arm mode for the arm-mode test (widened by the strain scales
+// the EKF learns, UpdateReportedGaugeOffsets; docs/mismatch.md).
+ArmModeExpectation ArmModeToJudge(const EstimatorConfig& config) { return ExpectedArmMode(config.vehicle); }
 
 }  // namespace
 
@@ -158,6 +155,8 @@ void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
     health_.gauge.strain_scale[i] = info.learned_strain_scale[i];
     health_.gauge.strain_scale_std[i] = info.learned_strain_scale_std[i];
   }
+  if (info.has_learned_strain_scale)
+    consistency_.SetLearnedStrainScales(info.learned_strain_scale, info.learned_strain_scale_std);
   health_.body_mass_learned = info.has_learned_body_mass;
   if (info.has_learned_body_mass) {
     health_.body_mass_kg = info.learned_body_mass_kg;

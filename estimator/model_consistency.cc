@@ -25,6 +25,7 @@ const char* MismatchParameterName(MismatchParameter parameter) {
 ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& options,
                                                  const ArmModeExpectation& arm_mode, double strain_noise_rad)
     : options_(options),
+      arm_mode_file_(arm_mode),
       arm_mode_(options, arm_mode, strain_noise_rad),
       window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {
   state_.arm_mode = arm_mode_.state();

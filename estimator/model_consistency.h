@@ -96,6 +96,11 @@ class ModelConsistencyMonitor {
   // Every strain sample the method got, for the arm-mode test (see
   // ArmModeMonitor::Add). A method without innovations is not judged.
   void AddStrain(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier);
+  // The strain scales g_i the method learns and their sigmas: the arm-mode
+  // test then allows what they may be (WithLearnedStrainScales).
+  void SetLearnedStrainScales(const double g[2], const double g_std[2]) {
+    arm_mode_.SetExpected(WithLearnedStrainScales(arm_mode_file_, g, g_std));
+  }
   // Every force estimate (its thrust scales, for the attribution); returns
   // whether VALID may stand (confirmed). Sets kStatusModelMismatch and
   // clears kStatusValid and kStatusThrustDeficit (which the mismatch would
@@ -131,6 +136,7 @@ class ModelConsistencyMonitor {
   MismatchParameter Attribute(const double thrust_scale[2]) const;
 
   ModelConsistencyOptions options_;
+  ArmModeExpectation arm_mode_file_;  // the file's, before any learned scale
   ArmModeMonitor arm_mode_;
   int64_t window_us_ = 0;
   int64_t window_start_utime_ = -1;

@@ -119,6 +119,28 @@ TEST(ArmMode, AGaugeScaleInTheFileWidensWhatTheModeMayBe) {
   EXPECT_NEAR(e.high_hz, 68.70, 0.01);
 }
 
+TEST(ArmMode, LearnedStrainScalesWidenWhatTheModeMayBe) {
+  // While the EKF learns strain scales (learn_strain_scale) a learned g_i is
+  // a gauge scale or a stiffness k / g_i: within two sigma of g_i the mode
+  // may be anywhere between. The model's d ln f / d ln k at the reference
+  // file: 0.5000 (the body's coupling hardly moves it from 1/2).
+  const ArmModeExpectation file = ExpectedArmMode(testing_support::ReferenceConfig().vehicle);
+  std::printf("stiffness exponent %.4f\n", file.stiffness_exponent);
+  EXPECT_NEAR(file.stiffness_exponent, 0.5, 0.01);
+  const double exact[2] = {0.896, 1.0}, none[2] = {0.0, 0.0};
+  const ArmModeExpectation deployed = WithLearnedStrainScales(file, exact, none);
+  EXPECT_EQ(deployed.low_hz, file.file_hz);
+  EXPECT_NEAR(deployed.high_hz, 68.70, 0.05);  // as the deployed gauge scale 0.896 above
+  const double one[2] = {1.0, 1.0}, wide[2] = {0.05, 0.05};
+  const ArmModeExpectation unsure = WithLearnedStrainScales(file, one, wide);
+  EXPECT_NEAR(unsure.low_hz, file.file_hz * std::pow(1.1, -file.stiffness_exponent), 1e-9);
+  EXPECT_NEAR(unsure.high_hz, file.file_hz * std::pow(0.9, -file.stiffness_exponent), 1e-9);
+  const double not_learned[2] = {std::nan(""), std::nan("")};
+  const ArmModeExpectation same = WithLearnedStrainScales(file, not_learned, wide);
+  EXPECT_EQ(same.low_hz, file.low_hz);
+  EXPECT_EQ(same.high_hz, file.high_hz);
+}
+
 TEST(ArmMode, NoTestOnTheGround) {
   ModelConsistencyOptions options;
   ArmModeMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
