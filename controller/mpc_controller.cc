@@ -143,7 +143,6 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
 
   MpcModelContext context;
   context.thrust_scale = params_.use_thrust_scale ? input.thrust_scale : Eigen::Vector2d::Ones();
-  context.disturbance = disturbance_;
   RebaseDisturbance(s0, input.last_command_rad_s, context);
   context.disturbance = disturbance_;
   // Feed-forward: the thrust that makes the reference acceleration, half per rotor.
