@@ -32,7 +32,10 @@ struct ArmModeExpectation {
   // d ln f / d ln k at the file: how the mode moves with the arm stiffness
   // (0.5 for a lone spring and mass; the body's coupling moves it) [1].
   double stiffness_exponent = 0.5;
-  static ArmModeExpectation At(double hz) { return {hz, hz, hz, 0.5}; }
+  // m_p g of the file: what a tip-mass error of 100 % puts into each
+  // strain-derived force at hover (docs/mismatch.md) [N].
+  double tip_weight_n = 0;
+  static ArmModeExpectation At(double hz) { return {hz, hz, hz, 0.5, 0.0}; }
 };
 ArmModeExpectation ExpectedArmMode(const VehicleParams& params);
 
@@ -97,9 +100,15 @@ struct ArmModeState {
   double statistic = 0;          // |relative_error| / arm_mode_limit [1] (> 1: beyond the limit)
   double peak_abs_error = 0;     // largest |relative_error| since start-up [1]
   bool mismatch = false;         // a sustained error beyond the limit holds
-  // A reading within the limit has been made since start-up (kept over
-  // resets and landings: the vehicle did not change).
+  // The readings were within half the limit for arm_mode_raise_s since
+  // start-up (kept over resets and landings: the vehicle did not change).
   bool agreed = false;
+  // Not agreed yet, in free flight, and the mode read or its first reading
+  // not due yet: the tip mass is unconfirmed. The published force sigma
+  // carries the tip mass's prior meanwhile (arm_mode_unconfirmed_tip_mass_std),
+  // and VALID waits when arm_mode_valid_needs_reading. false on the ground and
+  // while the mode is too quiet to read [bool].
+  bool awaiting_reading = false;
   int64_t raised_utime = -1;  // when the current (or last) one was raised [us]; -1 never
   int64_t raised_count = 0;
 };

@@ -334,6 +334,15 @@ struct ModelConsistencyOptions {
   // flies on VALID forces from the first tens of ms); true keeps a tip-mass
   // error from ever being VALID (docs/mismatch.md).
   bool arm_mode_valid_needs_reading = false;
+  // Until the arm mode confirms the file's tip mass (ArmModeState::
+  // awaiting_reading: from lift-off for settle + time constant, then while
+  // the readings are not yet within half the limit for arm_mode_raise_s),
+  // each published force sigma includes this relative 1-sigma uncertainty
+  // of the tip mass: sigma^2 + (std m_p g)^2 at hover. The rigid body cannot
+  // see a tip-mass error (docs/mismatch.md), so before the reading the
+  // estimate is only as good as the file's m_p. 0.12: a propeller or motor
+  // change moves m_p by 10-20 %; a 20 % error then lies at 1.7 sigma [1].
+  double arm_mode_unconfirmed_tip_mass_std = 0.12;
 };
 
 // Names of the estimation methods (--method, `estimator.method`), in the

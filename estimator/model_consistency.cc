@@ -80,10 +80,15 @@ bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
     estimate->status &= ~kStatusThrustDeficit;
     if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
   }
-  if (options_.arm_mode_valid_needs_reading && arm_mode_.active() && !state_.arm_mode.agreed) {
-    estimate->status &= ~kStatusValid;
-  }
+  if (arm_mode_.active() && state_.arm_mode.awaiting_reading) AwaitArmMode(estimate);
   return state_.confirmed;
+}
+
+void ModelConsistencyMonitor::AwaitArmMode(ForceEstimate* estimate) const {
+  if (options_.arm_mode_valid_needs_reading) estimate->status &= ~kStatusValid;
+  // The tip mass unconfirmed: its prior in each force's sigma.
+  const double tip_std_n = options_.arm_mode_unconfirmed_tip_mass_std * arm_mode_file_.tip_weight_n;
+  for (double& std_n : estimate->force_std_n) std_n = std::hypot(std_n, tip_std_n);
 }
 
 void ModelConsistencyMonitor::Add(const FusionReport& report) {

@@ -106,7 +106,9 @@ class ModelConsistencyMonitor {
   // clears kStatusValid and kStatusThrustDeficit (which the mismatch would
   // explain) while a mismatch holds; before the model is confirmed it
   // clears kStatusThrustDeficit (and kStatusValid with
-  // valid_needs_confirmation).
+  // valid_needs_confirmation). While the arm mode has not confirmed the
+  // tip mass, widens each force sigma by the tip mass's prior (and clears
+  // kStatusValid with arm_mode_valid_needs_reading).
   bool ApplyStatus(ForceEstimate* estimate);
   // Forgets the window in progress and the fast test's CUSUM (filter
   // re-initialised); the confirmation and a raised mismatch stay (cleared
@@ -132,6 +134,8 @@ class ModelConsistencyMonitor {
   // An accelerometer report into the fast test's CUSUM; raises at its limit.
   void AddToCusum(const FusionReport& report);
   void Raise(int64_t utime, const double thrust_scale[2]);
+  // The tip mass not yet confirmed by the arm mode: sigma and VALID.
+  void AwaitArmMode(ForceEstimate* estimate) const;
   // The parameter named for the worst source, given the thrust scales mu_i.
   MismatchParameter Attribute(const double thrust_scale[2]) const;
 

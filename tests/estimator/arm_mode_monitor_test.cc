@@ -12,8 +12,10 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "estimator/model_consistency.h"
+#include "evaluation/mismatch_metrics.h"
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
@@ -185,12 +187,17 @@ TEST(ArmMode, RaisesOnADetunedModeAndClearsWhenItIsBack) {
   EXPECT_LT(cleared_us * 1e-6, 5.0);
 }
 
-TEST(ArmMode, ValidWaitsForTheFirstReadingWhenAsked) {
-  // arm_mode_valid_needs_reading: VALID withheld until the test has read the
-  // file's frequency (settle 0.1 s + time constant 0.5 s of airborne samples).
-  ModelConsistencyOptions options;
-  options.arm_mode_valid_needs_reading = true;
-  ModelConsistencyMonitor monitor(options, ArmModeExpectation::At(65.03), 2e-5);
+// Feeds 1 s of airborne strain (b1 - b2 ringing at ring_hz with amplitude
+// ring_rad, or quiet) and returns, per 1 ms, the published sigma of rotor 1
+// and whether VALID stood (the method says VALID and sigma 0.08 N).
+struct AwaitRun {
+  std::vector<double> sigma_n;
+  std::vector<bool> valid;
+};
+AwaitRun FeedAwaiting(const ModelConsistencyOptions& options, double ring_rad) {
+  ArmModeExpectation expected = ArmModeExpectation::At(65.03);
+  expected.tip_weight_n = 2.0;  // m_p g [N]
+  ModelConsistencyMonitor monitor(options, expected, 2e-5);
   FusionReport report;  // one report with an innovation: the method is judged
   report.source = FusionSource::kStrain;
   report.outcome = FusionOutcome::kFused;
@@ -198,21 +205,60 @@ TEST(ArmMode, ValidWaitsForTheFirstReadingWhenAsked) {
   report.innovation_covariance(0, 0) = 1;
   report.nis = 0;
   monitor.Add(report);
-  int64_t first_valid_us = -1;
+  AwaitRun run;
   for (int n = 0; n < 1000; ++n) {
-    const double ring = 1e-4 * std::sin(2 * M_PI * 65.03 * n * kDt);
+    const double ring = ring_rad * std::sin(2 * M_PI * 65.03 * n * kDt);
     const double d[2] = {-1e-3 + ring, 1e-3};
     monitor.AddStrain(n * 1000, d, true, false);
     ForceEstimate estimate;
     estimate.utime = n * 1000;
     estimate.status = kStatusValid;
+    estimate.force_std_n[0] = estimate.force_std_n[1] = 0.08;
     monitor.ApplyStatus(&estimate);
-    if (first_valid_us < 0 && (estimate.status & kStatusValid)) first_valid_us = estimate.utime;
+    run.sigma_n.push_back(estimate.force_std_n[0]);
+    run.valid.push_back((estimate.status & kStatusValid) != 0);
   }
-  EXPECT_TRUE(monitor.state().arm_mode.agreed);
-  EXPECT_FALSE(monitor.state().mismatch);
-  // The first reading at 0.6 s after the run's start (its first interval at 1 ms).
-  EXPECT_NEAR(first_valid_us * 1e-6, 0.601, 0.0015);
+  return run;
+}
+
+TEST(ArmMode, UnconfirmedTipMassWidensSigmaUntilTheModeAgrees) {
+  // The file's mode read from 0.6 s (settle 0.1 s + time constant 0.5 s)
+  // and within half the limit for arm_mode_raise_s (0.25 s): agreed at
+  // 0.85 s. Until then each sigma carries 12 % of m_p g (2 N): hypot(0.08,
+  // 0.24) = 0.253 N. VALID stands throughout by default.
+  const AwaitRun run = FeedAwaiting(ModelConsistencyOptions(), 1e-4);
+  const double widened = std::hypot(0.08, 0.12 * 2.0);
+  // From the run's second interval on (the first sample starts nothing,
+  // the second starts the run).
+  EXPECT_NEAR(run.sigma_n[0], 0.08, 1e-12);
+  EXPECT_NEAR(run.sigma_n[2], widened, 1e-12);
+  EXPECT_NEAR(run.sigma_n[840], widened, 1e-12);
+  EXPECT_NEAR(run.sigma_n[860], 0.08, 1e-12);
+  EXPECT_NEAR(run.sigma_n[999], 0.08, 1e-12);
+  for (bool v : run.valid) EXPECT_TRUE(v);
+}
+
+TEST(ArmMode, ValidWaitsForTheAgreementWhenAsked) {
+  ModelConsistencyOptions options;
+  options.arm_mode_valid_needs_reading = true;
+  const AwaitRun run = FeedAwaiting(options, 1e-4);
+  EXPECT_FALSE(run.valid[2]);
+  const size_t first_valid = std::find(run.valid.begin() + 2, run.valid.end(), true) - run.valid.begin();
+  // First reading at 0.601 s (the run's first interval at 1 ms), agreed 0.25 s later.
+  EXPECT_NEAR(first_valid * 1e-3, 0.851, 0.0015);
+  EXPECT_TRUE(std::all_of(run.valid.begin() + first_valid, run.valid.end(), [](bool v) { return v; }));
+}
+
+TEST(ArmMode, AQuietModeIsNotWaitedFor) {
+  // Noise-free and not ringing: nothing to read. The wait ends when the
+  // first reading is due (0.6 s): sigma back, VALID (when asked) from then.
+  ModelConsistencyOptions options;
+  options.arm_mode_valid_needs_reading = true;
+  const AwaitRun run = FeedAwaiting(options, 0.0);
+  EXPECT_GT(run.sigma_n[590], 0.2);
+  EXPECT_FALSE(run.valid[590]);
+  EXPECT_NEAR(run.sigma_n[610], 0.08, 1e-12);
+  EXPECT_TRUE(run.valid[610]);
 }
 
 }  // namespace
@@ -225,6 +271,7 @@ struct ArmModeFigures {
   int64_t mismatch = 0, valid_after_raise = 0;
   std::string parameter;
   double peak_abs_error = 0;  // the arm-mode test's largest |f / f_file - 1| [1]
+  double worst_valid_window_share = 1;  // evaluation/mismatch_metrics.h [1]
 };
 
 ArmModeFigures Fly(const std::string& name) {
@@ -240,6 +287,7 @@ ArmModeFigures Fly(const std::string& name) {
   }
   f.parameter = MismatchParameterName(run.health.consistency.parameter);
   f.peak_abs_error = run.health.consistency.arm_mode.peak_abs_error;
+  f.worst_valid_window_share = EvaluateMismatch(run.forces, run.truth, MismatchEvalOptions()).worst_valid_window_share;
   std::printf(
       "%s: raised %.3f s, %s, mismatch %lld, VALID after %lld, arm-mode peak |error| %.4f, last %.4f, lowest "
       "excitation %.1f\n",
@@ -256,6 +304,10 @@ TEST(ArmModeScenarios, TipMassIsRaisedAndNamed) {
     EXPECT_LE(f.raised_s, 1.0) << name;  // measured 0.852 s; the target: within 1 s
     EXPECT_EQ(f.parameter, "tip_mass") << name;
     EXPECT_EQ(f.valid_after_raise, 0) << name;  // VALID withdrawn from the raise to the end
+    // Before the raise the estimates are VALID and 0.56 N off, with sigma
+    // widened by the unconfirmed tip mass: measured 0.933 (+20 %) and 0.905
+    // (-20 %); the target is 0.80 (birotor-eval, docs/mismatch.md).
+    EXPECT_GE(f.worst_valid_window_share, 0.80) << name;
   }
 }
 

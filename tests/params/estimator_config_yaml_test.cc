@@ -115,6 +115,7 @@ TEST(EstimatorConfigYamlTest, ModelConsistencySectionHoldsTheDefaultsAndRefusesB
   EXPECT_EQ(c.arm_mode_settle_s, defaults.arm_mode_settle_s);
   EXPECT_EQ(c.arm_mode_min_excitation, defaults.arm_mode_min_excitation);
   EXPECT_EQ(c.arm_mode_valid_needs_reading, defaults.arm_mode_valid_needs_reading);
+  EXPECT_EQ(c.arm_mode_unconfirmed_tip_mass_std, defaults.arm_mode_unconfirmed_tip_mass_std);
 
   std::string e = ErrorOf("estimator:\n  model_consistency: {fast_cusum_limit: -1}\n");
   EXPECT_NE(e.find("estimator.model_consistency.fast_cusum_limit"), std::string::npos) << e;
