@@ -224,10 +224,10 @@ AwaitRun FeedAwaiting(const ModelConsistencyOptions& options, double ring_rad) {
 TEST(ArmMode, UnconfirmedTipMassWidensSigmaUntilTheModeAgrees) {
   // The file's mode read from 0.6 s (settle 0.1 s + time constant 0.5 s)
   // and within half the limit for arm_mode_raise_s (0.25 s): agreed at
-  // 0.85 s. Until then each sigma carries 12 % of m_p g (2 N): hypot(0.08,
-  // 0.24) = 0.253 N. VALID stands throughout by default.
+  // 0.85 s. Until then each sigma carries 15 % of m_p g (2 N): hypot(0.08,
+  // 0.30) = 0.310 N. VALID stands throughout by default.
   const AwaitRun run = FeedAwaiting(ModelConsistencyOptions(), 1e-4);
-  const double widened = std::hypot(0.08, 0.12 * 2.0);
+  const double widened = std::hypot(0.08, 0.15 * 2.0);
   // From the run's second interval on (the first sample starts nothing,
   // the second starts the run).
   EXPECT_NEAR(run.sigma_n[0], 0.08, 1e-12);
@@ -305,8 +305,9 @@ TEST(ArmModeScenarios, TipMassIsRaisedAndNamed) {
     EXPECT_EQ(f.parameter, "tip_mass") << name;
     EXPECT_EQ(f.valid_after_raise, 0) << name;  // VALID withdrawn from the raise to the end
     // Before the raise the estimates are VALID and 0.56 N off, with sigma
-    // widened by the unconfirmed tip mass: measured 0.933 (+20 %) and 0.905
-    // (-20 %); the target is 0.80 (birotor-eval, docs/mismatch.md).
+    // widened by the unconfirmed tip mass: measured 1.000 (+20 %) and 0.999
+    // (-20 %), 0.990-1.000 on seeds 1-8; the target is 0.80 (birotor-eval,
+    // docs/mismatch.md).
     EXPECT_GE(f.worst_valid_window_share, 0.80) << name;
   }
 }
