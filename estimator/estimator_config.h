@@ -328,11 +328,12 @@ struct ModelConsistencyOptions {
   // (+10 % in tests/estimator/arm_mode_monitor_test.cc). Noise alone reaches
   // 1.0-1.25, the flights 2.5-6.8 (docs/mismatch.md) [1].
   double arm_mode_min_excitation = 1.5;
-  // Whether VALID waits for the arm-mode test's first reading within the
-  // limit (0.6 s after lift-off: settle + time constant). false by default,
-  // as valid_needs_confirmation and for the same reason (the closed loop
-  // flies on VALID forces from the first tens of ms); true keeps a tip-mass
-  // error from ever being VALID (docs/mismatch.md).
+  // Whether VALID waits while the arm mode has not confirmed the tip mass
+  // (ArmModeState::awaiting_reading: 0.85 s after lift-off on a flight
+  // whose mode agrees). false by default: the unconfirmed tip mass widens
+  // the sigma instead (below), and a daemon restarted in flight must be
+  // VALID within 0.5 s (docs/reliability.md); true keeps a tip-mass error
+  // from ever being VALID (docs/mismatch.md).
   bool arm_mode_valid_needs_reading = false;
   // Until the arm mode confirms the file's tip mass (ArmModeState::
   // awaiting_reading: from lift-off for settle + time constant, then while
