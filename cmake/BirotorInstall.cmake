@@ -31,6 +31,8 @@ endforeach()
 # the unit's StateDirectory; otherwise the conffiles are the shipped files.
 set(BIROTOR_STATE_FILE /var/lib/birotor/gauge_offsets.yaml)
 file(READ ${PROJECT_SOURCE_DIR}/config/estimator.yaml site_estimator)
+# Re-configure when it changes, so the site file never lags behind it.
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/config/estimator.yaml)
 string(FIND "${site_estimator}" "state_file: \"\"" state_key_at)
 if(state_key_at LESS 0)
   message(FATAL_ERROR "config/estimator.yaml has no `state_file: \"\"` line for the package to set")

@@ -300,9 +300,10 @@ void FlySetpointsLive(const std::string& mode, int port, int duration_s) {
 TEST(LiveControllerTest, SetpointsFlownLiveAsInLockStep) { FlySetpointsLive("force_feedback", 7699, 8); }
 
 // Issue 21: the MPC (its solves on the wall clock, deadline 5 ms, the
-// cascade its per-period fallback), 4 s each to keep the suite's time:
-// aggressive's 2 s move to (1, 1) and 2 s of hold, gentle's first 4 s.
-TEST(LiveControllerTest, SetpointsFlownLiveAsInLockStepByTheMpc) { FlySetpointsLive("mpc", 7698, 4); }
+// cascade its per-period fallback), 8 s each. With 4 s each gentle's RMS
+// (0.5 mm) read 0.97-1.11 of the lock-step's over 10 runs on the 2-core VM,
+// at the 10 % bound; with 8 s 0.74-0.85 (aggressive 0.68-0.74) over 5.
+TEST(LiveControllerTest, SetpointsFlownLiveAsInLockStepByTheMpc) { FlySetpointsLive("mpc", 7698, 8); }
 
 }  // namespace
 }  // namespace birotor::reliability
