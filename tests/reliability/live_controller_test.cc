@@ -302,7 +302,7 @@ TEST(LiveControllerTest, SetpointsFlownLiveAsInLockStep) { FlySetpointsLive("for
 // Issue 21: the MPC (its solves on the wall clock, deadline 5 ms, the
 // cascade its per-period fallback), 8 s each. With 4 s each gentle's RMS
 // (0.5 mm) read 0.97-1.11 of the lock-step's over 10 runs on the 2-core VM,
-// at the 10 % bound; with 8 s 0.74-0.85 (aggressive 0.68-0.74) over 5.
+// at the 10 % bound; with 8 s 0.73-0.85 (aggressive 0.68-0.76) over 6.
 TEST(LiveControllerTest, SetpointsFlownLiveAsInLockStepByTheMpc) { FlySetpointsLive("mpc", 7698, 8); }
 
 }  // namespace
