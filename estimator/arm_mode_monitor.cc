@@ -127,12 +127,16 @@ ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const Arm
 }
 
 void ArmModeMonitor::Restart() {
-  state_.awaiting_reading = false;
   previous_utime_ = -1;
+  ForgetRun();
+}
+
+void ArmModeMonitor::ForgetRun() {
   start_utime_ = -1;
   beyond_since_ = within_since_ = -1;
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
   state_.relative_error = state_.statistic = 0;
+  state_.awaiting_reading = false;
 }
 
 bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier) {
@@ -152,11 +156,7 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool air
     // A new run of samples: after lift-off, a reset, a gap or a change of
     // rate (25 % off the run's interval). The filters are designed for this
     // interval (a regular one: under 10 ms).
-    start_utime_ = -1;
-    beyond_since_ = within_since_ = -1;
-    state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
-    state_.relative_error = state_.statistic = 0;
-    state_.awaiting_reading = false;
+    ForgetRun();
     if (dt_s > 0 && dt_s < 0.01) {
       start_utime_ = utime;
       dt_s_ = dt_s;

@@ -136,6 +136,8 @@ class ArmModeMonitor {
 
  private:
   void Judge(int64_t utime, double frequency_hz);
+  // Ends the current airborne run of samples: no reading, nothing awaited.
+  void ForgetRun();
 
   ModelConsistencyOptions options_;
   double noise_rad_;  // of b1 - b2: sqrt(2) times a gauge's [rad]

@@ -87,10 +87,6 @@ EstimationMethod MethodOrThrow(const std::string& name) {
   return method;
 }
 
-// The file's arm mode for the arm-mode test (widened by the strain scales
-// the EKF learns, UpdateReportedGaugeOffsets; docs/mismatch.md).
-ArmModeExpectation ArmModeToJudge(const EstimatorConfig& config) { return ExpectedArmMode(config.vehicle); }
-
 }  // namespace
 
 double GateOf(const EstimatorConfig& config, InputChannel channel) {
@@ -106,7 +102,7 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       tare_(config.vehicle, config.tare),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
-      consistency_(config.model_consistency, ArmModeToJudge(config), config.ekf.strain_noise_rad) {
+      consistency_(config.model_consistency, ExpectedArmMode(config.vehicle), config.ekf.strain_noise_rad) {
   calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;

@@ -80,7 +80,7 @@ bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
     estimate->status &= ~kStatusThrustDeficit;
     if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
   }
-  if (arm_mode_.active() && state_.arm_mode.awaiting_reading) AwaitArmMode(estimate);
+  if (state_.arm_mode.awaiting_reading) AwaitArmMode(estimate);  // never set while the test is off
   return state_.confirmed;
 }
 

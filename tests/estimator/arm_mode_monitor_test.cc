@@ -270,7 +270,7 @@ struct ArmModeFigures {
   double raised_s = -1;  // first MODEL_MISMATCH after the first estimate [s]; -1 never
   int64_t mismatch = 0, valid_after_raise = 0;
   std::string parameter;
-  double peak_abs_error = 0;  // the arm-mode test's largest |f / f_file - 1| [1]
+  double peak_abs_error = 0;            // the arm-mode test's largest |f / f_file - 1| [1]
   double worst_valid_window_share = 1;  // evaluation/mismatch_metrics.h [1]
 };
 

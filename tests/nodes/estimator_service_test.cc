@@ -151,7 +151,8 @@ TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
   // widened by 15 % of the tip weight m_p g while the arm mode has not read
   // the tip mass (its first reading is due at 0.6 s).
   const VehicleParams reference;
-  const double tip_std_n = ModelConsistencyOptions().arm_mode_unconfirmed_tip_mass_std * reference.tip_mass_kg * reference.gravity_m_s2;
+  const double tip_std_n =
+      ModelConsistencyOptions().arm_mode_unconfirmed_tip_mass_std * reference.tip_mass_kg * reference.gravity_m_s2;
   for (int i = 0; i < 2; ++i) {
     EXPECT_NEAR(last.force_n[i], h.hover_.force_n[i], 1e-9);
     EXPECT_NEAR(last.thrust_scale[i], 1.0, 1e-12);
