@@ -47,6 +47,9 @@ birotor_install_configured(birotor.env /etc/default/birotor debian EXCLUDE_FROM_
 foreach(unit birotor-estimator.service birotor-controller.service birotor-sim.service)
   birotor_install_configured(${unit} "\${CMAKE_INSTALL_PREFIX}/lib/systemd/system/${unit}" debian EXCLUDE_FROM_ALL)
 endforeach()
+# The socket buffer the units' LCM URL asks for (net.core.rmem_max).
+install(FILES ${PROJECT_SOURCE_DIR}/deploy/60-birotor.conf DESTINATION lib/sysctl.d
+        COMPONENT debian EXCLUDE_FROM_ALL)
 
 # The Debian package: birotor_<version>_<arch>.deb, every component in one.
 set(conffiles "")

@@ -182,10 +182,12 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
       plan.outcome = MpcOutcome::kInfeasible;
       break;
   }
-  plan.solve_time_s = params_.deadline_on_thread_cpu_time
-                          ? ThreadCpuS() - start_cpu_s
-                          : std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (plan.outcome == MpcOutcome::kSolved && plan.solve_time_s > params_.deadline_s) plan.outcome = MpcOutcome::kLate;
+  plan.solve_time_s = params_.deadline_clock == MpcDeadlineClock::kWall
+                          ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+                          : ThreadCpuS() - start_cpu_s;
+  const bool late = params_.deadline_clock == MpcDeadlineClock::kWork ? plan.iterations > params_.deadline_work
+                                                                      : plan.solve_time_s > params_.deadline_s;
+  if (plan.outcome == MpcOutcome::kSolved && late) plan.outcome = MpcOutcome::kLate;
 
   has_previous_ = true;
   previous_state_ = s0;

@@ -6,6 +6,14 @@
 
 namespace birotor {
 
+// What a solve's deadline is measured in.
+enum class MpcDeadlineClock : int {
+  kWall = 0,       // steady clock: a late command is late however it got late (the live daemon)
+  kThreadCpu = 1,  // this thread's CPU time: preemption does not count, cache and frequency still do
+  kWork = 2,       // the solver's own work count (MpcQpSolution::iterations) against deadline_work:
+                   // the same problem is late or not on every machine (the lock-step loop)
+};
+
 // The QP algorithm of alglib's minqp used for the condensed problem.
 enum class MpcQpAlgorithm : int {
   kDenseIpm = 0,  // primal-dual interior point, dense; no warm start (alglib ignores the start point)
@@ -116,12 +124,19 @@ struct MpcParams {
   // Real time: a solve longer than this falls back to the cascade for the
   // period [s]. Half the period leaves the other half for the rest of it.
   double deadline_s = 0.005;
-  // Which clock the deadline and the solve-time statistics use: false, the
-  // wall clock (the live daemon: a late command is late however it got late);
-  // true, this thread's CPU time (the lock-step loop, whose virtual clock does
-  // not run during a solve: on a shared machine preemption would otherwise
-  // decide the flight, and the same seed would not fly the same).
-  bool deadline_on_thread_cpu_time = false;
+  // What the deadline is measured in. The lock-step loop, whose virtual clock
+  // does not run during a solve, always uses kWork: on CPU time a shared
+  // machine decided which solves were late, and the same seed did not fly the
+  // same twice. The solve-time statistics are on the wall clock, or on CPU
+  // time for kThreadCpu and kWork.
+  MpcDeadlineClock deadline_clock = MpcDeadlineClock::kWall;
+  // kWork: the most solver work (alglib's iterations, else Cholesky
+  // factorizations, else matrix-vector products; MpcQpSolution::iterations) a
+  // solve may take and count as on time [1]. 200 is BLEIC's iteration cap;
+  // DENSE-AUL's factorizations are bounded by its 10 outer iterations
+  // (measured 2-7 on aggressive and loss_60, p50 2; docs/mpc.md "Deadline"),
+  // so its lock-step solves are never late for want of time.
+  int deadline_work = 200;
   // DENSE-AUL: starts from the previous plan (warm start) and is the
   // cheapest of the three in the lock-step aggressive flight (CPU per solve
   // p50/p99: 170/330 us against DENSE-IPM's 340/650 us, no warm start, and

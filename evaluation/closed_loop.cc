@@ -71,9 +71,10 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   simulator.UseExternalCommands(options.command_timeout_s);
   simulator.EmitSetpoints(options.setpoint_rate_hz);
   EstimatorPipeline estimator(estimator_config);
-  // The virtual clock stands still during a solve: the MPC's deadline is on CPU time.
+  // The virtual clock stands still during a solve: the MPC's deadline is a
+  // work budget, so that the same seed flies the same on any machine.
   ControllerConfig lock_step_config = controller_config;
-  lock_step_config.mpc.deadline_on_thread_cpu_time = true;
+  lock_step_config.mpc.deadline_clock = MpcDeadlineClock::kWork;
   VehicleController controller(lock_step_config);
   const ChannelNames channels = MakeChannelNames(options.prefix);
   WireSampleSink wire(channels, log);

@@ -94,8 +94,11 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Double("disturbance_pitch_step_rad_s2", 0.0, 500.0, &o->disturbance_pitch_step_rad_s2);
   s.Double("deadline_s", 0.0, 1.0, &o->deadline_s);
   std::string clock;
-  s.String("deadline_clock", {"wall", "thread_cpu"}, &clock);
-  o->deadline_on_thread_cpu_time = clock == "thread_cpu";
+  s.String("deadline_clock", {"wall", "thread_cpu", "work"}, &clock);
+  o->deadline_clock = clock == "work"         ? MpcDeadlineClock::kWork
+                      : clock == "thread_cpu" ? MpcDeadlineClock::kThreadCpu
+                                              : MpcDeadlineClock::kWall;
+  s.Int("deadline_work", 1, 1000000, &o->deadline_work);
   std::string algorithm;
   s.String("algorithm", {"bleic", "dense_aul", "dense_ipm"}, &algorithm);
   o->algorithm = algorithm == "bleic"       ? MpcQpAlgorithm::kBleic

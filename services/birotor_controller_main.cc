@@ -13,6 +13,7 @@
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
+#include "program/realtime.h"
 #include "program/shutdown.h"
 #include "sinks/message_sink.h"
 #include "sources/message_source.h"
@@ -34,12 +35,14 @@ int main(int argc, char** argv) {
   std::string params_file = FindConfigFile("controller.yaml");
   std::string mode;
   double status_rate_hz = 5.0;
+  int realtime_priority = 0;  // SCHED_FIFO priority and locked memory; 0: the normal scheduler
   app.add_option("--params", params_file,
                  "Controller parameter file (vehicle: and controller:, every key); default: the " +
                      ConfigSearchText("controller.yaml"));
   app.add_option("--mode", mode, "Controller mode, overrides the file")
       ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
   app.add_option("--status-rate-hz", status_rate_hz, "CONTROLLER_STATUS rate [Hz]")->check(CLI::Range(0.1, 100.0));
+  AddRealtimeOption(app, &realtime_priority);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-controller", common.log_level);
 
@@ -54,10 +57,12 @@ int main(int argc, char** argv) {
     config.model_predictive = mode == "mpc";
   }
 
+  const RealtimeOutcome realtime = ApplyRealtimePriority(realtime_priority);  // before LCM starts a thread
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
   if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
+  LogRealtimeOutcome(realtime);
   const ChannelNames channels = MakeChannelNames(common.prefix);
   LcmSink sink(lcm.get());
   ControllerService service(config, channels, &sink);

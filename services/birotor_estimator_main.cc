@@ -1,9 +1,7 @@
 // birotor-estimator: the live rotor-force estimation daemon. Subscribes to
 // STRAIN, MOTOR, IMU and POSE, publishes one FORCE per accepted strain sample
 // and ESTIMATOR_STATUS at --status-rate-hz (wall clock); stops on SIGINT/SIGTERM.
-#include <sched.h>
 #include <spdlog/spdlog.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,6 +17,7 @@
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
+#include "program/realtime.h"
 #include "program/shutdown.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
@@ -55,9 +54,7 @@ void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
   app.add_option("--stale-input-s", options->service.stale_input_wall_s,
                  "No strain packet for this long (host clock): ESTIMATOR_STATUS says INPUT_STALE [s]")
       ->check(CLI::Range(0.001, 60.0));
-  app.add_option("--realtime-priority", options->realtime_priority,
-                 "SCHED_FIFO priority (1-99) and locked memory; 0 keeps the normal scheduler")
-      ->check(CLI::Range(0, 99));
+  AddRealtimeOption(app, &options->realtime_priority);
 }
 
 // The parameter file, with --method over the file's; an error message, empty on success.
@@ -71,17 +68,6 @@ std::string LoadConfig(const DaemonOptions& options, EstimatorConfig* config) {
   }
   if (!options.method.empty()) config->method = options.method;
   return "";
-}
-
-// Before LCM starts any thread, so that its threads inherit the policy.
-void SetRealtimePriority(int priority) {
-  if (priority <= 0) return;
-  sched_param param{};
-  param.sched_priority = priority;
-  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-    spdlog::warn("cannot set SCHED_FIFO priority {} (needs CAP_SYS_NICE); normal scheduler", priority);
-  }
-  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) spdlog::warn("cannot lock memory (mlockall)");
 }
 
 // The learned gauge offsets of the last run, from the state file. A missing
@@ -174,10 +160,11 @@ int main(int argc, char** argv) {
   EstimatorConfig config;
   std::string error = LoadConfig(options, &config);
   if (!error.empty()) return ReportError(error);
-  SetRealtimePriority(options.realtime_priority);
+  const RealtimeOutcome realtime = ApplyRealtimePriority(options.realtime_priority);  // before LCM starts a thread
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
   if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
+  LogRealtimeOutcome(realtime);
 
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
   LcmSink sink(lcm.get());

@@ -24,6 +24,7 @@
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
+#include "program/realtime.h"
 #include "program/shutdown.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
@@ -58,6 +59,7 @@ struct SimOptions {
   bool external_controller = false;  // live: the ESCs run MOTOR_COMMAND from LCM
   bool publish_setpoints = false;    // the trajectory on SETPOINT (an external controller flies it)
   double setpoint_rate_hz = 100.0;   // SETPOINT rate [Hz]
+  int realtime_priority = 0;         // live: SCHED_FIFO priority and locked memory; 0: the normal scheduler
 };
 
 // Offline lock-step closed loop: every channel, FORCE and MOTOR_COMMAND
@@ -257,6 +259,7 @@ void AddSimOptions(CLI::App& app, SimOptions* options) {
   app.add_option("--command-timeout-s", options->command_timeout_s,
                  "With a controller: the ESCs spool the motors down after this long without MOTOR_COMMAND [s]")
       ->check(CLI::Range(1e-3, 10.0));
+  AddRealtimeOption(app, &options->realtime_priority);
 }
 
 // The scenario with the --params files and --set overrides on top (the
@@ -362,7 +365,9 @@ int Main(int argc, char** argv) {
   }
 
   std::unique_ptr<lcm::LCM> lcm;
+  RealtimeOutcome realtime;
   if (options.output.empty()) {
+    realtime = ApplyRealtimePriority(options.realtime_priority);  // before LCM starts a thread
     lcm = OpenLcm(options.common.lcm_url, &error);
     if (!lcm) return ReportError("cannot open LCM: " + error);
   }
@@ -374,6 +379,7 @@ int Main(int argc, char** argv) {
     if (!source) return ReportError(error);
   }
   InstallShutdownHandlers();
+  LogRealtimeOutcome(realtime);
   const Stopwatch stopwatch;
   SimTotals totals;
   const bool ok =

@@ -6,7 +6,6 @@
 // and measures STRAIN published -> MOTOR_COMMAND of a running
 // birotor-controller (paired by utime: a command carries the utime of the
 // FORCE, hence of the strain sample, that triggered it).
-#include <sched.h>
 
 #include <algorithm>
 #include <atomic>
@@ -29,6 +28,7 @@
 #include "numerics/percentile.h"
 #include "program/logging.h"
 #include "program/program_options.h"
+#include "program/realtime.h"
 #include "program/shutdown.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
@@ -137,18 +137,7 @@ void AddProbeOptions(CLI::App& app, ProbeOptions* options) {
   app.add_flag("--through-controller", options->through_controller,
                "Also publish IMU (every sample) and POSE (every 10th) of a hover and measure STRAIN published -> "
                "MOTOR_COMMAND of a running birotor-controller");
-  app.add_option("--realtime-priority", options->realtime_priority,
-                 "SCHED_FIFO priority (1-99) for the probe's threads; 0: normal scheduler")
-      ->check(CLI::Range(0, 99));
-}
-
-void SetRealtimePriority(int priority) {
-  if (priority <= 0) return;
-  sched_param param{};
-  param.sched_priority = priority;  // inherited by the receiver thread
-  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-    std::fprintf(stderr, "birotor-latency-probe: warning: cannot set SCHED_FIFO (needs CAP_SYS_NICE)\n");
-  }
+  birotor::AddRealtimeOption(app, &options->realtime_priority);
 }
 
 // The synthetic hover the probe publishes, sample k at a time.
@@ -299,7 +288,8 @@ int main(int argc, char** argv) {
   AddProbeOptions(app, &options);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-latency-probe", options.common.log_level);
-  SetRealtimePriority(options.realtime_priority);
+  const birotor::RealtimeOutcome realtime = birotor::ApplyRealtimePriority(options.realtime_priority);
+  if (!realtime.warning.empty()) std::fprintf(stderr, "birotor-latency-probe: warning: %s\n", realtime.warning.c_str());
 
   std::string error;
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);

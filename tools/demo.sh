@@ -172,7 +172,11 @@ if [[ "$lcm_url" == *recv_buf_size=* ]] && [ "$rmem_max" -lt 2097152 ]; then
 fi
 duration_s="$(awk '/^[[:space:]]*duration_s:/ {print $2; exit}' "$scenario_file")"
 echo "demo: scenario $scenario (${duration_s:-?} s at speed $speed), LCM $lcm_url"
-estimator_args=(--lcm-url "$lcm_url" --params "$repo/config/estimator.yaml")
+# SCHED_FIFO priorities of the shipped units (docs/realtime.md): the simulator
+# (the vehicle) above the controller above the estimator, so a busy machine
+# does not delay a sample or a command. Without CAP_SYS_NICE each program warns
+# once in its log and runs on the normal scheduler.
+estimator_args=(--lcm-url "$lcm_url" --params "$repo/config/estimator.yaml" --realtime-priority 50)
 [ -n "$method" ] && estimator_args+=(--method "$method")
 "$estimator_bin" "${estimator_args[@]}" > "$log_prefix-estimator.log" 2>&1 &
 estimator_pid=$!
@@ -181,14 +185,14 @@ wait_for_log birotor-estimator "$estimator_pid" "$log_prefix-estimator.log" "lcm
 # The monitor's stdout is this terminal (live view) or the CI log (plain lines).
 monitor_args=(--lcm-url "$lcm_url" --scenario "$scenario_file" --label "$scenario" --until-sim-ends
   --idle-s 1.5 --startup-timeout-s 30 --png "$png" --markdown)
-sim_args=(--scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed")
+sim_args=(--scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed" --realtime-priority 60)
 if [ "$no_truth" -eq 1 ]; then
   monitor_args+=(--no-truth)
   sim_args+=(--no-truth)
 fi
 if [ -n "$controller_mode" ]; then
   "$controller_bin" --lcm-url "$lcm_url" --params "$repo/config/controller.yaml" --mode "$controller_mode" \
-    > "$log_prefix-controller.log" 2>&1 &
+    --realtime-priority 55 > "$log_prefix-controller.log" 2>&1 &
   controller_pid=$!
   wait_for_log birotor-controller "$controller_pid" "$log_prefix-controller.log" "lcm .*: in " 20
   sim_args+=(--external-controller)

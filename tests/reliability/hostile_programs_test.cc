@@ -7,6 +7,7 @@
 // private udpm port (ttl=0) and a prefix with the test's PID.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -107,7 +108,7 @@ TEST(HostileProgramsTest, SimulatorAsEscsSurvivesFragments) {
   const std::string url = PrivateUrl(7743);
   const std::string prefix = UniquePrefix("REL_HOSTILE_SIM_");
   std::vector<std::string> argv = SimCommand(url, prefix, 30.0);
-  argv.back() = "info";  // --log-level info: the summary line with the counters
+  *(std::find(argv.begin(), argv.end(), "--log-level") + 1) = "info";  // the summary line with the counters
   argv.push_back("--external-controller");
   EXPECT_EQ(AttackProgram({"sim", argv, {"MOTOR_COMMAND"}}, PrivatePort(7743), prefix), 0);
 }

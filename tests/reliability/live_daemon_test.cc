@@ -1,7 +1,7 @@
 // Live fault tests of birotor-estimator with the real simulator on a private
 // udpm URL: SIGKILL and restart mid-flight, a simulator frozen for 2 s, and a
-// log played in a loop (time jumping backwards). Bounds on wall-clock time are
-// generous (the machine is shared); the 0.5 s requirement is checked on the
+// log played in a loop (time jumping backwards). Nothing is asserted on the
+// wall clock (host times are printed): the 0.5 s requirement is checked on the
 // vehicle clock, which CPU load does not stretch.
 #include <gtest/gtest.h>
 
@@ -59,7 +59,6 @@ TEST(LiveDaemonTest, RestartAfterSigkillPublishesValidEstimatesWithinHalfASecond
   std::printf("restart: first FORCE %.3f s after exec, first VALID %.3f s after exec, %.3f s vehicle time\n",
               first.arrival_s - restart_s, wall_s, vehicle_s);
   EXPECT_LE(vehicle_s, 0.5);
-  EXPECT_LE(wall_s, 10.0);  // generous: start-up on a shared, loaded machine
   for (const ForceRecord& r : listener.Forces()) ASSERT_TRUE(AllFinite(r.message));
   EXPECT_TRUE(daemon.Alive());
   EXPECT_EQ(daemon.Stop(), 0);
