@@ -17,6 +17,13 @@ ForceStatusFacts Converged() {
   return facts;
 }
 
+// A converged filter that sees both rotors below the thrust map.
+ForceStatusFacts ConvergedWithDeficit() {
+  ForceStatusFacts facts = Converged();
+  facts.filter.thrust_deficit = true;
+  return facts;
+}
+
 TEST(ForceStatusTest, NoFactsNoBits) {
   // ESTIMATOR_STATUS before the first FORCE reads 0.
   EXPECT_EQ(ComposeForceStatus(ForceStatusFacts()), 0);
@@ -37,8 +44,7 @@ TEST(ForceStatusTest, EachFilterFactSetsItsBit) {
   facts.filter.rotor_fault[1] = true;
   EXPECT_EQ(ComposeForceStatus(facts), kStatusValid | kStatusRotor2Fault);
   // A rotor fault and the deficit leave VALID standing.
-  facts = Converged();
-  facts.filter.thrust_deficit = true;
+  facts = ConvergedWithDeficit();
   EXPECT_EQ(ComposeForceStatus(facts), kStatusValid | kStatusThrustDeficit);
 }
 
@@ -71,16 +77,14 @@ TEST(ForceStatusTest, AReplacedNonFiniteEstimateVoidsTheFilterFacts) {
 }
 
 TEST(ForceStatusTest, AMismatchWithdrawsValidAndTheDeficit) {
-  ForceStatusFacts facts = Converged();
-  facts.filter.thrust_deficit = true;
+  ForceStatusFacts facts = ConvergedWithDeficit();
   facts.filter.rotor_fault[1] = true;
   facts.consistency.mismatch = true;
   EXPECT_EQ(ComposeForceStatus(facts), kStatusModelMismatch | kStatusRotor2Fault);
 }
 
 TEST(ForceStatusTest, AnUnconfirmedModelWithdrawsTheDeficitAndValidOnlyByOption) {
-  ForceStatusFacts facts = Converged();
-  facts.filter.thrust_deficit = true;
+  ForceStatusFacts facts = ConvergedWithDeficit();
   facts.consistency.model_unconfirmed = true;
   EXPECT_EQ(ComposeForceStatus(facts), kStatusValid);  // default: the controller does not wait
   facts.consistency.unconfirmed_withholds_valid = true;
@@ -91,8 +95,7 @@ TEST(ForceStatusTest, AnUnconfirmedModelWithdrawsTheDeficitAndValidOnlyByOption)
 }
 
 TEST(ForceStatusTest, AnUnconfirmedTipMassWithdrawsValidOnlyByOption) {
-  ForceStatusFacts facts = Converged();
-  facts.filter.thrust_deficit = true;
+  ForceStatusFacts facts = ConvergedWithDeficit();
   facts.consistency.tip_mass_unconfirmed = true;
   facts.consistency.tip_mass_force_std_n = 0.3;
   EXPECT_EQ(ComposeForceStatus(facts), kStatusValid | kStatusThrustDeficit);
