@@ -111,7 +111,7 @@ BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale_and_mass, "ekf", tr
 // cost of a sample depends on the flight phase; a timed run's count varies):
 //   valgrind --tool=callgrind --toggle-collect='birotor::EkfForceEstimator::DoAdd*'
 //     estimator_benchmark --benchmark_filter='StrainSample/ekf.*/iterations'
-// and divide the collected Ir by the SetFilterStatus calls (docs/mismatch.md).
+// and divide the collected Ir by the SetFilterFacts calls (docs/mismatch.md).
 constexpr int kCountedSamples = 30000;
 BENCHMARK_CAPTURE(BM_StrainSample, ekf, "ekf")->Iterations(kCountedSamples);
 BENCHMARK_CAPTURE(BM_StrainSample, ekf_learning_strain_scale, "ekf", true, true, true)->Iterations(kCountedSamples);

@@ -61,7 +61,6 @@ void InversionEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* 
   estimate->utime = sample.utime;
   estimate->seq = sample.seq;
   // Without motor input (the pipeline flags it) the thrust scale is 1.
-  const int32_t status = 0;
   const int n = options_.window_samples;
   if (count_ < n) {
     for (int i = 0; i < 2; ++i) {
@@ -69,7 +68,7 @@ void InversionEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* 
       estimate->force_std_n[i] = options_.force_std_n;
       estimate->thrust_scale[i] = 1.0;
     }
-    estimate->status = status | kStatusConverging;
+    info->filter.convergence = FilterConvergence::kConverging;
     return;
   }
   // Least squares b(tau) = c0 + c1 tau + c2 tau^2, tau = t - t_newest in ms
@@ -100,7 +99,7 @@ void InversionEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* 
     estimate->force_std_n[i] = options_.force_std_n;
     estimate->thrust_scale[i] = motor_.ThrustScale(i, force);
   }
-  estimate->status = status | kStatusValid;
+  info->filter.convergence = FilterConvergence::kConverged;
 }
 
 MotorMapEstimator::MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options)
@@ -128,7 +127,7 @@ void MotorMapEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
     estimate->thrust_scale[i] = 1.0;
   }
   // Converging until the first command: the forces are the assumed hover.
-  estimate->status = motor_.has_motor() ? kStatusValid : kStatusConverging;
+  info->filter.convergence = motor_.has_motor() ? FilterConvergence::kConverged : FilterConvergence::kConverging;
 }
 
 }  // namespace birotor

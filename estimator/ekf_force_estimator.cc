@@ -406,7 +406,8 @@ bool EkfForceEstimator::ConditionCovariance() {
   return true;
 }
 
-void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
+void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate,
+                                     FilterStatusFacts* facts) {
   for (int i = 0; i < 2; ++i) {
     // var f_i = g^T P_(omega_i, mu_i) g with g = (df/domega, df/dmu).
     const Eigen::Vector2d grad = process_.ForceGradient(state_, i);
@@ -417,8 +418,8 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     estimate->force_std_n[i] = std::sqrt(std::max(variance, 0.0));
     estimate->thrust_scale[i] = state_(m);
   }
-  SetFilterStatus(sample, options_.converged_force_std_n, gated, &converged_, estimate);
-  estimate->status |= faults_.StatusBits();
+  SetFilterFacts(sample, options_.converged_force_std_n, gated, &converged_, estimate, facts);
+  faults_.FillFacts(facts);
 }
 
 void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
@@ -479,7 +480,7 @@ void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
                    covariance_.block<2, 2>(kThrustScale1, kThrustScale1));
   }
   Report(strain);
-  FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
+  FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate, &info->filter);
   FillLearnedOffsets(info);
   FillLearnedParameters(info);
   info->body_supported = options_.body_held || contact_.supported();

@@ -113,7 +113,8 @@ class EkfForceEstimator : public ForceEstimator {
   bool ConditionCovariance();
   template <int N>
   bool ConditionCovariance();
-  void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
+  // The forces, their sigmas and thrust scales, and the filter facts.
+  void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate, FilterStatusFacts* facts);
   // e_i and its sigma into the step result (the pipeline reports them).
   void FillLearnedOffsets(StrainStepInfo* info) const;
   // g_i and m into the step result, and kept for the next (re-)initialisation.

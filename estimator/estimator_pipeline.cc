@@ -318,19 +318,30 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     health_.last_reset_reason = info.reset;
     reset_flag_pending_ = true;
   }
+  ForceStatusFacts facts;
+  facts.filter = info.filter;
   if (!IsFinite(*estimate)) {
     ReplaceNonFinite(sample, estimate);
+    facts.input.non_finite_replaced = true;  // forces and sigmas of the last finite estimate
   } else {
     last_finite_estimate_ = *estimate;
     has_finite_estimate_ = true;
   }
-  SetInputStatus(sample, stale, estimate);
-  consistency_.ApplyStatus(estimate);  // MODEL_MISMATCH withdraws VALID (docs/mismatch.md)
+  FillInputFacts(sample, stale, &facts.input);
+  facts.consistency = consistency_.Judge(*estimate);  // MODEL_MISMATCH withdraws VALID (docs/mismatch.md)
+  Publish(facts, estimate);
+  return true;
+}
+
+void EstimatorPipeline::Publish(const ForceStatusFacts& facts, ForceEstimate* estimate) {
+  // The unconfirmed tip mass's prior (facts.consistency), as the facts say.
+  for (double& std_n : estimate->force_std_n) std_n = PublishedForceStd(std_n, facts);
+  estimate->status = ComposeForceStatus(facts);
   health_.consistency = consistency_.state();
   ++health_.published;
   health_.last_status = estimate->status;
+  health_.last_status_facts = facts;
   health_.last_estimate = *estimate;
-  return true;
 }
 
 bool EstimatorPipeline::CheckStrainTiming(const StrainSample& sample, int64_t previous_utime, bool backwards_jump) {
@@ -379,24 +390,18 @@ void EstimatorPipeline::ReplaceNonFinite(const StrainSample& sample, ForceEstima
   }
   estimate->utime = sample.utime;
   estimate->seq = sample.seq;
-  estimate->status = kStatusConverging;
 }
 
-void EstimatorPipeline::SetInputStatus(const StrainSample& sample, bool stale, ForceEstimate* estimate) {
+void EstimatorPipeline::FillInputFacts(const StrainSample& sample, bool stale, InputStatusFacts* facts) {
   if (!has_motor_ || first_motor_utime_ > sample.utime) {
-    estimate->status |= kStatusNoMotorInput;
+    facts->no_motor_input = true;
   } else if ((sample.utime - last_motor_.utime) * 1e-6 > config_.pipeline.motor_timeout_s) {
     stale = true;
   }
-  // VALID means converged, fresh and from one publisher per input.
-  if (stale) estimate->status = (estimate->status | kStatusInputStale) & ~kStatusValid;
-  if (InputAdmission::AnyConflictActive(health_.inputs)) {
-    estimate->status = (estimate->status | kStatusInputConflict) & ~kStatusValid;
-  }
-  if (reset_flag_pending_) {
-    estimate->status |= kStatusFilterReset;
-    reset_flag_pending_ = false;
-  }
+  facts->stale = stale;
+  facts->conflict = InputAdmission::AnyConflictActive(health_.inputs);
+  facts->filter_reset = reset_flag_pending_;
+  reset_flag_pending_ = false;
 }
 
 }  // namespace birotor

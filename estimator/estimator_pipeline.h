@@ -4,8 +4,9 @@
 // time outliers, conflicts), calibrates the strain gauges (scale, and the
 // offset from the parameters or a tare on the ground: gauge_tare.h), detects
 // stale inputs and long gaps, resets the method after a gap or a backwards
-// time jump, owns the input bits of the status (stale, no motor input,
-// conflict, reset), and keeps the health counters published on
+// time jump, owns the input facts of the status (stale, no motor input,
+// conflict, reset), composes the published status from its facts, the
+// method's and the model-consistency monitor's (force_status.h), and keeps the health counters published on
 // ESTIMATOR_STATUS (per input, from the method's fusion reports). No LCM and
 // no logging here (nodes/ logs from the counters); no allocation per sample.
 #pragma once
@@ -16,6 +17,7 @@
 #include "estimator/estimation_method.h"
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
+#include "estimator/force_status.h"
 #include "estimator/gauge_calibration.h"
 #include "estimator/gauge_tare.h"
 #include "estimator/harmonic_notch.h"
@@ -43,7 +45,10 @@ struct PipelineHealth {
   int64_t resets = 0;
   ResetReason last_reset_reason = ResetReason::kNone;
   int64_t published = 0;  // force estimates produced
+  // The newest FORCE's status, and the facts it was composed from (which
+  // say why VALID was withdrawn and why a sigma was widened).
   int32_t last_status = 0;
+  ForceStatusFacts last_status_facts;
   ForceEstimate last_estimate;
   // Strain-gauge calibration: the scale in use and the offsets o_i as now
   // known (the calibration the method is given, from the file, a tare or
@@ -109,10 +114,14 @@ class EstimatorPipeline {
   bool CheckStrainTiming(const StrainSample& sample, int64_t previous_utime, bool backwards_jump);
   // The strain sample as the method gets it: calibrated, notch-filtered.
   StrainSample Condition(const StrainSample& sample, int64_t previous_utime, bool backwards_jump);
-  // A finite estimate in place of a non-finite one (the method is reset).
+  // A finite estimate in place of a non-finite one (the method is reset;
+  // InputStatusFacts::non_finite_replaced says so).
   void ReplaceNonFinite(const StrainSample& sample, ForceEstimate* estimate);
-  // The input bits: stale, no motor input, conflict, reset; VALID withheld.
-  void SetInputStatus(const StrainSample& sample, bool stale, ForceEstimate* estimate);
+  // The input facts: no motor input, stale, conflict, reset.
+  void FillInputFacts(const StrainSample& sample, bool stale, InputStatusFacts* facts);
+  // The published estimate: its sigmas (PublishedForceStd) and status
+  // (ComposeForceStatus) from the facts; the health counters.
+  void Publish(const ForceStatusFacts& facts, ForceEstimate* estimate);
   // Counts the reports of the method call just made (reports_).
   void CountReports();
   void Count(const FusionReport& report);
@@ -130,7 +139,7 @@ class EstimatorPipeline {
   ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
 
   bool started_ = false;             // a strain sample has been accepted
-  bool reset_flag_pending_ = false;  // kStatusFilterReset on the next estimate
+  bool reset_flag_pending_ = false;  // InputStatusFacts::filter_reset on the next estimate
   bool has_motor_ = false;           // a MOTOR sample has been accepted
   MotorSample last_motor_;
   int64_t first_motor_utime_ = -1;  // stamp of the first accepted MOTOR sample [us]

@@ -5,6 +5,7 @@
 
 #include <limits>
 
+#include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
 #include "samples/samples.h"
 
@@ -23,6 +24,9 @@ const char* ResetReasonName(ResetReason reason);
 
 // What a strain step did besides its fusion reports and the estimate.
 struct StrainStepInfo {
+  // The method's status facts (converged, measurement rejected, rotor
+  // faults, thrust deficit); ComposeForceStatus makes the bits.
+  FilterStatusFacts filter;
   // kNumerical when the method re-initialised itself on this sample (the
   // pipeline owns every other reason); kNone otherwise.
   ResetReason reset = ResetReason::kNone;
@@ -81,13 +85,18 @@ class ForceEstimator {
   }
   // Processes one strain sample and writes the estimate for its utime and
   // what else the step did (*info).
-  // One owner per status bit: the method sets the filter's bits
-  // (kStatusValid, kStatusConverging, kStatusMeasurementRejected, the rotor
-  // faults, kStatusThrustDeficit) and nothing else; the pipeline adds the
-  // input bits (stale, no motor input, conflict) and the reset bit, and
-  // withholds VALID with them.
+  // One owner per status fact: the method fills the filter's facts
+  // (info->filter: converged, measurement rejected, rotor faults, thrust
+  // deficit) and nothing else; the pipeline fills the input facts and the
+  // model-consistency facts, the service the transport facts, and
+  // ComposeForceStatus (force_status.h) makes the bits of all of them.
+  // estimate->status holds the method's facts alone composed (for a method
+  // used without the pipeline); the pipeline composes it again with its own.
   void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info, FusionReports* reports) {
     Call(reports, [&] { DoAddStrain(sample, estimate, info); });
+    ForceStatusFacts facts;
+    facts.filter = info->filter;
+    estimate->status = ComposeForceStatus(facts);
   }
 
   // The NIS gate the method applies to a measurement source; NaN where it

@@ -163,7 +163,8 @@ FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
   return PhysicalReport(report, deflection_scale);
 }
 
-void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate) {
+void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate,
+                                        FilterStatusFacts* facts) {
   for (int i = 0; i < 2; ++i) {
     const int f = kLinForceIndex[i];
     const double force = model_.force_hover_n[i] + scale_(f) * state_(f);
@@ -171,7 +172,7 @@ void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, 
     estimate->force_std_n[i] = scale_(f) * std::sqrt(std::max(covariance_(f, f), 0.0));
     estimate->thrust_scale[i] = motor_.ThrustScale(i, force);
   }
-  SetFilterStatus(sample, noise_.converged_force_std_n, gated, &converged_, estimate);
+  SetFilterFacts(sample, noise_.converged_force_std_n, gated, &converged_, estimate, facts);
 }
 
 void LinearForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
@@ -200,7 +201,7 @@ void LinearForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate
     }
   }
   Report(strain);
-  FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate);
+  FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate, &info->filter);
 }
 
 }  // namespace birotor

@@ -58,7 +58,8 @@ class LinearForceEstimator : public ForceEstimator {
   // The strain update with its gate and the inflation after persistent
   // rejection; returns what happened.
   FusionReport UpdateStrain(const StrainSample& sample);
-  void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate);
+  // The forces, their sigmas and thrust scales, and the filter facts.
+  void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate, FilterStatusFacts* facts);
 
   bool kalman_;
   EkfOptions noise_;

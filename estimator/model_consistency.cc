@@ -63,32 +63,30 @@ void ModelConsistencyMonitor::Advance(int64_t utime) {
   if (utime - window_start_utime_ >= window_us_) CloseWindow(utime);
 }
 
-bool ModelConsistencyMonitor::ApplyStatus(ForceEstimate* estimate) {
+ConsistencyStatusFacts ModelConsistencyMonitor::Judge(const ForceEstimate& estimate) {
+  ConsistencyStatusFacts facts;
   // A method without innovations (the baselines) is not judged.
-  if (!options_.enabled || !judging_) return true;
-  Advance(estimate->utime);
+  if (!options_.enabled || !judging_) return facts;
+  Advance(estimate.utime);
   for (int i = 0; i < 2; ++i) {
-    thrust_scale_sum_[i] += estimate->thrust_scale[i];
-    newest_thrust_scale_[i] = estimate->thrust_scale[i];
+    thrust_scale_sum_[i] += estimate.thrust_scale[i];
+    newest_thrust_scale_[i] = estimate.thrust_scale[i];
   }
   ++estimates_;
-  if (state_.mismatch) {
-    estimate->status = (estimate->status | kStatusModelMismatch) & ~(kStatusValid | kStatusThrustDeficit);
-  } else if (!state_.confirmed) {
-    // Not yet checked: no deficit a mismatch may explain, and VALID only
-    // where the controller must not wait for the check (option).
-    estimate->status &= ~kStatusThrustDeficit;
-    if (options_.valid_needs_confirmation) estimate->status &= ~kStatusValid;
-  }
-  if (state_.arm_mode.awaiting_reading) AwaitArmMode(estimate);  // never set while the test is off
-  return state_.confirmed;
+  facts.mismatch = state_.mismatch;
+  // Not yet checked: no deficit a mismatch may explain, and VALID only
+  // where the controller must not wait for the check (option).
+  facts.model_unconfirmed = !state_.mismatch && !state_.confirmed;
+  facts.unconfirmed_withholds_valid = options_.valid_needs_confirmation;
+  if (state_.arm_mode.awaiting_reading) AwaitArmMode(&facts);  // never set while the test is off
+  return facts;
 }
 
-void ModelConsistencyMonitor::AwaitArmMode(ForceEstimate* estimate) const {
-  if (options_.arm_mode_valid_needs_reading) estimate->status &= ~kStatusValid;
+void ModelConsistencyMonitor::AwaitArmMode(ConsistencyStatusFacts* facts) const {
+  facts->tip_mass_unconfirmed = true;
+  facts->tip_mass_withholds_valid = options_.arm_mode_valid_needs_reading;
   // The tip mass unconfirmed: its prior in each force's sigma.
-  const double tip_std_n = options_.arm_mode_unconfirmed_tip_mass_std * arm_mode_file_.tip_weight_n;
-  for (double& std_n : estimate->force_std_n) std_n = std::hypot(std_n, tip_std_n);
+  facts->tip_mass_force_std_n = options_.arm_mode_unconfirmed_tip_mass_std * arm_mode_file_.tip_weight_n;
 }
 
 void ModelConsistencyMonitor::Add(const FusionReport& report) {

@@ -10,6 +10,7 @@
 
 #include "estimator/arm_mode_monitor.h"
 #include "estimator/estimator_config.h"
+#include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
 #include "samples/samples.h"
 
@@ -101,15 +102,15 @@ class ModelConsistencyMonitor {
   void SetLearnedStrainScales(const double g[2], const double g_std[2]) {
     arm_mode_.SetExpected(WithLearnedStrainScales(arm_mode_file_, g, g_std));
   }
-  // Every force estimate (its thrust scales, for the attribution); returns
-  // whether VALID may stand (confirmed). Sets kStatusModelMismatch and
-  // clears kStatusValid and kStatusThrustDeficit (which the mismatch would
-  // explain) while a mismatch holds; before the model is confirmed it
-  // clears kStatusThrustDeficit (and kStatusValid with
-  // valid_needs_confirmation). While the arm mode has not confirmed the
-  // tip mass, widens each force sigma by the tip mass's prior (and clears
-  // kStatusValid with arm_mode_valid_needs_reading).
-  bool ApplyStatus(ForceEstimate* estimate);
+  // Every force estimate (its utime, and its thrust scales for the
+  // attribution); returns the monitor's facts on it (all false for a method
+  // it does not judge): the mismatch raised, the model not yet confirmed
+  // (with valid_needs_confirmation: VALID withheld), and the tip mass not
+  // yet confirmed by the arm mode with the sigma of its prior that the
+  // published force sigma carries meanwhile (with
+  // arm_mode_valid_needs_reading: VALID withheld). ComposeForceStatus and
+  // PublishedForceStd apply them; the estimate is not changed here.
+  ConsistencyStatusFacts Judge(const ForceEstimate& estimate);
   // Forgets the window in progress and the fast test's CUSUM (filter
   // re-initialised); the confirmation and a raised mismatch stay (cleared
   // after clear_windows consistent windows).
@@ -135,7 +136,7 @@ class ModelConsistencyMonitor {
   void AddToCusum(const FusionReport& report);
   void Raise(int64_t utime, const double thrust_scale[2]);
   // The tip mass not yet confirmed by the arm mode: sigma and VALID.
-  void AwaitArmMode(ForceEstimate* estimate) const;
+  void AwaitArmMode(ConsistencyStatusFacts* facts) const;
   // The parameter named for the worst source, given the thrust scales mu_i.
   MismatchParameter Attribute(const double thrust_scale[2]) const;
 

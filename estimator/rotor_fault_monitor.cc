@@ -44,12 +44,10 @@ void RotorFaultMonitor::Update(int64_t utime, const Eigen::Vector2d& thrust_scal
                   persistence_us_);
 }
 
-int32_t RotorFaultMonitor::StatusBits() const {
-  int32_t bits = 0;
-  if (fault_[0].on) bits |= kStatusRotor1Fault;
-  if (fault_[1].on) bits |= kStatusRotor2Fault;
-  if (deficit_.on) bits |= kStatusThrustDeficit;
-  return bits;
+void RotorFaultMonitor::FillFacts(FilterStatusFacts* facts) const {
+  facts->rotor_fault[0] = fault_[0].on;
+  facts->rotor_fault[1] = fault_[1].on;
+  facts->thrust_deficit = deficit_.on;
 }
 
 }  // namespace birotor

@@ -1,7 +1,7 @@
 // Rotor faults and the thrust deficit shared by both rotors, judged from the
 // filter's thrust scales mu_i and their covariance, with persistence and
 // hysteresis (EkfOptions: rotor_fault_*, thrust_deficit_*, fault_n_sigma,
-// fault_persistence_s). The last stage of the EKF's strain step; its bits are
+// fault_persistence_s). The last stage of the EKF's strain step; its facts are
 // the method's. No allocation, no throw, no log.
 #pragma once
 
@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
+#include "estimator/force_status.h"
 
 namespace birotor {
 
@@ -23,8 +24,10 @@ class RotorFaultMonitor {
   // Deficit: even the stronger rotor has mu + n std(mu) < thrust_deficit_scale
   // (held as long), cleared when its mu - n std(mu) > thrust_deficit_clear_scale.
   void Update(int64_t utime, const Eigen::Vector2d& thrust_scale, const Eigen::Matrix2d& covariance);
-  // kStatusRotor1Fault, kStatusRotor2Fault, kStatusThrustDeficit as flagged.
-  int32_t StatusBits() const;
+  // The rotor faults and the thrust deficit as flagged, into the method's
+  // filter facts (force_status.h composes STATUS_ROTOR*_FAULT and
+  // STATUS_THRUST_DEFICIT from them).
+  void FillFacts(FilterStatusFacts* facts) const;
 
  private:
   // One flag: raised after `raise` held for persistence_us_, lowered as soon as `lower` holds.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "estimator/force_status.h"
 #include "nodes/gauge_state_file.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
@@ -154,9 +155,10 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
   ForceEstimate estimate;
   if (!pipeline_.OnStrain(FromMessage(strain_message_), &estimate)) return false;
   force_message_ = ToMessage(estimate);
-  if (foreign_forces_ > 0 && ForeignForceActive()) {
-    force_message_.status = (force_message_.status | kStatusInputConflict) & ~kStatusValid;
-  }
+  // The pipeline's facts with the transport's (a second FORCE publisher).
+  ForceStatusFacts facts = pipeline_.health().last_status_facts;
+  facts.transport.foreign_force = foreign_forces_ > 0 && ForeignForceActive();
+  force_message_.status = ComposeForceStatus(facts);
   EncodeMessage(force_message_, &buffer_);
   if (!buffer_.empty()) {
     published_hashes_[published_hash_next_] = PayloadHash(buffer_.data(), buffer_.size());
@@ -196,14 +198,15 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
         "(docs/mismatch.md); forces are not VALID meanwhile ({} similar lines suppressed)",
         consistency.ReportedStatistic(), MismatchParameterName(consistency.parameter), mismatch_warning_.suppressed());
   }
-  if (last_strain_arrival_wall_us_ >= 0 &&
-      static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6) {
-    status_message_.status = (status_message_.status | kStatusInputStale) & ~kStatusValid;
-  }
+  // The newest FORCE's facts with the transport's now: no strain on the host
+  // clock, a second FORCE publisher.
+  ForceStatusFacts facts = pipeline_.health().last_status_facts;
+  facts.transport.no_strain_on_wall_clock =
+      last_strain_arrival_wall_us_ >= 0 &&
+      static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6;
+  facts.transport.foreign_force = foreign_forces_ > 0 && ForeignForceActive();
+  status_message_.status = ComposeForceStatus(facts);
   status_message_.foreign_force = foreign_forces_;
-  if (foreign_forces_ > 0 && ForeignForceActive()) {
-    status_message_.status = (status_message_.status | kStatusInputConflict) & ~kStatusValid;
-  }
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) {
     const int64_t timestamp_us = pipeline_.health().newest_utime >= 0 ? pipeline_.health().newest_utime : 0;

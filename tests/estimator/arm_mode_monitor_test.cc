@@ -16,6 +16,7 @@
 
 #include "estimator/model_consistency.h"
 #include "evaluation/mismatch_metrics.h"
+#include "tests/estimator/consistency_step.h"
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
@@ -214,7 +215,7 @@ AwaitRun FeedAwaiting(const ModelConsistencyOptions& options, double ring_rad) {
     estimate.utime = n * 1000;
     estimate.status = kStatusValid;
     estimate.force_std_n[0] = estimate.force_std_n[1] = 0.08;
-    monitor.ApplyStatus(&estimate);
+    JudgeAndCompose(&monitor, &estimate);
     run.sigma_n.push_back(estimate.force_std_n[0]);
     run.valid.push_back((estimate.status & kStatusValid) != 0);
   }

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "samples/samples.h"
+#include "tests/estimator/consistency_step.h"
 
 namespace birotor {
 namespace {
@@ -94,24 +95,24 @@ TEST(ModelConsistency, ValidWaitsForTwoConsistentWindowsAndAMismatchWithdrawsIt)
   e.status = kStatusValid | kStatusThrustDeficit;
   e.thrust_scale[0] = e.thrust_scale[1] = 0.85;  // far from the map: the strain is suspect
   // A method without innovations (the baselines) is not judged.
-  EXPECT_TRUE(monitor.ApplyStatus(&e));
+  EXPECT_TRUE(JudgeAndCompose(&monitor, &e));
   EXPECT_EQ(e.status, kStatusValid | kStatusThrustDeficit);
   int64_t t = Feed(&monitor, FusionSource::kStrain, 0, 0.3, 1.0, 0.0, &rng);
   e.utime = t;
   e.status = kStatusValid;
-  EXPECT_FALSE(monitor.ApplyStatus(&e));  // one window judged of confirm_windows = 2
+  EXPECT_FALSE(JudgeAndCompose(&monitor, &e));  // one window judged of confirm_windows = 2
   EXPECT_EQ(e.status, 0);
   t = Feed(&monitor, FusionSource::kStrain, t, 0.25, 1.0, 0.0, &rng);
   e.utime = t;
   e.status = kStatusValid;
-  EXPECT_TRUE(monitor.ApplyStatus(&e));
+  EXPECT_TRUE(JudgeAndCompose(&monitor, &e));
   EXPECT_EQ(e.status, kStatusValid);
   // The accelerometer biased by 3 sigma for 0.6 s: raised, named from mu.
   for (int64_t k = 0; k < 600; ++k) {
     monitor.Add(Report(FusionSource::kAccelerometer, t + k * 1000, 3.0, 1.0));
     e.utime = t + k * 1000;
     e.status = kStatusValid | kStatusThrustDeficit;
-    monitor.ApplyStatus(&e);
+    JudgeAndCompose(&monitor, &e);
   }
   EXPECT_TRUE(monitor.state().mismatch);
   EXPECT_EQ(monitor.state().parameter, MismatchParameter::kStiffnessOrGaugeScale);
@@ -128,7 +129,7 @@ TEST(ModelConsistency, ByDefaultOnlyTheDeficitWaitsForTheConfirmation) {
   ForceEstimate e;
   e.utime = t;
   e.status = kStatusValid | kStatusThrustDeficit;
-  EXPECT_FALSE(monitor.ApplyStatus(&e));
+  EXPECT_FALSE(JudgeAndCompose(&monitor, &e));
   EXPECT_EQ(e.status, kStatusValid);
 }
 
@@ -162,7 +163,7 @@ TEST(ModelConsistency, AccelerometerBeyondItsGateRaisesAtTheEleventhSample) {
       e.utime = k * 1000;
       e.status = kStatusValid;
       e.thrust_scale[0] = e.thrust_scale[1] = mu;
-      monitor.ApplyStatus(&e);
+      JudgeAndCompose(&monitor, &e);
     }
     EXPECT_TRUE(monitor.state().mismatch);
     EXPECT_TRUE(monitor.state().raised_fast);
@@ -173,7 +174,7 @@ TEST(ModelConsistency, AccelerometerBeyondItsGateRaisesAtTheEleventhSample) {
     EXPECT_EQ(monitor.state().parameter,
               mu == 1.0 ? MismatchParameter::kMass : MismatchParameter::kStiffnessOrGaugeScale);
     e.status = kStatusValid;
-    monitor.ApplyStatus(&e);
+    JudgeAndCompose(&monitor, &e);
     EXPECT_EQ(e.status, kStatusModelMismatch);
   }
 }
@@ -205,7 +206,7 @@ TEST(ModelConsistency, AFastRaiseIsRenamedOnTheWindowsEvidence) {
     monitor.Add(Report(FusionSource::kAccelerometer, k * 1000, 7.0, 1.0));
     e.utime = k * 1000;
     e.thrust_scale[0] = e.thrust_scale[1] = k < 100 ? 1.0 : 0.8;
-    monitor.ApplyStatus(&e);
+    JudgeAndCompose(&monitor, &e);
     if (k == 50) {
       EXPECT_EQ(monitor.state().parameter, MismatchParameter::kMass);
     }

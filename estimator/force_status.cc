@@ -1,0 +1,55 @@
+// The one composer of a FORCE estimate's status (force_status.h).
+#include "estimator/force_status.h"
+
+#include <cmath>
+
+namespace birotor {
+namespace {
+
+// The method's own bits; CONVERGING alone for an estimate the pipeline replaced.
+int32_t FilterBits(const ForceStatusFacts& facts) {
+  if (facts.input.non_finite_replaced) return kStatusConverging;
+  const FilterStatusFacts& f = facts.filter;
+  int32_t bits = 0;
+  if (f.convergence == FilterConvergence::kConverged) bits |= kStatusValid;
+  if (f.convergence == FilterConvergence::kConverging) bits |= kStatusConverging;
+  if (f.measurement_rejected) bits |= kStatusMeasurementRejected;
+  if (f.rotor_fault[0]) bits |= kStatusRotor1Fault;
+  if (f.rotor_fault[1]) bits |= kStatusRotor2Fault;
+  // A mismatch, or a model not yet confirmed, would explain a deficit.
+  const bool deficit_explained = facts.consistency.mismatch || facts.consistency.model_unconfirmed;
+  if (f.thrust_deficit && !deficit_explained) bits |= kStatusThrustDeficit;
+  return bits;
+}
+
+}  // namespace
+
+bool ValidWithdrawn(const ForceStatusFacts& facts) {
+  const InputStatusFacts& input = facts.input;
+  const ConsistencyStatusFacts& model = facts.consistency;
+  const TransportStatusFacts& transport = facts.transport;
+  // VALID means converged, fresh, from one publisher per input and per
+  // FORCE channel, and consistent with the parameter file.
+  return input.stale || input.conflict || model.mismatch ||
+         (model.model_unconfirmed && model.unconfirmed_withholds_valid) ||
+         (model.tip_mass_unconfirmed && model.tip_mass_withholds_valid) || transport.foreign_force ||
+         transport.no_strain_on_wall_clock;
+}
+
+int32_t ComposeForceStatus(const ForceStatusFacts& facts) {
+  int32_t status = FilterBits(facts);
+  if (facts.input.no_motor_input) status |= kStatusNoMotorInput;
+  if (facts.input.stale || facts.transport.no_strain_on_wall_clock) status |= kStatusInputStale;
+  if (facts.input.conflict || facts.transport.foreign_force) status |= kStatusInputConflict;
+  if (facts.input.filter_reset) status |= kStatusFilterReset;
+  if (facts.consistency.mismatch) status |= kStatusModelMismatch;
+  if (ValidWithdrawn(facts)) status &= ~kStatusValid;
+  return status;
+}
+
+double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& facts) {
+  if (!facts.consistency.tip_mass_unconfirmed) return method_force_std_n;
+  return std::hypot(method_force_std_n, facts.consistency.tip_mass_force_std_n);
+}
+
+}  // namespace birotor

@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""One writer of FORCE's status bits: estimator/force_status.{h,cc}.
+
+The status of a force estimate (force_estimate_t / ForceEstimate, and the
+ESTIMATOR_STATUS status, which repeats the newest FORCE's) is composed in one
+place, ComposeForceStatus, from the facts the parts return (the method, the
+pipeline, the model-consistency monitor, the service). This check fails when
+a C++ source outside the composer's files ORs or ANDs bits into a `status`:
+
+  status |= ...        status &= ...
+  status = <expression with |, &, ~ or a kStatus* / STATUS_* constant>
+
+(`x.status`, `x->status` and a local `status` alike; comments and string
+literals are ignored; a statement may span lines). A plain copy
+(`message->status = health.last_status`, `m.status = e.status`) and the
+composer's result (`status = ComposeForceStatus(facts)`) pass.
+
+Covered: every C++ file of the repository except
+  - estimator/force_status.h and .cc (the composer),
+  - controller/: MOTOR_COMMAND's own status (kCommand* bits, composed in
+    vehicle_controller.cc) is not FORCE's,
+  - tests/ (fixtures set a status as their input), build*/ and fuzz corpora.
+Not covered: bits built in a variable of another name and then assigned
+(`int32_t bits = kStatusValid; e.status = bits;`); review catches those.
+
+Usage: tools/status_owner.py [ROOT]   (default: this repository)
+       tools/status_owner.py --self-test
+Exits 1 and lists file:line of each write it finds.
+"""
+import os
+import re
+import sys
+
+SOURCE_SUFFIXES = (".cc", ".h", ".cpp", ".hpp")
+COMPOSER_FILES = {os.path.join("estimator", "force_status.h"), os.path.join("estimator", "force_status.cc")}
+EXCLUDED_DIRS = {"controller", "tests", "corpus", ".git"}
+
+COMPOUND = re.compile(r"\bstatus\s*(\|=|&=)")
+ASSIGN = re.compile(r"\bstatus\s*=(?!=)([^;{}]*)")
+COMPOSED_RHS = re.compile(r"[|&~]|\bkStatus\w*|\bSTATUS_\w+")
+# Comments, then string and character literals (their text is not code).
+BLANKED = re.compile(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'', re.S)
+
+
+def blank(text):
+    """Comments and literals replaced by spaces, newlines kept (line numbers stay)."""
+    return BLANKED.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
+
+
+def status_writes(text):
+    """(line, statement) of every composed write to a `status` in text."""
+    code = blank(text)
+    found = []
+    for m in COMPOUND.finditer(code):
+        found.append((code.count("\n", 0, m.start()) + 1, m.group(0)))
+    for m in ASSIGN.finditer(code):
+        if COMPOSED_RHS.search(m.group(1)):
+            found.append((code.count("\n", 0, m.start()) + 1, " ".join(m.group(0).split())))
+    return sorted(found)
+
+
+def covered_files(root):
+    for folder, dirs, files in os.walk(root):
+        rel_folder = os.path.relpath(folder, root)
+        dirs[:] = sorted(d for d in dirs if d not in EXCLUDED_DIRS and not d.startswith("build")
+                         and not (rel_folder == "." and d.startswith(".")))
+        for name in sorted(files):
+            rel = os.path.normpath(os.path.join(rel_folder, name))
+            if name.endswith(SOURCE_SUFFIXES) and rel not in COMPOSER_FILES:
+                yield rel
+
+
+def self_test():
+    flagged = [
+        "estimate->status |= kStatusNoMotorInput;",
+        "e.status &= ~kStatusValid;",
+        "m.status = (m.status | kStatusInputConflict) & ~kStatusValid;",
+        "status = *converged ? kStatusValid : kStatusConverging;",
+        "estimate->status =\n    status | kStatusValid;",
+        "message->status = force_estimate_t::STATUS_VALID;",
+    ]
+    passed = [
+        "message->status = health.last_status;",
+        "force_message_.status = ComposeForceStatus(facts);",
+        "if (e.status == kStatusValid) return;",
+        "// estimate->status |= kStatusValid;",
+        'log("status |= x");',
+        "const int32_t status = ComposeForceStatus(f);",
+    ]
+    bad = [s for s in flagged if not status_writes(s)] + [s for s in passed if status_writes(s)]
+    for s in bad:
+        print("self-test: wrongly judged: %r" % s)
+    return 1 if bad else 0
+
+
+def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    failures = 0
+    for rel in covered_files(root):
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for line, statement in status_writes(f.read()):
+                print("%s:%d: status bits set outside estimator/force_status: %s" % (rel, line, statement))
+                failures += 1
+    if failures:
+        print("%d write(s): fill the part's facts (estimator/force_status.h) and let ComposeForceStatus decide"
+              % failures)
+        return 1
+    print("FORCE status: composed in estimator/force_status.cc only")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
