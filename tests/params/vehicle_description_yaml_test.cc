@@ -6,33 +6,21 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_params_yaml.h"
 #include "tests/params/param_error_of.h"
+#include "tests/params/temp_file.h"
 
 namespace birotor {
 namespace {
 
 using ::birotor::testing::ParamErrorOf;
 
-// One file per test and call (CTest runs the tests as parallel processes).
-std::string WriteTemp(const std::string& text) {
-  static int counter = 0;
-  const std::string path = ::testing::TempDir() + "/vehicle_description_" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                           std::to_string(counter++) + ".yaml";
-  std::ofstream(path) << text;
-  return path;
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+std::string WriteTemp(const std::string& text) { return testing::WriteTempFile("vehicle_description_", text); }
+std::string ReadText(const std::string& path) { return testing::ReadTextFile(path); }
 
 // The text of config/vehicles/birotor.yaml with from replaced by to (once).
 std::string BirotorWith(const std::string& from, const std::string& to) {
@@ -109,7 +97,9 @@ TEST(VehicleDescriptionYaml, EveryShippedVehicleLoads) {
       const std::string path = entry.path().string();
       if (entry.path().extension() != ".yaml" || ReadText(path).find("\nvehicle:") == std::string::npos) continue;
       EXPECT_EQ(ParamErrorOf([&] { LoadVehicleDescription(path); }), "") << path;
-      if (dir == "config/scenarios") EXPECT_EQ(ParamErrorOf([&] { LoadScenario(path); }), "") << path;
+      if (dir == "config/scenarios") {
+        EXPECT_EQ(ParamErrorOf([&] { LoadScenario(path); }), "") << path;
+      }
       ++files;
     }
   }
