@@ -52,6 +52,10 @@ const std::vector<std::pair<const char*, double ArmDescription::*>>& ArmReals() 
   return fields;
 }
 
+// The helpers below need 2 <= arm_count <= kMaxArms (PlausibilityProblems
+// says so when it is not).
+bool ValidArmCount(const VehicleDescription& d) { return d.arm_count >= kBirotorArmCount && d.arm_count <= kMaxArms; }
+
 bool IsAngle(const std::string& name) { return name == "angle_rad" || name == "thrust_angle_rad"; }
 
 bool Agree(const std::string& name, double a, double b) {
@@ -90,7 +94,7 @@ void CheckFinite(const std::string& key, double value, std::vector<std::string>*
 // allocation and the hover meaningless.
 std::vector<std::string> FieldProblems(const VehicleDescription& d) {
   std::vector<std::string> problems;
-  if (d.arm_count < kBirotorArmCount || d.arm_count > kMaxArms) {
+  if (!ValidArmCount(d)) {
     problems.push_back("arm_count: " + Number(d.arm_count) + " arms (allowed: [" + Number(kBirotorArmCount) + ", " +
                        Number(kMaxArms) + "])");
     return problems;
@@ -248,8 +252,8 @@ std::string FirstDifference(const VehicleDescription& a, const VehicleDescriptio
 }
 
 AllocationMatrix WrenchAllocation(const VehicleDescription& d) {
-  AllocationMatrix allocation(kWrenchSize, d.arm_count);
-  for (int i = 0; i < d.arm_count; ++i) {
+  AllocationMatrix allocation(kWrenchSize, ValidArmCount(d) ? d.arm_count : 0);
+  for (int i = 0; i < allocation.cols(); ++i) {
     const ArmDescription& arm = d.arms[static_cast<size_t>(i)];
     // u_i = [-sin theta_i, cos theta_i]; l_i = L_i (e_i x u_i) = L_i cos(alpha_i - theta_i).
     allocation(kWrenchFx, i) = -std::sin(arm.thrust_angle_rad);
@@ -261,6 +265,7 @@ AllocationMatrix WrenchAllocation(const VehicleDescription& d) {
 
 AllocationMargin ControlledAxesMargin(const VehicleDescription& d) {
   AllocationMargin margin;
+  if (!ValidArmCount(d)) return margin;  // rows 0, ratio 0
   margin.rows = (d.arm_count == kBirotorArmCount) ? 2 : kWrenchSize;
   for (int i = 0; i < d.arm_count; ++i) margin.mean_arm_length_m += d.arms[static_cast<size_t>(i)].length_m;
   margin.mean_arm_length_m /= d.arm_count;
@@ -274,6 +279,7 @@ AllocationMargin ControlledAxesMargin(const VehicleDescription& d) {
 }
 
 HoverSolution SolveHover(const VehicleDescription& d) {
+  if (!ValidArmCount(d)) return HoverSolution();
   const AllocationMatrix allocation = WrenchAllocation(d);
   const int rows = (d.arm_count == kBirotorArmCount) ? 2 : kWrenchSize;
   Eigen::Vector3d wrench(0.0, d.gravity_m_s2 * d.TotalMass(), 0.0);

@@ -118,6 +118,9 @@ bool ToBirotorParams(const VehicleDescription& description, VehicleParams* param
 // "arms[1].stiffness_n_m_rad: 3000 vs 2628".
 std::string FirstDifference(const VehicleDescription& a, const VehicleDescription& b);
 
+// WrenchAllocation, ControlledAxesMargin and SolveHover need arm_count in
+// [2, kMaxArms]; outside it they return an empty matrix, rows 0 and zeros.
+//
 // Column i maps thrust f_i [N] to the body wrench at zero deflection:
 //   [F_x; F_z] += f_i u_i,  torque += f_i l_i,  l_i = L_i (e_i x u_i).
 AllocationMatrix WrenchAllocation(const VehicleDescription& description);

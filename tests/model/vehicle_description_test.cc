@@ -158,6 +158,10 @@ TEST(VehicleDescription, ArmCountOutsideTwoToSix) {
   VehicleDescription d = FourArms();
   d.arm_count = 7;
   EXPECT_TRUE(Mentions(PlausibilityProblems(d), "arm_count: 7 arms (allowed: [2, 6])"));
+  // The helpers stay inside the six arms of the array.
+  EXPECT_EQ(WrenchAllocation(d).cols(), 0);
+  EXPECT_EQ(ControlledAxesMargin(d).rows, 0);
+  EXPECT_EQ(SolveHover(d).thrust_n[0], 0.0);
   d.arm_count = 1;
   EXPECT_TRUE(Mentions(PlausibilityProblems(d), "arm_count: 1 arms (allowed: [2, 6])"));
 }
