@@ -15,9 +15,13 @@
 // which is what a gauge on arm i can see of f_i (l_i = 0: the gauge sees nothing).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include "model/vehicle_params.h"
 
 namespace birotor {
 
@@ -71,5 +75,85 @@ struct VehicleDescription {
     return n;
   }
 };
+
+// ---------------------------------------------------------------------------
+// Helpers on a description (model/vehicle_description.cc): the birotor both
+// ways, the thrust-to-wrench allocation, hover, and whether it can fly.
+
+// The body wrench at the centre, body frame: F_x, F_z [N] and the torque
+// about the centre [N m], positive in the sense of phi.
+enum WrenchRow : int { kWrenchFx = 0, kWrenchFz = 1, kWrenchTorque = 2 };
+inline constexpr int kWrenchSize = 3;
+
+// 3 x N, at most 3 x kMaxArms (no heap allocation).
+using AllocationMatrix = Eigen::Matrix<double, kWrenchSize, Eigen::Dynamic, Eigen::ColMajor, kWrenchSize, kMaxArms>;
+
+// The plausibility thresholds (docs/vehicle-description.md, "Plausibility").
+// Smallest over largest singular value of the allocation on the axes the
+// controller needs, with the torque row divided by the mean arm length (so
+// the ratio is a property of the shape, not of the size): below this the
+// vehicle is too close to losing an axis. The birotor has 1, the trirotor of
+// config/vehicles/trirotor.yaml 0.563.
+inline constexpr double kMinAllocationSingularRatio = 0.1;
+// A gauge on arm i needs |l_i| >= this x L_i (|cos(alpha_i - theta_i)| >= 0.1:
+// the thrust at least 5.7 deg off the arm's axis); below, f_i barely bends it.
+inline constexpr double kMinGaugeLeverFraction = 0.1;
+// FirstDifference: relative tolerance on every real field (angles: absolute
+// [rad], modulo 2 pi), so that a file written in degrees equals the radians.
+inline constexpr double kDescriptionTolerance = 1e-12;
+
+// The reference birotor as a description: arm 1 at alpha = pi, arm 2 at
+// alpha = 0, both theta = 0, spins +1 and -1 (counter-rotating; no effect in
+// the plane), every arm field from the shared scalars, gauge scale and offset
+// per arm, has_gauge true.
+VehicleDescription BirotorDescription(const VehicleParams& params);
+
+// The reverse, for a description that is a birotor: false, with *why naming
+// the first field that VehicleParams cannot hold (arm_count, an arm's
+// geometry, has_gauge false, spin, or arms that differ in a shared scalar).
+bool ToBirotorParams(const VehicleDescription& description, VehicleParams* params, std::string* why);
+
+// "" when a and b agree (arms[0 .. arm_count) only; kDescriptionTolerance),
+// else the first differing field and both values, e.g.
+// "arms[1].stiffness_n_m_rad: 3000 vs 2628".
+std::string FirstDifference(const VehicleDescription& a, const VehicleDescription& b);
+
+// WrenchAllocation, ControlledAxesMargin and SolveHover need arm_count in
+// [2, kMaxArms]; outside it they return an empty matrix, rows 0 and zeros.
+//
+// Column i maps thrust f_i [N] to the body wrench at zero deflection:
+//   [F_x; F_z] += f_i u_i,  torque += f_i l_i,  l_i = L_i (e_i x u_i).
+AllocationMatrix WrenchAllocation(const VehicleDescription& description);
+
+// The allocation rows the controller needs (N = 2: F_z and torque, the
+// birotor tilts for F_x; N >= 3: all three), torque row divided by the mean
+// arm length, and their singular values, largest first.
+struct AllocationMargin {
+  int rows = 0;                     // 2 or 3
+  double mean_arm_length_m = 0.0;   // the torque row's divisor [m]
+  Eigen::VectorXd singular_values;  // [N per N of thrust], largest first
+  double ratio = 0.0;               // smallest / largest [1]
+};
+AllocationMargin ControlledAxesMargin(const VehicleDescription& description);
+
+// Thrusts and speeds that hold the level, undeflected vehicle at rest:
+// wrench [0, g (m + sum m_p,i), 0]. N = 2: the F_z and torque rows solved
+// (F_x is whatever the thrust directions give; 0 for the birotor); N >= 3:
+// the least-norm solution of all three rows. omega_i = sqrt(f_i / c_T,i)
+// (0 where f_i <= 0). The exact hover adds the arms' static deflection.
+struct HoverSolution {
+  std::array<double, kMaxArms> thrust_n{};     // f_i [N]
+  std::array<double, kMaxArms> omega_rad_s{};  // [rad/s]
+};
+HoverSolution SolveHover(const VehicleDescription& description);
+
+// Every reason the description cannot fly, one sentence each with the
+// numbers, the key and the allowed range; empty when it can. Checked:
+// arm_count in [2, kMaxArms]; masses, inertia, lengths, stiffness, c_T,
+// tau_m and omega_max positive and finite, every other number finite;
+// spin +1 or -1; the allocation margin (ratio >= kMinAllocationSingularRatio);
+// hover thrusts > 0 and hover speeds <= omega_max; a gauge only where
+// |l_i| >= kMinGaugeLeverFraction L_i.
+std::vector<std::string> PlausibilityProblems(const VehicleDescription& description);
 
 }  // namespace birotor

@@ -2,6 +2,10 @@
 
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
+
+#include "model/vehicle_description.h"
+#include "params/vehicle_description_yaml.h"
 
 namespace birotor {
 
@@ -25,11 +29,19 @@ const std::vector<VehicleKey>& VehicleKeys() {
   return keys;
 }
 
+const VehicleKey& FindVehicleKey(const std::string& name) {
+  for (const VehicleKey& key : VehicleKeys()) {
+    if (name == key.name) return key;
+  }
+  throw std::logic_error("FindVehicleKey: no vehicle key " + name);
+}
+
 void ReadVehicleParams(YamlSection s, VehicleParams* p) {
   for (const VehicleKey& key : VehicleKeys()) s.Double(key.name, key.min, key.max, &(p->*key.field));
   s.DoubleArray("gauge_scale", 2, kGaugeScaleMin, kGaugeScaleMax, p->gauge_scale);
-  s.DoubleArray("gauge_offset_rad", 2, -1e-2, 1e-2, p->gauge_offset_rad);
+  s.DoubleArray("gauge_offset_rad", 2, -kGaugeOffsetMaxRad, kGaugeOffsetMaxRad, p->gauge_offset_rad);
   s.Finish();
+  if (!s.HasMissingKeys()) CheckPlausible(s, BirotorDescription(*p));
 }
 
 VehicleParams LoadVehicleParams(const std::string& file) {

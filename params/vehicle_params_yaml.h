@@ -24,18 +24,26 @@ struct VehicleKey {
 // birotor-identify may deploy there).
 inline constexpr double kGaugeScaleMin = 0.5;
 inline constexpr double kGaugeScaleMax = 2.0;
+// The range of each element of gauge_offset_rad, [-max, max] [rad].
+inline constexpr double kGaugeOffsetMaxRad = 1e-2;
 
 // Every scalar key of the `vehicle:` section, in file order (the two-element
 // gauge_scale and gauge_offset_rad follow them).
 const std::vector<VehicleKey>& VehicleKeys();
+// The row of VehicleKeys() called name (ParamError-free: a name not in the
+// table is a programming error and throws std::logic_error).
+const VehicleKey& FindVehicleKey(const std::string& name);
 
 // Reads every key of the section (each is required); ranges are checked
-// (masses and stiffness strictly positive). Unknown keys are errors.
+// (masses and stiffness strictly positive). Unknown keys are errors. A
+// complete section must also fly: PlausibilityProblems of its
+// BirotorDescription (e.g. a hover speed above omega_max) is a ParamError
+// naming the file (params/vehicle_description_yaml.h, CheckPlausible).
 void ReadVehicleParams(YamlSection section, VehicleParams* params);
 
 // Loads `vehicle:` from a file (other top-level sections are allowed, so an
 // estimator file can serve as a vehicle file); throws ParamError naming the
-// file and every missing key.
+// file and every missing key, or why the vehicle cannot fly.
 VehicleParams LoadVehicleParams(const std::string& file);
 
 // YAML text of a `vehicle:` section (full precision), for identification

@@ -82,7 +82,12 @@ class YamlSection {
 
   [[noreturn]] void Fail(const std::string& key, const std::string& problem, const std::string& allowed) const;
   const std::string& file() const { return file_; }
+  // The dotted path of this section ("" for the root).
+  const std::string& path() const { return path_; }
   std::string KeyPath(const std::string& key) const;
+  // Whether any key read so far from this file was missing (cross-field
+  // checks skip a section whose values are partly defaults).
+  bool HasMissingKeys() const { return !missing_->empty(); }
 
  private:
   // Keys the file lacks, shared by every section of one file.

@@ -3,22 +3,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <fstream>
+#include "tests/params/temp_file.h"
 
 namespace birotor {
 namespace {
 
-// One file per test and call: CTest runs the tests of this file as parallel
-// processes, so a shared name would let one test read another's file.
-std::string WriteTemp(const std::string& text) {
-  static int counter = 0;
-  const std::string path = ::testing::TempDir() + "/vehicle_params_" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                           std::to_string(counter++) + ".yaml";
-  std::ofstream(path) << text;
-  return path;
-}
+std::string WriteTemp(const std::string& text) { return testing::WriteTempFile("vehicle_params_", text); }
 
 TEST(VehicleParamsYaml, ReferenceFileGivesReferenceVehicle) {
   const VehicleParams p = LoadVehicleParams("config/reference_vehicle.yaml");

@@ -12,23 +12,13 @@
 
 #include "params/estimator_config_yaml.h"
 #include "params/vehicle_params_yaml.h"
+#include "tests/params/temp_file.h"
 
 namespace birotor {
 namespace {
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string WriteTemp(const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/vehicle_section_update_" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml";
-  std::ofstream(path) << text;
-  return path;
-}
+std::string ReadText(const std::string& path) { return testing::ReadTextFile(path); }
+std::string WriteTemp(const std::string& text) { return testing::WriteTempFile("vehicle_section_update_", text); }
 
 TEST(VehicleSectionUpdateTest, ShippedEstimatorFileTakesNewValuesAndKeepsTheRest) {
   const std::string original = ReadText("config/estimator.yaml");

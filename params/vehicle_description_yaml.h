@@ -1,0 +1,30 @@
+// Reads a vehicle description (model/vehicle_description.h) from the
+// `vehicle:` section of a file, in either of its two forms
+// (docs/vehicle-description.md): the N-arm form, body keys and `arms:` a list
+// of maps, or the birotor form of config/reference_vehicle.yaml, read as N = 2.
+// A description that cannot fly is refused where it is read.
+#pragma once
+
+#include <string>
+
+#include "model/vehicle_description.h"
+#include "params/yaml_reader.h"
+
+namespace birotor {
+
+// Reads the `vehicle:` section (passed as section) in either form; every key
+// is required, ranges are those of the birotor keys (VehicleKeys), unknown
+// keys are errors, a section with both forms is refused naming both, and a
+// complete description must pass CheckPlausible.
+void ReadVehicleDescription(YamlSection section, VehicleDescription* description);
+
+// Loads `vehicle:` from a file (other top-level sections are allowed);
+// ParamError names the file, the key and the allowed range, or why the
+// vehicle cannot fly.
+VehicleDescription LoadVehicleDescription(const std::string& file);
+
+// ParamError "<file>: key '<section>': the vehicle cannot fly: <problem>; ..."
+// when PlausibilityProblems(description) is not empty.
+void CheckPlausible(const YamlSection& section, const VehicleDescription& description);
+
+}  // namespace birotor
