@@ -30,7 +30,6 @@
 // is birotor_dynamics.h's s_i L term by term.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <cmath>
 
@@ -118,14 +117,44 @@ MultiArmTerms<T> ComputeMultiArmTerms(const VehicleDescription& vehicle, const M
   return out;
 }
 
-// q_ddot = M^-1 (tau - C - G) by Cholesky (M is symmetric positive definite;
-// fixed maximum storage, so no allocation).
+// Solves M x = rhs for a symmetric positive definite M by M = L D L^T (unit
+// lower-triangular L, no pivoting, no square roots), in fixed maximum storage.
+// Not Eigen's LLT/LDLT: their triangular solves skip right-hand-side entries
+// that compare equal to zero, and a Jet compares by its value only, so at an
+// equilibrium (q_ddot = 0) they drop the derivative parts and return wrong
+// Jacobians.
+template <typename T>
+MultiCoords<T> SolveMultiArmMassMatrix(const MultiCoordMatrix<T>& mass, const MultiCoords<T>& rhs) {
+  const int n = static_cast<int>(mass.rows());
+  MultiCoordMatrix<T> lower = MultiCoordMatrix<T>::Zero(n, n);
+  MultiCoords<T> diagonal(n), x(n);
+  for (int j = 0; j < n; ++j) {
+    diagonal(j) = mass(j, j);
+    for (int k = 0; k < j; ++k) diagonal(j) -= lower(j, k) * lower(j, k) * diagonal(k);
+    for (int i = j + 1; i < n; ++i) {
+      T sum = mass(i, j);
+      for (int k = 0; k < j; ++k) sum -= lower(i, k) * lower(j, k) * diagonal(k);
+      lower(i, j) = sum / diagonal(j);
+    }
+  }
+  for (int i = 0; i < n; ++i) {  // L y = rhs (y kept in x)
+    x(i) = rhs(i);
+    for (int k = 0; k < i; ++k) x(i) -= lower(i, k) * x(k);
+  }
+  for (int i = n - 1; i >= 0; --i) {  // D L^T x = y
+    x(i) /= diagonal(i);
+    for (int k = i + 1; k < n; ++k) x(i) -= lower(k, i) * x(k);
+  }
+  return x;
+}
+
+// q_ddot = M^-1 (tau - C - G).
 template <typename T>
 MultiCoords<T> MultiArmAcceleration(const VehicleDescription& vehicle, const MultiCoords<T>& q, const MultiCoords<T>& v,
                                     const ArmForces<T>& force_n) {
   const MultiArmTerms<T> terms = ComputeMultiArmTerms<T>(vehicle, q, v, force_n);
-  const Eigen::LLT<MultiCoordMatrix<T>> cholesky(terms.mass);
-  return cholesky.solve(MultiCoords<T>(terms.generalized_thrust - terms.coriolis - terms.gravity_spring));
+  return SolveMultiArmMassMatrix<T>(terms.mass,
+                                    MultiCoords<T>(terms.generalized_thrust - terms.coriolis - terms.gravity_spring));
 }
 
 // Mechanical energy T + U [J]; with d_i = 0 and no thrust it is conserved.
