@@ -96,6 +96,16 @@ TEST(VehicleAnalysis, TrirotorWithTwoGaugesHidesOneForceCombination) {
   EXPECT_EQ(imu.report.rank, 10);
   EXPECT_EQ(imu.report.hidden_states, (Names{"x", "z", "phi", "x_dot", "z_dot"}));
   EXPECT_TRUE(imu.forces_observable);
+  // Either IMU channel alone does it: rows b1, b2, gyro, a_x, a_z of the IMU set.
+  const VehicleDescription vehicle = Trirotor(false);
+  const Eigen::MatrixXd aug = AugmentMultiArmWithForces(LinearizeMultiArmAtHover(vehicle, analysis.hover));
+  const Eigen::MatrixXd imu_rows = VehicleMeasurementMatrix(vehicle, aug, Set::kGaugesImu);
+  for (int channel : {2, 3, 4}) {
+    Eigen::MatrixXd c(3, imu_rows.cols());
+    c << imu_rows.topRows(2), imu_rows.row(channel);
+    const SubspaceReport r = AnalyzeObservability(aug, c, MultiArmStateNames(3));
+    EXPECT_LT(r.hidden_basis.bottomRows(3).norm(), kForceDirectionTolerance) << "IMU row " << channel;
+  }
   // Position alone: two outputs cannot hold three constant forces apart.
   const ForceObservability& position = Case(analysis, Set::kPosition);
   EXPECT_EQ(position.report.rank, 14);
