@@ -65,10 +65,14 @@ const std::vector<std::string>& AugmentedStateNames() {
   return names;
 }
 
-std::vector<Mode> OscillatoryModes(const MechMatrix& a) {
-  Eigen::EigenSolver<MechMatrix> solver(a, false);
+namespace {
+
+// One body for the fixed 10 x 10 birotor matrix and dynamic sizes.
+template <typename Matrix>
+std::vector<Mode> ModesOf(const Matrix& a) {
+  Eigen::EigenSolver<Matrix> solver(a, false);
   std::vector<Mode> modes;
-  for (int i = 0; i < kMechStateSize; ++i) {
+  for (int i = 0; i < a.rows(); ++i) {
     const std::complex<double> lambda = solver.eigenvalues()(i);
     // One of each conjugate pair; skip the rigid-body (zero) eigenvalues.
     if (lambda.imag() <= 0 || std::abs(lambda) < 1e-3) continue;
@@ -80,5 +84,11 @@ std::vector<Mode> OscillatoryModes(const MechMatrix& a) {
   std::sort(modes.begin(), modes.end(), [](const Mode& x, const Mode& y) { return x.frequency_hz < y.frequency_hz; });
   return modes;
 }
+
+}  // namespace
+
+std::vector<Mode> OscillatoryModes(const MechMatrix& a) { return ModesOf(a); }
+
+std::vector<Mode> OscillatoryModes(const Eigen::MatrixXd& a) { return ModesOf(a); }
 
 }  // namespace birotor

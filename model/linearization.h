@@ -50,5 +50,7 @@ struct Mode {
 
 // Oscillatory modes of A (one per complex-conjugate pair), by frequency.
 std::vector<Mode> OscillatoryModes(const MechMatrix& a);
+// The same for a system matrix of any size (the N-arm model).
+std::vector<Mode> OscillatoryModes(const Eigen::MatrixXd& a);
 
 }  // namespace birotor
