@@ -55,6 +55,15 @@ CountCheck Check(const Shape& shape, int expected_count) {
   return shape.count == expected_count ? CountCheck::kMatches : CountCheck::kMismatch;
 }
 
+// Birotor -> counted with N = 2 through the type's field list.
+template <class Counted, class Birotor>
+Counted ToCounted(const Birotor& message, int8_t Counted::*count, void (*copy)(const Birotor&, Counted*)) {
+  Counted out{};
+  out.*count = kBirotorArmCount;
+  copy(message, &out);
+  return out;
+}
+
 // Counted -> birotor through the type's field list, only for a consistent N = 2.
 template <class Counted, class Birotor>
 bool ToBirotor(const Counted& message, Birotor* out, void (*copy)(const Counted&, Birotor*)) {
@@ -163,48 +172,25 @@ CountCheck CheckCount(const motor_command_n_t& m, const VehicleDescription& d) {
   return Check(ShapeOf(m), d.arm_count);
 }
 
-strain_n_t ToCountedMessage(const strain_t& m) {
-  strain_n_t out{};
-  out.n_arms = kBirotorArmCount;
-  internal::CopyStrainFields(m, &out);
-  return out;
-}
+strain_n_t ToCountedMessage(const strain_t& m) { return ToCounted(m, &strain_n_t::n_arms, internal::CopyStrainFields); }
 
-motor_n_t ToCountedMessage(const motor_t& m) {
-  motor_n_t out{};
-  out.n_rotors = kBirotorArmCount;
-  internal::CopyMotorFields(m, &out);
-  return out;
-}
+motor_n_t ToCountedMessage(const motor_t& m) { return ToCounted(m, &motor_n_t::n_rotors, internal::CopyMotorFields); }
 
 loadcell_n_t ToCountedMessage(const loadcell_t& m) {
-  loadcell_n_t out{};
-  out.n_rotors = kBirotorArmCount;
-  internal::CopyLoadCellFields(m, &out);
-  return out;
+  return ToCounted(m, &loadcell_n_t::n_rotors, internal::CopyLoadCellFields);
 }
 
-truth_n_t ToCountedMessage(const truth_t& m) {
-  truth_n_t out{};
-  out.n_arms = kBirotorArmCount;
-  internal::CopyTruthFields(m, &out);
-  return out;
-}
+truth_n_t ToCountedMessage(const truth_t& m) { return ToCounted(m, &truth_n_t::n_arms, internal::CopyTruthFields); }
 
 force_estimate_n_t ToCountedMessage(const force_estimate_t& m) {
-  force_estimate_n_t out{};
-  out.n_rotors = kBirotorArmCount;
-  internal::CopyForceFields(m, &out);
+  force_estimate_n_t out = ToCounted(m, &force_estimate_n_t::n_rotors, internal::CopyForceFields);
   out.status = m.status & ~kBirotorRotorFaultBits;
   out.rotor_fault_bits = RotorFaultBits(m.status);
   return out;
 }
 
 motor_command_n_t ToCountedMessage(const motor_command_t& m) {
-  motor_command_n_t out{};
-  out.n_rotors = kBirotorArmCount;
-  internal::CopyMotorCommandFields(m, &out);
-  return out;
+  return ToCounted(m, &motor_command_n_t::n_rotors, internal::CopyMotorCommandFields);
 }
 
 bool ToBirotorMessage(const strain_n_t& m, strain_t* out) { return ToBirotor(m, out, internal::CopyStrainFields); }
