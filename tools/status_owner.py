@@ -19,6 +19,9 @@ Covered: every C++ file of the repository except
   - estimator/force_status.h and .cc (the composer),
   - controller/: MOTOR_COMMAND's own status (kCommand* bits, composed in
     vehicle_controller.cc) is not FORCE's,
+  - transport/counted_messages.cc: it translates the same bits between the
+    birotor and the N-arm wire layouts (rotor bits 16/32 <-> rotor_fault_bits),
+    it composes nothing,
   - tests/ (fixtures set a status as their input), build*/ and fuzz corpora.
 Not covered: bits built in a variable of another name and then assigned
 (`int32_t bits = kStatusValid; e.status = bits;`); review catches those.
@@ -32,7 +35,8 @@ import re
 import sys
 
 SOURCE_SUFFIXES = (".cc", ".h", ".cpp", ".hpp")
-COMPOSER_FILES = {os.path.join("estimator", "force_status.h"), os.path.join("estimator", "force_status.cc")}
+COMPOSER_FILES = {os.path.join("estimator", "force_status.h"), os.path.join("estimator", "force_status.cc"),
+                  os.path.join("transport", "counted_messages.cc")}  # the wire translation (docstring)
 EXCLUDED_DIRS = {"controller", "tests", "corpus", ".git"}
 
 COMPOUND = re.compile(r"\bstatus\s*(\|=|&=)")
