@@ -55,7 +55,10 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
   int64_t last_outside_utime = -1;  // newest sample after the event outside the tolerance
   double tilt_since_event = 0;
   const TrackedSample* previous = nullptr;
+  FlightJudge judge;
   for (const TrackedSample& s : run.samples) {
+    judge.Add(1e-6 * static_cast<double>(s.truth.utime - start_utime), s.truth.z_m, s.reference_m.y(), s.truth.phi_rad,
+              s.truth.z_dot_m_s, run.has_ground ? ground_z_m : kNaN);
     const double dx = s.truth.x_m - s.reference_m.x();
     const double dz = s.truth.z_m - s.reference_m.y();
     const double error = std::hypot(dx, dz);
@@ -95,6 +98,7 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
     m.return_time_s = 1e-6 * static_cast<double>(last_outside_utime - event_utime);
   }
   m.crashed = m.peak_altitude_loss_m >= kCrashAltitudeLossM;
+  m.verdict = judge.Result();
   return m;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "evaluation/closed_loop.h"
+#include "samples/flight_verdict.h"
 
 namespace birotor {
 
@@ -46,6 +47,9 @@ struct ControlMetrics {
   double tilt_at_touchdown_rad = 0;
   double pitch_rate_at_touchdown_rad_s = 0;
   double tip_touchdown_speed_m_s = 0;
+  // Kept or lost, by the one definition every program shares
+  // (samples/flight_verdict.h), over the whole flight against the reference.
+  FlightVerdict verdict;
 };
 
 ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOptions& options = {});

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "numerics/fnv1a.h"
 #include "program/shutdown.h"
 
 namespace birotor {
@@ -52,40 +53,17 @@ bool RateLimitedLog::ShouldLog(int64_t now_us) {
   return true;
 }
 
-namespace {
-
-constexpr uint64_t kFnvOffsetBasis = 14695981039346656037ull;
-
-// FNV-1a over size bytes, continuing from hash.
-uint64_t Fnv1a(const void* data, size_t size, uint64_t hash) {
-  constexpr uint64_t kFnvPrime = 1099511628211ull;
-  const unsigned char* bytes = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) {
-    hash ^= bytes[i];
-    hash *= kFnvPrime;
-  }
-  return hash;
-}
-
-std::string Hex(uint64_t hash) {
-  char hex[17];
-  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
-  return hex;
-}
-
-}  // namespace
-
 std::string FileChecksum(const std::string& path) {
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) return "";
-  uint64_t hash = kFnvOffsetBasis;
+  uint64_t hash = kFnv1a64OffsetBasis;
   unsigned char chunk[4096];
   size_t count = 0;
-  while ((count = std::fread(chunk, 1, sizeof(chunk), file.get())) > 0) hash = Fnv1a(chunk, count, hash);
+  while ((count = std::fread(chunk, 1, sizeof(chunk), file.get())) > 0) hash = Fnv1a64(chunk, count, hash);
   if (std::ferror(file.get())) return "";  // e.g. a directory
-  return Hex(hash);
+  return ChecksumHex(hash);
 }
 
-std::string TextChecksum(const std::string& text) { return Hex(Fnv1a(text.data(), text.size(), kFnvOffsetBasis)); }
+std::string TextChecksum(const std::string& text) { return TextChecksumHex(text); }
 
 }  // namespace birotor

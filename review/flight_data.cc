@@ -8,6 +8,7 @@
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/motor_command_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "birotor/setpoint_t.hpp"
 #include "birotor/truth_t.hpp"
 #include "transport/channels.h"
 #include "transport/lcm_codec.h"
@@ -37,6 +38,7 @@ FlightData::FlightData() {
   pose = Table({"x [m]", "z [m]", "pitch [rad]"});
   motor_command = Table({"omega cmd 1 [rad/s]", "omega cmd 2 [rad/s]", "mode", "status [bits]"});
   controller_status = Table({"fallbacks", "descents", "saturated", "commands", "mode"});
+  setpoint = Table({"x ref [m]", "z ref [m]"});
 }
 
 namespace {
@@ -76,6 +78,9 @@ class FlightDecoder {
             {double(controller_.fallbacks), double(controller_.descents), double(controller_.saturated),
              double(controller_.commands), double(controller_.mode)});
       }
+    } else if (c == channels_.setpoint) {
+      ok = Decode(event, &setpoint_);
+      if (ok) data_->setpoint.Add(Time(setpoint_.utime), {setpoint_.x_m, setpoint_.z_m});
     } else if (c == channels_.strain || c == channels_.motor || c == channels_.imu) {
       // Only the stamp: strain_t, motor_t and imu_t start with int64 utime
       // after the 8-byte fingerprint.
@@ -147,6 +152,7 @@ class FlightDecoder {
   pose_t pose_;
   motor_command_t command_;
   controller_status_t controller_;
+  setpoint_t setpoint_;
   const input_health_t empty_{};
 };
 

@@ -60,6 +60,8 @@ struct FlightData {
   Table motor_command;
   // CONTROLLER_STATUS: fallbacks, descents, saturated, commands, mode.
   Table controller_status;
+  // SETPOINT: x_m, z_m (where the vehicle was meant to be).
+  Table setpoint;
 };
 
 // The input channels whose rates and gaps are shown, in input_t_s order.

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "plot/status_words.h"
 #include "review/display_series.h"
+#include "samples/flight_verdict.h"
 
 namespace birotor {
 namespace {
@@ -275,17 +277,47 @@ table { border-collapse: collapse; margin: 0.5em 0; }
 td, th { border: 1px solid #ccc; padding: 2px 8px; text-align: right; }
 td:first-child { text-align: left; }
 tr.alarm td { background: #fdd; }
+#verdict.lost { background: #fdd; padding: 4px; }
 #review-summary { display: none; }
 )CSS";
 
 }  // namespace
 
+// The shared verdict (samples/flight_verdict.h) on columns z and phi of track,
+// against the newest SETPOINT altitude at each row (the first row's altitude
+// before any). The log does not say where the ground is: no ground-hit test.
+FlightVerdict VerdictOf(const Table& track, int z_column, int phi_column, const Table& setpoint) {
+  FlightJudge judge;
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  size_t next_setpoint = 0;
+  double z_reference_m = kUnknown;
+  for (size_t row = 0; row < track.rows(); ++row) {
+    while (next_setpoint < setpoint.rows() && setpoint.t_s[next_setpoint] <= track.t_s[row]) {
+      z_reference_m = setpoint.columns[1][next_setpoint++];
+    }
+    judge.Add(track.t_s[row], track.columns[z_column][row], z_reference_m, track.columns[phi_column][row], kUnknown,
+              kUnknown);
+  }
+  return judge.Result();
+}
+
+// The verdict in the page's first lines: TRUTH where the log has it, else POSE.
+std::string VerdictParagraph(const FlightData& d) {
+  if (d.truth.rows() == 0 && d.pose.rows() == 0) return "<p id=verdict>Verdict: no position in this log.</p>\n";
+  const FlightVerdict v =
+      d.truth.rows() > 0 ? VerdictOf(d.truth, 5, 6, d.setpoint) : VerdictOf(d.pose, 1, 2, d.setpoint);
+  return fmt::format("<p id=verdict class={}><b>Verdict:</b> {} ({})</p>\n", v.lost ? "lost" : "kept", Escape(v.Line()),
+                     d.truth.rows() > 0 ? "TRUTH" : "POSE");
+}
+
 std::string FlightSummaryText(const FlightData& d) {
   std::string out = fmt::format("flight: {} events over {:.3f} s\n", d.events, d.duration_s);
   if (d.truth.rows() > 0) {
     out += PositionHold(d.truth, 4, 5, "TRUTH");
+    out += "flight: verdict: " + VerdictOf(d.truth, 5, 6, d.setpoint).Line() + " (TRUTH)\n";
   } else if (d.pose.rows() > 0) {
     out += PositionHold(d.pose, 0, 1, "POSE");
+    out += "flight: verdict: " + VerdictOf(d.pose, 1, 2, d.setpoint).Line() + " (POSE)\n";
   }
   if (d.motor_command.rows() > 0) {
     int64_t fallbacks = 0;
@@ -335,6 +367,7 @@ std::string ReviewPageHtml(const FlightData& d) {
       "<h1>Flight review</h1>\n<p>{}: {} events, {:.3f} s. t = 0 at the first message (utime {}). Drag to zoom, "
       "shift-drag to pan, double-click to zoom out; every chart follows. <button id=reset>whole flight</button></p>\n",
       Escape(d.path), d.events, d.duration_s, d.t0_utime);
+  html += VerdictParagraph(d);
   html += "<h2>Channels</h2>\n" + ChannelTable(d);
   html += "<h2>Alarms</h2>\n" + RiseTable(d);
   html += "<h2>Inputs</h2>\n" + InputTable(d);

@@ -101,6 +101,7 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
       options.controller_mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
       run.controller.descents, metrics.rms_position_error_m, metrics.peak_tilt_rad, metrics.peak_altitude_loss_m,
       writer.events_written(), options.output);
+  spdlog::info("verdict: {}", metrics.verdict.Line());
   if (controller.model_predictive) {
     spdlog::info(
         "mpc: {} solves, {} fallbacks ({} failed, {} non-finite, {} infeasible, {} late); solve time p50 "

@@ -157,7 +157,13 @@ struct ControlTables {
   std::string comparison = ComparisonTableHeader();
   std::string mpc = MpcComparisonHeader();
   int64_t mpc_violations = 0;
+  std::string lost;  // one "verdict: ..." line per lost flight (samples/flight_verdict.h)
 };
+
+// A lost flight's one line, for the end of the tables.
+void NoteIfLost(const std::string& run, const char* mode, const ControlMetrics& metrics, ControlTables* tables) {
+  if (metrics.verdict.lost) tables->lost += fmt::format("verdict: {} {}: {}\n", run, mode, metrics.verdict.Line());
+}
 
 // --mpc: the force-feedback cascade and the MPC without / with the efficiencies.
 constexpr const char* kMpcModes[] = {"force_feedback", "mpc_nominal", "mpc"};
@@ -184,6 +190,7 @@ void FlyCascadeModes(const ControlCase& c, const Scenario& scenario, bool first_
     const ControlMetrics metrics = EvaluateControl(run);
     const char* mode = force_feedback ? "force_feedback" : "nominal";
     tables->runs += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), mode, metrics, run);
+    NoteIfLost(fmt::format("{} seed {}", c.name, scenario.seed), mode, metrics, tables);
     figures->cascade[force_feedback ? 1 : 0].push_back(FiguresOf(metrics));
     spdlog::info(
         "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated; final "
@@ -210,6 +217,7 @@ void FlyMpcModes(const ControlCase& c, const Scenario& scenario, const Estimator
     figures->mpc[m].push_back(MpcFiguresOf(run, metrics, config));
     tables->mpc_violations += figures->mpc[m].back().commands_out_of_bounds + figures->mpc[m].back().commands_over_rate;
     tables->runs += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), kMpcModes[m], metrics, run);
+    NoteIfLost(fmt::format("{} seed {}", c.name, scenario.seed), kMpcModes[m], metrics, tables);
     spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, {} fallbacks, solve p99 {:.0f} us", c.name,
                  scenario.seed, kMpcModes[m], run.simulated_s, run.wall_s, run.mpc.solves, run.mpc.Fallbacks(),
                  1e6 * run.mpc.solve_p99_s);
@@ -262,6 +270,8 @@ int RunControlTable(const std::vector<std::string>& names, const EvalCli& cli, c
   const std::string table = tables.runs + "\n" + tables.comparison + (cli.mpc ? "\n" + tables.mpc : std::string());
 
   std::printf("%s", table.c_str());
+  // Lost flights in one line each, after the tables (their figures unchanged).
+  std::printf("%s", tables.lost.empty() ? "\nverdict: every flight kept its vehicle\n" : ("\n" + tables.lost).c_str());
   std::string error;
   if (!cli.markdown_out.empty() && !WriteFileAtomically(cli.markdown_out, table, &error)) return ReportError(error);
   // Issue 21: no MPC command outside [0, omega_max] or above the rate limit, ever.

@@ -232,6 +232,11 @@ if [ -n "$controller_mode" ]; then
   if "$review_bin" "$flight_log" --output "$log_prefix-review.html" --log-level warn > "$log_prefix-review.txt"; then
     grep "^flight: " "$log_prefix-review.txt" | sed 's/^flight: /flight: /'
     echo "demo: review page: $log_prefix-review.html (recorded flight: $flight_log)"
+    # The one verdict (samples/flight_verdict.h): a lost vehicle fails the demo.
+    if grep -q "^flight: verdict: LOST" "$log_prefix-review.txt"; then
+      echo "demo: the vehicle was LOST: $(sed -n 's/^flight: verdict: //p' "$log_prefix-review.txt" | head -n 1)" >&2
+      status=1
+    fi
   else
     echo "demo: birotor-review failed on $flight_log" >&2
     status=1

@@ -59,7 +59,9 @@ cleanup() {
 trap cleanup EXIT INT TERM
 
 echo "soak: ${seconds}s on $url prefix $prefix, scenario $scenario; logs in $out"
-"$estimator" --lcm-url "$url" --prefix "$prefix" > "$out/estimator.log" 2>&1 &
+# The shipped units' real-time priorities (docs/realtime.md): a busy machine
+# does not decide the drop count.
+"$estimator" --lcm-url "$url" --prefix "$prefix" --realtime-priority 50 > "$out/estimator.log" 2>&1 &
 estimator_pid=$!
 pids+=("$estimator_pid")
 sleep 1
@@ -71,7 +73,7 @@ monitor_pid=$!
 sleep 0.5
 # The simulator runs a little longer than the monitor, so the monitor's whole
 # window sees a steady 1 kHz stream.
-"$sim" --scenario "$scenario" --lcm-url "$url" --prefix "$prefix" --log-level warn \
+"$sim" --scenario "$scenario" --lcm-url "$url" --prefix "$prefix" --log-level warn --realtime-priority 60 \
   --set "scenario.duration_s=$(( seconds + 5 ))" > "$out/sim.log" 2>&1 &
 pids+=("$!")
 

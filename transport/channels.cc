@@ -18,6 +18,13 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.motor_command = prefix + kMotorCommandChannel;
   names.controller_status = prefix + kControllerStatusChannel;
   names.setpoint = prefix + kSetpointChannel;
+  names.strain_n = prefix + kStrainNChannel;
+  names.motor_n = prefix + kMotorNChannel;
+  names.loadcell_n = prefix + kLoadCellNChannel;
+  names.truth_n = prefix + kTruthNChannel;
+  names.force_n = prefix + kForceNChannel;
+  names.motor_command_n = prefix + kMotorCommandNChannel;
+  names.vehicle = prefix + kVehicleDescriptionChannel;
   return names;
 }
 

@@ -22,6 +22,18 @@ inline constexpr char kSimStatusChannel[] = "SIM_STATUS";
 inline constexpr char kMotorCommandChannel[] = "MOTOR_COMMAND";
 inline constexpr char kControllerStatusChannel[] = "CONTROLLER_STATUS";
 inline constexpr char kSetpointChannel[] = "SETPOINT";
+// The counted types for a vehicle with N arms (docs/interface.md, "Vehicles
+// with N arms"): new names, because a channel carries one type (lcm-spy and
+// the tools decode a channel by it), and the birotor channels keep theirs.
+inline constexpr char kStrainNChannel[] = "STRAIN_N";
+inline constexpr char kMotorNChannel[] = "MOTOR_N";
+inline constexpr char kLoadCellNChannel[] = "LOADCELL_N";
+inline constexpr char kTruthNChannel[] = "TRUTH_N";
+inline constexpr char kForceNChannel[] = "FORCE_N";
+inline constexpr char kMotorCommandNChannel[] = "MOTOR_COMMAND_N";
+// vehicle_description_t; no longer than CONTROLLER_STATUS, so the prefix
+// limit below stays.
+inline constexpr char kVehicleDescriptionChannel[] = "VEHICLE";
 
 // Full channel names for one prefix.
 struct ChannelNames {
@@ -38,6 +50,13 @@ struct ChannelNames {
   std::string motor_command;      // motor_command_t
   std::string controller_status;  // controller_status_t
   std::string setpoint;           // setpoint_t
+  std::string strain_n;           // strain_n_t
+  std::string motor_n;            // motor_n_t
+  std::string loadcell_n;         // loadcell_n_t
+  std::string truth_n;            // truth_n_t
+  std::string force_n;            // force_estimate_n_t
+  std::string motor_command_n;    // motor_command_n_t
+  std::string vehicle;            // vehicle_description_t
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);

@@ -1,6 +1,8 @@
 // Non-template parts of the checked LCM codec.
 #include "transport/lcm_codec.h"
 
+#include <initializer_list>
+
 namespace birotor {
 
 const char* DecodeErrorName(DecodeError error) {
@@ -48,6 +50,13 @@ class WireCursor {
     return true;
   }
 
+  bool ReadInt8(int8_t* value) {
+    if (1 > size_ - pos_) return Fail(DecodeError::kTruncated);
+    *value = static_cast<int8_t>(data_[pos_]);
+    pos_ += 1;
+    return true;
+  }
+
   // LCM string: int32 length including the terminating NUL, then the bytes.
   bool SkipString() {
     int32_t length = 0;
@@ -82,6 +91,48 @@ bool SkipInputHealth(WireCursor* cursor) {
   constexpr size_t kTailDoubles = 3;     // nis_mean, nis_max, gate
   return cursor->SkipString() &&
          cursor->Skip(8 * kInt64Counters + 8 * kDoubles + 8 * kTailInt64 + kTailInt8 + 8 * kTailDoubles);
+}
+
+// One step of a wire layout after the fingerprint: fixed bytes, the int8_t
+// count, an array of count elements of the given size, or a string.
+struct LayoutStep {
+  enum Kind { kBytes, kCount, kArray, kString } kind;
+  size_t bytes;  // kBytes: how many; kArray: per element
+};
+constexpr LayoutStep Bytes(size_t bytes) { return {LayoutStep::kBytes, bytes}; }
+constexpr LayoutStep Count() { return {LayoutStep::kCount, 0}; }
+constexpr LayoutStep Array(size_t element_bytes) { return {LayoutStep::kArray, element_bytes}; }
+constexpr LayoutStep String() { return {LayoutStep::kString, 0}; }
+constexpr LayoutStep kDoubles = Array(8);
+constexpr LayoutStep kInt8s = Array(1);  // int8_t and boolean
+constexpr size_t kUtimeSeq = 8 + 4;
+
+// Walks a counted type's layout: a negative count is malformed (the
+// generated decoder would resize a vector to ~2^64 elements), any step past
+// the end truncated.
+DecodeError WalkLayout(const uint8_t* data, size_t size, std::initializer_list<LayoutStep> steps) {
+  WireCursor cursor(data, size);
+  if (!cursor.Skip(8)) return cursor.error();  // fingerprint
+  int8_t count = 0;
+  for (const LayoutStep& step : steps) {
+    bool ok = true;
+    switch (step.kind) {
+      case LayoutStep::kBytes:
+        ok = cursor.Skip(step.bytes);
+        break;
+      case LayoutStep::kCount:
+        ok = cursor.ReadInt8(&count) && (count >= 0 || cursor.Fail(DecodeError::kMalformed));
+        break;
+      case LayoutStep::kArray:
+        ok = cursor.Skip(step.bytes * static_cast<size_t>(count));
+        break;
+      case LayoutStep::kString:
+        ok = cursor.SkipString();
+        break;
+    }
+    if (!ok) return cursor.error();
+  }
+  return DecodeError::kNone;
 }
 
 }  // namespace
@@ -128,6 +179,43 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
                        && cursor.SkipString()         // body_mass_source
                        && cursor.SkipString();        // vehicle_checksum
   return tail_ok ? DecodeError::kNone : cursor.error();
+}
+
+// Field layouts of the counted types, as in their .lcm files.
+template <>
+DecodeError CheckLengthFields<strain_n_t>(const uint8_t* data, size_t size) {
+  return WalkLayout(data, size, {Bytes(kUtimeSeq), Count(), kDoubles});
+}
+template <>
+DecodeError CheckLengthFields<motor_n_t>(const uint8_t* data, size_t size) {
+  return WalkLayout(data, size, {Bytes(kUtimeSeq), Count(), kDoubles, kDoubles});
+}
+template <>
+DecodeError CheckLengthFields<loadcell_n_t>(const uint8_t* data, size_t size) {
+  return WalkLayout(data, size, {Bytes(kUtimeSeq), Count(), kDoubles});
+}
+template <>
+DecodeError CheckLengthFields<truth_n_t>(const uint8_t* data, size_t size) {
+  // utime, x, z, phi; n_arms; deflection; x_dot, z_dot, phi_dot; four arrays.
+  return WalkLayout(data, size,
+                    {Bytes(8 + 3 * 8), Count(), kDoubles, Bytes(3 * 8), kDoubles, kDoubles, kDoubles, kDoubles});
+}
+template <>
+DecodeError CheckLengthFields<force_estimate_n_t>(const uint8_t* data, size_t size) {
+  // force, std, thrust scale; status, rotor_fault_bits.
+  return WalkLayout(data, size, {Bytes(kUtimeSeq), Count(), kDoubles, kDoubles, kDoubles, Bytes(4 + 4)});
+}
+template <>
+DecodeError CheckLengthFields<motor_command_n_t>(const uint8_t* data, size_t size) {
+  return WalkLayout(data, size, {Bytes(kUtimeSeq), Count(), kDoubles, Bytes(4 + 4)});  // mode, status
+}
+template <>
+DecodeError CheckLengthFields<vehicle_description_t>(const uint8_t* data, size_t size) {
+  // publisher, name, checksum; 8 body doubles; n_arms; angle, length, thrust
+  // angle; spin; stiffness .. motor time constant; has_gauge; gauge scale, offset.
+  return WalkLayout(data, size,
+                    {Bytes(kUtimeSeq), String(), String(), String(), Bytes(8 * 8), Count(), kDoubles, kDoubles,
+                     kDoubles, kInt8s, kDoubles, kDoubles, kDoubles, kDoubles, kDoubles, kInt8s, kDoubles, kDoubles});
 }
 
 }  // namespace internal

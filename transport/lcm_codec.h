@@ -9,7 +9,14 @@
 #include <vector>
 
 #include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_n_t.hpp"
 #include "birotor/input_health_t.hpp"
+#include "birotor/loadcell_n_t.hpp"
+#include "birotor/motor_command_n_t.hpp"
+#include "birotor/motor_n_t.hpp"
+#include "birotor/strain_n_t.hpp"
+#include "birotor/truth_n_t.hpp"
+#include "birotor/vehicle_description_t.hpp"
 
 namespace birotor {
 
@@ -42,6 +49,22 @@ template <>
 DecodeError CheckLengthFields<input_health_t>(const uint8_t* data, size_t size);
 template <>
 DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t size);
+// The counted types (an int8_t count, then arrays of it): a negative count is
+// malformed, arrays longer than the packet are truncated.
+template <>
+DecodeError CheckLengthFields<strain_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<motor_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<loadcell_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<truth_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<force_estimate_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<motor_command_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<vehicle_description_t>(const uint8_t* data, size_t size);
 
 }  // namespace internal
 

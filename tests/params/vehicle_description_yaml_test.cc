@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "model/vehicle_description_checksum.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
@@ -171,6 +172,19 @@ TEST(VehicleDescriptionYaml, GaugeOnAnArmWithoutLeverIsRefused) {
                             "    - angle_deg: 0\n      thrust_angle_deg: -90\n"),
                 {"key 'vehicle': the vehicle cannot fly", "arms[1].has_gauge: true on an arm whose thrust lever",
                  "(allowed: |l| >= 0.1 x length_m, or has_gauge false)"});
+}
+
+// The description checksum of VEHICLE_DESCRIPTION (model/vehicle_description_checksum.h)
+// for the shipped files: the birotor's is the reference birotor's of
+// tests/model/vehicle_description_checksum_test.cc, bit for bit (180 deg
+// reads as exactly pi), and one changed key changes it.
+TEST(VehicleDescriptionYaml, ChecksumOfTheShippedFiles) {
+  const std::string birotor = DescriptionChecksum(LoadVehicleDescription("config/vehicles/birotor.yaml"));
+  EXPECT_EQ(birotor, "3c46c6d41f8659af");
+  EXPECT_EQ(DescriptionChecksum(LoadVehicleDescription("config/reference_vehicle.yaml")), birotor);
+  EXPECT_EQ(DescriptionChecksum(LoadVehicleDescription("config/vehicles/trirotor.yaml")), "39efb21ecd444d4f");
+  const std::string path = WriteTemp(BirotorWith("tip_mass_kg: 0.28812", "tip_mass_kg: 0.28813"));
+  EXPECT_NE(DescriptionChecksum(LoadVehicleDescription(path)), birotor);
 }
 
 }  // namespace

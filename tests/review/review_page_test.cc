@@ -42,6 +42,20 @@ TEST(ReviewPageTest, FlightFigures) {
   EXPECT_NE(text.find("100 MOTOR_COMMAND (75.0 % in force_feedback mode); 2 fallbacks at t [s] = 0.200, 0.700"),
             std::string::npos)
       << text;
+  EXPECT_NE(text.find("flight: verdict: kept: altitude loss 0.000 m, max tilt 0.00 rad (TRUTH)"), std::string::npos)
+      << text;
+}
+
+// A flight that fell below its SETPOINT altitude: the verdict says LOST with
+// the time, against the setpoint (2 m) rather than the first altitude (1 m).
+TEST(ReviewPageTest, LostFlightIsSaidInOneLine) {
+  FlightData d = MakeFlight();
+  d.setpoint = Table({"x ref", "z ref"});
+  d.setpoint.Add(0.0, {0.0, 2.0});
+  const std::string text = FlightSummaryText(d);
+  EXPECT_NE(text.find("flight: verdict: LOST: altitude loss 1.000 m at t = 0.00 s;"), std::string::npos) << text;
+  EXPECT_NE(ReviewPageHtml(d).find("<p id=verdict class=lost><b>Verdict:</b> LOST: altitude loss 1.000 m"),
+            std::string::npos);
 }
 
 TEST(ReviewPageTest, SelfContainedPageWithTheChartsOfTheData) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace birotor {
 namespace {
 
@@ -20,6 +22,21 @@ TEST(ChannelsTest, DefaultPrefix) {
   EXPECT_EQ(names.sim_status, "BIROTOR_SIM_STATUS");
   EXPECT_EQ(names.motor_command, "BIROTOR_MOTOR_COMMAND");
   EXPECT_EQ(names.controller_status, "BIROTOR_CONTROLLER_STATUS");
+  EXPECT_EQ(names.strain_n, "BIROTOR_STRAIN_N");
+  EXPECT_EQ(names.motor_n, "BIROTOR_MOTOR_N");
+  EXPECT_EQ(names.loadcell_n, "BIROTOR_LOADCELL_N");
+  EXPECT_EQ(names.truth_n, "BIROTOR_TRUTH_N");
+  EXPECT_EQ(names.force_n, "BIROTOR_FORCE_N");
+  EXPECT_EQ(names.motor_command_n, "BIROTOR_MOTOR_COMMAND_N");
+  EXPECT_EQ(names.vehicle, "BIROTOR_VEHICLE");
+}
+
+TEST(ChannelsTest, ControllerStatusStaysTheLongestBaseName) {
+  // The prefix limit is computed from it; a longer new name would shorten it.
+  for (const char* name : {kStrainNChannel, kMotorNChannel, kLoadCellNChannel, kTruthNChannel, kForceNChannel,
+                           kMotorCommandNChannel, kVehicleDescriptionChannel}) {
+    EXPECT_LE(std::string(name).size(), sizeof(kControllerStatusChannel) - 1) << name;
+  }
 }
 
 TEST(ChannelsTest, CustomAndEmptyPrefix) {

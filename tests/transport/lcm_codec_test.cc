@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "tests/transport/counted_test_messages.h"
 #include "tests/transport/test_messages.h"
 
 namespace birotor {
@@ -21,8 +22,10 @@ using transport_test::MakeTestMessage;
 template <class Msg>
 class CodecTest : public ::testing::Test {};
 
-using AllMessages = ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t,
-                                     motor_command_t, input_health_t, estimator_status_t>;
+using AllMessages =
+    ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t, motor_command_t,
+                     input_health_t, estimator_status_t, strain_n_t, motor_n_t, loadcell_n_t, truth_n_t,
+                     force_estimate_n_t, motor_command_n_t, vehicle_description_t>;
 TYPED_TEST_SUITE(CodecTest, AllMessages);
 
 TYPED_TEST(CodecTest, RoundTripReproducesTheBytes) {
