@@ -67,8 +67,7 @@ TEST(MultiArmHover, TrirotorHoldsStill) {
   // Rigid allocation, closed form: the F_x row gives f_2 = f_3 = f, the
   // torque row -L f_1 + 2 L f = m_p g L (cos 180 + 2 cos 45 deg) (the tip
   // weights' moment about the centre), F_z f_1 + sqrt(2) f = W: f = 14.3196 N,
-  // f_1 = 27.4684 N. vehicle-description.md's SolveHover (27.9534, 13.9767 N)
-  // leaves the tip weights' moment out.
+  // f_1 = 27.4684 N: SolveHover's figures (docs/vehicle-description.md).
   const ArmDescription& arm = vehicle.arms[0];
   const double weight_n = vehicle.gravity_m_s2 * vehicle.TotalMass();
   const double tip_moment_n = arm.tip_mass_kg * vehicle.gravity_m_s2 * (std::sqrt(2.0) - 1.0);  // over L
