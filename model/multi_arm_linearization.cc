@@ -24,21 +24,6 @@ std::vector<int> BalancedRows(const VehicleDescription& vehicle) {
   return rows;
 }
 
-// Least-norm thrusts of the rigid wrench W f = w of SolveMultiArmHover.
-Eigen::VectorXd AllocateHoverThrust(const VehicleDescription& vehicle) {
-  const int arms = vehicle.arm_count;
-  Eigen::MatrixXd wrench(3, arms);
-  Eigen::Vector3d target(0.0, vehicle.gravity_m_s2 * vehicle.TotalMass(), 0.0);
-  for (int i = 0; i < arms; ++i) {
-    const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
-    wrench.col(i) << -std::sin(arm.thrust_angle_rad), std::cos(arm.thrust_angle_rad), arm.ThrustLeverM();
-    target(2) += arm.tip_mass_kg * vehicle.gravity_m_s2 * arm.length_m * std::cos(arm.angle_rad);
-  }
-  const int first = arms > 2 ? 0 : 1;
-  const int rows = 3 - first;
-  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(wrench.bottomRows(rows)).solve(target.tail(rows));
-}
-
 // Static residual rows of tau - G at q = [0, 0, 0, b], v = 0; unknowns [b; f].
 Eigen::VectorXd StaticResidual(const VehicleDescription& vehicle, const Eigen::VectorXd& unknowns,
                                Eigen::MatrixXd* jacobian) {
@@ -67,7 +52,9 @@ Eigen::VectorXd StaticResidual(const VehicleDescription& vehicle, const Eigen::V
 MultiArmHover SolveMultiArmHover(const VehicleDescription& vehicle) {
   const int arms = vehicle.arm_count;
   MultiArmHover hover;
-  hover.allocation_force_n = AllocateHoverThrust(vehicle);
+  // The rigid allocation (model/vehicle_description.h, tip weights' moment
+  // included) is the first guess; Newton adds the deflections.
+  hover.allocation_force_n = Eigen::Map<const Eigen::VectorXd>(SolveHover(vehicle).thrust_n.data(), vehicle.arm_count);
   Eigen::VectorXd unknowns(2 * arms);
   for (int i = 0; i < arms; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];

@@ -15,21 +15,19 @@ namespace birotor {
 
 // The level (phi = 0), still, deflected vehicle under its hover thrusts.
 struct MultiArmHover {
-  Eigen::VectorXd allocation_force_n;  // least-norm first guess from the rigid wrench [N]
+  Eigen::VectorXd allocation_force_n;  // SolveHover's rigid thrusts, the first guess [N]
   Eigen::VectorXd force_n;             // f_i at the equilibrium [N]
   Eigen::VectorXd deflection_rad;      // b_i at the equilibrium [rad]
   double residual = 0;                 // max |tau - G| left on the balanced rows [N, N m]
   bool converged = false;
 };
 
-// Hover thrusts and deflections. First guess: the least-norm f of the rigid
-// wrench rows W f = w,
-//   W = [-sin theta_i; cos theta_i; l_i],  w = [0, g (m + sum m_p,i), g sum m_p,i L_i cos alpha_i]
-// (F_x, F_z, torque about the body centre, the tip weights' moment included),
-// with only the F_z and torque rows for N = 2 (a birotor cannot balance F_x
-// at phi = 0 other than by symmetry), and b_i = (l_i f_i - m_p,i g L_i cos
-// alpha_i) / k_i. Then Newton (min-norm steps, exact Jet Jacobian) on the
-// static rows tau - G = 0 at q = [0, 0, 0, b], v = 0 for the unknowns (b, f):
+// Hover thrusts and deflections. First guess: the rigid hover of SolveHover
+// (model/vehicle_description.h), A f = w_hover with the tip weights' moment
+// (least-norm over F_x, F_z and torque; F_z and torque only for N = 2, a
+// birotor cannot balance F_x at phi = 0 other than by symmetry), and
+// b_i = (l_i f_i - m_p,i g L_i cos alpha_i) / k_i. Then Newton (min-norm
+// steps, exact Jet Jacobian) on the static rows tau - G = 0 at q = [0, 0, 0, b], v = 0 for the unknowns (b, f):
 // rows x, z, phi, b_1 .. b_N (z, phi, b_1, b_2 for N = 2, as equilibrium.h).
 MultiArmHover SolveMultiArmHover(const VehicleDescription& vehicle);
 

@@ -136,7 +136,8 @@ void CheckAllocation(const VehicleDescription& d, std::vector<std::string>* prob
 void CheckHover(const VehicleDescription& d, std::vector<std::string>* problems) {
   const HoverSolution hover = SolveHover(d);
   const std::string weight = " (total mass " + Number(d.TotalMass()) + " kg, gravity_m_s2 " + Number(d.gravity_m_s2) +
-                             ", thrust_coeff_n_s2_rad2 ";
+                             ", tip weights' moment " + Number(HoverWrench(d)(kWrenchTorque)) +
+                             " N m, thrust_coeff_n_s2_rad2 ";
   for (int i = 0; i < d.arm_count; ++i) {
     const size_t k = static_cast<size_t>(i);
     const std::string c_t = Number(d.arms[k].thrust_coeff_n_s2_rad2) + ")";
@@ -278,11 +279,25 @@ AllocationMargin ControlledAxesMargin(const VehicleDescription& d) {
   return margin;
 }
 
+Eigen::Vector3d HoverWrench(const VehicleDescription& d) {
+  Eigen::Vector3d wrench = Eigen::Vector3d::Zero();
+  if (!ValidArmCount(d)) return wrench;
+  wrench(kWrenchFz) = d.gravity_m_s2 * d.TotalMass();
+  // Tip i weighs m_p,i g at x = L_i cos alpha_i: its moment -m_p,i g x, which
+  // the thrusts cancel. Summed term by term: the birotor's -m_p g L (cos pi
+  // is -1 in double) and +m_p g L cancel exactly, its hover stays bitwise.
+  for (int i = 0; i < d.arm_count; ++i) {
+    const ArmDescription& arm = d.arms[static_cast<size_t>(i)];
+    wrench(kWrenchTorque) += arm.tip_mass_kg * d.gravity_m_s2 * arm.length_m * std::cos(arm.angle_rad);
+  }
+  return wrench;
+}
+
 HoverSolution SolveHover(const VehicleDescription& d) {
   if (!ValidArmCount(d)) return HoverSolution();
   const AllocationMatrix allocation = WrenchAllocation(d);
   const int rows = (d.arm_count == kBirotorArmCount) ? 2 : kWrenchSize;
-  Eigen::Vector3d wrench(0.0, d.gravity_m_s2 * d.TotalMass(), 0.0);
+  const Eigen::Vector3d wrench = HoverWrench(d);
   // The complete orthogonal decomposition gives the least-norm solution of
   // an underdetermined system, and the exact one of a square regular one.
   const Eigen::MatrixXd a = allocation.bottomRows(rows);

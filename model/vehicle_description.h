@@ -118,8 +118,9 @@ bool ToBirotorParams(const VehicleDescription& description, VehicleParams* param
 // "arms[1].stiffness_n_m_rad: 3000 vs 2628".
 std::string FirstDifference(const VehicleDescription& a, const VehicleDescription& b);
 
-// WrenchAllocation, ControlledAxesMargin and SolveHover need arm_count in
-// [2, kMaxArms]; outside it they return an empty matrix, rows 0 and zeros.
+// WrenchAllocation, ControlledAxesMargin, HoverWrench and SolveHover need
+// arm_count in [2, kMaxArms]; outside it they return an empty matrix, rows 0
+// and zeros.
 //
 // Column i maps thrust f_i [N] to the body wrench at zero deflection:
 //   [F_x; F_z] += f_i u_i,  torque += f_i l_i,  l_i = L_i (e_i x u_i).
@@ -136,11 +137,26 @@ struct AllocationMargin {
 };
 AllocationMargin ControlledAxesMargin(const VehicleDescription& description);
 
-// Thrusts and speeds that hold the level, undeflected vehicle at rest:
-// wrench [0, g (m + sum m_p,i), 0]. N = 2: the F_z and torque rows solved
-// (F_x is whatever the thrust directions give; 0 for the birotor); N >= 3:
-// the least-norm solution of all three rows. omega_i = sqrt(f_i / c_T,i)
-// (0 where f_i <= 0). The exact hover adds the arms' static deflection.
+// The wrench [F_x, F_z, tau] (rows kWrenchFx, kWrenchFz, kWrenchTorque) the
+// thrusts must give to hold the level, undeflected vehicle at rest: minus the
+// gravity wrench of the body (at the centre) and of every tip mass (at
+// L_i e_i), torque tau = x F_z - z F_x about the centre:
+//   w_hover = [0,  g (m + sum_i m_p,i),  sum_i m_p,i g L_i cos alpha_i].
+// The last row is the tip weights' moment, which the thrusts must cancel:
+// 0 on the birotor (cos pi + cos 0 = 0), 0.293 N m on the trirotor of
+// config/vehicles/trirotor.yaml. Zeros outside arm_count [2, kMaxArms].
+Eigen::Vector3d HoverWrench(const VehicleDescription& description);
+
+// Thrusts and speeds that hold the level, undeflected vehicle at rest, the
+// one rigid-hover allocation of the project (the N-arm hover of
+// model/multi_arm_linearization.h starts from it). The body wrench rows
+// [F_x, F_z, tau] = A f (WrenchAllocation) cancel the gravity wrench of the
+// body and every tip mass at zero deflection (HoverWrench):
+//   A f = [0,  g (m + sum_i m_p,i),  sum_i m_p,i g L_i cos alpha_i].
+// N = 2: the F_z and torque rows solved (F_x is whatever the thrust
+// directions give; 0 for the birotor); N >= 3: the least-norm solution of all
+// three rows. omega_i = sqrt(f_i / c_T,i) (0 where f_i <= 0). The exact hover
+// adds the arms' static deflection.
 struct HoverSolution {
   std::array<double, kMaxArms> thrust_n{};     // f_i [N]
   std::array<double, kMaxArms> omega_rad_s{};  // [rad/s]
@@ -152,7 +168,7 @@ HoverSolution SolveHover(const VehicleDescription& description);
 // arm_count in [2, kMaxArms]; masses, inertia, lengths, stiffness, c_T,
 // tau_m and omega_max positive and finite, every other number finite;
 // spin +1 or -1; the allocation margin (ratio >= kMinAllocationSingularRatio);
-// hover thrusts > 0 and hover speeds <= omega_max; a gauge only where
+// SolveHover's thrusts > 0 and speeds <= omega_max; a gauge only where
 // |l_i| >= kMinGaugeLeverFraction L_i.
 std::vector<std::string> PlausibilityProblems(const VehicleDescription& description);
 

@@ -1,6 +1,8 @@
 // birotor-analyze: the model analysis of thesis ch. 3-4 and 6 for a parameter
 // file: hover equilibrium, linearized A and B, arm modes, and observability /
 // controllability tables that are numerically sound for this stiff system.
+// With --vehicle, the N-arm analysis of a vehicle description instead
+// (model/vehicle_analysis.h, printed as docs/multi-arm-model.md shows it).
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -13,9 +15,12 @@
 #include "model/linearization.h"
 #include "model/observability.h"
 #include "model/parameter_observability.h"
+#include "model/vehicle_analysis.h"
+#include "params/vehicle_description_yaml.h"
 #include "params/vehicle_params_yaml.h"
 #include "program/config_files.h"
 #include "program/program_options.h"
+#include "tools/vehicle_analysis_text.h"
 
 namespace birotor {
 namespace {
@@ -73,22 +78,26 @@ void PrintParameterObservability(const VehicleParams& params) {
       "is never determined there, and the arm-mode effects of m_p need manoeuvres (docs/mismatch.md).\n");
 }
 
-int Run(int argc, char** argv) {
-  CLI::App app{"Model analysis of the birotor: equilibrium, linearization, modes, observability, controllability"};
-  app.option_defaults()->always_capture_default();
-  std::string params_file = FindConfigFile("reference_vehicle.yaml");
-  std::vector<std::string> measure_sets;
-  bool thesis_coordinates = false;
-  app.add_option(
-      "--params", params_file,
-      "Parameter file with a complete vehicle: section; default: the " + ConfigSearchText("reference_vehicle.yaml"));
-  app.add_option("--measure", measure_sets,
-                 "Measured states, comma separated (repeatable), from: x,z,phi,b1,b2,x_dot,z_dot,phi_dot,"
-                 "b1_dot,b2_dot,f1,f2. Default: the thesis's sets b1,b2 | x,z | all ten mechanical states");
-  app.add_flag("--thesis-coordinates", thesis_coordinates, "Print A and B in b_s = b1 + b2, b_d = b1 - b2");
-  app.set_version_flag("--version", std::string("birotor-analyze ") + BIROTOR_VERSION);
-  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+// --vehicle FILE [--without-gauge I ...]: the N-arm analysis of one description.
+int RunVehicleAnalysis(const std::string& vehicle_file, const std::vector<int>& without_gauge) {
+  VehicleDescription loaded;
+  try {
+    loaded = LoadVehicleDescription(vehicle_file);
+  } catch (const ParamError& e) {
+    return ReportError(e.what());
+  }
+  VehicleDescription vehicle;
+  std::string why;
+  if (!VehicleWithoutGauges(loaded, without_gauge, &vehicle, &why)) {
+    return ReportError("--without-gauge: " + why + " in " + vehicle_file, kExitUsage);
+  }
+  std::printf("Vehicle file: %s\n\n%s", vehicle_file.c_str(),
+              VehicleAnalysisText(vehicle, AnalyzeVehicle(vehicle)).c_str());
+  return 0;
+}
 
+// Without --vehicle: the birotor analysis of --params (VehicleParams, the thesis's sets).
+int RunBirotorAnalysis(const std::string& params_file, std::vector<std::string> measure_sets, bool thesis_coordinates) {
   VehicleParams params;
   try {
     params = LoadVehicleParams(params_file);
@@ -154,6 +163,44 @@ int Run(int argc, char** argv) {
       ctrb.rank, ctrb.state_size, Join(ctrb.hidden_states).c_str(), ctrb.singular_values.minCoeff(),
       ctrb.pbh_margins.minCoeff());
   return 0;
+}
+
+int Run(int argc, char** argv) {
+  CLI::App app{
+      "Model analysis of the birotor: equilibrium, linearization, modes, observability, controllability; with "
+      "--vehicle, of any vehicle description"};
+  app.option_defaults()->always_capture_default();
+  std::string params_file = FindConfigFile("reference_vehicle.yaml");
+  std::vector<std::string> measure_sets;
+  bool thesis_coordinates = false;
+  auto* params_option = app.add_option(
+      "--params", params_file,
+      "Parameter file with a complete vehicle: section; default: the " + ConfigSearchText("reference_vehicle.yaml"));
+  auto* measure_option =
+      app.add_option("--measure", measure_sets,
+                     "Measured states, comma separated (repeatable), from: x,z,phi,b1,b2,x_dot,z_dot,phi_dot,"
+                     "b1_dot,b2_dot,f1,f2. Default: the thesis's sets b1,b2 | x,z | all ten mechanical states");
+  auto* thesis_flag =
+      app.add_flag("--thesis-coordinates", thesis_coordinates, "Print A and B in b_s = b1 + b2, b_d = b1 - b2");
+  std::string vehicle_file;
+  std::vector<int> without_gauge;
+  auto* vehicle_option =
+      app.add_option("--vehicle", vehicle_file,
+                     "Vehicle description file (N arms or the birotor form, docs/vehicle-description.md, e.g. "
+                     "config/vehicles/trirotor.yaml): print its N-arm analysis (hover, arm modes, controllability, "
+                     "force observability with and without IMU; docs/multi-arm-model.md) instead of the birotor "
+                     "analysis of --params");
+  app.add_option("--without-gauge", without_gauge,
+                 "With --vehicle: analyse the vehicle with arm I's gauge removed (1-based, as in the file's arms: "
+                 "list; repeatable or comma separated)")
+      ->delimiter(',')
+      ->needs(vehicle_option);
+  vehicle_option->excludes(params_option)->excludes(measure_option)->excludes(thesis_flag);
+  app.set_version_flag("--version", std::string("birotor-analyze ") + BIROTOR_VERSION);
+  if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
+  if (!vehicle_file.empty()) return RunVehicleAnalysis(vehicle_file, without_gauge);
+
+  return RunBirotorAnalysis(params_file, measure_sets, thesis_coordinates);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "tools/vehicle_analysis_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -40,6 +41,37 @@ std::string HoverText(const VehicleDescription& vehicle, const VehicleAnalysis& 
 
 }  // namespace
 
+bool VehicleWithoutGauges(const VehicleDescription& vehicle, const std::vector<int>& arms_1based,
+                          VehicleDescription* out, std::string* why) {
+  *out = vehicle;
+  std::vector<std::string> removed;
+  for (auto it = arms_1based.begin(); it != arms_1based.end(); ++it) {
+    const int arm = *it;
+    if (arm < 1 || arm > vehicle.arm_count) {
+      *why = Format("arm %d is not an arm of %s (arms 1 to %d)", arm, vehicle.name.c_str(), vehicle.arm_count);
+      return false;
+    }
+    ArmDescription& description = out->arms[static_cast<size_t>(arm - 1)];
+    if (std::find(arms_1based.begin(), it, arm) != it) {
+      *why = Format("arm %d is named twice", arm);
+      return false;
+    }
+    if (!description.has_gauge) {
+      *why = Format("arm %d of %s has no gauge to remove", arm, vehicle.name.c_str());
+      return false;
+    }
+    description.has_gauge = false;
+    removed.push_back(std::to_string(arm));
+  }
+  if (out->GaugeCount() == 0) {
+    *why = "no gauge would remain on " + vehicle.name + " (the analysis is of the gauges)";
+    return false;
+  }
+  if (!removed.empty())
+    out->name += (removed.size() == 1 ? ", no gauge on arm " : ", no gauge on arms ") + Join(removed);
+  return true;
+}
+
 std::string MeasurementSetLabel(const VehicleDescription& vehicle, VehicleMeasurementSet measured) {
   std::vector<std::string> gauges;
   for (int i = 0; i < vehicle.arm_count; ++i)
@@ -67,9 +99,9 @@ std::string VehicleAnalysisText(const VehicleDescription& vehicle, const Vehicle
   std::string out =
       Format("Vehicle: %s (%d arms, %d gauges)\n\n", analysis.name.c_str(), analysis.arm_count, analysis.gauge_count);
   out += HoverText(vehicle, analysis);
-  out += "\nArm modes at hover\n";
-  for (const Mode& mode : analysis.modes)
-    out += Format("  %8.3f Hz   damping ratio %.4f\n", mode.frequency_hz, mode.damping_ratio);
+  out += "\nArm modes at hover\n\n| mode | frequency [Hz] | damping ratio |\n|---|---|---|\n";
+  for (size_t k = 0; k < analysis.modes.size(); ++k)
+    out += Format("| %zu | %.3f | %.4f |\n", k + 1, analysis.modes[k].frequency_hz, analysis.modes[k].damping_ratio);
   const SubspaceReport& ctrb = analysis.controllability;
   out += Format("\nControllability from the %d forces: rank %d / %d; uncontrollable: %s\n", analysis.arm_count,
                 ctrb.rank, ctrb.state_size, Join(ctrb.hidden_states).c_str());

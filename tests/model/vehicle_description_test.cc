@@ -131,6 +131,23 @@ TEST(VehicleDescription, BirotorAllocationHoverAndMargin) {
   EXPECT_TRUE(PlausibilityProblems(d).empty()) << Joined(PlausibilityProblems(d));
 }
 
+// N = 2 with unequal tips: the F_z and torque rows f_1 + f_2 = W and
+// L (f_2 - f_1) = g L (m_p,2 - m_p,1) (the tip weights' moment) give
+// f_2 - f_1 = g (0.5 - 0.28812) = 2.07854 N about the mean W / 2.
+TEST(VehicleDescription, HoverCancelsTheTipWeightsMoment) {
+  VehicleDescription d = BirotorDescription(VehicleParams());
+  d.arms[1].tip_mass_kg = 0.5;
+  const double weight_n = 9.81 * (4.0 + 0.28812 + 0.5);
+  const Eigen::Vector3d wrench = HoverWrench(d);
+  EXPECT_NEAR(wrench(kWrenchFz), weight_n, 1e-12);
+  EXPECT_NEAR(wrench(kWrenchTorque), 9.81 * 0.25 * (0.5 - 0.28812), 1e-12);
+  const HoverSolution hover = SolveHover(d);
+  EXPECT_NEAR(hover.thrust_n[1] - hover.thrust_n[0], 2.07854, 1e-5);
+  EXPECT_NEAR(hover.thrust_n[0] + hover.thrust_n[1], weight_n, 1e-9);
+  // The symmetric birotor: cos pi + cos 0 cancels exactly, no moment.
+  EXPECT_EQ(HoverWrench(BirotorDescription(VehicleParams()))(kWrenchTorque), 0.0);
+}
+
 TEST(VehicleDescription, PlausibleFourArms) {
   const VehicleDescription d = FourArms();
   EXPECT_TRUE(PlausibilityProblems(d).empty()) << Joined(PlausibilityProblems(d));

@@ -51,8 +51,12 @@ TEST(VehicleDescriptionYaml, BothBirotorFilesGiveTheReferenceDescription) {
   EXPECT_DOUBLE_EQ(params.arm_stiffness_n_m_rad, 2628.0);  // config/reference_vehicle.yaml
 }
 
-// The figures of docs/vehicle-description.md, "The trirotor": hover
-// f_1 = 2 f, f_2 = f_3 = f = g (m + 3 m_p) / (2 + sqrt 2) = 13.97668 N.
+// The figures of docs/vehicle-description.md, "The trirotor". Hover, A f =
+// [0, W, tau_g] with W = g (m + 3 m_p) = 47.71937 N and the tip weights'
+// moment tau_g = m_p g L (cos 180 + 2 cos 45 deg) = 0.292689 N m: the F_x row
+// gives f_2 = f_3 = f, the torque row L (2 f - f_1) = tau_g, so
+// f_1 = 2 f - m_p g (sqrt 2 - 1), and F_z f_1 + sqrt(2) f = W:
+// f = (W + m_p g (sqrt 2 - 1)) / (2 + sqrt 2) = 14.31959 N, f_1 = 27.46842 N.
 TEST(VehicleDescriptionYaml, TrirotorLoadsWithTheDocumentedFigures) {
   const VehicleDescription d = LoadVehicleDescription("config/vehicles/trirotor.yaml");
   ASSERT_EQ(d.arm_count, 3);
@@ -64,27 +68,51 @@ TEST(VehicleDescriptionYaml, TrirotorLoadsWithTheDocumentedFigures) {
   EXPECT_NEAR(margin.singular_values(1), 1.36041, 1e-5);
   EXPECT_NEAR(margin.singular_values(2), 1.0, 1e-9);
   EXPECT_NEAR(margin.ratio, 0.56350, 1e-5);
+  const double weight_n = 9.81 * (4.0 + 3 * 0.28812), tip_n = 0.28812 * 9.81 * (std::sqrt(2.0) - 1.0);
+  const Eigen::Vector3d hover_wrench = HoverWrench(d);
+  EXPECT_NEAR(hover_wrench(kWrenchFx), 0.0, 1e-12);
+  EXPECT_NEAR(hover_wrench(kWrenchFz), weight_n, 1e-12);
+  EXPECT_NEAR(hover_wrench(kWrenchTorque), 0.25 * tip_n, 1e-12);
+  EXPECT_NEAR(hover_wrench(kWrenchTorque), 0.292689, 1e-6);
   const HoverSolution hover = SolveHover(d);
-  const double f_n = 9.81 * (4.0 + 3 * 0.28812) / (2.0 + std::sqrt(2.0));
-  EXPECT_NEAR(f_n, 13.97668, 1e-5);
-  EXPECT_NEAR(hover.thrust_n[0], 2.0 * f_n, 1e-9);
+  const double f_n = (weight_n + tip_n) / (2.0 + std::sqrt(2.0));
+  EXPECT_NEAR(f_n, 14.31959, 1e-5);
+  EXPECT_NEAR(hover.thrust_n[0], 2.0 * f_n - tip_n, 1e-9);
+  EXPECT_NEAR(hover.thrust_n[0], 27.46842, 1e-5);
   EXPECT_NEAR(hover.thrust_n[1], f_n, 1e-9);
   EXPECT_NEAR(hover.thrust_n[2], f_n, 1e-9);
-  EXPECT_NEAR(hover.omega_rad_s[0], 779.54, 0.01);  // 65.0 % of omega_max 1200
-  EXPECT_NEAR(hover.omega_rad_s[1], 551.22, 0.01);  // 45.9 %
-  EXPECT_NEAR(hover.omega_rad_s[2], 551.22, 0.01);
-  // Lateral force at hover F_z, zero torque: F_x = (f_2 - f_3) sin 45 deg with
-  // f_2 + f_3 = 2 f; the floor 0.1 omega_max on rotor 3 bounds it at
-  // sqrt(2) (f - c_T (120 rad/s)^2) = 18.829 N.
+  // sqrt(f / c_T), c_T = 4.6e-5; of omega_max 1200 rad/s.
+  EXPECT_NEAR(hover.omega_rad_s[0], 772.75, 0.01);  // 64.4 %
+  EXPECT_NEAR(hover.omega_rad_s[1], 557.94, 0.01);  // 46.5 %
+  EXPECT_NEAR(hover.omega_rad_s[2], 557.94, 0.01);
+  // Maximum lift: straight up at acceleration a without turning, every mass
+  // needs (g + a) / g of its weight, so A f = (1 + a / g) [0, W, tau_g] and
+  // f = (1 + a / g) f_hover. Rotor 1 reaches 0.95 omega_max first, at
+  // c_T (1140 rad/s)^2 = 59.7816 N: lift = W 59.7816 / f_1 = 103.855 N,
+  // 2.176 W (rotors 2 and 3 then at 31.17 N).
+  const double ceiling_n = 4.6e-5 * 1140.0 * 1140.0;
+  const double lift_scale = ceiling_n / hover.thrust_n[0];
+  EXPECT_NEAR(lift_scale * weight_n, 103.855, 1e-3);
+  EXPECT_NEAR(lift_scale, 2.176, 1e-3);
+  EXPECT_LT(lift_scale * hover.thrust_n[1], ceiling_n);
+  // Lateral force at zero tilt: A f = [F_x, W, tau_g]. The F_z and torque rows
+  // keep f_1 and f_2 + f_3 = 2 f, F_x = (f_2 - f_3) sin 45 deg; the floor
+  // 0.1 omega_max on rotor 3 bounds it at sqrt(2) (f - c_T (120 rad/s)^2) =
+  // 19.314 N, 0.405 g (the tip masses' inertial moment m_p a_x L sum sin
+  // alpha_i is 0), rotor 2 then at 2 f - c_T 120^2 = 27.977 N, 779.87 rad/s.
   const AllocationMatrix a = WrenchAllocation(d);
   const double floor_n = 4.6e-5 * 120.0 * 120.0;
   const double lateral_n = std::sqrt(2.0) * (f_n - floor_n);
-  EXPECT_NEAR(lateral_n, 18.829, 1e-3);
+  EXPECT_NEAR(lateral_n, 19.314, 1e-3);
+  EXPECT_NEAR(lateral_n / weight_n, 0.405, 1e-3);
   const double f2 = f_n + lateral_n / std::sqrt(2.0), f3 = floor_n;
-  EXPECT_NEAR(a(kWrenchFx, 1) * f2 + a(kWrenchFx, 2) * f3, lateral_n, 1e-9);
-  EXPECT_NEAR(a(kWrenchFz, 0) * 2.0 * f_n + a(kWrenchFz, 1) * f2 + a(kWrenchFz, 2) * f3, 9.81 * d.TotalMass(), 1e-9);
-  EXPECT_NEAR(a(kWrenchTorque, 0) * 2.0 * f_n + a(kWrenchTorque, 1) * f2 + a(kWrenchTorque, 2) * f3, 0.0, 1e-9);
-  EXPECT_LT(std::sqrt(f2 / 4.6e-5), 0.95 * 1200.0);
+  const Eigen::Vector3d lateral_thrust(hover.thrust_n[0], f2, f3);
+  const Eigen::Vector3d wrench = a * lateral_thrust;
+  EXPECT_NEAR(wrench(kWrenchFx), lateral_n, 1e-9);
+  EXPECT_NEAR(wrench(kWrenchFz), hover_wrench(kWrenchFz), 1e-9);
+  EXPECT_NEAR(wrench(kWrenchTorque), hover_wrench(kWrenchTorque), 1e-9);
+  EXPECT_NEAR(std::sqrt(f2 / 4.6e-5), 779.87, 0.01);
+  EXPECT_LT(f2, ceiling_n);
 }
 
 // The plausibility check at load time refuses none of the shipped vehicles:

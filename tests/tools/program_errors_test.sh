@@ -5,6 +5,7 @@
 # Usage: program_errors_test.sh TOOLS_BIN_DIR SIM_BIN_DIR
 set -euo pipefail
 tools="$1"; sim="$2"
+source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
 work="$(mktemp -d /tmp/birotor-errors-XXXXXX)"
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -27,6 +28,26 @@ expect() {
 # birotor-analyze --measure with an unknown state: the error, and nothing of the analysis.
 expect 2 "^birotor-analyze: error: --measure: unknown state 'b3'" "$tools/birotor-analyze" --measure b1,b3
 
+# birotor-analyze --vehicle: a description that cannot be read names the file
+# and the key; --without-gauge is checked against the vehicle's arms before
+# anything is printed, and needs --vehicle.
+cat > bad_vehicle.yaml <<'YAML'
+vehicle:
+  name: bad
+  body_mass_kg: -4.0
+YAML
+expect 1 "^birotor-analyze: error: bad_vehicle.yaml: .*body_mass_kg" "$tools/birotor-analyze" --vehicle bad_vehicle.yaml
+trirotor="$source_dir/config/vehicles/trirotor.yaml"
+expect 2 "^birotor-analyze: error: --without-gauge: arm 4 is not an arm of trirotor \(arms 1 to 3\)" \
+  "$tools/birotor-analyze" --vehicle "$trirotor" --without-gauge 4
+expect 2 "^birotor-analyze: error: --without-gauge: arm 0 is not an arm" \
+  "$tools/birotor-analyze" --vehicle "$trirotor" --without-gauge 0
+expect 2 "^birotor-analyze: error: --without-gauge: no gauge would remain" \
+  "$tools/birotor-analyze" --vehicle "$trirotor" --without-gauge 1,2 --without-gauge 3
+expect 2 "^birotor-analyze: error: --without-gauge requires --vehicle" "$tools/birotor-analyze" --without-gauge 1
+expect 2 "^birotor-analyze: error: --measure excludes --vehicle" "$tools/birotor-analyze" --vehicle "$trirotor" \
+  --measure x,z
+
 # Offline programs have no --lcm-url (it was listed and ignored: garbage://x exited 0).
 for program in birotor-replay birotor-plot birotor-eval birotor-identify; do
   expect 2 "^$program: error: .*--lcm-url" "$tools/$program" --lcm-url garbage://x --log in.lcm
@@ -44,6 +65,7 @@ expect 1 "^birotor-identify: error: .*missing.yaml" "$tools/birotor-identify" --
 expect 1 "^birotor-monitor: error: .*missing.yaml" "$tools/birotor-monitor" --scenario missing.yaml \
   --lcm-url "udpm://239.255.76.67:7799?ttl=0"
 expect 1 "^birotor-analyze: error: .*missing.yaml" "$tools/birotor-analyze" --params missing.yaml
+expect 1 "^birotor-analyze: error: .*missing.yaml" "$tools/birotor-analyze" --vehicle missing.yaml
 expect 1 "^birotor-review: error: .*missing.lcm" "$tools/birotor-review" missing.lcm --output o.html
 expect 1 "^birotor-sim: error: .*missing.yaml" "$sim/birotor-sim" --scenario missing.yaml --output o.lcm
 
