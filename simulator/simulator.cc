@@ -6,6 +6,7 @@
 
 #include "model/bench_dynamics.h"
 #include "model/rk4.h"
+#include "simulator/sample_clock.h"
 
 namespace birotor {
 namespace {
@@ -24,17 +25,12 @@ enum NoiseStream : uint64_t {
   kFaultStream = 7,
 };
 
-int64_t Microseconds(double t_s) { return std::llround(t_s * 1e6); }
-
-// First multiple of period_us at or after t_us, as a sample index.
-int64_t FirstSampleAtOrAfter(int64_t t_us, int64_t period_us) { return (t_us + period_us - 1) / period_us; }
-
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario)
     : scenario_(scenario),
       clamped_body_(scenario.mode == "bench"),
-      step_us_(Microseconds(scenario.step_s)),
+      step_us_(SecondsToUtime(scenario.step_s)),
       total_steps_(std::llround(scenario.duration_s / scenario.step_s)),
       equilibrium_(SolveHoverEquilibrium(scenario.vehicle)),
       trajectory_(scenario),
@@ -68,16 +64,16 @@ Simulator::Simulator(const Scenario& scenario)
   const FaultParams& faults = scenario_.faults;
   for (int i = 0; i < 2; ++i) efficiency_[i] = faults.initial_thrust_scale[i];
   for (const ThrustStep& step : faults.thrust_steps) {
-    const int64_t index = FirstSampleAtOrAfter(Microseconds(step.time_s), step_us_);
+    const int64_t index = FirstSampleAtOrAfter(SecondsToUtime(step.time_s), step_us_);
     thrust_steps_.push_back({index, step.rotor - 1, step.scale});
   }
   std::stable_sort(thrust_steps_.begin(), thrust_steps_.end(),
                    [](const ScheduledStep& a, const ScheduledStep& b) { return a.step < b.step; });
   const int64_t strain_period_us = strain_.every_steps * step_us_;
   for (double t : faults.strain_nan_times_s)
-    strain_nan_seq_.push_back(FirstSampleAtOrAfter(Microseconds(t), strain_period_us));
+    strain_nan_seq_.push_back(FirstSampleAtOrAfter(SecondsToUtime(t), strain_period_us));
   for (double t : faults.strain_out_of_order_times_s)
-    strain_swap_seq_.push_back(FirstSampleAtOrAfter(Microseconds(t), strain_period_us));
+    strain_swap_seq_.push_back(FirstSampleAtOrAfter(SecondsToUtime(t), strain_period_us));
   std::sort(strain_nan_seq_.begin(), strain_nan_seq_.end());
   std::sort(strain_swap_seq_.begin(), strain_swap_seq_.end());
   fault_events_.reserve(4096);
@@ -169,7 +165,7 @@ RotorCommand Simulator::Command(double t_s) {
 
 void Simulator::UseExternalCommands(double command_timeout_s) {
   external_commands_ = true;
-  command_timeout_us_ = Microseconds(command_timeout_s);
+  command_timeout_us_ = SecondsToUtime(command_timeout_s);
   SeqStreamLockParams lock;
   lock.silence_s = command_timeout_s;
   commander_ = SeqStreamLock(lock);
@@ -179,7 +175,7 @@ EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double
   EscCounters& n = esc_counters_;
   ++n.received;
   const int64_t now_us = this->utime();
-  if (utime > now_us + Microseconds(kEscFutureWindowS)) {
+  if (utime > now_us + SecondsToUtime(kEscFutureWindowS)) {
     ++n.future;
     return EscVerdict::kFuture;
   }
@@ -239,8 +235,8 @@ double Simulator::TrueForce(int rotor) const {
 }
 
 bool Simulator::InWindow(const TimeWindow& window, int64_t t_us) const {
-  const int64_t start_us = utime_offset_us_ + Microseconds(window.start_s);
-  return window.duration_s > 0.0 && t_us >= start_us && t_us < start_us + Microseconds(window.duration_s);
+  const int64_t start_us = utime_offset_us_ + SecondsToUtime(window.start_s);
+  return window.duration_s > 0.0 && t_us >= start_us && t_us < start_us + SecondsToUtime(window.duration_s);
 }
 
 void Simulator::RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value) {
