@@ -2,18 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "model/rk4.h"
+#include "simulator/body_sensors.h"
 #include "simulator/sample_clock.h"
 
 namespace birotor {
 namespace {
 
-// The birotor simulator's turbulence stream of the seed (simulator.cc), so
-// both draw their turbulence from the same independent stream.
-constexpr uint64_t kTurbulenceStream = 1;
+// The birotor simulator's streams of the seed (simulator.cc NoiseStream), so
+// both draw each noise from the same independent stream.
+enum NoiseStream : uint64_t {
+  kTurbulenceStream = 1,
+  kStrainStream = 2,
+  kMotorStream = 3,
+  kImuStream = 4,
+  kPoseStream = 5,
+};
+static_assert(kMaxSampleArms == kMaxArms, "samples/multi_arm_samples.h holds every arm");
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string Join(const std::vector<std::string>& problems) {
   std::ostringstream out;
@@ -58,11 +68,15 @@ MultiArmSimulator::MultiArmSimulator(const VehicleDescription& vehicle, const Sc
       scenario_(scenario),
       step_us_(SecondsToUtime(scenario.step_s)),
       total_steps_(std::llround(scenario.duration_s / scenario.step_s)),
-      control_every_steps_(std::max<int64_t>(1, std::llround(1.0 / (scenario.controller.rate_hz * scenario.step_s)))),
+      control_every_steps_(StepsPerSample(scenario.controller.rate_hz, scenario.step_s)),
       hover_(SolveMultiArmHover(vehicle)),
       trajectory_(scenario),
       autopilot_(vehicle, scenario.controller, hover_),
-      turbulence_noise_(scenario.seed, kTurbulenceStream) {
+      turbulence_noise_(scenario.seed, kTurbulenceStream),
+      strain_noise_(scenario.seed, kStrainStream),
+      motor_noise_(scenario.seed, kMotorStream),
+      imu_noise_(scenario.seed, kImuStream),
+      pose_noise_(scenario.seed, kPoseStream) {
   if (!hover_.converged) throw std::invalid_argument("vehicle '" + vehicle.name + "': no hover equilibrium");
   const int n_arms = vehicle_.arm_count;
   const FaultParams& faults = scenario_.faults;
@@ -74,6 +88,12 @@ MultiArmSimulator::MultiArmSimulator(const VehicleDescription& vehicle, const Sc
   std::stable_sort(thrust_steps_.begin(), thrust_steps_.end(),
                    [](const ScheduledStep& a, const ScheduledStep& b) { return a.step < b.step; });
   fault_events_.reserve(thrust_steps_.size());
+  const SensorParams& sensors = scenario_.sensors;
+  strain_every_ = SensorEvery(sensors.strain);
+  motor_every_ = SensorEvery(sensors.motor);
+  imu_every_ = SensorEvery(sensors.imu);
+  pose_every_ = SensorEvery(sensors.pose);
+  truth_every_ = SensorEvery(sensors.truth);
 
   // The exact hover equilibrium at the start position.
   state_ = MultiArmHoverPlantState(vehicle_, hover_);
@@ -90,7 +110,11 @@ double MultiArmSimulator::TrueForce(int arm) const {
                      state_(MultiArmOmegaIndex(vehicle_, arm)), input_.thrust_scale[static_cast<size_t>(arm)]);
 }
 
-bool MultiArmSimulator::Step() {
+int64_t MultiArmSimulator::SensorEvery(const SensorRate& rate) const {
+  return rate.enabled ? StepsPerSample(rate.rate_hz, scenario_.step_s) : 0;
+}
+
+bool MultiArmSimulator::Step(SampleSink* sink) {
   if (done()) return false;
   const int64_t k = step_index_;
   const int n_arms = vehicle_.arm_count;
@@ -117,15 +141,110 @@ bool MultiArmSimulator::Step() {
   }
   input_.omega_cmd_rad_s = command_.omega_cmd_rad_s;
 
-  state_ = StepMultiArmPlant(vehicle_, state_, input_, scenario_.step_s);
+  // RK4, keeping k1 = f(x_k, u_k) for the accelerometer.
+  const auto derivative = [this](const MultiArmPlantState& x) { return MultiArmPlantDerivative(vehicle_, x, input_); };
+  const MultiArmPlantState k1 = derivative(state_);
+  if (sink != nullptr) {
+    const auto due = [k](int64_t every) { return every > 0 && k % every == 0; };
+    if (due(strain_every_)) EmitStrain(sink);
+    if (due(motor_every_)) EmitMotor(sink);
+    if (due(imu_every_)) EmitImu(k1, sink);
+    if (due(pose_every_)) EmitPose(sink);
+    if (due(truth_every_)) EmitTruth(sink);
+  }
+  state_ = Rk4StepFrom(state_, k1, scenario_.step_s, derivative);
   for (GaussMarkov& eta : turbulence_) eta.Advance(&turbulence_noise_);
   ++step_index_;
   return true;
 }
 
-void MultiArmSimulator::Run() {
-  while (Step()) {
+void MultiArmSimulator::Run(SampleSink* sink) {
+  while (Step(sink)) {
   }
+}
+
+// b_meas_i = b_i + n_i on the arms with a gauge, NaN on the others.
+void MultiArmSimulator::EmitStrain(SampleSink* sink) {
+  MultiArmStrainSample sample;
+  sample.utime = utime();
+  sample.seq = strain_seq_++;
+  sample.n_arms = vehicle_.arm_count;
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t arm = static_cast<size_t>(i);
+    sample.deflection_rad[arm] = vehicle_.arms[arm].has_gauge
+                                     ? state_(MultiArmQIndex(vehicle_, DeflectionIndex(i))) +
+                                           strain_noise_.Normal(scenario_.sensors.strain_noise_rad)
+                                     : kNaN;
+  }
+  sink->OnStrainN(sample);
+  ++emitted_.strain;
+}
+
+void MultiArmSimulator::EmitMotor(SampleSink* sink) {
+  const SensorParams& sensors = scenario_.sensors;
+  MultiArmMotorSample sample;
+  sample.utime = utime();
+  sample.seq = motor_seq_++;
+  sample.n_rotors = vehicle_.arm_count;
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t arm = static_cast<size_t>(i);
+    sample.omega_cmd_rad_s[arm] = input_.omega_cmd_rad_s[arm];
+    sample.omega_meas_rad_s[arm] = sensors.motor_telemetry ? state_(MultiArmOmegaIndex(vehicle_, i)) +
+                                                                 motor_noise_.Normal(sensors.motor_speed_noise_rad_s)
+                                                           : kNaN;
+  }
+  sink->OnMotorN(sample);
+  ++emitted_.motor;
+}
+
+void MultiArmSimulator::EmitImu(const MultiArmPlantState& derivative, SampleSink* sink) {
+  BodyMotion body;
+  body.phi_rad = state_(MultiArmQIndex(vehicle_, kPhi));
+  body.phi_dot_rad_s = state_(MultiArmVIndex(vehicle_, kPhi));
+  body.x_ddot_m_s2 = derivative(MultiArmVIndex(vehicle_, kX));
+  body.z_ddot_m_s2 = derivative(MultiArmVIndex(vehicle_, kZ));
+  ImuSample sample;
+  sample.utime = utime();
+  sample.seq = imu_seq_++;
+  MeasureImu(body, vehicle_.gravity_m_s2, scenario_.sensors, &imu_noise_, &sample);
+  sink->OnImu(sample);
+  ++emitted_.imu;
+}
+
+void MultiArmSimulator::EmitPose(SampleSink* sink) {
+  BodyMotion body;
+  body.x_m = state_(MultiArmQIndex(vehicle_, kX));
+  body.z_m = state_(MultiArmQIndex(vehicle_, kZ));
+  body.phi_rad = state_(MultiArmQIndex(vehicle_, kPhi));
+  PoseSample sample;
+  sample.utime = utime();
+  sample.seq = pose_seq_++;
+  MeasurePose(body, scenario_.sensors, &pose_noise_, &sample);
+  sink->OnPose(sample);
+  ++emitted_.pose;
+}
+
+void MultiArmSimulator::EmitTruth(SampleSink* sink) {
+  const VehicleDescription& v = vehicle_;
+  MultiArmTruthSample sample;
+  sample.utime = utime();
+  sample.x_m = state_(MultiArmQIndex(v, kX));
+  sample.z_m = state_(MultiArmQIndex(v, kZ));
+  sample.phi_rad = state_(MultiArmQIndex(v, kPhi));
+  sample.x_dot_m_s = state_(MultiArmVIndex(v, kX));
+  sample.z_dot_m_s = state_(MultiArmVIndex(v, kZ));
+  sample.phi_dot_rad_s = state_(MultiArmVIndex(v, kPhi));
+  sample.n_arms = v.arm_count;
+  for (int i = 0; i < v.arm_count; ++i) {
+    const size_t arm = static_cast<size_t>(i);
+    sample.deflection_rad[arm] = state_(MultiArmQIndex(v, DeflectionIndex(i)));
+    sample.deflection_dot_rad_s[arm] = state_(MultiArmVIndex(v, DeflectionIndex(i)));
+    sample.omega_rad_s[arm] = state_(MultiArmOmegaIndex(v, i));
+    sample.force_n[arm] = TrueForce(i);
+    sample.thrust_scale[arm] = input_.thrust_scale[arm];
+  }
+  sink->OnTruthN(sample);
+  ++emitted_.truth;
 }
 
 }  // namespace birotor

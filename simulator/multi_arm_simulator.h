@@ -2,8 +2,11 @@
 // integrates the plant of model/multi_arm_plant.h with RK4 at the scenario's
 // fixed step, flies it with MultiArmAutopilot along the scenario's trajectory,
 // with the birotor simulator's rotor turbulence and thrust-efficiency steps on
-// any rotor. Deterministic from the scenario seed. What it does not model yet
-// (the ground phase, the bench): docs/multi-arm-model.md, "Simulator".
+// any rotor, and emits the ideal sensors (gauges plus white noise on the arms
+// that have one, motor telemetry, IMU, POSE) and TRUTH at exact multiples of
+// the step. Deterministic from the scenario seed. What it does not model yet
+// (real-gauge effects, sensor faults, the ground phase, the bench):
+// docs/multi-arm-model.md, "Simulator".
 #pragma once
 
 #include <array>
@@ -14,6 +17,7 @@
 #include "model/multi_arm_linearization.h"
 #include "model/multi_arm_plant.h"
 #include "model/vehicle_description.h"
+#include "samples/sample_sink.h"
 #include "simulator/multi_arm_autopilot.h"
 #include "simulator/noise.h"
 #include "simulator/scenario.h"
@@ -38,11 +42,14 @@ class MultiArmSimulator {
   // duration, start position, thrust faults and controller gains are.
   MultiArmSimulator(const VehicleDescription& vehicle, const Scenario& scenario);
 
-  // Advances one step (control at its rate, thrust steps, turbulence, RK4).
-  // Returns false (and does nothing) once the duration is reached. Does not
-  // allocate except to record fault events.
-  bool Step();
-  void Run();
+  // Emits the samples due at the current time to sink (may be null: none),
+  // then advances one step (control at its rate, thrust steps, turbulence,
+  // RK4). Returns false (and does nothing) once the duration is reached.
+  // Does not allocate except to record fault events. Sensors and noise:
+  // scenario.sensors (rates, sigmas, motor_telemetry), the birotor's; its
+  // strain, motor, IMU and POSE noise streams of the seed.
+  bool Step(SampleSink* sink = nullptr);
+  void Run(SampleSink* sink = nullptr);
 
   bool done() const { return step_index_ >= total_steps_; }
   double time_s() const { return static_cast<double>(step_index_) * scenario_.step_s; }
@@ -61,6 +68,8 @@ class MultiArmSimulator {
   double TrueForce(int arm) const;
   // Thrust steps that took effect (kind kThrustStep, rotor 1-based).
   const std::vector<FaultEvent>& fault_events() const { return fault_events_; }
+  // Samples emitted per channel (strain, motor, imu, pose, truth; no loadcell).
+  const ChannelCounts& emitted() const { return emitted_; }
 
  private:
   struct ScheduledStep {
@@ -68,6 +77,14 @@ class MultiArmSimulator {
     int rotor = 0;  // 0-based
     double scale = 1.0;
   };
+
+  void EmitStrain(SampleSink* sink);
+  void EmitMotor(SampleSink* sink);
+  void EmitImu(const MultiArmPlantState& derivative, SampleSink* sink);
+  void EmitPose(SampleSink* sink);
+  void EmitTruth(SampleSink* sink);
+  // Steps between two samples of a sensor; 0: off.
+  int64_t SensorEvery(const SensorRate& rate) const;
 
   VehicleDescription vehicle_;
   Scenario scenario_;
@@ -90,6 +107,11 @@ class MultiArmSimulator {
   std::vector<ScheduledStep> thrust_steps_;
   size_t next_thrust_step_ = 0;
   std::vector<FaultEvent> fault_events_;
+
+  int64_t strain_every_ = 0, motor_every_ = 0, imu_every_ = 0, pose_every_ = 0, truth_every_ = 0;
+  GaussianSource strain_noise_, motor_noise_, imu_noise_, pose_noise_;
+  int32_t strain_seq_ = 0, motor_seq_ = 0, imu_seq_ = 0, pose_seq_ = 0;
+  ChannelCounts emitted_;
 };
 
 }  // namespace birotor

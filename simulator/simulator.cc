@@ -6,6 +6,7 @@
 
 #include "model/bench_dynamics.h"
 #include "model/rk4.h"
+#include "simulator/body_sensors.h"
 #include "simulator/sample_clock.h"
 
 namespace birotor {
@@ -50,7 +51,7 @@ Simulator::Simulator(const Scenario& scenario)
   auto decimation = [&](const SensorRate& rate) {
     Decimation d;
     d.enabled = rate.enabled;
-    d.every_steps = std::max<int64_t>(1, std::llround(1.0 / (rate.rate_hz * scenario_.step_s)));
+    d.every_steps = StepsPerSample(rate.rate_hz, scenario_.step_s);
     return d;
   };
   control_ = decimation(SensorRate{true, scenario_.controller.rate_hz});
@@ -380,30 +381,28 @@ void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
 }
 
 void Simulator::EmitImu(int64_t utime, const PlantState& derivative, SampleSink* sink) {
-  const SensorParams& sensors = scenario_.sensors;
-  // Specific force in body axes: R(phi)^T (p_ddot + [0, g]).
-  const double phi = state_(kPlantQ + kPhi);
-  const double c = std::cos(phi), s = std::sin(phi);
-  const double ax = derivative(kPlantV + kX);
-  const double az = derivative(kPlantV + kZ) + scenario_.vehicle.gravity_m_s2;
+  BodyMotion body;
+  body.phi_rad = state_(kPlantQ + kPhi);
+  body.phi_dot_rad_s = state_(kPlantV + kPhi);
+  body.x_ddot_m_s2 = derivative(kPlantV + kX);
+  body.z_ddot_m_s2 = derivative(kPlantV + kZ);
   ImuSample sample;
   sample.utime = utime;
   sample.seq = imu_seq_++;
-  sample.gyro_y_rad_s = state_(kPlantV + kPhi) + imu_noise_.Normal(sensors.gyro_noise_rad_s);
-  sample.accel_x_m_s2 = c * ax + s * az + imu_noise_.Normal(sensors.accel_noise_m_s2);
-  sample.accel_z_m_s2 = -s * ax + c * az + imu_noise_.Normal(sensors.accel_noise_m_s2);
+  MeasureImu(body, scenario_.vehicle.gravity_m_s2, scenario_.sensors, &imu_noise_, &sample);
   sink->OnImu(sample);
   ++emitted_.imu;
 }
 
 void Simulator::EmitPose(int64_t utime, SampleSink* sink) {
-  const SensorParams& sensors = scenario_.sensors;
+  BodyMotion body;
+  body.x_m = state_(kPlantQ + kX);
+  body.z_m = state_(kPlantQ + kZ);
+  body.phi_rad = state_(kPlantQ + kPhi);
   PoseSample sample;
   sample.utime = utime;
   sample.seq = pose_seq_++;
-  sample.x_m = state_(kPlantQ + kX) + pose_noise_.Normal(sensors.pose_position_noise_m);
-  sample.z_m = state_(kPlantQ + kZ) + pose_noise_.Normal(sensors.pose_position_noise_m);
-  sample.phi_rad = state_(kPlantQ + kPhi) + pose_noise_.Normal(sensors.pose_angle_noise_rad);
+  MeasurePose(body, scenario_.sensors, &pose_noise_, &sample);
   sink->OnPose(sample);
   ++emitted_.pose;
 }
