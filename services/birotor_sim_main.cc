@@ -68,6 +68,26 @@ struct SimOptions {
   int realtime_priority = 0;         // live: SCHED_FIFO priority and locked memory; 0: the normal scheduler
 };
 
+// Opens the log (a temporary file next to path until FinishLog); false, said
+// why, when it cannot.
+bool OpenLog(LogWriter* writer, const std::string& path) {
+  std::string error;
+  if (writer->Open(path, &error)) return true;
+  ReportError("cannot open the output log: " + error);
+  return false;
+}
+
+// Closes the log (renamed into place) unless writing failed; otherwise
+// abandons it, so no partial log is left behind, and says why. True when the
+// log is complete.
+bool FinishLog(LogWriter* writer, bool failed, const std::string& path) {
+  if (!failed && writer->Close()) return true;
+  writer->Abandon();
+  ReportError("writing " + path + " failed" + (writer->error().empty() ? "" : ": " + writer->error()) +
+              "; no log is left behind");
+  return false;
+}
+
 // Offline lock-step closed loop: every channel, FORCE and MOTOR_COMMAND
 // included, into the log.
 bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, const ChannelNames& channels) {
@@ -83,23 +103,14 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
   controller.force_feedback = options.controller_mode != "nominal";
   controller.model_predictive = options.controller_mode == "mpc";
   LogWriter writer;
-  std::string error;
-  if (!writer.Open(options.output, &error)) {
-    ReportError("cannot open the output log: " + error);
-    return false;
-  }
+  if (!OpenLog(&writer, options.output)) return false;
   LogSink log_sink(&writer);
   ClosedLoopOptions loop;
   loop.command_timeout_s = options.command_timeout_s;
   loop.prefix = channels.prefix;
   loop.setpoint_rate_hz = options.setpoint_rate_hz;
   const ClosedLoopRun run = RunClosedLoop(scenario, estimator, controller, loop, &log_sink);
-  if (log_sink.failed() || !writer.Close()) {
-    writer.Abandon();  // no partial log is left behind
-    ReportError("writing " + options.output + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
-                "; no log is left behind");
-    return false;
-  }
+  if (!FinishLog(&writer, log_sink.failed(), options.output)) return false;
   const ControlMetrics metrics = EvaluateControl(run);
   spdlog::info(
       "closed loop ({}): {:.3f} s simulated in {:.3f} s wall; {} commands, {} fallbacks, {} descents; "
@@ -123,21 +134,12 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
 bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
   // A temporary file next to path, renamed when the log is complete.
   LogWriter writer;
-  std::string error;
-  if (!writer.Open(path, &error)) {
-    ReportError("cannot open the output log: " + error);
-    return false;
-  }
+  if (!OpenLog(&writer, path)) return false;
   LogSink log_sink(&writer);
   WireSampleSink sink(channels, &log_sink, publish_truth);
   while (!log_sink.failed() && !ShutdownRequested() && sim->Step(&sink)) {
   }
-  if (log_sink.failed() || sink.encode_failures() > 0 || !writer.Close()) {
-    writer.Abandon();  // no partial log is left behind
-    ReportError("writing " + path + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
-                "; no log is left behind");
-    return false;
-  }
+  if (!FinishLog(&writer, log_sink.failed() || sink.encode_failures() > 0, path)) return false;
   if (ShutdownRequested()) {
     spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
   }
@@ -332,11 +334,7 @@ bool RunVehicleOffline(const SimOptions& options, const Scenario& scenario, cons
     return false;
   }
   LogWriter writer;
-  std::string error;
-  if (!writer.Open(options.output, &error)) {
-    ReportError("cannot open the output log: " + error);
-    return false;
-  }
+  if (!OpenLog(&writer, options.output)) return false;
   LogSink log_sink(&writer);
   WireSampleSink sink(channels, &log_sink, !options.no_truth);
   const int64_t vehicle_period_us = SecondsToUtime(1.0);
@@ -345,12 +343,7 @@ bool RunVehicleOffline(const SimOptions& options, const Scenario& scenario, cons
     if (sim->utime() % vehicle_period_us == 0) sink.OnVehicle(vehicle, "birotor-sim", sim->utime(), vehicle_seq++);
     sim->Step(&sink);
   }
-  if (log_sink.failed() || sink.encode_failures() > 0 || !writer.Close()) {
-    writer.Abandon();  // no partial log is left behind
-    ReportError("writing " + options.output + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
-                "; no log is left behind");
-    return false;
-  }
+  if (!FinishLog(&writer, log_sink.failed() || sink.encode_failures() > 0, options.output)) return false;
   const ChannelCounts& n = sim->emitted();
   spdlog::info(
       "vehicle '{}' ({} arms) from {}: simulated {:.3f} s; samples: strain {}, motor {}, imu {}, pose {}, truth {}{}, "

@@ -13,15 +13,6 @@
 namespace birotor {
 namespace {
 
-// The birotor simulator's streams of the seed (simulator.cc NoiseStream), so
-// both draw each noise from the same independent stream.
-enum NoiseStream : uint64_t {
-  kTurbulenceStream = 1,
-  kStrainStream = 2,
-  kMotorStream = 3,
-  kImuStream = 4,
-  kPoseStream = 5,
-};
 static_assert(kMaxSampleArms == kMaxArms, "samples/multi_arm_samples.h holds every arm");
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 

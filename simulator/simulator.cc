@@ -14,18 +14,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Independent random streams of one seed, so switching one sensor off does
-// not change the noise of the others.
-enum NoiseStream : uint64_t {
-  kTurbulenceStream = 1,
-  kStrainStream = 2,
-  kMotorStream = 3,
-  kImuStream = 4,
-  kPoseStream = 5,
-  kLoadCellStream = 6,
-  kFaultStream = 7,
-};
-
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario)

@@ -4,13 +4,10 @@
 // against the file's description, the description itself on VEHICLE at 1 Hz,
 // the same bytes for the same seed; --vehicle needs --output.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <string>
 
@@ -32,18 +29,8 @@ std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "multi_arm_sim_log_test_" + std::to_string(::getpid()) + "_" + name;
 }
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 int RunSim(const std::string& args, std::string* err) {
-  const std::string err_path = TempPath("stderr.txt");
-  const std::string command = std::string(BIROTOR_SIM_PATH) + " " + args + " 2> " + err_path;
-  const int status = std::system(command.c_str());
-  if (err) *err = ReadBytes(err_path);
-  std::remove(err_path.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return RunProgram(BIROTOR_SIM_PATH, args, TempPath("stderr.txt"), err);
 }
 
 // Decodes event as Message; counts a failure or a count that does not match.
@@ -117,7 +104,7 @@ TEST(MultiArmSimLogTest, TrirotorFileIntoALogOnTheCountedChannels) {
                                                {"BIROTOR_TRUTH_N", 3000},  {"BIROTOR_VEHICLE", 3}};
   EXPECT_EQ(facts.counts, expected);
   ASSERT_EQ(RunSim(args + again, &err), 0) << err;
-  EXPECT_TRUE(ReadBytes(path) == ReadBytes(again)) << "same seed, different bytes";
+  EXPECT_TRUE(ReadFileBytes(path) == ReadFileBytes(again)) << "same seed, different bytes";
   std::remove(path.c_str());
   std::remove(again.c_str());
 }
