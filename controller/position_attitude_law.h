@@ -30,6 +30,28 @@ struct RotorForces {
   Eigen::Vector2d accel_des_m_s2 = Eigen::Vector2d::Zero();
 };
 
+// The cascade's stages as functions, shared by PositionAttitudeLaw and the
+// N-arm autopilot (simulator/multi_arm_autopilot.h). integrate false: the
+// integral holds.
+//
+// Outer loop (world): a_des = a_ref + Kp e_p + Kd e_v + Ki int(e_p), the
+// integral clamped to max_integral / Ki [m s].
+Eigen::Vector2d PositionLoopAcceleration(const ControllerParams& gains, double dt_s, const BodyState& state,
+                                         const ReferencePoint& reference, bool integrate,
+                                         Eigen::Vector2d* position_integral_m_s);
+// Tilt that turns the thrust towards a_des: vertical = max(g + a_z, 0.1 g)
+// [m/s^2], phi_des = atan2(-a_x, vertical) clamped to max_tilt [rad].
+struct TiltTarget {
+  double vertical_m_s2 = 0.0;
+  double phi_des_rad = 0.0;
+};
+TiltTarget TiltForAcceleration(const ControllerParams& gains, double gravity_m_s2,
+                               const Eigen::Vector2d& accel_des_m_s2);
+// Inner loop (pitch): alpha_des = Kp_phi e_phi - Kd_phi phi_dot + Ki_phi
+// int(e_phi) [rad/s^2], the integral clamped to max_attitude_integral / Ki_phi.
+double TiltLoopAcceleration(const ControllerParams& gains, double dt_s, double phi_des_rad, const BodyState& state,
+                            bool integrate, double* tilt_integral_rad_s);
+
 class PositionAttitudeLaw {
  public:
   // hover_force_n: per-rotor feed-forward thrust at hover (the equilibrium
@@ -68,6 +90,9 @@ inline double RigidPitchInertiaKgM2(const VehicleParams& p) {
 // omega = sqrt(max(f, 0) / (mu c_T)), clipped to [0, omega_max] [rad/s].
 // *saturated (optional) is set when the clip changed the value.
 double RotorSpeedForThrust(const VehicleParams& vehicle, double force_n, double thrust_scale,
+                           bool* saturated = nullptr);
+// The same for one rotor of any vehicle: its c_T [N s^2/rad^2] and omega_max [rad/s].
+double RotorSpeedForThrust(double thrust_coeff_n_s2_rad2, double omega_max_rad_s, double force_n, double thrust_scale,
                            bool* saturated = nullptr);
 
 }  // namespace birotor

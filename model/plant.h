@@ -32,8 +32,11 @@ struct PlantInput {
   double thrust_scale[2] = {1, 1};     // mu_i = s_i (1 + eta_i) [1]
 };
 
+inline double ClampCommand(double omega_max_rad_s, double omega_cmd_rad_s) {
+  return std::clamp(omega_cmd_rad_s, 0.0, omega_max_rad_s);
+}
 inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
-  return std::clamp(omega_cmd_rad_s, 0.0, p.omega_max_rad_s);
+  return ClampCommand(p.omega_max_rad_s, omega_cmd_rad_s);
 }
 
 // The first-order rotor speed lag (shared/spec/reference-vehicle.md), the one
@@ -41,13 +44,20 @@ inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
 //   omega_dot = (clamp(omega_cmd) - omega) / tau_m   [rad/s^2]
 // Its exact zero-order-hold step is MotorStep below; d(omega_dot)/d(omega) =
 // -1 / tau_m.
+// The scalar form serves any rotor of a VehicleDescription (model/multi_arm_plant.h).
+inline double MotorLagRate(double omega_max_rad_s, double tau_m_s, double omega_rad_s, double omega_cmd_rad_s) {
+  return (ClampCommand(omega_max_rad_s, omega_cmd_rad_s) - omega_rad_s) / tau_m_s;
+}
 inline double MotorLagRate(const VehicleParams& p, double omega_rad_s, double omega_cmd_rad_s) {
-  return (ClampCommand(p, omega_cmd_rad_s) - omega_rad_s) / p.motor_time_constant_s;
+  return MotorLagRate(p.omega_max_rad_s, p.motor_time_constant_s, omega_rad_s, omega_cmd_rad_s);
 }
 
-// Rotor thrust f = mu c_T omega^2 [N].
+// Rotor thrust f = mu c_T omega^2 [N] (scalar form: any rotor of a description).
+inline double RotorThrust(double thrust_coeff_n_s2_rad2, double omega_rad_s, double thrust_scale) {
+  return thrust_scale * thrust_coeff_n_s2_rad2 * omega_rad_s * omega_rad_s;
+}
 inline double RotorThrust(const VehicleParams& p, double omega_rad_s, double thrust_scale) {
-  return thrust_scale * p.thrust_coeff_n_s2_rad2 * omega_rad_s * omega_rad_s;
+  return RotorThrust(p.thrust_coeff_n_s2_rad2, omega_rad_s, thrust_scale);
 }
 
 // The plant at rest in hover at the origin: the equilibrium's deflections and

@@ -7,6 +7,8 @@
 // it with the log closed. --external-controller (live) makes the simulator
 // the vehicle's ESCs: it runs MOTOR_COMMAND from LCM instead of its autopilot;
 // --publish-setpoints sends the scenario's trajectory on SETPOINT for it.
+// --vehicle FILE flies a vehicle description with N arms instead (offline,
+// simulator/multi_arm_simulator.h) on the counted channels.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -18,14 +20,17 @@
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
 #include "nodes/esc_command_node.h"
+#include "numerics/time_units.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
+#include "params/vehicle_description_yaml.h"
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
+#include "simulator/multi_arm_simulator.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
@@ -46,6 +51,7 @@ struct SimOptions {
   std::vector<std::string> param_files;  // --params: partial scenario files, applied in order
   std::vector<std::string> overrides;    // --set section.key=value, applied in order after them
   std::string output;                    // log file (offline mode); empty: live on LCM
+  std::string vehicle_file;              // --vehicle: a description with N arms (offline); empty: the birotor
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
   bool loop = false;                     // repeat the scenario until stopped, time continuing
@@ -62,6 +68,26 @@ struct SimOptions {
   int realtime_priority = 0;         // live: SCHED_FIFO priority and locked memory; 0: the normal scheduler
 };
 
+// Opens the log (a temporary file next to path until FinishLog); false, said
+// why, when it cannot.
+bool OpenLog(LogWriter* writer, const std::string& path) {
+  std::string error;
+  if (writer->Open(path, &error)) return true;
+  ReportError("cannot open the output log: " + error);
+  return false;
+}
+
+// Closes the log (renamed into place) unless writing failed; otherwise
+// abandons it, so no partial log is left behind, and says why. True when the
+// log is complete.
+bool FinishLog(LogWriter* writer, bool failed, const std::string& path) {
+  if (!failed && writer->Close()) return true;
+  writer->Abandon();
+  ReportError("writing " + path + " failed" + (writer->error().empty() ? "" : ": " + writer->error()) +
+              "; no log is left behind");
+  return false;
+}
+
 // Offline lock-step closed loop: every channel, FORCE and MOTOR_COMMAND
 // included, into the log.
 bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, const ChannelNames& channels) {
@@ -77,23 +103,14 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
   controller.force_feedback = options.controller_mode != "nominal";
   controller.model_predictive = options.controller_mode == "mpc";
   LogWriter writer;
-  std::string error;
-  if (!writer.Open(options.output, &error)) {
-    ReportError("cannot open the output log: " + error);
-    return false;
-  }
+  if (!OpenLog(&writer, options.output)) return false;
   LogSink log_sink(&writer);
   ClosedLoopOptions loop;
   loop.command_timeout_s = options.command_timeout_s;
   loop.prefix = channels.prefix;
   loop.setpoint_rate_hz = options.setpoint_rate_hz;
   const ClosedLoopRun run = RunClosedLoop(scenario, estimator, controller, loop, &log_sink);
-  if (log_sink.failed() || !writer.Close()) {
-    writer.Abandon();  // no partial log is left behind
-    ReportError("writing " + options.output + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
-                "; no log is left behind");
-    return false;
-  }
+  if (!FinishLog(&writer, log_sink.failed(), options.output)) return false;
   const ControlMetrics metrics = EvaluateControl(run);
   spdlog::info(
       "closed loop ({}): {:.3f} s simulated in {:.3f} s wall; {} commands, {} fallbacks, {} descents; "
@@ -117,21 +134,12 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
 bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string& path, bool publish_truth) {
   // A temporary file next to path, renamed when the log is complete.
   LogWriter writer;
-  std::string error;
-  if (!writer.Open(path, &error)) {
-    ReportError("cannot open the output log: " + error);
-    return false;
-  }
+  if (!OpenLog(&writer, path)) return false;
   LogSink log_sink(&writer);
   WireSampleSink sink(channels, &log_sink, publish_truth);
   while (!log_sink.failed() && !ShutdownRequested() && sim->Step(&sink)) {
   }
-  if (log_sink.failed() || sink.encode_failures() > 0 || !writer.Close()) {
-    writer.Abandon();  // no partial log is left behind
-    ReportError("writing " + path + " failed" + (writer.error().empty() ? "" : ": " + writer.error()) +
-                "; no log is left behind");
-    return false;
-  }
+  if (!FinishLog(&writer, log_sink.failed() || sink.encode_failures() > 0, path)) return false;
   if (ShutdownRequested()) {
     spdlog::warn("stopped by a signal at t = {:.3f} s; {} is complete up to there", sim->time_s(), path);
   }
@@ -231,6 +239,9 @@ void AddSimOptions(CLI::App& app, SimOptions* options) {
   app.add_option("--params", options->param_files, "Partial scenario file applied on top of --scenario (repeatable)");
   app.add_option("--set", options->overrides, "Override section.key=value (YAML value; repeatable)");
   app.add_option("--output", options->output, "Write an LCM log file as fast as possible instead of publishing live");
+  app.add_option("--vehicle", options->vehicle_file,
+                 "Fly the vehicle description in FILE (config/vehicles/*.yaml) instead of the scenario's birotor: "
+                 "offline (--output) only; STRAIN_N, MOTOR_N, IMU, POSE, TRUTH_N and VEHICLE (1 Hz)");
   app.add_option("--speed", options->speed, "Live mode: simulated seconds per wall-clock second")
       ->check(CLI::Range(1e-3, 1e6));
   app.add_flag("--wall-clock", options->wall_clock,
@@ -296,10 +307,51 @@ std::string ModeConflict(const SimOptions& options) {
   if (options.external_controller && !options.output.empty()) {
     return "--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller";
   }
+  if (!options.vehicle_file.empty() &&
+      (options.output.empty() || !options.controller_mode.empty() || options.publish_setpoints)) {
+    return "--vehicle runs offline into --output, without --controller, --external-controller, --loop or "
+           "--publish-setpoints";
+  }
   if (options.loop && !options.output.empty()) {
     return "--loop runs until stopped: it is for live mode, not with --output (see --help)";
   }
   return "";
+}
+
+// --vehicle: the description's flight into the log, its description on
+// VEHICLE every simulated second (first at t = 0).
+bool RunVehicleOffline(const SimOptions& options, const Scenario& scenario, const ChannelNames& channels) {
+  std::unique_ptr<MultiArmSimulator> sim;
+  VehicleDescription vehicle;
+  try {
+    vehicle = LoadVehicleDescription(options.vehicle_file);
+    sim = std::make_unique<MultiArmSimulator>(vehicle, scenario);
+  } catch (const ParamError& e) {
+    ReportError(e.what());
+    return false;
+  } catch (const std::invalid_argument& e) {
+    ReportError(options.vehicle_file + ": " + e.what());
+    return false;
+  }
+  LogWriter writer;
+  if (!OpenLog(&writer, options.output)) return false;
+  LogSink log_sink(&writer);
+  WireSampleSink sink(channels, &log_sink, !options.no_truth);
+  const int64_t vehicle_period_us = SecondsToUtime(1.0);
+  int32_t vehicle_seq = 0;
+  while (!log_sink.failed() && !ShutdownRequested() && !sim->done()) {
+    if (sim->utime() % vehicle_period_us == 0) sink.OnVehicle(vehicle, "birotor-sim", sim->utime(), vehicle_seq++);
+    sim->Step(&sink);
+  }
+  if (!FinishLog(&writer, log_sink.failed() || sink.encode_failures() > 0, options.output)) return false;
+  const ChannelCounts& n = sim->emitted();
+  spdlog::info(
+      "vehicle '{}' ({} arms) from {}: simulated {:.3f} s; samples: strain {}, motor {}, imu {}, pose {}, truth {}{}, "
+      "vehicle {}; {} fault events; wrote {} events to {}",
+      vehicle.name, vehicle.arm_count, options.vehicle_file, sim->time_s(), n.strain, n.motor, n.imu, n.pose, n.truth,
+      options.no_truth ? " (not published: --no-truth)" : "", vehicle_seq, sim->fault_events().size(),
+      writer.events_written(), options.output);
+  return true;
 }
 
 // What the runs emitted, summed.
@@ -359,7 +411,12 @@ int Main(int argc, char** argv) {
     inputs.push_back(options.controller_params);
     inputs.push_back(options.estimator_params);
   }
+  if (!options.vehicle_file.empty()) inputs.push_back(options.vehicle_file);
   if (!CheckOutputs({options.output}, inputs, &error)) return ReportError(error);
+  if (!options.vehicle_file.empty()) {
+    InstallShutdownHandlers();
+    return RunVehicleOffline(options, scenario, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
+  }
   if (!options.controller_mode.empty()) {
     InstallShutdownHandlers();
     return RunClosedLoopOffline(scenario, options, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;

@@ -10,6 +10,19 @@
 
 namespace birotor {
 
+// Independent random streams of one scenario seed, so switching one sensor
+// off does not change the noise of the others; the birotor and the N-arm
+// simulators draw each noise from the same stream.
+enum NoiseStream : uint64_t {
+  kTurbulenceStream = 1,
+  kStrainStream = 2,
+  kMotorStream = 3,
+  kImuStream = 4,
+  kPoseStream = 5,
+  kLoadCellStream = 6,
+  kFaultStream = 7,
+};
+
 class GaussianSource {
  public:
   // stream separates independent sources that share one scenario seed.

@@ -6,35 +6,20 @@
 
 #include "model/bench_dynamics.h"
 #include "model/rk4.h"
+#include "simulator/body_sensors.h"
+#include "simulator/sample_clock.h"
 
 namespace birotor {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Independent random streams of one seed, so switching one sensor off does
-// not change the noise of the others.
-enum NoiseStream : uint64_t {
-  kTurbulenceStream = 1,
-  kStrainStream = 2,
-  kMotorStream = 3,
-  kImuStream = 4,
-  kPoseStream = 5,
-  kLoadCellStream = 6,
-  kFaultStream = 7,
-};
-
-int64_t Microseconds(double t_s) { return std::llround(t_s * 1e6); }
-
-// First multiple of period_us at or after t_us, as a sample index.
-int64_t FirstSampleAtOrAfter(int64_t t_us, int64_t period_us) { return (t_us + period_us - 1) / period_us; }
-
 }  // namespace
 
 Simulator::Simulator(const Scenario& scenario)
     : scenario_(scenario),
       clamped_body_(scenario.mode == "bench"),
-      step_us_(Microseconds(scenario.step_s)),
+      step_us_(SecondsToUtime(scenario.step_s)),
       total_steps_(std::llround(scenario.duration_s / scenario.step_s)),
       equilibrium_(SolveHoverEquilibrium(scenario.vehicle)),
       trajectory_(scenario),
@@ -54,7 +39,7 @@ Simulator::Simulator(const Scenario& scenario)
   auto decimation = [&](const SensorRate& rate) {
     Decimation d;
     d.enabled = rate.enabled;
-    d.every_steps = std::max<int64_t>(1, std::llround(1.0 / (rate.rate_hz * scenario_.step_s)));
+    d.every_steps = StepsPerSample(rate.rate_hz, scenario_.step_s);
     return d;
   };
   control_ = decimation(SensorRate{true, scenario_.controller.rate_hz});
@@ -68,16 +53,16 @@ Simulator::Simulator(const Scenario& scenario)
   const FaultParams& faults = scenario_.faults;
   for (int i = 0; i < 2; ++i) efficiency_[i] = faults.initial_thrust_scale[i];
   for (const ThrustStep& step : faults.thrust_steps) {
-    const int64_t index = FirstSampleAtOrAfter(Microseconds(step.time_s), step_us_);
+    const int64_t index = FirstSampleAtOrAfter(SecondsToUtime(step.time_s), step_us_);
     thrust_steps_.push_back({index, step.rotor - 1, step.scale});
   }
   std::stable_sort(thrust_steps_.begin(), thrust_steps_.end(),
                    [](const ScheduledStep& a, const ScheduledStep& b) { return a.step < b.step; });
   const int64_t strain_period_us = strain_.every_steps * step_us_;
   for (double t : faults.strain_nan_times_s)
-    strain_nan_seq_.push_back(FirstSampleAtOrAfter(Microseconds(t), strain_period_us));
+    strain_nan_seq_.push_back(FirstSampleAtOrAfter(SecondsToUtime(t), strain_period_us));
   for (double t : faults.strain_out_of_order_times_s)
-    strain_swap_seq_.push_back(FirstSampleAtOrAfter(Microseconds(t), strain_period_us));
+    strain_swap_seq_.push_back(FirstSampleAtOrAfter(SecondsToUtime(t), strain_period_us));
   std::sort(strain_nan_seq_.begin(), strain_nan_seq_.end());
   std::sort(strain_swap_seq_.begin(), strain_swap_seq_.end());
   fault_events_.reserve(4096);
@@ -169,7 +154,7 @@ RotorCommand Simulator::Command(double t_s) {
 
 void Simulator::UseExternalCommands(double command_timeout_s) {
   external_commands_ = true;
-  command_timeout_us_ = Microseconds(command_timeout_s);
+  command_timeout_us_ = SecondsToUtime(command_timeout_s);
   SeqStreamLockParams lock;
   lock.silence_s = command_timeout_s;
   commander_ = SeqStreamLock(lock);
@@ -179,7 +164,7 @@ EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double
   EscCounters& n = esc_counters_;
   ++n.received;
   const int64_t now_us = this->utime();
-  if (utime > now_us + Microseconds(kEscFutureWindowS)) {
+  if (utime > now_us + SecondsToUtime(kEscFutureWindowS)) {
     ++n.future;
     return EscVerdict::kFuture;
   }
@@ -239,8 +224,8 @@ double Simulator::TrueForce(int rotor) const {
 }
 
 bool Simulator::InWindow(const TimeWindow& window, int64_t t_us) const {
-  const int64_t start_us = utime_offset_us_ + Microseconds(window.start_s);
-  return window.duration_s > 0.0 && t_us >= start_us && t_us < start_us + Microseconds(window.duration_s);
+  const int64_t start_us = utime_offset_us_ + SecondsToUtime(window.start_s);
+  return window.duration_s > 0.0 && t_us >= start_us && t_us < start_us + SecondsToUtime(window.duration_s);
 }
 
 void Simulator::RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value) {
@@ -384,30 +369,28 @@ void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
 }
 
 void Simulator::EmitImu(int64_t utime, const PlantState& derivative, SampleSink* sink) {
-  const SensorParams& sensors = scenario_.sensors;
-  // Specific force in body axes: R(phi)^T (p_ddot + [0, g]).
-  const double phi = state_(kPlantQ + kPhi);
-  const double c = std::cos(phi), s = std::sin(phi);
-  const double ax = derivative(kPlantV + kX);
-  const double az = derivative(kPlantV + kZ) + scenario_.vehicle.gravity_m_s2;
+  BodyMotion body;
+  body.phi_rad = state_(kPlantQ + kPhi);
+  body.phi_dot_rad_s = state_(kPlantV + kPhi);
+  body.x_ddot_m_s2 = derivative(kPlantV + kX);
+  body.z_ddot_m_s2 = derivative(kPlantV + kZ);
   ImuSample sample;
   sample.utime = utime;
   sample.seq = imu_seq_++;
-  sample.gyro_y_rad_s = state_(kPlantV + kPhi) + imu_noise_.Normal(sensors.gyro_noise_rad_s);
-  sample.accel_x_m_s2 = c * ax + s * az + imu_noise_.Normal(sensors.accel_noise_m_s2);
-  sample.accel_z_m_s2 = -s * ax + c * az + imu_noise_.Normal(sensors.accel_noise_m_s2);
+  MeasureImu(body, scenario_.vehicle.gravity_m_s2, scenario_.sensors, &imu_noise_, &sample);
   sink->OnImu(sample);
   ++emitted_.imu;
 }
 
 void Simulator::EmitPose(int64_t utime, SampleSink* sink) {
-  const SensorParams& sensors = scenario_.sensors;
+  BodyMotion body;
+  body.x_m = state_(kPlantQ + kX);
+  body.z_m = state_(kPlantQ + kZ);
+  body.phi_rad = state_(kPlantQ + kPhi);
   PoseSample sample;
   sample.utime = utime;
   sample.seq = pose_seq_++;
-  sample.x_m = state_(kPlantQ + kX) + pose_noise_.Normal(sensors.pose_position_noise_m);
-  sample.z_m = state_(kPlantQ + kZ) + pose_noise_.Normal(sensors.pose_position_noise_m);
-  sample.phi_rad = state_(kPlantQ + kPhi) + pose_noise_.Normal(sensors.pose_angle_noise_rad);
+  MeasurePose(body, scenario_.sensors, &pose_noise_, &sample);
   sink->OnPose(sample);
   ++emitted_.pose;
 }

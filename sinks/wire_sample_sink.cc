@@ -1,6 +1,7 @@
 // Simulated samples as encoded wire messages.
 #include "sinks/wire_sample_sink.h"
 
+#include "transport/counted_messages.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
@@ -25,6 +26,18 @@ void WireSampleSink::OnTruth(const TruthSample& s) {
   if (publish_truth_) Publish(channels_.truth, s.utime, ToMessage(s));
 }
 void WireSampleSink::OnSetpoint(const Setpoint& s) { Publish(channels_.setpoint, s.utime, ToMessage(s)); }
+void WireSampleSink::OnStrainN(const MultiArmStrainSample& s) { Publish(channels_.strain_n, s.utime, ToMessage(s)); }
+void WireSampleSink::OnMotorN(const MultiArmMotorSample& s) { Publish(channels_.motor_n, s.utime, ToMessage(s)); }
+void WireSampleSink::OnTruthN(const MultiArmTruthSample& s) {
+  if (publish_truth_) Publish(channels_.truth_n, s.utime, ToMessage(s));
+}
+void WireSampleSink::OnVehicle(const VehicleDescription& vehicle, const std::string& publisher, int64_t utime,
+                               int32_t seq) {
+  vehicle_description_t message = ToMessage(vehicle, publisher);
+  message.utime = utime;
+  message.seq = seq;
+  Publish(channels_.vehicle, utime, message);
+}
 void WireSampleSink::OnForce(const ForceEstimate& e) { Publish(channels_.force, e.utime, ToMessage(e)); }
 void WireSampleSink::OnMotorCommand(const MotorCommand& c) { Publish(channels_.motor_command, c.utime, ToMessage(c)); }
 

@@ -208,6 +208,49 @@ bool ToBirotorMessage(const force_estimate_n_t& m, force_estimate_t* out) {
   return true;
 }
 
+namespace {
+std::vector<double> FirstEntries(const ArmValues& values, int count) {
+  return std::vector<double>(values.begin(), values.begin() + std::clamp(count, 0, kMaxSampleArms));
+}
+}  // namespace
+
+strain_n_t ToMessage(const MultiArmStrainSample& s) {
+  strain_n_t m{};
+  m.utime = s.utime;
+  m.seq = s.seq;
+  m.n_arms = static_cast<int8_t>(s.n_arms);
+  m.deflection_rad = FirstEntries(s.deflection_rad, s.n_arms);
+  return m;
+}
+
+motor_n_t ToMessage(const MultiArmMotorSample& s) {
+  motor_n_t m{};
+  m.utime = s.utime;
+  m.seq = s.seq;
+  m.n_rotors = static_cast<int8_t>(s.n_rotors);
+  m.omega_cmd_rad_s = FirstEntries(s.omega_cmd_rad_s, s.n_rotors);
+  m.omega_meas_rad_s = FirstEntries(s.omega_meas_rad_s, s.n_rotors);
+  return m;
+}
+
+truth_n_t ToMessage(const MultiArmTruthSample& s) {
+  truth_n_t m{};
+  m.utime = s.utime;
+  m.x_m = s.x_m;
+  m.z_m = s.z_m;
+  m.phi_rad = s.phi_rad;
+  m.n_arms = static_cast<int8_t>(s.n_arms);
+  m.deflection_rad = FirstEntries(s.deflection_rad, s.n_arms);
+  m.x_dot_m_s = s.x_dot_m_s;
+  m.z_dot_m_s = s.z_dot_m_s;
+  m.phi_dot_rad_s = s.phi_dot_rad_s;
+  m.deflection_dot_rad_s = FirstEntries(s.deflection_dot_rad_s, s.n_arms);
+  m.omega_rad_s = FirstEntries(s.omega_rad_s, s.n_arms);
+  m.force_n = FirstEntries(s.force_n, s.n_arms);
+  m.thrust_scale = FirstEntries(s.thrust_scale, s.n_arms);
+  return m;
+}
+
 vehicle_description_t ToMessage(const VehicleDescription& description, const std::string& publisher) {
   vehicle_description_t m{};
   m.publisher = publisher;

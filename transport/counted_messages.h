@@ -22,6 +22,7 @@
 #include "birotor/truth_t.hpp"
 #include "birotor/vehicle_description_t.hpp"
 #include "model/vehicle_description.h"
+#include "samples/multi_arm_samples.h"
 
 namespace birotor {
 
@@ -88,6 +89,12 @@ bool ToBirotorMessage(const loadcell_n_t& message, loadcell_t* out);
 bool ToBirotorMessage(const truth_n_t& message, truth_t* out);
 bool ToBirotorMessage(const force_estimate_n_t& message, force_estimate_t* out);
 bool ToBirotorMessage(const motor_command_n_t& message, motor_command_t* out);
+
+// The N-arm samples (samples/multi_arm_samples.h) on the wire: arrays of
+// n_arms (n_rotors) entries, every other field as it is.
+strain_n_t ToMessage(const MultiArmStrainSample& sample);
+motor_n_t ToMessage(const MultiArmMotorSample& sample);
+truth_n_t ToMessage(const MultiArmTruthSample& sample);
 
 // The description a program runs with, for VEHICLE_DESCRIPTION: every field,
 // the checksum (DescriptionChecksum), publisher the program's name; utime and

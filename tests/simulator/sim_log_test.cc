@@ -35,10 +35,7 @@ std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "sim_log_test_" + std::to_string(::getpid()) + "_" + name;
 }
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+std::string ReadBytes(const std::string& path) { return ReadFileBytes(path); }
 
 // True if event decodes as Message (and, with check_stamp, carries the event's stamp).
 template <typename Message>
@@ -104,12 +101,7 @@ TEST(SimLogTest, EveryChannelDecodesWithTheWireTypes) {
 
 // Runs birotor-sim with args; returns its exit status, stderr in *err.
 int RunSim(const std::string& args, std::string* err) {
-  const std::string err_path = TempPath("stderr.txt");
-  const std::string command = std::string(BIROTOR_SIM_PATH) + " " + args + " 2> " + err_path;
-  const int status = std::system(command.c_str());
-  if (err) *err = ReadBytes(err_path);
-  std::remove(err_path.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return RunProgram(BIROTOR_SIM_PATH, args, TempPath("stderr.txt"), err);
 }
 
 TEST(SimLogTest, SameSeedGivesAByteIdenticalLog) {

@@ -1,7 +1,13 @@
-// Helpers shared by the simulator tests: a sink that keeps every sample and
-// the path of the repository's scenario files.
+// Helpers shared by the simulator tests: a sink that keeps every sample, the
+// path of the repository's scenario files, and running birotor-sim.
 #pragma once
 
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -11,6 +17,24 @@ namespace birotor {
 
 inline std::string ScenarioPath(const std::string& name) {
   return std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml";
+}
+
+// The whole file as bytes ("" when it cannot be read).
+inline std::string ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Runs program with args (a shell command line) and stderr into stderr_path,
+// read into *err (may be null) and removed; the exit status, -1 when the
+// program did not exit.
+inline int RunProgram(const std::string& program, const std::string& args, const std::string& stderr_path,
+                      std::string* err) {
+  const std::string command = program + " " + args + " 2> " + stderr_path;
+  const int status = std::system(command.c_str());
+  if (err) *err = ReadFileBytes(stderr_path);
+  std::remove(stderr_path.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 struct CollectingSink : SampleSink {
