@@ -64,6 +64,14 @@ struct MpcParams {
   double velocity_weight_s2_m2 = 1000.0;
   double tilt_weight_1_rad2 = 20.0;
   double pitch_rate_weight_s2_rad2 = 1.0;
+  // The altitude (z) position weight is this many times the x one, in every
+  // weight set and the terminal weight [1]. At the tilt limit the vehicle
+  // cannot follow both axes, and the plan traded them equally: on the fastest
+  // trajectory SETPOINT accepts (quintic (1, 1) m in 0.76 s, 10 m/s^2 per
+  // axis; case aggressive_limit) it gave up 0.48 m of altitude against the
+  // cascade's 0.23. At 10 it gives up 0.17 m and x lags instead; the other
+  // cases fly as before or better (docs/mpc.md, "At the limits").
+  double altitude_weight_factor = 10.0;
   // The same weights in the hover-infeasible descent (MpcPlanInput::
   // level_descent, a 70 % loss): its sink-rate reference cannot be flown,
   // and with position dominant the plan bought vertical impulse with the
@@ -137,11 +145,15 @@ struct MpcParams {
   // (measured 2-7 on aggressive and loss_60, p50 2; docs/mpc.md "Deadline"),
   // so its lock-step solves are never late for want of time.
   int deadline_work = 200;
-  // DENSE-AUL: starts from the previous plan (warm start) and is the
-  // cheapest of the three in the lock-step aggressive flight (CPU per solve
-  // p50/p99: 170/330 us against DENSE-IPM's 340/650 us, no warm start, and
-  // BLEIC's 420/850 us; docs/mpc.md, benchmarks/controller_benchmark.cc).
-  MpcQpAlgorithm algorithm = MpcQpAlgorithm::kDenseAul;
+  // DENSE-IPM: its cost is bounded where the others' is not. DENSE-AUL
+  // (warm-started) is the cheapest in ordinary flight (CPU per solve p50/p99
+  // 170/330 us against DENSE-IPM's 340/650 us and BLEIC's 420/850 us,
+  // aggressive), but with the soft tilt limit active (case aggressive_limit)
+  // its inner iterations reached 200-310 Cholesky factorizations and
+  // 5.5-9.7 ms per solve, over the 5 ms deadline (p99 7.3 ms, 25 fallbacks in
+  // one flight); DENSE-IPM solved the same flight at p99 470 us without a
+  // fallback (docs/mpc.md, "At the limits").
+  MpcQpAlgorithm algorithm = MpcQpAlgorithm::kDenseIpm;
   double solver_tolerance = 1e-6;  // alglib stopping tolerance (scaled) [1]
   int max_iterations = 200;        // BLEIC's iteration cap (the answer at the cap is still checked)
 

@@ -50,7 +50,8 @@ struct MpcQp::Alglib {
 
 MpcStateMatrix MpcQp::StageWeight(const MpcParams& params) {
   MpcState diagonal = MpcState::Zero();
-  diagonal(kMpcX) = diagonal(kMpcZ) = params.position_weight_1_m2;
+  diagonal(kMpcX) = params.position_weight_1_m2;
+  diagonal(kMpcZ) = params.altitude_weight_factor * params.position_weight_1_m2;
   diagonal(kMpcXDot) = diagonal(kMpcZDot) = params.velocity_weight_s2_m2;
   diagonal(kMpcPhi) = params.tilt_weight_1_rad2;
   diagonal(kMpcPhiDot) = params.pitch_rate_weight_s2_rad2;

@@ -68,6 +68,7 @@ class ControllerService : public PacketHandler {
   int64_t VehicleTimeUs(int64_t host_us) const;
   int64_t clock_relatches() const { return clock_relatches_; }
   const ControllerHealth& health() const { return controller_.health(); }
+  MpcStats mpc_statistics() const { return controller_.MpcStatistics(); }  // zero outside mode mpc
   int64_t decode_errors(ControllerInput input) const { return decode_errors_[static_cast<int>(input)]; }
 
  private:

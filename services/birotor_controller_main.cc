@@ -5,6 +5,7 @@
 // CONTROLLER_STATUS at --status-rate-hz (host clock); stops on SIGINT/SIGTERM.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -98,5 +99,14 @@ int main(int argc, char** argv) {
   const ControllerHealth& h = service.health();
   spdlog::info("stopped: {} MOTOR_COMMAND published; {} fallbacks, {} descents, {} saturated; FORCE received {}",
                h.commands, h.fallbacks, h.descents, h.saturated, h.force.received);
+  const MpcStats mpc = service.mpc_statistics();
+  if (mpc.solves > 0) {
+    spdlog::info(
+        "mpc: {} solves, {} late, {} failed; solve time p50 {:.0f} us, p99 {:.0f} us, max {:.0f} us "
+        "(last {} solves, {} clock)",
+        mpc.solves, mpc.late, mpc.solver_failed + mpc.non_finite + mpc.infeasible, 1e6 * mpc.solve_p50_s,
+        1e6 * mpc.solve_p99_s, 1e6 * mpc.solve_max_s, std::min<int64_t>(mpc.solves, kMpcTimeWindow),
+        config.mpc.deadline_clock == MpcDeadlineClock::kWall ? "wall" : "thread CPU");
+  }
   return source_ok ? 0 : kExitFailure;
 }

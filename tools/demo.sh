@@ -33,7 +33,7 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
                       its vehicle view (estimates with 1 sigma, flags, input health) and a
                       summary instead of the error figures
   --controller MODE   fly closed loop through three processes: birotor-controller (MODE
-                      nominal or force_feedback) publishes MOTOR_COMMAND, birotor-sim
+                      nominal, force_feedback or mpc) publishes MOTOR_COMMAND, birotor-sim
                       --external-controller runs it as the vehicle's ESCs; the flight is
                       recorded (lcm-logger) and its figures printed: position held,
                       commands, fallbacks with their times (birotor-review, which also
@@ -93,7 +93,7 @@ fi
 [[ "$speed" =~ ^[0-9]*\.?[0-9]+$ ]] && awk "BEGIN{exit !($speed > 0)}" \
   || die_usage "--speed must be a positive number, got '$speed'"
 case "$method" in ""|ekf|inversion|motor_map) ;; *) die_usage "--method must be ekf, inversion or motor_map, got '$method'" ;; esac
-case "$controller_mode" in ""|nominal|force_feedback) ;; *) die_usage "--controller must be nominal or force_feedback, got '$controller_mode'" ;; esac
+case "$controller_mode" in ""|nominal|force_feedback|mpc) ;; *) die_usage "--controller must be nominal, force_feedback or mpc, got '$controller_mode'" ;; esac
 mkdir -p "$out_dir" 2>/dev/null || fail "cannot create the output folder $out_dir"
 [ -w "$out_dir" ] || fail "cannot write to the output folder $out_dir"
 out_dir="$(cd "$out_dir" && pwd)"

@@ -59,9 +59,11 @@ TEST(MpcQpTest, BoundsAndRateLimitsHoldForAFarReference) {
   const MpcQpSolution up = qp.Solve(p.Data(p.HoverState(), Eigen::Vector2d(0.0, 5.0), last));
   ASSERT_EQ(up.status, MpcSolveStatus::kSolved);
   // 5 m up: both rotors go up by the whole first-period change, r / rate = 30000 / 100 = 300 rad/s.
+  // The interior point (the default algorithm) stops 4e-5 rad/s inside the active bound (measured), so 1e-4.
   const double first_change = p.params.max_omega_rate_rad_s2 / p.params.rate_hz;
-  EXPECT_NEAR(up.first_command_rad_s(0), p.hover_rad_s + first_change, 1e-6);
-  EXPECT_NEAR(up.first_command_rad_s(1), p.hover_rad_s + first_change, 1e-6);
+  const double at_bound_rad_s = 1e-4;
+  EXPECT_NEAR(up.first_command_rad_s(0), p.hover_rad_s + first_change, at_bound_rad_s);
+  EXPECT_NEAR(up.first_command_rad_s(1), p.hover_rad_s + first_change, at_bound_rad_s);
   for (int k = 2; k <= p.params.horizon_steps; ++k) {
     const MpcState s = qp.PredictedState(k);
     EXPECT_LE(s(kMpcOmega1), 1200.0 + 0.05);
@@ -70,7 +72,7 @@ TEST(MpcQpTest, BoundsAndRateLimitsHoldForAFarReference) {
   MpcQp qp_down(p.params, 1200.0, MpcController::TerminalWeight(p.model, p.params));
   const MpcQpSolution down = qp_down.Solve(p.Data(p.HoverState(), Eigen::Vector2d(0.0, -5.0), last));
   ASSERT_EQ(down.status, MpcSolveStatus::kSolved);
-  EXPECT_NEAR(down.first_command_rad_s(0), p.hover_rad_s - first_change, 1e-6);
+  EXPECT_NEAR(down.first_command_rad_s(0), p.hover_rad_s - first_change, at_bound_rad_s);
 }
 
 TEST(MpcQpTest, TiltLimitHeldWithinTheSlack) {
