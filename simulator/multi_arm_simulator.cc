@@ -44,7 +44,7 @@ std::vector<std::string> MultiArmScenarioProblems(const VehicleDescription& vehi
                          ": the vehicle has rotors 1 to " + std::to_string(vehicle.arm_count));
     }
   }
-  const double* initial = scenario.faults.initial_thrust_scale;
+  const double* initial = scenario.faults.initial_thrust_scale.data();
   if (vehicle.arm_count != kBirotorArmCount && initial[0] != initial[1]) {
     std::ostringstream out;
     out << where << "faults.initial_thrust_scale [" << initial[0] << ", " << initial[1] << "]: with "
