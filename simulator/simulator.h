@@ -45,7 +45,8 @@ struct ChannelCounts {
 
 class Simulator {
  public:
-  // The scenario must have been validated (LoadScenario does it).
+  // The scenario must have been validated (LoadScenario does it), for the
+  // birotor (arm_count 2: entries 0 and 1 of its per-arm lists are used).
   explicit Simulator(const Scenario& scenario);
 
   // Emits the samples due at the current time, then advances one step.

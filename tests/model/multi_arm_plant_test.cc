@@ -124,8 +124,7 @@ TEST(MultiArmPlantTest, BirotorDescriptionOnTheSupportIsTheBenchPlant) {
   for (int arm = 0; arm < 2; ++arm) {
     for (double force_n : {0.0, 10.0, 25.0}) {
       const double small_angle = StaticDeflectionRad(params, arm, force_n);
-      EXPECT_NEAR(MultiArmStaticDeflectionRad(vehicle, arm, force_n), small_angle,
-                  1e-5 * std::abs(small_angle) + 1e-12)
+      EXPECT_NEAR(MultiArmStaticDeflectionRad(vehicle, arm, force_n), small_angle, 1e-5 * std::abs(small_angle) + 1e-12)
           << "arm " << arm << ", " << force_n << " N";
     }
   }

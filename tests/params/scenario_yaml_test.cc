@@ -169,7 +169,7 @@ TEST(ScenarioYamlTest, PerArmListsAndRotorsFollowTheVehiclesArmCount) {
     EXPECT_NE(std::string(e.what()).find("3 numbers, or 2 equal ones"), std::string::npos) << e.what();
   }
   EXPECT_THROW(LoadScenario(ScenarioPath("hover"), {"gauge.scale=[1.0, 1.0, 1.0]"}), ParamError);  // birotor: 2
-  EXPECT_THROW(LoadScenario(ScenarioPath("hover"), {}, 7), ParamError);                              // kMaxArms = 6
+  EXPECT_THROW(LoadScenario(ScenarioPath("hover"), {}, 7), ParamError);                            // kMaxArms = 6
 }
 
 }  // namespace

@@ -76,8 +76,8 @@ TEST(MultiArmScenariosTest, TrirotorHoversOnTheHoverScenarioWithEveryNoise) {
 // back to its hover share.
 TEST(MultiArmScenariosTest, ThrustStepOnRotor3ShowsInTruthForceOfRotor3) {
   MultiArmSimulator sim(
-      Trirotor(), ForTrirotor("thrust_loss", {"scenario.duration_s=10",
-                                              "faults.thrust_steps=[{time_s: 5.0, rotor: 3, scale: 0.8}]"}));
+      Trirotor(), ForTrirotor("thrust_loss",
+                              {"scenario.duration_s=10", "faults.thrust_steps=[{time_s: 5.0, rotor: 3, scale: 0.8}]"}));
   MultiArmCollector sink;
   sim.Run(&sink);
   ASSERT_EQ(sim.fault_events().size(), 1u);
@@ -160,7 +160,8 @@ TEST(MultiArmScenariosTest, TrirotorBenchLoadCellsReadCtOmegaSquared) {
     max_body_motion = std::max({max_body_motion, std::abs(t.x_m), std::abs(t.z_m), std::abs(t.phi_rad)});
     for (size_t i = 0; i < 3; ++i) {
       const double c_t = vehicle.arms[i].thrust_coeff_n_s2_rad2;
-      residual_n[i].push_back(sink.loadcell[k].force_n[i] - t.thrust_scale[i] * c_t * t.omega_rad_s[i] * t.omega_rad_s[i]);
+      residual_n[i].push_back(sink.loadcell[k].force_n[i] -
+                              t.thrust_scale[i] * c_t * t.omega_rad_s[i] * t.omega_rad_s[i]);
       min_speed = std::min(min_speed, t.omega_rad_s[i]);
       max_speed = std::max(max_speed, t.omega_rad_s[i]);
     }
@@ -222,8 +223,8 @@ TEST(MultiArmScenariosTest, TrirotorSensorFaultsHappenWhereConfigured) {
     }
   }
   const double duration_s = sim.scenario().duration_s;
-  std::printf("trirotor sensor faults: gap %d, spikes %d %d %d, NaN %d, swapped %d, telemetry gap %d\n", gap,
-              spikes[0], spikes[1], spikes[2], nan_samples, swapped, telemetry);
+  std::printf("trirotor sensor faults: gap %d, spikes %d %d %d, NaN %d, swapped %d, telemetry gap %d\n", gap, spikes[0],
+              spikes[1], spikes[2], nan_samples, swapped, telemetry);
   EXPECT_EQ(gap, 150);        // 0.15 s at 1 kHz
   EXPECT_EQ(telemetry, 500);  // 1 s at 500 Hz
   EXPECT_EQ(nan_samples, 1);

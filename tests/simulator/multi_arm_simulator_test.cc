@@ -167,7 +167,8 @@ TEST(MultiArmSimulatorTest, TrirotorFliesTheScenarioTrajectories) {
   // Measured |phi|, final error: gentle 0.00591 rad, 0.00086 m; aggressive
   // 0.00729 rad, 0.00734 m (the move ends 6 s before).
   for (const char* name : {"gentle", "aggressive"}) {
-    const Scenario scenario = LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml", {}, 3);
+    const Scenario scenario =
+        LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml", {}, 3);
     MultiArmSimulator sim(Trirotor(), scenario);
     const Flight flight = Fly(&sim);
     std::printf("trirotor %s: |phi| <= %.3g rad, |x - x_ref| <= %.3g m, |z - z_ref| <= %.3g m, final %.3g m\n", name,
