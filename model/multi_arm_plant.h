@@ -83,6 +83,47 @@ inline MultiArmPlantState MultiArmPlantDerivative(const VehicleDescription& vehi
   return x_dot;
 }
 
+// Time derivative of the plant state on a support that holds the body still
+// and level (the bench's clamp, or the ground under a landed vehicle; the
+// N-arm counterpart of model/bench_dynamics.h): x, z, phi and their rates
+// do not change, and each arm obeys its own row of M q_ddot = tau - C - G
+// with the body's accelerations zero, M_bb = m_p,i L_i^2, C_b = 0:
+//   m_p L^2 b_ddot + d b_dot + k b + m_p g L cos(phi + b + alpha) = l f.
+inline MultiArmPlantState MultiArmSupportedDerivative(const VehicleDescription& vehicle, const MultiArmPlantState& x,
+                                                      const MultiArmPlantInput& u) {
+  const int n = CoordinateCount(vehicle);
+  const MultiCoords<double> q = x.segment(0, n);
+  const MultiCoords<double> v = x.segment(n, n);
+  const MultiArmTerms<double> terms = ComputeMultiArmTerms<double>(vehicle, q, v, MultiArmThrusts(vehicle, x, u));
+  MultiArmPlantState x_dot = MultiArmPlantState::Zero(MultiArmPlantSize(vehicle));
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    const int b = DeflectionIndex(i);
+    x_dot(b) = v(b);
+    x_dot(n + b) = (terms.generalized_thrust(b) - terms.coriolis(b) - terms.gravity_spring(b)) / terms.mass(b, b);
+    const int w = MultiArmOmegaIndex(vehicle, i);
+    x_dot(w) = MotorLagRate(vehicle.omega_max_rad_s, vehicle.arms[static_cast<size_t>(i)].motor_time_constant_s, x(w),
+                            u.omega_cmd_rad_s[static_cast<size_t>(i)]);
+  }
+  return x_dot;
+}
+
+// Deflection b_i [rad] at rest of arm i on a level supported body under the
+// thrust force_n [N]: the root of the supported row above with b_dot = 0,
+//   k b + m_p g L cos(b + alpha) = l f,
+// by Newton from the small-angle b = (l f - m_p g L cos alpha) / k (the
+// birotor's StaticDeflectionRad); 4 iterations leave < 1e-15 rad.
+inline double MultiArmStaticDeflectionRad(const VehicleDescription& vehicle, int arm, double force_n) {
+  const ArmDescription& a = vehicle.arms[static_cast<size_t>(arm)];
+  const double weight_moment = a.tip_mass_kg * vehicle.gravity_m_s2 * a.length_m;  // m_p g L [N m]
+  const double thrust_moment = a.ThrustLeverM() * force_n;                         // l f [N m]
+  double b = (thrust_moment - weight_moment * std::cos(a.angle_rad)) / a.stiffness_n_m_rad;
+  for (int k = 0; k < 4; ++k) {
+    const double residual = a.stiffness_n_m_rad * b + weight_moment * std::cos(b + a.angle_rad) - thrust_moment;
+    b -= residual / (a.stiffness_n_m_rad - weight_moment * std::sin(b + a.angle_rad));
+  }
+  return b;
+}
+
 // One RK4 step of the plant over dt_s [s] with u held.
 inline MultiArmPlantState StepMultiArmPlant(const VehicleDescription& vehicle, const MultiArmPlantState& x,
                                             const MultiArmPlantInput& u, double dt_s) {

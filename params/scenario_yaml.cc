@@ -178,19 +178,26 @@ void ReadSensors(YamlSection& root, Scenario* out) {
   s.Finish();
 }
 
+// One number per arm: arm_count of them, or the two equal numbers of a
+// complete scenario file written for the birotor, which every arm takes.
+void ReadPerArm(YamlSection& s, const std::string& key, int arm_count, double min, double max, PerArm* values) {
+  s.DoubleArray(key, arm_count, kBirotorArmCount, min, max, values->data());
+}
+
 void ReadGauge(YamlSection& root, Scenario* out) {
   Scenario& sc = *out;
   const double end_s = sc.duration_s;
+  const int n = sc.arm_count;
   YamlSection g = root.Section("gauge");
   GaugeParams& gauge = sc.gauge;
-  g.DoubleArray("scale", 2, 0.5, 2.0, gauge.scale);
-  g.DoubleArray("offset_rad", 2, -0.01, 0.01, gauge.offset_rad);
-  g.DoubleArray("drift_rad_s", 2, -1e-3, 1e-3, gauge.drift_rad_s);
+  ReadPerArm(g, "scale", n, 0.5, 2.0, &gauge.scale);
+  ReadPerArm(g, "offset_rad", n, -0.01, 0.01, &gauge.offset_rad);
+  ReadPerArm(g, "drift_rad_s", n, -1e-3, 1e-3, &gauge.drift_rad_s);
   ReadWindow(g, "drift_window", end_s, &gauge.drift_window);
-  g.DoubleArray("harmonic_1x_rad", 2, 0.0, 0.01, gauge.harmonic_1x_rad);
-  g.DoubleArray("harmonic_2x_rad", 2, 0.0, 0.01, gauge.harmonic_2x_rad);
-  g.DoubleArray("harmonic_2x_phase_rad", 2, -10.0, 10.0, gauge.harmonic_2x_phase_rad);
-  g.DoubleArray("rotor_angle_rad", 2, -10.0, 10.0, gauge.rotor_angle_rad);
+  ReadPerArm(g, "harmonic_1x_rad", n, 0.0, 0.01, &gauge.harmonic_1x_rad);
+  ReadPerArm(g, "harmonic_2x_rad", n, 0.0, 0.01, &gauge.harmonic_2x_rad);
+  ReadPerArm(g, "harmonic_2x_phase_rad", n, -10.0, 10.0, &gauge.harmonic_2x_phase_rad);
+  ReadPerArm(g, "rotor_angle_rad", n, -10.0, 10.0, &gauge.rotor_angle_rad);
   g.Finish();
 }
 
@@ -225,11 +232,11 @@ void ReadFaults(YamlSection& root, Scenario* out) {
   const double end_s = sc.duration_s;
   YamlSection f = root.Section("faults");
   FaultParams& faults = sc.faults;
-  f.DoubleArray("initial_thrust_scale", 2, 0.0, 10.0, faults.initial_thrust_scale);
+  ReadPerArm(f, "initial_thrust_scale", sc.arm_count, 0.0, 10.0, &faults.initial_thrust_scale);
   for (YamlSection t : f.SectionList("thrust_steps")) {
     ThrustStep step;
     t.RequiredDouble("time_s", 0.0, end_s, &step.time_s);
-    t.Int("rotor", 1, 2, &step.rotor);
+    t.Int("rotor", 1, sc.arm_count, &step.rotor);
     t.RequiredDouble("scale", 0.0, 10.0, &step.scale);
     t.Finish();
     faults.thrust_steps.push_back(step);
@@ -252,9 +259,10 @@ void ReadController(YamlSection& root, Scenario* out) {
   c.Finish();
 }
 
-Scenario ReadScenario(YamlSection root) {
+Scenario ReadScenario(YamlSection root, int arm_count) {
   Scenario sc;
   sc.file = root.file();
+  sc.arm_count = arm_count;
   ReadScenarioSection(root, &sc);
   ReadVehicle(root, &sc);
   ReadTrajectory(root, &sc);
@@ -292,20 +300,24 @@ std::vector<std::string> OverridesFromFile(const std::string& file) {
 }
 
 Scenario LoadScenarioFromString(const std::string& text, const std::string& file_label,
-                                const std::vector<std::string>& overrides) {
+                                const std::vector<std::string>& overrides, int arm_count) {
+  if (arm_count < kBirotorArmCount || arm_count > kMaxArms) {
+    throw ParamError(file_label + ": the vehicle has " + std::to_string(arm_count) +
+                     " arms (allowed: " + RangeText(kBirotorArmCount, kMaxArms) + ")");
+  }
   const std::string label = overrides.empty() ? file_label : file_label + " (with --set overrides)";
   Scenario scenario;
   WithFileErrors(label, [&] {
     YAML::Node root = ParseYamlMapping(text, file_label);
     for (const std::string& text_override : overrides) ApplyOverride(root, text_override, label);
-    scenario = ReadScenario(YamlSection(label, root));
+    scenario = ReadScenario(YamlSection(label, root), arm_count);
   });
   scenario.file = file_label;
   return scenario;
 }
 
-Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides) {
-  return LoadScenarioFromString(ReadParameterFileText(file), file, overrides);
+Scenario LoadScenario(const std::string& file, const std::vector<std::string>& overrides, int arm_count) {
+  return LoadScenarioFromString(ReadParameterFileText(file), file, overrides, arm_count);
 }
 
 }  // namespace birotor

@@ -367,6 +367,28 @@ void YamlSection::DoubleArray(const std::string& key, int count, double min, dou
   }
 }
 
+void YamlSection::DoubleArray(const std::string& key, int count, int shared_count, double min, double max,
+                              double* values) {
+  const YAML::Node n = Get(key);
+  if (!n.IsDefined()) return;
+  if (shared_count == count || !n.IsSequence() || static_cast<int>(n.size()) != shared_count) {
+    DoubleArray(key, count, min, max, values);
+    return;
+  }
+  std::vector<double> shared(static_cast<size_t>(shared_count));
+  DoubleArray(key, shared_count, min, max, shared.data());
+  for (double x : shared) {
+    if (x != shared.front()) {
+      Fail(key,
+           "a list of " + std::to_string(shared_count) + " with different numbers for " + std::to_string(count) +
+               " elements",
+           std::to_string(count) + " numbers, or " + std::to_string(shared_count) + " equal ones, each in " +
+               RangeText(min, max));
+    }
+  }
+  for (int i = 0; i < count; ++i) values[i] = shared.front();
+}
+
 void YamlSection::DoubleList(const std::string& key, double min, double max, std::vector<double>* values) {
   const YAML::Node n = Get(key);
   if (!n.IsDefined()) return;

@@ -63,6 +63,10 @@ class YamlSection {
   void AnyString(const std::string& key, std::string* value);
   // A fixed-length list of doubles, each in [min, max].
   void DoubleArray(const std::string& key, int count, double min, double max, double* values);
+  // The same, or a list of shared_count equal numbers that every one of the
+  // count elements takes (a file written for another count, with a value
+  // that is the same everywhere).
+  void DoubleArray(const std::string& key, int count, int shared_count, double min, double max, double* values);
   // A list of doubles of any length (may be []), each in [min, max].
   void DoubleList(const std::string& key, double min, double max, std::vector<double>* values);
 

@@ -1,7 +1,7 @@
 // Sensor samples of a vehicle with N arms (docs/multi-arm-model.md,
-// "Simulator"): the counted twins of StrainSample, MotorSample and
-// TruthSample (samples/samples.h), as the wire's strain_n_t, motor_n_t and
-// truth_n_t. Plain structs with fixed storage; entries [0, n_arms) are used.
+// "Simulator"): the counted twins of StrainSample, MotorSample,
+// LoadCellSample and TruthSample (samples/samples.h), as the wire's
+// strain_n_t, motor_n_t, loadcell_n_t and truth_n_t. Plain structs with fixed storage; entries [0, n_arms) are used.
 // IMU and POSE do not depend on the arms: ImuSample and PoseSample serve.
 #pragma once
 
@@ -30,6 +30,14 @@ struct MultiArmMotorSample {
   int n_rotors = 0;
   ArmValues omega_cmd_rad_s{};   // commanded rotor speed [rad/s]
   ArmValues omega_meas_rad_s{};  // ESC telemetry [rad/s]; NaN when absent
+};
+
+// Test-bench load cells, one under each rotor (channel LOADCELL_N).
+struct MultiArmLoadCellSample {
+  int64_t utime = 0;
+  int32_t seq = 0;
+  int n_rotors = 0;
+  ArmValues force_n{};  // thrust of rotor i along its axis [N]
 };
 
 // Simulator ground truth (channel TRUTH_N).

@@ -24,6 +24,7 @@ class SampleSink {
   // through OnImu and OnPose.
   virtual void OnStrainN(const MultiArmStrainSample& /*sample*/) {}
   virtual void OnMotorN(const MultiArmMotorSample& /*sample*/) {}
+  virtual void OnLoadCellN(const MultiArmLoadCellSample& /*sample*/) {}
   virtual void OnTruthN(const MultiArmTruthSample& /*sample*/) {}
 };
 

@@ -7,14 +7,12 @@
 // it with the log closed. --external-controller (live) makes the simulator
 // the vehicle's ESCs: it runs MOTOR_COMMAND from LCM instead of its autopilot;
 // --publish-setpoints sends the scenario's trajectory on SETPOINT for it.
-// --vehicle FILE flies a vehicle description with N arms instead (offline,
-// simulator/multi_arm_simulator.h) on the counted channels.
+// --vehicle FILE flies a vehicle description with N arms instead (any
+// scenario kind, live or offline: birotor_sim_vehicle.h) on the counted channels.
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "evaluation/closed_loop.h"
@@ -30,7 +28,8 @@
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
-#include "simulator/multi_arm_simulator.h"
+#include "services/birotor_sim_vehicle.h"
+#include "services/live_pacer.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
@@ -51,7 +50,7 @@ struct SimOptions {
   std::vector<std::string> param_files;  // --params: partial scenario files, applied in order
   std::vector<std::string> overrides;    // --set section.key=value, applied in order after them
   std::string output;                    // log file (offline mode); empty: live on LCM
-  std::string vehicle_file;              // --vehicle: a description with N arms (offline); empty: the birotor
+  std::string vehicle_file;              // --vehicle: a description with N arms; empty: the birotor
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
   bool loop = false;                     // repeat the scenario until stopped, time continuing
@@ -209,16 +208,10 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, Messag
   WireSampleSink sink(channels, &lcm_sink, publish_truth);
   std::unique_ptr<EscCommandInput> commands;
   if (source != nullptr) commands = std::make_unique<EscCommandInput>(source, channels.motor_command, sim);
-  const auto start = std::chrono::steady_clock::now();
-  // Sleep at most once per millisecond of simulated time (4 steps at 4 kHz).
-  const int64_t steps_per_check = std::max<int64_t>(1, std::llround(1e-3 / sim->scenario().step_s));
-  int64_t steps = 0;
+  LivePacer pacer(speed, sim->scenario().step_s);
   while (!ShutdownRequested() && sim->Step(&sink)) {
     if (commands) commands->Poll();
-    if (++steps % steps_per_check != 0) continue;
-    const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                 std::chrono::duration<double>(sim->time_s() / speed));
-    std::this_thread::sleep_until(due);
+    pacer.AfterStep(sim->time_s());
   }
   if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());
   if (commands) {
@@ -240,8 +233,9 @@ void AddSimOptions(CLI::App& app, SimOptions* options) {
   app.add_option("--set", options->overrides, "Override section.key=value (YAML value; repeatable)");
   app.add_option("--output", options->output, "Write an LCM log file as fast as possible instead of publishing live");
   app.add_option("--vehicle", options->vehicle_file,
-                 "Fly the vehicle description in FILE (config/vehicles/*.yaml) instead of the scenario's birotor: "
-                 "offline (--output) only; STRAIN_N, MOTOR_N, IMU, POSE, TRUTH_N and VEHICLE (1 Hz)");
+                 "Fly the vehicle description in FILE (config/vehicles/*.yaml) instead of the scenario's birotor, "
+                 "any scenario (per-arm lists: one number per arm), live or with --output: STRAIN_N, MOTOR_N, "
+                 "LOADCELL_N, IMU, POSE, TRUTH_N and VEHICLE (at the start and every simulated second)");
   app.add_option("--speed", options->speed, "Live mode: simulated seconds per wall-clock second")
       ->check(CLI::Range(1e-3, 1e6));
   app.add_flag("--wall-clock", options->wall_clock,
@@ -276,7 +270,8 @@ void AddSimOptions(CLI::App& app, SimOptions* options) {
 
 // The scenario with the --params files and --set overrides on top (the
 // scenario's name resolved to its file in options); an error message, empty on success.
-std::string LoadSimScenario(SimOptions* options, Scenario* scenario) {
+// arm_count: the vehicle's (the per-arm lists and the rotors a fault may name).
+std::string LoadSimScenario(SimOptions* options, int arm_count, Scenario* scenario) {
   try {
     std::vector<std::string> overrides;
     for (const std::string& file : options->param_files) {
@@ -286,7 +281,7 @@ std::string LoadSimScenario(SimOptions* options, Scenario* scenario) {
     overrides.insert(overrides.end(), options->overrides.begin(), options->overrides.end());
     std::string scenario_error;  // a misspelt name lists the scenarios (issue 24)
     if (!FindScenario(options->scenario_file, &options->scenario_file, &scenario_error)) return scenario_error;
-    *scenario = LoadScenario(options->scenario_file, overrides);
+    *scenario = LoadScenario(options->scenario_file, overrides, arm_count);
   } catch (const ParamError& e) {
     return e.what();
   }
@@ -308,50 +303,14 @@ std::string ModeConflict(const SimOptions& options) {
     return "--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller";
   }
   if (!options.vehicle_file.empty() &&
-      (options.output.empty() || !options.controller_mode.empty() || options.publish_setpoints)) {
-    return "--vehicle runs offline into --output, without --controller, --external-controller, --loop or "
-           "--publish-setpoints";
+      (!options.controller_mode.empty() || options.external_controller || options.loop || options.publish_setpoints)) {
+    return "--vehicle runs the scenario's own autopilot, live or into --output, without --controller, "
+           "--external-controller, --loop or --publish-setpoints";
   }
   if (options.loop && !options.output.empty()) {
     return "--loop runs until stopped: it is for live mode, not with --output (see --help)";
   }
   return "";
-}
-
-// --vehicle: the description's flight into the log, its description on
-// VEHICLE every simulated second (first at t = 0).
-bool RunVehicleOffline(const SimOptions& options, const Scenario& scenario, const ChannelNames& channels) {
-  std::unique_ptr<MultiArmSimulator> sim;
-  VehicleDescription vehicle;
-  try {
-    vehicle = LoadVehicleDescription(options.vehicle_file);
-    sim = std::make_unique<MultiArmSimulator>(vehicle, scenario);
-  } catch (const ParamError& e) {
-    ReportError(e.what());
-    return false;
-  } catch (const std::invalid_argument& e) {
-    ReportError(options.vehicle_file + ": " + e.what());
-    return false;
-  }
-  LogWriter writer;
-  if (!OpenLog(&writer, options.output)) return false;
-  LogSink log_sink(&writer);
-  WireSampleSink sink(channels, &log_sink, !options.no_truth);
-  const int64_t vehicle_period_us = SecondsToUtime(1.0);
-  int32_t vehicle_seq = 0;
-  while (!log_sink.failed() && !ShutdownRequested() && !sim->done()) {
-    if (sim->utime() % vehicle_period_us == 0) sink.OnVehicle(vehicle, "birotor-sim", sim->utime(), vehicle_seq++);
-    sim->Step(&sink);
-  }
-  if (!FinishLog(&writer, log_sink.failed() || sink.encode_failures() > 0, options.output)) return false;
-  const ChannelCounts& n = sim->emitted();
-  spdlog::info(
-      "vehicle '{}' ({} arms) from {}: simulated {:.3f} s; samples: strain {}, motor {}, imu {}, pose {}, truth {}{}, "
-      "vehicle {}; {} fault events; wrote {} events to {}",
-      vehicle.name, vehicle.arm_count, options.vehicle_file, sim->time_s(), n.strain, n.motor, n.imu, n.pose, n.truth,
-      options.no_truth ? " (not published: --no-truth)" : "", vehicle_seq, sim->fault_events().size(),
-      writer.events_written(), options.output);
-  return true;
 }
 
 // What the runs emitted, summed.
@@ -400,8 +359,17 @@ int Main(int argc, char** argv) {
   if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-sim", options.common.log_level);
 
+  // --vehicle: the description first, so the scenario's per-arm lists are read for its arms.
+  VehicleDescription vehicle;
+  if (!options.vehicle_file.empty()) {
+    try {
+      vehicle = LoadVehicleDescription(options.vehicle_file);
+    } catch (const ParamError& e) {
+      return ReportError(e.what());
+    }
+  }
   Scenario scenario;
-  std::string error = LoadSimScenario(&options, &scenario);
+  std::string error = LoadSimScenario(&options, vehicle.arm_count, &scenario);
   if (!error.empty()) return ReportError(error);
   error = ModeConflict(options);
   if (!error.empty()) return ReportError(error, kExitUsage);
@@ -413,10 +381,6 @@ int Main(int argc, char** argv) {
   }
   if (!options.vehicle_file.empty()) inputs.push_back(options.vehicle_file);
   if (!CheckOutputs({options.output}, inputs, &error)) return ReportError(error);
-  if (!options.vehicle_file.empty()) {
-    InstallShutdownHandlers();
-    return RunVehicleOffline(options, scenario, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
-  }
   if (!options.controller_mode.empty()) {
     InstallShutdownHandlers();
     return RunClosedLoopOffline(scenario, options, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
@@ -438,6 +402,17 @@ int Main(int argc, char** argv) {
   }
   InstallShutdownHandlers();
   LogRealtimeOutcome(realtime);
+  if (!options.vehicle_file.empty()) {
+    VehicleRunOptions run;
+    run.vehicle_file = options.vehicle_file;
+    run.output = options.output;
+    run.speed = options.speed;
+    run.wall_clock = options.wall_clock;
+    run.publish_truth = !options.no_truth;
+    return RunVehicleScenario(run, vehicle, scenario, MakeChannelNames(options.common.prefix), lcm.get())
+               ? 0
+               : kExitFailure;
+  }
   const Stopwatch stopwatch;
   SimTotals totals;
   const bool ok =

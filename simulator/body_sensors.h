@@ -1,9 +1,11 @@
-// The body's sensors as the simulators measure them (the IMU and motion
-// capture of shared/spec/reference-vehicle.md, white noise): one copy for the
-// birotor and the N-arm simulator. utime and seq are the caller's.
+// The body's sensors as the simulators measure them (the IMU, motion capture
+// and ESC telemetry of shared/spec/reference-vehicle.md, white noise): one
+// copy for the birotor and the N-arm simulator. utime and seq are the caller's.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "samples/samples.h"
 #include "simulator/noise.h"
@@ -35,6 +37,14 @@ inline void MeasurePose(const BodyMotion& body, const SensorParams& sensors, Gau
   sample->x_m = body.x_m + noise->Normal(sensors.pose_position_noise_m);
   sample->z_m = body.z_m + noise->Normal(sensors.pose_position_noise_m);
   sample->phi_rad = body.phi_rad + noise->Normal(sensors.pose_angle_noise_rad);
+}
+
+// ESC telemetry of one rotor: omega + n [rad/s], never negative (near 0
+// while the motors are stopped); NaN when not reported (telemetry off or in
+// a gap). The noise is drawn either way, so a gap does not shift the stream.
+inline double MeasureRotorSpeed(double omega_rad_s, bool reported, const SensorParams& sensors, GaussianSource* noise) {
+  const double n = noise->Normal(sensors.motor_speed_noise_rad_s);
+  return reported ? std::max(0.0, omega_rad_s + n) : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace birotor

@@ -3,14 +3,21 @@
 // sensors of shared/spec/reference-vehicle.md; params/scenario_yaml.h loads it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "controller/controller_params.h"
+#include "model/vehicle_description.h"
 #include "model/vehicle_params.h"
 
 namespace birotor {
+
+// One value per arm (or rotor) of the vehicle, entries [0, Scenario::arm_count)
+// read from the file; the birotor uses entries 0 and 1.
+using PerArm = std::array<double, kMaxArms>;
+inline constexpr PerArm kEveryArmOne = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
 
 // One quintic move (zero velocity and acceleration at both ends) from where
 // the reference is at start_s to (x_m, z_m), world frame.
@@ -38,7 +45,8 @@ struct TrajectoryParams {
 };
 
 // Open-loop rotor speed commands on the test stand: segments alternate between
-// random steps (independent per rotor) and a linear chirp on both rotors.
+// random steps (independent per rotor) and a linear chirp on every rotor
+// (odd rotors in phase, even rotors in antiphase).
 struct BenchProfile {
   double omega_low_rad_s = 300.0;    // lowest commanded speed [rad/s]
   double omega_high_rad_s = 1100.0;  // highest commanded speed [rad/s]
@@ -74,7 +82,7 @@ struct SensorParams {
 // A step of rotor i's thrust efficiency s_i at time_s.
 struct ThrustStep {
   double time_s = 0.0;
-  int rotor = 1;       // 1 or 2
+  int rotor = 1;       // 1 .. Scenario::arm_count
   double scale = 1.0;  // new s_i [1]
 };
 
@@ -85,7 +93,7 @@ struct TimeWindow {
 };
 
 struct FaultParams {
-  double initial_thrust_scale[2] = {1.0, 1.0};  // s_i at t = 0 (density: 0.9)
+  PerArm initial_thrust_scale = kEveryArmOne;  // s_i at t = 0 (density: 0.9)
   std::vector<ThrustStep> thrust_steps;
   TimeWindow strain_gap;                            // strain samples not emitted (seq advances)
   double strain_spike_probability = 0.0;            // per strain sample
@@ -102,14 +110,14 @@ struct FaultParams {
 // theta_i the angle of rotor i (integrated from its own speed). n_i is
 // sensors.strain.noise_rad. Defaults: the ideal gauge of reference-vehicle.md.
 struct GaugeParams {
-  double scale[2] = {1.0, 1.0};                  // s_i [1]
-  double offset_rad[2] = {0.0, 0.0};             // o_i at power-up [rad]
-  double drift_rad_s[2] = {0.0, 0.0};            // do_i/dt inside drift_window [rad/s]
-  TimeWindow drift_window;                       // duration 0: no drift
-  double harmonic_1x_rad[2] = {0.0, 0.0};        // a1_i, pickup at the rotor speed [rad]
-  double harmonic_2x_rad[2] = {0.0, 0.0};        // a2_i, pickup at twice the rotor speed [rad]
-  double harmonic_2x_phase_rad[2] = {0.0, 0.0};  // phase2_i [rad]
-  double rotor_angle_rad[2] = {0.0, 0.0};        // theta_i at t = 0 [rad]
+  PerArm scale = kEveryArmOne;     // s_i [1]
+  PerArm offset_rad{};             // o_i at power-up [rad]
+  PerArm drift_rad_s{};            // do_i/dt inside drift_window [rad/s]
+  TimeWindow drift_window;         // duration 0: no drift
+  PerArm harmonic_1x_rad{};        // a1_i, pickup at the rotor speed [rad]
+  PerArm harmonic_2x_rad{};        // a2_i, pickup at twice the rotor speed [rad]
+  PerArm harmonic_2x_phase_rad{};  // phase2_i [rad]
+  PerArm rotor_angle_rad{};        // theta_i at t = 0 [rad]
 };
 
 // The ground phase of a real flight (shared/spec/gauges.md): rest on the
@@ -136,6 +144,10 @@ struct Scenario {
   std::string file;  // where it was loaded from (messages only)
   std::string name = "hover";
   std::string mode = "flight";  // "flight" or "bench" (body clamped)
+  // Entries of the per-arm lists (gauge:, faults.initial_thrust_scale) and
+  // the rotors a fault may name: the vehicle's arm count (LoadScenario's
+  // arm_count; 2, the birotor, unless --vehicle names a description).
+  int arm_count = kBirotorArmCount;
   double duration_s = 20.0;
   uint64_t seed = 1;
   double step_s = 0.00025;                  // RK4 step; a whole number of microseconds

@@ -7,6 +7,7 @@
 #include "model/bench_dynamics.h"
 #include "model/rk4.h"
 #include "simulator/body_sensors.h"
+#include "simulator/gauge_model.h"
 #include "simulator/sample_clock.h"
 
 namespace birotor {
@@ -28,13 +29,16 @@ Simulator::Simulator(const Scenario& scenario)
       turbulence_{
           GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s),
           GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s)},
+      ground_(scenario),
       turbulence_noise_(scenario.seed, kTurbulenceStream),
       strain_noise_(scenario.seed, kStrainStream),
       motor_noise_(scenario.seed, kMotorStream),
       imu_noise_(scenario.seed, kImuStream),
       pose_noise_(scenario.seed, kPoseStream),
       loadcell_noise_(scenario.seed, kLoadCellStream),
-      fault_noise_(scenario.seed, kFaultStream) {
+      fault_noise_(scenario.seed, kFaultStream),
+      strain_faults_(scenario.faults, StepsPerSample(scenario.sensors.strain.rate_hz, scenario.step_s) *
+                                          SecondsToUtime(scenario.step_s)) {
   const SensorParams& sensors = scenario_.sensors;
   auto decimation = [&](const SensorRate& rate) {
     Decimation d;
@@ -58,13 +62,6 @@ Simulator::Simulator(const Scenario& scenario)
   }
   std::stable_sort(thrust_steps_.begin(), thrust_steps_.end(),
                    [](const ScheduledStep& a, const ScheduledStep& b) { return a.step < b.step; });
-  const int64_t strain_period_us = strain_.every_steps * step_us_;
-  for (double t : faults.strain_nan_times_s)
-    strain_nan_seq_.push_back(FirstSampleAtOrAfter(SecondsToUtime(t), strain_period_us));
-  for (double t : faults.strain_out_of_order_times_s)
-    strain_swap_seq_.push_back(FirstSampleAtOrAfter(SecondsToUtime(t), strain_period_us));
-  std::sort(strain_nan_seq_.begin(), strain_nan_seq_.end());
-  std::sort(strain_swap_seq_.begin(), strain_swap_seq_.end());
   fault_events_.reserve(4096);
 
   // Initial state: the exact hover equilibrium at the start position (flight),
@@ -73,16 +70,7 @@ Simulator::Simulator(const Scenario& scenario)
   const VehicleParams& p = scenario_.vehicle;
   state_.setZero();
   for (int i = 0; i < 2; ++i) rotor_angle_rad_[i] = scenario_.gauge.rotor_angle_rad[i];
-  const GroundParams& ground = scenario_.ground;
-  if (ground.enabled) {
-    on_ground_ = true;
-    ground_z_m_ = scenario_.start_position_m[1];
-    if (ground.land) {
-      disarm_s_ = scenario_.duration_s - ground.rest_after_s;
-      land_start_s_ = disarm_s_ - ground.landing_duration_s;
-    }
-  }
-  if (clamped_body_ || ground.enabled) {
+  if (clamped_body_ || ground_.enabled()) {
     command_ = clamped_body_ ? bench_.At(0.0) : RotorCommand();
     if (!clamped_body_) {
       state_(kPlantQ + kX) = scenario_.start_position_m[0];
@@ -105,25 +93,20 @@ Simulator::Simulator(const Scenario& scenario)
 PlantState Simulator::Derivative(const PlantState& x) const {
   // On the ground the support holds the body level and still (x and z do not
   // enter the arm equations: a translated clamped body is the bench).
-  return (clamped_body_ || on_ground_) ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
-                                       : PlantDerivative(scenario_.vehicle, x, input_);
+  return (clamped_body_ || ground_.on_ground()) ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
+                                                : PlantDerivative(scenario_.vehicle, x, input_);
 }
 
 RotorCommand Simulator::Command(double t_s) {
   if (clamped_body_) return bench_.At(t_s);
-  const GroundParams& ground = scenario_.ground;
   RotorCommand command;
-  if (ground.enabled) {
-    if (t_s < ground.rest_s || (ground.land && t_s >= disarm_s_)) return command;  // stopped: 0 rad/s
-    if (t_s < ground.FlightStartS()) {
-      const double ramp = ground.spool_up_s > 0 ? (t_s - ground.rest_s) / ground.spool_up_s : 1.0;
-      command.omega_cmd_rad_s[0] = command.omega_cmd_rad_s[1] = ground.idle_rad_s * ramp;
-      return command;
-    }
+  double phase_omega_rad_s = 0.0;
+  if (ground_.PhaseCommand(t_s, &phase_omega_rad_s)) {
+    command.omega_cmd_rad_s[0] = command.omega_cmd_rad_s[1] = phase_omega_rad_s;
+    return command;
   }
-  const double flight_s = t_s - ground.FlightStartS();
   if (external_commands_) {
-    reference_ = trajectory_.At(flight_s);
+    reference_ = ReferenceAt(t_s);
     if (last_external_utime_ < 0) {
       // Before the first command the ESCs run the speeds of the start state
       // (hover), for at most the timeout.
@@ -135,20 +118,7 @@ RotorCommand Simulator::Command(double t_s) {
     command_timed_out_ = timed_out;
     return timed_out ? RotorCommand() : external_command_;
   }
-  if (ground.enabled && ground.land && t_s >= land_start_s_) {
-    if (!landing_planned_) {
-      // Vertical descent from where the reference is to the support height.
-      const ReferencePoint from = trajectory_.At(flight_s);
-      landing_.start_s = land_start_s_;
-      landing_.duration_s = ground.landing_duration_s;
-      landing_.from_m = from.position_m;
-      landing_.to_m = Eigen::Vector2d(from.position_m.x(), ground_z_m_);
-      landing_planned_ = true;
-    }
-    reference_ = EvaluateQuintic(landing_, t_s);
-  } else {
-    reference_ = trajectory_.At(flight_s);
-  }
+  reference_ = ground_.FlightReference(t_s, trajectory_);
   return controller_.Update(state_, reference_);
 }
 
@@ -203,29 +173,12 @@ void Simulator::EmitSetpoint(int64_t utime, double t_s, SampleSink* sink) {
   sink->OnSetpoint(SetpointFromReference(ReferenceAt(t_s), utime, setpoint_seq_++));
 }
 
-void Simulator::UpdateGroundContact(int64_t now_us) {
-  if (!on_ground_) return;
-  // The support only pushes: the body leaves it when the free body would
-  // accelerate upwards (thrust above the weight).
-  if (PlantDerivative(scenario_.vehicle, state_, input_)(kPlantV + kZ) > 0.0) {
-    on_ground_ = false;
-    if (liftoff_utime_ < 0) liftoff_utime_ = now_us;
-  }
-}
-
 double Simulator::GaugeOffsetRad(int gauge, double t_s) const {
-  const GaugeParams& g = scenario_.gauge;
-  const double drift_s = std::clamp(t_s - g.drift_window.start_s, 0.0, g.drift_window.duration_s);
-  return g.offset_rad[gauge] + g.drift_rad_s[gauge] * drift_s;
+  return birotor::GaugeOffsetRad(scenario_.gauge, gauge, t_s);
 }
 
 double Simulator::TrueForce(int rotor) const {
   return RotorThrust(scenario_.vehicle, state_(kPlantOmega1 + rotor), input_.thrust_scale[rotor]);
-}
-
-bool Simulator::InWindow(const TimeWindow& window, int64_t t_us) const {
-  const int64_t start_us = utime_offset_us_ + SecondsToUtime(window.start_s);
-  return window.duration_s > 0.0 && t_us >= start_us && t_us < start_us + SecondsToUtime(window.duration_s);
 }
 
 void Simulator::RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value) {
@@ -252,7 +205,8 @@ bool Simulator::Step(SampleSink* sink) {
   if (control_.Due(k) || external_commands_) command_ = Command(t_s);
   input_.omega_cmd_rad_s[0] = command_.omega_cmd_rad_s[0];
   input_.omega_cmd_rad_s[1] = command_.omega_cmd_rad_s[1];
-  UpdateGroundContact(now_us);
+  // Lift-off before the step: the support only pushes.
+  ground_.UpdateLiftoff(now_us, [this] { return PlantDerivative(scenario_.vehicle, state_, input_)(kPlantV + kZ); });
 
   // RK4, keeping k1 = f(x_k, u_k) for the accelerometer.
   const double dt = scenario_.step_s;
@@ -270,15 +224,11 @@ bool Simulator::Step(SampleSink* sink) {
 
   const double omega_before[2] = {state_(kPlantOmega1), state_(kPlantOmega2)};
   state_ = Rk4StepFrom(state_, k1, dt, [this](const PlantState& x) { return Derivative(x); });
-  for (int i = 0; i < 2; ++i) {
-    // Trapezoidal rotor angle, kept in [0, 2 pi) so its precision does not decay.
-    const double angle = rotor_angle_rad_[i] + 0.5 * dt * (omega_before[i] + state_(kPlantOmega1 + i));
-    rotor_angle_rad_[i] = angle - 2.0 * M_PI * std::floor(angle / (2.0 * M_PI));
-  }
-  if (scenario_.ground.enabled && !on_ground_ && state_(kPlantQ + kZ) <= ground_z_m_) {
+  for (int i = 0; i < 2; ++i)
+    rotor_angle_rad_[i] = AdvanceRotorAngleRad(rotor_angle_rad_[i], omega_before[i], state_(kPlantOmega1 + i), dt);
+  if (ground_.Touchdown(state_(kPlantQ + kZ))) {
     // Touchdown: an inelastic contact that levels the body (arms keep their state).
-    on_ground_ = true;
-    state_(kPlantQ + kZ) = ground_z_m_;
+    state_(kPlantQ + kZ) = ground_.support_z_m();
     state_(kPlantQ + kPhi) = 0.0;
     for (int c : {kX, kZ, kPhi}) state_(kPlantV + c) = 0.0;
   }
@@ -294,60 +244,21 @@ void Simulator::Run(SampleSink* sink) {
 }
 
 void Simulator::EmitStrain(int64_t utime, SampleSink* sink) {
-  const FaultParams& faults = scenario_.faults;
   const double sigma = scenario_.sensors.strain_noise_rad;
-  const int32_t seq = strain_seq_++;
   StrainSample sample;
   sample.utime = utime;
-  sample.seq = seq;
-  const GaugeParams& gauge = scenario_.gauge;
+  sample.seq = strain_seq_++;
   const double t_s = static_cast<double>(utime - utime_offset_us_) * 1e-6;
   for (int i = 0; i < 2; ++i) {
-    // b_meas = s b + o(t) + v(t) + n (scenario.h); exactly b + n for the ideal gauge.
-    double reading = gauge.scale[i] * state_(kPlantQ + kB1 + i) + GaugeOffsetRad(i, t_s);
-    if (gauge.harmonic_1x_rad[i] != 0.0 || gauge.harmonic_2x_rad[i] != 0.0) {
-      const double theta = rotor_angle_rad_[i];
-      reading += gauge.harmonic_1x_rad[i] * std::sin(theta) +
-                 gauge.harmonic_2x_rad[i] * std::sin(2.0 * theta + gauge.harmonic_2x_phase_rad[i]);
-    }
-    sample.deflection_rad[i] = reading + strain_noise_.Normal(sigma);
+    sample.deflection_rad[i] =
+        GaugeReadingRad(scenario_.gauge, i, state_(kPlantQ + kB1 + i), t_s, rotor_angle_rad_[i]) +
+        strain_noise_.Normal(sigma);
   }
-
-  // Fault draws happen for every sample so the fault pattern does not depend
-  // on which other faults are configured.
-  const double spike_draw = fault_noise_.Uniform();
-  const double spike_shape = fault_noise_.Uniform();
-  const bool in_gap = InWindow(faults.strain_gap, utime);
-  const bool is_nan = std::binary_search(strain_nan_seq_.begin(), strain_nan_seq_.end(), seq);
-  if (in_gap) {
-    RecordFault(FaultKind::kStrainGap, utime, seq, 0, 0.0);
-  } else if (is_nan) {
-    sample.deflection_rad[0] = sample.deflection_rad[1] = kNaN;
-    RecordFault(FaultKind::kStrainNan, utime, seq, 0, kNaN);
-  } else if (spike_draw < faults.strain_spike_probability) {
-    // One arm (first half of spike_shape: arm 1), sign from the rest.
-    const int arm = spike_shape < 0.5 ? 0 : 1;
-    const double sign = std::fmod(spike_shape * 4.0, 2.0) < 1.0 ? 1.0 : -1.0;
-    const double spike = sign * faults.strain_spike_sigmas * sigma;
-    sample.deflection_rad[arm] += spike;
-    RecordFault(FaultKind::kStrainSpike, utime, seq, arm + 1, spike);
-  }
-  if (in_gap) {
-    // Not emitted; a sample held for swapping still goes out.
-  } else if (std::binary_search(strain_swap_seq_.begin(), strain_swap_seq_.end(), seq)) {
-    RecordFault(FaultKind::kStrainOutOfOrder, utime, seq, 0, 0.0);
-    held_strain_ = sample;
-    has_held_strain_ = true;
-    return;
-  } else {
-    sink->OnStrain(sample);
-    ++emitted_.strain;
-  }
-  if (has_held_strain_) {
-    sink->OnStrain(held_strain_);
-    ++emitted_.strain;
-    has_held_strain_ = false;
-  }
+  strain_faults_.Process(sample, 2, sigma, InWindow(scenario_.faults.strain_gap, utime), &fault_noise_, &fault_events_,
+                         [&](const StrainSample& out) {
+                           sink->OnStrain(out);
+                           ++emitted_.strain;
+                         });
 }
 
 void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
@@ -359,10 +270,8 @@ void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
   if (in_gap) RecordFault(FaultKind::kMotorTelemetryGap, utime, sample.seq, 0, kNaN);
   for (int i = 0; i < 2; ++i) {
     sample.omega_cmd_rad_s[i] = ClampCommand(scenario_.vehicle, command_.omega_cmd_rad_s[i]);
-    const double noise = motor_noise_.Normal(sensors.motor_speed_noise_rad_s);
-    // An ESC reports no negative speed (near 0 while the motors are stopped).
     sample.omega_meas_rad_s[i] =
-        (sensors.motor_telemetry && !in_gap) ? std::max(0.0, state_(kPlantOmega1 + i) + noise) : kNaN;
+        MeasureRotorSpeed(state_(kPlantOmega1 + i), sensors.motor_telemetry && !in_gap, sensors, &motor_noise_);
   }
   sink->OnMotor(sample);
   ++emitted_.motor;

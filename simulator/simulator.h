@@ -12,30 +12,15 @@
 #include "model/plant.h"
 #include "samples/sample_sink.h"
 #include "simulator/bench_profile.h"
+#include "simulator/fault_event.h"
 #include "simulator/flight_controller.h"
+#include "simulator/ground_phase.h"
 #include "simulator/noise.h"
 #include "simulator/scenario.h"
+#include "simulator/strain_faults.h"
 #include "simulator/trajectory.h"
 
 namespace birotor {
-
-enum class FaultKind {
-  kThrustStep,         // s_i changed; rotor, value = new s_i
-  kStrainGap,          // strain sample seq not emitted
-  kStrainSpike,        // strain sample seq carries a spike; rotor, value = spike [rad]
-  kStrainNan,          // strain sample seq is NaN on both arms
-  kStrainOutOfOrder,   // strain sample seq emitted after seq + 1
-  kMotorTelemetryGap,  // motor sample seq has omega_meas NaN
-};
-
-// One injected fault, so tests can check it happened exactly where configured.
-struct FaultEvent {
-  FaultKind kind = FaultKind::kThrustStep;
-  int64_t utime = 0;  // time of the affected sample or step [us]
-  int32_t seq = -1;   // seq of the affected sample (-1 for thrust steps)
-  int rotor = 0;      // 1 or 2 where it applies, 0 otherwise
-  double value = 0.0;
-};
 
 // What the ESCs did with the commands offered to them (OfferMotorCommand).
 enum class EscVerdict {
@@ -60,7 +45,8 @@ struct ChannelCounts {
 
 class Simulator {
  public:
-  // The scenario must have been validated (LoadScenario does it).
+  // The scenario must have been validated (LoadScenario does it), for the
+  // birotor (arm_count 2: entries 0 and 1 of its per-arm lists are used).
   explicit Simulator(const Scenario& scenario);
 
   // Emits the samples due at the current time, then advances one step.
@@ -119,10 +105,10 @@ class Simulator {
   const ReferencePoint& reference() const { return reference_; }
   const std::vector<FaultEvent>& fault_events() const { return fault_events_; }
   // Ground phase: true while the ground supports the body.
-  bool on_ground() const { return on_ground_; }
+  bool on_ground() const { return ground_.on_ground(); }
   // Time of the first lift-off [us] (with the offset); -1 before it or
   // without a ground phase.
-  int64_t liftoff_utime() const { return liftoff_utime_; }
+  int64_t liftoff_utime() const { return ground_.liftoff_utime(); }
   // Zero offset o_i(t) of gauge i at time t_s (gauge model, scenario.h) [rad].
   double GaugeOffsetRad(int gauge, double t_s) const;
   const ChannelCounts& emitted() const { return emitted_; }
@@ -151,9 +137,7 @@ class Simulator {
   // Rotor speed commands of the ground phase and the landing, or the
   // controller's; t_s is the simulated time of the step.
   RotorCommand Command(double t_s);
-  // Lift-off before the step, touchdown after it (ground phase only).
-  void UpdateGroundContact(int64_t now_us);
-  bool InWindow(const TimeWindow& window, int64_t t_us) const;
+  bool InWindow(const TimeWindow& window, int64_t t_us) const { return InTimeWindow(window, t_us, utime_offset_us_); }
   void RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value);
 
   Scenario scenario_;
@@ -177,14 +161,7 @@ class Simulator {
   std::vector<ScheduledStep> thrust_steps_;
   size_t next_thrust_step_ = 0;
 
-  // Ground phase (scenario.ground).
-  bool on_ground_ = false;
-  int64_t liftoff_utime_ = -1;
-  double ground_z_m_ = 0.0;    // height of the support [m]
-  double land_start_s_ = 0.0;  // descent starts [s] (land only)
-  double disarm_s_ = 0.0;      // motors stopped [s] (land only)
-  QuinticMove landing_;        // descent, in simulated time
-  bool landing_planned_ = false;
+  GroundPhase ground_;                      // scenario.ground
   double rotor_angle_rad_[2] = {0.0, 0.0};  // theta_i for the harmonic pickup, in [0, 2 pi)
 
   Decimation setpoint_;
@@ -202,11 +179,7 @@ class Simulator {
   bool command_timed_out_ = false;
   int64_t command_timeouts_ = 0;
 
-  // Strain fault bookkeeping (sample indices are seq values).
-  std::vector<int64_t> strain_nan_seq_;
-  std::vector<int64_t> strain_swap_seq_;
-  bool has_held_strain_ = false;
-  StrainSample held_strain_;
+  StrainFaultInjector<StrainSample> strain_faults_;
 
   int32_t setpoint_seq_ = 0;
   int32_t strain_seq_ = 0, motor_seq_ = 0, imu_seq_ = 0, pose_seq_ = 0, loadcell_seq_ = 0;

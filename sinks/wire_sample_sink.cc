@@ -28,6 +28,9 @@ void WireSampleSink::OnTruth(const TruthSample& s) {
 void WireSampleSink::OnSetpoint(const Setpoint& s) { Publish(channels_.setpoint, s.utime, ToMessage(s)); }
 void WireSampleSink::OnStrainN(const MultiArmStrainSample& s) { Publish(channels_.strain_n, s.utime, ToMessage(s)); }
 void WireSampleSink::OnMotorN(const MultiArmMotorSample& s) { Publish(channels_.motor_n, s.utime, ToMessage(s)); }
+void WireSampleSink::OnLoadCellN(const MultiArmLoadCellSample& s) {
+  Publish(channels_.loadcell_n, s.utime, ToMessage(s));
+}
 void WireSampleSink::OnTruthN(const MultiArmTruthSample& s) {
   if (publish_truth_) Publish(channels_.truth_n, s.utime, ToMessage(s));
 }

@@ -31,10 +31,11 @@ class WireSampleSink : public SampleSink {
   void OnLoadCell(const LoadCellSample& sample) override;
   void OnTruth(const TruthSample& sample) override;
   void OnSetpoint(const Setpoint& setpoint) override;
-  // A vehicle with N arms: STRAIN_N, MOTOR_N, TRUTH_N (TRUTH_N not without
+  // A vehicle with N arms: STRAIN_N, MOTOR_N, LOADCELL_N, TRUTH_N (TRUTH_N not without
   // publish_truth), and its description on VEHICLE (seq: the caller's count).
   void OnStrainN(const MultiArmStrainSample& sample) override;
   void OnMotorN(const MultiArmMotorSample& sample) override;
+  void OnLoadCellN(const MultiArmLoadCellSample& sample) override;
   void OnTruthN(const MultiArmTruthSample& sample) override;
   void OnVehicle(const VehicleDescription& vehicle, const std::string& publisher, int64_t utime, int32_t seq);
   // The outputs of an in-process estimator and controller (lock-step closed loop).

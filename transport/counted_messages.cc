@@ -233,6 +233,15 @@ motor_n_t ToMessage(const MultiArmMotorSample& s) {
   return m;
 }
 
+loadcell_n_t ToMessage(const MultiArmLoadCellSample& s) {
+  loadcell_n_t m{};
+  m.utime = s.utime;
+  m.seq = s.seq;
+  m.n_rotors = static_cast<int8_t>(s.n_rotors);
+  m.force_n = FirstEntries(s.force_n, s.n_rotors);
+  return m;
+}
+
 truth_n_t ToMessage(const MultiArmTruthSample& s) {
   truth_n_t m{};
   m.utime = s.utime;

@@ -94,6 +94,7 @@ bool ToBirotorMessage(const motor_command_n_t& message, motor_command_t* out);
 // n_arms (n_rotors) entries, every other field as it is.
 strain_n_t ToMessage(const MultiArmStrainSample& sample);
 motor_n_t ToMessage(const MultiArmMotorSample& sample);
+loadcell_n_t ToMessage(const MultiArmLoadCellSample& sample);
 truth_n_t ToMessage(const MultiArmTruthSample& sample);
 
 // The description a program runs with, for VEHICLE_DESCRIPTION: every field,

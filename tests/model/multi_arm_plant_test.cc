@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "model/bench_dynamics.h"
 #include "model/equilibrium.h"
 #include "model/plant.h"
 #include "params/vehicle_description_yaml.h"
@@ -87,6 +88,60 @@ TEST(MultiArmPlantTest, HoverThrustsHoldTheTrirotorLevel) {
   std::printf("trirotor hover over 1 s: |phi| <= %.3g rad, |x|, |z| <= %.3g m\n", worst_phi_rad, worst_position_m);
   EXPECT_LT(worst_phi_rad, 1e-9);
   EXPECT_LT(worst_position_m, 1e-9);
+}
+
+// The supported plant (bench, or the ground under a landed vehicle) of the
+// birotor description is model/bench_dynamics.h's ClampedBodyDerivative:
+// the same arm rows (m_p L^2 b_ddot + d b_dot + k b + s m_p g L cos b = s L f)
+// summed in another order, so agreement to rounding (measured 0 to 1e-16
+// relative); and MultiArmStaticDeflectionRad, exact in cos b, is the
+// birotor's small-angle StaticDeflectionRad to the cos b ~ 1 relative error
+// (b ~ 3e-3 rad: b^2 / 2 ~ 5e-6 of the weight term).
+TEST(MultiArmPlantTest, BirotorDescriptionOnTheSupportIsTheBenchPlant) {
+  const VehicleParams params;
+  const VehicleDescription vehicle = BirotorDescription(params);
+  PlantState x = PlantState::Zero();
+  x(kPlantQ + kB1) = -2.0e-3;
+  x(kPlantQ + kB2) = 3.0e-3;
+  x(kPlantV + kB1) = 0.4;
+  x(kPlantV + kB2) = -0.2;
+  x(kPlantOmega1) = 650.0;
+  x(kPlantOmega2) = 720.0;
+  PlantInput u;
+  u.omega_cmd_rad_s[0] = 900.0;
+  u.omega_cmd_rad_s[1] = 400.0;
+  u.thrust_scale[0] = 0.95;
+  u.thrust_scale[1] = 1.02;
+  MultiArmPlantInput multi_u;
+  for (int i = 0; i < 2; ++i) {
+    multi_u.omega_cmd_rad_s[static_cast<size_t>(i)] = u.omega_cmd_rad_s[i];
+    multi_u.thrust_scale[static_cast<size_t>(i)] = u.thrust_scale[i];
+  }
+  const PlantState bench = ClampedBodyDerivative(params, x, u);
+  const MultiArmPlantState multi = MultiArmSupportedDerivative(vehicle, MultiArmPlantState(x), multi_u);
+  for (int j = 0; j < kPlantStateSize; ++j)
+    EXPECT_NEAR(multi(j), bench(j), 1e-12 * std::max(1.0, std::abs(bench(j)))) << "entry " << j;
+  for (int arm = 0; arm < 2; ++arm) {
+    for (double force_n : {0.0, 10.0, 25.0}) {
+      const double small_angle = StaticDeflectionRad(params, arm, force_n);
+      EXPECT_NEAR(MultiArmStaticDeflectionRad(vehicle, arm, force_n), small_angle, 1e-5 * std::abs(small_angle) + 1e-12)
+          << "arm " << arm << ", " << force_n << " N";
+    }
+  }
+  // At the root the supported arm is at rest: b_ddot = 0 (trirotor, rotor 3 at 12 N).
+  const VehicleDescription trirotor =
+      LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
+  MultiArmPlantState rest = MultiArmPlantState::Zero(MultiArmPlantSize(trirotor));
+  MultiArmPlantInput rest_u;
+  const double omega3 = std::sqrt(12.0 / trirotor.arms[2].thrust_coeff_n_s2_rad2);
+  rest(MultiArmOmegaIndex(trirotor, 2)) = omega3;
+  rest_u.omega_cmd_rad_s[2] = omega3;
+  for (int i = 0; i < 3; ++i) {
+    const double force_n = i == 2 ? 12.0 : 0.0;
+    rest(MultiArmQIndex(trirotor, DeflectionIndex(i))) = MultiArmStaticDeflectionRad(trirotor, i, force_n);
+  }
+  const MultiArmPlantState rate = MultiArmSupportedDerivative(trirotor, rest, rest_u);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(rate(MultiArmVIndex(trirotor, DeflectionIndex(i))), 0.0, 1e-9) << i;
 }
 
 }  // namespace

@@ -141,5 +141,36 @@ TEST(ScenarioYamlTest, ParameterFileBecomesOverrides) {
   std::remove(path.c_str());
 }
 
+// Read for a vehicle of three arms: the per-arm lists take three numbers,
+// or the two equal numbers of the birotor's files (every arm takes them),
+// and a fault may name rotor 3, which the birotor refuses with the file,
+// the key and the range.
+TEST(ScenarioYamlTest, PerArmListsAndRotorsFollowTheVehiclesArmCount) {
+  const Scenario tri = LoadScenario(ScenarioPath("density"), {"gauge.offset_rad=[1.0e-5, 2.0e-5, 3.0e-5]"}, 3);
+  EXPECT_EQ(tri.arm_count, 3);
+  EXPECT_DOUBLE_EQ(tri.gauge.offset_rad[2], 3.0e-5);
+  EXPECT_DOUBLE_EQ(tri.faults.initial_thrust_scale[2], 0.9);  // [0.9, 0.9] for every arm
+  const std::string rotor3 = "faults.thrust_steps=[{time_s: 1.0, rotor: 3, scale: 0.8}]";
+  EXPECT_EQ(LoadScenario(ScenarioPath("hover"), {rotor3}, 3).faults.thrust_steps.at(0).rotor, 3);
+  try {
+    LoadScenario(ScenarioPath("hover"), {rotor3});
+    FAIL() << "rotor 3 accepted on the birotor";
+  } catch (const ParamError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("hover.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("key 'faults.thrust_steps[0].rotor'"), std::string::npos) << what;
+    EXPECT_NE(what.find("[1, 2]"), std::string::npos) << what;
+  }
+  try {
+    LoadScenario(ScenarioPath("hover"), {"gauge.scale=[1.03, 0.98]"}, 3);
+    FAIL() << "two different numbers accepted for three arms";
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'gauge.scale'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("3 numbers, or 2 equal ones"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(LoadScenario(ScenarioPath("hover"), {"gauge.scale=[1.0, 1.0, 1.0]"}), ParamError);  // birotor: 2
+  EXPECT_THROW(LoadScenario(ScenarioPath("hover"), {}, 7), ParamError);                            // kMaxArms = 6
+}
+
 }  // namespace
 }  // namespace birotor

@@ -2,7 +2,9 @@
 // into an LCM log on the counted channels. Read back with transport/log_io:
 // every channel at its rate, n_arms the file's in every message, CountMatches
 // against the file's description, the description itself on VEHICLE at 1 Hz,
-// the same bytes for the same seed; --vehicle needs --output.
+// the same bytes for the same seed; live (published through LCM's file://
+// provider, never udpm) the same messages on the same channels; a rotor 3
+// fault refused on the birotor and accepted on the trirotor.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,8 +12,11 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "birotor/imu_t.hpp"
+#include "birotor/loadcell_n_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "params/vehicle_description_yaml.h"
 #include "tests/simulator/test_support.h"
@@ -75,6 +80,9 @@ LogFacts ReadLog(const std::string& path, const VehicleDescription& vehicle) {
       std::string why;
       const bool same = FromMessage(m, &from_wire, &why) && FirstDifference(from_wire, vehicle).empty();
       facts.vehicle_mismatches += same && m.n_arms == 3 ? 0 : 1;
+    } else if (event.channel == c.loadcell_n) {
+      const loadcell_n_t m = Decoded<loadcell_n_t>(event, failures);
+      facts.count_refusals += CountMatches(m, vehicle, nullptr) && m.n_rotors == 3 ? 0 : 1;
     } else if (event.channel == c.imu) {
       Decoded<imu_t>(event, failures);
     } else if (event.channel == c.pose) {
@@ -109,11 +117,72 @@ TEST(MultiArmSimLogTest, TrirotorFileIntoALogOnTheCountedChannels) {
   std::remove(again.c_str());
 }
 
-// --vehicle is offline: without --output it is a usage error (exit 2).
-TEST(MultiArmSimLogTest, VehicleWithoutAnOutputLogIsAUsageError) {
+// (channel, payload) of every event of a log, in order.
+std::vector<std::pair<std::string, std::vector<uint8_t>>> Messages(const std::string& path) {
+  LogReader reader;
+  std::string error;
+  EXPECT_TRUE(reader.Open(path, &error)) << error;
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> messages;
+  LogEvent event;
+  while (reader.Next(&event)) messages.emplace_back(event.channel, event.data);
+  return messages;
+}
+
+// Live: the same sink path as --output, published through LCM (its file://
+// provider records what was published), paced by --speed: the bench
+// scenario's messages, byte for byte the log's, LOADCELL_N included.
+TEST(MultiArmSimLogTest, LivePublishesWhatTheLogHolds) {
+  const VehicleDescription vehicle = LoadVehicleDescription(kTrirotorFile);
+  const std::string logged = TempPath("bench.lcm"), published = TempPath("bench_live.lcm");
+  const std::string args =
+      "--vehicle " + kTrirotorFile + " --scenario " + ScenarioPath("bench") + " --set scenario.duration_s=2 ";
   std::string err;
-  EXPECT_EQ(RunSim("--vehicle " + kTrirotorFile + " --scenario " + ScenarioPath("hover"), &err), 2);
-  EXPECT_NE(err.find("--vehicle runs offline into --output"), std::string::npos) << err;
+  ASSERT_EQ(RunSim(args + "--output " + logged, &err), 0) << err;
+  ASSERT_EQ(RunSim(args + "--speed 20 --lcm-url 'file://" + published + "?mode=w'", &err), 0) << err;
+  const LogFacts facts = ReadLog(published, vehicle);
+  EXPECT_EQ(facts.decode_failures, 0);
+  EXPECT_EQ(facts.count_refusals, 0);
+  EXPECT_EQ(facts.vehicle_mismatches, 0);
+  // bench.yaml: IMU and POSE off, the load cells on at 1 kHz; 2 s, VEHICLE at 1 Hz.
+  const std::map<std::string, int> expected = {{"BIROTOR_STRAIN_N", 2000},
+                                               {"BIROTOR_MOTOR_N", 1000},
+                                               {"BIROTOR_LOADCELL_N", 2000},
+                                               {"BIROTOR_TRUTH_N", 2000},
+                                               {"BIROTOR_VEHICLE", 2}};
+  EXPECT_EQ(facts.counts, expected);
+  EXPECT_TRUE(Messages(published) == Messages(logged)) << "live and logged messages differ";
+  std::remove(logged.c_str());
+  std::remove(published.c_str());
+}
+
+// The scenario is read for the vehicle's arms: a thrust step on rotor 3 is
+// refused at load for the birotor (file, key and range named) and flies on
+// the trirotor.
+TEST(MultiArmSimLogTest, Rotor3FaultIsRefusedOnTheBirotorAndFliesOnTheTrirotor) {
+  const std::string path = TempPath("rotor3.lcm");
+  const std::string args = "--scenario " + ScenarioPath("thrust_loss") +
+                           " --set scenario.duration_s=2 --set 'faults.thrust_steps=[{time_s: 1.0, rotor: 3, "
+                           "scale: 0.8}]' --output " +
+                           path;
+  std::string err;
+  EXPECT_EQ(RunSim(args, &err), 1);
+  EXPECT_NE(err.find("thrust_loss.yaml"), std::string::npos) << err;
+  EXPECT_NE(err.find("key 'faults.thrust_steps[0].rotor'"), std::string::npos) << err;
+  EXPECT_NE(err.find("[1, 2]"), std::string::npos) << err;
+  EXPECT_EQ(RunSim("--vehicle " + kTrirotorFile + " " + args, &err), 0) << err;
+  EXPECT_NE(err.find("1 fault events"), std::string::npos) << err;
+  std::remove(path.c_str());
+}
+
+// --vehicle flies the scenario's own autopilot: with --controller it is a
+// usage error (exit 2).
+TEST(MultiArmSimLogTest, VehicleWithTheLockStepControllerIsAUsageError) {
+  std::string err;
+  EXPECT_EQ(RunSim("--vehicle " + kTrirotorFile + " --scenario " + ScenarioPath("hover") +
+                       " --controller nominal --output " + TempPath("never.lcm"),
+                   &err),
+            2);
+  EXPECT_NE(err.find("--vehicle runs the scenario's own autopilot"), std::string::npos) << err;
 }
 
 }  // namespace

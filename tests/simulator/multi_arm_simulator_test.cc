@@ -40,11 +40,12 @@ VehicleDescription FourArms() {
   return vehicle;
 }
 
-// A scenario that holds the origin for duration_s, then (move_m != 0) a
-// lateral move of move_m starting at 1 s taking move_s.
-Scenario Hold(double duration_s, double move_m = 0.0, double move_s = 2.0) {
+// A scenario for arm_count arms that holds the origin for duration_s, then
+// (move_m != 0) a lateral move of move_m starting at 1 s taking move_s.
+Scenario Hold(int arm_count, double duration_s, double move_m = 0.0, double move_s = 2.0) {
   Scenario scenario;
   scenario.name = "test";
+  scenario.arm_count = arm_count;
   scenario.duration_s = duration_s;
   if (move_m != 0.0) {
     scenario.trajectory.kind = "waypoints";
@@ -82,7 +83,7 @@ Flight Fly(MultiArmSimulator* sim, double from_s = 0.0) {
 // Bounds: the targets where it sets one, else the measured figure
 // (seed 1, in the comment) times at most 1.5.
 TEST(MultiArmSimulatorTest, TrirotorHoversLevelFromItsFile) {
-  MultiArmSimulator sim(Trirotor(), Hold(5.0));
+  MultiArmSimulator sim(Trirotor(), Hold(3, 5.0));
   EXPECT_EQ(sim.mode(), MultiArmControlMode::kFullyActuated);
   const Flight flight = Fly(&sim);
   std::printf("trirotor hover 5 s: |phi| <= %.3g rad, |x| <= %.3g m, |z| <= %.3g m\n", flight.max_tilt_rad,
@@ -97,7 +98,7 @@ TEST(MultiArmSimulatorTest, TrirotorHoversLevelFromItsFile) {
 // torque, allocated first, keeps the body level. The position integral (the
 // cascade's Ki, as on the birotor) overshoots by 0.12 m and returns slowly.
 TEST(MultiArmSimulatorTest, TrirotorLateralStepStaysLevel) {
-  MultiArmSimulator sim(Trirotor(), Hold(11.0, 1.0, 0.001));
+  MultiArmSimulator sim(Trirotor(), Hold(3, 11.0, 1.0, 0.001));
   const Flight flight = Fly(&sim);
   std::printf("trirotor 1 m lateral step: |phi| <= %.3g rad, |z| <= %.3g m, x <= %.4g m, final error %.3g m\n",
               flight.max_tilt_rad, flight.max_z_error_m, flight.max_x_m, flight.final_error_m);
@@ -110,7 +111,7 @@ TEST(MultiArmSimulatorTest, TrirotorLateralStepStaysLevel) {
 TEST(MultiArmSimulatorTest, FourArmDescriptionBuiltHereHoversAndHolds) {
   const VehicleDescription vehicle = FourArms();
   ASSERT_TRUE(PlausibilityProblems(vehicle).empty());
-  MultiArmSimulator sim(vehicle, Hold(8.0, 0.5));
+  MultiArmSimulator sim(vehicle, Hold(4, 8.0, 0.5));
   EXPECT_EQ(sim.mode(), MultiArmControlMode::kFullyActuated);
   const Flight flight = Fly(&sim);
   std::printf("four arms, 0.5 m move in 2 s: |phi| <= %.3g rad, |x - x_ref| <= %.3g m, |z| <= %.3g m, final %.3g m\n",
@@ -123,7 +124,7 @@ TEST(MultiArmSimulatorTest, FourArmDescriptionBuiltHereHoversAndHolds) {
 
 // N = 2: the birotor way, tilting to move.
 TEST(MultiArmSimulatorTest, BirotorDescriptionTiltsToMove) {
-  MultiArmSimulator sim(BirotorDescription(VehicleParams()), Hold(8.0, 0.5));
+  MultiArmSimulator sim(BirotorDescription(VehicleParams()), Hold(2, 8.0, 0.5));
   EXPECT_EQ(sim.mode(), MultiArmControlMode::kTiltToMove);
   const Flight flight = Fly(&sim);
   std::printf("birotor, 0.5 m move in 2 s: |phi| <= %.3g rad, final %.3g m\n", flight.max_tilt_rad,
@@ -134,7 +135,7 @@ TEST(MultiArmSimulatorTest, BirotorDescriptionTiltsToMove) {
 }
 
 TEST(MultiArmSimulatorTest, TrirotorHoldsAQuarterThrustLossOnRotor3) {
-  Scenario scenario = Hold(15.0);
+  Scenario scenario = Hold(3, 15.0);
   scenario.faults.thrust_steps.push_back(ThrustStep{5.0, 3, 0.75});
   MultiArmSimulator sim(Trirotor(), scenario);
   const Flight flight = Fly(&sim, 5.0);
@@ -149,7 +150,7 @@ TEST(MultiArmSimulatorTest, TrirotorHoldsAQuarterThrustLossOnRotor3) {
 }
 
 TEST(MultiArmSimulatorTest, ThrustStepBeyondTheRotorsIsRefused) {
-  Scenario scenario = Hold(1.0);
+  Scenario scenario = Hold(3, 1.0);
   scenario.faults.thrust_steps.push_back(ThrustStep{0.5, 4, 0.75});
   try {
     MultiArmSimulator sim(Trirotor(), scenario);
@@ -166,7 +167,8 @@ TEST(MultiArmSimulatorTest, TrirotorFliesTheScenarioTrajectories) {
   // Measured |phi|, final error: gentle 0.00591 rad, 0.00086 m; aggressive
   // 0.00729 rad, 0.00734 m (the move ends 6 s before).
   for (const char* name : {"gentle", "aggressive"}) {
-    const Scenario scenario = LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml");
+    const Scenario scenario =
+        LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml", {}, 3);
     MultiArmSimulator sim(Trirotor(), scenario);
     const Flight flight = Fly(&sim);
     std::printf("trirotor %s: |phi| <= %.3g rad, |x - x_ref| <= %.3g m, |z - z_ref| <= %.3g m, final %.3g m\n", name,
