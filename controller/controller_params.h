@@ -65,6 +65,12 @@ struct SupervisionParams {
   // healthy or faulty rotor of this vehicle is outside it [1].
   double min_plausible_thrust_scale = 0.2;
   double max_plausible_thrust_scale = 2.0;
+  // Except at the floor: a VALID FORCE flagging rotor i's fault with its
+  // scale below min_plausible_thrust_scale this many samples in a row is
+  // flown at the floor (the scale is at most that; an 80 % loss), not
+  // refused. A single ringing sample (mu 0.08 right after a 70 % loss) and
+  // a scale without the fault flag are still refused [samples].
+  int32_t at_floor_samples = 5;
   // POSE innovation gate against the controller's own observer: a sample
   // farther than this is refused; when every sample has been refused for
   // pose_gate_reset_s the observer is re-initialised on POSE (the vehicle

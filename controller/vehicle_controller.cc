@@ -55,6 +55,7 @@ VehicleController::VehicleController(const ControllerConfig& config)
       efficiency_(config.efficiency, 2.0 * HoverForce(config.vehicle)),
       feasibility_(config.efficiency, MaxRotorForceN(config.vehicle), 2.0 * HoverForce(config.vehicle)),
       pose_gate_(config.supervision),
+      floor_evidence_(config.supervision, config.efficiency.infeasible_s),
       force_lock_(LockParams(config.supervision)),
       pose_lock_(LockParams(config.supervision)),
       setpoint_(config.setpoint),
@@ -155,8 +156,12 @@ void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
   accel_sum_m_s2_[1] += sample.accel_z_m_s2;
 }
 
-void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
+void VehicleController::OnForce(const ForceEstimate& reported, int64_t now_us) {
   const SupervisionParams& s = config_.supervision;
+  // A rotor FORCE keeps flagging as faulty with a scale below the floor is
+  // at most the floor: flown as the floor (hover then infeasible), not refused.
+  ForceEstimate estimate = reported;
+  health_.force_at_floor += floor_evidence_.FlyAtTheFloor(&estimate);
   // A scale outside the plausible band is refused, not clamped.
   bool plausible = estimate.utime >= 0;
   for (int i = 0; i < 2; ++i) {
@@ -164,7 +169,8 @@ void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
                 estimate.thrust_scale[i] >= s.min_plausible_thrust_scale &&
                 estimate.thrust_scale[i] <= s.max_plausible_thrust_scale;
   }
-  NoteReportedScale(estimate, now_us);
+  const double baseline[2] = {efficiency_.baseline(0), efficiency_.baseline(1)};
+  floor_evidence_.Note(reported, now_us, baseline);
   const int64_t previous_utime = health_.force.last_utime;
   if (!Admit(&health_.force, &force_lock_, estimate.utime, estimate.seq, plausible, now_us)) {
     // An implausible estimate is refused and falls back at once, but it is
@@ -189,23 +195,6 @@ void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
   const bool on_time = previous_utime >= 0 && ElapsedSeconds(estimate.utime, previous_utime) <= s.force_timeout_s;
   if (force_healthy_since_us_ < 0 || !on_time) force_healthy_since_us_ = estimate.utime;
   efficiency_.OnForce(estimate);
-}
-
-void VehicleController::NoteReportedScale(const ForceEstimate& estimate, int64_t now_us) {
-  const SupervisionParams& s = config_.supervision;
-  const double age_s = ElapsedSeconds(now_us, estimate.utime);
-  if ((estimate.status & kStatusValid) == 0 || age_s > s.clock_past_window_s || -age_s > s.clock_future_window_s ||
-      estimate.utime <= reported_utime_)
-    return;
-  // Low-passed with infeasible_s: one ringing sample is not a loss.
-  const double dt_s = reported_utime_ < 0 ? 0.0 : ElapsedSeconds(estimate.utime, reported_utime_);
-  const double gain = std::min(1.0, dt_s / config_.efficiency.infeasible_s);
-  reported_utime_ = estimate.utime;
-  for (int i = 0; i < 2; ++i) {
-    const double scale = estimate.thrust_scale[i];
-    if (!std::isfinite(scale) || scale < 0.0 || scale > s.max_plausible_thrust_scale) continue;
-    reported_scale_[i] += gain * (scale / efficiency_.baseline(i) - reported_scale_[i]);
-  }
 }
 
 double VehicleController::AgeS(int64_t last_utime, int64_t now_us) const {
@@ -351,7 +340,7 @@ bool VehicleController::UpdateFeasibility(double dt_s, bool use_force) {
   in.following_force = use_force;
   for (int i = 0; i < 2; ++i) {
     in.efficiency[i] = efficiency_.efficiency(i);
-    in.reported_scale[i] = reported_scale_[i];
+    in.reported_scale[i] = floor_evidence_.reported_scale(i);
     in.command_rad_s[i] = last_good_omega_rad_s_[i];
   }
   in.allocation_limited = saturated_;

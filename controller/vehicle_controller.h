@@ -5,13 +5,16 @@
 // EfficiencyConditioner). It flies the setpoint (SetpointInput).
 // Supervises its inputs on the caller's clock (issue 23): stamps outside the
 // clock windows, a second publisher on FORCE or POSE, implausible thrust
-// scales and POSE outside the innovation gate are refused and counted; a
-// second publisher drops force feedback; FORCE stale, not VALID or refused
-// lets the efficiency decay towards the nominal map; a lost POSE or a hover
-// the rotors cannot make gives a level controlled descent (and a flare near
-// the ground, controller/rotor_allocation.h); a command is never
-// non-finite or outside [0, omega_max]. No LCM, no allocation, no throw after
-// construction.
+// scales and POSE outside the innovation gate are refused and counted
+// (a flagged scale below the floor is flown as the floor, a consistent run
+// of gated POSEs re-acquired: ForceFloorEvidence, PoseGate); a second
+// publisher drops force feedback; FORCE stale, not VALID or refused lets the
+// efficiency decay towards the nominal map; a lost POSE or a hover the
+// rotors cannot make (HoverFeasibility, latched for the flight with its weak
+// rotor) gives a level controlled descent with slewed commands, levelling
+// first (and a flare near the ground, controller/rotor_allocation.h); a
+// command is never non-finite or outside [0, omega_max]. No LCM, no
+// allocation, no throw after construction.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +23,7 @@
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
 #include "controller/efficiency_conditioner.h"
+#include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
 #include "controller/mpc_controller.h"
 #include "controller/pose_gate.h"
@@ -54,6 +58,7 @@ struct ControllerHealth {
   int64_t saturated = 0;            // commands whose allocation was limited (or a speed clipped)
   int64_t numerical_guards = 0;     // non-finite law outputs replaced by the last good command
   int64_t force_unhealthy = 0;      // accepted FORCE samples without VALID
+  int64_t force_at_floor = 0;       // FORCE scales below the plausibility floor flown as the floor (ForceFloorEvidence)
   int64_t conflicts = 0;            // entries into STATUS_INPUT_CONFLICT
   int64_t pose_gate_resets = 0;     // observer re-initialised after pose_gate_reset_s of gated POSE
   int64_t pose_reacquisitions = 0;  // observer moved onto a consistent run of gated POSEs (PoseGate)
@@ -107,9 +112,6 @@ class VehicleController {
   // Age of an input at now_us [s]; +inf before its first sample or when its
   // stamp is ahead of the clock (negative age: stale).
   double AgeS(int64_t last_utime, int64_t now_us) const;
-  // A VALID FORCE's thrust scales relative to the baseline, low-passed, even
-  // when refused below the plausibility floor: evidence for HoverFeasibility.
-  void NoteReportedScale(const ForceEstimate& estimate, int64_t now_us);
   // Hover feasibility for this period (force feedback; use_force: FORCE is
   // flown on now), latched once lost.
   bool UpdateFeasibility(double dt_s, bool use_force);
@@ -140,6 +142,7 @@ class VehicleController {
   EfficiencyConditioner efficiency_;
   HoverFeasibility feasibility_;
   PoseGate pose_gate_;
+  ForceFloorEvidence floor_evidence_;
   SeqStreamLock force_lock_, pose_lock_;
   ControllerHealth health_;
   SetpointInput setpoint_;
@@ -165,10 +168,8 @@ class VehicleController {
   int64_t force_healthy_since_us_ = -1;
 
   int64_t last_update_us_ = -1;
-  double reported_scale_[2] = {1.0, 1.0};  // NoteReportedScale [1]
-  int64_t reported_utime_ = -1;            // its newest sample [us]
-  bool saturated_ = false;                 // the previous period's allocation was limited (anti-windup)
-  bool difference_limited_ = false;        // ... and its pitch torque (f2 - f1) was
+  bool saturated_ = false;           // the previous period's allocation was limited (anti-windup)
+  bool difference_limited_ = false;  // ... and its pitch torque (f2 - f1) was
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
   double last_good_omega_rad_s_[2] = {0.0, 0.0};
   double last_efficiency_[2] = {1.0, 1.0};  // efficiency of the previous period (motor-lag lead) [1]

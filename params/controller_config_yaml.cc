@@ -32,6 +32,7 @@ const OptionTable<SupervisionParams>& SupervisionKeys() {
       Real("conflict_hold_s", &O::conflict_hold_s, 0.0, 100.0),
       Real("min_plausible_thrust_scale", &O::min_plausible_thrust_scale, 0.01, 1.0),
       Real("max_plausible_thrust_scale", &O::max_plausible_thrust_scale, 1.0, 10.0),
+      Integer("at_floor_samples", &O::at_floor_samples, 1, 1000),
       Real("pose_gate_position_m", &O::pose_gate_position_m, 1e-3, 1e4),
       Real("pose_gate_angle_rad", &O::pose_gate_angle_rad, 1e-3, 10.0),
       Real("pose_gate_reset_s", &O::pose_gate_reset_s, 0.0, 100.0),

@@ -84,6 +84,39 @@ TEST(DegradedFlightTest, LossAtThePlausibilityFloorIsFoundFromTheSink) {
   EXPECT_DOUBLE_EQ(health.efficiency[0], 1.0);
 }
 
+TEST(DegradedFlightTest, AFlaggedScaleBelowTheFloorIsFlownAsTheFloor) {
+  // Rotor 2 at 15 %, FORCE VALID and flagging rotor 2's fault: the scale is
+  // at most the floor (0.2) and flown as 0.2 after at_floor_samples (5) in a
+  // row; hover is infeasible from the efficiency (0.2 < 0.346) after
+  // infeasible_s, no sink needed.
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  feed.Settle();
+  feed.force_status = kStatusValid | kStatusRotor2Fault;
+  feed.scale2 = 0.15;
+  feed.Run(2);  // 4 samples: still refused
+  const ControllerHealth& health = feed.controller().health();
+  EXPECT_EQ(health.force_at_floor, 0);
+  EXPECT_EQ(health.force.rejected_invalid, 4);
+  const MotorCommand c = feed.Run(100);  // 0.2 s
+  // 204 samples, the first at_floor_samples - 1 refused, every later one flown at the floor.
+  EXPECT_EQ(health.force_at_floor, 204 - (config.supervision.at_floor_samples - 1));
+  EXPECT_EQ(health.force.rejected_invalid, config.supervision.at_floor_samples - 1);
+  EXPECT_TRUE(c.status & kCommandHoverInfeasible);
+  EXPECT_EQ(health.infeasible_by_sink, 0);
+  EXPECT_NEAR(health.efficiency[1], 0.2, 0.005);
+}
+
+TEST(DegradedFlightTest, AScaleBelowTheFloorWithoutTheFaultFlagIsRefused) {
+  const ControllerConfig config;
+  HoverFeed feed(config);
+  feed.Settle();
+  feed.scale2 = 0.15;  // VALID only: an implausible scale (issue 23's attack), refused
+  feed.Run(50);
+  EXPECT_EQ(feed.controller().health().force_at_floor, 0);
+  EXPECT_EQ(feed.controller().health().force.rejected_invalid, 100);
+}
+
 TEST(DegradedFlightTest, EveryDescentSlewsItsCommands) {
   const ControllerConfig config;
   const double max_step_rad_s = config.supervision.degraded_omega_rate_rad_s2 * kPeriodUs * 1e-6;  // 40 rad/s
