@@ -54,9 +54,9 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       // Issue 34: hover-infeasible losses mid-climb of the aggressive move (seed 3) and in hover (seed 4).
       {"agg_loss70_r1", {0.7207, 0.1324, 1.3000, true}},
       {"agg_loss70_r2", {0.7544, 0.1397, 1.3000, true}},
-      {"agg_loss80_r1", {0.7731, 0.1842, 1.3000, true}},
-      {"agg_loss80_r2", {0.7754, 0.1358, 1.3000, true}},
-      {"loss_80", {0.3067, 0.3105, 0.4000, true}},
+      {"agg_loss80_r1", {0.7733, 0.1842, 1.3000, true}},
+      {"agg_loss80_r2", {0.7747, 0.1405, 1.3000, true}},
+      {"loss_80", {0.3039, 0.1506, 0.4000, true}},
   };
   return figures;
 }
@@ -123,8 +123,8 @@ TEST(ControlCasesTest, HoverInfeasibleLossesLevelFirstAndLandAtTheLevelFloor) {
   // touchdown <= 0.3 rad and touches down within 10 % of the level descent's
   // floor (evaluation/descent_floor.h); an 80 % loss in hover descends.
   // Measured on the scenarios' seeds (docs/controller.md): tilt 0.132, 0.140,
-  // 0.184, 0.136 rad; touchdown / floor 1.01, 0.85, 0.99, 0.90; loss_80 found
-  // from the sink (FORCE at its plausibility floor), 0.99 x floor.
+  // 0.184, 0.141 rad; touchdown / floor 1.01, 0.85, 0.99, 0.89; loss_80 (FORCE
+  // at its plausibility floor, flown as the floor) 0.92 x floor, tilt 0.151.
   const ControllerConfig controller = LoadControllerConfig(ConfigFile("controller.yaml"));
   const EstimatorConfig estimator = LoadEstimatorConfig(ConfigFile("estimator.yaml"));
   for (const char* name : {"agg_loss70_r1", "agg_loss70_r2", "agg_loss80_r1", "agg_loss80_r2", "loss_80"}) {
@@ -137,7 +137,7 @@ TEST(ControlCasesTest, HoverInfeasibleLossesLevelFirstAndLandAtTheLevelFloor) {
     ASSERT_TRUE(floor.found) << name;
     EXPECT_EQ(run.controller.infeasible, 1) << name;
     EXPECT_LE(m.touchdown_speed_m_s, 1.1 * floor.touchdown_m_s) << name;
-    if (std::string(name) != "loss_80") EXPECT_LE(m.tilt_before_touchdown_rad, 0.3) << name;
+    EXPECT_LE(m.tilt_before_touchdown_rad, 0.3) << name;
   }
 }
 
