@@ -18,6 +18,11 @@ void BodyStateObserver::Initialize(const Eigen::Vector2d& position_m, double phi
   state_.phi_rad = phi_rad;
 }
 
+void BodyStateObserver::Relocate(const Eigen::Vector2d& position_m, double phi_rad) {
+  state_.position_m = position_m;
+  state_.phi_rad = phi_rad;
+}
+
 void BodyStateObserver::Predict(double dt_s, const Eigen::Vector2d& accel_world_m_s2, double pitch_rate_rad_s) {
   state_.position_m += dt_s * state_.velocity_m_s + 0.5 * dt_s * dt_s * accel_world_m_s2;
   state_.velocity_m_s += dt_s * accel_world_m_s2;

@@ -20,6 +20,9 @@ class BodyStateObserver {
 
   // Starts at a pose, at rest.
   void Initialize(const Eigen::Vector2d& position_m, double phi_rad);
+  // Moves the estimate onto a pose, keeping the velocity and pitch rate (the
+  // IMU's: a POSE re-acquisition after the position drifted).
+  void Relocate(const Eigen::Vector2d& position_m, double phi_rad);
 
   // Propagates over dt_s [s] with the world acceleration [m/s^2]. With a
   // measured pitch rate (gyro) the rate is that measurement; without it

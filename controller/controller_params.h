@@ -5,6 +5,8 @@
 // params/controller_config_yaml.h loads them.
 #pragma once
 
+#include <cstdint>
+
 #include "controller/mpc_params.h"
 #include "model/vehicle_params.h"
 
@@ -63,6 +65,12 @@ struct SupervisionParams {
   // healthy or faulty rotor of this vehicle is outside it [1].
   double min_plausible_thrust_scale = 0.2;
   double max_plausible_thrust_scale = 2.0;
+  // Except at the floor: a VALID FORCE flagging rotor i's fault with its
+  // scale below min_plausible_thrust_scale this many samples in a row is
+  // flown at the floor (the scale is at most that; an 80 % loss), not
+  // refused. A single ringing sample (mu 0.08 right after a 70 % loss) and
+  // a scale without the fault flag are still refused [samples].
+  int32_t at_floor_samples = 5;
   // POSE innovation gate against the controller's own observer: a sample
   // farther than this is refused; when every sample has been refused for
   // pose_gate_reset_s the observer is re-initialised on POSE (the vehicle
@@ -70,6 +78,20 @@ struct SupervisionParams {
   double pose_gate_position_m = 0.3;  // [m]
   double pose_gate_angle_rad = 0.3;   // [rad]
   double pose_gate_reset_s = 0.2;     // [s]
+  // Re-acquisition through the gate: pose_reacquire_count gated POSEs in a
+  // row, each within pose_reacquire_position_m / _angle_rad of where the
+  // previous one and the observer's (IMU-propagated) velocity and pitch rate
+  // put it, are the vehicle however far the observer has drifted: the
+  // observer is moved onto the newest (velocity and rate kept).
+  int32_t pose_reacquire_count = 5;         // [1]
+  double pose_reacquire_position_m = 0.02;  // [m]
+  double pose_reacquire_angle_rad = 0.03;   // [rad]
+  // Every controlled descent (POSE lost, hover infeasible) flies level: the
+  // law's tilt target within degraded_max_tilt_rad (0 while levelling), and
+  // each rotor command moves by at most degraded_omega_rate_rad_s2 x the
+  // period (no bang-bang between 0 and omega_max).
+  double degraded_max_tilt_rad = 0.1;           // [rad]
+  double degraded_omega_rate_rad_s2 = 20000.0;  // [rad/s^2]
 };
 
 // How FORCE's thrust_scale becomes the efficiency the rotor map uses
@@ -90,6 +112,18 @@ struct EfficiencyParams {
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
   double feasibility_margin = 1.02;      // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
   double infeasible_s = 0.1;             // infeasible this long: level controlled descent [s]
+  // Infeasibility from the vehicle itself (force feedback; FORCE refused at
+  // its plausibility floor on a large loss): the allocation limited for
+  // sink_detect_s while the vehicle is more than sink_detect_altitude_m below
+  // its reference and falling behind it. The weak rotor's efficiency is then
+  // at most what FORCE last said (refused below the floor included) and at
+  // most the feasibility bound margin x weight / (2 c_T omega_max^2).
+  double sink_detect_altitude_m = 0.15;  // [m]
+  double sink_detect_s = 0.1;            // [s]
+  // The infeasible descent first levels: tilt target 0 until |tilt| below
+  // level_tilt_rad and |pitch rate| below level_rate_rad_s, then descends.
+  double level_tilt_rad = 0.05;   // [rad]
+  double level_rate_rad_s = 0.5;  // [rad/s]
   // The flare of that descent (FlareForcesFor, controller/rotor_allocation.h):
   // sinking faster than descent_rate_m_s and lower than the sink covers in
   // flare_time_s above the ground (the first POSE: the take-off level), the

@@ -7,7 +7,11 @@ namespace birotor {
 
 PositionAttitudeLaw::PositionAttitudeLaw(const VehicleParams& vehicle, const ControllerParams& gains,
                                          double hover_force_n)
-    : vehicle_(vehicle), gains_(gains), hover_total_force_n_(2.0 * hover_force_n), dt_s_(1.0 / gains.rate_hz) {}
+    : vehicle_(vehicle),
+      gains_(gains),
+      hover_total_force_n_(2.0 * hover_force_n),
+      dt_s_(1.0 / gains.rate_hz),
+      tilt_limit_rad_(gains.max_tilt_rad) {}
 
 void PositionAttitudeLaw::Reset() {
   position_integral_m_s_.setZero();
@@ -45,17 +49,20 @@ double TiltLoopAcceleration(const ControllerParams& gains, double dt_s, double p
          gains.attitude_ki_1_s3 * *tilt_integral_rad_s;
 }
 
-RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferencePoint& reference, bool integrate) {
+RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferencePoint& reference,
+                                        bool integrate_position, bool integrate_tilt) {
   const VehicleParams& p = vehicle_;
   const double g = p.gravity_m_s2;
   RotorForces out;
-  out.accel_des_m_s2 = PositionLoopAcceleration(gains_, dt_s_, state, reference, integrate, &position_integral_m_s_);
-  const TiltTarget tilt = TiltForAcceleration(gains_, g, out.accel_des_m_s2);
+  out.accel_des_m_s2 =
+      PositionLoopAcceleration(gains_, dt_s_, state, reference, integrate_position, &position_integral_m_s_);
+  TiltTarget tilt = TiltForAcceleration(gains_, g, out.accel_des_m_s2);
+  tilt.phi_des_rad = std::clamp(tilt.phi_des_rad, -tilt_limit_rad_, tilt_limit_rad_);
   // Feed-forward scaled from the exact hover equilibrium: F = F_hover (g + a_z) / (g cos phi).
   const double total_force_n =
       hover_total_force_n_ * tilt.vertical_m_s2 / (g * std::cos(std::clamp(state.phi_rad, -1.2, 1.2)));
   const double alpha_des =
-      TiltLoopAcceleration(gains_, dt_s_, tilt.phi_des_rad, state, integrate, &tilt_integral_rad_s_);
+      TiltLoopAcceleration(gains_, dt_s_, tilt.phi_des_rad, state, integrate_tilt, &tilt_integral_rad_s_);
   const double L = p.arm_length_m;
   const double force_difference_n = RigidPitchInertiaKgM2(p) * alpha_des / L;  // f2 - f1
 

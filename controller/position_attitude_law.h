@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 
 #include "controller/controller_params.h"
 #include "controller/reference_point.h"
@@ -66,10 +67,23 @@ class PositionAttitudeLaw {
   // with J_eff = J + 2 m_p L^2 (rigid arms).
   // integrate false: the integrators hold (anti-windup: the caller's
   // commands saturated in the previous period).
-  RotorForces Update(const BodyState& state, const ReferencePoint& reference, bool integrate = true);
+  RotorForces Update(const BodyState& state, const ReferencePoint& reference, bool integrate = true) {
+    return Update(state, reference, integrate, integrate);
+  }
+  // The same with the two integrators held separately: integrate_tilt false
+  // holds the pitch integrator only (a descent whose total is limited but
+  // whose pitch torque is not).
+  RotorForces Update(const BodyState& state, const ReferencePoint& reference, bool integrate_position,
+                     bool integrate_tilt);
 
   // Clears both integrators (e.g. after a numerical guard).
   void Reset();
+  // Clears the position integrator only (entering a controlled descent: what
+  // it learnt tracking the setpoint would tilt the descent).
+  void ResetPositionIntegral() { position_integral_m_s_.setZero(); }
+  // The tilt target's bound from now on: min(max_tilt_rad, gains' max_tilt)
+  // [rad] (a controlled descent flies level; 0 levels the vehicle).
+  void LimitTilt(double max_tilt_rad) { tilt_limit_rad_ = std::min(max_tilt_rad, gains_.max_tilt_rad); }
 
  private:
   VehicleParams vehicle_;
@@ -78,6 +92,7 @@ class PositionAttitudeLaw {
   double dt_s_;
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
+  double tilt_limit_rad_;                                            // bound of phi_des [rad]
 };
 
 // Pitch inertia of the rigid vehicle, J_eff = J + 2 m_p L^2 [kg m^2]: the

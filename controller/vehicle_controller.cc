@@ -34,6 +34,11 @@ double HoverForce(const VehicleParams& vehicle) {
   return 0.5 * (hover.force_n[0] + hover.force_n[1]);
 }
 
+// What one rotor makes at omega_max with the nominal map, c_T omega_max^2 [N].
+double MaxRotorForceN(const VehicleParams& vehicle) {
+  return vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
+}
+
 SeqStreamLockParams LockParams(const SupervisionParams& s) {
   SeqStreamLockParams params;
   params.max_seq_step = s.stream_max_seq_step;
@@ -48,6 +53,9 @@ VehicleController::VehicleController(const ControllerConfig& config)
       law_(config.vehicle, LawGains(config), HoverForce(config.vehicle)),
       observer_(config.observer),
       efficiency_(config.efficiency, 2.0 * HoverForce(config.vehicle)),
+      feasibility_(config.efficiency, MaxRotorForceN(config.vehicle), 2.0 * HoverForce(config.vehicle)),
+      pose_gate_(config.supervision),
+      floor_evidence_(config.supervision, config.efficiency.infeasible_s),
       force_lock_(LockParams(config.supervision)),
       pose_lock_(LockParams(config.supervision)),
       setpoint_(config.setpoint),
@@ -96,7 +104,6 @@ bool VehicleController::Admit(ControllerInputCounters* counters, SeqStreamLock* 
 }
 
 void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
-  const SupervisionParams& s = config_.supervision;
   const bool valid = Within(sample.x_m, kMaxPositionM) && Within(sample.z_m, kMaxPositionM) &&
                      Within(sample.phi_rad, kMaxAngleRad) && sample.utime >= 0;
   if (!has_pose_) {
@@ -111,27 +118,26 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
   }
   // Innovation gate against the observer, before the sample counts as
   // accepted (a refused sample does not become the newest).
-  const BodyState& state = observer_.state();
-  const bool inside = valid &&
-                      (Eigen::Vector2d(sample.x_m, sample.z_m) - state.position_m).norm() <= s.pose_gate_position_m &&
-                      std::fabs(sample.phi_rad - state.phi_rad) <= s.pose_gate_angle_rad;
-  bool reset = false;
-  if (valid && !inside) {
-    if (gated_since_us_ < 0) gated_since_us_ = now_us;
-    reset = ElapsedSeconds(now_us, gated_since_us_) >= s.pose_gate_reset_s;
-    if (!reset) {
-      ++health_.pose.received;
-      ++health_.pose.rejected_gate;
-      return;
-    }
+  const PoseGate::Verdict verdict =
+      valid ? pose_gate_.Check(sample, observer_.state(), now_us) : PoseGate::Verdict::kInside;
+  if (verdict == PoseGate::Verdict::kRefused) {
+    ++health_.pose.received;
+    ++health_.pose.rejected_gate;
+    return;
   }
   if (!Admit(&health_.pose, &pose_lock_, sample.utime, sample.seq, valid, now_us)) return;
-  if (inside) gated_since_us_ = -1;
-  if (reset) {
-    // Every POSE refused for pose_gate_reset_s: the vehicle really is there.
-    ++health_.pose_gate_resets;
-    gated_since_us_ = -1;
-    observer_.Initialize(Eigen::Vector2d(sample.x_m, sample.z_m), sample.phi_rad);
+  if (verdict == PoseGate::Verdict::kReset || verdict == PoseGate::Verdict::kReacquired) {
+    const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
+    if (verdict == PoseGate::Verdict::kReset) {
+      // Every POSE refused for pose_gate_reset_s: the vehicle really is there.
+      ++health_.pose_gate_resets;
+      observer_.Initialize(position_m, sample.phi_rad);
+    } else {
+      // A consistent run of refused POSEs: the position drifted, the IMU's
+      // velocity and rate did not.
+      ++health_.pose_reacquisitions;
+      observer_.Relocate(position_m, sample.phi_rad);
+    }
     last_fused_pose_utime_ = sample.utime;
     pose_pending_ = false;
     return;
@@ -150,8 +156,12 @@ void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
   accel_sum_m_s2_[1] += sample.accel_z_m_s2;
 }
 
-void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
+void VehicleController::OnForce(const ForceEstimate& reported, int64_t now_us) {
   const SupervisionParams& s = config_.supervision;
+  // A rotor FORCE keeps flagging as faulty with a scale below the floor is
+  // at most the floor: flown as the floor (hover then infeasible), not refused.
+  ForceEstimate estimate = reported;
+  health_.force_at_floor += floor_evidence_.FlyAtTheFloor(&estimate);
   // A scale outside the plausible band is refused, not clamped.
   bool plausible = estimate.utime >= 0;
   for (int i = 0; i < 2; ++i) {
@@ -159,6 +169,8 @@ void VehicleController::OnForce(const ForceEstimate& estimate, int64_t now_us) {
                 estimate.thrust_scale[i] >= s.min_plausible_thrust_scale &&
                 estimate.thrust_scale[i] <= s.max_plausible_thrust_scale;
   }
+  const double baseline[2] = {efficiency_.baseline(0), efficiency_.baseline(1)};
+  floor_evidence_.Note(reported, now_us, baseline);
   const int64_t previous_utime = health_.force.last_utime;
   if (!Admit(&health_.force, &force_lock_, estimate.utime, estimate.seq, plausible, now_us)) {
     // An implausible estimate is refused and falls back at once, but it is
@@ -225,19 +237,20 @@ void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status
   }
 }
 
-void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency, double dt_s, MotorCommand* command,
-                                 int32_t* status) {
+void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s,
+                                 MotorCommand* command, int32_t* status) {
   const VehicleParams& vehicle = config_.vehicle;
   double efficiency[2] = {1.0, 1.0};
   double max_force_n[2];
   MaxForces(use_efficiency, max_force_n);
   for (int i = 0; i < 2; ++i) {
-    if (use_efficiency) efficiency[i] = efficiency_.efficiency(i);
+    efficiency[i] = EfficiencyInUse(i, use_efficiency);
     health_.efficiency[i] = efficiency[i];
   }
   const RotorAllocation allocation =
       AllocateAttitudeFirst(forces.total_force_n, forces.force_difference_n, max_force_n);
   bool clipped = allocation.total_limited || allocation.difference_limited;
+  difference_limited_ = allocation.difference_limited;
   double omega_rad_s[2];
   for (int i = 0; i < 2; ++i) {
     bool clip = false;
@@ -264,8 +277,12 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
     omega_rad_s[0] = last_good_omega_rad_s_[0];
     omega_rad_s[1] = last_good_omega_rad_s_[1];
   }
+  // A controlled descent slews its commands: never 0 <-> omega_max in one period.
+  const double max_step_rad_s = slewed ? config_.supervision.degraded_omega_rate_rad_s2 * dt_s : kInf;
   for (int i = 0; i < 2; ++i) {
-    command->omega_cmd_rad_s[i] = std::clamp(omega_rad_s[i], 0.0, vehicle.omega_max_rad_s);
+    const double slewed_rad_s = std::clamp(omega_rad_s[i], last_good_omega_rad_s_[i] - max_step_rad_s,
+                                           last_good_omega_rad_s_[i] + max_step_rad_s);
+    command->omega_cmd_rad_s[i] = std::clamp(slewed_rad_s, 0.0, vehicle.omega_max_rad_s);
     last_good_omega_rad_s_[i] = command->omega_cmd_rad_s[i];
   }
   saturated_ = clipped;
@@ -275,12 +292,12 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
   }
 }
 
+double VehicleController::EfficiencyInUse(int rotor, bool use_efficiency) const {
+  return use_efficiency ? feasibility_.EfficiencyFor(rotor, efficiency_.efficiency(rotor)) : 1.0;
+}
+
 void VehicleController::MaxForces(bool use_efficiency, double (&max_force_n)[2]) const {
-  const VehicleParams& vehicle = config_.vehicle;
-  for (int i = 0; i < 2; ++i) {
-    const double efficiency = use_efficiency ? efficiency_.efficiency(i) : 1.0;
-    max_force_n[i] = efficiency * vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
-  }
+  for (int i = 0; i < 2; ++i) max_force_n[i] = EfficiencyInUse(i, use_efficiency) * MaxRotorForceN(config_.vehicle);
 }
 
 bool VehicleController::Flare(bool infeasible_descent, RotorForces* forces) {
@@ -313,6 +330,59 @@ bool VehicleController::ApplyFlare(RotorForces* forces) const {
   forces->total_force_n = flare_forces.total_force_n;
   forces->force_difference_n = flare_forces.force_difference_n;
   return true;
+}
+
+bool VehicleController::UpdateFeasibility(double dt_s, bool use_force) {
+  // Nominal mode flies no efficiency: its infeasibility is not known.
+  if (!config_.force_feedback) return false;
+  const BodyState& body = observer_.state();
+  FeasibilityInputs in;
+  in.following_force = use_force;
+  for (int i = 0; i < 2; ++i) {
+    in.efficiency[i] = efficiency_.efficiency(i);
+    in.reported_scale[i] = floor_evidence_.reported_scale(i);
+    in.command_rad_s[i] = last_good_omega_rad_s_[i];
+  }
+  in.allocation_limited = saturated_;
+  in.altitude_lag_m = reference_.position_m.y() - body.position_m.y();
+  in.sink_behind_m_s = reference_.velocity_m_s.y() - body.velocity_m_s.y();
+  in.tilt_rad = body.phi_rad;
+  in.pitch_rate_rad_s = body.phi_dot_rad_s;
+  const bool was_infeasible = feasibility_.infeasible();
+  feasibility_.Update(in, dt_s);
+  if (feasibility_.infeasible() && !was_infeasible && feasibility_.cause() == HoverFeasibility::Cause::kSink)
+    ++health_.infeasible_by_sink;
+  health_.levelling = feasibility_.phase() == HoverFeasibility::Phase::kLevelling;
+  return feasibility_.infeasible();
+}
+
+ReferencePoint VehicleController::DescentTarget(bool pose_lost, bool infeasible, int32_t* status) {
+  const SupervisionParams& s = config_.supervision;
+  ReferencePoint target = reference_;
+  const bool descend = pose_lost || infeasible;
+  if (descend) {
+    target.position_m = observer_.state().position_m;
+    target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);
+    target.acceleration_m_s2.setZero();
+    *status |= kCommandDescending;
+    if (pose_lost) *status |= kCommandInputStale;
+    if (!health_.descending) {
+      ++health_.descents;
+      // What the position integrator learnt on the setpoint would tilt the
+      // descent; when hover is infeasible the pitch integrator has wound up
+      // against a rotor that could not deliver, now known and latched.
+      if (infeasible) {
+        law_.Reset();
+      } else {
+        law_.ResetPositionIntegral();
+      }
+    }
+    if (infeasible && !health_.descending) ++health_.infeasible;
+  }
+  health_.descending = descend;
+  // Level: tilt target 0 while levelling, within degraded_max_tilt_rad in any descent.
+  law_.LimitTilt(!descend ? config_.gains.max_tilt_rad : health_.levelling ? 0.0 : s.degraded_max_tilt_rad);
+  return target;
 }
 
 MotorCommand VehicleController::Update(int64_t now_us) {
@@ -359,44 +429,25 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     efficiency_.Advance(dt_s, use_force);
   }
 
-  // Feasibility: level hover needs both rotors at the hover force.
-  const VehicleParams& vehicle = config_.vehicle;
-  const double weakest = config_.force_feedback ? std::min(efficiency_.efficiency(0), efficiency_.efficiency(1)) : 1.0;
-  const double max_total_n =
-      2.0 * weakest * vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
-  if (max_total_n >= config_.efficiency.feasibility_margin * weight_n_) {
-    infeasible_since_us_ = -1;
-  } else if (infeasible_since_us_ < 0) {
-    infeasible_since_us_ = now_us;
-  }
-  const bool infeasible =
-      infeasible_since_us_ >= 0 && AgeS(infeasible_since_us_, now_us) >= config_.efficiency.infeasible_s;
+  reference_ = setpoint_.At(now_us, observer_.state().position_m);
+  const bool infeasible = UpdateFeasibility(dt_s, use_force);
   if (infeasible) status |= kCommandHoverInfeasible;
-
   // POSE lost or hover impossible: a level descent at a fixed sink rate on
   // the propagated state (the position error is held at zero).
   const bool pose_lost = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
-  reference_ = setpoint_.At(now_us, observer_.state().position_m);
-  ReferencePoint target = reference_;
   const bool descend = pose_lost || infeasible;
-  if (descend) {
-    target.position_m = observer_.state().position_m;
-    target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);
-    target.acceleration_m_s2.setZero();
-    status |= kCommandDescending;
-    if (pose_lost) status |= kCommandInputStale;
-    if (!health_.descending) ++health_.descents;
-    if (infeasible && !(health_.descending)) ++health_.infeasible;
-  }
-  health_.descending = descend;
+  const ReferencePoint target = DescentTarget(pose_lost, infeasible, &status);
 
-  // Anti-windup: the integrators hold while the previous allocation was limited.
-  RotorForces forces = law_.Update(observer_.state(), target, !saturated_);
+  // Anti-windup: the integrators hold while the previous allocation was
+  // limited; in a descent (whose total is limited throughout when hover is
+  // infeasible) the pitch integrator holds only while the pitch torque was.
+  RotorForces forces =
+      law_.Update(observer_.state(), target, !saturated_, descend ? !difference_limited_ : !saturated_);
   const bool flare = Flare(infeasible && !pose_lost, &forces);
   last_accel_des_m_s2_ = forces.accel_des_m_s2;
   if (!last_accel_des_m_s2_.allFinite()) last_accel_des_m_s2_.setZero();
   const Eigen::Vector2d last_rad_s(last_good_omega_rad_s_[0], last_good_omega_rad_s_[1]);
-  Allocate(forces, config_.force_feedback, dt_s, &command, &status);
+  Allocate(forces, config_.force_feedback, descend && !flare, dt_s, &command, &status);
   if (mpc_) {
     // Mode mpc: the MPC flies (the descent too, not without POSE nor the
     // flare); the cascade's speeds just allocated are its fallback.

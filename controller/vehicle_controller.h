@@ -5,13 +5,16 @@
 // EfficiencyConditioner). It flies the setpoint (SetpointInput).
 // Supervises its inputs on the caller's clock (issue 23): stamps outside the
 // clock windows, a second publisher on FORCE or POSE, implausible thrust
-// scales and POSE outside the innovation gate are refused and counted; a
-// second publisher drops force feedback; FORCE stale, not VALID or refused
-// lets the efficiency decay towards the nominal map; a lost POSE or a hover
-// the rotors cannot make gives a level controlled descent (and a flare near
-// the ground, controller/rotor_allocation.h); a command is never
-// non-finite or outside [0, omega_max]. No LCM, no allocation, no throw after
-// construction.
+// scales and POSE outside the innovation gate are refused and counted
+// (a flagged scale below the floor is flown as the floor, a consistent run
+// of gated POSEs re-acquired: ForceFloorEvidence, PoseGate); a second
+// publisher drops force feedback; FORCE stale, not VALID or refused lets the
+// efficiency decay towards the nominal map; a lost POSE or a hover the
+// rotors cannot make (HoverFeasibility, latched for the flight with its weak
+// rotor) gives a level controlled descent with slewed commands, levelling
+// first (and a flare near the ground, controller/rotor_allocation.h); a
+// command is never non-finite or outside [0, omega_max]. No LCM, no
+// allocation, no throw after construction.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +23,10 @@
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
 #include "controller/efficiency_conditioner.h"
+#include "controller/force_floor_evidence.h"
+#include "controller/hover_feasibility.h"
 #include "controller/mpc_controller.h"
+#include "controller/pose_gate.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
 #include "controller/seq_stream_lock.h"
@@ -47,18 +53,22 @@ struct ControllerInputCounters {
 struct ControllerHealth {
   ControllerInputCounters pose, imu, force;
   int64_t commands = 0;
-  int64_t fallbacks = 0;         // entries into the fallback (efficiency decaying towards the nominal map)
-  int64_t descents = 0;          // entries into the controlled descent (POSE lost or hover infeasible)
-  int64_t saturated = 0;         // commands whose allocation was limited (or a speed clipped)
-  int64_t numerical_guards = 0;  // non-finite law outputs replaced by the last good command
-  int64_t force_unhealthy = 0;   // accepted FORCE samples without VALID
-  int64_t conflicts = 0;         // entries into STATUS_INPUT_CONFLICT
-  int64_t pose_gate_resets = 0;  // observer re-initialised after pose_gate_reset_s of gated POSE
-  int64_t infeasible = 0;        // entries into the hover-infeasible descent
-  int64_t flares = 0;            // entries into that descent's flare near the ground
+  int64_t fallbacks = 0;            // entries into the fallback (efficiency decaying towards the nominal map)
+  int64_t descents = 0;             // entries into the controlled descent (POSE lost or hover infeasible)
+  int64_t saturated = 0;            // commands whose allocation was limited (or a speed clipped)
+  int64_t numerical_guards = 0;     // non-finite law outputs replaced by the last good command
+  int64_t force_unhealthy = 0;      // accepted FORCE samples without VALID
+  int64_t force_at_floor = 0;       // FORCE scales below the plausibility floor flown as the floor (ForceFloorEvidence)
+  int64_t conflicts = 0;            // entries into STATUS_INPUT_CONFLICT
+  int64_t pose_gate_resets = 0;     // observer re-initialised after pose_gate_reset_s of gated POSE
+  int64_t pose_reacquisitions = 0;  // observer moved onto a consistent run of gated POSEs (PoseGate)
+  int64_t infeasible = 0;           // entries into the hover-infeasible descent (latched for the flight)
+  int64_t infeasible_by_sink = 0;   // ... of them detected from the vehicle's sink (HoverFeasibility)
+  int64_t flares = 0;               // entries into that descent's flare near the ground
   bool fallback_active = false;
   bool descending = false;
   bool flaring = false;
+  bool levelling = false;  // the infeasible descent's first phase: tilt target 0
   bool conflict = false;
   double efficiency[2] = {1.0, 1.0};  // efficiency used by the rotor map in the newest period [1]
 };
@@ -102,12 +112,22 @@ class VehicleController {
   // Age of an input at now_us [s]; +inf before its first sample or when its
   // stamp is ahead of the clock (negative age: stale).
   double AgeS(int64_t last_utime, int64_t now_us) const;
+  // Hover feasibility for this period (force feedback; use_force: FORCE is
+  // flown on now), latched once lost.
+  bool UpdateFeasibility(double dt_s, bool use_force);
+  // The descent's target and tilt bound for this period; counts entries.
+  ReferencePoint DescentTarget(bool pose_lost, bool infeasible, int32_t* status);
   // Observer: propagate with the period's IMU mean, then fuse a pending POSE.
   void UpdateState(int64_t now_us, double dt_s, int32_t* status);
   // Rotor speeds from the law's forces: allocation within the rotors'
   // limits, the map with the efficiency in use, the motor-lag lead on the
   // efficiency's change over the period dt_s.
-  void Allocate(const RotorForces& forces, bool use_efficiency, double dt_s, MotorCommand* command, int32_t* status);
+  // slewed: each speed within degraded_omega_rate_rad_s2 x dt_s of the last.
+  void Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s, MotorCommand* command,
+                int32_t* status);
+  // The efficiency rotor i is flown with: the conditioned one, or the latched
+  // weak rotor's once hover is infeasible [1].
+  double EfficiencyInUse(int rotor, bool use_efficiency) const;
   // What each rotor can make with the efficiency in use [N].
   void MaxForces(bool use_efficiency, double (&max_force_n)[2]) const;
   // The hover-infeasible descent (with POSE) near the ground: replaces the
@@ -120,6 +140,9 @@ class VehicleController {
   PositionAttitudeLaw law_;
   BodyStateObserver observer_;
   EfficiencyConditioner efficiency_;
+  HoverFeasibility feasibility_;
+  PoseGate pose_gate_;
+  ForceFloorEvidence floor_evidence_;
   SeqStreamLock force_lock_, pose_lock_;
   ControllerHealth health_;
   SetpointInput setpoint_;
@@ -132,7 +155,6 @@ class VehicleController {
   PoseSample pending_pose_;
   int64_t last_fused_pose_utime_ = -1;
   double ground_z_m_ = 0.0;  // the first POSE's z: the take-off level the flare lands on [m]
-  int64_t gated_since_us_ = -1;
 
   // IMU: sums over the samples since the last control period.
   int imu_count_ = 0;
@@ -146,8 +168,8 @@ class VehicleController {
   int64_t force_healthy_since_us_ = -1;
 
   int64_t last_update_us_ = -1;
-  int64_t infeasible_since_us_ = -1;
-  bool saturated_ = false;  // the previous period's allocation was limited (anti-windup)
+  bool saturated_ = false;           // the previous period's allocation was limited (anti-windup)
+  bool difference_limited_ = false;  // ... and its pitch torque (f2 - f1) was
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
   double last_good_omega_rad_s_[2] = {0.0, 0.0};
   double last_efficiency_[2] = {1.0, 1.0};  // efficiency of the previous period (motor-lag lead) [1]

@@ -1,6 +1,29 @@
 #include "evaluation/control_cases.h"
 
+#include <cmath>
+#include <string>
+
 namespace birotor {
+namespace {
+
+// Issue 34: a hover-infeasible loss during the aggressive manoeuvre. Take off
+// to 0.3 m (the force-feedback baseline settles in the hover), at 3 s the
+// aggressive quintic move by (+1, +1) m in 2 s; rotor `rotor` drops to
+// `scale` mid-climb (flight time 4 s = 6 s from the start, at about 0.8 m,
+// climbing and moving at 0.94 m/s each way).
+ControlCase AggressiveLoss(const char* name, int rotor, double scale) {
+  return ControlCase{name,
+                     "aggressive",
+                     {"scenario.duration_s=9", "ground.enabled=true", "ground.rest_s=1.0",
+                      "trajectory.waypoints=[{start_s: 0.0, duration_s: 1.5, x_m: 0.0, z_m: 0.3}, "
+                      "{start_s: 3.0, duration_s: 2.0, x_m: 1.0, z_m: 1.3}]",
+                      "faults.thrust_steps=[{time_s: 6.0, rotor: " + std::to_string(rotor) +
+                          ", scale: " + std::to_string(scale) + "}]"},
+                     "aggressive move (+1, +1) m in 2 s from a 0.3 m hover, rotor " + std::to_string(rotor) +
+                         " loses " + std::to_string(static_cast<int>(std::lround(100 * (1 - scale)))) + " % mid-climb"};
+}
+
+}  // namespace
 
 const std::vector<ControlCase>& ControlCases() {
   // Durations are cut to what the figure needs (the fault plus its 3 s window).
@@ -47,6 +70,16 @@ const std::vector<ControlCase>& ControlCases() {
         "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 0.4}]",
         "faults.thrust_steps=[{time_s: 6.0, rotor: 2, scale: 0.3}]"},
        "take off to 0.4 m, rotor 2 loses 70 % at 6 s (hover impossible: level descent)"},
+      AggressiveLoss("agg_loss70_r1", 1, 0.3),
+      AggressiveLoss("agg_loss70_r2", 2, 0.3),
+      AggressiveLoss("agg_loss80_r1", 1, 0.2),
+      AggressiveLoss("agg_loss80_r2", 2, 0.2),
+      {"loss_80",
+       "thrust_loss",
+       {"scenario.duration_s=12", "ground.enabled=true", "ground.rest_s=1.0", "trajectory.kind=waypoints",
+        "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 0.4}]",
+        "faults.thrust_steps=[{time_s: 6.0, rotor: 2, scale: 0.2}]"},
+       "take off to 0.4 m, rotor 2 loses 80 % at 6 s (FORCE at its plausibility floor: level descent)"},
   };
   return cases;
 }

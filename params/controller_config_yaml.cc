@@ -32,9 +32,15 @@ const OptionTable<SupervisionParams>& SupervisionKeys() {
       Real("conflict_hold_s", &O::conflict_hold_s, 0.0, 100.0),
       Real("min_plausible_thrust_scale", &O::min_plausible_thrust_scale, 0.01, 1.0),
       Real("max_plausible_thrust_scale", &O::max_plausible_thrust_scale, 1.0, 10.0),
+      Integer("at_floor_samples", &O::at_floor_samples, 1, 1000),
       Real("pose_gate_position_m", &O::pose_gate_position_m, 1e-3, 1e4),
       Real("pose_gate_angle_rad", &O::pose_gate_angle_rad, 1e-3, 10.0),
       Real("pose_gate_reset_s", &O::pose_gate_reset_s, 0.0, 100.0),
+      Integer("pose_reacquire_count", &O::pose_reacquire_count, 2, 100),
+      Real("pose_reacquire_position_m", &O::pose_reacquire_position_m, 1e-4, 1.0),
+      Real("pose_reacquire_angle_rad", &O::pose_reacquire_angle_rad, 1e-4, 1.0),
+      Real("degraded_max_tilt_rad", &O::degraded_max_tilt_rad, 0.0, 0.5),
+      Real("degraded_omega_rate_rad_s2", &O::degraded_omega_rate_rad_s2, 100.0, 1e7),
   };
   return keys;
 }
@@ -55,6 +61,10 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("decay_s", &O::decay_s, 1e-3, 1e3),
       Real("feasibility_margin", &O::feasibility_margin, 0.5, 2.0),
       Real("infeasible_s", &O::infeasible_s, 0.0, 10.0),
+      Real("sink_detect_altitude_m", &O::sink_detect_altitude_m, 0.01, 10.0),
+      Real("sink_detect_s", &O::sink_detect_s, 0.0, 10.0),
+      Real("level_tilt_rad", &O::level_tilt_rad, 1e-3, 0.5),
+      Real("level_rate_rad_s", &O::level_rate_rad_s, 1e-3, 10.0),
       Real("flare_tilt_rad", &O::flare_tilt_rad, 0.0, 0.3),
       Real("flare_time_s", &O::flare_time_s, 0.0, 1.0),
       Real("motor_lead_s", &O::motor_lead_s, 0.0, 1.0),

@@ -14,6 +14,7 @@
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_cases.h"
 #include "evaluation/control_metrics.h"
+#include "evaluation/descent_floor.h"
 #include "evaluation/eval_metrics.h"
 #include "evaluation/eval_runner.h"
 #include "evaluation/mismatch_metrics.h"
@@ -178,6 +179,20 @@ struct CaseFigures {
   double fault_time_s = -1;
 };
 
+// A flight that descended after its fault: where from, and its touchdown
+// against the level descent's floor (evaluation/descent_floor.h).
+void LogDescentFloor(const std::string& label, const ClosedLoopRun& run, const ControlMetrics& metrics,
+                     const Scenario& scenario) {
+  const DescentFloor floor = LevelDescentFloor(run, scenario);
+  if (!floor.found) return;
+  spdlog::info(
+      "{}: descent from {:.3f} m at {:+.2f} m/s (t = {:.2f} s), level floor {:.2f} m/s (a = {:.3f} m/s^2); "
+      "touchdown {:.2f} m/s = {:.2f} x floor, peak tilt from the fault {:.3f} rad; {} infeasible ({} from the sink)",
+      label, floor.height_m, floor.climb_m_s, floor.start_s, floor.touchdown_m_s, floor.sink_accel_m_s2,
+      metrics.touchdown_speed_m_s, metrics.touchdown_speed_m_s / floor.touchdown_m_s, metrics.tilt_before_touchdown_rad,
+      run.controller.infeasible, run.controller.infeasible_by_sink);
+}
+
 // One seed of a case in both cascade modes: their rows, figures and (first
 // seed) traces; with --mpc the force-feedback run is the MPC table's baseline.
 void FlyCascadeModes(const ControlCase& c, const Scenario& scenario, bool first_seed, bool mpc,
@@ -197,6 +212,7 @@ void FlyCascadeModes(const ControlCase& c, const Scenario& scenario, bool first_
         "efficiency {:.3f} {:.3f}",
         c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
         run.controller.descents, run.controller.saturated, run.controller.efficiency[0], run.controller.efficiency[1]);
+    LogDescentFloor(fmt::format("{} seed {} {}", c.name, scenario.seed, mode), run, metrics, scenario);
     if (first_seed) {
       figures->traces.push_back(TraceOf(run, mode));
       figures->fault_time_s = metrics.fault_time_s;
@@ -221,6 +237,7 @@ void FlyMpcModes(const ControlCase& c, const Scenario& scenario, const Estimator
     spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, {} fallbacks, solve p99 {:.0f} us", c.name,
                  scenario.seed, kMpcModes[m], run.simulated_s, run.wall_s, run.mpc.solves, run.mpc.Fallbacks(),
                  1e6 * run.mpc.solve_p99_s);
+    LogDescentFloor(fmt::format("{} seed {} {}", c.name, scenario.seed, kMpcModes[m]), run, metrics, scenario);
   }
 }
 

@@ -14,75 +14,12 @@
 #include <random>
 
 #include "model/equilibrium.h"
+#include "tests/controller/hover_feed.h"
 
 namespace birotor {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int64_t kPeriodUs = 2000;  // 500 Hz (ControllerParams::rate_hz)
-
-double HoverForce(const VehicleParams& p) {
-  const Equilibrium e = SolveHoverEquilibrium(p);
-  return 0.5 * (e.force_n[0] + e.force_n[1]);
-}
-
-// A vehicle at rest at the origin, level, seen by every sensor; FORCE
-// reports the hover force on both rotors and thrust scales (1, scale2) with
-// the given status. climb_m_s moves it up (down if negative) at that
-// constant speed.
-class HoverFeed {
- public:
-  // A controller of config that has seen the first POSE (at the origin, t = 0).
-  explicit HoverFeed(const ControllerConfig& config) : controller_(config), hover_force_n_(HoverForce(config.vehicle)) {
-    controller_.OnPose(PoseSample{0, pose_seq_++, 0.0, 0.0, 0.0}, 0);
-  }
-  bool send_pose = true;
-  bool send_force = true;
-  int32_t force_status = kStatusValid;
-  double scale2 = 1.0;
-  double climb_m_s = 0.0;
-
-  // Feeds the samples of (now - period, now] and runs one control period.
-  MotorCommand Period() {
-    for (int64_t t = now_us_ + 1000; t <= now_us_ + kPeriodUs; t += 1000) {
-      z_m_ += 1e-3 * climb_m_s;
-      controller_.OnImu(ImuSample{t, imu_seq_++, 0.0, 0.0, 9.81}, t);
-      if (send_force) {
-        ForceEstimate force;
-        force.utime = t;
-        force.seq = force_seq_;
-        force.force_n[0] = force.force_n[1] = hover_force_n_;
-        force.force_std_n[0] = force.force_std_n[1] = 0.01 * hover_force_n_;
-        force.thrust_scale[1] = scale2;
-        force.status = force_status;
-        controller_.OnForce(force, t);
-      }
-      ++force_seq_;
-      if (send_pose && t % 10000 == 0) controller_.OnPose(PoseSample{t, pose_seq_++, 0.0, z_m_, 0.0}, t);
-    }
-    now_us_ += kPeriodUs;
-    return controller_.Update(now_us_);
-  }
-  // n periods; returns the last command.
-  MotorCommand Run(int periods) {
-    MotorCommand c;
-    for (int k = 0; k < periods; ++k) c = Period();
-    return c;
-  }
-  // 2 s of hover: airborne (airborne_s 0.3 s) and the baseline settled
-  // (baseline_tau_s 1 s), in force feedback when asked for.
-  MotorCommand Settle() { return Run(1000); }
-  int64_t now_us() const { return now_us_; }
-  double z_m() const { return z_m_; }
-  VehicleController& controller() { return controller_; }
-
- private:
-  VehicleController controller_;
-  double hover_force_n_;
-  int64_t now_us_ = 0;
-  double z_m_ = 0.0;
-  int32_t imu_seq_ = 0, pose_seq_ = 0, force_seq_ = 0;
-};
 
 TEST(VehicleControllerTest, NoPoseMeansRotorsAtZero) {
   VehicleController controller{ControllerConfig()};
