@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "numerics/percentile.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -36,7 +37,7 @@ ErrorStats Summarize(std::vector<double>* errors, int64_t within_2sigma = 0) {
 }
 
 bool Finite(const ForceEstimate& e) {
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) || !std::isfinite(e.thrust_scale[i])) {
       return false;
     }
@@ -58,7 +59,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
   // First thrust_scale step in truth.
   int64_t step_utime = -1;
   for (size_t i = 1; i < truth.size() && result.step_rotor == 0; ++i) {
-    for (int r = 0; r < 2; ++r) {
+    for (int r = 0; r < kBirotorRotors; ++r) {
       if (std::abs(truth[i].thrust_scale[r] - truth[i - 1].thrust_scale[r]) > options.step_threshold) {
         result.step_rotor = r + 1;
         step_utime = truth[i].utime;
@@ -73,8 +74,8 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
 
   const int64_t warmup_us = static_cast<int64_t>(std::llround(options.warmup_s * 1e6));
   const int64_t exclusion_us = static_cast<int64_t>(std::llround(options.fault_exclusion_s * 1e6));
-  std::vector<double> errors[2], errors_outside[2];
-  int64_t within_2sigma[2] = {0, 0};
+  std::vector<double> errors[kBirotorRotors], errors_outside[kBirotorRotors];
+  int64_t within_2sigma[kBirotorRotors] = {0, 0};
   int64_t first_utime = forces.empty() ? 0 : forces.front().utime;
   size_t next_fault = 0;
   int64_t last_fault_utime = std::numeric_limits<int64_t>::min() / 2;
@@ -88,7 +89,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
     }
     ++result.paired;
     const TruthSample& t = truth[it->second];
-    for (int r = 0; r < 2; ++r) {
+    for (int r = 0; r < kBirotorRotors; ++r) {
       if ((e.status & FaultBit(r + 1)) && t.thrust_scale[r] > options.false_alarm_truth_scale) {
         ++result.false_alarms;
       }
@@ -108,7 +109,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
       last_fault_utime = fault_utimes[next_fault++];
     }
     const bool near_fault = e.utime - last_fault_utime < exclusion_us;
-    for (int r = 0; r < 2; ++r) {
+    for (int r = 0; r < kBirotorRotors; ++r) {
       // A non-finite estimate scores as an infinite error, never silently.
       const double error =
           std::isfinite(e.force_n[r]) ? std::abs(e.force_n[r] - t.force_n[r]) : std::numeric_limits<double>::infinity();
@@ -117,7 +118,7 @@ EvalResult Evaluate(const std::vector<ForceEstimate>& forces, const std::vector<
       if (!near_fault) errors_outside[r].push_back(error);
     }
   }
-  for (int r = 0; r < 2; ++r) {
+  for (int r = 0; r < kBirotorRotors; ++r) {
     result.rotor[r] = Summarize(&errors[r], within_2sigma[r]);
     result.mae_outside_faults_n[r] = Summarize(&errors_outside[r]).mae_n;
   }

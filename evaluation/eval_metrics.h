@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -38,14 +39,14 @@ struct ErrorStats {
 };
 
 struct EvalResult {
-  ErrorStats rotor[2];
-  double mae_outside_faults_n[2] = {0, 0};  // excluding fault_exclusion_s after each fault
-  int64_t paired = 0;                       // estimates with a truth sample of the same utime
-  int64_t unpaired = 0;                     // estimates without one
-  int64_t nonfinite = 0;                    // estimates with a NaN/Inf force, std or scale
-  int64_t invalid = 0;                      // scored estimates without kStatusValid
-  int64_t false_alarms = 0;                 // estimates flagging rotor i while truth_i > threshold
-  int64_t fault_flags = 0;                  // estimates with any rotor fault bit
+  ErrorStats rotor[kBirotorRotors];
+  double mae_outside_faults_n[kBirotorRotors] = {0, 0};  // excluding fault_exclusion_s after each fault
+  int64_t paired = 0;                                    // estimates with a truth sample of the same utime
+  int64_t unpaired = 0;                                  // estimates without one
+  int64_t nonfinite = 0;                                 // estimates with a NaN/Inf force, std or scale
+  int64_t invalid = 0;                                   // scored estimates without kStatusValid
+  int64_t false_alarms = 0;                              // estimates flagging rotor i while truth_i > threshold
+  int64_t fault_flags = 0;                               // estimates with any rotor fault bit
   // First thrust_scale step in truth (none: step_rotor == 0).
   int step_rotor = 0;                 // 1 or 2
   double step_time_s = 0;             // [s] since the first truth sample's utime 0

@@ -6,14 +6,16 @@
 #include <cstdio>
 #include <unordered_map>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 namespace {
 
 struct Scored {
   int64_t utime;
   int32_t status;
-  double error_n[2];
-  bool inside[2];  // rotor i within 2 sigma
+  double error_n[kBirotorRotors];
+  bool inside[kBirotorRotors];  // rotor i within 2 sigma
 };
 
 }  // namespace
@@ -30,7 +32,7 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
     const auto it = truth_index.find(e.utime);
     if (it == truth_index.end()) continue;
     Scored s{e.utime, e.status, {0, 0}, {true, true}};
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       s.error_n[i] = e.force_n[i] - truth[it->second].force_n[i];
       s.inside[i] = std::fabs(s.error_n[i]) <= 2.0 * e.force_std_n[i];
     }
@@ -39,8 +41,8 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
   if (scored.empty()) return r;
   const int64_t start = options.airborne_utime >= 0 ? options.airborne_utime : scored.front().utime;
   const int64_t settle = start + static_cast<int64_t>(options.settle_s * 1e6);
-  int64_t valid = 0, counted = 0, after = 0, inside_after[2] = {0, 0}, valid_before = 0;
-  double sum[2] = {0, 0};
+  int64_t valid = 0, counted = 0, after = 0, inside_after[kBirotorRotors] = {0, 0}, valid_before = 0;
+  double sum[kBirotorRotors] = {0, 0};
   for (const Scored& s : scored) {
     if (s.utime < start) continue;
     ++counted;
@@ -57,26 +59,26 @@ MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, co
     if (r.mismatch_raised_s < 0 && (s.status & kStatusValid)) ++valid_before;
     if (s.utime >= settle) {
       ++after;
-      for (int i = 0; i < 2; ++i) {
+      for (int i = 0; i < kBirotorRotors; ++i) {
         sum[i] += std::fabs(s.error_n[i]);
         if (s.inside[i]) ++inside_after[i];
       }
     }
   }
   r.valid_share = counted > 0 ? static_cast<double>(valid) / counted : 0.0;
-  for (int i = 0; i < 2; ++i) r.mae_after_settle_n[i] = after > 0 ? sum[i] / after : NAN;
+  for (int i = 0; i < kBirotorRotors; ++i) r.mae_after_settle_n[i] = after > 0 ? sum[i] / after : NAN;
   r.share_after_settle = after > 0 ? static_cast<double>(std::min(inside_after[0], inside_after[1])) / after : NAN;
   // Sliding windows over the VALID estimates (two pointers over time).
   const int64_t window_us = static_cast<int64_t>(options.window_s * 1e6);
   const int64_t step_us = static_cast<int64_t>(options.window_step_s * 1e6);
   for (int64_t w = start; w + window_us <= scored.back().utime; w += step_us) {
-    int64_t n = 0, inside[2] = {0, 0};
+    int64_t n = 0, inside[kBirotorRotors] = {0, 0};
     for (auto it =
              std::lower_bound(scored.begin(), scored.end(), w, [](const Scored&s, int64_t t) { return s.utime < t; });
          it != scored.end() && it->utime < w + window_us; ++it) {
       if (!(it->status & kStatusValid)) continue;
       ++n;
-      for (int i = 0; i < 2; ++i) inside[i] += it->inside[i] ? 1 : 0;
+      for (int i = 0; i < kBirotorRotors; ++i) inside[i] += it->inside[i] ? 1 : 0;
     }
     if (n >= options.min_window_valid)
       r.worst_valid_window_share =

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -22,7 +23,7 @@ struct MismatchEvalOptions {
 };
 
 struct MismatchEvalResult {
-  double mae_after_settle_n[2] = {0, 0};
+  double mae_after_settle_n[kBirotorRotors] = {0, 0};
   double share_after_settle = 0;   // both rotors within 2 sigma, after settle_s [1]
   double mismatch_raised_s = -1;   // first MODEL_MISMATCH after the airborne start [s]; -1 never
   int64_t mismatch_estimates = 0;  // estimates with MODEL_MISMATCH

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "numerics/percentile.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -40,7 +41,7 @@ MpcRunFigures MpcFiguresOf(const ClosedLoopRun& run, const ControlMetrics& metri
   for (size_t k = 0; k < run.commands.size(); ++k) {
     const MotorCommand& c = run.commands[k];
     const bool in_flight = (c.status & kCommandNoPoseYet) == 0;
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       if (!(c.omega_cmd_rad_s[i] >= 0.0 && c.omega_cmd_rad_s[i] <= omega_max)) ++out.commands_out_of_bounds;
       if (in_flight && previous_in_flight) {
         const double change = std::fabs(c.omega_cmd_rad_s[i] - run.commands[k - 1].omega_cmd_rad_s[i]);

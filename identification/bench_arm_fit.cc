@@ -12,6 +12,7 @@
 #include "identification/fit_stages.h"
 #include "identification/identify.h"
 #include "identification/prior_residual.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -72,9 +73,9 @@ double CostWithBestInitialStates(const std::vector<ClampedArmWindowResidual*>& w
   return total;
 }
 
-void FitBenchMaps(const std::vector<double> map_b[2], const std::vector<double> map_f[2],
+void FitBenchMaps(const std::vector<double> map_b[kBirotorRotors], const std::vector<double> map_f[kBirotorRotors],
                   const IdentificationOptions& options, IdentificationResult* result) {
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     DeflectionForceMap map = FitDeflectionForceMap(arm, map_b[arm], map_f[arm], options.map_degree);
     if (map.samples == 0) continue;
     result->maps.push_back(map);
@@ -100,15 +101,16 @@ void FitBenchMaps(const std::vector<double> map_b[2], const std::vector<double> 
   }
 }
 
-BenchStatics BenchArmStatics(const std::vector<double> map_b[2], const std::vector<double> map_f[2],
-                             const VehicleParams& base, const CalibrationFact& fact) {
+BenchStatics BenchArmStatics(const std::vector<double> map_b[kBirotorRotors],
+                             const std::vector<double> map_f[kBirotorRotors], const VehicleParams& base,
+                             const CalibrationFact& fact) {
   BenchStatics statics;
-  for (int arm = 0; arm < 2; ++arm) statics.lines[arm] = FitStaticLine(map_f[arm], map_b[arm]);
+  for (int arm = 0; arm < kBirotorRotors; ++arm) statics.lines[arm] = FitStaticLine(map_f[arm], map_b[arm]);
   statics.scales.stiffness_n_m_rad = base.arm_stiffness_n_m_rad;
   statics.scales.damping_n_m_s_rad = base.arm_damping_n_m_s_rad > 0.0 ? base.arm_damping_n_m_s_rad : 0.1;
   statics.scales.tip_mass_kg = base.tip_mass_kg;
   statics.tip_mass_kg = fact.TipMassWeighed() ? fact.tip_mass_kg : base.tip_mass_kg;
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     const double c = statics.lines[arm].slope_rad_n * kArmSign[arm];
     statics.stiffness_n_m_rad +=
         0.5 * (c > 0.0 ? base.gauge_scale[arm] * base.arm_length_m / c : base.arm_stiffness_n_m_rad);
@@ -117,12 +119,12 @@ BenchStatics BenchArmStatics(const std::vector<double> map_b[2], const std::vect
 }
 
 BenchTheta BenchThetaAt(const BenchStatics& statics, const VehicleParams& base, double strain_noise_rad,
-                        double stiffness_n_m_rad, double tip_mass_kg, const double gauge_scale[2]) {
+                        double stiffness_n_m_rad, double tip_mass_kg, const double gauge_scale[kBirotorRotors]) {
   BenchTheta theta;
   theta[kBenchK] = stiffness_n_m_rad / statics.scales.stiffness_n_m_rad;
   theta[kBenchD] = base.arm_damping_n_m_s_rad / statics.scales.damping_n_m_s_rad;
   theta[kBenchTipMass] = tip_mass_kg / statics.scales.tip_mass_kg;
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     theta[kBenchScale1 + arm] = gauge_scale[arm];
     // Slope implied by s_i, k; the offset from the intercept a = o - c m_p g.
     const double c = kArmSign[arm] * gauge_scale[arm] * base.arm_length_m / stiffness_n_m_rad;
@@ -142,7 +144,7 @@ BenchTheta ScanArmFrequency(const std::vector<ArmData>& data, const std::vector<
   // theta at the frequency factor q (k / m_p times q).
   auto at = [&](double q) {
     if (scales_move) {
-      const double gauge_scale[2] = {base.gauge_scale[0] * q, base.gauge_scale[1] * q};
+      const double gauge_scale[kBirotorRotors] = {base.gauge_scale[0] * q, base.gauge_scale[1] * q};
       return BenchThetaAt(statics, base, options.strain_noise_rad, statics.stiffness_n_m_rad * q, statics.tip_mass_kg,
                           gauge_scale);
     }
@@ -203,7 +205,7 @@ void BuildBenchArmProblem(const std::vector<ArmData>& data, const std::vector<Ar
                                                    fact.tip_mass_std_kg / statics.scales.tip_mass_kg),
                              nullptr, &p[kBenchTipMass]);
   }
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     double* s = &p[kBenchScale1 + arm];
     if (!problem.HasParameterBlock(s)) continue;
     problem.SetParameterLowerBound(s, 0, 0.1);
@@ -222,7 +224,7 @@ namespace {
 // the static intercept, the scales follow k when the tip mass is weighed.
 void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& theta, const VehicleParams& base,
                        ParameterEstimate* k, ParameterEstimate* damping, ParameterEstimate* tip_mass,
-                       ParameterEstimate scale[2], ParameterEstimate offset[2]) {
+                       ParameterEstimate scale[kBirotorRotors], ParameterEstimate offset[kBirotorRotors]) {
   const CalibrationFact& fact = options.calibration;
   const bool weighed = fact.TipMassWeighed();
   const bool mass_free = !weighed || fact.tip_mass_std_kg > 0.0;
@@ -230,7 +232,7 @@ void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& t
   if (mass_free && !weighed) {
     AddBenchFloors(options, k, damping, tip_mass);
     // The offsets follow m_p through the static intercept, o_i = a_i + s_i sign_i L m_p g / k.
-    for (int arm = 0; arm < 2; ++arm) {
+    for (int arm = 0; arm < kBirotorRotors; ++arm) {
       const double floor_rad = options.bench_frequency_floor * theta[kBenchScale1 + arm] * base.arm_length_m *
                                tip_mass->value * base.gravity_m_s2 / k->value;
       if (std::isfinite(offset[arm].value) && std::isfinite(floor_rad)) {
@@ -241,7 +243,7 @@ void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& t
   } else {
     AddRelativeFloor(damping, options.bench_damping_floor, EstimateRemark::kDampingFloor);
     AddRelativeFloor(k, options.bench_frequency_floor, EstimateRemark::kFrequencyFloor);
-    for (int arm = 0; arm < 2; ++arm) {
+    for (int arm = 0; arm < kBirotorRotors; ++arm) {
       if (scale_free) {
         AddRelativeFloor(&scale[arm], options.bench_frequency_floor, EstimateRemark::kFrequencyFloor);
       }
@@ -255,15 +257,15 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
                        const IdentificationOptions& options, IdentificationResult* result) {
   const CalibrationFact& fact = options.calibration;
   const double sigma_b = options.strain_noise_rad;
-  std::vector<double> map_b[2], map_f[2];
+  std::vector<double> map_b[kBirotorRotors], map_f[kBirotorRotors];
   const std::vector<ArmData> data = CollectArmData(logs, map_b, map_f);
   FitBenchMaps(map_b, map_f, options, result);
 
   ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
   ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");
   ParameterEstimate tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p");
-  ParameterEstimate scale[2], offset[2];
-  for (int arm = 0; arm < 2; ++arm) {
+  ParameterEstimate scale[kBirotorRotors], offset[kBirotorRotors];
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     scale[arm] = ParameterEstimate::Named("gauge_scale[" + std::to_string(arm) + "]", "s_" + std::to_string(arm + 1));
     offset[arm] =
         ParameterEstimate::Named("gauge_offset_rad[" + std::to_string(arm) + "]", "o_" + std::to_string(arm + 1));
@@ -279,7 +281,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
   const bool scale_free = weighed || fact.gauge_scale_std > 0.0;
   result->has_calibration_fact = true;
   result->calibration_fact = fact;
-  for (int arm = 0; arm < 2; ++arm) result->factory_gauge_scale[arm] = base.gauge_scale[arm];
+  for (int arm = 0; arm < kBirotorRotors; ++arm) result->factory_gauge_scale[arm] = base.gauge_scale[arm];
 
   const BenchStatics statics = BenchArmStatics(map_b, map_f, base, fact);
   const std::vector<ArmWindow> windows = ArmWindows(data, options);
@@ -334,7 +336,7 @@ void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& 
     if (!tip_mass.determined) result->warnings.push_back({WarningKind::kNotExcitedOnBench, "m_p"});
     stored.push_back(tip_mass);
   }
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     if (scale_free) {
       if (!scale[arm].determined) result->errors.push_back(scale[arm].symbol + ": gauge scale not determined");
       stored.push_back(scale[arm]);

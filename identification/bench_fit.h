@@ -14,6 +14,7 @@
 #include "identification/clamped_arm_residual.h"
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
+#include "samples/rotor_count.h"
 #include "samples/sensor_log.h"
 
 namespace birotor {
@@ -41,8 +42,8 @@ struct ArmData {
 
 // Data stage: strain samples of every (log, arm) with the load-cell force at
 // the same time; the valid pairs also go to map_b, map_f (the static map's data).
-std::vector<ArmData> CollectArmData(const std::vector<SensorLog>& logs, std::vector<double> map_b[2],
-                                    std::vector<double> map_f[2]);
+std::vector<ArmData> CollectArmData(const std::vector<SensorLog>& logs, std::vector<double> map_b[kBirotorRotors],
+                                    std::vector<double> map_f[kBirotorRotors]);
 
 // One output-error window [begin, end) of data[data_index].
 struct ArmWindow {
@@ -63,23 +64,24 @@ StaticLine FitStaticLine(const std::vector<double>& force_n, const std::vector<d
 
 // Map stage: the deflection-force map of each arm (map_degree) into
 // result->maps, with its fit and residual panels into result->plots.
-void FitBenchMaps(const std::vector<double> map_b[2], const std::vector<double> map_f[2],
+void FitBenchMaps(const std::vector<double> map_b[kBirotorRotors], const std::vector<double> map_f[kBirotorRotors],
                   const IdentificationOptions& options, IdentificationResult* result);
 
 // Guess stage: the start from the statics. k from the static slopes with
 // the base gauge scales (per arm c = s sign L / k), m_p the weighed one or
 // the base file's, the offsets from the intercepts a = o - c m_p g.
 struct BenchStatics {
-  StaticLine lines[2];
+  StaticLine lines[kBirotorRotors];
   ClampedArmWindowResidual::Scales scales{};
   double stiffness_n_m_rad = 0.0;  // k0
   double tip_mass_kg = 0.0;        // m_p0
 };
-BenchStatics BenchArmStatics(const std::vector<double> map_b[2], const std::vector<double> map_f[2],
-                             const VehicleParams& base, const CalibrationFact& fact);
+BenchStatics BenchArmStatics(const std::vector<double> map_b[kBirotorRotors],
+                             const std::vector<double> map_f[kBirotorRotors], const VehicleParams& base,
+                             const CalibrationFact& fact);
 // theta at (k, m_p, gauge scales) holding the static lines; d at the base value.
 BenchTheta BenchThetaAt(const BenchStatics& statics, const VehicleParams& base, double strain_noise_rad,
-                        double stiffness_n_m_rad, double tip_mass_kg, const double gauge_scale[2]);
+                        double stiffness_n_m_rad, double tip_mass_kg, const double gauge_scale[kBirotorRotors]);
 
 // Sum of squared whitened residuals of the windows at theta with each
 // window's initial state chosen by linear least squares (the output is

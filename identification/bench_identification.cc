@@ -16,6 +16,7 @@
 #include "identification/identify.h"
 #include "identification/prior_residual.h"
 #include "identification/thrust_residual.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -34,7 +35,7 @@ std::vector<ceres::ResidualBlockId> AddThrustResiduals(const std::vector<SensorL
   std::vector<ceres::ResidualBlockId> blocks;
   const int64_t spacing_us = static_cast<int64_t>(options.thrust_sample_spacing_s * 1e6);
   for (const SensorLog& log : logs) {
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       size_t hint = 0;
       int64_t next_us = std::numeric_limits<int64_t>::min();
       for (const MotorSample& m : log.motor) {
@@ -69,7 +70,7 @@ double ThrustResidualRmsN(const std::vector<SensorLog>& logs, double thrust_coef
   double sum_sq = 0.0;
   int count = 0;
   for (const SensorLog& log : logs) {
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       size_t hint = 0;
       for (const MotorSample& m : log.motor) {
         double force = 0.0;
@@ -131,11 +132,11 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams
 
 // Strain samples of every (log, arm) with the load-cell force at the same
 // time; the valid pairs also go to map_b, map_f (the static map's data).
-std::vector<ArmData> CollectArmData(const std::vector<SensorLog>& logs, std::vector<double> map_b[2],
-                                    std::vector<double> map_f[2]) {
+std::vector<ArmData> CollectArmData(const std::vector<SensorLog>& logs, std::vector<double> map_b[kBirotorRotors],
+                                    std::vector<double> map_f[kBirotorRotors]) {
   std::vector<ArmData> data;  // per (log, arm)
   for (const SensorLog& log : logs) {
-    for (int arm = 0; arm < 2; ++arm) {
+    for (int arm = 0; arm < kBirotorRotors; ++arm) {
       ArmData d;
       d.arm = arm;
       size_t hint = 0;
@@ -188,14 +189,14 @@ void AddBenchResiduals(const std::vector<SensorLog>& logs, const VehicleParams& 
                        const IdentificationOptions& options, ceres::Problem* problem, const SharedRatioBlocks& shared,
                        BenchResiduals* out) {
   out->thrust = AddThrustResiduals(logs, bench, options, problem, shared.thrust_coeff, nullptr, nullptr);
-  std::vector<double> map_b[2], map_f[2];
+  std::vector<double> map_b[kBirotorRotors], map_f[kBirotorRotors];
   const std::vector<ArmData> data = CollectArmData(logs, map_b, map_f);
   const double sigma_b = options.strain_noise_rad;
   ClampedArmWindowResidual::Scales scales;
   scales.stiffness_n_m_rad = bench.arm_stiffness_n_m_rad;
   scales.damping_n_m_s_rad = bench.arm_damping_n_m_s_rad > 0.0 ? bench.arm_damping_n_m_s_rad : 0.1;
   scales.tip_mass_kg = bench.tip_mass_kg;
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     out->gauge_scale[arm] = bench.gauge_scale[arm];
     out->offset_ratio[arm] = bench.gauge_offset_rad[arm] / sigma_b;
   }
@@ -210,7 +211,7 @@ void AddBenchResiduals(const std::vector<SensorLog>& logs, const VehicleParams& 
         nullptr, shared.stiffness, shared.damping, shared.tip_mass, &out->gauge_scale[arm], &out->offset_ratio[arm],
         out->states.back().data()));
   }
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     if (!problem->HasParameterBlock(&out->gauge_scale[arm])) continue;
     problem->SetParameterBlockConstant(&out->gauge_scale[arm]);
     problem->SetParameterBlockConstant(&out->offset_ratio[arm]);

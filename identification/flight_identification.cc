@@ -16,6 +16,7 @@
 #include "identification/free_arm_window_cost.h"
 #include "identification/identify.h"
 #include "model/plant.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -39,7 +40,7 @@ constexpr double kMotorSettleTimeConstants = 6.0;  // model speed trusted after 
 // from the telemetry (or the command when there is none) after every gap and
 // is marked settled kMotorSettleTimeConstants tau_m later.
 struct ModelSpeeds {
-  std::vector<double> omega_rad_s[2];
+  std::vector<double> omega_rad_s[kBirotorRotors];
   std::vector<bool> settled;
 };
 
@@ -58,7 +59,7 @@ ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const Vehicl
                            m.utime - motor[j - 1].utime <= kMaxMotorGapUs && m.utime > motor[j - 1].utime;
     if (!commands_ok) continue;
     if (!continues) start_us = m.utime;
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       double omega;
       if (continues) {
         omega = MotorStep(out.omega_rad_s[rotor][j - 1], ClampCommand(params, motor[j - 1].omega_cmd_rad_s[rotor]),
@@ -99,7 +100,7 @@ FlightSamples CollectFlightSamples(const std::vector<SensorLog>& logs, const Veh
       FreeArmWindowResidual::Sample& out = all[i];
       // Deflections through the base file's gauge calibration (gauges.md:
       // b = (b_meas - o_i) / s_i; a bench identification gives s_i and o_i).
-      for (int arm = 0; arm < 2; ++arm) {
+      for (int arm = 0; arm < kBirotorRotors; ++arm) {
         out.deflection_rad[arm] = (s.deflection_rad[arm] - base.gauge_offset_rad[arm]) / base.gauge_scale[arm];
       }
       bool ok = std::isfinite(s.deflection_rad[0]) && std::isfinite(s.deflection_rad[1]);
@@ -154,7 +155,7 @@ std::array<double, kFreeArmStateSize> InitialWindowState(const std::vector<FreeA
   std::array<double, kFreeArmStateSize> x0 = {std::isfinite(first.gyro_rad_s) ? first.gyro_rad_s : 0.0,
                                               first.deflection_rad[0], first.deflection_rad[1], 0.0, 0.0};
   const size_t fit_n = std::min<size_t>(samples.size(), 5);
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     double st = 0.0, sb = 0.0, stt = 0.0, stb = 0.0, t = 0.0;
     for (size_t i = 0; i < fit_n; ++i) {
       st += t;

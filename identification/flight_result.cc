@@ -7,6 +7,7 @@
 
 #include "identification/fit_stages.h"
 #include "identification/flight_fit.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -22,7 +23,7 @@ std::vector<FitPlot> FlightPlots(const FlightProblem& fit) {
     const std::vector<FreeArmState<double>> predicted =
         f.Predict(fit.ratio[kFlightK], fit.ratio[kFlightD], fit.ratio[kFlightThrust], fit.ratio[kFlightTipMass],
                   fit.states[w].data(), fit.knots[w].empty() ? nullptr : fit.knots[w].data());
-    for (int arm = 0; arm < 2; ++arm) {
+    for (int arm = 0; arm < kBirotorRotors; ++arm) {
       FitPlot plot;
       plot.panel = FitPanel::kFlightDeflection;
       plot.arm = arm;

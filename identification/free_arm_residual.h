@@ -15,6 +15,7 @@
 #include "identification/robust_residual.h"
 #include "model/arm_dynamics.h"
 #include "model/rk4.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -54,11 +55,11 @@ constexpr int kFreeArmResidualsPerSample = 5;
 // at 0 (no knot block).
 struct FreeArmWindowResidual {
   struct Sample {
-    double dt_s;               // time to the next sample [s] (unused for the last)
-    double omega_rad_s[2];     // rotor speeds (motor model from the commands) [rad/s]
-    double deflection_rad[2];  // strain gauges [rad]
-    double gyro_rad_s;         // pitch rate, NaN when not used [rad/s]
-    double accel_m_s2[2];      // specific force body x, z, NaN when not used [m/s^2]
+    double dt_s;                            // time to the next sample [s] (unused for the last)
+    double omega_rad_s[kBirotorRotors];     // rotor speeds (motor model from the commands) [rad/s]
+    double deflection_rad[kBirotorRotors];  // strain gauges [rad]
+    double gyro_rad_s;                      // pitch rate, NaN when not used [rad/s]
+    double accel_m_s2[2];                   // specific force body x, z, NaN when not used [m/s^2]
   };
   struct Scales {
     double stiffness_n_m_rad;
@@ -176,7 +177,7 @@ struct FreeArmWindowResidual {
     if (n == 0) return nullptr;
     ceres::Matrix a = ceres::Matrix::Zero(2 * n, KnotBlockSize());
     const std::vector<double> t = KnotTimes();
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       const int row0 = rotor * n, col0 = rotor * n;
       a(row0, col0) = 1.0 / turbulence_std;
       for (int j = 1; j < n; ++j) {
@@ -238,14 +239,14 @@ struct FreeArmWindowResidual {
     State x;
     for (int i = 0; i < kFreeArmStateSize; ++i) x(i) = state0[i];
     // f_i = c_T omega_i^2 (1 + eta_i) with omega and eta linear between samples.
-    T mu_prev[2], mu_next[2];
-    for (int rotor = 0; rotor < 2; ++rotor) mu_next[rotor] = 1.0 + Turbulence(knots, rotor, 0);
+    T mu_prev[kBirotorRotors], mu_next[kBirotorRotors];
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) mu_next[rotor] = 1.0 + Turbulence(knots, rotor, 0);
     auto force = [&](const Sample& a, const Sample& b, int rotor, double alpha) {
       const double w = a.omega_rad_s[rotor] + alpha * (b.omega_rad_s[rotor] - a.omega_rad_s[rotor]);
       return c_t * (w * w) * (mu_prev[rotor] + alpha * (mu_next[rotor] - mu_prev[rotor]));
     };
     for (size_t j = 0; j < samples_.size(); ++j) {
-      for (int rotor = 0; rotor < 2; ++rotor) {
+      for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
         mu_prev[rotor] = mu_next[rotor];
         if (j > 0) mu_next[rotor] = 1.0 + Turbulence(knots, rotor, j);
       }

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "model/rk4.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -143,9 +144,10 @@ bool FreeArmWindowCost::Evaluate(double const* const* parameters, double* residu
   }
   // f_i = c_T omega_i^2 mu_i with omega and mu linear between samples a, b
   // (the functor's expressions, so the values are its own).
-  double mu_prev[2], mu_next[2];
-  Row d_mu_prev[2] = {Row::Zero(p), Row::Zero(p)}, d_mu_next[2] = {Row::Zero(p), Row::Zero(p)};
-  for (int rotor = 0; rotor < 2; ++rotor) mu_next[rotor] = Mu(w, knots, rotor, 0, &d_mu_next[rotor]);
+  double mu_prev[kBirotorRotors], mu_next[kBirotorRotors];
+  Row d_mu_prev[kBirotorRotors] = {Row::Zero(p), Row::Zero(p)},
+      d_mu_next[kBirotorRotors] = {Row::Zero(p), Row::Zero(p)};
+  for (int rotor = 0; rotor < kBirotorRotors; ++rotor) mu_next[rotor] = Mu(w, knots, rotor, 0, &d_mu_next[rotor]);
   auto set_force = [&](int rotor, double omega, double mu, const Row& d_mu, double* input, InputSensitivity* d) {
     auto row = d->row(kInForce1 + rotor);
     row = (c_t * (omega * omega)) * d_mu;
@@ -163,7 +165,7 @@ bool FreeArmWindowCost::Evaluate(double const* const* parameters, double* residu
   ResidualSensitivity dr(kFreeArmResidualsPerSample, p);
   const int substeps = w.substeps();
   for (size_t j = 0; j < samples.size(); ++j) {
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       mu_prev[rotor] = mu_next[rotor];
       d_mu_prev[rotor] = d_mu_next[rotor];
       if (j > 0) mu_next[rotor] = Mu(w, knots, rotor, j, &d_mu_next[rotor]);
@@ -178,7 +180,7 @@ bool FreeArmWindowCost::Evaluate(double const* const* parameters, double* residu
         const double alphas[3] = {a0, 0.5 * (a0 + a1), a1};  // Rk4Stage order: start, middle, end
         for (int at = 0; at < 3; ++at) {
           std::copy(inputs, inputs + kInputs, stage_inputs[at]);
-          for (int rotor = 0; rotor < 2; ++rotor) {
+          for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
             stage_force(s0, s1, rotor, alphas[at], stage_inputs[at], &stage_du[at]);
           }
         }
@@ -198,7 +200,7 @@ bool FreeArmWindowCost::Evaluate(double const* const* parameters, double* residu
     }
     // Residuals at sample j (forces at alpha = 1 of the last interval, or mu at j = 0).
     const FreeArmWindowResidual::Sample& m = samples[j];
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       set_force(rotor, m.omega_rad_s[rotor], mu_next[rotor], d_mu_next[rotor], inputs, &du);
     }
     const LocalPoint local(z, inputs);

@@ -11,6 +11,7 @@
 #include "identification/identification_options.h"
 #include "identification/sample_cleaning.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -44,13 +45,13 @@ enum class EstimateRemark {
 
 struct EstimateNote {
   EstimateBasis basis = EstimateBasis::kNone;
-  int windows = 0;                // fitted windows (kThrustPairs: pairs)
-  int candidate_windows = 0;      // kFreeArmFit: windows the logs offered
-  bool with_imu = false;          // kFreeArmFit
-  bool joint = false;             // kFreeArmFit: the joint bench + flight problem ...
-  int load_cell_pairs = 0;        // ... with this many thrust pairs ...
-  int clamped_windows = 0;        // ... and clamped-arm windows
-  int command_steps[2] = {0, 0};  // kMotorFit, kMotorNotExcited: per motor
+  int windows = 0;                             // fitted windows (kThrustPairs: pairs)
+  int candidate_windows = 0;                   // kFreeArmFit: windows the logs offered
+  bool with_imu = false;                       // kFreeArmFit
+  bool joint = false;                          // kFreeArmFit: the joint bench + flight problem ...
+  int load_cell_pairs = 0;                     // ... with this many thrust pairs ...
+  int clamped_windows = 0;                     // ... and clamped-arm windows
+  int command_steps[kBirotorRotors] = {0, 0};  // kMotorFit, kMotorNotExcited: per motor
   double step_threshold_rad_s = std::numeric_limits<double>::quiet_NaN();  // kMotorNotExcited
   double spacing_s = std::numeric_limits<double>::quiet_NaN();             // kThrustPairs [s]
   double value = std::numeric_limits<double>::quiet_NaN();                 // kTipMassAgreesWithBase [kg]
@@ -206,7 +207,8 @@ struct IdentificationResult {
   // mass; words: params/identified_parameter_file.h CalibrationFactText).
   bool has_calibration_fact = false;
   CalibrationFact calibration_fact;
-  double factory_gauge_scale[2] = {1.0, 1.0};  // the base file's gauge_scale, the factory fact when not weighed
+  double factory_gauge_scale[kBirotorRotors] = {1.0,
+                                                1.0};  // the base file's gauge_scale, the factory fact when not weighed
   // Parameters the data cannot separate, with the combination that is
   // determined (from the correlation of the fitted parameters, or named by
   // the fit that held one of them).

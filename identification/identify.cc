@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 namespace {
 
@@ -130,7 +132,7 @@ void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std:
   result->plots = bench.plots;
   result->has_calibration_fact = bench.has_calibration_fact;
   result->calibration_fact = bench.calibration_fact;
-  for (int arm = 0; arm < 2; ++arm) result->factory_gauge_scale[arm] = bench.factory_gauge_scale[arm];
+  for (int arm = 0; arm < kBirotorRotors; ++arm) result->factory_gauge_scale[arm] = bench.factory_gauge_scale[arm];
   result->correlations = bench.correlations;
   result->bench_params = bench.params;
   if (!result->errors.empty()) return;

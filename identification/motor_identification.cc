@@ -10,6 +10,7 @@
 #include "identification/identify.h"
 #include "identification/motor_residual.h"
 #include "model/plant.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -28,7 +29,7 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
   double tau_ratio = 1.0;
   std::deque<double> omega0;
   std::vector<ceres::ResidualBlockId> blocks;
-  int steps[2] = {0, 0};
+  int steps[kBirotorRotors] = {0, 0};
   // For the plot: the window with the largest command step.
   std::vector<MotorWindowResidual::Sample> plot_samples;
   size_t plot_block = 0;
@@ -38,7 +39,7 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Vehicle
     utime.reserve(log.motor.size());
     for (const MotorSample& m : log.motor) utime.push_back(m.utime);
     const int64_t max_gap_us = 3 * std::max<int64_t>(MedianIntervalUs(utime), 1);
-    for (int rotor = 0; rotor < 2; ++rotor) {
+    for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
       std::vector<bool> valid(log.motor.size());
       for (size_t i = 0; i < log.motor.size(); ++i) {
         valid[i] =

@@ -6,6 +6,7 @@
 
 #include "model/arm_dynamics.h"
 #include "model/plant.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -13,9 +14,9 @@ namespace birotor {
 // with the vehicle's k and d; omega_i_dot from the first-order motor model.
 inline PlantState ClampedBodyDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
   PlantState x_dot = PlantState::Zero();
-  const double forces_n[2] = {RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]),
-                              RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1])};
-  for (int arm = 0; arm < 2; ++arm) {
+  const double forces_n[kBirotorRotors] = {RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]),
+                                           RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1])};
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     const int b = arm == 0 ? kB1 : kB2;
     x_dot(kPlantQ + b) = x(kPlantV + b);
     x_dot(kPlantV + b) = ClampedArmAcceleration<double>(p, arm, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad,

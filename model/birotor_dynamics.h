@@ -21,6 +21,7 @@
 #include <cmath>
 
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -28,7 +29,7 @@ namespace birotor {
 enum Coordinate : int { kX = 0, kZ = 1, kPhi = 2, kB1 = 3, kB2 = 4 };
 constexpr int kNumCoordinates = 5;
 // Arm direction along body x: arm 1 along -x, arm 2 along +x.
-constexpr double kArmSign[2] = {-1.0, 1.0};
+constexpr double kArmSign[kBirotorRotors] = {-1.0, 1.0};
 
 template <typename T>
 using Coords = Eigen::Matrix<T, kNumCoordinates, 1>;
@@ -51,7 +52,7 @@ DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q
   using std::cos;
   using std::sin;
   const double m = p.body_mass_kg, mp = p.tip_mass_kg, L = p.arm_length_m, g = p.gravity_m_s2;
-  const T forces[2] = {force1_n, force2_n};
+  const T forces[kBirotorRotors] = {force1_n, force2_n};
 
   DynamicsTerms<T> out;
   out.mass.setZero();
@@ -63,7 +64,7 @@ DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q
   out.gravity_spring(kZ) = T(m * g);
   out.generalized_thrust.setZero();
 
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const int b = (i == 0) ? kB1 : kB2;
     const T a = q(kPhi) + q(b);
     const T a_dot = v(kPhi) + v(b);
@@ -161,7 +162,7 @@ T MechanicalEnergy(const VehicleParams& p, const Coords<T>& q, const Coords<T>& 
   const T zero(0.0);
   const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, zero, zero);
   T energy = T(0.5) * v.dot(terms.mass * v) + p.body_mass_kg * p.gravity_m_s2 * q(kZ);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const int b = (i == 0) ? kB1 : kB2;
     using std::sin;
     const T tip_z = q(kZ) + kArmSign[i] * p.arm_length_m * sin(q(kPhi) + q(b));

@@ -5,6 +5,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 namespace {
 
@@ -51,7 +53,7 @@ Equilibrium SolveHoverEquilibrium(const VehicleParams& p) {
   eq.deflection_rad[1] = x(1);
   eq.force_n[0] = x(2);
   eq.force_n[1] = x(3);
-  for (int i = 0; i < 2; ++i) eq.omega_rad_s[i] = std::sqrt(eq.force_n[i] / p.thrust_coeff_n_s2_rad2);
+  for (int i = 0; i < kBirotorRotors; ++i) eq.omega_rad_s[i] = std::sqrt(eq.force_n[i] / p.thrust_coeff_n_s2_rad2);
   return eq;
 }
 

@@ -3,14 +3,15 @@
 #pragma once
 
 #include "model/birotor_dynamics.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
 struct Equilibrium {
-  double deflection_rad[2] = {0, 0};  // b1, b2 [rad]
-  double force_n[2] = {0, 0};         // f1, f2 [N]
-  double omega_rad_s[2] = {0, 0};     // rotor speeds with mu = 1 [rad/s]
-  double residual = 0;                // max |M q_ddot| left by the solver
+  double deflection_rad[kBirotorRotors] = {0, 0};  // b1, b2 [rad]
+  double force_n[kBirotorRotors] = {0, 0};         // f1, f2 [N]
+  double omega_rad_s[kBirotorRotors] = {0, 0};     // rotor speeds with mu = 1 [rad/s]
+  double residual = 0;                             // max |M q_ddot| left by the solver
   bool converged = false;
 };
 

@@ -8,6 +8,7 @@
 
 #include "model/birotor_dynamics.h"
 #include "model/equilibrium.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -34,7 +35,7 @@ enum ParameterIndex : int {
 // The hover point: equilibrium q, omega_i from the nominal map, mu = 1, o = 0, theta = 0.
 struct HoverPoint {
   AugVector x;
-  double command_rad_s[2];  // held rotor speed commands (the hover speeds)
+  double command_rad_s[kBirotorRotors];  // held rotor speed commands (the hover speeds)
 };
 
 HoverPoint MakeHoverPoint(const VehicleParams& p) {
@@ -43,7 +44,7 @@ HoverPoint MakeHoverPoint(const VehicleParams& p) {
   h.x.setZero();
   h.x(kB1) = eq.deflection_rad[0];
   h.x(kB2) = eq.deflection_rad[1];
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     h.command_rad_s[i] = std::sqrt(eq.force_n[i] / p.thrust_coeff_n_s2_rad2);
     h.x(kOmega1 + i) = h.command_rad_s[i];
     h.x(kMu1 + i) = 1.0;
@@ -66,8 +67,9 @@ VehicleParams Perturbed(const VehicleParams& p, const AugVector& x) {
 Coords<double> Acceleration(const VehicleParams& p, const AugVector& x) {
   const VehicleParams q = Perturbed(p, x);
   const Coords<double> pos = x.head<kNumCoordinates>(), vel = x.segment<kNumCoordinates>(kNumCoordinates);
-  double force_n[2];
-  for (int i = 0; i < 2; ++i) force_n[i] = x(kMu1 + i) * q.thrust_coeff_n_s2_rad2 * x(kOmega1 + i) * x(kOmega1 + i);
+  double force_n[kBirotorRotors];
+  for (int i = 0; i < kBirotorRotors; ++i)
+    force_n[i] = x(kMu1 + i) * q.thrust_coeff_n_s2_rad2 * x(kOmega1 + i) * x(kOmega1 + i);
   const DynamicsTerms<double> t = ComputeDynamicsTerms(q, pos, vel, force_n[0], force_n[1]);
   Coords<double> rhs = t.generalized_thrust - t.coriolis - t.gravity_spring;
   rhs(kB1) -= p.arm_stiffness_n_m_rad * x(kThetaK1) * pos(kB1);
@@ -80,7 +82,7 @@ AugVector Derivative(const VehicleParams& p, const HoverPoint& h, const AugVecto
   dx.head<kNumCoordinates>() = x.segment<kNumCoordinates>(kNumCoordinates);
   dx.segment<kNumCoordinates>(kNumCoordinates) = Acceleration(p, x);
   const double tau_s = p.motor_time_constant_s * (1.0 + x(kThetaMotorLag));
-  for (int i = 0; i < 2; ++i) dx(kOmega1 + i) = (h.command_rad_s[i] - x(kOmega1 + i)) / tau_s;
+  for (int i = 0; i < kBirotorRotors; ++i) dx(kOmega1 + i) = (h.command_rad_s[i] - x(kOmega1 + i)) / tau_s;
   return dx;
 }
 

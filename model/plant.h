@@ -13,6 +13,7 @@
 #include "model/birotor_dynamics.h"
 #include "model/equilibrium.h"
 #include "model/rk4.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -28,8 +29,8 @@ using PlantState = Eigen::Matrix<double, kPlantStateSize, 1>;
 
 // Inputs held constant over one integration step.
 struct PlantInput {
-  double omega_cmd_rad_s[2] = {0, 0};  // rotor speed commands (clamped inside)
-  double thrust_scale[2] = {1, 1};     // mu_i = s_i (1 + eta_i) [1]
+  double omega_cmd_rad_s[kBirotorRotors] = {0, 0};  // rotor speed commands (clamped inside)
+  double thrust_scale[kBirotorRotors] = {1, 1};     // mu_i = s_i (1 + eta_i) [1]
 };
 
 inline double ClampCommand(double omega_max_rad_s, double omega_cmd_rad_s) {

@@ -3,6 +3,8 @@
 // validated from YAML by params/, used by the model, simulator and filter.
 #pragma once
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
 struct VehicleParams {
@@ -22,10 +24,10 @@ struct VehicleParams {
   // Strain-gauge calibration (shared/spec/gauges.md, "Parameter keys"): a
   // gauge reads b_meas_i = s_i b_i + o_i; the estimator uses
   // b_i = (b_meas_i - o_i) / s_i. Defaults: the ideal gauge.
-  double gauge_scale[2] = {1.0, 1.0};       // s_i [1]
-  double gauge_offset_rad[2] = {0.0, 0.0};  // o_i at power-up, if known [rad]
-  double gauge_offset_std_rad = 5.0e-5;     // how well o_i is known before a tare [rad]
-  double gauge_drift_psd_rad2_s = 1.0e-10;  // random walk of o_i in flight [rad^2/s]
+  double gauge_scale[kBirotorRotors] = {1.0, 1.0};       // s_i [1]
+  double gauge_offset_rad[kBirotorRotors] = {0.0, 0.0};  // o_i at power-up, if known [rad]
+  double gauge_offset_std_rad = 5.0e-5;                  // how well o_i is known before a tare [rad]
+  double gauge_drift_psd_rad2_s = 1.0e-10;               // random walk of o_i in flight [rad^2/s]
 
   // Total mass m + 2 m_p [kg].
   double TotalMass() const { return body_mass_kg + 2.0 * tip_mass_kg; }

@@ -11,13 +11,14 @@
 
 #include "plot/gnuplot_driver.h"
 #include "plot/status_words.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr const char* kRotorColor[2] = {"#d62728", "#1f77b4"};
-constexpr const char* kSigmaColor[2] = {"#67000d", "#08306b"};  // darker rotor colours
+constexpr const char* kRotorColor[kBirotorRotors] = {"#d62728", "#1f77b4"};
+constexpr const char* kSigmaColor[kBirotorRotors] = {"#67000d", "#08306b"};  // darker rotor colours
 constexpr const char* kTrueColor = "#303030";
 // An extreme further than this many bulk spans from the bulk is clipped [1].
 constexpr double kOutlierSpans = 0.5;
@@ -211,15 +212,16 @@ double MedianStdN(const std::vector<Row>& rows, int r) {
 
 // y-ranges from the data, per panel.
 struct PanelRanges {
-  YRange force[2];
+  YRange force[kBirotorRotors];
   YRange error;
   YRange scale;
 };
 
-PanelRanges RangesOf(const std::vector<Row>& rows, const double median_std_n[2], const ForcePlotOptions& options) {
-  std::vector<std::pair<double, double>> force_values[2], error_values, scale_values;
+PanelRanges RangesOf(const std::vector<Row>& rows, const double median_std_n[kBirotorRotors],
+                     const ForcePlotOptions& options) {
+  std::vector<std::pair<double, double>> force_values[kBirotorRotors], error_values, scale_values;
   for (const Row& row : rows) {
-    for (int r = 0; r < 2; ++r) {
+    for (int r = 0; r < kBirotorRotors; ++r) {
       force_values[r].emplace_back(row.estimate->force_n[r], row.t_s);
       scale_values.emplace_back(row.estimate->thrust_scale[r], row.t_s);
       if (row.truth == nullptr) continue;
@@ -229,7 +231,7 @@ PanelRanges RangesOf(const std::vector<Row>& rows, const double median_std_n[2],
     }
   }
   PanelRanges ranges;
-  for (int r = 0; r < 2; ++r) ranges.force[r] = RangeOf(force_values[r], options.clip_fraction, 0.5, " N");
+  for (int r = 0; r < kBirotorRotors; ++r) ranges.force[r] = RangeOf(force_values[r], options.clip_fraction, 0.5, " N");
   ranges.error = RangeOf(error_values, options.clip_fraction, 0.1, " N");
   // The ±1σ envelopes stay in view, so an overstated sigma shows as such.
   const double widest_median_std_n = std::max(median_std_n[0], median_std_n[1]);
@@ -284,7 +286,7 @@ std::string ErrorPanelPlot() {
       "set ylabel 'error [N]'\nplot $data u 1:13 w l lc rgb '{}' t 'f1 est - true', "
       "$data u 1:14 w l lc rgb '{}' t 'f2 est - true'",
       kRotorColor[0], kRotorColor[1]);
-  for (int r = 0; r < 2; ++r) {
+  for (int r = 0; r < kBirotorRotors; ++r) {
     text += fmt::format(
         ", $data u 1:{} w l lw 1.5 lc rgb '{}' t '±1σ f{}', $data u 1:(-${}) w l lw 1.5 lc rgb '{}' notitle", 4 + r,
         kSigmaColor[r], r + 1, 4 + r, kSigmaColor[r]);
@@ -298,7 +300,7 @@ std::string ScalePanelPlot(const std::vector<ThresholdLine>& scale_lines, bool w
   for (const ThresholdLine& line : scale_lines) {
     text += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
   }
-  for (int r = 0; r < 2; ++r) {
+  for (int r = 0; r < kBirotorRotors; ++r) {
     if (with_truth) {
       text += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
     }
@@ -354,7 +356,7 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   const PairedRows paired = PairWithTruth(forces, truth, origin_utime);
   const std::vector<Row>& rows = paired.rows;
   const bool with_truth = paired.with_truth;
-  const double median_std_n[2] = {MedianStdN(rows, 0), MedianStdN(rows, 1)};
+  const double median_std_n[kBirotorRotors] = {MedianStdN(rows, 0), MedianStdN(rows, 1)};
   const PanelRanges ranges = RangesOf(rows, median_std_n, options);
 
   std::string script = fmt::format(
@@ -380,7 +382,7 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   const double error_height = with_truth ? 0.17 : 0.0;
   const double force_height = (kTopEdge - kBottomEdge - status_height - scale_height - error_height) / 2.0;
   double top = kTopEdge;
-  for (int r = 0; r < 2; ++r) {
+  for (int r = 0; r < kBirotorRotors; ++r) {
     script += Panel(&top, force_height, false) + YRangeCommands(ranges.force[r]);
     if (r == 0) script += marker_labels;
     script += ForcePanelPlot(r, median_std_n[r], with_truth);

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
 // Values of MotorCommand::mode.
@@ -27,11 +29,11 @@ enum CommandStatusBit : int32_t {
 };
 
 struct MotorCommand {
-  int64_t utime = 0;                   // vehicle time the command is for [us]
-  int32_t seq = 0;                     // command counter, wraps
-  double omega_cmd_rad_s[2] = {0, 0};  // rotor 1, 2 [rad/s], finite, in [0, omega_max]
-  int32_t mode = kModeNominal;         // ControlMode actually in use
-  int32_t status = 0;                  // CommandStatusBit set
+  int64_t utime = 0;                                // vehicle time the command is for [us]
+  int32_t seq = 0;                                  // command counter, wraps
+  double omega_cmd_rad_s[kBirotorRotors] = {0, 0};  // rotor 1, 2 [rad/s], finite, in [0, omega_max]
+  int32_t mode = kModeNominal;                      // ControlMode actually in use
+  int32_t status = 0;                               // CommandStatusBit set
 };
 
 }  // namespace birotor

@@ -7,17 +7,21 @@
 
 #include <vector>
 
+#include "samples/rotor_count.h"
+
 namespace birotor::internal {
 
 // Copies a two-element per-rotor array (rotor 1, rotor 2): between the
 // birotor's fixed arrays, and to and from a counted message's array (a
 // vector the caller has checked holds two).
-inline void CopyPair(const double (&from)[2], double (&to)[2]) {
+inline void CopyPair(const double (&from)[kBirotorRotors], double (&to)[kBirotorRotors]) {
   to[0] = from[0];
   to[1] = from[1];
 }
-inline void CopyPair(const double (&from)[2], std::vector<double>& to) { to.assign(from, from + 2); }
-inline void CopyPair(const std::vector<double>& from, double (&to)[2]) {
+inline void CopyPair(const double (&from)[kBirotorRotors], std::vector<double>& to) {
+  to.assign(from, from + kBirotorRotors);
+}
+inline void CopyPair(const std::vector<double>& from, double (&to)[kBirotorRotors]) {
   to[0] = from[0];
   to[1] = from[1];
 }
