@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "numerics/time_units.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -20,9 +21,9 @@ void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
     return;
   }
   const bool deficit = (e.status & kStatusThrustDeficit) != 0;
-  const int32_t fault_bits[2] = {kStatusRotor1Fault, kStatusRotor2Fault};
+  const int32_t fault_bits[kBirotorRotors] = {kStatusRotor1Fault, kStatusRotor2Fault};
   const double baseline_gain = std::min(1.0, dt_s / params_.baseline_tau_s);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     // An uncertain sample is not followed: the target holds.
     if (!(e.force_std_n[i] <= params_.max_relative_sigma * std::fabs(e.force_n[i]))) continue;
     if (!has_baseline_) baseline_[i] = e.thrust_scale[i];
@@ -50,7 +51,7 @@ void EfficiencyConditioner::Advance(double dt_s, bool usable) {
   const double flagged_tau_s =
       blend_left_s_ > 0.0 ? std::max(params_.fault_tau_s, params_.blend_s / 3.0) : params_.fault_tau_s;
   blend_left_s_ = std::max(0.0, blend_left_s_ - dt_s);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const bool flagged = follow && flagged_[i];
     const double goal = flagged ? target_[i] : 1.0;
     const double tau_s = flagged ? flagged_tau_s : params_.decay_s;

@@ -24,6 +24,7 @@
 #include <cstdint>
 
 #include "controller/controller_params.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -46,9 +47,9 @@ class EfficiencyConditioner {
  private:
   EfficiencyParams params_;
   double weight_n_;
-  double efficiency_[2] = {1.0, 1.0};
-  double target_[2] = {1.0, 1.0};
-  bool flagged_[2] = {false, false};  // FORCE says rotor i's change is real
+  double efficiency_[kBirotorRotors] = {1.0, 1.0};
+  double target_[kBirotorRotors] = {1.0, 1.0};
+  bool flagged_[kBirotorRotors] = {false, false};  // FORCE says rotor i's change is real
   // Airborne test on FORCE stamps.
   bool airborne_ = false;
   int64_t above_since_us_ = -1;
@@ -58,7 +59,7 @@ class EfficiencyConditioner {
   double blend_left_s_ = 0.0;  // time left of the blend after a fallback [s]
   double unusable_s_ = 0.0;    // length of the current fallback [s]
   double settled_s_ = 0.0;     // airborne FORCE time seen [s]
-  double baseline_[2] = {1.0, 1.0};
+  double baseline_[kBirotorRotors] = {1.0, 1.0};
 };
 
 }  // namespace birotor

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "controller/controller_params.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -26,7 +27,7 @@ class ForceFloorEvidence {
 
   // One report arrived at now_us [us] (VALID, within the clock windows,
   // newer than the last): thrust_scale_i / baseline_i low-passed.
-  void Note(const ForceEstimate& estimate, int64_t now_us, const double (&baseline)[2]);
+  void Note(const ForceEstimate& estimate, int64_t now_us, const double (&baseline)[kBirotorRotors]);
 
   // The low-passed thrust_scale / baseline of rotor i (1 before any) [1].
   double reported_scale(int rotor) const { return reported_scale_[rotor]; }
@@ -34,8 +35,8 @@ class ForceFloorEvidence {
  private:
   SupervisionParams params_;
   double low_pass_s_;
-  int below_floor_run_[2] = {0, 0};  // flagged samples below the floor in a row, per rotor
-  double reported_scale_[2] = {1.0, 1.0};
+  int below_floor_run_[kBirotorRotors] = {0, 0};  // flagged samples below the floor in a row, per rotor
+  double reported_scale_[kBirotorRotors] = {1.0, 1.0};
   int64_t reported_utime_ = -1;  // newest noted report [us]
 };
 

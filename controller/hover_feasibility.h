@@ -11,22 +11,23 @@
 #pragma once
 
 #include "controller/controller_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
 // What one control period saw.
 struct FeasibilityInputs {
-  double efficiency[2] = {1.0, 1.0};  // efficiencies in use (force feedback) [1]
-  bool following_force = false;       // they follow a usable FORCE this period
+  double efficiency[kBirotorRotors] = {1.0, 1.0};  // efficiencies in use (force feedback) [1]
+  bool following_force = false;                    // they follow a usable FORCE this period
   // FORCE's newest thrust_scale / baseline per rotor, low-passed, including
   // samples refused below the plausibility floor (evidence, not flown) [1].
-  double reported_scale[2] = {1.0, 1.0};
-  bool allocation_limited = false;       // the previous period's allocation was limited
-  double command_rad_s[2] = {0.0, 0.0};  // the previous period's rotor commands [rad/s]
-  double altitude_lag_m = 0.0;           // z_ref - z [m]
-  double sink_behind_m_s = 0.0;          // z_dot_ref - z_dot [m/s]
-  double tilt_rad = 0.0;                 // phi [rad]
-  double pitch_rate_rad_s = 0.0;         // phi_dot [rad/s]
+  double reported_scale[kBirotorRotors] = {1.0, 1.0};
+  bool allocation_limited = false;                    // the previous period's allocation was limited
+  double command_rad_s[kBirotorRotors] = {0.0, 0.0};  // the previous period's rotor commands [rad/s]
+  double altitude_lag_m = 0.0;                        // z_ref - z [m]
+  double sink_behind_m_s = 0.0;                       // z_dot_ref - z_dot [m/s]
+  double tilt_rad = 0.0;                              // phi [rad]
+  double pitch_rate_rad_s = 0.0;                      // phi_dot [rad/s]
 };
 
 class HoverFeasibility {

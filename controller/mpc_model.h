@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -64,7 +65,7 @@ class MpcPredictionModel {
 
  private:
   VehicleParams vehicle_;
-  double hover_deflection_rad_[2] = {0.0, 0.0};
+  double hover_deflection_rad_[kBirotorRotors] = {0.0, 0.0};
   double hover_force_n_ = 0.0;
 };
 

@@ -10,6 +10,7 @@
 #include "controller/controller_params.h"
 #include "controller/reference_point.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -25,7 +26,7 @@ struct BodyState {
 // difference f2 - f1 (for an allocation within the rotors' limits), and the
 // world acceleration the outer loop asked for [m/s^2].
 struct RotorForces {
-  double force_n[2] = {0.0, 0.0};
+  double force_n[kBirotorRotors] = {0.0, 0.0};
   double total_force_n = 0.0;       // f1 + f2 [N]
   double force_difference_n = 0.0;  // f2 - f1 [N]
   Eigen::Vector2d accel_des_m_s2 = Eigen::Vector2d::Zero();

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
-RotorAllocation AllocateAttitudeFirst(double total_force_n, double force_difference_n, const double (&max_force_n)[2]) {
+RotorAllocation AllocateAttitudeFirst(double total_force_n, double force_difference_n,
+                                      const double (&max_force_n)[kBirotorRotors]) {
   RotorAllocation out;
   const double max1 = std::max(max_force_n[0], 0.0), max2 = std::max(max_force_n[1], 0.0);
   // The largest |D| both rotors can make: f2 - f1 in [-max1, max2].

@@ -6,17 +6,20 @@
 // descent the rotors cannot hover (FlareForces). Pure.
 #pragma once
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
 struct RotorAllocation {
-  double force_n[2] = {0.0, 0.0};   // rotor 1, 2 [N], each within [0, max_force_n[i]]
-  bool total_limited = false;       // the total was moved (altitude gives way)
-  bool difference_limited = false;  // the difference was clipped (attitude gives way)
+  double force_n[kBirotorRotors] = {0.0, 0.0};  // rotor 1, 2 [N], each within [0, max_force_n[i]]
+  bool total_limited = false;                   // the total was moved (altitude gives way)
+  bool difference_limited = false;              // the difference was clipped (attitude gives way)
 };
 
 // f1 = (F - D) / 2, f2 = (F + D) / 2 with 0 <= f_i <= max_force_n[i]:
 // D clipped to [-2 max1, 2 max2] first, then F to [|D|, min(2 max1 + D, 2 max2 - D)].
-RotorAllocation AllocateAttitudeFirst(double total_force_n, double force_difference_n, const double (&max_force_n)[2]);
+RotorAllocation AllocateAttitudeFirst(double total_force_n, double force_difference_n,
+                                      const double (&max_force_n)[kBirotorRotors]);
 
 // The vehicle near the ground in a descent it cannot stop (world frame).
 struct FlareState {
@@ -27,11 +30,11 @@ struct FlareState {
 };
 
 struct FlareLimits {
-  double tilt_budget_rad = 0.0;        // |phi| allowed at touchdown [rad]
-  double min_time_to_go_s = 0.0;       // t_go is not taken below this (the motor lag) [s]
-  double pitch_inertia_kg_m2 = 0.0;    // J_eff = J + 2 m_p L^2
-  double arm_length_m = 0.0;           // L
-  double max_force_n[2] = {0.0, 0.0};  // what each rotor can make now [N]
+  double tilt_budget_rad = 0.0;                     // |phi| allowed at touchdown [rad]
+  double min_time_to_go_s = 0.0;                    // t_go is not taken below this (the motor lag) [s]
+  double pitch_inertia_kg_m2 = 0.0;                 // J_eff = J + 2 m_p L^2
+  double arm_length_m = 0.0;                        // L
+  double max_force_n[kBirotorRotors] = {0.0, 0.0};  // what each rotor can make now [N]
 };
 
 // The flare: level, both rotors make at most twice the weak rotor's maximum

@@ -7,6 +7,7 @@
 #include "controller/rotor_allocation.h"
 #include "model/equilibrium.h"
 #include "numerics/time_units.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -164,12 +165,12 @@ void VehicleController::OnForce(const ForceEstimate& reported, int64_t now_us) {
   health_.force_at_floor += floor_evidence_.FlyAtTheFloor(&estimate);
   // A scale outside the plausible band is refused, not clamped.
   bool plausible = estimate.utime >= 0;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     plausible = plausible && std::isfinite(estimate.force_n[i]) && std::isfinite(estimate.force_std_n[i]) &&
                 estimate.thrust_scale[i] >= s.min_plausible_thrust_scale &&
                 estimate.thrust_scale[i] <= s.max_plausible_thrust_scale;
   }
-  const double baseline[2] = {efficiency_.baseline(0), efficiency_.baseline(1)};
+  const double baseline[kBirotorRotors] = {efficiency_.baseline(0), efficiency_.baseline(1)};
   floor_evidence_.Note(reported, now_us, baseline);
   const int64_t previous_utime = health_.force.last_utime;
   if (!Admit(&health_.force, &force_lock_, estimate.utime, estimate.seq, plausible, now_us)) {
@@ -240,10 +241,10 @@ void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status
 void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s,
                                  MotorCommand* command, int32_t* status) {
   const VehicleParams& vehicle = config_.vehicle;
-  double efficiency[2] = {1.0, 1.0};
-  double max_force_n[2];
+  double efficiency[kBirotorRotors] = {1.0, 1.0};
+  double max_force_n[kBirotorRotors];
   MaxForces(use_efficiency, max_force_n);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     efficiency[i] = EfficiencyInUse(i, use_efficiency);
     health_.efficiency[i] = efficiency[i];
   }
@@ -251,8 +252,8 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
       AllocateAttitudeFirst(forces.total_force_n, forces.force_difference_n, max_force_n);
   bool clipped = allocation.total_limited || allocation.difference_limited;
   difference_limited_ = allocation.difference_limited;
-  double omega_rad_s[2];
-  for (int i = 0; i < 2; ++i) {
+  double omega_rad_s[kBirotorRotors];
+  for (int i = 0; i < kBirotorRotors; ++i) {
     bool clip = false;
     omega_rad_s[i] = RotorSpeedForThrust(vehicle, allocation.force_n[i], efficiency[i], &clip);
     clipped = clipped || (clip && allocation.force_n[i] > 0.0);
@@ -279,7 +280,7 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
   }
   // A controlled descent slews its commands: never 0 <-> omega_max in one period.
   const double max_step_rad_s = slewed ? config_.supervision.degraded_omega_rate_rad_s2 * dt_s : kInf;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const double slewed_rad_s = std::clamp(omega_rad_s[i], last_good_omega_rad_s_[i] - max_step_rad_s,
                                            last_good_omega_rad_s_[i] + max_step_rad_s);
     command->omega_cmd_rad_s[i] = std::clamp(slewed_rad_s, 0.0, vehicle.omega_max_rad_s);
@@ -296,8 +297,9 @@ double VehicleController::EfficiencyInUse(int rotor, bool use_efficiency) const 
   return use_efficiency ? feasibility_.EfficiencyFor(rotor, efficiency_.efficiency(rotor)) : 1.0;
 }
 
-void VehicleController::MaxForces(bool use_efficiency, double (&max_force_n)[2]) const {
-  for (int i = 0; i < 2; ++i) max_force_n[i] = EfficiencyInUse(i, use_efficiency) * MaxRotorForceN(config_.vehicle);
+void VehicleController::MaxForces(bool use_efficiency, double (&max_force_n)[kBirotorRotors]) const {
+  for (int i = 0; i < kBirotorRotors; ++i)
+    max_force_n[i] = EfficiencyInUse(i, use_efficiency) * MaxRotorForceN(config_.vehicle);
 }
 
 bool VehicleController::Flare(bool infeasible_descent, RotorForces* forces) {
@@ -338,7 +340,7 @@ bool VehicleController::UpdateFeasibility(double dt_s, bool use_force) {
   const BodyState& body = observer_.state();
   FeasibilityInputs in;
   in.following_force = use_force;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     in.efficiency[i] = efficiency_.efficiency(i);
     in.reported_scale[i] = floor_evidence_.reported_scale(i);
     in.command_rad_s[i] = last_good_omega_rad_s_[i];
@@ -460,7 +462,8 @@ MotorCommand VehicleController::Update(int64_t now_us) {
     in.level_descent = infeasible;
     const MpcPeriod period =
         mpc_->Fly(in, Eigen::Vector2d(command.omega_cmd_rad_s[0], command.omega_cmd_rad_s[1]), !pose_lost && !flare);
-    for (int i = 0; i < 2; ++i) command.omega_cmd_rad_s[i] = last_good_omega_rad_s_[i] = period.omega_cmd_rad_s(i);
+    for (int i = 0; i < kBirotorRotors; ++i)
+      command.omega_cmd_rad_s[i] = last_good_omega_rad_s_[i] = period.omega_cmd_rad_s(i);
     command.mode = kModeMpc;
     if (period.fell_back) status |= kCommandMpcFallback;
   }

@@ -32,6 +32,7 @@
 #include "controller/seq_stream_lock.h"
 #include "controller/setpoint_input.h"
 #include "samples/motor_command.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 #include "samples/setpoint.h"
 
@@ -70,7 +71,7 @@ struct ControllerHealth {
   bool flaring = false;
   bool levelling = false;  // the infeasible descent's first phase: tilt target 0
   bool conflict = false;
-  double efficiency[2] = {1.0, 1.0};  // efficiency used by the rotor map in the newest period [1]
+  double efficiency[kBirotorRotors] = {1.0, 1.0};  // efficiency used by the rotor map in the newest period [1]
 };
 
 class VehicleController {
@@ -129,7 +130,7 @@ class VehicleController {
   // weak rotor's once hover is infeasible [1].
   double EfficiencyInUse(int rotor, bool use_efficiency) const;
   // What each rotor can make with the efficiency in use [N].
-  void MaxForces(bool use_efficiency, double (&max_force_n)[2]) const;
+  void MaxForces(bool use_efficiency, double (&max_force_n)[kBirotorRotors]) const;
   // The hover-infeasible descent (with POSE) near the ground: replaces the
   // law's total and difference by the flare's (FlareForcesFor) and returns
   // true while it flares; Flare also counts the flares.
@@ -171,8 +172,8 @@ class VehicleController {
   bool saturated_ = false;           // the previous period's allocation was limited (anti-windup)
   bool difference_limited_ = false;  // ... and its pitch torque (f2 - f1) was
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
-  double last_good_omega_rad_s_[2] = {0.0, 0.0};
-  double last_efficiency_[2] = {1.0, 1.0};  // efficiency of the previous period (motor-lag lead) [1]
+  double last_good_omega_rad_s_[kBirotorRotors] = {0.0, 0.0};
+  double last_efficiency_[kBirotorRotors] = {1.0, 1.0};  // efficiency of the previous period (motor-lag lead) [1]
   int32_t seq_ = 0;
   std::unique_ptr<MpcController> mpc_;  // mode mpc only
 };

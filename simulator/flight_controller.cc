@@ -1,5 +1,7 @@
 #include "simulator/flight_controller.h"
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
 FlightController::FlightController(const VehicleParams& vehicle, const ControllerParams& params, double hover_force_n)
@@ -14,7 +16,8 @@ RotorCommand FlightController::Update(const PlantState& state, const ReferencePo
   const RotorForces forces = law_.Update(body, reference);
   RotorCommand command;
   // Nominal thrust map only: the autopilot does not know mu_i.
-  for (int i = 0; i < 2; ++i) command.omega_cmd_rad_s[i] = RotorSpeedForThrust(vehicle_, forces.force_n[i], 1.0);
+  for (int i = 0; i < kBirotorRotors; ++i)
+    command.omega_cmd_rad_s[i] = RotorSpeedForThrust(vehicle_, forces.force_n[i], 1.0);
   return command;
 }
 

@@ -6,13 +6,14 @@
 
 #include "controller/position_attitude_law.h"
 #include "model/plant.h"
+#include "samples/rotor_count.h"
 #include "simulator/scenario.h"
 #include "simulator/trajectory.h"
 
 namespace birotor {
 
 struct RotorCommand {
-  double omega_cmd_rad_s[2] = {0.0, 0.0};
+  double omega_cmd_rad_s[kBirotorRotors] = {0.0, 0.0};
 };
 
 class FlightController {

@@ -6,6 +6,7 @@
 
 #include "model/bench_dynamics.h"
 #include "model/rk4.h"
+#include "samples/rotor_count.h"
 #include "simulator/body_sensors.h"
 #include "simulator/gauge_model.h"
 #include "simulator/sample_clock.h"
@@ -55,7 +56,7 @@ Simulator::Simulator(const Scenario& scenario)
   truth_ = decimation(sensors.truth);
 
   const FaultParams& faults = scenario_.faults;
-  for (int i = 0; i < 2; ++i) efficiency_[i] = faults.initial_thrust_scale[i];
+  for (int i = 0; i < kBirotorRotors; ++i) efficiency_[i] = faults.initial_thrust_scale[i];
   for (const ThrustStep& step : faults.thrust_steps) {
     const int64_t index = FirstSampleAtOrAfter(SecondsToUtime(step.time_s), step_us_);
     thrust_steps_.push_back({index, step.rotor - 1, step.scale});
@@ -69,14 +70,14 @@ Simulator::Simulator(const Scenario& scenario)
   // static arm deflection under the first bench command (bench).
   const VehicleParams& p = scenario_.vehicle;
   state_.setZero();
-  for (int i = 0; i < 2; ++i) rotor_angle_rad_[i] = scenario_.gauge.rotor_angle_rad[i];
+  for (int i = 0; i < kBirotorRotors; ++i) rotor_angle_rad_[i] = scenario_.gauge.rotor_angle_rad[i];
   if (clamped_body_ || ground_.enabled()) {
     command_ = clamped_body_ ? bench_.At(0.0) : RotorCommand();
     if (!clamped_body_) {
       state_(kPlantQ + kX) = scenario_.start_position_m[0];
       state_(kPlantQ + kZ) = scenario_.start_position_m[1];
     }
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       const double omega = ClampCommand(p, command_.omega_cmd_rad_s[i]);
       const double force = RotorThrust(p, omega, efficiency_[i]);
       state_(kPlantOmega1 + i) = omega;
@@ -111,7 +112,7 @@ RotorCommand Simulator::Command(double t_s) {
       // Before the first command the ESCs run the speeds of the start state
       // (hover), for at most the timeout.
       last_external_utime_ = utime();
-      for (int i = 0; i < 2; ++i) external_command_.omega_cmd_rad_s[i] = state_(kPlantOmega1 + i);
+      for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = state_(kPlantOmega1 + i);
     }
     const bool timed_out = utime() - last_external_utime_ > command_timeout_us_;
     if (timed_out && !command_timed_out_) ++command_timeouts_;
@@ -130,7 +131,7 @@ void Simulator::UseExternalCommands(double command_timeout_s) {
   commander_ = SeqStreamLock(lock);
 }
 
-EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[2]) {
+EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[kBirotorRotors]) {
   EscCounters& n = esc_counters_;
   ++n.received;
   const int64_t now_us = this->utime();
@@ -158,7 +159,7 @@ EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double
     return EscVerdict::kStale;
   }
   ++n.accepted;
-  for (int i = 0; i < 2; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];
+  for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];
   newest_command_utime_ = utime;
   last_external_utime_ = now_us;
   return EscVerdict::kAccepted;
@@ -198,7 +199,7 @@ bool Simulator::Step(SampleSink* sink) {
     RecordFault(FaultKind::kThrustStep, now_us, -1, step.rotor + 1, step.scale);
   }
   // mu_i = s_i (1 + eta_i), held over this step.
-  for (int i = 0; i < 2; ++i) input_.thrust_scale[i] = efficiency_[i] * (1.0 + turbulence_[i].value());
+  for (int i = 0; i < kBirotorRotors; ++i) input_.thrust_scale[i] = efficiency_[i] * (1.0 + turbulence_[i].value());
 
   // Controller (or bench profile) at its own rate; commands are held (ZOH).
   // External commands reach the ESCs at the step they arrive.
@@ -222,9 +223,9 @@ bool Simulator::Step(SampleSink* sink) {
     if (truth_.Due(k)) EmitTruth(now_us, sink);
   }
 
-  const double omega_before[2] = {state_(kPlantOmega1), state_(kPlantOmega2)};
+  const double omega_before[kBirotorRotors] = {state_(kPlantOmega1), state_(kPlantOmega2)};
   state_ = Rk4StepFrom(state_, k1, dt, [this](const PlantState& x) { return Derivative(x); });
-  for (int i = 0; i < 2; ++i)
+  for (int i = 0; i < kBirotorRotors; ++i)
     rotor_angle_rad_[i] = AdvanceRotorAngleRad(rotor_angle_rad_[i], omega_before[i], state_(kPlantOmega1 + i), dt);
   if (ground_.Touchdown(state_(kPlantQ + kZ))) {
     // Touchdown: an inelastic contact that levels the body (arms keep their state).
@@ -249,7 +250,7 @@ void Simulator::EmitStrain(int64_t utime, SampleSink* sink) {
   sample.utime = utime;
   sample.seq = strain_seq_++;
   const double t_s = static_cast<double>(utime - utime_offset_us_) * 1e-6;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     sample.deflection_rad[i] =
         GaugeReadingRad(scenario_.gauge, i, state_(kPlantQ + kB1 + i), t_s, rotor_angle_rad_[i]) +
         strain_noise_.Normal(sigma);
@@ -268,7 +269,7 @@ void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
   sample.seq = motor_seq_++;
   const bool in_gap = InWindow(scenario_.faults.motor_telemetry_gap, utime);
   if (in_gap) RecordFault(FaultKind::kMotorTelemetryGap, utime, sample.seq, 0, kNaN);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     sample.omega_cmd_rad_s[i] = ClampCommand(scenario_.vehicle, command_.omega_cmd_rad_s[i]);
     sample.omega_meas_rad_s[i] =
         MeasureRotorSpeed(state_(kPlantOmega1 + i), sensors.motor_telemetry && !in_gap, sensors, &motor_noise_);
@@ -308,7 +309,7 @@ void Simulator::EmitLoadCell(int64_t utime, SampleSink* sink) {
   LoadCellSample sample;
   sample.utime = utime;
   sample.seq = loadcell_seq_++;
-  for (int i = 0; i < 2; ++i)
+  for (int i = 0; i < kBirotorRotors; ++i)
     sample.force_n[i] = TrueForce(i) + loadcell_noise_.Normal(scenario_.sensors.loadcell_noise_n);
   sink->OnLoadCell(sample);
   ++emitted_.loadcell;
@@ -323,7 +324,7 @@ void Simulator::EmitTruth(int64_t utime, SampleSink* sink) {
   sample.x_dot_m_s = state_(kPlantV + kX);
   sample.z_dot_m_s = state_(kPlantV + kZ);
   sample.phi_dot_rad_s = state_(kPlantV + kPhi);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     sample.deflection_rad[i] = state_(kPlantQ + kB1 + i);
     sample.deflection_dot_rad_s[i] = state_(kPlantV + kB1 + i);
     sample.omega_rad_s[i] = state_(kPlantOmega1 + i);

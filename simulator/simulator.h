@@ -10,6 +10,7 @@
 #include "controller/seq_stream_lock.h"
 #include "model/equilibrium.h"
 #include "model/plant.h"
+#include "samples/rotor_count.h"
 #include "samples/sample_sink.h"
 #include "simulator/bench_profile.h"
 #include "simulator/fault_event.h"
@@ -87,7 +88,7 @@ class Simulator {
   // or later than kEscFutureWindowS: refused), a speed that is not finite or
   // outside [0, omega_max] refused (the last good command is held, then the
   // timeout spools the motors down).
-  EscVerdict OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[2]);
+  EscVerdict OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[kBirotorRotors]);
   const EscCounters& esc_counters() const { return esc_counters_; }
   bool external_commands() const { return external_commands_; }
   bool command_timed_out() const { return command_timed_out_; }
@@ -156,13 +157,13 @@ class Simulator {
   PlantState state_;
   PlantInput input_;
   RotorCommand command_;
-  double efficiency_[2] = {1.0, 1.0};  // s_i
-  GaussMarkov turbulence_[2];
+  double efficiency_[kBirotorRotors] = {1.0, 1.0};  // s_i
+  GaussMarkov turbulence_[kBirotorRotors];
   std::vector<ScheduledStep> thrust_steps_;
   size_t next_thrust_step_ = 0;
 
-  GroundPhase ground_;                      // scenario.ground
-  double rotor_angle_rad_[2] = {0.0, 0.0};  // theta_i for the harmonic pickup, in [0, 2 pi)
+  GroundPhase ground_;                                   // scenario.ground
+  double rotor_angle_rad_[kBirotorRotors] = {0.0, 0.0};  // theta_i for the harmonic pickup, in [0, 2 pi)
 
   Decimation setpoint_;
   Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;

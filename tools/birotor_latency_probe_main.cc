@@ -30,6 +30,7 @@
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
+#include "samples/rotor_count.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
@@ -150,7 +151,7 @@ class HoverPublisher {
     if (k % 2 != 0) return;
     motor_.utime = utime;
     motor_.seq = static_cast<int32_t>(k / 2);
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       motor_.omega_cmd_rad_s[i] = kHoverOmegaRadS;
       motor_.omega_meas_rad_s[i] = kHoverOmegaRadS;
     }

@@ -24,6 +24,7 @@
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/shutdown.h"
+#include "samples/rotor_count.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
@@ -119,7 +120,7 @@ class Monitor : public PacketHandler {
     }
     ++force_count_;
     if ((force_.status & force_estimate_t::STATUS_VALID) != 0) ++force_valid_;
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       if (!std::isfinite(force_.force_n[i])) ++force_non_finite_;
     }
     Entry& entry = ring_[static_cast<uint32_t>(force_.seq) % kRingSize];
