@@ -115,6 +115,14 @@ class EkfProcessModel {
   //   I + A dt + (A dt)^2/2 + (A dt)^3/6 + (A dt)^4/24
   // (arm modes ~500 rad/s, dt = 1 ms: |A dt| ~ 0.5, truncation ~ 3e-4).
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // Whether A_d (or Phi_d) has the block structure [X_aa, X_au; 0, D] with D
+  // diagonal: the rows of omega and mu exactly +-0 left of D and off its
+  // diagonal. The same answer as Eigen's bottomLeftCorner().isZero(0.0) &&
+  // bottomRightCorner().isDiagonal(0.0), which also says no for an infinite
+  // entry of D (max |D_ii| times the precision 0 is NaN), at a third of the
+  // instructions: once per prediction in Transition and PropagateCovariance
+  // (estimator/ekf_prediction.cc).
+  static bool HasRotorBlockStructure(const DynamicMatrix& x);
   // The transition's column of a constant parameter p entering as
   // x_d_dot = A x_d + c p: Gamma = int_0^dt exp(A s) ds c, to the same order
   //   dt (I + A dt/2 (I + A dt/3 (I + A dt/4))) c.
@@ -428,7 +436,7 @@ inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double 
   const DynamicMatrix a_dt = a * dt_s;
   DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
   const auto d = a_dt.bottomRightCorner<m, m>();
-  if (!a_dt.bottomLeftCorner<m, n>().isZero(0.0) || !d.isDiagonal(0.0)) {  // not that structure: dense
+  if (!HasRotorBlockStructure(a_dt)) {  // not that structure: dense
     DynamicMatrix temp;
     for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
       temp.noalias() = a_dt.lazyProduct(phi);

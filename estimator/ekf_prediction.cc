@@ -8,13 +8,6 @@ namespace {
 
 constexpr int kArm = kOmega1, kRotor = kDynamicStateSize - kOmega1;  // arm states; omega and mu
 
-// Phi_d has A's block structure [Phi_aa, Phi_au; 0, diagonal]
-// (EkfProcessModel::Transition: the motor lag and the thrust scales do not
-// depend on the arms).
-bool BlockTriangular(const DynamicMatrix& phi) {
-  return phi.bottomLeftCorner<kRotor, kArm>().isZero(0.0) && phi.bottomRightCorner<kRotor, kRotor>().isDiagonal(0.0);
-}
-
 // Phi_d X for a 9 x C matrix X, on those blocks when blocks (the same sums
 // less Phi's exact zeros: about half the dense product).
 template <int C, typename X>
@@ -34,6 +27,16 @@ Eigen::Matrix<double, kDynamicStateSize, C> TransitionTimes(const DynamicMatrix&
 }
 
 }  // namespace
+
+bool EkfProcessModel::HasRotorBlockStructure(const DynamicMatrix& x) {
+  constexpr int m = kDynamicStateSize - kOmega1;  // omega and mu
+  Eigen::Matrix<double, m, kDynamicStateSize> rows = x.bottomRows<m>();
+  rows.rightCols<m>().diagonal().setZero();
+  // sum |x_ij| over those entries is 0 exactly when each is +-0: a NaN or an
+  // infinity makes it NaN or inf, and no positive term is lost (the sum is
+  // at least the largest term).
+  return rows.cwiseAbs().sum() == 0.0 && !x.diagonal().tail<m>().array().isInf().any();
+}
 
 void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   // Linearise at the prior, then propagate the state with RK4 and
@@ -68,7 +71,9 @@ void EkfForceEstimator::PropagateCovariance(const DynamicMatrix& phi, const Dyna
   //   R_d = Phi_d P_dd + Gamma P_md, R_s = Phi_d P_ds + Gamma P_ms,
   //   P_dd = R_d Phi_d^T + R_s,m Gamma^T, P_ds = R_s, P_ss kept.
   constexpr int n = kDynamicStateSize, m = N - kDynamicStateSize;
-  const bool blocks = BlockTriangular(phi);
+  // Phi_d has A's block structure (EkfProcessModel::Transition: the motor lag
+  // and the thrust scales do not depend on the arms).
+  const bool blocks = EkfProcessModel::HasRotorBlockStructure(phi);
   DynamicMatrix temp = TransitionTimes<n>(phi, covariance_.topLeftCorner<n, n>(), blocks);
   Eigen::Matrix<double, n, m> p_ds = TransitionTimes<m>(phi, covariance_.block<n, m>(0, n), blocks);
   if constexpr (N == kEkfStateSize) {
