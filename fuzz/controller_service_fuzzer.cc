@@ -25,7 +25,6 @@
 
 namespace {
 
-
 constexpr int kMaxOperations = 4096;
 
 // The byte reader of fuzz/datagram_input.h with hostile fields and stamps.
