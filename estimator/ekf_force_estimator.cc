@@ -461,7 +461,11 @@ void EkfForceEstimator::FillLearnedOffsets(StrainStepInfo* info) const {
 }
 
 void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) {
-  *info = StrainStepInfo();
+  // Copied from a constant: for `*info = StrainStepInfo()` GCC 12 also
+  // zero-fills a stack temporary it never reads (12 instructions more per
+  // strain sample under callgrind, BM_StrainSample/ekf).
+  static const StrainStepInfo kNothingDone;
+  *info = kNothingDone;
   // At (re-)initialisation the state is set from the sample: fused, without an innovation.
   FusionReport strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
   if (!initialized_) {

@@ -114,7 +114,11 @@ class EkfProcessModel {
   // Transition matrix of the dynamic block, Phi_d = exp(A_d dt) to fourth order:
   //   I + A dt + (A dt)^2/2 + (A dt)^3/6 + (A dt)^4/24
   // (arm modes ~500 rad/s, dt = 1 ms: |A dt| ~ 0.5, truncation ~ 3e-4).
+  // (estimator/ekf_prediction.cc, with the check of A's block structure the
+  // fast path relies on, HasRotorBlockStructure).
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal, exactly.
+  static bool HasRotorBlockStructure(const DynamicMatrix& x);
   // The transition's column of a constant parameter p entering as
   // x_d_dot = A x_d + c p: Gamma = int_0^dt exp(A s) ds c, to the same order
   //   dt (I + A dt/2 (I + A dt/3 (I + A dt/4))) c.
@@ -418,38 +422,6 @@ inline DynamicMatrix EkfProcessModel::SupportedJacobian(const EkfState& x) const
 
 inline EkfState EkfProcessModel::Step(const EkfState& x, const EkfInput& u, double dt_s) const {
   return Rk4Step(x, dt_s, [&](const EkfState& s) { return Derivative(s, u); });
-}
-
-inline DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s) {
-  // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))), lazyProduct (faster than GEMM at 9x9).
-  // A = [A_aa, A_au; 0, D] (the rows of omega and mu are the diagonal motor lag and zero), so is every
-  // power: the steps run on its blocks (a third of the cost, the same sums less A's exact zeros).
-  constexpr int n = kOmega1, m = kDynamicStateSize - kOmega1;  // arm states; omega and mu
-  const DynamicMatrix a_dt = a * dt_s;
-  DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
-  const auto d = a_dt.bottomRightCorner<m, m>();
-  if (!a_dt.bottomLeftCorner<m, n>().isZero(0.0) || !d.isDiagonal(0.0)) {  // not that structure: dense
-    DynamicMatrix temp;
-    for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-      temp.noalias() = a_dt.lazyProduct(phi);
-      phi = DynamicMatrix::Identity() + temp * c;
-    }
-    return phi;
-  }
-  const auto a_aa = a_dt.topLeftCorner<n, n>();
-  const auto a_au = a_dt.topRightCorner<n, m>();
-  Eigen::Matrix<double, n, n> temp_aa;
-  Eigen::Matrix<double, n, m> temp_au;
-  for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-    temp_aa.noalias() = a_aa.lazyProduct(phi.topLeftCorner<n, n>());
-    temp_au.noalias() = a_aa.lazyProduct(phi.topRightCorner<n, m>());
-    temp_au.noalias() += a_au * phi.bottomRightCorner<m, m>().diagonal().asDiagonal();
-    phi.topLeftCorner<n, n>() = Eigen::Matrix<double, n, n>::Identity() + temp_aa * c;
-    phi.topRightCorner<n, m>() = temp_au * c;
-    phi.bottomRightCorner<m, m>().diagonal() =
-        Eigen::Matrix<double, m, 1>::Ones() + d.diagonal().cwiseProduct(phi.bottomRightCorner<m, m>().diagonal()) * c;
-  }
-  return phi;
 }
 
 inline DynamicVector EkfProcessModel::ParameterTransition(const DynamicMatrix& a, const DynamicVector& c, double dt_s) {

@@ -24,9 +24,6 @@ const char* ResetReasonName(ResetReason reason);
 
 // What a strain step did besides its fusion reports and the estimate.
 struct StrainStepInfo {
-  // The method's status facts (converged, measurement rejected, rotor
-  // faults, thrust deficit); ComposeForceStatus makes the bits.
-  FilterStatusFacts filter;
   // kNumerical when the method re-initialised itself on this sample (the
   // pipeline owns every other reason); kNone otherwise.
   ResetReason reset = ResetReason::kNone;
@@ -48,6 +45,10 @@ struct StrainStepInfo {
   bool has_learned_body_mass = false;
   double learned_body_mass_kg = 0;
   double learned_body_mass_std_kg = 0;
+  // The method's status facts (converged, measurement rejected, rotor
+  // faults, thrust deficit); ComposeForceStatus makes the bits.
+  // (Last: the struct then resets field by field, without a zeroed copy.)
+  FilterStatusFacts filter;
 };
 
 // Slow vehicle parameters to start learning from (a state file of an earlier run).
@@ -94,9 +95,7 @@ class ForceEstimator {
   // used without the pipeline); the pipeline composes it again with its own.
   void AddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info, FusionReports* reports) {
     Call(reports, [&] { DoAddStrain(sample, estimate, info); });
-    ForceStatusFacts facts;
-    facts.filter = info->filter;
-    estimate->status = ComposeForceStatus(facts);
+    estimate->status = ComposeFilterStatus(info->filter);
   }
 
   // The NIS gate the method applies to a measurement source; NaN where it

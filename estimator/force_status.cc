@@ -4,25 +4,6 @@
 #include <cmath>
 
 namespace birotor {
-namespace {
-
-// The method's own bits; CONVERGING alone for an estimate the pipeline replaced.
-int32_t FilterBits(const ForceStatusFacts& facts) {
-  if (facts.input.non_finite_replaced) return kStatusConverging;
-  const FilterStatusFacts& f = facts.filter;
-  int32_t bits = 0;
-  if (f.convergence == FilterConvergence::kConverged) bits |= kStatusValid;
-  if (f.convergence == FilterConvergence::kConverging) bits |= kStatusConverging;
-  if (f.measurement_rejected) bits |= kStatusMeasurementRejected;
-  if (f.rotor_fault[0]) bits |= kStatusRotor1Fault;
-  if (f.rotor_fault[1]) bits |= kStatusRotor2Fault;
-  // A mismatch, or a model not yet confirmed, would explain a deficit.
-  const bool deficit_explained = facts.consistency.mismatch || facts.consistency.model_unconfirmed;
-  if (f.thrust_deficit && !deficit_explained) bits |= kStatusThrustDeficit;
-  return bits;
-}
-
-}  // namespace
 
 bool ValidWithdrawn(const ForceStatusFacts& facts) {
   const InputStatusFacts& input = facts.input;
@@ -37,7 +18,11 @@ bool ValidWithdrawn(const ForceStatusFacts& facts) {
 }
 
 int32_t ComposeForceStatus(const ForceStatusFacts& facts) {
-  int32_t status = FilterBits(facts);
+  // CONVERGING alone from the method for an estimate the pipeline replaced.
+  int32_t status =
+      facts.input.non_finite_replaced
+          ? kStatusConverging
+          : FilterStatusBits(facts.filter, facts.consistency.mismatch || facts.consistency.model_unconfirmed);
   if (facts.input.no_motor_input) status |= kStatusNoMotorInput;
   if (facts.input.stale || facts.transport.no_strain_on_wall_clock) status |= kStatusInputStale;
   if (facts.input.conflict || facts.transport.foreign_force) status |= kStatusInputConflict;

@@ -82,6 +82,21 @@ struct ForceStatusFacts {
 // of force_estimate_t::status; tools/status_owner.py checks it).
 int32_t ComposeForceStatus(const ForceStatusFacts& facts);
 
+// The bits of the method's facts; deficit_explained (a mismatch, or a model
+// not yet confirmed) withdraws THRUST_DEFICIT. Inline and without a branch
+// per fact: it runs on every strain sample (benchmarks/estimator_benchmark.cc).
+inline int32_t FilterStatusBits(const FilterStatusFacts& f, bool deficit_explained) {
+  return (f.convergence == FilterConvergence::kConverged) * kStatusValid |
+         (f.convergence == FilterConvergence::kConverging) * kStatusConverging |
+         f.measurement_rejected * kStatusMeasurementRejected | f.rotor_fault[0] * kStatusRotor1Fault |
+         f.rotor_fault[1] * kStatusRotor2Fault | (f.thrust_deficit && !deficit_explained) * kStatusThrustDeficit;
+}
+
+// The bits of the method's facts alone (no pipeline, consistency or
+// transport facts): ComposeForceStatus of ForceStatusFacts holding only
+// `facts`, without building one (ForceEstimator::AddStrain).
+inline int32_t ComposeFilterStatus(const FilterStatusFacts& facts) { return FilterStatusBits(facts, false); }
+
 // Whether any fact withdraws STATUS_VALID from a converged filter's estimate.
 bool ValidWithdrawn(const ForceStatusFacts& facts);
 

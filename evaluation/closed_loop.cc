@@ -1,43 +1,69 @@
 #include "evaluation/closed_loop.h"
 
+#include <string>
+#include <vector>
+
+#include "birotor/force_estimate_t.hpp"
+#include "nodes/estimator_service.h"
 #include "simulator/simulator.h"
 #include "sinks/wire_sample_sink.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
+#include "transport/lcm_codec.h"
+#include "transport/message_conversion.h"
 
 namespace birotor {
 namespace {
 
-// Routes each simulated sample to the estimator, the controller and the log.
+// The estimator node's FORCE as it publishes it: into the log unchanged and,
+// decoded, to the controller at the simulator's time.
+class ForceToController : public MessageSink {
+ public:
+  ForceToController(VehicleController* controller, const Simulator* simulator, MessageSink* log)
+      : controller_(controller), simulator_(simulator), log_(log) {}
+
+  void Publish(const std::string& channel, int64_t utime, const void* data, size_t size) override {
+    if (log_ != nullptr) log_->Publish(channel, utime, data, size);
+    if (DecodeMessage(data, size, &message_) != DecodeError::kNone) return;
+    controller_->OnForce(FromMessage(message_), simulator_->utime());
+  }
+
+ private:
+  VehicleController* controller_;
+  const Simulator* simulator_;
+  MessageSink* log_;
+  force_estimate_t message_;
+};
+
+// Routes each simulated sample to the estimator (encoded, through its node's
+// one way in, as the daemon receives it), the controller and the log.
 class LockStepSink : public SampleSink {
  public:
-  LockStepSink(EstimatorPipeline* estimator, VehicleController* controller, WireSampleSink* wire,
+  LockStepSink(EstimatorService* estimator, VehicleController* controller, WireSampleSink* wire,
                const Simulator* simulator, ClosedLoopRun* run)
-      : estimator_(estimator), controller_(controller), wire_(wire), simulator_(simulator), run_(run) {}
+      : estimator_(estimator),
+        channels_(estimator->channels()),
+        controller_(controller),
+        wire_(wire),
+        simulator_(simulator),
+        run_(run) {}
 
   void OnStrain(const StrainSample& sample) override {
     if (wire_ != nullptr) wire_->OnStrain(sample);
-    estimator_->CountReceived(InputChannel::kStrain);
-    ForceEstimate estimate;
-    if (!estimator_->OnStrain(sample, &estimate)) return;
-    if (wire_ != nullptr) wire_->OnForce(estimate);
-    controller_->OnForce(estimate, simulator_->utime());
+    ToEstimator(channels_.strain, ToMessage(sample));  // FORCE reaches the controller via ForceToController
   }
   void OnMotor(const MotorSample& sample) override {
     if (wire_ != nullptr) wire_->OnMotor(sample);
-    estimator_->CountReceived(InputChannel::kMotor);
-    estimator_->OnMotor(sample);
+    ToEstimator(channels_.motor, ToMessage(sample));
   }
   void OnImu(const ImuSample& sample) override {
     if (wire_ != nullptr) wire_->OnImu(sample);
-    estimator_->CountReceived(InputChannel::kImu);
-    estimator_->OnImu(sample);
+    ToEstimator(channels_.imu, ToMessage(sample));
     controller_->OnImu(sample, simulator_->utime());
   }
   void OnPose(const PoseSample& sample) override {
     if (wire_ != nullptr) wire_->OnPose(sample);
-    estimator_->CountReceived(InputChannel::kPose);
-    estimator_->OnPose(sample);
+    ToEstimator(channels_.pose, ToMessage(sample));
     controller_->OnPose(sample, simulator_->utime());
   }
   void OnSetpoint(const Setpoint& setpoint) override {
@@ -53,11 +79,19 @@ class LockStepSink : public SampleSink {
   }
 
  private:
-  EstimatorPipeline* estimator_;
+  template <class Message>
+  void ToEstimator(const std::string& channel, const Message& message) {
+    EncodeMessage(message, &buffer_);
+    estimator_->HandlePacket(channel, buffer_.data(), buffer_.size(), -1);  // no host arrival time
+  }
+
+  EstimatorService* estimator_;
+  const ChannelNames& channels_;
   VehicleController* controller_;
   WireSampleSink* wire_;
   const Simulator* simulator_;
   ClosedLoopRun* run_;
+  std::vector<uint8_t> buffer_;
 };
 
 }  // namespace
@@ -70,7 +104,6 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   Simulator simulator(scenario);
   simulator.UseExternalCommands(options.command_timeout_s);
   simulator.EmitSetpoints(options.setpoint_rate_hz);
-  EstimatorPipeline estimator(estimator_config);
   // The virtual clock stands still during a solve: the MPC's deadline is a
   // work budget, so that the same seed flies the same on any machine.
   ControllerConfig lock_step_config = controller_config;
@@ -78,6 +111,10 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   VehicleController controller(lock_step_config);
   const ChannelNames channels = MakeChannelNames(options.prefix);
   WireSampleSink wire(channels, log);
+  ForceToController force_route(&controller, &simulator, log);
+  EstimatorServiceOptions service_options;
+  service_options.report_processing_time = false;  // deterministic, as replay
+  EstimatorService estimator(estimator_config, channels, service_options, &force_route);
   LockStepSink sink(&estimator, &controller, log != nullptr ? &wire : nullptr, &simulator, &run);
   run.samples.reserve(static_cast<size_t>(simulator.total_steps() / 4 + 1));
 

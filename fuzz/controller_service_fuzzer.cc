@@ -25,8 +25,6 @@
 
 namespace {
 
-using birotor::ControllerInput;
-
 constexpr int kMaxOperations = 4096;
 
 // The byte reader of fuzz/datagram_input.h with hostile fields and stamps.
@@ -70,9 +68,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const birotor::ControllerConfig config;
   const birotor::ChannelNames channels = birotor::MakeChannelNames();
   birotor::fuzz::MotorCommandCheck sink(channels.motor_command, config.vehicle.omega_max_rad_s);
-  birotor::ControllerService service(config, channels, &sink);
-  Input in{{data, size}};
   int64_t clock_us = 0, host_us = 0;
+  // The node's own clock reads the fuzzed host time (its one way in stamps
+  // each packet with it).
+  birotor::ControllerService service(config, channels, &sink, [&host_us] { return host_us; });
+  const std::string* routes[3] = {&channels.pose, &channels.imu, &channels.force};
+  Input in{{data, size}};
   std::vector<uint8_t> packet;
   for (int op = 0; op < kMaxOperations && in.offset < in.size; ++op) {
     const uint8_t kind = in.Byte();
@@ -85,7 +86,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         m.z_m = in.Field(0.0, 0.5);
         m.phi_rad = in.Field(0.0, 0.2);
         birotor::EncodeMessage(m, &packet);
-        service.HandlePacket(ControllerInput::kPose, packet.data(), packet.size(), host_us);
+        service.HandlePacket(channels.pose, packet.data(), packet.size(), -1);
         break;
       }
       case 1: {
@@ -95,7 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         m.accel_x_m_s2 = in.Field(0.0, 5.0);
         m.accel_z_m_s2 = in.Field(9.81, 5.0);
         birotor::EncodeMessage(m, &packet);
-        service.HandlePacket(ControllerInput::kImu, packet.data(), packet.size(), host_us);
+        service.HandlePacket(channels.imu, packet.data(), packet.size(), -1);
         break;
       }
       case 2: {
@@ -108,14 +109,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           m.thrust_scale[i] = in.Field(1.0, 0.5);
         }
         birotor::EncodeMessage(m, &packet);
-        service.HandlePacket(ControllerInput::kForce, packet.data(), packet.size(), host_us);
+        service.HandlePacket(channels.force, packet.data(), packet.size(), -1);
         break;
       }
       case 3: {  // raw bytes on any input
         const size_t length = in.Byte();
         packet.assign(length, 0);
         for (uint8_t& b : packet) b = in.Byte();
-        service.HandlePacket(static_cast<ControllerInput>(in.Byte() % 3), packet.data(), packet.size(), host_us);
+        service.HandlePacket(*routes[in.Byte() % 3], packet.data(), packet.size(), -1);
         break;
       }
       default:

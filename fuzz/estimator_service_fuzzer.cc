@@ -1,6 +1,8 @@
 // libFuzzer harness for the daemon's packet handler: raw byte strings on
-// STRAIN, MOTOR, IMU and POSE go through EstimatorService::HandlePacket(channel,
-// ...) (the PacketHandler entry its message source calls), interleaved with ESTIMATOR_STATUS publication.
+// every channel of its route table (STRAIN, MOTOR, IMU, POSE, STRAIN_N,
+// MOTOR_N, its own FORCE) go through EstimatorService::HandlePacket(channel,
+// ...) (its one way in, the PacketHandler entry its message source calls),
+// interleaved with ESTIMATOR_STATUS publication.
 // Every FORCE and ESTIMATOR_STATUS it publishes must decode and carry only
 // finite forces; nothing may crash, leak or trip a sanitizer.
 #include <spdlog/spdlog.h>
@@ -96,7 +98,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   birotor::EstimatorServiceOptions options;
   options.report_processing_time = (size % 2) == 0;
   birotor::EstimatorService service(config, channels, options, &sink);
-  const std::vector<std::string> names = service.InputChannels();  // STRAIN, MOTOR, IMU, POSE, FORCE
+  // STRAIN, MOTOR, IMU, POSE (InputChannel's order), STRAIN_N, MOTOR_N, FORCE.
+  const std::vector<std::string> names = service.InputChannels();
 
   // Well-formed hover packets, to reach the filter's deeper states.
   birotor::strain_t strain{};
@@ -109,8 +112,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   size_t offset = 0;
   for (int packet = 0; packet < kMaxPackets && offset < size; ++packet) {
     const uint8_t header = data[offset++];
-    const auto channel = static_cast<birotor::InputChannel>(header % birotor::kNumInputChannels);
-    const int kind = (header / birotor::kNumInputChannels) % 8;
+    const size_t route = header % names.size();
+    const int kind = static_cast<int>((header / names.size()) % 8);
     if (kind == 0) {  // hover burst: strain at 1 kHz, motor at 500 Hz
       const int count = std::min<int>(offset < size ? data[offset++] : 0, kMaxBurstSamples - burst_samples);
       burst_samples += count;
@@ -125,11 +128,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           motor.seq = seq / 2;
           for (int i = 0; i < 2; ++i) motor.omega_cmd_rad_s[i] = motor.omega_meas_rad_s[i] = kHoverOmegaRadS;
           birotor::EncodeMessage(motor, &buffer);
-          service.HandlePacket(birotor::InputChannel::kMotor, buffer.data(), buffer.size());
+          service.HandlePacket(channels.motor, buffer.data(), buffer.size(), -1);
         }
         ++seq;
         birotor::EncodeMessage(strain, &buffer);
-        service.HandlePacket(birotor::InputChannel::kStrain, buffer.data(), buffer.size());
+        service.HandlePacket(channels.strain, buffer.data(), buffer.size(), -1);
       }
       continue;
     }
@@ -144,11 +147,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const size_t available = length < size - offset ? length : size - offset;
     std::memcpy(raw, data + offset, available);
     offset += available;
-    if (kind <= 4 && available >= 8) SetFingerprint(channel, raw);
+    if (kind <= 4 && available >= 8 && route < birotor::kNumInputChannels) {
+      SetFingerprint(static_cast<birotor::InputChannel>(route), raw);
+    }
     // kind 7: an old packet as seen live (receive time one second ago): overload drop path.
     const int64_t receive_wall_utime = kind == 7 ? birotor::WallClockUs() - 1000000 : -1;
     // Through the PacketHandler entry a message source calls (by channel name).
-    service.HandlePacket(names[static_cast<int>(channel)], raw, available, receive_wall_utime);
+    service.HandlePacket(names[route], raw, available, receive_wall_utime);
   }
   service.PublishStatus(birotor::WallClockUs(), 0.2);
   return 0;

@@ -22,28 +22,30 @@ MonitorCollector::MonitorCollector(const ChannelNames& channels, double expected
   forces_.reserve(capacity);
   truth_.reserve(capacity);
   fault_utimes_.reserve(1024);
+  routes_.Add(channels_.truth, MonitorChannel::kTruth);
+  routes_.Add(channels_.force, MonitorChannel::kForce);
+  routes_.Add(channels_.estimator_status, MonitorChannel::kEstimatorStatus);
 }
 
-void MonitorCollector::HandlePacket(std::string_view channel, const void* data, size_t size) {
-  if (channel == channels_.force) {
-    if (DecodeMessage(data, size, &force_message_) == DecodeError::kNone) {
+void MonitorCollector::HandlePacket(std::string_view channel, const void* data, size_t size,
+                                    int64_t /*receive_wall_utime*/) {
+  MonitorChannel routed;
+  if (!routes_.Find(channel, &routed)) return;
+  switch (routed) {
+    case MonitorChannel::kForce:
+      if (DecodeMessage(data, size, &force_message_) != DecodeError::kNone) break;
       OnForce(FromMessage(force_message_));
-    } else {
-      ++decode_errors_;
-    }
-  } else if (channel == channels_.truth) {
-    if (DecodeMessage(data, size, &truth_message_) == DecodeError::kNone) {
+      return;
+    case MonitorChannel::kTruth:
+      if (DecodeMessage(data, size, &truth_message_) != DecodeError::kNone) break;
       OnTruth(FromMessage(truth_message_));
-    } else {
-      ++decode_errors_;
-    }
-  } else if (channel == channels_.estimator_status) {
-    if (DecodeMessage(data, size, &status_message_) == DecodeError::kNone) {
+      return;
+    case MonitorChannel::kEstimatorStatus:
+      if (DecodeMessage(data, size, &status_message_) != DecodeError::kNone) break;
       OnStatus(status_message_);
-    } else {
-      ++decode_errors_;
-    }
+      return;
   }
+  ++decode_errors_;
 }
 
 void MonitorCollector::OnForce(const ForceEstimate& estimate) {

@@ -18,6 +18,7 @@
 #include "birotor/truth_t.hpp"
 #include "evaluation/eval_metrics.h"
 #include "samples/samples.h"
+#include "sources/channel_routes.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
 
@@ -42,23 +43,22 @@ struct ForceStreamStats {
   int64_t nonfinite = 0;           // messages with a NaN/Inf force, std or thrust scale
 };
 
+// The channels the collector reads (its route table maps the full names).
+enum class MonitorChannel : int { kTruth, kForce, kEstimatorStatus };
+
 class MonitorCollector : public PacketHandler {
  public:
   // expected_duration_s sizes the sample buffers (1 kHz TRUTH and FORCE), so
   // that a run of that length does not reallocate; longer runs still work.
   MonitorCollector(const ChannelNames& channels, double expected_duration_s);
 
-  // One packet of any channel; other channels are ignored. Never throws; an
-  // undecodable packet is counted in decode_errors().
-  void HandlePacket(std::string_view channel, const void* data, size_t size);
-  // PacketHandler (the arrival time is not used).
-  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t /*receive_wall_utime*/) override {
-    HandlePacket(channel, data, size);
-  }
-  // The channels it reads (TRUTH, FORCE, ESTIMATOR_STATUS), to subscribe a source to.
-  std::vector<std::string> InputChannels() const {
-    return {channels_.truth, channels_.force, channels_.estimator_status};
-  }
+  // PacketHandler, the one way in: one packet of a channel of the route
+  // table (TRUTH, FORCE, ESTIMATOR_STATUS); other channels are ignored, the
+  // arrival time is not used. Never throws; an undecodable packet is counted
+  // in decode_errors().
+  void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
+  // The channels it reads (the route table's names), to subscribe a source to.
+  std::vector<std::string> InputChannels() const { return routes_.Names(); }
 
   // Final figures over everything received, as birotor-eval computes them.
   // Input-fault times are inferred from the FORCE stream (see fault_utimes()).
@@ -104,6 +104,7 @@ class MonitorCollector : public PacketHandler {
   void OnStatus(const estimator_status_t& status);
 
   ChannelNames channels_;
+  ChannelRoutes<MonitorChannel> routes_;
   std::vector<ForceEstimate> forces_;
   std::vector<TruthSample> truth_;
   std::vector<int64_t> fault_utimes_;

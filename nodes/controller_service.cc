@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
@@ -27,40 +28,37 @@ constexpr int64_t kClockRelatchUs = 2000000;
 
 }  // namespace
 
-ControllerService::ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink)
+ControllerService::ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink,
+                                     HostClockUs host_clock)
     : controller_(config),
       channels_(channels),
       sink_(sink),
+      host_clock_(host_clock ? std::move(host_clock) : HostClockUs(SteadyClockUs)),
       period_us_(std::max<int64_t>(1, std::llround(1e6 / CommandRateHz(config)))) {
+  // The route table: every channel this node reads, once.
+  routes_.Add(channels_.pose, ControllerChannel::kPose);
+  routes_.Add(channels_.imu, ControllerChannel::kImu);
+  routes_.Add(channels_.force, ControllerChannel::kForce);
+  routes_.Add(channels_.setpoint, ControllerChannel::kSetpoint);
   buffer_.reserve(256);
 }
 
 ControllerService::~ControllerService() = default;
 
-std::vector<std::string> ControllerService::InputChannels() const {
-  return {channels_.pose, channels_.imu, channels_.force, channels_.setpoint};
-}
-
 void ControllerService::HandlePacket(std::string_view channel, const void* data, size_t size,
                                      int64_t /*receive_wall_utime*/) {
-  const std::string* names[kNumControllerInputs] = {&channels_.pose, &channels_.imu, &channels_.force};
-  if (channel == channels_.setpoint) {
-    const int64_t host_us = SteadyClockUs();
-    setpoint_t message;
-    if (DecodeMessage(data, size, &message) != DecodeError::kNone) {
-      ++setpoint_decode_errors_;
-      return;
-    }
-    // A setpoint does not set the clock (a planner's clock is not the vehicle's).
-    if (clock_set_) controller_.OnSetpoint(FromMessage(message), VehicleTimeUs(host_us));
+  ControllerChannel routed;
+  if (routes_.Find(channel, &routed)) Dispatch(routed, data, size, host_clock_());
+}
+
+void ControllerService::HandleSetpoint(const void* data, size_t size, int64_t host_us) {
+  setpoint_t message;
+  if (DecodeMessage(data, size, &message) != DecodeError::kNone) {
+    ++setpoint_decode_errors_;
     return;
   }
-  for (int i = 0; i < kNumControllerInputs; ++i) {
-    if (channel == *names[i]) {
-      HandlePacket(static_cast<ControllerInput>(i), data, size, SteadyClockUs());
-      return;
-    }
-  }
+  // A setpoint does not set the clock (a planner's clock is not the vehicle's).
+  if (clock_set_) controller_.OnSetpoint(FromMessage(message), VehicleTimeUs(host_us));
 }
 
 int64_t ControllerService::ClockForInput(int64_t utime, int64_t host_us) {
@@ -84,32 +82,38 @@ int64_t ControllerService::ClockForInput(int64_t utime, int64_t host_us) {
 
 int64_t ControllerService::VehicleTimeUs(int64_t host_us) const { return clock_set_ ? host_us + clock_offset_us_ : -1; }
 
-void ControllerService::HandlePacket(ControllerInput input, const void* data, size_t size, int64_t host_us) {
-  const int index = static_cast<int>(input);
+void ControllerService::Dispatch(ControllerChannel channel, const void* data, size_t size, int64_t host_us) {
+  if (channel == ControllerChannel::kSetpoint) {
+    HandleSetpoint(data, size, host_us);
+    return;
+  }
+  const int index = static_cast<int>(channel);  // kPose, kImu, kForce: ControllerInput's order
   const ControllerInputCounters* counters[kNumControllerInputs] = {&health().pose, &health().imu, &health().force};
   const int64_t accepted_before = counters[index]->accepted;
-  switch (input) {
-    case ControllerInput::kPose: {
+  switch (channel) {
+    case ControllerChannel::kPose: {
       pose_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
       controller_.OnPose(FromMessage(message), ClockForInput(message.utime, host_us));
       if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
-    case ControllerInput::kImu: {
+    case ControllerChannel::kImu: {
       imu_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
       controller_.OnImu(FromMessage(message), ClockForInput(message.utime, host_us));
       if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
-    case ControllerInput::kForce: {
+    case ControllerChannel::kForce: {
       force_estimate_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
       controller_.OnForce(FromMessage(message), ClockForInput(message.utime, host_us));
       if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
+    case ControllerChannel::kSetpoint:
+      return;
   }
   ++decode_errors_[index];
 }

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,36 +18,44 @@
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
 #include "sinks/message_sink.h"
+#include "sources/channel_routes.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
 
 namespace birotor {
 
+// The inputs with counters (CONTROLLER_STATUS received[], decode_errors[]).
 enum class ControllerInput : int { kPose = 0, kImu = 1, kForce = 2 };
 constexpr int kNumControllerInputs = 3;
+// The channels the node reads (its route table maps the full names).
+enum class ControllerChannel : int { kPose, kImu, kForce, kSetpoint };
+
+// The host's monotonic clock [us] as the node reads it: SteadyClockUs in the
+// daemon; a test or a fuzzer sets its own to be deterministic.
+using HostClockUs = std::function<int64_t()>;
 
 class ControllerService : public PacketHandler {
  public:
-  // sink must outlive the service.
-  ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink);
+  // sink must outlive the service. host_clock stamps each packet when it is
+  // handled (default: the steady clock).
+  ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink,
+                    HostClockUs host_clock = {});
   ~ControllerService();
   ControllerService(const ControllerService&) = delete;
   ControllerService& operator=(const ControllerService&) = delete;
 
-  // The full names of the input channels (POSE, IMU, FORCE), to subscribe a
-  // source to.
-  std::vector<std::string> InputChannels() const;
+  // The full names of the input channels (POSE, IMU, FORCE, SETPOINT; the
+  // route table's names), to subscribe a source to.
+  std::vector<std::string> InputChannels() const { return routes_.Names(); }
   // The live source's UDP counters (MessageSource::udp_counters, nullptr for
   // other sources) go into CONTROLLER_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
-  // PacketHandler: a packet of an input channel goes to HandlePacket below,
-  // stamped with the host's steady clock when it is handled; any other
-  // channel is ignored.
+  // PacketHandler, the one way in: a packet of a channel of the route table,
+  // stamped with the host clock when it is handled (the receive time is not
+  // used); decoded (a failure is counted), then given to the controller.
+  // Any other channel is ignored. Never throws; never runs a control period
+  // (the timer does).
   void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
-
-  // One encoded packet of an input, arrived at host_us (steady clock [us]).
-  // Never throws; never runs a control period (the timer does).
-  void HandlePacket(ControllerInput input, const void* data, size_t size, int64_t host_us);
 
   // Host time [us] of the next control period: a fixed grid of 1 / rate_hz
   // on the host clock, whatever the inputs do. No period runs before the
@@ -72,6 +81,9 @@ class ControllerService : public PacketHandler {
   int64_t decode_errors(ControllerInput input) const { return decode_errors_[static_cast<int>(input)]; }
 
  private:
+  // One routed packet, arrived at host_us (host clock [us]).
+  void Dispatch(ControllerChannel channel, const void* data, size_t size, int64_t host_us);
+  void HandleSetpoint(const void* data, size_t size, int64_t host_us);
   void RunControlPeriod(int64_t host_us);
   // The clock for an input stamped utime arriving at host_us (sets it first).
   int64_t ClockForInput(int64_t utime, int64_t host_us);
@@ -80,6 +92,8 @@ class ControllerService : public PacketHandler {
   VehicleController controller_;
   ChannelNames channels_;
   MessageSink* sink_;
+  HostClockUs host_clock_;
+  ChannelRoutes<ControllerChannel> routes_;
   int64_t period_us_;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
   int64_t setpoint_decode_errors_ = 0;

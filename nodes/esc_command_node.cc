@@ -7,7 +7,8 @@ namespace birotor {
 
 void EscCommandNode::HandlePacket(std::string_view channel, const void* data, size_t size,
                                   int64_t /*receive_wall_utime*/) {
-  if (channel != channel_) return;
+  EscChannel routed;
+  if (!routes_.Find(channel, &routed)) return;
   ++received_;
   if (DecodeMessage(data, size, &message_) != DecodeError::kNone) {
     ++decode_errors_;

@@ -13,26 +13,34 @@
 
 #include "birotor/motor_command_t.hpp"
 #include "simulator/simulator.h"
+#include "sources/channel_routes.h"
 #include "sources/message_source.h"
 
 namespace birotor {
 
+// The channel the node reads (its route table maps the full name).
+enum class EscChannel : int { kMotorCommand };
+
 class EscCommandNode : public PacketHandler {
  public:
   // sim must outlive the node; channel is the full MOTOR_COMMAND name.
-  EscCommandNode(const std::string& channel, Simulator* sim) : channel_(channel), sim_(sim) {}
+  EscCommandNode(const std::string& channel, Simulator* sim) : sim_(sim) {
+    routes_.Add(channel, EscChannel::kMotorCommand);
+  }
 
-  std::vector<std::string> InputChannels() const { return {channel_}; }
-  // A MOTOR_COMMAND packet: decoded and, when it decodes, offered to the
-  // simulator's ESCs at its current step (Simulator::OfferMotorCommand:
-  // one commander, stamps and range checked); any other channel is ignored.
+  // The route table's names, to subscribe a source to.
+  std::vector<std::string> InputChannels() const { return routes_.Names(); }
+  // PacketHandler, the one way in: a MOTOR_COMMAND packet, decoded and, when
+  // it decodes, offered to the simulator's ESCs at its current step
+  // (Simulator::OfferMotorCommand: one commander, stamps and range checked);
+  // any other channel is ignored.
   void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
 
   int64_t received() const { return received_; }
   int64_t decode_errors() const { return decode_errors_; }
 
  private:
-  std::string channel_;
+  ChannelRoutes<EscChannel> routes_;
   Simulator* sim_;
   motor_command_t message_;
   int64_t received_ = 0;

@@ -31,6 +31,7 @@ uint64_t PayloadHash(const void* data, size_t size) {
 EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
                                    const EstimatorServiceOptions& options, MessageSink* sink)
     : pipeline_(config),
+      description_(BirotorDescription(config.vehicle)),
       vehicle_checksum_(VehicleChecksum(config.vehicle)),
       channels_(channels),
       options_(options),
@@ -39,32 +40,37 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
       decode_warning_(options.warning_interval_s),
       overload_warning_(options.warning_interval_s),
       mismatch_warning_(options.warning_interval_s),
+      arm_count_warning_(options.warning_interval_s),
       rejection_log_(options.warning_interval_s, input_channel_names_) {
   input_channel_names_[static_cast<int>(InputChannel::kStrain)] = &channels_.strain;
   input_channel_names_[static_cast<int>(InputChannel::kMotor)] = &channels_.motor;
   input_channel_names_[static_cast<int>(InputChannel::kImu)] = &channels_.imu;
   input_channel_names_[static_cast<int>(InputChannel::kPose)] = &channels_.pose;
+  // The route table: every channel this node reads, once.
+  routes_.Add(channels_.strain, EstimatorChannel::kStrain);
+  routes_.Add(channels_.motor, EstimatorChannel::kMotor);
+  routes_.Add(channels_.imu, EstimatorChannel::kImu);
+  routes_.Add(channels_.pose, EstimatorChannel::kPose);
+  routes_.Add(channels_.strain_n, EstimatorChannel::kStrainN);
+  routes_.Add(channels_.motor_n, EstimatorChannel::kMotorN);
+  routes_.Add(channels_.force, EstimatorChannel::kOwnForce);
   buffer_.reserve(1024);
   status_message_.inputs.resize(kNumInputChannels);
 }
 
 EstimatorService::~EstimatorService() = default;
 
-std::vector<std::string> EstimatorService::InputChannels() const {
-  std::vector<std::string> names;
-  for (const std::string* name : input_channel_names_) names.push_back(*name);
-  names.push_back(channels_.force);
-  return names;
+bool EstimatorService::IsInputChannel(std::string_view channel) const {
+  EstimatorChannel routed;
+  return routes_.Find(channel, &routed) && routed != EstimatorChannel::kOwnForce;
 }
 
 void EstimatorService::HandlePacket(std::string_view channel, const void* data, size_t size,
                                     int64_t receive_wall_utime) {
+  EstimatorChannel routed;
+  if (!routes_.Find(channel, &routed)) return;
   InputChannel input;
-  if (InputChannelOf(channel, &input)) {
-    HandlePacket(input, data, size, receive_wall_utime);
-  } else if (channel == channels_.force) {
-    CheckOwnForceChannel(data, size);
-  }
+  if (Dispatch(routed, data, size, receive_wall_utime, &input)) rejection_log_.Check(pipeline_.health(), input);
 }
 
 void EstimatorService::CheckOwnForceChannel(const void* data, size_t size) {
@@ -93,16 +99,6 @@ bool EstimatorService::ForeignForceActive() const {
          static_cast<double>(SteadyClockUs() - last_foreign_force_us_) < options_.foreign_force_hold_s * 1e6;
 }
 
-bool EstimatorService::InputChannelOf(std::string_view channel, InputChannel* input) const {
-  for (int i = 0; i < kNumInputChannels; ++i) {
-    if (channel == *input_channel_names_[i]) {
-      *input = static_cast<InputChannel>(i);
-      return true;
-    }
-  }
-  return false;
-}
-
 bool EstimatorService::Decoded(InputChannel channel, DecodeError error) {
   if (error == DecodeError::kNone) return true;
   pipeline_.CountDecodeError(channel);
@@ -113,33 +109,72 @@ bool EstimatorService::Decoded(InputChannel channel, DecodeError error) {
   return false;
 }
 
-bool EstimatorService::HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime) {
-  const bool published = DispatchPacket(channel, data, size, receive_wall_utime);
-  rejection_log_.Check(pipeline_.health(), channel);
-  return published;
+template <class CountedMessage>
+bool EstimatorService::ArmCountMatches(const CountedMessage& message, InputChannel input, CountRefusals* refusals) {
+  const CountCheck check = CheckCount(message, description_);
+  if (check == CountCheck::kMatches) return true;
+  refusals->Count(check);
+  arm_count_refusals_.last = check;
+  pipeline_.CountDecodeError(input);
+  if (arm_count_warning_.ShouldLog(SteadyClockUs())) {
+    spdlog::warn("counted {} message refused ({}: this vehicle has {} arms); {} similar warnings suppressed",
+                 InputChannelName(input), CountCheckName(check), description_.arm_count,
+                 arm_count_warning_.suppressed());
+  }
+  return false;
 }
 
-bool EstimatorService::DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime) {
-  pipeline_.CountReceived(channel);
+bool EstimatorService::Dispatch(EstimatorChannel channel, const void* data, size_t size, int64_t receive_wall_utime,
+                                InputChannel* input) {
   switch (channel) {
-    case InputChannel::kStrain:
-      return HandleStrain(data, size, receive_wall_utime);
-    case InputChannel::kMotor:
-      if (Decoded(channel, DecodeMessage(data, size, &motor_message_))) pipeline_.OnMotor(FromMessage(motor_message_));
-      return false;
-    case InputChannel::kImu:
-      if (Decoded(channel, DecodeMessage(data, size, &imu_message_))) pipeline_.OnImu(FromMessage(imu_message_));
-      return false;
-    case InputChannel::kPose:
-      if (Decoded(channel, DecodeMessage(data, size, &pose_message_))) pipeline_.OnPose(FromMessage(pose_message_));
+    case EstimatorChannel::kStrain:
+      *input = InputChannel::kStrain;
+      pipeline_.CountReceived(*input);
+      if (Decoded(*input, DecodeMessage(data, size, &strain_message_))) HandleStrain(receive_wall_utime);
+      return true;
+    case EstimatorChannel::kStrainN:
+      // The birotor's strain_t field for field (transport/counted_messages.h).
+      *input = InputChannel::kStrain;
+      pipeline_.CountReceived(*input);
+      if (Decoded(*input, DecodeMessage(data, size, &strain_n_message_)) &&
+          ArmCountMatches(strain_n_message_, *input, &arm_count_refusals_.strain) &&
+          ToBirotorMessage(strain_n_message_, &strain_message_)) {
+        HandleStrain(receive_wall_utime);
+      }
+      return true;
+    case EstimatorChannel::kMotor:
+      *input = InputChannel::kMotor;
+      pipeline_.CountReceived(*input);
+      if (Decoded(*input, DecodeMessage(data, size, &motor_message_))) pipeline_.OnMotor(FromMessage(motor_message_));
+      return true;
+    case EstimatorChannel::kMotorN:
+      *input = InputChannel::kMotor;
+      pipeline_.CountReceived(*input);
+      if (Decoded(*input, DecodeMessage(data, size, &motor_n_message_)) &&
+          ArmCountMatches(motor_n_message_, *input, &arm_count_refusals_.motor) &&
+          ToBirotorMessage(motor_n_message_, &motor_message_)) {
+        pipeline_.OnMotor(FromMessage(motor_message_));
+      }
+      return true;
+    case EstimatorChannel::kImu:
+      *input = InputChannel::kImu;
+      pipeline_.CountReceived(*input);
+      if (Decoded(*input, DecodeMessage(data, size, &imu_message_))) pipeline_.OnImu(FromMessage(imu_message_));
+      return true;
+    case EstimatorChannel::kPose:
+      *input = InputChannel::kPose;
+      pipeline_.CountReceived(*input);
+      if (Decoded(*input, DecodeMessage(data, size, &pose_message_))) pipeline_.OnPose(FromMessage(pose_message_));
+      return true;
+    case EstimatorChannel::kOwnForce:
+      CheckOwnForceChannel(data, size);
       return false;
   }
   return false;
 }
 
-bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t receive_wall_utime) {
+void EstimatorService::HandleStrain(int64_t receive_wall_utime) {
   const int64_t start_us = options_.report_processing_time ? SteadyClockUs() : 0;
-  if (!Decoded(InputChannel::kStrain, DecodeMessage(data, size, &strain_message_))) return false;
   if (receive_wall_utime >= 0) {
     last_strain_arrival_wall_us_ = receive_wall_utime;
     const int64_t queued_us = WallClockUs() - receive_wall_utime;
@@ -149,11 +184,11 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
         spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed", strain_message_.seq,
                      queued_us, overload_warning_.suppressed());
       }
-      return false;
+      return;
     }
   }
   ForceEstimate estimate;
-  if (!pipeline_.OnStrain(FromMessage(strain_message_), &estimate)) return false;
+  if (!pipeline_.OnStrain(FromMessage(strain_message_), &estimate)) return;
   force_message_ = ToMessage(estimate);
   // The pipeline's facts with the transport's (a second FORCE publisher).
   ForceStatusFacts facts = pipeline_.health().last_status_facts;
@@ -170,7 +205,6 @@ bool EstimatorService::HandleStrain(const void* data, size_t size, int64_t recei
   if (options_.report_processing_time) {
     processing_time_.Add(static_cast<double>(SteadyClockUs() - start_us));
   }
-  return true;
 }
 
 void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {

@@ -1,9 +1,11 @@
 // The estimator node: a PacketHandler (sources/message_source.h) for STRAIN,
-// MOTOR, IMU and POSE with checked decoding that counts a malformed packet
+// MOTOR, IMU and POSE (and their counted twins STRAIN_N and MOTOR_N with the
+// vehicle's arm count) with checked decoding that counts a malformed packet
 // instead of dropping it, one FORCE per accepted strain sample and the
-// ESTIMATOR_STATUS health message. The daemon feeds it from its live source,
-// birotor-replay from a log file, so the daemon and the replay give the same
-// numbers.
+// ESTIMATOR_STATUS health message. Its one way in is HandlePacket(channel,
+// bytes, receive time): the daemon feeds it from its live source,
+// birotor-replay from a log file, the closed loop of birotor-eval and the
+// fuzzers from encoded messages, so all of them run the same code.
 #pragma once
 
 #include <array>
@@ -16,17 +18,22 @@
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
+#include "birotor/motor_n_t.hpp"
 #include "birotor/motor_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "birotor/strain_n_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
+#include "model/vehicle_description.h"
 #include "nodes/input_rejection_log.h"
 #include "nodes/status_message.h"
 #include "program/logging.h"
 #include "sinks/message_sink.h"
+#include "sources/channel_routes.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
+#include "transport/counted_messages.h"
 #include "transport/lcm_codec.h"
 #include "transport/udpm_receiver.h"
 
@@ -55,6 +62,25 @@ struct EstimatorServiceOptions {
   double foreign_force_hold_s = 1.0;
 };
 
+// The channels the node reads (its route table maps the full names).
+enum class EstimatorChannel : int {
+  kStrain,    // strain_t
+  kMotor,     // motor_t
+  kImu,       // imu_t
+  kPose,      // pose_t
+  kStrainN,   // strain_n_t: the STRAIN input when its count is the vehicle's
+  kMotorN,    // motor_n_t: the MOTOR input likewise
+  kOwnForce,  // force_estimate_t on the own FORCE channel (a second publisher?)
+};
+
+// STRAIN_N and MOTOR_N messages refused because their arm count is not the
+// vehicle's (CountCheck), per input; each is also a decode error of it.
+struct ArmCountRefusals {
+  CountRefusals strain;
+  CountRefusals motor;
+  CountCheck last = CountCheck::kMatches;  // the newest refusal's reason (kMatches: none yet)
+};
+
 class EstimatorService : public PacketHandler {
  public:
   // sink must outlive the service. The pipeline is built from config (the
@@ -69,24 +95,24 @@ class EstimatorService : public PacketHandler {
   // other sources) go into ESTIMATOR_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
 
-  // The channels to subscribe a source to: the four inputs and the node's
-  // own FORCE (to see a second publisher on it).
-  std::vector<std::string> InputChannels() const;
-  // PacketHandler: a packet of an input channel goes to HandlePacket below;
-  // a FORCE it did not publish itself (a second estimator on the prefix)
-  // flags every FORCE with STATUS_INPUT_CONFLICT, not VALID, for
-  // foreign_force_hold_s; any other channel is ignored.
+  // The channels to subscribe a source to (the route table's names): the
+  // four inputs, STRAIN_N and MOTOR_N, and the node's own FORCE (to see a
+  // second publisher on it).
+  std::vector<std::string> InputChannels() const { return routes_.Names(); }
+  // Whether channel is one of the inputs (not the own FORCE): what replay
+  // feeds from a log (a log's FORCE is the recording daemon's).
+  bool IsInputChannel(std::string_view channel) const;
+
+  // PacketHandler, the one way in: a packet of a channel of the route table.
+  // An input is decoded (a failure, or a counted message whose arm count is
+  // not the vehicle's, counts as a decode error of its input), fed to the
+  // pipeline and, for an accepted strain sample, FORCE is published. A FORCE
+  // on the own channel that this node did not publish (a second estimator on
+  // the prefix) flags every FORCE with STATUS_INPUT_CONFLICT, not VALID, for
+  // foreign_force_hold_s. Any other channel is ignored. receive_wall_utime
+  // is the host time the packet arrived [us since epoch], or -1 when unknown
+  // (replay, the lock-step closed loop). Never throws.
   void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
-
-  // One encoded packet of an input channel, from a source or a test. Decodes it
-  // (counting a failure as a decode error), feeds the pipeline and, for an
-  // accepted strain sample, publishes FORCE. receive_wall_utime is the host
-  // time the packet arrived [us since epoch], or -1 when unknown (replay).
-  // Returns true when a FORCE message was published. Never throws.
-  bool HandlePacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime = -1);
-
-  // The input channel a full channel name belongs to; false for any other channel.
-  bool InputChannelOf(std::string_view channel, InputChannel* input) const;
 
   // Publishes ESTIMATOR_STATUS for a reporting period of period_s and starts
   // a new period.
@@ -105,11 +131,19 @@ class EstimatorService : public PacketHandler {
   int64_t forces_published() const { return forces_published_; }
   // FORCE messages on the own FORCE channel that this node did not publish.
   int64_t foreign_forces() const { return foreign_forces_; }
+  const ArmCountRefusals& arm_count_refusals() const { return arm_count_refusals_; }
 
  private:
-  bool HandleStrain(const void* data, size_t size, int64_t receive_wall_utime);
-  // HandlePacket without the rejection log lines.
-  bool DispatchPacket(InputChannel channel, const void* data, size_t size, int64_t receive_wall_utime);
+  // One routed packet; the input it counts under (kStrain for STRAIN_N, ...)
+  // in *input, false for the own FORCE.
+  bool Dispatch(EstimatorChannel channel, const void* data, size_t size, int64_t receive_wall_utime,
+                InputChannel* input);
+  // A decoded strain_message_: the overload guard, the pipeline, FORCE.
+  void HandleStrain(int64_t receive_wall_utime);
+  // A counted message's arm count against the vehicle's; a refusal is
+  // counted (under input, and as its decode error) and warned about.
+  template <class CountedMessage>
+  bool ArmCountMatches(const CountedMessage& message, InputChannel input, CountRefusals* refusals);
   // True if the packet decoded; else it is counted as a decode error of
   // channel and warned about (rate-limited).
   bool Decoded(InputChannel channel, DecodeError error);
@@ -118,17 +152,21 @@ class EstimatorService : public PacketHandler {
   bool ForeignForceActive() const;
 
   EstimatorPipeline pipeline_;
-  std::string vehicle_checksum_;  // of the configured vehicle, on ESTIMATOR_STATUS
+  VehicleDescription description_;  // the birotor's (2 arms), for the counted inputs
+  std::string vehicle_checksum_;    // of the configured vehicle, on ESTIMATOR_STATUS
   ChannelNames channels_;
   EstimatorServiceOptions options_;
   MessageSink* sink_;
   const std::string* input_channel_names_[kNumInputChannels];
+  ChannelRoutes<EstimatorChannel> routes_;
 
   // Decoded messages and the output buffer, reused for every packet.
   strain_t strain_message_;
   motor_t motor_message_;
   imu_t imu_message_;
   pose_t pose_message_;
+  strain_n_t strain_n_message_;
+  motor_n_t motor_n_message_;
   force_estimate_t force_message_;
   estimator_status_t status_message_;
   std::vector<uint8_t> buffer_;
@@ -148,6 +186,8 @@ class EstimatorService : public PacketHandler {
   std::array<bool, kPublishedHashCount> published_seen_{};
   size_t published_hash_next_ = 0;
   int64_t foreign_forces_ = 0;
+  ArmCountRefusals arm_count_refusals_;
+  RateLimitedLog arm_count_warning_;
   int64_t last_foreign_force_us_ = -1;  // steady clock [us]
   RateLimitedLog foreign_warning_;
   RateLimitedLog decode_warning_;

@@ -96,6 +96,8 @@ class Monitor : public PacketHandler {
     if (channel == channels_.estimator_status) OnStatus(data, size);
   }
 
+ private:
+  // The routed packets (HandlePacket is the one way in).
   void OnStrain(const void* data, size_t size, int64_t recv_utime) {
     if (DecodeMessage(data, size, &strain_) != DecodeError::kNone) {
       ++undecodable_;
@@ -171,6 +173,7 @@ class Monitor : public PacketHandler {
   }
 
   // Strain samples older than min_age_us whose FORCE never came.
+ public:
   int64_t PendingWithoutForce(int64_t now_recv_utime, int64_t min_age_us) const {
     int64_t count = 0;
     for (const Entry& entry : ring_) {

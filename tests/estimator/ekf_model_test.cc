@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <limits>
 #include <random>
 
 #include "model/equilibrium.h"
@@ -152,6 +153,38 @@ TEST(EkfProcessModelTest, TransitionIsTheFourthOrderPolynomial) {
     EXPECT_TRUE((a.bottomLeftCorner<m, n>().isZero(0.0)));
     EXPECT_TRUE((a.bottomRightCorner<m, m>().isDiagonal(0.0)));
   }
+}
+
+// The structure check is Eigen's bottomLeftCorner().isZero(0.0) &&
+// bottomRightCorner().isDiagonal(0.0), case by case: exact and signed zeros,
+// the smallest subnormal, NaN and infinities off and on D's diagonal.
+TEST(EkfProcessModelTest, RotorBlockStructureMatchesEigensCheck) {
+  constexpr int n = kOmega1, m = kDynamicStateSize - kOmega1;  // arm states; omega and mu
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  auto eigen = [&](const DynamicMatrix& x) {
+    return x.bottomLeftCorner<m, n>().isZero(0.0) && x.bottomRightCorner<m, m>().isDiagonal(0.0);
+  };
+  DynamicMatrix base = DynamicMatrix::Constant(2.0);  // arm rows dense
+  base.bottomRows<m>().setZero();
+  base.bottomRightCorner<m, m>().diagonal() << -40.0, -40.0, 0.0, 0.0;
+  struct Case {
+    int row, col;
+    double value;
+  };
+  const Case cases[] = {{8, 0, 0.0}, {8, 0, -0.0}, {5, 3, tiny}, {6, 7, tiny}, {7, 6, -1e300}, {5, 0, nan},
+                        {8, 8, nan}, {6, 6, inf},  {7, 7, -inf}, {5, 5, 0.0},  {0, 8, inf},    {2, 7, nan}};
+  EXPECT_TRUE(EkfProcessModel::HasRotorBlockStructure(base));
+  for (const Case& c : cases) {
+    DynamicMatrix x = base;
+    x(c.row, c.col) = c.value;
+    EXPECT_EQ(EkfProcessModel::HasRotorBlockStructure(x), eigen(x)) << c.row << "," << c.col << " = " << c.value;
+  }
+  // Two off-diagonal entries whose |x| sum overflows stay non-zero.
+  DynamicMatrix big = base;
+  big(5, 0) = big(5, 1) = std::numeric_limits<double>::max();
+  EXPECT_FALSE(EkfProcessModel::HasRotorBlockStructure(big));
+  EXPECT_EQ(EkfProcessModel::HasRotorBlockStructure(big), eigen(big));
 }
 
 // At the hover equilibrium (x_dot = 0) the second-order terms vanish: the

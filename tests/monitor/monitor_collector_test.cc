@@ -34,7 +34,7 @@ std::vector<uint8_t> Encode(const Msg& message) {
 template <class Msg>
 void Feed(MonitorCollector* collector, const std::string& channel, const Msg& message) {
   const std::vector<uint8_t> bytes = Encode(message);
-  collector->HandlePacket(channel, bytes.data(), bytes.size());
+  collector->HandlePacket(channel, bytes.data(), bytes.size(), -1);
 }
 
 TruthSample Truth(int64_t utime, double f1_n, double f2_n) {
@@ -68,8 +68,8 @@ TEST(MonitorCollectorTest, PairsByUtimeAndScoresLikeEvaluate) {
   }
   Feed(&collector, channels.force, ToMessage(Estimate(999500, 1000, 3.0, 4.0)));
   const uint8_t garbage[3] = {1, 2, 3};
-  collector.HandlePacket(channels.force, garbage, sizeof(garbage));
-  collector.HandlePacket("OTHER_CHANNEL", garbage, sizeof(garbage));
+  collector.HandlePacket(channels.force, garbage, sizeof(garbage), -1);
+  collector.HandlePacket("OTHER_CHANNEL", garbage, sizeof(garbage), -1);
 
   EvalOptions options;
   options.warmup_s = 0.1;
@@ -179,7 +179,7 @@ void FlyOverMemq(const Scenario& scenario, const EstimatorConfig& config, bool p
     lcm.subscribeFunction(
         *channel,
         +[](const lcm::ReceiveBuffer* buffer, const std::string& name, MonitorCollector* c) {
-          c->HandlePacket(name, buffer->data, buffer->data_size);
+          c->HandlePacket(name, buffer->data, buffer->data_size, -1);
         },
         collector);
   }

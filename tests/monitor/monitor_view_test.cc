@@ -36,7 +36,7 @@ TEST(MonitorViewTest, ProgressBar) {
 }
 
 void Feed(MonitorCollector* collector, const std::string& channel, const std::vector<uint8_t>& bytes) {
-  collector->HandlePacket(channel, bytes.data(), bytes.size());
+  collector->HandlePacket(channel, bytes.data(), bytes.size(), -1);
 }
 
 template <class Msg>

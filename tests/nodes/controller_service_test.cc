@@ -34,12 +34,16 @@ std::vector<uint8_t> PoseStamped(int64_t utime) {
 
 class ControllerClockTest : public ::testing::Test {
  protected:
+  // Through the node's one way in, at host time host_us on its own clock.
   void Deliver(int64_t utime, int64_t host_us) {
     const std::vector<uint8_t> bytes = PoseStamped(utime);
-    service_.HandlePacket(ControllerInput::kPose, bytes.data(), bytes.size(), host_us);
+    host_us_ = host_us;
+    service_.HandlePacket(channels_.pose, bytes.data(), bytes.size(), -1);
   }
   DiscardSink sink_;
-  ControllerService service_{ControllerConfig{}, MakeChannelNames("TEST_"), &sink_};
+  int64_t host_us_ = 0;
+  const ChannelNames channels_ = MakeChannelNames("TEST_");
+  ControllerService service_{ControllerConfig{}, channels_, &sink_, [this] { return host_us_; }};
 };
 
 TEST_F(ControllerClockTest, AStampBeyondThePlausibleRangeNeverSetsTheClock) {
@@ -58,6 +62,17 @@ TEST_F(ControllerClockTest, WildStampsDuringAcquisitionDoNotMoveTheClock) {
     Deliver(wild, 5001000);
   }
   EXPECT_EQ(service_.VehicleTimeUs(5002000), 1002000);
+}
+
+// One route table: the subscription list is every channel the node reads.
+TEST_F(ControllerClockTest, TheRouteTableIsTheSubscriptionList) {
+  EXPECT_EQ(service_.InputChannels(),
+            (std::vector<std::string>{"TEST_POSE", "TEST_IMU", "TEST_FORCE", "TEST_SETPOINT"}));
+  const uint8_t garbage[3] = {1, 2, 3};
+  service_.HandlePacket("TEST_IMU", garbage, sizeof(garbage), -1);
+  service_.HandlePacket("TEST_TRUTH", garbage, sizeof(garbage), -1);  // not routed: not counted
+  EXPECT_EQ(service_.decode_errors(ControllerInput::kImu), 1);
+  EXPECT_EQ(service_.decode_errors(ControllerInput::kPose), 0);
 }
 
 }  // namespace

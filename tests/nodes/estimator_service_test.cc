@@ -295,18 +295,86 @@ TEST(EstimatorServiceTest, AForeignForceOnTheOwnChannelIsAConflict) {
   EXPECT_FALSE(status.status & kStatusValid);
 }
 
-TEST(EstimatorServiceTest, InputChannelOfMapsOnlyInputs) {
+// One route table: the subscription list is every channel the node reads,
+// and only the inputs (not the own FORCE) count as inputs for replay.
+TEST(EstimatorServiceTest, TheRouteTableIsTheSubscriptionList) {
   EstimatorConfig config;
   const ChannelNames channels = MakeChannelNames("X_");
   LcmSink sink(nullptr);
   EstimatorService service(config, channels, EstimatorServiceOptions{}, &sink);
-  InputChannel input;
-  ASSERT_TRUE(service.InputChannelOf("X_MOTOR", &input));
-  EXPECT_EQ(input, InputChannel::kMotor);
-  ASSERT_TRUE(service.InputChannelOf("X_POSE", &input));
-  EXPECT_EQ(input, InputChannel::kPose);
-  EXPECT_FALSE(service.InputChannelOf("X_TRUTH", &input));
-  EXPECT_FALSE(service.InputChannelOf("BIROTOR_STRAIN", &input));
+  EXPECT_EQ(service.InputChannels(),
+            (std::vector<std::string>{"X_STRAIN", "X_MOTOR", "X_IMU", "X_POSE", "X_STRAIN_N", "X_MOTOR_N", "X_FORCE"}));
+  EXPECT_TRUE(service.IsInputChannel("X_MOTOR"));
+  EXPECT_TRUE(service.IsInputChannel("X_STRAIN_N"));
+  EXPECT_FALSE(service.IsInputChannel("X_FORCE"));
+  EXPECT_FALSE(service.IsInputChannel("X_TRUTH"));
+  EXPECT_FALSE(service.IsInputChannel("BIROTOR_STRAIN"));
+}
+
+// STRAIN_N and MOTOR_N with the birotor's 2 arms go the same way as STRAIN
+// and MOTOR (one FORCE per strain sample, the same numbers); a count that is
+// not the vehicle's is refused, counted by reason and as a decode error.
+TEST(EstimatorServiceTest, CountedInputsWithTheVehiclesArmCountAreReadAndOthersRefused) {
+  EstimatorConfig config;
+  const ChannelNames channels = MakeChannelNames();
+  struct KeepingSink : MessageSink {
+    std::vector<force_estimate_t> forces;
+    void Publish(const std::string&, int64_t, const void* data, size_t size) override {
+      force_estimate_t m;
+      if (DecodeMessage(data, size, &m) == DecodeError::kNone) forces.push_back(m);
+    }
+  } birotor_sink, counted_sink;
+  EstimatorService birotor(config, channels, EstimatorServiceOptions{}, &birotor_sink);
+  EstimatorService counted(config, channels, EstimatorServiceOptions{}, &counted_sink);
+  std::vector<uint8_t> buffer;
+  for (int k = 0; k < 20; ++k) {
+    MotorSample motor;
+    motor.utime = 1000000 + 1000 * k;
+    motor.seq = k;
+    motor.omega_cmd_rad_s[0] = motor.omega_cmd_rad_s[1] = 698.55;  // hover, shared/spec/reference-vehicle.md
+    motor.omega_meas_rad_s[0] = motor.omega_meas_rad_s[1] = 698.55;
+    StrainSample strain;
+    strain.utime = motor.utime;
+    strain.seq = k;
+    strain.deflection_rad[0] = -0.0018664;
+    strain.deflection_rad[1] = 0.0018664;
+    EncodeMessage(ToMessage(motor), &buffer);
+    birotor.HandlePacket(channels.motor, buffer.data(), buffer.size(), -1);
+    EncodeMessage(ToCountedMessage(ToMessage(motor)), &buffer);
+    counted.HandlePacket(channels.motor_n, buffer.data(), buffer.size(), -1);
+    EncodeMessage(ToMessage(strain), &buffer);
+    birotor.HandlePacket(channels.strain, buffer.data(), buffer.size(), -1);
+    EncodeMessage(ToCountedMessage(ToMessage(strain)), &buffer);
+    counted.HandlePacket(channels.strain_n, buffer.data(), buffer.size(), -1);
+  }
+  ASSERT_EQ(birotor_sink.forces.size(), 20u);
+  ASSERT_EQ(counted_sink.forces.size(), 20u);
+  for (size_t i = 0; i < 20; ++i) {
+    EXPECT_EQ(counted_sink.forces[i].force_n[0], birotor_sink.forces[i].force_n[0]) << i;
+    EXPECT_EQ(counted_sink.forces[i].force_n[1], birotor_sink.forces[i].force_n[1]) << i;
+    EXPECT_EQ(counted_sink.forces[i].status, birotor_sink.forces[i].status) << i;
+  }
+  // A trirotor's strain (another vehicle's count) and a count no vehicle has.
+  strain_n_t three{};
+  three.utime = 1030000;
+  three.n_arms = 3;
+  three.deflection_rad.assign(3, 0.0);
+  EncodeMessage(three, &buffer);
+  counted.HandlePacket(channels.strain_n, buffer.data(), buffer.size(), -1);
+  motor_n_t nine{};
+  nine.utime = 1030000;
+  nine.n_rotors = 9;
+  nine.omega_cmd_rad_s.assign(9, 0.0);
+  nine.omega_meas_rad_s.assign(9, 0.0);
+  EncodeMessage(nine, &buffer);
+  counted.HandlePacket(channels.motor_n, buffer.data(), buffer.size(), -1);
+  EXPECT_EQ(counted_sink.forces.size(), 20u);
+  EXPECT_EQ(counted.arm_count_refusals().strain.mismatch, 1);
+  EXPECT_EQ(counted.arm_count_refusals().motor.out_of_range, 1);
+  EXPECT_EQ(counted.arm_count_refusals().last, CountCheck::kOutOfRange);
+  EXPECT_EQ(counted.health().inputs[static_cast<int>(InputChannel::kStrain)].decode_errors, 1);
+  EXPECT_EQ(counted.health().inputs[static_cast<int>(InputChannel::kMotor)].decode_errors, 1);
+  EXPECT_EQ(counted.health().inputs[static_cast<int>(InputChannel::kStrain)].received, 21);
 }
 
 TEST(EstimatorServiceTest, OverloadedStrainPacketsAreDroppedAndCounted) {
@@ -324,10 +392,11 @@ TEST(EstimatorServiceTest, OverloadedStrainPacketsAreDroppedAndCounted) {
   EncodeMessage(ToMessage(strain), &buffer);
   // Received 10 s ago on the host clock: far behind.
   const int64_t now_us = WallClockUs();
-  EXPECT_FALSE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us - 10'000'000));
+  const std::string& strain_channel = service.channels().strain;
+  service.HandlePacket(strain_channel, buffer.data(), buffer.size(), now_us - 10'000'000);
   EXPECT_EQ(service.health().inputs[0].dropped_overload, 1);
   EXPECT_EQ(sink.count, 0);
-  EXPECT_TRUE(service.HandlePacket(InputChannel::kStrain, buffer.data(), buffer.size(), now_us));
+  service.HandlePacket(strain_channel, buffer.data(), buffer.size(), now_us);
   EXPECT_EQ(sink.count, 1);
 }
 
