@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "model/linearization.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -34,7 +35,7 @@ ArmModeExpectation ExpectedArmMode(const VehicleParams& params) {
 
 ArmModeExpectation WithLearnedStrainScales(const ArmModeExpectation& file, const double g[2], const double g_std[2]) {
   ArmModeExpectation e = file;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     if (!std::isfinite(g[i]) || !std::isfinite(g_std[i])) continue;
     for (const double edge : {g[i] - 2.0 * g_std[i], g[i] + 2.0 * g_std[i]}) {
       const double hz = file.file_hz * std::pow(std::max(edge, 0.05), -file.stiffness_exponent);
@@ -74,7 +75,7 @@ void ResonanceFrequencyEstimator::Start(double centre_hz, double q, double time_
   }
   // The noise gain: the squared impulse response summed until it has decayed
   // (once per start, not per sample).
-  Biquad impulse[2] = {stage_[0], stage_[1]};
+  Biquad impulse[kBirotorRotors] = {stage_[0], stage_[1]};
   noise_gain_ = 0;
   for (int n = 0; n < 4096; ++n) {
     const double h = impulse[1].Apply(impulse[0].Apply(n == 0 ? 1.0 : 0.0));
@@ -139,7 +140,7 @@ void ArmModeMonitor::ForgetRun() {
   state_.awaiting_reading = false;
 }
 
-bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier) {
+bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier) {
   if (!active()) return false;
   const int64_t previous_utime = previous_utime_;
   previous_utime_ = utime;

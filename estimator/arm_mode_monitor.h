@@ -11,6 +11,7 @@
 
 #include "estimator/estimator_config.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -73,7 +74,7 @@ class ResonanceFrequencyEstimator {
     double x1 = 0, x2 = 0, y1 = 0, y2 = 0;  // direct form I
     double Apply(double x);
   };
-  Biquad stage_[2];
+  Biquad stage_[kBirotorRotors];
   double dt_s_ = 1e-3;
   double time_constant_s_ = 0.5;
   double forget_ = 1.0;    // exp(-dt / time constant) per sample
@@ -123,7 +124,7 @@ class ArmModeMonitor {
   // the modes are those of the contact: no test); outlier: the method's gate
   // rejected it (a spike would ring the band-pass; the previous value is
   // used). Returns whether a mismatch holds.
-  bool Add(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier);
+  bool Add(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier);
   // The filter was re-initialised (gap, time jump): the estimate restarts;
   // a raised mismatch stays (the vehicle did not change).
   void Restart();

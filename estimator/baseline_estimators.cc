@@ -7,6 +7,7 @@
 
 #include "model/equilibrium.h"
 #include "model/linearization.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -87,9 +88,10 @@ void InversionEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* 
   }
   const Eigen::Matrix<double, 3, 2> coeffs = normal.ldlt().solve(rhs);
   // Rows: value [rad], rate [rad/s], acceleration [rad/s^2]; columns: b1, b2.
-  const double b[2] = {coeffs(0, 0), coeffs(0, 1)};
-  const double b_dot[2] = {coeffs(1, 0) / kTauScale, coeffs(1, 1) / kTauScale};
-  const double b_ddot[2] = {2.0 * coeffs(2, 0) / (kTauScale * kTauScale), 2.0 * coeffs(2, 1) / (kTauScale * kTauScale)};
+  const double b[kBirotorRotors] = {coeffs(0, 0), coeffs(0, 1)};
+  const double b_dot[kBirotorRotors] = {coeffs(1, 0) / kTauScale, coeffs(1, 1) / kTauScale};
+  const double b_ddot[kBirotorRotors] = {2.0 * coeffs(2, 0) / (kTauScale * kTauScale),
+                                         2.0 * coeffs(2, 1) / (kTauScale * kTauScale)};
   const Eigen::Vector4d x(b[0] + b[1] - bs0_rad_, b[0] - b[1] - bd0_rad_, b_dot[0] + b_dot[1], b_dot[0] - b_dot[1]);
   const Eigen::Vector2d acc(b_ddot[0] + b_ddot[1], b_ddot[0] - b_ddot[1]);
   const Eigen::Vector2d df = b2_inverse_ * (acc - a2_ * x);  // thesis eq. 5.2

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "estimator/filter_status.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -422,7 +423,7 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
   faults_.FillFacts(facts);
 }
 
-void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[2]) {
+void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[kBirotorRotors]) {
   if (!options_.estimate_gauge_offsets) return;
   for (int i = 0; i < 2; ++i) {
     offset_prior_std_rad_[i] = offset_std_rad[i];

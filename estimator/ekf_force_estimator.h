@@ -12,6 +12,7 @@
 #include "estimator/ground_contact.h"
 #include "estimator/rotor_fault_monitor.h"
 #include "estimator/sample_queue.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -31,7 +32,7 @@ class EkfForceEstimator : public ForceEstimator {
   EkfForceEstimator(const VehicleParams& params, const EkfOptions& options);
 
   const char* Name() const override { return "ekf"; }
-  void SetGaugeOffsetPrior(const double offset_std_rad[2]) override;
+  void SetGaugeOffsetPrior(const double offset_std_rad[kBirotorRotors]) override;
   double Gate(FusionSource source) const override;
   // Start the learned slow parameters from these (a state file) at the next
   // (re-)initialisation; only the parameters being learned.
@@ -148,7 +149,7 @@ class EkfForceEstimator : public ForceEstimator {
   AccelerometerLinearization accel_linearization_;  // from the newest prediction step
   GroundContact contact_;                           // from the IMU: selects the supported-body model
   EkfState process_noise_psd_;                      // diagonal of Qc; Q = Qc dt
-  double offset_prior_std_rad_[2];                  // sigma of e_i at (re-)initialisation [rad]
+  double offset_prior_std_rad_[kBirotorRotors];     // sigma of e_i at (re-)initialisation [rad]
   EkfInput hover_input_;                            // command assumed before any MOTOR sample
   double variance_floor_[kEkfStateSize];            // kVarianceFloor, 0 for slow states not learned
   // The slow parameters (g_i, r_m) at the newest sample, or their start
@@ -167,9 +168,9 @@ class EkfForceEstimator : public ForceEstimator {
   struct {
     bool pending = false;
     int64_t until_utime = 0;
-    double offset_rad[2] = {0, 0};            // e_i at the start of the settling
-    double offset_variance_rad2[2] = {0, 0};  // and its variance
-    double scale_variance[2] = {0, 0};        // var(g_i) to learn from after it
+    double offset_rad[kBirotorRotors] = {0, 0};            // e_i at the start of the settling
+    double offset_variance_rad2[kBirotorRotors] = {0, 0};  // and its variance
+    double scale_variance[kBirotorRotors] = {0, 0};        // var(g_i) to learn from after it
   } settling_;
 
   bool initialized_ = false;

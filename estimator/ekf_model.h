@@ -18,6 +18,7 @@
 #include "model/plant.h"
 #include "model/rk4.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -48,12 +49,12 @@ constexpr int kEkfStateSize = 14;
 // reading), and the prediction works on the dynamic block.
 constexpr int kDynamicStateSize = 9;
 constexpr int kSlowStateSize = kEkfStateSize - kDynamicStateSize;
-constexpr EkfIndex kDeflectionIndex[2] = {kDeflection1, kDeflection2};
-constexpr EkfIndex kDeflectionRateIndex[2] = {kDeflectionRate1, kDeflectionRate2};
-constexpr EkfIndex kOmegaIndex[2] = {kOmega1, kOmega2};
-constexpr EkfIndex kThrustScaleIndex[2] = {kThrustScale1, kThrustScale2};
-constexpr EkfIndex kGaugeOffsetIndex[2] = {kGaugeOffset1, kGaugeOffset2};
-constexpr EkfIndex kStrainScaleIndex[2] = {kStrainScale1, kStrainScale2};
+constexpr EkfIndex kDeflectionIndex[kBirotorRotors] = {kDeflection1, kDeflection2};
+constexpr EkfIndex kDeflectionRateIndex[kBirotorRotors] = {kDeflectionRate1, kDeflectionRate2};
+constexpr EkfIndex kOmegaIndex[kBirotorRotors] = {kOmega1, kOmega2};
+constexpr EkfIndex kThrustScaleIndex[kBirotorRotors] = {kThrustScale1, kThrustScale2};
+constexpr EkfIndex kGaugeOffsetIndex[kBirotorRotors] = {kGaugeOffset1, kGaugeOffset2};
+constexpr EkfIndex kStrainScaleIndex[kBirotorRotors] = {kStrainScale1, kStrainScale2};
 constexpr double kStrainScaleVarianceCeiling = 0.25;  // of var(g_i) in P and of its published sigma^2 [1]
 
 using EkfState = Eigen::Matrix<double, kEkfStateSize, 1>;
@@ -64,7 +65,7 @@ using DynamicVector = Eigen::Matrix<double, kDynamicStateSize, 1>;
 // Input held over one prediction interval: clamped rotor speed commands, and
 // whether a support (the ground) holds the body (GroundContact decides).
 struct EkfInput {
-  double omega_cmd_rad_s[2] = {0, 0};
+  double omega_cmd_rad_s[kBirotorRotors] = {0, 0};
   bool body_supported = false;
 };
 
@@ -209,7 +210,7 @@ struct StrainMeasurementModel : MeasurementModel<2> {
   static Linearization Linearize(const EkfState& x) {
     Linearization at;
     at.jacobian.setZero();
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       const int b = kDeflectionIndex[i], e = kGaugeOffsetIndex[i], g = kStrainScaleIndex[i];
       at.predicted(i) = x(g) * x(b) + x(e);
       at.jacobian(i, b) = x(g);
@@ -288,7 +289,7 @@ inline EkfState EkfProcessModel::Derivative(const EkfState& x, const EkfInput& u
     x_dot(kDeflectionRate1) = b_ddot(0);
     x_dot(kDeflectionRate2) = b_ddot(1);
   }
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     x_dot(kOmegaIndex[i]) = MotorLagRate(params_, x(kOmegaIndex[i]), u.omega_cmd_rad_s[i]);
   }
   return x_dot;
@@ -351,11 +352,11 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
   DynamicMatrix a = DynamicMatrix::Zero();
   a(kDeflection1, kDeflectionRate1) = 1.0;
   a(kDeflection2, kDeflectionRate2) = 1.0;
-  const Eigen::Vector2d grad[2] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
+  const Eigen::Vector2d grad[kBirotorRotors] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
   for (int r = 0; r < 3; ++r) {
     const int row = kAccCoordinate[r];
     for (int c = 0; c < 5; ++c) a(kAccRow[r], kJetState[c]) = d_acc(row, c);
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       a(kAccRow[r], kOmegaIndex[i]) = d_acc(row, 5 + i) * grad[i](0);
       a(kAccRow[r], kThrustScaleIndex[i]) = d_acc(row, 5 + i) * grad[i](1);
     }
@@ -369,7 +370,7 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
     accel->a_z0_m_s2 = acc_full(kZ) + params_.gravity_m_s2;
     accel->h.setZero();
     for (int c = 0; c < 5; ++c) accel->h(kJetState[c]) = d_acc(kZ, c);
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       accel->h(kOmegaIndex[i]) = d_acc(kZ, 5 + i) * grad[i](0);
       accel->h(kThrustScaleIndex[i]) = d_acc(kZ, 5 + i) * grad[i](1);
     }
@@ -381,8 +382,8 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
 inline double EkfProcessModel::MassDerivative(const EkfState& x, DynamicVector* column) const {
   const FreeArmState<double> arm = ArmState(x);
   constexpr double kStep = 1e-4;  // of r_m; truncation ~1e-8 relative, round-off ~1e-12
-  FreeArmState<double> arm_dot[2];
-  Eigen::Vector2d specific_force[2];
+  FreeArmState<double> arm_dot[kBirotorRotors];
+  Eigen::Vector2d specific_force[kBirotorRotors];
   for (int side = 0; side < 2; ++side) {
     VehicleParams p = params_;
     p.body_mass_kg *= x(kBodyMassScale) + (side == 0 ? kStep : -kStep);
@@ -406,11 +407,11 @@ inline DynamicMatrix EkfProcessModel::SupportedJacobian(const EkfState& x) const
   DynamicMatrix a = DynamicMatrix::Zero();
   a(kDeflection1, kDeflectionRate1) = 1.0;
   a(kDeflection2, kDeflectionRate2) = 1.0;
-  const Eigen::Vector2d grad[2] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
+  const Eigen::Vector2d grad[kBirotorRotors] = {ForceGradient(x, 0), ForceGradient(x, 1)};  // (df/domega, df/dmu)
   for (int r = 0; r < 2; ++r) {
     const int row = kDeflectionRateIndex[r];
     for (int c = 0; c < 4; ++c) a(row, kJetState[c]) = acc(r).v(c);
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       a(row, kOmegaIndex[i]) = acc(r).v(4 + i) * grad[i](0);
       a(row, kThrustScaleIndex[i]) = acc(r).v(4 + i) * grad[i](1);
     }
@@ -456,7 +457,7 @@ inline AccelerometerMeasurementModel::Linearization AccelerometerMeasurementMode
   out.jacobian(0, kPitchRate) = a_z.v(2);
   out.jacobian(0, kDeflectionRate1) = a_z.v(3);
   out.jacobian(0, kDeflectionRate2) = a_z.v(4);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const Eigen::Vector2d grad = process.ForceGradient(x, i);  // (df/domega, df/dmu)
     out.jacobian(0, kOmegaIndex[i]) = a_z.v(5 + i) * grad(0);
     out.jacobian(0, kThrustScaleIndex[i]) = a_z.v(5 + i) * grad(1);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "estimator/ekf_force_estimator.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -40,7 +41,7 @@ void EkfForceEstimator::UpdateLearning() {
 void EkfForceEstimator::StartSettling() {
   settling_.pending = options_.learn_strain_scale && options_.estimate_gauge_offsets;
   settling_.until_utime = last_utime_ + static_cast<int64_t>(options_.slow_learning_delay_s / kMicrosecond);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const int e = kGaugeOffsetIndex[i];
     settling_.offset_rad[i] = state_(e);
     settling_.offset_variance_rad2[i] = covariance_(e, e);
@@ -59,7 +60,7 @@ void EkfForceEstimator::SplitScaleAndOffsetAgain() {
   // next strain samples split the unexplained part again, by the priors,
   // at a linearisation point that is now right.
   settling_.pending = false;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const int e = kGaugeOffsetIndex[i], g = kStrainScaleIndex[i];
     state_(e) = settling_.offset_rad[i];
     covariance_.row(e).setZero();
@@ -94,7 +95,7 @@ void EkfForceEstimator::FillLearnedParameters(StrainStepInfo* info) {
     learned_.value[p] = state_(p);
     if (!slow_frozen_) learned_.std[p] = std::sqrt(std::max(covariance_(p, p), 0.0));
   }
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     info->learned_strain_scale[i] = learned_.value[kStrainScaleIndex[i]];
     // Frozen (on the ground): the sigma of the last learning sample (at rest
     // the deflection is too small to weigh the offset by).

@@ -6,13 +6,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 namespace {
 
 bool FiniteWithin(double value, double limit) { return std::isfinite(value) && std::abs(value) <= limit; }
 
 bool IsFinite(const ForceEstimate& e) {
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     if (!std::isfinite(e.force_n[i]) || !std::isfinite(e.force_std_n[i]) || !std::isfinite(e.thrust_scale[i])) {
       return false;
     }
@@ -123,17 +125,17 @@ void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
   health_.strain_scale_from_state_file = true;
   LearnedVehicleParameters learned;
   learned.has_strain_scale = true;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     learned.strain_scale[i] = calibration.strain_scale[i];
     learned.strain_scale_std[i] = calibration.strain_scale_std[i];
   }
   method_->SetLearnedParameters(learned);
 }
 
-void EstimatorPipeline::UseGaugeOffsets(const double offset_rad[2], const double offset_std_rad[2],
-                                        GaugeOffsetSource source) {
+void EstimatorPipeline::UseGaugeOffsets(const double offset_rad[kBirotorRotors],
+                                        const double offset_std_rad[kBirotorRotors], GaugeOffsetSource source) {
   double prior_std_rad[2];  // in deflection: o_i / s_i
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     calibration_.offset_rad[i] = offset_rad[i];
     calibration_.offset_std_rad[i] = offset_std_rad[i];
     prior_std_rad[i] = offset_std_rad[i] / calibration_.scale[i];
@@ -159,7 +161,7 @@ void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
     health_.body_mass_std_kg = info.learned_body_mass_std_kg;
   }
   if (!info.has_learned_gauge_offset) return;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     health_.gauge.offset_rad[i] = calibration_.offset_rad[i] + calibration_.scale[i] * info.learned_gauge_offset_rad[i];
     health_.gauge.offset_std_rad[i] = calibration_.scale[i] * info.learned_gauge_offset_std_rad[i];
   }
@@ -370,7 +372,7 @@ StrainSample EstimatorPipeline::Condition(const StrainSample& sample, int64_t pr
   StrainSample deflection = calibration_.Apply(sample);
   if (config_.harmonic_notch.enabled) {
     rotor_speed_.Advance(sample.utime);
-    const double omega_rad_s[2] = {rotor_speed_.omega_rad_s(0), rotor_speed_.omega_rad_s(1)};
+    const double omega_rad_s[kBirotorRotors] = {rotor_speed_.omega_rad_s(0), rotor_speed_.omega_rad_s(1)};
     const double dt_s = previous_utime >= 0 && !backwards_jump ? (sample.utime - previous_utime) * 1e-6 : 0.0;
     notch_.Apply(dt_s, omega_rad_s, &deflection);
   }
@@ -382,7 +384,7 @@ void EstimatorPipeline::ReplaceNonFinite(const StrainSample& sample, ForceEstima
   if (has_finite_estimate_) {
     *estimate = last_finite_estimate_;
   } else {
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       estimate->force_n[i] = config_.vehicle.HoverForceN();
       estimate->force_std_n[i] = config_.vehicle.HoverForceN();
       estimate->thrust_scale[i] = 1.0;

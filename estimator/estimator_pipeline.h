@@ -24,6 +24,7 @@
 #include "estimator/input_admission.h"
 #include "estimator/model_consistency.h"
 #include "estimator/motor_speed_tracker.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -106,7 +107,8 @@ class EstimatorPipeline {
   void ResetMethod(ResetReason reason, int64_t utime);
   // Gives the method a new calibration offset (file, tare, state file, or
   // what it learned before a reset) and reports it.
-  void UseGaugeOffsets(const double offset_rad[2], const double offset_std_rad[2], GaugeOffsetSource source);
+  void UseGaugeOffsets(const double offset_rad[kBirotorRotors], const double offset_std_rad[kBirotorRotors],
+                       GaugeOffsetSource source);
   // health_.gauge = calibration_ + what the method learned (scaled to the raw reading).
   void UpdateReportedGaugeOffsets(const StrainStepInfo& info);
   // Resets before the method sees the strain sample (start, backwards jump,

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -23,9 +24,9 @@ enum class FilterConvergence : int {
 // the pipeline replaced a non-finite estimate (InputStatusFacts).
 struct FilterStatusFacts {
   FilterConvergence convergence = FilterConvergence::kNoEstimate;
-  bool measurement_rejected = false;     // the strain sample failed its gate: STATUS_MEASUREMENT_REJECTED
-  bool rotor_fault[2] = {false, false};  // STATUS_ROTOR1_FAULT, STATUS_ROTOR2_FAULT
-  bool thrust_deficit = false;           // both rotors below the map: STATUS_THRUST_DEFICIT
+  bool measurement_rejected = false;                  // the strain sample failed its gate: STATUS_MEASUREMENT_REJECTED
+  bool rotor_fault[kBirotorRotors] = {false, false};  // STATUS_ROTOR1_FAULT, STATUS_ROTOR2_FAULT
+  bool thrust_deficit = false;                        // both rotors below the map: STATUS_THRUST_DEFICIT
 };
 
 // The pipeline's facts (EstimatorPipeline).

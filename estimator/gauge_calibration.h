@@ -6,6 +6,7 @@
 
 #include "model/birotor_dynamics.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -15,9 +16,9 @@ enum class GaugeOffsetSource : int { kParameters = 0, kTare = 1, kStateFile = 2 
 const char* GaugeOffsetSourceName(GaugeOffsetSource source);  // "params", "tare", "state_file"
 
 struct GaugeCalibration {
-  double scale[2] = {1.0, 1.0};       // s_i [1]
-  double offset_rad[2] = {0.0, 0.0};  // o_i [rad]
-  double offset_std_rad[2] = {0, 0};  // one sigma of o_i [rad]
+  double scale[kBirotorRotors] = {1.0, 1.0};       // s_i [1]
+  double offset_rad[kBirotorRotors] = {0.0, 0.0};  // o_i [rad]
+  double offset_std_rad[kBirotorRotors] = {0, 0};  // one sigma of o_i [rad]
   GaugeOffsetSource source = GaugeOffsetSource::kParameters;
   // The strain scale g_i learned in flight (EkfOptions::learn_strain_scale,
   // docs/mismatch.md): the calibrated gauge reads g_i b_i + e_i, g_i = true
@@ -30,7 +31,7 @@ struct GaugeCalibration {
   // gauge_scale, gauge_offset_rad and gauge_offset_std_rad of the vehicle.
   static GaugeCalibration FromVehicle(const VehicleParams& params) {
     GaugeCalibration c;
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       c.scale[i] = params.gauge_scale[i];
       c.offset_rad[i] = params.gauge_offset_rad[i];
       c.offset_std_rad[i] = params.gauge_offset_std_rad;
@@ -40,7 +41,8 @@ struct GaugeCalibration {
   // b_i = (b_meas_i - o_i) / s_i for both arms; utime and seq are kept.
   StrainSample Apply(const StrainSample& reading) const {
     StrainSample out = reading;
-    for (int i = 0; i < 2; ++i) out.deflection_rad[i] = (reading.deflection_rad[i] - offset_rad[i]) / scale[i];
+    for (int i = 0; i < kBirotorRotors; ++i)
+      out.deflection_rad[i] = (reading.deflection_rad[i] - offset_rad[i]) / scale[i];
     return out;
   }
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 namespace {
 
@@ -128,7 +130,7 @@ TareEvent GaugeTare::AddStrain(const StrainSample& reading) {
   // o_i = mean(b_meas_i) - s_i b_rest_i; one sigma: the mean's standard error
   // (white noise) and the rest deflection's own uncertainty.
   const double n = static_cast<double>(count_);
-  double offset[2], std_rad[2];
+  double offset[kBirotorRotors], std_rad[2];
   for (int i = 0; i < 2; ++i) {
     offset[i] = sum_[i] / n;
     const double variance = std::max(0.0, (sum_sq_[i] - n * offset[i] * offset[i]) / (n - 1.0));

@@ -20,6 +20,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/gauge_calibration.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -73,8 +74,8 @@ class GaugeTare {
   int64_t count_ = 0;
   double sum_[2] = {0, 0}, sum_sq_[2] = {0, 0};
 
-  double offset_rad_[2] = {0, 0};
-  double offset_std_rad_[2] = {0, 0};
+  double offset_rad_[kBirotorRotors] = {0, 0};
+  double offset_std_rad_[kBirotorRotors] = {0, 0};
   TareCounters counters_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
 void HarmonicNotch::Reset() {
@@ -10,11 +12,11 @@ void HarmonicNotch::Reset() {
   }
 }
 
-void HarmonicNotch::Apply(double dt_s, const double omega_rad_s[2], StrainSample* sample) {
+void HarmonicNotch::Apply(double dt_s, const double omega_rad_s[kBirotorRotors], StrainSample* sample) {
   if (!options_.enabled) return;
   const bool dt_ok = dt_s > 0 && dt_s <= options_.max_dt_s;
   const double r = std::exp(-M_PI * options_.bandwidth_hz * dt_s);
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     double x = sample->deflection_rad[arm];
     for (int h = 0; h < kHarmonics; ++h) {
       Section& s = sections_[arm][h];

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "estimator/estimator_config.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -22,7 +23,7 @@ class HarmonicNotch {
   // dt_s outside (0, max_dt_s], passes the sample and restarts from it.
   //   H(z) = g (1 - 2 cos(w0) z^-1 + z^-2) / (1 - 2 r cos(w0) z^-1 + r^2 z^-2),
   //   w0 = h omega dt, r = exp(-pi bandwidth dt), g: unit gain at DC.
-  void Apply(double dt_s, const double omega_rad_s[2], StrainSample* sample);
+  void Apply(double dt_s, const double omega_rad_s[kBirotorRotors], StrainSample* sample);
 
  private:
   // Direct form I memory of one notch (robust to coefficients that change per sample).

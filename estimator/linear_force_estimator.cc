@@ -7,6 +7,7 @@
 
 #include "estimator/filter_status.h"
 #include "estimator/luenberger_gain.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -86,7 +87,7 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
   // uncertainties (thrust scale sigma at the hover force).
   state_.setZero();
   covariance_.setZero();
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     state_(kLinDeflectionIndex[i]) =
         (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / scale_(kLinDeflection1);
     covariance_(kLinDeflectionIndex[i], kLinDeflectionIndex[i]) = strain_noise_(i, i);
@@ -145,14 +146,14 @@ FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
   MeasurementLinearization<kLinearOutputSize, kLinearStateSize> at;
   at.jacobian = model_.c;
   Eigen::Vector2d z;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     at.predicted(i) = state_(kLinDeflectionIndex[i]);
     z(i) = (sample.deflection_rad[i] - model_.deflection_hover_rad[i]) / deflection_scale;
   }
   // After gate_consecutive_limit rejections in a row: open up the forces
   // (the EKF's inflation of var(mu_i), at the hover force), then fuse.
   const auto inflate = [this](LinearMatrix* cov) {
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       const double extra = noise_.gate_inflation_thrust_scale_std * model_.force_hover_n[i] / scale_(kLinForceIndex[i]);
       (*cov)(kLinForceIndex[i], kLinForceIndex[i]) += extra * extra;
     }
@@ -165,7 +166,7 @@ FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
 
 void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate,
                                         FilterStatusFacts* facts) {
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const int f = kLinForceIndex[i];
     const double force = model_.force_hover_n[i] + scale_(f) * state_(f);
     estimate->force_n[i] = force;

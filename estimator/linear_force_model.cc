@@ -12,6 +12,7 @@
 #include "model/equilibrium.h"
 #include "model/linearization.h"
 #include "model/observability.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -72,7 +73,7 @@ LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOpt
   model.period_s = 1.0 / options.strain_rate_hz;
 
   const Equilibrium eq = SolveHoverEquilibrium(params);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     model.deflection_hover_rad[i] = eq.deflection_rad[i];
     model.force_hover_n[i] = eq.force_n[i];
   }

@@ -9,6 +9,7 @@
 
 #include "estimator/estimator_config.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -27,8 +28,8 @@ constexpr int kLinearStateSize = 7;
 // eq. 4.6); phi_dot never drives them (block triangular A).
 constexpr int kStrainObservableSize = 6;
 constexpr int kLinearOutputSize = 2;  // the two strain gauges
-constexpr LinearIndex kLinDeflectionIndex[2] = {kLinDeflection1, kLinDeflection2};
-constexpr LinearIndex kLinForceIndex[2] = {kLinForce1, kLinForce2};
+constexpr LinearIndex kLinDeflectionIndex[kBirotorRotors] = {kLinDeflection1, kLinDeflection2};
+constexpr LinearIndex kLinForceIndex[kBirotorRotors] = {kLinForce1, kLinForce2};
 
 using LinearState = Eigen::Matrix<double, kLinearStateSize, 1>;
 using LinearMatrix = Eigen::Matrix<double, kLinearStateSize, kLinearStateSize>;
@@ -48,8 +49,8 @@ struct LinearForceModel {
   LinearGyroMatrix c_gyro;        // gyro: y = phi_dot [1]
   LinearState scale;              // x = diag(scale) x_s makes every block O(1) [unit]
   double period_s = 1e-3;         // 1 / strain rate [s]
-  double deflection_hover_rad[2] = {0, 0};
-  double force_hover_n[2] = {0, 0};
+  double deflection_hover_rad[kBirotorRotors] = {0, 0};
+  double force_hover_n[kBirotorRotors] = {0, 0};
   double force_psd_n2_s = 0;  // Q_c on each force (random walk) [N^2/s]
 };
 

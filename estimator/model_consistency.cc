@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "samples/rotor_count.h"
+
 namespace birotor {
 
 const char* MismatchParameterName(MismatchParameter parameter) {
@@ -31,7 +33,8 @@ ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& 
   state_.arm_mode = arm_mode_.state();
 }
 
-void ModelConsistencyMonitor::AddStrain(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier) {
+void ModelConsistencyMonitor::AddStrain(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne,
+                                        bool outlier) {
   if (!options_.enabled || !judging_) return;
   const bool arm_mode_mismatch = arm_mode_.Add(utime, deflection_rad, airborne, outlier);
   state_.arm_mode = arm_mode_.state();
@@ -129,7 +132,7 @@ void ModelConsistencyMonitor::AddToCusum(const FusionReport& report) {
   }
 }
 
-void ModelConsistencyMonitor::Raise(int64_t utime, const double thrust_scale[2]) {
+void ModelConsistencyMonitor::Raise(int64_t utime, const double thrust_scale[kBirotorRotors]) {
   state_.mismatch = true;
   state_.confirmed = false;
   state_.raised_utime = utime;
@@ -197,7 +200,7 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
   state_.confirmed = !state_.mismatch && consistent_run_ >= options_.confirm_windows;
 }
 
-MismatchParameter ModelConsistencyMonitor::Attribute(const double thrust_scale[2]) const {
+MismatchParameter ModelConsistencyMonitor::Attribute(const double thrust_scale[kBirotorRotors]) const {
   switch (state_.worst_source) {
     case FusionSource::kTelemetry:
       return MismatchParameter::kMotorLag;

@@ -12,6 +12,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -76,13 +77,13 @@ struct ModelConsistencyState {
     const double s = statistic > fast_statistic ? statistic : fast_statistic;
     return s > arm_mode.statistic ? s : arm_mode.statistic;
   }
-  bool raised_fast = false;                   // the current (or last) mismatch was raised by the fast test
-  int64_t raised_utime = -1;                  // when the current (or last) mismatch was raised [us]; -1 never
-  int64_t raised_count = 0;                   // mismatches raised since start-up
-  int64_t windows = 0;                        // windows completed
-  SourceWindowStats last[kNumFusionSources];  // the newest completed window
-  double thrust_scale_mean[2] = {1, 1};       // window mean of mu_i of the estimates [1]
-  ArmModeState arm_mode;                      // the arm-mode test (options arm_mode_*)
+  bool raised_fast = false;                           // the current (or last) mismatch was raised by the fast test
+  int64_t raised_utime = -1;                          // when the current (or last) mismatch was raised [us]; -1 never
+  int64_t raised_count = 0;                           // mismatches raised since start-up
+  int64_t windows = 0;                                // windows completed
+  SourceWindowStats last[kNumFusionSources];          // the newest completed window
+  double thrust_scale_mean[kBirotorRotors] = {1, 1};  // window mean of mu_i of the estimates [1]
+  ArmModeState arm_mode;                              // the arm-mode test (options arm_mode_*)
 };
 
 class ModelConsistencyMonitor {
@@ -96,7 +97,7 @@ class ModelConsistencyMonitor {
   void Add(const FusionReport& report);
   // Every strain sample the method got, for the arm-mode test (see
   // ArmModeMonitor::Add). A method without innovations is not judged.
-  void AddStrain(int64_t utime, const double deflection_rad[2], bool airborne, bool outlier);
+  void AddStrain(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier);
   // The strain scales g_i the method learns and their sigmas: the arm-mode
   // test then allows what they may be (WithLearnedStrainScales).
   void SetLearnedStrainScales(const double g[2], const double g_std[2]) {
@@ -134,11 +135,11 @@ class ModelConsistencyMonitor {
   void CloseWindow(int64_t utime);
   // An accelerometer report into the fast test's CUSUM; raises at its limit.
   void AddToCusum(const FusionReport& report);
-  void Raise(int64_t utime, const double thrust_scale[2]);
+  void Raise(int64_t utime, const double thrust_scale[kBirotorRotors]);
   // The tip mass not yet confirmed by the arm mode: sigma and VALID.
   void AwaitArmMode(ConsistencyStatusFacts* facts) const;
   // The parameter named for the worst source, given the thrust scales mu_i.
-  MismatchParameter Attribute(const double thrust_scale[2]) const;
+  MismatchParameter Attribute(const double thrust_scale[kBirotorRotors]) const;
 
   ModelConsistencyOptions options_;
   ArmModeExpectation arm_mode_file_;  // the file's, before any learned scale
@@ -147,10 +148,10 @@ class ModelConsistencyMonitor {
   int64_t window_start_utime_ = -1;
   bool judging_ = false;  // a report with an innovation has arrived
   Accumulator acc_[kNumFusionSources];
-  double cusum_high_ = 0;                   // C+ of the fast test [1]
-  double cusum_low_ = 0;                    // C- [1]
-  double newest_thrust_scale_[2] = {1, 1};  // of the newest estimate [1]
-  double thrust_scale_sum_[2] = {0, 0};
+  double cusum_high_ = 0;                                // C+ of the fast test [1]
+  double cusum_low_ = 0;                                 // C- [1]
+  double newest_thrust_scale_[kBirotorRotors] = {1, 1};  // of the newest estimate [1]
+  double thrust_scale_sum_[kBirotorRotors] = {0, 0};
   int64_t estimates_ = 0;
   int inconsistent_run_ = 0;
   int consistent_run_ = 0;

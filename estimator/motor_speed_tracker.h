@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -37,11 +38,11 @@ class MotorSpeedTracker {
   double telemetry_timeout_s_;
   bool has_motor_ = false;
   int64_t model_utime_ = 0;
-  double command_rad_s_[2] = {0, 0};  // clamped command in effect
-  double model_rad_s_[2] = {0, 0};    // motor-model speed at model_utime_
+  double command_rad_s_[kBirotorRotors] = {0, 0};  // clamped command in effect
+  double model_rad_s_[2] = {0, 0};                 // motor-model speed at model_utime_
   double telemetry_rad_s_[2] = {0, 0};
   int64_t telemetry_utime_[2] = {-1, -1};
-  double omega_rad_s_[2] = {0, 0};
+  double omega_rad_s_[kBirotorRotors] = {0, 0};
   bool from_telemetry_[2] = {false, false};
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -29,13 +30,13 @@ void RotorFaultMonitor::Flag::Update(bool raise, bool lower, int64_t utime, int6
 void RotorFaultMonitor::Update(int64_t utime, const Eigen::Vector2d& thrust_scale, const Eigen::Matrix2d& covariance) {
   const double n = options_.fault_n_sigma;
   const double std_d = std::sqrt(std::max(covariance(0, 0) + covariance(1, 1) - 2.0 * covariance(0, 1), 0.0));
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const double d = thrust_scale(1 - i) - thrust_scale(i);
     fault_[i].Update(d - n * std_d > options_.rotor_fault_asymmetry,
                      d + n * std_d < options_.rotor_fault_clear_asymmetry, utime, persistence_us_);
   }
   double upper = -1e9, lower = -1e9;  // max over rotors of mu + n std, mu - n std
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < kBirotorRotors; ++i) {
     const double std_mu = std::sqrt(covariance(i, i));
     upper = std::max(upper, thrust_scale(i) + n * std_mu);
     lower = std::max(lower, thrust_scale(i) - n * std_mu);

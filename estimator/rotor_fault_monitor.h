@@ -10,6 +10,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -39,7 +40,7 @@ class RotorFaultMonitor {
 
   EkfOptions options_;
   int64_t persistence_us_;
-  Flag fault_[2];
+  Flag fault_[kBirotorRotors];
   Flag deficit_;
 };
 

@@ -9,6 +9,7 @@
 #include "params/regular_file.h"
 #include "params/vehicle_params_yaml.h"
 #include "program/logging.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -44,8 +45,8 @@ bool ParsePair(const std::string& text, double out[2]) {
 constexpr StdRange kStrainScaleRange = {0.2, 5.0};
 constexpr StdRange kStrainScaleStdRange = {1e-6, 0.5};
 
-bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>& fields, double scale[2],
-                     double scale_std[2], std::string* error) {
+bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>& fields, double scale[kBirotorRotors],
+                     double scale_std[kBirotorRotors], std::string* error) {
   if (!ParsePair(fields["strain_scale"], scale) || !ParsePair(fields["strain_scale_std"], scale_std)) {
     *error = path + ": corrupt (strain_scale or strain_scale_std not two finite numbers)";
     return false;
@@ -165,7 +166,7 @@ bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum
   }
   // The checksum is no defence against a forged file (anyone can recompute
   // it): every value is range-checked as the parameter file's would be.
-  double offset[2], std_rad[2];
+  double offset[kBirotorRotors], std_rad[2];
   const StdRange std_range = OffsetStdRange();
   if (!ParsePair(fields["gauge_offset_rad"], offset) || !ParsePair(fields["gauge_offset_std_rad"], std_rad)) {
     *error = path + ": corrupt (gauge_offset_rad or gauge_offset_std_rad missing or not two finite numbers)";
@@ -184,7 +185,7 @@ bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum
       return false;
     }
   }
-  double scale[2] = {1.0, 1.0}, scale_std[2] = {0.0, 0.0};
+  double scale[kBirotorRotors] = {1.0, 1.0}, scale_std[kBirotorRotors] = {0.0, 0.0};
   const bool has_scale = fields.count("strain_scale") > 0 || fields.count("strain_scale_std") > 0;
   if (has_scale && !ReadStrainScale(path, fields, scale, scale_std, error)) return false;
   for (int i = 0; i < 2; ++i) {

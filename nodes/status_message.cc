@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "numerics/percentile.h"
+#include "samples/rotor_count.h"
 #include "transport/lcm_codec.h"
 #include "transport/log_io.h"
 
@@ -79,7 +80,7 @@ void FillInputHealth(const InputCounters& in, const char* channel, const Pipelin
 // file's (scale 1, the file's body mass, sigma NaN).
 void FillLearnedParameters(const PipelineHealth& health, estimator_status_t* message) {
   const bool scale_learned = health.gauge.has_strain_scale;
-  for (int arm = 0; arm < 2; ++arm) {
+  for (int arm = 0; arm < kBirotorRotors; ++arm) {
     message->strain_scale[arm] = scale_learned ? health.gauge.strain_scale[arm] : 1.0;
     message->strain_scale_std[arm] = scale_learned ? health.gauge.strain_scale_std[arm] : kNaN;
   }
@@ -117,7 +118,7 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->resets = health.resets;
   message->last_reset_reason = ResetReasonName(health.last_reset_reason);
   message->published = health.published;
-  for (int rotor = 0; rotor < 2; ++rotor) {
+  for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
     message->force_n[rotor] = health.last_estimate.force_n[rotor];
     message->thrust_scale[rotor] = health.last_estimate.thrust_scale[rotor];
     message->gauge_offset_rad[rotor] = health.gauge.offset_rad[rotor];

@@ -151,7 +151,7 @@ class HoverPublisher {
     if (k % 2 != 0) return;
     motor_.utime = utime;
     motor_.seq = static_cast<int32_t>(k / 2);
-    for (int i = 0; i < kBirotorRotors; ++i) {
+    for (int i = 0; i < birotor::kBirotorRotors; ++i) {
       motor_.omega_cmd_rad_s[i] = kHoverOmegaRadS;
       motor_.omega_meas_rad_s[i] = kHoverOmegaRadS;
     }
