@@ -12,6 +12,7 @@
 #include "estimator/harmonic_notch.h"
 #include "estimator/motor_speed_tracker.h"
 #include "params/scenario_yaml.h"
+#include "samples/rotor_count.h"
 #include "samples/sample_recorder.h"
 #include "simulator/simulator.h"
 
@@ -136,7 +137,7 @@ void BM_HarmonicNotchSample(benchmark::State& state) {
     StrainSample s = NextStrain(
         events, &index, &offset_us, [&](const MotorSample& m) { speeds.AddMotor(m); }, [](const ImuSample&) {});
     speeds.Advance(s.utime);
-    const double omega_rad_s[2] = {speeds.omega_rad_s(0), speeds.omega_rad_s(1)};
+    const double omega_rad_s[birotor::kBirotorRotors] = {speeds.omega_rad_s(0), speeds.omega_rad_s(1)};
     notch.Apply((s.utime - last_utime) * 1e-6, omega_rad_s, &s);
     last_utime = s.utime;
     benchmark::DoNotOptimize(s);

@@ -7,6 +7,7 @@
 
 #include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
+#include "samples/rotor_count.h"
 #include "samples/samples.h"
 
 namespace birotor {
@@ -55,10 +56,10 @@ struct StrainStepInfo {
 struct LearnedVehicleParameters {
   bool has_strain_scale = false;  // the fields below hold values to start from
   bool has_body_mass = false;
-  double strain_scale[2] = {1, 1};      // g_i [1]
-  double strain_scale_std[2] = {0, 0};  // [1]
-  double body_mass_kg = 0;              // [kg]
-  double body_mass_std_kg = 0;          // [kg]
+  double strain_scale[kBirotorRotors] = {1, 1};      // g_i [1]
+  double strain_scale_std[kBirotorRotors] = {0, 0};  // [1]
+  double body_mass_kg = 0;                           // [kg]
+  double body_mass_std_kg = 0;                       // [kg]
 };
 
 // One estimation method. Samples arrive already validated and in time order

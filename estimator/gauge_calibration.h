@@ -25,8 +25,8 @@ struct GaugeCalibration {
   // gauge scale over s_i times the file's stiffness over the true one.
   // Persisted with the offsets; not applied by Apply (the filter holds it).
   bool has_strain_scale = false;
-  double strain_scale[2] = {1.0, 1.0};      // g_i [1]
-  double strain_scale_std[2] = {0.0, 0.0};  // [1]
+  double strain_scale[kBirotorRotors] = {1.0, 1.0};      // g_i [1]
+  double strain_scale_std[kBirotorRotors] = {0.0, 0.0};  // [1]
 
   // gauge_scale, gauge_offset_rad and gauge_offset_std_rad of the vehicle.
   static GaugeCalibration FromVehicle(const VehicleParams& params) {

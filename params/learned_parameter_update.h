@@ -14,6 +14,7 @@
 
 #include "estimator/estimator_config.h"
 #include "model/vehicle_params.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -21,8 +22,8 @@ namespace birotor {
 // last ESTIMATOR_STATUS of a flight log.
 struct LearnedVehicleValues {
   bool has_strain_scale = false;
-  double strain_scale[2] = {1, 1};      // g_i [1]
-  double strain_scale_std[2] = {0, 0};  // one sigma [1]
+  double strain_scale[kBirotorRotors] = {1, 1};      // g_i [1]
+  double strain_scale_std[kBirotorRotors] = {0, 0};  // one sigma [1]
   bool has_body_mass = false;
   double body_mass_kg = 0;      // [kg]
   double body_mass_std_kg = 0;  // one sigma [kg]
