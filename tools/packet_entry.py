@@ -22,24 +22,17 @@ Usage: tools/packet_entry.py [ROOT]   (default: this repository)
        tools/packet_entry.py --self-test
 Exits 1 and lists file:line of each finding.
 """
-import os
 import re
 import sys
 
-SOURCE_SUFFIXES = (".cc", ".h", ".cpp", ".hpp")
+from source_scan import blank, covered_files, run_check
+
 EXCLUDED_DIRS = {"tests", "fuzz", "corpus", ".git"}
 
 NODE_CLASS = re.compile(r"\b(?:class|struct)\s+(\w+)\s*(?:final\s*)?:\s*public\s+(?:\w+::)*PacketHandler\b[^{;]*\{")
 ACCESS = re.compile(r"\b(public|private|protected)\s*:(?!:)")
 FUNCTION = re.compile(r"\b(\w+)\s*\(([^()]*(?:\([^()]*\)[^()]*)*)\)")
 RAW_BYTES = re.compile(r"\bconst\s+(?:void|u?int8_t|char|unsigned\s+char)\s*\*")
-# Comments, then string and character literals (their text is not code).
-BLANKED = re.compile(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'', re.S)
-
-
-def blank(text):
-    """Comments and literals replaced by spaces, newlines kept (line numbers stay)."""
-    return BLANKED.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
 
 
 def class_members(code, start):
@@ -90,16 +83,6 @@ def findings(text):
     return sorted(found)
 
 
-def covered_files(root):
-    for folder, dirs, files in os.walk(root):
-        rel_folder = os.path.relpath(folder, root)
-        dirs[:] = sorted(d for d in dirs if d not in EXCLUDED_DIRS and not d.startswith("build")
-                         and not (rel_folder == "." and d.startswith(".")))
-        for name in sorted(files):
-            if name.endswith(SOURCE_SUFFIXES):
-                yield os.path.normpath(os.path.join(rel_folder, name))
-
-
 def self_test():
     one = """class A : public PacketHandler {
      public:
@@ -138,21 +121,9 @@ def self_test():
 
 
 def main():
-    if sys.argv[1:] == ["--self-test"]:
-        return self_test()
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    failures = 0
-    for rel in covered_files(root):
-        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
-            for line, message in findings(f.read()):
-                print("%s:%d: %s" % (rel, line, message))
-                failures += 1
-    if failures:
-        print("%d finding(s): one public HandlePacket(channel, bytes, receive time) per node, over its route table"
-              % failures)
-        return 1
-    print("every PacketHandler has one way in")
-    return 0
+    return run_check(findings, self_test, lambda root: covered_files(root, EXCLUDED_DIRS),
+                     "one public HandlePacket(channel, bytes, receive time) per node, over its route table",
+                     "every PacketHandler has one way in")
 
 
 if __name__ == "__main__":

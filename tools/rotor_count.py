@@ -25,17 +25,16 @@ Usage: tools/rotor_count.py [ROOT]   (default: this repository)
        tools/rotor_count.py --self-test
 Exits 1 and lists file:line of each literal it finds.
 """
-import os
 import re
 import sys
 
-SOURCE_SUFFIXES = (".cc", ".h", ".cpp", ".hpp")
+from source_scan import blank, covered_files, line_of, run_check
+
 EXCLUDED_DIRS = {"lcmtypes", "tests", "corpus", ".git"}
 PER_ROTOR_PREFIXES = ("deflection", "omega", "force", "thrust_scale", "gauge", "rotor", "arm", "efficiency",
                       "max_force", "mu_", "strain_scale", "offset_rad", "command_rad_s", "weak")
 ARRAY_OF_TWO = re.compile(r"\b([A-Za-z_]\w*)\)?\[2\]")
 LOOP_OF_TWO = re.compile(r"for\s*\(\s*int\s+(rotor|arm)\s*=\s*0\s*;\s*\1\s*<\s*2\s*;")
-COMMENT_OR_STRING = re.compile(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\])*"', re.S)
 
 
 def is_per_rotor(name):
@@ -46,33 +45,15 @@ def is_per_rotor(name):
 
 
 def findings(text):
-    """(line, excerpt) of every per-rotor literal two in one source text."""
-    code = COMMENT_OR_STRING.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
+    """(line, message) of every per-rotor literal two in one source text."""
+    code = blank(text)
     out = []
     for match in ARRAY_OF_TWO.finditer(code):
         if is_per_rotor(match.group(1)):
-            out.append((code.count("\n", 0, match.start()) + 1, match.group(0)))
+            out.append((line_of(code, match.start()), "per-rotor literal 2: " + match.group(0)))
     for match in LOOP_OF_TWO.finditer(code):
-        out.append((code.count("\n", 0, match.start()) + 1, match.group(0)))
+        out.append((line_of(code, match.start()), "per-rotor literal 2: " + match.group(0)))
     return sorted(out)
-
-
-def scan(root):
-    problems = []
-    for directory, subdirs, files in os.walk(root):
-        rel = os.path.relpath(directory, root)
-        top = rel.split(os.sep)[0]
-        if top in EXCLUDED_DIRS or top.startswith("build") or any(p in EXCLUDED_DIRS for p in rel.split(os.sep)):
-            subdirs[:] = []
-            continue
-        for name in sorted(files):
-            if not name.endswith(SOURCE_SUFFIXES):
-                continue
-            path = os.path.join(directory, name)
-            with open(path, encoding="utf-8", errors="replace") as f:
-                for line, excerpt in findings(f.read()):
-                    problems.append(f"{os.path.relpath(path, root)}:{line}: {excerpt}")
-    return problems
 
 
 def self_test():
@@ -99,17 +80,9 @@ def self_test():
 
 
 def main():
-    if len(sys.argv) > 1 and sys.argv[1] == "--self-test":
-        return self_test()
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    problems = scan(root)
-    for p in problems:
-        print(p)
-    if problems:
-        print(f"{len(problems)} per-rotor literal 2(s): size them by kBirotorRotors (samples/rotor_count.h)")
-        return 1
-    print("rotor count: every per-rotor array and rotor/arm loop is sized by kBirotorRotors")
-    return 0
+    return run_check(findings, self_test, lambda root: covered_files(root, EXCLUDED_DIRS),
+                     "size them by kBirotorRotors (samples/rotor_count.h)",
+                     "rotor count: every per-rotor array and rotor/arm loop is sized by kBirotorRotors")
 
 
 if __name__ == "__main__":

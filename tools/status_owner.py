@@ -34,7 +34,8 @@ import os
 import re
 import sys
 
-SOURCE_SUFFIXES = (".cc", ".h", ".cpp", ".hpp")
+from source_scan import blank, covered_files, line_of, run_check
+
 COMPOSER_FILES = {os.path.join("estimator", "force_status.h"), os.path.join("estimator", "force_status.cc"),
                   os.path.join("transport", "counted_messages.cc")}  # the wire translation (docstring)
 EXCLUDED_DIRS = {"controller", "tests", "corpus", ".git"}
@@ -42,36 +43,16 @@ EXCLUDED_DIRS = {"controller", "tests", "corpus", ".git"}
 COMPOUND = re.compile(r"\bstatus\s*(\|=|&=)")
 ASSIGN = re.compile(r"\bstatus\s*=(?!=)([^;{}]*)")
 COMPOSED_RHS = re.compile(r"[|&~]|\bkStatus\w*|\bSTATUS_\w+")
-# Comments, then string and character literals (their text is not code).
-BLANKED = re.compile(r'//[^\n]*|/\*.*?\*/|"(?:\\.|[^"\\\n])*"|\'(?:\\.|[^\'\\\n])*\'', re.S)
-
-
-def blank(text):
-    """Comments and literals replaced by spaces, newlines kept (line numbers stay)."""
-    return BLANKED.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
-
-
 def status_writes(text):
     """(line, statement) of every composed write to a `status` in text."""
     code = blank(text)
     found = []
     for m in COMPOUND.finditer(code):
-        found.append((code.count("\n", 0, m.start()) + 1, m.group(0)))
+        found.append((line_of(code, m.start()), "status bits set outside estimator/force_status: " + m.group(0)))
     for m in ASSIGN.finditer(code):
         if COMPOSED_RHS.search(m.group(1)):
-            found.append((code.count("\n", 0, m.start()) + 1, " ".join(m.group(0).split())))
+            found.append((line_of(code, m.start()), "status bits set outside estimator/force_status: " + " ".join(m.group(0).split())))
     return sorted(found)
-
-
-def covered_files(root):
-    for folder, dirs, files in os.walk(root):
-        rel_folder = os.path.relpath(folder, root)
-        dirs[:] = sorted(d for d in dirs if d not in EXCLUDED_DIRS and not d.startswith("build")
-                         and not (rel_folder == "." and d.startswith(".")))
-        for name in sorted(files):
-            rel = os.path.normpath(os.path.join(rel_folder, name))
-            if name.endswith(SOURCE_SUFFIXES) and rel not in COMPOSER_FILES:
-                yield rel
 
 
 def self_test():
@@ -98,21 +79,9 @@ def self_test():
 
 
 def main():
-    if sys.argv[1:] == ["--self-test"]:
-        return self_test()
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    failures = 0
-    for rel in covered_files(root):
-        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
-            for line, statement in status_writes(f.read()):
-                print("%s:%d: status bits set outside estimator/force_status: %s" % (rel, line, statement))
-                failures += 1
-    if failures:
-        print("%d write(s): fill the part's facts (estimator/force_status.h) and let ComposeForceStatus decide"
-              % failures)
-        return 1
-    print("FORCE status: composed in estimator/force_status.cc only")
-    return 0
+    return run_check(status_writes, self_test, lambda root: covered_files(root, EXCLUDED_DIRS, COMPOSER_FILES),
+                     "fill the part's facts (estimator/force_status.h) and let ComposeForceStatus decide",
+                     "FORCE status: composed in estimator/force_status.cc only")
 
 
 if __name__ == "__main__":
