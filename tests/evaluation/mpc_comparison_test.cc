@@ -55,17 +55,21 @@ TEST(MpcComparisonTest, AggressiveInModeMpc) {
   EXPECT_GE(g.commands_over_rate, 2);  // the jump to omega_max + 1 and the jump at 200 (and their returns)
 }
 
-// Figures of case c (evaluation/control_cases.cc, the scenario's own seed)
-// flown in mode mpc (model_predictive) or by the nominal cascade.
-ControlFigures FlyCase(const std::string& name, bool model_predictive) {
+// The scenario of case name (evaluation/control_cases.cc) with its overrides,
+// on the scenario's own seed; a failure (and the default scenario) if unknown.
+Scenario CaseScenario(const std::string& name) {
   const ControlCase* c = FindControlCase(name);
   EXPECT_NE(c, nullptr) << name;
-  if (c == nullptr) return ControlFigures();
-  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+  if (c == nullptr) return Scenario();
+  return LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+}
+
+// Figures of case name flown in mode mpc (model_predictive) or by the nominal cascade.
+ControlFigures FlyCase(const std::string& name, bool model_predictive) {
   ControllerConfig controller = LoadControllerConfig(ConfigFile("controller.yaml"));
   controller.force_feedback = controller.model_predictive = model_predictive;
-  return FiguresOf(EvaluateControl(
-      RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller, ClosedLoopOptions())));
+  return FiguresOf(EvaluateControl(RunClosedLoop(CaseScenario(name), LoadEstimatorConfig(ConfigFile("estimator.yaml")),
+                                                 controller, ClosedLoopOptions())));
 }
 
 TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
@@ -110,11 +114,8 @@ TEST(MpcComparisonTest, FastestAcceptedTrajectoryKeepsTheCascadesAltitude) {
   // fallback. Measured on this seed (3): MPC 0.1725 m at |tilt| 0.512 rad,
   // the cascade 0.2282 m (at 0.633 rad); before altitude_weight_factor and
   // DENSE-IPM: 0.478 m and 8 late solves.
-  const ControlCase* c = FindControlCase("aggressive_limit");
-  ASSERT_NE(c, nullptr);
   ControllerConfig controller;
-  const ClosedLoopRun run =
-      FlyInModeMpc(LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides), &controller);
+  const ClosedLoopRun run = FlyInModeMpc(CaseScenario("aggressive_limit"), &controller);
   const ControlMetrics m = EvaluateControl(run);
   const MpcRunFigures f = MpcFiguresOf(run, m, controller);
   const ControlFigures cascade = FlyCase("aggressive_limit", false);
@@ -136,9 +137,7 @@ TEST(MpcComparisonTest, LossesMidClimbLandLevelInModeMpc) {
   // descent_tilt_weight 5000 (docs/mpc.md): tilt 0.24-0.29 rad, touchdown
   // 0.88-0.98 x floor; with 500 the r2 cases touched down at 0.33-0.35 rad.
   for (const char* name : {"agg_loss70_r1", "agg_loss70_r2", "agg_loss80_r1", "agg_loss80_r2"}) {
-    const ControlCase* c = FindControlCase(name);
-    ASSERT_NE(c, nullptr) << name;
-    const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+    const Scenario scenario = CaseScenario(name);
     ControllerConfig controller;
     const ClosedLoopRun run = FlyInModeMpc(scenario, &controller);
     const ControlMetrics m = EvaluateControl(run);
@@ -159,11 +158,8 @@ TEST(MpcComparisonTest, SeventyPercentLossDescendsLevelAndFlaresInModeMpc) {
   // touchdown 0.87 m/s (10 seeds 0.85-0.90), tilt at touchdown 0.047 rad,
   // pitch rate 2.05 rad/s, lower tip 1.38 m/s, peak tilt since the fault
   // 0.065 rad.
-  const ControlCase* c = FindControlCase("loss_70");
-  ASSERT_NE(c, nullptr);
   ControllerConfig controller;
-  const ClosedLoopRun run =
-      FlyInModeMpc(LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides), &controller);
+  const ClosedLoopRun run = FlyInModeMpc(CaseScenario("loss_70"), &controller);
   const ControlMetrics m = EvaluateControl(run);
   const MpcRunFigures f = MpcFiguresOf(run, m, controller);
   std::printf("loss_70 mpc: touchdown %.3f m/s, tilt before %.4f, at touchdown %.4f rad, rate %.3f rad/s, tip %.3f\n",
