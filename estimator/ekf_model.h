@@ -331,8 +331,11 @@ inline DynamicMatrix EkfProcessModel::Jacobian(const EkfState& x, const EkfInput
   }
   const Eigen::LLT<CoordMatrix<double>> llt(mass);
   const Coords<double> acc_full = llt.solve(rhs);
+  // dM is zero outside the entries that couple x, z with phi, b_i (MassEntryVaries).
   for (int i = 0; i < kNumCoordinates; ++i) {
-    for (int j = 0; j < kNumCoordinates; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_full(j);
+    for (int j = 0; j < kNumCoordinates; ++j) {
+      if (MassEntryVaries(i, j)) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_full(j);
+    }
   }
   // d_acc = L^-T L^-1 d_rhs on whole rows (8 independent columns; Eigen's 5 x 8 solve is a blocked GEMM).
   const CoordMatrix<double>& l = llt.matrixLLT();  // L in the lower triangle

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "model/arm_terms.h"
 #include "model/vehicle_params.h"
 #include "samples/rotor_count.h"
 
@@ -46,6 +47,11 @@ struct DynamicsTerms {
   Coords<T> generalized_thrust;  // tau(q, f) [N, N m]
 };
 
+// Whether M(row, col) depends on the state: only the entries that couple a
+// body translation (x, z) with a rotation (phi, b_i) do, through the tip
+// Jacobian's s_i L n_i columns; every other entry is a constant mass or m_p L^2.
+constexpr bool MassEntryVaries(int row, int col) { return (row <= kZ) != (col <= kZ); }
+
 template <typename T>
 DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
                                       const T& force2_n) {
@@ -70,34 +76,27 @@ DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q
     const T a_dot = v(kPhi) + v(b);
     const T c = cos(a), s = sin(a);
     const double sL = kArmSign[i] * L;
-    // Tip Jacobian J_i (2x5): columns x, z are the identity; columns phi and
-    // b_i are both s_i L n_i = s_i L [-sin a, cos a]. m_p J_i^T J_i, written
-    // out entry by entry (|n_i| = 1):
-    const T jx = -sL * s, jz = sL * c;
-    out.mass(kX, kX) += mp;
-    out.mass(kZ, kZ) += mp;
-    out.mass(kX, kPhi) += mp * jx;
-    out.mass(kX, b) += mp * jx;
-    out.mass(kZ, kPhi) += mp * jz;
-    out.mass(kZ, b) += mp * jz;
-    out.mass(kPhi, kPhi) += mp * L * L;
-    out.mass(kPhi, b) += mp * L * L;
-    out.mass(b, b) += mp * L * L;
-    // Centripetal: m_p J_i^T (J_i_dot v), J_i_dot v = -s_i L a_dot^2 r_i; only x, z rows survive.
-    const T centripetal = -mp * sL * a_dot * a_dot;
-    out.coriolis(kX) += centripetal * c;
-    out.coriolis(kZ) += centripetal * s;
-    // Gravity on the tip mass: m_p g J_i^T [0, 1].
-    out.gravity_spring(kZ) += mp * g;
-    out.gravity_spring(kPhi) += (mp * g) * jz;
-    out.gravity_spring(b) += (mp * g) * jz;
-    // Hinge spring and damping.
-    out.gravity_spring(b) += p.arm_stiffness_n_m_rad * q(b) + p.arm_damping_n_m_s_rad * v(b);
-    // Thrust f_i n_i at p_i: tau = J_i^T n_i f_i = f_i [n_i; s_i L; s_i L] (n_i . n_i = 1).
-    out.generalized_thrust(kX) += -s * forces[i];
-    out.generalized_thrust(kZ) += c * forces[i];
-    out.generalized_thrust(kPhi) += sL * forces[i];
-    out.generalized_thrust(b) += sL * forces[i];
+    // Arm i along s_i body x: the tip Jacobian's phi and b_i columns are
+    // s_i L n_i = s_i L [-sin a, cos a]; J_i_dot v = -s_i L a_dot^2 [cos a,
+    // sin a]; the thrust's lever about the hinge is s_i L.
+    ArmShare<T> arm;
+    arm.tip_mass_kg = mp;
+    arm.length_m = L;
+    arm.gravity_m_s2 = g;
+    arm.stiffness_n_m_rad = p.arm_stiffness_n_m_rad;
+    arm.damping_n_m_s_rad = p.arm_damping_n_m_s_rad;
+    arm.lever_m = sL;
+    arm.jx = -sL * s;
+    arm.jz = sL * c;
+    arm.centripetal_n = -mp * sL * a_dot * a_dot;
+    arm.rx = c;
+    arm.rz = s;
+    arm.nx = -s;
+    arm.nz = c;
+    arm.deflection_rad = q(b);
+    arm.deflection_rate_rad_s = v(b);
+    arm.force_n = forces[i];
+    AddArmTerms(arm, b, &out.mass, &out.coriolis, &out.gravity_spring, &out.generalized_thrust);
   }
   // Symmetric lower triangle.
   for (int r = 0; r < kNumCoordinates; ++r)

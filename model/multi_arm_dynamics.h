@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "model/arm_terms.h"
 #include "model/birotor_dynamics.h"
 #include "model/vehicle_description.h"
 
@@ -85,32 +86,25 @@ MultiArmTerms<T> ComputeMultiArmTerms(const VehicleDescription& vehicle, const M
     const T a = q(kPhi) + q(b);
     const T a_dot = v(kPhi) + v(b);
     const T rx = cos(a + arm.angle_rad), rz = sin(a + arm.angle_rad);  // r_i; w_i = [-rz, rx]
-    const T jx = -L * rz, jz = L * rx;                                 // L_i w_i
-    // mp J_i^T J_i (upper triangle; mirrored below).
-    out.mass(kX, kX) += mp;
-    out.mass(kZ, kZ) += mp;
-    out.mass(kX, kPhi) += mp * jx;
-    out.mass(kX, b) += mp * jx;
-    out.mass(kZ, kPhi) += mp * jz;
-    out.mass(kZ, b) += mp * jz;
-    out.mass(kPhi, kPhi) += mp * L * L;
-    out.mass(kPhi, b) += mp * L * L;
-    out.mass(b, b) += mp * L * L;
-    // C: -mp L a_dot^2 r_i on the x, z rows.
-    const T centripetal = -mp * L * a_dot * a_dot;
-    out.coriolis(kX) += centripetal * rx;
-    out.coriolis(kZ) += centripetal * rz;
-    // G: tip weight mp g J_i^T [0, 1], hinge spring and damping.
-    out.gravity_spring(kZ) += mp * g;
-    out.gravity_spring(kPhi) += (mp * g) * jz;
-    out.gravity_spring(b) += (mp * g) * jz + arm.stiffness_n_m_rad * q(b) + arm.damping_n_m_s_rad * v(b);
-    // tau: f_i J_i^T n_i = f_i [n_i; l_i; l_i].
     const T thrust_angle = a + arm.thrust_angle_rad;
-    const double lever_m = arm.ThrustLeverM();
-    out.generalized_thrust(kX) += -sin(thrust_angle) * force_n(i);
-    out.generalized_thrust(kZ) += cos(thrust_angle) * force_n(i);
-    out.generalized_thrust(kPhi) += lever_m * force_n(i);
-    out.generalized_thrust(b) += lever_m * force_n(i);
+    ArmShare<T> share;
+    share.tip_mass_kg = mp;
+    share.length_m = L;
+    share.gravity_m_s2 = g;
+    share.stiffness_n_m_rad = arm.stiffness_n_m_rad;
+    share.damping_n_m_s_rad = arm.damping_n_m_s_rad;
+    share.lever_m = arm.ThrustLeverM();
+    share.jx = -L * rz;  // L_i w_i
+    share.jz = L * rx;
+    share.centripetal_n = -mp * L * a_dot * a_dot;  // J_i_dot v = -L a_dot^2 r_i
+    share.rx = rx;
+    share.rz = rz;
+    share.nx = -sin(thrust_angle);
+    share.nz = cos(thrust_angle);
+    share.deflection_rad = q(b);
+    share.deflection_rate_rad_s = v(b);
+    share.force_n = force_n(i);
+    AddArmTerms(share, b, &out.mass, &out.coriolis, &out.gravity_spring, &out.generalized_thrust);
   }
   for (int r = 0; r < n; ++r)
     for (int col = r + 1; col < n; ++col) out.mass(col, r) = out.mass(r, col);
