@@ -85,7 +85,21 @@ std::string Percent(double fraction, int decimals) {
   return out.str();
 }
 
+// The motor fit's estimate with no command step in its logs: the fit has
+// only the commands' continuous variation, not the excitation it is built on.
+bool MotorFitWithoutSteps(const ParameterEstimate& e) {
+  return e.note.basis == EstimateBasis::kMotorFit && e.note.command_steps[0] + e.note.command_steps[1] == 0;
+}
+
 }  // namespace
+
+std::string ReportStatus(const ParameterEstimate& e) {
+  const double relative_sigma = e.sigma / std::abs(e.value);
+  if (!e.determined || !std::isfinite(relative_sigma)) return "NOT determined";
+  if (relative_sigma > 1.0) return "NOT determined relative to its size: zero within one sigma";
+  if (MotorFitWithoutSteps(e)) return "NOT determined by excitation: no command step in the logs";
+  return "determined";
+}
 
 std::string NoteText(const EstimateNote& n) {
   std::ostringstream out;
@@ -311,9 +325,14 @@ std::string IdentificationReport(const IdentificationResult& result) {
          "|\n|---|---|---|---|---|---|\n";
   out << std::setprecision(6);
   for (const ParameterEstimate& e : result.estimates) {
-    const double rel = std::abs(e.value) > 0 ? e.sigma / std::abs(e.value) : NAN;
-    out << "| " << e.symbol << " | " << e.key << " | " << e.value << " | " << e.sigma << " | " << std::setprecision(3)
-        << 100.0 * rel << " % | " << (e.determined ? "determined" : "NOT determined") << std::setprecision(6) << " |\n";
+    const double relative_sigma = e.sigma / std::abs(e.value);
+    out << "| " << e.symbol << " | " << e.key << " | " << e.value << " | ";
+    if (std::isfinite(relative_sigma)) {
+      out << e.sigma << " | " << std::setprecision(3) << 100.0 * relative_sigma << " %" << std::setprecision(6);
+    } else {
+      out << "not determined | not determined";
+    }
+    out << " | " << ReportStatus(e) << " |\n";
   }
   out << "\nNotes:\n";
   for (const ParameterEstimate& e : result.estimates) out << "- " << e.symbol << ": " << NoteText(e.note) << "\n";
@@ -338,8 +357,13 @@ std::string IdentificationReport(const IdentificationResult& result) {
   out << "\n## Undetermined parameters\n\n";
   bool any = false;
   for (const ParameterEstimate& e : result.estimates) {
-    if (!e.determined) {
+    const std::string status = ReportStatus(e);
+    if (status == "NOT determined") {
       out << "- " << e.symbol << " (" << e.key << ")\n";
+      any = true;
+    } else if (status != "determined") {
+      // Determined by the fit's criterion, so --update-params writes it; the reader is told why to doubt it.
+      out << "- " << e.symbol << " (" << e.key << "): " << status << "; the fit's value is written\n";
       any = true;
     }
   }

@@ -49,5 +49,11 @@ std::string IdentifiedParameterYaml(const IdentificationResult& result);
 // Markdown report: parameters with value, sigma, relative sigma and status,
 // residual RMS per residual block, maps, undetermined parameters, warnings.
 std::string IdentificationReport(const IdentificationResult& result);
+// The report's status of one estimate: "determined" only when the fit
+// determined it, its one sigma is at most 100 % of its value (an offset
+// near zero reads "NOT determined relative to its size: zero within one
+// sigma"), and for tau_m the logs held a command step (the motor fit's
+// excitation); "NOT determined" when the fit did not determine it.
+std::string ReportStatus(const ParameterEstimate& e);
 
 }  // namespace birotor

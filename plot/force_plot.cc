@@ -27,8 +27,13 @@ constexpr double kGapPeriods = 10.0;
 constexpr const char* kMarkerColor = "#8c2d04";
 // Panel edges on the page [fraction of the width and height]; the left and
 // right edges are shared so that the time axes line up, and the keys sit to
-// the right of the panels, where they never cover data.
-constexpr double kLeftEdge = 0.075, kRightEdge = 0.82, kTopEdge = 0.945, kBottomEdge = 0.05;
+// the right of the panels, where they never cover data. The left edge is
+// LeftEdge's: room for the longest status lane label.
+constexpr double kRightEdge = 0.82, kTopEdge = 0.945, kBottomEdge = 0.05;
+// Width of one character of the status lane labels (sans at 8 pt, cairo's
+// 72 dpi: the widest capitals measure 6.4 px) and the tic's gap to the
+// axis [px]; the narrowest left edge (the y-labels of the other panels) [1].
+constexpr double kLaneLabelCharPx = 6.6, kLaneLabelGapPx = 14.0, kMinLeftEdge = 0.075;
 
 // One row of the datablock: a FORCE message and its TRUTH pair (NaN if none).
 struct Row {
@@ -155,13 +160,22 @@ void AddGapMarker(const std::vector<Row>& rows, double gap_s, std::vector<std::p
                                             from_s, gaps > 1 ? fmt::format(" ({}x)", gaps) : std::string()));
 }
 
-// Places the next panel: `height` of the page below *top.
-std::string Panel(double* top, double height, bool bottom_axis) {
+// The panels' left edge [fraction of the width]: the longest status lane
+// label ("MODEL_MISMATCH", 14 characters: 106 px) fits left of the axis.
+double LeftEdge(int width_px) {
+  size_t longest = 0;
+  for (int i = 0; i < kStatusBitCount; ++i) longest = std::max(longest, std::string(kStatusBitNames[i].word).size());
+  const double label_px = kLaneLabelCharPx * static_cast<double>(longest) + kLaneLabelGapPx;
+  return std::max(kMinLeftEdge, label_px / static_cast<double>(width_px));
+}
+
+// Places the next panel: `height` of the page below *top, from left_edge to kRightEdge.
+std::string Panel(double* top, double height, bool bottom_axis, double left_edge) {
   const double bottom = *top - height;
   std::string text = fmt::format(
-      "set tmargin at screen {:.4f}\nset bmargin at screen {:.4f}\nset lmargin at screen {}\nset rmargin at screen "
-      "{}\n",
-      *top, bottom + 0.012, kLeftEdge, kRightEdge);
+      "set tmargin at screen {:.4f}\nset bmargin at screen {:.4f}\nset lmargin at screen {:.4f}\nset rmargin at "
+      "screen {}\n",
+      *top, bottom + 0.012, left_edge, kRightEdge);
   text += bottom_axis ? "set format x '%g'\nset xlabel 't [s]'\n" : "set format x ''\nunset xlabel\n";
   *top = bottom;
   return text;
@@ -294,17 +308,19 @@ std::string ErrorPanelPlot() {
   return text + "\nunset label\n";
 }
 
-// The thrust-efficiency panel with the fault thresholds.
+// The thrust-efficiency panel with the fault thresholds: the estimates
+// first, the true μ dashed over them, so that where they agree both show.
 std::string ScalePanelPlot(const std::vector<ThresholdLine>& scale_lines, bool with_truth) {
   std::string text = "set ylabel 'thrust efficiency μ [1]'\nplot ";
   for (const ThresholdLine& line : scale_lines) {
     text += fmt::format("{:.6g} w l lw 1.5 dt 3 lc rgb '#b00000' t {}, ", line.value, GnuplotQuoted(line.label));
   }
   for (int r = 0; r < kBirotorRotors; ++r) {
-    if (with_truth) {
-      text += fmt::format("$data u 1:{} w l lw 2 dt 2 lc rgb '{}' t 'true μ{}', ", 11 + r, kTrueColor, r + 1);
-    }
     text += fmt::format("$data u 1:{} w l lc rgb '{}' t 'estimated μ{}'{}", 6 + r, kRotorColor[r], r + 1,
+                        r == 0 || with_truth ? ", " : "");
+  }
+  for (int r = 0; with_truth && r < kBirotorRotors; ++r) {
+    text += fmt::format("$data u 1:{} w l lw 1.5 dt (6,6) lc rgb '{}' t 'true μ{}'{}", 11 + r, kTrueColor, r + 1,
                         r == 0 ? ", " : "");
   }
   return text + "\nunset label\n";
@@ -344,6 +360,12 @@ std::string ThresholdWords(const std::vector<ThresholdLine>& lines) {
   return words;
 }
 
+std::string ForcePlotTitle(const std::string& log_path) {
+  const size_t slash = log_path.find_last_of('/');
+  return "Rotor forces, thrust efficiencies and status flags of " +
+         (slash == std::string::npos ? log_path : log_path.substr(slash + 1));
+}
+
 PlotMarker ThrustStepMarker(int rotor, double step_time_s) {
   return {static_cast<int64_t>(std::llround(step_time_s * 1e6)), fmt::format("true thrust step rotor {}", rotor)};
 }
@@ -381,16 +403,17 @@ std::string ForcePlotScript(const std::vector<ForceEstimate>& forces, const std:
   const double scale_height = 0.17;
   const double error_height = with_truth ? 0.17 : 0.0;
   const double force_height = (kTopEdge - kBottomEdge - status_height - scale_height - error_height) / 2.0;
+  const double left = LeftEdge(options.width_px);
   double top = kTopEdge;
   for (int r = 0; r < kBirotorRotors; ++r) {
-    script += Panel(&top, force_height, false) + YRangeCommands(ranges.force[r]);
+    script += Panel(&top, force_height, false, left) + YRangeCommands(ranges.force[r]);
     if (r == 0) script += marker_labels;
     script += ForcePanelPlot(r, median_std_n[r], with_truth);
   }
-  if (with_truth) script += Panel(&top, error_height, false) + YRangeCommands(ranges.error) + ErrorPanelPlot();
-  script += Panel(&top, scale_height, false) + YRangeCommands(ranges.scale);
+  if (with_truth) script += Panel(&top, error_height, false, left) + YRangeCommands(ranges.error) + ErrorPanelPlot();
+  script += Panel(&top, scale_height, false, left) + YRangeCommands(ranges.scale);
   script += ScalePanelPlot(options.scale_lines, with_truth);
-  script += Panel(&top, status_height, true) + StatusPanelPlot();
+  script += Panel(&top, status_height, true, left) + StatusPanelPlot();
   script += "unset multiplot\n";
   return script;
 }

@@ -39,6 +39,9 @@ std::string ThresholdWords(const std::vector<ThresholdLine>& lines);
 // step_rotor 1 or 2, step_time_s on the vehicle clock [s]).
 PlotMarker ThrustStepMarker(int rotor, double step_time_s);
 
+// The default title: what the plot shows and the log's file name.
+std::string ForcePlotTitle(const std::string& log_path);
+
 struct ForcePlotOptions {
   std::string title;
   // The estimator's thresholds on the thrust-efficiency panel.

@@ -260,7 +260,9 @@ void LogEstimates(const birotor::IdentificationResult& result) {
   using namespace birotor;
   for (const IdentificationWarning& w : result.warnings) spdlog::warn("{}", WarningText(w));
   for (const ParameterEstimate& e : result.estimates) {
-    if (e.determined) {
+    if (e.determined && ReportStatus(e) != "determined") {  // the report's words: a sigma above the value, no step
+      spdlog::warn("{:6s} = {:.6g} +- {:.3g}: {} (the report says why)", e.symbol, e.value, e.sigma, ReportStatus(e));
+    } else if (e.determined) {
       spdlog::info("{:6s} = {:.6g} +- {:.3g} ({:.3f} %)", e.symbol, e.value, e.sigma, 100.0 * e.sigma / e.value);
     } else {
       spdlog::warn("{:6s} NOT DETERMINED by these logs: {} keeps the base file's value, marked so in the output",

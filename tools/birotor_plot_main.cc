@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   ForcePlotOptions plot;
   app.add_option("--log", log_path, "LCM log with FORCE, and TRUTH if simulated (birotor-replay output)")->required();
   app.add_option("--png", png_path, "PNG file to write (temporary file + rename)")->required();
-  app.add_option("--title", plot.title, "Plot title (default: the log name)");
+  app.add_option("--title", plot.title, "Plot title (default: what the plot shows and the log's file name)");
   std::string params_file;
   app.add_option("--params", params_file,
                  "Estimator parameter file of the run, for its fault thresholds (default: the built-in defaults)");
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     return ReportError(error);
   }
   if (!damage.empty()) spdlog::warn("{}", damage);
-  if (plot.title.empty()) plot.title = log_path;
+  if (plot.title.empty()) plot.title = ForcePlotTitle(log_path);
   if (!collector.truth.empty()) {
     const EvalResult result = Evaluate(collector.forces, collector.truth, {}, EvalOptions{});
     if (result.step_rotor != 0) plot.markers.push_back(ThrustStepMarker(result.step_rotor, result.step_time_s));

@@ -11,7 +11,7 @@ PACKAGES=(
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox clang libclang-rt-14-dev procps
-  libsystemd-dev libjs-dygraphs chromium python3-pandas libalglib-dev stress-ng
+  libsystemd-dev libjs-dygraphs chromium python3-pandas python3-venv python3-wheel libalglib-dev stress-ng
 )
 
 missing=()

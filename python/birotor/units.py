@@ -39,14 +39,21 @@ def _read_lcm_files():
 
 
 UNITS, _FIELD_TYPES = _read_lcm_files()
+# Columns the reader adds before the fields (log_reader.RowMaker).
+_READER_COLUMNS = {"log_utime": "us", "time_s": "s"}
 
 
 def column_unit(message_type, column):
     """Unit of a flattened column of message_type (e.g. "force_n[0]",
-    "inputs[2].age_s"); "" when the field has none."""
-    if column == "log_utime":
-        return "us"
-    type_name = message_type.__name__
+    "inputs[2].age_s"); "" when the field has none (a status bit, a count).
+    message_type: the generated class, or its name ("force_estimate_t",
+    "birotor.force_estimate_t"), or None for a type the package does not know."""
+    if column in _READER_COLUMNS:
+        return _READER_COLUMNS[column]
+    if message_type is None:
+        return ""
+    type_name = message_type if isinstance(message_type, str) else message_type.__name__
+    type_name = type_name.split(".")[-1]
     parts = [re.sub(r"\[\d+\]", "", part) for part in column.split(".")]
     for part in parts[:-1]:  # nested types
         type_name = _FIELD_TYPES.get((type_name, part), "")

@@ -205,4 +205,53 @@ TEST(ParameterFileTest, ReportAndHeaderCarryTheWarningWords) {
 }
 
 }  // namespace
+// The report says "determined" only for a usable value: not for a sigma above
+// 100 % of the value, nor for tau_m fitted without one command step, and it
+// prints "not determined" where a relative sigma would be "nan %". The numbers
+// are birotor-identify's on simulated logs: o_1 from `birotor-sim --scenario
+// bench` (702 %), tau_m and m_p from `--scenario hover` (0 command steps).
+ParameterEstimate Estimate(const char* key, const char* symbol, double value, double sigma, bool determined) {
+  ParameterEstimate e = ParameterEstimate::Named(key, symbol);
+  e.value = value;
+  e.sigma = sigma;
+  e.determined = determined;
+  return e;
+}
+
+TEST(ParameterFileTest, ReportNeverCallsAnUnusableValueDetermined) {
+  IdentificationResult r;
+  r.ok = true;
+  r.mode = "flight";
+  const ParameterEstimate offset = Estimate("gauge_offset_rad[0]", "o_1", -4.11489e-08, 2.88876e-07, true);
+  ParameterEstimate tau = Estimate("motor_time_constant_s", "tau_m", 0.034511, 0.000688061, true);
+  tau.note.basis = EstimateBasis::kMotorFit;
+  tau.note.windows = 40;
+  ParameterEstimate stepped = tau;
+  stepped.note.command_steps[0] = 2664;
+  stepped.note.command_steps[1] = 2663;
+  const ParameterEstimate tip_mass = Estimate("tip_mass_kg", "m_p", 0.28812, NAN, false);
+  r.estimates = {offset, tau, stepped, tip_mass};
+  const std::string report = IdentificationReport(r);
+  EXPECT_NE(report.find("| o_1 | gauge_offset_rad[0] | -4.11489e-08 | 2.88876e-07 | 702 % | NOT determined relative to "
+                        "its size: zero within one sigma |"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("| tau_m | motor_time_constant_s | 0.034511 | 0.000688061 | 1.99 % | NOT determined by "
+                        "excitation: no command step in the logs |"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("| tau_m | motor_time_constant_s | 0.034511 | 0.000688061 | 1.99 % | determined |"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("| m_p | tip_mass_kg | 0.28812 | not determined | not determined | NOT determined |"),
+            std::string::npos)
+      << report;
+  EXPECT_EQ(report.find("nan"), std::string::npos) << report;
+  EXPECT_NE(report.find("## Undetermined parameters\n\n- o_1 (gauge_offset_rad[0]): NOT determined relative to its "
+                        "size: zero within one sigma; the fit's value is written\n- tau_m"),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("\n- m_p (tip_mass_kg)\n"), std::string::npos) << report;
+}
+
 }  // namespace birotor

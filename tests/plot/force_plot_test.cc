@@ -102,6 +102,29 @@ TEST(ForcePlotTest, MarksASilenceOfForce) {
   EXPECT_TRUE(Has(script, "\n\n0.750000 "));  // a blank line breaks every line at the gap
 }
 
+// The lane labels fit left of the axes: "MODEL_MISMATCH" (14 characters at
+// 6.6 px, plus a 14 px gap: 106.4 px) of 1200 px puts every panel's left edge
+// at 0.0887 (0.075 clipped it to "ODEL_MISMATCH"); the true μ is drawn after
+// the estimated μ, dashed, so it is not hidden under it; the default title
+// says what the plot shows.
+TEST(ForcePlotTest, LaneLabelsFitAndTrueEfficiencyOnTop) {
+  const ThrustLoss run = MakeThrustLoss();
+  ForcePlotOptions options;
+  options.title = ForcePlotTitle("/tmp/logs/thrust_loss.lcm");
+  const std::string script = ForcePlotScript(run.forces, run.truth, options);
+  EXPECT_TRUE(
+      Has(script, "set multiplot title 'Rotor forces, thrust efficiencies and status flags of thrust_loss.lcm'"));
+  EXPECT_TRUE(Has(script, "set lmargin at screen 0.0887\n"));
+  EXPECT_FALSE(Has(script, "set lmargin at screen 0.075"));
+  const size_t estimated = script.find("t 'estimated μ2'");
+  const size_t true_mu = script.find("t 'true μ1'");
+  ASSERT_NE(estimated, std::string::npos);
+  ASSERT_NE(true_mu, std::string::npos);
+  EXPECT_LT(estimated, true_mu);
+  options.width_px = 2400;  // a wide page keeps the narrowest edge
+  EXPECT_TRUE(Has(ForcePlotScript(run.forces, run.truth, options), "set lmargin at screen 0.0750\n"));
+}
+
 TEST(ForcePlotTest, RefusesAnEmptyStream) {
   TemporaryFolder folder("birotor_force_plot_test_");
   std::string error;
