@@ -22,8 +22,8 @@ MpcState TypicalState(double hover_rad_s) {
 }
 
 void BM_Linearize(benchmark::State& state) {
-  const MpcPredictionModel model{VehicleParams()};
-  const double hover = RotorSpeedForThrust(VehicleParams(), model.hover_force_n(), 1.0);
+  const MpcPredictionModel model{BirotorParams()};
+  const double hover = RotorSpeedForThrust(BirotorParams(), model.hover_force_n(), 1.0);
   const MpcState s = TypicalState(hover);
   for (auto _ : state) {
     benchmark::DoNotOptimize(model.Linearize(s, s.tail<2>(), MpcModelContext(), 0.02));
@@ -37,12 +37,12 @@ void PlanFlight(benchmark::State& state, MpcQpAlgorithm algorithm) {
   MpcParams params;
   params.algorithm = algorithm;
   params.deadline_s = 1.0;
-  const MpcPredictionModel plant{VehicleParams()};
+  const MpcPredictionModel plant{BirotorParams()};
   std::vector<double> times_s;
   int64_t fallbacks = 0, max_iterations = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    MpcController mpc(VehicleParams(), params);
+    MpcController mpc(BirotorParams(), params);
     MpcState s = MpcState::Zero();
     s(kMpcOmega1) = s(kMpcOmega2) = mpc.rotor_speed_estimate_rad_s()(0);
     Eigen::Vector2d command = s.tail<2>();

@@ -128,7 +128,7 @@ BENCHMARK_CAPTURE(BM_StrainSample, luenberger, "luenberger");
 // notches (1x, 2x on each arm) re-tuned and applied.
 void BM_HarmonicNotchSample(benchmark::State& state) {
   const EstimatorConfig config;
-  MotorSpeedTracker speeds(config.vehicle, config.pipeline.motor_timeout_s);
+  MotorSpeedTracker speeds(BirotorModelOf(config.vehicle), config.pipeline.motor_timeout_s);
   HarmonicNotch notch(config.harmonic_notch);
   const std::vector<Event>& events = GentleEvents(10.0);
   size_t index = 0;

@@ -31,7 +31,7 @@ struct CollectingSink : SampleSink {
 
 // The scenario's log from the file in env_var when set, else simulated
 // (config/scenarios/<name>.yaml, full duration). *truth: the scenario's vehicle.
-SensorLog ScenarioLog(const std::string& name, const char* env_var, VehicleParams* truth) {
+SensorLog ScenarioLog(const std::string& name, const char* env_var, BirotorParams* truth) {
   const Scenario scenario = LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml", {});
   *truth = scenario.vehicle;
   SensorLog log;
@@ -49,10 +49,10 @@ SensorLog ScenarioLog(const std::string& name, const char* env_var, VehicleParam
 }
 
 void BM_Identify(benchmark::State& state, const std::string& name, const char* env_var, IdentificationMode mode) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = ScenarioLog(name, env_var, &truth);
   // The reference file is the base, as `birotor-identify --params` defaults to.
-  const VehicleParams base;
+  const BirotorParams base;
   IdentificationResult result;
   for (auto _ : state) {
     result = Identify({log}, base, IdentificationOptions(), mode);

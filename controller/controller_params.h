@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "controller/mpc_params.h"
-#include "model/vehicle_params.h"
+#include "model/vehicle_description.h"
 
 namespace birotor {
 
@@ -152,7 +152,8 @@ struct SetpointParams {
 
 // Everything birotor-controller (and the lock-step closed loop) needs.
 struct ControllerConfig {
-  VehicleParams vehicle;       // the controller's model of the vehicle
+  // The controller's vehicle; a birotor (its laws run on BirotorModelOf).
+  VehicleDescription vehicle = BirotorDescription(BirotorParams());
   bool force_feedback = true;  // mode: force_feedback (true) or nominal (false)
   // mode: mpc: the model predictive controller (controller/mpc_controller.h)
   // flies, the cascade (on force feedback) is its per-period fallback.

@@ -49,7 +49,7 @@ MpcStateMatrix MpcController::TerminalWeight(const MpcPredictionModel& model, co
   return P;
 }
 
-MpcController::MpcController(const VehicleParams& vehicle, const MpcParams& params)
+MpcController::MpcController(const BirotorParams& vehicle, const MpcParams& params)
     : vehicle_(vehicle),
       params_(params),
       model_(vehicle),

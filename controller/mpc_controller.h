@@ -19,7 +19,7 @@
 #include "controller/mpc_qp.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 
 namespace birotor {
 
@@ -80,7 +80,7 @@ struct MpcPeriod {
 
 class MpcController {
  public:
-  MpcController(const VehicleParams& vehicle, const MpcParams& params);
+  MpcController(const BirotorParams& vehicle, const MpcParams& params);
 
   // One solve. Does not change the rotor-speed estimate (Advance does).
   MpcPlan Plan(const MpcPlanInput& input);
@@ -114,7 +114,7 @@ class MpcController {
   void FillReference(const MpcPlanInput& input, const Eigen::Vector2d& feed_forward_rad_s);
   void Record(const MpcPlan& plan);
 
-  VehicleParams vehicle_;
+  BirotorParams vehicle_;
   MpcParams params_;
   MpcPredictionModel model_;
   MpcQp qp_;

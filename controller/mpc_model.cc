@@ -11,7 +11,7 @@
 
 namespace birotor {
 
-MpcPredictionModel::MpcPredictionModel(const VehicleParams& vehicle) : vehicle_(vehicle) {
+MpcPredictionModel::MpcPredictionModel(const BirotorParams& vehicle) : vehicle_(vehicle) {
   const Equilibrium hover = SolveHoverEquilibrium(vehicle);
   hover_deflection_rad_[0] = hover.deflection_rad[0];
   hover_deflection_rad_[1] = hover.deflection_rad[1];

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -47,7 +47,7 @@ struct MpcLinearStep {
 
 class MpcPredictionModel {
  public:
-  explicit MpcPredictionModel(const VehicleParams& vehicle);
+  explicit MpcPredictionModel(const BirotorParams& vehicle);
 
   // s_dot = [v; M33^-1 (tau - C - G)_33 + d; (u - omega) / tau_m], the rows x,
   // z, phi of thesis eq. 3.14 with the arms rigid (M33: the top-left block of M).
@@ -61,10 +61,10 @@ class MpcPredictionModel {
 
   // Per-rotor thrust that holds the level vehicle still [N] (the hover equilibrium's).
   double hover_force_n() const { return hover_force_n_; }
-  const VehicleParams& vehicle() const { return vehicle_; }
+  const BirotorParams& vehicle() const { return vehicle_; }
 
  private:
-  VehicleParams vehicle_;
+  BirotorParams vehicle_;
   double hover_deflection_rad_[kBirotorRotors] = {0.0, 0.0};
   double hover_force_n_ = 0.0;
 };

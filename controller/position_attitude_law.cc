@@ -5,7 +5,7 @@
 
 namespace birotor {
 
-PositionAttitudeLaw::PositionAttitudeLaw(const VehicleParams& vehicle, const ControllerParams& gains,
+PositionAttitudeLaw::PositionAttitudeLaw(const BirotorParams& vehicle, const ControllerParams& gains,
                                          double hover_force_n)
     : vehicle_(vehicle),
       gains_(gains),
@@ -51,7 +51,7 @@ double TiltLoopAcceleration(const ControllerParams& gains, double dt_s, double p
 
 RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferencePoint& reference,
                                         bool integrate_position, bool integrate_tilt) {
-  const VehicleParams& p = vehicle_;
+  const BirotorParams& p = vehicle_;
   const double g = p.gravity_m_s2;
   RotorForces out;
   out.accel_des_m_s2 =
@@ -73,7 +73,7 @@ RotorForces PositionAttitudeLaw::Update(const BodyState& state, const ReferenceP
   return out;
 }
 
-double RotorSpeedForThrust(const VehicleParams& vehicle, double force_n, double thrust_scale, bool* saturated) {
+double RotorSpeedForThrust(const BirotorParams& vehicle, double force_n, double thrust_scale, bool* saturated) {
   return RotorSpeedForThrust(vehicle.thrust_coeff_n_s2_rad2, vehicle.omega_max_rad_s, force_n, thrust_scale, saturated);
 }
 

@@ -9,7 +9,7 @@
 
 #include "controller/controller_params.h"
 #include "controller/reference_point.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -58,7 +58,7 @@ class PositionAttitudeLaw {
  public:
   // hover_force_n: per-rotor feed-forward thrust at hover (the equilibrium
   // solution of the nominal vehicle).
-  PositionAttitudeLaw(const VehicleParams& vehicle, const ControllerParams& gains, double hover_force_n);
+  PositionAttitudeLaw(const BirotorParams& vehicle, const ControllerParams& gains, double hover_force_n);
 
   // One control period dt_s = 1 / rate_hz:
   //   a_des = a_ref + Kp e_p + Kd e_v + Ki int(e_p)                    (world)
@@ -87,7 +87,7 @@ class PositionAttitudeLaw {
   void LimitTilt(double max_tilt_rad) { tilt_limit_rad_ = std::min(max_tilt_rad, gains_.max_tilt_rad); }
 
  private:
-  VehicleParams vehicle_;
+  BirotorParams vehicle_;
   ControllerParams gains_;
   double hover_total_force_n_;
   double dt_s_;
@@ -98,14 +98,14 @@ class PositionAttitudeLaw {
 
 // Pitch inertia of the rigid vehicle, J_eff = J + 2 m_p L^2 [kg m^2]: the
 // body and the two tip masses at the arm length (0.086 for the reference vehicle).
-inline double RigidPitchInertiaKgM2(const VehicleParams& p) {
+inline double RigidPitchInertiaKgM2(const BirotorParams& p) {
   return p.body_inertia_kg_m2 + 2.0 * p.tip_mass_kg * p.arm_length_m * p.arm_length_m;
 }
 
 // Rotor speed that makes force_n with thrust scale mu (f = mu c_T omega^2):
 // omega = sqrt(max(f, 0) / (mu c_T)), clipped to [0, omega_max] [rad/s].
 // *saturated (optional) is set when the clip changed the value.
-double RotorSpeedForThrust(const VehicleParams& vehicle, double force_n, double thrust_scale,
+double RotorSpeedForThrust(const BirotorParams& vehicle, double force_n, double thrust_scale,
                            bool* saturated = nullptr);
 // The same for one rotor of any vehicle: its c_T [N s^2/rad^2] and omega_max [rad/s].
 double RotorSpeedForThrust(double thrust_coeff_n_s2_rad2, double omega_max_rad_s, double force_n, double thrust_scale,

@@ -30,13 +30,13 @@ ControllerParams LawGains(const ControllerConfig& config) {
   return gains;
 }
 
-double HoverForce(const VehicleParams& vehicle) {
+double HoverForce(const BirotorParams& vehicle) {
   const Equilibrium hover = SolveHoverEquilibrium(vehicle);
   return 0.5 * (hover.force_n[0] + hover.force_n[1]);
 }
 
 // What one rotor makes at omega_max with the nominal map, c_T omega_max^2 [N].
-double MaxRotorForceN(const VehicleParams& vehicle) {
+double MaxRotorForceN(const BirotorParams& vehicle) {
   return vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
 }
 
@@ -51,17 +51,18 @@ SeqStreamLockParams LockParams(const SupervisionParams& s) {
 
 VehicleController::VehicleController(const ControllerConfig& config)
     : config_(config),
-      law_(config.vehicle, LawGains(config), HoverForce(config.vehicle)),
+      model_(BirotorModelOf(config.vehicle)),
+      law_(model_, LawGains(config), HoverForce(model_)),
       observer_(config.observer),
-      efficiency_(config.efficiency, 2.0 * HoverForce(config.vehicle)),
-      feasibility_(config.efficiency, MaxRotorForceN(config.vehicle), 2.0 * HoverForce(config.vehicle)),
+      efficiency_(config.efficiency, 2.0 * HoverForce(model_)),
+      feasibility_(config.efficiency, MaxRotorForceN(model_), 2.0 * HoverForce(model_)),
       pose_gate_(config.supervision),
       floor_evidence_(config.supervision, config.efficiency.infeasible_s),
       force_lock_(LockParams(config.supervision)),
       pose_lock_(LockParams(config.supervision)),
       setpoint_(config.setpoint),
-      weight_n_(2.0 * HoverForce(config.vehicle)) {
-  if (config.model_predictive) mpc_ = std::make_unique<MpcController>(config.vehicle, config.mpc);
+      weight_n_(2.0 * HoverForce(model_)) {
+  if (config.model_predictive) mpc_ = std::make_unique<MpcController>(model_, config.mpc);
   // Force feedback starts in the fallback until FORCE has been healthy for
   // force_recovery_s; that start is not counted as a fallback.
   health_.fallback_active = config.force_feedback;
@@ -225,7 +226,7 @@ void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status
   // Without the IMU the commanded acceleration stands in for the measured one.
   const Eigen::Vector2d accel_world_m_s2 =
       imu_fresh ? WorldAcceleration(observer_.state().phi_rad, last_specific_force_m_s2_[0],
-                                    last_specific_force_m_s2_[1], config_.vehicle.gravity_m_s2)
+                                    last_specific_force_m_s2_[1], model_.gravity_m_s2)
                 : last_accel_des_m_s2_;
   if (!imu_fresh) *status |= kCommandInputStale;
   observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : kNaN);
@@ -240,7 +241,7 @@ void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status
 
 void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s,
                                  MotorCommand* command, int32_t* status) {
-  const VehicleParams& vehicle = config_.vehicle;
+  const BirotorParams& vehicle = model_;
   double efficiency[kBirotorRotors] = {1.0, 1.0};
   double max_force_n[kBirotorRotors];
   MaxForces(use_efficiency, max_force_n);
@@ -298,8 +299,7 @@ double VehicleController::EfficiencyInUse(int rotor, bool use_efficiency) const 
 }
 
 void VehicleController::MaxForces(bool use_efficiency, double (&max_force_n)[kBirotorRotors]) const {
-  for (int i = 0; i < kBirotorRotors; ++i)
-    max_force_n[i] = EfficiencyInUse(i, use_efficiency) * MaxRotorForceN(config_.vehicle);
+  for (int i = 0; i < kBirotorRotors; ++i) max_force_n[i] = EfficiencyInUse(i, use_efficiency) * MaxRotorForceN(model_);
 }
 
 bool VehicleController::Flare(bool infeasible_descent, RotorForces* forces) {
@@ -324,9 +324,9 @@ bool VehicleController::ApplyFlare(RotorForces* forces) const {
   if (!flare) return false;
   FlareLimits limits;
   limits.tilt_budget_rad = e.flare_tilt_rad;
-  limits.min_time_to_go_s = config_.vehicle.motor_time_constant_s;
-  limits.pitch_inertia_kg_m2 = RigidPitchInertiaKgM2(config_.vehicle);
-  limits.arm_length_m = config_.vehicle.arm_length_m;
+  limits.min_time_to_go_s = model_.motor_time_constant_s;
+  limits.pitch_inertia_kg_m2 = RigidPitchInertiaKgM2(model_);
+  limits.arm_length_m = model_.arm_length_m;
   MaxForces(config_.force_feedback, limits.max_force_n);
   const FlareForces flare_forces = FlareForcesFor(state, limits);
   forces->total_force_n = flare_forces.total_force_n;

@@ -138,6 +138,7 @@ class VehicleController {
   bool ApplyFlare(RotorForces* forces) const;
 
   ControllerConfig config_;
+  BirotorParams model_;  // the birotor model's parameters of config_.vehicle (BirotorModelOf)
   PositionAttitudeLaw law_;
   BodyStateObserver observer_;
   EfficiencyConditioner efficiency_;

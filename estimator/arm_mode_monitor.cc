@@ -10,21 +10,21 @@
 
 namespace birotor {
 
-double SymmetricArmModeHz(const VehicleParams& params) {
+double SymmetricArmModeHz(const BirotorParams& params) {
   const std::vector<Mode> modes = OscillatoryModes(LinearizeAtHover(params).a);
   return modes.empty() ? 0.0 : modes.front().frequency_hz;
 }
 
-ArmModeExpectation ExpectedArmMode(const VehicleParams& params) {
+ArmModeExpectation ExpectedArmMode(const BirotorParams& params) {
   ArmModeExpectation e = ArmModeExpectation::At(SymmetricArmModeHz(params));
   e.tip_weight_n = params.tip_mass_kg * params.gravity_m_s2;
-  VehicleParams stiffer = params;  // d ln f / d ln k from a 10 % stiffer arm
+  BirotorParams stiffer = params;  // d ln f / d ln k from a 10 % stiffer arm
   stiffer.arm_stiffness_n_m_rad *= 1.1;
   const double stiffer_hz = SymmetricArmModeHz(stiffer);
   if (e.file_hz > 0 && stiffer_hz > 0) e.stiffness_exponent = std::log(stiffer_hz / e.file_hz) / std::log(1.1);
   for (double scale : params.gauge_scale) {
     if (scale == 1.0 || !(scale > 0)) continue;
-    VehicleParams stiffness = params;  // the scale read as a stiffness k / s
+    BirotorParams stiffness = params;  // the scale read as a stiffness k / s
     stiffness.arm_stiffness_n_m_rad /= scale;
     const double hz = SymmetricArmModeHz(stiffness);
     e.low_hz = std::min(e.low_hz, hz);

@@ -10,7 +10,7 @@
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -18,7 +18,7 @@ namespace birotor {
 // The symmetric arm mode (both arms flapping together, seen in b1 - b2) of
 // the hover linearisation of params (model/linearization.h, the figure
 // birotor-analyze prints): the lower of the two oscillatory modes [Hz].
-double SymmetricArmModeHz(const VehicleParams& params);
+double SymmetricArmModeHz(const BirotorParams& params);
 
 // What the file lets the symmetric mode be [Hz]. A gauge scale s_i in the
 // file is ambiguous for the arm's dynamics: a gauge that really reads s_i
@@ -38,7 +38,7 @@ struct ArmModeExpectation {
   double tip_weight_n = 0;
   static ArmModeExpectation At(double hz) { return {hz, hz, hz, 0.5, 0.0}; }
 };
-ArmModeExpectation ExpectedArmMode(const VehicleParams& params);
+ArmModeExpectation ExpectedArmMode(const BirotorParams& params);
 
 // The same while the EKF learns strain scales g_i (learn_strain_scale): a
 // learned g_i is a gauge scale (the mode stays) or a stiffness k / g_i (the

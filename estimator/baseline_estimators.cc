@@ -18,7 +18,7 @@ bool HasTelemetry(const MotorSample& sample) {
 
 }  // namespace
 
-InversionEstimator::InversionEstimator(const VehicleParams& params, const InversionOptions& options)
+InversionEstimator::InversionEstimator(const BirotorParams& params, const InversionOptions& options)
     : params_(params), options_(options), motor_(params) {
   options_.window_samples = std::clamp(options_.window_samples, 3, kMaxWindow);
   const LinearModel model = ToSumDifferenceCoordinates(LinearizeAtHover(params));
@@ -104,7 +104,7 @@ void InversionEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* 
   info->filter.convergence = FilterConvergence::kConverged;
 }
 
-MotorMapEstimator::MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options)
+MotorMapEstimator::MotorMapEstimator(const BirotorParams& params, const MotorMapOptions& options)
     : params_(params), options_(options), motor_(params) {}
 
 void MotorMapEstimator::DoAddMotor(const MotorSample& sample) {

@@ -23,7 +23,7 @@ class InversionEstimator : public ForceEstimator {
  public:
   static constexpr int kMaxWindow = 64;
 
-  InversionEstimator(const VehicleParams& params, const InversionOptions& options);
+  InversionEstimator(const BirotorParams& params, const InversionOptions& options);
   const char* Name() const override { return "inversion"; }
 
  private:
@@ -32,7 +32,7 @@ class InversionEstimator : public ForceEstimator {
   void DoAddMotor(const MotorSample& sample) override;
   void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
-  VehicleParams params_;
+  BirotorParams params_;
   InversionOptions options_;
   MotorSpeedTracker motor_;
   Eigen::Matrix<double, 2, 4> a2_;  // rows bs_dd, bd_dd; columns bs, bd, bs_dot, bd_dot
@@ -51,7 +51,7 @@ class InversionEstimator : public ForceEstimator {
 // thrust_scale 1 by construction.
 class MotorMapEstimator : public ForceEstimator {
  public:
-  MotorMapEstimator(const VehicleParams& params, const MotorMapOptions& options);
+  MotorMapEstimator(const BirotorParams& params, const MotorMapOptions& options);
   const char* Name() const override { return "motor_map"; }
 
  private:
@@ -61,7 +61,7 @@ class MotorMapEstimator : public ForceEstimator {
   void DoAddMotor(const MotorSample& sample) override;
   void DoAddStrain(const StrainSample& sample, ForceEstimate* estimate, StrainStepInfo* info) override;
 
-  VehicleParams params_;
+  BirotorParams params_;
   MotorMapOptions options_;
   MotorSpeedTracker motor_;
 };

@@ -43,7 +43,7 @@ constexpr double kMicrosecond = 1e-6;
 
 }  // namespace
 
-EkfForceEstimator::EkfForceEstimator(const VehicleParams& params, const EkfOptions& options)
+EkfForceEstimator::EkfForceEstimator(const BirotorParams& params, const EkfOptions& options)
     : params_(params),
       options_(options),
       process_(params, options.learn_body_mass),

@@ -29,7 +29,7 @@ class EkfForceEstimator : public ForceEstimator {
   // Queued samples per input: more than 0.1 s (the default reset gap) of IMU at 1 kHz.
   static constexpr int kQueueCapacity = 128;
 
-  EkfForceEstimator(const VehicleParams& params, const EkfOptions& options);
+  EkfForceEstimator(const BirotorParams& params, const EkfOptions& options);
 
   const char* Name() const override { return "ekf"; }
   void SetGaugeOffsetPrior(const double offset_std_rad[kBirotorRotors]) override;
@@ -139,7 +139,7 @@ class EkfForceEstimator : public ForceEstimator {
   // there, uncorrelated (see the .cc).
   void SplitScaleAndOffsetAgain();
 
-  VehicleParams params_;
+  BirotorParams params_;
   EkfOptions options_;
   EkfProcessModel process_;
   StrainMeasurementModel strain_model_;

@@ -15,9 +15,9 @@
 #include "estimator/kalman_fusion.h"
 #include "model/arm_dynamics.h"
 #include "model/birotor_dynamics.h"
+#include "model/birotor_params.h"
 #include "model/plant.h"
 #include "model/rk4.h"
-#include "model/vehicle_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -92,7 +92,7 @@ class EkfProcessModel {
  public:
   // body_mass_is_state: the body mass is r_m m_file (kBodyMassScale) and the
   // Jacobian has its column; false: the file's mass, whatever r_m holds.
-  explicit EkfProcessModel(const VehicleParams& params, bool body_mass_is_state = false)
+  explicit EkfProcessModel(const BirotorParams& params, bool body_mass_is_state = false)
       : params_(params), body_mass_is_state_(body_mass_is_state) {}
 
   EkfState Derivative(const EkfState& x, const EkfInput& u) const;
@@ -136,11 +136,11 @@ class EkfProcessModel {
     const double c_t = params_.thrust_coeff_n_s2_rad2;
     return Eigen::Vector2d(2.0 * x(kThrustScaleIndex[rotor]) * c_t * omega, c_t * omega * omega);
   }
-  const VehicleParams& params() const { return params_; }
+  const BirotorParams& params() const { return params_; }
   bool body_mass_is_state() const { return body_mass_is_state_; }
   // The vehicle at x: the file's, with the body mass r_m m_file when it is a state.
-  VehicleParams ParamsAt(const EkfState& x) const {
-    VehicleParams p = params_;
+  BirotorParams ParamsAt(const EkfState& x) const {
+    BirotorParams p = params_;
     if (body_mass_is_state_) p.body_mass_kg *= x(kBodyMassScale);
     return p;
   }
@@ -149,7 +149,7 @@ class EkfProcessModel {
   double MassDerivative(const EkfState& x, DynamicVector* column) const;
 
  private:
-  VehicleParams params_;
+  BirotorParams params_;
   bool body_mass_is_state_ = false;
 };
 
@@ -388,7 +388,7 @@ inline double EkfProcessModel::MassDerivative(const EkfState& x, DynamicVector* 
   FreeArmState<double> arm_dot[kBirotorRotors];
   Eigen::Vector2d specific_force[kBirotorRotors];
   for (int side = 0; side < 2; ++side) {
-    VehicleParams p = params_;
+    BirotorParams p = params_;
     p.body_mass_kg *= x(kBodyMassScale) + (side == 0 ? kStep : -kStep);
     arm_dot[side] = FreeArmDerivative<double>(p, params_.arm_stiffness_n_m_rad, params_.arm_damping_n_m_s_rad, arm,
                                               Force(x, 0), Force(x, 1), &specific_force[side]);
@@ -442,7 +442,7 @@ inline AccelerometerMeasurementModel::Linearization AccelerometerMeasurementMode
     const EkfProcessModel& process, const EkfState& x) {
   constexpr int kJetSize = 8;  // 7 variables and one of padding (vectorises)
   using Jet = ceres::Jet<double, kJetSize>;
-  const VehicleParams params = process.ParamsAt(x);
+  const BirotorParams params = process.ParamsAt(x);
   FreeArmState<Jet> arm;
   arm(kFreeB1) = Jet(x(kDeflection1), 0);
   arm(kFreeB2) = Jet(x(kDeflection2), 1);

@@ -18,23 +18,23 @@ struct MethodEntry {
 const MethodEntry kMethods[kNumEstimationMethods] = {
     {EstimationMethod::kEkf, "ekf",
      [](const EstimatorConfig& c) -> std::unique_ptr<ForceEstimator> {
-       return std::make_unique<EkfForceEstimator>(c.vehicle, c.ekf);
+       return std::make_unique<EkfForceEstimator>(BirotorModelOf(c.vehicle), c.ekf);
      }},
     {EstimationMethod::kLinearKf, "linear_kf",
      [](const EstimatorConfig& c) -> std::unique_ptr<ForceEstimator> {
-       return std::make_unique<LinearForceEstimator>(c.vehicle, c.ekf, c.linear_model);
+       return std::make_unique<LinearForceEstimator>(BirotorModelOf(c.vehicle), c.ekf, c.linear_model);
      }},
     {EstimationMethod::kLuenberger, "luenberger",
      [](const EstimatorConfig& c) -> std::unique_ptr<ForceEstimator> {
-       return std::make_unique<LinearForceEstimator>(c.vehicle, c.ekf, c.linear_model, c.luenberger);
+       return std::make_unique<LinearForceEstimator>(BirotorModelOf(c.vehicle), c.ekf, c.linear_model, c.luenberger);
      }},
     {EstimationMethod::kInversion, "inversion",
      [](const EstimatorConfig& c) -> std::unique_ptr<ForceEstimator> {
-       return std::make_unique<InversionEstimator>(c.vehicle, c.inversion);
+       return std::make_unique<InversionEstimator>(BirotorModelOf(c.vehicle), c.inversion);
      }},
     {EstimationMethod::kMotorMap, "motor_map",
      [](const EstimatorConfig& c) -> std::unique_ptr<ForceEstimator> {
-       return std::make_unique<MotorMapEstimator>(c.vehicle, c.motor_map);
+       return std::make_unique<MotorMapEstimator>(BirotorModelOf(c.vehicle), c.motor_map);
      }},
 };
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "model/vehicle_params.h"
+#include "model/vehicle_description.h"
 
 namespace birotor {
 
@@ -354,7 +354,8 @@ struct ModelConsistencyOptions {
 const std::vector<std::string>& EstimationMethodNames();
 
 struct EstimatorConfig {
-  VehicleParams vehicle;                      // `vehicle:` section
+  // `vehicle:` section; a birotor (BirotorModelOf gives the model its parameters).
+  VehicleDescription vehicle = BirotorDescription(BirotorParams());
   std::string method = "ekf";                 // one of EstimationMethodNames()
   EkfOptions ekf;                             // `estimator.ekf:`
   InversionOptions inversion;                 // `estimator.inversion:`

@@ -98,14 +98,15 @@ double GateOf(const EstimatorConfig& config, InputChannel channel) {
 
 EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
     : config_(config),
+      model_(BirotorModelOf(config.vehicle)),
       method_kind_(MethodOrThrow(config.method)),
       method_(MakeForceEstimator(method_kind_, config)),
       admission_(config.pipeline),
-      tare_(config.vehicle, config.tare),
-      rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
+      tare_(model_, config.tare),
+      rotor_speed_(model_, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
-      consistency_(config.model_consistency, ExpectedArmMode(config.vehicle), config.ekf.strain_noise_rad) {
-  calibration_ = GaugeCalibration::FromVehicle(config.vehicle);
+      consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad) {
+  calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;
   for (int i = 0; i < kNumInputChannels; ++i) health_.inputs[i].gate = GateOf(*method_, static_cast<InputChannel>(i));
@@ -385,8 +386,8 @@ void EstimatorPipeline::ReplaceNonFinite(const StrainSample& sample, ForceEstima
     *estimate = last_finite_estimate_;
   } else {
     for (int i = 0; i < kBirotorRotors; ++i) {
-      estimate->force_n[i] = config_.vehicle.HoverForceN();
-      estimate->force_std_n[i] = config_.vehicle.HoverForceN();
+      estimate->force_n[i] = model_.HoverForceN();
+      estimate->force_std_n[i] = model_.HoverForceN();
       estimate->thrust_scale[i] = 1.0;
     }
   }

@@ -129,6 +129,7 @@ class EstimatorPipeline {
   void Count(const FusionReport& report);
 
   EstimatorConfig config_;
+  BirotorParams model_;  // the birotor model's parameters of config_.vehicle (BirotorModelOf)
   EstimationMethod method_kind_ = EstimationMethod::kEkf;
   std::unique_ptr<ForceEstimator> method_;
   InputAdmission admission_;

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "model/birotor_dynamics.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
 
@@ -29,7 +29,7 @@ struct GaugeCalibration {
   double strain_scale_std[kBirotorRotors] = {0.0, 0.0};  // [1]
 
   // gauge_scale, gauge_offset_rad and gauge_offset_std_rad of the vehicle.
-  static GaugeCalibration FromVehicle(const VehicleParams& params) {
+  static GaugeCalibration FromVehicle(const BirotorParams& params) {
     GaugeCalibration c;
     for (int i = 0; i < kBirotorRotors; ++i) {
       c.scale[i] = params.gauge_scale[i];
@@ -49,7 +49,7 @@ struct GaugeCalibration {
 
 // What gauge i reads at rest on the ground with the motors stopped, before
 // its offset: s_i b_rest_i with b_rest_i = StaticDeflectionRad(f = 0) [rad].
-inline double RestReadingRad(const VehicleParams& params, int arm) {
+inline double RestReadingRad(const BirotorParams& params, int arm) {
   return params.gauge_scale[arm] * StaticDeflectionRad(params, arm, 0.0);
 }
 

@@ -40,7 +40,7 @@ const char* GaugeOffsetSourceName(GaugeOffsetSource source) {
   return "?";
 }
 
-GaugeTare::GaugeTare(const VehicleParams& params, const TareOptions& options)
+GaugeTare::GaugeTare(const BirotorParams& params, const TareOptions& options)
     : options_(options), gravity_m_s2_(params.gravity_m_s2) {
   for (int i = 0; i < 2; ++i) rest_reading_rad_[i] = RestReadingRad(params, i);
 }

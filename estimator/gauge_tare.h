@@ -41,7 +41,7 @@ struct TareCounters {
 
 class GaugeTare {
  public:
-  GaugeTare(const VehicleParams& params, const TareOptions& options);
+  GaugeTare(const BirotorParams& params, const TareOptions& options);
 
   void AddMotor(const MotorSample& sample);
   void AddImu(const ImuSample& sample);

@@ -5,7 +5,7 @@
 
 namespace birotor {
 
-GroundContact::GroundContact(const VehicleParams& params, const EkfOptions& options)
+GroundContact::GroundContact(const BirotorParams& params, const EkfOptions& options)
     : total_mass_kg_(params.TotalMass()),
       on_n_(options.ground_contact_on_n),
       off_n_(options.ground_contact_off_n),

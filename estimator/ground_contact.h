@@ -8,13 +8,13 @@
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 
 namespace birotor {
 
 class GroundContact {
  public:
-  GroundContact(const VehicleParams& params, const EkfOptions& options);
+  GroundContact(const BirotorParams& params, const EkfOptions& options);
 
   // One IMU sample (specific force along body z [m/s^2]) with the current
   // thrust estimate f1 + f2 [N]. N, clamped to +-M g per sample (a reading

@@ -16,7 +16,7 @@ constexpr double kMicrosecond = 1e-6;
 
 }  // namespace
 
-LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise,
+LinearForceEstimator::LinearForceEstimator(const BirotorParams& params, const EkfOptions& noise,
                                            const LinearModelOptions& options)
     : kalman_(true),
       noise_(noise),
@@ -40,7 +40,7 @@ LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const Ek
   covariance_.setIdentity();
 }
 
-LinearForceEstimator::LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise,
+LinearForceEstimator::LinearForceEstimator(const BirotorParams& params, const EkfOptions& noise,
                                            const LinearModelOptions& options, const LuenbergerOptions& observer)
     : LinearForceEstimator(params, noise, options) {
   kalman_ = false;

@@ -29,9 +29,9 @@ namespace birotor {
 class LinearForceEstimator : public ForceEstimator {
  public:
   // Linear Kalman filter ("linear_kf").
-  LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise, const LinearModelOptions& options);
+  LinearForceEstimator(const BirotorParams& params, const EkfOptions& noise, const LinearModelOptions& options);
   // Luenberger observer ("luenberger").
-  LinearForceEstimator(const VehicleParams& params, const EkfOptions& noise, const LinearModelOptions& options,
+  LinearForceEstimator(const BirotorParams& params, const EkfOptions& noise, const LinearModelOptions& options,
                        const LuenbergerOptions& observer);
 
   const char* Name() const override { return kalman_ ? "linear_kf" : "luenberger"; }

@@ -38,7 +38,7 @@ void CheckHidden(const AugMatrix& a, const std::vector<std::string>& measured,
 
 }  // namespace
 
-LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOptions& noise,
+LinearForceModel BuildLinearForceModel(const BirotorParams& params, const EkfOptions& noise,
                                        const LinearModelOptions& options) {
   if (!(options.strain_rate_hz >= 1.0 && options.strain_rate_hz <= 1e6)) {
     throw std::invalid_argument("linear model: strain_rate_hz out of [1, 1e6]");

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "estimator/estimator_config.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -69,7 +69,7 @@ struct LinearForceModel {
 // 4. discretise exactly (matrix exponential, Van Loan for Q_d).
 // Throws std::invalid_argument if the decomposition is not as above (a vehicle
 // for which this model does not hold) or the rate is out of range.
-LinearForceModel BuildLinearForceModel(const VehicleParams& params, const EkfOptions& noise,
+LinearForceModel BuildLinearForceModel(const BirotorParams& params, const EkfOptions& noise,
                                        const LinearModelOptions& options);
 
 }  // namespace birotor

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
 
@@ -14,7 +14,7 @@ namespace birotor {
 class MotorSpeedTracker {
  public:
   // Telemetry older than telemetry_timeout_s is not used [s].
-  explicit MotorSpeedTracker(const VehicleParams& params, double telemetry_timeout_s = 0.05)
+  explicit MotorSpeedTracker(const BirotorParams& params, double telemetry_timeout_s = 0.05)
       : params_(params), telemetry_timeout_s_(telemetry_timeout_s) {}
 
   void Reset();
@@ -34,7 +34,7 @@ class MotorSpeedTracker {
   }
 
  private:
-  VehicleParams params_;
+  BirotorParams params_;
   double telemetry_timeout_s_;
   bool has_motor_ = false;
   int64_t model_utime_ = 0;

@@ -102,7 +102,7 @@ void FitBenchMaps(const std::vector<double> map_b[kBirotorRotors], const std::ve
 }
 
 BenchStatics BenchArmStatics(const std::vector<double> map_b[kBirotorRotors],
-                             const std::vector<double> map_f[kBirotorRotors], const VehicleParams& base,
+                             const std::vector<double> map_f[kBirotorRotors], const BirotorParams& base,
                              const CalibrationFact& fact) {
   BenchStatics statics;
   for (int arm = 0; arm < kBirotorRotors; ++arm) statics.lines[arm] = FitStaticLine(map_f[arm], map_b[arm]);
@@ -118,7 +118,7 @@ BenchStatics BenchArmStatics(const std::vector<double> map_b[kBirotorRotors],
   return statics;
 }
 
-BenchTheta BenchThetaAt(const BenchStatics& statics, const VehicleParams& base, double strain_noise_rad,
+BenchTheta BenchThetaAt(const BenchStatics& statics, const BirotorParams& base, double strain_noise_rad,
                         double stiffness_n_m_rad, double tip_mass_kg, const double gauge_scale[kBirotorRotors]) {
   BenchTheta theta;
   theta[kBenchK] = stiffness_n_m_rad / statics.scales.stiffness_n_m_rad;
@@ -135,7 +135,7 @@ BenchTheta BenchThetaAt(const BenchStatics& statics, const VehicleParams& base, 
 }
 
 BenchTheta ScanArmFrequency(const std::vector<ArmData>& data, const std::vector<ArmWindow>& windows,
-                            const BenchStatics& statics, const VehicleParams& base,
+                            const BenchStatics& statics, const BirotorParams& base,
                             const IdentificationOptions& options) {
   const CalibrationFact& fact = options.calibration;
   const bool weighed = fact.TipMassWeighed();
@@ -175,7 +175,7 @@ BenchTheta ScanArmFrequency(const std::vector<ArmData>& data, const std::vector<
 }
 
 void BuildBenchArmProblem(const std::vector<ArmData>& data, const std::vector<ArmWindow>& windows,
-                          const BenchStatics& statics, const VehicleParams& base, const IdentificationOptions& options,
+                          const BenchStatics& statics, const BirotorParams& base, const IdentificationOptions& options,
                           BenchArmProblem* fit) {
   const CalibrationFact& fact = options.calibration;
   const bool weighed = fact.TipMassWeighed();
@@ -222,7 +222,7 @@ namespace {
 // Floor stage of the bench arm fit: what the sampled load-cell input cannot
 // give better (options), on d and on k / m_p; the offsets follow m_p through
 // the static intercept, the scales follow k when the tip mass is weighed.
-void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& theta, const VehicleParams& base,
+void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& theta, const BirotorParams& base,
                        ParameterEstimate* k, ParameterEstimate* damping, ParameterEstimate* tip_mass,
                        ParameterEstimate scale[kBirotorRotors], ParameterEstimate offset[kBirotorRotors]) {
   const CalibrationFact& fact = options.calibration;
@@ -253,7 +253,7 @@ void AddBenchArmFloors(const IdentificationOptions& options, const BenchTheta& t
 
 }  // namespace
 
-void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyBenchArms(const std::vector<SensorLog>& logs, const BirotorParams& base,
                        const IdentificationOptions& options, IdentificationResult* result) {
   const CalibrationFact& fact = options.calibration;
   const double sigma_b = options.strain_noise_rad;

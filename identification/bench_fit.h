@@ -77,10 +77,10 @@ struct BenchStatics {
   double tip_mass_kg = 0.0;        // m_p0
 };
 BenchStatics BenchArmStatics(const std::vector<double> map_b[kBirotorRotors],
-                             const std::vector<double> map_f[kBirotorRotors], const VehicleParams& base,
+                             const std::vector<double> map_f[kBirotorRotors], const BirotorParams& base,
                              const CalibrationFact& fact);
 // theta at (k, m_p, gauge scales) holding the static lines; d at the base value.
-BenchTheta BenchThetaAt(const BenchStatics& statics, const VehicleParams& base, double strain_noise_rad,
+BenchTheta BenchThetaAt(const BenchStatics& statics, const BirotorParams& base, double strain_noise_rad,
                         double stiffness_n_m_rad, double tip_mass_kg, const double gauge_scale[kBirotorRotors]);
 
 // Sum of squared whitened residuals of the windows at theta with each
@@ -93,7 +93,7 @@ double CostWithBestInitialStates(const std::vector<ClampedArmWindowResidual*>& w
 // local minima a few percent apart in frequency). Scale held: m_p moves;
 // tip mass weighed and scales free: k and s_i move together. The best theta.
 BenchTheta ScanArmFrequency(const std::vector<ArmData>& data, const std::vector<ArmWindow>& windows,
-                            const BenchStatics& statics, const VehicleParams& base,
+                            const BenchStatics& statics, const BirotorParams& base,
                             const IdentificationOptions& options);
 
 // Build stage: one clamped-arm window residual per window over theta, each
@@ -106,7 +106,7 @@ struct BenchArmProblem {
   std::vector<ceres::ResidualBlockId> blocks;
 };
 void BuildBenchArmProblem(const std::vector<ArmData>& data, const std::vector<ArmWindow>& windows,
-                          const BenchStatics& statics, const VehicleParams& base, const IdentificationOptions& options,
+                          const BenchStatics& statics, const BirotorParams& base, const IdentificationOptions& options,
                           BenchArmProblem* fit);
 
 }  // namespace birotor

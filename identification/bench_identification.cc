@@ -28,7 +28,7 @@ double LoadCellForce(const LoadCellSample& s, int rotor) { return s.force_n[roto
 
 // Load-cell/telemetry pairs thrust_sample_spacing_s apart on the c_T ratio
 // block (ThrustResidual, Huber loss), with their data for the plot (may be null).
-std::vector<ceres::ResidualBlockId> AddThrustResiduals(const std::vector<SensorLog>& logs, const VehicleParams& base,
+std::vector<ceres::ResidualBlockId> AddThrustResiduals(const std::vector<SensorLog>& logs, const BirotorParams& base,
                                                        const IdentificationOptions& options, ceres::Problem* problem,
                                                        double* c_ratio, std::vector<double>* plot_omega,
                                                        std::vector<double>* plot_force) {
@@ -89,7 +89,7 @@ double ThrustResidualRmsN(const std::vector<SensorLog>& logs, double thrust_coef
   return count > 0 ? std::sqrt(sum_sq / count) : 0.0;
 }
 
-void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const BirotorParams& base,
                          const IdentificationOptions& options, IdentificationResult* result) {
   ceres::Problem problem;
   double ratio = 1.0;
@@ -185,7 +185,7 @@ std::vector<ClampedArmWindowResidual::Sample> ArmWindowSamples(const std::vector
   return samples;
 }
 
-void AddBenchResiduals(const std::vector<SensorLog>& logs, const VehicleParams& bench,
+void AddBenchResiduals(const std::vector<SensorLog>& logs, const BirotorParams& bench,
                        const IdentificationOptions& options, ceres::Problem* problem, const SharedRatioBlocks& shared,
                        BenchResiduals* out) {
   out->thrust = AddThrustResiduals(logs, bench, options, problem, shared.thrust_coeff, nullptr, nullptr);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "identification/identification_options.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/sensor_log.h"
 
 namespace birotor {
@@ -39,7 +39,7 @@ struct BenchResiduals {
 // (IdentifyBenchThrust, IdentifyBenchArms): its c_T, k, d, m_p are the ratio
 // scales, its gauge calibration is held. A weighed tip mass
 // (options.calibration) adds its prior on m_p, or holds m_p when its sigma is 0.
-void AddBenchResiduals(const std::vector<SensorLog>& logs, const VehicleParams& bench,
+void AddBenchResiduals(const std::vector<SensorLog>& logs, const BirotorParams& bench,
                        const IdentificationOptions& options, ceres::Problem* problem, const SharedRatioBlocks& shared,
                        BenchResiduals* out);
 

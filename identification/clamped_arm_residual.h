@@ -35,7 +35,7 @@ struct ClampedArmWindowResidual {
     double tip_mass_kg;
   };
 
-  ClampedArmWindowResidual(const VehicleParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
+  ClampedArmWindowResidual(const BirotorParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
                            int substeps, const Scales& scales, double huber)
       : known_(known),
         arm_(arm),
@@ -78,14 +78,14 @@ struct ClampedArmWindowResidual {
     return true;
   }
 
-  static ceres::CostFunction* Create(const VehicleParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
+  static ceres::CostFunction* Create(const BirotorParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
                                      int substeps, const Scales& scales, double huber) {
     const int n = static_cast<int>(samples.size());
     return new ceres::AutoDiffCostFunction<ClampedArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, 1, 1, 2>(
         new ClampedArmWindowResidual(known, arm, std::move(samples), sigma_rad, substeps, scales, huber), n);
   }
 
-  const VehicleParams known_;  // L, g (k, d, m_p are parameters)
+  const BirotorParams known_;  // L, g (k, d, m_p are parameters)
   const int arm_;              // 0: arm 1, 1: arm 2
   const std::vector<Sample> samples_;
   const double sigma_rad_;  // strain noise, also the unit of the offset ratio [rad]

@@ -53,7 +53,7 @@ std::vector<DeterminedCombination> CorrelationLines(ceres::Problem* problem,
   return DescribeCorrelations(ComputeBlockCorrelations(problem, blocks, num_threads), names, values, sigmas, 0.99);
 }
 
-bool SetVehicleValue(const std::string& key, double value, VehicleParams* params) {
+bool SetVehicleValue(const std::string& key, double value, BirotorParams* params) {
   if (key == "arm_stiffness_n_m_rad")
     params->arm_stiffness_n_m_rad = value;
   else if (key == "arm_damping_n_m_s_rad")

@@ -62,6 +62,6 @@ void StoreEstimates(const std::vector<ParameterEstimate>& estimates, Identificat
 // Writes the value of a `vehicle:` key (the ParameterEstimate keys of
 // identification, gauge_scale[i] and gauge_offset_rad[i] included); false
 // for a key identification does not fit.
-bool SetVehicleValue(const std::string& key, double value, VehicleParams* params);
+bool SetVehicleValue(const std::string& key, double value, BirotorParams* params);
 
 }  // namespace birotor

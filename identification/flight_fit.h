@@ -36,8 +36,8 @@ struct FlightSamples {
   std::vector<FlightWindow> candidates;                             // every valid window
   bool any_imu = false;
 };
-FlightSamples CollectFlightSamples(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                                   const VehicleParams& motor, const IdentificationOptions& options);
+FlightSamples CollectFlightSamples(const std::vector<SensorLog>& logs, const BirotorParams& base,
+                                   const BirotorParams& motor, const IdentificationOptions& options);
 
 // Scan stage: at most max_windows of the candidates, spread evenly (0: all).
 // The arm modes ring after every manoeuvre, so a subset carries nearly all
@@ -80,7 +80,7 @@ struct FlightProblem {
 // by `base`), its initial state and turbulence knots under their prior; the
 // bench residuals when bench_logs is not null. d (and m_p) held as the
 // options say, unless the fit is joint.
-void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindow>& windows, const VehicleParams& base,
+void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindow>& windows, const BirotorParams& base,
                         const IdentificationOptions& options, const std::vector<SensorLog>* bench_logs,
                         FlightProblem* fit);
 
@@ -154,7 +154,7 @@ std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool 
 // floors (bench floors in a joint fit, --gauge-scale-std otherwise), the
 // warnings and advice, into *result (params by StoreEstimates).
 void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, const std::vector<BlockSigma>& sigma,
-                       const TipMassCheck& tip_check, const VehicleParams& base, const IdentificationOptions& options,
+                       const TipMassCheck& tip_check, const BirotorParams& base, const IdentificationOptions& options,
                        IdentificationResult* result);
 
 // Plot data: measured and predicted deflections of both arms over two

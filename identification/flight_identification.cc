@@ -44,7 +44,7 @@ struct ModelSpeeds {
   std::vector<bool> settled;
 };
 
-ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const VehicleParams& params) {
+ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const BirotorParams& params) {
   const double tau_s = params.motor_time_constant_s;
   const int64_t settle_us = static_cast<int64_t>(kMotorSettleTimeConstants * tau_s * 1e6);
   ModelSpeeds out;
@@ -77,8 +77,8 @@ ModelSpeeds ModelRotorSpeeds(const std::vector<MotorSample>& motor, const Vehicl
 
 }  // namespace
 
-FlightSamples CollectFlightSamples(const std::vector<SensorLog>& logs, const VehicleParams& base,
-                                   const VehicleParams& motor_params, const IdentificationOptions& options) {
+FlightSamples CollectFlightSamples(const std::vector<SensorLog>& logs, const BirotorParams& base,
+                                   const BirotorParams& motor_params, const IdentificationOptions& options) {
   FlightSamples data;
   data.utime.resize(logs.size());
   data.samples.resize(logs.size());
@@ -170,7 +170,7 @@ std::array<double, kFreeArmStateSize> InitialWindowState(const std::vector<FreeA
   return x0;
 }
 
-void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindow>& windows, const VehicleParams& base,
+void BuildFlightProblem(const FlightSamples& data, const std::vector<FlightWindow>& windows, const BirotorParams& base,
                         const IdentificationOptions& options, const std::vector<SensorLog>* bench_logs,
                         FlightProblem* fit) {
   fit->joint = bench_logs != nullptr && !bench_logs->empty();
@@ -331,7 +331,7 @@ std::vector<BlockSigma> FlightSigmas(const IdentificationOptions& options, bool 
   return SharedSigmas(problem, fit->Blocks(), inflation, clusters, options.num_threads);
 }
 
-void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyFlightArms(const std::vector<SensorLog>& logs, const BirotorParams& base,
                         const IdentificationOptions& options, IdentificationResult* result,
                         const std::vector<SensorLog>* bench_logs) {
   // The motor time constant identified just before (IdentifyMotorTimeConstant), else the base value.

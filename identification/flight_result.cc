@@ -47,7 +47,7 @@ namespace {
 // m_p kept at the base value (CheckTipMass held it, or the flight agrees
 // with the base file): the estimate says why, the warning what to fly, and,
 // when m_p was held in the fit, the combination the flight determines is named.
-void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, const ParameterEstimate& c_t,
+void ExplainHeldTipMass(const TipMassCheck& check, const BirotorParams& base, const ParameterEstimate& c_t,
                         ParameterEstimate* tip_mass, IdentificationResult* result) {
   tip_mass->value = base.tip_mass_kg;
   tip_mass->determined = false;
@@ -82,7 +82,7 @@ void ExplainHeldTipMass(const TipMassCheck& check, const VehicleParams& base, co
 }  // namespace
 
 void StoreFlightResult(const FlightProblem& fit, const FlightSamples& data, const std::vector<BlockSigma>& sigma,
-                       const TipMassCheck& tip_check, const VehicleParams& base, const IdentificationOptions& options,
+                       const TipMassCheck& tip_check, const BirotorParams& base, const IdentificationOptions& options,
                        IdentificationResult* result) {
   ParameterEstimate k = ParameterEstimate::Named("arm_stiffness_n_m_rad", "k");
   ParameterEstimate damping = ParameterEstimate::Named("arm_damping_n_m_s_rad", "d");

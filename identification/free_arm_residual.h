@@ -77,7 +77,7 @@ struct FreeArmWindowResidual {
   // k, c_T, m_p, x_0 and 2 x 7 knots (0.3 s windows, 0.05 s knots) in two passes.
   static constexpr int kStride = 12;
 
-  FreeArmWindowResidual(const VehicleParams& known, std::vector<Sample> samples, const Noise& noise, int substeps,
+  FreeArmWindowResidual(const BirotorParams& known, std::vector<Sample> samples, const Noise& noise, int substeps,
                         const Scales& scales, double turbulence_knot_s)
       : known_(known), samples_(std::move(samples)), noise_(noise), substeps_(substeps), scales_(scales) {
     PlaceKnots(turbulence_knot_s);
@@ -139,7 +139,7 @@ struct FreeArmWindowResidual {
   }
 
   const std::vector<Sample>& samples() const { return samples_; }
-  const VehicleParams& known() const { return known_; }
+  const BirotorParams& known() const { return known_; }
   const Scales& scales() const { return scales_; }
   int substeps() const { return substeps_; }
   // eta_i at sample j is (1 - w) knot[s] + w knot[s + 1] of its rotor, s =
@@ -150,7 +150,7 @@ struct FreeArmWindowResidual {
   // The cost function with Ceres' dynamic autodiff (the reference of
   // FreeArmWindowCost, free_arm_window_cost.h, which the fits use). *functor
   // (optional) keeps a view of the functor, owned by the cost function.
-  static ceres::CostFunction* CreateAutoDiff(const VehicleParams& known, std::vector<Sample> samples,
+  static ceres::CostFunction* CreateAutoDiff(const BirotorParams& known, std::vector<Sample> samples,
                                              const Noise& noise, int substeps, const Scales& scales,
                                              double turbulence_knot_s,
                                              const FreeArmWindowResidual** functor = nullptr) {
@@ -277,7 +277,7 @@ struct FreeArmWindowResidual {
     }
   }
 
-  const VehicleParams known_;  // m, L, J (k, d, c_T, m_p are parameters)
+  const BirotorParams known_;  // m, L, J (k, d, c_T, m_p are parameters)
   const std::vector<Sample> samples_;
   const Noise noise_;
   const int substeps_;

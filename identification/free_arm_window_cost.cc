@@ -46,7 +46,7 @@ struct LocalPoint {
 // x_dot = f(x, u) on the local Jets: its value and d x_dot / d(x, u). Flattened
 // (every call inlined): GCC otherwise calls out for each Jet operation,
 // which took half of the evaluation.
-[[gnu::flatten]] FreeArmState<Jet> LocalDerivative(const VehicleParams& known, const LocalPoint& p) {
+[[gnu::flatten]] FreeArmState<Jet> LocalDerivative(const BirotorParams& known, const LocalPoint& p) {
   return FreeArmDerivative<Jet>(known, p.u[kInK], p.u[kInD], p.u[kInTipMass], p.x, p.u[kInForce1], p.u[kInForce2]);
 }
 
@@ -97,7 +97,7 @@ void WriteJacobianRows(const ResidualSensitivity& dr, size_t j, int knot_block_s
 
 }  // namespace
 
-ceres::CostFunction* FreeArmWindowCost::Create(const VehicleParams& known,
+ceres::CostFunction* FreeArmWindowCost::Create(const BirotorParams& known,
                                                std::vector<FreeArmWindowResidual::Sample> samples,
                                                const FreeArmWindowResidual::Noise& noise, int substeps,
                                                const FreeArmWindowResidual::Scales& scales, double turbulence_knot_s,

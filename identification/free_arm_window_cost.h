@@ -26,7 +26,7 @@ class FreeArmWindowCost : public ceres::CostFunction {
 
   // Same arguments and parameter blocks as FreeArmWindowResidual::CreateAutoDiff;
   // *functor (optional) keeps a view of the functor, owned by the cost function.
-  static ceres::CostFunction* Create(const VehicleParams& known, std::vector<FreeArmWindowResidual::Sample> samples,
+  static ceres::CostFunction* Create(const BirotorParams& known, std::vector<FreeArmWindowResidual::Sample> samples,
                                      const FreeArmWindowResidual::Noise& noise, int substeps,
                                      const FreeArmWindowResidual::Scales& scales, double turbulence_knot_s,
                                      const FreeArmWindowResidual** functor = nullptr);

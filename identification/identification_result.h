@@ -10,7 +10,7 @@
 
 #include "identification/identification_options.h"
 #include "identification/sample_cleaning.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -198,7 +198,7 @@ struct IdentificationResult {
   std::string mode;                             // "bench", "flight" or "bench+flight"
   std::vector<std::string> errors;              // what the data lacks, one line each
   std::vector<IdentificationWarning> warnings;  // e.g. parameter kept at its base value
-  VehicleParams params;                         // base parameters with the identified values
+  BirotorParams params;                         // base parameters with the identified values
   std::vector<ParameterEstimate> estimates;
   std::vector<ResidualSummary> residuals;
   std::vector<DeflectionForceMap> maps;
@@ -218,7 +218,7 @@ struct IdentificationResult {
   std::vector<LogShares> log_shares;
   // Joint bench + flight fit: the bench logs' own fit (the flight logs' base
   // in the per-log comparison).
-  VehicleParams bench_params;
+  BirotorParams bench_params;
   std::vector<FitPlot> plots;    // fit versus data, a few panels
   SampleCleaningReport dropped;  // bad samples dropped before fitting, all logs
 };

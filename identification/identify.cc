@@ -49,7 +49,7 @@ void CheckInputs(const std::vector<SensorLog>& logs, IdentificationMode mode, co
 // In a joint bench + flight run (mode kAuto) each log is fitted in its own
 // mode, a flight log on flight_base (the bench logs' fit: its gauge
 // calibration is the one the flight reads its deflections through).
-void CompareLogs(const std::vector<SensorLog>& logs, const VehicleParams& base, const VehicleParams& flight_base,
+void CompareLogs(const std::vector<SensorLog>& logs, const BirotorParams& base, const BirotorParams& flight_base,
                  const IdentificationOptions& options, IdentificationMode mode, IdentificationResult* result) {
   std::vector<IdentificationResult> singles;
   for (const SensorLog& log : logs) {
@@ -110,7 +110,7 @@ SampleCleaningReport SanitizeLog(SensorLog* log, const IdentificationOptions& op
 }
 
 void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std::vector<SensorLog>& flight_logs,
-                            const VehicleParams& base, const IdentificationOptions& options,
+                            const BirotorParams& base, const IdentificationOptions& options,
                             IdentificationResult* result) {
   result->mode = "bench+flight";
   result->bench_params = base;
@@ -157,7 +157,7 @@ void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std:
   }
 }
 
-IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& base,
+IdentificationResult Identify(std::vector<SensorLog> logs, const BirotorParams& base,
                               const IdentificationOptions& options, IdentificationMode mode) {
   IdentificationResult result;
   result.params = base;

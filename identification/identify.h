@@ -9,7 +9,7 @@
 #include "identification/identification_options.h"
 #include "identification/identification_result.h"
 #include "identification/sample_cleaning.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/sensor_log.h"
 
 namespace birotor {
@@ -28,7 +28,7 @@ SampleCleaningReport SanitizeLog(SensorLog* log, const IdentificationOptions& op
 // The masses, lengths and inertia of `base` are taken as known. When the data
 // cannot give an essential parameter (missing channel, too short, no
 // excitation), result.ok is false and result.errors says what is missing.
-IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& base,
+IdentificationResult Identify(std::vector<SensorLog> logs, const BirotorParams& base,
                               const IdentificationOptions& options,
                               IdentificationMode mode = IdentificationMode::kAuto);
 
@@ -37,18 +37,18 @@ IdentificationResult Identify(std::vector<SensorLog> logs, const VehicleParams& 
 // over k, d, c_T, m_p (the bench logs alone give the start and the gauge
 // calibration); tau_m from the motor data of every log.
 void IdentifyBenchAndFlight(const std::vector<SensorLog>& bench_logs, const std::vector<SensorLog>& flight_logs,
-                            const VehicleParams& base, const IdentificationOptions& options,
+                            const BirotorParams& base, const IdentificationOptions& options,
                             IdentificationResult* result);
-void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const BirotorParams& base,
                                const IdentificationOptions& options, IdentificationResult* result);
-void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const BirotorParams& base,
                          const IdentificationOptions& options, IdentificationResult* result);
-void IdentifyBenchArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyBenchArms(const std::vector<SensorLog>& logs, const BirotorParams& base,
                        const IdentificationOptions& options, IdentificationResult* result);
 // With bench_logs (a joint bench + flight fit), `base` is the bench logs' own
 // fit and their residuals join the flight's in one Ceres problem over k, d,
 // c_T, m_p (bench_residuals.h).
-void IdentifyFlightArms(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyFlightArms(const std::vector<SensorLog>& logs, const BirotorParams& base,
                         const IdentificationOptions& options, IdentificationResult* result,
                         const std::vector<SensorLog>* bench_logs = nullptr);
 

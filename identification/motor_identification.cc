@@ -22,7 +22,7 @@ std::string MotorNotExcitedError(const EstimateNote& note) {
   return text.str();
 }
 
-void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const VehicleParams& base,
+void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const BirotorParams& base,
                                const IdentificationOptions& options, IdentificationResult* result) {
   ceres::Problem::Options problem_options;
   ceres::Problem problem(problem_options);

@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "model/birotor_dynamics.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 
 namespace birotor {
 
@@ -21,7 +21,7 @@ namespace birotor {
 // Returns b_ddot [rad/s^2]. Uses L, g of `known`; k, d and the tip mass m_p
 // [kg] are parameters (identification fits all three on the bench).
 template <typename T>
-T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& tip_mass_kg, const T& b,
+T ClampedArmAcceleration(const BirotorParams& known, int arm, const T& k, const T& d, const T& tip_mass_kg, const T& b,
                          const T& b_dot, const T& force_n) {
   using std::cos;
   const double s = kArmSign[arm];
@@ -31,7 +31,7 @@ T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const 
 
 // The same with m_p of `known`.
 template <typename T>
-T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const T& d, const T& b, const T& b_dot,
+T ClampedArmAcceleration(const BirotorParams& known, int arm, const T& k, const T& d, const T& b, const T& b_dot,
                          const T& force_n) {
   return ClampedArmAcceleration<T>(known, arm, k, d, T(known.tip_mass_kg), b, b_dot, force_n);
 }
@@ -41,7 +41,7 @@ T ClampedArmAcceleration(const VehicleParams& known, int arm, const T& k, const 
 // vehicle's own k and d: the clamped-arm row above for each arm (M_bb =
 // m_p L^2, no b1-b2 coupling, C_b = 0 with the body still) [rad/s^2].
 template <typename T>
-Eigen::Matrix<T, 2, 1> SupportedArmAcceleration(const VehicleParams& p, const T& b1, const T& b2, const T& b1_dot,
+Eigen::Matrix<T, 2, 1> SupportedArmAcceleration(const BirotorParams& p, const T& b1, const T& b2, const T& b1_dot,
                                                 const T& b2_dot, const T& force1_n, const T& force2_n) {
   const T k(p.arm_stiffness_n_m_rad), d(p.arm_damping_n_m_s_rad);
   return Eigen::Matrix<T, 2, 1>(ClampedArmAcceleration(p, 0, k, d, b1, b1_dot, force1_n),
@@ -80,7 +80,7 @@ using FreeArmState = Eigen::Matrix<T, kFreeArmStateSize, 1>;
 // G_b = k b + d b_dot.
 // The tip mass m_p [kg] is a parameter too (flight identification fits it).
 template <typename T>
-FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d, const T& tip_mass_kg,
+FreeArmState<T> FreeArmDerivative(const BirotorParams& known, const T& k, const T& d, const T& tip_mass_kg,
                                   const FreeArmState<T>& x, const T& force1_n, const T& force2_n,
                                   Eigen::Matrix<T, 2, 1>* specific_force_m_s2 = nullptr) {
   using std::cos;
@@ -145,7 +145,7 @@ FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const 
 
 // The same with m_p of `known` (the EKF's process model).
 template <typename T>
-FreeArmState<T> FreeArmDerivative(const VehicleParams& known, const T& k, const T& d, const FreeArmState<T>& x,
+FreeArmState<T> FreeArmDerivative(const BirotorParams& known, const T& k, const T& d, const FreeArmState<T>& x,
                                   const T& force1_n, const T& force2_n,
                                   Eigen::Matrix<T, 2, 1>* specific_force_m_s2 = nullptr) {
   return FreeArmDerivative<T>(known, k, d, T(known.tip_mass_kg), x, force1_n, force2_n, specific_force_m_s2);

@@ -12,7 +12,7 @@ namespace birotor {
 
 // b_i_ddot from the clamped-arm row of thesis eq. 3.10 (model/arm_dynamics.h)
 // with the vehicle's k and d; omega_i_dot from the first-order motor model.
-inline PlantState ClampedBodyDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
+inline PlantState ClampedBodyDerivative(const BirotorParams& p, const PlantState& x, const PlantInput& u) {
   PlantState x_dot = PlantState::Zero();
   const double forces_n[kBirotorRotors] = {RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]),
                                            RotorThrust(p, x(kPlantOmega2), u.thrust_scale[1])};

@@ -21,7 +21,7 @@
 #include <cmath>
 
 #include "model/arm_terms.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -53,7 +53,7 @@ struct DynamicsTerms {
 constexpr bool MassEntryVaries(int row, int col) { return (row <= kZ) != (col <= kZ); }
 
 template <typename T>
-DynamicsTerms<T> ComputeDynamicsTerms(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
+DynamicsTerms<T> ComputeDynamicsTerms(const BirotorParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
                                       const T& force2_n) {
   using std::cos;
   using std::sin;
@@ -140,7 +140,7 @@ Coords<T> SolveMassMatrix(const CoordMatrix<T>& M, const Coords<T>& rhs) {
 
 // Generalized acceleration q_ddot = M^-1 (tau - C - G) (thesis eq. 3.14).
 template <typename T>
-Coords<T> GeneralizedAcceleration(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
+Coords<T> GeneralizedAcceleration(const BirotorParams& p, const Coords<T>& q, const Coords<T>& v, const T& force1_n,
                                   const T& force2_n) {
   const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, force1_n, force2_n);
   return SolveMassMatrix<T>(terms.mass, terms.generalized_thrust - terms.coriolis - terms.gravity_spring);
@@ -150,14 +150,14 @@ Coords<T> GeneralizedAcceleration(const VehicleParams& p, const Coords<T>& q, co
 // and thrust force_n: k b_i = s_i L (f_i - m_p g), s_i = kArmSign (small angle,
 // cos b ~ 1 to 2e-6 relative). With the motors stopped b1 = +m_p g L / k and
 // b2 = -m_p g L / k (+-2.69e-4 rad for the reference vehicle).
-inline double StaticDeflectionRad(const VehicleParams& p, int arm, double force_n) {
+inline double StaticDeflectionRad(const BirotorParams& p, int arm, double force_n) {
   return kArmSign[arm] * p.arm_length_m * (force_n - p.tip_mass_kg * p.gravity_m_s2) / p.arm_stiffness_n_m_rad;
 }
 
 // Mechanical energy T + U [J] (kinetic, gravitational and elastic), used to
 // check the integrator: with d = 0 and no thrust it is conserved.
 template <typename T>
-T MechanicalEnergy(const VehicleParams& p, const Coords<T>& q, const Coords<T>& v) {
+T MechanicalEnergy(const BirotorParams& p, const Coords<T>& q, const Coords<T>& v) {
   const T zero(0.0);
   const DynamicsTerms<T> terms = ComputeDynamicsTerms(p, q, v, zero, zero);
   T energy = T(0.5) * v.dot(terms.mass * v) + p.body_mass_kg * p.gravity_m_s2 * q(kZ);
@@ -172,7 +172,7 @@ T MechanicalEnergy(const VehicleParams& p, const Coords<T>& q, const Coords<T>& 
 
 // Position of rotor i's hub in the world frame [m].
 template <typename T>
-Eigen::Matrix<T, 2, 1> TipPosition(const VehicleParams& p, const Coords<T>& q, int rotor) {
+Eigen::Matrix<T, 2, 1> TipPosition(const BirotorParams& p, const Coords<T>& q, int rotor) {
   using std::cos;
   using std::sin;
   const T a = q(kPhi) + q(rotor == 0 ? kB1 : kB2);

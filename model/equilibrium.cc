@@ -15,7 +15,7 @@ using Jet4 = ceres::Jet<double, 4>;
 // Static balance rows z, phi, b1, b2 of tau - G with v = 0; unknowns
 // [b1, b2, f1, f2].
 template <typename T>
-Eigen::Matrix<T, 4, 1> StaticResidual(const VehicleParams& p, const Eigen::Matrix<T, 4, 1>& unknowns) {
+Eigen::Matrix<T, 4, 1> StaticResidual(const BirotorParams& p, const Eigen::Matrix<T, 4, 1>& unknowns) {
   Coords<T> q = Coords<T>::Zero();
   q(kB1) = unknowns(0);
   q(kB2) = unknowns(1);
@@ -27,7 +27,7 @@ Eigen::Matrix<T, 4, 1> StaticResidual(const VehicleParams& p, const Eigen::Matri
 
 }  // namespace
 
-Equilibrium SolveHoverEquilibrium(const VehicleParams& p) {
+Equilibrium SolveHoverEquilibrium(const BirotorParams& p) {
   const double f0 = p.HoverForceN();
   const double b0 = (p.tip_mass_kg * p.gravity_m_s2 * p.arm_length_m - p.arm_length_m * f0) / p.arm_stiffness_n_m_rad;
   Eigen::Vector4d x(b0, -b0, f0, f0);

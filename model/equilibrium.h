@@ -19,6 +19,6 @@ struct Equilibrium {
 // birotor can hover): solves tau(q, f) = G(q) for (b1, b2, f1, f2) by Newton's
 // method on the z, phi, b1 and b2 rows, starting from the small-angle
 // solution b_i = s_i (m_p g L - L f) / k.
-Equilibrium SolveHoverEquilibrium(const VehicleParams& p);
+Equilibrium SolveHoverEquilibrium(const BirotorParams& p);
 
 }  // namespace birotor

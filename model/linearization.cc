@@ -8,7 +8,7 @@
 
 namespace birotor {
 
-LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Coords<double>& v0, double force1_n,
+LinearModel Linearize(const BirotorParams& p, const Coords<double>& q0, const Coords<double>& v0, double force1_n,
                       double force2_n) {
   using Jet = ceres::Jet<double, kMechStateSize + 2>;
   Coords<Jet> q, v;
@@ -30,7 +30,7 @@ LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Co
   return model;
 }
 
-LinearModel LinearizeAtHover(const VehicleParams& p) {
+LinearModel LinearizeAtHover(const BirotorParams& p) {
   const Equilibrium eq = SolveHoverEquilibrium(p);
   Coords<double> q0 = Coords<double>::Zero();
   q0(kB1) = eq.deflection_rad[0];

@@ -27,11 +27,11 @@ struct LinearModel {
 };
 
 // Exact Jacobians of [v; M^-1 (tau - C - G)] with respect to x and f (Jets).
-LinearModel Linearize(const VehicleParams& p, const Coords<double>& q0, const Coords<double>& v0, double force1_n,
+LinearModel Linearize(const BirotorParams& p, const Coords<double>& q0, const Coords<double>& v0, double force1_n,
                       double force2_n);
 
 // Linearization at the hover equilibrium of SolveHoverEquilibrium().
-LinearModel LinearizeAtHover(const VehicleParams& p);
+LinearModel LinearizeAtHover(const BirotorParams& p);
 
 // Same system in the thesis's coordinates [x, z, phi, b_s, b_d, and rates],
 // b_s = b1 + b2, b_d = b1 - b2 (thesis eq. 3.15-3.21): A' = T A T^-1, B' = T B.

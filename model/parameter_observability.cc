@@ -38,7 +38,7 @@ struct HoverPoint {
   double command_rad_s[kBirotorRotors];  // held rotor speed commands (the hover speeds)
 };
 
-HoverPoint MakeHoverPoint(const VehicleParams& p) {
+HoverPoint MakeHoverPoint(const BirotorParams& p) {
   const Equilibrium eq = SolveHoverEquilibrium(p);
   HoverPoint h;
   h.x.setZero();
@@ -54,8 +54,8 @@ HoverPoint MakeHoverPoint(const VehicleParams& p) {
 
 // The vehicle with the deviations theta applied (the per-arm stiffness
 // deviations are applied by Acceleration, the gauge scales by the strain row).
-VehicleParams Perturbed(const VehicleParams& p, const AugVector& x) {
-  VehicleParams q = p;
+BirotorParams Perturbed(const BirotorParams& p, const AugVector& x) {
+  BirotorParams q = p;
   q.body_mass_kg *= 1.0 + x(kThetaBodyMass);
   q.tip_mass_kg *= 1.0 + x(kThetaTipMass);
   q.thrust_coeff_n_s2_rad2 *= 1.0 + x(kThetaThrustCoeff);
@@ -64,8 +64,8 @@ VehicleParams Perturbed(const VehicleParams& p, const AugVector& x) {
 }
 
 // q_ddot with f_i = mu_i c_T omega_i^2 and hinge i's stiffness k (1 + theta_ki).
-Coords<double> Acceleration(const VehicleParams& p, const AugVector& x) {
-  const VehicleParams q = Perturbed(p, x);
+Coords<double> Acceleration(const BirotorParams& p, const AugVector& x) {
+  const BirotorParams q = Perturbed(p, x);
   const Coords<double> pos = x.head<kNumCoordinates>(), vel = x.segment<kNumCoordinates>(kNumCoordinates);
   double force_n[kBirotorRotors];
   for (int i = 0; i < kBirotorRotors; ++i)
@@ -77,7 +77,7 @@ Coords<double> Acceleration(const VehicleParams& p, const AugVector& x) {
   return SolveMassMatrix<double>(t.mass, rhs);
 }
 
-AugVector Derivative(const VehicleParams& p, const HoverPoint& h, const AugVector& x) {
+AugVector Derivative(const BirotorParams& p, const HoverPoint& h, const AugVector& x) {
   AugVector dx = AugVector::Zero();  // mu_i, o_i and theta: constants
   dx.head<kNumCoordinates>() = x.segment<kNumCoordinates>(kNumCoordinates);
   dx.segment<kNumCoordinates>(kNumCoordinates) = Acceleration(p, x);
@@ -87,12 +87,12 @@ AugVector Derivative(const VehicleParams& p, const HoverPoint& h, const AugVecto
 }
 
 // |b_i| at the hover equilibrium [rad].
-double HoverDeflectionRad(const VehicleParams& p, int arm) {
+double HoverDeflectionRad(const BirotorParams& p, int arm) {
   return std::fabs(SolveHoverEquilibrium(p).deflection_rad[arm]);
 }
 
 // The rows of one measurement at x.
-Eigen::VectorXd Measure(const VehicleParams& p, ParameterMeasurement m, const AugVector& x) {
+Eigen::VectorXd Measure(const BirotorParams& p, ParameterMeasurement m, const AugVector& x) {
   switch (m) {
     case ParameterMeasurement::kStrain:
       // o_i in units of the hover deflection |b_i0| (comparable with theta_si).
@@ -124,7 +124,7 @@ const std::vector<std::string>& ParameterAugmentedStateNames() {
   return names;
 }
 
-void LinearizeWithParameters(const VehicleParams& params, const std::vector<ParameterMeasurement>& measured,
+void LinearizeWithParameters(const BirotorParams& params, const std::vector<ParameterMeasurement>& measured,
                              Eigen::MatrixXd* a, Eigen::MatrixXd* c) {
   const HoverPoint h = MakeHoverPoint(params);
   const int n = kParameterAugmentedSize;
@@ -147,7 +147,7 @@ void LinearizeWithParameters(const VehicleParams& params, const std::vector<Para
   }
 }
 
-ParameterObservability AnalyzeParameterObservability(const VehicleParams& params,
+ParameterObservability AnalyzeParameterObservability(const BirotorParams& params,
                                                      const std::vector<ParameterMeasurement>& measured) {
   Eigen::MatrixXd a, c;
   LinearizeWithParameters(params, measured, &a, &c);

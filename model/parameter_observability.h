@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "model/birotor_params.h"
 #include "model/observability.h"
-#include "model/vehicle_params.h"
 
 namespace birotor {
 
@@ -48,10 +48,10 @@ struct ParameterObservability {
 // The linearised augmented system at hover: A (24 x 24) and the rows C of the
 // given measurements (Jacobians by central differences of the model of
 // model/birotor_dynamics.h; d/dtheta of the parameters).
-void LinearizeWithParameters(const VehicleParams& params, const std::vector<ParameterMeasurement>& measured,
+void LinearizeWithParameters(const BirotorParams& params, const std::vector<ParameterMeasurement>& measured,
                              Eigen::MatrixXd* a, Eigen::MatrixXd* c);
 
-ParameterObservability AnalyzeParameterObservability(const VehicleParams& params,
+ParameterObservability AnalyzeParameterObservability(const BirotorParams& params,
                                                      const std::vector<ParameterMeasurement>& measured);
 
 }  // namespace birotor

@@ -36,7 +36,7 @@ struct PlantInput {
 inline double ClampCommand(double omega_max_rad_s, double omega_cmd_rad_s) {
   return std::clamp(omega_cmd_rad_s, 0.0, omega_max_rad_s);
 }
-inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
+inline double ClampCommand(const BirotorParams& p, double omega_cmd_rad_s) {
   return ClampCommand(p.omega_max_rad_s, omega_cmd_rad_s);
 }
 
@@ -49,7 +49,7 @@ inline double ClampCommand(const VehicleParams& p, double omega_cmd_rad_s) {
 inline double MotorLagRate(double omega_max_rad_s, double tau_m_s, double omega_rad_s, double omega_cmd_rad_s) {
   return (ClampCommand(omega_max_rad_s, omega_cmd_rad_s) - omega_rad_s) / tau_m_s;
 }
-inline double MotorLagRate(const VehicleParams& p, double omega_rad_s, double omega_cmd_rad_s) {
+inline double MotorLagRate(const BirotorParams& p, double omega_rad_s, double omega_cmd_rad_s) {
   return MotorLagRate(p.omega_max_rad_s, p.motor_time_constant_s, omega_rad_s, omega_cmd_rad_s);
 }
 
@@ -57,7 +57,7 @@ inline double MotorLagRate(const VehicleParams& p, double omega_rad_s, double om
 inline double RotorThrust(double thrust_coeff_n_s2_rad2, double omega_rad_s, double thrust_scale) {
   return thrust_scale * thrust_coeff_n_s2_rad2 * omega_rad_s * omega_rad_s;
 }
-inline double RotorThrust(const VehicleParams& p, double omega_rad_s, double thrust_scale) {
+inline double RotorThrust(const BirotorParams& p, double omega_rad_s, double thrust_scale) {
   return RotorThrust(p.thrust_coeff_n_s2_rad2, omega_rad_s, thrust_scale);
 }
 
@@ -74,7 +74,7 @@ inline PlantState HoverPlantState(const Equilibrium& eq) {
 }
 
 // Time derivative of the plant state.
-inline PlantState PlantDerivative(const VehicleParams& p, const PlantState& x, const PlantInput& u) {
+inline PlantState PlantDerivative(const BirotorParams& p, const PlantState& x, const PlantInput& u) {
   const Coords<double> q = x.segment<kNumCoordinates>(kPlantQ);
   const Coords<double> v = x.segment<kNumCoordinates>(kPlantV);
   const double f1 = RotorThrust(p, x(kPlantOmega1), u.thrust_scale[0]);
@@ -97,7 +97,7 @@ T MotorStep(const T& omega_rad_s, double omega_cmd_rad_s, const T& tau_m_s, doub
 }
 
 // One RK4 step of the plant over dt_s [s] with u held.
-inline PlantState StepPlant(const VehicleParams& p, const PlantState& x, const PlantInput& u, double dt_s) {
+inline PlantState StepPlant(const BirotorParams& p, const PlantState& x, const PlantInput& u, double dt_s) {
   return Rk4Step(x, dt_s, [&](const PlantState& s) { return PlantDerivative(p, s, u); });
 }
 

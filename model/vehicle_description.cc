@@ -3,6 +3,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 namespace birotor {
@@ -167,7 +168,7 @@ void CheckGauges(const VehicleDescription& d, std::vector<std::string>* problems
 
 }  // namespace
 
-VehicleDescription BirotorDescription(const VehicleParams& p) {
+VehicleDescription BirotorDescription(const BirotorParams& p) {
   VehicleDescription d;
   d.name = "birotor";
   d.arm_count = kBirotorArmCount;
@@ -197,13 +198,13 @@ VehicleDescription BirotorDescription(const VehicleParams& p) {
   return d;
 }
 
-bool ToBirotorParams(const VehicleDescription& d, VehicleParams* params, std::string* why) {
+bool ToBirotorParams(const VehicleDescription& d, BirotorParams* params, std::string* why) {
   if (d.arm_count != kBirotorArmCount) {
-    *why = "arm_count is " + Number(d.arm_count) + "; VehicleParams holds a birotor of 2 arms";
+    *why = "arm_count is " + Number(d.arm_count) + "; BirotorParams holds a birotor of 2 arms";
     return false;
   }
   // Arm 1's scalars and both arms' gauges; the rest must then agree.
-  VehicleParams p;
+  BirotorParams p;
   const ArmDescription& arm = d.arms[0];
   p.body_mass_kg = d.body_mass_kg;
   p.tip_mass_kg = arm.tip_mass_kg;
@@ -228,7 +229,7 @@ bool ToBirotorParams(const VehicleDescription& d, VehicleParams* params, std::st
   const std::string difference = FirstDifference(d, birotor);
   if (!difference.empty()) {
     *why =
-        "not the birotor VehicleParams can hold (one value of each arm scalar for both arms, arm 1 at pi and "
+        "not the birotor BirotorParams can hold (one value of each arm scalar for both arms, arm 1 at pi and "
         "arm 2 at 0 rad, thrust angles 0, spins +1 and -1, both gauges): " +
         difference + " (description vs birotor)";
     return false;
@@ -236,6 +237,15 @@ bool ToBirotorParams(const VehicleDescription& d, VehicleParams* params, std::st
   *params = p;
   why->clear();
   return true;
+}
+
+BirotorParams BirotorModelOf(const VehicleDescription& description) {
+  BirotorParams params;
+  std::string why;
+  if (!ToBirotorParams(description, &params, &why)) {
+    throw std::invalid_argument("vehicle '" + description.name + "' is not a birotor: " + why);
+  }
+  return params;
 }
 
 std::string FirstDifference(const VehicleDescription& a, const VehicleDescription& b) {

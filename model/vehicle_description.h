@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 
 namespace birotor {
 
@@ -106,12 +106,18 @@ inline constexpr double kDescriptionTolerance = 1e-12;
 // alpha = 0, both theta = 0, spins +1 and -1 (counter-rotating; no effect in
 // the plane), every arm field from the shared scalars, gauge scale and offset
 // per arm, has_gauge true.
-VehicleDescription BirotorDescription(const VehicleParams& params);
+VehicleDescription BirotorDescription(const BirotorParams& params);
 
 // The reverse, for a description that is a birotor: false, with *why naming
-// the first field that VehicleParams cannot hold (arm_count, an arm's
+// the first field that BirotorParams cannot hold (arm_count, an arm's
 // geometry, has_gauge false, spin, or arms that differ in a shared scalar).
-bool ToBirotorParams(const VehicleDescription& description, VehicleParams* params, std::string* why);
+bool ToBirotorParams(const VehicleDescription& description, BirotorParams* params, std::string* why);
+
+// The birotor model's parameters of a description that is a birotor, for a
+// room's constructor (not the per-sample path). Throws std::invalid_argument
+// with ToBirotorParams's reason otherwise; loaders refuse such a file first
+// (RequireBirotor in params/vehicle_description_yaml.h), naming file and key.
+BirotorParams BirotorModelOf(const VehicleDescription& description);
 
 // "" when a and b agree (arms[0 .. arm_count) only; kDescriptionTolerance),
 // else the first differing field and both values, e.g.

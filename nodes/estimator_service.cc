@@ -31,8 +31,8 @@ uint64_t PayloadHash(const void* data, size_t size) {
 EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelNames& channels,
                                    const EstimatorServiceOptions& options, MessageSink* sink)
     : pipeline_(config),
-      description_(BirotorDescription(config.vehicle)),
-      vehicle_checksum_(VehicleChecksum(config.vehicle)),
+      description_(config.vehicle),
+      vehicle_checksum_(VehicleChecksum(BirotorModelOf(config.vehicle))),
       channels_(channels),
       options_(options),
       sink_(sink),

@@ -6,8 +6,8 @@
 #include <map>
 #include <sstream>
 
+#include "params/birotor_params_yaml.h"
 #include "params/regular_file.h"
-#include "params/vehicle_params_yaml.h"
 #include "program/logging.h"
 #include "samples/rotor_count.h"
 
@@ -24,7 +24,7 @@ struct StdRange {
 };
 
 // The allowed one-sigma of an offset: the range of the vehicle key
-// gauge_offset_std_rad (one table, params/vehicle_params_yaml.cc).
+// gauge_offset_std_rad (one table, params/birotor_params_yaml.cc).
 StdRange OffsetStdRange() {
   for (const VehicleKey& key : VehicleKeys()) {
     if (std::string(key.name) == "gauge_offset_std_rad") return {key.min, key.max};
@@ -68,7 +68,7 @@ bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>
 
 }  // namespace
 
-std::string VehicleChecksum(const VehicleParams& params) { return TextChecksum(VehicleParamsYaml(params)); }
+std::string VehicleChecksum(const BirotorParams& params) { return TextChecksum(BirotorParamsYaml(params)); }
 
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum) {
   char body[512];

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "estimator/gauge_calibration.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 
 namespace birotor {
 
-// Checksum of the vehicle parameters (VehicleParamsYaml text, FNV-1a 64).
-std::string VehicleChecksum(const VehicleParams& params);
+// Checksum of the vehicle parameters (BirotorParamsYaml text, FNV-1a 64).
+std::string VehicleChecksum(const BirotorParams& params);
 
 // File text for the offsets and std of calibration.
 //   # birotor-estimator gauge offset state

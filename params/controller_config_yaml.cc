@@ -1,7 +1,7 @@
 #include "params/controller_config_yaml.h"
 
 #include "params/option_table.h"
-#include "params/vehicle_params_yaml.h"
+#include "params/vehicle_description_yaml.h"
 
 namespace birotor {
 namespace {
@@ -158,7 +158,7 @@ const OptionTable<ControllerParams>& GainKeys() {
 
 ControllerConfig ReadRoot(YamlSection root) {
   ControllerConfig config;
-  ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
+  ReadVehicleDescription(root.Section("vehicle"), &config.vehicle);
   YamlSection c = root.Section("controller");
   std::string mode;
   c.String("mode", {"nominal", "force_feedback", "mpc"}, &mode);
@@ -177,6 +177,7 @@ ControllerConfig ReadRoot(YamlSection root) {
   c.Finish();
   ReadMpcParams(root.Section("mpc"), &config.mpc);
   root.Finish();
+  if (!root.HasMissingKeys()) RequireBirotor(root.file(), "birotor-controller", config.vehicle);
   return config;
 }
 

@@ -2,7 +2,7 @@
 
 #include "estimator/fusion_report.h"
 #include "params/option_table.h"
-#include "params/vehicle_params_yaml.h"
+#include "params/vehicle_description_yaml.h"
 
 namespace birotor {
 namespace {
@@ -212,9 +212,10 @@ void ReadModelConsistencyOptions(YamlSection s, ModelConsistencyOptions* o) {
 // Both sections are required, with every key (the file is complete or refused).
 EstimatorConfig ReadRoot(YamlSection root) {
   EstimatorConfig config;
-  ReadVehicleParams(root.Section("vehicle"), &config.vehicle);
+  ReadVehicleDescription(root.Section("vehicle"), &config.vehicle);
   ReadEstimatorOptions(root.Section("estimator"), &config);
   root.Finish();
+  if (!root.HasMissingKeys()) RequireBirotor(root.file(), "birotor-estimator", config.vehicle);
   return config;
 }
 

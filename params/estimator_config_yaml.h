@@ -1,5 +1,5 @@
 // Reads and validates an estimator parameter file (config/estimator.yaml):
-// the `vehicle:` section into VehicleParams and the `estimator:` section into
+// the `vehicle:` section into BirotorParams and the `estimator:` section into
 // the options of EstimatorConfig. Errors name the file, the key and the range.
 #pragma once
 

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "params/vehicle_params_yaml.h"
+#include "params/birotor_params_yaml.h"
 
 namespace birotor {
 namespace {
@@ -302,7 +302,7 @@ std::string IdentifiedParameterYaml(const IdentificationResult& result) {
   for (const ParameterEstimate& e : result.estimates) {
     if (!e.determined) marks.emplace_back(e.key, "NOT DETERMINED by these logs: value of the base file");
   }
-  out << VehicleParamsYaml(result.params, marks);
+  out << BirotorParamsYaml(result.params, marks);
   return out.str();
 }
 

@@ -43,7 +43,7 @@ std::string ResidualBlockText(ResidualBlock block);
 std::string ResidualBlockUnit(ResidualBlock block);
 
 // YAML text: comment header (sources, one-sigma values, maps, residuals)
-// followed by VehicleParamsYaml(result.params).
+// followed by BirotorParamsYaml(result.params).
 std::string IdentifiedParameterYaml(const IdentificationResult& result);
 
 // Markdown report: parameters with value, sigma, relative sigma and status,

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "params/vehicle_params_yaml.h"
+#include "params/birotor_params_yaml.h"
 #include "params/yaml_reader.h"
 
 namespace birotor {
@@ -53,7 +53,7 @@ std::string OutOfRange(const std::string& file, const std::string& key, double v
 }  // namespace
 
 bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
-                        const std::string& learned_file, const std::string& file, VehicleParams* vehicle,
+                        const std::string& learned_file, const std::string& file, BirotorParams* vehicle,
                         std::vector<LearnedChange>* changes, std::string* error) {
   if (!learned.has_strain_scale && !learned.has_body_mass) {
     *error = learned_file +
@@ -62,7 +62,7 @@ bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeploy
              file + " not updated";
     return false;
   }
-  VehicleParams updated = *vehicle;
+  BirotorParams updated = *vehicle;
   std::vector<LearnedChange> made;
   for (int arm = 0; learned.has_strain_scale && arm < 2; ++arm) {
     const std::string key = "vehicle.gauge_scale[" + std::to_string(arm) + "]";

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "estimator/estimator_config.h"
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -59,7 +59,7 @@ struct LearnedChange {
 // below max_std_fraction x its prior sigma), or would leave its key's range
 // (gauge_scale [0.5, 2], body_mass_kg the vehicle table's range).
 bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
-                        const std::string& learned_file, const std::string& file, VehicleParams* vehicle,
+                        const std::string& learned_file, const std::string& file, BirotorParams* vehicle,
                         std::vector<LearnedChange>* changes, std::string* error);
 
 // "gauge_scale[0] 1 -> 0.7032 (g 0.7032 +- 0.0041)", one per change, "; " between.

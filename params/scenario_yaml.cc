@@ -4,8 +4,8 @@
 #include <limits>
 
 #include "numerics/time_units.h"
+#include "params/birotor_params_yaml.h"
 #include "params/controller_config_yaml.h"
-#include "params/vehicle_params_yaml.h"
 
 namespace birotor {
 namespace {
@@ -99,11 +99,11 @@ void ReadScenarioSection(YamlSection& root, Scenario* out) {
 
 void ReadVehicle(YamlSection& root, Scenario* out) {
   Scenario& sc = *out;
-  ReadVehicleParams(root.Section("vehicle"), &sc.vehicle);
+  ReadBirotorParams(root.Section("vehicle"), &sc.vehicle);
   // The vehicle's gauge_* keys are what an estimator believes; the true
   // gauge of a simulation is the gauge: section, so they must stay ideal here.
-  const VehicleParams ideal;
-  const VehicleParams& v = sc.vehicle;
+  const BirotorParams ideal;
+  const BirotorParams& v = sc.vehicle;
   for (int i = 0; i < 2; ++i) {
     if (v.gauge_scale[i] != ideal.gauge_scale[i] || v.gauge_offset_rad[i] != ideal.gauge_offset_rad[i]) {
       root.Section("vehicle").Fail("gauge_scale", "the simulated gauge is set in the gauge: section",

@@ -2,8 +2,8 @@
 
 #include <vector>
 
+#include "params/birotor_params_yaml.h"
 #include "params/option_table.h"
-#include "params/vehicle_params_yaml.h"
 
 namespace birotor {
 namespace {
@@ -116,13 +116,23 @@ void ReadVehicleDescription(YamlSection s, VehicleDescription* d) {
                      "): give one of them (docs/vehicle-description.md, \"File format\")");
   }
   if (!birotor_keys.empty()) {
-    VehicleParams params;
-    ReadVehicleParams(s, &params);  // and CheckPlausible
+    BirotorParams params;
+    ReadBirotorParams(s, &params);  // and CheckPlausible
     *d = BirotorDescription(params);
     return;
   }
   ReadArmsForm(s, d);
   if (!s.HasMissingKeys()) CheckPlausible(s, *d);
+}
+
+void RequireBirotor(const std::string& file, const std::string& who, const VehicleDescription& d) {
+  BirotorParams params;
+  std::string why;
+  if (!ToBirotorParams(d, &params, &why)) {
+    throw ParamError(file + ": key 'vehicle': " + who +
+                     " runs the birotor's model and this vehicle is not a birotor: " + why +
+                     " (docs/vehicle-description.md, \"Which programs take which vehicle\")");
+  }
 }
 
 VehicleDescription LoadVehicleDescription(const std::string& file) {

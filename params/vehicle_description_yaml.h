@@ -18,6 +18,12 @@ namespace birotor {
 // complete description must pass CheckPlausible.
 void ReadVehicleDescription(YamlSection section, VehicleDescription* description);
 
+// For a room whose model is the birotor's (the estimator, the controller),
+// after the whole file has been read: a description that is not a birotor
+// (ToBirotorParams) is refused with ParamError "<file>: key 'vehicle': <who>
+// runs the birotor's model ...: <why>".
+void RequireBirotor(const std::string& file, const std::string& who, const VehicleDescription& description);
+
 // Loads `vehicle:` from a file (other top-level sections are allowed);
 // ParamError names the file, the key and the allowed range, or why the
 // vehicle cannot fly.

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <vector>
 
-#include "params/vehicle_params_yaml.h"
+#include "params/birotor_params_yaml.h"
 #include "params/yaml_reader.h"
 
 namespace birotor {
@@ -85,7 +85,7 @@ std::string Normalized(const std::string& line, size_t colon) {
 
 }  // namespace
 
-bool UpdateVehicleSection(const std::string& text, const VehicleParams& params, const std::string& stamp,
+bool UpdateVehicleSection(const std::string& text, const BirotorParams& params, const std::string& stamp,
                           std::string* updated, std::string* error) {
   std::vector<std::string> lines = SplitLines(text);
   size_t header = lines.size();

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "params/regular_file.h"
 
 namespace birotor {
@@ -23,7 +23,7 @@ constexpr const char* kIdentificationStampPrefix = "# identified ";
 // the identification stamp line set to `stamp` (replaced when present,
 // inserted below `vehicle:` otherwise; no stamp line when empty). False (with
 // *error naming the key) when the section or one of its keys is missing.
-bool UpdateVehicleSection(const std::string& text, const VehicleParams& params, const std::string& stamp,
+bool UpdateVehicleSection(const std::string& text, const BirotorParams& params, const std::string& stamp,
                           std::string* updated, std::string* error);
 
 // The identification stamp of a parameter file's vehicle section, or an

@@ -76,7 +76,7 @@ void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehic
                          EstimatorService* service) {
   const std::string& state_file = config.tare.state_file;
   if (state_file.empty()) return;
-  GaugeCalibration persisted = GaugeCalibration::FromVehicle(config.vehicle);
+  GaugeCalibration persisted = GaugeCalibration::FromVehicle(BirotorModelOf(config.vehicle));
   std::string error;
   if (access(state_file.c_str(), F_OK) != 0) {
     spdlog::info("gauge state file {} absent: gauge offsets from the parameter file", state_file);
@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
   LcmSink sink(lcm.get());
   EstimatorService service(config, channels, options.service, &sink);
-  const std::string vehicle_checksum = VehicleChecksum(config.vehicle);
+  const std::string vehicle_checksum = VehicleChecksum(BirotorModelOf(config.vehicle));
   RestoreGaugeOffsets(config, vehicle_checksum, &service);
   // Inputs through the shared message source. On udpm our own small-message
   // reader, and LCM only publishes (it opens no receive socket until

@@ -4,7 +4,7 @@
 
 namespace birotor {
 
-FlightController::FlightController(const VehicleParams& vehicle, const ControllerParams& params, double hover_force_n)
+FlightController::FlightController(const BirotorParams& vehicle, const ControllerParams& params, double hover_force_n)
     : vehicle_(vehicle), law_(vehicle, params, hover_force_n) {}
 
 RotorCommand FlightController::Update(const PlantState& state, const ReferencePoint& reference) {

@@ -20,13 +20,13 @@ class FlightController {
  public:
   // hover_force_n: per-rotor feed-forward thrust at hover (the equilibrium
   // solution of the nominal vehicle).
-  FlightController(const VehicleParams& vehicle, const ControllerParams& params, double hover_force_n);
+  FlightController(const BirotorParams& vehicle, const ControllerParams& params, double hover_force_n);
 
   // One control period (1 / rate_hz) of PositionAttitudeLaw on the plant state.
   RotorCommand Update(const PlantState& state, const ReferencePoint& reference);
 
  private:
-  VehicleParams vehicle_;
+  BirotorParams vehicle_;
   PositionAttitudeLaw law_;
 };
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "controller/controller_params.h"
+#include "model/birotor_params.h"
 #include "model/vehicle_description.h"
-#include "model/vehicle_params.h"
 
 namespace birotor {
 
@@ -152,7 +152,7 @@ struct Scenario {
   uint64_t seed = 1;
   double step_s = 0.00025;                  // RK4 step; a whole number of microseconds
   double start_position_m[2] = {0.0, 0.0};  // x, z
-  VehicleParams vehicle;
+  BirotorParams vehicle;
   TrajectoryParams trajectory;
   BenchProfile bench;
   SensorParams sensors;

@@ -68,7 +68,7 @@ Simulator::Simulator(const Scenario& scenario)
   // Initial state: the exact hover equilibrium at the start position (flight),
   // at rest on the ground with the motors stopped (ground phase), or the
   // static arm deflection under the first bench command (bench).
-  const VehicleParams& p = scenario_.vehicle;
+  const BirotorParams& p = scenario_.vehicle;
   state_.setZero();
   for (int i = 0; i < kBirotorRotors; ++i) rotor_angle_rad_[i] = scenario_.gauge.rotor_angle_rad[i];
   if (clamped_body_ || ground_.enabled()) {

@@ -16,8 +16,8 @@
 #include "model/observability.h"
 #include "model/parameter_observability.h"
 #include "model/vehicle_analysis.h"
+#include "params/birotor_params_yaml.h"
 #include "params/vehicle_description_yaml.h"
-#include "params/vehicle_params_yaml.h"
 #include "program/config_files.h"
 #include "program/program_options.h"
 #include "tools/vehicle_analysis_text.h"
@@ -52,7 +52,7 @@ std::string Join(const std::vector<std::string>& items) {
 }
 
 // Issue 27: the slow parameters in-flight data determine, with and without the accelerometer.
-void PrintParameterObservability(const VehicleParams& params) {
+void PrintParameterObservability(const BirotorParams& params) {
   using M = ParameterMeasurement;
   const struct {
     const char* name;
@@ -96,11 +96,11 @@ int RunVehicleAnalysis(const std::string& vehicle_file, const std::vector<int>& 
   return 0;
 }
 
-// Without --vehicle: the birotor analysis of --params (VehicleParams, the thesis's sets).
+// Without --vehicle: the birotor analysis of --params (BirotorParams, the thesis's sets).
 int RunBirotorAnalysis(const std::string& params_file, std::vector<std::string> measure_sets, bool thesis_coordinates) {
-  VehicleParams params;
+  BirotorParams params;
   try {
-    params = LoadVehicleParams(params_file);
+    params = LoadBirotorParams(params_file);
   } catch (const ParamError& e) {
     return ReportError(e.what());
   }

@@ -19,10 +19,10 @@
 #include "identification/identify.h"
 #include "nodes/gauge_state_file.h"
 #include "nodes/learned_values_file.h"
+#include "params/birotor_params_yaml.h"
 #include "params/identification_options_yaml.h"
 #include "params/identified_parameter_file.h"
 #include "params/learned_parameter_update.h"
-#include "params/vehicle_params_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
 #include "program/config_files.h"
@@ -150,11 +150,11 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
 
 // The base vehicle and, with --config, the fit options (the calibration facts
 // of the command line kept). Returns an error message, empty on success.
-std::string LoadBaseAndOptions(const IdentifyOptions& cli, birotor::VehicleParams* base,
+std::string LoadBaseAndOptions(const IdentifyOptions& cli, birotor::BirotorParams* base,
                                birotor::IdentificationOptions* options) {
   using namespace birotor;
   try {
-    *base = LoadVehicleParams(cli.params);
+    *base = LoadBirotorParams(cli.params);
     if (!cli.config.empty()) {
       const CalibrationFact calibration = options->calibration;  // from the command line
       *options = LoadIdentificationOptions(cli.config);
@@ -170,7 +170,7 @@ std::string LoadBaseAndOptions(const IdentifyOptions& cli, birotor::VehicleParam
 struct Outputs {
   birotor::OutputFile output, report;
   birotor::ParameterFileUpdate update;
-  birotor::VehicleParams update_vehicle;  // the vehicle the --update-params file describes now
+  birotor::BirotorParams update_vehicle;  // the vehicle the --update-params file describes now
 };
 
 // Outputs: never an input, each through a temporary file renamed at the
@@ -198,17 +198,17 @@ std::string OpenOutputs(const IdentifyOptions& cli, Outputs* out) {
 }
 
 // The vehicle: section of text (named file) read into vehicle; throws ParamError.
-void ReadVehicleSection(const std::string& text, const std::string& file, birotor::VehicleParams* vehicle) {
+void ReadVehicleSection(const std::string& text, const std::string& file, birotor::BirotorParams* vehicle) {
   using namespace birotor;
   WithFileErrors(file, [&] {
     YamlSection root = YamlSection::LoadString(text, file);
-    ReadVehicleParams(root.Section("vehicle"), vehicle);
+    ReadBirotorParams(root.Section("vehicle"), vehicle);
   });
 }
 
 // The file to update must be complete before the fit, so a fit is never lost
 // to it. Returns an error message, empty on success.
-std::string CheckUpdateTarget(const IdentifyOptions& cli, const birotor::VehicleParams& base, Outputs* out) {
+std::string CheckUpdateTarget(const IdentifyOptions& cli, const birotor::BirotorParams& base, Outputs* out) {
   using namespace birotor;
   if (cli.update_params.empty()) return "";
   try {  // from the text already read (a regular file, docs/files.md), not a second read
@@ -242,7 +242,7 @@ bool LoadLogs(const IdentifyOptions& cli, const std::string& prefix, std::vector
 
 // The fit, with the progress line on a terminal or with --progress.
 birotor::IdentificationResult RunIdentification(const IdentifyOptions& cli, std::vector<birotor::SensorLog> logs,
-                                                const birotor::VehicleParams& base,
+                                                const birotor::BirotorParams& base,
                                                 birotor::IdentificationOptions options) {
   using namespace birotor;
   const IdentificationMode mode = cli.mode == "bench"    ? IdentificationMode::kBench
@@ -289,14 +289,14 @@ std::string ProvenanceStamp(const birotor::IdentificationResult& result) {
 // value stays the file's own, whatever the base (--params) said; the new text
 // must load back as the identified vehicle before it replaces the old file.
 // Returns an error message, empty on success.
-std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::VehicleParams& deployed,
+std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::BirotorParams& deployed,
                                 const std::string& stamp, const Outputs& out);
 
 std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::IdentificationOptions& options,
                                 const birotor::IdentificationResult& result, const std::string& stamp,
                                 const Outputs& out) {
   using namespace birotor;
-  VehicleParams deployed = out.update_vehicle;
+  BirotorParams deployed = out.update_vehicle;
   for (const ParameterEstimate& e : result.estimates) {
     if (e.determined) SetVehicleValue(e.key, e.value, &deployed);
   }
@@ -307,7 +307,7 @@ std::string UpdateParamsInPlace(const IdentifyOptions& cli, const birotor::Ident
 // The --update-params file's vehicle section set to `deployed` (every other
 // byte kept), read back and checked, then committed with FILE.bak. Returns
 // an error message, empty on success.
-std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::VehicleParams& deployed,
+std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::BirotorParams& deployed,
                                 const std::string& stamp, const Outputs& out) {
   using namespace birotor;
   std::string updated, error;
@@ -315,9 +315,9 @@ std::string WriteVehicleInPlace(const IdentifyOptions& cli, const birotor::Vehic
     return "--update-params " + cli.update_params + ": " + error;
   }
   try {
-    VehicleParams check;
+    BirotorParams check;
     ReadVehicleSection(updated, cli.update_params, &check);
-    if (VehicleParamsYaml(check) != VehicleParamsYaml(deployed)) {
+    if (BirotorParamsYaml(check) != BirotorParamsYaml(deployed)) {
       return "--update-params " + cli.update_params +
              ": the updated text does not read back as the deployed values; file left unchanged";
     }
@@ -380,7 +380,7 @@ std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix)
     return "--learned " + error + " (it must come from a flight with the vehicle " + cli.update_params +
            " describes now)";
   }
-  VehicleParams deployed = out.update_vehicle;
+  BirotorParams deployed = out.update_vehicle;
   std::vector<LearnedChange> changes;
   if (!ApplyLearnedValues(learned, cli.learned_options, cli.learned, cli.update_params, &deployed, &changes, &error)) {
     return error;
@@ -416,7 +416,7 @@ int main(int argc, char** argv) {
   }
   if (!cli.update_params.empty() && app.get_option("--params")->count() == 0) cli.params = cli.update_params;
 
-  VehicleParams base;
+  BirotorParams base;
   std::string error = LoadBaseAndOptions(cli, &base, &options);
   if (!error.empty()) return ReportError(error);
   spdlog::info("base parameters {} (checksum {})", cli.params, FileChecksum(cli.params));

@@ -14,7 +14,7 @@ namespace birotor {
 
 inline constexpr int64_t kPeriodUs = 2000;  // 500 Hz (ControllerParams::rate_hz)
 
-inline double HoverForce(const VehicleParams& p) {
+inline double HoverForce(const BirotorParams& p) {
   const Equilibrium e = SolveHoverEquilibrium(p);
   return 0.5 * (e.force_n[0] + e.force_n[1]);
 }
@@ -26,7 +26,8 @@ inline double HoverForce(const VehicleParams& p) {
 class HoverFeed {
  public:
   // A controller of config that has seen the first POSE (at the origin, t = 0).
-  explicit HoverFeed(const ControllerConfig& config) : controller_(config), hover_force_n_(HoverForce(config.vehicle)) {
+  explicit HoverFeed(const ControllerConfig& config)
+      : controller_(config), hover_force_n_(HoverForce(BirotorModelOf(config.vehicle))) {
     controller_.OnPose(PoseSample{0, pose_seq_++, 0.0, 0.0, 0.0}, 0);
   }
   bool send_pose = true;

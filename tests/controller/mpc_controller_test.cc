@@ -37,7 +37,7 @@ struct RotorLoss {
 LoopResult Fly(MpcController* mpc, const Eigen::Vector2d& target_m, const Eigen::Vector2d& true_scale,
                Eigen::Vector2d planned_scale, const Eigen::Vector3d& true_disturbance, double duration_s,
                bool level_descent = false, const RotorLoss& loss = RotorLoss()) {
-  const MpcPredictionModel plant{VehicleParams()};
+  const MpcPredictionModel plant{BirotorParams()};
   MpcModelContext truth;
   truth.thrust_scale = true_scale;
   truth.disturbance = true_disturbance;
@@ -86,7 +86,7 @@ LoopResult Fly(MpcController* mpc, const Eigen::Vector2d& target_m, const Eigen:
 TEST(MpcControllerTest, ReachesAStepWithinTheLimits) {
   MpcParams params;
   params.deadline_s = 10.0;  // no timing in unit tests: only failed or bad answers count here
-  MpcController mpc(VehicleParams(), params);
+  MpcController mpc(BirotorParams(), params);
   const LoopResult r = Fly(&mpc, Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
                            Eigen::Vector3d::Zero(), 5.0);
   std::printf("step: final %.4f %.4f tilt %.3f max cmd %.1f change %.1f fallbacks %ld\n", r.final_state(0),
@@ -104,7 +104,7 @@ TEST(MpcControllerTest, ReachesAStepWithinTheLimits) {
 TEST(MpcControllerTest, WeakRotorKnownAndDisturbanceLearned) {
   MpcParams params;
   params.deadline_s = 10.0;
-  MpcController mpc(VehicleParams(), params);
+  MpcController mpc(BirotorParams(), params);
   const Eigen::Vector2d weak(1.0, 0.6);
   const LoopResult r = Fly(&mpc, Eigen::Vector2d::Zero(), weak, weak, Eigen::Vector3d(0.5, -0.5, 2.0), 5.0);
   std::printf("weak: final %.4f %.4f tilt %.3f d %.3f %.3f %.3f\n", r.final_state(0), r.final_state(1), r.peak_tilt_rad,
@@ -128,11 +128,11 @@ TEST(MpcControllerTest, InfeasibleDescentIsLevelAndCalmWithTheDescentWeights) {
   tracking.descent_velocity_weight_s2_m2 = tracking.velocity_weight_s2_m2;
   tracking.descent_tilt_weight_1_rad2 = tracking.tilt_weight_1_rad2;
   tracking.descent_pitch_rate_weight_s2_rad2 = tracking.pitch_rate_weight_s2_rad2;
-  MpcController swinging(VehicleParams(), tracking);
+  MpcController swinging(BirotorParams(), tracking);
   const LoopResult a = Fly(&swinging, Eigen::Vector2d::Zero(), weak, weak, Eigen::Vector3d::Zero(), 0.6, true);
   MpcParams params;
   params.deadline_s = 10.0;
-  MpcController calm(VehicleParams(), params);
+  MpcController calm(BirotorParams(), params);
   const LoopResult b = Fly(&calm, Eigen::Vector2d::Zero(), weak, weak, Eigen::Vector3d::Zero(), 0.6, true);
   std::printf(
       "descent: tracking weights tilt %.4f rate %.3f sink %.3f; descent weights tilt %.4f rate %.3f sink %.3f\n",
@@ -164,12 +164,12 @@ TEST(MpcControllerTest, RotorLossTakenAtOnceAndRecoveredAttitudeFirst) {
   MpcParams off;
   off.deadline_s = 10.0;
   off.disturbance_pitch_step_rad_s2 = 0.0;
-  MpcController slow(VehicleParams(), off);
+  MpcController slow(BirotorParams(), off);
   const LoopResult a = Fly(&slow, Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
                            Eigen::Vector3d::Zero(), 2.0, false, loss);
   MpcParams params;
   params.deadline_s = 10.0;
-  MpcController fast(VehicleParams(), params);
+  MpcController fast(BirotorParams(), params);
   const LoopResult b = Fly(&fast, Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
                            Eigen::Vector3d::Zero(), 2.0, false, loss);
   std::printf("loss: step off tilt %.4f recoveries %ld; step on tilt %.4f recoveries %ld\n", a.peak_tilt_rad,
@@ -186,7 +186,7 @@ TEST(MpcControllerTest, LateSolvesAreCountedAndTimed) {
   MpcParams params;
   params.deadline_s = 0.0;                    // every solve is late
   params.algorithm = MpcQpAlgorithm::kBleic;  // reports its iterations
-  MpcController mpc(VehicleParams(), params);
+  MpcController mpc(BirotorParams(), params);
   const LoopResult r = Fly(&mpc, Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones(),
                            Eigen::Vector3d::Zero(), 0.1);
   const MpcStats stats = mpc.Stats();

@@ -16,7 +16,7 @@ MpcState Hover(const MpcPredictionModel& model) {
 }
 
 TEST(MpcModelTest, HoverIsAFixedPoint) {
-  const MpcPredictionModel model{VehicleParams()};
+  const MpcPredictionModel model{BirotorParams()};
   const MpcState s = Hover(model);
   // reference-vehicle.md: omega = 698.55 rad/s at hover (f = 22.4465 N).
   EXPECT_NEAR(s(kMpcOmega1), 698.55, 0.01);
@@ -25,7 +25,7 @@ TEST(MpcModelTest, HoverIsAFixedPoint) {
 }
 
 TEST(MpcModelTest, RigidBodyAccelerations) {
-  const VehicleParams p;
+  const BirotorParams p;
   const MpcPredictionModel model(p);
   MpcState s = Hover(model);
   // One newton more on rotor 2 than on rotor 1 (rotor 1 1/2 N less, rotor 2 1/2 N more):
@@ -50,7 +50,7 @@ TEST(MpcModelTest, RigidBodyAccelerations) {
 }
 
 TEST(MpcModelTest, MotorLagMatchesTheExactStep) {
-  const VehicleParams p;
+  const BirotorParams p;
   const MpcPredictionModel model(p);
   MpcState s = Hover(model);
   const Eigen::Vector2d command(900.0, 500.0);
@@ -61,7 +61,7 @@ TEST(MpcModelTest, MotorLagMatchesTheExactStep) {
 }
 
 TEST(MpcModelTest, LinearisationPredictsSmallDeviations) {
-  const MpcPredictionModel model{VehicleParams()};
+  const MpcPredictionModel model{BirotorParams()};
   MpcState s0 = Hover(model);
   s0(kMpcPhi) = 0.2;
   s0(kMpcXDot) = 0.5;

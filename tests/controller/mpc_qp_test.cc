@@ -14,9 +14,9 @@ namespace birotor {
 namespace {
 
 struct Problem {
-  MpcPredictionModel model{VehicleParams()};
+  MpcPredictionModel model{BirotorParams()};
   MpcParams params;
-  double hover_rad_s = RotorSpeedForThrust(VehicleParams(), model.hover_force_n(), 1.0);
+  double hover_rad_s = RotorSpeedForThrust(BirotorParams(), model.hover_force_n(), 1.0);
 
   MpcQpData Data(const MpcState& s0, const Eigen::Vector2d& target_m, const Eigen::Vector2d& last) const {
     MpcQpData data;

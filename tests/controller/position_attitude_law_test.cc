@@ -12,13 +12,13 @@
 namespace birotor {
 namespace {
 
-double HoverForce(const VehicleParams& p) {
+double HoverForce(const BirotorParams& p) {
   const Equilibrium e = SolveHoverEquilibrium(p);
   return 0.5 * (e.force_n[0] + e.force_n[1]);
 }
 
 TEST(PositionAttitudeLawTest, AtTheReferenceEachRotorMakesTheHoverForce) {
-  const VehicleParams vehicle;
+  const BirotorParams vehicle;
   PositionAttitudeLaw law(vehicle, ControllerParams(), HoverForce(vehicle));
   const RotorForces f = law.Update(BodyState(), ReferencePoint());
   EXPECT_DOUBLE_EQ(f.force_n[0], HoverForce(vehicle));
@@ -27,7 +27,7 @@ TEST(PositionAttitudeLawTest, AtTheReferenceEachRotorMakesTheHoverForce) {
 }
 
 TEST(PositionAttitudeLawTest, TiltErrorGivesTheTorqueOfEquation312) {
-  const VehicleParams vehicle;
+  const BirotorParams vehicle;
   const ControllerParams gains;
   PositionAttitudeLaw law(vehicle, gains, HoverForce(vehicle));
   BodyState state;
@@ -43,7 +43,7 @@ TEST(PositionAttitudeLawTest, TiltErrorGivesTheTorqueOfEquation312) {
 }
 
 TEST(PositionAttitudeLawTest, ResetClearsTheIntegrators) {
-  const VehicleParams vehicle;
+  const BirotorParams vehicle;
   PositionAttitudeLaw law(vehicle, ControllerParams(), HoverForce(vehicle));
   BodyState low;
   low.position_m.y() = -0.1;
@@ -55,7 +55,7 @@ TEST(PositionAttitudeLawTest, ResetClearsTheIntegrators) {
 }
 
 TEST(RotorSpeedForThrustTest, InvertsTheThrustMapAndClips) {
-  const VehicleParams vehicle;
+  const BirotorParams vehicle;
   bool saturated = true;
   const double omega = RotorSpeedForThrust(vehicle, 20.0, 0.75, &saturated);
   EXPECT_NEAR(0.75 * vehicle.thrust_coeff_n_s2_rad2 * omega * omega, 20.0, 1e-9);

@@ -44,10 +44,10 @@ TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarderAfterALoss) {
   EXPECT_GE(feed.controller().health().efficiency[1], 1.0 - 50.0 * 0.002 - 1e-9);
   EXPECT_GT(first.omega_cmd_rad_s[1], 0.0);
   c = feed.Run(1000);
-  const double c_t = config.vehicle.thrust_coeff_n_s2_rad2;
+  const double c_t = config.vehicle.arms[0].thrust_coeff_n_s2_rad2;
   EXPECT_NEAR(feed.controller().health().efficiency[1], 0.75, 1e-4);
-  EXPECT_NEAR(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t), 0.5);
-  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / (0.75 * c_t)), 0.5);
+  EXPECT_NEAR(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(BirotorModelOf(config.vehicle)) / c_t), 0.5);
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(BirotorModelOf(config.vehicle)) / (0.75 * c_t)), 0.5);
 
   ControllerConfig nominal_config = config;
   nominal_config.force_feedback = false;
@@ -55,7 +55,7 @@ TEST(VehicleControllerTest, ForceFeedbackDrivesTheWeakRotorHarderAfterALoss) {
   nominal_feed.scale2 = 0.75;
   c = nominal_feed.Settle();
   EXPECT_EQ(c.mode, kModeNominal);
-  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(config.vehicle) / c_t), 1e-6);
+  EXPECT_NEAR(c.omega_cmd_rad_s[1], std::sqrt(HoverForce(BirotorModelOf(config.vehicle)) / c_t), 1e-6);
 }
 
 TEST(VehicleControllerTest, AFallingEfficiencyIsLedByTheMotorLagARisingOneIsNot) {
@@ -171,8 +171,8 @@ TEST(VehicleControllerTest, LostPoseGivesAControlledDescent) {
   EXPECT_TRUE(c.status & kCommandDescending);
   EXPECT_EQ(feed.controller().health().descents, 1);
   // Sink-rate reference -0.3 m/s at rest: a_z = Kd (-0.3) < 0, less thrust than hover.
-  const double c_t = config.vehicle.thrust_coeff_n_s2_rad2;
-  EXPECT_LT(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(config.vehicle) / c_t));
+  const double c_t = config.vehicle.arms[0].thrust_coeff_n_s2_rad2;
+  EXPECT_LT(c.omega_cmd_rad_s[0], std::sqrt(HoverForce(BirotorModelOf(config.vehicle)) / c_t));
   feed.send_pose = true;
   for (int k = 0; k < 10; ++k) c = feed.Period();
   EXPECT_FALSE(c.status & kCommandDescending);

@@ -97,7 +97,7 @@ TEST(ArmMode, NoiseAloneIsNotJudged) {
 
 TEST(ArmMode, FileModeFromTheModel) {
   // reference-vehicle.md (/work/shared/spec) and birotor-analyze: 65.03 Hz.
-  VehicleParams p = testing_support::ReferenceConfig().vehicle;
+  BirotorParams p = BirotorModelOf(testing_support::ReferenceConfig().vehicle);
   EXPECT_NEAR(SymmetricArmModeHz(p), 65.03, 0.01);
   // The tip mass +20 %: 60.11 Hz (birotor-analyze --params with m_p
   // 0.345744 kg; the body takes part: sqrt(1 / 1.2) alone would be 59.36 Hz).
@@ -111,7 +111,7 @@ TEST(ArmMode, AGaugeScaleInTheFileWidensWhatTheModeMayBe) {
   // scale there): the mode may be anywhere between. Stiffness +20 % learned
   // and deployed as s = 0.896 (tests/tools/learned_deploy_test.cc): the
   // model gives 65.03-68.70 Hz (k / 0.896: +5.6 %, about sqrt(1 / 0.896)).
-  VehicleParams p = testing_support::ReferenceConfig().vehicle;
+  BirotorParams p = BirotorModelOf(testing_support::ReferenceConfig().vehicle);
   ArmModeExpectation ideal = ExpectedArmMode(p);
   EXPECT_EQ(ideal.low_hz, ideal.file_hz);
   EXPECT_EQ(ideal.high_hz, ideal.file_hz);
@@ -127,7 +127,7 @@ TEST(ArmMode, LearnedStrainScalesWidenWhatTheModeMayBe) {
   // a gauge scale or a stiffness k / g_i: within two sigma of g_i the mode
   // may be anywhere between. The model's d ln f / d ln k at the reference
   // file: 0.5000 (the body's coupling hardly moves it from 1/2).
-  const ArmModeExpectation file = ExpectedArmMode(testing_support::ReferenceConfig().vehicle);
+  const ArmModeExpectation file = ExpectedArmMode(BirotorModelOf(testing_support::ReferenceConfig().vehicle));
   std::printf("stiffness exponent %.4f\n", file.stiffness_exponent);
   EXPECT_NEAR(file.stiffness_exponent, 0.5, 0.01);
   const double exact[2] = {0.896, 1.0}, none[2] = {0.0, 0.0};

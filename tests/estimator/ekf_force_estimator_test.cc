@@ -171,7 +171,7 @@ const std::vector<InputEvent>& HoverEvents() {
 // (return false) a strain sample. Accumulates the force MAE after 0.5 s.
 struct DirectRun {
   explicit DirectRun(const EkfOptions& options = ReferenceConfig("ekf").ekf)
-      : ekf(ReferenceConfig("ekf").vehicle, options) {}
+      : ekf(BirotorModelOf(ReferenceConfig("ekf").vehicle), options) {}
   void Feed(const std::vector<InputEvent>& events, const std::function<bool(StrainSample*)>& edit = nullptr) {
     for (const InputEvent& e : events) {
       if (e.kind == InputEvent::kMotor) {

@@ -41,7 +41,7 @@ EkfState HoverLikeState(std::mt19937* rng) {
 
 // The hover equilibrium (model/equilibrium.h) as a filter state, slow
 // parameters at the file's values, and the command that holds it.
-EkfState HoverState(const VehicleParams& p, EkfInput* u) {
+EkfState HoverState(const BirotorParams& p, EkfInput* u) {
   const Equilibrium eq = SolveHoverEquilibrium(p);
   EkfState x = EkfState::Zero();
   for (int i = 0; i < 2; ++i) {
@@ -57,7 +57,7 @@ EkfState HoverState(const VehicleParams& p, EkfInput* u) {
 
 // With the body mass a state (the harder case: its column is not zero).
 TEST(EkfProcessModelTest, JacobianMatchesCentralDifferences) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel model(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(3);
   for (int trial = 0; trial < 10; ++trial) {
@@ -86,7 +86,7 @@ TEST(EkfProcessModelTest, JacobianMatchesCentralDifferences) {
 // polynomial of exp(A dt), so the derivative of one RK4 step matches Phi up to
 // the (small) nonlinearity over one sample.
 TEST(EkfProcessModelTest, TransitionMatchesTheDerivativeOfTheRk4Step) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel model(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(5);
   const double kFineStep[kEkfStateSize] = {1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3,
@@ -126,7 +126,7 @@ TEST(EkfProcessModelTest, TransitionMatchesTheDerivativeOfTheRk4Step) {
 // the model's A in flight and on the ground, and (dense steps) for an A
 // without that structure.
 TEST(EkfProcessModelTest, TransitionIsTheFourthOrderPolynomial) {
-  const EkfProcessModel model((VehicleParams()));
+  const EkfProcessModel model((BirotorParams()));
   std::mt19937 rng(23);
   const double dt_s = 0.001;
   const auto polynomial = [dt_s](const DynamicMatrix& a) {
@@ -190,7 +190,7 @@ TEST(EkfProcessModelTest, RotorBlockStructureMatchesEigensCheck) {
 // At the hover equilibrium (x_dot = 0) the second-order terms vanish: the
 // body mass's column of Phi is the derivative of the RK4 step.
 TEST(EkfProcessModelTest, MassColumnMatchesTheRk4StepAtHover) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel model(p, /*body_mass_is_state=*/true);
   EkfInput u;
   const EkfState x = HoverState(p, &u);
@@ -232,7 +232,7 @@ TEST(EkfProcessModelTest, ParameterTransitionIsExactOnALinearSystem) {
 }
 
 TEST(EkfProcessModelTest, HoldsTheHoverEquilibrium) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel model(p);
   EkfInput u;
   const EkfState x = HoverState(p, &u);
@@ -272,7 +272,7 @@ TEST(MeasurementModelTest, DirectModelsReadTheirStates) {
 }
 
 TEST(MeasurementModelTest, AccelerometerJacobianMatchesCentralDifferences) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel process(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(19);
   for (int trial = 0; trial < 5; ++trial) {
@@ -293,7 +293,7 @@ TEST(MeasurementModelTest, AccelerometerJacobianMatchesCentralDifferences) {
 // The process Jacobian's by-product (the z row of the same solve) is the
 // accelerometer model at x0, and to first order near it.
 TEST(MeasurementModelTest, AccelerometerFromTheProcessJacobianMatchesTheDirectModel) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel process(p, /*body_mass_is_state=*/true);
   std::mt19937 rng(23);
   for (int trial = 0; trial < 5; ++trial) {
@@ -329,7 +329,7 @@ TEST(MeasurementModelTest, AccelerometerFromTheProcessJacobianMatchesTheDirectMo
 // with the deflections, d a_z / d b_i = -/+ k / (L m) (reference-vehicle.md:
 // z_ddot = -k / (L m) b_d + ..., b_d = b1 - b2); the offsets do not enter.
 TEST(MeasurementModelTest, AccelerometerReadsTheThrustThroughTheHinges) {
-  const VehicleParams p;
+  const BirotorParams p;
   const EkfProcessModel process(p);
   EkfInput u;
   EkfState x = HoverState(p, &u);

@@ -161,8 +161,8 @@ TEST(GaugeScenariosTest, DriftIsFollowedInFlight) {
 
 TEST(GaugeScenariosTest, ScaleFromTheParameterFileGivesTheIdealGaugesAccuracy) {
   EstimatorConfig config = ReferenceConfig();
-  config.vehicle.gauge_scale[0] = 1.03;
-  config.vehicle.gauge_scale[1] = 0.98;
+  config.vehicle.arms[0].gauge_scale = 1.03;
+  config.vehicle.arms[1].gauge_scale = 0.98;
   const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gentle"), {"gauge.scale=[1.03, 0.98]"}), config);
   for (int i = 0; i < 2; ++i) {
     const double mae = ForceMae(run, i, kWarmupUs);

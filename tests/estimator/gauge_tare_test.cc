@@ -16,7 +16,7 @@ constexpr double kRest = 0.28812 * 9.81 * 0.25 / 2628.0;
 
 // Drives a GaugeTare at 1 kHz strain, 500 Hz motor, 1 kHz IMU.
 struct TareBench {
-  TareBench() : tare(VehicleParams(), TareOptions()), noise(5, 9) {}
+  TareBench() : tare(BirotorParams(), TareOptions()), noise(5, 9) {}
   // Feeds duration_s from utime; readings s b_rest + offset + noise.
   void Run(double duration_s, const double offset[2], double omega_cmd = 0.0, double gyro = 0.0,
            double noise_rad = 2e-5) {
@@ -49,10 +49,10 @@ struct TareBench {
 };
 
 TEST(GaugeTareTest, RestDeflectionIsTheTipWeightOverTheStiffness) {
-  const VehicleParams p;
+  const BirotorParams p;
   EXPECT_NEAR(StaticDeflectionRad(p, 0, 0.0), 2.6887e-4, 1e-8);  // arm 1 bends up under its weight
   EXPECT_NEAR(StaticDeflectionRad(p, 1, 0.0), -2.6887e-4, 1e-8);
-  VehicleParams scaled;
+  BirotorParams scaled;
   scaled.gauge_scale[0] = 1.03;
   EXPECT_NEAR(RestReadingRad(scaled, 0), 1.03 * 2.6887e-4, 1e-8);
 }
@@ -106,7 +106,7 @@ TEST(GaugeTareTest, AReadingOutsideThePhysicalRangeIsRefused) {
 }
 
 TEST(GaugeTareTest, NoTareWithoutMotorOrImuInput) {
-  GaugeTare tare{VehicleParams(), TareOptions()};
+  GaugeTare tare{BirotorParams(), TareOptions()};
   StrainSample s;
   s.deflection_rad[0] = kRest;
   s.deflection_rad[1] = -kRest;
@@ -120,7 +120,7 @@ TEST(GaugeTareTest, NoTareWithoutMotorOrImuInput) {
 }
 
 TEST(GaugeCalibrationTest, AppliesScaleAndOffset) {
-  VehicleParams p;
+  BirotorParams p;
   p.gauge_scale[0] = 1.03;
   p.gauge_scale[1] = 0.98;
   p.gauge_offset_rad[0] = 1e-5;

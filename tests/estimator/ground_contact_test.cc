@@ -14,7 +14,7 @@ namespace birotor {
 namespace {
 
 TEST(GroundContactTest, SupportForceSaysGroundOrAir) {
-  const VehicleParams p;  // M = 4.57624 kg
+  const BirotorParams p;  // M = 4.57624 kg
   GroundContact contact(p, EkfOptions());
   // At rest, motors stopped: N = M g = 44.9 N.
   for (int k = 0; k < 100; ++k) contact.Update(1000 * k, 9.81, 0.0);
@@ -36,7 +36,7 @@ TEST(GroundContactTest, SupportForceSaysGroundOrAir) {
 // 0.05 m/s^2 keeps the option's 20 ms. (With 20 ms, N's sigma was 0.72 N and
 // the contact chattered through lift-off in gauge_drift: README.)
 TEST(GroundContactTest, NoisyAccelerometerLengthensTheFilter) {
-  const VehicleParams p;
+  const BirotorParams p;
   EkfOptions options;
   EXPECT_DOUBLE_EQ(GroundContact(p, options).TimeConstantS(0.001), options.ground_contact_filter_s);
   options.accel_noise_m_s2 = 1.0;
@@ -67,7 +67,7 @@ TEST(GroundContactTest, NoisyAccelerometerLengthensTheFilter) {
 // = 0.0488, so 0.0488 * 44.9 N = 2.19 N, below the 4.5 N that puts the
 // vehicle on the ground. NaN readings (a missing accelerometer) are skipped.
 TEST(GroundContactTest, ASpikeOrAMissingReadingCannotLandAFlyingVehicle) {
-  const VehicleParams p;
+  const BirotorParams p;
   GroundContact contact(p, EkfOptions());
   const double weight_n = p.TotalMass() * p.gravity_m_s2;
   for (int k = 0; k < 100; ++k) contact.Update(1000 * k, p.gravity_m_s2, weight_n);
@@ -85,7 +85,7 @@ TEST(GroundContactTest, ASpikeOrAMissingReadingCannotLandAFlyingVehicle) {
 
 // Reset forgets the filtered force: the next sample starts it afresh.
 TEST(GroundContactTest, ResetStartsFromTheNextSample) {
-  const VehicleParams p;
+  const BirotorParams p;
   GroundContact contact(p, EkfOptions());
   for (int k = 0; k < 100; ++k) contact.Update(1000 * k, 9.81, 0.0);
   ASSERT_TRUE(contact.supported());

@@ -348,7 +348,7 @@ TEST(UpdateTrailingStatesTest, FusesAsAllStatesWhenHReadsOnlyTheLeadingOnes) {
   x(kStrainScale1) = 1.1;
   x(kStrainScale2) = 0.9;
   x(kBodyMassScale) = 1.0;
-  const EkfProcessModel process((VehicleParams()));  // the reference vehicle; the mass not a state: no mass column
+  const EkfProcessModel process((BirotorParams()));  // the reference vehicle; the mass not a state: no mass column
   ExpectTrailingUpdateAsAllStates<kDynamicStateSize>(gyro.Linearize(x), gyro.noise, &rng);
   ExpectTrailingUpdateAsAllStates<kDynamicStateSize>(motor.Linearize(x), motor.noise, &rng);
   ExpectTrailingUpdateAsAllStates<kDynamicStateSize>(AccelerometerMeasurementModel::Linearize(process, x),

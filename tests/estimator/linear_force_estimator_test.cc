@@ -24,7 +24,7 @@ using testing_support::RunScenario;
 using testing_support::ScenarioFile;
 using testing_support::ScenarioRun;
 
-LinearForceModel ReferenceModel() { return BuildLinearForceModel(VehicleParams(), EkfOptions(), LinearModelOptions()); }
+LinearForceModel ReferenceModel() { return BuildLinearForceModel(BirotorParams(), EkfOptions(), LinearModelOptions()); }
 
 TEST(LinearForceModel, IsTheObservableBlockOfTheAugmentedModel) {
   const LinearForceModel model = ReferenceModel();
@@ -92,7 +92,7 @@ TEST(LuenbergerObserver, TheThesisIdentityGainNeverCorrectsTheForces) {
   // errors never change: the forces are not estimated at all), the others
   // those of A shifted by -1: the rigid-body errors decay at only 1/s and the
   // arm errors at 9-13/s against their 410-500 rad/s oscillation.
-  const LinearModel linear = LinearizeAtHover(VehicleParams());
+  const LinearModel linear = LinearizeAtHover(BirotorParams());
   const AugMatrix a = AugmentWithForces(linear);
   Eigen::Matrix<double, kMechStateSize, kAugStateSize> c = Eigen::Matrix<double, kMechStateSize, kAugStateSize>::Zero();
   c.leftCols<kMechStateSize>().setIdentity();
@@ -135,7 +135,7 @@ ConstantForceRun RunConstantForces(const std::string& method, double force1_n, d
   EstimatorConfig config;
   config.method = method;
   EstimatorPipeline pipeline(config);
-  const VehicleParams& p = config.vehicle;
+  const BirotorParams p = BirotorModelOf(config.vehicle);
   const Equilibrium eq = SolveHoverEquilibrium(p);
   PlantState x = HoverPlantState(eq);
   PlantInput u;
@@ -241,7 +241,7 @@ TEST(LinearKalmanFilter, CovarianceConvergesToTheSteadyState) {
   // seconds the covariance is the fixed point of the Riccati recursion
   // P = A (P - P C^T S^-1 C P) A^T + Q, whatever the start.
   EstimatorConfig config;
-  LinearForceEstimator filter(config.vehicle, config.ekf, config.linear_model);
+  LinearForceEstimator filter(BirotorModelOf(config.vehicle), config.ekf, config.linear_model);
   const LinearForceModel& model = filter.model();
   StrainSample s;
   ForceEstimate e;

@@ -20,7 +20,7 @@ MotorSample Motor(int64_t utime, double command_rad_s, double measured_rad_s) {
 }
 
 TEST(MotorSpeedTrackerTest, UsesRecentTelemetryThenTheMotorModel) {
-  const VehicleParams p;
+  const BirotorParams p;
   MotorSpeedTracker tracker(p, 0.05);
   EXPECT_FALSE(tracker.has_motor());
   EXPECT_EQ(tracker.ThrustScale(0, 2.0), 1.0);  // without motor input
@@ -40,7 +40,7 @@ TEST(MotorSpeedTrackerTest, UsesRecentTelemetryThenTheMotorModel) {
 }
 
 TEST(MotorSpeedTrackerTest, WithoutTelemetryTheModelStartsAtTheCommand) {
-  const VehicleParams p;
+  const BirotorParams p;
   MotorSpeedTracker tracker(p);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   tracker.AddMotor(Motor(0, 600.0, nan));

@@ -122,7 +122,7 @@ TEST(StrainScaleLearning, APersistedScaleIsUsedFromTheStart) {
   const EstimatorConfig config = StrainScaleLearningConfig();
   const Scenario scenario = LoadScenario(ScenarioFile("mismatch_gauge_scale_0p7"));
   const ScenarioRun first = RunScenario(scenario, config);
-  GaugeCalibration persisted = GaugeCalibration::FromVehicle(config.vehicle);
+  GaugeCalibration persisted = GaugeCalibration::FromVehicle(BirotorModelOf(config.vehicle));
   persisted.source = GaugeOffsetSource::kStateFile;
   persisted.has_strain_scale = true;
   for (int i = 0; i < 2; ++i) {

@@ -29,7 +29,7 @@ struct Tally {
 
 struct CoverageCase {
   std::vector<std::string> overrides;
-  VehicleParams truth;
+  BirotorParams truth;
   double gauge_scale[2];
   double gauge_offset_rad[2];
   CalibrationFact fact;
@@ -41,7 +41,7 @@ struct CoverageCase {
 CoverageCase MakeCase(int n, double duration_s) {
   std::mt19937 rng(1000 + n);
   CoverageCase c;
-  VehicleParams& v = c.truth;
+  BirotorParams& v = c.truth;
   v.arm_stiffness_n_m_rad *= Uniform(&rng, 0.8, 1.2);
   v.arm_damping_n_m_s_rad *= Uniform(&rng, 0.8, 1.2);
   v.tip_mass_kg *= Uniform(&rng, 0.8, 1.2);
@@ -65,7 +65,7 @@ CoverageCase MakeCase(int n, double duration_s) {
 }
 
 double TruthOf(const CoverageCase& c, const std::string& symbol) {
-  const VehicleParams& v = c.truth;
+  const BirotorParams& v = c.truth;
   if (symbol == "c_T") return v.thrust_coeff_n_s2_rad2;
   if (symbol == "tau_m") return v.motor_time_constant_s;
   if (symbol == "k") return v.arm_stiffness_n_m_rad;
@@ -82,7 +82,7 @@ TEST(IdentificationCoverageTest, TruthWithinThreeSigmaIn95PercentOfFortyBenchLog
   constexpr int kCases = 40;
   constexpr double kDurationS = 15.0;
   std::map<std::string, Tally> tallies;
-  const VehicleParams reference;  // the base file: the reference vehicle
+  const BirotorParams reference;  // the base file: the reference vehicle
   for (int n = 0; n < kCases; ++n) {
     const CoverageCase c = MakeCase(n, kDurationS);
     const SensorLog log = testing::SimulateScenario("bench", c.overrides);

@@ -33,8 +33,8 @@ const char* kFigureEight =
 struct FlightCase {
   std::string kind;  // hover, gentle, figure_eight, aggressive, flight_id
   std::vector<std::string> overrides;
-  VehicleParams truth;
-  VehicleParams base;  // the reference vehicle, with the bench's gauge calibration when the gauge is not ideal
+  BirotorParams truth;
+  BirotorParams base;  // the reference vehicle, with the bench's gauge calibration when the gauge is not ideal
   IdentificationOptions options;
 };
 
@@ -47,7 +47,7 @@ FlightCase MakeCase(int n, double duration_s) {
   std::mt19937 rng(2600 + n);
   FlightCase c;
   c.kind = kKinds[n % 5];
-  VehicleParams& v = c.truth;
+  BirotorParams& v = c.truth;
   v.arm_stiffness_n_m_rad *= Uniform(&rng, 0.8, 1.2);
   v.arm_damping_n_m_s_rad *= Uniform(&rng, 0.8, 1.2);
   v.tip_mass_kg *= Uniform(&rng, 0.8, 1.2);
@@ -68,7 +68,7 @@ FlightCase MakeCase(int n, double duration_s) {
   return c;
 }
 
-double TruthOf(const VehicleParams& v, const std::string& symbol) {
+double TruthOf(const BirotorParams& v, const std::string& symbol) {
   if (symbol == "c_T") return v.thrust_coeff_n_s2_rad2;
   if (symbol == "tau_m") return v.motor_time_constant_s;
   if (symbol == "k") return v.arm_stiffness_n_m_rad;

@@ -40,7 +40,7 @@ Window MakeWindow(double knot_s) {
   }
   w.samples.back().dt_s = 0.0;
   w.blocks = {{1.01}, {0.97}, {1.02}, {0.99}, {0.01, 8e-4, -8e-4, 0.05, -0.03}};
-  const FreeArmWindowResidual probe(VehicleParams(), w.samples, w.noise, 1, w.scales, knot_s);
+  const FreeArmWindowResidual probe(BirotorParams(), w.samples, w.noise, 1, w.scales, knot_s);
   std::vector<double> knots(probe.KnotBlockSize());
   for (double& k : knots) k = 0.01 * unit(rng);
   if (!knots.empty()) w.blocks.push_back(knots);
@@ -69,9 +69,9 @@ Evaluation Evaluate(const ceres::CostFunction& cost, std::vector<std::vector<dou
 void ExpectSameAsAutoDiff(double knot_s, int substeps) {
   const Window w = MakeWindow(knot_s);
   std::unique_ptr<ceres::CostFunction> cost(
-      FreeArmWindowCost::Create(VehicleParams(), w.samples, w.noise, substeps, w.scales, knot_s));
+      FreeArmWindowCost::Create(BirotorParams(), w.samples, w.noise, substeps, w.scales, knot_s));
   std::unique_ptr<ceres::CostFunction> autodiff(
-      FreeArmWindowResidual::CreateAutoDiff(VehicleParams(), w.samples, w.noise, substeps, w.scales, knot_s));
+      FreeArmWindowResidual::CreateAutoDiff(BirotorParams(), w.samples, w.noise, substeps, w.scales, knot_s));
   ASSERT_EQ(cost->parameter_block_sizes(), autodiff->parameter_block_sizes());
   ASSERT_EQ(cost->num_residuals(), autodiff->num_residuals());
   const Evaluation a = Evaluate(*cost, w.blocks, true);
@@ -106,7 +106,7 @@ TEST(FreeArmWindowCostTest, JacobianEqualsTheAutoDiffWithoutKnotsAndWithSubsteps
 TEST(FreeArmWindowCostTest, JacobianMatchesCentralDifferences) {
   const Window w = MakeWindow(0.01);
   std::unique_ptr<ceres::CostFunction> cost(
-      FreeArmWindowCost::Create(VehicleParams(), w.samples, w.noise, 1, w.scales, 0.01));
+      FreeArmWindowCost::Create(BirotorParams(), w.samples, w.noise, 1, w.scales, 0.01));
   const Evaluation at = Evaluate(*cost, w.blocks, true);
   for (size_t block = 0; block < w.blocks.size(); ++block) {
     const size_t size = w.blocks[block].size();
@@ -130,7 +130,7 @@ TEST(FreeArmWindowCostTest, AWindowBeyondTheLargestFallsBackToTheAutoDiff) {
   const Window w = MakeWindow(0.001);  // 60 knots per rotor
   const FreeArmWindowResidual* functor = nullptr;
   std::unique_ptr<ceres::CostFunction> cost(
-      FreeArmWindowCost::Create(VehicleParams(), w.samples, w.noise, 1, w.scales, 0.001, &functor));
+      FreeArmWindowCost::Create(BirotorParams(), w.samples, w.noise, 1, w.scales, 0.001, &functor));
   ASSERT_NE(functor, nullptr);
   EXPECT_GT(9 + functor->KnotBlockSize(), FreeArmWindowCost::kMaxParameters);
   EXPECT_EQ(dynamic_cast<FreeArmWindowCost*>(cost.get()), nullptr);

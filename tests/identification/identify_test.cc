@@ -59,15 +59,15 @@ void ExpectShareOfBothLogs(const IdentificationResult& r, const std::string& sym
 
 // Logs of two vehicles: refused, the error names the disagreement on k and the log.
 void ExpectRefusedAsTwoVehicles(const std::vector<SensorLog>& logs, const std::string& named_log) {
-  const IdentificationResult r = Identify(logs, VehicleParams(), IdentificationOptions());
+  const IdentificationResult r = Identify(logs, BirotorParams(), IdentificationOptions());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(Errors(r).find("logs disagree on k"), std::string::npos) << Errors(r);
   EXPECT_NE(Errors(r).find(named_log), std::string::npos) << Errors(r);
 }
 
 // A base file that is wrong by a few percent, so the fits have to move.
-VehicleParams PerturbedBase(const VehicleParams& truth) {
-  VehicleParams base = truth;
+BirotorParams PerturbedBase(const BirotorParams& truth) {
+  BirotorParams base = truth;
   base.arm_stiffness_n_m_rad *= 1.05;
   base.thrust_coeff_n_s2_rad2 *= 0.95;
   base.motor_time_constant_s *= 1.1;
@@ -82,10 +82,10 @@ class BenchTest : public ::testing::Test {
   }
   static void TearDownTestSuite() { delete log_; }
   static SensorLog* log_;
-  static VehicleParams truth_;
+  static BirotorParams truth_;
 };
 SensorLog* BenchTest::log_ = nullptr;
-VehicleParams BenchTest::truth_;
+BirotorParams BenchTest::truth_;
 
 TEST_F(BenchTest, RecoversThrustMotorAndStiffnessWithin1PercentAnd3Sigma) {
   const IdentificationResult r = Identify({*log_}, PerturbedBase(truth_), IdentificationOptions());
@@ -162,13 +162,13 @@ TEST_F(BenchTest, TooShortLogIsRefused) {
 // base file with the reference tip mass 0.28812: the tip mass is identified
 // (factory gauge scale), and k no longer absorbs the wrong mass.
 TEST(BenchTipMassTest, IdentifiesTheTipMassWithTheFactoryGaugeScale) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = testing::SimulateScenario(
       "bench",
       {"scenario.duration_s=30", "vehicle.arm_stiffness_n_m_rad=3100", "vehicle.tip_mass_kg=0.30",
        "vehicle.motor_time_constant_s=0.045", "vehicle.thrust_coeff_n_s2_rad2=5.0e-5"},
       &truth);
-  const IdentificationResult r = Identify({log}, VehicleParams(), IdentificationOptions());
+  const IdentificationResult r = Identify({log}, BirotorParams(), IdentificationOptions());
   ASSERT_TRUE(r.ok) << Errors(r);
   // Targets of issue 11 (bench): k 0.5 %, m_p 1 %, d 5 %; within 3 sigma.
   ExpectRecovered(r, "m_p", 0.30, 0.01, 3.0);
@@ -182,12 +182,12 @@ TEST(BenchTipMassTest, IdentifiesTheTipMassWithTheFactoryGaugeScale) {
 // bench_gauge (gauges.md: scales 1.03 / 0.98, offsets 1e-5 / -1e-5 rad) with
 // the tip mass weighed: the gauge scales and offsets are identified.
 TEST(BenchGaugeTest, IdentifiesGaugeScaleAndOffsetWithAWeighedTipMass) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = testing::SimulateScenario("bench_gauge", {}, &truth);
   IdentificationOptions options;
   options.calibration.tip_mass_kg = truth.tip_mass_kg;
   options.calibration.tip_mass_std_kg = 0.0001;  // a 0.1 g scale
-  const IdentificationResult r = Identify({log}, VehicleParams(), options);
+  const IdentificationResult r = Identify({log}, BirotorParams(), options);
   ASSERT_TRUE(r.ok) << Errors(r);
   // Targets of issue 11 (bench): gauge scale 0.3 %, offset 2e-6 rad; within 3 sigma.
   ExpectRecovered(r, "s_1", 1.03, 0.003, 3.0);
@@ -207,7 +207,7 @@ TEST(BenchGaugeTest, IdentifiesGaugeScaleAndOffsetWithAWeighedTipMass) {
 // Several logs (issue 11 item 4): two runs of one vehicle give one joint fit
 // and each log's share of every parameter; two vehicles are refused.
 TEST(SeveralLogsTest, SameVehicleJointFitSaysWhichLogDeterminesWhat) {
-  VehicleParams truth;
+  BirotorParams truth;
   SensorLog a = testing::SimulateScenario("bench", {"scenario.duration_s=12", "scenario.seed=21"}, &truth);
   SensorLog b = testing::SimulateScenario("bench", {"scenario.duration_s=12", "scenario.seed=22"});
   a.source = "a.lcm";
@@ -262,7 +262,7 @@ TEST_F(BenchTest, BadSamplesAreDroppedAndCountedNotFatal) {
 
 // Constant commands: the speed never moves, so tau_m has no information.
 TEST(IdentifyBadInputTest, NoMotorStepsMeansTauCannotBeIdentified) {
-  const VehicleParams p;
+  const BirotorParams p;
   SensorLog log;
   log.source = "constant";
   std::mt19937 rng(5);
@@ -301,14 +301,14 @@ TEST(IdentifyBadInputTest, NoMotorStepsMeansTauCannotBeIdentified) {
 TEST(IdentifyBadInputTest, EmptyLogSaysWhichChannelsAreMissing) {
   SensorLog log;
   log.source = "empty.lcm";
-  const IdentificationResult r = Identify({log}, VehicleParams(), IdentificationOptions());
+  const IdentificationResult r = Identify({log}, BirotorParams(), IdentificationOptions());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(Errors(r).find("empty.lcm: no STRAIN"), std::string::npos) << Errors(r);
   EXPECT_NE(Errors(r).find("no MOTOR"), std::string::npos) << Errors(r);
 }
 
 TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = testing::SimulateScenario("flight_id", {"scenario.duration_s=8"}, &truth);
   const IdentificationResult r = Identify({log}, PerturbedBase(truth), IdentificationOptions());
   ASSERT_TRUE(r.ok) << Errors(r);
@@ -333,9 +333,9 @@ TEST(FlightIdentificationTest, RecoversStiffnessThrustAndMotorFromFreeFlight) {
 // the base value (issue 26), so the base here has m_p 5 % low: the flight
 // must show it wrong and bring it within the 2 % target, within 3 sigma.
 TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = testing::SimulateScenario("flight_id", {}, &truth);
-  VehicleParams base;
+  BirotorParams base;
   base.tip_mass_kg *= 0.95;
   const IdentificationResult r = Identify({log}, base, IdentificationOptions());
   ASSERT_TRUE(r.ok) << Errors(r);
@@ -355,12 +355,12 @@ TEST(FlightIdentificationTest, TipMassFromTheSixtySecondFlightWithin2Percent) {
 // sigma that knows nothing of it; --gauge-scale-std puts the scale's
 // uncertainty into their sigma (c_T, from the accelerometer, stays right).
 TEST(FlightIdentificationTest, GaugeScaleUncertaintyReachesTheSigmaOfKAndTipMass) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log =
       testing::SimulateScenario("flight_id", {"scenario.duration_s=8", "gauge.scale=[1.01, 1.01]"}, &truth);
   IdentificationOptions options;
   options.calibration.gauge_scale_std = 0.01;
-  const IdentificationResult r = Identify({log}, VehicleParams(), options);
+  const IdentificationResult r = Identify({log}, BirotorParams(), options);
   ASSERT_TRUE(r.ok) << Errors(r);
   const ParameterEstimate* k = Find(r, "k");
   ASSERT_NE(k, nullptr);
@@ -380,12 +380,12 @@ TEST(FlightIdentificationTest, GaugeScaleUncertaintyReachesTheSigmaOfKAndTipMass
 // k 84.6 / 15.4, m_p 98.6 / 1.4. Asserted with a 1.5x margin (d: its 5 %
 // target) and truth within 3 sigma.
 TEST(JointBenchFlightTest, OneProblemOverBothLogsSaysWhichLogDeterminesWhat) {
-  VehicleParams truth;
+  BirotorParams truth;
   SensorLog bench = testing::SimulateScenario("bench", {"scenario.duration_s=12"}, &truth);
   SensorLog flight = testing::SimulateScenario("flight_id", {"scenario.duration_s=8"});
   bench.source = "bench.lcm";
   flight.source = "flight.lcm";
-  const IdentificationResult r = Identify({bench, flight}, VehicleParams(), IdentificationOptions());
+  const IdentificationResult r = Identify({bench, flight}, BirotorParams(), IdentificationOptions());
   ASSERT_TRUE(r.ok) << Errors(r);
   EXPECT_EQ(r.mode, "bench+flight");
   ExpectRecovered(r, "k", truth.arm_stiffness_n_m_rad, 1.5 * 0.000095, 3.0);
@@ -418,9 +418,9 @@ TEST(JointBenchFlightTest, BenchAndFlightOfDifferentVehiclesAreRefused) {
 // the base has m_p 5 % low (else the flight, agreeing with it, keeps it):
 // asserted within the 2 % flight_id target and 3 sigma.
 TEST(FlightDeterminabilityTest, HoverGivesTheTipMassWithinThreeSigmaNotAFarMinimum) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = testing::SimulateScenario("hover", {"scenario.duration_s=12"}, &truth);
-  VehicleParams base;
+  BirotorParams base;
   base.tip_mass_kg *= 0.95;
   const IdentificationResult r = Identify({log}, base, IdentificationOptions());
   ASSERT_TRUE(r.ok) << Errors(r);
@@ -438,16 +438,16 @@ TEST(FlightDeterminabilityTest, HoverGivesTheTipMassWithinThreeSigmaNotAFarMinim
 // that of the fit with m_p held, within 3 sigma (the default is never worse
 // than holding m_p).
 TEST(FlightDeterminabilityTest, UndeterminedTipMassKeepsTheBaseValueAndSaysWhatToFly) {
-  VehicleParams truth;
+  BirotorParams truth;
   const SensorLog log = testing::SimulateScenario("hover", {"scenario.duration_s=8"}, &truth);
   IdentificationOptions options;
   options.flight_min_data_share = 1.01;  // no log can give more than all of the information
-  const IdentificationResult r = Identify({log}, VehicleParams(), options);
+  const IdentificationResult r = Identify({log}, BirotorParams(), options);
   ASSERT_TRUE(r.ok) << Errors(r);
   const ParameterEstimate* m_p = Find(r, "m_p");
   ASSERT_NE(m_p, nullptr);
   EXPECT_FALSE(m_p->determined);
-  EXPECT_DOUBLE_EQ(r.params.tip_mass_kg, VehicleParams().tip_mass_kg);
+  EXPECT_DOUBLE_EQ(r.params.tip_mass_kg, BirotorParams().tip_mass_kg);
   // The warning says what to fly (its words: params/identified_parameter_file.h WarningText).
   bool advised = false;
   for (const IdentificationWarning& w : r.warnings) {
@@ -457,7 +457,7 @@ TEST(FlightDeterminabilityTest, UndeterminedTipMassKeepsTheBaseValueAndSaysWhatT
   EXPECT_TRUE(advised);
   ASSERT_FALSE(r.correlations.empty());
   EXPECT_EQ(r.correlations.back().kind, CombinationKind::kThrustOverTotalMass);
-  EXPECT_DOUBLE_EQ(r.correlations.back().held_value, VehicleParams().tip_mass_kg);
+  EXPECT_DOUBLE_EQ(r.correlations.back().held_value, BirotorParams().tip_mass_kg);
   ExpectRecovered(r, "c_T", truth.thrust_coeff_n_s2_rad2, 0.01, 3.0);
 }
 

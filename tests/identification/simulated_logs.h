@@ -35,7 +35,7 @@ inline std::string ScenarioPath(const std::string& name) {
 // Simulates config/scenarios/<name>.yaml with the overrides; *truth gets the
 // scenario's vehicle.
 inline SensorLog SimulateScenario(const std::string& name, const std::vector<std::string>& overrides,
-                                  VehicleParams* truth = nullptr) {
+                                  BirotorParams* truth = nullptr) {
   const Scenario scenario = LoadScenario(ScenarioPath(name), overrides);
   if (truth != nullptr) *truth = scenario.vehicle;
   SensorLog log;
@@ -53,7 +53,7 @@ inline double Uniform(std::mt19937* rng, double lo, double hi) {
 
 // Scenario overrides that fly vehicle v (its identified parameters k, d,
 // m_p, c_T, tau_m) with the true gauge (scale, offset) for duration_s with seed.
-inline std::vector<std::string> VehicleOverrides(const VehicleParams& v, double duration_s, int seed,
+inline std::vector<std::string> VehicleOverrides(const BirotorParams& v, double duration_s, int seed,
                                                  const double gauge_scale[2], const double gauge_offset_rad[2]) {
   std::vector<std::string> overrides;
   auto add = [&](const char* format, double a, double b = 0.0) {

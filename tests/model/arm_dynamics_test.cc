@@ -12,7 +12,7 @@ namespace birotor {
 namespace {
 
 TEST(FreeArmDerivativeTest, MatchesFullModelAtAnyPoseAndVelocity) {
-  const VehicleParams p;
+  const BirotorParams p;
   Coords<double> q, v;
   q << 0.3, -0.2, 0.25, -0.004, 0.003;  // phi and position arbitrary
   v << 0.7, -0.4, 0.6, 0.05, -0.08;     // body velocity arbitrary
@@ -43,7 +43,7 @@ TEST(FreeArmDerivativeTest, MatchesFullModelAtAnyPoseAndVelocity) {
 // terms at the clamped pose give the closed form's acceleration, for one arm
 // and for both (SupportedArmAcceleration, the EKF's model on the ground).
 TEST(ClampedArmAccelerationTest, MatchesTheFullModelsArmRows) {
-  const VehicleParams p;
+  const BirotorParams p;
   Coords<double> q = Coords<double>::Zero(), v = Coords<double>::Zero();
   q(kB1) = -0.002;
   q(kB2) = 0.0015;
@@ -68,7 +68,7 @@ TEST(ClampedArmAccelerationTest, MatchesTheFullModelsArmRows) {
 // so the reduced model equals the full one at any pose and body velocity
 // (rounding only).
 TEST(FreeArmDerivativeTest, GravityCancelsInTheRelativeMotion) {
-  const VehicleParams p;
+  const BirotorParams p;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 50; ++trial) {
@@ -90,7 +90,7 @@ TEST(FreeArmDerivativeTest, GravityCancelsInTheRelativeMotion) {
 
 TEST(FreeArmDerivativeTest, JetDerivativeInStiffnessMatchesFiniteDifference) {
   using Jet = ceres::Jet<double, 1>;
-  const VehicleParams p;
+  const BirotorParams p;
   FreeArmState<double> x;
   x << 0.2, -0.002, 0.0025, 0.01, -0.02;
   const FreeArmState<Jet> xj = x.cast<Jet>();

@@ -27,7 +27,7 @@ Coords<double> SomeV() {
 }
 
 TEST(BirotorDynamics, GravityTermsMatchThesisEq312) {
-  const VehicleParams p;
+  const BirotorParams p;
   const Coords<double> q = SomeQ();
   const DynamicsTerms<double> t = ComputeDynamicsTerms<double>(p, q, Coords<double>::Zero(), 0.0, 0.0);
   const double L = p.arm_length_m, g = p.gravity_m_s2, mp = p.tip_mass_kg, k = p.arm_stiffness_n_m_rad;
@@ -40,7 +40,7 @@ TEST(BirotorDynamics, GravityTermsMatchThesisEq312) {
 }
 
 TEST(BirotorDynamics, MassMatrixIsSymmetricPositiveDefinite) {
-  const VehicleParams p;
+  const BirotorParams p;
   const DynamicsTerms<double> t = ComputeDynamicsTerms<double>(p, SomeQ(), SomeV(), 20.0, 21.0);
   EXPECT_TRUE(t.mass.isApprox(t.mass.transpose(), 1e-14));
   EXPECT_GT(t.mass.llt().matrixL().toDenseMatrix().diagonal().minCoeff(), 0.0);
@@ -49,7 +49,7 @@ TEST(BirotorDynamics, MassMatrixIsSymmetricPositiveDefinite) {
 // The unrolled LDL^T solve against Eigen's LLT at an arbitrary pose, velocity
 // and thrust (rounding only: 1e-10 relative).
 TEST(BirotorDynamics, MassMatrixSolveMatchesCholesky) {
-  const VehicleParams p;
+  const BirotorParams p;
   const DynamicsTerms<double> t = ComputeDynamicsTerms<double>(p, SomeQ(), SomeV(), 21.0, 24.5);
   const Coords<double> rhs = t.generalized_thrust - t.coriolis - t.gravity_spring;
   const Coords<double> expected = t.mass.llt().solve(rhs);
@@ -61,7 +61,7 @@ TEST(BirotorDynamics, MassMatrixSolveMatchesCholesky) {
 
 // The hover equilibrium of model/equilibrium.h is a fixed point of the plant.
 TEST(BirotorDynamics, HoverEquilibriumIsAFixedPointOfThePlant) {
-  const VehicleParams p;
+  const BirotorParams p;
   const Equilibrium eq = SolveHoverEquilibrium(p);
   const PlantState x = HoverPlantState(eq);
   PlantInput u;
@@ -71,7 +71,7 @@ TEST(BirotorDynamics, HoverEquilibriumIsAFixedPointOfThePlant) {
 }
 
 TEST(BirotorDynamics, AccelerationJacobianMatchesCentralDifferences) {
-  const VehicleParams p;
+  const BirotorParams p;
   const Coords<double> q0 = SomeQ(), v0 = SomeV();
   const double f1 = 21.0, f2 = 23.5;
   const LinearModel lin = Linearize(p, q0, v0, f1, f2);
@@ -100,7 +100,7 @@ TEST(BirotorDynamics, AccelerationJacobianMatchesCentralDifferences) {
 // RK4 at dt_s. The drift is RK4's truncation on the 80 Hz arm mode,
 // (omega h)^6 / 72 per step, so it falls 32-fold when the step halves.
 double EnergyDrift(double dt_s) {
-  VehicleParams p;
+  BirotorParams p;
   p.arm_damping_n_m_s_rad = 0.0;
   PlantState x = PlantState::Zero();
   x(kPlantQ + kB1) = -0.01;

@@ -7,7 +7,7 @@ namespace birotor {
 namespace {
 
 TEST(Equilibrium, ReproducesReferenceHover) {
-  const VehicleParams p;
+  const BirotorParams p;
   const Equilibrium eq = SolveHoverEquilibrium(p);
   ASSERT_TRUE(eq.converged);
   EXPECT_NEAR(eq.force_n[0], 22.4465, 5e-4);

@@ -11,7 +11,7 @@ constexpr int Pos(int coordinate) { return coordinate; }
 constexpr int Vel(int coordinate) { return kNumCoordinates + coordinate; }
 
 // Thesis eq. 3.33-3.34 (d = 0) in sum/difference coordinates.
-LinearModel ThesisModel(const VehicleParams& p) {
+LinearModel ThesisModel(const BirotorParams& p) {
   const double m = p.body_mass_kg, mp = p.tip_mass_kg, L = p.arm_length_m, J = p.body_inertia_kg_m2,
                k = p.arm_stiffness_n_m_rad, g = p.gravity_m_s2;
   LinearModel t;
@@ -54,7 +54,7 @@ double WorstRelativeError(const MechMatrix& ours, const MechMatrix& thesis, Mech
 // (b0 = 1.87e-3 rad): z/b_d by 6.7e-6 and b_d/b_d by 1.5e-6 relative, from
 // cos(b1 - b2) factors that the thesis's small-angle simplification drops.
 // Every other entry agrees to 1e-6.
-double ThesisError(const VehicleParams& p, MechMatrix::Index* r, MechMatrix::Index* c) {
+double ThesisError(const BirotorParams& p, MechMatrix::Index* r, MechMatrix::Index* c) {
   const LinearModel ours = ToSumDifferenceCoordinates(LinearizeAtHover(p));
   const LinearModel thesis = ThesisModel(p);
   for (int i = 0; i < kMechStateSize; ++i)
@@ -64,7 +64,7 @@ double ThesisError(const VehicleParams& p, MechMatrix::Index* r, MechMatrix::Ind
 }
 
 TEST(Linearization, MatchesThesisTermByTerm) {
-  VehicleParams p;
+  BirotorParams p;
   p.arm_damping_n_m_s_rad = 0.0;
   MechMatrix::Index r = 0, c = 0;
   EXPECT_LT(ThesisError(p, &r, &c), 1e-5) << "worst entry A(" << r << "," << c << ")";
@@ -72,7 +72,7 @@ TEST(Linearization, MatchesThesisTermByTerm) {
 
 TEST(Linearization, DifferenceFromThesisIsTheSmallAngleTerm) {
   // Stiffer arms shrink b0 a hundredfold; the O(b0^2) difference falls 1e4-fold.
-  VehicleParams p;
+  BirotorParams p;
   p.arm_damping_n_m_s_rad = 0.0;
   p.arm_stiffness_n_m_rad *= 100.0;
   MechMatrix::Index r = 0, c = 0;
@@ -80,7 +80,7 @@ TEST(Linearization, DifferenceFromThesisIsTheSmallAngleTerm) {
 }
 
 TEST(Linearization, SpecNumbers) {
-  VehicleParams p;
+  BirotorParams p;
   p.arm_damping_n_m_s_rad = 0.0;
   const LinearModel lin = LinearizeAtHover(p);
   EXPECT_NEAR(lin.b(Vel(kB1), 0), -13.883, 1e-3);
@@ -91,7 +91,7 @@ TEST(Linearization, SpecNumbers) {
 }
 
 TEST(Linearization, ArmModesWithDamping) {
-  const VehicleParams p;
+  const BirotorParams p;
   const std::vector<Mode> modes = OscillatoryModes(LinearizeAtHover(p).a);
   ASSERT_EQ(modes.size(), 2u);
   EXPECT_NEAR(modes[0].frequency_hz, 65.03, 0.01);

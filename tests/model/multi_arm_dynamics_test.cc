@@ -23,7 +23,7 @@ MultiCoords<double> RandomCoords(int n, std::mt19937* rng, double scale) {
 }
 
 TEST(MultiArmDynamics, BirotorEqualsClosedFormOfBirotorDynamics) {
-  const VehicleParams params;
+  const BirotorParams params;
   const VehicleDescription vehicle = Birotor(params);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> force(0.0, 40.0);

@@ -18,7 +18,7 @@ using test_vehicles::Birotor;
 using test_vehicles::Trirotor;
 
 TEST(MultiArmHover, BirotorEqualsEquilibrium) {
-  const VehicleParams params;
+  const BirotorParams params;
   const MultiArmHover hover = SolveMultiArmHover(Birotor(params));
   const Equilibrium eq = SolveHoverEquilibrium(params);
   ASSERT_TRUE(hover.converged);
@@ -32,7 +32,7 @@ TEST(MultiArmHover, BirotorEqualsEquilibrium) {
 }
 
 TEST(MultiArmLinearization, BirotorEqualsLinearization) {
-  const VehicleParams params;
+  const BirotorParams params;
   const VehicleDescription vehicle = Birotor(params);
   const MultiArmLinearModel ours = LinearizeMultiArmAtHover(vehicle, SolveMultiArmHover(vehicle));
   const LinearModel reference = LinearizeAtHover(params);
@@ -45,7 +45,7 @@ TEST(MultiArmLinearization, BirotorEqualsLinearization) {
 }
 
 TEST(MultiArmLinearization, BirotorModesEqualLinearization) {
-  const VehicleParams params;
+  const BirotorParams params;
   const VehicleDescription vehicle = Birotor(params);
   const std::vector<Mode> ours = OscillatoryModes(LinearizeMultiArmAtHover(vehicle, SolveMultiArmHover(vehicle)).a);
   const std::vector<Mode> reference = OscillatoryModes(LinearizeAtHover(params).a);

@@ -27,7 +27,7 @@ constexpr double kStepS = 0.00025;  // the scenarios' RK4 step [s]
 // difference is rounding: measured 3.2e-15 of any entry (relative to
 // max(1, |entry|)); the bound leaves room for other compilers.
 TEST(MultiArmPlantTest, BirotorDescriptionIsTheBirotorPlant) {
-  const VehicleParams params;
+  const BirotorParams params;
   const VehicleDescription vehicle = BirotorDescription(params);
   PlantState birotor = HoverPlantState(SolveHoverEquilibrium(params));
   birotor(kPlantQ + kPhi) = 0.05;
@@ -98,7 +98,7 @@ TEST(MultiArmPlantTest, HoverThrustsHoldTheTrirotorLevel) {
 // birotor's small-angle StaticDeflectionRad to the cos b ~ 1 relative error
 // (b ~ 3e-3 rad: b^2 / 2 ~ 5e-6 of the weight term).
 TEST(MultiArmPlantTest, BirotorDescriptionOnTheSupportIsTheBenchPlant) {
-  const VehicleParams params;
+  const BirotorParams params;
   const VehicleDescription vehicle = BirotorDescription(params);
   PlantState x = PlantState::Zero();
   x(kPlantQ + kB1) = -2.0e-3;

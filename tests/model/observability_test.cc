@@ -9,7 +9,7 @@ namespace birotor {
 namespace {
 
 SubspaceReport Observe(const std::vector<std::string>& measured) {
-  const VehicleParams p;
+  const BirotorParams p;
   const AugMatrix a = AugmentWithForces(LinearizeAtHover(p));
   Eigen::MatrixXd c;
   std::string unknown;
@@ -30,7 +30,7 @@ TEST(Observability, AllMechanicalStatesGiveFullRank) {
 }
 
 TEST(Controllability, ForcesControlAllTenMechanicalStates) {
-  const VehicleParams p;
+  const BirotorParams p;
   const LinearModel lin = LinearizeAtHover(p);
   std::vector<std::string> names(AugmentedStateNames().begin(), AugmentedStateNames().begin() + 10);
   const SubspaceReport r = AnalyzeControllability(lin.a, lin.b, names);

@@ -22,7 +22,7 @@ int Index(const std::string& name) {
 }
 
 TEST(ParameterObservability, ColumnsAreThePhysics) {
-  const VehicleParams p;  // the reference vehicle
+  const BirotorParams p;  // the reference vehicle
   Eigen::MatrixXd a, c;
   LinearizeWithParameters(p, {M::kStrain, M::kAccelerometer}, &a, &c);
   ASSERT_EQ(a.rows(), kParameterAugmentedSize);
@@ -44,7 +44,7 @@ TEST(ParameterObservability, ColumnsAreThePhysics) {
 // combinations are the reduced row echelon form, docs/mismatch.md).
 TEST(ParameterObservability, WithoutTheAccelerometerThreeCombinations) {
   const ParameterObservability r =
-      AnalyzeParameterObservability(VehicleParams(), {M::kStrain, M::kTelemetry, M::kGyro});
+      AnalyzeParameterObservability(BirotorParams(), {M::kStrain, M::kTelemetry, M::kGyro});
   EXPECT_EQ(r.report.rank, 10);
   EXPECT_EQ(r.determined, 3);
   EXPECT_TRUE(r.observable_parameters.empty());  // no parameter on its own
@@ -56,7 +56,7 @@ TEST(ParameterObservability, WithoutTheAccelerometerThreeCombinations) {
 
 TEST(ParameterObservability, TheAccelerometerAddsTheTotalForceOverTheMass) {
   const ParameterObservability r =
-      AnalyzeParameterObservability(VehicleParams(), {M::kStrain, M::kTelemetry, M::kGyro, M::kAccelerometer});
+      AnalyzeParameterObservability(BirotorParams(), {M::kStrain, M::kTelemetry, M::kGyro, M::kAccelerometer});
   EXPECT_EQ(r.report.rank, 11);
   EXPECT_EQ(r.determined, 4);
   ASSERT_EQ(r.determined_combinations.size(), 4u);

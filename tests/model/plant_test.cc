@@ -10,9 +10,9 @@ namespace birotor {
 namespace {
 
 // omega_dot = (clamp(omega_cmd) - omega) / tau_m with the reference
-// vehicle's tau_m = 0.035 s and omega_max (model/vehicle_params.h).
+// vehicle's tau_m = 0.035 s and omega_max (model/birotor_params.h).
 TEST(MotorLagRateTest, FirstOrderLagWithTheCommandClamped) {
-  const VehicleParams p;
+  const BirotorParams p;
   EXPECT_DOUBLE_EQ(MotorLagRate(p, 300.0, 1100.0), 800.0 / 0.035);
   EXPECT_DOUBLE_EQ(MotorLagRate(p, 300.0, -50.0), -300.0 / 0.035);  // a negative command is 0
   EXPECT_DOUBLE_EQ(MotorLagRate(p, 300.0, 10.0 * p.omega_max_rad_s), (p.omega_max_rad_s - 300.0) / 0.035);
@@ -22,7 +22,7 @@ TEST(MotorLagRateTest, FirstOrderLagWithTheCommandClamped) {
 // dt -> 0 is MotorLagRate (forward difference over 1 ns: relative error
 // dt / (2 tau_m) = 1.4e-8).
 TEST(MotorLagRateTest, IsTheSlopeOfTheExactStep) {
-  const VehicleParams p;
+  const BirotorParams p;
   const double dt_s = 1e-9;
   const double slope = (MotorStep(300.0, 1100.0, p.motor_time_constant_s, dt_s) - 300.0) / dt_s;
   EXPECT_NEAR(slope, MotorLagRate(p, 300.0, 1100.0), 1e-6 * MotorLagRate(p, 300.0, 1100.0));
@@ -31,7 +31,7 @@ TEST(MotorLagRateTest, IsTheSlopeOfTheExactStep) {
 // On the bench the body is held: only the arms and the rotors move, and
 // the rotors follow the same lag as in flight.
 TEST(ClampedBodyDerivativeTest, BodyHeldRotorsLag) {
-  const VehicleParams p;
+  const BirotorParams p;
   PlantState x = PlantState::Zero();
   x(kPlantOmega1) = 500.0;
   x(kPlantOmega2) = 600.0;

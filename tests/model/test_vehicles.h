@@ -7,8 +7,8 @@
 
 #include <string>
 
+#include "model/birotor_params.h"
 #include "model/vehicle_description.h"
-#include "model/vehicle_params.h"
 #include "params/vehicle_description_yaml.h"
 
 namespace birotor {
@@ -19,7 +19,7 @@ inline std::string SourceFile(const std::string& relative_path) {
 }
 
 // The birotor of the reference file: arm 1 along body -x, arm 2 along +x, thrust up.
-inline VehicleDescription Birotor(const VehicleParams& p = VehicleParams()) { return BirotorDescription(p); }
+inline VehicleDescription Birotor(const BirotorParams& p = BirotorParams()) { return BirotorDescription(p); }
 
 // config/vehicles/trirotor.yaml: arms at alpha = 180, -45, 45 deg, thrusts at
 // theta = 0, -45, 45 deg (perpendicular to the arms, levers -L, +L, +L), a

@@ -27,7 +27,7 @@ const ForceObservability& Case(const VehicleAnalysis& analysis, Set measured) {
 }
 
 TEST(VehicleAnalysis, BirotorReproducesObservability) {
-  const VehicleParams params;
+  const BirotorParams params;
   const VehicleAnalysis analysis = AnalyzeVehicle(Birotor(params));
   // model/observability.h on linearization.h's 12-state system (observability_test.cc).
   const AugMatrix aug = AugmentWithForces(LinearizeAtHover(params));

@@ -17,7 +17,7 @@ namespace birotor {
 namespace {
 
 TEST(VehicleDescriptionChecksumTest, IsFnv1aOfTheCanonicalText) {
-  const VehicleDescription birotor = BirotorDescription(VehicleParams{});
+  const VehicleDescription birotor = BirotorDescription(BirotorParams{});
   const std::string text = DescriptionCanonicalText(birotor);
   EXPECT_EQ(DescriptionChecksum(birotor), TextChecksumHex(text));
   EXPECT_EQ(DescriptionChecksum(birotor).size(), 16u);
@@ -31,21 +31,21 @@ TEST(VehicleDescriptionChecksumTest, IsFnv1aOfTheCanonicalText) {
 }
 
 TEST(VehicleDescriptionChecksumTest, ReferenceBirotorValue) {
-  // The reference birotor (VehicleParams defaults = config/reference_vehicle.yaml);
+  // The reference birotor (BirotorParams defaults = config/reference_vehicle.yaml);
   // a change of this value means every log's description checksum changes:
   // bump kCanonicalTextVersion instead of editing the number.
-  EXPECT_EQ(DescriptionChecksum(BirotorDescription(VehicleParams{})), "3c46c6d41f8659af");
+  EXPECT_EQ(DescriptionChecksum(BirotorDescription(BirotorParams{})), "3c46c6d41f8659af");
 }
 
 TEST(VehicleDescriptionChecksumTest, UnusedArmsDoNotCount) {
-  VehicleDescription a = BirotorDescription(VehicleParams{});
+  VehicleDescription a = BirotorDescription(BirotorParams{});
   VehicleDescription b = a;
   b.arms[4].stiffness_n_m_rad = 1.0;
   EXPECT_EQ(DescriptionChecksum(a), DescriptionChecksum(b));
 }
 
 TEST(VehicleDescriptionChecksumTest, EveryFieldChangesIt) {
-  const VehicleDescription reference = BirotorDescription(VehicleParams{});
+  const VehicleDescription reference = BirotorDescription(BirotorParams{});
   const std::string reference_checksum = DescriptionChecksum(reference);
   // One change per field; reals by one unit in the last place.
   const auto ulp = [](double& x) { x = std::nextafter(x, INFINITY); };

@@ -12,10 +12,10 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// Every VehicleParams field away from its default, so a field mapped to the
+// Every BirotorParams field away from its default, so a field mapped to the
 // wrong place shows.
-VehicleParams Distinct() {
-  VehicleParams p;
+BirotorParams Distinct() {
+  BirotorParams p;
   p.body_mass_kg = 4.1;
   p.tip_mass_kg = 0.3;
   p.arm_length_m = 0.26;
@@ -67,7 +67,7 @@ std::string Joined(const std::vector<std::string>& problems) {
 }
 
 TEST(VehicleDescription, BirotorMapsEveryFieldBothWays) {
-  const VehicleParams p = Distinct();
+  const BirotorParams p = Distinct();
   const VehicleDescription d = BirotorDescription(p);
   ASSERT_EQ(d.arm_count, 2);
   EXPECT_DOUBLE_EQ(d.arms[0].angle_rad, kPi);  // arm 1 along body -x (docs/interface.md)
@@ -77,7 +77,7 @@ TEST(VehicleDescription, BirotorMapsEveryFieldBothWays) {
   EXPECT_DOUBLE_EQ(d.arms[1].gauge_scale, 0.9);
   EXPECT_DOUBLE_EQ(d.arms[1].gauge_offset_rad, -2e-4);
   EXPECT_DOUBLE_EQ(d.TotalMass(), p.TotalMass());
-  VehicleParams back;
+  BirotorParams back;
   std::string why;
   ASSERT_TRUE(ToBirotorParams(d, &back, &why)) << why;
   // Every field round-trips: the description of the result is the same.
@@ -87,30 +87,30 @@ TEST(VehicleDescription, BirotorMapsEveryFieldBothWays) {
 }
 
 TEST(VehicleDescription, NotABirotorSaysWhy) {
-  VehicleParams out;
+  BirotorParams out;
   std::string why;
-  VehicleDescription d = BirotorDescription(VehicleParams());
+  VehicleDescription d = BirotorDescription(BirotorParams());
   d.arms[1].stiffness_n_m_rad = 3000.0;
   EXPECT_FALSE(ToBirotorParams(d, &out, &why));
   EXPECT_NE(why.find("arms[1].stiffness_n_m_rad: 3000 vs 2628"), std::string::npos) << why;
-  d = BirotorDescription(VehicleParams());
+  d = BirotorDescription(BirotorParams());
   d.arms[0].has_gauge = false;
   EXPECT_FALSE(ToBirotorParams(d, &out, &why));
   EXPECT_NE(why.find("arms[0].has_gauge"), std::string::npos) << why;
-  d = BirotorDescription(VehicleParams());
+  d = BirotorDescription(BirotorParams());
   d.arms[1].thrust_angle_rad = 0.1;
   EXPECT_FALSE(ToBirotorParams(d, &out, &why));
   EXPECT_NE(why.find("arms[1].thrust_angle_rad"), std::string::npos) << why;
   EXPECT_FALSE(ToBirotorParams(FourArms(), &out, &why));
   EXPECT_NE(why.find("arm_count is 4"), std::string::npos) << why;
   // -pi is pi: the angle is compared modulo 2 pi.
-  d = BirotorDescription(VehicleParams());
+  d = BirotorDescription(BirotorParams());
   d.arms[0].angle_rad = -kPi;
   EXPECT_TRUE(ToBirotorParams(d, &out, &why)) << why;
 }
 
 TEST(VehicleDescription, BirotorAllocationHoverAndMargin) {
-  const VehicleDescription d = BirotorDescription(VehicleParams());
+  const VehicleDescription d = BirotorDescription(BirotorParams());
   const AllocationMatrix a = WrenchAllocation(d);
   ASSERT_EQ(a.cols(), 2);
   // Thrust up at both tips; torque -L f1 + L f2 (tau of model/birotor_dynamics.h).
@@ -120,7 +120,7 @@ TEST(VehicleDescription, BirotorAllocationHoverAndMargin) {
   EXPECT_DOUBLE_EQ(a(kWrenchTorque, 1), 0.25);
   // Hover of shared/spec/reference-vehicle.md: 22.4465 N and 698.55 rad/s per rotor.
   const HoverSolution hover = SolveHover(d);
-  EXPECT_NEAR(hover.thrust_n[0], VehicleParams().HoverForceN(), 1e-12);
+  EXPECT_NEAR(hover.thrust_n[0], BirotorParams().HoverForceN(), 1e-12);
   EXPECT_NEAR(hover.thrust_n[1], 22.4465, 5e-5);
   EXPECT_NEAR(hover.omega_rad_s[0], 698.55, 0.01);
   // [F_z; torque / L] = [[1, 1], [-1, 1]] f: both singular values sqrt(2).
@@ -135,7 +135,7 @@ TEST(VehicleDescription, BirotorAllocationHoverAndMargin) {
 // L (f_2 - f_1) = g L (m_p,2 - m_p,1) (the tip weights' moment) give
 // f_2 - f_1 = g (0.5 - 0.28812) = 2.07854 N about the mean W / 2.
 TEST(VehicleDescription, HoverCancelsTheTipWeightsMoment) {
-  VehicleDescription d = BirotorDescription(VehicleParams());
+  VehicleDescription d = BirotorDescription(BirotorParams());
   d.arms[1].tip_mass_kg = 0.5;
   const double weight_n = 9.81 * (4.0 + 0.28812 + 0.5);
   const Eigen::Vector3d wrench = HoverWrench(d);
@@ -145,7 +145,7 @@ TEST(VehicleDescription, HoverCancelsTheTipWeightsMoment) {
   EXPECT_NEAR(hover.thrust_n[1] - hover.thrust_n[0], 2.07854, 1e-5);
   EXPECT_NEAR(hover.thrust_n[0] + hover.thrust_n[1], weight_n, 1e-9);
   // The symmetric birotor: cos pi + cos 0 cancels exactly, no moment.
-  EXPECT_EQ(HoverWrench(BirotorDescription(VehicleParams()))(kWrenchTorque), 0.0);
+  EXPECT_EQ(HoverWrench(BirotorDescription(BirotorParams()))(kWrenchTorque), 0.0);
 }
 
 TEST(VehicleDescription, PlausibleFourArms) {
@@ -161,7 +161,7 @@ TEST(VehicleDescription, PlausibleFourArms) {
 }
 
 TEST(VehicleDescription, TooHeavyBirotorCannotHover) {
-  VehicleParams p;
+  BirotorParams p;
   p.body_mass_kg = 400.0;
   // f = 9.81 (400 + 2 x 0.28812) / 2 = 1964.83 N; sqrt(1964.83 / 4.6e-5) = 6535.57 rad/s > 1200.
   const std::vector<std::string> problems = PlausibilityProblems(BirotorDescription(p));
@@ -220,7 +220,7 @@ TEST(VehicleDescription, GaugeOnAnArmWithoutLever) {
 TEST(VehicleDescription, NegativeHoverThrustIsNamed) {
   // A birotor whose right rotor thrusts down (u_2 = [0, -1], l_2 = -L): the
   // torque row -L f1 - L f2 = 0 and F_z f1 - f2 = W give f2 = -W / 2.
-  VehicleDescription d = BirotorDescription(VehicleParams());
+  VehicleDescription d = BirotorDescription(BirotorParams());
   d.arms[1].thrust_angle_rad = kPi;
   const std::vector<std::string> problems = PlausibilityProblems(d);
   EXPECT_TRUE(Mentions(problems, "hover: rotor 2 would need thrust -22.4465 N (allowed: > 0 N")) << Joined(problems);

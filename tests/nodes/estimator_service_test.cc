@@ -33,7 +33,7 @@ class ServiceHarness {
         sink_(&lcm_),
         service_(config_, channels_, EstimatorServiceOptions{}, &sink_),
         source_(&lcm_),
-        hover_(SolveHoverEquilibrium(config_.vehicle)) {
+        hover_(SolveHoverEquilibrium(BirotorModelOf(config_.vehicle))) {
     std::string error;
     EXPECT_TRUE(source_.Subscribe(service_.InputChannels(), &service_, &error)) << error;
     lcm_.subscribeFunction(channels_.force, &ServiceHarness::OnForce, this);
@@ -150,7 +150,7 @@ TEST(EstimatorServiceTest, PublishesOneForcePerStrainSampleOverLcm) {
   // stays on it to round-off; its one sigma after 0.4 s is 0.0839 N (measured),
   // widened by 15 % of the tip weight m_p g while the arm mode has not read
   // the tip mass (its first reading is due at 0.6 s).
-  const VehicleParams reference;
+  const BirotorParams reference;
   const double tip_std_n =
       ModelConsistencyOptions().arm_mode_unconfirmed_tip_mass_std * reference.tip_mass_kg * reference.gravity_m_s2;
   for (int i = 0; i < 2; ++i) {

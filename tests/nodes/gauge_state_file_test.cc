@@ -44,7 +44,7 @@ GaugeCalibration Learned() {
 
 TEST(GaugeStateFileTest, RoundTripKeepsEveryBitAndSaysWhereItCameFrom) {
   const std::string path = TempStatePath("round_trip");
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
   GaugeCalibration read;
@@ -63,7 +63,7 @@ TEST(GaugeStateFileTest, RoundTripKeepsEveryBitAndSaysWhereItCameFrom) {
 // outside [0.2, 5] is refused like an offset out of range.
 TEST(GaugeStateFileTest, ALearnedStrainScaleRoundTripsAndIsRangeChecked) {
   const std::string path = TempStatePath("strain_scale");
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   std::string error;
   GaugeCalibration learned = Learned();
   learned.has_strain_scale = true;
@@ -99,7 +99,7 @@ TEST(GaugeStateFileTest, ALearnedStrainScaleRoundTripsAndIsRangeChecked) {
 
 TEST(GaugeStateFileTest, ACorruptFileIsRefusedAndChangesNothing) {
   const std::string path = TempStatePath("corrupt");
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error));
   std::string text = Slurp(path);
@@ -121,12 +121,12 @@ TEST(GaugeStateFileTest, ACorruptFileIsRefusedAndChangesNothing) {
 
 TEST(GaugeStateFileTest, AFileOfAnotherVehicleIsRefused) {
   const std::string path = TempStatePath("foreign");
-  VehicleParams other;
+  BirotorParams other;
   other.tip_mass_kg = 0.3;
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), VehicleChecksum(other), &error));
   GaugeCalibration read;
-  EXPECT_FALSE(ReadGaugeState(path, VehicleChecksum(VehicleParams()), 5e-4, &read, &error));
+  EXPECT_FALSE(ReadGaugeState(path, VehicleChecksum(BirotorParams()), 5e-4, &read, &error));
   EXPECT_NE(error.find("another vehicle"), std::string::npos) << error;
   std::remove(path.c_str());
 }
@@ -135,7 +135,7 @@ TEST(GaugeStateFileTest, AnOffsetOutsideThePhysicalRangeIsRefused) {
   const std::string path = TempStatePath("range");
   GaugeCalibration wild = Learned();
   wild.offset_rad[1] = 2e-3;
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, wild, vehicle, &error));
   GaugeCalibration read;
@@ -150,7 +150,7 @@ TEST(GaugeStateFileTest, AnOffsetOutsideThePhysicalRangeIsRefused) {
 // now range-checked against vehicle.gauge_offset_std_rad's [1e-9, 1e-2] rad.
 TEST(GaugeStateFileTest, AForgedSigmaIsRefusedWhateverTheChecksum) {
   const std::string path = TempStatePath("forged");
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   for (const double sigma : {1e300, 1e-300, 0.0, -1e-6, 0.011}) {
     GaugeCalibration forged = Learned();
     forged.offset_std_rad[1] = sigma;
@@ -174,7 +174,7 @@ TEST(GaugeStateFileTest, AForgedSigmaIsRefusedWhateverTheChecksum) {
 // below the reader's 1e-9 rad floored to it.
 TEST(GaugeStateFileTest, WhatIsWrittenReadsBack) {
   const std::string path = TempStatePath("write_range");
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   GaugeCalibration bad = Learned();
   bad.offset_std_rad[0] = std::numeric_limits<double>::infinity();
   std::string error;
@@ -217,7 +217,7 @@ TEST(GaugeStateFileTest, APlantedTemporaryLinkIsNeverWrittenThrough) {
   ASSERT_EQ(symlink(victim.c_str(), (path + ".tmp").c_str()), 0);
   ASSERT_EQ(link(victim.c_str(), (folder + "/.gauge.state.tmp").c_str()), 0);
   std::string error;
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;  // over the existing state
   EXPECT_EQ(Slurp(victim), "precious\n");
@@ -233,7 +233,7 @@ TEST(GaugeStateFileTest, AStateFileThatIsALinkIsRefused) {
   const std::string folder = MakeFolder("link");
   const std::string path = folder + "/gauge.state";
   const std::string victim = folder + "/victim";
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   std::string error;
   ASSERT_TRUE(WriteGaugeState(victim, Learned(), vehicle, &error)) << error;  // even a valid state file
   const std::string victim_text = Slurp(victim);
@@ -259,7 +259,7 @@ TEST(GaugeStateFileTest, DevicesAndFifosAreRefusedWithoutReadingOrWaiting) {
   const std::string folder = MakeFolder("special");
   const std::string fifo = folder + "/gauge.fifo";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   GaugeCalibration read;
   std::string error;
   EXPECT_FALSE(ReadGaugeState(fifo, vehicle, 5e-4, &read, &error));
@@ -286,7 +286,7 @@ TEST(GaugeStateFileTest, AFileThatIsNotAStateFileIsNeverOverwritten) {
   const std::string path = folder + "/estimator.yaml";
   const std::string params = "vehicle:\n  body_mass_kg: 1.2\n";
   Spit(path, params);
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   GaugeCalibration read;
   std::string error;
   EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
@@ -301,7 +301,7 @@ TEST(GaugeStateFileTest, AFileThatIsNotAStateFileIsNeverOverwritten) {
 TEST(GaugeStateFileTest, AReplacedStateFileKeepsItsMode) {
   const std::string folder = MakeFolder("mode");
   const std::string path = folder + "/gauge.state";
-  const std::string vehicle = VehicleChecksum(VehicleParams());
+  const std::string vehicle = VehicleChecksum(BirotorParams());
   std::string error;
   ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, &error)) << error;
   struct stat info {};

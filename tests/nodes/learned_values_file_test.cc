@@ -24,7 +24,7 @@ std::string TempPath(const std::string& name) {
   return ::testing::TempDir() + "/" + name + "_" + std::to_string(getpid());
 }
 
-const std::string kVehicle = VehicleChecksum(VehicleParams());
+const std::string kVehicle = VehicleChecksum(BirotorParams());
 
 TEST(LearnedValuesFileTest, AStateFileGivesItsStrainScales) {
   const std::string path = TempPath("learned_state");
@@ -45,7 +45,7 @@ TEST(LearnedValuesFileTest, AStateFileGivesItsStrainScales) {
   EXPECT_EQ(learned.strain_scale[0], 0.8924);
   EXPECT_EQ(learned.strain_scale_std[1], 0.0094);
   // Another vehicle (e.g. the file already updated with this state): refused.
-  VehicleParams other;
+  BirotorParams other;
   other.gauge_scale[0] = 0.8924;
   EXPECT_FALSE(ReadLearnedValues(path, "", VehicleChecksum(other), &learned, &error));
   EXPECT_NE(error.find("written for another vehicle"), std::string::npos) << error;

@@ -20,7 +20,7 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   const ControllerConfig config = LoadControllerConfig(ReferenceFile());
   const ControllerConfig defaults;
   EXPECT_EQ(config.force_feedback, defaults.force_feedback);
-  EXPECT_EQ(config.vehicle.thrust_coeff_n_s2_rad2, defaults.vehicle.thrust_coeff_n_s2_rad2);
+  EXPECT_EQ(config.vehicle.arms[0].thrust_coeff_n_s2_rad2, defaults.vehicle.arms[0].thrust_coeff_n_s2_rad2);
   EXPECT_EQ(config.gains.rate_hz, defaults.gains.rate_hz);
   EXPECT_EQ(config.gains.position_kp_1_s2, defaults.gains.position_kp_1_s2);
   EXPECT_EQ(config.gains.attitude_ki_1_s3, defaults.gains.attitude_ki_1_s3);

@@ -18,7 +18,7 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   const EstimatorConfig config = LoadEstimatorConfig(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
   const EstimatorConfig defaults;
   EXPECT_EQ(config.method, defaults.method);
-  EXPECT_EQ(config.vehicle.arm_stiffness_n_m_rad, defaults.vehicle.arm_stiffness_n_m_rad);
+  EXPECT_EQ(config.vehicle.arms[0].stiffness_n_m_rad, defaults.vehicle.arms[0].stiffness_n_m_rad);
   EXPECT_EQ(config.ekf.strain_noise_rad, defaults.ekf.strain_noise_rad);
   EXPECT_EQ(config.ekf.thrust_scale_psd_1_s, defaults.ekf.thrust_scale_psd_1_s);
   EXPECT_EQ(config.ekf.deflection_rate_psd_rad2_s3, defaults.ekf.deflection_rate_psd_rad2_s3);
@@ -79,6 +79,26 @@ TEST(EstimatorConfigYamlTest, ReferenceTextWithOneValueChangedLoads) {
   const EstimatorConfig c = ParseEstimatorConfig(emitter.c_str(), "x.yaml");
   EXPECT_EQ(c.method, "inversion");
   EXPECT_EQ(c.inversion.window_samples, 3);
+}
+
+// The vehicle is a description: the N-arm form of the birotor loads as the
+// same vehicle; the trirotor is refused naming the key and the reason.
+TEST(EstimatorConfigYamlTest, VehicleSectionInEitherFormAndOnlyABirotor) {
+  const std::string source = BIROTOR_SOURCE_DIR;
+  const EstimatorConfig shipped = LoadEstimatorConfig(source + "/config/estimator.yaml");
+  YAML::Node text = YAML::LoadFile(source + "/config/estimator.yaml");
+  text["vehicle"] = YAML::LoadFile(source + "/config/vehicles/birotor.yaml")["vehicle"];
+  YAML::Emitter birotor;
+  birotor << text;
+  const EstimatorConfig n_arm_form = ParseEstimatorConfig(birotor.c_str(), "x.yaml");
+  EXPECT_EQ(FirstDifference(n_arm_form.vehicle, shipped.vehicle), "");
+
+  text["vehicle"] = YAML::LoadFile(source + "/config/vehicles/trirotor.yaml")["vehicle"];
+  YAML::Emitter trirotor;
+  trirotor << text;
+  const std::string e = ErrorOf(trirotor.c_str());
+  EXPECT_NE(e.find("bad.yaml: key 'vehicle': birotor-estimator runs the birotor's model"), std::string::npos) << e;
+  EXPECT_NE(e.find("arm_count is 3"), std::string::npos) << e;
 }
 
 // estimator.model_consistency (issue 27, docs/mismatch.md): the shipped

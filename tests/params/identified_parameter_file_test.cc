@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "identification/deflection_force_map.h"
-#include "params/vehicle_params_yaml.h"
+#include "params/birotor_params_yaml.h"
 
 namespace birotor {
 namespace {
@@ -45,7 +45,7 @@ TEST(ParameterFileTest, YamlLoadsBackAsTheIdentifiedValues) {
   const std::string text = IdentifiedParameterYaml(SampleResult());
   const std::string path = ::testing::TempDir() + "/identified_roundtrip.yaml";
   std::ofstream(path) << text;
-  const VehicleParams loaded = LoadVehicleParams(path);
+  const BirotorParams loaded = LoadBirotorParams(path);
   EXPECT_DOUBLE_EQ(loaded.arm_stiffness_n_m_rad, 3100.5);
   EXPECT_DOUBLE_EQ(loaded.thrust_coeff_n_s2_rad2, 5.01e-5);
   EXPECT_NE(text.find("NOT DETERMINED"), std::string::npos);    // d

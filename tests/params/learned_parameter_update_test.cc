@@ -21,15 +21,15 @@ LearnedVehicleValues LearnedScales(double g1, double g2, double sigma) {
   return learned;
 }
 
-VehicleParams Reference() {
-  VehicleParams vehicle;
+BirotorParams Reference() {
+  BirotorParams vehicle;
   vehicle.body_mass_kg = 4.0;
   vehicle.gauge_scale[0] = vehicle.gauge_scale[1] = 1.0;
   return vehicle;
 }
 
 TEST(LearnedParameterUpdate, TheStrainScaleMultipliesTheGaugeScale) {
-  VehicleParams vehicle = Reference();
+  BirotorParams vehicle = Reference();
   vehicle.gauge_scale[1] = 1.2;  // a file with an identified gauge scale
   std::vector<LearnedChange> changes;
   std::string error;
@@ -45,7 +45,7 @@ TEST(LearnedParameterUpdate, TheStrainScaleMultipliesTheGaugeScale) {
 }
 
 TEST(LearnedParameterUpdate, TheLearnedBodyMassIsWritten) {
-  VehicleParams vehicle = Reference();
+  BirotorParams vehicle = Reference();
   LearnedVehicleValues learned;
   learned.has_body_mass = true;
   learned.body_mass_kg = 4.6;
@@ -61,7 +61,7 @@ TEST(LearnedParameterUpdate, TheLearnedBodyMassIsWritten) {
 
 // Each refusal leaves the vehicle as it was and names file, key and range.
 void ExpectRefused(const LearnedVehicleValues& learned, const std::string& words) {
-  VehicleParams vehicle = Reference();
+  BirotorParams vehicle = Reference();
   std::vector<LearnedChange> changes;
   std::string error;
   EXPECT_FALSE(
@@ -91,7 +91,7 @@ TEST(LearnedParameterUpdate, RefusesNonFiniteAndOutOfRange) {
   ExpectRefused(LearnedScales(1.0, nan, 0.01), "strain_scale of arm 2 nan +- 0.01 is not finite");
   ExpectRefused(LearnedScales(1.0, 1.0, nan), "is not finite: v.yaml vehicle.gauge_scale[0] not updated");
   ExpectRefused(LearnedScales(1.0, 1.0, -0.01), "has a negative sigma: v.yaml vehicle.gauge_scale[0] not updated");
-  // 1 x 0.4 is below gauge_scale's 0.5 (params/vehicle_params_yaml.h).
+  // 1 x 0.4 is below gauge_scale's 0.5 (params/birotor_params_yaml.h).
   ExpectRefused(LearnedScales(0.4, 1.0, 0.01),
                 "v.yaml: vehicle.gauge_scale[0] would become 0.4 (1 x learned strain scale 0.4), outside [0.5, 2]: "
                 "refused, file not updated");
@@ -105,7 +105,7 @@ TEST(LearnedParameterUpdate, RefusesNonFiniteAndOutOfRange) {
 TEST(LearnedParameterUpdate, TheFractionIsAnOption) {
   LearnedDeployOptions options;
   options.max_std_fraction = 0.9;  // 0.05 < 0.09: accepted now
-  VehicleParams vehicle = Reference();
+  BirotorParams vehicle = Reference();
   std::vector<LearnedChange> changes;
   std::string error;
   EXPECT_TRUE(

@@ -8,10 +8,10 @@
 #include <filesystem>
 
 #include "model/vehicle_description_checksum.h"
+#include "params/birotor_params_yaml.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
-#include "params/vehicle_params_yaml.h"
 #include "tests/params/param_error_of.h"
 #include "tests/params/temp_file.h"
 
@@ -42,10 +42,10 @@ void ExpectRefused(const std::string& text, const std::vector<std::string>& part
 }
 
 TEST(VehicleDescriptionYaml, BothBirotorFilesGiveTheReferenceDescription) {
-  const VehicleDescription reference = BirotorDescription(LoadVehicleParams("config/reference_vehicle.yaml"));
+  const VehicleDescription reference = BirotorDescription(LoadBirotorParams("config/reference_vehicle.yaml"));
   EXPECT_EQ(FirstDifference(LoadVehicleDescription("config/vehicles/birotor.yaml"), reference), "");
   EXPECT_EQ(FirstDifference(LoadVehicleDescription("config/reference_vehicle.yaml"), reference), "");
-  VehicleParams params;
+  BirotorParams params;
   std::string why;
   ASSERT_TRUE(ToBirotorParams(LoadVehicleDescription("config/vehicles/birotor.yaml"), &params, &why)) << why;
   EXPECT_DOUBLE_EQ(params.arm_stiffness_n_m_rad, 2628.0);  // config/reference_vehicle.yaml
@@ -146,7 +146,7 @@ TEST(VehicleDescriptionYaml, TooHeavyIsRefusedInBothForms) {
   std::string old_form = ReadText("config/reference_vehicle.yaml");
   old_form.replace(old_form.find("body_mass_kg: 4.0"), 17, "body_mass_kg: 400");
   const std::string path = WriteTemp(old_form);
-  const std::string message = ParamErrorOf([&] { LoadVehicleParams(path); });
+  const std::string message = ParamErrorOf([&] { LoadBirotorParams(path); });
   EXPECT_NE(message.find(path), std::string::npos) << message;
   for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
 }

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "params/birotor_params_yaml.h"
 #include "params/estimator_config_yaml.h"
-#include "params/vehicle_params_yaml.h"
 #include "tests/params/temp_file.h"
 
 namespace birotor {
@@ -22,7 +22,7 @@ std::string WriteTemp(const std::string& text) { return testing::WriteTempFile("
 
 TEST(VehicleSectionUpdateTest, ShippedEstimatorFileTakesNewValuesAndKeepsTheRest) {
   const std::string original = ReadText("config/estimator.yaml");
-  VehicleParams identified;
+  BirotorParams identified;
   identified.tip_mass_kg = 0.30;
   identified.arm_stiffness_n_m_rad = 3100.5;
   identified.gauge_scale[0] = 1.03;
@@ -33,7 +33,7 @@ TEST(VehicleSectionUpdateTest, ShippedEstimatorFileTakesNewValuesAndKeepsTheRest
   // The whole estimator file still loads, with the identified vehicle and the same estimator options.
   const EstimatorConfig before = LoadEstimatorConfig("config/estimator.yaml");
   const EstimatorConfig after = LoadEstimatorConfig(path);
-  EXPECT_EQ(VehicleParamsYaml(after.vehicle), VehicleParamsYaml(identified));
+  EXPECT_EQ(BirotorParamsYaml(BirotorModelOf(after.vehicle)), BirotorParamsYaml(identified));
   EXPECT_EQ(after.method, before.method);
   EXPECT_EQ(ReadIdentificationStamp(path), "2026-12-01T03:00:00Z by test");
   // Every comment line of the original is still there; only vehicle lines changed, one stamp line added.
@@ -68,9 +68,9 @@ TEST(VehicleSectionUpdateTest, ShippedEstimatorFileTakesNewValuesAndKeepsTheRest
 
 TEST(VehicleSectionUpdateTest, IncompleteFileIsRefusedNamingTheKey) {
   std::string updated, error;
-  EXPECT_FALSE(UpdateVehicleSection("vehicle:\n  body_mass_kg: 4.0\n", VehicleParams(), "", &updated, &error));
+  EXPECT_FALSE(UpdateVehicleSection("vehicle:\n  body_mass_kg: 4.0\n", BirotorParams(), "", &updated, &error));
   EXPECT_NE(error.find("tip_mass_kg"), std::string::npos) << error;
-  EXPECT_FALSE(UpdateVehicleSection("estimator:\n  method: ekf\n", VehicleParams(), "", &updated, &error));
+  EXPECT_FALSE(UpdateVehicleSection("estimator:\n  method: ekf\n", BirotorParams(), "", &updated, &error));
   EXPECT_NE(error.find("vehicle"), std::string::npos) << error;
 }
 

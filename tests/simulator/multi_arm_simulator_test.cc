@@ -124,7 +124,7 @@ TEST(MultiArmSimulatorTest, FourArmDescriptionBuiltHereHoversAndHolds) {
 
 // N = 2: the birotor way, tilting to move.
 TEST(MultiArmSimulatorTest, BirotorDescriptionTiltsToMove) {
-  MultiArmSimulator sim(BirotorDescription(VehicleParams()), Hold(2, 8.0, 0.5));
+  MultiArmSimulator sim(BirotorDescription(BirotorParams()), Hold(2, 8.0, 0.5));
   EXPECT_EQ(sim.mode(), MultiArmControlMode::kTiltToMove);
   const Flight flight = Fly(&sim);
   std::printf("birotor, 0.5 m move in 2 s: |phi| <= %.3g rad, final %.3g m\n", flight.max_tilt_rad,

@@ -81,7 +81,7 @@ struct Case {
   const char* scenario;
   double learning_flight_s;  // of the scenario's gentle move, learning on
   // The true file: config/estimator.yaml with the flown vehicle's difference.
-  void (*make_true)(VehicleParams* vehicle);
+  void (*make_true)(BirotorParams* vehicle);
   // --learned-max-std-fraction to deploy with, after the default refused
   // (a published sigma above 0.5 x the prior); empty: the default deploys.
   std::string max_std_fraction;
@@ -103,7 +103,9 @@ struct Figures {
 void CheckUpdatedFile(const Case& c, const EstimatorConfig& deployed, Figures* f) {
   const std::string shipped = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
   EstimatorConfig true_file = LoadEstimatorConfig(shipped);
-  c.make_true(&true_file.vehicle);
+  BirotorParams true_vehicle = BirotorModelOf(true_file.vehicle);
+  c.make_true(&true_vehicle);
+  true_file.vehicle = BirotorDescription(true_vehicle);
   const Scenario check = LoadScenario(ScenarioFile(c.scenario), kCheckFlight);
 
   const ScenarioRun with_update = RunScenario(check, deployed);
@@ -134,7 +136,7 @@ Figures LearnDeployAndCheck(const Case& c) {
   const GaugeCalibration& learned = learned_run.health.gauge;
   EXPECT_TRUE(learned.has_strain_scale);
   std::string error;
-  EXPECT_TRUE(WriteGaugeState(state, learned, VehicleChecksum(learning.vehicle), &error)) << error;
+  EXPECT_TRUE(WriteGaugeState(state, learned, VehicleChecksum(BirotorModelOf(learning.vehicle)), &error)) << error;
 
   // 2. Deploy into the copy: gauge_scale[i] = 1 x g_i, every other key kept.
   const std::string before = ReadText(params);
@@ -150,23 +152,23 @@ Figures LearnDeployAndCheck(const Case& c) {
   EXPECT_EQ(ReadText(params + ".bak"), before);
   const EstimatorConfig deployed = LoadEstimatorConfig(params);
   EXPECT_FALSE(deployed.ekf.learn_strain_scale);  // the shipped file: no learning
-  VehicleParams others = deployed.vehicle;
+  BirotorParams others = BirotorModelOf(deployed.vehicle);
   for (int i = 0; i < 2; ++i) {
     f.learned_g[i] = learned.strain_scale[i];
     f.learned_g_std[i] = learned.strain_scale_std[i];
-    EXPECT_NEAR(deployed.vehicle.gauge_scale[i], learned.strain_scale[i], 1e-9);
+    EXPECT_NEAR(deployed.vehicle.arms[i].gauge_scale, learned.strain_scale[i], 1e-9);
     others.gauge_scale[i] = 1.0;
   }
-  EXPECT_EQ(VehicleChecksum(others), VehicleChecksum(learning.vehicle));
+  EXPECT_EQ(VehicleChecksum(others), VehicleChecksum(BirotorModelOf(learning.vehicle)));
   // The flight's log (its last ESTIMATOR_STATUS) deploys the same values.
   const std::string log_copy = folder.path + "/from_log.yaml", log = folder.path + "/flight.lcm";
   fs::copy_file(shipped, log_copy);
-  WriteStatusLog(learned_run.health, VehicleChecksum(learning.vehicle), log);
+  WriteStatusLog(learned_run.health, VehicleChecksum(BirotorModelOf(learning.vehicle)), log);
   std::vector<std::string> from_log = {"--update-params", log_copy, "--learned", log};
   from_log.insert(from_log.end(), fraction.begin(), fraction.end());
   EXPECT_EQ(RunIdentify(from_log), 0);
   for (int i = 0; i < 2; ++i)
-    EXPECT_EQ(LoadEstimatorConfig(log_copy).vehicle.gauge_scale[i], deployed.vehicle.gauge_scale[i]);
+    EXPECT_EQ(LoadEstimatorConfig(log_copy).vehicle.arms[i].gauge_scale, deployed.vehicle.arms[i].gauge_scale);
   // The same state again is refused (the file's vehicle changed): never applied twice.
   const std::string after = ReadText(params);
   EXPECT_NE(RunIdentify({"--update-params", params, "--learned", state}), 0);
@@ -186,7 +188,7 @@ Figures LearnDeployAndCheck(const Case& c) {
 // file 5.16 N.
 TEST(LearnedDeploy, GaugeScaleMismatch) {
   const Figures f =
-      LearnDeployAndCheck({"mismatch_gauge_scale_0p7", 4.0, [](VehicleParams* v) { v->gauge_scale[0] = 0.7; }, ""});
+      LearnDeployAndCheck({"mismatch_gauge_scale_0p7", 4.0, [](BirotorParams* v) { v->gauge_scale[0] = 0.7; }, ""});
   EXPECT_NEAR(f.learned_g[0], 0.7, 0.022);  // 1.5 x the measured 0.0148
   EXPECT_NEAR(f.learned_g[1], 1.0, 0.02);   // 1.5 x 0.0025, at least the resolution of 0.02
   for (int i = 0; i < 2; ++i) EXPECT_LE(std::abs(f.learned_g[i] - (i == 0 ? 0.7 : 1.0)), 2 * f.learned_g_std[i]);
@@ -205,7 +207,7 @@ TEST(LearnedDeploy, GaugeScaleMismatch) {
 // unchanged 7.99 N.
 TEST(LearnedDeploy, StiffnessMismatch) {
   const Figures f = LearnDeployAndCheck(
-      {"mismatch_stiffness_plus20", 15.0, [](VehicleParams* v) { v->arm_stiffness_n_m_rad = 3153.6; }, "1"});
+      {"mismatch_stiffness_plus20", 15.0, [](BirotorParams* v) { v->arm_stiffness_n_m_rad = 3153.6; }, "1"});
   for (int i = 0; i < 2; ++i) {
     EXPECT_LT(f.learned_g[i], 0.93);  // moves by at least 1/1.5 of the measured 0.104
     EXPECT_LE(std::abs(f.learned_g[i] - 1.0 / 1.2), 2 * f.learned_g_std[i]);
@@ -223,7 +225,7 @@ TEST(LearnedDeploy, StiffnessMismatch) {
 // per rotor through the accelerometer), unchanged 0.381 N. After only 4 s:
 // 4.505 +- 0.050 kg and 0.470 N, worse than the unchanged file.
 TEST(LearnedDeploy, PayloadBodyMass) {
-  const Case c{"mismatch_payload_plus15", 15.0, [](VehicleParams* v) { v->body_mass_kg = 4.6; }, ""};
+  const Case c{"mismatch_payload_plus15", 15.0, [](BirotorParams* v) { v->body_mass_kg = 4.6; }, ""};
   Folder folder;
   const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/flight.lcm";
   fs::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
@@ -231,13 +233,13 @@ TEST(LearnedDeploy, PayloadBodyMass) {
   learning.ekf.learn_body_mass = true;
   const ScenarioRun learned_run = RunScenario(
       LoadScenario(ScenarioFile(c.scenario), {"scenario.duration_s=" + std::to_string(c.learning_flight_s)}), learning);
-  WriteStatusLog(learned_run.health, VehicleChecksum(learning.vehicle), log);
+  WriteStatusLog(learned_run.health, VehicleChecksum(BirotorModelOf(learning.vehicle)), log);
   std::printf("learned mass %.4f +- %.4f kg\n", learned_run.health.body_mass_kg, learned_run.health.body_mass_std_kg);
   EXPECT_NEAR(learned_run.health.body_mass_kg, 4.6, 0.02);  // measured 0.013 kg off
   EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", log}), 0);
   const EstimatorConfig deployed = LoadEstimatorConfig(params);
   EXPECT_NEAR(deployed.vehicle.body_mass_kg, learned_run.health.body_mass_kg, 1e-8);  // 10 digits written
-  EXPECT_EQ(deployed.vehicle.gauge_scale[0], 1.0);                                    // nothing else deployed
+  EXPECT_EQ(deployed.vehicle.arms[0].gauge_scale, 1.0);                               // nothing else deployed
   Figures f;
   CheckUpdatedFile(c, deployed, &f);
   EXPECT_LE(f.mae_updated_n, 1.35 * f.mae_true_n);      // measured 1.23

@@ -1,13 +1,17 @@
-// Physical parameters of the planar birotor (reference vehicle of
-// shared/spec/reference-vehicle.md). Plain data, SI units; loaded and
-// validated from YAML by params/, used by the model, simulator and filter.
+// The parameters of the closed-form birotor model (thesis eq. 3.10-3.14;
+// reference vehicle of docs/reference-vehicle.md): two equal arms along body
+// -x and +x with shared scalars. Plain data, SI units. Not a vehicle type of
+// its own: a room holds its vehicle as a VehicleDescription
+// (model/vehicle_description.h) and derives these, once and only for a
+// description that is a birotor, by BirotorModelOf / ToBirotorParams. The
+// birotor's closed-form dynamics, the EKF, the cascade and the MPC run on them.
 #pragma once
 
 #include "samples/rotor_count.h"
 
 namespace birotor {
 
-struct VehicleParams {
+struct BirotorParams {
   double body_mass_kg = 4.0;               // m: body mass
   double tip_mass_kg = 0.28812;            // m_p: lumped motor+prop+arm mass at each tip
   double arm_length_m = 0.25;              // L: hinge to rotor axis

@@ -1,5 +1,5 @@
 // Reads and validates the `vehicle:` section of a parameter file into
-// VehicleParams, and writes it back. The keys, their ranges and their units
+// BirotorParams, and writes it back. The keys, their ranges and their units
 // are one table (kVehicleKeys), used by the reader and the writer: a new
 // vehicle parameter is one line there plus the key in the shipped files.
 #pragma once
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "model/vehicle_params.h"
+#include "model/birotor_params.h"
 #include "params/yaml_reader.h"
 
 namespace birotor {
@@ -17,7 +17,7 @@ struct VehicleKey {
   const char* name;
   double min;
   double max;
-  double VehicleParams::*field;
+  double BirotorParams::*field;
 };
 
 // The range of each element of gauge_scale [1] (the reader's, and what
@@ -39,17 +39,17 @@ const VehicleKey& FindVehicleKey(const std::string& name);
 // complete section must also fly: PlausibilityProblems of its
 // BirotorDescription (e.g. a hover speed above omega_max) is a ParamError
 // naming the file (params/vehicle_description_yaml.h, CheckPlausible).
-void ReadVehicleParams(YamlSection section, VehicleParams* params);
+void ReadBirotorParams(YamlSection section, BirotorParams* params);
 
 // Loads `vehicle:` from a file (other top-level sections are allowed, so an
 // estimator file can serve as a vehicle file); throws ParamError naming the
 // file and every missing key, or why the vehicle cannot fly.
-VehicleParams LoadVehicleParams(const std::string& file);
+BirotorParams LoadBirotorParams(const std::string& file);
 
 // YAML text of a `vehicle:` section (full precision), for identification
 // output. comments[key] (optional) is appended to that key's line as `# ...`.
-std::string VehicleParamsYaml(const VehicleParams& params, const std::string& indent = "  ");
-std::string VehicleParamsYaml(const VehicleParams& params,
+std::string BirotorParamsYaml(const BirotorParams& params, const std::string& indent = "  ");
+std::string BirotorParamsYaml(const BirotorParams& params,
                               const std::vector<std::pair<std::string, std::string>>& comments,
                               const std::string& indent = "  ");
 
