@@ -20,7 +20,7 @@ namespace birotor {
 // a fault of the flight, not of the estimate. The simulator's turbulence
 // moves it by ~0.01 (turbulence_std), a fault by 0.25 or more.
 inline constexpr double kTrueFaultScaleStep = 0.05;  // [1]
-inline constexpr double kTrueFaultReferenceS = 1.0;  // [s]
+inline constexpr double kTrueFaultReferenceS = 0.5;  // [s]
 // Rises listed per event kind; the count covers every one.
 inline constexpr size_t kMaxListedRises = 8;
 
