@@ -88,6 +88,8 @@ void AddForceFacts(const Table& force, FlightHeadline* h) {
     h->rotor_fault_rises[rotor] = AddRises(force, kForceStatusColumn, kRotorFaultBits[rotor], "fault",
                                            fmt::format("ROTOR{}_FAULT", rotor + 1), &h->events);
   }
+  h->mismatch_rises =
+      AddRises(force, kForceStatusColumn, kStatusModelMismatch, "mismatch", "MODEL_MISMATCH", &h->events);
   // The filter starts with FILTER_RESET set: not an alarm. A later rise is.
   std::vector<FlightEvent> resets;
   AddRises(force, kForceStatusColumn, kStatusFilterReset, "reset", "FILTER_RESET", &resets);
@@ -137,12 +139,21 @@ std::vector<HeadlineRow> Rows(const FlightHeadline& h) {
                                      : "-"});
   rows.push_back({"altitude loss",
                   judged ? fmt::format("{:.3f} m at {:.3f} s", v.max_altitude_loss_m, v.altitude_loss_at_s) : "-"});
-  rows.push_back({"FORCE VALID", h.force_estimates > 0
-                                     ? fmt::format("{:.1f} % of {} estimates",
-                                                   100.0 * h.valid_estimates / h.force_estimates, h.force_estimates)
-                                     : "no FORCE in this log"});
+  std::string valid = "no FORCE in this log";
+  if (h.force_estimates > 0) {
+    valid = fmt::format("{:.1f} % ({} of {} estimates)", 100.0 * h.valid_estimates / h.force_estimates,
+                        h.valid_estimates, h.force_estimates);
+  }
+  if (h.mismatch_rises > 0) valid += "; MODEL_MISMATCH at " + Times(h.events, "mismatch", "") + " s";
+  const bool valid_alarm =
+      h.force_estimates > 0 && (h.mismatch_rises > 0 || h.valid_estimates < kValidShareAlarm * h.force_estimates);
+  rows.push_back({"FORCE VALID", valid, valid_alarm});
   std::string fallbacks = h.has_command ? std::to_string(h.fallbacks) : "no MOTOR_COMMAND in this log";
   if (h.fallbacks > 0) fallbacks += " at " + Times(h.events, "fallback", "") + " s";
+  if (h.fallbacks > 0) {
+    fallbacks += fmt::format("; active in {:.1f} % of MOTOR_COMMAND",
+                             100.0 * h.fallback_commands / static_cast<double>(h.commands));
+  }
   if (h.startup_fallback) fallbacks += " (the first at the start, before FORCE was VALID)";
   rows.push_back({"fallbacks", fallbacks});
   const std::string resets = Times(h.events, "reset", "");
@@ -195,6 +206,10 @@ FlightHeadline ComputeHeadline(const FlightData& d) {
   const size_t first_fallback = h.events.size();
   h.fallbacks =
       AddRises(d.motor_command, kCommandStatusColumn, kCommandFallbackActive, "fallback", "fallback", &h.events);
+  h.commands = static_cast<int64_t>(d.motor_command.rows());
+  for (const double status : d.motor_command.columns[kCommandStatusColumn]) {
+    h.fallback_commands += (static_cast<int64_t>(status) & kCommandFallbackActive) != 0 ? 1 : 0;
+  }
   h.startup_fallback = h.fallbacks > 0 && (h.first_valid_s < 0 || h.events[first_fallback].t_s < h.first_valid_s);
   if (h.verdict.lost) {
     const double lost_s = h.verdict.max_altitude_loss_m >= FlightVerdictOptions{}.lost_altitude_loss_m

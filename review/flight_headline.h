@@ -21,13 +21,15 @@ namespace birotor {
 // moves it by ~0.01 (turbulence_std), a fault by 0.25 or more.
 inline constexpr double kTrueFaultScaleStep = 0.05;  // [1]
 inline constexpr double kTrueFaultReferenceS = 0.5;  // [s]
+// The VALID share is highlighted below this, or when MODEL_MISMATCH rose [1].
+inline constexpr double kValidShareAlarm = 0.5;
 // Rises listed per event kind; the count covers every one.
 inline constexpr size_t kMaxListedRises = 8;
 
 // One marked moment of the flight [s on the log's time axis].
 struct FlightEvent {
   double t_s = 0.0;
-  std::string kind;   // "fault" (estimator), "true fault" (TRUTH), "fallback", "reset", "lost"
+  std::string kind;   // "fault" (estimator), "true fault" (TRUTH), "mismatch", "fallback", "reset", "lost"
   std::string label;  // e.g. "ROTOR2_FAULT", "rotor 2 thrust 1.00 -> 0.75"
 };
 
@@ -42,8 +44,11 @@ struct FlightHeadline {
   bool has_command = false;
   double first_valid_s = -1.0;    // first FORCE with VALID; -1 without
   int64_t fallbacks = 0;          // rises of MOTOR_COMMAND's FALLBACK_ACTIVE
+  int64_t commands = 0;           // MOTOR_COMMAND messages
+  int64_t fallback_commands = 0;  // of them with FALLBACK_ACTIVE
   bool startup_fallback = false;  // the first rose before the first VALID FORCE (the controller's start)
   double startup_reset_s = -1.0;  // FILTER_RESET on the first FORCE (the start-up reset); -1 without
+  int64_t mismatch_rises = 0;     // rises of MODEL_MISMATCH
   int64_t rotor_fault_rises[kBirotorRotors] = {};  // rises of ROTOR<i>_FAULT
   std::vector<FlightEvent> events;                 // every event, in time order
 };

@@ -5,8 +5,8 @@ namespace birotor {
 const char* const kReviewPageScript = R"JS(
 var graphs = [], syncing = false, errors = [], fitAll = false;
 window.addEventListener('error', function (e) { errors.push(String(e.message)); });
-var EVENT_COLORS = {'fault': '#d62728', 'true fault': '#8b0000', 'fallback': '#ff7f0e', 'reset': '#9467bd',
-                    'lost': '#000000'};
+var EVENT_COLORS = {'fault': '#d62728', 'true fault': '#8b0000', 'mismatch': '#1f3fbf', 'fallback': '#ff7f0e',
+                    'reset': '#9467bd', 'lost': '#000000'};
 function syncRange(me, initial) {
   if (initial || syncing) return;
   syncing = true;

@@ -171,7 +171,8 @@ std::string ReviewPageHtml(const std::vector<const FlightData*>& logs) {
   }
   html +=
       "<p class=note>Drag to zoom, shift-drag to pan, double-click to zoom out; every chart follows. Lines: "
-      "rotor faults red, the true fault dark red dashed, fallbacks orange, filter resets purple, the loss black. "
+      "rotor faults red, the true fault dark red dashed, MODEL_MISMATCH blue, fallbacks orange, filter resets "
+      "purple, the loss black. "
       "<button id=reset>whole flight</button> <button id=fit-all>fit every value</button></p>\n";
   html += "<div id=charts></div>\n<h2>Details</h2>\n";
   for (const FlightData* d : logs) {

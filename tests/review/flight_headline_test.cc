@@ -66,8 +66,12 @@ TEST(FlightHeadlineTest, AnswersTheQuestionsOfTheFirstScreen) {
       << text;
   EXPECT_NE(text.find("headline: max tilt: 0.200 rad (11.5 deg) at 0.600 s\n"), std::string::npos) << text;
   EXPECT_NE(text.find("headline: altitude loss: 0.300 m at 0.700 s\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("headline: FORCE VALID: 90.0 % of 100 estimates\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("headline: fallbacks: 2 at 0.000, 0.800 s (the first at the start"), std::string::npos) << text;
+  EXPECT_NE(text.find("headline: FORCE VALID: 90.0 % (90 of 100 estimates)\n"), std::string::npos) << text;
+  // 15 of 100 commands with FALLBACK_ACTIVE.
+  EXPECT_NE(text.find("headline: fallbacks: 2 at 0.000, 0.800 s; active in 15.0 % of MOTOR_COMMAND (the first at "
+                      "the start"),
+            std::string::npos)
+      << text;
   EXPECT_NE(text.find("headline: filter resets: none after the start-up reset\n"), std::string::npos) << text;
 }
 
