@@ -17,6 +17,7 @@ namespace {
 // FORCE table columns (review/flight_data.h) and TRUTH's thrust scales.
 constexpr int kForceStatusColumn = 6;
 constexpr int kTruthScaleColumn = 2;  // rotor i at kTruthScaleColumn + i
+constexpr int kCommandModeColumn = 2;
 constexpr int kCommandStatusColumn = 3;
 constexpr int32_t kRotorFaultBits[kBirotorRotors] = {kStatusRotor1Fault, kStatusRotor2Fault};
 
@@ -102,6 +103,29 @@ void AddForceFacts(const Table& force, FlightHeadline* h) {
   }
 }
 
+// The controller's fallbacks as it counts them (controller/vehicle_controller.cc,
+// ControllerHealth::fallbacks, which birotor-eval prints): in force-feedback
+// mode it starts in the fallback (no FORCE yet), so only an entry after a
+// command flown on FORCE counts; a command before the first POSE
+// (NO_POSE_YET) says nothing about FORCE.
+void AddFallbacks(const Table& commands, FlightHeadline* h) {
+  h->commands = static_cast<int64_t>(commands.rows());
+  bool in_fallback = true;
+  for (size_t row = 0; row < commands.rows(); ++row) {
+    const int64_t status = static_cast<int64_t>(commands.columns[kCommandStatusColumn][row]);
+    const bool fallback = (status & kCommandFallbackActive) != 0;
+    h->fallback_commands += fallback ? 1 : 0;
+    if ((status & kCommandNoPoseYet) != 0 || commands.columns[kCommandModeColumn][row] != kModeForceFeedback) continue;
+    if (!fallback && h->force_used_s < 0) h->force_used_s = commands.t_s[row];
+    if (fallback && !in_fallback) {
+      if (h->fallbacks < static_cast<int64_t>(kMaxListedRises))
+        h->events.push_back({commands.t_s[row], "fallback", "fallback"});
+      ++h->fallbacks;
+    }
+    in_fallback = fallback;
+  }
+}
+
 std::string Times(const std::vector<FlightEvent>& events, const std::string& kind, const std::string& label) {
   std::string out;
   for (const FlightEvent& e : events) {
@@ -150,11 +174,12 @@ std::vector<HeadlineRow> Rows(const FlightHeadline& h) {
   rows.push_back({"FORCE VALID", valid, valid_alarm});
   std::string fallbacks = h.has_command ? std::to_string(h.fallbacks) : "no MOTOR_COMMAND in this log";
   if (h.fallbacks > 0) fallbacks += " at " + Times(h.events, "fallback", "") + " s";
-  if (h.fallbacks > 0) {
-    fallbacks += fmt::format("; active in {:.1f} % of MOTOR_COMMAND",
+  if (h.fallback_commands > 0) {
+    fallbacks += fmt::format("; in the fallback in {:.1f} % of MOTOR_COMMAND",
                              100.0 * h.fallback_commands / static_cast<double>(h.commands));
   }
-  if (h.startup_fallback) fallbacks += " (the first at the start, before FORCE was VALID)";
+  if (h.force_used_s >= 0) fallbacks += fmt::format("; FORCE flown on from {:.3f} s", h.force_used_s);
+  if (h.force_used_s < 0 && h.fallback_commands > 0) fallbacks += "; FORCE never flown on";
   rows.push_back({"fallbacks", fallbacks});
   const std::string resets = Times(h.events, "reset", "");
   rows.push_back({"filter resets",
@@ -203,14 +228,7 @@ FlightHeadline ComputeHeadline(const FlightData& d) {
   h.has_command = d.motor_command.rows() > 0;
   AddForceFacts(d.force, &h);
   AddTrueFaults(d.truth, &h.events);
-  const size_t first_fallback = h.events.size();
-  h.fallbacks =
-      AddRises(d.motor_command, kCommandStatusColumn, kCommandFallbackActive, "fallback", "fallback", &h.events);
-  h.commands = static_cast<int64_t>(d.motor_command.rows());
-  for (const double status : d.motor_command.columns[kCommandStatusColumn]) {
-    h.fallback_commands += (static_cast<int64_t>(status) & kCommandFallbackActive) != 0 ? 1 : 0;
-  }
-  h.startup_fallback = h.fallbacks > 0 && (h.first_valid_s < 0 || h.events[first_fallback].t_s < h.first_valid_s);
+  AddFallbacks(d.motor_command, &h);
   if (h.verdict.lost) {
     const double lost_s = h.verdict.max_altitude_loss_m >= FlightVerdictOptions{}.lost_altitude_loss_m
                               ? h.verdict.altitude_loss_at_s

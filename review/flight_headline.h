@@ -42,13 +42,15 @@ struct FlightHeadline {
   int64_t valid_estimates = 0;  // of them with VALID set
   bool has_truth = false;
   bool has_command = false;
-  double first_valid_s = -1.0;    // first FORCE with VALID; -1 without
-  int64_t fallbacks = 0;          // rises of MOTOR_COMMAND's FALLBACK_ACTIVE
-  int64_t commands = 0;           // MOTOR_COMMAND messages
-  int64_t fallback_commands = 0;  // of them with FALLBACK_ACTIVE
-  bool startup_fallback = false;  // the first rose before the first VALID FORCE (the controller's start)
-  double startup_reset_s = -1.0;  // FILTER_RESET on the first FORCE (the start-up reset); -1 without
-  int64_t mismatch_rises = 0;     // rises of MODEL_MISMATCH
+  double first_valid_s = -1.0;  // first FORCE with VALID; -1 without
+  // Entries into MOTOR_COMMAND's FALLBACK_ACTIVE after a command flown on
+  // FORCE, as the controller counts them (the start in the fallback is none).
+  int64_t fallbacks = 0;
+  double force_used_s = -1.0;                      // first force-feedback command flown on FORCE; -1 without
+  int64_t commands = 0;                            // MOTOR_COMMAND messages
+  int64_t fallback_commands = 0;                   // of them with FALLBACK_ACTIVE
+  double startup_reset_s = -1.0;                   // FILTER_RESET on the first FORCE (the start-up reset); -1 without
+  int64_t mismatch_rises = 0;                      // rises of MODEL_MISMATCH
   int64_t rotor_fault_rises[kBirotorRotors] = {};  // rises of ROTOR<i>_FAULT
   std::vector<FlightEvent> events;                 // every event, in time order
 };

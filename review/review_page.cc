@@ -17,8 +17,6 @@
 namespace birotor {
 namespace {
 
-constexpr int kFallbackBit = kCommandFallbackActive;
-
 std::string ChannelTable(const FlightData& d) {
   std::string out =
       "<table><tr><th>channel</th><th>messages</th><th>not decoded</th><th>first [s]</th><th>last [s]</th>"
@@ -57,15 +55,23 @@ std::string RiseTable(const FlightData& d) {
   return out + "</table>\n";
 }
 
-std::string ControllerSummary(const FlightData& d) {
-  if (d.motor_command.rows() == 0) return "<p>No MOTOR_COMMAND in this log: no controller flew.</p>\n";
-  int64_t total = 0;
-  const std::vector<double> rises = BitRises(d.motor_command, 3, kFallbackBit, 20, &total);
+// "0.200, 0.700" (", ..." when more than the listed ones): the fallbacks as
+// the headline counts them (review/flight_headline.h).
+std::string FallbackTimes(const FlightHeadline& h) {
   std::string times;
-  for (const double t : rises) times += fmt::format("{}{:.3f}", times.empty() ? "" : ", ", t);
-  if (static_cast<int64_t>(rises.size()) < total) times += ", ...";
+  int64_t listed = 0;
+  for (const FlightEvent& e : h.events) {
+    if (e.kind != "fallback") continue;
+    times += fmt::format("{}{:.3f}", times.empty() ? "" : ", ", e.t_s);
+    ++listed;
+  }
+  return listed < h.fallbacks ? times + ", ..." : times;
+}
+
+std::string ControllerSummary(const FlightData& d, const FlightHeadline& h) {
+  if (d.motor_command.rows() == 0) return "<p>No MOTOR_COMMAND in this log: no controller flew.</p>\n";
   return fmt::format("<p>MOTOR_COMMAND: {} messages; fallbacks to the nominal law: {}{}{}.</p>\n",
-                     d.motor_command.rows(), total, total > 0 ? " at t [s] = " : "", times);
+                     d.motor_command.rows(), h.fallbacks, h.fallbacks > 0 ? " at t [s] = " : "", FallbackTimes(h));
 }
 
 // "x max |dev| ... rms ..." of columns x and z of table, from its first row.
@@ -122,16 +128,11 @@ std::string FlightSummaryText(const FlightData& d) {
     out += "flight: verdict: " + headline.verdict.Line() + " (" + headline.verdict_source + ")\n";
   }
   if (d.motor_command.rows() > 0) {
-    int64_t fallbacks = 0;
-    const std::vector<double> at = BitRises(d.motor_command, 3, kFallbackBit, 20, &fallbacks);
     int64_t force_feedback = 0;
-    for (const double mode : d.motor_command.columns[2]) force_feedback += mode == 1.0 ? 1 : 0;
-    std::string times;
-    for (const double t : at) times += fmt::format("{}{:.3f}", times.empty() ? "" : ", ", t);
-    if (static_cast<int64_t>(at.size()) < fallbacks) times += ", ...";
+    for (const double mode : d.motor_command.columns[2]) force_feedback += mode == kModeForceFeedback ? 1 : 0;
     out += fmt::format("flight: {} MOTOR_COMMAND ({:.1f} % in force_feedback mode); {} fallbacks{}{}\n",
-                       d.motor_command.rows(), 100.0 * force_feedback / d.motor_command.rows(), fallbacks,
-                       fallbacks > 0 ? " at t [s] = " : "", times);
+                       d.motor_command.rows(), 100.0 * force_feedback / d.motor_command.rows(), headline.fallbacks,
+                       headline.fallbacks > 0 ? " at t [s] = " : "", FallbackTimes(headline));
   }
   if (d.controller_status.rows() > 0) {
     const Table& c = d.controller_status;
@@ -175,12 +176,13 @@ std::string ReviewPageHtml(const std::vector<const FlightData*>& logs) {
       "purple, the loss black. "
       "<button id=reset>whole flight</button> <button id=fit-all>fit every value</button></p>\n";
   html += "<div id=charts></div>\n<h2>Details</h2>\n";
-  for (const FlightData* d : logs) {
+  for (size_t k = 0; k < logs.size(); ++k) {
+    const FlightData* d = logs[k];
     const std::string name = logs.size() > 1 ? " (" + EscapeHtml(d->path) + ")" : "";
     html += "<h3>Channels" + name + "</h3>\n" + ChannelTable(*d);
     html += "<h3>FORCE status bits" + name + "</h3>\n" + RiseTable(*d);
     html += "<h3>Inputs" + name + "</h3>\n" + InputTable(*d);
-    html += "<h3>Controller" + name + "</h3>\n" + ControllerSummary(*d);
+    html += "<h3>Controller" + name + "</h3>\n" + ControllerSummary(*d, headlines[k]);
   }
   html += "<pre id=review-summary></pre>\n<script>\nvar REVIEW = " + json + ";\n";
   html += kReviewPageScript;

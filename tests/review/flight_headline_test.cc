@@ -17,7 +17,8 @@ namespace {
 // 1 s at 100 Hz: FORCE CONVERGING|FILTER_RESET on the first row, VALID from
 // row 10 (90 of 100), ROTOR2_FAULT from 0.52 s; TRUTH's rotor 2 thrust scale
 // 1.00 -> 0.75 at 0.50 s, pitch up to 0.2 rad at 0.60 s, z 1 m with a 0.3 m
-// dip at 0.70 s; MOTOR_COMMAND's fallback on [0.00, 0.05) and [0.80, 0.90).
+// dip at 0.70 s; MOTOR_COMMAND (force feedback) in the fallback on [0.00, 0.05)
+// and [0.80, 0.90).
 FlightData MakeFlight() {
   FlightData d;
   d.path = "flight.lcm";
@@ -46,17 +47,19 @@ TEST(FlightHeadlineTest, AnswersTheQuestionsOfTheFirstScreen) {
   EXPECT_DOUBLE_EQ(h.first_valid_s, 0.1);
   EXPECT_EQ(h.rotor_fault_rises[0], 0);
   EXPECT_EQ(h.rotor_fault_rises[1], 1);
-  EXPECT_EQ(h.fallbacks, 2);
-  EXPECT_TRUE(h.startup_fallback);  // the first at 0.00 s, before the first VALID at 0.10 s
+  // The controller starts in the fallback (no FORCE yet): not counted, as
+  // ControllerHealth::fallbacks does not; the entry at 0.80 s is.
+  EXPECT_EQ(h.fallbacks, 1);
+  EXPECT_DOUBLE_EQ(h.force_used_s, 0.05);
   EXPECT_DOUBLE_EQ(h.startup_reset_s, 0.0);
-  // Markers in time order; the start-up reset is none of them.
-  ASSERT_EQ(h.events.size(), 4u);
-  EXPECT_EQ(h.events[0].kind, "fallback");
-  EXPECT_DOUBLE_EQ(h.events[1].t_s, 0.5);
-  EXPECT_EQ(h.events[1].label, "rotor 2 thrust 1.00 -> 0.75");  // level over the first 0.5 s: rows 0..49 at 1.00
-  EXPECT_EQ(h.events[2].label, "ROTOR2_FAULT");
-  EXPECT_DOUBLE_EQ(h.events[2].t_s, 0.52);
-  EXPECT_DOUBLE_EQ(h.events[3].t_s, 0.8);
+  // Markers in time order; the start-up reset and fallback are none of them.
+  ASSERT_EQ(h.events.size(), 3u);
+  EXPECT_DOUBLE_EQ(h.events[0].t_s, 0.5);
+  EXPECT_EQ(h.events[0].label, "rotor 2 thrust 1.00 -> 0.75");  // level over the first 0.5 s: rows 0..49 at 1.00
+  EXPECT_EQ(h.events[1].label, "ROTOR2_FAULT");
+  EXPECT_DOUBLE_EQ(h.events[1].t_s, 0.52);
+  EXPECT_EQ(h.events[2].kind, "fallback");
+  EXPECT_DOUBLE_EQ(h.events[2].t_s, 0.8);
 
   const std::string text = HeadlineText(h);
   EXPECT_NE(text.find("headline: lost: no (TRUTH)\n"), std::string::npos) << text;
@@ -68,9 +71,10 @@ TEST(FlightHeadlineTest, AnswersTheQuestionsOfTheFirstScreen) {
   EXPECT_NE(text.find("headline: altitude loss: 0.300 m at 0.700 s\n"), std::string::npos) << text;
   EXPECT_NE(text.find("headline: FORCE VALID: 90.0 % (90 of 100 estimates)\n"), std::string::npos) << text;
   // 15 of 100 commands with FALLBACK_ACTIVE.
-  EXPECT_NE(text.find("headline: fallbacks: 2 at 0.000, 0.800 s; active in 15.0 % of MOTOR_COMMAND (the first at "
-                      "the start"),
-            std::string::npos)
+  EXPECT_NE(
+      text.find("headline: fallbacks: 1 at 0.800 s; in the fallback in 15.0 % of MOTOR_COMMAND; FORCE flown on from "
+                "0.050 s\n"),
+      std::string::npos)
       << text;
   EXPECT_NE(text.find("headline: filter resets: none after the start-up reset\n"), std::string::npos) << text;
 }

@@ -145,18 +145,21 @@ check("flight", ["forces", "thrust", "status", "rates", "gaps", "position", "att
 check("replay", ["forces", "thrust", "status", "nis", "fusion"])
 # Target (issue 39): from the first screen, which rotor failed and when, the max tilt, lost or not, VALID or not.
 # Rotor 2 steps to 0.75 at 5 s (config/scenarios/thrust_loss.yaml); the estimator says ROTOR2_FAULT 15 ms later
-# (5.015 s measured); tilt 0.017 rad measured.
+# (5.015 s measured); tilt 0.017 rad measured (birotor-eval --control --scenarios thrust_loss: peak tilt 0.0171
+# rad and 0 fallbacks in force_feedback, the same figures).
 tl = check("thrust_loss", ["forces", "position", "attitude", "status", "thrust", "commands"])
 headline("thrust_loss", {"lost": r"^no \(TRUTH\)$",
                          "rotor faults": r"^rotor 2 thrust 1\.00 -> 0\.7\d at 5\.000 s \(TRUTH\); ROTOR2_FAULT at 5\.0[0-4]\d s$",
                          "max tilt": r"^0\.0[0-3]\d rad", "FORCE VALID": r"^(99\.\d|100\.0) % ",
-                         "fallbacks": r"^1 at 0\.00\d s", "filter resets": r"^none after the start-up reset$"})
+                         "fallbacks": r"^0; in the fallback in 0\.\d % of MOTOR_COMMAND; FORCE flown on from 0\.0\d\d s$",
+                         "filter resets": r"^none after the start-up reset$"})
 assert tl["headline_bottom_px"] <= 1000, f"headline below the first screen: {tl['headline_bottom_px']} px"
 assert tl["first_chart_top_px"] < 1000, f"forces chart not on the first screen: {tl['first_chart_top_px']} px"
 assert tl["path"] == 1, "no x-z path"
 # mismatch_all: MODEL_MISMATCH 11 ms in (measured), VALID withdrawn (3 of 8000 measured).
 headline("mismatch", {"lost": r"^no", "rotor faults": r"^none$",
-                      "FORCE VALID": r"^0\.\d % \(\d+ of 8000 estimates\); MODEL_MISMATCH at 0\.0\d\d s$"})
+                      "FORCE VALID": r"^0\.\d % \(\d+ of 8000 estimates\); MODEL_MISMATCH at 0\.0\d\d s$",
+                      "fallbacks": r"in the fallback in 100\.0 % of MOTOR_COMMAND; FORCE never flown on$"})
 # Rotor 2 at 20 % from 3 s under the nominal map: 19.6 m down by 6 s (measured), lost.
 headline("lost", {"lost": r"^yes \(TRUTH\)$",
                   "rotor faults": r"^rotor 2 thrust 1\.00 -> 0\.20 at 3\.000 s \(TRUTH\); ROTOR2_FAULT at 3\.0\d\d s$",
