@@ -22,19 +22,22 @@ constexpr int kCommandStatusColumn = 3;
 constexpr int32_t kRotorFaultBits[kBirotorRotors] = {kStatusRotor1Fault, kStatusRotor2Fault};
 
 // The shared verdict on columns z and phi of track, against the newest
-// SETPOINT altitude at each row (the first row's altitude before any). The
-// log does not say where the ground is: no ground-hit test.
-FlightVerdict VerdictOf(const Table& track, int z_column, int phi_column, const Table& setpoint) {
+// SETPOINT altitude at each row (the first row's altitude before any), and
+// the first time it said lost (-1: never). The log does not say where the
+// ground is: no ground-hit test.
+FlightVerdict VerdictOf(const Table& track, int z_column, int phi_column, const Table& setpoint, double* lost_at_s) {
   FlightJudge judge;
   constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   size_t next_setpoint = 0;
   double z_reference_m = kUnknown;
+  *lost_at_s = -1.0;
   for (size_t row = 0; row < track.rows(); ++row) {
     while (next_setpoint < setpoint.rows() && setpoint.t_s[next_setpoint] <= track.t_s[row]) {
       z_reference_m = setpoint.columns[1][next_setpoint++];
     }
     judge.Add(track.t_s[row], track.columns[z_column][row], z_reference_m, track.columns[phi_column][row], kUnknown,
               kUnknown);
+    if (*lost_at_s < 0 && judge.Result().lost) *lost_at_s = track.t_s[row];
   }
   return judge.Result();
 }
@@ -146,9 +149,9 @@ std::vector<HeadlineRow> Rows(const FlightHeadline& h) {
   std::vector<HeadlineRow> rows;
   const FlightVerdict& v = h.verdict;
   const bool judged = !h.verdict_source.empty() && v.samples > 0;
-  rows.push_back({"lost",
-                  judged ? (v.lost ? "yes" : "no") + fmt::format(" ({})", h.verdict_source) : "no position in this log",
-                  judged && v.lost});
+  std::string lost = "no position in this log";
+  if (judged) lost = (v.lost ? fmt::format("yes, from {:.3f} s", h.lost_at_s) : "no") + " (" + h.verdict_source + ")";
+  rows.push_back({"lost", lost, judged && v.lost});
   std::string faults;
   for (const FlightEvent& e : h.events) {
     if (e.kind == "fault" || e.kind == "true fault") {
@@ -218,10 +221,10 @@ std::string EscapeHtml(const std::string& text) {
 FlightHeadline ComputeHeadline(const FlightData& d) {
   FlightHeadline h;
   if (d.truth.rows() > 0) {
-    h.verdict = VerdictOf(d.truth, 5, 6, d.setpoint);
+    h.verdict = VerdictOf(d.truth, 5, 6, d.setpoint, &h.lost_at_s);
     h.verdict_source = "TRUTH";
   } else if (d.pose.rows() > 0) {
-    h.verdict = VerdictOf(d.pose, 1, 2, d.setpoint);
+    h.verdict = VerdictOf(d.pose, 1, 2, d.setpoint, &h.lost_at_s);
     h.verdict_source = "POSE";
   }
   h.has_truth = d.truth.rows() > 0;
@@ -229,12 +232,7 @@ FlightHeadline ComputeHeadline(const FlightData& d) {
   AddForceFacts(d.force, &h);
   AddTrueFaults(d.truth, &h.events);
   AddFallbacks(d.motor_command, &h);
-  if (h.verdict.lost) {
-    const double lost_s = h.verdict.max_altitude_loss_m >= FlightVerdictOptions{}.lost_altitude_loss_m
-                              ? h.verdict.altitude_loss_at_s
-                              : h.verdict.tilt_at_s;
-    h.events.push_back({lost_s, "lost", "lost"});
-  }
+  if (h.lost_at_s >= 0) h.events.push_back({h.lost_at_s, "lost", "lost"});
   std::stable_sort(h.events.begin(), h.events.end(),
                    [](const FlightEvent& a, const FlightEvent& b) { return a.t_s < b.t_s; });
   return h;

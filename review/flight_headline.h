@@ -38,6 +38,7 @@ struct FlightHeadline {
   // SETPOINT's altitude; verdict_source "" when the log has no position.
   FlightVerdict verdict;
   std::string verdict_source;
+  double lost_at_s = -1.0;      // first sample at which the verdict said lost; -1: kept
   int64_t force_estimates = 0;  // FORCE messages
   int64_t valid_estimates = 0;  // of them with VALID set
   bool has_truth = false;

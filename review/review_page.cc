@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "plot/status_words.h"
@@ -139,7 +140,11 @@ std::string FlightSummaryText(const FlightData& d) {
     out += fmt::format("flight: CONTROLLER_STATUS at the end: {:.0f} fallbacks, {:.0f} descents, {:.0f} saturated\n",
                        c.columns[0].back(), c.columns[1].back(), c.columns[2].back());
   }
-  return out + HeadlineText(headline);
+  // "flight: headline: ..." so that readers of the "flight:" lines (tools/demo.sh, the
+  // count parsers of the tests) need no change.
+  std::istringstream in(HeadlineText(headline));
+  for (std::string line; std::getline(in, line);) out += "flight: " + line + "\n";
+  return out;
 }
 
 std::string ReviewPageHtml(const FlightData& data) { return ReviewPageHtml(std::vector<const FlightData*>{&data}); }

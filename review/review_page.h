@@ -24,7 +24,7 @@ std::string ReviewPageHtml(const std::vector<const FlightData*>& logs);
 // tools/demo.sh --controller shows them): the position held (deviation from
 // the first TRUTH sample, else the first POSE: max and RMS of x and z) and
 // the controller's commands and fallbacks with their times, and the headline
-// ("headline: <question>: <answer>" lines, review/flight_headline.h).
+// ("flight: headline: <question>: <answer>" lines, review/flight_headline.h).
 std::string FlightSummaryText(const FlightData& data);
 
 // The dygraphs library and style sheet, from libjs-dygraphs (generated file).

@@ -2,10 +2,11 @@
 // flight log: what the estimator and the controller did, on one zoomable time
 // axis (review/review_page.h); with two logs, both overlaid (A and B). Prints
 // each channel's message count (with two logs after "A:" / "B:"), then the
-// flight figures and the headline ("flight: ..." and "headline: ..." lines).
+// flight figures and the headline ("flight: ..." and "flight: headline: ..." lines).
 #include <spdlog/spdlog.h>
 
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -67,9 +68,8 @@ int main(int argc, char** argv) {
     for (const auto& [channel, count] : data[k].channels) {
       std::cout << name << PrintableWireText(channel) << " " << count.messages << "\n";
     }
-    std::string summary = FlightSummaryText(data[k]);
-    for (size_t at = 0; at < summary.size(); at = summary.find('\n', at) + 1) summary.insert(at, name);
-    std::cout << summary;
+    std::istringstream summary(FlightSummaryText(data[k]));
+    for (std::string line; std::getline(summary, line);) std::cout << name << line << "\n";
     spdlog::info("{}: {} events, {:.3f} s", PrintableWireText(log_paths[k]), data[k].events, data[k].duration_s);
   }
   spdlog::info("{} written ({:.2f} MB) in {:.3f} s (read {:.3f} s)", output_path,

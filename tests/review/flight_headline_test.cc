@@ -80,16 +80,16 @@ TEST(FlightHeadlineTest, AnswersTheQuestionsOfTheFirstScreen) {
 }
 
 // A FILTER_RESET after the start is an alarm and a marker; a flight that fell
-// 0.5 m below its SETPOINT is lost, marked where the loss peaked.
+// 0.5 m below its SETPOINT is lost, marked where the verdict first said so.
 TEST(FlightHeadlineTest, LaterResetAndLossAreAlarms) {
   FlightData d = MakeFlight();
   d.force.columns[6][30] = kStatusValid | kStatusFilterReset;
-  d.setpoint.Add(0.0, {0.0, 1.5});
+  d.setpoint.Add(0.0, {0.0, 1.3});
   const FlightHeadline h = ComputeHeadline(d);
   EXPECT_TRUE(h.verdict.lost);
-  EXPECT_NEAR(h.verdict.max_altitude_loss_m, 0.8, 1e-12);  // 1.5 m - 0.7 m at 0.70 s
+  EXPECT_NEAR(h.verdict.max_altitude_loss_m, 0.6, 1e-12);  // 1.3 m - 0.7 m at 0.70 s (0.3 m before)
   const std::string text = HeadlineText(h);
-  EXPECT_NE(text.find("headline: lost: yes (TRUTH)\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("headline: lost: yes, from 0.700 s (TRUTH)\n"), std::string::npos) << text;
   EXPECT_NE(text.find("headline: filter resets: at 0.300 s\n"), std::string::npos) << text;
   EXPECT_EQ(h.events.back().kind, "fallback");  // 0.80 s
   bool lost_marked = false;

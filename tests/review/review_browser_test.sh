@@ -161,7 +161,7 @@ headline("mismatch", {"lost": r"^no", "rotor faults": r"^none$",
                       "FORCE VALID": r"^0\.\d % \(\d+ of 8000 estimates\); MODEL_MISMATCH at 0\.0\d\d s$",
                       "fallbacks": r"in the fallback in 100\.0 % of MOTOR_COMMAND; FORCE never flown on$"})
 # Rotor 2 at 20 % from 3 s under the nominal map: 19.6 m down by 6 s (measured), lost.
-headline("lost", {"lost": r"^yes \(TRUTH\)$",
+headline("lost", {"lost": r"^yes, from 3\.\d{3} s \(TRUTH\)$",
                   "rotor faults": r"^rotor 2 thrust 1\.00 -> 0\.20 at 3\.000 s \(TRUTH\); ROTOR2_FAULT at 3\.0\d\d s$",
                   "altitude loss": r"^1\d\.\d{3} m at 5\.9\d\d s$", "fallbacks": r"^0$"})
 headline("sim_only", {"FORCE VALID": r"^no FORCE in this log$", "fallbacks": r"^no MOTOR_COMMAND in this log$"})

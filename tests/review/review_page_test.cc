@@ -56,7 +56,7 @@ TEST(ReviewPageTest, LostFlightIsSaidInOneLine) {
   const std::string text = FlightSummaryText(d);
   EXPECT_NE(text.find("flight: verdict: LOST: altitude loss 1.000 m at t = 0.00 s;"), std::string::npos) << text;
   const std::string html = ReviewPageHtml(d);
-  EXPECT_NE(html.find("<tr><th>lost</th><td class=alarm>yes (TRUTH)</td></tr>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><th>lost</th><td class=alarm>yes, from 0.000 s (TRUTH)</td></tr>"), std::string::npos);
   EXPECT_NE(html.find("<tr><th>altitude loss</th><td>1.000 m at 0.000 s</td></tr>"), std::string::npos);
 }
 
