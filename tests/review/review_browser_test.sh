@@ -7,7 +7,8 @@
 # under the nominal controller), whose headline must answer from the first
 # screen which rotor failed and when, the max tilt, lost or not and the VALID
 # share; a simulator log without FORCE (said in words); the thrust_loss log
-# with NaN and infinite sigmas and forces (every chart still drawn); two logs
+# with NaN and infinite sigmas and forces (every chart still drawn); a channel
+# named with terminal escapes (no control character printed); two logs
 # overlaid. No page may log to the console or raise a script error.
 # Usage: review_browser_test.sh TOOLS_BIN_DIR SIM_BIN_DIR (birotor-review and birotor-replay in TOOLS_BIN_DIR)
 set -euo pipefail
@@ -46,6 +47,18 @@ while at + 28 <= len(data):
     at = body + data_len
 open(sys.argv[2], "wb").write(data)
 PY
+# A channel whose name carries terminal escapes (retitle, clear screen, bell): printed and shown as '?' (issue 37).
+python3 - sim_only.lcm escape.lcm <<'PY' || fail "writing escape.lcm"
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+channel = b"BIROTOR_\x1b]0;owned\x07\x1b[2J"
+payload = b"\0" * 16
+event = struct.pack(">IqqII", 0xEDA1DA01, 1 << 40, 0, len(channel), len(payload)) + channel + payload
+open(sys.argv[2], "wb").write(data + event)
+PY
+"$tools/birotor-review" escape.lcm --output escape.html > escape.counts || fail "birotor-review escape.lcm"
+if LC_ALL=C grep -q $'[\x01-\x08\x0b-\x1f\x7f]' escape.counts escape.html; then fail "a control character reached the output"; fi
+grep -qF 'BIROTOR_?]0;owned??[2J 1' escape.counts || fail "escape channel not printed as ?: $(cat -v escape.counts)"
 
 # Loads page NAME.html in chromium; the DOM after its scripts ran in NAME.dom.
 load_in_chromium() {
