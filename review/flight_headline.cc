@@ -7,9 +7,9 @@
 #include <limits>
 
 #include "review/display_series.h"
+#include "review/html_text.h"
 #include "samples/motor_command.h"
 #include "samples/samples.h"
-#include "transport/wire_text.h"
 
 namespace birotor {
 namespace {
@@ -194,29 +194,6 @@ std::vector<HeadlineRow> Rows(const FlightHeadline& h) {
 }
 
 }  // namespace
-
-std::string EscapeHtml(const std::string& text) {
-  std::string out;
-  for (const char c : PrintableWireText(text)) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 FlightHeadline ComputeHeadline(const FlightData& d) {
   FlightHeadline h;

@@ -66,7 +66,4 @@ std::string HeadlineTableHtml(const std::vector<const FlightData*>& logs, const 
 // "headline: lost no; rotor faults ROTOR2_FAULT at 5.015 s; ..." for a terminal.
 std::string HeadlineText(const FlightHeadline& headline);
 
-// HTML-escaped text, control characters as '?' (transport/wire_text.h).
-std::string EscapeHtml(const std::string& text);
-
 }  // namespace birotor

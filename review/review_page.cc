@@ -11,6 +11,7 @@
 #include "plot/status_words.h"
 #include "review/display_series.h"
 #include "review/flight_headline.h"
+#include "review/html_text.h"
 #include "review/page_script.h"
 #include "review/review_charts.h"
 #include "samples/motor_command.h"
