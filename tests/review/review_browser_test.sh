@@ -10,7 +10,8 @@
 # with NaN and infinite sigmas and forces (every chart still drawn); a channel
 # named with terminal escapes (no control character printed); two logs
 # overlaid. No page may log to the console or raise a script error.
-# Usage: review_browser_test.sh TOOLS_BIN_DIR SIM_BIN_DIR (birotor-review and birotor-replay in TOOLS_BIN_DIR)
+# The severe_gap control case's headline equals birotor-eval --control's figures.
+# Usage: review_browser_test.sh TOOLS_BIN_DIR SIM_BIN_DIR (birotor-review, -replay and -eval in TOOLS_BIN_DIR)
 set -euo pipefail
 tools="$1"; sim="$2"
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -28,6 +29,11 @@ cd "$work"
 "$sim/birotor-sim" --scenario thrust_loss --controller nominal --set scenario.duration_s=6 \
   --set 'faults.thrust_steps=[{time_s: 3.0, rotor: 2, scale: 0.2}]' --output lost.lcm --log-level warn \
   || fail "birotor-sim lost"
+# Control case severe_gap (evaluation/control_cases.cc) as a log, and birotor-eval's figures of the same flight.
+"$sim/birotor-sim" --scenario thrust_loss_severe --controller force_feedback --set scenario.duration_s=10 \
+  --set 'faults.strain_gap={start_s: 5.0, duration_s: 0.5}' --output severe_gap.lcm --log-level warn \
+  || fail "birotor-sim severe_gap"
+"$tools/birotor-eval" --control --scenarios severe_gap --log-level warn > severe_gap.eval || fail "birotor-eval"
 "$sim/birotor-sim" --scenario hover --set scenario.duration_s=2 --output sim_only.lcm --log-level warn \
   || fail "birotor-sim sim_only"
 # FORCE messages 100, 200, 300 of thrust_loss with sigma +inf, sigma NaN, force NaN (issue 37).
@@ -70,7 +76,7 @@ load_in_chromium() {
   if grep -E "CONSOLE|Uncaught" "$1.chromium.log" > console.txt; then fail "$1.html console: $(head -5 console.txt)"; fi
 }
 # The flight (inputs, FORCE, TRUTH, MOTOR_COMMAND) and its replay (ESTIMATOR_STATUS).
-for name in flight replay thrust_loss mismatch lost sim_only bad_sigma overlay; do
+for name in flight replay thrust_loss mismatch lost severe_gap sim_only bad_sigma overlay; do
   logs="$name.lcm"
   [ "$name" = overlay ] && logs="thrust_loss.lcm lost.lcm"
   # shellcheck disable=SC2086
@@ -177,6 +183,17 @@ headline("mismatch", {"lost": r"^no", "rotor faults": r"^none$",
 headline("lost", {"lost": r"^yes, from 3\.\d{3} s \(TRUTH\)$",
                   "rotor faults": r"^rotor 2 thrust 1\.00 -> 0\.20 at 3\.000 s \(TRUTH\); ROTOR2_FAULT at 3\.0\d\d s$",
                   "altitude loss": r"^1\d\.\d{3} m at 5\.9\d\d s$", "fallbacks": r"^0$"})
+# The headline's figures equal birotor-eval's on the same flight: peak tilt, fallbacks and peak altitude loss
+# of its control table (eval's loss counts from the fault; the largest loss here is after it: 0.2602 m).
+row = next(l for l in open(f"{work}/severe_gap.eval") if l.startswith("| severe_gap seed") and "| force_feedback |" in l)
+cells = [c.strip() for c in row.strip().strip("|").split("|")]
+eval_tilt, eval_loss, eval_fallbacks = float(cells[3]), float(cells[7]), int(cells[-2])
+sg = headline("severe_gap", {"fallbacks": rf"^{eval_fallbacks}( |;|$)"})
+tilt = float(re.match(r"([0-9.]+) rad", sg["headline"]["max tilt"][0]).group(1))
+assert abs(tilt - eval_tilt) <= 0.0005, f"max tilt {tilt} rad, birotor-eval {eval_tilt} rad"
+loss = float(re.match(r"([0-9.]+) m", sg["headline"]["altitude loss"][0]).group(1))
+assert abs(loss - eval_loss) <= 0.0005, f"altitude loss {loss} m, birotor-eval {eval_loss} m"
+print(f"ok: severe_gap: max tilt {tilt} rad, altitude loss {loss} m, {eval_fallbacks} fallbacks: birotor-eval's")
 headline("sim_only", {"FORCE VALID": r"^no FORCE in this log$", "fallbacks": r"^no MOTOR_COMMAND in this log$"})
 assert "No FORCE: this log holds no force estimate" in open(f"{work}/sim_only.dom").read()
 bad = summary_of("bad_sigma")
