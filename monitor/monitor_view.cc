@@ -8,6 +8,7 @@
 
 #include "samples/samples.h"
 #include "transport/channels.h"
+#include "transport/wire_text.h"
 
 namespace birotor {
 namespace {
@@ -69,8 +70,9 @@ std::string InputRow(const char* name, const input_health_t* input, const ViewCo
 std::string EstimatorLine(const MonitorCollector& c) {
   if (!c.has_status()) return "estimator: no ESTIMATOR_STATUS yet";
   const estimator_status_t& s = c.latest_status();
-  return fmt::format("estimator {}  resets {} (last: {})  strain NIS mean {} max {} gate {}  time p99 {} us", s.method,
-                     s.resets, s.last_reset_reason.empty() ? "none" : s.last_reset_reason,
+  return fmt::format("estimator {}  resets {} (last: {})  strain NIS mean {} max {} gate {}  time p99 {} us",
+                     PrintableWireText(s.method), s.resets,
+                     s.last_reset_reason.empty() ? "none" : PrintableWireText(s.last_reset_reason),
                      Number(s.strain_nis_mean, 0, 2), Number(s.strain_nis_max, 0, 1), Number(s.strain_gate, 0, 1),
                      Number(s.processing_time_p99_us, 0, 0));
 }
@@ -84,7 +86,7 @@ std::string LearnedValue(double value, double sigma, int decimals) {
 }  // namespace
 
 std::string LearnedLine(const estimator_status_t& s) {
-  auto source = [](const std::string& text) { return text.empty() ? std::string("-") : text; };
+  auto source = [](const std::string& text) { return text.empty() ? std::string("-") : PrintableWireText(text); };
   return fmt::format("learned: strain scale g {} / {} ({})  body mass {} kg ({})",
                      LearnedValue(s.strain_scale[0], s.strain_scale_std[0], 3),
                      LearnedValue(s.strain_scale[1], s.strain_scale_std[1], 3), source(s.strain_scale_source),
@@ -230,7 +232,8 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
     text += fmt::format(
         "estimator {}: resets {} (last: {}); strain NIS over the run mean {} (2 for a consistent "
         "filter), max {}, gate {}\n",
-        s.method, s.resets, s.last_reset_reason.empty() ? "none" : s.last_reset_reason,
+        PrintableWireText(s.method), s.resets,
+        s.last_reset_reason.empty() ? "none" : PrintableWireText(s.last_reset_reason),
         Number(c.strain_nis_mean_over_run(), 0, 2), Number(c.strain_nis_max_over_run(), 0, 1),
         Number(s.strain_gate, 0, 1));
   } else {
@@ -248,7 +251,8 @@ std::string VehicleSummaryText(const MonitorCollector& c) {
         "gauge offsets {:.2e} / {:.2e} rad +- {:.1e} / {:.1e} (from {}, learned in flight); accelerometer: fused {}, "
         "gate-rejected {}, not fused {} (on the ground or off)\n",
         s.gauge_offset_rad[0], s.gauge_offset_rad[1], s.gauge_offset_std_rad[0], s.gauge_offset_std_rad[1],
-        s.gauge_offset_source.empty() ? "-" : s.gauge_offset_source, a.fused, a.rejected_gate, a.not_fused);
+        s.gauge_offset_source.empty() ? "-" : PrintableWireText(s.gauge_offset_source), a.fused, a.rejected_gate,
+        a.not_fused);
     text += LearnedLine(s) + "\n";
   }
   return text;

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include "numerics/percentile.h"
+#include "samples/samples.h"
+
 namespace birotor {
 namespace {
 
@@ -14,23 +17,27 @@ struct Bucketed {
   std::vector<double> low, high;            // min and max of the value (the lane's bit: both the max)
   std::vector<double> band_low, band_high;  // min(value - sigma), max(value + sigma)
   std::vector<char> has;
+  std::vector<char> seen;  // rows fell in the bucket (all NaN or infinite when !has: a gap)
 };
 
 Bucketed BucketSeries(const SeriesSpec& spec, int buckets, double width_s) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Bucketed b{std::vector<double>(buckets, kInf), std::vector<double>(buckets, -kInf),
-             std::vector<double>(buckets, kInf), std::vector<double>(buckets, -kInf), std::vector<char>(buckets, 0)};
+             std::vector<double>(buckets, kInf), std::vector<double>(buckets, -kInf),
+             std::vector<char>(buckets, 0),      std::vector<char>(buckets, 0)};
   const Table& t = *spec.table;
   const std::vector<double>& values = t.columns[spec.column];
   for (size_t row = 0; row < t.rows(); ++row) {
     const int k = std::clamp(static_cast<int>(t.t_s[row] / width_s), 0, buckets - 1);
     double v = values[row];
+    b.seen[k] = 1;
+    if (!std::isfinite(v)) continue;  // before the lane's cast: NaN has no bits
     if (spec.bit != 0) v = (static_cast<int64_t>(v) & spec.bit) != 0 ? 1.0 : 0.0;
-    if (!std::isfinite(v)) continue;
     b.has[k] = 1;
     b.low[k] = std::min(b.low[k], v);
     b.high[k] = std::max(b.high[k], v);
-    if (spec.sigma_column >= 0) {
+    if (spec.sigma_column >= 0 && std::isfinite(t.columns[spec.sigma_column][row])) {
+      // A NaN or infinite sigma leaves the band out for this sample only.
       const double sigma = t.columns[spec.sigma_column][row];
       b.band_low[k] = std::min(b.band_low[k], v - sigma);
       b.band_high[k] = std::max(b.band_high[k], v + sigma);
@@ -42,13 +49,25 @@ Bucketed BucketSeries(const SeriesSpec& spec, int buckets, double width_s) {
   return b;
 }
 
-void AppendValue(double v, std::string* out) { fmt::format_to(std::back_inserter(*out), "{:.6g}", v); }
+// A number for JSON; NaN and infinities (which JSON cannot carry and which
+// would stop the page's script) as null, a gap.
+void AppendValue(double v, std::string* out) {
+  if (!std::isfinite(v)) {
+    *out += "null";
+    return;
+  }
+  fmt::format_to(std::back_inserter(*out), "{:.6g}", v);
+}
 
 }  // namespace
 
 DisplayChart MakeChart(const std::string& id, const std::string& title, const std::string& y_label,
                        const std::vector<SeriesSpec>& all_series, double duration_s) {
-  DisplayChart chart{id, title, y_label, {"t [s]"}, false, false, 0, 0, ""};
+  DisplayChart chart;
+  chart.id = id;
+  chart.title = title;
+  chart.y_label = y_label;
+  chart.labels = {"t [s]"};
   std::vector<const SeriesSpec*> series;
   size_t largest = 0;
   for (const SeriesSpec& spec : all_series) {
@@ -57,6 +76,8 @@ DisplayChart MakeChart(const std::string& id, const std::string& title, const st
     chart.labels.push_back(spec.label);
     chart.bands = chart.bands || spec.sigma_column >= 0;
     chart.lanes = chart.lanes || spec.bit != 0;
+    chart.colors.push_back(spec.color);
+    if (spec.dashed) chart.dashed.push_back(spec.label);
     largest = std::max(largest, spec.table->rows());
   }
   // Samples behind the chart: each table once.
@@ -66,6 +87,8 @@ DisplayChart MakeChart(const std::string& id, const std::string& title, const st
   }
   for (const Table* table : tables) chart.samples += static_cast<int64_t>(table->rows());
   if (series.empty()) return chart;
+  if (std::find(chart.colors.begin(), chart.colors.end(), "") != chart.colors.end()) chart.colors.clear();
+  chart.bands = chart.bands || chart.lanes;  // a lane is a band filled from its base
 
   const int buckets = static_cast<int>(std::min<size_t>(largest, kMaxDisplayBuckets));
   const double width_s = std::max(duration_s, 1e-6) * (1.0 + 1e-9) / buckets;
@@ -76,7 +99,7 @@ DisplayChart MakeChart(const std::string& id, const std::string& title, const st
   out += '[';
   for (int k = 0; k < buckets; ++k) {
     bool any = false;
-    for (const Bucketed& b : bucketed) any = any || b.has[k];
+    for (const Bucketed& b : bucketed) any = any || b.seen[k];
     if (!any) continue;
     // Two rows: the bucket's minimum at its start, its maximum at its middle.
     for (int half = 0; half < 2; ++half) {
@@ -87,7 +110,7 @@ DisplayChart MakeChart(const std::string& id, const std::string& title, const st
         const Bucketed& b = bucketed[s];
         out += ',';
         if (!b.has[k]) {
-          out += "null";
+          out += b.seen[k] ? "\"NaN\"" : "null";  // the page's script turns "NaN" into a gap
           continue;
         }
         const double v = half == 0 ? b.low[k] : b.high[k];
@@ -95,9 +118,9 @@ DisplayChart MakeChart(const std::string& id, const std::string& title, const st
           AppendValue(v, &out);
           continue;
         }
-        const bool band = series[s]->sigma_column >= 0;
+        const bool band = series[s]->sigma_column >= 0 && std::isfinite(b.band_low[k]);
         out += '[';
-        AppendValue(band ? b.band_low[k] : v, &out);
+        AppendValue(series[s]->bit != 0 ? series[s]->lane : band ? b.band_low[k] : v, &out);
         out += ',';
         AppendValue(v, &out);
         out += ',';
@@ -110,6 +133,48 @@ DisplayChart MakeChart(const std::string& id, const std::string& title, const st
   }
   out += ']';
   return chart;
+}
+
+namespace {
+
+// The values of spec that set a y range: finite, not CONVERGING; a band's
+// edges value +- sigma too.
+void AppendRangeValues(const SeriesSpec& spec, std::vector<double>* values) {
+  const Table& t = *spec.table;
+  for (size_t row = 0; row < t.rows(); ++row) {
+    if (spec.converging_column >= 0 &&
+        (static_cast<int64_t>(t.columns[spec.converging_column][row]) & kStatusConverging) != 0) {
+      continue;
+    }
+    const double v = t.columns[spec.column][row];
+    if (!std::isfinite(v)) continue;
+    values->push_back(v);
+    if (spec.sigma_column < 0) continue;
+    const double sigma = t.columns[spec.sigma_column][row];
+    if (!std::isfinite(sigma)) continue;
+    values->push_back(v - sigma);
+    values->push_back(v + sigma);
+  }
+}
+
+}  // namespace
+
+void SetRobustYRange(const std::vector<SeriesSpec>& series, DisplayChart* chart) {
+  if (chart->lanes) return;
+  std::vector<double> values;
+  for (const SeriesSpec& spec : series) {
+    if (spec.table != nullptr && spec.bit == 0) AppendRangeValues(spec, &values);
+  }
+  if (values.empty()) return;
+  const double low = Percentile(values, 0.5 * (1.0 - kRobustRangeShare));
+  const double high = Percentile(values, 0.5 * (1.0 + kRobustRangeShare));
+  const double pad =
+      high > low ? kRobustRangePad * (high - low) : std::max(kRobustRangeFlatPad * std::abs(low), kRobustRangeFlatPad);
+  chart->has_y_range = true;
+  chart->y_low = low - pad;
+  chart->y_high = high + pad;
+  chart->outside_y_range = 0;
+  for (const double v : values) chart->outside_y_range += (v < chart->y_low || v > chart->y_high) ? 1 : 0;
 }
 
 Table InputRatesAndGaps(const FlightData& data, int buckets) {

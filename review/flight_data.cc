@@ -6,6 +6,7 @@
 #include "birotor/controller_status_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
+#include "birotor/imu_t.hpp"
 #include "birotor/motor_command_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
@@ -36,6 +37,7 @@ FlightData::FlightData() {
   status_labels.push_back("resets");
   status = Table(status_labels);
   pose = Table({"x [m]", "z [m]", "pitch [rad]"});
+  imu = Table({"pitch rate [rad/s]"});
   motor_command = Table({"omega cmd 1 [rad/s]", "omega cmd 2 [rad/s]", "mode", "status [bits]"});
   controller_status = Table({"fallbacks", "descents", "saturated", "commands", "mode"});
   setpoint = Table({"x ref [m]", "z ref [m]"});
@@ -81,14 +83,15 @@ class FlightDecoder {
     } else if (c == channels_.setpoint) {
       ok = Decode(event, &setpoint_);
       if (ok) data_->setpoint.Add(Time(setpoint_.utime), {setpoint_.x_m, setpoint_.z_m});
-    } else if (c == channels_.strain || c == channels_.motor || c == channels_.imu) {
-      // Only the stamp: strain_t, motor_t and imu_t start with int64 utime
-      // after the 8-byte fingerprint.
+    } else if (c == channels_.imu) {
+      ok = Decode(event, &imu_);
+      if (ok) data_->imu.Add(Time(imu_.utime), {imu_.gyro_y_rad_s});
+      if (ok) data_->input_t_s[2].push_back(Time(imu_.utime));
+    } else if (c == channels_.strain || c == channels_.motor) {
+      // Only the stamp: strain_t and motor_t start with int64 utime after
+      // the 8-byte fingerprint.
       ok = event.data.size() >= 16;
-      if (ok) {
-        const int input = c == channels_.strain ? 0 : c == channels_.motor ? 1 : 2;
-        data_->input_t_s[input].push_back(Time(ReadUtime(event.data)));
-      }
+      if (ok) data_->input_t_s[c == channels_.strain ? 0 : 1].push_back(Time(ReadUtime(event.data)));
     } else {
       return;  // counted only
     }
@@ -150,6 +153,7 @@ class FlightDecoder {
   truth_t truth_;
   estimator_status_t status_;
   pose_t pose_;
+  imu_t imu_;
   motor_command_t command_;
   controller_status_t controller_;
   setpoint_t setpoint_;

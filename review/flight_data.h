@@ -56,6 +56,8 @@ struct FlightData {
   std::vector<double> input_t_s[4];
   // POSE: x_m, z_m, phi_rad.
   Table pose;
+  // IMU: gyro_y_rad_s (body pitch rate).
+  Table imu;
   // MOTOR_COMMAND: omega_cmd_rad_s[2], mode, status.
   Table motor_command;
   // CONTROLLER_STATUS: fallbacks, descents, saturated, commands, mode.

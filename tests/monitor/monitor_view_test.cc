@@ -221,5 +221,31 @@ TEST(MonitorViewTest, SummaryNamesEveryFigure) {
   EXPECT_NE(text.find("detected after 120 ms"), std::string::npos) << text;
 }
 
+// Issue 37: the strings of an ESTIMATOR_STATUS come off the wire; an escape
+// sequence in them (retitle the terminal, clear the screen, ring the bell)
+// must not reach the terminal raw. Each control character becomes '?'.
+TEST(MonitorViewTest, WireStringsReachTheTerminalWithoutControlCharacters) {
+  estimator_status_t status{};
+  status.method = "ekf\x1b]0;owned\x07";
+  status.strain_scale_source = "learned\x1b[2J";
+  status.body_mass_source =
+      "params\r\xc2\x9b"
+      "31m";  // CR and the C1 CSI (U+009B) in UTF-8
+  const std::string line = LearnedLine(status);
+  EXPECT_EQ(line.find_first_of("\x1b\x07\r"), std::string::npos) << line;
+  EXPECT_NE(line.find("(learned?[2J)"), std::string::npos) << line;
+  EXPECT_NE(line.find("(params??31m)"), std::string::npos) << line;
+  status.last_reset_reason = "start\x1b]0;owned\x07";
+  status.gauge_offset_source = "tare\x1b]0;owned\x07";
+  MonitorCollector collector(MakeChannelNames(), 10.0);
+  Feed(&collector, "BIROTOR_ESTIMATOR_STATUS", Encode(status));
+  ASSERT_TRUE(collector.has_status());
+  for (const std::string& text : {VehicleSummaryText(collector), TerminalView(collector, ViewContext{}),
+                                  PlainViewLine(collector, ViewContext{})}) {
+    EXPECT_EQ(text.find("\x1b]"), std::string::npos) << text;  // the view's own ESC[K stays
+    EXPECT_EQ(text.find('\x07'), std::string::npos) << text;
+  }
+}
+
 }  // namespace
 }  // namespace birotor

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 namespace birotor {
 namespace {
@@ -54,8 +55,9 @@ TEST(ReviewPageTest, LostFlightIsSaidInOneLine) {
   d.setpoint.Add(0.0, {0.0, 2.0});
   const std::string text = FlightSummaryText(d);
   EXPECT_NE(text.find("flight: verdict: LOST: altitude loss 1.000 m at t = 0.00 s;"), std::string::npos) << text;
-  EXPECT_NE(ReviewPageHtml(d).find("<p id=verdict class=lost><b>Verdict:</b> LOST: altitude loss 1.000 m"),
-            std::string::npos);
+  const std::string html = ReviewPageHtml(d);
+  EXPECT_NE(html.find("<tr><th>lost</th><td class=alarm>yes, from 0.000 s (TRUTH)</td></tr>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><th>altitude loss</th><td>1.000 m at 0.000 s</td></tr>"), std::string::npos);
 }
 
 TEST(ReviewPageTest, SelfContainedPageWithTheChartsOfTheData) {
@@ -68,8 +70,36 @@ TEST(ReviewPageTest, SelfContainedPageWithTheChartsOfTheData) {
   EXPECT_NE(html.find("\"id\":\"commands\""), std::string::npos);  // MOTOR_COMMAND
   EXPECT_EQ(html.find("\"id\":\"nis\""), std::string::npos);       // no ESTIMATOR_STATUS
   EXPECT_NE(html.find("fallbacks to the nominal law: 2 at t [s] = 0.200, 0.700"), std::string::npos);
-  EXPECT_NE(html.find("BIROTOR_SETPOINT: 7 messages; this build of birotor-review does not draw SETPOINT"),
+  EXPECT_NE(html.find("<table id=headline>"), std::string::npos);
+  EXPECT_NE(html.find("<li>No FORCE: this log holds no force estimate"), std::string::npos);  // said, not zeros
+  EXPECT_NE(html.find("\"id\":\"attitude\""), std::string::npos);                             // TRUTH pitch
+  EXPECT_NE(html.find("\"path\":{\"lines\":[{\"label\":\"truth\""), std::string::npos);
+  // The fallbacks are markers through every chart.
+  EXPECT_NE(html.find("\"events\":[{\"t\":0.2,\"kind\":\"fallback\",\"label\":\"fallback\"},"
+                      "{\"t\":0.7,\"kind\":\"fallback\""),
             std::string::npos);
+}
+
+// Two logs on one page: a headline column each, series "A: ..." and "B: ..."
+// on the same chart in different colours.
+TEST(ReviewPageTest, TwoLogsOverlaid) {
+  FlightData a = MakeFlight(), b = MakeFlight();
+  b.path = "other.lcm";
+  const std::string html = ReviewPageHtml(std::vector<const FlightData*>{&a, &b});
+  EXPECT_NE(html.find("<th>A: flight.lcm</th><th>B: other.lcm</th>"), std::string::npos);
+  EXPECT_NE(html.find("\"A: true force 1 [N]\",\"A: true force 2 [N]\",\"B: true force 1 [N]\""), std::string::npos);
+  EXPECT_NE(html.find("\"colors\":[\"#000000\",\"#7f7f7f\",\"#9467bd\",\"#bcbd22\"]"), std::string::npos);
+  EXPECT_NE(html.find("\"id\":\"controller_lanes_B\""), std::string::npos);
+}
+
+// Channel names with terminal escapes reach neither the page nor the summary raw.
+TEST(ReviewPageTest, ControlCharactersInChannelNamesAreReplaced) {
+  FlightData d = MakeFlight();
+  d.channels["EVIL\x1b]0;owned\x07\x1b[2J"].messages = 1;
+  const std::string html = ReviewPageHtml(d);
+  EXPECT_EQ(html.find('\x1b'), std::string::npos);
+  EXPECT_EQ(html.find('\x07'), std::string::npos);
+  EXPECT_NE(html.find("<td>EVIL?]0;owned??[2J</td>"), std::string::npos);
 }
 
 }  // namespace
