@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox clang libclang-rt-14-dev procps
   libsystemd-dev libjs-dygraphs chromium python3-pandas libalglib-dev stress-ng
+  help2man lintian
 )
 
 missing=()
