@@ -6,11 +6,11 @@
 # a stand-in home so the user's folder reads ~/.config/birotor.
 # Usage: man_page.sh OUTPUT.1.gz PROGRAM_FILE NAME VERSION BUILD_DIR PACKAGE_PREFIX
 set -eu
-output="$1"; program="$2"; name="$3"; version="$4"; build_dir="$5"; prefix="$6"
+output="$1"; program="$2"; name="$3"; version="$4"; build_dir="$(cd "$5" && pwd -P)"; prefix="$6"
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 ln -s "$program" "$scratch/$name"
-home=/birotor-man-page-home
+home=/BIROTORMANHOME  # no '-': help2man writes it as '\-'
 run_env() {
   env -u XDG_CONFIG_HOME HOME="$home" PATH="$scratch:$PATH" PYTHONPATH="$build_dir/python" \
     BIROTOR_TYPES_JAR="$build_dir/lcmtypes/birotor_lcmtypes.jar" "$@"
@@ -20,9 +20,15 @@ description="$(run_env "$name" --help 2>&1 | grep -v -i -e '^usage:' -e '^ *$' |
 [ -n "$description" ] || { echo "man_page.sh: $name --help printed no description" >&2; exit 1; }
 run_env help2man --no-info --no-discard-stderr --section=1 --version-string="$version" \
   --name="$description" --output="$scratch/page.1" "$name"
-sed -e "s|$build_dir/lcmtypes/|$prefix/share/java/|g" -e "s|$build_dir|$prefix|g" -e "s|$home|~|g" \
-  "$scratch/page.1" > "$scratch/page.fixed.1"
-if grep -q -e "$build_dir" -e "$home" "$scratch/page.fixed.1"; then
+# The build tree as printed and as help2man escapes it (each '-' as '\-').
+build_escaped="$(printf '%s' "$build_dir" | sed 's/-/\\-/g')"
+BUILD="$build_dir" BUILD_ESCAPED="$build_escaped" PREFIX="$prefix" HOME_DIR="$home" perl -pe '
+  for my $build ($ENV{BUILD}, $ENV{BUILD_ESCAPED}) {
+    s/\Q$build\E\/lcmtypes\//$ENV{PREFIX}\/share\/java\//g;
+    s/\Q$build\E/$ENV{PREFIX}/g;
+  }
+  s/\Q$ENV{HOME_DIR}\E/~/g;' "$scratch/page.1" > "$scratch/page.fixed.1"
+if grep -qF -e "$build_dir" -e "$build_escaped" -e "$home" "$scratch/page.fixed.1"; then
   echo "man_page.sh: the page of $name still names $build_dir" >&2
   exit 1
 fi

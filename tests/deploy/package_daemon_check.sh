@@ -2,7 +2,8 @@
 # Part of package_test.sh, run as root inside `unshare -m`: the package's
 # /etc/birotor and /etc/default/birotor over /etc, an empty /var/lib (both
 # overlays of this mount namespace only), then the estimator unit's ExecStart
-# line (programs from the scratch root) under the user nobody.
+# line (programs from the scratch root) under the user nobody: first by hand
+# without /var/lib/birotor (a warning, exit 0), then as the unit with it.
 # Usage: package_daemon_check.sh WORK_DIR SCRATCH_ROOT PORT
 set -euo pipefail
 work="$1"; root="$2"; port="$3"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Debian package: builds it with `cpack -G DEB` from the build tree,
-# checks its name, contents, conffiles and maintainer scripts, unpacks it into
+# checks its name, contents (a manual page per program, copyright, changelog),
+# lintian (no error), conffiles and maintainer scripts (no restart on upgrade), unpacks it into
 # a scratch root (dpkg-deb -x) and runs the installed programs there (every
 # --help, a short simulation and replay), verifies the installed units with
 # `systemd-analyze verify`. As root it then, in a private mount
