@@ -9,7 +9,7 @@ set(doc_dir ${CMAKE_BINARY_DIR}/deploy/doc)
 file(MAKE_DIRECTORY ${doc_dir}/man1)
 
 add_custom_command(OUTPUT ${doc_dir}/changelog.gz
-  COMMAND sh -c "gzip -9n < '${PROJECT_SOURCE_DIR}/deploy/changelog' > '${doc_dir}/changelog.gz'"
+  COMMAND gzip -9nc ${PROJECT_SOURCE_DIR}/deploy/changelog > ${doc_dir}/changelog.gz
   DEPENDS ${PROJECT_SOURCE_DIR}/deploy/changelog
   COMMENT "deploy/changelog -> changelog.gz")
 

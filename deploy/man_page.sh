@@ -27,7 +27,12 @@ BUILD="$build_dir" BUILD_ESCAPED="$build_escaped" PREFIX="$prefix" HOME_DIR="$ho
     s/\Q$build\E\/lcmtypes\//$ENV{PREFIX}\/share\/java\//g;
     s/\Q$build\E/$ENV{PREFIX}/g;
   }
-  s/\Q$ENV{HOME_DIR}\E/~/g;' "$scratch/page.1" > "$scratch/page.fixed.1"
+  s/\Q$ENV{HOME_DIR}\E/~/g;
+  # Long default lists in option lines: a break point after each comma, and
+  # the page set ragged right (.ad l) so groff need not stretch such a line.
+  s/,(?! )/,\\:/g if /^\\fB/;
+  $_ .= ".ad l\n" if /^\.TH /;
+' "$scratch/page.1" > "$scratch/page.fixed.1"
 if grep -qF -e "$build_dir" -e "$build_escaped" -e "$home" "$scratch/page.fixed.1"; then
   echo "man_page.sh: the page of $name still names $build_dir" >&2
   exit 1
