@@ -128,7 +128,8 @@ echo "ok: installed birotor-review, birotor-export and Python package: $forces F
 mkdir "$work/verify"
 for unit in "$root"/usr/lib/systemd/system/*.service; do
   sed "s|/usr/bin/|$root/usr/bin/|g" "$unit" > "$work/verify/$(basename "$unit")"
-  systemd-analyze verify "$work/verify/$(basename "$unit")" > verify.txt 2>&1 \
+  # MANPATH: verify runs `man` on the unit's Documentation=man:... page, the package's.
+  MANPATH="$root/usr/share/man" systemd-analyze verify "$work/verify/$(basename "$unit")" > verify.txt 2>&1 \
     || fail "systemd-analyze verify $(basename "$unit"): $(cat verify.txt)"
   if grep -v "^$" verify.txt | grep -q .; then fail "systemd-analyze verify $(basename "$unit"): $(cat verify.txt)"; fi
   grep -q "^ExecStart=/usr/bin/birotor-" "$unit" || fail "$(basename "$unit"): ExecStart not /usr/bin"
@@ -138,7 +139,7 @@ unit="$root/usr/lib/systemd/system/birotor-estimator.service"
 for line in Type=notify WatchdogSec=5s Restart=always DynamicUser=yes StateDirectory=birotor; do
   grep -qx "$line" "$unit" || fail "birotor-estimator.service lacks $line"
 done
-echo "ok: systemd-analyze verify of $(ls "$root"/usr/lib/systemd/system | wc -l) units"
+echo "ok: systemd-analyze verify of $(ls "$root"/usr/lib/systemd/system | wc -l) units (and their manual pages)"
 
 if [ "$(id -u)" -ne 0 ] || ! unshare -m true 2> /dev/null; then
   echo "SKIPPED: the /etc/birotor and state directory checks need root and unshare -m"
