@@ -15,11 +15,14 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/lcmtypes/ DESTINATION share/birotor/lcmt
 
 set(BIROTOR_DEPLOY_FILES birotor-estimator.service birotor-controller.service birotor-sim.service birotor.env)
 # configure_file at install time, so a `--prefix` given to cmake --install is
-# the one written into the units.
+# the one written into the units; each unit's @BIROTOR_UNIT_SANDBOX@ line
+# becomes the sandbox shared by all (deploy/unit-sandbox.conf).
 function(birotor_install_configured source target component)
   install(CODE "
     set(deploy_target \"\$ENV{DESTDIR}${target}\")
     message(STATUS \"Installing: \${deploy_target}\")
+    file(READ \"${PROJECT_SOURCE_DIR}/deploy/unit-sandbox.conf\" BIROTOR_UNIT_SANDBOX)
+    string(STRIP \"\${BIROTOR_UNIT_SANDBOX}\" BIROTOR_UNIT_SANDBOX)
     configure_file(\"${PROJECT_SOURCE_DIR}/deploy/${source}.in\" \"\${deploy_target}\" @ONLY)
   " COMPONENT ${component} ${ARGN})
 endfunction()
@@ -62,14 +65,18 @@ foreach(script postinst prerm postrm)
   file(COPY ${PROJECT_SOURCE_DIR}/deploy/${script} DESTINATION ${CMAKE_BINARY_DIR}/deploy/control
        FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE WORLD_READ WORLD_EXECUTE)
 endforeach()
+include(${PROJECT_SOURCE_DIR}/cmake/BirotorDocs.cmake)
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME birotor)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
-set(CPACK_PACKAGE_CONTACT "birotor maintainers <birotor@localhost>")
+# A placeholder address (example.org): lintian refuses one on localhost.
+set(CPACK_PACKAGE_CONTACT "The birotor developers <birotor@example.org>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Rotor-force estimation and control for a strain-gauged birotor over LCM")
+# Lines under 80 characters (lintian extended-description-line-too-long).
 set(CPACK_PACKAGE_DESCRIPTION
-    "The estimator and controller daemons with their systemd units, the simulator, identification, \
-replay, review and export tools, the LCM types (.lcm, Java jar for lcm-spy, Python package birotor).")
+    "The estimator and controller daemons with their systemd units, the simulator,\n\
+identification, replay, review and export tools, the LCM types (.lcm, Java jar\n\
+for lcm-spy, Python package birotor).")
 # /usr for the programs, DESTDIR staging so /etc/birotor lands in the package.
 set(CPACK_SET_DESTDIR ON)
 set(CPACK_STRIP_FILES ON)

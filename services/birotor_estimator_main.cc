@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -87,6 +88,23 @@ void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehic
   } else {
     spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
   }
+}
+
+// The state file the offsets are written to at a clean stop: the configured
+// one if its folder is writable, else "" after one warning at start. Under
+// systemd the folder is the unit's StateDirectory (/var/lib/birotor, made for
+// its DynamicUser); a daemon started by hand has none, and runs without
+// persisting instead of failing at its stop (issue 39).
+std::string WritableStateFile(const std::string& state_file) {
+  if (state_file.empty()) return "";
+  const std::string folder = std::filesystem::path(state_file).parent_path().string();
+  if (access(folder.empty() ? "." : folder.c_str(), W_OK) == 0) return state_file;
+  spdlog::warn(
+      "gauge offsets will not be persisted: {} is missing or not writable by this user (the systemd unit's "
+      "StateDirectory= provides it; started by hand, create it or give --params a file with another "
+      "tare.state_file)",
+      folder.empty() ? "." : folder);
+  return "";
 }
 
 // What runs: version, method, parameter file and its stamp, channels, the
@@ -171,6 +189,7 @@ int main(int argc, char** argv) {
   EstimatorService service(config, channels, options.service, &sink);
   const std::string vehicle_checksum = VehicleChecksum(BirotorModelOf(config.vehicle));
   RestoreGaugeOffsets(config, vehicle_checksum, &service);
+  const std::string state_file = WritableStateFile(config.tare.state_file);
   // Inputs through the shared message source. On udpm our own small-message
   // reader, and LCM only publishes (it opens no receive socket until
   // something subscribes): LCM's fragment reassembly, which two crafted
@@ -183,7 +202,6 @@ int main(int argc, char** argv) {
 
   if (!Serve(source.get(), options.service.status_rate_hz, &service)) spdlog::error("{}; stopping", source->error());
   LogStopped(service, *source);
-  const std::string& state_file = config.tare.state_file;
   if (!state_file.empty()) {
     if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, &error)) {
       return ReportError("gauge state: " + error);

@@ -10,6 +10,7 @@ PACKAGES=(
   liblcm-dev liblcm-bin liblcm-java libjchart2d-java libglib2.0-dev default-jdk-headless
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  help2man lintian
   gnuplot-nox clang libclang-rt-14-dev procps
   libsystemd-dev libjs-dygraphs chromium python3-pandas python3-venv python3-wheel libalglib-dev stress-ng
 )

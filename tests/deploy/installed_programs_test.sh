@@ -79,7 +79,8 @@ grep -q "^ExecStart=$prefix/bin/birotor-estimator " "$unit" || fail "ExecStart o
 if command -v systemd-analyze > /dev/null; then
   for u in "$unit" "$prefix/share/birotor/deploy/birotor-sim.service" \
            "$prefix/share/birotor/deploy/birotor-controller.service"; do
-    systemd-analyze verify "$u" > verify.txt 2>&1 || fail "systemd-analyze verify $u: $(cat verify.txt)"
+    # MANPATH: verify runs `man` on the unit's Documentation=man:... page, the installed one.
+    MANPATH="$prefix/share/man" systemd-analyze verify "$u" > verify.txt 2>&1 || fail "systemd-analyze verify $u: $(cat verify.txt)"
     if grep -v "^$" verify.txt | grep -q .; then fail "systemd-analyze verify $u: $(cat verify.txt)"; fi
   done
   echo "ok: systemd-analyze verify of the units"

@@ -2,7 +2,8 @@
 # Part of package_test.sh, run as root inside `unshare -m`: the package's
 # /etc/birotor and /etc/default/birotor over /etc, an empty /var/lib (both
 # overlays of this mount namespace only), then the estimator unit's ExecStart
-# line (programs from the scratch root) under the user nobody.
+# line (programs from the scratch root) under the user nobody: first by hand
+# without /var/lib/birotor (a warning, exit 0), then as the unit with it.
 # Usage: package_daemon_check.sh WORK_DIR SCRATCH_ROOT PORT
 set -euo pipefail
 work="$1"; root="$2"; port="$3"
@@ -14,8 +15,6 @@ rm -rf /etc/birotor
 cp -a "$root/etc/birotor" /etc/birotor
 cp "$root/etc/default/birotor" /etc/default/birotor
 mount -t tmpfs birotor-var-lib /var/lib
-mkdir /var/lib/birotor
-chown nobody:nogroup /var/lib/birotor   # what StateDirectory= does for the unit's user
 
 # A site file changes what the installed estimator runs: the method.
 sed -i 's/^\(  method: \)ekf /\1inversion /' /etc/birotor/estimator.yaml
@@ -48,14 +47,14 @@ with open(out, "w") as f:
         if message == "STOPPING=1":
             break
 PY
-run_daemon() {  # run_daemon LOG: starts, runs 1.5 s, SIGTERM as systemctl stop
+run_daemon() {  # run_daemon LOG [DIR]: starts in DIR (the unit's WorkingDirectory), runs 1.5 s, SIGTERM as systemctl stop
   rm -f notify.sock notify.txt
   /usr/bin/python3 notify_listener.py notify.sock notify.txt &
   local listener=$!
   for _ in $(seq 50); do [ -S notify.sock ] && break; sleep 0.1; done
   # setpriv and env exec the daemon: $! is its pid. The user nobody stands in for DynamicUser.
   NOTIFY_SOCKET="$work/notify.sock" WATCHDOG_USEC=400000 setpriv --reuid=nobody --regid=nogroup --clear-groups \
-    env -C /var/lib/birotor "${command_line[@]}" 2> "$1" &
+    env -C "${2:-/var/lib/birotor}" "${command_line[@]}" 2> "$1" &
   local daemon=$!
   sleep 1.5
   kill -TERM "$daemon"
@@ -64,6 +63,14 @@ run_daemon() {  # run_daemon LOG: starts, runs 1.5 s, SIGTERM as systemctl stop
   wait "$listener" || true
   [ "$status" -eq 0 ] || fail "the unit's ExecStart exited $status: $(cat "$1")"
 }
+# Started by hand, without the unit's StateDirectory: one warning at start,
+# exit 0 at the stop (issue 39: it used to exit 1 failing to write the offsets).
+run_daemon by_hand.log "$work"
+grep -q "gauge offsets will not be persisted: /var/lib/birotor is missing" by_hand.log \
+  || fail "no warning at start without /var/lib/birotor: $(cat by_hand.log)"
+echo "ok: started by hand without /var/lib/birotor, the estimator warned at start and exited 0"
+mkdir /var/lib/birotor
+chown nobody:nogroup /var/lib/birotor   # what StateDirectory= does for the unit's user
 run_daemon first.log
 grep -qF "method inversion params /etc/birotor/estimator.yaml" first.log \
   || fail "the daemon did not run /etc/birotor/estimator.yaml: $(cat first.log)"

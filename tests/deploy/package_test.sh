@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Debian package: builds it with `cpack -G DEB` from the build tree,
-# checks its name, contents, conffiles and maintainer scripts, unpacks it into
+# checks its name, contents (a manual page per program, copyright, changelog),
+# lintian (no error), conffiles and maintainer scripts (no restart on upgrade), unpacks it into
 # a scratch root (dpkg-deb -x) and runs the installed programs there (every
 # --help, a short simulation and replay), verifies the installed units with
 # `systemd-analyze verify`. As root it then, in a private mount
@@ -46,7 +47,8 @@ for path in /usr/bin/birotor-estimator /usr/bin/birotor-controller /usr/bin/biro
             /usr/share/java/birotor_lcmtypes.jar /usr/bin/birotor-review /usr/bin/birotor-export \
             /usr/lib/python3/dist-packages/birotor/__init__.py /usr/lib/python3/dist-packages/birotor/log_reader.py \
             /usr/lib/python3/dist-packages/birotor/force_estimate_t.py \
-            /usr/lib/python3/dist-packages/birotor/lcmtypes/force_estimate_t.lcm; do
+            /usr/lib/python3/dist-packages/birotor/lcmtypes/force_estimate_t.lcm \
+            /usr/share/doc/birotor/copyright /usr/share/doc/birotor/changelog.gz; do
   grep -qxF "$path" "$work/contents.txt" || fail "the package lacks $path"
 done
 for lcm_file in "$source_dir"/lcmtypes/*.lcm; do
@@ -57,7 +59,16 @@ if grep -v -e '^/usr/' -e '^/etc/birotor' -e '^/etc/default/birotor$' -e '^/etc/
      "$work/contents.txt" > "$work/outside.txt"; then
   fail "files outside /usr and /etc/birotor: $(tr '\n' ' ' < "$work/outside.txt")"
 fi
-echo "ok: $(grep -vc '/$' "$work/contents.txt") files, every program, unit, site file, .lcm file and the jar"
+programs=$(grep -c '^/usr/bin/.' "$work/contents.txt")
+for program in $(sed -n 's|^/usr/bin/\(.\)|\1|p' "$work/contents.txt"); do
+  grep -qxF "/usr/share/man/man1/$program.1.gz" "$work/contents.txt" || fail "no manual page for $program"
+done
+echo "ok: $(grep -vc '/$' "$work/contents.txt") files, every program (and its manual page: $programs), unit, site file, .lcm file and the jar"
+
+# 2b. What a distribution checks: lintian finds no error (the warnings it
+# prints are listed in docs/deploy.md), the changelog is this version's.
+lintian --fail-on error --tag-display-limit 0 "$deb" > "$work/lintian.txt" 2>&1 || fail "lintian: $(cat "$work/lintian.txt")"
+echo "ok: lintian, no error; $(grep -c '^[WIP]:' "$work/lintian.txt" || true) warnings/notes"
 
 # 3. Conffiles and maintainer scripts.
 dpkg-deb -e "$deb" "$work/control"
@@ -70,7 +81,11 @@ for script in postinst prerm postrm; do
   sh -n "$work/control/$script" || fail "$script does not parse"
 done
 grep -q "daemon-reload" "$work/control/postinst" || fail "postinst does not reload systemd"
-grep -q "systemctl stop" "$work/control/prerm" || fail "prerm does not stop the daemons"
+grep -q "deb-systemd-invoke stop" "$work/control/prerm" || fail "prerm does not stop the daemons"
+# (Quoted text, the message naming the command for the operator, left out.)
+if sed 's/"[^"]*"//g' "$work/control/postinst" | grep -qE "(systemctl|deb-systemd-invoke) +(try-|reload-or-)?restart"; then
+  fail "postinst restarts running daemons on upgrade (issue 39: a message instead)"
+fi
 grep -q "/var/lib/private/birotor" "$work/control/postrm" || fail "postrm purge leaves the state directory"
 # Without systemd running (this machine, a chroot) the scripts do nothing and succeed.
 [ -d /run/systemd/system ] || { sh "$work/control/postinst" configure && sh "$work/control/prerm" remove \
@@ -83,6 +98,8 @@ dpkg-deb -x "$deb" "$root"
 if grep -rlF -e "$source_dir" -e "$build_dir" "$root" > "$work/named.txt"; then
   fail "packaged files name the source or build tree: $(tr '\n' ' ' < "$work/named.txt")"
 fi
+changelog_version="$(gzip -dc "$root/usr/share/doc/birotor/changelog.gz" | sed -n '1s/^birotor (\([^)]*\)).*/\1/p')"
+[ "$changelog_version" = "$version" ] || fail "changelog.gz starts with version '$changelog_version', the package is $version"
 grep -q "^state_file\|state_file: /var/lib/birotor/gauge_offsets.yaml" "$root/etc/birotor/estimator.yaml" \
   || fail "/etc/birotor/estimator.yaml keeps no gauge offsets"
 bin="$root/usr/bin"
@@ -111,7 +128,8 @@ echo "ok: installed birotor-review, birotor-export and Python package: $forces F
 mkdir "$work/verify"
 for unit in "$root"/usr/lib/systemd/system/*.service; do
   sed "s|/usr/bin/|$root/usr/bin/|g" "$unit" > "$work/verify/$(basename "$unit")"
-  systemd-analyze verify "$work/verify/$(basename "$unit")" > verify.txt 2>&1 \
+  # MANPATH: verify runs `man` on the unit's Documentation=man:... page, the package's.
+  MANPATH="$root/usr/share/man" systemd-analyze verify "$work/verify/$(basename "$unit")" > verify.txt 2>&1 \
     || fail "systemd-analyze verify $(basename "$unit"): $(cat verify.txt)"
   if grep -v "^$" verify.txt | grep -q .; then fail "systemd-analyze verify $(basename "$unit"): $(cat verify.txt)"; fi
   grep -q "^ExecStart=/usr/bin/birotor-" "$unit" || fail "$(basename "$unit"): ExecStart not /usr/bin"
@@ -121,7 +139,7 @@ unit="$root/usr/lib/systemd/system/birotor-estimator.service"
 for line in Type=notify WatchdogSec=5s Restart=always DynamicUser=yes StateDirectory=birotor; do
   grep -qx "$line" "$unit" || fail "birotor-estimator.service lacks $line"
 done
-echo "ok: systemd-analyze verify of $(ls "$root"/usr/lib/systemd/system | wc -l) units"
+echo "ok: systemd-analyze verify of $(ls "$root"/usr/lib/systemd/system | wc -l) units (and their manual pages)"
 
 if [ "$(id -u)" -ne 0 ] || ! unshare -m true 2> /dev/null; then
   echo "SKIPPED: the /etc/birotor and state directory checks need root and unshare -m"
