@@ -33,7 +33,7 @@ struct CollectingSink : SampleSink {
 // (config/scenarios/<name>.yaml, full duration). *truth: the scenario's vehicle.
 SensorLog ScenarioLog(const std::string& name, const char* env_var, BirotorParams* truth) {
   const Scenario scenario = LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml", {});
-  *truth = scenario.vehicle;
+  *truth = BirotorModelOf(scenario.vehicle);
   SensorLog log;
   if (const char* path = std::getenv(env_var); path != nullptr && *path != '\0') {
     LogLoadReport report;

@@ -144,7 +144,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   run.liftoff_utime = simulator.liftoff_utime();
   run.has_ground = scenario.ground.enabled;
   run.ground_z_m = scenario.start_position_m[1];
-  run.arm_length_m = scenario.vehicle.arm_length_m;
+  run.arm_length_m = BirotorModelOf(scenario.vehicle).arm_length_m;
   run.controller = controller.health();
   run.mpc = controller.MpcStatistics();
   run.estimator = estimator.health();

@@ -22,7 +22,7 @@ double WeakestFinalThrustScale(const Scenario& scenario) {
 }
 
 double LevelSinkAccelM_S2(const Scenario& scenario) {
-  const BirotorParams& v = scenario.vehicle;
+  const BirotorParams v = BirotorModelOf(scenario.vehicle);
   const double mass_kg = v.body_mass_kg + 2.0 * v.tip_mass_kg;
   const double max_rotor_n = v.thrust_coeff_n_s2_rad2 * v.omega_max_rad_s * v.omega_max_rad_s;
   return v.gravity_m_s2 - 2.0 * WeakestFinalThrustScale(scenario) * max_rotor_n / mass_kg;

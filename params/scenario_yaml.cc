@@ -99,11 +99,14 @@ void ReadScenarioSection(YamlSection& root, Scenario* out) {
 
 void ReadVehicle(YamlSection& root, Scenario* out) {
   Scenario& sc = *out;
-  ReadBirotorParams(root.Section("vehicle"), &sc.vehicle);
+  // The birotor form's keys over the scenario's birotor (a scenario file
+  // changes some of them).
+  BirotorParams v = BirotorModelOf(sc.vehicle);
+  ReadBirotorParams(root.Section("vehicle"), &v);
+  sc.vehicle = BirotorDescription(v);
   // The vehicle's gauge_* keys are what an estimator believes; the true
   // gauge of a simulation is the gauge: section, so they must stay ideal here.
   const BirotorParams ideal;
-  const BirotorParams& v = sc.vehicle;
   for (int i = 0; i < 2; ++i) {
     if (v.gauge_scale[i] != ideal.gauge_scale[i] || v.gauge_offset_rad[i] != ideal.gauge_offset_rad[i]) {
       root.Section("vehicle").Fail("gauge_scale", "the simulated gauge is set in the gauge: section",

@@ -152,7 +152,10 @@ struct Scenario {
   uint64_t seed = 1;
   double step_s = 0.00025;                  // RK4 step; a whole number of microseconds
   double start_position_m[2] = {0.0, 0.0};  // x, z
-  BirotorParams vehicle;
+  // The flown vehicle (the scenario's `vehicle:` section, birotor form); the
+  // birotor simulator flies it through BirotorModelOf. --vehicle FILE flies a
+  // description with N arms instead (services/birotor_sim_vehicle.h).
+  VehicleDescription vehicle = BirotorDescription(BirotorParams());
   TrajectoryParams trajectory;
   BenchProfile bench;
   SensorParams sensors;

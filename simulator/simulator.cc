@@ -20,16 +20,16 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Simulator::Simulator(const Scenario& scenario)
     : scenario_(scenario),
+      vehicle_(BirotorModelOf(scenario.vehicle)),
       clamped_body_(scenario.mode == "bench"),
       step_us_(SecondsToUtime(scenario.step_s)),
       total_steps_(std::llround(scenario.duration_s / scenario.step_s)),
-      equilibrium_(SolveHoverEquilibrium(scenario.vehicle)),
+      equilibrium_(SolveHoverEquilibrium(vehicle_)),
       trajectory_(scenario),
-      controller_(scenario.vehicle, scenario.controller, 0.5 * (equilibrium_.force_n[0] + equilibrium_.force_n[1])),
+      controller_(vehicle_, scenario.controller, 0.5 * (equilibrium_.force_n[0] + equilibrium_.force_n[1])),
       bench_(scenario.bench, scenario.seed),
-      turbulence_{
-          GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s),
-          GaussMarkov(scenario.vehicle.turbulence_std, scenario.vehicle.turbulence_corr_time_s, scenario.step_s)},
+      turbulence_{GaussMarkov(vehicle_.turbulence_std, vehicle_.turbulence_corr_time_s, scenario.step_s),
+                  GaussMarkov(vehicle_.turbulence_std, vehicle_.turbulence_corr_time_s, scenario.step_s)},
       ground_(scenario),
       turbulence_noise_(scenario.seed, kTurbulenceStream),
       strain_noise_(scenario.seed, kStrainStream),
@@ -68,7 +68,7 @@ Simulator::Simulator(const Scenario& scenario)
   // Initial state: the exact hover equilibrium at the start position (flight),
   // at rest on the ground with the motors stopped (ground phase), or the
   // static arm deflection under the first bench command (bench).
-  const BirotorParams& p = scenario_.vehicle;
+  const BirotorParams& p = vehicle_;
   state_.setZero();
   for (int i = 0; i < kBirotorRotors; ++i) rotor_angle_rad_[i] = scenario_.gauge.rotor_angle_rad[i];
   if (clamped_body_ || ground_.enabled()) {
@@ -94,8 +94,8 @@ Simulator::Simulator(const Scenario& scenario)
 PlantState Simulator::Derivative(const PlantState& x) const {
   // On the ground the support holds the body level and still (x and z do not
   // enter the arm equations: a translated clamped body is the bench).
-  return (clamped_body_ || ground_.on_ground()) ? ClampedBodyDerivative(scenario_.vehicle, x, input_)
-                                                : PlantDerivative(scenario_.vehicle, x, input_);
+  return (clamped_body_ || ground_.on_ground()) ? ClampedBodyDerivative(vehicle_, x, input_)
+                                                : PlantDerivative(vehicle_, x, input_);
 }
 
 RotorCommand Simulator::Command(double t_s) {
@@ -144,7 +144,7 @@ EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double
     return EscVerdict::kStale;
   }
   for (double omega : omega_cmd_rad_s) {
-    if (!(omega >= 0.0 && omega <= scenario_.vehicle.omega_max_rad_s)) {
+    if (!(omega >= 0.0 && omega <= vehicle_.omega_max_rad_s)) {
       ++n.out_of_range;
       return EscVerdict::kOutOfRange;
     }
@@ -179,7 +179,7 @@ double Simulator::GaugeOffsetRad(int gauge, double t_s) const {
 }
 
 double Simulator::TrueForce(int rotor) const {
-  return RotorThrust(scenario_.vehicle, state_(kPlantOmega1 + rotor), input_.thrust_scale[rotor]);
+  return RotorThrust(vehicle_, state_(kPlantOmega1 + rotor), input_.thrust_scale[rotor]);
 }
 
 void Simulator::RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value) {
@@ -207,7 +207,7 @@ bool Simulator::Step(SampleSink* sink) {
   input_.omega_cmd_rad_s[0] = command_.omega_cmd_rad_s[0];
   input_.omega_cmd_rad_s[1] = command_.omega_cmd_rad_s[1];
   // Lift-off before the step: the support only pushes.
-  ground_.UpdateLiftoff(now_us, [this] { return PlantDerivative(scenario_.vehicle, state_, input_)(kPlantV + kZ); });
+  ground_.UpdateLiftoff(now_us, [this] { return PlantDerivative(vehicle_, state_, input_)(kPlantV + kZ); });
 
   // RK4, keeping k1 = f(x_k, u_k) for the accelerometer.
   const double dt = scenario_.step_s;
@@ -270,7 +270,7 @@ void Simulator::EmitMotor(int64_t utime, SampleSink* sink) {
   const bool in_gap = InWindow(scenario_.faults.motor_telemetry_gap, utime);
   if (in_gap) RecordFault(FaultKind::kMotorTelemetryGap, utime, sample.seq, 0, kNaN);
   for (int i = 0; i < kBirotorRotors; ++i) {
-    sample.omega_cmd_rad_s[i] = ClampCommand(scenario_.vehicle, command_.omega_cmd_rad_s[i]);
+    sample.omega_cmd_rad_s[i] = ClampCommand(vehicle_, command_.omega_cmd_rad_s[i]);
     sample.omega_meas_rad_s[i] =
         MeasureRotorSpeed(state_(kPlantOmega1 + i), sensors.motor_telemetry && !in_gap, sensors, &motor_noise_);
   }
@@ -287,7 +287,7 @@ void Simulator::EmitImu(int64_t utime, const PlantState& derivative, SampleSink*
   ImuSample sample;
   sample.utime = utime;
   sample.seq = imu_seq_++;
-  MeasureImu(body, scenario_.vehicle.gravity_m_s2, scenario_.sensors, &imu_noise_, &sample);
+  MeasureImu(body, vehicle_.gravity_m_s2, scenario_.sensors, &imu_noise_, &sample);
   sink->OnImu(sample);
   ++emitted_.imu;
 }

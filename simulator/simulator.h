@@ -142,6 +142,7 @@ class Simulator {
   void RecordFault(FaultKind kind, int64_t utime, int32_t seq, int rotor, double value);
 
   Scenario scenario_;
+  BirotorParams vehicle_;  // BirotorModelOf(scenario_.vehicle)
   bool clamped_body_;
   int64_t step_us_;
   int64_t total_steps_;

@@ -37,7 +37,7 @@ inline std::string ScenarioPath(const std::string& name) {
 inline SensorLog SimulateScenario(const std::string& name, const std::vector<std::string>& overrides,
                                   BirotorParams* truth = nullptr) {
   const Scenario scenario = LoadScenario(ScenarioPath(name), overrides);
-  if (truth != nullptr) *truth = scenario.vehicle;
+  if (truth != nullptr) *truth = BirotorModelOf(scenario.vehicle);
   SensorLog log;
   log.source = name;
   CollectingSink sink(&log);

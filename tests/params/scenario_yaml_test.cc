@@ -41,7 +41,7 @@ TEST(ScenarioYamlTest, EveryReferenceScenarioLoads) {
 
 TEST(ScenarioYamlTest, HoverHoldsTheReferenceVehicleAndSensors) {
   const Scenario s = LoadScenario(ScenarioPath("hover"));
-  EXPECT_DOUBLE_EQ(s.vehicle.arm_stiffness_n_m_rad, 2628.0);  // reference-vehicle.md
+  EXPECT_DOUBLE_EQ(s.vehicle.arms[0].stiffness_n_m_rad, 2628.0);  // reference-vehicle.md
   EXPECT_DOUBLE_EQ(s.step_s, 0.00025);
   EXPECT_DOUBLE_EQ(s.sensors.strain.rate_hz, 1000.0);
   EXPECT_DOUBLE_EQ(s.sensors.strain_noise_rad, 2e-5);
@@ -131,7 +131,7 @@ TEST(ScenarioYamlTest, ParameterFileBecomesOverrides) {
   const std::vector<std::string> overrides = OverridesFromFile(path);
   EXPECT_EQ(overrides.size(), 3u);
   const Scenario s = LoadScenario(ScenarioPath("hover"), overrides);
-  EXPECT_EQ(s.vehicle.arm_stiffness_n_m_rad, 2500.0);
+  EXPECT_EQ(s.vehicle.arms[0].stiffness_n_m_rad, 2500.0);
   EXPECT_EQ(s.vehicle.body_mass_kg, 4.0);
   EXPECT_EQ(s.sensors.strain_noise_rad, 0.0);
   EXPECT_TRUE(s.sensors.strain.enabled);
