@@ -276,6 +276,10 @@ TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
   }
   const size_t at = reference.find("state_file: \"\"");
   ASSERT_NE(at, std::string::npos);
+  // The state file is used only with a readable site key (issue 37 item 4).
+  const std::string site_key = Path("site.key");
+  std::ofstream(site_key, std::ios::binary) << std::string(32, '\x3c');
+  ASSERT_EQ(chmod(site_key.c_str(), 0600), 0);
   for (const std::string& state : {fifo, std::string("/dev/zero"), params_copy}) {
     std::string text = reference;
     text.replace(at, 14, "state_file: \"" + state + "\"");
@@ -283,7 +287,8 @@ TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
     std::ofstream(params) << text;
     if (state == params_copy) std::ofstream(params_copy) << text;
     // Stopped once running (its "lcm memq://: in ..." line follows the state file).
-    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://"}, 30, "lcm memq://");
+    const ToolRun run = RunTool(
+        {BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", site_key}, 30, "lcm memq://");
     ExpectRefused(run, "birotor-estimator", "state_file " + state);
     EXPECT_NE(run.output.find("gauge state file refused: " + state), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("stopped:"), std::string::npos) << run.output;
