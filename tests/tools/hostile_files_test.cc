@@ -305,3 +305,42 @@ TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
 
 }  // namespace
 }  // namespace birotor
+
+namespace birotor {
+namespace {
+
+// Issue 37 item 4 on the daemon: without a usable site key (a world-writable
+// key file, or none) the state file is neither restored nor written, and the
+// start says why, once; the run itself goes on and stops cleanly (exit 0).
+TEST_F(HostileFilesTest, EstimatorWithoutAUsableSiteKeyNeitherRestoresNorWritesTheStateFile) {
+  std::string text;
+  {
+    std::ifstream in(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t at = text.find("state_file: \"\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::string state = Path("unkeyed_gauge_state");
+  text.replace(at, 14, "state_file: \"" + state + "\"");
+  const std::string params = Path("estimator_unkeyed.yaml");
+  std::ofstream(params) << text;
+  const std::string open_key = Path("open_site.key");
+  std::ofstream(open_key, std::ios::binary) << std::string(32, '\x3c');
+  ASSERT_EQ(chmod(open_key.c_str(), 0666), 0);
+  for (const std::string& key : {open_key, Path("absent_site.key")}) {
+    unlink(state.c_str());
+    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", key},
+                                30, "lcm memq://");
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    const std::string warning = "gauge state file " + state + " is not authenticated (site key " + key + ": ";
+    EXPECT_NE(run.output.find(warning), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("stopped:"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(state)) << key;
+    if (key == open_key) {
+      EXPECT_NE(run.output.find("writable by its group or by others (mode 0666"), std::string::npos) << run.output;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace birotor
