@@ -1,5 +1,7 @@
 #include "nodes/gauge_state_file.h"
 
+#include <sodium.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -66,6 +68,52 @@ bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>
   return true;
 }
 
+constexpr const char* kMacKey = "mac: ";
+constexpr size_t kMacKeyLength = 5;
+
+// The mac line of text: HMAC under the site key, counter 0, of all of text.
+std::string MacLine(const std::string& text, const MessageAuthenticator& authenticator) {
+  const MessageAuthenticator::Tag tag =
+      authenticator.Sign(0, reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  char hex[2 * MessageAuthenticator::kTagBytes + 1];
+  sodium_bin2hex(hex, sizeof(hex), tag.data(), tag.size());
+  return std::string(kMacKey) + hex + "\n";
+}
+
+// Where the last line starts if it is a mac line, npos otherwise.
+size_t MacLineStart(const std::string& text) {
+  const size_t at = text.rfind(kMacKey);
+  if (at == std::string::npos || at == 0 || text[at - 1] != '\n') return std::string::npos;
+  return text.find('\n', at) >= text.size() - 1 ? at : std::string::npos;
+}
+
+// Checks the mac line of text and strips it; false with *error otherwise.
+bool VerifyMac(const std::string& path, const MessageAuthenticator& authenticator, std::string* text,
+               std::string* error) {
+  const size_t at = MacLineStart(*text);
+  if (at == std::string::npos) {
+    *error = path + ": not authenticated (no mac line; written without the site key or forged)";
+    return false;
+  }
+  std::string hex = text->substr(at + kMacKeyLength);
+  while (!hex.empty() && (hex.back() == '\n' || hex.back() == '\r')) hex.pop_back();
+  MessageAuthenticator::Tag tag;
+  size_t decoded = 0;
+  if (sodium_hex2bin(tag.data(), tag.size(), hex.c_str(), hex.size(), nullptr, &decoded, nullptr) != 0 ||
+      decoded != tag.size() || hex.size() != 2 * tag.size() ||
+      !authenticator.Verify(0, reinterpret_cast<const uint8_t*>(text->data()), at, tag)) {
+    *error = path + ": not authenticated (mac does not verify under the site key: forged, altered or another key)";
+    return false;
+  }
+  text->resize(at);
+  return true;
+}
+
+bool WriteStateText(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
+                    const MessageAuthenticator* authenticator, std::string* error);
+bool ParseStateText(const std::string& path, const std::string& text, const std::string& vehicle_checksum,
+                    double max_offset_rad, GaugeCalibration* calibration, std::string* error);
+
 }  // namespace
 
 std::string VehicleChecksum(const BirotorParams& params) { return TextChecksum(BirotorParamsYaml(params)); }
@@ -86,6 +134,35 @@ std::string GaugeStateText(const GaugeCalibration& calibration, const std::strin
 
 bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
                      std::string* error) {
+  return WriteStateText(path, calibration, vehicle_checksum, nullptr, error);
+}
+
+bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
+                     const MessageAuthenticator& authenticator, std::string* error) {
+  return WriteStateText(path, calibration, vehicle_checksum, &authenticator, error);
+}
+
+bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
+                    GaugeCalibration* calibration, std::string* error) {
+  std::string text;
+  if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &text, error)) return false;
+  const size_t mac_at = MacLineStart(text);
+  if (mac_at != std::string::npos) text.resize(mac_at);
+  return ParseStateText(path, text, vehicle_checksum, max_offset_rad, calibration, error);
+}
+
+bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
+                    const MessageAuthenticator& authenticator, GaugeCalibration* calibration, std::string* error) {
+  std::string text;
+  if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &text, error)) return false;
+  if (!VerifyMac(path, authenticator, &text, error)) return false;
+  return ParseStateText(path, text, vehicle_checksum, max_offset_rad, calibration, error);
+}
+
+namespace {
+
+bool WriteStateText(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
+                    const MessageAuthenticator* authenticator, std::string* error) {
   // Only a state file is replaced: an existing path that is a link, a FIFO,
   // a device or another file (the parameter file given as state_file) is
   // left alone, refused here whatever happened at start-up.
@@ -132,13 +209,13 @@ bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibratio
     written.strain_scale_std[i] =
         std::min(std::max(calibration.strain_scale_std[i], kStrainScaleStdRange.min), kStrainScaleStdRange.max);
   }
-  return ReplaceRegularFile(path, GaugeStateText(written, vehicle_checksum), attributes, error);
+  std::string text = GaugeStateText(written, vehicle_checksum);
+  if (authenticator != nullptr) text += MacLine(text, *authenticator);
+  return ReplaceRegularFile(path, text, attributes, error);
 }
 
-bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
-                    GaugeCalibration* calibration, std::string* error) {
-  std::string text;
-  if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &text, error)) return false;
+bool ParseStateText(const std::string& path, const std::string& text, const std::string& vehicle_checksum,
+                    double max_offset_rad, GaugeCalibration* calibration, std::string* error) {
   const size_t checksum_at = text.rfind("checksum: ");
   if (checksum_at == std::string::npos || checksum_at == 0 || text[checksum_at - 1] != '\n' ||
       text.compare(0, std::char_traits<char>::length(kHeader), kHeader) != 0) {
@@ -199,4 +276,5 @@ bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum
   return true;
 }
 
+}  // namespace
 }  // namespace birotor

@@ -20,6 +20,8 @@
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
+#include "security/message_authenticator.h"
+#include "security/site_key.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/channels.h"
@@ -38,6 +40,9 @@ struct DaemonOptions {
   std::string method;  // overrides the file's; empty: the file's
   EstimatorServiceOptions service;
   int realtime_priority = 0;  // SCHED_FIFO priority and locked memory; 0: normal scheduler
+  // The site key that authenticates the gauge state file (docs/deploy.md);
+  // the systemd unit passes its LoadCredential= copy.
+  std::string site_key_file = "/etc/birotor/keys/site.key";
 };
 
 void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
@@ -55,6 +60,10 @@ void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
   app.add_option("--stale-input-s", options->service.stale_input_wall_s,
                  "No strain packet for this long (host clock): ESTIMATOR_STATUS says INPUT_STALE [s]")
       ->check(CLI::Range(0.001, 60.0));
+  app.add_option("--site-key", options->site_key_file,
+                 "Site key file (32 raw bytes, not group/world-writable) authenticating the gauge state file; "
+                 "without a readable key the state file is neither restored nor written")
+      ->capture_default_str();
   AddRealtimeOption(app, &options->realtime_priority);
 }
 
@@ -71,17 +80,35 @@ std::string LoadConfig(const DaemonOptions& options, EstimatorConfig* config) {
   return "";
 }
 
+// The authenticator of the gauge state file under the site key, or null
+// after one warning when a state file is configured and the key cannot be
+// read: the state file is then neither restored nor written (issue 37 item 4:
+// an unauthenticated file could be forged).
+std::unique_ptr<MessageAuthenticator> StateFileAuthenticator(const std::string& site_key_file,
+                                                             const std::string& state_file) {
+  if (state_file.empty()) return nullptr;
+  SiteKey key(SiteKey::Bytes{});
+  std::string error;
+  if (!SiteKey::Load(site_key_file, &key, &error)) {
+    spdlog::warn("gauge state file {} is not authenticated ({}): neither restored nor written this run", state_file,
+                 error);
+    return nullptr;
+  }
+  return std::make_unique<MessageAuthenticator>(key);
+}
+
 // The learned gauge offsets of the last run, from the state file. A missing
-// file is a first start; a corrupt or foreign one is refused.
+// file is a first start; a corrupt, foreign or unauthenticated one is refused.
 void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehicle_checksum,
-                         EstimatorService* service) {
+                         const MessageAuthenticator* authenticator, EstimatorService* service) {
   const std::string& state_file = config.tare.state_file;
-  if (state_file.empty()) return;
+  if (state_file.empty() || authenticator == nullptr) return;
   GaugeCalibration persisted = GaugeCalibration::FromVehicle(BirotorModelOf(config.vehicle));
   std::string error;
   if (access(state_file.c_str(), F_OK) != 0) {
     spdlog::info("gauge state file {} absent: gauge offsets from the parameter file", state_file);
-  } else if (ReadGaugeState(state_file, vehicle_checksum, config.tare.max_offset_rad, &persisted, &error)) {
+  } else if (ReadGaugeState(state_file, vehicle_checksum, config.tare.max_offset_rad, *authenticator, &persisted,
+                            &error)) {
     service->SetGaugeOffsets(persisted);
     spdlog::info("gauge offsets {:.3e} {:.3e} rad from the state file {}", persisted.offset_rad[0],
                  persisted.offset_rad[1], state_file);
@@ -188,8 +215,10 @@ int main(int argc, char** argv) {
   LcmSink sink(lcm.get());
   EstimatorService service(config, channels, options.service, &sink);
   const std::string vehicle_checksum = VehicleChecksum(BirotorModelOf(config.vehicle));
-  RestoreGaugeOffsets(config, vehicle_checksum, &service);
-  const std::string state_file = WritableStateFile(config.tare.state_file);
+  const std::unique_ptr<MessageAuthenticator> authenticator =
+      StateFileAuthenticator(options.site_key_file, config.tare.state_file);
+  RestoreGaugeOffsets(config, vehicle_checksum, authenticator.get(), &service);
+  const std::string state_file = authenticator ? WritableStateFile(config.tare.state_file) : "";
   // Inputs through the shared message source. On udpm our own small-message
   // reader, and LCM only publishes (it opens no receive socket until
   // something subscribes): LCM's fragment reassembly, which two crafted
@@ -203,7 +232,7 @@ int main(int argc, char** argv) {
   if (!Serve(source.get(), options.service.status_rate_hz, &service)) spdlog::error("{}; stopping", source->error());
   LogStopped(service, *source);
   if (!state_file.empty()) {
-    if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, &error)) {
+    if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, *authenticator, &error)) {
       return ReportError("gauge state: " + error);
     }
     spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(service.health().gauge.source), state_file);

@@ -12,7 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   help2man lintian
   gnuplot-nox clang libclang-rt-14-dev procps
-  libsystemd-dev libjs-dygraphs chromium python3-pandas python3-venv python3-wheel libalglib-dev stress-ng
+  libsodium-dev libsystemd-dev libjs-dygraphs chromium python3-pandas python3-venv python3-wheel libalglib-dev stress-ng
 )
 
 missing=()

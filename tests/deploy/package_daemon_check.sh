@@ -23,6 +23,14 @@ XDG_CONFIG_HOME="$work/xdg" "$root/usr/bin/birotor-replay" --log hover.lcm --out
   || fail "installed birotor-replay with the site file: $(cat replay.log)"
 grep -q "method inversion:" replay.log || fail "birotor-replay did not run the site's method: $(cat replay.log)"
 
+# What LoadCredential= gives the unit's user: a private copy of the site key
+# (the gauge state file is written and restored only under it, issue 37).
+export CREDENTIALS_DIRECTORY="$work/credentials"
+mkdir -p "$CREDENTIALS_DIRECTORY"
+head -c 32 /dev/urandom > "$CREDENTIALS_DIRECTORY/site.key"
+chown nobody:nogroup "$CREDENTIALS_DIRECTORY/site.key"
+chmod 0400 "$CREDENTIALS_DIRECTORY/site.key"
+
 # The unit's ExecStart line with /etc/default/birotor, as systemd splits it.
 . "$work/unit_command_line.sh"
 UNIT_OVERRIDES="BIROTOR_LCM_URL=udpm://239.255.76.67:$port?ttl=0 BIROTOR_ESTIMATOR_ARGS=--status-rate-hz=5"

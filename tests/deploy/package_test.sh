@@ -88,9 +88,19 @@ if sed 's/"[^"]*"//g' "$work/control/postinst" | grep -qE "(systemctl|deb-system
 fi
 grep -q "/var/lib/private/birotor" "$work/control/postrm" || fail "postrm purge leaves the state directory"
 # Without systemd running (this machine, a chroot) the scripts do nothing and succeed.
-[ -d /run/systemd/system ] || { sh "$work/control/postinst" configure && sh "$work/control/prerm" remove \
+[ -d /run/systemd/system ] || { DPKG_ROOT="$work/hostroot" sh "$work/control/postinst" configure > /dev/null && sh "$work/control/prerm" remove \
   && sh "$work/control/postrm" remove; } || fail "a maintainer script failed without systemd"
-echo "ok: conffiles $(wc -l < "$work/control/conffiles"), postinst/prerm/postrm"
+# The site key (issue 37): postinst makes it under dpkg's --root (DPKG_ROOT)
+# once, 32 bytes, root-only writable and not world-readable, and keeps it.
+keyroot="$work/keyroot"
+DPKG_ROOT="$keyroot" sh "$work/control/postinst" configure > /dev/null || fail "postinst with DPKG_ROOT"
+key="$keyroot/etc/birotor/keys/site.key"
+[ "$(stat -c '%a %s %F' "$key" 2> /dev/null)" = "640 32 regular file" ] \
+  || fail "site key after postinst: $(stat -c '%a %s %F' "$key" 2>&1)"
+cp "$key" "$work/key.before"
+DPKG_ROOT="$keyroot" sh "$work/control/postinst" configure > /dev/null || fail "postinst again"
+cmp -s "$key" "$work/key.before" || fail "a second postinst replaced the site key"
+echo "ok: conffiles $(wc -l < "$work/control/conffiles"), postinst/prerm/postrm, site key 0640 32 bytes kept"
 
 # 4. Unpacked into a scratch root: the programs run there.
 root="$work/root"

@@ -3,7 +3,9 @@
 # the variables of ENV_FILE (and of the caller's environment after it, for
 # BIROTOR_LCM_URL and the like given as overrides: set them in
 # UNIT_OVERRIDES, "NAME=value" words) and /usr/bin/ programs taken from ROOT.
-# systemd's rules: ${VAR} is one word, $VAR is split into words.
+# systemd's rules: ${VAR} is one word, $VAR is split into words; the
+# specifier %d is the unit's credentials folder: $CREDENTIALS_DIRECTORY
+# (set it where LoadCredential= would have put the copies).
 unit_command_line() {
   local unit="$1" env_file="$2" root="${3:-}" word name part
   set -a
@@ -17,6 +19,7 @@ unit_command_line() {
       /usr/bin/*) command_line+=("$root$word") ;;
       '${'*'}') name="${word#\$\{}"; name="${name%\}}"; command_line+=("${!name}") ;;
       '$'*) name="${word#\$}"; for part in ${!name}; do command_line+=("$part"); done ;;
+      *%d*) command_line+=("${word//%d/${CREDENTIALS_DIRECTORY:-}}") ;;
       *) command_line+=("$word") ;;
     esac
   done

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -312,6 +313,76 @@ TEST(GaugeStateFileTest, AReplacedStateFileKeepsItsMode) {
   ASSERT_EQ(stat(path.c_str(), &info), 0);
   EXPECT_EQ(info.st_mode & 07777, 0600u);
   std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace birotor
+
+namespace birotor {
+namespace {
+
+// Issue 37 item 4: the daemon's state file carries a MAC under the site key.
+SiteKey TestSiteKey(uint8_t fill) {
+  SiteKey::Bytes bytes;
+  bytes.fill(fill);
+  return SiteKey(bytes);
+}
+
+std::string AuthenticatedStatePath(const std::string& name) {
+  return ::testing::TempDir() + "/" + name + "_" + std::to_string(getpid()) + ".mac.state";
+}
+
+TEST(AuthenticatedGaugeStateTest, AGenuineFileRestoresEveryBit) {
+  const std::string path = AuthenticatedStatePath("genuine");
+  const std::string vehicle = VehicleChecksum(BirotorParams());
+  const MessageAuthenticator authenticator(TestSiteKey(0x11));
+  std::string error;
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, authenticator, &error)) << error;
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t mac_at = text.find("\nmac: ");
+  ASSERT_NE(mac_at, std::string::npos) << text;
+  EXPECT_EQ(text.size() - mac_at, 1 + 5 + 64 + 1u);  // "mac: ", 32 bytes in hex, newline: the last line
+  GaugeCalibration read;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error)) << error;
+  EXPECT_EQ(read.offset_rad[0], Learned().offset_rad[0]);
+  EXPECT_EQ(read.offset_rad[1], Learned().offset_rad[1]);
+  EXPECT_EQ(read.source, GaugeOffsetSource::kStateFile);
+  // birotor-identify --learned reads it without the key.
+  GaugeCalibration unauthenticated;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &unauthenticated, &error)) << error;
+  EXPECT_EQ(unauthenticated.offset_rad[1], Learned().offset_rad[1]);
+  unlink(path.c_str());
+}
+
+TEST(AuthenticatedGaugeStateTest, AForgedFileWithValidContentIsRefusedAndNotApplied) {
+  const std::string path = AuthenticatedStatePath("forged");
+  const std::string vehicle = VehicleChecksum(BirotorParams());
+  const MessageAuthenticator authenticator(TestSiteKey(0x11));
+  GaugeCalibration forged = Learned();
+  forged.offset_rad[0] = 4.9e-4;  // in range (tare.max_offset_rad 5e-4), right checksum
+  std::string error;
+  GaugeCalibration read;
+  read.offset_rad[0] = 7.0;
+  // Missing MAC: the plain file a forger writes with a recomputed checksum.
+  ASSERT_TRUE(WriteGaugeState(path, forged, vehicle, &error)) << error;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error));
+  EXPECT_EQ(error, path + ": not authenticated (no mac line; written without the site key or forged)");
+  // Wrong MAC: made with another key.
+  ASSERT_TRUE(WriteGaugeState(path, forged, vehicle, MessageAuthenticator(TestSiteKey(0x22)), &error)) << error;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error));
+  EXPECT_EQ(error,
+            path + ": not authenticated (mac does not verify under the site key: forged, altered or another key)");
+  // A genuine file with one value changed and its checksum recomputed.
+  ASSERT_TRUE(WriteGaugeState(path, Learned(), vehicle, authenticator, &error)) << error;
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string mac_line = text.substr(text.find("mac: "));
+  std::ofstream(path) << GaugeStateText(forged, vehicle) + mac_line;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error));
+  EXPECT_NE(error.find("mac does not verify"), std::string::npos) << error;
+  EXPECT_EQ(read.offset_rad[0], 7.0);  // not applied
+  unlink(path.c_str());
 }
 
 }  // namespace

@@ -276,6 +276,10 @@ TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
   }
   const size_t at = reference.find("state_file: \"\"");
   ASSERT_NE(at, std::string::npos);
+  // The state file is used only with a readable site key (issue 37 item 4).
+  const std::string site_key = Path("site.key");
+  std::ofstream(site_key, std::ios::binary) << std::string(32, '\x3c');
+  ASSERT_EQ(chmod(site_key.c_str(), 0600), 0);
   for (const std::string& state : {fifo, std::string("/dev/zero"), params_copy}) {
     std::string text = reference;
     text.replace(at, 14, "state_file: \"" + state + "\"");
@@ -283,7 +287,8 @@ TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
     std::ofstream(params) << text;
     if (state == params_copy) std::ofstream(params_copy) << text;
     // Stopped once running (its "lcm memq://: in ..." line follows the state file).
-    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://"}, 30, "lcm memq://");
+    const ToolRun run = RunTool(
+        {BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", site_key}, 30, "lcm memq://");
     ExpectRefused(run, "birotor-estimator", "state_file " + state);
     EXPECT_NE(run.output.find("gauge state file refused: " + state), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("stopped:"), std::string::npos) << run.output;
@@ -296,6 +301,45 @@ TEST_F(HostileFilesTest, EstimatorNeverReadsNorReplacesAStateFileThatIsNotOne) {
   struct stat info {};
   ASSERT_EQ(lstat(fifo.c_str(), &info), 0);
   EXPECT_TRUE(S_ISFIFO(info.st_mode));
+}
+
+}  // namespace
+}  // namespace birotor
+
+namespace birotor {
+namespace {
+
+// Issue 37 item 4 on the daemon: without a usable site key (a world-writable
+// key file, or none) the state file is neither restored nor written, and the
+// start says why, once; the run itself goes on and stops cleanly (exit 0).
+TEST_F(HostileFilesTest, EstimatorWithoutAUsableSiteKeyNeitherRestoresNorWritesTheStateFile) {
+  std::string text;
+  {
+    std::ifstream in(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t at = text.find("state_file: \"\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::string state = Path("unkeyed_gauge_state");
+  text.replace(at, 14, "state_file: \"" + state + "\"");
+  const std::string params = Path("estimator_unkeyed.yaml");
+  std::ofstream(params) << text;
+  const std::string open_key = Path("open_site.key");
+  std::ofstream(open_key, std::ios::binary) << std::string(32, '\x3c');
+  ASSERT_EQ(chmod(open_key.c_str(), 0666), 0);
+  for (const std::string& key : {open_key, Path("absent_site.key")}) {
+    unlink(state.c_str());
+    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", key},
+                                30, "lcm memq://");
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    const std::string warning = "gauge state file " + state + " is not authenticated (site key " + key + ": ";
+    EXPECT_NE(run.output.find(warning), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("stopped:"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(state)) << key;
+    if (key == open_key) {
+      EXPECT_NE(run.output.find("writable by its group or by others (mode 0666"), std::string::npos) << run.output;
+    }
+  }
 }
 
 }  // namespace
