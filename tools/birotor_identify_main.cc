@@ -23,6 +23,7 @@
 #include "params/identification_options_yaml.h"
 #include "params/identified_parameter_file.h"
 #include "params/learned_parameter_update.h"
+#include "params/vehicle_description_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "plot/fit_plot.h"
 #include "program/config_files.h"
@@ -154,7 +155,10 @@ std::string LoadBaseAndOptions(const IdentifyOptions& cli, birotor::BirotorParam
                                birotor::IdentificationOptions* options) {
   using namespace birotor;
   try {
-    *base = LoadBirotorParams(cli.params);
+    // The base file's vehicle in either form; the fit is the birotor model's.
+    const VehicleDescription described = LoadVehicleDescription(cli.params);
+    RequireBirotor(cli.params, "birotor-identify", described);
+    *base = BirotorModelOf(described);
     if (!cli.config.empty()) {
       const CalibrationFact calibration = options->calibration;  // from the command line
       *options = LoadIdentificationOptions(cli.config);

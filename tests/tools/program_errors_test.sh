@@ -62,6 +62,9 @@ expect 1 "^birotor-identify: error: .*missing.lcm" "$tools/birotor-identify" --l
   --log-level warn
 expect 1 "^birotor-identify: error: .*missing.yaml" "$tools/birotor-identify" --log in.lcm --update-params missing.yaml \
   --log-level warn
+# A vehicle the program's model cannot fly is refused at load, naming file, key and reason.
+expect 1 "^birotor-identify: error: .*trirotor.yaml: key 'vehicle': birotor-identify runs the birotor's model.*arm_count is 3" \
+  "$tools/birotor-identify" --params "$trirotor" --log in.lcm --output v.yaml --log-level warn
 expect 1 "^birotor-monitor: error: .*missing.yaml" "$tools/birotor-monitor" --scenario missing.yaml \
   --lcm-url "udpm://239.255.76.67:7799?ttl=0"
 expect 1 "^birotor-analyze: error: .*missing.yaml" "$tools/birotor-analyze" --params missing.yaml
