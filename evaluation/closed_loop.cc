@@ -68,6 +68,7 @@ class LockStepSink : public SampleSink {
   }
   void OnSetpoint(const Setpoint& setpoint) override {
     if (wire_ != nullptr) wire_->OnSetpoint(setpoint);
+    run_->figures.AddSetpoint(setpoint);
     controller_->OnSetpoint(setpoint, simulator_->utime());
   }
   void OnLoadCell(const LoadCellSample& sample) override {
@@ -76,6 +77,7 @@ class LockStepSink : public SampleSink {
   void OnTruth(const TruthSample& sample) override {
     if (wire_ != nullptr) wire_->OnTruth(sample);
     run_->samples.push_back({sample, simulator_->reference().position_m});
+    run_->figures.AddTruth(sample);
   }
 
  private:
@@ -131,6 +133,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
       simulator.OfferMotorCommand(command.seq, command.utime, command.omega_cmd_rad_s);
       if (log != nullptr) wire.OnMotorCommand(command);
       run.commands.push_back(command);
+      run.figures.AddCommand(command.status);
     }
     simulator.Step(&sink);
     ++step;

@@ -18,6 +18,7 @@
 #include "controller/vehicle_controller.h"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
+#include "samples/flight_figures.h"
 #include "samples/motor_command.h"
 #include "samples/samples.h"
 #include "simulator/scenario.h"
@@ -48,6 +49,9 @@ struct TrackedSample {
 struct ClosedLoopRun {
   std::vector<TrackedSample> samples;  // one per TRUTH sample
   std::vector<MotorCommand> commands;
+  // The flight's figures (RMS, max tilt, fallbacks) by the one definition,
+  // fed SETPOINT, TRUTH and MOTOR_COMMAND in the order the log gets them.
+  FlightFigures figures;
   ControllerHealth controller;
   MpcStats mpc;  // mode mpc: solves, fallbacks, solve times (zeros in other modes)
   PipelineHealth estimator;
