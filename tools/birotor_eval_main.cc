@@ -210,7 +210,8 @@ void FlyCascadeModes(const ControlCase& c, const Scenario& scenario, bool first_
     spdlog::info(
         "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} descents, {} saturated; final "
         "efficiency {:.3f} {:.3f}; figures: {}",
-        c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.descents, run.controller.saturated, run.controller.efficiency[0], run.controller.efficiency[1],
+        c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.descents,
+        run.controller.saturated, run.controller.efficiency[0], run.controller.efficiency[1],
         run.figures.Result().Line());
     LogDescentFloor(fmt::format("{} seed {} {}", c.name, scenario.seed, mode), run, metrics, scenario);
     if (first_seed) {

@@ -17,6 +17,7 @@
 #include "params/scenario_yaml.h"
 #include "review/flight_data.h"
 #include "review/flight_headline.h"
+#include "samples/motor_command.h"
 #include "sinks/message_sink.h"
 #include "transport/log_io.h"
 
@@ -50,8 +51,8 @@ FlownFlight FlyAndReview(const std::string& scenario_name, double duration_s, bo
   std::string error;
   EXPECT_TRUE(writer.Open(path, &error)) << error;
   LogSink sink(&writer);
-  out.run = RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller,
-                          ClosedLoopOptions(), &sink);
+  out.run = RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller, ClosedLoopOptions(),
+                          &sink);
   EXPECT_FALSE(sink.failed());
   EXPECT_TRUE(writer.Close());
   out.metrics = EvaluateControl(out.run);
@@ -86,6 +87,40 @@ TEST(FlightFiguresTest, ForceFeedbackFlightHasOneRmsTiltAndFallbackCount) {
   EXPECT_LT(f.headline.figures.rms_position_error_m, 1.5 * 0.0036);
   EXPECT_LT(f.headline.figures.max_tilt_rad, 1.5 * 0.0116);
   EXPECT_EQ(f.headline.figures.fallbacks, 1);
+}
+
+// Issue 39: the lock-step log carries the status channels at the daemons'
+// rate (5 Hz on the vehicle clock), by the nodes' encoders, decodable.
+TEST(FlightFiguresTest, LockStepLogCarriesBothStatusChannels) {
+  const FlownFlight f = FlyAndReview("sensor_faults", 20.0, false, "force_feedback");
+  const ChannelCount& estimator = f.data.channels.at("BIROTOR_ESTIMATOR_STATUS");
+  const ChannelCount& controller = f.data.channels.at("BIROTOR_CONTROLLER_STATUS");
+  const Table& c = f.data.controller_status;
+  const Table& e = f.data.status;
+  ASSERT_GT(c.rows(), 0u);
+  ASSERT_GT(e.rows(), 0u);
+  std::printf(
+      "ESTIMATOR_STATUS %lld (decode errors %lld), CONTROLLER_STATUS %lld (%lld); last controller status: "
+      "fallbacks %.0f commands %.0f mode %.0f; controller: %lld commands; last STRAIN received %.0f\n",
+      static_cast<long long>(estimator.messages), static_cast<long long>(estimator.decode_errors),
+      static_cast<long long>(controller.messages), static_cast<long long>(controller.decode_errors),
+      c.columns[0].back(), c.columns[3].back(), c.columns[4].back(), static_cast<long long>(f.run.controller.commands),
+      e.columns[3 * kReviewInputs].back());
+  // 20 s at 5 Hz: one every 200 ms from 200 ms on (the first one period after the start).
+  EXPECT_EQ(controller.messages, 100);
+  EXPECT_NEAR(static_cast<double>(estimator.messages), 100.0, 1.0);
+  EXPECT_EQ(controller.decode_errors + estimator.decode_errors, 0);
+  // The counters are the controller's: at most one period (200 ms at 200 Hz:
+  // 40 commands) behind its final health.
+  EXPECT_EQ(c.columns[0].back(), static_cast<double>(f.run.controller.fallbacks));
+  EXPECT_NEAR(c.columns[3].back(), static_cast<double>(f.run.controller.commands), 40.0);
+  EXPECT_EQ(c.columns[4].back(), static_cast<double>(kModeForceFeedback));
+  // ESTIMATOR_STATUS's STRAIN received (column 15: the fourth block of
+  // kReviewInputs, input 0) counts the log's STRAIN, at most one period
+  // behind (measured 19651 of the log's STRAIN).
+  const double strain_in_log = static_cast<double>(f.data.channels.at("BIROTOR_STRAIN").messages);
+  EXPECT_LE(e.columns[3 * kReviewInputs].back(), strain_in_log);
+  EXPECT_GE(e.columns[3 * kReviewInputs].back(), strain_in_log - 0.2 * 1000.0);
 }
 
 TEST(FlightFiguresTest, GroundStartScoresFromTheLiftOff) {
