@@ -69,7 +69,7 @@ class ControllerStatusLog {
   const int64_t period_us_;
   int64_t next_utime_;
   MessageSink* log_;
-  controller_status_t message_;
+  controller_status_t message_{};  // seq from 0
   std::vector<uint8_t> buffer_;
 };
 
