@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "birotor/force_estimate_t.hpp"
+#include "nodes/controller_status_message.h"
 #include "nodes/estimator_service.h"
 #include "simulator/simulator.h"
 #include "sinks/wire_sample_sink.h"
@@ -19,20 +20,57 @@ namespace {
 // decoded, to the controller at the simulator's time.
 class ForceToController : public MessageSink {
  public:
-  ForceToController(VehicleController* controller, const Simulator* simulator, MessageSink* log)
-      : controller_(controller), simulator_(simulator), log_(log) {}
+  ForceToController(VehicleController* controller, const Simulator* simulator, const std::string& force_channel,
+                    MessageSink* log)
+      : controller_(controller), simulator_(simulator), force_channel_(force_channel), log_(log) {}
 
   void Publish(const std::string& channel, int64_t utime, const void* data, size_t size) override {
     if (log_ != nullptr) log_->Publish(channel, utime, data, size);
-    if (DecodeMessage(data, size, &message_) != DecodeError::kNone) return;
+    if (channel != force_channel_ || DecodeMessage(data, size, &message_) != DecodeError::kNone) return;
     controller_->OnForce(FromMessage(message_), simulator_->utime());
   }
 
  private:
   VehicleController* controller_;
   const Simulator* simulator_;
+  const std::string force_channel_;
   MessageSink* log_;
   force_estimate_t message_;
+};
+
+// CONTROLLER_STATUS into the log on the vehicle clock, by the controller
+// node's encoder (nodes/controller_status_message.h).
+class ControllerStatusLog {
+ public:
+  ControllerStatusLog(const VehicleController* controller, const std::string& channel, double rate_hz, MessageSink* log)
+      : controller_(controller),
+        channel_(channel),
+        period_us_(rate_hz > 0 ? std::llround(1e6 / rate_hz) : 0),
+        next_utime_(period_us_),
+        log_(log) {}
+
+  // At vehicle time now_us with the newest command's status bits.
+  void PublishIfDue(int64_t now_us, int32_t last_status) {
+    if (log_ == nullptr || period_us_ <= 0 || now_us < next_utime_) return;
+    next_utime_ += period_us_;
+    ControllerStatusContext context;
+    context.now_us = context.wall_utime = now_us;
+    context.last_status = last_status;
+    context.report_solve_times = false;
+    ++message_.seq;
+    BuildControllerStatus(*controller_, context, &message_);
+    EncodeMessage(message_, &buffer_);
+    if (!buffer_.empty()) log_->Publish(channel_, now_us, buffer_.data(), buffer_.size());
+  }
+
+ private:
+  const VehicleController* controller_;
+  const std::string channel_;
+  const int64_t period_us_;
+  int64_t next_utime_;
+  MessageSink* log_;
+  controller_status_t message_{};  // seq from 0
+  std::vector<uint8_t> buffer_;
 };
 
 // Routes each simulated sample to the estimator (encoded, through its node's
@@ -68,6 +106,7 @@ class LockStepSink : public SampleSink {
   }
   void OnSetpoint(const Setpoint& setpoint) override {
     if (wire_ != nullptr) wire_->OnSetpoint(setpoint);
+    run_->figures.AddSetpoint(setpoint);
     controller_->OnSetpoint(setpoint, simulator_->utime());
   }
   void OnLoadCell(const LoadCellSample& sample) override {
@@ -76,6 +115,7 @@ class LockStepSink : public SampleSink {
   void OnTruth(const TruthSample& sample) override {
     if (wire_ != nullptr) wire_->OnTruth(sample);
     run_->samples.push_back({sample, simulator_->reference().position_m});
+    run_->figures.AddTruth(sample);
   }
 
  private:
@@ -111,9 +151,11 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   VehicleController controller(lock_step_config);
   const ChannelNames channels = MakeChannelNames(options.prefix);
   WireSampleSink wire(channels, log);
-  ForceToController force_route(&controller, &simulator, log);
+  ForceToController force_route(&controller, &simulator, channels.force, log);
   EstimatorServiceOptions service_options;
   service_options.report_processing_time = false;  // deterministic, as replay
+  service_options.status_rate_hz = options.status_rate_hz;
+  ControllerStatusLog controller_status(&controller, channels.controller_status, options.status_rate_hz, log);
   EstimatorService estimator(estimator_config, channels, service_options, &force_route);
   LockStepSink sink(&estimator, &controller, log != nullptr ? &wire : nullptr, &simulator, &run);
   run.samples.reserve(static_cast<size_t>(simulator.total_steps() / 4 + 1));
@@ -131,8 +173,11 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
       simulator.OfferMotorCommand(command.seq, command.utime, command.omega_cmd_rad_s);
       if (log != nullptr) wire.OnMotorCommand(command);
       run.commands.push_back(command);
+      run.figures.AddCommand(command.status);
     }
     simulator.Step(&sink);
+    if (log != nullptr) estimator.PublishStatusOnVehicleClock();  // ESTIMATOR_STATUS, as replay publishes it
+    controller_status.PublishIfDue(simulator.utime(), run.commands.empty() ? 0 : run.commands.back().status);
     ++step;
   }
   for (const FaultEvent& event : simulator.fault_events()) {

@@ -18,6 +18,7 @@
 #include "controller/vehicle_controller.h"
 #include "estimator/estimator_config.h"
 #include "estimator/estimator_pipeline.h"
+#include "samples/flight_figures.h"
 #include "samples/motor_command.h"
 #include "samples/samples.h"
 #include "simulator/scenario.h"
@@ -34,6 +35,10 @@ struct ClosedLoopOptions {
   std::string prefix = "BIROTOR_";
   // The trajectory is sent as SETPOINT at this rate [Hz].
   double setpoint_rate_hz = 100.0;
+  // ESTIMATOR_STATUS and CONTROLLER_STATUS go into the log at this rate of
+  // the vehicle clock, the daemons' default (EstimatorServiceOptions::
+  // status_rate_hz, birotor-controller --status-rate-hz); 0: none [Hz].
+  double status_rate_hz = 5.0;
   // Called before every simulator step (tests: an attacker's messages to
   // the controller or the ESCs at the simulator's current time).
   std::function<void(Simulator* simulator, VehicleController* controller)> before_step;
@@ -48,6 +53,9 @@ struct TrackedSample {
 struct ClosedLoopRun {
   std::vector<TrackedSample> samples;  // one per TRUTH sample
   std::vector<MotorCommand> commands;
+  // The flight's figures (RMS, max tilt, fallbacks) by the one definition,
+  // fed SETPOINT, TRUTH and MOTOR_COMMAND in the order the log gets them.
+  FlightFigures figures;
   ControllerHealth controller;
   MpcStats mpc;  // mode mpc: solves, fallbacks, solve times (zeros in other modes)
   PipelineHealth estimator;
@@ -62,9 +70,10 @@ struct ClosedLoopRun {
 };
 
 // Flies the scenario closed loop. log (may be null) receives every channel:
-// the simulator's (SETPOINT, STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE
-// and MOTOR_COMMAND. The scenario's own controller: section is not used (the
-// gains are controller's).
+// the simulator's (SETPOINT, STRAIN, MOTOR, IMU, POSE, TRUTH, ...), FORCE,
+// MOTOR_COMMAND, ESTIMATOR_STATUS and CONTROLLER_STATUS (the nodes' own
+// encoders; the host-time figures, processing and solve times, left out). The scenario's own controller: section is not
+// used (the gains are controller's).
 ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& estimator,
                             const ControllerConfig& controller, const ClosedLoopOptions& options,
                             MessageSink* log = nullptr);

@@ -50,8 +50,6 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
   m.touchdown_speed_m_s = m.tilt_before_touchdown_rad = kNaN;
   m.tilt_at_touchdown_rad = m.pitch_rate_at_touchdown_rad_s = m.tip_touchdown_speed_m_s = kNaN;
   const double ground_z_m = run.ground_z_m;
-  double sum_squared = 0;
-  int64_t scored = 0;
   int64_t last_outside_utime = -1;  // newest sample after the event outside the tolerance
   double tilt_since_event = 0;
   const TrackedSample* previous = nullptr;
@@ -65,8 +63,6 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
     const double tilt = std::fabs(s.truth.phi_rad);
     m.peak_tilt_rad = std::max(m.peak_tilt_rad, tilt);
     if (s.truth.utime >= flight_utime) {
-      sum_squared += error * error;
-      ++scored;
       m.max_position_error_m = std::max(m.max_position_error_m, error);
     }
     if (s.truth.utime >= event_utime) {
@@ -89,7 +85,8 @@ ControlMetrics EvaluateControl(const ClosedLoopRun& run, const ControlMetricsOpt
     previous = &s;
   }
   m.samples = static_cast<int64_t>(run.samples.size());
-  m.rms_position_error_m = scored > 0 ? std::sqrt(sum_squared / static_cast<double>(scored)) : kNaN;
+  // The one definition of the flight's RMS (samples/flight_figures.h).
+  m.rms_position_error_m = run.figures.Result().rms_position_error_m;
   if (last_outside_utime < 0) {
     m.return_time_s = 0;
   } else if (last_outside_utime == run.samples.back().truth.utime) {

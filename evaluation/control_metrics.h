@@ -24,7 +24,7 @@ struct ControlMetricsOptions {
 
 struct ControlMetrics {
   int64_t samples = 0;
-  double rms_position_error_m = 0;  // sqrt(mean |p - p_ref|^2) from the lift-off (or the start) [m]
+  double rms_position_error_m = 0;  // the flight's RMS: samples/flight_figures.h, docs/review.md [m]
   double max_position_error_m = 0;  // [m]
   double peak_tilt_rad = 0;         // max |phi| over the whole run [rad]
   // From the event (first thrust step; else the lift-off; else the start):

@@ -110,7 +110,7 @@ void IdentifyBenchThrust(const std::vector<SensorLog>& logs, const BirotorParams
   const std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, {&ratio}, inflation, options.num_threads);
   c_t.value = ratio * base.thrust_coeff_n_s2_rad2;
   c_t.sigma = sigma[0].sigma * base.thrust_coeff_n_s2_rad2;
-  c_t.determined = sigma[0].determined && c_t.sigma <= options.max_relative_sigma * std::abs(c_t.value);
+  c_t.determined = SigmaDetermines(sigma[0].determined, c_t.value, c_t.sigma, options.max_relative_sigma);
   c_t.note.basis = EstimateBasis::kThrustPairs;
   c_t.note.windows = static_cast<int>(blocks.size());
   c_t.note.spacing_s = options.thrust_sample_spacing_s;

@@ -22,8 +22,9 @@ void FillEstimate(const RatioParameter& p, const BlockSigma& sigma, double max_r
   e->value = *p.ratio * p.scale;
   e->sigma = sigma.sigma * p.scale;
   const double size = p.judge_size > 0.0 ? p.judge_size : std::abs(e->value);
-  e->determined = sigma.determined && e->sigma <= max_relative_sigma * size;
+  e->determined = SigmaDetermines(sigma.determined, size, e->sigma, max_relative_sigma);
   e->note = note;
+  if (p.judge_size > 0.0) e->note.judged_size = p.judge_size;
 }
 
 void AddRelativeFloor(ParameterEstimate* e, double relative, EstimateRemark floor) {

@@ -229,6 +229,11 @@ bool TryCovariance(ceres::Problem* problem, const std::vector<double*>& blocks, 
 
 }  // namespace
 
+bool SigmaDetermines(bool sigma_determined, double value, double sigma, double max_relative_sigma) {
+  return sigma_determined && std::isfinite(value) && std::isfinite(sigma) &&
+         sigma <= std::min(max_relative_sigma, 1.0) * std::abs(value);
+}
+
 std::vector<BlockSigma> ComputeBlockSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
                                            double variance_inflation, int num_threads, Eigen::MatrixXd* covariance) {
   std::vector<BlockSigma> out(blocks.size());

@@ -104,6 +104,13 @@ struct BlockSigma {
   bool determined = false;
   double sigma = 0.0;  // in units of the block value
 };
+// Whether a fit's one sigma determines value: a finite sigma (the block's
+// BlockSigma::determined) at most max_relative_sigma of |value| and never
+// above 100 % (a value zero within one sigma is not determined, whatever
+// max_relative_sigma is set to; the report says so, and --update-params
+// writes only what this says).
+bool SigmaDetermines(bool sigma_determined, double value, double sigma, double max_relative_sigma);
+
 std::vector<BlockSigma> ComputeBlockSigmas(ceres::Problem* problem, const std::vector<double*>& blocks,
                                            double variance_inflation, int num_threads,
                                            Eigen::MatrixXd* covariance = nullptr);

@@ -23,6 +23,9 @@ enum class EstimateBasis {
   kClampedArmFit,          // bench: output error of the clamped arm over `windows` windows
   kThrustPairs,            // bench: `windows` load-cell/telemetry pairs `spacing_s` apart
   kMotorFit,               // tau_m: output error over `windows` windows with `command_steps` steps
+                           // (at least min_command_steps on a motor)
+  kMotorFitContinuous,     // tau_m: the same fit with fewer steps, excited by the commands' continuous
+                           // variation (its relative sigma `relative_sigma` within max_relative_sigma)
   kMotorNotExcited,        // tau_m: `command_steps` per motor above `step_threshold_rad_s` (an error too)
   kFreeArmFit,             // flight: `windows` of `candidate_windows` windows, `with_imu`; `joint`: with
                            // `load_cell_pairs` pairs and `clamped_windows` bench windows in one problem
@@ -57,8 +60,11 @@ struct EstimateNote {
   double value = std::numeric_limits<double>::quiet_NaN();                 // kTipMassAgreesWithBase [kg]
   double sigma = std::numeric_limits<double>::quiet_NaN();                 // kTipMassAgreesWithBase [kg]
   double distance_sigmas = std::numeric_limits<double>::quiet_NaN();       // kTipMassAgreesWithBase
-  double relative_sigma = std::numeric_limits<double>::quiet_NaN();        // kTipMassHeld [1]
+  double relative_sigma = std::numeric_limits<double>::quiet_NaN();        // kTipMassHeld, kMotorFitContinuous [1]
   double data_share = std::numeric_limits<double>::quiet_NaN();            // kTipMassHeld, kTipMassDataShare [1]
+  // The size the sigma was judged against when it is not |value| (bench o_i,
+  // which may be zero: the strain noise) [unit of the value]; NaN: |value|.
+  double judged_size = std::numeric_limits<double>::quiet_NaN();
   std::vector<EstimateRemark> remarks;
 };
 

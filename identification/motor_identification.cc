@@ -1,6 +1,7 @@
 // tau_m from MOTOR telemetry against commands (bench and flight).
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <sstream>
@@ -91,8 +92,16 @@ void IdentifyMotorTimeConstant(const std::vector<SensorLog>& logs, const Birotor
   const std::vector<BlockSigma> sigma = ComputeBlockSigmas(&problem, {&tau_ratio}, inflation, options.num_threads);
   tau.value = tau_ratio * base.motor_time_constant_s;
   tau.sigma = sigma[0].sigma * base.motor_time_constant_s;
-  tau.determined = sigma[0].determined && tau.sigma <= options.max_relative_sigma * std::abs(tau.value);
-  tau.note.basis = tau.determined ? EstimateBasis::kMotorFit : EstimateBasis::kMotorNotExcited;
+  // Excitation: min_command_steps steps on a motor, or a continuous variation
+  // of the commands that the fit's sigma shows (for a first-order motor the
+  // relative sigma is about sigma_n / sqrt(sum (tau dw_cmd/dt)^2), sigma_n the
+  // telemetry noise): determined only when that sigma says so.
+  tau.determined = SigmaDetermines(sigma[0].determined, tau.value, tau.sigma, options.max_relative_sigma);
+  const bool stepped = std::max(steps[0], steps[1]) >= options.min_command_steps;
+  tau.note.basis = !tau.determined ? EstimateBasis::kMotorNotExcited
+                   : stepped       ? EstimateBasis::kMotorFit
+                                   : EstimateBasis::kMotorFitContinuous;
+  tau.note.relative_sigma = tau.sigma / std::abs(tau.value);
   tau.note.windows = static_cast<int>(blocks.size());
   tau.note.command_steps[0] = steps[0];
   tau.note.command_steps[1] = steps[1];

@@ -11,6 +11,7 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
+#include "nodes/controller_status_message.h"
 #include "numerics/percentile.h"
 #include "numerics/time_units.h"
 #include "transport/host_clock.h"
@@ -144,73 +145,26 @@ void ControllerService::RunControlPeriod(int64_t host_us) {
   last_period_vehicle_us_ = vehicle_us;
 }
 
+static_assert(kControllerStatusInputs == kNumControllerInputs, "CONTROLLER_STATUS counts every controller input");
+
 void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
-  controller_status_t& m = status_message_;
-  const ControllerHealth& h = health();
-  const int64_t now_us = VehicleTimeUs(host_us);
-  m.utime = now_us;
-  m.wall_utime = wall_utime;
-  ++m.seq;
-  m.mode = controller_.config().model_predictive ? kModeMpc
-           : controller_.config().force_feedback ? kModeForceFeedback
-                                                 : kModeNominal;
-  m.status = last_command_.status;
-  m.fallbacks = h.fallbacks;
-  m.descents = h.descents;
-  m.commands = h.commands;
-  m.saturated = h.saturated;
-  auto age = [&](const ControllerInputCounters& c) {
-    return c.last_utime < 0 || now_us < 0 ? kNaN : ElapsedSeconds(now_us, c.last_utime);
-  };
-  m.pose_age_s = age(h.pose);
-  m.imu_age_s = age(h.imu);
-  m.force_age_s = age(h.force);
-  const ControllerInputCounters* counters[kNumControllerInputs] = {&h.pose, &h.imu, &h.force};
-  for (int i = 0; i < kNumControllerInputs; ++i) {
-    m.received[i] = counters[i]->received + decode_errors_[i];
-    m.decode_errors[i] = decode_errors_[i];
-    m.rejected_invalid[i] = counters[i]->rejected_invalid;
-    m.rejected_out_of_order[i] = counters[i]->rejected_out_of_order;
-    m.rejected_future[i] = counters[i]->rejected_future;
-    m.rejected_past[i] = counters[i]->rejected_past;
-    m.rejected_foreign[i] = counters[i]->rejected_foreign;
-  }
-  m.pose_rejected_gate = h.pose.rejected_gate;
-  m.pose_gate_resets = h.pose_gate_resets;
-  m.conflicts = h.conflicts;
-  m.infeasible = h.infeasible;
-  m.clock_relatches = clock_relatches_;
-  m.efficiency[0] = h.efficiency[0];
-  m.efficiency[1] = h.efficiency[1];
-  const SetpointInput& setpoint = controller_.setpoint();
-  const SetpointCounters& sc = setpoint.counters();
-  m.setpoint_state = static_cast<int32_t>(setpoint.state());
-  m.setpoint_age_s = setpoint.last_utime() < 0 || now_us < 0 ? kNaN : ElapsedSeconds(now_us, setpoint.last_utime());
-  m.setpoint_received = sc.received + setpoint_decode_errors_;
-  m.setpoint_decode_errors = setpoint_decode_errors_;
-  m.setpoint_rejected_invalid = sc.rejected_invalid;
-  m.setpoint_rejected_stamp = sc.rejected_stamp;
-  m.setpoint_rejected_out_of_order = sc.rejected_out_of_order;
-  m.setpoint_rejected_rate = sc.rejected_rate;
-  m.setpoint_rejected_jump = sc.rejected_jump;
-  m.setpoint_timeouts = sc.timeouts;
+  ControllerStatusContext context;
+  context.now_us = VehicleTimeUs(host_us);
+  context.wall_utime = wall_utime;
+  context.last_status = last_command_.status;
+  for (int i = 0; i < kNumControllerInputs; ++i) context.decode_errors[i] = decode_errors_[i];
+  context.setpoint_decode_errors = setpoint_decode_errors_;
+  context.clock_relatches = clock_relatches_;
   const size_t n = std::min(loop_time_count_, kLoopTimeCapacity);
-  m.loop_time_p99_us = Percentile(loop_times_us_.begin(), loop_times_us_.begin() + n, 0.99);
-  m.loop_time_max_us = n == 0 ? kNaN : *std::max_element(loop_times_us_.begin(), loop_times_us_.begin() + n);
+  context.loop_time_p99_us = Percentile(loop_times_us_.begin(), loop_times_us_.begin() + n, 0.99);
+  context.loop_time_max_us = n == 0 ? kNaN : *std::max_element(loop_times_us_.begin(), loop_times_us_.begin() + n);
   loop_time_count_ = 0;
-  const MpcStats mpc = controller_.MpcStatistics();
-  const bool solved = mpc.solves > 0;
-  m.mpc_solves = mpc.solves;
-  m.mpc_fallbacks = mpc.Fallbacks();
-  m.mpc_solve_p50_us = solved ? 1e6 * mpc.solve_p50_s : kNaN;
-  m.mpc_solve_p99_us = solved ? 1e6 * mpc.solve_p99_s : kNaN;
-  m.mpc_solve_max_us = solved ? 1e6 * mpc.solve_max_s : kNaN;
-  m.mpc_iterations = mpc.last_iterations;
-  m.mpc_max_iterations = mpc.max_iterations;
-  m.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
-  m.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
-  EncodeMessage(m, &buffer_);
-  if (!buffer_.empty()) sink_->Publish(channels_.controller_status, now_us, buffer_.data(), buffer_.size());
+  context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
+  context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
+  ++status_message_.seq;
+  BuildControllerStatus(controller_, context, &status_message_);
+  EncodeMessage(status_message_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.controller_status, context.now_us, buffer_.data(), buffer_.size());
 }
 
 }  // namespace birotor

@@ -85,19 +85,16 @@ std::string Percent(double fraction, int decimals) {
   return out.str();
 }
 
-// The motor fit's estimate with no command step in its logs: the fit has
-// only the commands' continuous variation, not the excitation it is built on.
-bool MotorFitWithoutSteps(const ParameterEstimate& e) {
-  return e.note.basis == EstimateBasis::kMotorFit && e.note.command_steps[0] + e.note.command_steps[1] == 0;
-}
-
 }  // namespace
 
+// The library's rule (identification/fit_support.h SigmaDetermines): a
+// sigma above the judged size (|value|, or the note's judged_size) is not
+// determined; tau_m's excitation is the library's (EstimateBasis).
 std::string ReportStatus(const ParameterEstimate& e) {
-  const double relative_sigma = e.sigma / std::abs(e.value);
+  const double size = std::isfinite(e.note.judged_size) ? e.note.judged_size : std::abs(e.value);
+  const double relative_sigma = e.sigma / size;
   if (!e.determined || !std::isfinite(relative_sigma)) return "NOT determined";
   if (relative_sigma > 1.0) return "NOT determined relative to its size: zero within one sigma";
-  if (MotorFitWithoutSteps(e)) return "NOT determined by excitation: no command step in the logs";
   return "determined";
 }
 
@@ -115,6 +112,11 @@ std::string NoteText(const EstimateNote& n) {
     case EstimateBasis::kMotorFit:
       out << "output error over " << n.windows << " windows; " << n.command_steps[0] + n.command_steps[1]
           << " command steps";
+      break;
+    case EstimateBasis::kMotorFitContinuous:
+      out << "output error over " << n.windows << " windows; " << n.command_steps[0] + n.command_steps[1]
+          << " command steps: excited by the commands' continuous variation (relative sigma "
+          << Percent(n.relative_sigma, 2) << " %)";
       break;
     case EstimateBasis::kMotorNotExcited:
       out << MotorNotExcitedError(n);

@@ -14,6 +14,7 @@
 #include "transport/channels.h"
 #include "transport/lcm_codec.h"
 #include "transport/log_io.h"
+#include "transport/message_conversion.h"
 
 namespace birotor {
 
@@ -71,6 +72,7 @@ class FlightDecoder {
       if (ok) {
         data_->motor_command.Add(Time(command_.utime), {command_.omega_cmd_rad_s[0], command_.omega_cmd_rad_s[1],
                                                         double(command_.mode), double(command_.status)});
+        data_->figures.AddCommand(command_.status);
       }
     } else if (c == channels_.controller_status) {
       ok = Decode(event, &controller_);
@@ -83,6 +85,7 @@ class FlightDecoder {
     } else if (c == channels_.setpoint) {
       ok = Decode(event, &setpoint_);
       if (ok) data_->setpoint.Add(Time(setpoint_.utime), {setpoint_.x_m, setpoint_.z_m});
+      if (ok) data_->figures.AddSetpoint(FromMessage(setpoint_));
     } else if (c == channels_.imu) {
       ok = Decode(event, &imu_);
       if (ok) data_->imu.Add(Time(imu_.utime), {imu_.gyro_y_rad_s});
@@ -126,6 +129,7 @@ class FlightDecoder {
   bool AddTruth() {
     data_->truth.Add(Time(truth_.utime), {truth_.force_n[0], truth_.force_n[1], truth_.thrust_scale[0],
                                           truth_.thrust_scale[1], truth_.x_m, truth_.z_m, truth_.phi_rad});
+    data_->figures.AddTruth(FromMessage(truth_));
     return true;
   }
   bool AddStatus() {

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "samples/flight_figures.h"
+
 namespace birotor {
 
 // Columns sharing one time axis, e.g. FORCE's force_n[0], force_n[1], ...
@@ -49,6 +51,9 @@ struct FlightData {
   Table force;
   // TRUTH: force_n[2], thrust_scale[2], x_m, z_m, phi_rad.
   Table truth;
+  // The flight's figures (RMS, max tilt, fallbacks) by the one definition
+  // (samples/flight_figures.h), fed SETPOINT, TRUTH and MOTOR_COMMAND in log order.
+  FlightFigures figures;
   // ESTIMATOR_STATUS: per input (kReviewInputs) NIS mean, fused, rejected
   // (gate + invalid), received; then resets.
   Table status;

@@ -8,6 +8,7 @@
 
 #include "review/display_series.h"
 #include "review/html_text.h"
+#include "samples/flight_figures.h"
 #include "samples/motor_command.h"
 #include "samples/samples.h"
 
@@ -106,26 +107,25 @@ void AddForceFacts(const Table& force, FlightHeadline* h) {
   }
 }
 
-// The controller's fallbacks as it counts them (controller/vehicle_controller.cc,
-// ControllerHealth::fallbacks, which birotor-eval prints): in force-feedback
-// mode it starts in the fallback (no FORCE yet), so only an entry after a
-// command flown on FORCE counts; a command before the first POSE
-// (NO_POSE_YET) says nothing about FORCE.
+// The fallback events, by the one rule of samples/flight_figures.h (the
+// controller's: entries into FALLBACK_ACTIVE, the start counting as in the
+// fallback, NO_POSE_YET commands skipped), in every mode: force feedback and
+// mpc on FORCE alike: the count FlightFigures gives on the same MOTOR_COMMAND.
 void AddFallbacks(const Table& commands, FlightHeadline* h) {
   h->commands = static_cast<int64_t>(commands.rows());
   bool in_fallback = true;
+  size_t listed = 0;
   for (size_t row = 0; row < commands.rows(); ++row) {
-    const int64_t status = static_cast<int64_t>(commands.columns[kCommandStatusColumn][row]);
+    const int32_t status = static_cast<int32_t>(commands.columns[kCommandStatusColumn][row]);
     const bool fallback = (status & kCommandFallbackActive) != 0;
-    h->fallback_commands += fallback ? 1 : 0;
-    if ((status & kCommandNoPoseYet) != 0 || commands.columns[kCommandModeColumn][row] != kModeForceFeedback) continue;
-    if (!fallback && h->force_used_s < 0) h->force_used_s = commands.t_s[row];
-    if (fallback && !in_fallback) {
-      if (h->fallbacks < static_cast<int64_t>(kMaxListedRises))
-        h->events.push_back({commands.t_s[row], "fallback", "fallback"});
-      ++h->fallbacks;
+    if ((status & kCommandNoPoseYet) == 0 && !fallback && h->force_used_s < 0 &&
+        commands.columns[kCommandModeColumn][row] == kModeForceFeedback) {
+      h->force_used_s = commands.t_s[row];
     }
-    in_fallback = fallback;
+    h->fallback_commands += fallback ? 1 : 0;
+    if (!EntersFallback(status, &in_fallback)) continue;
+    ++h->fallbacks;
+    if (listed++ < kMaxListedRises) h->events.push_back({commands.t_s[row], "fallback", "fallback"});
   }
 }
 
@@ -183,7 +183,9 @@ std::vector<HeadlineRow> Rows(const FlightHeadline& h) {
   }
   if (h.force_used_s >= 0) fallbacks += fmt::format("; FORCE flown on from {:.3f} s", h.force_used_s);
   if (h.force_used_s < 0 && h.fallback_commands > 0) fallbacks += "; FORCE never flown on";
+  if (h.figures.mpc_fallbacks > 0) fallbacks += fmt::format("; MPC fallback periods {}", h.figures.mpc_fallbacks);
   rows.push_back({"fallbacks", fallbacks});
+  rows.push_back({"figures", h.has_truth ? h.figures.Line() : "no TRUTH in this log"});
   const std::string resets = Times(h.events, "reset", "");
   rows.push_back({"filter resets",
                   h.force_estimates == 0 ? "-"
@@ -209,6 +211,7 @@ FlightHeadline ComputeHeadline(const FlightData& d) {
   AddForceFacts(d.force, &h);
   AddTrueFaults(d.truth, &h.events);
   AddFallbacks(d.motor_command, &h);
+  h.figures = d.figures.Result();
   if (h.lost_at_s >= 0) h.events.push_back({h.lost_at_s, "lost", "lost"});
   std::stable_sort(h.events.begin(), h.events.end(),
                    [](const FlightEvent& a, const FlightEvent& b) { return a.t_s < b.t_s; });

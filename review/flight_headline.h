@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "review/flight_data.h"
+#include "samples/flight_figures.h"
 #include "samples/flight_verdict.h"
 #include "samples/rotor_count.h"
 
@@ -44,14 +45,16 @@ struct FlightHeadline {
   bool has_truth = false;
   bool has_command = false;
   double first_valid_s = -1.0;  // first FORCE with VALID; -1 without
-  // Entries into MOTOR_COMMAND's FALLBACK_ACTIVE after a command flown on
-  // FORCE, as the controller counts them (the start in the fallback is none).
-  int64_t fallbacks = 0;
-  double force_used_s = -1.0;                      // first force-feedback command flown on FORCE; -1 without
-  int64_t commands = 0;                            // MOTOR_COMMAND messages
-  int64_t fallback_commands = 0;                   // of them with FALLBACK_ACTIVE
-  double startup_reset_s = -1.0;                   // FILTER_RESET on the first FORCE (the start-up reset); -1 without
-  int64_t mismatch_rises = 0;                      // rises of MODEL_MISMATCH
+  // The flight's figures by the one definition (samples/flight_figures.h):
+  // RMS position error and max tilt (with TRUTH), fallbacks as the controller
+  // counts them (in every mode), MPC fallback periods.
+  FlightFigureValues figures;
+  int64_t fallbacks = 0;          // the same rule on the MOTOR_COMMAND table (equal to figures.fallbacks)
+  double force_used_s = -1.0;     // first force-feedback-mode command flown on FORCE; -1 without
+  int64_t commands = 0;           // MOTOR_COMMAND messages
+  int64_t fallback_commands = 0;  // of them with FALLBACK_ACTIVE
+  double startup_reset_s = -1.0;  // FILTER_RESET on the first FORCE (the start-up reset); -1 without
+  int64_t mismatch_rises = 0;     // rises of MODEL_MISMATCH
   int64_t rotor_fault_rises[kBirotorRotors] = {};  // rises of ROTOR<i>_FAULT
   std::vector<FlightEvent> events;                 // every event, in time order
 };

@@ -112,11 +112,12 @@ bool RunClosedLoopOffline(const Scenario& scenario, const SimOptions& options, c
   if (!FinishLog(&writer, log_sink.failed(), options.output)) return false;
   const ControlMetrics metrics = EvaluateControl(run);
   spdlog::info(
-      "closed loop ({}): {:.3f} s simulated in {:.3f} s wall; {} commands, {} fallbacks, {} descents; "
-      "RMS position error {:.4f} m, peak tilt {:.4f} rad, peak altitude loss {:.4f} m; wrote {} events to {}",
-      options.controller_mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
-      run.controller.descents, metrics.rms_position_error_m, metrics.peak_tilt_rad, metrics.peak_altitude_loss_m,
-      writer.events_written(), options.output);
+      "closed loop ({}): {:.3f} s simulated in {:.3f} s wall; {} commands, {} descents; peak altitude loss {:.4f} "
+      "m; wrote {} events to {}",
+      options.controller_mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.descents,
+      metrics.peak_altitude_loss_m, writer.events_written(), options.output);
+  // The flight's figures by the one definition birotor-eval and birotor-review print (docs/review.md).
+  spdlog::info("figures: {}", run.figures.Result().Line());
   spdlog::info("verdict: {}", metrics.verdict.Line());
   if (controller.model_predictive) {
     spdlog::info(

@@ -208,10 +208,11 @@ void FlyCascadeModes(const ControlCase& c, const Scenario& scenario, bool first_
     NoteIfLost(fmt::format("{} seed {}", c.name, scenario.seed), mode, metrics, tables);
     figures->cascade[force_feedback ? 1 : 0].push_back(FiguresOf(metrics));
     spdlog::info(
-        "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} fallbacks, {} descents, {} saturated; final "
-        "efficiency {:.3f} {:.3f}",
-        c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.fallbacks,
-        run.controller.descents, run.controller.saturated, run.controller.efficiency[0], run.controller.efficiency[1]);
+        "{} seed {} {}: {:.1f} s flown in {:.2f} s; {} commands, {} descents, {} saturated; final "
+        "efficiency {:.3f} {:.3f}; figures: {}",
+        c.name, scenario.seed, mode, run.simulated_s, run.wall_s, run.controller.commands, run.controller.descents,
+        run.controller.saturated, run.controller.efficiency[0], run.controller.efficiency[1],
+        run.figures.Result().Line());
     LogDescentFloor(fmt::format("{} seed {} {}", c.name, scenario.seed, mode), run, metrics, scenario);
     if (first_seed) {
       figures->traces.push_back(TraceOf(run, mode));
@@ -234,9 +235,9 @@ void FlyMpcModes(const ControlCase& c, const Scenario& scenario, const Estimator
     tables->mpc_violations += figures->mpc[m].back().commands_out_of_bounds + figures->mpc[m].back().commands_over_rate;
     tables->runs += ControlTableRow(fmt::format("{} seed {}", c.name, scenario.seed), kMpcModes[m], metrics, run);
     NoteIfLost(fmt::format("{} seed {}", c.name, scenario.seed), kMpcModes[m], metrics, tables);
-    spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, {} fallbacks, solve p99 {:.0f} us", c.name,
-                 scenario.seed, kMpcModes[m], run.simulated_s, run.wall_s, run.mpc.solves, run.mpc.Fallbacks(),
-                 1e6 * run.mpc.solve_p99_s);
+    spdlog::info("{} seed {} {}: {:.1f} s flown in {:.2f} s; {} solves, solve p99 {:.0f} us; figures: {}", c.name,
+                 scenario.seed, kMpcModes[m], run.simulated_s, run.wall_s, run.mpc.solves, 1e6 * run.mpc.solve_p99_s,
+                 run.figures.Result().Line());
     LogDescentFloor(fmt::format("{} seed {} {}", c.name, scenario.seed, kMpcModes[m]), run, metrics, scenario);
   }
 }

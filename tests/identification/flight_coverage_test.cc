@@ -14,6 +14,7 @@
 #include <string>
 
 #include "identification/identify.h"
+#include "params/identified_parameter_file.h"
 #include "tests/identification/simulated_logs.h"
 
 namespace birotor {
@@ -88,6 +89,7 @@ TEST(FlightCoverageTest, DeterminedParametersWithinThreeSigmaIn95PercentOf25Flig
   constexpr double kDurationS = 8.0;
   std::map<std::string, Tally> by_parameter;
   std::map<std::string, Tally> by_kind;  // key "kind symbol"
+  std::map<std::string, int> tau_bases;  // tau_m's excitation: steps, continuous, not excited
   for (int n = 0; n < kCases; ++n) {
     const FlightCase c = MakeCase(n, kDurationS);
     const std::string scenario = c.kind == "figure_eight" ? "gentle" : c.kind;
@@ -96,6 +98,15 @@ TEST(FlightCoverageTest, DeterminedParametersWithinThreeSigmaIn95PercentOf25Flig
     const IdentificationResult r = Identify({log}, c.base, c.options, IdentificationMode::kFlight);
     ASSERT_TRUE(r.ok) << "case " << n << " " << c.kind;
     for (const ParameterEstimate& e : r.estimates) {
+      // The report and the library agree (issue 39): what the report calls
+      // determined is what --update-params writes, and no other.
+      EXPECT_EQ(ReportStatus(e) == "determined", e.determined) << "case " << n << " " << e.symbol;
+      if (e.symbol == "tau_m") {
+        ++tau_bases[e.note.basis == EstimateBasis::kMotorFit             ? "steps"
+                    : e.note.basis == EstimateBasis::kMotorFitContinuous ? "continuous"
+                                                                         : "not excited"];
+        std::printf("case %2d tau_m: %d + %d command steps\n", n, e.note.command_steps[0], e.note.command_steps[1]);
+      }
       if (!e.determined) continue;
       const double truth = TruthOf(c.truth, e.symbol);
       ASSERT_TRUE(std::isfinite(truth)) << e.symbol;
@@ -115,6 +126,8 @@ TEST(FlightCoverageTest, DeterminedParametersWithinThreeSigmaIn95PercentOf25Flig
       std::printf("| %s | %d | %d | %.2f |\n", name.c_str(), t.determined, t.within_3_sigma, t.max_error_in_sigmas);
     }
   }
+  for (const auto& [basis, count] : tau_bases)
+    std::printf("tau_m excited by %s: %d of %d\n", basis.c_str(), count, kCases);
   for (const auto& [symbol, t] : by_parameter) {
     EXPECT_GE(t.within_3_sigma, 0.95 * t.determined) << symbol;  // issue 26 item 3
     EXPECT_LE(t.max_error_in_sigmas, 5.0) << symbol;

@@ -226,7 +226,12 @@ TEST(ParameterFileTest, ReportNeverCallsAnUnusableValueDetermined) {
   ParameterEstimate tau = Estimate("motor_time_constant_s", "tau_m", 0.034511, 0.000688061, true);
   tau.note.basis = EstimateBasis::kMotorFit;
   tau.note.windows = 40;
+  // 0 steps: determined by the commands' continuous variation (the library's
+  // kMotorFitContinuous); the report agrees with the library.
+  tau.note.basis = EstimateBasis::kMotorFitContinuous;
+  tau.note.relative_sigma = 0.000688061 / 0.034511;
   ParameterEstimate stepped = tau;
+  stepped.note.basis = EstimateBasis::kMotorFit;
   stepped.note.command_steps[0] = 2664;
   stepped.note.command_steps[1] = 2663;
   const ParameterEstimate tip_mass = Estimate("tip_mass_kg", "m_p", 0.28812, NAN, false);
@@ -236,8 +241,8 @@ TEST(ParameterFileTest, ReportNeverCallsAnUnusableValueDetermined) {
                         "its size: zero within one sigma |"),
             std::string::npos)
       << report;
-  EXPECT_NE(report.find("| tau_m | motor_time_constant_s | 0.034511 | 0.000688061 | 1.99 % | NOT determined by "
-                        "excitation: no command step in the logs |"),
+  EXPECT_NE(report.find("output error over 40 windows; 0 command steps: excited by the commands' continuous "
+                        "variation (relative sigma 1.99 %)"),
             std::string::npos)
       << report;
   EXPECT_NE(report.find("| tau_m | motor_time_constant_s | 0.034511 | 0.000688061 | 1.99 % | determined |"),
@@ -248,7 +253,7 @@ TEST(ParameterFileTest, ReportNeverCallsAnUnusableValueDetermined) {
       << report;
   EXPECT_EQ(report.find("nan"), std::string::npos) << report;
   EXPECT_NE(report.find("## Undetermined parameters\n\n- o_1 (gauge_offset_rad[0]): NOT determined relative to its "
-                        "size: zero within one sigma; the fit's value is written\n- tau_m"),
+                        "size: zero within one sigma; the fit's value is written\n- m_p"),
             std::string::npos)
       << report;
   EXPECT_NE(report.find("\n- m_p (tip_mass_kg)\n"), std::string::npos) << report;
