@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "birotor/controller_status_t.hpp"
 #include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
@@ -56,16 +57,18 @@ std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failur
   *decode_failures = 0;
   while (reader.Next(&event)) {
     const std::string& channel = event.channel;
-    const bool decoded = channel == c.strain          ? DecodesAs<strain_t>(event, true)
-                         : channel == c.motor         ? DecodesAs<motor_t>(event)
-                         : channel == c.imu           ? DecodesAs<imu_t>(event)
-                         : channel == c.pose          ? DecodesAs<pose_t>(event)
-                         : channel == c.loadcell      ? DecodesAs<loadcell_t>(event)
-                         : channel == c.truth         ? DecodesAs<truth_t>(event)
-                         : channel == c.force         ? DecodesAs<force_estimate_t>(event)
-                         : channel == c.motor_command ? DecodesAs<motor_command_t>(event, true)
-                         : channel == c.setpoint      ? DecodesAs<setpoint_t>(event, true)
-                                                      : false;  // a channel the simulator does not write
+    const bool decoded = channel == c.strain              ? DecodesAs<strain_t>(event, true)
+                         : channel == c.motor             ? DecodesAs<motor_t>(event)
+                         : channel == c.imu               ? DecodesAs<imu_t>(event)
+                         : channel == c.pose              ? DecodesAs<pose_t>(event)
+                         : channel == c.loadcell          ? DecodesAs<loadcell_t>(event)
+                         : channel == c.truth             ? DecodesAs<truth_t>(event)
+                         : channel == c.force             ? DecodesAs<force_estimate_t>(event)
+                         : channel == c.motor_command     ? DecodesAs<motor_command_t>(event, true)
+                         : channel == c.setpoint          ? DecodesAs<setpoint_t>(event, true)
+                         : channel == c.estimator_status  ? DecodesAs<estimator_status_t>(event)
+                         : channel == c.controller_status ? DecodesAs<controller_status_t>(event)
+                                                          : false;  // a channel the simulator does not write
     if (!decoded) ++*decode_failures;
     ++counts[event.channel];
   }
@@ -143,6 +146,9 @@ TEST(SimLogTest, ClosedLoopLogHasEveryChannelAndIsByteIdenticalForTheSameSeed) {
   EXPECT_EQ(counts[c.motor], 500);
   EXPECT_EQ(counts[c.setpoint], 100);  // the trajectory at 100 Hz (ClosedLoopOptions)
   EXPECT_EQ(counts[c.truth], 1000);
+  // The nodes' status at 5 Hz on the vehicle clock (the lock-step loop writes them as the nodes do).
+  EXPECT_GE(counts[c.estimator_status], 4);
+  EXPECT_GE(counts[c.controller_status], 4);
   std::remove(a.c_str());
   std::remove(b.c_str());
 }
