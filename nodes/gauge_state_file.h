@@ -51,8 +51,8 @@ bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibratio
 // [1e-9, 1e-2] rad: the checksum does not stop a forged file); or a foreign
 // file (other vehicle checksum).
 // A trailing mac line (the authenticated file below) is not checked here:
-// birotor-identify --learned reads the file on a ground station without the
-// site key.
+// this reader only says what a file is (birotor-identify --learned deploys
+// nothing from it: it reads with the site key, nodes/learned_values_file.h).
 bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
                     GaugeCalibration* calibration, std::string* error);
 

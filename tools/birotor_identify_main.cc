@@ -3,7 +3,8 @@
 // maps with Ceres, and writes the parameter file the estimator and simulator
 // load (or updates a complete one in place), plus a readable report. With
 // --learned it deploys instead what the estimator learned in flight (the
-// strain scales of its gauge state file) into the --update-params file.
+// strain scales of its authenticated gauge state file, or what a re-run of a
+// flight log's inputs learns) into the --update-params file.
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -30,6 +31,7 @@
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "replay/identification_log_loader.h"
+#include "tools/identify_learned_source.h"
 #include "transport/host_clock.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
@@ -43,7 +45,8 @@ struct IdentifyOptions {
   std::string config;  // optional file with an `identification:` section
   std::string output;
   std::string update_params;  // complete parameter file updated in place (FILE.bak keeps the old one)
-  std::string learned;        // gauge state file whose learned values go into update_params (no fit)
+  // --learned, --site-key, --estimator-config: what the estimator learned goes into update_params (no fit)
+  birotor::LearnedSourceOptions learned_source;
   birotor::LearnedDeployOptions learned_options;
   std::string report;
   std::string plot;
@@ -125,13 +128,23 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                      "kept as FILE.bak; a symbolic link is updated through its target (TARGET.bak); FILE.bak must be "
                      "absent or a regular file");
   CLI::Option* learned =
-      app.add_option("--learned", cli->learned,
+      app.add_option("--learned", cli->learned_source.learned,
                      "Deploy what the estimator learned in flight instead of fitting logs: its gauge state file "
-                     "(estimator state_file, written at a clean stop) or an LCM log of the flight (the newest "
-                     "ESTIMATOR_STATUS with a learned value, on --prefix), from a run with learn_strain_scale or "
-                     "learn_body_mass on, with the vehicle of the --update-params file (needs it; no --log, --output, "
-                     "--report, --plot). A strain scale g_i multiplies gauge_scale[i], a body mass replaces "
-                     "body_mass_kg (docs/identification.md)");
+                     "(estimator state_file, written at a clean stop; its mac must verify under --site-key) or an "
+                     "LCM log of the flight (the estimator re-run over the log's inputs on --prefix with "
+                     "--estimator-config; a recorded ESTIMATOR_STATUS is only compared, never deployed), with the "
+                     "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). A strain "
+                     "scale g_i multiplies gauge_scale[i], a body mass replaces body_mass_kg "
+                     "(docs/identification.md)");
+  app.add_option("--site-key", cli->learned_source.site_key_file,
+                 "Site key file (32 raw bytes, not group/world-writable) authenticating the --learned gauge state "
+                 "file; a state file that does not verify is refused")
+      ->capture_default_str();
+  app.add_option("--estimator-config", cli->learned_source.estimator_config,
+                 "--learned LOG: estimator parameter file the log's inputs are re-run with (its estimator: section, "
+                 "learn_strain_scale / learn_body_mass on as in the flight; the vehicle is the --update-params "
+                 "file's); default: the " +
+                     ConfigSearchText("estimator.yaml"));
   app.add_option(
          "--learned-max-std-fraction", cli->learned_options.max_std_fraction,
          "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
@@ -360,18 +373,19 @@ std::string WriteResults(const IdentifyOptions& cli, const birotor::Identificati
   return "";
 }
 
-// --learned: what the estimator learned (its gauge state file, or the
-// newest ESTIMATOR_STATUS with a learned value of a flight log) into the
-// --update-params file. Both name the vehicle it was learned on (a checksum
-// of the vehicle section): a file for another vehicle, or one already
-// updated with it (its gauge_scale changed), is refused, so a value is
-// never applied twice. Returns an error message, empty on success.
+// --learned: what the estimator learned (its authenticated gauge state file,
+// or a re-run of a flight log's inputs, tools/identify_learned_source.h) into
+// the --update-params file. A state file names the vehicle it was learned on
+// (a checksum of the vehicle section), as does a log's recorded status: a
+// file for another vehicle, or one already updated with it (its gauge_scale
+// changed), is refused, so a value is never applied twice. Returns an error
+// message, empty on success.
 std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix) {
   using namespace birotor;
   Outputs out;
   std::string error;
   if (!PrepareParameterFileUpdate(cli.update_params, &out.update, &error) ||
-      !CheckOutputs({cli.update_params, out.update.backup}, {cli.learned}, &error)) {
+      !CheckOutputs({cli.update_params, out.update.backup}, {cli.learned_source.learned}, &error)) {
     return "--update-params " + cli.update_params + ": " + error;
   }
   try {
@@ -379,18 +393,21 @@ std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix)
   } catch (const ParamError& e) {
     return e.what();
   }
+  LearnedSourceOptions source = cli.learned_source;
+  source.prefix = prefix;
+  source.min_usable_fraction = cli.min_usable_fraction;
   LearnedVehicleValues learned;
-  if (!ReadLearnedValues(cli.learned, prefix, VehicleChecksum(out.update_vehicle), &learned, &error)) {
-    return "--learned " + error + " (it must come from a flight with the vehicle " + cli.update_params +
-           " describes now)";
+  if (!(error = ReadTrustedLearnedValues(source, out.update_vehicle, cli.update_params, &learned)).empty()) {
+    return error;
   }
   BirotorParams deployed = out.update_vehicle;
   std::vector<LearnedChange> changes;
-  if (!ApplyLearnedValues(learned, cli.learned_options, cli.learned, cli.update_params, &deployed, &changes, &error)) {
+  if (!ApplyLearnedValues(learned, cli.learned_options, source.learned, cli.update_params, &deployed, &changes,
+                          &error)) {
     return error;
   }
   const std::string stamp = UtcDateTime() + " by birotor-identify from what the estimator learned (" +
-                            std::filesystem::path(cli.learned).filename().string() +
+                            std::filesystem::path(source.learned).filename().string() +
                             "): " + LearnedChangesText(changes);
   spdlog::info("learned: {}", LearnedChangesText(changes));
   return WriteVehicleInPlace(cli, deployed, stamp, out);
@@ -410,7 +427,7 @@ int main(int argc, char** argv) {
   AddIdentifyOptions(app, &common, &cli, &options);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-identify", common.log_level);
-  if (!cli.learned.empty()) {
+  if (!cli.learned_source.learned.empty()) {
     const std::string error = DeployLearned(cli, common.prefix);
     return error.empty() ? 0 : ReportError(error);
   }

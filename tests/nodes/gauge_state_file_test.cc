@@ -348,7 +348,7 @@ TEST(AuthenticatedGaugeStateTest, AGenuineFileRestoresEveryBit) {
   EXPECT_EQ(read.offset_rad[0], Learned().offset_rad[0]);
   EXPECT_EQ(read.offset_rad[1], Learned().offset_rad[1]);
   EXPECT_EQ(read.source, GaugeOffsetSource::kStateFile);
-  // birotor-identify --learned reads it without the key.
+  // The unauthenticated reader (the kind probe of birotor-identify --learned) skips the mac line.
   GaugeCalibration unauthenticated;
   ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, &unauthenticated, &error)) << error;
   EXPECT_EQ(unauthenticated.offset_rad[1], Learned().offset_rad[1]);

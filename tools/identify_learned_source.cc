@@ -1,0 +1,85 @@
+// birotor-identify --learned: a state file under the site key, a log re-run.
+#include "tools/identify_learned_source.h"
+
+#include <spdlog/spdlog.h>
+
+#include "nodes/gauge_state_file.h"
+#include "nodes/learned_values_file.h"
+#include "params/estimator_config_yaml.h"
+#include "program/config_files.h"
+#include "replay/learned_rerun.h"
+#include "security/message_authenticator.h"
+#include "security/site_key.h"
+
+namespace birotor {
+namespace {
+
+// The state file's strain scales, its mac verified under the site key (the
+// estimator's check, services/birotor_estimator_main.cc).
+std::string FromStateFile(const LearnedSourceOptions& options, const std::string& vehicle_checksum,
+                          LearnedVehicleValues* learned) {
+  SiteKey key(SiteKey::Bytes{});
+  std::string error;
+  if (!SiteKey::Load(options.site_key_file, &key, &error)) {
+    return "--learned: gauge state file " + options.learned + " is not authenticated (" + error +
+           "): not deployed, nothing written";
+  }
+  const MessageAuthenticator authenticator(key);
+  if (!ReadLearnedState(options.learned, vehicle_checksum, authenticator, learned, &error)) {
+    return "--learned " + error + ": not deployed, nothing written";
+  }
+  return "";
+}
+
+// The estimator file of the re-run, with the vehicle the values are deployed into.
+std::string RerunConfig(const LearnedSourceOptions& options, const BirotorParams& vehicle, EstimatorConfig* config) {
+  const std::string file =
+      options.estimator_config.empty() ? FindConfigFile("estimator.yaml") : options.estimator_config;
+  try {
+    *config = LoadEstimatorConfig(file);
+  } catch (const std::exception& e) {
+    return std::string("--estimator-config: ") + e.what();
+  }
+  config->vehicle = BirotorDescription(vehicle);
+  spdlog::info("re-running {} over the inputs of {} (estimator file {})", config->method, options.learned, file);
+  return "";
+}
+
+// What the log's inputs support, compared with its recorded status.
+std::string FromLog(const LearnedSourceOptions& options, const BirotorParams& vehicle, const std::string& update_params,
+                    LearnedVehicleValues* learned) {
+  const std::string vehicle_checksum = VehicleChecksum(vehicle);
+  LearnedVehicleValues recorded;
+  std::string recorded_checksum, error;
+  const bool has_recorded =
+      ReadRecordedLearnedValues(options.learned, options.prefix, &recorded, &recorded_checksum, &error);
+  if (!has_recorded) spdlog::info("{}; nothing recorded to compare with the re-run", error);
+  if (has_recorded && recorded_checksum != vehicle_checksum) {
+    // Guards against deploying one flight twice (the file changed since).
+    return "--learned " + options.learned + ": its newest ESTIMATOR_STATUS with a learned value was flown with " +
+           "another vehicle or parameter file (vehicle checksum '" + recorded_checksum + "', " + update_params +
+           " now " + vehicle_checksum + "): not deployed, nothing written";
+  }
+  EstimatorConfig config;
+  if (!(error = RerunConfig(options, vehicle, &config)).empty()) return error;
+  LearnedRerun rerun;
+  if (!RelearnFromLog(options.learned, config, options.prefix, options.min_usable_fraction, &rerun, &error)) {
+    return "--learned " + error + ": nothing written";
+  }
+  if (!rerun.damage.empty()) spdlog::warn("{}", rerun.damage);
+  for (const LearnedDisagreement& d : CompareLearnedValues(recorded, rerun.learned)) {
+    spdlog::warn("{}: {}", options.learned, DisagreementText(d));
+  }
+  *learned = rerun.learned;
+  return "";
+}
+
+}  // namespace
+
+std::string ReadTrustedLearnedValues(const LearnedSourceOptions& options, const BirotorParams& vehicle,
+                                     const std::string& update_params, LearnedVehicleValues* learned) {
+  if (IsLcmLog(options.learned)) return FromLog(options, vehicle, update_params, learned);
+  return FromStateFile(options, VehicleChecksum(vehicle), learned);
+}
+
+}  // namespace birotor
