@@ -1,12 +1,17 @@
 // Issue 27 item 2 end to end: a mismatched vehicle (config/scenarios/
 // mismatch_gauge_scale_0p7.yaml, mismatch_stiffness_plus20.yaml,
-// mismatch_payload_plus15.yaml) is flown with learning on; the state file
-// (or the flight log's ESTIMATOR_STATUS) it leaves is deployed with
-// `birotor-identify --update-params COPY --learned STATE` into a copy of
-// config/estimator.yaml; the EKF WITHOUT learning on the updated copy is then
-// as accurate on that vehicle as with the true file (docs/identification.md,
-// "Deploying what the estimator learned"). Figures measured on the
-// development VM (2 cores); bounds at most 1.5x.
+// mismatch_payload_plus15.yaml) is flown with learning on, recorded as on the
+// vehicle (the lock-step simulator's inputs and the estimator's FORCE and
+// ESTIMATOR_STATUS in one log); the state file it leaves (under the site
+// key) or the log is deployed with `birotor-identify --update-params COPY
+// --learned STATE|LOG` into a copy of config/estimator.yaml; the EKF WITHOUT
+// learning on the updated copy is then as accurate on that vehicle as with
+// the true file (docs/identification.md, "Deploying what the estimator
+// learned"). Issue 37 item 4: a forged or unsigned state file is refused, and
+// a forged ESTIMATOR_STATUS appended to the log is not deployed (the log's
+// inputs are re-run). Figures measured on the development VM (2 cores);
+// bounds at most 1.5x.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +20,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +28,11 @@
 #include "nodes/gauge_state_file.h"
 #include "nodes/status_message.h"
 #include "params/estimator_config_yaml.h"
+#include "replay/replayer.h"
+#include "security/message_authenticator.h"
+#include "security/site_key.h"
+#include "sinks/message_sink.h"
+#include "sinks/wire_sample_sink.h"
 #include "tests/estimator/scenario_harness.h"
 #include "transport/channels.h"
 #include "transport/log_io.h"
@@ -43,11 +54,17 @@ std::string ReadText(const std::string& path) {
   return text.str();
 }
 
-// birotor-identify with args; its exit status.
-int RunIdentify(const std::vector<std::string>& args) {
+// birotor-identify with args; its exit status, its stderr in *err (optional).
+int RunIdentify(const std::vector<std::string>& args, std::string* err = nullptr) {
+  const std::string err_path = ::testing::TempDir() + "/learned_deploy_stderr_" + std::to_string(getpid());
   std::string command = std::string(BIROTOR_IDENTIFY_BIN) + " --log-level warn";
   for (const std::string& a : args) command += " '" + a + "'";
+  command += " 2> '" + err_path + "'";
   const int status = std::system(command.c_str());
+  const std::string text = ReadText(err_path);
+  if (err != nullptr) *err = text;
+  std::fputs(text.c_str(), stderr);
+  std::remove(err_path.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -60,17 +77,52 @@ struct Folder {
   std::string path;
 };
 
-// A flight log holding the ESTIMATOR_STATUS the daemon publishes for `health`.
-void WriteStatusLog(const PipelineHealth& health, const std::string& vehicle_checksum, const std::string& path) {
-  StatusContext context;
-  context.vehicle_checksum = vehicle_checksum.c_str();
-  estimator_status_t status;
-  BuildStatusMessage(health, "ekf", context, &status);
+// A site key file as deploy/postinst makes it: 32 random bytes, mode 0600.
+SiteKey WriteKeyFile(const std::string& path) {
+  SiteKey::Bytes bytes;
+  std::random_device random;
+  for (uint8_t& b : bytes) b = static_cast<uint8_t>(random());
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  EXPECT_GE(fd, 0) << path;
+  EXPECT_EQ(write(fd, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+  close(fd);
+  return SiteKey(bytes);
+}
+
+// The shipped config/estimator.yaml with learning switched on, at path.
+void WriteLearningConfig(const std::string& path, bool strain_scale, bool body_mass) {
+  std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  for (const auto& [key, on] : {std::pair<std::string, bool>{"learn_strain_scale: ", strain_scale},
+                                std::pair<std::string, bool>{"learn_body_mass: ", body_mass}}) {
+    const size_t at = text.find(key + "false");
+    ASSERT_NE(at, std::string::npos) << key;
+    if (on) text.replace(at + key.size(), 5, "true ");
+  }
+  std::ofstream(path) << text;
+}
+
+// The flight as recorded on the vehicle: the lock-step simulator's packets
+// through the estimator daemon's own service (config, learning on), both
+// into one log; `forged` (optional) appended 1 ms after the newest input.
+// Returns the estimator's final state (what it persists at a clean stop).
+PipelineHealth RecordFlightLog(const Scenario& scenario, const EstimatorConfig& config, const std::string& path,
+                               const estimator_status_t* forged = nullptr) {
   LogWriter writer;
   std::string error;
-  ASSERT_TRUE(writer.Open(path, &error)) << error;
-  ASSERT_TRUE(writer.WriteMessage(MakeChannelNames().estimator_status, 0, status));
-  ASSERT_TRUE(writer.Close()) << writer.error();
+  EXPECT_TRUE(writer.Open(path, &error)) << error;
+  LogSink log(&writer);
+  ReplayOptions options;
+  options.copy_truth = false;  // TRUTH reaches the log from the simulator
+  Replayer estimator(config, options, &log);
+  TeeSink both(&log, &estimator);
+  WireSampleSink wire(MakeChannelNames(), &both);
+  Simulator simulator(scenario);
+  simulator.Run(&wire);
+  if (forged != nullptr) {
+    EXPECT_TRUE(writer.WriteMessage(MakeChannelNames().estimator_status, estimator.stats().last_utime + 1000, *forged));
+  }
+  EXPECT_TRUE(writer.Close()) << writer.error();
+  return estimator.service().health();
 }
 
 double WorseMae(const ScenarioRun& run, int64_t from_utime) {
@@ -124,29 +176,34 @@ Figures LearnDeployAndCheck(const Case& c) {
   Figures f;
   Folder folder;
   const std::string shipped = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
-  const std::string params = folder.path + "/estimator.yaml";
-  const std::string state = folder.path + "/gauge_state";
+  const std::string params = folder.path + "/estimator.yaml", state = folder.path + "/gauge_state";
+  const std::string key_file = folder.path + "/site.key", learning_file = folder.path + "/learning.yaml";
+  const std::string log = folder.path + "/flight.lcm";
   fs::copy_file(shipped, params);
+  const SiteKey key = WriteKeyFile(key_file);
+  WriteLearningConfig(learning_file, true, false);
 
-  // 1. Fly with learning on; persist as the daemon does at a clean stop.
-  EstimatorConfig learning = LoadEstimatorConfig(params);
-  learning.ekf.learn_strain_scale = true;
-  const ScenarioRun learned_run = RunScenario(
-      LoadScenario(ScenarioFile(c.scenario), {"scenario.duration_s=" + std::to_string(c.learning_flight_s)}), learning);
-  const GaugeCalibration& learned = learned_run.health.gauge;
+  // 1. Fly with learning on, recorded; persist as the daemon does at a clean stop.
+  const EstimatorConfig learning = LoadEstimatorConfig(learning_file);
+  const PipelineHealth flown = RecordFlightLog(
+      LoadScenario(ScenarioFile(c.scenario), {"scenario.duration_s=" + std::to_string(c.learning_flight_s)}), learning,
+      log);
+  const GaugeCalibration& learned = flown.gauge;
   EXPECT_TRUE(learned.has_strain_scale);
+  const std::string vehicle = VehicleChecksum(BirotorModelOf(learning.vehicle));
   std::string error;
-  EXPECT_TRUE(WriteGaugeState(state, learned, VehicleChecksum(BirotorModelOf(learning.vehicle)), &error)) << error;
+  EXPECT_TRUE(WriteGaugeState(state, learned, vehicle, MessageAuthenticator(key), &error)) << error;
 
   // 2. Deploy into the copy: gauge_scale[i] = 1 x g_i, every other key kept.
   const std::string before = ReadText(params);
   std::vector<std::string> fraction;
+  const std::vector<std::string> deploy_state = {"--update-params", params, "--learned", state, "--site-key", key_file};
   if (!c.max_std_fraction.empty()) {
-    EXPECT_NE(RunIdentify({"--update-params", params, "--learned", state}), 0);  // not learned by the default
+    EXPECT_NE(RunIdentify(deploy_state), 0);  // not learned by the default
     EXPECT_EQ(ReadText(params), before);
     fraction = {"--learned-max-std-fraction", c.max_std_fraction};
   }
-  std::vector<std::string> deploy = {"--update-params", params, "--learned", state};
+  std::vector<std::string> deploy = deploy_state;
   deploy.insert(deploy.end(), fraction.begin(), fraction.end());
   EXPECT_EQ(RunIdentify(deploy), 0);
   EXPECT_EQ(ReadText(params + ".bak"), before);
@@ -159,19 +216,21 @@ Figures LearnDeployAndCheck(const Case& c) {
     EXPECT_NEAR(deployed.vehicle.arms[i].gauge_scale, learned.strain_scale[i], 1e-9);
     others.gauge_scale[i] = 1.0;
   }
-  EXPECT_EQ(VehicleChecksum(others), VehicleChecksum(BirotorModelOf(learning.vehicle)));
-  // The flight's log (its last ESTIMATOR_STATUS) deploys the same values.
-  const std::string log_copy = folder.path + "/from_log.yaml", log = folder.path + "/flight.lcm";
+  EXPECT_EQ(VehicleChecksum(others), vehicle);
+  // The flight's log (its inputs re-run with the flight's estimator file)
+  // deploys the same values: the re-run sees the bytes the estimator saw.
+  const std::string log_copy = folder.path + "/from_log.yaml";
   fs::copy_file(shipped, log_copy);
-  WriteStatusLog(learned_run.health, VehicleChecksum(BirotorModelOf(learning.vehicle)), log);
-  std::vector<std::string> from_log = {"--update-params", log_copy, "--learned", log};
+  std::vector<std::string> from_log = {"--update-params",    log_copy,     "--learned", log,
+                                       "--estimator-config", learning_file};
   from_log.insert(from_log.end(), fraction.begin(), fraction.end());
   EXPECT_EQ(RunIdentify(from_log), 0);
-  for (int i = 0; i < 2; ++i)
-    EXPECT_EQ(LoadEstimatorConfig(log_copy).vehicle.arms[i].gauge_scale, deployed.vehicle.arms[i].gauge_scale);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(LoadEstimatorConfig(log_copy).vehicle.arms[i].gauge_scale, deployed.vehicle.arms[i].gauge_scale, 1e-9);
+  }
   // The same state again is refused (the file's vehicle changed): never applied twice.
   const std::string after = ReadText(params);
-  EXPECT_NE(RunIdentify({"--update-params", params, "--learned", state}), 0);
+  EXPECT_NE(RunIdentify(deploy_state), 0);
   EXPECT_EQ(ReadText(params), after);
 
   // 3. Without learning, on another manoeuvre of that vehicle.
@@ -228,23 +287,148 @@ TEST(LearnedDeploy, PayloadBodyMass) {
   const Case c{"mismatch_payload_plus15", 15.0, [](BirotorParams* v) { v->body_mass_kg = 4.6; }, ""};
   Folder folder;
   const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/flight.lcm";
+  const std::string learning_file = folder.path + "/learning.yaml";
   fs::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
-  EstimatorConfig learning = LoadEstimatorConfig(params);
-  learning.ekf.learn_body_mass = true;
-  const ScenarioRun learned_run = RunScenario(
-      LoadScenario(ScenarioFile(c.scenario), {"scenario.duration_s=" + std::to_string(c.learning_flight_s)}), learning);
-  WriteStatusLog(learned_run.health, VehicleChecksum(BirotorModelOf(learning.vehicle)), log);
-  std::printf("learned mass %.4f +- %.4f kg\n", learned_run.health.body_mass_kg, learned_run.health.body_mass_std_kg);
-  EXPECT_NEAR(learned_run.health.body_mass_kg, 4.6, 0.02);  // measured 0.013 kg off
-  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", log}), 0);
+  WriteLearningConfig(learning_file, false, true);
+  const PipelineHealth flown = RecordFlightLog(
+      LoadScenario(ScenarioFile(c.scenario), {"scenario.duration_s=" + std::to_string(c.learning_flight_s)}),
+      LoadEstimatorConfig(learning_file), log);
+  std::printf("learned mass %.4f +- %.4f kg\n", flown.body_mass_kg, flown.body_mass_std_kg);
+  EXPECT_NEAR(flown.body_mass_kg, 4.6, 0.02);  // measured 0.013 kg off
+  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", log, "--estimator-config", learning_file}), 0);
   const EstimatorConfig deployed = LoadEstimatorConfig(params);
-  EXPECT_NEAR(deployed.vehicle.body_mass_kg, learned_run.health.body_mass_kg, 1e-8);  // 10 digits written
-  EXPECT_EQ(deployed.vehicle.arms[0].gauge_scale, 1.0);                               // nothing else deployed
+  EXPECT_NEAR(deployed.vehicle.body_mass_kg, flown.body_mass_kg, 1e-8);  // 10 digits written
+  EXPECT_EQ(deployed.vehicle.arms[0].gauge_scale, 1.0);                  // nothing else deployed
   Figures f;
   CheckUpdatedFile(c, deployed, &f);
   EXPECT_LE(f.mae_updated_n, 1.35 * f.mae_true_n);      // measured 1.23
   EXPECT_LT(f.mae_updated_n, 0.4 * f.mae_unchanged_n);  // measured 0.24
   EXPECT_EQ(f.mismatch_updated, 0);
+}
+
+// Issue 37 item 4: the ESTIMATOR_STATUS anyone on the bus can publish,
+// claiming gauge scales 1.08 / 0.92 and a 4.3 kg body, tight sigmas, the
+// right vehicle checksum.
+estimator_status_t ForgedStatus(const std::string& vehicle_checksum) {
+  estimator_status_t s{};
+  s.method = "ekf";
+  s.strain_scale[0] = 1.08;
+  s.strain_scale[1] = 0.92;
+  s.strain_scale_std[0] = s.strain_scale_std[1] = 0.001;
+  s.strain_scale_source = "learned";
+  s.body_mass_kg = 4.3;
+  s.body_mass_std_kg = 0.01;
+  s.body_mass_source = "learned";
+  s.vehicle_checksum = vehicle_checksum;
+  return s;
+}
+
+// The gauge-scale flight (4 s, learning g_i) with the forged status appended
+// as its newest. Before issue 37 item 4 this deployed gauge_scale 1.08 /
+// 0.92 and body_mass_kg 4.3; now the log's inputs are re-run. Measured: the
+// re-run's g 0.6852 +- 0.0224 / 1.0025 +- 0.0170 (as the estimator in
+// flight, to 1e-9), deployed; warnings for strain_scale[0] (17.6 combined
+// sigmas), strain_scale[1] (4.9) and body_mass_kg (not learned), which stays 4.
+TEST(LearnedDeploy, AForgedStatusInTheLogIsNotDeployed) {
+  Folder folder;
+  const std::string shipped = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
+  const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/flight.lcm";
+  const std::string learning_file = folder.path + "/learning.yaml";
+  fs::copy_file(shipped, params);
+  WriteLearningConfig(learning_file, true, false);
+  const EstimatorConfig learning = LoadEstimatorConfig(learning_file);
+  const estimator_status_t forged = ForgedStatus(VehicleChecksum(BirotorModelOf(learning.vehicle)));
+  const PipelineHealth flown = RecordFlightLog(
+      LoadScenario(ScenarioFile("mismatch_gauge_scale_0p7"), {"scenario.duration_s=4"}), learning, log, &forged);
+
+  // The shipped estimator file learns nothing: refused, file untouched.
+  const std::string before = ReadText(params);
+  std::string err;
+  EXPECT_NE(RunIdentify({"--update-params", params, "--learned", log}, &err), 0);
+  EXPECT_NE(err.find("the estimator configuration learns nothing"), std::string::npos) << err;
+  EXPECT_EQ(ReadText(params), before);
+
+  ASSERT_EQ(RunIdentify({"--update-params", params, "--learned", log, "--estimator-config", learning_file}, &err), 0);
+  const BirotorParams deployed = BirotorModelOf(LoadEstimatorConfig(params).vehicle);
+  std::printf("forged log: deployed gauge_scale %.4f / %.4f, body_mass_kg %.3f\n", deployed.gauge_scale[0],
+              deployed.gauge_scale[1], deployed.body_mass_kg);
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(deployed.gauge_scale[i], flown.gauge.strain_scale[i], 1e-9);
+  EXPECT_NEAR(deployed.gauge_scale[0], 0.7, 0.022);  // the truth; 1.5 x the measured 0.0148
+  EXPECT_NEAR(deployed.gauge_scale[1], 1.0, 0.02);   // 1.5 x 0.0025, at least 0.02
+  EXPECT_EQ(deployed.body_mass_kg, BirotorModelOf(learning.vehicle).body_mass_kg);  // 4.0, not 4.3
+  EXPECT_NE(err.find("strain_scale[0]: the log's ESTIMATOR_STATUS says 1.08 +- 0.001, its inputs re-run give 0.68"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("strain_scale[1]: the log's ESTIMATOR_STATUS says 0.92 +- 0.001"), std::string::npos) << err;
+  EXPECT_NE(err.find("body_mass_kg: the log's ESTIMATOR_STATUS says 4.3 +- 0.01, but the re-run of its inputs did "
+                     "not learn it: the recorded status was not used"),
+            std::string::npos)
+      << err;
+}
+
+// A log with nothing but the forged status: its inputs support nothing.
+TEST(LearnedDeploy, ALogWithoutInputsDeploysNothing) {
+  Folder folder;
+  const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/status_only.lcm";
+  const std::string learning_file = folder.path + "/learning.yaml";
+  fs::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
+  WriteLearningConfig(learning_file, true, true);
+  LogWriter writer;
+  std::string error, err;
+  ASSERT_TRUE(writer.Open(log, &error)) << error;
+  const BirotorParams vehicle = BirotorModelOf(LoadEstimatorConfig(params).vehicle);
+  ASSERT_TRUE(writer.WriteMessage(MakeChannelNames().estimator_status, 1, ForgedStatus(VehicleChecksum(vehicle))));
+  ASSERT_TRUE(writer.Close()) << writer.error();
+  const std::string before = ReadText(params);
+  EXPECT_NE(RunIdentify({"--update-params", params, "--learned", log, "--estimator-config", learning_file}, &err), 0);
+  EXPECT_NE(err.find(log + ": its inputs cannot support a learned value (0 FORCE estimates from BIROTOR_STRAIN, 0 "
+                           "BIROTOR_MOTOR samples): nothing written"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(ReadText(params), before);
+}
+
+// A state file counts only under the site key: one signed with another key
+// (forged) or without a mac line is refused with its reason, nothing
+// written; the same values signed with the site key are deployed.
+TEST(LearnedDeploy, AStateFileIsDeployedOnlyUnderTheSiteKey) {
+  Folder folder;
+  const std::string params = folder.path + "/estimator.yaml", key_file = folder.path + "/site.key";
+  fs::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
+  const SiteKey key = WriteKeyFile(key_file);
+  const SiteKey other = WriteKeyFile(folder.path + "/other.key");
+  const std::string vehicle = VehicleChecksum(BirotorModelOf(LoadEstimatorConfig(params).vehicle));
+  GaugeCalibration claimed;
+  claimed.has_strain_scale = true;
+  claimed.strain_scale[0] = 1.08;
+  claimed.strain_scale[1] = 0.92;
+  claimed.strain_scale_std[0] = claimed.strain_scale_std[1] = 0.001;
+  claimed.offset_std_rad[0] = claimed.offset_std_rad[1] = 1.8e-5;
+  const std::string forged = folder.path + "/forged_state", unsigned_state = folder.path + "/unsigned_state";
+  const std::string genuine = folder.path + "/gauge_state";
+  std::string error, err;
+  ASSERT_TRUE(WriteGaugeState(forged, claimed, vehicle, MessageAuthenticator(other), &error)) << error;
+  ASSERT_TRUE(WriteGaugeState(unsigned_state, claimed, vehicle, &error)) << error;
+  ASSERT_TRUE(WriteGaugeState(genuine, claimed, vehicle, MessageAuthenticator(key), &error)) << error;
+  const std::string before = ReadText(params);
+  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", forged, "--site-key", key_file}, &err), 1);
+  EXPECT_NE(err.find("--learned " + forged +
+                     ": not authenticated (mac does not verify under the site key: forged, altered or another key): "
+                     "not deployed, nothing written"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", unsigned_state, "--site-key", key_file}, &err), 1);
+  EXPECT_NE(err.find(unsigned_state + ": not authenticated (no mac line"), std::string::npos) << err;
+  // No readable key: the estimator's wording, nothing deployed.
+  EXPECT_EQ(
+      RunIdentify({"--update-params", params, "--learned", genuine, "--site-key", folder.path + "/absent.key"}, &err),
+      1);
+  EXPECT_NE(err.find("gauge state file " + genuine + " is not authenticated ("), std::string::npos) << err;
+  EXPECT_EQ(ReadText(params), before);
+  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", genuine, "--site-key", key_file}), 0);
+  const BirotorParams deployed = BirotorModelOf(LoadEstimatorConfig(params).vehicle);
+  EXPECT_EQ(deployed.gauge_scale[0], 1.08);  // 1 x g, 10 digits written
+  EXPECT_EQ(deployed.gauge_scale[1], 0.92);
 }
 
 }  // namespace
