@@ -67,6 +67,9 @@ std::string FromLog(const LearnedSourceOptions& options, const BirotorParams& ve
     return "--learned " + error + ": nothing written";
   }
   if (!rerun.damage.empty()) spdlog::warn("{}", rerun.damage);
+  const ReplayStats& stats = rerun.stats;
+  spdlog::info("re-run: {} input packets, {} FORCE estimates over {:.1f} s of the log", stats.input_packets,
+               stats.forces, static_cast<double>(stats.last_utime - stats.first_utime) * 1e-6);
   for (const LearnedDisagreement& d : CompareLearnedValues(recorded, rerun.learned)) {
     spdlog::warn("{}: {}", options.learned, DisagreementText(d));
   }

@@ -366,8 +366,8 @@ TEST(LearnedDeploy, AForgedStatusInTheLogIsNotDeployed) {
       << err;
 }
 
-// A log with nothing but the forged status: its inputs support nothing.
-TEST(LearnedDeploy, ALogWithoutInputsDeploysNothing) {
+// A log with nothing but the forged status, and one too short to learn in.
+TEST(LearnedDeploy, ALogWhoseInputsSupportNoValueDeploysNothing) {
   Folder folder;
   const std::string params = folder.path + "/estimator.yaml", log = folder.path + "/status_only.lcm";
   const std::string learning_file = folder.path + "/learning.yaml";
@@ -385,6 +385,17 @@ TEST(LearnedDeploy, ALogWithoutInputsDeploysNothing) {
                            "BIROTOR_MOTOR samples): nothing written"),
             std::string::npos)
       << err;
+  EXPECT_EQ(ReadText(params), before);
+
+  // 0.5 s of the gauge-scale flight: too short to have learned.
+  const std::string short_log = folder.path + "/short.lcm";
+  RecordFlightLog(LoadScenario(ScenarioFile("mismatch_gauge_scale_0p7"), {"scenario.duration_s=0.5"}),
+                  LoadEstimatorConfig(learning_file), short_log);
+  EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", short_log, "--estimator-config", learning_file}, &err),
+            1);
+  // Measured: g_1 0.970 +- 0.177 after 0.5 s.
+  EXPECT_NE(err.find("short.lcm: strain_scale of arm 1 0.97"), std::string::npos) << err;
+  EXPECT_NE(err.find("was not learned (sigma not below 0.5 x the prior sigma 0.1 = 0.05"), std::string::npos) << err;
   EXPECT_EQ(ReadText(params), before);
 }
 
