@@ -136,15 +136,17 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                      "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). A strain "
                      "scale g_i multiplies gauge_scale[i], a body mass replaces body_mass_kg "
                      "(docs/identification.md)");
-  app.add_option("--site-key", cli->learned_source.site_key_file,
-                 "Site key file (32 raw bytes, not group/world-writable) authenticating the --learned gauge state "
-                 "file; a state file that does not verify is refused")
-      ->capture_default_str();
-  app.add_option("--estimator-config", cli->learned_source.estimator_config,
-                 "--learned LOG: estimator parameter file the log's inputs are re-run with (its estimator: section, "
-                 "learn_strain_scale / learn_body_mass on as in the flight; the vehicle is the --update-params "
-                 "file's); default: the " +
-                     ConfigSearchText("estimator.yaml"));
+  CLI::Option* site_key =
+      app.add_option("--site-key", cli->learned_source.site_key_file,
+                     "Site key file (32 raw bytes, not group/world-writable) authenticating the --learned gauge state "
+                     "file; a state file that does not verify is refused")
+          ->capture_default_str();
+  CLI::Option* estimator_config = app.add_option(
+      "--estimator-config", cli->learned_source.estimator_config,
+      "--learned LOG: estimator parameter file the log's inputs are re-run with (its estimator: section, "
+      "learn_strain_scale / learn_body_mass on as in the flight; the vehicle is the --update-params "
+      "file's); default: the " +
+          ConfigSearchText("estimator.yaml"));
   app.add_option(
          "--learned-max-std-fraction", cli->learned_options.max_std_fraction,
          "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
@@ -157,6 +159,8 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                "Progress line on stderr (stage, windows, elapsed, ETA) for fits over 2 s even when stderr is not a "
                "terminal (on a terminal it is always shown)");
   learned->needs(update_params)->excludes(log)->excludes(output)->excludes(report)->excludes(plot);
+  site_key->needs(learned);
+  estimator_config->needs(learned);
   app.add_option("--min-usable-fraction", cli->min_usable_fraction,
                  "Refuse a log whose readable events are less than this share of its bytes")
       ->check(CLI::Range(0.0, 1.0));
@@ -385,7 +389,9 @@ std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix)
   Outputs out;
   std::string error;
   if (!PrepareParameterFileUpdate(cli.update_params, &out.update, &error) ||
-      !CheckOutputs({cli.update_params, out.update.backup}, {cli.learned_source.learned}, &error)) {
+      !CheckOutputs({cli.update_params, out.update.backup},
+                    {cli.learned_source.learned, cli.learned_source.estimator_config, cli.learned_source.site_key_file},
+                    &error)) {
     return "--update-params " + cli.update_params + ": " + error;
   }
   try {
