@@ -58,7 +58,7 @@ SeqStreamLock::Verdict SeqStreamLock::Admit(int32_t seq, int64_t utime, uint64_t
     last_utime_ = utime;
     last_digest_ = digest;
     last_in_stream_us_ = now_us;
-    if (!conflict_) return Verdict::kInStream;
+    if (!conflict_ || !params_.refuse_locked_in_conflict) return Verdict::kInStream;
     ++held_;
     return Verdict::kHeld;
   }

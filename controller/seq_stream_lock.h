@@ -24,6 +24,10 @@ struct SeqStreamLockParams {
   double stamp_slack_s = 0.05;   // the stamp may run ahead of the receiver's time by this (latency jitter) [s]
   double silence_s = 0.2;        // the locked stream is given up after this long without a message [s]
   double conflict_hold_s = 0.3;  // both streams refused until one has been silent this long [s]
+  // false: during a conflict the locked stream's in-stream messages are
+  // still accepted (kInStream) and only the other stream is refused (the
+  // ESCs' choice, EscParams::follow_commander_in_conflict).
+  bool refuse_locked_in_conflict = true;
 };
 
 // FNV-1a over the bytes of a message's values: "the same payload" for the

@@ -271,6 +271,7 @@ void ReadEsc(YamlSection& root, Scenario* out) {
   e.Double("seq_slack", 0.0, 1000.0, &esc.seq_slack);
   e.Double("stamp_slack_s", 0.0, 10.0, &esc.stamp_slack_s);
   e.Double("conflict_hold_s", 0.0, 100.0, &esc.conflict_hold_s);
+  e.Bool("follow_commander_in_conflict", &esc.follow_commander_in_conflict);
   e.Finish();
 }
 

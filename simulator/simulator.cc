@@ -132,6 +132,7 @@ void Simulator::UseExternalCommands(double command_timeout_s) {
   lock.seq_slack = scenario_.esc.seq_slack;
   lock.stamp_slack_s = scenario_.esc.stamp_slack_s;
   lock.conflict_hold_s = scenario_.esc.conflict_hold_s;
+  lock.refuse_locked_in_conflict = !scenario_.esc.follow_commander_in_conflict;
   lock.silence_s = command_timeout_s;
   commander_ = SeqStreamLock(lock);
 }
