@@ -54,6 +54,10 @@ struct SupervisionParams {
   // is stale.
   double clock_future_window_s = 0.01;  // [s]
   double clock_past_window_s = 0.2;     // [s]
+  // The clock is set (and relatched) only when two different inputs (of
+  // POSE, IMU, FORCE) agree on the vehicle time, stamp - host time, within
+  // this: a lone stream stamped ahead never sets it (issue 37) [s].
+  double clock_agreement_s = 0.02;
   // One publisher per input (controller/seq_stream_lock.h, issue 37): FORCE
   // and POSE locked to the first seq stream; a message belongs to it when,
   // after receiver time dt since the stream's last message, its seq step is

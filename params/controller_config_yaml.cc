@@ -27,6 +27,7 @@ const OptionTable<SupervisionParams>& SupervisionKeys() {
       Real("descent_rate_m_s", &O::descent_rate_m_s, 0.0, 5.0),
       Real("clock_future_window_s", &O::clock_future_window_s, 0.0, 10.0),
       Real("clock_past_window_s", &O::clock_past_window_s, 1e-3, 100.0),
+      Real("clock_agreement_s", &O::clock_agreement_s, 1e-4, 10.0),
       Real("pose_stream_max_rate_hz", &O::pose_stream_max_rate_hz, 1.0, 1e5),
       Real("force_stream_max_rate_hz", &O::force_stream_max_rate_hz, 1.0, 1e5),
       Real("stream_rate_margin", &O::stream_rate_margin, 0.0, 10.0),
