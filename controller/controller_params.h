@@ -54,13 +54,26 @@ struct SupervisionParams {
   // is stale.
   double clock_future_window_s = 0.01;  // [s]
   double clock_past_window_s = 0.2;     // [s]
-  // One publisher per input (controller/seq_stream_lock.h): FORCE and POSE
-  // locked to the first seq stream; another stream's message is refused and
-  // counted, and force feedback is dropped (STATUS_INPUT_CONFLICT) until
-  // conflict_hold_s after the last one.
-  int32_t stream_max_seq_step = 100;  // seq steps within one stream (drops) [1]
-  double stream_silence_s = 0.2;      // a silent stream is given up after this long [s]
-  double conflict_hold_s = 0.3;       // [s]
+  // The clock is set (and relatched) only when two different inputs (of
+  // POSE, IMU, FORCE) agree on the vehicle time, stamp - host time, within
+  // this: a lone stream stamped ahead never sets it (issue 37) [s].
+  double clock_agreement_s = 0.02;
+  // One publisher per input (controller/seq_stream_lock.h, issue 37): FORCE
+  // and POSE locked to the first seq stream; a message belongs to it when,
+  // after receiver time dt since the stream's last message, its seq step is
+  // within 1 + max_rate dt (1 + stream_rate_margin) + stream_seq_slack and
+  // its stamp advance within dt + stream_stamp_slack_s. Any other message
+  // while the locked stream is alive is a conflict (STATUS_INPUT_CONFLICT):
+  // BOTH streams are refused (rejected_foreign) until one of them has been
+  // silent for conflict_hold_s; force feedback is dropped, and POSE refused
+  // longer than pose_timeout_s gives the controlled descent.
+  double pose_stream_max_rate_hz = 150.0;    // POSE: 100 Hz nominal [Hz]
+  double force_stream_max_rate_hz = 1500.0;  // FORCE: 1 kHz nominal [Hz]
+  double stream_rate_margin = 0.5;           // [1]
+  double stream_seq_slack = 3.0;             // seq steps beyond the rate (a burst after a stall) [1]
+  double stream_stamp_slack_s = 0.05;        // stamp ahead of the receiver's time (latency jitter) [s]
+  double stream_silence_s = 0.2;             // a silent stream is given up (a restarted publisher) [s]
+  double conflict_hold_s = 0.3;              // [s]
   // FORCE thrust_scale outside this band is refused (not clamped): no
   // healthy or faulty rotor of this vehicle is outside it [1].
   double min_plausible_thrust_scale = 0.2;

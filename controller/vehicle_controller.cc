@@ -40,13 +40,6 @@ double MaxRotorForceN(const BirotorParams& vehicle) {
   return vehicle.thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
 }
 
-SeqStreamLockParams LockParams(const SupervisionParams& s) {
-  SeqStreamLockParams params;
-  params.max_seq_step = s.stream_max_seq_step;
-  params.silence_s = s.stream_silence_s;
-  return params;
-}
-
 }  // namespace
 
 VehicleController::VehicleController(const ControllerConfig& config)
@@ -58,8 +51,8 @@ VehicleController::VehicleController(const ControllerConfig& config)
       feasibility_(config.efficiency, MaxRotorForceN(model_), 2.0 * HoverForce(model_)),
       pose_gate_(config.supervision),
       floor_evidence_(config.supervision, config.efficiency.infeasible_s),
-      force_lock_(LockParams(config.supervision)),
-      pose_lock_(LockParams(config.supervision)),
+      force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
+      pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
       setpoint_(config.setpoint),
       weight_n_(2.0 * HoverForce(model_)) {
   if (config.model_predictive) mpc_ = std::make_unique<MpcController>(model_, config.mpc);
@@ -68,48 +61,17 @@ VehicleController::VehicleController(const ControllerConfig& config)
   health_.fallback_active = config.force_feedback;
 }
 
-bool VehicleController::Admit(ControllerInputCounters* counters, SeqStreamLock* lock, int64_t utime, int32_t seq,
-                              bool valid, int64_t now_us) {
-  const SupervisionParams& s = config_.supervision;
-  ++counters->received;
-  if (!valid) {
-    ++counters->rejected_invalid;
-    return false;
-  }
-  const double age_s = ElapsedSeconds(now_us, utime);
-  if (-age_s > s.clock_future_window_s) {
-    ++counters->rejected_future;
-    return false;
-  }
-  if (age_s > s.clock_past_window_s) {
-    ++counters->rejected_past;
-    return false;
-  }
-  if (lock != nullptr) {
-    const SeqStreamLock::Verdict verdict = lock->Admit(seq, now_us);
-    if (verdict == SeqStreamLock::Verdict::kForeign) {
-      ++counters->rejected_foreign;
-      return false;
-    }
-    if (verdict == SeqStreamLock::Verdict::kDuplicate) {
-      ++counters->rejected_out_of_order;
-      return false;
-    }
-  }
-  if (counters->last_utime >= 0 && utime <= counters->last_utime) {
-    ++counters->rejected_out_of_order;
-    return false;
-  }
-  ++counters->accepted;
-  counters->last_utime = utime;
-  return true;
-}
-
 void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
   const bool valid = Within(sample.x_m, kMaxPositionM) && Within(sample.z_m, kMaxPositionM) &&
                      Within(sample.phi_rad, kMaxAngleRad) && sample.utime >= 0;
+  const double values[3] = {sample.x_m, sample.z_m, sample.phi_rad};
+  const StreamMessage message{sample.seq, sample.utime, PayloadDigest(values, 3)};
+  // The stream first (a copied seq is found whatever the pose says), then
+  // the gate against the observer, then newest: a refused sample does not
+  // become the newest.
+  if (!AdmitToStream(config_.supervision, message, valid, now_us, &pose_lock_, &health_.pose)) return;
   if (!has_pose_) {
-    if (!Admit(&health_.pose, &pose_lock_, sample.utime, sample.seq, valid, now_us)) return;
+    if (!AcceptNewest(sample.utime, &health_.pose)) return;
     has_pose_ = true;
     const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
     observer_.Initialize(position_m, sample.phi_rad);
@@ -118,16 +80,12 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
     last_fused_pose_utime_ = sample.utime;
     return;
   }
-  // Innovation gate against the observer, before the sample counts as
-  // accepted (a refused sample does not become the newest).
-  const PoseGate::Verdict verdict =
-      valid ? pose_gate_.Check(sample, observer_.state(), now_us) : PoseGate::Verdict::kInside;
+  const PoseGate::Verdict verdict = pose_gate_.Check(sample, observer_.state(), now_us);
   if (verdict == PoseGate::Verdict::kRefused) {
-    ++health_.pose.received;
     ++health_.pose.rejected_gate;
     return;
   }
-  if (!Admit(&health_.pose, &pose_lock_, sample.utime, sample.seq, valid, now_us)) return;
+  if (!AcceptNewest(sample.utime, &health_.pose)) return;
   if (verdict == PoseGate::Verdict::kReset || verdict == PoseGate::Verdict::kReacquired) {
     const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
     if (verdict == PoseGate::Verdict::kReset) {
@@ -151,7 +109,10 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
 void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
   const bool valid = Within(sample.gyro_y_rad_s, kMaxRateRadS) && Within(sample.accel_x_m_s2, kMaxSpecificForceM_S2) &&
                      Within(sample.accel_z_m_s2, kMaxSpecificForceM_S2) && sample.utime >= 0;
-  if (!Admit(&health_.imu, nullptr, sample.utime, sample.seq, valid, now_us)) return;
+  const StreamMessage message{sample.seq, sample.utime, 0};
+  if (!AdmitToStream(config_.supervision, message, valid, now_us, nullptr, &health_.imu) ||
+      !AcceptNewest(sample.utime, &health_.imu))
+    return;
   ++imu_count_;
   gyro_sum_rad_s_ += sample.gyro_y_rad_s;
   accel_sum_m_s2_[0] += sample.accel_x_m_s2;
@@ -174,7 +135,16 @@ void VehicleController::OnForce(const ForceEstimate& reported, int64_t now_us) {
   const double baseline[kBirotorRotors] = {efficiency_.baseline(0), efficiency_.baseline(1)};
   floor_evidence_.Note(reported, now_us, baseline);
   const int64_t previous_utime = health_.force.last_utime;
-  if (!Admit(&health_.force, &force_lock_, estimate.utime, estimate.seq, plausible, now_us)) {
+  const double values[7] = {estimate.force_n[0],
+                            estimate.force_n[1],
+                            estimate.thrust_scale[0],
+                            estimate.thrust_scale[1],
+                            estimate.force_std_n[0],
+                            estimate.force_std_n[1],
+                            static_cast<double>(estimate.status)};
+  const StreamMessage message{estimate.seq, estimate.utime, PayloadDigest(values, 7)};
+  if (!AdmitToStream(s, message, plausible, now_us, &force_lock_, &health_.force) ||
+      !AcceptNewest(estimate.utime, &health_.force)) {
     // An implausible estimate is refused and falls back at once, but it is
     // an outlier, not the end of the healthy run: the estimate rings to mu
     // 0.08 for one sample right after a 70 % loss, and restarting the run
@@ -412,8 +382,7 @@ MotorCommand VehicleController::Update(int64_t now_us) {
   UpdateState(now_us, dt_s, &status);
 
   // A second publisher on FORCE or POSE: force feedback is dropped.
-  const bool conflict =
-      force_lock_.ConflictWithin(now_us, s.conflict_hold_s) || pose_lock_.ConflictWithin(now_us, s.conflict_hold_s);
+  const bool conflict = force_lock_.InConflict(now_us) || pose_lock_.InConflict(now_us);
   if (conflict && !health_.conflict) ++health_.conflicts;
   health_.conflict = conflict;
   if (conflict) status |= kCommandInputConflict;

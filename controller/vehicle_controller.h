@@ -25,6 +25,7 @@
 #include "controller/efficiency_conditioner.h"
 #include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
+#include "controller/input_admission.h"
 #include "controller/mpc_controller.h"
 #include "controller/pose_gate.h"
 #include "controller/position_attitude_law.h"
@@ -37,19 +38,6 @@
 #include "samples/setpoint.h"
 
 namespace birotor {
-
-// Counters of one input since start-up.
-struct ControllerInputCounters {
-  int64_t received = 0;
-  int64_t accepted = 0;
-  int64_t rejected_invalid = 0;       // non-finite or implausible fields (FORCE: scale outside the band)
-  int64_t rejected_out_of_order = 0;  // utime not newer than the newest accepted, or a repeated seq
-  int64_t rejected_future = 0;        // stamp ahead of the clock by more than clock_future_window_s
-  int64_t rejected_past = 0;          // stamp behind the clock by more than clock_past_window_s
-  int64_t rejected_foreign = 0;       // a second publisher's seq stream (FORCE, POSE)
-  int64_t rejected_gate = 0;          // POSE outside the innovation gate
-  int64_t last_utime = -1;            // newest accepted [us]; -1 if none
-};
 
 struct ControllerHealth {
   ControllerInputCounters pose, imu, force;
@@ -103,11 +91,6 @@ class VehicleController {
   MpcStats MpcStatistics() const { return mpc_ ? mpc_->Stats() : MpcStats(); }
 
  private:
-  // The common checks of every input: plausible, stamp within the clock
-  // windows, in the locked seq stream (lock may be null), newer than the
-  // newest accepted.
-  bool Admit(ControllerInputCounters* counters, SeqStreamLock* lock, int64_t utime, int32_t seq, bool valid,
-             int64_t now_us);
   // True when FORCE may be flown on at now_us (fresh, on time, VALID, no conflict).
   bool ForceUsable(int64_t now_us) const;
   // Age of an input at now_us [s]; +inf before its first sample or when its

@@ -194,6 +194,9 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   run.mpc = controller.MpcStatistics();
   run.estimator = estimator.health();
   run.command_timeouts = simulator.command_timeouts();
+  run.esc_foreign = simulator.esc_counters().foreign;
+  run.esc_held = simulator.esc_counters().held;
+  run.esc_conflicts = simulator.esc_counters().conflicts;
   run.simulated_s = simulator.time_s();
   run.wall_s = stopwatch.ElapsedS();
   return run;

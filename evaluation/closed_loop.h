@@ -65,8 +65,11 @@ struct ClosedLoopRun {
   double ground_z_m = 0;         // height of the support [m]
   double arm_length_m = 0;       // the flown vehicle's L (where its tips are) [m]
   int64_t command_timeouts = 0;  // ESC command timeouts
-  double simulated_s = 0;        // [s]
-  double wall_s = 0;             // [s]
+  // The ESCs' commander rule (EscCounters): second-commander commands,
+  // the locked commander's refused in a conflict, entries into a conflict.
+  int64_t esc_foreign = 0, esc_held = 0, esc_conflicts = 0;
+  double simulated_s = 0;  // [s]
+  double wall_s = 0;       // [s]
 };
 
 // Flies the scenario closed loop. log (may be null) receives every channel:

@@ -62,21 +62,33 @@ void ControllerService::HandleSetpoint(const void* data, size_t size, int64_t ho
   if (clock_set_) controller_.OnSetpoint(FromMessage(message), VehicleTimeUs(host_us));
 }
 
-int64_t ControllerService::ClockForInput(int64_t utime, int64_t host_us) {
+int64_t ControllerService::ClockForInput(ControllerInput input, int64_t utime, int64_t host_us) {
+  const SupervisionParams& s = controller_.config().supervision;
   const bool restart = clock_set_ && host_us - last_accepted_host_us_ > kClockRelatchUs;
   if ((!clock_set_ || restart) && utime >= 0 && utime <= kLatestPlausibleUtime) {
-    if (restart) ++clock_relatches_;
-    clock_set_ = true;
-    clock_offset_us_ = utime - host_us;
-    clock_set_host_us_ = last_accepted_host_us_ = host_us;
+    // The offset this input says; set when another input's fresh candidate
+    // agrees within clock_agreement_s (a lone stream 1000 s ahead never
+    // does). The later offset of the two: the one that arrived soonest.
+    const int i = static_cast<int>(input);
+    candidate_offset_us_[i] = utime - host_us;
+    candidate_host_us_[i] = host_us;
+    for (int j = 0; j < kNumControllerInputs; ++j) {
+      const bool fresh = j != i && candidate_host_us_[j] >= 0 && host_us - candidate_host_us_[j] < kClockAcquireUs;
+      if (!fresh || std::fabs(ElapsedSeconds(candidate_offset_us_[i], candidate_offset_us_[j])) > s.clock_agreement_s)
+        continue;
+      if (restart) ++clock_relatches_;
+      clock_set_ = true;
+      clock_offset_us_ = std::max(candidate_offset_us_[i], candidate_offset_us_[j]);
+      clock_set_host_us_ = last_accepted_host_us_ = host_us;
+      for (int64_t& candidate : candidate_host_us_) candidate = -1;
+      break;
+    }
   } else if (clock_set_ && host_us - clock_set_host_us_ < kClockAcquireUs) {
     // Acquisition: the offset of the input that arrived soonest, forward
     // only and never by more than the future window at a time.
     // In seconds: a wild stamp must not overflow the subtraction.
     const double lead_s = ElapsedSeconds(utime, VehicleTimeUs(host_us));
-    if (lead_s > 0 && lead_s <= controller_.config().supervision.clock_future_window_s) {
-      clock_offset_us_ += SecondsToUtime(lead_s);
-    }
+    if (lead_s > 0 && lead_s <= s.clock_future_window_s) clock_offset_us_ += SecondsToUtime(lead_s);
   }
   return VehicleTimeUs(host_us);
 }
@@ -95,21 +107,24 @@ void ControllerService::Dispatch(ControllerChannel channel, const void* data, si
     case ControllerChannel::kPose: {
       pose_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      controller_.OnPose(FromMessage(message), ClockForInput(message.utime, host_us));
+      const int64_t now_us = ClockForInput(ControllerInput::kPose, message.utime, host_us);
+      if (now_us >= 0) controller_.OnPose(FromMessage(message), now_us);  // nothing to judge it by before
       if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
     case ControllerChannel::kImu: {
       imu_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      controller_.OnImu(FromMessage(message), ClockForInput(message.utime, host_us));
+      const int64_t now_us = ClockForInput(ControllerInput::kImu, message.utime, host_us);
+      if (now_us >= 0) controller_.OnImu(FromMessage(message), now_us);  // nothing to judge it by before
       if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }
     case ControllerChannel::kForce: {
       force_estimate_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      controller_.OnForce(FromMessage(message), ClockForInput(message.utime, host_us));
+      const int64_t now_us = ClockForInput(ControllerInput::kForce, message.utime, host_us);
+      if (now_us >= 0) controller_.OnForce(FromMessage(message), now_us);  // nothing to judge it by before
       if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
       return;
     }

@@ -1,8 +1,8 @@
 // The controller node: a PacketHandler (sources/message_source.h) for POSE,
 // IMU, FORCE and SETPOINT over VehicleController, with checked decoding (a
 // corrupt packet is counted, never trusted), the controller's own clock (the
-// host's steady clock, put on the vehicle's time base by the first input and
-// never moved by a later one), control periods on its own timer at rate_hz,
+// host's steady clock, put on the vehicle's time base when two inputs agree
+// and never moved by a later one), control periods on its own timer at rate_hz,
 // MOTOR_COMMAND and the CONTROLLER_STATUS health message.
 #pragma once
 
@@ -67,13 +67,14 @@ class ControllerService : public PacketHandler {
   // Publishes CONTROLLER_STATUS and starts a new reporting period.
   void PublishStatus(int64_t wall_utime, int64_t host_us);
 
-  // The controller's clock at host_us [us]: host time plus the offset set by
-  // the first decoded input (advanced, never more than the future window at
+  // The controller's clock at host_us [us]: host time plus the offset set
+  // when two different inputs (of POSE, IMU, FORCE) first agree on it
+  // within clock_agreement_s (advanced, never more than the future window at
   // a time, to the earliest-arriving input during the first
   // kClockAcquireUs, so inputs do not look younger than they are); -1
   // before. No later input moves it, except when no input at all has been
   // accepted for kClockRelatchUs (a restarted vehicle clock): then the next
-  // one sets it again (counted).
+  // two inputs that agree set it again (counted).
   int64_t VehicleTimeUs(int64_t host_us) const;
   int64_t clock_relatches() const { return clock_relatches_; }
   const ControllerHealth& health() const { return controller_.health(); }
@@ -85,8 +86,11 @@ class ControllerService : public PacketHandler {
   void Dispatch(ControllerChannel channel, const void* data, size_t size, int64_t host_us);
   void HandleSetpoint(const void* data, size_t size, int64_t host_us);
   void RunControlPeriod(int64_t host_us);
-  // The clock for an input stamped utime arriving at host_us (sets it first).
-  int64_t ClockForInput(int64_t utime, int64_t host_us);
+  // The clock for an input stamped utime arriving at host_us (-1: not set
+  // yet). It is set (and relatched) only when two different inputs agree
+  // on the vehicle time within supervision.clock_agreement_s: no single
+  // peer's stream sets it (issue 37).
+  int64_t ClockForInput(ControllerInput input, int64_t utime, int64_t host_us);
   void FillStatus(int64_t now_us);
 
   VehicleController controller_;
@@ -104,6 +108,10 @@ class ControllerService : public PacketHandler {
   int64_t clock_set_host_us_ = 0;
   int64_t last_accepted_host_us_ = 0;  // host time of the newest accepted input of any kind
   int64_t clock_relatches_ = 0;
+  // Each input's newest offset candidate (utime - host time [us]) while the
+  // clock is not set or may relatch, and its host time (-1: none).
+  int64_t candidate_offset_us_[kNumControllerInputs] = {0, 0, 0};
+  int64_t candidate_host_us_[kNumControllerInputs] = {-1, -1, -1};
   int64_t next_period_host_us_ = -1;  // the timer grid; -1 before the first period
   int64_t last_period_vehicle_us_ = -1;
   MotorCommand last_command_;

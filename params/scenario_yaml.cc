@@ -262,6 +262,19 @@ void ReadController(YamlSection& root, Scenario* out) {
   c.Finish();
 }
 
+// esc: the ESCs' commander rule (defaults: simulator/scenario.h EscParams).
+void ReadEsc(YamlSection& root, Scenario* out) {
+  YamlSection e = root.Section("esc");
+  EscParams& esc = out->esc;
+  e.Double("command_max_rate_hz", 1.0, 1e5, &esc.command_max_rate_hz);
+  e.Double("rate_margin", 0.0, 10.0, &esc.rate_margin);
+  e.Double("seq_slack", 0.0, 1000.0, &esc.seq_slack);
+  e.Double("stamp_slack_s", 0.0, 10.0, &esc.stamp_slack_s);
+  e.Double("conflict_hold_s", 0.0, 100.0, &esc.conflict_hold_s);
+  e.Bool("follow_commander_in_conflict", &esc.follow_commander_in_conflict);
+  e.Finish();
+}
+
 Scenario ReadScenario(YamlSection root, int arm_count) {
   Scenario sc;
   sc.file = root.file();
@@ -275,6 +288,7 @@ Scenario ReadScenario(YamlSection root, int arm_count) {
   ReadGround(root, &sc);
   ReadFaults(root, &sc);
   ReadController(root, &sc);
+  ReadEsc(root, &sc);
   root.Finish();
   return sc;
 }

@@ -140,6 +140,26 @@ struct GroundParams {
   double FlightStartS() const { return enabled ? rest_s + spool_up_s : 0.0; }
 };
 
+// The ESCs' commander rule when the simulator runs external MOTOR_COMMANDs
+// (Simulator::UseExternalCommands, controller/seq_stream_lock.h, issue 37):
+// one seq stream at a plausible rate; after receiver time dt since the
+// stream's last command, a seq step above 1 + command_max_rate_hz dt
+// (1 + rate_margin) + seq_slack or a stamp advance above dt + stamp_slack_s
+// is a second commander: a conflict (counted) until one has been silent for
+// conflict_hold_s. follow_commander_in_conflict true: the ESCs keep running
+// the locked commander's in-stream commands and refuse the other; false:
+// both are refused (the last good command holds, then the command timeout
+// spools the rotors down; a 1 s attack then drops the vehicle, measured in
+// tests/evaluation/stream_takeover_test.cc).
+struct EscParams {
+  double command_max_rate_hz = 750.0;  // MOTOR_COMMAND: 500 Hz nominal [Hz]
+  double rate_margin = 0.5;            // [1]
+  double seq_slack = 3.0;              // [1]
+  double stamp_slack_s = 0.05;         // [s]
+  double conflict_hold_s = 0.1;        // [s]
+  bool follow_commander_in_conflict = true;
+};
+
 struct Scenario {
   std::string file;  // where it was loaded from (messages only)
   std::string name = "hover";
@@ -163,6 +183,7 @@ struct Scenario {
   GroundParams ground;
   FaultParams faults;
   ControllerParams controller;  // gains of the built-in autopilot
+  EscParams esc;                // the ESCs' commander rule (external commands only)
 };
 
 }  // namespace birotor

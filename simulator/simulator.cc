@@ -127,6 +127,12 @@ void Simulator::UseExternalCommands(double command_timeout_s) {
   external_commands_ = true;
   command_timeout_us_ = SecondsToUtime(command_timeout_s);
   SeqStreamLockParams lock;
+  lock.max_rate_hz = scenario_.esc.command_max_rate_hz;
+  lock.rate_margin = scenario_.esc.rate_margin;
+  lock.seq_slack = scenario_.esc.seq_slack;
+  lock.stamp_slack_s = scenario_.esc.stamp_slack_s;
+  lock.conflict_hold_s = scenario_.esc.conflict_hold_s;
+  lock.refuse_locked_in_conflict = !scenario_.esc.follow_commander_in_conflict;
   lock.silence_s = command_timeout_s;
   commander_ = SeqStreamLock(lock);
 }
@@ -149,14 +155,24 @@ EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double
       return EscVerdict::kOutOfRange;
     }
   }
-  const SeqStreamLock::Verdict verdict = commander_.Admit(seq, now_us);
-  if (verdict == SeqStreamLock::Verdict::kForeign) {
-    ++n.foreign;
-    return EscVerdict::kForeign;
-  }
-  if (verdict == SeqStreamLock::Verdict::kDuplicate) {
-    ++n.stale;
-    return EscVerdict::kStale;
+  const SeqStreamLock::Verdict verdict =
+      commander_.Admit(seq, utime, PayloadDigest(omega_cmd_rad_s, kBirotorRotors), now_us);
+  n.conflicts = commander_.conflicts();
+  switch (verdict) {
+    case SeqStreamLock::Verdict::kForeign:
+      ++n.foreign;
+      return EscVerdict::kForeign;
+    case SeqStreamLock::Verdict::kHeld:
+      // Both commanders refused in a conflict: the last good command holds
+      // until the command timeout.
+      ++n.held;
+      return EscVerdict::kHeld;
+    case SeqStreamLock::Verdict::kDuplicate:
+      ++n.stale;
+      return EscVerdict::kStale;
+    case SeqStreamLock::Verdict::kLocked:
+    case SeqStreamLock::Verdict::kInStream:
+      break;
   }
   ++n.accepted;
   for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];

@@ -26,13 +26,16 @@ namespace birotor {
 // What the ESCs did with the commands offered to them (OfferMotorCommand).
 enum class EscVerdict {
   kAccepted,
-  kForeign,     // a second commander's seq stream: ignored
+  kForeign,     // a second commander's seq stream (a conflict): ignored
+  kHeld,        // the locked commander's command during a conflict: ignored too (the last good one holds)
   kStale,       // stamp older than the command timeout, or not newer than the newest run
   kFuture,      // stamp ahead of the ESCs' clock by more than kEscFutureWindowS
   kOutOfRange,  // a speed not finite or outside [0, omega_max]: the last good one is held
 };
 struct EscCounters {
   int64_t received = 0, accepted = 0, foreign = 0, stale = 0, future = 0, out_of_range = 0;
+  int64_t held = 0;       // the locked commander's commands refused during a conflict (kHeld)
+  int64_t conflicts = 0;  // entries into a conflict between two commanders (SeqStreamLock)
 };
 // A command stamped later than the ESCs' clock plus this is refused [s]
 // (the controller's clock runs on its host; a lagging simulator sees its

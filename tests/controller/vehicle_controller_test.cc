@@ -225,7 +225,8 @@ TEST(VehicleControllerTest, OutOfOrderSamplesAreDropped) {
   force.utime = 5000;
   force.status = kStatusValid;
   controller.OnForce(force, 5000);
-  force.utime = 4000;
+  // The next seq with the same stamp: in the stream (a stamp going back
+  // would be another stream, SeqStreamLockTest), not newer.
   force.seq = 1;
   controller.OnForce(force, 5000);
   controller.OnPose(PoseSample{3000, 0, 0.0, 0.0, 0.0}, 5000);

@@ -54,10 +54,10 @@ TEST(ScenarioYamlTest, EmptyOrPartialFileIsRefusedNamingEachMissingKey) {
   // Issue 14: an empty scenario file used to run as `hover`.
   const std::string empty = LoadError("");
   EXPECT_EQ(empty,
-            "bad.yaml: missing 9 keys: scenario, vehicle, trajectory, bench, sensors, gauge, ground, faults, "
-            "controller (every key is required; the shipped reference files have them all)");
+            "bad.yaml: missing 10 keys: scenario, vehicle, trajectory, bench, sensors, gauge, ground, faults, "
+            "controller, esc (every key is required; the shipped reference files have them all)");
   const std::string partial = LoadError("scenario: {name: x, mode: flight, duration_s: 1, seed: 1, step_s: 0.001}\n");
-  EXPECT_NE(partial.find("missing 9 keys: scenario.start_position_m, vehicle, trajectory,"), std::string::npos)
+  EXPECT_NE(partial.find("missing 10 keys: scenario.start_position_m, vehicle, trajectory,"), std::string::npos)
       << partial;
 }
 

@@ -1,0 +1,50 @@
+// The checks every controller input passes (issue 23, issue 37), in two
+// stages so that the POSE gate can sit between them: the stream stage
+// (plausible values, stamp within the clock windows, in the locked seq
+// stream at a plausible rate) and the newest stage (newer than the newest
+// accepted). Each refusal is counted once. No allocation.
+#pragma once
+
+#include <cstdint>
+
+#include "controller/controller_params.h"
+#include "controller/seq_stream_lock.h"
+
+namespace birotor {
+
+// Counters of one input since start-up.
+struct ControllerInputCounters {
+  int64_t received = 0;
+  int64_t accepted = 0;
+  int64_t rejected_invalid = 0;       // non-finite or implausible fields (FORCE: scale outside the band)
+  int64_t rejected_out_of_order = 0;  // utime not newer than the newest accepted, or an exact re-send
+  int64_t rejected_future = 0;        // stamp ahead of the clock by more than clock_future_window_s
+  int64_t rejected_past = 0;          // stamp behind the clock by more than clock_past_window_s
+  // FORCE, POSE: a second seq stream's message, or the locked stream's while
+  // both are refused in a conflict (SeqStreamLock kForeign, kHeld).
+  int64_t rejected_foreign = 0;
+  int64_t rejected_gate = 0;  // POSE outside the innovation gate
+  int64_t last_utime = -1;    // newest accepted [us]; -1 if none
+};
+
+// One input message's stream identity: seq, stamp [us], payload digest
+// (PayloadDigest of its values).
+struct StreamMessage {
+  int32_t seq = 0;
+  int64_t utime = 0;
+  uint64_t digest = 0;
+};
+
+// Stage 1 at the controller's clock now_us [us]: counts the message as
+// received; true when it is valid, within the clock windows and (lock not
+// null) admitted by the stream lock.
+bool AdmitToStream(const SupervisionParams& s, const StreamMessage& message, bool valid, int64_t now_us,
+                   SeqStreamLock* lock, ControllerInputCounters* counters);
+// Stage 2: true (accepted, the newest) when utime [us] is newer than the
+// newest accepted.
+bool AcceptNewest(int64_t utime, ControllerInputCounters* counters);
+
+// The stream lock of an input publishing at most max_rate_hz [Hz].
+SeqStreamLockParams StreamLockParams(const SupervisionParams& s, double max_rate_hz);
+
+}  // namespace birotor
