@@ -140,14 +140,40 @@ struct EfficiencyParams {
 
 // What the controller accepts on SETPOINT (controller/setpoint_input.h).
 struct SetpointParams {
-  double timeout_s = 0.5;             // newest setpoint held this long, then hover where the vehicle is [s]
-  double max_extrapolation_s = 0.05;  // a held setpoint moves on with its feed-forward this long [s]
-  double future_window_s = 0.1;       // stamps later than the controller's clock plus this are refused [s]
-  double min_interval_s = 0.002;      // rate limit: stamps closer than this to the newest are refused [s]
-  double max_abs_position_m = 100.0;  // |x|, |z| accepted [m]
-  double max_speed_m_s = 5.0;         // |velocity feed-forward| accepted, per axis [m/s]
-  double max_accel_m_s2 = 10.0;       // |acceleration feed-forward| accepted, per axis [m/s^2]
-  double max_jump_m = 0.5;            // distance from the reference flown now accepted [m]
+  double timeout_s = 0.5;                     // newest setpoint held this long, then hover where the vehicle is [s]
+  double max_extrapolation_s = 0.05;          // a held setpoint moves on with its feed-forward this long [s]
+  double future_window_s = 0.1;               // stamps later than the controller's clock plus this are refused [s]
+  double min_interval_s = 0.002;              // rate limit: stamps closer than this to the newest are refused [s]
+  double max_abs_position_m = 100.0;          // |x|, |z| accepted [m]
+  double max_feed_forward_speed_m_s = 5.0;    // |velocity feed-forward| accepted, per axis [m/s]
+  double max_feed_forward_accel_m_s2 = 10.0;  // |acceleration feed-forward| accepted, per axis [m/s^2]
+  // The reference flown moves per axis at most this fast [m/s]: 1.5x the
+  // fastest shipped scenario (aggressive, mass_id: 0.94 m/s).
+  double max_speed_m_s = 1.4;
+  // ... and with at most this acceleration [m/s^2]: 1.5x the fastest
+  // shipped scenario (mass_id: 0.4 m in 0.8 s, 5.77 x 0.4 / 0.8^2 = 3.61).
+  double max_accel_m_s2 = 5.4;
+  double max_jump_m = 0.5;  // distance from the reference flown now accepted [m]
+  // Reference shaping: a target step this much beyond max_speed dt (and a
+  // velocity step this much beyond max_accel dt) is still followed exactly.
+  double shaping_position_tolerance_m = 0.001;   // [m]
+  double shaping_velocity_tolerance_m_s = 0.01;  // [m/s]
+  // Feed-forward consistency with the previous accepted setpoint, dt apart:
+  // |(v0 + v1)/2 dt - dp| <= tol_v max(dt, floor), and with both velocities
+  // given |(a0 + a1)/2 dt - dv| <= tol_a max(dt, floor).
+  double ff_velocity_tolerance_m_s = 0.2;  // [m/s]
+  double ff_accel_tolerance_m_s2 = 1.0;    // [m/s^2]
+  double ff_interval_floor_s = 0.01;       // [s]
+  // Publisher lock: one publisher's seq moves by 1 .. 1 + lock_max_rate_hz
+  // dt (1 + lock_rate_margin) + lock_seq_slack and its stamp by (0, dt +
+  // lock_stamp_slack_s] in an arrival interval dt.
+  double lock_max_rate_hz = 500.0;  // [Hz]
+  double lock_rate_margin = 0.5;
+  double lock_seq_slack = 2.0;       // [messages]
+  double lock_stamp_slack_s = 0.02;  // [s]
+  // A second publisher while the locked one is alive: both refused until
+  // one has been silent this long [s].
+  double conflict_hold_s = 1.0;
 };
 
 // Everything birotor-controller (and the lock-step closed loop) needs.

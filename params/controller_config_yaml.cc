@@ -132,9 +132,21 @@ const OptionTable<SetpointParams>& SetpointKeys() {
       Real("future_window_s", &O::future_window_s, 0.0, 10.0),
       Real("min_interval_s", &O::min_interval_s, 0.0, 1.0),
       Real("max_abs_position_m", &O::max_abs_position_m, 0.1, 1e4),
-      Real("max_speed_m_s", &O::max_speed_m_s, 0.0, 100.0),
-      Real("max_accel_m_s2", &O::max_accel_m_s2, 0.0, 100.0),
+      Real("max_feed_forward_speed_m_s", &O::max_feed_forward_speed_m_s, 0.0, 100.0),
+      Real("max_feed_forward_accel_m_s2", &O::max_feed_forward_accel_m_s2, 0.0, 100.0),
+      Real("max_speed_m_s", &O::max_speed_m_s, 0.01, 100.0),
+      Real("max_accel_m_s2", &O::max_accel_m_s2, 0.01, 100.0),
       Real("max_jump_m", &O::max_jump_m, 0.0, 100.0),
+      Real("shaping_position_tolerance_m", &O::shaping_position_tolerance_m, 0.0, 1.0),
+      Real("shaping_velocity_tolerance_m_s", &O::shaping_velocity_tolerance_m_s, 0.0, 10.0),
+      Real("ff_velocity_tolerance_m_s", &O::ff_velocity_tolerance_m_s, 0.0, 100.0),
+      Real("ff_accel_tolerance_m_s2", &O::ff_accel_tolerance_m_s2, 0.0, 1000.0),
+      Real("ff_interval_floor_s", &O::ff_interval_floor_s, 1e-4, 1.0),
+      Real("lock_max_rate_hz", &O::lock_max_rate_hz, 1.0, 1e5),
+      Real("lock_rate_margin", &O::lock_rate_margin, 0.0, 10.0),
+      Real("lock_seq_slack", &O::lock_seq_slack, 0.0, 1e6),
+      Real("lock_stamp_slack_s", &O::lock_stamp_slack_s, 0.0, 10.0),
+      Real("conflict_hold_s", &O::conflict_hold_s, 0.0, 60.0),
   };
   return keys;
 }
