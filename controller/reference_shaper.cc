@@ -22,26 +22,29 @@ bool ReferenceShaper::WithinLimits(const ReferencePoint& target, double dt_s) co
   return true;
 }
 
-bool ReferenceShaper::CaughtUp(const ReferencePoint& target) const {
+// Within the position tolerance, and a velocity step the acceleration limit
+// allows in one period.
+bool ReferenceShaper::CaughtUp(const ReferencePoint& target, double dt_s) const {
   return (target.position_m - flown_.position_m).cwiseAbs().maxCoeff() <= limits_.position_tolerance_m &&
-         (target.velocity_m_s - flown_.velocity_m_s).cwiseAbs().maxCoeff() <= limits_.velocity_tolerance_m_s;
+         (target.velocity_m_s - flown_.velocity_m_s).cwiseAbs().maxCoeff() <= limits_.max_accel_m_s2 * dt_s;
 }
 
 void ReferenceShaper::LimitAxis(int axis, const ReferencePoint& target, double dt_s) {
-  // Velocity that closes the gap e without overshoot: the target's own
-  // velocity plus sign(e) min(sqrt(2 a_max |e|) - a_max dt, |e| / dt)
-  // within +-v_max, reached with |dv| <= a_max dt; position by the
-  // trapezoid of v. sqrt(2 a |e|) - a dt is the braking curve of this
-  // discrete step: after a step that ends at v1 with deceleration a, the gap
-  // left is e - (v1 + a dt / 2) dt, and it must hold v1^2 / (2 a).
-  const double v_max = limits_.max_speed_m_s, a_max = limits_.max_accel_m_s2;
+  // A critically damped reference model towards the target, saturated:
+  //   a = clamp(a_t + w^2 (p_t - p) + 2 w (v_t - v), +-a_max),
+  //   v1 = clamp(v0 + a dt, +-v_max),  p1 = p0 + (v0 + v1) / 2 dt.
+  // Linear inside the limits, so its acceleration turns from speeding up to
+  // braking continuously (a bang-bang reversal of 2 a_max kicks the tilt);
+  // it brakes from e < 2 v / w on, before the v^2 / (2 a_max) it needs
+  // while w <= 4 a_max / v_max.
+  const double w = limits_.bandwidth_rad_s;
+  const double a_max = limits_.max_accel_m_s2, v_max = limits_.max_speed_m_s;
   const double gap_m = target.position_m(axis) - flown_.position_m(axis);
-  const double braking_m_s = std::max(0.0, std::sqrt(2.0 * a_max * std::fabs(gap_m)) - a_max * dt_s);
-  const double closing_m_s = std::min(braking_m_s, std::fabs(gap_m) / dt_s);
-  const double wanted_m_s = std::clamp(
-      std::clamp(target.velocity_m_s(axis), -v_max, v_max) + std::copysign(closing_m_s, gap_m), -v_max, v_max);
+  const double velocity_gap_m_s = target.velocity_m_s(axis) - flown_.velocity_m_s(axis);
+  const double wanted_m_s2 =
+      std::clamp(target.acceleration_m_s2(axis) + w * w * gap_m + 2.0 * w * velocity_gap_m_s, -a_max, a_max);
   const double v0 = flown_.velocity_m_s(axis);
-  const double v1 = v0 + std::clamp(wanted_m_s - v0, -a_max * dt_s, a_max * dt_s);
+  const double v1 = std::clamp(v0 + wanted_m_s2 * dt_s, -v_max, v_max);
   flown_.position_m(axis) += 0.5 * (v0 + v1) * dt_s;
   flown_.velocity_m_s(axis) = v1;
   flown_.acceleration_m_s2(axis) = (v1 - v0) / dt_s;
@@ -57,7 +60,7 @@ ReferencePoint ReferenceShaper::Step(const ReferencePoint& target, double dt_s) 
   ++limited_periods_;
   // Caught up with a target that moves within the limits: follow it exactly
   // again (a step of at most the tolerances).
-  limiting_ = !(CaughtUp(target) && WithinLimits(target, dt_s));
+  limiting_ = !(CaughtUp(target, dt_s) && WithinLimits(target, dt_s));
   return flown_;
 }
 

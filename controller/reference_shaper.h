@@ -1,8 +1,9 @@
 // The reference the controller flies, shaped (issue 37): it follows the
 // target (the newest accepted setpoint, extrapolated, or a hold point)
 // exactly while the target moves within the speed and acceleration limits,
-// and otherwise approaches it as a second-order rate/acceleration limiter
-// (per world axis |v| <= max_speed, |a| <= max_accel) until it has caught up.
+// and otherwise approaches it as a second-order reference model with rate
+// and acceleration limits (per world axis |v| <= max_speed, |a| <=
+// max_accel) until it has caught up.
 // A setpoint far away is approached at the limits, not refused.
 // No allocation, no throw.
 #pragma once
@@ -17,9 +18,10 @@ namespace birotor {
 // shaping_position_tolerance_m, shaping_velocity_tolerance_m_s).
 struct ShaperLimits {
   double max_speed_m_s = 1.4;            // per axis [m/s]
-  double max_accel_m_s2 = 5.4;           // per axis [m/s^2]
+  double max_accel_m_s2 = 2.2;           // per axis [m/s^2]
   double position_tolerance_m = 0.001;   // target step beyond max_speed dt still followed exactly [m]
   double velocity_tolerance_m_s = 0.01;  // velocity step beyond max_accel dt still followed exactly [m/s]
+  double bandwidth_rad_s = 4.0;          // natural frequency of the shaping reference model [rad/s]
 };
 
 class ReferenceShaper {
@@ -42,7 +44,7 @@ class ReferenceShaper {
   bool WithinLimits(const ReferencePoint& target, double dt_s) const;
   // One limiter step of one axis towards the target.
   void LimitAxis(int axis, const ReferencePoint& target, double dt_s);
-  bool CaughtUp(const ReferencePoint& target) const;
+  bool CaughtUp(const ReferencePoint& target, double dt_s) const;
 
   ShaperLimits limits_;
   ReferencePoint flown_;

@@ -13,20 +13,27 @@ bool FiniteWithin(double value, double limit) { return std::isfinite(value) && s
 bool AbsentOrWithin(double value, double limit) { return std::isnan(value) || FiniteWithin(value, limit); }
 
 // One axis: the new setpoint's feed-forward rate1 (trapezoid with the
-// previous one's rate0 when that was given) against the change it
-// integrates into: |mean(rate0, rate1) dt - change| <= tolerance window.
-// A feed-forward not given (NaN) is not flown, so not checked.
+// previous one's rate0, or rate1 alone when rate0 was not given) against the
+// change it integrates into: |mean rate dt - change| <= tolerance window.
+// Not checked (true) when rate1 is not given (NaN: not flown) or the change
+// is unknown (NaN: a velocity not given).
 bool RateAgrees(double rate0, double rate1, double change, double dt_s, double tolerance, double window_s) {
-  if (std::isnan(rate1)) return true;
+  if (std::isnan(rate1) || std::isnan(change)) return true;
   const double mean = std::isnan(rate0) ? rate1 : 0.5 * (rate0 + rate1);
   return std::fabs(mean * dt_s - change) <= tolerance * window_s;
+}
+
+// The velocity feed-forward against the change of position, when both
+// setpoints gave it (after a position-only setpoint it has no partner).
+bool VelocityAgrees(double v0, double v1, double change_m, double dt_s, double tolerance, double window_s) {
+  return std::isnan(v0) || RateAgrees(v0, v1, change_m, dt_s, tolerance, window_s);
 }
 
 }  // namespace
 
 ShaperLimits ShaperLimitsOf(const SetpointParams& p) {
   return ShaperLimits{p.max_speed_m_s, p.max_accel_m_s2, p.shaping_position_tolerance_m,
-                      p.shaping_velocity_tolerance_m_s};
+                      p.shaping_velocity_tolerance_m_s, p.shaping_bandwidth_rad_s};
 }
 
 PublisherLockRule PublisherLockRuleOf(const SetpointParams& p) {
@@ -59,21 +66,20 @@ bool SetpointInput::Plausible(const Setpoint& s) const {
 }
 
 bool SetpointInput::FeedForwardConsistent(const Setpoint& s) const {
-  if (!has_setpoint_) return true;  // nothing to compare the first with
+  // An acceleration without the velocity it integrates into cannot be checked: refused.
+  if ((!std::isnan(s.x_ddot_m_s2) && std::isnan(s.x_dot_m_s)) ||
+      (!std::isnan(s.z_ddot_m_s2) && std::isnan(s.z_dot_m_s)))
+    return false;
   const SetpointParams& p = params_;
   const Setpoint& o = newest_;
   const double dt_s = ElapsedSeconds(s.utime, o.utime);  // > 0: the order check came first
+  if (!has_setpoint_) return true;                       // nothing to compare the first with
   const double window_s = std::max(dt_s, p.ff_interval_floor_s);
   const double tol_v = p.ff_velocity_tolerance_m_s, tol_a = p.ff_accel_tolerance_m_s2;
-  // An acceleration without the velocity it integrates into cannot be checked: refused.
-  const bool accel_alone = (!std::isnan(s.x_ddot_m_s2) && std::isnan(s.x_dot_m_s)) ||
-                           (!std::isnan(s.z_ddot_m_s2) && std::isnan(s.z_dot_m_s));
-  return !accel_alone && RateAgrees(o.x_dot_m_s, s.x_dot_m_s, s.x_m - o.x_m, dt_s, tol_v, window_s) &&
-         RateAgrees(o.z_dot_m_s, s.z_dot_m_s, s.z_m - o.z_m, dt_s, tol_v, window_s) &&
-         (std::isnan(o.x_dot_m_s) ||
-          RateAgrees(o.x_ddot_m_s2, s.x_ddot_m_s2, s.x_dot_m_s - o.x_dot_m_s, dt_s, tol_a, window_s)) &&
-         (std::isnan(o.z_dot_m_s) ||
-          RateAgrees(o.z_ddot_m_s2, s.z_ddot_m_s2, s.z_dot_m_s - o.z_dot_m_s, dt_s, tol_a, window_s));
+  return VelocityAgrees(o.x_dot_m_s, s.x_dot_m_s, s.x_m - o.x_m, dt_s, tol_v, window_s) &&
+         VelocityAgrees(o.z_dot_m_s, s.z_dot_m_s, s.z_m - o.z_m, dt_s, tol_v, window_s) &&
+         RateAgrees(o.x_ddot_m_s2, s.x_ddot_m_s2, s.x_dot_m_s - o.x_dot_m_s, dt_s, tol_a, window_s) &&
+         RateAgrees(o.z_ddot_m_s2, s.z_ddot_m_s2, s.z_dot_m_s - o.z_dot_m_s, dt_s, tol_a, window_s);
 }
 
 bool SetpointInput::InTimeFromTheLockedPublisher(const Setpoint& s, int64_t now_us) {

@@ -1,0 +1,61 @@
+// Issue 37: the shipped trajectories, published as setpoints at 100 Hz
+// (birotor-sim --publish-setpoints), pass the setpoint input untouched: the
+// reference flown every control period (500 Hz cascade, 200 Hz mpc) equals
+// the unshaped one bit for bit, and no period is limited. aggressive and
+// mass_id are the fastest shipped references (0.94 m/s, 1.44 and 3.61 m/s^2
+// per axis); there is no figure-8 scenario.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "controller/setpoint_input.h"
+#include "params/scenario_yaml.h"
+#include "simulator/trajectory.h"
+
+namespace birotor {
+namespace {
+
+std::string ConfigFile(const std::string& name) { return std::string(BIROTOR_SOURCE_DIR) + "/config/" + name; }
+
+// Periods where the flown reference differs from the unshaped one.
+int64_t ShapedPeriods(const std::string& scenario_name, int64_t period_us, SetpointInput* input) {
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + scenario_name + ".yaml"));
+  const Trajectory trajectory(scenario);
+  const SetpointParams params;
+  input->SetStart(Eigen::Vector2d(scenario.start_position_m[0], scenario.start_position_m[1]));
+  const int64_t end_us = std::llround(scenario.duration_s * 1e6);
+  Setpoint newest;
+  bool any = false;
+  int64_t differing = 0;
+  int32_t seq = 0;
+  for (int64_t t = 0; t < end_us; t += 1000) {
+    if (t % 10000 == 0) {
+      newest = SetpointFromReference(trajectory.At(1e-6 * static_cast<double>(t)), t, seq++);
+      EXPECT_TRUE(input->Offer(newest, t)) << scenario_name << " at " << t;
+      any = true;
+    }
+    if (t % period_us != 0 || !any) continue;
+    const double age_s = 1e-6 * static_cast<double>(t - newest.utime);
+    const ReferencePoint unshaped = ReferenceFromSetpoint(newest, std::clamp(age_s, 0.0, params.max_extrapolation_s));
+    const ReferencePoint flown = input->At(t, Eigen::Vector2d::Zero());
+    if (flown.position_m != unshaped.position_m || flown.velocity_m_s != unshaped.velocity_m_s ||
+        flown.acceleration_m_s2 != unshaped.acceleration_m_s2)
+      ++differing;
+  }
+  return differing;
+}
+
+TEST(SetpointLegitTest, ShippedTrajectoriesPassUnshaped) {
+  for (const char* name : {"gentle", "aggressive", "gauge_drift", "flight_id", "density"}) {
+    for (const int64_t period_us : {2000, 5000}) {
+      SetpointInput input{SetpointParams()};
+      EXPECT_EQ(ShapedPeriods(name, period_us, &input), 0) << name << " every " << period_us << " us";
+      EXPECT_EQ(input.counters().limited_periods, 0) << name;
+      EXPECT_EQ(input.counters().accepted, input.counters().received) << name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace birotor
