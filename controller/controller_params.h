@@ -148,13 +148,14 @@ struct SetpointParams {
   double max_feed_forward_speed_m_s = 5.0;    // |velocity feed-forward| accepted, per axis [m/s]
   double max_feed_forward_accel_m_s2 = 10.0;  // |acceleration feed-forward| accepted, per axis [m/s^2]
   // The reference flown moves per axis at most this fast [m/s] and with at
-  // most this acceleration [m/s^2]: 1.5x the fastest shipped closed-loop
-  // scenario, aggressive ((1, 1) m in 2 s: 1.875 / 2 = 0.94 m/s and
-  // 5.77 / 4 = 1.44 m/s^2 per axis). 2.2 m/s^2 needs atan(2.2 / 9.81) =
-  // 0.22 rad of tilt, well inside max_tilt_rad 0.5. (mass_id's 0.4 m in
-  // 0.8 s, 3.61 m/s^2, flown through birotor-controller, is shaped.)
+  // most this acceleration [m/s^2]: 1.5x the fastest legitimate references,
+  // aggressive ((1, 1) m in 2 s: 1.875 / 2 = 0.94 m/s per axis) and the
+  // figure-8 of the identification flights (0.5 m legs in 1.3 s: 5.77 x 0.5
+  // / 1.3^2 = 1.71 m/s^2). 2.6 m/s^2 needs atan(2.6 / 9.81) = 0.26 rad of
+  // tilt, inside max_tilt_rad 0.5. (mass_id's 0.4 m in 0.8 s, 3.61 m/s^2,
+  // if flown through birotor-controller, is shaped.)
   double max_speed_m_s = 1.4;
-  double max_accel_m_s2 = 2.2;
+  double max_accel_m_s2 = 2.6;
   double max_jump_m = 0.5;  // distance from the reference flown now accepted [m]
   // Reference shaping: a target step this much beyond max_speed dt (and a
   // velocity step this much beyond max_accel dt) is still followed exactly.

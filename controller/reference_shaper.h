@@ -18,7 +18,7 @@ namespace birotor {
 // shaping_position_tolerance_m, shaping_velocity_tolerance_m_s).
 struct ShaperLimits {
   double max_speed_m_s = 1.4;            // per axis [m/s]
-  double max_accel_m_s2 = 2.2;           // per axis [m/s^2]
+  double max_accel_m_s2 = 2.6;           // per axis [m/s^2]
   double position_tolerance_m = 0.001;   // target step beyond max_speed dt still followed exactly [m]
   double velocity_tolerance_m_s = 0.01;  // velocity step beyond max_accel dt still followed exactly [m/s]
   double bandwidth_rad_s = 4.0;          // natural frequency of the shaping reference model [rad/s]

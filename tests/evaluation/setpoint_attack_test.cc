@@ -189,20 +189,20 @@ TEST_P(SetpointAttackTest, HostilePublisherRampIsShapedAndRefused) {
   EXPECT_GT(out.counters.limited_periods, 0);
   // Accepted: the first two (0.24, 0.48 m); the other 123 ran beyond max_jump_m.
   EXPECT_EQ(out.counters.rejected_jump, 123);
-  // Measured: 0.352 m / 0.385 rad force feedback, 0.331 m / 0.384 rad mpc
-  // (the reference went 0.48 m aside at <= 2.2 m/s^2 and back).
-  EXPECT_LT(out.max_error_m, 1.5 * 0.352);
+  // Measured: 0.357 m / 0.449 rad force feedback, 0.333 m / 0.459 rad mpc
+  // (the reference went 0.48 m aside at <= 2.6 m/s^2 and back).
+  EXPECT_LT(out.max_error_m, 1.5 * 0.357);
 }
 
 TEST_P(SetpointAttackTest, HostilePublisherRatchetIsShaped) {
-  // 0.25 s of ratchet: the reference descends at <= 2.2 m/s^2. Longer, it
+  // 0.25 s of ratchet: the reference descends at <= 2.6 m/s^2. Longer, it
   // goes on descending (at w 0.45 / 2 = 0.9 m/s, the shaping model's steady
   // state) and, once beyond max_jump_m, the legitimate setpoints are refused:
   // the vehicle then hovers where it is (docs/controller.md).
   const AttackOutcome out = Fly(GetParam(), true, 0.25, Ratchet);
   ExpectIssueTargets(out);
   EXPECT_GT(out.counters.limited_periods, 0);
-  EXPECT_LT(out.max_error_m, 1.5 * 0.154);  // measured 0.154 m force feedback, 0.140 m mpc
+  EXPECT_LT(out.max_error_m, 1.5 * 0.179);  // measured 0.179 m force feedback, 0.164 m mpc
 }
 
 TEST_P(SetpointAttackTest, HostilePublisherFeedForwardIsRefusedAsInconsistent) {
