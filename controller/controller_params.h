@@ -164,6 +164,9 @@ struct SetpointParams {
   // Natural frequency of the (critically damped) shaping reference model
   // [rad/s]; <= 4 max_accel / max_speed (6.3) so it brakes in time.
   double shaping_bandwidth_rad_s = 4.0;
+  // The first control period flies the setpoint exactly when it is this
+  // close to the start position (the first POSE and its noise) [m].
+  double start_snap_m = 0.02;
   // Feed-forward consistency with the previous accepted setpoint, dt apart:
   // |(v0 + v1)/2 dt - dp| <= tol_v max(dt, floor), and with both velocities
   // given |(a0 + a1)/2 dt - dv| <= tol_a max(dt, floor).

@@ -161,9 +161,11 @@ ReferencePoint SetpointInput::Target(int64_t now_us, const Eigen::Vector2d& posi
 ReferencePoint SetpointInput::At(int64_t now_us, const Eigen::Vector2d& position_m) {
   const ReferencePoint target = Target(now_us, position_m);
   if (last_at_us_ < 0) {
-    // The first period: from the start position when there is one (a
-    // setpoint that came before it is approached, shaped), else the target.
-    if (!started_) shaper_.Reset(target);
+    // The first period: the target when it is within start_snap_m of the
+    // start position (the first POSE, with its noise); one farther (a
+    // setpoint before the first period) is approached from the start, shaped.
+    const bool near_start = (target.position_m - shaper_.flown().position_m).norm() <= params_.start_snap_m;
+    if (!started_ || near_start) shaper_.Reset(target);
     last_at_us_ = now_us;
     return shaper_.flown();
   }

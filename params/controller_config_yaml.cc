@@ -140,6 +140,7 @@ const OptionTable<SetpointParams>& SetpointKeys() {
       Real("shaping_position_tolerance_m", &O::shaping_position_tolerance_m, 0.0, 1.0),
       Real("shaping_velocity_tolerance_m_s", &O::shaping_velocity_tolerance_m_s, 0.0, 10.0),
       Real("shaping_bandwidth_rad_s", &O::shaping_bandwidth_rad_s, 0.1, 100.0),
+      Real("start_snap_m", &O::start_snap_m, 0.0, 1.0),
       Real("ff_velocity_tolerance_m_s", &O::ff_velocity_tolerance_m_s, 0.0, 100.0),
       Real("ff_accel_tolerance_m_s2", &O::ff_accel_tolerance_m_s2, 0.0, 1000.0),
       Real("ff_interval_floor_s", &O::ff_interval_floor_s, 1e-4, 1.0),

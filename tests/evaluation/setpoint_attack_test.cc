@@ -14,6 +14,7 @@
 #include <string>
 
 #include "evaluation/closed_loop.h"
+#include "evaluation/control_cases.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
@@ -216,6 +217,34 @@ INSTANTIATE_TEST_SUITE_P(Modes, SetpointAttackTest, ::testing::Values(false, tru
                          [](const ::testing::TestParamInfo<bool>& info) {
                            return std::string(info.param ? "Mpc" : "ForceFeedback");
                          });
+
+}  // namespace
+}  // namespace birotor
+
+namespace birotor {
+namespace {
+
+TEST(SetpointClosedLoopTest, ShippedCasesFlyUnshaped) {
+  // The lock-step loop's own SETPOINT stream (100 Hz) is never shaped nor
+  // refused on the fastest cases, in both modes (the control table unchanged).
+  for (const char* name : {"aggressive", "aggressive_limit"}) {
+    for (const bool mpc : {false, true}) {
+      const ControlCase* c = FindControlCase(name);
+      ASSERT_NE(c, nullptr);
+      ControllerConfig controller = ControllerForCase(*c, LoadControllerConfig(ConfigFile("controller.yaml")));
+      controller.force_feedback = true;
+      controller.model_predictive = mpc;
+      const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+      const ClosedLoopRun run =
+          RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), controller, ClosedLoopOptions());
+      std::printf("%s %s: received %lld accepted %lld limited %lld\n", name, mpc ? "mpc" : "cascade",
+                  static_cast<long long>(run.setpoint.received), static_cast<long long>(run.setpoint.accepted),
+                  static_cast<long long>(run.setpoint.limited_periods));
+      EXPECT_EQ(run.setpoint.limited_periods, 0) << name;
+      EXPECT_EQ(run.setpoint.accepted, run.setpoint.received) << name;
+    }
+  }
+}
 
 }  // namespace
 }  // namespace birotor

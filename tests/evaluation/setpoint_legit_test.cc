@@ -10,6 +10,7 @@
 #include <string>
 
 #include "controller/setpoint_input.h"
+#include "evaluation/control_cases.h"
 #include "params/scenario_yaml.h"
 #include "simulator/trajectory.h"
 
@@ -27,10 +28,13 @@ const char* kFigureEight =
     "{start_s: 3.9, duration_s: 1.3, x_m: -0.5, z_m: 0.5}, {start_s: 5.2, duration_s: 1.3, x_m: 0.0, z_m: 0.75}, "
     "{start_s: 6.5, duration_s: 1.3, x_m: 0.5, z_m: 1.0}]";
 
-int64_t ShapedPeriods(const std::string& scenario_name, int64_t period_us, SetpointInput* input) {
-  const bool figure_eight = scenario_name == "figure8";
-  const Scenario scenario = figure_eight ? LoadScenario(ConfigFile("scenarios/gentle.yaml"), {kFigureEight})
-                                         : LoadScenario(ConfigFile("scenarios/" + scenario_name + ".yaml"));
+Scenario Named(const std::string& name) {
+  if (name == "figure8") return LoadScenario(ConfigFile("scenarios/gentle.yaml"), {kFigureEight});
+  return LoadScenario(ConfigFile("scenarios/" + name + ".yaml"));
+}
+
+int64_t ShapedPeriods(const Scenario& scenario, int64_t period_us, SetpointInput* input) {
+  const std::string& scenario_name = scenario.name;
   const Trajectory trajectory(scenario);
   const SetpointParams params;
   input->SetStart(Eigen::Vector2d(scenario.start_position_m[0], scenario.start_position_m[1]));
@@ -60,10 +64,25 @@ TEST(SetpointLegitTest, ShippedTrajectoriesPassUnshaped) {
   for (const char* name : {"gentle", "aggressive", "figure8", "gauge_drift", "flight_id", "density"}) {
     for (const int64_t period_us : {2000, 5000}) {
       SetpointInput input{SetpointParams()};
-      EXPECT_EQ(ShapedPeriods(name, period_us, &input), 0) << name << " every " << period_us << " us";
+      EXPECT_EQ(ShapedPeriods(Named(name), period_us, &input), 0) << name << " every " << period_us << " us";
       EXPECT_EQ(input.counters().limited_periods, 0) << name;
       EXPECT_EQ(input.counters().accepted, input.counters().received) << name;
     }
+  }
+}
+
+TEST(SetpointLegitTest, AggressiveLimitPassesUnshapedWithItsOwnLimits) {
+  // Case aggressive_limit (10 m/s^2, 2.47 m/s per axis) flies with its
+  // shaping opened to 3 m/s, 10.5 m/s^2 (evaluation/control_cases.cc).
+  const ControlCase* c = FindControlCase("aggressive_limit");
+  ASSERT_NE(c, nullptr);
+  const ControllerConfig config = ControllerForCase(*c, ControllerConfig());
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
+  for (const int64_t period_us : {2000, 5000}) {
+    SetpointInput input{config.setpoint};
+    EXPECT_EQ(ShapedPeriods(scenario, period_us, &input), 0) << period_us;
+    EXPECT_EQ(input.counters().limited_periods, 0) << period_us;
+    EXPECT_EQ(input.counters().accepted, input.counters().received);
   }
 }
 
