@@ -162,9 +162,12 @@ ReferencePoint SetpointInput::At(int64_t now_us, const Eigen::Vector2d& position
   const ReferencePoint target = Target(now_us, position_m);
   if (last_at_us_ < 0) {
     // The first period: the target when it is within start_snap_m of the
-    // start position (the first POSE, with its noise); one farther (a
-    // setpoint before the first period) is approached from the start, shaped.
-    const bool near_start = (target.position_m - shaper_.flown().position_m).norm() <= params_.start_snap_m;
+    // start position (the first POSE, with its noise) and within the limits;
+    // another (a setpoint before the first period) is approached from the
+    // start, shaped.
+    const bool near_start = (target.position_m - shaper_.flown().position_m).norm() <= params_.start_snap_m &&
+                            target.velocity_m_s.cwiseAbs().maxCoeff() <= params_.max_speed_m_s &&
+                            target.acceleration_m_s2.cwiseAbs().maxCoeff() <= params_.max_accel_m_s2;
     if (!started_ || near_start) shaper_.Reset(target);
     last_at_us_ = now_us;
     return shaper_.flown();
