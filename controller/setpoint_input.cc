@@ -8,6 +8,8 @@
 namespace birotor {
 namespace {
 
+constexpr double kMaxShapingStepS = 0.05;  // [s]; 10 periods of the 200 Hz mpc
+
 bool FiniteWithin(double value, double limit) { return std::isfinite(value) && std::fabs(value) <= limit; }
 // A feed-forward may be NaN (not given); otherwise within the limit.
 bool AbsentOrWithin(double value, double limit) { return std::isnan(value) || FiniteWithin(value, limit); }
@@ -172,7 +174,10 @@ ReferencePoint SetpointInput::At(int64_t now_us, const Eigen::Vector2d& position
     last_at_us_ = now_us;
     return shaper_.flown();
   }
-  const double dt_s = ElapsedSeconds(now_us, last_at_us_);
+  // A gap between periods (no POSE, a paused process) counts as at most
+  // kMaxShapingStepS: the shaping model is integrated explicitly (stable
+  // for w dt < 2) and the allowances of the limits grow with dt.
+  const double dt_s = std::min(ElapsedSeconds(now_us, last_at_us_), kMaxShapingStepS);
   last_at_us_ = std::max(last_at_us_, now_us);
   return shaper_.Step(target, dt_s);
 }

@@ -228,3 +228,23 @@ TEST(SetpointShapingTest, SeqAndStampMustAdvanceAsOnePublishersCan) {
 
 }  // namespace
 }  // namespace birotor
+
+namespace birotor {
+namespace {
+
+TEST(SetpointShapingTest, AGapBetweenPeriodsIsOneBoundedStep) {
+  // No period for 5 s (no POSE): the next one moves the reference as after
+  // 50 ms (kMaxShapingStepS), not as after 5 s (which would overshoot).
+  SetpointInput input{SetpointParams()};
+  input.SetStart(Eigen::Vector2d::Zero());
+  input.At(0, Eigen::Vector2d::Zero());
+  ASSERT_TRUE(input.Offer(Make(0, 0, 0.45, 0.0), 0));
+  ASSERT_TRUE(input.Offer(Make(1, 4900000, 0.45, 0.0), 4900000));
+  const ReferencePoint r = input.At(5000000, Eigen::Vector2d::Zero());
+  // One step of 50 ms at 2.6 m/s^2 from rest: v = 0.13 m/s, x = 0.00325 m.
+  EXPECT_NEAR(r.velocity_m_s.x(), 0.13, 1e-12);
+  EXPECT_NEAR(r.position_m.x(), 0.00325, 1e-12);
+}
+
+}  // namespace
+}  // namespace birotor
