@@ -162,20 +162,21 @@ struct SetpointParams {
   double shaping_position_tolerance_m = 0.001;   // [m]
   double shaping_velocity_tolerance_m_s = 0.01;  // [m/s]
   // Natural frequency of the (critically damped) shaping reference model
-  // [rad/s]; <= 4 max_accel / max_speed (6.3) so it brakes in time.
+  // [rad/s]; <= 4 max_accel / max_speed (7.4) so it brakes in time.
   double shaping_bandwidth_rad_s = 4.0;
   // The first control period flies the setpoint exactly when it is this
   // close to the start position (the first POSE and its noise) [m].
   double start_snap_m = 0.02;
   // Feed-forward consistency with the previous accepted setpoint, dt apart:
   // |(v0 + v1)/2 dt - dp| <= tol_v max(dt, floor), and with both velocities
-  // given |(a0 + a1)/2 dt - dv| <= tol_a max(dt, floor).
+  // given |(a0 + a1)/2 dt - dv| <= tol_a max(dt, floor) (a0 left out when
+  // not given); an acceleration without its velocity is refused.
   double ff_velocity_tolerance_m_s = 0.2;  // [m/s]
   double ff_accel_tolerance_m_s2 = 1.0;    // [m/s^2]
   double ff_interval_floor_s = 0.01;       // [s]
   // Publisher lock: one publisher's seq moves by 1 .. 1 + lock_max_rate_hz
-  // dt (1 + lock_rate_margin) + lock_seq_slack and its stamp by (0, dt +
-  // lock_stamp_slack_s] in an arrival interval dt.
+  // dt (1 + lock_rate_margin) + lock_seq_slack and its stamp by at most
+  // dt + lock_stamp_slack_s in an arrival interval dt.
   double lock_max_rate_hz = 500.0;  // [Hz]
   double lock_rate_margin = 0.5;
   double lock_seq_slack = 2.0;       // [messages]
