@@ -153,14 +153,50 @@ struct EfficiencyParams {
 
 // What the controller accepts on SETPOINT (controller/setpoint_input.h).
 struct SetpointParams {
-  double timeout_s = 0.5;             // newest setpoint held this long, then hover where the vehicle is [s]
-  double max_extrapolation_s = 0.05;  // a held setpoint moves on with its feed-forward this long [s]
-  double future_window_s = 0.1;       // stamps later than the controller's clock plus this are refused [s]
-  double min_interval_s = 0.002;      // rate limit: stamps closer than this to the newest are refused [s]
-  double max_abs_position_m = 100.0;  // |x|, |z| accepted [m]
-  double max_speed_m_s = 5.0;         // |velocity feed-forward| accepted, per axis [m/s]
-  double max_accel_m_s2 = 10.0;       // |acceleration feed-forward| accepted, per axis [m/s^2]
-  double max_jump_m = 0.5;            // distance from the reference flown now accepted [m]
+  double timeout_s = 0.5;                     // newest setpoint held this long, then hover where the vehicle is [s]
+  double max_extrapolation_s = 0.05;          // a held setpoint moves on with its feed-forward this long [s]
+  double future_window_s = 0.1;               // stamps later than the controller's clock plus this are refused [s]
+  double min_interval_s = 0.002;              // rate limit: stamps closer than this to the newest are refused [s]
+  double max_abs_position_m = 100.0;          // |x|, |z| accepted [m]
+  double max_feed_forward_speed_m_s = 5.0;    // |velocity feed-forward| accepted, per axis [m/s]
+  double max_feed_forward_accel_m_s2 = 10.0;  // |acceleration feed-forward| accepted, per axis [m/s^2]
+  // The reference flown moves per axis at most this fast [m/s] and with at
+  // most this acceleration [m/s^2]: 1.5x the fastest legitimate references,
+  // aggressive ((1, 1) m in 2 s: 1.875 / 2 = 0.94 m/s per axis) and the
+  // figure-8 of the identification flights (0.5 m legs in 1.3 s: 5.77 x 0.5
+  // / 1.3^2 = 1.71 m/s^2). 2.6 m/s^2 needs atan(2.6 / 9.81) = 0.26 rad of
+  // tilt, inside max_tilt_rad 0.5. (mass_id's 0.4 m in 0.8 s, 3.61 m/s^2,
+  // if flown through birotor-controller, is shaped.)
+  double max_speed_m_s = 1.4;
+  double max_accel_m_s2 = 2.6;
+  double max_jump_m = 0.5;  // distance from the reference flown now accepted [m]
+  // Reference shaping: a target step this much beyond max_speed dt (and a
+  // velocity step this much beyond max_accel dt) is still followed exactly.
+  double shaping_position_tolerance_m = 0.001;   // [m]
+  double shaping_velocity_tolerance_m_s = 0.01;  // [m/s]
+  // Natural frequency of the (critically damped) shaping reference model
+  // [rad/s]; <= 4 max_accel / max_speed (7.4) so it brakes in time.
+  double shaping_bandwidth_rad_s = 4.0;
+  // The first control period flies the setpoint exactly when it is this
+  // close to the start position (the first POSE and its noise) [m].
+  double start_snap_m = 0.02;
+  // Feed-forward consistency with the previous accepted setpoint, dt apart:
+  // |(v0 + v1)/2 dt - dp| <= tol_v max(dt, floor), and with both velocities
+  // given |(a0 + a1)/2 dt - dv| <= tol_a max(dt, floor) (a0 left out when
+  // not given); an acceleration without its velocity is refused.
+  double ff_velocity_tolerance_m_s = 0.2;  // [m/s]
+  double ff_accel_tolerance_m_s2 = 1.0;    // [m/s^2]
+  double ff_interval_floor_s = 0.01;       // [s]
+  // Publisher lock: one publisher's seq moves by 1 .. 1 + lock_max_rate_hz
+  // dt (1 + lock_rate_margin) + lock_seq_slack and its stamp by at most
+  // dt + lock_stamp_slack_s in an arrival interval dt.
+  double lock_max_rate_hz = 500.0;  // [Hz]
+  double lock_rate_margin = 0.5;
+  double lock_seq_slack = 2.0;       // [messages]
+  double lock_stamp_slack_s = 0.02;  // [s]
+  // A second publisher while the locked one is alive: both refused until
+  // one has been silent this long [s].
+  double conflict_hold_s = 1.0;
 };
 
 // Everything birotor-controller (and the lock-step closed loop) needs.

@@ -143,7 +143,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   ClosedLoopRun run;
   Simulator simulator(scenario);
   simulator.UseExternalCommands(options.command_timeout_s);
-  simulator.EmitSetpoints(options.setpoint_rate_hz);
+  if (options.setpoint_rate_hz > 0) simulator.EmitSetpoints(options.setpoint_rate_hz);
   // The virtual clock stands still during a solve: the MPC's deadline is a
   // work budget, so that the same seed flies the same on any machine.
   ControllerConfig lock_step_config = controller_config;
@@ -191,6 +191,7 @@ ClosedLoopRun RunClosedLoop(const Scenario& scenario, const EstimatorConfig& est
   run.ground_z_m = scenario.start_position_m[1];
   run.arm_length_m = BirotorModelOf(scenario.vehicle).arm_length_m;
   run.controller = controller.health();
+  run.setpoint = controller.setpoint().counters();
   run.mpc = controller.MpcStatistics();
   run.estimator = estimator.health();
   run.command_timeouts = simulator.command_timeouts();

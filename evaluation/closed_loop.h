@@ -33,7 +33,8 @@ struct ClosedLoopOptions {
   double command_timeout_s = 0.1;
   // Channel prefix of the log.
   std::string prefix = "BIROTOR_";
-  // The trajectory is sent as SETPOINT at this rate [Hz].
+  // The trajectory is sent as SETPOINT at this rate [Hz]; 0: not sent (a
+  // test's before_step is then the only publisher).
   double setpoint_rate_hz = 100.0;
   // ESTIMATOR_STATUS and CONTROLLER_STATUS go into the log at this rate of
   // the vehicle clock, the daemons' default (EstimatorServiceOptions::
@@ -57,7 +58,8 @@ struct ClosedLoopRun {
   // fed SETPOINT, TRUTH and MOTOR_COMMAND in the order the log gets them.
   FlightFigures figures;
   ControllerHealth controller;
-  MpcStats mpc;  // mode mpc: solves, fallbacks, solve times (zeros in other modes)
+  SetpointCounters setpoint;  // the controller's SETPOINT counters at the end
+  MpcStats mpc;               // mode mpc: solves, fallbacks, solve times (zeros in other modes)
   PipelineHealth estimator;
   int64_t fault_utime = -1;      // first thrust step [us]; -1 if none
   int64_t liftoff_utime = -1;    // first lift-off of a ground start [us]; -1 if none

@@ -34,7 +34,10 @@ const std::vector<ControlCase>& ControlCases() {
       {"aggressive_limit",
        "aggressive",
        {"trajectory.waypoints=[{start_s: 0.0, duration_s: 0.76, x_m: 1.0, z_m: 1.0}]"},
-       "aggressive in 0.76 s: 10 m/s^2 per axis, the fastest SETPOINT accepts (max_accel_m_s2)"},
+       "aggressive in 0.76 s: 10 m/s^2 per axis, the fastest feed-forward SETPOINT accepts "
+       "(max_feed_forward_accel_m_s2), flown unshaped (shaping opened to 3 m/s, 10.5 m/s^2)",
+       3.0,
+       10.5},
       {"thrust_loss", "thrust_loss", {"scenario.duration_s=10"}, "rotor 2 loses 25 % at 5 s"},
       {"stiffness_-20",
        "hover",
@@ -82,6 +85,12 @@ const std::vector<ControlCase>& ControlCases() {
        "take off to 0.4 m, rotor 2 loses 80 % at 6 s (FORCE at its plausibility floor: level descent)"},
   };
   return cases;
+}
+
+ControllerConfig ControllerForCase(const ControlCase& c, ControllerConfig base) {
+  if (c.reference_max_speed_m_s > 0) base.setpoint.max_speed_m_s = c.reference_max_speed_m_s;
+  if (c.reference_max_accel_m_s2 > 0) base.setpoint.max_accel_m_s2 = c.reference_max_accel_m_s2;
+  return base;
 }
 
 const ControlCase* FindControlCase(const std::string& name) {

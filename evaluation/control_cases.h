@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "controller/controller_params.h"
+
 namespace birotor {
 
 struct ControlCase {
@@ -15,7 +17,15 @@ struct ControlCase {
   std::string scenario;                // scenarios/<scenario>.yaml
   std::vector<std::string> overrides;  // section.key=value, applied in order
   std::string what;                    // one line for the table and the docs
+  // > 0: the case flies with these setpoint shaping limits (setpoint
+  // max_speed_m_s, max_accel_m_s2) instead of the controller file's; a case
+  // that tests the controllers beyond what the shipped shaping lets through.
+  double reference_max_speed_m_s = 0;
+  double reference_max_accel_m_s2 = 0;
 };
+
+// The controller configuration case c flies: base with its shaping limits.
+ControllerConfig ControllerForCase(const ControlCase& c, ControllerConfig base);
 
 // Every case, in table order: the kept ones (hover, gentle, aggressive,
 // thrust_loss), then the issue 25 table.

@@ -52,7 +52,7 @@ void BuildControllerStatus(const VehicleController& controller, const Controller
   m.efficiency[0] = h.efficiency[0];
   m.efficiency[1] = h.efficiency[1];
   const SetpointInput& setpoint = controller.setpoint();
-  const SetpointCounters& sc = setpoint.counters();
+  const SetpointCounters sc = setpoint.counters();
   m.setpoint_state = static_cast<int32_t>(setpoint.state());
   m.setpoint_age_s = setpoint.last_utime() < 0 || now_us < 0 ? kNaN : ElapsedSeconds(now_us, setpoint.last_utime());
   m.setpoint_received = sc.received + context.setpoint_decode_errors;
@@ -63,6 +63,10 @@ void BuildControllerStatus(const VehicleController& controller, const Controller
   m.setpoint_rejected_rate = sc.rejected_rate;
   m.setpoint_rejected_jump = sc.rejected_jump;
   m.setpoint_timeouts = sc.timeouts;
+  m.setpoint_rejected_inconsistent = sc.rejected_inconsistent;
+  m.setpoint_conflicts = sc.conflicts;
+  m.setpoint_rejected_conflict = sc.rejected_conflict;
+  m.setpoint_limited_periods = sc.limited_periods;
   m.loop_time_p99_us = context.loop_time_p99_us;
   m.loop_time_max_us = context.loop_time_max_us;
   const MpcStats mpc = controller.MpcStatistics();

@@ -245,7 +245,8 @@ void FlyMpcModes(const ControlCase& c, const Scenario& scenario, const Estimator
 // One case flown in both modes on each seed: the per-run rows, the
 // comparison row and, with --plot-dir, the first seed's figure.
 bool RunControlCase(const ControlCase& c, const EvalCli& cli, const EstimatorConfig& estimator,
-                    const ControllerConfig& controller, ControlTables* tables) {
+                    const ControllerConfig& base_controller, ControlTables* tables) {
+  const ControllerConfig controller = ControllerForCase(c, base_controller);
   CaseFigures figures;
   std::string error;
   for (int seed = 1; seed <= cli.seeds; ++seed) {

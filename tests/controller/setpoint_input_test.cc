@@ -15,7 +15,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Setpoint At(int64_t utime, double x_m, double z_m) {
+  static int32_t seq = 0;  // one publisher: every setpoint the next seq
   Setpoint s;
+  s.seq = seq++;
   s.utime = utime;
   s.x_m = x_m;
   s.z_m = z_m;
@@ -39,8 +41,17 @@ TEST(SetpointTest, ReferenceExtrapolatesWithTheFeedForward) {
   EXPECT_DOUBLE_EQ(back.z_dot_m_s, 0.0);
 }
 
+// The rules before shaping: limits so wide that every step here is followed
+// exactly (a 0.5 m step in 10 ms is 50 m/s).
+SetpointParams Unshaped() {
+  SetpointParams params;
+  params.max_speed_m_s = 100.0;
+  params.max_accel_m_s2 = 100.0;
+  return params;
+}
+
 TEST(SetpointInputTest, FollowsHoldsThenHoversWhereItIs) {
-  const SetpointParams params;
+  const SetpointParams params = Unshaped();
   SetpointInput input(params);
   input.SetStart(Eigen::Vector2d(0.0, 1.0));
   EXPECT_EQ(input.At(0, Eigen::Vector2d::Zero()).position_m.y(), 1.0);
@@ -50,14 +61,14 @@ TEST(SetpointInputTest, FollowsHoldsThenHoversWhereItIs) {
   EXPECT_EQ(input.state(), SetpointState::kFollowing);
   // Held until timeout_s (0.5 s) after its stamp, then the vehicle's position.
   EXPECT_DOUBLE_EQ(input.At(510000, Eigen::Vector2d(5.0, 5.0)).position_m.x(), 0.2);
-  const ReferencePoint here = input.At(510001, Eigen::Vector2d(0.25, 1.05));
+  const ReferencePoint here = input.At(520000, Eigen::Vector2d(0.25, 1.05));
   EXPECT_EQ(input.state(), SetpointState::kHoldHere);
   EXPECT_DOUBLE_EQ(here.position_m.x(), 0.25);
   EXPECT_DOUBLE_EQ(input.At(900000, Eigen::Vector2d(3.0, 3.0)).position_m.y(), 1.05);
   EXPECT_EQ(input.counters().timeouts, 1);
   // A new setpoint near the hover point is followed again.
   EXPECT_TRUE(input.Offer(At(900000, 0.3, 1.0), 900000));
-  EXPECT_DOUBLE_EQ(input.At(900000, Eigen::Vector2d::Zero()).position_m.x(), 0.3);
+  EXPECT_DOUBLE_EQ(input.At(910000, Eigen::Vector2d::Zero()).position_m.x(), 0.3);
   EXPECT_EQ(input.state(), SetpointState::kFollowing);
 }
 
@@ -79,7 +90,7 @@ TEST(SetpointInputTest, EveryRefusalIsCounted) {
   EXPECT_FALSE(input.Offer(At(now, kNaN, 0.0), now));
   EXPECT_FALSE(input.Offer(At(now, 0.0, 101.0), now));  // max_abs_position_m 100
   Setpoint fast = At(now, 0.0, 0.0);
-  fast.z_dot_m_s = 5.5;  // max_speed_m_s 5
+  fast.z_dot_m_s = 5.5;  // max_feed_forward_speed_m_s 5
   EXPECT_FALSE(input.Offer(fast, now));
   EXPECT_EQ(input.counters().rejected_invalid, 3);
   EXPECT_FALSE(input.Offer(At(now + 100001, 0.0, 0.0), now));  // future_window_s 0.1

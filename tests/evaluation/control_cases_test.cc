@@ -71,7 +71,7 @@ TEST(ControlCasesTest, EveryCaseWithinItsMeasuredFigures) {
     const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c.scenario + ".yaml"), c.overrides);
     ControlMetrics m[2];
     for (const bool force_feedback : {false, true}) {
-      ControllerConfig config = base;
+      ControllerConfig config = ControllerForCase(c, base);
       config.force_feedback = force_feedback;
       m[force_feedback] = EvaluateControl(RunClosedLoop(scenario, estimator, config, ClosedLoopOptions()));
     }

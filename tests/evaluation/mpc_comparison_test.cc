@@ -24,8 +24,9 @@ namespace {
 std::string ConfigFile(const std::string& name) { return std::string(BIROTOR_SOURCE_DIR) + "/config/" + name; }
 
 // The scenario flown in mode mpc with the shipped configs (*controller: the one flown).
-ClosedLoopRun FlyInModeMpc(const Scenario& scenario, ControllerConfig* controller) {
-  *controller = LoadControllerConfig(ConfigFile("controller.yaml"));
+ClosedLoopRun FlyInModeMpc(const Scenario& scenario, ControllerConfig* controller,
+                           const ControlCase& as_case = ControlCase()) {
+  *controller = ControllerForCase(as_case, LoadControllerConfig(ConfigFile("controller.yaml")));
   controller->force_feedback = controller->model_predictive = true;
   return RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), *controller, ClosedLoopOptions());
 }
@@ -66,7 +67,8 @@ Scenario CaseScenario(const std::string& name) {
 
 // Figures of case name flown in mode mpc (model_predictive) or by the nominal cascade.
 ControlFigures FlyCase(const std::string& name, bool model_predictive) {
-  ControllerConfig controller = LoadControllerConfig(ConfigFile("controller.yaml"));
+  ControllerConfig controller =
+      ControllerForCase(*FindControlCase(name), LoadControllerConfig(ConfigFile("controller.yaml")));
   controller.force_feedback = controller.model_predictive = model_predictive;
   return FiguresOf(EvaluateControl(RunClosedLoop(CaseScenario(name), LoadEstimatorConfig(ConfigFile("estimator.yaml")),
                                                  controller, ClosedLoopOptions())));
@@ -115,7 +117,8 @@ TEST(MpcComparisonTest, FastestAcceptedTrajectoryKeepsTheCascadesAltitude) {
   // the cascade 0.2282 m (at 0.633 rad); before altitude_weight_factor and
   // DENSE-IPM: 0.478 m and 8 late solves.
   ControllerConfig controller;
-  const ClosedLoopRun run = FlyInModeMpc(CaseScenario("aggressive_limit"), &controller);
+  const ClosedLoopRun run =
+      FlyInModeMpc(CaseScenario("aggressive_limit"), &controller, *FindControlCase("aggressive_limit"));
   const ControlMetrics m = EvaluateControl(run);
   const MpcRunFigures f = MpcFiguresOf(run, m, controller);
   const ControlFigures cascade = FlyCase("aggressive_limit", false);
