@@ -161,6 +161,9 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   loop_time_count_ = 0;
   context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
   context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
+  for (int i = 0; i < kNumAuthenticatedChannels && authentication_ != nullptr; ++i) {
+    context.authentication[i] = authentication_->counters(static_cast<AuthenticatedChannel>(i));
+  }
   ++status_message_.seq;
   BuildControllerStatus(controller_, context, &status_message_);
   EncodeMessage(status_message_, &buffer_);

@@ -223,6 +223,9 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
     context.processing_time_max_us = kNaN;
   }
   if (udp_counters_ != nullptr) context.udp = *udp_counters_;
+  for (int i = 0; i < kNumAuthenticatedChannels && authentication_ != nullptr; ++i) {
+    context.authentication[i] = authentication_->counters(static_cast<AuthenticatedChannel>(i));
+  }
   BuildStatusMessage(pipeline_.health(), pipeline_.method_name(), context, &status_message_);
   const ModelConsistencyState& consistency = pipeline_.health().consistency;
   if (consistency.mismatch && mismatch_warning_.ShouldLog(SteadyClockUs())) {

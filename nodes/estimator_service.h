@@ -94,6 +94,9 @@ class EstimatorService : public PacketHandler {
   // The live source's UDP counters (MessageSource::udp_counters, nullptr for
   // other sources) go into ESTIMATOR_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
+  // The authenticating handler in front of this node (its counters go into
+  // ESTIMATOR_STATUS); it must outlive the service.
+  void AttachAuthentication(const AuthenticatingHandler* handler) { authentication_ = handler; }
 
   // The channels to subscribe a source to (the route table's names): the
   // four inputs, STRAIN_N and MOTOR_N, and the node's own FORCE (to see a
@@ -177,6 +180,7 @@ class EstimatorService : public PacketHandler {
   int64_t next_status_utime_ = -1;            // vehicle-clock status schedule [us]
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   const UdpReceiveCounters* udp_counters_ = nullptr;
+  const AuthenticatingHandler* authentication_ = nullptr;
   // Hashes of the last published FORCE payloads (FNV-1a), to tell our own
   // looped-back FORCE from another publisher's: 1 s of FORCE at 1 kHz. Each
   // comes back once; a second copy is a second publisher of the same bytes
