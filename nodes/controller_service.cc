@@ -11,6 +11,7 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
+#include "nodes/auth_status_message.h"
 #include "nodes/controller_status_message.h"
 #include "numerics/percentile.h"
 #include "numerics/time_units.h"
@@ -161,13 +162,16 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   loop_time_count_ = 0;
   context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
   context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
-  for (int i = 0; i < kNumAuthenticatedChannels && authentication_ != nullptr; ++i) {
-    context.authentication[i] = authentication_->counters(static_cast<AuthenticatedChannel>(i));
-  }
   ++status_message_.seq;
   BuildControllerStatus(controller_, context, &status_message_);
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.controller_status, context.now_us, buffer_.data(), buffer_.size());
+  if (authentication_ == nullptr) return;
+  ++auth_status_.seq;
+  BuildAuthStatus(auth_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_,
+                  &auth_status_);
+  EncodeMessage(auth_status_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.auth_status, context.now_us, buffer_.data(), buffer_.size());
 }
 
 }  // namespace birotor

@@ -76,13 +76,6 @@ void BuildControllerStatus(const VehicleController& controller, const Controller
   m.mpc_max_iterations = mpc.max_iterations;
   m.udp_fragments_dropped = context.udp_fragments_dropped;
   m.udp_malformed_dropped = context.udp_malformed_dropped;
-  for (int i = 0; i < kNumAuthenticatedChannels; ++i) {
-    const AuthenticationCounters& a = context.authentication[i];
-    m.auth_accepted[i] = a.authenticated;
-    m.auth_refused[i] = a.unauthenticated + a.malformed;
-    m.auth_replayed[i] = a.replayed;
-    m.auth_unsigned_accepted[i] = a.unsigned_accepted;
-  }
 }
 
 }  // namespace birotor

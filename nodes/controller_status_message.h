@@ -4,13 +4,11 @@
 // (evaluation/closed_loop.cc), so both say the same thing the same way.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <limits>
 
 #include "birotor/controller_status_t.hpp"
 #include "controller/vehicle_controller.h"
-#include "sources/authenticating_handler.h"
 
 namespace birotor {
 
@@ -29,8 +27,6 @@ struct ControllerStatusContext {
   double loop_time_max_us = std::numeric_limits<double>::quiet_NaN();
   int64_t udp_fragments_dropped = 0;
   int64_t udp_malformed_dropped = 0;
-  // The authenticated channels' counters (zero where nothing is authenticated).
-  std::array<AuthenticationCounters, kNumAuthenticatedChannels> authentication{};
   // The MPC's solve times are host time: false (the lock-step loop, to be
   // deterministic, as replay leaves out the processing time) sends NaN.
   bool report_solve_times = true;

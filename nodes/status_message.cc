@@ -134,13 +134,6 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->udp_fragments_dropped = context.udp.fragments_dropped;
   message->udp_malformed_dropped = context.udp.malformed_dropped;
   message->udp_kernel_dropped = context.udp.kernel_dropped;
-  for (int i = 0; i < kNumAuthenticatedChannels; ++i) {
-    const AuthenticationCounters& a = context.authentication[i];
-    message->auth_accepted[i] = a.authenticated;
-    message->auth_refused[i] = a.unauthenticated + a.malformed;
-    message->auth_replayed[i] = a.replayed;
-    message->auth_unsigned_accepted[i] = a.unsigned_accepted;
-  }
   message->model_consistency_statistic = health.consistency.ReportedStatistic();
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
   FillLearnedParameters(health, message);

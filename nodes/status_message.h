@@ -9,7 +9,6 @@
 
 #include "birotor/estimator_status_t.hpp"
 #include "estimator/estimator_pipeline.h"
-#include "sources/authenticating_handler.h"
 #include "transport/udpm_receiver.h"
 
 namespace birotor {
@@ -48,8 +47,6 @@ struct StatusContext {
   double processing_time_p99_us = 0;
   double processing_time_max_us = 0;
   UdpReceiveCounters udp;             // the daemon's UDP reader; zeros without one
-  // The authenticated channels' counters (zeros where nothing is authenticated).
-  std::array<AuthenticationCounters, kNumAuthenticatedChannels> authentication{};
   const char* vehicle_checksum = "";  // VehicleChecksum of the configured vehicle (gauge_state_file.h)
 };
 

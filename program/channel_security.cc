@@ -29,7 +29,7 @@ bool LoadChannelSecurity(const ChannelSecurityOptions& options, const ChannelSet
     *error = "--unsigned: " + parse_error;
     return false;
   }
-  std::string needing;  // the used channels that are authenticated
+  std::string needing;  // the used channels that are authenticated, "POSE, FORCE"
   const ChannelNames names = MakeChannelNames("");
   for (int i = 0; i < kNumAuthenticatedChannels; ++i) {
     if (used[i] && !security->unsigned_channels[i]) {
@@ -42,10 +42,11 @@ bool LoadChannelSecurity(const ChannelSecurityOptions& options, const ChannelSet
     security->authenticator = std::make_unique<MessageAuthenticator>(key);
     return true;
   }
+  security->key_problem = key_error;
   if (needing.empty()) return true;
-  *error = key_error + "; " + needing +
-           " are authenticated with it (docs/deploy.md, \"The site key\"): install the key, give its path with "
-           "--site-key, or let the channels through with --unsigned";
+  *error = key_error + "; it authenticates " + needing +
+           " (docs/deploy.md, \"The site key\"): install the key, give its path with --site-key, or let the "
+           "channels through with --unsigned";
   return false;
 }
 

@@ -13,7 +13,6 @@
 #include "birotor/truth_t.hpp"
 #include "transport/channels.h"
 #include "transport/lcm_codec.h"
-#include "transport/authenticated_envelope.h"
 #include "transport/log_io.h"
 #include "transport/message_conversion.h"
 
@@ -174,12 +173,10 @@ bool ReadFlightData(const std::string& path, const std::string& prefix, double m
   LogReader reader;
   if (!reader.Open(path, error)) return false;
   FlightDecoder decoder(prefix, data);
-  SealedEventOpener opener(MakeChannelNames(prefix));  // authenticated channels read as their plain twins
   LogEvent event;
   std::map<std::string, int64_t> first_us, last_us;
   while (reader.Next(&event)) {
     ++data->events;
-    opener.Open(&event);
     decoder.Handle(event);
     // Channel times from the logger's receive stamps (every channel has one).
     auto [it, inserted] = first_us.emplace(event.channel, event.timestamp_us);

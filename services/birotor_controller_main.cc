@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
       &service, SealedMessages::kVerify, security.authenticator.get(), channels,
       {AuthenticatedChannel::kSetpoint, AuthenticatedChannel::kPose, AuthenticatedChannel::kForce},
       security.unsigned_channels);
-  service.AttachAuthentication(&authenticated);
+  service.AttachAuthentication(&sink, &authenticated);
   const std::vector<std::string> subscribed = authenticated.WithSealedChannels(service.InputChannels());
   // Inputs through the shared message source: on udpm our own LC02 reader,
   // which drops and counts fragments instead of reassembling them.

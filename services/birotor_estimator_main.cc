@@ -85,12 +85,11 @@ std::string LoadConfig(const DaemonOptions& options, EstimatorConfig* config) {
 // a state file is configured and no key was read (POSE and FORCE both let
 // through unsigned): the state file is then neither restored nor written (an
 // unauthenticated file could be forged).
-const MessageAuthenticator* StateFileAuthenticator(const ChannelSecurity& security, const std::string& site_key_file,
-                                                   const std::string& state_file) {
+const MessageAuthenticator* StateFileAuthenticator(const ChannelSecurity& security, const std::string& state_file) {
   if (state_file.empty()) return nullptr;
   if (!security.authenticator) {
-    spdlog::warn("gauge state file {} is not authenticated (no site key {}): neither restored nor written this run",
-                 state_file, site_key_file);
+    spdlog::warn("gauge state file {} is not authenticated ({}): neither restored nor written this run", state_file,
+                 security.key_problem);
   }
   return security.authenticator.get();
 }
@@ -225,10 +224,10 @@ int main(int argc, char** argv) {
   AuthenticatingHandler authenticated(&service, SealedMessages::kVerify, security.authenticator.get(), channels,
                                       {AuthenticatedChannel::kPose, AuthenticatedChannel::kForce},
                                       security.unsigned_channels);
-  service.AttachAuthentication(&authenticated);
+  service.AttachAuthentication(&sink, &authenticated);
   const std::string vehicle_checksum = VehicleChecksum(BirotorModelOf(config.vehicle));
   const MessageAuthenticator* authenticator =
-      StateFileAuthenticator(security, options.security.site_key_file, config.tare.state_file);
+      StateFileAuthenticator(security, config.tare.state_file);
   RestoreGaugeOffsets(config, vehicle_checksum, authenticator, &service);
   const std::string state_file = authenticator ? WritableStateFile(config.tare.state_file) : "";
   // Inputs through the shared message source. On udpm our own small-message

@@ -17,6 +17,7 @@
 
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
+#include "nodes/auth_status_message.h"
 #include "nodes/esc_command_node.h"
 #include "numerics/time_units.h"
 #include "params/controller_config_yaml.h"
@@ -41,6 +42,7 @@
 #include "sources/message_source.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
+#include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
@@ -217,6 +219,27 @@ class EscCommandInput {
 };
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
+// AUTH_STATUS once a second of simulated time: what was sealed and refused.
+class AuthStatusPublisher {
+ public:
+  AuthStatusPublisher(const ChannelNames& channels, MessageSink* sink) : channel_(channels.auth_status), sink_(sink) {}
+  void MaybePublish(const Simulator& sim, const SigningSink& signing, const AuthenticatingHandler* handler) {
+    if (sim.utime() < next_utime_) return;
+    next_utime_ = sim.utime() + 1000000;
+    ++message_.seq;
+    BuildAuthStatus(auth_status_t::PROGRAM_SIM, sim.utime(), WallClockUs(), &signing, handler, &message_);
+    EncodeMessage(message_, &buffer_);
+    if (!buffer_.empty()) sink_->Publish(channel_, sim.utime(), buffer_.data(), buffer_.size());
+  }
+
+ private:
+  std::string channel_;
+  MessageSink* sink_;
+  auth_status_t message_{};
+  std::vector<uint8_t> buffer_;
+  int64_t next_utime_ = 0;
+};
+
 // POSE and SETPOINT sealed (their _AUTH channels) unless the site lets them
 // through unsigned.
 bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, MessageSource* source,
@@ -228,8 +251,10 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, Messag
   std::unique_ptr<EscCommandInput> commands;
   if (source != nullptr) commands = std::make_unique<EscCommandInput>(source, channels, security, sim);
   LivePacer pacer(speed, sim->scenario().step_s);
+  AuthStatusPublisher auth_status(channels, &lcm_sink);
   while (!ShutdownRequested() && sim->Step(&sink)) {
     if (commands) commands->Poll();
+    auth_status.MaybePublish(*sim, signing_sink, commands ? &commands->authentication() : nullptr);
     pacer.AfterStep(sim->time_s());
   }
   if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());
@@ -408,9 +433,11 @@ int Main(int argc, char** argv) {
   }
 
   // Live, the key before anything is opened: POSE, SETPOINT and
-  // MOTOR_COMMAND are authenticated unless let through unsigned.
+  // MOTOR_COMMAND are authenticated unless let through unsigned (a vehicle
+  // with N arms publishes its counted types, not authenticated yet).
   ChannelSecurity security;
-  const ChannelSet used{options.external_controller, options.publish_setpoints, true, false};
+  const bool birotor = options.vehicle_file.empty();
+  const ChannelSet used{options.external_controller, options.publish_setpoints, birotor, false};
   if (options.output.empty() && !LoadChannelSecurity(options.security, used, &security, &error)) {
     return ReportError(error);
   }

@@ -21,6 +21,7 @@ void SigningSink::Publish(const std::string& channel, int64_t timestamp_us, cons
     }
     ++counter_;
     next_->Publish(route.sealed, timestamp_us, buffer_.data(), buffer_.size());
+    next_->Publish(channel, timestamp_us, data, size);  // the plain copy, after the sealed one
     return;
   }
   next_->Publish(channel, timestamp_us, data, size);

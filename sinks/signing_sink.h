@@ -2,9 +2,12 @@
 // that publishes each message of a signed channel as its sealed twin
 // (transport/authenticated_envelope.h) on <NAME>_AUTH, under this
 // publisher's random identity and its counter (1, 2, ... over every sealed
-// message it publishes). Messages of other channels, and of a channel the
-// site lets through unsigned, pass unchanged. No allocation once its buffer
-// has grown to the largest message.
+// message it publishes), and then the message itself on <NAME>, the plain
+// copy the wire contract promises its readers (lcm-spy, loggers, programs
+// that do not fly the vehicle). Receivers that fly take the sealed one and
+// drop the copy (sources/authenticating_handler.h). Messages of other
+// channels, and of a channel the site lets through unsigned, pass
+// unchanged. No allocation once its buffer has grown to the largest message.
 #pragma once
 
 #include <cstdint>

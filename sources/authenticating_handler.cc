@@ -1,5 +1,7 @@
 #include "sources/authenticating_handler.h"
 
+#include "numerics/fnv1a.h"
+
 namespace birotor {
 
 AuthenticatingHandler::AuthenticatingHandler(PacketHandler* next, SealedMessages mode,
@@ -29,7 +31,8 @@ std::string AuthenticatingHandler::Summary() const {
     if (!text.empty()) text += "; ";
     text += std::string(route.names.base) + ": " + std::to_string(c.authenticated) + " accepted, " +
             std::to_string(c.unauthenticated + c.malformed) + " refused, " + std::to_string(c.replayed) +
-            " replayed, " + std::to_string(c.unsigned_accepted) + " unsigned accepted";
+            " replayed, " + std::to_string(c.unsigned_accepted) + " unsigned accepted, " +
+            std::to_string(c.plain_copies) + " plain copies dropped";
   }
   return text;
 }
@@ -42,15 +45,28 @@ void AuthenticatingHandler::HandlePacket(std::string_view channel, const void* d
       return;
     }
     if (channel == route.names.plain) {
-      AuthenticationCounters& counters = counters_[static_cast<int>(route.channel)];
-      if (!route.unsigned_allowed) {
-        ++counters.unauthenticated;
-        return;
-      }
-      ++counters.unsigned_accepted;
-      break;
+      HandlePlain(&route, channel, data, size, receive_wall_utime);
+      return;
     }
   }
+  next_->HandlePacket(channel, data, size, receive_wall_utime);
+}
+
+void AuthenticatingHandler::HandlePlain(Route* route, std::string_view channel, const void* data, size_t size,
+                                        int64_t receive_wall_utime) {
+  AuthenticationCounters& counters = counters_[static_cast<int>(route->channel)];
+  const uint64_t digest = Fnv1a64(data, size);
+  for (const uint64_t recent : route->recent) {
+    if (recent == digest) {
+      ++counters.plain_copies;  // the copy of a message the node already has
+      return;
+    }
+  }
+  if (!route->unsigned_allowed) {
+    ++counters.unauthenticated;
+    return;
+  }
+  ++counters.unsigned_accepted;
   next_->HandlePacket(channel, data, size, receive_wall_utime);
 }
 
@@ -78,6 +94,8 @@ void AuthenticatingHandler::HandleSealed(Route* route, const void* data, size_t 
     return;
   }
   ++counters.authenticated;
+  route->recent[route->next_recent] = Fnv1a64(buffer_.data(), buffer_.size());
+  route->next_recent = (route->next_recent + 1) % kRecentCopies;
   next_->HandlePacket(route->names.plain, buffer_.data(), buffer_.size(), receive_wall_utime);
 }
 

@@ -2,9 +2,12 @@
 // node's. A sealed message (<NAME>_AUTH, transport/authenticated_envelope.h)
 // whose tag is right and whose counter is above the newest of its publisher
 // reaches the node as the plain message on the plain channel, so the node
-// keeps its one checked decoder. A plain message of a channel the site
-// requires authenticated is refused; a forged, altered or replayed sealed
-// message is refused; each refusal is counted per channel. Every other
+// keeps its one checked decoder. On a channel the site requires
+// authenticated, a plain message is the copy a signing publisher sends after
+// the sealed one (sinks/signing_sink.h) when it equals one of the last
+// kRecentCopies messages opened on the channel: dropped, counted as a copy;
+// any other plain message is refused. A forged, altered or replayed sealed
+// message is refused. Each refusal is counted per channel. Every other
 // channel passes unchanged. No allocation once the buffer has grown.
 #pragma once
 
@@ -28,6 +31,7 @@ struct AuthenticationCounters {
   int64_t replayed = 0;           // right tag, counter not above its publisher's newest: refused
   int64_t malformed = 0;          // on the sealed channel but not a sealed message of its type: refused
   int64_t unsigned_accepted = 0;  // plain message on a channel the site lets through unsigned: handed on
+  int64_t plain_copies = 0;       // plain copy of a message just accepted sealed: dropped (not news)
 };
 
 // What the handler does with a sealed message.
@@ -38,6 +42,8 @@ enum class SealedMessages {
 
 class AuthenticatingHandler : public PacketHandler {
  public:
+  static constexpr int kRecentCopies = 8;  // opened messages remembered per channel for their plain copies
+
   // next and authenticator must outlive the handler. authenticator null
   // with kVerify: every sealed message is refused (no key to check it). routes: the channels of channels this node
   // reads; unsigned_allowed: those the site lets through plain.
@@ -64,7 +70,11 @@ class AuthenticatingHandler : public PacketHandler {
     AuthenticatedChannel channel;
     bool unsigned_allowed = false;
     ReplayGuard guard;
+    std::array<uint64_t, kRecentCopies> recent{};  // FNV-1a of the last opened messages (0: none)
+    int next_recent = 0;
   };
+  void HandlePlain(Route* route, std::string_view channel, const void* data, size_t size,
+                   int64_t receive_wall_utime);
   void HandleSealed(Route* route, const void* data, size_t size, int64_t receive_wall_utime);
 
   PacketHandler* next_;

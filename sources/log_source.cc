@@ -17,7 +17,6 @@ bool LogSource::DeliverOne() {
     finished_ = true;
     return false;
   }
-  if (opener_) opener_->Open(&event_);
   const bool subscribed =
       channels_.empty() || std::find(channels_.begin(), channels_.end(), event_.channel) != channels_.end();
   if (subscribed && handler_ != nullptr) {

@@ -4,12 +4,10 @@
 // the handler takes them.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "sources/message_source.h"
-#include "transport/authenticated_envelope.h"
 #include "transport/log_io.h"
 
 namespace birotor {
@@ -30,18 +28,12 @@ class LogSource : public MessageSource {
   bool finished() const override { return finished_; }
   std::string Describe() const override { return "LCM log file"; }
 
-  // From now on a sealed event of channels (MOTOR_COMMAND_AUTH, ...) is
-  // delivered as its plain twin, opened without checking its tag (a
-  // recorded flight of authenticated channels replays like a plain one).
-  void OpenSealedEvents(const ChannelNames& channels) { opener_.emplace(channels); }
-
   // The reader, for CheckLogUsable once the source is finished.
   const LogReader& reader() const { return reader_; }
 
  private:
   LogReader reader_;
   LogEvent event_;
-  std::optional<SealedEventOpener> opener_;
   std::vector<std::string> channels_;
   PacketHandler* handler_ = nullptr;
   bool finished_ = false;

@@ -35,7 +35,6 @@
 #include "security/replay_guard.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
-#include "sources/authenticating_handler.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
@@ -321,15 +320,13 @@ int main(int argc, char** argv) {
   // FORCE (and MOTOR_COMMAND) through the shared message source on a
   // receiver thread: on udpm our own LC02 reader, which drops and counts
   // fragments instead of reassembling them.
-  // FORCE_AUTH and MOTOR_COMMAND_AUTH read as FORCE and MOTOR_COMMAND,
-  // their tags not checked (the probe times them; it flies nothing).
+  // The plain FORCE and MOTOR_COMMAND (a signing publisher sends the plain
+  // copy right after the sealed one, so the latency includes the sealing).
   ProbeInput input(&probe, channels);
-  AuthenticatingHandler opened(&input, SealedMessages::kOpenWithoutCheck, nullptr, channels,
-                               {AuthenticatedChannel::kForce, AuthenticatedChannel::kMotorCommand}, ChannelSet{});
   std::vector<std::string> inputs = {channels.force};
   if (options.through_controller) inputs.push_back(channels.motor_command);
   std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
-  if (!source || !source->Subscribe(opened.WithSealedChannels(inputs), &opened, &error)) return ReportError(error);
+  if (!source || !source->Subscribe(inputs, &input, &error)) return ReportError(error);
   std::atomic<bool> stop_receiving{false};
   std::thread receiver([&] {
     DroppedDatagramLog dropped;

@@ -24,7 +24,6 @@
 #include "program/program_options.h"
 #include "program/shutdown.h"
 #include "sources/dropped_datagram_log.h"
-#include "sources/authenticating_handler.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/host_clock.h"
@@ -312,14 +311,8 @@ int Main(int argc, char** argv) {
   MonitorCollector collector(channels, setup.scenario_duration_s > 0 ? setup.scenario_duration_s + 5.0 : 60.0);
   // Inputs through the shared message source: on udpm our own LC02 reader,
   // which drops and counts fragments instead of reassembling them.
-  // FORCE_AUTH shown as FORCE, its tag not checked: the monitor displays,
-  // it flies nothing (and needs no key).
-  AuthenticatingHandler opened(&collector, SealedMessages::kOpenWithoutCheck, nullptr, channels,
-                               {AuthenticatedChannel::kForce}, ChannelSet{});
   std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
-  if (!source || !source->Subscribe(opened.WithSealedChannels(collector.InputChannels()), &opened, &error)) {
-    return ReportError(error);
-  }
+  if (!source || !source->Subscribe(collector.InputChannels(), &collector, &error)) return ReportError(error);
   spdlog::info("birotor-monitor {} listening on {} ({}): {} {} {}", BIROTOR_VERSION, options.common.lcm_url,
                source->Describe(), channels.truth, channels.force, channels.estimator_status);
   if (options.duration_s <= 0 && !options.until_sim_ends) {

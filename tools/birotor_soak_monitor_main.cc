@@ -26,7 +26,6 @@
 #include "program/shutdown.h"
 #include "samples/rotor_count.h"
 #include "sources/dropped_datagram_log.h"
-#include "sources/authenticating_handler.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/channels.h"
@@ -448,14 +447,8 @@ int main(int argc, char** argv) {
   Monitor monitor(channels);
   // Inputs through the shared message source: on udpm our own LC02 reader,
   // which drops and counts fragments instead of reassembling them.
-  // FORCE_AUTH read as FORCE, its tag not checked: the monitor counts, it
-  // flies nothing (and needs no key).
-  AuthenticatingHandler opened(&monitor, SealedMessages::kOpenWithoutCheck, nullptr, channels,
-                               {AuthenticatedChannel::kForce}, ChannelSet{});
   std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
-  if (!source || !source->Subscribe(opened.WithSealedChannels(monitor.InputChannels()), &opened, &error)) {
-    return ReportError(error);
-  }
+  if (!source || !source->Subscribe(monitor.InputChannels(), &monitor, &error)) return ReportError(error);
 
   ProcessWatch process;
   RunTimeSeries(options, source.get(), &monitor, &process);

@@ -105,26 +105,6 @@ OpenVerdict OpenMessage(const MessageAuthenticator* authenticator, const Authent
   return OpenVerdict::kAuthentic;
 }
 
-SealedEventOpener::SealedEventOpener(const ChannelNames& channels) {
-  for (int i = 0; i < kNumAuthenticatedChannels; ++i) names_[i] = NamesOf(channels, static_cast<AuthenticatedChannel>(i));
-}
-
-bool SealedEventOpener::Open(LogEvent* event) {
-  for (const AuthenticatedChannelNames& names : names_) {
-    if (event->channel != names.sealed) continue;
-    uint64_t publisher = 0;
-    uint64_t counter = 0;
-    if (OpenMessage(nullptr, names, event->data.data(), event->data.size(), &buffer_, &publisher, &counter) !=
-        OpenVerdict::kAuthentic) {
-      return false;
-    }
-    event->channel = names.plain;
-    event->data.swap(buffer_);
-    return true;
-  }
-  return false;
-}
-
 bool ParseChannelSet(const std::string& list, ChannelSet* set, std::string* error) {
   ChannelSet parsed{};
   const ChannelNames names = MakeChannelNames("");

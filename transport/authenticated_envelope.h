@@ -21,7 +21,6 @@
 
 #include "security/message_authenticator.h"
 #include "transport/channels.h"
-#include "transport/log_io.h"
 
 namespace birotor {
 
@@ -65,23 +64,6 @@ const char* OpenVerdictName(OpenVerdict verdict);
 OpenVerdict OpenMessage(const MessageAuthenticator* authenticator, const AuthenticatedChannelNames& names,
                         const uint8_t* sealed, size_t size, std::vector<uint8_t>* plain, uint64_t* publisher,
                         uint64_t* counter);
-
-// For the tools that read a recorded log (replay, eval, review, plot,
-// identify): a sealed event becomes its plain twin, opened without checking
-// its tag (they read what was recorded; the daemons check). Built once per
-// log, so opening an event does not allocate once its buffer has grown.
-class SealedEventOpener {
- public:
-  explicit SealedEventOpener(const ChannelNames& channels);
-  // When event is on one of the sealed channels and is a sealed message of
-  // its type: event->channel and event->data become the plain twin's (true).
-  // Else event is unchanged (false).
-  bool Open(LogEvent* event);
-
- private:
-  std::array<AuthenticatedChannelNames, kNumAuthenticatedChannels> names_;
-  std::vector<uint8_t> buffer_;
-};
 
 // The channels a site lets through unauthenticated, from a list of base
 // names ("POSE,SETPOINT"), "none" or "all". False with *error naming the

@@ -177,8 +177,7 @@ DecodeError CheckLengthFields<estimator_status_t>(const uint8_t* data, size_t si
                        && cursor.SkipString()         // strain_scale_source
                        && cursor.Skip(8 + 8)          // body_mass_kg, body_mass_std_kg
                        && cursor.SkipString()         // body_mass_source
-                       && cursor.SkipString()         // vehicle_checksum
-                       && cursor.Skip(4 * 4 * 8);     // auth_accepted .. auth_unsigned_accepted
+                       && cursor.SkipString();        // vehicle_checksum
   return tail_ok ? DecodeError::kNone : cursor.error();
 }
 

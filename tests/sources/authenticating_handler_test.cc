@@ -1,6 +1,7 @@
 // The authenticated channels end to end in memory: SigningSink (sinks/)
-// seals what a publisher sends, AuthenticatingHandler (sources/) opens it
-// for the node, and refuses and counts a plain message on a required
+// seals what a publisher sends and sends the plain copy after it,
+// AuthenticatingHandler (sources/) opens the sealed one for the node, drops
+// the copy, and refuses and counts any other plain message on a required
 // channel, a forged or replayed one; a channel the site lets through
 // unsigned passes plain; other channels pass untouched.
 #include "sources/authenticating_handler.h"
@@ -73,16 +74,21 @@ class AuthenticatingHandlerTest : public ::testing::Test {
                                  {AuthenticatedChannel::kPose, AuthenticatedChannel::kForce}, ChannelSet{}};
 };
 
-TEST_F(AuthenticatingHandlerTest, ASealedMessageReachesTheNodeAsThePlainOne) {
+TEST_F(AuthenticatingHandlerTest, ASealedMessageReachesTheNodeAsThePlainOneAndItsCopyIsDropped) {
   SendPose(1);
-  ASSERT_EQ(bus_.packets.size(), 1u);
+  ASSERT_EQ(bus_.packets.size(), 2u);
   EXPECT_EQ(bus_.packets[0].channel, "BIROTOR_POSE_AUTH");
+  EXPECT_EQ(bus_.packets[1].channel, "BIROTOR_POSE");  // the plain copy, after it
+  EXPECT_EQ(bus_.packets[1].data, PoseBytes(1));
   EXPECT_EQ(signing_.sealed(), 1);
   Deliver(bus_.packets[0]);
+  Deliver(bus_.packets[1]);
   ASSERT_EQ(node_.packets.size(), 1u);
   EXPECT_EQ(node_.packets[0].channel, "BIROTOR_POSE");
   EXPECT_EQ(node_.packets[0].data, PoseBytes(1));
   EXPECT_EQ(pose().authenticated, 1);
+  EXPECT_EQ(pose().plain_copies, 1);
+  EXPECT_EQ(pose().unauthenticated, 0);
   EXPECT_EQ(handler_.WithSealedChannels({"BIROTOR_IMU"}),
             (std::vector<std::string>{"BIROTOR_IMU", "BIROTOR_POSE_AUTH", "BIROTOR_FORCE_AUTH"}));
 }
@@ -90,13 +96,15 @@ TEST_F(AuthenticatingHandlerTest, ASealedMessageReachesTheNodeAsThePlainOne) {
 TEST_F(AuthenticatingHandlerTest, PlainForgedAndReplayedMessagesAreRefusedAndCounted) {
   SendPose(1);
   SendPose(2);
-  Deliver(bus_.packets[0]);
-  Deliver(bus_.packets[1]);
-  Deliver(bus_.packets[0]);  // a replay of an earlier message
-  Deliver(bus_.packets[1]);  // and of the newest
+  const Recorded first = bus_.packets[0];
+  const Recorded second = bus_.packets[2];
+  Deliver(first);
+  Deliver(second);
+  Deliver(first);   // a replay of an earlier message
+  Deliver(second);  // and of the newest
   const std::vector<uint8_t> plain = PoseBytes(3);
   handler_.HandlePacket(channels_.pose, plain.data(), plain.size(), 0);  // a plain one on the required channel
-  Recorded forged = bus_.packets[1];
+  Recorded forged = second;
   forged.data[30] ^= 0x40;  // a changed byte in the message
   Deliver(forged);
   const MessageAuthenticator other(KeyOf(2));
@@ -104,7 +112,7 @@ TEST_F(AuthenticatingHandlerTest, PlainForgedAndReplayedMessagesAreRefusedAndCou
   SigningSink other_key(&other_bus, &other, channels_, ChannelSet{true, true, true, true}, 78);
   other_key.Publish(channels_.pose, 0, plain.data(), plain.size());
   Deliver(other_bus.packets[0]);  // sealed under another key
-  Recorded cut = bus_.packets[1];
+  Recorded cut = second;
   cut.data.resize(20);
   Deliver(cut);
 
@@ -115,8 +123,8 @@ TEST_F(AuthenticatingHandlerTest, PlainForgedAndReplayedMessagesAreRefusedAndCou
   EXPECT_EQ(pose().malformed, 1);
   EXPECT_EQ(pose().unsigned_accepted, 0);
   EXPECT_EQ(handler_.Summary(),
-            "POSE: 2 accepted, 4 refused, 2 replayed, 0 unsigned accepted; FORCE: 0 accepted, 0 refused, 0 "
-            "replayed, 0 unsigned accepted");
+            "POSE: 2 accepted, 4 refused, 2 replayed, 0 unsigned accepted, 0 plain copies dropped; FORCE: 0 "
+            "accepted, 0 refused, 0 replayed, 0 unsigned accepted, 0 plain copies dropped");
 }
 
 TEST_F(AuthenticatingHandlerTest, OtherChannelsPassAndAnUnsignedChannelTakesPlainMessages) {
@@ -164,7 +172,7 @@ TEST_F(AuthenticatingHandlerTest, TheSinkPassesOtherAndUnsignedChannelsPlain) {
   SigningSink sink(&bus, &authenticator_, channels_, ChannelSet{true, false, false, true}, 5);
   const std::vector<uint8_t> pose = PoseBytes(1);
   sink.Publish(channels_.pose, 0, pose.data(), pose.size());  // POSE unsigned here
-  sink.Publish(channels_.force, 0, pose.data(), pose.size());  // not a FORCE message: not published
+  sink.Publish(channels_.force, 0, pose.data(), pose.size());  // not a FORCE message: not published at all
   ASSERT_EQ(bus.packets.size(), 1u);
   EXPECT_EQ(bus.packets[0].channel, "BIROTOR_POSE");
   EXPECT_EQ(sink.seal_failures(), 1);

@@ -137,21 +137,6 @@ TEST_F(AuthenticatedEnvelopeTest, OnlyThePlainTypeIsSealed) {
   EXPECT_FALSE(SealMessage(authenticator_, names_, 1, 1, bytes.data(), 4, &sealed));
 }
 
-TEST_F(AuthenticatedEnvelopeTest, ALoggedSealedEventReadsAsItsPlainTwin) {
-  SealedEventOpener opener(channels_);
-  LogEvent event;
-  event.channel = names_.sealed;
-  event.data = Sealed();
-  EXPECT_TRUE(opener.Open(&event));
-  EXPECT_EQ(event.channel, "BIROTOR_MOTOR_COMMAND");
-  EXPECT_EQ(event.data, Plain());
-  LogEvent other;
-  other.channel = "BIROTOR_STRAIN";
-  other.data = {1, 2, 3};
-  EXPECT_FALSE(opener.Open(&other));
-  EXPECT_EQ(other.channel, "BIROTOR_STRAIN");
-}
-
 TEST(ChannelSetTest, NamesAllNoneAndUnknown) {
   ChannelSet set{};
   std::string error;

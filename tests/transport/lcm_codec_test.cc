@@ -132,9 +132,8 @@ TEST(CodecTest, CorruptLengthOfTheLaterStringsIsRejected) {
   // input_health_t, foreign_force (8 bytes), model_consistency_statistic
   // (8 bytes), mismatch_parameter, then the learned parameters:
   // strain_scale[2], strain_scale_std[2], strain_scale_source, body_mass_kg,
-  // body_mass_std_kg, body_mass_source, vehicle_checksum, and the
-  // authentication counters (4 arrays of 4 int64_t).
-  const size_t checksum_length_offset = valid.size() - 4 * 4 * 8 - (message.vehicle_checksum.size() + 1) - 4;
+  // body_mass_std_kg, body_mass_source, and vehicle_checksum.
+  const size_t checksum_length_offset = valid.size() - (message.vehicle_checksum.size() + 1) - 4;
   const size_t mass_source_length_offset = checksum_length_offset - (message.body_mass_source.size() + 1) - 4;
   const size_t scale_source_length_offset =
       mass_source_length_offset - 2 * 8 - (message.strain_scale_source.size() + 1) - 4;
