@@ -14,10 +14,13 @@
 #include <string_view>
 #include <vector>
 
+#include "birotor/auth_status_t.hpp"
 #include "birotor/controller_status_t.hpp"
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
 #include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
+#include "sources/authenticating_handler.h"
 #include "sources/channel_routes.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
@@ -50,6 +53,13 @@ class ControllerService : public PacketHandler {
   // The live source's UDP counters (MessageSource::udp_counters, nullptr for
   // other sources) go into CONTROLLER_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
+  // The signing sink behind and the authenticating handler in front of this
+  // node: AUTH_STATUS goes out with each CONTROLLER_STATUS. Both must
+  // outlive the service.
+  void AttachAuthentication(const SigningSink* signing, const AuthenticatingHandler* handler) {
+    signing_ = signing;
+    authentication_ = handler;
+  }
   // PacketHandler, the one way in: a packet of a channel of the route table,
   // stamped with the host clock when it is handled (the receive time is not
   // used); decoded (a failure is counted), then given to the controller.
@@ -123,6 +133,9 @@ class ControllerService : public PacketHandler {
   std::vector<uint8_t> buffer_;
   controller_status_t status_message_;
   const UdpReceiveCounters* udp_counters_ = nullptr;
+  const SigningSink* signing_ = nullptr;
+  const AuthenticatingHandler* authentication_ = nullptr;
+  auth_status_t auth_status_{};
 };
 
 }  // namespace birotor

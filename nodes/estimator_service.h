@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "birotor/auth_status_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
@@ -30,6 +31,8 @@
 #include "nodes/status_message.h"
 #include "program/logging.h"
 #include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
+#include "sources/authenticating_handler.h"
 #include "sources/channel_routes.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
@@ -94,6 +97,13 @@ class EstimatorService : public PacketHandler {
   // The live source's UDP counters (MessageSource::udp_counters, nullptr for
   // other sources) go into ESTIMATOR_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
+  // The signing sink behind and the authenticating handler in front of this
+  // node: AUTH_STATUS goes out with each ESTIMATOR_STATUS. Both must outlive
+  // the service.
+  void AttachAuthentication(const SigningSink* signing, const AuthenticatingHandler* handler) {
+    signing_ = signing;
+    authentication_ = handler;
+  }
 
   // The channels to subscribe a source to (the route table's names): the
   // four inputs, STRAIN_N and MOTOR_N, and the node's own FORCE (to see a
@@ -150,6 +160,8 @@ class EstimatorService : public PacketHandler {
   // A FORCE on the own channel: ours looped back, or a foreign publisher's.
   void CheckOwnForceChannel(const void* data, size_t size);
   bool ForeignForceActive() const;
+  // AUTH_STATUS, when a handler is attached.
+  void PublishAuthStatus(int64_t utime, int64_t wall_utime);
 
   EstimatorPipeline pipeline_;
   VehicleDescription description_;  // the birotor's (2 arms), for the counted inputs
@@ -177,6 +189,9 @@ class EstimatorService : public PacketHandler {
   int64_t next_status_utime_ = -1;            // vehicle-clock status schedule [us]
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   const UdpReceiveCounters* udp_counters_ = nullptr;
+  const SigningSink* signing_ = nullptr;
+  const AuthenticatingHandler* authentication_ = nullptr;
+  auth_status_t auth_status_{};
   // Hashes of the last published FORCE payloads (FNV-1a), to tell our own
   // looped-back FORCE from another publisher's: 1 s of FORCE at 1 kHz. Each
   // comes back once; a second copy is a second publisher of the same bytes

@@ -15,8 +15,12 @@
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/realtime.h"
+#include "program/channel_security.h"
 #include "program/shutdown.h"
+#include "security/replay_guard.h"
 #include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
+#include "sources/authenticating_handler.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/channels.h"
@@ -44,6 +48,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
   app.add_option("--status-rate-hz", status_rate_hz, "CONTROLLER_STATUS rate [Hz]")->check(CLI::Range(0.1, 100.0));
   AddRealtimeOption(app, &realtime_priority);
+  ChannelSecurityOptions security_options;
+  AddChannelSecurityOptions(app, &security_options);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-controller", common.log_level);
 
@@ -58,27 +64,44 @@ int main(int argc, char** argv) {
     config.model_predictive = mode == "mpc";
   }
 
-  const RealtimeOutcome realtime = ApplyRealtimePriority(realtime_priority);  // before LCM starts a thread
+  // The key before anything is opened: without it nothing authenticated flies.
   std::string error;
+  ChannelSecurity security;
+  if (!LoadChannelSecurity(security_options, ChannelSet{true, true, true, true}, &security, &error)) {
+    return ReportError(error);
+  }
+  const RealtimeOutcome realtime = ApplyRealtimePriority(realtime_priority);  // before LCM starts a thread
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
   if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
   LogRealtimeOutcome(realtime);
   const ChannelNames channels = MakeChannelNames(common.prefix);
-  LcmSink sink(lcm.get());
+  LcmSink lcm_sink(lcm.get());
+  // MOTOR_COMMAND sealed (MOTOR_COMMAND_AUTH) unless the site lets it through unsigned.
+  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(),
+                   RandomPublisherId());
   ControllerService service(config, channels, &sink);
+  // SETPOINT, POSE and FORCE only authenticated (their _AUTH twins), unless
+  // the site lets them through unsigned; IMU passes.
+  AuthenticatingHandler authenticated(
+      &service, SealedMessages::kVerify, security.authenticator.get(), channels,
+      {AuthenticatedChannel::kSetpoint, AuthenticatedChannel::kPose, AuthenticatedChannel::kForce},
+      security.unsigned_channels);
+  service.AttachAuthentication(&sink, &authenticated);
+  const std::vector<std::string> subscribed = authenticated.WithSealedChannels(service.InputChannels());
   // Inputs through the shared message source: on udpm our own LC02 reader,
   // which drops and counts fragments instead of reassembling them.
   std::unique_ptr<MessageSource> source = OpenLiveSource(common.lcm_url, lcm.get(), &error);
-  if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
+  if (!source || !source->Subscribe(subscribed, &authenticated, &error)) return ReportError(error);
   service.AttachUdpCounters(source->udp_counters());
   spdlog::info("birotor-controller {} mode {} params {} (checksum {})", BIROTOR_VERSION,
                config.model_predictive ? "mpc"
                : config.force_feedback ? "force_feedback"
                                        : "nominal",
                params_file, FileChecksum(params_file));
-  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", common.lcm_url, channels.pose, channels.imu, channels.force,
-               channels.setpoint, source->Describe(), channels.motor_command, channels.controller_status);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}; unsigned: {}", common.lcm_url, channels.pose, channels.imu,
+               channels.force, channels.setpoint, source->Describe(), channels.motor_command,
+               channels.controller_status, security_options.unsigned_channels);
 
   // Control periods on the controller's own timer, CONTROLLER_STATUS on the host clock.
   const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
@@ -99,6 +122,7 @@ int main(int argc, char** argv) {
   const ControllerHealth& h = service.health();
   spdlog::info("stopped: {} MOTOR_COMMAND published; {} fallbacks, {} descents, {} saturated; FORCE received {}",
                h.commands, h.fallbacks, h.descents, h.saturated, h.force.received);
+  spdlog::info("authentication: {}", authenticated.Summary());
   const MpcStats mpc = service.mpc_statistics();
   if (mpc.solves > 0) {
     spdlog::info(

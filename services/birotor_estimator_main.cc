@@ -20,8 +20,12 @@
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
+#include "program/channel_security.h"
 #include "security/message_authenticator.h"
-#include "security/site_key.h"
+#include "security/replay_guard.h"
+#include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
+#include "sources/authenticating_handler.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
 #include "transport/channels.h"
@@ -40,9 +44,9 @@ struct DaemonOptions {
   std::string method;  // overrides the file's; empty: the file's
   EstimatorServiceOptions service;
   int realtime_priority = 0;  // SCHED_FIFO priority and locked memory; 0: normal scheduler
-  // The site key that authenticates the gauge state file (docs/deploy.md);
-  // the systemd unit passes its LoadCredential= copy.
-  std::string site_key_file = "/etc/birotor/keys/site.key";
+  // The site key that authenticates POSE, FORCE and the gauge state file
+  // (docs/deploy.md); the systemd unit passes its LoadCredential= copy.
+  ChannelSecurityOptions security;
 };
 
 void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
@@ -60,10 +64,7 @@ void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
   app.add_option("--stale-input-s", options->service.stale_input_wall_s,
                  "No strain packet for this long (host clock): ESTIMATOR_STATUS says INPUT_STALE [s]")
       ->check(CLI::Range(0.001, 60.0));
-  app.add_option("--site-key", options->site_key_file,
-                 "Site key file (32 raw bytes, not group/world-writable) authenticating the gauge state file; "
-                 "without a readable key the state file is neither restored nor written")
-      ->capture_default_str();
+  AddChannelSecurityOptions(app, &options->security);
   AddRealtimeOption(app, &options->realtime_priority);
 }
 
@@ -80,21 +81,17 @@ std::string LoadConfig(const DaemonOptions& options, EstimatorConfig* config) {
   return "";
 }
 
-// The authenticator of the gauge state file under the site key, or null
-// after one warning when a state file is configured and the key cannot be
-// read: the state file is then neither restored nor written (issue 37 item 4:
-// an unauthenticated file could be forged).
-std::unique_ptr<MessageAuthenticator> StateFileAuthenticator(const std::string& site_key_file,
-                                                             const std::string& state_file) {
+// The authenticator of the gauge state file, or null after one warning when
+// a state file is configured and no key was read (POSE and FORCE both let
+// through unsigned): the state file is then neither restored nor written (an
+// unauthenticated file could be forged).
+const MessageAuthenticator* StateFileAuthenticator(const ChannelSecurity& security, const std::string& state_file) {
   if (state_file.empty()) return nullptr;
-  SiteKey key(SiteKey::Bytes{});
-  std::string error;
-  if (!SiteKey::Load(site_key_file, &key, &error)) {
+  if (!security.authenticator) {
     spdlog::warn("gauge state file {} is not authenticated ({}): neither restored nor written this run", state_file,
-                 error);
-    return nullptr;
+                 security.key_problem);
   }
-  return std::make_unique<MessageAuthenticator>(key);
+  return security.authenticator.get();
 }
 
 // The learned gauge offsets of the last run, from the state file. A missing
@@ -201,10 +198,13 @@ int main(int argc, char** argv) {
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-estimator", options.common.log_level);
 
-  // The parameter file is checked before anything is subscribed.
+  // The parameter file and the key are checked before anything is subscribed.
   EstimatorConfig config;
   std::string error = LoadConfig(options, &config);
   if (!error.empty()) return ReportError(error);
+  ChannelSecurity security;
+  const ChannelSet used{false, false, true, true};  // reads POSE, publishes FORCE
+  if (!LoadChannelSecurity(options.security, used, &security, &error)) return ReportError(error);
   const RealtimeOutcome realtime = ApplyRealtimePriority(options.realtime_priority);  // before LCM starts a thread
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
   if (!lcm) return ReportError(error);
@@ -212,12 +212,23 @@ int main(int argc, char** argv) {
   LogRealtimeOutcome(realtime);
 
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
-  LcmSink sink(lcm.get());
+  LcmSink lcm_sink(lcm.get());
+  // FORCE sealed (FORCE_AUTH) unless the site lets it through unsigned.
+  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(),
+                   RandomPublisherId());
   EstimatorService service(config, channels, options.service, &sink);
+  // POSE only authenticated (POSE_AUTH) unless let through unsigned. FORCE
+  // too: the daemon's check for a second estimator on the prefix compares
+  // what arrives on FORCE with what it published, so its own sealed FORCE
+  // comes back opened, and a forged one is refused before it.
+  AuthenticatingHandler authenticated(&service, SealedMessages::kVerify, security.authenticator.get(), channels,
+                                      {AuthenticatedChannel::kPose, AuthenticatedChannel::kForce},
+                                      security.unsigned_channels);
+  service.AttachAuthentication(&sink, &authenticated);
   const std::string vehicle_checksum = VehicleChecksum(BirotorModelOf(config.vehicle));
-  const std::unique_ptr<MessageAuthenticator> authenticator =
-      StateFileAuthenticator(options.site_key_file, config.tare.state_file);
-  RestoreGaugeOffsets(config, vehicle_checksum, authenticator.get(), &service);
+  const MessageAuthenticator* authenticator =
+      StateFileAuthenticator(security, config.tare.state_file);
+  RestoreGaugeOffsets(config, vehicle_checksum, authenticator, &service);
   const std::string state_file = authenticator ? WritableStateFile(config.tare.state_file) : "";
   // Inputs through the shared message source. On udpm our own small-message
   // reader, and LCM only publishes (it opens no receive socket until
@@ -225,12 +236,14 @@ int main(int argc, char** argv) {
   // datagrams crash, is never reached (docs/lcm-udpm-fragment-bug.md). Other
   // providers (memq:// in tests) go through LCM's subscription.
   std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
-  if (!source || !source->Subscribe(service.InputChannels(), &service, &error)) return ReportError(error);
+  const std::vector<std::string> subscribed = authenticated.WithSealedChannels(service.InputChannels());
+  if (!source || !source->Subscribe(subscribed, &authenticated, &error)) return ReportError(error);
   service.AttachUdpCounters(source->udp_counters());
   LogStartup(options, config, vehicle_checksum, channels, *source);
 
   if (!Serve(source.get(), options.service.status_rate_hz, &service)) spdlog::error("{}; stopping", source->error());
   LogStopped(service, *source);
+  spdlog::info("authentication: {}", authenticated.Summary());
   if (!state_file.empty()) {
     if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, *authenticator, &error)) {
       return ReportError("gauge state: " + error);

@@ -17,6 +17,7 @@
 
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
+#include "nodes/auth_status_message.h"
 #include "nodes/esc_command_node.h"
 #include "numerics/time_units.h"
 #include "params/controller_config_yaml.h"
@@ -31,12 +32,17 @@
 #include "services/birotor_sim_vehicle.h"
 #include "services/live_pacer.h"
 #include "simulator/simulator.h"
+#include "program/channel_security.h"
+#include "security/replay_guard.h"
 #include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
+#include "sources/authenticating_handler.h"
 #include "sinks/wire_sample_sink.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
+#include "transport/lcm_codec.h"
 #include "transport/lcm_session.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
@@ -51,6 +57,7 @@ struct SimOptions {
   std::vector<std::string> overrides;    // --set section.key=value, applied in order after them
   std::string output;                    // log file (offline mode); empty: live on LCM
   std::string vehicle_file;              // --vehicle: a description with N arms; empty: the birotor
+  ChannelSecurityOptions security;       // live: the site key and the unsigned channels
   double speed = 1.0;                    // live mode: simulated seconds per wall second
   bool wall_clock = false;               // utime = wall clock at start + simulated time
   bool loop = false;                     // repeat the scenario until stopped, time continuing
@@ -154,10 +161,17 @@ bool RunOffline(Simulator* sim, const ChannelNames& channels, const std::string&
 // (refusals at most once a second).
 class EscCommandInput {
  public:
-  EscCommandInput(MessageSource* source, const std::string& channel, Simulator* sim)
-      : source_(source), node_(channel, sim), sim_(sim) {
+  // MOTOR_COMMAND only authenticated (MOTOR_COMMAND_AUTH) unless the site
+  // lets it through unsigned.
+  EscCommandInput(MessageSource* source, const ChannelNames& channels, const ChannelSecurity& security,
+                  Simulator* sim)
+      : source_(source),
+        node_(channels.motor_command, sim),
+        authenticated_(&node_, SealedMessages::kVerify, security.authenticator.get(), channels,
+                       {AuthenticatedChannel::kMotorCommand}, security.unsigned_channels),
+        sim_(sim) {
     std::string error;
-    if (!source_->Subscribe(node_.InputChannels(), &node_, &error)) spdlog::error("{}", error);
+    if (!source_->Subscribe(authenticated_.WithSealedChannels(node_.InputChannels()), &authenticated_, &error)) spdlog::error("{}", error);
   }
   // Handles every command already queued.
   void Poll() {
@@ -176,6 +190,7 @@ class EscCommandInput {
     dropped_.Check(source_->udp_counters());
   }
   const EscCommandNode& node() const { return node_; }
+  const AuthenticatingHandler& authentication() const { return authenticated_; }
 
  private:
   // A line when the ESCs refused commands since the last one (at most once a second).
@@ -195,6 +210,7 @@ class EscCommandInput {
 
   MessageSource* source_;
   EscCommandNode node_;
+  AuthenticatingHandler authenticated_;
   Simulator* sim_;
   bool timed_out_ = false;  // the start state's speeds count as a command
   DroppedDatagramLog dropped_;
@@ -203,15 +219,42 @@ class EscCommandInput {
 };
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, MessageSource* source, double speed,
-             bool publish_truth) {
+// AUTH_STATUS once a second of simulated time: what was sealed and refused.
+class AuthStatusPublisher {
+ public:
+  AuthStatusPublisher(const ChannelNames& channels, MessageSink* sink) : channel_(channels.auth_status), sink_(sink) {}
+  void MaybePublish(const Simulator& sim, const SigningSink& signing, const AuthenticatingHandler* handler) {
+    if (sim.utime() < next_utime_) return;
+    next_utime_ = sim.utime() + 1000000;
+    ++message_.seq;
+    BuildAuthStatus(auth_status_t::PROGRAM_SIM, sim.utime(), WallClockUs(), &signing, handler, &message_);
+    EncodeMessage(message_, &buffer_);
+    if (!buffer_.empty()) sink_->Publish(channel_, sim.utime(), buffer_.data(), buffer_.size());
+  }
+
+ private:
+  std::string channel_;
+  MessageSink* sink_;
+  auth_status_t message_{};
+  std::vector<uint8_t> buffer_;
+  int64_t next_utime_ = 0;
+};
+
+// POSE and SETPOINT sealed (their _AUTH channels) unless the site lets them
+// through unsigned.
+bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, MessageSource* source,
+             const ChannelSecurity& security, double speed, bool publish_truth) {
   LcmSink lcm_sink(lcm);
-  WireSampleSink sink(channels, &lcm_sink, publish_truth);
+  SigningSink signing_sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(),
+                           RandomPublisherId());
+  WireSampleSink sink(channels, &signing_sink, publish_truth);
   std::unique_ptr<EscCommandInput> commands;
-  if (source != nullptr) commands = std::make_unique<EscCommandInput>(source, channels.motor_command, sim);
+  if (source != nullptr) commands = std::make_unique<EscCommandInput>(source, channels, security, sim);
   LivePacer pacer(speed, sim->scenario().step_s);
+  AuthStatusPublisher auth_status(channels, &lcm_sink);
   while (!ShutdownRequested() && sim->Step(&sink)) {
     if (commands) commands->Poll();
+    auth_status.MaybePublish(*sim, signing_sink, commands ? &commands->authentication() : nullptr);
     pacer.AfterStep(sim->time_s());
   }
   if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());
@@ -220,6 +263,7 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, Messag
     spdlog::info("MOTOR_COMMAND received {}, decode errors {}; udp fragments dropped {} malformed {} kernel drops {}",
                  commands->node().received(), commands->node().decode_errors(), udp ? udp->fragments_dropped : 0,
                  udp ? udp->malformed_dropped : 0, udp ? udp->kernel_dropped : 0);
+    spdlog::info("authentication: {}", commands->authentication().Summary());
   }
   if (ShutdownRequested()) spdlog::info("stopped by a signal at t = {:.3f} s", sim->time_s());
   return true;
@@ -227,6 +271,7 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, Messag
 
 void AddSimOptions(CLI::App& app, SimOptions* options) {
   AddCommonOptions(app, &options->common);
+  AddChannelSecurityOptions(app, &options->security);
   app.add_option("--scenario", options->scenario_file,
                  "Scenario file, or a scenario name such as hover (" + ConfigSearchText("scenarios/<name>.yaml") + ")")
       ->required();
@@ -338,7 +383,7 @@ struct SimTotals {
 // starts over from the scenario's initial state); the live pacing of run k
 // is relative to its own start, which is when run k - 1 ended.
 bool RunScenario(const SimOptions& options, const Scenario& scenario, const ChannelNames& channels, lcm::LCM* lcm,
-                 MessageSource* source, SimTotals* totals) {
+                 MessageSource* source, const ChannelSecurity& security, SimTotals* totals) {
   const int64_t start_utime = options.wall_clock ? WallClockUs() : 0;
   bool ok = true;
   for (int64_t run = 0; ok && (run == 0 || (options.loop && !ShutdownRequested())); ++run) {
@@ -346,7 +391,7 @@ bool RunScenario(const SimOptions& options, const Scenario& scenario, const Chan
     sim.set_utime_offset_us(start_utime + run * sim.total_steps() * std::llround(scenario.step_s * 1e6));
     if (options.external_controller) sim.UseExternalCommands(options.command_timeout_s);
     if (options.publish_setpoints) sim.EmitSetpoints(options.setpoint_rate_hz);
-    ok = options.output.empty() ? RunLive(&sim, channels, lcm, source, options.speed, !options.no_truth)
+    ok = options.output.empty() ? RunLive(&sim, channels, lcm, source, security, options.speed, !options.no_truth)
                                 : RunOffline(&sim, channels, options.output, !options.no_truth);
     totals->Add(sim);
   }
@@ -387,6 +432,15 @@ int Main(int argc, char** argv) {
     return RunClosedLoopOffline(scenario, options, MakeChannelNames(options.common.prefix)) ? 0 : kExitFailure;
   }
 
+  // Live, the key before anything is opened: POSE, SETPOINT and
+  // MOTOR_COMMAND are authenticated unless let through unsigned (a vehicle
+  // with N arms publishes its counted types, not authenticated yet).
+  ChannelSecurity security;
+  const bool birotor = options.vehicle_file.empty();
+  const ChannelSet used{options.external_controller, options.publish_setpoints, birotor, false};
+  if (options.output.empty() && !LoadChannelSecurity(options.security, used, &security, &error)) {
+    return ReportError(error);
+  }
   std::unique_ptr<lcm::LCM> lcm;
   RealtimeOutcome realtime;
   if (options.output.empty()) {
@@ -417,7 +471,7 @@ int Main(int argc, char** argv) {
   const Stopwatch stopwatch;
   SimTotals totals;
   const bool ok =
-      RunScenario(options, scenario, MakeChannelNames(options.common.prefix), lcm.get(), source.get(), &totals);
+      RunScenario(options, scenario, MakeChannelNames(options.common.prefix), lcm.get(), source.get(), security, &totals);
   const double wall_s = stopwatch.ElapsedS();
   const ChannelCounts& n = totals.n;
   spdlog::info(

@@ -31,6 +31,10 @@
 #include "program/realtime.h"
 #include "program/shutdown.h"
 #include "samples/rotor_count.h"
+#include "program/channel_security.h"
+#include "security/replay_guard.h"
+#include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "sources/receive_loop.h"
@@ -125,6 +129,7 @@ struct ProbeOptions {
   double drain_s = 1.0;             // wait for the last FORCE messages [s]
   bool through_controller = false;  // also IMU and POSE, and STRAIN -> MOTOR_COMMAND
   int realtime_priority = 0;        // SCHED_FIFO priority; 0: normal scheduler
+  birotor::ChannelSecurityOptions security;  // the key that seals POSE (--through-controller)
 };
 
 void AddProbeOptions(CLI::App& app, ProbeOptions* options) {
@@ -139,12 +144,14 @@ void AddProbeOptions(CLI::App& app, ProbeOptions* options) {
                "Also publish IMU (every sample) and POSE (every 10th) of a hover and measure STRAIN published -> "
                "MOTOR_COMMAND of a running birotor-controller");
   birotor::AddRealtimeOption(app, &options->realtime_priority);
+  birotor::AddChannelSecurityOptions(app, &options->security);
 }
 
 // The synthetic hover the probe publishes, sample k at a time.
 class HoverPublisher {
  public:
-  HoverPublisher(lcm::LCM* lcm, const birotor::ChannelNames& channels) : lcm_(lcm), channels_(channels) {}
+  // sink: LCM behind the signing sink (POSE goes out sealed).
+  HoverPublisher(birotor::MessageSink* sink, const birotor::ChannelNames& channels) : sink_(sink), channels_(channels) {}
 
   // MOTOR at half the STRAIN rate.
   void PublishMotor(int64_t k, int64_t utime) {
@@ -182,17 +189,17 @@ class HoverPublisher {
     strain_.deflection_rad[1] = kHoverDeflectionRad + ripple_rad;
     birotor::EncodeMessage(strain_, &strain_buffer_);
     probe->publish_ns[k] = birotor::SteadyClockNs();
-    lcm_->publish(channels_.strain, strain_buffer_.data(), static_cast<unsigned>(strain_buffer_.size()));
+    sink_->Publish(channels_.strain, utime, strain_buffer_.data(), strain_buffer_.size());
   }
 
  private:
   template <typename Message>
   void Publish(const std::string& channel, const Message& message, std::vector<uint8_t>* buffer) {
     birotor::EncodeMessage(message, buffer);
-    lcm_->publish(channel, buffer->data(), static_cast<unsigned>(buffer->size()));
+    sink_->Publish(channel, message.utime, buffer->data(), buffer->size());
   }
 
-  lcm::LCM* lcm_;
+  birotor::MessageSink* sink_;
   const birotor::ChannelNames& channels_;
   birotor::strain_t strain_;
   birotor::motor_t motor_;
@@ -203,7 +210,8 @@ class HoverPublisher {
 
 // Publishes the hover at --rate-hz for --duration-s (or until a signal);
 // returns the number of STRAIN samples published and their time [s].
-int64_t PublishHover(const ProbeOptions& options, lcm::LCM* lcm, const birotor::ChannelNames& channels, int64_t count,
+int64_t PublishHover(const ProbeOptions& options, birotor::MessageSink* sink, const birotor::ChannelNames& channels,
+                     int64_t count,
                      Probe* probe, double* publish_s) {
   using namespace birotor;
   const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / options.rate_hz));
@@ -213,7 +221,7 @@ int64_t PublishHover(const ProbeOptions& options, lcm::LCM* lcm, const birotor::
   const int64_t utime0 = WallClockUs();
   probe->utime0 = utime0;
   probe->period_us = period_us;
-  HoverPublisher publisher(lcm, channels);
+  HoverPublisher publisher(sink, channels);
   const int64_t start_ns = SteadyClockNs();
   int64_t published = 0;
   for (int64_t k = 0; k < count && !ShutdownRequested(); ++k) {
@@ -292,7 +300,14 @@ int main(int argc, char** argv) {
   const birotor::RealtimeOutcome realtime = birotor::ApplyRealtimePriority(options.realtime_priority);
   if (!realtime.warning.empty()) std::fprintf(stderr, "birotor-latency-probe: warning: %s\n", realtime.warning.c_str());
 
+  // --through-controller publishes POSE, which the controller and the
+  // estimator take only sealed unless the site lets it through unsigned.
   std::string error;
+  ChannelSecurity security;
+  if (!LoadChannelSecurity(options.security, ChannelSet{false, false, options.through_controller, false}, &security,
+                           &error)) {
+    return ReportError(error);
+  }
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
   if (!lcm) return ReportError(error);
   InstallShutdownHandlers();
@@ -305,6 +320,8 @@ int main(int argc, char** argv) {
   // FORCE (and MOTOR_COMMAND) through the shared message source on a
   // receiver thread: on udpm our own LC02 reader, which drops and counts
   // fragments instead of reassembling them.
+  // The plain FORCE and MOTOR_COMMAND (a signing publisher sends the plain
+  // copy right after the sealed one, so the latency includes the sealing).
   ProbeInput input(&probe, channels);
   std::vector<std::string> inputs = {channels.force};
   if (options.through_controller) inputs.push_back(channels.motor_command);
@@ -320,7 +337,9 @@ int main(int argc, char** argv) {
   });
 
   double publish_s = 0;
-  const int64_t published = PublishHover(options, lcm.get(), channels, count, &probe, &publish_s);
+  LcmSink lcm_sink(lcm.get());
+  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(), RandomPublisherId());
+  const int64_t published = PublishHover(options, &sink, channels, count, &probe, &publish_s);
   std::this_thread::sleep_for(std::chrono::duration<double>(options.drain_s));
   stop_receiving = true;
   receiver.join();

@@ -99,6 +99,12 @@ mkdir -p "$out_dir" 2>/dev/null || fail "cannot create the output folder $out_di
 out_dir="$(cd "$out_dir" && pwd)"
 png="$out_dir/demo-$scenario.png"
 log_prefix="$out_dir/demo-$scenario"
+# The programs authenticate MOTOR_COMMAND, SETPOINT, POSE and FORCE with a
+# site key (docs/deploy.md, "The site key"): the demo makes its own, 32
+# random bytes only its owner reads, fresh for each run.
+site_key="$out_dir/demo-site.key"
+rm -f "$site_key"
+(umask 077 && head -c 32 /dev/urandom > "$site_key") || fail "cannot write the demo's site key $site_key"
 
 # 1. Install what is missing and build (idempotent; quick when up to date).
 build_dir="${BIROTOR_BUILD_DIR:-build}"
@@ -176,7 +182,7 @@ echo "demo: scenario $scenario (${duration_s:-?} s at speed $speed), LCM $lcm_ur
 # (the vehicle) above the controller above the estimator, so a busy machine
 # does not delay a sample or a command. Without CAP_SYS_NICE each program warns
 # once in its log and runs on the normal scheduler.
-estimator_args=(--lcm-url "$lcm_url" --params "$repo/config/estimator.yaml" --realtime-priority 50)
+estimator_args=(--lcm-url "$lcm_url" --params "$repo/config/estimator.yaml" --realtime-priority 50 --site-key "$site_key")
 [ -n "$method" ] && estimator_args+=(--method "$method")
 "$estimator_bin" "${estimator_args[@]}" > "$log_prefix-estimator.log" 2>&1 &
 estimator_pid=$!
@@ -185,14 +191,14 @@ wait_for_log birotor-estimator "$estimator_pid" "$log_prefix-estimator.log" "lcm
 # The monitor's stdout is this terminal (live view) or the CI log (plain lines).
 monitor_args=(--lcm-url "$lcm_url" --scenario "$scenario_file" --label "$scenario" --until-sim-ends
   --idle-s 1.5 --startup-timeout-s 30 --png "$png" --markdown)
-sim_args=(--scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed" --realtime-priority 60)
+sim_args=(--scenario "$scenario_file" --lcm-url "$lcm_url" --speed "$speed" --realtime-priority 60 --site-key "$site_key")
 if [ "$no_truth" -eq 1 ]; then
   monitor_args+=(--no-truth)
   sim_args+=(--no-truth)
 fi
 if [ -n "$controller_mode" ]; then
   "$controller_bin" --lcm-url "$lcm_url" --params "$repo/config/controller.yaml" --mode "$controller_mode" \
-    --realtime-priority 55 > "$log_prefix-controller.log" 2>&1 &
+    --realtime-priority 55 --site-key "$site_key" > "$log_prefix-controller.log" 2>&1 &
   controller_pid=$!
   wait_for_log birotor-controller "$controller_pid" "$log_prefix-controller.log" "lcm .*: in " 20
   sim_args+=(--external-controller)

@@ -231,7 +231,9 @@ if [ "$latency" -eq 1 ]; then
   step "latency: estimator + probe over udpm loopback, 10 s at 1 kHz"
   port=$((20000 + $$ % 20000))
   url="udpm://239.255.76.67:$port?ttl=0&recv_buf_size=4194304"
-  "$estimator" --lcm-url "$url" --prefix FIGURES_ > "$work/latency_estimator.log" 2>&1 &
+  # FORCE goes out sealed (FORCE_AUTH) under this run's own site key.
+  (umask 077 && head -c 32 /dev/urandom > "$work/site.key")
+  "$estimator" --lcm-url "$url" --prefix FIGURES_ --site-key "$work/site.key" > "$work/latency_estimator.log" 2>&1 &
   estimator_pid=$!
   for _ in $(seq 100); do grep -q "lcm .*: in " "$work/latency_estimator.log" 2>/dev/null && break; sleep 0.1; done
   # Exit status 3: measured, but some samples got no FORCE (the output says how many).

@@ -49,7 +49,12 @@ cleanup() {
 }
 trap cleanup EXIT INT TERM
 
-"$estimator" --lcm-url "$url" --prefix "$prefix" > "$out/estimator.log" 2>&1 &
+# The daemons authenticate POSE and FORCE with a site key (docs/deploy.md,
+# "The site key"): this run's own, 32 random bytes only its owner reads.
+site_key="$out/site.key"
+rm -f "$site_key"
+(umask 077 && head -c 32 /dev/urandom > "$site_key")
+"$estimator" --lcm-url "$url" --prefix "$prefix" --site-key "$site_key" > "$out/estimator.log" 2>&1 &
 estimator_pid=$!
 pids+=("$estimator_pid")
 sleep 1

@@ -61,7 +61,12 @@ trap cleanup EXIT INT TERM
 echo "soak: ${seconds}s on $url prefix $prefix, scenario $scenario; logs in $out"
 # The shipped units' real-time priorities (docs/realtime.md): a busy machine
 # does not decide the drop count.
-"$estimator" --lcm-url "$url" --prefix "$prefix" --realtime-priority 50 > "$out/estimator.log" 2>&1 &
+# The daemons authenticate POSE and FORCE with a site key (docs/deploy.md,
+# "The site key"): this run's own, 32 random bytes only its owner reads.
+site_key="$out/site.key"
+rm -f "$site_key"
+(umask 077 && head -c 32 /dev/urandom > "$site_key")
+"$estimator" --lcm-url "$url" --prefix "$prefix" --realtime-priority 50 --site-key "$site_key" > "$out/estimator.log" 2>&1 &
 estimator_pid=$!
 pids+=("$estimator_pid")
 sleep 1
@@ -73,7 +78,7 @@ monitor_pid=$!
 sleep 0.5
 # The simulator runs a little longer than the monitor, so the monitor's whole
 # window sees a steady 1 kHz stream.
-"$sim" --scenario "$scenario" --lcm-url "$url" --prefix "$prefix" --log-level warn --realtime-priority 60 \
+"$sim" --scenario "$scenario" --lcm-url "$url" --prefix "$prefix" --log-level warn --realtime-priority 60 --site-key "$site_key" \
   --set "scenario.duration_s=$(( seconds + 5 ))" > "$out/sim.log" 2>&1 &
 pids+=("$!")
 

@@ -25,6 +25,11 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.force_n = prefix + kForceNChannel;
   names.motor_command_n = prefix + kMotorCommandNChannel;
   names.vehicle = prefix + kVehicleDescriptionChannel;
+  names.motor_command_auth = prefix + kMotorCommandAuthChannel;
+  names.setpoint_auth = prefix + kSetpointAuthChannel;
+  names.pose_auth = prefix + kPoseAuthChannel;
+  names.force_auth = prefix + kForceAuthChannel;
+  names.auth_status = prefix + kAuthStatusChannel;
   return names;
 }
 
@@ -32,7 +37,7 @@ std::string ChannelPrefixProblem(const std::string& prefix) {
   if (prefix.size() > kMaxChannelPrefixBytes) {
     return "channel prefix of " + std::to_string(prefix.size()) + " bytes is longer than " +
            std::to_string(kMaxChannelPrefixBytes) + " (LCM channel names are at most 63 bytes, " +
-           kControllerStatusChannel + " takes " + std::to_string(sizeof(kControllerStatusChannel) - 1) + ")";
+           kMotorCommandAuthChannel + " takes " + std::to_string(sizeof(kMotorCommandAuthChannel) - 1) + ")";
   }
   for (const char c : prefix) {
     if (c <= ' ' || c > '~') return "channel prefix has a byte outside printable ASCII (or a space)";

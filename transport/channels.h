@@ -31,9 +31,17 @@ inline constexpr char kLoadCellNChannel[] = "LOADCELL_N";
 inline constexpr char kTruthNChannel[] = "TRUTH_N";
 inline constexpr char kForceNChannel[] = "FORCE_N";
 inline constexpr char kMotorCommandNChannel[] = "MOTOR_COMMAND_N";
-// vehicle_description_t; no longer than CONTROLLER_STATUS, so the prefix
-// limit below stays.
+// vehicle_description_t.
 inline constexpr char kVehicleDescriptionChannel[] = "VEHICLE";
+// The authenticated types of the channels whose forgery moves the vehicle
+// (docs/interface.md, "Authenticated channels"): <type>_auth_t, each on its
+// own channel beside the plain one.
+inline constexpr char kMotorCommandAuthChannel[] = "MOTOR_COMMAND_AUTH";
+inline constexpr char kSetpointAuthChannel[] = "SETPOINT_AUTH";
+inline constexpr char kPoseAuthChannel[] = "POSE_AUTH";
+inline constexpr char kForceAuthChannel[] = "FORCE_AUTH";
+// auth_status_t: what each program sealed and refused.
+inline constexpr char kAuthStatusChannel[] = "AUTH_STATUS";
 
 // Full channel names for one prefix.
 struct ChannelNames {
@@ -57,14 +65,19 @@ struct ChannelNames {
   std::string force_n;            // force_estimate_n_t
   std::string motor_command_n;    // motor_command_n_t
   std::string vehicle;            // vehicle_description_t
+  std::string motor_command_auth;  // motor_command_auth_t
+  std::string setpoint_auth;       // setpoint_auth_t
+  std::string pose_auth;           // pose_auth_t
+  std::string force_auth;          // force_estimate_auth_t
+  std::string auth_status;         // auth_status_t
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);
 
 // Longest prefix whose every channel fits LCM's channel-name limit
 // (LCM_MAX_CHANNEL_NAME_LENGTH, 63 bytes) with the longest base name,
-// CONTROLLER_STATUS: 63 - 17 = 46 bytes.
-inline constexpr size_t kMaxChannelPrefixBytes = 63 - (sizeof(kControllerStatusChannel) - 1);
+// MOTOR_COMMAND_AUTH: 63 - 18 = 45 bytes.
+inline constexpr size_t kMaxChannelPrefixBytes = 63 - (sizeof(kMotorCommandAuthChannel) - 1);
 
 // "" when prefix is usable, else one line saying why: longer than
 // kMaxChannelPrefixBytes (LCM would refuse every publish on the longest

@@ -87,6 +87,11 @@ if command -v systemd-analyze > /dev/null; then
 else
   echo "note: no systemd-analyze here; the units were not verified"
 fi
+# What LoadCredential= gives the unit: its private copy of the site key
+# (the daemon does not start without it).
+export CREDENTIALS_DIRECTORY="$PWD/credentials"
+mkdir -p "$CREDENTIALS_DIRECTORY"
+(umask 077 && head -c 32 /dev/urandom > "$CREDENTIALS_DIRECTORY/site.key")
 . "$prefix/../unit_command_line.sh"
 UNIT_OVERRIDES="BIROTOR_LCM_URL=$url BIROTOR_ESTIMATOR_ARGS=--status-rate-hz=5"
 unit_command_line "$unit" "$env_file"

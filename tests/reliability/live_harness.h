@@ -170,6 +170,50 @@ inline int64_t ResidentKb(int pid) {
   return -1;
 }
 
+// This test process's site key: 32 random bytes in a file only its owner
+// reads and writes, made once.
+inline const std::string& TestSiteKey() {
+  static const std::string path = [] {
+    const std::string key_path = "/tmp/birotor_reliability_" + std::to_string(getpid()) + "_site.key";
+    const int fd = open(key_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0600);
+    std::ifstream random("/dev/urandom", std::ios::binary);
+    char bytes[32];
+    random.read(bytes, sizeof(bytes));
+    if (fd < 0 || write(fd, bytes, sizeof(bytes)) != static_cast<ssize_t>(sizeof(bytes))) std::abort();
+    close(fd);
+    return key_path;
+  }();
+  return path;
+}
+
+// A daemon's command line with --site-key TestSiteKey() added (the
+// simulator, the estimator, the controller and the latency probe
+// authenticate MOTOR_COMMAND, SETPOINT, POSE and FORCE), unless it names
+// a key itself.
+inline std::vector<std::string> WithTestSiteKey(std::vector<std::string> argv) {
+  const std::vector<std::string> daemons = {
+#ifdef BIROTOR_SIM_BIN
+      BIROTOR_SIM_BIN,
+#endif
+#ifdef BIROTOR_ESTIMATOR_BIN
+      BIROTOR_ESTIMATOR_BIN,
+#endif
+#ifdef BIROTOR_CONTROLLER_BIN
+      BIROTOR_CONTROLLER_BIN,
+#endif
+  };
+  bool daemon = false;
+  for (const std::string& path : daemons) daemon = daemon || (!argv.empty() && argv[0] == path);
+  for (const std::string& arg : argv) {
+    if (arg == "--site-key") return argv;
+  }
+  if (daemon) {
+    argv.push_back("--site-key");
+    argv.push_back(TestSiteKey());
+  }
+  return argv;
+}
+
 // A child process; the destructor SIGKILLs and reaps it if it still runs.
 class ChildProcess {
  public:
@@ -178,8 +222,10 @@ class ChildProcess {
   ChildProcess& operator=(const ChildProcess&) = delete;
   ~ChildProcess() { Kill(SIGKILL); }
 
-  // Starts argv[0] with stdout and stderr appended to log_path. False on failure.
-  bool Start(const std::vector<std::string>& argv, const std::string& log_path) {
+  // Starts argv[0] with stdout and stderr appended to log_path (a daemon
+  // with this test process's site key, WithTestSiteKey). False on failure.
+  bool Start(const std::vector<std::string>& command, const std::string& log_path) {
+    const std::vector<std::string> argv = WithTestSiteKey(command);
     std::vector<char*> args;
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);

@@ -28,7 +28,8 @@ std::string ReadText(const std::string& path) {
 
 // Starts argv with stdin, stdout and stderr closed, or stderr on a pipe
 // whose reader is closed at once (stderr_to_closed_pipe). Returns the pid.
-pid_t StartDetached(const std::vector<std::string>& argv, bool stderr_to_closed_pipe) {
+pid_t StartDetached(const std::vector<std::string>& command, bool stderr_to_closed_pipe) {
+  const std::vector<std::string> argv = WithTestSiteKey(command);
   int pipe_fds[2] = {-1, -1};
   if (stderr_to_closed_pipe && pipe(pipe_fds) != 0) return -1;
   std::vector<char*> args;
@@ -148,7 +149,7 @@ TEST(SignalsTest, APrefixOverTheChannelLimitIsRefusedAtStartUp) {
   status = child.Stop();  // already reaped: -1 from Stop, so read the log
   (void)status;
   const std::string text = ReadText(log);
-  EXPECT_NE(text.find("longer than 46"), std::string::npos) << text;
+  EXPECT_NE(text.find("longer than 45"), std::string::npos) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
 }
 

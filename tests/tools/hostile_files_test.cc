@@ -312,7 +312,10 @@ namespace {
 // Issue 37 item 4 on the daemon: without a usable site key (a world-writable
 // key file, or none) the state file is neither restored nor written, and the
 // start says why, once; the run itself goes on and stops cleanly (exit 0).
-TEST_F(HostileFilesTest, EstimatorWithoutAUsableSiteKeyNeitherRestoresNorWritesTheStateFile) {
+// Without a usable key the estimator does not start (it authenticates POSE
+// and FORCE); a site that lets both through unsigned runs it, without the
+// state file.
+TEST_F(HostileFilesTest, EstimatorWithoutAUsableSiteKeyRefusesToStartOrRunsUnsignedWithoutTheStateFile) {
   std::string text;
   {
     std::ifstream in(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
@@ -329,7 +332,14 @@ TEST_F(HostileFilesTest, EstimatorWithoutAUsableSiteKeyNeitherRestoresNorWritesT
   ASSERT_EQ(chmod(open_key.c_str(), 0666), 0);
   for (const std::string& key : {open_key, Path("absent_site.key")}) {
     unlink(state.c_str());
-    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", key},
+    const ToolRun refused =
+        RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", key}, 30, "");
+    EXPECT_EQ(refused.exit_code, 1) << refused.output;
+    EXPECT_NE(refused.output.find("birotor-estimator: error: site key " + key + ": "), std::string::npos)
+        << refused.output;
+    EXPECT_NE(refused.output.find("it authenticates POSE, FORCE"), std::string::npos) << refused.output;
+    const ToolRun run = RunTool({BIROTOR_ESTIMATOR_BIN, "--params", params, "--lcm-url", "memq://", "--site-key", key,
+                                 "--unsigned", "POSE,FORCE"},
                                 30, "lcm memq://");
     EXPECT_EQ(run.exit_code, 0) << run.output;
     const std::string warning = "gauge state file " + state + " is not authenticated (site key " + key + ": ";

@@ -46,12 +46,12 @@ TEST(ChannelsTest, CustomAndEmptyPrefix) {
 
 // Issue 23 item 8: the prefix is checked against LCM's 63-byte channel limit.
 TEST(ChannelsTest, PrefixLongerThanTheChannelLimitIsAProblem) {
-  EXPECT_EQ(kMaxChannelPrefixBytes, 46u);  // 63 - strlen("CONTROLLER_STATUS")
-  EXPECT_EQ(ChannelPrefixProblem(std::string(46, 'P')), "");
-  EXPECT_EQ(MakeChannelNames(std::string(46, 'P')).controller_status.size(), 63u);
-  EXPECT_EQ(ChannelPrefixProblem(std::string(47, 'P')),
-            "channel prefix of 47 bytes is longer than 46 (LCM channel names are at most 63 bytes, "
-            "CONTROLLER_STATUS takes 17)");
+  EXPECT_EQ(kMaxChannelPrefixBytes, 45u);  // 63 - strlen("MOTOR_COMMAND_AUTH")
+  EXPECT_EQ(ChannelPrefixProblem(std::string(45, 'P')), "");
+  EXPECT_EQ(MakeChannelNames(std::string(45, 'P')).motor_command_auth.size(), 63u);
+  EXPECT_EQ(ChannelPrefixProblem(std::string(46, 'P')),
+            "channel prefix of 46 bytes is longer than 45 (LCM channel names are at most 63 bytes, "
+            "MOTOR_COMMAND_AUTH takes 18)");
   EXPECT_NE(ChannelPrefixProblem("A B_"), "");
   EXPECT_NE(ChannelPrefixProblem("A\nB_"), "");
   EXPECT_EQ(ChannelPrefixProblem(kDefaultChannelPrefix), "");
