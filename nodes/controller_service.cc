@@ -11,7 +11,7 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
-#include "nodes/auth_status_message.h"
+#include "nodes/guard_status_message.h"
 #include "nodes/controller_status_message.h"
 #include "numerics/percentile.h"
 #include "numerics/time_units.h"
@@ -181,12 +181,13 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   BuildControllerStatus(controller_, context, &status_message_);
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.controller_status, context.now_us, buffer_.data(), buffer_.size());
-  if (authentication_ == nullptr) return;
-  ++auth_status_.seq;
-  BuildAuthStatus(auth_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_,
-                  &auth_status_);
-  EncodeMessage(auth_status_, &buffer_);
-  if (!buffer_.empty()) sink_->Publish(channels_.auth_status, context.now_us, buffer_.data(), buffer_.size());
+  // GUARD_STATUS: the authenticated channels and the SETPOINT guards.
+  ++guard_status_.seq;
+  const SetpointCounters setpoint = controller_.setpoint().counters();
+  BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_,
+                   &setpoint, &guard_status_);
+  EncodeMessage(guard_status_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.guard_status, context.now_us, buffer_.data(), buffer_.size());
 }
 
 }  // namespace birotor

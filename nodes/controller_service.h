@@ -14,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-#include "birotor/auth_status_t.hpp"
+#include "birotor/guard_status_t.hpp"
 #include "birotor/controller_status_t.hpp"
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
@@ -54,7 +54,7 @@ class ControllerService : public PacketHandler {
   // other sources) go into CONTROLLER_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
   // The signing sink behind and the authenticating handler in front of this
-  // node: AUTH_STATUS goes out with each CONTROLLER_STATUS. Both must
+  // node: GUARD_STATUS goes out with each CONTROLLER_STATUS. Both must
   // outlive the service.
   void AttachAuthentication(const SigningSink* signing, const AuthenticatingHandler* handler) {
     signing_ = signing;
@@ -135,7 +135,7 @@ class ControllerService : public PacketHandler {
   const UdpReceiveCounters* udp_counters_ = nullptr;
   const SigningSink* signing_ = nullptr;
   const AuthenticatingHandler* authentication_ = nullptr;
-  auth_status_t auth_status_{};
+  guard_status_t guard_status_{};
 };
 
 }  // namespace birotor

@@ -63,10 +63,6 @@ void BuildControllerStatus(const VehicleController& controller, const Controller
   m.setpoint_rejected_rate = sc.rejected_rate;
   m.setpoint_rejected_jump = sc.rejected_jump;
   m.setpoint_timeouts = sc.timeouts;
-  m.setpoint_rejected_inconsistent = sc.rejected_inconsistent;
-  m.setpoint_conflicts = sc.conflicts;
-  m.setpoint_rejected_conflict = sc.rejected_conflict;
-  m.setpoint_limited_periods = sc.limited_periods;
   m.loop_time_p99_us = context.loop_time_p99_us;
   m.loop_time_max_us = context.loop_time_max_us;
   const MpcStats mpc = controller.MpcStatistics();

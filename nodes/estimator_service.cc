@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "estimator/force_status.h"
-#include "nodes/auth_status_message.h"
+#include "nodes/guard_status_message.h"
 #include "nodes/gauge_state_file.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
@@ -95,12 +95,13 @@ void EstimatorService::CheckOwnForceChannel(const void* data, size_t size) {
   }
 }
 
-void EstimatorService::PublishAuthStatus(int64_t utime, int64_t wall_utime) {
+void EstimatorService::PublishGuardStatus(int64_t utime, int64_t wall_utime) {
   if (authentication_ == nullptr) return;
-  ++auth_status_.seq;
-  BuildAuthStatus(auth_status_t::PROGRAM_ESTIMATOR, utime, wall_utime, signing_, authentication_, &auth_status_);
-  EncodeMessage(auth_status_, &buffer_);
-  if (!buffer_.empty()) sink_->Publish(channels_.auth_status, utime, buffer_.data(), buffer_.size());
+  ++guard_status_.seq;
+  BuildGuardStatus(guard_status_t::PROGRAM_ESTIMATOR, utime, wall_utime, signing_, authentication_, nullptr,
+                   &guard_status_);
+  EncodeMessage(guard_status_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.guard_status, utime, buffer_.data(), buffer_.size());
 }
 
 bool EstimatorService::ForeignForceActive() const {
@@ -254,7 +255,7 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   if (!buffer_.empty()) {
     const int64_t timestamp_us = pipeline_.health().newest_utime >= 0 ? pipeline_.health().newest_utime : 0;
     sink_->Publish(channels_.estimator_status, timestamp_us, buffer_.data(), buffer_.size());
-    PublishAuthStatus(timestamp_us, wall_utime);
+    PublishGuardStatus(timestamp_us, wall_utime);
   }
   ++status_seq_;
   pipeline_.TakePeriod();

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "birotor/auth_status_t.hpp"
+#include "birotor/guard_status_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
@@ -98,7 +98,7 @@ class EstimatorService : public PacketHandler {
   // other sources) go into ESTIMATOR_STATUS; they must outlive the service.
   void AttachUdpCounters(const UdpReceiveCounters* counters) { udp_counters_ = counters; }
   // The signing sink behind and the authenticating handler in front of this
-  // node: AUTH_STATUS goes out with each ESTIMATOR_STATUS. Both must outlive
+  // node: GUARD_STATUS goes out with each ESTIMATOR_STATUS. Both must outlive
   // the service.
   void AttachAuthentication(const SigningSink* signing, const AuthenticatingHandler* handler) {
     signing_ = signing;
@@ -160,8 +160,8 @@ class EstimatorService : public PacketHandler {
   // A FORCE on the own channel: ours looped back, or a foreign publisher's.
   void CheckOwnForceChannel(const void* data, size_t size);
   bool ForeignForceActive() const;
-  // AUTH_STATUS, when a handler is attached.
-  void PublishAuthStatus(int64_t utime, int64_t wall_utime);
+  // GUARD_STATUS, when a handler is attached.
+  void PublishGuardStatus(int64_t utime, int64_t wall_utime);
 
   EstimatorPipeline pipeline_;
   VehicleDescription description_;  // the birotor's (2 arms), for the counted inputs
@@ -191,7 +191,7 @@ class EstimatorService : public PacketHandler {
   const UdpReceiveCounters* udp_counters_ = nullptr;
   const SigningSink* signing_ = nullptr;
   const AuthenticatingHandler* authentication_ = nullptr;
-  auth_status_t auth_status_{};
+  guard_status_t guard_status_{};
   // Hashes of the last published FORCE payloads (FNV-1a), to tell our own
   // looped-back FORCE from another publisher's: 1 s of FORCE at 1 kHz. Each
   // comes back once; a second copy is a second publisher of the same bytes

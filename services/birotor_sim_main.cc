@@ -17,7 +17,7 @@
 
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
-#include "nodes/auth_status_message.h"
+#include "nodes/guard_status_message.h"
 #include "nodes/esc_command_node.h"
 #include "numerics/time_units.h"
 #include "params/controller_config_yaml.h"
@@ -219,15 +219,15 @@ class EscCommandInput {
 };
 
 // Live: publish on LCM, paced so that simulated time runs at speed x wall time.
-// AUTH_STATUS once a second of simulated time: what was sealed and refused.
-class AuthStatusPublisher {
+// GUARD_STATUS once a second of simulated time: what was sealed and refused.
+class GuardStatusPublisher {
  public:
-  AuthStatusPublisher(const ChannelNames& channels, MessageSink* sink) : channel_(channels.auth_status), sink_(sink) {}
+  GuardStatusPublisher(const ChannelNames& channels, MessageSink* sink) : channel_(channels.guard_status), sink_(sink) {}
   void MaybePublish(const Simulator& sim, const SigningSink& signing, const AuthenticatingHandler* handler) {
     if (sim.utime() < next_utime_) return;
     next_utime_ = sim.utime() + 1000000;
     ++message_.seq;
-    BuildAuthStatus(auth_status_t::PROGRAM_SIM, sim.utime(), WallClockUs(), &signing, handler, &message_);
+    BuildGuardStatus(guard_status_t::PROGRAM_SIM, sim.utime(), WallClockUs(), &signing, handler, nullptr, &message_);
     EncodeMessage(message_, &buffer_);
     if (!buffer_.empty()) sink_->Publish(channel_, sim.utime(), buffer_.data(), buffer_.size());
   }
@@ -235,7 +235,7 @@ class AuthStatusPublisher {
  private:
   std::string channel_;
   MessageSink* sink_;
-  auth_status_t message_{};
+  guard_status_t message_{};
   std::vector<uint8_t> buffer_;
   int64_t next_utime_ = 0;
 };
@@ -251,10 +251,10 @@ bool RunLive(Simulator* sim, const ChannelNames& channels, lcm::LCM* lcm, Messag
   std::unique_ptr<EscCommandInput> commands;
   if (source != nullptr) commands = std::make_unique<EscCommandInput>(source, channels, security, sim);
   LivePacer pacer(speed, sim->scenario().step_s);
-  AuthStatusPublisher auth_status(channels, &lcm_sink);
+  GuardStatusPublisher guard_status(channels, &lcm_sink);
   while (!ShutdownRequested() && sim->Step(&sink)) {
     if (commands) commands->Poll();
-    auth_status.MaybePublish(*sim, signing_sink, commands ? &commands->authentication() : nullptr);
+    guard_status.MaybePublish(*sim, signing_sink, commands ? &commands->authentication() : nullptr);
     pacer.AfterStep(sim->time_s());
   }
   if (lcm_sink.failures() > 0) spdlog::warn("{} LCM publish calls failed", lcm_sink.failures());

@@ -29,7 +29,7 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.setpoint_auth = prefix + kSetpointAuthChannel;
   names.pose_auth = prefix + kPoseAuthChannel;
   names.force_auth = prefix + kForceAuthChannel;
-  names.auth_status = prefix + kAuthStatusChannel;
+  names.guard_status = prefix + kGuardStatusChannel;
   return names;
 }
 

@@ -40,8 +40,8 @@ inline constexpr char kMotorCommandAuthChannel[] = "MOTOR_COMMAND_AUTH";
 inline constexpr char kSetpointAuthChannel[] = "SETPOINT_AUTH";
 inline constexpr char kPoseAuthChannel[] = "POSE_AUTH";
 inline constexpr char kForceAuthChannel[] = "FORCE_AUTH";
-// auth_status_t: what each program sealed and refused.
-inline constexpr char kAuthStatusChannel[] = "AUTH_STATUS";
+// guard_status_t: what each program sealed and refused.
+inline constexpr char kGuardStatusChannel[] = "GUARD_STATUS";
 
 // Full channel names for one prefix.
 struct ChannelNames {
@@ -69,7 +69,7 @@ struct ChannelNames {
   std::string setpoint_auth;       // setpoint_auth_t
   std::string pose_auth;           // pose_auth_t
   std::string force_auth;          // force_estimate_auth_t
-  std::string auth_status;         // auth_status_t
+  std::string guard_status;         // guard_status_t
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);
