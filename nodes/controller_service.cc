@@ -11,8 +11,8 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
-#include "nodes/guard_status_message.h"
 #include "nodes/controller_status_message.h"
+#include "nodes/guard_status_message.h"
 #include "numerics/percentile.h"
 #include "numerics/time_units.h"
 #include "transport/host_clock.h"
@@ -184,8 +184,8 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   // GUARD_STATUS: the authenticated channels and the SETPOINT guards.
   ++guard_status_.seq;
   const SetpointCounters setpoint = controller_.setpoint().counters();
-  BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_,
-                   &setpoint, &guard_status_);
+  BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_, &setpoint,
+                   &guard_status_);
   EncodeMessage(guard_status_, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.guard_status, context.now_us, buffer_.data(), buffer_.size());
 }

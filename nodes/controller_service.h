@@ -14,8 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "birotor/guard_status_t.hpp"
 #include "birotor/controller_status_t.hpp"
+#include "birotor/guard_status_t.hpp"
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
 #include "sinks/message_sink.h"

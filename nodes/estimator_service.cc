@@ -7,8 +7,8 @@
 #include <limits>
 
 #include "estimator/force_status.h"
-#include "nodes/guard_status_message.h"
 #include "nodes/gauge_state_file.h"
+#include "nodes/guard_status_message.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"

@@ -15,9 +15,9 @@
 #include <string_view>
 #include <vector>
 
-#include "birotor/guard_status_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
+#include "birotor/guard_status_t.hpp"
 #include "birotor/imu_t.hpp"
 #include "birotor/motor_n_t.hpp"
 #include "birotor/motor_t.hpp"

@@ -9,8 +9,7 @@ static_assert(guard_status_t::CHANNEL_MOTOR_COMMAND == static_cast<int>(Authenti
               "GUARD_STATUS indexes the channels as AuthenticatedChannel");
 
 void BuildGuardStatus(int32_t program, int64_t utime, int64_t wall_utime, const SigningSink* signing,
-                      const AuthenticatingHandler* handler, const SetpointCounters* setpoint,
-                      guard_status_t* message) {
+                      const AuthenticatingHandler* handler, const SetpointCounters* setpoint, guard_status_t* message) {
   message->utime = utime;
   message->wall_utime = wall_utime;
   message->program = program;

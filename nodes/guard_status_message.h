@@ -17,7 +17,6 @@ namespace birotor {
 // handler or setpoint may be null (nothing sealed, nothing read, not the
 // controller).
 void BuildGuardStatus(int32_t program, int64_t utime, int64_t wall_utime, const SigningSink* signing,
-                      const AuthenticatingHandler* handler, const SetpointCounters* setpoint,
-                      guard_status_t* message);
+                      const AuthenticatingHandler* handler, const SetpointCounters* setpoint, guard_status_t* message);
 
 }  // namespace birotor

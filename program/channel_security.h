@@ -30,7 +30,7 @@ void AddChannelSecurityOptions(CLI::App& app, ChannelSecurityOptions* options);
 struct ChannelSecurity {
   std::unique_ptr<MessageAuthenticator> authenticator;  // null: no key read (every used channel unsigned)
   ChannelSet unsigned_channels{};                       // true: plain on the wire
-  std::string key_problem;  // why no key was read ("site key FILE: reason"); "" with a key
+  std::string key_problem;                              // why no key was read ("site key FILE: reason"); "" with a key
   ChannelSet signed_channels() const;                   // the complement; none without a key
 };
 

@@ -11,11 +11,11 @@
 
 #include "nodes/controller_service.h"
 #include "params/controller_config_yaml.h"
+#include "program/channel_security.h"
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/realtime.h"
-#include "program/channel_security.h"
 #include "program/shutdown.h"
 #include "security/replay_guard.h"
 #include "sinks/message_sink.h"
@@ -78,8 +78,7 @@ int main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(common.prefix);
   LcmSink lcm_sink(lcm.get());
   // MOTOR_COMMAND sealed (MOTOR_COMMAND_AUTH) unless the site lets it through unsigned.
-  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(),
-                   RandomPublisherId());
+  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(), RandomPublisherId());
   ControllerService service(config, channels, &sink);
   // SETPOINT, POSE and FORCE only authenticated (their _AUTH twins), unless
   // the site lets them through unsigned; IMU passes.

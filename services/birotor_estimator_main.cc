@@ -15,12 +15,12 @@
 #include "params/estimator_config_yaml.h"
 #include "params/vehicle_section_update.h"
 #include "params/yaml_reader.h"
+#include "program/channel_security.h"
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
-#include "program/channel_security.h"
 #include "security/message_authenticator.h"
 #include "security/replay_guard.h"
 #include "sinks/message_sink.h"
@@ -214,8 +214,7 @@ int main(int argc, char** argv) {
   const ChannelNames channels = MakeChannelNames(options.common.prefix);
   LcmSink lcm_sink(lcm.get());
   // FORCE sealed (FORCE_AUTH) unless the site lets it through unsigned.
-  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(),
-                   RandomPublisherId());
+  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(), RandomPublisherId());
   EstimatorService service(config, channels, options.service, &sink);
   // POSE only authenticated (POSE_AUTH) unless let through unsigned. FORCE
   // too: the daemon's check for a second estimator on the prefix compares
@@ -226,8 +225,7 @@ int main(int argc, char** argv) {
                                       security.unsigned_channels);
   service.AttachAuthentication(&sink, &authenticated);
   const std::string vehicle_checksum = VehicleChecksum(BirotorModelOf(config.vehicle));
-  const MessageAuthenticator* authenticator =
-      StateFileAuthenticator(security, config.tare.state_file);
+  const MessageAuthenticator* authenticator = StateFileAuthenticator(security, config.tare.state_file);
   RestoreGaugeOffsets(config, vehicle_checksum, authenticator, &service);
   const std::string state_file = authenticator ? WritableStateFile(config.tare.state_file) : "";
   // Inputs through the shared message source. On udpm our own small-message

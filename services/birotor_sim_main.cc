@@ -17,27 +17,27 @@
 
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
-#include "nodes/guard_status_message.h"
 #include "nodes/esc_command_node.h"
+#include "nodes/guard_status_message.h"
 #include "numerics/time_units.h"
 #include "params/controller_config_yaml.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_description_yaml.h"
+#include "program/channel_security.h"
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
+#include "security/replay_guard.h"
 #include "services/birotor_sim_vehicle.h"
 #include "services/live_pacer.h"
 #include "simulator/simulator.h"
-#include "program/channel_security.h"
-#include "security/replay_guard.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
-#include "sources/authenticating_handler.h"
 #include "sinks/wire_sample_sink.h"
+#include "sources/authenticating_handler.h"
 #include "sources/dropped_datagram_log.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
@@ -163,15 +163,15 @@ class EscCommandInput {
  public:
   // MOTOR_COMMAND only authenticated (MOTOR_COMMAND_AUTH) unless the site
   // lets it through unsigned.
-  EscCommandInput(MessageSource* source, const ChannelNames& channels, const ChannelSecurity& security,
-                  Simulator* sim)
+  EscCommandInput(MessageSource* source, const ChannelNames& channels, const ChannelSecurity& security, Simulator* sim)
       : source_(source),
         node_(channels.motor_command, sim),
         authenticated_(&node_, SealedMessages::kVerify, security.authenticator.get(), channels,
                        {AuthenticatedChannel::kMotorCommand}, security.unsigned_channels),
         sim_(sim) {
     std::string error;
-    if (!source_->Subscribe(authenticated_.WithSealedChannels(node_.InputChannels()), &authenticated_, &error)) spdlog::error("{}", error);
+    if (!source_->Subscribe(authenticated_.WithSealedChannels(node_.InputChannels()), &authenticated_, &error))
+      spdlog::error("{}", error);
   }
   // Handles every command already queued.
   void Poll() {
@@ -222,7 +222,8 @@ class EscCommandInput {
 // GUARD_STATUS once a second of simulated time: what was sealed and refused.
 class GuardStatusPublisher {
  public:
-  GuardStatusPublisher(const ChannelNames& channels, MessageSink* sink) : channel_(channels.guard_status), sink_(sink) {}
+  GuardStatusPublisher(const ChannelNames& channels, MessageSink* sink)
+      : channel_(channels.guard_status), sink_(sink) {}
   void MaybePublish(const Simulator& sim, const SigningSink& signing, const AuthenticatingHandler* handler) {
     if (sim.utime() < next_utime_) return;
     next_utime_ = sim.utime() + 1000000;
@@ -470,8 +471,8 @@ int Main(int argc, char** argv) {
   }
   const Stopwatch stopwatch;
   SimTotals totals;
-  const bool ok =
-      RunScenario(options, scenario, MakeChannelNames(options.common.prefix), lcm.get(), source.get(), security, &totals);
+  const bool ok = RunScenario(options, scenario, MakeChannelNames(options.common.prefix), lcm.get(), source.get(),
+                              security, &totals);
   const double wall_s = stopwatch.ElapsedS();
   const ChannelCounts& n = totals.n;
   spdlog::info(

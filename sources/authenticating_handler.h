@@ -73,8 +73,7 @@ class AuthenticatingHandler : public PacketHandler {
     std::array<uint64_t, kRecentCopies> recent{};  // FNV-1a of the last opened messages (0: none)
     int next_recent = 0;
   };
-  void HandlePlain(Route* route, std::string_view channel, const void* data, size_t size,
-                   int64_t receive_wall_utime);
+  void HandlePlain(Route* route, std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime);
   void HandleSealed(Route* route, const void* data, size_t size, int64_t receive_wall_utime);
 
   PacketHandler* next_;

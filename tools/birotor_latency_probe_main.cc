@@ -26,12 +26,12 @@
 #include "birotor/pose_t.hpp"
 #include "birotor/strain_t.hpp"
 #include "numerics/percentile.h"
+#include "program/channel_security.h"
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
 #include "samples/rotor_count.h"
-#include "program/channel_security.h"
 #include "security/replay_guard.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
@@ -124,11 +124,11 @@ class ProbeInput : public birotor::PacketHandler {
 
 struct ProbeOptions {
   birotor::CommonOptions common;
-  double rate_hz = 1000;            // STRAIN rate [Hz]; MOTOR at half of it
-  double duration_s = 10;           // publishing time [s]
-  double drain_s = 1.0;             // wait for the last FORCE messages [s]
-  bool through_controller = false;  // also IMU and POSE, and STRAIN -> MOTOR_COMMAND
-  int realtime_priority = 0;        // SCHED_FIFO priority; 0: normal scheduler
+  double rate_hz = 1000;                     // STRAIN rate [Hz]; MOTOR at half of it
+  double duration_s = 10;                    // publishing time [s]
+  double drain_s = 1.0;                      // wait for the last FORCE messages [s]
+  bool through_controller = false;           // also IMU and POSE, and STRAIN -> MOTOR_COMMAND
+  int realtime_priority = 0;                 // SCHED_FIFO priority; 0: normal scheduler
   birotor::ChannelSecurityOptions security;  // the key that seals POSE (--through-controller)
 };
 
@@ -151,7 +151,8 @@ void AddProbeOptions(CLI::App& app, ProbeOptions* options) {
 class HoverPublisher {
  public:
   // sink: LCM behind the signing sink (POSE goes out sealed).
-  HoverPublisher(birotor::MessageSink* sink, const birotor::ChannelNames& channels) : sink_(sink), channels_(channels) {}
+  HoverPublisher(birotor::MessageSink* sink, const birotor::ChannelNames& channels)
+      : sink_(sink), channels_(channels) {}
 
   // MOTOR at half the STRAIN rate.
   void PublishMotor(int64_t k, int64_t utime) {
@@ -211,8 +212,7 @@ class HoverPublisher {
 // Publishes the hover at --rate-hz for --duration-s (or until a signal);
 // returns the number of STRAIN samples published and their time [s].
 int64_t PublishHover(const ProbeOptions& options, birotor::MessageSink* sink, const birotor::ChannelNames& channels,
-                     int64_t count,
-                     Probe* probe, double* publish_s) {
+                     int64_t count, Probe* probe, double* publish_s) {
   using namespace birotor;
   const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / options.rate_hz));
   const int64_t period_us = std::max<int64_t>(1, period_ns / 1000);

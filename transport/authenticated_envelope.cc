@@ -41,8 +41,7 @@ AuthenticatedChannelNames Names(const char* base, const std::string& plain, cons
 AuthenticatedChannelNames NamesOf(const ChannelNames& c, AuthenticatedChannel channel) {
   switch (channel) {
     case AuthenticatedChannel::kMotorCommand:
-      return Names<motor_command_auth_t, motor_command_t>(kMotorCommandChannel, c.motor_command,
-                                                          c.motor_command_auth);
+      return Names<motor_command_auth_t, motor_command_t>(kMotorCommandChannel, c.motor_command, c.motor_command_auth);
     case AuthenticatedChannel::kSetpoint:
       return Names<setpoint_auth_t, setpoint_t>(kSetpointChannel, c.setpoint, c.setpoint_auth);
     case AuthenticatedChannel::kPose:
@@ -53,9 +52,8 @@ AuthenticatedChannelNames NamesOf(const ChannelNames& c, AuthenticatedChannel ch
   return {};
 }
 
-bool SealMessage(const MessageAuthenticator& authenticator, const AuthenticatedChannelNames& names,
-                 uint64_t publisher, uint64_t counter, const uint8_t* plain, size_t size,
-                 std::vector<uint8_t>* sealed) {
+bool SealMessage(const MessageAuthenticator& authenticator, const AuthenticatedChannelNames& names, uint64_t publisher,
+                 uint64_t counter, const uint8_t* plain, size_t size, std::vector<uint8_t>* sealed) {
   sealed->clear();
   if (plain == nullptr || size < kFingerprintBytes || ReadBigEndian(plain) != names.plain_hash) return false;
   const size_t body = size - kFingerprintBytes;

@@ -45,14 +45,13 @@ constexpr size_t kSealOverheadBytes = 16 + MessageAuthenticator::kTagBytes;
 // Writes the sealed twin of plain (a whole encoded plain message of
 // names.plain_hash) into *sealed. False (and *sealed empty) when plain is
 // not such a message.
-bool SealMessage(const MessageAuthenticator& authenticator, const AuthenticatedChannelNames& names,
-                 uint64_t publisher, uint64_t counter, const uint8_t* plain, size_t size,
-                 std::vector<uint8_t>* sealed);
+bool SealMessage(const MessageAuthenticator& authenticator, const AuthenticatedChannelNames& names, uint64_t publisher,
+                 uint64_t counter, const uint8_t* plain, size_t size, std::vector<uint8_t>* sealed);
 
 enum class OpenVerdict {
-  kAuthentic,     // the tag is right (or not checked: authenticator null)
-  kMalformed,     // not a sealed message of this type (fingerprint, size, counter 0)
-  kBadTag,        // the tag is wrong: forged, altered, or another key
+  kAuthentic,  // the tag is right (or not checked: authenticator null)
+  kMalformed,  // not a sealed message of this type (fingerprint, size, counter 0)
+  kBadTag,     // the tag is wrong: forged, altered, or another key
 };
 // Stable lower-case name for counters and log lines.
 const char* OpenVerdictName(OpenVerdict verdict);

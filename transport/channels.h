@@ -46,30 +46,30 @@ inline constexpr char kGuardStatusChannel[] = "GUARD_STATUS";
 // Full channel names for one prefix.
 struct ChannelNames {
   std::string prefix;
-  std::string strain;             // strain_t
-  std::string motor;              // motor_t
-  std::string imu;                // imu_t
-  std::string pose;               // pose_t
-  std::string loadcell;           // loadcell_t
-  std::string truth;              // truth_t
-  std::string force;              // force_estimate_t
-  std::string estimator_status;   // estimator_status_t
-  std::string sim_status;         // simulator health, owned by simulator/
-  std::string motor_command;      // motor_command_t
-  std::string controller_status;  // controller_status_t
-  std::string setpoint;           // setpoint_t
-  std::string strain_n;           // strain_n_t
-  std::string motor_n;            // motor_n_t
-  std::string loadcell_n;         // loadcell_n_t
-  std::string truth_n;            // truth_n_t
-  std::string force_n;            // force_estimate_n_t
-  std::string motor_command_n;    // motor_command_n_t
-  std::string vehicle;            // vehicle_description_t
+  std::string strain;              // strain_t
+  std::string motor;               // motor_t
+  std::string imu;                 // imu_t
+  std::string pose;                // pose_t
+  std::string loadcell;            // loadcell_t
+  std::string truth;               // truth_t
+  std::string force;               // force_estimate_t
+  std::string estimator_status;    // estimator_status_t
+  std::string sim_status;          // simulator health, owned by simulator/
+  std::string motor_command;       // motor_command_t
+  std::string controller_status;   // controller_status_t
+  std::string setpoint;            // setpoint_t
+  std::string strain_n;            // strain_n_t
+  std::string motor_n;             // motor_n_t
+  std::string loadcell_n;          // loadcell_n_t
+  std::string truth_n;             // truth_n_t
+  std::string force_n;             // force_estimate_n_t
+  std::string motor_command_n;     // motor_command_n_t
+  std::string vehicle;             // vehicle_description_t
   std::string motor_command_auth;  // motor_command_auth_t
   std::string setpoint_auth;       // setpoint_auth_t
   std::string pose_auth;           // pose_auth_t
   std::string force_auth;          // force_estimate_auth_t
-  std::string guard_status;         // guard_status_t
+  std::string guard_status;        // guard_status_t
 };
 
 ChannelNames MakeChannelNames(const std::string& prefix = kDefaultChannelPrefix);

@@ -189,7 +189,8 @@ inline const std::string& TestSiteKey() {
 // A daemon's command line with --site-key TestSiteKey() added (the
 // simulator, the estimator, the controller and the latency probe
 // authenticate MOTOR_COMMAND, SETPOINT, POSE and FORCE), unless it names
-// a key itself.
+// a key itself. A program is recognised by its path as the test's CMake
+// definitions give it.
 inline std::vector<std::string> WithTestSiteKey(std::vector<std::string> argv) {
   const std::vector<std::string> daemons = {
 #ifdef BIROTOR_SIM_BIN
@@ -200,6 +201,9 @@ inline std::vector<std::string> WithTestSiteKey(std::vector<std::string> argv) {
 #endif
 #ifdef BIROTOR_CONTROLLER_BIN
       BIROTOR_CONTROLLER_BIN,
+#endif
+#ifdef BIROTOR_LATENCY_PROBE_BIN
+      BIROTOR_LATENCY_PROBE_BIN,
 #endif
   };
   bool daemon = false;

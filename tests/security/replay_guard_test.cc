@@ -13,7 +13,7 @@ TEST(ReplayGuardTest, ACounterMustRisePerPublisher) {
   ReplayGuard guard;
   EXPECT_TRUE(guard.Admit(11, 1));
   EXPECT_TRUE(guard.Admit(11, 2));
-  EXPECT_TRUE(guard.Admit(11, 50));  // drops between are fine
+  EXPECT_TRUE(guard.Admit(11, 50));   // drops between are fine
   EXPECT_FALSE(guard.Admit(11, 50));  // the same message again
   EXPECT_FALSE(guard.Admit(11, 3));   // an older one
   EXPECT_TRUE(guard.Admit(22, 1));    // another publisher has its own counter

@@ -212,8 +212,7 @@ TEST(SimLogTest, LoopRepeatsTheScenarioWithTimeContinuing) {
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     ::execl(BIROTOR_SIM_PATH, BIROTOR_SIM_PATH, "--scenario", scenario.c_str(), "--set", "scenario.duration_s=0.25",
-            "--loop", "--speed", "10", "--lcm-url", url.c_str(), "--log-level", "error", "--unsigned", "POSE",
-            nullptr);
+            "--loop", "--speed", "10", "--lcm-url", url.c_str(), "--log-level", "error", "--unsigned", "POSE", nullptr);
     ::_exit(127);
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(600));

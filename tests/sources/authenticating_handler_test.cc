@@ -69,9 +69,12 @@ class AuthenticatingHandlerTest : public ::testing::Test {
   Recorder bus_;
   SigningSink signing_{&bus_, &authenticator_, channels_, ChannelSet{true, true, true, true}, 77};
   Recorder node_;
-  AuthenticatingHandler handler_{&node_,   SealedMessages::kVerify,
-                                 &authenticator_, channels_,
-                                 {AuthenticatedChannel::kPose, AuthenticatedChannel::kForce}, ChannelSet{}};
+  AuthenticatingHandler handler_{&node_,
+                                 SealedMessages::kVerify,
+                                 &authenticator_,
+                                 channels_,
+                                 {AuthenticatedChannel::kPose, AuthenticatedChannel::kForce},
+                                 ChannelSet{}};
 };
 
 TEST_F(AuthenticatingHandlerTest, ASealedMessageReachesTheNodeAsThePlainOneAndItsCopyIsDropped) {
@@ -171,7 +174,7 @@ TEST_F(AuthenticatingHandlerTest, TheSinkPassesOtherAndUnsignedChannelsPlain) {
   Recorder bus;
   SigningSink sink(&bus, &authenticator_, channels_, ChannelSet{true, false, false, true}, 5);
   const std::vector<uint8_t> pose = PoseBytes(1);
-  sink.Publish(channels_.pose, 0, pose.data(), pose.size());  // POSE unsigned here
+  sink.Publish(channels_.pose, 0, pose.data(), pose.size());   // POSE unsigned here
   sink.Publish(channels_.force, 0, pose.data(), pose.size());  // not a FORCE message: not published at all
   ASSERT_EQ(bus.packets.size(), 1u);
   EXPECT_EQ(bus.packets[0].channel, "BIROTOR_POSE");

@@ -49,8 +49,8 @@ class AuthenticatedEnvelopeTest : public ::testing::Test {
   std::vector<uint8_t> Sealed(uint64_t counter = 9) const {
     const std::vector<uint8_t> plain = Plain();
     std::vector<uint8_t> sealed;
-    EXPECT_TRUE(SealMessage(authenticator_, names_, 0x1122334455667788ull, counter, plain.data(), plain.size(),
-                            &sealed));
+    EXPECT_TRUE(
+        SealMessage(authenticator_, names_, 0x1122334455667788ull, counter, plain.data(), plain.size(), &sealed));
     return sealed;
   }
 };
@@ -60,8 +60,7 @@ TEST_F(AuthenticatedEnvelopeTest, NamesAndTypesOfTheFourChannels) {
   EXPECT_EQ(names_.sealed, "BIROTOR_MOTOR_COMMAND_AUTH");
   EXPECT_EQ(names_.sealed_hash, static_cast<uint64_t>(motor_command_auth_t::getHash()));
   EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kSetpoint).sealed, "BIROTOR_SETPOINT_AUTH");
-  EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kPose).sealed_hash,
-            static_cast<uint64_t>(pose_auth_t::getHash()));
+  EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kPose).sealed_hash, static_cast<uint64_t>(pose_auth_t::getHash()));
   EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kForce).sealed_hash,
             static_cast<uint64_t>(force_estimate_auth_t::getHash()));
   EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kForce).plain, "BIROTOR_FORCE");
@@ -119,9 +118,9 @@ TEST_F(AuthenticatedEnvelopeTest, AnotherKeyAnotherTypeOrACutMessageIsRefused) {
   EXPECT_EQ(OpenMessage(&authenticator_, names_, sealed.data(), sealed.size() - 1, &plain, &publisher, &counter),
             OpenVerdict::kBadTag);
   const std::vector<uint8_t> zero_counter = Sealed(0);
-  EXPECT_EQ(OpenMessage(&authenticator_, names_, zero_counter.data(), zero_counter.size(), &plain, &publisher,
-                        &counter),
-            OpenVerdict::kMalformed);
+  EXPECT_EQ(
+      OpenMessage(&authenticator_, names_, zero_counter.data(), zero_counter.size(), &plain, &publisher, &counter),
+      OpenVerdict::kMalformed);
   // Without a key (a tool reading a log) the tag is not checked.
   EXPECT_EQ(OpenMessage(nullptr, names_, sealed.data(), sealed.size(), &plain, &publisher, &counter),
             OpenVerdict::kAuthentic);
