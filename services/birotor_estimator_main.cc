@@ -234,7 +234,12 @@ int main(int argc, char** argv) {
   // datagrams crash, is never reached (docs/lcm-udpm-fragment-bug.md). Other
   // providers (memq:// in tests) go through LCM's subscription.
   std::unique_ptr<MessageSource> source = OpenLiveSource(options.common.lcm_url, lcm.get(), &error);
-  const std::vector<std::string> subscribed = authenticated.WithSealedChannels(service.InputChannels());
+  std::vector<std::string> subscribed = authenticated.WithSealedChannels(service.InputChannels());
+  if (!security.unsigned_channels[static_cast<int>(AuthenticatedChannel::kForce)]) {
+    // FORCE sealed: its own check needs FORCE_AUTH only, and a plain FORCE is
+    // refused by every reader that flies (one packet less per sample here).
+    subscribed.erase(std::remove(subscribed.begin(), subscribed.end(), channels.force), subscribed.end());
+  }
   if (!source || !source->Subscribe(subscribed, &authenticated, &error)) return ReportError(error);
   service.AttachUdpCounters(source->udp_counters());
   LogStartup(options, config, vehicle_checksum, channels, *source);
