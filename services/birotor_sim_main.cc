@@ -203,9 +203,10 @@ class EscCommandInput {
     last_warning_us_ = now_us;
     reported_refused_ = refused;
     spdlog::warn(
-        "ESCs at t = {:.3f} s refused MOTOR_COMMAND: {} from a second commander (another seq stream, ignored), {} "
-        "with a speed not finite or outside [0, omega_max], {} stamped ahead of their clock, {} stale",
-        sim_->time_s(), n.foreign, n.out_of_range, n.future, n.stale);
+        "ESCs at t = {:.3f} s refused MOTOR_COMMAND: {} from a second commander (another seq stream, ignored; {} "
+        "conflicts, {} of the locked commander held), {} with a speed not finite or outside [0, omega_max], {} "
+        "stamped ahead of their clock, {} stale",
+        sim_->time_s(), n.foreign, n.conflicts, n.held, n.out_of_range, n.future, n.stale);
   }
 
   MessageSource* source_;
