@@ -14,16 +14,11 @@
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "sinks/signing_sink.h"
+#include "tests/security/counting_key.h"
 #include "transport/lcm_codec.h"
 
 namespace birotor {
 namespace {
-
-SiteKey KeyOf(uint8_t first) {
-  SiteKey::Bytes bytes;
-  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(first + i);
-  return SiteKey(bytes);
-}
 
 // What reaches the node (or the bus).
 struct Recorded {
@@ -65,7 +60,7 @@ class AuthenticatingHandlerTest : public ::testing::Test {
   const AuthenticationCounters& pose() const { return handler_.counters(AuthenticatedChannel::kPose); }
 
   const ChannelNames channels_ = MakeChannelNames();
-  const MessageAuthenticator authenticator_{KeyOf(1)};
+  const MessageAuthenticator authenticator_{CountingKeyFrom(1)};
   Recorder bus_;
   SigningSink signing_{&bus_, &authenticator_, channels_, ChannelSet{true, true, true, true}, 77};
   Recorder node_;
@@ -110,7 +105,7 @@ TEST_F(AuthenticatingHandlerTest, PlainForgedAndReplayedMessagesAreRefusedAndCou
   Recorded forged = second;
   forged.data[30] ^= 0x40;  // a changed byte in the message
   Deliver(forged);
-  const MessageAuthenticator other(KeyOf(2));
+  const MessageAuthenticator other(CountingKeyFrom(2));
   Recorder other_bus;
   SigningSink other_key(&other_bus, &other, channels_, ChannelSet{true, true, true, true}, 78);
   other_key.Publish(channels_.pose, 0, plain.data(), plain.size());

@@ -14,16 +14,11 @@
 #include "birotor/motor_command_auth_t.hpp"
 #include "birotor/pose_auth_t.hpp"
 #include "birotor/setpoint_auth_t.hpp"
+#include "tests/security/counting_key.h"
 #include "transport/lcm_codec.h"
 
 namespace birotor {
 namespace {
-
-SiteKey KeyOf(uint8_t first) {
-  SiteKey::Bytes bytes;
-  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(first + i);
-  return SiteKey(bytes);
-}
 
 motor_command_t Command() {
   motor_command_t m{};
@@ -40,7 +35,7 @@ class AuthenticatedEnvelopeTest : public ::testing::Test {
  protected:
   const ChannelNames channels_ = MakeChannelNames();
   const AuthenticatedChannelNames names_ = NamesOf(channels_, AuthenticatedChannel::kMotorCommand);
-  const MessageAuthenticator authenticator_{KeyOf(1)};
+  const MessageAuthenticator authenticator_{CountingKeyFrom(1)};
   std::vector<uint8_t> Plain() const {
     std::vector<uint8_t> plain;
     EncodeMessage(Command(), &plain);
@@ -107,7 +102,7 @@ TEST_F(AuthenticatedEnvelopeTest, AnotherKeyAnotherTypeOrACutMessageIsRefused) {
   const std::vector<uint8_t> sealed = Sealed();
   std::vector<uint8_t> plain;
   uint64_t publisher = 0, counter = 0;
-  const MessageAuthenticator other(KeyOf(2));
+  const MessageAuthenticator other(CountingKeyFrom(2));
   EXPECT_EQ(OpenMessage(&other, names_, sealed.data(), sealed.size(), &plain, &publisher, &counter),
             OpenVerdict::kBadTag);
   const AuthenticatedChannelNames pose = NamesOf(channels_, AuthenticatedChannel::kPose);
