@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "evaluation/mismatch_metrics.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -60,14 +61,14 @@ MismatchTargetFigures EvaluateMismatchTargets(const std::vector<ForceEstimate>& 
   if (scored.empty()) return f;
   const int64_t start = airborne_utime >= 0 ? airborne_utime : scored.front().utime;
   const int64_t settle = start + std::llround(targets.settle_s * 1e6);
-  int64_t valid = 0, inside[2] = {0, 0};
-  double sum_n[2] = {0, 0};
+  int64_t valid = 0, inside[kBirotorRotors] = {0, 0};
+  double sum_n[kBirotorRotors] = {0, 0};
   for (const ScoredEstimate& s : scored) {
     if (s.utime < settle) continue;
     ++f.estimates;
     if (!(s.status & kStatusValid)) continue;
     ++valid;
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < kBirotorRotors; ++i) {
       sum_n[i] += std::fabs(s.error_n[i]);
       inside[i] += s.inside[i] ? 1 : 0;
     }

@@ -127,7 +127,9 @@ void AddControlOptions(CLI::App& app, EvalCli* cli) {
                "lift-off) over 3 s the peak tilt and altitude deviation, the time back within 5 cm and the "
                "touchdown speed (with the tilt, pitch rate and lower tip's speed at touchdown); then nominal vs "
                "force feedback per case (medians and worst seed)");
-  app.add_option("--seeds", cli->seeds, "--control: fly seeds 1..N of each case (1: the scenario's own seed)")
+  app.add_option("--seeds", cli->seeds,
+                 "--control: fly seeds 1..N of each case (1: the scenario's own seed); --mismatch-targets: seeds 1..N "
+                 "(default 5)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--controller-params", cli->controller_params,
                  "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
@@ -461,6 +463,8 @@ int main(int argc, char** argv) {
   }
   if (cli.control) return RunControlMode(cli, app.count("--scenarios") > 0, base_config);
   if (cli.mismatch_targets) {
+    if (!cli.log_path.empty())
+      return ReportError("--mismatch-targets flies its cases; it does not take --log", kExitUsage);
     const MismatchTargetsRunOptions options{app.count("--seeds") > 0 ? cli.seeds : 5, cli.overrides, cli.markdown_out};
     return RunMismatchTargets(
         options, base_config,
