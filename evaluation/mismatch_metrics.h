@@ -36,6 +36,26 @@ struct MismatchEvalResult {
   int64_t rotor_fault = 0;              // estimates with a rotor fault bit
 };
 
+// One estimate against the truth at its stamp: error f_est - f_true per
+// rotor [N] and whether it lies within 2 force_std_n.
+struct ScoredEstimate {
+  int64_t utime = 0;
+  int32_t status = 0;
+  double error_n[kBirotorRotors] = {0, 0};
+  bool inside[kBirotorRotors] = {true, true};
+};
+
+// The estimates that have a TRUTH sample at their stamp, in time order.
+std::vector<ScoredEstimate> ScoreEstimates(const std::vector<ForceEstimate>& forces,
+                                           const std::vector<TruthSample>& truth);
+
+// The smallest 2-sigma share (both rotors: the smaller rotor's count) of the
+// VALID estimates over windows [w, w + window_s), w = start_utime + k
+// window_step_s, up to the last estimate; a window with fewer than
+// min_valid VALID estimates is not judged. 1 when no window is judged [1].
+double WorstValidWindowShare(const std::vector<ScoredEstimate>& scored, int64_t start_utime, double window_s,
+                             double window_step_s, int64_t min_valid);
+
 MismatchEvalResult EvaluateMismatch(const std::vector<ForceEstimate>& forces, const std::vector<TruthSample>& truth,
                                     const MismatchEvalOptions& options);
 

@@ -162,7 +162,16 @@ void ReadSensors(YamlSection& root, Scenario* out) {
   YamlSection s = root.Section("sensors");
   SensorParams& sensors = sc.sensors;
   const double step = sc.step_s;
-  ReadSensor(s, "strain", step, &sensors.strain, {{"noise_rad", &sensors.strain_noise_rad}});
+  {
+    YamlSection g = s.Section("strain");
+    g.Bool("enabled", &sensors.strain.enabled);
+    ReadRate(g, "rate_hz", step, &sensors.strain.rate_hz);
+    g.Double("noise_rad", 0.0, kInf, &sensors.strain_noise_rad);
+    // Within a tenth of the sample period: a reading the stamp places in
+    // another sample's slot is an out-of-order fault (faults:), not jitter.
+    g.Double("stamp_jitter_s", 0.0, 0.1 / sensors.strain.rate_hz, &sensors.strain_stamp_jitter_s);
+    g.Finish();
+  }
   {
     YamlSection m = s.Section("motor");
     m.Bool("enabled", &sensors.motor.enabled);

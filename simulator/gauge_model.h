@@ -34,6 +34,12 @@ inline double GaugeReadingRad(const GaugeParams& gauge, int arm, double deflecti
   return reading;
 }
 
+// The true deflection b_i at the jittered reading instant t + jitter_s
+// (SensorParams::strain_stamp_jitter_s), to first order: b_i(t) + e b_dot_i(t) [rad].
+inline double JitteredDeflectionRad(double deflection_rad, double deflection_rate_rad_s, double jitter_s) {
+  return deflection_rad + jitter_s * deflection_rate_rad_s;
+}
+
 // theta_i after one step of dt_s: the trapezoid of the speeds before and
 // after it [rad/s], kept in [0, 2 pi) so its precision does not decay [rad].
 inline double AdvanceRotorAngleRad(double angle_rad, double omega_before_rad_s, double omega_after_rad_s, double dt_s) {

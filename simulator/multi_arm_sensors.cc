@@ -20,13 +20,15 @@ void MultiArmSimulator::EmitStrain(SampleSink* sink) {
   sample.utime = utime();
   sample.seq = strain_seq_++;
   sample.n_arms = vehicle_.arm_count;
+  const double jitter_s = strain_jitter_noise_.Normal(scenario_.sensors.strain_stamp_jitter_s);
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t arm = static_cast<size_t>(i);
     if (!vehicle_.arms[arm].has_gauge) {
       sample.deflection_rad[arm] = kNaN;
       continue;
     }
-    const double b = state_(MultiArmQIndex(vehicle_, DeflectionIndex(i)));
+    const double b = JitteredDeflectionRad(state_(MultiArmQIndex(vehicle_, DeflectionIndex(i))),
+                                           state_(MultiArmVIndex(vehicle_, DeflectionIndex(i))), jitter_s);
     sample.deflection_rad[arm] =
         GaugeReadingRad(scenario_.gauge, i, b, time_s(), rotor_angle_rad_[arm]) + strain_noise_.Normal(sigma);
   }

@@ -60,6 +60,7 @@ MultiArmSimulator::MultiArmSimulator(const VehicleDescription& vehicle, const Sc
       ground_(scenario),
       turbulence_noise_(scenario.seed, kTurbulenceStream),
       strain_noise_(scenario.seed, kStrainStream),
+      strain_jitter_noise_(scenario.seed, kStrainJitterStream),
       motor_noise_(scenario.seed, kMotorStream),
       imu_noise_(scenario.seed, kImuStream),
       pose_noise_(scenario.seed, kPoseStream),

@@ -141,7 +141,8 @@ class MultiArmSimulator {
   std::vector<FaultEvent> fault_events_;
 
   int64_t strain_every_ = 0, motor_every_ = 0, imu_every_ = 0, pose_every_ = 0, loadcell_every_ = 0, truth_every_ = 0;
-  GaussianSource strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_, fault_noise_;
+  GaussianSource strain_noise_, strain_jitter_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_,
+      fault_noise_;
   StrainFaultInjector<MultiArmStrainSample> strain_faults_;
   int32_t strain_seq_ = 0, motor_seq_ = 0, imu_seq_ = 0, pose_seq_ = 0, loadcell_seq_ = 0;
   ChannelCounts emitted_;

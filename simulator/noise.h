@@ -21,6 +21,7 @@ enum NoiseStream : uint64_t {
   kPoseStream = 5,
   kLoadCellStream = 6,
   kFaultStream = 7,
+  kStrainJitterStream = 8,  // the strain gauges' sampling-instant jitter (sensors.strain.stamp_jitter_s)
 };
 
 class GaussianSource {

@@ -65,6 +65,13 @@ struct SensorRate {
 struct SensorParams {
   SensorRate strain{true, 1000.0};
   double strain_noise_rad = 2e-5;  // white noise on each deflection, one sigma
+  // The gauges are read at t + e while the sample is stamped t: e ~ N(0,
+  // stamp_jitter_s^2), drawn per sample (one instant for every arm), from its
+  // own noise stream; 0: read exactly at the stamp [s]. The reading at t + e
+  // is taken to first order, b(t) + e b_dot(t) (the arm mode's period,
+  // 14 ms, is 280 times 50 us), on the deflection only (offset, drift and
+  // pickup as at t).
+  double strain_stamp_jitter_s = 0.0;
   SensorRate motor{true, 500.0};
   bool motor_telemetry = true;           // false: omega_meas is NaN throughout
   double motor_speed_noise_rad_s = 5.0;  // on omega_meas, one sigma

@@ -33,6 +33,7 @@ Simulator::Simulator(const Scenario& scenario)
       ground_(scenario),
       turbulence_noise_(scenario.seed, kTurbulenceStream),
       strain_noise_(scenario.seed, kStrainStream),
+      strain_jitter_noise_(scenario.seed, kStrainJitterStream),
       motor_noise_(scenario.seed, kMotorStream),
       imu_noise_(scenario.seed, kImuStream),
       pose_noise_(scenario.seed, kPoseStream),
@@ -266,10 +267,11 @@ void Simulator::EmitStrain(int64_t utime, SampleSink* sink) {
   sample.utime = utime;
   sample.seq = strain_seq_++;
   const double t_s = static_cast<double>(utime - utime_offset_us_) * 1e-6;
+  const double jitter_s = strain_jitter_noise_.Normal(scenario_.sensors.strain_stamp_jitter_s);
   for (int i = 0; i < kBirotorRotors; ++i) {
+    const double b = JitteredDeflectionRad(state_(kPlantQ + kB1 + i), state_(kPlantV + kB1 + i), jitter_s);
     sample.deflection_rad[i] =
-        GaugeReadingRad(scenario_.gauge, i, state_(kPlantQ + kB1 + i), t_s, rotor_angle_rad_[i]) +
-        strain_noise_.Normal(sigma);
+        GaugeReadingRad(scenario_.gauge, i, b, t_s, rotor_angle_rad_[i]) + strain_noise_.Normal(sigma);
   }
   strain_faults_.Process(sample, 2, sigma, InWindow(scenario_.faults.strain_gap, utime), &fault_noise_, &fault_events_,
                          [&](const StrainSample& out) {

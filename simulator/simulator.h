@@ -171,7 +171,8 @@ class Simulator {
 
   Decimation setpoint_;
   Decimation control_, strain_, motor_, imu_, pose_, loadcell_, truth_;
-  GaussianSource turbulence_noise_, strain_noise_, motor_noise_, imu_noise_, pose_noise_, loadcell_noise_, fault_noise_;
+  GaussianSource turbulence_noise_, strain_noise_, strain_jitter_noise_, motor_noise_, imu_noise_, pose_noise_,
+      loadcell_noise_, fault_noise_;
 
   // External commands (UseExternalCommands).
   bool external_commands_ = false;

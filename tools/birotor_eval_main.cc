@@ -27,6 +27,7 @@
 #include "program/config_files.h"
 #include "program/logging.h"
 #include "program/program_options.h"
+#include "tools/eval_mismatch_targets.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
 
@@ -86,6 +87,7 @@ struct EvalCli {
   std::vector<std::string> control_scenarios = ControlCaseNames();
   int seeds = 1;
   bool mpc = false;
+  bool mismatch_targets = false;
   double min_usable_fraction = kDefaultMinUsableLogFraction;
 };
 
@@ -106,6 +108,10 @@ void AddEstimatorTableOptions(CLI::App& app, EvalCli* cli) {
       ->check(CLI::Range(0.0, 1e6));
   app.add_option("--warmup-s", cli->eval_options.warmup_s, "Unscored start-up time [s]")->check(CLI::Range(0.0, 100.0));
   app.add_option("--markdown-out", cli->markdown_out, "Also write the table to this file");
+  app.add_flag("--mismatch-targets", cli->mismatch_targets,
+               "Issue 36's figures instead: every vehicle-mismatch case (docs/mismatch.md) and the matching "
+               "hover, gentle, aggressive, thrust_loss on seeds 1..--seeds (default 5) with --params as given; "
+               "VALID share, MAE and 2-sigma share of the VALID estimates, worst 2 s window, verdict per case");
   app.add_option("--plot-dir", cli->plot_dir, "Write <scenario>_<method>.png plots here");
 }
 
@@ -121,7 +127,9 @@ void AddControlOptions(CLI::App& app, EvalCli* cli) {
                "lift-off) over 3 s the peak tilt and altitude deviation, the time back within 5 cm and the "
                "touchdown speed (with the tilt, pitch rate and lower tip's speed at touchdown); then nominal vs "
                "force feedback per case (medians and worst seed)");
-  app.add_option("--seeds", cli->seeds, "--control: fly seeds 1..N of each case (1: the scenario's own seed)")
+  app.add_option("--seeds", cli->seeds,
+                 "--control: fly seeds 1..N of each case (1: the scenario's own seed); --mismatch-targets: seeds 1..N "
+                 "(default 5)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--controller-params", cli->controller_params,
                  "Controller parameter file for --control; default: the " + ConfigSearchText("controller.yaml"));
@@ -454,5 +462,14 @@ int main(int argc, char** argv) {
     return ReportError("cannot create --plot-dir " + cli.plot_dir);
   }
   if (cli.control) return RunControlMode(cli, app.count("--scenarios") > 0, base_config);
+  if (cli.mismatch_targets) {
+    if (!cli.log_path.empty())
+      return ReportError("--mismatch-targets flies its cases; it does not take --log", kExitUsage);
+    const MismatchTargetsRunOptions options{app.count("--seeds") > 0 ? cli.seeds : 5, cli.overrides, cli.markdown_out};
+    return RunMismatchTargets(
+        options, base_config,
+        [&cli](const std::string& name, const std::vector<std::string>& overrides, Scenario* scenario,
+               std::string* error) { return LoadNamedScenario(name, cli.scenario_dir, overrides, scenario, error); });
+  }
   return RunEstimatorTable(cli, base_config);
 }

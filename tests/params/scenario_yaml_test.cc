@@ -87,6 +87,26 @@ TEST(ScenarioYamlTest, RateThatIsNotAWholeNumberOfStepsIsRefused) {
   EXPECT_NE(error.find("sensors.strain.rate_hz"), std::string::npos) << error;
 }
 
+// sensors.strain.stamp_jitter_s (the mismatch cases' 50 us): 0 by default,
+// refused below 0 and above a tenth of the 1 kHz period (1e-4 s), naming
+// the file, the key and the range.
+TEST(ScenarioYamlTest, StrainStampJitterIsReadAndRangeChecked) {
+  EXPECT_EQ(LoadScenario(ScenarioPath("gentle")).sensors.strain_stamp_jitter_s, 0.0);
+  const Scenario s = LoadScenario(ScenarioPath("gentle"), {"sensors.strain.stamp_jitter_s=5.0e-5"});
+  EXPECT_DOUBLE_EQ(s.sensors.strain_stamp_jitter_s, 5e-5);
+  for (const char* bad : {"-1.0e-6", "2.0e-4"}) {
+    const std::string error = LoadError("sensors:\n  strain: {stamp_jitter_s: " + std::string(bad) + "}\n");
+    EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+    EXPECT_NE(error.find("sensors.strain.stamp_jitter_s"), std::string::npos) << error;
+    EXPECT_NE(error.find("0.0001"), std::string::npos) << error;
+  }
+  // At 500 Hz the limit is 2e-4 s.
+  EXPECT_DOUBLE_EQ(
+      LoadScenario(ScenarioPath("gentle"), {"sensors.strain.rate_hz=500", "sensors.strain.stamp_jitter_s=2.0e-4"})
+          .sensors.strain_stamp_jitter_s,
+      2e-4);
+}
+
 TEST(ScenarioYamlTest, FaultTimePastTheEndIsRefused) {
   const std::string base = "scenario: {duration_s: 10}\n";
   std::string error = LoadError(base + "faults:\n  thrust_steps:\n    - {time_s: 12, rotor: 2, scale: 0.75}\n");
