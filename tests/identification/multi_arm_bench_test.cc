@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "identification/multi_arm_bench_fit.h"
+#include "params/identified_description_file.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_description_yaml.h"
 #include "samples/sample_sink.h"
@@ -109,6 +111,10 @@ TEST(MultiArmBenchTest, ModifiedTrirotorWithinTargetsAndThreeSigma) {
     // The identified description carries the values.
     EXPECT_EQ(result.vehicle.arms[i].stiffness_n_m_rad, e.stiffness.value);
   }
+  // The written description reads back as the identified one, exactly.
+  const std::string path = ::testing::TempDir() + "/identified_trirotor.yaml";
+  std::ofstream(path) << IdentifiedDescriptionYaml(result, {log.source});
+  EXPECT_EQ(FirstDifference(LoadVehicleDescription(path), result.vehicle), "");
 }
 
 TEST(MultiArmBenchTest, RefusesALogOfAnotherArmCount) {
