@@ -48,6 +48,10 @@ std::string IdentifyMultiArmVehicle(const MultiArmIdentifyRequest& request, cons
     LogLoadReport load;
     if (!LoadMultiArmBenchLog(path, request.prefix, &log, &load, &error, request.min_usable_fraction)) return error;
     if (!load.damage.empty()) spdlog::warn("{}", load.damage);
+    if (log.strain.empty() && log.motor.empty() && log.loadcell.empty()) {
+      return "refused: " + path + " has no STRAIN_N, MOTOR_N or LOADCELL_N samples on prefix '" + request.prefix +
+             "' (a birotor log is identified without --vehicle)";
+    }
     const std::string mismatch = MultiArmLogMismatch(log, base);
     if (!mismatch.empty()) return "refused: " + mismatch + " (" + request.vehicle + ")";
     spdlog::info("{}: {} STRAIN_N, {} MOTOR_N, {} LOADCELL_N samples{}", path, log.strain.size(), log.motor.size(),

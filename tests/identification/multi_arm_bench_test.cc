@@ -33,20 +33,18 @@ class BenchLogSink : public SampleSink {
 
 std::string SourcePath(const std::string& relative) { return std::string(BIROTOR_SOURCE_DIR) + "/" + relative; }
 
-// The trirotor of the file with every arm's k, d, m_p, c_T, tau_m moved by
-// 5-30 % (a different mix per arm, both signs).
+// The truth: tests/data/trirotor_modified.yaml, every arm's k, d, m_p, c_T,
+// tau_m 5-30 % off the file's (checked below).
 VehicleDescription ModifiedTrirotor(const VehicleDescription& file) {
-  const double factor[3][5] = {{1.20, 0.85, 1.10, 0.92, 1.25},   // k, d, m_p, c_T, tau_m of arm 1
-                               {0.80, 1.30, 0.93, 1.15, 0.90},   // arm 2
-                               {1.07, 0.75, 1.28, 1.05, 0.70}};  // arm 3
-  VehicleDescription truth = file;
+  const VehicleDescription truth = LoadVehicleDescription(SourcePath("tests/data/trirotor_modified.yaml"));
   for (size_t i = 0; i < 3; ++i) {
-    ArmDescription& a = truth.arms[i];
-    a.stiffness_n_m_rad *= factor[i][0];
-    a.damping_n_m_s_rad *= factor[i][1];
-    a.tip_mass_kg *= factor[i][2];
-    a.thrust_coeff_n_s2_rad2 *= factor[i][3];
-    a.motor_time_constant_s *= factor[i][4];
+    const ArmDescription &t = truth.arms[i], &f = file.arms[i];
+    for (const double ratio : {t.stiffness_n_m_rad / f.stiffness_n_m_rad, t.damping_n_m_s_rad / f.damping_n_m_s_rad,
+                               t.tip_mass_kg / f.tip_mass_kg, t.thrust_coeff_n_s2_rad2 / f.thrust_coeff_n_s2_rad2,
+                               t.motor_time_constant_s / f.motor_time_constant_s}) {
+      EXPECT_GE(std::abs(ratio - 1.0), 0.05 - 1e-9) << "arm " << i + 1;
+      EXPECT_LE(std::abs(ratio - 1.0), 0.30 + 1e-9) << "arm " << i + 1;
+    }
   }
   return truth;
 }
