@@ -20,11 +20,6 @@ namespace {
 constexpr int64_t kMaxLoadCellGapUs = 5000;  // interpolate load cells over at most 5 ms
 constexpr size_t kScanWindows = 24;          // windows of the frequency scan
 
-ClampedArmGeometry GeometryOf(const VehicleDescription& vehicle, int arm) {
-  const ArmDescription& a = vehicle.arms[static_cast<size_t>(arm)];
-  return {a.length_m, a.ThrustLeverM(), std::cos(a.angle_rad), std::sin(a.angle_rad), vehicle.gravity_m_s2};
-}
-
 // theta (bench_fit.h layout, slot 0) at (k, m_p) holding the static line:
 // reading = s b + o with b = (l f - m_p g L cos alpha) / k at rest, so the
 // intercept a = o - s m_p g L cos alpha / k gives o.
@@ -81,7 +76,7 @@ ArmFitStart StartArmFit(const std::vector<ArmData>& data, const std::vector<ArmW
                         const VehicleDescription& base, int arm, const IdentificationOptions& options) {
   const ArmDescription& a = base.arms[static_cast<size_t>(arm)];
   ArmFitStart start;
-  start.geometry = GeometryOf(base, arm);
+  start.geometry = ClampedArmOf(base, arm);
   start.line = FitStaticLine(map_f, map_b);
   start.scales = {a.stiffness_n_m_rad, a.damping_n_m_s_rad > 0.0 ? a.damping_n_m_s_rad : 0.1, a.tip_mass_kg};
   const double slope = start.line.slope_rad_n;

@@ -12,6 +12,7 @@
 
 #include "model/birotor_dynamics.h"
 #include "model/birotor_params.h"
+#include "model/vehicle_description.h"
 
 namespace birotor {
 
@@ -44,6 +45,12 @@ struct ClampedArmGeometry {
 // Arm i of the birotor: alpha = pi (arm 1) or 0 (arm 2), l = s_i L.
 inline ClampedArmGeometry BirotorClampedArm(const BirotorParams& known, int arm) {
   return {known.arm_length_m, kArmSign[arm] * known.arm_length_m, kArmSign[arm], 0.0, known.gravity_m_s2};
+}
+
+// Arm i of a vehicle description: L_i, l_i = L_i cos(alpha_i - theta_i), alpha_i.
+inline ClampedArmGeometry ClampedArmOf(const VehicleDescription& vehicle, int arm) {
+  const ArmDescription& a = vehicle.arms[static_cast<size_t>(arm)];
+  return {a.length_m, a.ThrustLeverM(), std::cos(a.angle_rad), std::sin(a.angle_rad), vehicle.gravity_m_s2};
 }
 
 // Clamped body, one arm of any planar vehicle: the supported row of
