@@ -147,6 +147,9 @@ MultiArmIdentificationResult IdentifyMultiArmBench(const std::vector<MultiArmBen
     if (!why.empty()) result.errors.push_back(why);
   }
   if (logs.empty()) result.errors.push_back("no log");
+  if (options.calibration.TipMassWeighed() || options.calibration.gauge_scale_std > 0.0) {
+    result.errors.push_back("a calibration fact (weighed tip mass, gauge scale sigma) is not supported for N arms");
+  }
   if (!result.errors.empty()) return result;
   result.arms.resize(static_cast<size_t>(base.arm_count));
   for (int arm = 0; arm < base.arm_count; ++arm) {

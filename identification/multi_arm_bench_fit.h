@@ -49,8 +49,10 @@ struct MultiArmIdentificationResult {
 // The bench fit. Gauge scales are held at the description's (the factory
 // fact of shared/spec/gauges.md: on the bench k, m_p and s_i are separated
 // only through an outside fact; a weighed tip mass per arm is not supported
-// here). options.calibration must be the default. Every log must match
-// `base` (MultiArmLogMismatch); a mismatch is an error in the result.
+// here): a calibration fact in options is an error in the result. Every log
+// must match `base` (MultiArmLogMismatch); a mismatch is an error too. d_i
+// and m_p,i not determined leave result.ok true (marked, base value kept),
+// as on the birotor's bench.
 MultiArmIdentificationResult IdentifyMultiArmBench(const std::vector<MultiArmBenchLog>& logs,
                                                    const VehicleDescription& base,
                                                    const IdentificationOptions& options);

@@ -129,6 +129,13 @@ TEST(MultiArmBenchTest, RefusesALogOfAnotherArmCount) {
   EXPECT_NE(MultiArmLogMismatch(unnamed, birotor).find("STRAIN_N sample at utime 0 has 3 entries, the description 2"),
             std::string::npos);
   EXPECT_EQ(MultiArmLogMismatch(log, trirotor), "");
+  // A calibration fact is not supported for N arms: refused, not ignored.
+  IdentificationOptions weighed;
+  weighed.calibration.tip_mass_kg = 0.3;
+  const MultiArmIdentificationResult with_fact = IdentifyMultiArmBench({log}, trirotor, weighed);
+  EXPECT_FALSE(with_fact.ok);
+  ASSERT_EQ(with_fact.errors.size(), 1u);
+  EXPECT_NE(with_fact.errors[0].find("calibration fact"), std::string::npos);
 }
 
 }  // namespace
