@@ -17,8 +17,9 @@ namespace birotor {
 // One window of paired STRAIN/LOADCELL samples j = 0..N-1 of arm i. The
 // deflection is integrated (RK4, `substeps` per interval, force linear between
 // samples) from the window's own initial state (b_0, b_dot_0) through
-//   m_p L^2 b_ddot + d b_dot + k b + s_i m_p g L cos(b) = s_i L f_i
-// (s_i here the arm sign, model/arm_dynamics.h) with k = theta_k k_scale,
+//   m_p L^2 b_ddot + d b_dot + k b + m_p g L cos(b + alpha) = l f_i
+// (model/arm_dynamics.h ClampedArmGeometry; the birotor's arm i has
+// alpha = pi or 0 and l = s_i L, s_i the arm sign) with k = theta_k k_scale,
 // d = theta_d d_scale, m_p = theta_m m_scale, and read through the gauge
 // (shared/spec/gauges.md) with scale g_i and offset o_i = theta_o sigma_b:
 //   r_j = Huber((b_meas_j - (g_i b_j + o_i)) / sigma_b)              [1, whitened]
@@ -37,8 +38,14 @@ struct ClampedArmWindowResidual {
 
   ClampedArmWindowResidual(const BirotorParams& known, int arm, std::vector<Sample> samples, double sigma_rad,
                            int substeps, const Scales& scales, double huber)
-      : known_(known),
-        arm_(arm),
+      : ClampedArmWindowResidual(BirotorClampedArm(known, arm), arm, std::move(samples), sigma_rad, substeps, scales,
+                                 huber) {}
+  // Any vehicle's arm; slot: the index of this arm's gauge blocks in the
+  // fit's parameter layout (bench_fit.h BenchTheta: 0 or 1).
+  ClampedArmWindowResidual(const ClampedArmGeometry& geometry, int slot, std::vector<Sample> samples, double sigma_rad,
+                           int substeps, const Scales& scales, double huber)
+      : geometry_(geometry),
+        arm_(slot),
         samples_(std::move(samples)),
         sigma_rad_(sigma_rad),
         substeps_(substeps),
@@ -68,7 +75,7 @@ struct ClampedArmWindowResidual {
           const T force[3] = {T(f0 + df * a0), T(f0 + df * 0.5 * (a0 + a1)), T(f0 + df * a1)};
           x = Rk4Step(x, h, [&](const State& y, Rk4Stage stage) {
             return State(y(1),
-                         ClampedArmAcceleration<T>(known_, arm_, k, d, mp, y(0), y(1), force[static_cast<int>(stage)]));
+                         ClampedArmAcceleration<T>(geometry_, k, d, mp, y(0), y(1), force[static_cast<int>(stage)]));
           });
         }
       }
@@ -84,9 +91,15 @@ struct ClampedArmWindowResidual {
     return new ceres::AutoDiffCostFunction<ClampedArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, 1, 1, 2>(
         new ClampedArmWindowResidual(known, arm, std::move(samples), sigma_rad, substeps, scales, huber), n);
   }
+  static ceres::CostFunction* Create(const ClampedArmGeometry& geometry, int slot, std::vector<Sample> samples,
+                                     double sigma_rad, int substeps, const Scales& scales, double huber) {
+    const int n = static_cast<int>(samples.size());
+    return new ceres::AutoDiffCostFunction<ClampedArmWindowResidual, ceres::DYNAMIC, 1, 1, 1, 1, 1, 2>(
+        new ClampedArmWindowResidual(geometry, slot, std::move(samples), sigma_rad, substeps, scales, huber), n);
+  }
 
-  const BirotorParams known_;  // L, g (k, d, m_p are parameters)
-  const int arm_;              // 0: arm 1, 1: arm 2
+  const ClampedArmGeometry geometry_;  // L, l, alpha, g (k, d, m_p are parameters)
+  const int arm_;                      // gauge slot: 0 (birotor arm 1), 1 (arm 2)
   const std::vector<Sample> samples_;
   const double sigma_rad_;  // strain noise, also the unit of the offset ratio [rad]
   const int substeps_;

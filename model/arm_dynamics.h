@@ -12,6 +12,7 @@
 
 #include "model/birotor_dynamics.h"
 #include "model/birotor_params.h"
+#include "model/vehicle_description.h"
 
 namespace birotor {
 
@@ -27,6 +28,45 @@ T ClampedArmAcceleration(const BirotorParams& known, int arm, const T& k, const 
   const double s = kArmSign[arm];
   const double L = known.arm_length_m, g = known.gravity_m_s2;
   return (s * L * force_n - s * tip_mass_kg * g * L * cos(b) - k * b - d * b_dot) / (tip_mass_kg * L * L);
+}
+
+// The hinge of one clamped arm of any vehicle (model/vehicle_description.h):
+// length L, thrust lever l = L cos(alpha - theta) [m] and the direction
+// alpha through its cosine and sine (stored, not the angle, so that the
+// birotor's alpha = pi gives cos = -1, sin = 0 exactly).
+struct ClampedArmGeometry {
+  double length_m = 0.25;      // L [m]
+  double lever_m = 0.25;       // l [m]
+  double cos_angle = 1.0;      // cos alpha [1]
+  double sin_angle = 0.0;      // sin alpha [1]
+  double gravity_m_s2 = 9.81;  // g [m/s^2]
+};
+
+// Arm i of the birotor: alpha = pi (arm 1) or 0 (arm 2), l = s_i L.
+inline ClampedArmGeometry BirotorClampedArm(const BirotorParams& known, int arm) {
+  return {known.arm_length_m, kArmSign[arm] * known.arm_length_m, kArmSign[arm], 0.0, known.gravity_m_s2};
+}
+
+// Arm i of a vehicle description: L_i, l_i = L_i cos(alpha_i - theta_i), alpha_i.
+inline ClampedArmGeometry ClampedArmOf(const VehicleDescription& vehicle, int arm) {
+  const ArmDescription& a = vehicle.arms[static_cast<size_t>(arm)];
+  return {a.length_m, a.ThrustLeverM(), std::cos(a.angle_rad), std::sin(a.angle_rad), vehicle.gravity_m_s2};
+}
+
+// Clamped body, one arm of any planar vehicle: the supported row of
+// model/multi_arm_plant.h (MultiArmSupportedDerivative) at phi = 0,
+//   m_p L^2 b_ddot + d b_dot + k b + m_p g L cos(b + alpha) = l f,
+// with cos(b + alpha) = cos b cos alpha - sin b sin alpha; the birotor's
+// row above is alpha = pi or 0. Returns b_ddot [rad/s^2].
+template <typename T>
+T ClampedArmAcceleration(const ClampedArmGeometry& arm, const T& k, const T& d, const T& tip_mass_kg, const T& b,
+                         const T& b_dot, const T& force_n) {
+  using std::cos;
+  using std::sin;
+  const double L = arm.length_m;
+  const T gravity_cos = cos(b) * arm.cos_angle - sin(b) * arm.sin_angle;
+  return (arm.lever_m * force_n - tip_mass_kg * arm.gravity_m_s2 * L * gravity_cos - k * b - d * b_dot) /
+         (tip_mass_kg * L * L);
 }
 
 // The same with m_p of `known`.

@@ -32,6 +32,7 @@
 #include "program/program_options.h"
 #include "replay/identification_log_loader.h"
 #include "tools/identify_learned_source.h"
+#include "tools/identify_multi_arm.h"
 #include "transport/host_clock.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
@@ -45,6 +46,7 @@ struct IdentifyOptions {
   std::string config;  // optional file with an `identification:` section
   std::string output;
   std::string update_params;  // complete parameter file updated in place (FILE.bak keeps the old one)
+  std::string vehicle;        // --vehicle: an N-arm description, bench fit of its counted channels
   // --learned, --site-key, --estimator-config: what the estimator learned goes into update_params (no fit)
   birotor::LearnedSourceOptions learned_source;
   birotor::LearnedDeployOptions learned_options;
@@ -120,6 +122,10 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                  "(unless --tip-mass-kg is given). Flight: added to the sigma of k and m_p, which the "
                  "flight sees through the scale")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--vehicle", cli->vehicle,
+                 "Vehicle description with N arms (e.g. config/vehicles/trirotor.yaml): bench fit of every arm and "
+                 "rotor from the logs' STRAIN_N, MOTOR_N, LOADCELL_N; --output gets the identified description")
+      ->check(CLI::ExistingFile);
   CLI::Option* output = app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
   CLI::Option* update_params =
       app.add_option("--update-params", cli->update_params,
@@ -440,6 +446,13 @@ int main(int argc, char** argv) {
   if (cli.logs.empty()) return ReportError("--log is required (or --learned STATE) (see --help)", kExitUsage);
   if (cli.output.empty() && cli.update_params.empty()) {
     return ReportError("nothing to write: give --output FILE or --update-params FILE (or both)");
+  }
+  if (!cli.vehicle.empty()) {
+    if (cli.output.empty() || !cli.update_params.empty())
+      return ReportError("--vehicle writes --output FILE (not --update-params)");
+    const std::string error = IdentifyMultiArmVehicle(
+        {cli.logs, cli.vehicle, common.prefix, cli.output, cli.config, cli.min_usable_fraction}, options);
+    return error.empty() ? 0 : ReportError(error);
   }
   if (!cli.update_params.empty() && app.get_option("--params")->count() == 0) cli.params = cli.update_params;
 

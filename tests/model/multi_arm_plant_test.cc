@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "model/arm_dynamics.h"
 #include "model/bench_dynamics.h"
 #include "model/equilibrium.h"
 #include "model/plant.h"
@@ -142,6 +143,41 @@ TEST(MultiArmPlantTest, BirotorDescriptionOnTheSupportIsTheBenchPlant) {
   }
   const MultiArmPlantState rate = MultiArmSupportedDerivative(trirotor, rest, rest_u);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(rate(MultiArmVIndex(trirotor, DeflectionIndex(i))), 0.0, 1e-9) << i;
+}
+
+// The one-arm clamped row of model/arm_dynamics.h (the bench fit's
+// residual, identification/clamped_arm_residual.h) is each arm's row of the
+// supported plant, on every arm of the trirotor at a deflected, moving state,
+// and the birotor's own clamped row for BirotorClampedArm.
+TEST(MultiArmPlantTest, ClampedArmRowIsTheSupportedPlantRow) {
+  const VehicleDescription trirotor =
+      LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
+  MultiArmPlantState x = MultiArmPlantState::Zero(MultiArmPlantSize(trirotor));
+  MultiArmPlantInput u;
+  const double deflection[3] = {-4.0e-3, 2.5e-3, 6.0e-3}, rate[3] = {0.3, -0.5, 0.2}, omega[3] = {700, 450, 820};
+  for (int i = 0; i < 3; ++i) {
+    x(MultiArmQIndex(trirotor, DeflectionIndex(i))) = deflection[i];
+    x(MultiArmVIndex(trirotor, DeflectionIndex(i))) = rate[i];
+    x(MultiArmOmegaIndex(trirotor, i)) = omega[i];
+  }
+  const MultiArmPlantState x_dot = MultiArmSupportedDerivative(trirotor, x, u);
+  for (int i = 0; i < 3; ++i) {
+    const ArmDescription& a = trirotor.arms[static_cast<size_t>(i)];
+    const double force_n = a.thrust_coeff_n_s2_rad2 * omega[i] * omega[i];
+    const double row =
+        ClampedArmAcceleration<double>(ClampedArmOf(trirotor, i), a.stiffness_n_m_rad, a.damping_n_m_s_rad,
+                                       a.tip_mass_kg, deflection[i], rate[i], force_n);
+    const double plant = x_dot(MultiArmVIndex(trirotor, DeflectionIndex(i)));
+    EXPECT_NEAR(row, plant, 1e-9 * std::abs(plant)) << "arm " << i + 1;
+  }
+  const BirotorParams p;
+  for (int arm = 0; arm < 2; ++arm) {
+    const double birotor = ClampedArmAcceleration<double>(p, arm, p.arm_stiffness_n_m_rad, p.arm_damping_n_m_s_rad,
+                                                          p.tip_mass_kg, 3.0e-3, -0.4, 12.0);
+    const double general = ClampedArmAcceleration<double>(BirotorClampedArm(p, arm), p.arm_stiffness_n_m_rad,
+                                                          p.arm_damping_n_m_s_rad, p.tip_mass_kg, 3.0e-3, -0.4, 12.0);
+    EXPECT_NEAR(general, birotor, 1e-12 * std::abs(birotor)) << "arm " << arm + 1;
+  }
 }
 
 }  // namespace

@@ -6,7 +6,9 @@
 
 #include <fstream>
 
+#include "replay/multi_arm_log_loader.h"
 #include "transport/channels.h"
+#include "transport/counted_messages.h"
 #include "transport/log_io.h"
 #include "transport/message_conversion.h"
 
@@ -73,6 +75,51 @@ TEST(IdentificationLogLoaderTest, MissingFileIsAnError) {
   std::string error;
   EXPECT_FALSE(LoadSensorLog("/nonexistent/file.lcm", "TEST_", &log, &report, &error));
   EXPECT_FALSE(error.empty());
+}
+
+// The N-arm bench channels of one prefix: each sample keeps its count (3
+// here), the VEHICLE message becomes the description, and a 2-arm
+// description sees the mismatch (MultiArmLogMismatch).
+TEST(MultiArmLogLoaderTest, ReadsTheCountedChannelsAndTheVehicle) {
+  const std::string path = ::testing::TempDir() + "/loader_multi_arm.lcm";
+  VehicleDescription trirotor;
+  trirotor.name = "three";
+  trirotor.arm_count = 3;
+  trirotor.arms[2].stiffness_n_m_rad = 3000.0;
+  {
+    LogWriter writer;
+    std::string error;
+    ASSERT_TRUE(writer.Open(path, &error)) << error;
+    const ChannelNames channels = MakeChannelNames("TEST_");
+    writer.WriteMessage(channels.vehicle, 0, ToMessage(trirotor, "test"));
+    for (int i = 0; i < 10; ++i) {
+      MultiArmStrainSample s;
+      s.utime = 1000 * i;
+      s.n_arms = 3;
+      s.deflection_rad = {-0.001, 0.002, 0.003};
+      MultiArmLoadCellSample c;
+      c.utime = s.utime;
+      c.n_rotors = 3;
+      c.force_n = {10.0, 11.0, 12.0};
+      writer.WriteMessage(channels.strain_n, s.utime, ToMessage(s));
+      writer.WriteMessage(channels.loadcell_n, c.utime, ToMessage(c));
+      writer.WriteMessage("OTHER_STRAIN_N", s.utime, ToMessage(s));  // another prefix: ignored
+    }
+    writer.Close();
+  }
+  MultiArmBenchLog log;
+  LogLoadReport report;
+  std::string error;
+  ASSERT_TRUE(LoadMultiArmBenchLog(path, "TEST_", &log, &report, &error)) << error;
+  EXPECT_EQ(log.strain.size(), 10u);
+  EXPECT_EQ(log.loadcell.size(), 10u);
+  EXPECT_EQ(log.strain[4].n_arms, 3);
+  EXPECT_DOUBLE_EQ(log.strain[4].deflection_rad[2], 0.003);
+  EXPECT_DOUBLE_EQ(log.loadcell[4].force_n[1], 11.0);
+  ASSERT_TRUE(log.has_vehicle);
+  EXPECT_EQ(FirstDifference(log.vehicle, trirotor), "");
+  EXPECT_EQ(MultiArmLogMismatch(log, trirotor), "");
+  EXPECT_EQ(MultiArmLogMismatch(log, VehicleDescription()), path + ": VEHICLE has 3 arms, the description 2");
 }
 
 }  // namespace

@@ -65,6 +65,11 @@ expect 1 "^birotor-identify: error: .*missing.yaml" "$tools/birotor-identify" --
 # A vehicle the program's model cannot fly is refused at load, naming file, key and reason.
 expect 1 "^birotor-identify: error: .*trirotor.yaml: key 'vehicle': birotor-identify runs the birotor's model.*arm_count is 3" \
   "$tools/birotor-identify" --params "$trirotor" --log in.lcm --output v.yaml --log-level warn
+# --vehicle (an N-arm bench fit): a log without the counted channels, and --update-params, are refused.
+expect 1 "^birotor-identify: error: refused: in.lcm has no STRAIN_N, MOTOR_N or LOADCELL_N samples" \
+  "$tools/birotor-identify" --vehicle "$trirotor" --log in.lcm --output v.yaml --log-level warn
+expect 1 "^birotor-identify: error: --vehicle writes --output FILE \(not --update-params\)" \
+  "$tools/birotor-identify" --vehicle "$trirotor" --log in.lcm --update-params v.yaml --log-level warn
 expect 1 "^birotor-monitor: error: .*missing.yaml" "$tools/birotor-monitor" --scenario missing.yaml \
   --lcm-url "udpm://239.255.76.67:7799?ttl=0"
 expect 1 "^birotor-analyze: error: .*missing.yaml" "$tools/birotor-analyze" --params missing.yaml
