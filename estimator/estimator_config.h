@@ -339,7 +339,8 @@ struct ModelConsistencyOptions {
   double arm_mode_settle_s = 0.1;
   // Judged only while the band's mean square is at least this many times
   // the gauge noise's through the same band-pass (EkfOptions::
-  // strain_noise_rad): noise alone reads the band-pass, not the arm
+  // strain_noise_rad, times the EKF's learned scale on its variance,
+  // adapt_strain_noise): noise alone reads the band-pass, not the arm
   // (+10 % in tests/estimator/arm_mode_monitor_test.cc). Noise alone reaches
   // 1.0-1.25, the flights 2.5-6.8 (docs/mismatch.md) [1].
   double arm_mode_min_excitation = 1.5;
