@@ -239,6 +239,49 @@ TEST(StrainNoiseAdaptation, GentleFlightWithTheFilesNoise) {
   EXPECT_LE(largest, 1.105);
 }
 
+// What the adaptation must not absorb: with the gauges twice as noisy, a
+// wrong stiffness, gauge scale, mass or tip mass is still raised when it is
+// with the file's noise (docs/mismatch.md: 0.011 s after the first
+// estimate; the tip mass by the arm mode at 0.852 s) and named the same.
+// Measured with noise x2: raised at 0.010 s (tip mass 0.852 s), held for
+// the rest of the flight (share of estimates with MODEL_MISMATCH from the
+// raise: 1.000; 0.983 for the gauge scale 1.3, cleared 14.50-14.75 s: the
+// learned noise weighs the noisier gauges less, so their scale error is
+// weaker evidence than with the file's noise).
+TEST(StrainNoiseAdaptation, AMismatchedVehicleWithNoisyGaugesIsStillRaised) {
+  const struct {
+    const char* scenario;
+    double raised_s;  // measured
+    MismatchParameter parameter;
+  } kCases[] = {
+      {"mismatch_stiffness_plus20", 0.011, MismatchParameter::kStiffnessOrGaugeScale},
+      {"mismatch_gauge_scale_1p3", 0.011, MismatchParameter::kStiffnessOrGaugeScale},
+      {"mismatch_payload_plus15", 0.011, MismatchParameter::kMass},
+      {"mismatch_tip_mass_plus20", 0.852, MismatchParameter::kTipMass},
+  };
+  for (const auto& c : kCases) {
+    const ScenarioRun run =
+        RunScenario(LoadScenario(ScenarioFile(c.scenario), {"sensors.strain.noise_rad=4e-5"}), ReferenceConfig());
+    const int64_t start = run.pairs.front().utime;
+    int64_t first_raise = -1, raised = 0, since = 0;
+    for (const PairedSample& p : run.pairs) {
+      const bool mismatch = p.status & kStatusModelMismatch;
+      if (mismatch && first_raise < 0) first_raise = p.utime;
+      if (first_raise < 0) continue;
+      ++since;
+      raised += mismatch;
+    }
+    const double first_s = (first_raise - start) * 1e-6;
+    const double share = since > 0 ? static_cast<double>(raised) / since : 0.0;
+    std::printf("%s noise x2: first raised at %.3f s, share raised since %.3f\n", c.scenario, first_s, share);
+    ASSERT_GE(first_raise, 0) << c.scenario;
+    EXPECT_LE(first_s, 1.5 * c.raised_s) << c.scenario;
+    EXPECT_GE(share, 0.975) << c.scenario;  // 1.5x the 1.7 % not raised
+    // The first raise's parameter (a later re-raise may name another).
+    if (run.health.consistency.raised_count == 1) EXPECT_EQ(run.health.consistency.parameter, c.parameter);
+  }
+}
+
 }  // namespace
 }  // namespace testing_support
 }  // namespace birotor
