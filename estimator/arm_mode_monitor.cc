@@ -75,11 +75,18 @@ void ResonanceFrequencyEstimator::Start(double centre_hz, double q, double time_
   }
   // The noise gain: the squared impulse response summed until it has decayed
   // (once per start, not per sample).
+  // With it the lag-1 and lag-2 sums h_n h_(n-1), h_n h_(n-2): white noise
+  // of variance v reads v times these in y y1 and y y2.
   Biquad impulse[kBirotorRotors] = {stage_[0], stage_[1]};
-  noise_gain_ = 0;
+  noise_gain_ = noise_lag1_gain_ = noise_lag2_gain_ = 0;
+  double h1 = 0, h2 = 0;
   for (int n = 0; n < 4096; ++n) {
     const double h = impulse[1].Apply(impulse[0].Apply(n == 0 ? 1.0 : 0.0));
     noise_gain_ += h * h;
+    noise_lag1_gain_ += h * h1;
+    noise_lag2_gain_ += h * h2;
+    h2 = h1;
+    h1 = h;
   }
   stage_[0].x1 = stage_[0].x2 = first_sample;
   y1_ = y2_ = 0;
@@ -107,13 +114,19 @@ void ResonanceFrequencyEstimator::Add(double sample) {
   y1_ = y;
 }
 
-double ResonanceFrequencyEstimator::FrequencyHz() const {
+double ResonanceFrequencyEstimator::FrequencyHz(double excess_noise) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The excess noise's expected share of each sum (variance v = excess^2,
+  // weighted like the sums): v W g0 in s11, s22; v W g1 in s12, s01; v W g2 in s02.
+  const double v = excess_noise * excess_noise * weight_sum_;
+  const double s11 = s11_ - v * noise_gain_, s22 = s22_ - v * noise_gain_;
+  const double s12 = s12_ - v * noise_lag1_gain_, s01 = s01_ - v * noise_lag1_gain_;
+  const double s02 = s02_ - v * noise_lag2_gain_;
   // Normal equations [s11 s12; s12 s22] [c1; c2] = [s01; s02] (Cramer).
-  const double det = s11_ * s22_ - s12_ * s12_;
+  const double det = s11 * s22 - s12 * s12;
   if (!(det > 0)) return nan;
-  const double c1 = (s01_ * s22_ - s02_ * s12_) / det;
-  const double c2 = (s11_ * s02_ - s12_ * s01_) / det;
+  const double c1 = (s01 * s22 - s02 * s12) / det;
+  const double c2 = (s11 * s02 - s12 * s01) / det;
   if (!(c2 < 0)) return nan;  // no complex pole pair
   const double cos_w = c1 / (2.0 * std::sqrt(-c2));
   if (!(std::fabs(cos_w) < 1.0)) return nan;
@@ -122,7 +135,7 @@ double ResonanceFrequencyEstimator::FrequencyHz() const {
 
 ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
                                double noise_rad)
-    : options_(options), noise_rad_(std::sqrt(2.0) * noise_rad) {
+    : options_(options), file_noise_rad_(noise_rad), noise_rad_(std::sqrt(2.0) * noise_rad) {
   state_.expected = expected;
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
 }
@@ -175,7 +188,7 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRoto
     estimator_.ForgetSums();
   } else if (reading_due) {
     state_.excitation = estimator_.Excitation(noise_rad_);
-    Judge(utime, estimator_.FrequencyHz());
+    Judge(utime, estimator_.FrequencyHz(excess_noise_rad_));
   }
   // Not agreed yet: waiting for the first reading, or reading the mode (a
   // mode too quiet to read is not waited for: nothing would come).

@@ -7,6 +7,8 @@
 // file's. Pure library: no LCM, no logging, no allocation per sample.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
@@ -61,7 +63,11 @@ class ResonanceFrequencyEstimator {
   // Forgets the fit's sums (the filters keep their state).
   void ForgetSums();
   // NaN while the weighted sums hold no resonance (no pole pair).
-  double FrequencyHz() const;
+  // excess_noise: the std of white noise in the samples beyond what the
+  // caller's limits were set with; its expected share is taken out of the
+  // sums first (noise pulls the reading towards the band-pass) [unit of
+  // the samples].
+  double FrequencyHz(double excess_noise = 0) const;
   // Weighted mean square of the band-passed signal over that of white noise
   // of standard deviation noise through the same band-pass: 1 for noise
   // alone, well above when the resonance is excited [1].
@@ -77,10 +83,11 @@ class ResonanceFrequencyEstimator {
   Biquad stage_[kBirotorRotors];
   double dt_s_ = 1e-3;
   double time_constant_s_ = 0.5;
-  double forget_ = 1.0;    // exp(-dt / time constant) per sample
-  double noise_gain_ = 1;  // sum of the band-pass's squared impulse response [1]
-  double weight_sum_ = 0;  // sum of the weights of the sums below [1]
-  double s00_ = 0;         // weighted sum of y^2
+  double forget_ = 1.0;                               // exp(-dt / time constant) per sample
+  double noise_gain_ = 1;                             // sum of the band-pass's squared impulse response [1]
+  double noise_lag1_gain_ = 0, noise_lag2_gain_ = 0;  // sums of h_n h_(n-1), h_n h_(n-2) [1]
+  double weight_sum_ = 0;                             // sum of the weights of the sums below [1]
+  double s00_ = 0;                                    // weighted sum of y^2
   double y1_ = 0, y2_ = 0;
   // Weighted sums: s11 = sum y1^2, s12 = sum y1 y2, s22 = sum y2^2,
   // s01 = sum y y1, s02 = sum y y2.
@@ -132,6 +139,15 @@ class ArmModeMonitor {
   // What the mode may be now (WithLearnedStrainScales while the EKF learns
   // strain scales); the band-pass stays centred on the file's.
   void SetExpected(const ArmModeExpectation& expected) { state_.expected = expected; }
+  // The gauges' noise variances are scale_i times the file's (the EKF's
+  // learned strain noise): the excitation is judged against that noise.
+  void SetStrainNoiseScales(const double scale[kBirotorRotors]) {
+    if (scale[0] == noise_scale_[0] && scale[1] == noise_scale_[1]) return;
+    noise_scale_[0] = scale[0];
+    noise_scale_[1] = scale[1];
+    noise_rad_ = file_noise_rad_ * std::sqrt(scale[0] + scale[1]);
+    excess_noise_rad_ = file_noise_rad_ * std::sqrt(std::max(scale[0] + scale[1] - 2.0, 0.0));
+  }
   // The test runs (switched on, and a file's frequency to judge against).
   bool active() const { return options_.arm_mode_enabled && state_.expected.file_hz > 0; }
 
@@ -141,7 +157,13 @@ class ArmModeMonitor {
   void ForgetRun();
 
   ModelConsistencyOptions options_;
-  double noise_rad_;  // of b1 - b2: sqrt(2) times a gauge's [rad]
+  double file_noise_rad_;                        // a gauge's noise in the file [rad]
+  double noise_scale_[kBirotorRotors] = {1, 1};  // on each gauge's variance [1]
+  double noise_rad_;                             // of b1 - b2: sqrt(scale_1 + scale_2) times a gauge's [rad]
+  // Of b1 - b2 beyond the file's noise, sqrt(scale_1 + scale_2 - 2) times a
+  // gauge's: taken out of the fit, so the reading is what it would be with
+  // the file's noise, which arm_mode_limit was set with [rad].
+  double excess_noise_rad_ = 0;
   ResonanceFrequencyEstimator estimator_;
   ArmModeState state_;
   int64_t previous_utime_ = -1;

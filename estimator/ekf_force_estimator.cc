@@ -53,6 +53,8 @@ EkfForceEstimator::EkfForceEstimator(const BirotorParams& params, const EkfOptio
       accel_model_(options.accel_noise_m_s2),
       contact_(params, options),
       strain_gate_(options.gate_consecutive_limit),
+      strain_noise_(options),
+      strain_noise_rad2_(strain_model_.noise),
       faults_(options) {
   process_noise_psd_.setZero();
   process_noise_psd_(kPitchRate) = options.pitch_rate_psd_rad2_s3;
@@ -185,7 +187,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     const int b = kDeflectionIndex[i], e = kGaugeOffsetIndex[i];
     const double offset_variance = offset_prior_std_rad_[i] * offset_prior_std_rad_[i];
     state_(b) = sample.deflection_rad[i];
-    covariance_(b, b) = strain_model_.noise(i, i) + offset_variance;
+    covariance_(b, b) = strain_noise_rad2_(i, i) + offset_variance;
     covariance_(b, e) = covariance_(e, b) = -offset_variance;
     covariance_(e, e) = offset_variance;
     state_(kOmegaIndex[i]) = has_telemetry ? telemetry.omega_meas_rad_s[i] : command_.omega_cmd_rad_s[i];
@@ -362,7 +364,7 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
 
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
-  return Fuse(strain_model_.Linearize(state_), strain_model_.noise, z,
+  return Fuse(strain_model_.Linearize(state_), strain_noise_rad2_, z,
               {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, true);
 }
 
@@ -483,6 +485,7 @@ void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
     }
     faults_.Update(sample.utime, Eigen::Vector2d(state_(kThrustScale1), state_(kThrustScale2)),
                    covariance_.block<2, 2>(kThrustScale1, kThrustScale1));
+    LearnStrainNoise(strain);
   }
   Report(strain);
   FillEstimate(sample, strain.outcome == FusionOutcome::kRejectedGate, estimate, &info->filter);

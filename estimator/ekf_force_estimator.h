@@ -12,6 +12,7 @@
 #include "estimator/ground_contact.h"
 #include "estimator/rotor_fault_monitor.h"
 #include "estimator/sample_queue.h"
+#include "estimator/strain_noise_adaptation.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -44,6 +45,8 @@ class EkfForceEstimator : public ForceEstimator {
   const EkfProcessModel& process_model() const { return process_; }
   const GroundContact& ground_contact() const { return contact_; }
   int64_t utime() const { return last_utime_; }  // time of the state [us]
+  // The learned scale on gauge i's variance (StrainNoiseAdaptation) [1].
+  double strain_noise_scale(int i) const { return strain_noise_.scale(i); }
 
  private:
   void DoReset() override;
@@ -62,8 +65,11 @@ class EkfForceEstimator : public ForceEstimator {
   void ApplyMotor(const MotorSample& sample);
   void ApplyImu(const ImuSample& sample);
   bool AccelerometerUsable(const ImuSample& sample) const;
-  // Strain update with its gate and the inflation after persistent rejection.
+  // Strain update with its gate and the inflation after persistent rejection,
+  // with the learned strain noise; then the noise learns from its report
+  // (LearnStrainNoise, estimator/ekf_parameter_learning.cc).
   FusionReport FuseStrain(const StrainSample& sample);
+  void LearnStrainNoise(const FusionReport& strain);
   // Every fusion of the filter goes through here: FuseMeasurement, or with
   // strain_gate the strain gate with its inflation, in place on the blocks
   // of x and P of the LiveStates (the rest of P is zero: no fusion moves
@@ -178,7 +184,9 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t last_utime_ = 0;  // time of state_ [us]
   EkfState state_;
   EkfMatrix covariance_;
-  GateWithInflation strain_gate_;  // strain gate and its inflation policy
+  GateWithInflation strain_gate_;       // strain gate and its inflation policy
+  StrainNoiseAdaptation strain_noise_;  // the learned scale on each gauge's variance
+  Eigen::Matrix2d strain_noise_rad2_;   // R of the strain: diag(scale_i strain_noise_rad^2) [rad^2]
 
   bool has_motor_ = false;
   EkfInput command_;  // held from the newest applied MOTOR sample's stamp

@@ -1,6 +1,7 @@
 // The slow vehicle parameters of the EKF (issue 27 item 2, docs/mismatch.md):
 // when they learn (free flight only), their freeze on the ground, and what
-// the filter reports and takes back of them. Members of EkfForceEstimator.
+// the filter reports and takes back of them; and the strain noise it learns
+// (issue 36 item 2). Members of EkfForceEstimator.
 #include <algorithm>
 #include <cmath>
 
@@ -103,6 +104,7 @@ void EkfForceEstimator::FillLearnedParameters(StrainStepInfo* info) {
     info->learned_strain_scale_std[i] = learned_.published_strain_scale_std[i];
   }
   info->learned_body_mass_kg = learned_.value[kBodyMassScale] * params_.body_mass_kg;
+  for (int i = 0; i < kBirotorRotors; ++i) info->strain_noise_scale[i] = strain_noise_.scale(i);
   info->learned_body_mass_std_kg = learned_.std[kBodyMassScale] * params_.body_mass_kg;
 }
 
@@ -137,6 +139,14 @@ void EkfForceEstimator::SetLearnedParameters(const LearnedVehicleParameters& lea
     learned_.value[kBodyMassScale] = learned.body_mass_kg / params_.body_mass_kg;
     learned_.std[kBodyMassScale] = learned.body_mass_std_kg / params_.body_mass_kg;
   }
+}
+
+void EkfForceEstimator::LearnStrainNoise(const FusionReport& strain) {
+  const double r_used_rad2[kBirotorRotors] = {strain_noise_rad2_(0, 0), strain_noise_rad2_(1, 1)};
+  if (!strain_noise_.Add(strain, r_used_rad2, converged_, faults_.AnyRotorFault())) return;
+  // R_i = scale_i strain_noise_rad^2, from the next strain sample on.
+  for (int i = 0; i < kBirotorRotors; ++i)
+    strain_noise_rad2_(i, i) = strain_noise_.scale(i) * strain_model_.noise(i, i);
 }
 
 }  // namespace birotor

@@ -156,6 +156,8 @@ void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
   }
   if (info.has_learned_strain_scale)
     consistency_.SetLearnedStrainScales(info.learned_strain_scale, info.learned_strain_scale_std);
+  consistency_.SetStrainNoiseScales(info.strain_noise_scale);
+  for (int i = 0; i < 2; ++i) health_.strain_noise_scale[i] = info.strain_noise_scale[i];
   health_.body_mass_learned = info.has_learned_body_mass;
   if (info.has_learned_body_mass) {
     health_.body_mass_kg = info.learned_body_mass_kg;

@@ -56,6 +56,10 @@ struct PipelineHealth {
   // the state file, plus what the method learned in flight, with its sigma;
   // the daemon persists these), and the tare's counters.
   GaugeCalibration gauge;
+  // The scale on each gauge's noise variance the method learned
+  // (StrainStepInfo::strain_noise_scale; 1 when it learns none) [1]: not an
+  // ESTIMATOR_STATUS field (its fingerprint stays); for a log at the status rate.
+  double strain_noise_scale[2] = {1, 1};
   // The body mass in use (issue 27; ESTIMATOR_STATUS): the file's until the
   // method reports one it learns (body_mass_learned, with its one sigma),
   // and whether learning g_i (gauge.strain_scale) started from the value of

@@ -103,6 +103,10 @@ class ModelConsistencyMonitor {
   void SetLearnedStrainScales(const double g[2], const double g_std[2]) {
     arm_mode_.SetExpected(WithLearnedStrainScales(arm_mode_file_, g, g_std));
   }
+  // The method's learned scales on the gauges' noise variances
+  // (StrainStepInfo::strain_noise_scale): the arm-mode test weighs the
+  // mode's excitation against that noise.
+  void SetStrainNoiseScales(const double scale[kBirotorRotors]) { arm_mode_.SetStrainNoiseScales(scale); }
   // Every force estimate (its utime, and its thrust scales for the
   // attribution); returns the monitor's facts on it (all false for a method
   // it does not judge): the mismatch raised, the model not yet confirmed

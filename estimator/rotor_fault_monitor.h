@@ -29,6 +29,8 @@ class RotorFaultMonitor {
   // filter facts (force_status.h composes STATUS_ROTOR*_FAULT and
   // STATUS_THRUST_DEFICIT from them).
   void FillFacts(FilterStatusFacts* facts) const;
+  // A rotor fault is flagged on either rotor.
+  bool AnyRotorFault() const { return fault_[0].on || fault_[1].on; }
 
  private:
   // One flag: raised after `raise` held for persistence_us_, lowered as soon as `lower` holds.

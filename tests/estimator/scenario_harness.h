@@ -35,8 +35,9 @@ struct GaugeOffsetSample {
   int64_t utime = 0;
   double offset_rad[2] = {0, 0};
   double offset_std_rad[2] = {0, 0};
-  double strain_scale[2] = {1, 1};      // learned g_i (1 when not learned)
-  double strain_scale_std[2] = {0, 0};  // its published sigma
+  double strain_scale[2] = {1, 1};        // learned g_i (1 when not learned)
+  double strain_scale_std[2] = {0, 0};    // its published sigma
+  double strain_noise_scale[2] = {1, 1};  // learned scale on each gauge's noise variance
 };
 
 struct ScenarioRun {
@@ -65,6 +66,7 @@ class PairingSink : public SampleSink {
       offsets.offset_std_rad[i] = pipeline_->health().gauge.offset_std_rad[i];
       offsets.strain_scale[i] = pipeline_->health().gauge.strain_scale[i];
       offsets.strain_scale_std[i] = pipeline_->health().gauge.strain_scale_std[i];
+      offsets.strain_noise_scale[i] = pipeline_->health().strain_noise_scale[i];
     }
     run.gauge_offsets.push_back(offsets);
     if (published) {

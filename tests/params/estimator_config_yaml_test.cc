@@ -31,6 +31,12 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.ekf.thrust_deficit_scale, defaults.ekf.thrust_deficit_scale);
   EXPECT_EQ(config.ekf.thrust_deficit_clear_scale, defaults.ekf.thrust_deficit_clear_scale);
   EXPECT_EQ(config.ekf.fault_persistence_s, defaults.ekf.fault_persistence_s);
+  EXPECT_EQ(config.ekf.adapt_strain_noise, defaults.ekf.adapt_strain_noise);
+  EXPECT_EQ(config.ekf.strain_noise_window_s, defaults.ekf.strain_noise_window_s);
+  EXPECT_EQ(config.ekf.strain_noise_scale_min, defaults.ekf.strain_noise_scale_min);
+  EXPECT_EQ(config.ekf.strain_noise_scale_max, defaults.ekf.strain_noise_scale_max);
+  EXPECT_EQ(config.ekf.strain_noise_min_samples, defaults.ekf.strain_noise_min_samples);
+  EXPECT_EQ(config.ekf.strain_noise_hold_s, defaults.ekf.strain_noise_hold_s);
   EXPECT_EQ(config.inversion.window_samples, defaults.inversion.window_samples);
   EXPECT_EQ(config.motor_map.model_speed_std_rad_s, defaults.motor_map.model_speed_std_rad_s);
   EXPECT_EQ(config.pipeline.reset_gap_s, defaults.pipeline.reset_gap_s);
@@ -192,6 +198,15 @@ TEST(EstimatorConfigYamlTest, ErrorsNameFileKeyAndRange) {
   EXPECT_NE(e.find("ground_contact_off_n"), std::string::npos) << e;
   e = ErrorOf("estimator:\n  harmonic_notch: {bandwidth_hz: 0}\n");
   EXPECT_NE(e.find("estimator.harmonic_notch.bandwidth_hz"), std::string::npos) << e;
+
+  // The learned strain noise: never below the file's by default, and bounded.
+  e = ErrorOf("estimator:\n  ekf: {strain_noise_scale_max: 0.5}\n");
+  EXPECT_NE(e.find("estimator.ekf.strain_noise_scale_max"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  ekf: {strain_noise_scale_min: 2}\n");
+  EXPECT_NE(e.find("estimator.ekf.strain_noise_scale_min"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  ekf: {strain_noise_window_s: 0}\n");
+  EXPECT_NE(e.find("estimator.ekf.strain_noise_window_s"), std::string::npos) << e;
 
   EXPECT_THROW(LoadEstimatorConfig("/nonexistent/estimator.yaml"), ParamError);
 }
