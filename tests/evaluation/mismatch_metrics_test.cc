@@ -9,35 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/evaluation/synthetic_force_series.h"
+
 namespace birotor {
 namespace {
 
-// 1 kHz estimates of a 10 N force with sigma 0.1 N over duration_s; the
-// status and the error of estimate k are given by the callbacks.
-struct Series {
-  std::vector<ForceEstimate> forces;
-  std::vector<TruthSample> truth;
-};
-
+// 1 kHz estimates over duration_s (tests/evaluation/synthetic_force_series.h).
+using Series = SyntheticForceSeries;
 template <typename StatusOf, typename ErrorOf>
 Series Make(double duration_s, StatusOf status_of, ErrorOf error_of) {
-  Series s;
-  const int64_t n = static_cast<int64_t>(duration_s * 1000);
-  for (int64_t k = 0; k < n; ++k) {
-    TruthSample t;
-    t.utime = 1000000 + k * 1000;
-    t.force_n[0] = t.force_n[1] = 10.0;
-    ForceEstimate e;
-    e.utime = t.utime;
-    e.status = status_of(k);
-    for (int i = 0; i < 2; ++i) {
-      e.force_n[i] = 10.0 + error_of(k);
-      e.force_std_n[i] = 0.1;
-    }
-    s.truth.push_back(t);
-    s.forces.push_back(e);
-  }
-  return s;
+  return MakeForceSeries(static_cast<int64_t>(duration_s * 1000), status_of, error_of);
 }
 
 MismatchEvalOptions Options() {

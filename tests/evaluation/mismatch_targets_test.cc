@@ -10,34 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "tests/evaluation/synthetic_force_series.h"
+
 namespace birotor {
 namespace {
 
-struct Series {
-  std::vector<ForceEstimate> forces;
-  std::vector<TruthSample> truth;
-};
-
-// Estimate k at utime 1e6 + 1000 k of a 10 N force, sigma 0.1 N (2 sigma =
-// 0.2 N), both rotors with the same error.
+using Series = SyntheticForceSeries;
 template <typename StatusOf, typename ErrorOf>
 Series Make(int64_t count, StatusOf status_of, ErrorOf error_of) {
-  Series s;
-  for (int64_t k = 0; k < count; ++k) {
-    TruthSample t;
-    t.utime = 1000000 + k * 1000;
-    t.force_n[0] = t.force_n[1] = 10.0;
-    ForceEstimate e;
-    e.utime = t.utime;
-    e.status = status_of(k);
-    for (int i = 0; i < 2; ++i) {
-      e.force_n[i] = 10.0 + error_of(k);
-      e.force_std_n[i] = 0.1;
-    }
-    s.truth.push_back(t);
-    s.forces.push_back(e);
-  }
-  return s;
+  return MakeForceSeries(count, status_of, error_of);
 }
 
 // Accurate with one estimate in ten at 3 sigma: error 0.3 N outside, 0.05 N inside.
