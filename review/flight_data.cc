@@ -1,17 +1,24 @@
 #include "review/flight_data.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <string_view>
 
 #include "birotor/controller_status_t.hpp"
 #include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_n_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
+#include "birotor/motor_command_n_t.hpp"
 #include "birotor/motor_command_t.hpp"
 #include "birotor/pose_t.hpp"
 #include "birotor/setpoint_t.hpp"
+#include "birotor/truth_n_t.hpp"
 #include "birotor/truth_t.hpp"
+#include "plot/status_words.h"
 #include "transport/channels.h"
+#include "transport/counted_messages.h"
 #include "transport/lcm_codec.h"
 #include "transport/log_io.h"
 #include "transport/message_conversion.h"
@@ -20,17 +27,57 @@ namespace birotor {
 
 const char* const kReviewInputNames[kReviewInputs] = {"STRAIN", "MOTOR", "IMU", "POSE", "IMU accel_z"};
 
-void Table::Add(double t, std::initializer_list<double> values) {
+void Table::Add(double t, const double* values, size_t count) {
   t_s.push_back(t);
-  size_t c = 0;
-  for (const double value : values) columns[c++].push_back(value);
+  for (size_t c = 0; c < count; ++c) columns[c].push_back(values[c]);
+}
+
+namespace {
+
+// "force 1 [N]", "force 2 [N]", ...: one label per rotor.
+void AddRotorLabels(const char* name, const char* unit, int n, std::vector<std::string>* labels) {
+  for (int i = 0; i < n; ++i) labels->push_back(fmt::format("{} {} [{}]", name, i + 1, unit));
+}
+
+}  // namespace
+
+void FlightData::SetRotorCount(int n) {
+  rotor_count = n;
+  std::vector<std::string> labels;
+  AddRotorLabels("force", "N", n, &labels);
+  AddRotorLabels("sigma", "N", n, &labels);
+  AddRotorLabels("thrust scale", "1", n, &labels);
+  labels.insert(labels.end(), {"status [bits]", "rotor faults [bits]"});
+  force = Table(labels);
+  labels.clear();
+  AddRotorLabels("true force", "N", n, &labels);
+  AddRotorLabels("true thrust scale", "1", n, &labels);
+  labels.insert(labels.end(), {"true x [m]", "true z [m]", "true pitch [rad]"});
+  truth = Table(labels);
+  labels.clear();
+  AddRotorLabels("omega cmd", "rad/s", n, &labels);
+  labels.insert(labels.end(), {"mode", "status [bits]"});
+  motor_command = Table(labels);
+}
+
+std::vector<ForceFlag> ForceFlags(const FlightData& data) {
+  std::vector<ForceFlag> flags;
+  for (int i = 0; i < kStatusBitCount; ++i) {
+    const StatusBitName& name = kStatusBitNames[i];
+    if (name.bit == kStatusRotor2Fault) continue;  // expanded with rotor 1's
+    if (name.bit != kStatusRotor1Fault) {
+      flags.push_back({data.ForceStatusColumn(), name.bit, name.word, (kAlarmStatusBits & name.bit) != 0});
+      continue;
+    }
+    for (int rotor = 0; rotor < data.rotor_count; ++rotor) {
+      flags.push_back({data.ForceFaultColumn(), int32_t{1} << rotor, fmt::format("ROTOR{}_FAULT", rotor + 1), true});
+    }
+  }
+  return flags;
 }
 
 FlightData::FlightData() {
-  force = Table({"force 1 [N]", "force 2 [N]", "sigma 1 [N]", "sigma 2 [N]", "thrust scale 1 [1]", "thrust scale 2 [1]",
-                 "status [bits]"});
-  truth = Table({"true force 1 [N]", "true force 2 [N]", "true thrust scale 1 [1]", "true thrust scale 2 [1]",
-                 "true x [m]", "true z [m]", "true pitch [rad]"});
+  SetRotorCount(kBirotorRotors);
   std::vector<std::string> status_labels;
   for (const char* what : {"NIS mean", "fused", "rejected", "received"}) {
     for (const char* input : kReviewInputNames) status_labels.push_back(std::string(input) + " " + what);
@@ -39,7 +86,6 @@ FlightData::FlightData() {
   status = Table(status_labels);
   pose = Table({"x [m]", "z [m]", "pitch [rad]"});
   imu = Table({"pitch rate [rad/s]"});
-  motor_command = Table({"omega cmd 1 [rad/s]", "omega cmd 2 [rad/s]", "mode", "status [bits]"});
   controller_status = Table({"fallbacks", "descents", "saturated", "commands", "mode"});
   setpoint = Table({"x ref [m]", "z ref [m]"});
 }
@@ -58,9 +104,13 @@ class FlightDecoder {
     const std::string& c = event.channel;
     bool ok = true;
     if (c == channels_.force) {
-      ok = Decode(event, &force_) && AddForce();
+      ok = Decode(event, &force_) && AddForce(ToCountedMessage(force_));
+    } else if (c == channels_.force_n) {
+      ok = Decode(event, &force_n_) && AddForce(force_n_);
     } else if (c == channels_.truth) {
-      ok = Decode(event, &truth_) && AddTruth();
+      ok = Decode(event, &truth_) && AddTruth(ToCountedMessage(truth_));
+    } else if (c == channels_.truth_n) {
+      ok = Decode(event, &truth_n_) && AddTruth(truth_n_);
     } else if (c == channels_.estimator_status) {
       ok = Decode(event, &status_) && AddStatus();
     } else if (c == channels_.pose) {
@@ -68,12 +118,9 @@ class FlightDecoder {
       if (ok) data_->pose.Add(Time(pose_.utime), {pose_.x_m, pose_.z_m, pose_.phi_rad});
       if (ok) data_->input_t_s[3].push_back(Time(pose_.utime));
     } else if (c == channels_.motor_command) {
-      ok = Decode(event, &command_);
-      if (ok) {
-        data_->motor_command.Add(Time(command_.utime), {command_.omega_cmd_rad_s[0], command_.omega_cmd_rad_s[1],
-                                                        double(command_.mode), double(command_.status)});
-        data_->figures.AddCommand(command_.status);
-      }
+      ok = Decode(event, &command_) && AddCommand(ToCountedMessage(command_));
+    } else if (c == channels_.motor_command_n) {
+      ok = Decode(event, &command_n_) && AddCommand(command_n_);
     } else if (c == channels_.controller_status) {
       ok = Decode(event, &controller_);
       if (ok) {
@@ -90,11 +137,12 @@ class FlightDecoder {
       ok = Decode(event, &imu_);
       if (ok) data_->imu.Add(Time(imu_.utime), {imu_.gyro_y_rad_s});
       if (ok) data_->input_t_s[2].push_back(Time(imu_.utime));
-    } else if (c == channels_.strain || c == channels_.motor) {
-      // Only the stamp: strain_t and motor_t start with int64 utime after
-      // the 8-byte fingerprint.
+    } else if (c == channels_.strain || c == channels_.motor || c == channels_.strain_n || c == channels_.motor_n) {
+      // Only the stamp: strain_t, motor_t and their counted twins start
+      // with int64 utime after the 8-byte fingerprint.
       ok = event.data.size() >= 16;
-      if (ok) data_->input_t_s[c == channels_.strain ? 0 : 1].push_back(Time(ReadUtime(event.data)));
+      const bool strain = c == channels_.strain || c == channels_.strain_n;
+      if (ok) data_->input_t_s[strain ? 0 : 1].push_back(Time(ReadUtime(event.data)));
     } else {
       return;  // counted only
     }
@@ -120,17 +168,68 @@ class FlightDecoder {
     data_->duration_s = std::max(data_->duration_s, t);
     return t;
   }
-  bool AddForce() {
-    data_->force.Add(Time(force_.utime),
-                     {force_.force_n[0], force_.force_n[1], force_.force_std_n[0], force_.force_std_n[1],
-                      force_.thrust_scale[0], force_.thrust_scale[1], double(force_.status)});
+  // Whether a counted message of n rotors fits the log's tables: the
+  // first one lays them out (while they are empty); another count is
+  // dropped and counted (arm 3 of a trirotor is not arm 3 of a quadrotor).
+  bool AcceptCount(int n) {
+    if (n < kBirotorRotors || n > kMaxArms) return false;
+    FlightData& d = *data_;
+    if (n != d.rotor_count && d.force.rows() == 0 && d.truth.rows() == 0 && d.motor_command.rows() == 0) {
+      d.SetRotorCount(n);
+    }
+    if (n == d.rotor_count) return true;
+    ++d.count_mismatches;
+    return false;
+  }
+  bool AddForce(const force_estimate_n_t& m) {
+    if (!AcceptCount(m.n_rotors)) return false;
+    const int n = m.n_rotors;
+    for (int i = 0; i < n; ++i) {
+      row_[i] = m.force_n[i];
+      row_[n + i] = m.force_std_n[i];
+      row_[2 * n + i] = m.thrust_scale[i];
+    }
+    row_[3 * n] = double(m.status);
+    row_[3 * n + 1] = double(m.rotor_fault_bits);
+    data_->force.Add(Time(m.utime), row_, 3 * n + 2);
     return true;
   }
-  bool AddTruth() {
-    data_->truth.Add(Time(truth_.utime), {truth_.force_n[0], truth_.force_n[1], truth_.thrust_scale[0],
-                                          truth_.thrust_scale[1], truth_.x_m, truth_.z_m, truth_.phi_rad});
-    data_->figures.AddTruth(FromMessage(truth_));
+  bool AddTruth(const truth_n_t& m) {
+    if (!AcceptCount(m.n_arms)) return false;
+    const int n = m.n_arms;
+    for (int i = 0; i < n; ++i) {
+      row_[i] = m.force_n[i];
+      row_[n + i] = m.thrust_scale[i];
+    }
+    row_[2 * n] = m.x_m;
+    row_[2 * n + 1] = m.z_m;
+    row_[2 * n + 2] = m.phi_rad;
+    data_->truth.Add(Time(m.utime), row_, 2 * n + 3);
+    data_->figures.AddTruth(BodyTruth(m));
     return true;
+  }
+  bool AddCommand(const motor_command_n_t& m) {
+    if (!AcceptCount(m.n_rotors)) return false;
+    const int n = m.n_rotors;
+    for (int i = 0; i < n; ++i) row_[i] = m.omega_cmd_rad_s[i];
+    row_[n] = double(m.mode);
+    row_[n + 1] = double(m.status);
+    data_->motor_command.Add(Time(m.utime), row_, n + 2);
+    data_->figures.AddCommand(m.status);
+    return true;
+  }
+  // The body's part of TRUTH_N, what the flight figures read (its arm
+  // arrays are the birotor's only for n = 2 and are not read there).
+  static TruthSample BodyTruth(const truth_n_t& m) {
+    TruthSample body;
+    body.utime = m.utime;
+    body.x_m = m.x_m;
+    body.z_m = m.z_m;
+    body.phi_rad = m.phi_rad;
+    body.x_dot_m_s = m.x_dot_m_s;
+    body.z_dot_m_s = m.z_dot_m_s;
+    body.phi_dot_rad_s = m.phi_dot_rad_s;
+    return body;
   }
   bool AddStatus() {
     const std::vector<input_health_t>& inputs = status_.inputs;
@@ -154,11 +253,15 @@ class FlightDecoder {
   FlightData* data_;
   bool have_t0_ = false;
   force_estimate_t force_;
+  force_estimate_n_t force_n_;
   truth_t truth_;
+  truth_n_t truth_n_;
   estimator_status_t status_;
   pose_t pose_;
   imu_t imu_;
   motor_command_t command_;
+  motor_command_n_t command_n_;
+  double row_[3 * kMaxArms + 2] = {};  // one row of a per-rotor table
   controller_status_t controller_;
   setpoint_t setpoint_;
   const input_health_t empty_{};

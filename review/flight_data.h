@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "model/vehicle_description.h"
 #include "samples/flight_figures.h"
+#include "samples/rotor_count.h"
 
 namespace birotor {
 
@@ -24,7 +26,8 @@ struct Table {
   explicit Table(std::vector<std::string> column_labels) : labels(std::move(column_labels)), columns(labels.size()) {}
   size_t rows() const { return t_s.size(); }
   // Appends one row; values must have labels.size() entries.
-  void Add(double t, std::initializer_list<double> values);
+  void Add(double t, std::initializer_list<double> values) { Add(t, values.begin(), values.size()); }
+  void Add(double t, const double* values, size_t count);
 };
 
 // Per channel: messages in the log, decode failures, first and last time.
@@ -47,9 +50,18 @@ struct FlightData {
   int64_t t0_utime = 0;  // utime of the first decoded message; t = 0 there
   double duration_s = 0.0;
   std::map<std::string, ChannelCount> channels;  // every channel of the log by name
-  // FORCE: force_n[2], force_std_n[2], thrust_scale[2], status.
+  // Rotors of the vehicle the log flew (N below): 2 for the birotor's
+  // channels (FORCE, TRUTH, MOTOR_COMMAND), else the count of the first
+  // counted message (FORCE_N, TRUTH_N, MOTOR_COMMAND_N; docs/interface.md).
+  int rotor_count = kBirotorRotors;
+  // Messages of another rotor count than rotor_count (a second vehicle in
+  // the log): dropped whole and counted here and as decode errors.
+  int64_t count_mismatches = 0;
+  // FORCE or FORCE_N: force_n[N], force_std_n[N], thrust_scale[N], status
+  // (the vehicle-wide bits), rotor_fault_bits (bit i: rotor i + 1; a
+  // birotor FORCE's ROTOR1/2_FAULT bits are moved here, as ToCountedMessage does).
   Table force;
-  // TRUTH: force_n[2], thrust_scale[2], x_m, z_m, phi_rad.
+  // TRUTH or TRUTH_N: force_n[N], thrust_scale[N], x_m, z_m, phi_rad.
   Table truth;
   // The flight's figures (RMS, max tilt, fallbacks) by the one definition
   // (samples/flight_figures.h), fed SETPOINT, TRUTH and MOTOR_COMMAND in log order.
@@ -63,13 +75,43 @@ struct FlightData {
   Table pose;
   // IMU: gyro_y_rad_s (body pitch rate).
   Table imu;
-  // MOTOR_COMMAND: omega_cmd_rad_s[2], mode, status.
+  // MOTOR_COMMAND or MOTOR_COMMAND_N: omega_cmd_rad_s[N], mode, status.
   Table motor_command;
   // CONTROLLER_STATUS: fallbacks, descents, saturated, commands, mode.
   Table controller_status;
   // SETPOINT: x_m, z_m (where the vehicle was meant to be).
   Table setpoint;
+
+  // Lays force, truth and motor_command out for n rotors, labels included
+  // (while they hold no row).
+  void SetRotorCount(int n);
+  // Column indices of the per-rotor tables (rotor 0-based, N = rotor_count).
+  int ForceColumn(int rotor) const { return rotor; }
+  int ForceSigmaColumn(int rotor) const { return rotor_count + rotor; }
+  int ForceScaleColumn(int rotor) const { return 2 * rotor_count + rotor; }
+  int ForceStatusColumn() const { return 3 * rotor_count; }
+  int ForceFaultColumn() const { return 3 * rotor_count + 1; }
+  int TruthForceColumn(int rotor) const { return rotor; }
+  int TruthScaleColumn(int rotor) const { return rotor_count + rotor; }
+  int TruthXColumn() const { return 2 * rotor_count; }
+  int TruthZColumn() const { return 2 * rotor_count + 1; }
+  int TruthPhiColumn() const { return 2 * rotor_count + 2; }
+  int CommandColumn(int rotor) const { return rotor; }
+  int CommandModeColumn() const { return rotor_count; }
+  int CommandStatusColumn() const { return rotor_count + 1; }
 };
+
+// One FORCE flag as the review shows it: a bit of a column of the force
+// table, with its word ("VALID", "ROTOR3_FAULT") and whether it is an alarm.
+struct ForceFlag {
+  int column = 0;
+  int32_t bit = 0;
+  std::string word;
+  bool alarm = false;
+};
+// Every FORCE flag in the order of force_estimate_t's bits, the rotor-fault
+// bits expanded to one flag per rotor (ROTOR1_FAULT .. ROTOR<N>_FAULT).
+std::vector<ForceFlag> ForceFlags(const FlightData& data);
 
 // The input channels whose rates and gaps are shown, in input_t_s order.
 inline constexpr int kReviewRateInputs = 4;

@@ -15,13 +15,6 @@
 namespace birotor {
 namespace {
 
-// FORCE table columns (review/flight_data.h) and TRUTH's thrust scales.
-constexpr int kForceStatusColumn = 6;
-constexpr int kTruthScaleColumn = 2;  // rotor i at kTruthScaleColumn + i
-constexpr int kCommandModeColumn = 2;
-constexpr int kCommandStatusColumn = 3;
-constexpr int32_t kRotorFaultBits[kBirotorRotors] = {kStatusRotor1Fault, kStatusRotor2Fault};
-
 // The shared verdict on columns z and phi of track, against the newest
 // SETPOINT altitude at each row (the first row's altitude before any), and
 // the first time it said lost (-1: never). The log does not say where the
@@ -68,10 +61,11 @@ double MeanOver(const Table& table, const std::vector<double>& column, size_t fi
 // first kTrueFaultReferenceS (a mean: the turbulence moves it by ~1 %) by
 // more than kTrueFaultScaleStep, with the mean over kTrueFaultReferenceS / 10
 // from there as the new level.
-void AddTrueFaults(const Table& truth, std::vector<FlightEvent>* events) {
+void AddTrueFaults(const FlightData& d, std::vector<FlightEvent>* events) {
+  const Table& truth = d.truth;
   if (truth.rows() == 0) return;
-  for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
-    const std::vector<double>& scale = truth.columns[kTruthScaleColumn + rotor];
+  for (int rotor = 0; rotor < d.rotor_count; ++rotor) {
+    const std::vector<double>& scale = truth.columns[d.TruthScaleColumn(rotor)];
     const double level = MeanOver(truth, scale, 0, truth.t_s[0], truth.t_s[0] + kTrueFaultReferenceS);
     for (size_t row = 1; row < truth.rows(); ++row) {
       if (!(std::abs(scale[row] - level) > kTrueFaultScaleStep)) continue;
@@ -83,21 +77,22 @@ void AddTrueFaults(const Table& truth, std::vector<FlightEvent>* events) {
   }
 }
 
-void AddForceFacts(const Table& force, FlightHeadline* h) {
+void AddForceFacts(const FlightData& d, FlightHeadline* h) {
+  const Table& force = d.force;
+  const int status_column = d.ForceStatusColumn();
   h->force_estimates = static_cast<int64_t>(force.rows());
   for (size_t row = 0; row < force.rows(); ++row) {
-    if ((static_cast<int64_t>(force.columns[kForceStatusColumn][row]) & kStatusValid) == 0) continue;
+    if ((static_cast<int64_t>(force.columns[status_column][row]) & kStatusValid) == 0) continue;
     if (h->valid_estimates++ == 0) h->first_valid_s = force.t_s[row];
   }
-  for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
-    h->rotor_fault_rises[rotor] = AddRises(force, kForceStatusColumn, kRotorFaultBits[rotor], "fault",
+  for (int rotor = 0; rotor < d.rotor_count; ++rotor) {
+    h->rotor_fault_rises[rotor] = AddRises(force, d.ForceFaultColumn(), int32_t{1} << rotor, "fault",
                                            fmt::format("ROTOR{}_FAULT", rotor + 1), &h->events);
   }
-  h->mismatch_rises =
-      AddRises(force, kForceStatusColumn, kStatusModelMismatch, "mismatch", "MODEL_MISMATCH", &h->events);
+  h->mismatch_rises = AddRises(force, status_column, kStatusModelMismatch, "mismatch", "MODEL_MISMATCH", &h->events);
   // The filter starts with FILTER_RESET set: not an alarm. A later rise is.
   std::vector<FlightEvent> resets;
-  AddRises(force, kForceStatusColumn, kStatusFilterReset, "reset", "FILTER_RESET", &resets);
+  AddRises(force, status_column, kStatusFilterReset, "reset", "FILTER_RESET", &resets);
   for (const FlightEvent& reset : resets) {
     if (force.rows() > 0 && reset.t_s == force.t_s[0]) {
       h->startup_reset_s = reset.t_s;
@@ -111,15 +106,16 @@ void AddForceFacts(const Table& force, FlightHeadline* h) {
 // controller's: entries into FALLBACK_ACTIVE, the start counting as in the
 // fallback, NO_POSE_YET commands skipped), in every mode: force feedback and
 // mpc on FORCE alike: the count FlightFigures gives on the same MOTOR_COMMAND.
-void AddFallbacks(const Table& commands, FlightHeadline* h) {
+void AddFallbacks(const FlightData& d, FlightHeadline* h) {
+  const Table& commands = d.motor_command;
   h->commands = static_cast<int64_t>(commands.rows());
   bool in_fallback = true;
   size_t listed = 0;
   for (size_t row = 0; row < commands.rows(); ++row) {
-    const int32_t status = static_cast<int32_t>(commands.columns[kCommandStatusColumn][row]);
+    const int32_t status = static_cast<int32_t>(commands.columns[d.CommandStatusColumn()][row]);
     const bool fallback = (status & kCommandFallbackActive) != 0;
     if ((status & kCommandNoPoseYet) == 0 && !fallback && h->force_used_s < 0 &&
-        commands.columns[kCommandModeColumn][row] == kModeForceFeedback) {
+        commands.columns[d.CommandModeColumn()][row] == kModeForceFeedback) {
       h->force_used_s = commands.t_s[row];
     }
     h->fallback_commands += fallback ? 1 : 0;
@@ -200,7 +196,7 @@ std::vector<HeadlineRow> Rows(const FlightHeadline& h) {
 FlightHeadline ComputeHeadline(const FlightData& d) {
   FlightHeadline h;
   if (d.truth.rows() > 0) {
-    h.verdict = VerdictOf(d.truth, 5, 6, d.setpoint, &h.lost_at_s);
+    h.verdict = VerdictOf(d.truth, d.TruthZColumn(), d.TruthPhiColumn(), d.setpoint, &h.lost_at_s);
     h.verdict_source = "TRUTH";
   } else if (d.pose.rows() > 0) {
     h.verdict = VerdictOf(d.pose, 1, 2, d.setpoint, &h.lost_at_s);
@@ -208,9 +204,9 @@ FlightHeadline ComputeHeadline(const FlightData& d) {
   }
   h.has_truth = d.truth.rows() > 0;
   h.has_command = d.motor_command.rows() > 0;
-  AddForceFacts(d.force, &h);
-  AddTrueFaults(d.truth, &h.events);
-  AddFallbacks(d.motor_command, &h);
+  AddForceFacts(d, &h);
+  AddTrueFaults(d, &h.events);
+  AddFallbacks(d, &h);
   h.figures = d.figures.Result();
   if (h.lost_at_s >= 0) h.events.push_back({h.lost_at_s, "lost", "lost"});
   std::stable_sort(h.events.begin(), h.events.end(),

@@ -11,14 +11,18 @@
 namespace birotor {
 namespace {
 
-// Colours per log: [0], [1] the estimate (or measurement) of rotor / axis 1
-// and 2, [2], [3] the truth (dashed), [4], [5] the reference (dashed). Log B
-// has other hues, so A and B never share a colour.
+// Colours per log and slot: [0], [1] the estimate (or measurement) of
+// rotor / axis 1 and 2, [2], [3] their truth (dashed), [4], [5] the
+// reference (dashed). Log B has other hues, so A and B never share a colour.
 constexpr const char* kPalette[2][6] = {
     {"#1f77b4", "#d62728", "#000000", "#7f7f7f", "#2ca02c", "#8c564b"},
     {"#17becf", "#ff7f0e", "#9467bd", "#bcbd22", "#e377c2", "#393b79"},
 };
-constexpr int kForceStatus = 6;  // FORCE's status column (flight_data.h)
+// Rotors 3 to 6 (vehicles with more arms): estimate and truth hues per log.
+constexpr const char* kMoreRotors[2][2][kMaxArms - kBirotorRotors] = {
+    {{"#2ca02c", "#9467bd", "#e377c2", "#bcbd22"}, {"#98df8a", "#c5b0d5", "#f7b6d2", "#dbdb8d"}},
+    {{"#8c564b", "#393b79", "#637939", "#843c39"}, {"#c49c94", "#9c9ede", "#b5cf6b", "#d6616b"}},
+};
 
 struct CommandBit {
   int bit;
@@ -40,24 +44,52 @@ class LogSeries {
         prefix_(overlay ? std::string(1, char('A' + index)) + ": " : "") {}
 
   SeriesSpec Of(const Table& table, int column, const std::string& label, int slot, int sigma_column = -1) const {
-    SeriesSpec spec{&table, column, sigma_column, 0, 0.0, prefix_ + label, kPalette[index_][slot], slot >= 2, -1};
-    if (&table == &d_.force) spec.converging_column = kForceStatus;
+    return With(table, column, label, kPalette[index_][slot], slot >= 2, sigma_column);
+  }
+  SeriesSpec With(const Table& table, int column, const std::string& label, const char* color, bool dashed,
+                  int sigma_column = -1) const {
+    SeriesSpec spec{&table, column, sigma_column, 0, 0.0, prefix_ + label, color, dashed, -1};
+    if (&table == &d_.force) spec.converging_column = d_.ForceStatusColumn();
     return spec;
   }
+  // Rotor i's colour: the palette's slots 0/1 (estimate) and 2/3 (truth)
+  // for rotors 1 and 2, kMoreRotors beyond.
+  const char* RotorColor(int rotor, bool truth) const {
+    if (rotor < kBirotorRotors) return kPalette[index_][rotor + (truth ? 2 : 0)];
+    return kMoreRotors[index_][truth ? 1 : 0][rotor - kBirotorRotors];
+  }
+  // Per rotor: the estimate's column (with its sigma band) then the truth's.
+  std::vector<SeriesSpec> PerRotor(const char* name, int (FlightData::*estimate)(int) const,
+                                   int (FlightData::*truth)(int) const, bool band) const {
+    std::vector<SeriesSpec> out;
+    const int n = d_.rotor_count;
+    for (int i = 0; i < n; ++i) {
+      out.push_back(With(d_.force, (d_.*estimate)(i), fmt::format("{} {}", name, i + 1), RotorColor(i, false), false,
+                         band ? d_.ForceSigmaColumn(i) : -1));
+    }
+    for (int i = 0; i < n; ++i) {
+      out.push_back(With(d_.truth, (d_.*truth)(i), fmt::format("true {} {}", name, i + 1), RotorColor(i, true), true));
+    }
+    return out;
+  }
   std::vector<SeriesSpec> Forces() const {
-    return {Of(d_.force, 0, "force 1 [N]", 0, 2), Of(d_.force, 1, "force 2 [N]", 1, 3),
-            Of(d_.truth, 0, "true force 1 [N]", 2), Of(d_.truth, 1, "true force 2 [N]", 3)};
+    std::vector<SeriesSpec> out = PerRotor("force", &FlightData::ForceColumn, &FlightData::TruthForceColumn, true);
+    for (SeriesSpec& spec : out) spec.label += " [N]";
+    return out;
   }
   std::vector<SeriesSpec> Thrust() const {
-    return {Of(d_.force, 4, "thrust scale 1", 0), Of(d_.force, 5, "thrust scale 2", 1),
-            Of(d_.truth, 2, "true thrust scale 1", 2), Of(d_.truth, 3, "true thrust scale 2", 3)};
+    return PerRotor("thrust scale", &FlightData::ForceScaleColumn, &FlightData::TruthScaleColumn, false);
   }
   std::vector<SeriesSpec> Position() const {
-    return {Of(d_.pose, 0, "x [m]", 0),       Of(d_.pose, 1, "z [m]", 1),         Of(d_.truth, 4, "true x [m]", 2),
-            Of(d_.truth, 5, "true z [m]", 3), Of(d_.setpoint, 0, "x ref [m]", 4), Of(d_.setpoint, 1, "z ref [m]", 5)};
+    return {Of(d_.pose, 0, "x [m]", 0),
+            Of(d_.pose, 1, "z [m]", 1),
+            Of(d_.truth, d_.TruthXColumn(), "true x [m]", 2),
+            Of(d_.truth, d_.TruthZColumn(), "true z [m]", 3),
+            Of(d_.setpoint, 0, "x ref [m]", 4),
+            Of(d_.setpoint, 1, "z ref [m]", 5)};
   }
   std::vector<SeriesSpec> Attitude() const {
-    return {Of(d_.pose, 2, "pitch (POSE) [rad]", 0), Of(d_.truth, 6, "true pitch [rad]", 2)};
+    return {Of(d_.pose, 2, "pitch (POSE) [rad]", 0), Of(d_.truth, d_.TruthPhiColumn(), "true pitch [rad]", 2)};
   }
   std::vector<SeriesSpec> PitchRate() const { return {Of(d_.imu, 0, "pitch rate (IMU gyro) [rad/s]", 0)}; }
   std::vector<SeriesSpec> StatusColumns(int first) const {  // NIS (0), fused and rejected (kReviewInputs, ...)
@@ -78,20 +110,25 @@ class LogSeries {
     return out;
   }
   std::vector<SeriesSpec> Commands() const {
-    return {Of(d_.motor_command, 0, "omega cmd 1 [rad/s]", 0), Of(d_.motor_command, 1, "omega cmd 2 [rad/s]", 1)};
+    std::vector<SeriesSpec> out;
+    for (int i = 0; i < d_.rotor_count; ++i) {
+      out.push_back(With(d_.motor_command, d_.CommandColumn(i), fmt::format("omega cmd {} [rad/s]", i + 1),
+                         RotorColor(i, false), false));
+    }
+    return out;
   }
   std::vector<SeriesSpec> Counters() const {
     return {Of(d_.controller_status, 0, "fallbacks", 0), Of(d_.controller_status, 1, "descents", 1),
             Of(d_.controller_status, 2, "saturated", 4)};
   }
-  static SeriesSpec Lane(const Table& table, int column, int bit, int lane, const char* label) {
+  static SeriesSpec Lane(const Table& table, int column, int bit, int lane, const std::string& label) {
     return SeriesSpec{&table, column, -1, bit, double(lane), label, "", false, -1};
   }
   // Lanes: a bit per lane, drawn as a band filled from the lane's base.
   std::vector<SeriesSpec> StatusLanes() const {
     std::vector<SeriesSpec> lanes;
-    for (int i = 0; i < kStatusBitCount; ++i) {
-      lanes.push_back(Lane(d_.force, kForceStatus, kStatusBitNames[i].bit, i, kStatusBitNames[i].word));
+    for (const ForceFlag& flag : ForceFlags(d_)) {
+      lanes.push_back(Lane(d_.force, flag.column, flag.bit, static_cast<int>(lanes.size()), flag.word));
     }
     return lanes;
   }
@@ -99,9 +136,9 @@ class LogSeries {
     std::vector<SeriesSpec> lanes;
     int lane = 0;
     for (const CommandBit& bit : kCommandBits) {
-      lanes.push_back(Lane(d_.motor_command, 3, bit.bit, lane++, bit.word));
+      lanes.push_back(Lane(d_.motor_command, d_.CommandStatusColumn(), bit.bit, lane++, bit.word));
     }
-    lanes.push_back(Lane(d_.motor_command, 2, 1, lane, "FORCE_FEEDBACK mode"));
+    lanes.push_back(Lane(d_.motor_command, d_.CommandModeColumn(), 1, lane, "FORCE_FEEDBACK mode"));
     return lanes;
   }
   std::string Suffix() const { return prefix_.empty() ? "" : " (" + prefix_.substr(0, 1) + ")"; }
@@ -259,10 +296,13 @@ std::string PathsJson(const std::vector<ChartedLog>& logs) {
     const FlightData& d = *logs[k].data;
     const std::string prefix = logs.size() > 1 ? std::string(1, char('A' + k)) + ": " : "";
     if (d.pose.rows() > 0) add(prefix + "POSE", kPalette[k][0], false, PathPoints(d.pose, 0, 1));
-    if (d.truth.rows() > 0) add(prefix + "truth", kPalette[k][2], true, PathPoints(d.truth, 4, 5));
+    if (d.truth.rows() > 0) {
+      add(prefix + "truth", kPalette[k][2], true, PathPoints(d.truth, d.TruthXColumn(), d.TruthZColumn()));
+    }
     if (d.setpoint.rows() > 0) add(prefix + "SETPOINT", kPalette[k][4], true, PathPoints(d.setpoint, 0, 1));
     const bool truth = d.truth.rows() > 0;
-    const std::string m = PathMarks(truth ? d.truth : d.pose, truth ? 4 : 0, truth ? 5 : 1, *logs[k].headline, prefix);
+    const std::string m = PathMarks(truth ? d.truth : d.pose, truth ? d.TruthXColumn() : 0,
+                                    truth ? d.TruthZColumn() : 1, *logs[k].headline, prefix);
     if (!m.empty()) marks += (marks.empty() ? "" : ",") + m;
   }
   return "{\"lines\":[" + paths + "],\"marks\":[" + marks + "]}";

@@ -39,18 +39,17 @@ std::string ChannelTable(const FlightData& d) {
 std::string RiseTable(const FlightData& d) {
   if (d.force.rows() == 0) return "<p>No FORCE in this log: no status bits.</p>\n";
   std::string out = "<table><tr><th>FORCE status bit</th><th>rises</th><th>first rise [s]</th></tr>\n";
-  for (int i = 0; i < kStatusBitCount; ++i) {
-    const int bit = kStatusBitNames[i].bit;
+  for (const ForceFlag& flag : ForceFlags(d)) {
     int64_t total = 0;
-    std::vector<double> rises = BitRises(d.force, 6, bit, 2, &total);
-    const bool startup_reset = bit == kStatusFilterReset && !rises.empty() && rises[0] == d.force.t_s[0];
+    std::vector<double> rises = BitRises(d.force, flag.column, flag.bit, 2, &total);
+    const bool startup_reset = flag.column == d.ForceStatusColumn() && flag.bit == kStatusFilterReset &&
+                               !rises.empty() && rises[0] == d.force.t_s[0];
     if (startup_reset) {
       rises.erase(rises.begin());
       --total;
     }
-    const bool alarm = (kAlarmStatusBits & bit) != 0;
-    out += fmt::format("<tr{}><td>{}{}{}</td><td>{}</td><td>{}</td></tr>\n", alarm && total > 0 ? " class=alarm" : "",
-                       kStatusBitNames[i].word, alarm ? " (alarm)" : "",
+    out += fmt::format("<tr{}><td>{}{}{}</td><td>{}</td><td>{}</td></tr>\n",
+                       flag.alarm && total > 0 ? " class=alarm" : "", flag.word, flag.alarm ? " (alarm)" : "",
                        startup_reset ? " (the start-up reset at t = 0 is not counted)" : "", total,
                        rises.empty() ? "-" : fmt::format("{:.3f}", rises[0]));
   }
@@ -122,7 +121,7 @@ std::string FlightSummaryText(const FlightData& d) {
   std::string out = fmt::format("flight: {} events over {:.3f} s\n", d.events, d.duration_s);
   const FlightHeadline headline = ComputeHeadline(d);
   if (d.truth.rows() > 0) {
-    out += PositionHold(d.truth, 4, 5, "TRUTH");
+    out += PositionHold(d.truth, d.TruthXColumn(), d.TruthZColumn(), "TRUTH");
   } else if (d.pose.rows() > 0) {
     out += PositionHold(d.pose, 0, 1, "POSE");
   }
@@ -131,7 +130,8 @@ std::string FlightSummaryText(const FlightData& d) {
   }
   if (d.motor_command.rows() > 0) {
     int64_t force_feedback = 0;
-    for (const double mode : d.motor_command.columns[2]) force_feedback += mode == kModeForceFeedback ? 1 : 0;
+    for (const double mode : d.motor_command.columns[d.CommandModeColumn()])
+      force_feedback += mode == kModeForceFeedback ? 1 : 0;
     out += fmt::format("flight: {} MOTOR_COMMAND ({:.1f} % in force_feedback mode); {} fallbacks{}{}\n",
                        d.motor_command.rows(), 100.0 * force_feedback / d.motor_command.rows(), headline.fallbacks,
                        headline.fallbacks > 0 ? " at t [s] = " : "", FallbackTimes(headline));

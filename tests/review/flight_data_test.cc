@@ -6,9 +6,13 @@
 #include <gtest/gtest.h>
 
 #include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_n_t.hpp"
 #include "birotor/force_estimate_t.hpp"
+#include "birotor/motor_command_n_t.hpp"
 #include "birotor/motor_command_t.hpp"
+#include "birotor/strain_n_t.hpp"
 #include "birotor/strain_t.hpp"
+#include "birotor/truth_n_t.hpp"
 #include "birotor/truth_t.hpp"
 #include "tests/transport/test_files.h"
 #include "transport/log_io.h"
@@ -85,6 +89,106 @@ TEST_F(FlightDataTest, CountsDecodesAndTimesEveryMessage) {
   ASSERT_EQ(data.input_t_s[0].size(), 100u);  // STRAIN stamps
   EXPECT_NEAR(data.input_t_s[0][1], 0.001, 1e-12);
   EXPECT_TRUE(data.input_t_s[1].empty());  // no MOTOR
+}
+
+// A birotor FORCE's rotor-fault bits move to the rotor-fault column, as
+// ToCountedMessage moves them (one layout for every vehicle).
+TEST_F(FlightDataTest, BirotorRotorFaultBitsGoToTheRotorFaultColumn) {
+  const std::string path = Path("fault.lcm");
+  LogWriter writer;
+  std::string error;
+  ASSERT_TRUE(writer.Open(path, &error)) << error;
+  force_estimate_t force{};
+  force.utime = 1'000'000;
+  force.status = kStatusValid | kStatusRotor2Fault;
+  ASSERT_TRUE(writer.WriteMessage("BIROTOR_FORCE", force.utime, force));
+  ASSERT_TRUE(writer.Close()) << writer.error();
+  FlightData data;
+  ASSERT_TRUE(ReadFlightData(path, "BIROTOR_", 0.9, &data, &error)) << error;
+  ASSERT_EQ(data.force.rows(), 1u);
+  EXPECT_EQ(data.rotor_count, 2);
+  EXPECT_DOUBLE_EQ(data.force.columns[data.ForceStatusColumn()][0], double(kStatusValid));
+  EXPECT_DOUBLE_EQ(data.force.columns[data.ForceFaultColumn()][0], 2.0);  // bit 1: rotor 2
+  std::vector<std::string> words;
+  for (const ForceFlag& flag : ForceFlags(data)) words.push_back(flag.word);
+  EXPECT_EQ(words, (std::vector<std::string>{"VALID", "CONVERGING", "REJECTED", "STALE", "ROTOR1_FAULT", "ROTOR2_FAULT",
+                                             "RESET", "NO_MOTOR", "THRUST_DEFICIT", "CONFLICT", "MODEL_MISMATCH"}));
+}
+
+// A three-rotor log (the counted types on the _N channels): the tables take
+// three rotors from the first counted message; a message of another count
+// (a quadrotor's in the same log) is dropped and counted.
+TEST_F(FlightDataTest, ReadsTheCountedTypesOfAThreeRotorVehicle) {
+  const std::string path = Path("trirotor.lcm");
+  LogWriter writer;
+  std::string error;
+  ASSERT_TRUE(writer.Open(path, &error)) << error;
+  for (int i = 0; i < 10; ++i) {
+    const int64_t utime = 2'000'000 + 1000 * i;
+    strain_n_t strain{};
+    strain.utime = utime;
+    strain.n_arms = 3;
+    strain.deflection_rad = {0.001, 0.002, 0.003};
+    ASSERT_TRUE(writer.WriteMessage("BIROTOR_STRAIN_N", utime, strain));
+    force_estimate_n_t force{};
+    force.utime = utime;
+    force.n_rotors = 3;
+    force.force_n = {27.0, 14.0, 14.0 + i};
+    force.force_std_n = {0.1, 0.1, 0.2};
+    force.thrust_scale = {1.0, 1.0, 0.75};
+    force.status = kStatusValid;
+    force.rotor_fault_bits = i >= 5 ? 4 : 0;  // rotor 3 from 5 ms
+    ASSERT_TRUE(writer.WriteMessage("BIROTOR_FORCE_N", utime, force));
+    truth_n_t truth{};
+    truth.utime = utime;
+    truth.n_arms = 3;
+    truth.x_m = 0.5;
+    truth.z_m = 1.0;
+    truth.phi_rad = 0.01 * i;
+    truth.deflection_rad = truth.deflection_dot_rad_s = {0, 0, 0};
+    truth.omega_rad_s = {770, 560, 560};
+    truth.force_n = {27.5, 14.3, 14.3};
+    truth.thrust_scale = {1.0, 1.0, 0.75};
+    ASSERT_TRUE(writer.WriteMessage("BIROTOR_TRUTH_N", utime, truth));
+    motor_command_n_t command{};
+    command.utime = utime;
+    command.n_rotors = 3;
+    command.omega_cmd_rad_s = {770, 560, 561};
+    command.mode = 1;
+    ASSERT_TRUE(writer.WriteMessage("BIROTOR_MOTOR_COMMAND_N", utime, command));
+  }
+  force_estimate_n_t quad{};
+  quad.utime = 2'010'000;
+  quad.n_rotors = 4;
+  quad.force_n = quad.force_std_n = quad.thrust_scale = {1, 1, 1, 1};
+  ASSERT_TRUE(writer.WriteMessage("BIROTOR_FORCE_N", quad.utime, quad));
+  ASSERT_TRUE(writer.Close()) << writer.error();
+
+  FlightData data;
+  ASSERT_TRUE(ReadFlightData(path, "BIROTOR_", 0.9, &data, &error)) << error;
+  EXPECT_EQ(data.rotor_count, 3);
+  EXPECT_EQ(data.count_mismatches, 1);
+  EXPECT_EQ(data.channels["BIROTOR_FORCE_N"].decode_errors, 1);
+  ASSERT_EQ(data.force.rows(), 10u);
+  ASSERT_EQ(data.force.labels.size(), 11u);  // 3 forces, 3 sigmas, 3 scales, status, rotor faults
+  EXPECT_EQ(data.force.labels[2], "force 3 [N]");
+  EXPECT_DOUBLE_EQ(data.force.columns[data.ForceColumn(2)][9], 23.0);
+  EXPECT_DOUBLE_EQ(data.force.columns[data.ForceSigmaColumn(2)][0], 0.2);
+  EXPECT_DOUBLE_EQ(data.force.columns[data.ForceScaleColumn(2)][0], 0.75);
+  EXPECT_DOUBLE_EQ(data.force.columns[data.ForceFaultColumn()][5], 4.0);
+  ASSERT_EQ(data.truth.rows(), 10u);
+  EXPECT_DOUBLE_EQ(data.truth.columns[data.TruthForceColumn(0)][0], 27.5);
+  EXPECT_DOUBLE_EQ(data.truth.columns[data.TruthXColumn()][0], 0.5);
+  EXPECT_DOUBLE_EQ(data.truth.columns[data.TruthPhiColumn()][9], 0.09);
+  ASSERT_EQ(data.motor_command.rows(), 10u);
+  EXPECT_DOUBLE_EQ(data.motor_command.columns[data.CommandColumn(2)][0], 561.0);
+  EXPECT_DOUBLE_EQ(data.motor_command.columns[data.CommandModeColumn()][0], 1.0);
+  EXPECT_EQ(data.input_t_s[0].size(), 10u);  // STRAIN_N stamps
+  const std::vector<ForceFlag> flags = ForceFlags(data);
+  ASSERT_EQ(flags.size(), 12u);  // ROTOR1..3_FAULT in place of the birotor's two
+  EXPECT_EQ(flags[6].word, "ROTOR3_FAULT");
+  EXPECT_EQ(flags[6].column, data.ForceFaultColumn());
+  EXPECT_EQ(flags[6].bit, 4);
 }
 
 TEST_F(FlightDataTest, MissingAndEmptyLogsAreErrorsNamingTheFile) {

@@ -25,9 +25,11 @@ FlightData MakeFlight() {
   d.duration_s = 0.99;
   for (int i = 0; i < 100; ++i) {
     const double t = 0.01 * i;
-    int32_t status = i == 0 ? (kStatusConverging | kStatusFilterReset) : i < 10 ? kStatusConverging : kStatusValid;
-    if (i >= 52) status |= kStatusRotor2Fault;
-    d.force.Add(t, {20.0, 20.0, 0.1, 0.1, 1.0, i >= 52 ? 0.75 : 1.0, double(status)});
+    const int32_t status = i == 0   ? (kStatusConverging | kStatusFilterReset)
+                           : i < 10 ? kStatusConverging
+                                    : kStatusValid;
+    const double rotor_faults = i >= 52 ? 2.0 : 0.0;  // bit 1: rotor 2
+    d.force.Add(t, {20.0, 20.0, 0.1, 0.1, 1.0, i >= 52 ? 0.75 : 1.0, double(status), rotor_faults});
     d.truth.Add(t, {20.0, 20.0, 1.0, i >= 50 ? 0.75 : 1.0, 0.0, i == 70 ? 0.7 : 1.0, i == 60 ? -0.2 : 0.01});
     const bool fallback = i < 5 || (i >= 80 && i < 90);
     d.motor_command.Add(t, {500.0, 500.0, 1.0, fallback ? 1.0 : 0.0});
@@ -83,7 +85,7 @@ TEST(FlightHeadlineTest, AnswersTheQuestionsOfTheFirstScreen) {
 // 0.5 m below its SETPOINT is lost, marked where the verdict first said so.
 TEST(FlightHeadlineTest, LaterResetAndLossAreAlarms) {
   FlightData d = MakeFlight();
-  d.force.columns[6][30] = kStatusValid | kStatusFilterReset;
+  d.force.columns[d.ForceStatusColumn()][30] = kStatusValid | kStatusFilterReset;
   d.setpoint.Add(0.0, {0.0, 1.3});
   const FlightHeadline h = ComputeHeadline(d);
   EXPECT_TRUE(h.verdict.lost);
