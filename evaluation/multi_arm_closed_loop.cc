@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "model/multi_arm_linearization.h"
 #include "numerics/time_units.h"
@@ -135,6 +136,10 @@ MultiArmFlightFigures FiguresOf(const MultiArmClosedLoopRun& run, double settlin
 
 MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, const Scenario& scenario,
                                             const ControllerConfig& config, const MultiArmClosedLoopOptions& options) {
+  if (scenario.mode != "flight" || scenario.ground.enabled) {
+    throw std::invalid_argument("scenario '" + scenario.name +
+                                "': the N-rotor lock-step loop flies mode flight without a ground phase");
+  }
   MultiArmSimulator simulator(vehicle, scenario);
   simulator.UseExternalCommands();
   MultiArmController controller(vehicle, config, simulator.hover());

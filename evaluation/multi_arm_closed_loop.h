@@ -91,7 +91,8 @@ MultiArmFlightFigures FiguresOf(const MultiArmClosedLoopRun& run, double settlin
 // Flies the scenario (mode flight; its trajectory, faults, sensors and seed;
 // its controller: section is not used, config's gains are) on vehicle with
 // MultiArmController(vehicle, config). Throws std::invalid_argument as
-// MultiArmSimulator does.
+// MultiArmSimulator does, and for a bench scenario or one with a ground
+// phase (not flown by this loop yet).
 MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, const Scenario& scenario,
                                             const ControllerConfig& config,
                                             const MultiArmClosedLoopOptions& options = {});
