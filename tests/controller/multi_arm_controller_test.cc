@@ -7,11 +7,27 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <string>
 
 #include "model/multi_arm_linearization.h"
 #include "params/vehicle_description_yaml.h"
+
+// Every heap allocation of this test program, counted (the per-call path
+// must make none).
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace birotor {
 namespace {
@@ -118,6 +134,30 @@ TEST(MultiArmControllerTest, NominalMapWhenTheEstimateIsUnusable) {
   MultiArmController off(vehicle, config, SolveMultiArmHover(vehicle));
   off.OnEfficiency(Estimate(1000, 0.6, true));
   EXPECT_EQ(off.EfficiencyInUse(2000)[1], 1.0);
+}
+
+// 1 s of inputs and control periods, a rotor estimate in force feedback,
+// a reference moving sideways: no heap allocation after construction.
+TEST(MultiArmControllerTest, NoAllocationPerCall) {
+  const VehicleDescription vehicle = Trirotor();
+  MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
+  ReferencePoint reference;
+  const long before = allocations.load();
+  for (int k = 0; k < 500; ++k) {
+    const int64_t now_us = 2000 * k;
+    if (k % 5 == 0) controller.OnPose(PoseSample{now_us, k / 5, 0.0, 0.0, 0.0});
+    controller.OnImu(ImuSample{now_us, k, 0.0, 0.0, vehicle.gravity_m_s2});
+    controller.OnEfficiency(Estimate(now_us, 0.6, true));
+    reference.position_m.x() = 0.002 * k;
+    controller.Update(now_us, reference);
+  }
+  EXPECT_EQ(allocations.load() - before, 0);
+  // The counter does see an allocation.
+  const long after = allocations.load();
+  std::string text(100, 'x');
+  volatile char last = text.back();
+  (void)last;
+  EXPECT_GT(allocations.load(), after);
 }
 
 }  // namespace
