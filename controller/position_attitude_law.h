@@ -33,7 +33,7 @@ struct RotorForces {
 };
 
 // The cascade's stages as functions, shared by PositionAttitudeLaw and the
-// N-arm autopilot (simulator/multi_arm_autopilot.h). integrate false: the
+// N-arm autopilot (controller/multi_arm_law.h). integrate false: the
 // integral holds.
 //
 // Outer loop (world): a_des = a_ref + Kp e_p + Kd e_v + Ki int(e_p), the

@@ -143,10 +143,28 @@ void MultiArmSimulator::UpdateCommand(double t_s) {
       const size_t arm = static_cast<size_t>(i);
       command_.omega_cmd_rad_s[arm] = bench != nullptr ? (*bench)[arm] : phase_omega_rad_s;
     }
+    flying_external_ = false;
     return;
   }
   reference_ = ground_.FlightReference(t_s, trajectory_);
+  if (external_commands_) {
+    flying_external_ = true;
+    command_ = MultiArmRotorCommand();
+    command_.omega_cmd_rad_s = external_omega_rad_s_;
+    return;
+  }
   command_ = autopilot_.Update(state_, reference_);
+}
+
+void MultiArmSimulator::UseExternalCommands() {
+  external_commands_ = true;
+  for (int i = 0; i < vehicle_.arm_count; ++i)
+    external_omega_rad_s_[static_cast<size_t>(i)] = state_(MultiArmOmegaIndex(vehicle_, i));
+}
+
+void MultiArmSimulator::OfferRotorCommands(const std::array<double, kMaxArms>& omega_cmd_rad_s) {
+  external_omega_rad_s_ = omega_cmd_rad_s;
+  if (flying_external_) command_.omega_cmd_rad_s = omega_cmd_rad_s;
 }
 
 bool MultiArmSimulator::Step(SampleSink* sink) {

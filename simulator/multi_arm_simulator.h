@@ -1,7 +1,8 @@
 // The simulation engine for any VehicleDescription (N = 2 .. 6 arms), every
 // scenario kind of the birotor's simulator/simulator.h from the same scenario
 // file and the same pieces: integrates the plant of model/multi_arm_plant.h
-// with RK4 at the scenario's fixed step; flies it with MultiArmAutopilot
+// with RK4 at the scenario's fixed step; flies it with MultiArmAutopilot (or an
+// external controller's commands, UseExternalCommands)
 // along the trajectory (flight), from the ground (the ground phase of
 // ground_phase.h: rest, spool-up, lift-off, landing), or runs the bench
 // profile of bench_profile.h with the body clamped (bench); with the rotor
@@ -57,6 +58,20 @@ class MultiArmSimulator {
   // motor_telemetry), each from the birotor's noise stream of the seed.
   bool Step(SampleSink* sink = nullptr);
   void Run(SampleSink* sink = nullptr);
+
+  // In flight the rotor commands come from OfferRotorCommands (an external
+  // controller, as Simulator::UseExternalCommands for the birotor) instead of
+  // the autopilot; the ground phase and the bench keep their own. The last
+  // offer holds (before the first: the start state's rotor speeds). Call
+  // before the first step; without it the autopilot flies (unchanged).
+  void UseExternalCommands();
+  // Speeds [rad/s] of rotors 1 .. N for the step about to be taken and on
+  // (the plant clamps each to [0, omega_max]).
+  void OfferRotorCommands(const std::array<double, kMaxArms>& omega_cmd_rad_s);
+  bool external_commands() const { return external_commands_; }
+  // The scenario's position reference at simulated time t_s (trajectory
+  // time from the end of the ground phase), as the autopilot flies it.
+  ReferencePoint ReferenceAt(double t_s) const { return trajectory_.At(t_s - scenario_.ground.FlightStartS()); }
 
   bool done() const { return step_index_ >= total_steps_; }
   double time_s() const { return static_cast<double>(step_index_) * scenario_.step_s; }
@@ -129,6 +144,9 @@ class MultiArmSimulator {
   GroundPhase ground_;
   ReferencePoint reference_;
   MultiArmRotorCommand command_;
+  bool external_commands_ = false;                       // UseExternalCommands
+  bool flying_external_ = false;                         // in flight on the external commands
+  std::array<double, kMaxArms> external_omega_rad_s_{};  // the newest offer [rad/s]
 
   MultiArmPlantState state_;
   MultiArmPlantInput input_;

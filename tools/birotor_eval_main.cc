@@ -28,6 +28,7 @@
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "tools/eval_mismatch_targets.h"
+#include "tools/eval_multi_arm_control.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
 
@@ -445,6 +446,8 @@ int main(int argc, char** argv) {
   CommonOptions common;
   EvalCli cli;
   AddEvalOptions(app, &common, &cli);
+  MultiArmControlCli multi_arm;
+  AddMultiArmControlOptions(app, &multi_arm);
   if (const auto exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   SetupLogging("birotor-eval", common.log_level);
 
@@ -461,6 +464,9 @@ int main(int argc, char** argv) {
       !std::filesystem::create_directories(cli.plot_dir, fs_error)) {
     return ReportError("cannot create --plot-dir " + cli.plot_dir);
   }
+  if (!multi_arm.vehicle_file.empty())
+    return RunMultiArmControl(multi_arm, {app.count("--scenarios") > 0 ? cli.scenarios : std::vector<std::string>{},
+                                          cli.controller_params, cli.scenario_dir, cli.overrides, cli.markdown_out});
   if (cli.control) return RunControlMode(cli, app.count("--scenarios") > 0, base_config);
   if (cli.mismatch_targets) {
     if (!cli.log_path.empty())

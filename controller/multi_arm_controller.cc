@@ -1,0 +1,114 @@
+#include "controller/multi_arm_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "numerics/time_units.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The hover thrusts f_hover,i through the nominal map, sqrt(f / c_T,i).
+MultiArmRotorCommand HoverCommand(const VehicleDescription& vehicle, const MultiArmHover& hover) {
+  MultiArmRotorCommand command;
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    command.force_n[rotor] = hover.force_n(i);
+    command.omega_cmd_rad_s[rotor] =
+        RotorSpeedForThrust(vehicle.arms[rotor].thrust_coeff_n_s2_rad2, vehicle.omega_max_rad_s, hover.force_n(i), 1.0);
+  }
+  return command;
+}
+
+// Age of a stamp at now_us [s]; infinite before any or from the future.
+double AgeS(int64_t stamp_us, int64_t now_us) {
+  if (stamp_us < 0 || now_us < stamp_us) return std::numeric_limits<double>::infinity();
+  return ElapsedSeconds(now_us, stamp_us);
+}
+
+}  // namespace
+
+MultiArmController::MultiArmController(const VehicleDescription& vehicle, const ControllerConfig& config,
+                                       const MultiArmHover& hover)
+    : vehicle_(vehicle),
+      config_(config),
+      law_(vehicle, config.gains, hover),
+      observer_(config.observer),
+      hover_command_(HoverCommand(vehicle, hover)) {}
+
+void MultiArmController::OnPose(const PoseSample& sample) {
+  if (!has_pose_) {
+    has_pose_ = true;
+    observer_.Initialize(Eigen::Vector2d(sample.x_m, sample.z_m), sample.phi_rad);
+    last_fused_pose_utime_ = sample.utime;
+    return;
+  }
+  pending_pose_ = sample;
+  pose_pending_ = true;
+}
+
+void MultiArmController::OnImu(const ImuSample& sample) {
+  last_imu_utime_ = sample.utime;
+  ++imu_count_;
+  gyro_sum_rad_s_ += sample.gyro_y_rad_s;
+  specific_force_sum_m_s2_ += Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2);
+}
+
+void MultiArmController::UpdateState(int64_t now_us, double dt_s) {
+  const bool imu_fresh = AgeS(last_imu_utime_, now_us) <= config_.supervision.imu_timeout_s;
+  double pitch_rate_rad_s = kNaN;  // NaN: the observer holds its rate and POSE corrects it
+  if (imu_count_ > 0) {
+    last_specific_force_m_s2_ = specific_force_sum_m_s2_ / imu_count_;
+    pitch_rate_rad_s = gyro_sum_rad_s_ / imu_count_;
+  } else if (imu_fresh) {
+    pitch_rate_rad_s = observer_.state().phi_dot_rad_s;  // no sample this period: hold the last rate
+  }
+  imu_count_ = 0;
+  gyro_sum_rad_s_ = 0.0;
+  specific_force_sum_m_s2_.setZero();
+  // Without the IMU the commanded acceleration stands in for the measured one.
+  const Eigen::Vector2d accel_world_m_s2 =
+      imu_fresh ? WorldAcceleration(observer_.state().phi_rad, last_specific_force_m_s2_.x(),
+                                    last_specific_force_m_s2_.y(), vehicle_.gravity_m_s2)
+                : law_.accel_des_m_s2();
+  observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : kNaN);
+  if (pose_pending_) {
+    const double interval_s = ElapsedSeconds(pending_pose_.utime, last_fused_pose_utime_);
+    observer_.CorrectPose(Eigen::Vector2d(pending_pose_.x_m, pending_pose_.z_m), pending_pose_.phi_rad, interval_s,
+                          imu_fresh);
+    last_fused_pose_utime_ = pending_pose_.utime;
+    pose_pending_ = false;
+  }
+}
+
+RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {
+  RotorEfficiencies efficiency = NominalEfficiencies();
+  const RotorEfficiencyEstimate& e = efficiency_estimate_;
+  const SupervisionParams& s = config_.supervision;
+  if (!config_.force_feedback || !e.valid || e.n_rotors != vehicle_.arm_count ||
+      AgeS(e.utime, now_us) > s.force_timeout_s)
+    return efficiency;
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    const double scale = e.thrust_scale[rotor];
+    const bool flagged = (e.rotor_fault_bits & (1 << i)) != 0;
+    const bool changed = std::abs(scale - 1.0) > config_.efficiency.change_threshold;
+    const bool certain = scale > 0.0 && e.thrust_scale_std[rotor] / scale <= config_.efficiency.max_relative_sigma;
+    if ((flagged || changed) && certain && std::isfinite(scale))
+      efficiency[rotor] = std::clamp(scale, s.min_plausible_thrust_scale, s.max_plausible_thrust_scale);
+  }
+  return efficiency;
+}
+
+MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferencePoint& reference) {
+  if (!has_pose_) return hover_command_;
+  UpdateState(now_us, 1.0 / config_.gains.rate_hz);
+  const MultiArmRotorCommand command = law_.Update(observer_.state(), reference, EfficiencyInUse(now_us));
+  saturated_periods_ += command.saturated ? 1 : 0;
+  return command;
+}
+
+}  // namespace birotor

@@ -1,0 +1,60 @@
+#include "controller/multi_arm_law.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace birotor {
+
+MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerParams& gains, const MultiArmHover& hover)
+    : gains_(gains),
+      dt_s_(1.0 / gains.rate_hz),
+      gravity_m_s2_(vehicle.gravity_m_s2),
+      total_mass_kg_(vehicle.TotalMass()),
+      pitch_inertia_kg_m2_(vehicle.body_inertia_kg_m2),
+      hover_force_n_(hover.force_n),
+      allocator_(vehicle, MultiArmControlModeFor(vehicle)) {
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
+    pitch_inertia_kg_m2_ += arm.tip_mass_kg * arm.length_m * arm.length_m;
+  }
+}
+
+void MultiArmLaw::Reset() {
+  position_integral_m_s_.setZero();
+  tilt_integral_rad_s_ = 0.0;
+  saturated_ = false;
+}
+
+Eigen::Vector3d MultiArmLaw::Wrench(const BodyState& body, const ReferencePoint& reference, bool integrate) {
+  const double g = gravity_m_s2_;
+  accel_des_m_s2_ = PositionLoopAcceleration(gains_, dt_s_, body, reference, integrate, &position_integral_m_s_);
+  const double cos_phi = std::cos(std::clamp(body.phi_rad, -1.2, 1.2));
+  Eigen::Vector3d wrench;  // [F_x, F_z, torque], body frame [N, N, N m]
+  double phi_des_rad = 0.0;
+  if (mode() == MultiArmControlMode::kTiltToMove) {
+    const TiltTarget tilt = TiltForAcceleration(gains_, g, accel_des_m_s2_);
+    phi_des_rad = tilt.phi_des_rad;
+    wrench(kWrenchFx) = 0.0;
+    wrench(kWrenchFz) = total_mass_kg_ * tilt.vertical_m_s2 / cos_phi;
+  } else {
+    // [F_x; F_z] = R(phi)^T m (a_des + g e_z), R(phi) = [cos, -sin; sin, cos].
+    const double sin_phi = std::sin(body.phi_rad);
+    const Eigen::Vector2d world_n = total_mass_kg_ * Eigen::Vector2d(accel_des_m_s2_.x(), accel_des_m_s2_.y() + g);
+    wrench(kWrenchFx) = std::cos(body.phi_rad) * world_n.x() + sin_phi * world_n.y();
+    wrench(kWrenchFz) = -sin_phi * world_n.x() + std::cos(body.phi_rad) * world_n.y();
+  }
+  wrench(kWrenchTorque) =
+      pitch_inertia_kg_m2_ * TiltLoopAcceleration(gains_, dt_s_, phi_des_rad, body, integrate, &tilt_integral_rad_s_);
+  return wrench;
+}
+
+MultiArmRotorCommand MultiArmLaw::Update(const BodyState& body, const ReferencePoint& reference,
+                                         const RotorEfficiencies& efficiency) {
+  Eigen::Vector3d wrench = Wrench(body, reference, !saturated_);
+  wrench(kWrenchFz) -= total_mass_kg_ * gravity_m_s2_;  // the hover thrusts carry the weight
+  const MultiArmRotorCommand command = allocator_.Allocate(hover_force_n_, wrench, efficiency);
+  saturated_ = command.saturated;
+  return command;
+}
+
+}  // namespace birotor

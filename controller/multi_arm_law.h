@@ -1,0 +1,66 @@
+// The cascade of controller/position_attitude_law.h for any VehicleDescription:
+// from a body state and a position reference to the wrench [F_x, F_z, tau],
+// then through WrenchAllocator to rotor thrusts and speeds. The simulator's
+// autopilot runs it on the true state with nominal efficiencies; the
+// product's MultiArmController on the measured state with estimated ones.
+// Fixed size, no allocation. docs/controller.md, "Vehicles with N rotors".
+#pragma once
+
+#include <Eigen/Core>
+
+#include "controller/controller_params.h"
+#include "controller/position_attitude_law.h"
+#include "controller/reference_point.h"
+#include "controller/wrench_allocation.h"
+#include "model/multi_arm_linearization.h"
+#include "model/vehicle_description.h"
+
+namespace birotor {
+
+class MultiArmLaw {
+ public:
+  // gains: ControllerParams (acceleration gains; its defaults are the
+  // birotor's); they are scaled by the description's total mass m + sum m_p,i
+  // and rigid pitch inertia J + sum m_p,i L_i^2 into forces and torques.
+  // hover: SolveMultiArmHover(vehicle), the thrusts' feed-forward.
+  MultiArmLaw(const VehicleDescription& vehicle, const ControllerParams& gains, const MultiArmHover& hover);
+
+  // One control period (1 / rate_hz):
+  //   a_des = PositionLoopAcceleration (world),
+  //   kTiltToMove:    phi_des = TiltForAcceleration, F_z = m (g + a_z) / cos(phi), F_x = 0
+  //   kFullyActuated: phi_des = 0, [F_x; F_z] = R(phi)^T m (a_des + g e_z)   (body frame)
+  //   torque = J_eff TiltLoopAcceleration(phi_des)
+  //   f = f_hover + P (w - [0, m g, 0])       (WrenchAllocator::Allocate)
+  // The hover thrusts are what the vehicle needs whatever the efficiencies;
+  // efficiency (each e_i > 0) sets only the bounds and the speed map. The
+  // integrators hold in the period after one that saturated (anti-windup).
+  MultiArmRotorCommand Update(const BodyState& body, const ReferencePoint& reference,
+                              const RotorEfficiencies& efficiency);
+
+  // Clears both integrators and the anti-windup memory.
+  void Reset();
+
+  MultiArmControlMode mode() const { return allocator_.mode(); }
+  const WrenchAllocator& allocator() const { return allocator_; }
+  // The world acceleration the outer loop asked for in the last period [m/s^2].
+  const Eigen::Vector2d& accel_des_m_s2() const { return accel_des_m_s2_; }
+
+ private:
+  // [F_x, F_z, tau] the cascade asks for (body frame [N, N, N m]), F_z
+  // including the weight.
+  Eigen::Vector3d Wrench(const BodyState& body, const ReferencePoint& reference, bool integrate);
+
+  ControllerParams gains_;
+  double dt_s_;
+  double gravity_m_s2_;
+  double total_mass_kg_;        // m + sum m_p,i [kg]
+  double pitch_inertia_kg_m2_;  // J + sum m_p,i L_i^2 [kg m^2]
+  ArmForces<double> hover_force_n_;
+  WrenchAllocator allocator_;
+  Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
+  double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
+  Eigen::Vector2d accel_des_m_s2_ = Eigen::Vector2d::Zero();
+  bool saturated_ = false;  // the previous period saturated
+};
+
+}  // namespace birotor

@@ -1,0 +1,88 @@
+// From a body wrench [F_x, F_z, tau] to the thrust and speed of each rotor of
+// any VehicleDescription: the pseudo-inverse of the description's allocation
+// on the controlled rows, a saturation priority (torque, then F_z, then F_x),
+// and per-rotor efficiencies e_i that set each rotor's bound and speed map.
+// Shared by the simulator's autopilot and the product's MultiArmController.
+// Fixed size, no allocation. docs/controller.md, "Vehicles with N rotors".
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+
+#include "model/multi_arm_dynamics.h"
+#include "model/vehicle_description.h"
+
+namespace birotor {
+
+// How the vehicle makes a lateral force.
+enum class MultiArmControlMode {
+  // N = 2, or N >= 3 without a usable F_x axis: tilt towards a_des (the
+  // birotor way), thrusts from the F_z and torque rows.
+  kTiltToMove,
+  // N >= 3 and the allocation's singular-value ratio on all three axes at
+  // least kMinAllocationSingularRatio: hold phi = 0 and make F_x directly.
+  kFullyActuated,
+};
+
+// kFullyActuated when ControlledAxesMargin has all three rows with a ratio
+// >= kMinAllocationSingularRatio and N >= 3; kTiltToMove otherwise.
+MultiArmControlMode MultiArmControlModeFor(const VehicleDescription& vehicle);
+
+// The rotor speed commands of one control period, the thrusts they are meant
+// to make [N], and whether the allocation had to give something up.
+struct MultiArmRotorCommand {
+  std::array<double, kMaxArms> omega_cmd_rad_s{};  // [rad/s]
+  std::array<double, kMaxArms> force_n{};          // [N]
+  bool saturated = false;                          // an axis scaled down or a thrust clamped
+};
+
+// e_i: the thrust rotor i really makes per nominal c_T,i omega_i^2 [1]
+// (1 = nominal, 0.6 after a 40 % loss). Unused entries (i >= N) are ignored.
+using RotorEfficiencies = std::array<double, kMaxArms>;
+inline RotorEfficiencies NominalEfficiencies() {
+  RotorEfficiencies efficiency;
+  efficiency.fill(1.0);
+  return efficiency;
+}
+
+class WrenchAllocator {
+ public:
+  // P = W_r^T (W_r W_r^T)^-1 on the controlled rows of W = WrenchAllocation
+  // (kFullyActuated: all three; kTiltToMove: F_z and torque, the F_x column
+  // zero), once, here: unweighted, the least sum of squared thrust changes.
+  WrenchAllocator(const VehicleDescription& vehicle, MultiArmControlMode mode);
+
+  // f = f_base + P dw, with the saturation priority: the torque increment
+  // first, then F_z, then F_x, each added at the largest fraction s in [0, 1]
+  // that keeps every thrust in [0, f_max,i] given those before, f_max,i =
+  // e_i c_T,i omega_max^2; a base thrust already outside is clamped at the
+  // end. Speeds omega_i = sqrt(f_i / (e_i c_T,i)) clipped to [0, omega_max].
+  // Why this order: the torque keeps the attitude (losing it loses every
+  // axis), F_z keeps the altitude, F_x only moves sideways. saturated: some
+  // s < 1 or a clamp.
+  MultiArmRotorCommand Allocate(const ArmForces<double>& base_force_n, const Eigen::Vector3d& wrench_change_n,
+                                const RotorEfficiencies& efficiency) const;
+
+  MultiArmControlMode mode() const { return mode_; }
+  int rotor_count() const { return rotor_count_; }
+  // P (N x 3; column kWrenchFx zero in kTiltToMove) [1/N, 1/N, 1/m].
+  const Eigen::Matrix<double, Eigen::Dynamic, kWrenchSize, 0, kMaxArms, kWrenchSize>& inverse() const {
+    return inverse_;
+  }
+
+ private:
+  using Pseudoinverse = Eigen::Matrix<double, Eigen::Dynamic, kWrenchSize, 0, kMaxArms, kWrenchSize>;
+
+  // f += s P(:, axis) dw(axis), s in [0, 1] the largest that keeps f in
+  // [0, max_force_n]; returns true when s < 1.
+  bool AddAxis(int axis, double wrench_change, const ArmForces<double>& max_force_n, ArmForces<double>* force_n) const;
+
+  MultiArmControlMode mode_;
+  int rotor_count_;
+  double omega_max_rad_s_;
+  std::array<double, kMaxArms> thrust_coeff_n_s2_rad2_{};  // c_T,i
+  ArmForces<double> nominal_max_force_n_;                  // c_T,i omega_max^2 [N]
+  Pseudoinverse inverse_;
+};
+
+}  // namespace birotor

@@ -1,0 +1,139 @@
+// The lock-step loop of evaluation/multi_arm_closed_loop.h: the product's
+// N-rotor controller on the measured state (POSE, IMU) flying the trirotor
+// and the birotor description of config/vehicles/ through the scenario files
+// (issue 38's control targets, with the nominal map), and the same seed
+// giving the same commands. Every bound is the issue's target or the figure
+// measured with birotor-eval --control-vehicle (docs/controller.md) with a
+// margin of at most 1.5x.
+#include "evaluation/multi_arm_closed_loop.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "params/scenario_yaml.h"
+#include "params/vehicle_description_yaml.h"
+
+namespace birotor {
+namespace {
+
+VehicleDescription Vehicle(const std::string& name) {
+  return LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/" + name + ".yaml");
+}
+
+Scenario ScenarioFor(const std::string& name, const VehicleDescription& vehicle,
+                     const std::vector<std::string>& overrides = {}) {
+  return LoadScenario(std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml", overrides,
+                      vehicle.arm_count);
+}
+
+// The nominal map (no efficiency estimate), the gains of ControllerConfig's
+// defaults (config/controller.yaml's).
+ControllerConfig Nominal() {
+  ControllerConfig config;
+  config.force_feedback = false;
+  return config;
+}
+
+constexpr double kBandM = 0.02;  // settling band of the 1 m step (2 %) [m]
+
+double FinalErrorM(const MultiArmClosedLoopRun& run) {
+  return (run.samples.back().position_m - run.samples.back().reference_m).norm();
+}
+
+// Issue 38: the trirotor makes the 1 m lateral step at |phi| < 0.02 rad
+// (measured 0.0180) and reaches the target (settled within 2 cm after 7.02 s:
+// the position integral overshoots by 0.123 m and returns slowly, as the
+// autopilot's; final error 10 s after the step 0.0054 m).
+TEST(MultiArmClosedLoopTest, TrirotorLateralStepStaysLevel) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, ScenarioFor("lateral_step", vehicle), Nominal());
+  const MultiArmFlightFigures f = FiguresOf(run, kBandM);
+  std::printf("trirotor lateral step: max |phi| %.4f rad, settling %.2f s, overshoot %.3f m, final %.4f m\n",
+              f.max_tilt_rad, f.settling_s, f.overshoot_m, FinalErrorM(run));
+  EXPECT_EQ(run.mode, MultiArmControlMode::kFullyActuated);
+  EXPECT_LT(f.max_tilt_rad, 0.02);
+  EXPECT_LT(f.settling_s, 7.02 * 1.5);
+  EXPECT_LT(f.overshoot_m, 0.123 * 1.5);
+  EXPECT_LT(FinalErrorM(run), 0.0054 * 1.5);
+  EXPECT_EQ(run.commands_out_of_bounds, 0);
+}
+
+// The birotor description through the same controller tilts to move: the
+// issue's > 0.1 rad (measured 0.62: the tilt target's 0.5 rad bound and the
+// overshoot of the inner loop; final error 0.0072 m).
+TEST(MultiArmClosedLoopTest, BirotorTiltsForTheSameStep) {
+  const VehicleDescription vehicle = Vehicle("birotor");
+  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, ScenarioFor("lateral_step", vehicle), Nominal());
+  const MultiArmFlightFigures f = FiguresOf(run, kBandM);
+  std::printf("birotor lateral step: max |phi| %.4f rad, settling %.2f s, final %.4f m\n", f.max_tilt_rad, f.settling_s,
+              FinalErrorM(run));
+  EXPECT_EQ(run.mode, MultiArmControlMode::kTiltToMove);
+  EXPECT_GT(f.max_tilt_rad, 0.1);
+  EXPECT_LT(f.max_tilt_rad, 0.62 * 1.5);
+  EXPECT_LT(FinalErrorM(run), 0.0072 * 1.5);
+}
+
+// Issue 38: the trirotor's RMS on the aggressive move no worse than the
+// birotor's (measured 0.0060 m against 0.0090 m).
+TEST(MultiArmClosedLoopTest, TrirotorAggressiveRmsNoWorseThanTheBirotors) {
+  double rms_m[2] = {0.0, 0.0};
+  const char* names[2] = {"trirotor", "birotor"};
+  for (int v = 0; v < 2; ++v) {
+    const VehicleDescription vehicle = Vehicle(names[v]);
+    const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, ScenarioFor("aggressive", vehicle), Nominal());
+    rms_m[v] = FiguresOf(run, kBandM).rms_position_error_m;
+    std::printf("%s aggressive: RMS %.4f m\n", names[v], rms_m[v]);
+  }
+  EXPECT_LE(rms_m[0], rms_m[1]);
+  EXPECT_LT(rms_m[0], 0.0060 * 1.5);
+  EXPECT_LT(rms_m[1], 0.0090 * 1.5);
+}
+
+// A 40 % loss on each rotor of the trirotor from 5 s of thrust_loss, nominal
+// map: the baseline (measured 0.356, 0.123, 0.144 m of altitude deviation),
+// every command within [0, omega_max]. With each rotor's true efficiency the
+// deviation is below a fifth of it (measured 0.0136, 0.0071, 0.0072 m): the
+// issue's 5x is within reach of an estimate as good as the truth.
+TEST(MultiArmClosedLoopTest, TrirotorFortyPercentLossBaselineAndBound) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const double measured_m[3] = {0.356, 0.123, 0.144};
+  for (int rotor = 1; rotor <= 3; ++rotor) {
+    const Scenario scenario =
+        ScenarioFor("thrust_loss", vehicle,
+                    {"faults.thrust_steps=[{time_s: 5.0, rotor: " + std::to_string(rotor) + ", scale: 0.6}]"});
+    const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
+    ControllerConfig with_efficiency = Nominal();
+    with_efficiency.force_feedback = true;
+    TrueEfficiencyProvider truth;
+    MultiArmClosedLoopOptions options;
+    options.efficiency = &truth;
+    const MultiArmClosedLoopRun bound = RunMultiArmClosedLoop(vehicle, scenario, with_efficiency, options);
+    const double nominal_m = FiguresOf(nominal, kBandM).max_altitude_deviation_m;
+    const double bound_m = FiguresOf(bound, kBandM).max_altitude_deviation_m;
+    std::printf("trirotor rotor %d at 60 %%: altitude deviation %.4f m nominal, %.4f m true efficiency\n", rotor,
+                nominal_m, bound_m);
+    EXPECT_GT(nominal_m, measured_m[rotor - 1] / 1.5) << rotor;
+    EXPECT_LT(nominal_m, measured_m[rotor - 1] * 1.5) << rotor;
+    EXPECT_LT(bound_m * 5.0, nominal_m) << rotor;
+    EXPECT_EQ(nominal.commands_out_of_bounds, 0) << rotor;
+    EXPECT_EQ(bound.commands_out_of_bounds, 0) << rotor;
+  }
+}
+
+// Same scenario, same seed: the same commands, bit for bit.
+TEST(MultiArmClosedLoopTest, SameSeedSameCommands) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const Scenario scenario = ScenarioFor("aggressive", vehicle, {"scenario.duration_s=2.0"});
+  const MultiArmClosedLoopRun first = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
+  const MultiArmClosedLoopRun second = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
+  ASSERT_EQ(first.commands_rad_s.size(), 1000u);  // 2 s at 500 Hz
+  EXPECT_EQ(first.commands_rad_s, second.commands_rad_s);
+  const Scenario other = ScenarioFor("aggressive", vehicle, {"scenario.duration_s=2.0", "scenario.seed=4"});
+  EXPECT_NE(RunMultiArmClosedLoop(vehicle, other, Nominal()).commands_rad_s, first.commands_rad_s);
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,132 @@
+#include "tools/eval_multi_arm_control.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+
+#include "controller/controller_params.h"
+#include "evaluation/multi_arm_closed_loop.h"
+#include "params/controller_config_yaml.h"
+#include "params/scenario_yaml.h"
+#include "params/vehicle_description_yaml.h"
+#include "program/config_files.h"
+#include "program/program_options.h"
+#include "transport/output_file.h"
+
+namespace birotor {
+namespace {
+
+// Settling band of the lateral step: 2 % of its 1 m [m].
+constexpr double kSettlingBandM = 0.02;
+// The loss cases: rotor k at 60 % of its thrust from 5 s of thrust_loss.
+constexpr double kLossScale = 0.6;
+constexpr char kLossPrefix[] = "loss40_rotor";
+
+std::vector<std::string> DefaultCases() {
+  return {"lateral_step", "aggressive", "loss40_rotor1", "loss40_rotor2", "loss40_rotor3"};
+}
+
+// A case: a scenario name, or loss40_rotorK (thrust_loss with rotor K at
+// 60 % from 5 s). *rotor: K, or 0 for a plain scenario.
+bool CaseScenario(const std::string& name, std::string* scenario, std::vector<std::string>* overrides, int* rotor) {
+  *rotor = 0;
+  *scenario = name;
+  if (name.rfind(kLossPrefix, 0) != 0) return true;
+  try {
+    *rotor = std::stoi(name.substr(sizeof(kLossPrefix) - 1));
+  } catch (const std::exception&) {
+    return false;
+  }
+  *scenario = "thrust_loss";
+  overrides->push_back(fmt::format("faults.thrust_steps=[{{time_s: 5.0, rotor: {}, scale: {}}}]", *rotor, kLossScale));
+  return true;
+}
+
+std::string Figure(double value, const char* format) {
+  return std::isnan(value) ? std::string("-") : fmt::format(fmt::runtime(format), value);
+}
+
+std::string Row(const std::string& name, const std::string& map, const MultiArmClosedLoopRun& run) {
+  const MultiArmFlightFigures f = FiguresOf(run, kSettlingBandM);
+  return fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} |\n", name,
+                     run.mode == MultiArmControlMode::kFullyActuated ? "fully actuated" : "tilt to move", map,
+                     f.rms_position_error_m, f.max_tilt_rad, Figure(f.settling_s, "{:.2f}"),
+                     Figure(f.overshoot_m, "{:.3f}"), Figure(f.max_altitude_deviation_m, "{:.4f}"),
+                     run.saturated_periods, run.commands_out_of_bounds);
+}
+
+// One case, nominal (and for a loss also with the true efficiencies): its
+// rows, or false with *error.
+bool FlyCase(const std::string& name, const VehicleDescription& vehicle, const ControllerConfig& controller,
+             const MultiArmControlInputs& inputs, std::string* rows, int64_t* out_of_bounds, std::string* error) {
+  std::string scenario_name;
+  std::vector<std::string> overrides;
+  int rotor = 0;
+  if (!CaseScenario(name, &scenario_name, &overrides, &rotor)) {
+    *error = "case '" + name + "': not a scenario name nor loss40_rotorK";
+    return false;
+  }
+  if (rotor > vehicle.arm_count) {
+    *rows += fmt::format("| {} | - | - | the vehicle has {} rotors | | | | | | |\n", name, vehicle.arm_count);
+    return true;
+  }
+  overrides.insert(overrides.end(), inputs.overrides.begin(), inputs.overrides.end());
+  std::string file = inputs.scenario_dir + "/" + scenario_name + ".yaml";
+  if (inputs.scenario_dir.empty() && !FindScenario(scenario_name, &file, error)) return false;
+  const Scenario scenario = LoadScenario(file, overrides, vehicle.arm_count);
+  ControllerConfig nominal = controller;
+  nominal.force_feedback = false;
+  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, nominal);
+  *rows += Row(name, "nominal", run);
+  *out_of_bounds += run.commands_out_of_bounds;
+  if (rotor == 0) return true;
+  ControllerConfig with_efficiency = controller;
+  with_efficiency.force_feedback = true;
+  TrueEfficiencyProvider truth;
+  MultiArmClosedLoopOptions options;
+  options.efficiency = &truth;
+  const MultiArmClosedLoopRun bound = RunMultiArmClosedLoop(vehicle, scenario, with_efficiency, options);
+  *rows += Row(name, "true efficiency (bound)", bound);
+  *out_of_bounds += bound.commands_out_of_bounds;
+  return true;
+}
+
+}  // namespace
+
+void AddMultiArmControlOptions(CLI::App& app, MultiArmControlCli* cli) {
+  app.add_option("--control-vehicle", cli->vehicle_file,
+                 "N-rotor control figures instead: fly the vehicle description in FILE with the product's N-rotor "
+                 "controller (MultiArmController, gains of --controller-params) lock-step over --scenarios (default "
+                 "lateral_step, aggressive, loss40_rotor1..3: thrust_loss with that rotor at 60 % from 5 s) with the "
+                 "nominal map (the loss cases also with the true efficiencies); RMS error, max tilt, settling within "
+                 "2 cm, overshoot, altitude deviation after the loss, saturated periods, commands outside "
+                 "[0, omega_max]");
+}
+
+int RunMultiArmControl(const MultiArmControlCli& cli, const MultiArmControlInputs& inputs) {
+  std::string rows, error;
+  int64_t out_of_bounds = 0;
+  try {
+    const VehicleDescription vehicle = LoadVehicleDescription(cli.vehicle_file);
+    const ControllerConfig controller = LoadControllerConfig(inputs.controller_params);
+    rows = fmt::format("N-rotor controller on '{}' ({} rotors), gains of {}\n\n", vehicle.name, vehicle.arm_count,
+                       inputs.controller_params);
+    rows +=
+        "| case | mode | map | RMS error [m] | max tilt [rad] | settling [s] | overshoot [m] | altitude dev. after "
+        "loss [m] | saturated periods | commands out of bounds |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const std::string& name : inputs.cases.empty() ? DefaultCases() : inputs.cases) {
+      if (!FlyCase(name, vehicle, controller, inputs, &rows, &out_of_bounds, &error)) return ReportError(error);
+    }
+  } catch (const std::exception& e) {
+    return ReportError(e.what());
+  }
+  std::printf("%s", rows.c_str());
+  if (!inputs.markdown_out.empty() && !WriteFileAtomically(inputs.markdown_out, rows, &error))
+    return ReportError(error);
+  if (out_of_bounds > 0) return ReportError(fmt::format("{} commands outside [0, omega_max]", out_of_bounds));
+  return 0;
+}
+
+}  // namespace birotor
