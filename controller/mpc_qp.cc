@@ -12,14 +12,9 @@ namespace {
 // Index of rotor i's command in block b in the decision vector.
 int InputIndex(int b, int rotor) { return kMpcInputSize * b + rotor; }
 
-// Tolerance of the answer check: alglib's interior point stops a little
-// inside or outside a bound; anything beyond this is an infeasible answer.
-constexpr double kBoundToleranceRadS = 0.05;
-constexpr double kSlackScaleRad = 0.1;     // typical tilt excess, for alglib's variable scaling
-constexpr double kInputScaleRadS = 100.0;  // typical command change, for alglib's variable scaling
+}  // namespace
 
-// Block starts round(N (b / B)^2), each at least one step after the last.
-std::vector<int> BlockStarts(int steps, int blocks) {
+std::vector<int> MpcBlockStarts(int steps, int blocks) {
   blocks = std::clamp(blocks, 1, steps);
   std::vector<int> starts(static_cast<size_t>(blocks) + 1);
   starts[0] = 0;
@@ -32,14 +27,12 @@ std::vector<int> BlockStarts(int steps, int blocks) {
   return starts;
 }
 
-std::vector<int> TiltSteps(int steps, int every) {
+std::vector<int> MpcTiltSteps(int steps, int every) {
   std::vector<int> out;
   for (int k = std::max(every, 1) - 1; k < steps; k += std::max(every, 1)) out.push_back(k);
   if (out.empty() || out.back() != steps - 1) out.push_back(steps - 1);
   return out;
 }
-
-}  // namespace
 
 struct MpcQp::Alglib {
   alglib::minqpstate state;
@@ -80,8 +73,8 @@ MpcQp::MpcQp(const MpcParams& params, double omega_max_rad_s, const MpcStateMatr
       n_(params.horizon_steps),
       blocks_(std::clamp(params.input_blocks, 1, params.horizon_steps)),
       variables_(kMpcInputSize * blocks_ + 1),
-      block_start_(BlockStarts(n_, blocks_)),
-      tilt_steps_(TiltSteps(n_, params.tilt_check_every_steps)),
+      block_start_(MpcBlockStarts(n_, blocks_)),
+      tilt_steps_(MpcTiltSteps(n_, params.tilt_check_every_steps)),
       gamma_(Eigen::MatrixXd::Zero(kMpcStateSize * n_, kMpcInputSize * n_)),
       gamma_blocked_(Eigen::MatrixXd::Zero(kMpcStateSize * n_, kMpcInputSize * blocks_)),
       offset_(kMpcStateSize * n_),
@@ -114,7 +107,7 @@ MpcQp::MpcQp(const MpcParams& params, double omega_max_rad_s, const MpcStateMatr
   a.upper.setlength(rows);
   a.start.setlength(variables_);
   a.scale.setlength(variables_);
-  for (int j = 0; j < variables_; ++j) a.scale[j] = (j == variables_ - 1) ? kSlackScaleRad : kInputScaleRadS;
+  for (int j = 0; j < variables_; ++j) a.scale[j] = (j == variables_ - 1) ? kMpcSlackScaleRad : kMpcInputScaleRadS;
   alglib::minqpcreate(variables_, a.state);
   alglib::minqpsetscale(a.state, a.scale);
   switch (params.algorithm) {
@@ -238,13 +231,13 @@ void MpcQp::BuildConstraints(const MpcQpData& data) {
 MpcSolveStatus MpcQp::Check(const Eigen::VectorXd& x) const {
   if (!x.allFinite()) return MpcSolveStatus::kNonFinite;
   for (int j = 0; j < variables_; ++j) {
-    if (x(j) < box_lower_(j) - kBoundToleranceRadS || x(j) > box_upper_(j) + kBoundToleranceRadS)
+    if (x(j) < box_lower_(j) - kMpcBoundToleranceRadS || x(j) > box_upper_(j) + kMpcBoundToleranceRadS)
       return MpcSolveStatus::kInfeasible;
   }
   const double step_change = params_.max_omega_rate_rad_s2 * params_.step_s;
   for (int b = 1; b < blocks_; ++b) {
     for (int i = 0; i < kMpcInputSize; ++i) {
-      if (std::fabs(x(InputIndex(b, i)) - x(InputIndex(b - 1, i))) > step_change + kBoundToleranceRadS)
+      if (std::fabs(x(InputIndex(b, i)) - x(InputIndex(b - 1, i))) > step_change + kMpcBoundToleranceRadS)
         return MpcSolveStatus::kInfeasible;
     }
   }

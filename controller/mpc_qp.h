@@ -27,6 +27,20 @@ namespace birotor {
 // Which state weights a solve plans with (MpcParams: the tracking ones, the
 // recovery_* ones after a sudden pitch disturbance, the descent_* ones in
 // the hover-infeasible descent).
+// Tolerance of the answer check: alglib's interior point stops a little
+// inside or outside a bound; anything beyond this is an infeasible answer.
+inline constexpr double kMpcBoundToleranceRadS = 0.05;
+inline constexpr double kMpcSlackScaleRad = 0.1;     // typical tilt excess, for alglib's variable scaling
+inline constexpr double kMpcInputScaleRadS = 100.0;  // typical command change, for alglib's variable scaling
+
+// Move blocking: the first prediction step of each of `blocks` blocks (clamped
+// to [1, steps]) and the end, B + 1 entries: block b starts at
+// round(N (b / B)^2), each at least one step after the last.
+std::vector<int> MpcBlockStarts(int steps, int blocks);
+// The 0-based steps k (state s_(k+1)) with a tilt constraint: every `every`-th
+// step and the last.
+std::vector<int> MpcTiltSteps(int steps, int every);
+
 enum class MpcWeightSet : int { kTracking = 0, kRecovery = 1, kDescent = 2 };
 constexpr int kMpcWeightSets = 3;
 
