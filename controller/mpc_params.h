@@ -84,6 +84,18 @@ struct MpcParams {
   // 1.03-1.10). Tilt 5000 (was 500): a 70-80 % loss mid-climb (cases
   // agg_loss*) touched down at 0.33-0.35 rad with 500, at most 0.295 with
   // 5000 (5 seeds), the hover loss_70 unchanged. Docs/mpc.md.
+  // The tilt and pitch rate weights of a fully-actuated vehicle (N >= 3
+  // rotors whose allocation spans F_x, F_z and the torque; the N-input MPC of
+  // controller/multi_arm_mpc.h): its tilt reference is 0 and it moves
+  // sideways through F_x, so tilting is a cost, not a means. With the
+  // birotor's 20 / 1 the trirotor (config/vehicles/trirotor.yaml) bought F_x
+  // with tilt (0.39 rad on a 1 m lateral step); 1e5 / 5000 flies it at 0.0036
+  // rad and settles as fast (1.93 s into 5 cm). Keep the tilt weight within
+  // ~20x the pitch rate weight: 1e5 / 1000 and 2e5 / 1000 drifted 0.07-0.14 m
+  // in altitude (the unmodelled arm modes under a stiff, undamped attitude;
+  // docs/mpc.md "N inputs"). The birotor's MPC never reads these.
+  double level_tilt_weight_1_rad2 = 1e5;
+  double level_pitch_rate_weight_s2_rad2 = 5000.0;
   double descent_position_weight_1_m2 = 300.0;
   double descent_velocity_weight_s2_m2 = 1000.0;
   double descent_tilt_weight_1_rad2 = 5000.0;

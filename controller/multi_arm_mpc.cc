@@ -55,17 +55,26 @@ MultiArmMpcStateMatrix MultiArmMpc::TerminalWeight(const MultiArmMpcModel& model
   return P;
 }
 
+MpcParams MultiArmMpc::PlanningParams(const MpcParams& params, bool fully_actuated) {
+  MpcParams out = params;
+  if (fully_actuated) {
+    out.tilt_weight_1_rad2 = params.level_tilt_weight_1_rad2;
+    out.pitch_rate_weight_s2_rad2 = params.level_pitch_rate_weight_s2_rad2;
+  }
+  return out;
+}
+
 MultiArmMpc::MultiArmMpc(const VehicleDescription& vehicle, const MpcParams& params)
     : vehicle_(vehicle),
-      params_(params),
-      model_(vehicle),
-      qp_(params, vehicle.arm_count, vehicle.omega_max_rad_s, TerminalWeight(model_, params)),
       fully_actuated_(ControlledAxesMargin(vehicle).rows == kWrenchSize),
+      params_(PlanningParams(params, fully_actuated_)),
+      model_(vehicle),
+      qp_(params_, vehicle.arm_count, vehicle.omega_max_rad_s, TerminalWeight(model_, params_)),
       omega_estimate_rad_s_(model_.hover_speed_rad_s()) {
   const int nu = vehicle.arm_count, ns = model_.state_size();
   data_.initial = MultiArmMpcState::Zero(ns);
-  data_.reference = Eigen::MatrixXd::Zero(ns, params.horizon_steps);
-  data_.feed_forward_rad_s = Eigen::MatrixXd::Zero(nu, params.horizon_steps);
+  data_.reference = Eigen::MatrixXd::Zero(ns, params_.horizon_steps);
+  data_.feed_forward_rad_s = Eigen::MatrixXd::Zero(nu, params_.horizon_steps);
   data_.last_command_rad_s = MultiArmMpcInputs::Zero(nu);
   const AllocationMatrix a = WrenchAllocation(vehicle);
   const Eigen::Matrix3d gram = a * a.transpose();

@@ -65,6 +65,10 @@ class MultiArmMpc {
   // step_s, as controller/mpc_controller.cc does; horizon->size() samples
   // (no allocation when the vector is already that long).
   static void ExtrapolateReference(const ReferencePoint& now, double step_s, std::vector<ReferencePoint>* horizon);
+  // The options a vehicle plans with: fully actuated, the tilt and pitch rate
+  // weights are MpcParams level_tilt_weight_1_rad2 and
+  // level_pitch_rate_weight_s2_rad2 (its tilt reference is 0); otherwise params.
+  static MpcParams PlanningParams(const MpcParams& params, bool fully_actuated);
   // The terminal weight P: the discrete Riccati solution of the hover model
   // with the stage weights and R = input weight x I_N.
   static MultiArmMpcStateMatrix TerminalWeight(const MultiArmMpcModel& model, const MpcParams& params);
@@ -92,11 +96,11 @@ class MultiArmMpc {
   MultiArmMpcInputs Fallback(const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s) const;
 
   VehicleDescription vehicle_;
-  MpcParams params_;
+  bool fully_actuated_ = false;
+  MpcParams params_;  // as given, with the level_* weights in place for a fully-actuated vehicle
   MultiArmMpcModel model_;
   MultiArmMpcQp qp_;
   MultiArmMpcQpData data_;
-  bool fully_actuated_ = false;
   Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxArms, 3> allocation_pinv_;  // A^+, N x 3 [N per N, N per N m]
   MultiArmMpcInputs omega_estimate_rad_s_;
 };
