@@ -8,14 +8,20 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <new>
 #include <vector>
 
 #include "controller/mpc_controller.h"
 #include "controller/multi_arm_mpc_flight.h"
 #include "model/multi_arm_plant.h"
 #include "tests/model/test_vehicles.h"
+
+// Heap allocations of this test program (operator new replaced below).
+std::atomic<long> g_allocations{0};
 
 namespace birotor {
 namespace {
@@ -83,6 +89,24 @@ TEST(MultiArmMpcModelTest, LinearStepMatchesTheNonlinearStepNearItsPoint) {
   const double error = (linear - exact).cwiseAbs().maxCoeff();
   std::printf("linear vs nonlinear step: max error %.3g\n", error);
   EXPECT_LT(error, 1.2e-4);  // measured 8.1e-5 (second-order terms of the step)
+}
+
+// Our part of a solve allocates nothing: the model's step and linearisation
+// and the feed-forward live in fixed maximum storage (alglib's solver
+// allocates inside; docs/mpc.md).
+TEST(MultiArmMpcModelTest, LinearisationAndFeedForwardDoNotAllocate) {
+  const MultiArmMpc mpc(test_vehicles::Trirotor(), MpcParams());
+  const MultiArmMpcModel& model = mpc.model();
+  const MultiArmMpcContext context = model.NominalContext();
+  const MultiArmMpcState s0 = model.HoverState();
+  const MultiArmMpcInputs u0 = model.hover_speed_rad_s();
+  const long before = g_allocations.load();
+  const MultiArmMpcLinearStep step = model.Linearize(s0, u0, context, 0.02);
+  const MultiArmMpcInputs feed_forward = mpc.FeedForward(Eigen::Vector2d(1.0, -0.5), Ones(3));
+  const long allocations = g_allocations.load() - before;
+  EXPECT_EQ(allocations, 0);
+  EXPECT_GT(step.b(kMpcXDot, 1), 0.0);          // rotor 2 pushes towards +x (thrust up-right)
+  EXPECT_GT(feed_forward(1), feed_forward(2));  // +x acceleration: rotor 2 above rotor 3
 }
 
 TEST(MultiArmMpcTest, TrirotorAtHoverCommandsTheHoverSpeeds) {
@@ -168,3 +192,11 @@ TEST(MultiArmMpcFlightTest, BirotorHasToTiltForTheSameStep) {
 
 }  // namespace
 }  // namespace birotor
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }

@@ -40,6 +40,8 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.mpc.descent_velocity_weight_s2_m2, defaults.mpc.descent_velocity_weight_s2_m2);
   EXPECT_EQ(config.mpc.descent_tilt_weight_1_rad2, defaults.mpc.descent_tilt_weight_1_rad2);
   EXPECT_EQ(config.mpc.descent_pitch_rate_weight_s2_rad2, defaults.mpc.descent_pitch_rate_weight_s2_rad2);
+  EXPECT_EQ(config.mpc.level_tilt_weight_1_rad2, defaults.mpc.level_tilt_weight_1_rad2);
+  EXPECT_EQ(config.mpc.level_pitch_rate_weight_s2_rad2, defaults.mpc.level_pitch_rate_weight_s2_rad2);
 }
 
 TEST(ControllerConfigYamlTest, MissingKeysAreNamed) {
