@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "controller/multi_arm_mpc_flight.h"
+#include "controller/multi_arm_mpc_model.h"
 #include "numerics/percentile.h"
 #include "params/vehicle_description_yaml.h"
 
@@ -48,6 +49,17 @@ void FlyAndTime(benchmark::State& state, const std::string& vehicle_file) {
   state.counters["max_iterations"] = max_iterations;
   state.counters["fallbacks"] = fallbacks;
 }
+
+// The linearisation alone (central differences: 2 (6 + 2N) + 1 RK4 steps of
+// the N-arm body rows), the part of a solve that grows with N besides the QP.
+void BM_MultiArmMpcLinearizeThreeInputs(benchmark::State& state) {
+  const MultiArmMpcModel model(
+      LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml"));
+  const MultiArmMpcState s0 = model.HoverState();
+  const MultiArmMpcContext context = model.NominalContext();
+  for (auto _ : state) benchmark::DoNotOptimize(model.Linearize(s0, model.hover_speed_rad_s(), context, 0.02));
+}
+BENCHMARK(BM_MultiArmMpcLinearizeThreeInputs)->Unit(benchmark::kMicrosecond);
 
 void BM_MultiArmMpcThreeInputs(benchmark::State& state) { FlyAndTime(state, "config/vehicles/trirotor.yaml"); }
 void BM_MultiArmMpcTwoInputs(benchmark::State& state) { FlyAndTime(state, "config/vehicles/birotor.yaml"); }
