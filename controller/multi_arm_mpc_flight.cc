@@ -35,9 +35,11 @@ MultiArmMpcFlightResult FlyMultiArmMpc(const VehicleDescription& vehicle, const 
   target.position_m = options.target_m;
   std::vector<ReferencePoint> reference(static_cast<size_t>(params.horizon_steps));
   MultiArmMpc::ExtrapolateReference(target, params.step_s, &reference);
-  const MultiArmMpcInputs efficiency = MultiArmMpcInputs::Ones(nu);
+  MultiArmMpcInputs efficiency(nu);
+  for (int i = 0; i < nu; ++i) efficiency(i) = options.planned_efficiency[static_cast<size_t>(i)];
   MultiArmMpcInputs command = mpc.rotor_speed_estimate_rad_s();
   MultiArmPlantInput input;
+  input.thrust_scale = options.plant_efficiency;
 
   MultiArmMpcFlightResult out;
   out.solve_cpu_s.reserve(static_cast<size_t>(periods));

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "controller/mpc_params.h"
@@ -23,6 +24,10 @@ struct MultiArmMpcFlightOptions {
   // Distance to the target [m] under which the vehicle counts as there
   // (MultiArmMpcFlightResult::settle_s).
   double settle_band_m = 0.05;
+  // e_i of the plant's rotors (its thrust scale mu_i) and the ones the MPC
+  // plans with (FORCE's estimate in flight) [1]; entries [0, N) are used.
+  std::array<double, kMaxArms> plant_efficiency{1, 1, 1, 1, 1, 1};
+  std::array<double, kMaxArms> planned_efficiency{1, 1, 1, 1, 1, 1};
 };
 
 struct MultiArmMpcFlightResult {
@@ -45,7 +50,7 @@ struct MultiArmMpcFlightResult {
 
 // Flies the description from hover at the origin (SolveMultiArmHover's
 // deflections and speeds) with the MPC at params.rate_hz on the true body
-// state, efficiencies 1, each command held over its period.
+// state (efficiencies as the options say), each command held over its period.
 MultiArmMpcFlightResult FlyMultiArmMpc(const VehicleDescription& vehicle, const MpcParams& params,
                                        const MultiArmMpcFlightOptions& options);
 
