@@ -66,19 +66,17 @@ MpcParams MultiArmMpc::PlanningParams(const MpcParams& params, bool fully_actuat
 
 MultiArmMpc::MultiArmMpc(const VehicleDescription& vehicle, const MpcParams& params)
     : vehicle_(vehicle),
-      fully_actuated_(ControlledAxesMargin(vehicle).rows == kWrenchSize),
+      fully_actuated_(MultiArmControlModeFor(vehicle) == MultiArmControlMode::kFullyActuated),
       params_(PlanningParams(params, fully_actuated_)),
       model_(vehicle),
       qp_(params_, vehicle.arm_count, vehicle.omega_max_rad_s, TerminalWeight(model_, params_)),
+      allocator_(vehicle, MultiArmControlModeFor(vehicle)),
       omega_estimate_rad_s_(model_.hover_speed_rad_s()) {
   const int nu = vehicle.arm_count, ns = model_.state_size();
   data_.initial = MultiArmMpcState::Zero(ns);
   data_.reference = Eigen::MatrixXd::Zero(ns, params_.horizon_steps);
   data_.feed_forward_rad_s = Eigen::MatrixXd::Zero(nu, params_.horizon_steps);
   data_.last_command_rad_s = MultiArmMpcInputs::Zero(nu);
-  const AllocationMatrix a = WrenchAllocation(vehicle);
-  const Eigen::Matrix3d gram = a * a.transpose();
-  allocation_pinv_ = a.transpose() * gram.inverse();
 }
 
 double MultiArmMpc::ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2) const {
@@ -91,20 +89,22 @@ double MultiArmMpc::ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2) cons
 MultiArmMpcInputs MultiArmMpc::FeedForward(const Eigen::Vector2d& acceleration_m_s2,
                                            const MultiArmMpcInputs& efficiency) const {
   const int nu = rotors();
-  const double g = vehicle_.gravity_m_s2;
-  MultiArmMpcInputs force_n(nu);
+  MultiArmMpcInputs omega(nu);
   if (fully_actuated_) {
     const double m = vehicle_.TotalMass();
-    force_n = model_.hover_force_n() +
-              allocation_pinv_ * Eigen::Vector3d(m * acceleration_m_s2.x(), m * acceleration_m_s2.y(), 0.0);
-  } else {
-    const double scale = std::hypot(acceleration_m_s2.x(), std::max(g + acceleration_m_s2.y(), 0.1 * g)) / g;
-    force_n = scale * model_.hover_force_n();
+    RotorEfficiencies e = NominalEfficiencies();
+    for (int i = 0; i < nu; ++i) e[static_cast<size_t>(i)] = efficiency(i);
+    const MultiArmRotorCommand command =
+        allocator_.Allocate(ArmForces<double>(model_.hover_force_n()),
+                            Eigen::Vector3d(m * acceleration_m_s2.x(), m * acceleration_m_s2.y(), 0.0), e);
+    for (int i = 0; i < nu; ++i) omega(i) = command.omega_cmd_rad_s[static_cast<size_t>(i)];
+    return omega;
   }
-  MultiArmMpcInputs omega(nu);
+  const double g = vehicle_.gravity_m_s2;
+  const double scale = std::hypot(acceleration_m_s2.x(), std::max(g + acceleration_m_s2.y(), 0.1 * g)) / g;
   for (int i = 0; i < nu; ++i) {
     omega(i) = RotorSpeedForThrust(vehicle_.arms[static_cast<size_t>(i)].thrust_coeff_n_s2_rad2,
-                                   vehicle_.omega_max_rad_s, force_n(i), efficiency(i));
+                                   vehicle_.omega_max_rad_s, scale * model_.hover_force_n()(i), efficiency(i));
   }
   return omega;
 }

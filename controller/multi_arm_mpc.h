@@ -21,6 +21,7 @@
 #include "controller/multi_arm_mpc_qp.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
+#include "controller/wrench_allocation.h"
 #include "model/vehicle_description.h"
 
 namespace birotor {
@@ -74,11 +75,12 @@ class MultiArmMpc {
   static MultiArmMpcStateMatrix TerminalWeight(const MultiArmMpcModel& model, const MpcParams& params);
 
   // Rotor speeds [rad/s] that make the reference acceleration a (world
-  // frame) with efficiencies e. Fully actuated: f = f_hover + A^+ [m a_x,
-  // m a_z, 0] at zero tilt (A: WrenchAllocation, A^+ its pseudo-inverse, m the
-  // total mass); N = 2: f_i = f_hover,i |[a_x, max(g + a_z, 0.1 g)]| / g
-  // (the birotor's feed-forward). omega_i = sqrt(max(f_i, 0) / (e_i c_T,i)),
-  // at most omega_max.
+  // frame) with efficiencies e. Fully actuated (MultiArmControlModeFor):
+  // f = f_hover + A^+ [m a_x, m a_z, 0] at zero tilt, m the total mass, by
+  // controller/wrench_allocation.h's WrenchAllocator (its pseudo-inverse and
+  // saturation priority); otherwise f_i = f_hover,i |[a_x, max(g + a_z,
+  // 0.1 g)]| / g (the birotor MPC's feed-forward). omega_i = sqrt(max(f_i, 0)
+  // / (e_i c_T,i)), at most omega_max.
   MultiArmMpcInputs FeedForward(const Eigen::Vector2d& acceleration_m_s2, const MultiArmMpcInputs& efficiency) const;
   // The tilt the reference acceleration needs [rad]: 0 when fully actuated,
   // atan2(-a_x, max(g + a_z, 0.1 g)) within +-max_tilt_rad otherwise.
@@ -101,7 +103,7 @@ class MultiArmMpc {
   MultiArmMpcModel model_;
   MultiArmMpcQp qp_;
   MultiArmMpcQpData data_;
-  Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxArms, 3> allocation_pinv_;  // A^+, N x 3 [N per N, N per N m]
+  WrenchAllocator allocator_;  // the feed-forward thrusts of a fully-actuated vehicle
   MultiArmMpcInputs omega_estimate_rad_s_;
 };
 
