@@ -111,7 +111,7 @@ struct SupervisionParams {
 // (controller/efficiency_conditioner.h, issue 25): followed only while FORCE
 // flags a rotor fault or a thrust deficit, relative to the unflagged flight
 // before, filtered and rate limited, frozen until airborne, decaying towards
-// 1 otherwise.
+// 1 otherwise; times the trusted absolute mu0 (issue 36 item 5).
 struct EfficiencyParams {
   double airborne_force_fraction = 0.8;  // airborne: FORCE's total thrust above this share of the weight [1]
   double airborne_s = 0.3;               // ... for this long [s]
