@@ -111,7 +111,7 @@ struct SupervisionParams {
 // (controller/efficiency_conditioner.h, issue 25): followed only while FORCE
 // flags a rotor fault or a thrust deficit, relative to the unflagged flight
 // before, filtered and rate limited, frozen until airborne, decaying towards
-// 1 otherwise.
+// 1 otherwise; times the trusted absolute mu0 (issue 36 item 5).
 struct EfficiencyParams {
   double airborne_force_fraction = 0.8;  // airborne: FORCE's total thrust above this share of the weight [1]
   double airborne_s = 0.3;               // ... for this long [s]
@@ -123,8 +123,16 @@ struct EfficiencyParams {
   double blend_after_s = 0.2;            // a fallback at least this long is blended out of [s]
   double blend_s = 1.5;                  // back from a fallback: blended in (time constant blend_s / 3) [s]
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
-  double feasibility_margin = 1.02;      // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
-  double infeasible_s = 0.1;             // infeasible this long: level controlled descent [s]
+  // The absolute rule (issue 36 item 5): a trusted mu0_i is flown itself,
+  // e_i = a_i c_i with a_i towards mu0_i (EfficiencyConditioner).
+  double absolute_tau_s = 0.2;                // time constant of a_i towards mu0_i (0: off) [s]
+  double absolute_settle_s = 0.1;             // airborne FORCE seen before mu0 is trusted [s]
+  double absolute_max_relative_sigma = 0.05;  // trusted only while force_std_i / |force_i| is below [1]
+  double absolute_threshold = 0.05;           // |mu0_i - 1| above: flown; back below half of it: a_i towards 1 [1]
+  double min_absolute_efficiency = 0.7;       // bounds of a_i [1]
+  double max_absolute_efficiency = 1.3;       // [1]
+  double feasibility_margin = 1.02;           // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
+  double infeasible_s = 0.1;                  // infeasible this long: level controlled descent [s]
   // Infeasibility from the vehicle itself (force feedback; FORCE refused at
   // its plausibility floor on a large loss): the allocation limited for
   // sink_detect_s while the vehicle is more than sink_detect_altitude_m below

@@ -38,6 +38,30 @@ void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
   }
   has_baseline_ = true;
   settled_s_ += std::min(dt_s, 0.1);  // a gap does not count
+  NoteAbsolute(e);
+}
+
+void EfficiencyConditioner::NoteAbsolute(const ForceEstimate& e) {
+  // The caller passes VALID samples only; MODEL_MISMATCH withdraws VALID, the
+  // bit is tested again so the rule does not rest on the caller.
+  const bool estimator_sure = (e.status & (kStatusModelMismatch | kStatusConverging)) == 0;
+  const bool settled = settled_s_ >= params_.absolute_settle_s;
+  for (int i = 0; i < kBirotorRotors; ++i) {
+    const bool precise = e.force_std_n[i] <= params_.absolute_max_relative_sigma * std::fabs(e.force_n[i]);
+    trusted_[i] = params_.absolute_tau_s > 0.0 && settled && estimator_sure && precise;
+    if (!trusted_[i]) continue;
+    // A matched vehicle's mu0 wanders by a few per cent (noise, turbulence):
+    // left to the integrators. A vehicle off the map by more than
+    // absolute_threshold is flown on mu0 until it is back within half of it
+    // (hysteresis: no toggling at the threshold). While rotor i is flagged
+    // its baseline holds, and so does this target.
+    const double offset = std::fabs(baseline_[i] - 1.0);
+    if (offset > params_.absolute_threshold) absolute_engaged_[i] = true;
+    if (offset < 0.5 * params_.absolute_threshold) absolute_engaged_[i] = false;
+    absolute_target_[i] = absolute_engaged_[i] ? std::clamp(baseline_[i], params_.min_absolute_efficiency,
+                                                            params_.max_absolute_efficiency)
+                                               : 1.0;
+  }
 }
 
 void EfficiencyConditioner::Advance(double dt_s, bool usable) {
@@ -51,13 +75,20 @@ void EfficiencyConditioner::Advance(double dt_s, bool usable) {
   const double flagged_tau_s =
       blend_left_s_ > 0.0 ? std::max(params_.fault_tau_s, params_.blend_s / 3.0) : params_.fault_tau_s;
   blend_left_s_ = std::max(0.0, blend_left_s_ - dt_s);
+  const double max_step = params_.max_rate_1_s * dt_s;
   for (int i = 0; i < kBirotorRotors; ++i) {
     const bool flagged = follow && flagged_[i];
     const double goal = flagged ? target_[i] : 1.0;
     const double tau_s = flagged ? flagged_tau_s : params_.decay_s;
-    const double step = (goal - efficiency_[i]) * std::min(1.0, dt_s / tau_s);
-    const double max_step = params_.max_rate_1_s * dt_s;
-    efficiency_[i] += std::clamp(step, -max_step, max_step);
+    const double step = (goal - change_[i]) * std::min(1.0, dt_s / tau_s);
+    change_[i] += std::clamp(step, -max_step, max_step);
+    // The absolute factor: towards the trusted mu0_i slowly, else towards 1
+    // as the change factor decays (continuous both ways).
+    const bool trusted = follow && trusted_[i];
+    const double absolute_goal = trusted ? absolute_target_[i] : 1.0;
+    const double absolute_tau_s = trusted ? params_.absolute_tau_s : params_.decay_s;
+    const double absolute_step = (absolute_goal - absolute_[i]) * std::min(1.0, dt_s / absolute_tau_s);
+    absolute_[i] += std::clamp(absolute_step, -max_step, max_step);
   }
 }
 

@@ -12,6 +12,19 @@
 //    moves mu slowly and unflagged, is left to the nominal loop's
 //    integrators instead of being applied as a disturbance;
 //  - a sample whose force sigma is large is not followed;
+//  - what is learned is flown too (issue 36 item 5): e_i = a_i c_i, c_i the
+//    change factor above (mu_i / mu0_i while flagged, else 1) and a_i the
+//    absolute factor: towards mu0_i itself (within [min, max]_absolute_
+//    efficiency) with absolute_tau_s while FORCE is VALID, neither
+//    MODEL_MISMATCH nor CONVERGING, force_std_i <= absolute_max_relative_sigma
+//    x |force_i| and absolute_settle_s of airborne FORCE seen, and only once
+//    |mu0_i - 1| has exceeded absolute_threshold (until it is back within
+//    half of it: a matched vehicle's few per cent stay with the integrators);
+//    a vehicle whose rotors make 0.85 of the map (c_T -15 %, thinner air) is
+//    flown with e = 0.85 instead of being left to the integrators. mu0_i is
+//    itself low-passed (baseline_tau_s), so e moves on the sum of both time
+//    constants, slow against the motor and the attitude loop. Otherwise a_i
+//    decays towards 1 with decay_s. absolute_tau_s 0: off (the issue 25 rule);
 //  - first-order towards the target with fault_tau_s, rate limited: a
 //    ringing estimate cannot drive the rotors;
 //  - when FORCE is unusable or the flag clears, the efficiency decays towards
@@ -39,15 +52,27 @@ class EfficiencyConditioner {
   // One control period of dt_s [s]; usable: FORCE may be flown on now.
   void Advance(double dt_s, bool usable);
 
-  double efficiency(int rotor) const { return efficiency_[rotor]; }
+  // e_i = a_i c_i, the efficiency the rotor map flies [1].
+  double efficiency(int rotor) const { return absolute_[rotor] * change_[rotor]; }
+  // c_i: mu_i / mu0_i while the change is real, else towards 1 [1].
+  double change(int rotor) const { return change_[rotor]; }
+  // a_i: the trusted absolute thrust_scale mu0_i, followed slowly [1].
+  double absolute(int rotor) const { return absolute_[rotor]; }
   bool airborne() const { return airborne_; }
   // The unflagged thrust_scale mu0_i the efficiency is relative to [1].
   double baseline(int rotor) const { return baseline_[rotor]; }
 
  private:
+  // The absolute rule's facts of one VALID sample (trusted_, absolute_target_).
+  void NoteAbsolute(const ForceEstimate& estimate);
+
   EfficiencyParams params_;
   double weight_n_;
-  double efficiency_[kBirotorRotors] = {1.0, 1.0};
+  double change_[kBirotorRotors] = {1.0, 1.0};    // c_i [1]
+  double absolute_[kBirotorRotors] = {1.0, 1.0};  // a_i [1]
+  double absolute_target_[kBirotorRotors] = {1.0, 1.0};
+  bool absolute_engaged_[kBirotorRotors] = {false, false};  // |mu0_i - 1| beyond absolute_threshold (hysteresis)
+  bool trusted_[kBirotorRotors] = {false, false};           // the newest sample's mu0_i may be flown absolutely
   double target_[kBirotorRotors] = {1.0, 1.0};
   bool flagged_[kBirotorRotors] = {false, false};  // FORCE says rotor i's change is real
   // Airborne test on FORCE stamps.

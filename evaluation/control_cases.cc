@@ -23,6 +23,17 @@ ControlCase AggressiveLoss(const char* name, int rotor, double scale) {
                          " loses " + std::to_string(static_cast<int>(std::lround(100 * (1 - scale)))) + " % mid-climb"};
 }
 
+// Issue 36 item 5: a payload (body 4.0 -> 4.6 kg, +15 %) and rotor 1
+// dropping to `scale` at 5 s in the hover (thrust_loss_severe's timing).
+ControlCase PayloadLoss(const char* name, double scale) {
+  return ControlCase{name,
+                     "thrust_loss_severe",
+                     {"scenario.duration_s=10", "vehicle.body_mass_kg=4.6",
+                      "faults.thrust_steps=[{time_s: 5.0, rotor: 1, scale: " + std::to_string(scale) + "}]"},
+                     "body mass +15 % (payload), rotor 1 loses " +
+                         std::to_string(static_cast<int>(std::lround(100 * (1 - scale)))) + " % at 5 s"};
+}
+
 }  // namespace
 
 const std::vector<ControlCase>& ControlCases() {
@@ -83,6 +94,31 @@ const std::vector<ControlCase>& ControlCases() {
         "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 0.4}]",
         "faults.thrust_steps=[{time_s: 6.0, rotor: 2, scale: 0.2}]"},
        "take off to 0.4 m, rotor 2 loses 80 % at 6 s (FORCE at its plausibility floor: level descent)"},
+      // Issue 36 item 5: a changed vehicle the estimator can read (c_T 4.6e-5
+      // x 0.85 = 3.91e-5; body 4.0 x 1.15 = 4.6 kg; tip mass 0.28812 x 1.2).
+      {"ct_-15",
+       "hover",
+       {"scenario.duration_s=10", "vehicle.thrust_coeff_n_s2_rad2=3.91e-5"},
+       "thrust coefficient c_T -15 % (plant only), hover"},
+      {"density_0.85",
+       "hover",
+       {"scenario.duration_s=10", "faults.initial_thrust_scale=[0.85, 0.85]"},
+       "air 15 % thinner (both rotors at 0.85 of the map throughout), hover"},
+      PayloadLoss("payload_+15_loss_40", 0.6),
+      PayloadLoss("payload_+15_loss_60", 0.4),
+      {"all_different",
+       "mismatch_all",
+       {"scenario.duration_s=10"},
+       "mismatch_all vehicle: k +20 %, m_p +20 %, m +15 %, gauge scale 0.7 on arm 1, c_T +20 %, tau_m +30 %, "
+       "gentle"},
+      {"tip_mass_+20",
+       "hover",
+       {"scenario.duration_s=10", "vehicle.tip_mass_kg=0.345744"},
+       "tip mass +20 % (plant only), hover"},
+      {"turbulence_0.05",
+       "hover",
+       {"scenario.duration_s=10", "vehicle.turbulence_std=0.05"},
+       "thrust turbulence 0.05 (5x the default), hover"},
   };
   return cases;
 }

@@ -1,11 +1,12 @@
-// birotor-replay core: log events through the daemon's EstimatorService.
+// birotor-replay core: log events through the daemon's estimator node.
 #include "replay/replayer.h"
 
 #include "sources/log_source.h"
 
 namespace birotor {
 
-Replayer::Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink)
+template <class Service>
+BasicReplayer<Service>::BasicReplayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink)
     : options_(options),
       channels_(MakeChannelNames(options.prefix)),
       sink_(sink),
@@ -19,14 +20,16 @@ Replayer::Replayer(const EstimatorConfig& config, const ReplayOptions& options, 
           }(),
           sink) {}
 
-int64_t Replayer::StrainFaultCount() const {
-  const PipelineHealth& health = service_.health();
+template <class Service>
+int64_t BasicReplayer<Service>::StrainFaultCount() const {
+  const auto& health = service_.health();
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
   return strain.gaps + strain.out_of_order + strain.duplicates + strain.rejected_invalid + strain.decode_errors +
          health.resets;
 }
 
-void Replayer::Process(std::string_view channel, int64_t timestamp_us, const void* data, size_t size) {
+template <class Service>
+void BasicReplayer<Service>::Process(std::string_view channel, int64_t timestamp_us, const void* data, size_t size) {
   ++stats_.events;
   if (service_.IsInputChannel(channel)) {
     ++stats_.input_packets;
@@ -46,13 +49,15 @@ void Replayer::Process(std::string_view channel, int64_t timestamp_us, const voi
       stats_.strain_fault_utimes.push_back(newest);
     }
     service_.PublishStatusOnVehicleClock();
-  } else if (options_.copy_truth && channel == channels_.truth) {
-    sink_->Publish(channels_.truth, timestamp_us, data, size);
+  } else if (options_.copy_truth && (channel == channels_.truth || channel == channels_.truth_n)) {
+    sink_->Publish(channel == channels_.truth ? channels_.truth : channels_.truth_n, timestamp_us, data, size);
     ++stats_.truth_copied;
   }
 }
 
-bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
+template class BasicReplayer<EstimatorService>;
+
+bool ReplayLogFile(const std::string& input_path, PacketHandler* replayer, std::string* damage, std::string* error,
                    double min_usable_fraction) {
   LogSource source;
   if (!source.Open(input_path, error) || !source.Subscribe({}, replayer, error)) return false;

@@ -37,16 +37,19 @@ struct ReplayStats {
   std::vector<int64_t> strain_fault_utimes;
 };
 
-// Runs packets through one EstimatorService. Not thread-safe. It is a
-// PacketHandler, so a MessageSource (a log file) feeds it, and a
-// MessageSink, so a producer (the simulator through WireSampleSink) can
-// publish straight into it.
-class Replayer : public MessageSink, public PacketHandler {
+// Runs packets through one estimator node: EstimatorService (the birotor's
+// channels; Replayer) or MultiArmEstimatorService (a vehicle description
+// with N arms, the counted channels; MultiArmReplayer, birotor-replay
+// --vehicle). Not thread-safe. It is a PacketHandler, so a MessageSource (a
+// log file) feeds it, and a MessageSink, so a producer (the simulator
+// through WireSampleSink) can publish straight into it.
+template <class Service>
+class BasicReplayer : public MessageSink, public PacketHandler {
  public:
-  Replayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink);
+  BasicReplayer(const EstimatorConfig& config, const ReplayOptions& options, MessageSink* sink);
 
   // One event of a log (or a simulated packet): inputs go to the estimator,
-  // TRUTH is copied through when asked, anything else is ignored.
+  // TRUTH and TRUTH_N are copied through when asked, anything else is ignored.
   void Process(std::string_view channel, int64_t timestamp_us, const void* data, size_t size);
   void Publish(const std::string& channel, int64_t timestamp_us, const void* data, size_t size) override {
     Process(channel, timestamp_us, data, size);
@@ -59,7 +62,7 @@ class Replayer : public MessageSink, public PacketHandler {
   }
 
   const ReplayStats& stats() const { return stats_; }
-  const EstimatorService& service() const { return service_; }
+  const Service& service() const { return service_; }
   const ChannelNames& channels() const { return channels_; }
 
  private:
@@ -68,17 +71,19 @@ class Replayer : public MessageSink, public PacketHandler {
   ReplayOptions options_;
   ChannelNames channels_;
   MessageSink* sink_;
-  EstimatorService service_;
+  Service service_;
   ReplayStats stats_;
   int64_t strain_fault_count_ = 0;
 };
+
+using Replayer = BasicReplayer<EstimatorService>;
 
 // Replays every event of the log at input_path. False with a one-line *error
 // when the log cannot be opened or is not usable (CheckLogUsable of
 // transport/log_io.h: empty, no readable event, less than
 // min_usable_fraction of its bytes readable). *damage (optional) gets a
 // warning line when a usable log had corrupt events or a cut tail.
-bool ReplayLogFile(const std::string& input_path, Replayer* replayer, std::string* damage, std::string* error,
+bool ReplayLogFile(const std::string& input_path, PacketHandler* replayer, std::string* damage, std::string* error,
                    double min_usable_fraction = kDefaultMinUsableLogFraction);
 
 }  // namespace birotor

@@ -86,13 +86,23 @@ TEST(VehicleControllerTest, AFallingEfficiencyIsLedByTheMotorLagARisingOneIsNot)
   }
 }
 
-TEST(VehicleControllerTest, ConstantScaleFromTakeOffIsLeftToTheIntegrators) {
-  // A constant bias from take-off on (gauge scale, stiffness), unflagged, is
-  // the nominal loop's business: e stays 1.
+TEST(VehicleControllerTest, ConstantTrustedScaleFromTakeOffIsFlownAbsolutely) {
+  // Issue 36 item 5: a VALID, precise scale from take-off on is what the
+  // rotor makes (a model the estimator cannot explain withdraws VALID), so
+  // e_2 follows mu0_2 = 0.7 (absolute_tau_s 0.2 s, 4 s here: 20 taus).
   HoverFeed feed{ControllerConfig()};
   feed.scale2 = 0.7;
   feed.Run(2000);
-  EXPECT_NEAR(feed.controller().health().efficiency[1], 1.0, 1e-9);
+  EXPECT_NEAR(feed.controller().health().efficiency[1], 0.7, 1e-6);
+  EXPECT_NEAR(feed.controller().health().efficiency[0], 1.0, 1e-9);
+  // With the absolute rule off (absolute_tau_s 0) the unflagged bias is the
+  // nominal loop's business, the issue 25 rule: e stays 1.
+  ControllerConfig off;
+  off.efficiency.absolute_tau_s = 0.0;
+  HoverFeed issue25{off};
+  issue25.scale2 = 0.7;
+  issue25.Run(2000);
+  EXPECT_NEAR(issue25.controller().health().efficiency[1], 1.0, 1e-9);
 }
 
 TEST(VehicleControllerTest, BadForceFallsBackWithinOnePeriodAndReturnsWithoutAJump) {

@@ -36,6 +36,12 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.supervision.descent_rate_m_s, defaults.supervision.descent_rate_m_s);
   EXPECT_EQ(config.efficiency.flare_tilt_rad, defaults.efficiency.flare_tilt_rad);
   EXPECT_EQ(config.efficiency.flare_time_s, defaults.efficiency.flare_time_s);
+  EXPECT_EQ(config.efficiency.absolute_tau_s, defaults.efficiency.absolute_tau_s);
+  EXPECT_EQ(config.efficiency.absolute_settle_s, defaults.efficiency.absolute_settle_s);
+  EXPECT_EQ(config.efficiency.absolute_max_relative_sigma, defaults.efficiency.absolute_max_relative_sigma);
+  EXPECT_EQ(config.efficiency.absolute_threshold, defaults.efficiency.absolute_threshold);
+  EXPECT_EQ(config.efficiency.min_absolute_efficiency, defaults.efficiency.min_absolute_efficiency);
+  EXPECT_EQ(config.efficiency.max_absolute_efficiency, defaults.efficiency.max_absolute_efficiency);
   EXPECT_EQ(config.mpc.descent_position_weight_1_m2, defaults.mpc.descent_position_weight_1_m2);
   EXPECT_EQ(config.mpc.descent_velocity_weight_s2_m2, defaults.mpc.descent_velocity_weight_s2_m2);
   EXPECT_EQ(config.mpc.descent_tilt_weight_1_rad2, defaults.mpc.descent_tilt_weight_1_rad2);
@@ -72,6 +78,10 @@ TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
   e = ErrorOf("mpc: {level_tilt_weight_1_rad2: -1}\n");
   EXPECT_NE(e.find("mpc.level_tilt_weight_1_rad2"), std::string::npos) << e;
   EXPECT_NE(e.find("allowed: [0, 1e+08]"), std::string::npos) << e;
+  // The absolute efficiency stays inside the plausible scales and on its side of 1.
+  e = ErrorOf("controller:\n  efficiency: {min_absolute_efficiency: 1.1}\n");
+  EXPECT_NE(e.find("bad.yaml: key 'controller.efficiency.min_absolute_efficiency'"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0.2, 1]"), std::string::npos) << e;
   EXPECT_THROW(LoadControllerConfig("/nonexistent/controller.yaml"), ParamError);
 }
 
