@@ -47,6 +47,16 @@ struct MultiArmMpcLinearStep {
   MultiArmMpcState c;        // F(s0, u0) - A s0 - B u0
 };
 
+// The birotor model's fixed-size step (controller/mpc_model.h) as an N = 2
+// step: the same numbers, for the one QP (controller/mpc_qp.h).
+inline MultiArmMpcLinearStep Generalized(const MpcLinearStep& step) {
+  MultiArmMpcLinearStep out;
+  out.a = step.a;
+  out.b = step.b;
+  out.c = step.c;
+  return out;
+}
+
 class MultiArmMpcModel {
  public:
   explicit MultiArmMpcModel(const VehicleDescription& vehicle);
