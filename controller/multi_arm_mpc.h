@@ -8,8 +8,9 @@
 // level: tilt reference 0, the lateral reference tracked through F_x; a
 // birotor (N = 2) tilts for F_x as controller/mpc_controller.h does. On a
 // failed, late or bad solve the command is the documented fallback (Solve).
-// The birotor's product MPC stays controller/mpc_controller.h; this one is not
-// wired into the product controller or the lock-step loop yet (docs/mpc.md).
+// The birotor's product MPC stays controller/mpc_controller.h (the same QP);
+// this one flies in MultiArmController's mode mpc, the N-rotor lock-step loop
+// (evaluation/multi_arm_closed_loop.h), docs/mpc.md.
 #pragma once
 
 #include <Eigen/Core>
