@@ -28,33 +28,23 @@ double ThreadCpuS() {
 
 }  // namespace
 
-MpcStateMatrix MpcController::TerminalWeight(const MpcPredictionModel& model, const MpcParams& params) {
+MultiArmMpcStateMatrix MpcController::TerminalWeight(const MpcPredictionModel& model, const MpcParams& params) {
   const double omega_hover = RotorSpeedForThrust(model.vehicle(), model.hover_force_n(), 1.0);
-  const MpcState s0 = HoverState(omega_hover);
-  const MpcLinearStep step =
-      model.Linearize(s0, Eigen::Vector2d::Constant(omega_hover), MpcModelContext(), params.step_s);
-  const MpcStateMatrix Q = MpcQp::StageWeight(params);
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * params.input_weight_s2_rad2;
-  // P = Q + A^T P A - A^T P B (R + B^T P B)^-1 B^T P A, iterated to a fixed point.
-  MpcStateMatrix P = Q;
-  for (int i = 0; i < 5000; ++i) {
-    const Eigen::Matrix2d S = R + step.b.transpose() * P * step.b;
-    const Eigen::Matrix<double, 2, kMpcStateSize> K = S.ldlt().solve(step.b.transpose() * P * step.a);
-    MpcStateMatrix next = Q + step.a.transpose() * P * (step.a - step.b * K);
-    next = 0.5 * (next + next.transpose());
-    const double change = (next - P).norm() / std::max(1.0, P.norm());
-    P = next;
-    if (change < 1e-12) break;
-  }
-  return P;
+  const MpcLinearStep step = model.Linearize(HoverState(omega_hover), Eigen::Vector2d::Constant(omega_hover),
+                                             MpcModelContext(), params.step_s);
+  const MpcStateMatrix stage_weight = MpcQp::StageWeight(params, kMpcInputSize);
+  return MpcRiccatiTerminalWeight(step.a, step.b, stage_weight, params.input_weight_s2_rad2);
 }
 
 MpcController::MpcController(const BirotorParams& vehicle, const MpcParams& params)
     : vehicle_(vehicle),
       params_(params),
       model_(vehicle),
-      qp_(params, vehicle.omega_max_rad_s, TerminalWeight(model_, params)) {
+      qp_(params, kMpcInputSize, vehicle.omega_max_rad_s, TerminalWeight(model_, params)) {
+  data_.initial = MultiArmMpcState::Zero(kMpcStateSize);
   data_.reference = Eigen::MatrixXd::Zero(kMpcStateSize, params.horizon_steps);
+  data_.feed_forward_rad_s = Eigen::MatrixXd::Zero(kMpcInputSize, params.horizon_steps);
+  data_.last_command_rad_s = MultiArmMpcInputs::Zero(kMpcInputSize);
   for (const MpcWeightSet set : {MpcWeightSet::kRecovery, MpcWeightSet::kDescent})
     qp_.SetTerminalWeight(set, TerminalWeight(model_, MpcQp::WeightParams(params, set)));
   omega_estimate_rad_s_.setConstant(RotorSpeedForThrust(vehicle, model_.hover_force_n(), 1.0));
@@ -154,8 +144,8 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
     feed_forward(i) = RotorSpeedForThrust(vehicle_, 0.5 * total_n, context.thrust_scale(i));
 
   data_.initial = s0;
-  data_.step = model_.Linearize(s0, input.last_command_rad_s, context, params_.step_s);
-  data_.feed_forward_rad_s = feed_forward;
+  data_.step = Generalized(model_.Linearize(s0, input.last_command_rad_s, context, params_.step_s));
+  data_.feed_forward_rad_s.colwise() = feed_forward;  // held over the horizon
   data_.last_command_rad_s = input.last_command_rad_s;
   data_.command_period_s = input.period_s;
   data_.weights = input.level_descent      ? MpcWeightSet::kDescent
@@ -167,7 +157,7 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
   MpcPlan plan;
   plan.iterations = solution.iterations;
   plan.tilt_slack_rad = solution.tilt_slack_rad;
-  plan.omega_cmd_rad_s = solution.first_command_rad_s;
+  plan.omega_cmd_rad_s = solution.first_command_rad_s.head<kMpcInputSize>();
   switch (solution.status) {
     case MpcSolveStatus::kSolved:
       plan.outcome = MpcOutcome::kSolved;

@@ -2,7 +2,7 @@
 // each period it linearises the prediction model (controller/mpc_model.h)
 // about the current state and the command in force, extrapolates the
 // reference over the horizon with its velocity and acceleration, solves the
-// condensed QP (controller/mpc_qp.h) and checks the answer. A solve that
+// condensed QP (controller/mpc_qp.h, the one QP of every vehicle, at N = 2) and checks the answer. A solve that
 // fails, comes late (past the deadline) or returns a non-finite or infeasible
 // answer is reported as such: the caller flies the cascade for that period.
 // It also keeps what the vehicle does not report to the controller: the rotor
@@ -104,9 +104,9 @@ class MpcController {
   const MpcParams& params() const { return params_; }
   const MpcQp& qp() const { return qp_; }
 
-  // The terminal weight P: the discrete Riccati solution of the hover model
-  // with the stage weights (the cost-to-go of an unconstrained LQR).
-  static MpcStateMatrix TerminalWeight(const MpcPredictionModel& model, const MpcParams& params);
+  // The terminal weight P: MpcQp::TerminalWeight on the hover model's step
+  // (the cost-to-go of an unconstrained LQR with the stage weights).
+  static MultiArmMpcStateMatrix TerminalWeight(const MpcPredictionModel& model, const MpcParams& params);
 
  private:
   void UpdateDisturbance(const MpcState& now);

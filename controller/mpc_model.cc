@@ -47,25 +47,8 @@ MpcState MpcPredictionModel::Step(const MpcState& s, const Eigen::Vector2d& omeg
 
 MpcLinearStep MpcPredictionModel::Linearize(const MpcState& s0, const Eigen::Vector2d& u0,
                                             const MpcModelContext& context, double dt_s) const {
-  MpcLinearStep out;
-  // Central differences: steps ~1e-6 of each variable's scale (m, rad, rad/s
-  // for speeds of hundreds) keep truncation and rounding both near 1e-9.
-  for (int j = 0; j < kMpcStateSize; ++j) {
-    const double h = (j >= kMpcOmega1) ? 1e-3 : 1e-6;
-    MpcState plus = s0, minus = s0;
-    plus(j) += h;
-    minus(j) -= h;
-    out.a.col(j) = (Step(plus, u0, context, dt_s) - Step(minus, u0, context, dt_s)) / (2.0 * h);
-  }
-  for (int j = 0; j < kMpcInputSize; ++j) {
-    const double h = 1e-3;
-    Eigen::Vector2d plus = u0, minus = u0;
-    plus(j) += h;
-    minus(j) -= h;
-    out.b.col(j) = (Step(s0, plus, context, dt_s) - Step(s0, minus, context, dt_s)) / (2.0 * h);
-  }
-  out.c = Step(s0, u0, context, dt_s) - out.a * s0 - out.b * u0;
-  return out;
+  return CentralDifferenceStep<MpcLinearStep>(
+      s0, u0, [&](const MpcState& s, const Eigen::Vector2d& u) { return Step(s, u, context, dt_s); });
 }
 
 }  // namespace birotor

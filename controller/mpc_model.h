@@ -26,6 +26,8 @@ enum MpcStateIndex : int {
   kMpcOmega2 = 7,  // rotor 2 speed [rad/s]
 };
 constexpr int kMpcStateSize = 8;
+// Body states x .. phi_dot ahead of the rotor speeds, at any rotor count.
+inline constexpr int kMpcBodyStates = 6;
 constexpr int kMpcInputSize = 2;  // rotor speed commands [rad/s]
 using MpcState = Eigen::Matrix<double, kMpcStateSize, 1>;
 using MpcStateMatrix = Eigen::Matrix<double, kMpcStateSize, kMpcStateSize>;
@@ -45,6 +47,37 @@ struct MpcLinearStep {
   MpcState c;        // offset: F(s0, u0) - A s0 - B u0
 };
 
+// s+ = A s + B u + c about (s0, u0) of a discrete step(s, u) by central
+// differences: steps ~1e-6 of each variable's scale (m, rad, and 1e-3 rad/s
+// for rotor speeds of hundreds, states kMpcBodyStates.. and every input) keep
+// truncation and rounding both near 1e-9; c = step(s0, u0) - A s0 - B u0.
+// Generic over the state and input types: the birotor's fixed-size model and
+// the N-rotor model (controller/multi_arm_mpc_model.h) share this routine and
+// each keep their own arithmetic.
+template <typename LinearStep, typename State, typename Inputs, typename StepFunction>
+LinearStep CentralDifferenceStep(const State& s0, const Inputs& u0, const StepFunction& step) {
+  const int ns = static_cast<int>(s0.size()), nu = static_cast<int>(u0.size());
+  LinearStep out;
+  out.a.resize(ns, ns);
+  out.b.resize(ns, nu);
+  for (int j = 0; j < ns; ++j) {
+    const double h = (j >= kMpcBodyStates) ? 1e-3 : 1e-6;
+    State plus = s0, minus = s0;
+    plus(j) += h;
+    minus(j) -= h;
+    out.a.col(j) = (step(plus, u0) - step(minus, u0)) / (2.0 * h);
+  }
+  for (int j = 0; j < nu; ++j) {
+    const double h = 1e-3;
+    Inputs plus = u0, minus = u0;
+    plus(j) += h;
+    minus(j) -= h;
+    out.b.col(j) = (step(s0, plus) - step(s0, minus)) / (2.0 * h);
+  }
+  out.c = step(s0, u0) - out.a * s0 - out.b * u0;
+  return out;
+}
+
 class MpcPredictionModel {
  public:
   explicit MpcPredictionModel(const BirotorParams& vehicle);
@@ -55,7 +88,7 @@ class MpcPredictionModel {
   // One RK4 step over dt_s with the commands held.
   MpcState Step(const MpcState& s, const Eigen::Vector2d& omega_cmd_rad_s, const MpcModelContext& context,
                 double dt_s) const;
-  // Jacobians of Step about (s0, u0) by central differences.
+  // Jacobians of Step about (s0, u0) by central differences (CentralDifferenceStep).
   MpcLinearStep Linearize(const MpcState& s0, const Eigen::Vector2d& u0, const MpcModelContext& context,
                           double dt_s) const;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "model/plant.h"
 #include "numerics/time_units.h"
 
 namespace birotor {
@@ -23,6 +24,14 @@ MultiArmRotorCommand HoverCommand(const VehicleDescription& vehicle, const Multi
   return command;
 }
 
+// The cascade's gains at the command rate (the MPC's in mode mpc, as
+// VehicleController runs its cascade).
+ControllerParams GainsAtCommandRate(const ControllerConfig& config) {
+  ControllerParams gains = config.gains;
+  gains.rate_hz = CommandRateHz(config);
+  return gains;
+}
+
 // Age of a stamp at now_us [s]; infinite before any or from the future.
 double AgeS(int64_t stamp_us, int64_t now_us) {
   if (stamp_us < 0 || now_us < stamp_us) return std::numeric_limits<double>::infinity();
@@ -35,9 +44,15 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
                                        const MultiArmHover& hover)
     : vehicle_(vehicle),
       config_(config),
-      law_(vehicle, config.gains, hover),
+      law_(vehicle, GainsAtCommandRate(config), hover),
       observer_(config.observer),
-      hover_command_(HoverCommand(vehicle, hover)) {}
+      hover_command_(HoverCommand(vehicle, hover)) {
+  if (!config.model_predictive) return;
+  mpc_ = std::make_unique<MultiArmMpc>(vehicle, config.mpc);
+  horizon_.resize(static_cast<size_t>(config.mpc.horizon_steps));
+  last_sent_rad_s_ = mpc_->rotor_speed_estimate_rad_s();
+  last_mpc_.omega_cmd_rad_s = last_sent_rad_s_;
+}
 
 void MultiArmController::OnPose(const PoseSample& sample) {
   if (!has_pose_) {
@@ -103,10 +118,53 @@ RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {
   return efficiency;
 }
 
+MultiArmRotorCommand MultiArmController::FlyMpc(const ReferencePoint& reference, const RotorEfficiencies& efficiency,
+                                                const MultiArmRotorCommand& cascade, double dt_s) {
+  const int n = vehicle_.arm_count;
+  const bool first = !mpc_flown_;
+  if (first) last_sent_rad_s_ = mpc_->rotor_speed_estimate_rad_s();
+  MultiArmMpcInputs planned(n);  // fixed maximum size: no allocation
+  for (int i = 0; i < n; ++i) planned(i) = config_.mpc.use_thrust_scale ? efficiency[static_cast<size_t>(i)] : 1.0;
+  MultiArmMpc::ExtrapolateReference(reference, config_.mpc.step_s, &horizon_);
+  last_mpc_ = mpc_->Solve(observer_.state(), horizon_, planned, last_sent_rad_s_, dt_s);
+  ++mpc_solves_;
+  MultiArmRotorCommand command = cascade;
+  if (last_mpc_.solved) {
+    command.saturated = false;
+    for (int i = 0; i < n; ++i) command.omega_cmd_rad_s[static_cast<size_t>(i)] = last_mpc_.omega_cmd_rad_s(i);
+  } else {
+    ++mpc_fallbacks_;
+  }
+  const double change_rad_s = config_.mpc.max_omega_rate_rad_s2 * dt_s;
+  for (int i = 0; i < n; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    const double last = last_sent_rad_s_(i);
+    double omega = std::isfinite(command.omega_cmd_rad_s[rotor]) ? command.omega_cmd_rad_s[rotor] : last;
+    if (!first) omega = std::clamp(omega, last - change_rad_s, last + change_rad_s);
+    omega = ClampCommand(vehicle_.omega_max_rad_s, omega);
+    command.omega_cmd_rad_s[rotor] = omega;
+    command.force_n[rotor] = RotorThrust(vehicle_.arms[rotor].thrust_coeff_n_s2_rad2, omega, efficiency[rotor]);
+    last_sent_rad_s_(i) = omega;
+  }
+  mpc_flown_ = true;
+  mpc_->Advance(last_sent_rad_s_, dt_s);
+  return command;
+}
+
 MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferencePoint& reference) {
-  if (!has_pose_) return hover_command_;
-  UpdateState(now_us, 1.0 / config_.gains.rate_hz);
-  const MultiArmRotorCommand command = law_.Update(observer_.state(), reference, EfficiencyInUse(now_us));
+  const double dt_s = 1.0 / rate_hz();
+  if (!has_pose_) {
+    if (mpc_ != nullptr) {
+      for (int i = 0; i < vehicle_.arm_count; ++i)
+        last_sent_rad_s_(i) = hover_command_.omega_cmd_rad_s[static_cast<size_t>(i)];
+      mpc_->Advance(last_sent_rad_s_, dt_s);
+    }
+    return hover_command_;
+  }
+  UpdateState(now_us, dt_s);
+  const RotorEfficiencies efficiency = EfficiencyInUse(now_us);
+  const MultiArmRotorCommand cascade = law_.Update(observer_.state(), reference, efficiency);
+  const MultiArmRotorCommand command = mpc_ != nullptr ? FlyMpc(reference, efficiency, cascade, dt_s) : cascade;
   saturated_periods_ += command.saturated ? 1 : 0;
   return command;
 }

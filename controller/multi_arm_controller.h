@@ -5,17 +5,25 @@
 // directly) when the allocation allows it and tilt-to-move otherwise, and N
 // rotor speed commands through the nominal map or each rotor's estimated
 // efficiency (RotorEfficiencyEstimate, the content of force_estimate_n_t).
-// No LCM, no allocation, no throw, no log per call. Not supervised as
+// In mode mpc (ControllerConfig::model_predictive) the N-input MPC
+// (controller/multi_arm_mpc.h) flies at the mpc: section's rate on the
+// observer's state, the efficiencies in use and the reference extrapolated
+// over its horizon, and the cascade's command is the per-period fallback.
+// No LCM, no allocation, no throw, no log per call (alglib allocates inside
+// the MPC's solver, docs/mpc.md). Not supervised as
 // VehicleController is (no stream locks, gates or controlled descent): the
 // lock-step loop's controller. docs/controller.md, "Vehicles with N rotors".
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
 #include "controller/multi_arm_law.h"
+#include "controller/multi_arm_mpc.h"
 #include "controller/reference_point.h"
 #include "controller/wrench_allocation.h"
 #include "model/multi_arm_linearization.h"
@@ -49,12 +57,23 @@ class MultiArmController {
   // The newest estimate; used only in force_feedback mode (EfficiencyInUse).
   void OnEfficiency(const RotorEfficiencyEstimate& estimate) { efficiency_estimate_ = estimate; }
 
-  // One control period at now_us on the reference: the observer predicted
-  // with the mean IMU of the period (stale beyond imu_timeout_s: the
-  // commanded acceleration and the held pitch rate instead) and corrected by
-  // the newest POSE, then MultiArmLaw::Update. Before the first POSE: the
-  // hover thrusts through the nominal map (the law is not run).
+  // One control period (1 / rate_hz()) at now_us on the reference: the
+  // observer predicted with the mean IMU of the period (stale beyond
+  // imu_timeout_s: the commanded acceleration and the held pitch rate
+  // instead) and corrected by the newest POSE, then MultiArmLaw::Update; in
+  // mode mpc then FlyMpc. Before the first POSE: the hover thrusts through
+  // the nominal map (neither the law nor the MPC is run).
   MultiArmRotorCommand Update(int64_t now_us, const ReferencePoint& reference);
+
+  // Command rate [Hz]: the cascade's rate_hz, in mode mpc the mpc: section's
+  // (CommandRateHz); the law runs at it too.
+  double rate_hz() const { return CommandRateHz(config_); }
+  bool model_predictive() const { return mpc_ != nullptr; }
+  // Mode mpc: the last period's solve (MultiArmMpcResult: outcome, CPU and
+  // wall time, iterations), solves and fallbacks to the cascade since start.
+  const MultiArmMpcResult& last_mpc_result() const { return last_mpc_; }
+  int64_t mpc_solves() const { return mpc_solves_; }
+  int64_t mpc_fallbacks() const { return mpc_fallbacks_; }
 
   // e_i flown at now_us: 1 in nominal mode, without an estimate, with one
   // older than force_timeout_s, not VALID or for another rotor count; else
@@ -70,6 +89,17 @@ class MultiArmController {
 
  private:
   void UpdateState(int64_t now_us, double dt_s);
+  // Mode mpc, one period of dt_s [s]: MultiArmMpc::Solve from the observer's
+  // state with the efficiencies in use (1 when mpc.use_thrust_scale is
+  // false) and the reference extrapolated over the horizon
+  // (MultiArmMpc::ExtrapolateReference); its first command when it solved in
+  // time, else the cascade's (counted in mpc_fallbacks). Either is limited to
+  // mpc.max_omega_rate_rad_s2 dt_s of the last command sent and to
+  // [0, omega_max] (the first period plans from the MPC's rotor-speed
+  // estimate and is exempt from the rate limit, as MpcController::Fly); the
+  // MPC's motor model is then advanced on it.
+  MultiArmRotorCommand FlyMpc(const ReferencePoint& reference, const RotorEfficiencies& efficiency,
+                              const MultiArmRotorCommand& cascade, double dt_s);
 
   VehicleDescription vehicle_;
   ControllerConfig config_;
@@ -87,6 +117,14 @@ class MultiArmController {
   Eigen::Vector2d specific_force_sum_m_s2_ = Eigen::Vector2d::Zero();  // body x, z
   Eigen::Vector2d last_specific_force_m_s2_ = Eigen::Vector2d::Zero();
   int64_t saturated_periods_ = 0;
+  // Mode mpc (null otherwise).
+  std::unique_ptr<MultiArmMpc> mpc_;
+  std::vector<ReferencePoint> horizon_;  // mpc.horizon_steps samples, sized once
+  MultiArmMpcInputs last_sent_rad_s_;    // the command in force
+  bool mpc_flown_ = false;               // FlyMpc has sent a command
+  MultiArmMpcResult last_mpc_;
+  int64_t mpc_solves_ = 0;
+  int64_t mpc_fallbacks_ = 0;
 };
 
 }  // namespace birotor

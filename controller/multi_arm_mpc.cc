@@ -35,24 +35,8 @@ MpcOutcome OutcomeOf(MpcSolveStatus status) {
 }  // namespace
 
 MultiArmMpcStateMatrix MultiArmMpc::TerminalWeight(const MultiArmMpcModel& model, const MpcParams& params) {
-  const int nu = model.rotors();
-  const MultiArmMpcLinearStep step =
-      model.Linearize(model.HoverState(), model.hover_speed_rad_s(), model.NominalContext(), params.step_s);
-  const MultiArmMpcStateMatrix Q = MultiArmMpcQp::StageWeight(params, nu);
-  const Eigen::MatrixXd R = Eigen::MatrixXd::Identity(nu, nu) * params.input_weight_s2_rad2;
-  // P = Q + A^T P A - A^T P B (R + B^T P B)^-1 B^T P A, iterated to a fixed
-  // point (controller/mpc_controller.cc's iteration at any N).
-  MultiArmMpcStateMatrix P = Q;
-  for (int i = 0; i < 5000; ++i) {
-    const Eigen::MatrixXd S = R + step.b.transpose() * P * step.b;
-    const Eigen::MatrixXd K = S.ldlt().solve(Eigen::MatrixXd(step.b.transpose() * P * step.a));
-    MultiArmMpcStateMatrix next = Q + step.a.transpose() * P * (step.a - step.b * K);
-    next = 0.5 * (next + next.transpose());
-    const double change = (next - P).norm() / std::max(1.0, P.norm());
-    P = next;
-    if (change < 1e-12) break;
-  }
-  return P;
+  return MpcQp::TerminalWeight(
+      model.Linearize(model.HoverState(), model.hover_speed_rad_s(), model.NominalContext(), params.step_s), params);
 }
 
 MpcParams MultiArmMpc::PlanningParams(const MpcParams& params, bool fully_actuated) {
@@ -183,7 +167,7 @@ MultiArmMpcResult MultiArmMpc::Solve(const BodyState& measured, const std::vecto
                          last_command_rad_s.allFinite();
   if (inputs_ok) {
     FillData(measured, reference, efficiency, last_command_rad_s, period_s);
-    const MultiArmMpcQpSolution solution = qp_.Solve(data_);
+    const MpcQpSolution solution = qp_.Solve(data_);
     out.outcome = OutcomeOf(solution.status);
     out.iterations = solution.iterations;
     out.tilt_slack_rad = solution.tilt_slack_rad;

@@ -2,14 +2,15 @@
 // (no LCM, no logging): each solve linearises the N-rotor prediction model
 // (controller/multi_arm_mpc_model.h) about the measured body state, the
 // rotor-speed estimate and the command in force, solves the condensed QP
-// (controller/multi_arm_mpc_qp.h) on the reference samples over the horizon
+// (controller/mpc_qp.h, the birotor's QP too) on the reference samples over the horizon
 // and checks the answer. A vehicle whose allocation spans F_x, F_z and the
 // torque (N >= 3, model/vehicle_description.h ControlledAxesMargin) is planned
 // level: tilt reference 0, the lateral reference tracked through F_x; a
 // birotor (N = 2) tilts for F_x as controller/mpc_controller.h does. On a
 // failed, late or bad solve the command is the documented fallback (Solve).
-// The birotor's product MPC stays controller/mpc_controller.h; this one is not
-// wired into the product controller or the lock-step loop yet (docs/mpc.md).
+// The birotor's product MPC stays controller/mpc_controller.h (the same QP);
+// this one flies in MultiArmController's mode mpc, the N-rotor lock-step loop
+// (evaluation/multi_arm_closed_loop.h), docs/mpc.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,8 +18,8 @@
 
 #include "controller/mpc_controller.h"
 #include "controller/mpc_params.h"
+#include "controller/mpc_qp.h"
 #include "controller/multi_arm_mpc_model.h"
-#include "controller/multi_arm_mpc_qp.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
 #include "controller/wrench_allocation.h"
@@ -34,7 +35,7 @@ struct MultiArmMpcResult {
   MpcOutcome outcome = MpcOutcome::kSolverFailed;  // why not, when not
   double solve_time_s = 0.0;                       // wall time of linearise, condense, solve, check [s]
   double solve_cpu_s = 0.0;                        // this thread's CPU time over the same [s]
-  int iterations = 0;                              // alglib's (MultiArmMpcQpSolution::iterations)
+  int iterations = 0;                              // alglib's (MpcQpSolution::iterations)
   double tilt_slack_rad = 0.0;                     // how far the plan exceeds the tilt limit [rad]
 };
 
@@ -89,7 +90,7 @@ class MultiArmMpc {
   bool fully_actuated() const { return fully_actuated_; }
   int rotors() const { return model_.rotors(); }
   const MultiArmMpcModel& model() const { return model_; }
-  const MultiArmMpcQp& qp() const { return qp_; }
+  const MpcQp& qp() const { return qp_; }
   const MultiArmMpcInputs& rotor_speed_estimate_rad_s() const { return omega_estimate_rad_s_; }
 
  private:
@@ -101,8 +102,8 @@ class MultiArmMpc {
   bool fully_actuated_ = false;
   MpcParams params_;  // as given, with the level_* weights in place for a fully-actuated vehicle
   MultiArmMpcModel model_;
-  MultiArmMpcQp qp_;
-  MultiArmMpcQpData data_;
+  MpcQp qp_;
+  MpcQpData data_;
   WrenchAllocator allocator_;  // the feed-forward thrusts of a fully-actuated vehicle
   MultiArmMpcInputs omega_estimate_rad_s_;
 };

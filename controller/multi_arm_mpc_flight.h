@@ -3,7 +3,7 @@
 // motor lag, command clamp), with the MPC on the true body state: the one
 // flight the tests and the solve-time benchmark both fly. No sensors, no
 // estimator, no transport (the lock-step loop and the product controller
-// wire the MPC in elsewhere).
+// wire the MPC in elsewhere: MultiArmController in mode mpc).
 #pragma once
 
 #include <Eigen/Core>

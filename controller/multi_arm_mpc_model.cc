@@ -69,28 +69,8 @@ MultiArmMpcState MultiArmMpcModel::Step(const MultiArmMpcState& s, const MultiAr
 
 MultiArmMpcLinearStep MultiArmMpcModel::Linearize(const MultiArmMpcState& s0, const MultiArmMpcInputs& u0,
                                                   const MultiArmMpcContext& context, double dt_s) const {
-  const int ns = state_size(), nu = rotors();
-  MultiArmMpcLinearStep out;
-  out.a.resize(ns, ns);
-  out.b.resize(ns, nu);
-  // Central differences: steps ~1e-6 of each variable's scale (m, rad, and
-  // rad/s for speeds of hundreds) keep truncation and rounding near 1e-9.
-  for (int j = 0; j < ns; ++j) {
-    const double h = (j >= kMpcBodyStates) ? 1e-3 : 1e-6;
-    MultiArmMpcState plus = s0, minus = s0;
-    plus(j) += h;
-    minus(j) -= h;
-    out.a.col(j) = (Step(plus, u0, context, dt_s) - Step(minus, u0, context, dt_s)) / (2.0 * h);
-  }
-  for (int j = 0; j < nu; ++j) {
-    const double h = 1e-3;
-    MultiArmMpcInputs plus = u0, minus = u0;
-    plus(j) += h;
-    minus(j) -= h;
-    out.b.col(j) = (Step(s0, plus, context, dt_s) - Step(s0, minus, context, dt_s)) / (2.0 * h);
-  }
-  out.c = Step(s0, u0, context, dt_s) - out.a * s0 - out.b * u0;
-  return out;
+  return CentralDifferenceStep<MultiArmMpcLinearStep>(
+      s0, u0, [&](const MultiArmMpcState& s, const MultiArmMpcInputs& u) { return Step(s, u, context, dt_s); });
 }
 
 }  // namespace birotor

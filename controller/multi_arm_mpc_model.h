@@ -18,7 +18,6 @@ namespace birotor {
 // State s = [x, z, phi, x_dot, z_dot, phi_dot, omega_1 .. omega_N]: the body
 // rows keep the birotor's names (kMpcX .. kMpcPhiDot of mpc_model.h), rotor i's
 // speed [rad/s] is at MultiArmMpcOmegaIndex(i).
-inline constexpr int kMpcBodyStates = 6;
 inline constexpr int kMaxMultiArmMpcStateSize = kMpcBodyStates + kMaxArms;
 constexpr int MultiArmMpcOmegaIndex(int rotor) { return kMpcBodyStates + rotor; }
 inline int MultiArmMpcStateSize(const VehicleDescription& vehicle) { return kMpcBodyStates + vehicle.arm_count; }
@@ -47,6 +46,16 @@ struct MultiArmMpcLinearStep {
   MultiArmMpcState c;        // F(s0, u0) - A s0 - B u0
 };
 
+// The birotor model's fixed-size step (controller/mpc_model.h) as an N = 2
+// step: the same numbers, for the one QP (controller/mpc_qp.h).
+inline MultiArmMpcLinearStep Generalized(const MpcLinearStep& step) {
+  MultiArmMpcLinearStep out;
+  out.a = step.a;
+  out.b = step.b;
+  out.c = step.c;
+  return out;
+}
+
 class MultiArmMpcModel {
  public:
   explicit MultiArmMpcModel(const VehicleDescription& vehicle);
@@ -61,8 +70,8 @@ class MultiArmMpcModel {
   // One RK4 step over dt_s [s] with the commands held.
   MultiArmMpcState Step(const MultiArmMpcState& s, const MultiArmMpcInputs& omega_cmd_rad_s,
                         const MultiArmMpcContext& context, double dt_s) const;
-  // Jacobians of Step about (s0, u0) by central differences (steps as
-  // MpcPredictionModel::Linearize: 1e-6 on the body, 1e-3 rad/s on speeds).
+  // Jacobians of Step about (s0, u0) by central differences
+  // (CentralDifferenceStep of controller/mpc_model.h, the birotor's routine).
   MultiArmMpcLinearStep Linearize(const MultiArmMpcState& s0, const MultiArmMpcInputs& u0,
                                   const MultiArmMpcContext& context, double dt_s) const;
 

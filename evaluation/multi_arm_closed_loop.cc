@@ -142,16 +142,19 @@ MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, c
   }
   MultiArmSimulator simulator(vehicle, scenario);
   simulator.UseExternalCommands();
-  MultiArmController controller(vehicle, config, simulator.hover());
+  ControllerConfig lock_step_config = config;
+  lock_step_config.mpc.deadline_clock = MpcDeadlineClock::kWork;
+  MultiArmController controller(vehicle, lock_step_config, simulator.hover());
   MultiArmClosedLoopRun run;
   run.mode = controller.mode();
   run.arm_count = vehicle.arm_count;
   run.omega_max_rad_s = vehicle.omega_max_rad_s;
-  const int64_t control_every_steps = StepsPerSample(config.gains.rate_hz, scenario.step_s);
+  const int64_t control_every_steps = StepsPerSample(controller.rate_hz(), scenario.step_s);
   const int64_t total_steps = std::llround(scenario.duration_s / scenario.step_s);
   run.samples.reserve(
       static_cast<size_t>(total_steps / StepsPerSample(scenario.sensors.truth.rate_hz, scenario.step_s) + 1));
   run.commands_rad_s.reserve(static_cast<size_t>(total_steps / control_every_steps + 1));
+  if (controller.model_predictive()) run.mpc_solve_cpu_s.reserve(run.commands_rad_s.capacity());
   LoopSink sink(&controller, &simulator, options, &run);
   RotorEfficiencyEstimate estimate;
   for (int64_t k = 0; !simulator.done(); ++k) {
@@ -162,12 +165,16 @@ MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, c
       const MultiArmRotorCommand command = controller.Update(now_us, simulator.ReferenceAt(simulator.time_s()));
       simulator.OfferRotorCommands(command.omega_cmd_rad_s);
       run.commands_rad_s.push_back(command.omega_cmd_rad_s);
+      if (controller.model_predictive() && controller.mpc_solves() > static_cast<int64_t>(run.mpc_solve_cpu_s.size()))
+        run.mpc_solve_cpu_s.push_back(controller.last_mpc_result().solve_cpu_s);
       if (!WithinBounds(command.omega_cmd_rad_s, vehicle.arm_count, vehicle.omega_max_rad_s))
         ++run.commands_out_of_bounds;
     }
     simulator.Step(&sink);
   }
   run.saturated_periods = controller.saturated_periods();
+  run.mpc_solves = controller.mpc_solves();
+  run.mpc_fallbacks = controller.mpc_fallbacks();
   for (const FaultEvent& event : simulator.fault_events()) {
     if (event.kind == FaultKind::kThrustStep) {
       run.fault_utime = event.utime;

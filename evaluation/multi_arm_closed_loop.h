@@ -1,8 +1,10 @@
 // The lock-step closed loop for any VehicleDescription: MultiArmSimulator as
 // the vehicle and its ESCs (UseExternalCommands), its POSE and IMU to the
-// product's MultiArmController, at the controller's rate (config/
-// controller.yaml rate_hz) the controller's N rotor commands back, on one
-// virtual clock. Optionally an efficiency provider (the N-arm estimator, fed
+// product's MultiArmController, at the controller's command rate (config/
+// controller.yaml rate_hz, in mode mpc the mpc: section's) the controller's N
+// rotor commands back, on one virtual clock. In mode mpc the solve deadline
+// is a work budget (MpcDeadlineClock::kWork, as the birotor's lock-step
+// loop), so the same seed flies the same on any machine. Optionally an efficiency provider (the N-arm estimator, fed
 // every sample) whose newest estimate the controller flies; without one the
 // nominal map. The same scenario and seed give the same commands.
 // birotor-eval --vehicle FILE --control uses it.
@@ -69,6 +71,12 @@ struct MultiArmClosedLoopRun {
   int64_t commands_out_of_bounds = 0;  // periods with a speed non-finite or outside [0, omega_max]
   int64_t saturated_periods = 0;       // periods whose allocation gave something up
   int64_t fault_utime = -1;            // first thrust step [us]; -1: none
+  // Mode mpc: solves, fallbacks to the cascade (failed, late, non-finite or
+  // infeasible) and each solve's CPU time of this thread [s] (a lock-step
+  // figure: the virtual clock stands still during a solve).
+  int64_t mpc_solves = 0;
+  int64_t mpc_fallbacks = 0;
+  std::vector<double> mpc_solve_cpu_s;
 };
 
 // The figures of one run (birotor-eval --control-vehicle), from its TRUTH_N

@@ -8,6 +8,7 @@
 
 #include "controller/controller_params.h"
 #include "evaluation/multi_arm_closed_loop.h"
+#include "numerics/percentile.h"
 #include "params/controller_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_description_yaml.h"
@@ -48,13 +49,22 @@ std::string Figure(double value, const char* format) {
   return std::isnan(value) ? std::string("-") : fmt::format(fmt::runtime(format), value);
 }
 
+// Mode mpc: fallbacks / solves and the solve CPU time p50 / p99 [us] of the
+// lock-step run; "-" for the cascade.
+std::string MpcColumns(const MultiArmClosedLoopRun& run) {
+  if (run.mpc_solves == 0) return "- | -";
+  return fmt::format("{} / {} | {:.0f} / {:.0f}", run.mpc_fallbacks, run.mpc_solves,
+                     1e6 * Percentile(run.mpc_solve_cpu_s, 0.5), 1e6 * Percentile(run.mpc_solve_cpu_s, 0.99));
+}
+
 std::string Row(const std::string& name, const std::string& map, const MultiArmClosedLoopRun& run) {
   const MultiArmFlightFigures f = FiguresOf(run, kSettlingBandM);
-  return fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} |\n", name,
-                     run.mode == MultiArmControlMode::kFullyActuated ? "fully actuated" : "tilt to move", map,
-                     f.rms_position_error_m, f.max_tilt_rad, Figure(f.settling_s, "{:.2f}"),
-                     Figure(f.overshoot_m, "{:.3f}"), Figure(f.max_altitude_deviation_m, "{:.4f}"),
-                     run.saturated_periods, run.commands_out_of_bounds);
+  const char* mode = run.mode == MultiArmControlMode::kFullyActuated ? "fully actuated" : "tilt to move";
+  return fmt::format("| {} | {}{} | {} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} |\n", name, mode,
+                     run.mpc_solves > 0 ? ", mpc" : "", map, f.rms_position_error_m, f.max_tilt_rad,
+                     Figure(f.settling_s, "{:.2f}"), Figure(f.overshoot_m, "{:.3f}"),
+                     Figure(f.max_altitude_deviation_m, "{:.4f}"), run.saturated_periods, run.commands_out_of_bounds,
+                     MpcColumns(run));
 }
 
 // One case, nominal (and for a loss also with the true efficiencies): its
@@ -69,27 +79,31 @@ bool FlyCase(const std::string& name, const VehicleDescription& vehicle, const C
     return false;
   }
   if (rotor > vehicle.arm_count) {
-    *rows += fmt::format("| {} | - | - | the vehicle has {} rotors | | | | | | |\n", name, vehicle.arm_count);
+    *rows += fmt::format("| {} | - | - | the vehicle has {} rotors | | | | | | | | |\n", name, vehicle.arm_count);
     return true;
   }
   overrides.insert(overrides.end(), inputs.overrides.begin(), inputs.overrides.end());
   std::string file = inputs.scenario_dir + "/" + scenario_name + ".yaml";
   if (inputs.scenario_dir.empty() && !FindScenario(scenario_name, &file, error)) return false;
   const Scenario scenario = LoadScenario(file, overrides, vehicle.arm_count);
-  ControllerConfig nominal = controller;
-  nominal.force_feedback = false;
-  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, nominal);
-  *rows += Row(name, "nominal", run);
-  *out_of_bounds += run.commands_out_of_bounds;
-  if (rotor == 0) return true;
-  ControllerConfig with_efficiency = controller;
-  with_efficiency.force_feedback = true;
-  TrueEfficiencyProvider truth;
-  MultiArmClosedLoopOptions options;
-  options.efficiency = &truth;
-  const MultiArmClosedLoopRun bound = RunMultiArmClosedLoop(vehicle, scenario, with_efficiency, options);
-  *rows += Row(name, "true efficiency (bound)", bound);
-  *out_of_bounds += bound.commands_out_of_bounds;
+  // The cascade, then mode mpc (the mpc: section; the cascade its fallback).
+  for (const bool model_predictive : {false, true}) {
+    ControllerConfig nominal = controller;
+    nominal.force_feedback = false;
+    nominal.model_predictive = model_predictive;
+    const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, nominal);
+    *rows += Row(name, "nominal", run);
+    *out_of_bounds += run.commands_out_of_bounds;
+    if (rotor == 0) continue;
+    ControllerConfig with_efficiency = nominal;
+    with_efficiency.force_feedback = true;
+    TrueEfficiencyProvider truth;
+    MultiArmClosedLoopOptions options;
+    options.efficiency = &truth;
+    const MultiArmClosedLoopRun bound = RunMultiArmClosedLoop(vehicle, scenario, with_efficiency, options);
+    *rows += Row(name, "true efficiency (bound)", bound);
+    *out_of_bounds += bound.commands_out_of_bounds;
+  }
   return true;
 }
 
@@ -100,9 +114,10 @@ void AddMultiArmControlOptions(CLI::App& app, MultiArmControlCli* cli) {
                  "N-rotor control figures instead: fly the vehicle description in FILE with the product's N-rotor "
                  "controller (MultiArmController, gains of --controller-params) lock-step over --scenarios (default "
                  "lateral_step, aggressive, loss40_rotor1..3: thrust_loss with that rotor at 60 % from 5 s) with the "
-                 "nominal map (the loss cases also with the true efficiencies); RMS error, max tilt, settling within "
-                 "2 cm, overshoot, altitude deviation after the loss, saturated periods, commands outside "
-                 "[0, omega_max]");
+                 "cascade and in mode mpc (the mpc: section), each with the nominal map (the loss cases also with the "
+                 "true efficiencies); RMS error, max tilt, settling within 2 cm, overshoot, altitude deviation after "
+                 "the loss, saturated periods, commands outside [0, omega_max], MPC fallbacks / solves and solve CPU "
+                 "time p50 / p99 of the lock-step run");
 }
 
 int RunMultiArmControl(const MultiArmControlCli& cli, const MultiArmControlInputs& inputs) {
@@ -115,7 +130,8 @@ int RunMultiArmControl(const MultiArmControlCli& cli, const MultiArmControlInput
                        inputs.controller_params);
     rows +=
         "| case | mode | map | RMS error [m] | max tilt [rad] | settling [s] | overshoot [m] | altitude dev. after "
-        "loss [m] | saturated periods | commands out of bounds |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        "loss [m] | saturated periods | commands out of bounds | MPC fallbacks / solves | MPC solve CPU p50 / p99 "
+        "[us], lock-step |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& name : inputs.cases.empty() ? DefaultCases() : inputs.cases) {
       if (!FlyCase(name, vehicle, controller, inputs, &rows, &out_of_bounds, &error)) return ReportError(error);
     }

@@ -1,9 +1,10 @@
 // birotor-eval --control-vehicle FILE: the product's N-rotor controller
 // (controller/multi_arm_controller.h) flown lock-step on a vehicle
 // description (evaluation/multi_arm_closed_loop.h) over the lateral step,
-// the aggressive move and a 40 % thrust loss on each rotor, with the nominal
-// map; the loss cases also with each rotor's true efficiency (the bound an
-// efficiency estimate can reach). docs/controller.md, "Vehicles with N rotors".
+// the aggressive move and a 40 % thrust loss on each rotor, with the cascade
+// and in mode mpc (the N-input MPC, the cascade its fallback), each with the
+// nominal map; the loss cases also with each rotor's true efficiency (the
+// bound an efficiency estimate can reach). docs/controller.md, "Vehicles with N rotors".
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -21,14 +21,14 @@ struct Problem {
   MpcQpData Data(const MpcState& s0, const Eigen::Vector2d& target_m, const Eigen::Vector2d& last) const {
     MpcQpData data;
     data.initial = s0;
-    data.step = model.Linearize(s0, last, MpcModelContext(), params.step_s);
+    data.step = Generalized(model.Linearize(s0, last, MpcModelContext(), params.step_s));
     data.reference = Eigen::MatrixXd::Zero(kMpcStateSize, params.horizon_steps);
     for (int k = 0; k < params.horizon_steps; ++k) {
       data.reference(kMpcX, k) = target_m.x();
       data.reference(kMpcZ, k) = target_m.y();
       data.reference(kMpcOmega1, k) = data.reference(kMpcOmega2, k) = hover_rad_s;
     }
-    data.feed_forward_rad_s.setConstant(hover_rad_s);
+    data.feed_forward_rad_s = Eigen::MatrixXd::Constant(kMpcInputSize, params.horizon_steps, hover_rad_s);
     data.last_command_rad_s = last;
     data.command_period_s = 1.0 / params.rate_hz;
     return data;
@@ -42,7 +42,7 @@ struct Problem {
 
 TEST(MpcQpTest, HoverAtTheReferenceKeepsHoverSpeeds) {
   Problem p;
-  MpcQp qp(p.params, 1200.0, MpcController::TerminalWeight(p.model, p.params));
+  MpcQp qp(p.params, kMpcInputSize, 1200.0, MpcController::TerminalWeight(p.model, p.params));
   const MpcQpSolution sol =
       qp.Solve(p.Data(p.HoverState(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Constant(p.hover_rad_s)));
   ASSERT_EQ(sol.status, MpcSolveStatus::kSolved);
@@ -54,7 +54,7 @@ TEST(MpcQpTest, HoverAtTheReferenceKeepsHoverSpeeds) {
 
 TEST(MpcQpTest, BoundsAndRateLimitsHoldForAFarReference) {
   Problem p;
-  MpcQp qp(p.params, 1200.0, MpcController::TerminalWeight(p.model, p.params));
+  MpcQp qp(p.params, kMpcInputSize, 1200.0, MpcController::TerminalWeight(p.model, p.params));
   const Eigen::Vector2d last = Eigen::Vector2d::Constant(p.hover_rad_s);
   const MpcQpSolution up = qp.Solve(p.Data(p.HoverState(), Eigen::Vector2d(0.0, 5.0), last));
   ASSERT_EQ(up.status, MpcSolveStatus::kSolved);
@@ -69,7 +69,7 @@ TEST(MpcQpTest, BoundsAndRateLimitsHoldForAFarReference) {
     EXPECT_LE(s(kMpcOmega1), 1200.0 + 0.05);
   }
   // 5 m down: the commands may not go below 0.
-  MpcQp qp_down(p.params, 1200.0, MpcController::TerminalWeight(p.model, p.params));
+  MpcQp qp_down(p.params, kMpcInputSize, 1200.0, MpcController::TerminalWeight(p.model, p.params));
   const MpcQpSolution down = qp_down.Solve(p.Data(p.HoverState(), Eigen::Vector2d(0.0, -5.0), last));
   ASSERT_EQ(down.status, MpcSolveStatus::kSolved);
   EXPECT_NEAR(down.first_command_rad_s(0), p.hover_rad_s - first_change, at_bound_rad_s);
@@ -77,7 +77,7 @@ TEST(MpcQpTest, BoundsAndRateLimitsHoldForAFarReference) {
 
 TEST(MpcQpTest, TiltLimitHeldWithinTheSlack) {
   Problem p;
-  MpcQp qp(p.params, 1200.0, MpcController::TerminalWeight(p.model, p.params));
+  MpcQp qp(p.params, kMpcInputSize, 1200.0, MpcController::TerminalWeight(p.model, p.params));
   const MpcQpSolution sol =
       qp.Solve(p.Data(p.HoverState(), Eigen::Vector2d(4.0, 0.0), Eigen::Vector2d::Constant(p.hover_rad_s)));
   ASSERT_EQ(sol.status, MpcSolveStatus::kSolved);
@@ -91,7 +91,7 @@ TEST(MpcQpTest, TiltLimitHeldWithinTheSlack) {
   // Starting past the limit (0.7 rad) the hard limit would be infeasible; the soft one solves.
   MpcState tilted = p.HoverState();
   tilted(kMpcPhi) = 0.7;
-  MpcQp qp2(p.params, 1200.0, MpcController::TerminalWeight(p.model, p.params));
+  MpcQp qp2(p.params, kMpcInputSize, 1200.0, MpcController::TerminalWeight(p.model, p.params));
   const MpcQpSolution past =
       qp2.Solve(p.Data(tilted, Eigen::Vector2d::Zero(), Eigen::Vector2d::Constant(p.hover_rad_s)));
   ASSERT_EQ(past.status, MpcSolveStatus::kSolved);
@@ -110,7 +110,7 @@ TEST(MpcQpTest, AlgorithmsAgreeOnRandomProblems) {
   bleic.solver_tolerance = 1e-9;
   aul.algorithm = MpcQpAlgorithm::kDenseAul;
   aul.solver_tolerance = 1e-9;
-  const MpcStateMatrix P = MpcController::TerminalWeight(p.model, p.params);
+  const MultiArmMpcStateMatrix P = MpcController::TerminalWeight(p.model, p.params);
   for (int trial = 0; trial < 10; ++trial) {
     MpcState s0 = p.HoverState();
     s0(kMpcPhi) = 0.3 * unit(rng);
@@ -121,7 +121,7 @@ TEST(MpcQpTest, AlgorithmsAgreeOnRandomProblems) {
     s0(kMpcOmega2) += 150.0 * unit(rng);
     const Eigen::Vector2d target(unit(rng), unit(rng));
     const Eigen::Vector2d last = s0.tail<2>();
-    MpcQp a(p.params, 1200.0, P), b(bleic, 1200.0, P), c(aul, 1200.0, P);
+    MpcQp a(p.params, kMpcInputSize, 1200.0, P), b(bleic, kMpcInputSize, 1200.0, P), c(aul, kMpcInputSize, 1200.0, P);
     const MpcQpData data = p.Data(s0, target, last);
     const MpcQpSolution sa = a.Solve(data), sb = b.Solve(data), sc = c.Solve(data);
     ASSERT_EQ(sa.status, MpcSolveStatus::kSolved);

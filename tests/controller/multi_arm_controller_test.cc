@@ -2,7 +2,8 @@
 // config/vehicles/trirotor.yaml: its hover speeds before the first POSE,
 // exactly the hover thrusts on a vehicle at rest, and which efficiency it
 // flies for each kind of estimate (the gains and thresholds of
-// ControllerConfig's defaults, which config/controller.yaml keeps).
+// ControllerConfig's defaults, which config/controller.yaml keeps), and mode
+// mpc with its fallback to the cascade.
 #include "controller/multi_arm_controller.h"
 
 #include <gtest/gtest.h>
@@ -158,6 +159,54 @@ TEST(MultiArmControllerTest, NoAllocationPerCall) {
   volatile char last = text.back();
   (void)last;
   EXPECT_GT(allocations.load(), after);
+}
+
+// Mode mpc, a deadline in solver work (no wall clock in a test).
+ControllerConfig ModelPredictive(int deadline_work) {
+  ControllerConfig config;
+  config.model_predictive = true;
+  config.mpc.deadline_clock = MpcDeadlineClock::kWork;
+  config.mpc.deadline_work = deadline_work;
+  return config;
+}
+
+// 1 s at the MPC's 200 Hz at rest on the reference (POSE at 100 Hz).
+MultiArmRotorCommand FlyAtRest(const VehicleDescription& vehicle, MultiArmController* controller) {
+  MultiArmRotorCommand command;
+  for (int k = 0; k < 200; ++k) {
+    const int64_t now_us = 5000 * k;
+    if (k % 2 == 0) controller->OnPose(PoseSample{now_us, k / 2, 0.0, 0.0, 0.0});
+    controller->OnImu(ImuSample{now_us, k, 0.0, 0.0, vehicle.gravity_m_s2});
+    command = controller->Update(now_us, ReferencePoint());
+  }
+  return command;
+}
+
+// Mode mpc at rest on the reference: every period solved (200: the first
+// POSE comes with the first period), the hover speeds within the interior
+// point's tolerance (MultiArmMpcTest measured 0.0017 rad/s; 0.0026 here too). With a deadline
+// of 0 solver iterations every solve is late: the cascade's command flies
+// (exactly the hover thrusts, as AtRestOnTheReferenceCommandsTheHoverThrusts)
+// and every fallback is counted.
+TEST(MultiArmControllerTest, ModeMpcFliesTheMpcAndFallsBackToTheCascade) {
+  const VehicleDescription vehicle = Trirotor();
+  const MultiArmHover hover = SolveMultiArmHover(vehicle);
+  MultiArmController mpc(vehicle, ModelPredictive(200), hover);
+  EXPECT_TRUE(mpc.model_predictive());
+  EXPECT_EQ(mpc.rate_hz(), 200.0);
+  const MultiArmRotorCommand solved = FlyAtRest(vehicle, &mpc);
+  EXPECT_EQ(mpc.mpc_solves(), 200);
+  EXPECT_EQ(mpc.mpc_fallbacks(), 0);
+  for (int i = 0; i < 3; ++i) {
+    const double hover_rad_s = std::sqrt(hover.force_n(i) / 4.6e-5);
+    EXPECT_NEAR(solved.omega_cmd_rad_s[static_cast<size_t>(i)], hover_rad_s, 0.0026) << i;
+  }
+  MultiArmController late(vehicle, ModelPredictive(0), hover);
+  const MultiArmRotorCommand fallback = FlyAtRest(vehicle, &late);
+  EXPECT_EQ(late.mpc_solves(), 200);
+  EXPECT_EQ(late.mpc_fallbacks(), 200);
+  EXPECT_EQ(late.last_mpc_result().outcome, MpcOutcome::kLate);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(fallback.force_n[static_cast<size_t>(i)], hover.force_n(i), 1e-9) << i;
 }
 
 }  // namespace
