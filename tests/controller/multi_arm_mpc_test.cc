@@ -110,10 +110,11 @@ TEST(MultiArmMpcModelTest, LinearisationAndFeedForwardDoNotAllocate) {
 }
 
 TEST(MultiArmMpcTest, TrirotorAtHoverCommandsTheHoverSpeeds) {
-  MultiArmMpc mpc(test_vehicles::Trirotor(), MpcParams());
+  const MpcParams params = FlightParams();  // a loaded machine must not make the solve late
+  MultiArmMpc mpc(test_vehicles::Trirotor(), params);
   ASSERT_TRUE(mpc.fully_actuated());
-  std::vector<ReferencePoint> reference(static_cast<size_t>(MpcParams().horizon_steps));
-  MultiArmMpc::ExtrapolateReference(ReferencePoint(), MpcParams().step_s, &reference);
+  std::vector<ReferencePoint> reference(static_cast<size_t>(params.horizon_steps));
+  MultiArmMpc::ExtrapolateReference(ReferencePoint(), params.step_s, &reference);
   const MultiArmMpcInputs hover = mpc.model().hover_speed_rad_s();
   const MultiArmMpcResult result = mpc.Solve(BodyState(), reference, Ones(3), hover, 0.005);
   ASSERT_TRUE(result.solved);
@@ -124,7 +125,7 @@ TEST(MultiArmMpcTest, TrirotorAtHoverCommandsTheHoverSpeeds) {
 }
 
 TEST(MultiArmMpcTest, TwoInputsMatchTheBirotorMpcFirstCommand) {
-  const MpcParams params;
+  const MpcParams params = FlightParams();
   MpcController birotor(BirotorParams(), params);
   MultiArmMpc ours(BirotorFile(), params);
   ASSERT_FALSE(ours.fully_actuated());
