@@ -170,11 +170,15 @@ void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
   accel_linearization_valid_ = true;
   const typename Model::DynamicMatrix phi = Model::Transition(a, dt_s);
   state_ = model_.Step(state_, input, dt_s);
-  typename Model::DynamicMatrix temp;
-  temp.noalias() = phi.lazyProduct(covariance_.template topLeftCorner<n, n>());
-  covariance_.template topLeftCorner<n, n>().noalias() = temp.lazyProduct(phi.transpose());
-  Eigen::Matrix<double, n, m> p_de;
-  p_de.noalias() = phi.lazyProduct(covariance_.template topRightCorner<n, m>());
+  // Phi_d has A's block structure (Model::Transition): products on its blocks.
+  const bool blocks = Model::HasRotorBlockStructure(phi);
+  const typename Model::DynamicMatrix temp =
+      Model::template TransitionTimes<n>(phi, covariance_.template topLeftCorner<n, n>(), blocks);
+  // P_dd = (Phi_d P_dd) Phi_d^T = (Phi_d (Phi_d P_dd)^T)^T.
+  covariance_.template topLeftCorner<n, n>() =
+      Model::template TransitionTimes<n>(phi, temp.transpose(), blocks).transpose();
+  const Eigen::Matrix<double, n, m> p_de =
+      Model::template TransitionTimes<m>(phi, covariance_.template topRightCorner<n, m>(), blocks);
   covariance_.template topRightCorner<n, m>() = p_de;
   covariance_.template bottomLeftCorner<m, n>() = p_de.transpose();
   covariance_.diagonal() += process_noise_psd_ * dt_s;

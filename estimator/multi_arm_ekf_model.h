@@ -108,8 +108,32 @@ class MultiArmEkfModel {
     return Rk4Step(x, dt_s, [&](const State& s) { return Derivative(s, u); });
   }
   // Phi_d = exp(A_d dt) to fourth order, as EkfProcessModel::Transition:
-  //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))).
+  //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))),
+  // on the blocks of A = [A_aa, A_au; 0, D] when it has them (the arm states
+  // a = phi_dot, b, b_dot; the rotor states u = omega, mu; D diagonal: the
+  // motor lag and 0), as every power then has: the same sums less A's exact zeros.
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal and finite, exactly.
+  static bool HasRotorBlockStructure(const DynamicMatrix& x);
+  // Phi_d X for a kD x C matrix X, on those blocks when blocks.
+  static constexpr int kArmStates = 1 + 2 * N;  // phi_dot, b_i, b_dot_i
+  static constexpr int kRotorStates = 2 * N;    // omega_i, mu_i
+  template <int C, typename X>
+  static Eigen::Matrix<double, kD, C> TransitionTimes(const DynamicMatrix& phi, const Eigen::MatrixBase<X>& x,
+                                                      bool blocks) {
+    constexpr int n = kArmStates, m = kRotorStates;
+    Eigen::Matrix<double, kD, C> out;
+    if (!blocks) {
+      out.noalias() = phi.lazyProduct(x);
+      return out;
+    }
+    auto top = out.template topRows<n>();
+    top.noalias() = phi.template topLeftCorner<n, n>().lazyProduct(x.template topRows<n>());
+    top.noalias() += phi.template topRightCorner<n, m>().lazyProduct(x.template bottomRows<m>());
+    out.template bottomRows<m>() =
+        phi.template bottomRightCorner<m, m>().diagonal().asDiagonal() * x.template bottomRows<m>();
+    return out;
+  }
 
  private:
   double ThrustCoeff(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].thrust_coeff_n_s2_rad2; }
@@ -258,13 +282,40 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
 }
 
 template <int N>
+bool MultiArmEkfModel<N>::HasRotorBlockStructure(const DynamicMatrix& x) {
+  // sum |x_ij| over the rotor rows left of D and off its diagonal is 0
+  // exactly when each is +-0 (a NaN or an infinity makes it NaN or inf).
+  Eigen::Matrix<double, kRotorStates, kD> rows = x.template bottomRows<kRotorStates>();
+  rows.template rightCols<kRotorStates>().diagonal().setZero();
+  return rows.cwiseAbs().sum() == 0.0 && x.diagonal().template tail<kRotorStates>().allFinite();
+}
+
+template <int N>
 typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Transition(const DynamicMatrix& a, double dt_s) {
+  constexpr int n = kArmStates, m = kRotorStates;
   const DynamicMatrix a_dt = a * dt_s;
   DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
-  DynamicMatrix temp;
+  if (!HasRotorBlockStructure(a_dt)) {  // not that structure: dense
+    DynamicMatrix temp;
+    for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
+      temp.noalias() = a_dt.lazyProduct(phi);
+      phi = DynamicMatrix::Identity() + temp * c;
+    }
+    return phi;
+  }
+  const auto a_aa = a_dt.template topLeftCorner<n, n>();
+  const auto a_au = a_dt.template topRightCorner<n, m>();
+  const Eigen::Matrix<double, m, 1> d = a_dt.template bottomRightCorner<m, m>().diagonal();
+  Eigen::Matrix<double, n, n> temp_aa;
+  Eigen::Matrix<double, n, m> temp_au;
   for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-    temp.noalias() = a_dt.lazyProduct(phi);
-    phi = DynamicMatrix::Identity() + temp * c;
+    temp_aa.noalias() = a_aa.lazyProduct(phi.template topLeftCorner<n, n>());
+    temp_au.noalias() = a_aa.lazyProduct(phi.template topRightCorner<n, m>());
+    temp_au.noalias() += a_au * phi.template bottomRightCorner<m, m>().diagonal().asDiagonal();
+    phi.template topLeftCorner<n, n>() = Eigen::Matrix<double, n, n>::Identity() + temp_aa * c;
+    phi.template topRightCorner<n, m>() = temp_au * c;
+    phi.template bottomRightCorner<m, m>().diagonal() =
+        Eigen::Matrix<double, m, 1>::Ones() + d.cwiseProduct(phi.template bottomRightCorner<m, m>().diagonal()) * c;
   }
   return phi;
 }
