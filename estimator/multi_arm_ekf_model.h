@@ -6,6 +6,7 @@
 
 #include <ceres/jet.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -245,14 +246,38 @@ typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State&
 template <int N>
 typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& /*u*/,
                                                                           MultiArmAccelLinearization<N>* accel) const {
-  using Jet = ceres::Jet<double, Layout::kJetSize>;
-  std::array<Jet, N> b, b_dot, f;
+  // Jets through the terms M, C, G, tau of the Euler-Lagrange equations only;
+  // the solve differentiated by hand on doubles, as EkfProcessModel::Jacobian:
+  //   q_ddot = M^-1 r,  d q_ddot = M^-1 (dr - dM q_ddot),  r = tau - C - G
+  // (a third of the cost of Jets through the solve).
+  constexpr int n = kBodyCoordinates + N, k = Layout::kJetSize;
+  using Jet = ceres::Jet<double, k>;
+  MultiCoords<Jet> q = MultiCoords<Jet>::Constant(n, Jet(0.0)), v = MultiCoords<Jet>::Constant(n, Jet(0.0));
+  ArmForces<Jet> forces(N);
+  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::kPitchRate);
   for (int i = 0; i < N; ++i) {
-    b[i] = Jet(x(Layout::Deflection(i)), Layout::Deflection(i));
-    b_dot[i] = Jet(x(Layout::DeflectionRate(i)), Layout::DeflectionRate(i));
-    f[i] = Jet(Force(x, i), Layout::JetForce(i));
+    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Deflection(i));
+    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::DeflectionRate(i));
+    forces(i) = Jet(Force(x, i), Layout::JetForce(i));
   }
-  const MultiCoords<Jet> acc = FreeAcceleration<Jet>(Jet(x(Layout::kPitchRate), Layout::kPitchRate), b, b_dot, f);
+  const MultiArmTerms<Jet> terms = ComputeMultiArmTerms<Jet>(vehicle_, q, v, forces);
+  Eigen::Matrix<double, n, n> mass;
+  Eigen::Matrix<double, n, 1> rhs;
+  Eigen::Matrix<double, n, k> d_rhs;
+  for (int i = 0; i < n; ++i) {
+    const Jet r = terms.generalized_thrust(i) - terms.coriolis(i) - terms.gravity_spring(i);
+    rhs(i) = r.a;
+    d_rhs.row(i) = r.v.transpose();
+    for (int j = 0; j < n; ++j) mass(i, j) = terms.mass(i, j).a;
+  }
+  const Eigen::LLT<Eigen::Matrix<double, n, n>> llt(mass);  // doubles: no Jet-equality pitfall
+  const Eigen::Matrix<double, n, 1> acc_value = llt.solve(rhs);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_value(j);
+  }
+  const Eigen::Matrix<double, n, k> d_acc = llt.solve(d_rhs);
+  MultiCoords<Jet> acc(n);
+  for (int i = 0; i < n; ++i) acc(i) = Jet(acc_value(i), d_acc.row(i).transpose());
   std::array<Eigen::Vector2d, N> grad;  // (df/domega, df/dmu)
   for (int i = 0; i < N; ++i) grad[i] = ForceGradient(x, i);
   // One row of d(acceleration)/dx from a Jet: the first 1 + 2N states are

@@ -74,9 +74,9 @@ TEST(MultiArmEkfTest, BirotorDescriptionIsCloseToTheBirotorEkf) {
       Vehicle("birotor"), ScenarioFor("hover", {"scenario.duration_s=4"}, 2), config.ekf, EvalOptions());
   const EvalRun run = RunSimulatedScenario(ScenarioFor("hover", {"scenario.duration_s=4"}, 2), config);
   const EvalResult birotor = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, EvalOptions());
-  for (int i = 0; i < 2; ++i) {
-    std::printf("N=2 rotor %d MAE %.4f birotor %.4f 2sig %.3f\n", i + 1, multi.rotor[i].mae_n, birotor.rotor[i].mae_n,
-                multi.rotor[i].share_within_2sigma);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(multi.rotor[i].mae_n, birotor.rotor[i].mae_n, 0.0003) << "rotor " << i + 1;
+    EXPECT_GT(multi.rotor[i].share_within_2sigma, 0.93) << "rotor " << i + 1;
   }
 }
 
