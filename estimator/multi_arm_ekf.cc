@@ -218,7 +218,9 @@ void MultiArmEkf<N>::ApplyMotor(const MultiArmMotorSample& sample) {
     }
     if (any) {
       using Measurements = MultiArmMeasurements<N>;
-      FuseMeasurementUnreported(Measurements::Telemetry(state_, measured),
+      // Telemetry reads the leading states up to omega (LeadingStates: the
+      // rest are updated through their cross covariance, kalman_fusion.h).
+      FuseMeasurementUnreported(LeadingStates<Layout::ThrustScale(0)>(Measurements::Telemetry(state_, measured)),
                                 Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
                                 options_.telemetry_gate_nis, &state_, &covariance_);
     }
@@ -238,16 +240,17 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   using Measurements = MultiArmMeasurements<N>;
   if (options_.use_gyro && std::isfinite(sample.gyro_y_rad_s)) {
     const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
-    FuseMeasurementUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
-                              options_.gyro_gate_nis, &state_, &covariance_);
+    FuseMeasurementUnreported(LeadingStates<1>(Measurements::Gyro(state_)), r,
+                              Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s), options_.gyro_gate_nis, &state_,
+                              &covariance_);
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
   if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_) return;
   const double sigma = options_.accel_noise_m_s2;
   const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
-  FuseMeasurementUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
-                            Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
-                            &covariance_);
+  FuseMeasurementUnreported(
+      LeadingStates<Layout::kDynamicSize>(Measurements::Accelerometer(accel_linearization_, state_)), r,
+      Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_, &covariance_);
 }
 
 template <int N>
