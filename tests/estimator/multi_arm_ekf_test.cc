@@ -156,5 +156,24 @@ TEST(MultiArmFaultMonitorTest, TwoRotorsFlagAsTheBirotorMonitor) {
   EXPECT_GT(raised, 100);  // the walk did cross the thresholds
 }
 
+// The N-rotor status: the birotor's bits for the method's facts
+// (FilterStatusBits), the rotor faults in rotor_fault_bits, bit i for rotor i + 1.
+TEST(MultiArmStatusTest, ComposedWithTheBirotorRules) {
+  MultiArmFilterFacts facts;
+  facts.convergence = FilterConvergence::kConverged;
+  facts.measurement_rejected = true;
+  facts.rotor_fault[2] = true;
+  facts.rotor_fault[4] = true;  // beyond n_rotors = 3: not published
+  MultiArmStatusBits bits = ComposeMultiArmFilterStatus(facts, 3);
+  EXPECT_EQ(bits.status, kStatusValid | kStatusMeasurementRejected);
+  EXPECT_EQ(bits.rotor_fault_bits, 0b100);
+  facts = MultiArmFilterFacts();
+  facts.convergence = FilterConvergence::kConverging;
+  facts.thrust_deficit = true;
+  bits = ComposeMultiArmFilterStatus(facts, 6);
+  EXPECT_EQ(bits.status, kStatusConverging | kStatusThrustDeficit);
+  EXPECT_EQ(bits.rotor_fault_bits, 0);
+}
+
 }  // namespace
 }  // namespace birotor
