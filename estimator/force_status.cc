@@ -37,4 +37,19 @@ double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& fact
   return std::hypot(method_force_std_n, facts.consistency.tip_mass_force_std_n);
 }
 
+MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts, int n_rotors) {
+  // The birotor's rules for the method's bits (FilterStatusBits); the rotor
+  // bits move to rotor_fault_bits, as transport/counted_messages.cc maps them.
+  FilterStatusFacts shared;
+  shared.convergence = facts.convergence;
+  shared.measurement_rejected = facts.measurement_rejected;
+  shared.thrust_deficit = facts.thrust_deficit;
+  MultiArmStatusBits out;
+  out.status = FilterStatusBits(shared, false);
+  for (int i = 0; i < n_rotors && i < kMaxSampleArms; ++i) {
+    out.rotor_fault_bits |= static_cast<int32_t>(facts.rotor_fault[static_cast<size_t>(i)]) << i;
+  }
+  return out;
+}
+
 }  // namespace birotor

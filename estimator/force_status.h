@@ -6,8 +6,10 @@
 // which facts withdraw STATUS_VALID (lcmtypes/force_estimate_t.lcm).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
+#include "samples/multi_arm_samples.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
 
@@ -105,5 +107,25 @@ bool ValidWithdrawn(const ForceStatusFacts& facts);
 // mass is unconfirmed, sigma = sqrt(sigma_method^2 + sigma_tip^2) (std::hypot);
 // otherwise the method's, unchanged.
 double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& facts);
+
+// The method's facts of an N-rotor estimate (estimator/multi_arm_ekf.h),
+// with the birotor's meaning of each: converged once every force sigma fell
+// below converged_force_std_n (VALID), else CONVERGING; the strain sample
+// gated (MEASUREMENT_REJECTED); rotor i weaker than the others
+// (rotor_fault_bits bit i); every rotor below its map (THRUST_DEFICIT).
+struct MultiArmFilterFacts {
+  FilterConvergence convergence = FilterConvergence::kNoEstimate;
+  bool measurement_rejected = false;
+  std::array<bool, kMaxSampleArms> rotor_fault{};
+  bool thrust_deficit = false;
+};
+
+// force_estimate_n_t's status and rotor_fault_bits from the method's facts
+// (the N-arm estimate has no pipeline, consistency or transport facts yet).
+struct MultiArmStatusBits {
+  int32_t status = 0;
+  int32_t rotor_fault_bits = 0;
+};
+MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts, int n_rotors);
 
 }  // namespace birotor

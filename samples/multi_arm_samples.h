@@ -54,4 +54,17 @@ struct MultiArmTruthSample {
   ArmValues thrust_scale{};             // actual / nominal map, mu_i [1]
 };
 
+// Rotor-force estimate of a vehicle with N arms (channel FORCE_N,
+// force_estimate_n_t; estimator/multi_arm_ekf.h).
+struct MultiArmForceEstimate {
+  int64_t utime = 0;             // utime of the newest strain sample included [us]
+  int32_t seq = 0;               // seq of that strain sample
+  int n_rotors = 0;              // the description's arm_count
+  ArmValues force_n{};           // rotor thrust [N]
+  ArmValues force_std_n{};       // one sigma [N]
+  ArmValues thrust_scale{};      // actual / (c_T,i omega_i^2), mu_i [1]
+  int32_t status = 0;            // StatusBit set (samples/samples.h), force_estimate_n_t's STATUS_*
+  int32_t rotor_fault_bits = 0;  // bit i: rotor i + 1 weaker than the others (ROTOR_FAULT_ROTOR*)
+};
+
 }  // namespace birotor

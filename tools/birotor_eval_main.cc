@@ -28,6 +28,7 @@
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "tools/eval_mismatch_targets.h"
+#include "tools/eval_multi_arm_accuracy.h"
 #include "tools/eval_multi_arm_control.h"
 #include "transport/log_io.h"
 #include "transport/output_file.h"
@@ -90,6 +91,7 @@ struct EvalCli {
   bool mpc = false;
   bool mismatch_targets = false;
   double min_usable_fraction = kDefaultMinUsableLogFraction;
+  std::string vehicle_file;  // --vehicle: the N-arm EKF on this description
 };
 
 void AddEstimatorTableOptions(CLI::App& app, EvalCli* cli) {
@@ -114,6 +116,9 @@ void AddEstimatorTableOptions(CLI::App& app, EvalCli* cli) {
                "hover, gentle, aggressive, thrust_loss on seeds 1..--seeds (default 5) with --params as given; "
                "VALID share, MAE and 2-sigma share of the VALID estimates, worst 2 s window, verdict per case");
   app.add_option("--plot-dir", cli->plot_dir, "Write <scenario>_<method>.png plots here");
+  app.add_option("--vehicle", cli->vehicle_file,
+                 "The N-arm EKF instead (docs/estimator.md, \"The EKF for N arms\"): fly --scenarios on this "
+                 "vehicle description; MAE and 2-sigma share per rotor, VALID share, fault detection, false alarms");
 }
 
 void AddControlOptions(CLI::App& app, EvalCli* cli) {
@@ -468,6 +473,9 @@ int main(int argc, char** argv) {
     return RunMultiArmControl(multi_arm, {app.count("--scenarios") > 0 ? cli.scenarios : std::vector<std::string>{},
                                           cli.controller_params, cli.scenario_dir, cli.overrides, cli.markdown_out});
   if (cli.control) return RunControlMode(cli, app.count("--scenarios") > 0, base_config);
+  if (!cli.vehicle_file.empty()) {
+    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, cli.overrides, base_config.ekf, cli.eval_options);
+  }
   if (cli.mismatch_targets) {
     if (!cli.log_path.empty())
       return ReportError("--mismatch-targets flies its cases; it does not take --log", kExitUsage);

@@ -260,6 +260,19 @@ truth_n_t ToMessage(const MultiArmTruthSample& s) {
   return m;
 }
 
+force_estimate_n_t ToMessage(const MultiArmForceEstimate& e) {
+  force_estimate_n_t m{};
+  m.utime = e.utime;
+  m.seq = e.seq;
+  m.n_rotors = static_cast<int8_t>(e.n_rotors);
+  m.force_n = FirstEntries(e.force_n, e.n_rotors);
+  m.force_std_n = FirstEntries(e.force_std_n, e.n_rotors);
+  m.thrust_scale = FirstEntries(e.thrust_scale, e.n_rotors);
+  m.status = e.status;  // composed by ComposeMultiArmFilterStatus: a copy
+  m.rotor_fault_bits = e.rotor_fault_bits;
+  return m;
+}
+
 vehicle_description_t ToMessage(const VehicleDescription& description, const std::string& publisher) {
   vehicle_description_t m{};
   m.publisher = publisher;

@@ -96,6 +96,8 @@ strain_n_t ToMessage(const MultiArmStrainSample& sample);
 motor_n_t ToMessage(const MultiArmMotorSample& sample);
 loadcell_n_t ToMessage(const MultiArmLoadCellSample& sample);
 truth_n_t ToMessage(const MultiArmTruthSample& sample);
+// The N-arm EKF's estimate (estimator/multi_arm_ekf.h) as FORCE_N.
+force_estimate_n_t ToMessage(const MultiArmForceEstimate& estimate);
 
 // The description a program runs with, for VEHICLE_DESCRIPTION: every field,
 // the checksum (DescriptionChecksum), publisher the program's name; utime and

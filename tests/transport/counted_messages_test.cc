@@ -290,3 +290,32 @@ TEST(VehicleDescriptionMessageTest, ABadCountIsRefused) {
 
 }  // namespace
 }  // namespace birotor
+
+namespace birotor {
+namespace {
+
+// The N-arm EKF's estimate on the wire: n_rotors entries, status and
+// rotor_fault_bits copied as composed.
+TEST(MultiArmForceMessageTest, ThreeRotorsFieldForField) {
+  MultiArmForceEstimate e;
+  e.utime = 123456;
+  e.seq = 7;
+  e.n_rotors = 3;
+  e.force_n = {27.5, 14.3, 14.2, 99, 99, 99};
+  e.force_std_n = {0.1, 0.2, 0.3, 9, 9, 9};
+  e.thrust_scale = {1.0, 0.75, 1.01, 9, 9, 9};
+  e.status = force_estimate_n_t::STATUS_VALID | force_estimate_n_t::STATUS_MEASUREMENT_REJECTED;
+  e.rotor_fault_bits = force_estimate_n_t::ROTOR_FAULT_ROTOR2;
+  const force_estimate_n_t m = ToMessage(e);
+  EXPECT_EQ(m.utime, 123456);
+  EXPECT_EQ(m.seq, 7);
+  ASSERT_EQ(m.n_rotors, 3);
+  EXPECT_EQ(m.force_n, (std::vector<double>{27.5, 14.3, 14.2}));
+  EXPECT_EQ(m.force_std_n, (std::vector<double>{0.1, 0.2, 0.3}));
+  EXPECT_EQ(m.thrust_scale, (std::vector<double>{1.0, 0.75, 1.01}));
+  EXPECT_EQ(m.status, e.status);
+  EXPECT_EQ(m.rotor_fault_bits, force_estimate_n_t::ROTOR_FAULT_ROTOR2);
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,129 @@
+// The rotor-force EKF for any described vehicle (N = 2 .. kMaxArms elastic
+// arms): each rotor's thrust and its efficiency mu_i against the nominal map
+// from the strain gauges, with the motor commands as inputs and motor
+// telemetry, gyro and accelerometer as extra measurements. The filter is a
+// template on N (fixed-size state, no heap in the per-sample path) behind one
+// runtime interface; MakeMultiArmEkf picks N from the description.
+// docs/estimator.md, "The EKF for N arms".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "estimator/estimator_config.h"
+#include "estimator/multi_arm_ekf_model.h"
+#include "estimator/multi_arm_fault_monitor.h"
+#include "estimator/sample_queue.h"
+#include "model/vehicle_description.h"
+#include "samples/multi_arm_samples.h"
+#include "samples/samples.h"
+
+namespace birotor {
+
+// The runtime interface: the N-arm samples in, MultiArmForceEstimate out.
+class MultiArmForceEstimator {
+ public:
+  virtual ~MultiArmForceEstimator() = default;
+  virtual int arm_count() const = 0;
+  // Forget everything; the next strain sample initialises.
+  virtual void Reset() = 0;
+  // Queued until the next strain sample (the birotor EKF's time handling).
+  virtual void AddMotor(const MultiArmMotorSample& sample) = 0;
+  virtual void AddImu(const ImuSample& sample) = 0;
+  // Applies the queued samples stamped up to this one, predicts to its
+  // stamp, fuses it and fills *estimate (n_rotors, forces, sigmas, mu_i,
+  // status and rotor_fault_bits). Never throws; a non-finite state
+  // re-initialises from the sample.
+  virtual void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) = 0;
+  // The force sigma of rotor i [N] and its fault flag, after the last strain sample.
+  virtual double force_std_n(int rotor) const = 0;
+};
+
+// The filter for N arms. MOTOR and IMU samples wait in a queue until the next
+// strain sample; the filter is predicted to each one's stamp in time order
+// (the command of a MOTOR sample holds from its stamp on), fuses it, and is
+// predicted on to the strain sample, in sub-steps of at most
+// max_prediction_step_s. A sample stamped before the filter's time is not
+// fused (its command still takes effect). Differences from the birotor's
+// EkfForceEstimator: no ground model (a free body always), no learned slow
+// parameters, no strain-noise adaptation, a fixed-size state of 1 + 5N.
+template <int N>
+class MultiArmEkf : public MultiArmForceEstimator {
+ public:
+  using Layout = MultiArmEkfLayout<N>;
+  using Model = MultiArmEkfModel<N>;
+  using State = typename Model::State;
+  using Covariance = typename Model::Covariance;
+  using Input = typename Model::Input;
+  static constexpr int kQueueCapacity = 128;
+
+  // vehicle.arm_count must be N (MakeMultiArmEkf checks).
+  MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions& options);
+
+  int arm_count() const override { return N; }
+  void Reset() override;
+  void AddMotor(const MultiArmMotorSample& sample) override;
+  void AddImu(const ImuSample& sample) override;
+  void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) override;
+  double force_std_n(int rotor) const override { return force_std_n_[static_cast<size_t>(rotor)]; }
+
+  bool initialized() const { return initialized_; }
+  const State& state() const { return state_; }
+  const Covariance& covariance() const { return covariance_; }
+  const Model& model() const { return model_; }
+  int64_t utime() const { return last_utime_; }
+
+ private:
+  using Measured = std::array<bool, N>;
+
+  void Initialize(const MultiArmStrainSample& sample);
+  // The calibrated strain readings z_i = (raw_i - o_i) / s_i and which are
+  // measured (a gauge, a finite reading, the sample's arm count is N).
+  void CalibratedStrain(const MultiArmStrainSample& sample, Eigen::Matrix<double, N, 1>* z, Measured* measured) const;
+  void PredictTo(int64_t utime);
+  void Predict(double dt_s, const Input& input);
+  void ApplyQueuedUpTo(int64_t utime);
+  void ApplyMotor(const MultiArmMotorSample& sample);
+  void ApplyImu(const ImuSample& sample);
+  FusionOutcome FuseStrain(const MultiArmStrainSample& sample);
+  // Symmetrises P and applies the birotor's variance floors and ceilings;
+  // false if the state or covariance is not finite.
+  bool ConditionCovariance();
+  void UpdateFaults(int64_t utime);
+  void FillEstimate(const MultiArmStrainSample& sample, bool gated, MultiArmForceEstimate* estimate);
+
+  VehicleDescription vehicle_;
+  EkfOptions options_;
+  Model model_;
+  State process_noise_psd_;                 // diagonal of Qc; Q = Qc dt
+  std::array<double, N> offset_prior_std_;  // sigma of e_i at (re-)initialisation [rad]
+  Input hover_input_;                       // command assumed before any MOTOR sample
+  State floor_, ceiling_;                   // variance floor and ceiling per state, the birotor's [unit^2]
+  MultiArmAccelLinearization<N> accel_linearization_;
+  bool accel_linearization_valid_ = false;
+
+  bool initialized_ = false;
+  bool converged_ = false;
+  int64_t last_utime_ = 0;
+  State state_;
+  Covariance covariance_;
+  GateWithInflation strain_gate_;
+  bool has_motor_ = false;
+  Input command_;
+  SampleQueue<MultiArmMotorSample, kQueueCapacity> motor_queue_;
+  SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
+  MultiArmFaultMonitor faults_;
+  std::array<double, N> force_std_n_{};
+};
+
+// The filter for the description's arm count (2 .. kMaxArms); null outside.
+std::unique_ptr<MultiArmForceEstimator> MakeMultiArmEkf(const VehicleDescription& vehicle, const EkfOptions& options);
+
+extern template class MultiArmEkf<2>;
+extern template class MultiArmEkf<3>;
+extern template class MultiArmEkf<4>;
+extern template class MultiArmEkf<5>;
+extern template class MultiArmEkf<6>;
+
+}  // namespace birotor

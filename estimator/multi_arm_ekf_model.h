@@ -1,0 +1,354 @@
+// State, process model and measurement models of the rotor-force EKF for a
+// vehicle with N elastic arms (model/vehicle_description.h, N = 2 .. kMaxArms),
+// templated on N so that every vector and matrix is fixed-size (no heap in the
+// per-sample path). docs/estimator.md, "The EKF for N arms".
+#pragma once
+
+#include <ceres/jet.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+
+#include "estimator/kalman_fusion.h"
+#include "model/multi_arm_dynamics.h"
+#include "model/rk4.h"
+#include "model/vehicle_description.h"
+
+namespace birotor {
+
+// Named indices of the N-arm filter state
+//   x = [phi_dot, b_1..b_N, b_dot_1..b_dot_N, omega_1..omega_N, mu_1..mu_N, e_1..e_N]
+// phi_dot [rad/s], b_i [rad], b_dot_i [rad/s], omega_i [rad/s], mu_i [1]
+// (f_i = mu_i c_T,i omega_i^2), e_i [rad] (offset of calibrated gauge i, in
+// deflection). The first kDynamicSize states have dynamics; the offsets are
+// random walks, so the transition is [Phi_d, 0; 0, I].
+template <int N>
+struct MultiArmEkfLayout {
+  static_assert(N >= 2 && N <= kMaxArms, "2 .. kMaxArms arms");
+  static constexpr int kArms = N;
+  static constexpr int kPitchRate = 0;
+  static constexpr int Deflection(int arm) { return 1 + arm; }
+  static constexpr int DeflectionRate(int arm) { return 1 + N + arm; }
+  static constexpr int Omega(int arm) { return 1 + 2 * N + arm; }
+  static constexpr int ThrustScale(int arm) { return 1 + 3 * N + arm; }
+  static constexpr int GaugeOffset(int arm) { return 1 + 4 * N + arm; }
+  static constexpr int kDynamicSize = 1 + 4 * N;
+  static constexpr int kStateSize = 1 + 5 * N;
+  // Jet variables of the process Jacobian: phi_dot, b_i, b_dot_i (the first
+  // 1 + 2N states, same order), then f_i.
+  static constexpr int kJetSize = 1 + 3 * N;
+  static constexpr int JetForce(int arm) { return 1 + 2 * N + arm; }
+};
+
+// Clamped rotor speed commands held over one prediction interval [rad/s].
+template <int N>
+struct MultiArmEkfInput {
+  std::array<double, N> omega_cmd_rad_s{};
+};
+
+// The accelerometer's model linearised where the process was: the specific
+// force at the body centre in the body frame, (a_x, a_z) [m/s^2], a
+// by-product of the process Jacobian (the x and z rows of the same solve).
+template <int N>
+struct MultiArmAccelLinearization {
+  using Layout = MultiArmEkfLayout<N>;
+  Eigen::Matrix<double, Layout::kStateSize, 1> x0 = Eigen::Matrix<double, Layout::kStateSize, 1>::Zero();
+  Eigen::Vector2d value = Eigen::Vector2d::Zero();         // (a_x, a_z)(x0)
+  Eigen::Matrix<double, 2, Layout::kStateSize> jacobian =  // d (a_x, a_z) / dx
+      Eigen::Matrix<double, 2, Layout::kStateSize>::Zero();
+};
+
+// Process model x_dot = f(x, u) of a free body:
+//   (phi_ddot, b_ddot_i) = the phi and b_i rows of MultiArmAcceleration
+//   (model/multi_arm_dynamics.h) at phi = 0, x = z = 0, body velocity 0: for a
+//   free body in uniform gravity they depend on none of x, z, phi, x_dot,
+//   z_dot (tests/estimator/multi_arm_ekf_model_test.cc, to 1e-12);
+//   b_dot_i from the state; f_i = mu_i c_T,i omega_i^2;
+//   omega_i_dot = (clamp(cmd_i, 0, omega_max) - omega_i) / tau_m,i;
+//   mu_i_dot = 0, e_i_dot = 0 (random walks, driven by process noise).
+template <int N>
+class MultiArmEkfModel {
+ public:
+  using Layout = MultiArmEkfLayout<N>;
+  static constexpr int kS = Layout::kStateSize;
+  static constexpr int kD = Layout::kDynamicSize;
+  using State = Eigen::Matrix<double, kS, 1>;
+  using Covariance = Eigen::Matrix<double, kS, kS>;
+  using DynamicMatrix = Eigen::Matrix<double, kD, kD>;
+  using Input = MultiArmEkfInput<N>;
+
+  explicit MultiArmEkfModel(const VehicleDescription& vehicle) : vehicle_(vehicle) {}
+
+  const VehicleDescription& vehicle() const { return vehicle_; }
+  // f_i = mu_i c_T,i omega_i^2 [N].
+  double Force(const State& x, int arm) const {
+    const double omega = x(Layout::Omega(arm));
+    return x(Layout::ThrustScale(arm)) * ThrustCoeff(arm) * omega * omega;
+  }
+  // (df_i/domega_i, df_i/dmu_i).
+  Eigen::Vector2d ForceGradient(const State& x, int arm) const {
+    const double omega = x(Layout::Omega(arm)), c_t = ThrustCoeff(arm);
+    return Eigen::Vector2d(2.0 * x(Layout::ThrustScale(arm)) * c_t * omega, c_t * omega * omega);
+  }
+  // The command as the motor sees it: clamp(cmd, 0, omega_max) [rad/s].
+  double ClampCommand(double omega_cmd_rad_s) const {
+    return std::clamp(omega_cmd_rad_s, 0.0, vehicle_.omega_max_rad_s);
+  }
+
+  State Derivative(const State& x, const Input& u) const;
+  // A_d = df/dx on the dynamic block, exact: Ceres Jets over (phi_dot, b_i,
+  // b_dot_i, f_i) through MultiArmAcceleration, then the chain rule
+  // df_i/domega_i = 2 mu_i c_T,i omega_i, df_i/dmu_i = c_T,i omega_i^2.
+  // With accel non-null also the specific force (a_x, a_z) = (x_ddot,
+  // z_ddot + g) at phi = 0 and its gradient (the same solve).
+  DynamicMatrix Jacobian(const State& x, const Input& u, MultiArmAccelLinearization<N>* accel = nullptr) const;
+  // One RK4 step over dt_s with u held.
+  State Step(const State& x, const Input& u, double dt_s) const {
+    return Rk4Step(x, dt_s, [&](const State& s) { return Derivative(s, u); });
+  }
+  // Phi_d = exp(A_d dt) to fourth order, as EkfProcessModel::Transition:
+  //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))),
+  // on the blocks of A = [A_aa, A_au; 0, D] when it has them (the arm states
+  // a = phi_dot, b, b_dot; the rotor states u = omega, mu; D diagonal: the
+  // motor lag and 0), as every power then has: the same sums less A's exact zeros.
+  static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal and finite, exactly.
+  static bool HasRotorBlockStructure(const DynamicMatrix& x);
+  // Phi_d X for a kD x C matrix X, on those blocks when blocks.
+  static constexpr int kArmStates = 1 + 2 * N;  // phi_dot, b_i, b_dot_i
+  static constexpr int kRotorStates = 2 * N;    // omega_i, mu_i
+  template <int C, typename X>
+  static Eigen::Matrix<double, kD, C> TransitionTimes(const DynamicMatrix& phi, const Eigen::MatrixBase<X>& x,
+                                                      bool blocks) {
+    constexpr int n = kArmStates, m = kRotorStates;
+    Eigen::Matrix<double, kD, C> out;
+    if (!blocks) {
+      out.noalias() = phi.lazyProduct(x);
+      return out;
+    }
+    auto top = out.template topRows<n>();
+    top.noalias() = phi.template topLeftCorner<n, n>().lazyProduct(x.template topRows<n>());
+    top.noalias() += phi.template topRightCorner<n, m>().lazyProduct(x.template bottomRows<m>());
+    out.template bottomRows<m>() =
+        phi.template bottomRightCorner<m, m>().diagonal().asDiagonal() * x.template bottomRows<m>();
+    return out;
+  }
+
+ private:
+  double ThrustCoeff(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].thrust_coeff_n_s2_rad2; }
+  double MotorTimeConstant(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].motor_time_constant_s; }
+  // q_ddot of the free body at phi = 0, at rest, from the arm states and thrusts.
+  template <typename T>
+  MultiCoords<T> FreeAcceleration(const T& phi_dot, const std::array<T, N>& b, const std::array<T, N>& b_dot,
+                                  const std::array<T, N>& force_n) const;
+
+  VehicleDescription vehicle_;
+};
+
+// One measurement model per sensor: h(x), H and R. A masked entry (an arm
+// without a gauge, a NaN reading) is simply not measured: its row of H is
+// zero, z = h = 0 there and its R entry 1 (any positive value): it adds
+// nothing to the NIS, its gain column is zero, and S stays invertible.
+template <int N>
+struct MultiArmMeasurements {
+  using Layout = MultiArmEkfLayout<N>;
+  static constexpr int kS = Layout::kStateSize;
+  using State = Eigen::Matrix<double, kS, 1>;
+  using ArmVector = Eigen::Matrix<double, N, 1>;
+  using ArmMatrix = Eigen::Matrix<double, N, N>;
+
+  // Strain after calibration: z_i = b_i + e_i [rad] where measured[i].
+  static MeasurementLinearization<N, kS> Strain(const State& x, const std::array<bool, N>& measured) {
+    MeasurementLinearization<N, kS> at;
+    at.jacobian.setZero();
+    for (int i = 0; i < N; ++i) {
+      at.predicted(i) = measured[i] ? x(Layout::Deflection(i)) + x(Layout::GaugeOffset(i)) : 0.0;
+      if (!measured[i]) continue;
+      at.jacobian(i, Layout::Deflection(i)) = 1.0;
+      at.jacobian(i, Layout::GaugeOffset(i)) = 1.0;
+    }
+    return at;
+  }
+  // Motor telemetry: z_i = omega_i [rad/s] where measured[i].
+  static MeasurementLinearization<N, kS> Telemetry(const State& x, const std::array<bool, N>& measured) {
+    MeasurementLinearization<N, kS> at;
+    at.jacobian.setZero();
+    for (int i = 0; i < N; ++i) {
+      at.predicted(i) = measured[i] ? x(Layout::Omega(i)) : 0.0;
+      if (measured[i]) at.jacobian(i, Layout::Omega(i)) = 1.0;
+    }
+    return at;
+  }
+  // Gyro: z = phi_dot [rad/s].
+  static MeasurementLinearization<1, kS> Gyro(const State& x) {
+    MeasurementLinearization<1, kS> at;
+    at.jacobian.setZero();
+    at.jacobian(0, Layout::kPitchRate) = 1.0;
+    at.predicted(0) = x(Layout::kPitchRate);
+    return at;
+  }
+  // Accelerometer (a_x, a_z) [m/s^2] from the process Jacobian's by-product,
+  // first order in the <= 1 ms the state moved since: h = a0 + H (x - x0).
+  static MeasurementLinearization<2, kS> Accelerometer(const MultiArmAccelLinearization<N>& at0, const State& x) {
+    MeasurementLinearization<2, kS> at;
+    at.jacobian = at0.jacobian;
+    at.predicted = at0.value + at0.jacobian * (x - at0.x0);
+    return at;
+  }
+  // R = diag(sigma^2) on the measured entries, 1 on the masked ones.
+  static ArmMatrix MaskedNoise(double noise_std, const std::array<bool, N>& measured) {
+    ArmMatrix r = ArmMatrix::Zero();
+    for (int i = 0; i < N; ++i) r(i, i) = measured[i] ? noise_std * noise_std : 1.0;
+    return r;
+  }
+};
+
+// ---- inline implementation ----
+
+template <int N>
+template <typename T>
+MultiCoords<T> MultiArmEkfModel<N>::FreeAcceleration(const T& phi_dot, const std::array<T, N>& b,
+                                                     const std::array<T, N>& b_dot,
+                                                     const std::array<T, N>& force_n) const {
+  const int n = kBodyCoordinates + N;
+  MultiCoords<T> q = MultiCoords<T>::Constant(n, T(0.0)), v = MultiCoords<T>::Constant(n, T(0.0));
+  ArmForces<T> f(N);
+  v(kPhi) = phi_dot;
+  for (int i = 0; i < N; ++i) {
+    q(DeflectionIndex(i)) = b[static_cast<size_t>(i)];
+    v(DeflectionIndex(i)) = b_dot[static_cast<size_t>(i)];
+    f(i) = force_n[static_cast<size_t>(i)];
+  }
+  return MultiArmAcceleration<T>(vehicle_, q, v, f);
+}
+
+template <int N>
+typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State& x, const Input& u) const {
+  std::array<double, N> b, b_dot, f;
+  for (int i = 0; i < N; ++i) {
+    b[i] = x(Layout::Deflection(i));
+    b_dot[i] = x(Layout::DeflectionRate(i));
+    f[i] = Force(x, i);
+  }
+  const MultiCoords<double> acc = FreeAcceleration<double>(x(Layout::kPitchRate), b, b_dot, f);
+  State x_dot = State::Zero();  // mu and e: random walks
+  x_dot(Layout::kPitchRate) = acc(kPhi);
+  for (int i = 0; i < N; ++i) {
+    x_dot(Layout::Deflection(i)) = b_dot[i];
+    x_dot(Layout::DeflectionRate(i)) = acc(DeflectionIndex(i));
+    x_dot(Layout::Omega(i)) = (ClampCommand(u.omega_cmd_rad_s[i]) - x(Layout::Omega(i))) / MotorTimeConstant(i);
+  }
+  return x_dot;
+}
+
+template <int N>
+typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& /*u*/,
+                                                                          MultiArmAccelLinearization<N>* accel) const {
+  // Jets through the terms M, C, G, tau of the Euler-Lagrange equations only;
+  // the solve differentiated by hand on doubles, as EkfProcessModel::Jacobian:
+  //   q_ddot = M^-1 r,  d q_ddot = M^-1 (dr - dM q_ddot),  r = tau - C - G
+  // (a third of the cost of Jets through the solve).
+  constexpr int n = kBodyCoordinates + N, k = Layout::kJetSize;
+  using Jet = ceres::Jet<double, k>;
+  MultiCoords<Jet> q = MultiCoords<Jet>::Constant(n, Jet(0.0)), v = MultiCoords<Jet>::Constant(n, Jet(0.0));
+  ArmForces<Jet> forces(N);
+  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::kPitchRate);
+  for (int i = 0; i < N; ++i) {
+    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Deflection(i));
+    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::DeflectionRate(i));
+    forces(i) = Jet(Force(x, i), Layout::JetForce(i));
+  }
+  const MultiArmTerms<Jet> terms = ComputeMultiArmTerms<Jet>(vehicle_, q, v, forces);
+  Eigen::Matrix<double, n, n> mass;
+  Eigen::Matrix<double, n, 1> rhs;
+  Eigen::Matrix<double, n, k> d_rhs;
+  for (int i = 0; i < n; ++i) {
+    const Jet r = terms.generalized_thrust(i) - terms.coriolis(i) - terms.gravity_spring(i);
+    rhs(i) = r.a;
+    d_rhs.row(i) = r.v.transpose();
+    for (int j = 0; j < n; ++j) mass(i, j) = terms.mass(i, j).a;
+  }
+  const Eigen::LLT<Eigen::Matrix<double, n, n>> llt(mass);  // doubles: no Jet-equality pitfall
+  const Eigen::Matrix<double, n, 1> acc_value = llt.solve(rhs);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_value(j);
+  }
+  const Eigen::Matrix<double, n, k> d_acc = llt.solve(d_rhs);
+  MultiCoords<Jet> acc(n);
+  for (int i = 0; i < n; ++i) acc(i) = Jet(acc_value(i), d_acc.row(i).transpose());
+  std::array<Eigen::Vector2d, N> grad;  // (df/domega, df/dmu)
+  for (int i = 0; i < N; ++i) grad[i] = ForceGradient(x, i);
+  // One row of d(acceleration)/dx from a Jet: the first 1 + 2N states are
+  // the Jet's own variables, omega_i and mu_i by the chain rule through f_i.
+  const auto fill_row = [&](const Jet& a, auto&& row) {
+    for (int c = 0; c < 1 + 2 * N; ++c) row(c) = a.v(c);
+    for (int i = 0; i < N; ++i) {
+      row(Layout::Omega(i)) = a.v(Layout::JetForce(i)) * grad[i](0);
+      row(Layout::ThrustScale(i)) = a.v(Layout::JetForce(i)) * grad[i](1);
+    }
+  };
+  DynamicMatrix a = DynamicMatrix::Zero();
+  fill_row(acc(kPhi), a.row(Layout::kPitchRate));
+  for (int i = 0; i < N; ++i) {
+    a(Layout::Deflection(i), Layout::DeflectionRate(i)) = 1.0;
+    fill_row(acc(DeflectionIndex(i)), a.row(Layout::DeflectionRate(i)));
+    a(Layout::Omega(i), Layout::Omega(i)) = -1.0 / MotorTimeConstant(i);
+  }
+  if (accel != nullptr) {
+    accel->x0 = x;
+    accel->value = Eigen::Vector2d(acc(kX).a, acc(kZ).a + vehicle_.gravity_m_s2);
+    accel->jacobian.setZero();
+    fill_row(acc(kX), accel->jacobian.row(0));
+    fill_row(acc(kZ), accel->jacobian.row(1));
+  }
+  return a;
+}
+
+template <int N>
+bool MultiArmEkfModel<N>::HasRotorBlockStructure(const DynamicMatrix& x) {
+  // sum |x_ij| over the rotor rows left of D and off its diagonal is 0
+  // exactly when each is +-0 (a NaN or an infinity makes it NaN or inf).
+  Eigen::Matrix<double, kRotorStates, kD> rows = x.template bottomRows<kRotorStates>();
+  rows.template rightCols<kRotorStates>().diagonal().setZero();
+  return rows.cwiseAbs().sum() == 0.0 && x.diagonal().template tail<kRotorStates>().allFinite();
+}
+
+template <int N>
+typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Transition(const DynamicMatrix& a, double dt_s) {
+  constexpr int n = kArmStates, m = kRotorStates;
+  const DynamicMatrix a_dt = a * dt_s;
+  DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
+  if (!HasRotorBlockStructure(a_dt)) {  // not that structure: dense
+    DynamicMatrix temp;
+    for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
+      temp.noalias() = a_dt.lazyProduct(phi);
+      phi = DynamicMatrix::Identity() + temp * c;
+    }
+    return phi;
+  }
+  const auto a_aa = a_dt.template topLeftCorner<n, n>();
+  const auto a_au = a_dt.template topRightCorner<n, m>();
+  const Eigen::Matrix<double, m, 1> d = a_dt.template bottomRightCorner<m, m>().diagonal();
+  Eigen::Matrix<double, n, n> temp_aa;
+  Eigen::Matrix<double, n, m> temp_au;
+  for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
+    temp_aa.noalias() = a_aa.lazyProduct(phi.template topLeftCorner<n, n>());
+    temp_au.noalias() = a_aa.lazyProduct(phi.template topRightCorner<n, m>());
+    temp_au.noalias() += a_au * phi.template bottomRightCorner<m, m>().diagonal().asDiagonal();
+    phi.template topLeftCorner<n, n>() = Eigen::Matrix<double, n, n>::Identity() + temp_aa * c;
+    phi.template topRightCorner<n, m>() = temp_au * c;
+    phi.template bottomRightCorner<m, m>().diagonal() =
+        Eigen::Matrix<double, m, 1>::Ones() + d.cwiseProduct(phi.template bottomRightCorner<m, m>().diagonal()) * c;
+  }
+  return phi;
+}
+
+extern template class MultiArmEkfModel<2>;
+extern template class MultiArmEkfModel<3>;
+extern template class MultiArmEkfModel<4>;
+extern template class MultiArmEkfModel<5>;
+extern template class MultiArmEkfModel<6>;
+
+}  // namespace birotor

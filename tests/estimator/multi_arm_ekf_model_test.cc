@@ -1,0 +1,123 @@
+// The N-arm EKF's process model (estimator/multi_arm_ekf_model.h): the free
+// body's arm rows do not depend on the body pose and velocity, the Jacobian
+// and the accelerometer's gradient against central differences, and the
+// fourth-order transition against a matrix exponential by many small steps.
+#include "estimator/multi_arm_ekf_model.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "params/vehicle_description_yaml.h"
+
+namespace birotor {
+namespace {
+
+VehicleDescription Trirotor() {
+  return LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
+}
+
+// A state near hover with the arms swinging and the rotors off their hover speed.
+MultiArmEkfModel<3>::State SwingingState(const MultiArmEkfModel<3>& model) {
+  using L = MultiArmEkfLayout<3>;
+  const HoverSolution hover = SolveHover(model.vehicle());
+  MultiArmEkfModel<3>::State x = MultiArmEkfModel<3>::State::Zero();
+  x(L::kPitchRate) = 0.3;
+  for (int i = 0; i < 3; ++i) {
+    x(L::Deflection(i)) = 1.2e-3 + 2e-4 * i;
+    x(L::DeflectionRate(i)) = 0.05 * (i - 1);
+    x(L::Omega(i)) = hover.omega_rad_s[static_cast<size_t>(i)] + 20.0 * i;
+    x(L::ThrustScale(i)) = 1.0 - 0.05 * i;
+    x(L::GaugeOffset(i)) = 1e-5;
+  }
+  return x;
+}
+
+// Uniform gravity and a free body: (phi_ddot, b_ddot_i) of MultiArmAcceleration
+// at random phi, x, z, x_dot, z_dot equal those at phi = 0 and rest (the
+// model's evaluation point) to round-off (asserted 1e-12 rad/s^2, as the
+// birotor's FreeArmDerivative test).
+TEST(MultiArmEkfModelTest, FreeBodyArmRowsDoNotDependOnPoseOrBodyVelocity) {
+  const VehicleDescription vehicle = Trirotor();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = CoordinateCount(vehicle);
+  for (int trial = 0; trial < 50; ++trial) {
+    MultiCoords<double> q = MultiCoords<double>::Zero(n), v = MultiCoords<double>::Zero(n);
+    ArmForces<double> f(3);
+    for (int i = 0; i < 3; ++i) {
+      q(DeflectionIndex(i)) = 2e-3 * u(rng);
+      v(DeflectionIndex(i)) = 0.5 * u(rng);
+      f(i) = 15.0 + 10.0 * u(rng);
+    }
+    v(kPhi) = 2.0 * u(rng);
+    const MultiCoords<double> reference = MultiArmAcceleration<double>(vehicle, q, v, f);
+    MultiCoords<double> q_moved = q, v_moved = v;
+    q_moved(kX) = 10.0 * u(rng);
+    q_moved(kZ) = 10.0 * u(rng);
+    q_moved(kPhi) = 3.0 * u(rng);
+    v_moved(kX) = 5.0 * u(rng);
+    v_moved(kZ) = 5.0 * u(rng);
+    const MultiCoords<double> moved = MultiArmAcceleration<double>(vehicle, q_moved, v_moved, f);
+    EXPECT_NEAR(moved(kPhi), reference(kPhi), 1e-12) << trial;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(moved(DeflectionIndex(i)), reference(DeflectionIndex(i)), 1e-12) << trial;
+  }
+}
+
+// A_d and the accelerometer gradient against central differences of the
+// derivative and of the specific force (step 1e-6 relative: truncation and
+// round-off ~1e-9 of the column's scale; asserted 1e-6).
+TEST(MultiArmEkfModelTest, JacobianMatchesCentralDifferences) {
+  using Model = MultiArmEkfModel<3>;
+  const Model model(Trirotor());
+  const Model::State x = SwingingState(model);
+  Model::Input u;
+  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  MultiArmAccelLinearization<3> accel;
+  const Model::DynamicMatrix a = model.Jacobian(x, u, &accel);
+  for (int c = 0; c < Model::kS; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(x(c)));
+    Model::State plus = x, minus = x;
+    plus(c) += h;
+    minus(c) -= h;
+    const Model::State numeric = (model.Derivative(plus, u) - model.Derivative(minus, u)) / (2.0 * h);
+    MultiArmAccelLinearization<3> at_plus, at_minus;
+    model.Jacobian(plus, u, &at_plus);
+    model.Jacobian(minus, u, &at_minus);
+    const Eigen::Vector2d numeric_accel = (at_plus.value - at_minus.value) / (2.0 * h);
+    const double scale = std::max(1.0, numeric.cwiseAbs().maxCoeff());
+    for (int r = 0; r < Model::kD; ++r) {
+      const double analytic = c < Model::kD ? a(r, c) : 0.0;  // the offsets have no dynamics
+      EXPECT_NEAR(analytic, numeric(r), 1e-6 * scale) << "row " << r << " col " << c;
+    }
+    for (int r = 0; r < 2; ++r) {
+      EXPECT_NEAR(accel.jacobian(r, c), numeric_accel(r), 1e-6 * std::max(1.0, numeric_accel.cwiseAbs().maxCoeff()))
+          << "accel row " << r << " col " << c;
+    }
+  }
+}
+
+// Phi = exp(A dt) to fourth order at dt = 1 ms against 1000 Euler-free steps
+// of the same series at dt / 1000 multiplied out (the exponential to ~1e-12).
+// Truncation ~(A dt)^5 / 120: measured 5.0e-4 of the largest entry (198),
+// asserted 1e-3 (ratio 2: the truncation is a bound, not a noise figure).
+TEST(MultiArmEkfModelTest, TransitionIsTheFourthOrderExponential) {
+  using Model = MultiArmEkfModel<3>;
+  const Model model(Trirotor());
+  const Model::State x = SwingingState(model);
+  const Model::DynamicMatrix a = model.Jacobian(x, Model::Input{});
+  const double dt = 1e-3;
+  const Model::DynamicMatrix small = Model::Transition(a, dt / 1000.0);
+  Model::DynamicMatrix exact = Model::DynamicMatrix::Identity();
+  for (int k = 0; k < 1000; ++k) exact = (small * exact).eval();
+  const Model::DynamicMatrix phi = Model::Transition(a, dt);
+  const double relative = (phi - exact).cwiseAbs().maxCoeff() / exact.cwiseAbs().maxCoeff();
+  EXPECT_LT(relative, 1e-3);
+  // The motor lag row is exact: exp(-dt / tau) to fourth order.
+  using L = MultiArmEkfLayout<3>;
+  // The motor lag entry: exp(-x) to fourth order, x = dt / tau = 0.0286, truncation x^5 / 120 = 1.6e-10.
+  EXPECT_NEAR(phi(L::Omega(0), L::Omega(0)), std::exp(-dt / 0.035), 2.4e-10);
+}
+
+}  // namespace
+}  // namespace birotor

@@ -1,0 +1,21 @@
+// birotor-eval --vehicle FILE: the N-arm EKF's accuracy table
+// (evaluation/multi_arm_accuracy.h) on the named scenarios, flown by the
+// N-arm simulator in-process and lock-step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_config.h"
+#include "evaluation/eval_metrics.h"
+
+namespace birotor {
+
+// Loads the description (refusing one that cannot fly) and each scenario
+// for its arm count with the overrides (--set), prints the table; returns
+// the exit status (kExitFailure on a bad file or scenario).
+int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<std::string>& scenarios,
+                            const std::vector<std::string>& overrides, const EkfOptions& ekf,
+                            const EvalOptions& options);
+
+}  // namespace birotor
