@@ -52,4 +52,18 @@ MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts,
   return out;
 }
 
+MultiArmStatusBits ComposeMultiArmForceStatus(const MultiArmFilterFacts& filter, const InputStatusFacts& input,
+                                              const TransportStatusFacts& transport, int n_rotors) {
+  ForceStatusFacts facts;
+  facts.filter.convergence = filter.convergence;
+  facts.filter.measurement_rejected = filter.measurement_rejected;
+  facts.filter.thrust_deficit = filter.thrust_deficit;
+  facts.input = input;
+  facts.transport = transport;
+  MultiArmStatusBits out;
+  out.status = ComposeForceStatus(facts);
+  if (!input.non_finite_replaced) out.rotor_fault_bits = ComposeMultiArmFilterStatus(filter, n_rotors).rotor_fault_bits;
+  return out;
+}
+
 }  // namespace birotor

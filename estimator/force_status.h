@@ -128,4 +128,12 @@ struct MultiArmStatusBits {
 };
 MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts, int n_rotors);
 
+// The published status of an N-rotor estimate: ComposeForceStatus's rules on
+// the method's facts with the pipeline's and the service's (no consistency
+// facts yet: the N-arm pipeline has no model-consistency monitor); the rotor
+// bits are the method's, void (none) when the pipeline replaced a
+// non-finite estimate.
+MultiArmStatusBits ComposeMultiArmForceStatus(const MultiArmFilterFacts& filter, const InputStatusFacts& input,
+                                              const TransportStatusFacts& transport, int n_rotors);
+
 }  // namespace birotor

@@ -66,6 +66,7 @@ void MultiArmEkf<N>::Reset() {
   state_.setZero();
   covariance_.setZero();
   force_std_n_.fill(std::numeric_limits<double>::infinity());
+  facts_ = MultiArmFilterFacts();
 }
 
 template <int N>
@@ -344,11 +345,11 @@ void MultiArmEkf<N>::FillEstimate(const MultiArmStrainSample& sample, bool gated
     largest_std_n = std::max(largest_std_n, force_std_n_[k]);
   }
   if (largest_std_n < options_.converged_force_std_n) converged_ = true;
-  MultiArmFilterFacts facts;
-  facts.convergence = converged_ ? FilterConvergence::kConverged : FilterConvergence::kConverging;
-  facts.measurement_rejected = gated;
-  faults_.FillFacts(N, &facts);
-  const MultiArmStatusBits bits = ComposeMultiArmFilterStatus(facts, N);
+  facts_ = MultiArmFilterFacts();
+  facts_.convergence = converged_ ? FilterConvergence::kConverged : FilterConvergence::kConverging;
+  facts_.measurement_rejected = gated;
+  faults_.FillFacts(N, &facts_);
+  const MultiArmStatusBits bits = ComposeMultiArmFilterStatus(facts_, N);
   estimate->status = bits.status;
   estimate->rotor_fault_bits = bits.rotor_fault_bits;
 }

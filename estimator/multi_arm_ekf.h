@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "estimator/estimator_config.h"
+#include "estimator/force_status.h"
 #include "estimator/multi_arm_ekf_model.h"
 #include "estimator/multi_arm_fault_monitor.h"
 #include "estimator/sample_queue.h"
@@ -38,6 +39,9 @@ class MultiArmForceEstimator {
   virtual void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) = 0;
   // The force sigma of rotor i [N] and its fault flag, after the last strain sample.
   virtual double force_std_n(int rotor) const = 0;
+  // The facts the newest estimate's status was composed from (the pipeline
+  // composes the published status from them and its own input facts).
+  virtual const MultiArmFilterFacts& facts() const = 0;
 };
 
 // The filter for N arms. MOTOR and IMU samples wait in a queue until the next
@@ -67,6 +71,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   void AddImu(const ImuSample& sample) override;
   void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) override;
   double force_std_n(int rotor) const override { return force_std_n_[static_cast<size_t>(rotor)]; }
+  const MultiArmFilterFacts& facts() const override { return facts_; }
 
   bool initialized() const { return initialized_; }
   const State& state() const { return state_; }
@@ -115,6 +120,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
   MultiArmFaultMonitor faults_;
   std::array<double, N> force_std_n_{};
+  MultiArmFilterFacts facts_;  // of the newest estimate
 };
 
 // The filter for the description's arm count (2 .. kMaxArms); null outside.

@@ -79,7 +79,7 @@ struct MultiArmClosedLoopRun {
   std::vector<double> mpc_solve_cpu_s;
 };
 
-// The figures of one run (birotor-eval --control-vehicle), from its TRUTH_N
+// The figures of one run (birotor-eval --vehicle FILE --control), from its TRUTH_N
 // samples against the reference flown then.
 struct MultiArmFlightFigures {
   double rms_position_error_m = 0.0;  // sqrt(mean |p - p_ref|^2) over every sample [m]

@@ -7,6 +7,7 @@
 #include <exception>
 
 #include "controller/controller_params.h"
+#include "evaluation/estimated_efficiency_provider.h"
 #include "evaluation/multi_arm_closed_loop.h"
 #include "numerics/percentile.h"
 #include "params/controller_config_yaml.h"
@@ -67,8 +68,8 @@ std::string Row(const std::string& name, const std::string& map, const MultiArmC
                      MpcColumns(run));
 }
 
-// One case, nominal (and for a loss also with the true efficiencies): its
-// rows, or false with *error.
+// One case, nominal and on the estimated efficiencies (for a loss also on
+// the true ones): its rows, or false with *error.
 bool FlyCase(const std::string& name, const VehicleDescription& vehicle, const ControllerConfig& controller,
              const MultiArmControlInputs& inputs, std::string* rows, int64_t* out_of_bounds, std::string* error) {
   std::string scenario_name;
@@ -94,9 +95,15 @@ bool FlyCase(const std::string& name, const VehicleDescription& vehicle, const C
     const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, nominal);
     *rows += Row(name, "nominal", run);
     *out_of_bounds += run.commands_out_of_bounds;
-    if (rotor == 0) continue;
     ControllerConfig with_efficiency = nominal;
     with_efficiency.force_feedback = true;
+    EstimatedEfficiencyProvider estimate(vehicle, inputs.estimator);
+    MultiArmClosedLoopOptions estimated;
+    estimated.efficiency = &estimate;
+    const MultiArmClosedLoopRun flown = RunMultiArmClosedLoop(vehicle, scenario, with_efficiency, estimated);
+    *rows += Row(name, "estimated (N-arm EKF)", flown);
+    *out_of_bounds += flown.commands_out_of_bounds;
+    if (rotor == 0) continue;
     TrueEfficiencyProvider truth;
     MultiArmClosedLoopOptions options;
     options.efficiency = &truth;
@@ -109,22 +116,11 @@ bool FlyCase(const std::string& name, const VehicleDescription& vehicle, const C
 
 }  // namespace
 
-void AddMultiArmControlOptions(CLI::App& app, MultiArmControlCli* cli) {
-  app.add_option("--control-vehicle", cli->vehicle_file,
-                 "N-rotor control figures instead: fly the vehicle description in FILE with the product's N-rotor "
-                 "controller (MultiArmController, gains of --controller-params) lock-step over --scenarios (default "
-                 "lateral_step, aggressive, loss40_rotor1..3: thrust_loss with that rotor at 60 % from 5 s) with the "
-                 "cascade and in mode mpc (the mpc: section), each with the nominal map (the loss cases also with the "
-                 "true efficiencies); RMS error, max tilt, settling within 2 cm, overshoot, altitude deviation after "
-                 "the loss, saturated periods, commands outside [0, omega_max], MPC fallbacks / solves and solve CPU "
-                 "time p50 / p99 of the lock-step run");
-}
-
-int RunMultiArmControl(const MultiArmControlCli& cli, const MultiArmControlInputs& inputs) {
+int RunMultiArmControl(const MultiArmControlInputs& inputs) {
   std::string rows, error;
   int64_t out_of_bounds = 0;
   try {
-    const VehicleDescription vehicle = LoadVehicleDescription(cli.vehicle_file);
+    const VehicleDescription vehicle = LoadVehicleDescription(inputs.vehicle_file);
     const ControllerConfig controller = LoadControllerConfig(inputs.controller_params);
     rows = fmt::format("N-rotor controller on '{}' ({} rotors), gains of {}\n\n", vehicle.name, vehicle.arm_count,
                        inputs.controller_params);

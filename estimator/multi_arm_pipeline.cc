@@ -1,0 +1,212 @@
+#include "estimator/multi_arm_pipeline.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace birotor {
+namespace {
+
+bool FiniteWithin(double value, double limit) { return std::isfinite(value) && std::abs(value) <= limit; }
+
+bool IsFinite(const MultiArmForceEstimate& e) {
+  for (int i = 0; i < e.n_rotors; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    if (!std::isfinite(e.force_n[k]) || !std::isfinite(e.force_std_n[k]) || !std::isfinite(e.thrust_scale[k])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::unique_ptr<MultiArmForceEstimator> FilterOrThrow(const EstimatorConfig& config) {
+  std::unique_ptr<MultiArmForceEstimator> filter = MakeMultiArmEkf(config.vehicle, config.ekf);
+  if (filter == nullptr) {
+    throw std::invalid_argument("no N-arm EKF for a vehicle of " + std::to_string(config.vehicle.arm_count) +
+                                " arms (2 to " + std::to_string(kMaxArms) + ")");
+  }
+  return filter;
+}
+
+}  // namespace
+
+MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
+    : config_(config), filter_(FilterOrThrow(config)), admission_(config.pipeline) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (InputCounters& c : health_.inputs) c.gate = nan;
+}
+
+bool MultiArmPipeline::Admit(InputChannel channel, int64_t utime, int32_t seq, Admission* admission) {
+  *admission = admission_.Admit(channel, utime, seq, health_.inputs);
+  health_.newest_utime = admission_.newest_utime();
+  return IsAccepted(*admission);
+}
+
+bool MultiArmPipeline::ValidStrain(const MultiArmStrainSample& sample) const {
+  if (sample.n_arms != config_.vehicle.arm_count) return false;
+  const double limit = config_.pipeline.max_deflection_rad;
+  for (int i = 0; i < sample.n_arms; ++i) {
+    const double b = sample.deflection_rad[static_cast<size_t>(i)];
+    if (!std::isnan(b) && !FiniteWithin(b, limit)) return false;  // NaN: no reading of that arm
+  }
+  return true;
+}
+
+bool MultiArmPipeline::ValidMotor(const MultiArmMotorSample& sample) const {
+  if (sample.n_rotors != config_.vehicle.arm_count) return false;
+  const double limit = config_.pipeline.max_omega_rad_s;
+  for (int i = 0; i < sample.n_rotors; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    if (!FiniteWithin(sample.omega_cmd_rad_s[k], limit)) return false;
+    if (!std::isnan(sample.omega_meas_rad_s[k]) && !FiniteWithin(sample.omega_meas_rad_s[k], limit)) return false;
+  }
+  return true;
+}
+
+void MultiArmPipeline::OnMotor(const MultiArmMotorSample& sample) {
+  InputCounters& c = health_.inputs[static_cast<int>(InputChannel::kMotor)];
+  if (!ValidMotor(sample)) {
+    ++c.rejected_invalid;
+    return;
+  }
+  Admission admission;
+  if (!Admit(InputChannel::kMotor, sample.utime, sample.seq, &admission)) return;
+  for (int i = 0; i < sample.n_rotors; ++i) {
+    if (std::isnan(sample.omega_meas_rad_s[static_cast<size_t>(i)])) {
+      ++c.reading_missing;
+      break;
+    }
+  }
+  if (!has_motor_) first_motor_utime_ = sample.utime;
+  last_motor_ = sample;
+  has_motor_ = true;
+  filter_->AddMotor(sample);
+}
+
+void MultiArmPipeline::OnImu(const ImuSample& sample) {
+  InputCounters& c = health_.inputs[static_cast<int>(InputChannel::kImu)];
+  if (!FiniteWithin(sample.gyro_y_rad_s, config_.pipeline.max_gyro_rad_s)) {
+    ++c.rejected_invalid;
+    return;
+  }
+  Admission admission;
+  if (!Admit(InputChannel::kImu, sample.utime, sample.seq, &admission)) return;
+  if (!std::isfinite(sample.accel_x_m_s2) || !std::isfinite(sample.accel_z_m_s2)) ++c.reading_missing;
+  filter_->AddImu(sample);
+}
+
+void MultiArmPipeline::OnPose(const PoseSample& sample) {
+  InputCounters& c = health_.inputs[static_cast<int>(InputChannel::kPose)];
+  if (!std::isfinite(sample.x_m) || !std::isfinite(sample.z_m) || !std::isfinite(sample.phi_rad)) {
+    ++c.rejected_invalid;
+    return;
+  }
+  Admission admission;
+  Admit(InputChannel::kPose, sample.utime, sample.seq, &admission);
+}
+
+bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) {
+  InputCounters& c = health_.inputs[static_cast<int>(InputChannel::kStrain)];
+  if (!ValidStrain(sample)) {
+    ++c.rejected_invalid;
+    return false;
+  }
+  const int64_t previous_utime = c.last_utime;
+  Admission admission;
+  if (!Admit(InputChannel::kStrain, sample.utime, sample.seq, &admission)) return false;
+  const bool stale = CheckStrainTiming(sample.utime, previous_utime, admission == Admission::kAcceptedBackwardsJump);
+  filter_->AddStrain(sample, estimate);
+  InputStatusFacts input;
+  if (!IsFinite(*estimate)) {
+    ReplaceNonFinite(sample, estimate);
+    input.non_finite_replaced = true;
+  } else {
+    last_finite_estimate_ = *estimate;
+    has_finite_estimate_ = true;
+  }
+  FillInputFacts(sample.utime, stale, &input);
+  const MultiArmStatusBits bits =
+      ComposeMultiArmForceStatus(filter_->facts(), input, TransportStatusFacts(), config_.vehicle.arm_count);
+  health_.last_filter_facts = filter_->facts();
+  health_.last_input_facts = input;
+  estimate->status = bits.status;
+  estimate->rotor_fault_bits = bits.rotor_fault_bits;
+  ++health_.published;
+  health_.last_status = bits.status;
+  health_.last_rotor_fault_bits = bits.rotor_fault_bits;
+  health_.last_estimate = *estimate;
+  return true;
+}
+
+bool MultiArmPipeline::CheckStrainTiming(int64_t utime, int64_t previous_utime, bool backwards_jump) {
+  if (!started_) {
+    ResetFilter(ResetReason::kStart, utime);
+    started_ = true;
+    return false;
+  }
+  if (backwards_jump) {
+    ResetFilter(ResetReason::kTimeBackwards, utime);
+    return false;
+  }
+  const double interval_s = 1e-6 * static_cast<double>(utime - previous_utime);
+  if (interval_s > config_.pipeline.reset_gap_s) {
+    ResetFilter(ResetReason::kGap, utime);
+    return false;
+  }
+  return interval_s > config_.pipeline.strain_timeout_s;
+}
+
+void MultiArmPipeline::ResetFilter(ResetReason reason, int64_t utime) {
+  filter_->Reset();
+  ++health_.resets;
+  health_.last_reset_reason = reason;
+  reset_flag_pending_ = true;
+  // The newest command still holds (within the motor timeout): the filter
+  // starts from it, without its telemetry (already fused before the reset).
+  if (has_motor_ && 1e-6 * static_cast<double>(utime - last_motor_.utime) <= config_.pipeline.motor_timeout_s) {
+    MultiArmMotorSample command = last_motor_;
+    command.omega_meas_rad_s.fill(std::numeric_limits<double>::quiet_NaN());
+    filter_->AddMotor(command);
+  }
+}
+
+void MultiArmPipeline::ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) {
+  ResetFilter(ResetReason::kNumerical, sample.utime);
+  if (has_finite_estimate_) {
+    *estimate = last_finite_estimate_;
+  } else {
+    const HoverSolution hover = SolveHover(config_.vehicle);
+    estimate->n_rotors = config_.vehicle.arm_count;
+    for (int i = 0; i < estimate->n_rotors; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      estimate->force_n[k] = hover.thrust_n[k];
+      estimate->force_std_n[k] = hover.thrust_n[k];
+      estimate->thrust_scale[k] = 1.0;
+    }
+  }
+  estimate->utime = sample.utime;
+  estimate->seq = sample.seq;
+}
+
+void MultiArmPipeline::FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts) {
+  if (!has_motor_ || first_motor_utime_ > utime) {
+    facts->no_motor_input = true;
+  } else if (1e-6 * static_cast<double>(utime - last_motor_.utime) > config_.pipeline.motor_timeout_s) {
+    stale = true;
+  }
+  facts->stale = stale;
+  facts->conflict = InputAdmission::AnyConflictActive(health_.inputs);
+  facts->filter_reset = reset_flag_pending_;
+  reset_flag_pending_ = false;
+}
+
+void MultiArmPipeline::TakePeriod() {
+  for (InputCounters& c : health_.inputs) {
+    c.accepted_in_period = 0;
+    c.nis_sum = c.nis_max = 0;
+    c.nis_count = 0;
+  }
+}
+
+}  // namespace birotor

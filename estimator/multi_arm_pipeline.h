@@ -1,0 +1,92 @@
+// The input path of the N-arm estimator (estimator/multi_arm_ekf.h), shared
+// by birotor-estimator --vehicle, birotor-replay --vehicle and the N-rotor
+// lock-step loop so all give the same numbers: checks every sample's
+// readings (finite, in range, the vehicle's count), admits it by stamp and
+// seq (input_admission.h: order, duplicates, time outliers, conflicts, as
+// for the birotor), resets the filter at the start, after a strain gap of
+// reset_gap_s and after a backwards time jump, replaces a non-finite
+// estimate by the last finite one, owns the input facts of the status (no
+// motor input, stale, conflict, reset), has the status composed in
+// force_status.cc from them and the filter's, and keeps the per-input health
+// counters of ESTIMATOR_STATUS. What the birotor's EstimatorPipeline has and
+// this one has not yet: the ground tare, the harmonic notch and the
+// model-consistency monitor (docs/estimator.md, "The EKF for N arms"). No
+// LCM, no logging, no allocation per sample.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "estimator/estimator_config.h"
+#include "estimator/force_estimator.h"
+#include "estimator/force_status.h"
+#include "estimator/input_admission.h"
+#include "estimator/multi_arm_ekf.h"
+#include "model/vehicle_description.h"
+#include "samples/multi_arm_samples.h"
+#include "samples/samples.h"
+
+namespace birotor {
+
+struct MultiArmPipelineHealth {
+  InputCounters inputs[kNumInputChannels];  // STRAIN (STRAIN_N), MOTOR (MOTOR_N), IMU, POSE
+  int64_t newest_utime = -1;                // newest accepted sample over all inputs [us]
+  int64_t resets = 0;                       // re-initialisations; the first strain sample counts (kStart)
+  ResetReason last_reset_reason = ResetReason::kNone;
+  int64_t published = 0;  // estimates produced
+  // The newest estimate's status and the facts it was composed from (the
+  // service composes ESTIMATOR_STATUS's status from them with its own).
+  int32_t last_status = 0;
+  int32_t last_rotor_fault_bits = 0;
+  MultiArmFilterFacts last_filter_facts;
+  InputStatusFacts last_input_facts;
+  MultiArmForceEstimate last_estimate;
+};
+
+class MultiArmPipeline {
+ public:
+  // config.vehicle is the description (2 .. kMaxArms arms); its ekf: and
+  // pipeline: sections are used. Throws std::invalid_argument for a
+  // description MakeMultiArmEkf cannot serve.
+  explicit MultiArmPipeline(const EstimatorConfig& config);
+
+  void CountReceived(InputChannel channel) { ++health_.inputs[static_cast<int>(channel)].received; }
+  void CountDecodeError(InputChannel channel) { ++health_.inputs[static_cast<int>(channel)].decode_errors; }
+  void CountOverloadDrop(InputChannel channel) { ++health_.inputs[static_cast<int>(channel)].dropped_overload; }
+
+  void OnMotor(const MultiArmMotorSample& sample);
+  void OnImu(const ImuSample& sample);
+  void OnPose(const PoseSample& sample);  // counted; no method uses the pose
+  // True and *estimate filled when an estimate must be published (one per
+  // accepted strain sample; never NaN).
+  bool OnStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
+
+  const MultiArmPipelineHealth& health() const { return health_; }
+  const VehicleDescription& vehicle() const { return config_.vehicle; }
+  void TakePeriod();  // clears the per-period fields after a status message
+
+ private:
+  bool Admit(InputChannel channel, int64_t utime, int32_t seq, Admission* admission);
+  bool ValidStrain(const MultiArmStrainSample& sample) const;
+  bool ValidMotor(const MultiArmMotorSample& sample) const;
+  // Resets before the filter sees the strain sample; true when the strain
+  // interval makes the input stale.
+  bool CheckStrainTiming(int64_t utime, int64_t previous_utime, bool backwards_jump);
+  void ResetFilter(ResetReason reason, int64_t utime);
+  void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
+  void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
+
+  EstimatorConfig config_;
+  std::unique_ptr<MultiArmForceEstimator> filter_;
+  InputAdmission admission_;
+  MultiArmPipelineHealth health_;
+  bool started_ = false;
+  bool reset_flag_pending_ = false;
+  bool has_motor_ = false;
+  MultiArmMotorSample last_motor_;
+  int64_t first_motor_utime_ = -1;
+  bool has_finite_estimate_ = false;
+  MultiArmForceEstimate last_finite_estimate_;
+};
+
+}  // namespace birotor
