@@ -47,8 +47,8 @@ void ProcessingTimeStats::TakePeriod() {
 namespace {
 
 // One input's counters as published; ages on the vehicle clock.
-void FillInputHealth(const InputCounters& in, const char* channel, const PipelineHealth& health,
-                     const StatusContext& context, input_health_t* out) {
+void FillInputHealth(const InputCounters& in, const char* channel, int64_t newest_utime, const StatusContext& context,
+                     input_health_t* out) {
   out->channel = channel;
   out->received = in.received;
   out->fused = in.fused;
@@ -63,8 +63,8 @@ void FillInputHealth(const InputCounters& in, const char* channel, const Pipelin
   out->dropped_overload = in.dropped_overload;
   // A sample newer than the vehicle clock (the clock went back after it) has
   // no meaningful age.
-  out->age_s = (in.last_utime >= 0 && health.newest_utime >= in.last_utime)
-                   ? static_cast<double>(health.newest_utime - in.last_utime) / kMicrosecondsPerSecond
+  out->age_s = (in.last_utime >= 0 && newest_utime >= in.last_utime)
+                   ? static_cast<double>(newest_utime - in.last_utime) / kMicrosecondsPerSecond
                    : kNaN;
   out->rate_hz = context.period_s > 0 ? static_cast<double>(in.accepted_in_period) / context.period_s : kNaN;
   out->not_fused = in.not_fused;
@@ -104,10 +104,10 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->num_inputs = kNumInputChannels;
   message->inputs.resize(kNumInputChannels);
   for (int i = 0; i < kNumInputChannels; ++i) {
-    FillInputHealth(health.inputs[i], InputChannelName(static_cast<InputChannel>(i)), health, context,
+    FillInputHealth(health.inputs[i], InputChannelName(static_cast<InputChannel>(i)), health.newest_utime, context,
                     &message->inputs[i]);
   }
-  FillInputHealth(health.accelerometer, "IMU accel_z", health, context, &message->accelerometer);
+  FillInputHealth(health.accelerometer, "IMU accel_z", health.newest_utime, context, &message->accelerometer);
   const input_health_t& strain = message->inputs[static_cast<int>(InputChannel::kStrain)];
   message->strain_nis_mean = strain.nis_mean;
   message->strain_nis_max = strain.nis_max;
@@ -137,6 +137,51 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->model_consistency_statistic = health.consistency.ReportedStatistic();
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
   FillLearnedParameters(health, message);
+  message->vehicle_checksum = context.vehicle_checksum;
+}
+
+void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const StatusContext& context,
+                                estimator_status_t* message) {
+  message->utime = health.newest_utime;
+  message->wall_utime = context.wall_utime;
+  message->seq = context.seq;
+  message->method = "ekf";
+  message->status = health.last_status;
+  message->num_inputs = kNumInputChannels;
+  message->inputs.resize(kNumInputChannels);
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    FillInputHealth(health.inputs[i], InputChannelName(static_cast<InputChannel>(i)), health.newest_utime, context,
+                    &message->inputs[i]);
+  }
+  FillInputHealth(InputCounters(), "IMU accel_z", health.newest_utime, context, &message->accelerometer);
+  const input_health_t& strain = message->inputs[static_cast<int>(InputChannel::kStrain)];
+  message->strain_nis_mean = strain.nis_mean;
+  message->strain_nis_max = strain.nis_max;
+  message->strain_gate = strain.gate;
+  message->processing_time_mean_us = context.processing_time_mean_us;
+  message->processing_time_p99_us = context.processing_time_p99_us;
+  message->processing_time_max_us = context.processing_time_max_us;
+  message->resets = health.resets;
+  message->last_reset_reason = ResetReasonName(health.last_reset_reason);
+  message->published = health.published;
+  // The birotor's two-element fields: the forces are on FORCE_N.
+  for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
+    message->force_n[rotor] = message->thrust_scale[rotor] = kNaN;
+    message->gauge_offset_rad[rotor] = message->gauge_offset_std_rad[rotor] = kNaN;
+    message->strain_scale[rotor] = message->strain_scale_std[rotor] = kNaN;
+  }
+  message->gauge_offset_source = "params";
+  message->last_tare_refusal = "";
+  message->udp_datagrams = context.udp.datagrams;
+  message->udp_fragments_dropped = context.udp.fragments_dropped;
+  message->udp_malformed_dropped = context.udp.malformed_dropped;
+  message->udp_kernel_dropped = context.udp.kernel_dropped;
+  message->model_consistency_statistic = kNaN;
+  message->mismatch_parameter = "";
+  message->strain_scale_source = kLearnedSourceParams;
+  message->body_mass_kg = kNaN;
+  message->body_mass_std_kg = kNaN;
+  message->body_mass_source = kLearnedSourceParams;
   message->vehicle_checksum = context.vehicle_checksum;
 }
 

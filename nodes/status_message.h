@@ -9,6 +9,7 @@
 
 #include "birotor/estimator_status_t.hpp"
 #include "estimator/estimator_pipeline.h"
+#include "estimator/multi_arm_pipeline.h"
 #include "transport/udpm_receiver.h"
 
 namespace birotor {
@@ -65,6 +66,13 @@ inline constexpr const char* kLearnedSourceStateFile = "state_file";  // learned
 // allocate.
 void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
                         estimator_status_t* message);
+
+// The same for the N-arm pipeline (birotor-estimator --vehicle): the
+// per-input counters, resets, the newest status; the birotor's two-element
+// fields (forces, thrust scales, gauge offsets, strain scales) and the body
+// mass NaN: the forces and efficiencies are on FORCE_N.
+void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const StatusContext& context,
+                                estimator_status_t* message);
 
 // The newest ESTIMATOR_STATUS on `channel` of the LCM log at log_path that
 // carries a learned value (strain_scale_source or body_mass_source other

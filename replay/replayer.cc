@@ -56,6 +56,7 @@ void BasicReplayer<Service>::Process(std::string_view channel, int64_t timestamp
 }
 
 template class BasicReplayer<EstimatorService>;
+template class BasicReplayer<MultiArmEstimatorService>;
 
 bool ReplayLogFile(const std::string& input_path, PacketHandler* replayer, std::string* damage, std::string* error,
                    double min_usable_fraction) {

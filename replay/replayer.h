@@ -11,6 +11,7 @@
 
 #include "estimator/estimator_config.h"
 #include "nodes/estimator_service.h"
+#include "nodes/multi_arm_estimator_service.h"
 #include "sinks/message_sink.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
@@ -26,7 +27,7 @@ struct ReplayOptions {
 // What a replay saw.
 struct ReplayStats {
   int64_t events = 0;         // events offered to the replayer
-  int64_t input_packets = 0;  // STRAIN, MOTOR, IMU, POSE packets
+  int64_t input_packets = 0;  // STRAIN, MOTOR, IMU, POSE packets (STRAIN_N, MOTOR_N, IMU, POSE)
   int64_t truth_copied = 0;
   int64_t forces = 0;        // FORCE messages written
   int64_t first_utime = -1;  // newest-sample utime range of the inputs [us]
@@ -77,6 +78,7 @@ class BasicReplayer : public MessageSink, public PacketHandler {
 };
 
 using Replayer = BasicReplayer<EstimatorService>;
+using MultiArmReplayer = BasicReplayer<MultiArmEstimatorService>;
 
 // Replays every event of the log at input_path. False with a one-line *error
 // when the log cannot be opened or is not usable (CheckLogUsable of

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "params/estimator_config_yaml.h"
+#include "params/vehicle_description_yaml.h"
 #include "params/yaml_reader.h"
 #include "program/config_files.h"
 #include "program/logging.h"
@@ -23,7 +24,8 @@ struct ReplayCli {
   CommonOptions common;
   std::string input_path, output_path, csv_path;
   std::string params_file = FindConfigFile("estimator.yaml");
-  std::string method;  // overrides the file's; empty: the file's
+  std::string method;        // overrides the file's; empty: the file's
+  std::string vehicle_file;  // --vehicle: a description with N arms, the counted channels
   ReplayOptions options;
   double min_usable_fraction = kDefaultMinUsableLogFraction;
 };
@@ -38,6 +40,10 @@ void AddReplayOptions(CLI::App& app, ReplayCli* cli) {
                  "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));
   app.add_option("--method", cli->method, "Estimation method, overrides the file")
       ->check(CLI::IsMember(EstimationMethodNames()));
+  app.add_option("--vehicle", cli->vehicle_file,
+                 "A vehicle description with N arms (e.g. config/vehicles/trirotor.yaml): the N-arm EKF over the "
+                 "log's STRAIN_N, MOTOR_N, IMU and POSE, FORCE_N out (birotor-sim --vehicle writes such logs)")
+      ->check(CLI::ExistingFile);
   app.add_option("--status-rate-hz", cli->options.status_rate_hz, "ESTIMATOR_STATUS rate on the vehicle clock [Hz]")
       ->check(CLI::Range(0.1, 100.0));
   // Two callback flags, so --help shows no misleading {false} default.
@@ -86,14 +92,34 @@ class ReplayOutputs {
   std::unique_ptr<ForceCsvSink> csv_sink_;
 };
 
+template <class Replayer>
 void LogReplayed(const Replayer& replayer, const std::string& method, double wall_s) {
   const ReplayStats& stats = replayer.stats();
   const double log_s =
       stats.last_utime > stats.first_utime ? static_cast<double>(stats.last_utime - stats.first_utime) * 1e-6 : 0.0;
-  const PipelineHealth& health = replayer.service().health();
   spdlog::info("method {}: {} events, {} FORCE, {} status, {} TRUTH; resets {}", method, stats.events, stats.forces,
-               replayer.service().status_published(), stats.truth_copied, health.resets);
+               replayer.service().status_published(), stats.truth_copied, replayer.service().health().resets);
   spdlog::info("{:.3f} s of log in {:.3f} s wall: {:.0f}x real time", log_s, wall_s, wall_s > 0 ? log_s / wall_s : 0.0);
+}
+
+// Replays the log through replayer into the outputs; the exit status.
+template <class Replayer>
+int Replay(const ReplayCli& cli, const std::string& method, Replayer* replayer, ReplayOutputs* outputs) {
+  const Stopwatch stopwatch;
+  std::string damage, error;
+  if (!ReplayLogFile(cli.input_path, replayer, &damage, &error, cli.min_usable_fraction)) {
+    return ReportError(error);  // the outputs are abandoned: no output file is left
+  }
+  if (!damage.empty()) spdlog::warn("{}", damage);
+  const ReplayStats& stats = replayer->stats();
+  if (stats.input_packets == 0 || stats.forces == 0) {
+    return ReportError(fmt::format("{}: {} events but no {} input produced a FORCE{} estimate", cli.input_path,
+                                   stats.events, cli.common.prefix, cli.vehicle_file.empty() ? "" : "_N"));
+  }
+  const double wall_s = stopwatch.ElapsedS();
+  if (!(error = outputs->Commit(cli.output_path)).empty()) return ReportError(error);
+  LogReplayed(*replayer, method, wall_s);
+  return 0;
 }
 
 }  // namespace
@@ -119,19 +145,15 @@ int main(int argc, char** argv) {
   ReplayOutputs outputs;
   if (!outputs.Open(cli, &error)) return ReportError(error);
 
-  const Stopwatch stopwatch;
-  Replayer replayer(config, cli.options, outputs.sink());
-  std::string damage;
-  if (!ReplayLogFile(cli.input_path, &replayer, &damage, &error, cli.min_usable_fraction)) {
-    return ReportError(error);  // the outputs are abandoned: no output file is left
+  if (cli.vehicle_file.empty()) {
+    Replayer replayer(config, cli.options, outputs.sink());
+    return Replay(cli, config.method, &replayer, &outputs);
   }
-  if (!damage.empty()) spdlog::warn("{}", damage);
-  if (replayer.stats().input_packets == 0 || replayer.stats().forces == 0) {
-    return ReportError(fmt::format("{}: {} events but no {} input produced a FORCE estimate", cli.input_path,
-                                   replayer.stats().events, cli.common.prefix));
+  try {
+    config.vehicle = LoadVehicleDescription(cli.vehicle_file);
+    MultiArmReplayer replayer(config, cli.options, outputs.sink());
+    return Replay(cli, "ekf (N arms)", &replayer, &outputs);
+  } catch (const std::exception& e) {
+    return ReportError(e.what());
   }
-  const double wall_s = stopwatch.ElapsedS();
-  if (!(error = outputs.Commit(cli.output_path)).empty()) return ReportError(error);
-  LogReplayed(replayer, config.method, wall_s);
-  return 0;
 }

@@ -262,15 +262,53 @@ truth_n_t ToMessage(const MultiArmTruthSample& s) {
 
 force_estimate_n_t ToMessage(const MultiArmForceEstimate& e) {
   force_estimate_n_t m{};
-  m.utime = e.utime;
-  m.seq = e.seq;
-  m.n_rotors = static_cast<int8_t>(e.n_rotors);
-  m.force_n = FirstEntries(e.force_n, e.n_rotors);
-  m.force_std_n = FirstEntries(e.force_std_n, e.n_rotors);
-  m.thrust_scale = FirstEntries(e.thrust_scale, e.n_rotors);
-  m.status = e.status;  // composed by ComposeMultiArmFilterStatus: a copy
-  m.rotor_fault_bits = e.rotor_fault_bits;
+  ToMessage(e, &m);
   return m;
+}
+
+namespace {
+
+// Entries [0, n) of a sample's array into a message's vector, reusing its storage.
+template <class Array>
+void AssignFirst(const Array& from, int n, std::vector<double>* to) {
+  to->assign(from.begin(), from.begin() + std::clamp(n, 0, static_cast<int>(from.size())));
+}
+
+// Entries [0, min(count, kMaxSampleArms)) of a counted array into a sample's.
+template <class Array>
+void CopyFirst(const std::vector<double>& from, int count, Array* to) {
+  const size_t n = std::min<size_t>(static_cast<size_t>(std::max(count, 0)), std::min(from.size(), to->size()));
+  std::copy_n(from.begin(), n, to->begin());
+}
+
+}  // namespace
+
+void ToMessage(const MultiArmForceEstimate& e, force_estimate_n_t* m) {
+  m->utime = e.utime;
+  m->seq = e.seq;
+  m->n_rotors = static_cast<int8_t>(e.n_rotors);
+  AssignFirst(e.force_n, e.n_rotors, &m->force_n);
+  AssignFirst(e.force_std_n, e.n_rotors, &m->force_std_n);
+  AssignFirst(e.thrust_scale, e.n_rotors, &m->thrust_scale);
+  m->status = e.status;  // composed in estimator/force_status.cc: a copy
+  m->rotor_fault_bits = e.rotor_fault_bits;
+}
+
+void FromMessage(const strain_n_t& m, MultiArmStrainSample* s) {
+  *s = MultiArmStrainSample();
+  s->utime = m.utime;
+  s->seq = m.seq;
+  s->n_arms = m.n_arms;
+  CopyFirst(m.deflection_rad, m.n_arms, &s->deflection_rad);
+}
+
+void FromMessage(const motor_n_t& m, MultiArmMotorSample* s) {
+  *s = MultiArmMotorSample();
+  s->utime = m.utime;
+  s->seq = m.seq;
+  s->n_rotors = m.n_rotors;
+  CopyFirst(m.omega_cmd_rad_s, m.n_rotors, &s->omega_cmd_rad_s);
+  CopyFirst(m.omega_meas_rad_s, m.n_rotors, &s->omega_meas_rad_s);
 }
 
 vehicle_description_t ToMessage(const VehicleDescription& description, const std::string& publisher) {

@@ -98,6 +98,12 @@ loadcell_n_t ToMessage(const MultiArmLoadCellSample& sample);
 truth_n_t ToMessage(const MultiArmTruthSample& sample);
 // The N-arm EKF's estimate (estimator/multi_arm_ekf.h) as FORCE_N.
 force_estimate_n_t ToMessage(const MultiArmForceEstimate& estimate);
+// The same into *message, reusing its vectors (no allocation once they hold N).
+void ToMessage(const MultiArmForceEstimate& estimate, force_estimate_n_t* message);
+// A decoded counted sample (the count checked by CheckCount first): entries
+// beyond kMaxSampleArms are dropped, those beyond the count stay zero.
+void FromMessage(const strain_n_t& message, MultiArmStrainSample* sample);
+void FromMessage(const motor_n_t& message, MultiArmMotorSample* sample);
 
 // The description a program runs with, for VEHICLE_DESCRIPTION: every field,
 // the checksum (DescriptionChecksum), publisher the program's name; utime and
