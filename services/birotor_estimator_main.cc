@@ -23,6 +23,8 @@
 #include "program/shutdown.h"
 #include "security/message_authenticator.h"
 #include "security/replay_guard.h"
+#include "services/birotor_estimator_vehicle.h"
+#include "services/estimator_serve_loop.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
 #include "sources/authenticating_handler.h"
@@ -32,16 +34,14 @@
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
 
-// systemd Type=notify and WatchdogSec.
-#include "deploy/systemd_notify.h"
-
 namespace birotor {
 namespace {
 
 struct DaemonOptions {
   CommonOptions common;
   std::string params_file = FindConfigFile("estimator.yaml");
-  std::string method;  // overrides the file's; empty: the file's
+  std::string vehicle_file;  // --vehicle: a description with N arms (the counted channels); empty: the birotor
+  std::string method;        // overrides the file's; empty: the file's
   EstimatorServiceOptions service;
   int realtime_priority = 0;  // SCHED_FIFO priority and locked memory; 0: normal scheduler
   // The site key that authenticates POSE, FORCE and the gauge state file
@@ -64,6 +64,11 @@ void AddDaemonOptions(CLI::App& app, DaemonOptions* options) {
   app.add_option("--stale-input-s", options->service.stale_input_wall_s,
                  "No strain packet for this long (host clock): ESTIMATOR_STATUS says INPUT_STALE [s]")
       ->check(CLI::Range(0.001, 60.0));
+  app.add_option("--vehicle", options->vehicle_file,
+                 "A vehicle description with N arms (e.g. config/vehicles/trirotor.yaml): the N-arm EKF on STRAIN_N, "
+                 "MOTOR_N and IMU, FORCE_N out (plain: the counted types have no sealed twin yet), with the "
+                 "estimator: section of --params")
+      ->check(CLI::ExistingFile);
   AddChannelSecurityOptions(app, &options->security);
   AddRealtimeOption(app, &options->realtime_priority);
 }
@@ -151,30 +156,6 @@ void LogStartup(const DaemonOptions& options, const EstimatorConfig& config, con
   }
 }
 
-// Serves until a signal or a failed source; false if the source failed.
-// ESTIMATOR_STATUS on a fixed grid of the host clock. The loop hands packets
-// over until the next status is due and never past it, so the status stays
-// on time at any input rate (a backlog waits in the socket, and the overload
-// guard sheds what waited too long).
-bool Serve(MessageSource* source, double status_rate_hz, EstimatorService* service) {
-  const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
-  int64_t last_status_us = SteadyClockUs();
-  int64_t next_status_us = last_status_us + status_period_us;
-  NotifyReady();  // systemd Type=notify: serving now
-  const bool source_ok = RunReceiveLoop(source, [&](int64_t now_us) {
-    NotifyWatchdog();  // WatchdogSec: this loop is alive
-    if (now_us >= next_status_us) {
-      service->PublishStatus(WallClockUs(), 1e-6 * static_cast<double>(now_us - last_status_us));
-      last_status_us = now_us;
-      next_status_us += status_period_us;
-      if (next_status_us <= now_us) next_status_us = now_us + status_period_us;  // a stall longer than a period
-    }
-    return next_status_us;
-  });
-  NotifyStopping();
-  return source_ok;
-}
-
 void LogStopped(const EstimatorService& service, const MessageSource& source) {
   const PipelineHealth& health = service.health();
   const InputCounters& strain = health.inputs[static_cast<int>(InputChannel::kStrain)];
@@ -202,6 +183,11 @@ int main(int argc, char** argv) {
   EstimatorConfig config;
   std::string error = LoadConfig(options, &config);
   if (!error.empty()) return ReportError(error);
+  if (!options.vehicle_file.empty()) {
+    return RunVehicleEstimator({options.vehicle_file, options.params_file, options.common.lcm_url,
+                                options.common.prefix, options.service, options.realtime_priority},
+                               config);
+  }
   ChannelSecurity security;
   const ChannelSet used{false, false, true, true};  // reads POSE, publishes FORCE
   if (!LoadChannelSecurity(options.security, used, &security, &error)) return ReportError(error);
@@ -244,7 +230,8 @@ int main(int argc, char** argv) {
   service.AttachUdpCounters(source->udp_counters());
   LogStartup(options, config, vehicle_checksum, channels, *source);
 
-  if (!Serve(source.get(), options.service.status_rate_hz, &service)) spdlog::error("{}; stopping", source->error());
+  if (!ServeEstimator(source.get(), options.service.status_rate_hz, &service))
+    spdlog::error("{}; stopping", source->error());
   LogStopped(service, *source);
   spdlog::info("authentication: {}", authenticated.Summary());
   if (!state_file.empty()) {
