@@ -1,125 +1,197 @@
 #include "evaluation/multi_arm_accuracy.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
-#include "estimator/multi_arm_ekf.h"
+#include "birotor/force_estimate_n_t.hpp"
+#include "birotor/truth_n_t.hpp"
+#include "estimator/multi_arm_pipeline.h"
 #include "samples/sample_sink.h"
 #include "simulator/multi_arm_simulator.h"
+#include "transport/channels.h"
+#include "transport/counted_messages.h"
+#include "transport/lcm_codec.h"
+#include "transport/log_io.h"
 
 namespace birotor {
+MultiArmAccuracyScorer::MultiArmAccuracyScorer(int n_rotors, const EvalOptions& options)
+    : n_(n_rotors), options_(options) {
+  result_.n_rotors = n_rotors;
+  result_.detection_delay_s = std::numeric_limits<double>::quiet_NaN();
+}
+
+void MultiArmAccuracyScorer::AddEstimate(const MultiArmForceEstimate& estimate) {
+  pending_ = estimate;
+  has_pending_ = true;
+  if (first_estimate_utime_ < 0) first_estimate_utime_ = estimate.utime;
+}
+
+void MultiArmAccuracyScorer::AddTruth(const MultiArmTruthSample& truth) {
+  if (first_truth_utime_ < 0) first_truth_utime_ = truth.utime;
+  DetectStep(truth);
+  if (has_pending_ && pending_.utime == truth.utime) Score(pending_, truth);
+  has_pending_ = false;
+}
+
+MultiArmAccuracy MultiArmAccuracyScorer::Finish() const {
+  MultiArmAccuracy result = result_;
+  for (int i = 0; i < n_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    MultiArmRotorAccuracy& r = result.rotor[k];
+    if (r.count > 0) {
+      r.mae_n = abs_sum_[k] / static_cast<double>(r.count);
+      r.share_within_2sigma = static_cast<double>(within_[k]) / static_cast<double>(r.count);
+    }
+  }
+  if (result.scored > 0) result.valid_share = static_cast<double>(valid_count_) / static_cast<double>(result.scored);
+  return result;
+}
+
+void MultiArmAccuracyScorer::DetectStep(const MultiArmTruthSample& truth) {
+  if (has_last_truth_ && result_.step_rotor == 0) {
+    for (int i = 0; i < n_; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      if (std::abs(truth.thrust_scale[k] - last_truth_scale_[k]) > options_.step_threshold) {
+        result_.step_rotor = i + 1;
+        step_utime_ = truth.utime;
+        result_.step_time_s = static_cast<double>(truth.utime - first_truth_utime_) * 1e-6;
+        break;
+      }
+    }
+  }
+  last_truth_scale_ = truth.thrust_scale;
+  has_last_truth_ = true;
+}
+
+void MultiArmAccuracyScorer::Score(const MultiArmForceEstimate& e, const MultiArmTruthSample& truth) {
+  if (result_.step_rotor > 0 && std::isnan(result_.detection_delay_s) &&
+      (e.rotor_fault_bits >> (result_.step_rotor - 1) & 1) != 0) {
+    result_.detection_delay_s = static_cast<double>(e.utime - step_utime_) * 1e-6;
+  }
+  for (int i = 0; i < n_; ++i) {
+    const bool flagged = (e.rotor_fault_bits >> i & 1) != 0;
+    if (flagged && truth.thrust_scale[static_cast<size_t>(i)] > options_.false_alarm_truth_scale) {
+      ++result_.false_alarms;
+    }
+  }
+  if (static_cast<double>(e.utime - first_estimate_utime_) * 1e-6 < options_.warmup_s) return;
+  bool finite = true;
+  for (int i = 0; i < n_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    finite = finite && std::isfinite(e.force_n[k]) && std::isfinite(e.force_std_n[k]);
+  }
+  if (!finite) {
+    ++result_.nonfinite;
+    return;
+  }
+  ++result_.scored;
+  valid_count_ += (e.status & kStatusValid) != 0;
+  for (int i = 0; i < n_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    const double error = std::abs(e.force_n[k] - truth.force_n[k]);
+    ++result_.rotor[k].count;
+    abs_sum_[k] += error;
+    within_[k] += error <= 2.0 * e.force_std_n[k];
+  }
+}
+
 namespace {
 
-// Feeds the filter and scores each estimate against the truth of its utime
-// (the simulator emits STRAIN_N before TRUTH_N in the same step).
+// Feeds the estimator's input path (the daemon's, MultiArmPipeline) and
+// scores each estimate against the truth of its utime (the simulator emits
+// STRAIN_N before TRUTH_N in the same step).
 class AccuracySink : public SampleSink {
  public:
-  AccuracySink(MultiArmForceEstimator* filter, int n, const EvalOptions& options)
-      : filter_(filter), n_(n), options_(options) {
-    result_.n_rotors = n;
-    result_.detection_delay_s = std::numeric_limits<double>::quiet_NaN();
-  }
+  AccuracySink(MultiArmPipeline* pipeline, int n, const EvalOptions& options)
+      : pipeline_(pipeline), scorer_(n, options) {}
   void OnStrainN(const MultiArmStrainSample& sample) override {
-    filter_->AddStrain(sample, &pending_);
-    has_pending_ = true;
-    if (first_estimate_utime_ < 0) first_estimate_utime_ = sample.utime;
+    MultiArmForceEstimate estimate;
+    if (pipeline_->OnStrain(sample, &estimate)) scorer_.AddEstimate(estimate);
   }
-  void OnMotorN(const MultiArmMotorSample& sample) override { filter_->AddMotor(sample); }
-  void OnImu(const ImuSample& sample) override { filter_->AddImu(sample); }
-  void OnTruthN(const MultiArmTruthSample& truth) override {
-    if (first_truth_utime_ < 0) first_truth_utime_ = truth.utime;
-    DetectStep(truth);
-    if (has_pending_ && pending_.utime == truth.utime) Score(pending_, truth);
-    has_pending_ = false;
-  }
-  MultiArmAccuracy Finish() {
-    int64_t valid = 0;
-    for (int i = 0; i < n_; ++i) {
-      MultiArmRotorAccuracy& r = result_.rotor[static_cast<size_t>(i)];
-      if (r.count > 0) {
-        r.mae_n = abs_sum_[static_cast<size_t>(i)] / static_cast<double>(r.count);
-        r.share_within_2sigma = static_cast<double>(within_[static_cast<size_t>(i)]) / static_cast<double>(r.count);
-      }
-    }
-    valid = valid_count_;
-    if (result_.scored > 0) result_.valid_share = static_cast<double>(valid) / static_cast<double>(result_.scored);
-    return result_;
-  }
+  void OnMotorN(const MultiArmMotorSample& sample) override { pipeline_->OnMotor(sample); }
+  void OnImu(const ImuSample& sample) override { pipeline_->OnImu(sample); }
+  void OnPose(const PoseSample& sample) override { pipeline_->OnPose(sample); }
+  void OnTruthN(const MultiArmTruthSample& truth) override { scorer_.AddTruth(truth); }
+  MultiArmAccuracy Finish() const { return scorer_.Finish(); }
 
  private:
-  void DetectStep(const MultiArmTruthSample& truth) {
-    if (has_last_truth_ && result_.step_rotor == 0) {
-      for (int i = 0; i < n_; ++i) {
-        const size_t k = static_cast<size_t>(i);
-        if (std::abs(truth.thrust_scale[k] - last_truth_scale_[k]) > options_.step_threshold) {
-          result_.step_rotor = i + 1;
-          step_utime_ = truth.utime;
-          result_.step_time_s = static_cast<double>(truth.utime - first_truth_utime_) * 1e-6;
-          break;
-        }
-      }
-    }
-    last_truth_scale_ = truth.thrust_scale;
-    has_last_truth_ = true;
-  }
-  void Score(const MultiArmForceEstimate& e, const MultiArmTruthSample& truth) {
-    if (result_.step_rotor > 0 && std::isnan(result_.detection_delay_s) &&
-        (e.rotor_fault_bits >> (result_.step_rotor - 1) & 1) != 0) {
-      result_.detection_delay_s = static_cast<double>(e.utime - step_utime_) * 1e-6;
-    }
-    for (int i = 0; i < n_; ++i) {
-      const bool flagged = (e.rotor_fault_bits >> i & 1) != 0;
-      if (flagged && truth.thrust_scale[static_cast<size_t>(i)] > options_.false_alarm_truth_scale) {
-        ++result_.false_alarms;
-      }
-    }
-    if (static_cast<double>(e.utime - first_estimate_utime_) * 1e-6 < options_.warmup_s) return;
-    bool finite = true;
-    for (int i = 0; i < n_; ++i) {
-      const size_t k = static_cast<size_t>(i);
-      finite = finite && std::isfinite(e.force_n[k]) && std::isfinite(e.force_std_n[k]);
-    }
-    if (!finite) {
-      ++result_.nonfinite;
-      return;
-    }
-    ++result_.scored;
-    valid_count_ += (e.status & kStatusValid) != 0;
-    for (int i = 0; i < n_; ++i) {
-      const size_t k = static_cast<size_t>(i);
-      const double error = std::abs(e.force_n[k] - truth.force_n[k]);
-      ++result_.rotor[k].count;
-      abs_sum_[k] += error;
-      within_[k] += error <= 2.0 * e.force_std_n[k];
-    }
-  }
-
-  MultiArmForceEstimator* filter_;
-  int n_;
-  EvalOptions options_;
-  MultiArmAccuracy result_;
-  MultiArmForceEstimate pending_;
-  bool has_pending_ = false;
-  int64_t first_estimate_utime_ = -1, first_truth_utime_ = -1, step_utime_ = 0, valid_count_ = 0;
-  ArmValues last_truth_scale_{};
-  bool has_last_truth_ = false;
-  std::array<double, kMaxArms> abs_sum_{};
-  std::array<int64_t, kMaxArms> within_{};
+  MultiArmPipeline* pipeline_;
+  MultiArmAccuracyScorer scorer_;
 };
 
 }  // namespace
 
-MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Scenario& scenario, const EkfOptions& ekf,
-                                     const EvalOptions& options) {
-  const std::unique_ptr<MultiArmForceEstimator> filter = MakeMultiArmEkf(vehicle, ekf);
-  if (filter == nullptr) throw std::invalid_argument("no N-arm EKF for arm_count " + std::to_string(vehicle.arm_count));
+MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Scenario& scenario,
+                                     const EstimatorConfig& estimator, const EvalOptions& options) {
+  EstimatorConfig config = estimator;
+  config.vehicle = vehicle;
+  MultiArmPipeline pipeline(config);  // throws for a description it cannot serve
   MultiArmSimulator simulator(vehicle, scenario);
-  AccuracySink sink(filter.get(), vehicle.arm_count, options);
+  AccuracySink sink(&pipeline, vehicle.arm_count, options);
   simulator.Run(&sink);
   return sink.Finish();
+}
+
+namespace {
+
+// Every decodable FORCE_N and TRUTH_N of the log with n_rotors entries.
+bool ReadForcesAndTruth(const std::string& path, const std::string& prefix, int n_rotors,
+                        std::vector<MultiArmForceEstimate>* forces, std::vector<MultiArmTruthSample>* truths,
+                        std::string* error) {
+  const ChannelNames channels = MakeChannelNames(prefix);
+  LogReader reader;
+  if (!reader.Open(path, error)) return false;
+  LogEvent event;
+  force_estimate_n_t force;
+  truth_n_t truth;
+  while (reader.Next(&event)) {
+    if (event.channel == channels.force_n &&
+        DecodeMessage(event.data.data(), event.data.size(), &force) == DecodeError::kNone &&
+        force.n_rotors == n_rotors) {
+      forces->emplace_back();
+      FromMessage(force, &forces->back());
+    } else if (event.channel == channels.truth_n &&
+               DecodeMessage(event.data.data(), event.data.size(), &truth) == DecodeError::kNone &&
+               truth.n_arms == n_rotors) {
+      truths->emplace_back();
+      FromMessage(truth, &truths->back());
+    }
+  }
+  return CheckLogUsable(reader, path, kDefaultMinUsableLogFraction, error);
+}
+
+}  // namespace
+
+bool ScoreMultiArmLog(const std::string& path, const std::string& prefix, int n_rotors, const EvalOptions& options,
+                      MultiArmAccuracy* result, std::string* error) {
+  std::vector<MultiArmForceEstimate> forces;
+  std::vector<MultiArmTruthSample> truths;
+  if (!ReadForcesAndTruth(path, prefix, n_rotors, &forces, &truths, error)) return false;
+  // A live log has them in arrival order: pair by stamp, each estimate
+  // before the truth of its step, as the simulator emits them.
+  const auto by_utime = [](const auto& a, const auto& b) { return a.utime < b.utime; };
+  std::stable_sort(forces.begin(), forces.end(), by_utime);
+  std::stable_sort(truths.begin(), truths.end(), by_utime);
+  MultiArmAccuracyScorer scorer(n_rotors, options);
+  size_t next_force = 0;
+  for (const MultiArmTruthSample& truth : truths) {
+    while (next_force < forces.size() && forces[next_force].utime <= truth.utime) {
+      scorer.AddEstimate(forces[next_force++]);
+    }
+    scorer.AddTruth(truth);
+  }
+  *result = scorer.Finish();
+  if (result->scored > 0) return true;
+  *error = path + ": no " + prefix + "FORCE_N of " + std::to_string(n_rotors) + " rotors with a " + prefix +
+           "TRUTH_N of its stamp (" + std::to_string(forces.size()) + " FORCE_N, " + std::to_string(truths.size()) +
+           " TRUTH_N)";
+  return false;
 }
 
 std::string MultiArmAccuracyHeader() {

@@ -1,6 +1,9 @@
-// Accuracy of the N-arm EKF (estimator/multi_arm_ekf.h) against the truth of
+// Accuracy of the N-arm estimator (estimator/multi_arm_pipeline.h around the
+// EKF of estimator/multi_arm_ekf.h: the daemon's code) against the truth of
 // the N-arm simulator, run in-process and lock-step: MultiArmSimulator emits
-// each sample straight into the filter (birotor-eval --vehicle FILE). Per
+// each sample straight into it (birotor-eval --vehicle FILE); or of the
+// FORCE_N and TRUTH_N of a log (birotor-eval --vehicle FILE --log LOG: a
+// live run recorded by lcm-logger, or birotor-replay --vehicle's output). Per
 // rotor the MAE and the share of errors within 2 sigma, the share of VALID
 // estimates, and for a scenario with a thrust step the time from the step to
 // the stepped rotor's fault flag and the false alarms. docs/estimator.md,
@@ -14,6 +17,7 @@
 #include "estimator/estimator_config.h"
 #include "evaluation/eval_metrics.h"
 #include "model/vehicle_description.h"
+#include "samples/multi_arm_samples.h"
 #include "simulator/scenario.h"
 
 namespace birotor {
@@ -41,13 +45,47 @@ struct MultiArmAccuracy {
   int64_t false_alarms = 0;
 };
 
+// Scores estimates against the truth of their utime: each estimate is
+// paired with the next truth if their stamps are equal (the order the
+// simulator emits them: STRAIN_N, then TRUTH_N of the same step), with
+// options' warmup_s, step_threshold and false_alarm_truth_scale.
+class MultiArmAccuracyScorer {
+ public:
+  MultiArmAccuracyScorer(int n_rotors, const EvalOptions& options);
+  void AddEstimate(const MultiArmForceEstimate& estimate);
+  void AddTruth(const MultiArmTruthSample& truth);
+  MultiArmAccuracy Finish() const;
+
+ private:
+  void DetectStep(const MultiArmTruthSample& truth);
+  void Score(const MultiArmForceEstimate& e, const MultiArmTruthSample& truth);
+
+  int n_;
+  EvalOptions options_;
+  MultiArmAccuracy result_;
+  MultiArmForceEstimate pending_;
+  bool has_pending_ = false;
+  int64_t first_estimate_utime_ = -1, first_truth_utime_ = -1, step_utime_ = 0, valid_count_ = 0;
+  ArmValues last_truth_scale_{};
+  bool has_last_truth_ = false;
+  std::array<double, kMaxArms> abs_sum_{};
+  std::array<int64_t, kMaxArms> within_{};
+};
+
 // Simulates the scenario on the vehicle (MultiArmSimulator) and feeds every
-// STRAIN_N, MOTOR_N and IMU sample to MakeMultiArmEkf(vehicle, ekf) as it is
-// emitted; scores with options' warmup_s, step_threshold and
-// false_alarm_truth_scale. Throws std::invalid_argument as MultiArmSimulator
-// does (a scenario the vehicle cannot fly).
-MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Scenario& scenario, const EkfOptions& ekf,
-                                     const EvalOptions& options);
+// STRAIN_N, MOTOR_N, IMU and POSE sample to a MultiArmPipeline of estimator
+// (its ekf: and pipeline:, the vehicle replaced) as it is emitted. Throws
+// std::invalid_argument as MultiArmSimulator does (a scenario the vehicle
+// cannot fly).
+MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Scenario& scenario,
+                                     const EstimatorConfig& estimator, const EvalOptions& options);
+
+// The FORCE_N of the log at path (channel prefix) against its TRUTH_N, paired
+// by utime. False with a one-line *error when the log cannot be read or
+// holds no FORCE_N with a TRUTH_N of its stamp; a message of another count
+// than n_rotors is not scored.
+bool ScoreMultiArmLog(const std::string& path, const std::string& prefix, int n_rotors, const EvalOptions& options,
+                      MultiArmAccuracy* result, std::string* error);
 
 // Markdown: one header, one row per scenario (rotors as columns "r1 / r2 / ..").
 std::string MultiArmAccuracyHeader();

@@ -479,8 +479,11 @@ int main(int argc, char** argv) {
                                cli.controller_params, cli.scenario_dir, cli.overrides, cli.markdown_out, base_config});
   }
   if (cli.control) return RunControlMode(cli, app.count("--scenarios") > 0, base_config);
+  if (!cli.vehicle_file.empty() && !cli.log_path.empty()) {
+    return RunMultiArmLogAccuracy(cli.vehicle_file, cli.log_path, common.prefix, cli.eval_options);
+  }
   if (!cli.vehicle_file.empty()) {
-    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, cli.overrides, base_config.ekf, cli.eval_options);
+    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, cli.overrides, base_config, cli.eval_options);
   }
   if (cli.mismatch_targets) {
     if (!cli.log_path.empty())

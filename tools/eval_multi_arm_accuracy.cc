@@ -12,7 +12,7 @@
 namespace birotor {
 
 int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<std::string>& scenarios,
-                            const std::vector<std::string>& overrides, const EkfOptions& ekf,
+                            const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
                             const EvalOptions& options) {
   VehicleDescription vehicle;
   try {
@@ -20,20 +20,36 @@ int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<s
   } catch (const std::exception& e) {
     return ReportError(e.what());
   }
-  std::printf("N-arm EKF on %s (%d arms)\n\n%s", vehicle.name.c_str(), vehicle.arm_count,
+  std::printf("N-arm estimator on %s (%d arms)\n\n%s", vehicle.name.c_str(), vehicle.arm_count,
               MultiArmAccuracyHeader().c_str());
   for (const std::string& name : scenarios) {
     std::string file, error;
     if (!FindScenario(name, &file, &error)) return ReportError(error);
     try {
       const Scenario scenario = LoadScenario(file, overrides, vehicle.arm_count);
-      const MultiArmAccuracy result = RunMultiArmAccuracy(vehicle, scenario, ekf, options);
+      const MultiArmAccuracy result = RunMultiArmAccuracy(vehicle, scenario, estimator, options);
       std::printf("%s", MultiArmAccuracyRow(name, result).c_str());
       std::fflush(stdout);
     } catch (const std::exception& e) {
       return ReportError(name + ": " + e.what());
     }
   }
+  return 0;
+}
+
+int RunMultiArmLogAccuracy(const std::string& vehicle_file, const std::string& log_path, const std::string& prefix,
+                           const EvalOptions& options) {
+  VehicleDescription vehicle;
+  try {
+    vehicle = LoadVehicleDescription(vehicle_file);
+  } catch (const std::exception& e) {
+    return ReportError(e.what());
+  }
+  MultiArmAccuracy result;
+  std::string error;
+  if (!ScoreMultiArmLog(log_path, prefix, vehicle.arm_count, options, &result, &error)) return ReportError(error);
+  std::printf("FORCE_N of %s against its TRUTH_N (%s, %d arms)\n\n%s%s", log_path.c_str(), vehicle.name.c_str(),
+              vehicle.arm_count, MultiArmAccuracyHeader().c_str(), MultiArmAccuracyRow(log_path, result).c_str());
   return 0;
 }
 

@@ -302,6 +302,35 @@ void FromMessage(const strain_n_t& m, MultiArmStrainSample* s) {
   CopyFirst(m.deflection_rad, m.n_arms, &s->deflection_rad);
 }
 
+void FromMessage(const truth_n_t& m, MultiArmTruthSample* s) {
+  *s = MultiArmTruthSample();
+  s->utime = m.utime;
+  s->x_m = m.x_m;
+  s->z_m = m.z_m;
+  s->phi_rad = m.phi_rad;
+  s->n_arms = m.n_arms;
+  CopyFirst(m.deflection_rad, m.n_arms, &s->deflection_rad);
+  s->x_dot_m_s = m.x_dot_m_s;
+  s->z_dot_m_s = m.z_dot_m_s;
+  s->phi_dot_rad_s = m.phi_dot_rad_s;
+  CopyFirst(m.deflection_dot_rad_s, m.n_arms, &s->deflection_dot_rad_s);
+  CopyFirst(m.omega_rad_s, m.n_arms, &s->omega_rad_s);
+  CopyFirst(m.force_n, m.n_arms, &s->force_n);
+  CopyFirst(m.thrust_scale, m.n_arms, &s->thrust_scale);
+}
+
+void FromMessage(const force_estimate_n_t& m, MultiArmForceEstimate* e) {
+  *e = MultiArmForceEstimate();
+  e->utime = m.utime;
+  e->seq = m.seq;
+  e->n_rotors = m.n_rotors;
+  CopyFirst(m.force_n, m.n_rotors, &e->force_n);
+  CopyFirst(m.force_std_n, m.n_rotors, &e->force_std_n);
+  CopyFirst(m.thrust_scale, m.n_rotors, &e->thrust_scale);
+  e->status = m.status;
+  e->rotor_fault_bits = m.rotor_fault_bits;
+}
+
 void FromMessage(const motor_n_t& m, MultiArmMotorSample* s) {
   *s = MultiArmMotorSample();
   s->utime = m.utime;

@@ -36,7 +36,7 @@ Scenario ScenarioFor(const std::string& name, const std::vector<std::string>& ov
 // MAE below 1.3x, the 2-sigma share in [0.93, 0.99].
 TEST(MultiArmEkfTest, TrirotorGentleAccuracy) {
   const MultiArmAccuracy r = RunMultiArmAccuracy(
-      Vehicle("trirotor"), ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), Config().ekf, EvalOptions());
+      Vehicle("trirotor"), ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), Config(), EvalOptions());
   ASSERT_EQ(r.n_rotors, 3);
   EXPECT_EQ(r.nonfinite, 0);
   const double measured_mae_n[3] = {0.0770, 0.0483, 0.0515};
@@ -57,7 +57,7 @@ TEST(MultiArmEkfTest, TrirotorLossOnRotor3IsFlagged) {
       Vehicle("trirotor"),
       ScenarioFor("thrust_loss",
                   {"scenario.duration_s=4", "faults.thrust_steps=[{time_s: 2.0, rotor: 3, scale: 0.75}]"}, 3),
-      Config().ekf, EvalOptions());
+      Config(), EvalOptions());
   EXPECT_EQ(r.step_rotor, 3);
   EXPECT_LE(r.detection_delay_s, 0.015);
   EXPECT_GE(r.detection_delay_s, 0.002);
@@ -71,7 +71,7 @@ TEST(MultiArmEkfTest, TrirotorLossOnRotor3IsFlagged) {
 TEST(MultiArmEkfTest, BirotorDescriptionIsCloseToTheBirotorEkf) {
   const EstimatorConfig config = Config();
   const MultiArmAccuracy multi = RunMultiArmAccuracy(
-      Vehicle("birotor"), ScenarioFor("hover", {"scenario.duration_s=4"}, 2), config.ekf, EvalOptions());
+      Vehicle("birotor"), ScenarioFor("hover", {"scenario.duration_s=4"}, 2), config, EvalOptions());
   const EvalRun run = RunSimulatedScenario(ScenarioFor("hover", {"scenario.duration_s=4"}, 2), config);
   const EvalResult birotor = Evaluate(run.forces, run.truth, run.stats.strain_fault_utimes, EvalOptions());
   for (size_t i = 0; i < 2; ++i) {
