@@ -38,12 +38,19 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
                       recorded (lcm-logger) and its figures printed: position held,
                       commands, fallbacks with their times (birotor-review, which also
                       writes <out>/demo-<scenario>-review.html)
+  --vehicle FILE      a vehicle description with N arms (e.g. config/vehicles/trirotor.yaml):
+                      birotor-estimator --vehicle and birotor-sim --vehicle talk on the counted
+                      channels (STRAIN_N, MOTOR_N, FORCE_N, TRUTH_N); the run is recorded
+                      (lcm-logger) and its figures printed per rotor from the recording
+                      (birotor-eval --vehicle FILE --log, the same table as in-process),
+                      with the review page; no live view (birotor-monitor reads the birotor's
+                      channels) and no --controller (nothing flies on FORCE_N over LCM yet)
   --no-setup          skip tools/setup.sh (no install, no build); use the existing build
   -h, --help          this help
 
 Environment: BIROTOR_BUILD_DIR (default: build), BIROTOR_JOBS (build jobs), as tools/setup.sh.
 Logs: <out>/demo-<scenario>-{setup,estimator,controller,sim,monitor,logger}.log; with --controller
-also <out>/demo-<scenario>-flight.lcm and -review.html.
+or --vehicle also <out>/demo-<scenario>-flight.lcm and -review.html.
 Exit status: 0 when every step succeeded, 1 when one failed, 2 on wrong usage.
 EOF
 }
@@ -59,6 +66,7 @@ out_dir="out"
 run_setup=1
 no_truth=0
 controller_mode=""
+vehicle_file=""
 scenario_given=0
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -73,6 +81,8 @@ while [ $# -gt 0 ]; do
     --out=*) out_dir="${1#*=}"; shift ;;
     --controller) [ $# -ge 2 ] || die_usage "--controller needs a value"; controller_mode="$2"; shift 2 ;;
     --controller=*) controller_mode="${1#*=}"; shift ;;
+    --vehicle) [ $# -ge 2 ] || die_usage "--vehicle needs a value"; vehicle_file="$2"; shift 2 ;;
+    --vehicle=*) vehicle_file="${1#*=}"; shift ;;
     --no-setup) run_setup=0; shift ;;
     --no-truth) no_truth=1; shift ;;
     -*) die_usage "unknown option $1" ;;
@@ -94,6 +104,12 @@ fi
   || die_usage "--speed must be a positive number, got '$speed'"
 case "$method" in ""|ekf|inversion|motor_map) ;; *) die_usage "--method must be ekf, inversion or motor_map, got '$method'" ;; esac
 case "$controller_mode" in ""|nominal|force_feedback|mpc) ;; *) die_usage "--controller must be nominal, force_feedback or mpc, got '$controller_mode'" ;; esac
+if [ -n "$vehicle_file" ]; then
+  [ -f "$vehicle_file" ] || die_usage "no vehicle description $vehicle_file"
+  [ -z "$controller_mode" ] || die_usage "--vehicle does not fly --controller (nothing flies on FORCE_N over LCM yet)"
+  [ "$no_truth" -eq 0 ] || die_usage "--vehicle needs the truth for its figures (no --no-truth)"
+  vehicle_file="$(cd "$(dirname "$vehicle_file")" && pwd)/$(basename "$vehicle_file")"
+fi
 mkdir -p "$out_dir" 2>/dev/null || fail "cannot create the output folder $out_dir"
 [ -w "$out_dir" ] || fail "cannot write to the output folder $out_dir"
 out_dir="$(cd "$out_dir" && pwd)"
@@ -124,8 +140,8 @@ find_program() {
 sim_bin="$(find_program birotor-sim)"
 estimator_bin="$(find_program birotor-estimator)"
 monitor_bin="$(find_program birotor-monitor)"
-if [ -n "$controller_mode" ]; then
-  controller_bin="$(find_program birotor-controller)"
+if [ -n "$controller_mode" ] || [ -n "$vehicle_file" ]; then
+  [ -n "$vehicle_file" ] || controller_bin="$(find_program birotor-controller)"
   review_bin="$(find_program birotor-review)"
   command -v lcm-logger > /dev/null || fail "lcm-logger not found (apt-get install liblcm-bin; tools/setup.sh)"
 fi
@@ -178,6 +194,7 @@ if [[ "$lcm_url" == *recv_buf_size=* ]] && [ "$rmem_max" -lt 2097152 ]; then
 fi
 duration_s="$(awk '/^[[:space:]]*duration_s:/ {print $2; exit}' "$scenario_file")"
 echo "demo: scenario $scenario (${duration_s:-?} s at speed $speed), LCM $lcm_url"
+[ -z "$vehicle_file" ] || { source tools/demo_vehicle.sh; run_vehicle_demo; exit $?; }
 # SCHED_FIFO priorities of the shipped units (docs/realtime.md): the simulator
 # (the vehicle) above the controller above the estimator, so a busy machine
 # does not delay a sample or a command. Without CAP_SYS_NICE each program warns
