@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "numerics/time_units.h"
+
 namespace birotor {
 namespace {
 
@@ -49,6 +51,14 @@ Eigen::Vector2d WorldAcceleration(double phi_rad, double specific_force_x_m_s2, 
   const double c = std::cos(phi_rad), s = std::sin(phi_rad);
   return Eigen::Vector2d(c * specific_force_x_m_s2 - s * specific_force_z_m_s2,
                          s * specific_force_x_m_s2 + c * specific_force_z_m_s2 - gravity_m_s2);
+}
+
+void BodyStateObserver::FuseHeldPose(bool gyro_in_use) {
+  if (!pose_held_) return;
+  const double interval_s = ElapsedSeconds(held_pose_.utime, last_fused_pose_utime_);
+  CorrectPose(Eigen::Vector2d(held_pose_.x_m, held_pose_.z_m), held_pose_.phi_rad, interval_s, gyro_in_use);
+  last_fused_pose_utime_ = held_pose_.utime;
+  pose_held_ = false;
 }
 
 }  // namespace birotor

@@ -8,9 +8,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 
 #include "controller/controller_params.h"
 #include "controller/position_attitude_law.h"
+#include "samples/samples.h"
 
 namespace birotor {
 
@@ -33,11 +35,30 @@ class BodyStateObserver {
   // (the gains scale with it; clamped to 50 ms so a gap cannot overshoot).
   void CorrectPose(const Eigen::Vector2d& position_m, double phi_rad, double interval_s, bool gyro_in_use);
 
+  // The newest POSE, held until the next control period fuses it
+  // (FuseHeldPose); a newer one replaces it.
+  void HoldPose(const PoseSample& sample) {
+    held_pose_ = sample;
+    pose_held_ = true;
+  }
+  // A POSE used at once (the first, a reset, a re-acquisition): the next
+  // interval counts from its stamp; a held one is dropped.
+  void PoseUsedAt(int64_t utime) {
+    last_fused_pose_utime_ = utime;
+    pose_held_ = false;
+  }
+  // Corrects with the held POSE, if any, over the time since the last one
+  // fused or used (CorrectPose).
+  void FuseHeldPose(bool gyro_in_use);
+
   const BodyState& state() const { return state_; }
 
  private:
   ObserverParams params_;
   BodyState state_;
+  PoseSample held_pose_;
+  bool pose_held_ = false;
+  int64_t last_fused_pose_utime_ = -1;  // [us]
 };
 
 // World acceleration from the accelerometer's specific force in body axes:

@@ -58,11 +58,10 @@ void MultiArmController::OnPose(const PoseSample& sample) {
   if (!has_pose_) {
     has_pose_ = true;
     observer_.Initialize(Eigen::Vector2d(sample.x_m, sample.z_m), sample.phi_rad);
-    last_fused_pose_utime_ = sample.utime;
+    observer_.PoseUsedAt(sample.utime);
     return;
   }
-  pending_pose_ = sample;
-  pose_pending_ = true;
+  observer_.HoldPose(sample);
 }
 
 void MultiArmController::OnImu(const ImuSample& sample) {
@@ -90,13 +89,7 @@ void MultiArmController::UpdateState(int64_t now_us, double dt_s) {
                                     last_specific_force_m_s2_.y(), vehicle_.gravity_m_s2)
                 : law_.accel_des_m_s2();
   observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : kNaN);
-  if (pose_pending_) {
-    const double interval_s = ElapsedSeconds(pending_pose_.utime, last_fused_pose_utime_);
-    observer_.CorrectPose(Eigen::Vector2d(pending_pose_.x_m, pending_pose_.z_m), pending_pose_.phi_rad, interval_s,
-                          imu_fresh);
-    last_fused_pose_utime_ = pending_pose_.utime;
-    pose_pending_ = false;
-  }
+  observer_.FuseHeldPose(imu_fresh);
 }
 
 RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {

@@ -108,9 +108,6 @@ class MultiArmController {
   MultiArmRotorCommand hover_command_;  // before the first POSE
   RotorEfficiencyEstimate efficiency_estimate_;
   bool has_pose_ = false;
-  PoseSample pending_pose_;
-  bool pose_pending_ = false;
-  int64_t last_fused_pose_utime_ = -1;
   int64_t last_imu_utime_ = -1;
   int imu_count_ = 0;
   double gyro_sum_rad_s_ = 0.0;

@@ -77,7 +77,7 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
     observer_.Initialize(position_m, sample.phi_rad);
     setpoint_.SetStart(position_m);
     ground_z_m_ = sample.z_m;
-    last_fused_pose_utime_ = sample.utime;
+    observer_.PoseUsedAt(sample.utime);
     return;
   }
   const PoseGate::Verdict verdict = pose_gate_.Check(sample, observer_.state(), now_us);
@@ -98,12 +98,10 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
       ++health_.pose_reacquisitions;
       observer_.Relocate(position_m, sample.phi_rad);
     }
-    last_fused_pose_utime_ = sample.utime;
-    pose_pending_ = false;
+    observer_.PoseUsedAt(sample.utime);
     return;
   }
-  pending_pose_ = sample;
-  pose_pending_ = true;
+  observer_.HoldPose(sample);
 }
 
 void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
@@ -200,13 +198,7 @@ void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status
                 : last_accel_des_m_s2_;
   if (!imu_fresh) *status |= kCommandInputStale;
   observer_.Predict(dt_s, accel_world_m_s2, imu_fresh ? pitch_rate_rad_s : kNaN);
-  if (pose_pending_) {
-    const double interval_s = ElapsedSeconds(pending_pose_.utime, last_fused_pose_utime_);
-    observer_.CorrectPose(Eigen::Vector2d(pending_pose_.x_m, pending_pose_.z_m), pending_pose_.phi_rad, interval_s,
-                          imu_fresh);
-    last_fused_pose_utime_ = pending_pose_.utime;
-    pose_pending_ = false;
-  }
+  observer_.FuseHeldPose(imu_fresh);
 }
 
 void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s,

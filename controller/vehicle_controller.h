@@ -136,9 +136,6 @@ class VehicleController {
 
   // POSE: the newest accepted sample not yet fused; the gate's run of refusals.
   bool has_pose_ = false;
-  bool pose_pending_ = false;
-  PoseSample pending_pose_;
-  int64_t last_fused_pose_utime_ = -1;
   double ground_z_m_ = 0.0;  // the first POSE's z: the take-off level the flare lands on [m]
 
   // IMU: sums over the samples since the last control period.
