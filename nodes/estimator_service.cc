@@ -264,18 +264,8 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
 
 void EstimatorService::PublishStatusOnVehicleClock() {
   const int64_t now_utime = pipeline_.health().newest_utime;
-  if (now_utime < 0 || !(options_.status_rate_hz > 0)) return;
-  const int64_t period_us = static_cast<int64_t>(std::llround(1e6 / options_.status_rate_hz));
-  // First sample, or the clock went backwards (a log played in a loop):
-  // restart the schedule one period from now.
-  if (next_status_utime_ < 0 || now_utime < next_status_utime_ - period_us) {
-    next_status_utime_ = now_utime + period_us;
-    return;
-  }
-  if (now_utime < next_status_utime_) return;
-  PublishStatus(now_utime, static_cast<double>(period_us) * 1e-6);
-  next_status_utime_ += period_us;
-  if (next_status_utime_ <= now_utime) next_status_utime_ = now_utime + period_us;  // long gap
+  double period_s = 0;
+  if (status_schedule_.Due(now_utime, options_.status_rate_hz, &period_s)) PublishStatus(now_utime, period_s);
 }
 
 }  // namespace birotor

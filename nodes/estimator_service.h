@@ -29,6 +29,7 @@
 #include "model/vehicle_description.h"
 #include "nodes/input_rejection_log.h"
 #include "nodes/status_message.h"
+#include "nodes/vehicle_clock_schedule.h"
 #include "program/logging.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
@@ -186,7 +187,7 @@ class EstimatorService : public PacketHandler {
   ProcessingTimeStats processing_time_;
   int32_t status_seq_ = 0;
   int64_t forces_published_ = 0;
-  int64_t next_status_utime_ = -1;            // vehicle-clock status schedule [us]
+  VehicleClockSchedule status_schedule_;      // replay: ESTIMATOR_STATUS on the vehicle clock
   int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
   const UdpReceiveCounters* udp_counters_ = nullptr;
   const SigningSink* signing_ = nullptr;

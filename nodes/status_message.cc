@@ -92,22 +92,33 @@ void FillLearnedParameters(const PipelineHealth& health, estimator_status_t* mes
   message->body_mass_source = health.body_mass_learned ? kLearnedSourceLearned : kLearnedSourceParams;
 }
 
-}  // namespace
+// What every estimator node's status has: stamps, method, status, the
+// per-input counters (inputs in InputChannel order, then the
+// accelerometer's), the strain NIS, processing times, resets, estimates.
+struct CommonStatus {
+  int64_t newest_utime;
+  const char* method;
+  int32_t status;
+  const InputCounters* inputs;  // kNumInputChannels of them
+  const InputCounters* accelerometer;
+  int64_t resets;
+  ResetReason last_reset_reason;
+  int64_t published;
+};
 
-void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
-                        estimator_status_t* message) {
-  message->utime = health.newest_utime;
+void FillCommonStatus(const CommonStatus& c, const StatusContext& context, estimator_status_t* message) {
+  message->utime = c.newest_utime;
   message->wall_utime = context.wall_utime;
   message->seq = context.seq;
-  message->method = method;
-  message->status = health.last_status;
+  message->method = c.method;
+  message->status = c.status;
   message->num_inputs = kNumInputChannels;
   message->inputs.resize(kNumInputChannels);
   for (int i = 0; i < kNumInputChannels; ++i) {
-    FillInputHealth(health.inputs[i], InputChannelName(static_cast<InputChannel>(i)), health.newest_utime, context,
+    FillInputHealth(c.inputs[i], InputChannelName(static_cast<InputChannel>(i)), c.newest_utime, context,
                     &message->inputs[i]);
   }
-  FillInputHealth(health.accelerometer, "IMU accel_z", health.newest_utime, context, &message->accelerometer);
+  FillInputHealth(*c.accelerometer, "IMU accel_z", c.newest_utime, context, &message->accelerometer);
   const input_health_t& strain = message->inputs[static_cast<int>(InputChannel::kStrain)];
   message->strain_nis_mean = strain.nis_mean;
   message->strain_nis_max = strain.nis_max;
@@ -115,9 +126,23 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->processing_time_mean_us = context.processing_time_mean_us;
   message->processing_time_p99_us = context.processing_time_p99_us;
   message->processing_time_max_us = context.processing_time_max_us;
-  message->resets = health.resets;
-  message->last_reset_reason = ResetReasonName(health.last_reset_reason);
-  message->published = health.published;
+  message->resets = c.resets;
+  message->last_reset_reason = ResetReasonName(c.last_reset_reason);
+  message->published = c.published;
+  message->udp_datagrams = context.udp.datagrams;
+  message->udp_fragments_dropped = context.udp.fragments_dropped;
+  message->udp_malformed_dropped = context.udp.malformed_dropped;
+  message->udp_kernel_dropped = context.udp.kernel_dropped;
+  message->vehicle_checksum = context.vehicle_checksum;
+}
+
+}  // namespace
+
+void BuildStatusMessage(const PipelineHealth& health, const char* method, const StatusContext& context,
+                        estimator_status_t* message) {
+  FillCommonStatus({health.newest_utime, method, health.last_status, health.inputs, &health.accelerometer,
+                    health.resets, health.last_reset_reason, health.published},
+                   context, message);
   for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
     message->force_n[rotor] = health.last_estimate.force_n[rotor];
     message->thrust_scale[rotor] = health.last_estimate.thrust_scale[rotor];
@@ -130,10 +155,6 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->tares_refused_body_moving = health.tare.refused_body_moving;
   message->tares_refused_out_of_range = health.tare.refused_out_of_range;
   message->last_tare_refusal = TareRefusalName(health.tare.last_refusal);
-  message->udp_datagrams = context.udp.datagrams;
-  message->udp_fragments_dropped = context.udp.fragments_dropped;
-  message->udp_malformed_dropped = context.udp.malformed_dropped;
-  message->udp_kernel_dropped = context.udp.kernel_dropped;
   message->model_consistency_statistic = health.consistency.ReportedStatistic();
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
   FillLearnedParameters(health, message);
@@ -142,28 +163,10 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
 
 void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const StatusContext& context,
                                 estimator_status_t* message) {
-  message->utime = health.newest_utime;
-  message->wall_utime = context.wall_utime;
-  message->seq = context.seq;
-  message->method = "ekf";
-  message->status = health.last_status;
-  message->num_inputs = kNumInputChannels;
-  message->inputs.resize(kNumInputChannels);
-  for (int i = 0; i < kNumInputChannels; ++i) {
-    FillInputHealth(health.inputs[i], InputChannelName(static_cast<InputChannel>(i)), health.newest_utime, context,
-                    &message->inputs[i]);
-  }
-  FillInputHealth(InputCounters(), "IMU accel_z", health.newest_utime, context, &message->accelerometer);
-  const input_health_t& strain = message->inputs[static_cast<int>(InputChannel::kStrain)];
-  message->strain_nis_mean = strain.nis_mean;
-  message->strain_nis_max = strain.nis_max;
-  message->strain_gate = strain.gate;
-  message->processing_time_mean_us = context.processing_time_mean_us;
-  message->processing_time_p99_us = context.processing_time_p99_us;
-  message->processing_time_max_us = context.processing_time_max_us;
-  message->resets = health.resets;
-  message->last_reset_reason = ResetReasonName(health.last_reset_reason);
-  message->published = health.published;
+  static const InputCounters kNoAccelerometer;  // the N-arm filter's accelerometer has no counters of its own
+  FillCommonStatus({health.newest_utime, "ekf", health.last_status, health.inputs, &kNoAccelerometer, health.resets,
+                    health.last_reset_reason, health.published},
+                   context, message);
   // The birotor's two-element fields: the forces are on FORCE_N.
   for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {
     message->force_n[rotor] = message->thrust_scale[rotor] = kNaN;
@@ -172,17 +175,12 @@ void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const Stat
   }
   message->gauge_offset_source = "params";
   message->last_tare_refusal = "";
-  message->udp_datagrams = context.udp.datagrams;
-  message->udp_fragments_dropped = context.udp.fragments_dropped;
-  message->udp_malformed_dropped = context.udp.malformed_dropped;
-  message->udp_kernel_dropped = context.udp.kernel_dropped;
   message->model_consistency_statistic = kNaN;
   message->mismatch_parameter = "";
   message->strain_scale_source = kLearnedSourceParams;
   message->body_mass_kg = kNaN;
   message->body_mass_std_kg = kNaN;
   message->body_mass_source = kLearnedSourceParams;
-  message->vehicle_checksum = context.vehicle_checksum;
 }
 
 bool ReadLastLearnedStatus(const std::string& log_path, const std::string& channel, estimator_status_t* status,

@@ -10,16 +10,26 @@
 #include "program/program_options.h"
 
 namespace birotor {
+namespace {
+
+// The description, or false after its one-line error.
+bool LoadVehicle(const std::string& file, VehicleDescription* vehicle) {
+  try {
+    *vehicle = LoadVehicleDescription(file);
+  } catch (const std::exception& e) {
+    ReportError(e.what());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<std::string>& scenarios,
                             const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
                             const EvalOptions& options) {
   VehicleDescription vehicle;
-  try {
-    vehicle = LoadVehicleDescription(vehicle_file);
-  } catch (const std::exception& e) {
-    return ReportError(e.what());
-  }
+  if (!LoadVehicle(vehicle_file, &vehicle)) return kExitFailure;
   std::printf("N-arm estimator on %s (%d arms)\n\n%s", vehicle.name.c_str(), vehicle.arm_count,
               MultiArmAccuracyHeader().c_str());
   for (const std::string& name : scenarios) {
@@ -40,11 +50,7 @@ int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<s
 int RunMultiArmLogAccuracy(const std::string& vehicle_file, const std::string& log_path, const std::string& prefix,
                            const EvalOptions& options) {
   VehicleDescription vehicle;
-  try {
-    vehicle = LoadVehicleDescription(vehicle_file);
-  } catch (const std::exception& e) {
-    return ReportError(e.what());
-  }
+  if (!LoadVehicle(vehicle_file, &vehicle)) return kExitFailure;
   MultiArmAccuracy result;
   std::string error;
   if (!ScoreMultiArmLog(log_path, prefix, vehicle.arm_count, options, &result, &error)) return ReportError(error);
