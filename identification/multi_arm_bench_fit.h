@@ -39,10 +39,12 @@ std::string MultiArmLogMismatch(const MultiArmBenchLog& log, const VehicleDescri
 // (ArmDescription field names).
 struct ArmEstimates {
   ParameterEstimate stiffness, damping, tip_mass, gauge_offset, thrust_coeff, motor_time_constant;
-  double clamped_arm_rms_whitened = 0.0;  // strain residual RMS of the arm fit [sigma]
+  double strain_rms_whitened =
+      0.0;  // the arm's strain residual RMS (bench: clamped-arm fit; flight: free-flight fit) [sigma]
 };
 
 struct MultiArmIdentificationResult {
+  bool flight = false;              // the flight fit (multi_arm_flight_fit.h), else the bench fit
   bool ok = false;                  // bench: every arm's k and o, every rotor's c_T, tau_m determined;
                                     // flight: every k, c_T, tau_m determined
   std::vector<std::string> errors;  // what the data lacks, one line each ("arm 2: ...")

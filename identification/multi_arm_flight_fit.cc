@@ -109,8 +109,9 @@ void HeldKeys(int arm, ArmEstimates* e, std::vector<std::string>* advice) {
   e->gauge_offset = ParameterEstimate::Named("gauge_offset_rad", "o_" + n);
   advice->push_back("arm " + n +
                     ": d and the gauge offset NOT DETERMINED by a flight (held at the description's): the "
-                    "free-flight windows barely see d and o_i needs a tare; identify them on the bench "
-                    "(birotor-identify --vehicle FILE --log BENCH)");
+                    "free-flight windows barely see d, and o_i moves with k at a flight's nearly constant thrust; "
+                    "identify d on the bench (birotor-identify --vehicle FILE --log BENCH) and tare the gauge at "
+                    "power-up (an offset 2e-5 rad off moves k by about 1 %)");
 }
 
 // m_p of arm `arm` (ratio and its sigma): determined by the sigma rule, kept
@@ -153,6 +154,39 @@ void Store(const ArmEstimates& e, ArmDescription* arm) {
   if (e.tip_mass.determined) arm->tip_mass_kg = e.tip_mass.value;
   if (e.thrust_coeff.determined) arm->thrust_coeff_n_s2_rad2 = e.thrust_coeff.value;
   if (e.motor_time_constant.determined) arm->motor_time_constant_s = e.motor_time_constant.value;
+}
+
+// Result stage of arm `arm`: k, c_T and m_p from the sigmas (empty: no
+// window, nothing determined), d and o held, the errors and advice, the
+// description's values.
+void FillArm(const MultiArmFlightProblem& fit, const std::vector<BlockSigma>& sigma,
+             const std::vector<double>& rms_whitened, const VehicleDescription& base, int arm,
+             const IdentificationOptions& options, const EstimateNote& note, MultiArmIdentificationResult* result) {
+  const int n = base.arm_count;
+  const size_t a = static_cast<size_t>(arm);
+  const std::string name = std::to_string(arm + 1);
+  ArmEstimates& e = result->arms[a];
+  e.stiffness = ParameterEstimate::Named("stiffness_n_m_rad", "k_" + name);
+  e.thrust_coeff = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T," + name);
+  e.tip_mass = ParameterEstimate::Named("tip_mass_kg", "m_p," + name);
+  e.strain_rms_whitened = rms_whitened[a];
+  HeldKeys(arm, &e, &result->advice);
+  if (!sigma.empty()) {
+    double stiffness = fit.stiffness_ratio[a], thrust = fit.thrust_ratio[a];
+    FillEstimate({&e.stiffness, &stiffness, base.arms[a].stiffness_n_m_rad, 0.0}, sigma[a], options.max_relative_sigma,
+                 note);
+    FillEstimate({&e.thrust_coeff, &thrust, base.arms[a].thrust_coeff_n_s2_rad2, 0.0},
+                 sigma[static_cast<size_t>(n) + a], options.max_relative_sigma, note);
+    TipMassEstimate(fit, sigma[2 * static_cast<size_t>(n) + a], base, arm, options, note, &e, &result->advice);
+    if (!e.stiffness.determined) {
+      result->errors.push_back("arm " + name + ": k not determined by the flight (fly steps that ring the arms)");
+    }
+    if (!e.thrust_coeff.determined) {
+      result->errors.push_back("rotor " + name +
+                               ": c_T not determined by the flight (fly manoeuvres that change this rotor's thrust)");
+    }
+  }
+  Store(e, &result->vehicle.arms[a]);
 }
 
 }  // namespace
@@ -268,8 +302,8 @@ void BuildMultiArmFlightProblem(const MultiArmFlightSamples& data, const std::ve
 }
 
 void SolveMultiArmFlightProblem(const IdentificationOptions& options, MultiArmFlightProblem* fit) {
-  const std::vector<double*> blocks = fit->Blocks();
-  const std::vector<double*> tip_masses(blocks.end() - fit->arm_count, blocks.end());
+  std::vector<double*> tip_masses;
+  for (int i = 0; i < fit->arm_count; ++i) tip_masses.push_back(&fit->tip_mass_ratio[static_cast<size_t>(i)]);
   for (double* block : tip_masses) fit->problem.SetParameterBlockConstant(block);
   SolveProblem(options, &fit->problem, kFinalTolerance);
   if (!fit->fit_tip_mass) return;
@@ -278,22 +312,18 @@ void SolveMultiArmFlightProblem(const IdentificationOptions& options, MultiArmFl
 }
 
 std::vector<BlockSigma> MultiArmFlightSigmas(const IdentificationOptions& options, bool any_imu,
-                                             MultiArmFlightProblem* fit, double* rms_whitened_strain) {
+                                             MultiArmFlightProblem* fit, std::vector<double>* strain_rms_whitened) {
   const int n = fit->arm_count;
   const int per_sample = FlightResidualsPerSample(n);
-  double inflation = 1.0, strain_sum2 = 0.0;
-  int strain_count = 0;
+  double inflation = 1.0;
+  strain_rms_whitened->assign(static_cast<size_t>(n), kNaN);
   for (int channel = 0; channel < per_sample; ++channel) {
     if (channel >= FlightGyroResidual(n) && !any_imu) continue;
     const ResidualStatistics stats = ComputeResidualStatistics(&fit->problem, fit->windows, per_sample, channel);
     if (stats.count == 0) continue;
     inflation = std::max(inflation, VarianceInflation(stats));
-    if (channel < n) {
-      strain_sum2 += stats.rms_whitened * stats.rms_whitened * stats.count;
-      strain_count += stats.count;
-    }
+    if (channel < n) (*strain_rms_whitened)[static_cast<size_t>(channel)] = stats.rms_whitened;
   }
-  *rms_whitened_strain = strain_count > 0 ? std::sqrt(strain_sum2 / strain_count) : kNaN;
   return SharedSigmas(&fit->problem, fit->Blocks(), inflation, fit->windows, options.num_threads);
 }
 
@@ -301,6 +331,7 @@ MultiArmIdentificationResult IdentifyMultiArmFlight(const std::vector<MultiArmBe
                                                     const VehicleDescription& base,
                                                     const IdentificationOptions& options) {
   MultiArmIdentificationResult result;
+  result.flight = true;
   result.vehicle = base;
   for (const MultiArmBenchLog& log : logs) {
     const std::string why = MultiArmLogMismatch(log, base);
@@ -332,7 +363,7 @@ MultiArmIdentificationResult IdentifyMultiArmFlight(const std::vector<MultiArmBe
   note.candidate_windows = static_cast<int>(data.candidates.size());
   note.with_imu = data.any_imu;
   std::vector<BlockSigma> sigma;
-  double rms_whitened = kNaN;
+  std::vector<double> rms_whitened(static_cast<size_t>(n), kNaN);
   if (!fit.windows.empty()) {
     SolveMultiArmFlightProblem(options, &fit);
     sigma = MultiArmFlightSigmas(options, data.any_imu, &fit, &rms_whitened);
@@ -340,29 +371,7 @@ MultiArmIdentificationResult IdentifyMultiArmFlight(const std::vector<MultiArmBe
     result.errors.push_back("k, c_T: no STRAIN_N samples with MOTOR_N commands (settled motor model) at the same time");
   }
   for (int i = 0; i < n; ++i) {
-    const size_t a = static_cast<size_t>(i);
-    const std::string name = std::to_string(i + 1);
-    ArmEstimates& e = result.arms[a];
-    e.stiffness = ParameterEstimate::Named("stiffness_n_m_rad", "k_" + name);
-    e.thrust_coeff = ParameterEstimate::Named("thrust_coeff_n_s2_rad2", "c_T," + name);
-    e.clamped_arm_rms_whitened = rms_whitened;
-    HeldKeys(i, &e, &result.advice);
-    if (!sigma.empty()) {
-      FillEstimate({&e.stiffness, &fit.stiffness_ratio[a], base.arms[a].stiffness_n_m_rad, 0.0}, sigma[a],
-                   options.max_relative_sigma, note);
-      FillEstimate({&e.thrust_coeff, &fit.thrust_ratio[a], base.arms[a].thrust_coeff_n_s2_rad2, 0.0},
-                   sigma[static_cast<size_t>(n) + a], options.max_relative_sigma, note);
-      TipMassEstimate(fit, sigma[2 * static_cast<size_t>(n) + a], base, i, options, note, &e, &result.advice);
-      if (!e.stiffness.determined) {
-        result.errors.push_back("arm " + name + ": k not determined by the flight (fly steps that ring the arms)");
-      }
-      if (!e.thrust_coeff.determined) {
-        result.errors.push_back("rotor " + name +
-                                ": c_T not determined by the flight (fly manoeuvres that change "
-                                "this rotor's thrust)");
-      }
-    }
-    Store(e, &result.vehicle.arms[a]);
+    FillArm(fit, sigma, rms_whitened, base, i, options, note, &result);
   }
   result.ok = result.errors.empty();
   return result;

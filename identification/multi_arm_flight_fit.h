@@ -54,7 +54,7 @@ struct MultiArmFlightProblem {
   std::vector<ceres::ResidualBlockId> windows;  // one per window
   int arm_count = 0;
   bool fit_tip_mass = false;
-  // The k blocks, then the c_T blocks, then the m_p blocks.
+  // The k blocks, then the c_T and the m_p blocks.
   std::vector<double*> Blocks() {
     std::vector<double*> blocks;
     for (std::array<double, kMaxArms>* ratio : {&stiffness_ratio, &thrust_ratio, &tip_mass_ratio}) {
@@ -75,11 +75,12 @@ void BuildMultiArmFlightProblem(const MultiArmFlightSamples& data, const std::ve
 // +53 %, k +12 %), as the birotor's flight fit did (flight_fit.h CheckTipMass).
 void SolveMultiArmFlightProblem(const IdentificationOptions& options, MultiArmFlightProblem* fit);
 
-// Sigma stage: the residual summaries of every channel (gauges, gyro,
+// Sigma stage: the residual statistics of every channel (gauges, gyro,
 // accelerometer x, z), the largest inflation (VarianceInflation) and the
-// sigmas of the ratio blocks (SharedSigmas with the windows as clusters).
+// sigmas of the ratio blocks (SharedSigmas with the windows as clusters);
+// each gauge's whitened RMS into *strain_rms_whitened.
 std::vector<BlockSigma> MultiArmFlightSigmas(const IdentificationOptions& options, bool any_imu,
-                                             MultiArmFlightProblem* fit, double* rms_whitened_strain);
+                                             MultiArmFlightProblem* fit, std::vector<double>* strain_rms_whitened);
 
 // The whole flight fit. Every log must match `base` (MultiArmLogMismatch);
 // tau_m,i comes first (it drives the motor model), then k_i, c_T,i and
@@ -89,9 +90,12 @@ std::vector<BlockSigma> MultiArmFlightSigmas(const IdentificationOptions& option
 // at most max_relative_sigma, and replaces the description's only when it
 // lies more than consistency_sigmas from it (the birotor's rule: a flight
 // that agrees with the base file does not replace it). d_i and o_i are held
-// and reported NOT DETERMINED with the advice of what to fly or measure
-// (result.advice): the windows barely see d, the gauge offsets need a tare
-// or a bench. result.ok: every k_i, c_T,i, tau_m,i determined.
+// and reported NOT DETERMINED with the advice (result.advice): the windows
+// barely see d; o_i and k_i are nearly one direction at the nearly constant
+// thrust of a flight (fitted together on flight_id, 60 s: k's sigma 3.6-9 %
+// instead of 0.7-1.3 %, o_i's 8e-5 rad and more), while an o_i wrong by
+// 2e-5 rad moves k by about 1 %: the gauges need a tare at power-up.
+// result.ok: every k_i, c_T,i, tau_m,i determined.
 MultiArmIdentificationResult IdentifyMultiArmFlight(const std::vector<MultiArmBenchLog>& logs,
                                                     const VehicleDescription& base,
                                                     const IdentificationOptions& options);
