@@ -95,10 +95,15 @@ TEST(MultiArmIdentifyTest, WritesTheModifiedTrirotorAndRefusesAnotherCount) {
   const VehicleDescription after_flight = LoadVehicleDescription(flown);
   for (size_t i = 0; i < 3; ++i) {
     const ArmDescription &t = truth.arms[i], &e = after_flight.arms[i];
-    // Measured (this test): worst k -0.32 %, c_T -0.34 %, tau_m 0.47 %; 1.5 x.
-    EXPECT_NEAR(e.stiffness_n_m_rad, t.stiffness_n_m_rad, 0.01 * t.stiffness_n_m_rad) << "arm " << i + 1;
-    EXPECT_NEAR(e.thrust_coeff_n_s2_rad2, t.thrust_coeff_n_s2_rad2, 0.01 * t.thrust_coeff_n_s2_rad2);
-    EXPECT_NEAR(e.motor_time_constant_s, t.motor_time_constant_s, 0.01 * t.motor_time_constant_s);
+    std::printf("flight arm %zu: k %+.3f %%, c_T %+.3f %%, tau_m %+.3f %%\n", i + 1,
+                100.0 * (e.stiffness_n_m_rad / t.stiffness_n_m_rad - 1.0),
+                100.0 * (e.thrust_coeff_n_s2_rad2 / t.thrust_coeff_n_s2_rad2 - 1.0),
+                100.0 * (e.motor_time_constant_s / t.motor_time_constant_s - 1.0));
+    // Measured (this test): worst k -0.065 % (arm 1), c_T -0.151 % (arm 2),
+    // tau_m -0.472 % (arm 1); the bounds are 1.5 x those (issue 38: 1 %).
+    EXPECT_NEAR(e.stiffness_n_m_rad, t.stiffness_n_m_rad, 0.001 * t.stiffness_n_m_rad) << "arm " << i + 1;
+    EXPECT_NEAR(e.thrust_coeff_n_s2_rad2, t.thrust_coeff_n_s2_rad2, 0.0023 * t.thrust_coeff_n_s2_rad2);
+    EXPECT_NEAR(e.motor_time_constant_s, t.motor_time_constant_s, 0.0071 * t.motor_time_constant_s);
     // Held in flight: the bench's values stand.
     EXPECT_EQ(e.tip_mass_kg, identified.arms[i].tip_mass_kg);
     EXPECT_EQ(e.damping_n_m_s_rad, identified.arms[i].damping_n_m_s_rad);
