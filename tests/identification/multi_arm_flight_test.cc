@@ -124,7 +124,9 @@ TEST(MultiArmFlightTest, RefusesAnotherArmCountAndAFlightWithoutTelemetry) {
   EXPECT_EQ(wrong_count.errors[0], "simulated trirotor flight: VEHICLE has 3 arms, the description 2");
   // No ESC telemetry: tau_m cannot be fitted on any rotor, nothing is ok.
   const MultiArmBenchLog silent = SimulateFlight(trirotor, 3.0, {"sensors.motor.telemetry=false"});
-  const MultiArmIdentificationResult no_telemetry = IdentifyMultiArmFlight({silent}, trirotor, ShortFlightOptions());
+  IdentificationOptions few_windows = ShortFlightOptions();
+  few_windows.flight_max_windows = 3;  // what is refused is tau_m; k and c_T only take time here
+  const MultiArmIdentificationResult no_telemetry = IdentifyMultiArmFlight({silent}, trirotor, few_windows);
   EXPECT_FALSE(no_telemetry.ok);
   for (const std::string& e : no_telemetry.errors) std::printf("no telemetry: %s\n", e.c_str());
   ASSERT_GE(no_telemetry.errors.size(), 3u);
