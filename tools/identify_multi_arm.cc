@@ -23,16 +23,26 @@ void LogArm(int arm, const ArmEstimates& e) {
   }
 }
 
-// The fit the request's mode names ("" with *error for an unknown mode).
+// The fit the request's mode names (auto: bench when every log has
+// LOADCELL_N samples, flight when none has); false with *error for an
+// unknown mode and for bench and flight logs together, which the N-arm fits
+// do not join (the birotor's joint fit has no N-arm counterpart): a bench
+// log's body is clamped, which the free-body flight model is not.
 bool ChooseFlight(const std::string& mode, const std::vector<MultiArmBenchLog>& logs, bool* flight,
                   std::string* error) {
   if (mode != "auto" && mode != "bench" && mode != "flight") {
     *error = "--mode " + mode + ": bench, flight or auto";
     return false;
   }
-  bool every_bench = true;
-  for (const MultiArmBenchLog& log : logs) every_bench = every_bench && !log.loadcell.empty();
-  *flight = mode == "flight" || (mode == "auto" && !every_bench);
+  size_t bench_logs = 0;
+  for (const MultiArmBenchLog& log : logs) bench_logs += log.loadcell.empty() ? 0 : 1;
+  *flight = mode == "flight" || (mode == "auto" && bench_logs < logs.size());
+  if (*flight && bench_logs > 0) {
+    *error = "refused: " + std::to_string(bench_logs) +
+             " bench log(s) (LOADCELL_N) in an N-arm flight fit; identify the bench first (--mode bench) and fly "
+             "against the description it writes";
+    return false;
+  }
   return true;
 }
 

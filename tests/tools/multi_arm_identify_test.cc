@@ -5,7 +5,8 @@
 // of the same log against the birotor's description (2 arms); then a 20 s
 // flight_id of the same vehicle identified in flight mode against the
 // bench's description (its m_p and d held, 12 windows: a shortened
-// config/identification.yaml), and a flight log refused in bench mode.
+// config/identification.yaml), a flight log refused in bench mode and the
+// bench and flight logs refused together.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -112,6 +113,11 @@ TEST(MultiArmIdentifyTest, WritesTheModifiedTrirotorAndRefusesAnotherCount) {
   const std::string no_cells = folder.path + "/no_cells.yaml";
   EXPECT_EQ(RunProgram(BIROTOR_IDENTIFY_BIN, {"--vehicle", SourcePath("config/vehicles/trirotor.yaml"), "--mode",
                                               "bench", "--log", flight, "--output", no_cells}),
+            1);
+  EXPECT_FALSE(fs::exists(no_cells));
+  // Bench and flight logs together (auto): not joined for N arms, refused.
+  EXPECT_EQ(RunProgram(BIROTOR_IDENTIFY_BIN, {"--vehicle", SourcePath("config/vehicles/trirotor.yaml"), "--log", log,
+                                              "--log", flight, "--output", no_cells}),
             1);
   EXPECT_FALSE(fs::exists(no_cells));
 }
