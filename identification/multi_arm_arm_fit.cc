@@ -140,7 +140,7 @@ void SolveArmFit(const ArmFitStart& start, const IdentificationOptions& options,
   SolveProblem(options, &fit->problem, 1e-10);
   const ResidualStatistics stats = ComputeResidualStatistics(&fit->problem, fit->blocks, 1, 0);
   const double inflation = VarianceInflation(stats);
-  out->clamped_arm_rms_whitened = stats.rms_whitened;
+  out->strain_rms_whitened = stats.rms_whitened;
   double* p = fit->theta.data();
   const std::vector<RatioParameter> free = {{&out->stiffness, &p[kBenchK], start.scales.stiffness_n_m_rad, 0.0},
                                             {&out->damping, &p[kBenchD], start.scales.damping_n_m_s_rad, 0.0},

@@ -13,16 +13,19 @@
 #include "identification/identification_result.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
+#include "samples/samples.h"
 
 namespace birotor {
 
-// The N-arm channels of one bench log (STRAIN_N, MOTOR_N, LOADCELL_N) and
-// the VEHICLE description it was recorded with, when it has one.
+// The N-arm channels of one log (STRAIN_N, MOTOR_N, LOADCELL_N on the bench;
+// STRAIN_N, MOTOR_N, IMU in flight, multi_arm_flight_fit.h) and the VEHICLE
+// description it was recorded with, when it has one.
 struct MultiArmBenchLog {
   std::string source;
   std::vector<MultiArmStrainSample> strain;
   std::vector<MultiArmMotorSample> motor;
   std::vector<MultiArmLoadCellSample> loadcell;
+  std::vector<ImuSample> imu;  // flight: pitch rate and specific force (the birotor's IMU channel)
   bool has_vehicle = false;
   VehicleDescription vehicle;  // the log's VEHICLE message (has_vehicle)
 };
@@ -36,12 +39,16 @@ std::string MultiArmLogMismatch(const MultiArmBenchLog& log, const VehicleDescri
 // (ArmDescription field names).
 struct ArmEstimates {
   ParameterEstimate stiffness, damping, tip_mass, gauge_offset, thrust_coeff, motor_time_constant;
-  double clamped_arm_rms_whitened = 0.0;  // strain residual RMS of the arm fit [sigma]
+  double strain_rms_whitened =
+      0.0;  // the arm's strain residual RMS (bench: clamped-arm fit; flight: free-flight fit) [sigma]
 };
 
 struct MultiArmIdentificationResult {
-  bool ok = false;                  // every arm's k and o and every rotor's c_T, tau_m determined
+  bool flight = false;              // the flight fit (multi_arm_flight_fit.h), else the bench fit
+  bool ok = false;                  // bench: every arm's k and o, every rotor's c_T, tau_m determined;
+                                    // flight: every k, c_T, tau_m determined
   std::vector<std::string> errors;  // what the data lacks, one line each ("arm 2: ...")
+  std::vector<std::string> advice;  // flight: what to fly or measure for what stays NOT DETERMINED
   VehicleDescription vehicle;       // base with every determined value
   std::vector<ArmEstimates> arms;   // arms[0 .. arm_count)
 };

@@ -44,14 +44,15 @@ std::string IdentifiedDescriptionYaml(const MultiArmIdentificationResult& result
                                       const std::vector<std::string>& sources) {
   const VehicleDescription& v = result.vehicle;
   std::ostringstream out;
-  out << "# Identified by birotor-identify --vehicle (bench, " << v.arm_count << " arms) from:\n";
+  out << "# Identified by birotor-identify --vehicle (" << (result.flight ? "flight" : "bench") << ", " << v.arm_count
+      << " arms) from:\n";
   for (const std::string& s : sources) out << "#   " << s << "\n";
   out << "# Calibration fact used: every gauge scale held at the base file's (factory) value.\n";
   out << "# One-sigma uncertainties follow each fitted key; body keys, geometry and gauge scales\n";
   out << "# are the base file's.\n";
   for (size_t i = 0; i < result.arms.size(); ++i) {
-    out << "# arm " << i + 1 << ": clamped-arm strain residual RMS " << std::setprecision(3)
-        << result.arms[i].clamped_arm_rms_whitened << " sigma\n";
+    out << "# arm " << i + 1 << (result.flight ? ": free-flight" : ": clamped-arm") << " strain residual RMS "
+        << std::setprecision(3) << result.arms[i].strain_rms_whitened << " sigma\n";
   }
   out << "vehicle:\n";
   out << "  name: " << v.name << "\n";

@@ -1,5 +1,5 @@
-// Output of the N-arm bench identification (identification/
-// multi_arm_bench_fit.h): the identified vehicle description in the N-arm
+// Output of the N-arm bench or flight identification (identification/
+// multi_arm_bench_fit.h, multi_arm_flight_fit.h): the identified vehicle description in the N-arm
 // form of config/vehicles/trirotor.yaml (every key, read back by
 // LoadVehicleDescription), each fitted value with its one sigma as a
 // comment, an undetermined one marked and left at the base file's value.

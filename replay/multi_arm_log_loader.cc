@@ -6,6 +6,7 @@
 #include "transport/counted_messages.h"
 #include "transport/lcm_codec.h"
 #include "transport/log_io.h"
+#include "transport/message_conversion.h"
 
 namespace birotor {
 namespace {
@@ -45,6 +46,8 @@ MultiArmLoadCellSample FromCounted(const loadcell_n_t& m) {
   return s;
 }
 
+ImuSample FromCounted(const imu_t& m) { return FromMessage(m); }
+
 template <class Msg, class Sample>
 void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* report) {
   Msg message;
@@ -74,6 +77,8 @@ bool LoadMultiArmBenchLog(const std::string& path, const std::string& prefix, Mu
       Append<motor_n_t>(event, &log->motor, report);
     } else if (event.channel == channels.loadcell_n) {
       Append<loadcell_n_t>(event, &log->loadcell, report);
+    } else if (event.channel == channels.imu) {
+      Append<imu_t>(event, &log->imu, report);
     } else if (event.channel == channels.vehicle && !log->has_vehicle) {
       vehicle_description_t message;
       if (DecodeMessage(event.data.data(), event.data.size(), &message) != DecodeError::kNone) {

@@ -1,6 +1,7 @@
 // Reads the N-arm channels of an lcm-logger file (STRAIN_N, MOTOR_N,
 // LOADCELL_N and the VEHICLE description, docs/interface.md "Vehicles with
-// N arms") into the MultiArmBenchLog of identification/multi_arm_bench_fit.h:
+// N arms"; and IMU, the same channel for every vehicle) into the
+// MultiArmBenchLog of identification/multi_arm_bench_fit.h:
 // the LCM glue of birotor-identify --vehicle, beside LoadSensorLog.
 #pragma once
 

@@ -124,7 +124,9 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
       ->check(CLI::NonNegativeNumber);
   app.add_option("--vehicle", cli->vehicle,
                  "Vehicle description with N arms (e.g. config/vehicles/trirotor.yaml): bench fit of every arm and "
-                 "rotor from the logs' STRAIN_N, MOTOR_N, LOADCELL_N; --output gets the identified description")
+                 "rotor from the logs' STRAIN_N, MOTOR_N, LOADCELL_N, or (--mode flight, or auto without load "
+                 "cells) flight fit of every k, c_T, tau_m from STRAIN_N, MOTOR_N, IMU; --output gets the "
+                 "identified description")
       ->check(CLI::ExistingFile);
   CLI::Option* output = app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
   CLI::Option* update_params =
@@ -451,7 +453,7 @@ int main(int argc, char** argv) {
     if (cli.output.empty() || !cli.update_params.empty())
       return ReportError("--vehicle writes --output FILE (not --update-params)");
     const std::string error = IdentifyMultiArmVehicle(
-        {cli.logs, cli.vehicle, common.prefix, cli.output, cli.config, cli.min_usable_fraction}, options);
+        {cli.logs, cli.mode, cli.vehicle, common.prefix, cli.output, cli.config, cli.min_usable_fraction}, options);
     return error.empty() ? 0 : ReportError(error);
   }
   if (!cli.update_params.empty() && app.get_option("--params")->count() == 0) cli.params = cli.update_params;

@@ -1,7 +1,7 @@
-// birotor-identify --vehicle FILE: the bench identification of a vehicle
-// with N arms (identification/multi_arm_bench_fit.h) from lcm-logger files
-// of its counted channels, written as an identified description
-// (params/identified_description_file.h).
+// birotor-identify --vehicle FILE: the bench or flight identification of a
+// vehicle with N arms (identification/multi_arm_bench_fit.h,
+// multi_arm_flight_fit.h) from lcm-logger files of its counted channels,
+// written as an identified description (params/identified_description_file.h).
 #pragma once
 
 #include <string>
@@ -12,7 +12,8 @@
 namespace birotor {
 
 struct MultiArmIdentifyRequest {
-  std::vector<std::string> logs;  // bench logs (STRAIN_N, MOTOR_N, LOADCELL_N, VEHICLE)
+  std::vector<std::string> logs;  // bench (STRAIN_N, MOTOR_N, LOADCELL_N) or flight (STRAIN_N, MOTOR_N, IMU) logs
+  std::string mode = "auto";      // bench, flight, or auto (bench when every log has LOADCELL_N samples)
   std::string vehicle;            // the base description (N-arm or birotor form)
   std::string prefix;             // channel prefix
   std::string output;             // identified description, written atomically
