@@ -1,7 +1,5 @@
 #include "replay/multi_arm_log_loader.h"
 
-#include <algorithm>
-
 #include "transport/channels.h"
 #include "transport/counted_messages.h"
 #include "transport/lcm_codec.h"
@@ -11,42 +9,12 @@
 namespace birotor {
 namespace {
 
-// Entries [0, min(count, kMaxSampleArms)) of a counted array.
-template <class Array>
-void CopyEntries(const std::vector<double>& from, int count, Array* to) {
-  const size_t n = std::min<size_t>(static_cast<size_t>(std::max(count, 0)), std::min(from.size(), to->size()));
-  std::copy_n(from.begin(), n, to->begin());
+// The counted samples through transport/counted_messages.h; the IMU's through message_conversion.h.
+template <class Msg, class Sample>
+void Convert(const Msg& message, Sample* sample) {
+  FromMessage(message, sample);
 }
-
-MultiArmStrainSample FromCounted(const strain_n_t& m) {
-  MultiArmStrainSample s;
-  s.utime = m.utime;
-  s.seq = m.seq;
-  s.n_arms = m.n_arms;
-  CopyEntries(m.deflection_rad, m.n_arms, &s.deflection_rad);
-  return s;
-}
-
-MultiArmMotorSample FromCounted(const motor_n_t& m) {
-  MultiArmMotorSample s;
-  s.utime = m.utime;
-  s.seq = m.seq;
-  s.n_rotors = m.n_rotors;
-  CopyEntries(m.omega_cmd_rad_s, m.n_rotors, &s.omega_cmd_rad_s);
-  CopyEntries(m.omega_meas_rad_s, m.n_rotors, &s.omega_meas_rad_s);
-  return s;
-}
-
-MultiArmLoadCellSample FromCounted(const loadcell_n_t& m) {
-  MultiArmLoadCellSample s;
-  s.utime = m.utime;
-  s.seq = m.seq;
-  s.n_rotors = m.n_rotors;
-  CopyEntries(m.force_n, m.n_rotors, &s.force_n);
-  return s;
-}
-
-ImuSample FromCounted(const imu_t& m) { return FromMessage(m); }
+void Convert(const imu_t& message, ImuSample* sample) { *sample = FromMessage(message); }
 
 template <class Msg, class Sample>
 void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* report) {
@@ -55,7 +23,8 @@ void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* repo
     ++report->decode_errors;
     return;
   }
-  out->push_back(FromCounted(message));
+  out->emplace_back();
+  Convert(message, &out->back());
 }
 
 }  // namespace

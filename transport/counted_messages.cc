@@ -302,6 +302,14 @@ void FromMessage(const strain_n_t& m, MultiArmStrainSample* s) {
   CopyFirst(m.deflection_rad, m.n_arms, &s->deflection_rad);
 }
 
+void FromMessage(const loadcell_n_t& m, MultiArmLoadCellSample* s) {
+  *s = MultiArmLoadCellSample();
+  s->utime = m.utime;
+  s->seq = m.seq;
+  s->n_rotors = m.n_rotors;
+  CopyFirst(m.force_n, m.n_rotors, &s->force_n);
+}
+
 void FromMessage(const truth_n_t& m, MultiArmTruthSample* s) {
   *s = MultiArmTruthSample();
   s->utime = m.utime;

@@ -104,6 +104,7 @@ void ToMessage(const MultiArmForceEstimate& estimate, force_estimate_n_t* messag
 // beyond kMaxSampleArms are dropped, those beyond the count stay zero.
 void FromMessage(const strain_n_t& message, MultiArmStrainSample* sample);
 void FromMessage(const motor_n_t& message, MultiArmMotorSample* sample);
+void FromMessage(const loadcell_n_t& message, MultiArmLoadCellSample* sample);
 void FromMessage(const truth_n_t& message, MultiArmTruthSample* sample);
 void FromMessage(const force_estimate_n_t& message, MultiArmForceEstimate* estimate);
 
