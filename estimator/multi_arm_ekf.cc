@@ -167,10 +167,12 @@ void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
   // Linearise at the prior; x by RK4; P = Phi P Phi^T + Qc dt with
   // Phi = [Phi_d, 0; 0, I] (the offsets are random walks).
   constexpr int n = Layout::kDynamicSize, m = N;
-  const typename Model::DynamicMatrix a = model_.Jacobian(state_, input, &accel_linearization_);
+  // RK4's first stage f(x, u) comes with the Jacobian (the same solve).
+  State x_dot;
+  const typename Model::DynamicMatrix a = model_.Jacobian(state_, input, &accel_linearization_, &x_dot);
   accel_linearization_valid_ = true;
   const typename Model::DynamicMatrix phi = Model::Transition(a, dt_s);
-  state_ = model_.Step(state_, input, dt_s);
+  state_ = model_.StepFrom(state_, x_dot, input, dt_s);
   // Phi_d has A's block structure (Model::Transition): products on its blocks.
   const bool blocks = Model::HasRotorBlockStructure(phi);
   const typename Model::DynamicMatrix temp =

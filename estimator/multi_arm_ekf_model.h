@@ -42,6 +42,44 @@ struct MultiArmEkfLayout {
   static constexpr int JetForce(int arm) { return 1 + 2 * N + arm; }
 };
 
+// M = L D L^T of the symmetric positive definite n x n mass matrix (unit
+// lower-triangular L, no pivoting, no square roots: the factorisation of
+// SolveMultiArmMassMatrix in model/multi_arm_dynamics.h) at a compile-time n,
+// factored once and solved for any number of right-hand sides: the process
+// Jacobian solves its value and its 1 + 3N derivative columns with one factor.
+// Doubles only (a Jet's zero test would drop derivative parts, see there).
+template <int n>
+class MassMatrixLdlt {
+ public:
+  explicit MassMatrixLdlt(const Eigen::Matrix<double, n, n>& mass) {
+    lower_.setIdentity();
+    for (int j = 0; j < n; ++j) {
+      diagonal_(j) = mass(j, j);
+      for (int k = 0; k < j; ++k) diagonal_(j) -= lower_(j, k) * lower_(j, k) * diagonal_(k);
+      for (int i = j + 1; i < n; ++i) {
+        double sum = mass(i, j);
+        for (int k = 0; k < j; ++k) sum -= lower_(i, k) * lower_(j, k) * diagonal_(k);
+        lower_(i, j) = sum / diagonal_(j);
+      }
+    }
+  }
+  // x = M^-1 rhs, column by column: L y = rhs, then D L^T x = y.
+  template <int C>
+  void SolveInPlace(Eigen::Matrix<double, n, C>* x) const {
+    for (int i = 0; i < n; ++i) {
+      for (int k = 0; k < i; ++k) x->row(i) -= lower_(i, k) * x->row(k);
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      x->row(i) /= diagonal_(i);
+      for (int k = i + 1; k < n; ++k) x->row(i) -= lower_(k, i) * x->row(k);
+    }
+  }
+
+ private:
+  Eigen::Matrix<double, n, n> lower_;
+  Eigen::Matrix<double, n, 1> diagonal_;
+};
+
 // Clamped rotor speed commands held over one prediction interval [rad/s].
 template <int N>
 struct MultiArmEkfInput {
@@ -102,11 +140,17 @@ class MultiArmEkfModel {
   // b_dot_i, f_i) through MultiArmAcceleration, then the chain rule
   // df_i/domega_i = 2 mu_i c_T,i omega_i, df_i/dmu_i = c_T,i omega_i^2.
   // With accel non-null also the specific force (a_x, a_z) = (x_ddot,
-  // z_ddot + g) at phi = 0 and its gradient (the same solve).
-  DynamicMatrix Jacobian(const State& x, const Input& u, MultiArmAccelLinearization<N>* accel = nullptr) const;
+  // z_ddot + g) at phi = 0 and its gradient (the same solve). With x_dot
+  // non-null also f(x, u) itself (the same solve: RK4's first stage).
+  DynamicMatrix Jacobian(const State& x, const Input& u, MultiArmAccelLinearization<N>* accel = nullptr,
+                         State* x_dot = nullptr) const;
   // One RK4 step over dt_s with u held.
   State Step(const State& x, const Input& u, double dt_s) const {
     return Rk4Step(x, dt_s, [&](const State& s) { return Derivative(s, u); });
+  }
+  // The same step when its first stage k1 = f(x, u) is known (from Jacobian).
+  State StepFrom(const State& x, const State& k1, const Input& u, double dt_s) const {
+    return Rk4StepFrom(x, k1, dt_s, [&](const State& s) { return Derivative(s, u); });
   }
   // Phi_d = exp(A_d dt) to fourth order, as EkfProcessModel::Transition:
   //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))),
@@ -139,10 +183,14 @@ class MultiArmEkfModel {
  private:
   double ThrustCoeff(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].thrust_coeff_n_s2_rad2; }
   double MotorTimeConstant(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].motor_time_constant_s; }
-  // q_ddot of the free body at phi = 0, at rest, from the arm states and thrusts.
-  template <typename T>
-  MultiCoords<T> FreeAcceleration(const T& phi_dot, const std::array<T, N>& b, const std::array<T, N>& b_dot,
-                                  const std::array<T, N>& force_n) const;
+  static constexpr int kCoordinates = kBodyCoordinates + N;  // x, z, phi, b_i
+  using Coordinates = Eigen::Matrix<double, kCoordinates, 1>;
+  // q_ddot of the free body at phi = 0, at rest, from the arm states and
+  // thrusts: MultiArmAcceleration's terms, solved by MassMatrixLdlt.
+  Coordinates FreeAcceleration(double phi_dot, const std::array<double, N>& b, const std::array<double, N>& b_dot,
+                               const std::array<double, N>& force_n) const;
+  // x_dot from the free body's q_ddot at x (Derivative's rows).
+  State DerivativeFrom(const State& x, const Input& u, const Coordinates& acc) const;
 
   VehicleDescription vehicle_;
 };
@@ -208,20 +256,23 @@ struct MultiArmMeasurements {
 // ---- inline implementation ----
 
 template <int N>
-template <typename T>
-MultiCoords<T> MultiArmEkfModel<N>::FreeAcceleration(const T& phi_dot, const std::array<T, N>& b,
-                                                     const std::array<T, N>& b_dot,
-                                                     const std::array<T, N>& force_n) const {
-  const int n = kBodyCoordinates + N;
-  MultiCoords<T> q = MultiCoords<T>::Constant(n, T(0.0)), v = MultiCoords<T>::Constant(n, T(0.0));
-  ArmForces<T> f(N);
+typename MultiArmEkfModel<N>::Coordinates MultiArmEkfModel<N>::FreeAcceleration(
+    double phi_dot, const std::array<double, N>& b, const std::array<double, N>& b_dot,
+    const std::array<double, N>& force_n) const {
+  constexpr int n = kCoordinates;
+  MultiCoords<double> q = MultiCoords<double>::Zero(n), v = MultiCoords<double>::Zero(n);
+  ArmForces<double> f(N);
   v(kPhi) = phi_dot;
   for (int i = 0; i < N; ++i) {
     q(DeflectionIndex(i)) = b[static_cast<size_t>(i)];
     v(DeflectionIndex(i)) = b_dot[static_cast<size_t>(i)];
     f(i) = force_n[static_cast<size_t>(i)];
   }
-  return MultiArmAcceleration<T>(vehicle_, q, v, f);
+  // q_ddot = M^-1 (tau - C - G), as MultiArmAcceleration.
+  const MultiArmTerms<double> terms = ComputeMultiArmTerms<double>(vehicle_, q, v, f);
+  Coordinates acc = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
+  MassMatrixLdlt<n>(Eigen::Matrix<double, n, n>(terms.mass)).SolveInPlace(&acc);
+  return acc;
 }
 
 template <int N>
@@ -232,11 +283,16 @@ typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State&
     b_dot[i] = x(Layout::DeflectionRate(i));
     f[i] = Force(x, i);
   }
-  const MultiCoords<double> acc = FreeAcceleration<double>(x(Layout::kPitchRate), b, b_dot, f);
+  return DerivativeFrom(x, u, FreeAcceleration(x(Layout::kPitchRate), b, b_dot, f));
+}
+
+template <int N>
+typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::DerivativeFrom(const State& x, const Input& u,
+                                                                        const Coordinates& acc) const {
   State x_dot = State::Zero();  // mu and e: random walks
   x_dot(Layout::kPitchRate) = acc(kPhi);
   for (int i = 0; i < N; ++i) {
-    x_dot(Layout::Deflection(i)) = b_dot[i];
+    x_dot(Layout::Deflection(i)) = x(Layout::DeflectionRate(i));
     x_dot(Layout::DeflectionRate(i)) = acc(DeflectionIndex(i));
     x_dot(Layout::Omega(i)) = (ClampCommand(u.omega_cmd_rad_s[i]) - x(Layout::Omega(i))) / MotorTimeConstant(i);
   }
@@ -244,8 +300,9 @@ typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State&
 }
 
 template <int N>
-typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& /*u*/,
-                                                                          MultiArmAccelLinearization<N>* accel) const {
+typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& u,
+                                                                          MultiArmAccelLinearization<N>* accel,
+                                                                          State* x_dot) const {
   // Jets through the terms M, C, G, tau of the Euler-Lagrange equations only;
   // the solve differentiated by hand on doubles, as EkfProcessModel::Jacobian:
   //   q_ddot = M^-1 r,  d q_ddot = M^-1 (dr - dM q_ddot),  r = tau - C - G
@@ -270,12 +327,15 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
     d_rhs.row(i) = r.v.transpose();
     for (int j = 0; j < n; ++j) mass(i, j) = terms.mass(i, j).a;
   }
-  const Eigen::LLT<Eigen::Matrix<double, n, n>> llt(mass);  // doubles: no Jet-equality pitfall
-  const Eigen::Matrix<double, n, 1> acc_value = llt.solve(rhs);
+  const MassMatrixLdlt<n> ldlt(mass);  // doubles: no Jet-equality pitfall
+  Coordinates acc_value = rhs;
+  ldlt.SolveInPlace(&acc_value);
+  if (x_dot != nullptr) *x_dot = DerivativeFrom(x, u, acc_value);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_value(j);
   }
-  const Eigen::Matrix<double, n, k> d_acc = llt.solve(d_rhs);
+  Eigen::Matrix<double, n, k> d_acc = d_rhs;
+  ldlt.SolveInPlace(&d_acc);
   MultiCoords<Jet> acc(n);
   for (int i = 0; i < n; ++i) acc(i) = Jet(acc_value(i), d_acc.row(i).transpose());
   std::array<Eigen::Vector2d, N> grad;  // (df/domega, df/dmu)
