@@ -19,25 +19,33 @@
 namespace birotor {
 
 // Named indices of the N-arm filter state
-//   x = [phi_dot, b_1..b_N, b_dot_1..b_dot_N, omega_1..omega_N, mu_1..mu_N, e_1..e_N]
-// phi_dot [rad/s], b_i [rad], b_dot_i [rad/s], omega_i [rad/s], mu_i [1]
-// (f_i = mu_i c_T,i omega_i^2), e_i [rad] (offset of calibrated gauge i, in
-// deflection). The first kDynamicSize states have dynamics; the offsets are
-// random walks, so the transition is [Phi_d, 0; 0, I].
+//   x = [e_1..e_N, b_1..b_N, phi_dot, b_dot_1..b_dot_N, omega_1..omega_N, mu_1..mu_N]
+// e_i [rad] (offset of calibrated gauge i, in deflection), b_i [rad],
+// phi_dot [rad/s], b_dot_i [rad/s], omega_i [rad/s], mu_i [1]
+// (f_i = mu_i c_T,i omega_i^2). The offsets are random walks; the last
+// kDynamicSize states (from kFirstDynamic) have dynamics, so the transition
+// is [I, 0; 0, Phi_d]. The order puts what the strain gauges read (e_i, b_i)
+// first: the strain fusion, every sample, works on the leading 2N states
+// (LeadingStates, kalman_fusion.h) and reaches the rest through their cross
+// covariance; the gyro reads the leading 2N + 1, the telemetry all but mu_i.
 template <int N>
 struct MultiArmEkfLayout {
   static_assert(N >= 2 && N <= kMaxArms, "2 .. kMaxArms arms");
   static constexpr int kArms = N;
-  static constexpr int kPitchRate = 0;
-  static constexpr int Deflection(int arm) { return 1 + arm; }
-  static constexpr int DeflectionRate(int arm) { return 1 + N + arm; }
-  static constexpr int Omega(int arm) { return 1 + 2 * N + arm; }
-  static constexpr int ThrustScale(int arm) { return 1 + 3 * N + arm; }
-  static constexpr int GaugeOffset(int arm) { return 1 + 4 * N + arm; }
+  static constexpr int GaugeOffset(int arm) { return arm; }
+  static constexpr int Deflection(int arm) { return N + arm; }
+  static constexpr int kPitchRate = 2 * N;
+  static constexpr int DeflectionRate(int arm) { return 2 * N + 1 + arm; }
+  static constexpr int Omega(int arm) { return 3 * N + 1 + arm; }
+  static constexpr int ThrustScale(int arm) { return 4 * N + 1 + arm; }
+  static constexpr int kFirstDynamic = N;
   static constexpr int kDynamicSize = 1 + 4 * N;
   static constexpr int kStateSize = 1 + 5 * N;
-  // Jet variables of the process Jacobian: phi_dot, b_i, b_dot_i (the first
-  // 1 + 2N states, same order), then f_i.
+  static constexpr int kStrainStates = 2 * N;  // e_i, b_i: what the strain reads
+  // Index of a dynamic state in A_d, Phi_d (the block from kFirstDynamic).
+  static constexpr int Dynamic(int state) { return state - kFirstDynamic; }
+  // Jet variables of the process Jacobian: b_i, phi_dot, b_dot_i (the first
+  // 1 + 2N dynamic states, same order), then f_i.
   static constexpr int kJetSize = 1 + 3 * N;
   static constexpr int JetForce(int arm) { return 1 + 2 * N + arm; }
 };
@@ -136,8 +144,8 @@ class MultiArmEkfModel {
   }
 
   State Derivative(const State& x, const Input& u) const;
-  // A_d = df/dx on the dynamic block, exact: Ceres Jets over (phi_dot, b_i,
-  // b_dot_i, f_i) through MultiArmAcceleration, then the chain rule
+  // A_d = df/dx on the dynamic block (indices Layout::Dynamic), exact: Ceres
+  // Jets over (b_i, phi_dot, b_dot_i, f_i) through MultiArmAcceleration, then the chain rule
   // df_i/domega_i = 2 mu_i c_T,i omega_i, df_i/dmu_i = c_T,i omega_i^2.
   // With accel non-null also the specific force (a_x, a_z) = (x_ddot,
   // z_ddot + g) at phi = 0 and its gradient (the same solve). With x_dot
@@ -155,13 +163,13 @@ class MultiArmEkfModel {
   // Phi_d = exp(A_d dt) to fourth order, as EkfProcessModel::Transition:
   //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))),
   // on the blocks of A = [A_aa, A_au; 0, D] when it has them (the arm states
-  // a = phi_dot, b, b_dot; the rotor states u = omega, mu; D diagonal: the
+  // a = b, phi_dot, b_dot; the rotor states u = omega, mu; D diagonal: the
   // motor lag and 0), as every power then has: the same sums less A's exact zeros.
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
   // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal and finite, exactly.
   static bool HasRotorBlockStructure(const DynamicMatrix& x);
   // Phi_d X for a kD x C matrix X, on those blocks when blocks.
-  static constexpr int kArmStates = 1 + 2 * N;  // phi_dot, b_i, b_dot_i
+  static constexpr int kArmStates = 1 + 2 * N;  // b_i, phi_dot, b_dot_i
   static constexpr int kRotorStates = 2 * N;    // omega_i, mu_i
   template <int C, typename X>
   static Eigen::Matrix<double, kD, C> TransitionTimes(const DynamicMatrix& phi, const Eigen::MatrixBase<X>& x,
@@ -311,10 +319,10 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   using Jet = ceres::Jet<double, k>;
   MultiCoords<Jet> q = MultiCoords<Jet>::Constant(n, Jet(0.0)), v = MultiCoords<Jet>::Constant(n, Jet(0.0));
   ArmForces<Jet> forces(N);
-  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::kPitchRate);
+  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::Dynamic(Layout::kPitchRate));
   for (int i = 0; i < N; ++i) {
-    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Deflection(i));
-    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::DeflectionRate(i));
+    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Dynamic(Layout::Deflection(i)));
+    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::Dynamic(Layout::DeflectionRate(i)));
     forces(i) = Jet(Force(x, i), Layout::JetForce(i));
   }
   const MultiArmTerms<Jet> terms = ComputeMultiArmTerms<Jet>(vehicle_, q, v, forces);
@@ -340,28 +348,31 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   for (int i = 0; i < n; ++i) acc(i) = Jet(acc_value(i), d_acc.row(i).transpose());
   std::array<Eigen::Vector2d, N> grad;  // (df/domega, df/dmu)
   for (int i = 0; i < N; ++i) grad[i] = ForceGradient(x, i);
-  // One row of d(acceleration)/dx from a Jet: the first 1 + 2N states are
-  // the Jet's own variables, omega_i and mu_i by the chain rule through f_i.
+  // One row of d(acceleration)/dx over the dynamic states from a Jet: the
+  // first 1 + 2N are the Jet's own variables, omega_i and mu_i by the chain
+  // rule through f_i.
   const auto fill_row = [&](const Jet& a, auto&& row) {
     for (int c = 0; c < 1 + 2 * N; ++c) row(c) = a.v(c);
     for (int i = 0; i < N; ++i) {
-      row(Layout::Omega(i)) = a.v(Layout::JetForce(i)) * grad[i](0);
-      row(Layout::ThrustScale(i)) = a.v(Layout::JetForce(i)) * grad[i](1);
+      row(Layout::Dynamic(Layout::Omega(i))) = a.v(Layout::JetForce(i)) * grad[i](0);
+      row(Layout::Dynamic(Layout::ThrustScale(i))) = a.v(Layout::JetForce(i)) * grad[i](1);
     }
   };
+  const auto d = [](int state) { return Layout::Dynamic(state); };
   DynamicMatrix a = DynamicMatrix::Zero();
-  fill_row(acc(kPhi), a.row(Layout::kPitchRate));
+  fill_row(acc(kPhi), a.row(d(Layout::kPitchRate)));
   for (int i = 0; i < N; ++i) {
-    a(Layout::Deflection(i), Layout::DeflectionRate(i)) = 1.0;
-    fill_row(acc(DeflectionIndex(i)), a.row(Layout::DeflectionRate(i)));
-    a(Layout::Omega(i), Layout::Omega(i)) = -1.0 / MotorTimeConstant(i);
+    a(d(Layout::Deflection(i)), d(Layout::DeflectionRate(i))) = 1.0;
+    fill_row(acc(DeflectionIndex(i)), a.row(d(Layout::DeflectionRate(i))));
+    a(d(Layout::Omega(i)), d(Layout::Omega(i))) = -1.0 / MotorTimeConstant(i);
   }
   if (accel != nullptr) {
+    constexpr int first = Layout::kFirstDynamic;
     accel->x0 = x;
     accel->value = Eigen::Vector2d(acc(kX).a, acc(kZ).a + vehicle_.gravity_m_s2);
     accel->jacobian.setZero();
-    fill_row(acc(kX), accel->jacobian.row(0));
-    fill_row(acc(kZ), accel->jacobian.row(1));
+    fill_row(acc(kX), accel->jacobian.row(0).template segment<kD>(first));
+    fill_row(acc(kZ), accel->jacobian.row(1).template segment<kD>(first));
   }
   return a;
 }
