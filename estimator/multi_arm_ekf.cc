@@ -176,9 +176,7 @@ void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
   // Phi_d has A's block structure (Model::Transition): products on its blocks.
   const bool blocks = Model::HasRotorBlockStructure(phi);
   auto p_dd = covariance_.template block<n, n>(first, first);
-  const typename Model::DynamicMatrix temp = Model::template TransitionTimes<n>(phi, p_dd, blocks);
-  // P_dd = (Phi_d P_dd) Phi_d^T = (Phi_d (Phi_d P_dd)^T)^T.
-  p_dd = Model::template TransitionTimes<n>(phi, temp.transpose(), blocks).transpose();
+  p_dd = Model::Propagate(phi, p_dd, blocks);
   const Eigen::Matrix<double, n, m> p_de =
       Model::template TransitionTimes<m>(phi, covariance_.template block<n, m>(first, 0), blocks);
   covariance_.template block<n, m>(first, 0) = p_de;

@@ -187,6 +187,40 @@ class MultiArmEkfModel {
         phi.template bottomRightCorner<m, m>().diagonal().asDiagonal() * x.template bottomRows<m>();
     return out;
   }
+  // Phi_d P Phi_d^T for a symmetric kD x kD P. On the blocks Phi_d = [F, G;
+  // 0, D] (F arm, G arm-to-rotor, D diagonal) with X = F P_aa + G P_ua and
+  // Y = F P_au + G P_uu (the rows of Phi_d P that are not diagonal scalings):
+  //   P_aa+ = X F^T + Y G^T (upper triangle, mirrored: it is symmetric),
+  //   P_au+ = Y D,  P_uu+ = D P_uu D;
+  // the same sums as (Phi_d (Phi_d P)^T)^T less the rotor rows' products.
+  template <typename P>
+  static DynamicMatrix Propagate(const DynamicMatrix& phi, const Eigen::MatrixBase<P>& p, bool blocks) {
+    constexpr int n = kArmStates, m = kRotorStates;
+    DynamicMatrix out;
+    if (!blocks) {
+      const DynamicMatrix temp = TransitionTimes<kD>(phi, p, false);
+      out.noalias() = temp.lazyProduct(phi.transpose());
+      return out;
+    }
+    const auto f = phi.template topLeftCorner<n, n>();
+    const auto g = phi.template topRightCorner<n, m>();
+    const Eigen::Matrix<double, m, 1> d = phi.template bottomRightCorner<m, m>().diagonal();
+    Eigen::Matrix<double, n, n> x;
+    x.noalias() = f.lazyProduct(p.template topLeftCorner<n, n>());
+    x.noalias() += g.lazyProduct(p.template bottomLeftCorner<m, n>());
+    Eigen::Matrix<double, n, m> y;
+    y.noalias() = f.lazyProduct(p.template topRightCorner<n, m>());
+    y.noalias() += g.lazyProduct(p.template bottomRightCorner<m, m>());
+    for (int c = 0; c < n; ++c) {
+      for (int r = 0; r <= c; ++r) {
+        out(r, c) = out(c, r) = x.row(r).dot(f.row(c)) + y.row(r).dot(g.row(c));
+      }
+    }
+    out.template topRightCorner<n, m>() = y * d.asDiagonal();
+    out.template bottomLeftCorner<m, n>() = out.template topRightCorner<n, m>().transpose();
+    out.template bottomRightCorner<m, m>() = d.asDiagonal() * p.template bottomRightCorner<m, m>() * d.asDiagonal();
+    return out;
+  }
 
  private:
   double ThrustCoeff(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].thrust_coeff_n_s2_rad2; }
