@@ -164,10 +164,14 @@ class MultiArmEkfModel {
   //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))),
   // on the blocks of A = [A_aa, A_au; 0, D] when it has them (the arm states
   // a = b, phi_dot, b_dot; the rotor states u = omega, mu; D diagonal: the
-  // motor lag and 0), as every power then has: the same sums less A's exact zeros.
+  // motor lag and 0), as every power then has, and with A's kinematic rows
+  // b_i_dot = b_dot_i (row b_i of A X is X's row b_dot_i): the same sums less
+  // A's exact zeros. Else dense.
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
   // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal and finite, exactly.
   static bool HasRotorBlockStructure(const DynamicMatrix& x);
+  // Whether A_d's rows b_i are 0 but at b_dot_i, exactly (the kinematics b_i_dot = b_dot_i).
+  static bool HasKinematicRows(const DynamicMatrix& x);
   // Phi_d X for a kD x C matrix X, on those blocks when blocks.
   static constexpr int kArmStates = 1 + 2 * N;  // b_i, phi_dot, b_dot_i
   static constexpr int kRotorStates = 2 * N;    // omega_i, mu_i
@@ -409,45 +413,6 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
     fill_row(acc(kZ), accel->jacobian.row(1).template segment<kD>(first));
   }
   return a;
-}
-
-template <int N>
-bool MultiArmEkfModel<N>::HasRotorBlockStructure(const DynamicMatrix& x) {
-  // sum |x_ij| over the rotor rows left of D and off its diagonal is 0
-  // exactly when each is +-0 (a NaN or an infinity makes it NaN or inf).
-  Eigen::Matrix<double, kRotorStates, kD> rows = x.template bottomRows<kRotorStates>();
-  rows.template rightCols<kRotorStates>().diagonal().setZero();
-  return rows.cwiseAbs().sum() == 0.0 && x.diagonal().template tail<kRotorStates>().allFinite();
-}
-
-template <int N>
-typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Transition(const DynamicMatrix& a, double dt_s) {
-  constexpr int n = kArmStates, m = kRotorStates;
-  const DynamicMatrix a_dt = a * dt_s;
-  DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
-  if (!HasRotorBlockStructure(a_dt)) {  // not that structure: dense
-    DynamicMatrix temp;
-    for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-      temp.noalias() = a_dt.lazyProduct(phi);
-      phi = DynamicMatrix::Identity() + temp * c;
-    }
-    return phi;
-  }
-  const auto a_aa = a_dt.template topLeftCorner<n, n>();
-  const auto a_au = a_dt.template topRightCorner<n, m>();
-  const Eigen::Matrix<double, m, 1> d = a_dt.template bottomRightCorner<m, m>().diagonal();
-  Eigen::Matrix<double, n, n> temp_aa;
-  Eigen::Matrix<double, n, m> temp_au;
-  for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-    temp_aa.noalias() = a_aa.lazyProduct(phi.template topLeftCorner<n, n>());
-    temp_au.noalias() = a_aa.lazyProduct(phi.template topRightCorner<n, m>());
-    temp_au.noalias() += a_au * phi.template bottomRightCorner<m, m>().diagonal().asDiagonal();
-    phi.template topLeftCorner<n, n>() = Eigen::Matrix<double, n, n>::Identity() + temp_aa * c;
-    phi.template topRightCorner<n, m>() = temp_au * c;
-    phi.template bottomRightCorner<m, m>().diagonal() =
-        Eigen::Matrix<double, m, 1>::Ones() + d.cwiseProduct(phi.template bottomRightCorner<m, m>().diagonal()) * c;
-  }
-  return phi;
 }
 
 extern template class MultiArmEkfModel<2>;
