@@ -165,23 +165,22 @@ void MultiArmEkf<N>::PredictTo(int64_t utime) {
 template <int N>
 void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
   // Linearise at the prior; x by RK4; P = Phi P Phi^T + Qc dt with
-  // Phi = [Phi_d, 0; 0, I] (the offsets are random walks).
-  constexpr int n = Layout::kDynamicSize, m = N;
-  const typename Model::DynamicMatrix a = model_.Jacobian(state_, input, &accel_linearization_);
+  // Phi = [I, 0; 0, Phi_d] (the offsets, first, are random walks).
+  constexpr int n = Layout::kDynamicSize, m = N, first = Layout::kFirstDynamic;
+  // RK4's first stage f(x, u) comes with the Jacobian (the same solve).
+  State x_dot;
+  const typename Model::DynamicMatrix a = model_.Jacobian(state_, input, &accel_linearization_, &x_dot);
   accel_linearization_valid_ = true;
   const typename Model::DynamicMatrix phi = Model::Transition(a, dt_s);
-  state_ = model_.Step(state_, input, dt_s);
+  state_ = model_.StepFrom(state_, x_dot, input, dt_s);
   // Phi_d has A's block structure (Model::Transition): products on its blocks.
   const bool blocks = Model::HasRotorBlockStructure(phi);
-  const typename Model::DynamicMatrix temp =
-      Model::template TransitionTimes<n>(phi, covariance_.template topLeftCorner<n, n>(), blocks);
-  // P_dd = (Phi_d P_dd) Phi_d^T = (Phi_d (Phi_d P_dd)^T)^T.
-  covariance_.template topLeftCorner<n, n>() =
-      Model::template TransitionTimes<n>(phi, temp.transpose(), blocks).transpose();
+  auto p_dd = covariance_.template block<n, n>(first, first);
+  p_dd = Model::Propagate(phi, p_dd, blocks);
   const Eigen::Matrix<double, n, m> p_de =
-      Model::template TransitionTimes<m>(phi, covariance_.template topRightCorner<n, m>(), blocks);
-  covariance_.template topRightCorner<n, m>() = p_de;
-  covariance_.template bottomLeftCorner<m, n>() = p_de.transpose();
+      Model::template TransitionTimes<m>(phi, covariance_.template block<n, m>(first, 0), blocks);
+  covariance_.template block<n, m>(first, 0) = p_de;
+  covariance_.template block<m, n>(0, first) = p_de.transpose();
   covariance_.diagonal() += process_noise_psd_ * dt_s;
 }
 
@@ -241,7 +240,7 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   using Measurements = MultiArmMeasurements<N>;
   if (options_.use_gyro && std::isfinite(sample.gyro_y_rad_s)) {
     const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
-    FuseMeasurementUnreported(LeadingStates<1>(Measurements::Gyro(state_)), r,
+    FuseMeasurementUnreported(LeadingStates<Layout::kPitchRate + 1>(Measurements::Gyro(state_)), r,
                               Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s), options_.gyro_gate_nis, &state_,
                               &covariance_);
   }
@@ -249,9 +248,9 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_) return;
   const double sigma = options_.accel_noise_m_s2;
   const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
-  FuseMeasurementUnreported(
-      LeadingStates<Layout::kDynamicSize>(Measurements::Accelerometer(accel_linearization_, state_)), r,
-      Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_, &covariance_);
+  FuseMeasurementUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
+                            Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
+                            &covariance_);
 }
 
 template <int N>
@@ -263,7 +262,8 @@ FusionOutcome MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
   // After gate_consecutive_limit rejections in a row the change is taken as
   // real (a lost propeller blade): var(mu_i) += inflation^2, fused ungated.
   const double extra = options_.gate_inflation_thrust_scale_std;
-  return strain_gate_.FuseUnreported(Measurements::Strain(state_, measured),
+  // The strain reads the leading states e_i, b_i (the layout's order).
+  return strain_gate_.FuseUnreported(LeadingStates<Layout::kStrainStates>(Measurements::Strain(state_, measured)),
                                      Measurements::MaskedNoise(options_.strain_noise_rad, measured), z,
                                      options_.strain_gate_nis, &state_, &covariance_, [extra](Covariance* p) {
                                        for (int i = 0; i < N; ++i) {
@@ -275,7 +275,10 @@ FusionOutcome MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
 template <int N>
 bool MultiArmEkf<N>::ConditionCovariance() {
   if (!state_.allFinite() || !covariance_.allFinite()) return false;
-  covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
+  // P = (P + P^T) / 2, in place over the pairs (the diagonal is its own mean).
+  for (int c = 1; c < Layout::kStateSize; ++c) {
+    for (int r = 0; r < c; ++r) covariance_(r, c) = covariance_(c, r) = 0.5 * (covariance_(r, c) + covariance_(c, r));
+  }
   for (int i = 0; i < Layout::kStateSize; ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * ceiling_(i)) return false;  // clearly negative: broken

@@ -19,27 +19,73 @@
 namespace birotor {
 
 // Named indices of the N-arm filter state
-//   x = [phi_dot, b_1..b_N, b_dot_1..b_dot_N, omega_1..omega_N, mu_1..mu_N, e_1..e_N]
-// phi_dot [rad/s], b_i [rad], b_dot_i [rad/s], omega_i [rad/s], mu_i [1]
-// (f_i = mu_i c_T,i omega_i^2), e_i [rad] (offset of calibrated gauge i, in
-// deflection). The first kDynamicSize states have dynamics; the offsets are
-// random walks, so the transition is [Phi_d, 0; 0, I].
+//   x = [e_1..e_N, b_1..b_N, phi_dot, b_dot_1..b_dot_N, omega_1..omega_N, mu_1..mu_N]
+// e_i [rad] (offset of calibrated gauge i, in deflection), b_i [rad],
+// phi_dot [rad/s], b_dot_i [rad/s], omega_i [rad/s], mu_i [1]
+// (f_i = mu_i c_T,i omega_i^2). The offsets are random walks; the last
+// kDynamicSize states (from kFirstDynamic) have dynamics, so the transition
+// is [I, 0; 0, Phi_d]. The order puts what the strain gauges read (e_i, b_i)
+// first: the strain fusion, every sample, works on the leading 2N states
+// (LeadingStates, kalman_fusion.h) and reaches the rest through their cross
+// covariance; the gyro reads the leading 2N + 1, the telemetry all but mu_i.
 template <int N>
 struct MultiArmEkfLayout {
   static_assert(N >= 2 && N <= kMaxArms, "2 .. kMaxArms arms");
   static constexpr int kArms = N;
-  static constexpr int kPitchRate = 0;
-  static constexpr int Deflection(int arm) { return 1 + arm; }
-  static constexpr int DeflectionRate(int arm) { return 1 + N + arm; }
-  static constexpr int Omega(int arm) { return 1 + 2 * N + arm; }
-  static constexpr int ThrustScale(int arm) { return 1 + 3 * N + arm; }
-  static constexpr int GaugeOffset(int arm) { return 1 + 4 * N + arm; }
+  static constexpr int GaugeOffset(int arm) { return arm; }
+  static constexpr int Deflection(int arm) { return N + arm; }
+  static constexpr int kPitchRate = 2 * N;
+  static constexpr int DeflectionRate(int arm) { return 2 * N + 1 + arm; }
+  static constexpr int Omega(int arm) { return 3 * N + 1 + arm; }
+  static constexpr int ThrustScale(int arm) { return 4 * N + 1 + arm; }
+  static constexpr int kFirstDynamic = N;
   static constexpr int kDynamicSize = 1 + 4 * N;
   static constexpr int kStateSize = 1 + 5 * N;
-  // Jet variables of the process Jacobian: phi_dot, b_i, b_dot_i (the first
-  // 1 + 2N states, same order), then f_i.
+  static constexpr int kStrainStates = 2 * N;  // e_i, b_i: what the strain reads
+  // Index of a dynamic state in A_d, Phi_d (the block from kFirstDynamic).
+  static constexpr int Dynamic(int state) { return state - kFirstDynamic; }
+  // Jet variables of the process Jacobian: b_i, phi_dot, b_dot_i (the first
+  // 1 + 2N dynamic states, same order), then f_i.
   static constexpr int kJetSize = 1 + 3 * N;
   static constexpr int JetForce(int arm) { return 1 + 2 * N + arm; }
+};
+
+// M = L D L^T of the symmetric positive definite n x n mass matrix (unit
+// lower-triangular L, no pivoting, no square roots: the factorisation of
+// SolveMultiArmMassMatrix in model/multi_arm_dynamics.h) at a compile-time n,
+// factored once and solved for any number of right-hand sides: the process
+// Jacobian solves its value and its 1 + 3N derivative columns with one factor.
+// Doubles only (a Jet's zero test would drop derivative parts, see there).
+template <int n>
+class MassMatrixLdlt {
+ public:
+  explicit MassMatrixLdlt(const Eigen::Matrix<double, n, n>& mass) {
+    lower_.setIdentity();
+    for (int j = 0; j < n; ++j) {
+      diagonal_(j) = mass(j, j);
+      for (int k = 0; k < j; ++k) diagonal_(j) -= lower_(j, k) * lower_(j, k) * diagonal_(k);
+      for (int i = j + 1; i < n; ++i) {
+        double sum = mass(i, j);
+        for (int k = 0; k < j; ++k) sum -= lower_(i, k) * lower_(j, k) * diagonal_(k);
+        lower_(i, j) = sum / diagonal_(j);
+      }
+    }
+  }
+  // x = M^-1 rhs, column by column: L y = rhs, then D L^T x = y.
+  template <int C>
+  void SolveInPlace(Eigen::Matrix<double, n, C>* x) const {
+    for (int i = 0; i < n; ++i) {
+      for (int k = 0; k < i; ++k) x->row(i) -= lower_(i, k) * x->row(k);
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      x->row(i) /= diagonal_(i);
+      for (int k = i + 1; k < n; ++k) x->row(i) -= lower_(k, i) * x->row(k);
+    }
+  }
+
+ private:
+  Eigen::Matrix<double, n, n> lower_;
+  Eigen::Matrix<double, n, 1> diagonal_;
 };
 
 // Clamped rotor speed commands held over one prediction interval [rad/s].
@@ -98,26 +144,36 @@ class MultiArmEkfModel {
   }
 
   State Derivative(const State& x, const Input& u) const;
-  // A_d = df/dx on the dynamic block, exact: Ceres Jets over (phi_dot, b_i,
-  // b_dot_i, f_i) through MultiArmAcceleration, then the chain rule
+  // A_d = df/dx on the dynamic block (indices Layout::Dynamic), exact: Ceres
+  // Jets over (b_i, phi_dot, b_dot_i, f_i) through MultiArmAcceleration, then the chain rule
   // df_i/domega_i = 2 mu_i c_T,i omega_i, df_i/dmu_i = c_T,i omega_i^2.
   // With accel non-null also the specific force (a_x, a_z) = (x_ddot,
-  // z_ddot + g) at phi = 0 and its gradient (the same solve).
-  DynamicMatrix Jacobian(const State& x, const Input& u, MultiArmAccelLinearization<N>* accel = nullptr) const;
+  // z_ddot + g) at phi = 0 and its gradient (the same solve). With x_dot
+  // non-null also f(x, u) itself (the same solve: RK4's first stage).
+  DynamicMatrix Jacobian(const State& x, const Input& u, MultiArmAccelLinearization<N>* accel = nullptr,
+                         State* x_dot = nullptr) const;
   // One RK4 step over dt_s with u held.
   State Step(const State& x, const Input& u, double dt_s) const {
     return Rk4Step(x, dt_s, [&](const State& s) { return Derivative(s, u); });
   }
+  // The same step when its first stage k1 = f(x, u) is known (from Jacobian).
+  State StepFrom(const State& x, const State& k1, const Input& u, double dt_s) const {
+    return Rk4StepFrom(x, k1, dt_s, [&](const State& s) { return Derivative(s, u); });
+  }
   // Phi_d = exp(A_d dt) to fourth order, as EkfProcessModel::Transition:
   //   I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))),
   // on the blocks of A = [A_aa, A_au; 0, D] when it has them (the arm states
-  // a = phi_dot, b, b_dot; the rotor states u = omega, mu; D diagonal: the
-  // motor lag and 0), as every power then has: the same sums less A's exact zeros.
+  // a = b, phi_dot, b_dot; the rotor states u = omega, mu; D diagonal: the
+  // motor lag and 0), as every power then has, and with A's kinematic rows
+  // b_i_dot = b_dot_i (row b_i of A X is X's row b_dot_i): the same sums less
+  // A's exact zeros. Else dense.
   static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
   // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal and finite, exactly.
   static bool HasRotorBlockStructure(const DynamicMatrix& x);
+  // Whether A_d's rows b_i are 0 but at b_dot_i, exactly (the kinematics b_i_dot = b_dot_i).
+  static bool HasKinematicRows(const DynamicMatrix& x);
   // Phi_d X for a kD x C matrix X, on those blocks when blocks.
-  static constexpr int kArmStates = 1 + 2 * N;  // phi_dot, b_i, b_dot_i
+  static constexpr int kArmStates = 1 + 2 * N;  // b_i, phi_dot, b_dot_i
   static constexpr int kRotorStates = 2 * N;    // omega_i, mu_i
   template <int C, typename X>
   static Eigen::Matrix<double, kD, C> TransitionTimes(const DynamicMatrix& phi, const Eigen::MatrixBase<X>& x,
@@ -135,14 +191,52 @@ class MultiArmEkfModel {
         phi.template bottomRightCorner<m, m>().diagonal().asDiagonal() * x.template bottomRows<m>();
     return out;
   }
+  // Phi_d P Phi_d^T for a symmetric kD x kD P. On the blocks Phi_d = [F, G;
+  // 0, D] (F arm, G arm-to-rotor, D diagonal) with X = F P_aa + G P_ua and
+  // Y = F P_au + G P_uu (the rows of Phi_d P that are not diagonal scalings):
+  //   P_aa+ = X F^T + Y G^T (upper triangle, mirrored: it is symmetric),
+  //   P_au+ = Y D,  P_uu+ = D P_uu D;
+  // the same sums as (Phi_d (Phi_d P)^T)^T less the rotor rows' products.
+  template <typename P>
+  static DynamicMatrix Propagate(const DynamicMatrix& phi, const Eigen::MatrixBase<P>& p, bool blocks) {
+    constexpr int n = kArmStates, m = kRotorStates;
+    DynamicMatrix out;
+    if (!blocks) {
+      const DynamicMatrix temp = TransitionTimes<kD>(phi, p, false);
+      out.noalias() = temp.lazyProduct(phi.transpose());
+      return out;
+    }
+    const auto f = phi.template topLeftCorner<n, n>();
+    const auto g = phi.template topRightCorner<n, m>();
+    const Eigen::Matrix<double, m, 1> d = phi.template bottomRightCorner<m, m>().diagonal();
+    Eigen::Matrix<double, n, n> x;
+    x.noalias() = f.lazyProduct(p.template topLeftCorner<n, n>());
+    x.noalias() += g.lazyProduct(p.template bottomLeftCorner<m, n>());
+    Eigen::Matrix<double, n, m> y;
+    y.noalias() = f.lazyProduct(p.template topRightCorner<n, m>());
+    y.noalias() += g.lazyProduct(p.template bottomRightCorner<m, m>());
+    for (int c = 0; c < n; ++c) {
+      for (int r = 0; r <= c; ++r) {
+        out(r, c) = out(c, r) = x.row(r).dot(f.row(c)) + y.row(r).dot(g.row(c));
+      }
+    }
+    out.template topRightCorner<n, m>() = y * d.asDiagonal();
+    out.template bottomLeftCorner<m, n>() = out.template topRightCorner<n, m>().transpose();
+    out.template bottomRightCorner<m, m>() = d.asDiagonal() * p.template bottomRightCorner<m, m>() * d.asDiagonal();
+    return out;
+  }
 
  private:
   double ThrustCoeff(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].thrust_coeff_n_s2_rad2; }
   double MotorTimeConstant(int arm) const { return vehicle_.arms[static_cast<size_t>(arm)].motor_time_constant_s; }
-  // q_ddot of the free body at phi = 0, at rest, from the arm states and thrusts.
-  template <typename T>
-  MultiCoords<T> FreeAcceleration(const T& phi_dot, const std::array<T, N>& b, const std::array<T, N>& b_dot,
-                                  const std::array<T, N>& force_n) const;
+  static constexpr int kCoordinates = kBodyCoordinates + N;  // x, z, phi, b_i
+  using Coordinates = Eigen::Matrix<double, kCoordinates, 1>;
+  // q_ddot of the free body at phi = 0, at rest, from the arm states and
+  // thrusts: MultiArmAcceleration's terms, solved by MassMatrixLdlt.
+  Coordinates FreeAcceleration(double phi_dot, const std::array<double, N>& b, const std::array<double, N>& b_dot,
+                               const std::array<double, N>& force_n) const;
+  // x_dot from the free body's q_ddot at x (Derivative's rows).
+  State DerivativeFrom(const State& x, const Input& u, const Coordinates& acc) const;
 
   VehicleDescription vehicle_;
 };
@@ -208,20 +302,23 @@ struct MultiArmMeasurements {
 // ---- inline implementation ----
 
 template <int N>
-template <typename T>
-MultiCoords<T> MultiArmEkfModel<N>::FreeAcceleration(const T& phi_dot, const std::array<T, N>& b,
-                                                     const std::array<T, N>& b_dot,
-                                                     const std::array<T, N>& force_n) const {
-  const int n = kBodyCoordinates + N;
-  MultiCoords<T> q = MultiCoords<T>::Constant(n, T(0.0)), v = MultiCoords<T>::Constant(n, T(0.0));
-  ArmForces<T> f(N);
+typename MultiArmEkfModel<N>::Coordinates MultiArmEkfModel<N>::FreeAcceleration(
+    double phi_dot, const std::array<double, N>& b, const std::array<double, N>& b_dot,
+    const std::array<double, N>& force_n) const {
+  constexpr int n = kCoordinates;
+  MultiCoords<double> q = MultiCoords<double>::Zero(n), v = MultiCoords<double>::Zero(n);
+  ArmForces<double> f(N);
   v(kPhi) = phi_dot;
   for (int i = 0; i < N; ++i) {
     q(DeflectionIndex(i)) = b[static_cast<size_t>(i)];
     v(DeflectionIndex(i)) = b_dot[static_cast<size_t>(i)];
     f(i) = force_n[static_cast<size_t>(i)];
   }
-  return MultiArmAcceleration<T>(vehicle_, q, v, f);
+  // q_ddot = M^-1 (tau - C - G), as MultiArmAcceleration.
+  const MultiArmTerms<double> terms = ComputeMultiArmTerms<double>(vehicle_, q, v, f);
+  Coordinates acc = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
+  MassMatrixLdlt<n>(Eigen::Matrix<double, n, n>(terms.mass)).SolveInPlace(&acc);
+  return acc;
 }
 
 template <int N>
@@ -232,11 +329,16 @@ typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State&
     b_dot[i] = x(Layout::DeflectionRate(i));
     f[i] = Force(x, i);
   }
-  const MultiCoords<double> acc = FreeAcceleration<double>(x(Layout::kPitchRate), b, b_dot, f);
+  return DerivativeFrom(x, u, FreeAcceleration(x(Layout::kPitchRate), b, b_dot, f));
+}
+
+template <int N>
+typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::DerivativeFrom(const State& x, const Input& u,
+                                                                        const Coordinates& acc) const {
   State x_dot = State::Zero();  // mu and e: random walks
   x_dot(Layout::kPitchRate) = acc(kPhi);
   for (int i = 0; i < N; ++i) {
-    x_dot(Layout::Deflection(i)) = b_dot[i];
+    x_dot(Layout::Deflection(i)) = x(Layout::DeflectionRate(i));
     x_dot(Layout::DeflectionRate(i)) = acc(DeflectionIndex(i));
     x_dot(Layout::Omega(i)) = (ClampCommand(u.omega_cmd_rad_s[i]) - x(Layout::Omega(i))) / MotorTimeConstant(i);
   }
@@ -244,8 +346,9 @@ typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State&
 }
 
 template <int N>
-typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& /*u*/,
-                                                                          MultiArmAccelLinearization<N>* accel) const {
+typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& u,
+                                                                          MultiArmAccelLinearization<N>* accel,
+                                                                          State* x_dot) const {
   // Jets through the terms M, C, G, tau of the Euler-Lagrange equations only;
   // the solve differentiated by hand on doubles, as EkfProcessModel::Jacobian:
   //   q_ddot = M^-1 r,  d q_ddot = M^-1 (dr - dM q_ddot),  r = tau - C - G
@@ -254,10 +357,10 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   using Jet = ceres::Jet<double, k>;
   MultiCoords<Jet> q = MultiCoords<Jet>::Constant(n, Jet(0.0)), v = MultiCoords<Jet>::Constant(n, Jet(0.0));
   ArmForces<Jet> forces(N);
-  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::kPitchRate);
+  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::Dynamic(Layout::kPitchRate));
   for (int i = 0; i < N; ++i) {
-    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Deflection(i));
-    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::DeflectionRate(i));
+    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Dynamic(Layout::Deflection(i)));
+    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::Dynamic(Layout::DeflectionRate(i)));
     forces(i) = Jet(Force(x, i), Layout::JetForce(i));
   }
   const MultiArmTerms<Jet> terms = ComputeMultiArmTerms<Jet>(vehicle_, q, v, forces);
@@ -270,79 +373,46 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
     d_rhs.row(i) = r.v.transpose();
     for (int j = 0; j < n; ++j) mass(i, j) = terms.mass(i, j).a;
   }
-  const Eigen::LLT<Eigen::Matrix<double, n, n>> llt(mass);  // doubles: no Jet-equality pitfall
-  const Eigen::Matrix<double, n, 1> acc_value = llt.solve(rhs);
+  const MassMatrixLdlt<n> ldlt(mass);  // doubles: no Jet-equality pitfall
+  Coordinates acc_value = rhs;
+  ldlt.SolveInPlace(&acc_value);
+  if (x_dot != nullptr) *x_dot = DerivativeFrom(x, u, acc_value);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_value(j);
   }
-  const Eigen::Matrix<double, n, k> d_acc = llt.solve(d_rhs);
+  Eigen::Matrix<double, n, k> d_acc = d_rhs;
+  ldlt.SolveInPlace(&d_acc);
   MultiCoords<Jet> acc(n);
   for (int i = 0; i < n; ++i) acc(i) = Jet(acc_value(i), d_acc.row(i).transpose());
   std::array<Eigen::Vector2d, N> grad;  // (df/domega, df/dmu)
   for (int i = 0; i < N; ++i) grad[i] = ForceGradient(x, i);
-  // One row of d(acceleration)/dx from a Jet: the first 1 + 2N states are
-  // the Jet's own variables, omega_i and mu_i by the chain rule through f_i.
+  // One row of d(acceleration)/dx over the dynamic states from a Jet: the
+  // first 1 + 2N are the Jet's own variables, omega_i and mu_i by the chain
+  // rule through f_i.
   const auto fill_row = [&](const Jet& a, auto&& row) {
     for (int c = 0; c < 1 + 2 * N; ++c) row(c) = a.v(c);
     for (int i = 0; i < N; ++i) {
-      row(Layout::Omega(i)) = a.v(Layout::JetForce(i)) * grad[i](0);
-      row(Layout::ThrustScale(i)) = a.v(Layout::JetForce(i)) * grad[i](1);
+      row(Layout::Dynamic(Layout::Omega(i))) = a.v(Layout::JetForce(i)) * grad[i](0);
+      row(Layout::Dynamic(Layout::ThrustScale(i))) = a.v(Layout::JetForce(i)) * grad[i](1);
     }
   };
+  const auto d = [](int state) { return Layout::Dynamic(state); };
   DynamicMatrix a = DynamicMatrix::Zero();
-  fill_row(acc(kPhi), a.row(Layout::kPitchRate));
+  fill_row(acc(kPhi), a.row(d(Layout::kPitchRate)));
   for (int i = 0; i < N; ++i) {
-    a(Layout::Deflection(i), Layout::DeflectionRate(i)) = 1.0;
-    fill_row(acc(DeflectionIndex(i)), a.row(Layout::DeflectionRate(i)));
-    a(Layout::Omega(i), Layout::Omega(i)) = -1.0 / MotorTimeConstant(i);
+    a(d(Layout::Deflection(i)), d(Layout::DeflectionRate(i))) = 1.0;
+    fill_row(acc(DeflectionIndex(i)), a.row(d(Layout::DeflectionRate(i))));
+    a(d(Layout::Omega(i)), d(Layout::Omega(i))) = -1.0 / MotorTimeConstant(i);
   }
   if (accel != nullptr) {
+    constexpr int first = Layout::kFirstDynamic;
     accel->x0 = x;
     accel->value = Eigen::Vector2d(acc(kX).a, acc(kZ).a + vehicle_.gravity_m_s2);
     accel->jacobian.setZero();
-    fill_row(acc(kX), accel->jacobian.row(0));
-    fill_row(acc(kZ), accel->jacobian.row(1));
+    fill_row(acc(kX), accel->jacobian.row(0).template segment<kD>(first));
+    fill_row(acc(kZ), accel->jacobian.row(1).template segment<kD>(first));
   }
   return a;
-}
-
-template <int N>
-bool MultiArmEkfModel<N>::HasRotorBlockStructure(const DynamicMatrix& x) {
-  // sum |x_ij| over the rotor rows left of D and off its diagonal is 0
-  // exactly when each is +-0 (a NaN or an infinity makes it NaN or inf).
-  Eigen::Matrix<double, kRotorStates, kD> rows = x.template bottomRows<kRotorStates>();
-  rows.template rightCols<kRotorStates>().diagonal().setZero();
-  return rows.cwiseAbs().sum() == 0.0 && x.diagonal().template tail<kRotorStates>().allFinite();
-}
-
-template <int N>
-typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Transition(const DynamicMatrix& a, double dt_s) {
-  constexpr int n = kArmStates, m = kRotorStates;
-  const DynamicMatrix a_dt = a * dt_s;
-  DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
-  if (!HasRotorBlockStructure(a_dt)) {  // not that structure: dense
-    DynamicMatrix temp;
-    for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-      temp.noalias() = a_dt.lazyProduct(phi);
-      phi = DynamicMatrix::Identity() + temp * c;
-    }
-    return phi;
-  }
-  const auto a_aa = a_dt.template topLeftCorner<n, n>();
-  const auto a_au = a_dt.template topRightCorner<n, m>();
-  const Eigen::Matrix<double, m, 1> d = a_dt.template bottomRightCorner<m, m>().diagonal();
-  Eigen::Matrix<double, n, n> temp_aa;
-  Eigen::Matrix<double, n, m> temp_au;
-  for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
-    temp_aa.noalias() = a_aa.lazyProduct(phi.template topLeftCorner<n, n>());
-    temp_au.noalias() = a_aa.lazyProduct(phi.template topRightCorner<n, m>());
-    temp_au.noalias() += a_au * phi.template bottomRightCorner<m, m>().diagonal().asDiagonal();
-    phi.template topLeftCorner<n, n>() = Eigen::Matrix<double, n, n>::Identity() + temp_aa * c;
-    phi.template topRightCorner<n, m>() = temp_au * c;
-    phi.template bottomRightCorner<m, m>().diagonal() =
-        Eigen::Matrix<double, m, 1>::Ones() + d.cwiseProduct(phi.template bottomRightCorner<m, m>().diagonal()) * c;
-  }
-  return phi;
 }
 
 extern template class MultiArmEkfModel<2>;

@@ -73,6 +73,7 @@ TEST(MultiArmEkfModelTest, JacobianMatchesCentralDifferences) {
   const Model::State x = SwingingState(model);
   Model::Input u;
   for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  using L = MultiArmEkfLayout<3>;
   MultiArmAccelLinearization<3> accel;
   const Model::DynamicMatrix a = model.Jacobian(x, u, &accel);
   for (int c = 0; c < Model::kS; ++c) {
@@ -86,8 +87,9 @@ TEST(MultiArmEkfModelTest, JacobianMatchesCentralDifferences) {
     model.Jacobian(minus, u, &at_minus);
     const Eigen::Vector2d numeric_accel = (at_plus.value - at_minus.value) / (2.0 * h);
     const double scale = std::max(1.0, numeric.cwiseAbs().maxCoeff());
-    for (int r = 0; r < Model::kD; ++r) {
-      const double analytic = c < Model::kD ? a(r, c) : 0.0;  // the offsets have no dynamics
+    for (int r = L::kFirstDynamic; r < Model::kS; ++r) {
+      // The offsets (before kFirstDynamic) have no dynamics and move none.
+      const double analytic = c >= L::kFirstDynamic ? a(L::Dynamic(r), L::Dynamic(c)) : 0.0;
       EXPECT_NEAR(analytic, numeric(r), 1e-6 * scale) << "row " << r << " col " << c;
     }
     for (int r = 0; r < 2; ++r) {
@@ -116,7 +118,7 @@ TEST(MultiArmEkfModelTest, TransitionIsTheFourthOrderExponential) {
   // The motor lag row is exact: exp(-dt / tau) to fourth order.
   using L = MultiArmEkfLayout<3>;
   // The motor lag entry: exp(-x) to fourth order, x = dt / tau = 0.0286, truncation x^5 / 120 = 1.6e-10.
-  EXPECT_NEAR(phi(L::Omega(0), L::Omega(0)), std::exp(-dt / 0.035), 2.4e-10);
+  EXPECT_NEAR(phi(L::Dynamic(L::Omega(0)), L::Dynamic(L::Omega(0))), std::exp(-dt / 0.035), 2.4e-10);
 }
 
 }  // namespace
