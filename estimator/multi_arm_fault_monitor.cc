@@ -13,20 +13,6 @@ void MultiArmFaultMonitor::Reset() {
   deficit_ = Flag();
 }
 
-void MultiArmFaultMonitor::Flag::Update(bool raise, bool lower, int64_t utime, int64_t persistence_us) {
-  if (!on) {
-    if (!raise) {
-      since_utime = -1;
-      return;
-    }
-    if (since_utime < 0) since_utime = utime;
-    if (utime - since_utime >= persistence_us) on = true;
-  } else if (lower) {
-    on = false;
-    since_utime = -1;
-  }
-}
-
 void MultiArmFaultMonitor::Update(int64_t utime, int n, const ScaleVector& thrust_scale,
                                   const ScaleMatrix& covariance) {
   const double n_sigma = options_.fault_n_sigma;

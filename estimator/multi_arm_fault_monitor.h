@@ -13,6 +13,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
+#include "estimator/persistent_flag.h"
 #include "model/vehicle_description.h"
 
 namespace birotor {
@@ -36,11 +37,7 @@ class MultiArmFaultMonitor {
   bool fault(int rotor) const { return fault_[static_cast<size_t>(rotor)].on; }
 
  private:
-  struct Flag {
-    bool on = false;
-    int64_t since_utime = -1;  // start of the current `raise` run [us]; -1 if none
-    void Update(bool raise, bool lower, int64_t utime, int64_t persistence_us);
-  };
+  using Flag = PersistentFlag;
 
   EkfOptions options_;
   int64_t persistence_us_;

@@ -13,20 +13,6 @@ RotorFaultMonitor::RotorFaultMonitor(const EkfOptions& options)
 
 void RotorFaultMonitor::Reset() { fault_[0] = fault_[1] = deficit_ = Flag(); }
 
-void RotorFaultMonitor::Flag::Update(bool raise, bool lower, int64_t utime, int64_t persistence_us) {
-  if (!on) {
-    if (!raise) {
-      since_utime = -1;
-      return;
-    }
-    if (since_utime < 0) since_utime = utime;
-    if (utime - since_utime >= persistence_us) on = true;
-  } else if (lower) {
-    on = false;
-    since_utime = -1;
-  }
-}
-
 void RotorFaultMonitor::Update(int64_t utime, const Eigen::Vector2d& thrust_scale, const Eigen::Matrix2d& covariance) {
   const double n = options_.fault_n_sigma;
   const double std_d = std::sqrt(std::max(covariance(0, 0) + covariance(1, 1) - 2.0 * covariance(0, 1), 0.0));

@@ -10,6 +10,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
+#include "estimator/persistent_flag.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -34,11 +35,7 @@ class RotorFaultMonitor {
 
  private:
   // One flag: raised after `raise` held for persistence_us_, lowered as soon as `lower` holds.
-  struct Flag {
-    bool on = false;
-    int64_t since_utime = -1;  // start of the current `raise` run [us]; -1 if none
-    void Update(bool raise, bool lower, int64_t utime, int64_t persistence_us);
-  };
+  using Flag = PersistentFlag;
 
   EkfOptions options_;
   int64_t persistence_us_;

@@ -37,11 +37,11 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
       channels_(channels),
       options_(options),
       sink_(sink),
+      arm_count_warning_(options.warning_interval_s),
       foreign_warning_(options.warning_interval_s),
       decode_warning_(options.warning_interval_s),
-      overload_warning_(options.warning_interval_s),
+      arrival_(options.overload_max_delay_s, options.stale_input_wall_s, options.warning_interval_s),
       mismatch_warning_(options.warning_interval_s),
-      arm_count_warning_(options.warning_interval_s),
       rejection_log_(options.warning_interval_s, input_channel_names_) {
   input_channel_names_[static_cast<int>(InputChannel::kStrain)] = &channels_.strain;
   input_channel_names_[static_cast<int>(InputChannel::kMotor)] = &channels_.motor;
@@ -185,17 +185,9 @@ bool EstimatorService::Dispatch(EstimatorChannel channel, const void* data, size
 
 void EstimatorService::HandleStrain(int64_t receive_wall_utime) {
   const int64_t start_us = options_.report_processing_time ? SteadyClockUs() : 0;
-  if (receive_wall_utime >= 0) {
-    last_strain_arrival_wall_us_ = receive_wall_utime;
-    const int64_t queued_us = WallClockUs() - receive_wall_utime;
-    if (static_cast<double>(queued_us) > options_.overload_max_delay_s * 1e6) {
-      pipeline_.CountOverloadDrop(InputChannel::kStrain);
-      if (overload_warning_.ShouldLog(SteadyClockUs())) {
-        spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed", strain_message_.seq,
-                     queued_us, overload_warning_.suppressed());
-      }
-      return;
-    }
+  if (arrival_.Shed(receive_wall_utime, strain_message_.seq)) {
+    pipeline_.CountOverloadDrop(InputChannel::kStrain);
+    return;
   }
   ForceEstimate estimate;
   if (!pipeline_.OnStrain(FromMessage(strain_message_), &estimate)) return;
@@ -245,9 +237,7 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   // The newest FORCE's facts with the transport's now: no strain on the host
   // clock, a second FORCE publisher.
   ForceStatusFacts facts = pipeline_.health().last_status_facts;
-  facts.transport.no_strain_on_wall_clock =
-      last_strain_arrival_wall_us_ >= 0 &&
-      static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6;
+  facts.transport.no_strain_on_wall_clock = arrival_.Stale(wall_utime);
   facts.transport.foreign_force = foreign_forces_ > 0 && ForeignForceActive();
   status_message_.status = ComposeForceStatus(facts);
   status_message_.foreign_force = foreign_forces_;

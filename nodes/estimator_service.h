@@ -29,6 +29,7 @@
 #include "model/vehicle_description.h"
 #include "nodes/input_rejection_log.h"
 #include "nodes/status_message.h"
+#include "nodes/strain_arrival_guard.h"
 #include "nodes/vehicle_clock_schedule.h"
 #include "program/logging.h"
 #include "sinks/message_sink.h"
@@ -187,8 +188,7 @@ class EstimatorService : public PacketHandler {
   ProcessingTimeStats processing_time_;
   int32_t status_seq_ = 0;
   int64_t forces_published_ = 0;
-  VehicleClockSchedule status_schedule_;      // replay: ESTIMATOR_STATUS on the vehicle clock
-  int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
+  VehicleClockSchedule status_schedule_;  // replay: ESTIMATOR_STATUS on the vehicle clock
   const UdpReceiveCounters* udp_counters_ = nullptr;
   const SigningSink* signing_ = nullptr;
   const AuthenticatingHandler* authentication_ = nullptr;
@@ -207,7 +207,7 @@ class EstimatorService : public PacketHandler {
   int64_t last_foreign_force_us_ = -1;  // steady clock [us]
   RateLimitedLog foreign_warning_;
   RateLimitedLog decode_warning_;
-  RateLimitedLog overload_warning_;
+  StrainArrivalGuard arrival_;       // overload shedding and wall-clock staleness of live strain
   RateLimitedLog mismatch_warning_;  // STATUS_MODEL_MISMATCH (issue 27)
   InputRejectionLog rejection_log_;
 };

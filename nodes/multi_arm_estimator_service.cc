@@ -26,7 +26,7 @@ MultiArmEstimatorService::MultiArmEstimatorService(const EstimatorConfig& config
       options_(options),
       sink_(sink),
       decode_warning_(options.warning_interval_s),
-      overload_warning_(options.warning_interval_s),
+      arrival_(options.overload_max_delay_s, options.stale_input_wall_s, options.warning_interval_s),
       arm_count_warning_(options.warning_interval_s) {
   routes_.Add(channels_.strain_n, Route::kStrainN);
   routes_.Add(channels_.motor_n, Route::kMotorN);
@@ -107,17 +107,9 @@ void MultiArmEstimatorService::Dispatch(Route route, const void* data, size_t si
 
 void MultiArmEstimatorService::HandleStrain(int64_t receive_wall_utime) {
   const int64_t start_us = options_.report_processing_time ? SteadyClockUs() : 0;
-  if (receive_wall_utime >= 0) {
-    last_strain_arrival_wall_us_ = receive_wall_utime;
-    const int64_t queued_us = WallClockUs() - receive_wall_utime;
-    if (static_cast<double>(queued_us) > options_.overload_max_delay_s * 1e6) {
-      pipeline_.CountOverloadDrop(InputChannel::kStrain);
-      if (overload_warning_.ShouldLog(SteadyClockUs())) {
-        spdlog::warn("overload: strain sample {} waited {} us, dropped; {} similar suppressed", strain_message_.seq,
-                     queued_us, overload_warning_.suppressed());
-      }
-      return;
-    }
+  if (arrival_.Shed(receive_wall_utime, strain_message_.seq)) {
+    pipeline_.CountOverloadDrop(InputChannel::kStrain);
+    return;
   }
   FromMessage(strain_message_, &strain_sample_);
   MultiArmForceEstimate estimate;
@@ -144,9 +136,7 @@ void MultiArmEstimatorService::PublishStatus(int64_t wall_utime, double period_s
   BuildMultiArmStatusMessage(pipeline_.health(), context, &status_message_);
   // No strain on the host clock for stale_input_wall_s: INPUT_STALE, not VALID.
   TransportStatusFacts transport;
-  transport.no_strain_on_wall_clock =
-      last_strain_arrival_wall_us_ >= 0 &&
-      static_cast<double>(wall_utime - last_strain_arrival_wall_us_) > options_.stale_input_wall_s * 1e6;
+  transport.no_strain_on_wall_clock = arrival_.Stale(wall_utime);
   const MultiArmPipelineHealth& health = pipeline_.health();
   status_message_.status = ComposeMultiArmForceStatus(health.last_filter_facts, health.last_input_facts, transport,
                                                       pipeline_.vehicle().arm_count)

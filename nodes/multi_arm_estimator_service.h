@@ -26,6 +26,7 @@
 #include "estimator/multi_arm_pipeline.h"
 #include "nodes/estimator_service.h"
 #include "nodes/status_message.h"
+#include "nodes/strain_arrival_guard.h"
 #include "nodes/vehicle_clock_schedule.h"
 #include "program/logging.h"
 #include "sinks/message_sink.h"
@@ -89,11 +90,10 @@ class MultiArmEstimatorService : public PacketHandler {
   ProcessingTimeStats processing_time_;
   int32_t status_seq_ = 0;
   int64_t forces_published_ = 0;
-  VehicleClockSchedule status_schedule_;      // replay: ESTIMATOR_STATUS on the vehicle clock
-  int64_t last_strain_arrival_wall_us_ = -1;  // live packets only [us, host clock]
+  VehicleClockSchedule status_schedule_;  // replay: ESTIMATOR_STATUS on the vehicle clock
   ArmCountRefusals arm_count_refusals_;
   RateLimitedLog decode_warning_;
-  RateLimitedLog overload_warning_;
+  StrainArrivalGuard arrival_;  // overload shedding and wall-clock staleness of live strain
   RateLimitedLog arm_count_warning_;
 };
 

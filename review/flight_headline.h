@@ -20,7 +20,7 @@ namespace birotor {
 // a fault of the flight, not of the estimate. The simulator's turbulence
 // moves it by ~0.01 (turbulence_std; over a 15 s flight at 1 kHz its
 // excursions from a 0.5 s mean reach 0.055), a fault by 0.25 or more.
-inline constexpr double kTrueFaultScaleStep = 0.1;  // [1]
+inline constexpr double kTrueFaultScaleStep = 0.1;   // [1]
 inline constexpr double kTrueFaultReferenceS = 0.5;  // [s]
 // The VALID share is highlighted below this, or when MODEL_MISMATCH rose [1].
 inline constexpr double kValidShareAlarm = 0.5;
