@@ -66,80 +66,8 @@ cleanup() {
 trap cleanup EXIT
 out="$work/figures.md"
 
-now_s() { date +%s.%N; }
-elapsed() { awk -v a="$1" -v b="$(now_s)" 'BEGIN { printf "%.2f", b - a }'; }
-load() { cut -d' ' -f1-3 /proc/loadavg; }
-step() { echo "figures: $*" >&2; }
-# Runs a command, keeping its output in $work/<name>.out; fails with its tail.
-run() {  # name command...
-  local name="$1"; shift
-  if ! "$@" > "$work/$name.out" 2> "$work/$name.err"; then
-    tail -n 5 "$work/$name.err" >&2
-    fail "step '$name' failed: $*"
-  fi
-}
-# Runs a command and prints its wall time in seconds.
-timed() {  # name command...
-  local start
-  start="$(now_s)"
-  run "$@"
-  elapsed "$start"
-}
-
-# Vehicle B's true values, key=value (the --set lines below).
-truth_b="thrust_coeff_n_s2_rad2=5.0e-5 motor_time_constant_s=0.042 arm_stiffness_n_m_rad=3100
-arm_damping_n_m_s_rad=0.30 tip_mass_kg=0.31"
-# The parameter table of an identification report against vehicle B's truth.
-identification_table() {  # report.md
-  awk -v truth="$truth_b" '
-    BEGIN {
-      n = split(truth, pairs, /[ \n]+/)
-      for (i = 1; i <= n; ++i) { split(pairs[i], kv, "="); true_value[kv[1]] = kv[2] }
-      print "| parameter | key | identified | one sigma | true | error | error / sigma |"
-      print "|---|---|---|---|---|---|---|"
-    }
-    /^\| [^|]+ \| [a-z0-9_]+(\[[0-9]\])? \| [-+0-9.eE]+ \| [-+0-9.eE]+ \|/ {
-      split($0, f, /[ ]*\|[ ]*/)
-      symbol = f[2]; key = f[3]; value = f[4]; sigma = f[5]
-      if (key in true_value) {
-        t = true_value[key]
-        printf "| %s | %s | %s | %s | %s | %+.3f %% | %.1f |\n", symbol, key, value, sigma, t,
-               100 * (value - t) / t, (value - t) / sigma * (value >= t ? 1 : -1)
-      } else {
-        printf "| %s | %s | %s | %s | - | - | - |\n", symbol, key, value, sigma
-      }
-      ++rows
-    }
-    END { if (rows == 0) { print "figures.sh: no parameter rows in the report" > "/dev/stderr"; exit 1 } }
-  ' "$1"
-}
-
-# One cell of a Markdown table (the first table of FILE whose header starts
-# with "| scenario"), by the first two columns and the column's header;
-# "?" and a warning when there is none.
-cell() {  # file column1 column2 header
-  awk -v a="$2" -v b="$3" -v header="$4" '
-    function trim(s) { gsub(/^[ ]+|[ ]+$/, "", s); return s }
-    /^\| scenario/ && !n { n = split($0, h, "|"); for (i = 2; i < n; ++i) col[trim(h[i])] = i; next }
-    n && /^\|/ {
-      split($0, f, "|")
-      row = trim(f[2]); sub(/ seed [0-9]+$/, "", row)  # "thrust_loss seed 4": the case flown on its own seed
-      if (row == a && trim(f[3]) == b && (header in col)) { print trim(f[col[header]]); found = 1; exit }
-    }
-    END { if (!found) { print "?"; print "figures.sh: warning: no cell " a " / " b " / " header > "/dev/stderr" } }
-  ' "$1"
-}
-# CPU and wall time of one benchmark (its median row, or its only row with
-# one repetition), in microseconds or milliseconds: "3.03 us CPU (3.10 us wall)".
-benchmark_time() {  # name
-  awk -v name="$1" '
-    function show(value, unit) {
-      if (unit == "ns") return sprintf("%.2f us", value / 1000)
-      return sprintf("%.3g %s", value, unit)
-    }
-    $1 == name || $1 == name "_median" { printf "%s CPU (%s wall)", show($4, $5), show($2, $3); found = 1; exit }
-    END { if (!found) printf "?" }' "$work/bench_est.out"
-}
+# Timing, the run/timed wrappers and the table readers (cell, identification_table, ...).
+source "$repo/tools/figures_lib.sh"
 
 script_start="$(now_s)"
 start_load="$(load)"
@@ -178,9 +106,25 @@ if [ "$quick" -eq 1 ]; then control_args=(--control --scenarios thrust_loss); el
 step "closed-loop control (birotor-eval ${control_args[*]})"
 control_s="$(timed control "$build/tools/birotor-eval" "${control_args[@]}")"
 
+# --- The three-rotor vehicle ---------------------------------------------
+trirotor="$repo/config/vehicles/trirotor.yaml"
+if [ "$quick" -eq 1 ]; then
+  tri_eval_args=(--scenarios hover,thrust_loss); tri_control_args=(--control --scenarios lateral_step,loss40_rotor1)
+else
+  tri_eval_args=(--scenarios hover,gentle,aggressive,thrust_loss); tri_control_args=(--control)
+fi
+step "three-rotor vehicle: accuracy and control (birotor-eval --vehicle config/vehicles/trirotor.yaml)"
+tri_eval_s="$(timed tri_eval "$build/tools/birotor-eval" --vehicle "$trirotor" "${tri_eval_args[@]}")"
+tri_control_s="$(timed tri_control "$build/tools/birotor-eval" --vehicle "$trirotor" "${tri_control_args[@]}")"
+# The same lateral step on the birotor description: it must tilt to move.
+run bi_lateral "$build/tools/birotor-eval" --vehicle "$repo/config/vehicles/birotor.yaml" --control --scenarios lateral_step
+
 # --- Identification ------------------------------------------------------
 # Vehicle B: every identified parameter differs from the reference file the
 # fit starts from.
+# Vehicle B's true values, key=value (the --set lines of vehicle_b).
+truth_b="thrust_coeff_n_s2_rad2=5.0e-5 motor_time_constant_s=0.042 arm_stiffness_n_m_rad=3100
+arm_damping_n_m_s_rad=0.30 tip_mass_kg=0.31"
 vehicle_b=(--set vehicle.arm_stiffness_n_m_rad=3100 --set vehicle.arm_damping_n_m_s_rad=0.30
   --set vehicle.tip_mass_kg=0.31 --set vehicle.thrust_coeff_n_s2_rad2=5.0e-5 --set vehicle.motor_time_constant_s=0.042)
 bench_s=120
@@ -267,10 +211,6 @@ date_utc="$(date -u '+%Y-%m-%d %H:%M UTC')"
 machine="$(nproc) cores ($cpu), load average $start_load"
 
 # --- The headline: the block the README quotes ---------------------------
-# Error of one identified key in a table: "+0.031 % (0.5 sigma)".
-id_error() {  # table key
-  awk -F' *\\| *' -v key="$2" '$3 == key { printf "%s (%s sigma)", $7, $8; found = 1 } END { if (!found) printf "?" }' "$1"
-}
 ekf_false_alarms="$(awk -F' *\\| *' '/^\| scenario/ { for (i = 2; i < NF; ++i) if ($i == "false alarms") c = i; next }
   c && $3 == "ekf" { sum += $c } END { print sum + 0 }' "$work/eval.out")"
 {
@@ -312,6 +252,13 @@ EOF
       "$(cell "$work/control.out" thrust_loss "$controller" 'back within 5 cm [s]')"
   done
   cat <<EOF
+
+**Three-rotor vehicle** (\`birotor-eval --vehicle config/vehicles/trirotor.yaml\`, the same estimator file): EKF MAE
+per rotor in hover $(cell "$work/tri_eval.out" hover "" 'MAE per rotor [N]') N, within 2 sigma $(cell "$work/tri_eval.out" hover "" '2-sigma share per rotor');
+in \`thrust_loss\` rotor $(cell "$work/tri_eval.out" thrust_loss "" 'step rotor') is flagged after $(cell "$work/tri_eval.out" thrust_loss "" 'detection [ms]') ms.
+A 1 m lateral step at a peak tilt of $(control_cell "$work/tri_control.out" lateral_step 'fully actuated' nominal 'max tilt [rad]') rad (the birotor tilts
+$(control_cell "$work/bi_lateral.out" lateral_step 'tilt to move' nominal 'max tilt [rad]') rad for it); after a 40 % loss on rotor 1 the cascade loses
+$(control_cell "$work/tri_control.out" loss40_rotor1 'fully actuated' nominal 'altitude dev. after loss [m]') m of altitude on the nominal map and $(control_cell "$work/tri_control.out" loss40_rotor1 'fully actuated' 'estimated (N-arm EKF)' 'altitude dev. after loss [m]') m on the estimated efficiencies.
 
 **Identification** of a vehicle whose every parameter differs from the file the fit starts from
 (error, and error in units of the reported one sigma), ${bench_s} s bench log, ${bench_id_s} s wall:
@@ -401,6 +348,26 @@ controller modes with the same gains. Deterministic.
 
 EOF
   cat "$work/control.out"
+  cat <<EOF
+
+## Three-rotor vehicle
+
+\`$build/tools/birotor-eval --vehicle config/vehicles/trirotor.yaml ${tri_eval_args[*]}\` (${tri_eval_s} s wall):
+the EKF for N arms on the thesis's three-rotor vehicle, with the scenario files' sensors and gauges, fixed seeds. Deterministic.
+
+EOF
+  cat "$work/tri_eval.out"
+  cat <<EOF
+
+\`$build/tools/birotor-eval --vehicle config/vehicles/trirotor.yaml ${tri_control_args[*]}\` (${tri_control_s} s wall):
+the N-rotor controller in lock-step, cascade and mode mpc, nominal map and estimated efficiencies (the MPC
+solve times are CPU times on this machine; everything else is deterministic). First the birotor description
+on the same lateral step (\`--vehicle config/vehicles/birotor.yaml --control --scenarios lateral_step\`):
+
+EOF
+  sed -n '/^| case/,$p' "$work/bi_lateral.out"
+  echo
+  sed -n '/^| case/,$p' "$work/tri_control.out"
   cat <<EOF
 
 ## Identification
