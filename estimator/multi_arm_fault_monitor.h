@@ -35,6 +35,7 @@ class MultiArmFaultMonitor {
   void Update(int64_t utime, int n, const ScaleVector& thrust_scale, const ScaleMatrix& covariance);
   void FillFacts(int n, MultiArmFilterFacts* facts) const;
   bool fault(int rotor) const { return fault_[static_cast<size_t>(rotor)].on; }
+  bool thrust_deficit() const { return deficit_.on; }
 
  private:
   using Flag = PersistentFlag;

@@ -2,7 +2,8 @@
 // filter's thrust scales mu_i and their covariance, with persistence and
 // hysteresis (EkfOptions: rotor_fault_*, thrust_deficit_*, fault_n_sigma,
 // fault_persistence_s). The last stage of the EKF's strain step; its facts are
-// the method's. No allocation, no throw, no log.
+// the method's. The birotor's face of MultiArmFaultMonitor at N = 2 (one set
+// of rules for every vehicle). No allocation, no throw, no log.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,7 +11,7 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
-#include "estimator/persistent_flag.h"
+#include "estimator/multi_arm_fault_monitor.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -31,16 +32,10 @@ class RotorFaultMonitor {
   // STATUS_THRUST_DEFICIT from them).
   void FillFacts(FilterStatusFacts* facts) const;
   // A rotor fault is flagged on either rotor.
-  bool AnyRotorFault() const { return fault_[0].on || fault_[1].on; }
+  bool AnyRotorFault() const { return monitor_.fault(0) || monitor_.fault(1); }
 
  private:
-  // One flag: raised after `raise` held for persistence_us_, lowered as soon as `lower` holds.
-  using Flag = PersistentFlag;
-
-  EkfOptions options_;
-  int64_t persistence_us_;
-  Flag fault_[kBirotorRotors];
-  Flag deficit_;
+  MultiArmFaultMonitor monitor_;
 };
 
 }  // namespace birotor
