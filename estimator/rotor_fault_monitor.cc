@@ -9,8 +9,9 @@ RotorFaultMonitor::RotorFaultMonitor(const EkfOptions& options) : monitor_(optio
 void RotorFaultMonitor::Reset() { monitor_.Reset(); }
 
 void RotorFaultMonitor::Update(int64_t utime, const Eigen::Vector2d& thrust_scale, const Eigen::Matrix2d& covariance) {
-  MultiArmFaultMonitor::ScaleVector scales = MultiArmFaultMonitor::ScaleVector::Zero();
-  MultiArmFaultMonitor::ScaleMatrix scale_covariance = MultiArmFaultMonitor::ScaleMatrix::Zero();
+  // Update reads only the leading kBirotorRotors entries: the rest is left unset.
+  MultiArmFaultMonitor::ScaleVector scales;
+  MultiArmFaultMonitor::ScaleMatrix scale_covariance;
   scales.head<kBirotorRotors>() = thrust_scale;
   scale_covariance.topLeftCorner<kBirotorRotors, kBirotorRotors>() = covariance;
   monitor_.Update(utime, kBirotorRotors, scales, scale_covariance);
