@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   // The key before anything is opened: without it nothing authenticated flies.
   std::string error;
   ChannelSecurity security;
-  if (!LoadChannelSecurity(security_options, ChannelSet{true, true, true, true}, &security, &error)) {
+  if (!LoadChannelSecurity(security_options, ChannelSet{true, true, true, true, false, false}, &security, &error)) {
     return ReportError(error);
   }
   const RealtimeOutcome realtime = ApplyRealtimePriority(realtime_priority);  // before LCM starts a thread
