@@ -73,6 +73,7 @@ class MultiArmControllerService : public PacketHandler {
   const CountRefusals& force_count_refusals() const { return force_count_refusals_; }
   int64_t decode_errors(ControllerInput input) const { return decode_errors_[static_cast<int>(input)]; }
   const MultiArmController& controller() const { return controller_; }
+  SetpointCounters setpoint_counters() const { return setpoint_.counters(); }
   // The newest MOTOR_COMMAND_N sent (n_rotors 0 before any).
   const motor_command_n_t& last_command() const { return command_; }
 
