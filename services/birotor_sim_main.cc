@@ -352,8 +352,8 @@ std::string ModeConflict(const SimOptions& options) {
   }
   if (!options.vehicle_file.empty() &&
       (!options.controller_mode.empty() || options.loop || (options.publish_setpoints && !options.output.empty()))) {
-    return "--vehicle runs the scenario's autopilot or, live, --external-controller and --publish-setpoints; not "
-           "--controller or --loop";
+    return "--vehicle runs the scenario's own autopilot (or, live, --external-controller with --publish-setpoints), "
+           "without --controller or --loop";
   }
   if (options.loop && !options.output.empty()) {
     return "--loop runs until stopped: it is for live mode, not with --output (see --help)";
