@@ -31,6 +31,13 @@ double AgeS(int64_t stamp_us, int64_t now_us) {
 
 }  // namespace
 
+static_assert(kCommandFallbackActive == motor_command_n_t::STATUS_FALLBACK_ACTIVE &&
+                  kCommandInputStale == motor_command_n_t::STATUS_INPUT_STALE &&
+                  kCommandInputConflict == motor_command_n_t::STATUS_INPUT_CONFLICT &&
+                  kCommandSaturated == motor_command_n_t::STATUS_SATURATED &&
+                  kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK,
+              "MOTOR_COMMAND_N's status bits are MOTOR_COMMAND's");
+
 MultiArmControllerService::MultiArmControllerService(const VehicleDescription& vehicle, const ControllerConfig& config,
                                                      const ChannelNames& channels, MessageSink* sink,
                                                      HostClockUs host_clock)
@@ -167,25 +174,21 @@ void MultiArmControllerService::RunIfDue(int64_t host_us) {
   grid_.Ran(host_us);
 }
 
-int32_t MultiArmControllerService::PeriodStatus(int64_t now_us, const MultiArmRotorCommand& command) {
+CommandStatusFacts MultiArmControllerService::PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command) {
   const SupervisionParams& s = config_.supervision;
-  int32_t status = 0;
+  CommandStatusFacts facts;
   // Force feedback wanted but FORCE_N stale, not VALID or refused: the nominal map.
   const bool force_usable = force_valid_ && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s;
-  const bool fallback = config_.force_feedback && !force_usable;
-  if (fallback && !health_.fallback_active) ++health_.fallbacks;
-  health_.fallback_active = fallback;
-  if (fallback) status |= motor_command_n_t::STATUS_FALLBACK_ACTIVE;
-  if (AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s) status |= motor_command_n_t::STATUS_INPUT_STALE;
-  const bool conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
-  if (conflict && !health_.conflict) ++health_.conflicts;
-  health_.conflict = conflict;
-  if (conflict) status |= motor_command_n_t::STATUS_INPUT_CONFLICT;
-  if (command.saturated) {
-    status |= motor_command_n_t::STATUS_SATURATED;
-    ++health_.saturated;
-  }
-  return status;
+  facts.fallback_active = config_.force_feedback && !force_usable;
+  if (facts.fallback_active && !health_.fallback_active) ++health_.fallbacks;
+  health_.fallback_active = facts.fallback_active;
+  facts.input_stale = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
+  facts.input_conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
+  if (facts.input_conflict && !health_.conflict) ++health_.conflicts;
+  health_.conflict = facts.input_conflict;
+  facts.saturated = command.saturated;
+  health_.saturated += command.saturated ? 1 : 0;
+  return facts;
 }
 
 void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
@@ -195,8 +198,8 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
   MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
-  int32_t status = PeriodStatus(vehicle_us, command);
-  if (controller_.mpc_fallbacks() > mpc_fallbacks) status |= motor_command_n_t::STATUS_MPC_FALLBACK;
+  CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
+  facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
   // Never a non-finite command or one outside [0, omega_max]: the last good one instead.
   bool finite = true;
   for (int i = 0; i < vehicle_.arm_count; ++i) finite = finite && std::isfinite(command.omega_cmd_rad_s[i]);
@@ -208,7 +211,7 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   command_.utime = vehicle_us;
   ++command_.seq;
   command_.mode = config_.model_predictive ? kModeMpc : config_.force_feedback ? kModeForceFeedback : kModeNominal;
-  command_.status = status;
+  command_.status = ComposeCommandStatus(facts);
   const RotorEfficiencies efficiency = controller_.EfficiencyInUse(vehicle_us);
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     command_.omega_cmd_rad_s[i] = ClampCommand(vehicle_.omega_max_rad_s, command.omega_cmd_rad_s[i]);

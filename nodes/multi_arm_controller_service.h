@@ -24,6 +24,7 @@
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/guard_status_t.hpp"
 #include "birotor/motor_command_n_t.hpp"
+#include "controller/command_status.h"
 #include "controller/controller_params.h"
 #include "controller/input_admission.h"
 #include "controller/multi_arm_controller.h"
@@ -87,8 +88,8 @@ class MultiArmControllerService : public PacketHandler {
   // locked seq stream, newest; then the controller's efficiency estimate.
   void OnForce(const force_estimate_n_t& message, int64_t now_us);
   void RunControlPeriod(int64_t host_us);
-  // The status bits of a period at now_us (motor_command_n_t STATUS_*).
-  int32_t PeriodStatus(int64_t now_us, const MultiArmRotorCommand& command);
+  // The facts of a period at now_us for its status bits (ComposeCommandStatus); counts entries.
+  CommandStatusFacts PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command);
   MpcStats MpcCounters() const;
 
   VehicleDescription vehicle_;
