@@ -2,7 +2,8 @@
 // trirotor, through its one way in on its own host clock: a FORCE_N of
 // another rotor count is refused and counted, a stale or absent FORCE_N
 // flies the nominal map (STATUS_FALLBACK_ACTIVE), a future stamp is refused,
-// and every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max].
+// every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max], and a
+// plain FORCE_N in front of the sealed channel is refused.
 #include "nodes/multi_arm_controller_service.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +14,11 @@
 
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "nodes/guard_status_message.h"
 #include "params/vehicle_description_yaml.h"
+#include "security/message_authenticator.h"
+#include "sources/authenticating_handler.h"
+#include "tests/security/counting_key.h"
 #include "transport/lcm_codec.h"
 
 namespace birotor {
@@ -137,6 +142,44 @@ TEST_F(MultiArmControllerServiceTest, AFutureStampedForceNIsRefused) {
   Send(channels_.force_n, ForceN(3, 5000000, 1, force_estimate_n_t::STATUS_VALID), 5000000);
   EXPECT_EQ(service_.health().force.rejected_future, 1);
   EXPECT_EQ(service_.health().force.accepted, 0);
+}
+
+// The sealed twins in front of the node: a plain FORCE_N (a forgery) is
+// refused, a sealed one of the site key reaches the node; GUARD_STATUS
+// counts FORCE_N in CHANNEL_FORCE's slot.
+TEST_F(MultiArmControllerServiceTest, PlainForceNIsRefusedAndCountedInGuardStatusForceSlot) {
+  const MessageAuthenticator key{CountingKeyFrom(3)};
+  AuthenticatingHandler authenticated(&service_, SealedMessages::kVerify, &key, channels_,
+                                      {AuthenticatedChannel::kPose, AuthenticatedChannel::kForceN}, ChannelSet{});
+  CommandSink bus{"none"};
+  ChannelSet sealed{};
+  sealed[static_cast<int>(AuthenticatedChannel::kPose)] = sealed[static_cast<int>(AuthenticatedChannel::kForceN)] =
+      true;
+  // A sealing publisher whose messages go to the handler (sealed first, then the plain copy).
+  class Loopback : public MessageSink {
+   public:
+    explicit Loopback(PacketHandler* handler) : handler_(handler) {}
+    void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
+      handler_->HandlePacket(channel, data, size, -1);
+    }
+
+   private:
+    PacketHandler* handler_;
+  } loopback(&authenticated);
+  SigningSink signing(&loopback, &key, channels_, sealed, 9);
+  const std::vector<uint8_t> forged = ForceN(3, 4000000, 1, force_estimate_n_t::STATUS_VALID);
+  authenticated.HandlePacket(channels_.force_n, forged.data(), forged.size(), -1);
+  const std::vector<uint8_t> honest = ForceN(3, 4000000, 2, force_estimate_n_t::STATUS_VALID);
+  signing.Publish(channels_.force_n, 4000000, honest.data(), honest.size());
+  const AuthenticationCounters& c = authenticated.counters(AuthenticatedChannel::kForceN);
+  EXPECT_EQ(c.unauthenticated, 1);
+  EXPECT_EQ(c.authenticated, 1);
+  EXPECT_EQ(c.plain_copies, 1);
+  guard_status_t guard{};
+  BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, 0, 0, &signing, &authenticated, nullptr, &guard);
+  EXPECT_EQ(guard.refused[guard_status_t::CHANNEL_FORCE], 1);
+  EXPECT_EQ(guard.accepted[guard_status_t::CHANNEL_FORCE], 1);
+  EXPECT_EQ(guard.accepted[guard_status_t::CHANNEL_MOTOR_COMMAND], 0);
 }
 
 }  // namespace
