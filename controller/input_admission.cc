@@ -1,8 +1,32 @@
 #include "controller/input_admission.h"
 
+#include <cmath>
+
 #include "numerics/time_units.h"
 
 namespace birotor {
+namespace {
+
+// Plausibility limits of the inputs: beyond them a sample is a corrupt one,
+// not a state of this vehicle (dropped and counted as invalid).
+constexpr double kMaxPositionM = 1e4;          // |x|, |z| of POSE [m]
+constexpr double kMaxAngleRad = 10.0;          // |phi| of POSE [rad]
+constexpr double kMaxRateRadS = 100.0;         // |gyro| [rad/s]
+constexpr double kMaxSpecificForceM_S2 = 1e3;  // |accel| [m/s^2]
+
+bool Within(double value, double limit) { return std::isfinite(value) && std::fabs(value) <= limit; }
+
+}  // namespace
+
+bool PlausiblePose(const PoseSample& sample) {
+  return Within(sample.x_m, kMaxPositionM) && Within(sample.z_m, kMaxPositionM) &&
+         Within(sample.phi_rad, kMaxAngleRad) && sample.utime >= 0;
+}
+
+bool PlausibleImu(const ImuSample& sample) {
+  return Within(sample.gyro_y_rad_s, kMaxRateRadS) && Within(sample.accel_x_m_s2, kMaxSpecificForceM_S2) &&
+         Within(sample.accel_z_m_s2, kMaxSpecificForceM_S2) && sample.utime >= 0;
+}
 
 bool AdmitToStream(const SupervisionParams& s, const StreamMessage& message, bool valid, int64_t now_us,
                    SeqStreamLock* lock, ControllerInputCounters* counters) {

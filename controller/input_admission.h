@@ -9,6 +9,7 @@
 
 #include "controller/controller_params.h"
 #include "controller/seq_stream_lock.h"
+#include "samples/samples.h"
 
 namespace birotor {
 
@@ -43,6 +44,13 @@ bool AdmitToStream(const SupervisionParams& s, const StreamMessage& message, boo
 // Stage 2: true (accepted, the newest) when utime [us] is newer than the
 // newest accepted.
 bool AcceptNewest(int64_t utime, ControllerInputCounters* counters);
+
+// Plausibility of a POSE and an IMU sample: finite, within the limits
+// beyond which a sample is a corrupt one, not a state of this vehicle
+// (|x|, |z| <= 1e4 m, |phi| <= 10 rad, |gyro| <= 100 rad/s, |accel| <= 1e3
+// m/s^2), stamp not negative. Used by both controllers.
+bool PlausiblePose(const PoseSample& sample);
+bool PlausibleImu(const ImuSample& sample);
 
 // The stream lock of an input publishing at most max_rate_hz [Hz].
 SeqStreamLockParams StreamLockParams(const SupervisionParams& s, double max_rate_hz);

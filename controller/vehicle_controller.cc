@@ -14,15 +14,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Plausibility limits of the inputs: beyond them a sample is a corrupt one,
-// not a state of this vehicle (dropped and counted as invalid).
-constexpr double kMaxPositionM = 1e4;          // |x|, |z| of POSE [m]
-constexpr double kMaxAngleRad = 10.0;          // |phi| of POSE [rad]
-constexpr double kMaxRateRadS = 100.0;         // |gyro| [rad/s]
-constexpr double kMaxSpecificForceM_S2 = 1e3;  // |accel| [m/s^2]
-
-bool Within(double value, double limit) { return std::isfinite(value) && std::fabs(value) <= limit; }
-
 // The law's gains at the rate it runs (mode mpc: the MPC's, for the fallback).
 ControllerParams LawGains(const ControllerConfig& config) {
   ControllerParams gains = config.gains;
@@ -62,8 +53,7 @@ VehicleController::VehicleController(const ControllerConfig& config)
 }
 
 void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
-  const bool valid = Within(sample.x_m, kMaxPositionM) && Within(sample.z_m, kMaxPositionM) &&
-                     Within(sample.phi_rad, kMaxAngleRad) && sample.utime >= 0;
+  const bool valid = PlausiblePose(sample);
   const double values[3] = {sample.x_m, sample.z_m, sample.phi_rad};
   const StreamMessage message{sample.seq, sample.utime, PayloadDigest(values, 3)};
   // The stream first (a copied seq is found whatever the pose says), then
@@ -105,8 +95,7 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
 }
 
 void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
-  const bool valid = Within(sample.gyro_y_rad_s, kMaxRateRadS) && Within(sample.accel_x_m_s2, kMaxSpecificForceM_S2) &&
-                     Within(sample.accel_z_m_s2, kMaxSpecificForceM_S2) && sample.utime >= 0;
+  const bool valid = PlausibleImu(sample);
   const StreamMessage message{sample.seq, sample.utime, 0};
   if (!AdmitToStream(config_.supervision, message, valid, now_us, nullptr, &health_.imu) ||
       !AcceptNewest(sample.utime, &health_.imu))

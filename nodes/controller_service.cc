@@ -13,30 +13,19 @@
 #include "birotor/setpoint_t.hpp"
 #include "nodes/controller_status_message.h"
 #include "nodes/guard_status_message.h"
-#include "numerics/percentile.h"
-#include "numerics/time_units.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_codec.h"
 #include "transport/message_conversion.h"
 
 namespace birotor {
-namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// The clock follows the earliest-arriving input this long after it is set [us].
-constexpr int64_t kClockAcquireUs = 500000;
-// No input accepted for this long: the next input sets the clock again [us].
-constexpr int64_t kClockRelatchUs = 2000000;
-
-}  // namespace
-
 ControllerService::ControllerService(const ControllerConfig& config, const ChannelNames& channels, MessageSink* sink,
                                      HostClockUs host_clock)
     : controller_(config),
       channels_(channels),
       sink_(sink),
       host_clock_(host_clock ? std::move(host_clock) : HostClockUs(SteadyClockUs)),
-      period_us_(std::max<int64_t>(1, std::llround(1e6 / CommandRateHz(config)))) {
+      clock_(config.supervision),
+      grid_(std::max<int64_t>(1, std::llround(1e6 / CommandRateHz(config)))) {
   // The route table: every channel this node reads, once.
   routes_.Add(channels_.pose, ControllerChannel::kPose);
   routes_.Add(channels_.imu, ControllerChannel::kImu);
@@ -60,41 +49,8 @@ void ControllerService::HandleSetpoint(const void* data, size_t size, int64_t ho
     return;
   }
   // A setpoint does not set the clock (a planner's clock is not the vehicle's).
-  if (clock_set_) controller_.OnSetpoint(FromMessage(message), VehicleTimeUs(host_us));
+  if (clock_.set()) controller_.OnSetpoint(FromMessage(message), VehicleTimeUs(host_us));
 }
-
-int64_t ControllerService::ClockForInput(ControllerInput input, int64_t utime, int64_t host_us) {
-  const SupervisionParams& s = controller_.config().supervision;
-  const bool restart = clock_set_ && host_us - last_accepted_host_us_ > kClockRelatchUs;
-  if ((!clock_set_ || restart) && utime >= 0 && utime <= kLatestPlausibleUtime) {
-    // The offset this input says; set when another input's fresh candidate
-    // agrees within clock_agreement_s (a lone stream 1000 s ahead never
-    // does). The later offset of the two: the one that arrived soonest.
-    const int i = static_cast<int>(input);
-    candidate_offset_us_[i] = utime - host_us;
-    candidate_host_us_[i] = host_us;
-    for (int j = 0; j < kNumControllerInputs; ++j) {
-      const bool fresh = j != i && candidate_host_us_[j] >= 0 && host_us - candidate_host_us_[j] < kClockAcquireUs;
-      if (!fresh || std::fabs(ElapsedSeconds(candidate_offset_us_[i], candidate_offset_us_[j])) > s.clock_agreement_s)
-        continue;
-      if (restart) ++clock_relatches_;
-      clock_set_ = true;
-      clock_offset_us_ = std::max(candidate_offset_us_[i], candidate_offset_us_[j]);
-      clock_set_host_us_ = last_accepted_host_us_ = host_us;
-      for (int64_t& candidate : candidate_host_us_) candidate = -1;
-      break;
-    }
-  } else if (clock_set_ && host_us - clock_set_host_us_ < kClockAcquireUs) {
-    // Acquisition: the offset of the input that arrived soonest, forward
-    // only and never by more than the future window at a time.
-    // In seconds: a wild stamp must not overflow the subtraction.
-    const double lead_s = ElapsedSeconds(utime, VehicleTimeUs(host_us));
-    if (lead_s > 0 && lead_s <= s.clock_future_window_s) clock_offset_us_ += SecondsToUtime(lead_s);
-  }
-  return VehicleTimeUs(host_us);
-}
-
-int64_t ControllerService::VehicleTimeUs(int64_t host_us) const { return clock_set_ ? host_us + clock_offset_us_ : -1; }
 
 void ControllerService::Dispatch(ControllerChannel channel, const void* data, size_t size, int64_t host_us) {
   if (channel == ControllerChannel::kSetpoint) {
@@ -108,25 +64,25 @@ void ControllerService::Dispatch(ControllerChannel channel, const void* data, si
     case ControllerChannel::kPose: {
       pose_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      const int64_t now_us = ClockForInput(ControllerInput::kPose, message.utime, host_us);
+      const int64_t now_us = clock_.ForInput(static_cast<int>(ControllerInput::kPose), message.utime, host_us);
       if (now_us >= 0) controller_.OnPose(FromMessage(message), now_us);  // nothing to judge it by before
-      if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
+      if (counters[index]->accepted > accepted_before) clock_.NoteAccepted(host_us);
       return;
     }
     case ControllerChannel::kImu: {
       imu_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      const int64_t now_us = ClockForInput(ControllerInput::kImu, message.utime, host_us);
+      const int64_t now_us = clock_.ForInput(static_cast<int>(ControllerInput::kImu), message.utime, host_us);
       if (now_us >= 0) controller_.OnImu(FromMessage(message), now_us);  // nothing to judge it by before
-      if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
+      if (counters[index]->accepted > accepted_before) clock_.NoteAccepted(host_us);
       return;
     }
     case ControllerChannel::kForce: {
       force_estimate_t message;
       if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
-      const int64_t now_us = ClockForInput(ControllerInput::kForce, message.utime, host_us);
+      const int64_t now_us = clock_.ForInput(static_cast<int>(ControllerInput::kForce), message.utime, host_us);
       if (now_us >= 0) controller_.OnForce(FromMessage(message), now_us);  // nothing to judge it by before
-      if (counters[index]->accepted > accepted_before) last_accepted_host_us_ = host_us;
+      if (counters[index]->accepted > accepted_before) clock_.NoteAccepted(host_us);
       return;
     }
     case ControllerChannel::kSetpoint:
@@ -137,16 +93,13 @@ void ControllerService::Dispatch(ControllerChannel channel, const void* data, si
 
 int64_t ControllerService::NextPeriodHostUs() const {
   if (!controller_.has_pose()) return std::numeric_limits<int64_t>::max();
-  return next_period_host_us_ < 0 ? 0 : next_period_host_us_;
+  return grid_.Next();
 }
 
 void ControllerService::RunIfDue(int64_t host_us) {
   if (!controller_.has_pose() || host_us < NextPeriodHostUs()) return;
   RunControlPeriod(host_us);
-  // The next period on the grid; after a stall longer than a period the
-  // grid starts again from now (no burst of catch-up commands).
-  next_period_host_us_ = next_period_host_us_ < 0 ? host_us + period_us_ : next_period_host_us_ + period_us_;
-  if (next_period_host_us_ <= host_us) next_period_host_us_ = host_us + period_us_;
+  grid_.Ran(host_us);
 }
 
 void ControllerService::RunControlPeriod(int64_t host_us) {
@@ -155,9 +108,7 @@ void ControllerService::RunControlPeriod(int64_t host_us) {
   last_command_ = controller_.Update(vehicle_us);
   EncodeMessage(ToMessage(last_command_), &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.motor_command, last_command_.utime, buffer_.data(), buffer_.size());
-  const int64_t done_us = SteadyClockUs();
-  loop_times_us_[loop_time_count_ % kLoopTimeCapacity] = static_cast<double>(done_us - host_us);
-  ++loop_time_count_;
+  grid_.NoteLoopTime(host_us, SteadyClockUs());
   last_period_vehicle_us_ = vehicle_us;
 }
 
@@ -170,11 +121,8 @@ void ControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
   context.last_status = last_command_.status;
   for (int i = 0; i < kNumControllerInputs; ++i) context.decode_errors[i] = decode_errors_[i];
   context.setpoint_decode_errors = setpoint_decode_errors_;
-  context.clock_relatches = clock_relatches_;
-  const size_t n = std::min(loop_time_count_, kLoopTimeCapacity);
-  context.loop_time_p99_us = Percentile(loop_times_us_.begin(), loop_times_us_.begin() + n, 0.99);
-  context.loop_time_max_us = n == 0 ? kNaN : *std::max_element(loop_times_us_.begin(), loop_times_us_.begin() + n);
-  loop_time_count_ = 0;
+  context.clock_relatches = clock_.relatches();
+  grid_.TakeLoopTimes(&context.loop_time_p99_us, &context.loop_time_max_us);
   context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
   context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
   ++status_message_.seq;

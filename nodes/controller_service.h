@@ -18,6 +18,7 @@
 #include "birotor/guard_status_t.hpp"
 #include "controller/controller_params.h"
 #include "controller/vehicle_controller.h"
+#include "nodes/controller_clock.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
 #include "sources/authenticating_handler.h"
@@ -79,14 +80,9 @@ class ControllerService : public PacketHandler {
 
   // The controller's clock at host_us [us]: host time plus the offset set
   // when two different inputs (of POSE, IMU, FORCE) first agree on it
-  // within clock_agreement_s (advanced, never more than the future window at
-  // a time, to the earliest-arriving input during the first
-  // kClockAcquireUs, so inputs do not look younger than they are); -1
-  // before. No later input moves it, except when no input at all has been
-  // accepted for kClockRelatchUs (a restarted vehicle clock): then the next
-  // two inputs that agree set it again (counted).
-  int64_t VehicleTimeUs(int64_t host_us) const;
-  int64_t clock_relatches() const { return clock_relatches_; }
+  // (ControllerClock, nodes/controller_clock.h); -1 before.
+  int64_t VehicleTimeUs(int64_t host_us) const { return clock_.VehicleTimeUs(host_us); }
+  int64_t clock_relatches() const { return clock_.relatches(); }
   const ControllerHealth& health() const { return controller_.health(); }
   MpcStats mpc_statistics() const { return controller_.MpcStatistics(); }  // zero outside mode mpc
   int64_t decode_errors(ControllerInput input) const { return decode_errors_[static_cast<int>(input)]; }
@@ -96,11 +92,6 @@ class ControllerService : public PacketHandler {
   void Dispatch(ControllerChannel channel, const void* data, size_t size, int64_t host_us);
   void HandleSetpoint(const void* data, size_t size, int64_t host_us);
   void RunControlPeriod(int64_t host_us);
-  // The clock for an input stamped utime arriving at host_us (-1: not set
-  // yet). It is set (and relatched) only when two different inputs agree
-  // on the vehicle time within supervision.clock_agreement_s: no single
-  // peer's stream sets it (issue 37).
-  int64_t ClockForInput(ControllerInput input, int64_t utime, int64_t host_us);
   void FillStatus(int64_t now_us);
 
   VehicleController controller_;
@@ -108,28 +99,14 @@ class ControllerService : public PacketHandler {
   MessageSink* sink_;
   HostClockUs host_clock_;
   ChannelRoutes<ControllerChannel> routes_;
-  int64_t period_us_;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
   int64_t setpoint_decode_errors_ = 0;
 
-  // The own clock: vehicle time = host time + offset.
-  bool clock_set_ = false;
-  int64_t clock_offset_us_ = 0;
-  int64_t clock_set_host_us_ = 0;
-  int64_t last_accepted_host_us_ = 0;  // host time of the newest accepted input of any kind
-  int64_t clock_relatches_ = 0;
-  // Each input's newest offset candidate (utime - host time [us]) while the
-  // clock is not set or may relatch, and its host time (-1: none).
-  int64_t candidate_offset_us_[kNumControllerInputs] = {0, 0, 0};
-  int64_t candidate_host_us_[kNumControllerInputs] = {-1, -1, -1};
-  int64_t next_period_host_us_ = -1;  // the timer grid; -1 before the first period
+  ControllerClock clock_;  // vehicle time = host time + offset
+  ControlPeriodGrid grid_;
   int64_t last_period_vehicle_us_ = -1;
   MotorCommand last_command_;
 
-  // Loop times of the current reporting period (a fixed ring; the newest win).
-  static constexpr size_t kLoopTimeCapacity = 4096;
-  std::array<double, kLoopTimeCapacity> loop_times_us_{};
-  size_t loop_time_count_ = 0;
   std::vector<uint8_t> buffer_;
   controller_status_t status_message_;
   const UdpReceiveCounters* udp_counters_ = nullptr;

@@ -15,14 +15,17 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void BuildControllerStatus(const VehicleController& controller, const ControllerStatusContext& context,
                            controller_status_t* message) {
+  BuildControllerStatus(controller.health(), controller.config(), controller.setpoint(), controller.MpcStatistics(),
+                        context, message);
+}
+
+void BuildControllerStatus(const ControllerHealth& h, const ControllerConfig& config, const SetpointInput& setpoint,
+                           const MpcStats& mpc, const ControllerStatusContext& context, controller_status_t* message) {
   controller_status_t& m = *message;
-  const ControllerHealth& h = controller.health();
   const int64_t now_us = context.now_us;
   m.utime = now_us;
   m.wall_utime = context.wall_utime;
-  m.mode = controller.config().model_predictive ? kModeMpc
-           : controller.config().force_feedback ? kModeForceFeedback
-                                                : kModeNominal;
+  m.mode = config.model_predictive ? kModeMpc : config.force_feedback ? kModeForceFeedback : kModeNominal;
   m.status = context.last_status;
   m.fallbacks = h.fallbacks;
   m.descents = h.descents;
@@ -51,7 +54,6 @@ void BuildControllerStatus(const VehicleController& controller, const Controller
   m.clock_relatches = context.clock_relatches;
   m.efficiency[0] = h.efficiency[0];
   m.efficiency[1] = h.efficiency[1];
-  const SetpointInput& setpoint = controller.setpoint();
   const SetpointCounters sc = setpoint.counters();
   m.setpoint_state = static_cast<int32_t>(setpoint.state());
   m.setpoint_age_s = setpoint.last_utime() < 0 || now_us < 0 ? kNaN : ElapsedSeconds(now_us, setpoint.last_utime());
@@ -65,7 +67,6 @@ void BuildControllerStatus(const VehicleController& controller, const Controller
   m.setpoint_timeouts = sc.timeouts;
   m.loop_time_p99_us = context.loop_time_p99_us;
   m.loop_time_max_us = context.loop_time_max_us;
-  const MpcStats mpc = controller.MpcStatistics();
   const bool solved = mpc.solves > 0 && context.report_solve_times;
   m.mpc_solves = mpc.solves;
   m.mpc_fallbacks = mpc.Fallbacks();

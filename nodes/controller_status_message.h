@@ -35,5 +35,11 @@ struct ControllerStatusContext {
 // Fills every field of *message but seq (the publisher's counter).
 void BuildControllerStatus(const VehicleController& controller, const ControllerStatusContext& context,
                            controller_status_t* message);
+// The same from the pieces (the N-rotor node, nodes/multi_arm_controller_service.h,
+// whose law is not a VehicleController): its health, configuration (the
+// mode), setpoint input and MPC counters.
+void BuildControllerStatus(const ControllerHealth& health, const ControllerConfig& config,
+                           const SetpointInput& setpoint, const MpcStats& mpc, const ControllerStatusContext& context,
+                           controller_status_t* message);
 
 }  // namespace birotor

@@ -13,6 +13,10 @@
 
 namespace birotor {
 
+// The guard_status_t slot (CHANNEL_*) of a channel: its own, or for the
+// N-arm twins MOTOR_COMMAND_N and FORCE_N their birotor twin's.
+int GuardStatusSlot(AuthenticatedChannel channel);
+
 // Fills every field of *message but seq (the publisher's counter). signing,
 // handler or setpoint may be null (nothing sealed, nothing read, not the
 // controller).

@@ -7,11 +7,11 @@ namespace birotor {
 void AddChannelSecurityOptions(CLI::App& app, ChannelSecurityOptions* options) {
   app.add_option("--site-key", options->site_key_file,
                  "Site key file (32 raw bytes, not group/world-writable) that authenticates MOTOR_COMMAND, SETPOINT, "
-                 "POSE and FORCE (their _AUTH channels) and the gauge state file")
+                 "POSE, FORCE, MOTOR_COMMAND_N and FORCE_N (their _AUTH channels) and the gauge state file")
       ->capture_default_str();
   app.add_option("--unsigned", options->unsigned_channels,
                  "Channels this site lets through unauthenticated (comma-separated MOTOR_COMMAND, SETPOINT, POSE, "
-                 "FORCE, or all, or none): published and accepted plain")
+                 "FORCE, MOTOR_COMMAND_N, FORCE_N, or all, or none): published and accepted plain")
       ->capture_default_str();
 }
 

@@ -19,7 +19,8 @@ inline constexpr char kDefaultSiteKeyFile[] = "/etc/birotor/keys/site.key";
 
 struct ChannelSecurityOptions {
   std::string site_key_file = kDefaultSiteKeyFile;
-  // Comma-separated base names (MOTOR_COMMAND, SETPOINT, POSE, FORCE), "all"
+  // Comma-separated base names (MOTOR_COMMAND, SETPOINT, POSE, FORCE,
+  // MOTOR_COMMAND_N, FORCE_N), "all"
   // or "none": published plain and accepted plain.
   std::string unsigned_channels = "none";
 };

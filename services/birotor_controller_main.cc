@@ -18,17 +18,15 @@
 #include "program/realtime.h"
 #include "program/shutdown.h"
 #include "security/replay_guard.h"
+#include "services/birotor_controller_vehicle.h"
+#include "services/controller_serve_loop.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
 #include "sources/authenticating_handler.h"
 #include "sources/message_source.h"
-#include "sources/receive_loop.h"
 #include "transport/channels.h"
 #include "transport/host_clock.h"
 #include "transport/lcm_session.h"
-
-// systemd Type=notify and WatchdogSec (package engineer, issue 24).
-#include "deploy/systemd_notify.h"
 
 int main(int argc, char** argv) {
   using namespace birotor;
@@ -39,6 +37,7 @@ int main(int argc, char** argv) {
   AddCommonOptions(app, &common);
   std::string params_file = FindConfigFile("controller.yaml");
   std::string mode;
+  std::string vehicle_file;  // --vehicle: a description with N rotors (FORCE_N, MOTOR_COMMAND_N); empty: the birotor
   double status_rate_hz = 5.0;
   int realtime_priority = 0;  // SCHED_FIFO priority and locked memory; 0: the normal scheduler
   app.add_option("--params", params_file,
@@ -46,6 +45,10 @@ int main(int argc, char** argv) {
                      ConfigSearchText("controller.yaml"));
   app.add_option("--mode", mode, "Controller mode, overrides the file")
       ->check(CLI::IsMember({"nominal", "force_feedback", "mpc"}));
+  app.add_option("--vehicle", vehicle_file,
+                 "A vehicle description with N rotors (e.g. config/vehicles/trirotor.yaml): the N-rotor controller "
+                 "on FORCE_N, publishing MOTOR_COMMAND_N (docs/controller.md, \"Vehicles with N rotors\")")
+      ->check(CLI::ExistingFile);
   app.add_option("--status-rate-hz", status_rate_hz, "CONTROLLER_STATUS rate [Hz]")->check(CLI::Range(0.1, 100.0));
   AddRealtimeOption(app, &realtime_priority);
   ChannelSecurityOptions security_options;
@@ -67,8 +70,15 @@ int main(int argc, char** argv) {
   // The key before anything is opened: without it nothing authenticated flies.
   std::string error;
   ChannelSecurity security;
-  if (!LoadChannelSecurity(security_options, ChannelSet{true, true, true, true}, &security, &error)) {
-    return ReportError(error);
+  // The birotor: MOTOR_COMMAND out, SETPOINT, POSE, FORCE in; N rotors:
+  // MOTOR_COMMAND_N out, SETPOINT, POSE, FORCE_N in.
+  const bool birotor = vehicle_file.empty();
+  const ChannelSet used{birotor, true, true, birotor, !birotor, !birotor};
+  if (!LoadChannelSecurity(security_options, used, &security, &error)) return ReportError(error);
+  if (!birotor) {
+    return RunVehicleController(
+        {vehicle_file, params_file, common.lcm_url, common.prefix, status_rate_hz, realtime_priority}, config,
+        security);
   }
   const RealtimeOutcome realtime = ApplyRealtimePriority(realtime_priority);  // before LCM starts a thread
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(common.lcm_url, &error);
@@ -103,20 +113,7 @@ int main(int argc, char** argv) {
                channels.controller_status, security_options.unsigned_channels);
 
   // Control periods on the controller's own timer, CONTROLLER_STATUS on the host clock.
-  const int64_t status_period_us = std::llround(1e6 / status_rate_hz);
-  int64_t next_status_us = SteadyClockUs() + status_period_us;
-  NotifyReady();  // systemd Type=notify: serving now
-  const bool source_ok = RunReceiveLoop(source.get(), [&](int64_t now_us) {
-    NotifyWatchdog();  // WatchdogSec: this loop is alive
-    service.RunIfDue(now_us);
-    if (now_us >= next_status_us) {
-      service.PublishStatus(WallClockUs(), now_us);
-      next_status_us += status_period_us;
-      if (next_status_us <= now_us) next_status_us = now_us + status_period_us;  // a stall longer than a period
-    }
-    return std::min(service.NextPeriodHostUs(), next_status_us);
-  });
-  NotifyStopping();
+  const bool source_ok = ServeController(source.get(), status_rate_hz, &service);
   if (!source_ok) spdlog::error("{}; stopping", source->error());
   const ControllerHealth& h = service.health();
   spdlog::info("stopped: {} MOTOR_COMMAND published; {} fallbacks, {} descents, {} saturated; FORCE received {}",

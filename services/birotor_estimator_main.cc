@@ -183,14 +183,16 @@ int main(int argc, char** argv) {
   EstimatorConfig config;
   std::string error = LoadConfig(options, &config);
   if (!error.empty()) return ReportError(error);
-  if (!options.vehicle_file.empty()) {
+  ChannelSecurity security;
+  // The birotor reads POSE and publishes FORCE; N arms publish FORCE_N.
+  const bool birotor = options.vehicle_file.empty();
+  const ChannelSet used{false, false, birotor, birotor, false, !birotor};
+  if (!LoadChannelSecurity(options.security, used, &security, &error)) return ReportError(error);
+  if (!birotor) {
     return RunVehicleEstimator({options.vehicle_file, options.params_file, options.common.lcm_url,
                                 options.common.prefix, options.service, options.realtime_priority},
-                               config);
+                               config, security);
   }
-  ChannelSecurity security;
-  const ChannelSet used{false, false, true, true};  // reads POSE, publishes FORCE
-  if (!LoadChannelSecurity(options.security, used, &security, &error)) return ReportError(error);
   const RealtimeOutcome realtime = ApplyRealtimePriority(options.realtime_priority);  // before LCM starts a thread
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.common.lcm_url, &error);
   if (!lcm) return ReportError(error);

@@ -12,15 +12,18 @@
 #include "program/program_options.h"
 #include "program/realtime.h"
 #include "program/shutdown.h"
+#include "security/replay_guard.h"
 #include "services/estimator_serve_loop.h"
 #include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
 #include "sources/message_source.h"
 #include "transport/channels.h"
 #include "transport/lcm_session.h"
 
 namespace birotor {
 
-int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig config) {
+int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig config,
+                        const ChannelSecurity& security) {
   std::unique_ptr<MultiArmEstimatorService> service;
   const ChannelNames channels = MakeChannelNames(options.prefix);
   std::string error;
@@ -32,7 +35,9 @@ int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig 
   const RealtimeOutcome realtime = ApplyRealtimePriority(options.realtime_priority);  // before LCM starts a thread
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(options.lcm_url, &error);
   if (!lcm) return ReportError(error);
-  LcmSink sink(lcm.get());
+  LcmSink lcm_sink(lcm.get());
+  // FORCE_N sealed (FORCE_N_AUTH) unless the site lets it through unsigned.
+  SigningSink sink(&lcm_sink, security.authenticator.get(), channels, security.signed_channels(), RandomPublisherId());
   try {
     service = std::make_unique<MultiArmEstimatorService>(config, channels, options.service, &sink);
   } catch (const std::exception& e) {
@@ -45,8 +50,10 @@ int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig 
   if (!source || !source->Subscribe(inputs, service.get(), &error)) return ReportError(error);
   spdlog::info("birotor-estimator {} vehicle '{}' ({} arms) from {}, estimator: of {}", BIROTOR_VERSION,
                config.vehicle.name, config.vehicle.arm_count, options.vehicle_file, options.params_file);
-  spdlog::info("lcm {}: in {} {} {} ({}), out {} (plain) {}", options.lcm_url, channels.strain_n, channels.motor_n,
-               channels.imu, source->Describe(), channels.force_n, channels.estimator_status);
+  const bool sealed = security.signed_channels()[static_cast<int>(AuthenticatedChannel::kForceN)];
+  spdlog::info("lcm {}: in {} {} {} ({}), out {} ({}) {}", options.lcm_url, channels.strain_n, channels.motor_n,
+               channels.imu, source->Describe(), channels.force_n, sealed ? "sealed" : "plain: --unsigned",
+               channels.estimator_status);
   if (!ServeEstimator(source.get(), options.service.status_rate_hz, service.get())) {
     spdlog::error("{}; stopping", source->error());
   }

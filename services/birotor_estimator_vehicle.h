@@ -3,15 +3,16 @@
 // N-arm filter uses no POSE), publishes one FORCE_N per accepted strain
 // sample and ESTIMATOR_STATUS at --status-rate-hz (host clock), through
 // nodes/multi_arm_estimator_service.h, the code birotor-replay --vehicle
-// runs; stops on SIGINT/SIGTERM. FORCE_N goes out plain: the counted types
-// have no sealed twin yet (docs/interface.md, "Authenticated channels"), so
-// nothing flies on it over LCM.
+// runs; stops on SIGINT/SIGTERM. FORCE_N goes out sealed (FORCE_N_AUTH,
+// then the plain copy) unless the site lets it through unsigned
+// (docs/interface.md, "Authenticated channels").
 #pragma once
 
 #include <string>
 
 #include "estimator/estimator_config.h"
 #include "nodes/estimator_service.h"
+#include "program/channel_security.h"
 
 namespace birotor {
 
@@ -25,7 +26,8 @@ struct VehicleEstimatorOptions {
 };
 
 // Runs the daemon until a signal; the exit status (1 with one line when the
-// description, LCM or the subscription fails).
-int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig config);
+// description, LCM or the subscription fails). security: loaded for FORCE_N.
+int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig config,
+                        const ChannelSecurity& security);
 
 }  // namespace birotor

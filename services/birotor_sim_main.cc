@@ -351,9 +351,9 @@ std::string ModeConflict(const SimOptions& options) {
     return "--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller";
   }
   if (!options.vehicle_file.empty() &&
-      (!options.controller_mode.empty() || options.external_controller || options.loop || options.publish_setpoints)) {
-    return "--vehicle runs the scenario's own autopilot, live or into --output, without --controller, "
-           "--external-controller, --loop or --publish-setpoints";
+      (!options.controller_mode.empty() || options.loop || (options.publish_setpoints && !options.output.empty()))) {
+    return "--vehicle runs the scenario's own autopilot (or, live, --external-controller with --publish-setpoints), "
+           "without --controller or --loop";
   }
   if (options.loop && !options.output.empty()) {
     return "--loop runs until stopped: it is for live mode, not with --output (see --help)";
@@ -435,11 +435,12 @@ int Main(int argc, char** argv) {
   }
 
   // Live, the key before anything is opened: POSE, SETPOINT and
-  // MOTOR_COMMAND are authenticated unless let through unsigned (a vehicle
-  // with N arms publishes its counted types, not authenticated yet).
+  // MOTOR_COMMAND (N rotors: MOTOR_COMMAND_N) are authenticated unless let
+  // through unsigned.
   ChannelSecurity security;
   const bool birotor = options.vehicle_file.empty();
-  const ChannelSet used{options.external_controller, options.publish_setpoints, birotor, false};
+  const bool external = options.external_controller;
+  const ChannelSet used{external && birotor, options.publish_setpoints, true, false, external && !birotor, false};
   if (options.output.empty() && !LoadChannelSecurity(options.security, used, &security, &error)) {
     return ReportError(error);
   }
@@ -466,7 +467,12 @@ int Main(int argc, char** argv) {
     run.speed = options.speed;
     run.wall_clock = options.wall_clock;
     run.publish_truth = !options.no_truth;
-    return RunVehicleScenario(run, vehicle, scenario, MakeChannelNames(options.common.prefix), lcm.get())
+    run.external_controller = options.external_controller;
+    run.command_timeout_s = options.command_timeout_s;
+    run.publish_setpoints = options.publish_setpoints;
+    run.setpoint_rate_hz = options.setpoint_rate_hz;
+    return RunVehicleScenario(run, vehicle, scenario, MakeChannelNames(options.common.prefix), lcm.get(), source.get(),
+                              security)
                ? 0
                : kExitFailure;
   }

@@ -109,16 +109,7 @@ RotorCommand Simulator::Command(double t_s) {
   }
   if (external_commands_) {
     reference_ = ReferenceAt(t_s);
-    if (last_external_utime_ < 0) {
-      // Before the first command the ESCs run the speeds of the start state
-      // (hover), for at most the timeout.
-      last_external_utime_ = utime();
-      for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = state_(kPlantOmega1 + i);
-    }
-    const bool timed_out = utime() - last_external_utime_ > command_timeout_us_;
-    if (timed_out && !command_timed_out_) ++command_timeouts_;
-    command_timed_out_ = timed_out;
-    return timed_out ? RotorCommand() : external_command_;
+    return esc_->TimedOut(utime()) ? RotorCommand() : external_command_;
   }
   reference_ = ground_.FlightReference(t_s, trajectory_);
   return controller_.Update(state_, reference_);
@@ -126,60 +117,20 @@ RotorCommand Simulator::Command(double t_s) {
 
 void Simulator::UseExternalCommands(double command_timeout_s) {
   external_commands_ = true;
-  command_timeout_us_ = SecondsToUtime(command_timeout_s);
-  SeqStreamLockParams lock;
-  lock.max_rate_hz = scenario_.esc.command_max_rate_hz;
-  lock.rate_margin = scenario_.esc.rate_margin;
-  lock.seq_slack = scenario_.esc.seq_slack;
-  lock.stamp_slack_s = scenario_.esc.stamp_slack_s;
-  lock.conflict_hold_s = scenario_.esc.conflict_hold_s;
-  lock.refuse_locked_in_conflict = !scenario_.esc.follow_commander_in_conflict;
-  lock.silence_s = command_timeout_s;
-  commander_ = SeqStreamLock(lock);
+  esc_ = std::make_unique<EscCommandRule>(scenario_.esc, command_timeout_s);
+  // Before the first command the ESCs run the speeds of the start state
+  // (hover), for at most the timeout.
+  for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = state_(kPlantOmega1 + i);
 }
 
 EscVerdict Simulator::OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[kBirotorRotors]) {
-  EscCounters& n = esc_counters_;
-  ++n.received;
-  const int64_t now_us = this->utime();
-  if (utime > now_us + SecondsToUtime(kEscFutureWindowS)) {
-    ++n.future;
-    return EscVerdict::kFuture;
+  if (!esc_) return EscVerdict::kStale;  // not flying on external commands
+  const EscVerdict verdict =
+      esc_->Offer(seq, utime, omega_cmd_rad_s, kBirotorRotors, vehicle_.omega_max_rad_s, this->utime());
+  if (verdict == EscVerdict::kAccepted) {
+    for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];
   }
-  if (utime < now_us - command_timeout_us_ || (newest_command_utime_ >= 0 && utime <= newest_command_utime_)) {
-    ++n.stale;
-    return EscVerdict::kStale;
-  }
-  for (double omega : omega_cmd_rad_s) {
-    if (!(omega >= 0.0 && omega <= vehicle_.omega_max_rad_s)) {
-      ++n.out_of_range;
-      return EscVerdict::kOutOfRange;
-    }
-  }
-  const SeqStreamLock::Verdict verdict =
-      commander_.Admit(seq, utime, PayloadDigest(omega_cmd_rad_s, kBirotorRotors), now_us);
-  n.conflicts = commander_.conflicts();
-  switch (verdict) {
-    case SeqStreamLock::Verdict::kForeign:
-      ++n.foreign;
-      return EscVerdict::kForeign;
-    case SeqStreamLock::Verdict::kHeld:
-      // Both commanders refused in a conflict: the last good command holds
-      // until the command timeout.
-      ++n.held;
-      return EscVerdict::kHeld;
-    case SeqStreamLock::Verdict::kDuplicate:
-      ++n.stale;
-      return EscVerdict::kStale;
-    case SeqStreamLock::Verdict::kLocked:
-    case SeqStreamLock::Verdict::kInStream:
-      break;
-  }
-  ++n.accepted;
-  for (int i = 0; i < kBirotorRotors; ++i) external_command_.omega_cmd_rad_s[i] = omega_cmd_rad_s[i];
-  newest_command_utime_ = utime;
-  last_external_utime_ = now_us;
-  return EscVerdict::kAccepted;
+  return verdict;
 }
 
 void Simulator::EmitSetpoints(double rate_hz) {

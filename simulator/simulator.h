@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "controller/seq_stream_lock.h"
@@ -13,6 +14,7 @@
 #include "samples/rotor_count.h"
 #include "samples/sample_sink.h"
 #include "simulator/bench_profile.h"
+#include "simulator/esc_command_rule.h"
 #include "simulator/fault_event.h"
 #include "simulator/flight_controller.h"
 #include "simulator/ground_phase.h"
@@ -22,25 +24,6 @@
 #include "simulator/trajectory.h"
 
 namespace birotor {
-
-// What the ESCs did with the commands offered to them (OfferMotorCommand).
-enum class EscVerdict {
-  kAccepted,
-  kForeign,     // a second commander's seq stream (a conflict): ignored
-  kHeld,        // the locked commander's command during a conflict: ignored too (the last good one holds)
-  kStale,       // stamp older than the command timeout, or not newer than the newest run
-  kFuture,      // stamp ahead of the ESCs' clock by more than kEscFutureWindowS
-  kOutOfRange,  // a speed not finite or outside [0, omega_max]: the last good one is held
-};
-struct EscCounters {
-  int64_t received = 0, accepted = 0, foreign = 0, stale = 0, future = 0, out_of_range = 0;
-  int64_t held = 0;       // the locked commander's commands refused during a conflict (kHeld)
-  int64_t conflicts = 0;  // entries into a conflict between two commanders (SeqStreamLock)
-};
-// A command stamped later than the ESCs' clock plus this is refused [s]
-// (the controller's clock runs on its host; a lagging simulator sees its
-// stamps a little ahead).
-inline constexpr double kEscFutureWindowS = 0.25;
 
 // Samples emitted per channel (a strain sample lost in a gap is not counted).
 struct ChannelCounts {
@@ -92,10 +75,10 @@ class Simulator {
   // outside [0, omega_max] refused (the last good command is held, then the
   // timeout spools the motors down).
   EscVerdict OfferMotorCommand(int32_t seq, int64_t utime, const double (&omega_cmd_rad_s)[kBirotorRotors]);
-  const EscCounters& esc_counters() const { return esc_counters_; }
+  const EscCounters& esc_counters() const { return esc_ ? esc_->counters() : no_commands_; }
   bool external_commands() const { return external_commands_; }
-  bool command_timed_out() const { return command_timed_out_; }
-  int64_t command_timeouts() const { return command_timeouts_; }
+  bool command_timed_out() const { return esc_ && esc_->timed_out(); }
+  int64_t command_timeouts() const { return esc_ ? esc_->timeouts() : 0; }
   // The scenario's position reference at simulated time t_s (trajectory
   // time counts from the end of the ground phase).
   ReferencePoint ReferenceAt(double t_s) const { return trajectory_.At(t_s - scenario_.ground.FlightStartS()); }
@@ -176,14 +159,9 @@ class Simulator {
 
   // External commands (UseExternalCommands).
   bool external_commands_ = false;
-  int64_t command_timeout_us_ = 0;
-  int64_t last_external_utime_ = -1;  // vehicle time of the newest command; -1 before any
-  RotorCommand external_command_;
-  SeqStreamLock commander_{SeqStreamLockParams()};
-  EscCounters esc_counters_;
-  int64_t newest_command_utime_ = -1;  // stamp of the newest accepted command; -1 before any
-  bool command_timed_out_ = false;
-  int64_t command_timeouts_ = 0;
+  static constexpr EscCounters no_commands_{};
+  RotorCommand external_command_;  // the newest accepted (before any: the start state's speeds)
+  std::unique_ptr<EscCommandRule> esc_;
 
   StrainFaultInjector<StrainSample> strain_faults_;
 

@@ -44,7 +44,9 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
                       (lcm-logger) and its figures printed per rotor from the recording
                       (birotor-eval --vehicle FILE --log, the same table as in-process),
                       with the review page; no live view (birotor-monitor reads the birotor's
-                      channels) and no --controller (nothing flies on FORCE_N over LCM yet)
+                      channels). With --controller MODE: birotor-controller --vehicle flies the
+                      simulator's ESCs on MOTOR_COMMAND_N (sealed) from FORCE_N and the
+                      scenario's trajectory on SETPOINT (birotor-sim --publish-setpoints)
   --no-setup          skip tools/setup.sh (no install, no build); use the existing build
   -h, --help          this help
 
@@ -106,7 +108,6 @@ case "$method" in ""|ekf|inversion|motor_map) ;; *) die_usage "--method must be 
 case "$controller_mode" in ""|nominal|force_feedback|mpc) ;; *) die_usage "--controller must be nominal, force_feedback or mpc, got '$controller_mode'" ;; esac
 if [ -n "$vehicle_file" ]; then
   [ -f "$vehicle_file" ] || die_usage "no vehicle description $vehicle_file"
-  [ -z "$controller_mode" ] || die_usage "--vehicle does not fly --controller (nothing flies on FORCE_N over LCM yet)"
   [ "$no_truth" -eq 0 ] || die_usage "--vehicle needs the truth for its figures (no --no-truth)"
   vehicle_file="$(cd "$(dirname "$vehicle_file")" && pwd)/$(basename "$vehicle_file")"
 fi
@@ -115,7 +116,8 @@ mkdir -p "$out_dir" 2>/dev/null || fail "cannot create the output folder $out_di
 out_dir="$(cd "$out_dir" && pwd)"
 png="$out_dir/demo-$scenario.png"
 log_prefix="$out_dir/demo-$scenario"
-# The programs authenticate MOTOR_COMMAND, SETPOINT, POSE and FORCE with a
+# The programs authenticate MOTOR_COMMAND, SETPOINT, POSE and FORCE (and the
+# N-arm MOTOR_COMMAND_N and FORCE_N) with a
 # site key (docs/deploy.md, "The site key"): the demo makes its own, 32
 # random bytes only its owner reads, fresh for each run.
 site_key="$out_dir/demo-site.key"
@@ -141,7 +143,7 @@ sim_bin="$(find_program birotor-sim)"
 estimator_bin="$(find_program birotor-estimator)"
 monitor_bin="$(find_program birotor-monitor)"
 if [ -n "$controller_mode" ] || [ -n "$vehicle_file" ]; then
-  [ -n "$vehicle_file" ] || controller_bin="$(find_program birotor-controller)"
+  [ -z "$controller_mode" ] || controller_bin="$(find_program birotor-controller)"
   review_bin="$(find_program birotor-review)"
   command -v lcm-logger > /dev/null || fail "lcm-logger not found (apt-get install liblcm-bin; tools/setup.sh)"
 fi

@@ -4,7 +4,9 @@
 #include <sstream>
 
 #include "birotor/force_estimate_auth_t.hpp"
+#include "birotor/force_estimate_n_auth_t.hpp"
 #include "birotor/motor_command_auth_t.hpp"
+#include "birotor/motor_command_n_auth_t.hpp"
 #include "birotor/pose_auth_t.hpp"
 #include "birotor/setpoint_auth_t.hpp"
 
@@ -48,6 +50,11 @@ AuthenticatedChannelNames NamesOf(const ChannelNames& c, AuthenticatedChannel ch
       return Names<pose_auth_t, pose_t>(kPoseChannel, c.pose, c.pose_auth);
     case AuthenticatedChannel::kForce:
       return Names<force_estimate_auth_t, force_estimate_t>(kForceChannel, c.force, c.force_auth);
+    case AuthenticatedChannel::kMotorCommandN:
+      return Names<motor_command_n_auth_t, motor_command_n_t>(kMotorCommandNChannel, c.motor_command_n,
+                                                              c.motor_command_n_auth);
+    case AuthenticatedChannel::kForceN:
+      return Names<force_estimate_n_auth_t, force_estimate_n_t>(kForceNChannel, c.force_n, c.force_n_auth);
   }
   return {};
 }

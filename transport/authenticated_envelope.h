@@ -1,6 +1,7 @@
 // The authenticated channels on the wire (docs/interface.md, "Authenticated
 // channels"): MOTOR_COMMAND, SETPOINT, POSE and FORCE, whose forgery moves the
-// vehicle, each have a sealed twin <type>_auth_t on <NAME>_AUTH:
+// vehicle, and the N-arm twins MOTOR_COMMAND_N and FORCE_N each have a sealed
+// twin <type>_auth_t on <NAME>_AUTH:
 //
 //   plain  message: fingerprint(plain) | body
 //   sealed message: fingerprint(sealed) | publisher | counter | body | tag[32]
@@ -25,8 +26,15 @@
 namespace birotor {
 
 // The channels with a sealed twin.
-enum class AuthenticatedChannel : int { kMotorCommand = 0, kSetpoint = 1, kPose = 2, kForce = 3 };
-constexpr int kNumAuthenticatedChannels = 4;
+enum class AuthenticatedChannel : int {
+  kMotorCommand = 0,
+  kSetpoint = 1,
+  kPose = 2,
+  kForce = 3,
+  kMotorCommandN = 4,  // MOTOR_COMMAND_N (motor_command_n_t)
+  kForceN = 5,         // FORCE_N (force_estimate_n_t)
+};
+constexpr int kNumAuthenticatedChannels = 6;
 
 // One channel's two names and types.
 struct AuthenticatedChannelNames {

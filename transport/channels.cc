@@ -29,6 +29,8 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.setpoint_auth = prefix + kSetpointAuthChannel;
   names.pose_auth = prefix + kPoseAuthChannel;
   names.force_auth = prefix + kForceAuthChannel;
+  names.motor_command_n_auth = prefix + kMotorCommandNAuthChannel;
+  names.force_n_auth = prefix + kForceNAuthChannel;
   names.guard_status = prefix + kGuardStatusChannel;
   return names;
 }
@@ -37,7 +39,7 @@ std::string ChannelPrefixProblem(const std::string& prefix) {
   if (prefix.size() > kMaxChannelPrefixBytes) {
     return "channel prefix of " + std::to_string(prefix.size()) + " bytes is longer than " +
            std::to_string(kMaxChannelPrefixBytes) + " (LCM channel names are at most 63 bytes, " +
-           kMotorCommandAuthChannel + " takes " + std::to_string(sizeof(kMotorCommandAuthChannel) - 1) + ")";
+           kMotorCommandNAuthChannel + " takes " + std::to_string(sizeof(kMotorCommandNAuthChannel) - 1) + ")";
   }
   for (const char c : prefix) {
     if (c <= ' ' || c > '~') return "channel prefix has a byte outside printable ASCII (or a space)";

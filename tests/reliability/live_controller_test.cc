@@ -32,37 +32,6 @@ struct CommandRecord {
   motor_command_t message;
 };
 
-// The plumbing of a test's listener: an LCM instance on the private URL whose
-// subscriptions are handled on its own thread from Start() until destruction.
-// A listener holds it as its last member, so that the thread stops before the
-// state its handlers write is destroyed.
-class ListenerThread {
- public:
-  ListenerThread(const std::string& url, const std::string& prefix) : lcm_(url), channels_(MakeChannelNames(prefix)) {}
-  ~ListenerThread() {
-    stop_ = true;
-    if (thread_.joinable()) thread_.join();
-  }
-  const ChannelNames& channels() const { return channels_; }
-  template <class Listener>
-  void Subscribe(const std::string& channel, void (Listener::*handler)(const lcm::ReceiveBuffer*, const std::string&),
-                 Listener* listener) {
-    lcm_.subscribe(channel, handler, listener)->setQueueCapacity(100000);
-  }
-  void Start() {
-    thread_ = std::thread([this] {
-      while (!stop_.load()) lcm_.handleTimeout(20);
-    });
-  }
-  bool good() { return lcm_.good(); }
-
- private:
-  lcm::LCM lcm_;
-  ChannelNames channels_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
-
 // Subscribes to MOTOR_COMMAND and TRUTH on its own thread.
 class ClosedLoopListener {
  public:

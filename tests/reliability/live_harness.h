@@ -20,6 +20,7 @@
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <mutex>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -398,9 +399,48 @@ inline std::vector<std::string> SimCommand(const std::string& url, const std::st
           kSimPriority};
 }
 
+// The plumbing of a test's listener: an LCM instance on the private URL whose
+// subscriptions are handled on its own thread from Start() until destruction.
+// A listener holds it as its last member, so that the thread stops before the
+// state its handlers write is destroyed.
+class ListenerThread {
+ public:
+  ListenerThread(const std::string& url, const std::string& prefix) : lcm_(url), channels_(MakeChannelNames(prefix)) {}
+  ~ListenerThread() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  const ChannelNames& channels() const { return channels_; }
+  template <class Listener>
+  void Subscribe(const std::string& channel, void (Listener::*handler)(const lcm::ReceiveBuffer*, const std::string&),
+                 Listener* listener) {
+    lcm_.subscribe(channel, handler, listener)->setQueueCapacity(100000);
+  }
+  void Start() {
+    thread_ = std::thread([this] {
+      while (!stop_.load()) lcm_.handleTimeout(20);
+    });
+  }
+  bool good() { return lcm_.good(); }
+
+ private:
+  lcm::LCM lcm_;
+  ChannelNames channels_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
 // Channel prefix unique to this test process: the same test running from
 // another build directory at the same time (a shared machine) does not mix in.
 inline std::string UniquePrefix(const std::string& base) { return base + std::to_string(getpid()) + "_"; }
+
+// The whole text of a file ("" when it cannot be read): a daemon's log.
+inline std::string ReadTextFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // Temporary file path for a test's logs.
 inline std::string TempPath(const std::string& name) {

@@ -53,13 +53,6 @@ class ForceNListener {
   std::thread thread_;
 };
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 TEST(LiveVehicleTest, TrirotorEstimatorPublishesOneFiniteForceNPerStrainSample) {
   const std::string url = PrivateUrl(7755);
   const std::string prefix = UniquePrefix("REL_VEHICLE_");
@@ -74,8 +67,9 @@ TEST(LiveVehicleTest, TrirotorEstimatorPublishesOneFiniteForceNPerStrainSample) 
       {BIROTOR_ESTIMATOR_BIN, "--vehicle", vehicle, "--lcm-url", url, "--prefix", prefix, "--params",
        std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", "--realtime-priority", kEstimatorPriority},
       estimator_log));
-  ASSERT_TRUE(DaemonListener::WaitUntil([&] { return ReadFile(estimator_log).find(": in ") != std::string::npos; }, 20))
-      << ReadFile(estimator_log);
+  ASSERT_TRUE(
+      DaemonListener::WaitUntil([&] { return ReadTextFile(estimator_log).find(": in ") != std::string::npos; }, 20))
+      << ReadTextFile(estimator_log);
   ChildProcess sim;
   ASSERT_TRUE(
       sim.Start({BIROTOR_SIM_BIN, "--vehicle", vehicle, "--scenario",
@@ -85,7 +79,7 @@ TEST(LiveVehicleTest, TrirotorEstimatorPublishesOneFiniteForceNPerStrainSample) 
   ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 60)) << "the simulator did not finish";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last FORCE_N arrives
   EXPECT_EQ(estimator.Stop(), 0);
-  const std::string log = ReadFile(estimator_log);
+  const std::string log = ReadTextFile(estimator_log);
   long published = -1, received = -1;
   const size_t at = log.find("stopped: ");
   ASSERT_NE(at, std::string::npos) << log;

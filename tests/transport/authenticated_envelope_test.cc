@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "birotor/force_estimate_auth_t.hpp"
+#include "birotor/force_estimate_n_auth_t.hpp"
 #include "birotor/motor_command_auth_t.hpp"
+#include "birotor/motor_command_n_auth_t.hpp"
 #include "birotor/pose_auth_t.hpp"
 #include "birotor/setpoint_auth_t.hpp"
 #include "tests/security/counting_key.h"
@@ -59,6 +61,36 @@ TEST_F(AuthenticatedEnvelopeTest, NamesAndTypesOfTheFourChannels) {
   EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kForce).sealed_hash,
             static_cast<uint64_t>(force_estimate_auth_t::getHash()));
   EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kForce).plain, "BIROTOR_FORCE");
+}
+
+// The N-arm twins: a variable-length message (n_rotors = 3) seals to
+// lcm-gen's motor_command_n_auth_t and opens to the same bytes.
+TEST_F(AuthenticatedEnvelopeTest, NArmTwinsSealToTheirAuthTypes) {
+  const AuthenticatedChannelNames n = NamesOf(channels_, AuthenticatedChannel::kMotorCommandN);
+  EXPECT_EQ(n.plain, "BIROTOR_MOTOR_COMMAND_N");
+  EXPECT_EQ(n.sealed, "BIROTOR_MOTOR_COMMAND_N_AUTH");
+  EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kForceN).sealed, "BIROTOR_FORCE_N_AUTH");
+  EXPECT_EQ(NamesOf(channels_, AuthenticatedChannel::kForceN).sealed_hash,
+            static_cast<uint64_t>(force_estimate_n_auth_t::getHash()));
+  motor_command_n_t command{};
+  command.utime = 777;
+  command.seq = 5;
+  command.n_rotors = 3;
+  command.omega_cmd_rad_s = {500.0, 510.5, 520.25};
+  std::vector<uint8_t> plain, sealed, opened;
+  EncodeMessage(command, &plain);
+  ASSERT_TRUE(SealMessage(authenticator_, n, 31, 4, plain.data(), plain.size(), &sealed));
+  motor_command_n_auth_t decoded;
+  ASSERT_EQ(DecodeMessage(sealed.data(), sealed.size(), &decoded), DecodeError::kNone);
+  EXPECT_EQ(decoded.counter, 4);
+  EXPECT_EQ(decoded.message.omega_cmd_rad_s[2], 520.25);
+  uint64_t publisher = 0, counter = 0;
+  ASSERT_EQ(OpenMessage(&authenticator_, n, sealed.data(), sealed.size(), &opened, &publisher, &counter),
+            OpenVerdict::kAuthentic);
+  EXPECT_EQ(opened, plain);
+  sealed[30] ^= 1;  // inside the message: the tag no longer fits
+  EXPECT_EQ(OpenMessage(&authenticator_, n, sealed.data(), sealed.size(), &opened, &publisher, &counter),
+            OpenVerdict::kBadTag);
 }
 
 TEST_F(AuthenticatedEnvelopeTest, SealedBytesAreTheGeneratedAuthTypeAndOpenToThePlainMessage) {
@@ -135,13 +167,17 @@ TEST(ChannelSetTest, NamesAllNoneAndUnknown) {
   ChannelSet set{};
   std::string error;
   ASSERT_TRUE(ParseChannelSet("POSE,SETPOINT", &set, &error));
-  EXPECT_EQ(set, (ChannelSet{false, true, true, false}));
+  EXPECT_EQ(set, (ChannelSet{false, true, true, false, false, false}));
   ASSERT_TRUE(ParseChannelSet("all", &set, &error));
-  EXPECT_EQ(set, (ChannelSet{true, true, true, true}));
+  EXPECT_EQ(set, (ChannelSet{true, true, true, true, true, true}));
+  ASSERT_TRUE(ParseChannelSet("FORCE_N,MOTOR_COMMAND_N", &set, &error));
+  EXPECT_EQ(set, (ChannelSet{false, false, false, false, true, true}));
   ASSERT_TRUE(ParseChannelSet("none", &set, &error));
   EXPECT_EQ(set, (ChannelSet{}));
   EXPECT_FALSE(ParseChannelSet("POSE,IMU", &set, &error));
-  EXPECT_EQ(error, "unknown channel 'IMU' (allowed: MOTOR_COMMAND, SETPOINT, POSE, FORCE, all, none)");
+  EXPECT_EQ(
+      error,
+      "unknown channel 'IMU' (allowed: MOTOR_COMMAND, SETPOINT, POSE, FORCE, MOTOR_COMMAND_N, FORCE_N, all, none)");
 }
 
 }  // namespace

@@ -46,12 +46,12 @@ TEST(ChannelsTest, CustomAndEmptyPrefix) {
 
 // Issue 23 item 8: the prefix is checked against LCM's 63-byte channel limit.
 TEST(ChannelsTest, PrefixLongerThanTheChannelLimitIsAProblem) {
-  EXPECT_EQ(kMaxChannelPrefixBytes, 45u);  // 63 - strlen("MOTOR_COMMAND_AUTH")
-  EXPECT_EQ(ChannelPrefixProblem(std::string(45, 'P')), "");
-  EXPECT_EQ(MakeChannelNames(std::string(45, 'P')).motor_command_auth.size(), 63u);
-  EXPECT_EQ(ChannelPrefixProblem(std::string(46, 'P')),
-            "channel prefix of 46 bytes is longer than 45 (LCM channel names are at most 63 bytes, "
-            "MOTOR_COMMAND_AUTH takes 18)");
+  EXPECT_EQ(kMaxChannelPrefixBytes, 43u);  // 63 - strlen("MOTOR_COMMAND_N_AUTH")
+  EXPECT_EQ(ChannelPrefixProblem(std::string(43, 'P')), "");
+  EXPECT_EQ(MakeChannelNames(std::string(43, 'P')).motor_command_n_auth.size(), 63u);
+  EXPECT_EQ(ChannelPrefixProblem(std::string(44, 'P')),
+            "channel prefix of 44 bytes is longer than 43 (LCM channel names are at most 63 bytes, "
+            "MOTOR_COMMAND_N_AUTH takes 20)");
   EXPECT_NE(ChannelPrefixProblem("A B_"), "");
   EXPECT_NE(ChannelPrefixProblem("A\nB_"), "");
   EXPECT_EQ(ChannelPrefixProblem(kDefaultChannelPrefix), "");

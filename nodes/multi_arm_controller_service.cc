@@ -1,0 +1,259 @@
+// The N-rotor controller node: supervised inputs, the own clock and timer,
+// MOTOR_COMMAND_N and CONTROLLER_STATUS.
+#include "nodes/multi_arm_controller_service.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "birotor/imu_t.hpp"
+#include "birotor/pose_t.hpp"
+#include "birotor/setpoint_t.hpp"
+#include "model/multi_arm_linearization.h"
+#include "model/plant.h"
+#include "nodes/controller_status_message.h"
+#include "nodes/guard_status_message.h"
+#include "numerics/time_units.h"
+#include "samples/motor_command.h"
+#include "transport/host_clock.h"
+#include "transport/lcm_codec.h"
+#include "transport/message_conversion.h"
+
+namespace birotor {
+namespace {
+
+// Age of a stamp at now_us [s]; infinite before any or from the future.
+double AgeS(int64_t stamp_us, int64_t now_us) {
+  if (stamp_us < 0 || now_us < stamp_us) return std::numeric_limits<double>::infinity();
+  return ElapsedSeconds(now_us, stamp_us);
+}
+
+}  // namespace
+
+static_assert(kCommandFallbackActive == motor_command_n_t::STATUS_FALLBACK_ACTIVE &&
+                  kCommandInputStale == motor_command_n_t::STATUS_INPUT_STALE &&
+                  kCommandInputConflict == motor_command_n_t::STATUS_INPUT_CONFLICT &&
+                  kCommandSaturated == motor_command_n_t::STATUS_SATURATED &&
+                  kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK,
+              "MOTOR_COMMAND_N's status bits are MOTOR_COMMAND's");
+
+MultiArmControllerService::MultiArmControllerService(const VehicleDescription& vehicle, const ControllerConfig& config,
+                                                     const ChannelNames& channels, MessageSink* sink,
+                                                     HostClockUs host_clock)
+    : vehicle_(vehicle),
+      config_(config),
+      controller_(vehicle, config, SolveMultiArmHover(vehicle)),
+      setpoint_(config.setpoint),
+      channels_(channels),
+      sink_(sink),
+      host_clock_(host_clock ? std::move(host_clock) : HostClockUs(SteadyClockUs)),
+      clock_(config.supervision),
+      grid_(std::max<int64_t>(1, std::llround(1e6 / controller_.rate_hz()))),
+      pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
+      force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)) {
+  routes_.Add(channels_.pose, Channel::kPose);
+  routes_.Add(channels_.imu, Channel::kImu);
+  routes_.Add(channels_.force_n, Channel::kForce);
+  routes_.Add(channels_.setpoint, Channel::kSetpoint);
+  const size_t n = static_cast<size_t>(vehicle_.arm_count);
+  command_.n_rotors = static_cast<int8_t>(vehicle_.arm_count);
+  command_.omega_cmd_rad_s.assign(n, 0.0);
+  force_message_.force_n.reserve(kMaxArms);
+  force_message_.force_std_n.reserve(kMaxArms);
+  force_message_.thrust_scale.reserve(kMaxArms);
+  buffer_.reserve(512);
+}
+
+void MultiArmControllerService::HandlePacket(std::string_view channel, const void* data, size_t size,
+                                             int64_t /*receive_wall_utime*/) {
+  Channel routed;
+  if (routes_.Find(channel, &routed)) Dispatch(routed, data, size, host_clock_());
+}
+
+void MultiArmControllerService::Dispatch(Channel channel, const void* data, size_t size, int64_t host_us) {
+  switch (channel) {
+    case Channel::kSetpoint: {
+      setpoint_t message;
+      if (DecodeMessage(data, size, &message) != DecodeError::kNone) {
+        ++setpoint_decode_errors_;
+      } else if (clock_.set()) {  // a planner's clock is not the vehicle's: it never sets the clock
+        setpoint_.Offer(FromMessage(message), clock_.VehicleTimeUs(host_us));
+      }
+      return;
+    }
+    case Channel::kPose: {
+      pose_t message;
+      if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
+      const int64_t now_us = clock_.ForInput(static_cast<int>(ControllerInput::kPose), message.utime, host_us);
+      const int64_t accepted = health_.pose.accepted;
+      if (now_us >= 0) OnPose(FromMessage(message), now_us);  // nothing to judge it by before
+      if (health_.pose.accepted > accepted) clock_.NoteAccepted(host_us);
+      return;
+    }
+    case Channel::kImu: {
+      imu_t message;
+      if (DecodeMessage(data, size, &message) != DecodeError::kNone) break;
+      const int64_t now_us = clock_.ForInput(static_cast<int>(ControllerInput::kImu), message.utime, host_us);
+      const int64_t accepted = health_.imu.accepted;
+      if (now_us >= 0) OnImu(FromMessage(message), now_us);
+      if (health_.imu.accepted > accepted) clock_.NoteAccepted(host_us);
+      return;
+    }
+    case Channel::kForce: {
+      // Another rotor count is another vehicle's estimate: refused whole, counted.
+      if (DecodeMessage(data, size, &force_message_) != DecodeError::kNone ||
+          !CountMatches(force_message_, vehicle_, &force_count_refusals_))
+        break;
+      const int64_t now_us = clock_.ForInput(static_cast<int>(ControllerInput::kForce), force_message_.utime, host_us);
+      const int64_t accepted = health_.force.accepted;
+      if (now_us >= 0) OnForce(force_message_, now_us);
+      if (health_.force.accepted > accepted) clock_.NoteAccepted(host_us);
+      return;
+    }
+  }
+  ++decode_errors_[static_cast<int>(channel)];  // kPose, kImu, kForce: ControllerInput's order
+}
+
+void MultiArmControllerService::OnPose(const PoseSample& sample, int64_t now_us) {
+  const double values[3] = {sample.x_m, sample.z_m, sample.phi_rad};
+  const StreamMessage message{sample.seq, sample.utime, PayloadDigest(values, 3)};
+  if (!AdmitToStream(config_.supervision, message, PlausiblePose(sample), now_us, &pose_lock_, &health_.pose) ||
+      !AcceptNewest(sample.utime, &health_.pose))
+    return;
+  if (!controller_.has_pose()) setpoint_.SetStart(Eigen::Vector2d(sample.x_m, sample.z_m));
+  controller_.OnPose(sample);
+}
+
+void MultiArmControllerService::OnImu(const ImuSample& sample, int64_t now_us) {
+  const StreamMessage message{sample.seq, sample.utime, 0};
+  if (!AdmitToStream(config_.supervision, message, PlausibleImu(sample), now_us, nullptr, &health_.imu) ||
+      !AcceptNewest(sample.utime, &health_.imu))
+    return;
+  controller_.OnImu(sample);
+}
+
+void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now_us) {
+  const SupervisionParams& s = config_.supervision;
+  const int n = vehicle_.arm_count;
+  bool plausible = m.utime >= 0;
+  for (int i = 0; i < n; ++i) {
+    plausible = plausible && std::isfinite(m.force_n[i]) && std::isfinite(m.force_std_n[i]) &&
+                m.thrust_scale[i] >= s.min_plausible_thrust_scale && m.thrust_scale[i] <= s.max_plausible_thrust_scale;
+  }
+  // The payload digest over the scales and the status: an exact re-send is not news.
+  double values[kMaxArms + 1] = {};
+  for (int i = 0; i < n; ++i) values[i] = m.thrust_scale[i];
+  values[n] = static_cast<double>(m.status);
+  const StreamMessage message{m.seq, m.utime, PayloadDigest(values, n + 1)};
+  if (!AdmitToStream(s, message, plausible, now_us, &force_lock_, &health_.force) ||
+      !AcceptNewest(m.utime, &health_.force))
+    return;
+  RotorEfficiencyEstimate estimate;
+  estimate.utime = m.utime;
+  estimate.n_rotors = n;
+  for (int i = 0; i < n; ++i) {
+    estimate.thrust_scale[static_cast<size_t>(i)] = m.thrust_scale[i];
+    // thrust_scale's sigma from the force's: sigma_e = sigma_f e / f (f > 0).
+    estimate.thrust_scale_std[static_cast<size_t>(i)] =
+        m.force_n[i] > 0.0 ? m.force_std_n[i] * m.thrust_scale[i] / m.force_n[i] : 0.0;
+  }
+  estimate.valid = force_valid_ = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
+  if (!force_valid_) ++health_.force_unhealthy;
+  estimate.rotor_fault_bits = m.rotor_fault_bits;
+  controller_.OnEfficiency(estimate);
+}
+
+int64_t MultiArmControllerService::NextPeriodHostUs() const {
+  return controller_.has_pose() ? grid_.Next() : std::numeric_limits<int64_t>::max();
+}
+
+void MultiArmControllerService::RunIfDue(int64_t host_us) {
+  if (!controller_.has_pose() || host_us < NextPeriodHostUs()) return;
+  RunControlPeriod(host_us);
+  grid_.Ran(host_us);
+}
+
+CommandStatusFacts MultiArmControllerService::PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command) {
+  const SupervisionParams& s = config_.supervision;
+  CommandStatusFacts facts;
+  // Force feedback wanted but FORCE_N stale, not VALID or refused: the nominal map.
+  const bool force_usable = force_valid_ && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s;
+  facts.fallback_active = config_.force_feedback && !force_usable;
+  if (facts.fallback_active && !health_.fallback_active) ++health_.fallbacks;
+  health_.fallback_active = facts.fallback_active;
+  facts.input_stale = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
+  facts.input_conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
+  if (facts.input_conflict && !health_.conflict) ++health_.conflicts;
+  health_.conflict = facts.input_conflict;
+  facts.saturated = command.saturated;
+  health_.saturated += command.saturated ? 1 : 0;
+  return facts;
+}
+
+void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
+  // The clock is monotonic; the guard keeps a command's stamp from going back.
+  const int64_t vehicle_us = std::max(clock_.VehicleTimeUs(host_us), last_period_vehicle_us_);
+  const BodyState& state = controller_.body_state();
+  const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
+  const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
+  MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
+  CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
+  facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
+  // Never a non-finite command or one outside [0, omega_max]: the last good one instead.
+  bool finite = true;
+  for (int i = 0; i < vehicle_.arm_count; ++i) finite = finite && std::isfinite(command.omega_cmd_rad_s[i]);
+  if (!finite) {
+    ++health_.numerical_guards;
+    command = last_good_;
+  }
+  last_good_ = command;
+  command_.utime = vehicle_us;
+  ++command_.seq;
+  command_.mode = config_.model_predictive ? kModeMpc : config_.force_feedback ? kModeForceFeedback : kModeNominal;
+  command_.status = ComposeCommandStatus(facts);
+  const RotorEfficiencies efficiency = controller_.EfficiencyInUse(vehicle_us);
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    command_.omega_cmd_rad_s[i] = ClampCommand(vehicle_.omega_max_rad_s, command.omega_cmd_rad_s[i]);
+    if (i < kBirotorRotors) health_.efficiency[i] = efficiency[static_cast<size_t>(i)];
+  }
+  ++health_.commands;
+  EncodeMessage(command_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.motor_command_n, command_.utime, buffer_.data(), buffer_.size());
+  grid_.NoteLoopTime(host_us, SteadyClockUs());
+  last_period_vehicle_us_ = vehicle_us;
+}
+
+MpcStats MultiArmControllerService::MpcCounters() const {
+  MpcStats stats;  // the solve counts; the N-input MPC keeps no solve-time window
+  stats.solves = controller_.mpc_solves();
+  stats.solver_failed = controller_.mpc_fallbacks();
+  stats.last_iterations = controller_.last_mpc_result().iterations;
+  return stats;
+}
+
+void MultiArmControllerService::PublishStatus(int64_t wall_utime, int64_t host_us) {
+  ControllerStatusContext context;
+  context.now_us = clock_.VehicleTimeUs(host_us);
+  context.wall_utime = wall_utime;
+  context.last_status = command_.status;
+  for (int i = 0; i < kNumControllerInputs; ++i) context.decode_errors[i] = decode_errors_[i];
+  context.setpoint_decode_errors = setpoint_decode_errors_;
+  context.clock_relatches = clock_.relatches();
+  context.report_solve_times = false;
+  grid_.TakeLoopTimes(&context.loop_time_p99_us, &context.loop_time_max_us);
+  context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
+  context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;
+  ++status_message_.seq;
+  BuildControllerStatus(health_, config_, setpoint_, MpcCounters(), context, &status_message_);
+  EncodeMessage(status_message_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.controller_status, context.now_us, buffer_.data(), buffer_.size());
+  ++guard_status_.seq;
+  const SetpointCounters setpoint = setpoint_.counters();
+  BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_, &setpoint,
+                   &guard_status_);
+  EncodeMessage(guard_status_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.guard_status, context.now_us, buffer_.data(), buffer_.size());
+}
+
+}  // namespace birotor

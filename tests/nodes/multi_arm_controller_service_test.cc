@@ -1,0 +1,186 @@
+// The N-rotor controller node (nodes/multi_arm_controller_service.h) on the
+// trirotor, through its one way in on its own host clock: a FORCE_N of
+// another rotor count is refused and counted, a stale or absent FORCE_N
+// flies the nominal map (STATUS_FALLBACK_ACTIVE), a future stamp is refused,
+// every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max], and a
+// plain FORCE_N in front of the sealed channel is refused.
+#include "nodes/multi_arm_controller_service.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "birotor/imu_t.hpp"
+#include "birotor/pose_t.hpp"
+#include "nodes/guard_status_message.h"
+#include "params/vehicle_description_yaml.h"
+#include "security/message_authenticator.h"
+#include "sources/authenticating_handler.h"
+#include "tests/security/counting_key.h"
+#include "transport/lcm_codec.h"
+
+namespace birotor {
+namespace {
+
+// Keeps the MOTOR_COMMAND_N the node publishes.
+class CommandSink : public MessageSink {
+ public:
+  explicit CommandSink(std::string channel) : channel_(std::move(channel)) {}
+  void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
+    motor_command_n_t command;
+    if (channel == channel_ && DecodeMessage(data, size, &command) == DecodeError::kNone) commands.push_back(command);
+  }
+  std::vector<motor_command_n_t> commands;
+
+ private:
+  std::string channel_;
+};
+
+template <class Message>
+std::vector<uint8_t> Encoded(const Message& message) {
+  std::vector<uint8_t> bytes;
+  EncodeMessage(message, &bytes);
+  return bytes;
+}
+
+std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status) {
+  force_estimate_n_t m{};
+  m.utime = utime;
+  m.seq = seq;
+  m.n_rotors = static_cast<int8_t>(n);
+  m.force_n.assign(static_cast<size_t>(n), 8.0);
+  m.force_std_n.assign(static_cast<size_t>(n), 0.05);
+  m.thrust_scale.assign(static_cast<size_t>(n), 0.8);  // 20 % lost on every rotor
+  m.status = status;
+  return Encoded(m);
+}
+
+class MultiArmControllerServiceTest : public ::testing::Test {
+ protected:
+  // One packet at host time host_us; the vehicle clock is host time - 1 s.
+  void Send(const std::string& channel, const std::vector<uint8_t>& bytes, int64_t host_us) {
+    host_us_ = host_us;
+    service_.HandlePacket(channel, bytes.data(), bytes.size(), -1);
+  }
+  // POSE (at rest at the origin) and IMU stamped at the vehicle time of host_us.
+  void SendPoseAndImu(int64_t host_us, int32_t seq) {
+    pose_t pose{};
+    pose.utime = host_us - kOffsetUs;
+    pose.seq = seq;
+    imu_t imu{};
+    imu.utime = host_us - kOffsetUs;
+    imu.seq = seq;
+    imu.accel_z_m_s2 = vehicle_.gravity_m_s2;  // hover: the specific force holds up the weight
+    Send(channels_.pose, Encoded(pose), host_us);
+    Send(channels_.imu, Encoded(imu), host_us);
+  }
+  // The daemon's loop: a period whenever one is due, checked every 1 ms up to host_us.
+  void RunUntil(int64_t host_us) {
+    for (; now_us_ <= host_us; now_us_ += 1000) service_.RunIfDue(now_us_);
+  }
+
+  static constexpr int64_t kOffsetUs = 1000000;  // host time - vehicle time [us]
+  const VehicleDescription vehicle_ =
+      LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
+  const ChannelNames channels_ = MakeChannelNames("TEST_");
+  CommandSink sink_{channels_.motor_command_n};
+  int64_t host_us_ = 0;
+  int64_t now_us_ = 5000000;  // RunUntil's next check
+  MultiArmControllerService service_{vehicle_, ControllerConfig{}, channels_, &sink_, [this] { return host_us_; }};
+};
+
+TEST_F(MultiArmControllerServiceTest, AForceNOfAnotherRotorCountIsRefusedAndCounted) {
+  SendPoseAndImu(5000000, 1);
+  ASSERT_EQ(service_.VehicleTimeUs(5000000), 5000000 - kOffsetUs);
+  Send(channels_.force_n, ForceN(2, 4000000, 1, force_estimate_n_t::STATUS_VALID), 5000000);
+  Send(channels_.force_n, ForceN(4, 4000000, 2, force_estimate_n_t::STATUS_VALID), 5000000);
+  EXPECT_EQ(service_.force_count_refusals().mismatch, 2);
+  EXPECT_EQ(service_.decode_errors(ControllerInput::kForce), 2);
+  EXPECT_EQ(service_.health().force.received, 0);  // never reached the supervision
+  Send(channels_.force_n, ForceN(3, 4000000, 3, force_estimate_n_t::STATUS_VALID), 5000000);
+  EXPECT_EQ(service_.health().force.accepted, 1);
+}
+
+TEST_F(MultiArmControllerServiceTest, StaleOrInvalidForceNFliesTheNominalMapAndSaysSo) {
+  // 0.2 s of POSE (100 Hz), IMU and FORCE_N (1 kHz) reporting a 20 % loss.
+  int32_t seq = 0;
+  for (int64_t host_us = 5000000; host_us <= 5200000; host_us += 1000) {
+    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
+    Send(channels_.force_n,
+         ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+         host_us);
+    RunUntil(host_us);
+  }
+  ASSERT_FALSE(sink_.commands.empty());
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  // The efficiency in use is the reported 0.8 (changed by more than change_threshold).
+  EXPECT_DOUBLE_EQ(service_.controller().EfficiencyInUse(5200000 - kOffsetUs)[1], 0.8);
+  // FORCE_N silent for 10 ms (force_timeout_s 5 ms): the nominal map.
+  RunUntil(5210000);
+  EXPECT_NE(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  EXPECT_EQ(service_.health().fallbacks, 1);
+  EXPECT_DOUBLE_EQ(service_.controller().EfficiencyInUse(5210000 - kOffsetUs)[1], 1.0);
+  // Back, but not VALID: still the nominal map.
+  Send(channels_.force_n, ForceN(3, 5211000 - kOffsetUs, 5211, 0), 5211000);
+  RunUntil(5212000);
+  EXPECT_NE(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  EXPECT_EQ(service_.health().force_unhealthy, 1);
+  for (const motor_command_n_t& command : sink_.commands) {
+    ASSERT_EQ(command.n_rotors, 3);
+    for (double omega : command.omega_cmd_rad_s) {
+      EXPECT_GE(omega, 0.0);
+      EXPECT_LE(omega, vehicle_.omega_max_rad_s);
+    }
+  }
+}
+
+TEST_F(MultiArmControllerServiceTest, AFutureStampedForceNIsRefused) {
+  SendPoseAndImu(5000000, 1);
+  // 1 s ahead of the clock; clock_future_window_s is 0.01 s.
+  Send(channels_.force_n, ForceN(3, 5000000, 1, force_estimate_n_t::STATUS_VALID), 5000000);
+  EXPECT_EQ(service_.health().force.rejected_future, 1);
+  EXPECT_EQ(service_.health().force.accepted, 0);
+}
+
+// The sealed twins in front of the node: a plain FORCE_N (a forgery) is
+// refused, a sealed one of the site key reaches the node; GUARD_STATUS
+// counts FORCE_N in CHANNEL_FORCE's slot.
+TEST_F(MultiArmControllerServiceTest, PlainForceNIsRefusedAndCountedInGuardStatusForceSlot) {
+  const MessageAuthenticator key{CountingKeyFrom(3)};
+  AuthenticatingHandler authenticated(&service_, SealedMessages::kVerify, &key, channels_,
+                                      {AuthenticatedChannel::kPose, AuthenticatedChannel::kForceN}, ChannelSet{});
+  CommandSink bus{"none"};
+  ChannelSet sealed{};
+  sealed[static_cast<int>(AuthenticatedChannel::kPose)] = sealed[static_cast<int>(AuthenticatedChannel::kForceN)] =
+      true;
+  // A sealing publisher whose messages go to the handler (sealed first, then the plain copy).
+  class Loopback : public MessageSink {
+   public:
+    explicit Loopback(PacketHandler* handler) : handler_(handler) {}
+    void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
+      handler_->HandlePacket(channel, data, size, -1);
+    }
+
+   private:
+    PacketHandler* handler_;
+  } loopback(&authenticated);
+  SigningSink signing(&loopback, &key, channels_, sealed, 9);
+  const std::vector<uint8_t> forged = ForceN(3, 4000000, 1, force_estimate_n_t::STATUS_VALID);
+  authenticated.HandlePacket(channels_.force_n, forged.data(), forged.size(), -1);
+  const std::vector<uint8_t> honest = ForceN(3, 4000000, 2, force_estimate_n_t::STATUS_VALID);
+  signing.Publish(channels_.force_n, 4000000, honest.data(), honest.size());
+  const AuthenticationCounters& c = authenticated.counters(AuthenticatedChannel::kForceN);
+  EXPECT_EQ(c.unauthenticated, 1);
+  EXPECT_EQ(c.authenticated, 1);
+  EXPECT_EQ(c.plain_copies, 1);
+  guard_status_t guard{};
+  BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, 0, 0, &signing, &authenticated, nullptr, &guard);
+  EXPECT_EQ(guard.refused[guard_status_t::CHANNEL_FORCE], 1);
+  EXPECT_EQ(guard.accepted[guard_status_t::CHANNEL_FORCE], 1);
+  EXPECT_EQ(guard.accepted[guard_status_t::CHANNEL_MOTOR_COMMAND], 0);
+}
+
+}  // namespace
+}  // namespace birotor

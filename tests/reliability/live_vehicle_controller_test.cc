@@ -1,0 +1,233 @@
+// The N-rotor closed loop live on a private udpm URL (ttl=0) with the site
+// key: birotor-sim --vehicle (the trirotor, its ESCs on MOTOR_COMMAND_N_AUTH,
+// the scenario's trajectory on SETPOINT_AUTH), birotor-estimator --vehicle
+// (FORCE_N_AUTH) and birotor-controller --vehicle. The vehicle hovers, then
+// follows a 0.4 m altitude step; every MOTOR_COMMAND_N is within bounds; a
+// forger on the bus (plain FORCE_N, a sealed FORCE_N of another rotor count,
+// MOTOR_COMMAND_N sealed under another key) is refused and counted. Errors
+// are taken from TRUTH_N on the vehicle clock, which CPU load on the shared
+// machine does not stretch.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "birotor/guard_status_t.hpp"
+#include "birotor/motor_command_n_t.hpp"
+#include "birotor/truth_n_t.hpp"
+#include "model/vehicle_description.h"
+#include "params/vehicle_description_yaml.h"
+#include "security/message_authenticator.h"
+#include "security/site_key.h"
+#include "sinks/message_sink.h"
+#include "sinks/signing_sink.h"
+#include "tests/reliability/live_harness.h"
+
+namespace birotor::reliability {
+namespace {
+
+constexpr double kStepAtS = 2.0;    // the setpoint step's time on the scenario clock [s]
+constexpr double kStepZM = 0.4;     // its altitude [m] (within setpoint.max_jump_m, 0.5 m)
+constexpr double kMoveS = 1.0;      // its move time (a 1 ms move is refused: feed-forward inconsistent) [s]
+constexpr double kDurationS = 7.0;  // the flight [s]
+constexpr int kForgeries = 100;     // of each kind, at 100 Hz from 3 s on
+constexpr int kRotors = 3;
+
+// TRUTH_N's altitude errors in two windows, MOTOR_COMMAND_N's bounds and the
+// controller's GUARD_STATUS, on its own thread.
+class VehicleLoopListener {
+ public:
+  VehicleLoopListener(const std::string& url, const std::string& prefix, double omega_max_rad_s)
+      : omega_max_rad_s_(omega_max_rad_s), listener_(url, prefix) {
+    listener_.Subscribe(listener_.channels().truth_n, &VehicleLoopListener::OnTruth, this);
+    listener_.Subscribe(listener_.channels().motor_command_n, &VehicleLoopListener::OnCommand, this);
+    listener_.Subscribe(listener_.channels().guard_status, &VehicleLoopListener::OnGuard, this);
+    listener_.Start();
+  }
+  bool good() { return listener_.good(); }
+
+  struct Figures {
+    int64_t truths = 0, commands = 0, commands_out_of_bounds = 0;
+    double hover_max_error_m = 0;    // max |z| over [1, kStepAtS) s
+    double settled_max_error_m = 0;  // max |z - kStepZM| over [kStepAtS + kMoveS + 2, kDurationS) s
+    double max_abs_x_m = 0;          // over the whole flight after 1 s
+    guard_status_t controller_guard{};
+  };
+  Figures figures() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return figures_;
+  }
+
+ private:
+  void OnTruth(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    if (DecodeMessage(buffer->data, buffer->data_size, &truth_) != DecodeError::kNone) return;
+    const double t_s = 1e-6 * static_cast<double>(truth_.utime);
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++figures_.truths;
+    if (t_s >= 1.0) figures_.max_abs_x_m = std::max(figures_.max_abs_x_m, std::fabs(truth_.x_m));
+    if (t_s >= 1.0 && t_s < kStepAtS)
+      figures_.hover_max_error_m = std::max(figures_.hover_max_error_m, std::fabs(truth_.z_m));
+    if (t_s >= kStepAtS + kMoveS + 2.0)
+      figures_.settled_max_error_m = std::max(figures_.settled_max_error_m, std::fabs(truth_.z_m - kStepZM));
+  }
+  void OnCommand(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    if (DecodeMessage(buffer->data, buffer->data_size, &command_) != DecodeError::kNone) return;
+    bool within = command_.n_rotors == kRotors;
+    for (double omega : command_.omega_cmd_rad_s) within = within && omega >= 0.0 && omega <= omega_max_rad_s_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++figures_.commands;
+    if (!within) ++figures_.commands_out_of_bounds;
+  }
+  void OnGuard(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    guard_status_t guard{};
+    if (DecodeMessage(buffer->data, buffer->data_size, &guard) != DecodeError::kNone) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (guard.program == guard_status_t::PROGRAM_CONTROLLER) figures_.controller_guard = guard;
+  }
+
+  double omega_max_rad_s_;
+  truth_n_t truth_{};
+  motor_command_n_t command_{};
+  std::mutex mutex_;
+  Figures figures_;
+  ListenerThread listener_;  // last: stops first
+};
+
+// A FORCE_N of n rotors, stamped utime, VALID.
+std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq) {
+  force_estimate_n_t m{};
+  m.utime = utime;
+  m.seq = seq;
+  m.n_rotors = static_cast<int8_t>(n);
+  m.force_n.assign(static_cast<size_t>(n), 5.0);
+  m.force_std_n.assign(static_cast<size_t>(n), 0.1);
+  m.thrust_scale.assign(static_cast<size_t>(n), 0.5);
+  m.status = force_estimate_n_t::STATUS_VALID;
+  std::vector<uint8_t> bytes;
+  EncodeMessage(m, &bytes);
+  return bytes;
+}
+
+// The forger: kForgeries of each kind at 100 Hz.
+void Forge(const std::string& url, const ChannelNames& channels, double omega_max_rad_s) {
+  lcm::LCM lcm(url);
+  LcmSink plain(&lcm);
+  SiteKey key(SiteKey::Bytes{});
+  std::string error;
+  ASSERT_TRUE(SiteKey::Load(TestSiteKey(), &key, &error)) << error;
+  const MessageAuthenticator site_key(key);
+  SiteKey::Bytes other_bytes{};
+  other_bytes.fill(0x5a);
+  const MessageAuthenticator other_key{SiteKey(other_bytes)};
+  ChannelSet sealed{};
+  sealed[static_cast<int>(AuthenticatedChannel::kForceN)] =
+      sealed[static_cast<int>(AuthenticatedChannel::kMotorCommandN)] = true;
+  SigningSink right_key(&plain, &site_key, channels, sealed, 4242);
+  SigningSink wrong_key(&plain, &other_key, channels, sealed, 4343);
+  for (int k = 0; k < kForgeries; ++k) {
+    const int64_t utime = static_cast<int64_t>(3e6) + 10000 * k;
+    // A plain FORCE_N: not sealed, refused by authentication.
+    const std::vector<uint8_t> forged = ForceN(kRotors, utime, 90000 + k);
+    plain.Publish(channels.force_n, utime, forged.data(), forged.size());
+    // Sealed with the site key but of 2 rotors: authentic, refused for its count.
+    const std::vector<uint8_t> other_count = ForceN(2, utime, 80000 + k);
+    right_key.Publish(channels.force_n, utime, other_count.data(), other_count.size());
+    // Full throttle sealed under another key: refused by the ESCs' authentication.
+    motor_command_n_t command{};
+    command.utime = utime;
+    command.seq = 70000 + k;
+    command.n_rotors = kRotors;
+    command.omega_cmd_rad_s.assign(kRotors, omega_max_rad_s);
+    std::vector<uint8_t> bytes;
+    EncodeMessage(command, &bytes);
+    wrong_key.Publish(channels.motor_command_n, utime, bytes.data(), bytes.size());
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+// The first integer after the first `key` in text (-1: not there).
+long NumberAfter(const std::string& text, const std::string& key) {
+  const size_t at = text.find(key);
+  return at == std::string::npos ? -1 : std::strtol(text.c_str() + at + key.size(), nullptr, 10);
+}
+
+TEST(LiveVehicleControllerTest, TrirotorFliesAnAltitudeStepOnSealedChannelsAndRefusesForgeries) {
+  const std::string url = PrivateUrl(7763);
+  const std::string prefix = UniquePrefix("REL_NCTL_");
+  const std::string source = BIROTOR_SOURCE_DIR;
+  const std::string vehicle_file = source + "/config/vehicles/trirotor.yaml";
+  const VehicleDescription vehicle = LoadVehicleDescription(vehicle_file);
+  const std::string estimator_log = TempPath("nctl_estimator.log"), controller_log = TempPath("nctl_controller.log"),
+                    sim_log = TempPath("nctl_sim.log");
+  for (const std::string& log : {estimator_log, controller_log, sim_log}) std::remove(log.c_str());
+  VehicleLoopListener listener(url, prefix, vehicle.omega_max_rad_s);
+  ASSERT_TRUE(listener.good());
+  ChildProcess estimator, controller, sim;
+  ASSERT_TRUE(
+      estimator.Start({BIROTOR_ESTIMATOR_BIN, "--vehicle", vehicle_file, "--lcm-url", url, "--prefix", prefix,
+                       "--params", source + "/config/estimator.yaml", "--realtime-priority", kEstimatorPriority},
+                      estimator_log));
+  ASSERT_TRUE(controller.Start({BIROTOR_CONTROLLER_BIN, "--vehicle", vehicle_file, "--lcm-url", url, "--prefix", prefix,
+                                "--status-rate-hz", "10", "--realtime-priority", kControllerPriority},
+                               controller_log));
+  for (const std::string& log : {estimator_log, controller_log}) {
+    ASSERT_TRUE(DaemonListener::WaitUntil([&] { return ReadTextFile(log).find(": in ") != std::string::npos; }, 20))
+        << ReadTextFile(log);
+  }
+  const std::string step = "trajectory.waypoints=[{start_s: " + std::to_string(kStepAtS) +
+                           ", duration_s: " + std::to_string(kMoveS) + ", x_m: 0.0, z_m: " + std::to_string(kStepZM) +
+                           "}]";
+  ASSERT_TRUE(sim.Start(
+      {BIROTOR_SIM_BIN, "--vehicle", vehicle_file, "--scenario", source + "/config/scenarios/lateral_step.yaml",
+       "--set", "scenario.duration_s=" + std::to_string(kDurationS), "--set", step, "--external-controller",
+       "--publish-setpoints", "--lcm-url", url, "--prefix", prefix, "--realtime-priority", kSimPriority},
+      sim_log));
+  std::this_thread::sleep_for(std::chrono::seconds(3));  // the step is flown; the forger starts
+  Forge(url, MakeChannelNames(prefix), vehicle.omega_max_rad_s);
+  ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 60)) << "the simulator did not finish";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last GUARD_STATUS
+  EXPECT_EQ(controller.Stop(), 0);
+  EXPECT_EQ(estimator.Stop(), 0);
+  const std::string controller_text = ReadTextFile(controller_log), sim_text = ReadTextFile(sim_log);
+  const VehicleLoopListener::Figures f = listener.figures();
+  // The stop line: "... FORCE_N received R accepted A, refused: N rotor count, ...".
+  const size_t stop_line = controller_text.rfind("stopped: ");
+  const long count_refused =
+      stop_line == std::string::npos ? -1 : NumberAfter(controller_text.substr(stop_line), "refused: ");
+  long esc_accepted = -1, esc_refused = -1;
+  const size_t esc_line = sim_text.rfind("MOTOR_COMMAND_N: ");
+  if (esc_line != std::string::npos)
+    std::sscanf(sim_text.c_str() + esc_line, "MOTOR_COMMAND_N: %ld accepted, %ld refused", &esc_accepted, &esc_refused);
+  const int kForce = guard_status_t::CHANNEL_FORCE;
+  std::printf(
+      "trirotor live: %lld TRUTH_N, %lld MOTOR_COMMAND_N (%lld out of bounds); hover max |z| %.4f m, after the "
+      "%.1f m step max |z - z_ref| %.4f m (from %.1f s), max |x| %.4f m\n"
+      "forgeries (%d of each): controller refused FORCE_N unsealed %lld (GUARD_STATUS), for its rotor count %ld; "
+      "ESCs refused MOTOR_COMMAND_N (sealed under another key and its plain copy) %ld\n",
+      static_cast<long long>(f.truths), static_cast<long long>(f.commands),
+      static_cast<long long>(f.commands_out_of_bounds), f.hover_max_error_m, kStepZM, f.settled_max_error_m,
+      kStepAtS + kMoveS + 2.0, f.max_abs_x_m, kForgeries, static_cast<long long>(f.controller_guard.refused[kForce]),
+      count_refused, esc_refused);
+  ASSERT_GT(f.truths, 3500) << sim_text;  // 7 s at 1 kHz, less what a loaded kernel dropped
+  EXPECT_GT(f.commands, 2000);            // 500 Hz from the first POSE
+  EXPECT_EQ(f.commands_out_of_bounds, 0);
+  // Measured in 9 runs on this 2-core VM under other builds (the last 6
+  // with this step): hover 0.0025-0.0028 m, settled 0.0053-0.0055 m, |x|
+  // 0.0038-0.0046 m; bounds 1.4x the largest.
+  EXPECT_LT(f.hover_max_error_m, 0.0039);
+  EXPECT_LT(f.settled_max_error_m, 0.0077);
+  EXPECT_LT(f.max_abs_x_m, 0.0064);
+  // Each forgery counted once where it is refused (a loaded kernel may drop a few).
+  EXPECT_GE(f.controller_guard.refused[kForce], kForgeries * 95 / 100);
+  EXPECT_LE(f.controller_guard.refused[kForce], kForgeries);
+  EXPECT_GE(count_refused, kForgeries * 95 / 100) << controller_text;
+  EXPECT_LE(count_refused, kForgeries);
+  EXPECT_GE(esc_refused, 2 * kForgeries * 95 / 100) << sim_text;
+  EXPECT_LE(esc_refused, 2 * kForgeries);
+}
+
+}  // namespace
+}  // namespace birotor::reliability
