@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "estimator/multi_arm_ekf.h"
+#include "estimator/multi_arm_ekf_fusion.h"
 #include "estimator/multi_arm_ekf_model_impl.h"
 
 namespace birotor {
@@ -227,11 +228,10 @@ void MultiArmEkf<N>::ApplyMotor(const MultiArmMotorSample& sample) {
     }
     if (any) {
       using Measurements = MultiArmMeasurements<N>;
-      // Telemetry reads the leading states up to omega (LeadingStates: the
-      // rest are updated through their cross covariance, kalman_fusion.h).
-      FuseMeasurementUnreported(LeadingStates<Layout::ThrustScale(0)>(Measurements::Telemetry(state_, measured)),
-                                Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
-                                options_.telemetry_gate_nis, &state_, &covariance_);
+      // Telemetry reads omega_i alone: H's rows are unit rows (multi_arm_ekf_fusion.h).
+      FuseUnitRowsUnreported(Measurements::Telemetry(state_, measured),
+                             Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
+                             options_.telemetry_gate_nis, &state_, &covariance_);
     }
   }
   for (int i = 0; i < N; ++i) {
@@ -249,17 +249,16 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   using Measurements = MultiArmMeasurements<N>;
   if (options_.use_gyro && std::isfinite(sample.gyro_y_rad_s)) {
     const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
-    FuseMeasurementUnreported(LeadingStates<Layout::kPitchRate + 1>(Measurements::Gyro(state_)), r,
-                              Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s), options_.gyro_gate_nis, &state_,
-                              &covariance_);
+    FuseUnitRowsUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
+                           options_.gyro_gate_nis, &state_, &covariance_);  // a unit row: phi_dot
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
   if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_) return;
   const double sigma = options_.accel_noise_m_s2;
   const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
-  FuseMeasurementUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
-                            Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
-                            &covariance_);
+  FuseSymmetricUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
+                          Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
+                          &covariance_);
 }
 
 template <int N>
