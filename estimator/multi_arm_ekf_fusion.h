@@ -1,6 +1,6 @@
 // The fusion of estimator/kalman_fusion.h (innovation, chi-square gate,
 // Kalman gain, Joseph covariance) on all states of a symmetric P, its Joseph
-// terms grouped and on one triangle: the N-arm EKF's accelerometer, and its
+// terms grouped: the N-arm EKF's accelerometer, and its
 // motor telemetry (omega_i) and gyro (phi_dot), whose rows of H read one
 // state each (H's zeros left out of the products). Header-only and fixed-size: no
 // allocation, no throw, no log. docs/estimator.md, "The EKF for N arms".
@@ -34,9 +34,9 @@ std::array<int, M> UnitRowStates(const Eigen::Matrix<double, M, N>& h) {
 // x += K y, A = P - K (H P) and
 //   P+ = A (I - K H)^T + K R K^T = A - (A H^T - K R) K^T,
 // the Joseph form (the same product as JosephCovariance, its last two terms
-// as one: they share the factor K^T), computed on the upper triangle and
-// mirrored (P+ is symmetric); a_ht(A) gives A H^T. The rounding differs from
-// JosephCovariance's by the grouping only.
+// as one: they share the factor K^T); a_ht(A) gives A H^T. Not symmetrised
+// here (as JosephCovariance; the N-arm EKF symmetrises P once per strain
+// sample). The rounding differs from JosephCovariance's by the grouping only.
 template <int M, typename State, typename Cov, typename AHt>
 void GroupedJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
                          const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matrix<double, M, 1>& residual,
@@ -49,11 +49,8 @@ void GroupedJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime
   a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
   Eigen::Matrix<double, N, M> a_ht_minus_kr = a_ht(a);
   a_ht_minus_kr.noalias() -= gain.lazyProduct(noise);
-  for (int c = 0; c < N; ++c) {
-    for (int r = 0; r <= c; ++r) {
-      (*cov)(r, c) = (*cov)(c, r) = a(r, c) - a_ht_minus_kr.row(r).dot(gain.row(c));
-    }
-  }
+  a.noalias() -= a_ht_minus_kr.lazyProduct(gain.transpose());
+  *cov = a;
 }
 
 // FuseMeasurementUnreported on all N states of x and a symmetric P, with the
