@@ -12,6 +12,7 @@
 #include <array>
 
 #include "estimator/kalman_fusion.h"
+#include "estimator/multi_arm_ekf_jets.h"
 #include "model/multi_arm_dynamics.h"
 #include "model/rk4.h"
 #include "model/vehicle_description.h"
@@ -353,17 +354,21 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   // the solve differentiated by hand on doubles, as EkfProcessModel::Jacobian:
   //   q_ddot = M^-1 r,  d q_ddot = M^-1 (dr - dM q_ddot),  r = tau - C - G
   // (a third of the cost of Jets through the solve).
+  // Each arm's share on Jets over its own 4 variables (b_i, phi_dot, b_dot_i,
+  // f_i) at phi = 0, scattered into the 1 + 3N wide ones (multi_arm_ekf_jets.h).
   constexpr int n = kBodyCoordinates + N, k = Layout::kJetSize;
   using Jet = ceres::Jet<double, k>;
-  MultiCoords<Jet> q = MultiCoords<Jet>::Constant(n, Jet(0.0)), v = MultiCoords<Jet>::Constant(n, Jet(0.0));
-  ArmForces<Jet> forces(N);
-  v(kPhi) = Jet(x(Layout::kPitchRate), Layout::Dynamic(Layout::kPitchRate));
-  for (int i = 0; i < N; ++i) {
-    q(DeflectionIndex(i)) = Jet(x(Layout::Deflection(i)), Layout::Dynamic(Layout::Deflection(i)));
-    v(DeflectionIndex(i)) = Jet(x(Layout::DeflectionRate(i)), Layout::Dynamic(Layout::DeflectionRate(i)));
-    forces(i) = Jet(Force(x, i), Layout::JetForce(i));
-  }
-  const MultiArmTerms<Jet> terms = ComputeMultiArmTerms<Jet>(vehicle_, q, v, forces);
+  const MultiArmTerms<Jet> terms = AssembleMultiArmTerms<Jet>(vehicle_, [&](int i, MultiArmTerms<Jet>* out) {
+    const ArmJet phi(0.0), phi_dot(x(Layout::kPitchRate), kArmJetPitchRate);
+    const ArmJet b(x(Layout::Deflection(i)), kArmJetDeflection);
+    const ArmJet b_dot(x(Layout::DeflectionRate(i)), kArmJetDeflectionRate);
+    const ArmJet force(Force(x, i), kArmJetForce);
+    const std::array<int, kArmJetSize> columns = {Layout::Dynamic(Layout::Deflection(i)),
+                                                  Layout::Dynamic(Layout::kPitchRate),
+                                                  Layout::Dynamic(Layout::DeflectionRate(i)), Layout::JetForce(i)};
+    AddScatteredArmTerms<k>(MultiArmShare<ArmJet>(vehicle_, i, phi, phi_dot, b, b_dot, force), DeflectionIndex(i),
+                            columns, out);
+  });
   Eigen::Matrix<double, n, n> mass;
   Eigen::Matrix<double, n, 1> rhs;
   Eigen::Matrix<double, n, k> d_rhs;

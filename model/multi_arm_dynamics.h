@@ -63,13 +63,46 @@ struct MultiArmTerms {
   MultiCoords<T> generalized_thrust;  // tau(q, f) [N, N m]
 };
 
+// Arm i's share of the terms at (phi, phi_dot, b_i, b_i_dot, f_i): its
+// geometry at a_i = phi + b_i (r_i, w_i, n_i of the header comment). T may be
+// a Jet over only the variables the arm depends on (the EKF's Jacobian).
 template <typename T>
-MultiArmTerms<T> ComputeMultiArmTerms(const VehicleDescription& vehicle, const MultiCoords<T>& q,
-                                      const MultiCoords<T>& v, const ArmForces<T>& force_n) {
+ArmShare<T> MultiArmShare(const VehicleDescription& vehicle, int i, const T& phi, const T& phi_dot, const T& b,
+                          const T& b_dot, const T& force_n) {
   using std::cos;
   using std::sin;
+  const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
+  const double mp = arm.tip_mass_kg, L = arm.length_m;
+  const T a = phi + b;
+  const T a_dot = phi_dot + b_dot;
+  const T rx = cos(a + arm.angle_rad), rz = sin(a + arm.angle_rad);  // r_i; w_i = [-rz, rx]
+  const T thrust_angle = a + arm.thrust_angle_rad;
+  ArmShare<T> share;
+  share.tip_mass_kg = mp;
+  share.length_m = L;
+  share.gravity_m_s2 = vehicle.gravity_m_s2;
+  share.stiffness_n_m_rad = arm.stiffness_n_m_rad;
+  share.damping_n_m_s_rad = arm.damping_n_m_s_rad;
+  share.lever_m = arm.ThrustLeverM();
+  share.jx = -L * rz;  // L_i w_i
+  share.jz = L * rx;
+  share.centripetal_n = -mp * L * a_dot * a_dot;  // J_i_dot v = -L a_dot^2 r_i
+  share.rx = rx;
+  share.rz = rz;
+  share.nx = -sin(thrust_angle);
+  share.nz = cos(thrust_angle);
+  share.deflection_rad = b;
+  share.deflection_rate_rad_s = b_dot;
+  share.force_n = force_n;
+  return share;
+}
+
+// M, C, G and tau: the body's own terms, then add_arm(i, &terms) for every
+// arm in order (it adds arm i's share, AddArmTerms), then M's lower triangle
+// from its upper one.
+template <typename T, typename AddArm>
+MultiArmTerms<T> AssembleMultiArmTerms(const VehicleDescription& vehicle, AddArm&& add_arm) {
   const int n = CoordinateCount(vehicle);
-  const double g = vehicle.gravity_m_s2;
   MultiArmTerms<T> out;
   out.mass.setZero(n, n);
   out.mass(kX, kX) = T(vehicle.body_mass_kg);
@@ -77,38 +110,22 @@ MultiArmTerms<T> ComputeMultiArmTerms(const VehicleDescription& vehicle, const M
   out.mass(kPhi, kPhi) = T(vehicle.body_inertia_kg_m2);
   out.coriolis.setZero(n);
   out.gravity_spring.setZero(n);
-  out.gravity_spring(kZ) = T(vehicle.body_mass_kg * g);
+  out.gravity_spring(kZ) = T(vehicle.body_mass_kg * vehicle.gravity_m_s2);
   out.generalized_thrust.setZero(n);
-  for (int i = 0; i < vehicle.arm_count; ++i) {
-    const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
-    const int b = DeflectionIndex(i);
-    const double mp = arm.tip_mass_kg, L = arm.length_m;
-    const T a = q(kPhi) + q(b);
-    const T a_dot = v(kPhi) + v(b);
-    const T rx = cos(a + arm.angle_rad), rz = sin(a + arm.angle_rad);  // r_i; w_i = [-rz, rx]
-    const T thrust_angle = a + arm.thrust_angle_rad;
-    ArmShare<T> share;
-    share.tip_mass_kg = mp;
-    share.length_m = L;
-    share.gravity_m_s2 = g;
-    share.stiffness_n_m_rad = arm.stiffness_n_m_rad;
-    share.damping_n_m_s_rad = arm.damping_n_m_s_rad;
-    share.lever_m = arm.ThrustLeverM();
-    share.jx = -L * rz;  // L_i w_i
-    share.jz = L * rx;
-    share.centripetal_n = -mp * L * a_dot * a_dot;  // J_i_dot v = -L a_dot^2 r_i
-    share.rx = rx;
-    share.rz = rz;
-    share.nx = -sin(thrust_angle);
-    share.nz = cos(thrust_angle);
-    share.deflection_rad = q(b);
-    share.deflection_rate_rad_s = v(b);
-    share.force_n = force_n(i);
-    AddArmTerms(share, b, &out.mass, &out.coriolis, &out.gravity_spring, &out.generalized_thrust);
-  }
+  for (int i = 0; i < vehicle.arm_count; ++i) add_arm(i, &out);
   for (int r = 0; r < n; ++r)
     for (int col = r + 1; col < n; ++col) out.mass(col, r) = out.mass(r, col);
   return out;
+}
+
+template <typename T>
+MultiArmTerms<T> ComputeMultiArmTerms(const VehicleDescription& vehicle, const MultiCoords<T>& q,
+                                      const MultiCoords<T>& v, const ArmForces<T>& force_n) {
+  return AssembleMultiArmTerms<T>(vehicle, [&](int i, MultiArmTerms<T>* out) {
+    const int b = DeflectionIndex(i);
+    const ArmShare<T> share = MultiArmShare<T>(vehicle, i, q(kPhi), v(kPhi), q(b), v(b), force_n(i));
+    AddArmTerms(share, b, &out->mass, &out->coriolis, &out->gravity_spring, &out->generalized_thrust);
+  });
 }
 
 // Solves M x = rhs for a symmetric positive definite M by M = L D L^T (unit

@@ -1,5 +1,9 @@
-// The N-arm EKF model instantiated once for every arm count 2 .. kMaxArms
-// (the filter picks N from the description at start-up).
+// The member definitions of MultiArmEkfModel<N> that are not inline in
+// estimator/multi_arm_ekf_model.h, included only through
+// estimator/multi_arm_ekf_impl.h by the one-N translation units
+// estimator/multi_arm_ekf_n2.cc .. multi_arm_ekf_n6.cc, which instantiate it.
+#pragma once
+
 #include "estimator/multi_arm_ekf_model.h"
 
 namespace birotor {
@@ -56,11 +60,5 @@ bool MultiArmEkfModel<N>::HasKinematicRows(const DynamicMatrix& x) {
   for (int i = 0; i < N; ++i) rows(i, N + 1 + i) = 0.0;
   return rows.cwiseAbs().sum() == 0.0;
 }
-
-template class MultiArmEkfModel<2>;
-template class MultiArmEkfModel<3>;
-template class MultiArmEkfModel<4>;
-template class MultiArmEkfModel<5>;
-template class MultiArmEkfModel<6>;
 
 }  // namespace birotor

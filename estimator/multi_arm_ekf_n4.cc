@@ -1,0 +1,10 @@
+// The N-arm EKF and its model for N = 4 (one translation unit per N: see
+// estimator/multi_arm_ekf_impl.h).
+#include "estimator/multi_arm_ekf_impl.h"
+
+namespace birotor {
+
+template class MultiArmEkfModel<4>;
+template class MultiArmEkf<4>;
+
+}  // namespace birotor
