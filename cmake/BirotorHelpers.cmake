@@ -10,6 +10,40 @@
 add_library(birotor_warnings INTERFACE)
 target_compile_options(birotor_warnings INTERFACE -Wall -Wextra)
 
+# Build time of the tests (docs/development.md): test sources are most of the
+# translation units and mostly front-end work (parsing GoogleTest, Eigen and
+# the standard library), so every test executable reuses one precompiled
+# header of those, made once by birotor_test_pch. Test sources compile at
+# BIROTOR_TEST_OPTIMIZATION (the libraries and programs they link keep the
+# Release -O3, so the simulations a test runs keep their speed).
+set(BIROTOR_TEST_OPTIMIZATION "-O1" CACHE STRING "Optimisation flag of the test sources (not of the libraries they test)")
+option(BIROTOR_TEST_PCH "Test executables share one precompiled header (GoogleTest, Eigen, std)" ON)
+set(BIROTOR_TEST_PCH_HEADERS <gtest/gtest.h> <Eigen/Core> <Eigen/Geometry> <algorithm> <cmath> <cstdint> <cstdio>
+    <cstdlib> <fstream> <functional> <limits> <map> <memory> <random> <sstream> <string> <vector>)
+
+# birotor_test_compile_options(target): the flags every test executable shares
+# (they must match for the shared precompiled header to be valid).
+# -pthread for all: GCC ignores a precompiled header made without _REENTRANT
+# in a compilation that defines it (most tests get -pthread from lcm anyway).
+function(birotor_test_compile_options target)
+  target_link_libraries(${target} PRIVATE GTest::gtest Eigen3::Eigen birotor_warnings)
+  target_compile_options(${target} PRIVATE -pthread)
+  target_link_options(${target} PRIVATE -pthread)
+  if(CMAKE_BUILD_TYPE STREQUAL "Release" AND BIROTOR_TEST_OPTIMIZATION)
+    # After the Release -O3 on the command line, so it is the one that counts.
+    target_compile_options(${target} PRIVATE ${BIROTOR_TEST_OPTIMIZATION})
+  endif()
+endfunction()
+
+if(BIROTOR_BUILD_TESTS AND BIROTOR_TEST_PCH)
+  # An executable, not a library: its -fPIE must match the tests' (GCC
+  # refuses a header precompiled with -fPIC in a -fPIE compilation).
+  file(WRITE ${CMAKE_BINARY_DIR}/birotor_test_pch.cc "// Makes the tests' precompiled header.\nint main() { return 0; }\n")
+  add_executable(birotor_test_pch ${CMAKE_BINARY_DIR}/birotor_test_pch.cc)
+  birotor_test_compile_options(birotor_test_pch)
+  target_precompile_headers(birotor_test_pch PRIVATE ${BIROTOR_TEST_PCH_HEADERS})
+endif()
+
 # birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE] [RUN_SERIAL])
 # One GoogleTest executable registered with CTest through gtest_discover_tests.
 # SOURCE_TREE: the test reads files of the source tree (config/, tests/data/)
@@ -18,6 +52,10 @@ function(birotor_add_test)
   cmake_parse_arguments(T "SOURCE_TREE;RUN_SERIAL" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main birotor_warnings)
+  birotor_test_compile_options(${T_NAME})
+  if(TARGET birotor_test_pch)
+    target_precompile_headers(${T_NAME} REUSE_FROM birotor_test_pch)
+  endif()
   if(T_SOURCE_TREE)
     target_compile_definitions(${T_NAME} PRIVATE BIROTOR_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   endif()
