@@ -35,7 +35,8 @@ int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<s
   for (const std::string& name : scenarios) {
     std::string file, error;
     if (!FindScenario(name, &file, &error)) return ReportError(error);
-    for (const std::string& method : methods) {
+    // Without --methods: the parameter file's estimator.method (the daemon's).
+    for (const std::string& method : methods.empty() ? std::vector<std::string>{estimator.method} : methods) {
       try {
         EstimatorConfig config = estimator;
         config.method = method;

@@ -14,7 +14,7 @@ namespace birotor {
 
 // Loads the description (refusing one that cannot fly) and each scenario
 // for its arm count with the overrides (--set), runs each method on each,
-// prints the table; returns the exit status (kExitFailure on a bad file or
+// prints the table (methods empty: estimator.method); returns the exit status (kExitFailure on a bad file or
 // scenario, or a method without an N-arm version).
 int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<std::string>& scenarios,
                             const std::vector<std::string>& methods, const std::vector<std::string>& overrides,
