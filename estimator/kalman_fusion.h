@@ -208,16 +208,18 @@ FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eig
 
 // FuseMeasurement for a measurement of any size M, also beyond what a
 // FusionReport holds (kMaxMeasurementSize; the N-arm strain and telemetry,
-// estimator/multi_arm_ekf.h): the same innovation, gate and update; returns
-// the outcome and, when nis is not null, the NIS.
+// estimator/multi_arm_ekf.h): the same innovation, gate and update (with
+// *fixed_gain when given, as FuseMeasurement); returns the outcome and, when
+// nis is not null, the NIS.
 template <int M, int N, typename State, typename Cov>
 FusionOutcome FuseMeasurementUnreported(const MeasurementLinearization<M, N>& at,
                                         const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                        double gate_nis, State* x, Cov* cov, double* nis = nullptr) {
+                                        double gate_nis, State* x, Cov* cov, double* nis = nullptr,
+                                        const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
   const Innovation<M, N> innovation = ComputeInnovation(at, noise, cov->template topLeftCorner<N, N>(), z);
   if (nis != nullptr) *nis = innovation.nis;
   if (!(innovation.nis <= gate_nis)) return FusionOutcome::kRejectedGate;  // a NaN NIS is rejected too
-  KalmanUpdate(at, noise, innovation, x, cov);
+  KalmanUpdate(at, noise, innovation, x, cov, fixed_gain);
   return FusionOutcome::kFused;
 }
 
@@ -254,21 +256,24 @@ class GateWithInflation {
     return report;
   }
 
-  // The same policy on FuseMeasurementUnreported (any M): kFused also after
-  // an inflation (*fused_after_inflation says which, when not null).
+  // The same policy on FuseMeasurementUnreported (any M; *fixed_gain as
+  // there): kFused also after an inflation (*fused_after_inflation says
+  // which, when not null).
   template <int M, int N, typename State, typename Cov, typename Inflate>
   FusionOutcome FuseUnreported(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
                                const Eigen::Matrix<double, M, 1>& z, double gate_nis, State* x, Cov* cov,
-                               Inflate&& inflate, bool* fused_after_inflation = nullptr) {
+                               Inflate&& inflate, bool* fused_after_inflation = nullptr,
+                               const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
     if (fused_after_inflation != nullptr) *fused_after_inflation = false;
-    FusionOutcome outcome = FuseMeasurementUnreported(at, noise, z, gate_nis, x, cov);
+    FusionOutcome outcome = FuseMeasurementUnreported(at, noise, z, gate_nis, x, cov, nullptr, fixed_gain);
     if (outcome == FusionOutcome::kFused) {
       consecutive_rejected_ = 0;
       return outcome;
     }
     if (++consecutive_rejected_ < consecutive_limit_) return outcome;
     inflate(cov);
-    outcome = FuseMeasurementUnreported(at, noise, z, std::numeric_limits<double>::infinity(), x, cov);
+    outcome =
+        FuseMeasurementUnreported(at, noise, z, std::numeric_limits<double>::infinity(), x, cov, nullptr, fixed_gain);
     if (outcome == FusionOutcome::kFused) {
       consecutive_rejected_ = 0;
       if (fused_after_inflation != nullptr) *fused_after_inflation = true;

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "estimator/estimation_method.h"
+
 namespace birotor {
 namespace {
 
@@ -20,19 +22,10 @@ bool IsFinite(const MultiArmForceEstimate& e) {
   return true;
 }
 
-std::unique_ptr<MultiArmForceEstimator> FilterOrThrow(const EstimatorConfig& config) {
-  std::unique_ptr<MultiArmForceEstimator> filter = MakeMultiArmEkf(config.vehicle, config.ekf);
-  if (filter == nullptr) {
-    throw std::invalid_argument("no N-arm EKF for a vehicle of " + std::to_string(config.vehicle.arm_count) +
-                                " arms (2 to " + std::to_string(kMaxArms) + ")");
-  }
-  return filter;
-}
-
 }  // namespace
 
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
-    : config_(config), filter_(FilterOrThrow(config)), admission_(config.pipeline) {
+    : config_(config), filter_(MakeMultiArmForceEstimator(config)), admission_(config.pipeline) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (InputCounters& c : health_.inputs) c.gate = nan;
 }

@@ -1,4 +1,5 @@
-// The input path of the N-arm estimator (estimator/multi_arm_ekf.h), shared
+// The input path of the N-arm estimator (the method of estimator.method for N
+// arms behind MultiArmForceEstimator, estimator/multi_arm_ekf.h), shared
 // by birotor-estimator --vehicle, birotor-replay --vehicle and the N-rotor
 // lock-step loop so all give the same numbers: checks every sample's
 // readings (finite, in range, the vehicle's count), admits it by stamp and
@@ -45,9 +46,11 @@ struct MultiArmPipelineHealth {
 
 class MultiArmPipeline {
  public:
-  // config.vehicle is the description (2 .. kMaxArms arms); its ekf: and
-  // pipeline: sections are used. Throws std::invalid_argument for a
-  // description MakeMultiArmEkf cannot serve.
+  // config.vehicle is the description (2 .. kMaxArms arms); config.method
+  // selects the method (MakeMultiArmForceEstimator, estimation_method.h:
+  // ekf, linear_kf, luenberger, inversion) with its sections, and pipeline:
+  // is used. Throws std::invalid_argument for a method or description the
+  // registry cannot serve.
   explicit MultiArmPipeline(const EstimatorConfig& config);
 
   void CountReceived(InputChannel channel) { ++health_.inputs[static_cast<int>(channel)].received; }

@@ -195,11 +195,12 @@ bool ScoreMultiArmLog(const std::string& path, const std::string& prefix, int n_
 }
 
 std::string MultiArmAccuracyHeader() {
-  return "| scenario | MAE per rotor [N] | 2-sigma share per rotor | VALID share | step rotor | detection [ms] | "
-         "false alarms |\n|---|---|---|---|---|---|---|\n";
+  return "| scenario | method | MAE per rotor [N] | 2-sigma share per rotor | VALID share | step rotor | "
+         "detection [ms] | false alarms |\n|---|---|---|---|---|---|---|---|\n";
 }
 
-std::string MultiArmAccuracyRow(const std::string& scenario, const MultiArmAccuracy& result) {
+std::string MultiArmAccuracyRow(const std::string& scenario, const std::string& method,
+                                const MultiArmAccuracy& result) {
   std::ostringstream row;
   row.setf(std::ios::fixed);
   const auto joined = [&](auto value, int precision) {
@@ -211,7 +212,8 @@ std::string MultiArmAccuracyRow(const std::string& scenario, const MultiArmAccur
     return out.str();
   };
   row.precision(3);
-  row << "| " << scenario << " | " << joined([](const MultiArmRotorAccuracy& r) { return r.mae_n; }, 4) << " | "
+  row << "| " << scenario << " | " << method << " | "
+      << joined([](const MultiArmRotorAccuracy& r) { return r.mae_n; }, 4) << " | "
       << joined([](const MultiArmRotorAccuracy& r) { return r.share_within_2sigma; }, 3) << " | " << result.valid_share
       << " | ";
   if (result.step_rotor > 0) {

@@ -1,5 +1,5 @@
 // Accuracy of the N-arm estimator (estimator/multi_arm_pipeline.h around the
-// EKF of estimator/multi_arm_ekf.h: the daemon's code) against the truth of
+// method of estimator.method: the daemon's code) against the truth of
 // the N-arm simulator, run in-process and lock-step: MultiArmSimulator emits
 // each sample straight into it (birotor-eval --vehicle FILE); or of the
 // FORCE_N and TRUTH_N of a log (birotor-eval --vehicle FILE --log LOG: a
@@ -74,7 +74,7 @@ class MultiArmAccuracyScorer {
 
 // Simulates the scenario on the vehicle (MultiArmSimulator) and feeds every
 // STRAIN_N, MOTOR_N, IMU and POSE sample to a MultiArmPipeline of estimator
-// (its ekf: and pipeline:, the vehicle replaced) as it is emitted. Throws
+// (its method and sections, the vehicle replaced) as it is emitted. Throws
 // std::invalid_argument as MultiArmSimulator does (a scenario the vehicle
 // cannot fly).
 MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Scenario& scenario,
@@ -87,8 +87,9 @@ MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Sc
 bool ScoreMultiArmLog(const std::string& path, const std::string& prefix, int n_rotors, const EvalOptions& options,
                       MultiArmAccuracy* result, std::string* error);
 
-// Markdown: one header, one row per scenario (rotors as columns "r1 / r2 / ..").
+// Markdown: one header, one row per scenario and method (rotors as columns
+// "r1 / r2 / .."; method: the estimator.method name, or FORCE_N for a log).
 std::string MultiArmAccuracyHeader();
-std::string MultiArmAccuracyRow(const std::string& scenario, const MultiArmAccuracy& result);
+std::string MultiArmAccuracyRow(const std::string& scenario, const std::string& method, const MultiArmAccuracy& result);
 
 }  // namespace birotor

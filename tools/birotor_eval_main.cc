@@ -117,8 +117,8 @@ void AddEstimatorTableOptions(CLI::App& app, EvalCli* cli) {
                "VALID share, MAE and 2-sigma share of the VALID estimates, worst 2 s window, verdict per case");
   app.add_option("--plot-dir", cli->plot_dir, "Write <scenario>_<method>.png plots here");
   app.add_option("--vehicle", cli->vehicle_file,
-                 "A vehicle description with N arms instead (e.g. config/vehicles/trirotor.yaml): the N-arm EKF "
-                 "(docs/estimator.md, \"The EKF for N arms\") on --scenarios: MAE and 2-sigma share per rotor, VALID "
+                 "A vehicle description with N arms instead (e.g. config/vehicles/trirotor.yaml): the N-arm --methods "
+                 "(docs/estimator.md, \"Methods for N arms\") on --scenarios: MAE and 2-sigma share per rotor, VALID "
                  "share, fault detection, false alarms; with --control the N-rotor controller lock-step (docs/"
                  "controller.md, \"Vehicles with N rotors\"; default cases lateral_step, aggressive, loss40_rotor1..3: "
                  "thrust_loss with that rotor at 60 % from 5 s), cascade and mode mpc, each on the nominal map and on "
@@ -483,7 +483,9 @@ int main(int argc, char** argv) {
     return RunMultiArmLogAccuracy(cli.vehicle_file, cli.log_path, common.prefix, cli.eval_options);
   }
   if (!cli.vehicle_file.empty()) {
-    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, cli.overrides, base_config, cli.eval_options);
+    if (app.count("--methods") == 0) cli.methods.clear();  // the file's estimator.method
+    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, cli.methods, cli.overrides, base_config,
+                                   cli.eval_options);
   }
   if (cli.mismatch_targets) {
     if (!cli.log_path.empty())

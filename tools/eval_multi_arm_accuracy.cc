@@ -26,8 +26,8 @@ bool LoadVehicle(const std::string& file, VehicleDescription* vehicle) {
 }  // namespace
 
 int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<std::string>& scenarios,
-                            const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
-                            const EvalOptions& options) {
+                            const std::vector<std::string>& methods, const std::vector<std::string>& overrides,
+                            const EstimatorConfig& estimator, const EvalOptions& options) {
   VehicleDescription vehicle;
   if (!LoadVehicle(vehicle_file, &vehicle)) return kExitFailure;
   std::printf("N-arm estimator on %s (%d arms)\n\n%s", vehicle.name.c_str(), vehicle.arm_count,
@@ -35,13 +35,18 @@ int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<s
   for (const std::string& name : scenarios) {
     std::string file, error;
     if (!FindScenario(name, &file, &error)) return ReportError(error);
-    try {
-      const Scenario scenario = LoadScenario(file, overrides, vehicle.arm_count);
-      const MultiArmAccuracy result = RunMultiArmAccuracy(vehicle, scenario, estimator, options);
-      std::printf("%s", MultiArmAccuracyRow(name, result).c_str());
-      std::fflush(stdout);
-    } catch (const std::exception& e) {
-      return ReportError(name + ": " + e.what());
+    // Without --methods: the parameter file's estimator.method (the daemon's).
+    for (const std::string& method : methods.empty() ? std::vector<std::string>{estimator.method} : methods) {
+      try {
+        EstimatorConfig config = estimator;
+        config.method = method;
+        const Scenario scenario = LoadScenario(file, overrides, vehicle.arm_count);
+        const MultiArmAccuracy result = RunMultiArmAccuracy(vehicle, scenario, config, options);
+        std::printf("%s", MultiArmAccuracyRow(name, method, result).c_str());
+        std::fflush(stdout);
+      } catch (const std::exception& e) {
+        return ReportError(name + ", " + method + ": " + e.what());
+      }
     }
   }
   return 0;
@@ -55,7 +60,8 @@ int RunMultiArmLogAccuracy(const std::string& vehicle_file, const std::string& l
   std::string error;
   if (!ScoreMultiArmLog(log_path, prefix, vehicle.arm_count, options, &result, &error)) return ReportError(error);
   std::printf("FORCE_N of %s against its TRUTH_N (%s, %d arms)\n\n%s%s", log_path.c_str(), vehicle.name.c_str(),
-              vehicle.arm_count, MultiArmAccuracyHeader().c_str(), MultiArmAccuracyRow(log_path, result).c_str());
+              vehicle.arm_count, MultiArmAccuracyHeader().c_str(),
+              MultiArmAccuracyRow(log_path, "FORCE_N", result).c_str());
   return 0;
 }
 
