@@ -96,7 +96,7 @@ RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {
   RotorEfficiencies efficiency = NominalEfficiencies();
   const RotorEfficiencyEstimate& e = efficiency_estimate_;
   const SupervisionParams& s = config_.supervision;
-  if (!config_.force_feedback || !e.valid || e.n_rotors != vehicle_.arm_count ||
+  if (!config_.force_feedback || !force_usable_ || !e.valid || e.n_rotors != vehicle_.arm_count ||
       AgeS(e.utime, now_us) > s.force_timeout_s)
     return efficiency;
   for (int i = 0; i < vehicle_.arm_count; ++i) {

@@ -51,7 +51,8 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
       clock_(config.supervision),
       grid_(std::max<int64_t>(1, std::llround(1e6 / controller_.rate_hz()))),
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
-      force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)) {
+      force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
+      force_recovery_(config.supervision) {
   routes_.Add(channels_.pose, Channel::kPose);
   routes_.Add(channels_.imu, Channel::kImu);
   routes_.Add(channels_.force_n, Channel::kForce);
@@ -63,6 +64,9 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
   force_message_.force_std_n.reserve(kMaxArms);
   force_message_.thrust_scale.reserve(kMaxArms);
   buffer_.reserve(512);
+  // Force feedback starts in the fallback until FORCE_N has been healthy for
+  // force_recovery_s; that start is not counted as a fallback (as the birotor's).
+  health_.fallback_active = config.force_feedback;
 }
 
 void MultiArmControllerService::HandlePacket(std::string_view channel, const void* data, size_t size,
@@ -146,9 +150,12 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
   for (int i = 0; i < n; ++i) values[i] = m.thrust_scale[i];
   values[n] = static_cast<double>(m.status);
   const StreamMessage message{m.seq, m.utime, PayloadDigest(values, n + 1)};
+  const int64_t previous_utime = health_.force.last_utime;
   if (!AdmitToStream(s, message, plausible, now_us, &force_lock_, &health_.force) ||
-      !AcceptNewest(m.utime, &health_.force))
+      !AcceptNewest(m.utime, &health_.force)) {
+    force_recovery_.OnRefused(plausible);
     return;
+  }
   RotorEfficiencyEstimate estimate;
   estimate.utime = m.utime;
   estimate.n_rotors = n;
@@ -158,8 +165,9 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
     estimate.thrust_scale_std[static_cast<size_t>(i)] =
         m.force_n[i] > 0.0 ? m.force_std_n[i] * m.thrust_scale[i] / m.force_n[i] : 0.0;
   }
-  estimate.valid = force_valid_ = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
-  if (!force_valid_) ++health_.force_unhealthy;
+  estimate.valid = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
+  force_recovery_.OnAccepted(m.utime, previous_utime, estimate.valid);
+  if (!estimate.valid) ++health_.force_unhealthy;
   estimate.rotor_fault_bits = m.rotor_fault_bits;
   controller_.OnEfficiency(estimate);
 }
@@ -174,18 +182,26 @@ void MultiArmControllerService::RunIfDue(int64_t host_us) {
   grid_.Ran(host_us);
 }
 
+bool MultiArmControllerService::SuperviseForce(int64_t now_us) {
+  // A second publisher on POSE or FORCE_N drops force feedback (as the birotor's).
+  const bool conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
+  if (conflict && !health_.conflict) ++health_.conflicts;
+  health_.conflict = conflict;
+  // Force feedback wanted but FORCE_N stale, not VALID, refused or not yet
+  // healthy for force_recovery_s: the nominal map.
+  const bool usable = !conflict && force_recovery_.Usable(now_us, health_.force.last_utime);
+  const bool fallback = config_.force_feedback && !usable;
+  if (fallback && !health_.fallback_active) ++health_.fallbacks;
+  health_.fallback_active = fallback;
+  return usable;
+}
+
 CommandStatusFacts MultiArmControllerService::PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command) {
   const SupervisionParams& s = config_.supervision;
   CommandStatusFacts facts;
-  // Force feedback wanted but FORCE_N stale, not VALID or refused: the nominal map.
-  const bool force_usable = force_valid_ && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s;
-  facts.fallback_active = config_.force_feedback && !force_usable;
-  if (facts.fallback_active && !health_.fallback_active) ++health_.fallbacks;
-  health_.fallback_active = facts.fallback_active;
+  facts.fallback_active = health_.fallback_active;
   facts.input_stale = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
-  facts.input_conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
-  if (facts.input_conflict && !health_.conflict) ++health_.conflicts;
-  health_.conflict = facts.input_conflict;
+  facts.input_conflict = health_.conflict;
   facts.saturated = command.saturated;
   health_.saturated += command.saturated ? 1 : 0;
   return facts;
@@ -197,6 +213,7 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   const BodyState& state = controller_.body_state();
   const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
+  controller_.SetForceUsable(SuperviseForce(vehicle_us));
   MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
   CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
   facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;

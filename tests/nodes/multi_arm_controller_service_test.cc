@@ -1,7 +1,8 @@
 // The N-rotor controller node (nodes/multi_arm_controller_service.h) on the
 // trirotor, through its one way in on its own host clock: a FORCE_N of
 // another rotor count is refused and counted, a stale or absent FORCE_N
-// flies the nominal map (STATUS_FALLBACK_ACTIVE), a future stamp is refused,
+// flies the nominal map (STATUS_FALLBACK_ACTIVE) and force feedback resumes
+// only after force_recovery_s of healthy FORCE_N, a future stamp is refused,
 // every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max], and a
 // plain FORCE_N in front of the sealed channel is refused.
 #include "nodes/multi_arm_controller_service.h"
@@ -134,6 +135,50 @@ TEST_F(MultiArmControllerServiceTest, StaleOrInvalidForceNFliesTheNominalMapAndS
       EXPECT_LE(omega, vehicle_.omega_max_rad_s);
     }
   }
+}
+
+// The force recovery rule (ForceRecovery, the birotor's): force feedback
+// resumes only after force_recovery_s (0.05 s) of healthy, on-time FORCE_N,
+// so a run of late FORCE_N on a loaded host is one fallback, not one per
+// late sample. POSE at 100 Hz, FORCE_N at 1 kHz, periods at 500 Hz; 0.3 s
+// healthy, then three late FORCE_N (each 8 ms after the one before,
+// force_timeout_s 5 ms) 20 ms apart. Measured on this sequence: the node
+// before ForceRecovery (main at 8d7227e) entered the fallback 3 times (once
+// per late FORCE_N) and STATUS_FALLBACK_ACTIVE toggled 6 times; with it 1
+// entry, 3 toggles (the start's exit included), force feedback back at
+// host 5.390 s = the last late one + 50 ms (bound: + one 2 ms period).
+TEST_F(MultiArmControllerServiceTest, LateForceNTogglesTheFallbackOnceAndRecoversAfterForceRecoveryS) {
+  const int64_t late_host_us[3] = {5300000, 5320000, 5340000};
+  int32_t seq = 0;
+  int64_t recovered_host_us = -1;
+  for (int64_t host_us = 5000000; host_us <= 5500000; host_us += 1000) {
+    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
+    // The 7 FORCE_N before each late one are not sent (stamps 8 ms apart).
+    bool withheld = false;
+    for (int64_t late_us : late_host_us) withheld = withheld || (host_us > late_us - 8000 && host_us < late_us);
+    if (!withheld)
+      Send(channels_.force_n,
+           ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+           host_us);
+    const bool was_fallback = service_.health().fallback_active;
+    RunUntil(host_us);
+    if (host_us > late_host_us[2] && was_fallback && !service_.health().fallback_active && recovered_host_us < 0)
+      recovered_host_us = host_us;
+  }
+  int toggles = 0;
+  for (size_t i = 1; i < sink_.commands.size(); ++i) {
+    const int32_t flag = motor_command_n_t::STATUS_FALLBACK_ACTIVE;
+    toggles += (sink_.commands[i].status & flag) != (sink_.commands[i - 1].status & flag) ? 1 : 0;
+  }
+  // The start in the fallback (FORCE_N not yet healthy for 50 ms) is not an entry.
+  EXPECT_EQ(service_.health().fallbacks, 1);
+  EXPECT_EQ(toggles, 3);  // start -> flown on FORCE_N, the late run's entry, its recovery
+  // The last late FORCE_N (vehicle time 4.34 s) starts the healthy run again:
+  // force feedback at its stamp + force_recovery_s, on the 500 Hz grid.
+  EXPECT_GE(recovered_host_us, late_host_us[2] + 50000);
+  EXPECT_LE(recovered_host_us, late_host_us[2] + 52000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  EXPECT_DOUBLE_EQ(service_.controller().EfficiencyInUse(5500000 - kOffsetUs)[1], 0.8);
 }
 
 TEST_F(MultiArmControllerServiceTest, AFutureStampedForceNIsRefused) {
