@@ -213,10 +213,12 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   const BodyState& state = controller_.body_state();
   const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
+  const int64_t mpc_solves = controller_.mpc_solves();
   controller_.SetForceUsable(SuperviseForce(vehicle_us));
   MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
   CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
   facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
+  if (controller_.mpc_solves() > mpc_solves) RecordMpcSolve(controller_.last_mpc_result());
   // Never a non-finite command or one outside [0, omega_max]: the last good one instead.
   bool finite = true;
   for (int i = 0; i < vehicle_.arm_count; ++i) finite = finite && std::isfinite(command.omega_cmd_rad_s[i]);
@@ -241,11 +243,21 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   last_period_vehicle_us_ = vehicle_us;
 }
 
+void MultiArmControllerService::RecordMpcSolve(const MultiArmMpcResult& result) {
+  // On the deadline's clock, as the birotor's MpcController: wall time for
+  // deadline_clock wall, this thread's CPU time otherwise.
+  const bool wall = config_.mpc.deadline_clock == MpcDeadlineClock::kWall;
+  mpc_solve_times_.Record(wall ? result.solve_time_s : result.solve_cpu_s);
+  mpc_max_iterations_ = std::max(mpc_max_iterations_, result.iterations);
+}
+
 MpcStats MultiArmControllerService::MpcCounters() const {
-  MpcStats stats;  // the solve counts; the N-input MPC keeps no solve-time window
+  MpcStats stats;  // every fallback of the N-input MPC is counted as solver_failed
   stats.solves = controller_.mpc_solves();
   stats.solver_failed = controller_.mpc_fallbacks();
   stats.last_iterations = controller_.last_mpc_result().iterations;
+  stats.max_iterations = mpc_max_iterations_;
+  mpc_solve_times_.Fill(&stats);
   return stats;
 }
 
@@ -257,7 +269,6 @@ void MultiArmControllerService::PublishStatus(int64_t wall_utime, int64_t host_u
   for (int i = 0; i < kNumControllerInputs; ++i) context.decode_errors[i] = decode_errors_[i];
   context.setpoint_decode_errors = setpoint_decode_errors_;
   context.clock_relatches = clock_.relatches();
-  context.report_solve_times = false;
   grid_.TakeLoopTimes(&context.loop_time_p99_us, &context.loop_time_max_us);
   context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
   context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;

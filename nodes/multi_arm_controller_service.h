@@ -95,6 +95,9 @@ class MultiArmControllerService : public PacketHandler {
   bool SuperviseForce(int64_t now_us);
   // The facts of a period at now_us for its status bits (ComposeCommandStatus).
   CommandStatusFacts PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command);
+  // Mode mpc: a period's solve into the solve-time window and the iteration maximum.
+  void RecordMpcSolve(const MultiArmMpcResult& result);
+  // CONTROLLER_STATUS's mpc_* fields: counts, iterations, solve times.
   MpcStats MpcCounters() const;
 
   VehicleDescription vehicle_;
@@ -110,6 +113,8 @@ class MultiArmControllerService : public PacketHandler {
   SeqStreamLock pose_lock_, force_lock_;
   ControllerHealth health_;
   CountRefusals force_count_refusals_;
+  MpcSolveTimes mpc_solve_times_;  // mode mpc, on the deadline's clock
+  int32_t mpc_max_iterations_ = 0;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
   int64_t setpoint_decode_errors_ = 0;
   ForceRecovery force_recovery_;  // FORCE_N's health and its healthy run (force_recovery_s)

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,18 +26,24 @@
 namespace birotor {
 namespace {
 
-// Keeps the MOTOR_COMMAND_N the node publishes.
+// Keeps the MOTOR_COMMAND_N and the CONTROLLER_STATUS the node publishes.
 class CommandSink : public MessageSink {
  public:
-  explicit CommandSink(std::string channel) : channel_(std::move(channel)) {}
+  explicit CommandSink(std::string channel, std::string status_channel = "")
+      : channel_(std::move(channel)), status_channel_(std::move(status_channel)) {}
   void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
     motor_command_n_t command;
+    controller_status_t status;
     if (channel == channel_ && DecodeMessage(data, size, &command) == DecodeError::kNone) commands.push_back(command);
+    if (channel == status_channel_ && DecodeMessage(data, size, &status) == DecodeError::kNone)
+      statuses.push_back(status);
   }
   std::vector<motor_command_n_t> commands;
+  std::vector<controller_status_t> statuses;
 
  private:
   std::string channel_;
+  std::string status_channel_;
 };
 
 template <class Message>
@@ -58,7 +65,9 @@ std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status) {
   return Encoded(m);
 }
 
-class MultiArmControllerServiceTest : public ::testing::Test {
+// The node on the trirotor in mode force_feedback (kMpc false) or mpc.
+template <bool kMpc>
+class ServiceFixture : public ::testing::Test {
  protected:
   // One packet at host time host_us; the vehicle clock is host time - 1 s.
   void Send(const std::string& channel, const std::vector<uint8_t>& bytes, int64_t host_us) {
@@ -86,11 +95,20 @@ class MultiArmControllerServiceTest : public ::testing::Test {
   const VehicleDescription vehicle_ =
       LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
   const ChannelNames channels_ = MakeChannelNames("TEST_");
-  CommandSink sink_{channels_.motor_command_n};
+  CommandSink sink_{channels_.motor_command_n, channels_.controller_status};
   int64_t host_us_ = 0;
   int64_t now_us_ = 5000000;  // RunUntil's next check
-  MultiArmControllerService service_{vehicle_, ControllerConfig{}, channels_, &sink_, [this] { return host_us_; }};
+  MultiArmControllerService service_{vehicle_, Config(), channels_, &sink_, [this] { return host_us_; }};
+
+ private:
+  static ControllerConfig Config() {
+    ControllerConfig config;
+    config.model_predictive = kMpc;
+    return config;
+  }
 };
+using MultiArmControllerServiceTest = ServiceFixture<false>;
+using MultiArmControllerServiceMpcTest = ServiceFixture<true>;
 
 TEST_F(MultiArmControllerServiceTest, AForceNOfAnotherRotorCountIsRefusedAndCounted) {
   SendPoseAndImu(5000000, 1);
@@ -179,6 +197,35 @@ TEST_F(MultiArmControllerServiceTest, LateForceNTogglesTheFallbackOnceAndRecover
   EXPECT_LE(recovered_host_us, late_host_us[2] + 52000);
   EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
   EXPECT_DOUBLE_EQ(service_.controller().EfficiencyInUse(5500000 - kOffsetUs)[1], 0.8);
+}
+
+// CONTROLLER_STATUS in mode mpc: one solve per 200 Hz period, the solve
+// times (the birotor's window, MpcSolveTimes) filled, no longer NaN, and the
+// efficiency of rotors 1 and 2 (the message's two slots) the reported 0.8.
+TEST_F(MultiArmControllerServiceMpcTest, ControllerStatusCarriesTheMpcSolveTimes) {
+  int32_t seq = 0;
+  for (int64_t host_us = 5000000; host_us <= 5200000; host_us += 1000) {
+    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
+    Send(channels_.force_n,
+         ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+         host_us);
+    RunUntil(host_us);
+  }
+  service_.PublishStatus(0, 5200000);
+  ASSERT_EQ(sink_.statuses.size(), 1u);
+  const controller_status_t& status = sink_.statuses.back();
+  // The first POSE comes before the clock is set (by the IMU after it,
+  // ControllerClock) and is not flown: periods at 200 Hz from the second
+  // POSE at host 5.01 s to 5.2 s, both included: 39, each a solve.
+  EXPECT_EQ(static_cast<int64_t>(sink_.commands.size()), 39);
+  EXPECT_EQ(status.mpc_solves, 39);
+  ASSERT_TRUE(std::isfinite(status.mpc_solve_p50_us));
+  EXPECT_GT(status.mpc_solve_p50_us, 0.0);
+  EXPECT_LE(status.mpc_solve_p50_us, status.mpc_solve_p99_us);
+  EXPECT_LE(status.mpc_solve_p99_us, status.mpc_solve_max_us);
+  EXPECT_GE(status.mpc_max_iterations, status.mpc_iterations);
+  EXPECT_DOUBLE_EQ(status.efficiency[0], 0.8);
+  EXPECT_DOUBLE_EQ(status.efficiency[1], 0.8);
 }
 
 TEST_F(MultiArmControllerServiceTest, AFutureStampedForceNIsRefused) {
