@@ -54,14 +54,14 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
   last_mpc_.omega_cmd_rad_s = last_sent_rad_s_;
 }
 
-void MultiArmController::OnPose(const PoseSample& sample) {
+void MultiArmController::OnPose(const PoseSample& sample, PoseGate::Verdict verdict) {
   if (!has_pose_) {
     has_pose_ = true;
     observer_.Initialize(Eigen::Vector2d(sample.x_m, sample.z_m), sample.phi_rad);
     observer_.PoseUsedAt(sample.utime);
     return;
   }
-  observer_.HoldPose(sample);
+  if (!MoveObserverOnto(verdict, sample, &observer_)) observer_.HoldPose(sample);
 }
 
 void MultiArmController::OnImu(const ImuSample& sample) {

@@ -24,6 +24,7 @@
 #include "controller/controller_params.h"
 #include "controller/multi_arm_law.h"
 #include "controller/multi_arm_mpc.h"
+#include "controller/pose_gate.h"
 #include "controller/reference_point.h"
 #include "controller/wrench_allocation.h"
 #include "model/multi_arm_linearization.h"
@@ -52,7 +53,10 @@ class MultiArmController {
   // vehicle field is not used (vehicle is). hover: SolveMultiArmHover(vehicle).
   MultiArmController(const VehicleDescription& vehicle, const ControllerConfig& config, const MultiArmHover& hover);
 
-  void OnPose(const PoseSample& sample);
+  // A POSE the caller admitted; verdict: the caller's POSE gate's
+  // (PoseGate, the N-rotor node), kReset / kReacquired move the observer
+  // onto it (MoveObserverOnto), kInside (the lock-step loop) fuses it.
+  void OnPose(const PoseSample& sample, PoseGate::Verdict verdict = PoseGate::Verdict::kInside);
   void OnImu(const ImuSample& sample);
   // The newest estimate; used only in force_feedback mode (EfficiencyInUse).
   void OnEfficiency(const RotorEfficiencyEstimate& estimate) { efficiency_estimate_ = estimate; }

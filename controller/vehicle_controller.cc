@@ -77,22 +77,9 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
     return;
   }
   if (!AcceptNewest(sample.utime, &health_.pose)) return;
-  if (verdict == PoseGate::Verdict::kReset || verdict == PoseGate::Verdict::kReacquired) {
-    const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
-    if (verdict == PoseGate::Verdict::kReset) {
-      // Every POSE refused for pose_gate_reset_s: the vehicle really is there.
-      ++health_.pose_gate_resets;
-      observer_.Initialize(position_m, sample.phi_rad);
-    } else {
-      // A consistent run of refused POSEs: the position drifted, the IMU's
-      // velocity and rate did not.
-      ++health_.pose_reacquisitions;
-      observer_.Relocate(position_m, sample.phi_rad);
-    }
-    observer_.PoseUsedAt(sample.utime);
-    return;
-  }
-  observer_.HoldPose(sample);
+  health_.pose_gate_resets += verdict == PoseGate::Verdict::kReset ? 1 : 0;
+  health_.pose_reacquisitions += verdict == PoseGate::Verdict::kReacquired ? 1 : 0;
+  if (!MoveObserverOnto(verdict, sample, &observer_)) observer_.HoldPose(sample);
 }
 
 void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
@@ -310,9 +297,7 @@ ReferencePoint VehicleController::DescentTarget(bool pose_lost, bool infeasible,
   ReferencePoint target = reference_;
   const bool descend = pose_lost || infeasible;
   if (descend) {
-    target.position_m = observer_.state().position_m;
-    target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);
-    target.acceleration_m_s2.setZero();
+    target = DescentReference(observer_.state().position_m, s.descent_rate_m_s);
     *status |= kCommandDescending;
     if (pose_lost) *status |= kCommandInputStale;
     if (!health_.descending) {

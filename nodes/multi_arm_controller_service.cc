@@ -35,7 +35,8 @@ static_assert(kCommandFallbackActive == motor_command_n_t::STATUS_FALLBACK_ACTIV
                   kCommandInputStale == motor_command_n_t::STATUS_INPUT_STALE &&
                   kCommandInputConflict == motor_command_n_t::STATUS_INPUT_CONFLICT &&
                   kCommandSaturated == motor_command_n_t::STATUS_SATURATED &&
-                  kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK,
+                  kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK &&
+                  kCommandDescending == motor_command_n_t::STATUS_DESCENDING,
               "MOTOR_COMMAND_N's status bits are MOTOR_COMMAND's");
 
 MultiArmControllerService::MultiArmControllerService(const VehicleDescription& vehicle, const ControllerConfig& config,
@@ -52,6 +53,7 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
       grid_(std::max<int64_t>(1, std::llround(1e6 / controller_.rate_hz()))),
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
       force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
+      pose_gate_(config.supervision),
       force_recovery_(config.supervision) {
   routes_.Add(channels_.pose, Channel::kPose);
   routes_.Add(channels_.imu, Channel::kImu);
@@ -122,11 +124,20 @@ void MultiArmControllerService::Dispatch(Channel channel, const void* data, size
 void MultiArmControllerService::OnPose(const PoseSample& sample, int64_t now_us) {
   const double values[3] = {sample.x_m, sample.z_m, sample.phi_rad};
   const StreamMessage message{sample.seq, sample.utime, PayloadDigest(values, 3)};
-  if (!AdmitToStream(config_.supervision, message, PlausiblePose(sample), now_us, &pose_lock_, &health_.pose) ||
-      !AcceptNewest(sample.utime, &health_.pose))
+  // The stream, then the gate against the observer (from the second POSE
+  // on), then newest: a refused sample does not become the newest (as the birotor's).
+  if (!AdmitToStream(config_.supervision, message, PlausiblePose(sample), now_us, &pose_lock_, &health_.pose)) return;
+  const PoseGate::Verdict verdict =
+      controller_.has_pose() ? pose_gate_.Check(sample, controller_.body_state(), now_us) : PoseGate::Verdict::kInside;
+  if (verdict == PoseGate::Verdict::kRefused) {
+    ++health_.pose.rejected_gate;
     return;
+  }
+  if (!AcceptNewest(sample.utime, &health_.pose)) return;
+  health_.pose_gate_resets += verdict == PoseGate::Verdict::kReset ? 1 : 0;
+  health_.pose_reacquisitions += verdict == PoseGate::Verdict::kReacquired ? 1 : 0;
   if (!controller_.has_pose()) setpoint_.SetStart(Eigen::Vector2d(sample.x_m, sample.z_m));
-  controller_.OnPose(sample);
+  controller_.OnPose(sample, verdict);
 }
 
 void MultiArmControllerService::OnImu(const ImuSample& sample, int64_t now_us) {
@@ -211,13 +222,21 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   // The clock is monotonic; the guard keeps a command's stamp from going back.
   const int64_t vehicle_us = std::max(clock_.VehicleTimeUs(host_us), last_period_vehicle_us_);
   const BodyState& state = controller_.body_state();
-  const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
+  // POSE lost: the level controlled descent on the propagated state (as the
+  // birotor's target; its tilt bound and slew are not the N law's, docs/controller.md).
+  const bool pose_lost = AgeS(health_.pose.last_utime, vehicle_us) > config_.supervision.pose_timeout_s;
+  if (pose_lost && !health_.descending) ++health_.descents;
+  health_.descending = pose_lost;
+  const ReferencePoint setpoint_reference = setpoint_.At(vehicle_us, state.position_m);
+  const ReferencePoint reference =
+      pose_lost ? DescentReference(state.position_m, config_.supervision.descent_rate_m_s) : setpoint_reference;
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
   const int64_t mpc_solves = controller_.mpc_solves();
   controller_.SetForceUsable(SuperviseForce(vehicle_us));
   MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
   CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
   facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
+  facts.descending = pose_lost;
   if (controller_.mpc_solves() > mpc_solves) RecordMpcSolve(controller_.last_mpc_result());
   // Never a non-finite command or one outside [0, omega_max]: the last good one instead.
   bool finite = true;

@@ -30,6 +30,7 @@
 #include "controller/controller_params.h"
 #include "controller/input_admission.h"
 #include "controller/multi_arm_controller.h"
+#include "controller/pose_gate.h"
 #include "controller/setpoint_input.h"
 #include "controller/vehicle_controller.h"
 #include "model/vehicle_description.h"
@@ -111,6 +112,7 @@ class MultiArmControllerService : public PacketHandler {
   ControllerClock clock_;
   ControlPeriodGrid grid_;
   SeqStreamLock pose_lock_, force_lock_;
+  PoseGate pose_gate_;
   ControllerHealth health_;
   CountRefusals force_count_refusals_;
   MpcSolveTimes mpc_solve_times_;  // mode mpc, on the deadline's clock

@@ -74,11 +74,12 @@ class ServiceFixture : public ::testing::Test {
     host_us_ = host_us;
     service_.HandlePacket(channel, bytes.data(), bytes.size(), -1);
   }
-  // POSE (at rest at the origin) and IMU stamped at the vehicle time of host_us.
-  void SendPoseAndImu(int64_t host_us, int32_t seq) {
+  // POSE (at rest at x_m, else the origin) and IMU stamped at the vehicle time of host_us.
+  void SendPoseAndImu(int64_t host_us, int32_t seq, double x_m = 0.0) {
     pose_t pose{};
     pose.utime = host_us - kOffsetUs;
     pose.seq = seq;
+    pose.x_m = x_m;
     imu_t imu{};
     imu.utime = host_us - kOffsetUs;
     imu.seq = seq;
@@ -90,6 +91,26 @@ class ServiceFixture : public ::testing::Test {
   void RunUntil(int64_t host_us) {
     for (; now_us_ <= host_us; now_us_ += 1000) service_.RunIfDue(now_us_);
   }
+  // POSE (unless without_pose) and IMU at 100 Hz, FORCE_N (VALID, 20 % lost)
+  // at 1 kHz and the periods, over host time [from_us, to_us].
+  void Fly(int64_t from_us, int64_t to_us, bool without_pose = false) {
+    for (int64_t host_us = from_us; host_us <= to_us; host_us += 1000) {
+      if (host_us % 10000 == 0 && !without_pose) SendPoseAndImu(host_us, ++pose_seq_);
+      if (host_us % 10000 == 0 && without_pose) SendImu(host_us);
+      Send(channels_.force_n,
+           ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+           host_us);
+      RunUntil(host_us);
+    }
+  }
+  void SendImu(int64_t host_us) {
+    imu_t imu{};
+    imu.utime = host_us - kOffsetUs;
+    imu.seq = ++pose_seq_;
+    imu.accel_z_m_s2 = vehicle_.gravity_m_s2;
+    Send(channels_.imu, Encoded(imu), host_us);
+  }
+  int32_t pose_seq_ = 0;
 
   static constexpr int64_t kOffsetUs = 1000000;  // host time - vehicle time [us]
   const VehicleDescription vehicle_ =
@@ -226,6 +247,43 @@ TEST_F(MultiArmControllerServiceMpcTest, ControllerStatusCarriesTheMpcSolveTimes
   EXPECT_GE(status.mpc_max_iterations, status.mpc_iterations);
   EXPECT_DOUBLE_EQ(status.efficiency[0], 0.8);
   EXPECT_DOUBLE_EQ(status.efficiency[1], 0.8);
+}
+
+// POSE lost (pose_timeout_s 0.05 s): the controlled descent
+// (DescentReference), STATUS_DESCENDING with STATUS_INPUT_STALE, one entry;
+// POSE back: the setpoint again.
+TEST_F(MultiArmControllerServiceTest, LostPoseGivesTheControlledDescentOnce) {
+  Fly(5000000, 5200000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_DESCENDING, 0);
+  Fly(5201000, 5300000, /*without_pose=*/true);
+  // The last POSE at vehicle 4.200 s; its age exceeds 0.05 s first in the
+  // 500 Hz period at 4.252 s.
+  int64_t first_descending_us = -1;
+  for (const motor_command_n_t& command : sink_.commands)
+    if ((command.status & motor_command_n_t::STATUS_DESCENDING) != 0 && first_descending_us < 0)
+      first_descending_us = command.utime;
+  EXPECT_EQ(first_descending_us, 4252000);
+  EXPECT_NE(sink_.commands.back().status & motor_command_n_t::STATUS_INPUT_STALE, 0);
+  EXPECT_EQ(service_.health().descents, 1);
+  EXPECT_TRUE(service_.health().descending);
+  Fly(5301000, 5320000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_DESCENDING, 0);
+  EXPECT_EQ(service_.health().descents, 1);
+}
+
+// The POSE innovation gate (PoseGate, the birotor's): a POSE 1 m from the
+// observer (gate 0.3 m) is refused; a consistent run of
+// pose_reacquire_count (5) at 0.5 m moves the observer there on the fifth.
+TEST_F(MultiArmControllerServiceTest, PoseOutsideTheGateIsRefusedUntilAConsistentRunReacquires) {
+  Fly(5000000, 5200000);
+  SendPoseAndImu(5210000, ++pose_seq_, 1.0);
+  RunUntil(5210000);
+  EXPECT_EQ(service_.health().pose.rejected_gate, 1);
+  EXPECT_NEAR(service_.controller().body_state().position_m.x(), 0.0, 0.01);
+  for (int k = 1; k <= 5; ++k) SendPoseAndImu(5210000 + 10000 * k, ++pose_seq_, 0.5);
+  EXPECT_EQ(service_.health().pose.rejected_gate, 1 + 4);
+  EXPECT_EQ(service_.health().pose_reacquisitions, 1);
+  EXPECT_DOUBLE_EQ(service_.controller().body_state().position_m.x(), 0.5);
 }
 
 TEST_F(MultiArmControllerServiceTest, AFutureStampedForceNIsRefused) {
