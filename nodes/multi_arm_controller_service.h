@@ -10,10 +10,11 @@
 // on POSE or FORCE_N, or not yet healthy and on time for force_recovery_s
 // (ForceRecovery, the birotor's rule): the nominal map
 // (MultiArmController::SetForceUsable), STATUS_FALLBACK_ACTIVE. Every
-// command is finite and within [0, omega_max]. Not done here (docs/
-// controller.md, "Vehicles with N rotors"): the birotor's controlled
-// descent on a lost POSE, the POSE innovation gate and the hover
-// feasibility latch; a stale POSE is flagged STATUS_INPUT_STALE only.
+// command is finite and within [0, omega_max]. The POSE innovation gate
+// (PoseGate); a POSE older than pose_timeout_s: the controlled descent's
+// reference (DescentReference), STATUS_DESCENDING. Not done here (docs/
+// controller.md, "The daemon for N rotors"): the hover feasibility latch
+// and its descent, the descent's tilt bound and command slew.
 #pragma once
 
 #include <cstddef>

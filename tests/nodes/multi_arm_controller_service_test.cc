@@ -145,14 +145,7 @@ TEST_F(MultiArmControllerServiceTest, AForceNOfAnotherRotorCountIsRefusedAndCoun
 
 TEST_F(MultiArmControllerServiceTest, StaleOrInvalidForceNFliesTheNominalMapAndSaysSo) {
   // 0.2 s of POSE (100 Hz), IMU and FORCE_N (1 kHz) reporting a 20 % loss.
-  int32_t seq = 0;
-  for (int64_t host_us = 5000000; host_us <= 5200000; host_us += 1000) {
-    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
-    Send(channels_.force_n,
-         ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
-         host_us);
-    RunUntil(host_us);
-  }
+  Fly(5000000, 5200000);
   ASSERT_FALSE(sink_.commands.empty());
   EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
   // The efficiency in use is the reported 0.8 (changed by more than change_threshold).
@@ -224,14 +217,7 @@ TEST_F(MultiArmControllerServiceTest, LateForceNTogglesTheFallbackOnceAndRecover
 // times (the birotor's window, MpcSolveTimes) filled, no longer NaN, and the
 // efficiency of rotors 1 and 2 (the message's two slots) the reported 0.8.
 TEST_F(MultiArmControllerServiceMpcTest, ControllerStatusCarriesTheMpcSolveTimes) {
-  int32_t seq = 0;
-  for (int64_t host_us = 5000000; host_us <= 5200000; host_us += 1000) {
-    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
-    Send(channels_.force_n,
-         ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
-         host_us);
-    RunUntil(host_us);
-  }
+  Fly(5000000, 5200000);
   service_.PublishStatus(0, 5200000);
   ASSERT_EQ(sink_.statuses.size(), 1u);
   const controller_status_t& status = sink_.statuses.back();
