@@ -57,11 +57,11 @@ SeqStreamLockParams StreamLockParams(const SupervisionParams& s, double max_rate
 
 // The force recovery rule of both controllers: force feedback is flown only
 // while the newest FORCE is VALID and at most force_timeout_s old, and after
-// a healthy run of on-time samples (each within force_timeout_s of the one
-// before) has lasted force_recovery_s. Without the delay a single late FORCE
-// toggles the fallback twice per lateness on a loaded host (the N-rotor node
-// before it: 2-4 entries in 7 s in force_feedback, 96 in mpc at 200 Hz,
-// where force_timeout_s is one control period). No allocation.
+// a healthy run of on-time samples (each stamped within force_timeout_s of
+// the one before) has lasted force_recovery_s: a run of late FORCE (stamp
+// gaps) is one fallback, not one per late sample. A FORCE stamped on time
+// but delivered late falls back only while it is stale (its run goes on).
+// No allocation.
 class ForceRecovery {
  public:
   explicit ForceRecovery(const SupervisionParams& s) : timeout_s_(s.force_timeout_s), recovery_s_(s.force_recovery_s) {}
