@@ -17,12 +17,13 @@ struct CommandStatusFacts {
   bool input_conflict = false;   // a second seq stream on POSE or FORCE
   bool saturated = false;        // the allocation was limited
   bool mpc_fallback = false;     // mode mpc: the cascade's command was sent
+  bool descending = false;       // POSE lost: the controlled descent (DescentReference)
 };
 
 inline int32_t ComposeCommandStatus(const CommandStatusFacts& f) {
   return (f.fallback_active ? kCommandFallbackActive : 0) | (f.input_stale ? kCommandInputStale : 0) |
          (f.input_conflict ? kCommandInputConflict : 0) | (f.saturated ? kCommandSaturated : 0) |
-         (f.mpc_fallback ? kCommandMpcFallback : 0);
+         (f.mpc_fallback ? kCommandMpcFallback : 0) | (f.descending ? kCommandDescending : 0);
 }
 
 }  // namespace birotor

@@ -81,4 +81,24 @@ SeqStreamLockParams StreamLockParams(const SupervisionParams& s, double max_rate
   return params;
 }
 
+void ForceRecovery::OnAccepted(int64_t utime, int64_t previous_utime, bool valid) {
+  newest_healthy_ = valid;
+  if (!valid) {
+    healthy_since_us_ = -1;
+    return;
+  }
+  const bool on_time = previous_utime >= 0 && ElapsedSeconds(utime, previous_utime) <= timeout_s_;
+  if (healthy_since_us_ < 0 || !on_time) healthy_since_us_ = utime;
+}
+
+bool ForceRecovery::Usable(int64_t now_us, int64_t newest_utime) const {
+  // Age of a stamp at now_us: a stamp ahead of the clock is not usable.
+  const auto within = [now_us](int64_t stamp_us, double window_s) {
+    return stamp_us >= 0 && now_us >= stamp_us && ElapsedSeconds(now_us, stamp_us) <= window_s;
+  };
+  const bool recovered =
+      healthy_since_us_ >= 0 && now_us >= healthy_since_us_ && ElapsedSeconds(now_us, healthy_since_us_) >= recovery_s_;
+  return newest_healthy_ && within(newest_utime, timeout_s_) && recovered;
+}
+
 }  // namespace birotor

@@ -55,4 +55,37 @@ bool PlausibleImu(const ImuSample& sample);
 // The stream lock of an input publishing at most max_rate_hz [Hz].
 SeqStreamLockParams StreamLockParams(const SupervisionParams& s, double max_rate_hz);
 
+// The force recovery rule of both controllers: force feedback is flown only
+// while the newest FORCE is VALID and at most force_timeout_s old, and after
+// a healthy run of on-time samples (each stamped within force_timeout_s of
+// the one before) has lasted force_recovery_s: a run of late FORCE (stamp
+// gaps) is one fallback, not one per late sample. A FORCE stamped on time
+// but delivered late falls back only while it is stale (its run goes on).
+// No allocation.
+class ForceRecovery {
+ public:
+  explicit ForceRecovery(const SupervisionParams& s) : timeout_s_(s.force_timeout_s), recovery_s_(s.force_recovery_s) {}
+
+  // A FORCE the stream stage or the newest stage refused: an implausible one
+  // ends the newest's health (the next plausible sample on time resumes the
+  // run; an outlier does not restart it).
+  void OnRefused(bool plausible) {
+    if (!plausible) newest_healthy_ = false;
+  }
+  // An accepted FORCE stamped utime [us]; previous_utime: the newest accepted
+  // before it [us] (-1: none); valid: its STATUS_VALID. Not VALID ends the
+  // healthy run; a late one (or the first) starts a new one.
+  void OnAccepted(int64_t utime, int64_t previous_utime, bool valid);
+  // True when FORCE may be flown on at now_us [us] (controller clock),
+  // newest_utime the newest accepted FORCE's stamp [us]. The caller adds its
+  // own conditions (a conflict on the seq streams).
+  bool Usable(int64_t now_us, int64_t newest_utime) const;
+
+ private:
+  double timeout_s_;
+  double recovery_s_;
+  bool newest_healthy_ = false;
+  int64_t healthy_since_us_ = -1;  // start of the current healthy, on-time run; -1 while unhealthy
+};
+
 }  // namespace birotor

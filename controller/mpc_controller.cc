@@ -229,20 +229,29 @@ void MpcController::Record(const MpcPlan& plan) {
   }
   stats_.last_iterations = plan.iterations;
   stats_.max_iterations = std::max(stats_.max_iterations, plan.iterations);
-  stats_.solve_max_s = std::max(stats_.solve_max_s, plan.solve_time_s);
-  times_s_[static_cast<size_t>(times_recorded_ % kMpcTimeWindow)] = plan.solve_time_s;
-  ++times_recorded_;
+  solve_times_.Record(plan.solve_time_s);
 }
 
 MpcStats MpcController::Stats() const {
   MpcStats out = stats_;
-  const size_t n = static_cast<size_t>(std::min<int64_t>(times_recorded_, kMpcTimeWindow));
-  if (n == 0) return out;
+  solve_times_.Fill(&out);
+  return out;
+}
+
+void MpcSolveTimes::Record(double solve_time_s) {
+  max_s_ = std::max(max_s_, solve_time_s);
+  times_s_[static_cast<size_t>(recorded_ % kMpcTimeWindow)] = solve_time_s;
+  ++recorded_;
+}
+
+void MpcSolveTimes::Fill(MpcStats* stats) const {
+  const size_t n = static_cast<size_t>(std::min<int64_t>(recorded_, kMpcTimeWindow));
+  if (n == 0) return;
   std::copy(times_s_.begin(), times_s_.begin() + static_cast<std::ptrdiff_t>(n), scratch_.begin());
   const auto end = scratch_.begin() + static_cast<std::ptrdiff_t>(n);
-  out.solve_p50_s = Percentile(scratch_.begin(), end, 0.5);
-  out.solve_p99_s = Percentile(scratch_.begin(), end, 0.99);
-  return out;
+  stats->solve_p50_s = Percentile(scratch_.begin(), end, 0.5);
+  stats->solve_p99_s = Percentile(scratch_.begin(), end, 0.99);
+  stats->solve_max_s = max_s_;
 }
 
 }  // namespace birotor

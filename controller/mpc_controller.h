@@ -68,6 +68,23 @@ struct MpcStats {
 };
 constexpr int kMpcTimeWindow = 4096;
 
+// The solve times CONTROLLER_STATUS reports, for both MPCs (MpcController
+// and the N-rotor node's MultiArmMpc): the last kMpcTimeWindow solve times
+// on the deadline's clock and the maximum since start-up. No allocation.
+class MpcSolveTimes {
+ public:
+  void Record(double solve_time_s);
+  // solve_p50_s, solve_p99_s (over the window) and solve_max_s of *stats;
+  // left as they are before the first solve.
+  void Fill(MpcStats* stats) const;
+
+ private:
+  std::array<double, kMpcTimeWindow> times_s_{};
+  mutable std::array<double, kMpcTimeWindow> scratch_{};  // Percentile reorders: a copy
+  int64_t recorded_ = 0;
+  double max_s_ = 0.0;
+};
+
 // What one period of mode mpc sends (MpcController::Fly).
 struct MpcPeriod {
   // Finite, within [0, omega_max] and within max_omega_rate_rad_s2 * period_s
@@ -132,9 +149,7 @@ class MpcController {
   bool flown_ = false;            // Fly has sent a command
 
   MpcStats stats_;
-  std::array<double, kMpcTimeWindow> times_s_{};
-  mutable std::array<double, kMpcTimeWindow> scratch_{};
-  int64_t times_recorded_ = 0;
+  MpcSolveTimes solve_times_;
 };
 
 }  // namespace birotor

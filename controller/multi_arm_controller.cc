@@ -54,14 +54,14 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
   last_mpc_.omega_cmd_rad_s = last_sent_rad_s_;
 }
 
-void MultiArmController::OnPose(const PoseSample& sample) {
+void MultiArmController::OnPose(const PoseSample& sample, PoseGate::Verdict verdict) {
   if (!has_pose_) {
     has_pose_ = true;
     observer_.Initialize(Eigen::Vector2d(sample.x_m, sample.z_m), sample.phi_rad);
     observer_.PoseUsedAt(sample.utime);
     return;
   }
-  observer_.HoldPose(sample);
+  if (!MoveObserverOnto(verdict, sample, &observer_)) observer_.HoldPose(sample);
 }
 
 void MultiArmController::OnImu(const ImuSample& sample) {
@@ -96,7 +96,7 @@ RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {
   RotorEfficiencies efficiency = NominalEfficiencies();
   const RotorEfficiencyEstimate& e = efficiency_estimate_;
   const SupervisionParams& s = config_.supervision;
-  if (!config_.force_feedback || !e.valid || e.n_rotors != vehicle_.arm_count ||
+  if (!config_.force_feedback || !force_usable_ || !e.valid || e.n_rotors != vehicle_.arm_count ||
       AgeS(e.utime, now_us) > s.force_timeout_s)
     return efficiency;
   for (int i = 0; i < vehicle_.arm_count; ++i) {

@@ -24,6 +24,7 @@
 #include "controller/controller_params.h"
 #include "controller/multi_arm_law.h"
 #include "controller/multi_arm_mpc.h"
+#include "controller/pose_gate.h"
 #include "controller/reference_point.h"
 #include "controller/wrench_allocation.h"
 #include "model/multi_arm_linearization.h"
@@ -52,10 +53,18 @@ class MultiArmController {
   // vehicle field is not used (vehicle is). hover: SolveMultiArmHover(vehicle).
   MultiArmController(const VehicleDescription& vehicle, const ControllerConfig& config, const MultiArmHover& hover);
 
-  void OnPose(const PoseSample& sample);
+  // A POSE the caller admitted; verdict: the caller's POSE gate's
+  // (PoseGate, the N-rotor node), kReset / kReacquired move the observer
+  // onto it (MoveObserverOnto), kInside (the lock-step loop) fuses it.
+  void OnPose(const PoseSample& sample, PoseGate::Verdict verdict = PoseGate::Verdict::kInside);
   void OnImu(const ImuSample& sample);
   // The newest estimate; used only in force_feedback mode (EfficiencyInUse).
   void OnEfficiency(const RotorEfficiencyEstimate& estimate) { efficiency_estimate_ = estimate; }
+  // The supervisor's verdict on the estimate (the N-rotor node's force
+  // recovery rule, ForceRecovery): false flies the nominal map whatever the
+  // estimate says. true (the default) leaves it to EfficiencyInUse's own
+  // checks, as the lock-step loop flies.
+  void SetForceUsable(bool usable) { force_usable_ = usable; }
 
   // One control period (1 / rate_hz()) at now_us on the reference: the
   // observer predicted with the mean IMU of the period (stale beyond
@@ -75,7 +84,7 @@ class MultiArmController {
   int64_t mpc_solves() const { return mpc_solves_; }
   int64_t mpc_fallbacks() const { return mpc_fallbacks_; }
 
-  // e_i flown at now_us: 1 in nominal mode, without an estimate, with one
+  // e_i flown at now_us: 1 in nominal mode, while SetForceUsable(false), without an estimate, with one
   // older than force_timeout_s, not VALID or for another rotor count; else
   // rotor i's thrust_scale clamped to [min, max]_plausible_thrust_scale when
   // it is flagged faulty or |scale - 1| > efficiency.change_threshold, and
@@ -107,6 +116,7 @@ class MultiArmController {
   BodyStateObserver observer_;
   MultiArmRotorCommand hover_command_;  // before the first POSE
   RotorEfficiencyEstimate efficiency_estimate_;
+  bool force_usable_ = true;  // SetForceUsable
   bool has_pose_ = false;
   int64_t last_imu_utime_ = -1;
   int imu_count_ = 0;

@@ -44,4 +44,16 @@ PoseGate::Verdict PoseGate::Check(const PoseSample& sample, const BodyState& obs
   return reacquired ? Verdict::kReacquired : Verdict::kReset;
 }
 
+bool MoveObserverOnto(PoseGate::Verdict verdict, const PoseSample& sample, BodyStateObserver* observer) {
+  if (verdict != PoseGate::Verdict::kReset && verdict != PoseGate::Verdict::kReacquired) return false;
+  const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
+  if (verdict == PoseGate::Verdict::kReset) {
+    observer->Initialize(position_m, sample.phi_rad);
+  } else {
+    observer->Relocate(position_m, sample.phi_rad);
+  }
+  observer->PoseUsedAt(sample.utime);
+  return true;
+}
+
 }  // namespace birotor

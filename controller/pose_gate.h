@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
 #include "controller/position_attitude_law.h"
 #include "samples/samples.h"
@@ -41,5 +42,12 @@ class PoseGate {
   int run_ = 0;                  // consistent refused POSEs in a row
   PoseSample previous_;          // the newest refused POSE
 };
+
+// What both controllers do with a POSE the gate let through from outside it
+// (kReset: every POSE refused for pose_gate_reset_s, the observer is
+// re-initialised there; kReacquired: a consistent run, the position drifted
+// and the IMU's velocity and rate did not, so the observer is relocated).
+// True when the observer was moved (the POSE is used, not held for fusion).
+bool MoveObserverOnto(PoseGate::Verdict verdict, const PoseSample& sample, BodyStateObserver* observer);
 
 }  // namespace birotor

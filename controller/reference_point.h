@@ -24,4 +24,14 @@ Setpoint SetpointFromReference(const ReferencePoint& reference, int64_t utime, i
 // with a feed-forward that is not given (NaN) taken as 0 (controller/setpoint.cc).
 ReferencePoint ReferenceFromSetpoint(const Setpoint& setpoint, double dt_s = 0.0);
 
+// The controlled descent's reference (both controllers; POSE lost or hover
+// infeasible): where the observer puts the body, so the position error is
+// held at zero, sinking at descent_rate_m_s [m/s], no feed-forward.
+inline ReferencePoint DescentReference(const Eigen::Vector2d& position_m, double descent_rate_m_s) {
+  ReferencePoint target;
+  target.position_m = position_m;
+  target.velocity_m_s = Eigen::Vector2d(0.0, -descent_rate_m_s);
+  return target;
+}
+
 }  // namespace birotor

@@ -42,6 +42,7 @@ VehicleController::VehicleController(const ControllerConfig& config)
       feasibility_(config.efficiency, MaxRotorForceN(model_), 2.0 * HoverForce(model_)),
       pose_gate_(config.supervision),
       floor_evidence_(config.supervision, config.efficiency.infeasible_s),
+      force_recovery_(config.supervision),
       force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
       setpoint_(config.setpoint),
@@ -76,22 +77,9 @@ void VehicleController::OnPose(const PoseSample& sample, int64_t now_us) {
     return;
   }
   if (!AcceptNewest(sample.utime, &health_.pose)) return;
-  if (verdict == PoseGate::Verdict::kReset || verdict == PoseGate::Verdict::kReacquired) {
-    const Eigen::Vector2d position_m(sample.x_m, sample.z_m);
-    if (verdict == PoseGate::Verdict::kReset) {
-      // Every POSE refused for pose_gate_reset_s: the vehicle really is there.
-      ++health_.pose_gate_resets;
-      observer_.Initialize(position_m, sample.phi_rad);
-    } else {
-      // A consistent run of refused POSEs: the position drifted, the IMU's
-      // velocity and rate did not.
-      ++health_.pose_reacquisitions;
-      observer_.Relocate(position_m, sample.phi_rad);
-    }
-    observer_.PoseUsedAt(sample.utime);
-    return;
-  }
-  observer_.HoldPose(sample);
+  health_.pose_gate_resets += verdict == PoseGate::Verdict::kReset ? 1 : 0;
+  health_.pose_reacquisitions += verdict == PoseGate::Verdict::kReacquired ? 1 : 0;
+  if (!MoveObserverOnto(verdict, sample, &observer_)) observer_.HoldPose(sample);
 }
 
 void VehicleController::OnImu(const ImuSample& sample, int64_t now_us) {
@@ -139,20 +127,17 @@ void VehicleController::OnForce(const ForceEstimate& reported, int64_t now_us) {
     // (loss_70 tilt 0.20 -> 0.088 rad). The next good sample on time resumes
     // the run; a run of refused ones makes the next good one late, and a late
     // one starts a new run.
-    if (!plausible) newest_force_healthy_ = false;
-    return;
-  }
-  const bool healthy = (estimate.status & kStatusValid) != 0;
-  newest_force_healthy_ = healthy;
-  if (!healthy) {
-    ++health_.force_unhealthy;
-    force_healthy_since_us_ = -1;
+    force_recovery_.OnRefused(plausible);
     return;
   }
   // A late FORCE starts a new healthy run: recovery needs force_recovery_s
-  // of on-time samples.
-  const bool on_time = previous_utime >= 0 && ElapsedSeconds(estimate.utime, previous_utime) <= s.force_timeout_s;
-  if (force_healthy_since_us_ < 0 || !on_time) force_healthy_since_us_ = estimate.utime;
+  // of on-time samples (ForceRecovery, shared with the N-rotor node).
+  const bool healthy = (estimate.status & kStatusValid) != 0;
+  force_recovery_.OnAccepted(estimate.utime, previous_utime, healthy);
+  if (!healthy) {
+    ++health_.force_unhealthy;
+    return;
+  }
   efficiency_.OnForce(estimate);
 }
 
@@ -162,9 +147,7 @@ double VehicleController::AgeS(int64_t last_utime, int64_t now_us) const {
 }
 
 bool VehicleController::ForceUsable(int64_t now_us) const {
-  const SupervisionParams& s = config_.supervision;
-  return newest_force_healthy_ && !health_.conflict && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s &&
-         force_healthy_since_us_ >= 0 && AgeS(force_healthy_since_us_, now_us) >= s.force_recovery_s;
+  return !health_.conflict && force_recovery_.Usable(now_us, health_.force.last_utime);
 }
 
 void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status) {
@@ -314,9 +297,7 @@ ReferencePoint VehicleController::DescentTarget(bool pose_lost, bool infeasible,
   ReferencePoint target = reference_;
   const bool descend = pose_lost || infeasible;
   if (descend) {
-    target.position_m = observer_.state().position_m;
-    target.velocity_m_s = Eigen::Vector2d(0.0, -s.descent_rate_m_s);
-    target.acceleration_m_s2.setZero();
+    target = DescentReference(observer_.state().position_m, s.descent_rate_m_s);
     *status |= kCommandDescending;
     if (pose_lost) *status |= kCommandInputStale;
     if (!health_.descending) {

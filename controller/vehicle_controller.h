@@ -128,6 +128,7 @@ class VehicleController {
   HoverFeasibility feasibility_;
   PoseGate pose_gate_;
   ForceFloorEvidence floor_evidence_;
+  ForceRecovery force_recovery_;  // FORCE's health and its healthy run (force_recovery_s)
   SeqStreamLock force_lock_, pose_lock_;
   ControllerHealth health_;
   SetpointInput setpoint_;
@@ -143,11 +144,6 @@ class VehicleController {
   double gyro_sum_rad_s_ = 0.0;
   double accel_sum_m_s2_[2] = {0.0, 0.0};
   double last_specific_force_m_s2_[2] = {0.0, 0.0};
-
-  // FORCE: health of the newest sample and the start of the current healthy,
-  // on-time run (-1 while unhealthy).
-  bool newest_force_healthy_ = false;
-  int64_t force_healthy_since_us_ = -1;
 
   int64_t last_update_us_ = -1;
   bool saturated_ = false;           // the previous period's allocation was limited (anti-windup)

@@ -35,7 +35,8 @@ static_assert(kCommandFallbackActive == motor_command_n_t::STATUS_FALLBACK_ACTIV
                   kCommandInputStale == motor_command_n_t::STATUS_INPUT_STALE &&
                   kCommandInputConflict == motor_command_n_t::STATUS_INPUT_CONFLICT &&
                   kCommandSaturated == motor_command_n_t::STATUS_SATURATED &&
-                  kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK,
+                  kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK &&
+                  kCommandDescending == motor_command_n_t::STATUS_DESCENDING,
               "MOTOR_COMMAND_N's status bits are MOTOR_COMMAND's");
 
 MultiArmControllerService::MultiArmControllerService(const VehicleDescription& vehicle, const ControllerConfig& config,
@@ -51,7 +52,9 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
       clock_(config.supervision),
       grid_(std::max<int64_t>(1, std::llround(1e6 / controller_.rate_hz()))),
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
-      force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)) {
+      force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
+      pose_gate_(config.supervision),
+      force_recovery_(config.supervision) {
   routes_.Add(channels_.pose, Channel::kPose);
   routes_.Add(channels_.imu, Channel::kImu);
   routes_.Add(channels_.force_n, Channel::kForce);
@@ -63,6 +66,9 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
   force_message_.force_std_n.reserve(kMaxArms);
   force_message_.thrust_scale.reserve(kMaxArms);
   buffer_.reserve(512);
+  // Force feedback starts in the fallback until FORCE_N has been healthy for
+  // force_recovery_s; that start is not counted as a fallback (as the birotor's).
+  health_.fallback_active = config.force_feedback;
 }
 
 void MultiArmControllerService::HandlePacket(std::string_view channel, const void* data, size_t size,
@@ -118,11 +124,20 @@ void MultiArmControllerService::Dispatch(Channel channel, const void* data, size
 void MultiArmControllerService::OnPose(const PoseSample& sample, int64_t now_us) {
   const double values[3] = {sample.x_m, sample.z_m, sample.phi_rad};
   const StreamMessage message{sample.seq, sample.utime, PayloadDigest(values, 3)};
-  if (!AdmitToStream(config_.supervision, message, PlausiblePose(sample), now_us, &pose_lock_, &health_.pose) ||
-      !AcceptNewest(sample.utime, &health_.pose))
+  // The stream, then the gate against the observer (from the second POSE
+  // on), then newest: a refused sample does not become the newest (as the birotor's).
+  if (!AdmitToStream(config_.supervision, message, PlausiblePose(sample), now_us, &pose_lock_, &health_.pose)) return;
+  const PoseGate::Verdict verdict =
+      controller_.has_pose() ? pose_gate_.Check(sample, controller_.body_state(), now_us) : PoseGate::Verdict::kInside;
+  if (verdict == PoseGate::Verdict::kRefused) {
+    ++health_.pose.rejected_gate;
     return;
+  }
+  if (!AcceptNewest(sample.utime, &health_.pose)) return;
+  health_.pose_gate_resets += verdict == PoseGate::Verdict::kReset ? 1 : 0;
+  health_.pose_reacquisitions += verdict == PoseGate::Verdict::kReacquired ? 1 : 0;
   if (!controller_.has_pose()) setpoint_.SetStart(Eigen::Vector2d(sample.x_m, sample.z_m));
-  controller_.OnPose(sample);
+  controller_.OnPose(sample, verdict);
 }
 
 void MultiArmControllerService::OnImu(const ImuSample& sample, int64_t now_us) {
@@ -146,9 +161,12 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
   for (int i = 0; i < n; ++i) values[i] = m.thrust_scale[i];
   values[n] = static_cast<double>(m.status);
   const StreamMessage message{m.seq, m.utime, PayloadDigest(values, n + 1)};
+  const int64_t previous_utime = health_.force.last_utime;
   if (!AdmitToStream(s, message, plausible, now_us, &force_lock_, &health_.force) ||
-      !AcceptNewest(m.utime, &health_.force))
+      !AcceptNewest(m.utime, &health_.force)) {
+    force_recovery_.OnRefused(plausible);
     return;
+  }
   RotorEfficiencyEstimate estimate;
   estimate.utime = m.utime;
   estimate.n_rotors = n;
@@ -158,8 +176,9 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
     estimate.thrust_scale_std[static_cast<size_t>(i)] =
         m.force_n[i] > 0.0 ? m.force_std_n[i] * m.thrust_scale[i] / m.force_n[i] : 0.0;
   }
-  estimate.valid = force_valid_ = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
-  if (!force_valid_) ++health_.force_unhealthy;
+  estimate.valid = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
+  force_recovery_.OnAccepted(m.utime, previous_utime, estimate.valid);
+  if (!estimate.valid) ++health_.force_unhealthy;
   estimate.rotor_fault_bits = m.rotor_fault_bits;
   controller_.OnEfficiency(estimate);
 }
@@ -174,18 +193,26 @@ void MultiArmControllerService::RunIfDue(int64_t host_us) {
   grid_.Ran(host_us);
 }
 
+bool MultiArmControllerService::SuperviseForce(int64_t now_us) {
+  // A second publisher on POSE or FORCE_N drops force feedback (as the birotor's).
+  const bool conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
+  if (conflict && !health_.conflict) ++health_.conflicts;
+  health_.conflict = conflict;
+  // Force feedback wanted but FORCE_N stale, not VALID, refused or not yet
+  // healthy for force_recovery_s: the nominal map.
+  const bool usable = !conflict && force_recovery_.Usable(now_us, health_.force.last_utime);
+  const bool fallback = config_.force_feedback && !usable;
+  if (fallback && !health_.fallback_active) ++health_.fallbacks;
+  health_.fallback_active = fallback;
+  return usable;
+}
+
 CommandStatusFacts MultiArmControllerService::PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command) {
   const SupervisionParams& s = config_.supervision;
   CommandStatusFacts facts;
-  // Force feedback wanted but FORCE_N stale, not VALID or refused: the nominal map.
-  const bool force_usable = force_valid_ && AgeS(health_.force.last_utime, now_us) <= s.force_timeout_s;
-  facts.fallback_active = config_.force_feedback && !force_usable;
-  if (facts.fallback_active && !health_.fallback_active) ++health_.fallbacks;
-  health_.fallback_active = facts.fallback_active;
+  facts.fallback_active = health_.fallback_active;
   facts.input_stale = AgeS(health_.pose.last_utime, now_us) > s.pose_timeout_s;
-  facts.input_conflict = pose_lock_.InConflict(now_us) || force_lock_.InConflict(now_us);
-  if (facts.input_conflict && !health_.conflict) ++health_.conflicts;
-  health_.conflict = facts.input_conflict;
+  facts.input_conflict = health_.conflict;
   facts.saturated = command.saturated;
   health_.saturated += command.saturated ? 1 : 0;
   return facts;
@@ -195,11 +222,22 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   // The clock is monotonic; the guard keeps a command's stamp from going back.
   const int64_t vehicle_us = std::max(clock_.VehicleTimeUs(host_us), last_period_vehicle_us_);
   const BodyState& state = controller_.body_state();
-  const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
+  // POSE lost: the level controlled descent on the propagated state (as the
+  // birotor's target; its tilt bound and slew are not the N law's, docs/controller.md).
+  const bool pose_lost = AgeS(health_.pose.last_utime, vehicle_us) > config_.supervision.pose_timeout_s;
+  if (pose_lost && !health_.descending) ++health_.descents;
+  health_.descending = pose_lost;
+  const ReferencePoint setpoint_reference = setpoint_.At(vehicle_us, state.position_m);
+  const ReferencePoint reference =
+      pose_lost ? DescentReference(state.position_m, config_.supervision.descent_rate_m_s) : setpoint_reference;
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
+  const int64_t mpc_solves = controller_.mpc_solves();
+  controller_.SetForceUsable(SuperviseForce(vehicle_us));
   MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
   CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
   facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
+  facts.descending = pose_lost;
+  if (controller_.mpc_solves() > mpc_solves) RecordMpcSolve(controller_.last_mpc_result());
   // Never a non-finite command or one outside [0, omega_max]: the last good one instead.
   bool finite = true;
   for (int i = 0; i < vehicle_.arm_count; ++i) finite = finite && std::isfinite(command.omega_cmd_rad_s[i]);
@@ -224,11 +262,21 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   last_period_vehicle_us_ = vehicle_us;
 }
 
+void MultiArmControllerService::RecordMpcSolve(const MultiArmMpcResult& result) {
+  // On the deadline's clock, as the birotor's MpcController: wall time for
+  // deadline_clock wall, this thread's CPU time otherwise.
+  const bool wall = config_.mpc.deadline_clock == MpcDeadlineClock::kWall;
+  mpc_solve_times_.Record(wall ? result.solve_time_s : result.solve_cpu_s);
+  mpc_max_iterations_ = std::max(mpc_max_iterations_, result.iterations);
+}
+
 MpcStats MultiArmControllerService::MpcCounters() const {
-  MpcStats stats;  // the solve counts; the N-input MPC keeps no solve-time window
+  MpcStats stats;  // every fallback of the N-input MPC is counted as solver_failed
   stats.solves = controller_.mpc_solves();
   stats.solver_failed = controller_.mpc_fallbacks();
   stats.last_iterations = controller_.last_mpc_result().iterations;
+  stats.max_iterations = mpc_max_iterations_;
+  mpc_solve_times_.Fill(&stats);
   return stats;
 }
 
@@ -240,7 +288,6 @@ void MultiArmControllerService::PublishStatus(int64_t wall_utime, int64_t host_u
   for (int i = 0; i < kNumControllerInputs; ++i) context.decode_errors[i] = decode_errors_[i];
   context.setpoint_decode_errors = setpoint_decode_errors_;
   context.clock_relatches = clock_.relatches();
-  context.report_solve_times = false;
   grid_.TakeLoopTimes(&context.loop_time_p99_us, &context.loop_time_max_us);
   context.udp_fragments_dropped = udp_counters_ != nullptr ? udp_counters_->fragments_dropped : 0;
   context.udp_malformed_dropped = udp_counters_ != nullptr ? udp_counters_->malformed_dropped : 0;

@@ -6,12 +6,15 @@
 // and control-period grid (nodes/controller_clock.h), MOTOR_COMMAND_N and
 // CONTROLLER_STATUS. A FORCE_N of another rotor count is refused whole and
 // counted (a decode error of FORCE, by reason in force_count_refusals()).
-// FORCE_N stale (force_timeout_s), not VALID or refused: the nominal map
-// (MultiArmController::EfficiencyInUse), STATUS_FALLBACK_ACTIVE. Every
-// command is finite and within [0, omega_max]. Not done here (docs/
-// controller.md, "Vehicles with N rotors"): the birotor's controlled
-// descent on a lost POSE, the POSE innovation gate and the hover
-// feasibility latch; a stale POSE is flagged STATUS_INPUT_STALE only.
+// FORCE_N stale (force_timeout_s), not VALID, refused, a second publisher
+// on POSE or FORCE_N, or not yet healthy and on time for force_recovery_s
+// (ForceRecovery, the birotor's rule): the nominal map
+// (MultiArmController::SetForceUsable), STATUS_FALLBACK_ACTIVE. Every
+// command is finite and within [0, omega_max]. The POSE innovation gate
+// (PoseGate); a POSE older than pose_timeout_s: the controlled descent's
+// reference (DescentReference), STATUS_DESCENDING. Not done here (docs/
+// controller.md, "The daemon for N rotors"): the hover feasibility latch
+// and its descent, the descent's tilt bound and command slew.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +31,7 @@
 #include "controller/controller_params.h"
 #include "controller/input_admission.h"
 #include "controller/multi_arm_controller.h"
+#include "controller/pose_gate.h"
 #include "controller/setpoint_input.h"
 #include "controller/vehicle_controller.h"
 #include "model/vehicle_description.h"
@@ -88,8 +92,14 @@ class MultiArmControllerService : public PacketHandler {
   // locked seq stream, newest; then the controller's efficiency estimate.
   void OnForce(const force_estimate_n_t& message, int64_t now_us);
   void RunControlPeriod(int64_t host_us);
-  // The facts of a period at now_us for its status bits (ComposeCommandStatus); counts entries.
+  // FORCE_N's verdict for the period at now_us: usable (ForceRecovery, no
+  // conflict on the seq streams); counts entries into the fallback and the conflict.
+  bool SuperviseForce(int64_t now_us);
+  // The facts of a period at now_us for its status bits (ComposeCommandStatus).
   CommandStatusFacts PeriodFacts(int64_t now_us, const MultiArmRotorCommand& command);
+  // Mode mpc: a period's solve into the solve-time window and the iteration maximum.
+  void RecordMpcSolve(const MultiArmMpcResult& result);
+  // CONTROLLER_STATUS's mpc_* fields: counts, iterations, solve times.
   MpcStats MpcCounters() const;
 
   VehicleDescription vehicle_;
@@ -103,11 +113,14 @@ class MultiArmControllerService : public PacketHandler {
   ControllerClock clock_;
   ControlPeriodGrid grid_;
   SeqStreamLock pose_lock_, force_lock_;
+  PoseGate pose_gate_;
   ControllerHealth health_;
   CountRefusals force_count_refusals_;
+  MpcSolveTimes mpc_solve_times_;  // mode mpc, on the deadline's clock
+  int32_t mpc_max_iterations_ = 0;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
   int64_t setpoint_decode_errors_ = 0;
-  bool force_valid_ = false;  // the newest accepted FORCE_N has STATUS_VALID
+  ForceRecovery force_recovery_;  // FORCE_N's health and its healthy run (force_recovery_s)
   int64_t last_period_vehicle_us_ = -1;
   MultiArmRotorCommand last_good_;  // the last finite command (the numerical guard)
   motor_command_n_t command_{};

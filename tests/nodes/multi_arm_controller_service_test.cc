@@ -1,13 +1,15 @@
 // The N-rotor controller node (nodes/multi_arm_controller_service.h) on the
 // trirotor, through its one way in on its own host clock: a FORCE_N of
 // another rotor count is refused and counted, a stale or absent FORCE_N
-// flies the nominal map (STATUS_FALLBACK_ACTIVE), a future stamp is refused,
+// flies the nominal map (STATUS_FALLBACK_ACTIVE) and force feedback resumes
+// only after force_recovery_s of healthy FORCE_N, a future stamp is refused,
 // every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max], and a
 // plain FORCE_N in front of the sealed channel is refused.
 #include "nodes/multi_arm_controller_service.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,18 +26,24 @@
 namespace birotor {
 namespace {
 
-// Keeps the MOTOR_COMMAND_N the node publishes.
+// Keeps the MOTOR_COMMAND_N and the CONTROLLER_STATUS the node publishes.
 class CommandSink : public MessageSink {
  public:
-  explicit CommandSink(std::string channel) : channel_(std::move(channel)) {}
+  explicit CommandSink(std::string channel, std::string status_channel = "")
+      : channel_(std::move(channel)), status_channel_(std::move(status_channel)) {}
   void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
     motor_command_n_t command;
+    controller_status_t status;
     if (channel == channel_ && DecodeMessage(data, size, &command) == DecodeError::kNone) commands.push_back(command);
+    if (channel == status_channel_ && DecodeMessage(data, size, &status) == DecodeError::kNone)
+      statuses.push_back(status);
   }
   std::vector<motor_command_n_t> commands;
+  std::vector<controller_status_t> statuses;
 
  private:
   std::string channel_;
+  std::string status_channel_;
 };
 
 template <class Message>
@@ -57,18 +65,21 @@ std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status) {
   return Encoded(m);
 }
 
-class MultiArmControllerServiceTest : public ::testing::Test {
+// The node on the trirotor in mode force_feedback (kMpc false) or mpc.
+template <bool kMpc>
+class ServiceFixture : public ::testing::Test {
  protected:
   // One packet at host time host_us; the vehicle clock is host time - 1 s.
   void Send(const std::string& channel, const std::vector<uint8_t>& bytes, int64_t host_us) {
     host_us_ = host_us;
     service_.HandlePacket(channel, bytes.data(), bytes.size(), -1);
   }
-  // POSE (at rest at the origin) and IMU stamped at the vehicle time of host_us.
-  void SendPoseAndImu(int64_t host_us, int32_t seq) {
+  // POSE (at rest at x_m, else the origin) and IMU stamped at the vehicle time of host_us.
+  void SendPoseAndImu(int64_t host_us, int32_t seq, double x_m = 0.0) {
     pose_t pose{};
     pose.utime = host_us - kOffsetUs;
     pose.seq = seq;
+    pose.x_m = x_m;
     imu_t imu{};
     imu.utime = host_us - kOffsetUs;
     imu.seq = seq;
@@ -80,16 +91,45 @@ class MultiArmControllerServiceTest : public ::testing::Test {
   void RunUntil(int64_t host_us) {
     for (; now_us_ <= host_us; now_us_ += 1000) service_.RunIfDue(now_us_);
   }
+  // POSE (unless without_pose) and IMU at 100 Hz, FORCE_N (VALID, 20 % lost)
+  // at 1 kHz and the periods, over host time [from_us, to_us].
+  void Fly(int64_t from_us, int64_t to_us, bool without_pose = false) {
+    for (int64_t host_us = from_us; host_us <= to_us; host_us += 1000) {
+      if (host_us % 10000 == 0 && !without_pose) SendPoseAndImu(host_us, ++pose_seq_);
+      if (host_us % 10000 == 0 && without_pose) SendImu(host_us);
+      Send(channels_.force_n,
+           ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+           host_us);
+      RunUntil(host_us);
+    }
+  }
+  void SendImu(int64_t host_us) {
+    imu_t imu{};
+    imu.utime = host_us - kOffsetUs;
+    imu.seq = ++pose_seq_;
+    imu.accel_z_m_s2 = vehicle_.gravity_m_s2;
+    Send(channels_.imu, Encoded(imu), host_us);
+  }
+  int32_t pose_seq_ = 0;
 
   static constexpr int64_t kOffsetUs = 1000000;  // host time - vehicle time [us]
   const VehicleDescription vehicle_ =
       LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
   const ChannelNames channels_ = MakeChannelNames("TEST_");
-  CommandSink sink_{channels_.motor_command_n};
+  CommandSink sink_{channels_.motor_command_n, channels_.controller_status};
   int64_t host_us_ = 0;
   int64_t now_us_ = 5000000;  // RunUntil's next check
-  MultiArmControllerService service_{vehicle_, ControllerConfig{}, channels_, &sink_, [this] { return host_us_; }};
+  MultiArmControllerService service_{vehicle_, Config(), channels_, &sink_, [this] { return host_us_; }};
+
+ private:
+  static ControllerConfig Config() {
+    ControllerConfig config;
+    config.model_predictive = kMpc;
+    return config;
+  }
 };
+using MultiArmControllerServiceTest = ServiceFixture<false>;
+using MultiArmControllerServiceMpcTest = ServiceFixture<true>;
 
 TEST_F(MultiArmControllerServiceTest, AForceNOfAnotherRotorCountIsRefusedAndCounted) {
   SendPoseAndImu(5000000, 1);
@@ -105,14 +145,7 @@ TEST_F(MultiArmControllerServiceTest, AForceNOfAnotherRotorCountIsRefusedAndCoun
 
 TEST_F(MultiArmControllerServiceTest, StaleOrInvalidForceNFliesTheNominalMapAndSaysSo) {
   // 0.2 s of POSE (100 Hz), IMU and FORCE_N (1 kHz) reporting a 20 % loss.
-  int32_t seq = 0;
-  for (int64_t host_us = 5000000; host_us <= 5200000; host_us += 1000) {
-    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
-    Send(channels_.force_n,
-         ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
-         host_us);
-    RunUntil(host_us);
-  }
+  Fly(5000000, 5200000);
   ASSERT_FALSE(sink_.commands.empty());
   EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
   // The efficiency in use is the reported 0.8 (changed by more than change_threshold).
@@ -134,6 +167,109 @@ TEST_F(MultiArmControllerServiceTest, StaleOrInvalidForceNFliesTheNominalMapAndS
       EXPECT_LE(omega, vehicle_.omega_max_rad_s);
     }
   }
+}
+
+// The force recovery rule (ForceRecovery, the birotor's): force feedback
+// resumes only after force_recovery_s (0.05 s) of healthy, on-time FORCE_N,
+// so a run of late FORCE_N on a loaded host is one fallback, not one per
+// late sample. POSE at 100 Hz, FORCE_N at 1 kHz, periods at 500 Hz; 0.3 s
+// healthy, then three late FORCE_N (each 8 ms after the one before,
+// force_timeout_s 5 ms) 20 ms apart. Measured on this sequence: the node
+// before ForceRecovery (main at 8d7227e) entered the fallback 3 times (once
+// per late FORCE_N) and STATUS_FALLBACK_ACTIVE toggled 6 times; with it 1
+// entry, 3 toggles (the start's exit included), force feedback back at
+// host 5.390 s = the last late one + 50 ms (bound: + one 2 ms period).
+TEST_F(MultiArmControllerServiceTest, LateForceNTogglesTheFallbackOnceAndRecoversAfterForceRecoveryS) {
+  const int64_t late_host_us[3] = {5300000, 5320000, 5340000};
+  int32_t seq = 0;
+  int64_t recovered_host_us = -1;
+  for (int64_t host_us = 5000000; host_us <= 5500000; host_us += 1000) {
+    if (host_us % 10000 == 0) SendPoseAndImu(host_us, ++seq);
+    // The 7 FORCE_N before each late one are not sent (stamps 8 ms apart).
+    bool withheld = false;
+    for (int64_t late_us : late_host_us) withheld = withheld || (host_us > late_us - 8000 && host_us < late_us);
+    if (!withheld)
+      Send(channels_.force_n,
+           ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+           host_us);
+    const bool was_fallback = service_.health().fallback_active;
+    RunUntil(host_us);
+    if (host_us > late_host_us[2] && was_fallback && !service_.health().fallback_active && recovered_host_us < 0)
+      recovered_host_us = host_us;
+  }
+  int toggles = 0;
+  for (size_t i = 1; i < sink_.commands.size(); ++i) {
+    const int32_t flag = motor_command_n_t::STATUS_FALLBACK_ACTIVE;
+    toggles += (sink_.commands[i].status & flag) != (sink_.commands[i - 1].status & flag) ? 1 : 0;
+  }
+  // The start in the fallback (FORCE_N not yet healthy for 50 ms) is not an entry.
+  EXPECT_EQ(service_.health().fallbacks, 1);
+  EXPECT_EQ(toggles, 3);  // start -> flown on FORCE_N, the late run's entry, its recovery
+  // The last late FORCE_N (vehicle time 4.34 s) starts the healthy run again:
+  // force feedback at its stamp + force_recovery_s, on the 500 Hz grid.
+  EXPECT_GE(recovered_host_us, late_host_us[2] + 50000);
+  EXPECT_LE(recovered_host_us, late_host_us[2] + 52000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  EXPECT_DOUBLE_EQ(service_.controller().EfficiencyInUse(5500000 - kOffsetUs)[1], 0.8);
+}
+
+// CONTROLLER_STATUS in mode mpc: one solve per 200 Hz period, the solve
+// times (the birotor's window, MpcSolveTimes) filled, no longer NaN, and the
+// efficiency of rotors 1 and 2 (the message's two slots) the reported 0.8.
+TEST_F(MultiArmControllerServiceMpcTest, ControllerStatusCarriesTheMpcSolveTimes) {
+  Fly(5000000, 5200000);
+  service_.PublishStatus(0, 5200000);
+  ASSERT_EQ(sink_.statuses.size(), 1u);
+  const controller_status_t& status = sink_.statuses.back();
+  // The first POSE comes before the clock is set (by the IMU after it,
+  // ControllerClock) and is not flown: periods at 200 Hz from the second
+  // POSE at host 5.01 s to 5.2 s, both included: 39, each a solve.
+  EXPECT_EQ(static_cast<int64_t>(sink_.commands.size()), 39);
+  EXPECT_EQ(status.mpc_solves, 39);
+  ASSERT_TRUE(std::isfinite(status.mpc_solve_p50_us));
+  EXPECT_GT(status.mpc_solve_p50_us, 0.0);
+  EXPECT_LE(status.mpc_solve_p50_us, status.mpc_solve_p99_us);
+  EXPECT_LE(status.mpc_solve_p99_us, status.mpc_solve_max_us);
+  EXPECT_GE(status.mpc_max_iterations, status.mpc_iterations);
+  EXPECT_DOUBLE_EQ(status.efficiency[0], 0.8);
+  EXPECT_DOUBLE_EQ(status.efficiency[1], 0.8);
+}
+
+// POSE lost (pose_timeout_s 0.05 s): the controlled descent
+// (DescentReference), STATUS_DESCENDING with STATUS_INPUT_STALE, one entry;
+// POSE back: the setpoint again.
+TEST_F(MultiArmControllerServiceTest, LostPoseGivesTheControlledDescentOnce) {
+  Fly(5000000, 5200000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_DESCENDING, 0);
+  Fly(5201000, 5300000, /*without_pose=*/true);
+  // The last POSE at vehicle 4.200 s; its age exceeds 0.05 s first in the
+  // 500 Hz period at 4.252 s.
+  int64_t first_descending_us = -1;
+  for (const motor_command_n_t& command : sink_.commands)
+    if ((command.status & motor_command_n_t::STATUS_DESCENDING) != 0 && first_descending_us < 0)
+      first_descending_us = command.utime;
+  EXPECT_EQ(first_descending_us, 4252000);
+  EXPECT_NE(sink_.commands.back().status & motor_command_n_t::STATUS_INPUT_STALE, 0);
+  EXPECT_EQ(service_.health().descents, 1);
+  EXPECT_TRUE(service_.health().descending);
+  Fly(5301000, 5320000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_DESCENDING, 0);
+  EXPECT_EQ(service_.health().descents, 1);
+}
+
+// The POSE innovation gate (PoseGate, the birotor's): a POSE 1 m from the
+// observer (gate 0.3 m) is refused; a consistent run of
+// pose_reacquire_count (5) at 0.5 m moves the observer there on the fifth.
+TEST_F(MultiArmControllerServiceTest, PoseOutsideTheGateIsRefusedUntilAConsistentRunReacquires) {
+  Fly(5000000, 5200000);
+  SendPoseAndImu(5210000, ++pose_seq_, 1.0);
+  RunUntil(5210000);
+  EXPECT_EQ(service_.health().pose.rejected_gate, 1);
+  EXPECT_NEAR(service_.controller().body_state().position_m.x(), 0.0, 0.01);
+  for (int k = 1; k <= 5; ++k) SendPoseAndImu(5210000 + 10000 * k, ++pose_seq_, 0.5);
+  EXPECT_EQ(service_.health().pose.rejected_gate, 1 + 4);
+  EXPECT_EQ(service_.health().pose_reacquisitions, 1);
+  EXPECT_DOUBLE_EQ(service_.controller().body_state().position_m.x(), 0.5);
 }
 
 TEST_F(MultiArmControllerServiceTest, AFutureStampedForceNIsRefused) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "birotor/controller_status_t.hpp"
 #include "birotor/guard_status_t.hpp"
 #include "birotor/motor_command_n_t.hpp"
 #include "birotor/truth_n_t.hpp"
@@ -45,6 +46,7 @@ class VehicleLoopListener {
     listener_.Subscribe(listener_.channels().truth_n, &VehicleLoopListener::OnTruth, this);
     listener_.Subscribe(listener_.channels().motor_command_n, &VehicleLoopListener::OnCommand, this);
     listener_.Subscribe(listener_.channels().guard_status, &VehicleLoopListener::OnGuard, this);
+    listener_.Subscribe(listener_.channels().controller_status, &VehicleLoopListener::OnStatus, this);
     listener_.Start();
   }
   bool good() { return listener_.good(); }
@@ -55,6 +57,11 @@ class VehicleLoopListener {
     double settled_max_error_m = 0;  // max |z - kStepZM| over [kStepAtS + kMoveS + 2, kDurationS) s
     double max_abs_x_m = 0;          // over the whole flight after 1 s
     guard_status_t controller_guard{};
+    // The fallback (nominal map): entries in the newest CONTROLLER_STATUS
+    // (-1 before one), commands flagged STATUS_FALLBACK_ACTIVE, flag changes.
+    int64_t fallbacks = -1, fallback_commands = 0, fallback_toggles = 0;
+    int64_t conflicts = -1;          // entries into STATUS_INPUT_CONFLICT (CONTROLLER_STATUS)
+    std::string fallback_entries_s;  // vehicle time of each entry [s], the first 8
   };
   Figures figures() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -77,9 +84,22 @@ class VehicleLoopListener {
     if (DecodeMessage(buffer->data, buffer->data_size, &command_) != DecodeError::kNone) return;
     bool within = command_.n_rotors == kRotors;
     for (double omega : command_.omega_cmd_rad_s) within = within && omega >= 0.0 && omega <= omega_max_rad_s_;
+    const bool fallback = (command_.status & motor_command_n_t::STATUS_FALLBACK_ACTIVE) != 0;
     std::lock_guard<std::mutex> lock(mutex_);
+    if (figures_.commands > 0 && fallback != last_fallback_) ++figures_.fallback_toggles;
+    if (figures_.commands > 0 && fallback && !last_fallback_ && figures_.fallback_toggles <= 16)
+      figures_.fallback_entries_s += " " + std::to_string(1e-6 * static_cast<double>(command_.utime)).substr(0, 5);
+    last_fallback_ = fallback;
     ++figures_.commands;
+    if (fallback) ++figures_.fallback_commands;
     if (!within) ++figures_.commands_out_of_bounds;
+  }
+  void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
+    controller_status_t status{};
+    if (DecodeMessage(buffer->data, buffer->data_size, &status) != DecodeError::kNone) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    figures_.fallbacks = status.fallbacks;
+    figures_.conflicts = status.conflicts;
   }
   void OnGuard(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
     guard_status_t guard{};
@@ -91,6 +111,7 @@ class VehicleLoopListener {
   double omega_max_rad_s_;
   truth_n_t truth_{};
   motor_command_n_t command_{};
+  bool last_fallback_ = false;
   std::mutex mutex_;
   Figures figures_;
   ListenerThread listener_;  // last: stops first
@@ -206,11 +227,14 @@ TEST(LiveVehicleControllerTest, TrirotorFliesAnAltitudeStepOnSealedChannelsAndRe
       "trirotor live: %lld TRUTH_N, %lld MOTOR_COMMAND_N (%lld out of bounds); hover max |z| %.4f m, after the "
       "%.1f m step max |z - z_ref| %.4f m (from %.1f s), max |x| %.4f m\n"
       "forgeries (%d of each): controller refused FORCE_N unsealed %lld (GUARD_STATUS), for its rotor count %ld; "
-      "ESCs refused MOTOR_COMMAND_N (sealed under another key and its plain copy) %ld\n",
+      "ESCs refused MOTOR_COMMAND_N (sealed under another key and its plain copy) %ld\n"
+      "fallback: %lld entries (CONTROLLER_STATUS), %lld commands flagged, %lld flag changes, entries at [s]%s; "
+      "%lld conflicts\n",
       static_cast<long long>(f.truths), static_cast<long long>(f.commands),
       static_cast<long long>(f.commands_out_of_bounds), f.hover_max_error_m, kStepZM, f.settled_max_error_m,
       kStepAtS + kMoveS + 2.0, f.max_abs_x_m, kForgeries, static_cast<long long>(f.controller_guard.refused[kForce]),
-      count_refused, esc_refused);
+      count_refused, esc_refused, static_cast<long long>(f.fallbacks), static_cast<long long>(f.fallback_commands),
+      static_cast<long long>(f.fallback_toggles), f.fallback_entries_s.c_str(), static_cast<long long>(f.conflicts));
   ASSERT_GT(f.truths, 3500) << sim_text;  // 7 s at 1 kHz, less what a loaded kernel dropped
   EXPECT_GT(f.commands, 2000);            // 500 Hz from the first POSE
   EXPECT_EQ(f.commands_out_of_bounds, 0);
