@@ -240,20 +240,9 @@ void EkfForceEstimator::PredictTo(int64_t utime) {
 }
 
 void EkfForceEstimator::ApplyQueuedUpTo(int64_t utime) {
-  while (true) {
-    const bool motor_due = !motor_queue_.empty() && motor_queue_.front().utime <= utime;
-    const bool imu_due = !imu_queue_.empty() && imu_queue_.front().utime <= utime;
-    if (!motor_due && !imu_due) return;
-    if (motor_due && (!imu_due || motor_queue_.front().utime <= imu_queue_.front().utime)) {
-      const MotorSample sample = motor_queue_.front();
-      motor_queue_.pop();
-      ApplyMotor(sample);
-    } else {
-      const ImuSample sample = imu_queue_.front();
-      imu_queue_.pop();
-      ApplyImu(sample);
-    }
-  }
+  DrainInTimeOrder(
+      utime, &motor_queue_, &imu_queue_, [this](const MotorSample& sample) { ApplyMotor(sample); },
+      [this](const ImuSample& sample) { ApplyImu(sample); });
 }
 
 template <int N, int M, typename State, typename Cov>

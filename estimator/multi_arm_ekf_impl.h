@@ -196,20 +196,9 @@ void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
 
 template <int N>
 void MultiArmEkf<N>::ApplyQueuedUpTo(int64_t utime) {
-  while (true) {
-    const bool motor_due = !motor_queue_.empty() && motor_queue_.front().utime <= utime;
-    const bool imu_due = !imu_queue_.empty() && imu_queue_.front().utime <= utime;
-    if (!motor_due && !imu_due) return;
-    if (motor_due && (!imu_due || motor_queue_.front().utime <= imu_queue_.front().utime)) {
-      const MultiArmMotorSample sample = motor_queue_.front();
-      motor_queue_.pop();
-      ApplyMotor(sample);
-    } else {
-      const ImuSample sample = imu_queue_.front();
-      imu_queue_.pop();
-      ApplyImu(sample);
-    }
-  }
+  DrainInTimeOrder(
+      utime, &motor_queue_, &imu_queue_, [this](const MultiArmMotorSample& sample) { ApplyMotor(sample); },
+      [this](const ImuSample& sample) { ApplyImu(sample); });
 }
 
 template <int N>

@@ -1,8 +1,10 @@
 // A fixed-capacity FIFO of samples (no allocation after construction), for
-// measurements that wait until the filter is predicted to their time stamp.
+// measurements that wait until the filter is predicted to their time stamp,
+// and the time-ordered drain of the MOTOR and IMU queues.
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 namespace birotor {
 
@@ -35,5 +37,27 @@ class SampleQueue {
   int head_ = 0;
   int size_ = 0;
 };
+
+// Hands every sample of both queues stamped at or before utime [us] to its
+// apply function in time order, motor first on equal stamps (what the EKFs do
+// before predicting to a strain sample).
+template <typename MotorQueue, typename ImuQueue, typename ApplyMotor, typename ApplyImu>
+void DrainInTimeOrder(int64_t utime, MotorQueue* motor_queue, ImuQueue* imu_queue, ApplyMotor&& apply_motor,
+                      ApplyImu&& apply_imu) {
+  while (true) {
+    const bool motor_due = !motor_queue->empty() && motor_queue->front().utime <= utime;
+    const bool imu_due = !imu_queue->empty() && imu_queue->front().utime <= utime;
+    if (!motor_due && !imu_due) return;
+    if (motor_due && (!imu_due || motor_queue->front().utime <= imu_queue->front().utime)) {
+      const auto sample = motor_queue->front();
+      motor_queue->pop();
+      apply_motor(sample);
+    } else {
+      const auto sample = imu_queue->front();
+      imu_queue->pop();
+      apply_imu(sample);
+    }
+  }
+}
 
 }  // namespace birotor

@@ -15,21 +15,13 @@
 
 #include "evaluation/eval_runner.h"
 #include "evaluation/multi_arm_accuracy.h"
+#include "multi_arm_source_files.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_description_yaml.h"
 
 namespace birotor {
 namespace {
-
-std::string SourceFile(const std::string& relative) { return std::string(BIROTOR_SOURCE_DIR) + "/" + relative; }
-VehicleDescription Vehicle(const std::string& name) {
-  return LoadVehicleDescription(SourceFile("config/vehicles/" + name + ".yaml"));
-}
-EstimatorConfig Config() { return LoadEstimatorConfig(SourceFile("config/estimator.yaml")); }
-Scenario ScenarioFor(const std::string& name, const std::vector<std::string>& overrides, int arms) {
-  return LoadScenario(SourceFile("config/scenarios/" + name + ".yaml"), overrides, arms);
-}
 
 // 4 s of the gentle flight on the trirotor. Measured: MAE 0.0770 / 0.0483 /
 // 0.0515 N (rotor 1 carries 27.5 N at hover, rotors 2 and 3 14.3 N), 2-sigma

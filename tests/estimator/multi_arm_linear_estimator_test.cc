@@ -18,6 +18,7 @@
 #include "estimator/multi_arm_luenberger.h"
 #include "evaluation/multi_arm_accuracy.h"
 #include "multi_arm_method_pairing.h"
+#include "multi_arm_source_files.h"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_description_yaml.h"
@@ -25,15 +26,6 @@
 
 namespace birotor {
 namespace {
-
-std::string SourceFile(const std::string& relative) { return std::string(BIROTOR_SOURCE_DIR) + "/" + relative; }
-VehicleDescription Vehicle(const std::string& name) {
-  return LoadVehicleDescription(SourceFile("config/vehicles/" + name + ".yaml"));
-}
-EstimatorConfig Config() { return LoadEstimatorConfig(SourceFile("config/estimator.yaml")); }
-Scenario ScenarioFor(const std::string& name, const std::vector<std::string>& overrides, int arms) {
-  return LoadScenario(SourceFile("config/scenarios/" + name + ".yaml"), overrides, arms);
-}
 
 double RelativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();

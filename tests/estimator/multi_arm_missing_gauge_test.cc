@@ -12,17 +12,13 @@
 
 #include "evaluation/eval_runner.h"
 #include "evaluation/multi_arm_accuracy.h"
-#include "params/estimator_config_yaml.h"
-#include "params/scenario_yaml.h"
-#include "params/vehicle_description_yaml.h"
+#include "multi_arm_source_files.h"
 
 namespace birotor {
 namespace {
 
-std::string SourceFile(const std::string& relative) { return std::string(BIROTOR_SOURCE_DIR) + "/" + relative; }
-
 VehicleDescription TrirotorWithoutGauge(int arm) {
-  VehicleDescription vehicle = LoadVehicleDescription(SourceFile("config/vehicles/trirotor.yaml"));
+  VehicleDescription vehicle = Vehicle("trirotor");
   vehicle.arms[static_cast<size_t>(arm)].has_gauge = false;
   return vehicle;
 }
@@ -30,9 +26,7 @@ VehicleDescription TrirotorWithoutGauge(int arm) {
 MultiArmAccuracy GentleFlight(const VehicleDescription& vehicle, const std::vector<std::string>& overrides) {
   std::vector<std::string> all = {"scenario.duration_s=4"};
   all.insert(all.end(), overrides.begin(), overrides.end());
-  const Scenario scenario = LoadScenario(SourceFile("config/scenarios/gentle.yaml"), all, 3);
-  return RunMultiArmAccuracy(vehicle, scenario, LoadEstimatorConfig(SourceFile("config/estimator.yaml")),
-                             EvalOptions());
+  return RunMultiArmAccuracy(vehicle, ScenarioFor("gentle", all, 3), Config(), EvalOptions());
 }
 
 // Each arm in turn without its gauge. Measured MAE [N] per rotor (2-sigma
