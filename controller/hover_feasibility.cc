@@ -14,7 +14,22 @@ constexpr double kMinEfficiency = 0.05;
 }  // namespace
 
 HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, double max_rotor_force_n, double weight_n)
-    : params_(params), bound_(params.feasibility_margin * weight_n / (2.0 * max_rotor_force_n)) {}
+    : params_(params), rotor_count_(2) {
+  // margin (w / 2) / f_max == margin w / (2 f_max) exactly (halving is exact).
+  for (int i = 0; i < rotor_count_; ++i) {
+    bound_[i] = params.feasibility_margin * (0.5 * weight_n) / max_rotor_force_n;
+    hover_speed_ratio_[i] = 1.0;  // equal rotors: the raw commands compare
+  }
+}
+
+HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
+                                   const double* hover_force_n)
+    : params_(params), rotor_count_(std::clamp(rotor_count, 1, kMaxArms)) {
+  for (int i = 0; i < rotor_count_; ++i) {
+    bound_[i] = params.feasibility_margin * hover_force_n[i] / max_rotor_force_n[i];
+    hover_speed_ratio_[i] = std::sqrt(hover_force_n[i] / max_rotor_force_n[i]);
+  }
+}
 
 void HoverFeasibility::Latch(Cause cause, int weak_rotor, double efficiency) {
   cause_ = cause;
@@ -27,8 +42,32 @@ double HoverFeasibility::EfficiencyFor(int rotor, double efficiency_in_use) cons
   return infeasible() && rotor == weak_rotor_ ? weak_efficiency_ : efficiency_in_use;
 }
 
+int HoverFeasibility::Weakest(const double (&efficiency)[kMaxArms]) const {
+  int weakest = 0;
+  for (int i = 1; i < rotor_count_; ++i) {
+    // e_i / b_i < e_w / b_w without dividing (equal bounds: e_i < e_w).
+    if (efficiency[i] * bound_[weakest] < efficiency[weakest] * bound_[i]) weakest = i;
+  }
+  return weakest;
+}
+
+int HoverFeasibility::WeakFromSink(const FeasibilityInputs& in) const {
+  int lowest = 0;
+  int highest = 0;
+  int hardest = 0;
+  for (int i = 1; i < rotor_count_; ++i) {
+    if (in.reported_scale[i] < in.reported_scale[lowest]) lowest = i;
+    if (in.reported_scale[i] > in.reported_scale[highest]) highest = i;
+    // omega_i / omega_hover,i: on the birotor (equal hover speeds) the raw commands.
+    if (in.command_rad_s[i] * hover_speed_ratio_[hardest] > in.command_rad_s[hardest] * hover_speed_ratio_[i])
+      hardest = i;
+  }
+  const bool reported_apart = in.reported_scale[highest] - in.reported_scale[lowest] > params_.change_threshold;
+  return reported_apart ? lowest : hardest;
+}
+
 HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, double dt_s) {
-  const int weakest = in.efficiency[1] < in.efficiency[0] ? 1 : 0;
+  const int weakest = Weakest(in.efficiency);
   if (infeasible()) {
     // Latched: the weak rotor stays infeasible; its efficiency follows a
     // usable FORCE (a transient low of the ringing estimate is not kept),
@@ -36,7 +75,7 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     // decays the estimate towards 1). Detected from the sink, FORCE was at
     // its floor: only a lower estimate is taken.
     if (in.following_force) {
-      const double followed = std::min(in.efficiency[weak_rotor_], bound_);
+      const double followed = std::min(in.efficiency[weak_rotor_], bound_[weak_rotor_]);
       weak_efficiency_ = cause_ == Cause::kSink ? std::min(weak_efficiency_, followed) : followed;
     }
     if (phase_ == Phase::kLevelling && std::fabs(in.tilt_rad) <= params_.level_tilt_rad &&
@@ -45,8 +84,8 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     }
     return phase_;
   }
-  // 2 min_i(e_i c_T omega_max^2) < margin x weight  <=>  min_i e_i < bound.
-  below_bound_s_ = in.efficiency[weakest] < bound_ ? below_bound_s_ + dt_s : 0.0;
+  // margin f_hover,i > e_i c_T,i omega_max^2 for some i  <=>  e_i < bound_i.
+  below_bound_s_ = in.efficiency[weakest] < bound_[weakest] ? below_bound_s_ + dt_s : 0.0;
   const bool sinking =
       in.allocation_limited && in.altitude_lag_m > params_.sink_detect_altitude_m && in.sink_behind_m_s > 0.0;
   sinking_s_ = sinking ? sinking_s_ + dt_s : 0.0;
@@ -54,15 +93,12 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     Latch(Cause::kEfficiency, weakest, in.efficiency[weakest]);
   } else if (sinking_s_ > 0.0 && sinking_s_ >= params_.sink_detect_s) {
     // The vehicle cannot hold its height with the allocation at its limit:
-    // the weaker rotor by FORCE's report when it tells them apart (a sample
-    // refused at the floor says "at most the floor"), else the one the
-    // attitude loop drives harder; its efficiency at most that report and at
-    // most the bound (it is infeasible).
-    const bool reported_apart = std::fabs(in.reported_scale[1] - in.reported_scale[0]) > params_.change_threshold;
-    const int weak = reported_apart ? (in.reported_scale[1] < in.reported_scale[0] ? 1 : 0)
-                                    : (in.command_rad_s[1] > in.command_rad_s[0] ? 1 : 0);
-    const double reported = std::isfinite(in.reported_scale[weak]) ? in.reported_scale[weak] : bound_;
-    Latch(Cause::kSink, weak, std::clamp(std::min(in.efficiency[weak], reported), kMinEfficiency, bound_));
+    // the weak rotor's efficiency at most FORCE's report (a sample refused
+    // at the floor says "at most the floor") and at most the bound (it is
+    // infeasible).
+    const int weak = WeakFromSink(in);
+    const double reported = std::isfinite(in.reported_scale[weak]) ? in.reported_scale[weak] : bound_[weak];
+    Latch(Cause::kSink, weak, std::clamp(std::min(in.efficiency[weak], reported), kMinEfficiency, bound_[weak]));
   }
   return phase_;
 }

@@ -1,33 +1,39 @@
 // Whether the rotors can still hold the vehicle in hover, decided once and
-// latched for the flight (issue 34): a rotor known to be too weak stays
-// known when FORCE later turns unusable (MODEL_MISMATCH, stale), so the
-// level descent and its flare do not depend on FORCE staying VALID. Two ways
-// in: the efficiencies in use (2 min_i(e_i c_T omega_max^2) below
-// feasibility_margin x weight for infeasible_s), or the vehicle itself (the
-// allocation limited while it sinks below its reference for sink_detect_s:
-// a loss so large that FORCE's thrust_scale sits at its plausibility floor
-// and is refused). Then the descent levels first (tilt target 0) and
-// descends once level and calm. Pure bookkeeping: no allocation, no throw.
+// latched for the flight (issue 34; N rotors: issue 38): a rotor known to be
+// too weak stays known when FORCE later turns unusable (MODEL_MISMATCH,
+// stale), so the level descent and its flare do not depend on FORCE staying
+// VALID. Hover needs every rotor's hover thrust within what it can make:
+// margin f_hover,i <= e_i c_T,i omega_max^2 for all i (the allocation's
+// base is the exact hover f_hover, which holds the weight with the hover's
+// torque, and on a fully actuated vehicle zero lateral force; on the birotor
+// f_hover,i = weight / 2: 2 min_i(e_i c_T omega_max^2) >= margin x weight).
+// Two ways in: the efficiencies in use (some e_i below its bound
+// margin f_hover,i / (c_T,i omega_max^2) for infeasible_s), or the vehicle
+// itself (the allocation limited while it sinks below its reference for
+// sink_detect_s: a loss so large that FORCE's thrust_scale sits at its
+// plausibility floor and is refused). Then the descent levels first (tilt
+// target 0) and descends once level and calm. Pure bookkeeping: no
+// allocation, no throw.
 #pragma once
 
 #include "controller/controller_params.h"
-#include "samples/rotor_count.h"
+#include "model/vehicle_description.h"
 
 namespace birotor {
 
-// What one control period saw.
+// What one control period saw (rotor i: entry i; entries from the rotor count on unused).
 struct FeasibilityInputs {
-  double efficiency[kBirotorRotors] = {1.0, 1.0};  // efficiencies in use (force feedback) [1]
-  bool following_force = false;                    // they follow a usable FORCE this period
+  double efficiency[kMaxArms] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // efficiencies in use (force feedback) [1]
+  bool following_force = false;                                  // they follow a usable FORCE this period
   // FORCE's newest thrust_scale / baseline per rotor, low-passed, including
   // samples refused below the plausibility floor (evidence, not flown) [1].
-  double reported_scale[kBirotorRotors] = {1.0, 1.0};
-  bool allocation_limited = false;                    // the previous period's allocation was limited
-  double command_rad_s[kBirotorRotors] = {0.0, 0.0};  // the previous period's rotor commands [rad/s]
-  double altitude_lag_m = 0.0;                        // z_ref - z [m]
-  double sink_behind_m_s = 0.0;                       // z_dot_ref - z_dot [m/s]
-  double tilt_rad = 0.0;                              // phi [rad]
-  double pitch_rate_rad_s = 0.0;                      // phi_dot [rad/s]
+  double reported_scale[kMaxArms] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  bool allocation_limited = false;      // the previous period's allocation was limited
+  double command_rad_s[kMaxArms] = {};  // the previous period's rotor commands [rad/s]
+  double altitude_lag_m = 0.0;          // z_ref - z [m]
+  double sink_behind_m_s = 0.0;         // z_dot_ref - z_dot [m/s]
+  double tilt_rad = 0.0;                // phi [rad]
+  double pitch_rate_rad_s = 0.0;        // phi_dot [rad/s]
 };
 
 class HoverFeasibility {
@@ -35,8 +41,14 @@ class HoverFeasibility {
   enum class Phase { kFeasible, kLevelling, kDescending };
   enum class Cause { kNone, kEfficiency, kSink };
 
-  // max_rotor_force_n: c_T omega_max^2 [N]; weight_n [N].
+  // The birotor: both rotors make max_rotor_force_n = c_T omega_max^2 [N]
+  // and hover at weight_n / 2 each [N].
   HoverFeasibility(const EfficiencyParams& params, double max_rotor_force_n, double weight_n);
+  // N rotors (2 .. kMaxArms): rotor i makes at most max_rotor_force_n[i] =
+  // c_T,i omega_max^2 [N] at e_i = 1 and hovers at hover_force_n[i] =
+  // f_hover,i > 0 [N] (SolveMultiArmHover).
+  HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
+                   const double* hover_force_n);
 
   // One control period of dt_s [s]; returns the phase after it.
   Phase Update(const FeasibilityInputs& in, double dt_s);
@@ -44,24 +56,34 @@ class HoverFeasibility {
   Phase phase() const { return phase_; }
   bool infeasible() const { return phase_ != Phase::kFeasible; }
   Cause cause() const { return cause_; }
-  // Latched: the weak rotor (0 or 1) and its efficiency [1]: while FORCE
-  // is usable it follows the efficiency in use (at most the bound; once
+  // Latched: the weak rotor (0-based) and its efficiency [1]: while FORCE
+  // is usable it follows the efficiency in use (at most its bound; once
   // detected from the sink only downwards), otherwise it holds.
   int weak_rotor() const { return weak_rotor_; }
   double weak_efficiency() const { return weak_efficiency_; }
   // The efficiency rotor i is flown with: the latched one for the weak rotor.
   double EfficiencyFor(int rotor, double efficiency_in_use) const;
-  // The largest efficiency of the weaker rotor at which hover is still
-  // infeasible: margin x weight / (2 c_T omega_max^2) [1].
-  double FeasibilityBound() const { return bound_; }
+  // The largest efficiency of rotor i at which hover is still infeasible:
+  // margin f_hover,i / (c_T,i omega_max^2) [1]; the birotor's
+  // margin x weight / (2 c_T omega_max^2).
+  double FeasibilityBound(int rotor = 0) const { return bound_[rotor]; }
+  int rotor_count() const { return rotor_count_; }
 
  private:
   void Latch(Cause cause, int weak_rotor, double efficiency);
+  // The rotor furthest below its bound: the least e_i / bound_i (ties: the lowest index).
+  int Weakest(const double (&efficiency)[kMaxArms]) const;
+  // Detected from the sink: the weaker by FORCE's report when it tells the
+  // rotors apart, else the one the attitude loop drives hardest relative to
+  // its hover speed.
+  int WeakFromSink(const FeasibilityInputs& in) const;
 
   EfficiencyParams params_;
-  double bound_;
-  double below_bound_s_ = 0.0;  // time the efficiencies have said infeasible [s]
-  double sinking_s_ = 0.0;      // time the vehicle has sunk with the allocation limited [s]
+  int rotor_count_;
+  double bound_[kMaxArms] = {};
+  double hover_speed_ratio_[kMaxArms] = {};  // sqrt(f_hover,i / f_max,i): the hover's share of omega_max [1]
+  double below_bound_s_ = 0.0;               // time the efficiencies have said infeasible [s]
+  double sinking_s_ = 0.0;                   // time the vehicle has sunk with the allocation limited [s]
   Phase phase_ = Phase::kFeasible;
   Cause cause_ = Cause::kNone;
   int weak_rotor_ = 0;

@@ -32,6 +32,19 @@ ControllerParams GainsAtCommandRate(const ControllerConfig& config) {
   return gains;
 }
 
+// Hover feasibility on rotor i's c_T,i omega_max^2 and hover thrust f_hover,i.
+HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const ControllerConfig& config,
+                               const MultiArmHover& hover) {
+  double max_force_n[kMaxArms] = {};
+  double hover_force_n[kMaxArms] = {};
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    max_force_n[i] = vehicle.arms[rotor].thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
+    hover_force_n[i] = hover.force_n(i);
+  }
+  return HoverFeasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n);
+}
+
 // Age of a stamp at now_us [s]; infinite before any or from the future.
 double AgeS(int64_t stamp_us, int64_t now_us) {
   if (stamp_us < 0 || now_us < stamp_us) return std::numeric_limits<double>::infinity();
@@ -46,7 +59,9 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       config_(config),
       law_(vehicle, GainsAtCommandRate(config), hover),
       observer_(config.observer),
-      hover_command_(HoverCommand(vehicle, hover)) {
+      hover_command_(HoverCommand(vehicle, hover)),
+      feasibility_(FeasibilityOf(vehicle, config, hover)),
+      last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
   if (!config.model_predictive) return;
   mpc_ = std::make_unique<MultiArmMpc>(vehicle, config.mpc);
   horizon_.resize(static_cast<size_t>(config.mpc.horizon_steps));
@@ -144,7 +159,69 @@ MultiArmRotorCommand MultiArmController::FlyMpc(const ReferencePoint& reference,
   return command;
 }
 
-MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferencePoint& reference) {
+bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint& reference,
+                                           const RotorEfficiencies& efficiency, double dt_s) {
+  if (!config_.force_feedback) return false;
+  const RotorEfficiencyEstimate& e = efficiency_estimate_;
+  const bool estimate_usable = force_usable_ && e.valid && e.n_rotors == vehicle_.arm_count &&
+                               AgeS(e.utime, now_us) <= config_.supervision.force_timeout_s;
+  const BodyState& body = observer_.state();
+  FeasibilityInputs in;
+  in.following_force = estimate_usable;
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    in.efficiency[i] = efficiency[rotor];
+    // The newest usable report, not low-passed (ForceFloorEvidence is the birotor's).
+    in.reported_scale[i] = estimate_usable ? e.thrust_scale[rotor] : 1.0;
+    in.command_rad_s[i] = last_command_rad_s_[rotor];
+  }
+  in.allocation_limited = last_saturated_;
+  in.altitude_lag_m = reference.position_m.y() - body.position_m.y();
+  in.sink_behind_m_s = reference.velocity_m_s.y() - body.velocity_m_s.y();
+  in.tilt_rad = body.phi_rad;
+  in.pitch_rate_rad_s = body.phi_dot_rad_s;
+  const bool was_infeasible = feasibility_.infeasible();
+  feasibility_.Update(in, dt_s);
+  if (feasibility_.infeasible() && !was_infeasible && feasibility_.cause() == HoverFeasibility::Cause::kSink)
+    ++degradation_.infeasible_by_sink;
+  degradation_.hover_infeasible = feasibility_.infeasible();
+  degradation_.levelling = feasibility_.phase() == HoverFeasibility::Phase::kLevelling;
+  degradation_.weak_rotor = feasibility_.infeasible() ? feasibility_.weak_rotor() : -1;
+  return feasibility_.infeasible();
+}
+
+ReferencePoint MultiArmController::DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible) {
+  const SupervisionParams& s = config_.supervision;
+  const bool descend = pose_lost || infeasible;
+  if (descend && !degradation_.descending) {
+    ++degradation_.descents;
+    degradation_.infeasible += infeasible ? 1 : 0;
+    if (infeasible) {
+      law_.Reset();
+    } else {
+      law_.ResetPositionIntegral();
+    }
+  }
+  degradation_.descending = descend;
+  // Level: tilt target 0 while levelling, within degraded_max_tilt_rad in any descent.
+  law_.LimitTilt(!descend ? config_.gains.max_tilt_rad : degradation_.levelling ? 0.0 : s.degraded_max_tilt_rad);
+  return descend ? DescentReference(observer_.state().position_m, s.descent_rate_m_s) : reference;
+}
+
+void MultiArmController::SlewDescent(const RotorEfficiencies& efficiency, double dt_s,
+                                     MultiArmRotorCommand* command) const {
+  const double max_step_rad_s = config_.supervision.degraded_omega_rate_rad_s2 * dt_s;
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    const double last = last_command_rad_s_[rotor];
+    double omega = std::isfinite(command->omega_cmd_rad_s[rotor]) ? command->omega_cmd_rad_s[rotor] : last;
+    omega = ClampCommand(vehicle_.omega_max_rad_s, std::clamp(omega, last - max_step_rad_s, last + max_step_rad_s));
+    command->omega_cmd_rad_s[rotor] = omega;
+    command->force_n[rotor] = RotorThrust(vehicle_.arms[rotor].thrust_coeff_n_s2_rad2, omega, efficiency[rotor]);
+  }
+}
+
+MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferencePoint& reference, bool pose_lost) {
   const double dt_s = 1.0 / rate_hz();
   if (!has_pose_) {
     if (mpc_ != nullptr) {
@@ -152,12 +229,34 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
         last_sent_rad_s_(i) = hover_command_.omega_cmd_rad_s[static_cast<size_t>(i)];
       mpc_->Advance(last_sent_rad_s_, dt_s);
     }
+    last_command_rad_s_ = hover_command_.omega_cmd_rad_s;
     return hover_command_;
   }
   UpdateState(now_us, dt_s);
-  const RotorEfficiencies efficiency = EfficiencyInUse(now_us);
-  const MultiArmRotorCommand cascade = law_.Update(observer_.state(), reference, efficiency);
-  const MultiArmRotorCommand command = mpc_ != nullptr ? FlyMpc(reference, efficiency, cascade, dt_s) : cascade;
+  RotorEfficiencies efficiency = EfficiencyInUse(now_us);
+  const bool infeasible = UpdateFeasibility(now_us, reference, efficiency, dt_s);
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    efficiency[rotor] = feasibility_.EfficiencyFor(i, efficiency[rotor]);
+  }
+  flown_efficiency_ = efficiency;
+  const bool descend = pose_lost || infeasible;
+  const ReferencePoint target = DescentTarget(reference, pose_lost, infeasible);
+  const MultiArmRotorCommand cascade = law_.Update(observer_.state(), target, efficiency);
+  MultiArmRotorCommand command = cascade;
+  if (mpc_ != nullptr && !descend) {
+    command = FlyMpc(target, efficiency, cascade, dt_s);
+  } else if (descend) {
+    SlewDescent(efficiency, dt_s, &command);
+    if (mpc_ != nullptr) {
+      // The MPC's motor model follows the cascade's descent.
+      for (int i = 0; i < vehicle_.arm_count; ++i)
+        last_sent_rad_s_(i) = command.omega_cmd_rad_s[static_cast<size_t>(i)];
+      mpc_->Advance(last_sent_rad_s_, dt_s);
+    }
+  }
+  last_command_rad_s_ = command.omega_cmd_rad_s;
+  last_saturated_ = command.saturated;
   saturated_periods_ += command.saturated ? 1 : 0;
   return command;
 }

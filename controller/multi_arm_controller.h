@@ -10,9 +10,14 @@
 // observer's state, the efficiencies in use and the reference extrapolated
 // over its horizon, and the cascade's command is the per-period fallback.
 // No LCM, no allocation, no throw, no log per call (alglib allocates inside
-// the MPC's solver, docs/mpc.md). Not supervised as
-// VehicleController is (no stream locks, gates or controlled descent): the
-// lock-step loop's controller. docs/controller.md, "Vehicles with N rotors".
+// the MPC's solver, docs/mpc.md). Degrades as VehicleController does: a
+// hover the rotors cannot make (HoverFeasibility on the N rotors' bounds,
+// force feedback, latched) or a POSE the caller calls lost gives the level
+// controlled descent (DescentReference), levelling first when infeasible,
+// the tilt within degraded_max_tilt_rad, the commands slewed by
+// degraded_omega_rate_rad_s2, the integrators reset on entry. Its inputs are
+// not supervised here (stream locks, gates: the N-rotor node). docs/
+// controller.md, "Vehicles with N rotors".
 #pragma once
 
 #include <array>
@@ -22,6 +27,7 @@
 
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
+#include "controller/hover_feasibility.h"
 #include "controller/multi_arm_law.h"
 #include "controller/multi_arm_mpc.h"
 #include "controller/pose_gate.h"
@@ -43,6 +49,18 @@ struct RotorEfficiencyEstimate {
   std::array<double, kMaxArms> thrust_scale_std{};  // its one-sigma [1]
   bool valid = false;                               // the estimator's STATUS_VALID
   int32_t rotor_fault_bits = 0;                     // bit i: rotor i + 1 faulty
+};
+
+// The controlled descent's state and counts (the ControllerHealth fields of
+// the same names).
+struct MultiArmDegradation {
+  bool descending = false;         // the controlled descent (POSE lost or hover infeasible)
+  bool levelling = false;          // the infeasible descent's first phase: tilt target 0
+  bool hover_infeasible = false;   // HoverFeasibility latched (for the flight)
+  int64_t descents = 0;            // entries into the descent
+  int64_t infeasible = 0;          // entries into the hover-infeasible descent
+  int64_t infeasible_by_sink = 0;  // ... of them detected from the vehicle's sink
+  int weak_rotor = -1;             // the latched weak rotor (0-based); -1: none
 };
 
 class MultiArmController {
@@ -69,10 +87,14 @@ class MultiArmController {
   // One control period (1 / rate_hz()) at now_us on the reference: the
   // observer predicted with the mean IMU of the period (stale beyond
   // imu_timeout_s: the commanded acceleration and the held pitch rate
-  // instead) and corrected by the newest POSE, then MultiArmLaw::Update; in
-  // mode mpc then FlyMpc. Before the first POSE: the hover thrusts through
-  // the nominal map (neither the law nor the MPC is run).
-  MultiArmRotorCommand Update(int64_t now_us, const ReferencePoint& reference);
+  // instead) and corrected by the newest POSE, the hover feasibility
+  // (UpdateFeasibility), then MultiArmLaw::Update on the reference or, when
+  // pose_lost (the caller's verdict: POSE older than pose_timeout_s) or the
+  // hover is infeasible, on the descent (DescentTarget, SlewDescent); in
+  // mode mpc then FlyMpc (not in a descent: the N-input MPC has no level
+  // descent weights, the cascade flies it). Before the first POSE: the hover
+  // thrusts through the nominal map (neither the law nor the MPC is run).
+  MultiArmRotorCommand Update(int64_t now_us, const ReferencePoint& reference, bool pose_lost = false);
 
   // Command rate [Hz]: the cascade's rate_hz, in mode mpc the mpc: section's
   // (CommandRateHz); the law runs at it too.
@@ -91,6 +113,12 @@ class MultiArmController {
   // its sigma / scale <= efficiency.max_relative_sigma; 1 otherwise.
   RotorEfficiencies EfficiencyInUse(int64_t now_us) const;
 
+  // The efficiencies flown in the newest period: EfficiencyInUse with the
+  // latched weak rotor's once hover is infeasible [1].
+  const RotorEfficiencies& flown_efficiency() const { return flown_efficiency_; }
+  const MultiArmDegradation& degradation() const { return degradation_; }
+  const HoverFeasibility& feasibility() const { return feasibility_; }
+
   MultiArmControlMode mode() const { return law_.mode(); }
   const BodyState& body_state() const { return observer_.state(); }
   bool has_pose() const { return has_pose_; }
@@ -98,6 +126,21 @@ class MultiArmController {
 
  private:
   void UpdateState(int64_t now_us, double dt_s);
+  // Force feedback only (nominal mode flies no efficiency: its infeasibility
+  // is not known): HoverFeasibility on the efficiencies in use, the newest
+  // estimate's scales, the last command and the state against the
+  // reference; true once hover is infeasible (latched).
+  bool UpdateFeasibility(int64_t now_us, const ReferencePoint& reference, const RotorEfficiencies& efficiency,
+                         double dt_s);
+  // The descent's reference and tilt bound for this period; counts entries
+  // and resets the integrators on entry (both when infeasible: the pitch
+  // integrator wound up against a rotor that could not deliver; the
+  // position one otherwise), as VehicleController::DescentTarget.
+  ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
+  // In a descent each speed within degraded_omega_rate_rad_s2 dt_s of the
+  // last command sent (never 0 <-> omega_max in one period), the thrusts
+  // following.
+  void SlewDescent(const RotorEfficiencies& efficiency, double dt_s, MultiArmRotorCommand* command) const;
   // Mode mpc, one period of dt_s [s]: MultiArmMpc::Solve from the observer's
   // state with the efficiencies in use (1 when mpc.use_thrust_scale is
   // false) and the reference extrapolated over the horizon
@@ -124,6 +167,11 @@ class MultiArmController {
   Eigen::Vector2d specific_force_sum_m_s2_ = Eigen::Vector2d::Zero();  // body x, z
   Eigen::Vector2d last_specific_force_m_s2_ = Eigen::Vector2d::Zero();
   int64_t saturated_periods_ = 0;
+  HoverFeasibility feasibility_;
+  MultiArmDegradation degradation_;
+  RotorEfficiencies flown_efficiency_ = NominalEfficiencies();
+  std::array<double, kMaxArms> last_command_rad_s_{};  // the command returned last [rad/s]
+  bool last_saturated_ = false;                        // ... and whether its allocation was limited
   // Mode mpc (null otherwise).
   std::unique_ptr<MultiArmMpc> mpc_;
   std::vector<ReferencePoint> horizon_;  // mpc.horizon_steps samples, sized once

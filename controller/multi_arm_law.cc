@@ -12,7 +12,8 @@ MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerPara
       total_mass_kg_(vehicle.TotalMass()),
       pitch_inertia_kg_m2_(vehicle.body_inertia_kg_m2),
       hover_force_n_(hover.force_n),
-      allocator_(vehicle, MultiArmControlModeFor(vehicle)) {
+      allocator_(vehicle, MultiArmControlModeFor(vehicle)),
+      tilt_limit_rad_(gains.max_tilt_rad) {
   for (int i = 0; i < vehicle.arm_count; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
     pitch_inertia_kg_m2_ += arm.tip_mass_kg * arm.length_m * arm.length_m;
@@ -28,12 +29,16 @@ void MultiArmLaw::Reset() {
 Eigen::Vector3d MultiArmLaw::Wrench(const BodyState& body, const ReferencePoint& reference, bool integrate) {
   const double g = gravity_m_s2_;
   accel_des_m_s2_ = PositionLoopAcceleration(gains_, dt_s_, body, reference, integrate, &position_integral_m_s_);
+  if (mode() == MultiArmControlMode::kFullyActuated && tilt_limit_rad_ < gains_.max_tilt_rad) {
+    const double max_lateral_m_s2 = g * std::tan(std::max(tilt_limit_rad_, 0.0));
+    accel_des_m_s2_.x() = std::clamp(accel_des_m_s2_.x(), -max_lateral_m_s2, max_lateral_m_s2);
+  }
   const double cos_phi = std::cos(std::clamp(body.phi_rad, -1.2, 1.2));
   Eigen::Vector3d wrench;  // [F_x, F_z, torque], body frame [N, N, N m]
   double phi_des_rad = 0.0;
   if (mode() == MultiArmControlMode::kTiltToMove) {
     const TiltTarget tilt = TiltForAcceleration(gains_, g, accel_des_m_s2_);
-    phi_des_rad = tilt.phi_des_rad;
+    phi_des_rad = std::clamp(tilt.phi_des_rad, -tilt_limit_rad_, tilt_limit_rad_);
     wrench(kWrenchFx) = 0.0;
     wrench(kWrenchFz) = total_mass_kg_ * tilt.vertical_m_s2 / cos_phi;
   } else {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 
 #include "controller/controller_params.h"
 #include "controller/position_attitude_law.h"
@@ -39,6 +40,15 @@ class MultiArmLaw {
 
   // Clears both integrators and the anti-windup memory.
   void Reset();
+  // Clears the position integrator only (a descent's entry: what it learnt
+  // on the setpoint would tilt the descent).
+  void ResetPositionIntegral() { position_integral_m_s_.setZero(); }
+  // The tilt bound from now on, min(max_tilt_rad, gains' max_tilt_rad) [rad]
+  // (the birotor's PositionAttitudeLaw::LimitTilt). Tilt to move: phi_des
+  // within it. Fully actuated (phi_des = 0): while it is below the gains'
+  // bound, the lateral acceleration within g tan(bound), what tilting to it
+  // would make (0 while levelling).
+  void LimitTilt(double max_tilt_rad) { tilt_limit_rad_ = std::min(max_tilt_rad, gains_.max_tilt_rad); }
 
   MultiArmControlMode mode() const { return allocator_.mode(); }
   const WrenchAllocator& allocator() const { return allocator_; }
@@ -59,6 +69,7 @@ class MultiArmLaw {
   WrenchAllocator allocator_;
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
+  double tilt_limit_rad_;                                            // LimitTilt [rad]
   Eigen::Vector2d accel_des_m_s2_ = Eigen::Vector2d::Zero();
   bool saturated_ = false;  // the previous period saturated
 };

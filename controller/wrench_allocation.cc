@@ -34,7 +34,8 @@ WrenchAllocator::WrenchAllocator(const VehicleDescription& vehicle, MultiArmCont
       rotor_count_(vehicle.arm_count),
       omega_max_rad_s_(vehicle.omega_max_rad_s),
       nominal_max_force_n_(vehicle.arm_count),
-      inverse_(AllocationPseudoinverse(vehicle, mode)) {
+      inverse_(AllocationPseudoinverse(vehicle, mode)),
+      allocation_(WrenchAllocation(vehicle)) {
   for (int i = 0; i < rotor_count_; ++i) {
     const double c_t = vehicle.arms[static_cast<size_t>(i)].thrust_coeff_n_s2_rad2;
     thrust_coeff_n_s2_rad2_[static_cast<size_t>(i)] = c_t;
@@ -55,15 +56,65 @@ bool WrenchAllocator::AddAxis(int axis, double wrench_change, const ArmForces<do
   return scale < 1.0;
 }
 
+double WrenchAllocator::BaseFraction(const ArmForces<double>& base_force_n, double torque_change_n_m,
+                                     const ArmForces<double>& max_force_n) const {
+  double level = 1.0;  // lambda_0 = min_i f_max,i / b_i: the base's own fraction within the bounds
+  for (int i = 0; i < rotor_count_; ++i) {
+    if (base_force_n(i) > max_force_n(i)) level = std::min(level, max_force_n(i) / base_force_n(i));
+  }
+  if (level == 1.0) return level;  // a base within the bounds is kept whole
+  // Attitude first: the largest torque fraction s in [0, 1] for which some
+  // lambda in [0, lambda_0] keeps 0 <= lambda b_i + s t_i <= f_max,i on
+  // every rotor (t_i = P(i, tau) dtau), then the largest such lambda. For a
+  // given s, lambda lies in [low(s), high(s)] (rotors with b_i > 0; one
+  // with b_i = 0 bounds s alone); low - high rises with s, so s is found by
+  // bisection (40 halvings: 1e-12).
+  const auto interval = [&](double s, double* low, double* high) {
+    *low = 0.0;
+    *high = level;
+    bool feasible = true;
+    for (int i = 0; i < rotor_count_; ++i) {
+      const double torque_n = s * inverse_(i, kWrenchTorque) * torque_change_n_m;
+      const double b = base_force_n(i);
+      if (b > 0.0) {
+        *low = std::max(*low, -torque_n / b);
+        *high = std::min(*high, (max_force_n(i) - torque_n) / b);
+      } else {
+        feasible = feasible && torque_n >= 0.0 && torque_n <= max_force_n(i);
+      }
+    }
+    return feasible && *low <= *high;
+  };
+  double low = 0.0;
+  double high = level;
+  if (interval(1.0, &low, &high)) return high;
+  double fits = 0.0;
+  double fails = 1.0;
+  for (int k = 0; k < 40; ++k) {
+    const double s = 0.5 * (fits + fails);
+    (interval(s, &low, &high) ? fits : fails) = s;
+  }
+  interval(fits, &low, &high);
+  return std::clamp(high, 0.0, level);
+}
+
 MultiArmRotorCommand WrenchAllocator::Allocate(const ArmForces<double>& base_force_n,
                                                const Eigen::Vector3d& wrench_change_n,
                                                const RotorEfficiencies& efficiency) const {
   ArmForces<double> max_force_n(rotor_count_);
   for (int i = 0; i < rotor_count_; ++i) max_force_n(i) = nominal_max_force_n_(i) * efficiency[static_cast<size_t>(i)];
   ArmForces<double> force_n = base_force_n;
+  Eigen::Vector3d change_n = wrench_change_n;
   bool saturated = false;
+  const double lambda = BaseFraction(base_force_n, wrench_change_n(kWrenchTorque), max_force_n);
+  if (lambda < 1.0) {
+    // W f_base = W (lambda f_base) + (1 - lambda) W f_base: the same wrench asked for.
+    change_n += (1.0 - lambda) * (allocation_ * base_force_n);
+    force_n *= lambda;
+    saturated = true;
+  }
   for (int axis : {kWrenchTorque, kWrenchFz, kWrenchFx}) {
-    saturated |= AddAxis(axis, wrench_change_n(axis), max_force_n, &force_n);
+    saturated |= AddAxis(axis, change_n(axis), max_force_n, &force_n);
   }
   MultiArmRotorCommand command;
   for (int i = 0; i < rotor_count_; ++i) {

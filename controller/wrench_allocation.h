@@ -55,8 +55,18 @@ class WrenchAllocator {
   // f = f_base + P dw, with the saturation priority: the torque increment
   // first, then F_z, then F_x, each added at the largest fraction s in [0, 1]
   // that keeps every thrust in [0, f_max,i] given those before, f_max,i =
-  // e_i c_T,i omega_max^2; a base thrust already outside is clamped at the
-  // end. Speeds omega_i = sqrt(f_i / (e_i c_T,i)) clipped to [0, omega_max].
+  // e_i c_T,i omega_max^2. A base above some bound (a rotor too weak for
+  // its hover thrust: the infeasible hover, or a transient low estimate) is
+  // first scaled to
+  // lambda f_base (BaseFraction: the level descent's thrusts, lowered
+  // further so the torque increment fits, attitude first as the birotor's
+  // AllocateAttitudeFirst), and the wrench it loses, (1 - lambda) W f_base,
+  // is added to dw (F_z and F_x then take back what fits); a base within
+  // the bounds is kept whole, and a thrust still outside is clamped at the
+  // end. Without the lowering, the weak rotor sat at its bound with no room
+  // for the torque while the others made their hover thrusts: the trirotor
+  // losing 80 % on rotor 1 tilted 1.07 rad before and during the descent
+  // (0.11 rad with it, docs/controller.md). Speeds omega_i = sqrt(f_i / (e_i c_T,i)) clipped to [0, omega_max].
   // Why this order: the torque keeps the attitude (losing it loses every
   // axis), F_z keeps the altitude, F_x only moves sideways. saturated: some
   // s < 1 or a clamp.
@@ -73,6 +83,11 @@ class WrenchAllocator {
  private:
   using Pseudoinverse = Eigen::Matrix<double, Eigen::Dynamic, kWrenchSize, 0, kMaxArms, kWrenchSize>;
 
+  // 1 when the base fits (kept whole); else lambda in [0, lambda_0],
+  // lambda_0 = min_i f_max,i / f_base,i, with room for the largest fraction
+  // of the torque increment P(:, tau) dtau (the most thrust among those).
+  double BaseFraction(const ArmForces<double>& base_force_n, double torque_change_n_m,
+                      const ArmForces<double>& max_force_n) const;
   // f += s P(:, axis) dw(axis), s in [0, 1] the largest that keeps f in
   // [0, max_force_n]; returns true when s < 1.
   bool AddAxis(int axis, double wrench_change, const ArmForces<double>& max_force_n, ArmForces<double>* force_n) const;
@@ -83,6 +98,7 @@ class WrenchAllocator {
   std::array<double, kMaxArms> thrust_coeff_n_s2_rad2_{};  // c_T,i
   ArmForces<double> nominal_max_force_n_;                  // c_T,i omega_max^2 [N]
   Pseudoinverse inverse_;
+  AllocationMatrix allocation_;  // W: thrusts to the body wrench [F_x, F_z, tau]
 };
 
 }  // namespace birotor

@@ -43,6 +43,7 @@ class LoopSink : public SampleSink {
     tracked.utime = sample.utime;
     tracked.position_m = Eigen::Vector2d(sample.x_m, sample.z_m);
     tracked.phi_rad = sample.phi_rad;
+    tracked.velocity_m_s = Eigen::Vector2d(sample.x_dot_m_s, sample.z_dot_m_s);
     tracked.reference_m = simulator_->ReferenceAt(simulator_->time_s()).position_m;
     run_->samples.push_back(tracked);
     Forward([&](SampleSink* sink) { sink->OnTruthN(sample); });
@@ -165,6 +166,8 @@ MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, c
       const MultiArmRotorCommand command = controller.Update(now_us, simulator.ReferenceAt(simulator.time_s()));
       simulator.OfferRotorCommands(command.omega_cmd_rad_s);
       run.commands_rad_s.push_back(command.omega_cmd_rad_s);
+      if (run.descent_utime < 0 && controller.degradation().descending && !simulator.fault_events().empty())
+        run.descent_utime = now_us;
       if (controller.model_predictive() && controller.mpc_solves() > static_cast<int64_t>(run.mpc_solve_cpu_s.size()))
         run.mpc_solve_cpu_s.push_back(controller.last_mpc_result().solve_cpu_s);
       if (!WithinBounds(command.omega_cmd_rad_s, vehicle.arm_count, vehicle.omega_max_rad_s))
@@ -173,6 +176,7 @@ MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, c
     simulator.Step(&sink);
   }
   run.saturated_periods = controller.saturated_periods();
+  run.degradation = controller.degradation();
   run.mpc_solves = controller.mpc_solves();
   run.mpc_fallbacks = controller.mpc_fallbacks();
   for (const FaultEvent& event : simulator.fault_events()) {

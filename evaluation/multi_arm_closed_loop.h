@@ -56,10 +56,11 @@ struct MultiArmClosedLoopOptions {
 
 // One TRUTH_N sample with the reference flown then, world frame.
 struct MultiArmTrackedSample {
-  int64_t utime = 0;                                      // [us]
-  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();   // x, z [m]
-  double phi_rad = 0.0;                                   // [rad]
-  Eigen::Vector2d reference_m = Eigen::Vector2d::Zero();  // x, z [m]
+  int64_t utime = 0;                                       // [us]
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();    // x, z [m]
+  double phi_rad = 0.0;                                    // [rad]
+  Eigen::Vector2d velocity_m_s = Eigen::Vector2d::Zero();  // x_dot, z_dot [m/s]
+  Eigen::Vector2d reference_m = Eigen::Vector2d::Zero();   // x, z [m]
 };
 
 struct MultiArmClosedLoopRun {
@@ -71,6 +72,10 @@ struct MultiArmClosedLoopRun {
   int64_t commands_out_of_bounds = 0;  // periods with a speed non-finite or outside [0, omega_max]
   int64_t saturated_periods = 0;       // periods whose allocation gave something up
   int64_t fault_utime = -1;            // first thrust step [us]; -1: none
+  // The controller's controlled descent (MultiArmController::degradation()
+  // at the end) and its first period at or after the fault [us]; -1: none.
+  MultiArmDegradation degradation;
+  int64_t descent_utime = -1;
   // Mode mpc: solves, fallbacks to the cascade (failed, late, non-finite or
   // infeasible) and each solve's CPU time of this thread [s] (a lock-step
   // figure: the virtual clock stands still during a solve).
