@@ -12,18 +12,20 @@
 namespace birotor {
 
 struct CommandStatusFacts {
-  bool fallback_active = false;  // force feedback asked for, FORCE unusable: the nominal map
-  bool input_stale = false;      // POSE older than pose_timeout_s
-  bool input_conflict = false;   // a second seq stream on POSE or FORCE
-  bool saturated = false;        // the allocation was limited
-  bool mpc_fallback = false;     // mode mpc: the cascade's command was sent
-  bool descending = false;       // POSE lost: the controlled descent (DescentReference)
+  bool fallback_active = false;   // force feedback asked for, FORCE unusable: the nominal map
+  bool input_stale = false;       // POSE older than pose_timeout_s
+  bool input_conflict = false;    // a second seq stream on POSE or FORCE
+  bool saturated = false;         // the allocation was limited
+  bool mpc_fallback = false;      // mode mpc: the cascade's command was sent
+  bool descending = false;        // POSE lost or hover infeasible: the controlled descent (DescentReference)
+  bool hover_infeasible = false;  // HoverFeasibility latched: the efficiencies cannot hold the weight level
 };
 
 inline int32_t ComposeCommandStatus(const CommandStatusFacts& f) {
   return (f.fallback_active ? kCommandFallbackActive : 0) | (f.input_stale ? kCommandInputStale : 0) |
          (f.input_conflict ? kCommandInputConflict : 0) | (f.saturated ? kCommandSaturated : 0) |
-         (f.mpc_fallback ? kCommandMpcFallback : 0) | (f.descending ? kCommandDescending : 0);
+         (f.mpc_fallback ? kCommandMpcFallback : 0) | (f.descending ? kCommandDescending : 0) |
+         (f.hover_infeasible ? kCommandHoverInfeasible : 0);
 }
 
 }  // namespace birotor

@@ -36,7 +36,8 @@ static_assert(kCommandFallbackActive == motor_command_n_t::STATUS_FALLBACK_ACTIV
                   kCommandInputConflict == motor_command_n_t::STATUS_INPUT_CONFLICT &&
                   kCommandSaturated == motor_command_n_t::STATUS_SATURATED &&
                   kCommandMpcFallback == motor_command_n_t::STATUS_MPC_FALLBACK &&
-                  kCommandDescending == motor_command_n_t::STATUS_DESCENDING,
+                  kCommandDescending == motor_command_n_t::STATUS_DESCENDING &&
+                  kCommandHoverInfeasible == motor_command_n_t::STATUS_HOVER_INFEASIBLE,
               "MOTOR_COMMAND_N's status bits are MOTOR_COMMAND's");
 
 MultiArmControllerService::MultiArmControllerService(const VehicleDescription& vehicle, const ControllerConfig& config,
@@ -222,21 +223,25 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   // The clock is monotonic; the guard keeps a command's stamp from going back.
   const int64_t vehicle_us = std::max(clock_.VehicleTimeUs(host_us), last_period_vehicle_us_);
   const BodyState& state = controller_.body_state();
-  // POSE lost: the level controlled descent on the propagated state (as the
-  // birotor's target; its tilt bound and slew are not the N law's, docs/controller.md).
+  // POSE lost or a hover the rotors cannot make: the controller's level
+  // controlled descent (MultiArmController::Update: DescentReference on the
+  // propagated state, tilt bound, slew, integrator reset, levelling).
   const bool pose_lost = AgeS(health_.pose.last_utime, vehicle_us) > config_.supervision.pose_timeout_s;
-  if (pose_lost && !health_.descending) ++health_.descents;
-  health_.descending = pose_lost;
-  const ReferencePoint setpoint_reference = setpoint_.At(vehicle_us, state.position_m);
-  const ReferencePoint reference =
-      pose_lost ? DescentReference(state.position_m, config_.supervision.descent_rate_m_s) : setpoint_reference;
+  const ReferencePoint reference = setpoint_.At(vehicle_us, state.position_m);
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
   const int64_t mpc_solves = controller_.mpc_solves();
   controller_.SetForceUsable(SuperviseForce(vehicle_us));
-  MultiArmRotorCommand command = controller_.Update(vehicle_us, reference);
+  MultiArmRotorCommand command = controller_.Update(vehicle_us, reference, pose_lost);
+  const MultiArmDegradation& degradation = controller_.degradation();
+  health_.descending = degradation.descending;
+  health_.levelling = degradation.levelling;
+  health_.descents = degradation.descents;
+  health_.infeasible = degradation.infeasible;
+  health_.infeasible_by_sink = degradation.infeasible_by_sink;
   CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
   facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
-  facts.descending = pose_lost;
+  facts.descending = degradation.descending;
+  facts.hover_infeasible = degradation.hover_infeasible;
   if (controller_.mpc_solves() > mpc_solves) RecordMpcSolve(controller_.last_mpc_result());
   // Never a non-finite command or one outside [0, omega_max]: the last good one instead.
   bool finite = true;
@@ -250,7 +255,7 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   ++command_.seq;
   command_.mode = config_.model_predictive ? kModeMpc : config_.force_feedback ? kModeForceFeedback : kModeNominal;
   command_.status = ComposeCommandStatus(facts);
-  const RotorEfficiencies efficiency = controller_.EfficiencyInUse(vehicle_us);
+  const RotorEfficiencies& efficiency = controller_.flown_efficiency();
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     command_.omega_cmd_rad_s[i] = ClampCommand(vehicle_.omega_max_rad_s, command.omega_cmd_rad_s[i]);
     if (i < kBirotorRotors) health_.efficiency[i] = efficiency[static_cast<size_t>(i)];

@@ -11,10 +11,11 @@
 // (ForceRecovery, the birotor's rule): the nominal map
 // (MultiArmController::SetForceUsable), STATUS_FALLBACK_ACTIVE. Every
 // command is finite and within [0, omega_max]. The POSE innovation gate
-// (PoseGate); a POSE older than pose_timeout_s: the controlled descent's
-// reference (DescentReference), STATUS_DESCENDING. Not done here (docs/
-// controller.md, "The daemon for N rotors"): the hover feasibility latch
-// and its descent, the descent's tilt bound and command slew.
+// (PoseGate); a POSE older than pose_timeout_s or a hover the rotors cannot
+// make (HoverFeasibility, latched): MultiArmController's level controlled
+// descent, STATUS_DESCENDING (and STATUS_HOVER_INFEASIBLE), its entries in
+// descents / infeasible of CONTROLLER_STATUS (docs/controller.md, "The
+// daemon for N rotors").
 #pragma once
 
 #include <cstddef>

@@ -1,0 +1,210 @@
+// The N-rotor controller's degraded flight (issue 38): HoverFeasibility on
+// N rotors (at N = 2 the birotor's answers on the same inputs; the trirotor
+// of config/vehicles/trirotor.yaml feasible after 40 % on rotor 1, not after
+// 70 or 80 %) and MultiArmController's controlled descent (entered after
+// infeasible_s, counted once, commands slewed by degraded_omega_rate_rad_s2,
+// levelling first; POSE lost: the descent without the latch). Defaults of
+// ControllerConfig (config/controller.yaml's). The flown descents (tilt,
+// touchdown against the floor) are tests/evaluation/multi_arm_closed_loop_test.cc's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "controller/hover_feasibility.h"
+#include "controller/multi_arm_controller.h"
+#include "model/multi_arm_linearization.h"
+#include "params/vehicle_description_yaml.h"
+
+namespace birotor {
+namespace {
+
+constexpr double kDtS = 0.002;                                // 500 Hz, rate_hz
+constexpr double kMaxRotorForceN = 4.6e-5 * 1200.0 * 1200.0;  // c_T omega_max^2, 66.24 N
+constexpr double kWeightN = 4.57624 * 9.81;                   // the reference birotor [N]
+
+VehicleDescription Trirotor() {
+  return LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
+}
+
+HoverFeasibility TrirotorFeasibility() {
+  const VehicleDescription vehicle = Trirotor();
+  const MultiArmHover hover = SolveMultiArmHover(vehicle);
+  const double max_n[3] = {kMaxRotorForceN, kMaxRotorForceN, kMaxRotorForceN};
+  const double hover_n[3] = {hover.force_n(0), hover.force_n(1), hover.force_n(2)};
+  return HoverFeasibility(EfficiencyParams(), 3, max_n, hover_n);
+}
+
+// Runs one second of in; returns the phase.
+HoverFeasibility::Phase RunOneSecond(HoverFeasibility* f, const FeasibilityInputs& in) {
+  for (int k = 0; k < 500; ++k) f->Update(in, kDtS);
+  return f->phase();
+}
+
+// N = 2 with each rotor hovering at weight / 2 is the birotor's constructor:
+// the same bound (0.3457, hover_feasibility_test.cc) and, period by period,
+// the same phase, weak rotor and latched efficiency on the same inputs
+// (efficiencies on either side, a sink with FORCE apart or not).
+TEST(MultiArmFeasibilityTest, TwoRotorsGiveTheBirotorsAnswers) {
+  const double max_n[2] = {kMaxRotorForceN, kMaxRotorForceN};
+  const double hover_n[2] = {0.5 * kWeightN, 0.5 * kWeightN};
+  const double efficiency_pairs[4][2] = {{1.0, 0.3}, {0.3, 1.0}, {0.5, 0.34}, {0.36, 0.9}};
+  for (const auto& pair : efficiency_pairs) {
+    for (const bool sink : {false, true}) {
+      HoverFeasibility birotor(EfficiencyParams(), kMaxRotorForceN, kWeightN);
+      HoverFeasibility n_rotor(EfficiencyParams(), 2, max_n, hover_n);
+      EXPECT_EQ(n_rotor.FeasibilityBound(0), birotor.FeasibilityBound());
+      EXPECT_EQ(n_rotor.FeasibilityBound(1), birotor.FeasibilityBound());
+      FeasibilityInputs in;
+      in.efficiency[0] = sink ? 1.0 : pair[0];
+      in.efficiency[1] = sink ? 1.0 : pair[1];
+      in.reported_scale[0] = pair[0];
+      in.reported_scale[1] = pair[1];
+      in.command_rad_s[0] = 900.0;
+      in.command_rad_s[1] = 1200.0;
+      in.allocation_limited = sink;
+      in.altitude_lag_m = sink ? 0.3 : 0.0;
+      in.sink_behind_m_s = sink ? 0.5 : 0.0;
+      in.following_force = true;
+      for (int k = 0; k < 200; ++k) {
+        in.tilt_rad = k < 100 ? 0.2 : 0.01;
+        ASSERT_EQ(n_rotor.Update(in, kDtS), birotor.Update(in, kDtS)) << k;
+        ASSERT_EQ(n_rotor.weak_rotor(), birotor.weak_rotor()) << k;
+        ASSERT_EQ(n_rotor.weak_efficiency(), birotor.weak_efficiency()) << k;
+        ASSERT_EQ(n_rotor.cause(), birotor.cause()) << k;
+      }
+    }
+  }
+}
+
+// The trirotor hovers rotor 1 at 27.47 N and rotors 2 and 3 at 14.32 N
+// (trirotor.yaml's header), so the bounds are 1.02 x 27.47 / 66.24 = 0.4230
+// and 1.02 x 14.32 / 66.24 = 0.2205 (the deflected hover within 1e-3).
+TEST(MultiArmFeasibilityTest, TrirotorBoundsFollowEachRotorsHoverThrust) {
+  const HoverFeasibility f = TrirotorFeasibility();
+  EXPECT_NEAR(f.FeasibilityBound(0), 0.4230, 1e-3);
+  EXPECT_NEAR(f.FeasibilityBound(1), 0.2205, 1e-3);
+  EXPECT_NEAR(f.FeasibilityBound(2), 0.2205, 1e-3);
+}
+
+TEST(MultiArmFeasibilityTest, TrirotorFeasibleAtFortyPercentInfeasibleAtSeventyAndEightyOnRotorOne) {
+  for (const double e1 : {0.6, 0.3, 0.2}) {
+    HoverFeasibility f = TrirotorFeasibility();
+    FeasibilityInputs in;
+    in.efficiency[0] = e1;
+    in.following_force = true;
+    const bool infeasible = e1 < 0.4230;
+    EXPECT_EQ(RunOneSecond(&f, in) != HoverFeasibility::Phase::kFeasible, infeasible) << e1;
+    if (!infeasible) continue;
+    EXPECT_EQ(f.weak_rotor(), 0) << e1;
+    EXPECT_EQ(f.weak_efficiency(), e1) << e1;
+  }
+  // 70 % on rotor 2 (0.3 > 0.2205): still feasible, the weight is on rotor 1.
+  HoverFeasibility f = TrirotorFeasibility();
+  FeasibilityInputs in;
+  in.efficiency[1] = 0.3;
+  in.following_force = true;
+  EXPECT_EQ(RunOneSecond(&f, in), HoverFeasibility::Phase::kFeasible);
+}
+
+// A VALID trirotor estimate with rotor 1 at scale, flagged.
+RotorEfficiencyEstimate RotorOneAt(int64_t utime, double scale) {
+  RotorEfficiencyEstimate estimate;
+  estimate.utime = utime;
+  estimate.n_rotors = 3;
+  estimate.valid = true;
+  estimate.thrust_scale = {scale, 1.0, 1.0};
+  estimate.thrust_scale_std = {0.01, 0.01, 0.01};
+  estimate.rotor_fault_bits = 1;
+  return estimate;
+}
+
+struct DescentRun {
+  int descending_from = -1;                // first period descending
+  int hover_infeasible_from = -1;          // first period with the latch
+  double max_step_in_descent_rad_s = 0.0;  // max |omega_k - omega_k-1| while descending
+};
+
+// The trirotor level and still at 1 m (POSE every 5th period, the IMU at
+// g), rotor 1 reported at scale from period 0 (force feedback) or, with
+// pose_lost, POSE lost from period 100 and the IMU in free fall (0 m/s^2:
+// the observer sinks, the law asks for thrust at once), for 1 s.
+DescentRun Fly(MultiArmController* controller, double scale, bool pose_lost) {
+  DescentRun run;
+  std::array<double, kMaxArms> last{};
+  for (int k = 0; k < 500; ++k) {
+    const int64_t now_us = 2000 * k;
+    if (k % 5 == 0) controller->OnPose(PoseSample{now_us, k / 5, 0.0, 1.0, 0.0});
+    controller->OnImu(ImuSample{now_us, k, 0.0, 0.0, pose_lost && k >= 100 ? 0.0 : 9.81});
+    controller->OnEfficiency(RotorOneAt(now_us, scale));
+    ReferencePoint reference;
+    reference.position_m = Eigen::Vector2d(0.0, 1.0);
+    const MultiArmRotorCommand command = controller->Update(now_us, reference, pose_lost && k >= 100);
+    const MultiArmDegradation& d = controller->degradation();
+    if (d.descending && run.descending_from < 0) run.descending_from = k;
+    if (d.hover_infeasible && run.hover_infeasible_from < 0) run.hover_infeasible_from = k;
+    if (d.descending && k > run.descending_from) {
+      for (int i = 0; i < 3; ++i) {
+        const size_t r = static_cast<size_t>(i);
+        run.max_step_in_descent_rad_s =
+            std::max(run.max_step_in_descent_rad_s, std::abs(command.omega_cmd_rad_s[r] - last[r]));
+      }
+    }
+    last = command.omega_cmd_rad_s;
+  }
+  return run;
+}
+
+// 80 % lost on rotor 1: infeasible after infeasible_s (0.1 s: the 50th
+// period, k = 49, latches), one descent and one infeasible entry, rotor 1
+// flown at its 0.2, each command within degraded_omega_rate_rad_s2 x dt =
+// 20000 x 0.002 = 40 rad/s of the last.
+TEST(MultiArmDescentTest, EightyPercentOnRotorOneDescendsWithSlewedCommands) {
+  const VehicleDescription vehicle = Trirotor();
+  ControllerConfig config;
+  config.force_feedback = true;
+  MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+  const DescentRun run = Fly(&controller, 0.2, false);
+  EXPECT_EQ(run.hover_infeasible_from, 49);
+  EXPECT_EQ(run.descending_from, 49);
+  const MultiArmDegradation& d = controller.degradation();
+  EXPECT_EQ(d.descents, 1);
+  EXPECT_EQ(d.infeasible, 1);
+  EXPECT_EQ(d.infeasible_by_sink, 0);
+  EXPECT_EQ(d.weak_rotor, 0);
+  EXPECT_EQ(controller.flown_efficiency()[0], 0.2);
+  EXPECT_LE(run.max_step_in_descent_rad_s, 40.0 + 1e-9);
+}
+
+// 40 % lost on rotor 1 stays feasible: no descent.
+TEST(MultiArmDescentTest, FortyPercentOnRotorOneDoesNotDescend) {
+  const VehicleDescription vehicle = Trirotor();
+  ControllerConfig config;
+  config.force_feedback = true;
+  MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+  const DescentRun run = Fly(&controller, 0.6, false);
+  EXPECT_EQ(run.descending_from, -1);
+  EXPECT_EQ(controller.degradation().descents, 0);
+}
+
+// The nominal map flies no efficiency: its infeasibility is not known (as
+// the birotor's); a lost POSE descends without the latch, slewed too: the
+// law's rise towards the free fall's thrust (measured up to 25.5 rad/s a
+// period at the default 20000 rad/s^2) comes at exactly 2000 x 0.002 = 4
+// rad/s a period with degraded_omega_rate_rad_s2 at 2000.
+TEST(MultiArmDescentTest, NominalMapDoesNotLatchAndPoseLostDescends) {
+  const VehicleDescription vehicle = Trirotor();
+  ControllerConfig config;
+  config.force_feedback = false;
+  config.supervision.degraded_omega_rate_rad_s2 = 2000.0;
+  MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+  const DescentRun run = Fly(&controller, 0.2, true);
+  EXPECT_EQ(run.hover_infeasible_from, -1);
+  EXPECT_EQ(run.descending_from, 100);
+  EXPECT_EQ(controller.degradation().descents, 1);
+  EXPECT_EQ(controller.degradation().infeasible, 0);
+  EXPECT_NEAR(run.max_step_in_descent_rad_s, 4.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace birotor
