@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "evaluation/estimated_efficiency_provider.h"
+#include "evaluation/multi_arm_descent_floor.h"
+#include "model/multi_arm_linearization.h"
 #include "params/scenario_yaml.h"
 #include "params/vehicle_description_yaml.h"
 
@@ -200,6 +202,77 @@ TEST(MultiArmClosedLoopTest, SameSeedSameCommands) {
   const MultiArmClosedLoopRun mpc = RunMultiArmClosedLoop(vehicle, scenario, ModelPredictive());
   ASSERT_EQ(mpc.commands_rad_s.size(), 400u);  // 2 s at 200 Hz
   EXPECT_EQ(mpc.commands_rad_s, RunMultiArmClosedLoop(vehicle, scenario, ModelPredictive()).commands_rad_s);
+}
+
+}  // namespace
+}  // namespace birotor
+
+namespace birotor {
+namespace {
+
+// The level-descent floor for N rotors (evaluation/multi_arm_descent_floor.h):
+// a = g (1 - min_i s_i c_T omega_max^2 / f_hover,i). The birotor at s = 0.3
+// and 0.2 gives docs/controller.md's 1.125 and 4.020 m/s^2 (its hover is
+// m g / 2 per rotor, the deflected one within 0.01 m/s^2); the trirotor with
+// rotor 1 (27.47 N) at 0.3: 9.81 (1 - 19.87 / 27.47) = 2.71 m/s^2, at 0.2:
+// 5.08 m/s^2; at 0.6 hover is feasible: 0.
+TEST(MultiArmDescentFloorTest, SinkAccelerationOfTheLevelDescent) {
+  const VehicleDescription birotor = Vehicle("birotor");
+  const VehicleDescription trirotor = Vehicle("trirotor");
+  const MultiArmHover birotor_hover = SolveMultiArmHover(birotor);
+  const MultiArmHover trirotor_hover = SolveMultiArmHover(trirotor);
+  const std::array<double, kMaxArms> s03 = {0.3, 1.0, 1.0, 1.0, 1.0, 1.0};
+  const std::array<double, kMaxArms> s02 = {0.2, 1.0, 1.0, 1.0, 1.0, 1.0};
+  const std::array<double, kMaxArms> s06 = {0.6, 1.0, 1.0, 1.0, 1.0, 1.0};
+  EXPECT_NEAR(MultiArmLevelSinkAccelM_S2(birotor, birotor_hover, s03), 1.125, 0.01);
+  EXPECT_NEAR(MultiArmLevelSinkAccelM_S2(birotor, birotor_hover, s02), 4.020, 0.01);
+  EXPECT_NEAR(MultiArmLevelSinkAccelM_S2(trirotor, trirotor_hover, s03), 2.71, 0.01);
+  EXPECT_NEAR(MultiArmLevelSinkAccelM_S2(trirotor, trirotor_hover, s02), 5.08, 0.01);
+  EXPECT_EQ(MultiArmLevelSinkAccelM_S2(trirotor, trirotor_hover, s06), 0.0);
+}
+
+// The trirotor climbs to 1 m and loses 70 or 80 % on rotor 1 (27.5 N at
+// hover) at 5 s, force feedback on the N-arm estimator (the product path):
+// one descent, hover infeasible from the efficiency, peak tilt from the
+// fault measured 0.077 / 0.106 rad (birotor-eval --vehicle
+// config/vehicles/trirotor.yaml --control --scenarios descent70_rotor1
+// descent80_rotor1, seed 4; target <= 0.3), touchdown 0.97 / 0.99 of the
+// level floor (target within 10 %). The nominal map on the same seed:
+// no descent, tilt 0.294 / 1.434 rad. 40 % on rotor 1 stays feasible: no
+// descent.
+TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const double loss[3] = {0.7, 0.8, 0.4};
+  const double measured_tilt_rad[3] = {0.077, 0.106, 0.053};
+  for (int c = 0; c < 3; ++c) {
+    const Scenario scenario = ScenarioFor(
+        "thrust_loss", vehicle,
+        {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
+         "scenario.duration_s=8.0",
+         "faults.thrust_steps=[{time_s: 5.0, rotor: 1, scale: " + std::to_string(1.0 - loss[c]) + "}]"});
+    ControllerConfig config = Nominal();
+    config.force_feedback = true;
+    EstimatedEfficiencyProvider estimate(vehicle, EstimatorConfig());
+    MultiArmClosedLoopOptions options;
+    options.efficiency = &estimate;
+    const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, config, options);
+    const MultiArmDescent descent = MultiArmDescentOf(run, vehicle, scenario);
+    std::printf("trirotor %.0f %% on rotor 1: descents %lld, peak tilt %.3f rad, touchdown %.2f m/s, floor %.2f m/s\n",
+                100.0 * loss[c], static_cast<long long>(run.degradation.descents), descent.peak_tilt_rad,
+                descent.touchdown_m_s, descent.floor_m_s);
+    EXPECT_LT(descent.peak_tilt_rad, 1.5 * measured_tilt_rad[c]) << loss[c];
+    EXPECT_EQ(run.commands_out_of_bounds, 0) << loss[c];
+    if (loss[c] < 0.5) {
+      EXPECT_EQ(run.degradation.descents, 0);
+      EXPECT_FALSE(run.degradation.hover_infeasible);
+      continue;
+    }
+    EXPECT_EQ(run.degradation.descents, 1) << loss[c];
+    EXPECT_EQ(run.degradation.infeasible, 1) << loss[c];
+    EXPECT_EQ(run.degradation.weak_rotor, 0) << loss[c];
+    ASSERT_TRUE(descent.found) << loss[c];
+    EXPECT_NEAR(descent.touchdown_m_s / descent.floor_m_s, 1.0, 0.1) << loss[c];
+  }
 }
 
 }  // namespace
