@@ -6,7 +6,11 @@
 // nominal map and with force feedback on the N-arm estimator's efficiencies
 // (evaluation/estimated_efficiency_provider.h: the product path); the loss
 // cases also with each rotor's true efficiency (the bound an efficiency
-// estimate can reach). docs/controller.md, "Vehicles with N rotors".
+// estimate can reach). Cases descentPP_rotorK (a climb to 1 m, rotor K at
+// (100 - PP) % from 5 s) add a table of the controlled descent: entries, h
+// and v at its start, the level floor, the touchdown at the take-off level
+// and the peak tilt (evaluation/multi_arm_descent_floor.h). docs/
+// controller.md, "Vehicles with N rotors" and "Degrading with N rotors".
 #pragma once
 
 #include <string>
