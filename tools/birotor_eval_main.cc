@@ -116,18 +116,15 @@ void AddEstimatorTableOptions(CLI::App& app, EvalCli* cli) {
                "hover, gentle, aggressive, thrust_loss on seeds 1..--seeds (default 5) with --params as given; "
                "VALID share, MAE and 2-sigma share of the VALID estimates, worst 2 s window, verdict per case");
   app.add_option("--plot-dir", cli->plot_dir, "Write <scenario>_<method>.png plots here");
-  app.add_option(
-      "--vehicle", cli->vehicle_file,
-      "A vehicle description with N arms instead (e.g. config/vehicles/trirotor.yaml): the N-arm --methods "
-      "(docs/estimator.md, \"Methods for N arms\") on --scenarios: MAE and 2-sigma share per rotor, VALID "
-      "share, fault detection, false alarms; with --control the N-rotor controller lock-step (docs/"
-      "controller.md, \"Vehicles with N rotors\"; default cases lateral_step, aggressive, loss40_rotor1..3: "
-      "thrust_loss with that rotor at 60 % from 5 s; also descentPP_rotorK: a climb to 1 m, that rotor at "
-      "(100 - PP) % from 5 s, with a table of descents, the level floor and the touchdown), cascade and mode "
-      "mpc, each on the nominal map and on "
-      "the estimated efficiencies (the loss cases also on the true ones, the bound): RMS error, max tilt, "
-      "settling within 2 cm, overshoot, altitude deviation after the loss, saturated periods, commands "
-      "outside [0, omega_max], MPC fallbacks / solves and solve CPU time p50 / p99 of the lock-step run");
+  app.add_option("--vehicle", cli->vehicle_file,
+                 "A vehicle description with N arms instead (e.g. config/vehicles/trirotor.yaml): the N-arm --methods "
+                 "(docs/estimator.md, \"Methods for N arms\") on --scenarios: MAE and 2-sigma share per rotor, VALID "
+                 "share, fault detection, false alarms; with --control the N-rotor controller lock-step (docs/"
+                 "controller.md, \"Vehicles with N rotors\"; default cases lateral_step, aggressive, loss40_rotor1..3: "
+                 "thrust_loss with that rotor at 60 % from 5 s), cascade and mode mpc, each on the nominal map and on "
+                 "the estimated efficiencies (the loss cases also on the true ones, the bound): RMS error, max tilt, "
+                 "settling within 2 cm, overshoot, altitude deviation after the loss, saturated periods, commands "
+                 "outside [0, omega_max], MPC fallbacks / solves and solve CPU time p50 / p99 of the lock-step run");
 }
 
 void AddControlOptions(CLI::App& app, EvalCli* cli) {
