@@ -53,7 +53,7 @@ std::vector<uint8_t> Encoded(const Message& message) {
   return bytes;
 }
 
-std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status) {
+std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status, double rotor1_scale = 0.8) {
   force_estimate_n_t m{};
   m.utime = utime;
   m.seq = seq;
@@ -61,6 +61,7 @@ std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status) {
   m.force_n.assign(static_cast<size_t>(n), 8.0);
   m.force_std_n.assign(static_cast<size_t>(n), 0.05);
   m.thrust_scale.assign(static_cast<size_t>(n), 0.8);  // 20 % lost on every rotor
+  m.thrust_scale[0] = rotor1_scale;
   m.status = status;
   return Encoded(m);
 }
@@ -98,11 +99,13 @@ class ServiceFixture : public ::testing::Test {
       if (host_us % 10000 == 0 && !without_pose) SendPoseAndImu(host_us, ++pose_seq_);
       if (host_us % 10000 == 0 && without_pose) SendImu(host_us);
       Send(channels_.force_n,
-           ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID),
+           ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID,
+                  rotor1_scale_),
            host_us);
       RunUntil(host_us);
     }
   }
+  double rotor1_scale_ = 0.8;  // FORCE_N's thrust_scale of rotor 1 in Fly
   void SendImu(int64_t host_us) {
     imu_t imu{};
     imu.utime = host_us - kOffsetUs;
@@ -255,6 +258,26 @@ TEST_F(MultiArmControllerServiceTest, LostPoseGivesTheControlledDescentOnce) {
   Fly(5301000, 5320000);
   EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_DESCENDING, 0);
   EXPECT_EQ(service_.health().descents, 1);
+}
+
+// FORCE_N reporting rotor 1 at 0.2 (below its hover bound 0.423, docs/
+// controller.md "Degrading with N rotors"): after infeasible_s (0.1 s) the
+// controller's descent, STATUS_DESCENDING with STATUS_HOVER_INFEASIBLE
+// (latched), one descent and one infeasible entry, rotor 1 flown at 0.2.
+TEST_F(MultiArmControllerServiceTest, InfeasibleHoverGivesTheLatchedDescent) {
+  Fly(5000000, 5200000);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_HOVER_INFEASIBLE, 0);
+  rotor1_scale_ = 0.2;
+  Fly(5201000, 5400000);
+  const int32_t status = sink_.commands.back().status;
+  EXPECT_NE(status & motor_command_n_t::STATUS_DESCENDING, 0);
+  EXPECT_NE(status & motor_command_n_t::STATUS_HOVER_INFEASIBLE, 0);
+  EXPECT_EQ(status & motor_command_n_t::STATUS_INPUT_STALE, 0);
+  EXPECT_EQ(service_.health().descents, 1);
+  EXPECT_EQ(service_.health().infeasible, 1);
+  EXPECT_EQ(service_.health().efficiency[0], 0.2);
+  for (const motor_command_n_t& command : sink_.commands)
+    for (double omega : command.omega_cmd_rad_s) EXPECT_TRUE(omega >= 0.0 && omega <= 1200.0);
 }
 
 // The POSE innovation gate (PoseGate, the birotor's): a POSE 1 m from the
