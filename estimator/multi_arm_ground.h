@@ -1,0 +1,38 @@
+// Ground contact of a described vehicle (N arms): GroundContact
+// (estimator/ground_contact.h, the birotor's rule and keys) fed with the
+// thrusts' component along body z at phi = 0 and b_i = 0,
+//   F_z = sum_i f_i cos theta_i   (n_i = [-sin theta_i, cos theta_i]),
+// the support then N = M a_z - F_z with M = m + sum m_p,i. On the trirotor
+// (theta = 0, -45, +45 deg) F_z at hover is 27.47 + 2 (14.32 cos 45 deg) =
+// 47.7 N = M g. No LCM, no allocation.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "estimator/estimator_config.h"
+#include "estimator/ground_contact.h"
+#include "model/vehicle_description.h"
+
+namespace birotor {
+
+class MultiArmGroundContact {
+ public:
+  MultiArmGroundContact(const VehicleDescription& vehicle, const EkfOptions& options);
+
+  // One IMU sample's specific force along body z [m/s^2] with the thrusts
+  // f_0 .. f_(N-1) of the current estimate [N] (force_n null: the weight M g,
+  // the hover thrust assumed before the first estimate).
+  void Update(int64_t utime, double accel_z_m_s2, const double* force_n);
+  void Reset() { contact_.Reset(); }
+  bool supported() const { return contact_.supported(); }
+  const GroundContact& contact() const { return contact_; }
+
+ private:
+  int arm_count_;
+  double weight_n_;                         // M g [N]
+  std::array<double, kMaxArms> cos_theta_;  // cos theta_i [1]
+  GroundContact contact_;
+};
+
+}  // namespace birotor
