@@ -255,7 +255,8 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   // On the ground a_z is the support, not the thrust: not fused (the birotor's rule).
   if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_ || contact_.supported()) return;
   const double sigma = options_.accel_noise_m_s2;
-  const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
+  Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
+  r(1, 1) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
   FuseSymmetricUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
                           Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
                           &covariance_);
