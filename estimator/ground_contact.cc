@@ -5,13 +5,13 @@
 
 namespace birotor {
 
-GroundContact::GroundContact(const BirotorParams& params, const EkfOptions& options)
-    : total_mass_kg_(params.TotalMass()),
+GroundContact::GroundContact(double total_mass_kg, double gravity_m_s2, const EkfOptions& options)
+    : total_mass_kg_(total_mass_kg),
       on_n_(options.ground_contact_on_n),
       off_n_(options.ground_contact_off_n),
       filter_s_(options.ground_contact_filter_s),
-      support_noise_n_(params.TotalMass() * options.accel_noise_m_s2),
-      weight_n_(params.TotalMass() * params.gravity_m_s2) {}
+      support_noise_n_(total_mass_kg * options.accel_noise_m_s2),
+      weight_n_(total_mass_kg * gravity_m_s2) {}
 
 double GroundContact::TimeConstantS(double dt_s) const {
   // A first-order low-pass of white noise of sigma M sigma_a sampled every dt
@@ -30,11 +30,11 @@ void GroundContact::Reset() {
   supported_ = false;
 }
 
-void GroundContact::Update(int64_t utime, double accel_z_m_s2, double total_force_n) {
-  if (!std::isfinite(accel_z_m_s2) || !std::isfinite(total_force_n)) return;
+void GroundContact::Update(int64_t utime, double accel_z_m_s2, double thrust_z_n) {
+  if (!std::isfinite(accel_z_m_s2) || !std::isfinite(thrust_z_n)) return;
   // One sample moves the filtered N by at most its weight's share: a spike
   // (a 1e6 m/s^2 reading) must not put a flying vehicle on the ground.
-  const double support_n = std::clamp(total_mass_kg_ * accel_z_m_s2 - total_force_n, -weight_n_, weight_n_);
+  const double support_n = std::clamp(total_mass_kg_ * accel_z_m_s2 - thrust_z_n, -weight_n_, weight_n_);
   if (!has_sample_) {
     support_force_n_ = support_n;
   } else if (utime > last_utime_) {

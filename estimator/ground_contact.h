@@ -1,8 +1,10 @@
 // Whether the ground holds the vehicle, judged from the support force it must
 // be providing. The accelerometer reads the specific force a_z along body z;
-// in flight the rotors carry the whole vehicle, M a_z = f1 + f2 (M = m + 2 m_p),
-// while on the ground the support adds N = M a_z - (f1 + f2) (M g - F at rest).
-// No LCM, no allocation.
+// in flight the rotors carry the whole vehicle, M a_z = F_z (M = m + sum m_p,i,
+// F_z the thrusts' component along body z: f1 + f2 on the birotor,
+// sum f_i cos theta_i on a vehicle description), while on the ground the
+// support adds N = M a_z - F_z (M g - F_z at rest). One class for the birotor
+// EKF and the N-arm EKF. No LCM, no allocation.
 #pragma once
 
 #include <cstdint>
@@ -14,14 +16,17 @@ namespace birotor {
 
 class GroundContact {
  public:
-  GroundContact(const BirotorParams& params, const EkfOptions& options);
+  // total_mass_kg: M [kg]; gravity_m_s2: g [m/s^2].
+  GroundContact(double total_mass_kg, double gravity_m_s2, const EkfOptions& options);
+  GroundContact(const BirotorParams& params, const EkfOptions& options)
+      : GroundContact(params.TotalMass(), params.gravity_m_s2, options) {}
 
   // One IMU sample (specific force along body z [m/s^2]) with the current
-  // thrust estimate f1 + f2 [N]. N, clamped to +-M g per sample (a reading
+  // thrust estimate along body z, F_z [N]. N, clamped to +-M g per sample (a reading
   // spike cannot flip the contact), is low-passed (first order, time constant
   // ground_contact_filter_s, lengthened for a noisy accelerometer: see
   // TimeConstantS) and compared with the hysteresis thresholds.
-  void Update(int64_t utime, double accel_z_m_s2, double total_force_n);
+  void Update(int64_t utime, double accel_z_m_s2, double thrust_z_n);
   void Reset();
 
   bool supported() const { return supported_; }

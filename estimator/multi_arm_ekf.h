@@ -15,6 +15,7 @@
 #include "estimator/force_status.h"
 #include "estimator/multi_arm_ekf_model.h"
 #include "estimator/multi_arm_fault_monitor.h"
+#include "estimator/multi_arm_ground.h"
 #include "estimator/sample_queue.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
@@ -49,8 +50,10 @@ class MultiArmForceEstimator {
 // (the command of a MOTOR sample holds from its stamp on), fuses it, and is
 // predicted on to the strain sample, in sub-steps of at most
 // max_prediction_step_s. A sample stamped before the filter's time is not
-// fused (its command still takes effect). Differences from the birotor's
-// EkfForceEstimator: no ground model (a free body always), no learned slow
+// fused (its command still takes effect). On the ground (the birotor's
+// GroundContact, judged from each IMU sample on arrival: MultiArmGroundContact)
+// the held body's model predicts and the accelerometer is not fused, as in
+// the birotor's EkfForceEstimator. Differences from it: no learned slow
 // parameters, no strain-noise adaptation, a fixed-size state of 1 + 5N.
 template <int N>
 class MultiArmEkf : public MultiArmForceEstimator {
@@ -78,6 +81,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   const Covariance& covariance() const { return covariance_; }
   const Model& model() const { return model_; }
   int64_t utime() const { return last_utime_; }
+  bool supported() const { return contact_.supported(); }  // the ground holds the body
 
  private:
   using Measured = std::array<bool, N>;
@@ -119,6 +123,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   SampleQueue<MultiArmMotorSample, kQueueCapacity> motor_queue_;
   SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
   MultiArmFaultMonitor faults_;
+  MultiArmGroundContact contact_;  // from the IMU on arrival: selects the held body's model
   std::array<double, N> force_std_n_{};
   MultiArmFilterFacts facts_;  // of the newest estimate
 };

@@ -28,7 +28,8 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
       options_(options),
       model_(vehicle),
       strain_gate_(options.gate_consecutive_limit),
-      faults_(options) {
+      faults_(options),
+      contact_(vehicle, options) {
   process_noise_psd_.setZero();
   process_noise_psd_(Layout::kPitchRate) = options.pitch_rate_psd_rad2_s3;
   // The birotor EKF's numerical guards on the diagonal of P, per kind of
@@ -71,6 +72,7 @@ void MultiArmEkf<N>::Reset() {
   while (!imu_queue_.empty()) imu_queue_.pop();
   strain_gate_.Reset();
   faults_.Reset();
+  contact_.Reset();
   state_.setZero();
   covariance_.setZero();
   force_std_n_.fill(std::numeric_limits<double>::infinity());
@@ -85,6 +87,12 @@ void MultiArmEkf<N>::AddMotor(const MultiArmMotorSample& sample) {
 
 template <int N>
 void MultiArmEkf<N>::AddImu(const ImuSample& sample) {
+  // Ground contact on arrival, with the thrusts of the current estimate (the
+  // weight before the first strain sample), as the birotor's EKF: it selects
+  // the model of the next predictions.
+  std::array<double, N> force_n{};
+  for (int i = 0; i < N && initialized_; ++i) force_n[static_cast<size_t>(i)] = model_.Force(state_, i);
+  contact_.Update(sample.utime, sample.accel_z_m_s2, initialized_ ? force_n.data() : nullptr);
   if (!options_.use_gyro && !options_.use_accelerometer) return;
   ImuSample dropped;
   imu_queue_.push(sample, &dropped);
@@ -168,7 +176,9 @@ void MultiArmEkf<N>::PredictTo(int64_t utime) {
   // Equal sub-steps no longer than max_prediction_step_s (one at the nominal 1 kHz).
   const int steps = std::max(1, static_cast<int>(std::ceil(dt_s / options_.max_prediction_step_s - 1e-9)));
   const double step_s = dt_s / steps;
-  for (int k = 0; k < steps; ++k) Predict(step_s, command_);
+  Input input = command_;
+  input.supported = contact_.supported();
+  for (int k = 0; k < steps; ++k) Predict(step_s, input);
   last_utime_ = utime;
 }
 
@@ -180,7 +190,7 @@ void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
   // RK4's first stage f(x, u) comes with the Jacobian (the same solve).
   State x_dot;
   const typename Model::DynamicMatrix a = model_.Jacobian(state_, input, &accel_linearization_, &x_dot);
-  accel_linearization_valid_ = true;
+  accel_linearization_valid_ = !input.supported;  // the held body's Jacobian has none
   const typename Model::DynamicMatrix phi = Model::Transition(a, dt_s);
   state_ = model_.StepFrom(state_, x_dot, input, dt_s);
   // Phi_d has A's block structure (Model::Transition): products on its blocks.
@@ -242,9 +252,11 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
                            options_.gyro_gate_nis, &state_, &covariance_);  // a unit row: phi_dot
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
-  if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_) return;
+  // On the ground a_z is the support, not the thrust: not fused (the birotor's rule).
+  if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_ || contact_.supported()) return;
   const double sigma = options_.accel_noise_m_s2;
-  const Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
+  Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
+  r(1, 1) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
   FuseSymmetricUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
                           Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
                           &covariance_);

@@ -93,6 +93,7 @@ class MassMatrixLdlt {
 template <int N>
 struct MultiArmEkfInput {
   std::array<double, N> omega_cmd_rad_s{};
+  bool supported = false;  // the ground holds the body: the supported model (multi_arm_ekf_supported.h)
 };
 
 // The accelerometer's model linearised where the process was: the specific
@@ -115,6 +116,8 @@ struct MultiArmAccelLinearization {
 //   b_dot_i from the state; f_i = mu_i c_T,i omega_i^2;
 //   omega_i_dot = (clamp(cmd_i, 0, omega_max) - omega_i) / tau_m,i;
 //   mu_i_dot = 0, e_i_dot = 0 (random walks, driven by process noise).
+// With u.supported (on the ground) the held body's rows instead:
+// phi_ddot = 0 and each arm's supported row (estimator/multi_arm_ekf_supported.h).
 template <int N>
 class MultiArmEkfModel {
  public:
@@ -238,6 +241,12 @@ class MultiArmEkfModel {
                                const std::array<double, N>& force_n) const;
   // x_dot from the free body's q_ddot at x (Derivative's rows).
   State DerivativeFrom(const State& x, const Input& u, const Coordinates& acc) const;
+  // The held body (multi_arm_ekf_supported.h): arm i's b_ddot [rad/s^2], q_ddot
+  // (x, z, phi rows 0) and A_d with f(x, u) into x_dot when non-null.
+  template <typename T>
+  T SupportedArmAcceleration(int arm, const T& b, const T& b_dot, const T& force_n) const;
+  Coordinates SupportedAcceleration(const State& x) const;
+  DynamicMatrix SupportedJacobian(const State& x, const Input& u, State* x_dot) const;
 
   VehicleDescription vehicle_;
 };
@@ -324,6 +333,7 @@ typename MultiArmEkfModel<N>::Coordinates MultiArmEkfModel<N>::FreeAcceleration(
 
 template <int N>
 typename MultiArmEkfModel<N>::State MultiArmEkfModel<N>::Derivative(const State& x, const Input& u) const {
+  if (u.supported) return DerivativeFrom(x, u, SupportedAcceleration(x));
   std::array<double, N> b, b_dot, f;
   for (int i = 0; i < N; ++i) {
     b[i] = x(Layout::Deflection(i));
@@ -350,6 +360,7 @@ template <int N>
 typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const State& x, const Input& u,
                                                                           MultiArmAccelLinearization<N>* accel,
                                                                           State* x_dot) const {
+  if (u.supported) return SupportedJacobian(x, u, x_dot);  // no accelerometer linearisation on the ground
   // Jets through the terms M, C, G, tau of the Euler-Lagrange equations only;
   // the solve differentiated by hand on doubles, as EkfProcessModel::Jacobian:
   //   q_ddot = M^-1 r,  d q_ddot = M^-1 (dr - dM q_ddot),  r = tau - C - G

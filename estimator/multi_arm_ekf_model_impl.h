@@ -5,6 +5,7 @@
 #pragma once
 
 #include "estimator/multi_arm_ekf_model.h"
+#include "estimator/multi_arm_ekf_supported.h"
 
 namespace birotor {
 

@@ -21,7 +21,7 @@
 
 namespace birotor {
 MultiArmAccuracyScorer::MultiArmAccuracyScorer(int n_rotors, const EvalOptions& options)
-    : n_(n_rotors), options_(options) {
+    : n_(n_rotors), options_(options), score_from_utime_(options.score_from_utime) {
   result_.n_rotors = n_rotors;
   result_.detection_delay_s = std::numeric_limits<double>::quiet_NaN();
 }
@@ -90,6 +90,16 @@ void MultiArmAccuracyScorer::Score(const MultiArmForceEstimate& e, const MultiAr
     ++result_.nonfinite;
     return;
   }
+  if (e.utime < score_from_utime_) {
+    ++result_.before_liftoff;
+    bool beyond = false;
+    for (int i = 0; i < n_; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      beyond = beyond || std::abs(e.force_n[k] - truth.force_n[k]) > 3.0 * e.force_std_n[k];
+    }
+    result_.before_liftoff_valid_beyond_3sigma += beyond && (e.status & kStatusValid) != 0;
+    return;
+  }
   ++result_.scored;
   valid_count_ += (e.status & kStatusValid) != 0;
   for (int i = 0; i < n_; ++i) {
@@ -108,8 +118,9 @@ namespace {
 // STRAIN_N before TRUTH_N in the same step).
 class AccuracySink : public SampleSink {
  public:
-  AccuracySink(MultiArmPipeline* pipeline, int n, const EvalOptions& options)
-      : pipeline_(pipeline), scorer_(n, options) {}
+  AccuracySink(MultiArmPipeline* pipeline, const MultiArmSimulator* simulator, bool ground_phase, int n,
+               const EvalOptions& options)
+      : pipeline_(pipeline), simulator_(simulator), ground_phase_(ground_phase), scorer_(n, options) {}
   void OnStrainN(const MultiArmStrainSample& sample) override {
     MultiArmForceEstimate estimate;
     if (pipeline_->OnStrain(sample, &estimate)) scorer_.AddEstimate(estimate);
@@ -117,11 +128,19 @@ class AccuracySink : public SampleSink {
   void OnMotorN(const MultiArmMotorSample& sample) override { pipeline_->OnMotor(sample); }
   void OnImu(const ImuSample& sample) override { pipeline_->OnImu(sample); }
   void OnPose(const PoseSample& sample) override { pipeline_->OnPose(sample); }
-  void OnTruthN(const MultiArmTruthSample& truth) override { scorer_.AddTruth(truth); }
+  void OnTruthN(const MultiArmTruthSample& truth) override {
+    if (ground_phase_) {  // on the ground until the simulator saw the lift-off
+      const int64_t liftoff = simulator_->liftoff_utime();
+      scorer_.SetScoreFrom(liftoff >= 0 ? liftoff : std::numeric_limits<int64_t>::max());
+    }
+    scorer_.AddTruth(truth);
+  }
   MultiArmAccuracy Finish() const { return scorer_.Finish(); }
 
  private:
   MultiArmPipeline* pipeline_;
+  const MultiArmSimulator* simulator_;
+  bool ground_phase_;
   MultiArmAccuracyScorer scorer_;
 };
 
@@ -133,7 +152,7 @@ MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Sc
   config.vehicle = vehicle;
   MultiArmPipeline pipeline(config);  // throws for a description it cannot serve
   MultiArmSimulator simulator(vehicle, scenario);
-  AccuracySink sink(&pipeline, vehicle.arm_count, options);
+  AccuracySink sink(&pipeline, &simulator, scenario.ground.enabled, vehicle.arm_count, options);
   simulator.Run(&sink);
   return sink.Finish();
 }

@@ -43,6 +43,11 @@ struct MultiArmAccuracy {
   // Estimates flagging rotor i while its true thrust scale is above
   // EvalOptions::false_alarm_truth_scale (one per rotor and estimate).
   int64_t false_alarms = 0;
+  // A flight with a ground phase is scored from its lift-off (the birotor
+  // eval's rule); the estimates before it are counted here: all, and the
+  // VALID ones with some rotor more than 3 sigma off the truth.
+  int64_t before_liftoff = 0;
+  int64_t before_liftoff_valid_beyond_3sigma = 0;
 };
 
 // Scores estimates against the truth of their utime: each estimate is
@@ -54,6 +59,9 @@ class MultiArmAccuracyScorer {
   MultiArmAccuracyScorer(int n_rotors, const EvalOptions& options);
   void AddEstimate(const MultiArmForceEstimate& estimate);
   void AddTruth(const MultiArmTruthSample& truth);
+  // Estimates stamped before utime [us] are not scored but counted as
+  // before lift-off (options' score_from_utime until called).
+  void SetScoreFrom(int64_t utime) { score_from_utime_ = utime; }
   MultiArmAccuracy Finish() const;
 
  private:
@@ -65,6 +73,7 @@ class MultiArmAccuracyScorer {
   MultiArmAccuracy result_;
   MultiArmForceEstimate pending_;
   bool has_pending_ = false;
+  int64_t score_from_utime_;
   int64_t first_estimate_utime_ = -1, first_truth_utime_ = -1, step_utime_ = 0, valid_count_ = 0;
   ArmValues last_truth_scale_{};
   bool has_last_truth_ = false;
@@ -73,6 +82,7 @@ class MultiArmAccuracyScorer {
 };
 
 // Simulates the scenario on the vehicle (MultiArmSimulator) and feeds every
+// (with a ground phase, scored from the simulator's lift-off)
 // STRAIN_N, MOTOR_N, IMU and POSE sample to a MultiArmPipeline of estimator
 // (its method and sections, the vehicle replaced) as it is emitted. Throws
 // std::invalid_argument as MultiArmSimulator does (a scenario the vehicle

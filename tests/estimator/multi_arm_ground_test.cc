@@ -1,0 +1,173 @@
+// The N-arm EKF on a flight that starts on the ground (issue 38 item 1): the
+// held body's process model (estimator/multi_arm_ekf_supported.h) against
+// central differences and against the simulator's supported rows
+// (model/multi_arm_plant.h), the ground contact of a description
+// (estimator/multi_arm_ground.h), and the trirotor and the birotor
+// description (N = 2) on gauge_offset and gauge_drift: 3 s at rest with the
+// motors stopped, 1 s spool-up, then flight, scored from the lift-off as the
+// birotor's eval does. Figures measured on this commit with birotor-eval
+// --vehicle (the same code); margins <= 1.5x.
+#include "estimator/multi_arm_ground.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "estimator/multi_arm_ekf_model.h"
+#include "evaluation/eval_runner.h"
+#include "evaluation/multi_arm_accuracy.h"
+#include "model/multi_arm_plant.h"
+#include "multi_arm_source_files.h"
+
+namespace birotor {
+namespace {
+
+using Model = MultiArmEkfModel<3>;
+using L = MultiArmEkfLayout<3>;
+
+// A trirotor on the ground at idle: arms bent and swinging, rotors spinning up.
+Model::State GroundState() {
+  Model::State x = Model::State::Zero();
+  for (int i = 0; i < 3; ++i) {
+    x(L::Deflection(i)) = -1.0e-4 + 3e-4 * i;
+    x(L::DeflectionRate(i)) = 0.04 * (i - 1);
+    x(L::Omega(i)) = 300.0 + 25.0 * i;
+    x(L::ThrustScale(i)) = 1.0 - 0.05 * i;
+    x(L::GaugeOffset(i)) = 1e-5;
+  }
+  return x;
+}
+
+Model::Input Supported() {
+  Model::Input u;
+  u.omega_cmd_rad_s = {350.0, 320.0, 310.0};
+  u.supported = true;
+  return u;
+}
+
+// A_d of the held body against central differences of its derivative
+// (relative step 1e-6: truncation and round-off ~1e-9 of the column scale;
+// asserted 1e-6, as the free body's test).
+TEST(MultiArmGroundTest, SupportedJacobianMatchesCentralDifferences) {
+  const Model model(Vehicle("trirotor"));
+  const Model::State x = GroundState();
+  const Model::Input u = Supported();
+  const Model::DynamicMatrix a = model.Jacobian(x, u);
+  for (int c = L::kFirstDynamic; c < Model::kS; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(x(c)));
+    Model::State plus = x, minus = x;
+    plus(c) += h;
+    minus(c) -= h;
+    const Model::State numeric = (model.Derivative(plus, u) - model.Derivative(minus, u)) / (2.0 * h);
+    const double scale = std::max(1.0, numeric.cwiseAbs().maxCoeff());
+    for (int r = L::kFirstDynamic; r < Model::kS; ++r) {
+      EXPECT_NEAR(a(L::Dynamic(r), L::Dynamic(c)), numeric(r), 1e-6 * scale) << "row " << r << " col " << c;
+    }
+  }
+}
+
+// The filter's held body is the simulator's on the ground: b_ddot_i of
+// MultiArmSupportedDerivative at phi = 0 with the same b, b_dot and thrusts
+// (two codings of M_bb b_ddot = tau_b - C_b - G_b; round-off ~1e-12 of
+// ~1e3 rad/s^2, asserted 1e-8), and phi_ddot = 0.
+TEST(MultiArmGroundTest, SupportedRowsAreTheSimulatorsOnTheGround) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const Model model(vehicle);
+  const Model::State x = GroundState();
+  const Model::State x_dot = model.Derivative(x, Supported());
+  MultiArmPlantState plant = MultiArmPlantState::Zero(MultiArmPlantSize(vehicle));
+  MultiArmPlantInput input;
+  for (int i = 0; i < 3; ++i) {
+    plant(MultiArmQIndex(vehicle, DeflectionIndex(i))) = x(L::Deflection(i));
+    plant(MultiArmVIndex(vehicle, DeflectionIndex(i))) = x(L::DeflectionRate(i));
+    plant(MultiArmOmegaIndex(vehicle, i)) = x(L::Omega(i));
+    input.thrust_scale[static_cast<size_t>(i)] = x(L::ThrustScale(i));
+  }
+  const MultiArmPlantState plant_dot = MultiArmSupportedDerivative(vehicle, plant, input);
+  EXPECT_EQ(x_dot(L::kPitchRate), 0.0);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(x_dot(L::DeflectionRate(i)), plant_dot(MultiArmVIndex(vehicle, DeflectionIndex(i))), 1e-8) << i;
+    EXPECT_EQ(x_dot(L::Deflection(i)), x(L::DeflectionRate(i))) << i;
+  }
+}
+
+// The support of the trirotor at rest: N = M g - F_z with F_z = sum f_i
+// cos theta_i. Motors stopped: N = M g = 47.7 N, on the ground; the hover
+// thrusts (27.47, 14.32, 14.32 N: F_z = 47.72 N = M g): N = 0, in the air.
+TEST(MultiArmGroundTest, ContactFromTheThrustAlongBodyZ) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const EkfOptions options;
+  const double g = vehicle.gravity_m_s2;
+  const HoverSolution hover = SolveHover(vehicle);
+  MultiArmGroundContact resting(vehicle, options), hovering(vehicle, options);
+  const double stopped[3] = {0.0, 0.0, 0.0};
+  const double hover_n[3] = {hover.thrust_n[0], hover.thrust_n[1], hover.thrust_n[2]};
+  for (int k = 0; k < 200; ++k) {  // 0.2 s at 1 kHz, ten filter time constants
+    resting.Update(1000 * k, g, stopped);
+    hovering.Update(1000 * k, g, hover_n);
+  }
+  EXPECT_TRUE(resting.supported());
+  EXPECT_NEAR(resting.contact().support_force_n(), vehicle.TotalMass() * g, 1e-9);
+  EXPECT_FALSE(hovering.supported());
+  EXPECT_NEAR(hovering.contact().support_force_n(), 0.0, 1e-6);
+  // The accelerometer's extra a_z variance (N_f / M)^2: g^2 after the rest
+  // (N_f = M g), and exactly 0 for a start in the air (never supported).
+  EXPECT_NEAR(resting.ReleasedSupportVarianceM2S4(), g * g, 1e-9);
+  EXPECT_EQ(hovering.ReleasedSupportVarianceM2S4(), 0.0);
+}
+
+MultiArmAccuracy GroundStart(const std::string& vehicle, const std::string& scenario,
+                             const std::vector<std::string>& overrides) {
+  const VehicleDescription description = Vehicle(vehicle);
+  return RunMultiArmAccuracy(description, ScenarioFor(scenario, overrides, description.arm_count), Config(),
+                             EvalOptions());
+}
+
+void ExpectHonest(const MultiArmAccuracy& r, const std::vector<double>& max_mae_n, int64_t max_beyond_3sigma) {
+  ASSERT_EQ(r.n_rotors, static_cast<int>(max_mae_n.size()));
+  EXPECT_EQ(r.nonfinite, 0);
+  EXPECT_GT(r.before_liftoff, 3000);  // the 3 s rest and the spool-up, not scored
+  for (size_t i = 0; i < max_mae_n.size(); ++i) {
+    EXPECT_LT(r.rotor[i].mae_n, max_mae_n[i]) << "rotor " << i + 1;
+    EXPECT_GT(r.rotor[i].share_within_2sigma, 0.93) << "rotor " << i + 1;
+    EXPECT_LT(r.rotor[i].share_within_2sigma, 0.98) << "rotor " << i + 1;
+  }
+  EXPECT_GT(r.valid_share, 0.99);
+  EXPECT_EQ(r.false_alarms, 0);
+  EXPECT_LE(r.before_liftoff_valid_beyond_3sigma, max_beyond_3sigma);
+}
+
+// Trirotor, offsets 1.5e-5 / -1.0e-5 / 0.5e-5 rad: measured MAE 0.0768 /
+// 0.0507 / 0.0505 N after lift-off (2-sigma 0.959 / 0.971 / 0.971; before
+// this change 3.27 / 2.80 / 1.21 N, share 0.15-0.28, 17457 false alarms),
+// VALID 1.000, no false alarm, none of 3627 estimates before lift-off VALID
+// and beyond 3 sigma. Asserted: MAE within 15 % of the airborne hover
+// (0.0788 / 0.0509 / 0.0502 N, docs/estimator.md), shares 0.93-0.98.
+TEST(MultiArmGroundTest, TrirotorGaugeOffsetFromTheGround) {
+  ExpectHonest(GroundStart("trirotor", "gauge_offset", {"gauge.offset_rad=[1.5e-5, -1.0e-5, 0.5e-5]"}),
+               {1.15 * 0.0788, 1.15 * 0.0509, 1.15 * 0.0502}, 0);
+}
+
+// Trirotor, drift 3e-6 / 2e-6 / 1e-6 rad/s for 20 s from the lift-off:
+// measured 0.0793 / 0.0508 / 0.0501 N (0.952 / 0.971 / 0.971). Before the
+// lift-off 12 VALID estimates of 3656 are beyond 3 sigma, all in the 12 ms
+// before it (t = 4.144-4.155 s, rotor 2 low by 0.3-0.5 N; the contact, the birotor's rule, lets go at F_z > M g - 2 N
+// while the ground still holds the body level against the controller's moment, and the free body is predicted from then
+// on); asserted <= 18.
+TEST(MultiArmGroundTest, TrirotorGaugeDriftFromTheGround) {
+  ExpectHonest(GroundStart("trirotor", "gauge_drift", {"gauge.drift_rad_s=[3.0e-6, 2.0e-6, 1.0e-6]"}),
+               {1.15 * 0.0788, 1.15 * 0.0509, 1.15 * 0.0502}, 18);
+}
+
+// N = 2 through the description: measured 0.0690 / 0.0673 N (0.957 /
+// 0.961), the birotor's own EKF 0.0692 / 0.0676 N (birotor-eval --scenarios
+// gauge_offset --methods ekf); none of 3659 estimates before the lift-off
+// VALID and beyond 3 sigma (2 without the released support's accelerometer
+// variance, MultiArmGroundContact). MAE asserted within 5 % of the birotor's own.
+TEST(MultiArmGroundTest, BirotorDescriptionMatchesTheBirotorsOwnEkf) {
+  ExpectHonest(GroundStart("birotor", "gauge_offset", {}), {1.05 * 0.0692, 1.05 * 0.0676}, 0);
+}
+
+}  // namespace
+}  // namespace birotor
