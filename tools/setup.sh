@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config git mold
+  build-essential cmake ninja-build pkg-config git
   libeigen3-dev libceres-dev libgoogle-glog-dev
   liblcm-dev liblcm-bin liblcm-java libjchart2d-java libglib2.0-dev default-jdk-headless
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev
