@@ -74,22 +74,3 @@ function(birotor_add_test)
     PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}" RUN_SERIAL ${serial}
     DISCOVERY_TIMEOUT 60)
 endfunction()
-
-# Build time of design-time code (docs/development.md): the sources that run
-# once at start-up or in an offline analysis (a gain design by pole
-# placement, the discretised linear model, observability), never per sample,
-# compile at BIROTOR_DESIGN_OPTIMIZATION (Release builds only) instead of -O3:
-# fixed-size Eigen decompositions cost most of their compile time in -O3's
-# inlining and unrolling. No optimisation level changes a floating-point
-# result here (no -ffast-math, and x86-64's SSE2 has no fused multiply-add to
-# contract to), so their numbers are the same to the last digit.
-set(BIROTOR_DESIGN_OPTIMIZATION "-O1" CACHE STRING "Optimisation flag of the design-time sources (empty: the build type's)")
-
-# birotor_design_time_sources(file...): the listed sources (of the calling
-# folder) compile at BIROTOR_DESIGN_OPTIMIZATION.
-function(birotor_design_time_sources)
-  if(CMAKE_BUILD_TYPE STREQUAL "Release" AND BIROTOR_DESIGN_OPTIMIZATION)
-    # After the Release -O3 on the command line, so it is the one that counts.
-    set_source_files_properties(${ARGN} PROPERTIES COMPILE_OPTIONS "${BIROTOR_DESIGN_OPTIMIZATION}")
-  endif()
-endfunction()
