@@ -264,16 +264,27 @@ class GateWithInflation {
                                const Eigen::Matrix<double, M, 1>& z, double gate_nis, State* x, Cov* cov,
                                Inflate&& inflate, bool* fused_after_inflation = nullptr,
                                const Eigen::Matrix<double, N, M>* fixed_gain = nullptr) {
+    return FuseUnreportedWith(
+        gate_nis,
+        [&](double gate) { return FuseMeasurementUnreported(at, noise, z, gate, x, cov, nullptr, fixed_gain); }, cov,
+        inflate, fused_after_inflation);
+  }
+
+  // The same policy for any fusion of the one measurement: fuse(gate) gates
+  // at gate and fuses or rejects, as FuseMeasurementUnreported (the N-arm
+  // EKF's grouped fusions, estimator/multi_arm_ekf_fusion.h).
+  template <typename Fuse, typename Cov, typename Inflate>
+  FusionOutcome FuseUnreportedWith(double gate_nis, Fuse&& fuse, Cov* cov, Inflate&& inflate,
+                                   bool* fused_after_inflation = nullptr) {
     if (fused_after_inflation != nullptr) *fused_after_inflation = false;
-    FusionOutcome outcome = FuseMeasurementUnreported(at, noise, z, gate_nis, x, cov, nullptr, fixed_gain);
+    FusionOutcome outcome = fuse(gate_nis);
     if (outcome == FusionOutcome::kFused) {
       consecutive_rejected_ = 0;
       return outcome;
     }
     if (++consecutive_rejected_ < consecutive_limit_) return outcome;
     inflate(cov);
-    outcome =
-        FuseMeasurementUnreported(at, noise, z, std::numeric_limits<double>::infinity(), x, cov, nullptr, fixed_gain);
+    outcome = fuse(std::numeric_limits<double>::infinity());
     if (outcome == FusionOutcome::kFused) {
       consecutive_rejected_ = 0;
       if (fused_after_inflation != nullptr) *fused_after_inflation = true;

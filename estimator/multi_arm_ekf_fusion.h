@@ -1,9 +1,11 @@
 // The fusion of estimator/kalman_fusion.h (innovation, chi-square gate,
 // Kalman gain, Joseph covariance) on all states of a symmetric P, its Joseph
-// terms grouped: the N-arm EKF's accelerometer, and its
-// motor telemetry (omega_i) and gyro (phi_dot), whose rows of H read one
-// state each (H's zeros left out of the products). Header-only and fixed-size: no
-// allocation, no throw, no log. docs/estimator.md, "The EKF for N arms".
+// terms grouped and formed on P's upper triangle: the N-arm EKF's
+// accelerometer (H dense but for its leading zero columns, the offsets e_i),
+// and its strain (b_i + e_i), motor telemetry (omega_i) and gyro (phi_dot),
+// whose rows of H are sums of at most two unit rows (H's zeros left out of
+// the products). Header-only and fixed-size: no allocation, no throw, no log.
+// docs/estimator.md, "The EKF for N arms".
 #pragma once
 
 #include <Eigen/Core>
@@ -15,101 +17,124 @@
 
 namespace birotor {
 
-// The state each row of H reads: the column of its 1 (H's row j is the unit
-// row e_s^T), or -1 for a zero row (a masked entry, MultiArmMeasurements).
-// H's rows must be unit or zero rows.
+// The states each row of H reads: row j is e_a^T + e_b^T with
+// states[j] = {a, b}, b = -1 for a unit row e_a^T, a = b = -1 for a zero row
+// (a masked entry, MultiArmMeasurements). H's entries must be 0 or 1, at
+// most two 1s a row.
+template <int M>
+using OnesRowStates = std::array<std::array<int, 2>, M>;
+
 template <int M, int N>
-std::array<int, M> UnitRowStates(const Eigen::Matrix<double, M, N>& h) {
-  std::array<int, M> states;
-  states.fill(-1);
+OnesRowStates<M> FindOnesRowStates(const Eigen::Matrix<double, M, N>& h) {
+  OnesRowStates<M> states;
   for (int j = 0; j < M; ++j) {
-    for (int c = 0; c < N; ++c) {
-      if (h(j, c) != 0.0) states[static_cast<size_t>(j)] = c;
+    std::array<int, 2>& row = states[static_cast<size_t>(j)];
+    row = {-1, -1};
+    size_t found = 0;
+    for (int c = 0; c < N && found < row.size(); ++c) {
+      if (h(j, c) != 0.0) row[found++] = c;
     }
   }
   return states;
 }
 
-// The update after the gate, from H P, S^-1 and y = z - h: K = (H P)^T S^-1,
-// x += K y, A = P - K (H P) and
-//   P+ = A (I - K H)^T + K R K^T = A - (A H^T - K R) K^T,
-// the Joseph form (the same product as JosephCovariance, its last two terms
-// as one: they share the factor K^T); a_ht(A) gives A H^T. Not symmetrised
-// here (as JosephCovariance; the N-arm EKF symmetrises P once per strain
-// sample). The rounding differs from JosephCovariance's by the grouping only.
-template <int M, typename State, typename Cov, typename AHt>
-void GroupedJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
-                         const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matrix<double, M, 1>& residual,
-                         const Eigen::Matrix<double, M, M>& noise, State* x, Cov* cov, AHt&& a_ht) {
+// The update after the gate on a symmetric P (n states, m measured), from
+// H P, S = H P H^T + R, S^-1 and y = z - h: K = (H P)^T S^-1, x += K y, and
+// the Joseph form
+//   P+ = (I - K H) P (I - K H)^T + K R K^T = A - B K^T,  A = P - K (H P),
+//   B = A H^T - K R = (H P)^T - K (H P H^T) - K R = (H P)^T - K S
+// (exact algebra: A H^T = P H^T - K H P H^T, so A's n x n product is not
+// formed; B is K's rounding away from the optimal gain, as in JosephCovariance).
+// P+ is symmetric when P is: each pair (r, c), (c, r) is computed once, on the
+// upper triangle column by column, and mirrored, n (n + 1) / 2 entries of 2 m
+// products each instead of 2 n^2. P+_rc = P_rc - K_r . (H P)_c - B_r . K_c.
+template <int M, typename State, typename Cov>
+void SymmetricJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
+                           const Eigen::Matrix<double, M, M>& s, const Eigen::Matrix<double, M, M>& s_inverse,
+                           const Eigen::Matrix<double, M, 1>& residual, State* x, Cov* cov) {
   constexpr int N = State::RowsAtCompileTime;
   Eigen::Matrix<double, N, M> gain;
   gain.noalias() = h_p.transpose().lazyProduct(s_inverse);
   x->noalias() += gain.lazyProduct(residual);
-  Eigen::Matrix<double, N, N> a = *cov;
-  a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
-  Eigen::Matrix<double, N, M> a_ht_minus_kr = a_ht(a);
-  a_ht_minus_kr.noalias() -= gain.lazyProduct(noise);
-  a.noalias() -= a_ht_minus_kr.lazyProduct(gain.transpose());
-  *cov = a;
+  Eigen::Matrix<double, N, M> b = h_p.transpose();
+  b.noalias() -= gain.lazyProduct(s);
+  for (int c = 0; c < N; ++c) {
+    // Column c's factors, then its rows 0 .. c: a plain loop over r with the
+    // m terms unrolled, which the compiler vectorises (Eigen's products on a
+    // run-time head(c + 1) do not).
+    std::array<double, M> h_p_c, gain_c;
+    for (int k = 0; k < M; ++k) {
+      h_p_c[static_cast<size_t>(k)] = h_p(k, c);
+      gain_c[static_cast<size_t>(k)] = gain(c, k);
+    }
+    for (int r = 0; r <= c; ++r) {
+      double kalman = 0.0, joseph = 0.0;  // K_r . (H P)_c and B_r . K_c, summed in k's order
+      for (int k = 0; k < M; ++k) kalman += gain(r, k) * h_p_c[static_cast<size_t>(k)];
+      for (int k = 0; k < M; ++k) joseph += b(r, k) * gain_c[static_cast<size_t>(k)];
+      (*cov)(r, c) = (*cov)(r, c) - kalman - joseph;
+    }
+    for (int r = 0; r < c; ++r) (*cov)(c, r) = (*cov)(r, c);
+  }
+}
+
+// The gate after S: NIS = y^T S^-1 y; a NaN NIS is rejected too.
+template <int M>
+bool PassesGate(const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matrix<double, M, 1>& residual,
+                double gate_nis, double* nis) {
+  const double nis_value = residual.dot(s_inverse * residual);
+  if (nis != nullptr) *nis = nis_value;
+  return nis_value <= gate_nis;
 }
 
 // FuseMeasurementUnreported on all N states of x and a symmetric P, with the
-// covariance by GroupedJosephUpdate: S = H P H^T + R, NIS = y^T S^-1 y, gated
-// as there (the N-arm accelerometer).
-template <int M, typename State, typename Cov>
+// covariance by SymmetricJosephUpdate: S = H P H^T + R, NIS = y^T S^-1 y,
+// gated as there (the N-arm accelerometer). H's first Z columns must be zero
+// (the accelerometer reads no offset e_i): left out of H P and H P H^T.
+template <int Z = 0, int M, typename State, typename Cov>
 FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                       const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                       double gate_nis, State* x, Cov* cov, double* nis = nullptr) {
-  constexpr int N = State::RowsAtCompileTime;
+  constexpr int N = State::RowsAtCompileTime, read = N - Z;
+  const auto h_read = at.jacobian.template rightCols<read>();
   Eigen::Matrix<double, M, N> h_p;
-  h_p.noalias() = at.jacobian.lazyProduct(*cov);
+  h_p.noalias() = h_read.lazyProduct(cov->template bottomRows<read>());
   Eigen::Matrix<double, M, M> s = noise;
-  s.noalias() += h_p.lazyProduct(at.jacobian.transpose());
+  s.noalias() += h_p.template rightCols<read>().lazyProduct(h_read.transpose());
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
   const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
-  const double nis_value = residual.dot(s_inverse * residual);
-  if (nis != nullptr) *nis = nis_value;
-  if (!(nis_value <= gate_nis)) return FusionOutcome::kRejectedGate;  // a NaN NIS is rejected too
-  GroupedJosephUpdate(h_p, s_inverse, residual, noise, x, cov, [&at](const Eigen::Matrix<double, N, N>& a) {
-    Eigen::Matrix<double, N, M> a_ht;
-    a_ht.noalias() = a.lazyProduct(at.jacobian.transpose());
-    return a_ht;
-  });
+  if (!PassesGate(s_inverse, residual, gate_nis, nis)) return FusionOutcome::kRejectedGate;
+  SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov);
   return FusionOutcome::kFused;
 }
 
-// FuseSymmetricUnreported for H of unit or zero rows (UnitRowStates; the
-// N-arm telemetry and gyro), H's zeros left out: with s_j the state row j
-// reads, H P is P's rows s_j, H P H^T their columns s_l, A H^T A's columns s_j.
+// FuseSymmetricUnreported for H whose rows are sums of at most two unit rows
+// (FindOnesRowStates; the N-arm strain b_i + e_i, telemetry and gyro), H's
+// zeros left out: with {a_j, b_j} the states row j reads, (H P)_j = P_(a_j) +
+// P_(b_j) (rows), (H P H^T)_jl = (H P)_(j, a_l) + (H P)_(j, b_l).
 template <int M, typename State, typename Cov>
-FusionOutcome FuseUnitRowsUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
+FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                      const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                      double gate_nis, State* x, Cov* cov, double* nis = nullptr) {
   constexpr int N = State::RowsAtCompileTime;
-  const std::array<int, M> states = UnitRowStates(at.jacobian);
+  const OnesRowStates<M> states = FindOnesRowStates(at.jacobian);
   Eigen::Matrix<double, M, N> h_p = Eigen::Matrix<double, M, N>::Zero();
+  for (int j = 0; j < M; ++j) {
+    for (const int state : states[static_cast<size_t>(j)]) {
+      if (state >= 0) h_p.row(j) += cov->row(state);
+    }
+  }
   Eigen::Matrix<double, M, M> s = noise;
   for (int j = 0; j < M; ++j) {
-    const int row = states[static_cast<size_t>(j)];
-    if (row < 0) continue;
-    h_p.row(j) = cov->row(row);
     for (int l = 0; l < M; ++l) {
-      const int col = states[static_cast<size_t>(l)];
-      if (col >= 0) s(j, l) += h_p(j, col);
+      for (const int state : states[static_cast<size_t>(l)]) {
+        if (state >= 0) s(j, l) += h_p(j, state);
+      }
     }
   }
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
   const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
-  const double nis_value = residual.dot(s_inverse * residual);
-  if (nis != nullptr) *nis = nis_value;
-  if (!(nis_value <= gate_nis)) return FusionOutcome::kRejectedGate;  // a NaN NIS is rejected too
-  GroupedJosephUpdate(h_p, s_inverse, residual, noise, x, cov, [&states](const Eigen::Matrix<double, N, N>& a) {
-    Eigen::Matrix<double, N, M> a_ht = Eigen::Matrix<double, N, M>::Zero();
-    for (int j = 0; j < M; ++j) {
-      if (states[static_cast<size_t>(j)] >= 0) a_ht.col(j) = a.col(states[static_cast<size_t>(j)]);
-    }
-    return a_ht;
-  });
+  if (!PassesGate(s_inverse, residual, gate_nis, nis)) return FusionOutcome::kRejectedGate;
+  SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov);
   return FusionOutcome::kFused;
 }
 

@@ -191,10 +191,10 @@ void MultiArmEkf<N>::Predict(double dt_s, const Input& input) {
   State x_dot;
   const typename Model::DynamicMatrix a = model_.Jacobian(state_, input, &accel_linearization_, &x_dot);
   accel_linearization_valid_ = !input.supported;  // the held body's Jacobian has none
-  const typename Model::DynamicMatrix phi = Model::Transition(a, dt_s);
+  // Phi_d has A's block structure when Transition took it: products on its blocks.
+  bool blocks = false;
+  const typename Model::DynamicMatrix phi = Model::Transition(a, dt_s, &blocks);
   state_ = model_.StepFrom(state_, x_dot, input, dt_s);
-  // Phi_d has A's block structure (Model::Transition): products on its blocks.
-  const bool blocks = Model::HasRotorBlockStructure(phi);
   auto p_dd = covariance_.template block<n, n>(first, first);
   p_dd = Model::Propagate(phi, p_dd, blocks);
   const Eigen::Matrix<double, n, m> p_de =
@@ -228,7 +228,7 @@ void MultiArmEkf<N>::ApplyMotor(const MultiArmMotorSample& sample) {
     if (any) {
       using Measurements = MultiArmMeasurements<N>;
       // Telemetry reads omega_i alone: H's rows are unit rows (multi_arm_ekf_fusion.h).
-      FuseUnitRowsUnreported(Measurements::Telemetry(state_, measured),
+      FuseOnesRowsUnreported(Measurements::Telemetry(state_, measured),
                              Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
                              options_.telemetry_gate_nis, &state_, &covariance_);
     }
@@ -248,7 +248,7 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   using Measurements = MultiArmMeasurements<N>;
   if (options_.use_gyro && std::isfinite(sample.gyro_y_rad_s)) {
     const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
-    FuseUnitRowsUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
+    FuseOnesRowsUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
                            options_.gyro_gate_nis, &state_, &covariance_);  // a unit row: phi_dot
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
@@ -257,9 +257,10 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   const double sigma = options_.accel_noise_m_s2;
   Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
   r(1, 1) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
-  FuseSymmetricUnreported(Measurements::Accelerometer(accel_linearization_, state_), r,
-                          Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), options_.accel_gate_nis, &state_,
-                          &covariance_);
+  // H's first N columns (the offsets e_i) are zero: left out.
+  FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
+                                                 Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
+                                                 options_.accel_gate_nis, &state_, &covariance_);
 }
 
 template <int N>
@@ -271,14 +272,15 @@ FusionOutcome MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
   // After gate_consecutive_limit rejections in a row the change is taken as
   // real (a lost propeller blade): var(mu_i) += inflation^2, fused ungated.
   const double extra = options_.gate_inflation_thrust_scale_std;
-  // The strain reads the leading states e_i, b_i (the layout's order).
-  return strain_gate_.FuseUnreported(LeadingStates<Layout::kStrainStates>(Measurements::Strain(state_, measured)),
-                                     Measurements::MaskedNoise(options_.strain_noise_rad, measured), z,
-                                     options_.strain_gate_nis, &state_, &covariance_, [extra](Covariance* p) {
-                                       for (int i = 0; i < N; ++i) {
-                                         (*p)(Layout::ThrustScale(i), Layout::ThrustScale(i)) += extra * extra;
-                                       }
-                                     });
+  // The strain reads b_i + e_i: H's rows are sums of two unit rows (multi_arm_ekf_fusion.h).
+  const MeasurementLinearization<N, Layout::kStateSize> at = Measurements::Strain(state_, measured);
+  const Eigen::Matrix<double, N, N> noise = Measurements::MaskedNoise(options_.strain_noise_rad, measured);
+  return strain_gate_.FuseUnreportedWith(
+      options_.strain_gate_nis,
+      [&](double gate) { return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_); }, &covariance_,
+      [extra](Covariance* p) {
+        for (int i = 0; i < N; ++i) (*p)(Layout::ThrustScale(i), Layout::ThrustScale(i)) += extra * extra;
+      });
 }
 
 template <int N>

@@ -72,9 +72,10 @@ class MassMatrixLdlt {
       }
     }
   }
-  // x = M^-1 rhs, column by column: L y = rhs, then D L^T x = y.
-  template <int C>
-  void SolveInPlace(Eigen::Matrix<double, n, C>* x) const {
+  // x = M^-1 rhs, column by column: L y = rhs, then D L^T x = y. x's storage
+  // order is free: a row-major x makes each row operation one contiguous run.
+  template <int C, int Options>
+  void SolveInPlace(Eigen::Matrix<double, n, C, Options>* x) const {
     for (int i = 0; i < n; ++i) {
       for (int k = 0; k < i; ++k) x->row(i) -= lower_(i, k) * x->row(k);
     }
@@ -171,7 +172,8 @@ class MultiArmEkfModel {
   // motor lag and 0), as every power then has, and with A's kinematic rows
   // b_i_dot = b_dot_i (row b_i of A X is X's row b_dot_i): the same sums less
   // A's exact zeros. Else dense.
-  static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // *blocks (when not null): whether it took the blocks (then Phi_d has them).
+  static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s, bool* blocks = nullptr);
   // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal and finite, exactly.
   static bool HasRotorBlockStructure(const DynamicMatrix& x);
   // Whether A_d's rows b_i are 0 but at b_dot_i, exactly (the kinematics b_i_dot = b_dot_i).
@@ -382,7 +384,8 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   });
   Eigen::Matrix<double, n, n> mass;
   Eigen::Matrix<double, n, 1> rhs;
-  Eigen::Matrix<double, n, k> d_rhs;
+  // Row-major: the solve works row by row over the k derivative columns.
+  Eigen::Matrix<double, n, k, Eigen::RowMajor> d_rhs;
   for (int i = 0; i < n; ++i) {
     const Jet r = terms.generalized_thrust(i) - terms.coriolis(i) - terms.gravity_spring(i);
     rhs(i) = r.a;
@@ -393,10 +396,15 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   Coordinates acc_value = rhs;
   ldlt.SolveInPlace(&acc_value);
   if (x_dot != nullptr) *x_dot = DerivativeFrom(x, u, acc_value);
+  // M = M(q) depends on the configuration alone: at phi = 0 on the b_i, the
+  // Jet's first N variables; its derivatives in the others are exact zeros
+  // (x - 0 y = x), left out.
   for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) d_rhs.row(i) -= terms.mass(i, j).v.transpose() * acc_value(j);
+    for (int j = 0; j < n; ++j) {
+      d_rhs.row(i).template head<N>() -= terms.mass(i, j).v.template head<N>().transpose() * acc_value(j);
+    }
   }
-  Eigen::Matrix<double, n, k> d_acc = d_rhs;
+  Eigen::Matrix<double, n, k, Eigen::RowMajor> d_acc = d_rhs;
   ldlt.SolveInPlace(&d_acc);
   MultiCoords<Jet> acc(n);
   for (int i = 0; i < n; ++i) acc(i) = Jet(acc_value(i), d_acc.row(i).transpose());

@@ -19,11 +19,14 @@ bool MultiArmEkfModel<N>::HasRotorBlockStructure(const DynamicMatrix& x) {
 }
 
 template <int N>
-typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Transition(const DynamicMatrix& a, double dt_s) {
+typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Transition(const DynamicMatrix& a, double dt_s,
+                                                                            bool* blocks) {
   constexpr int n = kArmStates, m = kRotorStates;
   const DynamicMatrix a_dt = a * dt_s;
   DynamicMatrix phi = DynamicMatrix::Identity() + a_dt * 0.25;
-  if (!HasRotorBlockStructure(a_dt) || !HasKinematicRows(a_dt)) {  // not that structure: dense
+  const bool structured = HasRotorBlockStructure(a_dt) && HasKinematicRows(a_dt);
+  if (blocks != nullptr) *blocks = structured;
+  if (!structured) {  // not that structure: dense
     DynamicMatrix temp;
     for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
       temp.noalias() = a_dt.lazyProduct(phi);
