@@ -96,7 +96,8 @@ class MultiArmEkf : public MultiArmForceEstimator {
   void ApplyMotor(const MultiArmMotorSample& sample);
   void ApplyImu(const ImuSample& sample);
   FusionOutcome FuseStrain(const MultiArmStrainSample& sample);
-  // Symmetrises P and applies the birotor's variance floors and ceilings;
+  // Applies the birotor's variance floors and ceilings to P (exactly symmetric:
+  // every step writes each pair once);
   // false if the state or covariance is not finite.
   bool ConditionCovariance();
   void UpdateFaults(int64_t utime);

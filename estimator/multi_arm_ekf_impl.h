@@ -286,10 +286,11 @@ FusionOutcome MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
 template <int N>
 bool MultiArmEkf<N>::ConditionCovariance() {
   if (!state_.allFinite() || !covariance_.allFinite()) return false;
-  // P = (P + P^T) / 2, in place over the pairs (the diagonal is its own mean).
-  for (int c = 1; c < Layout::kStateSize; ++c) {
-    for (int r = 0; r < c; ++r) covariance_(r, c) = covariance_(c, r) = 0.5 * (covariance_(r, c) + covariance_(c, r));
-  }
+  // P is exactly symmetric here, no (P + P^T) / 2 needed: every step writes
+  // each pair (r, c), (c, r) once (Initialize; MultiArmEkfModel::Propagate and
+  // Predict's cross block; every fusion's SymmetricJosephUpdate; the
+  // diagonal's noise and inflation; the row-and-column scaling below).
+  // tests/estimator/multi_arm_ekf_test.cc asserts P == P^T after a flight.
   for (int i = 0; i < Layout::kStateSize; ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * ceiling_(i)) return false;  // clearly negative: broken

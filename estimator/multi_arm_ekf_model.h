@@ -90,6 +90,44 @@ class MassMatrixLdlt {
   Eigen::Matrix<double, n, 1> diagonal_;
 };
 
+// Arm i's directions (ArmDirections, model/multi_arm_dynamics.h) on a level
+// body, phi = 0, where a_i = b_i (every evaluation of the filter's process
+// model is there): from sin b_i and cos b_i alone by the angle sums
+//   r_i = [cos b ca - sin b sa, sin b ca + cos b sa],
+//   n_i = [-(sin b ct + cos b st), cos b ct - sin b st],
+// ca, sa = cos, sin alpha_i and ct, st = cos, sin theta_i fixed per arm: one
+// sincos per arm instead of MultiArmDirections' two sin/cos pairs (equal to
+// it to rounding, tests/estimator/multi_arm_ekf_model_test.cc to 1e-15), and
+// the lever l_i computed once instead of at every evaluation.
+template <int N>
+class LevelArmDirections {
+ public:
+  explicit LevelArmDirections(const VehicleDescription& vehicle) {
+    for (int i = 0; i < N; ++i) {
+      const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
+      angles_[static_cast<size_t>(i)] = {std::cos(arm.angle_rad), std::sin(arm.angle_rad),
+                                         std::cos(arm.thrust_angle_rad), std::sin(arm.thrust_angle_rad),
+                                         arm.ThrustLeverM()};
+    }
+  }
+  // T: double or a ceres Jet (SinCos, multi_arm_ekf_jets.h).
+  template <typename T>
+  ArmDirections<T> At(int arm, const T& b) const {
+    const Angles& k = angles_[static_cast<size_t>(arm)];
+    T s, c;
+    SinCos(b, &s, &c);
+    return {c * k.cos_arm - s * k.sin_arm, s * k.cos_arm + c * k.sin_arm, -(s * k.cos_thrust + c * k.sin_thrust),
+            c * k.cos_thrust - s * k.sin_thrust, k.lever_m};
+  }
+
+ private:
+  struct Angles {
+    double cos_arm, sin_arm, cos_thrust, sin_thrust;  // of alpha_i and theta_i
+    double lever_m;                                   // l_i [m], computed once
+  };
+  std::array<Angles, N> angles_{};
+};
+
 // Clamped rotor speed commands held over one prediction interval [rad/s].
 template <int N>
 struct MultiArmEkfInput {
@@ -130,7 +168,7 @@ class MultiArmEkfModel {
   using DynamicMatrix = Eigen::Matrix<double, kD, kD>;
   using Input = MultiArmEkfInput<N>;
 
-  explicit MultiArmEkfModel(const VehicleDescription& vehicle) : vehicle_(vehicle) {}
+  explicit MultiArmEkfModel(const VehicleDescription& vehicle) : vehicle_(vehicle), directions_(vehicle) {}
 
   const VehicleDescription& vehicle() const { return vehicle_; }
   // f_i = mu_i c_T,i omega_i^2 [N].
@@ -200,8 +238,9 @@ class MultiArmEkfModel {
   // Phi_d P Phi_d^T for a symmetric kD x kD P. On the blocks Phi_d = [F, G;
   // 0, D] (F arm, G arm-to-rotor, D diagonal) with X = F P_aa + G P_ua and
   // Y = F P_au + G P_uu (the rows of Phi_d P that are not diagonal scalings):
-  //   P_aa+ = X F^T + Y G^T (upper triangle, mirrored: it is symmetric),
-  //   P_au+ = Y D,  P_uu+ = D P_uu D;
+  //   P_aa+ = X F^T + Y G^T,  P_au+ = Y D,  P_uu+ = D P_uu D
+  // (P_aa+ and P_uu+ on their upper triangles, mirrored: the result is
+  // exactly symmetric, so the filter need not symmetrise P after it);
   // the same sums as (Phi_d (Phi_d P)^T)^T less the rotor rows' products.
   template <typename P>
   static DynamicMatrix Propagate(const DynamicMatrix& phi, const Eigen::MatrixBase<P>& p, bool blocks) {
@@ -229,6 +268,9 @@ class MultiArmEkfModel {
     out.template topRightCorner<n, m>() = y * d.asDiagonal();
     out.template bottomLeftCorner<m, n>() = out.template topRightCorner<n, m>().transpose();
     out.template bottomRightCorner<m, m>() = d.asDiagonal() * p.template bottomRightCorner<m, m>() * d.asDiagonal();
+    for (int c = 1; c < m; ++c) {  // D P_uu D's upper triangle mirrored
+      for (int r = 0; r < c; ++r) out(n + c, n + r) = out(n + r, n + c);
+    }
     return out;
   }
 
@@ -251,6 +293,7 @@ class MultiArmEkfModel {
   DynamicMatrix SupportedJacobian(const State& x, const Input& u, State* x_dot) const;
 
   VehicleDescription vehicle_;
+  LevelArmDirections<N> directions_;  // r_i, n_i at phi = 0
 };
 
 // One measurement model per sensor: h(x), H and R. A masked entry (an arm
@@ -317,17 +360,15 @@ template <int N>
 typename MultiArmEkfModel<N>::Coordinates MultiArmEkfModel<N>::FreeAcceleration(
     double phi_dot, const std::array<double, N>& b, const std::array<double, N>& b_dot,
     const std::array<double, N>& force_n) const {
+  // q_ddot = M^-1 (tau - C - G), as MultiArmAcceleration at phi = 0, x = z = 0,
+  // body velocity 0: the same terms, each arm's directions by LevelArmDirections.
   constexpr int n = kCoordinates;
-  MultiCoords<double> q = MultiCoords<double>::Zero(n), v = MultiCoords<double>::Zero(n);
-  ArmForces<double> f(N);
-  v(kPhi) = phi_dot;
-  for (int i = 0; i < N; ++i) {
-    q(DeflectionIndex(i)) = b[static_cast<size_t>(i)];
-    v(DeflectionIndex(i)) = b_dot[static_cast<size_t>(i)];
-    f(i) = force_n[static_cast<size_t>(i)];
-  }
-  // q_ddot = M^-1 (tau - C - G), as MultiArmAcceleration.
-  const MultiArmTerms<double> terms = ComputeMultiArmTerms<double>(vehicle_, q, v, f);
+  const MultiArmTerms<double> terms = AssembleMultiArmTerms<double>(vehicle_, [&](int i, MultiArmTerms<double>* out) {
+    const size_t k = static_cast<size_t>(i);
+    const ArmShare<double> share =
+        MultiArmShareWith<double>(vehicle_, i, phi_dot + b_dot[k], b[k], b_dot[k], force_n[k], directions_.At(i, b[k]));
+    AddArmTerms(share, DeflectionIndex(i), &out->mass, &out->coriolis, &out->gravity_spring, &out->generalized_thrust);
+  });
   Coordinates acc = terms.generalized_thrust - terms.coriolis - terms.gravity_spring;
   MassMatrixLdlt<n>(Eigen::Matrix<double, n, n>(terms.mass)).SolveInPlace(&acc);
   return acc;
@@ -372,15 +413,16 @@ typename MultiArmEkfModel<N>::DynamicMatrix MultiArmEkfModel<N>::Jacobian(const 
   constexpr int n = kBodyCoordinates + N, k = Layout::kJetSize;
   using Jet = ceres::Jet<double, k>;
   const MultiArmTerms<Jet> terms = AssembleMultiArmTerms<Jet>(vehicle_, [&](int i, MultiArmTerms<Jet>* out) {
-    const ArmJet phi(0.0), phi_dot(x(Layout::kPitchRate), kArmJetPitchRate);
+    const ArmJet phi_dot(x(Layout::kPitchRate), kArmJetPitchRate);
     const ArmJet b(x(Layout::Deflection(i)), kArmJetDeflection);
     const ArmJet b_dot(x(Layout::DeflectionRate(i)), kArmJetDeflectionRate);
     const ArmJet force(Force(x, i), kArmJetForce);
     const std::array<int, kArmJetSize> columns = {Layout::Dynamic(Layout::Deflection(i)),
                                                   Layout::Dynamic(Layout::kPitchRate),
                                                   Layout::Dynamic(Layout::DeflectionRate(i)), Layout::JetForce(i)};
-    AddScatteredArmTerms<k>(MultiArmShare<ArmJet>(vehicle_, i, phi, phi_dot, b, b_dot, force), DeflectionIndex(i),
-                            columns, out);
+    const ArmShare<ArmJet> share =
+        MultiArmShareWith<ArmJet>(vehicle_, i, phi_dot + b_dot, b, b_dot, force, directions_.At(i, b));
+    AddScatteredArmTerms<k>(share, DeflectionIndex(i), columns, out);
   });
   Eigen::Matrix<double, n, n> mass;
   Eigen::Matrix<double, n, 1> rhs;

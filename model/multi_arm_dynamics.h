@@ -63,38 +63,60 @@ struct MultiArmTerms {
   MultiCoords<T> generalized_thrust;  // tau(q, f) [N, N m]
 };
 
-// Arm i's share of the terms at (phi, phi_dot, b_i, b_i_dot, f_i): its
-// geometry at a_i = phi + b_i (r_i, w_i, n_i of the header comment). T may be
-// a Jet over only the variables the arm depends on (the EKF's Jacobian).
+// Arm i's directions at a_i = phi + b_i: r_i = [cos, sin](a_i + alpha_i) (w_i
+// = [-r_i,z, r_i,x]) and the thrust direction n_i = [-sin, cos](a_i + theta_i);
+// with the constant lever l_i = L_i cos(alpha_i - theta_i) (ThrustLeverM).
 template <typename T>
-ArmShare<T> MultiArmShare(const VehicleDescription& vehicle, int i, const T& phi, const T& phi_dot, const T& b,
-                          const T& b_dot, const T& force_n) {
+struct ArmDirections {
+  T rx, rz;              // r_i (unit)
+  T nx, nz;              // n_i (unit)
+  double lever_m = 0.0;  // l_i [m]
+};
+
+// The directions from a_i by the library's sin and cos (the simulator's).
+template <typename T>
+ArmDirections<T> MultiArmDirections(const ArmDescription& arm, const T& a) {
   using std::cos;
   using std::sin;
+  const T thrust_angle = a + arm.thrust_angle_rad;
+  return {cos(a + arm.angle_rad), sin(a + arm.angle_rad), -sin(thrust_angle), cos(thrust_angle), arm.ThrustLeverM()};
+}
+
+// Arm i's share of the terms at (a_i_dot = phi_dot + b_i_dot, b_i, b_i_dot,
+// f_i) with its directions at a_i. T may be a Jet over only the variables
+// the arm depends on (the EKF's Jacobian).
+template <typename T>
+ArmShare<T> MultiArmShareWith(const VehicleDescription& vehicle, int i, const T& a_dot, const T& b, const T& b_dot,
+                              const T& force_n, const ArmDirections<T>& directions) {
   const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
   const double mp = arm.tip_mass_kg, L = arm.length_m;
-  const T a = phi + b;
-  const T a_dot = phi_dot + b_dot;
-  const T rx = cos(a + arm.angle_rad), rz = sin(a + arm.angle_rad);  // r_i; w_i = [-rz, rx]
-  const T thrust_angle = a + arm.thrust_angle_rad;
   ArmShare<T> share;
   share.tip_mass_kg = mp;
   share.length_m = L;
   share.gravity_m_s2 = vehicle.gravity_m_s2;
   share.stiffness_n_m_rad = arm.stiffness_n_m_rad;
   share.damping_n_m_s_rad = arm.damping_n_m_s_rad;
-  share.lever_m = arm.ThrustLeverM();
-  share.jx = -L * rz;  // L_i w_i
-  share.jz = L * rx;
+  share.lever_m = directions.lever_m;
+  share.jx = -L * directions.rz;  // L_i w_i
+  share.jz = L * directions.rx;
   share.centripetal_n = -mp * L * a_dot * a_dot;  // J_i_dot v = -L a_dot^2 r_i
-  share.rx = rx;
-  share.rz = rz;
-  share.nx = -sin(thrust_angle);
-  share.nz = cos(thrust_angle);
+  share.rx = directions.rx;
+  share.rz = directions.rz;
+  share.nx = directions.nx;
+  share.nz = directions.nz;
   share.deflection_rad = b;
   share.deflection_rate_rad_s = b_dot;
   share.force_n = force_n;
   return share;
+}
+
+// Arm i's share of the terms at (phi, phi_dot, b_i, b_i_dot, f_i): its
+// geometry at a_i = phi + b_i (r_i, w_i, n_i of the header comment).
+template <typename T>
+ArmShare<T> MultiArmShare(const VehicleDescription& vehicle, int i, const T& phi, const T& phi_dot, const T& b,
+                          const T& b_dot, const T& force_n) {
+  const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
+  return MultiArmShareWith<T>(vehicle, i, phi_dot + b_dot, b, b_dot, force_n, MultiArmDirections<T>(arm, phi + b));
 }
 
 // M, C, G and tau: the body's own terms, then add_arm(i, &terms) for every

@@ -1,13 +1,17 @@
 // The N-arm EKF's process model (estimator/multi_arm_ekf_model.h): the free
 // body's arm rows do not depend on the body pose and velocity, the Jacobian
 // and the accelerometer's gradient against central differences, and the
-// fourth-order transition against a matrix exponential by many small steps.
+// fourth-order transition against a matrix exponential by many small steps;
+// the kernels of the prediction (the level arms' directions, the small-angle
+// sincos, f(x, u) and the block covariance propagation) against the dense
+// reference computations.
 #include "estimator/multi_arm_ekf_model.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "estimator/multi_arm_ekf_jets.h"
 #include "params/vehicle_description_yaml.h"
 
 namespace birotor {
@@ -119,6 +123,103 @@ TEST(MultiArmEkfModelTest, TransitionIsTheFourthOrderExponential) {
   using L = MultiArmEkfLayout<3>;
   // The motor lag entry: exp(-x) to fourth order, x = dt / tau = 0.0286, truncation x^5 / 120 = 1.6e-10.
   EXPECT_NEAR(phi(L::Dynamic(L::Omega(0)), L::Dynamic(L::Omega(0))), std::exp(-dt / 0.035), 2.4e-10);
+}
+
+// SinCos of a double within kSmallAngleRad (the Taylor series) against the
+// library's sin and cos: a few 1e-17, asserted 4e-16 (2 ulp at 1, the
+// rounding of either side); beyond it the library's own (exact match).
+TEST(MultiArmEkfModelTest, SmallAngleSinCosIsTheLibrarysToRounding) {
+  for (int k = -1000; k <= 1000; ++k) {
+    const double x = kSmallAngleRad * k / 1000.0;
+    double s = 0.0, c = 0.0;
+    SinCos(x, &s, &c);
+    EXPECT_NEAR(s, std::sin(x), 4e-16 * std::max(std::abs(x), 1e-300)) << x;
+    EXPECT_NEAR(c, std::cos(x), 4e-16) << x;
+  }
+  for (const double x : {0.07, -0.5, 3.0}) {
+    double s = 0.0, c = 0.0;
+    SinCos(x, &s, &c);
+    EXPECT_EQ(s, std::sin(x));
+    EXPECT_EQ(c, std::cos(x));
+  }
+}
+
+// LevelArmDirections (one sincos and the angle sums) against
+// MultiArmDirections (the simulator's sin and cos of a_i + alpha_i, a_i +
+// theta_i) at phi = 0 on every trirotor arm, values and, on Jets, derivatives
+// to 1e-15 (rounding of unit vectors), the lever exactly.
+TEST(MultiArmEkfModelTest, LevelArmDirectionsAreTheDenseOnes) {
+  const VehicleDescription vehicle = Trirotor();
+  const LevelArmDirections<3> level(vehicle);
+  for (int i = 0; i < 3; ++i) {
+    const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
+    for (const double b : {-0.2, -0.01, -1.3e-3, 0.0, 1.4e-3, 0.05, 0.3}) {
+      const ArmDirections<double> fast = level.At(i, b), dense = MultiArmDirections<double>(arm, b);
+      EXPECT_NEAR(fast.rx, dense.rx, 1e-15) << i << " " << b;
+      EXPECT_NEAR(fast.rz, dense.rz, 1e-15) << i << " " << b;
+      EXPECT_NEAR(fast.nx, dense.nx, 1e-15) << i << " " << b;
+      EXPECT_NEAR(fast.nz, dense.nz, 1e-15) << i << " " << b;
+      EXPECT_EQ(fast.lever_m, dense.lever_m);
+      const ArmJet b_jet(b, kArmJetDeflection);
+      const ArmDirections<ArmJet> fast_jet = level.At(i, b_jet);
+      const ArmDirections<ArmJet> dense_jet = MultiArmDirections<ArmJet>(arm, b_jet + ArmJet(0.0));
+      for (int v = 0; v < kArmJetSize; ++v) {
+        EXPECT_NEAR(fast_jet.rx.v(v), dense_jet.rx.v(v), 1e-15);
+        EXPECT_NEAR(fast_jet.rz.v(v), dense_jet.rz.v(v), 1e-15);
+        EXPECT_NEAR(fast_jet.nx.v(v), dense_jet.nx.v(v), 1e-15);
+        EXPECT_NEAR(fast_jet.nz.v(v), dense_jet.nz.v(v), 1e-15);
+      }
+      EXPECT_NEAR(fast_jet.rx.a, dense.rx, 1e-15);
+    }
+  }
+}
+
+// f(x, u) (LevelArmDirections, MassMatrixLdlt) against MultiArmAcceleration
+// (the simulator's terms and SolveMultiArmMassMatrix) at phi = 0 and rest:
+// phi_ddot and b_ddot_i to 1e-12 rad/s^2.
+TEST(MultiArmEkfModelTest, DerivativeIsTheDenseAcceleration) {
+  using Model = MultiArmEkfModel<3>;
+  using L = MultiArmEkfLayout<3>;
+  const Model model(Trirotor());
+  const Model::State x = SwingingState(model);
+  const int n = CoordinateCount(model.vehicle());
+  MultiCoords<double> q = MultiCoords<double>::Zero(n), v = MultiCoords<double>::Zero(n);
+  ArmForces<double> f(3);
+  v(kPhi) = x(L::kPitchRate);
+  for (int i = 0; i < 3; ++i) {
+    q(DeflectionIndex(i)) = x(L::Deflection(i));
+    v(DeflectionIndex(i)) = x(L::DeflectionRate(i));
+    f(i) = model.Force(x, i);
+  }
+  const MultiCoords<double> reference = MultiArmAcceleration<double>(model.vehicle(), q, v, f);
+  const Model::State x_dot = model.Derivative(x, Model::Input{});
+  EXPECT_NEAR(x_dot(L::kPitchRate), reference(kPhi), 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(x_dot(L::DeflectionRate(i)), reference(DeflectionIndex(i)), 1e-12);
+}
+
+// Propagate on the blocks [F, G; 0, D] against the dense Phi P Phi^T, to
+// 1e-12 of P's largest entry, and its result exactly symmetric (the filter
+// no longer symmetrises P after it).
+TEST(MultiArmEkfModelTest, BlockPropagationIsTheDenseProduct) {
+  using Model = MultiArmEkfModel<3>;
+  const Model model(Trirotor());
+  const Model::State x = SwingingState(model);
+  Model::Input u;
+  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  bool blocks = false;
+  const Model::DynamicMatrix phi = Model::Transition(model.Jacobian(x, u), 1e-3, &blocks);
+  ASSERT_TRUE(blocks);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Model::DynamicMatrix root;
+  for (int r = 0; r < Model::kD; ++r) {
+    for (int c = 0; c < Model::kD; ++c) root(r, c) = uniform(rng);
+  }
+  const Model::DynamicMatrix p = root * root.transpose();
+  const Model::DynamicMatrix dense = phi * p * phi.transpose();
+  const Model::DynamicMatrix fast = Model::Propagate(phi, p, true);
+  EXPECT_LT((fast - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
+  EXPECT_TRUE(fast == fast.transpose());
 }
 
 }  // namespace
