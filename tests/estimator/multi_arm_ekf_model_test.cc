@@ -197,6 +197,28 @@ TEST(MultiArmEkfModelTest, DerivativeIsTheDenseAcceleration) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(x_dot(L::DeflectionRate(i)), reference(DeflectionIndex(i)), 1e-12);
 }
 
+// Transition on the blocks (contiguous F, G, e through the series) against
+// the dense series I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))) on the
+// whole A: to 1e-12 of Phi's largest entry, the rotor rows' exact zeros kept.
+TEST(MultiArmEkfModelTest, BlockTransitionIsTheDenseSeries) {
+  using Model = MultiArmEkfModel<3>;
+  const Model model(Trirotor());
+  const Model::State x = SwingingState(model);
+  Model::Input u;
+  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  const Model::DynamicMatrix a = model.Jacobian(x, u);
+  const double dt = 1e-3;
+  bool blocks = false;
+  const Model::DynamicMatrix phi = Model::Transition(a, dt, &blocks);
+  ASSERT_TRUE(blocks);
+  const Model::DynamicMatrix identity = Model::DynamicMatrix::Identity();
+  const Model::DynamicMatrix a_dt = a * dt;
+  const Model::DynamicMatrix dense =
+      identity + a_dt * (identity + a_dt / 2.0 * (identity + a_dt / 3.0 * (identity + a_dt / 4.0)));
+  EXPECT_LT((phi - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
+  EXPECT_TRUE(Model::HasRotorBlockStructure(phi));
+}
+
 // Propagate on the blocks [F, G; 0, D] against the dense Phi P Phi^T, to
 // 1e-12 of P's largest entry, and its result exactly symmetric (the filter
 // no longer symmetrises P after it).
