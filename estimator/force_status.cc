@@ -53,12 +53,14 @@ MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts,
 }
 
 MultiArmStatusBits ComposeMultiArmForceStatus(const MultiArmFilterFacts& filter, const InputStatusFacts& input,
+                                              const ConsistencyStatusFacts& consistency,
                                               const TransportStatusFacts& transport, int n_rotors) {
   ForceStatusFacts facts;
   facts.filter.convergence = filter.convergence;
   facts.filter.measurement_rejected = filter.measurement_rejected;
   facts.filter.thrust_deficit = filter.thrust_deficit;
   facts.input = input;
+  facts.consistency = consistency;
   facts.transport = transport;
   MultiArmStatusBits out;
   out.status = ComposeForceStatus(facts);

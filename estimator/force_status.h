@@ -120,8 +120,8 @@ struct MultiArmFilterFacts {
   bool thrust_deficit = false;
 };
 
-// force_estimate_n_t's status and rotor_fault_bits from the method's facts
-// (the N-arm estimate has no pipeline, consistency or transport facts yet).
+// force_estimate_n_t's status and rotor_fault_bits (from the method's facts
+// alone in ComposeMultiArmFilterStatus).
 struct MultiArmStatusBits {
   int32_t status = 0;
   int32_t rotor_fault_bits = 0;
@@ -129,11 +129,13 @@ struct MultiArmStatusBits {
 MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts, int n_rotors);
 
 // The published status of an N-rotor estimate: ComposeForceStatus's rules on
-// the method's facts with the pipeline's and the service's (no consistency
-// facts yet: the N-arm pipeline has no model-consistency monitor); the rotor
-// bits are the method's, void (none) when the pipeline replaced a
-// non-finite estimate.
+// the method's facts with the pipeline's, its model-consistency monitor's
+// (MODEL_MISMATCH withdraws VALID and THRUST_DEFICIT; the N-arm monitor has
+// no arm-mode test, so no tip-mass facts) and the service's; the rotor bits
+// are the method's, void (none) when the pipeline replaced a non-finite
+// estimate.
 MultiArmStatusBits ComposeMultiArmForceStatus(const MultiArmFilterFacts& filter, const InputStatusFacts& input,
+                                              const ConsistencyStatusFacts& consistency,
                                               const TransportStatusFacts& transport, int n_rotors);
 
 }  // namespace birotor

@@ -9,14 +9,16 @@
 #include <cstdint>
 #include <limits>
 
+#include "samples/multi_arm_samples.h"
+
 namespace birotor {
 
 // The measurements a method can fuse. A new measurement (a gauge offset, a
 // harmonic) is appended before kNumFusionSources and mapped to the input
 // channel it comes from in EstimatorPipeline.
 enum class FusionSource : int {
-  kStrain = 0,         // arm deflections b1, b2 [rad] (STRAIN)
-  kTelemetry = 1,      // ESC rotor speeds omega1, omega2 [rad/s] (MOTOR)
+  kStrain = 0,         // arm deflections b1, b2 (b_1 .. b_N) [rad] (STRAIN, STRAIN_N)
+  kTelemetry = 1,      // ESC rotor speeds omega1, omega2 (omega_1 .. omega_N) [rad/s] (MOTOR, MOTOR_N)
   kGyro = 2,           // body pitch rate phi_dot [rad/s] (IMU)
   kAccelerometer = 3,  // specific force a_z in free flight [m/s^2] (IMU)
 };
@@ -30,19 +32,23 @@ enum class FusionOutcome : int {
                       // not used by the method
 };
 
-// Largest measurement dimension of any model (strain and telemetry: 2).
-constexpr int kMaxMeasurementSize = 2;
+// Largest measurement dimension of any model: the strain and telemetry of
+// the N-arm EKF, one per arm (the birotor's: 2).
+constexpr int kMaxMeasurementSize = kMaxSampleArms;
 
 struct FusionReport {
   FusionSource source = FusionSource::kStrain;
   FusionOutcome outcome = FusionOutcome::kNotFused;
   int64_t utime = 0;  // stamp of the measurement; the filter was predicted to it [us]
   int size = 0;       // measurement dimension m (0: no innovation computed)
-  // y = z - h(x) and S = H P H^T + R, in the measurement's unit (top-left m
-  // entries valid).
+  // y = z - h(x) and the diagonal of S = H P H^T + R (each component's
+  // variance; the gate used all of S), in the measurement's unit and its
+  // square (first m entries valid). A component the method did not measure
+  // (an N-arm vehicle's arm without a gauge or a reading) has y_j = 0 and
+  // variance 0: consumers leave it out.
   Eigen::Matrix<double, kMaxMeasurementSize, 1> innovation = Eigen::Matrix<double, kMaxMeasurementSize, 1>::Zero();
-  Eigen::Matrix<double, kMaxMeasurementSize, kMaxMeasurementSize> innovation_covariance =
-      Eigen::Matrix<double, kMaxMeasurementSize, kMaxMeasurementSize>::Zero();
+  Eigen::Matrix<double, kMaxMeasurementSize, 1> innovation_variance =
+      Eigen::Matrix<double, kMaxMeasurementSize, 1>::Zero();
   // y^T S^-1 y, chi-square with m degrees of freedom; NaN when not computed.
   double nis = std::numeric_limits<double>::quiet_NaN();
   // The threshold nis was compared with; NaN when the method has no gate.

@@ -194,7 +194,7 @@ FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eig
   report.utime = request.utime;
   report.size = M;
   report.innovation.template head<M>() = innovation.residual;
-  report.innovation_covariance.template topLeftCorner<M, M>() = innovation.covariance;
+  report.innovation_variance.template head<M>() = innovation.covariance.diagonal();
   report.nis = innovation.nis;
   report.gate = request.gate_nis;
   if (!(innovation.nis <= request.gate_nis)) {  // a NaN NIS is rejected too
@@ -206,9 +206,9 @@ FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eig
   return report;
 }
 
-// FuseMeasurement for a measurement of any size M, also beyond what a
-// FusionReport holds (kMaxMeasurementSize; the N-arm strain and telemetry,
-// estimator/multi_arm_ekf.h): the same innovation, gate and update (with
+// FuseMeasurement without building a report, for a measurement of any size
+// M (the N-arm filters, estimator/multi_arm_*.h, report only what their
+// pipeline reads): the same innovation, gate and update (with
 // *fixed_gain when given, as FuseMeasurement); returns the outcome and, when
 // nis is not null, the NIS.
 template <int M, int N, typename State, typename Cov>

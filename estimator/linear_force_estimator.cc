@@ -121,7 +121,7 @@ void LinearForceEstimator::Predict(int periods) {
 // coordinates (the NIS is the same in both).
 FusionReport LinearForceEstimator::PhysicalReport(FusionReport report, double scale) {
   report.innovation *= scale;
-  report.innovation_covariance *= scale * scale;
+  report.innovation_variance *= scale * scale;
   return report;
 }
 

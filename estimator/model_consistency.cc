@@ -25,8 +25,10 @@ const char* MismatchParameterName(MismatchParameter parameter) {
 }
 
 ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& options,
-                                                 const ArmModeExpectation& arm_mode, double strain_noise_rad)
+                                                 const ArmModeExpectation& arm_mode, double strain_noise_rad,
+                                                 int rotors)
     : options_(options),
+      rotors_(std::clamp(rotors, 1, kMaxSampleArms)),
       arm_mode_file_(arm_mode),
       arm_mode_(options, arm_mode, strain_noise_rad),
       window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {
@@ -42,7 +44,7 @@ void ModelConsistencyMonitor::AddStrain(int64_t utime, const double deflection_r
     // The rigid body's tests see nothing of a tip-mass error: the name is
     // the arm mode's.
     state_.raised_fast = false;
-    Raise(utime, newest_thrust_scale_);
+    Raise(utime, newest_thrust_scale_.data());
     state_.parameter = MismatchParameter::kTipMass;
   } else if (!arm_mode_mismatch && state_.mismatch && state_.parameter == MismatchParameter::kTipMass &&
              consistent_run_ >= options_.clear_windows) {
@@ -57,7 +59,7 @@ void ModelConsistencyMonitor::Restart() {
   window_start_utime_ = -1;
   for (Accumulator& a : acc_) a = Accumulator();
   cusum_high_ = cusum_low_ = 0;
-  thrust_scale_sum_[0] = thrust_scale_sum_[1] = 0;
+  thrust_scale_sum_.fill(0.0);
   estimates_ = 0;
 }
 
@@ -66,14 +68,15 @@ void ModelConsistencyMonitor::Advance(int64_t utime) {
   if (utime - window_start_utime_ >= window_us_) CloseWindow(utime);
 }
 
-ConsistencyStatusFacts ModelConsistencyMonitor::Judge(const ForceEstimate& estimate) {
+ConsistencyStatusFacts ModelConsistencyMonitor::Judge(int64_t utime, const double* thrust_scale) {
   ConsistencyStatusFacts facts;
   // A method without innovations (the baselines) is not judged.
   if (!options_.enabled || !judging_) return facts;
-  Advance(estimate.utime);
-  for (int i = 0; i < 2; ++i) {
-    thrust_scale_sum_[i] += estimate.thrust_scale[i];
-    newest_thrust_scale_[i] = estimate.thrust_scale[i];
+  Advance(utime);
+  for (int i = 0; i < rotors_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    thrust_scale_sum_[k] += thrust_scale[i];
+    newest_thrust_scale_[k] = thrust_scale[i];
   }
   ++estimates_;
   facts.mismatch = state_.mismatch;
@@ -102,20 +105,25 @@ void ModelConsistencyMonitor::Add(const FusionReport& report) {
   if (report.outcome == FusionOutcome::kRejectedGate) ++a.rejected;
   // Gated outliers (spikes) are input faults, judged by their share only.
   if (report.outcome != FusionOutcome::kFused) return;
-  a.nis_ratio_sum += report.nis / report.size;
-  for (int j = 0; j < std::min(report.size, 2); ++j) {
-    const double s = report.innovation_covariance(j, j);
-    const double z = s > 0 ? report.innovation(j) / std::sqrt(s) : 0.0;
+  int measured = 0;
+  for (int j = 0; j < std::min(report.size, kMaxMeasurementSize); ++j) {
+    const double s = report.innovation_variance(j);
+    if (!(s > 0)) continue;  // not measured: y_j = 0 and no share of the NIS
+    const double z = report.innovation(j) / std::sqrt(s);
     a.z_sum[j] += z;
     a.z2_sum[j] += z * z;
-    if (a.count > 0) a.zz_lag_sum[j] += z * a.z_previous[j];
+    if (a.z_count[j] > 0) a.zz_lag_sum[j] += z * a.z_previous[j];
     a.z_previous[j] = z;
+    ++a.z_count[j];
+    ++measured;
   }
+  if (measured == 0) return;
+  a.nis_ratio_sum += report.nis / measured;
   ++a.count;
 }
 
 void ModelConsistencyMonitor::AddToCusum(const FusionReport& report) {
-  const double s = report.innovation_covariance(0, 0);
+  const double s = report.innovation_variance(0);
   if (report.source != FusionSource::kAccelerometer || !(s > 0)) return;
   const ModelConsistencyOptions& o = options_;
   const double z = std::clamp(report.innovation(0) / std::sqrt(s), -o.fast_cusum_clip, o.fast_cusum_clip);
@@ -127,12 +135,12 @@ void ModelConsistencyMonitor::AddToCusum(const FusionReport& report) {
   if (state_.fast_statistic > 1.0 && !state_.mismatch) {
     state_.worst_source = report.source;
     state_.raised_fast = true;
-    Raise(report.utime, newest_thrust_scale_);
+    Raise(report.utime, newest_thrust_scale_.data());
     cusum_high_ = cusum_low_ = 0;  // fresh evidence for a raise after a clear
   }
 }
 
-void ModelConsistencyMonitor::Raise(int64_t utime, const double thrust_scale[kBirotorRotors]) {
+void ModelConsistencyMonitor::Raise(int64_t utime, const double* thrust_scale) {
   state_.mismatch = true;
   state_.confirmed = false;
   state_.raised_utime = utime;
@@ -150,19 +158,20 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
     s.count = a.count;
     s.reports = a.reports;
     s.rejected = a.rejected;
-    if (a.count > 0) {
-      const double n = static_cast<double>(a.count);
-      s.nis_ratio = a.nis_ratio_sum / n;
-      for (int j = 0; j < 2; ++j) {
-        s.bias[j] = a.z_sum[j] / n;
-        const double variance = a.z2_sum[j] / n - s.bias[j] * s.bias[j];
-        s.lag1[j] = variance > 0 && a.count > 1 ? (a.zz_lag_sum[j] / (n - 1) - s.bias[j] * s.bias[j]) / variance : 0.0;
-      }
+    if (a.count > 0) s.nis_ratio = a.nis_ratio_sum / static_cast<double>(a.count);
+    for (int j = 0; j < kMaxMeasurementSize; ++j) {
+      if (a.z_count[j] == 0) continue;
+      const double n = static_cast<double>(a.z_count[j]);
+      s.bias[j] = a.z_sum[j] / n;
+      const double variance = a.z2_sum[j] / n - s.bias[j] * s.bias[j];
+      s.lag1[j] =
+          variance > 0 && a.z_count[j] > 1 ? (a.zz_lag_sum[j] / (n - 1) - s.bias[j] * s.bias[j]) / variance : 0.0;
     }
     if (a.reports >= options_.min_reports) {
       double score = static_cast<double>(a.rejected) / a.reports / options_.rejected_share_limit;
       if (a.count >= options_.min_reports) score = std::max(score, s.nis_ratio / options_.nis_ratio_limit[k]);
-      for (int j = 0; j < 2; ++j) score = std::max(score, std::fabs(s.bias[j]) / options_.bias_limit[k]);
+      for (int j = 0; j < kMaxMeasurementSize; ++j)
+        score = std::max(score, std::fabs(s.bias[j]) / options_.bias_limit[k]);
       if (score > statistic) {
         statistic = score;
         worst = static_cast<FusionSource>(k);
@@ -171,9 +180,10 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
     a = Accumulator();
   }
   window_start_utime_ = utime;
-  for (int i = 0; i < 2; ++i) {
-    state_.thrust_scale_mean[i] = estimates_ > 0 ? thrust_scale_sum_[i] / estimates_ : 1.0;
-    thrust_scale_sum_[i] = 0;
+  for (int i = 0; i < rotors_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    state_.thrust_scale_mean[k] = estimates_ > 0 ? thrust_scale_sum_[k] / estimates_ : 1.0;
+    thrust_scale_sum_[k] = 0;
   }
   estimates_ = 0;
   ++state_.windows;
@@ -184,11 +194,11 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
     ++inconsistent_run_;
     if (inconsistent_run_ >= options_.raise_windows && !state_.mismatch) {
       state_.raised_fast = false;
-      Raise(utime, state_.thrust_scale_mean);
+      Raise(utime, state_.thrust_scale_mean.data());
     } else if (inconsistent_run_ == options_.raise_windows && state_.raised_fast) {
       // Raised by the fast test: the name is revised on the windows' evidence
       // (a thrust scale moves away from 1 in the first tens of ms only).
-      state_.parameter = Attribute(state_.thrust_scale_mean);
+      state_.parameter = Attribute(state_.thrust_scale_mean.data());
     }
   } else {
     inconsistent_run_ = 0;
@@ -200,7 +210,7 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
   state_.confirmed = !state_.mismatch && consistent_run_ >= options_.confirm_windows;
 }
 
-MismatchParameter ModelConsistencyMonitor::Attribute(const double thrust_scale[kBirotorRotors]) const {
+MismatchParameter ModelConsistencyMonitor::Attribute(const double* thrust_scale) const {
   switch (state_.worst_source) {
     case FusionSource::kTelemetry:
       return MismatchParameter::kMotorLag;
@@ -210,7 +220,8 @@ MismatchParameter ModelConsistencyMonitor::Attribute(const double thrust_scale[k
     case FusionSource::kGyro: {
       // Total force wrong: the strain's forces or the mass. If the strain's
       // forces also disagree with the thrust map, the strain is wrong.
-      const double deviation = std::max(std::fabs(thrust_scale[0] - 1.0), std::fabs(thrust_scale[1] - 1.0));
+      double deviation = 0;
+      for (int i = 0; i < rotors_; ++i) deviation = std::max(deviation, std::fabs(thrust_scale[i] - 1.0));
       return deviation > options_.thrust_scale_deviation ? MismatchParameter::kStiffnessOrGaugeScale
                                                          : MismatchParameter::kMass;
     }

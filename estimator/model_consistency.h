@@ -12,6 +12,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
+#include "samples/multi_arm_samples.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
 
@@ -41,14 +42,22 @@ const char* MismatchParameterName(MismatchParameter parameter);
 static_assert(sizeof(ModelConsistencyOptions::nis_ratio_limit) / sizeof(double) == kNumFusionSources,
               "one limit per FusionSource");
 
-// Statistics of one source over one window.
+// mu_i = 1 on every rotor: the file's thrust map, before any estimate.
+inline ArmValues UnitThrustScales() {
+  ArmValues unit;
+  unit.fill(1.0);
+  return unit;
+}
+
+// Statistics of one source over one window; per component j of the
+// measurement (the birotor's strain b1, b2; an N-arm vehicle's b_1 .. b_N).
 struct SourceWindowStats {
-  int64_t reports = 0;      // reports with an innovation (fused or rejected)
-  int64_t rejected = 0;     // of which rejected by the gate
-  int64_t count = 0;        // fused reports with a NIS
-  double nis_ratio = 0;     // mean NIS / m [1]
-  double bias[2] = {0, 0};  // mean of y_j / sqrt(S_jj) per component [1]
-  double lag1[2] = {0, 0};  // lag-1 autocorrelation of y_j / sqrt(S_jj) (whiteness) [1]
+  int64_t reports = 0;                    // reports with an innovation (fused or rejected)
+  int64_t rejected = 0;                   // of which rejected by the gate
+  int64_t count = 0;                      // fused reports with a NIS
+  double nis_ratio = 0;                   // mean NIS / m, m the measured components [1]
+  double bias[kMaxMeasurementSize] = {};  // mean of y_j / sqrt(S_jj) per component [1]
+  double lag1[kMaxMeasurementSize] = {};  // lag-1 autocorrelation of y_j / sqrt(S_jj) (whiteness) [1]
 };
 
 struct ModelConsistencyState {
@@ -77,22 +86,27 @@ struct ModelConsistencyState {
     const double s = statistic > fast_statistic ? statistic : fast_statistic;
     return s > arm_mode.statistic ? s : arm_mode.statistic;
   }
-  bool raised_fast = false;                           // the current (or last) mismatch was raised by the fast test
-  int64_t raised_utime = -1;                          // when the current (or last) mismatch was raised [us]; -1 never
-  int64_t raised_count = 0;                           // mismatches raised since start-up
-  int64_t windows = 0;                                // windows completed
-  SourceWindowStats last[kNumFusionSources];          // the newest completed window
-  double thrust_scale_mean[kBirotorRotors] = {1, 1};  // window mean of mu_i of the estimates [1]
-  ArmModeState arm_mode;                              // the arm-mode test (options arm_mode_*)
+  bool raised_fast = false;                          // the current (or last) mismatch was raised by the fast test
+  int64_t raised_utime = -1;                         // when the current (or last) mismatch was raised [us]; -1 never
+  int64_t raised_count = 0;                          // mismatches raised since start-up
+  int64_t windows = 0;                               // windows completed
+  SourceWindowStats last[kNumFusionSources];         // the newest completed window
+  ArmValues thrust_scale_mean = UnitThrustScales();  // window mean of mu_i of the estimates [1]
+  ArmModeState arm_mode;                             // the arm-mode test (options arm_mode_*)
 };
 
+// For the birotor (EstimatorPipeline) and any N-rotor vehicle
+// (MultiArmPipeline: rotors N, no arm-mode test, Judge on the thrust scales
+// of its estimate). A report's component of variance 0 (not measured) is
+// left out of its statistics.
 class ModelConsistencyMonitor {
  public:
   // arm_mode: the file's symmetric arm mode (ExpectedArmMode), file_hz 0:
-  // no arm-mode test; strain_noise_rad: the gauges' noise per arm.
+  // no arm-mode test; strain_noise_rad: the gauges' noise per arm; rotors:
+  // the thrust scales each estimate has (2 .. kMaxSampleArms).
   explicit ModelConsistencyMonitor(const ModelConsistencyOptions& options = ModelConsistencyOptions(),
                                    const ArmModeExpectation& arm_mode = ArmModeExpectation(),
-                                   double strain_noise_rad = 2e-5);
+                                   double strain_noise_rad = 2e-5, int rotors = kBirotorRotors);
   // Every fusion report of the method (no allocation).
   void Add(const FusionReport& report);
   // Every strain sample the method got, for the arm-mode test (see
@@ -115,7 +129,9 @@ class ModelConsistencyMonitor {
   // published force sigma carries meanwhile (with
   // arm_mode_valid_needs_reading: VALID withheld). ComposeForceStatus and
   // PublishedForceStd apply them; the estimate is not changed here.
-  ConsistencyStatusFacts Judge(const ForceEstimate& estimate);
+  ConsistencyStatusFacts Judge(const ForceEstimate& estimate) { return Judge(estimate.utime, estimate.thrust_scale); }
+  // The same for an estimate at utime [us] with the monitor's rotors' thrust scales mu_i [1].
+  ConsistencyStatusFacts Judge(int64_t utime, const double* thrust_scale);
   // Forgets the window in progress and the fast test's CUSUM (filter
   // re-initialised); the confirmation and a raised mismatch stay (cleared
   // after clear_windows consistent windows).
@@ -129,33 +145,35 @@ class ModelConsistencyMonitor {
     int64_t rejected = 0;
     int64_t count = 0;
     double nis_ratio_sum = 0;
-    double z_sum[2] = {0, 0};
-    double z2_sum[2] = {0, 0};
-    double zz_lag_sum[2] = {0, 0};
-    double z_previous[2] = {0, 0};
+    double z_sum[kMaxMeasurementSize] = {};
+    double z2_sum[kMaxMeasurementSize] = {};
+    double zz_lag_sum[kMaxMeasurementSize] = {};
+    double z_previous[kMaxMeasurementSize] = {};
+    int64_t z_count[kMaxMeasurementSize] = {};  // fused reports that measured component j
   };
   // Starts the first window or closes the current one at utime.
   void Advance(int64_t utime);
   void CloseWindow(int64_t utime);
   // An accelerometer report into the fast test's CUSUM; raises at its limit.
   void AddToCusum(const FusionReport& report);
-  void Raise(int64_t utime, const double thrust_scale[kBirotorRotors]);
+  void Raise(int64_t utime, const double* thrust_scale);
   // The tip mass not yet confirmed by the arm mode: sigma and VALID.
   void AwaitArmMode(ConsistencyStatusFacts* facts) const;
   // The parameter named for the worst source, given the thrust scales mu_i.
-  MismatchParameter Attribute(const double thrust_scale[kBirotorRotors]) const;
+  MismatchParameter Attribute(const double* thrust_scale) const;
 
   ModelConsistencyOptions options_;
+  int rotors_;
   ArmModeExpectation arm_mode_file_;  // the file's, before any learned scale
   ArmModeMonitor arm_mode_;
   int64_t window_us_ = 0;
   int64_t window_start_utime_ = -1;
   bool judging_ = false;  // a report with an innovation has arrived
   Accumulator acc_[kNumFusionSources];
-  double cusum_high_ = 0;                                // C+ of the fast test [1]
-  double cusum_low_ = 0;                                 // C- [1]
-  double newest_thrust_scale_[kBirotorRotors] = {1, 1};  // of the newest estimate [1]
-  double thrust_scale_sum_[kBirotorRotors] = {0, 0};
+  double cusum_high_ = 0;                               // C+ of the fast test [1]
+  double cusum_low_ = 0;                                // C- [1]
+  ArmValues newest_thrust_scale_ = UnitThrustScales();  // of the newest estimate [1]
+  ArmValues thrust_scale_sum_{};
   int64_t estimates_ = 0;
   int inconsistent_run_ = 0;
   int consistent_run_ = 0;

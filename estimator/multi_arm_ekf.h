@@ -13,10 +13,12 @@
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
+#include "estimator/fusion_report.h"
 #include "estimator/multi_arm_ekf_model.h"
 #include "estimator/multi_arm_fault_monitor.h"
 #include "estimator/multi_arm_ground.h"
 #include "estimator/sample_queue.h"
+#include "estimator/strain_noise_adaptation.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
 #include "samples/samples.h"
@@ -43,6 +45,14 @@ class MultiArmForceEstimator {
   // The facts the newest estimate's status was composed from (the pipeline
   // composes the published status from them and its own input facts).
   virtual const MultiArmFilterFacts& facts() const = 0;
+  // What the newest AddStrain fused, in the order it happened (the queued
+  // telemetry, gyro and accelerometer, then the strain; FusionReport), for
+  // the pipeline's model-consistency monitor; null for a method without
+  // innovations (not judged).
+  virtual const FusionReports* reports() const { return nullptr; }
+  // The learned scale on gauge i's noise variance (StrainNoiseAdaptation) [1];
+  // 1 for a method that does not learn it.
+  virtual double strain_noise_scale(int /*gauge*/) const { return 1.0; }
 };
 
 // The filter for N arms. MOTOR and IMU samples wait in a queue until the next
@@ -53,8 +63,11 @@ class MultiArmForceEstimator {
 // fused (its command still takes effect). On the ground (the birotor's
 // GroundContact, judged from each IMU sample on arrival: MultiArmGroundContact)
 // the held body's model predicts and the accelerometer is not fused, as in
-// the birotor's EkfForceEstimator. Differences from it: no learned slow
-// parameters, no strain-noise adaptation, a fixed-size state of 1 + 5N.
+// the birotor's EkfForceEstimator. The strain noise is learned online as
+// there (StrainNoiseAdaptation on the strain reports, estimator.ekf
+// adapt_strain_noise): R_i = scale_i strain_noise_rad^2 from the next strain
+// sample on. Differences from it: no learned slow parameters, a fixed-size
+// state of 1 + 5N.
 template <int N>
 class MultiArmEkf : public MultiArmForceEstimator {
  public:
@@ -75,6 +88,8 @@ class MultiArmEkf : public MultiArmForceEstimator {
   void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) override;
   double force_std_n(int rotor) const override { return force_std_n_[static_cast<size_t>(rotor)]; }
   const MultiArmFilterFacts& facts() const override { return facts_; }
+  const FusionReports* reports() const override { return &reports_; }
+  double strain_noise_scale(int gauge) const override { return strain_noise_.scale(gauge); }
 
   bool initialized() const { return initialized_; }
   const State& state() const { return state_; }
@@ -95,7 +110,15 @@ class MultiArmEkf : public MultiArmForceEstimator {
   void ApplyQueuedUpTo(int64_t utime);
   void ApplyMotor(const MultiArmMotorSample& sample);
   void ApplyImu(const ImuSample& sample);
-  FusionOutcome FuseStrain(const MultiArmStrainSample& sample);
+  // A masked entry's variance to 0 (FusionReport: consumers leave it out).
+  static void LeaveOutUnmeasured(const Measured& measured, FusionReport* report);
+  // The strain update with its gate and inflation, at the learned noise R_i;
+  // returns its report (a masked arm's variance 0).
+  FusionReport FuseStrain(const MultiArmStrainSample& sample);
+  // The adaptation learns from the strain report; R_i follows its scales.
+  void LearnStrainNoise(const FusionReport& strain);
+  // The masked R of the strain at the learned variances [rad^2].
+  Eigen::Matrix<double, N, N> StrainNoise(const Measured& measured) const;
   // Applies the birotor's variance floors and ceilings to P (exactly symmetric:
   // every step writes each pair once);
   // false if the state or covariance is not finite.
@@ -126,7 +149,10 @@ class MultiArmEkf : public MultiArmForceEstimator {
   MultiArmFaultMonitor faults_;
   MultiArmGroundContact contact_;  // from the IMU on arrival: selects the held body's model
   std::array<double, N> force_std_n_{};
-  MultiArmFilterFacts facts_;  // of the newest estimate
+  MultiArmFilterFacts facts_;                   // of the newest estimate
+  StrainNoiseAdaptation strain_noise_;          // the learned scale on each gauge's variance
+  std::array<double, N> strain_variance_rad2_;  // R_i = scale_i strain_noise_rad^2 [rad^2]
+  FusionReports reports_;                       // of the newest AddStrain
 };
 
 // The filter for the description's arm count (2 .. kMaxArms); null outside.

@@ -77,6 +77,21 @@ void SymmetricJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTi
   }
 }
 
+// What a grouped fusion hands out when asked (report not null): y, the
+// diagonal of S and the NIS (FusionReport; the caller sets source, utime
+// and, for a masked entry, its variance 0).
+template <int M>
+void FillFusionReport(const Eigen::Matrix<double, M, 1>& residual, const Eigen::Matrix<double, M, M>& s, double nis,
+                      double gate_nis, FusionOutcome outcome, FusionReport* report) {
+  static_assert(M <= kMaxMeasurementSize, "FusionReport holds at most kMaxMeasurementSize values");
+  report->size = M;
+  report->innovation.template head<M>() = residual;
+  report->innovation_variance.template head<M>() = s.diagonal();
+  report->nis = nis;
+  report->gate = gate_nis;
+  report->outcome = outcome;
+}
+
 // The gate after S: NIS = y^T S^-1 y; a NaN NIS is rejected too.
 template <int M>
 bool PassesGate(const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matrix<double, M, 1>& residual,
@@ -86,14 +101,32 @@ bool PassesGate(const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matri
   return nis_value <= gate_nis;
 }
 
+// The gate on S and, when it passes, SymmetricJosephUpdate; *nis and
+// *report filled when not null (the tail of every grouped fusion).
+template <int M, typename State, typename Cov>
+FusionOutcome GateAndUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
+                            const Eigen::Matrix<double, M, M>& s, const Eigen::Matrix<double, M, 1>& residual,
+                            double gate_nis, State* x, Cov* cov, double* nis, FusionReport* report) {
+  const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
+  double nis_value;
+  const bool passes = PassesGate(s_inverse, residual, gate_nis, &nis_value);
+  if (nis != nullptr) *nis = nis_value;
+  const FusionOutcome outcome = passes ? FusionOutcome::kFused : FusionOutcome::kRejectedGate;
+  if (report != nullptr) FillFusionReport(residual, s, nis_value, gate_nis, outcome, report);
+  if (passes) SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov);
+  return outcome;
+}
+
 // FuseMeasurementUnreported on all N states of x and a symmetric P, with the
 // covariance by SymmetricJosephUpdate: S = H P H^T + R, NIS = y^T S^-1 y,
 // gated as there (the N-arm accelerometer). H's first Z columns must be zero
 // (the accelerometer reads no offset e_i): left out of H P and H P H^T.
+// report, when not null: FillFusionReport.
 template <int Z = 0, int M, typename State, typename Cov>
 FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                       const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                      double gate_nis, State* x, Cov* cov, double* nis = nullptr) {
+                                      double gate_nis, State* x, Cov* cov, double* nis = nullptr,
+                                      FusionReport* report = nullptr) {
   constexpr int N = State::RowsAtCompileTime, read = N - Z;
   const auto h_read = at.jacobian.template rightCols<read>();
   Eigen::Matrix<double, M, N> h_p;
@@ -101,20 +134,19 @@ FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::R
   Eigen::Matrix<double, M, M> s = noise;
   s.noalias() += h_p.template rightCols<read>().lazyProduct(h_read.transpose());
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
-  const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
-  if (!PassesGate(s_inverse, residual, gate_nis, nis)) return FusionOutcome::kRejectedGate;
-  SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov);
-  return FusionOutcome::kFused;
+  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report);
 }
 
 // FuseSymmetricUnreported for H whose rows are sums of at most two unit rows
 // (FindOnesRowStates; the N-arm strain b_i + e_i, telemetry and gyro), H's
 // zeros left out: with {a_j, b_j} the states row j reads, (H P)_j = P_(a_j) +
 // P_(b_j) (rows), (H P H^T)_jl = (H P)_(j, a_l) + (H P)_(j, b_l).
+// report, when not null: FillFusionReport.
 template <int M, typename State, typename Cov>
 FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                      const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                     double gate_nis, State* x, Cov* cov, double* nis = nullptr) {
+                                     double gate_nis, State* x, Cov* cov, double* nis = nullptr,
+                                     FusionReport* report = nullptr) {
   constexpr int N = State::RowsAtCompileTime;
   const OnesRowStates<M> states = FindOnesRowStates(at.jacobian);
   Eigen::Matrix<double, M, N> h_p = Eigen::Matrix<double, M, N>::Zero();
@@ -132,10 +164,7 @@ FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::Ro
     }
   }
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
-  const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
-  if (!PassesGate(s_inverse, residual, gate_nis, nis)) return FusionOutcome::kRejectedGate;
-  SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov);
-  return FusionOutcome::kFused;
+  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report);
 }
 
 }  // namespace birotor

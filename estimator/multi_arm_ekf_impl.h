@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "estimator/multi_arm_ekf.h"
 #include "estimator/multi_arm_ekf_fusion.h"
@@ -29,7 +30,9 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
       model_(vehicle),
       strain_gate_(options.gate_consecutive_limit),
       faults_(options),
-      contact_(vehicle, options) {
+      contact_(vehicle, options),
+      strain_noise_(options, N) {
+  strain_variance_rad2_.fill(options.strain_noise_rad * options.strain_noise_rad);
   process_noise_psd_.setZero();
   process_noise_psd_(Layout::kPitchRate) = options.pitch_rate_psd_rad2_s3;
   // The birotor EKF's numerical guards on the diagonal of P, per kind of
@@ -77,6 +80,7 @@ void MultiArmEkf<N>::Reset() {
   covariance_.setZero();
   force_std_n_.fill(std::numeric_limits<double>::infinity());
   facts_ = MultiArmFilterFacts();
+  reports_.clear();
 }
 
 template <int N>
@@ -138,9 +142,9 @@ void MultiArmEkf<N>::Initialize(const MultiArmStrainSample& sample) {
   CalibratedStrain(sample, &z, &measured);
   state_.setZero();
   covariance_.setZero();
-  const double r = options_.strain_noise_rad * options_.strain_noise_rad;
   for (int i = 0; i < N; ++i) {
     const size_t k = static_cast<size_t>(i);
+    const double r = strain_variance_rad2_[k];  // the learned noise: it is the gauge's
     const int b = Layout::Deflection(i), e = Layout::GaugeOffset(i), w = Layout::Omega(i), m = Layout::ThrustScale(i);
     const double offset_variance = offset_prior_std_[k] * offset_prior_std_[k];
     state_(b) = measured[k] ? z(i) : 0.0;
@@ -162,6 +166,7 @@ void MultiArmEkf<N>::Initialize(const MultiArmStrainSample& sample) {
   const double pitch_std = options_.initial_pitch_rate_std_rad_s;
   covariance_(Layout::kPitchRate, Layout::kPitchRate) = pitch_std * pitch_std;
   strain_gate_.Reset();
+  strain_noise_.BreakSequence();
   converged_ = false;
   faults_.Reset();
   accel_linearization_valid_ = false;
@@ -228,9 +233,12 @@ void MultiArmEkf<N>::ApplyMotor(const MultiArmMotorSample& sample) {
     if (any) {
       using Measurements = MultiArmMeasurements<N>;
       // Telemetry reads omega_i alone: H's rows are unit rows (multi_arm_ekf_fusion.h).
+      FusionReport report = MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kNotFused);
       FuseOnesRowsUnreported(Measurements::Telemetry(state_, measured),
                              Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
-                             options_.telemetry_gate_nis, &state_, &covariance_);
+                             options_.telemetry_gate_nis, &state_, &covariance_, nullptr, &report);
+      LeaveOutUnmeasured(measured, &report);
+      reports_.Add(report);
     }
   }
   for (int i = 0; i < N; ++i) {
@@ -248,8 +256,10 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   using Measurements = MultiArmMeasurements<N>;
   if (options_.use_gyro && std::isfinite(sample.gyro_y_rad_s)) {
     const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
+    FusionReport report = MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused);
     FuseOnesRowsUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
-                           options_.gyro_gate_nis, &state_, &covariance_);  // a unit row: phi_dot
+                           options_.gyro_gate_nis, &state_, &covariance_, nullptr, &report);  // a unit row: phi_dot
+    reports_.Add(report);
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
   // On the ground a_z is the support, not the thrust: not fused (the birotor's rule).
@@ -258,13 +268,46 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
   r(1, 1) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
   // H's first N columns (the offsets e_i) are zero: left out.
+  FusionReport report = MakeFusionReport(FusionSource::kAccelerometer, sample.utime, FusionOutcome::kNotFused);
   FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
                                                  Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
-                                                 options_.accel_gate_nis, &state_, &covariance_);
+                                                 options_.accel_gate_nis, &state_, &covariance_, nullptr, &report);
+  // a_z first: the thrust axis, the birotor's accelerometer report (its
+  // one component), which the model-consistency monitor's fast test reads.
+  std::swap(report.innovation(0), report.innovation(1));
+  std::swap(report.innovation_variance(0), report.innovation_variance(1));
+  reports_.Add(report);
 }
 
 template <int N>
-FusionOutcome MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
+void MultiArmEkf<N>::LeaveOutUnmeasured(const Measured& measured, FusionReport* report) {
+  for (int i = 0; i < N; ++i) {
+    if (!measured[static_cast<size_t>(i)]) report->innovation_variance(i) = 0.0;
+  }
+}
+
+template <int N>
+Eigen::Matrix<double, N, N> MultiArmEkf<N>::StrainNoise(const Measured& measured) const {
+  // MaskedNoise's 1 on a masked entry, R_i on a measured one.
+  Eigen::Matrix<double, N, N> r = Eigen::Matrix<double, N, N>::Zero();
+  for (int i = 0; i < N; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    r(i, i) = measured[k] ? strain_variance_rad2_[k] : 1.0;
+  }
+  return r;
+}
+
+template <int N>
+void MultiArmEkf<N>::LearnStrainNoise(const FusionReport& strain) {
+  bool fault = false;
+  for (int i = 0; i < N; ++i) fault = fault || faults_.fault(i);
+  if (!strain_noise_.Add(strain, strain_variance_rad2_.data(), converged_, fault)) return;
+  const double file_rad2 = options_.strain_noise_rad * options_.strain_noise_rad;
+  for (int i = 0; i < N; ++i) strain_variance_rad2_[static_cast<size_t>(i)] = strain_noise_.scale(i) * file_rad2;
+}
+
+template <int N>
+FusionReport MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
   Eigen::Matrix<double, N, 1> z;
   Measured measured;
   CalibratedStrain(sample, &z, &measured);
@@ -274,13 +317,19 @@ FusionOutcome MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
   const double extra = options_.gate_inflation_thrust_scale_std;
   // The strain reads b_i + e_i: H's rows are sums of two unit rows (multi_arm_ekf_fusion.h).
   const MeasurementLinearization<N, Layout::kStateSize> at = Measurements::Strain(state_, measured);
-  const Eigen::Matrix<double, N, N> noise = Measurements::MaskedNoise(options_.strain_noise_rad, measured);
-  return strain_gate_.FuseUnreportedWith(
+  const Eigen::Matrix<double, N, N> noise = StrainNoise(measured);
+  FusionReport report = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kNotFused);
+  strain_gate_.FuseUnreportedWith(
       options_.strain_gate_nis,
-      [&](double gate) { return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_); }, &covariance_,
+      [&](double gate) { return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_, nullptr, &report); },
+      &covariance_,
       [extra](Covariance* p) {
         for (int i = 0; i < N; ++i) (*p)(Layout::ThrustScale(i), Layout::ThrustScale(i)) += extra * extra;
-      });
+      },
+      &report.fused_after_inflation);
+  report.gate = options_.strain_gate_nis;  // the gate, also when fused after the inflation
+  LeaveOutUnmeasured(measured, &report);
+  return report;
 }
 
 template <int N>
@@ -323,17 +372,21 @@ void MultiArmEkf<N>::UpdateFaults(int64_t utime) {
 template <int N>
 void MultiArmEkf<N>::AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) {
   bool gated = false;
+  reports_.clear();
   if (!initialized_) {
     Initialize(sample);
   } else {
     ApplyQueuedUpTo(sample.utime);
     PredictTo(sample.utime);
-    gated = FuseStrain(sample) == FusionOutcome::kRejectedGate;
+    const FusionReport strain = FuseStrain(sample);
+    gated = strain.outcome == FusionOutcome::kRejectedGate;
     if (!ConditionCovariance()) {
       Initialize(sample);  // numerical failure: start again from this sample
       gated = false;
     } else {
+      reports_.Add(strain);
       UpdateFaults(sample.utime);
+      LearnStrainNoise(strain);
     }
   }
   FillEstimate(sample, gated, estimate);

@@ -25,7 +25,12 @@ bool IsFinite(const MultiArmForceEstimate& e) {
 }  // namespace
 
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
-    : config_(config), filter_(MakeMultiArmForceEstimator(config)), admission_(config.pipeline) {
+    : config_(config),
+      filter_(MakeMultiArmForceEstimator(config)),
+      // No arm-mode test: the birotor's symmetric mode has no N-arm counterpart yet.
+      consistency_(config.model_consistency, ArmModeExpectation(), config.ekf.strain_noise_rad,
+                   config.vehicle.arm_count),
+      admission_(config.pipeline) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (InputCounters& c : health_.inputs) c.gate = nan;
 }
@@ -119,10 +124,12 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
     has_finite_estimate_ = true;
   }
   FillInputFacts(sample.utime, stale, &input);
-  const MultiArmStatusBits bits =
-      ComposeMultiArmForceStatus(filter_->facts(), input, TransportStatusFacts(), config_.vehicle.arm_count);
+  const ConsistencyStatusFacts consistency = JudgeConsistency(*estimate);  // MODEL_MISMATCH withdraws VALID
+  const MultiArmStatusBits bits = ComposeMultiArmForceStatus(filter_->facts(), input, consistency,
+                                                             TransportStatusFacts(), config_.vehicle.arm_count);
   health_.last_filter_facts = filter_->facts();
   health_.last_input_facts = input;
+  health_.last_consistency_facts = consistency;
   estimate->status = bits.status;
   estimate->rotor_fault_bits = bits.rotor_fault_bits;
   ++health_.published;
@@ -130,6 +137,19 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   health_.last_rotor_fault_bits = bits.rotor_fault_bits;
   health_.last_estimate = *estimate;
   return true;
+}
+
+ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmForceEstimate& estimate) {
+  const FusionReports* reports = filter_->reports();
+  if (reports != nullptr) {
+    for (const FusionReport& report : *reports) consistency_.Add(report);
+  }
+  const ConsistencyStatusFacts facts = consistency_.Judge(estimate.utime, estimate.thrust_scale.data());
+  health_.consistency = consistency_.state();
+  for (int i = 0; i < config_.vehicle.arm_count; ++i) {
+    health_.strain_noise_scale[static_cast<size_t>(i)] = filter_->strain_noise_scale(i);
+  }
+  return facts;
 }
 
 bool MultiArmPipeline::CheckStrainTiming(int64_t utime, int64_t previous_utime, bool backwards_jump) {
@@ -152,6 +172,7 @@ bool MultiArmPipeline::CheckStrainTiming(int64_t utime, int64_t previous_utime, 
 
 void MultiArmPipeline::ResetFilter(ResetReason reason, int64_t utime) {
   filter_->Reset();
+  consistency_.Restart();
   ++health_.resets;
   health_.last_reset_reason = reason;
   reset_flag_pending_ = true;

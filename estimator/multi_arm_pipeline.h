@@ -8,11 +8,14 @@
 // reset_gap_s and after a backwards time jump, replaces a non-finite
 // estimate by the last finite one, owns the input facts of the status (no
 // motor input, stale, conflict, reset), has the status composed in
-// force_status.cc from them and the filter's, and keeps the per-input health
-// counters of ESTIMATOR_STATUS. What the birotor's EstimatorPipeline has and
-// this one has not yet: the ground tare, the harmonic notch and the
-// model-consistency monitor (docs/estimator.md, "The EKF for N arms"). No
-// LCM, no logging, no allocation per sample.
+// force_status.cc from them, the filter's and the model-consistency
+// monitor's (the birotor's ModelConsistencyMonitor on the filter's fusion
+// reports, for N rotors: STATUS_MODEL_MISMATCH withdraws VALID,
+// docs/mismatch.md), and keeps the per-input health counters of
+// ESTIMATOR_STATUS. What the birotor's EstimatorPipeline has and this one
+// has not yet: the ground tare, the harmonic notch, the arm-mode test and
+// the per-input fusion counters (docs/estimator.md, "The EKF for N arms").
+// No LCM, no logging, no allocation per sample.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +25,7 @@
 #include "estimator/force_estimator.h"
 #include "estimator/force_status.h"
 #include "estimator/input_admission.h"
+#include "estimator/model_consistency.h"
 #include "estimator/multi_arm_ekf.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
@@ -41,7 +45,13 @@ struct MultiArmPipelineHealth {
   int32_t last_rotor_fault_bits = 0;
   MultiArmFilterFacts last_filter_facts;
   InputStatusFacts last_input_facts;
+  ConsistencyStatusFacts last_consistency_facts;
   MultiArmForceEstimate last_estimate;
+  // Model consistency (STATUS_MODEL_MISMATCH and its statistic, docs/mismatch.md).
+  ModelConsistencyState consistency;
+  // The method's learned scale on each gauge's noise variance
+  // (MultiArmForceEstimator::strain_noise_scale; 1 when it learns none) [1].
+  ArmValues strain_noise_scale = UnitThrustScales();
 };
 
 class MultiArmPipeline {
@@ -78,9 +88,12 @@ class MultiArmPipeline {
   void ResetFilter(ResetReason reason, int64_t utime);
   void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
+  // The method's fusion reports of this strain sample into the monitor; its facts on the estimate.
+  ConsistencyStatusFacts JudgeConsistency(const MultiArmForceEstimate& estimate);
 
   EstimatorConfig config_;
   std::unique_ptr<MultiArmForceEstimator> filter_;
+  ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
   InputAdmission admission_;
   MultiArmPipelineHealth health_;
   bool started_ = false;

@@ -6,10 +6,12 @@
 // throw, no log (docs/estimator.md "Measurement noise learned online").
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
 #include "estimator/fusion_report.h"
+#include "samples/multi_arm_samples.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -31,34 +33,42 @@ namespace birotor {
 // filter converged and no rotor fault flagged, and not within hold_s of a
 // gated sample or a fault (the innovations of a thrust step are not noise).
 // The scale is kept across a re-initialisation (it is the gauges' property).
+// For any number of gauges (the birotor's 2, an N-arm vehicle's N): a gauge
+// the report does not measure (innovation variance 0: no gauge on the arm,
+// or no reading in this sample) breaks that gauge's pair alone.
 class StrainNoiseAdaptation {
  public:
-  explicit StrainNoiseAdaptation(const EkfOptions& options);
+  // gauges: the strain measurement's size, 1 .. kMaxSampleArms.
+  explicit StrainNoiseAdaptation(const EkfOptions& options, int gauges = kBirotorRotors);
   // The newest strain fusion report with the filter's facts at it; r_used:
-  // the variances the report's S was formed with (scale_i R_i_file) [rad^2].
-  // Returns true when a scale changed.
-  bool Add(const FusionReport& report, const double r_used_rad2[kBirotorRotors], bool converged, bool rotor_fault);
+  // the variances the report's S was formed with (scale_i R_i_file), one
+  // per gauge [rad^2]. Returns true when a scale changed.
+  bool Add(const FusionReport& report, const double* r_used_rad2, bool converged, bool rotor_fault);
   // Forgets the previous innovation (filter re-initialised); the scale stays.
-  void BreakSequence() { has_previous_ = false; }
+  void BreakSequence() { has_previous_.fill(false); }
   // The variance scale of gauge i [1] (1 when not adapting).
-  double scale(int i) const { return scale_[i]; }
+  double scale(int i) const { return scale_[static_cast<size_t>(i)]; }
   // The strain samples learned from since start-up.
   int64_t samples() const { return samples_; }
 
  private:
+  // Gauge i's pair from its previous innovation to this report's.
+  bool LearnFromPair(int i, const FusionReport& report, double hph_rad2, double weight);
+
   bool enabled_;
+  int gauges_;
   double window_s_;
   double scale_min_, scale_max_;
   int64_t min_samples_;
   int64_t hold_us_;
   double file_variance_rad2_;  // R_i_file = strain_noise_rad^2
-  bool has_previous_ = false;
   int64_t previous_utime_ = 0;
-  int64_t hold_until_utime_ = -1;  // no sample counts before this [us]
-  double previous_innovation_rad_[kBirotorRotors] = {0, 0};
-  double previous_hph_rad2_[kBirotorRotors] = {0, 0};
-  double variance_estimate_rad2_[kBirotorRotors] = {0, 0};  // R_i_hat
-  double scale_[kBirotorRotors] = {1, 1};
+  int64_t hold_until_utime_ = -1;                    // no sample counts before this [us]
+  std::array<bool, kMaxSampleArms> has_previous_{};  // gauge i's previous innovation is the newest report's
+  ArmValues previous_innovation_rad_{};
+  ArmValues previous_hph_rad2_{};
+  ArmValues variance_estimate_rad2_{};  // R_i_hat
+  ArmValues scale_{};
   int64_t samples_ = 0;
 };
 

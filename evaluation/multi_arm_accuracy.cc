@@ -49,7 +49,10 @@ MultiArmAccuracy MultiArmAccuracyScorer::Finish() const {
       r.share_within_2sigma = static_cast<double>(within_[k]) / static_cast<double>(r.count);
     }
   }
-  if (result.scored > 0) result.valid_share = static_cast<double>(valid_count_) / static_cast<double>(result.scored);
+  if (result.scored > 0) {
+    result.valid_share = static_cast<double>(valid_count_) / static_cast<double>(result.scored);
+    result.mismatch_share = static_cast<double>(mismatch_count_) / static_cast<double>(result.scored);
+  }
   return result;
 }
 
@@ -102,6 +105,7 @@ void MultiArmAccuracyScorer::Score(const MultiArmForceEstimate& e, const MultiAr
   }
   ++result_.scored;
   valid_count_ += (e.status & kStatusValid) != 0;
+  mismatch_count_ += (e.status & kStatusModelMismatch) != 0;
   for (int i = 0; i < n_; ++i) {
     const size_t k = static_cast<size_t>(i);
     const double error = std::abs(e.force_n[k] - truth.force_n[k]);
@@ -215,7 +219,7 @@ bool ScoreMultiArmLog(const std::string& path, const std::string& prefix, int n_
 
 std::string MultiArmAccuracyHeader() {
   return "| scenario | method | MAE per rotor [N] | 2-sigma share per rotor | VALID share | step rotor | "
-         "detection [ms] | false alarms |\n|---|---|---|---|---|---|---|---|\n";
+         "detection [ms] | false alarms | MISMATCH share |\n|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string MultiArmAccuracyRow(const std::string& scenario, const std::string& method,
@@ -241,7 +245,8 @@ std::string MultiArmAccuracyRow(const std::string& scenario, const std::string& 
   } else {
     row << "- | - | ";
   }
-  row << result.false_alarms << " |\n";
+  row.precision(3);
+  row << result.false_alarms << " | " << result.mismatch_share << " |\n";
   return row.str();
 }
 

@@ -4,8 +4,8 @@
 // each sample straight into it (birotor-eval --vehicle FILE); or of the
 // FORCE_N and TRUTH_N of a log (birotor-eval --vehicle FILE --log LOG: a
 // live run recorded by lcm-logger, or birotor-replay --vehicle's output). Per
-// rotor the MAE and the share of errors within 2 sigma, the share of VALID
-// estimates, and for a scenario with a thrust step the time from the step to
+// rotor the MAE and the share of errors within 2 sigma, the shares of VALID
+// and of MODEL_MISMATCH estimates, and for a scenario with a thrust step the time from the step to
 // the stepped rotor's fault flag and the false alarms. docs/estimator.md,
 // "The EKF for N arms".
 #pragma once
@@ -34,6 +34,9 @@ struct MultiArmAccuracy {
   int64_t scored = 0;      // estimates paired with the truth of their utime, after the warm-up
   int64_t nonfinite = 0;   // estimates with a NaN/Inf force or sigma
   double valid_share = 0;  // share of scored estimates with STATUS_VALID [1]
+  // Share of scored estimates with STATUS_MODEL_MISMATCH (the pipeline's
+  // model-consistency monitor, docs/mismatch.md) [1].
+  double mismatch_share = 0;
   // First thrust-scale step in truth (EvalOptions::step_threshold): rotor
   // 1-based (0: none), its time since the first truth sample [s], and the
   // delay to the first estimate flagging that rotor at or after it (NaN if never) [s].
@@ -74,7 +77,7 @@ class MultiArmAccuracyScorer {
   MultiArmForceEstimate pending_;
   bool has_pending_ = false;
   int64_t score_from_utime_;
-  int64_t first_estimate_utime_ = -1, first_truth_utime_ = -1, step_utime_ = 0, valid_count_ = 0;
+  int64_t first_estimate_utime_ = -1, first_truth_utime_ = -1, step_utime_ = 0, valid_count_ = 0, mismatch_count_ = 0;
   ArmValues last_truth_scale_{};
   bool has_last_truth_ = false;
   std::array<double, kMaxArms> abs_sum_{};

@@ -138,9 +138,10 @@ void MultiArmEstimatorService::PublishStatus(int64_t wall_utime, double period_s
   TransportStatusFacts transport;
   transport.no_strain_on_wall_clock = arrival_.Stale(wall_utime);
   const MultiArmPipelineHealth& health = pipeline_.health();
-  status_message_.status = ComposeMultiArmForceStatus(health.last_filter_facts, health.last_input_facts, transport,
-                                                      pipeline_.vehicle().arm_count)
-                               .status;
+  status_message_.status =
+      ComposeMultiArmForceStatus(health.last_filter_facts, health.last_input_facts, health.last_consistency_facts,
+                                 transport, pipeline_.vehicle().arm_count)
+          .status;
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) {
     const int64_t timestamp_us = pipeline_.health().newest_utime >= 0 ? pipeline_.health().newest_utime : 0;

@@ -175,8 +175,8 @@ void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const Stat
   }
   message->gauge_offset_source = "params";
   message->last_tare_refusal = "";
-  message->model_consistency_statistic = kNaN;
-  message->mismatch_parameter = "";
+  message->model_consistency_statistic = health.consistency.ReportedStatistic();
+  message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);
   message->strain_scale_source = kLearnedSourceParams;
   message->body_mass_kg = kNaN;
   message->body_mass_std_kg = kNaN;

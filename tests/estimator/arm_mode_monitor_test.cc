@@ -220,7 +220,7 @@ AwaitRun FeedAwaiting(const ModelConsistencyOptions& options, double ring_rad) {
   report.source = FusionSource::kStrain;
   report.outcome = FusionOutcome::kFused;
   report.size = 1;
-  report.innovation_covariance(0, 0) = 1;
+  report.innovation_variance(0) = 1;
   report.nis = 0;
   monitor.Add(report);
   AwaitRun run;

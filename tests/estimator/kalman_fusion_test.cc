@@ -48,7 +48,7 @@ TEST(FuseMeasurementTest, MatchesTheKalmanUpdateWorkedByHand) {
   EXPECT_EQ(report.utime, 123);
   EXPECT_EQ(report.size, 1);
   EXPECT_DOUBLE_EQ(report.innovation(0), 2.0);
-  EXPECT_DOUBLE_EQ(report.innovation_covariance(0, 0), 4.0);
+  EXPECT_DOUBLE_EQ(report.innovation_variance(0), 4.0);
   EXPECT_DOUBLE_EQ(report.nis, 1.0);
   EXPECT_EQ(report.gate, 25.0);
   EXPECT_FALSE(report.fused_after_inflation);

@@ -22,7 +22,7 @@ FusionReport Report(FusionSource source, int64_t utime, double y, double s) {
   r.outcome = FusionOutcome::kFused;
   r.size = 1;
   r.innovation(0) = y;
-  r.innovation_covariance(0, 0) = s;
+  r.innovation_variance(0) = s;
   r.nis = y * y / s;
   return r;
 }

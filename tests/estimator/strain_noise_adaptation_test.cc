@@ -67,7 +67,7 @@ void Feed(const SyntheticRun& run, int samples, StrainNoiseAdaptation* adaptatio
       r_used[i] = adaptation->scale(i) * kFileVariance;
       report.innovation(i) = std::sqrt(run.true_variance_rad2 + run.hph_rad2) * gaussian.Next() + run.bias_rad +
                              run.drift_rad_s * (*utime * 1e-6);
-      report.innovation_covariance(i, i) = run.hph_rad2 + r_used[i];
+      report.innovation_variance(i) = run.hph_rad2 + r_used[i];
     }
     adaptation->Add(report, r_used, run.converged, false);
   }
@@ -122,6 +122,35 @@ TEST(StrainNoiseAdaptation, TheBoundsHold) {
   }
 }
 
+// Three gauges (an N-arm vehicle, MultiArmEkf), the third without a
+// reading (the report's variance 0): the two measured learn their noise as
+// the birotor's do (the same bound as ConvergesToTheTrueVariance), the third
+// keeps the floor 1.
+TEST(StrainNoiseAdaptation, LearnsEachMeasuredGaugeOfThree) {
+  StrainNoiseAdaptation adaptation(Options(), 3);
+  Gaussian gaussian(7);
+  const double true_variance[3] = {4.0 * kFileVariance, 2.0 * kFileVariance, 4.0 * kFileVariance};
+  const double hph = 0.2 * kFileVariance;
+  int64_t utime = 0;
+  for (int n = 0; n < 2000; ++n) {
+    FusionReport report;
+    report.utime = utime += kStrainPeriodUs;
+    report.size = 3;
+    report.outcome = FusionOutcome::kFused;
+    double r_used[3];
+    for (int i = 0; i < 3; ++i) {
+      r_used[i] = adaptation.scale(i) * kFileVariance;
+      const bool measured = i < 2;
+      report.innovation(i) = measured ? std::sqrt(true_variance[i] + hph) * gaussian.Next() : 0.0;
+      report.innovation_variance(i) = measured ? hph + r_used[i] : 0.0;
+    }
+    adaptation.Add(report, r_used, true, false);
+  }
+  EXPECT_NEAR(adaptation.scale(0), 4.0, 0.062 * 4.0);
+  EXPECT_NEAR(adaptation.scale(1), 2.0, 0.062 * 2.0);
+  EXPECT_EQ(adaptation.scale(2), 1.0);
+}
+
 // A bias of 5 file sigmas and a drift of 10 sigmas per second on the file's
 // noise are not noise: the first difference cancels them (the scale stays
 // within the bound of the file's noise above).
@@ -163,7 +192,7 @@ TEST(StrainNoiseAdaptation, FreezesWhereTheInnovationsAreNotNoise) {
   step.outcome = FusionOutcome::kFused;
   step.fused_after_inflation = true;
   const double r_used[2] = {before * kFileVariance, before * kFileVariance};
-  step.innovation << 100 * kFileNoiseRad, 100 * kFileNoiseRad;
+  step.innovation.head<2>() << 100 * kFileNoiseRad, 100 * kFileNoiseRad;
   adaptation.Add(step, r_used, true, false);
   const int64_t learned = adaptation.samples();
   Feed(noisy, 199, &adaptation, &utime);

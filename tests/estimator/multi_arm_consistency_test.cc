@@ -1,0 +1,102 @@
+// The birotor's gauge features on the N-arm pipeline (issue 38 item 1,
+// estimator/multi_arm_pipeline.h): the strain noise learned online
+// (StrainNoiseAdaptation in MultiArmEkf) keeps a trirotor with gauges twice
+// as noisy as the file VALID with an honest sigma, and the model-consistency
+// monitor (ModelConsistencyMonitor on the filter's fusion reports) stays
+// quiet on a matching trirotor and raises MODEL_MISMATCH, withdrawing
+// VALID, on one whose gauges read 20 % low (as arms 25 % stiffer than the
+// file). Runs of the real N-arm simulator and pipeline
+// (evaluation/multi_arm_accuracy.h); figures measured on this commit, bounds
+// at most 1.5x from them.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "estimator/multi_arm_pipeline.h"
+#include "evaluation/multi_arm_accuracy.h"
+#include "multi_arm_source_files.h"
+#include "samples/sample_sink.h"
+#include "simulator/multi_arm_simulator.h"
+
+namespace birotor {
+namespace {
+
+// 8 s of the trirotor's gentle flight with the gauges' sigma 4e-5 rad, twice
+// the file's ekf.strain_noise_rad (birotor-eval --set
+// sensors.strain.noise_rad=4.0e-5), against the same flight with the file's
+// noise. The targets of issue 38 item 1: MAE within 15 % of the matching
+// flight's, 2-sigma share in [0.93, 0.98], VALID >= 0.98, no MODEL_MISMATCH.
+// Measured: MAE 0.0819 / 0.0532 / 0.0554 N against 0.0768 / 0.0500 / 0.0516 N
+// (+6.6 / +6.4 / +7.4 %), 2-sigma share 0.953 / 0.968 / 0.968, VALID 1.000.
+// Before the adaptation (main 6d6fd52, birotor-eval on the whole 15 s
+// gentle flight): MAE +15 to +17 %, 2-sigma share 0.916 / 0.938 / 0.943.
+TEST(MultiArmConsistencyTest, TrirotorGaugesTwiceAsNoisyStayValidWithAnHonestSigma) {
+  const MultiArmAccuracy matching = RunMultiArmAccuracy(
+      Vehicle("trirotor"), ScenarioFor("gentle", {"scenario.duration_s=8"}, 3), Config(), EvalOptions());
+  const MultiArmAccuracy r = RunMultiArmAccuracy(
+      Vehicle("trirotor"), ScenarioFor("gentle", {"scenario.duration_s=8", "sensors.strain.noise_rad=4.0e-5"}, 3),
+      Config(), EvalOptions());
+  ASSERT_EQ(r.n_rotors, 3);
+  EXPECT_EQ(r.nonfinite, 0);
+  for (size_t i = 0; i < 3; ++i) {
+    std::printf("rotor %zu: MAE %.4f N (matching %.4f N), 2-sigma share %.3f\n", i + 1, r.rotor[i].mae_n,
+                matching.rotor[i].mae_n, r.rotor[i].share_within_2sigma);
+    EXPECT_LT(r.rotor[i].mae_n, 1.15 * matching.rotor[i].mae_n) << "rotor " << i + 1;
+    EXPECT_GE(r.rotor[i].share_within_2sigma, 0.93) << "rotor " << i + 1;
+    EXPECT_LE(r.rotor[i].share_within_2sigma, 0.98) << "rotor " << i + 1;
+  }
+  EXPECT_GE(r.valid_share, 0.98);
+  EXPECT_EQ(r.mismatch_share, 0.0);
+}
+
+// The scales the pipeline's EKF learned on the same noisy flight (its
+// health, as ESTIMATOR_STATUS's service reads it): the variance is 4x the
+// file's. Measured 4.024 / 3.816 / 4.062; asserted within [3.0, 5.0].
+TEST(MultiArmConsistencyTest, TrirotorLearnsTheGaugesVariance) {
+  EstimatorConfig config = Config();
+  config.vehicle = Vehicle("trirotor");
+  MultiArmPipeline pipeline(config);
+  struct Forward : SampleSink {
+    MultiArmPipeline* pipeline = nullptr;
+    void OnStrainN(const MultiArmStrainSample& s) override {
+      MultiArmForceEstimate estimate;
+      pipeline->OnStrain(s, &estimate);
+    }
+    void OnMotorN(const MultiArmMotorSample& s) override { pipeline->OnMotor(s); }
+    void OnImu(const ImuSample& s) override { pipeline->OnImu(s); }
+  } forward;
+  forward.pipeline = &pipeline;
+  MultiArmSimulator simulator(config.vehicle,
+                              ScenarioFor("gentle", {"scenario.duration_s=8", "sensors.strain.noise_rad=4.0e-5"}, 3));
+  simulator.Run(&forward);
+  for (size_t i = 0; i < 3; ++i) {
+    const double scale = pipeline.health().strain_noise_scale[i];
+    std::printf("gauge %zu: learned variance scale %.3f\n", i + 1, scale);
+    EXPECT_GT(scale, 3.0) << "gauge " << i + 1;
+    EXPECT_LT(scale, 5.0) << "gauge " << i + 1;
+  }
+  EXPECT_EQ(pipeline.health().last_status & kStatusModelMismatch, 0);
+}
+
+// The matching trirotor (4 s of the gentle flight): no MODEL_MISMATCH.
+TEST(MultiArmConsistencyTest, MatchingTrirotorRaisesNoMismatch) {
+  const MultiArmAccuracy r = RunMultiArmAccuracy(
+      Vehicle("trirotor"), ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), Config(), EvalOptions());
+  EXPECT_EQ(r.mismatch_share, 0.0);
+  EXPECT_GT(r.valid_share, 0.99);
+}
+
+// Every gauge reads 0.8 of the file's scale (gauge.scale, the simulator's
+// true gauges; to the strain the arms look 25 % stiffer). Measured on 4 s of
+// the gentle flight: MODEL_MISMATCH on every scored estimate (from 0.5 s),
+// VALID on none (birotor-eval on the whole flight: the same, 1.000 and 0.000).
+TEST(MultiArmConsistencyTest, TrirotorWithGaugesReadingLowRaisesMismatch) {
+  const MultiArmAccuracy r = RunMultiArmAccuracy(
+      Vehicle("trirotor"), ScenarioFor("gentle", {"scenario.duration_s=4", "gauge.scale=[0.8, 0.8, 0.8]"}, 3), Config(),
+      EvalOptions());
+  EXPECT_GT(r.mismatch_share, 0.0);
+  EXPECT_LT(r.valid_share, 1.0 - r.mismatch_share + 1e-9);  // VALID withdrawn while raised
+}
+
+}  // namespace
+}  // namespace birotor
