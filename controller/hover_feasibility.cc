@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "controller/position_attitude_law.h"
+#include "controller/reference_point.h"
+
 namespace birotor {
 namespace {
 
@@ -99,8 +102,16 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     const int weak = WeakFromSink(in);
     const double reported = std::isfinite(in.reported_scale[weak]) ? in.reported_scale[weak] : bound_[weak];
     Latch(Cause::kSink, weak, std::clamp(std::min(in.efficiency[weak], reported), kMinEfficiency, bound_[weak]));
+    ++entries_by_sink_;
   }
   return phase_;
+}
+
+void SetTrackingInputs(const ReferencePoint& reference, const BodyState& body, FeasibilityInputs* in) {
+  in->altitude_lag_m = reference.position_m.y() - body.position_m.y();
+  in->sink_behind_m_s = reference.velocity_m_s.y() - body.velocity_m_s.y();
+  in->tilt_rad = body.phi_rad;
+  in->pitch_rate_rad_s = body.phi_dot_rad_s;
 }
 
 }  // namespace birotor

@@ -16,10 +16,15 @@
 // allocation, no throw.
 #pragma once
 
+#include <cstdint>
+
 #include "controller/controller_params.h"
 #include "model/vehicle_description.h"
 
 namespace birotor {
+
+struct BodyState;
+struct ReferencePoint;
 
 // What one control period saw (rotor i: entry i; entries from the rotor count on unused).
 struct FeasibilityInputs {
@@ -35,6 +40,10 @@ struct FeasibilityInputs {
   double tilt_rad = 0.0;                // phi [rad]
   double pitch_rate_rad_s = 0.0;        // phi_dot [rad/s]
 };
+
+// The tracking entries of the inputs from the reference and the observed
+// body (world frame, z up): altitude lag, sink rate behind, tilt, pitch rate.
+void SetTrackingInputs(const ReferencePoint& reference, const BodyState& body, FeasibilityInputs* in);
 
 class HoverFeasibility {
  public:
@@ -56,6 +65,9 @@ class HoverFeasibility {
   Phase phase() const { return phase_; }
   bool infeasible() const { return phase_ != Phase::kFeasible; }
   Cause cause() const { return cause_; }
+  // Entries into the infeasible phase detected from the vehicle's sink
+  // (Cause::kSink) since construction.
+  int64_t entries_by_sink() const { return entries_by_sink_; }
   // Latched: the weak rotor (0-based) and its efficiency [1]: while FORCE
   // is usable it follows the efficiency in use (at most its bound; once
   // detected from the sink only downwards), otherwise it holds.
@@ -88,6 +100,7 @@ class HoverFeasibility {
   Cause cause_ = Cause::kNone;
   int weak_rotor_ = 0;
   double weak_efficiency_ = 1.0;
+  int64_t entries_by_sink_ = 0;
 };
 
 }  // namespace birotor

@@ -176,14 +176,9 @@ bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint&
     in.command_rad_s[i] = last_command_rad_s_[rotor];
   }
   in.allocation_limited = last_saturated_;
-  in.altitude_lag_m = reference.position_m.y() - body.position_m.y();
-  in.sink_behind_m_s = reference.velocity_m_s.y() - body.velocity_m_s.y();
-  in.tilt_rad = body.phi_rad;
-  in.pitch_rate_rad_s = body.phi_dot_rad_s;
-  const bool was_infeasible = feasibility_.infeasible();
+  SetTrackingInputs(reference, body, &in);
   feasibility_.Update(in, dt_s);
-  if (feasibility_.infeasible() && !was_infeasible && feasibility_.cause() == HoverFeasibility::Cause::kSink)
-    ++degradation_.infeasible_by_sink;
+  degradation_.infeasible_by_sink = feasibility_.entries_by_sink();
   degradation_.hover_infeasible = feasibility_.infeasible();
   degradation_.levelling = feasibility_.phase() == HoverFeasibility::Phase::kLevelling;
   degradation_.weak_rotor = feasibility_.infeasible() ? feasibility_.weak_rotor() : -1;

@@ -280,14 +280,9 @@ bool VehicleController::UpdateFeasibility(double dt_s, bool use_force) {
     in.command_rad_s[i] = last_good_omega_rad_s_[i];
   }
   in.allocation_limited = saturated_;
-  in.altitude_lag_m = reference_.position_m.y() - body.position_m.y();
-  in.sink_behind_m_s = reference_.velocity_m_s.y() - body.velocity_m_s.y();
-  in.tilt_rad = body.phi_rad;
-  in.pitch_rate_rad_s = body.phi_dot_rad_s;
-  const bool was_infeasible = feasibility_.infeasible();
+  SetTrackingInputs(reference_, body, &in);
   feasibility_.Update(in, dt_s);
-  if (feasibility_.infeasible() && !was_infeasible && feasibility_.cause() == HoverFeasibility::Cause::kSink)
-    ++health_.infeasible_by_sink;
+  health_.infeasible_by_sink = feasibility_.entries_by_sink();
   health_.levelling = feasibility_.phase() == HoverFeasibility::Phase::kLevelling;
   return feasibility_.infeasible();
 }

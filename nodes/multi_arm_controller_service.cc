@@ -12,6 +12,8 @@
 #include "birotor/setpoint_t.hpp"
 #include "model/multi_arm_linearization.h"
 #include "model/plant.h"
+#include "model/vehicle_description_checksum.h"
+#include "nodes/controller_rotors_message.h"
 #include "nodes/controller_status_message.h"
 #include "nodes/guard_status_message.h"
 #include "numerics/time_units.h"
@@ -66,6 +68,7 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
   force_message_.force_n.reserve(kMaxArms);
   force_message_.force_std_n.reserve(kMaxArms);
   force_message_.thrust_scale.reserve(kMaxArms);
+  PrepareControllerRotors(vehicle_.arm_count, DescriptionChecksum(vehicle_), &rotors_message_);
   buffer_.reserve(512);
   // Force feedback starts in the fallback until FORCE_N has been healthy for
   // force_recovery_s; that start is not counted as a fallback (as the birotor's).
@@ -300,6 +303,9 @@ void MultiArmControllerService::PublishStatus(int64_t wall_utime, int64_t host_u
   BuildControllerStatus(health_, config_, setpoint_, MpcCounters(), context, &status_message_);
   EncodeMessage(status_message_, &buffer_);
   if (!buffer_.empty()) sink_->Publish(channels_.controller_status, context.now_us, buffer_.data(), buffer_.size());
+  FillControllerRotors(controller_, context.now_us, status_message_.seq, &rotors_message_);
+  EncodeMessage(rotors_message_, &buffer_);
+  if (!buffer_.empty()) sink_->Publish(channels_.controller_rotors_n, context.now_us, buffer_.data(), buffer_.size());
   ++guard_status_.seq;
   const SetpointCounters setpoint = setpoint_.counters();
   BuildGuardStatus(guard_status_t::PROGRAM_CONTROLLER, context.now_us, wall_utime, signing_, authentication_, &setpoint,

@@ -3,8 +3,9 @@
 // MultiArmController (cascade or mode mpc), with the birotor node's input
 // supervision (controller/input_admission.h: plausibility, clock windows,
 // one seq stream on POSE and FORCE_N, newest only; SetpointInput), its clock
-// and control-period grid (nodes/controller_clock.h), MOTOR_COMMAND_N and
-// CONTROLLER_STATUS. A FORCE_N of another rotor count is refused whole and
+// and control-period grid (nodes/controller_clock.h), MOTOR_COMMAND_N,
+// CONTROLLER_STATUS and with it CONTROLLER_ROTORS_N (per-rotor efficiency,
+// feasibility bound, weak rotor). A FORCE_N of another rotor count is refused whole and
 // counted (a decode error of FORCE, by reason in force_count_refusals()).
 // FORCE_N stale (force_timeout_s), not VALID, refused, a second publisher
 // on POSE or FORCE_N, or not yet healthy and on time for force_recovery_s
@@ -24,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "birotor/controller_rotors_n_t.hpp"
 #include "birotor/controller_status_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/guard_status_t.hpp"
@@ -71,7 +73,8 @@ class MultiArmControllerService : public PacketHandler {
   int64_t NextPeriodHostUs() const;
   // Runs a control period at host_us if it is due: MOTOR_COMMAND_N.
   void RunIfDue(int64_t host_us);
-  // CONTROLLER_STATUS and GUARD_STATUS; starts a new reporting period.
+  // CONTROLLER_STATUS, CONTROLLER_ROTORS_N and GUARD_STATUS; starts a new
+  // reporting period.
   void PublishStatus(int64_t wall_utime, int64_t host_us);
 
   int64_t VehicleTimeUs(int64_t host_us) const { return clock_.VehicleTimeUs(host_us); }
@@ -128,6 +131,7 @@ class MultiArmControllerService : public PacketHandler {
   force_estimate_n_t force_message_{};
   std::vector<uint8_t> buffer_;
   controller_status_t status_message_{};
+  controller_rotors_n_t rotors_message_{};  // sized for the vehicle at construction
   guard_status_t guard_status_{};
   const UdpReceiveCounters* udp_counters_ = nullptr;
   const SigningSink* signing_ = nullptr;

@@ -4,7 +4,8 @@
 // flies the nominal map (STATUS_FALLBACK_ACTIVE) and force feedback resumes
 // only after force_recovery_s of healthy FORCE_N, a future stamp is refused,
 // every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max], and a
-// plain FORCE_N in front of the sealed channel is refused.
+// plain FORCE_N in front of the sealed channel is refused, and
+// CONTROLLER_ROTORS_N goes out with CONTROLLER_STATUS carrying every rotor.
 #include "nodes/multi_arm_controller_service.h"
 
 #include <gtest/gtest.h>
@@ -14,8 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "birotor/controller_rotors_n_t.hpp"
 #include "birotor/imu_t.hpp"
 #include "birotor/pose_t.hpp"
+#include "model/vehicle_description_checksum.h"
 #include "nodes/guard_status_message.h"
 #include "params/vehicle_description_yaml.h"
 #include "security/message_authenticator.h"
@@ -26,24 +29,31 @@
 namespace birotor {
 namespace {
 
-// Keeps the MOTOR_COMMAND_N and the CONTROLLER_STATUS the node publishes.
+// Keeps the MOTOR_COMMAND_N, CONTROLLER_STATUS and CONTROLLER_ROTORS_N the node publishes.
 class CommandSink : public MessageSink {
  public:
-  explicit CommandSink(std::string channel, std::string status_channel = "")
-      : channel_(std::move(channel)), status_channel_(std::move(status_channel)) {}
+  explicit CommandSink(std::string channel, std::string status_channel = "", std::string rotors_channel = "")
+      : channel_(std::move(channel)),
+        status_channel_(std::move(status_channel)),
+        rotors_channel_(std::move(rotors_channel)) {}
   void Publish(const std::string& channel, int64_t, const void* data, size_t size) override {
     motor_command_n_t command;
     controller_status_t status;
+    controller_rotors_n_t rotors;
     if (channel == channel_ && DecodeMessage(data, size, &command) == DecodeError::kNone) commands.push_back(command);
     if (channel == status_channel_ && DecodeMessage(data, size, &status) == DecodeError::kNone)
       statuses.push_back(status);
+    if (channel == rotors_channel_ && DecodeMessage(data, size, &rotors) == DecodeError::kNone)
+      rotors_messages.push_back(rotors);
   }
   std::vector<motor_command_n_t> commands;
   std::vector<controller_status_t> statuses;
+  std::vector<controller_rotors_n_t> rotors_messages;
 
  private:
   std::string channel_;
   std::string status_channel_;
+  std::string rotors_channel_;
 };
 
 template <class Message>
@@ -119,7 +129,7 @@ class ServiceFixture : public ::testing::Test {
   const VehicleDescription vehicle_ =
       LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
   const ChannelNames channels_ = MakeChannelNames("TEST_");
-  CommandSink sink_{channels_.motor_command_n, channels_.controller_status};
+  CommandSink sink_{channels_.motor_command_n, channels_.controller_status, channels_.controller_rotors_n};
   int64_t host_us_ = 0;
   int64_t now_us_ = 5000000;  // RunUntil's next check
   MultiArmControllerService service_{vehicle_, Config(), channels_, &sink_, [this] { return host_us_; }};
@@ -278,6 +288,38 @@ TEST_F(MultiArmControllerServiceTest, InfeasibleHoverGivesTheLatchedDescent) {
   EXPECT_EQ(service_.health().efficiency[0], 0.2);
   for (const motor_command_n_t& command : sink_.commands)
     for (double omega : command.omega_cmd_rad_s) EXPECT_TRUE(omega >= 0.0 && omega <= 1200.0);
+}
+
+// CONTROLLER_ROTORS_N: every rotor's efficiency and hover bound (rotor 1
+// carries the most: 0.423, rotors 2 and 3 0.2205, docs/controller.md), the
+// weak rotor once hover is infeasible, paired with CONTROLLER_STATUS by seq.
+TEST_F(MultiArmControllerServiceTest, ControllerRotorsNCarriesEveryRotorAndTheWeakOne) {
+  Fly(5000000, 5200000);
+  service_.PublishStatus(0, 5200000);
+  ASSERT_EQ(sink_.rotors_messages.size(), 1u);
+  ASSERT_EQ(sink_.statuses.size(), 1u);
+  const controller_rotors_n_t& feasible = sink_.rotors_messages.back();
+  EXPECT_EQ(feasible.seq, sink_.statuses.back().seq);
+  EXPECT_EQ(feasible.utime, sink_.statuses.back().utime);
+  EXPECT_EQ(feasible.vehicle_checksum, DescriptionChecksum(vehicle_));
+  ASSERT_EQ(feasible.n_rotors, 3);
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(feasible.efficiency[static_cast<size_t>(i)], 0.8) << i;
+  EXPECT_NEAR(feasible.feasibility_bound[0], 0.423, 0.001);
+  EXPECT_NEAR(feasible.feasibility_bound[1], 0.2205, 0.001);
+  EXPECT_NEAR(feasible.feasibility_bound[2], 0.2205, 0.001);
+  EXPECT_EQ(feasible.weak_rotor, 0);
+  EXPECT_TRUE(std::isnan(feasible.weak_efficiency));
+
+  rotor1_scale_ = 0.2;
+  Fly(5201000, 5400000);
+  service_.PublishStatus(0, 5400000);
+  ASSERT_EQ(sink_.rotors_messages.size(), 2u);
+  const controller_rotors_n_t& infeasible = sink_.rotors_messages.back();
+  EXPECT_EQ(infeasible.seq, sink_.statuses.back().seq);
+  EXPECT_EQ(infeasible.weak_rotor, 1);
+  EXPECT_DOUBLE_EQ(infeasible.weak_efficiency, 0.2);
+  EXPECT_DOUBLE_EQ(infeasible.efficiency[0], 0.2);
+  EXPECT_DOUBLE_EQ(infeasible.efficiency[2], 0.8);
 }
 
 // The POSE innovation gate (PoseGate, the birotor's): a POSE 1 m from the

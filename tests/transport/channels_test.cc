@@ -28,13 +28,14 @@ TEST(ChannelsTest, DefaultPrefix) {
   EXPECT_EQ(names.truth_n, "BIROTOR_TRUTH_N");
   EXPECT_EQ(names.force_n, "BIROTOR_FORCE_N");
   EXPECT_EQ(names.motor_command_n, "BIROTOR_MOTOR_COMMAND_N");
+  EXPECT_EQ(names.controller_rotors_n, "BIROTOR_CONTROLLER_ROTORS_N");
   EXPECT_EQ(names.vehicle, "BIROTOR_VEHICLE");
 }
 
 TEST(ChannelsTest, ControllerStatusStaysTheLongestBaseName) {
   // The prefix limit is computed from it; a longer new name would shorten it.
   for (const char* name : {kStrainNChannel, kMotorNChannel, kLoadCellNChannel, kTruthNChannel, kForceNChannel,
-                           kMotorCommandNChannel, kVehicleDescriptionChannel}) {
+                           kMotorCommandNChannel, kControllerRotorsNChannel, kVehicleDescriptionChannel}) {
     EXPECT_LE(std::string(name).size(), sizeof(kControllerStatusChannel) - 1) << name;
   }
 }
