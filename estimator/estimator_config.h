@@ -375,12 +375,16 @@ struct ModelConsistencyOptions {
   // arm_mode_explained_sigmas prior sigmas explains (a broken arm). Only
   // while the file fixes the stiffness (not with learn_strain_scale, whose
   // g may be a stiffness: then the test of issue 27 above). false: the
-  // file's m_p, judged against the file's mode.
-  bool arm_mode_learn_tip_mass = true;
+  // file's m_p, judged against the file's mode. Off by default: on, tip mass
+  // +-10 % and -20 % meet issue 36's targets in the gentle flight, but the
+  // matching flights' MAE rises 3-6 % (docs/mismatch.md).
+  bool arm_mode_learn_tip_mass = false;
   // Relative sigma of one independent reading (one per 2 time constants)
-  // of the mode, freed of the band-pass's pull [1]. 0.015 from the matching
-  // files' EW readings (-1.9 % to +2.8 %, docs/mismatch.md) x 1 / pull;
-  // with it tip mass +-20 % learns to 0.7-0.9 % (sigma) in the gentle flight.
+  // of the mode, freed of the band-pass's pull [1]. 0.015: the matching
+  // files' EW readings (-1.9 % to +2.8 %) x 1 / pull; 0.008 keeps the
+  // matching flights' 2-sigma share at 0.955-0.963 (0.015: 0.965-0.978) but
+  // makes gauge noise x2 and the calm hovers over-confident
+  // (birotor-eval --mismatch-targets --seeds 5, docs/mismatch.md).
   double arm_mode_reading_std = 0.015;
   // The band-pass pulls a reading towards its centre: it reads c + p (f - c)
   // for a mode f. The synthetic test reads -8.7 % as -6.6 % to -7.8 %, the

@@ -332,6 +332,13 @@ EstimatorConfig NotLearningTipMass() {
   return config;
 }
 
+// Learning the tip mass (arm_mode_learn_tip_mass, off by default).
+EstimatorConfig LearningTipMass() {
+  EstimatorConfig config = ReferenceConfig();
+  config.model_consistency.arm_mode_learn_tip_mass = true;
+  return config;
+}
+
 ArmModeFigures Fly(const std::string& name, const EstimatorConfig& config = ReferenceConfig()) {
   const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), config);
   ArmModeFigures f;
@@ -370,14 +377,14 @@ TEST(ArmModeScenarios, TipMassIsRaisedAndNamed) {
   }
 }
 
-// Learning the tip mass (the default): tip mass +-20 % in the gentle
+// Learning the tip mass (arm_mode_learn_tip_mass): tip mass +-20 % in the gentle
 // flight (the shipped scenarios, their seed) is learned, VALID throughout,
 // accurate after 5 s with an honest sigma (docs/mismatch.md, "Learning the
 // tip mass"; birotor-eval --mismatch-targets seeds 1-5: MAE 0.067-0.091 N,
 // share 0.95-0.97).
 TEST(ArmModeScenarios, TipMassIsLearned) {
   for (const char* name : {"mismatch_tip_mass_plus20", "mismatch_tip_mass_minus20"}) {
-    const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), ReferenceConfig());
+    const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), LearningTipMass());
     const MismatchEvalResult r = EvaluateMismatch(run.forces, run.truth, MismatchEvalOptions());
     const ArmModeState& arm = run.health.consistency.arm_mode;
     std::printf("%s: m_p %.4f +- %.4f kg, MAE %.3f / %.3f N, share %.3f, VALID %.3f, window %.3f\n", name,
@@ -396,7 +403,7 @@ TEST(ArmModeScenarios, TipMassIsLearned) {
 
 // The matching file: the learned m_p stays within its sigma of the file's.
 TEST(ArmModeScenarios, MatchingFileTipMassIsNotMoved) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gentle")), ReferenceConfig());
+  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gentle")), LearningTipMass());
   const ArmModeState& arm = run.health.consistency.arm_mode;
   std::printf("gentle: m_p %.4f +- %.4f kg\n", arm.tip_mass_kg, arm.tip_mass_std_kg);
   EXPECT_NEAR(arm.tip_mass_kg, 0.28812, 2.0 * arm.tip_mass_std_kg);

@@ -260,13 +260,8 @@ TEST(StrainNoiseAdaptation, AMismatchedVehicleWithNoisyGaugesIsStillRaised) {
       {"mismatch_tip_mass_plus20", 0.852, MismatchParameter::kTipMass},
   };
   for (const auto& c : kCases) {
-    // A tip mass within the prior is learned, not raised, by default
-    // (arm_mode_learn_tip_mass, docs/mismatch.md "Learning the tip mass"):
-    // the raise is the issue-27 test's, with learning off.
-    EstimatorConfig config = ReferenceConfig();
-    config.model_consistency.arm_mode_learn_tip_mass = c.parameter != MismatchParameter::kTipMass;
     const ScenarioRun run =
-        RunScenario(LoadScenario(ScenarioFile(c.scenario), {"sensors.strain.noise_rad=4e-5"}), config);
+        RunScenario(LoadScenario(ScenarioFile(c.scenario), {"sensors.strain.noise_rad=4e-5"}), ReferenceConfig());
     const int64_t start = run.pairs.front().utime;
     int64_t first_raise = -1, raised = 0, since = 0;
     for (const PairedSample& p : run.pairs) {
