@@ -9,6 +9,13 @@
 #include "samples/rotor_count.h"
 
 namespace birotor {
+namespace {
+
+// The band-pass is moved to the learned mode when they differ by more than
+// this in ln f [1].
+constexpr double kRecentreStep = 0.005;
+
+}  // namespace
 
 double SymmetricArmModeHz(const BirotorParams& params) {
   const std::vector<Mode> modes = OscillatoryModes(LinearizeAtHover(params).a);
@@ -58,26 +65,39 @@ double ResonanceFrequencyEstimator::Biquad::Apply(double x) {
 void ResonanceFrequencyEstimator::Start(double centre_hz, double q, double time_constant_s, double dt_s,
                                         double first_sample) {
   dt_s_ = dt_s;
+  q_ = q;
   time_constant_s_ = time_constant_s;
   forget_ = std::exp(-dt_s / time_constant_s);
+  for (Biquad& s : stage_) s = Biquad();
+  Design(centre_hz);
+  // Started in the steady state of a constant input first_sample (its
+  // output is 0: no zero at DC), so the start does not ring.
+  stage_[0].x1 = stage_[0].x2 = first_sample;
+  y1_ = y2_ = 0;
+  ForgetSums();
+}
+
+void ResonanceFrequencyEstimator::Recentre(double centre_hz) { Design(centre_hz); }
+
+void ResonanceFrequencyEstimator::Design(double centre_hz) {
+  centre_hz_ = centre_hz;
   // RBJ band-pass (constant 0 dB peak gain): H = alpha (1 - z^-2) / (a0 + a1 z^-1 + a2 z^-2),
-  // alpha = sin(w0) / (2 q). Started in the steady state of a constant input
-  // first_sample (its output is 0: no zero at DC), so the start does not ring.
-  const double w0 = 2.0 * M_PI * centre_hz * dt_s;
-  const double alpha = std::sin(w0) / (2.0 * q);
+  // alpha = sin(w0) / (2 q).
+  const double w0 = 2.0 * M_PI * centre_hz * dt_s_;
+  const double alpha = std::sin(w0) / (2.0 * q_);
   const double a0 = 1.0 + alpha;
   for (Biquad& s : stage_) {
-    s = Biquad();
     s.b0 = alpha / a0;
     s.b2 = -alpha / a0;
     s.a1 = -2.0 * std::cos(w0) / a0;
     s.a2 = (1.0 - alpha) / a0;
   }
   // The noise gain: the squared impulse response summed until it has decayed
-  // (once per start, not per sample).
+  // (once per start or re-centring, not per sample).
   // With it the lag-1 and lag-2 sums h_n h_(n-1), h_n h_(n-2): white noise
   // of variance v reads v times these in y y1 and y y2.
   Biquad impulse[kBirotorRotors] = {stage_[0], stage_[1]};
+  for (Biquad& s : impulse) s.x1 = s.x2 = s.y1 = s.y2 = 0;
   noise_gain_ = noise_lag1_gain_ = noise_lag2_gain_ = 0;
   double h1 = 0, h2 = 0;
   for (int n = 0; n < 4096; ++n) {
@@ -88,9 +108,6 @@ void ResonanceFrequencyEstimator::Start(double centre_hz, double q, double time_
     h2 = h1;
     h1 = h;
   }
-  stage_[0].x1 = stage_[0].x2 = first_sample;
-  y1_ = y2_ = 0;
-  ForgetSums();
 }
 
 void ResonanceFrequencyEstimator::ForgetSums() { weight_sum_ = s00_ = s11_ = s12_ = s22_ = s01_ = s02_ = 0; }
@@ -134,10 +151,23 @@ double ResonanceFrequencyEstimator::FrequencyHz(double excess_noise) const {
 }
 
 ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
-                               double noise_rad)
+                               double noise_rad, const ArmModeTipMassMap& tip_mass)
     : options_(options), file_noise_rad_(noise_rad), noise_rad_(std::sqrt(2.0) * noise_rad) {
   state_.expected = expected;
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
+  state_.centre_hz = expected.file_hz;
+  if (options.arm_mode_learn_tip_mass && !tip_mass.empty()) {
+    TipMassLearner::Options learning;
+    learning.prior_std = options.arm_mode_unconfirmed_tip_mass_std;
+    learning.reading_std = options.arm_mode_reading_std;
+    learning.band_pull = options.arm_mode_band_pull;
+    learner_ = TipMassLearner(learning, tip_mass);
+    const double spread = options.arm_mode_explained_sigmas * learning.prior_std;
+    explained_low_hz_ = std::exp(tip_mass.LogHz(1.0 + spread));
+    explained_high_hz_ = std::exp(tip_mass.LogHz(std::max(1.0 - spread, ArmModeTipMassMap::kLowestRatio)));
+    state_.tip_mass_kg = tip_mass.file_tip_mass_kg();
+    state_.tip_mass_std_kg = learning.prior_std * state_.tip_mass_kg;
+  }
 }
 
 void ArmModeMonitor::Restart() {
@@ -151,6 +181,7 @@ void ArmModeMonitor::ForgetRun() {
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
   state_.relative_error = state_.statistic = 0;
   state_.awaiting_reading = false;
+  state_.force_tip_mass_std = 0;
 }
 
 bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier) {
@@ -174,9 +205,9 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRoto
     if (dt_s > 0 && dt_s < 0.01) {
       start_utime_ = utime;
       dt_s_ = dt_s;
-      estimator_.Start(state_.expected.file_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s,
-                       difference);
+      estimator_.Start(state_.centre_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s, difference);
     }
+    UpdateTipMass();
     return state_.mismatch;
   }
   estimator_.Add(difference);
@@ -193,7 +224,22 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRoto
   // Not agreed yet: waiting for the first reading, or reading the mode (a
   // mode too quiet to read is not waited for: nothing would come).
   state_.awaiting_reading = !state_.agreed && (!reading_due || std::isfinite(state_.frequency_hz));
+  UpdateTipMass();
   return state_.mismatch;
+}
+
+void ArmModeMonitor::UpdateTipMass() {
+  state_.learning = Learning();
+  if (!state_.learning) {
+    state_.force_tip_mass_std = state_.awaiting_reading ? options_.arm_mode_unconfirmed_tip_mass_std : 0.0;
+    return;
+  }
+  state_.tip_mass_kg = learner_.tip_mass_kg();
+  state_.tip_mass_std_kg = learner_.ratio_std() * learner_.map().file_tip_mass_kg();
+  // Airborne (a run of samples): the learned m_p's sigma in every force
+  // sigma, the prior's until a reading comes, and for good on a flight
+  // whose mode is too quiet to read.
+  state_.force_tip_mass_std = start_utime_ >= 0 ? learner_.ratio_std() : 0.0;
 }
 
 void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
@@ -207,14 +253,20 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   }
   state_.lowest_excitation =
       state_.lowest_excitation > 0 ? std::min(state_.lowest_excitation, state_.excitation) : state_.excitation;
-  const ArmModeExpectation& e = state_.expected;
-  state_.relative_error = frequency_hz < e.low_hz ? frequency_hz / e.low_hz - 1.0
-                                                  : (frequency_hz > e.high_hz ? frequency_hz / e.high_hz - 1.0 : 0.0);
+  double agreement_error = 0;  // against the mode of the m_p in use [1]
+  if (Learning()) {
+    Learn(frequency_hz, &state_.relative_error, &agreement_error);
+  } else {
+    const ArmModeExpectation& e = state_.expected;
+    state_.relative_error = frequency_hz < e.low_hz ? frequency_hz / e.low_hz - 1.0
+                                                    : (frequency_hz > e.high_hz ? frequency_hz / e.high_hz - 1.0 : 0.0);
+    agreement_error = std::fabs(state_.relative_error);
+  }
   const double error = std::fabs(state_.relative_error);
   state_.statistic = error / options_.arm_mode_limit;
   state_.peak_abs_error = std::max(state_.peak_abs_error, error);
   beyond_since_ = error > options_.arm_mode_limit ? (beyond_since_ < 0 ? utime : beyond_since_) : -1;
-  within_since_ = error < 0.5 * options_.arm_mode_limit ? (within_since_ < 0 ? utime : within_since_) : -1;
+  within_since_ = agreement_error < 0.5 * options_.arm_mode_limit ? (within_since_ < 0 ? utime : within_since_) : -1;
   // Agreement needs as long within half the limit as a raise beyond it: a
   // single reading within the limit is not enough (tip mass +20 % reads
   // -2.5 % for 0.3 s on some seeds before it reads -6 %; docs/mismatch.md).
@@ -225,6 +277,27 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
     ++state_.raised_count;
   } else if (state_.mismatch && within_since_ >= 0 && (utime - within_since_) * 1e-6 >= options_.arm_mode_clear_s) {
     state_.mismatch = false;
+  }
+}
+
+void ArmModeMonitor::Learn(double frequency_hz, double* relative_error, double* agreement_error) {
+  const double centre_hz = estimator_.centre_hz();
+  // A reading barely above the noise is pulled towards the band-pass (noise
+  // alone reads it): judged, but not learned from.
+  if (state_.excitation >= options_.arm_mode_learn_min_excitation) {
+    learner_.AddReading(frequency_hz, centre_hz, options_.arm_mode_time_constant_s, dt_s_);
+  }
+  const double corrected_hz = learner_.CorrectedHz(frequency_hz, centre_hz);
+  *relative_error = corrected_hz < explained_low_hz_
+                        ? corrected_hz / explained_low_hz_ - 1.0
+                        : (corrected_hz > explained_high_hz_ ? corrected_hz / explained_high_hz_ - 1.0 : 0.0);
+  const double learned_hz = learner_.LearnedHz();
+  *agreement_error = std::fabs(corrected_hz / learned_hz - 1.0);
+  // The band-pass follows the learned mode (a step of 0.5 %: re-designed
+  // a few times a flight, not per sample).
+  if (std::fabs(std::log(learned_hz / centre_hz)) > kRecentreStep) {
+    estimator_.Recentre(learned_hz);
+    state_.centre_hz = learned_hz;
   }
 }
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
+#include "estimator/tip_mass_learning.h"
 #include "model/birotor_params.h"
 #include "samples/rotor_count.h"
 
@@ -59,6 +60,10 @@ class ResonanceFrequencyEstimator {
  public:
   // Designs the filters for sample interval dt_s; forgets everything.
   void Start(double centre_hz, double q, double time_constant_s, double dt_s, double first_sample);
+  // Moves the band-pass's centre, keeping the filters' state and the sums
+  // (a learned tip mass moves the mode: centred on it, the band-pass does
+  // not pull the reading).
+  void Recentre(double centre_hz);
   void Add(double sample);
   // Forgets the fit's sums (the filters keep their state).
   void ForgetSums();
@@ -73,8 +78,11 @@ class ResonanceFrequencyEstimator {
   // alone, well above when the resonance is excited [1].
   double Excitation(double noise) const;
   double time_constant_s() const { return time_constant_s_; }
+  double centre_hz() const { return centre_hz_; }
 
  private:
+  // The band-pass's coefficients for centre_hz, and its noise gains.
+  void Design(double centre_hz);
   struct Biquad {
     double b0 = 0, b2 = 0, a1 = 0, a2 = 0;  // b1 = 0 (band-pass)
     double x1 = 0, x2 = 0, y1 = 0, y2 = 0;  // direct form I
@@ -82,6 +90,8 @@ class ResonanceFrequencyEstimator {
   };
   Biquad stage_[kBirotorRotors];
   double dt_s_ = 1e-3;
+  double centre_hz_ = 0;  // of the band-pass [Hz]
+  double q_ = 2;          // of each biquad [1]
   double time_constant_s_ = 0.5;
   double forget_ = 1.0;                               // exp(-dt / time constant) per sample
   double noise_gain_ = 1;                             // sum of the band-pass's squared impulse response [1]
@@ -119,13 +129,29 @@ struct ArmModeState {
   bool awaiting_reading = false;
   int64_t raised_utime = -1;  // when the current (or last) one was raised [us]; -1 never
   int64_t raised_count = 0;
+  // Learning the tip mass (arm_mode_learn_tip_mass, docs/mismatch.md
+  // "Learning the tip mass"): the readings are turned into m_p with a
+  // sigma (TipMassLearner), the filter flies the learned m_p, and a
+  // reading is judged against every mode a tip mass within
+  // arm_mode_explained_sigmas prior sigmas explains. false: the file's
+  // m_p, judged against the file's mode (the test of issue 27).
+  bool learning = false;
+  double tip_mass_kg = 0;      // the m_p in use: the file's, or learned [kg]
+  double tip_mass_std_kg = 0;  // its one sigma (the prior's before a reading) [kg]
+  // The relative sigma of m_p each published force sigma carries now (0:
+  // none): learning, the learned one while airborne; else the prior's
+  // (arm_mode_unconfirmed_tip_mass_std) while awaiting_reading [1].
+  double force_tip_mass_std = 0;
+  double centre_hz = 0;  // of the band-pass: the file's mode, or the learned m_p's [Hz]
 };
 
 class ArmModeMonitor {
  public:
   // expected: ExpectedArmMode of the file; noise_rad: the gauges' noise per
-  // arm (EkfOptions::strain_noise_rad); the options arm_mode_*.
-  ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected, double noise_rad);
+  // arm (EkfOptions::strain_noise_rad); the options arm_mode_*; tip_mass:
+  // the model's mode over m_p (empty: the tip mass is not learned).
+  ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected, double noise_rad,
+                 const ArmModeTipMassMap& tip_mass = ArmModeTipMassMap());
   // One strain sample as the method got it (calibrated, notched) [rad];
   // airborne: the method's ground contact says free flight (on the ground
   // the modes are those of the contact: no test); outlier: the method's gate
@@ -153,6 +179,15 @@ class ArmModeMonitor {
 
  private:
   void Judge(int64_t utime, double frequency_hz);
+  // The learned tip mass takes the reading; the relative error of the
+  // reading against what a tip mass within the prior explains, and the
+  // agreement against the learned m_p's mode [1].
+  void Learn(double frequency_hz, double* relative_error, double* agreement_error);
+  // Learning now: switched on, a model, and a stiffness the file fixes
+  // (no learned strain scale that may be a stiffness widens the expectation).
+  bool Learning() const { return learner_.active() && state_.expected.low_hz == state_.expected.high_hz; }
+  // The tip-mass fields of state_ (learned value, sigmas) after a sample.
+  void UpdateTipMass();
   // Ends the current airborne run of samples: no reading, nothing awaited.
   void ForgetRun();
 
@@ -165,6 +200,10 @@ class ArmModeMonitor {
   // the file's noise, which arm_mode_limit was set with [rad].
   double excess_noise_rad_ = 0;
   ResonanceFrequencyEstimator estimator_;
+  TipMassLearner learner_;
+  // Lowest and highest mode a tip mass within arm_mode_explained_sigmas
+  // prior sigmas of the file's explains [Hz].
+  double explained_low_hz_ = 0, explained_high_hz_ = 0;
   ArmModeState state_;
   int64_t previous_utime_ = -1;
   int64_t start_utime_ = -1;  // of the current airborne run of samples; -1 none

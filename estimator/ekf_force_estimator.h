@@ -38,6 +38,9 @@ class EkfForceEstimator : public ForceEstimator {
   // Start the learned slow parameters from these (a state file) at the next
   // (re-)initialisation; only the parameters being learned.
   void SetLearnedParameters(const LearnedVehicleParameters& learned) override;
+  // The process model flies this m_p from now on (the state is kept: the
+  // thrust scales take the change through the strain innovations).
+  void SetTipMassKg(double tip_mass_kg) override { process_.SetTipMassKg(tip_mass_kg); }
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }

@@ -137,6 +137,8 @@ class EkfProcessModel {
     return Eigen::Vector2d(2.0 * x(kThrustScaleIndex[rotor]) * c_t * omega, c_t * omega * omega);
   }
   const BirotorParams& params() const { return params_; }
+  // The tip mass the dynamics use from now on (learned from the arm mode) [kg].
+  void SetTipMassKg(double tip_mass_kg) { params_.tip_mass_kg = tip_mass_kg; }
   bool body_mass_is_state() const { return body_mass_is_state_; }
   // The vehicle at x: the file's, with the body mass r_m m_file when it is a state.
   BirotorParams ParamsAt(const EkfState& x) const {

@@ -366,6 +366,39 @@ struct ModelConsistencyOptions {
   // +-20 %, worst 2 s VALID share: 0.10 gives 0.62 / 0.56, 0.12 0.93 / 0.91,
   // 0.15 1.000 / 0.999 (docs/mismatch.md) [1].
   double arm_mode_unconfirmed_tip_mass_std = 0.15;
+  // Learning the tip mass (issue 36; estimator/tip_mass_learning.h,
+  // docs/mismatch.md "Learning the tip mass"): the arm mode's readings give
+  // m_p with a sigma (a 1-D filter on m_p / m_p_file, prior 1 +-
+  // arm_mode_unconfirmed_tip_mass_std), the EKF flies the learned m_p, each
+  // published force sigma carries its sigma (x m_p g) while airborne, and
+  // MODEL_MISMATCH is raised only for a mode no tip mass within
+  // arm_mode_explained_sigmas prior sigmas explains (a broken arm). Only
+  // while the file fixes the stiffness (not with learn_strain_scale, whose
+  // g may be a stiffness: then the test of issue 27 above). false: the
+  // file's m_p, judged against the file's mode. Off by default: on, tip mass
+  // +-10 % and -20 % meet issue 36's targets in the gentle flight, but the
+  // matching flights' MAE rises 3-6 % (docs/mismatch.md).
+  bool arm_mode_learn_tip_mass = false;
+  // Relative sigma of one independent reading (one per 2 time constants)
+  // of the mode, freed of the band-pass's pull [1]. 0.015: the matching
+  // files' EW readings (-1.9 % to +2.8 %) x 1 / pull; 0.008 keeps the
+  // matching flights' 2-sigma share at 0.955-0.963 (0.015: 0.965-0.978) but
+  // makes gauge noise x2 and the calm hovers over-confident
+  // (birotor-eval --mismatch-targets --seeds 5, docs/mismatch.md).
+  double arm_mode_reading_std = 0.015;
+  // The band-pass pulls a reading towards its centre: it reads c + p (f - c)
+  // for a mode f. The synthetic test reads -8.7 % as -6.6 % to -7.8 %, the
+  // flights tip mass +20 % (-7.6 %) mostly -5 % to -6 %: p = 0.75 [1]. The
+  // band-pass follows the learned mode, where the pull vanishes.
+  double arm_mode_band_pull = 0.75;
+  // A reading beyond the modes of every m_p within this many prior sigmas
+  // (3 x 0.15: m_p 0.55-1.45 x the file's, 56.1-73.8 Hz on the reference
+  // file) by more than arm_mode_limit for arm_mode_raise_s: MODEL_MISMATCH [1].
+  double arm_mode_explained_sigmas = 3.0;
+  // The tip mass learns only from readings whose band holds at least this
+  // many times the gauge noise's power (arm_mode_min_excitation judges):
+  // noise pulls a reading towards the band-pass's centre (docs/mismatch.md) [1].
+  double arm_mode_learn_min_excitation = 3.0;
 };
 
 // Names of the estimation methods (--method, `estimator.method`), in the

@@ -78,6 +78,12 @@ bool SourceOf(InputChannel channel, FusionSource* source) {
   return false;
 }
 
+// The model's mode over m_p when the arm-mode test learns the tip mass.
+ArmModeTipMassMap TipMassMapOf(const ModelConsistencyOptions& options, const BirotorParams& params) {
+  const bool learns = options.enabled && options.arm_mode_enabled && options.arm_mode_learn_tip_mass;
+  return learns ? ArmModeTipMassMap::Of(params) : ArmModeTipMassMap();
+}
+
 double GateOf(const ForceEstimator& method, InputChannel channel) {
   FusionSource source;
   return SourceOf(channel, &source) ? method.Gate(source) : std::numeric_limits<double>::quiet_NaN();
@@ -105,7 +111,8 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       tare_(model_, config.tare),
       rotor_speed_(model_, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
-      consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad) {
+      consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad,
+                   kBirotorRotors, TipMassMapOf(config.model_consistency, model_)) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;
@@ -316,6 +323,7 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
     outlier = outlier || (report.source == FusionSource::kStrain && report.outcome == FusionOutcome::kRejectedGate);
   }
   consistency_.AddStrain(deflection.utime, deflection.deflection_rad, !info.body_supported, outlier);
+  HandOverTipMass();
   UpdateReportedGaugeOffsets(info);
   if (info.reset != ResetReason::kNone) {
     // The method re-initialised itself (its numerical guard).
@@ -336,6 +344,13 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   facts.consistency = consistency_.Judge(*estimate);  // MODEL_MISMATCH withdraws VALID (docs/mismatch.md)
   Publish(facts, estimate);
   return true;
+}
+
+void EstimatorPipeline::HandOverTipMass() {
+  const ArmModeState& arm_mode = consistency_.state().arm_mode;
+  if (!arm_mode.learning || arm_mode.tip_mass_kg == tip_mass_in_method_kg_) return;
+  method_->SetTipMassKg(arm_mode.tip_mass_kg);
+  tip_mass_in_method_kg_ = arm_mode.tip_mass_kg;
 }
 
 void EstimatorPipeline::Publish(const ForceStatusFacts& facts, ForceEstimate* estimate) {

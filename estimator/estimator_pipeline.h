@@ -128,6 +128,8 @@ class EstimatorPipeline {
   // The published estimate: its sigmas (PublishedForceStd) and status
   // (ComposeForceStatus) from the facts; the health counters.
   void Publish(const ForceStatusFacts& facts, ForceEstimate* estimate);
+  // The tip mass the arm-mode test learned, to the method when it moved.
+  void HandOverTipMass();
   // Counts the reports of the method call just made (reports_).
   void CountReports();
   void Count(const FusionReport& report);
@@ -149,7 +151,8 @@ class EstimatorPipeline {
   bool reset_flag_pending_ = false;  // InputStatusFacts::filter_reset on the next estimate
   bool has_motor_ = false;           // a MOTOR sample has been accepted
   MotorSample last_motor_;
-  int64_t first_motor_utime_ = -1;  // stamp of the first accepted MOTOR sample [us]
+  int64_t first_motor_utime_ = -1;    // stamp of the first accepted MOTOR sample [us]
+  double tip_mass_in_method_kg_ = 0;  // the m_p last handed to the method (0: the file's) [kg]
   bool has_finite_estimate_ = false;
   ForceEstimate last_finite_estimate_;
 };

@@ -114,6 +114,11 @@ class ForceEstimator {
   // Methods that learn slow vehicle parameters start from these at their
   // next (re-)initialisation; the others ignore them.
   virtual void SetLearnedParameters(const LearnedVehicleParameters& /*learned*/) {}
+  // The tip mass m_p [kg] of every arm from now on (learned from the arm
+  // mode, estimator/tip_mass_learning.h): an online re-parameterisation of
+  // the method's model, no state is reset. Methods whose model has no
+  // m_p ignore it. No allocation.
+  virtual void SetTipMassKg(double /*tip_mass_kg*/) {}
 
  protected:
   // A report of the call in progress.

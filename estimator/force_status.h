@@ -61,7 +61,9 @@ struct ConsistencyStatusFacts {
   // tip_mass_withholds_valid (option arm_mode_valid_needs_reading).
   bool tip_mass_unconfirmed = false;
   bool tip_mass_withholds_valid = false;
-  double tip_mass_force_std_n = 0;  // sigma_tip = arm_mode_unconfirmed_tip_mass_std m_p g [N]
+  // sigma_tip = sigma_r m_p g: sigma_r the prior's (arm_mode_unconfirmed_tip_mass_std)
+  // or the learned one (ArmModeState::force_tip_mass_std) [N].
+  double tip_mass_force_std_n = 0;
 };
 
 // The estimator service's facts (nodes/estimator_service).

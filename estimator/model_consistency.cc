@@ -26,11 +26,11 @@ const char* MismatchParameterName(MismatchParameter parameter) {
 
 ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& options,
                                                  const ArmModeExpectation& arm_mode, double strain_noise_rad,
-                                                 int rotors)
+                                                 int rotors, const ArmModeTipMassMap& tip_mass)
     : options_(options),
       rotors_(std::clamp(rotors, 1, kMaxSampleArms)),
       arm_mode_file_(arm_mode),
-      arm_mode_(options, arm_mode, strain_noise_rad),
+      arm_mode_(options, arm_mode, strain_noise_rad, tip_mass),
       window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {
   state_.arm_mode = arm_mode_.state();
 }
@@ -84,15 +84,17 @@ ConsistencyStatusFacts ModelConsistencyMonitor::Judge(int64_t utime, const doubl
   // where the controller must not wait for the check (option).
   facts.model_unconfirmed = !state_.mismatch && !state_.confirmed;
   facts.unconfirmed_withholds_valid = options_.valid_needs_confirmation;
-  if (state_.arm_mode.awaiting_reading) AwaitArmMode(&facts);  // never set while the test is off
+  // Never set while the test is off.
+  if (state_.arm_mode.awaiting_reading || state_.arm_mode.force_tip_mass_std > 0) AwaitArmMode(&facts);
   return facts;
 }
 
 void ModelConsistencyMonitor::AwaitArmMode(ConsistencyStatusFacts* facts) const {
   facts->tip_mass_unconfirmed = true;
-  facts->tip_mass_withholds_valid = options_.arm_mode_valid_needs_reading;
-  // The tip mass unconfirmed: its prior in each force's sigma.
-  facts->tip_mass_force_std_n = options_.arm_mode_unconfirmed_tip_mass_std * arm_mode_file_.tip_weight_n;
+  facts->tip_mass_withholds_valid = options_.arm_mode_valid_needs_reading && state_.arm_mode.awaiting_reading;
+  // The tip mass unconfirmed (its prior) or learned (its sigma) in each
+  // force's sigma: d f_i / d m_p = g at hover (docs/mismatch.md).
+  facts->tip_mass_force_std_n = state_.arm_mode.force_tip_mass_std * arm_mode_file_.tip_weight_n;
 }
 
 void ModelConsistencyMonitor::Add(const FusionReport& report) {

@@ -103,10 +103,13 @@ class ModelConsistencyMonitor {
  public:
   // arm_mode: the file's symmetric arm mode (ExpectedArmMode), file_hz 0:
   // no arm-mode test; strain_noise_rad: the gauges' noise per arm; rotors:
-  // the thrust scales each estimate has (2 .. kMaxSampleArms).
+  // the thrust scales each estimate has (2 .. kMaxSampleArms); tip_mass: the
+  // model's mode over m_p (ArmModeTipMassMap::Of the file; empty: the tip
+  // mass is not learned).
   explicit ModelConsistencyMonitor(const ModelConsistencyOptions& options = ModelConsistencyOptions(),
                                    const ArmModeExpectation& arm_mode = ArmModeExpectation(),
-                                   double strain_noise_rad = 2e-5, int rotors = kBirotorRotors);
+                                   double strain_noise_rad = 2e-5, int rotors = kBirotorRotors,
+                                   const ArmModeTipMassMap& tip_mass = ArmModeTipMassMap());
   // Every fusion report of the method (no allocation).
   void Add(const FusionReport& report);
   // Every strain sample the method got, for the arm-mode test (see
@@ -157,7 +160,8 @@ class ModelConsistencyMonitor {
   // An accelerometer report into the fast test's CUSUM; raises at its limit.
   void AddToCusum(const FusionReport& report);
   void Raise(int64_t utime, const double* thrust_scale);
-  // The tip mass not yet confirmed by the arm mode: sigma and VALID.
+  // The tip mass's sigma in the forces' (not yet confirmed by the arm
+  // mode, or learned from it), and VALID.
   void AwaitArmMode(ConsistencyStatusFacts* facts) const;
   // The parameter named for the worst source, given the thrust scales mu_i.
   MismatchParameter Attribute(const double* thrust_scale) const;
