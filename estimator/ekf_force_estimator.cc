@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "estimator/body_mass_hypotheses.h"
 #include "estimator/filter_status.h"
 #include "samples/rotor_count.h"
 
@@ -85,6 +86,7 @@ EkfForceEstimator::EkfForceEstimator(const BirotorParams& params, const EkfOptio
   learned_.value[kBodyMassScale] = 1.0;
   learned_.std[kBodyMassScale] = m_std;
   if (!options.learn_body_mass) variance_floor_[kBodyMassScale] = 0.0;
+  for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) slow_noise_psd_[p] = process_noise_psd_(p);
   command_ = hover_input_;
   state_.setZero();
   covariance_.setIdentity();
@@ -209,7 +211,8 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     state_(p) = learned_.value[p];
     covariance_(p, p) = learned_.std[p] * learned_.std[p];
   }
-  slow_frozen_ = false;
+  scales_frozen_ = mass_frozen_ = false;
+  for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) process_noise_psd_(p) = slow_noise_psd_[p];
   flying_since_utime_ = kFlyingSinceStart;  // no lift-off seen (a start in the air): no delay
   UpdateLearning();
   if (has_telemetry) {
@@ -379,7 +382,7 @@ bool EkfForceEstimator::ConditionCovariance() {
   for (int i = 0; i < N; ++i) {
     const double variance = covariance_(i, i);
     if (variance < -1e-6 * kVarianceCeiling[i]) return false;  // clearly negative: broken
-    if (variance < variance_floor_[i] && !(slow_frozen_ && i >= kStrainScale1)) {
+    if (variance < variance_floor_[i] && !(i >= kStrainScale1 && SlowStateFrozen(i))) {
       covariance_(i, i) = variance_floor_[i];
     } else if (variance > kVarianceCeiling[i]) {
       // Scale row and column: keeps P positive semi-definite.
@@ -400,15 +403,25 @@ bool EkfForceEstimator::ConditionCovariance() {
 
 void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate,
                                      FilterStatusFacts* facts) {
+  // Averaged over the body-mass hypotheses (the file's mass, a payload;
+  // body_mass_hypotheses.h): r_m, its variance while live (0 frozen: no
+  // correlation, both hypotheses give the filter's x) and P(payload).
+  const double scale = state_(kBodyMassScale);
+  const double scale_variance = BodyMassLive() ? covariance_(kBodyMassScale, kBodyMassScale) : 0.0;
+  const double payload = PayloadProbability();
   for (int i = 0; i < 2; ++i) {
-    // var f_i = g^T P_(omega_i, mu_i) g with g = (df/domega, df/dmu).
+    // var f_i = g^T P_(omega_i, mu_i) g with g = (df/domega, df/dmu); cov(f_i, r_m) likewise.
     const Eigen::Vector2d grad = process_.ForceGradient(state_, i);
-    const int w = kOmegaIndex[i], m = kThrustScaleIndex[i];
+    const int w = kOmegaIndex[i], m = kThrustScaleIndex[i], r = kBodyMassScale;
     const double variance = grad(0) * grad(0) * covariance_(w, w) + 2.0 * grad(0) * grad(1) * covariance_(w, m) +
                             grad(1) * grad(1) * covariance_(m, m);
-    estimate->force_n[i] = process_.Force(state_, i);
-    estimate->force_std_n[i] = std::sqrt(std::max(variance, 0.0));
-    estimate->thrust_scale[i] = state_(m);
+    const double covariance_with_scale = grad(0) * covariance_(w, r) + grad(1) * covariance_(m, r);
+    const BodyMassAverage force =
+        AverageOverBodyMass(process_.Force(state_, i), variance, covariance_with_scale, scale, scale_variance, payload);
+    estimate->force_n[i] = force.value;
+    estimate->force_std_n[i] = std::sqrt(std::max(force.variance, 0.0));
+    estimate->thrust_scale[i] =
+        AverageOverBodyMass(state_(m), covariance_(m, m), covariance_(m, r), scale, scale_variance, payload).value;
   }
   SetFilterFacts(sample, options_.converged_force_std_n, gated, &converged_, estimate, facts);
   faults_.FillFacts(facts);

@@ -99,13 +99,17 @@ class EkfForceEstimator : public ForceEstimator {
   // may be non-zero. Otherwise they are exactly zero (not learned: zero
   // prior and process noise; frozen: FreezeSlowParameters zeroed them and
   // Predict adds no noise to them).
-  bool SlowStatesLive() const { return (options_.learn_strain_scale || options_.learn_body_mass) && !slow_frozen_; }
+  bool StrainScalesLive() const { return options_.learn_strain_scale && !scales_frozen_; }
+  bool BodyMassLive() const { return options_.learn_body_mass && !mass_frozen_; }
+  // Whether slow state p (kStrainScale1, kStrainScale2, kBodyMassScale) is frozen.
+  bool SlowStateFrozen(int p) const { return p == kBodyMassScale ? mass_frozen_ : scales_frozen_; }
   // The leading states whose rows and columns of P may be non-zero: up to
   // the offsets (kStrainScale1) while no slow parameter is live, up to the
-  // strain scales (kBodyMassScale) while only they learn, else all.
+  // strain scales (kBodyMassScale) while only they learn, else all (the
+  // strain scales' rows stay zero while they are frozen and the mass is live).
   int LiveStates() const {
-    if (!SlowStatesLive()) return kStrainScale1;
-    return options_.learn_body_mass ? kEkfStateSize : kBodyMassScale;
+    if (BodyMassLive()) return kEkfStateSize;
+    return StrainScalesLive() ? kBodyMassScale : kStrainScale1;
   }
   // P = Phi P Phi^T + Qc dt on the N live states; gamma: the transition's
   // body-mass column (N = 14 in free flight with the mass learned), else
@@ -123,7 +127,8 @@ class EkfForceEstimator : public ForceEstimator {
   bool ConditionCovariance();
   template <int N>
   bool ConditionCovariance();
-  // The forces, their sigmas and thrust scales, and the filter facts.
+  // The forces, their sigmas and thrust scales (averaged over the body-mass
+  // hypotheses, body_mass_hypotheses.h), and the filter facts.
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate, FilterStatusFacts* facts);
   // e_i and its sigma into the step result (the pipeline reports them).
   void FillLearnedOffsets(StrainStepInfo* info) const;
@@ -133,13 +138,17 @@ class EkfForceEstimator : public ForceEstimator {
   // the reading its offset holds (see the .cc).
   double PublishedStrainScaleStd(int arm) const;
   // The slow parameters are learned in free flight only (airborne, and
-  // f1 + f2 above half the weight; after a lift-off only once that held for
-  // slow_learning_delay_s): on the ground (or a test stand) the
-  // accelerometer reads the support, and the rest deflection that the tare
-  // was computed from would be learned as a scale. Frozen: their rows and
-  // columns of P are zeroed (no gain; the value is kept) and their sigma
-  // kept; learning again: the sigma comes back, uncorrelated.
-  void FreezeSlowParameters(bool frozen);
+  // f1 + f2 above half the weight; the strain scales after a lift-off only
+  // once that held for slow_learning_delay_s): on the ground (or a test
+  // stand) the accelerometer reads the support, and the rest deflection that
+  // the tare was computed from would be learned as a scale. Frozen: their
+  // rows and columns of P are zeroed (no gain; the value is kept), no
+  // process noise, and their sigma kept; learning again: the sigma comes
+  // back, uncorrelated.
+  void FreezeSlowParameters(bool scales_frozen, bool mass_frozen);
+  void FreezeSlowParameter(int p, bool frozen);
+  // P(H1 | data): the body mass is not the file's (body_mass_hypotheses.h); 0 when not learned.
+  double PayloadProbability() const;
   // Decides whether the slow parameters learn now (see FreezeSlowParameters).
   void UpdateLearning();
   // Remembers the offsets and the strain scales' sigma at a start or a lift-off.
@@ -168,7 +177,9 @@ class EkfForceEstimator : public ForceEstimator {
     double std[kEkfStateSize] = {};
     double published_strain_scale_std[2] = {};  // PublishedStrainScaleStd while learning
   } learned_;
-  bool slow_frozen_ = false;  // the slow parameters are frozen (not flying)
+  bool scales_frozen_ = false;                 // the strain scales are frozen (not flying, or lifting off)
+  bool mass_frozen_ = false;                   // the body mass is frozen (not flying)
+  double slow_noise_psd_[kEkfStateSize] = {};  // Qc of the slow states while learned (0 while frozen)
   // Start of the current free flight [us], or one of these.
   static constexpr int64_t kNotFlying = -1, kFlyingSinceStart = -2;
   int64_t flying_since_utime_ = kFlyingSinceStart;

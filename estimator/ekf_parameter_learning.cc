@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "estimator/body_mass_hypotheses.h"
 #include "estimator/ekf_force_estimator.h"
 #include "samples/rotor_count.h"
 
@@ -21,7 +22,7 @@ void EkfForceEstimator::UpdateLearning() {
   // count as airborne until the support force is seen; and before any MOTOR
   // sample the thrust is the assumed hover thrust (frozen, undecided).
   if (!has_motor_) {
-    FreezeSlowParameters(true);
+    FreezeSlowParameters(true, true);
     return;
   }
   const double total_force_n = process_.Force(state_, 0) + process_.Force(state_, 1);
@@ -34,9 +35,12 @@ void EkfForceEstimator::UpdateLearning() {
   }
   const bool lifting_off =
       flying_since_utime_ >= 0 && (last_utime_ - flying_since_utime_) * kMicrosecond < options_.slow_learning_delay_s;
-  FreezeSlowParameters(!flying || lifting_off);
+  // The mass from the lift-off on (with the delay a payload is gated on
+  // gauges the tare anchored, and raised as a mismatch; measured either way
+  // in docs/mismatch.md "Learning the payload").
+  FreezeSlowParameters(!flying || lifting_off, !flying);
   if (!flying) settling_.pending = false;
-  if (settling_.pending && !slow_frozen_ && last_utime_ >= settling_.until_utime) SplitScaleAndOffsetAgain();
+  if (settling_.pending && !scales_frozen_ && last_utime_ >= settling_.until_utime) SplitScaleAndOffsetAgain();
 }
 
 void EkfForceEstimator::StartSettling() {
@@ -73,20 +77,37 @@ void EkfForceEstimator::SplitScaleAndOffsetAgain() {
   }
 }
 
-void EkfForceEstimator::FreezeSlowParameters(bool frozen) {
-  if (frozen == slow_frozen_) return;
-  slow_frozen_ = frozen;
-  for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) {
-    if (variance_floor_[p] == 0.0) continue;  // not learned
-    if (frozen) {
-      // Frozen at its value, uncorrelated: no gain.
-      learned_.std[p] = std::sqrt(std::max(covariance_(p, p), 0.0));
-      covariance_.row(p).setZero();
-      covariance_.col(p).setZero();
-    } else {
-      covariance_(p, p) = learned_.std[p] * learned_.std[p];
-    }
+void EkfForceEstimator::FreezeSlowParameters(bool scales_frozen, bool mass_frozen) {
+  if (scales_frozen != scales_frozen_) {
+    scales_frozen_ = scales_frozen;
+    for (const int p : {kStrainScale1, kStrainScale2}) FreezeSlowParameter(p, scales_frozen);
   }
+  if (mass_frozen != mass_frozen_) {
+    mass_frozen_ = mass_frozen;
+    FreezeSlowParameter(kBodyMassScale, mass_frozen);
+  }
+}
+
+void EkfForceEstimator::FreezeSlowParameter(int p, bool frozen) {
+  if (variance_floor_[p] == 0.0) return;  // not learned
+  // No random walk while frozen: its row of P stays zero while others are live.
+  process_noise_psd_(p) = frozen ? 0.0 : slow_noise_psd_[p];
+  if (frozen) {
+    // Frozen at its value, uncorrelated: no gain.
+    learned_.std[p] = std::sqrt(std::max(covariance_(p, p), 0.0));
+    covariance_.row(p).setZero();
+    covariance_.col(p).setZero();
+  } else {
+    covariance_(p, p) = learned_.std[p] * learned_.std[p];
+  }
+}
+
+double EkfForceEstimator::PayloadProbability() const {
+  if (!options_.learn_body_mass) return 0.0;
+  const double std = BodyMassLive() ? std::sqrt(std::max(covariance_(kBodyMassScale, kBodyMassScale), 0.0))
+                                    : learned_.std[kBodyMassScale];
+  return birotor::PayloadProbability(state_(kBodyMassScale), std, options_.body_mass_scale_prior_std,
+                                     options_.body_mass_change_probability);
 }
 
 void EkfForceEstimator::FillLearnedParameters(StrainStepInfo* info) {
@@ -94,18 +115,24 @@ void EkfForceEstimator::FillLearnedParameters(StrainStepInfo* info) {
   info->has_learned_body_mass = options_.learn_body_mass;
   for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) {
     learned_.value[p] = state_(p);
-    if (!slow_frozen_) learned_.std[p] = std::sqrt(std::max(covariance_(p, p), 0.0));
+    if (!SlowStateFrozen(p)) learned_.std[p] = std::sqrt(std::max(covariance_(p, p), 0.0));
   }
   for (int i = 0; i < kBirotorRotors; ++i) {
     info->learned_strain_scale[i] = learned_.value[kStrainScaleIndex[i]];
     // Frozen (on the ground): the sigma of the last learning sample (at rest
     // the deflection is too small to weigh the offset by).
-    if (!slow_frozen_) learned_.published_strain_scale_std[i] = PublishedStrainScaleStd(i);
+    if (!scales_frozen_) learned_.published_strain_scale_std[i] = PublishedStrainScaleStd(i);
     info->learned_strain_scale_std[i] = learned_.published_strain_scale_std[i];
   }
-  info->learned_body_mass_kg = learned_.value[kBodyMassScale] * params_.body_mass_kg;
+  // The mass the forces use: averaged over the file's (r_m conditioned on
+  // r_m = 1: exactly 1) and the learned one (body_mass_hypotheses.h), as the
+  // forces are; learned_ keeps the filter's for a (re-)initialisation.
+  const double r = learned_.value[kBodyMassScale],
+               r_variance = learned_.std[kBodyMassScale] * learned_.std[kBodyMassScale];
+  const BodyMassAverage mass = AverageOverBodyMass(r, r_variance, r_variance, r, r_variance, PayloadProbability());
+  info->learned_body_mass_kg = mass.value * params_.body_mass_kg;
+  info->learned_body_mass_std_kg = std::sqrt(mass.variance) * params_.body_mass_kg;
   for (int i = 0; i < kBirotorRotors; ++i) info->strain_noise_scale[i] = strain_noise_.scale(i);
-  info->learned_body_mass_std_kg = learned_.std[kBodyMassScale] * params_.body_mass_kg;
 }
 
 double EkfForceEstimator::PublishedStrainScaleStd(int arm) const {

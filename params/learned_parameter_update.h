@@ -37,7 +37,7 @@ struct LearnedDeployOptions {
   double max_std_fraction = 0.5;
   // The prior sigmas the estimator starts from (estimator.yaml ekf:
   // strain_scale_prior_std, body_mass_scale_prior_std, relative): the
-  // defaults of EkfOptions, 0.1 and 0.1.
+  // defaults of EkfOptions, 0.1 and 0.15.
   double strain_scale_prior_std = EkfOptions{}.strain_scale_prior_std;        // [1]
   double body_mass_scale_prior_std = EkfOptions{}.body_mass_scale_prior_std;  // relative to body_mass_kg [1]
 };

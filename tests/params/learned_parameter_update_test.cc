@@ -49,7 +49,7 @@ TEST(LearnedParameterUpdate, TheLearnedBodyMassIsWritten) {
   LearnedVehicleValues learned;
   learned.has_body_mass = true;
   learned.body_mass_kg = 4.6;
-  learned.body_mass_std_kg = 0.03;  // below 0.5 x 0.1 x 4.0 kg = 0.2 kg
+  learned.body_mass_std_kg = 0.03;  // below 0.5 x 0.15 x 4.0 kg = 0.3 kg
   std::vector<LearnedChange> changes;
   std::string error;
   ASSERT_TRUE(ApplyLearnedValues(learned, LearnedDeployOptions(), "state", "v.yaml", &vehicle, &changes, &error));
@@ -82,7 +82,7 @@ TEST(LearnedParameterUpdate, RefusesWhatWasNotLearned) {
   LearnedVehicleValues mass;
   mass.has_body_mass = true;
   mass.body_mass_kg = 4.4;
-  mass.body_mass_std_kg = 0.2;  // = 0.5 x 0.1 x 4 kg
+  mass.body_mass_std_kg = 0.3;  // = 0.5 x 0.15 x 4 kg (body_mass_scale_prior_std 0.15)
   ExpectRefused(mass, "v.yaml vehicle.body_mass_kg not updated");
 }
 

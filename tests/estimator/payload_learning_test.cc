@@ -1,0 +1,103 @@
+// Learning the payload (issue 36 items 1 and 3, docs/mismatch.md "Learning
+// the payload"): the gentle flight with the body 10 % and 15 % heavier than
+// config/reference_vehicle.yaml, airborne from the start and after a ground
+// phase, and the matching gentle flight, with the shipped
+// config/estimator.yaml with learn_body_mass switched on (off by default:
+// docs/mismatch.md says why). Seed 1; the
+// figures as `birotor-eval --mismatch-targets` scores them
+// (evaluation/mismatch_targets.h: from 5 s after the airborne start, 1 s for
+// the matching vehicle); bounds at most 1.5x the measured figure.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "evaluation/mismatch_targets.h"
+#include "tests/estimator/scenario_harness.h"
+
+namespace birotor {
+namespace testing_support {
+namespace {
+
+struct PayloadFigures {
+  MismatchTargetFigures targets;
+  double body_mass_kg = 0;      // published at the end [kg]
+  double body_mass_std_kg = 0;  // [kg]
+};
+
+// The gentle flight, seed 1, with overrides; ground: the shipped ground phase
+// (rest 3 s, spool-up 1 s) and 19 s, as evaluation/mismatch_cases.cc.
+PayloadFigures Fly(const std::string& name, std::vector<std::string> overrides, bool ground, bool learn,
+                   double settle_s = 5.0) {
+  if (ground) overrides.insert(overrides.begin(), {"ground.enabled=true", "scenario.duration_s=19"});
+  overrides.push_back("scenario.seed=1");
+  EstimatorConfig config = ReferenceConfig();
+  config.ekf.learn_body_mass = learn;
+  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gentle"), overrides), config);
+  MismatchTargets targets;
+  targets.settle_s = settle_s;
+  PayloadFigures f;
+  f.targets = EvaluateMismatchTargets(run.forces, run.truth, run.liftoff_utime, targets);
+  f.body_mass_kg = run.health.body_mass_kg;
+  f.body_mass_std_kg = run.health.body_mass_std_kg;
+  std::printf("%s: VALID %.3f, MAE %.4f N, 2-sigma %.3f, worst window %.3f, mass %.4f +- %.4f kg\n", name.c_str(),
+              f.targets.valid_share, f.targets.valid_mae_n, f.targets.two_sigma_share, f.targets.worst_window_share,
+              f.body_mass_kg, f.body_mass_std_kg);
+  return f;
+}
+
+// Body +10 % from an airborne start: with the mass fixed 1.959 N off, VALID,
+// 2-sigma share 0.000 (the offsets take Delta m g / 2 per rotor). Learned:
+// VALID 1.000, MAE 0.081 N, 2-sigma share 1.000, worst window 0.999; the
+// published mass 4.40 kg.
+TEST(PayloadLearning, AirborneTenPercentIsLearned) {
+  const PayloadFigures f = Fly("body +10 %, airborne", {"vehicle.body_mass_kg=4.4"}, false, true);
+  EXPECT_GE(f.targets.valid_share, 0.80);
+  EXPECT_LE(f.targets.valid_mae_n, 0.10);  // issue 36's target (1.23x the measured)
+  EXPECT_GE(f.targets.two_sigma_share, 0.90);
+  EXPECT_GE(f.targets.worst_window_share, 0.80);
+  EXPECT_NEAR(f.body_mass_kg, 4.4, 3.0 * f.body_mass_std_kg + 0.01);
+  const PayloadFigures fixed = Fly("body +10 %, airborne, mass fixed", {"vehicle.body_mass_kg=4.4"}, false, false);
+  EXPECT_GT(fixed.targets.valid_mae_n, 1.9);  // the confidently wrong figure it replaces
+  EXPECT_LT(fixed.targets.two_sigma_share, 0.01);
+}
+
+// Body +15 % airborne: with the mass fixed never VALID (MODEL_MISMATCH at
+// 11 ms); learned: VALID 1.000, MAE 0.177 N (NOT the target's 0.10 on this
+// seed; 0.112 N over seeds 1-5), 2-sigma share 0.991; the worst 2 s window
+// from the start 0.338 (NOT met: the first seconds, while the mass is
+// learned, are VALID and off).
+TEST(PayloadLearning, AirborneFifteenPercentIsValidAndCovered) {
+  const PayloadFigures f = Fly("body +15 %, airborne", {"vehicle.body_mass_kg=4.6"}, false, true);
+  EXPECT_GE(f.targets.valid_share, 0.80);
+  EXPECT_LE(f.targets.valid_mae_n, 0.26);  // 1.5x the measured 0.177
+  EXPECT_GE(f.targets.two_sigma_share, 0.90);
+}
+
+// After a ground phase (the gauges tared at rest) NOT met: learned from the
+// lift-off on, body +10 % is VALID 0.485 N off with a 2-sigma share of
+// 0.001 (1.959 N and 0.000 with the mass fixed): the mass learned through
+// the lift-off is wrong and sure of it (docs/mismatch.md).
+TEST(PayloadLearning, GroundStartIsNotYetLearned) {
+  const PayloadFigures f = Fly("body +10 %, ground start", {"vehicle.body_mass_kg=4.4"}, true, true);
+  EXPECT_LE(f.targets.valid_mae_n, 0.73);  // 1.5x the measured 0.485
+  EXPECT_GT(f.targets.valid_mae_n, 0.10);  // the target is not met: when this fails, update the doc
+}
+
+// The matching vehicle (gentle, seed 1): MAE 0.068 N with the mass learned
+// as with it fixed; 2-sigma share 0.970 (0.957 fixed), within issue 36's
+// 0.93-0.98.
+TEST(PayloadLearning, MatchingVehicleKeepsItsAccuracy) {
+  const PayloadFigures learned = Fly("gentle, learned", {}, false, true, 1.0);
+  const PayloadFigures fixed = Fly("gentle, mass fixed", {}, false, false, 1.0);
+  EXPECT_LE(learned.targets.valid_mae_n, 1.03 * fixed.targets.valid_mae_n);
+  EXPECT_GE(learned.targets.valid_share, 0.98);
+  EXPECT_GE(learned.targets.two_sigma_share, 0.93);
+  EXPECT_LE(learned.targets.two_sigma_share, 0.98);
+  EXPECT_NEAR(learned.body_mass_kg, 4.0, 0.02);  // the file's, averaged over both hypotheses
+}
+
+}  // namespace
+}  // namespace testing_support
+}  // namespace birotor
