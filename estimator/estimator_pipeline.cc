@@ -111,8 +111,8 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       tare_(model_, config.tare),
       rotor_speed_(model_, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
-      consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad,
-                   kBirotorRotors, TipMassMapOf(config.model_consistency, model_)) {
+      consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad, kBirotorRotors,
+                   TipMassMapOf(config.model_consistency, model_)) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;

@@ -34,12 +34,32 @@ TEST(ChannelsTest, DefaultPrefix) {
 
 TEST(ChannelsTest, MotorCommandNAuthStaysTheLongestBaseName) {
   // The prefix limit is computed from it; a longer new name would shorten it.
-  for (const char* name :
-       {kStrainChannel, kMotorChannel, kImuChannel, kPoseChannel, kLoadCellChannel, kTruthChannel, kForceChannel,
-        kEstimatorStatusChannel, kSimStatusChannel, kMotorCommandChannel, kControllerStatusChannel, kSetpointChannel,
-        kStrainNChannel, kMotorNChannel, kLoadCellNChannel, kTruthNChannel, kForceNChannel, kMotorCommandNChannel,
-        kControllerRotorsNChannel, kVehicleDescriptionChannel, kMotorCommandAuthChannel, kSetpointAuthChannel,
-        kPoseAuthChannel, kForceAuthChannel, kForceNAuthChannel, kGuardStatusChannel}) {
+  for (const char* name : {kStrainChannel,
+                           kMotorChannel,
+                           kImuChannel,
+                           kPoseChannel,
+                           kLoadCellChannel,
+                           kTruthChannel,
+                           kForceChannel,
+                           kEstimatorStatusChannel,
+                           kSimStatusChannel,
+                           kMotorCommandChannel,
+                           kControllerStatusChannel,
+                           kSetpointChannel,
+                           kStrainNChannel,
+                           kMotorNChannel,
+                           kLoadCellNChannel,
+                           kTruthNChannel,
+                           kForceNChannel,
+                           kMotorCommandNChannel,
+                           kControllerRotorsNChannel,
+                           kVehicleDescriptionChannel,
+                           kMotorCommandAuthChannel,
+                           kSetpointAuthChannel,
+                           kPoseAuthChannel,
+                           kForceAuthChannel,
+                           kForceNAuthChannel,
+                           kGuardStatusChannel}) {
     EXPECT_LE(std::string(name).size(), sizeof(kMotorCommandNAuthChannel) - 1) << name;
   }
 }
