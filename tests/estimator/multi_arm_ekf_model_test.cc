@@ -37,6 +37,13 @@ MultiArmEkfModel<3>::State SwingingState(const MultiArmEkfModel<3>& model) {
   return x;
 }
 
+// Rotor speed commands 600, 650, 700 rad/s: each rotor off the others.
+MultiArmEkfModel<3>::Input UnevenCommand() {
+  MultiArmEkfModel<3>::Input u;
+  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  return u;
+}
+
 // Uniform gravity and a free body: (phi_ddot, b_ddot_i) of MultiArmAcceleration
 // at random phi, x, z, x_dot, z_dot equal those at phi = 0 and rest (the
 // model's evaluation point) to round-off (asserted 1e-12 rad/s^2, as the
@@ -75,8 +82,7 @@ TEST(MultiArmEkfModelTest, JacobianMatchesCentralDifferences) {
   using Model = MultiArmEkfModel<3>;
   const Model model(Trirotor());
   const Model::State x = SwingingState(model);
-  Model::Input u;
-  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  const Model::Input u = UnevenCommand();
   using L = MultiArmEkfLayout<3>;
   MultiArmAccelLinearization<3> accel;
   const Model::DynamicMatrix a = model.Jacobian(x, u, &accel);
@@ -204,8 +210,7 @@ TEST(MultiArmEkfModelTest, BlockTransitionIsTheDenseSeries) {
   using Model = MultiArmEkfModel<3>;
   const Model model(Trirotor());
   const Model::State x = SwingingState(model);
-  Model::Input u;
-  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  const Model::Input u = UnevenCommand();
   const Model::DynamicMatrix a = model.Jacobian(x, u);
   const double dt = 1e-3;
   bool blocks = false;
@@ -226,8 +231,7 @@ TEST(MultiArmEkfModelTest, BlockPropagationIsTheDenseProduct) {
   using Model = MultiArmEkfModel<3>;
   const Model model(Trirotor());
   const Model::State x = SwingingState(model);
-  Model::Input u;
-  for (int i = 0; i < 3; ++i) u.omega_cmd_rad_s[static_cast<size_t>(i)] = 600.0 + 50.0 * i;
+  const Model::Input u = UnevenCommand();
   bool blocks = false;
   const Model::DynamicMatrix phi = Model::Transition(model.Jacobian(x, u), 1e-3, &blocks);
   ASSERT_TRUE(blocks);
