@@ -350,6 +350,15 @@ std::string ModeConflict(const SimOptions& options) {
   if (options.external_controller && !options.output.empty()) {
     return "--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller";
   }
+  // The external controller runs on the wall clock and refuses stamps ahead
+  // of it: a vehicle simulated faster or slower than real time is not one
+  // it can fly.
+  if (options.external_controller && options.speed != 1.0) {
+    return fmt::format(
+        "--external-controller needs --speed 1 (got {}): the controller runs on the wall clock; "
+        "for a closed loop faster than real time use --controller MODE --output LOG",
+        options.speed);
+  }
   if (!options.vehicle_file.empty() &&
       (!options.controller_mode.empty() || options.loop || (options.publish_setpoints && !options.output.empty()))) {
     return "--vehicle runs the scenario's own autopilot (or, live, --external-controller with --publish-setpoints), "

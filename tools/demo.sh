@@ -37,7 +37,7 @@ out/demo-<scenario>.png and stops both processes (SIGTERM, then wait).
                       --external-controller runs it as the vehicle's ESCs; the flight is
                       recorded (lcm-logger) and its figures printed: position held,
                       commands, fallbacks with their times (birotor-review, which also
-                      writes <out>/demo-<scenario>-review.html)
+                      writes <out>/demo-<scenario>-review.html); in real time only (--speed 1)
   --vehicle FILE      a vehicle description with N arms (e.g. config/vehicles/trirotor.yaml):
                       birotor-estimator --vehicle and birotor-sim --vehicle talk on the counted
                       channels (STRAIN_N, MOTOR_N, FORCE_N, TRUTH_N); the run is recorded
@@ -106,6 +106,11 @@ fi
   || die_usage "--speed must be a positive number, got '$speed'"
 case "$method" in ""|ekf|inversion|motor_map) ;; *) die_usage "--method must be ekf, inversion or motor_map, got '$method'" ;; esac
 case "$controller_mode" in ""|nominal|force_feedback|mpc) ;; *) die_usage "--controller must be nominal, force_feedback or mpc, got '$controller_mode'" ;; esac
+# The controller flies on the wall clock (birotor-sim refuses --external-controller
+# at another speed): closed loop faster than real time is birotor-eval --control.
+if [ -n "$controller_mode" ] && awk "BEGIN{exit !($speed != 1)}"; then
+  die_usage "--controller flies in real time: it needs --speed 1, got '$speed' (faster: build/tools/birotor-eval --control)"
+fi
 if [ -n "$vehicle_file" ]; then
   [ -f "$vehicle_file" ] || die_usage "no vehicle description $vehicle_file"
   [ "$no_truth" -eq 0 ] || die_usage "--vehicle needs the truth for its figures (no --no-truth)"

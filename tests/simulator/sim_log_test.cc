@@ -159,6 +159,15 @@ TEST(SimLogTest, ClosedLoopNeedsAnOutputLog) {
   EXPECT_NE(err.find("birotor-sim: error: --controller"), std::string::npos) << err;
 }
 
+// A live external controller flies on the wall clock: a simulator paced
+// faster than it is refused before anything is published.
+TEST(SimLogTest, ExternalControllerNeedsRealTime) {
+  std::string err;
+  EXPECT_EQ(RunSim("--scenario " + ScenarioPath("hover") + " --external-controller --speed 4", &err), 2);
+  EXPECT_NE(err.find("birotor-sim: error: --external-controller needs --speed 1 (got 4)"), std::string::npos)
+      << err;
+}
+
 TEST(SimLogTest, BadScenarioFileExitsNonZeroWithOneLineNamingFileAndKey) {
   const std::string path = TempPath("bad_scenario.yaml");
   std::ofstream(path) << "scenario:\n  duration_s: 5\nfaults:\n  strain_nan_times_s: [7]\n";
