@@ -156,6 +156,13 @@ struct EkfOptions {
   // [s] (arm modes 65-80 Hz attenuated ~8x); lengthened automatically for a
   // noisy accelerometer (GroundContact::TimeConstantS, from accel_noise_m_s2).
   double ground_contact_filter_s = 0.02;
+  // Height above the ground [m] (POSE z over its value while the contact
+  // last held) within which the body may still touch it unnoticed: the
+  // support can then be anything up to ground_contact_on_n, so the
+  // accelerometer's a_z variance gains (ground_contact_on_n / M)^2 there
+  // (N-arm EKF; docs/estimator.md, "Hovering at the ground's height").
+  // 0: off (the filtered support alone, as without POSE).
+  double ground_may_touch_m = 0.02;
   // The body is held on a test stand (scenario bench): the supported-body
   // model throughout, whatever the IMU says.
   bool body_held = false;

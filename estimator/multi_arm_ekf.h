@@ -35,6 +35,10 @@ class MultiArmForceEstimator {
   // Queued until the next strain sample (the birotor EKF's time handling).
   virtual void AddMotor(const MultiArmMotorSample& sample) = 0;
   virtual void AddImu(const ImuSample& sample) = 0;
+  // The body's height from POSE, on arrival (not queued): where the ground
+  // may still touch it (the EKF's MultiArmGroundContact); ignored by a
+  // method without a ground phase.
+  virtual void AddPose(const PoseSample& /*sample*/) {}
   // Applies the queued samples stamped up to this one, predicts to its
   // stamp, fuses it and fills *estimate (n_rotors, forces, sigmas, mu_i,
   // status and rotor_fault_bits). Never throws; a non-finite state
@@ -85,6 +89,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   void Reset() override;
   void AddMotor(const MultiArmMotorSample& sample) override;
   void AddImu(const ImuSample& sample) override;
+  void AddPose(const PoseSample& sample) override { contact_.OnPose(sample.z_m); }
   void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) override;
   double force_std_n(int rotor) const override { return force_std_n_[static_cast<size_t>(rotor)]; }
   const MultiArmFilterFacts& facts() const override { return facts_; }

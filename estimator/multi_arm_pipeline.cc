@@ -101,7 +101,8 @@ void MultiArmPipeline::OnPose(const PoseSample& sample) {
     return;
   }
   Admission admission;
-  Admit(InputChannel::kPose, sample.utime, sample.seq, &admission);
+  if (!Admit(InputChannel::kPose, sample.utime, sample.seq, &admission)) return;
+  filter_->AddPose(sample);
 }
 
 bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) {

@@ -69,7 +69,7 @@ class MultiArmPipeline {
 
   void OnMotor(const MultiArmMotorSample& sample);
   void OnImu(const ImuSample& sample);
-  void OnPose(const PoseSample& sample);  // counted; no method uses the pose
+  void OnPose(const PoseSample& sample);  // counted; the EKF takes its height (ground may touch)
   // True and *estimate filled when an estimate must be published (one per
   // accepted strain sample; never NaN).
   bool OnStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
