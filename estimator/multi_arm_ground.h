@@ -47,8 +47,8 @@ class MultiArmGroundContact {
   // unchanged).
   double ReleasedSupportVarianceM2S4() const {
     if (!has_been_supported_) return 0.0;
-    const double bound_n = near_ground_ ? std::max(contact_.support_force_n(), may_touch_n_)
-                                        : std::max(contact_.support_force_n(), 0.0);
+    const double bound_n =
+        near_ground_ ? std::max(contact_.support_force_n(), may_touch_n_) : std::max(contact_.support_force_n(), 0.0);
     const double a = bound_n / total_mass_kg_;
     return a * a;
   }
@@ -60,11 +60,11 @@ class MultiArmGroundContact {
   double total_mass_kg_;  // M [kg]
   double weight_n_;       // M g [N]
   bool has_been_supported_ = false;
-  double may_touch_m_;       // ground_may_touch_m [m]
-  double may_touch_n_;       // ground_contact_on_n: the support the contact may miss [N]
+  double may_touch_m_;  // ground_may_touch_m [m]
+  double may_touch_n_;  // ground_contact_on_n: the support the contact may miss [N]
   bool has_ground_height_ = false;
-  double ground_height_m_ = 0.0;  // POSE z while the contact last held [m]
-  bool near_ground_ = false;      // the newest POSE within may_touch_m_ of it
+  double ground_height_m_ = 0.0;            // POSE z while the contact last held [m]
+  bool near_ground_ = false;                // the newest POSE within may_touch_m_ of it
   std::array<double, kMaxArms> cos_theta_;  // cos theta_i [1]
   GroundContact contact_;
 };
