@@ -347,17 +347,9 @@ std::string ModeConflict(const SimOptions& options) {
   if (!options.controller_mode.empty() && (options.output.empty() || options.loop)) {
     return "--controller runs the lock-step closed loop offline: it needs --output and no --loop";
   }
-  if (options.external_controller && !options.output.empty()) {
-    return "--external-controller is live (MOTOR_COMMAND from LCM); offline use --controller";
-  }
-  // The external controller runs on the wall clock and refuses stamps ahead
-  // of it: a vehicle simulated faster or slower than real time is not one
-  // it can fly.
-  if (options.external_controller && options.speed != 1.0) {
-    return fmt::format(
-        "--external-controller needs --speed 1 (got {}): the controller runs on the wall clock; "
-        "for a closed loop faster than real time use --controller MODE --output LOG",
-        options.speed);
+  if (options.external_controller && (!options.output.empty() || options.speed != 1.0)) {
+    return "--external-controller is live and real time (MOTOR_COMMAND from LCM, a controller on the wall clock: "
+           "--speed 1); offline or faster use --controller";
   }
   if (!options.vehicle_file.empty() &&
       (!options.controller_mode.empty() || options.loop || (options.publish_setpoints && !options.output.empty()))) {
