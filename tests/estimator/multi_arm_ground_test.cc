@@ -139,7 +139,8 @@ TEST(MultiArmGroundTest, MayTouchBandWidensTheAccelerometerNearTheGround) {
   ASSERT_FALSE(contact.supported());
   ASSERT_LT(contact.contact().support_force_n(), 1e-6);
   const double bound = options.ground_contact_on_n / vehicle.TotalMass();  // [m/s^2]
-  contact.OnPose(0.115);  // 1.5 cm up: may touch
+  // 1.5 cm up: may touch.
+  contact.OnPose(0.115);
   EXPECT_TRUE(contact.near_ground());
   EXPECT_NEAR(contact.ReleasedSupportVarianceM2S4(), bound * bound, 1e-12);
   contact.OnPose(0.125);  // 2.5 cm up: clear
