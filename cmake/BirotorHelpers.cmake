@@ -44,12 +44,13 @@ if(BIROTOR_BUILD_TESTS AND BIROTOR_TEST_PCH)
   target_precompile_headers(birotor_test_pch PRIVATE ${BIROTOR_TEST_PCH_HEADERS})
 endif()
 
-# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE] [RUN_SERIAL])
+# birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE] [RUN_SERIAL]
+#                  [TIMEOUT s] [COST s])
 # One GoogleTest executable registered with CTest through gtest_discover_tests.
 # SOURCE_TREE: the test reads files of the source tree (config/, tests/data/)
 # through BIROTOR_SOURCE_DIR; programs and libraries never get that path.
 function(birotor_add_test)
-  cmake_parse_arguments(T "SOURCE_TREE;RUN_SERIAL" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "SOURCE_TREE;RUN_SERIAL" "NAME;TIMEOUT;COST" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main birotor_warnings)
   birotor_test_compile_options(${T_NAME})
@@ -69,8 +70,21 @@ function(birotor_add_test)
   if(T_RUN_SERIAL)
     set(serial TRUE)
   endif()
+  # COST: about the seconds one of its tests takes. `ctest -j` starts the
+  # costliest first; a fresh build directory has no measured costs
+  # (Testing/Temporary/CTestCostData.txt), and a minute-long test started
+  # last would leave the other core idle while it ends.
+  if(NOT T_COST)
+    set(T_COST 0)
+  endif()
+  # An empty LABELS value would vanish from the list and shift every
+  # property after it (LABELS would take the name RUN_SERIAL): only given.
+  set(properties TIMEOUT ${T_TIMEOUT} RUN_SERIAL ${serial} COST ${T_COST})
+  if(T_LABELS)
+    list(APPEND properties LABELS "${T_LABELS}")
+  endif()
   gtest_discover_tests(${T_NAME}
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES TIMEOUT ${T_TIMEOUT} LABELS "${T_LABELS}" RUN_SERIAL ${serial}
+    PROPERTIES ${properties}
     DISCOVERY_TIMEOUT 60)
 endfunction()
