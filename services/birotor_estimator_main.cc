@@ -145,8 +145,9 @@ void LogStartup(const DaemonOptions& options, const EstimatorConfig& config, con
   const std::string stamp = ReadIdentificationStamp(options.params_file);
   spdlog::info("vehicle checksum {}, identified {}", vehicle_checksum,
                stamp.empty() ? "never (no birotor-identify stamp in the vehicle section)" : stamp);
-  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", options.common.lcm_url, channels.strain, channels.motor,
-               channels.imu, channels.pose, source.Describe(), channels.force, channels.estimator_status);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {} {}", options.common.lcm_url, channels.strain, channels.motor,
+               channels.imu, channels.pose, source.Describe(), channels.force, channels.estimator_status,
+               channels.estimator_learned_n);
   bool buffer_ok = true;
   const std::string buffer_report = ReceiveBufferReport(options.common.lcm_url, ReadRmemMax(), &buffer_ok);
   if (buffer_ok) {
