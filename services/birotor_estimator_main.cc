@@ -238,10 +238,13 @@ int main(int argc, char** argv) {
   LogStopped(service, *source);
   spdlog::info("authentication: {}", authenticated.Summary());
   if (!state_file.empty()) {
-    if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, *authenticator, &error)) {
+    const GaugeCalibration state = PersistedGaugeState(service.health());
+    if (!WriteGaugeState(state_file, state, vehicle_checksum, *authenticator, &error)) {
       return ReportError("gauge state: " + error);
     }
-    spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(service.health().gauge.source), state_file);
+    spdlog::info("gauge offsets ({}){}{} written to {}", GaugeOffsetSourceName(state.source),
+                 state.has_strain_scale ? ", learned strain scales" : "",
+                 state.has_tip_mass ? ", learned tip mass" : "", state_file);
   }
   return 0;
 }
