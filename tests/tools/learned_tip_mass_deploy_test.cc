@@ -5,7 +5,8 @@
 // daemon's own service; the state file it leaves at a clean stop
 // (PersistedGaugeState, under the site key) is deployed with
 // `birotor-identify --update-params COPY --learned STATE` into tip_mass_kg
-// of a copy of config/estimator.yaml, its sigma in the stamp; the same checks
+// of a copy of config/estimator.yaml, its sigma in the stamp (and the
+// flight's log, its inputs re-run, deploys the same value); the same checks
 // as for the strain scales refuse a state file of another vehicle, a forged
 // one and a second deployment. The EKF without learning on the updated copy
 // is then as accurate on that vehicle as with the true file.
@@ -28,6 +29,7 @@
 #include "tests/estimator/scenario_harness.h"
 #include "tests/tools/learned_deploy_support.h"
 #include "transport/channels.h"
+#include "transport/log_io.h"
 
 namespace birotor {
 namespace testing_support {
@@ -36,18 +38,32 @@ namespace {
 constexpr double kFileTipMassKg = 0.28812;   // config/reference_vehicle.yaml
 constexpr double kTrueTipMassKg = 0.345744;  // 1.2 x: the scenario's vehicle
 
-class DiscardSink : public MessageSink {
- public:
-  void Publish(const std::string&, int64_t, const void*, size_t) override {}
-};
+// The shipped config/estimator.yaml with arm_mode_learn_tip_mass on, at path.
+void WriteLearningConfig(const std::string& path) {
+  std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  const std::string key = "arm_mode_learn_tip_mass: ";
+  const size_t at = text.find(key + "false");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at + key.size(), 5, "true ");
+  std::ofstream(path) << text;
+}
 
-// The daemon's state after the flight, as it persists it at a clean stop.
-GaugeCalibration FlyAndPersist(const EstimatorConfig& config) {
-  DiscardSink discard;
-  Replayer estimator(config, ReplayOptions{}, &discard);
-  WireSampleSink wire(MakeChannelNames(), &estimator);
+// The flight as recorded on the vehicle (the simulator's packets and the
+// estimator daemon's service's output in one log), and the daemon's state
+// after it, as it persists it at a clean stop.
+GaugeCalibration FlyRecordAndPersist(const EstimatorConfig& config, const std::string& log_path) {
+  LogWriter writer;
+  std::string error;
+  EXPECT_TRUE(writer.Open(log_path, &error)) << error;
+  LogSink log(&writer);
+  ReplayOptions options;
+  options.copy_truth = false;  // TRUTH reaches the log from the simulator
+  Replayer estimator(config, options, &log);
+  TeeSink both(&log, &estimator);
+  WireSampleSink wire(MakeChannelNames(), &both);
   Simulator simulator(LoadScenario(ScenarioFile("mismatch_tip_mass_plus20")));
   simulator.Run(&wire);
+  EXPECT_TRUE(writer.Close()) << writer.error();
   return PersistedGaugeState(estimator.service().health());
 }
 
@@ -65,12 +81,14 @@ TEST(LearnedTipMassDeploy, TheStateFilesTipMassGoesIntoTipMassKg) {
   Folder folder;
   const std::string shipped = std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml";
   const std::string params = folder.path + "/estimator.yaml", state_path = folder.path + "/gauge_state";
-  const std::string key_file = folder.path + "/site.key";
+  const std::string key_file = folder.path + "/site.key", learning_file = folder.path + "/learning.yaml";
+  const std::string log = folder.path + "/flight.lcm";
   std::filesystem::copy_file(shipped, params);
   const MessageAuthenticator authenticator(WriteKeyFile(key_file));
-  EstimatorConfig learning = LoadEstimatorConfig(shipped);
-  learning.model_consistency.arm_mode_learn_tip_mass = true;
-  const GaugeCalibration state = FlyAndPersist(learning);
+  WriteLearningConfig(learning_file);
+  const EstimatorConfig learning = LoadEstimatorConfig(learning_file);
+  ASSERT_TRUE(learning.model_consistency.arm_mode_learn_tip_mass);
+  const GaugeCalibration state = FlyRecordAndPersist(learning, log);
   ASSERT_TRUE(state.has_tip_mass);
   // Measured 0.343447 +- 0.003168 kg (tests/nodes/estimator_learned_message_test.cc).
   EXPECT_NEAR(state.tip_mass_kg, kTrueTipMassKg, 3.0 * state.tip_mass_std_kg + 0.005);
@@ -108,6 +126,12 @@ TEST(LearnedTipMassDeploy, TheStateFilesTipMassGoesIntoTipMassKg) {
   std::snprintf(stamp, sizeof(stamp), "tip_mass_kg 0.28812 -> %.6g (learned %.6g +- %.6g)", state.tip_mass_kg,
                 state.tip_mass_kg, state.tip_mass_std_kg);
   EXPECT_NE(ReadText(params).find(stamp), std::string::npos) << stamp;
+  // The flight's log (its inputs re-run with the flight's estimator file)
+  // deploys the same value: the re-run sees the bytes the estimator saw.
+  const std::string log_copy = folder.path + "/from_log.yaml";
+  std::filesystem::copy_file(shipped, log_copy);
+  ASSERT_EQ(RunIdentify({"--update-params", log_copy, "--learned", log, "--estimator-config", learning_file}), 0);
+  EXPECT_NEAR(LoadEstimatorConfig(log_copy).vehicle.arms[0].tip_mass_kg, state.tip_mass_kg, 1e-9);
   // The same state again: refused (the file's vehicle changed), never applied twice.
   const std::string after = ReadText(params);
   EXPECT_EQ(RunIdentify({"--update-params", params, "--learned", state_path, "--site-key", key_file}), 1);
