@@ -50,6 +50,7 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t utime() const { return last_utime_; }  // time of the state [us]
   // The learned scale on gauge i's variance (StrainNoiseAdaptation) [1].
   double strain_noise_scale(int i) const { return strain_noise_.scale(i); }
+  bool learns_strain_noise() const override { return strain_noise_.enabled(); }
 
  private:
   void DoReset() override;

@@ -116,6 +116,8 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;
+  health_.tip_mass_kg = model_.tip_mass_kg;
+  health_.strain_noise_learned = method_->learns_strain_noise();
   for (int i = 0; i < kNumInputChannels; ++i) health_.inputs[i].gate = GateOf(*method_, static_cast<InputChannel>(i));
   health_.accelerometer.gate = method_->Gate(FusionSource::kAccelerometer);
 }
@@ -348,7 +350,11 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
 
 void EstimatorPipeline::HandOverTipMass() {
   const ArmModeState& arm_mode = consistency_.state().arm_mode;
-  if (!arm_mode.learning || arm_mode.tip_mass_kg == tip_mass_in_method_kg_) return;
+  if (!arm_mode.learning) return;
+  health_.tip_mass_learned = true;
+  health_.tip_mass_kg = arm_mode.tip_mass_kg;
+  health_.tip_mass_std_kg = arm_mode.tip_mass_std_kg;
+  if (arm_mode.tip_mass_kg == tip_mass_in_method_kg_) return;
   method_->SetTipMassKg(arm_mode.tip_mass_kg);
   tip_mass_in_method_kg_ = arm_mode.tip_mass_kg;
 }

@@ -58,8 +58,10 @@ struct PipelineHealth {
   GaugeCalibration gauge;
   // The scale on each gauge's noise variance the method learned
   // (StrainStepInfo::strain_noise_scale; 1 when it learns none) [1]: not an
-  // ESTIMATOR_STATUS field (its fingerprint stays); for a log at the status rate.
+  // ESTIMATOR_STATUS field (its fingerprint stays); on ESTIMATOR_LEARNED_N
+  // as the noise sqrt(scale_i) strain_noise_rad.
   double strain_noise_scale[2] = {1, 1};
+  bool strain_noise_learned = false;  // the method learns it (ForceEstimator::learns_strain_noise)
   // The body mass in use (issue 27; ESTIMATOR_STATUS): the file's until the
   // method reports one it learns (body_mass_learned, with its one sigma),
   // and whether learning g_i (gauge.strain_scale) started from the value of
@@ -68,6 +70,13 @@ struct PipelineHealth {
   double body_mass_kg = 0;      // [kg]
   double body_mass_std_kg = 0;  // [kg], when learned
   bool strain_scale_from_state_file = false;
+  // The tip mass m_p the method flies on both arms (issue 36; model_consistency
+  // arm_mode_learn_tip_mass): the file's until the arm-mode test learns it
+  // (tip_mass_learned, with its one sigma: the prior's until a reading);
+  // kept while learning pauses, as the method keeps flying it.
+  bool tip_mass_learned = false;
+  double tip_mass_kg = 0;      // [kg]
+  double tip_mass_std_kg = 0;  // [kg], when learned
   TareCounters tare;
   // Model consistency (issue 27): STATUS_MODEL_MISMATCH and its statistic.
   ModelConsistencyState consistency;

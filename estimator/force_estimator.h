@@ -119,6 +119,10 @@ class ForceEstimator {
   // the method's model, no state is reset. Methods whose model has no
   // m_p ignore it. No allocation.
   virtual void SetTipMassKg(double /*tip_mass_kg*/) {}
+  // Whether the method learns its gauges' noise (StrainStepInfo::
+  // strain_noise_scale; EKF adapt_strain_noise); false: it weighs them with
+  // the file's strain_noise_rad, or weighs no noise at all.
+  virtual bool learns_strain_noise() const { return false; }
 
  protected:
   // A report of the call in progress.

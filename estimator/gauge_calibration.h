@@ -27,6 +27,14 @@ struct GaugeCalibration {
   bool has_strain_scale = false;
   double strain_scale[kBirotorRotors] = {1.0, 1.0};      // g_i [1]
   double strain_scale_std[kBirotorRotors] = {0.0, 0.0};  // [1]
+  // The tip mass m_p learned from the arm mode (model_consistency
+  // arm_mode_learn_tip_mass, docs/mismatch.md): persisted with the offsets
+  // for `birotor-identify --update-params FILE --learned STATE`. Not flown
+  // from here: the pipeline reports the m_p in use (PipelineHealth::
+  // tip_mass_kg), and the next start learns it again from the file's.
+  bool has_tip_mass = false;
+  double tip_mass_kg = 0.0;      // [kg]
+  double tip_mass_std_kg = 0.0;  // [kg]
 
   // gauge_scale, gauge_offset_rad and gauge_offset_std_rad of the vehicle.
   static GaugeCalibration FromVehicle(const BirotorParams& params) {

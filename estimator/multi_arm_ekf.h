@@ -57,6 +57,8 @@ class MultiArmForceEstimator {
   // The learned scale on gauge i's noise variance (StrainNoiseAdaptation) [1];
   // 1 for a method that does not learn it.
   virtual double strain_noise_scale(int /*gauge*/) const { return 1.0; }
+  // Whether it learns that scale (false: 1 for good).
+  virtual bool learns_strain_noise() const { return false; }
 };
 
 // The filter for N arms. MOTOR and IMU samples wait in a queue until the next
@@ -95,6 +97,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   const MultiArmFilterFacts& facts() const override { return facts_; }
   const FusionReports* reports() const override { return &reports_; }
   double strain_noise_scale(int gauge) const override { return strain_noise_.scale(gauge); }
+  bool learns_strain_noise() const override { return strain_noise_.enabled(); }
 
   bool initialized() const { return initialized_; }
   const State& state() const { return state_; }

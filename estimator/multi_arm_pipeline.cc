@@ -33,6 +33,7 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
       admission_(config.pipeline) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (InputCounters& c : health_.inputs) c.gate = nan;
+  health_.strain_noise_learned = filter_->learns_strain_noise();
 }
 
 bool MultiArmPipeline::Admit(InputChannel channel, int64_t utime, int32_t seq, Admission* admission) {

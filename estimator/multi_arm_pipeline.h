@@ -52,6 +52,7 @@ struct MultiArmPipelineHealth {
   // The method's learned scale on each gauge's noise variance
   // (MultiArmForceEstimator::strain_noise_scale; 1 when it learns none) [1].
   ArmValues strain_noise_scale = UnitThrustScales();
+  bool strain_noise_learned = false;  // the method learns it (MultiArmForceEstimator::learns_strain_noise)
 };
 
 class MultiArmPipeline {
@@ -76,6 +77,7 @@ class MultiArmPipeline {
 
   const MultiArmPipelineHealth& health() const { return health_; }
   const VehicleDescription& vehicle() const { return config_.vehicle; }
+  const EstimatorConfig& config() const { return config_; }
   void TakePeriod();  // clears the per-period fields after a status message
 
  private:

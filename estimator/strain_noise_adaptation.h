@@ -50,6 +50,8 @@ class StrainNoiseAdaptation {
   double scale(int i) const { return scale_[static_cast<size_t>(i)]; }
   // The strain samples learned from since start-up.
   int64_t samples() const { return samples_; }
+  // Learning at all (EkfOptions::adapt_strain_noise).
+  bool enabled() const { return enabled_; }
 
  private:
   // Gauge i's pair from its previous innovation to this report's.

@@ -3,8 +3,10 @@
 // MOTOR_N, its own FORCE) go through EstimatorService::HandlePacket(channel,
 // ...) (its one way in, the PacketHandler entry its message source calls),
 // interleaved with ESTIMATOR_STATUS publication.
-// Every FORCE and ESTIMATOR_STATUS it publishes must decode and carry only
-// finite forces; nothing may crash, leak or trip a sanitizer.
+// Every FORCE, ESTIMATOR_STATUS and ESTIMATOR_LEARNED_N it publishes must
+// decode and carry only finite forces (and learned values for both arms:
+// the birotor's gauges, tip masses and body mass always have one); nothing
+// may crash, leak or trip a sanitizer.
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/imu_t.hpp"
@@ -50,6 +53,16 @@ class CheckingSink : public birotor::MessageSink {
     } else if (channel == channels_.estimator_status) {
       if (birotor::DecodeMessage(data, size, &status_) != birotor::DecodeError::kNone) std::abort();
       if (status_.num_inputs != static_cast<int32_t>(status_.inputs.size())) std::abort();
+    } else if (channel == channels_.estimator_learned_n) {
+      if (birotor::DecodeMessage(data, size, &learned_) != birotor::DecodeError::kNone) std::abort();
+      if (learned_.n_arms != 2 || learned_.seq != status_.seq || learned_.utime != status_.utime) std::abort();
+      for (size_t i = 0; i < 2; ++i) {
+        if (!std::isfinite(learned_.strain_scale[i]) || !std::isfinite(learned_.tip_mass_kg[i]) ||
+            !std::isfinite(learned_.strain_noise_rad[i])) {
+          std::abort();
+        }
+      }
+      if (!std::isfinite(learned_.body_mass_kg)) std::abort();
     } else {
       std::abort();  // the service publishes nothing else
     }
@@ -59,6 +72,7 @@ class CheckingSink : public birotor::MessageSink {
   birotor::ChannelNames channels_;
   birotor::force_estimate_t force_;
   birotor::estimator_status_t status_;
+  birotor::estimator_learned_n_t learned_;
 };
 
 template <class Msg>

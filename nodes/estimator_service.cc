@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "estimator/force_status.h"
+#include "nodes/estimator_learned_message.h"
 #include "nodes/gauge_state_file.h"
 #include "nodes/guard_status_message.h"
 #include "transport/host_clock.h"
@@ -57,6 +58,7 @@ EstimatorService::EstimatorService(const EstimatorConfig& config, const ChannelN
   routes_.Add(channels_.force, EstimatorChannel::kOwnForce);
   buffer_.reserve(1024);
   status_message_.inputs.resize(kNumInputChannels);
+  PrepareEstimatorLearned(description_, &learned_message_);
 }
 
 EstimatorService::~EstimatorService() = default;
@@ -245,6 +247,9 @@ void EstimatorService::PublishStatus(int64_t wall_utime, double period_s) {
   if (!buffer_.empty()) {
     const int64_t timestamp_us = pipeline_.health().newest_utime >= 0 ? pipeline_.health().newest_utime : 0;
     sink_->Publish(channels_.estimator_status, timestamp_us, buffer_.data(), buffer_.size());
+    FillEstimatorLearned(pipeline_.health(), pipeline_.config(), status_message_, &learned_message_);
+    EncodeMessage(learned_message_, &buffer_);
+    if (!buffer_.empty()) sink_->Publish(channels_.estimator_learned_n, timestamp_us, buffer_.data(), buffer_.size());
     PublishGuardStatus(timestamp_us, wall_utime);
   }
   ++status_seq_;

@@ -2,7 +2,8 @@
 // MOTOR, IMU and POSE (and their counted twins STRAIN_N and MOTOR_N with the
 // vehicle's arm count) with checked decoding that counts a malformed packet
 // instead of dropping it, one FORCE per accepted strain sample and the
-// ESTIMATOR_STATUS health message. Its one way in is HandlePacket(channel,
+// ESTIMATOR_STATUS health message with its per-arm companion
+// ESTIMATOR_LEARNED_N (the learned values). Its one way in is HandlePacket(channel,
 // bytes, receive time): the daemon feeds it from its live source,
 // birotor-replay from a log file, the closed loop of birotor-eval and the
 // fuzzers from encoded messages, so all of them run the same code.
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_t.hpp"
 #include "birotor/guard_status_t.hpp"
@@ -126,8 +128,9 @@ class EstimatorService : public PacketHandler {
   // (replay, the lock-step closed loop). Never throws.
   void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
 
-  // Publishes ESTIMATOR_STATUS for a reporting period of period_s and starts
-  // a new period.
+  // Publishes ESTIMATOR_STATUS for a reporting period of period_s, with it
+  // ESTIMATOR_LEARNED_N (same utime and seq) and GUARD_STATUS, and starts a
+  // new period.
   void PublishStatus(int64_t wall_utime, double period_s);
   // Replay: publishes ESTIMATOR_STATUS each time the vehicle clock (newest
   // sample utime) crosses a multiple of 1/status_rate_hz; wall_utime then
@@ -183,6 +186,7 @@ class EstimatorService : public PacketHandler {
   motor_n_t motor_n_message_;
   force_estimate_t force_message_;
   estimator_status_t status_message_;
+  estimator_learned_n_t learned_message_;  // sized for the vehicle at construction
   std::vector<uint8_t> buffer_;
 
   ProcessingTimeStats processing_time_;

@@ -68,6 +68,44 @@ bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>
   return true;
 }
 
+// The learned tip mass (optional lines, issue 36): the range of the vehicle
+// key tip_mass_kg, and a sigma between "known" and a kilogram (the reference
+// prior is 0.043 kg).
+StdRange TipMassRange() {
+  for (const VehicleKey& key : VehicleKeys()) {
+    if (std::string(key.name) == "tip_mass_kg") return {key.min, key.max};
+  }
+  return {0.0, 0.0};  // not reached: the key is in the table
+}
+constexpr StdRange kTipMassStdRange = {1e-6, 1.0};
+
+// A finite number from "a"; false otherwise.
+bool ParseNumber(const std::string& text, double* out) {
+  std::istringstream in(text);
+  std::string extra;
+  return (in >> *out) && !(in >> extra) && std::isfinite(*out);
+}
+
+bool ReadTipMass(const std::string& path, std::map<std::string, std::string>& fields, double* mass_kg, double* std_kg,
+                 std::string* error) {
+  if (!ParseNumber(fields["tip_mass_kg"], mass_kg) || !ParseNumber(fields["tip_mass_std_kg"], std_kg)) {
+    *error = path + ": corrupt (tip_mass_kg or tip_mass_std_kg not a finite number)";
+    return false;
+  }
+  const StdRange range = TipMassRange();
+  if (!(*mass_kg >= range.min && *mass_kg <= range.max)) {
+    *error = path + ": tip_mass_kg " + fields["tip_mass_kg"] + " outside " + RangeText(range.min, range.max) +
+             " kg (the range of vehicle.tip_mass_kg): refused";
+    return false;
+  }
+  if (!(*std_kg >= kTipMassStdRange.min && *std_kg <= kTipMassStdRange.max)) {
+    *error = path + ": tip_mass_std_kg " + fields["tip_mass_std_kg"] + " outside " +
+             RangeText(kTipMassStdRange.min, kTipMassStdRange.max) + " kg: refused";
+    return false;
+  }
+  return true;
+}
+
 constexpr const char* kMacKey = "mac: ";
 constexpr size_t kMacKeyLength = 5;
 
@@ -118,6 +156,14 @@ bool ParseStateText(const std::string& path, const std::string& text, const std:
 
 std::string VehicleChecksum(const BirotorParams& params) { return TextChecksum(BirotorParamsYaml(params)); }
 
+GaugeCalibration PersistedGaugeState(const PipelineHealth& health) {
+  GaugeCalibration state = health.gauge;
+  state.has_tip_mass = health.tip_mass_learned;
+  state.tip_mass_kg = health.tip_mass_kg;
+  state.tip_mass_std_kg = health.tip_mass_std_kg;
+  return state;
+}
+
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum) {
   char body[512];
   int length = std::snprintf(
@@ -125,9 +171,14 @@ std::string GaugeStateText(const GaugeCalibration& calibration, const std::strin
       kHeader, vehicle_checksum.c_str(), calibration.offset_rad[0], calibration.offset_rad[1],
       calibration.offset_std_rad[0], calibration.offset_std_rad[1]);
   if (calibration.has_strain_scale && length > 0 && length < static_cast<int>(sizeof(body))) {
-    std::snprintf(body + length, sizeof(body) - length, "strain_scale: %.17g %.17g\nstrain_scale_std: %.17g %.17g\n",
-                  calibration.strain_scale[0], calibration.strain_scale[1], calibration.strain_scale_std[0],
-                  calibration.strain_scale_std[1]);
+    length +=
+        std::snprintf(body + length, sizeof(body) - length,
+                      "strain_scale: %.17g %.17g\nstrain_scale_std: %.17g %.17g\n", calibration.strain_scale[0],
+                      calibration.strain_scale[1], calibration.strain_scale_std[0], calibration.strain_scale_std[1]);
+  }
+  if (calibration.has_tip_mass && length > 0 && length < static_cast<int>(sizeof(body))) {
+    std::snprintf(body + length, sizeof(body) - length, "tip_mass_kg: %.17g\ntip_mass_std_kg: %.17g\n",
+                  calibration.tip_mass_kg, calibration.tip_mass_std_kg);
   }
   return std::string(body) + "checksum: " + TextChecksum(body) + "\n";
 }
@@ -209,6 +260,14 @@ bool WriteStateText(const std::string& path, const GaugeCalibration& calibration
     written.strain_scale_std[i] =
         std::min(std::max(calibration.strain_scale_std[i], kStrainScaleStdRange.min), kStrainScaleStdRange.max);
   }
+  // The same for a learned tip mass: not written outside the reader's range,
+  // its sigma written at the range's bound.
+  const StdRange tip_range = TipMassRange();
+  if (!(calibration.tip_mass_kg >= tip_range.min && calibration.tip_mass_kg <= tip_range.max &&
+        std::isfinite(calibration.tip_mass_std_kg))) {
+    written.has_tip_mass = false;
+  }
+  written.tip_mass_std_kg = std::min(std::max(calibration.tip_mass_std_kg, kTipMassStdRange.min), kTipMassStdRange.max);
   std::string text = GaugeStateText(written, vehicle_checksum);
   if (authenticator != nullptr) text += MacLine(text, *authenticator);
   return ReplaceRegularFile(path, text, attributes, error);
@@ -265,6 +324,9 @@ bool ParseStateText(const std::string& path, const std::string& text, const std:
   double scale[kBirotorRotors] = {1.0, 1.0}, scale_std[kBirotorRotors] = {0.0, 0.0};
   const bool has_scale = fields.count("strain_scale") > 0 || fields.count("strain_scale_std") > 0;
   if (has_scale && !ReadStrainScale(path, fields, scale, scale_std, error)) return false;
+  double tip_mass_kg = 0, tip_mass_std_kg = 0;
+  const bool has_tip_mass = fields.count("tip_mass_kg") > 0 || fields.count("tip_mass_std_kg") > 0;
+  if (has_tip_mass && !ReadTipMass(path, fields, &tip_mass_kg, &tip_mass_std_kg, error)) return false;
   for (int i = 0; i < 2; ++i) {
     calibration->offset_rad[i] = offset[i];
     calibration->offset_std_rad[i] = std_rad[i];
@@ -272,6 +334,9 @@ bool ParseStateText(const std::string& path, const std::string& text, const std:
     calibration->strain_scale_std[i] = scale_std[i];
   }
   calibration->has_strain_scale = has_scale;
+  calibration->has_tip_mass = has_tip_mass;
+  calibration->tip_mass_kg = tip_mass_kg;
+  calibration->tip_mass_std_kg = tip_mass_std_kg;
   calibration->source = GaugeOffsetSource::kStateFile;
   return true;
 }

@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "estimator/estimator_pipeline.h"
 #include "estimator/gauge_calibration.h"
 #include "model/birotor_params.h"
 #include "security/message_authenticator.h"
@@ -26,8 +27,14 @@ std::string VehicleChecksum(const BirotorParams& params);
 //   gauge_offset_std_rad: <s1> <s2>
 //   strain_scale: <g1> <g2>            (only when learned, EkfOptions::learn_strain_scale)
 //   strain_scale_std: <s1> <s2>        (its one sigma)
+//   tip_mass_kg: <m>                   (only when learned, model_consistency arm_mode_learn_tip_mass)
+//   tip_mass_std_kg: <s>               (its one sigma)
 //   checksum: <16 hex of the lines above>
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum);
+
+// What the daemon persists at a clean stop: the calibration in use (offsets,
+// learned strain scales) and the tip mass the arm-mode test learned, if it did.
+GaugeCalibration PersistedGaugeState(const PipelineHealth& health);
 
 // Writes the text to path through a uniquely named temporary file in the same
 // folder (O_CREAT | O_EXCL | O_NOFOLLOW) and a rename: a reader sees the old or
@@ -35,8 +42,9 @@ std::string GaugeStateText(const GaugeCalibration& calibration, const std::strin
 // (false, *error, nothing written) when path exists and is not a gauge state
 // file (a link, a FIFO, a device, or a regular file without the header line:
 // the parameter file given as state_file survives), or when an offset or its
-// std is not finite. A std outside the reader's range is written at its bound.
-// An existing state file keeps its mode and owner; a new one is 0644.
+// std is not finite. A std outside the reader's range is written at its bound;
+// a learned strain scale or tip mass outside it is left out. An existing state file keeps its mode and owner; a new one
+// is 0644.
 bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
                      std::string* error);
 
@@ -46,7 +54,9 @@ bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibratio
 // /dev/zero: refused before a byte is read) or larger than 4 kB; a corrupt file
 // (bad checksum, bad or missing field; strain_scale and strain_scale_std
 // are optional, together, g_i in [0.2, 5] and its sigma in [1e-6, 0.5]:
-// has_strain_scale says whether they were there); a value out of range (|o_i| above
+// has_strain_scale says whether they were there; so are tip_mass_kg and
+// tip_mass_std_kg, m_p in vehicle.tip_mass_kg's range [1e-4, 100] kg and its
+// sigma in [1e-6, 1] kg: has_tip_mass); a value out of range (|o_i| above
 // max_offset_rad, a std outside the range of vehicle.gauge_offset_std_rad,
 // [1e-9, 1e-2] rad: the checksum does not stop a forged file); or a foreign
 // file (other vehicle checksum).

@@ -39,6 +39,9 @@ bool ReadLearnedState(const std::string& path, const std::string& vehicle_checks
     learned->strain_scale[i] = state.strain_scale[i];
     learned->strain_scale_std[i] = state.strain_scale_std[i];
   }
+  learned->has_tip_mass = state.has_tip_mass;
+  learned->tip_mass_kg = state.tip_mass_kg;
+  learned->tip_mass_std_kg = state.tip_mass_std_kg;
   return true;
 }
 
@@ -88,6 +91,8 @@ std::vector<LearnedDisagreement> CompareLearnedValues(const LearnedVehicleValues
   }
   CompareField("body_mass_kg", recorded.has_body_mass, recorded.body_mass_kg, recorded.body_mass_std_kg,
                rerun.has_body_mass, rerun.body_mass_kg, rerun.body_mass_std_kg, max_sigmas, &out);
+  CompareField("tip_mass_kg", recorded.has_tip_mass, recorded.tip_mass_kg, recorded.tip_mass_std_kg, rerun.has_tip_mass,
+               rerun.tip_mass_kg, rerun.tip_mass_std_kg, max_sigmas, &out);
   return out;
 }
 

@@ -1,7 +1,7 @@
 // What `birotor-identify --learned FILE` reads: the slow vehicle parameters
 // the estimator learned in flight (issue 27 item 2), from its gauge state
-// file (the strain scales, written at a clean stop, authenticated under the
-// site key) or from an LCM log of the flight (its newest ESTIMATOR_STATUS
+// file (the strain scales and the tip mass, written at a clean stop,
+// authenticated under the site key) or from an LCM log of the flight (its newest ESTIMATOR_STATUS
 // with a learned value: the strain scales and the body mass). A recorded
 // status is not authenticated (issue 37 item 4: anyone on the bus can
 // publish one), so it is only compared with what a re-run of the log's own
@@ -19,7 +19,7 @@ namespace birotor {
 // True when path opens as an LCM log (it starts with an event's sync word).
 bool IsLcmLog(const std::string& path);
 
-// The strain scales of the gauge state file at path, whose mac line must
+// The strain scales and tip mass of the gauge state file at path, whose mac line must
 // verify under the site key (authenticator). False with a one-line *error
 // naming the file and the reason: not a gauge state file (", nor an LCM
 // log"), not authenticated (no mac line, or a mac that does not verify:
@@ -38,7 +38,7 @@ bool ReadRecordedLearnedValues(const std::string& path, const std::string& prefi
 
 // Where a recorded learned value disagrees with the re-run's.
 struct LearnedDisagreement {
-  std::string field;  // "strain_scale[0]", "strain_scale[1]", "body_mass_kg"
+  std::string field;  // "strain_scale[0]", "strain_scale[1]", "body_mass_kg", "tip_mass_kg"
   double recorded = 0, recorded_std = 0;
   bool rerun_learned = false;  // false: the re-run did not learn this field at all
   double rerun = 0, rerun_std = 0;

@@ -8,6 +8,7 @@
 
 #include "estimator/force_status.h"
 #include "model/vehicle_description_checksum.h"
+#include "nodes/estimator_learned_message.h"
 #include "transport/host_clock.h"
 #include "transport/message_conversion.h"
 
@@ -34,6 +35,7 @@ MultiArmEstimatorService::MultiArmEstimatorService(const EstimatorConfig& config
   routes_.Add(channels_.pose, Route::kPose);
   buffer_.reserve(1024);
   status_message_.inputs.resize(kNumInputChannels);
+  PrepareEstimatorLearned(pipeline_.vehicle(), &learned_message_);
 }
 
 bool MultiArmEstimatorService::IsInputChannel(std::string_view channel) const {
@@ -146,6 +148,9 @@ void MultiArmEstimatorService::PublishStatus(int64_t wall_utime, double period_s
   if (!buffer_.empty()) {
     const int64_t timestamp_us = pipeline_.health().newest_utime >= 0 ? pipeline_.health().newest_utime : 0;
     sink_->Publish(channels_.estimator_status, timestamp_us, buffer_.data(), buffer_.size());
+    FillEstimatorLearned(health, pipeline_.config(), status_message_, &learned_message_);
+    EncodeMessage(learned_message_, &buffer_);
+    if (!buffer_.empty()) sink_->Publish(channels_.estimator_learned_n, timestamp_us, buffer_.data(), buffer_.size());
   }
   ++status_seq_;
   pipeline_.TakePeriod();

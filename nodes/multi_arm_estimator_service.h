@@ -5,7 +5,8 @@
 // its input, never dropped silently), the N-arm pipeline
 // (estimator/multi_arm_pipeline.h), one FORCE_N per accepted strain sample
 // and ESTIMATOR_STATUS (the per-input counters, resets and the newest
-// status; its two-rotor force fields are NaN: the forces are on FORCE_N).
+// status; its two-rotor force fields are NaN: the forces are on FORCE_N)
+// with ESTIMATOR_LEARNED_N (every arm's learned strain noise).
 // FORCE_N is published plain (docs/interface.md: the counted types have no
 // sealed twin yet). No allocation per packet in steady state.
 #pragma once
@@ -16,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/imu_t.hpp"
@@ -50,7 +52,8 @@ class MultiArmEstimatorService : public PacketHandler {
   bool IsInputChannel(std::string_view channel) const;
   // The one way in (see EstimatorService::HandlePacket); never throws.
   void HandlePacket(std::string_view channel, const void* data, size_t size, int64_t receive_wall_utime) override;
-  // ESTIMATOR_STATUS for a reporting period of period_s (the daemon, host clock).
+  // ESTIMATOR_STATUS for a reporting period of period_s (the daemon, host
+  // clock), with it ESTIMATOR_LEARNED_N (same utime and seq).
   void PublishStatus(int64_t wall_utime, double period_s);
   // Replay: ESTIMATOR_STATUS each time the vehicle clock crosses a multiple
   // of 1 / status_rate_hz (wall_utime carries the vehicle time).
@@ -83,6 +86,7 @@ class MultiArmEstimatorService : public PacketHandler {
   pose_t pose_message_;
   force_estimate_n_t force_message_;
   estimator_status_t status_message_;
+  estimator_learned_n_t learned_message_;  // sized for the vehicle at construction
   std::vector<uint8_t> buffer_;
   MultiArmStrainSample strain_sample_;
   MultiArmMotorSample motor_sample_;

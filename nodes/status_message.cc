@@ -76,6 +76,15 @@ void FillInputHealth(const InputCounters& in, const char* channel, int64_t newes
   out->gate = in.gate;
 }
 
+}  // namespace
+
+const char* StrainScaleSource(const PipelineHealth& health) {
+  if (!health.gauge.has_strain_scale) return kLearnedSourceParams;
+  return health.strain_scale_from_state_file ? kLearnedSourceStateFile : kLearnedSourceLearned;
+}
+
+namespace {
+
 // The slow vehicle parameters in use: learned (value and sigma) or the
 // file's (scale 1, the file's body mass, sigma NaN).
 void FillLearnedParameters(const PipelineHealth& health, estimator_status_t* message) {
@@ -84,9 +93,7 @@ void FillLearnedParameters(const PipelineHealth& health, estimator_status_t* mes
     message->strain_scale[arm] = scale_learned ? health.gauge.strain_scale[arm] : 1.0;
     message->strain_scale_std[arm] = scale_learned ? health.gauge.strain_scale_std[arm] : kNaN;
   }
-  message->strain_scale_source = !scale_learned                        ? kLearnedSourceParams
-                                 : health.strain_scale_from_state_file ? kLearnedSourceStateFile
-                                                                       : kLearnedSourceLearned;
+  message->strain_scale_source = StrainScaleSource(health);
   message->body_mass_kg = health.body_mass_kg;
   message->body_mass_std_kg = health.body_mass_learned ? health.body_mass_std_kg : kNaN;
   message->body_mass_source = health.body_mass_learned ? kLearnedSourceLearned : kLearnedSourceParams;

@@ -57,6 +57,10 @@ inline constexpr const char* kLearnedSourceParams = "params";         // not lea
 inline constexpr const char* kLearnedSourceLearned = "learned";       // learned in this run from the file's value
 inline constexpr const char* kLearnedSourceStateFile = "state_file";  // learned from an earlier run's value
 
+// The source of the strain scales in use: params (not learned), learned, or
+// state_file (learning started from the gauge state file's value).
+const char* StrainScaleSource(const PipelineHealth& health);
+
 // Fills *message from the pipeline's health (per-input counters in the order
 // STRAIN, MOTOR, IMU, POSE; age_s on the vehicle clock relative to the newest
 // sample of any input; rates from accepted_in_period / period_s; NIS mean and

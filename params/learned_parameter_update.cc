@@ -1,4 +1,4 @@
-// Learned strain scales and body mass into the vehicle parameters (docs/identification.md).
+// Learned strain scales, body mass and tip mass into the vehicle parameters (docs/identification.md).
 #include "params/learned_parameter_update.h"
 
 #include <cmath>
@@ -16,10 +16,10 @@ std::string Number(double value) {
   return text;
 }
 
-// The range of body_mass_kg in the vehicle key table (one table).
-void BodyMassRange(double* min, double* max) {
+// The range of a key (body_mass_kg, tip_mass_kg) in the vehicle key table (one table).
+void KeyRange(const char* name, double* min, double* max) {
   for (const VehicleKey& key : VehicleKeys()) {
-    if (std::string(key.name) == "body_mass_kg") {
+    if (std::string(key.name) == name) {
       *min = key.min;
       *max = key.max;
     }
@@ -55,10 +55,10 @@ std::string OutOfRange(const std::string& file, const std::string& key, double v
 bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
                         const std::string& learned_file, const std::string& file, BirotorParams* vehicle,
                         std::vector<LearnedChange>* changes, std::string* error) {
-  if (!learned.has_strain_scale && !learned.has_body_mass) {
+  if (!learned.has_strain_scale && !learned.has_body_mass && !learned.has_tip_mass) {
     *error = learned_file +
-             ": holds no learned strain scale or body mass (the estimator learns them with "
-             "estimator.ekf learn_strain_scale / learn_body_mass on): " +
+             ": holds no learned strain scale, body mass or tip mass (the estimator learns them with "
+             "estimator.ekf learn_strain_scale / learn_body_mass, model_consistency arm_mode_learn_tip_mass on): " +
              file + " not updated";
     return false;
   }
@@ -89,13 +89,29 @@ bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeploy
                           options.body_mass_scale_prior_std * vehicle->body_mass_kg, options, key, file);
     if (!error->empty()) return false;
     double min = 0, max = 0;
-    BodyMassRange(&min, &max);
+    KeyRange("body_mass_kg", &min, &max);
     if (!(mass_kg >= min && mass_kg <= max)) {
       *error = OutOfRange(file, key, mass_kg, min, max, "the learned body mass");
       return false;
     }
     updated.body_mass_kg = mass_kg;
     made.push_back({key.substr(8), vehicle->body_mass_kg, mass_kg, mass_kg, sigma_kg});
+  }
+  if (learned.has_tip_mass) {
+    const std::string key = "vehicle.tip_mass_kg";
+    const double mass_kg = learned.tip_mass_kg, sigma_kg = learned.tip_mass_std_kg;
+    // The prior is relative to the file's tip mass, as the arm-mode test's.
+    *error = CheckLearned(learned_file, "tip_mass_kg", mass_kg, sigma_kg,
+                          options.tip_mass_prior_std * vehicle->tip_mass_kg, options, key, file);
+    if (!error->empty()) return false;
+    double min = 0, max = 0;
+    KeyRange("tip_mass_kg", &min, &max);
+    if (!(mass_kg >= min && mass_kg <= max)) {
+      *error = OutOfRange(file, key, mass_kg, min, max, "the learned tip mass");
+      return false;
+    }
+    updated.tip_mass_kg = mass_kg;
+    made.push_back({key.substr(8), vehicle->tip_mass_kg, mass_kg, mass_kg, sigma_kg});
   }
   error->clear();
   *vehicle = updated;

@@ -5,8 +5,10 @@
 // apart; the file keeps an equivalent model by multiplying gauge_scale[i] by
 // g_i (the calibrated deflection (z - o_i) / (g_i s_i) is then the one the
 // file's stiffness predicts) and by writing the learned body mass into
-// body_mass_kg. The reference file carries no sigma key for either, so no
-// sigma key is written (docs/identification.md).
+// body_mass_kg. The tip mass learned from the arm mode (issue 36) is written
+// into tip_mass_kg. The reference file carries no sigma key for any of them,
+// so no sigma key is written: the sigma is in the log line and the stamp
+// (docs/identification.md).
 #pragma once
 
 #include <string>
@@ -27,6 +29,9 @@ struct LearnedVehicleValues {
   bool has_body_mass = false;
   double body_mass_kg = 0;      // [kg]
   double body_mass_std_kg = 0;  // one sigma [kg]
+  bool has_tip_mass = false;    // m_p of both arms, learned from the arm mode
+  double tip_mass_kg = 0;       // [kg]
+  double tip_mass_std_kg = 0;   // one sigma [kg]
 };
 
 // When a learned value counts as learned.
@@ -40,24 +45,28 @@ struct LearnedDeployOptions {
   // defaults of EkfOptions, 0.1 and 0.15.
   double strain_scale_prior_std = EkfOptions{}.strain_scale_prior_std;        // [1]
   double body_mass_scale_prior_std = EkfOptions{}.body_mass_scale_prior_std;  // relative to body_mass_kg [1]
+  // The tip mass's prior (model_consistency: arm_mode_unconfirmed_tip_mass_std,
+  // 0.15 of the file's tip_mass_kg).
+  double tip_mass_prior_std = ModelConsistencyOptions{}.arm_mode_unconfirmed_tip_mass_std;  // relative [1]
 };
 
 // One key written, for the log and the stamp.
 struct LearnedChange {
-  std::string key;  // "gauge_scale[0]", "gauge_scale[1]", "body_mass_kg"
+  std::string key;  // "gauge_scale[0]", "gauge_scale[1]", "body_mass_kg", "tip_mass_kg"
   double old_value = 0;
   double new_value = 0;
-  double learned = 0;      // g_i, or the body mass [kg]
+  double learned = 0;      // g_i, or the body or tip mass [kg]
   double learned_std = 0;  // its one sigma
 };
 
 // Applies every learned value of `learned` (read from learned_file) to
 // *vehicle (the vehicle `file` describes now): gauge_scale[i] *= g_i,
-// body_mass_kg = the learned mass. All or nothing: false with a one-line
-// *error naming the file, the key and the range, *vehicle unchanged, when
-// nothing was learned, or a value is not finite, not learned (sigma not
-// below max_std_fraction x its prior sigma), or would leave its key's range
-// (gauge_scale [0.5, 2], body_mass_kg the vehicle table's range).
+// body_mass_kg = the learned mass, tip_mass_kg = the learned m_p. All or
+// nothing: false with a one-line *error naming the file, the key and the
+// range, *vehicle unchanged, when nothing was learned, or a value is not
+// finite, not learned (sigma not below max_std_fraction x its prior sigma),
+// or would leave its key's range (gauge_scale [0.5, 2], body_mass_kg and
+// tip_mass_kg the vehicle table's range).
 bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
                         const std::string& learned_file, const std::string& file, BirotorParams* vehicle,
                         std::vector<LearnedChange>* changes, std::string* error);

@@ -21,6 +21,9 @@ LearnedVehicleValues FinalLearnedValues(const EstimatorConfig& config, const Pip
   learned.has_body_mass = config.ekf.learn_body_mass && health.body_mass_learned;
   learned.body_mass_kg = health.body_mass_kg;
   learned.body_mass_std_kg = health.body_mass_std_kg;
+  learned.has_tip_mass = config.model_consistency.arm_mode_learn_tip_mass && health.tip_mass_learned;
+  learned.tip_mass_kg = health.tip_mass_kg;
+  learned.tip_mass_std_kg = health.tip_mass_std_kg;
   return learned;
 }
 
@@ -28,9 +31,10 @@ LearnedVehicleValues FinalLearnedValues(const EstimatorConfig& config, const Pip
 
 bool RelearnFromLog(const std::string& log_path, const EstimatorConfig& config, const std::string& prefix,
                     double min_usable_fraction, LearnedRerun* rerun, std::string* error) {
-  if (!config.ekf.learn_strain_scale && !config.ekf.learn_body_mass) {
-    *error = log_path + ": the estimator configuration learns nothing (ekf: learn_strain_scale and learn_body_mass " +
-             "are off): give the estimator file the flight ran with";
+  if (!config.ekf.learn_strain_scale && !config.ekf.learn_body_mass &&
+      !config.model_consistency.arm_mode_learn_tip_mass) {
+    *error = log_path + ": the estimator configuration learns nothing (ekf: learn_strain_scale and learn_body_mass, " +
+             "model_consistency: arm_mode_learn_tip_mass are off): give the estimator file the flight ran with";
     return false;
   }
   ReplayOptions options;
@@ -49,7 +53,7 @@ bool RelearnFromLog(const std::string& log_path, const EstimatorConfig& config, 
     return false;
   }
   rerun->learned = FinalLearnedValues(config, health);
-  if (!rerun->learned.has_strain_scale && !rerun->learned.has_body_mass) {
+  if (!rerun->learned.has_strain_scale && !rerun->learned.has_body_mass && !rerun->learned.has_tip_mass) {
     *error = log_path + ": the estimator re-run over its inputs learned nothing (" +
              std::to_string(rerun->stats.forces) + " FORCE estimates, method " + config.method + ")";
     return false;

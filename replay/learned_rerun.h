@@ -21,12 +21,12 @@ struct LearnedRerun {
 };
 
 // Re-runs config (its vehicle: the one the values are learned relative to;
-// its ekf learn_strain_scale / learn_body_mass: what is learned) over the
-// inputs of the log at log_path on prefix's channels. False with a one-line
-// *error naming the file, *rerun unusable, when: config learns nothing (both
-// learn switches off), the log is not usable (ReplayLogFile), no STRAIN
-// produced a FORCE estimate or no MOTOR sample was accepted (nothing to learn
-// from), or the re-run ended without a learned value.
+// its ekf learn_strain_scale / learn_body_mass and model_consistency
+// arm_mode_learn_tip_mass: what is learned) over the inputs of the log at
+// log_path on prefix's channels. False with a one-line *error naming the
+// file, *rerun unusable, when: config learns nothing (every learn switch off), the log is not usable (ReplayLogFile),
+// no STRAIN produced a FORCE estimate or no MOTOR sample was accepted (nothing to learn from), or the re-run ended
+// without a learned value.
 bool RelearnFromLog(const std::string& log_path, const EstimatorConfig& config, const std::string& prefix,
                     double min_usable_fraction, LearnedRerun* rerun, std::string* error);
 

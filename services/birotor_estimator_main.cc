@@ -145,8 +145,9 @@ void LogStartup(const DaemonOptions& options, const EstimatorConfig& config, con
   const std::string stamp = ReadIdentificationStamp(options.params_file);
   spdlog::info("vehicle checksum {}, identified {}", vehicle_checksum,
                stamp.empty() ? "never (no birotor-identify stamp in the vehicle section)" : stamp);
-  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {}", options.common.lcm_url, channels.strain, channels.motor,
-               channels.imu, channels.pose, source.Describe(), channels.force, channels.estimator_status);
+  spdlog::info("lcm {}: in {} {} {} {} ({}), out {} {} {}", options.common.lcm_url, channels.strain, channels.motor,
+               channels.imu, channels.pose, source.Describe(), channels.force, channels.estimator_status,
+               channels.estimator_learned_n);
   bool buffer_ok = true;
   const std::string buffer_report = ReceiveBufferReport(options.common.lcm_url, ReadRmemMax(), &buffer_ok);
   if (buffer_ok) {
@@ -237,10 +238,13 @@ int main(int argc, char** argv) {
   LogStopped(service, *source);
   spdlog::info("authentication: {}", authenticated.Summary());
   if (!state_file.empty()) {
-    if (!WriteGaugeState(state_file, service.health().gauge, vehicle_checksum, *authenticator, &error)) {
+    const GaugeCalibration state = PersistedGaugeState(service.health());
+    if (!WriteGaugeState(state_file, state, vehicle_checksum, *authenticator, &error)) {
       return ReportError("gauge state: " + error);
     }
-    spdlog::info("gauge offsets ({}) written to {}", GaugeOffsetSourceName(service.health().gauge.source), state_file);
+    spdlog::info("gauge offsets ({}){}{} written to {}", GaugeOffsetSourceName(state.source),
+                 state.has_strain_scale ? ", learned strain scales" : "",
+                 state.has_tip_mass ? ", learned tip mass" : "", state_file);
   }
   return 0;
 }

@@ -51,9 +51,9 @@ int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig 
   spdlog::info("birotor-estimator {} vehicle '{}' ({} arms) from {}, estimator: of {}", BIROTOR_VERSION,
                config.vehicle.name, config.vehicle.arm_count, options.vehicle_file, options.params_file);
   const bool sealed = security.signed_channels()[static_cast<int>(AuthenticatedChannel::kForceN)];
-  spdlog::info("lcm {}: in {} {} {} ({}), out {} ({}) {}", options.lcm_url, channels.strain_n, channels.motor_n,
+  spdlog::info("lcm {}: in {} {} {} ({}), out {} ({}) {} {}", options.lcm_url, channels.strain_n, channels.motor_n,
                channels.imu, source->Describe(), channels.force_n, sealed ? "sealed" : "plain: --unsigned",
-               channels.estimator_status);
+               channels.estimator_status, channels.estimator_learned_n);
   if (!ServeEstimator(source.get(), options.service.status_rate_hz, service.get())) {
     spdlog::error("{}; stopping", source->error());
   }

@@ -142,8 +142,8 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                      "LCM log of the flight (the estimator re-run over the log's inputs on --prefix with "
                      "--estimator-config; a recorded ESTIMATOR_STATUS is only compared, never deployed), with the "
                      "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). A strain "
-                     "scale g_i multiplies gauge_scale[i], a body mass replaces body_mass_kg "
-                     "(docs/identification.md)");
+                     "scale g_i multiplies gauge_scale[i], a body mass replaces body_mass_kg, a tip mass (learned from "
+                     "the arm mode) replaces tip_mass_kg (docs/identification.md)");
   CLI::Option* site_key =
       app.add_option("--site-key", cli->learned_source.site_key_file,
                      "Site key file (32 raw bytes, not group/world-writable) authenticating the --learned gauge state "
@@ -152,14 +152,14 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
   CLI::Option* estimator_config = app.add_option(
       "--estimator-config", cli->learned_source.estimator_config,
       "--learned LOG: estimator parameter file the log's inputs are re-run with (its estimator: section, "
-      "learn_strain_scale / learn_body_mass on as in the flight; the vehicle is the --update-params "
+      "learn_strain_scale / learn_body_mass / arm_mode_learn_tip_mass on as in the flight; the vehicle is the "
+      "--update-params "
       "file's); default: the " +
           ConfigSearchText("estimator.yaml"));
-  app.add_option(
-         "--learned-max-std-fraction", cli->learned_options.max_std_fraction,
-         "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
-         "sigma (strain_scale_prior_std 0.1, body_mass_scale_prior_std 0.1 of the mass); otherwise refuse, file "
-         "untouched")
+  app.add_option("--learned-max-std-fraction", cli->learned_options.max_std_fraction,
+                 "--learned: deploy a value only when its sigma is below this fraction of the estimator's prior "
+                 "sigma (strain_scale_prior_std 0.1, body_mass_scale_prior_std 0.15 of the mass, "
+                 "arm_mode_unconfirmed_tip_mass_std 0.15 of the tip mass); otherwise refuse, file untouched")
       ->check(CLI::Range(1e-3, 1.0));
   CLI::Option* report = app.add_option("--report", cli->report, "Readable report (Markdown)");
   CLI::Option* plot = app.add_option("--plot", cli->plot, "PNG of fit versus data (needs gnuplot)");

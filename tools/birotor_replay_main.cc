@@ -1,6 +1,7 @@
 // birotor-replay: runs the estimator daemon's code over an LCM log as fast as
-// possible and writes FORCE, ESTIMATOR_STATUS (vehicle-clock schedule) and
-// TRUTH to an output log, optionally FORCE as CSV. Same log in, same bytes out.
+// possible and writes FORCE, ESTIMATOR_STATUS (vehicle-clock schedule) with
+// ESTIMATOR_LEARNED_N, and TRUTH to an output log, optionally FORCE as CSV.
+// Same log in, same bytes out.
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -34,7 +35,8 @@ void AddReplayOptions(CLI::App& app, ReplayCli* cli) {
   AddCommonOptions(app, &cli->common);
   app.remove_option(app.get_option("--lcm-url"));  // offline: reads files, never LCM (issue 24)
   app.add_option("--log", cli->input_path, "Input LCM log (STRAIN, MOTOR, IMU, POSE, TRUTH)")->required();
-  app.add_option("--output", cli->output_path, "Output LCM log (FORCE, ESTIMATOR_STATUS, TRUTH)")->required();
+  app.add_option("--output", cli->output_path, "Output LCM log (FORCE, ESTIMATOR_STATUS, ESTIMATOR_LEARNED_N, TRUTH)")
+      ->required();
   app.add_option("--csv", cli->csv_path, "Also write FORCE as CSV");
   app.add_option("--params", cli->params_file,
                  "Estimator parameter file; default: the " + ConfigSearchText("estimator.yaml"));

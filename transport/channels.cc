@@ -25,6 +25,7 @@ ChannelNames MakeChannelNames(const std::string& prefix) {
   names.force_n = prefix + kForceNChannel;
   names.motor_command_n = prefix + kMotorCommandNChannel;
   names.controller_rotors_n = prefix + kControllerRotorsNChannel;
+  names.estimator_learned_n = prefix + kEstimatorLearnedNChannel;
   names.vehicle = prefix + kVehicleDescriptionChannel;
   names.motor_command_auth = prefix + kMotorCommandAuthChannel;
   names.setpoint_auth = prefix + kSetpointAuthChannel;

@@ -33,6 +33,8 @@ inline constexpr char kForceNChannel[] = "FORCE_N";
 inline constexpr char kMotorCommandNChannel[] = "MOTOR_COMMAND_N";
 // controller_rotors_n_t: the N-rotor controller's per-rotor status, with CONTROLLER_STATUS.
 inline constexpr char kControllerRotorsNChannel[] = "CONTROLLER_ROTORS_N";
+// estimator_learned_n_t: the estimator's learned values per arm, with ESTIMATOR_STATUS.
+inline constexpr char kEstimatorLearnedNChannel[] = "ESTIMATOR_LEARNED_N";
 // vehicle_description_t.
 inline constexpr char kVehicleDescriptionChannel[] = "VEHICLE";
 // The authenticated types of the channels whose forgery moves the vehicle
@@ -71,6 +73,7 @@ struct ChannelNames {
   std::string force_n;               // force_estimate_n_t
   std::string motor_command_n;       // motor_command_n_t
   std::string controller_rotors_n;   // controller_rotors_n_t
+  std::string estimator_learned_n;   // estimator_learned_n_t
   std::string vehicle;               // vehicle_description_t
   std::string motor_command_auth;    // motor_command_auth_t
   std::string setpoint_auth;         // setpoint_auth_t

@@ -217,6 +217,14 @@ DecodeError CheckLengthFields<vehicle_description_t>(const uint8_t* data, size_t
                     {Bytes(kUtimeSeq), String(), String(), String(), Bytes(8 * 8), Count(), kDoubles, kDoubles,
                      kDoubles, kInt8s, kDoubles, kDoubles, kDoubles, kDoubles, kDoubles, kInt8s, kDoubles, kDoubles});
 }
+template <>
+DecodeError CheckLengthFields<estimator_learned_n_t>(const uint8_t* data, size_t size) {
+  // vehicle_checksum; n_arms; strain scale, its std, source; tip mass, its
+  // std, source; strain noise, source; body mass, its std, source.
+  return WalkLayout(data, size,
+                    {Bytes(kUtimeSeq), String(), Count(), kDoubles, kDoubles, String(), kDoubles, kDoubles, String(),
+                     kDoubles, String(), Bytes(8 + 8), String()});
+}
 
 }  // namespace internal
 }  // namespace birotor

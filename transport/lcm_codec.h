@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/input_health_t.hpp"
@@ -65,6 +66,8 @@ template <>
 DecodeError CheckLengthFields<motor_command_n_t>(const uint8_t* data, size_t size);
 template <>
 DecodeError CheckLengthFields<vehicle_description_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<estimator_learned_n_t>(const uint8_t* data, size_t size);
 
 }  // namespace internal
 

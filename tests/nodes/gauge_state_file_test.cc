@@ -355,6 +355,70 @@ TEST(AuthenticatedGaugeStateTest, AGenuineFileRestoresEveryBit) {
   unlink(path.c_str());
 }
 
+// The tip mass learned from the arm mode (issue 36) is persisted from the
+// pipeline's health (PersistedGaugeState), under the mac; out of the range
+// of vehicle.tip_mass_kg, or its sigma outside [1e-6, 1] kg, it is refused
+// naming the file and the key, and a changed value with its checksum
+// recomputed does not verify. Values: the tip mass +20 % flight's
+// (tests/nodes/estimator_learned_message_test.cc).
+TEST(AuthenticatedGaugeStateTest, ALearnedTipMassIsPersistedAndChecked) {
+  const std::string path = AuthenticatedStatePath("tip_mass");
+  const std::string vehicle = VehicleChecksum(BirotorParams());
+  const MessageAuthenticator authenticator(TestSiteKey(0x11));
+  PipelineHealth health;
+  health.gauge = Learned();
+  health.tip_mass_learned = true;
+  health.tip_mass_kg = 0.34344712345678;
+  health.tip_mass_std_kg = 0.0031679;
+  const GaugeCalibration state = PersistedGaugeState(health);
+  std::string error;
+  ASSERT_TRUE(WriteGaugeState(path, state, vehicle, authenticator, &error)) << error;
+  GaugeCalibration read;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error)) << error;
+  EXPECT_TRUE(read.has_tip_mass);
+  EXPECT_EQ(read.tip_mass_kg, 0.34344712345678);
+  EXPECT_EQ(read.tip_mass_std_kg, 0.0031679);
+  EXPECT_EQ(read.offset_rad[0], Learned().offset_rad[0]);
+  // Not learned: no tip-mass lines, read as before.
+  health.tip_mass_learned = false;
+  ASSERT_TRUE(WriteGaugeState(path, PersistedGaugeState(health), vehicle, authenticator, &error)) << error;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error)) << error;
+  EXPECT_FALSE(read.has_tip_mass);
+  EXPECT_EQ(Slurp(path).find("tip_mass"), std::string::npos);
+  // Out of range with a right checksum (the plain reader: the mac is not
+  // what refuses it), one line naming the file and the key.
+  GaugeCalibration forged = state;
+  forged.tip_mass_kg = 150.0;
+  Spit(path, GaugeStateText(forged, vehicle));
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
+  EXPECT_EQ(error, path + ": tip_mass_kg 150 outside [0.0001, 100] kg (the range of vehicle.tip_mass_kg): refused");
+  forged = state;
+  forged.tip_mass_std_kg = 2.0;
+  Spit(path, GaugeStateText(forged, vehicle));
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, &read, &error));
+  EXPECT_EQ(error, path + ": tip_mass_std_kg 2 outside [1e-06, 1] kg: refused");
+  // Written: a sigma beyond the range at its bound (the file claims less,
+  // never more); a tip mass beyond it left out (learned again next start).
+  ASSERT_TRUE(WriteGaugeState(path, forged, vehicle, authenticator, &error)) << error;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error)) << error;
+  EXPECT_EQ(read.tip_mass_std_kg, 1.0);
+  forged.tip_mass_kg = 150.0;
+  ASSERT_TRUE(WriteGaugeState(path, forged, vehicle, authenticator, &error)) << error;
+  ASSERT_TRUE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &read, &error)) << error;
+  EXPECT_FALSE(read.has_tip_mass);
+  // A genuine file with the tip mass changed and the checksum recomputed.
+  ASSERT_TRUE(WriteGaugeState(path, state, vehicle, authenticator, &error)) << error;
+  const std::string text = Slurp(path);
+  forged = state;
+  forged.tip_mass_kg = 0.5;
+  Spit(path, GaugeStateText(forged, vehicle) + text.substr(text.find("mac: ")));
+  GaugeCalibration untouched;
+  EXPECT_FALSE(ReadGaugeState(path, vehicle, 5e-4, authenticator, &untouched, &error));
+  EXPECT_NE(error.find("mac does not verify"), std::string::npos) << error;
+  EXPECT_FALSE(untouched.has_tip_mass);
+  unlink(path.c_str());
+}
+
 TEST(AuthenticatedGaugeStateTest, AForgedFileWithValidContentIsRefusedAndNotApplied) {
   const std::string path = AuthenticatedStatePath("forged");
   const std::string vehicle = VehicleChecksum(BirotorParams());

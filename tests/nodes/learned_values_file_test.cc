@@ -44,6 +44,9 @@ GaugeCalibration LearnedCalibration() {
   calibration.strain_scale_std[1] = 0.0094;
   calibration.offset_rad[0] = 3.6e-4;  // above any tare bound: not deployed, not checked
   calibration.offset_std_rad[0] = calibration.offset_std_rad[1] = 1.8e-5;
+  calibration.has_tip_mass = true;
+  calibration.tip_mass_kg = 0.3434;
+  calibration.tip_mass_std_kg = 0.0032;
   return calibration;
 }
 
@@ -58,6 +61,9 @@ TEST(LearnedValuesFileTest, AStateFileUnderTheSiteKeyGivesItsStrainScales) {
   EXPECT_FALSE(learned.has_body_mass);  // not persisted
   EXPECT_EQ(learned.strain_scale[0], 0.8924);
   EXPECT_EQ(learned.strain_scale_std[1], 0.0094);
+  EXPECT_TRUE(learned.has_tip_mass);
+  EXPECT_EQ(learned.tip_mass_kg, 0.3434);
+  EXPECT_EQ(learned.tip_mass_std_kg, 0.0032);
   // Another vehicle (e.g. the file already updated with this state): refused.
   BirotorParams other;
   other.gauge_scale[0] = 0.8924;

@@ -1,8 +1,8 @@
-// Learned strain scales and body mass into the vehicle parameters
+// Learned strain scales, body mass and tip mass into the vehicle parameters
 // (params/learned_parameter_update.h): what is written where, and every
 // refusal naming the file, the key and the range. Values from
-// config/reference_vehicle.yaml (gauge_scale [1, 1], body_mass_kg 4.0) and
-// the estimator's shipped priors (0.1).
+// config/reference_vehicle.yaml (gauge_scale [1, 1], body_mass_kg 4.0,
+// tip_mass_kg 0.28812) and the estimator's shipped priors (0.1, 0.15, 0.15).
 #include "params/learned_parameter_update.h"
 
 #include <gtest/gtest.h>
@@ -24,8 +24,17 @@ LearnedVehicleValues LearnedScales(double g1, double g2, double sigma) {
 BirotorParams Reference() {
   BirotorParams vehicle;
   vehicle.body_mass_kg = 4.0;
+  vehicle.tip_mass_kg = 0.28812;
   vehicle.gauge_scale[0] = vehicle.gauge_scale[1] = 1.0;
   return vehicle;
+}
+
+LearnedVehicleValues LearnedTipMass(double mass_kg, double sigma_kg) {
+  LearnedVehicleValues learned;
+  learned.has_tip_mass = true;
+  learned.tip_mass_kg = mass_kg;
+  learned.tip_mass_std_kg = sigma_kg;
+  return learned;
 }
 
 TEST(LearnedParameterUpdate, TheStrainScaleMultipliesTheGaugeScale) {
@@ -59,6 +68,22 @@ TEST(LearnedParameterUpdate, TheLearnedBodyMassIsWritten) {
   EXPECT_EQ(changes[0].key, "body_mass_kg");
 }
 
+// The tip mass the arm-mode test learned (tip mass +20 % flight: 0.343447 +-
+// 0.003168 kg, tests/nodes/estimator_learned_message_test.cc) replaces
+// tip_mass_kg; its sigma goes into the change (log line and stamp).
+TEST(LearnedParameterUpdate, TheLearnedTipMassIsWritten) {
+  BirotorParams vehicle = Reference();
+  std::vector<LearnedChange> changes;
+  std::string error;
+  ASSERT_TRUE(ApplyLearnedValues(LearnedTipMass(0.343447, 0.003168), LearnedDeployOptions(), "state", "v.yaml",
+                                 &vehicle, &changes, &error))
+      << error;
+  EXPECT_EQ(vehicle.tip_mass_kg, 0.343447);
+  EXPECT_EQ(vehicle.body_mass_kg, 4.0);
+  EXPECT_EQ(vehicle.gauge_scale[0], 1.0);
+  EXPECT_EQ(LearnedChangesText(changes), "tip_mass_kg 0.28812 -> 0.343447 (learned 0.343447 +- 0.003168)");
+}
+
 // Each refusal leaves the vehicle as it was and names file, key and range.
 void ExpectRefused(const LearnedVehicleValues& learned, const std::string& words) {
   BirotorParams vehicle = Reference();
@@ -69,6 +94,7 @@ void ExpectRefused(const LearnedVehicleValues& learned, const std::string& words
   EXPECT_NE(error.find(words), std::string::npos) << error;
   EXPECT_EQ(vehicle.gauge_scale[0], 1.0);
   EXPECT_EQ(vehicle.body_mass_kg, 4.0);
+  EXPECT_EQ(vehicle.tip_mass_kg, 0.28812);
   EXPECT_TRUE(changes.empty());
 }
 
@@ -78,12 +104,17 @@ TEST(LearnedParameterUpdate, RefusesWhatWasNotLearned) {
                 "run/gauge_state: strain_scale of arm 1 0.8 +- 0.05 was not learned (sigma not below 0.5 x the prior "
                 "sigma 0.1 = 0.05, --learned-max-std-fraction; fly longer in free flight): v.yaml "
                 "vehicle.gauge_scale[0] not updated");
-  ExpectRefused(LearnedVehicleValues(), "run/gauge_state: holds no learned strain scale or body mass");
+  ExpectRefused(LearnedVehicleValues(), "run/gauge_state: holds no learned strain scale, body mass or tip mass");
   LearnedVehicleValues mass;
   mass.has_body_mass = true;
   mass.body_mass_kg = 4.4;
   mass.body_mass_std_kg = 0.3;  // = 0.5 x 0.15 x 4 kg (body_mass_scale_prior_std 0.15)
   ExpectRefused(mass, "v.yaml vehicle.body_mass_kg not updated");
+  // The prior's sigma, 0.15 x 0.28812 kg (no reading): not below half of it.
+  ExpectRefused(LearnedTipMass(0.28812, 0.043218),
+                "run/gauge_state: tip_mass_kg 0.28812 +- 0.043218 was not learned (sigma not below 0.5 x the prior "
+                "sigma 0.043218 = 0.021609, --learned-max-std-fraction; fly longer in free flight): v.yaml "
+                "vehicle.tip_mass_kg not updated");
 }
 
 TEST(LearnedParameterUpdate, RefusesNonFiniteAndOutOfRange) {
@@ -100,6 +131,11 @@ TEST(LearnedParameterUpdate, RefusesNonFiniteAndOutOfRange) {
   mass.body_mass_kg = 2000;
   mass.body_mass_std_kg = 0.01;
   ExpectRefused(mass, "v.yaml: vehicle.body_mass_kg would become 2000 (the learned body mass), outside [0.001, 1000]");
+  ExpectRefused(LearnedTipMass(nan, 0.003), "run/gauge_state: tip_mass_kg nan +- 0.003 is not finite");
+  // 5e-5 kg is below tip_mass_kg's 1e-4 (params/birotor_params_yaml.cc).
+  ExpectRefused(LearnedTipMass(5e-5, 1e-6),
+                "v.yaml: vehicle.tip_mass_kg would become 5e-05 (the learned tip mass), outside [0.0001, 100]: "
+                "refused, file not updated");
 }
 
 TEST(LearnedParameterUpdate, TheFractionIsAnOption) {

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "birotor/controller_status_t.hpp"
+#include "birotor/estimator_learned_n_t.hpp"
 #include "params/scenario_yaml.h"
 #include "simulator/simulator.h"
 #include "sinks/message_sink.h"
@@ -57,18 +58,19 @@ std::map<std::string, int> DecodeLog(const std::string& path, int* decode_failur
   *decode_failures = 0;
   while (reader.Next(&event)) {
     const std::string& channel = event.channel;
-    const bool decoded = channel == c.strain              ? DecodesAs<strain_t>(event, true)
-                         : channel == c.motor             ? DecodesAs<motor_t>(event)
-                         : channel == c.imu               ? DecodesAs<imu_t>(event)
-                         : channel == c.pose              ? DecodesAs<pose_t>(event)
-                         : channel == c.loadcell          ? DecodesAs<loadcell_t>(event)
-                         : channel == c.truth             ? DecodesAs<truth_t>(event)
-                         : channel == c.force             ? DecodesAs<force_estimate_t>(event)
-                         : channel == c.motor_command     ? DecodesAs<motor_command_t>(event, true)
-                         : channel == c.setpoint          ? DecodesAs<setpoint_t>(event, true)
-                         : channel == c.estimator_status  ? DecodesAs<estimator_status_t>(event)
-                         : channel == c.controller_status ? DecodesAs<controller_status_t>(event)
-                                                          : false;  // a channel the simulator does not write
+    const bool decoded = channel == c.strain                ? DecodesAs<strain_t>(event, true)
+                         : channel == c.motor               ? DecodesAs<motor_t>(event)
+                         : channel == c.imu                 ? DecodesAs<imu_t>(event)
+                         : channel == c.pose                ? DecodesAs<pose_t>(event)
+                         : channel == c.loadcell            ? DecodesAs<loadcell_t>(event)
+                         : channel == c.truth               ? DecodesAs<truth_t>(event)
+                         : channel == c.force               ? DecodesAs<force_estimate_t>(event)
+                         : channel == c.motor_command       ? DecodesAs<motor_command_t>(event, true)
+                         : channel == c.setpoint            ? DecodesAs<setpoint_t>(event, true)
+                         : channel == c.estimator_status    ? DecodesAs<estimator_status_t>(event)
+                         : channel == c.estimator_learned_n ? DecodesAs<estimator_learned_n_t>(event)
+                         : channel == c.controller_status   ? DecodesAs<controller_status_t>(event)
+                                                            : false;  // a channel the simulator does not write
     if (!decoded) ++*decode_failures;
     ++counts[event.channel];
   }
@@ -148,6 +150,7 @@ TEST(SimLogTest, ClosedLoopLogHasEveryChannelAndIsByteIdenticalForTheSameSeed) {
   EXPECT_EQ(counts[c.truth], 1000);
   // The nodes' status at 5 Hz on the vehicle clock (the lock-step loop writes them as the nodes do).
   EXPECT_GE(counts[c.estimator_status], 4);
+  EXPECT_EQ(counts[c.estimator_learned_n], counts[c.estimator_status]);  // one with each status
   EXPECT_GE(counts[c.controller_status], 4);
   std::remove(a.c_str());
   std::remove(b.c_str());

@@ -34,6 +34,7 @@
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
 #include "tests/estimator/scenario_harness.h"
+#include "tests/tools/learned_deploy_support.h"
 #include "transport/channels.h"
 #include "transport/log_io.h"
 
@@ -46,48 +47,6 @@ namespace fs = std::filesystem;
 // The check flight: 10 s of random steps of the flown vehicle, a manoeuvre
 // the learning flight (the scenario's gentle move) did not see.
 const std::vector<std::string> kCheckFlight = {"scenario.duration_s=10", "trajectory.kind=random_steps"};
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// birotor-identify with args; its exit status, its stderr in *err (optional).
-int RunIdentify(const std::vector<std::string>& args, std::string* err = nullptr) {
-  const std::string err_path = ::testing::TempDir() + "/learned_deploy_stderr_" + std::to_string(getpid());
-  std::string command = std::string(BIROTOR_IDENTIFY_BIN) + " --log-level warn";
-  for (const std::string& a : args) command += " '" + a + "'";
-  command += " 2> '" + err_path + "'";
-  const int status = std::system(command.c_str());
-  const std::string text = ReadText(err_path);
-  if (err != nullptr) *err = text;
-  std::fputs(text.c_str(), stderr);
-  std::remove(err_path.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-struct Folder {
-  Folder() {
-    char pattern[] = "/tmp/learned_deploy_XXXXXX";
-    path = mkdtemp(pattern);
-  }
-  ~Folder() { fs::remove_all(path); }
-  std::string path;
-};
-
-// A site key file as deploy/postinst makes it: 32 random bytes, mode 0600.
-SiteKey WriteKeyFile(const std::string& path) {
-  SiteKey::Bytes bytes;
-  std::random_device random;
-  for (uint8_t& b : bytes) b = static_cast<uint8_t>(random());
-  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-  EXPECT_GE(fd, 0) << path;
-  EXPECT_EQ(write(fd, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
-  close(fd);
-  return SiteKey(bytes);
-}
 
 // The shipped config/estimator.yaml with learning switched on, at path.
 void WriteLearningConfig(const std::string& path, bool strain_scale, bool body_mass) {

@@ -29,6 +29,7 @@ TEST(ChannelsTest, DefaultPrefix) {
   EXPECT_EQ(names.force_n, "BIROTOR_FORCE_N");
   EXPECT_EQ(names.motor_command_n, "BIROTOR_MOTOR_COMMAND_N");
   EXPECT_EQ(names.controller_rotors_n, "BIROTOR_CONTROLLER_ROTORS_N");
+  EXPECT_EQ(names.estimator_learned_n, "BIROTOR_ESTIMATOR_LEARNED_N");
   EXPECT_EQ(names.vehicle, "BIROTOR_VEHICLE");
 }
 
@@ -53,6 +54,7 @@ TEST(ChannelsTest, MotorCommandNAuthStaysTheLongestBaseName) {
                            kForceNChannel,
                            kMotorCommandNChannel,
                            kControllerRotorsNChannel,
+                           kEstimatorLearnedNChannel,
                            kVehicleDescriptionChannel,
                            kMotorCommandAuthChannel,
                            kSetpointAuthChannel,

@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/loadcell_n_t.hpp"
 #include "birotor/motor_command_n_t.hpp"
@@ -168,6 +169,28 @@ inline motor_command_n_t MakeTestMessage<motor_command_n_t>() {
 template <>
 inline vehicle_description_t MakeTestMessage<vehicle_description_t>() {
   return MakeCountedTestMessage<vehicle_description_t>(kTestArmCount);
+}
+// Every source string differs in length, so a walker that skips the wrong
+// one fails the round trip.
+template <>
+inline estimator_learned_n_t MakeTestMessage<estimator_learned_n_t>() {
+  estimator_learned_n_t m{};
+  m.utime = 4000003;
+  m.seq = 19;
+  m.vehicle_checksum = "0123456789abcdef";
+  m.n_arms = static_cast<int8_t>(kTestArmCount);
+  m.strain_scale = Ramp(kTestArmCount, 1.0);
+  m.strain_scale_std = Ramp(kTestArmCount, 0.0625);
+  m.strain_scale_source = "learned";
+  m.tip_mass_kg = Ramp(kTestArmCount, 0.25);
+  m.tip_mass_std_kg = Ramp(kTestArmCount, 0.03125);
+  m.tip_mass_source = "state_file";
+  m.strain_noise_rad = Ramp(kTestArmCount, 2e-5);
+  m.strain_noise_source = "params";
+  m.body_mass_kg = 4.0;
+  m.body_mass_std_kg = std::numeric_limits<double>::quiet_NaN();
+  m.body_mass_source = "";
+  return m;
 }
 
 }  // namespace birotor::transport_test

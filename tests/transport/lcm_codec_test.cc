@@ -25,7 +25,7 @@ class CodecTest : public ::testing::Test {};
 using AllMessages =
     ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t, motor_command_t,
                      input_health_t, estimator_status_t, strain_n_t, motor_n_t, loadcell_n_t, truth_n_t,
-                     force_estimate_n_t, motor_command_n_t, vehicle_description_t>;
+                     force_estimate_n_t, motor_command_n_t, vehicle_description_t, estimator_learned_n_t>;
 TYPED_TEST_SUITE(CodecTest, AllMessages);
 
 TYPED_TEST(CodecTest, RoundTripReproducesTheBytes) {
@@ -175,6 +175,39 @@ TEST(CodecTest, CorruptArrayCountIsRejected) {
   std::vector<uint8_t> negative = valid;
   WriteInt32(&negative, num_inputs_offset, -1);
   EXPECT_EQ(DecodeStatus(negative), DecodeError::kMalformed);
+}
+
+// estimator_learned_n_t (lcmtypes/estimator_learned_n_t.lcm): its five
+// strings and its count are walked before the generated decoder runs.
+TEST(CodecTest, CorruptLengthsOfTheLearnedValuesAreRejected) {
+  const estimator_learned_n_t message = MakeTestMessage<estimator_learned_n_t>();
+  const std::vector<uint8_t> valid = Encode(message);
+  const auto decode = [](const std::vector<uint8_t>& bytes) {
+    estimator_learned_n_t decoded{};
+    return DecodeMessage(bytes.data(), bytes.size(), &decoded);
+  };
+  const size_t arrays = 8 * static_cast<size_t>(message.n_arms);
+  const size_t checksum_length_offset = 8 + 8 + 4;
+  const size_t count_offset = checksum_length_offset + 4 + message.vehicle_checksum.size() + 1;
+  const size_t scale_source_offset = count_offset + 1 + 2 * arrays;
+  const size_t tip_source_offset = scale_source_offset + 4 + message.strain_scale_source.size() + 1 + 2 * arrays;
+  const size_t noise_source_offset = tip_source_offset + 4 + message.tip_mass_source.size() + 1 + arrays;
+  const size_t mass_source_offset = noise_source_offset + 4 + message.strain_noise_source.size() + 1 + 2 * 8;
+  ASSERT_EQ(mass_source_offset + 4 + message.body_mass_source.size() + 1, valid.size());
+  for (const size_t offset :
+       {checksum_length_offset, scale_source_offset, tip_source_offset, noise_source_offset, mass_source_offset}) {
+    for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
+      std::vector<uint8_t> bytes = valid;
+      WriteInt32(&bytes, offset, length);
+      EXPECT_NE(decode(bytes), DecodeError::kNone) << "offset " << offset << " length " << length;
+    }
+  }
+  std::vector<uint8_t> negative = valid;
+  negative[count_offset] = 0xff;  // n_arms -1
+  EXPECT_EQ(decode(negative), DecodeError::kMalformed);
+  std::vector<uint8_t> longer = valid;
+  longer[count_offset] = 100;  // arrays past the end
+  EXPECT_EQ(decode(longer), DecodeError::kTruncated);
 }
 
 TEST(CodecTest, EmptyArrayDecodes) {
