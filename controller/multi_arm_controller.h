@@ -32,24 +32,13 @@
 #include "controller/multi_arm_mpc.h"
 #include "controller/pose_gate.h"
 #include "controller/reference_point.h"
+#include "controller/rotor_efficiency_estimate.h"
 #include "controller/wrench_allocation.h"
 #include "model/multi_arm_linearization.h"
 #include "model/vehicle_description.h"
 #include "samples/samples.h"
 
 namespace birotor {
-
-// Each rotor's thrust efficiency as an estimator reports it (the content of
-// force_estimate_n_t: thrust_scale, its one-sigma, STATUS_VALID,
-// rotor_fault_bits). Rotor i is arm i of the description.
-struct RotorEfficiencyEstimate {
-  int64_t utime = -1;                               // vehicle clock [us]; -1: none
-  int n_rotors = 0;                                 // must be the vehicle's arm_count
-  std::array<double, kMaxArms> thrust_scale{};      // real thrust / c_T,i omega_i^2 [1]
-  std::array<double, kMaxArms> thrust_scale_std{};  // its one-sigma [1]
-  bool valid = false;                               // the estimator's STATUS_VALID
-  int32_t rotor_fault_bits = 0;                     // bit i: rotor i + 1 faulty
-};
 
 // The controlled descent's state and counts (the ControllerHealth fields of
 // the same names).
