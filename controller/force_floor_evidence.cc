@@ -4,40 +4,61 @@
 #include <cmath>
 
 #include "numerics/time_units.h"
-#include "samples/rotor_count.h"
 
 namespace birotor {
 
-int ForceFloorEvidence::FlyAtTheFloor(ForceEstimate* estimate) {
-  const int32_t fault_bits[kBirotorRotors] = {kStatusRotor1Fault, kStatusRotor2Fault};
+ForceFloorEvidence::ForceFloorEvidence(const SupervisionParams& params, double low_pass_s, int rotor_count)
+    : params_(params), low_pass_s_(low_pass_s), rotor_count_(rotor_count) {
+  reported_scale_.fill(1.0);
+}
+
+int ForceFloorEvidence::FlyAtTheFloor(RotorEfficiencyEstimate* estimate) {
+  const bool counted = estimate->valid && estimate->n_rotors == rotor_count_;
   int set = 0;
-  for (int i = 0; i < kBirotorRotors; ++i) {
-    const double scale = estimate->thrust_scale[i];
-    const bool below = (estimate->status & kStatusValid) != 0 && (estimate->status & fault_bits[i]) != 0 &&
-                       scale >= 0.0 && scale < params_.min_plausible_thrust_scale;
-    below_floor_run_[i] = below ? below_floor_run_[i] + 1 : 0;
-    if (below && below_floor_run_[i] >= params_.at_floor_samples) {
-      estimate->thrust_scale[i] = params_.min_plausible_thrust_scale;
+  for (int i = 0; i < rotor_count_; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    const double scale = estimate->thrust_scale[rotor];
+    const bool below = counted && (estimate->rotor_fault_bits & (1 << i)) != 0 && scale >= 0.0 &&
+                       scale < params_.min_plausible_thrust_scale;
+    below_floor_run_[rotor] = below ? below_floor_run_[rotor] + 1 : 0;
+    if (below && below_floor_run_[rotor] >= params_.at_floor_samples) {
+      estimate->thrust_scale[rotor] = params_.min_plausible_thrust_scale;
       ++set;
     }
   }
   return set;
 }
 
-void ForceFloorEvidence::Note(const ForceEstimate& estimate, int64_t now_us, const double (&baseline)[kBirotorRotors]) {
+int ForceFloorEvidence::FlyAtTheFloor(ForceEstimate* estimate) {
+  RotorEfficiencyEstimate report = RotorEfficiencyReportOf(*estimate);
+  const int set = FlyAtTheFloor(&report);
+  for (int i = 0; i < kBirotorRotors; ++i) estimate->thrust_scale[i] = report.thrust_scale[static_cast<size_t>(i)];
+  return set;
+}
+
+void ForceFloorEvidence::Note(const RotorEfficiencyEstimate& estimate, int64_t now_us,
+                              const std::array<double, kMaxArms>& baseline) {
   const double age_s = ElapsedSeconds(now_us, estimate.utime);
-  if ((estimate.status & kStatusValid) == 0 || age_s > params_.clock_past_window_s ||
+  if (!estimate.valid || estimate.n_rotors != rotor_count_ || age_s > params_.clock_past_window_s ||
       -age_s > params_.clock_future_window_s || estimate.utime <= reported_utime_)
     return;
   // Low-passed: one ringing sample is not a loss.
   const double dt_s = reported_utime_ < 0 ? 0.0 : ElapsedSeconds(estimate.utime, reported_utime_);
   const double gain = std::min(1.0, dt_s / low_pass_s_);
   reported_utime_ = estimate.utime;
-  for (int i = 0; i < kBirotorRotors; ++i) {
-    const double scale = estimate.thrust_scale[i];
+  for (int i = 0; i < rotor_count_; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    const double scale = estimate.thrust_scale[rotor];
     if (!std::isfinite(scale) || scale < 0.0 || scale > params_.max_plausible_thrust_scale) continue;
-    reported_scale_[i] += gain * (scale / baseline[i] - reported_scale_[i]);
+    reported_scale_[rotor] += gain * (scale / baseline[rotor] - reported_scale_[rotor]);
   }
+}
+
+void ForceFloorEvidence::Note(const ForceEstimate& estimate, int64_t now_us, const double (&baseline)[kBirotorRotors]) {
+  std::array<double, kMaxArms> baselines;
+  baselines.fill(1.0);
+  for (int i = 0; i < kBirotorRotors; ++i) baselines[static_cast<size_t>(i)] = baseline[i];
+  Note(RotorEfficiencyReportOf(estimate), now_us, baselines);
 }
 
 }  // namespace birotor

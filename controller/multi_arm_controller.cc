@@ -60,6 +60,7 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       law_(vehicle, GainsAtCommandRate(config), hover),
       observer_(config.observer),
       hover_command_(HoverCommand(vehicle, hover)),
+      floor_evidence_(config.supervision, config.efficiency.infeasible_s, vehicle.arm_count),
       feasibility_(FeasibilityOf(vehicle, config, hover)),
       last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
   if (!config.model_predictive) return;
@@ -107,21 +108,54 @@ void MultiArmController::UpdateState(int64_t now_us, double dt_s) {
   observer_.FuseHeldPose(imu_fresh);
 }
 
+RotorEfficiencyEstimate MultiArmController::NoteReport(const RotorEfficiencyEstimate& reported, int64_t now_us) {
+  RotorEfficiencyEstimate estimate = reported;
+  force_at_floor_ += floor_evidence_.FlyAtTheFloor(&estimate);
+  // e_i is relative to the description's c_T,i: the evidence's baseline is 1
+  // (the birotor's is what its EfficiencyConditioner has learnt).
+  floor_evidence_.Note(reported, now_us, NominalEfficiencies());
+  return estimate;
+}
+
+bool MultiArmController::OnEfficiency(const RotorEfficiencyEstimate& estimate) {
+  const SupervisionParams& s = config_.supervision;
+  const bool counted = estimate.n_rotors == vehicle_.arm_count;
+  bool plausible = counted;
+  for (int i = 0; plausible && i < vehicle_.arm_count; ++i) {
+    const double scale = estimate.thrust_scale[static_cast<size_t>(i)];
+    plausible = std::isfinite(scale) && scale >= s.min_plausible_thrust_scale && scale <= s.max_plausible_thrust_scale;
+  }
+  // Refused, not clamped: an unflagged scale of 0.01 (an attack on FORCE) is
+  // not flown as 0.2; a flagged run below the floor is (NoteReport). A
+  // refused VALID report is an outlier of a live FORCE (the estimate ringing
+  // right after a loss, a scale dithering at the floor): the last plausible
+  // estimate stays in force, and with it infeasible_s's timer.
+  if (plausible) {
+    efficiency_estimate_ = estimate;
+    force_alive_utime_ = estimate.utime;
+  } else if (counted && estimate.valid) {
+    force_alive_utime_ = std::max(force_alive_utime_, estimate.utime);
+  }
+  refused_estimates_ += plausible ? 0 : 1;
+  return plausible;
+}
+
+bool MultiArmController::EstimateUsable(int64_t now_us) const {
+  return config_.force_feedback && force_usable_ && efficiency_estimate_.valid &&
+         AgeS(force_alive_utime_, now_us) <= config_.supervision.force_timeout_s;
+}
+
 RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {
   RotorEfficiencies efficiency = NominalEfficiencies();
+  if (!EstimateUsable(now_us)) return efficiency;
   const RotorEfficiencyEstimate& e = efficiency_estimate_;
-  const SupervisionParams& s = config_.supervision;
-  if (!config_.force_feedback || !force_usable_ || !e.valid || e.n_rotors != vehicle_.arm_count ||
-      AgeS(e.utime, now_us) > s.force_timeout_s)
-    return efficiency;
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
-    const double scale = e.thrust_scale[rotor];
+    const double scale = e.thrust_scale[rotor];  // within the plausible band (OnEfficiency)
     const bool flagged = (e.rotor_fault_bits & (1 << i)) != 0;
     const bool changed = std::abs(scale - 1.0) > config_.efficiency.change_threshold;
     const bool certain = scale > 0.0 && e.thrust_scale_std[rotor] / scale <= config_.efficiency.max_relative_sigma;
-    if ((flagged || changed) && certain && std::isfinite(scale))
-      efficiency[rotor] = std::clamp(scale, s.min_plausible_thrust_scale, s.max_plausible_thrust_scale);
+    if ((flagged || changed) && certain) efficiency[rotor] = scale;
   }
   return efficiency;
 }
@@ -162,17 +196,14 @@ MultiArmRotorCommand MultiArmController::FlyMpc(const ReferencePoint& reference,
 bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint& reference,
                                            const RotorEfficiencies& efficiency, double dt_s) {
   if (!config_.force_feedback) return false;
-  const RotorEfficiencyEstimate& e = efficiency_estimate_;
-  const bool estimate_usable = force_usable_ && e.valid && e.n_rotors == vehicle_.arm_count &&
-                               AgeS(e.utime, now_us) <= config_.supervision.force_timeout_s;
   const BodyState& body = observer_.state();
   FeasibilityInputs in;
-  in.following_force = estimate_usable;
+  in.following_force = EstimateUsable(now_us);
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     in.efficiency[i] = efficiency[rotor];
-    // The newest usable report, not low-passed (ForceFloorEvidence is the birotor's).
-    in.reported_scale[i] = estimate_usable ? e.thrust_scale[rotor] : 1.0;
+    // Every report low-passed, refused ones included (evidence, not flown).
+    in.reported_scale[i] = floor_evidence_.reported_scale(i);
     in.command_rad_s[i] = last_command_rad_s_[rotor];
   }
   in.allocation_limited = last_saturated_;

@@ -4,7 +4,10 @@
 // the gains of config/controller.yaml, fully actuated (phi_des = 0, F_x made
 // directly) when the allocation allows it and tilt-to-move otherwise, and N
 // rotor speed commands through the nominal map or each rotor's estimated
-// efficiency (RotorEfficiencyEstimate, the content of force_estimate_n_t).
+// efficiency (RotorEfficiencyEstimate, the content of force_estimate_n_t;
+// a scale outside the plausible band refused, a flagged one below the floor
+// flown as the floor, the reports low-passed as sink evidence:
+// ForceFloorEvidence, as the birotor's).
 // In mode mpc (ControllerConfig::model_predictive) the N-input MPC
 // (controller/multi_arm_mpc.h) flies at the mpc: section's rate on the
 // observer's state, the efficiencies in use and the reference extrapolated
@@ -15,9 +18,9 @@
 // force feedback, latched) or a POSE the caller calls lost gives the level
 // controlled descent (DescentReference), levelling first when infeasible,
 // the tilt within degraded_max_tilt_rad, the commands slewed by
-// degraded_omega_rate_rad_s2, the integrators reset on entry. Its inputs are
-// not supervised here (stream locks, gates: the N-rotor node). docs/
-// controller.md, "Vehicles with N rotors".
+// degraded_omega_rate_rad_s2, the integrators reset on entry. Its inputs'
+// streams are not supervised here (stream locks, clock, gates: the N-rotor
+// node). docs/controller.md, "Vehicles with N rotors".
 #pragma once
 
 #include <array>
@@ -27,29 +30,19 @@
 
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
+#include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
 #include "controller/multi_arm_law.h"
 #include "controller/multi_arm_mpc.h"
 #include "controller/pose_gate.h"
 #include "controller/reference_point.h"
+#include "controller/rotor_efficiency_estimate.h"
 #include "controller/wrench_allocation.h"
 #include "model/multi_arm_linearization.h"
 #include "model/vehicle_description.h"
 #include "samples/samples.h"
 
 namespace birotor {
-
-// Each rotor's thrust efficiency as an estimator reports it (the content of
-// force_estimate_n_t: thrust_scale, its one-sigma, STATUS_VALID,
-// rotor_fault_bits). Rotor i is arm i of the description.
-struct RotorEfficiencyEstimate {
-  int64_t utime = -1;                               // vehicle clock [us]; -1: none
-  int n_rotors = 0;                                 // must be the vehicle's arm_count
-  std::array<double, kMaxArms> thrust_scale{};      // real thrust / c_T,i omega_i^2 [1]
-  std::array<double, kMaxArms> thrust_scale_std{};  // its one-sigma [1]
-  bool valid = false;                               // the estimator's STATUS_VALID
-  int32_t rotor_fault_bits = 0;                     // bit i: rotor i + 1 faulty
-};
 
 // The controlled descent's state and counts (the ControllerHealth fields of
 // the same names).
@@ -76,8 +69,24 @@ class MultiArmController {
   // onto it (MoveObserverOnto), kInside (the lock-step loop) fuses it.
   void OnPose(const PoseSample& sample, PoseGate::Verdict verdict = PoseGate::Verdict::kInside);
   void OnImu(const ImuSample& sample);
-  // The newest estimate; used only in force_feedback mode (EfficiencyInUse).
-  void OnEfficiency(const RotorEfficiencyEstimate& estimate) { efficiency_estimate_ = estimate; }
+  // FORCE's report (RotorEfficiencyEstimate: rotor i is arm i) as it
+  // arrived when the caller's clock read now_us [us]: every report once,
+  // before the caller's own checks (as VehicleController::OnForce). Noted as
+  // evidence for the sink detection (ForceFloorEvidence::Note: VALID, of the
+  // rotor count, within the clock windows, newer than the last, below the
+  // floor included) and returned with a rotor it flags as faulty with a
+  // scale below min_plausible_thrust_scale for at_floor_samples reports in
+  // a row set to the floor (counted in force_at_floor()): the estimate to
+  // check and hand to OnEfficiency.
+  RotorEfficiencyEstimate NoteReport(const RotorEfficiencyEstimate& reported, int64_t now_us);
+  // The newest estimate (NoteReport's), used only in force_feedback mode
+  // (EfficiencyInUse). One of another rotor count or with a scale
+  // non-finite or outside [min, max]_plausible_thrust_scale is refused, not
+  // clamped (false; counted in refused_estimates()); a refused VALID one of
+  // the rotor count keeps the last plausible estimate in force (its age
+  // counts from the refused one's stamp), as the birotor's fallback holds
+  // its efficiency through a refused FORCE.
+  bool OnEfficiency(const RotorEfficiencyEstimate& estimate);
   // The supervisor's verdict on the estimate (the N-rotor node's force
   // recovery rule, ForceRecovery): false flies the nominal map whatever the
   // estimate says. true (the default) leaves it to EfficiencyInUse's own
@@ -106,11 +115,12 @@ class MultiArmController {
   int64_t mpc_solves() const { return mpc_solves_; }
   int64_t mpc_fallbacks() const { return mpc_fallbacks_; }
 
-  // e_i flown at now_us: 1 in nominal mode, while SetForceUsable(false), without an estimate, with one
-  // older than force_timeout_s, not VALID or for another rotor count; else
-  // rotor i's thrust_scale clamped to [min, max]_plausible_thrust_scale when
-  // it is flagged faulty or |scale - 1| > efficiency.change_threshold, and
-  // its sigma / scale <= efficiency.max_relative_sigma; 1 otherwise.
+  // e_i flown at now_us: 1 in nominal mode, while SetForceUsable(false),
+  // without a plausible estimate, with one not VALID or older than
+  // force_timeout_s (counted from a newer refused VALID report, if any);
+  // else rotor i's thrust_scale when it is flagged faulty or |scale - 1| >
+  // efficiency.change_threshold, and its sigma / scale <=
+  // efficiency.max_relative_sigma; 1 otherwise.
   RotorEfficiencies EfficiencyInUse(int64_t now_us) const;
 
   // The efficiencies flown in the newest period: EfficiencyInUse with the
@@ -118,6 +128,11 @@ class MultiArmController {
   const RotorEfficiencies& flown_efficiency() const { return flown_efficiency_; }
   const MultiArmDegradation& degradation() const { return degradation_; }
   const HoverFeasibility& feasibility() const { return feasibility_; }
+  // The low-passed reports HoverFeasibility reads (reported_scale).
+  const ForceFloorEvidence& floor_evidence() const { return floor_evidence_; }
+  // Scales below the floor flown as the floor (NoteReport); estimates refused (OnEfficiency).
+  int64_t force_at_floor() const { return force_at_floor_; }
+  int64_t refused_estimates() const { return refused_estimates_; }
 
   MultiArmControlMode mode() const { return law_.mode(); }
   const BodyState& body_state() const { return observer_.state(); }
@@ -126,10 +141,13 @@ class MultiArmController {
 
  private:
   void UpdateState(int64_t now_us, double dt_s);
+  // The estimate in force may be flown at now_us: force feedback,
+  // SetForceUsable, VALID, FORCE alive within force_timeout_s.
+  bool EstimateUsable(int64_t now_us) const;
   // Force feedback only (nominal mode flies no efficiency: its infeasibility
-  // is not known): HoverFeasibility on the efficiencies in use, the newest
-  // estimate's scales, the last command and the state against the
-  // reference; true once hover is infeasible (latched).
+  // is not known): HoverFeasibility on the efficiencies in use, the
+  // low-passed reports (ForceFloorEvidence), the last command and the state
+  // against the reference; true once hover is infeasible (latched).
   bool UpdateFeasibility(int64_t now_us, const ReferencePoint& reference, const RotorEfficiencies& efficiency,
                          double dt_s);
   // The descent's reference and tilt bound for this period; counts entries
@@ -157,9 +175,13 @@ class MultiArmController {
   ControllerConfig config_;
   MultiArmLaw law_;
   BodyStateObserver observer_;
-  MultiArmRotorCommand hover_command_;  // before the first POSE
-  RotorEfficiencyEstimate efficiency_estimate_;
-  bool force_usable_ = true;  // SetForceUsable
+  MultiArmRotorCommand hover_command_;           // before the first POSE
+  RotorEfficiencyEstimate efficiency_estimate_;  // the newest plausible one
+  int64_t force_alive_utime_ = -1;               // its stamp, or a newer refused VALID report's [us]
+  bool force_usable_ = true;                     // SetForceUsable
+  ForceFloorEvidence floor_evidence_;
+  int64_t force_at_floor_ = 0;
+  int64_t refused_estimates_ = 0;
   bool has_pose_ = false;
   int64_t last_imu_utime_ = -1;
   int imu_count_ = 0;

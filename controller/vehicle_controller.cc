@@ -41,7 +41,7 @@ VehicleController::VehicleController(const ControllerConfig& config)
       efficiency_(config.efficiency, 2.0 * HoverForce(model_)),
       feasibility_(config.efficiency, MaxRotorForceN(model_), 2.0 * HoverForce(model_)),
       pose_gate_(config.supervision),
-      floor_evidence_(config.supervision, config.efficiency.infeasible_s),
+      floor_evidence_(config.supervision, config.efficiency.infeasible_s, kBirotorRotors),
       force_recovery_(config.supervision),
       force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),

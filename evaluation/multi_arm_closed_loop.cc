@@ -157,12 +157,13 @@ MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, c
   run.commands_rad_s.reserve(static_cast<size_t>(total_steps / control_every_steps + 1));
   if (controller.model_predictive()) run.mpc_solve_cpu_s.reserve(run.commands_rad_s.capacity());
   LoopSink sink(&controller, &simulator, options, &run);
-  RotorEfficiencyEstimate estimate;
+  RotorEfficiencyEstimate estimate, newest;
+  bool fresh = false;  // newest not yet handed to the controller
   for (int64_t k = 0; !simulator.done(); ++k) {
     if (k % control_every_steps == 0) {
       const int64_t now_us = simulator.utime();
-      if (options.efficiency != nullptr && options.efficiency->Latest(now_us, &estimate))
-        controller.OnEfficiency(estimate);
+      if (fresh) controller.OnEfficiency(newest);
+      fresh = false;
       const MultiArmRotorCommand command = controller.Update(now_us, simulator.ReferenceAt(simulator.time_s()));
       simulator.OfferRotorCommands(command.omega_cmd_rad_s);
       run.commands_rad_s.push_back(command.omega_cmd_rad_s);
@@ -174,6 +175,13 @@ MultiArmClosedLoopRun RunMultiArmClosedLoop(const VehicleDescription& vehicle, c
         ++run.commands_out_of_bounds;
     }
     simulator.Step(&sink);
+    // Every estimate as it arrives, as the N-rotor node takes FORCE_N: its
+    // evidence noted (the floor's run counts estimates, not periods), the
+    // newest flown in the next period.
+    if (options.efficiency != nullptr && options.efficiency->Latest(simulator.utime(), &estimate)) {
+      newest = controller.NoteReport(estimate, simulator.utime());
+      fresh = true;
+    }
   }
   run.saturated_periods = controller.saturated_periods();
   run.degradation = controller.degradation();

@@ -5,8 +5,8 @@
 // rotor commands back, on one virtual clock. In mode mpc the solve deadline
 // is a work budget (MpcDeadlineClock::kWork, as the birotor's lock-step
 // loop), so the same seed flies the same on any machine. Optionally an efficiency provider (the N-arm estimator, fed
-// every sample) whose newest estimate the controller flies; without one the
-// nominal map. The same scenario and seed give the same commands.
+// every sample) whose every estimate the controller notes and whose newest
+// it flies; without one the nominal map. The same scenario and seed give the same commands.
 // birotor-eval --vehicle FILE --control uses it.
 #pragma once
 
@@ -26,9 +26,10 @@ namespace birotor {
 
 // The hook for an efficiency estimator: every simulator sample arrives
 // through the SampleSink callbacks (STRAIN_N, MOTOR_N, IMU, POSE, TRUTH_N,
-// in the order the simulator emits them); once per control period Latest is
-// asked for the newest estimate at now_us (false: nothing new, the
-// controller keeps the one it has).
+// in the order the simulator emits them); after every simulator step Latest
+// is asked for the newest estimate at now_us (false: nothing new), which the
+// controller notes (MultiArmController::NoteReport) and flies from the next
+// control period on (the controller keeps the one it has until then).
 class EfficiencyProvider : public SampleSink {
  public:
   virtual bool Latest(int64_t now_us, RotorEfficiencyEstimate* estimate) = 0;

@@ -155,10 +155,27 @@ void MultiArmControllerService::OnImu(const ImuSample& sample, int64_t now_us) {
 void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now_us) {
   const SupervisionParams& s = config_.supervision;
   const int n = vehicle_.arm_count;
+  RotorEfficiencyEstimate reported;
+  reported.utime = m.utime;
+  reported.n_rotors = n;
+  for (int i = 0; i < n; ++i) {
+    reported.thrust_scale[static_cast<size_t>(i)] = m.thrust_scale[i];
+    // thrust_scale's sigma from the force's: sigma_e = sigma_f e / f (f > 0).
+    reported.thrust_scale_std[static_cast<size_t>(i)] =
+        m.force_n[i] > 0.0 ? m.force_std_n[i] * m.thrust_scale[i] / m.force_n[i] : 0.0;
+  }
+  reported.valid = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
+  reported.rotor_fault_bits = m.rotor_fault_bits;
+  // Before the checks (as the birotor's): a rotor FORCE_N keeps flagging
+  // below the floor is flown as the floor, and every report is evidence for
+  // the sink detection (MultiArmController::NoteReport).
+  const RotorEfficiencyEstimate estimate = controller_.NoteReport(reported, now_us);
+  health_.force_at_floor = controller_.force_at_floor();
   bool plausible = m.utime >= 0;
   for (int i = 0; i < n; ++i) {
+    const double scale = estimate.thrust_scale[static_cast<size_t>(i)];
     plausible = plausible && std::isfinite(m.force_n[i]) && std::isfinite(m.force_std_n[i]) &&
-                m.thrust_scale[i] >= s.min_plausible_thrust_scale && m.thrust_scale[i] <= s.max_plausible_thrust_scale;
+                scale >= s.min_plausible_thrust_scale && scale <= s.max_plausible_thrust_scale;
   }
   // The payload digest over the scales and the status: an exact re-send is not news.
   double values[kMaxArms + 1] = {};
@@ -171,19 +188,8 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
     force_recovery_.OnRefused(plausible);
     return;
   }
-  RotorEfficiencyEstimate estimate;
-  estimate.utime = m.utime;
-  estimate.n_rotors = n;
-  for (int i = 0; i < n; ++i) {
-    estimate.thrust_scale[static_cast<size_t>(i)] = m.thrust_scale[i];
-    // thrust_scale's sigma from the force's: sigma_e = sigma_f e / f (f > 0).
-    estimate.thrust_scale_std[static_cast<size_t>(i)] =
-        m.force_n[i] > 0.0 ? m.force_std_n[i] * m.thrust_scale[i] / m.force_n[i] : 0.0;
-  }
-  estimate.valid = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
   force_recovery_.OnAccepted(m.utime, previous_utime, estimate.valid);
   if (!estimate.valid) ++health_.force_unhealthy;
-  estimate.rotor_fault_bits = m.rotor_fault_bits;
   controller_.OnEfficiency(estimate);
 }
 

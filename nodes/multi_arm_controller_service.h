@@ -91,7 +91,9 @@ class MultiArmControllerService : public PacketHandler {
   void Dispatch(Channel channel, const void* data, size_t size, int64_t host_us);
   void OnPose(const PoseSample& sample, int64_t now_us);
   void OnImu(const ImuSample& sample, int64_t now_us);
-  // A decoded FORCE_N of the right count: plausible (finite, thrust scales
+  // A decoded FORCE_N of the right count: the controller's evidence first
+  // (MultiArmController::NoteReport: sink evidence, a flagged scale below
+  // the floor flown as the floor), then plausible (finite, thrust scales
   // within [min, max]_plausible_thrust_scale), in the clock windows, of the
   // locked seq stream, newest; then the controller's efficiency estimate.
   void OnForce(const force_estimate_n_t& message, int64_t now_us);

@@ -2,8 +2,9 @@
 // config/vehicles/trirotor.yaml: its hover speeds before the first POSE,
 // exactly the hover thrusts on a vehicle at rest, and which efficiency it
 // flies for each kind of estimate (the gains and thresholds of
-// ControllerConfig's defaults, which config/controller.yaml keeps), and mode
-// mpc with its fallback to the cascade.
+// ControllerConfig's defaults, which config/controller.yaml keeps: an
+// implausible scale refused, a flagged one below the floor flown at it), and
+// mode mpc with its fallback to the cascade.
 #include "controller/multi_arm_controller.h"
 
 #include <gtest/gtest.h>
@@ -105,9 +106,51 @@ TEST(MultiArmControllerTest, FollowsAFlaggedOrChangedRotorOnly) {
   // Unflagged but 0.4 from 1: followed.
   controller.OnEfficiency(Estimate(1000, 0.6, false));
   EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 0.6);
-  // Below min_plausible_thrust_scale (0.2): clamped to it.
-  controller.OnEfficiency(Estimate(1000, 0.1, true));
-  EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 0.2);
+}
+
+// A scale outside [min, max]_plausible_thrust_scale = [0.2, 2] is refused,
+// not clamped (docs/controller.md, "Plausible efficiencies"): the last
+// plausible estimate stays in force while refused VALID reports keep coming
+// (force_timeout_s, 5 ms, counted from the newest of them); a refused one
+// that is not VALID, or of another rotor count, does not keep it.
+TEST(MultiArmControllerTest, RefusesAnImplausibleScaleAndKeepsThePlausibleOne) {
+  const VehicleDescription vehicle = Trirotor();
+  MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
+  EXPECT_TRUE(controller.OnEfficiency(Estimate(1000, 0.6, true)));
+  EXPECT_FALSE(controller.OnEfficiency(Estimate(2000, 0.1, false)));  // below the floor, unflagged
+  EXPECT_FALSE(controller.OnEfficiency(Estimate(3000, 0.1, true)));   // flagged, not (yet) at the floor
+  EXPECT_FALSE(controller.OnEfficiency(Estimate(4000, 2.5, false)));  // above max
+  EXPECT_FALSE(controller.OnEfficiency(Estimate(5000, NAN, true)));
+  EXPECT_EQ(controller.refused_estimates(), 4);
+  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5000)[1], 0.6);
+  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5001)[1], 1.0);
+  RotorEfficiencyEstimate invalid = Estimate(6000, 0.1, true);
+  invalid.valid = false;
+  EXPECT_FALSE(controller.OnEfficiency(invalid));
+  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5001)[1], 1.0);
+  RotorEfficiencyEstimate two = Estimate(7000, 0.1, true);
+  two.n_rotors = 2;
+  EXPECT_FALSE(controller.OnEfficiency(two));
+  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5001)[1], 1.0);
+  EXPECT_EQ(controller.refused_estimates(), 6);
+}
+
+// A rotor FORCE flags with its scale below the floor: refused for the first
+// at_floor_samples - 1 (4) reports, then flown at the floor, 0.2
+// (NoteReport, ForceFloorEvidence); each report counted in force_at_floor.
+TEST(MultiArmControllerTest, FlaggedScaleBelowTheFloorIsFlownAtTheFloor) {
+  const VehicleDescription vehicle = Trirotor();
+  const ControllerConfig config = ForceFeedback();
+  MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+  const int at_floor = config.supervision.at_floor_samples;
+  for (int k = 1; k <= at_floor + 2; ++k) {
+    const int64_t now_us = 1000 * k;
+    const bool flown = controller.OnEfficiency(controller.NoteReport(Estimate(now_us, 0.1, true), now_us));
+    EXPECT_EQ(flown, k >= at_floor) << k;
+    EXPECT_EQ(controller.EfficiencyInUse(now_us)[1], k >= at_floor ? 0.2 : 1.0) << k;
+  }
+  EXPECT_EQ(controller.force_at_floor(), 3);
+  EXPECT_EQ(controller.refused_estimates(), at_floor - 1);
 }
 
 TEST(MultiArmControllerTest, NominalMapWhenTheEstimateIsUnusable) {
@@ -137,8 +180,9 @@ TEST(MultiArmControllerTest, NominalMapWhenTheEstimateIsUnusable) {
   EXPECT_EQ(off.EfficiencyInUse(2000)[1], 1.0);
 }
 
-// 1 s of inputs and control periods, a rotor estimate in force feedback,
-// a reference moving sideways: no heap allocation after construction.
+// 1 s of inputs and control periods, a rotor estimate in force feedback
+// (runs below the floor among them: refused, then flown at the floor), a
+// reference moving sideways: no heap allocation after construction.
 TEST(MultiArmControllerTest, NoAllocationPerCall) {
   const VehicleDescription vehicle = Trirotor();
   MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
@@ -148,7 +192,7 @@ TEST(MultiArmControllerTest, NoAllocationPerCall) {
     const int64_t now_us = 2000 * k;
     if (k % 5 == 0) controller.OnPose(PoseSample{now_us, k / 5, 0.0, 0.0, 0.0});
     controller.OnImu(ImuSample{now_us, k, 0.0, 0.0, vehicle.gravity_m_s2});
-    controller.OnEfficiency(Estimate(now_us, 0.6, true));
+    controller.OnEfficiency(controller.NoteReport(Estimate(now_us, k % 50 < 10 ? 0.1 : 0.6, true), now_us));
     reference.position_m.x() = 0.002 * k;
     controller.Update(now_us, reference);
   }

@@ -3,7 +3,9 @@
 // of config/vehicles/trirotor.yaml feasible after 40 % on rotor 1, not after
 // 70 or 80 %) and MultiArmController's controlled descent (entered after
 // infeasible_s, counted once, commands slewed by degraded_omega_rate_rad_s2,
-// levelling first; POSE lost: the descent without the latch). Defaults of
+// levelling first; POSE lost: the descent without the latch; a loss whose
+// reports are refused below the floor found from the sink, its weak rotor
+// from the low-passed reports). Defaults of
 // ControllerConfig (config/controller.yaml's). The flown descents (tilt,
 // touchdown against the floor) are tests/evaluation/multi_arm_closed_loop_test.cc's.
 #include <gtest/gtest.h>
@@ -185,6 +187,68 @@ TEST(MultiArmDescentTest, FortyPercentOnRotorOneDoesNotDescend) {
   const DescentRun run = Fly(&controller, 0.6, false);
   EXPECT_EQ(run.descending_from, -1);
   EXPECT_EQ(controller.degradation().descents, 0);
+}
+
+// Rotor 2 at 15 %, FORCE VALID but not flagging it: every report is refused
+// (below min_plausible_thrust_scale, 0.2), the nominal map flies, and the
+// vehicle sinks at 3 m/s from 0.5 s, the allocation limited. HoverFeasibility
+// finds it from the sink, the weak rotor and its efficiency from the
+// reports low-passed over infeasible_s (ForceFloorEvidence, NoteReport):
+// rotor 2 (its 0.153 apart from the others' 1; with every report at 1 the
+// hardest-driven rotor, rotor 1, is latched), flown at r_m = 0.15 + 0.85 x
+// 0.99^m after m reports of 1 ms (below its bound 0.2205, so not the bound).
+TEST(MultiArmDescentTest, RefusedLossBelowTheFloorIsFoundFromTheSinkAtTheLowPassedReport) {
+  const VehicleDescription vehicle = Trirotor();
+  ControllerConfig config;
+  config.force_feedback = true;
+  MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+  constexpr int64_t kLowFromUs = 200000;   // rotor 2 reported at 0.15 from 0.2 s
+  constexpr int64_t kSinkFromUs = 500000;  // POSE sinking at 3 m/s from 0.5 s
+  ReferencePoint reference;
+  reference.position_m = Eigen::Vector2d(0.0, 1.0);
+  int low_reports = 0;
+  int latched_period = -1;
+  double reported_at_latch = 0.0;
+  int latched_low_reports = 0;
+  for (int k = 0; k < 600 && latched_period < 0; ++k) {
+    const int64_t now_us = 2000 * k;
+    for (int64_t t = now_us - 1000; t <= now_us; t += 1000) {  // the samples of (now - 2 ms, now]
+      if (t < 0) continue;
+      const double z_m = t < kSinkFromUs ? 1.0 : 1.0 - 3.0 * 1e-6 * static_cast<double>(t - kSinkFromUs);
+      controller.OnImu(ImuSample{t, static_cast<int32_t>(t / 1000), 0.0, 0.0, 9.81});
+      if (t % 10000 == 0) controller.OnPose(PoseSample{t, static_cast<int32_t>(t / 10000), 0.0, z_m, 0.0});
+      RotorEfficiencyEstimate report;
+      report.utime = t;
+      report.n_rotors = 3;
+      report.valid = true;
+      report.thrust_scale = {1.0, t >= kLowFromUs ? 0.15 : 1.0, 1.0};
+      report.thrust_scale_std = {0.01, 0.01, 0.01};
+      low_reports += t >= kLowFromUs ? 1 : 0;
+      controller.OnEfficiency(controller.NoteReport(report, t));
+    }
+    controller.Update(now_us, reference);
+    if (controller.degradation().hover_infeasible) {
+      latched_period = k;
+      reported_at_latch = controller.floor_evidence().reported_scale(1);
+      latched_low_reports = low_reports;
+    }
+  }
+  ASSERT_GE(latched_period, 0);
+  // Found from the sink (not from the efficiencies: every e_i was 1).
+  const MultiArmDegradation& d = controller.degradation();
+  EXPECT_EQ(d.infeasible_by_sink, 1);
+  EXPECT_EQ(d.infeasible, 1);
+  EXPECT_EQ(d.weak_rotor, 1);
+  EXPECT_EQ(controller.refused_estimates(), latched_low_reports);
+  // Measured: latched at 0.770 s, 0.270 s after the sink began (at least
+  // 50 ms to fall 0.15 m behind, then sink_detect_s 0.1 s); margin 1.5x.
+  EXPECT_GE(latched_period * 2000 - kSinkFromUs, 180000);
+  EXPECT_LE(latched_period * 2000 - kSinkFromUs, 405000);
+  // Each low report 1 ms after the one before: m steps of gain 1 ms / 0.1 s from 1.
+  EXPECT_NEAR(reported_at_latch, 0.15 + 0.85 * std::pow(0.99, latched_low_reports), 1e-9);
+  EXPECT_LT(reported_at_latch, controller.feasibility().FeasibilityBound(1));
+  EXPECT_EQ(controller.feasibility().weak_efficiency(), reported_at_latch);
+  EXPECT_EQ(controller.flown_efficiency()[1], reported_at_latch);
 }
 
 // The nominal map flies no efficiency: its infeasibility is not known (as

@@ -2,7 +2,8 @@
 // trirotor, through its one way in on its own host clock: a FORCE_N of
 // another rotor count is refused and counted, a stale or absent FORCE_N
 // flies the nominal map (STATUS_FALLBACK_ACTIVE) and force feedback resumes
-// only after force_recovery_s of healthy FORCE_N, a future stamp is refused,
+// only after force_recovery_s of healthy FORCE_N, a flagged scale below the
+// floor is flown at the floor, a future stamp is refused,
 // every MOTOR_COMMAND_N carries 3 rotor speeds within [0, omega_max], and a
 // plain FORCE_N in front of the sealed channel is refused, and
 // CONTROLLER_ROTORS_N goes out with CONTROLLER_STATUS carrying every rotor.
@@ -63,7 +64,8 @@ std::vector<uint8_t> Encoded(const Message& message) {
   return bytes;
 }
 
-std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status, double rotor1_scale = 0.8) {
+std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status, double rotor1_scale = 0.8,
+                            int32_t rotor_fault_bits = 0) {
   force_estimate_n_t m{};
   m.utime = utime;
   m.seq = seq;
@@ -73,6 +75,7 @@ std::vector<uint8_t> ForceN(int n, int64_t utime, int32_t seq, int32_t status, d
   m.thrust_scale.assign(static_cast<size_t>(n), 0.8);  // 20 % lost on every rotor
   m.thrust_scale[0] = rotor1_scale;
   m.status = status;
+  m.rotor_fault_bits = rotor_fault_bits;
   return Encoded(m);
 }
 
@@ -110,12 +113,13 @@ class ServiceFixture : public ::testing::Test {
       if (host_us % 10000 == 0 && without_pose) SendImu(host_us);
       Send(channels_.force_n,
            ForceN(3, host_us - kOffsetUs, static_cast<int32_t>(host_us / 1000), force_estimate_n_t::STATUS_VALID,
-                  rotor1_scale_),
+                  rotor1_scale_, rotor_fault_bits_),
            host_us);
       RunUntil(host_us);
     }
   }
-  double rotor1_scale_ = 0.8;  // FORCE_N's thrust_scale of rotor 1 in Fly
+  double rotor1_scale_ = 0.8;     // FORCE_N's thrust_scale of rotor 1 in Fly
+  int32_t rotor_fault_bits_ = 0;  // ... and its rotor_fault_bits
   void SendImu(int64_t host_us) {
     imu_t imu{};
     imu.utime = host_us - kOffsetUs;
@@ -288,6 +292,29 @@ TEST_F(MultiArmControllerServiceTest, InfeasibleHoverGivesTheLatchedDescent) {
   EXPECT_EQ(service_.health().efficiency[0], 0.2);
   for (const motor_command_n_t& command : sink_.commands)
     for (double omega : command.omega_cmd_rad_s) EXPECT_TRUE(omega >= 0.0 && omega <= 1200.0);
+}
+
+// Rotor 1 at 15 %, below min_plausible_thrust_scale (0.2): without the
+// fault flag every FORCE_N is refused (the nominal map); flagged, the first
+// at_floor_samples - 1 (4) are refused and every later one is flown at the
+// floor (the controller's ForceFloorEvidence, before the node's checks),
+// once ForceRecovery has seen force_recovery_s of them.
+TEST_F(MultiArmControllerServiceTest, AFlaggedForceNBelowTheFloorIsFlownAtTheFloor) {
+  Fly(5000000, 5200000);
+  const int64_t refused_before = service_.health().force.rejected_invalid;
+  rotor1_scale_ = 0.15;
+  Fly(5201000, 5210000);  // 10 FORCE_N, unflagged
+  EXPECT_EQ(service_.health().force.rejected_invalid - refused_before, 10);
+  EXPECT_EQ(service_.health().force_at_floor, 0);
+  EXPECT_NE(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  // Flagged: the 5th (5215 ms) is the first accepted, late after the
+  // refusals, so force feedback resumes force_recovery_s (50 ms) later.
+  rotor_fault_bits_ = 1;
+  Fly(5211000, 5270000);  // 60 FORCE_N, flagged
+  EXPECT_EQ(service_.health().force.rejected_invalid - refused_before, 14);
+  EXPECT_EQ(service_.health().force_at_floor, 56);
+  EXPECT_EQ(sink_.commands.back().status & motor_command_n_t::STATUS_FALLBACK_ACTIVE, 0);
+  EXPECT_EQ(service_.controller().EfficiencyInUse(5270000 - kOffsetUs)[0], 0.2);
 }
 
 // CONTROLLER_ROTORS_N: every rotor's efficiency and hover bound (rotor 1
