@@ -50,6 +50,26 @@ std::string OutOfRange(const std::string& file, const std::string& key, double v
          ": refused, file not updated";
 }
 
+// One learned mass (name: body_mass_kg or tip_mass_kg) into *in_file [kg]:
+// checked against its prior (prior_fraction x the file's value) and the key's
+// range; false with *error naming the file and the key.
+bool DeployLearnedMass(const std::string& learned_file, const std::string& file, const LearnedDeployOptions& options,
+                       const char* name, const char* what, double mass_kg, double sigma_kg, double prior_fraction,
+                       double* in_file, std::vector<LearnedChange>* made, std::string* error) {
+  const std::string key = std::string("vehicle.") + name;
+  *error = CheckLearned(learned_file, name, mass_kg, sigma_kg, prior_fraction * *in_file, options, key, file);
+  if (!error->empty()) return false;
+  double min = 0, max = 0;
+  KeyRange(name, &min, &max);
+  if (!(mass_kg >= min && mass_kg <= max)) {
+    *error = OutOfRange(file, key, mass_kg, min, max, what);
+    return false;
+  }
+  made->push_back({name, *in_file, mass_kg, mass_kg, sigma_kg});
+  *in_file = mass_kg;
+  return true;
+}
+
 }  // namespace
 
 bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
@@ -81,38 +101,16 @@ bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeploy
     updated.gauge_scale[arm] = scale;
     made.push_back({key.substr(8), vehicle->gauge_scale[arm], scale, g, sigma});
   }
-  if (learned.has_body_mass) {
-    const std::string key = "vehicle.body_mass_kg";
-    const double mass_kg = learned.body_mass_kg, sigma_kg = learned.body_mass_std_kg;
-    // The prior is relative to the file's mass.
-    *error = CheckLearned(learned_file, "body_mass_kg", mass_kg, sigma_kg,
-                          options.body_mass_scale_prior_std * vehicle->body_mass_kg, options, key, file);
-    if (!error->empty()) return false;
-    double min = 0, max = 0;
-    KeyRange("body_mass_kg", &min, &max);
-    if (!(mass_kg >= min && mass_kg <= max)) {
-      *error = OutOfRange(file, key, mass_kg, min, max, "the learned body mass");
-      return false;
-    }
-    updated.body_mass_kg = mass_kg;
-    made.push_back({key.substr(8), vehicle->body_mass_kg, mass_kg, mass_kg, sigma_kg});
-  }
-  if (learned.has_tip_mass) {
-    const std::string key = "vehicle.tip_mass_kg";
-    const double mass_kg = learned.tip_mass_kg, sigma_kg = learned.tip_mass_std_kg;
-    // The prior is relative to the file's tip mass, as the arm-mode test's.
-    *error = CheckLearned(learned_file, "tip_mass_kg", mass_kg, sigma_kg,
-                          options.tip_mass_prior_std * vehicle->tip_mass_kg, options, key, file);
-    if (!error->empty()) return false;
-    double min = 0, max = 0;
-    KeyRange("tip_mass_kg", &min, &max);
-    if (!(mass_kg >= min && mass_kg <= max)) {
-      *error = OutOfRange(file, key, mass_kg, min, max, "the learned tip mass");
-      return false;
-    }
-    updated.tip_mass_kg = mass_kg;
-    made.push_back({key.substr(8), vehicle->tip_mass_kg, mass_kg, mass_kg, sigma_kg});
-  }
+  if (learned.has_body_mass &&
+      !DeployLearnedMass(learned_file, file, options, "body_mass_kg", "the learned body mass", learned.body_mass_kg,
+                         learned.body_mass_std_kg, options.body_mass_scale_prior_std, &updated.body_mass_kg, &made,
+                         error))
+    return false;
+  // The tip mass's prior is relative to the file's, as the arm-mode test's.
+  if (learned.has_tip_mass &&
+      !DeployLearnedMass(learned_file, file, options, "tip_mass_kg", "the learned tip mass", learned.tip_mass_kg,
+                         learned.tip_mass_std_kg, options.tip_mass_prior_std, &updated.tip_mass_kg, &made, error))
+    return false;
   error->clear();
   *vehicle = updated;
   *changes = made;

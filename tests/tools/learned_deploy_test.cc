@@ -34,6 +34,7 @@
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
 #include "tests/estimator/scenario_harness.h"
+#include "tests/tools/flight_log_recording.h"
 #include "tests/tools/learned_deploy_support.h"
 #include "transport/channels.h"
 #include "transport/log_io.h"
@@ -58,30 +59,6 @@ void WriteLearningConfig(const std::string& path, bool strain_scale, bool body_m
     if (on) text.replace(at + key.size(), 5, "true ");
   }
   std::ofstream(path) << text;
-}
-
-// The flight as recorded on the vehicle: the lock-step simulator's packets
-// through the estimator daemon's own service (config, learning on), both
-// into one log; `forged` (optional) appended 1 ms after the newest input.
-// Returns the estimator's final state (what it persists at a clean stop).
-PipelineHealth RecordFlightLog(const Scenario& scenario, const EstimatorConfig& config, const std::string& path,
-                               const estimator_status_t* forged = nullptr) {
-  LogWriter writer;
-  std::string error;
-  EXPECT_TRUE(writer.Open(path, &error)) << error;
-  LogSink log(&writer);
-  ReplayOptions options;
-  options.copy_truth = false;  // TRUTH reaches the log from the simulator
-  Replayer estimator(config, options, &log);
-  TeeSink both(&log, &estimator);
-  WireSampleSink wire(MakeChannelNames(), &both);
-  Simulator simulator(scenario);
-  simulator.Run(&wire);
-  if (forged != nullptr) {
-    EXPECT_TRUE(writer.WriteMessage(MakeChannelNames().estimator_status, estimator.stats().last_utime + 1000, *forged));
-  }
-  EXPECT_TRUE(writer.Close()) << writer.error();
-  return estimator.service().health();
 }
 
 double WorseMae(const ScenarioRun& run, int64_t from_utime) {

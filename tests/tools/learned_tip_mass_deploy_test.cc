@@ -27,6 +27,7 @@
 #include "sinks/message_sink.h"
 #include "sinks/wire_sample_sink.h"
 #include "tests/estimator/scenario_harness.h"
+#include "tests/tools/flight_log_recording.h"
 #include "tests/tools/learned_deploy_support.h"
 #include "transport/channels.h"
 #include "transport/log_io.h"
@@ -52,19 +53,7 @@ void WriteLearningConfig(const std::string& path) {
 // estimator daemon's service's output in one log), and the daemon's state
 // after it, as it persists it at a clean stop.
 GaugeCalibration FlyRecordAndPersist(const EstimatorConfig& config, const std::string& log_path) {
-  LogWriter writer;
-  std::string error;
-  EXPECT_TRUE(writer.Open(log_path, &error)) << error;
-  LogSink log(&writer);
-  ReplayOptions options;
-  options.copy_truth = false;  // TRUTH reaches the log from the simulator
-  Replayer estimator(config, options, &log);
-  TeeSink both(&log, &estimator);
-  WireSampleSink wire(MakeChannelNames(), &both);
-  Simulator simulator(LoadScenario(ScenarioFile("mismatch_tip_mass_plus20")));
-  simulator.Run(&wire);
-  EXPECT_TRUE(writer.Close()) << writer.error();
-  return PersistedGaugeState(estimator.service().health());
+  return PersistedGaugeState(RecordFlightLog(LoadScenario(ScenarioFile("mismatch_tip_mass_plus20")), config, log_path));
 }
 
 // The worse rotor's MAE from 1 s of the EKF without learning over 10 s of
