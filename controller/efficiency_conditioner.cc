@@ -4,61 +4,85 @@
 #include <cmath>
 
 #include "numerics/time_units.h"
-#include "samples/rotor_count.h"
 
 namespace birotor {
 
-void EfficiencyConditioner::OnForce(const ForceEstimate& e) {
+EfficiencyConditioner::EfficiencyConditioner(const EfficiencyParams& params, double weight_n, int rotor_count)
+    : params_(params), weight_n_(weight_n), rotor_count_(std::clamp(rotor_count, 1, kMaxArms)) {
+  change_.fill(1.0);
+  absolute_.fill(1.0);
+  absolute_target_.fill(1.0);
+  target_.fill(1.0);
+  baseline_.fill(1.0);
+}
+
+void EfficiencyConditioner::OnForce(const RotorEfficiencyEstimate& estimate) {
+  if (!estimate.valid || estimate.n_rotors != rotor_count_) return;
+  Take(estimate);
+}
+
+void EfficiencyConditioner::OnForce(const ForceEstimate& estimate) {
+  if (rotor_count_ != kBirotorRotors) return;
+  Take(RotorEfficiencyReportOf(estimate));
+}
+
+bool EfficiencyConditioner::NoteAirborne(const RotorEfficiencyEstimate& e) {
+  if (airborne_) return true;
+  double total_n = e.force_n[0];  // sum_i f_i [N]
+  for (int i = 1; i < rotor_count_; ++i) total_n += e.force_n[Index(i)];
+  if (total_n < params_.airborne_force_fraction * weight_n_) {
+    above_since_us_ = -1;
+    return false;
+  }
+  if (above_since_us_ < 0) above_since_us_ = e.utime;
+  airborne_ = ElapsedSeconds(e.utime, above_since_us_) >= params_.airborne_s;
+  return false;  // the sample that makes it airborne is not followed yet
+}
+
+void EfficiencyConditioner::Take(const RotorEfficiencyEstimate& e) {
   const double dt_s = last_utime_ < 0 ? 0.0 : ElapsedSeconds(e.utime, last_utime_);
   last_utime_ = e.utime;
-  if (!airborne_) {
-    if (e.force_n[0] + e.force_n[1] < params_.airborne_force_fraction * weight_n_) {
-      above_since_us_ = -1;
-      return;
-    }
-    if (above_since_us_ < 0) above_since_us_ = e.utime;
-    airborne_ = ElapsedSeconds(e.utime, above_since_us_) >= params_.airborne_s;
-    return;
-  }
+  if (!NoteAirborne(e)) return;
   const bool deficit = (e.status & kStatusThrustDeficit) != 0;
-  const int32_t fault_bits[kBirotorRotors] = {kStatusRotor1Fault, kStatusRotor2Fault};
   const double baseline_gain = std::min(1.0, dt_s / params_.baseline_tau_s);
-  for (int i = 0; i < kBirotorRotors; ++i) {
+  for (int i = 0; i < rotor_count_; ++i) {
+    const size_t r = Index(i);
     // An uncertain sample is not followed: the target holds.
-    if (!(e.force_std_n[i] <= params_.max_relative_sigma * std::fabs(e.force_n[i]))) continue;
-    if (!has_baseline_) baseline_[i] = e.thrust_scale[i];
-    // A change is real when FORCE flags it, or when it is larger than
-    // change_threshold relative to the baseline; neither counts before
+    if (!(e.force_std_n[r] <= params_.max_relative_sigma * std::fabs(e.force_n[r]))) continue;
+    if (!has_baseline_) baseline_[r] = e.thrust_scale[r];
+    // A change is real when the estimate flags it, or when it is larger
+    // than change_threshold relative to the baseline; neither counts before
     // the baseline has settled (a mismatch flagged from take-off on).
     const bool settled = settled_s_ >= params_.baseline_tau_s;
-    flagged_[i] = settled && (deficit || (e.status & fault_bits[i]) != 0 ||
-                              std::fabs(e.thrust_scale[i] / baseline_[i] - 1.0) > params_.change_threshold);
-    if (!flagged_[i]) baseline_[i] += baseline_gain * (e.thrust_scale[i] - baseline_[i]);
-    target_[i] = flagged_[i] ? e.thrust_scale[i] / baseline_[i] : 1.0;
+    flagged_[r] = settled && (deficit || (e.rotor_fault_bits & (1 << i)) != 0 ||
+                              std::fabs(e.thrust_scale[r] / baseline_[r] - 1.0) > params_.change_threshold);
+    if (!flagged_[r]) baseline_[r] += baseline_gain * (e.thrust_scale[r] - baseline_[r]);
+    target_[r] = flagged_[r] ? e.thrust_scale[r] / baseline_[r] : 1.0;
   }
   has_baseline_ = true;
   settled_s_ += std::min(dt_s, 0.1);  // a gap does not count
   NoteAbsolute(e);
 }
 
-void EfficiencyConditioner::NoteAbsolute(const ForceEstimate& e) {
+void EfficiencyConditioner::NoteAbsolute(const RotorEfficiencyEstimate& e) {
   // The caller passes VALID samples only; MODEL_MISMATCH withdraws VALID, the
   // bit is tested again so the rule does not rest on the caller.
   const bool estimator_sure = (e.status & (kStatusModelMismatch | kStatusConverging)) == 0;
   const bool settled = settled_s_ >= params_.absolute_settle_s;
-  for (int i = 0; i < kBirotorRotors; ++i) {
-    const bool precise = e.force_std_n[i] <= params_.absolute_max_relative_sigma * std::fabs(e.force_n[i]);
-    trusted_[i] = params_.absolute_tau_s > 0.0 && settled && estimator_sure && precise;
-    if (!trusted_[i]) continue;
+  for (int i = 0; i < rotor_count_; ++i) {
+    const size_t r = Index(i);
+    const bool precise = e.force_std_n[r] <= params_.absolute_max_relative_sigma * std::fabs(e.force_n[r]);
+    trusted_[r] = params_.absolute_tau_s > 0.0 && settled && estimator_sure && precise;
+    if (!trusted_[r]) continue;
     // A matched vehicle's mu0 wanders by a few per cent (noise, turbulence):
     // left to the integrators. A vehicle off the map by more than
     // absolute_threshold is flown on mu0 until it is back within half of it
     // (hysteresis: no toggling at the threshold). While rotor i is flagged
     // its baseline holds, and so does this target.
-    const double offset = std::fabs(baseline_[i] - 1.0);
-    if (offset > params_.absolute_threshold) absolute_engaged_[i] = true;
-    if (offset < 0.5 * params_.absolute_threshold) absolute_engaged_[i] = false;
-    absolute_target_[i] = absolute_engaged_[i] ? std::clamp(baseline_[i], params_.min_absolute_efficiency,
+    const double offset = std::fabs(baseline_[r] - 1.0);
+    if (offset > params_.absolute_threshold) absolute_engaged_[r] = true;
+    if (offset < 0.5 * params_.absolute_threshold) absolute_engaged_[r] = false;
+    absolute_target_[r] = absolute_engaged_[r] ? std::clamp(baseline_[r], params_.min_absolute_efficiency,
                                                             params_.max_absolute_efficiency)
                                                : 1.0;
   }
@@ -67,7 +91,7 @@ void EfficiencyConditioner::NoteAbsolute(const ForceEstimate& e) {
 void EfficiencyConditioner::Advance(double dt_s, bool usable) {
   const bool follow = usable && airborne_ && has_baseline_;
   // Back from a fallback longer than blend_after_s: the integrators have
-  // absorbed what FORCE could not tell, so the estimate is blended in over
+  // absorbed what the estimate could not tell, so it is blended in over
   // blend_s instead of at once (a short dropout returns at once).
   if (follow && !was_following_ && unusable_s_ >= params_.blend_after_s) blend_left_s_ = params_.blend_s;
   unusable_s_ = follow ? 0.0 : unusable_s_ + dt_s;
@@ -76,19 +100,20 @@ void EfficiencyConditioner::Advance(double dt_s, bool usable) {
       blend_left_s_ > 0.0 ? std::max(params_.fault_tau_s, params_.blend_s / 3.0) : params_.fault_tau_s;
   blend_left_s_ = std::max(0.0, blend_left_s_ - dt_s);
   const double max_step = params_.max_rate_1_s * dt_s;
-  for (int i = 0; i < kBirotorRotors; ++i) {
-    const bool flagged = follow && flagged_[i];
-    const double goal = flagged ? target_[i] : 1.0;
+  for (int i = 0; i < rotor_count_; ++i) {
+    const size_t r = Index(i);
+    const bool flagged = follow && flagged_[r];
+    const double goal = flagged ? target_[r] : 1.0;
     const double tau_s = flagged ? flagged_tau_s : params_.decay_s;
-    const double step = (goal - change_[i]) * std::min(1.0, dt_s / tau_s);
-    change_[i] += std::clamp(step, -max_step, max_step);
+    const double step = (goal - change_[r]) * std::min(1.0, dt_s / tau_s);
+    change_[r] += std::clamp(step, -max_step, max_step);
     // The absolute factor: towards the trusted mu0_i slowly, else towards 1
     // as the change factor decays (continuous both ways).
-    const bool trusted = follow && trusted_[i];
-    const double absolute_goal = trusted ? absolute_target_[i] : 1.0;
+    const bool trusted = follow && trusted_[r];
+    const double absolute_goal = trusted ? absolute_target_[r] : 1.0;
     const double absolute_tau_s = trusted ? params_.absolute_tau_s : params_.decay_s;
-    const double absolute_step = (absolute_goal - absolute_[i]) * std::min(1.0, dt_s / absolute_tau_s);
-    absolute_[i] += std::clamp(absolute_step, -max_step, max_step);
+    const double absolute_step = (absolute_goal - absolute_[r]) * std::min(1.0, dt_s / absolute_tau_s);
+    absolute_[r] += std::clamp(absolute_step, -max_step, max_step);
   }
 }
 

@@ -31,12 +31,20 @@
 //    1 over decay_s (no jump to the nominal map); back from a fallback longer
 //    than blend_after_s it is blended in with a time constant of blend_s / 3
 //    for blend_s (no jump back): the handover is bumpless both ways.
+// For any rotor count 2 .. kMaxArms (issue 38): VehicleController feeds it
+// the birotor's FORCE, MultiArmController the N-rotor reports
+// (RotorEfficiencyEstimate, force_estimate_n_t's content: its status bits,
+// rotor_fault_bits, forces and force sigmas); the airborne test compares the
+// rotors' summed force with the hover thrusts' sum (the birotor's weight).
 // No allocation, no throw.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "controller/controller_params.h"
+#include "controller/rotor_efficiency_estimate.h"
+#include "model/vehicle_description.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
 
@@ -44,38 +52,50 @@ namespace birotor {
 
 class EfficiencyConditioner {
  public:
-  // weight_n: the vehicle's weight [N] (airborne test).
-  EfficiencyConditioner(const EfficiencyParams& params, double weight_n) : params_(params), weight_n_(weight_n) {}
+  // weight_n: the thrust the rotors make together in hover [N] (airborne
+  // test: the birotor's weight, the N rotors' summed hover thrusts);
+  // rotor_count: 2 .. kMaxArms (a report of another count is ignored).
+  EfficiencyConditioner(const EfficiencyParams& params, double weight_n, int rotor_count = kBirotorRotors);
 
-  // One healthy FORCE sample (VALID, plausible scales).
+  // One healthy report (VALID, plausible scales); one not VALID or of
+  // another rotor count is ignored.
+  void OnForce(const RotorEfficiencyEstimate& estimate);
+  // One healthy birotor FORCE sample (the caller passes VALID ones only).
   void OnForce(const ForceEstimate& estimate);
-  // One control period of dt_s [s]; usable: FORCE may be flown on now.
+  // One control period of dt_s [s]; usable: the estimate may be flown on now.
   void Advance(double dt_s, bool usable);
 
   // e_i = a_i c_i, the efficiency the rotor map flies [1].
-  double efficiency(int rotor) const { return absolute_[rotor] * change_[rotor]; }
+  double efficiency(int rotor) const { return absolute_[Index(rotor)] * change_[Index(rotor)]; }
   // c_i: mu_i / mu0_i while the change is real, else towards 1 [1].
-  double change(int rotor) const { return change_[rotor]; }
+  double change(int rotor) const { return change_[Index(rotor)]; }
   // a_i: the trusted absolute thrust_scale mu0_i, followed slowly [1].
-  double absolute(int rotor) const { return absolute_[rotor]; }
+  double absolute(int rotor) const { return absolute_[Index(rotor)]; }
   bool airborne() const { return airborne_; }
   // The unflagged thrust_scale mu0_i the efficiency is relative to [1].
-  double baseline(int rotor) const { return baseline_[rotor]; }
+  double baseline(int rotor) const { return baseline_[Index(rotor)]; }
+  int rotor_count() const { return rotor_count_; }
 
  private:
+  static size_t Index(int rotor) { return static_cast<size_t>(rotor); }
+  // One report of the rotor count, taken (the caller has checked VALID).
+  void Take(const RotorEfficiencyEstimate& estimate);
+  // The airborne test on one report; true once airborne.
+  bool NoteAirborne(const RotorEfficiencyEstimate& estimate);
   // The absolute rule's facts of one VALID sample (trusted_, absolute_target_).
-  void NoteAbsolute(const ForceEstimate& estimate);
+  void NoteAbsolute(const RotorEfficiencyEstimate& estimate);
 
   EfficiencyParams params_;
   double weight_n_;
-  double change_[kBirotorRotors] = {1.0, 1.0};    // c_i [1]
-  double absolute_[kBirotorRotors] = {1.0, 1.0};  // a_i [1]
-  double absolute_target_[kBirotorRotors] = {1.0, 1.0};
-  bool absolute_engaged_[kBirotorRotors] = {false, false};  // |mu0_i - 1| beyond absolute_threshold (hysteresis)
-  bool trusted_[kBirotorRotors] = {false, false};           // the newest sample's mu0_i may be flown absolutely
-  double target_[kBirotorRotors] = {1.0, 1.0};
-  bool flagged_[kBirotorRotors] = {false, false};  // FORCE says rotor i's change is real
-  // Airborne test on FORCE stamps.
+  int rotor_count_;
+  std::array<double, kMaxArms> change_;    // c_i [1]
+  std::array<double, kMaxArms> absolute_;  // a_i [1]
+  std::array<double, kMaxArms> absolute_target_;
+  std::array<bool, kMaxArms> absolute_engaged_{};  // |mu0_i - 1| beyond absolute_threshold (hysteresis)
+  std::array<bool, kMaxArms> trusted_{};           // the newest sample's mu0_i may be flown absolutely
+  std::array<double, kMaxArms> target_;
+  std::array<bool, kMaxArms> flagged_{};  // the estimate says rotor i's change is real
+  // Airborne test on the reports' stamps.
   bool airborne_ = false;
   int64_t above_since_us_ = -1;
   int64_t last_utime_ = -1;
@@ -84,7 +104,7 @@ class EfficiencyConditioner {
   double blend_left_s_ = 0.0;  // time left of the blend after a fallback [s]
   double unusable_s_ = 0.0;    // length of the current fallback [s]
   double settled_s_ = 0.0;     // airborne FORCE time seen [s]
-  double baseline_[kBirotorRotors] = {1.0, 1.0};
+  std::array<double, kMaxArms> baseline_;
 };
 
 }  // namespace birotor

@@ -10,8 +10,12 @@ RotorEfficiencyEstimate RotorEfficiencyReportOf(const ForceEstimate& estimate) {
   report.utime = estimate.utime;
   report.n_rotors = kBirotorRotors;
   report.valid = (estimate.status & kStatusValid) != 0;
+  report.status = estimate.status;
   for (int i = 0; i < kBirotorRotors; ++i) {
-    report.thrust_scale[static_cast<size_t>(i)] = estimate.thrust_scale[i];
+    const size_t rotor = static_cast<size_t>(i);
+    report.thrust_scale[rotor] = estimate.thrust_scale[i];
+    report.force_n[rotor] = estimate.force_n[i];
+    report.force_std_n[rotor] = estimate.force_std_n[i];
     if ((estimate.status & fault_bits[i]) != 0) report.rotor_fault_bits |= 1 << i;
   }
   return report;

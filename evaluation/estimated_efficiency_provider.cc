@@ -12,12 +12,15 @@ RotorEfficiencyEstimate EfficiencyOf(const MultiArmForceEstimate& estimate) {
   out.utime = estimate.utime;
   out.n_rotors = estimate.n_rotors;
   out.valid = (estimate.status & kStatusValid) != 0;
+  out.status = estimate.status;
   out.rotor_fault_bits = estimate.rotor_fault_bits;
   for (int i = 0; i < estimate.n_rotors; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     const double force_n = estimate.force_n[rotor];
     const double relative = force_n > 0.0 ? estimate.force_std_n[rotor] / force_n : INFINITY;
     out.thrust_scale[rotor] = estimate.thrust_scale[rotor];
+    out.force_n[rotor] = force_n;
+    out.force_std_n[rotor] = estimate.force_std_n[rotor];
     out.thrust_scale_std[rotor] = std::abs(estimate.thrust_scale[rotor]) * relative;
   }
   return out;

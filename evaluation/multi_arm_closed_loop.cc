@@ -76,11 +76,14 @@ void TrueEfficiencyProvider::OnTruthN(const MultiArmTruthSample& sample) {
   newest_.utime = sample.utime;
   newest_.n_rotors = sample.n_arms;
   newest_.valid = true;
+  newest_.status = kStatusValid;
   newest_.rotor_fault_bits = 0;
   for (int i = 0; i < sample.n_arms; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     newest_.thrust_scale[rotor] = sample.thrust_scale[rotor];
     newest_.thrust_scale_std[rotor] = 0.0;
+    newest_.force_n[rotor] = sample.force_n[rotor];  // exact: sigma 0
+    newest_.force_std_n[rotor] = 0.0;
     if (sample.thrust_scale[rotor] < 1.0 - fault_margin_) newest_.rotor_fault_bits |= 1 << i;
   }
   fresh_ = true;

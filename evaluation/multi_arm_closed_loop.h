@@ -36,8 +36,8 @@ class EfficiencyProvider : public SampleSink {
 };
 
 // The bound a perfect estimator gives (a figure, not a product path): each
-// rotor's true mu_i of TRUTH_N (turbulence included), sigma 0, VALID, flagged
-// faulty below 1 - fault_margin.
+// rotor's true mu_i and thrust of TRUTH_N (turbulence included), sigma 0,
+// VALID, flagged faulty below 1 - fault_margin.
 class TrueEfficiencyProvider : public EfficiencyProvider {
  public:
   explicit TrueEfficiencyProvider(double fault_margin = 0.1) : fault_margin_(fault_margin) {}

@@ -160,11 +160,14 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
   reported.n_rotors = n;
   for (int i = 0; i < n; ++i) {
     reported.thrust_scale[static_cast<size_t>(i)] = m.thrust_scale[i];
+    reported.force_n[static_cast<size_t>(i)] = m.force_n[i];
+    reported.force_std_n[static_cast<size_t>(i)] = m.force_std_n[i];
     // thrust_scale's sigma from the force's: sigma_e = sigma_f e / f (f > 0).
     reported.thrust_scale_std[static_cast<size_t>(i)] =
         m.force_n[i] > 0.0 ? m.force_std_n[i] * m.thrust_scale[i] / m.force_n[i] : 0.0;
   }
   reported.valid = (m.status & force_estimate_n_t::STATUS_VALID) != 0;
+  reported.status = m.status;
   reported.rotor_fault_bits = m.rotor_fault_bits;
   // Before the checks (as the birotor's): a rotor FORCE_N keeps flagging
   // below the floor is flown as the floor, and every report is evidence for
