@@ -60,6 +60,7 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       law_(vehicle, GainsAtCommandRate(config), hover),
       observer_(config.observer),
       hover_command_(HoverCommand(vehicle, hover)),
+      efficiency_(config.efficiency, hover.force_n.sum(), vehicle.arm_count),
       floor_evidence_(config.supervision, config.efficiency.infeasible_s, vehicle.arm_count),
       feasibility_(FeasibilityOf(vehicle, config, hover)),
       last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
@@ -133,6 +134,13 @@ bool MultiArmController::OnEfficiency(const RotorEfficiencyEstimate& estimate) {
   if (plausible) {
     efficiency_estimate_ = estimate;
     force_alive_utime_ = estimate.utime;
+    // A prediction (the strain sample failed the estimator's chi-square
+    // gate, STATUS_MEASUREMENT_REJECTED) keeps FORCE alive but is not
+    // followed: the N-arm EKF rings so right after a loss (rotor 1 at 60 %:
+    // 1.48 on it and 1.13 on the healthy rotor 2 within 15 ms, docs/
+    // controller.md), and a healthy rotor's efficiency would keep such a
+    // sample for decay_s once the flag it raised has cleared.
+    if ((estimate.status & kStatusMeasurementRejected) == 0) efficiency_.OnForce(estimate);  // VALID ones only
   } else if (counted && estimate.valid) {
     force_alive_utime_ = std::max(force_alive_utime_, estimate.utime);
   }
@@ -145,18 +153,10 @@ bool MultiArmController::EstimateUsable(int64_t now_us) const {
          AgeS(force_alive_utime_, now_us) <= config_.supervision.force_timeout_s;
 }
 
-RotorEfficiencies MultiArmController::EfficiencyInUse(int64_t now_us) const {
+RotorEfficiencies MultiArmController::EfficiencyInUse() const {
   RotorEfficiencies efficiency = NominalEfficiencies();
-  if (!EstimateUsable(now_us)) return efficiency;
-  const RotorEfficiencyEstimate& e = efficiency_estimate_;
-  for (int i = 0; i < vehicle_.arm_count; ++i) {
-    const size_t rotor = static_cast<size_t>(i);
-    const double scale = e.thrust_scale[rotor];  // within the plausible band (OnEfficiency)
-    const bool flagged = (e.rotor_fault_bits & (1 << i)) != 0;
-    const bool changed = std::abs(scale - 1.0) > config_.efficiency.change_threshold;
-    const bool certain = scale > 0.0 && e.thrust_scale_std[rotor] / scale <= config_.efficiency.max_relative_sigma;
-    if ((flagged || changed) && certain) efficiency[rotor] = scale;
-  }
+  if (!config_.force_feedback) return efficiency;
+  for (int i = 0; i < vehicle_.arm_count; ++i) efficiency[static_cast<size_t>(i)] = efficiency_.efficiency(i);
   return efficiency;
 }
 
@@ -234,6 +234,19 @@ ReferencePoint MultiArmController::DescentTarget(const ReferencePoint& reference
   return descend ? DescentReference(observer_.state().position_m, s.descent_rate_m_s) : reference;
 }
 
+void MultiArmController::LeadFallingEfficiency(const RotorEfficiencies& efficiency, double dt_s,
+                                               MultiArmRotorCommand* command) {
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    const size_t rotor = static_cast<size_t>(i);
+    const double de_1_s = std::min(efficiency[rotor] - last_efficiency_[rotor], 0.0) / dt_s;
+    last_efficiency_[rotor] = efficiency[rotor];
+    const double omega = command->omega_cmd_rad_s[rotor];
+    if (!std::isfinite(omega) || de_1_s == 0.0) continue;
+    const double lead_rad_s = -config_.efficiency.motor_lead_s * omega / (2.0 * efficiency[rotor]) * de_1_s;
+    command->omega_cmd_rad_s[rotor] = ClampCommand(vehicle_.omega_max_rad_s, omega + lead_rad_s);
+  }
+}
+
 void MultiArmController::SlewDescent(const RotorEfficiencies& efficiency, double dt_s,
                                      MultiArmRotorCommand* command) const {
   const double max_step_rad_s = config_.supervision.degraded_omega_rate_rad_s2 * dt_s;
@@ -259,7 +272,9 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
     return hover_command_;
   }
   UpdateState(now_us, dt_s);
-  RotorEfficiencies efficiency = EfficiencyInUse(now_us);
+  // The efficiency follows the estimate while it is usable, decays towards 1 when not.
+  if (config_.force_feedback) efficiency_.Advance(dt_s, EstimateUsable(now_us));
+  RotorEfficiencies efficiency = EfficiencyInUse();
   const bool infeasible = UpdateFeasibility(now_us, reference, efficiency, dt_s);
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
@@ -268,7 +283,8 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
   flown_efficiency_ = efficiency;
   const bool descend = pose_lost || infeasible;
   const ReferencePoint target = DescentTarget(reference, pose_lost, infeasible);
-  const MultiArmRotorCommand cascade = law_.Update(observer_.state(), target, efficiency);
+  MultiArmRotorCommand cascade = law_.Update(observer_.state(), target, efficiency);
+  LeadFallingEfficiency(efficiency, dt_s, &cascade);
   MultiArmRotorCommand command = cascade;
   if (mpc_ != nullptr && !descend) {
     command = FlyMpc(target, efficiency, cascade, dt_s);

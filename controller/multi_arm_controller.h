@@ -7,7 +7,8 @@
 // efficiency (RotorEfficiencyEstimate, the content of force_estimate_n_t;
 // a scale outside the plausible band refused, a flagged one below the floor
 // flown as the floor, the reports low-passed as sink evidence:
-// ForceFloorEvidence, as the birotor's).
+// ForceFloorEvidence; the plausible ones conditioned before they are flown:
+// EfficiencyConditioner; both as the birotor's).
 // In mode mpc (ControllerConfig::model_predictive) the N-input MPC
 // (controller/multi_arm_mpc.h) flies at the mpc: section's rate on the
 // observer's state, the efficiencies in use and the reference extrapolated
@@ -30,6 +31,7 @@
 
 #include "controller/body_state_observer.h"
 #include "controller/controller_params.h"
+#include "controller/efficiency_conditioner.h"
 #include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
 #include "controller/multi_arm_law.h"
@@ -59,8 +61,8 @@ struct MultiArmDegradation {
 class MultiArmController {
  public:
   // config: gains, observer, supervision (imu_timeout_s, force_timeout_s,
-  // min/max_plausible_thrust_scale), efficiency (change_threshold,
-  // max_relative_sigma) and force_feedback of config/controller.yaml; its
+  // min/max_plausible_thrust_scale), efficiency (EfficiencyConditioner's
+  // keys, HoverFeasibility's) and force_feedback of config/controller.yaml; its
   // vehicle field is not used (vehicle is). hover: SolveMultiArmHover(vehicle).
   MultiArmController(const VehicleDescription& vehicle, const ControllerConfig& config, const MultiArmHover& hover);
 
@@ -79,18 +81,20 @@ class MultiArmController {
   // a row set to the floor (counted in force_at_floor()): the estimate to
   // check and hand to OnEfficiency.
   RotorEfficiencyEstimate NoteReport(const RotorEfficiencyEstimate& reported, int64_t now_us);
-  // The newest estimate (NoteReport's), used only in force_feedback mode
+  // The newest estimate (NoteReport's), flown only in force_feedback mode
   // (EfficiencyInUse). One of another rotor count or with a scale
   // non-finite or outside [min, max]_plausible_thrust_scale is refused, not
   // clamped (false; counted in refused_estimates()); a refused VALID one of
   // the rotor count keeps the last plausible estimate in force (its age
   // counts from the refused one's stamp), as the birotor's fallback holds
-  // its efficiency through a refused FORCE.
+  // its efficiency through a refused FORCE. A plausible VALID one goes to
+  // the EfficiencyConditioner.
   bool OnEfficiency(const RotorEfficiencyEstimate& estimate);
   // The supervisor's verdict on the estimate (the N-rotor node's force
-  // recovery rule, ForceRecovery): false flies the nominal map whatever the
-  // estimate says. true (the default) leaves it to EfficiencyInUse's own
-  // checks, as the lock-step loop flies.
+  // recovery rule, ForceRecovery): false is the conditioner's fallback (the
+  // efficiencies decay towards 1 over efficiency.decay_s) whatever the
+  // estimate says. true (the default) leaves it to the estimate's own
+  // checks (EstimateUsable), as the lock-step loop flies.
   void SetForceUsable(bool usable) { force_usable_ = usable; }
 
   // One control period (1 / rate_hz()) at now_us on the reference: the
@@ -115,13 +119,15 @@ class MultiArmController {
   int64_t mpc_solves() const { return mpc_solves_; }
   int64_t mpc_fallbacks() const { return mpc_fallbacks_; }
 
-  // e_i flown at now_us: 1 in nominal mode, while SetForceUsable(false),
-  // without a plausible estimate, with one not VALID or older than
-  // force_timeout_s (counted from a newer refused VALID report, if any);
-  // else rotor i's thrust_scale when it is flagged faulty or |scale - 1| >
-  // efficiency.change_threshold, and its sigma / scale <=
-  // efficiency.max_relative_sigma; 1 otherwise.
-  RotorEfficiencies EfficiencyInUse(int64_t now_us) const;
+  // e_i of the newest period (before HoverFeasibility's latched weak
+  // rotor): 1 in nominal mode; with force feedback the EfficiencyConditioner's
+  // e_i = a_i c_i (controller/efficiency_conditioner.h: airborne test,
+  // changes relative to the settled baseline mu0_i, fault_tau_s and
+  // max_rate_1_s, the absolute rule), advanced in each Update with the
+  // estimate usable (EstimateUsable) or decaying towards 1 over decay_s.
+  RotorEfficiencies EfficiencyInUse() const;
+  // The conditioner behind it (baselines, change and absolute factors).
+  const EfficiencyConditioner& efficiency_conditioner() const { return efficiency_; }
 
   // The efficiencies flown in the newest period: EfficiencyInUse with the
   // latched weak rotor's once hover is infeasible [1].
@@ -142,7 +148,8 @@ class MultiArmController {
  private:
   void UpdateState(int64_t now_us, double dt_s);
   // The estimate in force may be flown at now_us: force feedback,
-  // SetForceUsable, VALID, FORCE alive within force_timeout_s.
+  // SetForceUsable, VALID, FORCE alive within force_timeout_s (counted from
+  // a newer refused VALID report, if any).
   bool EstimateUsable(int64_t now_us) const;
   // Force feedback only (nominal mode flies no efficiency: its infeasibility
   // is not known): HoverFeasibility on the efficiencies in use, the
@@ -155,6 +162,12 @@ class MultiArmController {
   // integrator wound up against a rotor that could not deliver; the
   // position one otherwise), as VehicleController::DescentTarget.
   ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
+  // The birotor's motor-lag lead (VehicleController, efficiency.motor_lead_s)
+  // on the cascade's speeds: while e_i falls, omega_i + motor_lead_s
+  // d(omega_i)/dt with d(omega_i)/dt = -omega_i / (2 e_i) de_i/dt (the
+  // inverse of the first-order motor lag for the efficiency's share of the
+  // command), within [0, omega_max]; a rising e_i is not led.
+  void LeadFallingEfficiency(const RotorEfficiencies& efficiency, double dt_s, MultiArmRotorCommand* command);
   // In a descent each speed within degraded_omega_rate_rad_s2 dt_s of the
   // last command sent (never 0 <-> omega_max in one period), the thrusts
   // following.
@@ -179,6 +192,7 @@ class MultiArmController {
   RotorEfficiencyEstimate efficiency_estimate_;  // the newest plausible one
   int64_t force_alive_utime_ = -1;               // its stamp, or a newer refused VALID report's [us]
   bool force_usable_ = true;                     // SetForceUsable
+  EfficiencyConditioner efficiency_;             // e_i from the plausible estimates
   ForceFloorEvidence floor_evidence_;
   int64_t force_at_floor_ = 0;
   int64_t refused_estimates_ = 0;
@@ -192,8 +206,9 @@ class MultiArmController {
   HoverFeasibility feasibility_;
   MultiArmDegradation degradation_;
   RotorEfficiencies flown_efficiency_ = NominalEfficiencies();
-  std::array<double, kMaxArms> last_command_rad_s_{};  // the command returned last [rad/s]
-  bool last_saturated_ = false;                        // ... and whether its allocation was limited
+  std::array<double, kMaxArms> last_command_rad_s_{};          // the command returned last [rad/s]
+  RotorEfficiencies last_efficiency_ = NominalEfficiencies();  // e_i of the period before (the lead) [1]
+  bool last_saturated_ = false;                                // ... and whether its allocation was limited
   // Mode mpc (null otherwise).
   std::unique_ptr<MultiArmMpc> mpc_;
   std::vector<ReferencePoint> horizon_;  // mpc.horizon_steps samples, sized once

@@ -3,8 +3,9 @@
 // exactly the hover thrusts on a vehicle at rest, and which efficiency it
 // flies for each kind of estimate (the gains and thresholds of
 // ControllerConfig's defaults, which config/controller.yaml keeps: an
-// implausible scale refused, a flagged one below the floor flown at it), and
-// mode mpc with its fallback to the cascade.
+// implausible scale refused, a flagged one below the floor flown at it, the
+// plausible ones conditioned by EfficiencyConditioner), and mode mpc with its
+// fallback to the cascade.
 #include "controller/multi_arm_controller.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "model/multi_arm_linearization.h"
 #include "params/vehicle_description_yaml.h"
@@ -44,17 +46,48 @@ ControllerConfig ForceFeedback() {
   return config;
 }
 
-// A VALID estimate at utime with every rotor at 1 but rotor 2 (index 1).
+// The trirotor's hover thrusts (trirotor.yaml's header) [N].
+constexpr double kHoverN[3] = {27.47, 14.32, 14.32};
+
+// A VALID estimate at utime with every rotor at 1 but rotor 2 (index 1);
+// each rotor's force its hover thrust times its scale, sigma 1 %.
 RotorEfficiencyEstimate Estimate(int64_t utime, double rotor2_scale, bool rotor2_flagged) {
   RotorEfficiencyEstimate estimate;
   estimate.utime = utime;
   estimate.n_rotors = 3;
   estimate.valid = true;
+  estimate.status = kStatusValid;
   estimate.thrust_scale = {1.0, rotor2_scale, 1.0};
   estimate.thrust_scale_std = {0.01, 0.01, 0.01};
+  for (size_t i = 0; i < 3; ++i) {
+    estimate.force_n[i] = kHoverN[i] * (std::isfinite(estimate.thrust_scale[i]) ? estimate.thrust_scale[i] : 1.0);
+    estimate.force_std_n[i] = 0.01 * estimate.force_n[i];
+  }
   estimate.rotor_fault_bits = rotor2_flagged ? 2 : 0;
   return estimate;
 }
+
+// The controller at rest at the origin, periods at 500 Hz from *now_us
+// (POSE every 5th, the IMU at g), before each one the report
+// report(now_us) through NoteReport and OnEfficiency (none when it is not
+// VALID... it is handed on as it is); returns e_1 (rotor 2) of each period.
+template <class Report>
+std::vector<double> FlyAtRest(MultiArmController* controller, int periods, int64_t* now_us, Report report) {
+  std::vector<double> rotor2;
+  for (int k = 0; k < periods; ++k, *now_us += 2000) {
+    if ((*now_us / 2000) % 5 == 0) controller->OnPose(PoseSample{*now_us, static_cast<int32_t>(*now_us / 10000)});
+    controller->OnImu(ImuSample{*now_us, static_cast<int32_t>(*now_us / 2000), 0.0, 0.0, 9.81});
+    const RotorEfficiencyEstimate estimate = report(*now_us);
+    if (estimate.utime >= 0) controller->OnEfficiency(controller->NoteReport(estimate, *now_us));
+    controller->Update(*now_us, ReferencePoint());
+    rotor2.push_back(controller->EfficiencyInUse()[1]);
+  }
+  return rotor2;
+}
+
+// Airborne (0.3 s), the baseline settled (baseline_tau_s 1 s) and the blend
+// that starts following (blend_s 1.5 s) over: 2 s of healthy reports.
+constexpr int kSettlePeriods = 1000;
 
 // sqrt(f_hover,i / c_T,i) of the deflected equilibrium (SolveMultiArmHover);
 // the trirotor.yaml header's rigid figures, 772.7 rad/s on rotor 1 and 557.9
@@ -92,92 +125,162 @@ TEST(MultiArmControllerTest, AtRestOnTheReferenceCommandsTheHoverThrusts) {
   EXPECT_EQ(controller.saturated_periods(), 0);
 }
 
-TEST(MultiArmControllerTest, FollowsAFlaggedOrChangedRotorOnly) {
+// With force feedback the efficiencies are EfficiencyConditioner's: 1 until
+// airborne and settled, then a loss on rotor 2 (0.6, flagged) followed
+// within max_rate_1_s x dt = 50 x 0.002 = 0.1 a period (0.6 within 1e-3
+// after 0.1 s); the EKF's ringing right after a loss (-0.93 refused, 1.71
+// plausible) moves it by at most 0.1 a period (the refused one after 1.71
+// holds that target: two periods up, 0.8 at most), and not at all when the
+// estimator marks it a prediction (STATUS_MEASUREMENT_REJECTED, as the N-arm
+// EKF's ringing is); FORCE silent beyond force_timeout_s: decaying towards 1
+// over decay_s (3 s), not the nominal map at once.
+TEST(MultiArmControllerTest, FliesConditionedEfficiencies) {
   const VehicleDescription vehicle = Trirotor();
   MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
-  controller.OnEfficiency(Estimate(1000, 0.6, true));
-  RotorEfficiencies e = controller.EfficiencyInUse(2000);
-  EXPECT_EQ(e[0], 1.0);
-  EXPECT_EQ(e[1], 0.6);
-  EXPECT_EQ(e[2], 1.0);
-  // Unflagged and within change_threshold (0.1) of 1: nominal.
-  controller.OnEfficiency(Estimate(1000, 0.95, false));
-  EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 1.0);
-  // Unflagged but 0.4 from 1: followed.
-  controller.OnEfficiency(Estimate(1000, 0.6, false));
-  EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 0.6);
+  int64_t now_us = 0;
+  const auto healthy = [](int64_t t) { return Estimate(t, 1.0, false); };
+  const auto lost = [](int64_t t) { return Estimate(t, 0.6, true); };
+  // Before the baseline has settled a loss is not followed.
+  FlyAtRest(&controller, 100, &now_us, healthy);
+  EXPECT_FALSE(controller.efficiency_conditioner().airborne());
+  FlyAtRest(&controller, 100, &now_us, healthy);
+  ASSERT_TRUE(controller.efficiency_conditioner().airborne());
+  EXPECT_EQ(FlyAtRest(&controller, 10, &now_us, lost).back(), 1.0);
+  FlyAtRest(&controller, kSettlePeriods, &now_us, healthy);
+  const std::vector<double> loss = FlyAtRest(&controller, 50, &now_us, lost);
+  EXPECT_NEAR(loss.back(), 0.6, 1e-3);
+  double last = 1.0;
+  for (const double e : loss) {
+    EXPECT_LE(std::abs(e - last), 0.1 + 1e-12);
+    last = e;
+  }
+  EXPECT_EQ(controller.EfficiencyInUse()[0], 1.0);
+  EXPECT_EQ(controller.EfficiencyInUse()[2], 1.0);
+  // Ringing: -0.93 (refused), 1.71, -0.99 (refused), then 0.6 again.
+  const double ringing[4] = {-0.93, 1.71, -0.99, 0.6};
+  int k = 0;
+  const std::vector<double> rung =
+      FlyAtRest(&controller, 4, &now_us, [&](int64_t t) { return Estimate(t, ringing[k++], true); });
+  last = loss.back();
+  for (const double e : rung) {
+    EXPECT_LE(std::abs(e - last), 0.1 + 1e-9);
+    EXPECT_LE(e, 0.6 + 0.2 + 1e-2);
+    last = e;
+  }
+  EXPECT_EQ(controller.refused_estimates(), 2);
+  FlyAtRest(&controller, 50, &now_us, lost);
+  EXPECT_NEAR(controller.EfficiencyInUse()[1], 0.6, 1e-3);
+  // The same ringing marked a prediction: e holds.
+  k = 0;
+  const std::vector<double> predicted = FlyAtRest(&controller, 4, &now_us, [&](int64_t t) {
+    RotorEfficiencyEstimate e = Estimate(t, ringing[k++], true);
+    e.status |= kStatusMeasurementRejected;
+    return e;
+  });
+  for (const double e : predicted) EXPECT_NEAR(e, 0.6, 1e-3);
+  EXPECT_EQ(controller.refused_estimates(), 4);
+  // FORCE silent for 10 ms: the fallback decays e towards 1 with decay_s.
+  const std::vector<double> silent =
+      FlyAtRest(&controller, 5, &now_us, [](int64_t) { return RotorEfficiencyEstimate(); });
+  EXPECT_GT(silent.back(), 0.6);
+  EXPECT_LT(silent.back(), 0.61);
 }
 
 // A scale outside [min, max]_plausible_thrust_scale = [0.2, 2] is refused,
 // not clamped (docs/controller.md, "Plausible efficiencies"): the last
 // plausible estimate stays in force while refused VALID reports keep coming
-// (force_timeout_s, 5 ms, counted from the newest of them); a refused one
-// that is not VALID, or of another rotor count, does not keep it.
+// (force_timeout_s, 5 ms, counted from the newest of them: the conditioner
+// keeps following it); a refused one that is not VALID, or of another rotor
+// count, does not keep it (the conditioner's fallback: e decays towards 1).
 TEST(MultiArmControllerTest, RefusesAnImplausibleScaleAndKeepsThePlausibleOne) {
   const VehicleDescription vehicle = Trirotor();
   MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
-  EXPECT_TRUE(controller.OnEfficiency(Estimate(1000, 0.6, true)));
-  EXPECT_FALSE(controller.OnEfficiency(Estimate(2000, 0.1, false)));  // below the floor, unflagged
-  EXPECT_FALSE(controller.OnEfficiency(Estimate(3000, 0.1, true)));   // flagged, not (yet) at the floor
-  EXPECT_FALSE(controller.OnEfficiency(Estimate(4000, 2.5, false)));  // above max
-  EXPECT_FALSE(controller.OnEfficiency(Estimate(5000, NAN, true)));
+  int64_t now_us = 0;
+  FlyAtRest(&controller, kSettlePeriods, &now_us, [](int64_t t) { return Estimate(t, 1.0, false); });
+  FlyAtRest(&controller, 50, &now_us, [](int64_t t) { return Estimate(t, 0.6, true); });
+  ASSERT_NEAR(controller.EfficiencyInUse()[1], 0.6, 1e-3);
+  const double refused[4] = {0.1, 0.1, 2.5, NAN};  // below the floor (unflagged, flagged), above max, NaN
+  const bool flagged[4] = {false, true, false, true};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_FALSE(controller.OnEfficiency(Estimate(now_us, refused[k], flagged[k]))) << k;
+    const std::vector<double> e = FlyAtRest(&controller, 1, &now_us, [](int64_t) { return RotorEfficiencyEstimate(); });
+    EXPECT_NEAR(e.back(), 0.6, 1e-3) << k;  // still following the plausible 0.6
+  }
   EXPECT_EQ(controller.refused_estimates(), 4);
-  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5000)[1], 0.6);
-  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5001)[1], 1.0);
-  RotorEfficiencyEstimate invalid = Estimate(6000, 0.1, true);
+  RotorEfficiencyEstimate invalid = Estimate(now_us, 0.1, true);
   invalid.valid = false;
   EXPECT_FALSE(controller.OnEfficiency(invalid));
-  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5001)[1], 1.0);
-  RotorEfficiencyEstimate two = Estimate(7000, 0.1, true);
+  RotorEfficiencyEstimate two = Estimate(now_us, 0.1, true);
   two.n_rotors = 2;
   EXPECT_FALSE(controller.OnEfficiency(two));
-  EXPECT_EQ(controller.EfficiencyInUse(5000 + 5001)[1], 1.0);
   EXPECT_EQ(controller.refused_estimates(), 6);
+  // Neither keeps the estimate alive: once the last refused VALID report is
+  // older than force_timeout_s the fallback decays e towards 1 (decay_s 3 s:
+  // +0.4 x 0.002 / 3 a period), continuously.
+  const std::vector<double> e = FlyAtRest(&controller, 5, &now_us, [](int64_t) { return RotorEfficiencyEstimate(); });
+  EXPECT_GT(e.back(), e.front());
+  EXPECT_LT(e.back(), 0.61);
 }
 
 // A rotor FORCE flags with its scale below the floor: refused for the first
 // at_floor_samples - 1 (4) reports, then flown at the floor, 0.2
 // (NoteReport, ForceFloorEvidence); each report counted in force_at_floor.
+// The conditioner follows the floor (0.2 within 1e-3 after 0.1 s).
 TEST(MultiArmControllerTest, FlaggedScaleBelowTheFloorIsFlownAtTheFloor) {
   const VehicleDescription vehicle = Trirotor();
   const ControllerConfig config = ForceFeedback();
   MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+  int64_t now_us = 0;
+  FlyAtRest(&controller, kSettlePeriods, &now_us, [](int64_t t) { return Estimate(t, 1.0, false); });
   const int at_floor = config.supervision.at_floor_samples;
   for (int k = 1; k <= at_floor + 2; ++k) {
-    const int64_t now_us = 1000 * k;
+    now_us += 1000;
     const bool flown = controller.OnEfficiency(controller.NoteReport(Estimate(now_us, 0.1, true), now_us));
     EXPECT_EQ(flown, k >= at_floor) << k;
-    EXPECT_EQ(controller.EfficiencyInUse(now_us)[1], k >= at_floor ? 0.2 : 1.0) << k;
   }
   EXPECT_EQ(controller.force_at_floor(), 3);
   EXPECT_EQ(controller.refused_estimates(), at_floor - 1);
+  FlyAtRest(&controller, 50, &now_us, [](int64_t t) { return Estimate(t, 0.1, true); });
+  EXPECT_NEAR(controller.EfficiencyInUse()[1], 0.2, 1e-3);
 }
 
+// The efficiencies stay 1 in nominal mode, and with force feedback for
+// reports that are not VALID, of another rotor count, or whose sigma is
+// above max_relative_sigma (force_std / force 1.17 > 1).
 TEST(MultiArmControllerTest, NominalMapWhenTheEstimateIsUnusable) {
   const VehicleDescription vehicle = Trirotor();
-  MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
-  RotorEfficiencyEstimate estimate = Estimate(1000, 0.6, true);
-  controller.OnEfficiency(estimate);
-  // Older than force_timeout_s (5 ms).
-  EXPECT_EQ(controller.EfficiencyInUse(1000 + 5001)[1], 1.0);
-  EXPECT_EQ(controller.EfficiencyInUse(1000 + 5000)[1], 0.6);
-  estimate.valid = false;
-  controller.OnEfficiency(estimate);
-  EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 1.0);
-  estimate = Estimate(1000, 0.6, true);
-  estimate.n_rotors = 2;  // another vehicle's estimate
-  controller.OnEfficiency(estimate);
-  EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 1.0);
-  estimate = Estimate(1000, 0.6, true);
-  estimate.thrust_scale_std[1] = 0.7;  // sigma / scale 1.17 > max_relative_sigma 1
-  controller.OnEfficiency(estimate);
-  EXPECT_EQ(controller.EfficiencyInUse(2000)[1], 1.0);
-  // Nominal mode ignores it.
-  ControllerConfig config;
-  config.force_feedback = false;
-  MultiArmController off(vehicle, config, SolveMultiArmHover(vehicle));
-  off.OnEfficiency(Estimate(1000, 0.6, true));
-  EXPECT_EQ(off.EfficiencyInUse(2000)[1], 1.0);
+  const auto fly = [&](const ControllerConfig& config, auto report) {
+    MultiArmController controller(vehicle, config, SolveMultiArmHover(vehicle));
+    int64_t now_us = 0;
+    FlyAtRest(&controller, kSettlePeriods, &now_us, [](int64_t t) { return Estimate(t, 1.0, false); });
+    return FlyAtRest(&controller, 50, &now_us, report).back();
+  };
+  const auto invalid = [](int64_t t) {
+    RotorEfficiencyEstimate e = Estimate(t, 0.6, true);
+    e.valid = false;
+    e.status = 0;
+    return e;
+  };
+  const auto two = [](int64_t t) {
+    RotorEfficiencyEstimate e = Estimate(t, 0.6, true);
+    e.n_rotors = 2;
+    return e;
+  };
+  const auto uncertain = [](int64_t t) {
+    RotorEfficiencyEstimate e = Estimate(t, 0.6, true);
+    e.thrust_scale_std[1] = 0.7;
+    e.force_std_n[1] = 1.17 * e.force_n[1];
+    return e;
+  };
+  const auto lost = [](int64_t t) { return Estimate(t, 0.6, true); };
+  EXPECT_NEAR(fly(ForceFeedback(), lost), 0.6, 1e-3);  // the same flight, usable: followed
+  // Not usable: the fallback, e from 1 towards 1.
+  EXPECT_EQ(fly(ForceFeedback(), invalid), 1.0);
+  EXPECT_EQ(fly(ForceFeedback(), two), 1.0);
+  EXPECT_EQ(fly(ForceFeedback(), uncertain), 1.0);
+  ControllerConfig nominal;
+  nominal.force_feedback = false;
+  EXPECT_EQ(fly(nominal, lost), 1.0);
 }
 
 // 1 s of inputs and control periods, a rotor estimate in force feedback
