@@ -31,16 +31,37 @@ constexpr char kLossPrefix[] = "loss40_rotor";
 // ground: the touchdown is the crossing of the take-off level, z = 0).
 constexpr char kDescentPrefix[] = "descent";
 constexpr char kDescentClimb[] = "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]";
+// The changed-vehicle case (the birotor's density_0.85, ct_-15): every rotor
+// at 0.85 of its map from the start of a 10 s hover (air 15 % thinner, or
+// c_T -15 %), a thrust step at 0 s so that the altitude deviation counts
+// from the start.
+constexpr char kDensityCase[] = "density85";
+constexpr double kDensityScale = 0.85;
 
 std::vector<std::string> DefaultCases() {
-  return {"lateral_step", "aggressive", "loss40_rotor1", "loss40_rotor2", "loss40_rotor3"};
+  return {"lateral_step", "aggressive", "loss40_rotor1", "loss40_rotor2", "loss40_rotor3", kDensityCase};
 }
 
-// A case: a scenario name, or loss40_rotorK (thrust_loss with rotor K at
-// 60 % from 5 s). *rotor: K, or 0 for a plain scenario.
-bool CaseScenario(const std::string& name, std::string* scenario, std::vector<std::string>* overrides, int* rotor) {
+// The density85 case's scenario and overrides for arm_count rotors.
+void DensityCase(int arm_count, std::string* scenario, std::vector<std::string>* overrides) {
+  *scenario = "hover";
+  overrides->push_back("scenario.duration_s=10.0");
+  std::string steps;
+  for (int k = 1; k <= arm_count; ++k)
+    steps += fmt::format("{}{{time_s: 0.0, rotor: {}, scale: {}}}", k > 1 ? ", " : "", k, kDensityScale);
+  overrides->push_back("faults.thrust_steps=[" + steps + "]");
+}
+
+// A case: a scenario name, loss40_rotorK (thrust_loss with rotor K at 60 %
+// from 5 s), descentPP_rotorK or density85. *rotor: K, or 0 otherwise.
+bool CaseScenario(const std::string& name, int arm_count, std::string* scenario, std::vector<std::string>* overrides,
+                  int* rotor) {
   *rotor = 0;
   *scenario = name;
+  if (name == kDensityCase) {
+    DensityCase(arm_count, scenario, overrides);
+    return true;
+  }
   if (name.rfind(kDescentPrefix, 0) == 0) {
     int loss_percent = 0;
     if (std::sscanf(name.c_str(), "descent%d_rotor%d", &loss_percent, rotor) != 2 || loss_percent < 0 ||
@@ -110,8 +131,8 @@ bool FlyCase(const std::string& name, const VehicleDescription& vehicle, const C
   std::string scenario_name;
   std::vector<std::string> overrides;
   int rotor = 0;
-  if (!CaseScenario(name, &scenario_name, &overrides, &rotor)) {
-    *error = "case '" + name + "': not a scenario name, loss40_rotorK nor descentPP_rotorK";
+  if (!CaseScenario(name, vehicle.arm_count, &scenario_name, &overrides, &rotor)) {
+    *error = "case '" + name + "': not a scenario name, loss40_rotorK, descentPP_rotorK nor density85";
     return false;
   }
   if (rotor > vehicle.arm_count) {

@@ -1,7 +1,9 @@
 // birotor-eval --vehicle FILE --control: the product's N-rotor controller
 // (controller/multi_arm_controller.h) flown lock-step on a vehicle
 // description (evaluation/multi_arm_closed_loop.h) over the lateral step,
-// the aggressive move and a 40 % thrust loss on each rotor, with the cascade
+// the aggressive move, a 40 % thrust loss on each rotor and every rotor at
+// 0.85 of its map from the start (density85: EfficiencyConditioner's
+// absolute rule), with the cascade
 // and in mode mpc (the N-input MPC, the cascade its fallback), each with the
 // nominal map and with force feedback on the N-arm estimator's efficiencies
 // (evaluation/estimated_efficiency_provider.h: the product path); the loss
