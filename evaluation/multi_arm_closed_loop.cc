@@ -75,8 +75,7 @@ bool WithinBounds(const std::array<double, kMaxArms>& omega_rad_s, int arm_count
 void TrueEfficiencyProvider::OnTruthN(const MultiArmTruthSample& sample) {
   newest_.utime = sample.utime;
   newest_.n_rotors = sample.n_arms;
-  newest_.valid = true;
-  newest_.status = kStatusValid;
+  newest_.valid = true;  // status 0: no deficit, mismatch nor converging (the truth)
   newest_.rotor_fault_bits = 0;
   for (int i = 0; i < sample.n_arms; ++i) {
     const size_t rotor = static_cast<size_t>(i);
