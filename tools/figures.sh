@@ -276,7 +276,7 @@ EOF
   cat <<EOF
 
 **Speed** on this machine: one strain sample through the EKF (with the MOTOR and IMU samples before it)
-$(benchmark_time BM_StrainSample/ekf) (median of $reps); the whole pipeline over 10 s of \`gentle\` $(benchmark_time BM_PipelineGentle10s);
+$(benchmark_time BM_StrainSample/ekf) (median of $reps); the whole pipeline over 10 s of \`gentle\` $(benchmark_time BM_PipelineGentle10s/shipped);
 \`birotor-replay\` of a 15 s log in ${replay_s} s ($(awk -v t="$replay_s" 'BEGIN { printf "%.0f", 15 / t }')x real time);
 60 s simulated into a log in ${sim60_s} s.
 EOF
