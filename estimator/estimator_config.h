@@ -45,6 +45,14 @@ struct EkfOptions {
   // and their driving noise its gauge_drift_psd_rad2_s, both divided by the
   // gauge scale. false: the offsets stay at the calibration, exactly known.
   bool estimate_gauge_offsets = true;
+  // N-arm EKF on a vehicle with more rotors than the rigid body pins (N > 3,
+  // the wrench's null space): the offset combinations that mirror a force
+  // there (estimator/multi_arm_offset_hold.h) are not moved by the
+  // measurements in flight (a Schmidt hold: their prior, drift and
+  // correlations stay in P and in the force sigma); on the ground they are
+  // learned as the others. false: every combination updated (in hover the
+  // estimate wanders along them: docs/estimator.md). No effect for N <= 3.
+  bool hold_unseen_offsets = true;
   // Slow vehicle parameters learned in flight (issue 27, docs/mismatch.md),
   // each a random walk starting at the parameter file's value (1) with the
   // prior sigma below (the reference file carries no sigma for k, s_i or m:

@@ -14,6 +14,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
+#include "estimator/multi_arm_ekf_fusion.h"
 #include "estimator/multi_arm_ekf_model.h"
 #include "estimator/multi_arm_fault_monitor.h"
 #include "estimator/multi_arm_ground.h"
@@ -156,6 +157,14 @@ class MultiArmEkf : public MultiArmForceEstimator {
   SampleQueue<ImuSample, kQueueCapacity> imu_queue_;
   MultiArmFaultMonitor faults_;
   MultiArmGroundContact contact_;  // from the IMU on arrival: selects the held body's model
+  // The Schmidt hold on the offsets a redundant vehicle cannot see in flight
+  // (estimator/multi_arm_offset_hold.h; inactive for N <= 3 or when off).
+  LeadingGainHold<N> offset_hold_;
+  // The hold for this fusion: in flight, null on the ground (the held body
+  // pins b_i there, every offset is learned).
+  const LeadingGainHold<N>* FlightOffsetHold() const {
+    return offset_hold_.active && !contact_.supported() ? &offset_hold_ : nullptr;
+  }
   std::array<double, N> force_std_n_{};
   MultiArmFilterFacts facts_;                   // of the newest estimate
   StrainNoiseAdaptation strain_noise_;          // the learned scale on each gauge's variance

@@ -21,6 +21,15 @@ namespace birotor {
 // states[j] = {a, b}, b = -1 for a unit row e_a^T, a = b = -1 for a zero row
 // (a masked entry, MultiArmMeasurements). H's entries must be 0 or 1, at
 // most two 1s a row.
+// A Schmidt hold on the leading R states of the update (SymmetricJosephUpdate):
+// keep = I - U U^T for the orthonormal columns U of the combinations that
+// are not to be updated. Inactive: the optimal gain, unchanged.
+template <int R>
+struct LeadingGainHold {
+  bool active = false;
+  Eigen::Matrix<double, R, R> keep = Eigen::Matrix<double, R, R>::Identity();
+};
+
 template <int M>
 using OnesRowStates = std::array<std::array<int, 2>, M>;
 
@@ -48,13 +57,24 @@ OnesRowStates<M> FindOnesRowStates(const Eigen::Matrix<double, M, N>& h) {
 // P+ is symmetric when P is: each pair (r, c), (c, r) is computed once, on the
 // upper triangle column by column, and mirrored, n (n + 1) / 2 entries of 2 m
 // products each instead of 2 n^2. P+_rc = P_rc - K_r . (H P)_c - B_r . K_c.
-template <int M, typename State, typename Cov>
+//
+// hold, when not null and active: a Schmidt (consider) update of the leading
+// R states, the gain's first R rows replaced by hold->keep times them (the
+// combinations hold->keep removes are not moved; their variance and
+// correlations stay in P, exact for this gain: the Joseph form holds for any
+// gain, and B = (H P)^T - K S is A H^T - K R for any K).
+template <int M, typename State, typename Cov, int R = 1>
 void SymmetricJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
                            const Eigen::Matrix<double, M, M>& s, const Eigen::Matrix<double, M, M>& s_inverse,
-                           const Eigen::Matrix<double, M, 1>& residual, State* x, Cov* cov) {
+                           const Eigen::Matrix<double, M, 1>& residual, State* x, Cov* cov,
+                           const LeadingGainHold<R>* hold = nullptr) {
   constexpr int N = State::RowsAtCompileTime;
   Eigen::Matrix<double, N, M> gain;
   gain.noalias() = h_p.transpose().lazyProduct(s_inverse);
+  if (hold != nullptr && hold->active) {
+    const Eigen::Matrix<double, R, M> leading = hold->keep * gain.template topRows<R>();
+    gain.template topRows<R>() = leading;
+  }
   x->noalias() += gain.lazyProduct(residual);
   Eigen::Matrix<double, N, M> b = h_p.transpose();
   b.noalias() -= gain.lazyProduct(s);
@@ -103,17 +123,18 @@ bool PassesGate(const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matri
 
 // The gate on S and, when it passes, SymmetricJosephUpdate; *nis and
 // *report filled when not null (the tail of every grouped fusion).
-template <int M, typename State, typename Cov>
+template <int M, typename State, typename Cov, int R = 1>
 FusionOutcome GateAndUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
                             const Eigen::Matrix<double, M, M>& s, const Eigen::Matrix<double, M, 1>& residual,
-                            double gate_nis, State* x, Cov* cov, double* nis, FusionReport* report) {
+                            double gate_nis, State* x, Cov* cov, double* nis, FusionReport* report,
+                            const LeadingGainHold<R>* hold = nullptr) {
   const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
   double nis_value;
   const bool passes = PassesGate(s_inverse, residual, gate_nis, &nis_value);
   if (nis != nullptr) *nis = nis_value;
   const FusionOutcome outcome = passes ? FusionOutcome::kFused : FusionOutcome::kRejectedGate;
   if (report != nullptr) FillFusionReport(residual, s, nis_value, gate_nis, outcome, report);
-  if (passes) SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov);
+  if (passes) SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov, hold);
   return outcome;
 }
 
@@ -121,12 +142,12 @@ FusionOutcome GateAndUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileT
 // covariance by SymmetricJosephUpdate: S = H P H^T + R, NIS = y^T S^-1 y,
 // gated as there (the N-arm accelerometer). H's first Z columns must be zero
 // (the accelerometer reads no offset e_i): left out of H P and H P H^T.
-// report, when not null: FillFusionReport.
-template <int Z = 0, int M, typename State, typename Cov>
+// report, when not null: FillFusionReport; hold: SymmetricJosephUpdate's.
+template <int Z = 0, int M, typename State, typename Cov, int R = 1>
 FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                       const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                       double gate_nis, State* x, Cov* cov, double* nis = nullptr,
-                                      FusionReport* report = nullptr) {
+                                      FusionReport* report = nullptr, const LeadingGainHold<R>* hold = nullptr) {
   constexpr int N = State::RowsAtCompileTime, read = N - Z;
   const auto h_read = at.jacobian.template rightCols<read>();
   Eigen::Matrix<double, M, N> h_p;
@@ -134,19 +155,19 @@ FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::R
   Eigen::Matrix<double, M, M> s = noise;
   s.noalias() += h_p.template rightCols<read>().lazyProduct(h_read.transpose());
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
-  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report);
+  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report, hold);
 }
 
 // FuseSymmetricUnreported for H whose rows are sums of at most two unit rows
 // (FindOnesRowStates; the N-arm strain b_i + e_i, telemetry and gyro), H's
 // zeros left out: with {a_j, b_j} the states row j reads, (H P)_j = P_(a_j) +
 // P_(b_j) (rows), (H P H^T)_jl = (H P)_(j, a_l) + (H P)_(j, b_l).
-// report, when not null: FillFusionReport.
-template <int M, typename State, typename Cov>
+// report, when not null: FillFusionReport; hold: SymmetricJosephUpdate's.
+template <int M, typename State, typename Cov, int R = 1>
 FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                      const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                      double gate_nis, State* x, Cov* cov, double* nis = nullptr,
-                                     FusionReport* report = nullptr) {
+                                     FusionReport* report = nullptr, const LeadingGainHold<R>* hold = nullptr) {
   constexpr int N = State::RowsAtCompileTime;
   const OnesRowStates<M> states = FindOnesRowStates(at.jacobian);
   Eigen::Matrix<double, M, N> h_p = Eigen::Matrix<double, M, N>::Zero();
@@ -164,7 +185,7 @@ FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::Ro
     }
   }
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
-  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report);
+  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report, hold);
 }
 
 }  // namespace birotor

@@ -12,6 +12,7 @@
 #include "estimator/multi_arm_ekf.h"
 #include "estimator/multi_arm_ekf_fusion.h"
 #include "estimator/multi_arm_ekf_model_impl.h"
+#include "estimator/multi_arm_offset_hold.h"
 
 namespace birotor {
 namespace multi_arm_ekf_detail {
@@ -39,6 +40,7 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
   // state (estimator/ekf_force_estimator.cc kVarianceFloor, kVarianceCeiling).
   floor_.setConstant(1e-12);  // phi_dot, b_dot [(rad/s)^2]
   ceiling_.setConstant(1e4);
+  if (options.estimate_gauge_offsets && options.hold_unseen_offsets) offset_hold_ = UnseenOffsetHold<N>(vehicle);
   const HoverSolution hover = SolveHover(vehicle);
   for (int i = 0; i < N; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
@@ -236,7 +238,7 @@ void MultiArmEkf<N>::ApplyMotor(const MultiArmMotorSample& sample) {
       FusionReport report = MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kNotFused);
       FuseOnesRowsUnreported(Measurements::Telemetry(state_, measured),
                              Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
-                             options_.telemetry_gate_nis, &state_, &covariance_, nullptr, &report);
+                             options_.telemetry_gate_nis, &state_, &covariance_, nullptr, &report, FlightOffsetHold());
       LeaveOutUnmeasured(measured, &report);
       reports_.Add(report);
     }
@@ -258,7 +260,8 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
     const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
     FusionReport report = MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused);
     FuseOnesRowsUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
-                           options_.gyro_gate_nis, &state_, &covariance_, nullptr, &report);  // a unit row: phi_dot
+                           options_.gyro_gate_nis, &state_, &covariance_, nullptr, &report,
+                           FlightOffsetHold());  // a unit row: phi_dot
     reports_.Add(report);
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
@@ -271,7 +274,8 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   FusionReport report = MakeFusionReport(FusionSource::kAccelerometer, sample.utime, FusionOutcome::kNotFused);
   FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
                                                  Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
-                                                 options_.accel_gate_nis, &state_, &covariance_, nullptr, &report);
+                                                 options_.accel_gate_nis, &state_, &covariance_, nullptr, &report,
+                                                 FlightOffsetHold());
   // a_z first: the thrust axis, the birotor's accelerometer report (its
   // one component), which the model-consistency monitor's fast test reads.
   std::swap(report.innovation(0), report.innovation(1));
@@ -321,7 +325,9 @@ FusionReport MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
   FusionReport report = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kNotFused);
   strain_gate_.FuseUnreportedWith(
       options_.strain_gate_nis,
-      [&](double gate) { return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_, nullptr, &report); },
+      [&](double gate) {
+        return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_, nullptr, &report, FlightOffsetHold());
+      },
       &covariance_,
       [extra](Covariance* p) {
         for (int i = 0; i < N; ++i) (*p)(Layout::ThrustScale(i), Layout::ThrustScale(i)) += extra * extra;

@@ -25,6 +25,7 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Flag("use_accelerometer", &O::use_accelerometer),
       Real("accel_noise_m_s2", &O::accel_noise_m_s2, 1e-5, 100.0),
       Flag("estimate_gauge_offsets", &O::estimate_gauge_offsets),
+      Flag("hold_unseen_offsets", &O::hold_unseen_offsets),
       Flag("learn_strain_scale", &O::learn_strain_scale),
       Real("strain_scale_prior_std", &O::strain_scale_prior_std, 1e-6, 0.5),
       Real("strain_scale_psd_1_s", &O::strain_scale_psd_1_s, 0.0, 1e-2),

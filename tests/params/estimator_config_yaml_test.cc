@@ -46,6 +46,7 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.ekf.ground_contact_on_n, defaults.ekf.ground_contact_on_n);
   EXPECT_EQ(config.ekf.ground_contact_off_n, defaults.ekf.ground_contact_off_n);
   EXPECT_EQ(config.ekf.body_held, defaults.ekf.body_held);
+  EXPECT_EQ(config.ekf.hold_unseen_offsets, defaults.ekf.hold_unseen_offsets);
   EXPECT_EQ(config.tare.window_s, defaults.tare.window_s);
   EXPECT_EQ(config.tare.motor_stopped_rad_s, defaults.tare.motor_stopped_rad_s);
   EXPECT_EQ(config.tare.max_offset_rad, defaults.tare.max_offset_rad);
