@@ -264,7 +264,10 @@ struct PipelineOptions {
 
 // Tracked notches against the rotor-harmonic pickup (estimator/harmonic_notch.h).
 struct HarmonicNotchOptions {
-  bool enabled = true;  // off: the deflection reaches the method unfiltered
+  bool enabled = true;  // off: the deflection reaches the method unfiltered (the birotor's and N arms')
+  // The N-arm pipeline (MultiArmPipeline) notches too when this and enabled
+  // are on (docs/estimator.md, "The harmonic notch for N arms").
+  bool multi_arm_enabled = true;
   // -3 dB width of each notch [Hz]. 4 Hz: wide against the telemetry noise
   // (5 rad/s is 0.8 Hz at 1x, 1.6 Hz at 2x), narrow enough to leave the arm
   // modes and the thrust_loss detection delay unchanged (8 Hz: +4 ms).
