@@ -23,6 +23,13 @@ bool IsFinite(const MultiArmForceEstimate& e) {
   return true;
 }
 
+// The N-arm pipeline's notches: the birotor's options at multi_arm_bandwidth_hz.
+HarmonicNotchOptions MultiArmNotchOptions(const HarmonicNotchOptions& options) {
+  HarmonicNotchOptions narrow = options;
+  narrow.bandwidth_hz = options.multi_arm_bandwidth_hz;
+  return narrow;
+}
+
 }  // namespace
 
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
@@ -34,7 +41,7 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
       admission_(config.pipeline),
       notch_on_(config.harmonic_notch.enabled && config.harmonic_notch.multi_arm_enabled),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
-      notch_(config.harmonic_notch, config.vehicle.arm_count) {
+      notch_(MultiArmNotchOptions(config.harmonic_notch), config.vehicle.arm_count) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (InputCounters& c : health_.inputs) c.gate = nan;
   health_.strain_noise_learned = filter_->learns_strain_noise();
