@@ -272,11 +272,22 @@ struct PipelineOptions {
 
 // Tracked notches against the rotor-harmonic pickup (estimator/harmonic_notch.h).
 struct HarmonicNotchOptions {
-  bool enabled = true;  // off: the deflection reaches the method unfiltered
+  bool enabled = true;  // off: the deflection reaches the method unfiltered (the birotor's and N arms')
+  // The N-arm pipeline (MultiArmPipeline) notches too when this and enabled
+  // are on (docs/estimator.md, "The harmonic notch for N arms").
+  bool multi_arm_enabled = true;
   // -3 dB width of each notch [Hz]. 4 Hz: wide against the telemetry noise
   // (5 rad/s is 0.8 Hz at 1x, 1.6 Hz at 2x), narrow enough to leave the arm
   // modes and the thrust_loss detection delay unchanged (8 Hz: +4 ms).
   double bandwidth_hz = 4.0;
+  // The N-arm pipeline's -3 dB width [Hz]. A notch answers a step of its
+  // arm's deflection (a rotor losing thrust) with a decaying oscillation at
+  // its frequency f0 of about bandwidth / f0 of the step for 1 / (pi
+  // bandwidth): at 4 Hz on the trirotor's lost rotor 2 (89 Hz), 4.5 % of the
+  // step, enough to tip the EKF's split of the loss after its strain gate
+  // inflation onto healthy rotor 3 for 3 ms (3 false alarms on
+  // thrust_loss); 2 Hz halves it (0 false alarms; docs/estimator.md).
+  double multi_arm_bandwidth_hz = 2.0;
   double min_speed_rad_s = 100.0;  // below this rotor speed the notches pass (motors stopped or idling) [rad/s]
   double max_dt_s = 0.01;          // a longer strain interval restarts the notches [s]
 };

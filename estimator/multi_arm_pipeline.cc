@@ -1,5 +1,6 @@
 #include "estimator/multi_arm_pipeline.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -22,6 +23,13 @@ bool IsFinite(const MultiArmForceEstimate& e) {
   return true;
 }
 
+// The N-arm pipeline's notches: the birotor's options at multi_arm_bandwidth_hz.
+HarmonicNotchOptions MultiArmNotchOptions(const HarmonicNotchOptions& options) {
+  HarmonicNotchOptions narrow = options;
+  narrow.bandwidth_hz = options.multi_arm_bandwidth_hz;
+  return narrow;
+}
+
 }  // namespace
 
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
@@ -30,7 +38,10 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
       // No arm-mode test: the birotor's symmetric mode has no N-arm counterpart yet.
       consistency_(config.model_consistency, ArmModeExpectation(), config.ekf.strain_noise_rad,
                    config.vehicle.arm_count),
-      admission_(config.pipeline) {
+      admission_(config.pipeline),
+      notch_on_(config.harmonic_notch.enabled && config.harmonic_notch.multi_arm_enabled),
+      rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
+      notch_(MultiArmNotchOptions(config.harmonic_notch), config.vehicle.arm_count) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (InputCounters& c : health_.inputs) c.gate = nan;
   health_.strain_noise_learned = filter_->learns_strain_noise();
@@ -80,6 +91,7 @@ void MultiArmPipeline::OnMotor(const MultiArmMotorSample& sample) {
   if (!has_motor_) first_motor_utime_ = sample.utime;
   last_motor_ = sample;
   has_motor_ = true;
+  rotor_speed_.AddMotor(sample);
   filter_->AddMotor(sample);
 }
 
@@ -115,8 +127,9 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   const int64_t previous_utime = c.last_utime;
   Admission admission;
   if (!Admit(InputChannel::kStrain, sample.utime, sample.seq, &admission)) return false;
-  const bool stale = CheckStrainTiming(sample.utime, previous_utime, admission == Admission::kAcceptedBackwardsJump);
-  filter_->AddStrain(sample, estimate);
+  const bool backwards = admission == Admission::kAcceptedBackwardsJump;
+  const bool stale = CheckStrainTiming(sample.utime, previous_utime, backwards);
+  filter_->AddStrain(Condition(sample, previous_utime, backwards), estimate);
   InputStatusFacts input;
   if (!IsFinite(*estimate)) {
     ReplaceNonFinite(sample, estimate);
@@ -139,6 +152,19 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   health_.last_rotor_fault_bits = bits.rotor_fault_bits;
   health_.last_estimate = *estimate;
   return true;
+}
+
+MultiArmStrainSample MultiArmPipeline::Condition(const MultiArmStrainSample& sample, int64_t previous_utime,
+                                                 bool backwards_jump) {
+  MultiArmStrainSample deflection = sample;
+  if (!notch_on_) return deflection;
+  rotor_speed_.Advance(sample.utime);
+  std::array<double, kMaxArms> omega_rad_s{};
+  for (int i = 0; i < config_.vehicle.arm_count; ++i) omega_rad_s[static_cast<size_t>(i)] = rotor_speed_.omega_rad_s(i);
+  const double dt_s =
+      previous_utime >= 0 && !backwards_jump ? 1e-6 * static_cast<double>(sample.utime - previous_utime) : 0.0;
+  notch_.Apply(dt_s, omega_rad_s, &deflection);
+  return deflection;
 }
 
 ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmForceEstimate& estimate) {

@@ -12,8 +12,10 @@
 // monitor's (the birotor's ModelConsistencyMonitor on the filter's fusion
 // reports, for N rotors: STATUS_MODEL_MISMATCH withdraws VALID,
 // docs/mismatch.md), and keeps the per-input health counters of
-// ESTIMATOR_STATUS. What the birotor's EstimatorPipeline has and this one
-// has not yet: the ground tare, the harmonic notch, the arm-mode test and
+// ESTIMATOR_STATUS, and notches each gauge's rotor harmonics (HarmonicNotch
+// tuned from MultiArmSpeedTracker's speeds at the strain stamp,
+// harmonic_notch.multi_arm_enabled). What the birotor's EstimatorPipeline
+// has and this one has not yet: the ground tare, the arm-mode test and
 // the per-input fusion counters (docs/estimator.md, "The EKF for N arms").
 // No LCM, no logging, no allocation per sample.
 #pragma once
@@ -24,9 +26,11 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/force_status.h"
+#include "estimator/harmonic_notch.h"
 #include "estimator/input_admission.h"
 #include "estimator/model_consistency.h"
 #include "estimator/multi_arm_ekf.h"
+#include "estimator/multi_arm_linear_speed.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
 #include "samples/samples.h"
@@ -88,6 +92,8 @@ class MultiArmPipeline {
   // interval makes the input stale.
   bool CheckStrainTiming(int64_t utime, int64_t previous_utime, bool backwards_jump);
   void ResetFilter(ResetReason reason, int64_t utime);
+  // The deflections as the filter gets them: rotor harmonics notched (when on).
+  MultiArmStrainSample Condition(const MultiArmStrainSample& sample, int64_t previous_utime, bool backwards_jump);
   void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
   // The method's fusion reports of this strain sample into the monitor; its facts on the estimate.
@@ -97,6 +103,9 @@ class MultiArmPipeline {
   std::unique_ptr<MultiArmForceEstimator> filter_;
   ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
   InputAdmission admission_;
+  bool notch_on_;                     // harmonic_notch.enabled and multi_arm_enabled
+  MultiArmSpeedTracker rotor_speed_;  // for the harmonic notches
+  HarmonicNotch notch_;
   MultiArmPipelineHealth health_;
   bool started_ = false;
   bool reset_flag_pending_ = false;

@@ -167,7 +167,9 @@ const OptionTable<HarmonicNotchOptions>& HarmonicNotchKeys() {
   using O = HarmonicNotchOptions;
   static const OptionTable<O> keys = {
       Flag("enabled", &O::enabled),
+      Flag("multi_arm_enabled", &O::multi_arm_enabled),
       Real("bandwidth_hz", &O::bandwidth_hz, 0.1, 200.0),
+      Real("multi_arm_bandwidth_hz", &O::multi_arm_bandwidth_hz, 0.1, 200.0),
       Real("min_speed_rad_s", &O::min_speed_rad_s, 0.0, 1e5),
       Real("max_dt_s", &O::max_dt_s, 1e-4, 1.0),
   };

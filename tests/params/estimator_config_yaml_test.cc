@@ -53,6 +53,8 @@ TEST(EstimatorConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.tare.state_file, defaults.tare.state_file);
   EXPECT_EQ(config.harmonic_notch.enabled, defaults.harmonic_notch.enabled);
   EXPECT_EQ(config.harmonic_notch.bandwidth_hz, defaults.harmonic_notch.bandwidth_hz);
+  EXPECT_EQ(config.harmonic_notch.multi_arm_enabled, defaults.harmonic_notch.multi_arm_enabled);
+  EXPECT_EQ(config.harmonic_notch.multi_arm_bandwidth_hz, defaults.harmonic_notch.multi_arm_bandwidth_hz);
   EXPECT_EQ(config.pipeline.max_forward_jump_s, defaults.pipeline.max_forward_jump_s);
   EXPECT_EQ(config.pipeline.forward_jump_confirm_samples, defaults.pipeline.forward_jump_confirm_samples);
   EXPECT_EQ(config.pipeline.conflict_min_violations, defaults.pipeline.conflict_min_violations);
@@ -199,6 +201,8 @@ TEST(EstimatorConfigYamlTest, ErrorsNameFileKeyAndRange) {
   EXPECT_NE(e.find("ground_contact_off_n"), std::string::npos) << e;
   e = ErrorOf("estimator:\n  harmonic_notch: {bandwidth_hz: 0}\n");
   EXPECT_NE(e.find("estimator.harmonic_notch.bandwidth_hz"), std::string::npos) << e;
+  e = ErrorOf("estimator:\n  harmonic_notch: {multi_arm_bandwidth_hz: 0}\n");
+  EXPECT_NE(e.find("estimator.harmonic_notch.multi_arm_bandwidth_hz"), std::string::npos) << e;
 
   // The learned strain noise: never below the file's by default, and bounded.
   e = ErrorOf("estimator:\n  ekf: {strain_noise_scale_max: 0.5}\n");
