@@ -21,7 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Seeds that reproduce a fixed finding: their length fields are corrupt on purpose.
-const std::set<std::string> kReproducers = {"status_gauge_source_length_int_min"};
+const std::set<std::string> kReproducers = {"status_gauge_source_length_int_min",
+                                            "controller_rotors_checksum_length_int_min"};
 
 struct Seed {
   std::string name;
