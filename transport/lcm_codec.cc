@@ -106,6 +106,10 @@ constexpr LayoutStep String() { return {LayoutStep::kString, 0}; }
 constexpr LayoutStep kDoubles = Array(8);
 constexpr LayoutStep kInt8s = Array(1);  // int8_t and boolean
 constexpr size_t kUtimeSeq = 8 + 4;
+// A sealed twin (<type>_auth_t): publisher and counter before the nested
+// message (which has no fingerprint of its own), the tag after it.
+constexpr LayoutStep kSealHeader = Bytes(8 + 8);
+constexpr LayoutStep kSealTag = Bytes(32);
 
 // Walks a counted type's layout: a negative count is malformed (the
 // generated decoder would resize a vector to ~2^64 elements), any step past
@@ -224,6 +228,22 @@ DecodeError CheckLengthFields<estimator_learned_n_t>(const uint8_t* data, size_t
   return WalkLayout(data, size,
                     {Bytes(kUtimeSeq), String(), Count(), kDoubles, kDoubles, String(), kDoubles, kDoubles, String(),
                      kDoubles, String(), Bytes(8 + 8), String()});
+}
+template <>
+DecodeError CheckLengthFields<controller_rotors_n_t>(const uint8_t* data, size_t size) {
+  // vehicle_checksum; n_rotors; efficiency, feasibility bound; weak_rotor
+  // (int8_t), weak_efficiency.
+  return WalkLayout(data, size, {Bytes(kUtimeSeq), String(), Count(), kDoubles, kDoubles, Bytes(1 + 8)});
+}
+// The sealed twins walk the nested message's layout, as its own walker above.
+template <>
+DecodeError CheckLengthFields<motor_command_n_auth_t>(const uint8_t* data, size_t size) {
+  return WalkLayout(data, size, {kSealHeader, Bytes(kUtimeSeq), Count(), kDoubles, Bytes(4 + 4), kSealTag});
+}
+template <>
+DecodeError CheckLengthFields<force_estimate_n_auth_t>(const uint8_t* data, size_t size) {
+  return WalkLayout(data, size,
+                    {kSealHeader, Bytes(kUtimeSeq), Count(), kDoubles, kDoubles, kDoubles, Bytes(4 + 4), kSealTag});
 }
 
 }  // namespace internal

@@ -8,11 +8,14 @@
 #include <limits>
 #include <vector>
 
+#include "birotor/controller_rotors_n_t.hpp"
 #include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/estimator_status_t.hpp"
+#include "birotor/force_estimate_n_auth_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/input_health_t.hpp"
 #include "birotor/loadcell_n_t.hpp"
+#include "birotor/motor_command_n_auth_t.hpp"
 #include "birotor/motor_command_n_t.hpp"
 #include "birotor/motor_n_t.hpp"
 #include "birotor/strain_n_t.hpp"
@@ -40,8 +43,10 @@ uint64_t ReadFingerprint(const void* data);
 // the generated decoder trusts them: a corrupt length would otherwise make it
 // resize a vector by ~2^31 elements or copy 2 GB past the buffer. Types with
 // only fixed-size fields need no check; a new type with a string or a
-// variable-length array needs a specialisation here (the round-trip tests of
-// every type catch a walker that disagrees with the .lcm file).
+// variable-length array (its own or in a nested type) needs a specialisation
+// here. The codec tests of every type catch a walker that disagrees with the
+// .lcm file (round trips) and a missing one (a corrupt length that gets past
+// the check makes the generated decoder throw).
 template <class Msg>
 DecodeError CheckLengthFields(const uint8_t* /*data*/, size_t /*size*/) {
   return DecodeError::kNone;
@@ -68,6 +73,13 @@ template <>
 DecodeError CheckLengthFields<vehicle_description_t>(const uint8_t* data, size_t size);
 template <>
 DecodeError CheckLengthFields<estimator_learned_n_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<controller_rotors_n_t>(const uint8_t* data, size_t size);
+// The sealed twins of the counted types: the count of the nested message.
+template <>
+DecodeError CheckLengthFields<motor_command_n_auth_t>(const uint8_t* data, size_t size);
+template <>
+DecodeError CheckLengthFields<force_estimate_n_auth_t>(const uint8_t* data, size_t size);
 
 }  // namespace internal
 

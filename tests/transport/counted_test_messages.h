@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "birotor/controller_rotors_n_t.hpp"
 #include "birotor/estimator_learned_n_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "birotor/loadcell_n_t.hpp"
@@ -140,6 +141,20 @@ inline vehicle_description_t MakeCountedTestMessage<vehicle_description_t>(int n
   return m;
 }
 
+template <>
+inline controller_rotors_n_t MakeCountedTestMessage<controller_rotors_n_t>(int n) {
+  controller_rotors_n_t m{};
+  m.utime = 8000007;
+  m.seq = 13;
+  m.vehicle_checksum = "3c46c6d41f8659af";
+  m.n_rotors = static_cast<int8_t>(n);
+  m.efficiency = Ramp(n, 0.625);
+  m.feasibility_bound = Ramp(n, 0.375);
+  m.weak_rotor = static_cast<int8_t>(n - 1);
+  m.weak_efficiency = 0.625;
+  return m;
+}
+
 // The trirotor's examples for the type-parameterised codec tests.
 constexpr int kTestArmCount = 3;
 template <>
@@ -169,6 +184,10 @@ inline motor_command_n_t MakeTestMessage<motor_command_n_t>() {
 template <>
 inline vehicle_description_t MakeTestMessage<vehicle_description_t>() {
   return MakeCountedTestMessage<vehicle_description_t>(kTestArmCount);
+}
+template <>
+inline controller_rotors_n_t MakeTestMessage<controller_rotors_n_t>() {
+  return MakeCountedTestMessage<controller_rotors_n_t>(kTestArmCount);
 }
 // Every source string differs in length, so a walker that skips the wrong
 // one fails the round trip.

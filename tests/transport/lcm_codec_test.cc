@@ -11,21 +11,27 @@
 #include <vector>
 
 #include "tests/transport/counted_test_messages.h"
+#include "tests/transport/sealed_and_status_test_messages.h"
 #include "tests/transport/test_messages.h"
 
 namespace birotor {
 namespace {
 
 using transport_test::Encode;
+using transport_test::kTestArmCount;
 using transport_test::MakeTestMessage;
 
 template <class Msg>
 class CodecTest : public ::testing::Test {};
 
+// Every type of lcmtypes/.
 using AllMessages =
     ::testing::Types<strain_t, motor_t, imu_t, pose_t, loadcell_t, truth_t, force_estimate_t, motor_command_t,
                      input_health_t, estimator_status_t, strain_n_t, motor_n_t, loadcell_n_t, truth_n_t,
-                     force_estimate_n_t, motor_command_n_t, vehicle_description_t, estimator_learned_n_t>;
+                     force_estimate_n_t, motor_command_n_t, vehicle_description_t, estimator_learned_n_t,
+                     controller_rotors_n_t, setpoint_t, controller_status_t, guard_status_t, motor_command_auth_t,
+                     setpoint_auth_t, pose_auth_t, force_estimate_auth_t, motor_command_n_auth_t,
+                     force_estimate_n_auth_t>;
 TYPED_TEST_SUITE(CodecTest, AllMessages);
 
 TYPED_TEST(CodecTest, RoundTripReproducesTheBytes) {
@@ -104,9 +110,45 @@ void WriteInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
   for (int i = 0; i < 4; ++i) (*bytes)[offset + i] = static_cast<uint8_t>(raw >> (24 - 8 * i));
 }
 
-DecodeError DecodeStatus(const std::vector<uint8_t>& bytes) {
-  estimator_status_t status{};
-  return DecodeMessage(bytes.data(), bytes.size(), &status);
+template <class Msg>
+DecodeError Decode(const std::vector<uint8_t>& bytes) {
+  Msg decoded{};
+  return DecodeMessage(bytes.data(), bytes.size(), &decoded);
+}
+
+DecodeError DecodeStatus(const std::vector<uint8_t>& bytes) { return Decode<estimator_status_t>(bytes); }
+
+// Every field overwritten with the values a corrupt length or count takes
+// (negative, zero, huge, past the end). Whatever CheckLengthFields lets
+// through, the generated decoder takes without throwing: a type with a
+// string or a variable-length array and no specialisation fails here. And
+// DecodeMessage accepts only exactly one message.
+TYPED_TEST(CodecTest, NoCorruptLengthGetsPastTheCheckToTheGeneratedDecoder) {
+  const std::vector<uint8_t> valid = Encode(MakeTestMessage<TypeParam>());
+  const auto check = [](const std::vector<uint8_t>& bytes, size_t offset) {
+    if (internal::CheckLengthFields<TypeParam>(bytes.data(), bytes.size()) == DecodeError::kNone) {
+      TypeParam unchecked{};
+      EXPECT_NO_THROW(unchecked.decode(bytes.data(), 0, static_cast<int>(bytes.size()))) << "offset " << offset;
+    }
+    TypeParam decoded{};
+    if (DecodeMessage(bytes.data(), bytes.size(), &decoded) != DecodeError::kNone) return;
+    const std::vector<uint8_t> again = Encode(decoded);
+    if (!again.empty()) EXPECT_EQ(again, bytes) << "offset " << offset;  // empty: a NUL inside a string
+  };
+  const auto past_the_end = static_cast<int32_t>(valid.size());
+  for (size_t offset = 8; offset < valid.size(); ++offset) {
+    for (int8_t count : {int8_t{-128}, int8_t{-1}, int8_t{0}, int8_t{127}}) {
+      std::vector<uint8_t> bytes = valid;
+      bytes[offset] = static_cast<uint8_t>(count);
+      check(bytes, offset);
+    }
+    if (offset + 4 > valid.size()) continue;
+    for (int32_t length : {INT_MIN, -1, 0, past_the_end, INT_MAX}) {
+      std::vector<uint8_t> bytes = valid;
+      WriteInt32(&bytes, offset, length);
+      check(bytes, offset);
+    }
+  }
 }
 
 TEST(CodecTest, CorruptStringLengthIsRejected) {
@@ -208,6 +250,72 @@ TEST(CodecTest, CorruptLengthsOfTheLearnedValuesAreRejected) {
   std::vector<uint8_t> longer = valid;
   longer[count_offset] = 100;  // arrays past the end
   EXPECT_EQ(decode(longer), DecodeError::kTruncated);
+}
+
+// controller_rotors_n_t (lcmtypes/controller_rotors_n_t.lcm): its string and
+// its count are walked before the generated decoder runs. The walker itself
+// rejects them (the generic CheckLengthFields lets everything through, and
+// the generated decoder would then overflow on a string length of INT_MIN).
+TEST(CodecTest, CorruptLengthsOfTheControllerRotorsAreRejected) {
+  const controller_rotors_n_t message = MakeTestMessage<controller_rotors_n_t>();
+  const std::vector<uint8_t> valid = Encode(message);
+  const size_t checksum_length_offset = 8 + 8 + 4;
+  const size_t count_offset = checksum_length_offset + 4 + message.vehicle_checksum.size() + 1;
+  const size_t arrays = 8 * static_cast<size_t>(message.n_rotors);
+  ASSERT_EQ(count_offset + 1 + 2 * arrays + 1 + 8, valid.size());  // weak_rotor, weak_efficiency close it
+  const int32_t checksum_bytes = static_cast<int32_t>(message.vehicle_checksum.size()) + 1;
+  // Negative or zero, past the end, or ending on a byte that is not the NUL.
+  const std::pair<int32_t, DecodeError> lengths[] = {{0, DecodeError::kMalformed},
+                                                     {-1, DecodeError::kMalformed},
+                                                     {INT_MIN, DecodeError::kMalformed},
+                                                     {INT_MAX, DecodeError::kTruncated},
+                                                     {1000, DecodeError::kTruncated},
+                                                     {checksum_bytes - 1, DecodeError::kMalformed},
+                                                     {checksum_bytes + 1, DecodeError::kMalformed}};
+  for (const auto& [length, expected] : lengths) {
+    std::vector<uint8_t> bytes = valid;
+    WriteInt32(&bytes, checksum_length_offset, length);
+    EXPECT_EQ(internal::CheckLengthFields<controller_rotors_n_t>(bytes.data(), bytes.size()), expected)
+        << "length " << length;
+    EXPECT_EQ(Decode<controller_rotors_n_t>(bytes), expected) << "length " << length;
+  }
+  const std::pair<int8_t, DecodeError> counts[] = {{-1, DecodeError::kMalformed},
+                                                   {-128, DecodeError::kMalformed},
+                                                   {4, DecodeError::kTruncated},
+                                                   {127, DecodeError::kTruncated},
+                                                   {2, DecodeError::kMalformed}};  // 2: bytes left after the message
+  for (const auto& [count, expected] : counts) {
+    std::vector<uint8_t> bytes = valid;
+    bytes[count_offset] = static_cast<uint8_t>(count);
+    EXPECT_EQ(Decode<controller_rotors_n_t>(bytes), expected) << "count " << int{count};
+  }
+}
+
+// The sealed N-arm twins (motor_command_n_auth_t, force_estimate_n_auth_t)
+// nest a counted message: its count is walked inside the envelope.
+template <class Sealed>
+void ExpectCorruptCountInTheEnvelopeRejected() {
+  const std::vector<uint8_t> valid = Encode(MakeTestMessage<Sealed>());
+  const size_t count_offset = 8 + 8 + 8 + 8 + 4;  // fingerprint, publisher, counter, utime, seq
+  ASSERT_EQ(valid[count_offset], kTestArmCount);
+  const std::pair<int8_t, DecodeError> counts[] = {{-1, DecodeError::kMalformed},
+                                                   {-128, DecodeError::kMalformed},
+                                                   {4, DecodeError::kTruncated},
+                                                   {127, DecodeError::kTruncated},
+                                                   {2, DecodeError::kMalformed}};  // 2: bytes left after the message
+  for (const auto& [count, expected] : counts) {
+    std::vector<uint8_t> bytes = valid;
+    bytes[count_offset] = static_cast<uint8_t>(count);
+    if (count < 0 || count > kTestArmCount) {
+      EXPECT_EQ(internal::CheckLengthFields<Sealed>(bytes.data(), bytes.size()), expected) << "count " << int{count};
+    }
+    EXPECT_EQ(Decode<Sealed>(bytes), expected) << "count " << int{count};
+  }
+}
+
+TEST(CodecTest, CorruptCountInsideASealedNArmMessageIsRejected) {
+  ExpectCorruptCountInTheEnvelopeRejected<motor_command_n_auth_t>();
+  ExpectCorruptCountInTheEnvelopeRejected<force_estimate_n_auth_t>();
 }
 
 TEST(CodecTest, EmptyArrayDecodes) {
