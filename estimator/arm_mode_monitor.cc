@@ -170,6 +170,14 @@ ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const Arm
   }
 }
 
+bool ArmModeMonitor::ResumeTipMass(double tip_mass_kg, double std_kg) {
+  if (!learner_.Resume(tip_mass_kg, std_kg)) return false;
+  state_.tip_mass_kg = learner_.tip_mass_kg();
+  state_.tip_mass_std_kg = learner_.ratio_std() * learner_.map().file_tip_mass_kg();
+  state_.centre_hz = learner_.LearnedHz();  // the next run of samples starts its band-pass there
+  return true;
+}
+
 void ArmModeMonitor::Restart() {
   previous_utime_ = -1;
   ForgetRun();
@@ -236,6 +244,7 @@ void ArmModeMonitor::UpdateTipMass() {
   }
   state_.tip_mass_kg = learner_.tip_mass_kg();
   state_.tip_mass_std_kg = learner_.ratio_std() * learner_.map().file_tip_mass_kg();
+  state_.tip_mass_readings = learner_.readings();
   // Airborne (a run of samples): the learned m_p's sigma in every force
   // sigma, the prior's until a reading comes, and for good on a flight
   // whose mode is too quiet to read.

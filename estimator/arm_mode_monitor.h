@@ -143,6 +143,9 @@ struct ArmModeState {
   // (arm_mode_unconfirmed_tip_mass_std) while awaiting_reading [1].
   double force_tip_mass_std = 0;
   double centre_hz = 0;  // of the band-pass: the file's mode, or the learned m_p's [Hz]
+  // Readings the learned m_p took in this run (0: still the prior's, or the
+  // value resumed from the state file) [1].
+  int64_t tip_mass_readings = 0;
 };
 
 class ArmModeMonitor {
@@ -174,6 +177,10 @@ class ArmModeMonitor {
     noise_rad_ = file_noise_rad_ * std::sqrt(scale[0] + scale[1]);
     excess_noise_rad_ = file_noise_rad_ * std::sqrt(std::max(scale[0] + scale[1] - 2.0, 0.0));
   }
+  // Learning starts from an earlier run's m_p and its sigma (the gauge state
+  // file; TipMassLearner::Resume), the band-pass centred on its mode. False
+  // (nothing changed) when the tip mass is not learned here.
+  bool ResumeTipMass(double tip_mass_kg, double std_kg);
   // The test runs (switched on, and a file's frequency to judge against).
   bool active() const { return options_.arm_mode_enabled && state_.expected.file_hz > 0; }
 

@@ -130,6 +130,7 @@ void EstimatorPipeline::CountOverloadDrop(InputChannel channel) { ++Counters(&he
 
 void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
   UseGaugeOffsets(calibration.offset_rad, calibration.offset_std_rad, calibration.source);
+  if (calibration.has_tip_mass) ResumeTipMass(calibration.tip_mass_kg, calibration.tip_mass_std_kg);
   if (!calibration.has_strain_scale) return;
   // Learned in an earlier run: the method starts from it (if it learns it).
   health_.strain_scale_from_state_file = true;
@@ -348,9 +349,25 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   return true;
 }
 
+void EstimatorPipeline::ResumeTipMass(double tip_mass_kg, double std_kg) {
+  // Learned only with the file's stiffness (a learned strain scale may be a
+  // stiffness): with learn_strain_scale, or arm_mode_learn_tip_mass off, the
+  // file's m_p is flown, as a persisted strain scale is not flown with
+  // learn_strain_scale off, and the next stop does not write it back.
+  if (config_.ekf.learn_strain_scale || !consistency_.ResumeTipMass(tip_mass_kg, std_kg)) return;
+  const ArmModeState& arm_mode = consistency_.state().arm_mode;
+  health_.tip_mass_learned = true;
+  health_.tip_mass_from_state_file = true;
+  health_.tip_mass_kg = arm_mode.tip_mass_kg;
+  health_.tip_mass_std_kg = arm_mode.tip_mass_std_kg;
+  method_->SetTipMassKg(arm_mode.tip_mass_kg);  // flown from the first sample (a reset keeps it)
+  tip_mass_in_method_kg_ = arm_mode.tip_mass_kg;
+}
+
 void EstimatorPipeline::HandOverTipMass() {
   const ArmModeState& arm_mode = consistency_.state().arm_mode;
   if (!arm_mode.learning) return;
+  if (arm_mode.tip_mass_readings > 0) health_.tip_mass_from_state_file = false;  // refined in this run
   health_.tip_mass_learned = true;
   health_.tip_mass_kg = arm_mode.tip_mass_kg;
   health_.tip_mass_std_kg = arm_mode.tip_mass_std_kg;

@@ -73,10 +73,14 @@ struct PipelineHealth {
   // The tip mass m_p the method flies on both arms (issue 36; model_consistency
   // arm_mode_learn_tip_mass): the file's until the arm-mode test learns it
   // (tip_mass_learned, with its one sigma: the prior's until a reading);
-  // kept while learning pauses, as the method keeps flying it.
+  // kept while learning pauses, as the method keeps flying it. Resumed from
+  // the state file (SetGaugeOffsets, learning on): the persisted m_p and
+  // sigma from the first sample, tip_mass_from_state_file until the arm-mode
+  // test takes its first reading in this run.
   bool tip_mass_learned = false;
   double tip_mass_kg = 0;      // [kg]
   double tip_mass_std_kg = 0;  // [kg], when learned
+  bool tip_mass_from_state_file = false;
   TareCounters tare;
   // Model consistency (issue 27): STATUS_MODEL_MISMATCH and its statistic.
   ModelConsistencyState consistency;
@@ -105,6 +109,9 @@ class EstimatorPipeline {
   const PipelineHealth& health() const { return health_; }
   // Replaces the gauge offsets in use (e.g. from the persisted state file);
   // the scale stays the parameter file's. A later tare replaces them again.
+  // A learned strain scale or tip mass in calibration is where this run's
+  // learning starts (and what the method flies from the first sample) when
+  // this run learns it; with its learning off it is ignored (the file's).
   void SetGaugeOffsets(const GaugeCalibration& calibration);
   // Clears the per-period fields (rates, NIS) after a status message.
   void TakePeriod();
@@ -139,6 +146,9 @@ class EstimatorPipeline {
   void Publish(const ForceStatusFacts& facts, ForceEstimate* estimate);
   // The tip mass the arm-mode test learned, to the method when it moved.
   void HandOverTipMass();
+  // An earlier run's tip mass and sigma (the state file) into the arm-mode
+  // test's learning and the method, when this run learns the tip mass.
+  void ResumeTipMass(double tip_mass_kg, double std_kg);
   // Counts the reports of the method call just made (reports_).
   void CountReports();
   void Count(const FusionReport& report);

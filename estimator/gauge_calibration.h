@@ -29,9 +29,10 @@ struct GaugeCalibration {
   double strain_scale_std[kBirotorRotors] = {0.0, 0.0};  // [1]
   // The tip mass m_p learned from the arm mode (model_consistency
   // arm_mode_learn_tip_mass, docs/mismatch.md): persisted with the offsets
-  // for `birotor-identify --update-params FILE --learned STATE`. Not flown
-  // from here: the pipeline reports the m_p in use (PipelineHealth::
-  // tip_mass_kg), and the next start learns it again from the file's.
+  // for `birotor-identify --update-params FILE --learned STATE`, and where
+  // the next start's learning starts (EstimatorPipeline::SetGaugeOffsets:
+  // flown from the first sample with its sigma while learning is on; the
+  // file's m_p with it off). Not applied by Apply.
   bool has_tip_mass = false;
   double tip_mass_kg = 0.0;      // [kg]
   double tip_mass_std_kg = 0.0;  // [kg]

@@ -124,6 +124,14 @@ class ModelConsistencyMonitor {
   // (StrainStepInfo::strain_noise_scale): the arm-mode test weighs the
   // mode's excitation against that noise.
   void SetStrainNoiseScales(const double scale[kBirotorRotors]) { arm_mode_.SetStrainNoiseScales(scale); }
+  // The tip mass an earlier run learned, and its sigma (the gauge state
+  // file): the arm-mode test's learning starts from it
+  // (ArmModeMonitor::ResumeTipMass). False when the tip mass is not learned.
+  bool ResumeTipMass(double tip_mass_kg, double std_kg) {
+    const bool resumed = arm_mode_.ResumeTipMass(tip_mass_kg, std_kg);
+    state_.arm_mode = arm_mode_.state();
+    return resumed;
+  }
   // Every force estimate (its utime, and its thrust scales for the
   // attribution); returns the monitor's facts on it (all false for a method
   // it does not judge): the mismatch raised, the model not yet confirmed

@@ -93,6 +93,17 @@ void TipMassLearner::AddReading(double read_hz, double centre_hz, double tau_s, 
   const double gain = variance_ * h / s;
   ratio_ = std::clamp(ratio_ + gain * innovation, ArmModeTipMassMap::kLowestRatio, ArmModeTipMassMap::kHighestRatio);
   variance_ *= 1.0 - gain * h;
+  ++readings_;
+}
+
+bool TipMassLearner::Resume(double tip_mass_kg, double std_kg) {
+  const double file_kg = map_.file_tip_mass_kg();
+  if (!active() || !std::isfinite(tip_mass_kg) || !(tip_mass_kg > 0) || !std::isfinite(std_kg) || !(std_kg > 0)) {
+    return false;
+  }
+  ratio_ = std::clamp(tip_mass_kg / file_kg, ArmModeTipMassMap::kLowestRatio, ArmModeTipMassMap::kHighestRatio);
+  variance_ = (std_kg / file_kg) * (std_kg / file_kg);
+  return true;
 }
 
 }  // namespace birotor

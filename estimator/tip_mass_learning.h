@@ -5,6 +5,8 @@
 // "Learning the tip mass").
 #pragma once
 
+#include <cstdint>
+
 #include "model/birotor_params.h"
 
 namespace birotor {
@@ -65,6 +67,14 @@ class TipMassLearner {
   // One reading f_read [Hz] of the fit with the band-pass centred on
   // centre_hz, fit time constant tau_s, sample interval dt_s.
   void AddReading(double read_hz, double centre_hz, double tau_s, double dt_s);
+  // Starts from what an earlier run learned (the gauge state file, issue
+  // 36): r = tip_mass_kg / m_p_file (clamped to the map) with the one sigma
+  // std_kg / m_p_file, in place of the prior N(1, prior_std^2); later
+  // readings refine it. Ignored (false) without a model or for a value or
+  // sigma that is not finite and positive.
+  bool Resume(double tip_mass_kg, double std_kg);
+  // Readings taken since construction (AddReading that updated r) [1].
+  int64_t readings() const { return readings_; }
   // The reading freed of the band-pass's pull [Hz].
   double CorrectedHz(double read_hz, double centre_hz) const {
     return centre_hz + (read_hz - centre_hz) / options_.band_pull;
@@ -83,6 +93,7 @@ class TipMassLearner {
   ArmModeTipMassMap map_;
   double ratio_ = 1.0;     // r [1]
   double variance_ = 0.0;  // of r [1]
+  int64_t readings_ = 0;
 };
 
 }  // namespace birotor

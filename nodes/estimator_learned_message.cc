@@ -15,6 +15,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 const char* LearnedOrParams(bool learned) { return learned ? kLearnedSourceLearned : kLearnedSourceParams; }
 
+// params (the file's m_p), state_file (an earlier run's, no reading yet in
+// this one) or learned (refined by this run's readings).
+const char* TipMassSource(const PipelineHealth& health) {
+  if (!health.tip_mass_learned) return kLearnedSourceParams;
+  return health.tip_mass_from_state_file ? kLearnedSourceStateFile : kLearnedSourceLearned;
+}
+
 // Gauge i's noise as the method weighs it, sqrt(R_i) = sqrt(scale_i)
 // strain_noise_rad [rad]; NaN for an arm without a gauge (no R_i).
 double StrainNoiseRad(const VehicleDescription& vehicle, const EkfOptions& ekf, int arm, double variance_scale) {
@@ -55,7 +62,7 @@ void FillEstimatorLearned(const PipelineHealth& health, const EstimatorConfig& c
     message->strain_noise_rad[i] = StrainNoiseRad(config.vehicle, config.ekf, arm, health.strain_noise_scale[arm]);
   }
   message->strain_scale_source = StrainScaleSource(health);
-  message->tip_mass_source = LearnedOrParams(health.tip_mass_learned);
+  message->tip_mass_source = TipMassSource(health);
   message->strain_noise_source = LearnedOrParams(health.strain_noise_learned);
   message->body_mass_kg = health.body_mass_kg;
   message->body_mass_std_kg = health.body_mass_learned ? health.body_mass_std_kg : kNaN;

@@ -86,21 +86,29 @@ bool ParseNumber(const std::string& text, double* out) {
   return (in >> *out) && !(in >> extra) && std::isfinite(*out);
 }
 
+// The range check of a learned tip mass, its text as written: "" or the reason.
+std::string TipMassRangeProblem(double mass_kg, const std::string& mass_text, double std_kg,
+                                const std::string& std_text) {
+  const StdRange range = TipMassRange();
+  if (!(mass_kg >= range.min && mass_kg <= range.max)) {
+    return "tip_mass_kg " + mass_text + " outside " + RangeText(range.min, range.max) +
+           " kg (the range of vehicle.tip_mass_kg)";
+  }
+  if (!(std_kg >= kTipMassStdRange.min && std_kg <= kTipMassStdRange.max)) {
+    return "tip_mass_std_kg " + std_text + " outside " + RangeText(kTipMassStdRange.min, kTipMassStdRange.max) + " kg";
+  }
+  return "";
+}
+
 bool ReadTipMass(const std::string& path, std::map<std::string, std::string>& fields, double* mass_kg, double* std_kg,
                  std::string* error) {
   if (!ParseNumber(fields["tip_mass_kg"], mass_kg) || !ParseNumber(fields["tip_mass_std_kg"], std_kg)) {
     *error = path + ": corrupt (tip_mass_kg or tip_mass_std_kg not a finite number)";
     return false;
   }
-  const StdRange range = TipMassRange();
-  if (!(*mass_kg >= range.min && *mass_kg <= range.max)) {
-    *error = path + ": tip_mass_kg " + fields["tip_mass_kg"] + " outside " + RangeText(range.min, range.max) +
-             " kg (the range of vehicle.tip_mass_kg): refused";
-    return false;
-  }
-  if (!(*std_kg >= kTipMassStdRange.min && *std_kg <= kTipMassStdRange.max)) {
-    *error = path + ": tip_mass_std_kg " + fields["tip_mass_std_kg"] + " outside " +
-             RangeText(kTipMassStdRange.min, kTipMassStdRange.max) + " kg: refused";
+  const std::string problem = TipMassRangeProblem(*mass_kg, fields["tip_mass_kg"], *std_kg, fields["tip_mass_std_kg"]);
+  if (!problem.empty()) {
+    *error = path + ": " + problem + ": refused";
     return false;
   }
   return true;
@@ -155,6 +163,13 @@ bool ParseStateText(const std::string& path, const std::string& text, const std:
 }  // namespace
 
 std::string VehicleChecksum(const BirotorParams& params) { return TextChecksum(BirotorParamsYaml(params)); }
+
+std::string LearnedTipMassRangeProblem(double tip_mass_kg, double std_kg) {
+  char mass_text[32], std_text[32];
+  std::snprintf(mass_text, sizeof(mass_text), "%.10g", tip_mass_kg);
+  std::snprintf(std_text, sizeof(std_text), "%.10g", std_kg);
+  return TipMassRangeProblem(tip_mass_kg, mass_text, std_kg, std_text);
+}
 
 GaugeCalibration PersistedGaugeState(const PipelineHealth& health) {
   GaugeCalibration state = health.gauge;

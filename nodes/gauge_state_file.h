@@ -20,6 +20,13 @@ namespace birotor {
 // Checksum of the vehicle parameters (BirotorParamsYaml text, FNV-1a 64).
 std::string VehicleChecksum(const BirotorParams& params);
 
+// The state file's range check of a learned tip mass (m_p in the range of
+// vehicle.tip_mass_kg, [1e-4, 100] kg; its sigma in [1e-6, 1] kg): "" when
+// both are within, else the reason ("tip_mass_kg 150 outside [0.0001, 100]
+// kg (the range of vehicle.tip_mass_kg)"). For a tip mass read elsewhere (a
+// flight log's ESTIMATOR_LEARNED_N, nodes/recorded_tip_mass.h).
+std::string LearnedTipMassRangeProblem(double tip_mass_kg, double std_kg);
+
 // File text for the offsets and std of calibration.
 //   # birotor-estimator gauge offset state
 //   vehicle_checksum: <16 hex>

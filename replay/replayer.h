@@ -64,6 +64,7 @@ class BasicReplayer : public MessageSink, public PacketHandler {
 
   const ReplayStats& stats() const { return stats_; }
   const Service& service() const { return service_; }
+  Service& service() { return service_; }  // e.g. to restore a gauge state file before the first packet
   const ChannelNames& channels() const { return channels_; }
 
  private:

@@ -99,6 +99,21 @@ const MessageAuthenticator* StateFileAuthenticator(const ChannelSecurity& securi
   return security.authenticator.get();
 }
 
+// Whether the state file's learned tip mass is flown (tip-mass learning on:
+// learning resumes from it) or not (the file's m_p).
+void LogResumedTipMass(const GaugeCalibration& persisted, const PipelineHealth& health, const std::string& file) {
+  if (health.tip_mass_from_state_file) {
+    spdlog::info("tip mass {:.6g} +- {:.3g} kg from the state file {}: flown, learning resumes from it",
+                 persisted.tip_mass_kg, persisted.tip_mass_std_kg, file);
+  } else {
+    spdlog::info(
+        "tip mass {:.6g} +- {:.3g} kg in the state file {} not flown (model_consistency arm_mode_learn_tip_mass "
+        "off, or learn_strain_scale on): the parameter file's {:.6g} kg; deploy it with birotor-identify "
+        "--learned",
+        persisted.tip_mass_kg, persisted.tip_mass_std_kg, file, health.tip_mass_kg);
+  }
+}
+
 // The learned gauge offsets of the last run, from the state file. A missing
 // file is a first start; a corrupt, foreign or unauthenticated one is refused.
 void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehicle_checksum,
@@ -114,6 +129,7 @@ void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehic
     service->SetGaugeOffsets(persisted);
     spdlog::info("gauge offsets {:.3e} {:.3e} rad from the state file {}", persisted.offset_rad[0],
                  persisted.offset_rad[1], state_file);
+    if (persisted.has_tip_mass) LogResumedTipMass(persisted, service->health(), state_file);
   } else {
     spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
   }

@@ -3,13 +3,18 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+#include <string>
+
 #include "nodes/gauge_state_file.h"
 #include "nodes/learned_values_file.h"
+#include "nodes/recorded_tip_mass.h"
 #include "params/estimator_config_yaml.h"
 #include "program/config_files.h"
 #include "replay/learned_rerun.h"
 #include "security/message_authenticator.h"
 #include "security/site_key.h"
+#include "transport/channels.h"
 
 namespace birotor {
 namespace {
@@ -45,6 +50,53 @@ std::string RerunConfig(const LearnedSourceOptions& options, const BirotorParams
   return "";
 }
 
+// The log's newest learned tip mass (ESTIMATOR_LEARNED_N) in *recorded,
+// false when it has none; a refusal (another vehicle, out of range) in *refusal.
+bool ReadCheckedTipMass(const LearnedSourceOptions& options, const BirotorParams& vehicle,
+                        const std::string& update_params, RecordedTipMass* recorded, std::string* refusal) {
+  std::string error;
+  const std::string channel = MakeChannelNames(options.prefix).estimator_learned_n;
+  if (!ReadRecordedTipMass(options.learned, channel, recorded, &error)) {
+    spdlog::info("{}; the tip mass, if learned, is the re-run's", error);
+    return false;
+  }
+  *refusal = RecordedTipMassRefusal(options.learned, *recorded, BirotorDescription(vehicle), update_params);
+  return true;
+}
+
+// The recorded tip mass in place of the re-run's where the log's own inputs
+// support it: the re-run learned it, the recorded value lies within
+// kRecordedTipMassSigmas of the re-run's sigma of it, and claims no more
+// than the re-run's sigma. It is what the estimator flew, and after a
+// resume from the state file it holds earlier flights' readings too; a
+// forged message can move the deployed m_p by no more than the inputs'
+// own uncertainty. Else the re-run's, with a warning naming the key.
+constexpr double kRecordedTipMassSigmas = 3.0;
+
+void UseRecordedTipMass(const std::string& log, const RecordedTipMass& recorded, LearnedVehicleValues* learned) {
+  const std::string said = fmt::format("{}: tip_mass_kg: the log's ESTIMATOR_LEARNED_N says {:.6g} +- {:.3g} kg", log,
+                                       recorded.tip_mass_kg, recorded.tip_mass_std_kg);
+  if (!learned->has_tip_mass) {
+    spdlog::warn(
+        "{}, but the re-run of its inputs did not learn it (--estimator-config: the flight's file, "
+        "arm_mode_learn_tip_mass on): the recorded value was not used",
+        said);
+    return;
+  }
+  const double sigmas = std::abs(recorded.tip_mass_kg - learned->tip_mass_kg) / learned->tip_mass_std_kg;
+  if (!(sigmas <= kRecordedTipMassSigmas) || !(recorded.tip_mass_std_kg <= learned->tip_mass_std_kg)) {
+    spdlog::warn(
+        "{}, its inputs re-run give {:.6g} +- {:.3g} kg ({:.1f} of the re-run's sigmas apart, at most {:g} "
+        "with no wider sigma): the recorded value was not used",
+        said, learned->tip_mass_kg, learned->tip_mass_std_kg, sigmas, kRecordedTipMassSigmas);
+    return;
+  }
+  spdlog::info("{} (source {}), deployed: the re-run of its inputs gives {:.6g} +- {:.3g} kg", said, recorded.source,
+               learned->tip_mass_kg, learned->tip_mass_std_kg);
+  learned->tip_mass_kg = recorded.tip_mass_kg;
+  learned->tip_mass_std_kg = recorded.tip_mass_std_kg;
+}
+
 // What the log's inputs support, compared with its recorded status.
 std::string FromLog(const LearnedSourceOptions& options, const BirotorParams& vehicle, const std::string& update_params,
                     LearnedVehicleValues* learned) {
@@ -60,6 +112,10 @@ std::string FromLog(const LearnedSourceOptions& options, const BirotorParams& ve
            "another vehicle or parameter file (vehicle checksum '" + recorded_checksum + "', " + update_params +
            " now " + vehicle_checksum + "): not deployed, nothing written";
   }
+  RecordedTipMass recorded_tip_mass;
+  std::string refusal;
+  const bool has_tip_mass = ReadCheckedTipMass(options, vehicle, update_params, &recorded_tip_mass, &refusal);
+  if (!refusal.empty()) return refusal;
   EstimatorConfig config;
   if (!(error = RerunConfig(options, vehicle, &config)).empty()) return error;
   LearnedRerun rerun;
@@ -74,6 +130,7 @@ std::string FromLog(const LearnedSourceOptions& options, const BirotorParams& ve
     spdlog::warn("{}: {}", options.learned, DisagreementText(d));
   }
   *learned = rerun.learned;
+  if (has_tip_mass) UseRecordedTipMass(options.learned, recorded_tip_mass, learned);
   return "";
 }
 

@@ -3,7 +3,13 @@
 // verifies under the site key; from a flight log, only what a re-run of the
 // estimator over the log's own inputs learns (replay/learned_rerun.h) is
 // deployed, and the log's recorded ESTIMATOR_STATUS (anyone on the bus can
-// publish one) is compared with it and reported where it disagrees.
+// publish one) is compared with it and reported where it disagrees. The
+// tip mass the log's ESTIMATOR_LEARNED_N recorded (nodes/recorded_tip_mass.h)
+// is checked like the state file's (another vehicle, out of range: refused)
+// and deployed in place of the re-run's when the re-run learned it too and
+// the recorded value lies within 3 of the re-run's sigmas with no wider
+// sigma (a flight resumed from the state file flew earlier flights'
+// readings too); else the re-run's, with a warning.
 #pragma once
 
 #include <string>

@@ -155,6 +155,35 @@ TEST(TipMassLearning, ReadingsOfTheModeLearnTheTipMass) {
   EXPECT_NEAR(learner.CorrectedHz(65.03 + 0.75 * (hz - 65.03), 65.03), hz, 1e-9);
 }
 
+// Resumed from an earlier run (the state file): r and its sigma are the
+// persisted ones, and readings refine them from there (towards the mode
+// read, to a narrower sigma than a fresh learner's after the same
+// readings); nothing is resumed without a model or from a value that is
+// not one.
+TEST(TipMassLearning, ResumesFromAnEarlierRunsValue) {
+  const ArmModeTipMassMap map = ArmModeTipMassMap::Of(BirotorModelOf(testing_support::ReferenceConfig().vehicle));
+  const double file_kg = map.file_tip_mass_kg();
+  TipMassLearner learner(TipMassLearner::Options(), map);
+  EXPECT_FALSE(learner.Resume(NAN, 0.003));
+  EXPECT_FALSE(learner.Resume(0.34, 0.0));
+  EXPECT_FALSE(TipMassLearner().Resume(0.34, 0.003));  // no model: not learned
+  ASSERT_TRUE(learner.Resume(1.19 * file_kg, 0.01 * file_kg));
+  EXPECT_NEAR(learner.ratio(), 1.19, 1e-12);
+  EXPECT_NEAR(learner.ratio_std(), 0.01, 1e-12);
+  EXPECT_EQ(learner.readings(), 0);
+  const double hz = std::exp(map.LogHz(1.2));
+  TipMassLearner fresh(TipMassLearner::Options(), map);
+  for (int n = 0; n < 1000; ++n) {
+    learner.AddReading(hz, hz, 0.5, 1e-3);
+    fresh.AddReading(hz, hz, 0.5, 1e-3);
+  }
+  EXPECT_EQ(learner.readings(), 1000);
+  EXPECT_GT(learner.ratio(), 1.19);
+  EXPECT_LT(learner.ratio(), 1.2);
+  EXPECT_LT(learner.ratio_std(), 0.01);
+  EXPECT_LT(learner.ratio_std(), fresh.ratio_std());
+}
+
 TEST(ArmMode, AGaugeScaleInTheFileWidensWhatTheModeMayBe) {
   // A scale s in the file may be a gauge that reads s (the mode stays) or a
   // stiffness k / s (birotor-identify --learned writes a learned strain
