@@ -29,6 +29,17 @@ inline std::string ReadText(const std::string& path) {
   return text.str();
 }
 
+// The shipped config/estimator.yaml with arm_mode_learn_tip_mass on, at path
+// (BIROTOR_SOURCE_DIR: the source tree).
+inline void WriteLearningConfig(const std::string& path) {
+  std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  const std::string key = "arm_mode_learn_tip_mass: ";
+  const size_t at = text.find(key + "false");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at + key.size(), 5, "true ");
+  std::ofstream(path) << text;
+}
+
 // birotor-identify with args; its exit status, its stderr in *err (optional).
 inline int RunIdentify(const std::vector<std::string>& args, std::string* err = nullptr) {
   const std::string err_path = ::testing::TempDir() + "/learned_deploy_stderr_" + std::to_string(getpid());

@@ -39,16 +39,6 @@ namespace {
 constexpr double kFileTipMassKg = 0.28812;   // config/reference_vehicle.yaml
 constexpr double kTrueTipMassKg = 0.345744;  // 1.2 x: the scenario's vehicle
 
-// The shipped config/estimator.yaml with arm_mode_learn_tip_mass on, at path.
-void WriteLearningConfig(const std::string& path) {
-  std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
-  const std::string key = "arm_mode_learn_tip_mass: ";
-  const size_t at = text.find(key + "false");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at + key.size(), 5, "true ");
-  std::ofstream(path) << text;
-}
-
 // The flight as recorded on the vehicle (the simulator's packets and the
 // estimator daemon's service's output in one log), and the daemon's state
 // after it, as it persists it at a clean stop.

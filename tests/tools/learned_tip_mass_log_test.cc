@@ -34,16 +34,6 @@ namespace {
 
 constexpr double kTrueTipMassKg = 0.345744;  // the scenario's vehicle (1.2 x the file's 0.28812 kg)
 
-// The shipped config/estimator.yaml with arm_mode_learn_tip_mass on, at path.
-void WriteLearningConfig(const std::string& path) {
-  std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
-  const std::string key = "arm_mode_learn_tip_mass: ";
-  const size_t at = text.find(key + "false");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at + key.size(), 5, "true ");
-  std::ofstream(path) << text;
-}
-
 Scenario Flight(int seed) {
   return LoadScenario(ScenarioFile("mismatch_tip_mass_plus20"), {"scenario.seed=" + std::to_string(seed)});
 }
