@@ -252,6 +252,15 @@ TEST(CodecTest, CorruptLengthsOfTheLearnedValuesAreRejected) {
   EXPECT_EQ(decode(longer), DecodeError::kTruncated);
 }
 
+// A corrupt arm count of a test message (kTestArmCount arms) and what it
+// decodes to: negative, more arms than the bytes hold, or fewer (2: bytes left
+// after the message).
+constexpr std::pair<int8_t, DecodeError> kCorruptArmCounts[] = {{-1, DecodeError::kMalformed},
+                                                                {-128, DecodeError::kMalformed},
+                                                                {4, DecodeError::kTruncated},
+                                                                {127, DecodeError::kTruncated},
+                                                                {2, DecodeError::kMalformed}};
+
 // controller_rotors_n_t (lcmtypes/controller_rotors_n_t.lcm): its string and
 // its count are walked before the generated decoder runs. The walker itself
 // rejects them (the generic CheckLengthFields lets everything through, and
@@ -279,12 +288,7 @@ TEST(CodecTest, CorruptLengthsOfTheControllerRotorsAreRejected) {
         << "length " << length;
     EXPECT_EQ(Decode<controller_rotors_n_t>(bytes), expected) << "length " << length;
   }
-  const std::pair<int8_t, DecodeError> counts[] = {{-1, DecodeError::kMalformed},
-                                                   {-128, DecodeError::kMalformed},
-                                                   {4, DecodeError::kTruncated},
-                                                   {127, DecodeError::kTruncated},
-                                                   {2, DecodeError::kMalformed}};  // 2: bytes left after the message
-  for (const auto& [count, expected] : counts) {
+  for (const auto& [count, expected] : kCorruptArmCounts) {
     std::vector<uint8_t> bytes = valid;
     bytes[count_offset] = static_cast<uint8_t>(count);
     EXPECT_EQ(Decode<controller_rotors_n_t>(bytes), expected) << "count " << int{count};
@@ -298,12 +302,7 @@ void ExpectCorruptCountInTheEnvelopeRejected() {
   const std::vector<uint8_t> valid = Encode(MakeTestMessage<Sealed>());
   const size_t count_offset = 8 + 8 + 8 + 8 + 4;  // fingerprint, publisher, counter, utime, seq
   ASSERT_EQ(valid[count_offset], kTestArmCount);
-  const std::pair<int8_t, DecodeError> counts[] = {{-1, DecodeError::kMalformed},
-                                                   {-128, DecodeError::kMalformed},
-                                                   {4, DecodeError::kTruncated},
-                                                   {127, DecodeError::kTruncated},
-                                                   {2, DecodeError::kMalformed}};  // 2: bytes left after the message
-  for (const auto& [count, expected] : counts) {
+  for (const auto& [count, expected] : kCorruptArmCounts) {
     std::vector<uint8_t> bytes = valid;
     bytes[count_offset] = static_cast<uint8_t>(count);
     if (count < 0 || count > kTestArmCount) {
