@@ -112,9 +112,11 @@ void MultiArmController::UpdateState(int64_t now_us, double dt_s) {
 RotorEfficiencyEstimate MultiArmController::NoteReport(const RotorEfficiencyEstimate& reported, int64_t now_us) {
   RotorEfficiencyEstimate estimate = reported;
   force_at_floor_ += floor_evidence_.FlyAtTheFloor(&estimate);
-  // e_i is relative to the description's c_T,i: the evidence's baseline is 1
-  // (the birotor's is what its EfficiencyConditioner has learnt).
-  floor_evidence_.Note(reported, now_us, NominalEfficiencies());
+  // The evidence is thrust_scale_i / mu0_i, mu0_i the unflagged baseline the
+  // conditioner has learnt (1 before it has one), as the birotor's.
+  std::array<double, kMaxArms> baseline{};
+  for (int i = 0; i < vehicle_.arm_count; ++i) baseline[static_cast<size_t>(i)] = efficiency_.baseline(i);
+  floor_evidence_.Note(reported, now_us, baseline);
   return estimate;
 }
 

@@ -244,6 +244,29 @@ TEST(MultiArmControllerTest, FlaggedScaleBelowTheFloorIsFlownAtTheFloor) {
   EXPECT_NEAR(controller.EfficiencyInUse()[1], 0.2, 1e-3);
 }
 
+// The sink's evidence (ForceFloorEvidence) is each report's scale over the
+// baseline the conditioner has learnt, as the birotor's: on a vehicle whose
+// every rotor makes 0.85 of its map (thinner air) it reads 1, and a rotor
+// then flagged at 0.51 reads 0.6 of that baseline, not 0.51.
+TEST(MultiArmControllerTest, FloorEvidenceIsRelativeToTheLearntBaseline) {
+  const VehicleDescription vehicle = Trirotor();
+  MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
+  int64_t now_us = 0;
+  const auto thin_air = [](double rotor2_scale) {
+    return [rotor2_scale](int64_t t) {
+      RotorEfficiencyEstimate e = Estimate(t, rotor2_scale, rotor2_scale != 0.85);
+      e.thrust_scale[0] = e.thrust_scale[2] = 0.85;
+      return e;
+    };
+  };
+  FlyAtRest(&controller, kSettlePeriods, &now_us, thin_air(0.85));
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(controller.floor_evidence().reported_scale(i), 1.0, 1e-6) << i;
+  // infeasible_s (0.1 s) low-pass over 1 s of reports every 2 ms: settled.
+  FlyAtRest(&controller, 500, &now_us, thin_air(0.51));
+  EXPECT_NEAR(controller.floor_evidence().reported_scale(1), 0.6, 1e-3);
+  EXPECT_NEAR(controller.floor_evidence().reported_scale(0), 1.0, 1e-6);
+}
+
 // The efficiencies stay 1 in nominal mode, and with force feedback for
 // reports that are not VALID, of another rotor count, or whose sigma is
 // above max_relative_sigma (force_std / force 1.17 > 1).
