@@ -114,7 +114,7 @@ struct SupervisionParams {
 // 1 otherwise; times the trusted absolute mu0 (issue 36 item 5).
 struct EfficiencyParams {
   double airborne_force_fraction = 0.8;  // airborne: FORCE's total thrust above this share of the weight [1]
-  double airborne_s = 0.3;               // ... for this long [s]
+  double airborne_s = 0.05;              // ... for this long [s]
   double baseline_tau_s = 1.0;           // low-pass of the unflagged thrust_scale (the reference) [s]
   double change_threshold = 0.1;         // |mu / mu0 - 1| above this is a real change too [1]
   double fault_tau_s = 0.01;             // first order towards mu / mu0 while flagged [s]
@@ -126,7 +126,7 @@ struct EfficiencyParams {
   // The absolute rule (issue 36 item 5): a trusted mu0_i is flown itself,
   // e_i = a_i c_i with a_i towards mu0_i (EfficiencyConditioner).
   double absolute_tau_s = 0.2;                // time constant of a_i towards mu0_i (0: off) [s]
-  double absolute_settle_s = 0.1;             // airborne FORCE seen before mu0 is trusted [s]
+  double absolute_settle_s = 0.02;            // airborne FORCE seen before mu0 is trusted [s]
   double absolute_max_relative_sigma = 0.05;  // trusted only while force_std_i / |force_i| is below [1]
   double absolute_threshold = 0.05;           // |mu0_i - 1| above: flown; back below half of it: a_i towards 1 [1]
   double min_absolute_efficiency = 0.7;       // bounds of a_i [1]

@@ -484,8 +484,8 @@ int main(int argc, char** argv) {
   }
   if (!cli.vehicle_file.empty()) {
     if (app.count("--methods") == 0) cli.methods.clear();  // the file's estimator.method
-    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, cli.methods, cli.overrides, base_config,
-                                   cli.eval_options);
+    return RunMultiArmAccuracyMode(cli.vehicle_file, cli.scenarios, app.count("--scenarios") > 0, cli.methods,
+                                   cli.overrides, base_config, cli.eval_options);
   }
   if (cli.mismatch_targets) {
     if (!cli.log_path.empty())

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "evaluation/multi_arm_accuracy.h"
 #include "params/scenario_yaml.h"
@@ -27,22 +29,33 @@ bool LoadVehicle(const std::string& file, VehicleDescription* vehicle) {
 }  // namespace
 
 int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<std::string>& scenarios,
-                            const std::vector<std::string>& methods, const std::vector<std::string>& overrides,
-                            const EstimatorConfig& estimator, const EvalOptions& options) {
+                            bool scenarios_named, const std::vector<std::string>& methods,
+                            const std::vector<std::string>& overrides, const EstimatorConfig& estimator,
+                            const EvalOptions& options) {
   VehicleDescription vehicle;
   if (!LoadVehicle(vehicle_file, &vehicle)) return kExitFailure;
-  std::printf("N-arm estimator on %s (%d arms)\n\n%s", vehicle.name.c_str(), vehicle.arm_count,
-              MultiArmAccuracyHeader().c_str());
-  std::string ground_notes;  // after the table: the estimates before lift-off
+  // Every scenario loaded for the vehicle's arms before anything is flown.
+  std::vector<std::pair<std::string, Scenario>> flights;
+  std::string skipped;  // after the table: default scenarios that do not fit the vehicle
   for (const std::string& name : scenarios) {
     std::string file, error;
     if (!FindScenario(name, &file, &error)) return ReportError(error);
+    try {
+      flights.emplace_back(name, LoadScenario(file, overrides, vehicle.arm_count));
+    } catch (const std::exception& e) {
+      if (scenarios_named) return ReportError(name + ": " + e.what());
+      skipped += "skipped: " + name + ": " + e.what() + " (fly it with --scenarios " + name + " --set KEY=[...])\n";
+    }
+  }
+  std::printf("N-arm estimator on %s (%d arms)\n\n%s", vehicle.name.c_str(), vehicle.arm_count,
+              MultiArmAccuracyHeader().c_str());
+  std::string ground_notes;  // after the table: the estimates before lift-off
+  for (const auto& [name, scenario] : flights) {
     // Without --methods: the parameter file's estimator.method (the daemon's).
     for (const std::string& method : methods.empty() ? std::vector<std::string>{estimator.method} : methods) {
       try {
         EstimatorConfig config = estimator;
         config.method = method;
-        const Scenario scenario = LoadScenario(file, overrides, vehicle.arm_count);
         const MultiArmAccuracy result = RunMultiArmAccuracy(vehicle, scenario, config, options);
         std::printf("%s", MultiArmAccuracyRow(name, method, result).c_str());
         std::fflush(stdout);
@@ -58,6 +71,7 @@ int RunMultiArmAccuracyMode(const std::string& vehicle_file, const std::vector<s
     }
   }
   if (!ground_notes.empty()) std::printf("\n%s", ground_notes.c_str());
+  if (!skipped.empty()) std::printf("\n%s", skipped.c_str());
   return 0;
 }
 

@@ -22,9 +22,10 @@ namespace {
 constexpr double kDtS = 0.001;
 constexpr std::array<double, 3> kHoverN = {27.47, 14.32, 14.32};
 constexpr double kHoverSumN = 27.47 + 14.32 + 14.32;
-// 0.3 s to airborne (airborne_s), then baseline_tau_s (1 s) until a change
+// airborne_s (0.05 s) to airborne, then baseline_tau_s (1 s) until a change
 // counts; the first following after the unusable ground phase is a blend
-// (blend_s 1.5 s, time constant blend_s / 3): over by 0.3 + 1.5 s.
+// (blend_s 1.5 s, time constant blend_s / 3): over by 0.05 + 1.5 s (0.3 s
+// of margin).
 constexpr double kSettledS = 0.3 + 1.5 + 0.05;
 
 class ThreeRotorFeed {
@@ -104,7 +105,7 @@ TEST(EfficiencyConditionerNTest, ARingingScaleIsNotPassedToTheRotors) {
 // of trust (0.85 + 0.15 x 0.995^1000, as the birotor's test).
 TEST(EfficiencyConditionerNTest, TheAbsoluteRuleFliesALearnedEfficiencyOnEveryRotor) {
   ThreeRotorFeed feed;
-  feed.Fly(0.3 + 0.1 + 1.0, {0.85, 0.85, 0.85});
+  feed.Fly(EfficiencyParams().airborne_s + EfficiencyParams().absolute_settle_s + 1.0, {0.85, 0.85, 0.85});
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(feed.conditioner().efficiency(i), 0.8510, 1e-4) << i;
     EXPECT_EQ(feed.conditioner().change(i), 1.0) << i;

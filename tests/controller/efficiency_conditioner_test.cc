@@ -49,8 +49,8 @@ class ConditionerFeed {
   int64_t utime_us_ = 0;
 };
 
-// 0.3 s to airborne (airborne_s), then absolute_settle_s (0.1 s) to trust.
-constexpr double kTrustedFromS = 0.3 + 0.1;
+// airborne_s (0.05 s) to airborne, then absolute_settle_s (0.02 s) to trust.
+const double kTrustedFromS = EfficiencyParams().airborne_s + EfficiencyParams().absolute_settle_s;
 
 TEST(EfficiencyConditionerTest, TrustedOffsetIsFollowedWithAbsoluteTau) {
   ConditionerFeed feed{EfficiencyParams()};

@@ -63,7 +63,7 @@ class HoverFeed {
     for (int k = 0; k < periods; ++k) c = Period();
     return c;
   }
-  // 2 s of hover: airborne (airborne_s 0.3 s) and the baseline settled
+  // 2 s of hover: airborne (airborne_s 0.05 s) and the baseline settled
   // (baseline_tau_s 1 s), in force feedback when asked for.
   MotorCommand Settle() { return Run(1000); }
   // The vehicle is found dz_m higher than it was (the POSE that follows says

@@ -85,7 +85,7 @@ std::vector<double> FlyAtRest(MultiArmController* controller, int periods, int64
   return rotor2;
 }
 
-// Airborne (0.3 s), the baseline settled (baseline_tau_s 1 s) and the blend
+// Airborne (airborne_s, 0.05 s), the baseline settled (baseline_tau_s 1 s) and the blend
 // that starts following (blend_s 1.5 s) over: 2 s of healthy reports.
 constexpr int kSettlePeriods = 1000;
 
@@ -140,8 +140,9 @@ TEST(MultiArmControllerTest, FliesConditionedEfficiencies) {
   int64_t now_us = 0;
   const auto healthy = [](int64_t t) { return Estimate(t, 1.0, false); };
   const auto lost = [](int64_t t) { return Estimate(t, 0.6, true); };
-  // Before the baseline has settled a loss is not followed.
-  FlyAtRest(&controller, 100, &now_us, healthy);
+  // Before the baseline has settled a loss is not followed (airborne after
+  // airborne_s, 0.05 s: not within the first 20 ms).
+  FlyAtRest(&controller, 10, &now_us, healthy);
   EXPECT_FALSE(controller.efficiency_conditioner().airborne());
   FlyAtRest(&controller, 100, &now_us, healthy);
   ASSERT_TRUE(controller.efficiency_conditioner().airborne());

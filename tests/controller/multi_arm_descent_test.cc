@@ -129,7 +129,7 @@ RotorEfficiencyEstimate RotorOneAt(int64_t utime, double scale) {
   return estimate;
 }
 
-// The loss comes after 2 s of healthy reports: airborne (airborne_s 0.3 s),
+// The loss comes after 2 s of healthy reports: airborne (airborne_s 0.05 s),
 // the conditioner's baseline settled (baseline_tau_s 1 s) and its blend into
 // following over (blend_s 1.5 s from airborne).
 constexpr int kLossPeriod = 1000;

@@ -82,6 +82,16 @@ expect 1 "^birotor-sim: error: unknown scenario 'hovr' \(scenarios: .*hover.*\)"
   "$sim/birotor-sim" --scenario hovr --output o.lcm
 expect 1 "^birotor-eval: error: unknown scenario 'hovr' \(scenarios: .*hover.*\)" "$tools/birotor-eval" --scenarios hovr
 
+# birotor-eval --vehicle: a named scenario whose per-arm list does not fit
+# the vehicle is an error naming the scenario and the key, before any row;
+# in the default list it is skipped with that reason under the table.
+expect 1 "^birotor-eval: error: gauge_offset: .*gauge.offset_rad.*3 elements" \
+  "$tools/birotor-eval" --vehicle "$trirotor" --scenarios gauge_offset --methods inversion
+timeout 300 "$tools/birotor-eval" --vehicle "$trirotor" --methods inversion --duration-s 0.2 > defaults.txt 2> err.txt ||
+  fail "birotor-eval --vehicle with the default scenarios: exit $?: $(head -c 300 err.txt)"
+grep -q "^skipped: gauge_offset: .*gauge.offset_rad" defaults.txt || fail "no skipped gauge_offset: $(tail -c 300 defaults.txt)"
+grep -q "^| hover | inversion |" defaults.txt || fail "no hover row: $(head -c 300 defaults.txt)"
+
 # birotor-eval --log on a replay output: no inputs to estimate from (it said "0 FORCE").
 expect 1 "^birotor-eval: error: replay.lcm: no STRAIN, MOTOR, IMU or POSE input .*birotor-replay output" \
   "$tools/birotor-eval" --log replay.lcm
