@@ -74,12 +74,14 @@ class EkfForceEstimator : public ForceEstimator {
   // (LearnStrainNoise, estimator/ekf_parameter_learning.cc).
   FusionReport FuseStrain(const StrainSample& sample);
   void LearnStrainNoise(const FusionReport& strain);
-  // Every fusion of the filter goes through here: FuseMeasurement, or with
+  // Every fusion of the filter goes through here (estimator/ekf_fusion.cc,
+  // with the fusion of each measurement): FuseMeasurement, or with
   // strain_gate the strain gate with its inflation, in place on the blocks
   // of x and P of the LiveStates (the rest of P is zero: no fusion moves
   // it), with the live states that H does not read updated through their
   // cross covariance (UpdateTrailingStates): the same x and P as the update
-  // on all the states, at the cost of what is learned and read.
+  // on all the states, at the cost of what is learned and read (with slow
+  // parameters live, JosephForm::kCombined: the same product to round-off).
   template <int M>
   FusionReport Fuse(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
                     const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate = false);

@@ -116,8 +116,12 @@ class EkfProcessModel {
   //   I + A dt + (A dt)^2/2 + (A dt)^3/6 + (A dt)^4/24
   // (arm modes ~500 rad/s, dt = 1 ms: |A dt| ~ 0.5, truncation ~ 3e-4).
   // (estimator/ekf_prediction.cc, with the check of A's block structure the
-  // fast path relies on, HasRotorBlockStructure).
-  static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s);
+  // fast path relies on, HasRotorBlockStructure). With column and gamma
+  // non-null it also gives ParameterTransition's Gamma for that column c,
+  // from the Horner factor W = I + A dt/2 (I + A dt/3 (I + A dt/4)) of
+  // Phi_d = I + A dt W: Gamma = W c dt (on W's blocks; the same polynomial).
+  static DynamicMatrix Transition(const DynamicMatrix& a, double dt_s, const DynamicVector* column = nullptr,
+                                  DynamicVector* gamma = nullptr);
   // Whether A_d (or Phi_d) is [X_aa, X_au; 0, D] with D diagonal, exactly.
   static bool HasRotorBlockStructure(const DynamicMatrix& x);
   // The transition's column of a constant parameter p entering as

@@ -27,6 +27,15 @@ Eigen::Matrix<double, kDynamicStateSize, C> TransitionTimes(const DynamicMatrix&
   return out;
 }
 
+// Gamma = W c dt on W's blocks [W_aa, W_au; 0, D] (D diagonal).
+void ParameterColumn(const DynamicMatrix& w, const DynamicVector& c, double dt_s, DynamicVector* gamma) {
+  auto arm = gamma->head<kArm>();
+  arm.noalias() = w.topLeftCorner<kArm, kArm>().lazyProduct(c.head<kArm>());
+  arm.noalias() += w.topRightCorner<kArm, kRotor>().lazyProduct(c.tail<kRotor>());
+  gamma->tail<kRotor>() = w.bottomRightCorner<kRotor, kRotor>().diagonal().cwiseProduct(c.tail<kRotor>());
+  *gamma *= dt_s;
+}
+
 }  // namespace
 
 // The rows of omega and mu exactly +-0 left of D and off its diagonal: the
@@ -44,7 +53,8 @@ bool EkfProcessModel::HasRotorBlockStructure(const DynamicMatrix& x) {
   return rows.cwiseAbs().sum() == 0.0 && !x.diagonal().tail<m>().array().isInf().any();
 }
 
-DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s) {
+DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s, const DynamicVector* column,
+                                          DynamicVector* gamma) {
   // Horner form: I + A dt (I + A dt/2 (I + A dt/3 (I + A dt/4))), lazyProduct (faster than GEMM at 9x9).
   // A = [A_aa, A_au; 0, D] (the rows of omega and mu are the diagonal motor lag and zero), so is every
   // power: the steps run on its blocks (a third of the cost, the same sums less A's exact zeros).
@@ -55,6 +65,7 @@ DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s) {
   if (!HasRotorBlockStructure(a_dt)) {  // not that structure: dense
     DynamicMatrix temp;
     for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
+      if (c == 1.0 && gamma != nullptr) gamma->noalias() = phi.lazyProduct(*column) * dt_s;  // phi is W here
       temp.noalias() = a_dt.lazyProduct(phi);
       phi = DynamicMatrix::Identity() + temp * c;
     }
@@ -65,6 +76,7 @@ DynamicMatrix EkfProcessModel::Transition(const DynamicMatrix& a, double dt_s) {
   Eigen::Matrix<double, n, n> temp_aa;
   Eigen::Matrix<double, n, m> temp_au;
   for (const double c : {1.0 / 3.0, 0.5, 1.0}) {
+    if (c == 1.0 && gamma != nullptr) ParameterColumn(phi, *column, dt_s, gamma);  // phi is W here
     temp_aa.noalias() = a_aa.lazyProduct(phi.topLeftCorner<n, n>());
     temp_au.noalias() = a_aa.lazyProduct(phi.topRightCorner<n, m>());
     temp_au.noalias() += a_au * phi.bottomRightCorner<m, m>().diagonal().asDiagonal();
@@ -82,7 +94,12 @@ void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
   DynamicVector mass_column;
   const DynamicMatrix a =
       process_.Jacobian(state_, input, &accel_linearization_, process_.body_mass_is_state() ? &mass_column : nullptr);
-  const DynamicMatrix phi = EkfProcessModel::Transition(a, dt_s);
+  // Gamma, the body mass's column of the transition, only while the mass is
+  // live in free flight (from Phi_d's Horner factor: the same polynomial).
+  const bool mass_column_needed =
+      LiveStates() == kEkfStateSize && process_.body_mass_is_state() && !input.body_supported;
+  DynamicVector gamma;
+  const DynamicMatrix phi = EkfProcessModel::Transition(a, dt_s, &mass_column, mass_column_needed ? &gamma : nullptr);
   state_ = process_.Step(state_, input, dt_s);
   switch (LiveStates()) {
     case kStrainScale1:
@@ -92,8 +109,7 @@ void EkfForceEstimator::Predict(double dt_s, const EkfInput& input) {
       PropagateCovariance<kBodyMassScale>(phi, nullptr, dt_s);
       return;
     default:
-      if (process_.body_mass_is_state() && !input.body_supported) {
-        const DynamicVector gamma = EkfProcessModel::ParameterTransition(a, mass_column, dt_s);
+      if (mass_column_needed) {
         PropagateCovariance<kEkfStateSize>(phi, &gamma, dt_s);
       } else {
         PropagateCovariance<kEkfStateSize>(phi, nullptr, dt_s);
@@ -114,8 +130,15 @@ void EkfForceEstimator::PropagateCovariance(const DynamicMatrix& phi, const Dyna
   const bool blocks = EkfProcessModel::HasRotorBlockStructure(phi);
   DynamicMatrix temp = TransitionTimes<n>(phi, covariance_.topLeftCorner<n, n>(), blocks);
   Eigen::Matrix<double, n, m> p_ds = TransitionTimes<m>(phi, covariance_.block<n, m>(0, n), blocks);
+  // Gamma's rows of omega and mu are zero when c's are (the mass does not
+  // enter the motor lag) and W has the block structure: the outer products
+  // with Gamma on its arm rows only (the same sums less those exact zeros).
+  const bool gamma_on_arms = gamma != nullptr && gamma->tail<kRotor>().isZero(0.0);
   if constexpr (N == kEkfStateSize) {
-    if (gamma != nullptr) {
+    if (gamma_on_arms) {
+      temp.topRows<kArm>().noalias() += gamma->head<kArm>() * covariance_.block<1, n>(kBodyMassScale, 0);
+      p_ds.template topRows<kArm>().noalias() += gamma->head<kArm>() * covariance_.block<1, m>(kBodyMassScale, n);
+    } else if (gamma != nullptr) {
       temp.noalias() += *gamma * covariance_.block<1, n>(kBodyMassScale, 0);
       p_ds.noalias() += *gamma * covariance_.block<1, m>(kBodyMassScale, n);
     }
@@ -124,7 +147,11 @@ void EkfForceEstimator::PropagateCovariance(const DynamicMatrix& phi, const Dyna
   covariance_.topLeftCorner<n, n>() = TransitionTimes<n>(phi, temp.transpose(), blocks).transpose();
   if constexpr (N == kEkfStateSize) {
     constexpr int mass = kBodyMassScale - kDynamicStateSize;  // its column in the slow block
-    if (gamma != nullptr) covariance_.topLeftCorner<n, n>().noalias() += p_ds.col(mass) * gamma->transpose();
+    if (gamma_on_arms) {
+      covariance_.topLeftCorner<n, kArm>().noalias() += p_ds.col(mass) * gamma->head<kArm>().transpose();
+    } else if (gamma != nullptr) {
+      covariance_.topLeftCorner<n, n>().noalias() += p_ds.col(mass) * gamma->transpose();
+    }
   }
   covariance_.block<n, m>(0, n) = p_ds;
   covariance_.block<m, n>(n, 0) = p_ds.transpose();

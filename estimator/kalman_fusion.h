@@ -65,6 +65,16 @@ Innovation<M, N> ComputeInnovation(const MeasurementLinearization<M, N>& at, con
   return out;
 }
 
+// How the Joseph update (JosephCovariance) applies its last two rank-m
+// corrections, -(A H^T) K^T + K R K^T (A = (I - K H) P):
+enum class JosephForm {
+  kSeparate,  // two products of n^2 m, one per correction
+  // One product, -(A H^T - K R) K^T: the same Joseph product (for any gain;
+  // A H^T - K R is zero at the optimal gain up to round-off, and is then
+  // formed before it meets K^T), at half the cost; different round-off.
+  kCombined,
+};
+
 // Covariance update in Joseph form, for any gain K (optimal or not):
 //   P+ = (I - K H) P (I - K H)^T + K R K^T.
 // The factor (I - K H) is applied as two rank-m corrections, A = P - K (H P)
@@ -72,21 +82,26 @@ Innovation<M, N> ComputeInnovation(const MeasurementLinearization<M, N>& at, con
 // of O(n^3); it is the same product as the dense form, not the expanded
 // P - K S K^T (which only equals it at the optimal gain and loses the
 // positive semi-definite structure to round-off). Not symmetrised here.
-// h_p = H P, as the innovation computed it.
+// h_p = H P, as the innovation computed it; form: see JosephForm.
 template <int N, int M, typename Cov>
 Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::MatrixBase<Cov>& cov, const Eigen::Matrix<double, N, M>& gain,
                                              const Eigen::Matrix<double, M, N>& h_p,
                                              const Eigen::Matrix<double, M, N>& h_jacobian,
-                                             const Eigen::Matrix<double, M, M>& noise) {
-  Eigen::Matrix<double, N, N> a = cov;
-  a.noalias() -= gain.lazyProduct(h_p);  // (I - K H) P
+                                             const Eigen::Matrix<double, M, M>& noise,
+                                             JosephForm form = JosephForm::kSeparate) {
+  Eigen::Matrix<double, N, N> out = cov;
+  out.noalias() -= gain.lazyProduct(h_p);  // A = (I - K H) P
   Eigen::Matrix<double, N, M> a_ht;
-  a_ht.noalias() = a.lazyProduct(h_jacobian.transpose());
-  Eigen::Matrix<double, N, N> out = a;
-  out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T
+  a_ht.noalias() = out.lazyProduct(h_jacobian.transpose());
   Eigen::Matrix<double, N, M> k_r;
   k_r.noalias() = gain.lazyProduct(noise);
-  out.noalias() += k_r.lazyProduct(gain.transpose());  // + K R K^T
+  if (form == JosephForm::kCombined) {
+    a_ht -= k_r;
+    out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T + K R K^T
+  } else {
+    out.noalias() -= a_ht.lazyProduct(gain.transpose());  // (I - K H) P (I - K H)^T
+    out.noalias() += k_r.lazyProduct(gain.transpose());   // + K R K^T
+  }
   return out;
 }
 
@@ -114,7 +129,7 @@ Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& 
 template <int K, int M, typename State, typename Cov>
 void UpdateTrailingStates(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<double, M, M>& noise,
                           const Innovation<M, K>& innovation, const Eigen::Matrix<double, K, M>& gain, State* x,
-                          Cov* cov) {
+                          Cov* cov, JosephForm form = JosephForm::kSeparate) {
   constexpr int T = State::RowsAtCompileTime - K;
   Eigen::Matrix<double, M, T> h_p_t;
   h_p_t.noalias() = at.jacobian.lazyProduct(cov->template topRightCorner<K, T>());
@@ -129,10 +144,16 @@ void UpdateTrailingStates(const MeasurementLinearization<M, K>& at, const Eigen:
   a_ht.noalias() = a_tk.lazyProduct(at.jacobian.transpose());
   Eigen::Matrix<double, T, M> k_r;
   k_r.noalias() = gain_t.lazyProduct(noise);
-  a_tk.noalias() -= a_ht.lazyProduct(gain.transpose());
-  a_tk.noalias() += k_r.lazyProduct(gain.transpose());
-  a_tt.noalias() -= a_ht.lazyProduct(gain_t.transpose());
-  a_tt.noalias() += k_r.lazyProduct(gain_t.transpose());
+  if (form == JosephForm::kCombined) {
+    a_ht -= k_r;
+    a_tk.noalias() -= a_ht.lazyProduct(gain.transpose());
+    a_tt.noalias() -= a_ht.lazyProduct(gain_t.transpose());
+  } else {
+    a_tk.noalias() -= a_ht.lazyProduct(gain.transpose());
+    a_tk.noalias() += k_r.lazyProduct(gain.transpose());
+    a_tt.noalias() -= a_ht.lazyProduct(gain_t.transpose());
+    a_tt.noalias() += k_r.lazyProduct(gain_t.transpose());
+  }
   cov->template bottomLeftCorner<T, K>() = a_tk;
   cov->template topRightCorner<K, T>() = a_tk.transpose();
   cov->template bottomRightCorner<T, T>() = a_tt;
@@ -145,10 +166,11 @@ void UpdateTrailingStates(const MeasurementLinearization<M, K>& at, const Eigen:
 // the measurement reads the leading K states (at is on them, the innovation
 // on P's leading K x K block); the trailing N - K states are updated through
 // their cross covariance (UpdateTrailingStates; optimal gain only).
+// form: how the Joseph update sums its corrections (JosephForm).
 template <int M, int K, typename State, typename Cov>
 void KalmanUpdate(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<double, M, M>& noise,
                   const Innovation<M, K>& innovation, State* x, Cov* cov,
-                  const Eigen::Matrix<double, K, M>* fixed_gain = nullptr) {
+                  const Eigen::Matrix<double, K, M>* fixed_gain = nullptr, JosephForm form = JosephForm::kSeparate) {
   constexpr int N = State::RowsAtCompileTime;
   static_assert(N >= K && Cov::RowsAtCompileTime == N && Cov::ColsAtCompileTime == N, "x and P of the N >= K states");
   Eigen::Matrix<double, K, M> gain;
@@ -159,14 +181,14 @@ void KalmanUpdate(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<
   }
   if constexpr (N > K) {
     // Before the leading block changes: the trailing update reads P_tK and P_Kt.
-    UpdateTrailingStates(at, noise, innovation, gain, x, cov);
+    UpdateTrailingStates(at, noise, innovation, gain, x, cov, form);
     auto x_lead = x->template head<K>();
     x_lead.noalias() += gain.lazyProduct(innovation.residual);
     auto cov_lead = cov->template topLeftCorner<K, K>();
-    cov_lead = JosephCovariance<K, M>(cov_lead, gain, innovation.h_p, at.jacobian, noise);
+    cov_lead = JosephCovariance<K, M>(cov_lead, gain, innovation.h_p, at.jacobian, noise, form);
   } else {
     x->noalias() += gain.lazyProduct(innovation.residual);
-    *cov = JosephCovariance<N, M>(*cov, gain, innovation.h_p, at.jacobian, noise);
+    *cov = JosephCovariance<N, M>(*cov, gain, innovation.h_p, at.jacobian, noise, form);
   }
 }
 
@@ -177,6 +199,7 @@ struct FusionRequest {
   // Chi-square gate on the NIS; +infinity fuses whatever is finite. A NaN
   // NIS (a NaN reading, a broken covariance) is always rejected.
   double gate_nis = std::numeric_limits<double>::infinity();
+  JosephForm joseph = JosephForm::kSeparate;  // how the covariance update sums its corrections
 };
 
 // Computes the innovation of z, gates it and, when it passes, updates *x and
@@ -201,7 +224,7 @@ FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eig
     report.outcome = FusionOutcome::kRejectedGate;
     return report;
   }
-  KalmanUpdate(at, noise, innovation, x, cov, fixed_gain);
+  KalmanUpdate(at, noise, innovation, x, cov, fixed_gain, request.joseph);
   report.outcome = FusionOutcome::kFused;
   return report;
 }

@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include "model/equilibrium.h"
 
@@ -229,6 +230,37 @@ TEST(EkfProcessModelTest, ParameterTransitionIsExactOnALinearSystem) {
   const DynamicVector gamma = EkfProcessModel::ParameterTransition(a, c, dt_s);
   const DynamicVector expected = step(1.0) - step(0.0);
   EXPECT_LE((gamma - expected).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + expected.cwiseAbs().maxCoeff()));
+}
+
+// Transition's Gamma, from its Horner factor W (Phi_d = I + A dt W, Gamma =
+// W c dt), is ParameterTransition's polynomial to round-off: for a dense A
+// and for the model's A in flight (the block path).
+TEST(EkfProcessModelTest, TransitionsGammaIsParameterTransition) {
+  std::mt19937 rng(31);
+  std::normal_distribution<double> n(0.0, 1.0);
+  DynamicMatrix dense;
+  DynamicVector c;
+  for (int i = 0; i < kDynamicStateSize; ++i) {
+    c(i) = n(rng);
+    for (int j = 0; j < kDynamicStateSize; ++j) dense(i, j) = 300.0 * n(rng);  // |A dt| ~ 1, as the arm modes
+  }
+  const BirotorParams p;
+  const EkfProcessModel model(p, /*body_mass_is_state=*/true);
+  EkfInput u;
+  EkfState x = HoverState(p, &u);
+  x(kDeflectionRate1) += 0.3;
+  x(kOmega2) *= 1.1;
+  DynamicVector mass_column;
+  const DynamicMatrix flight = model.Jacobian(x, u, nullptr, &mass_column);
+  ASSERT_TRUE(EkfProcessModel::HasRotorBlockStructure(flight));
+  const double dt_s = 0.001;
+  for (const auto& [a, column] : {std::make_pair(dense, c), std::make_pair(flight, mass_column)}) {
+    DynamicVector gamma;
+    const DynamicMatrix phi = EkfProcessModel::Transition(a, dt_s, &column, &gamma);
+    EXPECT_EQ(phi, EkfProcessModel::Transition(a, dt_s));  // Gamma leaves Phi_d as it was, bit for bit
+    const DynamicVector expected = EkfProcessModel::ParameterTransition(a, column, dt_s);
+    EXPECT_LE((gamma - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
+  }
 }
 
 TEST(EkfProcessModelTest, HoldsTheHoverEquilibrium) {

@@ -293,6 +293,71 @@ TEST(LeadingStatesTest, FusesAsAllStatesWhenTheTrailingOnesHaveZeroCovariance) {
   }
 }
 
+// P+ against P+ of another form, relative to the scale of each entry's row
+// and column in the prior P.
+void ExpectSameCovariance(const EkfMatrix& actual, const EkfMatrix& expected, const EkfMatrix& prior) {
+  for (int i = 0; i < kEkfStateSize; ++i) {
+    for (int j = 0; j < kEkfStateSize; ++j) {
+      EXPECT_NEAR(actual(i, j), expected(i, j), 1e-12 * std::sqrt(prior(i, i) * prior(j, j))) << i << ", " << j;
+    }
+  }
+}
+
+// JosephForm::kCombined, -(A H^T - K R) K^T in one product, is the Joseph
+// product of kSeparate to round-off: for a gain 30 % off the optimum (the
+// whole update), and in FuseMeasurement at the optimal gain on the leading
+// states with the rest trailing (the EKF with slow parameters live: the
+// strain on 13 states, the gyro on the 9 dynamic ones). The state update
+// does not depend on the form.
+TEST(JosephCovarianceTest, CombinedFormIsTheSeparateProduct) {
+  std::mt19937 rng(37);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const StrainMeasurementModel strain(2e-5);
+  const GyroMeasurementModel gyro(0.005);
+  EkfState x0 = EkfState::Zero();
+  x0(kStrainScale1) = 1.1;
+  x0(kStrainScale2) = 0.9;
+  x0(kDeflection1) = -2e-3;
+  x0(kDeflection2) = 2e-3;
+  const StrainMeasurementModel::Linearization at = strain.Linearize(x0);
+  FusionRequest combined;
+  combined.joseph = JosephForm::kCombined;
+  for (int trial = 0; trial < 20; ++trial) {
+    const EkfMatrix p = RandomCovariance(&rng);
+    const Eigen::Matrix<double, 2, kEkfStateSize> h_p = at.jacobian * p;
+    const Eigen::Matrix2d s = h_p * at.jacobian.transpose() + strain.noise;
+    Eigen::Matrix<double, kEkfStateSize, 2> k = h_p.transpose() * s.inverse();
+    for (int i = 0; i < kEkfStateSize; ++i) {
+      for (int j = 0; j < 2; ++j) k(i, j) *= 1.0 + 0.3 * n(rng);
+    }
+    ExpectSameCovariance(
+        JosephCovariance<kEkfStateSize, 2>(p, k, h_p, at.jacobian, strain.noise, JosephForm::kCombined),
+        JosephCovariance<kEkfStateSize, 2>(p, k, h_p, at.jacobian, strain.noise, JosephForm::kSeparate), p);
+
+    EkfState x = x0;
+    for (int i = 0; i < kEkfStateSize; ++i) x(i) += 1e-3 * n(rng) * std::sqrt(p(i, i));
+    const Eigen::Vector2d z = at.predicted + Eigen::Vector2d(2e-5 * n(rng), 2e-5 * n(rng));
+    EkfState x_separate = x, x_combined = x;
+    EkfMatrix p_separate = p, p_combined = p;
+    ASSERT_EQ(FuseMeasurement(LeadingStates<kBodyMassScale>(at), strain.noise, z, {}, &x_separate, &p_separate).outcome,
+              FusionOutcome::kFused);
+    ASSERT_EQ(
+        FuseMeasurement(LeadingStates<kBodyMassScale>(at), strain.noise, z, combined, &x_combined, &p_combined).outcome,
+        FusionOutcome::kFused);
+    EXPECT_EQ(x_combined, x_separate);
+    ExpectSameCovariance(p_combined, p_separate, p);
+
+    const GyroMeasurementModel::Vector rate(x(kPitchRate) + 0.005 * n(rng));
+    const auto gyro_at = LeadingStates<kDynamicStateSize>(gyro.Linearize(x));
+    x_separate = x_combined = x;
+    p_separate = p_combined = p;
+    FuseMeasurement(gyro_at, gyro.noise, rate, {}, &x_separate, &p_separate);
+    FuseMeasurement(gyro_at, gyro.noise, rate, combined, &x_combined, &p_combined);
+    EXPECT_EQ(x_combined, x_separate);
+    ExpectSameCovariance(p_combined, p_separate, p);
+  }
+}
+
 // A measurement that reads only the leading K states, the trailing ones live
 // (learned, correlated): FuseMeasurement on the leading K with the trailing
 // states updated through their cross covariance (UpdateTrailingStates) gives
