@@ -44,6 +44,55 @@ if(BIROTOR_BUILD_TESTS AND BIROTOR_TEST_PCH)
   target_precompile_headers(birotor_test_pch PRIVATE ${BIROTOR_TEST_PCH_HEADERS})
 endif()
 
+# Build time of the libraries (docs/development.md): their units compile at
+# -O3 and each parsed Eigen, the standard library and, in the programs'
+# libraries, fmt, spdlog and LCM again. A library calls
+# birotor_library_pch(target [SERVICE]) in its CMakeLists.txt and its units
+# reuse a precompiled header of those made once per build:
+# - birotor_library_pch: the model-side libraries (model, estimator,
+#   controller, simulator, identification, params; 104 units, most on
+#   fixed-size Eigen);
+# - birotor_service_pch (SERVICE): the libraries of the daemons and tools on
+#   spdlog and LCM (program, sources, nodes, replay, evaluation, monitor,
+#   plot, review; 62 units).
+# clang refuses a precompiled header made with other macros or another
+# -fPIC / -fPIE setting, so each maker has the flags of the libraries that
+# use it: a static library (-fPIC) with the same usage requirements (Ceres'
+# glog definitions, which every library on birotor_model gets; for SERVICE
+# also spdlog's and fmt's definitions and LCM's -pthread). A library with
+# other flags must not use it (clang stops with "definition of macro ...
+# differs"; GCC silently ignores a header that does not fit: -Winvalid-pch).
+# Only headers that every unit parses the same way and that define no object
+# (no <iostream>, so no static initialiser is added): what a program computes
+# does not change (the same instructions with and without it; only the order
+# of local symbols may differ).
+option(BIROTOR_LIBRARY_PCH "Libraries share precompiled headers (Eigen, std; fmt, spdlog, LCM)" ON)
+set(BIROTOR_LIBRARY_PCH_HEADERS <Eigen/Core> <algorithm> <array> <cmath> <cstdint> <limits> <memory> <string> <vector>)
+set(BIROTOR_SERVICE_PCH_HEADERS ${BIROTOR_LIBRARY_PCH_HEADERS} <fmt/format.h> <spdlog/spdlog.h> <lcm/lcm-cpp.hpp>
+    <string_view>)
+if(BIROTOR_LIBRARY_PCH)
+  file(WRITE ${CMAKE_BINARY_DIR}/birotor_library_pch.cc "// Makes a precompiled header of the libraries.\n")
+  add_library(birotor_library_pch STATIC ${CMAKE_BINARY_DIR}/birotor_library_pch.cc)
+  target_link_libraries(birotor_library_pch PRIVATE Eigen3::Eigen Ceres::ceres birotor_warnings)
+  target_precompile_headers(birotor_library_pch PRIVATE ${BIROTOR_LIBRARY_PCH_HEADERS})
+  add_library(birotor_service_pch STATIC ${CMAKE_BINARY_DIR}/birotor_library_pch.cc)
+  target_link_libraries(birotor_service_pch PRIVATE Eigen3::Eigen Ceres::ceres spdlog::spdlog PkgConfig::LCM
+                        birotor_warnings)
+  target_precompile_headers(birotor_service_pch PRIVATE ${BIROTOR_SERVICE_PCH_HEADERS})
+endif()
+
+# birotor_library_pch(target [SERVICE]): the library's units reuse that header.
+function(birotor_library_pch target)
+  if(NOT TARGET birotor_library_pch)
+    return()
+  endif()
+  if("${ARGN}" STREQUAL "SERVICE")
+    target_precompile_headers(${target} REUSE_FROM birotor_service_pch)
+  else()
+    target_precompile_headers(${target} REUSE_FROM birotor_library_pch)
+  endif()
+endfunction()
+
 # birotor_add_test(NAME name SOURCES a.cc b.cc LIBS lib1 lib2 [LABELS l] [SOURCE_TREE] [RUN_SERIAL]
 #                  [TIMEOUT s] [COST s])
 # One GoogleTest executable registered with CTest through gtest_discover_tests.
