@@ -156,6 +156,17 @@ EkfMatrix RandomCovariance(std::mt19937* rng) {
 }
 
 // The textbook Joseph form, dense: (I - K H) P (I - K H)^T + K R K^T.
+// P+ against P+ of another form, to round-off relative to the scale of each
+// entry's row and column in the prior P.
+void ExpectSameCovariance(const EkfMatrix& actual, const EkfMatrix& expected, const EkfMatrix& prior,
+                          double relative = 1e-12) {
+  for (int i = 0; i < kEkfStateSize; ++i) {
+    for (int j = 0; j < kEkfStateSize; ++j) {
+      EXPECT_NEAR(actual(i, j), expected(i, j), relative * std::sqrt(prior(i, i) * prior(j, j))) << i << ", " << j;
+    }
+  }
+}
+
 template <int M>
 EkfMatrix TextbookJoseph(const EkfMatrix& p, const Eigen::Matrix<double, kEkfStateSize, M>& k,
                          const Eigen::Matrix<double, M, kEkfStateSize>& h, const Eigen::Matrix<double, M, M>& r) {
@@ -186,13 +197,7 @@ TEST(JosephCovarianceTest, MatchesTheTextbookFormForANonOptimalGain) {
     const EkfMatrix joseph = JosephCovariance<kEkfStateSize, 2>(p, k, strain_h, strain.noise);
     const EkfMatrix textbook = TextbookJoseph<2>(p, k, strain_h, strain.noise);
     const EkfMatrix expanded = p - k * s * k.transpose();  // only right at the optimal gain
-    for (int i = 0; i < kEkfStateSize; ++i) {
-      for (int j = 0; j < kEkfStateSize; ++j) {
-        // Round-off relative to the scale of the entry's row and column.
-        const double scale = std::sqrt(p(i, i) * p(j, j));
-        EXPECT_NEAR(joseph(i, j), textbook(i, j), 1e-12 * scale) << i << ", " << j;
-      }
-    }
+    ExpectSameCovariance(joseph, textbook, p);
     EXPECT_GT((expanded - textbook).cwiseAbs().maxCoeff(), 1e-3 * textbook.cwiseAbs().maxCoeff());
 
     const Eigen::Matrix<double, kEkfStateSize, 2> k2 = Eigen::Matrix<double, kEkfStateSize, 2>::Random() * 0.01;
@@ -211,11 +216,7 @@ TEST(JosephCovarianceTest, EqualsTheStandardUpdateAtTheKalmanGain) {
   const Eigen::Matrix<double, kEkfStateSize, 1> k = p * gyro.h_jacobian.transpose() * s.inverse();
   const EkfMatrix joseph = JosephCovariance<kEkfStateSize, 1>(p, k, gyro.h_jacobian, gyro.noise);
   const EkfMatrix standard = p - k * s * k.transpose();
-  for (int i = 0; i < kEkfStateSize; ++i) {
-    for (int j = 0; j < kEkfStateSize; ++j) {
-      EXPECT_NEAR(joseph(i, j), standard(i, j), 1e-10 * std::sqrt(p(i, i) * p(j, j))) << i << ", " << j;
-    }
-  }
+  ExpectSameCovariance(joseph, standard, p, 1e-10);
 }
 
 // 1500 updates of a badly scaled covariance: symmetric to round-off (the
@@ -290,16 +291,6 @@ TEST(LeadingStatesTest, FusesAsAllStatesWhenTheTrailingOnesHaveZeroCovariance) {
     EXPECT_EQ(x_all.tail<kEkfStateSize - n>(), x.tail<kEkfStateSize - n>());
     EXPECT_EQ(p_all.rightCols<kEkfStateSize - n>().cwiseAbs().maxCoeff(), 0.0);
     EXPECT_EQ(p_all.bottomRows<kEkfStateSize - n>().cwiseAbs().maxCoeff(), 0.0);
-  }
-}
-
-// P+ against P+ of another form, relative to the scale of each entry's row
-// and column in the prior P.
-void ExpectSameCovariance(const EkfMatrix& actual, const EkfMatrix& expected, const EkfMatrix& prior) {
-  for (int i = 0; i < kEkfStateSize; ++i) {
-    for (int j = 0; j < kEkfStateSize; ++j) {
-      EXPECT_NEAR(actual(i, j), expected(i, j), 1e-12 * std::sqrt(prior(i, i) * prior(j, j))) << i << ", " << j;
-    }
   }
 }
 
