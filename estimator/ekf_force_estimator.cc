@@ -220,6 +220,8 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     Report(MakeFusionReport(FusionSource::kTelemetry, telemetry.utime, FusionOutcome::kFused));
   }
   strain_gate_.Reset();
+  step_hold_until_utime_ = 0;
+  liftoff_hold_until_utime_ = 0;
   converged_ = false;
   faults_.Reset();
   accel_linearization_.valid = false;  // from before the re-initialisation
@@ -367,6 +369,7 @@ void EkfForceEstimator::DoAddStrain(const StrainSample& sample, ForceEstimate* e
     ApplyQueuedUpTo(sample.utime);
     PredictTo(sample.utime);
     strain = FuseStrain(sample);
+    if (strain.fused_after_inflation) step_hold_until_utime_ = StepHoldEndUtime();
     if (!ConditionCovariance()) {
       // Numerical failure: start again from this sample.
       Initialize(sample);

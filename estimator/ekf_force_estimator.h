@@ -104,6 +104,10 @@ class EkfForceEstimator : public ForceEstimator {
   // Predict adds no noise to them).
   bool StrainScalesLive() const { return options_.learn_strain_scale && !scales_frozen_; }
   bool BodyMassLive() const { return options_.learn_body_mass && !mass_frozen_; }
+  // The states a fusion on the N live states must not move now (a bit per
+  // state; 0 mostly): see EkfOptions::step_hold_s.
+  uint32_t HeldStates(int live_states) const;
+  int64_t StepHoldEndUtime() const;  // the state's time plus step_hold_s [us]
   // Whether slow state p (kStrainScale1, kStrainScale2, kBodyMassScale) is frozen.
   bool SlowStateFrozen(int p) const { return p == kBodyMassScale ? mass_frozen_ : scales_frozen_; }
   // The leading states whose rows and columns of P may be non-zero: up to
@@ -182,6 +186,8 @@ class EkfForceEstimator : public ForceEstimator {
   } learned_;
   bool scales_frozen_ = false;                 // the strain scales are frozen (not flying, or lifting off)
   bool mass_frozen_ = false;                   // the body mass is frozen (not flying)
+  int64_t step_hold_until_utime_ = 0;          // held after a thrust step up to here (HeldStates) [us]
+  int64_t liftoff_hold_until_utime_ = 0;       // held after a lift-off up to here [us]
   double slow_noise_psd_[kEkfStateSize] = {};  // Qc of the slow states while learned (0 while frozen)
   // Start of the current free flight [us], or one of these.
   static constexpr int64_t kNotFlying = -1, kFlyingSinceStart = -2;

@@ -38,7 +38,10 @@ FusionReport EkfForceEstimator::FuseRead(const MeasurementLinearization<M, kEkfS
   // product to round-off); with the offsets only (the shipped file) the two
   // products, to whose round-off the shipped figures are pinned.
   FusionRequest sized = request;
-  if (N > kStrainScale1) sized.joseph = JosephForm::kCombined;
+  if constexpr (N > kStrainScale1) {
+    sized.joseph = JosephForm::kCombined;
+    sized.consider_states = HeldStates(N);  // through a step or a lift-off
+  }
   return FuseOn(LeadingStates<K>(at), noise, z, sized, strain_gate, &x, &cov);
 }
 

@@ -31,6 +31,7 @@ void EkfForceEstimator::UpdateLearning() {
     flying_since_utime_ = kNotFlying;
   } else if (flying_since_utime_ == kNotFlying) {
     flying_since_utime_ = last_utime_;  // lift-off: the delay starts
+    liftoff_hold_until_utime_ = StepHoldEndUtime();
     StartSettling();
   }
   const bool lifting_off =
@@ -100,6 +101,23 @@ void EkfForceEstimator::FreezeSlowParameter(int p, bool frozen) {
   } else {
     covariance_(p, p) = learned_.std[p] * learned_.std[p];
   }
+}
+
+int64_t EkfForceEstimator::StepHoldEndUtime() const {
+  return last_utime_ + static_cast<int64_t>(std::llround(options_.step_hold_s / kMicrosecond));
+}
+
+uint32_t EkfForceEstimator::HeldStates(int live_states) const {
+  if (live_states <= kStrainScale1) return 0;  // nothing learns
+  const bool step = strain_gate_.consecutive_rejected() > 0 || last_utime_ < step_hold_until_utime_;
+  if (!step && last_utime_ >= liftoff_hold_until_utime_) return 0;
+  // Every live slow parameter (a frozen one's rows of P are zero: no gain
+  // either way) and the offsets, which would otherwise take what the
+  // parameters may not.
+  uint32_t held = (1u << kStrainScale1) | (1u << kStrainScale2);
+  if (live_states > kBodyMassScale) held |= 1u << kBodyMassScale;
+  if (options_.estimate_gauge_offsets) held |= (1u << kGaugeOffset1) | (1u << kGaugeOffset2);
+  return held;
 }
 
 double EkfForceEstimator::PayloadProbability() const {

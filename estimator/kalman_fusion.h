@@ -126,15 +126,20 @@ Eigen::Matrix<double, N, N> JosephCovariance(const Eigen::Matrix<double, N, N>& 
 // H's zero columns add nothing). O(T K M) on top of the K-state update
 // instead of O((N^2 - K^2) M): a random-walk parameter that only another
 // sensor reads costs this measurement next to nothing.
+// consider_states: bit j set: trailing state j (index among all N) gets a
+// zero gain row (a Schmidt consider state, see KalmanUpdate).
 template <int K, int M, typename State, typename Cov>
 void UpdateTrailingStates(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<double, M, M>& noise,
                           const Innovation<M, K>& innovation, const Eigen::Matrix<double, K, M>& gain, State* x,
-                          Cov* cov, JosephForm form = JosephForm::kSeparate) {
+                          Cov* cov, JosephForm form = JosephForm::kSeparate, uint32_t consider_states = 0) {
   constexpr int T = State::RowsAtCompileTime - K;
   Eigen::Matrix<double, M, T> h_p_t;
   h_p_t.noalias() = at.jacobian.lazyProduct(cov->template topRightCorner<K, T>());
   Eigen::Matrix<double, T, M> gain_t;
   gain_t.noalias() = h_p_t.transpose().lazyProduct(innovation.covariance_inverse);
+  for (int j = 0; j < T && (consider_states >> K) != 0; ++j) {
+    if ((consider_states >> (K + j)) & 1u) gain_t.row(j).setZero();
+  }
   x->template tail<T>().noalias() += gain_t.lazyProduct(innovation.residual);
   Eigen::Matrix<double, T, K> a_tk = cov->template bottomLeftCorner<T, K>();
   a_tk.noalias() -= gain_t.lazyProduct(innovation.h_p);
@@ -167,10 +172,16 @@ void UpdateTrailingStates(const MeasurementLinearization<M, K>& at, const Eigen:
 // on P's leading K x K block); the trailing N - K states are updated through
 // their cross covariance (UpdateTrailingStates; optimal gain only).
 // form: how the Joseph update sums its corrections (JosephForm).
+// consider_states: bit j set: state j (0 .. N-1) is not moved by the update.
+// Its row of the gain is zero (a Schmidt consider state) and the Joseph form
+// gives P for that gain: the state keeps its value and variance, its
+// correlations follow the other states, and the others' variances stay
+// honest about it. 0: none (N <= 32).
 template <int M, int K, typename State, typename Cov>
 void KalmanUpdate(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<double, M, M>& noise,
                   const Innovation<M, K>& innovation, State* x, Cov* cov,
-                  const Eigen::Matrix<double, K, M>* fixed_gain = nullptr, JosephForm form = JosephForm::kSeparate) {
+                  const Eigen::Matrix<double, K, M>* fixed_gain = nullptr, JosephForm form = JosephForm::kSeparate,
+                  uint32_t consider_states = 0) {
   constexpr int N = State::RowsAtCompileTime;
   static_assert(N >= K && Cov::RowsAtCompileTime == N && Cov::ColsAtCompileTime == N, "x and P of the N >= K states");
   Eigen::Matrix<double, K, M> gain;
@@ -179,9 +190,12 @@ void KalmanUpdate(const MeasurementLinearization<M, K>& at, const Eigen::Matrix<
   } else {
     gain.noalias() = innovation.h_p.transpose().lazyProduct(innovation.covariance_inverse);
   }
+  for (int j = 0; j < K && consider_states != 0; ++j) {
+    if ((consider_states >> j) & 1u) gain.row(j).setZero();
+  }
   if constexpr (N > K) {
     // Before the leading block changes: the trailing update reads P_tK and P_Kt.
-    UpdateTrailingStates(at, noise, innovation, gain, x, cov, form);
+    UpdateTrailingStates(at, noise, innovation, gain, x, cov, form, consider_states);
     auto x_lead = x->template head<K>();
     x_lead.noalias() += gain.lazyProduct(innovation.residual);
     auto cov_lead = cov->template topLeftCorner<K, K>();
@@ -200,6 +214,7 @@ struct FusionRequest {
   // NIS (a NaN reading, a broken covariance) is always rejected.
   double gate_nis = std::numeric_limits<double>::infinity();
   JosephForm joseph = JosephForm::kSeparate;  // how the covariance update sums its corrections
+  uint32_t consider_states = 0;               // bit j: state j is not moved by the update (KalmanUpdate)
 };
 
 // Computes the innovation of z, gates it and, when it passes, updates *x and
@@ -224,7 +239,7 @@ FusionReport FuseMeasurement(const MeasurementLinearization<M, N>& at, const Eig
     report.outcome = FusionOutcome::kRejectedGate;
     return report;
   }
-  KalmanUpdate(at, noise, innovation, x, cov, fixed_gain, request.joseph);
+  KalmanUpdate(at, noise, innovation, x, cov, fixed_gain, request.joseph, request.consider_states);
   report.outcome = FusionOutcome::kFused;
   return report;
 }

@@ -412,5 +412,47 @@ TEST(UpdateTrailingStatesTest, FusesAsAllStatesWhenHReadsOnlyTheLeadingOnes) {
   ExpectTrailingUpdateAsAllStates<kBodyMassScale>(strain.Linearize(x), strain.noise, &rng);
 }
 
+// A consider state (KalmanUpdate's consider_states, the EKF's hold through a
+// thrust step): its gain row is zero, so it keeps its value and variance, and
+// P is the Joseph form of that gain, whether the measurement reads the state
+// (state 1, among the leading three) or only correlates with it (state 3,
+// trailing: UpdateTrailingStates).
+TEST(KalmanUpdateTest, AConsiderStateIsNotMovedAndPIsTheJosephFormOfItsGain) {
+  using State4 = Eigen::Matrix<double, 4, 1>;
+  using Matrix4 = Eigen::Matrix<double, 4, 4>;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  Matrix4 root;
+  for (int i = 0; i < 16; ++i) root(i / 4, i % 4) = normal(rng);
+  const Matrix4 prior = root * root.transpose() + 0.5 * Matrix4::Identity();
+  MeasurementLinearization<2, 3> at;  // reads the leading three states
+  at.jacobian << 1.0, 0.5, 0.0, 0.0, -0.3, 2.0;
+  at.predicted << 0.1, -0.2;
+  const Eigen::Matrix2d noise = Eigen::Vector2d(0.4, 0.9).asDiagonal();
+  const Eigen::Vector2d z(0.7, 0.3);
+  Eigen::Matrix<double, 2, 4> h = Eigen::Matrix<double, 2, 4>::Zero();
+  h.leftCols<3>() = at.jacobian;
+  for (const int held : {1, 3}) {
+    State4 x = State4::Constant(0.25);
+    Matrix4 cov = prior;
+    const Innovation<2, 3> innovation = ComputeInnovation(at, noise, cov.topLeftCorner<3, 3>(), z);
+    const Eigen::Matrix<double, 3, 2>* no_fixed_gain = nullptr;
+    KalmanUpdate(at, noise, innovation, &x, &cov, no_fixed_gain, JosephForm::kCombined, 1u << held);
+    // Dense: K = P H^T S^-1 with row `held` zero, P+ = (I - K H) P (I - K H)^T + K R K^T.
+    const Eigen::Matrix2d s = h * prior * h.transpose() + noise;
+    Eigen::Matrix<double, 4, 2> gain = prior * h.transpose() * s.inverse();
+    gain.row(held).setZero();
+    const Matrix4 factor = Matrix4::Identity() - gain * h;
+    const Matrix4 expected = factor * prior * factor.transpose() + gain * noise * gain.transpose();
+    const State4 expected_x = State4::Constant(0.25) + gain * (z - at.predicted);
+    EXPECT_EQ(x(held), 0.25) << "held " << held;
+    EXPECT_EQ(cov(held, held), prior(held, held)) << "held " << held;
+    for (int r = 0; r < 4; ++r) {
+      EXPECT_NEAR(x(r), expected_x(r), 1e-12) << "held " << held << ", state " << r;
+      for (int c = 0; c < 4; ++c) EXPECT_NEAR(cov(r, c), expected(r, c), 1e-12) << held << ": " << r << ", " << c;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace birotor
