@@ -6,6 +6,7 @@
 
 #include "estimator/body_mass_hypotheses.h"
 #include "estimator/filter_status.h"
+#include "estimator/fusion_counters.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -331,19 +332,7 @@ void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[kBirotor
   }
 }
 
-double EkfForceEstimator::Gate(FusionSource source) const {
-  switch (source) {
-    case FusionSource::kStrain:
-      return options_.strain_gate_nis;
-    case FusionSource::kTelemetry:
-      return options_.telemetry_gate_nis;
-    case FusionSource::kGyro:
-      return options_.gyro_gate_nis;
-    case FusionSource::kAccelerometer:
-      return options_.accel_gate_nis;
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
+double EkfForceEstimator::Gate(FusionSource source) const { return EkfGateNis(options_, source); }
 
 void EkfForceEstimator::FillLearnedOffsets(StrainStepInfo* info) const {
   info->has_learned_gauge_offset = options_.estimate_gauge_offsets;

@@ -26,6 +26,23 @@ InputCounters& Counters(PipelineHealth* health, InputChannel channel) {
   return health->inputs[static_cast<int>(channel)];
 }
 
+// The model's mode over m_p when the arm-mode test learns the tip mass.
+ArmModeTipMassMap TipMassMapOf(const ModelConsistencyOptions& options, const BirotorParams& params) {
+  const bool learns = options.enabled && options.arm_mode_enabled && options.arm_mode_learn_tip_mass;
+  return learns ? ArmModeTipMassMap::Of(params) : ArmModeTipMassMap();
+}
+
+double GateOf(const ForceEstimator& method, InputChannel channel) {
+  FusionSource source;
+  return GatedSourceOf(channel, &source) ? method.Gate(source) : std::numeric_limits<double>::quiet_NaN();
+}
+
+EstimationMethod MethodOrThrow(const std::string& name) {
+  EstimationMethod method;
+  if (!ParseEstimationMethod(name, &method)) throw std::invalid_argument("unknown estimation method '" + name + "'");
+  return method;
+}
+
 }  // namespace
 
 const char* ResetReasonName(ResetReason reason) {
@@ -43,59 +60,6 @@ const char* ResetReasonName(ResetReason reason) {
   }
   return "?";
 }
-
-InputChannel InputChannelOf(FusionSource source) {
-  switch (source) {
-    case FusionSource::kStrain:
-      return InputChannel::kStrain;
-    case FusionSource::kTelemetry:
-      return InputChannel::kMotor;
-    case FusionSource::kGyro:
-    case FusionSource::kAccelerometer:
-      return InputChannel::kImu;
-  }
-  return InputChannel::kStrain;
-}
-
-namespace {
-
-// The measurement of each input whose gate is that input's (IMU: the gyro;
-// the accelerometer has counters of its own).
-bool SourceOf(InputChannel channel, FusionSource* source) {
-  switch (channel) {
-    case InputChannel::kStrain:
-      *source = FusionSource::kStrain;
-      return true;
-    case InputChannel::kMotor:
-      *source = FusionSource::kTelemetry;
-      return true;
-    case InputChannel::kImu:
-      *source = FusionSource::kGyro;
-      return true;
-    case InputChannel::kPose:
-      return false;
-  }
-  return false;
-}
-
-// The model's mode over m_p when the arm-mode test learns the tip mass.
-ArmModeTipMassMap TipMassMapOf(const ModelConsistencyOptions& options, const BirotorParams& params) {
-  const bool learns = options.enabled && options.arm_mode_enabled && options.arm_mode_learn_tip_mass;
-  return learns ? ArmModeTipMassMap::Of(params) : ArmModeTipMassMap();
-}
-
-double GateOf(const ForceEstimator& method, InputChannel channel) {
-  FusionSource source;
-  return SourceOf(channel, &source) ? method.Gate(source) : std::numeric_limits<double>::quiet_NaN();
-}
-
-EstimationMethod MethodOrThrow(const std::string& name) {
-  EstimationMethod method;
-  if (!ParseEstimationMethod(name, &method)) throw std::invalid_argument("unknown estimation method '" + name + "'");
-  return method;
-}
-
-}  // namespace
 
 double GateOf(const EstimatorConfig& config, InputChannel channel) {
   const std::unique_ptr<ForceEstimator> method = MakeForceEstimator(config);
@@ -181,14 +145,8 @@ void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
 }
 
 void EstimatorPipeline::TakePeriod() {
-  const auto clear = [](InputCounters* c) {
-    c->accepted_in_period = 0;
-    c->nis_sum = 0;
-    c->nis_max = 0;
-    c->nis_count = 0;
-  };
-  for (InputCounters& c : health_.inputs) clear(&c);
-  clear(&health_.accelerometer);
+  for (InputCounters& c : health_.inputs) ClearPeriod(&c);
+  ClearPeriod(&health_.accelerometer);
 }
 
 void EstimatorPipeline::CountReports() {
@@ -197,24 +155,7 @@ void EstimatorPipeline::CountReports() {
 
 void EstimatorPipeline::Count(const FusionReport& report) {
   consistency_.Add(report);
-  InputCounters& c = report.source == FusionSource::kAccelerometer ? health_.accelerometer
-                                                                   : Counters(&health_, InputChannelOf(report.source));
-  switch (report.outcome) {
-    case FusionOutcome::kFused:
-      ++c.fused;
-      break;
-    case FusionOutcome::kRejectedGate:
-      ++c.rejected_gate;
-      break;
-    case FusionOutcome::kNotFused:
-      ++c.not_fused;
-      break;
-  }
-  if (std::isfinite(report.nis)) {
-    c.nis_sum += report.nis;
-    if (report.nis > c.nis_max) c.nis_max = report.nis;
-    ++c.nis_count;
-  }
+  CountFusionReport(report, health_.inputs, &health_.accelerometer);
 }
 
 bool EstimatorPipeline::Admit(InputChannel channel, int64_t utime, int32_t seq, Admission* admission) {
@@ -279,13 +220,7 @@ void EstimatorPipeline::OnImu(const ImuSample& sample) {
   // The accelerometer feeds the tare and the ground contact, which both skip
   // a NaN there (a missing reading); the gyro still counts.
   if (!std::isfinite(sample.accel_x_m_s2) || !std::isfinite(sample.accel_z_m_s2)) ++c.reading_missing;
-  if (std::isfinite(sample.accel_z_m_s2)) {
-    InputCounters& a = health_.accelerometer;
-    ++a.received;
-    ++a.accepted_in_period;
-    a.last_utime = sample.utime;
-    a.last_seq = sample.seq;
-  }
+  if (std::isfinite(sample.accel_z_m_s2)) CountAccelerometerSample(sample.utime, sample.seq, &health_.accelerometer);
   tare_.AddImu(sample);
   reports_.clear();
   method_->AddImu(sample, &reports_);

@@ -18,6 +18,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/force_status.h"
+#include "estimator/fusion_counters.h"
 #include "estimator/gauge_calibration.h"
 #include "estimator/gauge_tare.h"
 #include "estimator/harmonic_notch.h"
@@ -28,10 +29,6 @@
 #include "samples/samples.h"
 
 namespace birotor {
-
-// The input a measurement comes from (strain: STRAIN, telemetry: MOTOR, gyro
-// and accelerometer: IMU).
-InputChannel InputChannelOf(FusionSource source);
 
 struct PipelineHealth {
   InputCounters inputs[kNumInputChannels];

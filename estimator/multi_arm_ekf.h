@@ -9,10 +9,12 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
+#include "estimator/fusion_counters.h"
 #include "estimator/fusion_report.h"
 #include "estimator/multi_arm_ekf_fusion.h"
 #include "estimator/multi_arm_ekf_model.h"
@@ -55,6 +57,9 @@ class MultiArmForceEstimator {
   // the pipeline's model-consistency monitor; null for a method without
   // innovations (not judged).
   virtual const FusionReports* reports() const { return nullptr; }
+  // The NIS gate of a measurement (ESTIMATOR_STATUS shows it per input);
+  // NaN for a method without one.
+  virtual double Gate(FusionSource /*source*/) const { return std::numeric_limits<double>::quiet_NaN(); }
   // The learned scale on gauge i's noise variance (StrainNoiseAdaptation) [1];
   // 1 for a method that does not learn it.
   virtual double strain_noise_scale(int /*gauge*/) const { return 1.0; }
@@ -97,6 +102,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   double force_std_n(int rotor) const override { return force_std_n_[static_cast<size_t>(rotor)]; }
   const MultiArmFilterFacts& facts() const override { return facts_; }
   const FusionReports* reports() const override { return &reports_; }
+  double Gate(FusionSource source) const override { return EkfGateNis(options_, source); }
   double strain_noise_scale(int gauge) const override { return strain_noise_.scale(gauge); }
   bool learns_strain_noise() const override { return strain_noise_.enabled(); }
 

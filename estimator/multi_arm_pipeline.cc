@@ -42,8 +42,12 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
       notch_on_(config.harmonic_notch.enabled && config.harmonic_notch.multi_arm_enabled),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
       notch_(MultiArmNotchOptions(config.harmonic_notch), config.vehicle.arm_count) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (InputCounters& c : health_.inputs) c.gate = nan;
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    FusionSource source;
+    const bool gated = GatedSourceOf(static_cast<InputChannel>(i), &source);
+    health_.inputs[i].gate = gated ? filter_->Gate(source) : std::numeric_limits<double>::quiet_NaN();
+  }
+  health_.accelerometer.gate = filter_->Gate(FusionSource::kAccelerometer);
   health_.strain_noise_learned = filter_->learns_strain_noise();
 }
 
@@ -104,6 +108,7 @@ void MultiArmPipeline::OnImu(const ImuSample& sample) {
   Admission admission;
   if (!Admit(InputChannel::kImu, sample.utime, sample.seq, &admission)) return;
   if (!std::isfinite(sample.accel_x_m_s2) || !std::isfinite(sample.accel_z_m_s2)) ++c.reading_missing;
+  if (std::isfinite(sample.accel_z_m_s2)) CountAccelerometerSample(sample.utime, sample.seq, &health_.accelerometer);
   filter_->AddImu(sample);
 }
 
@@ -170,7 +175,10 @@ MultiArmStrainSample MultiArmPipeline::Condition(const MultiArmStrainSample& sam
 ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmForceEstimate& estimate) {
   const FusionReports* reports = filter_->reports();
   if (reports != nullptr) {
-    for (const FusionReport& report : *reports) consistency_.Add(report);
+    for (const FusionReport& report : *reports) {
+      consistency_.Add(report);
+      CountFusionReport(report, health_.inputs, &health_.accelerometer);
+    }
   }
   const ConsistencyStatusFacts facts = consistency_.Judge(estimate.utime, estimate.thrust_scale.data());
   health_.consistency = consistency_.state();
@@ -244,11 +252,8 @@ void MultiArmPipeline::FillInputFacts(int64_t utime, bool stale, InputStatusFact
 }
 
 void MultiArmPipeline::TakePeriod() {
-  for (InputCounters& c : health_.inputs) {
-    c.accepted_in_period = 0;
-    c.nis_sum = c.nis_max = 0;
-    c.nis_count = 0;
-  }
+  for (InputCounters& c : health_.inputs) ClearPeriod(&c);
+  ClearPeriod(&health_.accelerometer);
 }
 
 }  // namespace birotor

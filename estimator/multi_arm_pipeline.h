@@ -14,9 +14,11 @@
 // docs/mismatch.md), and keeps the per-input health counters of
 // ESTIMATOR_STATUS, and notches each gauge's rotor harmonics (HarmonicNotch
 // tuned from MultiArmSpeedTracker's speeds at the strain stamp,
-// harmonic_notch.multi_arm_enabled). What the birotor's EstimatorPipeline
-// has and this one has not yet: the ground tare, the arm-mode test and
-// the per-input fusion counters (docs/estimator.md, "The EKF for N arms").
+// harmonic_notch.multi_arm_enabled). The per-input fusion counters (fused,
+// gated, not fused, NIS, gate; the accelerometer's of its own) are counted
+// from the filter's fusion reports as the birotor's (fusion_counters.h).
+// What the birotor's EstimatorPipeline has and this one has not yet: the
+// ground tare and the arm-mode test (docs/estimator.md, "The EKF for N arms").
 // No LCM, no logging, no allocation per sample.
 #pragma once
 
@@ -26,6 +28,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/force_status.h"
+#include "estimator/fusion_counters.h"
 #include "estimator/harmonic_notch.h"
 #include "estimator/input_admission.h"
 #include "estimator/model_consistency.h"
@@ -39,8 +42,12 @@ namespace birotor {
 
 struct MultiArmPipelineHealth {
   InputCounters inputs[kNumInputChannels];  // STRAIN (STRAIN_N), MOTOR (MOTOR_N), IMU, POSE
-  int64_t newest_utime = -1;                // newest accepted sample over all inputs [us]
-  int64_t resets = 0;                       // re-initialisations; the first strain sample counts (kStart)
+  // The IMU's a_z as a measurement of its own, as the birotor's
+  // PipelineHealth::accelerometer: accepted IMU samples with a finite a_z,
+  // the fusion counters and NIS of its reports, its gate.
+  InputCounters accelerometer;
+  int64_t newest_utime = -1;  // newest accepted sample over all inputs [us]
+  int64_t resets = 0;         // re-initialisations; the first strain sample counts (kStart)
   ResetReason last_reset_reason = ResetReason::kNone;
   int64_t published = 0;  // estimates produced
   // The newest estimate's status and the facts it was composed from (the
@@ -96,7 +103,8 @@ class MultiArmPipeline {
   MultiArmStrainSample Condition(const MultiArmStrainSample& sample, int64_t previous_utime, bool backwards_jump);
   void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
-  // The method's fusion reports of this strain sample into the monitor; its facts on the estimate.
+  // The method's fusion reports of this strain sample into the monitor and
+  // the per-input counters; the monitor's facts on the estimate.
   ConsistencyStatusFacts JudgeConsistency(const MultiArmForceEstimate& estimate);
 
   EstimatorConfig config_;

@@ -135,7 +135,7 @@ void MultiArmEstimatorService::PublishStatus(int64_t wall_utime, double period_s
   context.processing_time_mean_us = timed ? processing_time_.MeanUs() : kNaN;
   context.processing_time_p99_us = timed ? processing_time_.P99Us() : kNaN;
   context.processing_time_max_us = timed ? processing_time_.MaxUs() : kNaN;
-  BuildMultiArmStatusMessage(pipeline_.health(), context, &status_message_);
+  BuildMultiArmStatusMessage(pipeline_.health(), pipeline_.config().method.c_str(), context, &status_message_);
   // No strain on the host clock for stale_input_wall_s: INPUT_STALE, not VALID.
   TransportStatusFacts transport;
   transport.no_strain_on_wall_clock = arrival_.Stale(wall_utime);

@@ -168,11 +168,10 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
   message->vehicle_checksum = context.vehicle_checksum;
 }
 
-void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const StatusContext& context,
+void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const char* method, const StatusContext& context,
                                 estimator_status_t* message) {
-  static const InputCounters kNoAccelerometer;  // the N-arm filter's accelerometer has no counters of its own
-  FillCommonStatus({health.newest_utime, "ekf", health.last_status, health.inputs, &kNoAccelerometer, health.resets,
-                    health.last_reset_reason, health.published},
+  FillCommonStatus({health.newest_utime, method, health.last_status, health.inputs, &health.accelerometer,
+                    health.resets, health.last_reset_reason, health.published},
                    context, message);
   // The birotor's two-element fields: the forces are on FORCE_N.
   for (int rotor = 0; rotor < kBirotorRotors; ++rotor) {

@@ -72,10 +72,12 @@ void BuildStatusMessage(const PipelineHealth& health, const char* method, const 
                         estimator_status_t* message);
 
 // The same for the N-arm pipeline (birotor-estimator --vehicle): the
-// per-input counters, resets, the newest status; the birotor's two-element
+// per-input counters (the fusion counters and NIS from the method's reports,
+// the accelerometer's of its own), resets, the newest status, the method's
+// name (estimator.method); the birotor's two-element
 // fields (forces, thrust scales, gauge offsets, strain scales) and the body
 // mass NaN: the forces and efficiencies are on FORCE_N.
-void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const StatusContext& context,
+void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const char* method, const StatusContext& context,
                                 estimator_status_t* message);
 
 // The newest ESTIMATOR_STATUS on `channel` of the LCM log at log_path that

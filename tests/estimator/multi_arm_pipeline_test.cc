@@ -3,7 +3,9 @@
 // VALID once converged and never NaN; every bad sample counted where the
 // birotor's pipeline counts it (a wrong count, a non-finite reading, a
 // duplicate, an out-of-order stamp); a strain gap and a backwards jump reset
-// the filter and say so (FILTER_RESET); a stale MOTOR withdraws VALID.
+// the filter and say so (FILTER_RESET); a stale MOTOR withdraws VALID; every
+// fusion report is counted on its input (fused, gated, NIS, the gate), the
+// accelerometer's on its own, as the birotor's pipeline counts them.
 #include "estimator/multi_arm_pipeline.h"
 
 #include <gtest/gtest.h>
@@ -162,6 +164,53 @@ TEST(MultiArmPipelineTest, StaleMotorWithdrawsValid) {
   // motor_timeout_s 0.05 s after the last MOTOR (at 0.998 s): INPUT_STALE, not VALID.
   EXPECT_NE(estimates.back().status & kStatusInputStale, 0);
   EXPECT_EQ(estimates.back().status & kStatusValid, 0);
+}
+
+size_t CountKind(const Recorded& r, int kind) {
+  size_t n = 0;
+  for (const Recorded::Event& e : r.events) n += e.kind == kind ? 1 : 0;
+  return n;
+}
+
+int64_t Reports(const InputCounters& c) { return c.fused + c.rejected_gate + c.not_fused; }
+
+TEST(MultiArmPipelineTest, EveryFusionReportIsCountedOnItsInput) {
+  const EstimatorConfig config = TrirotorConfig();
+  const Recorded r = Hover(config);
+  MultiArmPipeline pipeline(config);
+  Feed(r, 0, r.events.size(), &pipeline);
+  const MultiArmPipelineHealth& h = pipeline.health();
+  const InputCounters& strain = h.inputs[static_cast<int>(InputChannel::kStrain)];
+  const InputCounters& motor = h.inputs[static_cast<int>(InputChannel::kMotor)];
+  const InputCounters& imu = h.inputs[static_cast<int>(InputChannel::kImu)];
+  const InputCounters& pose = h.inputs[static_cast<int>(InputChannel::kPose)];
+  const InputCounters& accel = h.accelerometer;
+  // One report per strain sample but the first (it initialises the
+  // filter), per MOTOR sample, per IMU sample but the last (queued behind
+  // the last strain sample); every one fused on this matching hover.
+  EXPECT_EQ(Reports(strain), static_cast<int64_t>(CountKind(r, 0)) - 1);
+  EXPECT_EQ(strain.fused, Reports(strain));
+  EXPECT_EQ(Reports(motor), static_cast<int64_t>(CountKind(r, 1)));
+  EXPECT_EQ(Reports(imu), static_cast<int64_t>(CountKind(r, 2)) - 1);
+  EXPECT_EQ(accel.received, static_cast<int64_t>(CountKind(r, 2)));
+  EXPECT_GE(accel.fused, accel.received - 2);
+  EXPECT_EQ(Reports(pose), 0);
+  // The mean NIS near its degrees of freedom: 3 gauges, a_z and a_x
+  // (measured 2.90 and 2.02).
+  ASSERT_EQ(strain.nis_count, strain.fused);
+  EXPECT_NEAR(strain.nis_sum / static_cast<double>(strain.nis_count), 3.0, 0.5);
+  EXPECT_NEAR(accel.nis_sum / static_cast<double>(accel.nis_count), 2.0, 0.5);
+  EXPECT_EQ(accel.accepted_in_period, accel.received);
+  EXPECT_EQ(strain.gate, config.ekf.strain_gate_nis);
+  EXPECT_EQ(motor.gate, config.ekf.telemetry_gate_nis);
+  EXPECT_EQ(imu.gate, config.ekf.gyro_gate_nis);
+  EXPECT_EQ(accel.gate, config.ekf.accel_gate_nis);
+  EXPECT_TRUE(std::isnan(pose.gate));
+  pipeline.TakePeriod();  // after a status message: the period's NIS and rate start again
+  EXPECT_EQ(strain.nis_count, 0);
+  EXPECT_EQ(accel.nis_count, 0);
+  EXPECT_EQ(accel.accepted_in_period, 0);
+  EXPECT_EQ(strain.fused, 1999);  // the counts since start-up stay
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 // finite, VALID once converged, the rotor's fault bit after a loss), and
 // ESTIMATOR_STATUS on the vehicle clock; a packet that does not decode, or
 // carries another vehicle's count, is counted as a decode error of its input
-// and never reaches the filter.
+// and never reaches the filter; ESTIMATOR_STATUS carries the fusion counters
+// of every input, the accelerometer's and the method's name.
 #include "nodes/multi_arm_estimator_service.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "birotor/estimator_status_t.hpp"
 #include "birotor/force_estimate_n_t.hpp"
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
@@ -32,7 +34,10 @@ class Collector : public MessageSink {
  public:
   explicit Collector(const ChannelNames& channels) : channels_(channels) {}
   void Publish(const std::string& channel, int64_t /*timestamp_us*/, const void* data, size_t size) override {
-    if (channel == channels_.estimator_status) ++statuses;
+    if (channel == channels_.estimator_status) {
+      ++statuses;
+      ASSERT_EQ(DecodeMessage(data, size, &last_status), DecodeError::kNone);
+    }
     if (channel != channels_.force_n) return;
     force_estimate_n_t message;
     ASSERT_EQ(DecodeMessage(data, size, &message), DecodeError::kNone);
@@ -40,6 +45,7 @@ class Collector : public MessageSink {
   }
   std::vector<force_estimate_n_t> forces;
   int statuses = 0;
+  estimator_status_t last_status;
 
  private:
   ChannelNames channels_;
@@ -59,14 +65,18 @@ Flight TrirotorLoss() {
   return f;
 }
 
-TEST(MultiArmEstimatorServiceTest, OneForcePerStrainSampleWithTheLossFlagged) {
-  const Flight f = TrirotorLoss();
-  const ChannelNames channels = MakeChannelNames();
-  Collector collector(channels);
-  MultiArmReplayer replayer(f.config, ReplayOptions{}, &collector);
-  WireSampleSink wire(channels, &replayer);
+// The flight's simulated packets through the node behind the replayer.
+void Fly(const Flight& f, MultiArmReplayer* replayer) {
+  WireSampleSink wire(MakeChannelNames(), replayer);
   MultiArmSimulator simulator(f.config.vehicle, f.scenario);
   simulator.Run(&wire);
+}
+
+TEST(MultiArmEstimatorServiceTest, OneForcePerStrainSampleWithTheLossFlagged) {
+  const Flight f = TrirotorLoss();
+  Collector collector(MakeChannelNames());
+  MultiArmReplayer replayer(f.config, ReplayOptions{}, &collector);
+  Fly(f, &replayer);
   ASSERT_EQ(collector.forces.size(), 8000u);  // 8 s at 1 kHz
   EXPECT_EQ(replayer.stats().forces, 8000);
   EXPECT_EQ(replayer.stats().truth_copied, 8000);
@@ -83,6 +93,36 @@ TEST(MultiArmEstimatorServiceTest, OneForcePerStrainSampleWithTheLossFlagged) {
   // Rotor 2 at 75 % from 5.000 s: flagged 10 ms later (measured), nothing before.
   EXPECT_GE(first_fault_ms, 5000);
   EXPECT_LE(first_fault_ms, 5015);
+}
+
+TEST(MultiArmEstimatorServiceTest, StatusCarriesTheFusionCountersOfEveryInput) {
+  Flight f = TrirotorLoss();
+  f.scenario = LoadScenario(SourceFile("config/scenarios/hover.yaml"), {"scenario.duration_s=2"}, 3);
+  Collector collector(MakeChannelNames());
+  MultiArmReplayer replayer(f.config, ReplayOptions{}, &collector);
+  Fly(f, &replayer);
+  ASSERT_GE(collector.statuses, 9);
+  const estimator_status_t& status = collector.last_status;
+  EXPECT_EQ(status.method, "ekf");
+  ASSERT_EQ(status.num_inputs, 4);
+  const input_health_t& strain = status.inputs[0];
+  const input_health_t& motor = status.inputs[1];
+  const input_health_t& imu = status.inputs[2];
+  EXPECT_EQ(strain.channel, "STRAIN");
+  // At the last status (1.8 s of the 2 s): every strain sample but the
+  // first fused, the motor's and gyro's too, the accelerometer's on its own.
+  EXPECT_GT(strain.fused, 1700);
+  EXPECT_EQ(strain.rejected_gate, 0);
+  EXPECT_GT(motor.fused, 850);
+  EXPECT_GT(imu.fused, 1700);
+  EXPECT_GT(status.accelerometer.fused, 1700);
+  EXPECT_EQ(status.accelerometer.channel, "IMU accel_z");
+  EXPECT_EQ(strain.gate, f.config.ekf.strain_gate_nis);
+  EXPECT_EQ(status.strain_gate, f.config.ekf.strain_gate_nis);
+  EXPECT_EQ(status.accelerometer.gate, f.config.ekf.accel_gate_nis);
+  // The period's mean NIS near the strain's 3 degrees of freedom.
+  EXPECT_NEAR(status.strain_nis_mean, 3.0, 0.6);
+  EXPECT_NEAR(status.accelerometer.nis_mean, 2.0, 0.6);
 }
 
 TEST(MultiArmEstimatorServiceTest, GarbageAndAnotherVehiclesCountAreDecodeErrors) {
