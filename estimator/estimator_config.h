@@ -184,8 +184,10 @@ struct EkfOptions {
   // support can then be anything up to ground_contact_on_n, so the
   // accelerometer's a_z variance gains (ground_contact_on_n / M)^2 there
   // (N-arm EKF; docs/estimator.md, "Hovering at the ground's height").
-  // 0: off (the filtered support alone, as without POSE).
-  double ground_may_touch_m = 0.02;
+  // 0: off (the filtered support alone, as without POSE), the default: the
+  // band also hides a payload at a ground start (the lift-off's a_z
+  // evidence falls within the widened variance).
+  double ground_may_touch_m = 0.0;
   // The body is held on a test stand (scenario bench): the supported-body
   // model throughout, whatever the IMU says.
   bool body_held = false;

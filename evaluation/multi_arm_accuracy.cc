@@ -154,9 +154,18 @@ MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Sc
                                      const EstimatorConfig& estimator, const EvalOptions& options) {
   EstimatorConfig config = estimator;
   config.vehicle = vehicle;
-  MultiArmPipeline pipeline(config);  // throws for a description it cannot serve
-  MultiArmSimulator simulator(vehicle, scenario);
-  AccuracySink sink(&pipeline, &simulator, scenario.ground.enabled, vehicle.arm_count, options);
+  return RunMultiArmAccuracyFlying(vehicle, scenario, config, options);
+}
+
+MultiArmAccuracy RunMultiArmAccuracyFlying(const VehicleDescription& flown, const Scenario& scenario,
+                                           const EstimatorConfig& estimator, const EvalOptions& options) {
+  if (flown.arm_count != estimator.vehicle.arm_count) {
+    throw std::invalid_argument("the flown vehicle has " + std::to_string(flown.arm_count) +
+                                " arms, the estimator's description " + std::to_string(estimator.vehicle.arm_count));
+  }
+  MultiArmPipeline pipeline(estimator);  // throws for a description it cannot serve
+  MultiArmSimulator simulator(flown, scenario);
+  AccuracySink sink(&pipeline, &simulator, scenario.ground.enabled, flown.arm_count, options);
   simulator.Run(&sink);
   return sink.Finish();
 }

@@ -92,6 +92,12 @@ class MultiArmAccuracyScorer {
 // cannot fly).
 MultiArmAccuracy RunMultiArmAccuracy(const VehicleDescription& vehicle, const Scenario& scenario,
                                      const EstimatorConfig& estimator, const EvalOptions& options);
+// The same with the simulator flying `flown` and the estimator running on
+// estimator.vehicle, its description (the same arm count): a vehicle that
+// differs from its file (a payload, a stiffer arm). Throws
+// std::invalid_argument for another arm count.
+MultiArmAccuracy RunMultiArmAccuracyFlying(const VehicleDescription& flown, const Scenario& scenario,
+                                           const EstimatorConfig& estimator, const EvalOptions& options);
 
 // The FORCE_N of the log at path (channel prefix) against its TRUTH_N, paired
 // by utime. False with a one-line *error when the log cannot be read or
