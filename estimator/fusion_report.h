@@ -15,7 +15,7 @@ namespace birotor {
 
 // The measurements a method can fuse. A new measurement (a gauge offset, a
 // harmonic) is appended before kNumFusionSources and mapped to the input
-// channel it comes from in EstimatorPipeline.
+// channel it comes from in fusion_counters.cc (InputChannelOf).
 enum class FusionSource : int {
   kStrain = 0,         // arm deflections b1, b2 (b_1 .. b_N) [rad] (STRAIN, STRAIN_N)
   kTelemetry = 1,      // ESC rotor speeds omega1, omega2 (omega_1 .. omega_N) [rad/s] (MOTOR, MOTOR_N)
