@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "model/linearization.h"
+#include "model/multi_arm_modes.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -14,6 +15,20 @@ namespace {
 // The band-pass is moved to the learned mode when they differ by more than
 // this in ln f [1].
 constexpr double kRecentreStep = 0.005;
+
+// The arm-mode test listens to a mode of an N-arm vehicle only when no other
+// mode within this fraction of its frequency (the band-pass's passband at
+// arm_mode_band_q 2) rings more than 1 / kAloneVarianceRatio as much
+// (ArmModeStandsAlone: the trirotor's 64.6 Hz mode 360 times its 62.7 Hz
+// neighbour; the quadrotor's three modes near 61 Hz alike).
+constexpr double kNeighbourBand = 0.15;
+constexpr double kAloneVarianceRatio = 10.0;
+
+// Arm mode `index` (by frequency) of a described vehicle [Hz]; 0 when it has none.
+double ArmModeHz(const VehicleDescription& vehicle, int index) {
+  const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
+  return index < static_cast<int>(modes.size()) ? modes[static_cast<size_t>(index)].frequency_hz : 0.0;
+}
 
 }  // namespace
 
@@ -34,6 +49,43 @@ ArmModeExpectation ExpectedArmMode(const BirotorParams& params) {
     BirotorParams stiffness = params;  // the scale read as a stiffness k / s
     stiffness.arm_stiffness_n_m_rad /= scale;
     const double hz = SymmetricArmModeHz(stiffness);
+    e.low_hz = std::min(e.low_hz, hz);
+    e.high_hz = std::max(e.high_hz, hz);
+  }
+  return e;
+}
+
+ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
+  const int arms = vehicle.arm_count;
+  if (arms < 2 || arms > kMaxSampleArms || vehicle.GaugeCount() != arms) return ArmModeExpectation();
+  const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
+  const Eigen::MatrixXd weights = ModalGaugeWeights(modes, arms);
+  const int pick = MostReadableArmMode(modes, weights);
+  if (!ArmModeStandsAlone(modes, pick, kNeighbourBand, kAloneVarianceRatio)) return ArmModeExpectation();
+  ArmModeExpectation e = ArmModeExpectation::At(modes[static_cast<size_t>(pick)].frequency_hz);
+  e.arms = arms;
+  e.weights.fill(0.0);
+  Eigen::Index largest_arm = 0;  // the signal's sign: its largest weight positive
+  weights.row(pick).cwiseAbs().maxCoeff(&largest_arm);
+  const double largest = weights(pick, largest_arm);
+  double tip_weight_n = 0;
+  for (int i = 0; i < arms; ++i) {
+    const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
+    // The reading is s_i b_i + o_i: the offset is band-passed away, the scale divided out.
+    e.weights[static_cast<size_t>(i)] = weights(pick, i) / largest / arm.gauge_scale;
+    tip_weight_n += arm.tip_mass_kg * vehicle.gravity_m_s2 / arms;
+  }
+  e.tip_weight_n = tip_weight_n;
+  VehicleDescription stiffer = vehicle;  // d ln f / d ln k from every arm 10 % stiffer
+  for (int i = 0; i < arms; ++i) stiffer.arms[static_cast<size_t>(i)].stiffness_n_m_rad *= 1.1;
+  const double stiffer_hz = ArmModeHz(stiffer, pick);
+  if (e.file_hz > 0 && stiffer_hz > 0) e.stiffness_exponent = std::log(stiffer_hz / e.file_hz) / std::log(1.1);
+  for (int i = 0; i < arms; ++i) {
+    const double scale = vehicle.arms[static_cast<size_t>(i)].gauge_scale;
+    if (scale == 1.0 || !(scale > 0)) continue;
+    VehicleDescription stiffness = vehicle;  // the scale read as a stiffness k_i / s_i
+    stiffness.arms[static_cast<size_t>(i)].stiffness_n_m_rad /= scale;
+    const double hz = ArmModeHz(stiffness, pick);
     e.low_hz = std::min(e.low_hz, hz);
     e.high_hz = std::max(e.high_hz, hz);
   }
@@ -152,7 +204,13 @@ double ResonanceFrequencyEstimator::FrequencyHz(double excess_noise) const {
 
 ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
                                double noise_rad, const ArmModeTipMassMap& tip_mass)
-    : options_(options), file_noise_rad_(noise_rad), noise_rad_(std::sqrt(2.0) * noise_rad) {
+    : options_(options),
+      arms_(std::clamp(expected.arms, 1, kMaxSampleArms)),
+      weights_(expected.weights),
+      file_noise_rad_(noise_rad) {
+  for (int i = 0; i < arms_; ++i) weight_norm2_ += weights_[static_cast<size_t>(i)] * weights_[static_cast<size_t>(i)];
+  noise_scale_.fill(1.0);
+  noise_rad_ = std::sqrt(weight_norm2_) * noise_rad;  // the birotor's b1 - b2: sqrt(2) times a gauge's
   state_.expected = expected;
   state_.frequency_hz = std::numeric_limits<double>::quiet_NaN();
   state_.centre_hz = expected.file_hz;
@@ -192,14 +250,38 @@ void ArmModeMonitor::ForgetRun() {
   state_.force_tip_mass_std = 0;
 }
 
-bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier) {
+void ArmModeMonitor::SetStrainNoiseScales(const double* scale) {
+  bool same = true;
+  for (int i = 0; i < arms_; ++i) same = same && scale[i] == noise_scale_[static_cast<size_t>(i)];
+  if (same) return;
+  double weighted = 0;  // sum_i w_i^2 scale_i [1]
+  for (int i = 0; i < arms_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    noise_scale_[k] = scale[i];
+    weighted += weights_[k] * weights_[k] * scale[i];
+  }
+  noise_rad_ = file_noise_rad_ * std::sqrt(weighted);
+  excess_noise_rad_ = file_noise_rad_ * std::sqrt(std::max(weighted - weight_norm2_, 0.0));
+}
+
+double ArmModeMonitor::Signal(const double* deflection_rad, bool outlier) const {
+  if (outlier) return previous_signal_;
+  // The birotor's b1 - b2: the symmetric mode (arm 1 reads -delta, arm 2
+  // +delta at hover); the antisymmetric one (79.75 Hz on the file) cancels.
+  double signal = 0;
+  for (int i = 0; i < arms_; ++i) {
+    const double w = weights_[static_cast<size_t>(i)];
+    if (w != 0.0) signal += w * deflection_rad[i];
+  }
+  return std::isfinite(signal) ? signal : previous_signal_;
+}
+
+bool ArmModeMonitor::Add(int64_t utime, const double* deflection_rad, bool airborne, bool outlier) {
   if (!active()) return false;
   const int64_t previous_utime = previous_utime_;
   previous_utime_ = utime;
-  // b1 - b2: the symmetric mode (arm 1 reads -delta, arm 2 +delta at hover);
-  // the antisymmetric one (79.75 Hz on the file) cancels.
-  const double difference = outlier ? previous_difference_ : deflection_rad[0] - deflection_rad[1];
-  previous_difference_ = difference;
+  const double signal = Signal(deflection_rad, outlier);
+  previous_signal_ = signal;
   if (!airborne) {
     Restart();  // on the ground the modes are the contact's: no test
     return state_.mismatch;
@@ -213,12 +295,12 @@ bool ArmModeMonitor::Add(int64_t utime, const double deflection_rad[kBirotorRoto
     if (dt_s > 0 && dt_s < 0.01) {
       start_utime_ = utime;
       dt_s_ = dt_s;
-      estimator_.Start(state_.centre_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s, difference);
+      estimator_.Start(state_.centre_hz, options_.arm_mode_band_q, options_.arm_mode_time_constant_s, dt_s, signal);
     }
     UpdateTipMass();
     return state_.mismatch;
   }
-  estimator_.Add(difference);
+  estimator_.Add(signal);
   // The band-pass settles (a lift-off's transient) before the sums count,
   // then they need a time constant of samples before the fit means anything.
   const double age_s = (utime - start_utime_) * 1e-6;

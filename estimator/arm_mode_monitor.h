@@ -4,7 +4,10 @@
 // symmetric mode (k over the tip inertia, 65.03 Hz on the reference file)
 // by sqrt(m_p / m_p_true). This monitor estimates that frequency from the
 // strain samples in free flight and flags a sustained departure from the
-// file's. Pure library: no LCM, no logging, no allocation per sample.
+// file's. Any described vehicle: the arm mode the turbulence rings most
+// above the gauge noise, read from the gauge combination that holds it
+// alone (model/multi_arm_modes.h; the birotor's symmetric mode in b1 - b2). Pure library: no LCM, no logging, no
+// allocation per sample.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +17,8 @@
 #include "estimator/estimator_config.h"
 #include "estimator/tip_mass_learning.h"
 #include "model/birotor_params.h"
+#include "model/vehicle_description.h"
+#include "samples/multi_arm_samples.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -39,9 +44,22 @@ struct ArmModeExpectation {
   // m_p g of the file: what a tip-mass error of 100 % puts into each
   // strain-derived force at hover (docs/mismatch.md) [N].
   double tip_weight_n = 0;
+  // The gauge readings that hold the mode: sum_i weights[i] b_i over the
+  // first `arms` readings as the method gets them (the birotor's calibrated
+  // b1 - b2; for N arms the raw readings, each weight over its gauge's
+  // scale) [1/rad of reading].
+  int arms = kBirotorRotors;
+  ArmValues weights = {1.0, -1.0, 0.0, 0.0, 0.0, 0.0};
   static ArmModeExpectation At(double hz) { return {hz, hz, hz, 0.5, 0.0}; }
 };
 ArmModeExpectation ExpectedArmMode(const BirotorParams& params);
+// The same for any described vehicle: its most readable arm mode at hover
+// (MostReadableArmMode: the birotor's symmetric mode, the trirotor's 64.6 Hz
+// mode of arm 1 against arms 2 and 3) and the combination of the gauges that
+// reads it alone (ModalGaugeWeights; largest |weight| 1 on a gauge of scale 1); the range
+// allows each gauge scale s_i != 1 to be a stiffness k_i / s_i. No test
+// (file_hz 0) when an arm has no gauge or the modes do not separate.
+ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle);
 
 // The same while the EKF learns strain scales g_i (learn_strain_scale): a
 // learned g_i is a gauge scale (the mode stays) or a stiffness k / g_i (the
@@ -155,12 +173,14 @@ class ArmModeMonitor {
   // the model's mode over m_p (empty: the tip mass is not learned).
   ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected, double noise_rad,
                  const ArmModeTipMassMap& tip_mass = ArmModeTipMassMap());
-  // One strain sample as the method got it (calibrated, notched) [rad];
+  // One strain sample as the method got it (calibrated, notched; the
+  // expectation's `arms` readings, a NaN reading of a weighted arm taken as
+  // an outlier) [rad];
   // airborne: the method's ground contact says free flight (on the ground
   // the modes are those of the contact: no test); outlier: the method's gate
   // rejected it (a spike would ring the band-pass; the previous value is
   // used). Returns whether a mismatch holds.
-  bool Add(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier);
+  bool Add(int64_t utime, const double* deflection_rad, bool airborne, bool outlier);
   // The filter was re-initialised (gap, time jump): the estimate restarts;
   // a raised mismatch stays (the vehicle did not change).
   void Restart();
@@ -169,14 +189,9 @@ class ArmModeMonitor {
   // strain scales); the band-pass stays centred on the file's.
   void SetExpected(const ArmModeExpectation& expected) { state_.expected = expected; }
   // The gauges' noise variances are scale_i times the file's (the EKF's
-  // learned strain noise): the excitation is judged against that noise.
-  void SetStrainNoiseScales(const double scale[kBirotorRotors]) {
-    if (scale[0] == noise_scale_[0] && scale[1] == noise_scale_[1]) return;
-    noise_scale_[0] = scale[0];
-    noise_scale_[1] = scale[1];
-    noise_rad_ = file_noise_rad_ * std::sqrt(scale[0] + scale[1]);
-    excess_noise_rad_ = file_noise_rad_ * std::sqrt(std::max(scale[0] + scale[1] - 2.0, 0.0));
-  }
+  // learned strain noise; one per arm of the expectation): the excitation
+  // is judged against that noise.
+  void SetStrainNoiseScales(const double* scale);
   // Learning starts from an earlier run's m_p and its sigma (the gauge state
   // file; TipMassLearner::Resume), the band-pass centred on its mode. False
   // (nothing changed) when the tip mass is not learned here.
@@ -198,13 +213,20 @@ class ArmModeMonitor {
   // Ends the current airborne run of samples: no reading, nothing awaited.
   void ForgetRun();
 
+  // The mode's signal sum_i w_i b_i of a sample (the previous one for an
+  // outlier or a missing reading).
+  double Signal(const double* deflection_rad, bool outlier) const;
+
   ModelConsistencyOptions options_;
-  double file_noise_rad_;                        // a gauge's noise in the file [rad]
-  double noise_scale_[kBirotorRotors] = {1, 1};  // on each gauge's variance [1]
-  double noise_rad_;                             // of b1 - b2: sqrt(scale_1 + scale_2) times a gauge's [rad]
-  // Of b1 - b2 beyond the file's noise, sqrt(scale_1 + scale_2 - 2) times a
-  // gauge's: taken out of the fit, so the reading is what it would be with
-  // the file's noise, which arm_mode_limit was set with [rad].
+  int arms_;                 // readings the signal combines
+  ArmValues weights_;        // w_i of the signal [1]
+  double weight_norm2_ = 0;  // sum_i w_i^2 [1]
+  double file_noise_rad_;    // a gauge's noise in the file [rad]
+  ArmValues noise_scale_{};  // on each gauge's variance [1]
+  double noise_rad_;         // of the signal: sqrt(sum_i w_i^2 scale_i) times a gauge's [rad]
+  // Of the signal beyond the file's noise, sqrt(sum_i w_i^2 (scale_i - 1))
+  // times a gauge's: taken out of the fit, so the reading is what it would
+  // be with the file's noise, which arm_mode_limit was set with [rad].
   double excess_noise_rad_ = 0;
   ResonanceFrequencyEstimator estimator_;
   TipMassLearner learner_;
@@ -215,7 +237,7 @@ class ArmModeMonitor {
   int64_t previous_utime_ = -1;
   int64_t start_utime_ = -1;  // of the current airborne run of samples; -1 none
   double dt_s_ = 0;           // sample interval the filters were designed for [s]
-  double previous_difference_ = 0;
+  double previous_signal_ = 0;
   int64_t beyond_since_ = -1;  // first utime of the current run beyond the limit; -1 none
   int64_t within_since_ = -1;  // ... within half the limit; -1 none
 };

@@ -35,8 +35,7 @@ ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& 
   state_.arm_mode = arm_mode_.state();
 }
 
-void ModelConsistencyMonitor::AddStrain(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne,
-                                        bool outlier) {
+void ModelConsistencyMonitor::AddStrain(int64_t utime, const double* deflection_rad, bool airborne, bool outlier) {
   if (!options_.enabled || !judging_) return;
   const bool arm_mode_mismatch = arm_mode_.Add(utime, deflection_rad, airborne, outlier);
   state_.arm_mode = arm_mode_.state();

@@ -96,8 +96,8 @@ struct ModelConsistencyState {
 };
 
 // For the birotor (EstimatorPipeline) and any N-rotor vehicle
-// (MultiArmPipeline: rotors N, no arm-mode test, Judge on the thrust scales
-// of its estimate). A report's component of variance 0 (not measured) is
+// (MultiArmPipeline: rotors N, the arm-mode test on its lowest arm mode,
+// Judge on the thrust scales of its estimate). A report's component of variance 0 (not measured) is
 // left out of its statistics.
 class ModelConsistencyMonitor {
  public:
@@ -114,7 +114,7 @@ class ModelConsistencyMonitor {
   void Add(const FusionReport& report);
   // Every strain sample the method got, for the arm-mode test (see
   // ArmModeMonitor::Add). A method without innovations is not judged.
-  void AddStrain(int64_t utime, const double deflection_rad[kBirotorRotors], bool airborne, bool outlier);
+  void AddStrain(int64_t utime, const double* deflection_rad, bool airborne, bool outlier);
   // The strain scales g_i the method learns and their sigmas: the arm-mode
   // test then allows what they may be (WithLearnedStrainScales).
   void SetLearnedStrainScales(const double g[2], const double g_std[2]) {
@@ -123,7 +123,7 @@ class ModelConsistencyMonitor {
   // The method's learned scales on the gauges' noise variances
   // (StrainStepInfo::strain_noise_scale): the arm-mode test weighs the
   // mode's excitation against that noise.
-  void SetStrainNoiseScales(const double scale[kBirotorRotors]) { arm_mode_.SetStrainNoiseScales(scale); }
+  void SetStrainNoiseScales(const double* scale) { arm_mode_.SetStrainNoiseScales(scale); }
   // The tip mass an earlier run learned, and its sigma (the gauge state
   // file): the arm-mode test's learning starts from it
   // (ArmModeMonitor::ResumeTipMass). False when the tip mass is not learned.

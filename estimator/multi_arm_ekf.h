@@ -65,6 +65,9 @@ class MultiArmForceEstimator {
   virtual double strain_noise_scale(int /*gauge*/) const { return 1.0; }
   // Whether it learns that scale (false: 1 for good).
   virtual bool learns_strain_noise() const { return false; }
+  // The ground holds the body now (its contact model; false for a method
+  // without a ground phase): the arms' modes are not the free vehicle's.
+  virtual bool body_supported() const { return false; }
 };
 
 // The filter for N arms. MOTOR and IMU samples wait in a queue until the next
@@ -105,6 +108,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   double Gate(FusionSource source) const override { return EkfGateNis(options_, source); }
   double strain_noise_scale(int gauge) const override { return strain_noise_.scale(gauge); }
   bool learns_strain_noise() const override { return strain_noise_.enabled(); }
+  bool body_supported() const override { return contact_.supported(); }
 
   bool initialized() const { return initialized_; }
   const State& state() const { return state_; }

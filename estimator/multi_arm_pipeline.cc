@@ -30,14 +30,21 @@ HarmonicNotchOptions MultiArmNotchOptions(const HarmonicNotchOptions& options) {
   return narrow;
 }
 
+// The monitor's options for N arms: the arm-mode test's own excitation bar.
+ModelConsistencyOptions MultiArmConsistencyOptions(const ModelConsistencyOptions& options) {
+  ModelConsistencyOptions n_arms = options;
+  n_arms.arm_mode_min_excitation = options.arm_mode_multi_arm_min_excitation;
+  return n_arms;
+}
+
 }  // namespace
 
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
     : config_(config),
       filter_(MakeMultiArmForceEstimator(config)),
-      // No arm-mode test: the birotor's symmetric mode has no N-arm counterpart yet.
-      consistency_(config.model_consistency, ArmModeExpectation(), config.ekf.strain_noise_rad,
-                   config.vehicle.arm_count),
+      // The arm-mode test on the vehicle's most readable arm mode (no tip-mass learning for N arms).
+      consistency_(MultiArmConsistencyOptions(config.model_consistency), ExpectedArmMode(config.vehicle),
+                   config.ekf.strain_noise_rad, config.vehicle.arm_count),
       admission_(config.pipeline),
       notch_on_(config.harmonic_notch.enabled && config.harmonic_notch.multi_arm_enabled),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
@@ -134,7 +141,8 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   if (!Admit(InputChannel::kStrain, sample.utime, sample.seq, &admission)) return false;
   const bool backwards = admission == Admission::kAcceptedBackwardsJump;
   const bool stale = CheckStrainTiming(sample.utime, previous_utime, backwards);
-  filter_->AddStrain(Condition(sample, previous_utime, backwards), estimate);
+  const MultiArmStrainSample deflection = Condition(sample, previous_utime, backwards);
+  filter_->AddStrain(deflection, estimate);
   InputStatusFacts input;
   if (!IsFinite(*estimate)) {
     ReplaceNonFinite(sample, estimate);
@@ -144,7 +152,7 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
     has_finite_estimate_ = true;
   }
   FillInputFacts(sample.utime, stale, &input);
-  const ConsistencyStatusFacts consistency = JudgeConsistency(*estimate);  // MODEL_MISMATCH withdraws VALID
+  const ConsistencyStatusFacts consistency = JudgeConsistency(deflection, *estimate);  // MODEL_MISMATCH withdraws VALID
   const MultiArmStatusBits bits = ComposeMultiArmForceStatus(filter_->facts(), input, consistency,
                                                              TransportStatusFacts(), config_.vehicle.arm_count);
   health_.last_filter_facts = filter_->facts();
@@ -172,19 +180,24 @@ MultiArmStrainSample MultiArmPipeline::Condition(const MultiArmStrainSample& sam
   return deflection;
 }
 
-ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmForceEstimate& estimate) {
+ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmStrainSample& deflection,
+                                                          const MultiArmForceEstimate& estimate) {
   const FusionReports* reports = filter_->reports();
+  bool outlier = false;  // a spike the filter's gate rejected would ring the arm-mode test's band-pass
   if (reports != nullptr) {
     for (const FusionReport& report : *reports) {
       consistency_.Add(report);
       CountFusionReport(report, health_.inputs, &health_.accelerometer);
+      outlier = outlier || (report.source == FusionSource::kStrain && report.outcome == FusionOutcome::kRejectedGate);
     }
   }
-  const ConsistencyStatusFacts facts = consistency_.Judge(estimate.utime, estimate.thrust_scale.data());
-  health_.consistency = consistency_.state();
+  consistency_.AddStrain(deflection.utime, deflection.deflection_rad.data(), !filter_->body_supported(), outlier);
   for (int i = 0; i < config_.vehicle.arm_count; ++i) {
     health_.strain_noise_scale[static_cast<size_t>(i)] = filter_->strain_noise_scale(i);
   }
+  consistency_.SetStrainNoiseScales(health_.strain_noise_scale.data());
+  const ConsistencyStatusFacts facts = consistency_.Judge(estimate.utime, estimate.thrust_scale.data());
+  health_.consistency = consistency_.state();
   return facts;
 }
 

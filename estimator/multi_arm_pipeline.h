@@ -17,8 +17,11 @@
 // harmonic_notch.multi_arm_enabled). The per-input fusion counters (fused,
 // gated, not fused, NIS, gate; the accelerometer's of its own) are counted
 // from the filter's fusion reports as the birotor's (fusion_counters.h).
-// What the birotor's EstimatorPipeline has and this one has not yet: the
-// ground tare and the arm-mode test (docs/estimator.md, "The EKF for N arms").
+// The arm-mode test (ArmModeMonitor on the description's lowest arm mode)
+// flags a tip-mass error as the birotor's does. What the birotor's
+// EstimatorPipeline has and this one has not yet: the ground tare, learning
+// the tip mass, and the tip mass's prior in the published sigma
+// (docs/estimator.md, "The EKF for N arms").
 // No LCM, no logging, no allocation per sample.
 #pragma once
 
@@ -104,8 +107,10 @@ class MultiArmPipeline {
   void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
   // The method's fusion reports of this strain sample into the monitor and
-  // the per-input counters; the monitor's facts on the estimate.
-  ConsistencyStatusFacts JudgeConsistency(const MultiArmForceEstimate& estimate);
+  // the per-input counters, the sample as the filter got it into the
+  // arm-mode test; the monitor's facts on the estimate.
+  ConsistencyStatusFacts JudgeConsistency(const MultiArmStrainSample& deflection,
+                                          const MultiArmForceEstimate& estimate);
 
   EstimatorConfig config_;
   std::unique_ptr<MultiArmForceEstimator> filter_;

@@ -202,6 +202,7 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Real("arm_mode_time_constant_s", &O::arm_mode_time_constant_s, 0.01, 100.0),
       Real("arm_mode_settle_s", &O::arm_mode_settle_s, 0.0, 10.0),
       Real("arm_mode_min_excitation", &O::arm_mode_min_excitation, 0.0, 1e6),
+      Real("arm_mode_multi_arm_min_excitation", &O::arm_mode_multi_arm_min_excitation, 0.0, 1e6),
       Flag("arm_mode_valid_needs_reading", &O::arm_mode_valid_needs_reading),
       Real("arm_mode_unconfirmed_tip_mass_std", &O::arm_mode_unconfirmed_tip_mass_std, 0.0, 1.0),
       Flag("arm_mode_learn_tip_mass", &O::arm_mode_learn_tip_mass),

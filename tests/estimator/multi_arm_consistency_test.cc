@@ -14,8 +14,8 @@
 
 #include "estimator/multi_arm_pipeline.h"
 #include "evaluation/multi_arm_accuracy.h"
+#include "multi_arm_pipeline_feed.h"
 #include "multi_arm_source_files.h"
-#include "samples/sample_sink.h"
 #include "simulator/multi_arm_simulator.h"
 
 namespace birotor {
@@ -56,19 +56,9 @@ TEST(MultiArmConsistencyTest, TrirotorLearnsTheGaugesVariance) {
   EstimatorConfig config = Config();
   config.vehicle = Vehicle("trirotor");
   MultiArmPipeline pipeline(config);
-  struct Forward : SampleSink {
-    MultiArmPipeline* pipeline = nullptr;
-    void OnStrainN(const MultiArmStrainSample& s) override {
-      MultiArmForceEstimate estimate;
-      pipeline->OnStrain(s, &estimate);
-    }
-    void OnMotorN(const MultiArmMotorSample& s) override { pipeline->OnMotor(s); }
-    void OnImu(const ImuSample& s) override { pipeline->OnImu(s); }
-  } forward;
-  forward.pipeline = &pipeline;
   MultiArmSimulator simulator(config.vehicle,
                               ScenarioFor("gentle", {"scenario.duration_s=8", "sensors.strain.noise_rad=4.0e-5"}, 3));
-  simulator.Run(&forward);
+  FlyPipeline(&simulator, &pipeline);
   for (size_t i = 0; i < 3; ++i) {
     const double scale = pipeline.health().strain_noise_scale[i];
     std::printf("gauge %zu: learned variance scale %.3f\n", i + 1, scale);

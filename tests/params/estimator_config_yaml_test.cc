@@ -143,6 +143,7 @@ TEST(EstimatorConfigYamlTest, ModelConsistencySectionHoldsTheDefaultsAndRefusesB
   EXPECT_EQ(c.arm_mode_time_constant_s, defaults.arm_mode_time_constant_s);
   EXPECT_EQ(c.arm_mode_settle_s, defaults.arm_mode_settle_s);
   EXPECT_EQ(c.arm_mode_min_excitation, defaults.arm_mode_min_excitation);
+  EXPECT_EQ(c.arm_mode_multi_arm_min_excitation, defaults.arm_mode_multi_arm_min_excitation);
   EXPECT_EQ(c.arm_mode_valid_needs_reading, defaults.arm_mode_valid_needs_reading);
   EXPECT_EQ(c.arm_mode_unconfirmed_tip_mass_std, defaults.arm_mode_unconfirmed_tip_mass_std);
 
