@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "model/linearization.h"
+#include "model/multi_arm_linearization.h"
 #include "model/multi_arm_modes.h"
 #include "samples/rotor_count.h"
 
@@ -23,6 +24,23 @@ constexpr double kRecentreStep = 0.005;
 // neighbour; the quadrotor's three modes near 61 Hz alike).
 constexpr double kNeighbourBand = 0.15;
 constexpr double kAloneVarianceRatio = 10.0;
+
+// d f_i / d r of the hover thrusts with every m_p,i = r times the file's,
+// by a central difference of +-1 % [N].
+ArmValues HoverTipMassSensitivity(const VehicleDescription& vehicle) {
+  constexpr double kStep = 0.01;
+  VehicleDescription heavier = vehicle, lighter = vehicle;
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    heavier.arms[static_cast<size_t>(i)].tip_mass_kg *= 1.0 + kStep;
+    lighter.arms[static_cast<size_t>(i)].tip_mass_kg *= 1.0 - kStep;
+  }
+  const Eigen::VectorXd up = SolveMultiArmHover(heavier).force_n, down = SolveMultiArmHover(lighter).force_n;
+  ArmValues sensitivity{};
+  for (int i = 0; i < vehicle.arm_count && i < up.size() && i < down.size(); ++i) {
+    sensitivity[static_cast<size_t>(i)] = (up(i) - down(i)) / (2.0 * kStep);
+  }
+  return sensitivity;
+}
 
 // Arm mode `index` (by frequency) of a described vehicle [Hz]; 0 when it has none.
 double ArmModeHz(const VehicleDescription& vehicle, int index) {
@@ -76,6 +94,7 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
     tip_weight_n += arm.tip_mass_kg * vehicle.gravity_m_s2 / arms;
   }
   e.tip_weight_n = tip_weight_n;
+  e.rotor_tip_weight_n = HoverTipMassSensitivity(vehicle);
   VehicleDescription stiffer = vehicle;  // d ln f / d ln k from every arm 10 % stiffer
   for (int i = 0; i < arms; ++i) stiffer.arms[static_cast<size_t>(i)].stiffness_n_m_rad *= 1.1;
   const double stiffer_hz = ArmModeHz(stiffer, pick);

@@ -50,6 +50,12 @@ struct ArmModeExpectation {
   // scale) [1/rad of reading].
   int arms = kBirotorRotors;
   ArmValues weights = {1.0, -1.0, 0.0, 0.0, 0.0, 0.0};
+  // Per rotor, what a tip-mass error of 100 % (every arm's m_p,i scaled
+  // together) puts into its force at hover: d f_i / d r of the hover
+  // thrusts (SolveMultiArmHover), which is the error the filter makes on a
+  // vehicle whose tip masses are r times the file's (the trirotor: 4.48 /
+  // 2.82 / 2.83 N; tip_weight_n on each rotor of the birotor) [N].
+  ArmValues rotor_tip_weight_n{};
   static ArmModeExpectation At(double hz) { return {hz, hz, hz, 0.5, 0.0}; }
 };
 ArmModeExpectation ExpectedArmMode(const BirotorParams& params);

@@ -133,8 +133,8 @@ MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts,
 // The published status of an N-rotor estimate: ComposeForceStatus's rules on
 // the method's facts with the pipeline's, its model-consistency monitor's
 // (MODEL_MISMATCH withdraws VALID and THRUST_DEFICIT, a tip mass awaiting
-// the arm mode withholds VALID with arm_mode_valid_needs_reading; the N-arm
-// published sigma does not carry the tip mass's prior) and the service's; the rotor bits
+// the arm mode withholds VALID with arm_mode_valid_needs_reading; the
+// pipeline widens each sigma by the tip mass's) and the service's; the rotor bits
 // are the method's, void (none) when the pipeline replaced a non-finite
 // estimate.
 MultiArmStatusBits ComposeMultiArmForceStatus(const MultiArmFilterFacts& filter, const InputStatusFacts& input,

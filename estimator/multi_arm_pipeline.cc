@@ -43,8 +43,9 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
     : config_(config),
       filter_(MakeMultiArmForceEstimator(config)),
       // The arm-mode test on the vehicle's most readable arm mode (no tip-mass learning for N arms).
-      consistency_(MultiArmConsistencyOptions(config.model_consistency), ExpectedArmMode(config.vehicle),
-                   config.ekf.strain_noise_rad, config.vehicle.arm_count),
+      arm_mode_(ExpectedArmMode(config.vehicle)),
+      consistency_(MultiArmConsistencyOptions(config.model_consistency), arm_mode_, config.ekf.strain_noise_rad,
+                   config.vehicle.arm_count),
       admission_(config.pipeline),
       notch_on_(config.harmonic_notch.enabled && config.harmonic_notch.multi_arm_enabled),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
@@ -153,6 +154,7 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   }
   FillInputFacts(sample.utime, stale, &input);
   const ConsistencyStatusFacts consistency = JudgeConsistency(deflection, *estimate);  // MODEL_MISMATCH withdraws VALID
+  if (consistency.tip_mass_unconfirmed) WidenForUnconfirmedTipMass(estimate);
   const MultiArmStatusBits bits = ComposeMultiArmForceStatus(filter_->facts(), input, consistency,
                                                              TransportStatusFacts(), config_.vehicle.arm_count);
   health_.last_filter_facts = filter_->facts();
@@ -250,6 +252,14 @@ void MultiArmPipeline::ReplaceNonFinite(const MultiArmStrainSample& sample, Mult
   }
   estimate->utime = sample.utime;
   estimate->seq = sample.seq;
+}
+
+void MultiArmPipeline::WidenForUnconfirmedTipMass(MultiArmForceEstimate* estimate) const {
+  const double relative_std = health_.consistency.arm_mode.force_tip_mass_std;
+  for (int i = 0; i < estimate->n_rotors; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    estimate->force_std_n[k] = std::hypot(estimate->force_std_n[k], relative_std * arm_mode_.rotor_tip_weight_n[k]);
+  }
 }
 
 void MultiArmPipeline::FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts) {

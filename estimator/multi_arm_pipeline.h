@@ -17,11 +17,12 @@
 // harmonic_notch.multi_arm_enabled). The per-input fusion counters (fused,
 // gated, not fused, NIS, gate; the accelerometer's of its own) are counted
 // from the filter's fusion reports as the birotor's (fusion_counters.h).
-// The arm-mode test (ArmModeMonitor on the description's lowest arm mode)
-// flags a tip-mass error as the birotor's does. What the birotor's
-// EstimatorPipeline has and this one has not yet: the ground tare, learning
-// the tip mass, and the tip mass's prior in the published sigma
-// (docs/estimator.md, "The EKF for N arms").
+// The arm-mode test (ArmModeMonitor on the description's most readable arm
+// mode) flags a tip-mass error as the birotor's does, and until it confirms
+// the file's tip mass each published sigma carries the tip mass's prior.
+// What the birotor's EstimatorPipeline has and this one has not yet: the
+// ground tare and learning the tip mass (docs/estimator.md, "The EKF for N
+// arms").
 // No LCM, no logging, no allocation per sample.
 #pragma once
 
@@ -105,6 +106,11 @@ class MultiArmPipeline {
   // The deflections as the filter gets them: rotor harmonics notched (when on).
   MultiArmStrainSample Condition(const MultiArmStrainSample& sample, int64_t previous_utime, bool backwards_jump);
   void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
+  // Until the arm mode confirms the file's tip mass, each published sigma
+  // carries what the tip mass's sigma puts into that rotor's force:
+  // hypot(sigma_i, s rotor_tip_weight_n_i), s the monitor's relative sigma
+  // (arm_mode_unconfirmed_tip_mass_std), as the birotor's PublishedForceStd.
+  void WidenForUnconfirmedTipMass(MultiArmForceEstimate* estimate) const;
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
   // The method's fusion reports of this strain sample into the monitor and
   // the per-input counters, the sample as the filter got it into the
@@ -114,6 +120,7 @@ class MultiArmPipeline {
 
   EstimatorConfig config_;
   std::unique_ptr<MultiArmForceEstimator> filter_;
+  ArmModeExpectation arm_mode_;          // the file's arm mode (ExpectedArmMode of the description)
   ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
   InputAdmission admission_;
   bool notch_on_;                     // harmonic_notch.enabled and multi_arm_enabled

@@ -234,7 +234,11 @@ TEST(MultiArmGroundTest, BirotorDescriptionMatchesTheBirotorsOwnEkf) {
 // default: 0.1139 / 0.0630 / 0.0609 N, 0.841 / 0.917 / 0.921,
 // MODEL_MISMATCH 0.127); N = 2 0.0832 / 0.0805 N, 0.974 / 0.974 (without:
 // 0.905 / 0.906). The MAE stays 34 % above the airborne hover's (rotor 1):
-// the support is unknown there; asserted: the sigma says so.
+// the support is unknown there; asserted: the sigma says so. Since the
+// tip mass's prior is in the N-arm sigma until the arm mode confirms it
+// (docs/mismatch.md), N = 2 reads 0.981 / 0.979: in and out of contact the
+// mode never gets the 0.6 s of free flight a reading needs, so the prior
+// stays for the flight (upper bound 0.99 there, the tip mass unconfirmed).
 TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
   EstimatorConfig config = Config();
   config.ekf.ground_may_touch_m = 0.02;
@@ -247,7 +251,7 @@ TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
     for (int i = 0; i < r.n_rotors; ++i) {
       EXPECT_LT(r.rotor[static_cast<size_t>(i)].mae_n, 0.13) << "rotor " << i + 1;
       EXPECT_GT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.93) << "rotor " << i + 1;
-      EXPECT_LT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.98) << "rotor " << i + 1;
+      EXPECT_LT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.99) << "rotor " << i + 1;
     }
     EXPECT_GT(r.valid_share, 0.99);
     EXPECT_EQ(r.mismatch_share, 0.0);
