@@ -64,7 +64,8 @@ ArmModeExpectation ExpectedArmMode(const BirotorParams& params);
 // mode of arm 1 against arms 2 and 3) and the combination of the gauges that
 // reads it alone (ModalGaugeWeights; largest |weight| 1 on a gauge of scale 1); the range
 // allows each gauge scale s_i != 1 to be a stiffness k_i / s_i. No test
-// (file_hz 0) when an arm has no gauge or the modes do not separate.
+// (file_hz 0) when an arm has no gauge, the modes do not separate, or the
+// mode does not ring alone in its band (ArmModeStandsAlone: the quadrotor).
 ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle);
 
 // The same while the EKF learns strain scales g_i (learn_strain_scale): a
