@@ -221,6 +221,15 @@ double ResonanceFrequencyEstimator::FrequencyHz(double excess_noise) const {
   return std::acos(cos_w) / (2.0 * M_PI * dt_s_);
 }
 
+bool ReadingAgreement::Confirms(double half_limit, double time_constant_s) const {
+  // Independent readings so far; asked from half of one on (T = tau).
+  const double independent = seconds_ / (2.0 * time_constant_s);  // [1]
+  if (count_ == 0 || !(independent >= 0.5)) return false;
+  const double mean = sum_ / static_cast<double>(count_);
+  const double variance = std::max(sum2_ / static_cast<double>(count_) - mean * mean, 0.0);
+  return std::fabs(mean) + kSigmas * std::sqrt(variance / independent) < half_limit;
+}
+
 ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
                                double noise_rad, const ArmModeTipMassMap& tip_mass)
     : options_(options),
@@ -340,7 +349,12 @@ bool ArmModeMonitor::Add(int64_t utime, const double* deflection_rad, bool airbo
 void ArmModeMonitor::UpdateTipMass() {
   state_.learning = Learning();
   if (!state_.learning) {
-    state_.force_tip_mass_std = state_.awaiting_reading ? options_.arm_mode_unconfirmed_tip_mass_std : 0.0;
+    // The file's m_p is unconfirmed in the air until the readings agree:
+    // before the first reading, while the mode is read, and for good on a
+    // flight whose mode is too quiet to read (nothing confirms it there;
+    // VALID does not wait for that, awaiting_reading does not hold).
+    const bool unconfirmed = start_utime_ >= 0 && !state_.agreed;
+    state_.force_tip_mass_std = unconfirmed ? options_.arm_mode_unconfirmed_tip_mass_std : 0.0;
     return;
   }
   state_.tip_mass_kg = learner_.tip_mass_kg();
@@ -363,24 +377,26 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   }
   state_.lowest_excitation =
       state_.lowest_excitation > 0 ? std::min(state_.lowest_excitation, state_.excitation) : state_.excitation;
-  double agreement_error = 0;  // against the mode of the m_p in use [1]
+  double agreement_error = 0;  // against the mode of the m_p in use, signed [1]
   if (Learning()) {
     Learn(frequency_hz, &state_.relative_error, &agreement_error);
   } else {
     const ArmModeExpectation& e = state_.expected;
     state_.relative_error = frequency_hz < e.low_hz ? frequency_hz / e.low_hz - 1.0
                                                     : (frequency_hz > e.high_hz ? frequency_hz / e.high_hz - 1.0 : 0.0);
-    agreement_error = std::fabs(state_.relative_error);
+    agreement_error = state_.relative_error;
   }
   const double error = std::fabs(state_.relative_error);
   state_.statistic = error / options_.arm_mode_limit;
   state_.peak_abs_error = std::max(state_.peak_abs_error, error);
   beyond_since_ = error > options_.arm_mode_limit ? (beyond_since_ < 0 ? utime : beyond_since_) : -1;
-  within_since_ = agreement_error < 0.5 * options_.arm_mode_limit ? (within_since_ < 0 ? utime : within_since_) : -1;
-  // Agreement needs as long within half the limit as a raise beyond it: a
-  // single reading within the limit is not enough (tip mass +20 % reads
-  // -2.5 % for 0.3 s on some seeds before it reads -6 %; docs/mismatch.md).
-  if (within_since_ >= 0 && (utime - within_since_) * 1e-6 >= options_.arm_mode_raise_s) state_.agreed = true;
+  const double half_limit = 0.5 * options_.arm_mode_limit;
+  within_since_ = std::fabs(agreement_error) < half_limit ? (within_since_ < 0 ? utime : within_since_) : -1;
+  // Agreement from the mean of every reading, not a stretch of them within
+  // half the limit: tip mass +10 % reads -3 % and lies within 0.25 s
+  // stretches on most flights (docs/mismatch.md).
+  agreement_.Add(agreement_error, dt_s_);
+  if (agreement_.Confirms(half_limit, options_.arm_mode_time_constant_s)) state_.agreed = true;
   if (!state_.mismatch && beyond_since_ >= 0 && (utime - beyond_since_) * 1e-6 >= options_.arm_mode_raise_s) {
     state_.mismatch = true;
     state_.raised_utime = utime;
@@ -402,7 +418,7 @@ void ArmModeMonitor::Learn(double frequency_hz, double* relative_error, double* 
                         ? corrected_hz / explained_low_hz_ - 1.0
                         : (corrected_hz > explained_high_hz_ ? corrected_hz / explained_high_hz_ - 1.0 : 0.0);
   const double learned_hz = learner_.LearnedHz();
-  *agreement_error = std::fabs(corrected_hz / learned_hz - 1.0);
+  *agreement_error = corrected_hz / learned_hz - 1.0;
   // The band-pass follows the learned mode (a step of 0.5 %: re-designed
   // a few times a flight, not per sample).
   if (std::fabs(std::log(learned_hz / centre_hz)) > kRecentreStep) {

@@ -129,6 +129,33 @@ class ResonanceFrequencyEstimator {
   double s11_ = 0, s12_ = 0, s22_ = 0, s01_ = 0, s02_ = 0;
 };
 
+// Whether the arm mode's readings confirm the tip mass in use: the mean of
+// the signed readings since start-up (arm_mode_monitor.cc Judge: f over
+// the range's nearer edge - 1, 0 within it) lies within half the limit by
+// kSigmas of its standard errors. A reading is a fit with time constant
+// tau, so a new one is independent every 2 tau: after T seconds of
+// readings the mean's standard error is sd sqrt(2 tau / T), asked from
+// T = tau on. A vehicle whose readings lie near the limit (tip mass +10 %
+// reads -3.0 % with sd 0.7 %) is never confirmed, however long a stretch of
+// them lies within half the limit; a matching vehicle (means within 0.7 %,
+// sd 0.5-0.9 %) is at 1.1-2.1 s after lift-off (docs/mismatch.md).
+class ReadingAgreement {
+ public:
+  static constexpr double kSigmas = 2.0;
+  void Add(double relative_error, double dt_s) {
+    sum_ += relative_error;
+    sum2_ += relative_error * relative_error;
+    seconds_ += dt_s;
+    ++count_;
+  }
+  bool Confirms(double half_limit, double time_constant_s) const;
+
+ private:
+  double sum_ = 0, sum2_ = 0;  // of the readings and their squares [1]
+  double seconds_ = 0;         // of readings [s]
+  int64_t count_ = 0;
+};
+
 struct ArmModeState {
   ArmModeExpectation expected;  // of the parameter file [Hz]
   // The newest estimate; NaN when none yet (on the ground, warming up) [Hz].
@@ -143,14 +170,12 @@ struct ArmModeState {
   double statistic = 0;          // |relative_error| / arm_mode_limit [1] (> 1: beyond the limit)
   double peak_abs_error = 0;     // largest |relative_error| since start-up [1]
   bool mismatch = false;         // a sustained error beyond the limit holds
-  // The readings were within half the limit for arm_mode_raise_s since
-  // start-up (kept over resets and landings: the vehicle did not change).
+  // The readings since start-up confirm the tip mass in use (ReadingAgreement;
+  // kept over resets and landings: the vehicle did not change).
   bool agreed = false;
   // Not agreed yet, in free flight, and the mode read or its first reading
-  // not due yet: the tip mass is unconfirmed. The published force sigma
-  // carries the tip mass's prior meanwhile (arm_mode_unconfirmed_tip_mass_std),
-  // and VALID waits when arm_mode_valid_needs_reading. false on the ground and
-  // while the mode is too quiet to read [bool].
+  // not due yet: VALID waits when arm_mode_valid_needs_reading. false on the
+  // ground and while the mode is too quiet to read (nothing would come) [bool].
   bool awaiting_reading = false;
   int64_t raised_utime = -1;  // when the current (or last) one was raised [us]; -1 never
   int64_t raised_count = 0;
@@ -165,7 +190,8 @@ struct ArmModeState {
   double tip_mass_std_kg = 0;  // its one sigma (the prior's before a reading) [kg]
   // The relative sigma of m_p each published force sigma carries now (0:
   // none): learning, the learned one while airborne; else the prior's
-  // (arm_mode_unconfirmed_tip_mass_std) while awaiting_reading [1].
+  // (arm_mode_unconfirmed_tip_mass_std) while airborne and not agreed, a
+  // mode too quiet to read included (it confirms nothing) [1].
   double force_tip_mass_std = 0;
   double centre_hz = 0;  // of the band-pass: the file's mode, or the learned m_p's [Hz]
   // Readings the learned m_p took in this run (0: still the prior's, or the
@@ -210,7 +236,7 @@ class ArmModeMonitor {
   void Judge(int64_t utime, double frequency_hz);
   // The learned tip mass takes the reading; the relative error of the
   // reading against what a tip mass within the prior explains, and the
-  // agreement against the learned m_p's mode [1].
+  // signed one against the learned m_p's mode [1].
   void Learn(double frequency_hz, double* relative_error, double* agreement_error);
   // Learning now: switched on, a model, and a stiffness the file fixes
   // (no learned strain scale that may be a stiffness widens the expectation).
@@ -245,8 +271,9 @@ class ArmModeMonitor {
   int64_t start_utime_ = -1;  // of the current airborne run of samples; -1 none
   double dt_s_ = 0;           // sample interval the filters were designed for [s]
   double previous_signal_ = 0;
-  int64_t beyond_since_ = -1;  // first utime of the current run beyond the limit; -1 none
-  int64_t within_since_ = -1;  // ... within half the limit; -1 none
+  int64_t beyond_since_ = -1;   // first utime of the current run beyond the limit; -1 none
+  int64_t within_since_ = -1;   // ... within half the limit; -1 none
+  ReadingAgreement agreement_;  // of every reading judged since start-up
 };
 
 }  // namespace birotor

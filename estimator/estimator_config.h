@@ -416,17 +416,17 @@ struct ModelConsistencyOptions {
   // ring the mode 11-15 times the noise) [1].
   double arm_mode_multi_arm_min_excitation = 3.0;
   // Whether VALID waits while the arm mode has not confirmed the tip mass
-  // (ArmModeState::awaiting_reading: 0.85 s after lift-off on a flight
+  // (ArmModeState::awaiting_reading: 1.1 s after lift-off on a flight
   // whose mode agrees). false by default: the unconfirmed tip mass widens
   // the sigma instead (below), and a daemon restarted in flight must be
   // VALID within 0.5 s (docs/reliability.md); true keeps a tip-mass error
   // from ever being VALID (docs/mismatch.md).
   bool arm_mode_valid_needs_reading = false;
-  // Until the arm mode confirms the file's tip mass (ArmModeState::
-  // awaiting_reading: from lift-off for settle + time constant, then while
-  // the readings are not yet within half the limit for arm_mode_raise_s),
-  // each published force sigma includes this relative 1-sigma uncertainty
-  // of the tip mass: sigma^2 + (std m_p g)^2 at hover. The rigid body cannot
+  // Until the arm mode confirms the file's tip mass (ArmModeState::agreed:
+  // the mean of the readings within half the limit, ReadingAgreement; in the
+  // air from lift-off, and for good on a flight whose mode is too quiet to
+  // read), each published force sigma includes this relative 1-sigma
+  // uncertainty of the tip mass: sigma^2 + (std m_p g)^2 at hover. The rigid body cannot
   // see a tip-mass error (docs/mismatch.md), so before the reading the
   // estimate is only as good as the file's m_p. 0.15: a propeller or motor
   // change moves m_p by 10-20 %; a 20 % error lies at 1.3 sigma. Tip mass

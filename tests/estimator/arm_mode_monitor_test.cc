@@ -267,7 +267,7 @@ TEST(ArmMode, RaisesOnADetunedModeAndClearsWhenItIsBack) {
   EXPECT_LT(cleared_us * 1e-6, 5.0);
 }
 
-// Feeds 1 s of airborne strain (b1 - b2 ringing at ring_hz with amplitude
+// Feeds 2 s of airborne strain (b1 - b2 ringing at ring_hz with amplitude
 // ring_rad, or quiet) and returns, per 1 ms, the published sigma of rotor 1
 // and whether VALID stood (the method says VALID and sigma 0.08 N).
 struct AwaitRun {
@@ -286,7 +286,7 @@ AwaitRun FeedAwaiting(const ModelConsistencyOptions& options, double ring_rad) {
   report.nis = 0;
   monitor.Add(report);
   AwaitRun run;
-  for (int n = 0; n < 1000; ++n) {
+  for (int n = 0; n < 2000; ++n) {
     const double ring = ring_rad * std::sin(2 * M_PI * 65.03 * n * kDt);
     const double d[2] = {-1e-3 + ring, 1e-3};
     monitor.AddStrain(n * 1000, d, true, false);
@@ -302,19 +302,20 @@ AwaitRun FeedAwaiting(const ModelConsistencyOptions& options, double ring_rad) {
 }
 
 TEST(ArmMode, UnconfirmedTipMassWidensSigmaUntilTheModeAgrees) {
-  // The file's mode read from 0.6 s (settle 0.1 s + time constant 0.5 s)
-  // and within half the limit for arm_mode_raise_s (0.25 s): agreed at
-  // 0.85 s. Until then each sigma carries 15 % of m_p g (2 N): hypot(0.08,
-  // 0.30) = 0.310 N. VALID stands throughout by default.
+  // The file's mode read from 0.6 s (settle 0.1 s + time constant 0.5 s);
+  // the readings' mean agrees after a time constant of readings (half an
+  // independent reading): agreed at 1.1 s. Until then each sigma carries 15 %
+  // of m_p g (2 N): hypot(0.08, 0.30) = 0.310 N. VALID stands throughout by
+  // default.
   const AwaitRun run = FeedAwaiting(ModelConsistencyOptions(), 1e-4);
   const double widened = std::hypot(0.08, 0.15 * 2.0);
   // From the run's second interval on (the first sample starts nothing,
   // the second starts the run).
   EXPECT_NEAR(run.sigma_n[0], 0.08, 1e-12);
   EXPECT_NEAR(run.sigma_n[2], widened, 1e-12);
-  EXPECT_NEAR(run.sigma_n[840], widened, 1e-12);
-  EXPECT_NEAR(run.sigma_n[860], 0.08, 1e-12);
-  EXPECT_NEAR(run.sigma_n[999], 0.08, 1e-12);
+  EXPECT_NEAR(run.sigma_n[1090], widened, 1e-12);
+  EXPECT_NEAR(run.sigma_n[1110], 0.08, 1e-12);
+  EXPECT_NEAR(run.sigma_n[1999], 0.08, 1e-12);
   for (bool v : run.valid) EXPECT_TRUE(v);
 }
 
@@ -324,21 +325,27 @@ TEST(ArmMode, ValidWaitsForTheAgreementWhenAsked) {
   const AwaitRun run = FeedAwaiting(options, 1e-4);
   EXPECT_FALSE(run.valid[2]);
   const size_t first_valid = std::find(run.valid.begin() + 2, run.valid.end(), true) - run.valid.begin();
-  // First reading at 0.601 s (the run's first interval at 1 ms), agreed 0.25 s later.
-  EXPECT_NEAR(first_valid * 1e-3, 0.851, 0.0015);
+  // First reading at 0.601 s (the run's first interval at 1 ms), agreed 0.5 s later.
+  EXPECT_NEAR(first_valid * 1e-3, 1.101, 0.0015);
   EXPECT_TRUE(std::all_of(run.valid.begin() + first_valid, run.valid.end(), [](bool v) { return v; }));
 }
 
-TEST(ArmMode, AQuietModeIsNotWaitedFor) {
+TEST(ArmMode, AQuietModeIsNotWaitedForButConfirmsNothing) {
   // Noise-free and not ringing: nothing to read. The wait ends when the
-  // first reading is due (0.6 s): sigma back, VALID (when asked) from then.
+  // first reading is due (0.6 s): VALID (when asked) from then. The tip
+  // mass stays unconfirmed, so each sigma keeps the prior's 15 % of m_p g
+  // for the whole flight (a calm hover with the tip mass 20 % off is 0.56 N
+  // off on the reference vehicle: within 2 sigma, not VALID and wrong).
   ModelConsistencyOptions options;
   options.arm_mode_valid_needs_reading = true;
   const AwaitRun run = FeedAwaiting(options, 0.0);
-  EXPECT_GT(run.sigma_n[590], 0.2);
+  const double widened = std::hypot(0.08, 0.15 * 2.0);
+  EXPECT_NEAR(run.sigma_n[590], widened, 1e-12);
   EXPECT_FALSE(run.valid[590]);
-  EXPECT_NEAR(run.sigma_n[610], 0.08, 1e-12);
+  EXPECT_NEAR(run.sigma_n[610], widened, 1e-12);
+  EXPECT_NEAR(run.sigma_n[1999], widened, 1e-12);
   EXPECT_TRUE(run.valid[610]);
+  EXPECT_TRUE(run.valid[1999]);
 }
 
 }  // namespace
@@ -368,8 +375,8 @@ EstimatorConfig LearningTipMass() {
   return config;
 }
 
-ArmModeFigures Fly(const std::string& name, const EstimatorConfig& config = ReferenceConfig()) {
-  const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile(name)), config);
+ArmModeFigures FlyScenario(const Scenario& scenario, const std::string& name, const EstimatorConfig& config) {
+  const ScenarioRun run = RunScenario(scenario, config);
   ArmModeFigures f;
   const int64_t start = run.forces.front().utime;
   for (const ForceEstimate& e : run.forces) {
@@ -389,6 +396,24 @@ ArmModeFigures Fly(const std::string& name, const EstimatorConfig& config = Refe
       static_cast<long long>(f.valid_after_raise), f.peak_abs_error, run.health.consistency.arm_mode.relative_error,
       run.health.consistency.arm_mode.lowest_excitation);
   return f;
+}
+
+ArmModeFigures Fly(const std::string& name, const EstimatorConfig& config = ReferenceConfig()) {
+  return FlyScenario(LoadScenario(ScenarioFile(name)), name, config);
+}
+
+// Tip mass +10 % (the gentle flight of mismatch_tip_mass_plus20 with both
+// tips at 1.1 m_p): its mode reads -3 %, inside the limit, so nothing is
+// raised, and the mean of the readings never confirms the file's tip mass:
+// the estimates stay VALID 0.28 N off with the prior's 0.42 N in their
+// sigma. Measured: worst 2 s VALID share 1.000 (0.072 when a stretch of
+// readings within half the limit confirmed the tip mass).
+TEST(ArmModeScenarios, TipMassTenPercentHeavierIsNeverConfirmed) {
+  Scenario scenario = LoadScenario(ScenarioFile("mismatch_tip_mass_plus20"));
+  for (int i = 0; i < scenario.vehicle.arm_count; ++i)
+    scenario.vehicle.arms[static_cast<size_t>(i)].tip_mass_kg = 0.316932;
+  const ArmModeFigures f = FlyScenario(scenario, "tip mass +10 %", NotLearningTipMass());
+  EXPECT_GE(f.worst_valid_window_share, 0.99);
 }
 
 TEST(ArmModeScenarios, TipMassIsRaisedAndNamed) {

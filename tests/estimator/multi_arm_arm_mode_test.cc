@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
 #include "estimator/arm_mode_monitor.h"
 #include "estimator/multi_arm_pipeline.h"
@@ -79,15 +80,17 @@ struct ArmModeFlight {
   double peak_abs_error = 0;  // of the arm mode's readings [1]
 };
 
-// 8 s of the trirotor's gentle flight (seed `seed`) with every tip mass
-// scaled by tip_mass_scale, estimated with the shipped files.
-ArmModeFlight FlyTrirotor(double tip_mass_scale, int seed) {
+// 8 s of the trirotor's gentle flight (seed `seed`; or its hover) with every
+// tip mass scaled by tip_mass_scale, estimated with the shipped files.
+ArmModeFlight FlyTrirotor(double tip_mass_scale, int seed, const std::string& kind = "gentle",
+                          double turbulence_std = 0.01) {
   EstimatorConfig config = Config();
   config.vehicle = Vehicle("trirotor");
   VehicleDescription flown = config.vehicle;
   for (int i = 0; i < flown.arm_count; ++i) flown.arms[static_cast<size_t>(i)].tip_mass_kg *= tip_mass_scale;
+  flown.turbulence_std = turbulence_std;
   const Scenario gentle =
-      ScenarioFor("gentle", {"scenario.duration_s=8", "scenario.seed=" + std::to_string(seed)}, flown.arm_count);
+      ScenarioFor(kind, {"scenario.duration_s=8", "scenario.seed=" + std::to_string(seed)}, flown.arm_count);
   ArmModeFlight flight;
   flight.accuracy = RunMultiArmAccuracyFlying(flown, gentle, config, EvalOptions());
   MultiArmPipeline pipeline(config);
@@ -113,6 +116,28 @@ TEST(MultiArmArmMode, TrirotorTipMassTwentyPercentOffIsRaisedAndNamed) {
     EXPECT_EQ(f.accuracy.nonfinite, 0);
     for (size_t i = 0; i < 3; ++i) EXPECT_GE(f.accuracy.rotor[i].share_within_2sigma, 0.99) << scale << " rotor " << i;
   }
+}
+
+// Tip mass +10 % reads -3 % (inside the 4 % limit: raised on part of the
+// flight only) and a calm hover (turbulence 0.002) rings the mode below the
+// excitation bar: neither is confirmed by the mean of the readings, so every
+// estimate keeps the tip mass's prior in its sigma. Measured (8 s, seed 1):
+// +10 % gentle VALID 1.000, 0.45 / 0.28 / 0.28 N off, every estimate within
+// 2 sigma (0.39-0.40 when a stretch of readings within half the limit
+// confirmed it); calm hover +20 % VALID 1.000, 0.89 / 0.56 / 0.56 N off,
+// all within 2 sigma (0.014 when an unread mode dropped the prior).
+TEST(MultiArmArmMode, ATipMassTheModeDoesNotConfirmKeepsItsPriorInTheSigma) {
+  const ArmModeFlight heavier = FlyTrirotor(1.1, 1);
+  const ArmModeFlight calm = FlyTrirotor(1.2, 1, "hover", 0.002);
+  for (const ArmModeFlight* f : {&heavier, &calm}) {
+    std::printf("MODEL_MISMATCH %.3f, VALID %.3f, MAE %.3f / %.3f / %.3f N, 2-sigma %.3f / %.3f / %.3f\n",
+                f->accuracy.mismatch_share, f->accuracy.valid_share, f->accuracy.rotor[0].mae_n,
+                f->accuracy.rotor[1].mae_n, f->accuracy.rotor[2].mae_n, f->accuracy.rotor[0].share_within_2sigma,
+                f->accuracy.rotor[1].share_within_2sigma, f->accuracy.rotor[2].share_within_2sigma);
+    EXPECT_GT(f->accuracy.rotor[0].mae_n, 0.3);  // the error is there: the test is about the sigma
+    for (size_t i = 0; i < 3; ++i) EXPECT_GE(f->accuracy.rotor[i].share_within_2sigma, 0.99) << "rotor " << i;
+  }
+  EXPECT_GT(calm.accuracy.valid_share, 0.9);  // the unread mode is not waited for
 }
 
 // Measured on seeds 1-3: never raised, peak arm-mode error 0.020 / 0.016 /
