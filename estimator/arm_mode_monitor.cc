@@ -395,8 +395,10 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   // Agreement from the mean of every reading, not a stretch of them within
   // half the limit: tip mass +10 % reads -3 % and lies within 0.25 s
   // stretches on most flights (docs/mismatch.md).
-  agreement_.Add(agreement_error, dt_s_);
-  if (agreement_.Confirms(half_limit, options_.arm_mode_time_constant_s)) state_.agreed = true;
+  if (!state_.agreed) {
+    agreement_.Add(agreement_error, dt_s_);
+    state_.agreed = agreement_.Confirms(half_limit, options_.arm_mode_time_constant_s);
+  }
   if (!state_.mismatch && beyond_since_ >= 0 && (utime - beyond_since_) * 1e-6 >= options_.arm_mode_raise_s) {
     state_.mismatch = true;
     state_.raised_utime = utime;
