@@ -48,6 +48,34 @@ double ArmModeHz(const VehicleDescription& vehicle, int index) {
   return index < static_cast<int>(modes.size()) ? modes[static_cast<size_t>(index)].frequency_hz : 0.0;
 }
 
+// The weights of the gauge readings that hold one mode (its row of
+// ModalGaugeWeights), signed so that the largest is +1, each over its
+// gauge's scale: the reading is s_i b_i + o_i, the offset band-passed away.
+ArmValues ReadingWeights(const VehicleDescription& vehicle, const Eigen::RowVectorXd& modal) {
+  Eigen::Index largest_arm = 0;
+  modal.cwiseAbs().maxCoeff(&largest_arm);
+  const double largest = modal(largest_arm);
+  ArmValues weights{};
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    weights[static_cast<size_t>(i)] = modal(i) / largest / vehicle.arms[static_cast<size_t>(i)].gauge_scale;
+  }
+  return weights;
+}
+
+// Each gauge scale s_i != 1 read as a stiffness k_i / s_i widens what mode
+// `index` may be.
+void WidenForGaugeScales(const VehicleDescription& vehicle, int index, ArmModeExpectation* e) {
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    const double scale = vehicle.arms[static_cast<size_t>(i)].gauge_scale;
+    if (scale == 1.0 || !(scale > 0)) continue;
+    VehicleDescription stiffness = vehicle;
+    stiffness.arms[static_cast<size_t>(i)].stiffness_n_m_rad /= scale;
+    const double hz = ArmModeHz(stiffness, index);
+    e->low_hz = std::min(e->low_hz, hz);
+    e->high_hz = std::max(e->high_hz, hz);
+  }
+}
+
 }  // namespace
 
 double SymmetricArmModeHz(const BirotorParams& params) {
@@ -82,32 +110,16 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
   if (!ArmModeStandsAlone(modes, pick, kNeighbourBand, kAloneVarianceRatio)) return ArmModeExpectation();
   ArmModeExpectation e = ArmModeExpectation::At(modes[static_cast<size_t>(pick)].frequency_hz);
   e.arms = arms;
-  e.weights.fill(0.0);
-  Eigen::Index largest_arm = 0;  // the signal's sign: its largest weight positive
-  weights.row(pick).cwiseAbs().maxCoeff(&largest_arm);
-  const double largest = weights(pick, largest_arm);
-  double tip_weight_n = 0;
-  for (int i = 0; i < arms; ++i) {
-    const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
-    // The reading is s_i b_i + o_i: the offset is band-passed away, the scale divided out.
-    e.weights[static_cast<size_t>(i)] = weights(pick, i) / largest / arm.gauge_scale;
-    tip_weight_n += arm.tip_mass_kg * vehicle.gravity_m_s2 / arms;
-  }
-  e.tip_weight_n = tip_weight_n;
+  e.weights = ReadingWeights(vehicle, weights.row(pick));
+  e.tip_weight_n = 0;
+  for (int i = 0; i < arms; ++i)
+    e.tip_weight_n += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg * vehicle.gravity_m_s2 / arms;
   e.rotor_tip_weight_n = HoverTipMassSensitivity(vehicle);
   VehicleDescription stiffer = vehicle;  // d ln f / d ln k from every arm 10 % stiffer
   for (int i = 0; i < arms; ++i) stiffer.arms[static_cast<size_t>(i)].stiffness_n_m_rad *= 1.1;
   const double stiffer_hz = ArmModeHz(stiffer, pick);
   if (e.file_hz > 0 && stiffer_hz > 0) e.stiffness_exponent = std::log(stiffer_hz / e.file_hz) / std::log(1.1);
-  for (int i = 0; i < arms; ++i) {
-    const double scale = vehicle.arms[static_cast<size_t>(i)].gauge_scale;
-    if (scale == 1.0 || !(scale > 0)) continue;
-    VehicleDescription stiffness = vehicle;  // the scale read as a stiffness k_i / s_i
-    stiffness.arms[static_cast<size_t>(i)].stiffness_n_m_rad /= scale;
-    const double hz = ArmModeHz(stiffness, pick);
-    e.low_hz = std::min(e.low_hz, hz);
-    e.high_hz = std::max(e.high_hz, hz);
-  }
+  WidenForGaugeScales(vehicle, pick, &e);
   return e;
 }
 

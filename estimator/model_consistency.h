@@ -96,7 +96,7 @@ struct ModelConsistencyState {
 };
 
 // For the birotor (EstimatorPipeline) and any N-rotor vehicle
-// (MultiArmPipeline: rotors N, the arm-mode test on its lowest arm mode,
+// (MultiArmPipeline: rotors N, the arm-mode test on its most readable arm mode,
 // Judge on the thrust scales of its estimate). A report's component of variance 0 (not measured) is
 // left out of its statistics.
 class ModelConsistencyMonitor {
