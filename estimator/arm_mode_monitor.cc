@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "estimator/parameter_hypotheses.h"
 #include "model/linearization.h"
 #include "model/multi_arm_linearization.h"
 #include "model/multi_arm_modes.h"
@@ -263,6 +264,7 @@ ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const Arm
     const double spread = options.arm_mode_explained_sigmas * learning.prior_std;
     explained_low_hz_ = std::exp(tip_mass.LogHz(1.0 + spread));
     explained_high_hz_ = std::exp(tip_mass.LogHz(std::max(1.0 - spread, ArmModeTipMassMap::kLowestRatio)));
+    file_mode_hz_ = std::exp(tip_mass.LogHz(1.0));
     state_.tip_mass_kg = tip_mass.file_tip_mass_kg();
     state_.tip_mass_std_kg = learning.prior_std * state_.tip_mass_kg;
   }
@@ -369,13 +371,32 @@ void ArmModeMonitor::UpdateTipMass() {
     state_.force_tip_mass_std = unconfirmed ? options_.arm_mode_unconfirmed_tip_mass_std : 0.0;
     return;
   }
-  state_.tip_mass_kg = learner_.tip_mass_kg();
-  state_.tip_mass_std_kg = learner_.ratio_std() * learner_.map().file_tip_mass_kg();
+  // H0 the file's m_p, H1 the learned one (estimator/parameter_hypotheses.h):
+  // the average of the two by P(H1 | readings), r = m_p / m_p_file, is
+  // flown from this run's first reading on (before it H1 alone: the prior,
+  // or the value and sigma resumed from the state file). Its sigma is the
+  // average's once the readings' mean confirms the file's mode
+  // (ReadingAgreement); before that, the learned sigma widened by how far
+  // the average lies from the learned value: P(H1) starts at
+  // arm_mode_tip_mass_change_probability, so a few readings near the file's
+  // mode give H0 most of the weight before they could tell a 10 % heavier
+  // tip from the file's.
+  const double r = learner_.ratio(), r_std = learner_.ratio_std(), r_variance = r_std * r_std;
   state_.tip_mass_readings = learner_.readings();
-  // Airborne (a run of samples): the learned m_p's sigma in every force
-  // sigma, the prior's until a reading comes, and for good on a flight
-  // whose mode is too quiet to read.
-  state_.force_tip_mass_std = start_utime_ >= 0 ? learner_.ratio_std() : 0.0;
+  state_.tip_mass_change_probability = state_.tip_mass_readings > 0
+                                           ? ChangedParameterProbability(r, r_std, learner_.options().prior_std,
+                                                                         options_.arm_mode_tip_mass_change_probability)
+                                           : 1.0;
+  const HypothesesAverage ratio =
+      AverageOverHypotheses(r, r_variance, r_variance, r, r_variance, state_.tip_mass_change_probability);
+  const double shrunk = ratio.value - r;  // the average's distance from the learned value [1]
+  const double ratio_std = std::sqrt(state_.file_tip_mass_agreed ? ratio.variance : r_variance + shrunk * shrunk);
+  state_.tip_mass_kg = ratio.value * learner_.map().file_tip_mass_kg();
+  state_.tip_mass_std_kg = ratio_std * learner_.map().file_tip_mass_kg();
+  // Airborne (a run of samples): the average's sigma in every force sigma,
+  // the prior's until a reading comes, and for good on a flight whose mode
+  // is too quiet to read.
+  state_.force_tip_mass_std = start_utime_ >= 0 ? ratio_std : 0.0;
 }
 
 void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
@@ -433,6 +454,13 @@ void ArmModeMonitor::Learn(double frequency_hz, double* relative_error, double* 
                         : (corrected_hz > explained_high_hz_ ? corrected_hz / explained_high_hz_ - 1.0 : 0.0);
   const double learned_hz = learner_.LearnedHz();
   *agreement_error = corrected_hz / learned_hz - 1.0;
+  // Whether the readings confirm the file's m_p as well (H0 may then take
+  // over the learned one: UpdateTipMass).
+  if (!state_.file_tip_mass_agreed) {
+    file_agreement_.Add(corrected_hz / file_mode_hz_ - 1.0, dt_s_);
+    state_.file_tip_mass_agreed =
+        file_agreement_.Confirms(0.5 * options_.arm_mode_limit, options_.arm_mode_time_constant_s);
+  }
   // The band-pass follows the learned mode (a step of 0.5 %: re-designed
   // a few times a flight, not per sample).
   if (std::fabs(std::log(learned_hz / centre_hz)) > kRecentreStep) {

@@ -186,8 +186,14 @@ struct ArmModeState {
   // arm_mode_explained_sigmas prior sigmas explains. false: the file's
   // m_p, judged against the file's mode (the test of issue 27).
   bool learning = false;
-  double tip_mass_kg = 0;      // the m_p in use: the file's, or learned [kg]
+  double tip_mass_kg = 0;      // the m_p in use: the file's, or learned (averaged with the file's) [kg]
   double tip_mass_std_kg = 0;  // its one sigma (the prior's before a reading) [kg]
+  // Learning: the readings' mean confirms the file's m_p (ReadingAgreement
+  // against the file's mode, whatever the learned m_p; kept for good) [bool].
+  bool file_tip_mass_agreed = false;
+  // Learning: P(the tip mass is not the file's | readings), the learned
+  // m_p's weight in tip_mass_kg (1 before this run's first reading) [1].
+  double tip_mass_change_probability = 0;
   // The relative sigma of m_p each published force sigma carries now (0:
   // none): learning, the learned one while airborne; else the prior's
   // (arm_mode_unconfirmed_tip_mass_std) while airborne and not agreed, a
@@ -266,14 +272,16 @@ class ArmModeMonitor {
   // Lowest and highest mode a tip mass within arm_mode_explained_sigmas
   // prior sigmas of the file's explains [Hz].
   double explained_low_hz_ = 0, explained_high_hz_ = 0;
+  double file_mode_hz_ = 0;  // of the file's m_p on the map [Hz]
   ArmModeState state_;
   int64_t previous_utime_ = -1;
   int64_t start_utime_ = -1;  // of the current airborne run of samples; -1 none
   double dt_s_ = 0;           // sample interval the filters were designed for [s]
   double previous_signal_ = 0;
-  int64_t beyond_since_ = -1;   // first utime of the current run beyond the limit; -1 none
-  int64_t within_since_ = -1;   // ... within half the limit; -1 none
-  ReadingAgreement agreement_;  // of every reading judged since start-up
+  int64_t beyond_since_ = -1;        // first utime of the current run beyond the limit; -1 none
+  int64_t within_since_ = -1;        // ... within half the limit; -1 none
+  ReadingAgreement agreement_;       // of every reading judged since start-up
+  ReadingAgreement file_agreement_;  // learning: of the readings against the file's mode
 };
 
 }  // namespace birotor

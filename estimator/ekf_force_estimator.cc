@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "estimator/body_mass_hypotheses.h"
+#include "estimator/parameter_hypotheses.h"
 #include "estimator/filter_status.h"
 #include "estimator/fusion_counters.h"
 #include "samples/rotor_count.h"
@@ -295,7 +295,7 @@ bool EkfForceEstimator::ConditionCovariance() {
 void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate,
                                      FilterStatusFacts* facts) {
   // Averaged over the body-mass hypotheses (the file's mass, a payload;
-  // body_mass_hypotheses.h): r_m, its variance while live (0 frozen: no
+  // parameter_hypotheses.h): r_m, its variance while live (0 frozen: no
   // correlation, both hypotheses give the filter's x) and P(payload).
   const double scale = state_(kBodyMassScale);
   const double scale_variance = BodyMassLive() ? covariance_(kBodyMassScale, kBodyMassScale) : 0.0;
@@ -307,12 +307,12 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     const double variance = grad(0) * grad(0) * covariance_(w, w) + 2.0 * grad(0) * grad(1) * covariance_(w, m) +
                             grad(1) * grad(1) * covariance_(m, m);
     const double covariance_with_scale = grad(0) * covariance_(w, r) + grad(1) * covariance_(m, r);
-    const BodyMassAverage force =
-        AverageOverBodyMass(process_.Force(state_, i), variance, covariance_with_scale, scale, scale_variance, payload);
+    const HypothesesAverage force =
+        AverageOverHypotheses(process_.Force(state_, i), variance, covariance_with_scale, scale, scale_variance, payload);
     estimate->force_n[i] = force.value;
     estimate->force_std_n[i] = std::sqrt(std::max(force.variance, 0.0));
     estimate->thrust_scale[i] =
-        AverageOverBodyMass(state_(m), covariance_(m, m), covariance_(m, r), scale, scale_variance, payload).value;
+        AverageOverHypotheses(state_(m), covariance_(m, m), covariance_(m, r), scale, scale_variance, payload).value;
   }
   SetFilterFacts(sample, options_.converged_force_std_n, gated, &converged_, estimate, facts);
   faults_.FillFacts(facts);

@@ -41,6 +41,7 @@ class EkfForceEstimator : public ForceEstimator {
   // The process model flies this m_p from now on (the state is kept: the
   // thrust scales take the change through the strain innovations).
   void SetTipMassKg(double tip_mass_kg) override { process_.SetTipMassKg(tip_mass_kg); }
+  bool flies_tip_mass() const override { return true; }
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
@@ -135,7 +136,7 @@ class EkfForceEstimator : public ForceEstimator {
   template <int N>
   bool ConditionCovariance();
   // The forces, their sigmas and thrust scales (averaged over the body-mass
-  // hypotheses, body_mass_hypotheses.h), and the filter facts.
+  // hypotheses, parameter_hypotheses.h), and the filter facts.
   void FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate, FilterStatusFacts* facts);
   // e_i and its sigma into the step result (the pipeline reports them).
   void FillLearnedOffsets(StrainStepInfo* info) const;
@@ -154,7 +155,7 @@ class EkfForceEstimator : public ForceEstimator {
   // back, uncorrelated.
   void FreezeSlowParameters(bool scales_frozen, bool mass_frozen);
   void FreezeSlowParameter(int p, bool frozen);
-  // P(H1 | data): the body mass is not the file's (body_mass_hypotheses.h); 0 when not learned.
+  // P(H1 | data): the body mass is not the file's (parameter_hypotheses.h); 0 when not learned.
   double PayloadProbability() const;
   // Decides whether the slow parameters learn now (see FreezeSlowParameters).
   void UpdateLearning();

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "estimator/body_mass_hypotheses.h"
 #include "estimator/ekf_force_estimator.h"
+#include "estimator/parameter_hypotheses.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -124,7 +124,7 @@ double EkfForceEstimator::PayloadProbability() const {
   if (!options_.learn_body_mass) return 0.0;
   const double std = BodyMassLive() ? std::sqrt(std::max(covariance_(kBodyMassScale, kBodyMassScale), 0.0))
                                     : learned_.std[kBodyMassScale];
-  return birotor::PayloadProbability(state_(kBodyMassScale), std, options_.body_mass_scale_prior_std,
+  return ChangedParameterProbability(state_(kBodyMassScale), std, options_.body_mass_scale_prior_std,
                                      options_.body_mass_change_probability);
 }
 
@@ -143,11 +143,11 @@ void EkfForceEstimator::FillLearnedParameters(StrainStepInfo* info) {
     info->learned_strain_scale_std[i] = learned_.published_strain_scale_std[i];
   }
   // The mass the forces use: averaged over the file's (r_m conditioned on
-  // r_m = 1: exactly 1) and the learned one (body_mass_hypotheses.h), as the
+  // r_m = 1: exactly 1) and the learned one (parameter_hypotheses.h), as the
   // forces are; learned_ keeps the filter's for a (re-)initialisation.
   const double r = learned_.value[kBodyMassScale],
                r_variance = learned_.std[kBodyMassScale] * learned_.std[kBodyMassScale];
-  const BodyMassAverage mass = AverageOverBodyMass(r, r_variance, r_variance, r, r_variance, PayloadProbability());
+  const HypothesesAverage mass = AverageOverHypotheses(r, r_variance, r_variance, r, r_variance, PayloadProbability());
   info->learned_body_mass_kg = mass.value * params_.body_mass_kg;
   info->learned_body_mass_std_kg = std::sqrt(mass.variance) * params_.body_mass_kg;
   for (int i = 0; i < kBirotorRotors; ++i) info->strain_noise_scale[i] = strain_noise_.scale(i);

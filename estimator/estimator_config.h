@@ -68,7 +68,7 @@ struct EkfOptions {
   // The body mass (a payload) as one of two hypotheses (docs/mismatch.md
   // "Learning the payload"): the file's mass, or a payload with the prior
   // sigma below; the published forces and mass are averaged over both with
-  // the posterior probability of a payload (estimator/body_mass_hypotheses.h),
+  // the posterior probability of a payload (estimator/parameter_hypotheses.h),
   // which starts at body_mass_change_probability. Live in free flight from
   // the lift-off on (no slow_learning_delay_s). Off by default: on, the
   // payloads are learned honestly (body +10 % airborne: MAE 0.127 N, 2-sigma
@@ -436,16 +436,20 @@ struct ModelConsistencyOptions {
   // Learning the tip mass (issue 36; estimator/tip_mass_learning.h,
   // docs/mismatch.md "Learning the tip mass"): the arm mode's readings give
   // m_p with a sigma (a 1-D filter on m_p / m_p_file, prior 1 +-
-  // arm_mode_unconfirmed_tip_mass_std), the EKF flies the learned m_p, each
-  // published force sigma carries its sigma (x m_p g) while airborne, and
-  // MODEL_MISMATCH is raised only for a mode no tip mass within
-  // arm_mode_explained_sigmas prior sigmas explains (a broken arm). Only
-  // while the file fixes the stiffness (not with learn_strain_scale, whose
-  // g may be a stiffness: then the test of issue 27 above). false: the
-  // file's m_p, judged against the file's mode. Off by default: on, tip mass
-  // +-10 % and -20 % meet issue 36's targets in the gentle flight, but the
-  // matching flights' MAE rises 3-6 % (docs/mismatch.md).
-  bool arm_mode_learn_tip_mass = false;
+  // arm_mode_unconfirmed_tip_mass_std); the EKF flies it averaged with the
+  // file's (next key), each airborne force sigma carries its sigma (x m_p
+  // g), and MODEL_MISMATCH is raised only for a mode no tip mass within
+  // arm_mode_explained_sigmas prior sigmas explains (a broken arm). Not with
+  // learn_strain_scale (a learned g may be a stiffness) nor for a method
+  // that does not fly m_p (ForceEstimator::flies_tip_mass): there, and with
+  // false, the file's m_p judged against the file's mode (issue 27's test).
+  bool arm_mode_learn_tip_mass = true;
+  // Prior probability that the tip mass is not the file's (H1; H0: the
+  // file's m_p exactly; estimator/parameter_hypotheses.h): learning flies
+  // the average of the file's and the learned m_p by P(H1 | readings), so a
+  // matching vehicle flies the file's (MAE as unlearned) and a tip mass 5 %
+  // off the learned one within seconds (docs/mismatch.md) [1].
+  double arm_mode_tip_mass_change_probability = 0.1;
   // Relative sigma of one independent reading (one per 2 time constants)
   // of the mode, freed of the band-pass's pull [1]. 0.015: the matching
   // files' EW readings (-1.9 % to +2.8 %) x 1 / pull; 0.008 keeps the

@@ -26,9 +26,12 @@ InputCounters& Counters(PipelineHealth* health, InputChannel channel) {
   return health->inputs[static_cast<int>(channel)];
 }
 
-// The model's mode over m_p when the arm-mode test learns the tip mass.
-ArmModeTipMassMap TipMassMapOf(const ModelConsistencyOptions& options, const BirotorParams& params) {
-  const bool learns = options.enabled && options.arm_mode_enabled && options.arm_mode_learn_tip_mass;
+// The model's mode over m_p when the arm-mode test learns the tip mass
+// (switched on, and a method that flies it).
+ArmModeTipMassMap TipMassMapOf(const ModelConsistencyOptions& options, const BirotorParams& params,
+                               const ForceEstimator& method) {
+  const bool learns =
+      options.enabled && options.arm_mode_enabled && options.arm_mode_learn_tip_mass && method.flies_tip_mass();
   return learns ? ArmModeTipMassMap::Of(params) : ArmModeTipMassMap();
 }
 
@@ -76,7 +79,7 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       rotor_speed_(model_, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
       consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad, kBirotorRotors,
-                   TipMassMapOf(config.model_consistency, model_)) {
+                   TipMassMapOf(config.model_consistency, model_, *method_)) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
   health_.body_mass_kg = config.vehicle.body_mass_kg;

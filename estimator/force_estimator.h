@@ -119,6 +119,10 @@ class ForceEstimator {
   // the method's model, no state is reset. Methods whose model has no
   // m_p ignore it. No allocation.
   virtual void SetTipMassKg(double /*tip_mass_kg*/) {}
+  // Whether SetTipMassKg moves the method's forces (its model has m_p): a
+  // learned tip mass is only learned for a method that flies it; the others
+  // keep the file's m_p and its prior in their sigma (docs/mismatch.md).
+  virtual bool flies_tip_mass() const { return false; }
   // Whether the method learns its gauges' noise (StrainStepInfo::
   // strain_noise_scale; EKF adapt_strain_noise); false: it weighs them with
   // the file's strain_noise_rad, or weighs no noise at all.

@@ -165,8 +165,8 @@ void ExpectStrainNoiseAsFlown(const Output& out, const std::vector<Snapshot>& sn
 }
 
 TEST(EstimatorLearnedMessageTest, BirotorWithoutLearningCarriesTheFileValues) {
-  const EstimatorConfig config = BirotorConfig();
-  ASSERT_FALSE(config.model_consistency.arm_mode_learn_tip_mass);  // off by default
+  EstimatorConfig config = BirotorConfig();
+  config.model_consistency.arm_mode_learn_tip_mass = false;  // on by default
   std::vector<Snapshot> snapshots;
   const Output out = FlyBirotor(config, "birotor_params", &snapshots);
   ExpectBirotorIdentity(out, config);

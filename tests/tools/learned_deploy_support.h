@@ -29,14 +29,11 @@ inline std::string ReadText(const std::string& path) {
   return text.str();
 }
 
-// The shipped config/estimator.yaml with arm_mode_learn_tip_mass on, at path
-// (BIROTOR_SOURCE_DIR: the source tree).
+// The shipped config/estimator.yaml, which learns the tip mass
+// (arm_mode_learn_tip_mass on), at path (BIROTOR_SOURCE_DIR: the source tree).
 inline void WriteLearningConfig(const std::string& path) {
-  std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
-  const std::string key = "arm_mode_learn_tip_mass: ";
-  const size_t at = text.find(key + "false");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at + key.size(), 5, "true ");
+  const std::string text = ReadText(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml");
+  ASSERT_NE(text.find("arm_mode_learn_tip_mass: true"), std::string::npos);
   std::ofstream(path) << text;
 }
 
