@@ -234,15 +234,6 @@ double ResonanceFrequencyEstimator::FrequencyHz(double excess_noise) const {
   return std::acos(cos_w) / (2.0 * M_PI * dt_s_);
 }
 
-bool ReadingAgreement::Confirms(double half_limit, double time_constant_s) const {
-  // Independent readings so far; asked from half of one on (T = tau).
-  const double independent = seconds_ / (2.0 * time_constant_s);  // [1]
-  if (count_ == 0 || !(independent >= 0.5)) return false;
-  const double mean = sum_ / static_cast<double>(count_);
-  const double variance = std::max(sum2_ / static_cast<double>(count_) - mean * mean, 0.0);
-  return std::fabs(mean) + kSigmas * std::sqrt(variance / independent) < half_limit;
-}
-
 ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const ArmModeExpectation& expected,
                                double noise_rad, const ArmModeTipMassMap& tip_mass)
     : options_(options),
@@ -272,6 +263,8 @@ ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const Arm
 
 bool ArmModeMonitor::ResumeTipMass(double tip_mass_kg, double std_kg) {
   if (!learner_.Resume(tip_mass_kg, std_kg)) return false;
+  resumed_mode_hz_ = learner_.LearnedHz();
+  resumed_agreement_ = ReadingAgreement();
   state_.tip_mass_kg = learner_.tip_mass_kg();
   state_.tip_mass_std_kg = learner_.ratio_std() * learner_.map().file_tip_mass_kg();
   state_.centre_hz = learner_.LearnedHz();  // the next run of samples starts its band-pass there
@@ -441,14 +434,31 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   }
 }
 
+void ArmModeMonitor::JudgeResumedTipMass(double corrected_hz) {
+  // As the file's m_p is confirmed (ReadingAgreement, half the limit): a
+  // tip mass swapped since the state file was written reads its mode away
+  // from the resumed one's, which the learner, sure of the resumed value,
+  // would take tens of flights to follow.
+  resumed_agreement_.Add(corrected_hz / resumed_mode_hz_ - 1.0, dt_s_);
+  const double half_limit = 0.5 * options_.arm_mode_limit;
+  if (resumed_agreement_.Confirms(half_limit, options_.arm_mode_time_constant_s)) {
+    resumed_mode_hz_ = 0;
+  } else if (resumed_agreement_.Rejects(half_limit, options_.arm_mode_time_constant_s)) {
+    learner_.Forget();
+    state_.resumed_tip_mass_rejected = true;
+    resumed_mode_hz_ = 0;
+  }
+}
+
 void ArmModeMonitor::Learn(double frequency_hz, double* relative_error, double* agreement_error) {
   const double centre_hz = estimator_.centre_hz();
+  const double corrected_hz = learner_.CorrectedHz(frequency_hz, centre_hz);
+  if (resumed_mode_hz_ > 0) JudgeResumedTipMass(corrected_hz);
   // A reading barely above the noise is pulled towards the band-pass (noise
   // alone reads it): judged, but not learned from.
   if (state_.excitation >= options_.arm_mode_learn_min_excitation) {
     learner_.AddReading(frequency_hz, centre_hz, options_.arm_mode_time_constant_s, dt_s_);
   }
-  const double corrected_hz = learner_.CorrectedHz(frequency_hz, centre_hz);
   *relative_error = corrected_hz < explained_low_hz_
                         ? corrected_hz / explained_low_hz_ - 1.0
                         : (corrected_hz > explained_high_hz_ ? corrected_hz / explained_high_hz_ - 1.0 : 0.0);

@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
+#include "estimator/reading_agreement.h"
 #include "estimator/tip_mass_learning.h"
 #include "model/birotor_params.h"
 #include "model/vehicle_description.h"
@@ -129,33 +130,6 @@ class ResonanceFrequencyEstimator {
   double s11_ = 0, s12_ = 0, s22_ = 0, s01_ = 0, s02_ = 0;
 };
 
-// Whether the arm mode's readings confirm the tip mass in use: the mean of
-// the signed readings since start-up (arm_mode_monitor.cc Judge: f over
-// the range's nearer edge - 1, 0 within it) lies within half the limit by
-// kSigmas of its standard errors. A reading is a fit with time constant
-// tau, so a new one is independent every 2 tau: after T seconds of
-// readings the mean's standard error is sd sqrt(2 tau / T), asked from
-// T = tau on. A vehicle whose readings lie near the limit (tip mass +10 %
-// reads -3.0 % with sd 0.7 %) is never confirmed, however long a stretch of
-// them lies within half the limit; a matching vehicle (means within 0.7 %,
-// sd 0.5-0.9 %) is at 1.1-2.1 s after lift-off (docs/mismatch.md).
-class ReadingAgreement {
- public:
-  static constexpr double kSigmas = 2.0;
-  void Add(double relative_error, double dt_s) {
-    sum_ += relative_error;
-    sum2_ += relative_error * relative_error;
-    seconds_ += dt_s;
-    ++count_;
-  }
-  bool Confirms(double half_limit, double time_constant_s) const;
-
- private:
-  double sum_ = 0, sum2_ = 0;  // of the readings and their squares [1]
-  double seconds_ = 0;         // of readings [s]
-  int64_t count_ = 0;
-};
-
 struct ArmModeState {
   ArmModeExpectation expected;  // of the parameter file [Hz]
   // The newest estimate; NaN when none yet (on the ground, warming up) [Hz].
@@ -203,6 +177,10 @@ struct ArmModeState {
   // Readings the learned m_p took in this run (0: still the prior's, or the
   // value resumed from the state file) [1].
   int64_t tip_mass_readings = 0;
+  // The readings' mean rejected the m_p resumed from the state file (the
+  // vehicle changed since: a propeller or motor swapped): learning restarted
+  // from the file's m_p and the prior (TipMassLearner::Forget) [bool].
+  bool resumed_tip_mass_rejected = false;
 };
 
 class ArmModeMonitor {
@@ -251,6 +229,9 @@ class ArmModeMonitor {
   void UpdateTipMass();
   // Ends the current airborne run of samples: no reading, nothing awaited.
   void ForgetRun();
+  // The readings against a resumed m_p: kept once they confirm it; learning
+  // restarts from the file's m_p once they reject it.
+  void JudgeResumedTipMass(double corrected_hz);
 
   // The mode's signal sum_i w_i b_i of a sample (the previous one for an
   // outlier or a missing reading).
@@ -282,6 +263,10 @@ class ArmModeMonitor {
   int64_t within_since_ = -1;        // ... within half the limit; -1 none
   ReadingAgreement agreement_;       // of every reading judged since start-up
   ReadingAgreement file_agreement_;  // learning: of the readings against the file's mode
+  // Learning from a resumed m_p: the readings against its mode, until they
+  // confirm or reject it (resumed_mode_hz_ 0: nothing resumed, or judged).
+  ReadingAgreement resumed_agreement_;
+  double resumed_mode_hz_ = 0;  // [Hz]
 };
 
 }  // namespace birotor

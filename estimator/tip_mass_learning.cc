@@ -96,6 +96,12 @@ void TipMassLearner::AddReading(double read_hz, double centre_hz, double tau_s, 
   ++readings_;
 }
 
+void TipMassLearner::Forget() {
+  ratio_ = 1.0;
+  variance_ = options_.prior_std * options_.prior_std;
+  readings_ = 0;
+}
+
 bool TipMassLearner::Resume(double tip_mass_kg, double std_kg) {
   const double file_kg = map_.file_tip_mass_kg();
   if (!active() || !std::isfinite(tip_mass_kg) || !(tip_mass_kg > 0) || !std::isfinite(std_kg) || !(std_kg > 0)) {

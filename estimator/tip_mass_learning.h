@@ -73,6 +73,9 @@ class TipMassLearner {
   // readings refine it. Ignored (false) without a model or for a value or
   // sigma that is not finite and positive.
   bool Resume(double tip_mass_kg, double std_kg);
+  // Back to the prior N(1, prior_std^2), no readings: what a resumed value
+  // the readings reject leaves.
+  void Forget();
   // Readings taken since construction (AddReading that updated r) [1].
   int64_t readings() const { return readings_; }
   // The reading freed of the band-pass's pull [Hz].

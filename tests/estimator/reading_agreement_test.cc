@@ -1,12 +1,12 @@
-// ReadingAgreement (estimator/arm_mode_monitor.h): the mean of the arm
+// ReadingAgreement (estimator/reading_agreement.h): the mean of the arm
 // mode's readings confirms the tip mass in use, not a stretch of readings
 // within half the limit. Readings as the modes give them at 1 kHz (figures
 // of docs/mismatch.md, "Before the test has read the mode").
+#include "estimator/reading_agreement.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "estimator/arm_mode_monitor.h"
 
 namespace birotor {
 namespace {
@@ -42,6 +42,24 @@ TEST(ReadingAgreement, AModeNearTheLimitIsNeverConfirmedByAStretchWithinHalfOfIt
   ReadingAgreement scattered_early, scattered_late;
   EXPECT_FALSE(ConfirmedWithin(0.003, 0.012, 1.9, &scattered_early));
   EXPECT_TRUE(ConfirmedWithin(0.003, 0.012, 3.0, &scattered_late));
+}
+
+TEST(ReadingAgreement, AModeFarFromTheOneInUseIsRejectedAndAMatchingOneNever) {
+  // A tip mass 10 % heavier than a resumed one: -3.3 % with sd 0.7 % is
+  // rejected once 2 standard errors fit between its mean and half the limit
+  // (se 0.65 %: T = 2 tau (0.7 / 0.65)^2 = 1.2 s), not before a time constant.
+  const auto rejected_within = [](double mean, double sd, double seconds) {
+    ReadingAgreement agreement;
+    for (int n = 0; n < static_cast<int>(seconds * 1000); ++n) {
+      agreement.Add(mean + sd * std::sqrt(2.0) * std::sin(2 * M_PI * 0.7 * n * kDt), kDt);
+      if (agreement.Rejects(0.020, 0.5)) return true;
+    }
+    return false;
+  };
+  EXPECT_FALSE(rejected_within(-0.033, 0.0, 0.49));
+  EXPECT_TRUE(rejected_within(-0.033, 0.007, 2.0));
+  EXPECT_FALSE(rejected_within(0.003, 0.007, 20.0));   // matching
+  EXPECT_FALSE(rejected_within(-0.018, 0.007, 20.0));  // within half the limit: neither rejected nor confirmed
 }
 
 }  // namespace
