@@ -43,12 +43,6 @@ ArmValues HoverTipMassSensitivity(const VehicleDescription& vehicle) {
   return sensitivity;
 }
 
-// Arm mode `index` (by frequency) of a described vehicle [Hz]; 0 when it has none.
-double ArmModeHz(const VehicleDescription& vehicle, int index) {
-  const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
-  return index < static_cast<int>(modes.size()) ? modes[static_cast<size_t>(index)].frequency_hz : 0.0;
-}
-
 // The weights of the gauge readings that hold one mode (its row of
 // ModalGaugeWeights), signed so that the largest is +1, each over its
 // gauge's scale: the reading is s_i b_i + o_i, the offset band-passed away.
@@ -78,6 +72,11 @@ void WidenForGaugeScales(const VehicleDescription& vehicle, int index, ArmModeEx
 }
 
 }  // namespace
+
+double ArmModeHz(const VehicleDescription& vehicle, int index) {
+  const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
+  return index >= 0 && index < static_cast<int>(modes.size()) ? modes[static_cast<size_t>(index)].frequency_hz : 0.0;
+}
 
 double SymmetricArmModeHz(const BirotorParams& params) {
   const std::vector<Mode> modes = OscillatoryModes(LinearizeAtHover(params).a);
@@ -111,6 +110,7 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
   if (!ArmModeStandsAlone(modes, pick, kNeighbourBand, kAloneVarianceRatio)) return ArmModeExpectation();
   ArmModeExpectation e = ArmModeExpectation::At(modes[static_cast<size_t>(pick)].frequency_hz);
   e.arms = arms;
+  e.mode_index = pick;
   e.weights = ReadingWeights(vehicle, weights.row(pick));
   e.tip_weight_n = 0;
   for (int i = 0; i < arms; ++i)
@@ -383,13 +383,26 @@ void ArmModeMonitor::UpdateTipMass() {
   const HypothesesAverage ratio =
       AverageOverHypotheses(r, r_variance, r_variance, r, r_variance, state_.tip_mass_change_probability);
   const double shrunk = ratio.value - r;  // the average's distance from the learned value [1]
-  const double ratio_std = std::sqrt(state_.file_tip_mass_agreed ? ratio.variance : r_variance + shrunk * shrunk);
-  state_.tip_mass_kg = ratio.value * learner_.map().file_tip_mass_kg();
-  state_.tip_mass_std_kg = ratio_std * learner_.map().file_tip_mass_kg();
-  // Airborne (a run of samples): the average's sigma in every force sigma,
-  // the prior's until a reading comes, and for good on a flight whose mode
-  // is too quiet to read.
-  state_.force_tip_mass_std = start_utime_ >= 0 ? ratio_std : 0.0;
+  // Confirmed and all but certain: the file's m_p alone, as without
+  // learning once the readings confirm it (the average's residual sigma
+  // would widen a matching vehicle's forces: the trirotor's rotor 1 carries
+  // 4.48 N per unit r).
+  const bool file_accepted = state_.file_tip_mass_agreed &&
+                             state_.tip_mass_change_probability < options_.arm_mode_tip_mass_file_accepted_below;
+  const double value = file_accepted ? 1.0 : ratio.value;
+  const double force_std =
+      file_accepted ? 0.0 : std::sqrt(state_.file_tip_mass_agreed ? ratio.variance : r_variance + shrunk * shrunk);
+  // What is published and persisted with the file's m_p accepted: how far
+  // the readings allow it to be off, sqrt(s^2 + (r - 1)^2).
+  const double value_std = file_accepted ? std::hypot(r_std, r - 1.0) : force_std;
+  state_.tip_mass_ratio = value;
+  state_.tip_mass_ratio_std = value_std;
+  state_.tip_mass_kg = value * learner_.map().file_tip_mass_kg();
+  state_.tip_mass_std_kg = value_std * learner_.map().file_tip_mass_kg();
+  // Airborne (a run of samples): that sigma in every force sigma, the
+  // prior's until a reading comes, and for good on a flight whose mode is
+  // too quiet to read; none once the file's m_p is accepted.
+  state_.force_tip_mass_std = start_utime_ >= 0 ? force_std : 0.0;
 }
 
 void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
@@ -434,12 +447,16 @@ void ArmModeMonitor::Judge(int64_t utime, double frequency_hz) {
   }
 }
 
+double ArmModeMonitor::PulledError(double corrected_hz, double mode_hz) const {
+  return learner_.options().band_pull * (corrected_hz / mode_hz - 1.0);
+}
+
 void ArmModeMonitor::JudgeResumedTipMass(double corrected_hz) {
   // As the file's m_p is confirmed (ReadingAgreement, half the limit): a
   // tip mass swapped since the state file was written reads its mode away
   // from the resumed one's, which the learner, sure of the resumed value,
   // would take tens of flights to follow.
-  resumed_agreement_.Add(corrected_hz / resumed_mode_hz_ - 1.0, dt_s_);
+  resumed_agreement_.Add(PulledError(corrected_hz, resumed_mode_hz_), dt_s_);
   const double half_limit = 0.5 * options_.arm_mode_limit;
   if (resumed_agreement_.Confirms(half_limit, options_.arm_mode_time_constant_s)) {
     resumed_mode_hz_ = 0;
@@ -467,7 +484,7 @@ void ArmModeMonitor::Learn(double frequency_hz, double* relative_error, double* 
   // Whether the readings confirm the file's m_p as well (H0 may then take
   // over the learned one: UpdateTipMass).
   if (!state_.file_tip_mass_agreed) {
-    file_agreement_.Add(corrected_hz / file_mode_hz_ - 1.0, dt_s_);
+    file_agreement_.Add(PulledError(corrected_hz, file_mode_hz_), dt_s_);
     state_.file_tip_mass_agreed =
         file_agreement_.Confirms(0.5 * options_.arm_mode_limit, options_.arm_mode_time_constant_s);
   }

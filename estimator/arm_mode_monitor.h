@@ -28,6 +28,9 @@ namespace birotor {
 // the hover linearisation of params (model/linearization.h, the figure
 // birotor-analyze prints): the lower of the two oscillatory modes [Hz].
 double SymmetricArmModeHz(const BirotorParams& params);
+// Arm mode `index` (by frequency, MultiArmModeShapes) of a described
+// vehicle's hover linearisation [Hz]; 0 when it has none.
+double ArmModeHz(const VehicleDescription& vehicle, int index);
 
 // What the file lets the symmetric mode be [Hz]. A gauge scale s_i in the
 // file is ambiguous for the arm's dynamics: a gauge that really reads s_i
@@ -51,6 +54,9 @@ struct ArmModeExpectation {
   // scale) [1/rad of reading].
   int arms = kBirotorRotors;
   ArmValues weights = {1.0, -1.0, 0.0, 0.0, 0.0, 0.0};
+  // A described vehicle's mode read (its index in ArmModeHz); -1 the
+  // birotor's symmetric mode (SymmetricArmModeHz) or no test [1].
+  int mode_index = -1;
   // Per rotor, what a tip-mass error of 100 % (every arm's m_p,i scaled
   // together) puts into its force at hover: d f_i / d r of the hover
   // thrusts (SolveMultiArmHover), which is the error the filter makes on a
@@ -160,8 +166,10 @@ struct ArmModeState {
   // arm_mode_explained_sigmas prior sigmas explains. false: the file's
   // m_p, judged against the file's mode (the test of issue 27).
   bool learning = false;
-  double tip_mass_kg = 0;      // the m_p in use: the file's, or learned (averaged with the file's) [kg]
-  double tip_mass_std_kg = 0;  // its one sigma (the prior's before a reading) [kg]
+  double tip_mass_kg = 0;         // the m_p in use: the file's, or learned (averaged with the file's) [kg]
+  double tip_mass_ratio = 1;      // that m_p over the file's (every arm's, for N arms) [1]
+  double tip_mass_ratio_std = 0;  // its one sigma [1]
+  double tip_mass_std_kg = 0;     // its one sigma (the prior's before a reading) [kg]
   // Learning: the readings' mean confirms the file's m_p (ReadingAgreement
   // against the file's mode, whatever the learned m_p; kept for good) [bool].
   bool file_tip_mass_agreed = false;
@@ -232,6 +240,10 @@ class ArmModeMonitor {
   // The readings against a resumed m_p: kept once they confirm it; learning
   // restarts from the file's m_p once they reject it.
   void JudgeResumedTipMass(double corrected_hz);
+  // A reading freed of the band-pass's pull as the error a band-pass
+  // centred on mode_hz reads it with: p (f_c / mode - 1), what the test
+  // without learning holds against the limit [1].
+  double PulledError(double corrected_hz, double mode_hz) const;
 
   // The mode's signal sum_i w_i b_i of a sample (the previous one for an
   // outlier or a missing reading).

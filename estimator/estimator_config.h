@@ -450,6 +450,9 @@ struct ModelConsistencyOptions {
   // matching vehicle flies the file's (MAE as unlearned) and a tip mass 5 %
   // off the learned one within seconds (docs/mismatch.md) [1].
   double arm_mode_tip_mass_change_probability = 0.1;
+  // Once the readings confirm the file's mode, P(H1) below this flies the
+  // file's m_p with no tip-mass sigma, as without learning [1].
+  double arm_mode_tip_mass_file_accepted_below = 0.1;
   // Relative sigma of one independent reading (one per 2 time constants)
   // of the mode, freed of the band-pass's pull [1]. 0.015: the matching
   // files' EW readings (-1.9 % to +2.8 %) x 1 / pull; 0.008 keeps the

@@ -68,6 +68,12 @@ class MultiArmForceEstimator {
   // The ground holds the body now (its contact model; false for a method
   // without a ground phase): the arms' modes are not the free vehicle's.
   virtual bool body_supported() const { return false; }
+  // Every arm's tip mass from now on r times the description's (learned
+  // from the arm mode, estimator/tip_mass_learning.h): an online
+  // re-parameterisation of the model, no state reset, no allocation.
+  // Methods whose model has no m_p ignore it (flies_tip_mass false).
+  virtual void SetTipMassScale(double /*ratio*/) {}
+  virtual bool flies_tip_mass() const { return false; }
 };
 
 // The filter for N arms. MOTOR and IMU samples wait in a queue until the next
@@ -109,6 +115,8 @@ class MultiArmEkf : public MultiArmForceEstimator {
   double strain_noise_scale(int gauge) const override { return strain_noise_.scale(gauge); }
   bool learns_strain_noise() const override { return strain_noise_.enabled(); }
   bool body_supported() const override { return contact_.supported(); }
+  void SetTipMassScale(double ratio) override { model_.SetTipMassScale(ratio); }
+  bool flies_tip_mass() const override { return true; }
 
   bool initialized() const { return initialized_; }
   const State& state() const { return state_; }

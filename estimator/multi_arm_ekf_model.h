@@ -168,7 +168,16 @@ class MultiArmEkfModel {
   using DynamicMatrix = Eigen::Matrix<double, kD, kD>;
   using Input = MultiArmEkfInput<N>;
 
-  explicit MultiArmEkfModel(const VehicleDescription& vehicle) : vehicle_(vehicle), directions_(vehicle) {}
+  explicit MultiArmEkfModel(const VehicleDescription& vehicle)
+      : vehicle_(vehicle), file_vehicle_(vehicle), directions_(vehicle) {}
+
+  // Every arm's m_p,i = ratio m_p,i of the description (a learned tip mass).
+  void SetTipMassScale(double ratio) {
+    for (int i = 0; i < N; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      vehicle_.arms[k].tip_mass_kg = ratio * file_vehicle_.arms[k].tip_mass_kg;
+    }
+  }
 
   const VehicleDescription& vehicle() const { return vehicle_; }
   // f_i = mu_i c_T,i omega_i^2 [N].
@@ -292,7 +301,8 @@ class MultiArmEkfModel {
   Coordinates SupportedAcceleration(const State& x) const;
   DynamicMatrix SupportedJacobian(const State& x, const Input& u, State* x_dot) const;
 
-  VehicleDescription vehicle_;
+  VehicleDescription vehicle_;        // as flown (a learned tip mass)
+  VehicleDescription file_vehicle_;   // as described
   LevelArmDirections<N> directions_;  // r_i, n_i at phi = 0
 };
 

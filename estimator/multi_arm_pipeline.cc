@@ -30,6 +30,16 @@ HarmonicNotchOptions MultiArmNotchOptions(const HarmonicNotchOptions& options) {
   return narrow;
 }
 
+// The arm mode over every arm's tip mass when it is learned: switched on, a
+// method that flies m_p (the EKF), and a mode the test reads.
+ArmModeTipMassMap TipMassMapOf(const EstimatorConfig& config, const MultiArmForceEstimator& filter,
+                               const ArmModeExpectation& arm_mode) {
+  const ModelConsistencyOptions& options = config.model_consistency;
+  const bool learns = options.enabled && options.arm_mode_enabled && options.arm_mode_learn_tip_mass &&
+                      filter.flies_tip_mass() && arm_mode.file_hz > 0;
+  return learns ? ArmModeTipMassMap::Of(config.vehicle, arm_mode.mode_index) : ArmModeTipMassMap();
+}
+
 // The monitor's options for N arms: the arm-mode test's own excitation bar.
 ModelConsistencyOptions MultiArmConsistencyOptions(const ModelConsistencyOptions& options) {
   ModelConsistencyOptions n_arms = options;
@@ -42,10 +52,10 @@ ModelConsistencyOptions MultiArmConsistencyOptions(const ModelConsistencyOptions
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
     : config_(config),
       filter_(MakeMultiArmForceEstimator(config)),
-      // The arm-mode test on the vehicle's most readable arm mode (no tip-mass learning for N arms).
+      // The arm-mode test on the vehicle's most readable arm mode, learning every arm's tip mass from it.
       arm_mode_(ExpectedArmMode(config.vehicle)),
       consistency_(MultiArmConsistencyOptions(config.model_consistency), arm_mode_, config.ekf.strain_noise_rad,
-                   config.vehicle.arm_count),
+                   config.vehicle.arm_count, TipMassMapOf(config, *filter_, arm_mode_)),
       admission_(config.pipeline),
       notch_on_(config.harmonic_notch.enabled && config.harmonic_notch.multi_arm_enabled),
       rotor_speed_(config.vehicle, config.pipeline.motor_timeout_s),
@@ -155,6 +165,7 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   FillInputFacts(sample.utime, stale, &input);
   const ConsistencyStatusFacts consistency = JudgeConsistency(deflection, *estimate);  // MODEL_MISMATCH withdraws VALID
   if (consistency.tip_mass_unconfirmed) WidenForUnconfirmedTipMass(estimate);
+  HandOverTipMass();
   const MultiArmStatusBits bits = ComposeMultiArmForceStatus(filter_->facts(), input, consistency,
                                                              TransportStatusFacts(), config_.vehicle.arm_count);
   health_.last_filter_facts = filter_->facts();
@@ -201,6 +212,13 @@ ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmStrainSa
   const ConsistencyStatusFacts facts = consistency_.Judge(estimate.utime, estimate.thrust_scale.data());
   health_.consistency = consistency_.state();
   return facts;
+}
+
+void MultiArmPipeline::HandOverTipMass() {
+  const ArmModeState& arm_mode = health_.consistency.arm_mode;
+  if (!arm_mode.learning || arm_mode.tip_mass_ratio == tip_mass_ratio_in_filter_) return;
+  filter_->SetTipMassScale(arm_mode.tip_mass_ratio);
+  tip_mass_ratio_in_filter_ = arm_mode.tip_mass_ratio;
 }
 
 bool MultiArmPipeline::CheckStrainTiming(int64_t utime, int64_t previous_utime, bool backwards_jump) {

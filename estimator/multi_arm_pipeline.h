@@ -106,11 +106,15 @@ class MultiArmPipeline {
   // The deflections as the filter gets them: rotor harmonics notched (when on).
   MultiArmStrainSample Condition(const MultiArmStrainSample& sample, int64_t previous_utime, bool backwards_jump);
   void ReplaceNonFinite(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate);
-  // Until the arm mode confirms the file's tip mass, each published sigma
-  // carries what the tip mass's sigma puts into that rotor's force:
-  // hypot(sigma_i, s rotor_tip_weight_n_i), s the monitor's relative sigma
-  // (arm_mode_unconfirmed_tip_mass_std), as the birotor's PublishedForceStd.
+  // Until the arm mode confirms the file's tip mass, or while it is
+  // learned, each published sigma carries what the tip mass's sigma puts
+  // into that rotor's force: hypot(sigma_i, s rotor_tip_weight_n_i), s the
+  // monitor's relative sigma (arm_mode_unconfirmed_tip_mass_std, or the
+  // learned one), as the birotor's PublishedForceStd.
   void WidenForUnconfirmedTipMass(MultiArmForceEstimate* estimate) const;
+  // The filter flies the m_p the arm-mode test learned (every arm's r times
+  // the description's), from the next strain sample on.
+  void HandOverTipMass();
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
   // The method's fusion reports of this strain sample into the monitor and
   // the per-input counters, the sample as the filter got it into the
@@ -134,6 +138,7 @@ class MultiArmPipeline {
   int64_t first_motor_utime_ = -1;
   bool has_finite_estimate_ = false;
   MultiArmForceEstimate last_finite_estimate_;
+  double tip_mass_ratio_in_filter_ = 1.0;  // the r last handed to the filter [1]
 };
 
 }  // namespace birotor

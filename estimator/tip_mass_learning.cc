@@ -30,6 +30,25 @@ ArmModeTipMassMap ArmModeTipMassMap::Of(const BirotorParams& params) {
   return map;
 }
 
+ArmModeTipMassMap ArmModeTipMassMap::Of(const VehicleDescription& vehicle, int mode_index) {
+  ArmModeTipMassMap map;
+  if (vehicle.arm_count < 1 || mode_index < 0) return map;
+  VehicleDescription v = vehicle;
+  double mean_kg = 0;
+  for (int i = 0; i < vehicle.arm_count; ++i) mean_kg += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg;
+  for (int j = 0; j < kPoints; ++j) {
+    for (int i = 0; i < vehicle.arm_count; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      v.arms[k].tip_mass_kg = RatioOf(j) * vehicle.arms[k].tip_mass_kg;
+    }
+    const double hz = ArmModeHz(v, mode_index);
+    if (!(hz > 0)) return ArmModeTipMassMap();
+    map.log_hz_[j] = std::log(hz);
+  }
+  map.tip_mass_kg_ = mean_kg / vehicle.arm_count;
+  return map;
+}
+
 int ArmModeTipMassMap::Segment(double ratio) const {
   const int j = static_cast<int>(std::floor((ratio - kLowestRatio) / kRatioStep));
   return std::clamp(j, 0, kPoints - 2);

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "model/birotor_params.h"
+#include "model/vehicle_description.h"
 
 namespace birotor {
 
@@ -23,6 +24,10 @@ class ArmModeTipMassMap {
   // Empty: no model (the arm-mode test off, or a vehicle without a mode).
   ArmModeTipMassMap() = default;
   static ArmModeTipMassMap Of(const BirotorParams& params);
+  // A described vehicle's arm mode `mode_index` (ArmModeHz) over every
+  // arm's m_p,i = r m_p,i_file together; file_tip_mass_kg() is then the
+  // arms' mean m_p (start-up: one hover linearisation per point).
+  static ArmModeTipMassMap Of(const VehicleDescription& vehicle, int mode_index);
 
   bool empty() const { return !(tip_mass_kg_ > 0); }
   double file_tip_mass_kg() const { return tip_mass_kg_; }

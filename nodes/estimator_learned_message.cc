@@ -74,16 +74,18 @@ void FillEstimatorLearned(const MultiArmPipelineHealth& health, const EstimatorC
   message->utime = status.utime;
   message->seq = status.seq;
   const VehicleDescription& vehicle = config.vehicle;
+  // The arm-mode test learns one r for every arm: m_p,i = r m_p,i of the file.
+  const ArmModeState& arm_mode = health.consistency.arm_mode;
   for (int arm = 0; arm < message->n_arms; ++arm) {
     const size_t i = static_cast<size_t>(arm);
     message->strain_scale[i] = vehicle.arms[i].has_gauge ? 1.0 : kNaN;
     message->strain_scale_std[i] = kNaN;
-    message->tip_mass_kg[i] = vehicle.arms[i].tip_mass_kg;
-    message->tip_mass_std_kg[i] = kNaN;
+    message->tip_mass_kg[i] = (arm_mode.learning ? arm_mode.tip_mass_ratio : 1.0) * vehicle.arms[i].tip_mass_kg;
+    message->tip_mass_std_kg[i] = arm_mode.learning ? arm_mode.tip_mass_ratio_std * vehicle.arms[i].tip_mass_kg : kNaN;
     message->strain_noise_rad[i] = StrainNoiseRad(vehicle, config.ekf, arm, health.strain_noise_scale[i]);
   }
   message->strain_scale_source = kLearnedSourceParams;
-  message->tip_mass_source = kLearnedSourceParams;
+  message->tip_mass_source = arm_mode.learning ? kLearnedSourceLearned : kLearnedSourceParams;
   message->strain_noise_source = LearnedOrParams(health.strain_noise_learned);
   message->body_mass_kg = vehicle.body_mass_kg;
   message->body_mass_std_kg = kNaN;

@@ -207,6 +207,7 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Real("arm_mode_unconfirmed_tip_mass_std", &O::arm_mode_unconfirmed_tip_mass_std, 0.0, 1.0),
       Flag("arm_mode_learn_tip_mass", &O::arm_mode_learn_tip_mass),
       Real("arm_mode_tip_mass_change_probability", &O::arm_mode_tip_mass_change_probability, 1e-6, 1.0),
+      Real("arm_mode_tip_mass_file_accepted_below", &O::arm_mode_tip_mass_file_accepted_below, 0.0, 1.0),
       Real("arm_mode_reading_std", &O::arm_mode_reading_std, 1e-4, 1.0),
       Real("arm_mode_band_pull", &O::arm_mode_band_pull, 0.1, 1.0),
       Real("arm_mode_explained_sigmas", &O::arm_mode_explained_sigmas, 0.5, 10.0),
