@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "estimator/parameter_hypotheses.h"
 #include "estimator/filter_status.h"
 #include "estimator/fusion_counters.h"
+#include "estimator/parameter_hypotheses.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -307,8 +307,8 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
     const double variance = grad(0) * grad(0) * covariance_(w, w) + 2.0 * grad(0) * grad(1) * covariance_(w, m) +
                             grad(1) * grad(1) * covariance_(m, m);
     const double covariance_with_scale = grad(0) * covariance_(w, r) + grad(1) * covariance_(m, r);
-    const HypothesesAverage force =
-        AverageOverHypotheses(process_.Force(state_, i), variance, covariance_with_scale, scale, scale_variance, payload);
+    const HypothesesAverage force = AverageOverHypotheses(process_.Force(state_, i), variance, covariance_with_scale,
+                                                          scale, scale_variance, payload);
     estimate->force_n[i] = force.value;
     estimate->force_std_n[i] = std::sqrt(std::max(force.variance, 0.0));
     estimate->thrust_scale[i] =
