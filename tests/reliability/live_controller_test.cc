@@ -22,6 +22,7 @@
 #include "params/estimator_config_yaml.h"
 #include "params/scenario_yaml.h"
 #include "tests/reliability/live_harness.h"
+#include "tests/reliability/machine_stall_watch.h"
 #include "transport/message_conversion.h"
 
 namespace birotor::reliability {
@@ -246,40 +247,68 @@ double LockStepRms(const std::string& scenario_name, const std::vector<std::stri
 // The vehicle is kept: four times the largest error measured live (0.023 m,
 // force feedback on aggressive), far below a lost flight (metres) [m].
 constexpr double kKeptErrorM = 0.1;
+// On a machine that stalled through every attempt (machine_stall_watch.h):
+// not lost. Measured on the development VM through 100 ms host stalls:
+// 0.29 m on aggressive (the ESCs spooled down in the stall) [m].
+constexpr double kNotLostErrorM = 1.0;
+
+struct SetpointFlight {
+  int64_t truths = 0;  // TRUTH samples compared with the setpoint
+  int64_t setpoints = 0;
+  double live_rms_m = 0.0, max_error_m = 0.0;
+  bool controller_alive = false;
+  int controller_exit = -1, estimator_exit = -1;
+};
+
+// One live flight of scenario name; a fatal failure ends it early.
+void FlyOneSetpointFlight(const std::string& mode, const std::string& name, int port, int duration_s,
+                          const std::string& prefix, SetpointFlight* flight) {
+  const std::string url = PrivateUrl(port);
+  SetpointFlightListener listener(url, prefix);
+  ASSERT_TRUE(listener.good());
+  ChildProcess estimator, controller, sim;
+  ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("setpoint_test_estimator_" + mode + ".log")));
+  ASSERT_TRUE(controller.Start({BIROTOR_CONTROLLER_BIN, "--lcm-url", url, "--prefix", prefix, "--mode", mode,
+                                "--log-level", "warn", "--realtime-priority", kControllerPriority},
+                               TempPath("setpoint_test_controller_" + mode + ".log")));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let them subscribe
+  ASSERT_TRUE(sim.Start(
+      {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml",
+       "--lcm-url", url, "--prefix", prefix, "--set", "scenario.duration_s=" + std::to_string(duration_s),
+       "--external-controller", "--publish-setpoints", "--log-level", "warn", "--realtime-priority", kSimPriority},
+      TempPath("setpoint_test_sim_" + mode + ".log")));
+  ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 60.0)) << "the simulator did not finish";
+  flight->live_rms_m = listener.RmsPositionErrorM(&flight->truths);
+  flight->max_error_m = listener.MaxPositionErrorM();
+  flight->setpoints = listener.setpoints();
+  flight->controller_alive = controller.Alive();
+  flight->controller_exit = controller.Stop();
+  flight->estimator_exit = estimator.Stop();
+}
 
 void FlySetpointsLive(const std::string& mode, int port, int duration_s) {
   for (const std::string name : {"gentle", "aggressive"}) {
-    const std::string url = PrivateUrl(port);
-    const std::string prefix = UniquePrefix("CTL_SP_" + name + "_");
-    const std::vector<std::string> overrides = {"scenario.duration_s=" + std::to_string(duration_s)};
-    SetpointFlightListener listener(url, prefix);
-    ASSERT_TRUE(listener.good());
-    ChildProcess estimator, controller, sim;
-    ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("setpoint_test_estimator_" + mode + ".log")));
-    ASSERT_TRUE(controller.Start({BIROTOR_CONTROLLER_BIN, "--lcm-url", url, "--prefix", prefix, "--mode", mode,
-                                  "--log-level", "warn", "--realtime-priority", kControllerPriority},
-                                 TempPath("setpoint_test_controller_" + mode + ".log")));
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let them subscribe
-    ASSERT_TRUE(sim.Start(
-        {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/" + name + ".yaml",
-         "--lcm-url", url, "--prefix", prefix, "--set", overrides[0], "--external-controller", "--publish-setpoints",
-         "--log-level", "warn", "--realtime-priority", kSimPriority},
-        TempPath("setpoint_test_sim_" + mode + ".log")));
-    ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 60.0)) << "the simulator did not finish";
-    int64_t count = 0;
-    const double live_rms = listener.RmsPositionErrorM(&count);
-    const double lock_step_rms = LockStepRms(name, overrides, mode);
-    const double max_error_m = listener.MaxPositionErrorM();
-    std::printf(
-        "%s %s: live RMS %.4f m (max %.4f m) over %lld TRUTH samples (%lld setpoints), lock-step %.4f m (ratio "
-        "%.3f)\n",
-        mode.c_str(), name.c_str(), live_rms, max_error_m, static_cast<long long>(count),
-        static_cast<long long>(listener.setpoints()), lock_step_rms, live_rms / lock_step_rms);
-    EXPECT_GT(count, 500 * duration_s);  // 1000 a second sent; a loaded machine drops some
-    EXPECT_LT(max_error_m, kKeptErrorM) << mode << " " << name;
-    EXPECT_TRUE(controller.Alive());
-    EXPECT_EQ(controller.Stop(), 0);
-    EXPECT_EQ(estimator.Stop(), 0);
+    const double lock_step_rms = LockStepRms(name, {"scenario.duration_s=" + std::to_string(duration_s)}, mode);
+    for (int attempt = 1;; ++attempt) {
+      MachineStallWatch watch;
+      SetpointFlight f;
+      FlyOneSetpointFlight(mode, name, port, duration_s, UniquePrefix("CTL_SP_" + name + std::to_string(attempt) + "_"),
+                           &f);
+      if (::testing::Test::HasFatalFailure()) return;
+      watch.Stop();
+      std::printf(
+          "%s %s: live RMS %.4f m (max %.4f m) over %lld TRUTH samples (%lld setpoints), lock-step %.4f m (ratio "
+          "%.3f); %s\n",
+          mode.c_str(), name.c_str(), f.live_rms_m, f.max_error_m, static_cast<long long>(f.truths),
+          static_cast<long long>(f.setpoints), lock_step_rms, f.live_rms_m / lock_step_rms, watch.Summary().c_str());
+      if (!watch.kept_real_time() && attempt < kLiveFlightAttempts) continue;  // fly again
+      EXPECT_GT(f.truths, 500 * duration_s);  // 1000 a second sent; a loaded machine drops some
+      EXPECT_LT(f.max_error_m, watch.kept_real_time() ? kKeptErrorM : kNotLostErrorM) << mode << " " << name;
+      EXPECT_TRUE(f.controller_alive);
+      EXPECT_EQ(f.controller_exit, 0);
+      EXPECT_EQ(f.estimator_exit, 0);
+      break;
+    }
   }
 }
 
