@@ -17,36 +17,42 @@ double RatioOf(int j) { return ArmModeTipMassMap::kLowestRatio + j * kRatioStep;
 
 }  // namespace
 
-ArmModeTipMassMap ArmModeTipMassMap::Of(const BirotorParams& params) {
+ArmModeTipMassMap ArmModeTipMassMap::Tabulate(const std::function<double(double)>& mode_hz_at,
+                                              double file_tip_mass_kg) {
   ArmModeTipMassMap map;
-  BirotorParams p = params;
   for (int j = 0; j < kPoints; ++j) {
-    p.tip_mass_kg = RatioOf(j) * params.tip_mass_kg;
-    const double hz = SymmetricArmModeHz(p);
+    const double hz = mode_hz_at(RatioOf(j));
     if (!(hz > 0)) return ArmModeTipMassMap();  // no mode somewhere in the range: no map
     map.log_hz_[j] = std::log(hz);
   }
-  map.tip_mass_kg_ = params.tip_mass_kg;
+  map.tip_mass_kg_ = file_tip_mass_kg;
   return map;
 }
 
+ArmModeTipMassMap ArmModeTipMassMap::Of(const BirotorParams& params) {
+  BirotorParams p = params;
+  return Tabulate(
+      [&](double ratio) {
+        p.tip_mass_kg = ratio * params.tip_mass_kg;
+        return SymmetricArmModeHz(p);
+      },
+      params.tip_mass_kg);
+}
+
 ArmModeTipMassMap ArmModeTipMassMap::Of(const VehicleDescription& vehicle, int mode_index) {
-  ArmModeTipMassMap map;
-  if (vehicle.arm_count < 1 || mode_index < 0) return map;
+  if (vehicle.arm_count < 1 || mode_index < 0) return ArmModeTipMassMap();
   VehicleDescription v = vehicle;
   double mean_kg = 0;
   for (int i = 0; i < vehicle.arm_count; ++i) mean_kg += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg;
-  for (int j = 0; j < kPoints; ++j) {
-    for (int i = 0; i < vehicle.arm_count; ++i) {
-      const size_t k = static_cast<size_t>(i);
-      v.arms[k].tip_mass_kg = RatioOf(j) * vehicle.arms[k].tip_mass_kg;
-    }
-    const double hz = ArmModeHz(v, mode_index);
-    if (!(hz > 0)) return ArmModeTipMassMap();
-    map.log_hz_[j] = std::log(hz);
-  }
-  map.tip_mass_kg_ = mean_kg / vehicle.arm_count;
-  return map;
+  return Tabulate(
+      [&](double ratio) {
+        for (int i = 0; i < vehicle.arm_count; ++i) {
+          const size_t k = static_cast<size_t>(i);
+          v.arms[k].tip_mass_kg = ratio * vehicle.arms[k].tip_mass_kg;
+        }
+        return ArmModeHz(v, mode_index);
+      },
+      mean_kg / vehicle.arm_count);
 }
 
 int ArmModeTipMassMap::Segment(double ratio) const {
@@ -92,8 +98,9 @@ double TipMassForArmModeHz(const BirotorParams& params, double hz, double low_kg
   return 0.5 * (low_kg + high_kg);
 }
 
-TipMassLearner::TipMassLearner(const Options& options, const ArmModeTipMassMap& map)
-    : options_(options), map_(map), ratio_(1.0), variance_(options.prior_std * options.prior_std) {}
+TipMassLearner::TipMassLearner(const Options& options, const ArmModeTipMassMap& map) : options_(options), map_(map) {
+  Forget();
+}
 
 double TipMassLearner::ratio_std() const { return std::sqrt(variance_); }
 
@@ -115,7 +122,7 @@ void TipMassLearner::AddReading(double read_hz, double centre_hz, double tau_s, 
   ++readings_;
 }
 
-void TipMassLearner::Forget() {
+void TipMassLearner::Forget() {  // the prior: the file's m_p, prior_std
   ratio_ = 1.0;
   variance_ = options_.prior_std * options_.prior_std;
   readings_ = 0;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "model/birotor_params.h"
 #include "model/vehicle_description.h"
@@ -40,6 +41,9 @@ class ArmModeTipMassMap {
   double RatioAt(double hz) const;
 
  private:
+  // The table of ln mode_hz_at(r_j), the file's m_p file_tip_mass_kg; empty
+  // when some r_j has no mode (mode_hz_at not > 0).
+  static ArmModeTipMassMap Tabulate(const std::function<double(double)>& mode_hz_at, double file_tip_mass_kg);
   int Segment(double ratio) const;
   double tip_mass_kg_ = 0;       // the file's m_p [kg]
   double log_hz_[kPoints] = {};  // ln f at r_j = kLowestRatio + j (kHighestRatio - kLowestRatio) / (kPoints - 1)
