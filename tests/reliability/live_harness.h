@@ -391,6 +391,14 @@ inline std::vector<std::string> DaemonCommand(const std::string& url, const std:
   return {BIROTOR_ESTIMATOR_BIN, "--lcm-url",       url, "--prefix", prefix, "--status-rate-hz", "20",
           "--realtime-priority", kEstimatorPriority};
 }
+#ifdef BIROTOR_CONTROLLER_BIN
+// birotor-controller --mode mode (force_feedback or mpc), warnings only.
+inline std::vector<std::string> ControllerCommand(const std::string& url, const std::string& prefix,
+                                                  const std::string& mode) {
+  return {BIROTOR_CONTROLLER_BIN, "--lcm-url",        url, "--prefix", prefix, "--mode", mode, "--log-level", "warn",
+          "--realtime-priority",  kControllerPriority};
+}
+#endif
 inline std::vector<std::string> SimCommand(const std::string& url, const std::string& prefix, double duration_s) {
   return {BIROTOR_SIM_BIN, "--scenario", std::string(BIROTOR_SOURCE_DIR) + "/config/scenarios/hover.yaml",
           "--lcm-url",     url,          "--prefix",

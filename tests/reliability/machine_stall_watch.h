@@ -12,6 +12,7 @@
 // flight by its strict bounds only when the machine kept real time through it.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <pthread.h>
 #include <sched.h>
 
@@ -89,5 +90,25 @@ class MachineStallWatch {
   std::atomic<double> stalled_s_{0.0};
   std::thread thread_;  // last: starts after the state it writes
 };
+
+// Flies fly(attempt, &flight) while the machine stalls through it, at most
+// kLiveFlightAttempts times; print(flight, watch) after each; then
+// judge(flight, strict) on the last, strict when the machine kept real time
+// through it (else its not-lost bounds). A fatal failure in fly ends it.
+template <class Flight, class Fly, class Print, class Judge>
+void FlyJudgedOnRealTime(const Fly& fly, const Print& print, const Judge& judge) {
+  for (int attempt = 1;; ++attempt) {
+    MachineStallWatch watch;
+    Flight flight;
+    fly(attempt, &flight);
+    if (::testing::Test::HasFatalFailure()) return;
+    watch.Stop();
+    print(flight, watch);
+    if (watch.kept_real_time() || attempt == kLiveFlightAttempts) {
+      judge(flight, watch.kept_real_time());
+      return;
+    }
+  }
+}
 
 }  // namespace birotor::reliability
