@@ -1,13 +1,12 @@
 #include "nodes/gauge_state_file.h"
 
-#include <sodium.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
 
+#include "nodes/state_file_common.h"
 #include "params/birotor_params_yaml.h"
 #include "params/regular_file.h"
 #include "program/logging.h"
@@ -16,23 +15,13 @@
 namespace birotor {
 namespace {
 
-constexpr const char* kHeader = "# birotor-estimator gauge offset state\n";
-// A state file is about 250 bytes; anything larger is not one.
-constexpr size_t kMaxStateFileBytes = 4096;
+constexpr const char* kHeader = kBirotorStateHeader;
 
-struct StdRange {
-  double min;
-  double max;
-};
+using StdRange = StateValueRange;
 
 // The allowed one-sigma of an offset: the range of the vehicle key
 // gauge_offset_std_rad (one table, params/birotor_params_yaml.cc).
-StdRange OffsetStdRange() {
-  for (const VehicleKey& key : VehicleKeys()) {
-    if (std::string(key.name) == "gauge_offset_std_rad") return {key.min, key.max};
-  }
-  return {0.0, 0.0};  // not reached: the key is in the table
-}
+StdRange OffsetStdRange() { return VehicleKeyRange("gauge_offset_std_rad"); }
 
 // Two finite numbers from "a b"; false otherwise.
 bool ParsePair(const std::string& text, double out[2]) {
@@ -71,12 +60,7 @@ bool ReadStrainScale(const std::string& path, std::map<std::string, std::string>
 // The learned tip mass (optional lines, issue 36): the range of the vehicle
 // key tip_mass_kg, and a sigma between "known" and a kilogram (the reference
 // prior is 0.043 kg).
-StdRange TipMassRange() {
-  for (const VehicleKey& key : VehicleKeys()) {
-    if (std::string(key.name) == "tip_mass_kg") return {key.min, key.max};
-  }
-  return {0.0, 0.0};  // not reached: the key is in the table
-}
+StdRange TipMassRange() { return VehicleKeyRange("tip_mass_kg"); }
 constexpr StdRange kTipMassStdRange = {1e-6, 1.0};
 
 // A finite number from "a"; false otherwise.
@@ -111,47 +95,6 @@ bool ReadTipMass(const std::string& path, std::map<std::string, std::string>& fi
     *error = path + ": " + problem + ": refused";
     return false;
   }
-  return true;
-}
-
-constexpr const char* kMacKey = "mac: ";
-constexpr size_t kMacKeyLength = 5;
-
-// The mac line of text: HMAC under the site key, counter 0, of all of text.
-std::string MacLine(const std::string& text, const MessageAuthenticator& authenticator) {
-  const MessageAuthenticator::Tag tag =
-      authenticator.Sign(0, reinterpret_cast<const uint8_t*>(text.data()), text.size());
-  char hex[2 * MessageAuthenticator::kTagBytes + 1];
-  sodium_bin2hex(hex, sizeof(hex), tag.data(), tag.size());
-  return std::string(kMacKey) + hex + "\n";
-}
-
-// Where the last line starts if it is a mac line, npos otherwise.
-size_t MacLineStart(const std::string& text) {
-  const size_t at = text.rfind(kMacKey);
-  if (at == std::string::npos || at == 0 || text[at - 1] != '\n') return std::string::npos;
-  return text.find('\n', at) >= text.size() - 1 ? at : std::string::npos;
-}
-
-// Checks the mac line of text and strips it; false with *error otherwise.
-bool VerifyMac(const std::string& path, const MessageAuthenticator& authenticator, std::string* text,
-               std::string* error) {
-  const size_t at = MacLineStart(*text);
-  if (at == std::string::npos) {
-    *error = path + ": not authenticated (no mac line; written without the site key or forged)";
-    return false;
-  }
-  std::string hex = text->substr(at + kMacKeyLength);
-  while (!hex.empty() && (hex.back() == '\n' || hex.back() == '\r')) hex.pop_back();
-  MessageAuthenticator::Tag tag;
-  size_t decoded = 0;
-  if (sodium_hex2bin(tag.data(), tag.size(), hex.c_str(), hex.size(), nullptr, &decoded, nullptr) != 0 ||
-      decoded != tag.size() || hex.size() != 2 * tag.size() ||
-      !authenticator.Verify(0, reinterpret_cast<const uint8_t*>(text->data()), at, tag)) {
-    *error = path + ": not authenticated (mac does not verify under the site key: forged, altered or another key)";
-    return false;
-  }
-  text->resize(at);
   return true;
 }
 
@@ -211,17 +154,14 @@ bool WriteGaugeState(const std::string& path, const GaugeCalibration& calibratio
 bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
                     GaugeCalibration* calibration, std::string* error) {
   std::string text;
-  if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &text, error)) return false;
-  const size_t mac_at = MacLineStart(text);
-  if (mac_at != std::string::npos) text.resize(mac_at);
+  if (!ReadStateFileText(path, nullptr, &text, error)) return false;
   return ParseStateText(path, text, vehicle_checksum, max_offset_rad, calibration, error);
 }
 
 bool ReadGaugeState(const std::string& path, const std::string& vehicle_checksum, double max_offset_rad,
                     const MessageAuthenticator& authenticator, GaugeCalibration* calibration, std::string* error) {
   std::string text;
-  if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &text, error)) return false;
-  if (!VerifyMac(path, authenticator, &text, error)) return false;
+  if (!ReadStateFileText(path, &authenticator, &text, error)) return false;
   return ParseStateText(path, text, vehicle_checksum, max_offset_rad, calibration, error);
 }
 
@@ -229,32 +169,8 @@ namespace {
 
 bool WriteStateText(const std::string& path, const GaugeCalibration& calibration, const std::string& vehicle_checksum,
                     const MessageAuthenticator* authenticator, std::string* error) {
-  // Only a state file is replaced: an existing path that is a link, a FIFO,
-  // a device or another file (the parameter file given as state_file) is
-  // left alone, refused here whatever happened at start-up.
   FileAttributes attributes;
-  std::string kind;
-  switch (InspectPath(path, &attributes, &kind)) {
-    case PathKind::kOther:
-      *error = path + ": exists and is " + kind + ", not a gauge state file: not overwritten";
-      return false;
-    case PathKind::kRegular: {
-      std::string old_text;
-      if (!ReadRegularFile(path, kMaxStateFileBytes, LinkPolicy::kRefuse, &old_text, error)) {
-        *error += ": not a gauge state file, not overwritten";
-        return false;
-      }
-      if (old_text.compare(0, std::char_traits<char>::length(kHeader), kHeader) != 0) {
-        *error = path + ": exists and is not a gauge state file (no '" +
-                 std::string(kHeader, std::char_traits<char>::length(kHeader) - 1) + "' line): not overwritten";
-        return false;
-      }
-      break;
-    }
-    case PathKind::kAbsent:
-      attributes = FileAttributes();  // 0644, the daemon's user
-      break;
-  }
+  if (!ReplaceableStateFile(path, kHeader, &attributes, error)) return false;
   GaugeCalibration written = calibration;
   const StdRange std_range = OffsetStdRange();
   for (int i = 0; i < 2; ++i) {
@@ -284,32 +200,14 @@ bool WriteStateText(const std::string& path, const GaugeCalibration& calibration
   }
   written.tip_mass_std_kg = std::min(std::max(calibration.tip_mass_std_kg, kTipMassStdRange.min), kTipMassStdRange.max);
   std::string text = GaugeStateText(written, vehicle_checksum);
-  if (authenticator != nullptr) text += MacLine(text, *authenticator);
+  if (authenticator != nullptr) text += StateFileMacLine(text, *authenticator);
   return ReplaceRegularFile(path, text, attributes, error);
 }
 
 bool ParseStateText(const std::string& path, const std::string& text, const std::string& vehicle_checksum,
                     double max_offset_rad, GaugeCalibration* calibration, std::string* error) {
-  const size_t checksum_at = text.rfind("checksum: ");
-  if (checksum_at == std::string::npos || checksum_at == 0 || text[checksum_at - 1] != '\n' ||
-      text.compare(0, std::char_traits<char>::length(kHeader), kHeader) != 0) {
-    *error = path + ": corrupt (not a gauge state file)";
-    return false;
-  }
-  const std::string body = text.substr(0, checksum_at);
-  std::string stated = text.substr(checksum_at + 10);
-  while (!stated.empty() && (stated.back() == '\n' || stated.back() == '\r')) stated.pop_back();
-  if (stated != TextChecksum(body)) {
-    *error = path + ": corrupt (checksum mismatch)";
-    return false;
-  }
   std::map<std::string, std::string> fields;
-  std::istringstream lines(body);
-  for (std::string line; std::getline(lines, line);) {
-    const size_t colon = line.find(": ");
-    if (line.empty() || line[0] == '#' || colon == std::string::npos) continue;
-    fields[line.substr(0, colon)] = line.substr(colon + 2);
-  }
+  if (!ChecksummedStateFields(path, text, kHeader, &fields, error)) return false;
   if (fields["vehicle_checksum"] != vehicle_checksum) {
     *error = path + ": written for another vehicle or parameter file (vehicle checksum " + fields["vehicle_checksum"] +
              ", expected " + vehicle_checksum + ")";
