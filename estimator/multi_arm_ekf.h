@@ -74,6 +74,16 @@ class MultiArmForceEstimator {
   // Methods whose model has no m_p ignore it (flies_tip_mass false).
   virtual void SetTipMassScale(double /*ratio*/) {}
   virtual bool flies_tip_mass() const { return false; }
+  // Each gauge offset is known to one sigma offset_std_rad[i] (in
+  // deflection: the raw sigma over s_i; one per arm) from the next
+  // (re-)initialisation on, in place of the description's
+  // gauge_offset_std_rad (the offsets of the gauge state file). Methods
+  // without offset states ignore it.
+  virtual void SetGaugeOffsetPrior(const double* /*offset_std_rad*/) {}
+  // The offset e_i the method has learned on top of the calibration it
+  // reads gauge i with, and its one sigma [rad, in deflection]; false when
+  // it has none (no offset states, not initialised, an arm without a gauge).
+  virtual bool LearnedGaugeOffset(int /*arm*/, double* /*offset_rad*/, double* /*std_rad*/) const { return false; }
 };
 
 // The filter for N arms. MOTOR and IMU samples wait in a queue until the next
@@ -117,6 +127,8 @@ class MultiArmEkf : public MultiArmForceEstimator {
   bool body_supported() const override { return contact_.supported(); }
   void SetTipMassScale(double ratio) override { model_.SetTipMassScale(ratio); }
   bool flies_tip_mass() const override { return true; }
+  void SetGaugeOffsetPrior(const double* offset_std_rad) override;
+  bool LearnedGaugeOffset(int arm, double* offset_rad, double* std_rad) const override;
 
   bool initialized() const { return initialized_; }
   const State& state() const { return state_; }

@@ -86,6 +86,23 @@ void MultiArmEkf<N>::Reset() {
 }
 
 template <int N>
+void MultiArmEkf<N>::SetGaugeOffsetPrior(const double* offset_std_rad) {
+  for (int i = 0; i < N; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    if (offset_prior_std_[k] > 0) offset_prior_std_[k] = offset_std_rad[i];  // only where offsets are states
+  }
+}
+
+template <int N>
+bool MultiArmEkf<N>::LearnedGaugeOffset(int arm, double* offset_rad, double* std_rad) const {
+  if (!initialized_ || arm < 0 || arm >= N || !(offset_prior_std_[static_cast<size_t>(arm)] > 0)) return false;
+  const int e = Layout::GaugeOffset(arm);
+  *offset_rad = state_(e);
+  *std_rad = std::sqrt(std::max(covariance_(e, e), 0.0));
+  return true;
+}
+
+template <int N>
 void MultiArmEkf<N>::AddMotor(const MultiArmMotorSample& sample) {
   MultiArmMotorSample dropped;
   motor_queue_.push(sample, &dropped);

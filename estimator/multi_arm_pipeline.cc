@@ -67,6 +67,58 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
   }
   health_.accelerometer.gate = filter_->Gate(FusionSource::kAccelerometer);
   health_.strain_noise_learned = filter_->learns_strain_noise();
+  calibration_.arm_count = config.vehicle.arm_count;
+  for (int i = 0; i < config.vehicle.arm_count; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    calibration_.offset_rad[k] = config.vehicle.arms[k].gauge_offset_rad;
+    calibration_.offset_std_rad[k] = config.vehicle.gauge_offset_std_rad;
+  }
+}
+
+void MultiArmPipeline::ResumeGaugeState(const MultiArmGaugeState& state) {
+  if (state.arm_count != config_.vehicle.arm_count) return;
+  double prior_std_rad[kMaxSampleArms] = {};  // in deflection: o_i / s_i
+  for (int i = 0; i < state.arm_count; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    calibration_.offset_rad[k] = state.offset_rad[k];
+    calibration_.offset_std_rad[k] = state.offset_std_rad[k];
+    prior_std_rad[k] = state.offset_std_rad[k] / config_.vehicle.arms[k].gauge_scale;
+  }
+  calibration_.source = state.source;
+  health_.gauge_offset_source = state.source;
+  offsets_resumed_ = true;
+  filter_->SetGaugeOffsetPrior(prior_std_rad);
+  if (state.has_tip_mass) ResumeTipMass(state.tip_mass_ratio, state.tip_mass_ratio_std);
+}
+
+MultiArmGaugeState MultiArmPipeline::GaugeState() const {
+  MultiArmGaugeState state = calibration_;
+  for (int i = 0; i < state.arm_count; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    double learned_rad = 0, learned_std_rad = 0;  // e_i and its sigma, in deflection
+    if (!filter_->LearnedGaugeOffset(i, &learned_rad, &learned_std_rad)) continue;
+    const double scale = config_.vehicle.arms[k].gauge_scale;
+    state.offset_rad[k] = calibration_.offset_rad[k] + scale * learned_rad;
+    state.offset_std_rad[k] = scale * learned_std_rad;
+  }
+  state.has_tip_mass = health_.tip_mass_learned;
+  state.tip_mass_ratio = health_.tip_mass_ratio;
+  state.tip_mass_ratio_std = health_.tip_mass_ratio_std;
+  return state;
+}
+
+void MultiArmPipeline::ResumeTipMass(double ratio, double ratio_std) {
+  // The arm-mode test learns the map's m_p, the arms' mean m_p,i; with its
+  // learning off (or no mode to learn from) the description's m_p,i are flown.
+  const double mean_kg = ArmModeTipMassMap::MeanTipMassKg(config_.vehicle);
+  if (!consistency_.ResumeTipMass(ratio * mean_kg, ratio_std * mean_kg)) return;
+  const ArmModeState& arm_mode = consistency_.state().arm_mode;
+  health_.tip_mass_learned = true;
+  health_.tip_mass_from_state_file = true;
+  health_.tip_mass_ratio = arm_mode.tip_mass_kg / mean_kg;
+  health_.tip_mass_ratio_std = arm_mode.tip_mass_std_kg / mean_kg;
+  filter_->SetTipMassScale(health_.tip_mass_ratio);  // flown from the first sample (a reset keeps it)
+  tip_mass_ratio_in_filter_ = health_.tip_mass_ratio;
 }
 
 bool MultiArmPipeline::Admit(InputChannel channel, int64_t utime, int32_t seq, Admission* admission) {
@@ -183,6 +235,12 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
 MultiArmStrainSample MultiArmPipeline::Condition(const MultiArmStrainSample& sample, int64_t previous_utime,
                                                  bool backwards_jump) {
   MultiArmStrainSample deflection = sample;
+  for (int i = 0; i < config_.vehicle.arm_count && offsets_resumed_; ++i) {
+    // The method reads gauge i with the description's o_i: the reading it
+    // gets is moved by that minus the offset in use (a NaN stays NaN).
+    const size_t k = static_cast<size_t>(i);
+    deflection.deflection_rad[k] += config_.vehicle.arms[k].gauge_offset_rad - calibration_.offset_rad[k];
+  }
   if (!notch_on_) return deflection;
   rotor_speed_.Advance(sample.utime);
   std::array<double, kMaxArms> omega_rad_s{};
@@ -216,7 +274,12 @@ ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmStrainSa
 
 void MultiArmPipeline::HandOverTipMass() {
   const ArmModeState& arm_mode = health_.consistency.arm_mode;
-  if (!arm_mode.learning || arm_mode.tip_mass_ratio == tip_mass_ratio_in_filter_) return;
+  if (!arm_mode.learning) return;
+  if (arm_mode.tip_mass_readings > 0) health_.tip_mass_from_state_file = false;  // refined in this run
+  health_.tip_mass_learned = true;
+  health_.tip_mass_ratio = arm_mode.tip_mass_ratio;
+  health_.tip_mass_ratio_std = arm_mode.tip_mass_ratio_std;
+  if (arm_mode.tip_mass_ratio == tip_mass_ratio_in_filter_) return;
   filter_->SetTipMassScale(arm_mode.tip_mass_ratio);
   tip_mass_ratio_in_filter_ = arm_mode.tip_mass_ratio;
 }

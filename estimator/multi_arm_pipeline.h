@@ -20,9 +20,11 @@
 // The arm-mode test (ArmModeMonitor on the description's most readable arm
 // mode) flags a tip-mass error as the birotor's does, and until it confirms
 // the file's tip mass each published sigma carries the tip mass's prior.
-// What the birotor's EstimatorPipeline has and this one has not yet: the
-// ground tare and learning the tip mass (docs/estimator.md, "The EKF for N
-// arms").
+// The learned tip mass and the gauge offsets persist across a restart as
+// the birotor's do (GaugeState at a stop, ResumeGaugeState at the start:
+// the gauge state file of nodes/vehicle_state_file.h). What the birotor's
+// EstimatorPipeline has and this one has not yet: the ground tare
+// (docs/estimator.md, "The EKF for N arms").
 // No LCM, no logging, no allocation per sample.
 #pragma once
 
@@ -37,6 +39,7 @@
 #include "estimator/input_admission.h"
 #include "estimator/model_consistency.h"
 #include "estimator/multi_arm_ekf.h"
+#include "estimator/multi_arm_gauge_state.h"
 #include "estimator/multi_arm_linear_speed.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
@@ -68,6 +71,20 @@ struct MultiArmPipelineHealth {
   // (MultiArmForceEstimator::strain_noise_scale; 1 when it learns none) [1].
   ArmValues strain_noise_scale = UnitThrustScales();
   bool strain_noise_learned = false;  // the method learns it (MultiArmForceEstimator::learns_strain_noise)
+  // Where the gauge offsets the strain is read with come from: the
+  // description's, or the state file's (ResumeGaugeState).
+  GaugeOffsetSource gauge_offset_source = GaugeOffsetSource::kParameters;
+  // The tip masses the method flies, r times each arm's m_p,i of the
+  // description (model_consistency arm_mode_learn_tip_mass): r = 1 until
+  // the arm-mode test learns it (tip_mass_learned, with its one sigma: the
+  // prior's until a reading); kept while learning pauses. Resumed from the
+  // state file (learning on): the persisted r and sigma from the first
+  // sample, tip_mass_from_state_file until the arm-mode test takes its
+  // first reading in this run (as the birotor's PipelineHealth).
+  bool tip_mass_learned = false;
+  double tip_mass_ratio = 1.0;      // r [1]
+  double tip_mass_ratio_std = 0.0;  // its one sigma, when learned [1]
+  bool tip_mass_from_state_file = false;
 };
 
 class MultiArmPipeline {
@@ -95,6 +112,18 @@ class MultiArmPipeline {
   const EstimatorConfig& config() const { return config_; }
   void TakePeriod();  // clears the per-period fields after a status message
 
+  // Starts from an earlier run's state (the gauge state file; before the
+  // first sample): each gauge is read with the persisted offset o_i, the
+  // method's offset prior is its sigma, and with tip-mass learning on the
+  // persisted r flies from the first sample with its sigma, learning
+  // resuming from it (a value the readings reject is learned afresh,
+  // ArmModeMonitor). An arm count other than the description's is ignored.
+  void ResumeGaugeState(const MultiArmGaugeState& state);
+  // What a stop persists: each offset as known now (the one in use plus
+  // what the method learned on top, s_i e_i, with its sigma s_i std(e_i)),
+  // and the learned r with its sigma when the tip mass is learned.
+  MultiArmGaugeState GaugeState() const;
+
  private:
   bool Admit(InputChannel channel, int64_t utime, int32_t seq, Admission* admission);
   bool ValidStrain(const MultiArmStrainSample& sample) const;
@@ -115,6 +144,9 @@ class MultiArmPipeline {
   // The filter flies the m_p the arm-mode test learned (every arm's r times
   // the description's), from the next strain sample on.
   void HandOverTipMass();
+  // An earlier run's r and sigma into the arm-mode test's learning and the
+  // method, when this run learns the tip mass.
+  void ResumeTipMass(double ratio, double ratio_std);
   void FillInputFacts(int64_t utime, bool stale, InputStatusFacts* facts);
   // The method's fusion reports of this strain sample into the monitor and
   // the per-input counters, the sample as the filter got it into the
@@ -139,6 +171,10 @@ class MultiArmPipeline {
   bool has_finite_estimate_ = false;
   MultiArmForceEstimate last_finite_estimate_;
   double tip_mass_ratio_in_filter_ = 1.0;  // the r last handed to the filter [1]
+  // The offsets each gauge is read with: the description's, or the state
+  // file's (ResumeGaugeState), with their sigma and source.
+  MultiArmGaugeState calibration_;
+  bool offsets_resumed_ = false;  // the raw readings are moved onto the description's offsets
 };
 
 }  // namespace birotor

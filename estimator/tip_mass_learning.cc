@@ -42,8 +42,6 @@ ArmModeTipMassMap ArmModeTipMassMap::Of(const BirotorParams& params) {
 ArmModeTipMassMap ArmModeTipMassMap::Of(const VehicleDescription& vehicle, int mode_index) {
   if (vehicle.arm_count < 1 || mode_index < 0) return ArmModeTipMassMap();
   VehicleDescription v = vehicle;
-  double mean_kg = 0;
-  for (int i = 0; i < vehicle.arm_count; ++i) mean_kg += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg;
   return Tabulate(
       [&](double ratio) {
         for (int i = 0; i < vehicle.arm_count; ++i) {
@@ -52,7 +50,14 @@ ArmModeTipMassMap ArmModeTipMassMap::Of(const VehicleDescription& vehicle, int m
         }
         return ArmModeHz(v, mode_index);
       },
-      mean_kg / vehicle.arm_count);
+      MeanTipMassKg(vehicle));
+}
+
+double ArmModeTipMassMap::MeanTipMassKg(const VehicleDescription& vehicle) {
+  if (vehicle.arm_count < 1) return 0.0;
+  double sum_kg = 0;
+  for (int i = 0; i < vehicle.arm_count; ++i) sum_kg += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg;
+  return sum_kg / vehicle.arm_count;
 }
 
 int ArmModeTipMassMap::Segment(double ratio) const {

@@ -29,6 +29,9 @@ class ArmModeTipMassMap {
   // arm's m_p,i = r m_p,i_file together; file_tip_mass_kg() is then the
   // arms' mean m_p (start-up: one hover linearisation per point).
   static ArmModeTipMassMap Of(const VehicleDescription& vehicle, int mode_index);
+  // The arms' mean m_p,i of a description: file_tip_mass_kg() of its map,
+  // the kg the learner's r is taken of [kg].
+  static double MeanTipMassKg(const VehicleDescription& vehicle);
 
   bool empty() const { return !(tip_mass_kg_ > 0); }
   double file_tip_mass_kg() const { return tip_mass_kg_; }

@@ -17,9 +17,9 @@ const char* LearnedOrParams(bool learned) { return learned ? kLearnedSourceLearn
 
 // params (the file's m_p), state_file (an earlier run's, no reading yet in
 // this one) or learned (refined by this run's readings).
-const char* TipMassSource(const PipelineHealth& health) {
-  if (!health.tip_mass_learned) return kLearnedSourceParams;
-  return health.tip_mass_from_state_file ? kLearnedSourceStateFile : kLearnedSourceLearned;
+const char* TipMassSource(bool learned, bool from_state_file) {
+  if (!learned) return kLearnedSourceParams;
+  return from_state_file ? kLearnedSourceStateFile : kLearnedSourceLearned;
 }
 
 // Gauge i's noise as the method weighs it, sqrt(R_i) = sqrt(scale_i)
@@ -62,7 +62,7 @@ void FillEstimatorLearned(const PipelineHealth& health, const EstimatorConfig& c
     message->strain_noise_rad[i] = StrainNoiseRad(config.vehicle, config.ekf, arm, health.strain_noise_scale[arm]);
   }
   message->strain_scale_source = StrainScaleSource(health);
-  message->tip_mass_source = TipMassSource(health);
+  message->tip_mass_source = TipMassSource(health.tip_mass_learned, health.tip_mass_from_state_file);
   message->strain_noise_source = LearnedOrParams(health.strain_noise_learned);
   message->body_mass_kg = health.body_mass_kg;
   message->body_mass_std_kg = health.body_mass_learned ? health.body_mass_std_kg : kNaN;
@@ -75,17 +75,17 @@ void FillEstimatorLearned(const MultiArmPipelineHealth& health, const EstimatorC
   message->seq = status.seq;
   const VehicleDescription& vehicle = config.vehicle;
   // The arm-mode test learns one r for every arm: m_p,i = r m_p,i of the file.
-  const ArmModeState& arm_mode = health.consistency.arm_mode;
+  const bool learned = health.tip_mass_learned;
   for (int arm = 0; arm < message->n_arms; ++arm) {
     const size_t i = static_cast<size_t>(arm);
     message->strain_scale[i] = vehicle.arms[i].has_gauge ? 1.0 : kNaN;
     message->strain_scale_std[i] = kNaN;
-    message->tip_mass_kg[i] = (arm_mode.learning ? arm_mode.tip_mass_ratio : 1.0) * vehicle.arms[i].tip_mass_kg;
-    message->tip_mass_std_kg[i] = arm_mode.learning ? arm_mode.tip_mass_ratio_std * vehicle.arms[i].tip_mass_kg : kNaN;
+    message->tip_mass_kg[i] = (learned ? health.tip_mass_ratio : 1.0) * vehicle.arms[i].tip_mass_kg;
+    message->tip_mass_std_kg[i] = learned ? health.tip_mass_ratio_std * vehicle.arms[i].tip_mass_kg : kNaN;
     message->strain_noise_rad[i] = StrainNoiseRad(vehicle, config.ekf, arm, health.strain_noise_scale[i]);
   }
   message->strain_scale_source = kLearnedSourceParams;
-  message->tip_mass_source = arm_mode.learning ? kLearnedSourceLearned : kLearnedSourceParams;
+  message->tip_mass_source = TipMassSource(learned, health.tip_mass_from_state_file);
   message->strain_noise_source = LearnedOrParams(health.strain_noise_learned);
   message->body_mass_kg = vehicle.body_mass_kg;
   message->body_mass_std_kg = kNaN;

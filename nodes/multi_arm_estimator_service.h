@@ -61,6 +61,10 @@ class MultiArmEstimatorService : public PacketHandler {
 
   const MultiArmPipelineHealth& health() const { return pipeline_.health(); }
   const VehicleDescription& vehicle() const { return pipeline_.vehicle(); }
+  // The gauge state file: restored before the first packet, written at a
+  // clean stop (nodes/multi_arm_state_persistence.h).
+  void ResumeGaugeState(const MultiArmGaugeState& state) { pipeline_.ResumeGaugeState(state); }
+  MultiArmGaugeState GaugeState() const { return pipeline_.GaugeState(); }
   int64_t forces_published() const { return forces_published_; }
   int32_t status_published() const { return status_seq_; }
   const ArmCountRefusals& arm_count_refusals() const { return arm_count_refusals_; }

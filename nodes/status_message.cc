@@ -179,7 +179,7 @@ void BuildMultiArmStatusMessage(const MultiArmPipelineHealth& health, const char
     message->gauge_offset_rad[rotor] = message->gauge_offset_std_rad[rotor] = kNaN;
     message->strain_scale[rotor] = message->strain_scale_std[rotor] = kNaN;
   }
-  message->gauge_offset_source = "params";
+  message->gauge_offset_source = GaugeOffsetSourceName(health.gauge_offset_source);
   message->last_tare_refusal = "";
   message->model_consistency_statistic = health.consistency.ReportedStatistic();
   message->mismatch_parameter = MismatchParameterName(health.consistency.parameter);

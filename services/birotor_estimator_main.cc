@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -25,6 +24,7 @@
 #include "security/replay_guard.h"
 #include "services/birotor_estimator_vehicle.h"
 #include "services/estimator_serve_loop.h"
+#include "services/state_file_access.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
 #include "sources/authenticating_handler.h"
@@ -86,19 +86,6 @@ std::string LoadConfig(const DaemonOptions& options, EstimatorConfig* config) {
   return "";
 }
 
-// The authenticator of the gauge state file, or null after one warning when
-// a state file is configured and no key was read (POSE and FORCE both let
-// through unsigned): the state file is then neither restored nor written (an
-// unauthenticated file could be forged).
-const MessageAuthenticator* StateFileAuthenticator(const ChannelSecurity& security, const std::string& state_file) {
-  if (state_file.empty()) return nullptr;
-  if (!security.authenticator) {
-    spdlog::warn("gauge state file {} is not authenticated ({}): neither restored nor written this run", state_file,
-                 security.key_problem);
-  }
-  return security.authenticator.get();
-}
-
 // Whether the state file's learned tip mass is flown (tip-mass learning on:
 // learning resumes from it) or not (the file's m_p).
 void LogResumedTipMass(const GaugeCalibration& persisted, const PipelineHealth& health, const std::string& file) {
@@ -133,23 +120,6 @@ void RestoreGaugeOffsets(const EstimatorConfig& config, const std::string& vehic
   } else {
     spdlog::warn("gauge state file refused: {}; gauge offsets from the parameter file", error);
   }
-}
-
-// The state file the offsets are written to at a clean stop: the configured
-// one if its folder is writable, else "" after one warning at start. Under
-// systemd the folder is the unit's StateDirectory (/var/lib/birotor, made for
-// its DynamicUser); a daemon started by hand has none, and runs without
-// persisting instead of failing at its stop (issue 39).
-std::string WritableStateFile(const std::string& state_file) {
-  if (state_file.empty()) return "";
-  const std::string folder = std::filesystem::path(state_file).parent_path().string();
-  if (access(folder.empty() ? "." : folder.c_str(), W_OK) == 0) return state_file;
-  spdlog::warn(
-      "gauge offsets will not be persisted: {} is missing or not writable by this user (the systemd unit's "
-      "StateDirectory= provides it; started by hand, create it or give --params a file with another "
-      "tare.state_file)",
-      folder.empty() ? "." : folder);
-  return "";
 }
 
 // What runs: version, method, parameter file and its stamp, channels, the

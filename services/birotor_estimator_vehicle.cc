@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nodes/multi_arm_estimator_service.h"
+#include "nodes/multi_arm_state_persistence.h"
 #include "params/vehicle_description_yaml.h"
 #include "program/logging.h"
 #include "program/program_options.h"
@@ -14,6 +15,7 @@
 #include "program/shutdown.h"
 #include "security/replay_guard.h"
 #include "services/estimator_serve_loop.h"
+#include "services/state_file_access.h"
 #include "sinks/message_sink.h"
 #include "sinks/signing_sink.h"
 #include "sources/message_source.h"
@@ -45,6 +47,11 @@ int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig 
   }
   InstallShutdownHandlers();
   LogRealtimeOutcome(realtime);
+  // The gauge state file (tare.state_file), as the birotor daemon's: read
+  // before the first packet, written at a clean stop, under the site key.
+  const MessageAuthenticator* authenticator = StateFileAuthenticator(security, config.tare.state_file);
+  if (authenticator != nullptr) RestoreVehicleGaugeState(config.tare.state_file, config, *authenticator, service.get());
+  const std::string state_file = authenticator ? WritableStateFile(config.tare.state_file) : "";
   std::unique_ptr<MessageSource> source = OpenLiveSource(options.lcm_url, lcm.get(), &error);
   const std::vector<std::string> inputs = {channels.strain_n, channels.motor_n, channels.imu};
   if (!source || !source->Subscribe(inputs, service.get(), &error)) return ReportError(error);
@@ -61,6 +68,9 @@ int RunVehicleEstimator(const VehicleEstimatorOptions& options, EstimatorConfig 
   spdlog::info("stopped: {} FORCE_N published; strain received {} decode errors {} out of order {}; resets {}",
                service->forces_published(), strain.received, strain.decode_errors, strain.out_of_order,
                service->health().resets);
+  if (!state_file.empty() && !PersistVehicleGaugeState(state_file, *service, *authenticator, &error)) {
+    return ReportError("gauge state: " + error);
+  }
   return 0;
 }
 
