@@ -17,21 +17,10 @@
 #include <sstream>
 #include <vector>
 
+#include "tests/nodes/state_file_test_files.h"
+
 namespace birotor {
 namespace {
-
-std::string TempStatePath(const std::string& name) {
-  return ::testing::TempDir() + "/" + name + "_" + std::to_string(getpid()) + ".state";
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
-void Spit(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 GaugeCalibration Learned() {
   GaugeCalibration c;

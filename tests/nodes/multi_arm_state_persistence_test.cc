@@ -28,25 +28,13 @@
 #include "security/site_key.h"
 #include "simulator/multi_arm_simulator.h"
 #include "sinks/wire_sample_sink.h"
+#include "tests/nodes/state_file_test_files.h"
 #include "transport/lcm_codec.h"
 
 namespace birotor {
 namespace {
 
 std::string SourceFile(const std::string& relative) { return std::string(BIROTOR_SOURCE_DIR) + "/" + relative; }
-
-MessageAuthenticator SiteKeyOf(uint8_t fill) {
-  SiteKey::Bytes bytes;
-  bytes.fill(fill);
-  return MessageAuthenticator{SiteKey(bytes)};
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
 
 // Every ESTIMATOR_LEARNED_N's tip-mass source and ESTIMATOR_STATUS's offset source.
 class Collector : public MessageSink {
@@ -74,7 +62,7 @@ class Collector : public MessageSink {
 struct Daemon {
   EstimatorConfig config;
   std::string path;
-  MessageAuthenticator key = SiteKeyOf(0x5a);
+  MessageAuthenticator key = SiteKeyOfByte(0x5a);
 };
 
 Daemon TrirotorDaemon(const std::string& name) {

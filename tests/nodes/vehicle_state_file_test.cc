@@ -20,6 +20,7 @@
 #include "params/vehicle_description_yaml.h"
 #include "program/logging.h"
 #include "security/site_key.h"
+#include "tests/nodes/state_file_test_files.h"
 
 namespace birotor {
 namespace {
@@ -29,25 +30,6 @@ constexpr double kMaxOffsetRad = 5e-4;  // tare.max_offset_rad of config/estimat
 VehicleDescription Trirotor() {
   return LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/trirotor.yaml");
 }
-
-MessageAuthenticator Key(uint8_t fill) {
-  SiteKey::Bytes bytes;
-  bytes.fill(fill);
-  return MessageAuthenticator{SiteKey(bytes)};
-}
-
-std::string TempStatePath(const std::string& name) {
-  return ::testing::TempDir() + "/" + name + "_" + std::to_string(getpid()) + ".state";
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
-void Spit(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 // What a trirotor daemon persists after a flight that learned r = 1.1.
 MultiArmGaugeState Learned() {
@@ -69,7 +51,7 @@ void SpitSigned(const std::string& path, const std::string& text, const MessageA
 
 TEST(VehicleStateFileTest, RoundTripKeepsEveryBit) {
   const std::string path = TempStatePath("vehicle_round_trip");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string vehicle = VehicleStateChecksum(Trirotor());
   std::string error;
   ASSERT_TRUE(WriteVehicleGaugeState(path, Learned(), vehicle, key, &error)) << error;
@@ -103,7 +85,7 @@ TEST(VehicleStateFileTest, RoundTripKeepsEveryBit) {
 
 TEST(VehicleStateFileTest, ACorruptFileIsRefused) {
   const std::string path = TempStatePath("vehicle_corrupt");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string vehicle = VehicleStateChecksum(Trirotor());
   std::string text = VehicleStateText(Learned(), vehicle);
   text[text.find("arm_count: 3") - 2] ^= 1;  // a digit of the vehicle checksum line's end
@@ -126,7 +108,7 @@ TEST(VehicleStateFileTest, ACorruptFileIsRefused) {
 
 TEST(VehicleStateFileTest, AnotherVehiclesFileIsRefused) {
   const std::string path = TempStatePath("vehicle_foreign");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   VehicleDescription heavier = Trirotor();
   heavier.arms[1].tip_mass_kg *= 1.1;  // another description: another checksum
   const std::string trirotor = VehicleStateChecksum(Trirotor());
@@ -151,7 +133,7 @@ TEST(VehicleStateFileTest, AnotherVehiclesFileIsRefused) {
 // never overwrites it at its stop.
 TEST(VehicleStateFileTest, TheBirotorsFileAndThisOneAreNeverTakenForEachOther) {
   const std::string path = TempStatePath("vehicle_kinds");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string trirotor = VehicleStateChecksum(Trirotor());
   const std::string birotor = VehicleChecksum(BirotorParams());
   GaugeCalibration birotor_state;
@@ -186,7 +168,7 @@ TEST(VehicleStateFileTest, TheBirotorsFileAndThisOneAreNeverTakenForEachOther) {
 
 TEST(VehicleStateFileTest, AForgedFileIsRefused) {
   const std::string path = TempStatePath("vehicle_forged");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string vehicle = VehicleStateChecksum(Trirotor());
   const std::string text = VehicleStateText(Learned(), vehicle);
   MultiArmGaugeState read;
@@ -194,7 +176,7 @@ TEST(VehicleStateFileTest, AForgedFileIsRefused) {
   Spit(path, text);  // right checksum, no mac
   EXPECT_FALSE(ReadVehicleGaugeState(path, vehicle, 3, kMaxOffsetRad, key, &read, &error));
   EXPECT_NE(error.find("not authenticated (no mac line"), std::string::npos) << error;
-  SpitSigned(path, text, Key(0x33));  // another key
+  SpitSigned(path, text, SiteKeyOfByte(0x33));  // another key
   EXPECT_FALSE(ReadVehicleGaugeState(path, vehicle, 3, kMaxOffsetRad, key, &read, &error));
   EXPECT_NE(error.find("mac does not verify"), std::string::npos) << error;
   // A genuine file with the ratio changed and the checksum recomputed.
@@ -213,7 +195,7 @@ TEST(VehicleStateFileTest, AForgedFileIsRefused) {
 // the field, and nothing is read.
 TEST(VehicleStateFileTest, EveryValueIsRangeChecked) {
   const std::string path = TempStatePath("vehicle_ranges");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string vehicle = VehicleStateChecksum(Trirotor());
   struct Case {
     void (*forge)(MultiArmGaugeState*);
@@ -252,7 +234,7 @@ TEST(VehicleStateFileTest, EveryValueIsRangeChecked) {
 // not written at all.
 TEST(VehicleStateFileTest, TheWriterKeepsToTheReadersRanges) {
   const std::string path = TempStatePath("vehicle_write_ranges");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string vehicle = VehicleStateChecksum(Trirotor());
   MultiArmGaugeState state = Learned();
   state.offset_std_rad[0] = 1e-12;
@@ -279,7 +261,7 @@ TEST(VehicleStateFileTest, TheWriterKeepsToTheReadersRanges) {
 // never replaced at a stop.
 TEST(VehicleStateFileTest, AFileThatIsNotAStateFileIsNeverOverwritten) {
   const std::string path = TempStatePath("vehicle_params");
-  const MessageAuthenticator key = Key(0x5a);
+  const MessageAuthenticator key = SiteKeyOfByte(0x5a);
   const std::string vehicle = VehicleStateChecksum(Trirotor());
   const std::string params = "estimator:\n  method: ekf\n";
   Spit(path, params);
