@@ -263,15 +263,16 @@ void JudgeTrirotorFlight(const TrirotorFlight& flight, bool strict) {
   ASSERT_GT(f.truths, 3500) << flight.sim_text;  // 7 s at 1 kHz, less what a loaded kernel dropped
   EXPECT_GT(f.commands, strict ? 2000 : 1000);   // 500 Hz from the first POSE, while the machine ran
   EXPECT_EQ(f.commands_out_of_bounds, 0);
-  // Measured in 9 runs on this 2-core VM under other builds (the last 6
-  // with this step): hover 0.0025-0.0028 m, settled 0.0053-0.0055 m, |x|
-  // 0.0038-0.0046 m; bounds 1.4x the largest. On a machine that stalled
-  // through every attempt: not lost (through 100 ms stalls: hover 0.012 m,
-  // settled 0.048 m, |x| 0.008 m; a quarter of the time stalled: hover
-  // 0.12 m, settled 0.03 m).
-  EXPECT_LT(f.hover_max_error_m, strict ? 0.0039 : 0.2);
-  EXPECT_LT(f.settled_max_error_m, strict ? 0.0077 : 0.2);
-  EXPECT_LT(f.max_abs_x_m, strict ? 0.0064 : 0.2);
+  // Measured live on this 2-core VM with the machine keeping real time, 13
+  // runs (under other builds, under stress-ng, in a fresh-clone CI): hover
+  // 0.0025-0.0028 m, settled 0.0053-0.0079 m (the CI run), |x| 0.0038-0.0046
+  // m; bounds 2x the largest (a lost or oscillating flight is centimetres
+  // off). On a machine that stalled through every attempt: not lost
+  // (through 100 ms stalls: hover 0.012 m, settled 0.048 m, |x| 0.008 m; a
+  // quarter of the time stalled: hover 0.15 m, settled 0.11 m).
+  EXPECT_LT(f.hover_max_error_m, strict ? 0.0056 : 0.3);
+  EXPECT_LT(f.settled_max_error_m, strict ? 0.016 : 0.3);
+  EXPECT_LT(f.max_abs_x_m, strict ? 0.0092 : 0.3);
   // Each forgery counted once where it is refused (a loaded kernel may drop a few).
   const int kForce = guard_status_t::CHANNEL_FORCE;
   EXPECT_GE(f.controller_guard.refused[kForce], kForgeries * 95 / 100);
