@@ -1,9 +1,10 @@
 // Signal handlers restricted to async-signal-safe operations: lock-free
-// atomic stores, signal() and raise().
+// atomics, clock_gettime(), signal() and raise().
 #include "program/shutdown.h"
 
 #include <fcntl.h>
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -15,6 +16,19 @@ namespace {
 
 std::atomic<bool> shutdown_requested{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+// CLOCK_MONOTONIC at the first shutdown signal [ns].
+std::atomic<int64_t> first_signal_ns{0};
+static_assert(std::atomic<int64_t>::is_always_lock_free, "the signal handler needs a lock-free time");
+// A repeat this soon after the first signal is the same stop asked twice:
+// GNU timeout signals the program and then its whole process group, a
+// shell may pass one Ctrl-C to a pipeline's every member [ns].
+constexpr int64_t kRepeatGraceNs = 1000000000;
+
+int64_t MonotonicNs() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<int64_t>(now.tv_sec) * 1000000000 + now.tv_nsec;
+}
 
 struct IgnoredSignal {
   int number;
@@ -27,11 +41,15 @@ std::atomic<int> ignored_counts[kNumIgnoredSignals];
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a lock-free counter");
 
 extern "C" void HandleShutdownSignal(int signal_number) {
-  if (shutdown_requested.exchange(true)) {
-    // Second signal: the loop did not stop; fall back to the default action.
-    std::signal(signal_number, SIG_DFL);
-    std::raise(signal_number);
+  const int64_t now_ns = MonotonicNs();
+  if (!shutdown_requested.exchange(true)) {
+    first_signal_ns.store(now_ns);
+    return;
   }
+  if (now_ns - first_signal_ns.load() < kRepeatGraceNs) return;  // the same stop asked twice
+  // A later signal: the loop did not stop; fall back to the default action.
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
 }
 
 extern "C" void CountIgnoredSignal(int signal_number) {

@@ -1,6 +1,9 @@
 // The daemons' signals. SIGINT/SIGTERM: cooperative shutdown (the handler
-// only sets a flag that the main loop polls; a second signal while the first
-// is still pending ends the program at once, for a hung loop). SIGHUP,
+// only sets a flag that the main loop polls, so the program stops cleanly and
+// writes what it keeps, such as the gauge state file; another signal more
+// than 1 s after the first, the loop not stopped yet, ends the program at
+// once, for a hung loop; one within 1 s is the same stop asked twice, as GNU
+// timeout does by signalling the program and then its process group). SIGHUP,
 // SIGUSR1, SIGUSR2, SIGALRM: no meaning for these programs (they log to
 // stderr only, so there is no log file to re-open on HUP); counted and said
 // in the log instead of ending the process (their default action).
