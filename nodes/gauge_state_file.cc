@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <sstream>
 
 #include "nodes/state_file_common.h"
 #include "params/birotor_params_yaml.h"
@@ -19,17 +18,8 @@ constexpr const char* kHeader = kBirotorStateHeader;
 
 using StdRange = StateValueRange;
 
-// The allowed one-sigma of an offset: the range of the vehicle key
-// gauge_offset_std_rad (one table, params/birotor_params_yaml.cc).
-StdRange OffsetStdRange() { return VehicleKeyRange("gauge_offset_std_rad"); }
-
 // Two finite numbers from "a b"; false otherwise.
-bool ParsePair(const std::string& text, double out[2]) {
-  std::istringstream in(text);
-  std::string extra;
-  if (!(in >> out[0] >> out[1]) || (in >> extra)) return false;
-  return std::isfinite(out[0]) && std::isfinite(out[1]);
-}
+bool ParsePair(const std::string& text, double out[2]) { return ParseFiniteNumbers(text, 2, out); }
 
 // The learned strain scale g_i (optional lines, issue 27): the filter's
 // numerical range, and a sigma between "known" and its widest prior.
@@ -64,11 +54,7 @@ StdRange TipMassRange() { return VehicleKeyRange("tip_mass_kg"); }
 constexpr StdRange kTipMassStdRange = {1e-6, 1.0};
 
 // A finite number from "a"; false otherwise.
-bool ParseNumber(const std::string& text, double* out) {
-  std::istringstream in(text);
-  std::string extra;
-  return (in >> *out) && !(in >> extra) && std::isfinite(*out);
-}
+bool ParseNumber(const std::string& text, double* out) { return ParseFiniteNumbers(text, 1, out); }
 
 // The range check of a learned tip mass, its text as written: "" or the reason.
 std::string TipMassRangeProblem(double mass_kg, const std::string& mass_text, double std_kg,
@@ -172,7 +158,7 @@ bool WriteStateText(const std::string& path, const GaugeCalibration& calibration
   FileAttributes attributes;
   if (!ReplaceableStateFile(path, kHeader, &attributes, error)) return false;
   GaugeCalibration written = calibration;
-  const StdRange std_range = OffsetStdRange();
+  const StdRange std_range = GaugeOffsetStdRange();
   for (int i = 0; i < 2; ++i) {
     if (!std::isfinite(calibration.offset_rad[i]) || !std::isfinite(calibration.offset_std_rad[i])) {
       *error = path + ": gauge offset " + std::to_string(calibration.offset_rad[i]) + " +- " +
@@ -216,7 +202,7 @@ bool ParseStateText(const std::string& path, const std::string& text, const std:
   // The checksum is no defence against a forged file (anyone can recompute
   // it): every value is range-checked as the parameter file's would be.
   double offset[kBirotorRotors], std_rad[2];
-  const StdRange std_range = OffsetStdRange();
+  const StdRange std_range = GaugeOffsetStdRange();
   if (!ParsePair(fields["gauge_offset_rad"], offset) || !ParsePair(fields["gauge_offset_std_rad"], std_rad)) {
     *error = path + ": corrupt (gauge_offset_rad or gauge_offset_std_rad missing or not two finite numbers)";
     return false;

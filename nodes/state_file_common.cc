@@ -2,6 +2,7 @@
 
 #include <sodium.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "params/birotor_params_yaml.h"
@@ -47,6 +48,17 @@ StateValueRange VehicleKeyRange(const char* name) {
     if (std::string(key.name) == name) return {key.min, key.max};
   }
   return {0.0, 0.0};
+}
+
+StateValueRange GaugeOffsetStdRange() { return VehicleKeyRange("gauge_offset_std_rad"); }
+
+bool ParseFiniteNumbers(const std::string& text, int n, double* out) {
+  std::istringstream in(text);
+  for (int i = 0; i < n; ++i) {
+    if (!(in >> out[i]) || !std::isfinite(out[i])) return false;
+  }
+  std::string extra;
+  return !(in >> extra);
 }
 
 std::string StateFileMacLine(const std::string& text, const MessageAuthenticator& authenticator) {

@@ -40,6 +40,13 @@ struct StateValueRange {
 // (params/birotor_params_yaml.cc VehicleKeys: gauge_offset_std_rad,
 // tip_mass_kg, ...); {0, 0} for a name not in it.
 StateValueRange VehicleKeyRange(const char* name);
+// The allowed one sigma of a persisted gauge offset: the range of the
+// vehicle key gauge_offset_std_rad [rad].
+StateValueRange GaugeOffsetStdRange();
+
+// Exactly n finite numbers separated by spaces, from text into out[0..n);
+// false otherwise (out then partly written).
+bool ParseFiniteNumbers(const std::string& text, int n, double* out);
 
 // The mac line of text: "mac: <64 hex>\n", HMAC-SHA-512-256 under the site
 // key (MessageAuthenticator, counter 0) of all of text.

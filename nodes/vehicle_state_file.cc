@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <sstream>
 
 #include "estimator/tip_mass_learning.h"
 #include "model/vehicle_description_checksum.h"
@@ -20,9 +19,6 @@ namespace {
 // hold), and a sigma between "known" and 100 % (the prior's is 15 %).
 constexpr StateValueRange kTipMassRatioRange = {ArmModeTipMassMap::kLowestRatio, ArmModeTipMassMap::kHighestRatio};
 constexpr StateValueRange kTipMassRatioStdRange = {1e-6, 1.0};
-
-// The allowed one-sigma of an offset: the range of vehicle.gauge_offset_std_rad.
-StateValueRange OffsetStdRange() { return VehicleKeyRange("gauge_offset_std_rad"); }
 
 bool Within(double value, const StateValueRange& range) { return value >= range.min && value <= range.max; }
 
@@ -40,23 +36,9 @@ std::string NumbersText(const ArmValues& values, int n) {
 }
 
 // Exactly n finite numbers from text; false otherwise.
-bool ParseNumbers(const std::string& text, int n, ArmValues* out) {
-  std::istringstream in(text);
-  for (int i = 0; i < n; ++i) {
-    double value = 0;
-    if (!(in >> value) || !std::isfinite(value)) return false;
-    (*out)[static_cast<size_t>(i)] = value;
-  }
-  std::string extra;
-  return !(in >> extra);
-}
+bool ParseNumbers(const std::string& text, int n, ArmValues* out) { return ParseFiniteNumbers(text, n, out->data()); }
 
-bool ParseNumber(const std::string& text, double* out) {
-  ArmValues one{};
-  if (!ParseNumbers(text, 1, &one)) return false;
-  *out = one[0];
-  return true;
-}
+bool ParseNumber(const std::string& text, double* out) { return ParseFiniteNumbers(text, 1, out); }
 
 // The per-arm lines: arm_count numbers each, every one in range.
 bool ReadOffsets(const std::string& path, std::map<std::string, std::string>& fields, int arm_count,
@@ -67,7 +49,7 @@ bool ReadOffsets(const std::string& path, std::map<std::string, std::string>& fi
              " finite numbers)";
     return false;
   }
-  const StateValueRange std_range = OffsetStdRange();
+  const StateValueRange std_range = GaugeOffsetStdRange();
   for (int i = 0; i < arm_count; ++i) {
     const size_t k = static_cast<size_t>(i);
     if (!(std::abs(state->offset_rad[k]) <= max_offset_rad)) {
@@ -147,7 +129,7 @@ bool WriteVehicleGaugeState(const std::string& path, const MultiArmGaugeState& s
   FileAttributes attributes;
   if (!ReplaceableStateFile(path, kVehicleStateHeader, &attributes, error)) return false;
   MultiArmGaugeState written = state;
-  const StateValueRange std_range = OffsetStdRange();
+  const StateValueRange std_range = GaugeOffsetStdRange();
   for (int i = 0; i < state.arm_count; ++i) {
     const size_t k = static_cast<size_t>(i);
     if (!std::isfinite(state.offset_rad[k]) || !std::isfinite(state.offset_std_rad[k])) {
