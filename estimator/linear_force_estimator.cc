@@ -22,7 +22,8 @@ LinearForceEstimator::LinearForceEstimator(const BirotorParams& params, const Ek
       noise_(noise),
       model_(BuildLinearForceModel(params, noise, options)),
       motor_(params),
-      strain_gate_(noise.gate_consecutive_limit) {
+      strain_gate_(noise.gate_consecutive_limit),
+      gyro_gate_(noise.gate_consecutive_limit) {
   scale_ = model_.scale;
   const LinearMatrix s_inv = scale_.cwiseInverse().asDiagonal();
   a_ = s_inv * model_.a_discrete * scale_.asDiagonal();
@@ -32,6 +33,8 @@ LinearForceEstimator::LinearForceEstimator(const BirotorParams& params, const Ek
   strain_noise_ = Eigen::Matrix2d::Identity() * (strain_std * strain_std);
   const double gyro_std = noise.gyro_noise_rad_s / scale_(kLinPitchRate);
   gyro_noise_(0, 0) = gyro_std * gyro_std;
+  const double pitch_rate_std = noise.initial_pitch_rate_std_rad_s / scale_(kLinPitchRate);
+  pitch_rate_variance_s_ = pitch_rate_std * pitch_rate_std;
   fixed_gains_.strain.setZero();
   fixed_gains_.gyro.setZero();
   fixed_gain_s_.setZero();
@@ -80,6 +83,7 @@ void LinearForceEstimator::DoReset() {
   initialized_ = false;
   converged_ = false;
   strain_gate_.Reset();
+  gyro_gate_.Reset();
 }
 
 void LinearForceEstimator::Initialize(const StrainSample& sample) {
@@ -96,11 +100,11 @@ void LinearForceEstimator::Initialize(const StrainSample& sample) {
     const double force_std = noise_.initial_thrust_scale_std * model_.force_hover_n[i] / scale_(kLinForceIndex[i]);
     covariance_(kLinForceIndex[i], kLinForceIndex[i]) = force_std * force_std;
   }
-  const double pitch_rate_std = noise_.initial_pitch_rate_std_rad_s / scale_(kLinPitchRate);
-  covariance_(kLinPitchRate, kLinPitchRate) = pitch_rate_std * pitch_rate_std;
+  covariance_(kLinPitchRate, kLinPitchRate) = pitch_rate_variance_s_;
   if (gyro_pending_) Report(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
   strain_gate_.Reset();
+  gyro_gate_.Reset();
   converged_ = false;
   last_utime_ = sample.utime;
   initialized_ = true;
@@ -134,9 +138,14 @@ void LinearForceEstimator::UpdateGyro() {
   at.jacobian = model_.c_gyro;
   at.predicted(0) = state_(kLinPitchRate);
   const Eigen::Matrix<double, 1, 1> z(gyro_.gyro_y_rad_s / pitch_rate_scale);
+  // After gate_consecutive_limit gyro samples gated in a row the pitch rate
+  // is taken as lost (a lift-off's thrust ramp, which the hover model does
+  // not follow, left it rad/s off): its variance grows by the initial one
+  // and the gyro is fused ungated (else it stays gated for the flight).
+  const auto inflate = [this](LinearMatrix* cov) { (*cov)(kLinPitchRate, kLinPitchRate) += pitch_rate_variance_s_; };
   const FusionReport report =
-      FuseMeasurement(at, gyro_noise_, z, {FusionSource::kGyro, gyro_.utime, noise_.gyro_gate_nis}, &state_,
-                      &covariance_, kalman_ ? nullptr : &fixed_gyro_gain_s_);
+      gyro_gate_.Fuse(at, gyro_noise_, z, {FusionSource::kGyro, gyro_.utime, noise_.gyro_gate_nis}, &state_,
+                      &covariance_, inflate, kalman_ ? nullptr : &fixed_gyro_gain_s_);
   Report(PhysicalReport(report, pitch_rate_scale));
 }
 

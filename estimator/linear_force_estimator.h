@@ -10,7 +10,9 @@
 // reported not fused). Both propagate the error covariance with the same
 // model and noise (for the observer: through its own error dynamics, Joseph
 // form for its fixed gain), which gives force_std_n and the gates of the
-// strain (ekf.strain_gate_nis) and gyro (ekf.gyro_gate_nis) innovations.
+// strain (ekf.strain_gate_nis) and gyro (ekf.gyro_gate_nis) innovations;
+// after ekf.gate_consecutive_limit rejections in a row the strain inflates
+// the forces' variance, the gyro the pitch rate's, and each is fused.
 // Telemetry is the rotor speed of thrust_scale (MotorSpeedTracker): reported
 // fused, as by the baselines.
 #pragma once
@@ -76,6 +78,8 @@ class LinearForceEstimator : public ForceEstimator {
   Eigen::Matrix2d strain_noise_;            // R / scale_b^2, both gauges [1]
   Eigen::Matrix<double, 1, 1> gyro_noise_;  // R_gyro / scale_phi_dot^2 [1]
   GateWithInflation strain_gate_;           // strain gate and its inflation policy
+  GateWithInflation gyro_gate_;             // gyro gate; a lost pitch rate is inflated by its initial variance
+  double pitch_rate_variance_s_ = 0;        // initial_pitch_rate_std_rad_s^2 / scale_phi_dot^2 [1]
   bool gyro_pending_ = false;
   ImuSample gyro_;  // the pending gyro sample
 

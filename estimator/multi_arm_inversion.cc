@@ -58,7 +58,17 @@ void MultiArmInversion::FitWindow(int64_t utime,
   derivatives->row(2) *= 2.0 / (kTauScale * kTauScale);
 }
 
+void MultiArmInversion::AddMotor(const MultiArmMotorSample& sample) {
+  reports_.Open();
+  if (motor_.AddMotor(sample)) {
+    reports_.Add(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
+  }
+}
+
 void MultiArmInversion::AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) {
+  reports_.Open();
+  reports_.Add(MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused));
+  reports_.Close();
   const size_t slot = static_cast<size_t>(head_);
   utime_[slot] = sample.utime;
   for (int i = 0; i < n_; ++i) {

@@ -9,7 +9,10 @@
 // difference coordinates, the same equations after a change of basis). Its
 // sigma is inversion.force_std_n, the birotor's convention (no covariance);
 // it raises no rotor-fault flag (no uncertainty to judge one with), as the
-// birotor's. Fixed-size storage: no heap per sample.
+// birotor's. Its fusion reports (reports()) are the birotor's: each strain
+// sample fused and each MOTOR_N with telemetry on every rotor fused, none
+// with an innovation (it has none to judge), for ESTIMATOR_STATUS's counts.
+// Fixed-size storage: no heap per sample.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,6 +22,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/multi_arm_ekf.h"
 #include "estimator/multi_arm_linear_speed.h"
+#include "estimator/step_fusion_reports.h"
 
 namespace birotor {
 
@@ -32,11 +36,12 @@ class MultiArmInversion : public MultiArmForceEstimator {
   int arm_count() const override { return n_; }
   void Reset() override;
   // Rotor speeds for the thrust efficiency.
-  void AddMotor(const MultiArmMotorSample& sample) override { motor_.AddMotor(sample); }
+  void AddMotor(const MultiArmMotorSample& sample) override;
   void AddImu(const ImuSample& /*sample*/) override {}
   void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) override;
   double force_std_n(int /*rotor*/) const override { return options_.force_std_n; }
   const MultiArmFilterFacts& facts() const override { return facts_; }
+  const FusionReports* reports() const override { return reports_.reports(); }
 
  private:
   using ArmMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxArms, kMaxArms>;
@@ -60,6 +65,7 @@ class MultiArmInversion : public MultiArmForceEstimator {
   int head_ = 0;  // next slot to write
   int count_ = 0;
   MultiArmFilterFacts facts_;
+  StepFusionReports reports_;
 };
 
 }  // namespace birotor

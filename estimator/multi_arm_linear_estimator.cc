@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "estimator/multi_arm_luenberger.h"
 
@@ -12,6 +13,8 @@ constexpr double kMicrosecond = 1e-6;
 // b_i of an arm without a reading at initialisation: the hover deflection
 // with this sigma [rad] (the N-arm EKF's kUnmeasuredDeflectionStdRad).
 constexpr double kUnmeasuredDeflectionStdRad = 0.01;
+// Below this share of the hover thrusts the body rests on the ground [1].
+constexpr double kSupportedForceShare = 0.5;
 
 }  // namespace
 
@@ -24,6 +27,7 @@ MultiArmLinearEstimator<N>::MultiArmLinearEstimator(const VehicleDescription& ve
       model_(BuildMultiArmLinearForceModel(vehicle, noise, options)),
       motor_(vehicle),
       strain_gate_(noise.gate_consecutive_limit),
+      gyro_gate_(noise.gate_consecutive_limit),
       faults_(noise) {
   scale_ = model_.scale;
   const Matrix s_inv = scale_.cwiseInverse().asDiagonal();
@@ -33,6 +37,8 @@ MultiArmLinearEstimator<N>::MultiArmLinearEstimator(const VehicleDescription& ve
   strain_variance_s_ = strain_std * strain_std;
   const double gyro_std = noise.gyro_noise_rad_s / scale_(Layout::PitchRate(N));
   gyro_noise_(0, 0) = gyro_std * gyro_std;
+  const double pitch_rate_std = noise.initial_pitch_rate_std_rad_s / scale_(Layout::PitchRate(N));
+  pitch_rate_variance_s_ = pitch_rate_std * pitch_rate_std;
   fixed_gain_s_.setZero();
   fixed_gyro_gain_s_.setZero();
   Reset();
@@ -51,13 +57,36 @@ MultiArmLinearEstimator<N>::MultiArmLinearEstimator(const VehicleDescription& ve
 }
 
 template <int N>
-void MultiArmLinearEstimator<N>::Reset() {
-  motor_.Reset();
+FusionReport MultiArmLinearEstimator<N>::PhysicalReport(FusionReport report, double scale) {
+  report.innovation *= scale;
+  report.innovation_variance *= scale * scale;
+  return report;
+}
+
+template <int N>
+void MultiArmLinearEstimator<N>::DropPendingGyro() {
+  if (gyro_pending_) reports_.Add(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
+}
+
+template <int N>
+double MultiArmLinearEstimator<N>::Gate(FusionSource source) const {
+  if (source == FusionSource::kStrain) return noise_.strain_gate_nis;
+  if (source == FusionSource::kGyro) return noise_.gyro_gate_nis;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+template <int N>
+void MultiArmLinearEstimator<N>::Reset() {
+  reports_.Open();
+  DropPendingGyro();
+  motor_.Reset();
   initialized_ = false;
   converged_ = false;
   strain_gate_.Reset();
+  gyro_gate_.Reset();
   faults_.Reset();
+  supported_ = false;
   state_.setZero();
   covariance_.setIdentity();
   force_std_n_.fill(std::numeric_limits<double>::infinity());
@@ -65,9 +94,22 @@ void MultiArmLinearEstimator<N>::Reset() {
 }
 
 template <int N>
+void MultiArmLinearEstimator<N>::AddMotor(const MultiArmMotorSample& sample) {
+  reports_.Open();
+  if (motor_.AddMotor(sample)) {
+    reports_.Add(MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kFused));
+  }
+}
+
+template <int N>
 void MultiArmLinearEstimator<N>::AddImu(const ImuSample& sample) {
-  if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) return;
-  gyro_ = sample;  // replaces an older one not yet fused
+  reports_.Open();
+  if (!noise_.use_gyro || !std::isfinite(sample.gyro_y_rad_s)) {
+    reports_.Add(MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused));
+    return;
+  }
+  DropPendingGyro();  // an older one not yet fused is replaced
+  gyro_ = sample;
   gyro_pending_ = true;
 }
 
@@ -103,10 +145,10 @@ void MultiArmLinearEstimator<N>::Initialize(const MultiArmStrainSample& sample) 
     const double force_std = noise_.initial_thrust_scale_std * model_.force_hover_n(i) / scale_(f);
     covariance_(f, f) = force_std * force_std;
   }
-  const double pitch_rate_std = noise_.initial_pitch_rate_std_rad_s / scale_(Layout::PitchRate(N));
-  covariance_(Layout::PitchRate(N), Layout::PitchRate(N)) = pitch_rate_std * pitch_rate_std;
-  gyro_pending_ = false;
+  covariance_(Layout::PitchRate(N), Layout::PitchRate(N)) = pitch_rate_variance_s_;
+  DropPendingGyro();
   strain_gate_.Reset();
+  gyro_gate_.Reset();
   faults_.Reset();
   converged_ = false;
   last_utime_ = sample.utime;
@@ -128,19 +170,33 @@ void MultiArmLinearEstimator<N>::Predict(int periods) {
 template <int N>
 void MultiArmLinearEstimator<N>::UpdateGyro() {
   if (!gyro_pending_) return;
+  if (supported_) {
+    DropPendingGyro();  // the held body's pitch is not the hover model's
+    return;
+  }
   gyro_pending_ = false;
   // y = phi_dot_meas - phi_dot; the Kalman gain, or the observer's L_g.
   MeasurementLinearization<1, kSize> at;
   at.jacobian.setZero();
   at.jacobian(0, Layout::PitchRate(N)) = 1.0;
   at.predicted(0) = state_(Layout::PitchRate(N));
-  const Eigen::Matrix<double, 1, 1> z(gyro_.gyro_y_rad_s / scale_(Layout::PitchRate(N)));
-  FuseMeasurementUnreported(at, gyro_noise_, z, noise_.gyro_gate_nis, &state_, &covariance_, nullptr,
-                            kalman_ ? nullptr : &fixed_gyro_gain_s_);
+  const double pitch_rate_scale = scale_(Layout::PitchRate(N));
+  const Eigen::Matrix<double, 1, 1> z(gyro_.gyro_y_rad_s / pitch_rate_scale);
+  // After gate_consecutive_limit gyro samples gated in a row the pitch rate
+  // is taken as lost (a lift-off's thrust ramp, which the hover model does
+  // not follow, left it rad/s off): its variance grows by the initial one
+  // and the gyro is fused ungated (else it stays gated for the flight).
+  const auto inflate = [this](Matrix* cov) {
+    (*cov)(Layout::PitchRate(N), Layout::PitchRate(N)) += pitch_rate_variance_s_;
+  };
+  const FusionReport report =
+      gyro_gate_.Fuse(at, gyro_noise_, z, {FusionSource::kGyro, gyro_.utime, noise_.gyro_gate_nis}, &state_,
+                      &covariance_, inflate, kalman_ ? nullptr : &fixed_gyro_gain_s_);
+  reports_.Add(PhysicalReport(report, pitch_rate_scale));
 }
 
 template <int N>
-FusionOutcome MultiArmLinearEstimator<N>::UpdateStrain(const MultiArmStrainSample& sample) {
+FusionReport MultiArmLinearEstimator<N>::UpdateStrain(const MultiArmStrainSample& sample) {
   // y = z - C x (C selects the read deflections); an arm without a reading
   // has a zero row, a unit variance and (observer) a zero gain column.
   Eigen::Matrix<double, N, 1> z;
@@ -166,8 +222,13 @@ FusionOutcome MultiArmLinearEstimator<N>::UpdateStrain(const MultiArmStrainSampl
       (*cov)(f, f) += extra * extra;
     }
   };
-  return strain_gate_.FuseUnreported(at, noise, z, noise_.strain_gate_nis, &state_, &covariance_, inflate, nullptr,
-                                     kalman_ ? nullptr : &gain);
+  FusionReport report = strain_gate_.Fuse(at, noise, z, {FusionSource::kStrain, sample.utime, noise_.strain_gate_nis},
+                                          &state_, &covariance_, inflate, kalman_ ? nullptr : &gain);
+  report = PhysicalReport(report, scale_(Layout::Deflection(0)));
+  for (int i = 0; i < N; ++i) {
+    if (!measured[static_cast<size_t>(i)]) report.innovation_variance(i) = 0.0;  // left out (FusionReport)
+  }
+  return report;
 }
 
 template <int N>
@@ -219,8 +280,11 @@ void MultiArmLinearEstimator<N>::FillEstimate(const MultiArmStrainSample& sample
 
 template <int N>
 void MultiArmLinearEstimator<N>::AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) {
+  reports_.Open();
   motor_.Advance(sample.utime);
   bool gated = false;
+  // At (re-)initialisation the state is set from the sample: fused, without an innovation.
+  FusionReport strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
   if (!initialized_) {
     Initialize(sample);
   } else {
@@ -232,15 +296,28 @@ void MultiArmLinearEstimator<N>::AddStrain(const MultiArmStrainSample& sample, M
       last_utime_ = sample.utime;
     }
     UpdateGyro();
-    gated = UpdateStrain(sample) == FusionOutcome::kRejectedGate;
+    strain = UpdateStrain(sample);
+    gated = strain.outcome == FusionOutcome::kRejectedGate;
     if (!state_.allFinite() || !covariance_.allFinite()) {
       Initialize(sample);  // numerical failure: start again from this sample
       gated = false;
+      strain = MakeFusionReport(FusionSource::kStrain, sample.utime, FusionOutcome::kFused);
     } else {
       UpdateFaults(sample.utime);
     }
   }
+  reports_.Add(strain);
+  reports_.Close();
   FillEstimate(sample, gated, estimate);
+  // Held by the ground (or a stand) while the forces carry less than half
+  // the hover's: the EKF's rule at rest (its thrust estimate below half the
+  // weight) for a method without a contact model.
+  double force_sum_n = 0.0, hover_sum_n = 0.0;
+  for (int i = 0; i < N; ++i) {
+    force_sum_n += estimate->force_n[static_cast<size_t>(i)];
+    hover_sum_n += model_.force_hover_n(i);
+  }
+  supported_ = initialized_ && force_sum_n < kSupportedForceShare * hover_sum_n;
 }
 
 template class MultiArmLinearEstimator<2>;

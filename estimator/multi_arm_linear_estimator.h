@@ -11,6 +11,16 @@
 // MultiArmSpeedTracker, and the rotor-fault flags of MultiArmFaultMonitor are
 // judged from it, its covariance var(mu) = var(f) / (c_T,i omega_i^2)^2. A
 // template on N (fixed sizes, no heap per sample) behind MultiArmForceEstimator.
+//
+// Fusion reports (reports()), as LinearForceEstimator's, for the pipeline's
+// model-consistency monitor and ESTIMATOR_STATUS's counts: the strain (an
+// arm without a reading has variance 0: left out) and the gyro with their
+// innovations in physical units, gated; telemetry with finite speeds on
+// every rotor as fused without an innovation (it only feeds the
+// efficiency); a gyro sample replaced before it was fused, or dropped by a
+// reset, as not fused. reports() holds what happened from the call after
+// the previous AddStrain up to the newest AddStrain (the AddMotor and
+// AddImu between them, then the strain step).
 #pragma once
 
 #include <array>
@@ -23,6 +33,7 @@
 #include "estimator/multi_arm_fault_monitor.h"
 #include "estimator/multi_arm_linear_model.h"
 #include "estimator/multi_arm_linear_speed.h"
+#include "estimator/step_fusion_reports.h"
 
 namespace birotor {
 
@@ -46,12 +57,19 @@ class MultiArmLinearEstimator : public MultiArmForceEstimator {
   int arm_count() const override { return N; }
   void Reset() override;
   // Rotor speeds for the thrust efficiency (no update).
-  void AddMotor(const MultiArmMotorSample& sample) override { motor_.AddMotor(sample); }
+  void AddMotor(const MultiArmMotorSample& sample) override;
   // The newest gyro sample is fused at the next strain sample's time.
   void AddImu(const ImuSample& sample) override;
   void AddStrain(const MultiArmStrainSample& sample, MultiArmForceEstimate* estimate) override;
   double force_std_n(int rotor) const override { return force_std_n_[static_cast<size_t>(rotor)]; }
   const MultiArmFilterFacts& facts() const override { return facts_; }
+  const FusionReports* reports() const override { return reports_.reports(); }
+  // The ground holds the body: the newest forces below half the hover's
+  // (the gyro is then not fused, and the arm-mode test waits).
+  bool body_supported() const override { return supported_; }
+  // The strain's and the gyro's NIS gates (ekf.strain_gate_nis,
+  // ekf.gyro_gate_nis); NaN for telemetry and the accelerometer (not gated).
+  double Gate(FusionSource source) const override;
 
   const MultiArmLinearForceModel& model() const { return model_; }
   // State and covariance in physical units (deviation from hover).
@@ -59,13 +77,18 @@ class MultiArmLinearEstimator : public MultiArmForceEstimator {
   Matrix covariance() const { return scale_.asDiagonal() * covariance_ * scale_.asDiagonal(); }
 
  private:
+  // A report in physical units: y and S scaled back from the scaled
+  // coordinates (the NIS is the same in both).
+  static FusionReport PhysicalReport(FusionReport report, double scale);
+  // The pending gyro sample, dropped unfused (a reset, a newer sample).
+  void DropPendingGyro();
   void Initialize(const MultiArmStrainSample& sample);
   void Predict(int periods);
   void UpdateGyro();
   // Scaled deviations of the calibrated readings and which arms are read.
   void ScaledStrain(const MultiArmStrainSample& sample, Eigen::Matrix<double, N, 1>* z,
                     std::array<bool, N>* measured) const;
-  FusionOutcome UpdateStrain(const MultiArmStrainSample& sample);
+  FusionReport UpdateStrain(const MultiArmStrainSample& sample);
   void UpdateFaults(int64_t utime);
   void FillEstimate(const MultiArmStrainSample& sample, bool gated, MultiArmForceEstimate* estimate);
 
@@ -83,17 +106,21 @@ class MultiArmLinearEstimator : public MultiArmForceEstimator {
   double strain_variance_s_ = 0;  // R / scale_b^2 per gauge [1]
   Eigen::Matrix<double, 1, 1> gyro_noise_;
   GateWithInflation strain_gate_;
+  GateWithInflation gyro_gate_;       // a lost pitch rate: inflated by its initial variance
+  double pitch_rate_variance_s_ = 0;  // initial_pitch_rate_std_rad_s^2, scaled [1]
   bool gyro_pending_ = false;
   ImuSample gyro_;
   MultiArmFaultMonitor faults_;
 
   bool initialized_ = false;
   bool converged_ = false;
+  bool supported_ = false;
   int64_t last_utime_ = 0;
   State state_;
   Matrix covariance_;
   std::array<double, N> force_std_n_{};
   MultiArmFilterFacts facts_;
+  StepFusionReports reports_;
 };
 
 // The Kalman filter or (observer not null) the Luenberger observer for the

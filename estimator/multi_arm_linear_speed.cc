@@ -22,8 +22,8 @@ void MultiArmSpeedTracker::Reset() {
   omega_rad_s_.fill(0.0);
 }
 
-void MultiArmSpeedTracker::AddMotor(const MultiArmMotorSample& sample) {
-  if (sample.n_rotors != n_) return;
+bool MultiArmSpeedTracker::AddMotor(const MultiArmMotorSample& sample) {
+  if (sample.n_rotors != n_) return false;
   if (!has_motor_) {
     // Start the model at the telemetry if there is one, else at the command.
     for (size_t i = 0; i < static_cast<size_t>(n_); ++i) {
@@ -35,13 +35,17 @@ void MultiArmSpeedTracker::AddMotor(const MultiArmMotorSample& sample) {
   } else {
     Advance(sample.utime);
   }
+  bool every_rotor_measured = true;
   for (size_t i = 0; i < static_cast<size_t>(n_); ++i) {
     command_rad_s_[i] = ClampCommand(omega_max_rad_s_, sample.omega_cmd_rad_s[i]);
     if (std::isfinite(sample.omega_meas_rad_s[i])) {
       telemetry_rad_s_[i] = sample.omega_meas_rad_s[i];
       telemetry_utime_[i] = sample.utime;
+    } else {
+      every_rotor_measured = false;
     }
   }
+  return every_rotor_measured;
 }
 
 void MultiArmSpeedTracker::Advance(int64_t utime) {

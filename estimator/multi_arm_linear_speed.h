@@ -19,8 +19,10 @@ class MultiArmSpeedTracker {
   explicit MultiArmSpeedTracker(const VehicleDescription& vehicle, double telemetry_timeout_s = 0.05);
 
   void Reset();
-  // A sample of another rotor count is not this vehicle's: ignored.
-  void AddMotor(const MultiArmMotorSample& sample);
+  // A sample of another rotor count is not this vehicle's: ignored. Returns
+  // whether the sample is this vehicle's with telemetry on every rotor (the
+  // methods report such a sample's telemetry as fused).
+  bool AddMotor(const MultiArmMotorSample& sample);
   // Advances the motor model to utime (exact step over the held command,
   // model/plant.h MotorStep) and selects the speed of each rotor.
   void Advance(int64_t utime);
