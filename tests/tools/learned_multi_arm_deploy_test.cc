@@ -248,6 +248,24 @@ TEST_F(LearnedMultiArmDeploy, ASigmaAboveTheFractionOrNoLearnedRatioIsRefused) {
   ExpectRefused(state_ + ": holds no learned tip mass");
 }
 
+// A description in the birotor form flown by the N-arm daemon (--vehicle, N = 2): r goes into its one tip_mass_kg.
+TEST_F(LearnedMultiArmDeploy, ABirotorFormDescriptionTakesRInItsOneTipMass) {
+  const std::string reference = folder_.path + "/reference_vehicle.yaml";
+  std::filesystem::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/reference_vehicle.yaml", reference);
+  MultiArmGaugeState two = Learned(1.09, 0.01);
+  two.arm_count = 2;
+  WriteState(two, DescriptionChecksum(LoadVehicleDescription(reference)));
+  std::string err;
+  ASSERT_EQ(
+      RunIdentify({"--vehicle", reference, "--update-params", reference, "--learned", state_, "--site-key", key_file_},
+                  &err),
+      0)
+      << err;
+  const BirotorParams after = BirotorModelOf(LoadVehicleDescription(reference));
+  EXPECT_NEAR(after.tip_mass_kg, 1.09 * kFileTipMassKg, 1e-9);
+  EXPECT_NE(ReadText(reference).find("  tip_mass_kg: 0.3140508         # m_p, lumped"), std::string::npos);
+}
+
 TEST_F(LearnedMultiArmDeploy, TheBirotorsParameterFileWorksAsBefore) {
   const std::string params = folder_.path + "/estimator.yaml";
   std::filesystem::copy_file(std::string(BIROTOR_SOURCE_DIR) + "/config/estimator.yaml", params);
