@@ -117,6 +117,35 @@ bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeploy
   return true;
 }
 
+bool ApplyLearnedTipMassRatio(double ratio, double ratio_std, const LearnedDeployOptions& options,
+                              const std::string& learned_file, const std::string& file, VehicleDescription* vehicle,
+                              std::vector<LearnedChange>* changes, std::string* error) {
+  // The prior of r is the tip mass's relative prior: r = 1 +- 0.15.
+  *error = CheckLearned(learned_file, "tip_mass_ratio", ratio, ratio_std, options.tip_mass_prior_std, options,
+                        "vehicle.arms[*].tip_mass_kg", file);
+  if (!error->empty()) return false;
+  double min = 0, max = 0;
+  KeyRange("tip_mass_kg", &min, &max);  // the N-arm key's range is the birotor key's
+  VehicleDescription updated = *vehicle;
+  std::vector<LearnedChange> made;
+  for (int arm = 0; arm < vehicle->arm_count; ++arm) {
+    const std::string key = "arms[" + std::to_string(arm) + "].tip_mass_kg";
+    double& mass_kg = updated.arms[static_cast<size_t>(arm)].tip_mass_kg;
+    const double scaled_kg = ratio * mass_kg;
+    if (!(scaled_kg >= min && scaled_kg <= max)) {
+      *error = OutOfRange(file, "vehicle." + key, scaled_kg, min, max,
+                          Number(mass_kg) + " x learned tip_mass_ratio " + Number(ratio));
+      return false;
+    }
+    made.push_back({key, mass_kg, scaled_kg, ratio, ratio_std});
+    mass_kg = scaled_kg;
+  }
+  error->clear();
+  *vehicle = updated;
+  *changes = made;
+  return true;
+}
+
 std::string LearnedChangesText(const std::vector<LearnedChange>& changes) {
   std::string text;
   for (const LearnedChange& c : changes) {

@@ -16,6 +16,7 @@
 
 #include "estimator/estimator_config.h"
 #include "model/birotor_params.h"
+#include "model/vehicle_description.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -52,10 +53,10 @@ struct LearnedDeployOptions {
 
 // One key written, for the log and the stamp.
 struct LearnedChange {
-  std::string key;  // "gauge_scale[0]", "gauge_scale[1]", "body_mass_kg", "tip_mass_kg"
+  std::string key;  // "gauge_scale[0]", "gauge_scale[1]", "body_mass_kg", "tip_mass_kg", "arms[0].tip_mass_kg"
   double old_value = 0;
   double new_value = 0;
-  double learned = 0;      // g_i, or the body or tip mass [kg]
+  double learned = 0;      // g_i, the body or tip mass [kg], or the N-arm tip-mass ratio r
   double learned_std = 0;  // its one sigma
 };
 
@@ -70,6 +71,20 @@ struct LearnedChange {
 bool ApplyLearnedValues(const LearnedVehicleValues& learned, const LearnedDeployOptions& options,
                         const std::string& learned_file, const std::string& file, BirotorParams* vehicle,
                         std::vector<LearnedChange>* changes, std::string* error);
+
+// A vehicle with N arms (birotor-estimator --vehicle): its gauge state file
+// (nodes/vehicle_state_file.h) holds the tip-mass ratio r the arm-mode test
+// learned, one r by which every arm's m_p,i of the description is scaled.
+// Sets every arm's tip_mass_kg of *vehicle (the description `file` holds
+// now) to r x its own, one change per arm (learned: r and its sigma). All or
+// nothing, as ApplyLearnedValues: false with a one-line *error naming the
+// file and the key, *vehicle unchanged, when r is not finite, not learned
+// (its sigma not below max_std_fraction x tip_mass_prior_std: r's prior is
+// the tip mass's relative one), or an arm's mass would leave tip_mass_kg's
+// range.
+bool ApplyLearnedTipMassRatio(double ratio, double ratio_std, const LearnedDeployOptions& options,
+                              const std::string& learned_file, const std::string& file, VehicleDescription* vehicle,
+                              std::vector<LearnedChange>* changes, std::string* error);
 
 // "gauge_scale[0] 1 -> 0.7032 (g 0.7032 +- 0.0041)", one per change, "; " between.
 std::string LearnedChangesText(const std::vector<LearnedChange>& changes);

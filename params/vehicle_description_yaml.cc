@@ -145,6 +145,25 @@ VehicleDescription LoadVehicleDescription(const std::string& file) {
   return description;
 }
 
+VehicleDescription ParseVehicleDescription(const std::string& text, const std::string& file) {
+  VehicleDescription description;
+  WithFileErrors(file, [&] {
+    YamlSection root = YamlSection::LoadString(text, file);
+    ReadVehicleDescription(root.Section("vehicle"), &description);
+    root.CheckComplete();
+  });
+  return description;
+}
+
+bool IsArmsForm(const std::string& text) {
+  try {
+    YamlSection root = YamlSection::LoadString(text, "");
+    return root.Has("vehicle") && root.Section("vehicle").Has("arms");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 void CheckPlausible(const YamlSection& section, const VehicleDescription& description) {
   const std::vector<std::string> problems = PlausibilityProblems(description);
   if (problems.empty()) return;

@@ -28,6 +28,13 @@ void RequireBirotor(const std::string& file, const std::string& who, const Vehic
 // ParamError names the file, the key and the allowed range, or why the
 // vehicle cannot fly.
 VehicleDescription LoadVehicleDescription(const std::string& file);
+// The same from text already read (file names it in messages), for a file
+// read once and then updated in place (birotor-identify --update-params).
+VehicleDescription ParseVehicleDescription(const std::string& text, const std::string& file);
+
+// Whether the `vehicle:` section of text is in the N-arm form (it has
+// `arms:`); false for the birotor form and for text that does not parse.
+bool IsArmsForm(const std::string& text);
 
 // ParamError "<file>: key '<section>': the vehicle cannot fly: <problem>; ..."
 // when PlausibilityProblems(description) is not empty.

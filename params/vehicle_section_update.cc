@@ -83,22 +83,44 @@ std::string Normalized(const std::string& line, size_t colon) {
   return out;
 }
 
+// The line of `vehicle:`; lines.size() with *error when there is none.
+size_t VehicleHeader(const std::vector<std::string>& lines, std::string* error) {
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].rfind("vehicle:", 0) == 0) return i;
+  }
+  *error = "no `vehicle:` section";
+  return lines.size();
+}
+
+bool IsStampLine(const std::string& line, size_t first) {
+  return line.compare(first, std::string(kIdentificationStampPrefix).size(), kIdentificationStampPrefix) == 0;
+}
+
+// The stamp line set to stamp (none when empty): replaced at stamp_line when
+// the section has one, else inserted right below `vehicle:` at indent; then
+// the lines joined.
+std::string WithStamp(std::vector<std::string> lines, size_t header, size_t stamp_line, const std::string& indent,
+                      const std::string& stamp) {
+  if (!stamp.empty()) {
+    const std::string stamp_text = indent + kIdentificationStampPrefix + stamp;
+    if (stamp_line < lines.size()) {
+      lines[stamp_line] = stamp_text;
+    } else {
+      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(header) + 1, stamp_text);
+    }
+  }
+  std::string out;
+  for (const std::string& line : lines) out += line + "\n";
+  return out;
+}
+
 }  // namespace
 
 bool UpdateVehicleSection(const std::string& text, const BirotorParams& params, const std::string& stamp,
                           std::string* updated, std::string* error) {
   std::vector<std::string> lines = SplitLines(text);
-  size_t header = lines.size();
-  for (size_t i = 0; i < lines.size(); ++i) {
-    if (lines[i].rfind("vehicle:", 0) == 0) {
-      header = i;
-      break;
-    }
-  }
-  if (header == lines.size()) {
-    *error = "no `vehicle:` section";
-    return false;
-  }
+  const size_t header = VehicleHeader(lines, error);
+  if (header == lines.size()) return false;
   // New values by key.
   std::vector<std::pair<std::string, std::string>> values;
   for (const VehicleKey& key : VehicleKeys()) values.emplace_back(key.name, Number(params.*key.field));
@@ -114,7 +136,7 @@ bool UpdateVehicleSection(const std::string& text, const BirotorParams& params, 
     if (!IsIndented(line) && !IsBlankOrComment(line)) break;  // next top-level key
     const size_t first = line.find_first_not_of(" \t");
     if (first == std::string::npos) continue;
-    if (line.compare(first, std::string(kIdentificationStampPrefix).size(), kIdentificationStampPrefix) == 0) {
+    if (IsStampLine(line, first)) {
       stamp_line = end;
       continue;
     }
@@ -135,17 +157,57 @@ bool UpdateVehicleSection(const std::string& text, const BirotorParams& params, 
       return false;
     }
   }
-  if (!stamp.empty()) {
-    const std::string stamp_text = indent + kIdentificationStampPrefix + stamp;
-    if (stamp_line < lines.size()) {
-      lines[stamp_line] = stamp_text;
-    } else {
-      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(header) + 1, stamp_text);
+  *updated = WithStamp(lines, header, stamp_line, indent, stamp);
+  return true;
+}
+
+bool UpdateDescriptionArmValues(const std::string& text, const std::string& key, const std::vector<double>& values,
+                                const std::string& stamp, std::string* updated, std::string* error) {
+  std::vector<std::string> lines = SplitLines(text);
+  const size_t header = VehicleHeader(lines, error);
+  if (header == lines.size()) return false;
+  constexpr size_t kOutside = std::string::npos;
+  size_t stamp_line = lines.size(), arms_column = kOutside;  // kOutside: not in the `arms:` list
+  std::string indent = "  ";
+  int arm = -1;
+  std::vector<int> found(values.size(), 0);
+  for (size_t i = header + 1; i < lines.size(); ++i) {
+    std::string& line = lines[i];
+    if (!IsIndented(line) && !IsBlankOrComment(line)) break;  // next top-level key
+    size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos) continue;
+    if (IsStampLine(line, first)) stamp_line = i;
+    if (line[first] == '#') continue;
+    // A key at or left of `arms:` ends the list; its dashes may sit at its column.
+    if (arms_column != kOutside && first <= arms_column && line[first] != '-') arms_column = kOutside;
+    if (arms_column == kOutside) {
+      indent = line.substr(0, first);
+      if (line.compare(first, 5, "arms:") == 0) arms_column = first;
+      continue;
+    }
+    if (line[first] == '-') {  // "- key: value" opens the next arm
+      ++arm;
+      first = line.find_first_not_of(" \t", first + 1);
+      if (first == std::string::npos || line[first] == '#') continue;
+    }
+    const size_t colon = line.find(':', first);
+    if (colon == std::string::npos || line.substr(first, colon - first) != key) continue;
+    if (arm < 0 || arm >= static_cast<int>(values.size())) break;  // reported below as a count
+    ++found[static_cast<size_t>(arm)];
+    const std::string value = Number(values[static_cast<size_t>(arm)]);
+    if (Normalized(line, colon) != value) line = ReplaceValue(line, colon, value);
+  }
+  if (arm + 1 != static_cast<int>(values.size())) {
+    *error = "vehicle.arms: not a block list of " + std::to_string(values.size()) + " arms";
+    return false;
+  }
+  for (size_t i = 0; i < found.size(); ++i) {
+    if (found[i] != 1) {
+      *error = "vehicle.arms[" + std::to_string(i) + "]." + key + (found[i] == 0 ? " missing" : " given twice");
+      return false;
     }
   }
-  std::string out;
-  for (const std::string& line : lines) out += line + "\n";
-  *updated = out;
+  *updated = WithStamp(lines, header, stamp_line, indent, stamp);
   return true;
 }
 

@@ -8,6 +8,7 @@
 #include <sys/types.h>
 
 #include <string>
+#include <vector>
 
 #include "model/birotor_params.h"
 #include "params/regular_file.h"
@@ -25,6 +26,15 @@ constexpr const char* kIdentificationStampPrefix = "# identified ";
 // *error naming the key) when the section or one of its keys is missing.
 bool UpdateVehicleSection(const std::string& text, const BirotorParams& params, const std::string& stamp,
                           std::string* updated, std::string* error);
+
+// The same for a description in the N-arm form (docs/vehicle-description.md):
+// `key` of every element of the vehicle section's `arms:` block list set to
+// values[i], in arm order, every other byte kept (trailing comments too), and
+// the stamp line as above. False (with *error naming the key) when the list
+// does not have values.size() elements, or an element lacks the key or has
+// it twice.
+bool UpdateDescriptionArmValues(const std::string& text, const std::string& key, const std::vector<double>& values,
+                                const std::string& stamp, std::string* updated, std::string* error);
 
 // The identification stamp of a parameter file's vehicle section, or an
 // empty string when it has none (or the file cannot be read).

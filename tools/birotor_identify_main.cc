@@ -31,6 +31,7 @@
 #include "program/logging.h"
 #include "program/program_options.h"
 #include "replay/identification_log_loader.h"
+#include "tools/identify_learned_multi_arm.h"
 #include "tools/identify_learned_source.h"
 #include "tools/identify_multi_arm.h"
 #include "transport/host_clock.h"
@@ -126,7 +127,7 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                  "Vehicle description with N arms (e.g. config/vehicles/trirotor.yaml): bench fit of every arm and "
                  "rotor from the logs' STRAIN_N, MOTOR_N, LOADCELL_N, or (--mode flight, or auto without load "
                  "cells) flight fit of every k, c_T, tau_m from STRAIN_N, MOTOR_N, IMU; --output gets the "
-                 "identified description")
+                 "identified description; with --learned, the description the estimator flew (see --learned)")
       ->check(CLI::ExistingFile);
   CLI::Option* output = app.add_option("--output", cli->output, "Identified parameter file (written atomically)");
   CLI::Option* update_params =
@@ -143,7 +144,8 @@ void AddIdentifyOptions(CLI::App& app, birotor::CommonOptions* common, IdentifyO
                      "--estimator-config; a recorded ESTIMATOR_STATUS is only compared, never deployed), with the "
                      "vehicle of the --update-params file (needs it; no --log, --output, --report, --plot). A strain "
                      "scale g_i multiplies gauge_scale[i], a body mass replaces body_mass_kg, a tip mass (learned from "
-                     "the arm mode) replaces tip_mass_kg (docs/identification.md)");
+                     "the arm mode) replaces tip_mass_kg; an N-arm description (--vehicle, or vehicle.arms in the "
+                     "file): its state file's ratio r scales every arm's tip_mass_kg (docs/identification.md)");
   CLI::Option* site_key =
       app.add_option("--site-key", cli->learned_source.site_key_file,
                      "Site key file (32 raw bytes, not group/world-writable) authenticating the --learned gauge state "
@@ -390,8 +392,8 @@ std::string WriteResults(const IdentifyOptions& cli, const birotor::Identificati
 // the --update-params file. A state file names the vehicle it was learned on
 // (a checksum of the vehicle section), as does a log's recorded status: a
 // file for another vehicle, or one already updated with it (its gauge_scale
-// changed), is refused, so a value is never applied twice. Returns an error
-// message, empty on success.
+// changed), is refused, so a value is never applied twice. N arms:
+// tools/identify_learned_multi_arm.h. Returns an error message, "" on success.
 std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix) {
   using namespace birotor;
   Outputs out;
@@ -402,12 +404,16 @@ std::string DeployLearned(const IdentifyOptions& cli, const std::string& prefix)
                     &error)) {
     return "--update-params " + cli.update_params + ": " + error;
   }
+  LearnedSourceOptions source = cli.learned_source;
+  if (!cli.vehicle.empty() || IsArmsForm(out.update.text)) {  // routed as --vehicle routes a fit
+    return DeployLearnedMultiArm({cli.vehicle, cli.update_params, source, cli.learned_options, UtcDateTime()},
+                                 out.update);
+  }
   try {
     ReadVehicleSection(out.update.text, cli.update_params, &out.update_vehicle);
   } catch (const ParamError& e) {
     return e.what();
   }
-  LearnedSourceOptions source = cli.learned_source;
   source.prefix = prefix;
   source.min_usable_fraction = cli.min_usable_fraction;
   LearnedVehicleValues learned;

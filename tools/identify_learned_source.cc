@@ -4,11 +4,13 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "nodes/gauge_state_file.h"
 #include "nodes/learned_values_file.h"
 #include "nodes/recorded_tip_mass.h"
+#include "nodes/vehicle_state_file.h"
 #include "params/estimator_config_yaml.h"
 #include "program/config_files.h"
 #include "replay/learned_rerun.h"
@@ -19,16 +21,23 @@
 namespace birotor {
 namespace {
 
+// The site key of --site-key; "" on success, else the refusal of the state file.
+std::string LoadSiteKey(const LearnedSourceOptions& options, SiteKey* key) {
+  std::string error;
+  if (!SiteKey::Load(options.site_key_file, key, &error)) {
+    return "--learned: gauge state file " + options.learned + " is not authenticated (" + error +
+           "): not deployed, nothing written";
+  }
+  return "";
+}
+
 // The state file's strain scales, its mac verified under the site key (the
 // estimator's check, services/birotor_estimator_main.cc).
 std::string FromStateFile(const LearnedSourceOptions& options, const std::string& vehicle_checksum,
                           LearnedVehicleValues* learned) {
   SiteKey key(SiteKey::Bytes{});
-  std::string error;
-  if (!SiteKey::Load(options.site_key_file, &key, &error)) {
-    return "--learned: gauge state file " + options.learned + " is not authenticated (" + error +
-           "): not deployed, nothing written";
-  }
+  std::string error = LoadSiteKey(options, &key);
+  if (!error.empty()) return error;
   const MessageAuthenticator authenticator(key);
   if (!ReadLearnedState(options.learned, vehicle_checksum, authenticator, learned, &error)) {
     return "--learned " + error + ": not deployed, nothing written";
@@ -140,6 +149,26 @@ std::string ReadTrustedLearnedValues(const LearnedSourceOptions& options, const 
                                      const std::string& update_params, LearnedVehicleValues* learned) {
   if (IsLcmLog(options.learned)) return FromLog(options, vehicle, update_params, learned);
   return FromStateFile(options, VehicleChecksum(vehicle), learned);
+}
+
+std::string ReadTrustedVehicleState(const LearnedSourceOptions& options, const VehicleDescription& vehicle,
+                                    MultiArmGaugeState* state) {
+  if (IsLcmLog(options.learned)) {
+    return "--learned " + options.learned +
+           ": a flight log; for a vehicle with N arms only its gauge state file is deployed (the estimator's "
+           "tare.state_file): nothing written";
+  }
+  SiteKey key(SiteKey::Bytes{});
+  std::string error = LoadSiteKey(options, &key);
+  if (!error.empty()) return error;
+  // The offsets are not deployed (the offset states measure them at rest at
+  // each start, as the birotor's tare): no bound on them here.
+  const double any_offset = std::numeric_limits<double>::infinity();
+  if (!ReadVehicleGaugeState(options.learned, VehicleStateChecksum(vehicle), vehicle.arm_count, any_offset,
+                             MessageAuthenticator(key), state, &error)) {
+    return "--learned " + error + ": not deployed, nothing written";
+  }
+  return "";
 }
 
 }  // namespace birotor

@@ -9,12 +9,15 @@
 // and deployed in place of the re-run's when the re-run learned it too and
 // the recorded value lies within 3 of the re-run's sigmas with no wider
 // sigma (a flight resumed from the state file flew earlier flights'
-// readings too); else the re-run's, with a warning.
+// readings too); else the re-run's, with a warning. A vehicle with N arms
+// (--vehicle) deploys from its own authenticated state file only.
 #pragma once
 
 #include <string>
 
+#include "estimator/multi_arm_gauge_state.h"
 #include "model/birotor_params.h"
+#include "model/vehicle_description.h"
 #include "params/learned_parameter_update.h"
 
 namespace birotor {
@@ -37,5 +40,13 @@ struct LearnedSourceOptions {
 // error naming the file and the reason, empty on success.
 std::string ReadTrustedLearnedValues(const LearnedSourceOptions& options, const BirotorParams& vehicle,
                                      const std::string& update_params, LearnedVehicleValues* learned);
+
+// For a vehicle with N arms (--vehicle): its gauge state file
+// (nodes/vehicle_state_file.h) read into *state, its mac verified under the
+// site key, written for this description (DescriptionChecksum of `vehicle`,
+// the one being updated) and its arm count; a flight log is refused. Returns
+// the same one-line refusals as above, empty on success.
+std::string ReadTrustedVehicleState(const LearnedSourceOptions& options, const VehicleDescription& vehicle,
+                                    MultiArmGaugeState* state);
 
 }  // namespace birotor

@@ -149,5 +149,61 @@ TEST(LearnedParameterUpdate, TheFractionIsAnOption) {
   EXPECT_DOUBLE_EQ(vehicle.gauge_scale[0], 0.8);
 }
 
+// The trirotor of config/vehicles/trirotor.yaml: three arms of m_p 0.28812 kg,
+// one with another tip mass to show each arm keeps its own.
+VehicleDescription Trirotor() {
+  VehicleDescription vehicle;
+  vehicle.arm_count = 3;
+  for (size_t i = 0; i < 3; ++i) vehicle.arms[i].tip_mass_kg = 0.28812;
+  vehicle.arms[2].tip_mass_kg = 0.3;
+  return vehicle;
+}
+
+TEST(LearnedParameterUpdate, TheNArmRatioScalesEveryArmsTipMass) {
+  VehicleDescription vehicle = Trirotor();
+  const VehicleDescription before = vehicle;
+  std::vector<LearnedChange> changes;
+  std::string error;
+  ASSERT_TRUE(
+      ApplyLearnedTipMassRatio(1.09, 0.01, LearnedDeployOptions(), "state", "tri.yaml", &vehicle, &changes, &error))
+      << error;
+  EXPECT_DOUBLE_EQ(vehicle.arms[0].tip_mass_kg, 1.09 * 0.28812);
+  EXPECT_DOUBLE_EQ(vehicle.arms[1].tip_mass_kg, 1.09 * 0.28812);
+  EXPECT_DOUBLE_EQ(vehicle.arms[2].tip_mass_kg, 1.09 * 0.3);
+  vehicle.arms[0].tip_mass_kg = vehicle.arms[1].tip_mass_kg = 0.28812;
+  vehicle.arms[2].tip_mass_kg = 0.3;
+  EXPECT_EQ(FirstDifference(vehicle, before), "");  // nothing else changed
+  EXPECT_EQ(LearnedChangesText(changes),
+            "arms[0].tip_mass_kg 0.28812 -> 0.314051 (learned 1.09 +- 0.01); arms[1].tip_mass_kg 0.28812 -> "
+            "0.314051 (learned 1.09 +- 0.01); arms[2].tip_mass_kg 0.3 -> 0.327 (learned 1.09 +- 0.01)");
+}
+
+TEST(LearnedParameterUpdate, TheNArmRatioIsRefusedAsTheBirotorsTipMass) {
+  VehicleDescription vehicle = Trirotor();
+  const VehicleDescription before = vehicle;
+  std::vector<LearnedChange> changes;
+  std::string error;
+  // The prior of r is 0.15 (arm_mode_unconfirmed_tip_mass_std): 0.075 is not below 0.5 x 0.15.
+  EXPECT_FALSE(
+      ApplyLearnedTipMassRatio(1.09, 0.075, LearnedDeployOptions(), "state", "tri.yaml", &vehicle, &changes, &error));
+  EXPECT_EQ(error,
+            "state: tip_mass_ratio 1.09 +- 0.075 was not learned (sigma not below 0.5 x the prior sigma 0.15 = 0.075, "
+            "--learned-max-std-fraction; fly longer in free flight): tri.yaml vehicle.arms[*].tip_mass_kg not updated");
+  LearnedDeployOptions wider;
+  wider.max_std_fraction = 0.6;  // 0.09: now learned
+  EXPECT_TRUE(ApplyLearnedTipMassRatio(1.09, 0.075, wider, "state", "tri.yaml", &vehicle, &changes, &error)) << error;
+  vehicle = before;
+  EXPECT_FALSE(ApplyLearnedTipMassRatio(std::numeric_limits<double>::quiet_NaN(), 0.01, LearnedDeployOptions(), "state",
+                                        "tri.yaml", &vehicle, &changes, &error));
+  EXPECT_NE(error.find("is not finite"), std::string::npos) << error;
+  vehicle.arms[2].tip_mass_kg = 99.0;  // 1.09 x 99 leaves [0.0001, 100]
+  EXPECT_FALSE(
+      ApplyLearnedTipMassRatio(1.09, 0.01, LearnedDeployOptions(), "state", "tri.yaml", &vehicle, &changes, &error));
+  EXPECT_EQ(error,
+            "tri.yaml: vehicle.arms[2].tip_mass_kg would become 107.91 (99 x learned tip_mass_ratio 1.09), outside "
+            "[0.0001, 100]: refused, file not updated");
+  EXPECT_EQ(vehicle.arms[0].tip_mass_kg, 0.28812);  // all or nothing
+}
+
 }  // namespace
 }  // namespace birotor

@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "params/birotor_params_yaml.h"
 #include "params/estimator_config_yaml.h"
+#include "params/vehicle_description_yaml.h"
 #include "tests/params/temp_file.h"
 
 namespace birotor {
@@ -183,6 +185,62 @@ TEST_F(ParameterFileUpdateTest, ASpecialOrChangedFileIsRefused) {
   EXPECT_FALSE(CommitParameterFileUpdate(update, kNew, &error));
   EXPECT_NE(error.find("changed since it was checked"), std::string::npos) << error;
   EXPECT_NE(access((path_ + ".bak").c_str(), F_OK), 0);
+}
+
+// A description in the N-arm form (config/vehicles/trirotor.yaml): one key of
+// every arm set, every other byte kept, the stamp below `vehicle:`.
+TEST(VehicleSectionUpdateTest, TheTrirotorsArmsTakeNewValuesAndKeepTheRest) {
+  const std::string original = ReadText("config/vehicles/trirotor.yaml");
+  std::string updated, error;
+  ASSERT_TRUE(
+      UpdateDescriptionArmValues(original, "tip_mass_kg", {0.31, 0.32, 0.33}, "2026-12-05 by test", &updated, &error))
+      << error;
+  const std::string path = WriteTemp(updated);
+  const VehicleDescription before = LoadVehicleDescription("config/vehicles/trirotor.yaml");
+  VehicleDescription after = LoadVehicleDescription(path);
+  EXPECT_EQ(after.arms[0].tip_mass_kg, 0.31);
+  EXPECT_EQ(after.arms[1].tip_mass_kg, 0.32);
+  EXPECT_EQ(after.arms[2].tip_mass_kg, 0.33);
+  for (size_t i = 0; i < 3; ++i) after.arms[i].tip_mass_kg = before.arms[i].tip_mass_kg;
+  EXPECT_EQ(FirstDifference(after, before), "");
+  EXPECT_EQ(ReadIdentificationStamp(path), "2026-12-05 by test");
+  // Line for line: the three tip_mass_kg lines changed (indent kept), one stamp line added.
+  std::istringstream a(original), b(updated);
+  std::string la, lb;
+  std::vector<std::string> changed;
+  while (std::getline(b, lb)) {
+    if (lb == "  # identified 2026-12-05 by test") continue;
+    ASSERT_TRUE(std::getline(a, la));
+    if (la != lb) changed.push_back(lb);
+  }
+  EXPECT_FALSE(std::getline(a, la));
+  EXPECT_EQ(changed, (std::vector<std::string>{"      tip_mass_kg: 0.31", "      tip_mass_kg: 0.32",
+                                               "      tip_mass_kg: 0.33"}));
+  // Again: the stamp is replaced, not added; unchanged values keep their text.
+  std::string again;
+  ASSERT_TRUE(UpdateDescriptionArmValues(updated, "tip_mass_kg", {0.31, 0.32, 0.33}, "later", &again, &error));
+  EXPECT_EQ(again, std::string(updated).replace(updated.find("2026-12-05 by test"), 18, "later"));
+}
+
+TEST(VehicleSectionUpdateTest, ArmValuesNeedABlockListOfTheirCount) {
+  // Dashes at the column of `arms:`, the key on the dash line, a comment kept,
+  // and the same key in another section left alone.
+  const std::string text =
+      "vehicle:\n  arms:\n  - tip_mass_kg: 1.0   # first\n    length_m: 2\n  - length_m: 2\n    tip_mass_kg: 1\n"
+      "  name: x\nother:\n  tip_mass_kg: 5\n";
+  std::string updated, error;
+  ASSERT_TRUE(UpdateDescriptionArmValues(text, "tip_mass_kg", {2, 3}, "", &updated, &error)) << error;
+  EXPECT_EQ(updated,
+            "vehicle:\n  arms:\n  - tip_mass_kg: 2     # first\n    length_m: 2\n  - length_m: 2\n    tip_mass_kg: 3\n"
+            "  name: x\nother:\n  tip_mass_kg: 5\n");
+  EXPECT_FALSE(UpdateDescriptionArmValues(text, "tip_mass_kg", {2, 3, 4}, "", &updated, &error));
+  EXPECT_EQ(error, "vehicle.arms: not a block list of 3 arms");
+  EXPECT_FALSE(UpdateDescriptionArmValues(text, "damping_n_m_s_rad", {2, 3}, "", &updated, &error));
+  EXPECT_EQ(error, "vehicle.arms[0].damping_n_m_s_rad missing");
+  // The birotor form has no arms list.
+  EXPECT_FALSE(UpdateDescriptionArmValues(ReadText("config/reference_vehicle.yaml"), "tip_mass_kg", {2, 3}, "",
+                                          &updated, &error));
+  EXPECT_EQ(error, "vehicle.arms: not a block list of 2 arms");
 }
 
 }  // namespace
