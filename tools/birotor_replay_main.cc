@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
   try {
     config.vehicle = LoadVehicleDescription(cli.vehicle_file);
     MultiArmReplayer replayer(config, cli.options, outputs.sink());
-    return Replay(cli, "ekf (N arms)", &replayer, &outputs);
+    return Replay(cli, config.method + " (N arms)", &replayer, &outputs);
   } catch (const std::exception& e) {
     return ReportError(e.what());
   }
