@@ -3,9 +3,9 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "estimator/filter_status.h"
+#include "estimator/linear_method_reports.h"
 #include "estimator/luenberger_gain.h"
 #include "samples/rotor_count.h"
 
@@ -70,11 +70,7 @@ void LinearForceEstimator::DoAddImu(const ImuSample& sample) {
   gyro_pending_ = true;
 }
 
-double LinearForceEstimator::Gate(FusionSource source) const {
-  if (source == FusionSource::kStrain) return noise_.strain_gate_nis;
-  if (source == FusionSource::kGyro) return noise_.gyro_gate_nis;
-  return std::numeric_limits<double>::quiet_NaN();
-}
+double LinearForceEstimator::Gate(FusionSource source) const { return LinearMethodGate(noise_, source); }
 
 void LinearForceEstimator::DoReset() {
   motor_.Reset();
@@ -121,14 +117,6 @@ void LinearForceEstimator::Predict(int periods) {
   }
 }
 
-// The report in physical units: y and S scaled back from the scaled
-// coordinates (the NIS is the same in both).
-FusionReport LinearForceEstimator::PhysicalReport(FusionReport report, double scale) {
-  report.innovation *= scale;
-  report.innovation_variance *= scale * scale;
-  return report;
-}
-
 void LinearForceEstimator::UpdateGyro() {
   if (!gyro_pending_) return;
   gyro_pending_ = false;
@@ -146,7 +134,7 @@ void LinearForceEstimator::UpdateGyro() {
   const FusionReport report =
       gyro_gate_.Fuse(at, gyro_noise_, z, {FusionSource::kGyro, gyro_.utime, noise_.gyro_gate_nis}, &state_,
                       &covariance_, inflate, kalman_ ? nullptr : &fixed_gyro_gain_s_);
-  Report(PhysicalReport(report, pitch_rate_scale));
+  Report(LinearReportInPhysicalUnits(report, pitch_rate_scale));
 }
 
 FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
@@ -170,7 +158,7 @@ FusionReport LinearForceEstimator::UpdateStrain(const StrainSample& sample) {
   const FusionReport report =
       strain_gate_.Fuse(at, strain_noise_, z, {FusionSource::kStrain, sample.utime, noise_.strain_gate_nis}, &state_,
                         &covariance_, inflate, kalman_ ? nullptr : &fixed_gain_s_);
-  return PhysicalReport(report, deflection_scale);
+  return LinearReportInPhysicalUnits(report, deflection_scale);
 }
 
 void LinearForceEstimator::FillEstimate(const StrainSample& sample, bool gated, ForceEstimate* estimate,

@@ -56,7 +56,6 @@ class LinearForceEstimator : public ForceEstimator {
   void Predict(int periods);
   // The pending gyro sample's update, gated; reported.
   void UpdateGyro();
-  static FusionReport PhysicalReport(FusionReport report, double scale);
   // The strain update with its gate and the inflation after persistent
   // rejection; returns what happened.
   FusionReport UpdateStrain(const StrainSample& sample);

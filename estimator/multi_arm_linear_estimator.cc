@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "estimator/linear_method_reports.h"
 #include "estimator/multi_arm_luenberger.h"
 
 namespace birotor {
@@ -57,13 +58,6 @@ MultiArmLinearEstimator<N>::MultiArmLinearEstimator(const VehicleDescription& ve
 }
 
 template <int N>
-FusionReport MultiArmLinearEstimator<N>::PhysicalReport(FusionReport report, double scale) {
-  report.innovation *= scale;
-  report.innovation_variance *= scale * scale;
-  return report;
-}
-
-template <int N>
 void MultiArmLinearEstimator<N>::DropPendingGyro() {
   if (gyro_pending_) reports_.Add(MakeFusionReport(FusionSource::kGyro, gyro_.utime, FusionOutcome::kNotFused));
   gyro_pending_ = false;
@@ -71,9 +65,7 @@ void MultiArmLinearEstimator<N>::DropPendingGyro() {
 
 template <int N>
 double MultiArmLinearEstimator<N>::Gate(FusionSource source) const {
-  if (source == FusionSource::kStrain) return noise_.strain_gate_nis;
-  if (source == FusionSource::kGyro) return noise_.gyro_gate_nis;
-  return std::numeric_limits<double>::quiet_NaN();
+  return LinearMethodGate(noise_, source);
 }
 
 template <int N>
@@ -192,7 +184,7 @@ void MultiArmLinearEstimator<N>::UpdateGyro() {
   const FusionReport report =
       gyro_gate_.Fuse(at, gyro_noise_, z, {FusionSource::kGyro, gyro_.utime, noise_.gyro_gate_nis}, &state_,
                       &covariance_, inflate, kalman_ ? nullptr : &fixed_gyro_gain_s_);
-  reports_.Add(PhysicalReport(report, pitch_rate_scale));
+  reports_.Add(LinearReportInPhysicalUnits(report, pitch_rate_scale));
 }
 
 template <int N>
@@ -224,7 +216,7 @@ FusionReport MultiArmLinearEstimator<N>::UpdateStrain(const MultiArmStrainSample
   };
   FusionReport report = strain_gate_.Fuse(at, noise, z, {FusionSource::kStrain, sample.utime, noise_.strain_gate_nis},
                                           &state_, &covariance_, inflate, kalman_ ? nullptr : &gain);
-  report = PhysicalReport(report, scale_(Layout::Deflection(0)));
+  report = LinearReportInPhysicalUnits(report, scale_(Layout::Deflection(0)));
   for (int i = 0; i < N; ++i) {
     if (!measured[static_cast<size_t>(i)]) report.innovation_variance(i) = 0.0;  // left out (FusionReport)
   }

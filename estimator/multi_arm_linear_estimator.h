@@ -77,9 +77,6 @@ class MultiArmLinearEstimator : public MultiArmForceEstimator {
   Matrix covariance() const { return scale_.asDiagonal() * covariance_ * scale_.asDiagonal(); }
 
  private:
-  // A report in physical units: y and S scaled back from the scaled
-  // coordinates (the NIS is the same in both).
-  static FusionReport PhysicalReport(FusionReport report, double scale);
   // The pending gyro sample, dropped unfused (a reset, a newer sample).
   void DropPendingGyro();
   void Initialize(const MultiArmStrainSample& sample);
