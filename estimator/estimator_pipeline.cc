@@ -82,6 +82,16 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
                    TipMassMapOf(config.model_consistency, model_, *method_)) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
+  double force_sign[kBirotorRotors], drift_psd_rad2_s[kBirotorRotors];
+  for (int i = 0; i < kBirotorRotors; ++i) {
+    // The raw reading s_i b_i moves by s_i kArmSign_i L / k per newton of rotor i.
+    force_sign[i] = kArmSign[i] * calibration_.scale[i];
+    drift_psd_rad2_s[i] = model_.gauge_drift_psd_rad2_s;
+  }
+  // With learned strain scales a common force goes to the scales as much as
+  // to the offsets (split again after each settling): the test is not run.
+  if (!config.ekf.learn_strain_scale) consistency_.SetOffsetGauges(force_sign, drift_psd_rad2_s);
+  consistency_.AnchorOffsets(calibration_.offset_rad, calibration_.offset_std_rad);
   health_.body_mass_kg = config.vehicle.body_mass_kg;
   health_.tip_mass_kg = model_.tip_mass_kg;
   health_.strain_noise_learned = method_->learns_strain_noise();
@@ -97,6 +107,7 @@ void EstimatorPipeline::CountOverloadDrop(InputChannel channel) { ++Counters(&he
 
 void EstimatorPipeline::SetGaugeOffsets(const GaugeCalibration& calibration) {
   UseGaugeOffsets(calibration.offset_rad, calibration.offset_std_rad, calibration.source);
+  consistency_.AnchorOffsets(calibration.offset_rad, calibration.offset_std_rad);
   if (calibration.has_tip_mass) ResumeTipMass(calibration.tip_mass_kg, calibration.tip_mass_std_kg);
   if (!calibration.has_strain_scale) return;
   // Learned in an earlier run: the method starts from it (if it learns it).
@@ -121,6 +132,17 @@ void EstimatorPipeline::UseGaugeOffsets(const double offset_rad[kBirotorRotors],
   calibration_.source = source;
   health_.gauge = calibration_;
   method_->SetGaugeOffsetPrior(prior_std_rad);
+}
+
+void EstimatorPipeline::AnchorOffsetsAtTare() {
+  // The tare subtracts the file's rest reading s_i b_rest_i = -s_i kArmSign_i
+  // L m_p g / k; a tip mass other than the file's (its prior's relative sigma)
+  // moves the offsets the flight needs by that share of it.
+  const double tip_mass_share = config_.model_consistency.arm_mode_unconfirmed_tip_mass_std;
+  double std_rad[kBirotorRotors];
+  for (int i = 0; i < kBirotorRotors; ++i)
+    std_rad[i] = std::hypot(tare_.offset_std_rad()[i], tip_mass_share * RestReadingRad(model_, i));
+  consistency_.AnchorOffsets(tare_.offset_rad(), std_rad);
 }
 
 void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
@@ -266,6 +288,8 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   consistency_.AddStrain(deflection.utime, deflection.deflection_rad, !info.body_supported, outlier);
   HandOverTipMass();
   UpdateReportedGaugeOffsets(info);
+  if (info.has_learned_gauge_offset)
+    consistency_.AddOffsets(deflection.utime, health_.gauge.offset_rad, !info.body_supported);
   if (info.reset != ResetReason::kNone) {
     // The method re-initialised itself (its numerical guard).
     ++health_.resets;
@@ -346,6 +370,7 @@ bool EstimatorPipeline::CheckStrainTiming(const StrainSample& sample, int64_t pr
 StrainSample EstimatorPipeline::Condition(const StrainSample& sample, int64_t previous_utime, bool backwards_jump) {
   if (tare_.AddStrain(sample) == TareEvent::kAccepted) {
     UseGaugeOffsets(tare_.offset_rad(), tare_.offset_std_rad(), GaugeOffsetSource::kTare);
+    AnchorOffsetsAtTare();
   }
   health_.tare = tare_.counters();
   StrainSample deflection = calibration_.Apply(sample);

@@ -126,6 +126,9 @@ class EstimatorPipeline {
   // what it learned before a reset) and reports it.
   void UseGaugeOffsets(const double offset_rad[kBirotorRotors], const double offset_std_rad[kBirotorRotors],
                        GaugeOffsetSource source);
+  // The offset-departure test starts from a tare: its offsets, their sigma
+  // widened by the tip mass's prior share of the rest reading.
+  void AnchorOffsetsAtTare();
   // health_.gauge = calibration_ + what the method learned (scaled to the raw reading).
   void UpdateReportedGaugeOffsets(const StrainStepInfo& info);
   // Resets before the method sees the strain sample (start, backwards jump,

@@ -31,6 +31,7 @@ ModelConsistencyMonitor::ModelConsistencyMonitor(const ModelConsistencyOptions& 
       rotors_(std::clamp(rotors, 1, kMaxSampleArms)),
       arm_mode_file_(arm_mode),
       arm_mode_(options, arm_mode, strain_noise_rad, tip_mass),
+      offsets_(0.0, 0.0, rotors, UnitThrustScales().data(), ArmValues{}.data()),
       window_us_(static_cast<int64_t>(std::llround(options.window_s * 1e6))) {
   state_.arm_mode = arm_mode_.state();
 }
@@ -46,9 +47,33 @@ void ModelConsistencyMonitor::AddStrain(int64_t utime, const double* deflection_
     Raise(utime, newest_thrust_scale_.data());
     state_.parameter = MismatchParameter::kTipMass;
   } else if (!arm_mode_mismatch && state_.mismatch && state_.parameter == MismatchParameter::kTipMass &&
-             consistent_run_ >= options_.clear_windows) {
+             consistent_run_ >= options_.clear_windows && !offsets_.state().departed) {
     // Cleared by the arm-mode test, the windows as consistent as their own clearing needs.
     state_.mismatch = false;
+  }
+}
+
+void ModelConsistencyMonitor::SetOffsetGauges(const double* force_sign, const double* drift_psd_rad2_s) {
+  offsets_ = OffsetDepartureTest(options_.offset_departure_limit, options_.offset_departure_hold_s, rotors_, force_sign,
+                                 drift_psd_rad2_s);
+  state_.offsets = offsets_.state();
+}
+
+void ModelConsistencyMonitor::AnchorOffsets(const double* offset_rad, const double* offset_std_rad) {
+  offsets_.Anchor(offset_rad, offset_std_rad);
+  state_.offsets = offsets_.state();
+}
+
+void ModelConsistencyMonitor::AddOffsets(int64_t utime, const double* offset_rad, bool free_flight) {
+  if (!options_.enabled || !judging_ || !offsets_.enabled()) return;
+  const bool departed = offsets_.Add(utime, offset_rad, free_flight);
+  state_.offsets = offsets_.state();
+  if (departed && !state_.mismatch) {
+    // The filter's innovations are white: the name is the offsets' (a
+    // payload, or every arm's stiffness or gauge scale alike).
+    state_.raised_fast = false;
+    Raise(utime, newest_thrust_scale_.data());
+    state_.parameter = MismatchParameter::kMass;
   }
 }
 
@@ -204,7 +229,8 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
   } else {
     inconsistent_run_ = 0;
     ++consistent_run_;
-    if (state_.mismatch && consistent_run_ >= options_.clear_windows && !arm_mode_.state().mismatch) {
+    if (state_.mismatch && consistent_run_ >= options_.clear_windows && !arm_mode_.state().mismatch &&
+        !offsets_.state().departed) {
       state_.mismatch = false;
     }
   }

@@ -12,6 +12,7 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
+#include "estimator/offset_departure.h"
 #include "samples/multi_arm_samples.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
@@ -81,10 +82,11 @@ struct ModelConsistencyState {
   // window's and the fast test's statistic (> 1: that test says
   // inconsistent) [1]. Right after a fast raise the first window has not
   // closed yet and statistic alone still reads 0.
-  // The arm-mode test's statistic counts too (its own > 1: beyond its limit).
+  // The arm-mode and offset-departure tests' statistics count too (each > 1: beyond its limit).
   double ReportedStatistic() const {
-    const double s = statistic > fast_statistic ? statistic : fast_statistic;
-    return s > arm_mode.statistic ? s : arm_mode.statistic;
+    double s = statistic > fast_statistic ? statistic : fast_statistic;
+    s = s > arm_mode.statistic ? s : arm_mode.statistic;
+    return s > offsets.statistic ? s : offsets.statistic;
   }
   bool raised_fast = false;                          // the current (or last) mismatch was raised by the fast test
   int64_t raised_utime = -1;                         // when the current (or last) mismatch was raised [us]; -1 never
@@ -93,6 +95,7 @@ struct ModelConsistencyState {
   SourceWindowStats last[kNumFusionSources];         // the newest completed window
   ArmValues thrust_scale_mean = UnitThrustScales();  // window mean of mu_i of the estimates [1]
   ArmModeState arm_mode;                             // the arm-mode test (options arm_mode_*)
+  OffsetDepartureState offsets;                      // the offset-departure test (options offset_departure_*)
 };
 
 // For the birotor (EstimatorPipeline) and any N-rotor vehicle
@@ -132,6 +135,16 @@ class ModelConsistencyMonitor {
     state_.arm_mode = arm_mode_.state();
     return resumed;
   }
+  // The offset-departure test (estimator/offset_departure.h) on gauges whose
+  // reading moves by force_sign[i] (+-1) per newton of rotor i and whose
+  // offsets drift by drift_psd_rad2_s[i]; not run until this is called.
+  void SetOffsetGauges(const double* force_sign, const double* drift_psd_rad2_s);
+  // A new calibration of the offsets (the file's, a tare, a state file) with
+  // one sigma each [rad of the raw reading]: the test starts from it.
+  void AnchorOffsets(const double* offset_rad, const double* offset_std_rad);
+  // The offsets in use at utime (calibration plus what the method learned);
+  // judged in free flight. Raises MODEL_MISMATCH ("mass") when they depart.
+  void AddOffsets(int64_t utime, const double* offset_rad, bool free_flight);
   // Every force estimate (its utime, and its thrust scales for the
   // attribution); returns the monitor's facts on it (all false for a method
   // it does not judge): the mismatch raised, the model not yet confirmed
@@ -178,6 +191,7 @@ class ModelConsistencyMonitor {
   int rotors_;
   ArmModeExpectation arm_mode_file_;  // the file's, before any learned scale
   ArmModeMonitor arm_mode_;
+  OffsetDepartureTest offsets_;  // off (limit 0) until SetOffsetGauges
   int64_t window_us_ = 0;
   int64_t window_start_utime_ = -1;
   bool judging_ = false;  // a report with an innovation has arrived

@@ -102,6 +102,15 @@ std::string LearnedTipMassRangeProblem(double tip_mass_kg, double std_kg) {
 
 GaugeCalibration PersistedGaugeState(const PipelineHealth& health) {
   GaugeCalibration state = health.gauge;
+  const OffsetDepartureState& offsets = health.consistency.offsets;
+  if (offsets.departed) {
+    // The offsets took a force (a payload): the next start keeps the anchor
+    // they left, so that it sees the payload again instead of flying on it.
+    for (int i = 0; i < kBirotorRotors; ++i) {
+      state.offset_rad[i] = offsets.anchor_rad[i];
+      state.offset_std_rad[i] = offsets.anchor_std_rad[i];
+    }
+  }
   state.has_tip_mass = health.tip_mass_learned;
   state.tip_mass_kg = health.tip_mass_kg;
   state.tip_mass_std_kg = health.tip_mass_std_kg;

@@ -39,7 +39,8 @@ std::string LearnedTipMassRangeProblem(double tip_mass_kg, double std_kg);
 //   checksum: <16 hex of the lines above>
 std::string GaugeStateText(const GaugeCalibration& calibration, const std::string& vehicle_checksum);
 
-// What the daemon persists at a clean stop: the calibration in use (offsets,
+// What the daemon persists at a clean stop: the calibration in use (offsets;
+// the offset-departure test's anchor instead when they departed;
 // learned strain scales) and the tip mass the arm-mode test learned, if it did.
 GaugeCalibration PersistedGaugeState(const PipelineHealth& health);
 

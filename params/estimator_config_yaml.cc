@@ -212,6 +212,8 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Real("arm_mode_band_pull", &O::arm_mode_band_pull, 0.1, 1.0),
       Real("arm_mode_explained_sigmas", &O::arm_mode_explained_sigmas, 0.5, 10.0),
       Real("arm_mode_learn_min_excitation", &O::arm_mode_learn_min_excitation, 0.0, 1e6),
+      Real("offset_departure_limit", &O::offset_departure_limit, 0.0, 1e3),  // 0: off
+      Real("offset_departure_hold_s", &O::offset_departure_hold_s, 0.0, 100.0),
   };
   return keys;
 }

@@ -48,8 +48,9 @@ PayloadFigures Fly(const std::string& name, std::vector<std::string> overrides, 
   return f;
 }
 
-// Body +10 % from an airborne start: with the mass fixed 1.959 N off, VALID,
-// 2-sigma share 0.000 (the offsets take Delta m g / 2 per rotor). Learned:
+// Body +10 % from an airborne start: with the mass fixed the offsets take
+// Delta m g / 2 per rotor (1.959 N off, VALID, 2-sigma share 0.000 before the
+// offset-departure test; now raised at 0.1 s). Learned:
 // VALID 1.000, MAE 0.081 N, 2-sigma share 1.000, worst window 0.999; the
 // published mass 4.40 kg.
 TEST(PayloadLearning, AirborneTenPercentIsLearned) {
@@ -59,9 +60,10 @@ TEST(PayloadLearning, AirborneTenPercentIsLearned) {
   EXPECT_GE(f.targets.two_sigma_share, 0.90);
   EXPECT_GE(f.targets.worst_window_share, 0.80);
   EXPECT_NEAR(f.body_mass_kg, 4.4, 3.0 * f.body_mass_std_kg + 0.01);
+  // With the mass fixed the offsets take it and the offset-departure test
+  // raises MODEL_MISMATCH at 0.1 s (offset_departure_test.cc): never VALID.
   const PayloadFigures fixed = Fly("body +10 %, airborne, mass fixed", {"vehicle.body_mass_kg=4.4"}, false, false);
-  EXPECT_GT(fixed.targets.valid_mae_n, 1.9);  // the confidently wrong figure it replaces
-  EXPECT_LT(fixed.targets.two_sigma_share, 0.01);
+  EXPECT_EQ(fixed.targets.valid_share, 0.0);
 }
 
 // Body +15 % airborne: with the mass fixed never VALID (MODEL_MISMATCH at

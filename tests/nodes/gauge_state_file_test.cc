@@ -344,6 +344,29 @@ TEST(AuthenticatedGaugeStateTest, AGenuineFileRestoresEveryBit) {
   unlink(path.c_str());
 }
 
+// Offsets the offset-departure test says took a force (a payload, docs/
+// mismatch.md "Offsets that took a force") are not kept: the state holds the
+// anchor they left, with its sigma, so that the next start sees the payload
+// again; offsets that did not depart are kept as learned.
+TEST(GaugeStatePersistence, OffsetsThatDepartedAreReplacedByTheirAnchor) {
+  PipelineHealth health;
+  health.gauge = Learned();
+  OffsetDepartureState& offsets = health.consistency.offsets;
+  offsets.anchor_rad[0] = 1.5e-5;
+  offsets.anchor_rad[1] = -1.0e-5;
+  offsets.anchor_std_rad[0] = offsets.anchor_std_rad[1] = 5e-5;
+  GaugeCalibration state = PersistedGaugeState(health);
+  EXPECT_EQ(state.offset_rad[0], Learned().offset_rad[0]);
+  EXPECT_EQ(state.offset_std_rad[1], Learned().offset_std_rad[1]);
+  offsets.departed = true;
+  state = PersistedGaugeState(health);
+  EXPECT_EQ(state.offset_rad[0], 1.5e-5);
+  EXPECT_EQ(state.offset_rad[1], -1.0e-5);
+  EXPECT_EQ(state.offset_std_rad[0], 5e-5);
+  EXPECT_EQ(state.offset_std_rad[1], 5e-5);
+  EXPECT_EQ(state.source, Learned().source);
+}
+
 // The tip mass learned from the arm mode (issue 36) is persisted from the
 // pipeline's health (PersistedGaugeState), under the mac; out of the range
 // of vehicle.tip_mass_kg, or its sigma outside [1e-6, 1] kg, it is refused
