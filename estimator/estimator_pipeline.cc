@@ -82,15 +82,16 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
                    TipMassMapOf(config.model_consistency, model_, *method_)) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
-  double force_sign[kBirotorRotors], drift_psd_rad2_s[kBirotorRotors];
+  double direction[kBirotorRotors], drift_psd_rad2_s[kBirotorRotors];
   for (int i = 0; i < kBirotorRotors; ++i) {
-    // The raw reading s_i b_i moves by s_i kArmSign_i L / k per newton of rotor i.
-    force_sign[i] = kArmSign[i] * calibration_.scale[i];
+    // The raw reading s_i b_i moves by s_i kArmSign_i L / k per newton of
+    // rotor i, and a payload adds the same newtons to both rotors.
+    direction[i] = kArmSign[i] * calibration_.scale[i];
     drift_psd_rad2_s[i] = model_.gauge_drift_psd_rad2_s;
   }
   // With learned strain scales a common force goes to the scales as much as
   // to the offsets (split again after each settling): the test is not run.
-  if (!config.ekf.learn_strain_scale) consistency_.SetOffsetGauges(force_sign, drift_psd_rad2_s);
+  if (!config.ekf.learn_strain_scale) consistency_.SetOffsetGauges(direction, drift_psd_rad2_s);
   consistency_.AnchorOffsets(calibration_.offset_rad, calibration_.offset_std_rad);
   health_.body_mass_kg = config.vehicle.body_mass_kg;
   health_.tip_mass_kg = model_.tip_mass_kg;

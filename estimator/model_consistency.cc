@@ -53,8 +53,8 @@ void ModelConsistencyMonitor::AddStrain(int64_t utime, const double* deflection_
   }
 }
 
-void ModelConsistencyMonitor::SetOffsetGauges(const double* force_sign, const double* drift_psd_rad2_s) {
-  offsets_ = OffsetDepartureTest(options_.offset_departure_limit, options_.offset_departure_hold_s, rotors_, force_sign,
+void ModelConsistencyMonitor::SetOffsetGauges(const double* direction, const double* drift_psd_rad2_s) {
+  offsets_ = OffsetDepartureTest(options_.offset_departure_limit, options_.offset_departure_hold_s, rotors_, direction,
                                  drift_psd_rad2_s);
   state_.offsets = offsets_.state();
 }

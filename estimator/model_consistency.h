@@ -136,9 +136,9 @@ class ModelConsistencyMonitor {
     return resumed;
   }
   // The offset-departure test (estimator/offset_departure.h) on gauges whose
-  // reading moves by force_sign[i] (+-1) per newton of rotor i and whose
+  // raw readings move as direction[i] when the vehicle weighs more and whose
   // offsets drift by drift_psd_rad2_s[i]; not run until this is called.
-  void SetOffsetGauges(const double* force_sign, const double* drift_psd_rad2_s);
+  void SetOffsetGauges(const double* direction, const double* drift_psd_rad2_s);
   // A new calibration of the offsets (the file's, a tare, a state file) with
   // one sigma each [rad of the raw reading]: the test starts from it.
   void AnchorOffsets(const double* offset_rad, const double* offset_std_rad);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "estimator/estimation_method.h"
+#include "model/multi_arm_linearization.h"
 
 namespace birotor {
 namespace {
@@ -47,6 +48,22 @@ ModelConsistencyOptions MultiArmConsistencyOptions(const ModelConsistencyOptions
   return n_arms;
 }
 
+// How each gauge's raw reading moves when the vehicle weighs more (the
+// offset-departure test's direction, estimator/offset_departure.h): s_i
+// times the hover deflection with 10 % more body mass minus the file's, the
+// thrusts shared as the hover allocation shares the weight [rad].
+ArmValues CommonForceReadings(const VehicleDescription& vehicle) {
+  VehicleDescription heavier = vehicle;
+  heavier.body_mass_kg *= 1.1;
+  const MultiArmHover file = SolveMultiArmHover(vehicle), payload = SolveMultiArmHover(heavier);
+  ArmValues direction{};
+  for (int i = 0; i < vehicle.arm_count; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    direction[k] = vehicle.arms[k].gauge_scale * (payload.deflection_rad(i) - file.deflection_rad(i));
+  }
+  return direction;
+}
+
 }  // namespace
 
 MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
@@ -73,6 +90,10 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
     calibration_.offset_rad[k] = config.vehicle.arms[k].gauge_offset_rad;
     calibration_.offset_std_rad[k] = config.vehicle.gauge_offset_std_rad;
   }
+  ArmValues drift_psd_rad2_s;
+  drift_psd_rad2_s.fill(config.vehicle.gauge_drift_psd_rad2_s);
+  consistency_.SetOffsetGauges(CommonForceReadings(config.vehicle).data(), drift_psd_rad2_s.data());
+  consistency_.AnchorOffsets(calibration_.offset_rad.data(), calibration_.offset_std_rad.data());
 }
 
 void MultiArmPipeline::ResumeGaugeState(const MultiArmGaugeState& state) {
@@ -88,18 +109,19 @@ void MultiArmPipeline::ResumeGaugeState(const MultiArmGaugeState& state) {
   health_.gauge_offset_source = state.source;
   offsets_resumed_ = true;
   filter_->SetGaugeOffsetPrior(prior_std_rad);
+  consistency_.AnchorOffsets(calibration_.offset_rad.data(), calibration_.offset_std_rad.data());
   if (state.has_tip_mass) ResumeTipMass(state.tip_mass_ratio, state.tip_mass_ratio_std);
 }
 
 MultiArmGaugeState MultiArmPipeline::GaugeState() const {
   MultiArmGaugeState state = calibration_;
-  for (int i = 0; i < state.arm_count; ++i) {
+  OffsetsInUse(&state.offset_rad, &state.offset_std_rad);
+  const OffsetDepartureState& departure = consistency_.state().offsets;
+  for (int i = 0; i < state.arm_count && departure.departed; ++i) {
+    // They took a force (a payload): the next start keeps the anchor they left.
     const size_t k = static_cast<size_t>(i);
-    double learned_rad = 0, learned_std_rad = 0;  // e_i and its sigma, in deflection
-    if (!filter_->LearnedGaugeOffset(i, &learned_rad, &learned_std_rad)) continue;
-    const double scale = config_.vehicle.arms[k].gauge_scale;
-    state.offset_rad[k] = calibration_.offset_rad[k] + scale * learned_rad;
-    state.offset_std_rad[k] = scale * learned_std_rad;
+    state.offset_rad[k] = departure.anchor_rad[k];
+    state.offset_std_rad[k] = departure.anchor_std_rad[k];
   }
   state.has_tip_mass = health_.tip_mass_learned;
   state.tip_mass_ratio = health_.tip_mass_ratio;
@@ -251,6 +273,22 @@ MultiArmStrainSample MultiArmPipeline::Condition(const MultiArmStrainSample& sam
   return deflection;
 }
 
+bool MultiArmPipeline::OffsetsInUse(ArmValues* offset_rad, ArmValues* offset_std_rad) const {
+  bool learned = false;
+  for (int i = 0; i < config_.vehicle.arm_count; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    double learned_rad = 0, learned_std_rad = 0;  // e_i and its sigma, in deflection
+    (*offset_rad)[k] = calibration_.offset_rad[k];
+    (*offset_std_rad)[k] = calibration_.offset_std_rad[k];
+    if (!filter_->LearnedGaugeOffset(i, &learned_rad, &learned_std_rad)) continue;
+    const double scale = config_.vehicle.arms[k].gauge_scale;
+    (*offset_rad)[k] += scale * learned_rad;
+    (*offset_std_rad)[k] = scale * learned_std_rad;
+    learned = true;
+  }
+  return learned;
+}
+
 ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmStrainSample& deflection,
                                                           const MultiArmForceEstimate& estimate) {
   const FusionReports* reports = filter_->reports();
@@ -263,6 +301,9 @@ ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmStrainSa
     }
   }
   consistency_.AddStrain(deflection.utime, deflection.deflection_rad.data(), !filter_->body_supported(), outlier);
+  ArmValues offset_rad, offset_std_rad;
+  if (OffsetsInUse(&offset_rad, &offset_std_rad))
+    consistency_.AddOffsets(deflection.utime, offset_rad.data(), !filter_->body_supported());
   for (int i = 0; i < config_.vehicle.arm_count; ++i) {
     health_.strain_noise_scale[static_cast<size_t>(i)] = filter_->strain_noise_scale(i);
   }

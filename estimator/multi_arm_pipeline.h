@@ -151,6 +151,9 @@ class MultiArmPipeline {
   // The method's fusion reports of this strain sample into the monitor and
   // the per-input counters, the sample as the filter got it into the
   // arm-mode test; the monitor's facts on the estimate.
+  // Each gauge's offset in use and its sigma: the calibration plus what the
+  // method learned on top (s_i e_i); false when the method learns none.
+  bool OffsetsInUse(ArmValues* offset_rad, ArmValues* offset_std_rad) const;
   ConsistencyStatusFacts JudgeConsistency(const MultiArmStrainSample& deflection,
                                           const MultiArmForceEstimate& estimate);
 

@@ -6,22 +6,21 @@
 
 namespace birotor {
 
-OffsetDepartureTest::OffsetDepartureTest(double limit_sigma, double hold_s, int arms, const double* force_sign,
+OffsetDepartureTest::OffsetDepartureTest(double limit_sigma, double hold_s, int arms, const double* direction,
                                          const double* drift_psd_rad2_s)
     : limit_sigma_(limit_sigma),
       hold_us_(static_cast<int64_t>(std::llround(hold_s * 1e6))),
       arms_(std::clamp(arms, 1, kMaxSampleArms)) {
   for (int i = 0; i < arms_; ++i) {
-    force_sign_[i] = force_sign[i] < 0 ? -1.0 : 1.0;
+    direction_[i] = std::isfinite(direction[i]) ? direction[i] : 0.0;
     drift_psd_rad2_s_[i] = std::max(drift_psd_rad2_s[i], 0.0);
   }
 }
 
 void OffsetDepartureTest::Anchor(const double* offset_rad, const double* offset_std_rad) {
-  anchor_variance_rad2_ = 0;
   for (int i = 0; i < arms_; ++i) {
     anchor_rad_[i] = offset_rad[i];
-    anchor_variance_rad2_ += offset_std_rad[i] * offset_std_rad[i];
+    anchor_variance_rad2_[i] = offset_std_rad[i] * offset_std_rad[i];
   }
   anchor_utime_ = -1;
   beyond_since_utime_ = -1;
@@ -40,12 +39,13 @@ bool OffsetDepartureTest::Add(int64_t utime, const double* offset_rad, bool free
     state_.statistic = 0;
     return false;
   }
-  // z = sum_i d_i (o_i - a_i) / sqrt(sum_i s_a,i^2 + sum_i q_i (t - t_a)).
+  // z = sum_i w_i (o_i - a_i) / sqrt(sum_i w_i^2 (s_a,i^2 + q_i (t - t_a))).
   const double elapsed_s = (utime - anchor_utime_) * 1e-6;
-  double departure_rad = 0, variance_rad2 = anchor_variance_rad2_;
+  double departure_rad = 0, variance_rad2 = 0;
   for (int i = 0; i < arms_; ++i) {
-    departure_rad += force_sign_[i] * (offset_rad[i] - anchor_rad_[i]);
-    variance_rad2 += drift_psd_rad2_s_[i] * elapsed_s;
+    const double w = direction_[i];
+    departure_rad += w * (offset_rad[i] - anchor_rad_[i]);
+    variance_rad2 += w * w * (anchor_variance_rad2_[i] + drift_psd_rad2_s_[i] * elapsed_s);
   }
   if (!(variance_rad2 > 0) || !std::isfinite(departure_rad)) return false;
   state_.z = departure_rad / std::sqrt(variance_rad2);

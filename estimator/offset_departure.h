@@ -14,10 +14,13 @@
 // random walk of q_i [rad^2/s] since the anchor at t_a, the departure along
 // the common-force direction
 //
-//   z = sum_i d_i (o_i - a_i) / sqrt(sum_i (s_a,i^2 + q_i (t - t_a)))
+//   z = sum_i w_i (o_i - a_i) / sqrt(sum_i w_i^2 (s_a,i^2 + q_i (t - t_a)))
 //
-// is N(0, 1) while the offsets are what the gauge model says; d_i = +-1 is
-// the sign of gauge i's reading per newton of its rotor. |z| above the limit
+// is N(0, 1) while the offsets are what the gauge model says; w_i is how far
+// gauge i's raw reading moves when the vehicle weighs more (any common
+// scale: the birotor's +-s_i, kArmSign_i times the gauge scale; for N arms
+// the hover deflections with a payload minus without, CommonForceReadings).
+// |z| above the limit
 // for hold_s without a break in free flight: no offset within its prior and
 // drift explains the readings, the test departs (MODEL_MISMATCH, "mass"), and
 // stays departed until the next anchor (a tare, a new calibration): the
@@ -47,8 +50,8 @@ class OffsetDepartureTest {
  public:
   // limit_sigma: |z| beyond which the offsets are out of their range (0: the
   // test is off); hold_s: how long without a break [s]; arms: the gauges;
-  // force_sign[i]: d_i; drift_psd_rad2_s[i]: q_i of the raw reading.
-  OffsetDepartureTest(double limit_sigma, double hold_s, int arms, const double* force_sign,
+  // direction[i]: w_i; drift_psd_rad2_s[i]: q_i of the raw reading.
+  OffsetDepartureTest(double limit_sigma, double hold_s, int arms, const double* direction,
                       const double* drift_psd_rad2_s);
   // A new calibration: offsets o_i [rad of the raw reading] with one sigma
   // each; the drift counts from the next Add. Clears a departure.
@@ -64,12 +67,12 @@ class OffsetDepartureTest {
   double limit_sigma_;
   int64_t hold_us_;
   int arms_;
-  double force_sign_[kMaxSampleArms] = {};
+  double direction_[kMaxSampleArms] = {};
   double drift_psd_rad2_s_[kMaxSampleArms] = {};
   double anchor_rad_[kMaxSampleArms] = {};
-  double anchor_variance_rad2_ = 0;  // sum_i s_a,i^2
-  int64_t anchor_utime_ = -1;        // t_a: the first Add after the anchor
-  int64_t beyond_since_utime_ = -1;  // start of the current run beyond the limit
+  double anchor_variance_rad2_[kMaxSampleArms] = {};  // s_a,i^2
+  int64_t anchor_utime_ = -1;                         // t_a: the first Add after the anchor
+  int64_t beyond_since_utime_ = -1;                   // start of the current run beyond the limit
   OffsetDepartureState state_;
 };
 
