@@ -55,6 +55,7 @@ EkfForceEstimator::EkfForceEstimator(const BirotorParams& params, const EkfOptio
       accel_model_(options.accel_noise_m_s2),
       contact_(params, options),
       strain_gate_(options.gate_consecutive_limit),
+      gyro_gate_(options.gate_consecutive_limit),
       strain_noise_(options),
       strain_noise_rad2_(strain_model_.noise),
       faults_(options) {
@@ -98,6 +99,7 @@ void EkfForceEstimator::DoReset() {
   initialized_ = false;
   converged_ = false;
   strain_gate_.Reset();
+  gyro_gate_.Reset();
   has_motor_ = false;
   command_ = hover_input_;
   faults_.Reset();
@@ -139,7 +141,9 @@ void EkfForceEstimator::DoAddImu(const ImuSample& sample) {
   // next predictions.
   const double total_force_n =
       initialized_ ? process_.Force(state_, 0) + process_.Force(state_, 1) : 2.0 * params_.HoverForceN();
+  const bool was_supported = contact_.supported();
   contact_.Update(sample.utime, sample.accel_z_m_s2, total_force_n);
+  if (was_supported && !contact_.supported()) contact_released_utime_ = sample.utime;
   // A reading switched off is a measurement the filter does not use: said at once.
   if (!options_.use_gyro) ReportNotFused(FusionSource::kGyro, sample.utime);
   if (!options_.use_accelerometer && AccelerometerUsable(sample)) {
@@ -221,6 +225,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
     Report(MakeFusionReport(FusionSource::kTelemetry, telemetry.utime, FusionOutcome::kFused));
   }
   strain_gate_.Reset();
+  gyro_gate_.Reset();
   step_hold_until_utime_ = 0;
   liftoff_hold_until_utime_ = 0;
   converged_ = false;
@@ -316,6 +321,13 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
   }
   SetFilterFacts(sample, options_.converged_force_std_n, gated, &converged_, estimate, facts);
   faults_.FillFacts(facts);
+}
+
+bool EkfForceEstimator::GyroMayInflate(int64_t utime) const {
+  // Within gyro_liftoff_recovery_s of a lift-off, outside a thrust step.
+  const double since_liftoff_s = (utime - contact_released_utime_) * kMicrosecond;
+  return contact_released_utime_ >= 0 && since_liftoff_s >= 0 && since_liftoff_s <= options_.gyro_liftoff_recovery_s &&
+         !InThrustStep();
 }
 
 void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[kBirotorRotors]) {

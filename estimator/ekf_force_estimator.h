@@ -75,9 +75,14 @@ class EkfForceEstimator : public ForceEstimator {
   // (LearnStrainNoise, estimator/ekf_parameter_learning.cc).
   FusionReport FuseStrain(const StrainSample& sample);
   void LearnStrainNoise(const FusionReport& strain);
+  // Which gate policy a fusion runs under (GateWithInflation): none (gated
+  // only), the strain's or the gyro's.
+  enum class GateInflation { kNone, kStrain, kGyro };
   // Every fusion of the filter goes through here (estimator/ekf_fusion.cc,
   // with the fusion of each measurement): FuseMeasurement, or with
-  // strain_gate the strain gate with its inflation, in place on the blocks
+  // `inflation` the gate's policy against a persistent change (the strain's:
+  // thrust scales opened; the gyro's: the pitch rate's variance widened),
+  // in place on the blocks
   // of x and P of the LiveStates (the rest of P is zero: no fusion moves
   // it), with the live states that H does not read updated through their
   // cross covariance (UpdateTrailingStates): the same x and P as the update
@@ -85,20 +90,21 @@ class EkfForceEstimator : public ForceEstimator {
   // parameters live, JosephForm::kCombined: the same product to round-off).
   template <int M>
   FusionReport Fuse(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
-                    const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate = false);
+                    const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request,
+                    GateInflation inflation = GateInflation::kNone);
   // On the N live states: FuseLive finds the leading K that H reads (the
   // first block boundary, the dynamic states, the offsets, the strain
   // scales or all, past H's last non-zero column; at most N), FuseRead fuses.
   template <int N, int M>
   FusionReport FuseLive(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
-                        const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate);
+                        const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, GateInflation inflation);
   template <int K, int N, int M>
   FusionReport FuseRead(const MeasurementLinearization<M, kEkfStateSize>& at, const Eigen::Matrix<double, M, M>& noise,
-                        const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate);
+                        const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, GateInflation inflation);
   template <int N, int M, typename State, typename Cov>
   FusionReport FuseOn(const MeasurementLinearization<M, N>& at, const Eigen::Matrix<double, M, M>& noise,
-                      const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, bool strain_gate, State* x,
-                      Cov* cov);
+                      const Eigen::Matrix<double, M, 1>& z, const FusionRequest& request, GateInflation inflation,
+                      State* x, Cov* cov);
   // A slow parameter is learned and not frozen: its rows and columns of P
   // may be non-zero. Otherwise they are exactly zero (not learned: zero
   // prior and process noise; frozen: FreezeSlowParameters zeroed them and
@@ -109,6 +115,10 @@ class EkfForceEstimator : public ForceEstimator {
   // state; 0 mostly): see EkfOptions::step_hold_s.
   uint32_t HeldStates(int live_states) const;
   int64_t StepHoldEndUtime() const;  // the state's time plus step_hold_s [us]
+  // The strain gate is rejecting a step, or let one in less than step_hold_s ago.
+  bool InThrustStep() const;
+  // The gyro may take back a lost pitch rate (gyro_liftoff_recovery_s).
+  bool GyroMayInflate(int64_t utime) const;
   // Whether slow state p (kStrainScale1, kStrainScale2, kBodyMassScale) is frozen.
   bool SlowStateFrozen(int p) const { return p == kBodyMassScale ? mass_frozen_ : scales_frozen_; }
   // The leading states whose rows and columns of P may be non-zero: up to
@@ -174,6 +184,7 @@ class EkfForceEstimator : public ForceEstimator {
   AccelerometerMeasurementModel accel_model_;
   AccelerometerLinearization accel_linearization_;  // from the newest prediction step
   GroundContact contact_;                           // from the IMU: selects the supported-body model
+  int64_t contact_released_utime_ = -1;             // the newest lift-off (contact let go) [us]; -1 none
   EkfState process_noise_psd_;                      // diagonal of Qc; Q = Qc dt
   double offset_prior_std_rad_[kBirotorRotors];     // sigma of e_i at (re-)initialisation [rad]
   EkfInput hover_input_;                            // command assumed before any MOTOR sample
@@ -209,6 +220,7 @@ class EkfForceEstimator : public ForceEstimator {
   EkfState state_;
   EkfMatrix covariance_;
   GateWithInflation strain_gate_;       // strain gate and its inflation policy
+  GateWithInflation gyro_gate_;         // gyro gate; a lost pitch rate is inflated by its initial variance
   StrainNoiseAdaptation strain_noise_;  // the learned scale on each gauge's variance
   Eigen::Matrix2d strain_noise_rad2_;   // R of the strain: diag(scale_i strain_noise_rad^2) [rad^2]
 

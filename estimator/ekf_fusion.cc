@@ -14,21 +14,31 @@ namespace birotor {
 template <int N, int M, typename State, typename Cov>
 FusionReport EkfForceEstimator::FuseOn(const MeasurementLinearization<M, N>& at,
                                        const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                       const FusionRequest& request, bool strain_gate, State* x, Cov* cov) {
-  if (!strain_gate) return FuseMeasurement(at, noise, z, request, x, cov);
-  // After gate_consecutive_limit rejections in a row the change is taken as
-  // real (e.g. a lost propeller blade): the thrust scales open up
-  // (var(mu_i) += inflation^2) and the sample is fused without the gate.
-  const double extra = options_.gate_inflation_thrust_scale_std;
-  return strain_gate_.Fuse(at, noise, z, request, x, cov, [extra](Cov* p) {
-    for (int i = 0; i < 2; ++i) (*p)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
-  });
+                                       const FusionRequest& request, GateInflation inflation, State* x, Cov* cov) {
+  if (inflation == GateInflation::kStrain) {
+    // After gate_consecutive_limit rejections in a row the change is taken as
+    // real (e.g. a lost propeller blade): the thrust scales open up
+    // (var(mu_i) += inflation^2) and the sample is fused without the gate.
+    const double extra = options_.gate_inflation_thrust_scale_std;
+    return strain_gate_.Fuse(at, noise, z, request, x, cov, [extra](Cov* p) {
+      for (int i = 0; i < 2; ++i) (*p)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += extra * extra;
+    });
+  }
+  if (inflation == GateInflation::kGyro) {
+    // A pitch rate lost (a lift-off's transient): after as many gyro samples
+    // gated in a row its variance grows by the initial one and the gyro is
+    // fused ungated, as the linear methods do.
+    const double extra = options_.initial_pitch_rate_std_rad_s;
+    return gyro_gate_.Fuse(at, noise, z, request, x, cov,
+                           [extra](Cov* p) { (*p)(kPitchRate, kPitchRate) += extra * extra; });
+  }
+  return FuseMeasurement(at, noise, z, request, x, cov);
 }
 
 template <int K, int N, int M>
 FusionReport EkfForceEstimator::FuseRead(const MeasurementLinearization<M, kEkfStateSize>& at,
                                          const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                         const FusionRequest& request, bool strain_gate) {
+                                         const FusionRequest& request, GateInflation inflation) {
   static_assert(K <= N, "the measurement reads the leading K of the N live states");
   static_assert(kThrustScale1 < K && kThrustScale2 < K, "the inflation's states lead");
   auto x = state_.head<N>();
@@ -42,13 +52,13 @@ FusionReport EkfForceEstimator::FuseRead(const MeasurementLinearization<M, kEkfS
     sized.joseph = JosephForm::kCombined;
     sized.consider_states = HeldStates(N);  // through a step or a lift-off
   }
-  return FuseOn(LeadingStates<K>(at), noise, z, sized, strain_gate, &x, &cov);
+  return FuseOn(LeadingStates<K>(at), noise, z, sized, inflation, &x, &cov);
 }
 
 template <int N, int M>
 FusionReport EkfForceEstimator::FuseLive(const MeasurementLinearization<M, kEkfStateSize>& at,
                                          const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                         const FusionRequest& request, bool strain_gate) {
+                                         const FusionRequest& request, GateInflation inflation) {
   // The leading states H reads: its last non-zero column, rounded up to a
   // block boundary (the dynamic states, the offsets, the strain scales, the
   // body mass), at most the live ones.
@@ -56,20 +66,20 @@ FusionReport EkfForceEstimator::FuseLive(const MeasurementLinearization<M, kEkfS
   for (int j = kEkfStateSize - 1; j >= 0 && read == 0; --j) {
     if (!at.jacobian.col(j).isZero(0.0)) read = j + 1;
   }
-  if (read <= kDynamicStateSize) return FuseRead<kDynamicStateSize, N>(at, noise, z, request, strain_gate);
+  if (read <= kDynamicStateSize) return FuseRead<kDynamicStateSize, N>(at, noise, z, request, inflation);
   if (read <= kStrainScale1 || N == kStrainScale1) {
-    return FuseRead<std::min(N, int{kStrainScale1}), N>(at, noise, z, request, strain_gate);
+    return FuseRead<std::min(N, int{kStrainScale1}), N>(at, noise, z, request, inflation);
   }
   if (read <= kBodyMassScale || N == kBodyMassScale) {
-    return FuseRead<std::min(N, int{kBodyMassScale}), N>(at, noise, z, request, strain_gate);
+    return FuseRead<std::min(N, int{kBodyMassScale}), N>(at, noise, z, request, inflation);
   }
-  return FuseRead<N, N>(at, noise, z, request, strain_gate);
+  return FuseRead<N, N>(at, noise, z, request, inflation);
 }
 
 template <int M>
 FusionReport EkfForceEstimator::Fuse(const MeasurementLinearization<M, kEkfStateSize>& at,
                                      const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
-                                     const FusionRequest& request, bool strain_gate) {
+                                     const FusionRequest& request, GateInflation inflation) {
   // Only the live states (LiveStates: the rows and columns of P beyond them
   // are zero, and no fusion moves them), in place on the blocks of x and P.
   // The update on all 14 would give the same x and P (to round-off: sums
@@ -77,11 +87,11 @@ FusionReport EkfForceEstimator::Fuse(const MeasurementLinearization<M, kEkfState
   // per sample with learning off, +14 % with it on).
   switch (LiveStates()) {
     case kStrainScale1:
-      return FuseLive<kStrainScale1>(at, noise, z, request, strain_gate);
+      return FuseLive<kStrainScale1>(at, noise, z, request, inflation);
     case kBodyMassScale:
-      return FuseLive<kBodyMassScale>(at, noise, z, request, strain_gate);
+      return FuseLive<kBodyMassScale>(at, noise, z, request, inflation);
     default:
-      return FuseLive<kEkfStateSize>(at, noise, z, request, strain_gate);
+      return FuseLive<kEkfStateSize>(at, noise, z, request, inflation);
   }
 }
 
@@ -111,7 +121,8 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   PredictTo(sample.utime);
   if (options_.use_gyro) {
     Report(Fuse(gyro_model_.Linearize(state_), gyro_model_.noise, GyroMeasurementModel::Vector(sample.gyro_y_rad_s),
-                {FusionSource::kGyro, sample.utime, options_.gyro_gate_nis}));
+                {FusionSource::kGyro, sample.utime, options_.gyro_gate_nis},
+                GyroMayInflate(sample.utime) ? GateInflation::kGyro : GateInflation::kNone));
   }
   if (!options_.use_accelerometer || !AccelerometerUsable(sample)) return;
   if (options_.body_held || contact_.supported()) {
@@ -129,7 +140,7 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {
   const StrainMeasurementModel::Vector z(sample.deflection_rad[0], sample.deflection_rad[1]);
   return Fuse(strain_model_.Linearize(state_), strain_noise_rad2_, z,
-              {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, true);
+              {FusionSource::kStrain, sample.utime, options_.strain_gate_nis}, GateInflation::kStrain);
 }
 
 }  // namespace birotor

@@ -107,10 +107,13 @@ int64_t EkfForceEstimator::StepHoldEndUtime() const {
   return last_utime_ + static_cast<int64_t>(std::llround(options_.step_hold_s / kMicrosecond));
 }
 
+bool EkfForceEstimator::InThrustStep() const {
+  return strain_gate_.consecutive_rejected() > 0 || last_utime_ < step_hold_until_utime_;
+}
+
 uint32_t EkfForceEstimator::HeldStates(int live_states) const {
   if (live_states <= kStrainScale1) return 0;  // nothing learns
-  const bool step = strain_gate_.consecutive_rejected() > 0 || last_utime_ < step_hold_until_utime_;
-  if (!step && last_utime_ >= liftoff_hold_until_utime_) return 0;
+  if (!InThrustStep() && last_utime_ >= liftoff_hold_until_utime_) return 0;
   // Every live slow parameter (a frozen one's rows of P are zero: no gain
   // either way) and the offsets, which would otherwise take what the
   // parameters may not.

@@ -136,6 +136,15 @@ struct EkfOptions {
   int gate_consecutive_limit = 3;
   // The inflation: the square of this is added to the variance of each mu_i [1].
   double gate_inflation_thrust_scale_std = 0.1;
+  // For this long after a lift-off (the ground contact let go) a pitch rate
+  // the gyro gates gate_consecutive_limit times in a row is taken as lost:
+  // its variance grows by initial_pitch_rate_std_rad_s^2 and the gyro is
+  // fused ungated (not within a thrust step). Without it the gentle flight
+  // from the ground, seed 1, lost the pitch rate at the lift-off (gyro gated
+  // in runs of 4 to 188) and raised MODEL_MISMATCH on the matching vehicle;
+  // always on, the hover-infeasible losses counted 2-10x the force
+  // fallbacks after their touchdown (docs/mismatch.md) [s]; 0: never.
+  double gyro_liftoff_recovery_s = 1.0;
   // Status: kStatusConverging until both force stds fall below this [N].
   double converged_force_std_n = 0.5;
   // Rotor fault: rotor i is weaker than the other rotor j beyond what

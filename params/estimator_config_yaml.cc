@@ -49,6 +49,7 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Real("accel_gate_nis", &O::accel_gate_nis, 1.0, 1e12),
       Integer("gate_consecutive_limit", &O::gate_consecutive_limit, 1, 1000000),
       Real("gate_inflation_thrust_scale_std", &O::gate_inflation_thrust_scale_std, 0.0, 2.0),
+      Real("gyro_liftoff_recovery_s", &O::gyro_liftoff_recovery_s, 0.0, 1000.0),
       Real("converged_force_std_n", &O::converged_force_std_n, 1e-6, 1e3),
       Real("rotor_fault_asymmetry", &O::rotor_fault_asymmetry, 0.0, 1.0),
       Real("rotor_fault_clear_asymmetry", &O::rotor_fault_clear_asymmetry, 0.0, 1.0),
