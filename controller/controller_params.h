@@ -133,6 +133,15 @@ struct EfficiencyParams {
   double max_absolute_efficiency = 1.3;       // [1]
   double feasibility_margin = 1.02;           // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]
   double infeasible_s = 0.1;                  // infeasible this long: level controlled descent [s]
+  // Spare rotors (more rotors than controlled axes, e.g. the quadrotor;
+  // controller/hover_space.h): when the least-norm hover thrusts leave
+  // [spare_min_share, spare_max_share] x e_i c_T,i omega_max^2 on some rotor,
+  // the allocation starts from the nearest hover within those shares
+  // (within [spare_min_share, 1 / feasibility_margin] when there is none),
+  // and hover is feasible while a hover within [spare_min_share, 1 /
+  // feasibility_margin] exists (every rotor kept off 0 for control both ways).
+  double spare_min_share = 0.05;  // [1]
+  double spare_max_share = 0.8;   // [1]
   // Infeasibility from the vehicle itself (force feedback; FORCE refused at
   // its plausibility floor on a large loss): the allocation limited for
   // sink_detect_s while the vehicle is more than sink_detect_altitude_m below

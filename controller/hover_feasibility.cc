@@ -26,8 +26,8 @@ HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, double max_ro
 }
 
 HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
-                                   const double* hover_force_n)
-    : params_(params), rotor_count_(std::clamp(rotor_count, 1, kMaxArms)) {
+                                   const double* hover_force_n, const HoverSpace& space)
+    : params_(params), rotor_count_(std::clamp(rotor_count, 1, kMaxArms)), space_(space) {
   for (int i = 0; i < rotor_count_; ++i) {
     bound_[i] = params.feasibility_margin * hover_force_n[i] / max_rotor_force_n[i];
     hover_speed_ratio_[i] = std::sqrt(hover_force_n[i] / max_rotor_force_n[i]);
@@ -52,6 +52,12 @@ int HoverFeasibility::Weakest(const double (&efficiency)[kMaxArms]) const {
     if (efficiency[i] * bound_[weakest] < efficiency[weakest] * bound_[i]) weakest = i;
   }
   return weakest;
+}
+
+bool HoverFeasibility::HoverHeld(const FeasibilityInputs& in, int weakest) const {
+  // margin f_hover,i > e_i c_T,i omega_max^2 for some i  <=>  e_i < bound_i.
+  if (!space_.redundant()) return !(in.efficiency[weakest] < bound_[weakest]);
+  return space_.NearestWithinShares(in.efficiency, params_.spare_min_share, 1.0 / params_.feasibility_margin, nullptr);
 }
 
 int HoverFeasibility::WeakFromSink(const FeasibilityInputs& in) const {
@@ -87,8 +93,7 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     }
     return phase_;
   }
-  // margin f_hover,i > e_i c_T,i omega_max^2 for some i  <=>  e_i < bound_i.
-  below_bound_s_ = in.efficiency[weakest] < bound_[weakest] ? below_bound_s_ + dt_s : 0.0;
+  below_bound_s_ = HoverHeld(in, weakest) ? 0.0 : below_bound_s_ + dt_s;
   const bool sinking =
       in.allocation_limited && in.altitude_lag_m > params_.sink_detect_altitude_m && in.sink_behind_m_s > 0.0;
   sinking_s_ = sinking ? sinking_s_ + dt_s : 0.0;

@@ -19,6 +19,7 @@
 #include <cstdint>
 
 #include "controller/controller_params.h"
+#include "controller/hover_space.h"
 #include "model/vehicle_description.h"
 
 namespace birotor {
@@ -55,9 +56,12 @@ class HoverFeasibility {
   HoverFeasibility(const EfficiencyParams& params, double max_rotor_force_n, double weight_n);
   // N rotors (2 .. kMaxArms): rotor i makes at most max_rotor_force_n[i] =
   // c_T,i omega_max^2 [N] at e_i = 1 and hovers at hover_force_n[i] =
-  // f_hover,i > 0 [N] (SolveMultiArmHover).
+  // f_hover,i > 0 [N] (SolveMultiArmHover). With spare rotors (space.
+  // redundant()) hover is infeasible when no hover of the space keeps every
+  // rotor within [spare_min_share, 1 / margin] x e_i c_T,i omega_max^2
+  // instead (the bounds below then only rank the rotors).
   HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
-                   const double* hover_force_n);
+                   const double* hover_force_n, const HoverSpace& space = HoverSpace());
 
   // One control period of dt_s [s]; returns the phase after it.
   Phase Update(const FeasibilityInputs& in, double dt_s);
@@ -77,12 +81,16 @@ class HoverFeasibility {
   double EfficiencyFor(int rotor, double efficiency_in_use) const;
   // The largest efficiency of rotor i at which hover is still infeasible:
   // margin f_hover,i / (c_T,i omega_max^2) [1]; the birotor's
-  // margin x weight / (2 c_T omega_max^2).
+  // margin x weight / (2 c_T omega_max^2). With spare rotors the least-norm
+  // hover's: the others may take rotor i's share below it.
   double FeasibilityBound(int rotor = 0) const { return bound_[rotor]; }
   int rotor_count() const { return rotor_count_; }
 
  private:
   void Latch(Cause cause, int weak_rotor, double efficiency);
+  // Whether the efficiencies hold a hover: e_weakest at least its bound, or
+  // with spare rotors some hover within the shares (constructor).
+  bool HoverHeld(const FeasibilityInputs& in, int weakest) const;
   // The rotor furthest below its bound: the least e_i / bound_i (ties: the lowest index).
   int Weakest(const double (&efficiency)[kMaxArms]) const;
   // Detected from the sink: the weaker by FORCE's report when it tells the
@@ -101,6 +109,7 @@ class HoverFeasibility {
   int weak_rotor_ = 0;
   double weak_efficiency_ = 1.0;
   int64_t entries_by_sink_ = 0;
+  HoverSpace space_;  // the hovers the rotors can hold (spare rotors: more than one)
 };
 
 }  // namespace birotor

@@ -32,7 +32,8 @@ ControllerParams GainsAtCommandRate(const ControllerConfig& config) {
   return gains;
 }
 
-// Hover feasibility on rotor i's c_T,i omega_max^2 and hover thrust f_hover,i.
+// Hover feasibility on rotor i's c_T,i omega_max^2 and hover thrust f_hover,i
+// (with spare rotors: on the hovers of HoverSpace).
 HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const ControllerConfig& config,
                                const MultiArmHover& hover) {
   double max_force_n[kMaxArms] = {};
@@ -42,7 +43,9 @@ HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const Controll
     max_force_n[i] = vehicle.arms[rotor].thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
     hover_force_n[i] = hover.force_n(i);
   }
-  return HoverFeasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n);
+  const ArmForces<double> hover_n = hover.force_n;
+  return HoverFeasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n,
+                          HoverSpace(vehicle, MultiArmControlModeFor(vehicle), hover_n));
 }
 
 // Age of a stamp at now_us [s]; infinite before any or from the future.
@@ -57,7 +60,7 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
                                        const MultiArmHover& hover)
     : vehicle_(vehicle),
       config_(config),
-      law_(vehicle, GainsAtCommandRate(config), hover),
+      law_(vehicle, GainsAtCommandRate(config), hover, config.efficiency),
       observer_(config.observer),
       hover_command_(HoverCommand(vehicle, hover)),
       efficiency_(config.efficiency, hover.force_n.sum(), vehicle.arm_count),

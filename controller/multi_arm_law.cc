@@ -5,7 +5,8 @@
 
 namespace birotor {
 
-MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerParams& gains, const MultiArmHover& hover)
+MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerParams& gains, const MultiArmHover& hover,
+                         const EfficiencyParams& spare)
     : gains_(gains),
       dt_s_(1.0 / gains.rate_hz),
       gravity_m_s2_(vehicle.gravity_m_s2),
@@ -13,6 +14,11 @@ MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerPara
       pitch_inertia_kg_m2_(vehicle.body_inertia_kg_m2),
       hover_force_n_(hover.force_n),
       allocator_(vehicle, MultiArmControlModeFor(vehicle)),
+      hover_space_(vehicle, allocator_.mode(), hover_force_n_),
+      spare_min_share_(spare.spare_min_share),
+      spare_max_share_(spare.spare_max_share),
+      feasible_share_(1.0 / spare.feasibility_margin),
+      base_force_n_(hover_force_n_),
       tilt_limit_rad_(gains.max_tilt_rad) {
   for (int i = 0; i < vehicle.arm_count; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
@@ -57,9 +63,19 @@ MultiArmRotorCommand MultiArmLaw::Update(const BodyState& body, const ReferenceP
                                          const RotorEfficiencies& efficiency) {
   Eigen::Vector3d wrench = Wrench(body, reference, !saturated_);
   wrench(kWrenchFz) -= total_mass_kg_ * gravity_m_s2_;  // the hover thrusts carry the weight
-  const MultiArmRotorCommand command = allocator_.Allocate(hover_force_n_, wrench, efficiency);
+  const MultiArmRotorCommand command = allocator_.Allocate(HoverBase(efficiency), wrench, efficiency);
   saturated_ = command.saturated;
   return command;
+}
+
+const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficiency) {
+  if (!hover_space_.redundant()) return hover_force_n_;
+  const double* e = efficiency.data();
+  if (hover_space_.NearestWithinShares(e, spare_min_share_, spare_max_share_, &base_force_n_) ||
+      hover_space_.NearestWithinShares(e, spare_min_share_, feasible_share_, &base_force_n_)) {
+    return base_force_n_;
+  }
+  return hover_force_n_;  // no hover held: the allocator scales it down (the infeasible descent)
 }
 
 }  // namespace birotor

@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "controller/controller_params.h"
+#include "controller/hover_space.h"
 #include "controller/position_attitude_law.h"
 #include "controller/reference_point.h"
 #include "controller/wrench_allocation.h"
@@ -23,18 +24,22 @@ class MultiArmLaw {
   // gains: ControllerParams (acceleration gains; its defaults are the
   // birotor's); they are scaled by the description's total mass m + sum m_p,i
   // and rigid pitch inertia J + sum m_p,i L_i^2 into forces and torques.
-  // hover: SolveMultiArmHover(vehicle), the thrusts' feed-forward.
-  MultiArmLaw(const VehicleDescription& vehicle, const ControllerParams& gains, const MultiArmHover& hover);
+  // hover: SolveMultiArmHover(vehicle), the thrusts' feed-forward. spare:
+  // the spare_* shares and feasibility_margin (spare rotors only).
+  MultiArmLaw(const VehicleDescription& vehicle, const ControllerParams& gains, const MultiArmHover& hover,
+              const EfficiencyParams& spare = EfficiencyParams());
 
   // One control period (1 / rate_hz):
   //   a_des = PositionLoopAcceleration (world),
   //   kTiltToMove:    phi_des = TiltForAcceleration, F_z = m (g + a_z) / cos(phi), F_x = 0
   //   kFullyActuated: phi_des = 0, [F_x; F_z] = R(phi)^T m (a_des + g e_z)   (body frame)
   //   torque = J_eff TiltLoopAcceleration(phi_des)
-  //   f = f_hover + P (w - [0, m g, 0])       (WrenchAllocator::Allocate)
-  // The hover thrusts are what the vehicle needs whatever the efficiencies;
-  // efficiency (each e_i > 0) sets only the bounds and the speed map. The
-  // integrators hold in the period after one that saturated (anti-windup).
+  //   f = f_base + P (w - [0, m g, 0])       (WrenchAllocator::Allocate)
+  // f_base = f_hover, what the vehicle needs whatever the efficiencies; with
+  // spare rotors the nearest hover within the spare_* shares of what each
+  // rotor makes (HoverBase). efficiency (each e_i > 0) sets the bounds and
+  // the speed map. The integrators hold in the period after one that
+  // saturated (anti-windup).
   MultiArmRotorCommand Update(const BodyState& body, const ReferencePoint& reference,
                               const RotorEfficiencies& efficiency);
 
@@ -65,8 +70,19 @@ class MultiArmLaw {
   double gravity_m_s2_;
   double total_mass_kg_;        // m + sum m_p,i [kg]
   double pitch_inertia_kg_m2_;  // J + sum m_p,i L_i^2 [kg m^2]
+  // The thrusts the allocation starts from: f_hover, or with spare rotors
+  // the hover nearest it within [spare_min_share, spare_max_share] x e_i
+  // c_T,i omega_max^2, else within [spare_min_share, 1 / margin], else
+  // f_hover (no hover held: the allocator scales it, the descent's).
+  const ArmForces<double>& HoverBase(const RotorEfficiencies& efficiency);
+
   ArmForces<double> hover_force_n_;
   WrenchAllocator allocator_;
+  HoverSpace hover_space_;
+  double spare_min_share_;                                           // [1]
+  double spare_max_share_;                                           // [1]
+  double feasible_share_;                                            // 1 / feasibility_margin [1]
+  ArmForces<double> base_force_n_;                                   // HoverBase's answer [N]
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
   double tilt_limit_rad_;                                            // LimitTilt [rad]

@@ -1,6 +1,7 @@
 #include "controller/wrench_allocation.h"
 
 #include <Eigen/Dense>
+#include <Eigen/LU>
 #include <algorithm>
 
 #include "controller/position_attitude_law.h"
@@ -35,7 +36,9 @@ WrenchAllocator::WrenchAllocator(const VehicleDescription& vehicle, MultiArmCont
       omega_max_rad_s_(vehicle.omega_max_rad_s),
       nominal_max_force_n_(vehicle.arm_count),
       inverse_(AllocationPseudoinverse(vehicle, mode)),
-      allocation_(WrenchAllocation(vehicle)) {
+      allocation_(WrenchAllocation(vehicle)),
+      first_controlled_row_(mode == MultiArmControlMode::kFullyActuated ? kWrenchFx : kWrenchFz),
+      spare_rotors_(std::max(0, vehicle.arm_count - (kWrenchSize - first_controlled_row_))) {
   for (int i = 0; i < rotor_count_; ++i) {
     const double c_t = vehicle.arms[static_cast<size_t>(i)].thrust_coeff_n_s2_rad2;
     thrust_coeff_n_s2_rad2_[static_cast<size_t>(i)] = c_t;
@@ -43,21 +46,43 @@ WrenchAllocator::WrenchAllocator(const VehicleDescription& vehicle, MultiArmCont
   }
 }
 
-bool WrenchAllocator::AddAxis(int axis, double wrench_change, const ArmForces<double>& max_force_n,
-                              ArmForces<double>* force_n) const {
+const WrenchAllocator::Pseudoinverse& WrenchAllocator::InverseFor(const ArmForces<double>& max_force_n,
+                                                                  Pseudoinverse* weighted) const {
+  if (spare_rotors_ == 0) return inverse_;
+  bool nominal = true;
+  for (int i = 0; i < rotor_count_; ++i) nominal = nominal && max_force_n(i) == nominal_max_force_n_(i);
+  if (nominal) return inverse_;
+  // P_C = C W_r^T (W_r C W_r^T)^-1, C = diag(e_i c_T,i omega_max^2): the
+  // least sum of f_i^2 / C_i, so a weak rotor takes a share in proportion to
+  // what it still makes (a dead one none).
+  const int rows = kWrenchSize - first_controlled_row_;
+  const auto controlled = allocation_.bottomRows(rows);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxArms, kWrenchSize> weighted_transpose =
+      max_force_n.asDiagonal() * controlled.transpose();
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kWrenchSize, kWrenchSize> gram =
+      controlled * weighted_transpose;
+  const Eigen::FullPivLU<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kWrenchSize, kWrenchSize>> lu(gram);
+  if (!lu.isInvertible()) return inverse_;
+  weighted->setZero(rotor_count_, kWrenchSize);
+  weighted->rightCols(rows) = weighted_transpose * lu.inverse();
+  return *weighted;
+}
+
+bool WrenchAllocator::AddAxis(const Pseudoinverse& inverse, int axis, double wrench_change,
+                              const ArmForces<double>& max_force_n, ArmForces<double>* force_n) const {
   ArmForces<double>& f = *force_n;
   double scale = 1.0;
   for (int i = 0; i < rotor_count_; ++i) {
-    const double change = inverse_(i, axis) * wrench_change;
+    const double change = inverse(i, axis) * wrench_change;
     if (f(i) + change > max_force_n(i)) scale = std::min(scale, std::max(0.0, (max_force_n(i) - f(i)) / change));
     if (f(i) + change < 0.0) scale = std::min(scale, std::max(0.0, -f(i) / change));
   }
-  f += (scale * wrench_change) * inverse_.col(axis);
+  f += (scale * wrench_change) * inverse.col(axis);
   return scale < 1.0;
 }
 
-double WrenchAllocator::BaseFraction(const ArmForces<double>& base_force_n, double torque_change_n_m,
-                                     const ArmForces<double>& max_force_n) const {
+double WrenchAllocator::BaseFraction(const Pseudoinverse& inverse, const ArmForces<double>& base_force_n,
+                                     double torque_change_n_m, const ArmForces<double>& max_force_n) const {
   double level = 1.0;  // lambda_0 = min_i f_max,i / b_i: the base's own fraction within the bounds
   for (int i = 0; i < rotor_count_; ++i) {
     if (base_force_n(i) > max_force_n(i)) level = std::min(level, max_force_n(i) / base_force_n(i));
@@ -74,7 +99,7 @@ double WrenchAllocator::BaseFraction(const ArmForces<double>& base_force_n, doub
     *high = level;
     bool feasible = true;
     for (int i = 0; i < rotor_count_; ++i) {
-      const double torque_n = s * inverse_(i, kWrenchTorque) * torque_change_n_m;
+      const double torque_n = s * inverse(i, kWrenchTorque) * torque_change_n_m;
       const double b = base_force_n(i);
       if (b > 0.0) {
         *low = std::max(*low, -torque_n / b);
@@ -106,7 +131,9 @@ MultiArmRotorCommand WrenchAllocator::Allocate(const ArmForces<double>& base_for
   ArmForces<double> force_n = base_force_n;
   Eigen::Vector3d change_n = wrench_change_n;
   bool saturated = false;
-  const double lambda = BaseFraction(base_force_n, wrench_change_n(kWrenchTorque), max_force_n);
+  Pseudoinverse weighted;
+  const Pseudoinverse& inverse = InverseFor(max_force_n, &weighted);
+  const double lambda = BaseFraction(inverse, base_force_n, wrench_change_n(kWrenchTorque), max_force_n);
   if (lambda < 1.0) {
     // W f_base = W (lambda f_base) + (1 - lambda) W f_base: the same wrench asked for.
     change_n += (1.0 - lambda) * (allocation_ * base_force_n);
@@ -114,7 +141,7 @@ MultiArmRotorCommand WrenchAllocator::Allocate(const ArmForces<double>& base_for
     saturated = true;
   }
   for (int axis : {kWrenchTorque, kWrenchFz, kWrenchFx}) {
-    saturated |= AddAxis(axis, change_n(axis), max_force_n, &force_n);
+    saturated |= AddAxis(inverse, axis, change_n(axis), max_force_n, &force_n);
   }
   MultiArmRotorCommand command;
   for (int i = 0; i < rotor_count_; ++i) {

@@ -50,6 +50,9 @@ class WrenchAllocator {
   // P = W_r^T (W_r W_r^T)^-1 on the controlled rows of W = WrenchAllocation
   // (kFullyActuated: all three; kTiltToMove: F_z and torque, the F_x column
   // zero), once, here: unweighted, the least sum of squared thrust changes.
+  // With spare rotors (N above the controlled rows) and a rotor below its
+  // nominal efficiency, Allocate weighs each rotor's share by what it still
+  // makes instead (InverseFor).
   WrenchAllocator(const VehicleDescription& vehicle, MultiArmControlMode mode);
 
   // f = f_base + P dw, with the saturation priority: the torque increment
@@ -86,11 +89,15 @@ class WrenchAllocator {
   // 1 when the base fits (kept whole); else lambda in [0, lambda_0],
   // lambda_0 = min_i f_max,i / f_base,i, with room for the largest fraction
   // of the torque increment P(:, tau) dtau (the most thrust among those).
-  double BaseFraction(const ArmForces<double>& base_force_n, double torque_change_n_m,
+  double BaseFraction(const Pseudoinverse& inverse, const ArmForces<double>& base_force_n, double torque_change_n_m,
                       const ArmForces<double>& max_force_n) const;
   // f += s P(:, axis) dw(axis), s in [0, 1] the largest that keeps f in
   // [0, max_force_n]; returns true when s < 1.
-  bool AddAxis(int axis, double wrench_change, const ArmForces<double>& max_force_n, ArmForces<double>* force_n) const;
+  bool AddAxis(const Pseudoinverse& inverse, int axis, double wrench_change, const ArmForces<double>& max_force_n,
+               ArmForces<double>* force_n) const;
+  // P, or with spare rotors and some e_i != 1 the capacity-weighted
+  // inverse (in *weighted): C W_r^T (W_r C W_r^T)^-1, C = diag(max_force_n).
+  const Pseudoinverse& InverseFor(const ArmForces<double>& max_force_n, Pseudoinverse* weighted) const;
 
   MultiArmControlMode mode_;
   int rotor_count_;
@@ -99,6 +106,8 @@ class WrenchAllocator {
   ArmForces<double> nominal_max_force_n_;                  // c_T,i omega_max^2 [N]
   Pseudoinverse inverse_;
   AllocationMatrix allocation_;  // W: thrusts to the body wrench [F_x, F_z, tau]
+  int first_controlled_row_;     // kWrenchFx (fully actuated) or kWrenchFz
+  int spare_rotors_;             // N minus the controlled rows (0: P is W_r's inverse)
 };
 
 }  // namespace birotor

@@ -72,6 +72,8 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("max_absolute_efficiency", &O::max_absolute_efficiency, 1.0, 2.0),
       Real("feasibility_margin", &O::feasibility_margin, 0.5, 2.0),
       Real("infeasible_s", &O::infeasible_s, 0.0, 10.0),
+      Real("spare_min_share", &O::spare_min_share, 0.0, 0.5),
+      Real("spare_max_share", &O::spare_max_share, 0.5, 1.0),
       Real("sink_detect_altitude_m", &O::sink_detect_altitude_m, 0.01, 10.0),
       Real("sink_detect_s", &O::sink_detect_s, 0.0, 10.0),
       Real("level_tilt_rad", &O::level_tilt_rad, 1e-3, 0.5),

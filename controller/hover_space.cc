@@ -1,0 +1,121 @@
+#include "controller/hover_space.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace birotor {
+namespace {
+
+// Bounds met within this share of the largest thrust involved (round-off of
+// the projection) [1].
+constexpr double kBoundTolerance = 1e-9;
+// A set of active bounds whose Gram matrix has a pivot below this share of
+// its largest diagonal entry is dependent (an equivalent smaller set is tried
+// too) [1].
+constexpr double kDependentPivot = 1e-10;
+
+using Gram = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxArms, kMaxArms>;
+using SpareVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxArms, 1>;
+
+// Bits set in mask.
+int BitCount(unsigned mask) {
+  int count = 0;
+  for (; mask != 0; mask &= mask - 1) ++count;
+  return count;
+}
+
+}  // namespace
+
+HoverSpace::HoverSpace(const VehicleDescription& vehicle, MultiArmControlMode mode,
+                       const ArmForces<double>& hover_force_n)
+    : rotor_count_(vehicle.arm_count), hover_force_n_(hover_force_n), max_force_n_(vehicle.arm_count) {
+  for (int i = 0; i < rotor_count_; ++i) {
+    max_force_n_(i) =
+        vehicle.arms[static_cast<size_t>(i)].thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s;
+  }
+  const int first_row = mode == MultiArmControlMode::kFullyActuated ? kWrenchFx : kWrenchFz;
+  const Eigen::MatrixXd controlled = WrenchAllocation(vehicle).bottomRows(kWrenchSize - first_row);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(controlled, Eigen::ComputeFullV);
+  const int rank = static_cast<int>(svd.rank());
+  spare_ = std::max(0, rotor_count_ - rank);
+  null_basis_ = svd.matrixV().rightCols(spare_);
+}
+
+bool HoverSpace::Nearest(const ArmForces<double>& low_n, const ArmForces<double>& high_n,
+                         ArmForces<double>* hover_n) const {
+  double scale_n = 1.0;
+  bool hover_fits = true;
+  for (int i = 0; i < rotor_count_; ++i) {
+    scale_n = std::max({scale_n, std::fabs(high_n(i)), std::fabs(hover_force_n_(i))});
+    hover_fits = hover_fits && hover_force_n_(i) >= low_n(i) && hover_force_n_(i) <= high_n(i);
+  }
+  if (hover_fits) {
+    if (hover_n != nullptr) *hover_n = hover_force_n_;
+    return true;
+  }
+  if (spare_ == 0) return false;
+  // Bound j on y: row a_j and limit c_j with a_j y <= c_j; j = 2 i: f_i <=
+  // high_i, j = 2 i + 1: f_i >= low_i.
+  const auto row = [&](int j) -> Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kMaxArms> {
+    return (j % 2 == 0 ? 1.0 : -1.0) * null_basis_.row(j / 2);
+  };
+  const auto limit = [&](int j) {
+    const int i = j / 2;
+    return j % 2 == 0 ? high_n(i) - hover_force_n_(i) : hover_force_n_(i) - low_n(i);
+  };
+  const int bounds = 2 * rotor_count_;
+  const double tolerance_n = kBoundTolerance * scale_n;
+  double best_norm = std::numeric_limits<double>::infinity();
+  SpareVector best(spare_);
+  for (unsigned mask = 1; mask < (1u << bounds); ++mask) {
+    const int active = BitCount(mask);
+    // Both bounds of one rotor are parallel: never independent.
+    if (active > spare_ || (mask & (mask >> 1) & 0x555u) != 0) continue;
+    Gram rows(active, spare_);
+    SpareVector limits(active);
+    for (int j = 0, k = 0; j < bounds; ++j) {
+      if ((mask >> j & 1u) == 0) continue;
+      rows.row(k) = row(j);
+      limits(k++) = limit(j);
+    }
+    // Least-norm y on {A y = c}: y = A^T (A A^T)^-1 c.
+    const Gram gram = rows * rows.transpose();
+    const Eigen::LLT<Gram> factor(gram);
+    if (factor.info() != Eigen::Success) continue;
+    const double largest = gram.diagonal().maxCoeff();
+    if (factor.matrixLLT().diagonal().minCoeff() <= std::sqrt(kDependentPivot * largest)) continue;
+    const SpareVector y = rows.transpose() * factor.solve(limits);
+    const double norm = y.squaredNorm();
+    if (norm >= best_norm) continue;
+    bool inside = true;
+    for (int j = 0; j < bounds && inside; ++j) inside = row(j).dot(y) <= limit(j) + tolerance_n;
+    if (!inside) continue;
+    best_norm = norm;
+    best = y;
+  }
+  if (!std::isfinite(best_norm)) return false;
+  if (hover_n != nullptr) {
+    *hover_n = hover_force_n_ + null_basis_ * best;
+    // Round-off only (the bounds hold within the tolerance); min of max: a
+    // box with low above high never gets here with a candidate inside.
+    for (int i = 0; i < rotor_count_; ++i) (*hover_n)(i) = std::min(std::max((*hover_n)(i), low_n(i)), high_n(i));
+  }
+  return true;
+}
+
+bool HoverSpace::NearestWithinShares(const double* efficiency, double min_share, double max_share,
+                                     ArmForces<double>* hover_n) const {
+  ArmForces<double> low_n(rotor_count_);
+  ArmForces<double> high_n(rotor_count_);
+  for (int i = 0; i < rotor_count_; ++i) {
+    const double makes_n = std::max(0.0, efficiency[i]) * max_force_n_(i);
+    low_n(i) = min_share * makes_n;
+    high_n(i) = max_share * makes_n;
+  }
+  return Nearest(low_n, high_n, hover_n);
+}
+
+}  // namespace birotor

@@ -1,0 +1,59 @@
+// The hovers a vehicle's rotors can hold: every thrust vector with the
+// controlled wrench of the exact hover f_hover (SolveMultiArmHover),
+//   f = f_hover + Z y,   W_r Z = 0,
+// W_r the allocation's controlled rows (WrenchAllocator: all three when fully
+// actuated, F_z and torque when it tilts to move) and Z an orthonormal basis
+// of their null space, one column per rotor the vehicle has to spare (none on
+// the birotor and the trirotor, one on the quadrotor). On a vehicle with
+// spare rotors a weak rotor need not make its least-norm hover thrust: the
+// others can take its share (docs/controller.md, "Spare rotors").
+// Fixed size (at most kMaxArms rotors), no allocation.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "controller/wrench_allocation.h"
+#include "model/multi_arm_dynamics.h"
+#include "model/vehicle_description.h"
+
+namespace birotor {
+
+class HoverSpace {
+ public:
+  // No rotor to spare: Nearest answers f_hover or nothing.
+  HoverSpace() = default;
+  // hover_force_n: f_hover,i [N] (SolveMultiArmHover's force_n), N entries.
+  HoverSpace(const VehicleDescription& vehicle, MultiArmControlMode mode, const ArmForces<double>& hover_force_n);
+
+  // N minus the controlled rows: the dimension of y [1].
+  int spare_rotors() const { return spare_; }
+  bool redundant() const { return spare_ > 0; }
+
+  // The hover nearest f_hover (least sum of squared thrust changes) with
+  // low_i <= f_i <= high_i on every rotor; false when no hover lies in the
+  // box (hover may then be null). f_hover itself, bit for bit, whenever it
+  // lies in the box. Exact: the nearest point of the box's trace on the
+  // hover set is the least-norm point of the affine set of its active
+  // bounds, so every set of at most spare_rotors() independent bounds is
+  // tried and the nearest candidate inside the box kept (at most 794 sets
+  // of at most 4 bounds for six rotors; 9 for the quadrotor).
+  bool Nearest(const ArmForces<double>& low_n, const ArmForces<double>& high_n, ArmForces<double>* hover_n) const;
+
+  // Nearest with the box [min_share, max_share] x e_i c_T,i omega_max^2, e_i =
+  // efficiency[i] (what rotor i makes now per nominal thrust) [1].
+  bool NearestWithinShares(const double* efficiency, double min_share, double max_share,
+                           ArmForces<double>* hover_n) const;
+
+  const ArmForces<double>& hover_force_n() const { return hover_force_n_; }
+
+ private:
+  using NullBasis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxArms, kMaxArms>;
+
+  int rotor_count_ = 0;
+  int spare_ = 0;
+  ArmForces<double> hover_force_n_;
+  ArmForces<double> max_force_n_;  // c_T,i omega_max^2 [N]
+  NullBasis null_basis_;           // Z, N x spare_, orthonormal columns
+};
+
+}  // namespace birotor

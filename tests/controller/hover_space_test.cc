@@ -1,0 +1,206 @@
+// The hovers of controller/hover_space.h: none to spare on the birotor and
+// the trirotor, one on the quadrotor of config/vehicles/quadrotor.yaml; the
+// nearest hover in a box keeps the controlled wrench, meets its bounds and
+// is optimal (a grid on the quadrotor's one spare direction; the
+// Karush-Kuhn-Tucker conditions, checked independently, on six rotors), and
+// HoverFeasibility holds the quadrotor's hovers that the least-norm
+// hover's per-rotor bounds declared infeasible.
+#include "controller/hover_space.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "controller/hover_feasibility.h"
+#include "model/multi_arm_linearization.h"
+#include "params/vehicle_description_yaml.h"
+
+namespace birotor {
+namespace {
+
+VehicleDescription Vehicle(const std::string& name) {
+  return LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/" + name + ".yaml");
+}
+
+HoverSpace SpaceOf(const VehicleDescription& vehicle) {
+  const ArmForces<double> hover_n = SolveMultiArmHover(vehicle).force_n;
+  return HoverSpace(vehicle, MultiArmControlModeFor(vehicle), hover_n);
+}
+
+// c_T omega_max^2 of every arm of the files [N].
+constexpr double kMaxThrustN = 66.24;
+
+// The quadrotor with rotor 1 at e_1 and the others nominal [1].
+std::array<double, kMaxArms> Efficiencies(double e1) {
+  std::array<double, kMaxArms> e;
+  e.fill(1.0);
+  e[0] = e1;
+  return e;
+}
+
+// W_r (f - f_hover): what a hover of the space changes on the controlled rows [N, N, N m].
+Eigen::Vector3d ControlledChange(const VehicleDescription& vehicle, const ArmForces<double>& f,
+                                 const ArmForces<double>& hover_n) {
+  return WrenchAllocation(vehicle) * (f - hover_n);
+}
+
+TEST(HoverSpaceTest, TheBirotorAndTheTrirotorHaveNoneToSpare) {
+  for (const char* name : {"birotor", "trirotor"}) {
+    const VehicleDescription vehicle = Vehicle(name);
+    const HoverSpace space = SpaceOf(vehicle);
+    EXPECT_EQ(space.spare_rotors(), 0) << name;
+    ArmForces<double> hover_n;
+    EXPECT_TRUE(space.NearestWithinShares(Efficiencies(1.0).data(), 0.05, 0.8, &hover_n)) << name;
+    for (int i = 0; i < vehicle.arm_count; ++i) EXPECT_EQ(hover_n(i), space.hover_force_n()(i)) << name;
+    // Rotor 1 below its least-norm hover thrust: nothing else holds the vehicle.
+    const double share = space.hover_force_n()(0) / kMaxThrustN;
+    EXPECT_FALSE(space.NearestWithinShares(Efficiencies(0.9 * share).data(), 0.0, 1.0, &hover_n)) << name;
+  }
+}
+
+TEST(HoverSpaceTest, TheQuadrotorKeepsItsLeastNormHoverWhileItFits) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  EXPECT_EQ(space.spare_rotors(), 1);
+  ArmForces<double> hover_n;
+  ASSERT_TRUE(space.NearestWithinShares(Efficiencies(0.6).data(), 0.05, 0.8, &hover_n));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(hover_n(i), space.hover_force_n()(i));  // bit for bit
+}
+
+// Rotor 1 at 20 %: its least-norm share (16.8 N) is above 0.8 x 13.2 N, so
+// the hover moves along the spare direction until rotor 1 sits at its
+// bound; rotors 3 and 4 take the rest. The grid over that direction finds
+// nothing nearer.
+TEST(HoverSpaceTest, AWeakRotorHandsItsShareToTheOthers) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  const ArmForces<double>& hover = space.hover_force_n();
+  ArmForces<double> f;
+  ASSERT_TRUE(space.NearestWithinShares(Efficiencies(0.2).data(), 0.05, 0.8, &f));
+  EXPECT_LT(ControlledChange(vehicle, f, hover).norm(), 1e-9);
+  EXPECT_NEAR(f(0), 0.8 * 0.2 * kMaxThrustN, 1e-9);
+  EXPECT_GT(f(2), hover(2));
+  EXPECT_GT(f(3), hover(3));
+  for (int i = 1; i < 4; ++i) {
+    EXPECT_GE(f(i), 0.05 * kMaxThrustN);
+    EXPECT_LE(f(i), 0.8 * kMaxThrustN);
+  }
+  // The spare direction z (unit): f = hover + t z; every grid point in the box is at least as far.
+  Eigen::VectorXd z = f - hover;
+  const double distance_n = z.norm();
+  z /= distance_n;
+  const double high_n[4] = {0.8 * 0.2 * kMaxThrustN, 0.8 * kMaxThrustN, 0.8 * kMaxThrustN, 0.8 * kMaxThrustN};
+  const double low_n[4] = {0.05 * 0.2 * kMaxThrustN, 0.05 * kMaxThrustN, 0.05 * kMaxThrustN, 0.05 * kMaxThrustN};
+  double nearest_n = 1e9;
+  for (double t = -60.0; t <= 60.0; t += 1e-3) {
+    bool inside = true;
+    for (int i = 0; i < 4; ++i) inside = inside && hover(i) + t * z(i) >= low_n[i] && hover(i) + t * z(i) <= high_n[i];
+    if (inside) nearest_n = std::min(nearest_n, std::fabs(t));
+  }
+  EXPECT_NEAR(nearest_n, distance_n, 2e-3);
+}
+
+// A dead rotor 1 pins rotor 2 at 0 too (the quadrotor's hovers have f_1 =
+// f_2): no hover keeps rotor 2 above 5 %; with no lower share rotors 3 and
+// 4 carry the vehicle alone.
+TEST(HoverSpaceTest, ADeadRotorLeavesItsPartnerNoRoom) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  ArmForces<double> f;
+  EXPECT_FALSE(space.NearestWithinShares(Efficiencies(0.0).data(), 0.05, 1.0, &f));
+  ASSERT_TRUE(space.NearestWithinShares(Efficiencies(0.0).data(), 0.0, 1.0, &f));
+  EXPECT_NEAR(f(0), 0.0, 1e-9);
+  EXPECT_NEAR(f(1), 0.0, 1e-6);
+  EXPECT_NEAR(f(2), f(3), 1e-6);
+  EXPECT_LT(ControlledChange(vehicle, f, space.hover_force_n()).norm(), 1e-9);
+}
+
+// Six rotors (the quadrotor's four and two more at +-100 deg), random boxes:
+// every answer keeps the controlled wrench, meets the box, and satisfies
+// f - f_hover = W_r^T nu + sum over the active bounds of c_i e_i with c_i
+// <= 0 at an upper and >= 0 at a lower bound (the optimality conditions of
+// the nearest point, solved here by least squares, not by the code under test).
+TEST(HoverSpaceTest, SixRotorsMeetTheOptimalityConditions) {
+  VehicleDescription vehicle = Vehicle("quadrotor");
+  vehicle.arm_count = 6;
+  vehicle.arms[4] = vehicle.arms[0];
+  vehicle.arms[4].angle_rad = 100.0 * M_PI / 180.0;
+  vehicle.arms[4].thrust_angle_rad = 10.0 * M_PI / 180.0;
+  vehicle.arms[5] = vehicle.arms[0];
+  vehicle.arms[5].angle_rad = -100.0 * M_PI / 180.0;
+  vehicle.arms[5].thrust_angle_rad = -20.0 * M_PI / 180.0;
+  const HoverSpace space = SpaceOf(vehicle);
+  ASSERT_EQ(space.spare_rotors(), 3);
+  const ArmForces<double>& hover = space.hover_force_n();
+  const Eigen::MatrixXd w = WrenchAllocation(vehicle);
+  std::mt19937 random(38);
+  std::uniform_real_distribution<double> efficiency(0.05, 1.0);
+  int answered = 0;
+  int with_active_bounds = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    double e[kMaxArms];
+    for (double& v : e) v = efficiency(random);
+    ArmForces<double> f;
+    if (!space.NearestWithinShares(e, 0.05, 0.8, &f)) continue;
+    ++answered;
+    EXPECT_LT((w * (f - hover)).norm(), 1e-8) << trial;
+    Eigen::MatrixXd basis(6, 3 + 6);
+    basis.leftCols(3) = w.transpose();
+    int columns = 3;
+    int kind[6] = {};  // +1 at the upper bound, -1 at the lower, 0 inside
+    for (int i = 0; i < 6; ++i) {
+      const double makes_n = e[i] * kMaxThrustN;
+      EXPECT_GE(f(i), 0.05 * makes_n - 1e-9) << trial;
+      EXPECT_LE(f(i), 0.8 * makes_n + 1e-9) << trial;
+      kind[i] = std::fabs(f(i) - 0.8 * makes_n) < 1e-7 ? 1 : std::fabs(f(i) - 0.05 * makes_n) < 1e-7 ? -1 : 0;
+      if (kind[i] != 0) basis.col(columns++) = Eigen::VectorXd::Unit(6, i);
+    }
+    with_active_bounds += columns > 3 ? 1 : 0;
+    const Eigen::MatrixXd a = basis.leftCols(columns);
+    const Eigen::VectorXd d = f - hover;
+    const Eigen::VectorXd c = a.completeOrthogonalDecomposition().solve(d);
+    EXPECT_LT((a * c - d).norm(), 1e-7) << trial;
+    for (int i = 0, k = 3; i < 6; ++i) {
+      if (kind[i] == 0) continue;
+      if (kind[i] > 0) EXPECT_LE(c(k), 1e-7) << trial << " rotor " << i;
+      if (kind[i] < 0) EXPECT_GE(c(k), -1e-7) << trial << " rotor " << i;
+      ++k;
+    }
+  }
+  std::printf("six rotors: %d of 200 boxes hold a hover, %d of them with active bounds\n", answered,
+              with_active_bounds);
+  EXPECT_GT(answered, 50);
+  EXPECT_GT(with_active_bounds, 25);
+}
+
+// HoverFeasibility on the quadrotor: every rotor at 25 % holds the vehicle
+// (f_1 = f_2 = a, f_3 = f_4 = b with 2 a + 1.414 b = 50.55 N, each within
+// 16.2 N), though 25 % is below rotor 1's least-norm bound 0.259; at 15 %
+// no hover exists (at most 33 N) and it is infeasible after infeasible_s.
+TEST(HoverSpaceTest, TheQuadrotorHoversWhereTheLeastNormBoundGaveUp) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  double max_n[kMaxArms] = {};
+  double hover_n[kMaxArms] = {};
+  for (int i = 0; i < 4; ++i) {
+    max_n[i] = kMaxThrustN;
+    hover_n[i] = space.hover_force_n()(i);
+  }
+  const EfficiencyParams params;
+  for (const double e : {0.25, 0.15}) {
+    HoverFeasibility feasibility(params, 4, max_n, hover_n, space);
+    EXPECT_GT(feasibility.FeasibilityBound(0), 0.25);
+    FeasibilityInputs in;
+    for (int i = 0; i < 4; ++i) in.efficiency[i] = e;
+    for (int k = 0; k < 40; ++k) feasibility.Update(in, 0.005);
+    EXPECT_EQ(feasibility.infeasible(), e < 0.2) << e;
+  }
+}
+
+}  // namespace
+}  // namespace birotor
