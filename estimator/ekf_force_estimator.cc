@@ -324,10 +324,15 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
 }
 
 bool EkfForceEstimator::GyroMayInflate(int64_t utime) const {
-  // Within gyro_liftoff_recovery_s of a lift-off, outside a thrust step.
+  // Within gyro_liftoff_recovery_s of a lift-off, outside a thrust step
+  // other than the lift-off's own spin-up (its first step_hold_s: the strain
+  // gate rejects there when the body is let go with the rotors far apart,
+  // and the pitch rate it then starts is the one the gyro must give back).
   const double since_liftoff_s = (utime - contact_released_utime_) * kMicrosecond;
-  return contact_released_utime_ >= 0 && since_liftoff_s >= 0 && since_liftoff_s <= options_.gyro_liftoff_recovery_s &&
-         !InThrustStep();
+  if (contact_released_utime_ < 0 || since_liftoff_s < 0 || since_liftoff_s > options_.gyro_liftoff_recovery_s) {
+    return false;
+  }
+  return since_liftoff_s <= options_.step_hold_s || !InThrustStep();
 }
 
 void EkfForceEstimator::SetGaugeOffsetPrior(const double offset_std_rad[kBirotorRotors]) {

@@ -139,7 +139,8 @@ struct EkfOptions {
   // For this long after a lift-off (the ground contact let go) a pitch rate
   // the gyro gates gate_consecutive_limit times in a row is taken as lost:
   // its variance grows by initial_pitch_rate_std_rad_s^2 and the gyro is
-  // fused ungated (not within a thrust step). Without it the gentle flight
+  // fused ungated (not within a thrust step, but within the lift-off's own
+  // spin-up, its first step_hold_s). Without it the gentle flight
   // from the ground, seed 1, lost the pitch rate at the lift-off (gyro gated
   // in runs of 4 to 188) and raised MODEL_MISMATCH on the matching vehicle;
   // always on, the hover-infeasible losses counted 2-10x the force
