@@ -82,16 +82,18 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
                    TipMassMapOf(config.model_consistency, model_, *method_)) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
-  double direction[kBirotorRotors], drift_psd_rad2_s[kBirotorRotors];
+  double direction[kBirotorRotors], drift_psd_rad2_s[kBirotorRotors], force_per_direction_n[kBirotorRotors];
   for (int i = 0; i < kBirotorRotors; ++i) {
     // The raw reading s_i b_i moves by s_i kArmSign_i L / k per newton of
-    // rotor i, and a payload adds the same newtons to both rotors.
+    // rotor i, and a payload adds the same newtons to both rotors: one
+    // direction (a radian of b_i) is k / L newtons.
     direction[i] = kArmSign[i] * calibration_.scale[i];
     drift_psd_rad2_s[i] = model_.gauge_drift_psd_rad2_s;
+    force_per_direction_n[i] = model_.arm_stiffness_n_m_rad / model_.arm_length_m;
   }
   // With learned strain scales a common force goes to the scales as much as
   // to the offsets (split again after each settling): the test is not run.
-  if (!config.ekf.learn_strain_scale) consistency_.SetOffsetGauges(direction, drift_psd_rad2_s);
+  if (!config.ekf.learn_strain_scale) consistency_.SetOffsetGauges(direction, drift_psd_rad2_s, force_per_direction_n);
   consistency_.AnchorOffsets(calibration_.offset_rad, calibration_.offset_std_rad);
   health_.body_mass_kg = config.vehicle.body_mass_kg;
   health_.tip_mass_kg = model_.tip_mass_kg;
@@ -340,8 +342,10 @@ void EstimatorPipeline::HandOverTipMass() {
 }
 
 void EstimatorPipeline::Publish(const ForceStatusFacts& facts, ForceEstimate* estimate) {
-  // The unconfirmed tip mass's prior (facts.consistency), as the facts say.
-  for (double& std_n : estimate->force_std_n) std_n = PublishedForceStd(std_n, facts);
+  // The offsets' departure and the unconfirmed tip mass's prior
+  // (facts.consistency), as the facts say.
+  for (int i = 0; i < kBirotorRotors; ++i)
+    estimate->force_std_n[i] = PublishedForceStd(estimate->force_std_n[i], facts, i);
   estimate->status = ComposeForceStatus(facts);
   health_.consistency = consistency_.state();
   ++health_.published;

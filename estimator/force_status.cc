@@ -32,9 +32,11 @@ int32_t ComposeForceStatus(const ForceStatusFacts& facts) {
   return status;
 }
 
-double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& facts) {
-  if (!facts.consistency.tip_mass_unconfirmed) return method_force_std_n;
-  return std::hypot(method_force_std_n, facts.consistency.tip_mass_force_std_n);
+double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& facts, int rotor) {
+  const double offsets_n = facts.consistency.offset_force_std_n[static_cast<size_t>(rotor)];
+  const double std_n = offsets_n > 0 ? std::hypot(method_force_std_n, offsets_n) : method_force_std_n;
+  if (!facts.consistency.tip_mass_unconfirmed) return std_n;
+  return std::hypot(std_n, facts.consistency.tip_mass_force_std_n);
 }
 
 MultiArmStatusBits ComposeMultiArmFilterStatus(const MultiArmFilterFacts& facts, int n_rotors) {

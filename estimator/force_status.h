@@ -64,6 +64,11 @@ struct ConsistencyStatusFacts {
   // sigma_tip = sigma_r m_p g: sigma_r the prior's (arm_mode_unconfirmed_tip_mass_std)
   // or the learned one (ArmModeState::force_tip_mass_std) [N].
   double tip_mass_force_std_n = 0;
+  // The gauge offsets' departure from their anchor along the common-force
+  // direction, as the force on rotor i a payload would make it (option
+  // offset_departure_in_sigma_above; 0 on the ground, and before a free-flight
+  // judgement) [N]; added in quadrature by PublishedForceStd.
+  std::array<double, kMaxSampleArms> offset_force_std_n{};
 };
 
 // The estimator service's facts (nodes/estimator_service).
@@ -105,10 +110,11 @@ inline int32_t ComposeFilterStatus(const FilterStatusFacts& facts) { return Filt
 // Whether any fact withdraws STATUS_VALID from a converged filter's estimate.
 bool ValidWithdrawn(const ForceStatusFacts& facts);
 
-// The published one-sigma of a force from the method's [N]: while the tip
-// mass is unconfirmed, sigma = sqrt(sigma_method^2 + sigma_tip^2) (std::hypot);
-// otherwise the method's, unchanged.
-double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& facts);
+// The published one-sigma of rotor `rotor`'s force from the method's [N]:
+// the method's with the offsets' departure (offset_force_std_n) and, while
+// the tip mass is unconfirmed, its sigma added in quadrature (std::hypot);
+// with neither, the method's, unchanged.
+double PublishedForceStd(double method_force_std_n, const ForceStatusFacts& facts, int rotor);
 
 // The method's facts of an N-rotor estimate (estimator/multi_arm_ekf.h),
 // with the birotor's meaning of each: converged once every force sigma fell

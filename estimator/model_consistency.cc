@@ -53,9 +53,14 @@ void ModelConsistencyMonitor::AddStrain(int64_t utime, const double* deflection_
   }
 }
 
-void ModelConsistencyMonitor::SetOffsetGauges(const double* direction, const double* drift_psd_rad2_s) {
+void ModelConsistencyMonitor::SetOffsetGauges(const double* direction, const double* drift_psd_rad2_s,
+                                              const double* force_per_direction_n) {
   offsets_ = OffsetDepartureTest(options_.offset_departure_limit, options_.offset_departure_hold_s, rotors_, direction,
                                  drift_psd_rad2_s);
+  for (int i = 0; i < rotors_ && i < kMaxSampleArms; ++i) {
+    force_per_direction_n_[static_cast<size_t>(i)] =
+        std::isfinite(force_per_direction_n[i]) ? std::fabs(force_per_direction_n[i]) : 0.0;
+  }
   state_.offsets = offsets_.state();
 }
 
@@ -110,7 +115,23 @@ ConsistencyStatusFacts ModelConsistencyMonitor::Judge(int64_t utime, const doubl
   facts.unconfirmed_withholds_valid = options_.valid_needs_confirmation;
   // Never set while the test is off.
   if (state_.arm_mode.awaiting_reading || state_.arm_mode.force_tip_mass_std > 0) AwaitArmMode(&facts);
+  if (options_.offset_departure_in_sigma_above >= 0 && state_.offsets.statistic > 0) CarryOffsetDeparture(&facts);
   return facts;
+}
+
+void ModelConsistencyMonitor::CarryOffsetDeparture(ConsistencyStatusFacts* facts) const {
+  // The offsets moved by c times the common-force direction since their
+  // anchor, z sigmas of their prior and drift: a payload would make c times
+  // force_per_direction_n_ on each rotor; the share beyond z0 sigmas of it
+  // is what the published sigma carries.
+  const double z = std::fabs(state_.offsets.z);
+  const double beyond =
+      z > options_.offset_departure_in_sigma_above ? (z - options_.offset_departure_in_sigma_above) / z : 0.0;
+  const double multiple = beyond * std::fabs(state_.offsets.common_multiple);
+  for (int i = 0; i < rotors_ && i < kMaxSampleArms; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    facts->offset_force_std_n[k] = multiple * force_per_direction_n_[k];
+  }
 }
 
 void ModelConsistencyMonitor::AwaitArmMode(ConsistencyStatusFacts* facts) const {

@@ -6,6 +6,7 @@
 // allocation per report (docs/mismatch.md).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "estimator/arm_mode_monitor.h"
@@ -138,7 +139,9 @@ class ModelConsistencyMonitor {
   // The offset-departure test (estimator/offset_departure.h) on gauges whose
   // raw readings move as direction[i] when the vehicle weighs more and whose
   // offsets drift by drift_psd_rad2_s[i]; not run until this is called.
-  void SetOffsetGauges(const double* direction, const double* drift_psd_rad2_s);
+  // force_per_direction_n[i]: the force on rotor i of a payload that moves
+  // the readings by one direction [N] (offset_force_std_n of Judge's facts).
+  void SetOffsetGauges(const double* direction, const double* drift_psd_rad2_s, const double* force_per_direction_n);
   // A new calibration of the offsets (the file's, a tare, a state file) with
   // one sigma each [rad of the raw reading]: the test starts from it.
   void AnchorOffsets(const double* offset_rad, const double* offset_std_rad);
@@ -184,6 +187,8 @@ class ModelConsistencyMonitor {
   // The tip mass's sigma in the forces' (not yet confirmed by the arm
   // mode, or learned from it), and VALID.
   void AwaitArmMode(ConsistencyStatusFacts* facts) const;
+  // offset_force_std_n from the offsets' departure (offset_departure_in_sigma_above).
+  void CarryOffsetDeparture(ConsistencyStatusFacts* facts) const;
   // The parameter named for the worst source, given the thrust scales mu_i.
   MismatchParameter Attribute(const double* thrust_scale) const;
 
@@ -191,7 +196,8 @@ class ModelConsistencyMonitor {
   int rotors_;
   ArmModeExpectation arm_mode_file_;  // the file's, before any learned scale
   ArmModeMonitor arm_mode_;
-  OffsetDepartureTest offsets_;  // off (limit 0) until SetOffsetGauges
+  OffsetDepartureTest offsets_;                                 // off (limit 0) until SetOffsetGauges
+  std::array<double, kMaxSampleArms> force_per_direction_n_{};  // SetOffsetGauges [N]
   int64_t window_us_ = 0;
   int64_t window_start_utime_ = -1;
   bool judging_ = false;  // a report with an innovation has arrived

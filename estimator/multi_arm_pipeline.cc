@@ -51,17 +51,25 @@ ModelConsistencyOptions MultiArmConsistencyOptions(const ModelConsistencyOptions
 // How each gauge's raw reading moves when the vehicle weighs more (the
 // offset-departure test's direction, estimator/offset_departure.h): s_i
 // times the hover deflection with 10 % more body mass minus the file's, the
-// thrusts shared as the hover allocation shares the weight [rad].
-ArmValues CommonForceReadings(const VehicleDescription& vehicle) {
+// thrusts shared as the hover allocation shares the weight [rad]; and the
+// force that payload adds to each rotor, which is what a departure of one
+// direction would be (offset_departure_in_sigma_above) [N].
+struct CommonForce {
+  ArmValues readings{};
+  ArmValues force_n{};
+};
+
+CommonForce CommonForceReadings(const VehicleDescription& vehicle) {
   VehicleDescription heavier = vehicle;
   heavier.body_mass_kg *= 1.1;
   const MultiArmHover file = SolveMultiArmHover(vehicle), payload = SolveMultiArmHover(heavier);
-  ArmValues direction{};
+  CommonForce common;
   for (int i = 0; i < vehicle.arm_count; ++i) {
     const size_t k = static_cast<size_t>(i);
-    direction[k] = vehicle.arms[k].gauge_scale * (payload.deflection_rad(i) - file.deflection_rad(i));
+    common.readings[k] = vehicle.arms[k].gauge_scale * (payload.deflection_rad(i) - file.deflection_rad(i));
+    common.force_n[k] = payload.force_n(i) - file.force_n(i);
   }
-  return direction;
+  return common;
 }
 
 }  // namespace
@@ -92,7 +100,8 @@ MultiArmPipeline::MultiArmPipeline(const EstimatorConfig& config)
   }
   ArmValues drift_psd_rad2_s;
   drift_psd_rad2_s.fill(config.vehicle.gauge_drift_psd_rad2_s);
-  consistency_.SetOffsetGauges(CommonForceReadings(config.vehicle).data(), drift_psd_rad2_s.data());
+  const CommonForce common = CommonForceReadings(config.vehicle);
+  consistency_.SetOffsetGauges(common.readings.data(), drift_psd_rad2_s.data(), common.force_n.data());
   consistency_.AnchorOffsets(calibration_.offset_rad.data(), calibration_.offset_std_rad.data());
 }
 
@@ -238,6 +247,7 @@ bool MultiArmPipeline::OnStrain(const MultiArmStrainSample& sample, MultiArmForc
   }
   FillInputFacts(sample.utime, stale, &input);
   const ConsistencyStatusFacts consistency = JudgeConsistency(deflection, *estimate);  // MODEL_MISMATCH withdraws VALID
+  WidenForOffsetDeparture(consistency, estimate);
   if (consistency.tip_mass_unconfirmed) WidenForUnconfirmedTipMass(estimate);
   HandOverTipMass();
   const MultiArmStatusBits bits = ComposeMultiArmForceStatus(filter_->facts(), input, consistency,
@@ -374,6 +384,15 @@ void MultiArmPipeline::ReplaceNonFinite(const MultiArmStrainSample& sample, Mult
   }
   estimate->utime = sample.utime;
   estimate->seq = sample.seq;
+}
+
+void MultiArmPipeline::WidenForOffsetDeparture(const ConsistencyStatusFacts& consistency,
+                                               MultiArmForceEstimate* estimate) {
+  for (int i = 0; i < estimate->n_rotors; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    const double offsets_n = consistency.offset_force_std_n[k];
+    if (offsets_n > 0) estimate->force_std_n[k] = std::hypot(estimate->force_std_n[k], offsets_n);
+  }
 }
 
 void MultiArmPipeline::WidenForUnconfirmedTipMass(MultiArmForceEstimate* estimate) const {

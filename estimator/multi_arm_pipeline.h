@@ -141,6 +141,9 @@ class MultiArmPipeline {
   // monitor's relative sigma (arm_mode_unconfirmed_tip_mass_std, or the
   // learned one), as the birotor's PublishedForceStd.
   void WidenForUnconfirmedTipMass(MultiArmForceEstimate* estimate) const;
+  // The offsets' departure as a payload's force (offset_force_std_n of the
+  // facts) in each rotor's sigma, in quadrature (offset_departure_in_sigma_above).
+  static void WidenForOffsetDeparture(const ConsistencyStatusFacts& consistency, MultiArmForceEstimate* estimate);
   // The filter flies the m_p the arm-mode test learned (every arm's r times
   // the description's), from the next strain sample on.
   void HandOverTipMass();

@@ -41,14 +41,16 @@ bool OffsetDepartureTest::Add(int64_t utime, const double* offset_rad, bool free
   }
   // z = sum_i w_i (o_i - a_i) / sqrt(sum_i w_i^2 (s_a,i^2 + q_i (t - t_a))).
   const double elapsed_s = (utime - anchor_utime_) * 1e-6;
-  double departure_rad = 0, variance_rad2 = 0;
+  double departure_rad = 0, variance_rad2 = 0, direction_norm2 = 0;
   for (int i = 0; i < arms_; ++i) {
     const double w = direction_[i];
     departure_rad += w * (offset_rad[i] - anchor_rad_[i]);
     variance_rad2 += w * w * (anchor_variance_rad2_[i] + drift_psd_rad2_s_[i] * elapsed_s);
+    direction_norm2 += w * w;
   }
   if (!(variance_rad2 > 0) || !std::isfinite(departure_rad)) return false;
   state_.z = departure_rad / std::sqrt(variance_rad2);
+  state_.common_multiple = departure_rad / direction_norm2;
   state_.statistic = std::fabs(state_.z) / limit_sigma_;
   state_.peak_abs_z = std::max(state_.peak_abs_z, std::fabs(state_.z));
   if (state_.departed) return false;

@@ -35,7 +35,10 @@
 namespace birotor {
 
 struct OffsetDepartureState {
-  double z = 0;                 // the newest departure [sigma]
+  double z = 0;  // the newest departure [sigma]
+  // The departure as a multiple c of the direction w: the offsets moved by
+  // c w_i (least squares, c = sum_i w_i (o_i - a_i) / sum_i w_i^2) [1].
+  double common_multiple = 0;
   double statistic = 0;         // |z| / limit, 0 while not judged (> 1: beyond) [1]
   double peak_abs_z = 0;        // largest |z| judged since the anchor [sigma]
   bool departed = false;        // beyond the limit for hold_s; held until the next anchor

@@ -215,6 +215,7 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Real("arm_mode_learn_min_excitation", &O::arm_mode_learn_min_excitation, 0.0, 1e6),
       Real("offset_departure_limit", &O::offset_departure_limit, 0.0, 1e3),  // 0: off
       Real("offset_departure_hold_s", &O::offset_departure_hold_s, 0.0, 100.0),
+      Real("offset_departure_in_sigma_above", &O::offset_departure_in_sigma_above, -1.0, 1e3),  // negative: off
   };
   return keys;
 }

@@ -17,7 +17,7 @@ inline bool JudgeAndCompose(ModelConsistencyMonitor* monitor, ForceEstimate* e) 
   if (e->status & kStatusValid) facts.filter.convergence = FilterConvergence::kConverged;
   facts.filter.thrust_deficit = (e->status & kStatusThrustDeficit) != 0;
   facts.consistency = monitor->Judge(*e);
-  for (double& std_n : e->force_std_n) std_n = PublishedForceStd(std_n, facts);
+  for (int i = 0; i < kBirotorRotors; ++i) e->force_std_n[i] = PublishedForceStd(e->force_std_n[i], facts, i);
   e->status = ComposeForceStatus(facts);
   return !facts.consistency.mismatch && !facts.consistency.model_unconfirmed;
 }

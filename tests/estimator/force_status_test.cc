@@ -144,10 +144,23 @@ TEST(ForceStatusTest, EveryWithdrawingFactAloneWithdrawsValid) {
 TEST(ForceStatusTest, ThePublishedSigmaCarriesTheTipMassOnlyWhileUnconfirmed) {
   ForceStatusFacts facts = Converged();
   facts.consistency.tip_mass_force_std_n = 0.15 * 2.0;
-  EXPECT_EQ(PublishedForceStd(0.08, facts), 0.08);
+  EXPECT_EQ(PublishedForceStd(0.08, facts, 0), 0.08);
   facts.consistency.tip_mass_unconfirmed = true;
-  EXPECT_DOUBLE_EQ(PublishedForceStd(0.08, facts), std::sqrt(0.08 * 0.08 + 0.3 * 0.3));
-  EXPECT_NEAR(PublishedForceStd(0.08, facts), 0.3105, 5e-5);
+  EXPECT_DOUBLE_EQ(PublishedForceStd(0.08, facts, 0), std::sqrt(0.08 * 0.08 + 0.3 * 0.3));
+  EXPECT_NEAR(PublishedForceStd(0.08, facts, 0), 0.3105, 5e-5);
+}
+
+// The offsets' departure, per rotor, in quadrature as well: rotor 1's 0.5 N
+// (hypot(0.08, 0.5) = 0.5064 N), rotor 2 without one unchanged, bit for bit.
+TEST(ForceStatusTest, ThePublishedSigmaCarriesTheOffsetsDeparturePerRotor) {
+  ForceStatusFacts facts = Converged();
+  facts.consistency.offset_force_std_n[0] = 0.5;
+  EXPECT_DOUBLE_EQ(PublishedForceStd(0.08, facts, 0), std::hypot(0.08, 0.5));
+  EXPECT_NEAR(PublishedForceStd(0.08, facts, 0), 0.5064, 5e-5);
+  EXPECT_EQ(PublishedForceStd(0.08, facts, 1), 0.08);
+  facts.consistency.tip_mass_unconfirmed = true;
+  facts.consistency.tip_mass_force_std_n = 0.3;
+  EXPECT_DOUBLE_EQ(PublishedForceStd(0.08, facts, 0), std::hypot(std::hypot(0.08, 0.5), 0.3));
 }
 
 }  // namespace
