@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "numerics/time_units.h"
 
@@ -10,6 +11,7 @@ namespace birotor {
 ForceFloorEvidence::ForceFloorEvidence(const SupervisionParams& params, double low_pass_s, int rotor_count)
     : params_(params), low_pass_s_(low_pass_s), rotor_count_(rotor_count) {
   reported_scale_.fill(1.0);
+  below_floor_report_.fill(std::numeric_limits<double>::quiet_NaN());
 }
 
 int ForceFloorEvidence::FlyAtTheFloor(RotorEfficiencyEstimate* estimate) {
@@ -18,8 +20,13 @@ int ForceFloorEvidence::FlyAtTheFloor(RotorEfficiencyEstimate* estimate) {
   for (int i = 0; i < rotor_count_; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     const double scale = estimate->thrust_scale[rotor];
-    const bool below = counted && (estimate->rotor_fault_bits & (1 << i)) != 0 && scale >= 0.0 &&
-                       scale < params_.min_plausible_thrust_scale;
+    const bool flagged = counted && (estimate->rotor_fault_bits & (1 << i)) != 0;
+    // What the newest report says a flagged rotor below the floor makes (a
+    // dead rotor's scale scatters about 0, so negatives read as 0).
+    below_floor_report_[rotor] = flagged && scale < params_.min_plausible_thrust_scale
+                                     ? std::max(scale, 0.0)
+                                     : std::numeric_limits<double>::quiet_NaN();
+    const bool below = flagged && scale >= 0.0 && scale < params_.min_plausible_thrust_scale;
     below_floor_run_[rotor] = below ? below_floor_run_[rotor] + 1 : 0;
     if (below && below_floor_run_[rotor] >= params_.at_floor_samples) {
       estimate->thrust_scale[rotor] = params_.min_plausible_thrust_scale;

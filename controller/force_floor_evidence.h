@@ -4,9 +4,10 @@
 // controller refuses it (issue 23). Two uses that keep the refusal for
 // everything else: a rotor FORCE keeps flagging as faulty with a scale below
 // the floor (at_floor_samples in a row) is flown as the floor (its scale is
-// at most that); and every VALID report, refused ones included, is
+// at most that); every VALID report, refused ones included, is
 // low-passed as evidence for HoverFeasibility's sink detection (never flown
-// by itself). VehicleController (the birotor's FORCE, converted by
+// by itself); and the newest flagged report below the floor is kept for
+// the spare-rotor hover check (below_floor_report). VehicleController (the birotor's FORCE, converted by
 // RotorEfficiencyReportOf) and MultiArmController use it. No allocation, no
 // throw.
 #pragma once
@@ -47,14 +48,19 @@ class ForceFloorEvidence {
   // The low-passed thrust_scale / baseline of rotor i (1 before any) [1].
   double reported_scale(int rotor) const { return reported_scale_[static_cast<size_t>(rotor)]; }
   int rotor_count() const { return rotor_count_; }
+  // The newest report's thrust_scale of rotor i when FORCE flags it below
+  // the floor (negative read as 0): what it makes, not only "at most the
+  // floor"; NaN when the newest report does not [1].
+  double below_floor_report(int rotor) const { return below_floor_report_[static_cast<size_t>(rotor)]; }
 
  private:
   SupervisionParams params_;
   double low_pass_s_;
   int rotor_count_;
-  std::array<int, kMaxArms> below_floor_run_{};  // flagged reports below the floor in a row, per rotor
-  std::array<double, kMaxArms> reported_scale_;  // [1]
-  int64_t reported_utime_ = -1;                  // newest noted report [us]
+  std::array<int, kMaxArms> below_floor_run_{};      // flagged reports below the floor in a row, per rotor
+  std::array<double, kMaxArms> reported_scale_;      // [1]
+  std::array<double, kMaxArms> below_floor_report_;  // below_floor_report [1]
+  int64_t reported_utime_ = -1;                      // newest noted report [us]
 };
 
 }  // namespace birotor

@@ -54,10 +54,17 @@ int HoverFeasibility::Weakest(const double (&efficiency)[kMaxArms]) const {
   return weakest;
 }
 
+double HoverFeasibility::Evidence(const FeasibilityInputs& in, int rotor) const {
+  const double report = in.below_floor_report[rotor];
+  return space_.redundant() && std::isfinite(report) ? std::min(in.efficiency[rotor], report) : in.efficiency[rotor];
+}
+
 bool HoverFeasibility::HoverHeld(const FeasibilityInputs& in, int weakest) const {
   // margin f_hover,i > e_i c_T,i omega_max^2 for some i  <=>  e_i < bound_i.
   if (!space_.redundant()) return !(in.efficiency[weakest] < bound_[weakest]);
-  return space_.NearestWithinShares(in.efficiency, params_.spare_min_share, 1.0 / params_.feasibility_margin, nullptr);
+  double efficiency[kMaxArms];
+  for (int i = 0; i < kMaxArms; ++i) efficiency[i] = Evidence(in, i);
+  return space_.NearestWithinShares(efficiency, params_.spare_min_share, 1.0 / params_.feasibility_margin, nullptr);
 }
 
 int HoverFeasibility::WeakFromSink(const FeasibilityInputs& in) const {

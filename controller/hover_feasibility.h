@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "controller/controller_params.h"
 #include "controller/hover_space.h"
@@ -27,6 +28,8 @@ namespace birotor {
 struct BodyState;
 struct ReferencePoint;
 
+inline constexpr double kNaNReport = std::numeric_limits<double>::quiet_NaN();
+
 // What one control period saw (rotor i: entry i; entries from the rotor count on unused).
 struct FeasibilityInputs {
   double efficiency[kMaxArms] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // efficiencies in use (force feedback) [1]
@@ -36,10 +39,15 @@ struct FeasibilityInputs {
   double reported_scale[kMaxArms] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   bool allocation_limited = false;      // the previous period's allocation was limited
   double command_rad_s[kMaxArms] = {};  // the previous period's rotor commands [rad/s]
-  double altitude_lag_m = 0.0;          // z_ref - z [m]
-  double sink_behind_m_s = 0.0;         // z_dot_ref - z_dot [m/s]
-  double tilt_rad = 0.0;                // phi [rad]
-  double pitch_rate_rad_s = 0.0;        // phi_dot [rad/s]
+  // Spare rotors, the cascade only: what FORCE's newest report says rotor i
+  // makes when it flags it below the plausibility floor, where the
+  // efficiency in use is only "at most the floor"; NaN otherwise [1]. The
+  // hover check takes the lower of the two (a dead rotor is not a 20 % one).
+  double below_floor_report[kMaxArms] = {kNaNReport, kNaNReport, kNaNReport, kNaNReport, kNaNReport, kNaNReport};
+  double altitude_lag_m = 0.0;    // z_ref - z [m]
+  double sink_behind_m_s = 0.0;   // z_dot_ref - z_dot [m/s]
+  double tilt_rad = 0.0;          // phi [rad]
+  double pitch_rate_rad_s = 0.0;  // phi_dot [rad/s]
 };
 
 // The tracking entries of the inputs from the reference and the observed
@@ -91,6 +99,12 @@ class HoverFeasibility {
   // Whether the efficiencies hold a hover: e_weakest at least its bound, or
   // with spare rotors some hover within the shares (constructor).
   bool HoverHeld(const FeasibilityInputs& in, int weakest) const;
+  // Rotor i's efficiency in use, or with spare rotors the lower
+  // below_floor_report when FORCE gives one (a dead rotor reads 0, not the
+  // floor), for the hover check only: the latched weak efficiency stays the
+  // one in use (taking the report there too, a dead rotor 3's descent
+  // touched down at 3.93 m/s instead of 0.56) [1].
+  double Evidence(const FeasibilityInputs& in, int rotor) const;
   // The rotor furthest below its bound: the least e_i / bound_i (ties: the lowest index).
   int Weakest(const double (&efficiency)[kMaxArms]) const;
   // Detected from the sink: the weaker by FORCE's report when it tells the

@@ -209,6 +209,10 @@ bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint&
     in.efficiency[i] = efficiency[rotor];
     // Every report low-passed, refused ones included (evidence, not flown).
     in.reported_scale[i] = floor_evidence_.reported_scale(i);
+    // The MPC trades the axes within every rotor's bounds and holds a hover
+    // on a rotor flown at the floor that makes nothing; the cascade's fixed
+    // shares cannot (docs/controller.md, "Spare rotors").
+    if (!config_.model_predictive) in.below_floor_report[i] = floor_evidence_.below_floor_report(i);
     in.command_rad_s[i] = last_command_rad_s_[rotor];
   }
   in.allocation_limited = last_saturated_;

@@ -202,5 +202,28 @@ TEST(HoverSpaceTest, TheQuadrotorHoversWhereTheLeastNormBoundGaveUp) {
   }
 }
 
+// A rotor flown at FORCE's floor (e = 0.2, "at most") on the quadrotor:
+// rotors 3 and 4 pair (f_3 = f_4), so with rotor 3 at 20 % a hover exists;
+// when FORCE's reports below the floor say it makes nothing, rotor 4 would
+// have to stop too and the check says infeasible (the cascade's rule).
+TEST(HoverSpaceTest, AReportBelowTheFloorIsTakenOverTheFloor) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  double max_n[kMaxArms] = {};
+  double hover_n[kMaxArms] = {};
+  for (int i = 0; i < 4; ++i) {
+    max_n[i] = kMaxThrustN;
+    hover_n[i] = space.hover_force_n()(i);
+  }
+  for (const double report : {kNaNReport, 0.1, 0.0}) {
+    HoverFeasibility feasibility(EfficiencyParams(), 4, max_n, hover_n, space);
+    FeasibilityInputs in;
+    in.efficiency[2] = 0.2;
+    in.below_floor_report[2] = report;
+    for (int k = 0; k < 40; ++k) feasibility.Update(in, 0.005);
+    EXPECT_EQ(feasibility.infeasible(), report == 0.0) << report;
+  }
+}
+
 }  // namespace
 }  // namespace birotor

@@ -313,5 +313,36 @@ TEST(MultiArmClosedLoopTest, QuadrotorHoldsAnEightyPercentLossOnItsSpareRotors) 
   EXPECT_GT(FiguresOf(nominal, kBandM).max_altitude_deviation_m, 1.0);
 }
 
+// A dead rotor 3 on the quadrotor (the cascade, force feedback): FORCE
+// flies it at the plausibility floor (e = 0.2, at most), where a hover on
+// the spare rotors would still be found; its reports below the floor say it
+// makes nothing, so the hover check takes that (HoverFeasibility::Evidence)
+// and the level descent starts at once: from 5.11 s, touchdown measured
+// 0.56 m/s (taking the floor at its word, the sink found it at 6.06 s and
+// the vehicle touched down at 3.56 m/s).
+TEST(MultiArmClosedLoopTest, QuadrotorDescendsAtOnceWhenARotorReportsNothing) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const Scenario scenario = ScenarioFor(
+      "thrust_loss", vehicle,
+      {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
+       "scenario.duration_s=8.0", "faults.thrust_steps=[{time_s: 5.0, rotor: 3, scale: 0.0}]"});
+  ControllerConfig config = Nominal();
+  config.force_feedback = true;
+  EstimatedEfficiencyProvider estimate(vehicle, EstimatorConfig());
+  MultiArmClosedLoopOptions options;
+  options.efficiency = &estimate;
+  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, config, options);
+  const MultiArmDescent descent = MultiArmDescentOf(run, vehicle, scenario);
+  std::printf("quadrotor rotor 3 dead: descents %lld (by sink %lld), start %.2f s, touchdown %.2f m/s\n",
+              static_cast<long long>(run.degradation.descents),
+              static_cast<long long>(run.degradation.infeasible_by_sink), descent.start_s, descent.touchdown_m_s);
+  EXPECT_EQ(run.degradation.descents, 1);
+  EXPECT_EQ(run.degradation.infeasible_by_sink, 0);
+  ASSERT_TRUE(descent.found);
+  EXPECT_LT(descent.start_s, 5.2);
+  EXPECT_LT(descent.touchdown_m_s, 1.5 * 0.56);
+  EXPECT_EQ(run.commands_out_of_bounds, 0);
+}
+
 }  // namespace
 }  // namespace birotor
