@@ -43,6 +43,17 @@ std::array<double, kMaxArms> Efficiencies(double e1) {
   return e;
 }
 
+// HoverFeasibility on the quadrotor's four rotors and its hovers.
+HoverFeasibility QuadrotorFeasibility(const EfficiencyParams& params, const HoverSpace& space) {
+  double max_n[kMaxArms] = {};
+  double hover_n[kMaxArms] = {};
+  for (int i = 0; i < 4; ++i) {
+    max_n[i] = kMaxThrustN;
+    hover_n[i] = space.hover_force_n()(i);
+  }
+  return HoverFeasibility(params, 4, max_n, hover_n, space);
+}
+
 // W_r (f - f_hover): what a hover of the space changes on the controlled rows [N, N, N m].
 Eigen::Vector3d ControlledChange(const VehicleDescription& vehicle, const ArmForces<double>& f,
                                  const ArmForces<double>& hover_n) {
@@ -185,15 +196,9 @@ TEST(HoverSpaceTest, SixRotorsMeetTheOptimalityConditions) {
 TEST(HoverSpaceTest, TheQuadrotorHoversWhereTheLeastNormBoundGaveUp) {
   const VehicleDescription vehicle = Vehicle("quadrotor");
   const HoverSpace space = SpaceOf(vehicle);
-  double max_n[kMaxArms] = {};
-  double hover_n[kMaxArms] = {};
-  for (int i = 0; i < 4; ++i) {
-    max_n[i] = kMaxThrustN;
-    hover_n[i] = space.hover_force_n()(i);
-  }
   const EfficiencyParams params;
   for (const double e : {0.25, 0.15}) {
-    HoverFeasibility feasibility(params, 4, max_n, hover_n, space);
+    HoverFeasibility feasibility = QuadrotorFeasibility(params, space);
     EXPECT_GT(feasibility.FeasibilityBound(0), 0.25);
     FeasibilityInputs in;
     for (int i = 0; i < 4; ++i) in.efficiency[i] = e;
@@ -209,14 +214,8 @@ TEST(HoverSpaceTest, TheQuadrotorHoversWhereTheLeastNormBoundGaveUp) {
 TEST(HoverSpaceTest, AReportBelowTheFloorIsTakenOverTheFloor) {
   const VehicleDescription vehicle = Vehicle("quadrotor");
   const HoverSpace space = SpaceOf(vehicle);
-  double max_n[kMaxArms] = {};
-  double hover_n[kMaxArms] = {};
-  for (int i = 0; i < 4; ++i) {
-    max_n[i] = kMaxThrustN;
-    hover_n[i] = space.hover_force_n()(i);
-  }
   for (const double report : {kNaNReport, 0.1, 0.0}) {
-    HoverFeasibility feasibility(EfficiencyParams(), 4, max_n, hover_n, space);
+    HoverFeasibility feasibility = QuadrotorFeasibility(EfficiencyParams(), space);
     FeasibilityInputs in;
     in.efficiency[2] = 0.2;
     in.below_floor_report[2] = report;

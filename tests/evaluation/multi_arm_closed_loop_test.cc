@@ -237,6 +237,27 @@ TEST(MultiArmDescentFloorTest, SinkAccelerationOfTheLevelDescent) {
   EXPECT_EQ(MultiArmLevelSinkAccelM_S2(trirotor, trirotor_hover, s06), 0.0);
 }
 
+// thrust_loss climbing to 1 m in 2 s, 8 s long, rotor `rotor` (1-based) at
+// `scale` of its thrust from 5 s (birotor-eval's descentPP_rotorK cases).
+Scenario ClimbThenLoss(const VehicleDescription& vehicle, int rotor, double scale) {
+  return ScenarioFor(
+      "thrust_loss", vehicle,
+      {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
+       "scenario.duration_s=8.0",
+       "faults.thrust_steps=[{time_s: 5.0, rotor: " + std::to_string(rotor) + ", scale: " + std::to_string(scale) +
+           "}]"});
+}
+
+// Force feedback on the N-arm estimator (the product path), the defaults' gains.
+MultiArmClosedLoopRun FlyOnTheEstimate(const VehicleDescription& vehicle, const Scenario& scenario) {
+  ControllerConfig config = Nominal();
+  config.force_feedback = true;
+  EstimatedEfficiencyProvider estimate(vehicle, EstimatorConfig());
+  MultiArmClosedLoopOptions options;
+  options.efficiency = &estimate;
+  return RunMultiArmClosedLoop(vehicle, scenario, config, options);
+}
+
 // The trirotor climbs to 1 m and loses 70 or 80 % on rotor 1 (27.5 N at
 // hover) at 5 s, force feedback on the N-arm estimator (the product path):
 // one descent, hover infeasible from the efficiency, peak tilt from the
@@ -252,17 +273,8 @@ TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover
   const double loss[3] = {0.7, 0.8, 0.4};
   const double measured_tilt_rad[3] = {0.103, 0.156, 0.040};
   for (int c = 0; c < 3; ++c) {
-    const Scenario scenario = ScenarioFor(
-        "thrust_loss", vehicle,
-        {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
-         "scenario.duration_s=8.0",
-         "faults.thrust_steps=[{time_s: 5.0, rotor: 1, scale: " + std::to_string(1.0 - loss[c]) + "}]"});
-    ControllerConfig config = Nominal();
-    config.force_feedback = true;
-    EstimatedEfficiencyProvider estimate(vehicle, EstimatorConfig());
-    MultiArmClosedLoopOptions options;
-    options.efficiency = &estimate;
-    const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, config, options);
+    const Scenario scenario = ClimbThenLoss(vehicle, 1, 1.0 - loss[c]);
+    const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
     const MultiArmDescent descent = MultiArmDescentOf(run, vehicle, scenario);
     std::printf("trirotor %.0f %% on rotor 1: descents %lld, peak tilt %.3f rad, touchdown %.2f m/s, floor %.2f m/s\n",
                 100.0 * loss[c], static_cast<long long>(run.degradation.descents), descent.peak_tilt_rad,
@@ -292,16 +304,8 @@ TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover
 // nominal map on the same seed loses the vehicle (27.6 m below, tilt 2.9 rad).
 TEST(MultiArmClosedLoopTest, QuadrotorHoldsAnEightyPercentLossOnItsSpareRotors) {
   const VehicleDescription vehicle = Vehicle("quadrotor");
-  const Scenario scenario = ScenarioFor(
-      "thrust_loss", vehicle,
-      {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
-       "scenario.duration_s=8.0", "faults.thrust_steps=[{time_s: 5.0, rotor: 1, scale: 0.2}]"});
-  ControllerConfig config = Nominal();
-  config.force_feedback = true;
-  EstimatedEfficiencyProvider estimate(vehicle, EstimatorConfig());
-  MultiArmClosedLoopOptions options;
-  options.efficiency = &estimate;
-  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, config, options);
+  const Scenario scenario = ClimbThenLoss(vehicle, 1, 0.2);
+  const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
   const double deviation_m = FiguresOf(run, kBandM).max_altitude_deviation_m;
   std::printf("quadrotor 80 %% on rotor 1: descents %lld, altitude deviation %.4f m\n",
               static_cast<long long>(run.degradation.descents), deviation_m);
@@ -322,16 +326,8 @@ TEST(MultiArmClosedLoopTest, QuadrotorHoldsAnEightyPercentLossOnItsSpareRotors) 
 // the vehicle touched down at 3.56 m/s).
 TEST(MultiArmClosedLoopTest, QuadrotorDescendsAtOnceWhenARotorReportsNothing) {
   const VehicleDescription vehicle = Vehicle("quadrotor");
-  const Scenario scenario = ScenarioFor(
-      "thrust_loss", vehicle,
-      {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
-       "scenario.duration_s=8.0", "faults.thrust_steps=[{time_s: 5.0, rotor: 3, scale: 0.0}]"});
-  ControllerConfig config = Nominal();
-  config.force_feedback = true;
-  EstimatedEfficiencyProvider estimate(vehicle, EstimatorConfig());
-  MultiArmClosedLoopOptions options;
-  options.efficiency = &estimate;
-  const MultiArmClosedLoopRun run = RunMultiArmClosedLoop(vehicle, scenario, config, options);
+  const Scenario scenario = ClimbThenLoss(vehicle, 3, 0.0);
+  const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
   const MultiArmDescent descent = MultiArmDescentOf(run, vehicle, scenario);
   std::printf("quadrotor rotor 3 dead: descents %lld (by sink %lld), start %.2f s, touchdown %.2f m/s\n",
               static_cast<long long>(run.degradation.descents),
