@@ -89,6 +89,21 @@ TEST(MultiArmConsistencyTest, TrirotorWithGaugesReadingLowRaisesMismatch) {
   EXPECT_LT(r.valid_share, 1.0 - r.mismatch_share + 1e-9);  // VALID withdrawn while raised
 }
 
+// The shipped estimator file on the trirotor's description.
+EstimatorConfig TrirotorConfig() {
+  EstimatorConfig config = Config();
+  config.vehicle = Vehicle("trirotor");
+  return config;
+}
+
+// 4 s of gentle (seed 3) flown by the description with its body mass set to
+// body_mass_kg, estimated with config's (the file's) description.
+MultiArmAccuracy FlyGentleWithBody(const EstimatorConfig& config, double body_mass_kg) {
+  VehicleDescription flown = config.vehicle;
+  flown.body_mass_kg = body_mass_kg;
+  return RunMultiArmAccuracyFlying(flown, ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), config, EvalOptions());
+}
+
 // A payload the description lacks (body 4.4 kg against 4.0; the offset-
 // departure test, docs/mismatch.md "Offsets that took a force"): the gauge
 // offsets take it and the test raises MODEL_MISMATCH. Measured on the whole
@@ -96,12 +111,10 @@ TEST(MultiArmConsistencyTest, TrirotorWithGaugesReadingLowRaisesMismatch) {
 // MISMATCH 1.000 of the scored estimates (before: VALID, 2.30 / 1.15 / 1.15
 // N off, 2-sigma share 0.000); on 4 s here every scored estimate raised.
 TEST(MultiArmConsistencyTest, TrirotorWithAPayloadRaisesMismatch) {
-  EstimatorConfig config = Config();
-  config.vehicle = Vehicle("trirotor");
+  const EstimatorConfig config = TrirotorConfig();
   VehicleDescription heavier = config.vehicle;
   heavier.body_mass_kg = 4.4;
-  const MultiArmAccuracy r =
-      RunMultiArmAccuracyFlying(heavier, ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), config, EvalOptions());
+  const MultiArmAccuracy r = FlyGentleWithBody(config, 4.4);
   EXPECT_GT(r.mismatch_share, 0.99);
   EXPECT_EQ(r.valid_share, 0.0);
   // What a stop persists: not the offsets that took the payload but the
@@ -122,12 +135,7 @@ TEST(MultiArmConsistencyTest, TrirotorWithAPayloadRaisesMismatch) {
 // each sigma (offset_departure_in_sigma_above): 2-sigma share measured
 // 1.000 on every rotor (before: 0.008-0.014).
 TEST(MultiArmConsistencyTest, TrirotorPayloadWithinTheLimitIsInTheSigma) {
-  EstimatorConfig config = Config();
-  config.vehicle = Vehicle("trirotor");
-  VehicleDescription heavier = config.vehicle;
-  heavier.body_mass_kg = 4.2;
-  const MultiArmAccuracy r =
-      RunMultiArmAccuracyFlying(heavier, ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), config, EvalOptions());
+  const MultiArmAccuracy r = FlyGentleWithBody(TrirotorConfig(), 4.2);
   EXPECT_EQ(r.mismatch_share, 0.0);
   EXPECT_GT(r.valid_share, 0.9);
   for (int i = 0; i < 3; ++i) {
