@@ -142,6 +142,17 @@ struct EfficiencyParams {
   // feasibility_margin] exists (every rotor kept off 0 for control both ways).
   double spare_min_share = 0.05;  // [1]
   double spare_max_share = 0.8;   // [1]
+  // With no level hover within those shares, a fully actuated vehicle with
+  // spare rotors may hover tilted up to this (the body balances the lateral
+  // force a rotor that makes nothing leaves; HoverSpace::
+  // NearestTiltedWithinShares); 0: level hovers only.
+  double spare_hover_tilt_rad = 0.1;  // [rad]
+  // The cascade with spare rotors flies a rotor FORCE flags below
+  // min_plausible_thrust_scale (at_floor_samples reports in a row) at what
+  // those reports average instead of at the floor; below this average as
+  // making nothing (retired: not driven; a dead rotor reads about 0); 0:
+  // never retired [1].
+  double spare_retire_scale = 0.05;  // [1]
   // Infeasibility from the vehicle itself (force feedback; FORCE refused at
   // its plausibility floor on a large loss): the allocation limited for
   // sink_detect_s while the vehicle is more than sink_detect_altitude_m below

@@ -26,6 +26,9 @@ int ForceFloorEvidence::FlyAtTheFloor(RotorEfficiencyEstimate* estimate) {
     below_floor_report_[rotor] = flagged && scale < params_.min_plausible_thrust_scale
                                      ? std::max(scale, 0.0)
                                      : std::numeric_limits<double>::quiet_NaN();
+    const bool flagged_low = flagged && scale < params_.min_plausible_thrust_scale;  // NaN: false
+    flagged_low_run_[rotor] = flagged_low ? flagged_low_run_[rotor] + 1 : 0;
+    flagged_low_sum_[rotor] = flagged_low ? flagged_low_sum_[rotor] + scale : 0.0;
     const bool below = flagged && scale >= 0.0 && scale < params_.min_plausible_thrust_scale;
     below_floor_run_[rotor] = below ? below_floor_run_[rotor] + 1 : 0;
     if (below && below_floor_run_[rotor] >= params_.at_floor_samples) {
@@ -41,6 +44,13 @@ int ForceFloorEvidence::FlyAtTheFloor(ForceEstimate* estimate) {
   const int set = FlyAtTheFloor(&report);
   for (int i = 0; i < kBirotorRotors; ++i) estimate->thrust_scale[i] = report.thrust_scale[static_cast<size_t>(i)];
   return set;
+}
+
+double ForceFloorEvidence::below_floor_mean(int rotor) const {
+  const size_t i = static_cast<size_t>(rotor);
+  const int run = flagged_low_run_[i];
+  return run >= params_.at_floor_samples && run > 0 ? flagged_low_sum_[i] / run
+                                                    : std::numeric_limits<double>::quiet_NaN();
 }
 
 void ForceFloorEvidence::Note(const RotorEfficiencyEstimate& estimate, int64_t now_us,

@@ -7,7 +7,8 @@
 // at most that); every VALID report, refused ones included, is
 // low-passed as evidence for HoverFeasibility's sink detection (never flown
 // by itself); and the newest flagged report below the floor is kept for
-// the spare-rotor hover check (below_floor_report). VehicleController (the birotor's FORCE, converted by
+// the spare-rotor hover check (below_floor_report) and retirement
+// (below_floor_mean). VehicleController (the birotor's FORCE, converted by
 // RotorEfficiencyReportOf) and MultiArmController use it. No allocation, no
 // throw.
 #pragma once
@@ -52,6 +53,11 @@ class ForceFloorEvidence {
   // the floor (negative read as 0): what it makes, not only "at most the
   // floor"; NaN when the newest report does not [1].
   double below_floor_report(int rotor) const { return below_floor_report_[static_cast<size_t>(rotor)]; }
+  // The mean thrust_scale of rotor i over its current run of flagged
+  // reports below the floor (negatives as they are), once the run is
+  // at_floor_samples long; NaN otherwise [1]. A dead rotor's reads about 0
+  // (MultiArmController retires a spare rotor below spare_retire_scale).
+  double below_floor_mean(int rotor) const;
 
  private:
   SupervisionParams params_;
@@ -60,6 +66,8 @@ class ForceFloorEvidence {
   std::array<int, kMaxArms> below_floor_run_{};      // flagged reports below the floor in a row, per rotor
   std::array<double, kMaxArms> reported_scale_;      // [1]
   std::array<double, kMaxArms> below_floor_report_;  // below_floor_report [1]
+  std::array<int, kMaxArms> flagged_low_run_{};      // flagged reports below the floor in a row, negatives included
+  std::array<double, kMaxArms> flagged_low_sum_{};   // their thrust_scale summed [1]
   int64_t reported_utime_ = -1;                      // newest noted report [us]
 };
 

@@ -64,7 +64,10 @@ bool HoverFeasibility::HoverHeld(const FeasibilityInputs& in, int weakest) const
   if (!space_.redundant()) return !(in.efficiency[weakest] < bound_[weakest]);
   double efficiency[kMaxArms];
   for (int i = 0; i < kMaxArms; ++i) efficiency[i] = Evidence(in, i);
-  return space_.NearestWithinShares(efficiency, params_.spare_min_share, 1.0 / params_.feasibility_margin, nullptr);
+  const double max_share = 1.0 / params_.feasibility_margin;
+  return space_.NearestWithinShares(efficiency, params_.spare_min_share, max_share, nullptr) ||
+         space_.NearestTiltedWithinShares(efficiency, params_.spare_min_share, max_share, params_.spare_hover_tilt_rad,
+                                          nullptr, nullptr);
 }
 
 int HoverFeasibility::WeakFromSink(const FeasibilityInputs& in) const {

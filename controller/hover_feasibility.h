@@ -65,9 +65,10 @@ class HoverFeasibility {
   // N rotors (2 .. kMaxArms): rotor i makes at most max_rotor_force_n[i] =
   // c_T,i omega_max^2 [N] at e_i = 1 and hovers at hover_force_n[i] =
   // f_hover,i > 0 [N] (SolveMultiArmHover). With spare rotors (space.
-  // redundant()) hover is infeasible when no hover of the space keeps every
-  // rotor within [spare_min_share, 1 / margin] x e_i c_T,i omega_max^2
-  // instead (the bounds below then only rank the rotors).
+  // redundant()) hover is infeasible when no hover of the space, level or
+  // tilted up to spare_hover_tilt_rad, keeps every rotor within
+  // [spare_min_share, 1 / margin] x e_i c_T,i omega_max^2 instead (the
+  // bounds below then only rank the rotors).
   HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
                    const double* hover_force_n, const HoverSpace& space = HoverSpace());
 

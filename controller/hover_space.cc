@@ -42,18 +42,28 @@ HoverSpace::HoverSpace(const VehicleDescription& vehicle, MultiArmControlMode mo
   const int rank = static_cast<int>(svd.rank());
   spare_ = std::max(0, rotor_count_ - rank);
   null_basis_ = svd.matrixV().rightCols(spare_);
+  if (mode == MultiArmControlMode::kFullyActuated && rank == kWrenchSize) {
+    // f_lateral = W^T (W W^T)^-1 [m g, 0, 0]: thrusts making the weight sideways, no F_z, no torque.
+    const Eigen::Vector3d weight_sideways(vehicle.TotalMass() * vehicle.gravity_m_s2, 0.0, 0.0);
+    lateral_force_n_ = controlled.transpose() * (controlled * controlled.transpose()).ldlt().solve(weight_sideways);
+  }
 }
 
 bool HoverSpace::Nearest(const ArmForces<double>& low_n, const ArmForces<double>& high_n,
                          ArmForces<double>* hover_n) const {
+  return NearestTo(hover_force_n_, low_n, high_n, hover_n);
+}
+
+bool HoverSpace::NearestTo(const ArmForces<double>& centre_n, const ArmForces<double>& low_n,
+                           const ArmForces<double>& high_n, ArmForces<double>* hover_n) const {
   double scale_n = 1.0;
   bool hover_fits = true;
   for (int i = 0; i < rotor_count_; ++i) {
-    scale_n = std::max({scale_n, std::fabs(high_n(i)), std::fabs(hover_force_n_(i))});
-    hover_fits = hover_fits && hover_force_n_(i) >= low_n(i) && hover_force_n_(i) <= high_n(i);
+    scale_n = std::max({scale_n, std::fabs(high_n(i)), std::fabs(centre_n(i))});
+    hover_fits = hover_fits && centre_n(i) >= low_n(i) && centre_n(i) <= high_n(i);
   }
   if (hover_fits) {
-    if (hover_n != nullptr) *hover_n = hover_force_n_;
+    if (hover_n != nullptr) *hover_n = centre_n;
     return true;
   }
   if (spare_ == 0) return false;
@@ -64,7 +74,7 @@ bool HoverSpace::Nearest(const ArmForces<double>& low_n, const ArmForces<double>
   };
   const auto limit = [&](int j) {
     const int i = j / 2;
-    return j % 2 == 0 ? high_n(i) - hover_force_n_(i) : hover_force_n_(i) - low_n(i);
+    return j % 2 == 0 ? high_n(i) - centre_n(i) : centre_n(i) - low_n(i);
   };
   const int bounds = 2 * rotor_count_;
   const double tolerance_n = kBoundTolerance * scale_n;
@@ -98,7 +108,7 @@ bool HoverSpace::Nearest(const ArmForces<double>& low_n, const ArmForces<double>
   }
   if (!std::isfinite(best_norm)) return false;
   if (hover_n != nullptr) {
-    *hover_n = hover_force_n_ + null_basis_ * best;
+    *hover_n = centre_n + null_basis_ * best;
     // Round-off only (the bounds hold within the tolerance); min of max: a
     // box with low above high never gets here with a candidate inside.
     for (int i = 0; i < rotor_count_; ++i) (*hover_n)(i) = std::min(std::max((*hover_n)(i), low_n(i)), high_n(i));
@@ -106,16 +116,42 @@ bool HoverSpace::Nearest(const ArmForces<double>& low_n, const ArmForces<double>
   return true;
 }
 
-bool HoverSpace::NearestWithinShares(const double* efficiency, double min_share, double max_share,
-                                     ArmForces<double>* hover_n) const {
-  ArmForces<double> low_n(rotor_count_);
-  ArmForces<double> high_n(rotor_count_);
+void HoverSpace::ShareBox(const double* efficiency, double min_share, double max_share, ArmForces<double>* low_n,
+                          ArmForces<double>* high_n) const {
+  low_n->resize(rotor_count_);
+  high_n->resize(rotor_count_);
   for (int i = 0; i < rotor_count_; ++i) {
     const double makes_n = std::max(0.0, efficiency[i]) * max_force_n_(i);
-    low_n(i) = min_share * makes_n;
-    high_n(i) = max_share * makes_n;
+    (*low_n)(i) = min_share * makes_n;
+    (*high_n)(i) = max_share * makes_n;
   }
+}
+
+bool HoverSpace::NearestWithinShares(const double* efficiency, double min_share, double max_share,
+                                     ArmForces<double>* hover_n) const {
+  ArmForces<double> low_n;
+  ArmForces<double> high_n;
+  ShareBox(efficiency, min_share, max_share, &low_n, &high_n);
   return Nearest(low_n, high_n, hover_n);
+}
+
+bool HoverSpace::NearestTiltedWithinShares(const double* efficiency, double min_share, double max_share,
+                                           double max_tilt_rad, ArmForces<double>* hover_n, double* tilt_rad) const {
+  if (lateral_force_n_.size() != rotor_count_) return false;
+  ArmForces<double> low_n;
+  ArmForces<double> high_n;
+  ShareBox(efficiency, min_share, max_share, &low_n, &high_n);
+  const int steps = static_cast<int>(std::floor(max_tilt_rad / kTiltStepRad + 1e-9));
+  for (int k = 1; k <= steps; ++k) {
+    for (double sign : {1.0, -1.0}) {
+      const double phi = sign * k * kTiltStepRad;
+      const ArmForces<double> centre_n = std::cos(phi) * hover_force_n_ + std::sin(phi) * lateral_force_n_;
+      if (!NearestTo(centre_n, low_n, high_n, hover_n)) continue;
+      if (tilt_rad != nullptr) *tilt_rad = phi;
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace birotor

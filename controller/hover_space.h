@@ -44,16 +44,38 @@ class HoverSpace {
   bool NearestWithinShares(const double* efficiency, double min_share, double max_share,
                            ArmForces<double>* hover_n) const;
 
+  // A fully actuated vehicle may also hover tilted: at tilt phi its body
+  // force is R(phi)^T [0, m g] = m g [sin phi, cos phi] (body frame, torque
+  // 0), made by f = cos(phi) f_hover + sin(phi) f_lateral + Z y, f_lateral =
+  // P [m g, 0, 0] (P: the controlled rows' pseudo-inverse). The least |phi|
+  // on a grid of kTiltStepRad up to max_tilt_rad (each sign, the positive
+  // first) with a hover within the shares, and that hover (nearest its own
+  // cos f_hover + sin f_lateral); false when none (or the vehicle tilts to
+  // move: no lateral force of its own). A rotor that makes nothing leaves a
+  // lateral force the others can only balance by tilting the body (the
+  // quadrotor with rotor 3 dead: docs/controller.md, "Spare rotors").
+  bool NearestTiltedWithinShares(const double* efficiency, double min_share, double max_share, double max_tilt_rad,
+                                 ArmForces<double>* hover_n, double* tilt_rad) const;
+  static constexpr double kTiltStepRad = 0.005;
+
   const ArmForces<double>& hover_force_n() const { return hover_force_n_; }
 
  private:
   using NullBasis = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxArms, kMaxArms>;
 
+  // Nearest about the particular hover `centre_n` (f_hover, or a tilted one).
+  bool NearestTo(const ArmForces<double>& centre_n, const ArmForces<double>& low_n, const ArmForces<double>& high_n,
+                 ArmForces<double>* hover_n) const;
+  // The box [min_share, max_share] x e_i c_T,i omega_max^2.
+  void ShareBox(const double* efficiency, double min_share, double max_share, ArmForces<double>* low_n,
+                ArmForces<double>* high_n) const;
+
   int rotor_count_ = 0;
   int spare_ = 0;
   ArmForces<double> hover_force_n_;
-  ArmForces<double> max_force_n_;  // c_T,i omega_max^2 [N]
-  NullBasis null_basis_;           // Z, N x spare_, orthonormal columns
+  ArmForces<double> max_force_n_;      // c_T,i omega_max^2 [N]
+  ArmForces<double> lateral_force_n_;  // f_lateral = P [m g, 0, 0] (fully actuated; else empty) [N]
+  NullBasis null_basis_;               // Z, N x spare_, orthonormal columns
 };
 
 }  // namespace birotor

@@ -243,6 +243,17 @@ ReferencePoint MultiArmController::DescentTarget(const ReferencePoint& reference
   return descend ? DescentReference(observer_.state().position_m, s.descent_rate_m_s) : reference;
 }
 
+double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency) {
+  const size_t i = static_cast<size_t>(rotor);
+  const double reported = floor_evidence_.below_floor_mean(rotor);
+  // Retired until the run of flagged reports below the floor ends (a mean
+  // about the threshold would otherwise stop and start the rotor).
+  retired_[i] = std::isfinite(reported) && (retired_[i] || reported < config_.efficiency.spare_retire_scale);
+  if (config_.model_predictive || law_.spare_rotors() == 0 || feasibility_.infeasible()) return efficiency;
+  if (!std::isfinite(reported)) return efficiency;  // no run of flagged reports below the floor
+  return retired_[i] ? 0.0 : std::min(efficiency, std::max(reported, 0.0));
+}
+
 void MultiArmController::LeadFallingEfficiency(const RotorEfficiencies& efficiency, double dt_s,
                                                MultiArmRotorCommand* command) {
   for (int i = 0; i < vehicle_.arm_count; ++i) {
@@ -250,7 +261,7 @@ void MultiArmController::LeadFallingEfficiency(const RotorEfficiencies& efficien
     const double de_1_s = std::min(efficiency[rotor] - last_efficiency_[rotor], 0.0) / dt_s;
     last_efficiency_[rotor] = efficiency[rotor];
     const double omega = command->omega_cmd_rad_s[rotor];
-    if (!std::isfinite(omega) || de_1_s == 0.0) continue;
+    if (!std::isfinite(omega) || de_1_s == 0.0 || !(efficiency[rotor] > 0.0)) continue;
     const double lead_rad_s = -config_.efficiency.motor_lead_s * omega / (2.0 * efficiency[rotor]) * de_1_s;
     command->omega_cmd_rad_s[rotor] = ClampCommand(vehicle_.omega_max_rad_s, omega + lead_rad_s);
   }
@@ -288,6 +299,7 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     efficiency[rotor] = feasibility_.EfficiencyFor(i, efficiency[rotor]);
+    efficiency[rotor] = BelowFloorEfficiency(i, efficiency[rotor]);
   }
   flown_efficiency_ = efficiency;
   const bool descend = pose_lost || infeasible;

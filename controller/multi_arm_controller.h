@@ -162,6 +162,15 @@ class MultiArmController {
   // integrator wound up against a rotor that could not deliver; the
   // position one otherwise), as VehicleController::DescentTarget.
   ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
+  // The efficiency the cascade flies rotor i with: with spare rotors, hover
+  // feasible and FORCE flagging the rotor below the plausibility floor
+  // (at_floor_samples reports in a row), what those reports average
+  // (ForceFloorEvidence::below_floor_mean) instead of the floor, and 0 (not
+  // driven: retired) once it averages below spare_retire_scale, until the
+  // run of flagged reports below the floor ends; efficiency otherwise. The
+  // other rotors then hold the hover, level or tilted (docs/controller.md,
+  // "Spare rotors"); the MPC trades the axes within the floor's bound itself.
+  double BelowFloorEfficiency(int rotor, double efficiency);
   // The birotor's motor-lag lead (VehicleController, efficiency.motor_lead_s)
   // on the cascade's speeds: while e_i falls, omega_i + motor_lead_s
   // d(omega_i)/dt with d(omega_i)/dt = -omega_i / (2 e_i) de_i/dt (the
@@ -194,6 +203,7 @@ class MultiArmController {
   bool force_usable_ = true;                     // SetForceUsable
   EfficiencyConditioner efficiency_;             // e_i from the plausible estimates
   ForceFloorEvidence floor_evidence_;
+  std::array<bool, kMaxArms> retired_{};  // BelowFloorEfficiency's retired rotors (this run below the floor)
   int64_t force_at_floor_ = 0;
   int64_t refused_estimates_ = 0;
   bool has_pose_ = false;

@@ -18,6 +18,7 @@ MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerPara
       spare_min_share_(spare.spare_min_share),
       spare_max_share_(spare.spare_max_share),
       feasible_share_(1.0 / spare.feasibility_margin),
+      hover_tilt_limit_rad_(spare.spare_hover_tilt_rad),
       base_force_n_(hover_force_n_),
       tilt_limit_rad_(gains.max_tilt_rad) {
   for (int i = 0; i < vehicle.arm_count; ++i) {
@@ -41,7 +42,7 @@ Eigen::Vector3d MultiArmLaw::Wrench(const BodyState& body, const ReferencePoint&
   }
   const double cos_phi = std::cos(std::clamp(body.phi_rad, -1.2, 1.2));
   Eigen::Vector3d wrench;  // [F_x, F_z, torque], body frame [N, N, N m]
-  double phi_des_rad = 0.0;
+  double phi_des_rad = base_tilt_rad_;
   if (mode() == MultiArmControlMode::kTiltToMove) {
     const TiltTarget tilt = TiltForAcceleration(gains_, g, accel_des_m_s2_);
     phi_des_rad = std::clamp(tilt.phi_des_rad, -tilt_limit_rad_, tilt_limit_rad_);
@@ -61,20 +62,31 @@ Eigen::Vector3d MultiArmLaw::Wrench(const BodyState& body, const ReferencePoint&
 
 MultiArmRotorCommand MultiArmLaw::Update(const BodyState& body, const ReferencePoint& reference,
                                          const RotorEfficiencies& efficiency) {
+  const ArmForces<double>& base_n = HoverBase(efficiency);
   Eigen::Vector3d wrench = Wrench(body, reference, !saturated_);
-  wrench(kWrenchFz) -= total_mass_kg_ * gravity_m_s2_;  // the hover thrusts carry the weight
-  const MultiArmRotorCommand command = allocator_.Allocate(HoverBase(efficiency), wrench, efficiency);
+  // The hover thrusts carry the weight: m g [sin phi_base, cos phi_base] in the body frame.
+  const double weight_n = total_mass_kg_ * gravity_m_s2_;
+  if (base_tilt_rad_ != 0.0) wrench(kWrenchFx) -= weight_n * std::sin(base_tilt_rad_);
+  wrench(kWrenchFz) -= base_tilt_rad_ != 0.0 ? weight_n * std::cos(base_tilt_rad_) : weight_n;
+  const MultiArmRotorCommand command = allocator_.Allocate(base_n, wrench, efficiency);
   saturated_ = command.saturated;
   return command;
 }
 
 const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficiency) {
+  base_tilt_rad_ = 0.0;
   if (!hover_space_.redundant()) return hover_force_n_;
   const double* e = efficiency.data();
-  if (hover_space_.NearestWithinShares(e, spare_min_share_, spare_max_share_, &base_force_n_) ||
-      hover_space_.NearestWithinShares(e, spare_min_share_, feasible_share_, &base_force_n_)) {
-    return base_force_n_;
+  // Levelling for a descent (tilt limit 0) holds no tilted hover.
+  const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
+  for (double max_share : {spare_max_share_, feasible_share_}) {
+    if (hover_space_.NearestWithinShares(e, spare_min_share_, max_share, &base_force_n_) ||
+        hover_space_.NearestTiltedWithinShares(e, spare_min_share_, max_share, max_tilt_rad, &base_force_n_,
+                                               &base_tilt_rad_)) {
+      return base_force_n_;
+    }
   }
+  base_tilt_rad_ = 0.0;
   return hover_force_n_;  // no hover held: the allocator scales it down (the infeasible descent)
 }
 

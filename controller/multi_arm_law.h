@@ -32,14 +32,13 @@ class MultiArmLaw {
   // One control period (1 / rate_hz):
   //   a_des = PositionLoopAcceleration (world),
   //   kTiltToMove:    phi_des = TiltForAcceleration, F_z = m (g + a_z) / cos(phi), F_x = 0
-  //   kFullyActuated: phi_des = 0, [F_x; F_z] = R(phi)^T m (a_des + g e_z)   (body frame)
+  //   kFullyActuated: phi_des = phi_base, [F_x; F_z] = R(phi)^T m (a_des + g e_z)   (body frame)
   //   torque = J_eff TiltLoopAcceleration(phi_des)
-  //   f = f_base + P (w - [0, m g, 0])       (WrenchAllocator::Allocate)
+  //   f = f_base + P (w - m g [sin phi_base, cos phi_base, 0])   (WrenchAllocator::Allocate)
   // f_base = f_hover, what the vehicle needs whatever the efficiencies; with
   // spare rotors the nearest hover within the spare_* shares of what each
-  // rotor makes (HoverBase). efficiency (each e_i > 0) sets the bounds and
-  // the speed map. The integrators hold in the period after one that
-  // saturated (anti-windup).
+  // rotor makes (HoverBase), level (phi_base = 0) or, when none is, tilted. efficiency (each e_i > 0) sets the bounds
+  // and the speed map. The integrators hold in the period after one that saturated (anti-windup).
   MultiArmRotorCommand Update(const BodyState& body, const ReferencePoint& reference,
                               const RotorEfficiencies& efficiency);
 
@@ -59,6 +58,11 @@ class MultiArmLaw {
   const WrenchAllocator& allocator() const { return allocator_; }
   // The world acceleration the outer loop asked for in the last period [m/s^2].
   const Eigen::Vector2d& accel_des_m_s2() const { return accel_des_m_s2_; }
+  // The tilt the allocation's hover is held at: 0 but on a fully actuated
+  // vehicle with spare rotors and no level hover within the shares [rad].
+  double base_tilt_rad() const { return base_tilt_rad_; }
+  // Rotors beyond the controlled axes (HoverSpace::spare_rotors; 1 on the quadrotor).
+  int spare_rotors() const { return hover_space_.spare_rotors(); }
 
  private:
   // [F_x, F_z, tau] the cascade asks for (body frame [N, N, N m]), F_z
@@ -72,17 +76,22 @@ class MultiArmLaw {
   double pitch_inertia_kg_m2_;  // J + sum m_p,i L_i^2 [kg m^2]
   // The thrusts the allocation starts from: f_hover, or with spare rotors
   // the hover nearest it within [spare_min_share, spare_max_share] x e_i
-  // c_T,i omega_max^2, else within [spare_min_share, 1 / margin], else
-  // f_hover (no hover held: the allocator scales it, the descent's).
+  // c_T,i omega_max^2, else the least-tilted one within them (HoverSpace::
+  // NearestTiltedWithinShares, up to spare_hover_tilt_rad and the tilt
+  // limit; its tilt in base_tilt_rad_), else the same two within
+  // [spare_min_share, 1 / margin], else f_hover (no hover held: the
+  // allocator scales it, the descent's).
   const ArmForces<double>& HoverBase(const RotorEfficiencies& efficiency);
 
   ArmForces<double> hover_force_n_;
   WrenchAllocator allocator_;
   HoverSpace hover_space_;
-  double spare_min_share_;                                           // [1]
-  double spare_max_share_;                                           // [1]
-  double feasible_share_;                                            // 1 / feasibility_margin [1]
-  ArmForces<double> base_force_n_;                                   // HoverBase's answer [N]
+  double spare_min_share_;          // [1]
+  double spare_max_share_;          // [1]
+  double feasible_share_;           // 1 / feasibility_margin [1]
+  double hover_tilt_limit_rad_;     // spare_hover_tilt_rad [rad]
+  double base_tilt_rad_ = 0.0;      // the tilt HoverBase's hover is held at (fully actuated: phi_des) [rad]
+  ArmForces<double> base_force_n_;  // HoverBase's answer [N]
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
   double tilt_limit_rad_;                                            // LimitTilt [rad]

@@ -149,8 +149,11 @@ MultiArmRotorCommand WrenchAllocator::Allocate(const ArmForces<double>& base_for
     const double clamped_n = std::clamp(force_n(i), 0.0, max_force_n(i));
     saturated |= clamped_n != force_n(i);
     command.force_n[rotor] = clamped_n;
+    // A rotor flown as making nothing (e_i = 0: a spare rotor retired) is not driven.
     command.omega_cmd_rad_s[rotor] =
-        RotorSpeedForThrust(thrust_coeff_n_s2_rad2_[rotor], omega_max_rad_s_, clamped_n, efficiency[rotor]);
+        efficiency[rotor] > 0.0
+            ? RotorSpeedForThrust(thrust_coeff_n_s2_rad2_[rotor], omega_max_rad_s_, clamped_n, efficiency[rotor])
+            : 0.0;
   }
   command.saturated = saturated;
   return command;

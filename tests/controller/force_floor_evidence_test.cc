@@ -71,6 +71,39 @@ TEST(ForceFloorEvidenceTest, FlaggedRotorBelowTheFloorIsFlownAtTheFloorAfterAtFl
   EXPECT_EQ(both.thrust_scale[2], 0.1);
 }
 
+// The mean of a run of flagged reports below the floor, negatives as they
+// are (a dead rotor's scatter about 0): NaN until the run is
+// at_floor_samples long, then the run's mean; one unflagged report, or one
+// at the floor, ends it.
+TEST(ForceFloorEvidenceTest, BelowTheFloorReportsAreAveragedOverTheirRun) {
+  const SupervisionParams params;
+  ForceFloorEvidence evidence(params, kLowPassS, kRotors);
+  const double scales[6] = {0.04, -0.06, 0.02, -0.01, 0.06, 0.01};
+  double sum = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    RotorEfficiencyEstimate report = Report(1000 * (k + 1), scales[k], true);
+    evidence.FlyAtTheFloor(&report);
+    sum += scales[k];
+    if (k + 1 < params.at_floor_samples) {
+      EXPECT_TRUE(std::isnan(evidence.below_floor_mean(1))) << k;
+    } else {
+      EXPECT_NEAR(evidence.below_floor_mean(1), sum / (k + 1), 1e-15) << k;
+    }
+    EXPECT_TRUE(std::isnan(evidence.below_floor_mean(0))) << k;
+  }
+  RotorEfficiencyEstimate unflagged = Report(7000, 0.0, false);
+  evidence.FlyAtTheFloor(&unflagged);
+  EXPECT_TRUE(std::isnan(evidence.below_floor_mean(1)));
+  for (int k = 0; k < params.at_floor_samples; ++k) {
+    RotorEfficiencyEstimate report = Report(8000 + 1000 * k, 0.1, true);
+    evidence.FlyAtTheFloor(&report);
+  }
+  EXPECT_NEAR(evidence.below_floor_mean(1), 0.1, 1e-15);
+  RotorEfficiencyEstimate at_floor = Report(20000, params.min_plausible_thrust_scale, true);
+  evidence.FlyAtTheFloor(&at_floor);
+  EXPECT_TRUE(std::isnan(evidence.below_floor_mean(1)));
+}
+
 TEST(ForceFloorEvidenceTest, NotValidNegativeOrAtTheFloorIsNotFlownAtTheFloor) {
   const SupervisionParams params;
   ForceFloorEvidence invalid_evidence(params, kLowPassS, kRotors);

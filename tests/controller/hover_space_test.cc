@@ -208,20 +208,78 @@ TEST(HoverSpaceTest, TheQuadrotorHoversWhereTheLeastNormBoundGaveUp) {
 }
 
 // A rotor flown at FORCE's floor (e = 0.2, "at most") on the quadrotor:
-// rotors 3 and 4 pair (f_3 = f_4), so with rotor 3 at 20 % a hover exists;
-// when FORCE's reports below the floor say it makes nothing, rotor 4 would
-// have to stop too and the check says infeasible (the cascade's rule).
+// rotors 3 and 4 pair (f_3 = f_4), so with rotor 3 at 20 % a level hover
+// exists; when FORCE's reports below the floor say it makes nothing, rotor 4
+// would have to stop too: level only (spare_hover_tilt_rad 0) the check
+// says infeasible; with the default tilt rotor 4 keeps its 5 % and the body
+// tilts against its lateral force (feasible).
 TEST(HoverSpaceTest, AReportBelowTheFloorIsTakenOverTheFloor) {
   const VehicleDescription vehicle = Vehicle("quadrotor");
   const HoverSpace space = SpaceOf(vehicle);
-  for (const double report : {kNaNReport, 0.1, 0.0}) {
-    HoverFeasibility feasibility = QuadrotorFeasibility(EfficiencyParams(), space);
-    FeasibilityInputs in;
-    in.efficiency[2] = 0.2;
-    in.below_floor_report[2] = report;
-    for (int k = 0; k < 40; ++k) feasibility.Update(in, 0.005);
-    EXPECT_EQ(feasibility.infeasible(), report == 0.0) << report;
+  for (const double tilt_rad : {0.0, EfficiencyParams().spare_hover_tilt_rad}) {
+    for (const double report : {kNaNReport, 0.1, 0.0}) {
+      EfficiencyParams params;
+      params.spare_hover_tilt_rad = tilt_rad;
+      HoverFeasibility feasibility = QuadrotorFeasibility(params, space);
+      FeasibilityInputs in;
+      in.efficiency[2] = 0.2;
+      in.below_floor_report[2] = report;
+      for (int k = 0; k < 40; ++k) feasibility.Update(in, 0.005);
+      EXPECT_EQ(feasibility.infeasible(), report == 0.0 && tilt_rad == 0.0) << report << " " << tilt_rad;
+    }
   }
+}
+
+// Any one dead rotor of the quadrotor: no level hover keeps the others
+// within [5 %, 1 / 1.02] (its partner would have to stop), but a tilted one
+// does. Its thrusts make the weight along the tilted vertical with no
+// torque, W f = [m g sin phi, F_z,hover cos phi, 0], within the box, the dead rotor at
+// 0, and no smaller tilt on the grid holds one (the least |phi|). The tilt
+// balances the 5 % its partner keeps: sin phi = 0.707 x 0.05 x 66.24 N / m g
+// = 0.046 rad, the grid's next step 0.050.
+TEST(HoverSpaceTest, ADeadRotorIsHeldByATiltedHover) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  const double weight_n = vehicle.TotalMass() * vehicle.gravity_m_s2;
+  const double min_share = 0.05;
+  const double max_share = 1.0 / 1.02;
+  for (int dead = 0; dead < 4; ++dead) {
+    std::array<double, kMaxArms> e = Efficiencies(1.0);
+    e[static_cast<size_t>(dead)] = 0.0;
+    ArmForces<double> f;
+    EXPECT_FALSE(space.NearestWithinShares(e.data(), min_share, max_share, &f)) << dead;
+    double tilt_rad = 0.0;
+    ASSERT_TRUE(space.NearestTiltedWithinShares(e.data(), min_share, max_share, 0.1, &f, &tilt_rad)) << dead;
+    std::printf("quadrotor, rotor %d dead: tilt %+.3f rad, thrusts %.2f %.2f %.2f %.2f N\n", dead + 1, tilt_rad, f(0),
+                f(1), f(2), f(3));
+    EXPECT_NEAR(std::fabs(tilt_rad), 0.050, 1e-9) << dead;
+    // cos(phi) W f_hover + sin(phi) [m g, 0, 0] (W f_hover: the rigid rows of
+    // the elastic hover, [0, m g - 0.016 N, 0]).
+    const Eigen::Vector3d level = WrenchAllocation(vehicle) * space.hover_force_n();
+    const Eigen::Vector3d wrench = WrenchAllocation(vehicle) * f;
+    EXPECT_NEAR(wrench(kWrenchFx), weight_n * std::sin(tilt_rad), 1e-6) << dead;
+    EXPECT_NEAR(wrench(kWrenchFz), level(kWrenchFz) * std::cos(tilt_rad), 1e-6) << dead;
+    EXPECT_NEAR(wrench(kWrenchTorque), 0.0, 1e-6) << dead;
+    EXPECT_EQ(f(dead), 0.0) << dead;
+    for (int i = 0; i < 4; ++i) {
+      if (i == dead) continue;
+      EXPECT_GE(f(i), min_share * kMaxThrustN - 1e-9) << dead << " " << i;
+      EXPECT_LE(f(i), max_share * kMaxThrustN + 1e-9) << dead << " " << i;
+    }
+    EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), min_share, max_share, 0.045, &f, &tilt_rad)) << dead;
+  }
+}
+
+// The birotor tilts to move: it has no lateral force of its own, so no
+// tilted hover (its tilt is the position loop's).
+TEST(HoverSpaceTest, ATiltToMoveVehicleHasNoTiltedHover) {
+  const VehicleDescription vehicle = Vehicle("birotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  ArmForces<double> f;
+  double tilt_rad = 0.0;
+  const std::array<double, kMaxArms> e = Efficiencies(1.0);
+  EXPECT_TRUE(space.NearestWithinShares(e.data(), 0.05, 0.8, &f));
+  EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), 0.05, 0.8, 0.1, &f, &tilt_rad));
 }
 
 }  // namespace
