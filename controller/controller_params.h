@@ -146,7 +146,12 @@ struct EfficiencyParams {
   // spare rotors may hover tilted up to this (the body balances the lateral
   // force a rotor that makes nothing leaves; HoverSpace::
   // NearestTiltedWithinShares); 0: level hovers only.
-  double spare_hover_tilt_rad = 0.1;  // [rad]
+  double spare_hover_tilt_rad = 0.2;  // [rad]
+  // The cascade's tilted hover keeps every rotor at least this share (when
+  // one within spare_hover_tilt_rad does, else spare_min_share): the rotor
+  // whose lateral thrust the tilt balances is the only one that can give
+  // F_x back, so it needs room below [1].
+  double spare_tilted_min_share = 0.1;  // [1]
   // The cascade with spare rotors flies a rotor FORCE flags below
   // min_plausible_thrust_scale (at_floor_samples reports in a row) at what
   // those reports average instead of at the floor; below this average as

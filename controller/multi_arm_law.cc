@@ -19,6 +19,7 @@ MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerPara
       spare_max_share_(spare.spare_max_share),
       feasible_share_(1.0 / spare.feasibility_margin),
       hover_tilt_limit_rad_(spare.spare_hover_tilt_rad),
+      tilted_min_share_(std::max(spare.spare_tilted_min_share, spare.spare_min_share)),
       base_force_n_(hover_force_n_),
       tilt_limit_rad_(gains.max_tilt_rad) {
   for (int i = 0; i < vehicle.arm_count; ++i) {
@@ -80,10 +81,13 @@ const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficie
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
   const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
   for (double max_share : {spare_max_share_, feasible_share_}) {
-    if (hover_space_.NearestWithinShares(e, spare_min_share_, max_share, &base_force_n_) ||
-        hover_space_.NearestTiltedWithinShares(e, spare_min_share_, max_share, max_tilt_rad, &base_force_n_,
-                                               &base_tilt_rad_)) {
-      return base_force_n_;
+    if (hover_space_.NearestWithinShares(e, spare_min_share_, max_share, &base_force_n_)) return base_force_n_;
+    // Tilted: the thrust holding the lateral force up off its lower bound first (room for F_x both ways).
+    for (double min_share : {tilted_min_share_, spare_min_share_}) {
+      if (hover_space_.NearestTiltedWithinShares(e, min_share, max_share, max_tilt_rad, &base_force_n_,
+                                                 &base_tilt_rad_)) {
+        return base_force_n_;
+      }
     }
   }
   base_tilt_rad_ = 0.0;

@@ -78,7 +78,8 @@ class MultiArmLaw {
   // the hover nearest it within [spare_min_share, spare_max_share] x e_i
   // c_T,i omega_max^2, else the least-tilted one within them (HoverSpace::
   // NearestTiltedWithinShares, up to spare_hover_tilt_rad and the tilt
-  // limit; its tilt in base_tilt_rad_), else the same two within
+  // limit; its tilt in base_tilt_rad_; the lower share spare_tilted_min_share
+  // first, then spare_min_share), else the same within
   // [spare_min_share, 1 / margin], else f_hover (no hover held: the
   // allocator scales it, the descent's).
   const ArmForces<double>& HoverBase(const RotorEfficiencies& efficiency);
@@ -90,6 +91,7 @@ class MultiArmLaw {
   double spare_max_share_;          // [1]
   double feasible_share_;           // 1 / feasibility_margin [1]
   double hover_tilt_limit_rad_;     // spare_hover_tilt_rad [rad]
+  double tilted_min_share_;         // max(spare_tilted_min_share, spare_min_share) [1]
   double base_tilt_rad_ = 0.0;      // the tilt HoverBase's hover is held at (fully actuated: phi_des) [rad]
   ArmForces<double> base_force_n_;  // HoverBase's answer [N]
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]

@@ -75,6 +75,7 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("spare_min_share", &O::spare_min_share, 0.0, 0.5),
       Real("spare_max_share", &O::spare_max_share, 0.5, 1.0),
       Real("spare_hover_tilt_rad", &O::spare_hover_tilt_rad, 0.0, 0.5),
+      Real("spare_tilted_min_share", &O::spare_tilted_min_share, 0.0, 0.5),
       Real("spare_retire_scale", &O::spare_retire_scale, 0.0, 0.5),
       Real("sink_detect_altitude_m", &O::sink_detect_altitude_m, 0.01, 10.0),
       Real("sink_detect_s", &O::sink_detect_s, 0.0, 10.0),

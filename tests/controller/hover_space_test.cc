@@ -267,6 +267,9 @@ TEST(HoverSpaceTest, ADeadRotorIsHeldByATiltedHover) {
       EXPECT_LE(f(i), max_share * kMaxThrustN + 1e-9) << dead << " " << i;
     }
     EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), min_share, max_share, 0.045, &f, &tilt_rad)) << dead;
+    // The cascade's base keeps the partner at 10 % (spare_tilted_min_share): twice the tilt.
+    ASSERT_TRUE(space.NearestTiltedWithinShares(e.data(), 0.1, max_share, 0.2, &f, &tilt_rad)) << dead;
+    EXPECT_NEAR(std::fabs(tilt_rad), 0.095, 1e-9) << dead;
   }
 }
 
