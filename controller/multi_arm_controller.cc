@@ -249,8 +249,10 @@ double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency) {
   // Retired until the run of flagged reports below the floor ends (a mean
   // about the threshold would otherwise stop and start the rotor).
   retired_[i] = std::isfinite(reported) && (retired_[i] || reported < config_.efficiency.spare_retire_scale);
-  if (config_.model_predictive || law_.spare_rotors() == 0 || feasibility_.infeasible()) return efficiency;
+  if (law_.spare_rotors() == 0 || feasibility_.infeasible()) return efficiency;
   if (!std::isfinite(reported)) return efficiency;  // no run of flagged reports below the floor
+  // The MPC's model needs every rotor's map (e > 0): a retired rotor is at most spare_retire_scale there.
+  if (config_.model_predictive) return std::min(efficiency, std::max(reported, config_.efficiency.spare_retire_scale));
   return retired_[i] ? 0.0 : std::min(efficiency, std::max(reported, 0.0));
 }
 

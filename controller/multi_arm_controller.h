@@ -162,14 +162,15 @@ class MultiArmController {
   // integrator wound up against a rotor that could not deliver; the
   // position one otherwise), as VehicleController::DescentTarget.
   ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
-  // The efficiency the cascade flies rotor i with: with spare rotors, hover
-  // feasible and FORCE flagging the rotor below the plausibility floor
+  // The efficiency rotor i is flown with: with spare rotors, hover feasible
+  // and FORCE flagging the rotor below the plausibility floor
   // (at_floor_samples reports in a row), what those reports average
-  // (ForceFloorEvidence::below_floor_mean) instead of the floor, and 0 (not
-  // driven: retired) once it averages below spare_retire_scale, until the
-  // run of flagged reports below the floor ends; efficiency otherwise. The
-  // other rotors then hold the hover, level or tilted (docs/controller.md,
-  // "Spare rotors"); the MPC trades the axes within the floor's bound itself.
+  // (ForceFloorEvidence::below_floor_mean) instead of the floor; the
+  // cascade flies it as making nothing (0: not driven, retired) once they
+  // average below spare_retire_scale, until the run of flagged reports
+  // below the floor ends, the MPC at spare_retire_scale (its model needs
+  // e > 0); efficiency otherwise. The other rotors then hold the hover,
+  // level or tilted (docs/controller.md, "Spare rotors").
   double BelowFloorEfficiency(int rotor, double efficiency);
   // The birotor's motor-lag lead (VehicleController, efficiency.motor_lead_s)
   // on the cascade's speeds: while e_i falls, omega_i + motor_lead_s
