@@ -152,11 +152,12 @@ struct EfficiencyParams {
   // whose lateral thrust the tilt balances is the only one that can give
   // F_x back, so it needs room below [1].
   double spare_tilted_min_share = 0.1;  // [1]
-  // The cascade with spare rotors flies a rotor FORCE flags below
-  // min_plausible_thrust_scale (at_floor_samples reports in a row) at what
-  // those reports average instead of at the floor; below this average as
-  // making nothing (retired: not driven; a dead rotor reads about 0); 0:
-  // never retired [1].
+  // With spare rotors a rotor FORCE flags below min_plausible_thrust_scale
+  // (at_floor_samples reports in a row) is flown at what those reports
+  // average instead of at the floor; once they average below this the
+  // cascade flies it as making nothing (retired: not driven; a dead rotor
+  // reads about 0) until that run of reports ends, the MPC at this value
+  // (its model needs e > 0); 0: never retired [1].
   double spare_retire_scale = 0.05;  // [1]
   // Infeasibility from the vehicle itself (force feedback; FORCE refused at
   // its plausibility floor on a large loss): the allocation limited for
