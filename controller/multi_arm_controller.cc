@@ -211,8 +211,10 @@ bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint&
     in.reported_scale[i] = floor_evidence_.reported_scale(i);
     // The MPC trades the axes within every rotor's bounds and holds a hover
     // on a rotor flown at the floor that makes nothing; the cascade's fixed
-    // shares cannot (docs/controller.md, "Spare rotors").
-    if (!config_.model_predictive) in.below_floor_report[i] = floor_evidence_.below_floor_report(i);
+    // shares cannot (docs/controller.md, "Spare rotors"). Only from a usable
+    // FORCE: the report is kept before the stream checks.
+    if (!config_.model_predictive && in.following_force)
+      in.below_floor_report[i] = floor_evidence_.below_floor_report(i);
     in.command_rad_s[i] = last_command_rad_s_[rotor];
   }
   in.allocation_limited = last_saturated_;
@@ -243,13 +245,16 @@ ReferencePoint MultiArmController::DescentTarget(const ReferencePoint& reference
   return descend ? DescentReference(observer_.state().position_m, s.descent_rate_m_s) : reference;
 }
 
-double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency) {
+double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency, int64_t now_us) {
   const size_t i = static_cast<size_t>(rotor);
   const double reported = floor_evidence_.below_floor_mean(rotor);
   // Retired until the run of flagged reports below the floor ends (a mean
   // about the threshold would otherwise stop and start the rotor).
   retired_[i] = std::isfinite(reported) && (retired_[i] || reported < config_.efficiency.spare_retire_scale);
-  if (law_.spare_rotors() == 0 || feasibility_.infeasible()) return efficiency;
+  // Only on a usable FORCE (one stream, VALID, fresh, healthy): the run is
+  // counted before the stream checks, so a second publisher's reports must
+  // not stop a rotor.
+  if (law_.spare_rotors() == 0 || feasibility_.infeasible() || !EstimateUsable(now_us)) return efficiency;
   if (!std::isfinite(reported)) return efficiency;  // no run of flagged reports below the floor
   // The MPC's model needs every rotor's map (e > 0): a retired rotor is at most spare_retire_scale there.
   if (config_.model_predictive) return std::min(efficiency, std::max(reported, config_.efficiency.spare_retire_scale));
@@ -301,7 +306,7 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     efficiency[rotor] = feasibility_.EfficiencyFor(i, efficiency[rotor]);
-    efficiency[rotor] = BelowFloorEfficiency(i, efficiency[rotor]);
+    efficiency[rotor] = BelowFloorEfficiency(i, efficiency[rotor], now_us);
   }
   flown_efficiency_ = efficiency;
   const bool descend = pose_lost || infeasible;

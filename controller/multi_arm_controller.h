@@ -162,8 +162,8 @@ class MultiArmController {
   // integrator wound up against a rotor that could not deliver; the
   // position one otherwise), as VehicleController::DescentTarget.
   ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
-  // The efficiency rotor i is flown with: with spare rotors, hover feasible
-  // and FORCE flagging the rotor below the plausibility floor
+  // The efficiency rotor i is flown with: with spare rotors, hover
+  // feasible, FORCE usable (EstimateUsable) and flagging the rotor below the plausibility floor
   // (at_floor_samples reports in a row), what those reports average
   // (ForceFloorEvidence::below_floor_mean) instead of the floor; the
   // cascade flies it as making nothing (0: not driven, retired) once they
@@ -171,7 +171,7 @@ class MultiArmController {
   // below the floor ends, the MPC at spare_retire_scale (its model needs
   // e > 0); efficiency otherwise. The other rotors then hold the hover,
   // level or tilted (docs/controller.md, "Spare rotors").
-  double BelowFloorEfficiency(int rotor, double efficiency);
+  double BelowFloorEfficiency(int rotor, double efficiency, int64_t now_us);
   // The birotor's motor-lag lead (VehicleController, efficiency.motor_lead_s)
   // on the cascade's speeds: while e_i falls, omega_i + motor_lead_s
   // d(omega_i)/dt with d(omega_i)/dt = -omega_i / (2 e_i) de_i/dt (the

@@ -10,8 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <new>
 #include <string>
@@ -266,6 +268,46 @@ TEST(MultiArmControllerTest, FloorEvidenceIsRelativeToTheLearntBaseline) {
   FlyAtRest(&controller, 500, &now_us, thin_air(0.51));
   EXPECT_NEAR(controller.floor_evidence().reported_scale(1), 0.6, 1e-3);
   EXPECT_NEAR(controller.floor_evidence().reported_scale(0), 1.0, 1e-6);
+}
+
+// The quadrotor (a spare rotor): a rotor FORCE keeps flagging below the
+// floor with reports about 0 is flown as making nothing (retired), but only
+// while FORCE is usable. Those reports are counted before the stream checks,
+// so with the stream unusable (a second publisher: SetForceUsable(false))
+// they stop no rotor.
+TEST(MultiArmControllerTest, ADeadSpareRotorIsRetiredOnlyOnAUsableForce) {
+  const VehicleDescription vehicle =
+      LoadVehicleDescription(std::string(BIROTOR_SOURCE_DIR) + "/config/vehicles/quadrotor.yaml");
+  const auto report = [](double scale2) {
+    return [scale2](int64_t t) {
+      RotorEfficiencyEstimate e;
+      e.utime = t;
+      e.n_rotors = 4;
+      e.valid = true;
+      e.status = kStatusValid;
+      e.thrust_scale = {1.0, scale2, 1.0, 1.0};
+      for (size_t i = 0; i < 4; ++i) {
+        e.force_n[i] = 15.0 * std::max(e.thrust_scale[i], 0.05);
+        e.force_std_n[i] = 0.01 * e.force_n[i];
+        e.thrust_scale_std[i] = 0.01;
+      }
+      e.rotor_fault_bits = scale2 < 1.0 ? 2 : 0;
+      return e;
+    };
+  };
+  for (const bool usable : {true, false}) {
+    MultiArmController controller(vehicle, ForceFeedback(), SolveMultiArmHover(vehicle));
+    int64_t now_us = 0;
+    FlyAtRest(&controller, kSettlePeriods, &now_us, report(1.0));
+    controller.SetForceUsable(usable);
+    FlyAtRest(&controller, 50, &now_us, report(0.0));
+    std::printf("usable %d: rotor 2 flown at %.3f\n", usable, controller.flown_efficiency()[1]);
+    if (usable) {
+      EXPECT_EQ(controller.flown_efficiency()[1], 0.0);
+    } else {
+      EXPECT_GT(controller.flown_efficiency()[1], 0.5);
+    }
+  }
 }
 
 // The efficiencies stay 1 in nominal mode, and with force feedback for

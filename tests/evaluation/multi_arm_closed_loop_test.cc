@@ -330,7 +330,7 @@ TEST(MultiArmClosedLoopTest, QuadrotorHoldsAnEightyPercentLossOnItsSpareRotors) 
 // HoverSpace::NearestTiltedWithinShares).
 // Measured (birotor-eval --vehicle config/vehicles/quadrotor.yaml --control
 // --scenarios descent100_rotor3,descent100_rotor1): no descent, altitude
-// deviation 0.0161 / 0.0418 m; the nominal map on the same seed hovers
+// deviation 0.0169 / 0.0418 m; the nominal map on the same seed hovers
 // 0.38 m low (rotor 3) and loses the vehicle (rotor 1: 34 m below). Level
 // hovers only (spare_hover_tilt_rad 0, the rule before tilted hovers): the
 // hover check takes the reports (HoverFeasibility::Evidence) and the level
@@ -338,7 +338,7 @@ TEST(MultiArmClosedLoopTest, QuadrotorHoldsAnEightyPercentLossOnItsSpareRotors) 
 TEST(MultiArmClosedLoopTest, QuadrotorHoldsADeadRotorsHoverTilted) {
   const VehicleDescription vehicle = Vehicle("quadrotor");
   const int dead_rotor[2] = {3, 1};
-  const double measured_m[2] = {0.0161, 0.0418};
+  const double measured_m[2] = {0.0169, 0.0418};
   for (int c = 0; c < 2; ++c) {
     const Scenario scenario = ClimbThenLoss(vehicle, dead_rotor[c], 0.0);
     const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
