@@ -47,6 +47,12 @@ HoverSpace::HoverSpace(const VehicleDescription& vehicle, MultiArmControlMode mo
     const Eigen::Vector3d weight_sideways(vehicle.TotalMass() * vehicle.gravity_m_s2, 0.0, 0.0);
     lateral_force_n_ = controlled.transpose() * (controlled * controlled.transpose()).ldlt().solve(weight_sideways);
   }
+  if (rank == controlled.rows()) {
+    // P [.., 1]: the controlled rows' pseudo-inverse on a unit torque (the last row).
+    Eigen::VectorXd unit_torque = Eigen::VectorXd::Zero(controlled.rows());
+    unit_torque(controlled.rows() - 1) = 1.0;
+    torque_force_n_ = controlled.transpose() * (controlled * controlled.transpose()).ldlt().solve(unit_torque);
+  }
 }
 
 bool HoverSpace::Nearest(const ArmForces<double>& low_n, const ArmForces<double>& high_n,
@@ -133,6 +139,18 @@ bool HoverSpace::NearestWithinShares(const double* efficiency, double min_share,
   ArmForces<double> high_n;
   ShareBox(efficiency, min_share, max_share, &low_n, &high_n);
   return Nearest(low_n, high_n, hover_n);
+}
+
+bool HoverSpace::LevelPitchesBothWays(const double* efficiency, double max_share, double torque_n_m) const {
+  if (torque_force_n_.size() != rotor_count_) return false;
+  ArmForces<double> low_n;
+  ArmForces<double> high_n;
+  ShareBox(efficiency, 0.0, max_share, &low_n, &high_n);
+  for (double sign : {1.0, -1.0}) {
+    const ArmForces<double> centre_n = hover_force_n_ + sign * torque_n_m * torque_force_n_;
+    if (!NearestTo(centre_n, low_n, high_n, nullptr)) return false;
+  }
+  return true;
 }
 
 bool HoverSpace::NearestTiltedWithinShares(const double* efficiency, double min_share, double max_share,

@@ -58,6 +58,15 @@ class HoverSpace {
                                  ArmForces<double>* hover_n, double* tilt_rad) const;
   static constexpr double kTiltStepRad = 0.005;
 
+  // Whether a level hover within the shares [0, max_share] x e_i c_T,i
+  // omega_max^2 can also make a pure pitch torque of +torque_n_m and of
+  // -torque_n_m [N m] (f = f_hover +- torque P [0, 0, 1] + Z y in the box):
+  // then the body can tilt either way from there and move sideways as a
+  // birotor does. The quadrotor with rotor 1 dead: its level hovers pin rotor
+  // 2 at 0 and the remaining torque is one-sided (false); with rotor 3 dead
+  // rotors 1 and 2 pitch both ways (true).
+  bool LevelPitchesBothWays(const double* efficiency, double max_share, double torque_n_m) const;
+
   const ArmForces<double>& hover_force_n() const { return hover_force_n_; }
 
  private:
@@ -75,6 +84,7 @@ class HoverSpace {
   ArmForces<double> hover_force_n_;
   ArmForces<double> max_force_n_;      // c_T,i omega_max^2 [N]
   ArmForces<double> lateral_force_n_;  // f_lateral = P [m g, 0, 0] (fully actuated; else empty) [N]
+  ArmForces<double> torque_force_n_;   // P [0, 0, 1]: thrusts making 1 N m of pitch torque alone [N per N m]
   NullBasis null_basis_;               // Z, N x spare_, orthonormal columns
 };
 

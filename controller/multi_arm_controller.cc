@@ -165,6 +165,18 @@ RotorEfficiencies MultiArmController::EfficiencyInUse() const {
   return efficiency;
 }
 
+bool MultiArmController::MpcPlansTilted(const RotorEfficiencies& efficiency) const {
+  if (law_.base_tilt_rad() == 0.0) return false;
+  // A rotor flown at spare_retire_scale or less (the MPC's floor for a dead
+  // one, BelowFloorEfficiency) makes nothing.
+  RotorEfficiencies making = efficiency;
+  for (int i = 0; i < vehicle_.arm_count; ++i) {
+    double& e = making[static_cast<size_t>(i)];
+    if (e <= config_.efficiency.spare_retire_scale) e = 0.0;
+  }
+  return !law_.LevelPitchesBothWays(making);
+}
+
 MultiArmRotorCommand MultiArmController::FlyMpc(const ReferencePoint& reference, const RotorEfficiencies& efficiency,
                                                 const MultiArmRotorCommand& cascade, double dt_s) {
   const int n = vehicle_.arm_count;
@@ -173,7 +185,10 @@ MultiArmRotorCommand MultiArmController::FlyMpc(const ReferencePoint& reference,
   MultiArmMpcInputs planned(n);  // fixed maximum size: no allocation
   for (int i = 0; i < n; ++i) planned(i) = config_.mpc.use_thrust_scale ? efficiency[static_cast<size_t>(i)] : 1.0;
   MultiArmMpc::ExtrapolateReference(reference, config_.mpc.step_s, &horizon_);
-  last_mpc_ = mpc_->Solve(observer_.state(), horizon_, planned, last_sent_rad_s_, dt_s);
+  mpc_base_.tilt_rad = law_.base_tilt_rad();
+  mpc_base_.force_n = law_.base_force_n();
+  last_mpc_ = mpc_->Solve(observer_.state(), horizon_, planned, last_sent_rad_s_, dt_s,
+                          MpcPlansTilted(efficiency) ? &mpc_base_ : nullptr);
   ++mpc_solves_;
   MultiArmRotorCommand command = cascade;
   if (last_mpc_.solved) {

@@ -190,9 +190,19 @@ class MultiArmController {
   // mpc.max_omega_rate_rad_s2 dt_s of the last command sent and to
   // [0, omega_max] (the first period plans from the MPC's rotor-speed
   // estimate and is exempt from the rate limit, as MpcController::Fly); the
-  // MPC's motor model is then advanced on it.
+  // MPC's motor model is then advanced on it. It plans about the cascade's
+  // hover (MultiArmLaw::base_tilt_rad, base_force_n) when MpcPlansTilted,
+  // else about the level f_hover.
   MultiArmRotorCommand FlyMpc(const ReferencePoint& reference, const RotorEfficiencies& efficiency,
                               const MultiArmRotorCommand& cascade, double dt_s);
+  // The cascade holds a tilted hover and no level one can pitch the body
+  // either way (MultiArmLaw::LevelPitchesBothWays), a rotor at or below
+  // spare_retire_scale counted as making nothing: the MPC, free to fly any
+  // rotor down to 0, holds a level hover and tilts to move whenever one can
+  // (the quadrotor with rotor 3 or 4 dead), else it drifts sideways on a
+  // one-sided F_x (rotor 1 or 2 dead: RMS 0.49 m level, 0.12 m about the
+  // tilted hover; docs/controller.md, "Spare rotors").
+  bool MpcPlansTilted(const RotorEfficiencies& efficiency) const;
 
   VehicleDescription vehicle_;
   ControllerConfig config_;
@@ -226,6 +236,7 @@ class MultiArmController {
   MultiArmMpcInputs last_sent_rad_s_;    // the command in force
   bool mpc_flown_ = false;               // FlyMpc has sent a command
   MultiArmMpcResult last_mpc_;
+  MultiArmHoverBase mpc_base_;  // the cascade's hover, the MPC's plan about it (FlyMpc)
   int64_t mpc_solves_ = 0;
   int64_t mpc_fallbacks_ = 0;
 };

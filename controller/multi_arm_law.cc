@@ -74,9 +74,16 @@ MultiArmRotorCommand MultiArmLaw::Update(const BodyState& body, const ReferenceP
   return command;
 }
 
+bool MultiArmLaw::LevelPitchesBothWays(const RotorEfficiencies& efficiency) const {
+  if (!hover_space_.redundant()) return true;
+  return hover_space_.LevelPitchesBothWays(efficiency.data(), feasible_share_, pitch_inertia_kg_m2_ * kPitchProbeRadS2);
+}
+
 const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficiency) {
   base_tilt_rad_ = 0.0;
+  base_is_hover_ = true;
   if (!hover_space_.redundant()) return hover_force_n_;
+  base_is_hover_ = false;
   const double* e = efficiency.data();
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
   const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
@@ -91,6 +98,7 @@ const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficie
     }
   }
   base_tilt_rad_ = 0.0;
+  base_is_hover_ = true;
   return hover_force_n_;  // no hover held: the allocator scales it down (the infeasible descent)
 }
 

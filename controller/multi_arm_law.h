@@ -61,6 +61,15 @@ class MultiArmLaw {
   // The tilt the allocation's hover is held at: 0 but on a fully actuated
   // vehicle with spare rotors and no level hover within the shares [rad].
   double base_tilt_rad() const { return base_tilt_rad_; }
+  // The thrusts that hold that hover, HoverBase's answer in the last period [N].
+  const ArmForces<double>& base_force_n() const { return base_is_hover_ ? hover_force_n_ : base_force_n_; }
+  // Whether a level hover within [0, 1 / feasibility_margin] x e_i c_T,i
+  // omega_max^2 can pitch the body either way (HoverSpace::
+  // LevelPitchesBothWays, a pitch acceleration of kPitchProbeRadS2; true
+  // without spare rotors): a planner free to fly any rotor down to 0 can
+  // then hold it level and tilt to move. [rad/s^2]
+  static constexpr double kPitchProbeRadS2 = 1.0;
+  bool LevelPitchesBothWays(const RotorEfficiencies& efficiency) const;
   // Rotors beyond the controlled axes (HoverSpace::spare_rotors; 1 on the quadrotor).
   int spare_rotors() const { return hover_space_.spare_rotors(); }
 
@@ -93,7 +102,8 @@ class MultiArmLaw {
   double hover_tilt_limit_rad_;     // spare_hover_tilt_rad [rad]
   double tilted_min_share_;         // max(spare_tilted_min_share, spare_min_share) [1]
   double base_tilt_rad_ = 0.0;      // the tilt HoverBase's hover is held at (fully actuated: phi_des) [rad]
-  ArmForces<double> base_force_n_;  // HoverBase's answer [N]
+  ArmForces<double> base_force_n_;  // HoverBase's answer [N], unless it was f_hover
+  bool base_is_hover_ = true;       // HoverBase answered f_hover
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
   double tilt_limit_rad_;                                            // LimitTilt [rad]

@@ -63,24 +63,31 @@ MultiArmMpc::MultiArmMpc(const VehicleDescription& vehicle, const MpcParams& par
   data_.last_command_rad_s = MultiArmMpcInputs::Zero(nu);
 }
 
-double MultiArmMpc::ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2) const {
-  if (fully_actuated_) return 0.0;
+double MultiArmMpc::ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2, const MultiArmHoverBase* base) const {
+  if (fully_actuated_) return base != nullptr ? base->tilt_rad : 0.0;
   const double g = vehicle_.gravity_m_s2;
   return std::clamp(std::atan2(-acceleration_m_s2.x(), std::max(g + acceleration_m_s2.y(), 0.1 * g)),
                     -params_.max_tilt_rad, params_.max_tilt_rad);
 }
 
 MultiArmMpcInputs MultiArmMpc::FeedForward(const Eigen::Vector2d& acceleration_m_s2,
-                                           const MultiArmMpcInputs& efficiency) const {
+                                           const MultiArmMpcInputs& efficiency, const MultiArmHoverBase* base) const {
   const int nu = rotors();
   MultiArmMpcInputs omega(nu);
   if (fully_actuated_) {
     const double m = vehicle_.TotalMass();
     RotorEfficiencies e = NominalEfficiencies();
     for (int i = 0; i < nu; ++i) e[static_cast<size_t>(i)] = efficiency(i);
+    Eigen::Vector3d change(m * acceleration_m_s2.x(), m * acceleration_m_s2.y(), 0.0);  // level: body = world
+    if (base != nullptr && base->tilt_rad != 0.0) {
+      // [F_x; F_z] = R(phi_b)^T m (a + g e_z), less what the base makes, m g [sin phi_b, cos phi_b].
+      const double c = std::cos(base->tilt_rad), s = std::sin(base->tilt_rad), g = vehicle_.gravity_m_s2;
+      const Eigen::Vector2d world_n = m * Eigen::Vector2d(acceleration_m_s2.x(), acceleration_m_s2.y() + g);
+      change.x() = c * world_n.x() + s * world_n.y() - m * g * s;
+      change.y() = -s * world_n.x() + c * world_n.y() - m * g * c;
+    }
     const MultiArmRotorCommand command =
-        allocator_.Allocate(ArmForces<double>(model_.hover_force_n()),
-                            Eigen::Vector3d(m * acceleration_m_s2.x(), m * acceleration_m_s2.y(), 0.0), e);
+        allocator_.Allocate(base != nullptr ? base->force_n : ArmForces<double>(model_.hover_force_n()), change, e);
     for (int i = 0; i < nu; ++i) omega(i) = command.omega_cmd_rad_s[static_cast<size_t>(i)];
     return omega;
   }
@@ -126,7 +133,7 @@ MultiArmMpcInputs MultiArmMpc::Fallback(const MultiArmMpcInputs& efficiency,
 
 void MultiArmMpc::FillData(const BodyState& measured, const std::vector<ReferencePoint>& reference,
                            const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s,
-                           double period_s) {
+                           double period_s, const MultiArmHoverBase* base) {
   const int nu = rotors();
   MultiArmMpcState& s0 = data_.initial;
   s0.segment<2>(kMpcX) = measured.position_m;
@@ -142,11 +149,11 @@ void MultiArmMpc::FillData(const BodyState& measured, const std::vector<Referenc
   const size_t samples = reference.size();
   for (int k = 0; k < params_.horizon_steps; ++k) {
     const ReferencePoint& r = reference[std::min(static_cast<size_t>(k), samples - 1)];
-    const MultiArmMpcInputs feed_forward = FeedForward(r.acceleration_m_s2, efficiency);
+    const MultiArmMpcInputs feed_forward = FeedForward(r.acceleration_m_s2, efficiency, base);
     auto column = data_.reference.col(k);
     column(kMpcX) = r.position_m.x();
     column(kMpcZ) = r.position_m.y();
-    column(kMpcPhi) = ReferenceTilt(r.acceleration_m_s2);
+    column(kMpcPhi) = ReferenceTilt(r.acceleration_m_s2, base);
     column(kMpcXDot) = r.velocity_m_s.x();
     column(kMpcZDot) = r.velocity_m_s.y();
     column(kMpcPhiDot) = 0.0;
@@ -157,7 +164,7 @@ void MultiArmMpc::FillData(const BodyState& measured, const std::vector<Referenc
 
 MultiArmMpcResult MultiArmMpc::Solve(const BodyState& measured, const std::vector<ReferencePoint>& reference,
                                      const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s,
-                                     double period_s) {
+                                     double period_s, const MultiArmHoverBase* base) {
   const auto start = std::chrono::steady_clock::now();
   const double start_cpu_s = ThreadCpuS();
   MultiArmMpcResult out;
@@ -166,7 +173,7 @@ MultiArmMpcResult MultiArmMpc::Solve(const BodyState& measured, const std::vecto
                          (efficiency.array() > 0.0).all() && last_command_rad_s.size() == rotors() &&
                          last_command_rad_s.allFinite();
   if (inputs_ok) {
-    FillData(measured, reference, efficiency, last_command_rad_s, period_s);
+    FillData(measured, reference, efficiency, last_command_rad_s, period_s, base);
     const MpcQpSolution solution = qp_.Solve(data_);
     out.outcome = OutcomeOf(solution.status);
     out.iterations = solution.iterations;

@@ -5,7 +5,8 @@
 // (controller/mpc_qp.h, the birotor's QP too) on the reference samples over the horizon
 // and checks the answer. A vehicle whose allocation spans F_x, F_z and the
 // torque (N >= 3, model/vehicle_description.h ControlledAxesMargin) is planned
-// level: tilt reference 0, the lateral reference tracked through F_x; a
+// level: tilt reference 0, the lateral reference tracked through F_x (or
+// about a tilted hover the caller gives, MultiArmHoverBase); a
 // birotor (N = 2) tilts for F_x as controller/mpc_controller.h does. On a
 // failed, late or bad solve the command is the documented fallback (Solve).
 // The birotor's product MPC stays controller/mpc_controller.h (the same QP);
@@ -39,6 +40,14 @@ struct MultiArmMpcResult {
   double tilt_slack_rad = 0.0;                     // how far the plan exceeds the tilt limit [rad]
 };
 
+// The hover a fully-actuated plan is made about: its tilt and the thrusts
+// that hold it there (MultiArmLaw's base: a tilted hover when a rotor is too
+// weak for a level one, docs/controller.md "Spare rotors").
+struct MultiArmHoverBase {
+  double tilt_rad = 0.0;      // phi_b [rad]
+  ArmForces<double> force_n;  // f_b, N entries [N]
+};
+
 class MultiArmMpc {
  public:
   // The description must be plausible (PlausibilityProblems empty).
@@ -53,11 +62,13 @@ class MultiArmMpc {
   // to the next solve [s]. Fallback when the solve fails, comes late (MpcParams
   // deadline_s / deadline_clock), is non-finite or infeasible, or the
   // reference is empty: each rotor's last command clamped to [0, omega_max],
-  // or where it is not finite its hover speed with its efficiency. No
-  // allocation in our code (alglib allocates inside its solver).
+  // or where it is not finite its hover speed with its efficiency. base: the
+  // hover a fully-actuated vehicle plans about (null: the level hover
+  // f_hover; ignored for a vehicle that tilts to move). No allocation in our
+  // code (alglib allocates inside its solver).
   MultiArmMpcResult Solve(const BodyState& measured, const std::vector<ReferencePoint>& reference,
                           const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s,
-                          double period_s);
+                          double period_s, const MultiArmHoverBase* base = nullptr);
   // After every command sent, held for dt_s [s]: the motor lag run on it
   // (model/plant.h MotorStep per rotor with its tau_m,i), the rotor speeds the
   // next solve starts from (the controller does not measure them).
@@ -79,13 +90,18 @@ class MultiArmMpc {
   // frame) with efficiencies e. Fully actuated (MultiArmControlModeFor):
   // f = f_hover + A^+ [m a_x, m a_z, 0] at zero tilt, m the total mass, by
   // controller/wrench_allocation.h's WrenchAllocator (its pseudo-inverse and
-  // saturation priority); otherwise f_i = f_hover,i |[a_x, max(g + a_z,
-  // 0.1 g)]| / g (the birotor MPC's feed-forward). omega_i = sqrt(max(f_i, 0)
-  // / (e_i c_T,i)), at most omega_max.
-  MultiArmMpcInputs FeedForward(const Eigen::Vector2d& acceleration_m_s2, const MultiArmMpcInputs& efficiency) const;
-  // The tilt the reference acceleration needs [rad]: 0 when fully actuated,
-  // atan2(-a_x, max(g + a_z, 0.1 g)) within +-max_tilt_rad otherwise.
-  double ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2) const;
+  // saturation priority); about a tilted base (phi_b != 0)
+  // f = f_b + A^+ (R(phi_b)^T m (a + g e_z) - m g [sin phi_b, cos phi_b], 0)
+  // (body frame, MultiArmLaw's wrench); otherwise f_i = f_hover,i |[a_x,
+  // max(g + a_z, 0.1 g)]| / g (the birotor MPC's feed-forward). omega_i =
+  // sqrt(max(f_i, 0) / (e_i c_T,i)), at most omega_max. base: null for the
+  // level hover.
+  MultiArmMpcInputs FeedForward(const Eigen::Vector2d& acceleration_m_s2, const MultiArmMpcInputs& efficiency,
+                                const MultiArmHoverBase* base = nullptr) const;
+  // The tilt the reference acceleration needs [rad]: the base's phi_b (0
+  // without one) when fully actuated, atan2(-a_x, max(g + a_z, 0.1 g))
+  // within +-max_tilt_rad otherwise.
+  double ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2, const MultiArmHoverBase* base = nullptr) const;
 
   bool fully_actuated() const { return fully_actuated_; }
   int rotors() const { return model_.rotors(); }
@@ -95,7 +111,8 @@ class MultiArmMpc {
 
  private:
   void FillData(const BodyState& measured, const std::vector<ReferencePoint>& reference,
-                const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s, double period_s);
+                const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s, double period_s,
+                const MultiArmHoverBase* base);
   MultiArmMpcInputs Fallback(const MultiArmMpcInputs& efficiency, const MultiArmMpcInputs& last_command_rad_s) const;
 
   VehicleDescription vehicle_;

@@ -273,6 +273,37 @@ TEST(HoverSpaceTest, ADeadRotorIsHeldByATiltedHover) {
   }
 }
 
+// Whether a level hover can pitch the body either way (the MPC's choice of
+// plan, MultiArmController::MpcPlansTilted): with rotor 1 (or 2) dead every
+// level hover pins its partner at 0 and the three live rotors make a pure
+// torque only one way (checked independently: their unique thrust change
+// for +tau, W_live^-1 [0, 0, tau], moves the partner one way, so -tau needs
+// it below 0); with rotor 3 (or 4) dead rotors 1 and 2 pitch both ways.
+TEST(HoverSpaceTest, ALevelHoverPitchesBothWaysUnlessAnUpperRotorIsDead) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  const double max_share = 1.0 / 1.02;
+  const double torque_n_m = 0.12;  // about 1 rad/s^2 on the quadrotor's rigid pitch inertia
+  EXPECT_TRUE(space.LevelPitchesBothWays(Efficiencies(1.0).data(), max_share, torque_n_m));
+  const bool expected[4] = {false, false, true, true};
+  for (int dead = 0; dead < 4; ++dead) {
+    std::array<double, kMaxArms> e = Efficiencies(1.0);
+    e[static_cast<size_t>(dead)] = 0.0;
+    EXPECT_EQ(space.LevelPitchesBothWays(e.data(), max_share, torque_n_m), expected[dead]) << dead;
+  }
+  // Rotor 1 dead: the live rotors 2, 3, 4 span the three rows alone.
+  const Eigen::MatrixXd w = WrenchAllocation(vehicle);
+  const Eigen::Matrix3d live = w.rightCols<3>();
+  const Eigen::Vector3d change = live.fullPivLu().solve(Eigen::Vector3d(0.0, 0.0, torque_n_m));
+  EXPECT_GT(std::fabs(change(0)), 1e-3);  // rotor 2 moves, either way it is at 0
+  // A live rotor at 5 % of its map (what the MPC flies a dead rotor at) would
+  // pitch both ways: the caller counts such a rotor as making nothing.
+  EXPECT_TRUE(space.LevelPitchesBothWays(Efficiencies(0.05).data(), max_share, torque_n_m));
+  // The birotor (none to spare) pitches both ways about its one hover.
+  const HoverSpace birotor = SpaceOf(Vehicle("birotor"));
+  EXPECT_TRUE(birotor.LevelPitchesBothWays(Efficiencies(1.0).data(), max_share, torque_n_m));
+}
+
 // The birotor tilts to move: it has no lateral force of its own, so no
 // tilted hover (its tilt is the position loop's).
 TEST(HoverSpaceTest, ATiltToMoveVehicleHasNoTiltedHover) {

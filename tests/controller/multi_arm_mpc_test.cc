@@ -15,6 +15,7 @@
 #include <new>
 #include <vector>
 
+#include "controller/hover_space.h"
 #include "controller/mpc_controller.h"
 #include "controller/multi_arm_mpc_flight.h"
 #include "model/multi_arm_plant.h"
@@ -122,6 +123,36 @@ TEST(MultiArmMpcTest, TrirotorAtHoverCommandsTheHoverSpeeds) {
   std::printf("hover solve: commands %.3f %.3f %.3f, max |u - hover| %.3g rad/s\n", result.omega_cmd_rad_s(0),
               result.omega_cmd_rad_s(1), result.omega_cmd_rad_s(2), error);
   EXPECT_LT(error, 0.0026);  // measured 0.0017 rad/s (the interior point's tolerance)
+}
+
+// About a tilted hover (the quadrotor's with rotor 1 dead, as the cascade
+// holds it: HoverSpace::NearestTiltedWithinShares, partner at 10 %) the
+// plan's reference tilt is the base's and its feed-forward at zero
+// acceleration the base's thrusts, R(phi_b)^T m g e_z less m g [sin, cos]
+// being 0; without a base the level hover as before.
+TEST(MultiArmMpcTest, ATiltedBaseIsPlannedAbout) {
+  const VehicleDescription vehicle =
+      LoadVehicleDescription(test_vehicles::SourceFile("config/vehicles/quadrotor.yaml"));
+  const MultiArmMpc mpc(vehicle, FlightParams());
+  ASSERT_TRUE(mpc.fully_actuated());
+  const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), mpc.model().hover_force_n());
+  MultiArmMpcInputs e = Ones(4);
+  e(0) = 0.05;  // the MPC's floor for a dead rotor (spare_retire_scale)
+  const double making[4] = {0.0, 1.0, 1.0, 1.0};
+  MultiArmHoverBase base;
+  ASSERT_TRUE(space.NearestTiltedWithinShares(making, 0.1, 1.0 / 1.02, 0.2, &base.force_n, &base.tilt_rad));
+  const Eigen::Vector2d still = Eigen::Vector2d::Zero();
+  EXPECT_EQ(mpc.ReferenceTilt(still, &base), base.tilt_rad);
+  EXPECT_EQ(mpc.ReferenceTilt(still), 0.0);
+  const MultiArmMpcInputs about_base = mpc.FeedForward(still, e, &base);
+  for (int i = 0; i < 4; ++i) {
+    const double c_t = vehicle.arms[static_cast<size_t>(i)].thrust_coeff_n_s2_rad2;
+    EXPECT_NEAR(about_base(i), std::sqrt(base.force_n(i) / (e(i) * c_t)), 1e-6) << i;
+  }
+  std::printf("quadrotor, rotor 1 dead: base tilt %+.3f rad, feed-forward %.1f %.1f %.1f %.1f rad/s\n", base.tilt_rad,
+              about_base(0), about_base(1), about_base(2), about_base(3));
+  const MultiArmMpcInputs level = mpc.FeedForward(still, Ones(4));
+  EXPECT_NEAR(level(1), mpc.model().hover_speed_rad_s()(1), 1e-6);
 }
 
 TEST(MultiArmMpcTest, TwoInputsMatchTheBirotorMpcFirstCommand) {
