@@ -154,13 +154,15 @@ bool HoverSpace::LevelPitchesBothWays(const double* efficiency, double max_share
 }
 
 bool HoverSpace::NearestTiltedWithinShares(const double* efficiency, double min_share, double max_share,
-                                           double max_tilt_rad, ArmForces<double>* hover_n, double* tilt_rad) const {
+                                           double max_tilt_rad, ArmForces<double>* hover_n, double* tilt_rad,
+                                           double from_tilt_rad) const {
   if (lateral_force_n_.size() != rotor_count_) return false;
   ArmForces<double> low_n;
   ArmForces<double> high_n;
   ShareBox(efficiency, min_share, max_share, &low_n, &high_n);
   const int steps = static_cast<int>(std::floor(max_tilt_rad / kTiltStepRad + 1e-9));
-  for (int k = 1; k <= steps; ++k) {
+  const int first = std::max(1, static_cast<int>(std::lround(from_tilt_rad / kTiltStepRad)));
+  for (int k = first; k <= steps; ++k) {
     for (double sign : {1.0, -1.0}) {
       const double phi = sign * k * kTiltStepRad;
       const ArmForces<double> centre_n = std::cos(phi) * hover_force_n_ + std::sin(phi) * lateral_force_n_;

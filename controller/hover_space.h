@@ -54,8 +54,10 @@ class HoverSpace {
   // move: no lateral force of its own). A rotor that makes nothing leaves a
   // lateral force the others can only balance by tilting the body (the
   // quadrotor with rotor 3 dead: docs/controller.md, "Spare rotors").
+  // from_tilt_rad: the grid starts at this |phi| (a tilt a wider box holds
+  // no hover below holds none in this box either) [rad].
   bool NearestTiltedWithinShares(const double* efficiency, double min_share, double max_share, double max_tilt_rad,
-                                 ArmForces<double>* hover_n, double* tilt_rad) const;
+                                 ArmForces<double>* hover_n, double* tilt_rad, double from_tilt_rad = 0.0) const;
   static constexpr double kTiltStepRad = 0.005;
 
   // Whether a level hover within the shares [0, max_share] x e_i c_T,i

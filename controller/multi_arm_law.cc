@@ -74,6 +74,21 @@ MultiArmRotorCommand MultiArmLaw::Update(const BodyState& body, const ReferenceP
   return command;
 }
 
+bool MultiArmLaw::AnyHover(const RotorEfficiencies& efficiency, double max_tilt_rad, double* least_tilt_rad) const {
+  const double* e = efficiency.data();
+  *least_tilt_rad = 0.0;
+  // The healthy vehicle: its least-norm hover within HoverBase's first box, one solve.
+  if (hover_space_.NearestWithinShares(e, spare_min_share_, spare_max_share_, nullptr)) return true;
+  const double widest = std::max(spare_max_share_, feasible_share_);
+  if (hover_space_.NearestWithinShares(e, spare_min_share_, widest, nullptr)) return true;
+  double tilt_rad = 0.0;
+  if (!hover_space_.NearestTiltedWithinShares(e, spare_min_share_, widest, max_tilt_rad, nullptr, &tilt_rad)) {
+    return false;
+  }
+  *least_tilt_rad = std::fabs(tilt_rad);
+  return true;
+}
+
 bool MultiArmLaw::LevelPitchesBothWays(const RotorEfficiencies& efficiency) const {
   if (!hover_space_.redundant()) return true;
   return hover_space_.LevelPitchesBothWays(efficiency.data(), feasible_share_, pitch_inertia_kg_m2_ * kPitchProbeRadS2);
@@ -87,12 +102,17 @@ const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficie
   const double* e = efficiency.data();
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
   const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
+  double least_tilt_rad = 0.0;
+  if (!AnyHover(efficiency, max_tilt_rad, &least_tilt_rad)) {
+    base_is_hover_ = true;
+    return hover_force_n_;  // no hover held: the allocator scales it down (the infeasible descent)
+  }
   for (double max_share : {spare_max_share_, feasible_share_}) {
     if (hover_space_.NearestWithinShares(e, spare_min_share_, max_share, &base_force_n_)) return base_force_n_;
     // Tilted: the thrust holding the lateral force up off its lower bound first (room for F_x both ways).
     for (double min_share : {tilted_min_share_, spare_min_share_}) {
-      if (hover_space_.NearestTiltedWithinShares(e, min_share, max_share, max_tilt_rad, &base_force_n_,
-                                                 &base_tilt_rad_)) {
+      if (hover_space_.NearestTiltedWithinShares(e, min_share, max_share, max_tilt_rad, &base_force_n_, &base_tilt_rad_,
+                                                 least_tilt_rad)) {
         return base_force_n_;
       }
     }

@@ -92,6 +92,14 @@ class MultiArmLaw {
   // [spare_min_share, 1 / margin], else f_hover (no hover held: the
   // allocator scales it, the descent's).
   const ArmForces<double>& HoverBase(const RotorEfficiencies& efficiency);
+  // Whether HoverBase's widest box, [spare_min_share, max(spare_max_share,
+  // 1 / margin)], holds a hover, level or tilted up to max_tilt_rad. Every
+  // box HoverBase tries lies within it, so without one there is none (the
+  // descent: 82 nearest-hover solves instead of the four grids' 322 on the
+  // quadrotor), and no box holds a tilted hover below the least tilt found
+  // here (least_tilt_rad, 0 when a level hover fits: each grid starts
+  // there). HoverBase's answer is unchanged, bit for bit.
+  bool AnyHover(const RotorEfficiencies& efficiency, double max_tilt_rad, double* least_tilt_rad) const;
 
   ArmForces<double> hover_force_n_;
   WrenchAllocator allocator_;

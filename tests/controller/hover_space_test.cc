@@ -273,6 +273,50 @@ TEST(HoverSpaceTest, ADeadRotorIsHeldByATiltedHover) {
   }
 }
 
+// MultiArmLaw::AnyHover's shortcut is exact: every box HoverBase tries lies
+// within its widest one, so a grid started at the widest box's least tilt
+// finds the same tilt and hover as one started at 0, and no hover in the
+// widest box means none in any (random efficiencies on the quadrotor, a
+// quarter of the rotors dead).
+TEST(HoverSpaceTest, AWiderBoxsLeastTiltStartsEveryNarrowerSearch) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  const double widest = 1.0 / 1.02, max_tilt_rad = 0.2;
+  std::mt19937 random(38);
+  std::uniform_real_distribution<double> share(0.0, 1.2);
+  int tilted = 0, none = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::array<double, kMaxArms> e = Efficiencies(1.0);
+    for (int i = 0; i < 4; ++i) e[static_cast<size_t>(i)] = share(random) < 0.3 ? 0.0 : share(random);
+    double least_rad = 0.0;
+    const bool level = space.NearestWithinShares(e.data(), 0.05, widest, nullptr);
+    const bool any =
+        level || space.NearestTiltedWithinShares(e.data(), 0.05, widest, max_tilt_rad, nullptr, &least_rad);
+    least_rad = std::fabs(least_rad);
+    tilted += any && !level;
+    none += !any;
+    for (double max_share : {0.8, widest}) {
+      for (double min_share : {0.1, 0.05}) {
+        ArmForces<double> from_zero, from_least;
+        double tilt_zero = 0.0, tilt_least = 0.0;
+        const bool found =
+            space.NearestTiltedWithinShares(e.data(), min_share, max_share, max_tilt_rad, &from_zero, &tilt_zero);
+        EXPECT_TRUE(any || !found) << trial;
+        ASSERT_EQ(space.NearestTiltedWithinShares(e.data(), min_share, max_share, max_tilt_rad, &from_least,
+                                                  &tilt_least, least_rad),
+                  found)
+            << trial;
+        if (!found) continue;
+        EXPECT_EQ(tilt_least, tilt_zero) << trial;
+        for (int i = 0; i < 4; ++i) EXPECT_EQ(from_least(i), from_zero(i)) << trial << " " << i;
+      }
+    }
+  }
+  std::printf("300 efficiency sets: %d held only tilted, %d held no hover\n", tilted, none);
+  EXPECT_GT(tilted, 10);
+  EXPECT_GT(none, 10);
+}
+
 // Whether a level hover can pitch the body either way (the MPC's choice of
 // plan, MultiArmController::MpcPlansTilted): with rotor 1 (or 2) dead every
 // level hover pins its partner at 0 and the three live rotors make a pure
