@@ -61,7 +61,10 @@ class VehicleLoopListener {
     // The fallback (nominal map): entries in the newest CONTROLLER_STATUS
     // (-1 before one), commands flagged STATUS_FALLBACK_ACTIVE, flag changes.
     int64_t fallbacks = -1, fallback_commands = 0, fallback_toggles = 0;
-    int64_t conflicts = -1;          // entries into STATUS_INPUT_CONFLICT (CONTROLLER_STATUS)
+    int64_t conflicts = -1;  // entries into STATUS_INPUT_CONFLICT (CONTROLLER_STATUS)
+    // Commands flagged STATUS_FALLBACK_ACTIVE over the judged span [1, kDurationS - 0.05) s
+    // (the flight's end, when FORCE_N stops, falls back too).
+    int64_t fallback_commands_judged = 0;
     std::string fallback_entries_s;  // vehicle time of each entry [s], the first 8
   };
   Figures figures() {
@@ -93,6 +96,8 @@ class VehicleLoopListener {
     last_fallback_ = fallback;
     ++figures_.commands;
     if (fallback) ++figures_.fallback_commands;
+    const double t_s = 1e-6 * static_cast<double>(command_.utime);
+    if (fallback && t_s >= 1.0 && t_s < kDurationS - 0.05) ++figures_.fallback_commands_judged;
     if (!within) ++figures_.commands_out_of_bounds;
   }
   void OnStatus(const lcm::ReceiveBuffer* buffer, const std::string& /*channel*/) {
@@ -244,18 +249,20 @@ void PrintTrirotorFlight(const TrirotorFlight& flight, const MachineStallWatch& 
       "%.1f m step max |z - z_ref| %.4f m (from %.1f s), max |x| %.4f m; %s\n"
       "forgeries (%d of each): controller refused FORCE_N unsealed %lld (GUARD_STATUS), for its rotor count %ld; "
       "ESCs refused MOTOR_COMMAND_N (sealed under another key and its plain copy) %ld\n"
-      "fallback: %lld entries (CONTROLLER_STATUS), %lld commands flagged, %lld flag changes, entries at [s]%s; "
-      "%lld conflicts\n",
+      "fallback: %lld entries (CONTROLLER_STATUS), %lld commands flagged (%lld from 1 s to the end), %lld flag "
+      "changes, entries at [s]%s; %lld conflicts\n",
       static_cast<long long>(f.truths), static_cast<long long>(f.commands),
       static_cast<long long>(f.commands_out_of_bounds), f.hover_max_error_m, kStepZM, f.settled_max_error_m,
       kStepAtS + kMoveS + 2.0, f.max_abs_x_m, watch.Summary().c_str(), kForgeries,
       static_cast<long long>(f.controller_guard.refused[kForce]), flight.count_refused, flight.esc_refused,
       static_cast<long long>(f.fallbacks), static_cast<long long>(f.fallback_commands),
-      static_cast<long long>(f.fallback_toggles), f.fallback_entries_s.c_str(), static_cast<long long>(f.conflicts));
+      static_cast<long long>(f.fallback_commands_judged), static_cast<long long>(f.fallback_toggles),
+      f.fallback_entries_s.c_str(), static_cast<long long>(f.conflicts));
 }
 
 // The flight's figures against its bounds: strict when the machine kept
-// real time through it, else not lost.
+// real time through it and the controller flew force feedback through the
+// judged span, else not lost.
 void JudgeTrirotorFlight(const TrirotorFlight& flight, bool strict) {
   const VehicleLoopListener::Figures& f = flight.figures;
   EXPECT_EQ(flight.controller_exit, 0);
@@ -288,7 +295,13 @@ TEST(LiveVehicleControllerTest, TrirotorFliesAnAltitudeStepOnSealedChannelsAndRe
       [](int attempt, TrirotorFlight* flight) {
         FlyTheTrirotorStep(UniquePrefix("REL_NCTL" + std::to_string(attempt) + "_"), flight);
       },
-      PrintTrirotorFlight, JudgeTrirotorFlight);
+      PrintTrirotorFlight, JudgeTrirotorFlight,
+      // A FORCE_N later than force_timeout_s (5 ms) puts the controller on
+      // the nominal map for at least force_recovery_s; the watch sees only
+      // wakes 20 ms late, so a flight that fell back in its judged span did
+      // not get its real time either (under stress-ng: at 5.25 and 6.25 s,
+      // the settled error 0.0198 m against the strict 0.016 m).
+      [](const TrirotorFlight& flight) { return flight.figures.fallback_commands_judged == 0; });
 }
 
 }  // namespace

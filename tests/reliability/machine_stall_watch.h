@@ -94,9 +94,11 @@ class MachineStallWatch {
 // Flies fly(attempt, &flight) while the machine stalls through it, at most
 // kLiveFlightAttempts times; print(flight, watch) after each; then
 // judge(flight, strict) on the last, strict when the machine kept real time
-// through it (else its not-lost bounds). A fatal failure in fly ends it.
-template <class Flight, class Fly, class Print, class Judge>
-void FlyJudgedOnRealTime(const Fly& fly, const Print& print, const Judge& judge) {
+// through it and on_time(flight) (what the flight's own processes saw: a
+// deadline of theirs shorter than the watch's kStallS) holds (else its
+// not-lost bounds). A fatal failure in fly ends it.
+template <class Flight, class Fly, class Print, class Judge, class OnTime>
+void FlyJudgedOnRealTime(const Fly& fly, const Print& print, const Judge& judge, const OnTime& on_time) {
   for (int attempt = 1;; ++attempt) {
     MachineStallWatch watch;
     Flight flight;
@@ -104,11 +106,17 @@ void FlyJudgedOnRealTime(const Fly& fly, const Print& print, const Judge& judge)
     if (::testing::Test::HasFatalFailure()) return;
     watch.Stop();
     print(flight, watch);
-    if (watch.kept_real_time() || attempt == kLiveFlightAttempts) {
-      judge(flight, watch.kept_real_time());
+    const bool strict = watch.kept_real_time() && on_time(flight);
+    if (strict || attempt == kLiveFlightAttempts) {
+      judge(flight, strict);
       return;
     }
   }
+}
+
+template <class Flight, class Fly, class Print, class Judge>
+void FlyJudgedOnRealTime(const Fly& fly, const Print& print, const Judge& judge) {
+  FlyJudgedOnRealTime<Flight>(fly, print, judge, [](const Flight&) { return true; });
 }
 
 }  // namespace birotor::reliability
