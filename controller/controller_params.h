@@ -119,7 +119,7 @@ struct EfficiencyParams {
   double change_threshold = 0.1;         // |mu / mu0 - 1| above this is a real change too [1]
   double fault_tau_s = 0.01;             // first order towards mu / mu0 while flagged [s]
   double max_rate_1_s = 50.0;            // rate limit of the efficiency [1/s]
-  double max_relative_sigma = 1.0;       // a sample with force_std / force above this is not followed [1]
+  double max_relative_sigma = 1.0;       // force_std / max(|force|, weight / N) above: not followed [1]
   double blend_after_s = 0.2;            // a fallback at least this long is blended out of [s]
   double blend_s = 1.5;                  // back from a fallback: blended in (time constant blend_s / 3) [s]
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]

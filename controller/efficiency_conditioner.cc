@@ -45,10 +45,15 @@ void EfficiencyConditioner::Take(const RotorEfficiencyEstimate& e) {
   if (!NoteAirborne(e)) return;
   const bool deficit = (e.status & kStatusThrustDeficit) != 0;
   const double baseline_gain = std::min(1.0, dt_s / params_.baseline_tau_s);
+  // A rotor's mean share of the hover thrust [N]: the sigma of a rotor that
+  // makes (almost) nothing is judged against what it should make, not
+  // against its own 0 (a dead rotor's 0.01 N, sigma 0.1 N, is certain).
+  const double mean_hover_n = weight_n_ / rotor_count_;
   for (int i = 0; i < rotor_count_; ++i) {
     const size_t r = Index(i);
     // An uncertain sample is not followed: the target holds.
-    if (!(e.force_std_n[r] <= params_.max_relative_sigma * std::fabs(e.force_n[r]))) continue;
+    const double reference_n = std::max(std::fabs(e.force_n[r]), mean_hover_n);
+    if (!(e.force_std_n[r] <= params_.max_relative_sigma * reference_n)) continue;
     if (!has_baseline_) baseline_[r] = e.thrust_scale[r];
     // A change is real when the estimate flags it, or when it is larger
     // than change_threshold relative to the baseline; neither counts before

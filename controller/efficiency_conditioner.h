@@ -11,7 +11,10 @@
 //    model mismatch (stiffness, gauge scale, mass, motor lag, noise), which
 //    moves mu slowly and unflagged, is left to the nominal loop's
 //    integrators instead of being applied as a disturbance;
-//  - a sample whose force sigma is large is not followed;
+//  - a sample whose force sigma is large is not followed (above
+//    max_relative_sigma x the larger of |force_i| and the rotors' mean hover
+//    thrust weight / N: a dead rotor's 0 N is certain, not infinitely
+//    uncertain relative to itself);
 //  - what is learned is flown too (issue 36 item 5): e_i = a_i c_i, c_i the
 //    change factor above (mu_i / mu0_i while flagged, else 1) and a_i the
 //    absolute factor: towards mu0_i itself (within [min, max]_absolute_

@@ -34,6 +34,7 @@
 #include "controller/efficiency_conditioner.h"
 #include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
+#include "controller/multi_arm_flare.h"
 #include "controller/multi_arm_law.h"
 #include "controller/multi_arm_mpc.h"
 #include "controller/pose_gate.h"
@@ -56,6 +57,8 @@ struct MultiArmDegradation {
   int64_t infeasible = 0;          // entries into the hover-infeasible descent
   int64_t infeasible_by_sink = 0;  // ... of them detected from the vehicle's sink
   int weak_rotor = -1;             // the latched weak rotor (0-based); -1: none
+  bool flaring = false;            // the infeasible descent's flare near the ground (this period)
+  int64_t flares = 0;              // entries into it
 };
 
 class MultiArmController {
@@ -182,6 +185,13 @@ class MultiArmController {
   // last command sent (never 0 <-> omega_max in one period), the thrusts
   // following.
   void SlewDescent(const RotorEfficiencies& efficiency, double dt_s, MultiArmRotorCommand* command) const;
+  // The infeasible descent's flare (POSE fresh), as the birotor's
+  // VehicleController::Flare: sinking faster than descent_rate_m_s, above
+  // the take-off level (the first POSE's z) and lower than sink rate x
+  // flare_time_s, the thrusts of MultiArmFlareForcesFor (flare_tilt_rad,
+  // each rotor's e_i c_T,i omega_max^2) replace the cascade's, unslewed;
+  // true while it flares (counted in degradation()). flare_tilt_rad 0: never.
+  bool Flare(bool infeasible_descent, const RotorEfficiencies& efficiency, MultiArmRotorCommand* command);
   // Mode mpc, one period of dt_s [s]: MultiArmMpc::Solve from the observer's
   // state with the efficiencies in use (1 when mpc.use_thrust_scale is
   // false) and the reference extrapolated over the horizon
@@ -218,6 +228,8 @@ class MultiArmController {
   int64_t force_at_floor_ = 0;
   int64_t refused_estimates_ = 0;
   bool has_pose_ = false;
+  double ground_z_m_ = 0.0;           // the take-off level: the first POSE's z [m]
+  MultiArmFlareLimits flare_limits_;  // the flare's geometry (FlareGeometryOf)
   int64_t last_imu_utime_ = -1;
   int imu_count_ = 0;
   double gyro_sum_rad_s_ = 0.0;

@@ -250,6 +250,8 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   health_.descents = degradation.descents;
   health_.infeasible = degradation.infeasible;
   health_.infeasible_by_sink = degradation.infeasible_by_sink;
+  health_.flaring = degradation.flaring;
+  health_.flares = degradation.flares;
   CommandStatusFacts facts = PeriodFacts(vehicle_us, command);
   facts.mpc_fallback = controller_.mpc_fallbacks() > mpc_fallbacks;
   facts.descending = degradation.descending;

@@ -34,7 +34,11 @@ class ThreeRotorFeed {
 
   // One report of these scales, fault bits and status, then one period.
   void Step(const std::array<double, 3>& scale, int32_t fault_bits = 0, int32_t status = kStatusValid) {
-    conditioner_.OnForce(Report(scale, fault_bits, status));
+    Send(Report(scale, fault_bits, status));
+  }
+  // One report as it is, then one period.
+  void Send(const RotorEfficiencyEstimate& report) {
+    conditioner_.OnForce(report);
     conditioner_.Advance(kDtS, true);
     utime_us_ += 1000;
   }
@@ -73,6 +77,27 @@ TEST(EfficiencyConditionerNTest, ALossOnRotorThreeIsFollowed) {
   EXPECT_EQ(feed.conditioner().efficiency(0), 1.0);
   EXPECT_EQ(feed.conditioner().efficiency(1), 1.0);
   EXPECT_EQ(feed.conditioner().baseline(2), 1.0);  // the baseline holds while flagged
+}
+
+// A dead rotor: FORCE reports about 0 N with a sigma above it (the
+// trirotor's rotor 3 at 0: 0.01-0.1 N, sigma 0.10-0.16 N), flown at the
+// plausibility floor (MultiArmController::NoteReport sets the scale to
+// 0.2). The sigma is judged against the rotors' mean hover thrust, not
+// against the 0 N: followed. A sigma above that mean is not.
+TEST(EfficiencyConditionerNTest, ADeadRotorsZeroIsFollowed) {
+  const auto fly_dead = [](double sigma_n) {
+    ThreeRotorFeed feed;
+    feed.Fly(kSettledS, {1.0, 1.0, 1.0});
+    for (int k = 0; k < 100; ++k) {
+      RotorEfficiencyEstimate report = feed.Report({1.0, 1.0, 0.2}, 1 << 2, kStatusValid);
+      report.force_n[2] = 0.02;
+      report.force_std_n[2] = sigma_n;
+      feed.Send(report);
+    }
+    return feed.conditioner().efficiency(2);
+  };
+  EXPECT_NEAR(fly_dead(0.12), 0.2, 1e-3);
+  EXPECT_EQ(fly_dead(1.2 * kHoverSumN / 3.0), 1.0);
 }
 
 // Right after a loss the N-arm EKF rings (the trirotor: -0.93, 1.71, -0.99

@@ -312,7 +312,8 @@ TEST(MultiArmControllerTest, ADeadSpareRotorIsRetiredOnlyOnAUsableForce) {
 
 // The efficiencies stay 1 in nominal mode, and with force feedback for
 // reports that are not VALID, of another rotor count, or whose sigma is
-// above max_relative_sigma (force_std / force 1.17 > 1).
+// above max_relative_sigma x the larger of the force and the rotors' mean
+// hover thrust (1.17 > 1).
 TEST(MultiArmControllerTest, NominalMapWhenTheEstimateIsUnusable) {
   const VehicleDescription vehicle = Trirotor();
   const auto fly = [&](const ControllerConfig& config, auto report) {
@@ -332,12 +333,23 @@ TEST(MultiArmControllerTest, NominalMapWhenTheEstimateIsUnusable) {
     e.n_rotors = 2;
     return e;
   };
-  const auto uncertain = [](int64_t t) {
+  // Uncertain: the sigma above max_relative_sigma (1) x the larger of the
+  // force and the rotors' mean hover thrust.
+  const double mean_hover_n = SolveMultiArmHover(vehicle).force_n.sum() / vehicle.arm_count;
+  const auto uncertain = [mean_hover_n](int64_t t) {
     RotorEfficiencyEstimate e = Estimate(t, 0.6, true);
     e.thrust_scale_std[1] = 0.7;
+    e.force_std_n[1] = 1.17 * std::max(e.force_n[1], mean_hover_n);
+    return e;
+  };
+  // Below the mean hover thrust the force's own sigma is no measure: a
+  // sigma 1.17 x the force is followed (a dead rotor's 0 N is certain).
+  const auto small_force = [](int64_t t) {
+    RotorEfficiencyEstimate e = Estimate(t, 0.6, true);
     e.force_std_n[1] = 1.17 * e.force_n[1];
     return e;
   };
+  EXPECT_NEAR(fly(ForceFeedback(), small_force), 0.6, 1e-3);
   const auto lost = [](int64_t t) { return Estimate(t, 0.6, true); };
   EXPECT_NEAR(fly(ForceFeedback(), lost), 0.6, 1e-3);  // the same flight, usable: followed
   // Not usable: the fallback, e from 1 towards 1.

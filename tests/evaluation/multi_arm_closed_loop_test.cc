@@ -239,13 +239,15 @@ TEST(MultiArmDescentFloorTest, SinkAccelerationOfTheLevelDescent) {
 
 // thrust_loss climbing to 1 m in 2 s, 8 s long, rotor `rotor` (1-based) at
 // `scale` of its thrust from 5 s (birotor-eval's descentPP_rotorK cases).
-Scenario ClimbThenLoss(const VehicleDescription& vehicle, int rotor, double scale) {
-  return ScenarioFor(
-      "thrust_loss", vehicle,
-      {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
-       "scenario.duration_s=8.0",
-       "faults.thrust_steps=[{time_s: 5.0, rotor: " + std::to_string(rotor) + ", scale: " + std::to_string(scale) +
-           "}]"});
+// seed: the scenario's own (0) or this one.
+Scenario ClimbThenLoss(const VehicleDescription& vehicle, int rotor, double scale, int seed = 0) {
+  std::vector<std::string> overrides = {"trajectory.kind=waypoints",
+                                        "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
+                                        "scenario.duration_s=8.0",
+                                        "faults.thrust_steps=[{time_s: 5.0, rotor: " + std::to_string(rotor) +
+                                            ", scale: " + std::to_string(scale) + "}]"};
+  if (seed > 0) overrides.push_back("scenario.seed=" + std::to_string(seed));
+  return ScenarioFor("thrust_loss", vehicle, overrides);
 }
 
 // Force feedback on the N-arm estimator (the product path), the defaults'
@@ -266,11 +268,13 @@ MultiArmClosedLoopRun FlyOnTheEstimate(const VehicleDescription& vehicle, const 
 // The trirotor climbs to 1 m and loses 70 or 80 % on rotor 1 (27.5 N at
 // hover) at 5 s, force feedback on the N-arm estimator (the product path):
 // one descent, hover infeasible from the efficiency, peak tilt from the
-// fault measured 0.103 / 0.156 rad on the conditioned efficiencies (0.076 /
+// fault measured 0.101 / 0.155 rad on the conditioned efficiencies (0.076 /
 // 0.113 flying the scale itself; birotor-eval --vehicle
 // config/vehicles/trirotor.yaml --control --scenarios descent70_rotor1
-// descent80_rotor1, seed 4; target <= 0.3), touchdown 0.97 / 0.99 of the
-// level floor (target within 10 %). The nominal map on the same seed:
+// descent80_rotor1, seed 4; target <= 0.3), touchdown 0.94 / 0.96 of the
+// level floor (target within 10 %; 2.22 / 3.08 m/s, 0.97 / 0.99 before the
+// flare for N rotors, controller/multi_arm_flare.h), one flare each. The
+// nominal map on the same seed:
 // no descent, tilt 0.294 / 1.434 rad. 40 % on rotor 1 stays feasible: no
 // descent.
 TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover) {
@@ -296,6 +300,42 @@ TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover
     EXPECT_EQ(run.degradation.weak_rotor, 0) << loss[c];
     ASSERT_TRUE(descent.found) << loss[c];
     EXPECT_NEAR(descent.touchdown_m_s / descent.floor_m_s, 1.0, 0.1) << loss[c];
+    EXPECT_EQ(run.degradation.flares, 1) << loss[c];
+  }
+}
+
+// The trirotor loses rotor 3 altogether at 5 s (seed 2), force feedback on
+// the N-arm estimator: FORCE reports the dead rotor's 0.01-0.1 N with a
+// sigma of 0.10-0.16 N, which the efficiency used to refuse as uncertain
+// (sigma above the force itself), so only a sample that happened to read
+// more than its sigma brought the efficiency down: mode mpc flew on e = 1
+// until 7.07 s (touchdown 15.8 m/s, tilt 1.03 rad), and its sink detection
+// was blind (the MPC's command never reports a limit). Now the sigma is
+// judged against the rotors' mean hover thrust and the sink detection
+// reads the cascade's allocation, as the birotor's: both modes descend
+// from 5.14-5.15 s and flare, touchdown measured 3.13 / 3.14 m/s (floor
+// 4.41 m/s; the nominal map 3.17 / 3.64 m/s). Either change alone finds it:
+// the sink detection alone at 5.39 s (3.95 m/s).
+TEST(MultiArmClosedLoopTest, TrirotorWithADeadRotorDescendsInBothModes) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const Scenario scenario = ClimbThenLoss(vehicle, 3, 0.0, 2);
+  for (bool mpc : {false, true}) {
+    const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario, EfficiencyParams().spare_hover_tilt_rad, mpc);
+    const MultiArmDescent descent = MultiArmDescentOf(run, vehicle, scenario);
+    std::printf(
+        "trirotor, rotor 3 dead, %s: descent from %.2f s at %.2f m, touchdown %.2f m/s (floor %.2f), peak tilt "
+        "%.3f rad, flares %lld\n",
+        mpc ? "mode mpc" : "cascade", descent.start_s, descent.height_m, descent.touchdown_m_s, descent.floor_m_s,
+        descent.peak_tilt_rad, static_cast<long long>(run.degradation.flares));
+    ASSERT_TRUE(descent.found) << mpc;
+    EXPECT_EQ(run.degradation.infeasible, 1) << mpc;
+    EXPECT_EQ(run.degradation.weak_rotor, 2) << mpc;
+    EXPECT_LT(descent.start_s, 5.3) << mpc;
+    EXPECT_GT(descent.height_m, 0.9) << mpc;
+    EXPECT_LT(descent.touchdown_m_s, 0.8 * descent.floor_m_s) << mpc;
+    EXPECT_LT(descent.peak_tilt_rad, 0.3) << mpc;
+    EXPECT_EQ(run.degradation.flares, 1) << mpc;
+    EXPECT_EQ(run.commands_out_of_bounds, 0) << mpc;
   }
 }
 
