@@ -145,7 +145,9 @@ struct EfficiencyParams {
   // With no level hover within those shares, a fully actuated vehicle with
   // spare rotors may hover tilted up to this (the body balances the lateral
   // force a rotor that makes nothing leaves; HoverSpace::
-  // NearestTiltedWithinShares); 0: level hovers only.
+  // NearestTiltedWithinShares), and in mode mpc one without a spare rotor
+  // (the trirotor, once no level hover is within [0, 1 / margin]); 0: level
+  // hovers only.
   double spare_hover_tilt_rad = 0.2;  // [rad]
   // The cascade's tilted hover keeps every rotor at least this share (when
   // one within spare_hover_tilt_rad does, else spare_min_share): the rotor

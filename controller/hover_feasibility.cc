@@ -56,16 +56,18 @@ int HoverFeasibility::Weakest(const double (&efficiency)[kMaxArms]) const {
 
 double HoverFeasibility::Evidence(const FeasibilityInputs& in, int rotor) const {
   const double report = in.below_floor_report[rotor];
-  return space_.redundant() && std::isfinite(report) ? std::min(in.efficiency[rotor], report) : in.efficiency[rotor];
+  return space_.rebalances() && std::isfinite(report) ? std::min(in.efficiency[rotor], report) : in.efficiency[rotor];
 }
 
 bool HoverFeasibility::HoverHeld(const FeasibilityInputs& in, int weakest) const {
   // margin f_hover,i > e_i c_T,i omega_max^2 for some i  <=>  e_i < bound_i.
-  if (!space_.redundant()) return !(in.efficiency[weakest] < bound_[weakest]);
+  const bool level_held = !(in.efficiency[weakest] < bound_[weakest]);
+  if (!space_.rebalances() || (level_held && !space_.redundant())) return level_held;
   double efficiency[kMaxArms];
   for (int i = 0; i < kMaxArms; ++i) efficiency[i] = Evidence(in, i);
   const double max_share = 1.0 / params_.feasibility_margin;
-  return space_.NearestWithinShares(efficiency, params_.spare_min_share, max_share, nullptr) ||
+  // Without a spare rotor the only hovers besides f_hover are the tilted ones.
+  return (space_.redundant() && space_.NearestWithinShares(efficiency, params_.spare_min_share, max_share, nullptr)) ||
          space_.NearestTiltedWithinShares(efficiency, params_.spare_min_share, max_share, params_.spare_hover_tilt_rad,
                                           nullptr, nullptr);
 }

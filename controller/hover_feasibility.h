@@ -68,7 +68,10 @@ class HoverFeasibility {
   // redundant()) hover is infeasible when no hover of the space, level or
   // tilted up to spare_hover_tilt_rad, keeps every rotor within
   // [spare_min_share, 1 / margin] x e_i c_T,i omega_max^2 instead (the
-  // bounds below then only rank the rotors).
+  // bounds below then only rank the rotors). A fully actuated vehicle
+  // without one (space.tilts(): the trirotor) keeps the bounds and is
+  // still feasible beyond them while a hover tilted up to
+  // spare_hover_tilt_rad keeps every rotor within those shares.
   HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
                    const double* hover_force_n, const HoverSpace& space = HoverSpace());
 
@@ -98,9 +101,10 @@ class HoverFeasibility {
  private:
   void Latch(Cause cause, int weak_rotor, double efficiency);
   // Whether the efficiencies hold a hover: e_weakest at least its bound, or
-  // with spare rotors some hover within the shares (constructor).
+  // with spare rotors some hover within the shares, or fully actuated a
+  // tilted one (constructor).
   bool HoverHeld(const FeasibilityInputs& in, int weakest) const;
-  // Rotor i's efficiency in use, or with spare rotors the lower
+  // Rotor i's efficiency in use, or with spare rotors or a tilt the lower
   // below_floor_report when FORCE gives one (a dead rotor reads 0, not the
   // floor), for the hover check only: the latched weak efficiency stays the
   // one in use (taking the report there too, a dead rotor 3's descent

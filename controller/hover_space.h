@@ -28,6 +28,12 @@ class HoverSpace {
   // N minus the controlled rows: the dimension of y [1].
   int spare_rotors() const { return spare_; }
   bool redundant() const { return spare_ > 0; }
+  // A fully actuated vehicle may hover tilted (NearestTiltedWithinShares;
+  // the trirotor too, without a rotor to spare: its hover thrusts at tilt
+  // phi are the single point cos(phi) f_hover + sin(phi) f_lateral).
+  bool tilts() const { return lateral_force_n_.size() == rotor_count_ && rotor_count_ > 0; }
+  // The hover may move off f_hover: spare rotors, or a tilt.
+  bool rebalances() const { return redundant() || tilts(); }
 
   // The hover nearest f_hover (least sum of squared thrust changes) with
   // low_i <= f_i <= high_i on every rotor; false when no hover lies in the

@@ -44,8 +44,13 @@ HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const Controll
     hover_force_n[i] = hover.force_n(i);
   }
   const ArmForces<double> hover_n = hover.force_n;
+  const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), hover_n);
+  // Without a spare rotor only mode mpc holds a tilted hover (the
+  // cascade's fixed-direction allocation cannot fly a rotor at its bound:
+  // docs/controller.md, "Spare rotors"); the cascade keeps the level bounds.
+  const bool tilted_hovers = space.redundant() || config.model_predictive;
   return HoverFeasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n,
-                          HoverSpace(vehicle, MultiArmControlModeFor(vehicle), hover_n));
+                          tilted_hovers ? space : HoverSpace());
 }
 
 // Age of a stamp at now_us [s]; infinite before any or from the future.
@@ -69,6 +74,7 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       feasibility_(FeasibilityOf(vehicle, config, hover)),
       last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
   if (!config.model_predictive) return;
+  law_.HoldTiltedHoverWithoutSpare(true);
   mpc_ = std::make_unique<MultiArmMpc>(vehicle, config.mpc);
   horizon_.resize(static_cast<size_t>(config.mpc.horizon_steps));
   last_sent_rad_s_ = mpc_->rotor_speed_estimate_rad_s();
@@ -167,8 +173,14 @@ RotorEfficiencies MultiArmController::EfficiencyInUse() const {
   return efficiency;
 }
 
+bool MultiArmController::HoldsOtherHovers() const {
+  return law_.spare_rotors() > 0 || (config_.model_predictive && law_.rebalances());
+}
+
 bool MultiArmController::MpcPlansTilted(const RotorEfficiencies& efficiency) const {
   if (law_.base_tilt_rad() == 0.0) return false;
+  // Without a spare rotor the base tilts only when no level hover holds.
+  if (law_.spare_rotors() == 0) return true;
   // A rotor flown at spare_retire_scale or less (the MPC's floor for a dead
   // one, BelowFloorEfficiency) makes nothing.
   RotorEfficiencies making = efficiency;
@@ -271,7 +283,7 @@ double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency, in
   // Only on a usable FORCE (one stream, VALID, fresh, healthy): the run is
   // counted before the stream checks, so a second publisher's reports must
   // not stop a rotor.
-  if (law_.spare_rotors() == 0 || feasibility_.infeasible() || !EstimateUsable(now_us)) return efficiency;
+  if (!HoldsOtherHovers() || feasibility_.infeasible() || !EstimateUsable(now_us)) return efficiency;
   if (!std::isfinite(reported)) return efficiency;  // no run of flagged reports below the floor
   // The MPC's model needs every rotor's map (e > 0): a retired rotor is at most spare_retire_scale there.
   if (config_.model_predictive) return std::min(efficiency, std::max(reported, config_.efficiency.spare_retire_scale));
@@ -306,17 +318,10 @@ void MultiArmController::SlewDescent(const RotorEfficiencies& efficiency, double
 
 bool MultiArmController::Flare(bool infeasible_descent, const RotorEfficiencies& efficiency,
                                MultiArmRotorCommand* command) {
-  const BodyState& body = observer_.state();
-  FlareState state;
-  state.height_m = body.position_m.y() - ground_z_m_;
-  state.sink_rate_m_s = -body.velocity_m_s.y();
-  state.tilt_rad = body.phi_rad;
-  state.pitch_rate_rad_s = body.phi_dot_rad_s;
-  // Sinking faster than the descent asks, above the take-off level and within
-  // the flare height; on the ground (no sink) it ends by itself.
-  const bool flare = infeasible_descent && flare_limits_.tilt_budget_rad > 0.0 &&
-                     state.sink_rate_m_s > config_.supervision.descent_rate_m_s && state.height_m > 0.0 &&
-                     state.height_m <= state.sink_rate_m_s * config_.efficiency.flare_time_s;
+  const FlareState state = FlareStateOf(observer_.state(), ground_z_m_);
+  const bool flare =
+      infeasible_descent && InFlareWindow(state, flare_limits_.tilt_budget_rad, config_.supervision.descent_rate_m_s,
+                                          config_.efficiency.flare_time_s);
   if (flare && !degradation_.flaring) ++degradation_.flares;
   degradation_.flaring = flare;
   if (!flare) return false;

@@ -165,9 +165,13 @@ class MultiArmController {
   // integrator wound up against a rotor that could not deliver; the
   // position one otherwise), as VehicleController::DescentTarget.
   ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
-  // The efficiency rotor i is flown with: with spare rotors, hover
-  // feasible, FORCE usable (EstimateUsable) and flagging the rotor below the plausibility floor
-  // (at_floor_samples reports in a row), what those reports average
+  // Hovers other than f_hover keep the vehicle up: spare rotors, or in
+  // mode mpc a tilt (MultiArmLaw::rebalances: the trirotor, whose rotor 2
+  // at 20 % leaves no level hover but one 0.04 rad off level).
+  bool HoldsOtherHovers() const;
+  // The efficiency rotor i is flown with: where other hovers hold
+  // (HoldsOtherHovers), hover feasible, FORCE usable (EstimateUsable) and flagging the rotor
+  // below the plausibility floor (at_floor_samples reports in a row), what those reports average
   // (ForceFloorEvidence::below_floor_mean) instead of the floor; the
   // cascade flies it as making nothing (0: not driven, retired) once they
   // average below spare_retire_scale, until the run of flagged reports

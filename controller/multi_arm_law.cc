@@ -97,7 +97,7 @@ bool MultiArmLaw::LevelPitchesBothWays(const RotorEfficiencies& efficiency) cons
 const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficiency) {
   base_tilt_rad_ = 0.0;
   base_is_hover_ = true;
-  if (!hover_space_.redundant()) return hover_force_n_;
+  if (!hover_space_.redundant()) return tilted_without_spare_ ? LevelOrTiltedBase(efficiency) : hover_force_n_;
   base_is_hover_ = false;
   const double* e = efficiency.data();
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
@@ -119,6 +119,23 @@ const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficie
   }
   base_tilt_rad_ = 0.0;
   base_is_hover_ = true;
+  return hover_force_n_;  // no hover held: the allocator scales it down (the infeasible descent)
+}
+
+const ArmForces<double>& MultiArmLaw::LevelOrTiltedBase(const RotorEfficiencies& efficiency) {
+  const double* e = efficiency.data();
+  if (!hover_space_.tilts() || hover_space_.NearestWithinShares(e, 0.0, feasible_share_, nullptr))
+    return hover_force_n_;
+  // Levelling for a descent (tilt limit 0) holds no tilted hover.
+  const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
+  for (double min_share : {tilted_min_share_, spare_min_share_}) {
+    if (hover_space_.NearestTiltedWithinShares(e, min_share, feasible_share_, max_tilt_rad, &base_force_n_,
+                                               &base_tilt_rad_)) {
+      base_is_hover_ = false;
+      return base_force_n_;
+    }
+  }
+  base_tilt_rad_ = 0.0;
   return hover_force_n_;  // no hover held: the allocator scales it down (the infeasible descent)
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "controller/position_attitude_law.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -21,6 +22,20 @@ RotorAllocation AllocateAttitudeFirst(double total_force_n, double force_differe
   out.force_n[0] = std::clamp(0.5 * (total - difference), 0.0, max1);
   out.force_n[1] = std::clamp(0.5 * (total + difference), 0.0, max2);
   return out;
+}
+
+FlareState FlareStateOf(const BodyState& body, double ground_z_m) {
+  FlareState state;
+  state.height_m = body.position_m.y() - ground_z_m;
+  state.sink_rate_m_s = -body.velocity_m_s.y();
+  state.tilt_rad = body.phi_rad;
+  state.pitch_rate_rad_s = body.phi_dot_rad_s;
+  return state;
+}
+
+bool InFlareWindow(const FlareState& state, double tilt_budget_rad, double descent_rate_m_s, double flare_time_s) {
+  return tilt_budget_rad > 0.0 && state.sink_rate_m_s > descent_rate_m_s && state.height_m > 0.0 &&
+         state.height_m <= state.sink_rate_m_s * flare_time_s;
 }
 
 FlareForces FlareForcesFor(const FlareState& state, const FlareLimits& limits) {

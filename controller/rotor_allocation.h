@@ -29,6 +29,17 @@ struct FlareState {
   double pitch_rate_rad_s = 0.0;  // phi_dot [rad/s]
 };
 
+struct BodyState;
+
+// The flare's state of the observed body above ground_z_m, the take-off
+// level (the first POSE's z) [m].
+FlareState FlareStateOf(const BodyState& body, double ground_z_m);
+// Whether a descent the rotors cannot stop flares now: a tilt budget at
+// all, sinking faster than descent_rate_m_s [m/s], above the take-off
+// level and lower than sink rate x flare_time_s [s]; on the ground (no
+// sink) it ends by itself.
+bool InFlareWindow(const FlareState& state, double tilt_budget_rad, double descent_rate_m_s, double flare_time_s);
+
 struct FlareLimits {
   double tilt_budget_rad = 0.0;                     // |phi| allowed at touchdown [rad]
   double min_time_to_go_s = 0.0;                    // t_go is not taken below this (the motor lag) [s]

@@ -245,16 +245,8 @@ bool VehicleController::Flare(bool infeasible_descent, RotorForces* forces) {
 
 bool VehicleController::ApplyFlare(RotorForces* forces) const {
   const EfficiencyParams& e = config_.efficiency;
-  const BodyState& body = observer_.state();
-  FlareState state;
-  state.height_m = body.position_m.y() - ground_z_m_;
-  state.sink_rate_m_s = -body.velocity_m_s.y();
-  state.tilt_rad = body.phi_rad;
-  state.pitch_rate_rad_s = body.phi_dot_rad_s;
-  // Sinking faster than the descent asks, above the take-off level and within
-  // the flare height; on the ground (no sink) it ends by itself.
-  const bool flare = e.flare_tilt_rad > 0.0 && state.sink_rate_m_s > config_.supervision.descent_rate_m_s &&
-                     state.height_m > 0.0 && state.height_m <= state.sink_rate_m_s * e.flare_time_s;
+  const FlareState state = FlareStateOf(observer_.state(), ground_z_m_);
+  const bool flare = InFlareWindow(state, e.flare_tilt_rad, config_.supervision.descent_rate_m_s, e.flare_time_s);
   if (!flare) return false;
   FlareLimits limits;
   limits.tilt_budget_rad = e.flare_tilt_rad;

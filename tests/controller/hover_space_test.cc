@@ -71,7 +71,44 @@ TEST(HoverSpaceTest, TheBirotorAndTheTrirotorHaveNoneToSpare) {
     // Rotor 1 below its least-norm hover thrust: nothing else holds the vehicle.
     const double share = space.hover_force_n()(0) / kMaxThrustN;
     EXPECT_FALSE(space.NearestWithinShares(Efficiencies(0.9 * share).data(), 0.0, 1.0, &hover_n)) << name;
+    EXPECT_EQ(space.tilts(), std::string(name) == "trirotor") << name;  // fully actuated
+    EXPECT_EQ(space.rebalances(), space.tilts()) << name;
   }
+}
+
+// The trirotor has no rotor to spare but may hover tilted: its thrusts at
+// tilt phi are cos(phi) f_hover + sin(phi) f_lateral, f_lateral = [0,
+// +35.7, -35.7] N (rotors 2 and 3 lean sideways, rotor 1 does not). Rotor 2
+// at 20 % (13.25 N, below its level 14.32 N) hovers 0.04 rad off level;
+// rotor 2 at 5 % or dead needs more than 0.2 rad (dead: 0.39 rad); rotor 1's
+// share barely moves with the tilt (cos only), so rotor 1 at 30 % holds none.
+TEST(HoverSpaceTest, TheTrirotorHoversTiltedWhenRotorTwoCannotHoldItsLevelShare) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  const double weight_n = vehicle.TotalMass() * vehicle.gravity_m_s2;
+  const double max_share = 1.0 / 1.02;
+  std::array<double, kMaxArms> e = Efficiencies(1.0);
+  e[1] = 0.2;
+  ArmForces<double> f;
+  EXPECT_FALSE(space.NearestWithinShares(e.data(), 0.0, max_share, &f));
+  double tilt_rad = 0.0;
+  ASSERT_TRUE(space.NearestTiltedWithinShares(e.data(), 0.1, max_share, 0.2, &f, &tilt_rad));
+  std::printf("trirotor, rotor 2 at 20 %%: tilt %+.3f rad, thrusts %.2f %.2f %.2f N\n", tilt_rad, f(0), f(1), f(2));
+  EXPECT_NEAR(std::fabs(tilt_rad), 0.04, 0.006);
+  EXPECT_LE(f(1), max_share * 0.2 * kMaxThrustN + 1e-9);
+  // cos(phi) W f_hover + sin(phi) [m g, 0, 0] (W f_hover: the rigid rows of
+  // the elastic hover, with the arms' deflection torque).
+  const Eigen::Vector3d wrench = WrenchAllocation(vehicle) * f;
+  const Eigen::Vector3d level = WrenchAllocation(vehicle) * space.hover_force_n();
+  EXPECT_NEAR(wrench(kWrenchFx), level(kWrenchFx) * std::cos(tilt_rad) + weight_n * std::sin(tilt_rad), 1e-6);
+  EXPECT_NEAR(wrench(kWrenchFz), level(kWrenchFz) * std::cos(tilt_rad), 1e-6);
+  EXPECT_NEAR(wrench(kWrenchTorque), level(kWrenchTorque) * std::cos(tilt_rad), 1e-6);
+  for (double weak : {0.05, 0.0}) {
+    e[1] = weak;
+    EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), 0.05, max_share, 0.2, &f, &tilt_rad)) << weak;
+  }
+  e = Efficiencies(0.3);  // rotor 1 at 30 %
+  EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), 0.05, max_share, 0.2, &f, &tilt_rad));
 }
 
 TEST(HoverSpaceTest, TheQuadrotorKeepsItsLeastNormHoverWhileItFits) {

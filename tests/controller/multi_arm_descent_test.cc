@@ -14,6 +14,7 @@
 #include <string>
 
 #include "controller/hover_feasibility.h"
+#include "controller/hover_space.h"
 #include "controller/multi_arm_controller.h"
 #include "model/multi_arm_linearization.h"
 #include "params/vehicle_description_yaml.h"
@@ -107,6 +108,36 @@ TEST(MultiArmFeasibilityTest, TrirotorFeasibleAtFortyPercentInfeasibleAtSeventyA
   in.efficiency[1] = 0.3;
   in.following_force = true;
   EXPECT_EQ(RunOneSecond(&f, in), HoverFeasibility::Phase::kFeasible);
+}
+
+// With the trirotor's hovers (HoverSpace: no spare rotor, but it may hover
+// tilted; MultiArmController passes them in mode mpc only, the cascade
+// keeps the level bounds), rotor 2 at 20 % is below its level bound 0.2205
+// yet feasible (a
+// hover 0.04 rad off level); at 5 %, or at the floor's 0.2 while FORCE
+// reports it below the floor at 0.02, it is not (beyond
+// spare_hover_tilt_rad); rotor 1 at 30 % is not (tilting does not move
+// rotor 1's share).
+TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound) {
+  const VehicleDescription vehicle = Trirotor();
+  const MultiArmHover hover = SolveMultiArmHover(vehicle);
+  const double max_n[3] = {kMaxRotorForceN, kMaxRotorForceN, kMaxRotorForceN};
+  const double hover_n[3] = {hover.force_n(0), hover.force_n(1), hover.force_n(2)};
+  const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), hover.force_n);
+  const auto phase = [&](int rotor, double efficiency, double report) {
+    HoverFeasibility f(EfficiencyParams(), 3, max_n, hover_n, space);
+    FeasibilityInputs in;
+    in.efficiency[rotor] = efficiency;
+    in.below_floor_report[rotor] = report;
+    in.following_force = true;
+    return RunOneSecond(&f, in);
+  };
+  EXPECT_EQ(phase(1, 0.2, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(2, 0.2, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  EXPECT_NE(phase(1, 0.05, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  EXPECT_NE(phase(1, 0.2, 0.02), HoverFeasibility::Phase::kFeasible);
+  EXPECT_NE(phase(0, 0.3, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(0, 0.6, kNaNReport), HoverFeasibility::Phase::kFeasible);
 }
 
 // A VALID trirotor estimate with rotor 1 at scale, flagged when below 1;
