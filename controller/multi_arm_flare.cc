@@ -123,8 +123,10 @@ MultiArmFlareForces MultiArmFlareForcesFor(const FlareState& state, const MultiA
     largest_lateral_n = std::max(largest_lateral_n, std::fabs(limits.lateral[i]) * p.u[i]);
   }
   const double sign = strong_torque_n_m < 0.0 ? -1.0 : 1.0;
-  const double sink_m_s = std::max(state.sink_rate_m_s, 1e-6);
-  out.time_to_go_s = std::max(std::max(state.height_m, 0.0) / sink_m_s, limits.min_time_to_go_s);
+  // A non-finite height or sink counts as on the ground: t_go the motor lag.
+  const double sink_m_s = std::isfinite(state.sink_rate_m_s) ? std::max(state.sink_rate_m_s, 1e-6) : 1e-6;
+  const double height_m = std::isfinite(state.height_m) ? std::max(state.height_m, 0.0) : 0.0;
+  out.time_to_go_s = std::max(height_m / sink_m_s, limits.min_time_to_go_s);
   const double t = std::max(out.time_to_go_s, 1e-6);
   const double tilt_left_rad = limits.tilt_budget_rad - sign * (state.tilt_rad + state.pitch_rate_rad_s * t);
   const double torque_want_n_m = 2.0 * limits.pitch_inertia_kg_m2 * tilt_left_rad / (t * t);

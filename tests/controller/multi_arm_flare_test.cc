@@ -3,12 +3,15 @@
 // trirotor and the quadrotor its thrusts are the linear programme's
 // optimum (no thrust vector within the bounds and the torque row makes
 // more vertical force, checked against random ones), its torque within the
-// budget's, and it makes more vertical force than any level allocation.
+// budget's, and it makes more vertical force than any level allocation;
+// bad input gives finite thrusts within the bounds.
 #include "controller/multi_arm_flare.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -154,6 +157,34 @@ TEST(MultiArmFlareTest, WithTheBudgetSpentItFlaresLevel) {
   EXPECT_GT(flare.vertical_n, level.vertical_n);
   EXPECT_GT(sign * flare.torque_n_m, 0.0);
   EXPECT_DOUBLE_EQ(level.force_n[0], limits.max_force_n[0]);  // the weak rotor at its maximum
+}
+
+// Bad input: a non-finite tilt, rate, height or rotor bound, a negative
+// bound or height: every thrust finite and within [0, u_i] (a non-finite or
+// negative u_i counts as 0), never NaN.
+TEST(MultiArmFlareTest, BadInputGivesFiniteThrustsWithinTheBounds) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 6; ++c) {
+    MultiArmFlareLimits limits = FlareGeometryOf(vehicle, 0.08);
+    for (int i = 0; i < vehicle.arm_count; ++i) limits.max_force_n[i] = 40.0;
+    FlareState state = NearTheGround(0.0, 0.0);
+    if (c == 0) state.tilt_rad = nan;
+    if (c == 1) state.pitch_rate_rad_s = inf;
+    if (c == 2) state.height_m = nan;
+    if (c == 3) state.height_m = -1.0;
+    if (c == 4) limits.max_force_n[1] = nan;
+    if (c == 5) limits.max_force_n[2] = -5.0;
+    const MultiArmFlareForces flare = MultiArmFlareForcesFor(state, limits);
+    for (int i = 0; i < vehicle.arm_count; ++i) {
+      const double bound = std::isfinite(limits.max_force_n[i]) ? std::max(limits.max_force_n[i], 0.0) : 0.0;
+      EXPECT_TRUE(std::isfinite(flare.force_n[i])) << c << " " << i;
+      EXPECT_GE(flare.force_n[i], 0.0) << c << " " << i;
+      EXPECT_LE(flare.force_n[i], bound) << c << " " << i;
+    }
+    EXPECT_TRUE(std::isfinite(flare.time_to_go_s)) << c;
+  }
 }
 
 }  // namespace
