@@ -145,8 +145,10 @@ struct EfficiencyParams {
   // With no level hover within those shares, a fully actuated vehicle with
   // spare rotors may hover tilted up to this (the body balances the lateral
   // force a rotor that makes nothing leaves; HoverSpace::
-  // NearestTiltedWithinShares), and in mode mpc one without a spare rotor
-  // (the trirotor, once no level hover is within [0, 1 / margin]); 0: level
+  // NearestTiltedWithinShares), and one without a spare rotor (the
+  // trirotor, once no level hover is within [0, 1 / margin]): the cascade
+  // with every rotor within [spare_min_share, spare_max_share] (room for its
+  // torque above the weak rotor), mode mpc up to 1 / margin; 0: level
   // hovers only.
   double spare_hover_tilt_rad = 0.2;  // [rad]
   // The cascade's tilted hover keeps every rotor at least this share (when

@@ -27,7 +27,10 @@ HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, double max_ro
 
 HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
                                    const double* hover_force_n, const HoverSpace& space)
-    : params_(params), rotor_count_(std::clamp(rotor_count, 1, kMaxArms)), space_(space) {
+    : params_(params),
+      rotor_count_(std::clamp(rotor_count, 1, kMaxArms)),
+      space_(space),
+      tilted_max_share_(1.0 / params.feasibility_margin) {
   for (int i = 0; i < rotor_count_; ++i) {
     bound_[i] = params.feasibility_margin * hover_force_n[i] / max_rotor_force_n[i];
     hover_speed_ratio_[i] = std::sqrt(hover_force_n[i] / max_rotor_force_n[i]);
@@ -67,9 +70,13 @@ bool HoverFeasibility::HoverHeld(const FeasibilityInputs& in, int weakest) const
   for (int i = 0; i < kMaxArms; ++i) efficiency[i] = Evidence(in, i);
   const double max_share = 1.0 / params_.feasibility_margin;
   // Without a spare rotor the only hovers besides f_hover are the tilted ones.
-  return (space_.redundant() && space_.NearestWithinShares(efficiency, params_.spare_min_share, max_share, nullptr)) ||
-         space_.NearestTiltedWithinShares(efficiency, params_.spare_min_share, max_share, params_.spare_hover_tilt_rad,
-                                          nullptr, nullptr);
+  if (space_.redundant()) {
+    return space_.NearestWithinShares(efficiency, params_.spare_min_share, max_share, nullptr) ||
+           space_.NearestTiltedWithinShares(efficiency, params_.spare_min_share, max_share,
+                                            params_.spare_hover_tilt_rad, nullptr, nullptr);
+  }
+  return space_.NearestTiltedWithinShares(efficiency, params_.spare_min_share, tilted_max_share_,
+                                          params_.spare_hover_tilt_rad, nullptr, nullptr);
 }
 
 int HoverFeasibility::WeakFromSink(const FeasibilityInputs& in) const {

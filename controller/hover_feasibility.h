@@ -71,7 +71,8 @@ class HoverFeasibility {
   // bounds below then only rank the rotors). A fully actuated vehicle
   // without one (space.tilts(): the trirotor) keeps the bounds and is
   // still feasible beyond them while a hover tilted up to
-  // spare_hover_tilt_rad keeps every rotor within those shares.
+  // spare_hover_tilt_rad keeps every rotor within [spare_min_share,
+  // LimitTiltedHoverShare's].
   HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
                    const double* hover_force_n, const HoverSpace& space = HoverSpace());
 
@@ -84,6 +85,10 @@ class HoverFeasibility {
   // Entries into the infeasible phase detected from the vehicle's sink
   // (Cause::kSink) since construction.
   int64_t entries_by_sink() const { return entries_by_sink_; }
+  // Without a spare rotor (the trirotor's space) a tilted hover counts only
+  // with every rotor within max_share (the cascade's spare_max_share: room
+  // for its torque above the weak rotor; 1 / margin until called) [1].
+  void LimitTiltedHoverShare(double max_share) { tilted_max_share_ = max_share; }
   // Latched: the weak rotor (0-based) and its efficiency [1]: while FORCE
   // is usable it follows the efficiency in use (at most its bound; once
   // detected from the sink only downwards), otherwise it holds.
@@ -128,7 +133,8 @@ class HoverFeasibility {
   int weak_rotor_ = 0;
   double weak_efficiency_ = 1.0;
   int64_t entries_by_sink_ = 0;
-  HoverSpace space_;  // the hovers the rotors can hold (spare rotors: more than one)
+  HoverSpace space_;               // the hovers the rotors can hold (spare rotors: more than one)
+  double tilted_max_share_ = 1.0;  // LimitTiltedHoverShare [1]
 };
 
 }  // namespace birotor

@@ -45,12 +45,12 @@ HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const Controll
   }
   const ArmForces<double> hover_n = hover.force_n;
   const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), hover_n);
-  // Without a spare rotor only mode mpc holds a tilted hover (the
-  // cascade's fixed-direction allocation cannot fly a rotor at its bound:
-  // docs/controller.md, "Spare rotors"); the cascade keeps the level bounds.
-  const bool tilted_hovers = space.redundant() || config.model_predictive;
-  return HoverFeasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n,
-                          tilted_hovers ? space : HoverSpace());
+  HoverFeasibility feasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n, space);
+  // Without a spare rotor the cascade's fixed-direction allocation needs
+  // room above the weak rotor (docs/controller.md, "A tilted hover without
+  // a spare rotor"); mode mpc trades the axes up to the bound.
+  if (!config.model_predictive) feasibility.LimitTiltedHoverShare(config.efficiency.spare_max_share);
+  return feasibility;
 }
 
 // Age of a stamp at now_us [s]; infinite before any or from the future.
@@ -73,8 +73,9 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       flare_limits_(FlareGeometryOf(vehicle, config.efficiency.flare_tilt_rad)),
       feasibility_(FeasibilityOf(vehicle, config, hover)),
       last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
+  law_.HoldTiltedHoverWithoutSpare(config.model_predictive ? MultiArmLaw::TiltedHover::kUpToFeasibilityBound
+                                                           : MultiArmLaw::TiltedHover::kWithinMaxShare);
   if (!config.model_predictive) return;
-  law_.HoldTiltedHoverWithoutSpare(true);
   mpc_ = std::make_unique<MultiArmMpc>(vehicle, config.mpc);
   horizon_.resize(static_cast<size_t>(config.mpc.horizon_steps));
   last_sent_rad_s_ = mpc_->rotor_speed_estimate_rad_s();

@@ -20,6 +20,7 @@ MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerPara
       feasible_share_(1.0 / spare.feasibility_margin),
       hover_tilt_limit_rad_(spare.spare_hover_tilt_rad),
       tilted_min_share_(std::max(spare.spare_tilted_min_share, spare.spare_min_share)),
+      tilt_dwell_s_(spare.infeasible_s),
       base_force_n_(hover_force_n_),
       tilt_limit_rad_(gains.max_tilt_rad) {
   for (int i = 0; i < vehicle.arm_count; ++i) {
@@ -97,7 +98,9 @@ bool MultiArmLaw::LevelPitchesBothWays(const RotorEfficiencies& efficiency) cons
 const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficiency) {
   base_tilt_rad_ = 0.0;
   base_is_hover_ = true;
-  if (!hover_space_.redundant()) return tilted_without_spare_ ? LevelOrTiltedBase(efficiency) : hover_force_n_;
+  if (!hover_space_.redundant()) {
+    return tilted_without_spare_ != TiltedHover::kNone ? LevelOrTiltedBase(efficiency) : hover_force_n_;
+  }
   base_is_hover_ = false;
   const double* e = efficiency.data();
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
@@ -124,12 +127,24 @@ const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficie
 
 const ArmForces<double>& MultiArmLaw::LevelOrTiltedBase(const RotorEfficiencies& efficiency) {
   const double* e = efficiency.data();
-  if (!hover_space_.tilts() || hover_space_.NearestWithinShares(e, 0.0, feasible_share_, nullptr))
+  if (!hover_space_.tilts() || hover_space_.NearestWithinShares(e, 0.0, feasible_share_, nullptr)) {
+    level_out_of_reach_s_ = 0.0;
     return hover_force_n_;
+  }
+  // The cascade tilts once the level hover has been out of reach for
+  // infeasible_s: a dying rotor passes through the tilted hovers in that
+  // time and its descent starts level (the trirotor, rotor 3 dead: peak
+  // tilt 0.50-0.57 rad without the dwell, docs/controller.md).
+  level_out_of_reach_s_ += dt_s_;
+  if (tilted_without_spare_ == TiltedHover::kWithinMaxShare && level_out_of_reach_s_ < tilt_dwell_s_) {
+    return hover_force_n_;
+  }
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
   const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
+  const double max_share =
+      tilted_without_spare_ == TiltedHover::kUpToFeasibilityBound ? feasible_share_ : spare_max_share_;
   for (double min_share : {tilted_min_share_, spare_min_share_}) {
-    if (hover_space_.NearestTiltedWithinShares(e, min_share, feasible_share_, max_tilt_rad, &base_force_n_,
+    if (hover_space_.NearestTiltedWithinShares(e, min_share, max_share, max_tilt_rad, &base_force_n_,
                                                &base_tilt_rad_)) {
       base_is_hover_ = false;
       return base_force_n_;

@@ -70,11 +70,15 @@ class MultiArmLaw {
   // then hold it level and tilt to move. [rad/s^2]
   static constexpr double kPitchProbeRadS2 = 1.0;
   bool LevelPitchesBothWays(const RotorEfficiencies& efficiency) const;
-  // Without a spare rotor, a fully actuated vehicle's base is a tilted
-  // hover when no level one is within [0, 1 / margin] (LevelOrTiltedBase):
-  // mode mpc plans about it (off by default: the cascade's fixed-direction
-  // allocation cannot fly a rotor at its bound, docs/controller.md).
-  void HoldTiltedHoverWithoutSpare(bool hold) { tilted_without_spare_ = hold; }
+  // Without a spare rotor, whether a fully actuated vehicle's base may be
+  // a tilted hover when no level one is within [0, 1 / margin]
+  // (LevelOrTiltedBase), and with every rotor within what share of what it
+  // makes: the cascade's within spare_max_share (room above the weak rotor
+  // for its fixed-direction torque and F_x: with the weak rotor at
+  // 1 / margin the tilt ran away, docs/controller.md); mode mpc's, which
+  // trades the axes within the bounds, within 1 / margin. kNone: level only.
+  enum class TiltedHover { kNone, kWithinMaxShare, kUpToFeasibilityBound };
+  void HoldTiltedHoverWithoutSpare(TiltedHover hold) { tilted_without_spare_ = hold; }
   // Rotors beyond the controlled axes (HoverSpace::spare_rotors; 1 on the quadrotor).
   int spare_rotors() const { return hover_space_.spare_rotors(); }
   // The hover may move off f_hover: spare rotors or a tilt (HoverSpace::rebalances).
@@ -110,23 +114,27 @@ class MultiArmLaw {
   // HoverBase without a spare rotor (HoldTiltedHoverWithoutSpare): f_hover
   // while it lies within [0, 1 / margin] x e_i c_T,i omega_max^2 (the
   // feasibility bound); else the least-tilted hover within
-  // [spare_tilted_min_share, 1 / margin], else within [spare_min_share,
-  // 1 / margin], up to spare_hover_tilt_rad and the tilt limit (the
-  // trirotor with rotor 2 at 20 %: 0.04 rad); else f_hover (the descent).
+  // [spare_tilted_min_share, max], else within [spare_min_share, max], max
+  // spare_max_share (kWithinMaxShare) or 1 / margin
+  // (kUpToFeasibilityBound), up to spare_hover_tilt_rad and the tilt limit
+  // (the trirotor with rotor 2 at 20 %: 0.11 / 0.04 rad); else f_hover (the
+  // descent).
   const ArmForces<double>& LevelOrTiltedBase(const RotorEfficiencies& efficiency);
 
   ArmForces<double> hover_force_n_;
   WrenchAllocator allocator_;
   HoverSpace hover_space_;
-  double spare_min_share_;             // [1]
-  double spare_max_share_;             // [1]
-  double feasible_share_;              // 1 / feasibility_margin [1]
-  double hover_tilt_limit_rad_;        // spare_hover_tilt_rad [rad]
-  double tilted_min_share_;            // max(spare_tilted_min_share, spare_min_share) [1]
-  double base_tilt_rad_ = 0.0;         // the tilt HoverBase's hover is held at (fully actuated: phi_des) [rad]
-  ArmForces<double> base_force_n_;     // HoverBase's answer [N], unless it was f_hover
-  bool base_is_hover_ = true;          // HoverBase answered f_hover
-  bool tilted_without_spare_ = false;  // HoldTiltedHoverWithoutSpare
+  double spare_min_share_;          // [1]
+  double spare_max_share_;          // [1]
+  double feasible_share_;           // 1 / feasibility_margin [1]
+  double hover_tilt_limit_rad_;     // spare_hover_tilt_rad [rad]
+  double tilted_min_share_;         // max(spare_tilted_min_share, spare_min_share) [1]
+  double base_tilt_rad_ = 0.0;      // the tilt HoverBase's hover is held at (fully actuated: phi_des) [rad]
+  ArmForces<double> base_force_n_;  // HoverBase's answer [N], unless it was f_hover
+  bool base_is_hover_ = true;       // HoverBase answered f_hover
+  TiltedHover tilted_without_spare_ = TiltedHover::kNone;  // HoldTiltedHoverWithoutSpare
+  double tilt_dwell_s_;                // infeasible_s: the cascade's level hover out of reach this long first [s]
+  double level_out_of_reach_s_ = 0.0;  // how long LevelOrTiltedBase has found no level hover [s]
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]
   double tilt_integral_rad_s_ = 0.0;                                 // int(e_phi) [rad s]
   double tilt_limit_rad_;                                            // LimitTilt [rad]

@@ -103,6 +103,12 @@ TEST(HoverSpaceTest, TheTrirotorHoversTiltedWhenRotorTwoCannotHoldItsLevelShare)
   EXPECT_NEAR(wrench(kWrenchFx), level(kWrenchFx) * std::cos(tilt_rad) + weight_n * std::sin(tilt_rad), 1e-6);
   EXPECT_NEAR(wrench(kWrenchFz), level(kWrenchFz) * std::cos(tilt_rad), 1e-6);
   EXPECT_NEAR(wrench(kWrenchTorque), level(kWrenchTorque) * std::cos(tilt_rad), 1e-6);
+  // The cascade's box (spare_max_share 0.8: room above rotor 2 for its torque) tilts further.
+  ASSERT_TRUE(space.NearestTiltedWithinShares(e.data(), 0.1, 0.8, 0.2, &f, &tilt_rad));
+  std::printf("trirotor, rotor 2 at 20 %%, within 0.8: tilt %+.3f rad, thrusts %.2f %.2f %.2f N\n", tilt_rad, f(0),
+              f(1), f(2));
+  EXPECT_NEAR(std::fabs(tilt_rad), 0.11, 0.006);
+  EXPECT_LE(f(1), 0.8 * 0.2 * kMaxThrustN + 1e-9);
   for (double weak : {0.05, 0.0}) {
     e[1] = weak;
     EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), 0.05, max_share, 0.2, &f, &tilt_rad)) << weak;

@@ -111,21 +111,24 @@ TEST(MultiArmFeasibilityTest, TrirotorFeasibleAtFortyPercentInfeasibleAtSeventyA
 }
 
 // With the trirotor's hovers (HoverSpace: no spare rotor, but it may hover
-// tilted; MultiArmController passes them in mode mpc only, the cascade
-// keeps the level bounds), rotor 2 at 20 % is below its level bound 0.2205
-// yet feasible (a
+// tilted), rotor 2 at 20 % is below its level bound 0.2205 yet feasible (a
 // hover 0.04 rad off level); at 5 %, or at the floor's 0.2 while FORCE
 // reports it below the floor at 0.02, it is not (beyond
 // spare_hover_tilt_rad); rotor 1 at 30 % is not (tilting does not move
-// rotor 1's share).
+// rotor 1's share). The cascade's check (LimitTiltedHoverShare(
+// spare_max_share): room above the weak rotor) still holds rotor 2 and 3
+// at 20 % (0.11 rad), not at 12 % (beyond spare_hover_tilt_rad), which
+// mode mpc's holds up to 1 / margin.
 TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound) {
   const VehicleDescription vehicle = Trirotor();
   const MultiArmHover hover = SolveMultiArmHover(vehicle);
   const double max_n[3] = {kMaxRotorForceN, kMaxRotorForceN, kMaxRotorForceN};
   const double hover_n[3] = {hover.force_n(0), hover.force_n(1), hover.force_n(2)};
   const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), hover.force_n);
-  const auto phase = [&](int rotor, double efficiency, double report) {
+  const auto phase = [&](int rotor, double efficiency, double report,
+                         double max_share = 1.0 / EfficiencyParams().feasibility_margin) {
     HoverFeasibility f(EfficiencyParams(), 3, max_n, hover_n, space);
+    f.LimitTiltedHoverShare(max_share);
     FeasibilityInputs in;
     in.efficiency[rotor] = efficiency;
     in.below_floor_report[rotor] = report;
@@ -138,6 +141,12 @@ TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound)
   EXPECT_NE(phase(1, 0.2, 0.02), HoverFeasibility::Phase::kFeasible);
   EXPECT_NE(phase(0, 0.3, kNaNReport), HoverFeasibility::Phase::kFeasible);
   EXPECT_EQ(phase(0, 0.6, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  const double cascade_share = EfficiencyParams().spare_max_share;
+  EXPECT_EQ(phase(1, 0.2, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(2, 0.2, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_NE(phase(1, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_NE(phase(2, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(1, 0.12, kNaNReport), HoverFeasibility::Phase::kFeasible);
 }
 
 // A VALID trirotor estimate with rotor 1 at scale, flagged when below 1;

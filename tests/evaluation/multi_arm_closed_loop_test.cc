@@ -350,35 +350,59 @@ TEST(MultiArmClosedLoopTest, TrirotorWithADeadRotorDescendsOrMpcHoldsIt) {
 }
 
 // The trirotor loses 80 % on rotor 2 at 5 s: its level hover asks rotor 2
-// for 14.32 N, more than its 13.25 N, but a hover 0.04 rad off level asks
-// 12.9 N (controller/hover_space.h). Mode mpc on the N-arm estimate holds
-// it and plans about it (MultiArmLaw::HoldTiltedHoverWithoutSpare): no
-// descent, altitude deviation measured 0.0073 m, RMS 0.049 m (birotor-eval
-// --vehicle config/vehicles/trirotor.yaml --control --scenarios
-// descent80_rotor2, seed 1); the MPC on the nominal map on the same seed
-// 0.0195 m, RMS 0.048 m; before, force feedback descended to the ground
-// (touchdown 1.17 m/s). The cascade still descends (its fixed-direction
-// allocation cannot fly rotor 2 at its bound: docs/controller.md).
-TEST(MultiArmClosedLoopTest, TrirotorMpcHoldsATiltedHoverWithRotorTwoAtTwentyPercent) {
+// for 14.32 N, more than its 13.25 N, but a tilted hover asks less
+// (controller/hover_space.h). Force feedback on the N-arm estimate holds
+// one instead of descending (before: touchdown 1.17-1.21 m/s):
+// - mode mpc plans about the least-tilted one (0.04 rad, rotor 2 at
+//   1 / margin): altitude deviation measured 0.0073 m, RMS 0.051 m; the
+//   MPC on the nominal map 0.0195 m, RMS 0.048 m;
+// - the cascade, whose fixed-direction allocation needs room above rotor
+//   2, holds the one with rotor 2 at spare_max_share (0.11 rad), once the
+//   level hover has been out of reach for infeasible_s: measured 0.093 m,
+//   RMS 0.027 m, tilt 0.194 rad; the cascade on the nominal map 0.483 m,
+//   RMS 0.380 m
+// (birotor-eval --vehicle config/vehicles/trirotor.yaml --control
+// --scenarios descent80_rotor2, seed 1).
+TEST(MultiArmClosedLoopTest, TrirotorHoldsATiltedHoverWithRotorTwoAtTwentyPercent) {
   const VehicleDescription vehicle = Vehicle("trirotor");
   const Scenario scenario = ClimbThenLoss(vehicle, 2, 0.2, 1);
-  const MultiArmClosedLoopRun run =
-      FlyOnTheEstimate(vehicle, scenario, EfficiencyParams().spare_hover_tilt_rad, /*model_predictive=*/true);
-  ControllerConfig nominal_config = Nominal();
-  nominal_config.model_predictive = true;
-  const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, nominal_config);
+  for (bool mpc : {false, true}) {
+    const MultiArmClosedLoopRun run =
+        FlyOnTheEstimate(vehicle, scenario, EfficiencyParams().spare_hover_tilt_rad, /*model_predictive=*/mpc);
+    ControllerConfig nominal_config = Nominal();
+    nominal_config.model_predictive = mpc;
+    const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, nominal_config);
+    const MultiArmFlightFigures f = FiguresOf(run, kBandM);
+    const MultiArmFlightFigures n = FiguresOf(nominal, kBandM);
+    std::printf(
+        "trirotor, rotor 2 at 20 %%, %s: altitude deviation %.4f m (nominal map %.4f), RMS %.3f m (%.3f), "
+        "max tilt %.3f rad, descents %lld\n",
+        mpc ? "mode mpc" : "cascade", f.max_altitude_deviation_m, n.max_altitude_deviation_m, f.rms_position_error_m,
+        n.rms_position_error_m, f.max_tilt_rad, static_cast<long long>(run.degradation.descents));
+    EXPECT_EQ(run.degradation.descents, 0) << mpc;
+    EXPECT_FALSE(run.degradation.hover_infeasible) << mpc;
+    EXPECT_LT(f.max_altitude_deviation_m, mpc ? 0.02 : 0.15) << mpc;
+    EXPECT_LT(f.max_altitude_deviation_m, (mpc ? 1.0 : 0.5) * n.max_altitude_deviation_m) << mpc;
+    EXPECT_LT(f.rms_position_error_m, 0.1) << mpc;
+    EXPECT_EQ(run.commands_out_of_bounds, 0) << mpc;
+  }
+}
+
+// The cascade on rotor 3 at 20 %, seed 2: the same tilted hover (the other
+// way) holds it, measured altitude deviation 0.077 m; the nominal map's
+// cascade falls 3.86 m and touches the take-off level at 1.14 m/s.
+TEST(MultiArmClosedLoopTest, TrirotorCascadeHoldsRotorThreeAtTwentyPercent) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const Scenario scenario = ClimbThenLoss(vehicle, 3, 0.2, 2);
+  const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
+  const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
   const MultiArmFlightFigures f = FiguresOf(run, kBandM);
   const MultiArmFlightFigures n = FiguresOf(nominal, kBandM);
-  std::printf(
-      "trirotor, rotor 2 at 20 %%, mode mpc: altitude deviation %.4f m (nominal map %.4f), RMS %.3f m (%.3f), "
-      "max tilt %.3f rad, descents %lld\n",
-      f.max_altitude_deviation_m, n.max_altitude_deviation_m, f.rms_position_error_m, n.rms_position_error_m,
-      f.max_tilt_rad, static_cast<long long>(run.degradation.descents));
+  std::printf("trirotor, rotor 3 at 20 %%, cascade: altitude deviation %.4f m (nominal map %.3f), max tilt %.3f rad\n",
+              f.max_altitude_deviation_m, n.max_altitude_deviation_m, f.max_tilt_rad);
   EXPECT_EQ(run.degradation.descents, 0);
-  EXPECT_FALSE(run.degradation.hover_infeasible);
-  EXPECT_LT(f.max_altitude_deviation_m, 0.02);
-  EXPECT_LE(f.max_altitude_deviation_m, n.max_altitude_deviation_m);
-  EXPECT_LT(f.rms_position_error_m, 0.1);
+  EXPECT_LT(f.max_altitude_deviation_m, 0.15);
+  EXPECT_GT(n.max_altitude_deviation_m, 1.0);
   EXPECT_EQ(run.commands_out_of_bounds, 0);
 }
 
