@@ -150,7 +150,7 @@ struct EfficiencyParams {
   // with every rotor within [spare_min_share, spare_max_share] (room for its
   // torque above the weak rotor), mode mpc up to 1 / margin; 0: level
   // hovers only.
-  double spare_hover_tilt_rad = 0.2;  // [rad]
+  double spare_hover_tilt_rad = 0.25;  // [rad]
   // The cascade's tilted hover keeps every rotor at least this share (when
   // one within spare_hover_tilt_rad does, else spare_min_share): the rotor
   // whose lateral thrust the tilt balances is the only one that can give

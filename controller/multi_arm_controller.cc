@@ -73,6 +73,10 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       flare_limits_(FlareGeometryOf(vehicle, config.efficiency.flare_tilt_rad)),
       feasibility_(FeasibilityOf(vehicle, config, hover)),
       last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
+  // Re-solving around a rotor's bound needs the bound: force feedback's
+  // e_i c_T,i omega_max^2 (the nominal map believes a weak rotor whole and
+  // keeps the fixed directions; docs/controller.md, "Saturation").
+  law_.RedistributeAtBounds(config.force_feedback);
   law_.HoldTiltedHoverWithoutSpare(config.model_predictive ? MultiArmLaw::TiltedHover::kUpToFeasibilityBound
                                                            : MultiArmLaw::TiltedHover::kWithinMaxShare);
   if (!config.model_predictive) return;
@@ -174,9 +178,7 @@ RotorEfficiencies MultiArmController::EfficiencyInUse() const {
   return efficiency;
 }
 
-bool MultiArmController::HoldsOtherHovers() const {
-  return law_.spare_rotors() > 0 || (config_.model_predictive && law_.rebalances());
-}
+bool MultiArmController::HoldsOtherHovers() const { return law_.spare_rotors() > 0 || law_.rebalances(); }
 
 bool MultiArmController::MpcPlansTilted(const RotorEfficiencies& efficiency) const {
   if (law_.base_tilt_rad() == 0.0) return false;

@@ -165,9 +165,9 @@ class MultiArmController {
   // integrator wound up against a rotor that could not deliver; the
   // position one otherwise), as VehicleController::DescentTarget.
   ReferencePoint DescentTarget(const ReferencePoint& reference, bool pose_lost, bool infeasible);
-  // Hovers other than f_hover keep the vehicle up: spare rotors, or in
-  // mode mpc a tilt (MultiArmLaw::rebalances: the trirotor, whose rotor 2
-  // at 20 % leaves no level hover but one 0.04 rad off level).
+  // Hovers other than f_hover keep the vehicle up: spare rotors, or a tilt
+  // (MultiArmLaw::rebalances: the trirotor, whose rotor 2 at 20 % leaves no
+  // level hover but one 0.04 rad off level, 0.11 rad for the cascade).
   bool HoldsOtherHovers() const;
   // The efficiency rotor i is flown with: where other hovers hold
   // (HoldsOtherHovers), hover feasible, FORCE usable (EstimateUsable) and flagging the rotor

@@ -20,8 +20,8 @@ MultiArmLaw::MultiArmLaw(const VehicleDescription& vehicle, const ControllerPara
       feasible_share_(1.0 / spare.feasibility_margin),
       hover_tilt_limit_rad_(spare.spare_hover_tilt_rad),
       tilted_min_share_(std::max(spare.spare_tilted_min_share, spare.spare_min_share)),
-      tilt_dwell_s_(spare.infeasible_s),
       base_force_n_(hover_force_n_),
+      tilt_dwell_s_(spare.infeasible_s),
       tilt_limit_rad_(gains.max_tilt_rad) {
   for (int i = 0; i < vehicle.arm_count; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];

@@ -54,6 +54,10 @@ class MultiArmLaw {
   // would make (0 while levelling).
   void LimitTilt(double max_tilt_rad) { tilt_limit_rad_ = std::min(max_tilt_rad, gains_.max_tilt_rad); }
 
+  // WrenchAllocator::RedistributeAtBounds (the product's controller; the
+  // simulator's autopilot keeps the fixed directions).
+  void RedistributeAtBounds(bool on) { allocator_.RedistributeAtBounds(on); }
+
   MultiArmControlMode mode() const { return allocator_.mode(); }
   const WrenchAllocator& allocator() const { return allocator_; }
   // The world acceleration the outer loop asked for in the last period [m/s^2].

@@ -68,17 +68,67 @@ const WrenchAllocator::Pseudoinverse& WrenchAllocator::InverseFor(const ArmForce
   return *weighted;
 }
 
-bool WrenchAllocator::AddAxis(const Pseudoinverse& inverse, int axis, double wrench_change,
-                              const ArmForces<double>& max_force_n, ArmForces<double>* force_n) const {
-  ArmForces<double>& f = *force_n;
+namespace {
+
+// The largest s in [0, 1] with 0 <= f_i + s change_i <= max_i on every
+// rotor, and the rotor that sets it (-1 when s = 1).
+double StepWithinBounds(const ArmForces<double>& f, const ArmForces<double>& change, const ArmForces<double>& max_n,
+                        int* limiting) {
   double scale = 1.0;
-  for (int i = 0; i < rotor_count_; ++i) {
-    const double change = inverse(i, axis) * wrench_change;
-    if (f(i) + change > max_force_n(i)) scale = std::min(scale, std::max(0.0, (max_force_n(i) - f(i)) / change));
-    if (f(i) + change < 0.0) scale = std::min(scale, std::max(0.0, -f(i) / change));
+  *limiting = -1;
+  for (int i = 0; i < f.size(); ++i) {
+    double fits = 1.0;
+    if (f(i) + change(i) > max_n(i)) fits = std::max(0.0, (max_n(i) - f(i)) / change(i));
+    if (f(i) + change(i) < 0.0) fits = std::max(0.0, -f(i) / change(i));
+    if (fits < scale) {
+      scale = fits;
+      *limiting = i;
+    }
   }
-  f += (scale * wrench_change) * inverse.col(axis);
-  return scale < 1.0;
+  return scale;
+}
+
+}  // namespace
+
+double WrenchAllocator::AddAxis(const Pseudoinverse& inverse, int axis, double wrench_change,
+                                const ArmForces<double>& max_force_n, ArmForces<double>* force_n, int* limiting) const {
+  const ArmForces<double> change = inverse.col(axis) * wrench_change;
+  const double scale = StepWithinBounds(*force_n, change, max_force_n, limiting);
+  *force_n += (scale * wrench_change) * inverse.col(axis);
+  return scale;
+}
+
+double WrenchAllocator::RedistributeAxis(int stage, double wrench_change, int first_held,
+                                         const ArmForces<double>& max_force_n, ArmForces<double>* force_n) const {
+  using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kWrenchSize, kMaxArms>;
+  using Gram = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kWrenchSize, kWrenchSize>;
+  const int rows = stage + 1;
+  std::array<bool, kMaxArms> held{};
+  held[static_cast<size_t>(first_held)] = true;
+  double remaining = wrench_change;
+  for (int round = 0; round < rotor_count_ && remaining != 0.0; ++round) {
+    // W_RF C on the free rotors (held ones: zero columns, so they keep their thrust).
+    Rows weighted = Rows::Zero(rows, rotor_count_);
+    for (int i = 0; i < rotor_count_; ++i) {
+      if (held[static_cast<size_t>(i)]) continue;
+      for (int r = 0; r < rows; ++r) weighted(r, i) = allocation_(kAxisOrder[r], i) * max_force_n(i);
+    }
+    Rows free_rows(rows, rotor_count_);
+    for (int r = 0; r < rows; ++r) free_rows.row(r) = allocation_.row(kAxisOrder[r]);
+    const Gram gram = free_rows * weighted.transpose();
+    const Eigen::FullPivLU<Gram> lu(gram);
+    if (lu.rank() < rows) break;  // the free rotors cannot move this axis alone
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kWrenchSize, 1> unit = Eigen::VectorXd::Zero(rows);
+    unit(stage) = remaining;
+    const ArmForces<double> change = weighted.transpose() * lu.solve(unit);
+    int limiting = -1;
+    const double scale = StepWithinBounds(*force_n, change, max_force_n, &limiting);
+    *force_n += scale * change;
+    remaining *= 1.0 - scale;
+    if (limiting < 0) break;
+    held[static_cast<size_t>(limiting)] = true;
+  }
+  return wrench_change - remaining;
 }
 
 double WrenchAllocator::BaseFraction(const Pseudoinverse& inverse, const ArmForces<double>& base_force_n,
@@ -140,8 +190,21 @@ MultiArmRotorCommand WrenchAllocator::Allocate(const ArmForces<double>& base_for
     force_n *= lambda;
     saturated = true;
   }
-  for (int axis : {kWrenchTorque, kWrenchFz, kWrenchFx}) {
-    saturated |= AddAxis(inverse, axis, change_n(axis), max_force_n, &force_n);
+  // W f_base + dw: what every axis asks for once one was redistributed.
+  const Eigen::Vector3d wanted_n = allocation_ * base_force_n + wrench_change_n;
+  bool redistributed = false;
+  for (int stage = 0; stage < kWrenchSize; ++stage) {
+    const int axis = kAxisOrder[stage];
+    if (axis < first_controlled_row_) continue;
+    const double wanted_change = redistributed ? wanted_n(axis) - allocation_.row(axis).dot(force_n) : change_n(axis);
+    int limiting = -1;
+    const double scale = AddAxis(inverse, axis, wanted_change, max_force_n, &force_n, &limiting);
+    saturated |= scale < 1.0;
+    // F_x is the one that gives way: it is not re-solved (a lateral step
+    // asks more of it than the rotors make, and it would cost tilt).
+    if (scale < 1.0 && redistribute_ && limiting >= 0 && axis != kWrenchFx) {
+      redistributed |= RedistributeAxis(stage, (1.0 - scale) * wanted_change, limiting, max_force_n, &force_n) != 0.0;
+    }
   }
   MultiArmRotorCommand command;
   for (int i = 0; i < rotor_count_; ++i) {

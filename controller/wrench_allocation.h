@@ -72,9 +72,24 @@ class WrenchAllocator {
   // (0.11 rad with it, docs/controller.md). Speeds omega_i = sqrt(f_i / (e_i c_T,i)) clipped to [0, omega_max].
   // Why this order: the torque keeps the attitude (losing it loses every
   // axis), F_z keeps the altitude, F_x only moves sideways. saturated: some
-  // s < 1 or a clamp.
+  // s < 1 or a clamp. With RedistributeAtBounds, the torque or F_z stopped
+  // short is finished on the other rotors (RedistributeAxis), and every axis
+  // after it then asks for what the wrench still lacks, W f against
+  // W f_base + dw.
+  static constexpr int kAxisOrder[kWrenchSize] = {kWrenchTorque, kWrenchFz, kWrenchFx};
   MultiArmRotorCommand Allocate(const ArmForces<double>& base_force_n, const Eigen::Vector3d& wrench_change_n,
                                 const RotorEfficiencies& efficiency) const;
+
+  // Fully actuated only (off by default: the simulator's autopilot keeps
+  // the fixed directions): when a rotor's bound stops the torque's or
+  // F_z's increment short (s < 1), the rest of it is re-solved on the other
+  // rotors, keeping the axes before it in the priority order as they are
+  // (RedistributeAxis); F_x, the axis that gives way, is not. A trirotor hovering tilted with its weak rotor at
+  // its bound then still makes the torque on the other two, giving up F_x
+  // instead: along the fixed direction the torque needed the weak rotor
+  // too, so none was made and the tilt ran away (docs/controller.md).
+  void RedistributeAtBounds(bool on) { redistribute_ = on && mode_ == MultiArmControlMode::kFullyActuated; }
+  bool redistributes() const { return redistribute_; }
 
   MultiArmControlMode mode() const { return mode_; }
   int rotor_count() const { return rotor_count_; }
@@ -92,9 +107,20 @@ class WrenchAllocator {
   double BaseFraction(const Pseudoinverse& inverse, const ArmForces<double>& base_force_n, double torque_change_n_m,
                       const ArmForces<double>& max_force_n) const;
   // f += s P(:, axis) dw(axis), s in [0, 1] the largest that keeps f in
-  // [0, max_force_n]; returns true when s < 1.
-  bool AddAxis(const Pseudoinverse& inverse, int axis, double wrench_change, const ArmForces<double>& max_force_n,
-               ArmForces<double>* force_n) const;
+  // [0, max_force_n]; returns s (1: all of it), and in *limiting the rotor
+  // whose bound set s (-1 when s = 1).
+  double AddAxis(const Pseudoinverse& inverse, int axis, double wrench_change, const ArmForces<double>& max_force_n,
+                 ArmForces<double>* force_n, int* limiting) const;
+  // The rest of axis kAxisOrder[stage]'s increment, wrench_change [N or N m],
+  // on the rotors not held at a bound: d = C W_RF^T (W_RF C W_RF^T)^-1 e,
+  // W_RF the allocation's rows of the axes kAxisOrder[0..stage] on the free
+  // rotors, e the unit change of this axis (the axes before it unchanged),
+  // C = diag(max_force_n); f += s wrench_change d with the largest s in
+  // [0, 1] within the bounds, the rotor that stops it held, repeated while
+  // the free rotors are at least the rows. first_held: the rotor that
+  // stopped the fixed direction. Returns the part of wrench_change made.
+  double RedistributeAxis(int stage, double wrench_change, int first_held, const ArmForces<double>& max_force_n,
+                          ArmForces<double>* force_n) const;
   // P, or with spare rotors and some e_i != 1 the capacity-weighted
   // inverse (in *weighted): C W_r^T (W_r C W_r^T)^-1, C = diag(max_force_n).
   const Pseudoinverse& InverseFor(const ArmForces<double>& max_force_n, Pseudoinverse* weighted) const;
@@ -108,6 +134,7 @@ class WrenchAllocator {
   AllocationMatrix allocation_;  // W: thrusts to the body wrench [F_x, F_z, tau]
   int first_controlled_row_;     // kWrenchFx (fully actuated) or kWrenchFz
   int spare_rotors_;             // N minus the controlled rows (0: P is W_r's inverse)
+  bool redistribute_ = false;    // RedistributeAtBounds
 };
 
 }  // namespace birotor

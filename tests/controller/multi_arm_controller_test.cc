@@ -378,6 +378,17 @@ TEST(MultiArmControllerTest, NoAllocationPerCall) {
     controller.Update(now_us, reference);
   }
   EXPECT_EQ(allocations.load() - before, 0);
+  // The re-solve at a bound (WrenchAllocator::RedistributeAtBounds) too:
+  // rotor 2 at its hover thrust's bound, a torque and lift it cannot help.
+  WrenchAllocator allocator(vehicle, MultiArmControlMode::kFullyActuated);
+  allocator.RedistributeAtBounds(true);
+  const ArmForces<double> hover_n = SolveMultiArmHover(vehicle).force_n;
+  RotorEfficiencies weak = NominalEfficiencies();
+  weak[1] = hover_n(1) / (vehicle.arms[1].thrust_coeff_n_s2_rad2 * vehicle.omega_max_rad_s * vehicle.omega_max_rad_s);
+  const long before_resolve = allocations.load();
+  const MultiArmRotorCommand resolved = allocator.Allocate(hover_n, Eigen::Vector3d(0.0, 5.0, 2.0), weak);
+  EXPECT_EQ(allocations.load() - before_resolve, 0);
+  EXPECT_TRUE(resolved.saturated);
   // The counter does see an allocation.
   const long after = allocations.load();
   std::string text(100, 'x');

@@ -117,8 +117,8 @@ TEST(MultiArmFeasibilityTest, TrirotorFeasibleAtFortyPercentInfeasibleAtSeventyA
 // spare_hover_tilt_rad); rotor 1 at 30 % is not (tilting does not move
 // rotor 1's share). The cascade's check (LimitTiltedHoverShare(
 // spare_max_share): room above the weak rotor) still holds rotor 2 and 3
-// at 20 % (0.11 rad), not at 12 % (beyond spare_hover_tilt_rad), which
-// mode mpc's holds up to 1 / margin.
+// at 20 % (0.11 rad) and 12 % (0.22 rad), not at 8.5 % (beyond
+// spare_hover_tilt_rad, 0.25 rad), which mode mpc's holds up to 1 / margin.
 TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound) {
   const VehicleDescription vehicle = Trirotor();
   const MultiArmHover hover = SolveMultiArmHover(vehicle);
@@ -144,9 +144,10 @@ TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound)
   const double cascade_share = EfficiencyParams().spare_max_share;
   EXPECT_EQ(phase(1, 0.2, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
   EXPECT_EQ(phase(2, 0.2, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
-  EXPECT_NE(phase(1, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
-  EXPECT_NE(phase(2, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
-  EXPECT_EQ(phase(1, 0.12, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(1, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(2, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_NE(phase(1, 0.085, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
+  EXPECT_EQ(phase(1, 0.085, kNaNReport), HoverFeasibility::Phase::kFeasible);
 }
 
 // A VALID trirotor estimate with rotor 1 at scale, flagged when below 1;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -105,6 +106,70 @@ TEST(WrenchAllocationTest, EfficiencySetsTheBoundAndTheSpeed) {
   EXPECT_NEAR(weak.omega_cmd_rad_s[0], 1200.0, 1e-6);
   EXPECT_NEAR(MadeWrench(vehicle, weak, base_n)(kWrenchFz) / 30.0, 0.699, 0.002);
   EXPECT_NEAR(weak.omega_cmd_rad_s[1], std::sqrt(weak.force_n[1] / 4.6e-5), 1e-9);
+}
+
+// The trirotor's hover thrusts and its allocation along the fixed
+// directions and with the re-solve at a bound (RedistributeAtBounds).
+class WrenchRedistributionTest : public ::testing::Test {
+ protected:
+  WrenchRedistributionTest() { allocator.RedistributeAtBounds(true); }
+  const VehicleDescription vehicle = Trirotor();
+  const ArmForces<double> base_n = SolveMultiArmHover(vehicle).force_n;
+  const WrenchAllocator fixed{vehicle, MultiArmControlMode::kFullyActuated};
+  WrenchAllocator allocator{vehicle, MultiArmControlMode::kFullyActuated};
+};
+
+// RedistributeAtBounds: F_z = +10 N with rotor 2 1 N below its bound
+// stops the fixed direction short; the rest goes to rotors 1 and 3 with the
+// torque kept (rotors 2 and 3 alone could not: their levers and lift are
+// alike), so F_z and the torque come back exactly and F_x gives way. With
+// rotor 1 at its bound nothing is redistributed for the same reason, and
+// within the bounds the answer is the fixed direction's, bit for bit.
+TEST_F(WrenchRedistributionTest, FinishesLiftOnTheOtherRotors) {
+  ASSERT_TRUE(allocator.redistributes());
+  const Eigen::Vector3d feasible(2.0, 3.0, 0.5);
+  const MultiArmRotorCommand same = allocator.Allocate(base_n, feasible, NominalEfficiencies());
+  const MultiArmRotorCommand reference = fixed.Allocate(base_n, feasible, NominalEfficiencies());
+  for (size_t r = 0; r < 3; ++r) EXPECT_EQ(same.force_n[r], reference.force_n[r]) << r;
+  RotorEfficiencies efficiency = NominalEfficiencies();
+  efficiency[1] = (base_n(1) + 1.0) / kMaxThrustN;
+  const Eigen::Vector3d lift(0.0, 10.0, 0.0);
+  const MultiArmRotorCommand weak = allocator.Allocate(base_n, lift, efficiency);
+  const Eigen::Vector3d made = MadeWrench(vehicle, weak, base_n);
+  EXPECT_TRUE(weak.saturated);
+  EXPECT_NEAR(weak.force_n[1], base_n(1) + 1.0, 1e-9);
+  EXPECT_NEAR(made(kWrenchFz), 10.0, 1e-9);
+  EXPECT_NEAR(made(kWrenchTorque), 0.0, 1e-9);
+  EXPECT_GT(std::fabs(made(kWrenchFx)), 1.0);
+  for (size_t r = 0; r < 3; ++r) EXPECT_LE(weak.force_n[r], efficiency[r] * kMaxThrustN + 1e-9) << r;
+  RotorEfficiencies weak_one = NominalEfficiencies();
+  weak_one[0] = 0.6;  // bound 39.74 N: F_z = +30 N asks 45.04 N of rotor 1
+  const MultiArmRotorCommand one = allocator.Allocate(base_n, Eigen::Vector3d(0.0, 30.0, 0.0), weak_one);
+  const MultiArmRotorCommand one_fixed = fixed.Allocate(base_n, Eigen::Vector3d(0.0, 30.0, 0.0), weak_one);
+  for (size_t r = 0; r < 3; ++r) EXPECT_EQ(one.force_n[r], one_fixed.force_n[r]) << r;
+}
+
+// Rotor 2 flown at its hover thrust's bound (e_2 = 14.32 / 66.24: a tilted
+// hover's weak rotor): a pitch torque either way along the fixed direction
+// needs rotor 2 up for one sign, which got none of it (the tilt ran away in
+// closed loop); redistributed, rotors 1 and 3 make it and F_z, both signs.
+TEST_F(WrenchRedistributionTest, MakesTheTorqueWithARotorAtItsBound) {
+  RotorEfficiencies efficiency = NominalEfficiencies();
+  efficiency[1] = base_n(1) / kMaxThrustN;
+  double least_fixed_torque = 1.0;  // the smaller share of the request the fixed direction made [1]
+  for (double torque : {-2.0, 2.0}) {
+    const Eigen::Vector3d wrench(0.0, 0.0, torque);
+    const Eigen::Vector3d made = MadeWrench(vehicle, allocator.Allocate(base_n, wrench, efficiency), base_n);
+    EXPECT_NEAR(made(kWrenchTorque), torque, 1e-9) << torque;
+    EXPECT_NEAR(made(kWrenchFz), 0.0, 1e-9) << torque;
+    const Eigen::Vector3d along_fixed = MadeWrench(vehicle, fixed.Allocate(base_n, wrench, efficiency), base_n);
+    least_fixed_torque = std::min(least_fixed_torque, along_fixed(kWrenchTorque) / torque);
+  }
+  EXPECT_LT(least_fixed_torque, 1e-9);
+  // The birotor's mode has nothing to redistribute onto: the switch stays off.
+  WrenchAllocator birotor(BirotorDescription(BirotorParams()), MultiArmControlMode::kTiltToMove);
+  birotor.RedistributeAtBounds(true);
+  EXPECT_FALSE(birotor.redistributes());
 }
 
 // N = 2: no F_x column; F_z and the torque come back exactly.

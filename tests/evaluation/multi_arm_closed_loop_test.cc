@@ -313,8 +313,9 @@ TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover
 // was blind (the MPC's command never reports a limit). Now the sigma is
 // judged against the rotors' mean hover thrust and the sink detection
 // reads the cascade's allocation, as the birotor's: the cascade descends
-// from 5.15 s and flares, touchdown measured 3.13 m/s (floor 4.41 m/s; the
-// nominal map 3.17 m/s). Mode mpc, which holds a tilted hover without a
+// from 5.15 s and flares, touchdown measured 0.86 m/s (floor 4.41 m/s; the
+// nominal map 3.17 m/s; 3.13 m/s before the cascade re-solved the torque
+// and F_z on rotors 1 and 2 at a bound). Mode mpc, which holds a tilted hover without a
 // spare rotor, holds its height on the two live rotors (altitude deviation
 // measured 0.12 m, tilt 0.50 rad, drifting sideways: RMS 3.7 m; the MPC on
 // the nominal map lost the vehicle, 3.64 m/s).
@@ -343,7 +344,7 @@ TEST(MultiArmClosedLoopTest, TrirotorWithADeadRotorDescendsOrMpcHoldsIt) {
     EXPECT_EQ(run.degradation.weak_rotor, 2);
     EXPECT_LT(descent.start_s, 5.3);
     EXPECT_GT(descent.height_m, 0.9);
-    EXPECT_LT(descent.touchdown_m_s, 0.8 * descent.floor_m_s);
+    EXPECT_LT(descent.touchdown_m_s, 0.3 * descent.floor_m_s);
     EXPECT_LT(descent.peak_tilt_rad, 0.3);
     EXPECT_EQ(run.degradation.flares, 1);
   }
@@ -356,11 +357,12 @@ TEST(MultiArmClosedLoopTest, TrirotorWithADeadRotorDescendsOrMpcHoldsIt) {
 // - mode mpc plans about the least-tilted one (0.04 rad, rotor 2 at
 //   1 / margin): altitude deviation measured 0.0073 m, RMS 0.051 m; the
 //   MPC on the nominal map 0.0195 m, RMS 0.048 m;
-// - the cascade, whose fixed-direction allocation needs room above rotor
-//   2, holds the one with rotor 2 at spare_max_share (0.11 rad), once the
-//   level hover has been out of reach for infeasible_s: measured 0.093 m,
-//   RMS 0.027 m, tilt 0.194 rad; the cascade on the nominal map 0.483 m,
-//   RMS 0.380 m
+// - the cascade holds the one with rotor 2 at spare_max_share (0.11 rad:
+//   room above rotor 2), once the level hover has been out of reach for
+//   infeasible_s, re-solving the torque and F_z on rotors 1 and 3 while
+//   rotor 2 is at its bound: measured 0.0156 m, RMS 0.013 m, tilt 0.150
+//   rad (along the fixed directions 0.093 m); the cascade on the nominal
+//   map 0.483 m, RMS 0.380 m
 // (birotor-eval --vehicle config/vehicles/trirotor.yaml --control
 // --scenarios descent80_rotor2, seed 1).
 TEST(MultiArmClosedLoopTest, TrirotorHoldsATiltedHoverWithRotorTwoAtTwentyPercent) {
@@ -381,28 +383,68 @@ TEST(MultiArmClosedLoopTest, TrirotorHoldsATiltedHoverWithRotorTwoAtTwentyPercen
         n.rms_position_error_m, f.max_tilt_rad, static_cast<long long>(run.degradation.descents));
     EXPECT_EQ(run.degradation.descents, 0) << mpc;
     EXPECT_FALSE(run.degradation.hover_infeasible) << mpc;
-    EXPECT_LT(f.max_altitude_deviation_m, mpc ? 0.02 : 0.15) << mpc;
-    EXPECT_LT(f.max_altitude_deviation_m, (mpc ? 1.0 : 0.5) * n.max_altitude_deviation_m) << mpc;
+    EXPECT_LT(f.max_altitude_deviation_m, mpc ? 0.02 : 0.05) << mpc;
+    EXPECT_LT(f.max_altitude_deviation_m, (mpc ? 1.0 : 0.2) * n.max_altitude_deviation_m) << mpc;
     EXPECT_LT(f.rms_position_error_m, 0.1) << mpc;
     EXPECT_EQ(run.commands_out_of_bounds, 0) << mpc;
   }
 }
 
-// The cascade on rotor 3 at 20 %, seed 2: the same tilted hover (the other
-// way) holds it, measured altitude deviation 0.077 m; the nominal map's
-// cascade falls 3.86 m and touches the take-off level at 1.14 m/s.
-TEST(MultiArmClosedLoopTest, TrirotorCascadeHoldsRotorThreeAtTwentyPercent) {
+// The cascade on rotor 3 at 20 % (seed 2) and rotor 2 at 12 % (seed 1):
+// the tilted hover (0.11 / 0.22 rad) holds them, measured altitude
+// deviation 0.018 / 0.037 m; the nominal map's cascade falls 3.86 m and
+// touches the take-off level at 1.14 m/s / holds 0.599 m low. Before the
+// re-solve at a bound: 0.077 m / the level descent, touchdown 2.17 m/s.
+TEST(MultiArmClosedLoopTest, TrirotorCascadeHoldsRotorThreeAtTwentyAndRotorTwoAtTwelvePercent) {
   const VehicleDescription vehicle = Vehicle("trirotor");
-  const Scenario scenario = ClimbThenLoss(vehicle, 3, 0.2, 2);
+  const struct {
+    int rotor;
+    double scale;
+    int seed;
+    double max_deviation_m;
+  } cases[] = {{3, 0.2, 2, 0.05}, {2, 0.12, 1, 0.1}};
+  for (const auto& c : cases) {
+    const Scenario scenario = ClimbThenLoss(vehicle, c.rotor, c.scale, c.seed);
+    const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
+    const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
+    const MultiArmFlightFigures f = FiguresOf(run, kBandM);
+    const MultiArmFlightFigures n = FiguresOf(nominal, kBandM);
+    std::printf(
+        "trirotor, rotor %d at %.0f %%, cascade: altitude deviation %.4f m (nominal map %.3f), max tilt %.3f rad\n",
+        c.rotor, 100.0 * c.scale, f.max_altitude_deviation_m, n.max_altitude_deviation_m, f.max_tilt_rad);
+    EXPECT_EQ(run.degradation.descents, 0) << c.rotor;
+    EXPECT_LT(f.max_altitude_deviation_m, c.max_deviation_m) << c.rotor;
+    EXPECT_LT(f.max_altitude_deviation_m, 0.2 * n.max_altitude_deviation_m) << c.rotor;
+    EXPECT_EQ(run.commands_out_of_bounds, 0) << c.rotor;
+  }
+}
+
+// The quadrotor loses rotors 1 and 2 at 5 s: the level hover on rotors 3
+// and 4 alone (0.54 of their map) holds, but two canted rotors make F_x and
+// the torque together, which the fixed directions asked for apart, and the
+// cascade descended (from 5.47 s, 4.1 m below). Re-solving the torque and
+// F_z on rotors 3 and 4 at a bound (F_x given up) holds it: measured
+// altitude deviation 0.069 m (birotor-eval --vehicle
+// config/vehicles/quadrotor.yaml --control --scenarios descent100_rotor1
+// --set "faults.thrust_steps=[...rotor 1 and 2 at 0]"); the nominal map
+// loses the vehicle (26 m below).
+TEST(MultiArmClosedLoopTest, QuadrotorCascadeHoldsRotorsOneAndTwoDead) {
+  const VehicleDescription vehicle = Vehicle("quadrotor");
+  const Scenario scenario = ScenarioFor(
+      "thrust_loss", vehicle,
+      {"trajectory.kind=waypoints", "trajectory.waypoints=[{start_s: 0.0, duration_s: 2.0, x_m: 0.0, z_m: 1.0}]",
+       "scenario.duration_s=8.0",
+       "faults.thrust_steps=[{time_s: 5.0, rotor: 1, scale: 0.0}, {time_s: 5.0, "
+       "rotor: 2, scale: 0.0}]"});
   const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
   const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
-  const MultiArmFlightFigures f = FiguresOf(run, kBandM);
-  const MultiArmFlightFigures n = FiguresOf(nominal, kBandM);
-  std::printf("trirotor, rotor 3 at 20 %%, cascade: altitude deviation %.4f m (nominal map %.3f), max tilt %.3f rad\n",
-              f.max_altitude_deviation_m, n.max_altitude_deviation_m, f.max_tilt_rad);
+  const double deviation_m = FiguresOf(run, kBandM).max_altitude_deviation_m;
+  const double nominal_m = FiguresOf(nominal, kBandM).max_altitude_deviation_m;
+  std::printf("quadrotor rotors 1 and 2 dead, cascade: descents %lld, altitude deviation %.4f m (nominal map %.2f m)\n",
+              static_cast<long long>(run.degradation.descents), deviation_m, nominal_m);
   EXPECT_EQ(run.degradation.descents, 0);
-  EXPECT_LT(f.max_altitude_deviation_m, 0.15);
-  EXPECT_GT(n.max_altitude_deviation_m, 1.0);
+  EXPECT_LT(deviation_m, 0.15);
+  EXPECT_GT(nominal_m, 1.0);
   EXPECT_EQ(run.commands_out_of_bounds, 0);
 }
 
