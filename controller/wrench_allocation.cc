@@ -103,18 +103,14 @@ double WrenchAllocator::RedistributeAxis(int stage, double wrench_change, int fi
   using Rows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kWrenchSize, kMaxArms>;
   using Gram = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kWrenchSize, kWrenchSize>;
   const int rows = stage + 1;
-  std::array<bool, kMaxArms> held{};
-  held[static_cast<size_t>(first_held)] = true;
+  // W_RF (the rows of the axes so far) and W_RF C on the free rotors: a
+  // held rotor's column of the second is zero, so it keeps its thrust.
+  Rows free_rows(rows, rotor_count_);
+  for (int r = 0; r < rows; ++r) free_rows.row(r) = allocation_.row(kAxisOrder[r]);
+  Rows weighted = free_rows * max_force_n.asDiagonal();
+  weighted.col(first_held).setZero();
   double remaining = wrench_change;
   for (int round = 0; round < rotor_count_ && remaining != 0.0; ++round) {
-    // W_RF C on the free rotors (held ones: zero columns, so they keep their thrust).
-    Rows weighted = Rows::Zero(rows, rotor_count_);
-    for (int i = 0; i < rotor_count_; ++i) {
-      if (held[static_cast<size_t>(i)]) continue;
-      for (int r = 0; r < rows; ++r) weighted(r, i) = allocation_(kAxisOrder[r], i) * max_force_n(i);
-    }
-    Rows free_rows(rows, rotor_count_);
-    for (int r = 0; r < rows; ++r) free_rows.row(r) = allocation_.row(kAxisOrder[r]);
     const Gram gram = free_rows * weighted.transpose();
     const Eigen::FullPivLU<Gram> lu(gram);
     if (lu.rank() < rows) break;  // the free rotors cannot move this axis alone
@@ -126,7 +122,7 @@ double WrenchAllocator::RedistributeAxis(int stage, double wrench_change, int fi
     *force_n += scale * change;
     remaining *= 1.0 - scale;
     if (limiting < 0) break;
-    held[static_cast<size_t>(limiting)] = true;
+    weighted.col(limiting).setZero();
   }
   return wrench_change - remaining;
 }
@@ -191,7 +187,8 @@ MultiArmRotorCommand WrenchAllocator::Allocate(const ArmForces<double>& base_for
     saturated = true;
   }
   // W f_base + dw: what every axis asks for once one was redistributed.
-  const Eigen::Vector3d wanted_n = allocation_ * base_force_n + wrench_change_n;
+  const Eigen::Vector3d wanted_n =
+      redistribute_ ? Eigen::Vector3d(allocation_ * base_force_n + wrench_change_n) : Eigen::Vector3d::Zero();
   bool redistributed = false;
   for (int stage = 0; stage < kWrenchSize; ++stage) {
     const int axis = kAxisOrder[stage];
