@@ -149,8 +149,9 @@ struct EfficiencyParams {
   // trirotor, once no level hover is within [0, 1 / margin]): the cascade
   // with every rotor within [spare_min_share, spare_max_share] (room for its
   // torque above the weak rotor), mode mpc up to 1 / margin; 0: level
-  // hovers only.
-  double spare_hover_tilt_rad = 0.25;  // [rad]
+  // hovers only. 0.45: the trirotor holds a dead rotor 2 or 3 at 0 N
+  // 0.40 rad off level (MultiArmLaw's pinned hover).
+  double spare_hover_tilt_rad = 0.45;  // [rad]
   // The cascade's tilted hover keeps every rotor at least this share (when
   // one within spare_hover_tilt_rad does, else spare_min_share): the rotor
   // whose lateral thrust the tilt balances is the only one that can give

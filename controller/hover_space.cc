@@ -171,7 +171,57 @@ bool HoverSpace::NearestTiltedWithinShares(const double* efficiency, double min_
       return true;
     }
   }
-  return false;
+  // A box without width (a dead rotor) holds at most a single tilt, which
+  // the grid misses without a spare rotor.
+  return spare_ == 0 && LeastTiltWithoutSpare(low_n, high_n, max_tilt_rad, from_tilt_rad, hover_n, tilt_rad);
+}
+
+bool HoverSpace::LeastTiltWithoutSpare(const ArmForces<double>& low_n, const ArmForces<double>& high_n,
+                                       double max_tilt_rad, double from_tilt_rad, ArmForces<double>* hover_n,
+                                       double* tilt_rad) const {
+  double scale_n = 1.0;
+  for (int i = 0; i < rotor_count_; ++i) scale_n = std::max(scale_n, std::fabs(high_n(i)));
+  const double tolerance_n = kBoundTolerance * scale_n;
+  const auto hover_at = [&](double phi) -> ArmForces<double> {
+    return std::cos(phi) * hover_force_n_ + std::sin(phi) * lateral_force_n_;
+  };
+  const auto fits = [&](const ArmForces<double>& f) {
+    for (int i = 0; i < rotor_count_; ++i) {
+      if (!(f(i) >= low_n(i) - tolerance_n && f(i) <= high_n(i) + tolerance_n)) return false;
+    }
+    return true;
+  };
+  double best_rad = std::numeric_limits<double>::infinity();
+  const auto consider = [&](double phi) {
+    const double size = std::fabs(phi);
+    if (size < from_tilt_rad || size > max_tilt_rad || size > std::fabs(best_rad)) return;
+    if (size == std::fabs(best_rad) && phi < best_rad) return;  // the positive tilt first
+    if (fits(hover_at(phi))) best_rad = phi;
+  };
+  consider(from_tilt_rad);
+  consider(-from_tilt_rad);
+  // Rotor i meets bound b where h_i cos(phi) + l_i sin(phi) = b, i.e.
+  // r_i cos(phi - delta_i) = b with r_i = |(h_i, l_i)|, delta_i = atan2(l_i, h_i).
+  for (int i = 0; i < rotor_count_; ++i) {
+    const double radius_n = std::hypot(hover_force_n_(i), lateral_force_n_(i));
+    if (radius_n <= tolerance_n) continue;
+    const double delta_rad = std::atan2(lateral_force_n_(i), hover_force_n_(i));
+    for (double bound_n : {low_n(i), high_n(i)}) {
+      if (std::fabs(bound_n) > radius_n) continue;
+      const double half_rad = std::acos(bound_n / radius_n);
+      for (double phi : {delta_rad - half_rad, delta_rad + half_rad}) {
+        consider(std::remainder(phi, 2.0 * M_PI));
+      }
+    }
+  }
+  if (!std::isfinite(best_rad)) return false;
+  if (tilt_rad != nullptr) *tilt_rad = best_rad;
+  if (hover_n != nullptr) {
+    *hover_n = hover_at(best_rad);
+    // Round-off only: the bounds hold within the tolerance.
+    for (int i = 0; i < rotor_count_; ++i) (*hover_n)(i) = std::min(std::max((*hover_n)(i), low_n(i)), high_n(i));
+  }
+  return true;
 }
 
 }  // namespace birotor

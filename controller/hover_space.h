@@ -60,7 +60,13 @@ class HoverSpace {
   // move: no lateral force of its own). A rotor that makes nothing leaves a
   // lateral force the others can only balance by tilting the body (the
   // quadrotor with rotor 3 dead: docs/controller.md, "Spare rotors").
-  // from_tilt_rad: the grid starts at this |phi| (a tilt a wider box holds
+  // Without a spare rotor (the trirotor), when the grid finds none, the
+  // least |phi| exactly (LeastTiltWithoutSpare): a dead rotor's box has no
+  // width and only its one tilt holds it at 0 N (the trirotor with rotor 2
+  // dead: 0.40 rad). The grid comes first: its first tilt lies up to a step
+  // inside the box, a margin the weak rotor's torque uses (rotor 3 at 12 %,
+  // exact tilt: altitude deviation 0.078 -> 0.086 m, docs/controller.md).
+  // from_tilt_rad: the search starts at this |phi| (a tilt a wider box holds
   // no hover below holds none in this box either) [rad].
   bool NearestTiltedWithinShares(const double* efficiency, double min_share, double max_share, double max_tilt_rad,
                                  ArmForces<double>* hover_n, double* tilt_rad, double from_tilt_rad = 0.0) const;
@@ -83,6 +89,14 @@ class HoverSpace {
   // Nearest about the particular hover `centre_n` (f_hover, or a tilted one).
   bool NearestTo(const ArmForces<double>& centre_n, const ArmForces<double>& low_n, const ArmForces<double>& high_n,
                  ArmForces<double>* hover_n) const;
+  // NearestTiltedWithinShares without a spare rotor: the hover at phi is
+  // the point cos(phi) f_hover + sin(phi) f_lateral, and the least |phi| in
+  // [from_tilt_rad, max_tilt_rad] whose point lies in the box is one of
+  // from_tilt_rad's two signs or a tilt where a rotor meets a bound (each
+  // rotor's thrust r_i cos(phi - delta_i) meets a bound at two tilts at
+  // most): those are tried, the positive tilt first on a tie.
+  bool LeastTiltWithoutSpare(const ArmForces<double>& low_n, const ArmForces<double>& high_n, double max_tilt_rad,
+                             double from_tilt_rad, ArmForces<double>* hover_n, double* tilt_rad) const;
   // The box [min_share, max_share] x e_i c_T,i omega_max^2.
   void ShareBox(const double* efficiency, double min_share, double max_share, ArmForces<double>* low_n,
                 ArmForces<double>* high_n) const;

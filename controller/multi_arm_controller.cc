@@ -288,8 +288,12 @@ double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency, in
   // not stop a rotor.
   if (!HoldsOtherHovers() || feasibility_.infeasible() || !EstimateUsable(now_us)) return efficiency;
   if (!std::isfinite(reported)) return efficiency;  // no run of flagged reports below the floor
-  // The MPC's model needs every rotor's map (e > 0): a retired rotor is at most spare_retire_scale there.
-  if (config_.model_predictive) return std::min(efficiency, std::max(reported, config_.efficiency.spare_retire_scale));
+  // The MPC's model needs every rotor's map (e > 0): with spare rotors a
+  // retired rotor is at most spare_retire_scale there; without one the
+  // cascade flies the vehicle once its base pins a retired rotor at 0 N
+  // (MultiArmLaw::pins_rotor), in mode mpc too.
+  if (config_.model_predictive && law_.spare_rotors() > 0)
+    return std::min(efficiency, std::max(reported, config_.efficiency.spare_retire_scale));
   return retired_[i] ? 0.0 : std::min(efficiency, std::max(reported, 0.0));
 }
 
@@ -376,7 +380,7 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
   MultiArmRotorCommand cascade = law_.Update(observer_.state(), target, efficiency);
   LeadFallingEfficiency(efficiency, dt_s, &cascade);
   MultiArmRotorCommand command = cascade;
-  if (mpc_ != nullptr && !descend) {
+  if (mpc_ != nullptr && !descend && !law_.pins_rotor()) {
     command = FlyMpc(target, efficiency, cascade, dt_s);
   } else if (descend) {
     if (!Flare(infeasible && !pose_lost, efficiency, &command)) SlewDescent(efficiency, dt_s, &command);

@@ -45,6 +45,12 @@ Eigen::Vector3d MultiArmLaw::Wrench(const BodyState& body, const ReferencePoint&
   const double cos_phi = std::cos(std::clamp(body.phi_rad, -1.2, 1.2));
   Eigen::Vector3d wrench;  // [F_x, F_z, torque], body frame [N, N, N m]
   double phi_des_rad = base_tilt_rad_;
+  if (base_pins_rotor_) {
+    // No F_x left (a rotor held at 0 N by the tilt): move as a birotor
+    // does, tilting the rotors' one force direction off the base's.
+    const double move_rad = TiltForAcceleration(gains_, g, accel_des_m_s2_).phi_des_rad;
+    phi_des_rad = std::clamp(base_tilt_rad_ + move_rad, -tilt_limit_rad_, tilt_limit_rad_);
+  }
   if (mode() == MultiArmControlMode::kTiltToMove) {
     const TiltTarget tilt = TiltForAcceleration(gains_, g, accel_des_m_s2_);
     phi_des_rad = std::clamp(tilt.phi_des_rad, -tilt_limit_rad_, tilt_limit_rad_);
@@ -65,14 +71,34 @@ Eigen::Vector3d MultiArmLaw::Wrench(const BodyState& body, const ReferencePoint&
 MultiArmRotorCommand MultiArmLaw::Update(const BodyState& body, const ReferencePoint& reference,
                                          const RotorEfficiencies& efficiency) {
   const ArmForces<double>& base_n = HoverBase(efficiency);
+  base_pins_rotor_ = base_tilt_rad_ != 0.0 && !hover_space_.redundant() && AnyRotorOut(efficiency);
   Eigen::Vector3d wrench = Wrench(body, reference, !saturated_);
   // The hover thrusts carry the weight: m g [sin phi_base, cos phi_base] in the body frame.
   const double weight_n = total_mass_kg_ * gravity_m_s2_;
   if (base_tilt_rad_ != 0.0) wrench(kWrenchFx) -= weight_n * std::sin(base_tilt_rad_);
   wrench(kWrenchFz) -= base_tilt_rad_ != 0.0 ? weight_n * std::cos(base_tilt_rad_) : weight_n;
-  const MultiArmRotorCommand command = allocator_.Allocate(base_n, wrench, efficiency);
+  if (base_pins_rotor_) wrench(kWrenchFx) = 0.0;  // no F_x: the tilt moves the vehicle (Wrench)
+  MultiArmRotorCommand command = allocator_.Allocate(base_n, wrench, efficiency);
+  if (base_pins_rotor_) command.saturated = !MakesLiftAndTorque(base_n, wrench, command);
   saturated_ = command.saturated;
   return command;
+}
+
+bool MultiArmLaw::AnyRotorOut(const RotorEfficiencies& efficiency) const {
+  for (int i = 0; i < hover_force_n_.size(); ++i) {
+    if (!(efficiency[static_cast<size_t>(i)] > 0.0)) return true;
+  }
+  return false;
+}
+
+bool MultiArmLaw::MakesLiftAndTorque(const ArmForces<double>& base_n, const Eigen::Vector3d& wrench_change,
+                                     const MultiArmRotorCommand& command) const {
+  const int n = static_cast<int>(base_n.size());
+  ArmForces<double> made_n(n);
+  for (int i = 0; i < n; ++i) made_n(i) = command.force_n[static_cast<size_t>(i)];
+  const Eigen::Vector3d short_n = allocator_.allocation() * (base_n - made_n) + wrench_change;
+  const double tolerance_n = kMadeTolerance * total_mass_kg_ * gravity_m_s2_;
+  return std::fabs(short_n(kWrenchFz)) <= tolerance_n && std::fabs(short_n(kWrenchTorque)) <= tolerance_n;
 }
 
 bool MultiArmLaw::AnyHover(const RotorEfficiencies& efficiency, double max_tilt_rad, double* least_tilt_rad) const {
@@ -134,9 +160,12 @@ const ArmForces<double>& MultiArmLaw::LevelOrTiltedBase(const RotorEfficiencies&
   // The cascade tilts once the level hover has been out of reach for
   // infeasible_s: a dying rotor passes through the tilted hovers in that
   // time and its descent starts level (the trirotor, rotor 3 dead: peak
-  // tilt 0.50-0.57 rad without the dwell, docs/controller.md).
+  // tilt 0.50-0.57 rad without the dwell, docs/controller.md). Not once a
+  // rotor is out: only the tilted hover pinning it holds the vehicle (the
+  // dwell cost 0.09 m of overshoot).
   level_out_of_reach_s_ += dt_s_;
-  if (tilted_without_spare_ == TiltedHover::kWithinMaxShare && level_out_of_reach_s_ < tilt_dwell_s_) {
+  if (tilted_without_spare_ == TiltedHover::kWithinMaxShare && level_out_of_reach_s_ < tilt_dwell_s_ &&
+      !AnyRotorOut(efficiency)) {
     return hover_force_n_;
   }
   // Levelling for a descent (tilt limit 0) holds no tilted hover.

@@ -32,7 +32,8 @@ class MultiArmLaw {
   // One control period (1 / rate_hz):
   //   a_des = PositionLoopAcceleration (world),
   //   kTiltToMove:    phi_des = TiltForAcceleration, F_z = m (g + a_z) / cos(phi), F_x = 0
-  //   kFullyActuated: phi_des = phi_base, [F_x; F_z] = R(phi)^T m (a_des + g e_z)   (body frame)
+  //   kFullyActuated: phi_des = phi_base, [F_x; F_z] = R(phi)^T m (a_des + g e_z)   (body frame);
+  //                   with pins_rotor(): phi_des = phi_base + atan2(-a_x, g + a_z), no F_x
   //   torque = J_eff TiltLoopAcceleration(phi_des)
   //   f = f_base + P (w - m g [sin phi_base, cos phi_base, 0])   (WrenchAllocator::Allocate)
   // f_base = f_hover, what the vehicle needs whatever the efficiencies; with
@@ -85,6 +86,11 @@ class MultiArmLaw {
   void HoldTiltedHoverWithoutSpare(TiltedHover hold) { tilted_without_spare_ = hold; }
   // Rotors beyond the controlled axes (HoverSpace::spare_rotors; 1 on the quadrotor).
   int spare_rotors() const { return hover_space_.spare_rotors(); }
+  // In the last period the base held a rotor that makes nothing at 0 N
+  // without a spare rotor (the trirotor with rotor 2 or 3 dead: 0.40 rad
+  // off level): no F_x, the cascade moves by tilting about the base
+  // (docs/controller.md, "A dead rotor without a spare").
+  bool pins_rotor() const { return base_pins_rotor_; }
   // The hover may move off f_hover: spare rotors or a tilt (HoverSpace::rebalances).
   bool rebalances() const { return hover_space_.rebalances(); }
 
@@ -124,6 +130,16 @@ class MultiArmLaw {
   // (the trirotor with rotor 2 at 20 %: 0.11 / 0.04 rad); else f_hover (the
   // descent).
   const ArmForces<double>& LevelOrTiltedBase(const RotorEfficiencies& efficiency);
+  // Some rotor makes nothing (e_i = 0: the controller retired it).
+  bool AnyRotorOut(const RotorEfficiencies& efficiency) const;
+  // With base_pins_rotor_: whether the command makes the F_z and torque
+  // asked for, W (f - f_base) = dw on those rows within kMadeTolerance of the
+  // weight (the allocator's re-solve finishes them on the other rotors,
+  // though every increment meets the pinned rotor's bounds first: that is
+  // no saturation, and the integrators keep running).
+  bool MakesLiftAndTorque(const ArmForces<double>& base_n, const Eigen::Vector3d& wrench_change,
+                          const MultiArmRotorCommand& command) const;
+  static constexpr double kMadeTolerance = 1e-9;  // [1] of m g
 
   ArmForces<double> hover_force_n_;
   WrenchAllocator allocator_;
@@ -136,6 +152,10 @@ class MultiArmLaw {
   double base_tilt_rad_ = 0.0;      // the tilt HoverBase's hover is held at (fully actuated: phi_des) [rad]
   ArmForces<double> base_force_n_;  // HoverBase's answer [N], unless it was f_hover
   bool base_is_hover_ = true;       // HoverBase answered f_hover
+  // The base tilts to hold a rotor that makes nothing at 0 N without a spare
+  // rotor: both its bounds bind, the allocation has no F_x, and the cascade
+  // moves sideways by tilting about base_tilt_rad_ (Wrench).
+  bool base_pins_rotor_ = false;
   TiltedHover tilted_without_spare_ = TiltedHover::kNone;  // HoldTiltedHoverWithoutSpare
   double tilt_dwell_s_;                // infeasible_s: the cascade's level hover out of reach this long first [s]
   double level_out_of_reach_s_ = 0.0;  // how long LevelOrTiltedBase has found no level hover [s]

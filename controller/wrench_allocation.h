@@ -93,6 +93,8 @@ class WrenchAllocator {
 
   MultiArmControlMode mode() const { return mode_; }
   int rotor_count() const { return rotor_count_; }
+  // W: thrusts to the body wrench [F_x, F_z, tau] [1, 1, m].
+  const AllocationMatrix& allocation() const { return allocation_; }
   // P (N x 3; column kWrenchFx zero in kTiltToMove) [1/N, 1/N, 1/m].
   const Eigen::Matrix<double, Eigen::Dynamic, kWrenchSize, 0, kMaxArms, kWrenchSize>& inverse() const {
     return inverse_;

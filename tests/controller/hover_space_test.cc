@@ -80,7 +80,7 @@ TEST(HoverSpaceTest, TheBirotorAndTheTrirotorHaveNoneToSpare) {
 // tilt phi are cos(phi) f_hover + sin(phi) f_lateral, f_lateral = [0,
 // +35.7, -35.7] N (rotors 2 and 3 lean sideways, rotor 1 does not). Rotor 2
 // at 20 % (13.25 N, below its level 14.32 N) hovers 0.04 rad off level;
-// rotor 2 at 5 % or dead needs more than 0.2 rad (dead: 0.39 rad); rotor 1's
+// rotor 2 at 5 % or dead needs more than 0.2 rad (dead: 0.40 rad); rotor 1's
 // share barely moves with the tilt (cos only), so rotor 1 at 30 % holds none.
 TEST(HoverSpaceTest, TheTrirotorHoversTiltedWhenRotorTwoCannotHoldItsLevelShare) {
   const VehicleDescription vehicle = Vehicle("trirotor");
@@ -115,6 +115,39 @@ TEST(HoverSpaceTest, TheTrirotorHoversTiltedWhenRotorTwoCannotHoldItsLevelShare)
   }
   e = Efficiencies(0.3);  // rotor 1 at 30 %
   EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), 0.05, max_share, 0.2, &f, &tilt_rad));
+}
+
+// A dead rotor's box has no width: the trirotor holds rotor 2 (or 3) at
+// exactly 0 N at the one tilt where cos(phi) h_2 + sin(phi) l_2 = 0 (0.40
+// rad; rotors 1 and 3 then carry 25.3 and 26.4 N), found exactly, not on a
+// grid; below that tilt, none.
+TEST(HoverSpaceTest, TheTrirotorHoldsADeadRotorAtItsOneTilt) {
+  const VehicleDescription vehicle = Vehicle("trirotor");
+  const HoverSpace space = SpaceOf(vehicle);
+  const double weight_n = vehicle.TotalMass() * vehicle.gravity_m_s2;
+  const Eigen::Vector3d level = WrenchAllocation(vehicle) * space.hover_force_n();
+  for (int dead : {1, 2}) {
+    std::array<double, kMaxArms> e = Efficiencies(1.0);
+    e[static_cast<size_t>(dead)] = 0.0;
+    ArmForces<double> f;
+    double tilt_rad = 0.0;
+    ASSERT_TRUE(space.NearestTiltedWithinShares(e.data(), 0.1, 0.8, 0.45, &f, &tilt_rad)) << dead;
+    std::printf("trirotor, rotor %d dead: tilt %+.4f rad, thrusts %.2f %.2f %.2f N\n", dead + 1, tilt_rad, f(0), f(1),
+                f(2));
+    EXPECT_EQ(f(dead), 0.0) << dead;
+    EXPECT_NEAR(std::fabs(tilt_rad), 0.40, 0.005) << dead;
+    EXPECT_LT(tilt_rad * (dead == 1 ? 1.0 : -1.0), 0.0) << dead;  // the two dead rotors tilt opposite ways
+    const Eigen::Vector3d wrench = WrenchAllocation(vehicle) * f;
+    EXPECT_NEAR(wrench(kWrenchFx), level(kWrenchFx) * std::cos(tilt_rad) + weight_n * std::sin(tilt_rad), 1e-6);
+    EXPECT_NEAR(wrench(kWrenchFz), level(kWrenchFz) * std::cos(tilt_rad), 1e-6);
+    EXPECT_NEAR(wrench(kWrenchTorque), level(kWrenchTorque) * std::cos(tilt_rad), 1e-6);
+    for (int i = 0; i < 3; ++i) {
+      if (i == dead) continue;
+      EXPECT_GE(f(i), 0.1 * kMaxThrustN) << dead << " " << i;
+      EXPECT_LE(f(i), 0.8 * kMaxThrustN) << dead << " " << i;
+    }
+    EXPECT_FALSE(space.NearestTiltedWithinShares(e.data(), 0.1, 0.8, 0.38, &f, &tilt_rad)) << dead;
+  }
 }
 
 TEST(HoverSpaceTest, TheQuadrotorKeepsItsLeastNormHoverWhileItFits) {

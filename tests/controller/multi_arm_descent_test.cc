@@ -114,20 +114,24 @@ TEST(MultiArmFeasibilityTest, TrirotorFeasibleAtFortyPercentInfeasibleAtSeventyA
 // tilted), rotor 2 at 20 % is below its level bound 0.2205 yet feasible (a
 // hover 0.04 rad off level); at 5 %, or at the floor's 0.2 while FORCE
 // reports it below the floor at 0.02, it is not (beyond
-// spare_hover_tilt_rad); rotor 1 at 30 % is not (tilting does not move
-// rotor 1's share). The cascade's check (LimitTiltedHoverShare(
+// spare_hover_tilt_rad 0.25 rad); rotor 1 at 30 % is not (tilting does not
+// move rotor 1's share). The cascade's check (LimitTiltedHoverShare(
 // spare_max_share): room above the weak rotor) still holds rotor 2 and 3
-// at 20 % (0.11 rad) and 12 % (0.22 rad), not at 8.5 % (beyond
-// spare_hover_tilt_rad, 0.25 rad), which mode mpc's holds up to 1 / margin.
+// at 20 % (0.11 rad) and 12 % (0.22 rad), not at 8.5 % (beyond 0.25 rad),
+// which mode mpc's holds up to 1 / margin. Up to the default 0.45 rad
+// every loss on rotor 2 or 3 is held, a dead one too (0.40 rad, the rotor
+// at 0 N).
 TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound) {
   const VehicleDescription vehicle = Trirotor();
   const MultiArmHover hover = SolveMultiArmHover(vehicle);
   const double max_n[3] = {kMaxRotorForceN, kMaxRotorForceN, kMaxRotorForceN};
   const double hover_n[3] = {hover.force_n(0), hover.force_n(1), hover.force_n(2)};
   const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), hover.force_n);
+  EfficiencyParams params;
+  params.spare_hover_tilt_rad = 0.25;
   const auto phase = [&](int rotor, double efficiency, double report,
                          double max_share = 1.0 / EfficiencyParams().feasibility_margin) {
-    HoverFeasibility f(EfficiencyParams(), 3, max_n, hover_n, space);
+    HoverFeasibility f(params, 3, max_n, hover_n, space);
     f.LimitTiltedHoverShare(max_share);
     FeasibilityInputs in;
     in.efficiency[rotor] = efficiency;
@@ -148,6 +152,14 @@ TEST(MultiArmFeasibilityTest, TrirotorHoldsATiltedHoverBelowRotorTwosLevelBound)
   EXPECT_EQ(phase(2, 0.12, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
   EXPECT_NE(phase(1, 0.085, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible);
   EXPECT_EQ(phase(1, 0.085, kNaNReport), HoverFeasibility::Phase::kFeasible);
+  params.spare_hover_tilt_rad = EfficiencyParams().spare_hover_tilt_rad;
+  for (int rotor : {1, 2}) {
+    for (double e : {0.085, 0.05, 0.0}) {
+      EXPECT_EQ(phase(rotor, e, kNaNReport, cascade_share), HoverFeasibility::Phase::kFeasible) << rotor << " " << e;
+      EXPECT_EQ(phase(rotor, 0.2, e, cascade_share), HoverFeasibility::Phase::kFeasible) << rotor << " " << e;
+    }
+  }
+  EXPECT_NE(phase(0, 0.3, kNaNReport), HoverFeasibility::Phase::kFeasible);
 }
 
 // A VALID trirotor estimate with rotor 1 at scale, flagged when below 1;
