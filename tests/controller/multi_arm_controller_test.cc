@@ -4,8 +4,8 @@
 // flies for each kind of estimate (the gains and thresholds of
 // ControllerConfig's defaults, which config/controller.yaml keeps: an
 // implausible scale refused, a flagged one below the floor flown at it, the
-// plausible ones conditioned by EfficiencyConditioner), and mode mpc with its
-// fallback to the cascade.
+// plausible ones conditioned by EfficiencyConditioner), mode mpc with its
+// fallback to the cascade, and MultiArmLaw's pinned hover of a dead rotor.
 #include "controller/multi_arm_controller.h"
 
 #include <gtest/gtest.h>
@@ -389,12 +389,71 @@ TEST(MultiArmControllerTest, NoAllocationPerCall) {
   const MultiArmRotorCommand resolved = allocator.Allocate(hover_n, Eigen::Vector3d(0.0, 5.0, 2.0), weak);
   EXPECT_EQ(allocations.load() - before_resolve, 0);
   EXPECT_TRUE(resolved.saturated);
+  // The pinned hover of a dead rotor (MultiArmLaw, no F_x, the lift and
+  // torque checked as made) too.
+  MultiArmLaw law(vehicle, ForceFeedback().gains, SolveMultiArmHover(vehicle), ForceFeedback().efficiency);
+  law.HoldTiltedHoverWithoutSpare(MultiArmLaw::TiltedHover::kWithinMaxShare);
+  law.RedistributeAtBounds(true);
+  RotorEfficiencies dead = NominalEfficiencies();
+  dead[1] = 0.0;
+  BodyState body;
+  const long before_pinned = allocations.load();
+  for (int k = 0; k < 10; ++k) law.Update(body, reference, dead);
+  EXPECT_EQ(allocations.load() - before_pinned, 0);
+  EXPECT_TRUE(law.pins_rotor());
   // The counter does see an allocation.
   const long after = allocations.load();
   std::string text(100, 'x');
   volatile char last = text.back();
   (void)last;
   EXPECT_GT(allocations.load(), after);
+}
+
+// The trirotor with rotor 2 dead (e = 0): the base is the one hover that
+// holds rotor 2 at 0 N (0.40 rad off level), and with no F_x left the law
+// moves the vehicle by tilting about it (docs/controller.md, "A dead rotor
+// without a spare"): at the reference its thrusts make the base's wrench
+// with rotor 2 at 0 and nothing saturated; a reference 0.5 m to +x asks
+// for a pitch torque towards a larger negative tilt (phi_des = phi_b +
+// atan2(-a_x, g + a_z)), rotor 2 still at 0, the torque and lift made.
+TEST(MultiArmControllerTest, ADeadRotorsPinnedHoverMovesByTilting) {
+  const VehicleDescription vehicle = Trirotor();
+  const ControllerConfig config = ForceFeedback();
+  MultiArmLaw law(vehicle, config.gains, SolveMultiArmHover(vehicle), config.efficiency);
+  law.HoldTiltedHoverWithoutSpare(MultiArmLaw::TiltedHover::kWithinMaxShare);
+  law.RedistributeAtBounds(true);
+  RotorEfficiencies dead = NominalEfficiencies();
+  dead[1] = 0.0;
+  const auto wrench_of = [&](const MultiArmRotorCommand& command) {
+    ArmForces<double> f(3);
+    for (int i = 0; i < 3; ++i) f(i) = command.force_n[static_cast<size_t>(i)];
+    return Eigen::Vector3d(law.allocator().allocation() * f);
+  };
+  BodyState body;
+  law.Update(body, ReferencePoint(), dead);  // finds the base
+  ASSERT_TRUE(law.pins_rotor());
+  EXPECT_NEAR(law.base_tilt_rad(), -0.40, 0.005);
+  body.phi_rad = law.base_tilt_rad();
+  law.Reset();
+  const MultiArmRotorCommand hold = law.Update(body, ReferencePoint(), dead);
+  const double weight_n = vehicle.TotalMass() * vehicle.gravity_m_s2;
+  const Eigen::Vector3d held = wrench_of(hold);
+  EXPECT_EQ(hold.force_n[1], 0.0);
+  EXPECT_EQ(hold.omega_cmd_rad_s[1], 0.0);
+  EXPECT_FALSE(hold.saturated);
+  // The base's wrench: m g [sin phi_b, cos phi_b] (the elastic hover's within 0.04 N) and its torque.
+  const Eigen::Vector3d base = law.allocator().allocation() * law.base_force_n();
+  for (int axis = 0; axis < kWrenchSize; ++axis) EXPECT_NEAR(held(axis), base(axis), 1e-9) << axis;
+  EXPECT_NEAR(held(kWrenchFx), weight_n * std::sin(law.base_tilt_rad()), 0.05);
+  EXPECT_NEAR(held(kWrenchFz), weight_n * std::cos(law.base_tilt_rad()), 0.05);
+  law.Reset();
+  ReferencePoint right;
+  right.position_m.x() = 0.5;
+  const MultiArmRotorCommand move = law.Update(body, right, dead);
+  EXPECT_TRUE(law.pins_rotor());
+  EXPECT_EQ(move.force_n[1], 0.0);
+  EXPECT_FALSE(move.saturated);
+  EXPECT_LT(wrench_of(move)(kWrenchTorque), held(kWrenchTorque) - 0.1);
 }
 
 // Mode mpc, a deadline in solver work (no wall clock in a test).
