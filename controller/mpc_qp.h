@@ -72,8 +72,8 @@ StateMatrix MpcRiccatiTerminalWeight(const StateMatrix& a, const InputMatrix& b,
 // Which state weights a solve plans with (MpcParams: the tracking ones, the
 // recovery_* ones after a sudden pitch disturbance, the descent_* ones in
 // the hover-infeasible descent).
-enum class MpcWeightSet : int { kTracking = 0, kRecovery = 1, kDescent = 2 };
-constexpr int kMpcWeightSets = 3;
+enum class MpcWeightSet : int { kTracking = 0, kRecovery = 1, kDescent = 2, kTiltedHover = 3 };
+constexpr int kMpcWeightSets = 4;
 
 // Everything one solve needs besides the options.
 struct MpcQpData {

@@ -46,10 +46,9 @@ HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const Controll
   const ArmForces<double> hover_n = hover.force_n;
   const HoverSpace space(vehicle, MultiArmControlModeFor(vehicle), hover_n);
   HoverFeasibility feasibility(config.efficiency, vehicle.arm_count, max_force_n, hover_force_n, space);
-  // Without a spare rotor the cascade's fixed-direction allocation needs
-  // room above the weak rotor (docs/controller.md, "A tilted hover without
-  // a spare rotor"); mode mpc trades the axes up to the bound.
-  if (!config.model_predictive) feasibility.LimitTiltedHoverShare(config.efficiency.spare_max_share);
+  // Without a spare rotor the tilted hover needs room above the weak rotor
+  // (docs/controller.md, "A tilted hover without a spare rotor").
+  feasibility.LimitTiltedHoverShare(config.efficiency.spare_max_share);
   return feasibility;
 }
 
@@ -77,8 +76,7 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
   // e_i c_T,i omega_max^2 (the nominal map believes a weak rotor whole and
   // keeps the fixed directions; docs/controller.md, "Saturation").
   law_.RedistributeAtBounds(config.force_feedback);
-  law_.HoldTiltedHoverWithoutSpare(config.model_predictive ? MultiArmLaw::TiltedHover::kUpToFeasibilityBound
-                                                           : MultiArmLaw::TiltedHover::kWithinMaxShare);
+  law_.HoldTiltedHoverWithoutSpare(true);
   if (!config.model_predictive) return;
   mpc_ = std::make_unique<MultiArmMpc>(vehicle, config.mpc);
   horizon_.resize(static_cast<size_t>(config.mpc.horizon_steps));

@@ -125,7 +125,7 @@ const ArmForces<double>& MultiArmLaw::HoverBase(const RotorEfficiencies& efficie
   base_tilt_rad_ = 0.0;
   base_is_hover_ = true;
   if (!hover_space_.redundant()) {
-    return tilted_without_spare_ != TiltedHover::kNone ? LevelOrTiltedBase(efficiency) : hover_force_n_;
+    return tilted_without_spare_ ? LevelOrTiltedBase(efficiency) : hover_force_n_;
   }
   base_is_hover_ = false;
   const double* e = efficiency.data();
@@ -164,16 +164,13 @@ const ArmForces<double>& MultiArmLaw::LevelOrTiltedBase(const RotorEfficiencies&
   // rotor is out: only the tilted hover pinning it holds the vehicle (the
   // dwell cost 0.09 m of overshoot).
   level_out_of_reach_s_ += dt_s_;
-  if (tilted_without_spare_ == TiltedHover::kWithinMaxShare && level_out_of_reach_s_ < tilt_dwell_s_ &&
-      !AnyRotorOut(efficiency)) {
+  if (level_out_of_reach_s_ < tilt_dwell_s_ && !AnyRotorOut(efficiency)) {
     return hover_force_n_;
   }
   // Levelling for a descent (tilt limit 0) holds no tilted hover.
   const double max_tilt_rad = std::min(hover_tilt_limit_rad_, tilt_limit_rad_);
-  const double max_share =
-      tilted_without_spare_ == TiltedHover::kUpToFeasibilityBound ? feasible_share_ : spare_max_share_;
   for (double min_share : {tilted_min_share_, spare_min_share_}) {
-    if (hover_space_.NearestTiltedWithinShares(e, min_share, max_share, max_tilt_rad, &base_force_n_,
+    if (hover_space_.NearestTiltedWithinShares(e, min_share, spare_max_share_, max_tilt_rad, &base_force_n_,
                                                &base_tilt_rad_)) {
       base_is_hover_ = false;
       return base_force_n_;

@@ -77,13 +77,11 @@ class MultiArmLaw {
   bool LevelPitchesBothWays(const RotorEfficiencies& efficiency) const;
   // Without a spare rotor, whether a fully actuated vehicle's base may be
   // a tilted hover when no level one is within [0, 1 / margin]
-  // (LevelOrTiltedBase), and with every rotor within what share of what it
-  // makes: the cascade's within spare_max_share (room above the weak rotor
-  // for its fixed-direction torque and F_x: with the weak rotor at
-  // 1 / margin the tilt ran away, docs/controller.md); mode mpc's, which
-  // trades the axes within the bounds, within 1 / margin. kNone: level only.
-  enum class TiltedHover { kNone, kWithinMaxShare, kUpToFeasibilityBound };
-  void HoldTiltedHoverWithoutSpare(TiltedHover hold) { tilted_without_spare_ = hold; }
+  // (LevelOrTiltedBase), with every rotor within spare_max_share of what it
+  // makes (room above the weak rotor for the torque and F_x: with the weak
+  // rotor at 1 / margin the cascade's tilt ran away, and mode mpc drifted
+  // sideways, docs/controller.md). false (the default): level only.
+  void HoldTiltedHoverWithoutSpare(bool hold) { tilted_without_spare_ = hold; }
   // Rotors beyond the controlled axes (HoverSpace::spare_rotors; 1 on the quadrotor).
   int spare_rotors() const { return hover_space_.spare_rotors(); }
   // In the last period the base held a rotor that makes nothing at 0 N
@@ -124,11 +122,10 @@ class MultiArmLaw {
   // HoverBase without a spare rotor (HoldTiltedHoverWithoutSpare): f_hover
   // while it lies within [0, 1 / margin] x e_i c_T,i omega_max^2 (the
   // feasibility bound); else the least-tilted hover within
-  // [spare_tilted_min_share, max], else within [spare_min_share, max], max
-  // spare_max_share (kWithinMaxShare) or 1 / margin
-  // (kUpToFeasibilityBound), up to spare_hover_tilt_rad and the tilt limit
-  // (the trirotor with rotor 2 at 20 %: 0.11 / 0.04 rad); else f_hover (the
-  // descent).
+  // [spare_tilted_min_share, spare_max_share], else within
+  // [spare_min_share, spare_max_share], up to spare_hover_tilt_rad and the
+  // tilt limit (the trirotor with rotor 2 at 20 %: 0.11 rad); else f_hover
+  // (the descent).
   const ArmForces<double>& LevelOrTiltedBase(const RotorEfficiencies& efficiency);
   // Some rotor makes nothing (e_i = 0: the controller retired it).
   bool AnyRotorOut(const RotorEfficiencies& efficiency) const;
@@ -156,7 +153,7 @@ class MultiArmLaw {
   // rotor: both its bounds bind, the allocation has no F_x, and the cascade
   // moves sideways by tilting about base_tilt_rad_ (Wrench).
   bool base_pins_rotor_ = false;
-  TiltedHover tilted_without_spare_ = TiltedHover::kNone;  // HoldTiltedHoverWithoutSpare
+  bool tilted_without_spare_ = false;  // HoldTiltedHoverWithoutSpare
   double tilt_dwell_s_;                // infeasible_s: the cascade's level hover out of reach this long first [s]
   double level_out_of_reach_s_ = 0.0;  // how long LevelOrTiltedBase has found no level hover [s]
   Eigen::Vector2d position_integral_m_s_ = Eigen::Vector2d::Zero();  // int(e_p) [m s]

@@ -61,6 +61,8 @@ MultiArmMpc::MultiArmMpc(const VehicleDescription& vehicle, const MpcParams& par
   data_.reference = Eigen::MatrixXd::Zero(ns, params_.horizon_steps);
   data_.feed_forward_rad_s = Eigen::MatrixXd::Zero(nu, params_.horizon_steps);
   data_.last_command_rad_s = MultiArmMpcInputs::Zero(nu);
+  qp_.SetTerminalWeight(MpcWeightSet::kTiltedHover,
+                        TerminalWeight(model_, MpcQp::WeightParams(params_, MpcWeightSet::kTiltedHover)));
 }
 
 double MultiArmMpc::ReferenceTilt(const Eigen::Vector2d& acceleration_m_s2, const MultiArmHoverBase* base) const {
@@ -146,6 +148,9 @@ void MultiArmMpc::FillData(const BodyState& measured, const std::vector<Referenc
   data_.step = model_.Linearize(s0, last_command_rad_s, context, params_.step_s);
   data_.last_command_rad_s = last_command_rad_s;
   data_.command_period_s = period_s;
+  // About a tilted hover: tilting to move (MpcParams tilted_hover_*).
+  const bool tilted = fully_actuated_ && base != nullptr && base->tilt_rad != 0.0;
+  data_.weights = tilted ? MpcWeightSet::kTiltedHover : MpcWeightSet::kTracking;
   const size_t samples = reference.size();
   for (int k = 0; k < params_.horizon_steps; ++k) {
     const ReferencePoint& r = reference[std::min(static_cast<size_t>(k), samples - 1)];

@@ -392,7 +392,7 @@ TEST(MultiArmControllerTest, NoAllocationPerCall) {
   // The pinned hover of a dead rotor (MultiArmLaw, no F_x, the lift and
   // torque checked as made) too.
   MultiArmLaw law(vehicle, ForceFeedback().gains, SolveMultiArmHover(vehicle), ForceFeedback().efficiency);
-  law.HoldTiltedHoverWithoutSpare(MultiArmLaw::TiltedHover::kWithinMaxShare);
+  law.HoldTiltedHoverWithoutSpare(true);
   law.RedistributeAtBounds(true);
   RotorEfficiencies dead = NominalEfficiencies();
   dead[1] = 0.0;
@@ -420,7 +420,7 @@ TEST(MultiArmControllerTest, ADeadRotorsPinnedHoverMovesByTilting) {
   const VehicleDescription vehicle = Trirotor();
   const ControllerConfig config = ForceFeedback();
   MultiArmLaw law(vehicle, config.gains, SolveMultiArmHover(vehicle), config.efficiency);
-  law.HoldTiltedHoverWithoutSpare(MultiArmLaw::TiltedHover::kWithinMaxShare);
+  law.HoldTiltedHoverWithoutSpare(true);
   law.RedistributeAtBounds(true);
   RotorEfficiencies dead = NominalEfficiencies();
   dead[1] = 0.0;

@@ -48,6 +48,9 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.mpc.descent_pitch_rate_weight_s2_rad2, defaults.mpc.descent_pitch_rate_weight_s2_rad2);
   EXPECT_EQ(config.mpc.level_tilt_weight_1_rad2, defaults.mpc.level_tilt_weight_1_rad2);
   EXPECT_EQ(config.mpc.level_pitch_rate_weight_s2_rad2, defaults.mpc.level_pitch_rate_weight_s2_rad2);
+  EXPECT_EQ(config.mpc.tilted_hover_tilt_weight_1_rad2, defaults.mpc.tilted_hover_tilt_weight_1_rad2);
+  EXPECT_EQ(config.mpc.tilted_hover_pitch_rate_weight_s2_rad2, defaults.mpc.tilted_hover_pitch_rate_weight_s2_rad2);
+  EXPECT_EQ(config.efficiency.spare_hover_tilt_rad, defaults.efficiency.spare_hover_tilt_rad);
 }
 
 TEST(ControllerConfigYamlTest, MissingKeysAreNamed) {
@@ -77,6 +80,10 @@ TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
   // The N-input MPC's level weights (docs/mpc.md "N inputs").
   e = ErrorOf("mpc: {level_tilt_weight_1_rad2: -1}\n");
   EXPECT_NE(e.find("mpc.level_tilt_weight_1_rad2"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0, 1e+08]"), std::string::npos) << e;
+  // ... and its tilted-hover weights.
+  e = ErrorOf("mpc: {tilted_hover_pitch_rate_weight_s2_rad2: -1}\n");
+  EXPECT_NE(e.find("mpc.tilted_hover_pitch_rate_weight_s2_rad2"), std::string::npos) << e;
   EXPECT_NE(e.find("allowed: [0, 1e+08]"), std::string::npos) << e;
   // The absolute efficiency stays inside the plausible scales and on its side of 1.
   e = ErrorOf("controller:\n  efficiency: {min_absolute_efficiency: 1.1}\n");
