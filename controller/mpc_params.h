@@ -97,10 +97,11 @@ struct MpcParams {
   double level_tilt_weight_1_rad2 = 1e5;
   double level_pitch_rate_weight_s2_rad2 = 5000.0;
   // The tilt and pitch rate weights of a fully-actuated vehicle planning
-  // about a tilted hover without a spare rotor (the trirotor with a weak
-  // rotor 2 or 3, docs/controller.md "A tilted hover without a spare
-  // rotor"): the weak rotor near its bound makes F_x one way only, so the
-  // plan tilts about the hover to move, as the birotor does. With the level
+  // about a tilted hover (the trirotor with a weak rotor 2 or 3,
+  // docs/controller.md "A tilted hover without a spare rotor"; the
+  // quadrotor with a dead rotor, "Spare rotors"): the weak rotor near its
+  // bound makes F_x one way only, so the plan tilts about the hover to
+  // move, as the birotor does. With the level
   // weights the trirotor with rotor 2 at 12 % drifted 0.37 m sideways after
   // the loss (RMS 0.150 m, median of seeds 1-5); 500 / 50: 0.023 m, peak
   // tilt 0.36 rad; the birotor's 20 / 1: 0.015 m but 0.51 rad.

@@ -380,10 +380,12 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
   MultiArmRotorCommand command = cascade;
   if (mpc_ != nullptr && !descend && !law_.pins_rotor()) {
     command = FlyMpc(target, efficiency, cascade, dt_s);
-  } else if (descend) {
-    if (!Flare(infeasible && !pose_lost, efficiency, &command)) SlewDescent(efficiency, dt_s, &command);
+  } else {
+    if (descend && !Flare(infeasible && !pose_lost, efficiency, &command)) SlewDescent(efficiency, dt_s, &command);
     if (mpc_ != nullptr) {
-      // The MPC's motor model follows the cascade's descent.
+      // The MPC's motor model follows the cascade's command (the descent's,
+      // or the hover pinning a dead rotor's), the speeds its next plan
+      // starts from.
       for (int i = 0; i < vehicle_.arm_count; ++i)
         last_sent_rad_s_(i) = command.omega_cmd_rad_s[static_cast<size_t>(i)];
       mpc_->Advance(last_sent_rad_s_, dt_s);
