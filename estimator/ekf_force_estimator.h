@@ -42,6 +42,8 @@ class EkfForceEstimator : public ForceEstimator {
   // thrust scales take the change through the strain innovations).
   void SetTipMassKg(double tip_mass_kg) override { process_.SetTipMassKg(tip_mass_kg); }
   bool flies_tip_mass() const override { return true; }
+  // The ground contact's height band (GroundContact::OnPose).
+  void AddPose(const PoseSample& sample) override { contact_.OnPose(sample.z_m); }
 
   bool initialized() const { return initialized_; }
   const EkfState& state() const { return state_; }
@@ -114,6 +116,12 @@ class EkfForceEstimator : public ForceEstimator {
   // The states a fusion on the N live states must not move now (a bit per
   // state; 0 mostly): see EkfOptions::step_hold_s.
   uint32_t HeldStates(int live_states) const;
+  // The offsets, held while the body is in the air near the ground
+  // (GroundContact::near_ground, the may-touch band): the touches'
+  // transients must not move the offsets the held body anchored (they
+  // moved them and MODEL_MISMATCH was raised), nor may what the widened
+  // a_z lets pass (a payload would go into them).
+  uint32_t OffsetsHeldNearGround() const;
   int64_t StepHoldEndUtime() const;  // the state's time plus step_hold_s [us]
   // The strain gate is rejecting a step, or let one in less than step_hold_s ago.
   bool InThrustStep() const;

@@ -52,6 +52,7 @@ FusionReport EkfForceEstimator::FuseRead(const MeasurementLinearization<M, kEkfS
     sized.joseph = JosephForm::kCombined;
     sized.consider_states = HeldStates(N);  // through a step or a lift-off
   }
+  sized.consider_states |= OffsetsHeldNearGround();
   return FuseOn(LeadingStates<K>(at), noise, z, sized, inflation, &x, &cov);
 }
 
@@ -133,7 +134,9 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   const AccelerometerMeasurementModel::Linearization at =
       accel_linearization_.valid ? AccelerometerMeasurementModel::Linearize(accel_linearization_, state_)
                                  : AccelerometerMeasurementModel::Linearize(process_, state_);
-  Report(Fuse(at, accel_model_.noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
+  Eigen::Matrix<double, 1, 1> noise = accel_model_.noise;
+  noise(0, 0) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
+  Report(Fuse(at, noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
               {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis}));
 }
 

@@ -123,6 +123,11 @@ uint32_t EkfForceEstimator::HeldStates(int live_states) const {
   return held;
 }
 
+uint32_t EkfForceEstimator::OffsetsHeldNearGround() const {
+  if (!options_.estimate_gauge_offsets || !contact_.near_ground()) return 0;
+  return (1u << kGaugeOffset1) | (1u << kGaugeOffset2);
+}
+
 double EkfForceEstimator::PayloadProbability() const {
   if (!options_.learn_body_mass) return 0.0;
   const double std = BodyMassLive() ? std::sqrt(std::max(covariance_(kBodyMassScale, kBodyMassScale), 0.0))

@@ -193,12 +193,15 @@ struct EkfOptions {
   // Height above the ground [m] (POSE z over its value while the contact
   // last held) within which the body may still touch it unnoticed: the
   // support can then be anything up to ground_contact_on_n, so the
-  // accelerometer's a_z variance gains (ground_contact_on_n / M)^2 there
-  // (N-arm EKF; docs/estimator.md, "Hovering at the ground's height").
-  // 0: off (the filtered support alone, as without POSE), the default: the
-  // band also hides a payload at a ground start (the lift-off's a_z
-  // evidence falls within the widened variance).
-  double ground_may_touch_m = 0.0;
+  // accelerometer's a_z variance gains (ground_contact_on_n / M)^2 there,
+  // and the birotor EKF holds its gauge offsets (Schmidt consider states)
+  // (docs/estimator.md, "Hovering at the ground's height"). 0: off (the
+  // filtered support alone, as without POSE).
+  double ground_may_touch_m = 0.02;
+  // ... from this long after the contact let go [s]: the lift-off's first
+  // moments are read at the accelerometer's full weight, where a payload
+  // shows (from the first sample, the band hid a payload at a ground start).
+  double ground_may_touch_after_s = 0.5;
   // The body is held on a test stand (scenario bench): the supported-body
   // model throughout, whatever the IMU says.
   bool body_held = false;

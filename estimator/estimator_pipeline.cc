@@ -261,9 +261,9 @@ void EstimatorPipeline::OnPose(const PoseSample& sample) {
     ++c.rejected_invalid;
     return;
   }
-  // Accepted for the health counters; no method uses the pose yet.
+  // Counted for the health; the method may take the height (its ground contact).
   Admission admission;
-  Admit(InputChannel::kPose, sample.utime, sample.seq, &admission);
+  if (Admit(InputChannel::kPose, sample.utime, sample.seq, &admission)) method_->AddPose(sample);
 }
 
 bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* estimate) {

@@ -103,6 +103,11 @@ class ForceEstimator {
     estimate->status = ComposeFilterStatus(info->filter);
   }
 
+  // One accepted POSE sample, on arrival (a method that judges the ground's
+  // contact takes its height: GroundContact::OnPose); the others ignore it.
+  // No report: the pose is not fused.
+  virtual void AddPose(const PoseSample& /*sample*/) {}
+
   // The NIS gate the method applies to a measurement source; NaN where it
   // has none (it does not use the source, or uses it without a gate).
   virtual double Gate(FusionSource /*source*/) const { return std::numeric_limits<double>::quiet_NaN(); }

@@ -11,7 +11,9 @@ GroundContact::GroundContact(double total_mass_kg, double gravity_m_s2, const Ek
       off_n_(options.ground_contact_off_n),
       filter_s_(options.ground_contact_filter_s),
       support_noise_n_(total_mass_kg * options.accel_noise_m_s2),
-      weight_n_(total_mass_kg * gravity_m_s2) {}
+      weight_n_(total_mass_kg * gravity_m_s2),
+      may_touch_m_(options.ground_may_touch_m),
+      may_touch_after_us_(static_cast<int64_t>(std::llround(options.ground_may_touch_after_s * 1e6))) {}
 
 double GroundContact::TimeConstantS(double dt_s) const {
   // A first-order low-pass of white noise of sigma M sigma_a sampled every dt
@@ -28,6 +30,32 @@ void GroundContact::Reset() {
   has_sample_ = false;
   support_force_n_ = 0;
   supported_ = false;
+  has_been_supported_ = false;
+  supported_utime_ = -1;
+  released_utime_ = -1;
+  has_ground_height_ = false;
+  near_ground_ = false;
+}
+
+void GroundContact::OnPose(double z_m) {
+  // A rest, not a flicker (one noisy first sample can hold the contact for
+  // tens of milliseconds in the air).
+  if (supported_ && last_utime_ - supported_utime_ >= may_touch_after_us_) {
+    ground_height_m_ = z_m;
+    has_ground_height_ = true;
+  }
+  near_ground_ = has_ground_height_ && may_touch_m_ > 0.0 && z_m - ground_height_m_ < may_touch_m_;
+}
+
+bool GroundContact::may_touch() const {
+  return near_ground() && released_utime_ >= 0 && last_utime_ - released_utime_ >= may_touch_after_us_;
+}
+
+double GroundContact::ReleasedSupportVarianceM2S4() const {
+  if (!has_been_supported_) return 0.0;
+  const double bound_n = may_touch() ? std::max(support_force_n_, on_n_) : std::max(support_force_n_, 0.0);
+  const double a = bound_n / total_mass_kg_;
+  return a * a;
 }
 
 void GroundContact::Update(int64_t utime, double accel_z_m_s2, double thrust_z_n) {
@@ -36,7 +64,10 @@ void GroundContact::Update(int64_t utime, double accel_z_m_s2, double thrust_z_n
   // (a 1e6 m/s^2 reading) must not put a flying vehicle on the ground.
   const double support_n = std::clamp(total_mass_kg_ * accel_z_m_s2 - thrust_z_n, -weight_n_, weight_n_);
   if (!has_sample_) {
-    support_force_n_ = support_n;
+    // The filter starts from the air (N_f = 0, not supported) and the next
+    // samples move it: one noisy first reading (a 1 m/s^2 accelerometer: N's
+    // sigma M sigma_a = 4.6 N) held the contact 38 ms in the air.
+    support_force_n_ = 0.0;
   } else if (utime > last_utime_) {
     // Exact discretisation of N_f_dot = (N - N_f) / tau over the sample interval.
     const double dt_s = static_cast<double>(utime - last_utime_) * 1e-6;
@@ -46,10 +77,13 @@ void GroundContact::Update(int64_t utime, double accel_z_m_s2, double thrust_z_n
   has_sample_ = true;
   last_utime_ = utime;
   if (support_force_n_ > on_n_) {
+    if (!supported_) supported_utime_ = utime;
     supported_ = true;
   } else if (support_force_n_ < off_n_) {
+    if (supported_) released_utime_ = utime;
     supported_ = false;
   }
+  has_been_supported_ = has_been_supported_ || supported_;
 }
 
 }  // namespace birotor

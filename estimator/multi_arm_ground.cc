@@ -6,10 +6,7 @@ namespace birotor {
 
 MultiArmGroundContact::MultiArmGroundContact(const VehicleDescription& vehicle, const EkfOptions& options)
     : arm_count_(vehicle.arm_count),
-      total_mass_kg_(vehicle.TotalMass()),
       weight_n_(vehicle.TotalMass() * vehicle.gravity_m_s2),
-      may_touch_m_(options.ground_may_touch_m),
-      may_touch_n_(options.ground_contact_on_n),
       cos_theta_{},
       contact_(vehicle.TotalMass(), vehicle.gravity_m_s2, options) {
   for (int i = 0; i < arm_count_; ++i) {
@@ -24,15 +21,6 @@ void MultiArmGroundContact::Update(int64_t utime, double accel_z_m_s2, const dou
     for (int i = 0; i < arm_count_; ++i) thrust_z_n += force_n[i] * cos_theta_[static_cast<size_t>(i)];
   }
   contact_.Update(utime, accel_z_m_s2, thrust_z_n);
-  has_been_supported_ = has_been_supported_ || contact_.supported();
-}
-
-void MultiArmGroundContact::OnPose(double z_m) {
-  if (contact_.supported()) {
-    ground_height_m_ = z_m;
-    has_ground_height_ = true;
-  }
-  near_ground_ = has_ground_height_ && may_touch_m_ > 0.0 && z_m - ground_height_m_ < may_touch_m_;
 }
 
 }  // namespace birotor

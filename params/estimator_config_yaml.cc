@@ -62,6 +62,7 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Real("ground_contact_off_n", &O::ground_contact_off_n, 0.0, 1e5),  // and <= ground_contact_on_n
       Real("ground_contact_filter_s", &O::ground_contact_filter_s, 1e-4, 10.0),
       Real("ground_may_touch_m", &O::ground_may_touch_m, 0.0, 10.0),
+      Real("ground_may_touch_after_s", &O::ground_may_touch_after_s, 0.0, 60.0),
       Flag("body_held", &O::body_held),
   };
   return keys;

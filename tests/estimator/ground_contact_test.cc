@@ -1,11 +1,12 @@
 // The ground-contact judgement (estimator/ground_contact.h): the support
 // force N = M a_z - (f1 + f2) low-passed against its hysteresis, the filter
 // lengthened for a noisy accelerometer, one reading spike clamped, missing
-// readings skipped, and Reset.
+// readings skipped, Reset, and the may-touch band above the ground.
 #include "estimator/ground_contact.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -16,17 +17,20 @@ namespace {
 TEST(GroundContactTest, SupportForceSaysGroundOrAir) {
   const BirotorParams p;  // M = 4.57624 kg
   GroundContact contact(p, EkfOptions());
-  // At rest, motors stopped: N = M g = 44.9 N.
+  // At rest, motors stopped: N = M g = 44.9 N, reached from 0 (the first
+  // sample) with tau = 20 ms over 99 steps of 1 ms.
+  const double weight_n = p.TotalMass() * 9.81;
   for (int k = 0; k < 100; ++k) contact.Update(1000 * k, 9.81, 0.0);
   EXPECT_TRUE(contact.supported());
-  EXPECT_NEAR(contact.support_force_n(), p.TotalMass() * 9.81, 1e-9);
+  const double at_rest_n = weight_n * (1.0 - std::exp(-0.05 * 99));
+  EXPECT_NEAR(contact.support_force_n(), at_rest_n, 1e-9);
   // In the air the rotors carry the vehicle: M a_z = f1 + f2, N = 0.
-  for (int k = 100; k < 300; ++k) contact.Update(1000 * k, 9.81, p.TotalMass() * 9.81);
+  for (int k = 100; k < 300; ++k) contact.Update(1000 * k, 9.81, weight_n);
   EXPECT_FALSE(contact.supported());
-  // First-order decay from M g with tau = 20 ms over 200 ms: M g e^-10.
-  EXPECT_NEAR(contact.support_force_n(), p.TotalMass() * 9.81 * std::exp(-10.0), 1e-9);
+  // First-order decay with tau = 20 ms over 200 ms: a factor e^-10.
+  EXPECT_NEAR(contact.support_force_n(), at_rest_n * std::exp(-10.0), 1e-9);
   // Hysteresis: 3 N (between off 1 N and on 4.5 N) keeps the state.
-  for (int k = 300; k < 500; ++k) contact.Update(1000 * k, 9.81, p.TotalMass() * 9.81 - 3.0);
+  for (int k = 300; k < 500; ++k) contact.Update(1000 * k, 9.81, weight_n - 3.0);
   EXPECT_FALSE(contact.supported());
 }
 
@@ -83,7 +87,8 @@ TEST(GroundContactTest, ASpikeOrAMissingReadingCannotLandAFlyingVehicle) {
   EXPECT_FALSE(contact.supported());
 }
 
-// Reset forgets the filtered force: the next sample starts it afresh.
+// Reset forgets the filtered force: the next sample starts the filter
+// afresh from the air (N_f = 0), and the samples after it move it.
 TEST(GroundContactTest, ResetStartsFromTheNextSample) {
   const BirotorParams p;
   GroundContact contact(p, EkfOptions());
@@ -92,9 +97,60 @@ TEST(GroundContactTest, ResetStartsFromTheNextSample) {
   contact.Reset();
   EXPECT_FALSE(contact.supported());
   EXPECT_EQ(contact.support_force_n(), 0.0);
-  contact.Update(200000, 9.81, p.TotalMass() * 9.81 - 10.0);  // N = 10 N at once, no filter lag
-  EXPECT_NEAR(contact.support_force_n(), 10.0, 1e-9);
-  EXPECT_TRUE(contact.supported());
+  const double thrust_n = p.TotalMass() * 9.81 - 10.0;  // N = 10 N
+  contact.Update(200000, 9.81, thrust_n);
+  EXPECT_EQ(contact.support_force_n(), 0.0);
+  EXPECT_FALSE(contact.supported());
+  contact.Update(201000, 9.81, thrust_n);  // one 1 ms step of tau = 20 ms
+  EXPECT_NEAR(contact.support_force_n(), 10.0 * (1.0 - std::exp(-0.05)), 1e-9);
+  for (int k = 2; k < 20; ++k) contact.Update(200000 + 1000 * k, 9.81, thrust_n);
+  EXPECT_TRUE(contact.supported());  // 10 (1 - e^(-t / 20 ms)) > 4.5 N from t = 12 ms
+}
+
+// The may-touch band (ground_may_touch_m 0.02 m, ground_may_touch_after_s
+// 0.5 s, the defaults): the ground's height is the POSE z of a rest (the
+// contact held 0.5 s); in the air within 2 cm of it the body is near the
+// ground at once and may touch it from 0.5 s after the let-go, when the
+// accelerometer's a_z variance gains (on_n / M)^2. A flicker (one noisy
+// first sample held the contact 38 ms in the air, accel noise 1 m/s^2)
+// sets no ground height.
+TEST(GroundContactTest, TheBandNeedsARestAndStartsAfterTheLetGo) {
+  const BirotorParams p;
+  const EkfOptions options;
+  const double weight_n = p.TotalMass() * p.gravity_m_s2;
+  GroundContact contact(p, options);
+  int64_t utime = 0;
+  for (int k = 0; k < 600; ++k, utime += 1000) {  // 0.6 s at rest, motors stopped
+    contact.Update(utime, p.gravity_m_s2, 0.0);
+    if (k % 10 == 0) contact.OnPose(0.0);
+  }
+  ASSERT_TRUE(contact.supported());
+  EXPECT_FALSE(contact.near_ground());  // on the ground, not near it
+  for (int k = 0; k < 100; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n);
+  ASSERT_FALSE(contact.supported());
+  contact.OnPose(0.005);
+  EXPECT_TRUE(contact.near_ground());
+  EXPECT_FALSE(contact.may_touch());  // 0.1 s after the let-go: a_z at full weight
+  const double released = std::max(contact.support_force_n(), 0.0) / p.TotalMass();  // the filtered support alone
+  EXPECT_NEAR(contact.ReleasedSupportVarianceM2S4(), released * released, 1e-12);
+  for (int k = 0; k < 500; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n);
+  EXPECT_TRUE(contact.may_touch());
+  const double bound = options.ground_contact_on_n / p.TotalMass();
+  EXPECT_NEAR(contact.ReleasedSupportVarianceM2S4(), bound * bound, 1e-12);
+  contact.OnPose(0.025);  // 2.5 cm up: clear of the band
+  EXPECT_FALSE(contact.near_ground());
+  EXPECT_FALSE(contact.may_touch());
+
+  GroundContact flicker(p, options);
+  utime = 0;
+  for (int k = 0; k < 38; ++k, utime += 1000) flicker.Update(utime, p.gravity_m_s2, weight_n - 8.0);
+  ASSERT_TRUE(flicker.supported());
+  flicker.OnPose(1.0);
+  for (int k = 0; k < 1000; ++k, utime += 1000) flicker.Update(utime, p.gravity_m_s2, weight_n);
+  ASSERT_FALSE(flicker.supported());
+  flicker.OnPose(1.0);
+  EXPECT_FALSE(flicker.near_ground());
+  EXPECT_FALSE(flicker.may_touch());
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/mismatch_targets.h"
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
@@ -88,6 +89,36 @@ TEST(MismatchScenarios, AggressiveLiftOffNeverRaises) {
         Fly("aggressive", {"ground.enabled=true", "scenario.duration_s=12", "scenario.seed=" + std::to_string(seed)});
     EXPECT_EQ(f.mismatch, 0) << "seed " << seed;
     EXPECT_EQ(f.parameter, "") << "seed " << seed;
+  }
+}
+
+// Hovering at the ground's height (hover with the ground phase: the
+// setpoint z = 0 keeps the body brushing the ground with a support below
+// the contact's threshold), seeds 1-10. Without the may-touch band
+// (ground_may_touch_m 0) MODEL_MISMATCH was raised on seeds 2, 5, 6, 7, 8
+// and 10 (at 2.9-15.6 s: the touches moved the gauge offsets) and the
+// 2-sigma share after 5 s was 0.77-0.87 (worst 2 s window 0.16-0.68).
+// With it (the shipped 0.02 m, from 0.5 s after the let-go), as measured
+// here from 5 s after the lift-off: never raised, VALID 1.000, MAE of the
+// worse rotor 0.110-0.153 N (the support is unknown there; airborne 0.07),
+// 2-sigma 0.966-0.992, worst 2 s window 0.855-0.972 (docs/estimator.md,
+// "Hovering at the ground's height").
+TEST(MismatchScenarios, HoverAtTheGroundsHeightNeverRaises) {
+  for (int seed = 1; seed <= 10; ++seed) {
+    const ScenarioRun run = RunScenario(
+        LoadScenario(ScenarioFile("hover"), {"ground.enabled=true", "scenario.seed=" + std::to_string(seed)}),
+        ReferenceConfig());
+    const MismatchTargetFigures f =
+        EvaluateMismatchTargets(run.forces, run.truth, run.liftoff_utime, MismatchTargets());
+    std::printf("hover at the ground's height, seed %d: VALID %.3f, MAE %.3f N, 2-sigma %.3f, window %.3f\n", seed,
+                f.valid_share, f.valid_mae_n, f.two_sigma_share, f.worst_window_share);
+    int64_t mismatch = 0;
+    for (const ForceEstimate& e : run.forces) mismatch += (e.status & kStatusModelMismatch) != 0;
+    EXPECT_EQ(mismatch, 0) << "seed " << seed;
+    EXPECT_EQ(f.valid_share, 1.0) << "seed " << seed;
+    EXPECT_GE(f.two_sigma_share, 0.93) << "seed " << seed;
+    EXPECT_GE(f.worst_window_share, 0.80) << "seed " << seed;
+    EXPECT_LT(f.valid_mae_n, 0.2) << "seed " << seed;
   }
 }
 

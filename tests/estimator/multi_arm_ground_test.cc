@@ -103,7 +103,7 @@ TEST(MultiArmGroundTest, ContactFromTheThrustAlongBodyZ) {
   MultiArmGroundContact resting(vehicle, options), hovering(vehicle, options);
   const double stopped[3] = {0.0, 0.0, 0.0};
   const double hover_n[3] = {hover.thrust_n[0], hover.thrust_n[1], hover.thrust_n[2]};
-  for (int k = 0; k < 200; ++k) {  // 0.2 s at 1 kHz, ten filter time constants
+  for (int k = 0; k < 1000; ++k) {  // 1 s at 1 kHz: fifty filter time constants from N_f = 0
     resting.Update(1000 * k, g, stopped);
     hovering.Update(1000 * k, g, hover_n);
   }
@@ -119,32 +119,36 @@ TEST(MultiArmGroundTest, ContactFromTheThrustAlongBodyZ) {
 
 // After a time on the ground the support the contact may miss (up to
 // ground_contact_on_n) widens a_z while POSE puts the body within
-// ground_may_touch_m of the height the ground held it at; above that band,
-// or without POSE, only the filtered support N_f does (here 0: released at
-// hover thrust, N_f decayed).
+// ground_may_touch_m of the height the ground held it at, from
+// ground_may_touch_after_s after the contact let go; before that, above
+// the band, or without POSE, only the filtered support N_f does (here 0:
+// released at hover thrust, N_f decayed).
 TEST(MultiArmGroundTest, MayTouchBandWidensTheAccelerometerNearTheGround) {
   const VehicleDescription vehicle = Vehicle("trirotor");
   EkfOptions options;
   options.ground_may_touch_m = 0.02;
+  options.ground_may_touch_after_s = 0.3;
   const double g = vehicle.gravity_m_s2;
   const HoverSolution hover = SolveHover(vehicle);
   const double stopped[3] = {0.0, 0.0, 0.0};
   const double hover_n[3] = {hover.thrust_n[0], hover.thrust_n[1], hover.thrust_n[2]};
   MultiArmGroundContact contact(vehicle, options);
   int64_t utime = 0;
-  for (int k = 0; k < 200; ++k, utime += 1000) contact.Update(utime, g, stopped);
+  for (int k = 0; k < 400; ++k, utime += 1000) contact.Update(utime, g, stopped);
   ASSERT_TRUE(contact.supported());
-  contact.OnPose(0.10);  // the ground's height where it holds the body [m]
-  for (int k = 0; k < 400; ++k, utime += 1000) contact.Update(utime, g, hover_n);
+  contact.OnPose(0.10);  // the ground's height where it held the body 0.4 s (a rest) [m]
+  for (int k = 0; k < 100; ++k, utime += 1000) contact.Update(utime, g, hover_n);
   ASSERT_FALSE(contact.supported());
+  contact.OnPose(0.115);  // 1.5 cm up, but less than 0.3 s after the let-go: a_z at full weight
+  EXPECT_FALSE(contact.contact().may_touch());
+  for (int k = 0; k < 300; ++k, utime += 1000) contact.Update(utime, g, hover_n);
   ASSERT_LT(contact.contact().support_force_n(), 1e-6);
   const double bound = options.ground_contact_on_n / vehicle.TotalMass();  // [m/s^2]
-  // 1.5 cm up: may touch.
-  contact.OnPose(0.115);
-  EXPECT_TRUE(contact.near_ground());
+  // 1.5 cm up, 0.3 s on: may touch.
+  EXPECT_TRUE(contact.contact().may_touch());
   EXPECT_NEAR(contact.ReleasedSupportVarianceM2S4(), bound * bound, 1e-12);
   contact.OnPose(0.125);  // 2.5 cm up: clear
-  EXPECT_FALSE(contact.near_ground());
+  EXPECT_FALSE(contact.contact().may_touch());
   EXPECT_LT(contact.ReleasedSupportVarianceM2S4(), 1e-12);
   // Off (0 m): never within the band.
   options.ground_may_touch_m = 0.0;
@@ -153,7 +157,7 @@ TEST(MultiArmGroundTest, MayTouchBandWidensTheAccelerometerNearTheGround) {
   off.OnPose(0.10);
   for (int k = 200; k < 600; ++k) off.Update(1000 * k, g, hover_n);
   off.OnPose(0.10);
-  EXPECT_FALSE(off.near_ground());
+  EXPECT_FALSE(off.contact().may_touch());
   EXPECT_LT(off.ReleasedSupportVarianceM2S4(), 1e-12);
   // A start in the air never had a ground height: 0 at any pose.
   MultiArmGroundContact airborne(vehicle, EkfOptions());
@@ -228,20 +232,18 @@ TEST(MultiArmGroundTest, BirotorDescriptionMatchesTheBirotorsOwnEkf) {
 
 // Hovering at the ground's height (hover with the ground phase: the
 // setpoint z = 0 keeps the body in and out of contact below the contact's
-// threshold) with the may-touch band on (ground_may_touch_m 0.02 m).
-// Measured: trirotor 0.1057 / 0.0694 / 0.0657 N, 2-sigma 0.955 / 0.940 /
-// 0.950, VALID 1.000, MODEL_MISMATCH 0.000 (without the band, the
-// default: 0.1139 / 0.0630 / 0.0609 N, 0.841 / 0.917 / 0.921,
-// MODEL_MISMATCH 0.127); N = 2 0.0832 / 0.0805 N, 0.974 / 0.974 (without:
-// 0.905 / 0.906). The MAE stays 34 % above the airborne hover's (rotor 1):
-// the support is unknown there; asserted: the sigma says so. Since the
-// tip mass's prior is in the N-arm sigma until the arm mode confirms it
-// (docs/mismatch.md), N = 2 reads 0.981 / 0.979: in and out of contact the
-// mode never gets the 0.6 s of free flight a reading needs, so the prior
-// stays for the flight (upper bound 0.99 there, the tip mass unconfirmed).
+// threshold) with the shipped may-touch band (ground_may_touch_m 0.02 m,
+// from ground_may_touch_after_s 0.5 s after the let-go). Measured: trirotor
+// 0.1082 / 0.0692 / 0.0657 N, 2-sigma 0.956 / 0.942 / 0.951, VALID 1.000,
+// MODEL_MISMATCH 0.000 (without the band: 0.1138 / 0.0626 / 0.0607 N,
+// 0.852 / 0.923 / 0.925, MODEL_MISMATCH 0.127); N = 2 0.0928 / 0.0933 N,
+// 0.982 / 0.982 (without: 0.931 / 0.941). The MAE stays above the airborne
+// hover's: the support is unknown there; asserted: the sigma says so. In
+// and out of contact the arm mode never gets the 0.6 s of free flight a
+// reading needs, so the tip mass's prior stays in the N-arm sigma for the
+// flight (upper bound 0.99 there).
 TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
-  EstimatorConfig config = Config();
-  config.ekf.ground_may_touch_m = 0.02;
+  const EstimatorConfig config = Config();
   for (const char* vehicle : {"trirotor", "birotor"}) {
     SCOPED_TRACE(vehicle);
     const VehicleDescription description = Vehicle(vehicle);
@@ -260,13 +262,12 @@ TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
 }
 
 // A payload at a ground start: the trirotor flown with its body 10 % heavier
-// (4.4 kg) than its description, gentle from the ground. With the shipped
-// file (no may-touch band) the lift-off's accelerometer says the model is
-// wrong: measured MODEL_MISMATCH 0.750 of the scored estimates, VALID
-// 0.250 (forces 0.080 / 0.075 / 0.068 N off, the strain's). With the band
-// (0.02 m) the widened a_z lets the gauge offsets take the payload during
-// the climb through it: VALID 1.000, 1.57 / 0.78 / 0.79 N off, 2-sigma
-// 0.27: the reason the band is off by default.
+// (4.4 kg) than its description, gentle from the ground. The lift-off's
+// accelerometer says the model is wrong: measured MODEL_MISMATCH 0.750 of
+// the scored estimates, VALID 0.250. The may-touch band starts 0.5 s after
+// the contact let go for this reason: from the let-go on, its widened a_z
+// let the gauge offsets take the payload during the climb through it
+// (VALID 1.000, 1.57 / 0.78 / 0.79 N off, 2-sigma 0.27).
 TEST(MultiArmGroundTest, PayloadAtAGroundStartIsNotHidden) {
   const EstimatorConfig config = [] {
     EstimatorConfig c = Config();
