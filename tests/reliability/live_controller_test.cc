@@ -100,18 +100,20 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
       20.0))
       << "no force-feedback command before the kill";
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  const double kill_s = SteadyClockS();
   estimator.Kill(SIGKILL);
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   const double restart_s = SteadyClockS();
   ASSERT_TRUE(estimator.Start(DaemonCommand(url, prefix), TempPath("controller_test_estimator.log")));
   ASSERT_TRUE(DaemonListener::WaitUntil([&] { return !sim.Alive(); }, 30.0)) << "the simulator did not finish";
 
-  // The last FORCE of the killed estimator, and the first fallback after it.
+  // The last FORCE of the killed estimator (every FORCE that arrived before
+  // the restart is its: under load one in flight at the kill can reach this
+  // listener more than 50 ms later), and the first fallback after it.
   ForceRecord last_force;
   last_force.arrival_s = -1;
+  last_force.message.utime = -1;
   for (const ForceRecord& r : forces.Forces()) {
-    if (r.arrival_s < kill_s + 0.05) last_force = r;  // in flight when the kill landed
+    if (r.arrival_s < restart_s && r.message.utime > last_force.message.utime) last_force = r;
   }
   ASSERT_GE(last_force.arrival_s, 0);
   const std::vector<CommandRecord> commands = loop.Commands();
@@ -147,10 +149,14 @@ TEST(LiveControllerTest, EstimatorKilledMidFlightFallsBackAndReturns) {
   // fallback command goes out also depends on when the controller gets the CPU:
   // 5-8 ms on a quiet machine, 11 ms measured with five busy loops beside it;
   // the figure is the README's, the bound here is only a sanity check.)
-  constexpr int64_t kForceTimeoutUs = 5000;
+  // The listener may lose the killed estimator's last FORCE or two on a
+  // loaded machine (UDP), which the controller got: 2 ms (two strain
+  // periods) of slack on the stamp it saw last.
+  constexpr int64_t kForceTimeoutUs = 5000, kMissedForcesUs = 2000;
   int64_t stale_commands = 0;
   for (const CommandRecord& c : commands) {
-    if (c.message.utime > last_force.message.utime + kForceTimeoutUs && c.message.utime < first_new.message.utime) {
+    if (c.message.utime > last_force.message.utime + kForceTimeoutUs + kMissedForcesUs &&
+        c.message.utime < first_new.message.utime) {
       ++stale_commands;
       EXPECT_TRUE(c.message.status & motor_command_t::STATUS_FALLBACK_ACTIVE) << "command at " << c.message.utime;
     }
