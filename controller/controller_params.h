@@ -182,7 +182,13 @@ struct EfficiencyParams {
   // strong rotor may exceed the weak one so that |tilt| reaches flare_tilt_rad
   // at touchdown, trading tilt and pitch rate for touchdown speed (0: no flare).
   double flare_tilt_rad = 0.08;  // tilt budget at touchdown [rad]
-  double flare_time_s = 0.1;     // flare height = sink rate x this [s]
+  // The same budget on a fully actuated vehicle (MultiArmControlMode
+  // kFullyActuated: the trirotor, the quadrotor): its canted rotors' thrust
+  // turns towards the vertical as the body tilts, so the tilt buys more
+  // there (trirotor, rotor 1 at 30 %: touchdown 2.26 m/s at 0.08 rad, 2.12 at
+  // 0.2, the nominal map's 2.20; docs/controller.md, "Flare with N rotors").
+  double flare_tilt_fully_actuated_rad = 0.2;  // [rad]
+  double flare_time_s = 0.1;                   // flare height = sink rate x this [s]
   // Motor-lag lead on a falling efficiency: omega_cmd = omega + lead_s d(omega)/dt
   // with d(omega)/dt = -omega / (2 e) de/dt (de/dt < 0 only), the inverse of the
   // first-order motor lag (tau_m, model/plant.h) for the efficiency's share of the

@@ -69,7 +69,7 @@ MultiArmController::MultiArmController(const VehicleDescription& vehicle, const 
       hover_command_(HoverCommand(vehicle, hover)),
       efficiency_(config.efficiency, hover.force_n.sum(), vehicle.arm_count),
       floor_evidence_(config.supervision, config.efficiency.infeasible_s, vehicle.arm_count),
-      flare_limits_(FlareGeometryOf(vehicle, config.efficiency.flare_tilt_rad)),
+      flare_limits_(FlareGeometryOf(vehicle, FlareTiltBudgetFor(vehicle, config.efficiency))),
       feasibility_(FeasibilityOf(vehicle, config, hover)),
       last_command_rad_s_(hover_command_.omega_cmd_rad_s) {
   // Re-solving around a rotor's bound needs the bound: force feedback's

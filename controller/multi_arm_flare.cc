@@ -90,6 +90,11 @@ void TryVertices(const FlareProgramme& p, int j, int k, unsigned mask, double* b
 
 }  // namespace
 
+double FlareTiltBudgetFor(const VehicleDescription& vehicle, const EfficiencyParams& params) {
+  const bool fully_actuated = MultiArmControlModeFor(vehicle) == MultiArmControlMode::kFullyActuated;
+  return fully_actuated ? params.flare_tilt_fully_actuated_rad : params.flare_tilt_rad;
+}
+
 MultiArmFlareLimits FlareGeometryOf(const VehicleDescription& vehicle, double tilt_budget_rad) {
   MultiArmFlareLimits limits;
   limits.tilt_budget_rad = tilt_budget_rad;

@@ -7,6 +7,7 @@
 // with N rotors".
 #pragma once
 
+#include "controller/controller_params.h"
 #include "controller/rotor_allocation.h"
 #include "model/vehicle_description.h"
 
@@ -29,6 +30,10 @@ struct MultiArmFlareLimits {
 // The geometry of the limits from the description (every max_force_n 0);
 // holds_lateral when MultiArmControlModeFor is kFullyActuated.
 MultiArmFlareLimits FlareGeometryOf(const VehicleDescription& vehicle, double tilt_budget_rad);
+
+// The tilt budget the vehicle's flare takes: flare_tilt_fully_actuated_rad on
+// a fully actuated vehicle, else flare_tilt_rad [rad].
+double FlareTiltBudgetFor(const VehicleDescription& vehicle, const EfficiencyParams& params);
 
 // The flare's thrusts: with s the sign of the torque every rotor makes at
 // its maximum (the strong side; +1 when that is 0), t_go = height / sink

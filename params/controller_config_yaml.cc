@@ -82,6 +82,7 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("level_tilt_rad", &O::level_tilt_rad, 1e-3, 0.5),
       Real("level_rate_rad_s", &O::level_rate_rad_s, 1e-3, 10.0),
       Real("flare_tilt_rad", &O::flare_tilt_rad, 0.0, 0.3),
+      Real("flare_tilt_fully_actuated_rad", &O::flare_tilt_fully_actuated_rad, 0.0, 0.3),
       Real("flare_time_s", &O::flare_time_s, 0.0, 1.0),
       Real("motor_lead_s", &O::motor_lead_s, 0.0, 1.0),
   };

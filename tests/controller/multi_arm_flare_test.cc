@@ -53,6 +53,18 @@ FlareState NearTheGround(double tilt_rad, double rate_rad_s) {
   return state;
 }
 
+// A fully actuated vehicle (the trirotor, the quadrotor) flares on its own
+// budget, the birotor's description on the birotor's.
+TEST(MultiArmFlareTest, AFullyActuatedVehicleTakesItsOwnTiltBudget) {
+  EfficiencyParams params;
+  params.flare_tilt_rad = 0.05;
+  params.flare_tilt_fully_actuated_rad = 0.25;
+  EXPECT_EQ(FlareTiltBudgetFor(BirotorDescription(BirotorParams()), params), 0.05);
+  EXPECT_EQ(FlareTiltBudgetFor(Vehicle("birotor"), params), 0.05);
+  EXPECT_EQ(FlareTiltBudgetFor(Vehicle("trirotor"), params), 0.25);
+  EXPECT_EQ(FlareTiltBudgetFor(Vehicle("quadrotor"), params), 0.25);
+}
+
 TEST(MultiArmFlareTest, OnTheBirotorItIsTheBirotorsFlare) {
   const BirotorParams params;
   const VehicleDescription vehicle = BirotorDescription(params);

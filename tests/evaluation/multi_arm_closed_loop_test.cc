@@ -302,20 +302,18 @@ void ExpectHeldBetterThanNominal(const AgainstNominal& a, double deviation_m, do
 
 // The trirotor climbs to 1 m and loses 70 or 80 % on rotor 1 (27.5 N at
 // hover) at 5 s, force feedback on the N-arm estimator (the product path):
-// one descent, hover infeasible from the efficiency, peak tilt from the
-// fault measured 0.101 / 0.155 rad on the conditioned efficiencies (0.076 /
-// 0.113 flying the scale itself; birotor-eval --vehicle
-// config/vehicles/trirotor.yaml --control --scenarios descent70_rotor1
-// descent80_rotor1, seed 4; target <= 0.3), touchdown 0.94 / 0.96 of the
-// level floor (target within 10 %; 2.22 / 3.08 m/s, 0.97 / 0.99 before the
-// flare for N rotors, controller/multi_arm_flare.h), one flare each. The
-// nominal map on the same seed:
-// no descent, tilt 0.294 / 1.434 rad. 40 % on rotor 1 stays feasible: no
-// descent.
+// one descent, hover infeasible from the efficiency, one flare on the fully
+// actuated budget (flare_tilt_fully_actuated_rad 0.2), peak tilt from the
+// fault measured 0.163 / 0.163 rad (target <= 0.3), touchdown 2.09 / 2.98
+// m/s, 0.88 / 0.93 of the level floor (target: at most 1.1 of it), below the
+// nominal map's on the same flight (2.16 / 3.87 m/s: no descent, tilt 0.29
+// / 1.43 rad; birotor-eval --vehicle config/vehicles/trirotor.yaml --control
+// --scenarios descent70_rotor1,descent80_rotor1, the scenario's seed 4). 40
+// % on rotor 1 stays feasible: no descent.
 TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover) {
   const VehicleDescription vehicle = Vehicle("trirotor");
   const double loss[3] = {0.7, 0.8, 0.4};
-  const double measured_tilt_rad[3] = {0.103, 0.156, 0.040};
+  const double measured_tilt_rad[3] = {0.163, 0.163, 0.040};
   for (int c = 0; c < 3; ++c) {
     const Scenario scenario = ClimbThenLoss(vehicle, 1, 1.0 - loss[c]);
     const MultiArmClosedLoopRun run = FlyOnTheEstimate(vehicle, scenario);
@@ -334,8 +332,13 @@ TEST(MultiArmClosedLoopTest, TrirotorDescendsLevelWhenRotorOneCannotHoldTheHover
     EXPECT_EQ(run.degradation.infeasible, 1) << loss[c];
     EXPECT_EQ(run.degradation.weak_rotor, 0) << loss[c];
     ASSERT_TRUE(descent.found) << loss[c];
-    EXPECT_NEAR(descent.touchdown_m_s / descent.floor_m_s, 1.0, 0.1) << loss[c];
+    EXPECT_LT(descent.touchdown_m_s / descent.floor_m_s, 1.1) << loss[c];
     EXPECT_EQ(run.degradation.flares, 1) << loss[c];
+    const MultiArmClosedLoopRun nominal = RunMultiArmClosedLoop(vehicle, scenario, Nominal());
+    const MultiArmDescent nominal_descent = MultiArmDescentOf(nominal, vehicle, scenario);
+    std::printf("  the nominal map: touchdown %.2f m/s, peak tilt %.3f rad\n", nominal_descent.touchdown_m_s,
+                nominal_descent.peak_tilt_rad);
+    EXPECT_LT(descent.touchdown_m_s, nominal_descent.touchdown_m_s) << loss[c];
   }
 }
 

@@ -77,6 +77,9 @@ TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
   e = ErrorOf("controller:\n  efficiency: {flare_tilt_rad: 0.4}\n");
   EXPECT_NE(e.find("controller.efficiency.flare_tilt_rad"), std::string::npos) << e;
   EXPECT_NE(e.find("allowed: [0, 0.3]"), std::string::npos) << e;
+  e = ErrorOf("controller:\n  efficiency: {flare_tilt_fully_actuated_rad: 0.4}\n");
+  EXPECT_NE(e.find("controller.efficiency.flare_tilt_fully_actuated_rad"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0, 0.3]"), std::string::npos) << e;
   // The N-input MPC's level weights (docs/mpc.md "N inputs").
   e = ErrorOf("mpc: {level_tilt_weight_1_rad2: -1}\n");
   EXPECT_NE(e.find("mpc.level_tilt_weight_1_rad2"), std::string::npos) << e;
