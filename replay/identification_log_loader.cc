@@ -1,8 +1,7 @@
 #include "replay/identification_log_loader.h"
 
+#include "replay/log_events.h"
 #include "transport/channels.h"
-#include "transport/lcm_codec.h"
-#include "transport/log_io.h"
 #include "transport/message_conversion.h"
 
 namespace birotor {
@@ -11,26 +10,17 @@ namespace {
 template <class Msg, class Sample>
 void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* report) {
   Msg message;
-  if (DecodeMessage(event.data.data(), event.data.size(), &message) != DecodeError::kNone) {
-    ++report->decode_errors;
-    return;
-  }
-  out->push_back(FromMessage(message));
+  if (DecodeCounted(event, &message, report)) out->push_back(FromMessage(message));
 }
 
 }  // namespace
 
 bool LoadSensorLog(const std::string& path, const std::string& prefix, SensorLog* log, LogLoadReport* report,
                    std::string* error, double min_usable_fraction) {
-  LogReader reader;
-  if (!reader.Open(path, error)) return false;
   const ChannelNames channels = MakeChannelNames(prefix);
   *log = SensorLog();
-  *report = LogLoadReport();
   log->source = path;
-  LogEvent event;
-  while (reader.Next(&event)) {
-    ++report->events;
+  return ReadLogEvents(path, min_usable_fraction, report, error, [&](const LogEvent& event) {
     if (event.channel == channels.strain) {
       Append<strain_t>(event, &log->strain, report);
     } else if (event.channel == channels.motor) {
@@ -44,11 +34,8 @@ bool LoadSensorLog(const std::string& path, const std::string& prefix, SensorLog
     } else if (event.channel == channels.truth) {
       Append<truth_t>(event, &log->truth, report);
     }
-  }
-  report->truncated_tail = reader.TruncatedTail();
-  report->tail_offset = reader.tail_offset();
-  report->file_size = reader.file_size();
-  return CheckLogUsable(reader, path, min_usable_fraction, error, &report->damage);
+    return true;
+  });
 }
 
 }  // namespace birotor

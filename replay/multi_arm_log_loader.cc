@@ -1,9 +1,8 @@
 #include "replay/multi_arm_log_loader.h"
 
+#include "replay/log_events.h"
 #include "transport/channels.h"
 #include "transport/counted_messages.h"
-#include "transport/lcm_codec.h"
-#include "transport/log_io.h"
 #include "transport/message_conversion.h"
 
 namespace birotor {
@@ -19,10 +18,7 @@ void Convert(const imu_t& message, ImuSample* sample) { *sample = FromMessage(me
 template <class Msg, class Sample>
 void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* report) {
   Msg message;
-  if (DecodeMessage(event.data.data(), event.data.size(), &message) != DecodeError::kNone) {
-    ++report->decode_errors;
-    return;
-  }
+  if (!DecodeCounted(event, &message, report)) return;
   out->emplace_back();
   Convert(message, &out->back());
 }
@@ -31,15 +27,10 @@ void Append(const LogEvent& event, std::vector<Sample>* out, LogLoadReport* repo
 
 bool LoadMultiArmBenchLog(const std::string& path, const std::string& prefix, MultiArmBenchLog* log,
                           LogLoadReport* report, std::string* error, double min_usable_fraction) {
-  LogReader reader;
-  if (!reader.Open(path, error)) return false;
   const ChannelNames channels = MakeChannelNames(prefix);
   *log = MultiArmBenchLog();
-  *report = LogLoadReport();
   log->source = path;
-  LogEvent event;
-  while (reader.Next(&event)) {
-    ++report->events;
+  return ReadLogEvents(path, min_usable_fraction, report, error, [&](const LogEvent& event) {
     if (event.channel == channels.strain_n) {
       Append<strain_n_t>(event, &log->strain, report);
     } else if (event.channel == channels.motor_n) {
@@ -50,10 +41,7 @@ bool LoadMultiArmBenchLog(const std::string& path, const std::string& prefix, Mu
       Append<imu_t>(event, &log->imu, report);
     } else if (event.channel == channels.vehicle && !log->has_vehicle) {
       vehicle_description_t message;
-      if (DecodeMessage(event.data.data(), event.data.size(), &message) != DecodeError::kNone) {
-        ++report->decode_errors;
-        continue;
-      }
+      if (!DecodeCounted(event, &message, report)) return true;
       std::string why;
       if (!FromMessage(message, &log->vehicle, &why)) {
         *error = path + ": VEHICLE: " + why;
@@ -61,11 +49,8 @@ bool LoadMultiArmBenchLog(const std::string& path, const std::string& prefix, Mu
       }
       log->has_vehicle = true;
     }
-  }
-  report->truncated_tail = reader.TruncatedTail();
-  report->tail_offset = reader.tail_offset();
-  report->file_size = reader.file_size();
-  return CheckLogUsable(reader, path, min_usable_fraction, error, &report->damage);
+    return true;
+  });
 }
 
 }  // namespace birotor
