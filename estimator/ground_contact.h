@@ -7,6 +7,7 @@
 // EKF and the N-arm EKF. No LCM, no allocation.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "estimator/estimator_config.h"
@@ -54,6 +55,13 @@ class GroundContact {
   // max(N_f, ground_contact_on_n). 0 until the body was first on the
   // ground (a start in the air is unchanged).
   double ReleasedSupportVarianceM2S4() const;
+  // While it may_touch the ground, a touch may hold the body still (a
+  // landing gear or skid on the ground stops the pitch): the gyro reads the
+  // free body's rate or 0, so its variance gains the predicted rate's square
+  // [rad^2/s^2]; 0 otherwise.
+  double HeldRateVariance(double predicted_rate_rad_s) const {
+    return may_touch() && std::isfinite(predicted_rate_rad_s) ? predicted_rate_rad_s * predicted_rate_rad_s : 0.0;
+  }
   // The filter's time constant for a sample interval dt_s [s]: the option, or
   // longer when the accelerometer noise (accel_noise_m_s2) would leave the
   // filtered N noisier than a sixth of the hysteresis band [s].

@@ -274,10 +274,12 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   PredictTo(sample.utime);
   using Measurements = MultiArmMeasurements<N>;
   if (options_.use_gyro && std::isfinite(sample.gyro_y_rad_s)) {
-    const Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
+    const auto gyro = Measurements::Gyro(state_);
+    Eigen::Matrix<double, 1, 1> r(options_.gyro_noise_rad_s * options_.gyro_noise_rad_s);
+    r(0, 0) += contact_.HeldRateVariance(gyro.predicted(0));  // a touch may hold the body still
     FusionReport report = MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused);
-    FuseOnesRowsUnreported(Measurements::Gyro(state_), r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s),
-                           options_.gyro_gate_nis, &state_, &covariance_, nullptr, &report,
+    FuseOnesRowsUnreported(gyro, r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s), options_.gyro_gate_nis, &state_,
+                           &covariance_, nullptr, &report,
                            FlightOffsetHold());  // a unit row: phi_dot
     reports_.Add(report);
   }

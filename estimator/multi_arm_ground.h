@@ -32,6 +32,8 @@ class MultiArmGroundContact {
   // GroundContact::ReleasedSupportVarianceM2S4: the support that may still
   // carry the body after a time on the ground.
   double ReleasedSupportVarianceM2S4() const { return contact_.ReleasedSupportVarianceM2S4(); }
+  // GroundContact::HeldRateVariance [rad^2/s^2].
+  double HeldRateVariance(double predicted_rate_rad_s) const { return contact_.HeldRateVariance(predicted_rate_rad_s); }
   const GroundContact& contact() const { return contact_; }
 
  private:
