@@ -129,6 +129,7 @@ struct EfficiencyParams {
   double absolute_settle_s = 0.02;            // airborne FORCE seen before mu0 is trusted [s]
   double absolute_max_relative_sigma = 0.05;  // trusted only while force_std_i / |force_i| is below [1]
   double absolute_threshold = 0.05;           // |mu0_i - 1| above: flown; back below half of it: a_i towards 1 [1]
+  double absolute_min_sigmas = 4.0;           // ... and above this many of mu0_i's relative sigma (0: off) [1]
   double min_absolute_efficiency = 0.7;       // bounds of a_i [1]
   double max_absolute_efficiency = 1.3;       // [1]
   double feasibility_margin = 1.02;           // hover needs 2 min_i(e_i c_T omega_max^2) >= margin x weight [1]

@@ -14,6 +14,7 @@ EfficiencyConditioner::EfficiencyConditioner(const EfficiencyParams& params, dou
   absolute_target_.fill(1.0);
   target_.fill(1.0);
   baseline_.fill(1.0);
+  baseline_relative_std_.fill(1.0);
 }
 
 void EfficiencyConditioner::OnForce(const RotorEfficiencyEstimate& estimate) {
@@ -54,14 +55,21 @@ void EfficiencyConditioner::Take(const RotorEfficiencyEstimate& e) {
     // An uncertain sample is not followed: the target holds.
     const double reference_n = std::max(std::fabs(e.force_n[r]), mean_hover_n);
     if (!(e.force_std_n[r] <= params_.max_relative_sigma * reference_n)) continue;
-    if (!has_baseline_) baseline_[r] = e.thrust_scale[r];
+    const double relative_std = e.force_std_n[r] / reference_n;
+    if (!has_baseline_) {
+      baseline_[r] = e.thrust_scale[r];
+      baseline_relative_std_[r] = relative_std;
+    }
     // A change is real when the estimate flags it, or when it is larger
     // than change_threshold relative to the baseline; neither counts before
     // the baseline has settled (a mismatch flagged from take-off on).
     const bool settled = settled_s_ >= params_.baseline_tau_s;
     flagged_[r] = settled && (deficit || (e.rotor_fault_bits & (1 << i)) != 0 ||
                               std::fabs(e.thrust_scale[r] / baseline_[r] - 1.0) > params_.change_threshold);
-    if (!flagged_[r]) baseline_[r] += baseline_gain * (e.thrust_scale[r] - baseline_[r]);
+    if (!flagged_[r]) {
+      baseline_[r] += baseline_gain * (e.thrust_scale[r] - baseline_[r]);
+      baseline_relative_std_[r] += baseline_gain * (relative_std - baseline_relative_std_[r]);
+    }
     target_[r] = flagged_[r] ? e.thrust_scale[r] / baseline_[r] : 1.0;
   }
   has_baseline_ = true;
@@ -81,11 +89,14 @@ void EfficiencyConditioner::NoteAbsolute(const RotorEfficiencyEstimate& e) {
     if (!trusted_[r]) continue;
     // A matched vehicle's mu0 wanders by a few per cent (noise, turbulence):
     // left to the integrators. A vehicle off the map by more than
-    // absolute_threshold is flown on mu0 until it is back within half of it
+    // absolute_threshold, and by more than absolute_min_sigmas of what mu0
+    // is known to (a converging filter's early mu0 is off by its wide
+    // sigma), is flown on mu0 until it is back within half of the threshold
     // (hysteresis: no toggling at the threshold). While rotor i is flagged
     // its baseline holds, and so does this target.
     const double offset = std::fabs(baseline_[r] - 1.0);
-    if (offset > params_.absolute_threshold) absolute_engaged_[r] = true;
+    const bool significant = offset > params_.absolute_min_sigmas * baseline_relative_std_[r];
+    if (offset > params_.absolute_threshold && significant) absolute_engaged_[r] = true;
     if (offset < 0.5 * params_.absolute_threshold) absolute_engaged_[r] = false;
     absolute_target_[r] = absolute_engaged_[r] ? std::clamp(baseline_[r], params_.min_absolute_efficiency,
                                                             params_.max_absolute_efficiency)

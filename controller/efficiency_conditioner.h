@@ -21,8 +21,11 @@
 //    efficiency) with absolute_tau_s while FORCE is VALID, neither
 //    MODEL_MISMATCH nor CONVERGING, force_std_i <= absolute_max_relative_sigma
 //    x |force_i| and absolute_settle_s of airborne FORCE seen, and only once
-//    |mu0_i - 1| has exceeded absolute_threshold (until it is back within
-//    half of it: a matched vehicle's few per cent stay with the integrators);
+//    |mu0_i - 1| has exceeded absolute_threshold and absolute_min_sigmas
+//    times mu0_i's relative sigma s0_i (force_std_i / |force_i| low-passed
+//    like mu0_i: an offset read while the filter still converges, its
+//    sigma still wide, is not flown) until it is back within half of the
+//    threshold (a matched vehicle's few per cent stay with the integrators);
 //    a vehicle whose rotors make 0.85 of the map (c_T -15 %, thinner air) is
 //    flown with e = 0.85 instead of being left to the integrators. mu0_i is
 //    itself low-passed (baseline_tau_s), so e moves on the sum of both time
@@ -108,6 +111,7 @@ class EfficiencyConditioner {
   double unusable_s_ = 0.0;    // length of the current fallback [s]
   double settled_s_ = 0.0;     // airborne FORCE time seen [s]
   std::array<double, kMaxArms> baseline_;
+  std::array<double, kMaxArms> baseline_relative_std_;  // s0_i: force_std_i / |force_i| low-passed like mu0_i [1]
 };
 
 }  // namespace birotor

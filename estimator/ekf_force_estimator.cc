@@ -56,7 +56,8 @@ EkfForceEstimator::EkfForceEstimator(const BirotorParams& params, const EkfOptio
       contact_(params, options),
       strain_gate_(options.gate_consecutive_limit),
       gyro_gate_(options.gate_consecutive_limit),
-      strain_noise_(options),
+      strain_noise_(StrainNoiseSettings(options)),
+      accel_noise_(AccelerometerNoiseSettings(options), 1),
       strain_noise_rad2_(strain_model_.noise),
       faults_(options) {
   process_noise_psd_.setZero();

@@ -10,9 +10,9 @@
 #include "estimator/estimator_config.h"
 #include "estimator/force_estimator.h"
 #include "estimator/ground_contact.h"
+#include "estimator/noise_adaptation.h"
 #include "estimator/rotor_fault_monitor.h"
 #include "estimator/sample_queue.h"
-#include "estimator/strain_noise_adaptation.h"
 #include "samples/rotor_count.h"
 
 namespace birotor {
@@ -51,8 +51,10 @@ class EkfForceEstimator : public ForceEstimator {
   const EkfProcessModel& process_model() const { return process_; }
   const GroundContact& ground_contact() const { return contact_; }
   int64_t utime() const { return last_utime_; }  // time of the state [us]
-  // The learned scale on gauge i's variance (StrainNoiseAdaptation) [1].
+  // The learned scale on gauge i's variance (NoiseAdaptation) [1].
   double strain_noise_scale(int i) const { return strain_noise_.scale(i); }
+  // The learned scale on the accelerometer's variance (NoiseAdaptation) [1].
+  double accel_noise_scale() const { return accel_noise_.scale(0); }
   bool learns_strain_noise() const override { return strain_noise_.enabled(); }
 
  private:
@@ -227,10 +229,11 @@ class EkfForceEstimator : public ForceEstimator {
   int64_t last_utime_ = 0;  // time of state_ [us]
   EkfState state_;
   EkfMatrix covariance_;
-  GateWithInflation strain_gate_;       // strain gate and its inflation policy
-  GateWithInflation gyro_gate_;         // gyro gate; a lost pitch rate is inflated by its initial variance
-  StrainNoiseAdaptation strain_noise_;  // the learned scale on each gauge's variance
-  Eigen::Matrix2d strain_noise_rad2_;   // R of the strain: diag(scale_i strain_noise_rad^2) [rad^2]
+  GateWithInflation strain_gate_;      // strain gate and its inflation policy
+  GateWithInflation gyro_gate_;        // gyro gate; a lost pitch rate is inflated by its initial variance
+  NoiseAdaptation strain_noise_;       // the learned scale on each gauge's variance
+  NoiseAdaptation accel_noise_;        // the learned scale on the accelerometer's variance
+  Eigen::Matrix2d strain_noise_rad2_;  // R of the strain: diag(scale_i strain_noise_rad^2) [rad^2]
 
   bool has_motor_ = false;
   EkfInput command_;  // held from the newest applied MOTOR sample's stamp

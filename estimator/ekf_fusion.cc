@@ -135,9 +135,17 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
       accel_linearization_.valid ? AccelerometerMeasurementModel::Linearize(accel_linearization_, state_)
                                  : AccelerometerMeasurementModel::Linearize(process_, state_);
   Eigen::Matrix<double, 1, 1> noise = accel_model_.noise;
+  noise(0, 0) *= accel_noise_.scale(0);                   // the noise learned online (NoiseAdaptation)
   noise(0, 0) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
-  Report(Fuse(at, noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
-              {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis}));
+  const FusionReport report = Fuse(at, noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
+                                   {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis});
+  // From the first sample on (converged or not): a noisier accelerometer
+  // would otherwise raise MODEL_MISMATCH before the filter converged. Held
+  // in a thrust step (the strain gated, or fused after the gate's inflation,
+  // within step_hold_s) and during a rotor fault: those innovations are the
+  // step, not noise.
+  accel_noise_.Add(report, &noise(0, 0), /*converged=*/true, faults_.AnyRotorFault() || InThrustStep());
+  Report(report);
 }
 
 FusionReport EkfForceEstimator::FuseStrain(const StrainSample& sample) {

@@ -18,7 +18,7 @@ struct EkfOptions {
   double strain_noise_rad = 2e-5;        // strain-gauge deflection noise [rad]
   double motor_speed_noise_rad_s = 5.0;  // ESC telemetry noise [rad/s]
   double gyro_noise_rad_s = 0.005;       // IMU pitch-rate noise [rad/s]
-  // The strain noise learned online (estimator/strain_noise_adaptation.h,
+  // The strain noise learned online (estimator/noise_adaptation.h,
   // docs/estimator.md): each gauge's variance strain_noise_rad^2 times a
   // scale in [strain_noise_scale_min, strain_noise_scale_max] matched to the
   // sample-to-sample scatter of its innovations over a fading memory of
@@ -33,8 +33,24 @@ struct EkfOptions {
   double strain_noise_scale_max = 6.25;  // on the variance [1]
   int strain_noise_min_samples = 200;    // strain samples learned from before the scale moves
   double strain_noise_hold_s = 0.2;      // [s]
-  bool use_motor_telemetry = true;       // fuse omega_meas when finite
-  bool use_gyro = true;                  // fuse IMU gyro_y when IMU samples arrive
+  // The accelerometer's noise learned the same way (NoiseAdaptation, with
+  // AccelerometerNoiseSettings): accel_noise_m_s2^2 times a scale in [1,
+  // accel_noise_scale_max] matched to the a_z innovations' sample-to-sample
+  // variance over accel_noise_window_s, used once accel_noise_min_samples
+  // pairs were learned from, frozen for accel_noise_hold_s after a thrust
+  // step (the strain gated) or a rotor fault. Gated samples count too (a
+  // 20x noisier accelerometer is gated on most samples until learned), each
+  // capped at accel_noise_clip times the current estimate, so a spike moves
+  // it little.
+  // docs/estimator.md "Measurement noise learned online".
+  bool adapt_accel_noise = true;
+  double accel_noise_window_s = 2.0;      // [s]
+  double accel_noise_scale_max = 1000.0;  // on the variance [1] (sigma up to 31.6x the file's)
+  int accel_noise_min_samples = 5;        // accelerometer sample pairs learned from before the scale moves
+  double accel_noise_hold_s = 0.2;        // [s]
+  double accel_noise_clip = 9.0;          // one pair's variance sample at most this x the estimate [1]
+  bool use_motor_telemetry = true;        // fuse omega_meas when finite
+  bool use_gyro = true;                   // fuse IMU gyro_y when IMU samples arrive
   // Accelerometer a_z in free flight (the total thrust, independent of the
   // gauges: what makes the gauge offsets observable in the air). Its noise
   // is the white noise of the reference sensor; a real vehicle's IMU also

@@ -47,7 +47,7 @@ struct StrainStepInfo {
   double learned_body_mass_kg = 0;
   double learned_body_mass_std_kg = 0;
   // The scale on each gauge's noise variance the method has learned (EKF
-  // adapt_strain_noise, estimator/strain_noise_adaptation.h): its strain R_i
+  // adapt_strain_noise, estimator/noise_adaptation.h): its strain R_i
   // is scale_i strain_noise_rad^2 [1]; 1 for methods that learn none.
   double strain_noise_scale[2] = {1, 1};
   // The method's status facts (converged, measurement rejected, rotor

@@ -20,8 +20,8 @@
 #include "estimator/multi_arm_ekf_model.h"
 #include "estimator/multi_arm_fault_monitor.h"
 #include "estimator/multi_arm_ground.h"
+#include "estimator/noise_adaptation.h"
 #include "estimator/sample_queue.h"
-#include "estimator/strain_noise_adaptation.h"
 #include "model/vehicle_description.h"
 #include "samples/multi_arm_samples.h"
 #include "samples/samples.h"
@@ -60,7 +60,7 @@ class MultiArmForceEstimator {
   // The NIS gate of a measurement (ESTIMATOR_STATUS shows it per input);
   // NaN for a method without one.
   virtual double Gate(FusionSource /*source*/) const { return std::numeric_limits<double>::quiet_NaN(); }
-  // The learned scale on gauge i's noise variance (StrainNoiseAdaptation) [1];
+  // The learned scale on gauge i's noise variance (NoiseAdaptation) [1];
   // 1 for a method that does not learn it.
   virtual double strain_noise_scale(int /*gauge*/) const { return 1.0; }
   // Whether it learns that scale (false: 1 for good).
@@ -95,9 +95,10 @@ class MultiArmForceEstimator {
 // GroundContact, judged from each IMU sample on arrival: MultiArmGroundContact)
 // the held body's model predicts and the accelerometer is not fused, as in
 // the birotor's EkfForceEstimator. The strain noise is learned online as
-// there (StrainNoiseAdaptation on the strain reports, estimator.ekf
+// there (NoiseAdaptation on the strain reports, estimator.ekf
 // adapt_strain_noise): R_i = scale_i strain_noise_rad^2 from the next strain
-// sample on. Differences from it: no learned slow parameters, a fixed-size
+// sample on; so is the accelerometer's, a_z and a_x each
+// (adapt_accel_noise). Differences from it: no learned slow parameters, a fixed-size
 // state of 1 + 5N.
 template <int N>
 class MultiArmEkf : public MultiArmForceEstimator {
@@ -123,6 +124,9 @@ class MultiArmEkf : public MultiArmForceEstimator {
   const FusionReports* reports() const override { return &reports_; }
   double Gate(FusionSource source) const override { return EkfGateNis(options_, source); }
   double strain_noise_scale(int gauge) const override { return strain_noise_.scale(gauge); }
+  // The learned scales on the accelerometer's variance (NoiseAdaptation):
+  // component 0 a_z, 1 a_x [1].
+  double accel_noise_scale(int component) const { return accel_noise_.scale(component); }
   bool learns_strain_noise() const override { return strain_noise_.enabled(); }
   bool body_supported() const override { return contact_.supported(); }
   void SetTipMassScale(double ratio) override { model_.SetTipMassScale(ratio); }
@@ -156,6 +160,8 @@ class MultiArmEkf : public MultiArmForceEstimator {
   FusionReport FuseStrain(const MultiArmStrainSample& sample);
   // The adaptation learns from the strain report; R_i follows its scales.
   void LearnStrainNoise(const FusionReport& strain);
+  // Whether any rotor's fault is flagged now.
+  bool AnyRotorFault() const;
   // The masked R of the strain at the learned variances [rad^2].
   Eigen::Matrix<double, N, N> StrainNoise(const Measured& measured) const;
   // Applies the birotor's variance floors and ceilings to P (exactly symmetric:
@@ -197,7 +203,8 @@ class MultiArmEkf : public MultiArmForceEstimator {
   }
   std::array<double, N> force_std_n_{};
   MultiArmFilterFacts facts_;                   // of the newest estimate
-  StrainNoiseAdaptation strain_noise_;          // the learned scale on each gauge's variance
+  NoiseAdaptation strain_noise_;                // the learned scale on each gauge's variance
+  NoiseAdaptation accel_noise_;                 // the learned scales on a_z's and a_x's variances
   std::array<double, N> strain_variance_rad2_;  // R_i = scale_i strain_noise_rad^2 [rad^2]
   FusionReports reports_;                       // of the newest AddStrain
 };

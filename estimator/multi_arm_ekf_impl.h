@@ -32,7 +32,8 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
       strain_gate_(options.gate_consecutive_limit),
       faults_(options),
       contact_(vehicle, options),
-      strain_noise_(options, N) {
+      strain_noise_(StrainNoiseSettings(options), N),
+      accel_noise_(AccelerometerNoiseSettings(options), 2) {
   strain_variance_rad2_.fill(options.strain_noise_rad * options.strain_noise_rad);
   process_noise_psd_.setZero();
   process_noise_psd_(Layout::kPitchRate) = options.pitch_rate_psd_rad2_s3;
@@ -186,6 +187,7 @@ void MultiArmEkf<N>::Initialize(const MultiArmStrainSample& sample) {
   covariance_(Layout::kPitchRate, Layout::kPitchRate) = pitch_std * pitch_std;
   strain_gate_.Reset();
   strain_noise_.BreakSequence();
+  accel_noise_.BreakSequence();
   converged_ = false;
   faults_.Reset();
   accel_linearization_valid_ = false;
@@ -286,9 +288,13 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
   // On the ground a_z is the support, not the thrust: not fused (the birotor's rule).
   if (!options_.use_accelerometer || !accel_finite || !accel_linearization_valid_ || contact_.supported()) return;
-  const double sigma = options_.accel_noise_m_s2;
-  Eigen::Matrix2d r = Eigen::Matrix2d::Identity() * (sigma * sigma);
-  r(1, 1) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
+  const double file_m2s4 = options_.accel_noise_m_s2 * options_.accel_noise_m_s2;
+  // R of (a_x, a_z): the file's variance times each learned scale (a_z is
+  // the report's component 0), a_z's widened by the support that may still
+  // carry the body [m^2/s^4].
+  Eigen::Matrix2d r = Eigen::Matrix2d::Zero();
+  r(0, 0) = accel_noise_.scale(1) * file_m2s4;
+  r(1, 1) = accel_noise_.scale(0) * file_m2s4 + contact_.ReleasedSupportVarianceM2S4();
   // H's first N columns (the offsets e_i) are zero: left out.
   FusionReport report = MakeFusionReport(FusionSource::kAccelerometer, sample.utime, FusionOutcome::kNotFused);
   FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
@@ -299,6 +305,12 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   // one component), which the model-consistency monitor's fast test reads.
   std::swap(report.innovation(0), report.innovation(1));
   std::swap(report.innovation_variance(0), report.innovation_variance(1));
+  // From the first sample on, as the birotor's (ekf_fusion.cc ApplyImu);
+  // held (accel_noise_hold_s) from a thrust step, which gates the strain
+  // first, and during a rotor fault: those innovations are not noise.
+  const double r_used[2] = {r(1, 1), r(0, 0)};
+  const bool thrust_step = strain_gate_.consecutive_rejected() > 0;
+  accel_noise_.Add(report, r_used, /*converged=*/true, AnyRotorFault() || thrust_step);
   reports_.Add(report);
 }
 
@@ -321,10 +333,15 @@ Eigen::Matrix<double, N, N> MultiArmEkf<N>::StrainNoise(const Measured& measured
 }
 
 template <int N>
-void MultiArmEkf<N>::LearnStrainNoise(const FusionReport& strain) {
+bool MultiArmEkf<N>::AnyRotorFault() const {
   bool fault = false;
   for (int i = 0; i < N; ++i) fault = fault || faults_.fault(i);
-  if (!strain_noise_.Add(strain, strain_variance_rad2_.data(), converged_, fault)) return;
+  return fault;
+}
+
+template <int N>
+void MultiArmEkf<N>::LearnStrainNoise(const FusionReport& strain) {
+  if (!strain_noise_.Add(strain, strain_variance_rad2_.data(), converged_, AnyRotorFault())) return;
   const double file_rad2 = options_.strain_noise_rad * options_.strain_noise_rad;
   for (int i = 0; i < N; ++i) strain_variance_rad2_[static_cast<size_t>(i)] = strain_noise_.scale(i) * file_rad2;
 }

@@ -68,6 +68,7 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("absolute_settle_s", &O::absolute_settle_s, 0.0, 100.0),
       Real("absolute_max_relative_sigma", &O::absolute_max_relative_sigma, 1e-4, 1.0),
       Real("absolute_threshold", &O::absolute_threshold, 0.0, 0.5),
+      Real("absolute_min_sigmas", &O::absolute_min_sigmas, 0.0, 10.0),
       Real("min_absolute_efficiency", &O::min_absolute_efficiency, 0.2, 1.0),
       Real("max_absolute_efficiency", &O::max_absolute_efficiency, 1.0, 2.0),
       Real("feasibility_margin", &O::feasibility_margin, 0.5, 2.0),

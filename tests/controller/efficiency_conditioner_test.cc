@@ -1,7 +1,8 @@
 // EfficiencyConditioner's absolute rule (issue 36 item 5): a trusted mu0 is
 // flown itself, e_i = a_i c_i with a_i first order towards mu0_i
 // (absolute_tau_s), and only while FORCE is VALID, neither MODEL_MISMATCH nor
-// CONVERGING, precise and beyond absolute_threshold. FORCE at 1 kHz, one
+// CONVERGING, precise and beyond absolute_threshold and absolute_min_sigmas
+// of its own sigma. FORCE at 1 kHz, one
 // Advance per sample (dt 1 ms). The reference vehicle's weight 4.57624 x
 // 9.81 = 44.89 N, each rotor making half of it. Expected figures are the
 // discrete first-order step a += (goal - a) dt / tau (tau 0.2 s: 0.995 per
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -111,6 +113,32 @@ TEST(EfficiencyConditionerTest, MismatchConvergingImpreciseOrMatchedAreNotFlownA
     feed.Fly(2.0, 0.85, 0.85);
     EXPECT_EQ(feed.conditioner().efficiency(0), 1.0);
   }
+}
+
+// A filter still converging (a noisy accelerometer whose noise it is
+// learning): mu from 0.93 to 1 over 1 s, its relative sigma from 3 % to
+// 0.5 %. mu0 (baseline_tau_s 1 s) is off by 0.07 at first, beyond
+// absolute_threshold, but within 4 of its own low-passed sigmas (0.12):
+// nothing is flown. The lowest efficiency flown over the 3 s.
+double LowestEfficiencyWhileConverging(const EfficiencyParams& params) {
+  ConditionerFeed feed{params};
+  double lowest = 1.0;
+  for (int step = 0; step < 300; ++step) {
+    const double t_s = 0.01 * step;
+    const double progress = std::min(1.0, t_s);
+    const double mu = 0.93 + 0.07 * progress;
+    feed.Fly(0.01, mu, mu, kStatusValid, 0.03 - 0.025 * progress);
+    lowest = std::min(lowest, feed.conditioner().efficiency(0));
+  }
+  return lowest;
+}
+
+TEST(EfficiencyConditionerTest, AConvergingFiltersEarlyOffsetIsNotFlown) {
+  const EfficiencyParams params;
+  EXPECT_EQ(LowestEfficiencyWhileConverging(params), 1.0);
+  EfficiencyParams without = params;
+  without.absolute_min_sigmas = 0.0;  // the threshold alone flies the early mu0
+  EXPECT_LT(LowestEfficiencyWhileConverging(without), 0.98);
 }
 
 TEST(EfficiencyConditionerTest, AbsoluteFactorIsBoundedAndHysteretic) {

@@ -1,12 +1,12 @@
 // The strain noise learned online (issue 36 item 2,
-// estimator/strain_noise_adaptation.h, docs/estimator.md): the scale on a
+// estimator/noise_adaptation.h, docs/estimator.md): the scale on a
 // gauge's variance converges to the true noise's, stays at 1 on the file's
 // noise, holds its bounds, does not absorb a bias or a drift, and freezes
 // where it must; and the issue's case, the gentle flight with gauges twice
 // as noisy (sigma) as the file says, keeps VALID forces without a
 // MODEL_MISMATCH. Figures measured on the development VM with the shipped
 // config/estimator.yaml; bounds at most 1.5x from them.
-#include "estimator/strain_noise_adaptation.h"
+#include "estimator/noise_adaptation.h"
 
 #include <gtest/gtest.h>
 
@@ -53,7 +53,7 @@ struct SyntheticRun {
   FusionOutcome outcome = FusionOutcome::kFused;
 };
 
-void Feed(const SyntheticRun& run, int samples, StrainNoiseAdaptation* adaptation, int64_t* utime, uint32_t seed = 7) {
+void Feed(const SyntheticRun& run, int samples, NoiseAdaptation* adaptation, int64_t* utime, uint32_t seed = 7) {
   Gaussian gaussian(seed);
   for (int n = 0; n < samples; ++n) {
     *utime += kStrainPeriodUs;
@@ -81,9 +81,9 @@ EkfOptions Options() {
 
 // 2 s of noise at 2x and 4x the file's variance (sigma x1.41 and x2).
 // Measured: 1.92 / 2.08 and 3.85 / 4.16 after 2 s (at most 4.1 % off).
-TEST(StrainNoiseAdaptation, ConvergesToTheTrueVariance) {
+TEST(NoiseAdaptation, ConvergesToTheTrueVariance) {
   for (const double ratio : {2.0, 4.0}) {
-    StrainNoiseAdaptation adaptation(Options());
+    NoiseAdaptation adaptation(StrainNoiseSettings(Options()));
     int64_t utime = 0;
     SyntheticRun run;
     run.true_variance_rad2 = ratio * kFileVariance;
@@ -97,8 +97,8 @@ TEST(StrainNoiseAdaptation, ConvergesToTheTrueVariance) {
 
 // The file's noise: the scale stays at its floor 1 or just above (measured
 // at most 1.073 over 10 s, early, while the mean still expands).
-TEST(StrainNoiseAdaptation, StaysNearOneOnTheFilesNoise) {
-  StrainNoiseAdaptation adaptation(Options());
+TEST(NoiseAdaptation, StaysNearOneOnTheFilesNoise) {
+  NoiseAdaptation adaptation(StrainNoiseSettings(Options()));
   int64_t utime = 0;
   double largest = 0;
   for (int second = 0; second < 10; ++second) {
@@ -111,9 +111,9 @@ TEST(StrainNoiseAdaptation, StaysNearOneOnTheFilesNoise) {
 }
 
 // Far noisier or quieter than the file: the bounds hold (defaults [1, 6.25]).
-TEST(StrainNoiseAdaptation, TheBoundsHold) {
+TEST(NoiseAdaptation, TheBoundsHold) {
   for (const double ratio : {20.0, 0.25}) {
-    StrainNoiseAdaptation adaptation(Options());
+    NoiseAdaptation adaptation(StrainNoiseSettings(Options()));
     int64_t utime = 0;
     SyntheticRun run;
     run.true_variance_rad2 = ratio * kFileVariance;
@@ -122,12 +122,53 @@ TEST(StrainNoiseAdaptation, TheBoundsHold) {
   }
 }
 
+// The accelerometer's rule (AccelerometerNoiseSettings: gated samples
+// count, each capped at clip x the estimate): noise 20x the file's (sigma;
+// variance x400), every sample gated, is learned within the bound (measured
+// 390-409 after 2 s); with the strain's rule (gated samples not counted)
+// nothing is learned. Then a single spike of 1000 file sigmas moves the
+// learned variance by at most w clip, w = dt / window_s.
+TEST(NoiseAdaptation, TheAccelerometersRuleLearnsFromGatedSamples) {
+  NoiseAdaptationSettings settings = AccelerometerNoiseSettings(EkfOptions());
+  settings.file_variance = kFileVariance;
+  NoiseAdaptation accelerometer(settings);
+  NoiseAdaptationSettings fused_only = settings;
+  fused_only.learn_gated = false;
+  NoiseAdaptation strain_rule(fused_only);
+  SyntheticRun run;
+  run.true_variance_rad2 = 400.0 * kFileVariance;
+  run.outcome = FusionOutcome::kRejectedGate;
+  int64_t utime = 0, utime_strain_rule = 0;
+  Feed(run, 2000, &accelerometer, &utime);
+  Feed(run, 2000, &strain_rule, &utime_strain_rule);
+  for (int i = 0; i < 2; ++i) {
+    std::printf("gated x400: scale %d %.1f (strain's rule %.2f)\n", i + 1, accelerometer.scale(i),
+                strain_rule.scale(i));
+    EXPECT_NEAR(accelerometer.scale(i), 400.0, 0.1 * 400.0) << i;
+    EXPECT_EQ(strain_rule.scale(i), 1.0) << i;
+  }
+  const double before = accelerometer.scale(0);
+  FusionReport spike;
+  spike.source = FusionSource::kAccelerometer;
+  spike.utime = utime + kStrainPeriodUs;
+  spike.size = 2;
+  spike.outcome = FusionOutcome::kRejectedGate;
+  const double r_used[2] = {before * kFileVariance, accelerometer.scale(1) * kFileVariance};
+  for (int i = 0; i < 2; ++i) {
+    spike.innovation(i) = 1000.0 * kFileNoiseRad;
+    spike.innovation_variance(i) = r_used[i];
+  }
+  accelerometer.Add(spike, r_used, true, false);
+  const double w = kStrainPeriodUs * 1e-6 / settings.window_s;
+  EXPECT_LE(accelerometer.scale(0), before * (1.0 + w * settings.clip) * 1.001);
+}
+
 // Three gauges (an N-arm vehicle, MultiArmEkf), the third without a
 // reading (the report's variance 0): the two measured learn their noise as
 // the birotor's do (the same bound as ConvergesToTheTrueVariance), the third
 // keeps the floor 1.
-TEST(StrainNoiseAdaptation, LearnsEachMeasuredGaugeOfThree) {
-  StrainNoiseAdaptation adaptation(Options(), 3);
+TEST(NoiseAdaptation, LearnsEachMeasuredGaugeOfThree) {
+  NoiseAdaptation adaptation(StrainNoiseSettings(Options()), 3);
   Gaussian gaussian(7);
   const double true_variance[3] = {4.0 * kFileVariance, 2.0 * kFileVariance, 4.0 * kFileVariance};
   const double hph = 0.2 * kFileVariance;
@@ -154,8 +195,8 @@ TEST(StrainNoiseAdaptation, LearnsEachMeasuredGaugeOfThree) {
 // A bias of 5 file sigmas and a drift of 10 sigmas per second on the file's
 // noise are not noise: the first difference cancels them (the scale stays
 // within the bound of the file's noise above).
-TEST(StrainNoiseAdaptation, DoesNotAbsorbABiasOrADrift) {
-  StrainNoiseAdaptation adaptation(Options());
+TEST(NoiseAdaptation, DoesNotAbsorbABiasOrADrift) {
+  NoiseAdaptation adaptation(StrainNoiseSettings(Options()));
   int64_t utime = 0;
   SyntheticRun run;
   run.bias_rad = 5.0 * kFileNoiseRad;
@@ -167,10 +208,10 @@ TEST(StrainNoiseAdaptation, DoesNotAbsorbABiasOrADrift) {
 // Frozen: before strain_noise_min_samples, while the filter converges, on
 // gated samples, and for strain_noise_hold_s after a sample fused after the
 // gate's inflation (a thrust step).
-TEST(StrainNoiseAdaptation, FreezesWhereTheInnovationsAreNotNoise) {
+TEST(NoiseAdaptation, FreezesWhereTheInnovationsAreNotNoise) {
   SyntheticRun noisy;
   noisy.true_variance_rad2 = 4.0 * kFileVariance;
-  StrainNoiseAdaptation adaptation(Options());
+  NoiseAdaptation adaptation(StrainNoiseSettings(Options()));
   int64_t utime = 0;
   Feed(noisy, 150, &adaptation, &utime);  // 149 pairs < 200
   EXPECT_EQ(adaptation.scale(0), 1.0);
@@ -214,7 +255,7 @@ TEST(StrainNoiseAdaptation, FreezesWhereTheInnovationsAreNotNoise) {
 // 0.077 / 0.079 N and 2-sigma share 0.926 from 5 s (birotor-eval). Measured
 // with it: scale 4.00 / 3.94 at 1 s, 3.89 / 4.09 at the end, VALID 100 %
 // from 5 s, MAE 0.0710 / 0.0713 N, 2-sigma share 0.960 / 0.962, no mismatch.
-TEST(StrainNoiseAdaptation, GentleFlightWithGaugesTwiceAsNoisy) {
+TEST(NoiseAdaptation, GentleFlightWithGaugesTwiceAsNoisy) {
   const ScenarioRun run =
       RunScenario(LoadScenario(ScenarioFile("gentle"), {"sensors.strain.noise_rad=4e-5"}), ReferenceConfig());
   const int64_t start = run.pairs.front().utime;
@@ -251,10 +292,40 @@ TEST(StrainNoiseAdaptation, GentleFlightWithGaugesTwiceAsNoisy) {
   EXPECT_EQ(run.health.consistency.raised_count, 0);
 }
 
+// Issue 36's IMU case: hover with an accelerometer 20x as noisy (sigma 1
+// m/s^2) as the file's 0.05. Before the accelerometer's noise was learned:
+// MODEL_MISMATCH raised at 0.03-0.50 s, 0.26-0.39 N off, 2-sigma 0.49-0.63
+// (seeds 1-3). Measured on the scenario's seed: never raised, VALID 100 %
+// from 5 s, MAE 0.0949 / 0.0950 N, 2-sigma 0.956 / 0.957, the scale about
+// 400 (the truth's ratio) at the end.
+TEST(NoiseAdaptation, HoverWithAnAccelerometerTwentyTimesAsNoisy) {
+  const ScenarioRun run =
+      RunScenario(LoadScenario(ScenarioFile("hover"), {"sensors.imu.accel_noise_m_s2=1.0"}), ReferenceConfig());
+  const int64_t from = run.pairs.front().utime + 5000000;
+  int64_t valid = 0, count = 0;
+  for (const PairedSample& p : run.pairs) {
+    if (p.utime < from) continue;
+    ++count;
+    if (p.status & kStatusValid) ++valid;
+  }
+  const double valid_share = static_cast<double>(valid) / static_cast<double>(count);
+  const double mae[2] = {ForceMae(run, 0, from), ForceMae(run, 1, from)};
+  const double within[2] = {ShareWithin2Sigma(run, 0, from), ShareWithin2Sigma(run, 1, from)};
+  std::printf("hover accelerometer x20: VALID %.3f, MAE %.4f %.4f, 2 sigma %.3f %.3f, mismatches %lld\n", valid_share,
+              mae[0], mae[1], within[0], within[1], static_cast<long long>(run.health.consistency.raised_count));
+  EXPECT_EQ(run.health.consistency.raised_count, 0);
+  EXPECT_GE(valid_share, 0.95);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_LE(mae[i], 0.10) << i;  // the issue's target
+    EXPECT_GE(within[i], 0.93) << i;
+    EXPECT_LE(within[i], 0.98) << i;
+  }
+}
+
 // The same flight with the file's noise: the scale stays near 1 (measured
 // at most 1.070) and the figures are today's (MAE 0.0669 / 0.0676 N from
 // 5 s, 2-sigma share 0.962 / 0.961; birotor-eval before: 0.067 / 0.068, 0.961).
-TEST(StrainNoiseAdaptation, GentleFlightWithTheFilesNoise) {
+TEST(NoiseAdaptation, GentleFlightWithTheFilesNoise) {
   const ScenarioRun run = RunScenario(LoadScenario(ScenarioFile("gentle")), ReferenceConfig());
   double largest = 0;
   for (const GaugeOffsetSample& s : run.gauge_offsets) {
@@ -277,7 +348,7 @@ TEST(StrainNoiseAdaptation, GentleFlightWithTheFilesNoise) {
 // raise: 1.000; 0.983 for the gauge scale 1.3, cleared 14.50-14.75 s: the
 // learned noise weighs the noisier gauges less, so their scale error is
 // weaker evidence than with the file's noise).
-TEST(StrainNoiseAdaptation, AMismatchedVehicleWithNoisyGaugesIsStillRaised) {
+TEST(NoiseAdaptation, AMismatchedVehicleWithNoisyGaugesIsStillRaised) {
   const struct {
     const char* scenario;
     double raised_s;  // measured

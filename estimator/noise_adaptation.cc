@@ -1,0 +1,104 @@
+#include "estimator/noise_adaptation.h"
+
+#include <algorithm>
+
+namespace birotor {
+
+NoiseAdaptationSettings StrainNoiseSettings(const EkfOptions& options) {
+  NoiseAdaptationSettings s;
+  s.enabled = options.adapt_strain_noise;
+  s.file_variance = options.strain_noise_rad * options.strain_noise_rad;
+  s.window_s = options.strain_noise_window_s;
+  s.scale_min = options.strain_noise_scale_min;
+  s.scale_max = options.strain_noise_scale_max;
+  s.min_samples = options.strain_noise_min_samples;
+  s.hold_s = options.strain_noise_hold_s;
+  return s;
+}
+
+NoiseAdaptationSettings AccelerometerNoiseSettings(const EkfOptions& options) {
+  NoiseAdaptationSettings s;
+  s.enabled = options.adapt_accel_noise;
+  s.file_variance = options.accel_noise_m_s2 * options.accel_noise_m_s2;
+  s.window_s = options.accel_noise_window_s;
+  s.scale_min = 1.0;  // never below the file's
+  s.scale_max = options.accel_noise_scale_max;
+  s.min_samples = options.accel_noise_min_samples;
+  s.hold_s = options.accel_noise_hold_s;
+  s.learn_gated = true;
+  s.clip = options.accel_noise_clip;
+  return s;
+}
+
+NoiseAdaptation::NoiseAdaptation(const NoiseAdaptationSettings& settings, int gauges)
+    : enabled_(settings.enabled),
+      gauges_(std::clamp(gauges, 1, kMaxSampleArms)),
+      window_s_(settings.window_s),
+      scale_min_(settings.scale_min),
+      scale_max_(settings.scale_max),
+      min_samples_(settings.min_samples),
+      hold_us_(static_cast<int64_t>(settings.hold_s * 1e6)),
+      file_variance_(settings.file_variance),
+      learn_gated_(settings.learn_gated),
+      clip_(settings.clip) {
+  scale_.fill(enabled_ ? std::max(1.0, scale_min_) : 1.0);
+}
+
+bool NoiseAdaptation::Add(const FusionReport& report, const double* r_used, bool converged, bool step) {
+  if (!enabled_) return false;
+  if (report.size != gauges_) {  // (re-)initialised on it: no innovation
+    BreakSequence();
+    return false;
+  }
+  // A thrust step (fused after the gate's inflation, or the caller's) or a
+  // rotor fault: its transient is not noise. A single gated sample (a
+  // spike, or the tail of a noise wider than the file's) is only left out.
+  const bool transient = report.fused_after_inflation || step;
+  if (transient) hold_until_utime_ = report.utime + hold_us_;
+  const bool usable =
+      report.outcome == FusionOutcome::kFused || (learn_gated_ && report.outcome == FusionOutcome::kRejectedGate);
+  if (transient || !usable || !converged || report.utime < hold_until_utime_) {
+    BreakSequence();
+    return false;
+  }
+  const bool later = report.utime > previous_utime_;
+  bool paired = false;
+  for (int i = 0; i < gauges_; ++i) paired = paired || (has_previous_[static_cast<size_t>(i)] && later);
+  // One sample more in the mean's count when any gauge pairs (the birotor: both or neither).
+  double weight = 0;
+  if (paired) {
+    ++samples_;
+    const double dt_s = 1e-6 * static_cast<double>(report.utime - previous_utime_);
+    weight = std::max(1.0 / static_cast<double>(samples_), std::min(1.0, dt_s / window_s_));
+  }
+  bool changed = false;
+  for (int i = 0; i < gauges_; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    if (!(report.innovation_variance(i) > 0)) {  // not measured in this sample
+      has_previous_[k] = false;
+      continue;
+    }
+    const double hph = report.innovation_variance(i) - r_used[i];
+    if (has_previous_[k] && later) changed = LearnFromPair(i, report, hph, weight) || changed;
+    has_previous_[k] = true;
+    previous_innovation_[k] = report.innovation(i);
+    previous_hph_[k] = hph;
+  }
+  previous_utime_ = report.utime;
+  return changed;
+}
+
+bool NoiseAdaptation::LearnFromPair(int i, const FusionReport& report, double hph, double weight) {
+  const size_t k = static_cast<size_t>(i);
+  const double d = report.innovation(i) - previous_innovation_[k];
+  double r_sample = 0.5 * d * d - 0.5 * (hph + previous_hph_[k]);
+  if (clip_ > 0) r_sample = std::min(r_sample, clip_ * std::max(variance_estimate_[k], file_variance_));
+  variance_estimate_[k] += weight * (r_sample - variance_estimate_[k]);
+  if (samples_ < min_samples_) return false;
+  const double scale = std::clamp(variance_estimate_[k] / file_variance_, scale_min_, scale_max_);
+  const bool changed = scale != scale_[k];
+  scale_[k] = scale;
+  return changed;
+}
+
+}  // namespace birotor
