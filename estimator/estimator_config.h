@@ -41,7 +41,9 @@ struct EkfOptions {
   // step (the strain gated) or a rotor fault. Gated samples count too (a
   // 20x noisier accelerometer is gated on most samples until learned), each
   // capped at accel_noise_clip times the current estimate, so a spike moves
-  // it little.
+  // it little. Until accel_noise_trust_samples pairs, the birotor's EKF fuses
+  // a_z with the scale's upper bound at accel_noise_trust_sigmas
+  // (CautiousScale; the N-arm EKF the scale as it stands).
   // docs/estimator.md "Measurement noise learned online".
   bool adapt_accel_noise = true;
   double accel_noise_window_s = 2.0;      // [s]
@@ -49,6 +51,8 @@ struct EkfOptions {
   int accel_noise_min_samples = 5;        // accelerometer sample pairs learned from before the scale moves
   double accel_noise_hold_s = 0.2;        // [s]
   double accel_noise_clip = 9.0;          // one pair's variance sample at most this x the estimate [1]
+  int accel_noise_trust_samples = 50;     // pairs before the scale is fused as learned (its upper bound until then)
+  double accel_noise_trust_sigmas = 1.0;  // that bound: scale (1 + sigmas sqrt(2 / n)) after n pairs [1]
   bool use_motor_telemetry = true;        // fuse omega_meas when finite
   bool use_gyro = true;                   // fuse IMU gyro_y when IMU samples arrive
   // Accelerometer a_z in free flight (the total thrust, independent of the

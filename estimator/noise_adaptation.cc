@@ -1,6 +1,7 @@
 #include "estimator/noise_adaptation.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace birotor {
 
@@ -27,6 +28,8 @@ NoiseAdaptationSettings AccelerometerNoiseSettings(const EkfOptions& options) {
   s.hold_s = options.accel_noise_hold_s;
   s.learn_gated = true;
   s.clip = options.accel_noise_clip;
+  s.trust_samples = options.accel_noise_trust_samples;
+  s.trust_sigmas = options.accel_noise_trust_sigmas;
   return s;
 }
 
@@ -37,6 +40,8 @@ NoiseAdaptation::NoiseAdaptation(const NoiseAdaptationSettings& settings, int ga
       scale_min_(settings.scale_min),
       scale_max_(settings.scale_max),
       min_samples_(settings.min_samples),
+      trust_samples_(settings.trust_samples),
+      trust_sigmas_(settings.trust_sigmas),
       hold_us_(static_cast<int64_t>(settings.hold_s * 1e6)),
       file_variance_(settings.file_variance),
       learn_gated_(settings.learn_gated),
@@ -99,6 +104,12 @@ bool NoiseAdaptation::LearnFromPair(int i, const FusionReport& report, double hp
   const bool changed = scale != scale_[k];
   scale_[k] = scale;
   return changed;
+}
+
+double NoiseAdaptation::CautiousScale(int i) const {
+  if (!enabled_ || samples_ >= trust_samples_) return scale(i);
+  const double n = static_cast<double>(std::max<int64_t>(samples_, 1));
+  return std::min(scale_max_, scale(i) * (1.0 + trust_sigmas_ * std::sqrt(2.0 / n)));
 }
 
 }  // namespace birotor

@@ -31,6 +31,11 @@ struct NoiseAdaptationSettings {
   // moves the mean by at most w clip R_i_hat [1].
   bool learn_gated = false;
   double clip = 0.0;  // 0: no cap
+  // Until trust_samples pairs were learned from, CautiousScale fuses the
+  // scale's upper confidence bound at trust_sigmas (0 samples: the scale as
+  // it is) [1].
+  int64_t trust_samples = 0;
+  double trust_sigmas = 0.0;
 };
 // The strain gauges' (estimator.ekf strain_noise_*; rad^2) and the
 // accelerometer's a_z (accel_noise_*; m^2/s^4) settings.
@@ -73,6 +78,14 @@ class NoiseAdaptation {
   void BreakSequence() { has_previous_.fill(false); }
   // The variance scale of component i [1] (1 when not adapting).
   double scale(int i) const { return scale_[static_cast<size_t>(i)]; }
+  // The scale to fuse component i with [1]: scale(i) from trust_samples
+  // pairs on; before, its upper confidence bound after n pairs,
+  //   min(scale_max, scale(i) (1 + trust_sigmas sqrt(2 / max(n, 1)))),
+  // sqrt(2 / n) being the relative sigma of a mean of n squared Gaussian
+  // differences. A sensor far noisier than its file, fused as precise on
+  // the few samples its noise was learned from, pulled the state with a
+  // confidence the filter kept for seconds.
+  double CautiousScale(int i) const;
   // The samples learned from since start-up.
   int64_t samples() const { return samples_; }
   // Learning at all (NoiseAdaptationSettings::enabled).
@@ -87,6 +100,8 @@ class NoiseAdaptation {
   double window_s_;
   double scale_min_, scale_max_;
   int64_t min_samples_;
+  int64_t trust_samples_;
+  double trust_sigmas_;
   int64_t hold_us_;
   double file_variance_;  // R_i_file [unit^2]
   bool learn_gated_;

@@ -26,6 +26,8 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Integer("accel_noise_min_samples", &O::accel_noise_min_samples, 1, 1000000),
       Real("accel_noise_hold_s", &O::accel_noise_hold_s, 0.0, 60.0),
       Real("accel_noise_clip", &O::accel_noise_clip, 1.0, 1e6),
+      Integer("accel_noise_trust_samples", &O::accel_noise_trust_samples, 0, 1000000),
+      Real("accel_noise_trust_sigmas", &O::accel_noise_trust_sigmas, 0.0, 100.0),
       Flag("use_motor_telemetry", &O::use_motor_telemetry),
       Flag("use_gyro", &O::use_gyro),
       Flag("use_accelerometer", &O::use_accelerometer),

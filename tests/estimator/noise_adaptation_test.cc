@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <random>
 
+#include "evaluation/mismatch_targets.h"
 #include "tests/estimator/scenario_harness.h"
 
 namespace birotor {
@@ -320,6 +321,52 @@ TEST(NoiseAdaptation, HoverWithAnAccelerometerTwentyTimesAsNoisy) {
     EXPECT_GE(within[i], 0.93) << i;
     EXPECT_LE(within[i], 0.98) << i;
   }
+}
+
+// Until accel_noise_trust_samples pairs the accelerometer is fused with its
+// scale's upper bound (CautiousScale): fused with the scale as it was, its
+// first samples pulled the thrust scales and offsets with a confidence the
+// filter kept for seconds, and on seed 3 the worst 2 s window of VALID
+// estimates from lift-off held 0.772 of its errors inside 2 sigma (issue
+// 36: at least 0.80). Measured with the bound: 0.817 (seeds 1-12:
+// 0.817-0.962).
+TEST(NoiseAdaptation, ANoisyAccelerometerIsFusedCautiouslyUntilItsNoiseIsLearned) {
+  const ScenarioRun run = RunScenario(
+      LoadScenario(ScenarioFile("hover"), {"sensors.imu.accel_noise_m_s2=1.0", "scenario.seed=3"}), ReferenceConfig());
+  const MismatchTargetFigures f = EvaluateMismatchTargets(run.forces, run.truth, -1, MismatchTargets{});
+  std::printf("hover accelerometer x20, seed 3: worst 2 s window %.3f, VALID %.3f, MAE %.4f\n", f.worst_window_share,
+              f.valid_share, f.valid_mae_n);
+  EXPECT_EQ(run.health.consistency.raised_count, 0);
+  EXPECT_GE(f.worst_window_share, 0.80);  // the issue's target
+  EXPECT_GE(f.valid_share, 0.95);
+  EXPECT_LE(f.valid_mae_n, 0.10);
+}
+
+// CautiousScale: before trust_samples pairs the scale's upper confidence
+// bound, scale (1 + trust_sigmas sqrt(2 / max(n, 1))) capped at scale_max;
+// from trust_samples on the scale itself; always the scale when not
+// learning.
+TEST(NoiseAdaptation, IsFusedAtItsUpperBoundUntilTrusted) {
+  NoiseAdaptationSettings settings = AccelerometerNoiseSettings(EkfOptions());
+  settings.file_variance = kFileVariance;
+  settings.min_samples = 5;
+  settings.trust_samples = 50;
+  settings.trust_sigmas = 3.0;
+  NoiseAdaptation accelerometer(settings);
+  EXPECT_DOUBLE_EQ(accelerometer.CautiousScale(0), 1.0 + 3.0 * std::sqrt(2.0));
+  SyntheticRun run;
+  run.true_variance_rad2 = 400.0 * kFileVariance;
+  run.outcome = FusionOutcome::kRejectedGate;  // gated while the scale is still low
+  int64_t utime = 0;
+  Feed(run, 50, &accelerometer, &utime);  // 49 pairs
+  ASSERT_EQ(accelerometer.samples(), 49);
+  const double bound = std::min(settings.scale_max, accelerometer.scale(0) * (1.0 + 3.0 * std::sqrt(2.0 / 49.0)));
+  EXPECT_DOUBLE_EQ(accelerometer.CautiousScale(0), bound);
+  EXPECT_GT(accelerometer.CautiousScale(0), accelerometer.scale(0));
+  Feed(run, 1, &accelerometer, &utime, 8);
+  EXPECT_DOUBLE_EQ(accelerometer.CautiousScale(0), accelerometer.scale(0));
+  settings.enabled = false;
+  EXPECT_DOUBLE_EQ(NoiseAdaptation(settings).CautiousScale(0), 1.0);
 }
 
 // The same flight with the file's noise: the scale stays near 1 (measured
