@@ -6,10 +6,6 @@
 #include <limits>
 
 #include "estimator/parameter_hypotheses.h"
-#include "model/linearization.h"
-#include "model/multi_arm_linearization.h"
-#include "model/multi_arm_modes.h"
-#include "samples/rotor_count.h"
 
 namespace birotor {
 namespace {
@@ -18,124 +14,7 @@ namespace {
 // this in ln f [1].
 constexpr double kRecentreStep = 0.005;
 
-// The arm-mode test listens to a mode of an N-arm vehicle only when no other
-// mode within this fraction of its frequency (the band-pass's passband at
-// arm_mode_band_q 2) rings more than 1 / kAloneVarianceRatio as much
-// (ArmModeStandsAlone: the trirotor's 64.6 Hz mode 360 times its 62.7 Hz
-// neighbour; the quadrotor's three modes near 61 Hz alike).
-constexpr double kNeighbourBand = 0.15;
-constexpr double kAloneVarianceRatio = 10.0;
-
-// d f_i / d r of the hover thrusts with every m_p,i = r times the file's,
-// by a central difference of +-1 % [N].
-ArmValues HoverTipMassSensitivity(const VehicleDescription& vehicle) {
-  constexpr double kStep = 0.01;
-  VehicleDescription heavier = vehicle, lighter = vehicle;
-  for (int i = 0; i < vehicle.arm_count; ++i) {
-    heavier.arms[static_cast<size_t>(i)].tip_mass_kg *= 1.0 + kStep;
-    lighter.arms[static_cast<size_t>(i)].tip_mass_kg *= 1.0 - kStep;
-  }
-  const Eigen::VectorXd up = SolveMultiArmHover(heavier).force_n, down = SolveMultiArmHover(lighter).force_n;
-  ArmValues sensitivity{};
-  for (int i = 0; i < vehicle.arm_count && i < up.size() && i < down.size(); ++i) {
-    sensitivity[static_cast<size_t>(i)] = (up(i) - down(i)) / (2.0 * kStep);
-  }
-  return sensitivity;
-}
-
-// The weights of the gauge readings that hold one mode (its row of
-// ModalGaugeWeights), signed so that the largest is +1, each over its
-// gauge's scale: the reading is s_i b_i + o_i, the offset band-passed away.
-ArmValues ReadingWeights(const VehicleDescription& vehicle, const Eigen::RowVectorXd& modal) {
-  Eigen::Index largest_arm = 0;
-  modal.cwiseAbs().maxCoeff(&largest_arm);
-  const double largest = modal(largest_arm);
-  ArmValues weights{};
-  for (int i = 0; i < vehicle.arm_count; ++i) {
-    weights[static_cast<size_t>(i)] = modal(i) / largest / vehicle.arms[static_cast<size_t>(i)].gauge_scale;
-  }
-  return weights;
-}
-
-// Each gauge scale s_i != 1 read as a stiffness k_i / s_i widens what mode
-// `index` may be.
-void WidenForGaugeScales(const VehicleDescription& vehicle, int index, ArmModeExpectation* e) {
-  for (int i = 0; i < vehicle.arm_count; ++i) {
-    const double scale = vehicle.arms[static_cast<size_t>(i)].gauge_scale;
-    if (scale == 1.0 || !(scale > 0)) continue;
-    VehicleDescription stiffness = vehicle;
-    stiffness.arms[static_cast<size_t>(i)].stiffness_n_m_rad /= scale;
-    const double hz = ArmModeHz(stiffness, index);
-    e->low_hz = std::min(e->low_hz, hz);
-    e->high_hz = std::max(e->high_hz, hz);
-  }
-}
-
 }  // namespace
-
-double ArmModeHz(const VehicleDescription& vehicle, int index) {
-  const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
-  return index >= 0 && index < static_cast<int>(modes.size()) ? modes[static_cast<size_t>(index)].frequency_hz : 0.0;
-}
-
-double SymmetricArmModeHz(const BirotorParams& params) {
-  const std::vector<Mode> modes = OscillatoryModes(LinearizeAtHover(params).a);
-  return modes.empty() ? 0.0 : modes.front().frequency_hz;
-}
-
-ArmModeExpectation ExpectedArmMode(const BirotorParams& params) {
-  ArmModeExpectation e = ArmModeExpectation::At(SymmetricArmModeHz(params));
-  e.tip_weight_n = params.tip_mass_kg * params.gravity_m_s2;
-  BirotorParams stiffer = params;  // d ln f / d ln k from a 10 % stiffer arm
-  stiffer.arm_stiffness_n_m_rad *= 1.1;
-  const double stiffer_hz = SymmetricArmModeHz(stiffer);
-  if (e.file_hz > 0 && stiffer_hz > 0) e.stiffness_exponent = std::log(stiffer_hz / e.file_hz) / std::log(1.1);
-  for (double scale : params.gauge_scale) {
-    if (scale == 1.0 || !(scale > 0)) continue;
-    BirotorParams stiffness = params;  // the scale read as a stiffness k / s
-    stiffness.arm_stiffness_n_m_rad /= scale;
-    const double hz = SymmetricArmModeHz(stiffness);
-    e.low_hz = std::min(e.low_hz, hz);
-    e.high_hz = std::max(e.high_hz, hz);
-  }
-  return e;
-}
-
-ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
-  const int arms = vehicle.arm_count;
-  if (arms < 2 || arms > kMaxSampleArms || vehicle.GaugeCount() != arms) return ArmModeExpectation();
-  const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
-  const Eigen::MatrixXd weights = ModalGaugeWeights(modes, arms);
-  const int pick = MostReadableArmMode(modes, weights);
-  if (!ArmModeStandsAlone(modes, pick, kNeighbourBand, kAloneVarianceRatio)) return ArmModeExpectation();
-  ArmModeExpectation e = ArmModeExpectation::At(modes[static_cast<size_t>(pick)].frequency_hz);
-  e.arms = arms;
-  e.mode_index = pick;
-  e.weights = ReadingWeights(vehicle, weights.row(pick));
-  e.tip_weight_n = 0;
-  for (int i = 0; i < arms; ++i)
-    e.tip_weight_n += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg * vehicle.gravity_m_s2 / arms;
-  e.rotor_tip_weight_n = HoverTipMassSensitivity(vehicle);
-  VehicleDescription stiffer = vehicle;  // d ln f / d ln k from every arm 10 % stiffer
-  for (int i = 0; i < arms; ++i) stiffer.arms[static_cast<size_t>(i)].stiffness_n_m_rad *= 1.1;
-  const double stiffer_hz = ArmModeHz(stiffer, pick);
-  if (e.file_hz > 0 && stiffer_hz > 0) e.stiffness_exponent = std::log(stiffer_hz / e.file_hz) / std::log(1.1);
-  WidenForGaugeScales(vehicle, pick, &e);
-  return e;
-}
-
-ArmModeExpectation WithLearnedStrainScales(const ArmModeExpectation& file, const double g[2], const double g_std[2]) {
-  ArmModeExpectation e = file;
-  for (int i = 0; i < kBirotorRotors; ++i) {
-    if (!std::isfinite(g[i]) || !std::isfinite(g_std[i])) continue;
-    for (const double edge : {g[i] - 2.0 * g_std[i], g[i] + 2.0 * g_std[i]}) {
-      const double hz = file.file_hz * std::pow(std::max(edge, 0.05), -file.stiffness_exponent);
-      e.low_hz = std::min(e.low_hz, hz);
-      e.high_hz = std::max(e.high_hz, hz);
-    }
-  }
-  return e;
-}
 
 double ResonanceFrequencyEstimator::Biquad::Apply(double x) {
   const double y = b0 * x + b2 * x2 - a1 * y1 - a2 * y2;
@@ -312,7 +191,14 @@ double ArmModeMonitor::Signal(const double* deflection_rad, bool outlier) const 
 }
 
 bool ArmModeMonitor::Add(int64_t utime, const double* deflection_rad, bool airborne, bool outlier) {
-  if (!active()) return false;
+  if (!active()) {
+    // A vehicle without the test (file_hz 0: an arm without a gauge, or no
+    // mode that rings alone, the quadrotor): nothing confirms its file's tip
+    // mass in the air, so the prior stays in the sigma while airborne.
+    const bool no_test_here = state_.expected.file_hz == 0;
+    state_.force_tip_mass_std = no_test_here && airborne ? options_.arm_mode_unconfirmed_tip_mass_std : 0.0;
+    return false;
+  }
   const int64_t previous_utime = previous_utime_;
   previous_utime_ = utime;
   const double signal = Signal(deflection_rad, outlier);

@@ -282,6 +282,8 @@ void AddSimOptions(CLI::App& app, SimOptions* options) {
   app.add_option("--output", options->output, "Write an LCM log file as fast as possible instead of publishing live");
   app.add_option("--vehicle", options->vehicle_file,
                  "Fly the vehicle description in FILE (config/vehicles/*.yaml) instead of the scenario's birotor, "
+                 "changed as the scenario's vehicle: section differs from the reference birotor (ratios: "
+                 "mismatch_stiffness_plus20 flies every arm 20 % stiffer), "
                  "any scenario (per-arm lists: one number per arm), live or with --output: STRAIN_N, MOTOR_N, "
                  "LOADCELL_N, IMU, POSE, TRUTH_N and VEHICLE (at the start and every simulated second)");
   app.add_option("--speed", options->speed, "Live mode: simulated seconds per wall-clock second")

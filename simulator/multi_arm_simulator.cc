@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "model/rk4.h"
+#include "simulator/flown_vehicle.h"
 #include "simulator/gauge_model.h"
 #include "simulator/sample_clock.h"
 
@@ -20,10 +21,12 @@ std::string Join(const std::vector<std::string>& problems) {
   return out.str();
 }
 
-const VehicleDescription& CheckedVehicle(const VehicleDescription& vehicle, const Scenario& scenario) {
-  const std::vector<std::string> problems = MultiArmScenarioProblems(vehicle, scenario);
+// The vehicle the scenario flies (FlownVehicle), after the checks.
+VehicleDescription CheckedFlownVehicle(const VehicleDescription& description, const Scenario& scenario) {
+  VehicleDescription flown = FlownVehicle(description, scenario.vehicle);
+  const std::vector<std::string> problems = MultiArmScenarioProblems(flown, scenario);
   if (!problems.empty()) throw std::invalid_argument(Join(problems));
-  return vehicle;
+  return flown;
 }
 
 }  // namespace
@@ -47,16 +50,16 @@ std::vector<std::string> MultiArmScenarioProblems(const VehicleDescription& vehi
 }
 
 MultiArmSimulator::MultiArmSimulator(const VehicleDescription& vehicle, const Scenario& scenario)
-    : vehicle_(CheckedVehicle(vehicle, scenario)),
+    : vehicle_(CheckedFlownVehicle(vehicle, scenario)),
       scenario_(scenario),
       clamped_body_(scenario.mode == "bench"),
       step_us_(SecondsToUtime(scenario.step_s)),
       total_steps_(std::llround(scenario.duration_s / scenario.step_s)),
       control_every_steps_(StepsPerSample(scenario.controller.rate_hz, scenario.step_s)),
-      hover_(SolveMultiArmHover(vehicle)),
+      hover_(SolveMultiArmHover(vehicle_)),
       trajectory_(scenario),
-      autopilot_(vehicle, scenario.controller, hover_),
-      bench_(scenario.bench, scenario.seed, vehicle.arm_count),
+      autopilot_(vehicle_, scenario.controller, hover_),
+      bench_(scenario.bench, scenario.seed, vehicle_.arm_count),
       ground_(scenario),
       turbulence_noise_(scenario.seed, kTurbulenceStream),
       strain_noise_(scenario.seed, kStrainStream),
@@ -68,7 +71,7 @@ MultiArmSimulator::MultiArmSimulator(const VehicleDescription& vehicle, const Sc
       fault_noise_(scenario.seed, kFaultStream),
       strain_faults_(scenario.faults, StepsPerSample(scenario.sensors.strain.rate_hz, scenario.step_s) *
                                           SecondsToUtime(scenario.step_s)) {
-  if (!hover_.converged) throw std::invalid_argument("vehicle '" + vehicle.name + "': no hover equilibrium");
+  if (!hover_.converged) throw std::invalid_argument("vehicle '" + vehicle_.name + "': no hover equilibrium");
   const int n_arms = vehicle_.arm_count;
   const FaultParams& faults = scenario_.faults;
   for (int i = 0; i < n_arms; ++i)

@@ -43,11 +43,13 @@ std::vector<std::string> MultiArmScenarioProblems(const VehicleDescription& vehi
 class MultiArmSimulator {
  public:
   // Throws std::invalid_argument with MultiArmScenarioProblems joined by
-  // "; " when they are not empty. The scenario's vehicle: section is not
-  // used (the description is the vehicle); every other section is, as the
-  // birotor's simulator uses it; the true gauges are the gauge: section (the
-  // description's gauge_scale and gauge_offset_rad are what an estimator
-  // believes).
+  // "; " when they are not empty. The flown vehicle is the description
+  // changed as the scenario's vehicle: section differs from the reference
+  // birotor (FlownVehicle, simulator/flown_vehicle.h: the description
+  // itself when the section is the reference's); every other section is
+  // used as the birotor's simulator uses it; the true gauges are the gauge:
+  // section (the description's gauge_scale and gauge_offset_rad are what an
+  // estimator believes). vehicle() is the flown vehicle.
   MultiArmSimulator(const VehicleDescription& vehicle, const Scenario& scenario);
 
   // Emits the samples due at the current time to sink (may be null: none),
@@ -80,7 +82,7 @@ class MultiArmSimulator {
   // Added to every utime (for --wall-clock); call before the first step.
   void set_utime_offset_us(int64_t offset_us) { utime_offset_us_ = offset_us; }
 
-  const VehicleDescription& vehicle() const { return vehicle_; }
+  const VehicleDescription& vehicle() const { return vehicle_; }  // the flown one
   const Scenario& scenario() const { return scenario_; }
   const MultiArmPlantState& state() const { return state_; }
   // Commands and mu_i = s_i (1 + eta_i) of the step about to be taken.

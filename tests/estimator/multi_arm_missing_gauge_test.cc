@@ -7,6 +7,7 @@
 // measured on this commit (margins <= 1.5x) on 4 s of the gentle flight.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -29,12 +30,15 @@ MultiArmAccuracy GentleFlight(const VehicleDescription& vehicle, const std::vect
   return RunMultiArmAccuracy(vehicle, ScenarioFor("gentle", all, 3), Config(), EvalOptions());
 }
 
-// Each arm in turn without its gauge. Measured MAE [N] per rotor (2-sigma
-// share): arm 1 missing 0.0840 (0.957) / 0.0465 (0.982) / 0.0506 (0.967);
-// arm 2 missing 0.0769 (0.956) / 0.0501 (0.979) / 0.0508 (0.968); arm 3
-// missing 0.0768 (0.956) / 0.0460 (0.985) / 0.0568 (0.966); VALID share
-// 1.000, no false alarm (all gauges: 0.0770 / 0.0483 / 0.0515 N). Asserted:
-// MAE below 1.3x the worst of these per rotor, share in [0.93, 0.99].
+// Each arm in turn without its gauge. Measured MAE [N] per rotor: arm 1
+// missing 0.0840 / 0.0465 / 0.0506; arm 2 missing 0.0769 / 0.0501 / 0.0508;
+// arm 3 missing 0.0768 / 0.0460 / 0.0568; VALID share 1.000, no false alarm
+// (all gauges: 0.0770 / 0.0483 / 0.0515 N). The 2-sigma share is 1.000:
+// without a gauge on every arm there is no arm-mode test to confirm the tip
+// mass, so its prior stays in every sigma in the air (0.15 of what a 100 %
+// error puts into each force; before it, 0.956-0.985, and a vehicle whose
+// tips were 20 % heavier was as confidently 0.9 N off: the next test).
+// Asserted: MAE below 1.3x the worst of these per rotor, share >= 0.93.
 TEST(MultiArmMissingGaugeTest, TwoGaugesOfThreeStayHonestWithTheImu) {
   const double worst_mae_n[3] = {0.0840, 0.0501, 0.0568};
   for (int arm = 0; arm < 3; ++arm) {
@@ -43,12 +47,34 @@ TEST(MultiArmMissingGaugeTest, TwoGaugesOfThreeStayHonestWithTheImu) {
     EXPECT_EQ(r.nonfinite, 0);
     for (size_t i = 0; i < 3; ++i) {
       EXPECT_LT(r.rotor[i].mae_n, 1.3 * worst_mae_n[i]) << "arm " << arm + 1 << " missing, rotor " << i + 1;
-      EXPECT_GT(r.rotor[i].share_within_2sigma, 0.93) << "arm " << arm + 1 << " missing, rotor " << i + 1;
-      EXPECT_LT(r.rotor[i].share_within_2sigma, 0.99) << "arm " << arm + 1 << " missing, rotor " << i + 1;
+      EXPECT_GE(r.rotor[i].share_within_2sigma, 0.93) << "arm " << arm + 1 << " missing, rotor " << i + 1;
     }
     EXPECT_GT(r.valid_share, 0.99) << "arm " << arm + 1 << " missing";
     EXPECT_EQ(r.false_alarms, 0) << "arm " << arm + 1 << " missing";
   }
+}
+
+// Arm 2 without its gauge, flown with every tip mass 20 % heavier than the
+// description says (the scenario mismatch_tip_mass_plus20's change): the
+// error is real and nothing in the air can confirm the tip mass, so the
+// sigma must hold it. Measured on 4 s of gentle: MAE 0.898 / 0.572 / 0.562
+// N, 2-sigma share 1.000 on every rotor, VALID 1.000 (before the prior
+// stayed in the sigma: the same errors at share 0.000 on every rotor).
+TEST(MultiArmMissingGaugeTest, AnUnconfirmedTipMassIsInTheSigma) {
+  const VehicleDescription file = TrirotorWithoutGauge(1);
+  VehicleDescription flown = file;
+  for (int i = 0; i < 3; ++i) flown.arms[static_cast<size_t>(i)].tip_mass_kg *= 1.2;
+  EstimatorConfig config = Config();
+  config.vehicle = file;
+  const MultiArmAccuracy r =
+      RunMultiArmAccuracyFlying(flown, ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), config, EvalOptions());
+  for (size_t i = 0; i < 3; ++i) {
+    std::printf("rotor %zu: MAE %.4f N, 2-sigma share %.3f\n", i + 1, r.rotor[i].mae_n, r.rotor[i].share_within_2sigma);
+    EXPECT_GT(r.rotor[i].mae_n, 0.3) << "rotor " << i + 1;  // the tip weight's share: not learned
+    EXPECT_GE(r.rotor[i].share_within_2sigma, 0.90) << "rotor " << i + 1;
+  }
+  std::printf("VALID share %.3f\n", r.valid_share);
+  EXPECT_GT(r.valid_share, 0.99);
 }
 
 // Without the IMU, a missing gauge leaves the forces unobservable: the
