@@ -57,9 +57,12 @@ ArmModeExpectation ExpectedArmMode(const BirotorParams& params);
 // (MostReadableArmMode: the birotor's symmetric mode, the trirotor's 64.6 Hz
 // mode of arm 1 against arms 2 and 3) and the combination of the gauges that
 // reads it alone (ModalGaugeWeights; largest |weight| 1 on a gauge of scale 1); the range
-// allows each gauge scale s_i != 1 to be a stiffness k_i / s_i. No test
-// (file_hz 0) when an arm has no gauge, the modes do not separate, or the
-// mode does not ring alone in its band (ArmModeStandsAlone: the quadrotor);
+// allows each gauge scale s_i != 1 to be a stiffness k_i / s_i. With an
+// arm without a gauge, the gauges there are read it with the nearest modes
+// nulled (GaugedModalWeights). No test (file_hz 0) without a gauge, when
+// the modes do not separate, or when the mode does not ring alone in its
+// band (ArmModeStandsAlone: the quadrotor; ArmModeLeakSmall: too much of
+// another mode in the reading);
 // rotor_tip_weight_n is filled then too (what the unconfirmed tip mass puts
 // into each force: without a test its prior stays in the sigma in the air).
 ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle);

@@ -62,13 +62,47 @@ Eigen::MatrixXd ModalGaugeWeights(const std::vector<ArmModeShape>& modes, int ar
   return lu.inverse();
 }
 
+Eigen::MatrixXd GaugedModalWeights(const std::vector<ArmModeShape>& modes, const std::vector<bool>& gauged) {
+  const int arms = static_cast<int>(gauged.size());
+  std::vector<int> gauge_arms;
+  for (int i = 0; i < arms; ++i) {
+    if (gauged[static_cast<size_t>(i)]) gauge_arms.push_back(i);
+  }
+  const int gauges = static_cast<int>(gauge_arms.size());
+  if (static_cast<int>(modes.size()) != arms || gauges == 0) return Eigen::MatrixXd();
+  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(arms, arms);
+  for (int m = 0; m < arms; ++m) {
+    // m first, then the others by their distance in frequency from m.
+    std::vector<int> order(static_cast<size_t>(arms));
+    for (int j = 0; j < arms; ++j) order[static_cast<size_t>(j)] = j;
+    const double f_m = modes[static_cast<size_t>(m)].frequency_hz;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      if (a == m || b == m) return a == m && b != m;
+      return std::fabs(modes[static_cast<size_t>(a)].frequency_hz - f_m) <
+             std::fabs(modes[static_cast<size_t>(b)].frequency_hz - f_m);
+    });
+    Eigen::MatrixXd shapes(gauges, gauges);  // rows: the gauged arms; columns: m and the nulled modes
+    for (int c = 0; c < gauges; ++c) {
+      const Eigen::VectorXd& deflection = modes[static_cast<size_t>(order[static_cast<size_t>(c)])].deflection;
+      for (int r = 0; r < gauges; ++r) shapes(r, c) = deflection(gauge_arms[static_cast<size_t>(r)]);
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(shapes);
+    if (!(lu.rcond() >= 1e-6)) continue;
+    const Eigen::MatrixXd inverse = lu.inverse();  // row 0 reads m (column 0)
+    for (int r = 0; r < gauges; ++r) weights(m, gauge_arms[static_cast<size_t>(r)]) = inverse(0, r);
+  }
+  return weights;
+}
+
 int MostReadableArmMode(const std::vector<ArmModeShape>& modes, const Eigen::MatrixXd& weights) {
   if (weights.rows() != static_cast<Eigen::Index>(modes.size()) || modes.empty()) return -1;
   int best = 0;
   double best_ratio = -1;
   for (int m = 0; m < weights.rows(); ++m) {
     const double response = modes[static_cast<size_t>(m)].turbulence_response;
-    const double ratio = response * response / weights.row(m).squaredNorm();
+    const double norm2 = weights.row(m).squaredNorm();
+    if (!(norm2 > 0)) continue;
+    const double ratio = response * response / norm2;
     if (ratio > best_ratio) {
       best = m;
       best_ratio = ratio;
@@ -87,6 +121,20 @@ bool ArmModeStandsAlone(const std::vector<ArmModeShape>& modes, int m, double ba
     if (!(ratio >= variance_ratio)) return false;
   }
   return true;
+}
+
+bool ArmModeLeakSmall(const std::vector<ArmModeShape>& modes, const Eigen::RowVectorXd& w, int m, double band_fraction,
+                      double variance_ratio) {
+  if (m < 0 || m >= static_cast<int>(modes.size())) return false;
+  const ArmModeShape& mode = modes[static_cast<size_t>(m)];
+  double leak = 0;  // variance of the other modes in the reading [1]
+  for (const ArmModeShape& other : modes) {
+    if (&other == &mode || std::fabs(other.frequency_hz / mode.frequency_hz - 1.0) > band_fraction) continue;
+    const double through = w.dot(other.deflection) * other.turbulence_response;
+    leak += through * through;
+  }
+  const double own = w.dot(mode.deflection) * mode.turbulence_response;
+  return leak * variance_ratio < own * own;
 }
 
 }  // namespace birotor

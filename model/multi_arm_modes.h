@@ -39,10 +39,20 @@ std::vector<ArmModeShape> MultiArmModeShapes(const VehicleDescription& vehicle);
 // (reciprocal condition number below 1e-6).
 Eigen::MatrixXd ModalGaugeWeights(const std::vector<ArmModeShape>& modes, int arm_count);
 
+// The same for a vehicle whose gauges are on some arms only (gauged[i]; one
+// entry per arm, as many modes as arms): row m has w_i = 0 on an arm
+// without a gauge, w^T deflection_m = 1 and w^T deflection_j = 0 for the
+// (gauges - 1) other modes nearest m in frequency (those the test's
+// band-pass lets through most); the modes left are read along with m
+// (ArmModeLeakSmall). A row whose modes the gauges cannot separate
+// (reciprocal condition number below 1e-6) is zero. Empty without a gauge
+// or with another number of modes.
+Eigen::MatrixXd GaugedModalWeights(const std::vector<ArmModeShape>& modes, const std::vector<bool>& gauged);
+
 // The mode the gauges read best in flight: the largest ratio of its
 // turbulence response's variance to the gauge noise in its combination,
 // turbulence_response^2 / sum_i W(m, i)^2 (equal noise on every gauge);
-// -1 without weights.
+// -1 without weights; a zero row is not a candidate.
 int MostReadableArmMode(const std::vector<ArmModeShape>& modes, const Eigen::MatrixXd& weights);
 
 // Whether mode m rings alone in its band: every other mode within
@@ -52,5 +62,12 @@ int MostReadableArmMode(const std::vector<ArmModeShape>& modes, const Eigen::Mat
 // made for (the quadrotor's 60.8 / 61.7 / 66.7 Hz modes: a matching
 // vehicle reads up to +4 %, the test's limit).
 bool ArmModeStandsAlone(const std::vector<ArmModeShape>& modes, int m, double band_fraction, double variance_ratio);
+
+// Whether mode m's weights w (a row of GaugedModalWeights) let little of the
+// other modes within band_fraction of its frequency through: sum_j (w^T
+// deflection_j)^2 turbulence_response_j^2 below 1 / variance_ratio of m's
+// variance. Every mode nulled (every arm gauged): 0, always small.
+bool ArmModeLeakSmall(const std::vector<ArmModeShape>& modes, const Eigen::RowVectorXd& w, int m, double band_fraction,
+                      double variance_ratio);
 
 }  // namespace birotor

@@ -58,11 +58,30 @@ TEST(MultiArmArmMode, TrirotorListensToItsMostReadableMode) {
   EXPECT_NEAR(e.rotor_tip_weight_n[2], 0.5665 / 0.2, 0.01);
 }
 
-TEST(MultiArmArmMode, NoTestWhereTheModesRingAlikeOrAGaugeIsMissing) {
-  EXPECT_EQ(ExpectedArmMode(Vehicle("quadrotor")).file_hz, 0.0);
+// No test where the modes ring alike (the quadrotor) or where the arm the
+// mode moves most has no gauge (the trirotor's 64.6 Hz mode without arm 1's);
+// what the tip mass puts into each force is there all the same (its prior
+// stays in the sigma).
+TEST(MultiArmArmMode, NoTestWhereTheModesRingAlikeOrItsArmHasNoGauge) {
+  const ArmModeExpectation quadrotor = ExpectedArmMode(Vehicle("quadrotor"));
+  EXPECT_EQ(quadrotor.file_hz, 0.0);
+  EXPECT_GT(quadrotor.rotor_tip_weight_n[0], 1.0);
+  VehicleDescription without_arm_1 = Vehicle("trirotor");
+  without_arm_1.arms[0].has_gauge = false;
+  const ArmModeExpectation e = ExpectedArmMode(without_arm_1);
+  EXPECT_EQ(e.file_hz, 0.0);
+  EXPECT_NEAR(e.rotor_tip_weight_n[0], 0.8965 / 0.2, 0.01);
+}
+
+// Without arm 3's gauge the same mode is read on arms 1 and 2, the 62.7 Hz
+// mode (arms 2 and 3 against each other) nulled: no weight on arm 3.
+TEST(MultiArmArmMode, TwoGaugesReadTheModeOnTheGaugesThereAre) {
   VehicleDescription two_gauges = Vehicle("trirotor");
   two_gauges.arms[2].has_gauge = false;
-  EXPECT_EQ(ExpectedArmMode(two_gauges).file_hz, 0.0);
+  const ArmModeExpectation e = ExpectedArmMode(two_gauges);
+  EXPECT_NEAR(e.file_hz, ExpectedArmMode(Vehicle("trirotor")).file_hz, 1e-9);
+  EXPECT_EQ(e.weights[2], 0.0);
+  EXPECT_NEAR(e.weights[0], 1.0, 1e-9);
 }
 
 TEST(MultiArmArmMode, AGaugeScaleInTheDescriptionWidensWhatTheModeMayBe) {

@@ -7,6 +7,7 @@
 // measured on this commit (margins <= 1.5x) on 4 s of the gentle flight.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -33,12 +34,12 @@ MultiArmAccuracy GentleFlight(const VehicleDescription& vehicle, const std::vect
 // Each arm in turn without its gauge. Measured MAE [N] per rotor: arm 1
 // missing 0.0840 / 0.0465 / 0.0506; arm 2 missing 0.0769 / 0.0501 / 0.0508;
 // arm 3 missing 0.0768 / 0.0460 / 0.0568; VALID share 1.000, no false alarm
-// (all gauges: 0.0770 / 0.0483 / 0.0515 N). The 2-sigma share is 1.000:
-// without a gauge on every arm there is no arm-mode test to confirm the tip
-// mass, so its prior stays in every sigma in the air (0.15 of what a 100 %
-// error puts into each force; before it, 0.956-0.985, and a vehicle whose
-// tips were 20 % heavier was as confidently 0.9 N off: the next test).
-// Asserted: MAE below 1.3x the worst of these per rotor, share >= 0.93.
+// (all gauges: 0.0770 / 0.0483 / 0.0515 N). Without arm 2's or arm 3's
+// gauge the arm-mode test reads the 64.6 Hz mode on the other two and
+// confirms the tip mass: 2-sigma share 0.95-0.98. Without arm 1's (the arm
+// that mode moves most) there is no test: the tip mass's prior stays in
+// every sigma in the air, share 1.000. Asserted: MAE below 1.3x the worst
+// of these per rotor, share >= 0.93, and <= 0.99 where the test runs.
 TEST(MultiArmMissingGaugeTest, TwoGaugesOfThreeStayHonestWithTheImu) {
   const double worst_mae_n[3] = {0.0840, 0.0501, 0.0568};
   for (int arm = 0; arm < 3; ++arm) {
@@ -46,34 +47,59 @@ TEST(MultiArmMissingGaugeTest, TwoGaugesOfThreeStayHonestWithTheImu) {
     ASSERT_EQ(r.n_rotors, 3);
     EXPECT_EQ(r.nonfinite, 0);
     for (size_t i = 0; i < 3; ++i) {
+      std::printf("arm %d missing, rotor %zu: MAE %.4f N, 2-sigma share %.3f\n", arm + 1, i + 1, r.rotor[i].mae_n,
+                  r.rotor[i].share_within_2sigma);
       EXPECT_LT(r.rotor[i].mae_n, 1.3 * worst_mae_n[i]) << "arm " << arm + 1 << " missing, rotor " << i + 1;
       EXPECT_GE(r.rotor[i].share_within_2sigma, 0.93) << "arm " << arm + 1 << " missing, rotor " << i + 1;
+      if (arm > 0) EXPECT_LE(r.rotor[i].share_within_2sigma, 0.99) << "arm " << arm + 1 << " missing, rotor " << i + 1;
     }
     EXPECT_GT(r.valid_share, 0.99) << "arm " << arm + 1 << " missing";
     EXPECT_EQ(r.false_alarms, 0) << "arm " << arm + 1 << " missing";
   }
 }
 
-// Arm 2 without its gauge, flown with every tip mass 20 % heavier than the
-// description says (the scenario mismatch_tip_mass_plus20's change): the
-// error is real and nothing in the air can confirm the tip mass, so the
-// sigma must hold it. Measured on 4 s of gentle: MAE 0.898 / 0.572 / 0.562
-// N, 2-sigma share 1.000 on every rotor, VALID 1.000 (before the prior
-// stayed in the sigma: the same errors at share 0.000 on every rotor).
-TEST(MultiArmMissingGaugeTest, AnUnconfirmedTipMassIsInTheSigma) {
-  const VehicleDescription file = TrirotorWithoutGauge(1);
+// The trirotor without arm `missing_arm`'s gauge (0-based) estimated with
+// its description, flown with every tip mass `tip_scale` times that, over
+// seconds_s of gentle.
+MultiArmAccuracy GentleWithTips(int missing_arm, double tip_scale, double seconds_s) {
+  const VehicleDescription file = TrirotorWithoutGauge(missing_arm);
   VehicleDescription flown = file;
-  for (int i = 0; i < 3; ++i) flown.arms[static_cast<size_t>(i)].tip_mass_kg *= 1.2;
+  for (int i = 0; i < 3; ++i) flown.arms[static_cast<size_t>(i)].tip_mass_kg *= tip_scale;
   EstimatorConfig config = Config();
   config.vehicle = file;
-  const MultiArmAccuracy r =
-      RunMultiArmAccuracyFlying(flown, ScenarioFor("gentle", {"scenario.duration_s=4"}, 3), config, EvalOptions());
+  const std::string duration = "scenario.duration_s=" + std::to_string(seconds_s);
+  return RunMultiArmAccuracyFlying(flown, ScenarioFor("gentle", {duration}, 3), config, EvalOptions());
+}
+
+// Arm 1 without its gauge, every tip mass 20 % heavier than the description
+// says: the error is real and nothing in the air can confirm the tip mass,
+// so the sigma must hold it. Measured on 4 s of gentle: MAE 0.898 / 0.572 /
+// 0.562 N, 2-sigma share 1.000 on every rotor, VALID 1.000 (before the
+// prior stayed in the sigma: the same errors at share 0.000 on every rotor).
+TEST(MultiArmMissingGaugeTest, AnUnconfirmedTipMassIsInTheSigma) {
+  const MultiArmAccuracy r = GentleWithTips(0, 1.2, 4.0);
   for (size_t i = 0; i < 3; ++i) {
     std::printf("rotor %zu: MAE %.4f N, 2-sigma share %.3f\n", i + 1, r.rotor[i].mae_n, r.rotor[i].share_within_2sigma);
     EXPECT_GT(r.rotor[i].mae_n, 0.3) << "rotor " << i + 1;  // the tip weight's share: not learned
     EXPECT_GE(r.rotor[i].share_within_2sigma, 0.90) << "rotor " << i + 1;
   }
   std::printf("VALID share %.3f\n", r.valid_share);
+  EXPECT_GT(r.valid_share, 0.99);
+}
+
+// Arm 2 without its gauge, every tip mass 20 % heavier: the arm-mode test on
+// arms 1 and 3 learns it. Measured on 10 s of gentle (the first second
+// before the first reading included): MAE 0.133 / 0.087 / 0.085 N,
+// 2-sigma share 0.985 / 0.987 / 0.991, VALID 1.000, no MODEL_MISMATCH
+// (unlearned, as above: 0.90 N off on rotor 1).
+TEST(MultiArmMissingGaugeTest, TwoGaugesLearnTheTipMass) {
+  const MultiArmAccuracy r = GentleWithTips(1, 1.2, 10.0);
+  for (size_t i = 0; i < 3; ++i) {
+    std::printf("rotor %zu: MAE %.4f N, 2-sigma share %.3f\n", i + 1, r.rotor[i].mae_n, r.rotor[i].share_within_2sigma);
+    EXPECT_GE(r.rotor[i].share_within_2sigma, 0.90) << "rotor " << i + 1;
+  }
+  std::printf("VALID share %.3f, MISMATCH share %.3f\n", r.valid_share, r.mismatch_share);
+  EXPECT_LT(r.rotor[0].mae_n, 0.20);
   EXPECT_GT(r.valid_share, 0.99);
 }
 

@@ -76,5 +76,36 @@ TEST(MultiArmModeShapes, TheMostReadableModeIsTheOneTheTurbulenceRings) {
 
 TEST(MultiArmModeShapes, NoWeightsWithoutAModePerArm) { EXPECT_EQ(ModalGaugeWeights({}, 3).size(), 0); }
 
+// Every arm gauged: the gauged weights are the modal ones.
+TEST(MultiArmModeShapes, GaugedWeightsWithEveryGaugeAreTheModalOnes) {
+  const std::vector<ArmModeShape> shapes = MultiArmModeShapes(Trirotor());
+  const Eigen::MatrixXd all = ModalGaugeWeights(shapes, 3);
+  const Eigen::MatrixXd gauged = GaugedModalWeights(shapes, {true, true, true});
+  ASSERT_EQ(gauged.rows(), 3);
+  EXPECT_LT((gauged - all).cwiseAbs().maxCoeff(), 1e-9);
+  for (int m = 0; m < 3; ++m) EXPECT_TRUE(ArmModeLeakSmall(shapes, gauged.row(m), m, 0.15, 10.0)) << m;
+}
+
+// The trirotor without arm 2's gauge: each mode read on arms 1 and 3 with
+// the nearest other mode nulled; the 64.6 Hz mode is still the one to
+// read, and what leaks in of the others within 15 % is small.
+TEST(MultiArmModeShapes, TwoGaugesReadAModeWithItsNearestNeighbourNulled) {
+  const std::vector<ArmModeShape> shapes = MultiArmModeShapes(Trirotor());
+  const Eigen::MatrixXd w = GaugedModalWeights(shapes, {true, false, true});
+  ASSERT_EQ(w.rows(), 3);
+  for (int m = 0; m < 3; ++m) {
+    EXPECT_EQ(w(m, 1), 0.0) << m;
+    EXPECT_NEAR(w.row(m).dot(shapes[static_cast<size_t>(m)].deflection), 1.0, 1e-9) << m;
+  }
+  // 62.7 and 64.6 Hz null each other; 87.8 Hz nulls 64.6 Hz.
+  EXPECT_NEAR(w.row(0).dot(shapes[1].deflection), 0.0, 1e-9);
+  EXPECT_NEAR(w.row(1).dot(shapes[0].deflection), 0.0, 1e-9);
+  EXPECT_NEAR(w.row(2).dot(shapes[1].deflection), 0.0, 1e-9);
+  const int pick = MostReadableArmMode(shapes, w);
+  EXPECT_EQ(pick, 1);
+  EXPECT_TRUE(ArmModeLeakSmall(shapes, w.row(pick), pick, 0.15, 10.0));
+  EXPECT_EQ(GaugedModalWeights(shapes, {false, false, false}).size(), 0);
+}
+
 }  // namespace
 }  // namespace birotor
