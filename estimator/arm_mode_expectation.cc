@@ -140,7 +140,7 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
   e.tip_weight_n = 0;
   for (int i = 0; i < arms; ++i)
     e.tip_weight_n += vehicle.arms[static_cast<size_t>(i)].tip_mass_kg * vehicle.gravity_m_s2 / arms;
-  e.rotor_tip_weight_n = HoverTipMassSensitivity(vehicle);
+  e.rotor_tip_weight_n = none.rotor_tip_weight_n;
   VehicleDescription stiffer = vehicle;  // d ln f / d ln k from every arm 10 % stiffer
   for (int i = 0; i < arms; ++i) stiffer.arms[static_cast<size_t>(i)].stiffness_n_m_rad *= 1.1;
   const double stiffer_hz = ArmModeHz(stiffer, pick);

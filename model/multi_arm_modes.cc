@@ -96,7 +96,7 @@ Eigen::MatrixXd GaugedModalWeights(const std::vector<ArmModeShape>& modes, const
 
 int MostReadableArmMode(const std::vector<ArmModeShape>& modes, const Eigen::MatrixXd& weights) {
   if (weights.rows() != static_cast<Eigen::Index>(modes.size()) || modes.empty()) return -1;
-  int best = 0;
+  int best = -1;  // stays -1 when every row is zero
   double best_ratio = -1;
   for (int m = 0; m < weights.rows(); ++m) {
     const double response = modes[static_cast<size_t>(m)].turbulence_response;

@@ -52,7 +52,7 @@ Eigen::MatrixXd GaugedModalWeights(const std::vector<ArmModeShape>& modes, const
 // The mode the gauges read best in flight: the largest ratio of its
 // turbulence response's variance to the gauge noise in its combination,
 // turbulence_response^2 / sum_i W(m, i)^2 (equal noise on every gauge);
-// -1 without weights; a zero row is not a candidate.
+// -1 without weights or when every row is zero (a zero row is not a candidate).
 int MostReadableArmMode(const std::vector<ArmModeShape>& modes, const Eigen::MatrixXd& weights);
 
 // Whether mode m rings alone in its band: every other mode within
