@@ -136,6 +136,7 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
   ArmModeExpectation e = ArmModeExpectation::At(modes[static_cast<size_t>(pick)].frequency_hz);
   e.arms = arms;
   e.mode_index = pick;
+  e.read_on_some_gauges = vehicle.GaugeCount() < arms;
   e.weights = ReadingWeights(vehicle, weights.row(pick));
   e.tip_weight_n = 0;
   for (int i = 0; i < arms; ++i)

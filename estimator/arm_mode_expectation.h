@@ -44,6 +44,10 @@ struct ArmModeExpectation {
   // A described vehicle's mode read (its index in ArmModeHz); -1 the
   // birotor's symmetric mode (SymmetricArmModeHz) or no test [1].
   int mode_index = -1;
+  // Whether the mode is read on some of the arms only (an arm without a
+  // gauge: GaugedModalWeights); such a reading may hold a bias beyond its
+  // noise (arm_mode_partial_gauge_reading_bias).
+  bool read_on_some_gauges = false;
   // Per rotor, what a tip-mass error of 100 % (every arm's m_p,i scaled
   // together) puts into its force at hover: d f_i / d r of the hover
   // thrusts (SolveMultiArmHover), which is the error the filter makes on a

@@ -130,6 +130,7 @@ ArmModeMonitor::ArmModeMonitor(const ModelConsistencyOptions& options, const Arm
     learning.prior_std = options.arm_mode_unconfirmed_tip_mass_std;
     learning.reading_std = options.arm_mode_reading_std;
     learning.band_pull = options.arm_mode_band_pull;
+    learning.reading_bias = expected.read_on_some_gauges ? options.arm_mode_partial_gauge_reading_bias : 0.0;
     learner_ = TipMassLearner(learning, tip_mass);
     const double spread = options.arm_mode_explained_sigmas * learning.prior_std;
     explained_low_hz_ = std::exp(tip_mass.LogHz(1.0 + spread));

@@ -66,12 +66,17 @@ double TipMassForArmModeHz(const BirotorParams& params, double hz, double low_kg
 // of an exponentially weighted fit of time constant tau share their data,
 // one independent reading per 2 tau. The vehicle does not change: no
 // process noise; a landing or a filter reset keeps what was learned.
+// A bias b the readings may share (reading_bias, a mode read on some
+// gauges only) averages away with no number of readings: a consider
+// parameter, its share of the learned r, (1 - P / P_prior) b / |H|, is
+// added to the published sigma in quadrature and left out of the gain.
 class TipMassLearner {
  public:
   struct Options {
     double prior_std = 0.15;     // of r [1]
     double reading_std = 0.015;  // relative, of one independent reading f_c [1]
     double band_pull = 0.75;     // (f_read - c) / (f - c) of the band-pass [1]
+    double reading_bias = 0.0;   // relative 1-sigma bias every reading shares [1]
   };
   TipMassLearner() = default;
   TipMassLearner(const Options& options, const ArmModeTipMassMap& map);
@@ -96,6 +101,7 @@ class TipMassLearner {
   }
   bool active() const { return !map_.empty(); }
   double ratio() const { return ratio_; }
+  // sqrt(P + ((1 - P / P_prior) reading_bias / |d ln f / d r|)^2) [1].
   double ratio_std() const;
   double tip_mass_kg() const { return ratio_ * map_.file_tip_mass_kg(); }
   // The mode of the learned m_p [Hz].

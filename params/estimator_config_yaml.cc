@@ -219,6 +219,7 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Real("arm_mode_tip_mass_change_probability", &O::arm_mode_tip_mass_change_probability, 1e-6, 1.0),
       Real("arm_mode_tip_mass_file_accepted_below", &O::arm_mode_tip_mass_file_accepted_below, 0.0, 1.0),
       Real("arm_mode_reading_std", &O::arm_mode_reading_std, 1e-4, 1.0),
+      Real("arm_mode_partial_gauge_reading_bias", &O::arm_mode_partial_gauge_reading_bias, 0.0, 0.2),
       Real("arm_mode_band_pull", &O::arm_mode_band_pull, 0.1, 1.0),
       Real("arm_mode_explained_sigmas", &O::arm_mode_explained_sigmas, 0.5, 10.0),
       Real("arm_mode_learn_min_excitation", &O::arm_mode_learn_min_excitation, 0.0, 1e6),

@@ -155,6 +155,32 @@ TEST(TipMassLearning, ReadingsOfTheModeLearnTheTipMass) {
   EXPECT_NEAR(learner.CorrectedHz(65.03 + 0.75 * (hz - 65.03), 65.03), hz, 1e-9);
 }
 
+// A bias every reading shares (a mode read on some gauges only) does not
+// average away: the same readings learn the same r, and the sigma keeps the
+// bias's share, (1 - P / P_prior) 0.01 / 0.38 in quadrature with the
+// filter's 0.0125 (above): 0.029, where the filter alone says 0.0125. At the
+// prior it adds nothing; a resumed sigma holds it already.
+TEST(TipMassLearning, ACommonReadingBiasStaysInTheSigma) {
+  const ArmModeTipMassMap map = ArmModeTipMassMap::Of(BirotorModelOf(testing_support::ReferenceConfig().vehicle));
+  TipMassLearner::Options biased_options;
+  biased_options.reading_bias = 0.01;
+  TipMassLearner biased(biased_options, map), unbiased(TipMassLearner::Options(), map);
+  EXPECT_NEAR(biased.ratio_std(), 0.15, 1e-12);
+  const double hz = std::exp(map.LogHz(1.2));
+  for (int n = 0; n < 10000; ++n) {
+    biased.AddReading(hz, hz, 0.5, 1e-3);
+    unbiased.AddReading(hz, hz, 0.5, 1e-3);
+  }
+  EXPECT_EQ(biased.ratio(), unbiased.ratio());
+  const double bias = 0.01 / std::fabs(map.LogHzSlope(biased.ratio()));
+  EXPECT_NEAR(biased.ratio_std(), std::hypot(unbiased.ratio_std(), bias), 0.001);
+  EXPECT_GT(biased.ratio_std(), 2.0 * unbiased.ratio_std());
+  TipMassLearner resumed(biased_options, map);
+  const double file_kg = map.file_tip_mass_kg();
+  ASSERT_TRUE(resumed.Resume(biased.tip_mass_kg(), biased.ratio_std() * file_kg));
+  EXPECT_NEAR(resumed.ratio_std(), biased.ratio_std(), 0.002);
+}
+
 // Resumed from an earlier run (the state file): r and its sigma are the
 // persisted ones, and readings refine them from there (towards the mode
 // read, to a narrower sigma than a fresh learner's after the same

@@ -82,6 +82,8 @@ TEST(MultiArmArmMode, TwoGaugesReadTheModeOnTheGaugesThereAre) {
   EXPECT_NEAR(e.file_hz, ExpectedArmMode(Vehicle("trirotor")).file_hz, 1e-9);
   EXPECT_EQ(e.weights[2], 0.0);
   EXPECT_NEAR(e.weights[0], 1.0, 1e-9);
+  EXPECT_TRUE(e.read_on_some_gauges);  // its readings' common bias is in the learned sigma
+  EXPECT_FALSE(ExpectedArmMode(Vehicle("trirotor")).read_on_some_gauges);
 }
 
 TEST(MultiArmArmMode, AGaugeScaleInTheDescriptionWidensWhatTheModeMayBe) {
