@@ -51,7 +51,9 @@ ModelConsistencyOptions MultiArmConsistencyOptions(const ModelConsistencyOptions
 // How each gauge's raw reading moves when the vehicle weighs more (the
 // offset-departure test's direction, estimator/offset_departure.h): s_i
 // times the hover deflection with 10 % more body mass minus the file's, the
-// thrusts shared as the hover allocation shares the weight [rad]; and the
+// thrusts shared as the hover allocation shares the weight; 0 on an arm
+// without a gauge, whose offset is no state and cannot take a force (its
+// anchor's sigma would only dilute the departure) [rad]; and the
 // force that payload adds to each rotor, which is what a departure of one
 // direction would be (offset_departure_in_sigma_above) [N].
 struct CommonForce {
@@ -66,7 +68,8 @@ CommonForce CommonForceReadings(const VehicleDescription& vehicle) {
   CommonForce common;
   for (int i = 0; i < vehicle.arm_count; ++i) {
     const size_t k = static_cast<size_t>(i);
-    common.readings[k] = vehicle.arms[k].gauge_scale * (payload.deflection_rad(i) - file.deflection_rad(i));
+    const double moved_rad = payload.deflection_rad(i) - file.deflection_rad(i);
+    common.readings[k] = vehicle.arms[k].has_gauge ? vehicle.arms[k].gauge_scale * moved_rad : 0.0;
     common.force_n[k] = payload.force_n(i) - file.force_n(i);
   }
   return common;
