@@ -71,6 +71,11 @@ TEST(MultiArmArmMode, NoTestWhereTheModesRingAlikeOrItsArmHasNoGauge) {
   const ArmModeExpectation e = ExpectedArmMode(without_arm_1);
   EXPECT_EQ(e.file_hz, 0.0);
   EXPECT_NEAR(e.rotor_tip_weight_n[0], 0.8965 / 0.2, 0.01);
+  // One gauge of two nulls no other mode: no test, the prior in the sigma.
+  VehicleDescription one_gauge = Vehicle("birotor");
+  one_gauge.arms[0].has_gauge = false;
+  EXPECT_EQ(ExpectedArmMode(one_gauge).file_hz, 0.0);
+  EXPECT_GT(ExpectedArmMode(Vehicle("birotor")).file_hz, 60.0);
 }
 
 // Without arm 3's gauge the same mode is read on arms 1 and 2, the 62.7 Hz
