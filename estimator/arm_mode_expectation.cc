@@ -125,12 +125,14 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
   // without arm 1's gauge read its 65 Hz mode with the 79.8 Hz one through
   // the band-pass and learned a tip mass that put 0.26 N into both forces
   // (2-sigma share 0.31 on hover). Without a test the prior stays in the sigma.
-  if (vehicle.GaugeCount() == 0 || (vehicle.GaugeCount() < arms && vehicle.GaugeCount() < 2)) return none;
+  const int gauges = vehicle.GaugeCount();
+  const bool every_arm_gauged = gauges == arms;
+  if (gauges < (every_arm_gauged ? 1 : 2)) return none;
   const std::vector<ArmModeShape> modes = MultiArmModeShapes(vehicle);
   // Every arm gauged: each mode read alone; else on the gauges there are,
   // the nearest modes nulled and the rest judged by what leaks through.
   const Eigen::MatrixXd weights =
-      vehicle.GaugeCount() == arms ? ModalGaugeWeights(modes, arms) : GaugedModalWeights(modes, GaugedArms(vehicle));
+      every_arm_gauged ? ModalGaugeWeights(modes, arms) : GaugedModalWeights(modes, GaugedArms(vehicle));
   const int pick = MostReadableArmMode(modes, weights);
   if (!ArmModeStandsAlone(modes, pick, kNeighbourBand, kAloneVarianceRatio) ||
       !ArmModeLeakSmall(modes, weights.row(pick), pick, kNeighbourBand, kAloneVarianceRatio) ||
@@ -140,7 +142,7 @@ ArmModeExpectation ExpectedArmMode(const VehicleDescription& vehicle) {
   ArmModeExpectation e = ArmModeExpectation::At(modes[static_cast<size_t>(pick)].frequency_hz);
   e.arms = arms;
   e.mode_index = pick;
-  e.read_on_some_gauges = vehicle.GaugeCount() < arms;
+  e.read_on_some_gauges = !every_arm_gauged;
   e.weights = ReadingWeights(vehicle, weights.row(pick));
   e.tip_weight_n = 0;
   for (int i = 0; i < arms; ++i)

@@ -107,14 +107,18 @@ TipMassLearner::TipMassLearner(const Options& options, const ArmModeTipMassMap& 
   Forget();
 }
 
+double TipMassLearner::ReadingBiasInRatio() const {
+  if (!(options_.reading_bias > 0) || !active()) return 0.0;
+  const double slope = std::fabs(map_.LogHzSlope(ratio_));
+  return slope > 0 ? options_.reading_bias / slope : 0.0;
+}
+
 double TipMassLearner::ratio_std() const {
-  if (!(options_.reading_bias > 0) || !active()) return std::sqrt(variance_);
   // The share of r the readings gave (0 at the prior, 1 once they alone
-  // decide) carries their common bias, b / |H| in r.
+  // decide) carries their common bias.
   const double prior_variance = options_.prior_std * options_.prior_std;
   const double learned_share = prior_variance > 0 ? std::clamp(1.0 - variance_ / prior_variance, 0.0, 1.0) : 1.0;
-  const double slope = std::fabs(map_.LogHzSlope(ratio_));
-  const double bias = slope > 0 ? learned_share * options_.reading_bias / slope : 0.0;
+  const double bias = learned_share * ReadingBiasInRatio();
   return std::sqrt(variance_ + bias * bias);
 }
 
@@ -151,11 +155,8 @@ bool TipMassLearner::Resume(double tip_mass_kg, double std_kg) {
   variance_ = (std_kg / file_kg) * (std_kg / file_kg);
   // A learned sigma holds the readings' bias already (ratio_std): the
   // filter's own share is what is left of it (at least a tenth of it).
-  const double slope = std::fabs(map_.LogHzSlope(ratio_));
-  if (options_.reading_bias > 0 && slope > 0) {
-    const double bias = options_.reading_bias / slope;
-    variance_ -= std::min(bias * bias, 0.9 * variance_);
-  }
+  const double bias = ReadingBiasInRatio();
+  variance_ -= std::min(bias * bias, 0.9 * variance_);
   return true;
 }
 

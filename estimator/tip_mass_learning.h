@@ -110,6 +110,8 @@ class TipMassLearner {
   const Options& options() const { return options_; }
 
  private:
+  // reading_bias / |d ln f / d r| at r: the whole bias in r (0 without it) [1].
+  double ReadingBiasInRatio() const;
   Options options_;
   ArmModeTipMassMap map_;
   double ratio_ = 1.0;     // r [1]

@@ -21,6 +21,11 @@ Eigen::VectorXd RealShape(const Eigen::VectorXcd& b) {
   return shape / shape.cwiseAbs().maxCoeff();
 }
 
+// Whether `other` is another mode than `mode`, within band_fraction of its frequency.
+bool OtherInBand(const ArmModeShape& mode, const ArmModeShape& other, double band_fraction) {
+  return &other != &mode && std::fabs(other.frequency_hz / mode.frequency_hz - 1.0) <= band_fraction;
+}
+
 }  // namespace
 
 std::vector<ArmModeShape> MultiArmModeShapes(const VehicleDescription& vehicle) {
@@ -115,7 +120,7 @@ bool ArmModeStandsAlone(const std::vector<ArmModeShape>& modes, int m, double ba
   if (m < 0 || m >= static_cast<int>(modes.size())) return false;
   const ArmModeShape& mode = modes[static_cast<size_t>(m)];
   for (const ArmModeShape& other : modes) {
-    if (&other == &mode || std::fabs(other.frequency_hz / mode.frequency_hz - 1.0) > band_fraction) continue;
+    if (!OtherInBand(mode, other, band_fraction)) continue;
     const double ratio =
         mode.turbulence_response * mode.turbulence_response / (other.turbulence_response * other.turbulence_response);
     if (!(ratio >= variance_ratio)) return false;
@@ -129,7 +134,7 @@ bool ArmModeLeakSmall(const std::vector<ArmModeShape>& modes, const Eigen::RowVe
   const ArmModeShape& mode = modes[static_cast<size_t>(m)];
   double leak = 0;  // variance of the other modes in the reading [1]
   for (const ArmModeShape& other : modes) {
-    if (&other == &mode || std::fabs(other.frequency_hz / mode.frequency_hz - 1.0) > band_fraction) continue;
+    if (!OtherInBand(mode, other, band_fraction)) continue;
     const double through = w.dot(other.deflection) * other.turbulence_response;
     leak += through * through;
   }
