@@ -201,6 +201,19 @@ class MultiArmEkf : public MultiArmForceEstimator {
   const LeadingGainHold<N>* FlightOffsetHold() const {
     return offset_hold_.active && !contact_.supported() ? &offset_hold_ : nullptr;
   }
+  // Every offset held (keep = 0; inactive when the offsets are not
+  // estimated) for the accelerometer near the ground.
+  LeadingGainHold<N> every_offset_hold_;
+  // The accelerometer's hold. Near the ground (GroundContact::near_ground,
+  // the may-touch band) a_z may carry a support N >= 0 that the widened
+  // variance covers but does not centre: a_z reads no offset, and its
+  // innovations moved them only through P's correlations, the support
+  // taken for an offset pattern (the trirotor hovering at the ground's
+  // height: 2-sigma share 0.83-0.96 on rotor 1, seeds 1-10). Elsewhere
+  // FlightOffsetHold.
+  const LeadingGainHold<N>* AccelerometerOffsetHold() const {
+    return every_offset_hold_.active && contact_.near_ground() ? &every_offset_hold_ : FlightOffsetHold();
+  }
   std::array<double, N> force_std_n_{};
   MultiArmFilterFacts facts_;                   // of the newest estimate
   NoiseAdaptation strain_noise_;                // the learned scale on each gauge's variance

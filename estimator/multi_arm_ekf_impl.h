@@ -42,6 +42,8 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
   floor_.setConstant(1e-12);  // phi_dot, b_dot [(rad/s)^2]
   ceiling_.setConstant(1e4);
   if (options.estimate_gauge_offsets && options.hold_unseen_offsets) offset_hold_ = UnseenOffsetHold<N>(vehicle);
+  every_offset_hold_.active = options.estimate_gauge_offsets;
+  every_offset_hold_.keep.setZero();
   const HoverSolution hover = SolveHover(vehicle);
   for (int i = 0; i < N; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
@@ -304,7 +306,7 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
                                                  Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
                                                  options_.accel_gate_nis, &state_, &covariance_, nullptr, &report,
-                                                 FlightOffsetHold());
+                                                 AccelerometerOffsetHold());
   // a_z first: the thrust axis, the birotor's accelerometer report (its
   // one component), which the model-consistency monitor's fast test reads.
   std::swap(report.innovation(0), report.innovation(1));

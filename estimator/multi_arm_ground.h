@@ -29,6 +29,9 @@ class MultiArmGroundContact {
   void OnPose(double z_m) { contact_.OnPose(z_m); }
   void Reset() { contact_.Reset(); }
   bool supported() const { return contact_.supported(); }
+  // GroundContact::near_ground: in the air within ground_may_touch_m of the
+  // height the ground last held the body.
+  bool near_ground() const { return contact_.near_ground(); }
   // GroundContact::ReleasedSupportVarianceM2S4: the support that may still
   // carry the body after a time on the ground.
   double ReleasedSupportVarianceM2S4() const { return contact_.ReleasedSupportVarianceM2S4(); }

@@ -240,15 +240,19 @@ TEST(MultiArmGroundTest, BirotorDescriptionMatchesTheBirotorsOwnEkf) {
 // Hovering at the ground's height (hover with the ground phase: the
 // setpoint z = 0 keeps the body in and out of contact below the contact's
 // threshold) with the shipped may-touch band (ground_may_touch_m 0.02 m,
-// from ground_may_touch_after_s 0.5 s after the let-go). Measured: trirotor
-// 0.1073 / 0.0684 / 0.0667 N, 2-sigma 0.965 / 0.948 / 0.960, VALID 1.000,
-// MODEL_MISMATCH 0.000 (without the band: 0.1138 / 0.0626 / 0.0607 N,
-// 0.852 / 0.923 / 0.925, MODEL_MISMATCH 0.127); N = 2 0.0932 / 0.0971 N,
-// 0.989 / 0.986 (without: 0.931 / 0.941). The MAE stays above the airborne
-// hover's: the support is unknown there; asserted: the sigma says so. In
-// and out of contact the arm mode never gets the 0.6 s of free flight a
-// reading needs, so the tip mass's prior stays in the N-arm sigma for the
-// flight (upper bound 0.99 there).
+// from ground_may_touch_after_s 0.5 s after the let-go) and the offsets held
+// from the accelerometer near the ground (MultiArmEkf's
+// AccelerometerOffsetHold). Measured (seed 1): trirotor 0.1022 / 0.0671 /
+// 0.0661 N, 2-sigma 0.990 / 0.967 / 0.977, VALID 1.000, MODEL_MISMATCH
+// 0.000 (without the hold 0.1073 / 0.0683 / 0.0666 N, 0.965 / 0.948 /
+// 0.960; without the band as well 0.1138 / 0.0626 / 0.0607 N, 0.852 / 0.923
+// / 0.925, MODEL_MISMATCH 0.127); N = 2 0.1068 / 0.1082 N, 0.997 / 0.994
+// (without the hold 0.0931 / 0.0969 N, 0.989 / 0.986; the birotor's own
+// EKF, which holds every offset near the ground, 0.966-0.995 on seeds
+// 1-10). The MAE stays above the airborne hover's: the support is unknown
+// there; asserted: the sigma says so. In and out of contact the arm mode
+// never gets the 0.6 s of free flight a reading needs, so the tip mass's
+// prior stays in the N-arm sigma for the flight (upper bound 0.998 there).
 TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
   const EstimatorConfig config = Config();
   for (const char* vehicle : {"trirotor", "birotor"}) {
@@ -260,11 +264,37 @@ TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
     for (int i = 0; i < r.n_rotors; ++i) {
       EXPECT_LT(r.rotor[static_cast<size_t>(i)].mae_n, 0.13) << "rotor " << i + 1;
       EXPECT_GT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.93) << "rotor " << i + 1;
-      EXPECT_LT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.99) << "rotor " << i + 1;
+      EXPECT_LT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.998) << "rotor " << i + 1;
     }
     EXPECT_GT(r.valid_share, 0.99);
     EXPECT_EQ(r.mismatch_share, 0.0);
     EXPECT_EQ(r.false_alarms, 0);
+  }
+}
+
+// The trirotor's worst seeds hovering at the ground's height, 5 and 6:
+// near the ground a_z may carry a support that its widened variance covers
+// but does not centre, and its innovations moved the gauge offsets through
+// P's correlations (rotor 1 2-sigma share 0.831 / 0.870, 0.1646 / 0.1491 N).
+// Held from the accelerometer there: 0.911 / 0.919, 0.1564 / 0.1537 N,
+// VALID 1.000, no MODEL_MISMATCH (holding them from every input instead
+// raised MODEL_MISMATCH on both seeds for 0.126 of the flight: the strain's
+// window bias on arm 1 above 1).
+TEST(MultiArmGroundTest, TheAccelerometerNearTheGroundDoesNotMoveTheOffsets) {
+  const EstimatorConfig config = Config();
+  const VehicleDescription description = Vehicle("trirotor");
+  for (const int seed : {5, 6}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const MultiArmAccuracy r = RunMultiArmAccuracy(
+        description, ScenarioFor("hover", {"ground.enabled=true", "scenario.seed=" + std::to_string(seed)}, 3), config,
+        EvalOptions());
+    EXPECT_EQ(r.nonfinite, 0);
+    EXPECT_EQ(r.mismatch_share, 0.0);
+    EXPECT_GT(r.valid_share, 0.99);
+    for (int i = 0; i < r.n_rotors; ++i) {
+      EXPECT_LT(r.rotor[static_cast<size_t>(i)].mae_n, 0.16) << "rotor " << i + 1;
+      EXPECT_GT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.90) << "rotor " << i + 1;
+    }
   }
 }
 
