@@ -48,10 +48,11 @@ struct EkfOptions {
   bool adapt_accel_noise = true;
   double accel_noise_window_s = 2.0;      // [s]
   double accel_noise_scale_max = 1000.0;  // on the variance [1] (sigma up to 31.6x the file's)
-  int accel_noise_min_samples = 5;        // accelerometer sample pairs learned from before the scale moves
-  double accel_noise_hold_s = 0.2;        // [s]
-  double accel_noise_clip = 9.0;          // one pair's variance sample at most this x the estimate [1]
-  int accel_noise_trust_samples = 50;     // pairs before the scale is fused as learned (its upper bound until then)
+  int accel_noise_min_samples = 5;     // accelerometer sample pairs learned from before the scale moves (and the N-arm
+                                       // EKF, at an airborne start, fuses it)
+  double accel_noise_hold_s = 0.2;     // [s]
+  double accel_noise_clip = 9.0;       // one pair's variance sample at most this x the estimate [1]
+  int accel_noise_trust_samples = 50;  // pairs before the scale is fused as learned (its upper bound until then)
   double accel_noise_trust_sigmas = 1.0;  // that bound: scale (1 + sigmas sqrt(2 / n)) after n pairs [1]
   bool use_motor_telemetry = true;        // fuse omega_meas when finite
   bool use_gyro = true;                   // fuse IMU gyro_y when IMU samples arrive

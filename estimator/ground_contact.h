@@ -37,6 +37,8 @@ class GroundContact {
   void Reset();
 
   bool supported() const { return supported_; }
+  // The ground has held the body since start-up (or the last Reset).
+  bool has_been_supported() const { return has_been_supported_; }
   // In the air within ground_may_touch_m of the height the ground last held
   // the body (POSE; false without POSE or with the band off, 0 m).
   bool near_ground() const { return near_ground_ && !supported_; }

@@ -298,15 +298,28 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   r(0, 0) = accel_noise_.scale(1) * file_m2s4;
   r(1, 1) = accel_noise_.scale(0) * file_m2s4 + contact_.ReleasedSupportVarianceM2S4();
   // H's first N columns (the offsets e_i) are zero: left out. Fused with
-  // the scales as they stand from the first sample, not the birotor's
-  // upper bound until trusted (NoiseAdaptation::CautiousScale): with it at
-  // 1 sigma the trirotor hovering with a 20x noisier accelerometer raised
-  // MODEL_MISMATCH on 12.8 % of seed 8's estimates (0 of 12 seeds without).
+  // the scales as they stand (not the birotor's upper bound until trusted,
+  // NoiseAdaptation::CautiousScale: within 0.03 of these figures on the
+  // noisy hovers of docs/estimator.md), and at an airborne start only once
+  // the scales were learned from accel_noise_min_samples pairs: before, the
+  // gate is 0 (rejected, and learned from as gated samples are). Fused at
+  // the file's variance, the first samples of a frame 20x noisier than its
+  // file pulled the thrust scales far enough to flag a rotor fault, which
+  // froze the learning at a_z's scale 38 of 400 for a second (the trirotor
+  // hovering with accel_noise_m_s2 1.0, seed 8), or left rotors 2 and 3
+  // 0.7 N off at a 2-sigma share of 0.03 from 0.5 to 1.5 s (seed 7). After
+  // a time on the ground the lift-off is read at once (a payload's
+  // evidence; its thrust step holds the learning, and the accelerometer
+  // left out that long let a drifting gauge's offset run on the N = 2
+  // description without arm 1's gauge). docs/estimator.md, "The
+  // accelerometer's noise".
+  const bool unlearned_in_air = accel_noise_.enabled() && accel_noise_.samples() < options_.accel_noise_min_samples &&
+                                !contact_.contact().has_been_supported();
   FusionReport report = MakeFusionReport(FusionSource::kAccelerometer, sample.utime, FusionOutcome::kNotFused);
   FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
                                                  Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
-                                                 options_.accel_gate_nis, &state_, &covariance_, nullptr, &report,
-                                                 AccelerometerOffsetHold());
+                                                 unlearned_in_air ? 0.0 : options_.accel_gate_nis, &state_,
+                                                 &covariance_, nullptr, &report, AccelerometerOffsetHold());
   // a_z first: the thrust axis, the birotor's accelerometer report (its
   // one component), which the model-consistency monitor's fast test reads.
   std::swap(report.innovation(0), report.innovation(1));
