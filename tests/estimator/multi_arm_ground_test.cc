@@ -237,6 +237,25 @@ TEST(MultiArmGroundTest, BirotorDescriptionMatchesTheBirotorsOwnEkf) {
   ExpectHonest(GroundStart("birotor", "gauge_offset", {}), {1.05 * 0.0692, 1.05 * 0.0676}, 0);
 }
 
+// One flight with the ground phase (`scenario` on `seed`): never
+// MODEL_MISMATCH, VALID, every rotor's MAE below max_mae_n [N] and its
+// 2-sigma share above 0.90.
+void ExpectHonestNearTheGround(const VehicleDescription& description, const char* scenario, int seed,
+                               double max_mae_n) {
+  SCOPED_TRACE(std::string(scenario) + " seed " + std::to_string(seed));
+  const MultiArmAccuracy r = RunMultiArmAccuracy(
+      description,
+      ScenarioFor(scenario, {"ground.enabled=true", "scenario.seed=" + std::to_string(seed)}, description.arm_count),
+      Config(), EvalOptions());
+  EXPECT_EQ(r.nonfinite, 0);
+  EXPECT_EQ(r.mismatch_share, 0.0);
+  EXPECT_GT(r.valid_share, 0.99);
+  for (int i = 0; i < r.n_rotors; ++i) {
+    EXPECT_LT(r.rotor[static_cast<size_t>(i)].mae_n, max_mae_n) << "rotor " << i + 1;
+    EXPECT_GT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.90) << "rotor " << i + 1;
+  }
+}
+
 // Hovering at the ground's height (hover with the ground phase: the
 // setpoint z = 0 keeps the body in and out of contact below the contact's
 // threshold) with the shipped may-touch band (ground_may_touch_m 0.02 m,
@@ -281,21 +300,7 @@ TEST(MultiArmGroundTest, HoverAtTheGroundsHeightIsHonestWithTheBand) {
 // raised MODEL_MISMATCH on both seeds for 0.126 of the flight: the strain's
 // window bias on arm 1 above 1).
 TEST(MultiArmGroundTest, TheAccelerometerNearTheGroundDoesNotMoveTheOffsets) {
-  const EstimatorConfig config = Config();
-  const VehicleDescription description = Vehicle("trirotor");
-  for (const int seed : {5, 6}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    const MultiArmAccuracy r = RunMultiArmAccuracy(
-        description, ScenarioFor("hover", {"ground.enabled=true", "scenario.seed=" + std::to_string(seed)}, 3), config,
-        EvalOptions());
-    EXPECT_EQ(r.nonfinite, 0);
-    EXPECT_EQ(r.mismatch_share, 0.0);
-    EXPECT_GT(r.valid_share, 0.99);
-    for (int i = 0; i < r.n_rotors; ++i) {
-      EXPECT_LT(r.rotor[static_cast<size_t>(i)].mae_n, 0.16) << "rotor " << i + 1;
-      EXPECT_GT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.90) << "rotor " << i + 1;
-    }
-  }
+  for (const int seed : {5, 6}) ExpectHonestNearTheGround(Vehicle("trirotor"), "hover", seed, 0.16);
 }
 
 // The N = 2 description's flights whose touches the gyro's gate rejected:
@@ -307,23 +312,9 @@ TEST(MultiArmGroundTest, TheAccelerometerNearTheGroundDoesNotMoveTheOffsets) {
 // from the ground on seed 1. Measured now: never raised; MAE 0.0949 /
 // 0.1177 / 0.1091 N and 0.0834 N on the worse rotor, 2-sigma 0.910-0.979.
 TEST(MultiArmGroundTest, TouchesThatHoldThePitchRaiseNoMismatch) {
-  const EstimatorConfig config = Config();
   const VehicleDescription description = Vehicle("birotor");
   const std::pair<const char*, int> flights[] = {{"hover", 2}, {"hover", 3}, {"hover", 5}, {"gentle", 1}};
-  for (const auto& [scenario, seed] : flights) {
-    SCOPED_TRACE(std::string(scenario) + " seed " + std::to_string(seed));
-    const MultiArmAccuracy r = RunMultiArmAccuracy(
-        description,
-        ScenarioFor(scenario, {"ground.enabled=true", "scenario.seed=" + std::to_string(seed)}, description.arm_count),
-        config, EvalOptions());
-    EXPECT_EQ(r.mismatch_share, 0.0);
-    EXPECT_GT(r.valid_share, 0.99);
-    EXPECT_EQ(r.nonfinite, 0);
-    for (int i = 0; i < r.n_rotors; ++i) {
-      EXPECT_LT(r.rotor[static_cast<size_t>(i)].mae_n, 0.13) << "rotor " << i + 1;
-      EXPECT_GT(r.rotor[static_cast<size_t>(i)].share_within_2sigma, 0.90) << "rotor " << i + 1;
-    }
-  }
+  for (const auto& [scenario, seed] : flights) ExpectHonestNearTheGround(description, scenario, seed, 0.13);
 }
 
 // A payload at a ground start: the trirotor flown with its body 10 % heavier
