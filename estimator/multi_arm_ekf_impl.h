@@ -314,7 +314,7 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   // description without arm 1's gauge). docs/estimator.md, "The
   // accelerometer's noise".
   const bool unlearned_in_air = accel_noise_.enabled() && accel_noise_.samples() < options_.accel_noise_min_samples &&
-                                !contact_.contact().has_been_supported();
+                                !contact_.has_been_supported();
   FusionReport report = MakeFusionReport(FusionSource::kAccelerometer, sample.utime, FusionOutcome::kNotFused);
   FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
                                                  Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
