@@ -43,7 +43,8 @@ struct EkfOptions {
   // capped at accel_noise_clip times the current estimate, so a spike moves
   // it little. Until accel_noise_trust_samples pairs, the birotor's EKF fuses
   // a_z with the scale's upper bound at accel_noise_trust_sigmas
-  // (CautiousScale; the N-arm EKF the scale as it stands).
+  // (CautiousScale; the N-arm EKF the scale as it stands, which starts at
+  // the median of its first pairs: MultiArmAccelerometerNoiseSettings).
   // docs/estimator.md "Measurement noise learned online".
   bool adapt_accel_noise = true;
   double accel_noise_window_s = 2.0;      // [s]

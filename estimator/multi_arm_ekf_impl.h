@@ -33,7 +33,7 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
       faults_(options),
       contact_(vehicle, options),
       strain_noise_(StrainNoiseSettings(options), N),
-      accel_noise_(AccelerometerNoiseSettings(options), 2) {
+      accel_noise_(MultiArmAccelerometerNoiseSettings(options), 2) {
   strain_variance_rad2_.fill(options.strain_noise_rad * options.strain_noise_rad);
   process_noise_psd_.setZero();
   process_noise_psd_(Layout::kPitchRate) = options.pitch_rate_psd_rad2_s3;
@@ -301,7 +301,8 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   // the scales as they stand (not the birotor's upper bound until trusted,
   // NoiseAdaptation::CautiousScale: within 0.03 of these figures on the
   // noisy hovers of docs/estimator.md), and at an airborne start only once
-  // the scales were learned from accel_noise_min_samples pairs: before, the
+  // the scales were learned from accel_noise_min_samples pairs (starting at
+  // their median: MultiArmAccelerometerNoiseSettings): before, the
   // gate is 0 (rejected, and learned from as gated samples are). Fused at
   // the file's variance, the first samples of a frame 20x noisier than its
   // file pulled the thrust scales far enough to flag a rotor fault, which

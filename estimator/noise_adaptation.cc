@@ -33,6 +33,12 @@ NoiseAdaptationSettings AccelerometerNoiseSettings(const EkfOptions& options) {
   return s;
 }
 
+NoiseAdaptationSettings MultiArmAccelerometerNoiseSettings(const EkfOptions& options) {
+  NoiseAdaptationSettings s = AccelerometerNoiseSettings(options);
+  s.median_start = true;
+  return s;
+}
+
 NoiseAdaptation::NoiseAdaptation(const NoiseAdaptationSettings& settings, int gauges)
     : enabled_(settings.enabled),
       gauges_(std::clamp(gauges, 1, kMaxSampleArms)),
@@ -45,7 +51,8 @@ NoiseAdaptation::NoiseAdaptation(const NoiseAdaptationSettings& settings, int ga
       hold_us_(static_cast<int64_t>(settings.hold_s * 1e6)),
       file_variance_(settings.file_variance),
       learn_gated_(settings.learn_gated),
-      clip_(settings.clip) {
+      clip_(settings.clip),
+      median_start_(settings.median_start) {
   scale_.fill(enabled_ ? std::max(1.0, scale_min_) : 1.0);
 }
 
@@ -96,14 +103,33 @@ bool NoiseAdaptation::Add(const FusionReport& report, const double* r_used, bool
 bool NoiseAdaptation::LearnFromPair(int i, const FusionReport& report, double hph, double weight) {
   const size_t k = static_cast<size_t>(i);
   const double d = report.innovation(i) - previous_innovation_[k];
-  double r_sample = 0.5 * d * d - 0.5 * (hph + previous_hph_[k]);
-  if (clip_ > 0) r_sample = std::min(r_sample, clip_ * std::max(variance_estimate_[k], file_variance_));
-  variance_estimate_[k] += weight * (r_sample - variance_estimate_[k]);
+  const double difference = 0.5 * d * d;
+  UpdateEstimate(k, difference, difference - 0.5 * (hph + previous_hph_[k]), weight);
   if (samples_ < min_samples_) return false;
   const double scale = std::clamp(variance_estimate_[k] / file_variance_, scale_min_, scale_max_);
   const bool changed = scale != scale_[k];
   scale_[k] = scale;
   return changed;
+}
+
+void NoiseAdaptation::UpdateEstimate(size_t k, double difference, double r_sample, double weight) {
+  const int started = start_count_[k];
+  if (median_start_ && started < kStartPairs) {
+    // The median of the pairs so far (of the middle two for an even count),
+    // sorted in a copy of at most kStartPairs values.
+    start_samples_[k][static_cast<size_t>(started)] = difference;
+    start_count_[k] = started + 1;
+    std::array<double, kStartPairs> sorted = start_samples_[k];
+    std::sort(sorted.begin(), sorted.begin() + started + 1);
+    const double median =
+        0.5 * (sorted[static_cast<size_t>(started / 2)] + sorted[static_cast<size_t>((started + 1) / 2)]);
+    constexpr double kChiSquare1Median = 0.4549;  // of chi^2 with one degree of freedom
+    variance_estimate_[k] = median / kChiSquare1Median;
+    return;
+  }
+  const double capped =
+      clip_ > 0 ? std::min(r_sample, clip_ * std::max(variance_estimate_[k], file_variance_)) : r_sample;
+  variance_estimate_[k] += weight * (capped - variance_estimate_[k]);
 }
 
 double NoiseAdaptation::CautiousScale(int i) const {

@@ -31,6 +31,9 @@ struct NoiseAdaptationSettings {
   // moves the mean by at most w clip R_i_hat [1].
   bool learn_gated = false;
   double clip = 0.0;  // 0: no cap
+  // The first pairs start R_i_hat at their median instead of the (capped)
+  // mean growing from 0 (NoiseAdaptation, "The start").
+  bool median_start = false;
   // Until trust_samples pairs were learned from, CautiousScale fuses the
   // scale's upper confidence bound at trust_sigmas (0 samples: the scale as
   // it is) [1].
@@ -41,6 +44,10 @@ struct NoiseAdaptationSettings {
 // accelerometer's a_z (accel_noise_*; m^2/s^4) settings.
 NoiseAdaptationSettings StrainNoiseSettings(const EkfOptions& options);
 NoiseAdaptationSettings AccelerometerNoiseSettings(const EkfOptions& options);
+// The N-arm EKF's accelerometer: at an airborne start it fuses a_z only
+// after min_samples pairs, at the scale as it stands (not CautiousScale), so
+// the scale must not start low: AccelerometerNoiseSettings with median_start.
+NoiseAdaptationSettings MultiArmAccelerometerNoiseSettings(const EkfOptions& options);
 
 // Covariance matching (Mehra 1972; Sage-Husa with a fading memory) on the
 // first difference of each gauge's innovation y_i = z_i - h_i(x):
@@ -59,6 +66,20 @@ NoiseAdaptationSettings AccelerometerNoiseSettings(const EkfOptions& options);
 // inflation), with the filter converged and no rotor fault flagged, and not
 // within hold_s of a fault or a sample fused after inflation (the
 // innovations of a thrust step are not noise).
+// The start (median_start): R_i_hat begins as the median of the first
+// kStartPairs values of (y_i,k - y_i,k-1)^2 / 2 over 0.4549 (the median of
+// chi^2 with one degree of freedom), nothing taken off for the state's
+// share: right after a start consecutive priors share nearly all their
+// error, which the difference cancels, so subtracting H P H^T (30-90 R_file
+// there) as for independent innovations took a noise 20x the file's
+// (sigma) for none. It errs high while the state still converges (on the
+// file's noise 1-160 R_file after 5 pairs, 1-5.3 after 100: the capped mean
+// that goes on from there brings it down by 1 / n). The cap alone let a
+// noisy sensor's estimate grow from R_file by at most clip x a pair,
+// diluted by 1 / n: the N-arm EKF's accelerometer scale stood at 10 of 400
+// after 5 pairs and its first fused samples flagged a false rotor fault; a
+// mean without the cap took a single lift-off transient (24,850 R_file) as
+// the noise for a second. The median keeps neither.
 // The scale is kept across a re-initialisation (it is the gauges' property).
 // For any number of gauges (the birotor's 2, an N-arm vehicle's N): a gauge
 // the report does not measure (innovation variance 0: no gauge on the arm,
@@ -92,8 +113,14 @@ class NoiseAdaptation {
   bool enabled() const { return enabled_; }
 
  private:
+  // The pairs whose median starts R_i_hat (median_start).
+  static constexpr int kStartPairs = 5;
   // Gauge i's pair from its previous innovation to this report's.
   bool LearnFromPair(int i, const FusionReport& report, double hph, double weight);
+  // R_i_hat from one more pair: the start's median of difference =
+  // (y_i,k - y_i,k-1)^2 / 2, or the mean of r_sample (capped when clip > 0)
+  // [unit^2].
+  void UpdateEstimate(size_t k, double difference, double r_sample, double weight);
 
   bool enabled_;
   int gauges_;
@@ -106,12 +133,15 @@ class NoiseAdaptation {
   double file_variance_;  // R_i_file [unit^2]
   bool learn_gated_;
   double clip_;  // 0: none
+  bool median_start_;
   int64_t previous_utime_ = 0;
   int64_t hold_until_utime_ = -1;                    // no sample counts before this [us]
   std::array<bool, kMaxSampleArms> has_previous_{};  // gauge i's previous innovation is the newest report's
   ArmValues previous_innovation_{};
   ArmValues previous_hph_{};
-  ArmValues variance_estimate_{};  // R_i_hat [unit^2]
+  ArmValues variance_estimate_{};                                                // R_i_hat [unit^2]
+  std::array<std::array<double, kStartPairs>, kMaxSampleArms> start_samples_{};  // the start's pairs [unit^2]
+  std::array<int, kMaxSampleArms> start_count_{};                                // of them, per component
   ArmValues scale_{};
   int64_t samples_ = 0;
 };

@@ -164,6 +164,51 @@ TEST(NoiseAdaptation, TheAccelerometersRuleLearnsFromGatedSamples) {
   EXPECT_LE(accelerometer.scale(0), before * (1.0 + w * settings.clip) * 1.001);
 }
 
+// The N-arm EKF's start (MultiArmAccelerometerNoiseSettings, median_start):
+// the median of the first 5 pairs' (y_k - y_k-1)^2 / 2. A noise 20x the
+// file's (sigma) behind a P as wide as a start's (H P H^T 80 R_file), 100
+// seeds: the scale after 5 pairs below a quarter of the truth's 400 on 13
+// of them (the median of 5 chi^2 samples), with the capped mean and H P H^T
+// taken off on 78. The file's noise with a lift-off spike of 25,000 R_file:
+// measured 1.76 (the capped mean 9.03).
+TEST(NoiseAdaptation, TheMultiArmStartIsAMedian) {
+  NoiseAdaptationSettings median = MultiArmAccelerometerNoiseSettings(EkfOptions());
+  median.file_variance = kFileVariance;
+  NoiseAdaptationSettings capped_mean = median;
+  capped_mean.median_start = false;
+  SyntheticRun start;
+  start.true_variance_rad2 = 400.0 * kFileVariance;
+  start.outcome = FusionOutcome::kRejectedGate;  // fused only once learned
+  start.hph_rad2 = 80.0 * kFileVariance;
+  int low_median = 0, low_capped = 0;
+  for (uint32_t seed = 1; seed <= 100; ++seed) {
+    NoiseAdaptation with_median(median), without(capped_mean);
+    int64_t utime = 0, utime_without = 0;
+    Feed(start, 6, &with_median, &utime, seed);
+    Feed(start, 6, &without, &utime_without, seed);
+    ASSERT_EQ(with_median.samples(), 5);
+    low_median += with_median.scale(0) < 100.0;
+    low_capped += without.scale(0) < 100.0;
+  }
+  std::printf("x400 start, 100 seeds, scale < 100: median %d, capped mean %d\n", low_median, low_capped);
+  EXPECT_LE(low_median, 20);
+  EXPECT_GE(low_capped, 50);
+  // The file's noise, one lift-off spike (two pairs: up and down).
+  SyntheticRun settled;
+  int64_t utime = 0;
+  for (const bool use_median : {true, false}) {
+    NoiseAdaptation adaptation(use_median ? median : capped_mean);
+    Feed(settled, 2, &adaptation, &utime, 11);
+    SyntheticRun spike = settled;
+    spike.bias_rad = std::sqrt(2.0 * 25000.0 * kFileVariance);
+    Feed(spike, 1, &adaptation, &utime, 12);
+    Feed(settled, 4, &adaptation, &utime, 13);
+    std::printf("file's noise, spike: %s %.2f\n", use_median ? "median" : "capped mean", adaptation.scale(0));
+    if (use_median) EXPECT_LT(adaptation.scale(0), 2.5);
+    if (!use_median) EXPECT_GT(adaptation.scale(0), 5.0);
+  }
+}
+
 // Three gauges (an N-arm vehicle, MultiArmEkf), the third without a
 // reading (the report's variance 0): the two measured learn their noise as
 // the birotor's do (the same bound as ConvergesToTheTrueVariance), the third
