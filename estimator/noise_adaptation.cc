@@ -86,7 +86,11 @@ bool NoiseAdaptation::Add(const FusionReport& report, const double* r_used, bool
   bool changed = false;
   for (int i = 0; i < gauges_; ++i) {
     const size_t k = static_cast<size_t>(i);
-    if (!(report.innovation_variance(i) > 0)) {  // not measured in this sample
+    // Not measured in this sample, or not a number (a gated NaN innovation
+    // would otherwise reach the mean, or the start's sort): that pair breaks.
+    const bool measured = report.innovation_variance(i) > 0 && std::isfinite(report.innovation_variance(i)) &&
+                          std::isfinite(report.innovation(i));
+    if (!measured) {
       has_previous_[k] = false;
       continue;
     }
