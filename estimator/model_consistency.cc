@@ -69,16 +69,19 @@ void ModelConsistencyMonitor::AnchorOffsets(const double* offset_rad, const doub
   state_.offsets = offsets_.state();
 }
 
-void ModelConsistencyMonitor::AddOffsets(int64_t utime, const double* offset_rad, bool free_flight) {
+void ModelConsistencyMonitor::AddOffsets(int64_t utime, const double* offset_rad, bool free_flight, bool near_ground) {
   if (!options_.enabled || !judging_ || !offsets_.enabled()) return;
-  const bool departed = offsets_.Add(utime, offset_rad, free_flight);
+  const bool departed = offsets_.Add(utime, offset_rad, free_flight, near_ground);
   state_.offsets = offsets_.state();
   if (departed && !state_.mismatch) {
-    // The filter's innovations are white: the name is the offsets' (a
-    // payload, or every arm's stiffness or gauge scale alike).
+    // The filter's innovations are white: the name is the offsets' (along
+    // the common force a payload, or every arm's stiffness or gauge scale
+    // alike; one gauge alone: its arm's gauge or stiffness, or a support
+    // holding the body near the ground).
     state_.raised_fast = false;
     Raise(utime, newest_thrust_scale_.data());
-    state_.parameter = MismatchParameter::kMass;
+    state_.parameter =
+        state_.offsets.departed_arm >= 0 ? MismatchParameter::kStiffnessOrGaugeScale : MismatchParameter::kMass;
   }
 }
 

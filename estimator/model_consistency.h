@@ -146,8 +146,10 @@ class ModelConsistencyMonitor {
   // one sigma each [rad of the raw reading]: the test starts from it.
   void AnchorOffsets(const double* offset_rad, const double* offset_std_rad);
   // The offsets in use at utime (calibration plus what the method learned);
-  // judged in free flight. Raises MODEL_MISMATCH ("mass") when they depart.
-  void AddOffsets(int64_t utime, const double* offset_rad, bool free_flight);
+  // judged in free flight, each gauge's own departure also near_ground
+  // (OffsetDepartureTest::Add). Raises MODEL_MISMATCH when they depart:
+  // "mass" along the common force, "stiffness_or_gauge_scale" for one gauge.
+  void AddOffsets(int64_t utime, const double* offset_rad, bool free_flight, bool near_ground = false);
   // Every force estimate (its utime, and its thrust scales for the
   // attribution); returns the monitor's facts on it (all false for a method
   // it does not judge): the mismatch raised, the model not yet confirmed

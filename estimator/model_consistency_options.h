@@ -186,6 +186,8 @@ struct ModelConsistencyOptions {
   // for offset_departure_hold_s; held until the next tare. A payload the file
   // lacks goes there: body +10 % airborne reads 4.1-5.4 sigma on every seed
   // (VALID and 1.96 N off without the test) (docs/mismatch.md) [sigma]; 0: off.
+  // Near the ground each gauge's own departure is judged by it too
+  // ("stiffness_or_gauge_scale": a support the contact test did not see).
   double offset_departure_limit = 4.0;
   double offset_departure_hold_s = 0.1;  // [s]
   // Below that limit the offsets' departure along the same direction is

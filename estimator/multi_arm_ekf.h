@@ -68,6 +68,8 @@ class MultiArmForceEstimator {
   // The ground holds the body now (its contact model; false for a method
   // without a ground phase): the arms' modes are not the free vehicle's.
   virtual bool body_supported() const { return false; }
+  // In the air within the may-touch band of the ground (GroundContact::near_ground).
+  virtual bool body_near_ground() const { return false; }
   // Every arm's tip mass from now on r times the description's (learned
   // from the arm mode, estimator/tip_mass_learning.h): an online
   // re-parameterisation of the model, no state reset, no allocation.
@@ -129,6 +131,7 @@ class MultiArmEkf : public MultiArmForceEstimator {
   double accel_noise_scale(int component) const { return accel_noise_.scale(component); }
   bool learns_strain_noise() const override { return strain_noise_.enabled(); }
   bool body_supported() const override { return contact_.supported(); }
+  bool body_near_ground() const override { return contact_.near_ground(); }
   void SetTipMassScale(double ratio) override { model_.SetTipMassScale(ratio); }
   bool flies_tip_mass() const override { return true; }
   void SetGaugeOffsetPrior(const double* offset_std_rad) override;

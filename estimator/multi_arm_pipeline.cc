@@ -316,7 +316,8 @@ ConsistencyStatusFacts MultiArmPipeline::JudgeConsistency(const MultiArmStrainSa
   consistency_.AddStrain(deflection.utime, deflection.deflection_rad.data(), !filter_->body_supported(), outlier);
   ArmValues offset_rad, offset_std_rad;
   if (OffsetsInUse(&offset_rad, &offset_std_rad))
-    consistency_.AddOffsets(deflection.utime, offset_rad.data(), !filter_->body_supported());
+    consistency_.AddOffsets(deflection.utime, offset_rad.data(), !filter_->body_supported(),
+                            filter_->body_near_ground());
   for (int i = 0; i < config_.vehicle.arm_count; ++i) {
     health_.strain_noise_scale[static_cast<size_t>(i)] = filter_->strain_noise_scale(i);
   }

@@ -31,7 +31,7 @@ void OffsetDepartureTest::Anchor(const double* offset_rad, const double* offset_
   }
 }
 
-bool OffsetDepartureTest::Add(int64_t utime, const double* offset_rad, bool free_flight) {
+bool OffsetDepartureTest::Add(int64_t utime, const double* offset_rad, bool free_flight, bool near_ground) {
   if (!enabled()) return false;
   if (anchor_utime_ < 0 || utime < anchor_utime_) anchor_utime_ = utime;
   if (!free_flight) {
@@ -51,7 +51,10 @@ bool OffsetDepartureTest::Add(int64_t utime, const double* offset_rad, bool free
   if (!(variance_rad2 > 0) || !std::isfinite(departure_rad)) return false;
   state_.z = departure_rad / std::sqrt(variance_rad2);
   state_.common_multiple = departure_rad / direction_norm2;
-  state_.statistic = std::fabs(state_.z) / limit_sigma_;
+  state_.arm_z = 0;
+  state_.arm = -1;
+  if (near_ground) JudgeEachGauge(offset_rad, elapsed_s);
+  state_.statistic = std::max(std::fabs(state_.z), state_.arm_z) / limit_sigma_;
   state_.peak_abs_z = std::max(state_.peak_abs_z, std::fabs(state_.z));
   if (state_.departed) return false;
   if (state_.statistic <= 1.0) {
@@ -62,7 +65,23 @@ bool OffsetDepartureTest::Add(int64_t utime, const double* offset_rad, bool free
   if (utime - beyond_since_utime_ < hold_us_) return false;
   state_.departed = true;
   state_.departed_utime = utime;
+  state_.departed_arm = state_.arm_z > std::fabs(state_.z) ? state_.arm : -1;
   return true;
+}
+
+void OffsetDepartureTest::JudgeEachGauge(const double* offset_rad, double elapsed_s) {
+  // z_i = (o_i - a_i) / sqrt(s_a,i^2 + q_i (t - t_a)); a gauge without a
+  // prior (none on that arm) is not judged.
+  for (int i = 0; i < arms_; ++i) {
+    const double variance_rad2 = anchor_variance_rad2_[i] + drift_psd_rad2_s_[i] * elapsed_s;
+    const double departure_rad = offset_rad[i] - anchor_rad_[i];
+    if (!(variance_rad2 > 0) || !std::isfinite(departure_rad)) continue;
+    const double z = std::fabs(departure_rad) / std::sqrt(variance_rad2);
+    if (z > state_.arm_z) {
+      state_.arm_z = z;
+      state_.arm = i;
+    }
+  }
 }
 
 }  // namespace birotor

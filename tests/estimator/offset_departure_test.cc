@@ -65,6 +65,27 @@ TEST(OffsetDeparture, OffsetsAgainstTheCommonForceAreNotJudged) {
   EXPECT_NEAR(test.state().z, 0.0, 1e-12);
 }
 
+// Near the ground each gauge's own departure is judged as well: the torque
+// pattern above, 5 sigma on each gauge, departs there after hold_s, named
+// by its gauge, while in free flight away from the ground it is not judged.
+TEST(OffsetDeparture, OneGaugesOwnDepartureIsJudgedNearTheGround) {
+  OffsetDepartureTest test = Anchored();
+  const double torque[2] = {5 * kStd, 5 * kStd};
+  EXPECT_FALSE(test.Add(0, torque, true, /*near_ground=*/false));
+  EXPECT_EQ(test.state().statistic, 0.0);
+  EXPECT_EQ(test.state().arm, -1);
+  bool departed = false;
+  for (int64_t t = kMs; t <= 101 * kMs; t += kMs) departed = test.Add(t, torque, true, true) || departed;
+  EXPECT_TRUE(departed);
+  EXPECT_NEAR(test.state().arm_z, 5.0, 1e-12);
+  EXPECT_NEAR(test.state().statistic, 1.25, 1e-12);
+  EXPECT_NEAR(test.state().z, 0.0, 1e-12);
+  EXPECT_EQ(test.state().departed_arm, 0);
+  // On the ground (not free flight) nothing is judged.
+  OffsetDepartureTest grounded = Anchored();
+  for (int64_t t = 0; t <= 300 * kMs; t += kMs) EXPECT_FALSE(grounded.Add(t, torque, false, true));
+}
+
 // A run beyond the limit shorter than hold_s, or broken by the ground, does not depart.
 TEST(OffsetDeparture, ABriefRunOrTheGroundDoesNotDepart) {
   OffsetDepartureTest test = Anchored();
