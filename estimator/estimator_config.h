@@ -192,6 +192,18 @@ struct EkfOptions {
   // or without motor telemetry, and no false flag on any reference scenario
   // (issue 27 item 3; tests/estimator/filter_consistency_test.cc) [s].
   double fault_persistence_s = 0.002;
+  // N rotors (MultiArmFaultMonitor): within fault_second_rotor_window_s of
+  // one rotor's fault going on, a fault on any other rotor must hold
+  // fault_second_rotor_persistence_s. After a loss the strain gate's
+  // inflation fuses one sample ungated, the thrust scales take the arm's
+  // ringing, the next samples are gated again and the inflation repeats
+  // every few milliseconds for about 25 ms: a healthy rotor's scale swings
+  // past the fault threshold for 2-5 ms (the trirotor, rotor 3 lost, seeds
+  // 1 and 5: rotor 2 flagged 16-18 ms after the loss). A real second loss
+  // within the window is flagged 4 ms later; none outside it. The birotor's
+  // own monitor has one comparison and does not use them [s].
+  double fault_second_rotor_persistence_s = 0.006;
+  double fault_second_rotor_window_s = 0.05;
   // Strain intervals longer than this are predicted in equal RK4 sub-steps
   // (the pipeline re-initialises the filter after PipelineOptions::reset_gap_s):
   // one RK4 step is only stable and accurate for omega_arm dt well below 2.8

@@ -6,11 +6,21 @@
 namespace birotor {
 
 MultiArmFaultMonitor::MultiArmFaultMonitor(const EkfOptions& options)
-    : options_(options), persistence_us_(static_cast<int64_t>(options.fault_persistence_s * 1e6)) {}
+    : options_(options),
+      persistence_us_(static_cast<int64_t>(options.fault_persistence_s * 1e6)),
+      second_rotor_persistence_us_(static_cast<int64_t>(options.fault_second_rotor_persistence_s * 1e6)),
+      second_rotor_window_us_(static_cast<int64_t>(options.fault_second_rotor_window_s * 1e6)) {}
 
 void MultiArmFaultMonitor::Reset() {
   fault_.fill(Flag());
   deficit_ = Flag();
+  last_raised_rotor_ = -1;
+}
+
+int64_t MultiArmFaultMonitor::PersistenceUs(int rotor, int64_t utime) const {
+  const bool after_another = last_raised_rotor_ >= 0 && last_raised_rotor_ != rotor && utime >= last_raised_utime_ &&
+                             utime - last_raised_utime_ < second_rotor_window_us_;
+  return after_another ? std::max(persistence_us_, second_rotor_persistence_us_) : persistence_us_;
 }
 
 void MultiArmFaultMonitor::Update(int64_t utime, int n, const ScaleVector& thrust_scale,
@@ -25,9 +35,14 @@ void MultiArmFaultMonitor::Update(int64_t utime, int n, const ScaleVector& thrus
       for (int k = 0; k < n; ++k) var_d += a_j * covariance(j, k) * (k == i ? -1.0 : other_weight);
     }
     const double std_d = std::sqrt(std::max(var_d, 0.0));
-    fault_[static_cast<size_t>(i)].Update(d - n_sigma * std_d > options_.rotor_fault_asymmetry,
-                                          d + n_sigma * std_d < options_.rotor_fault_clear_asymmetry, utime,
-                                          persistence_us_);
+    Flag& flag = fault_[static_cast<size_t>(i)];
+    const bool was_on = flag.on;
+    flag.Update(d - n_sigma * std_d > options_.rotor_fault_asymmetry,
+                d + n_sigma * std_d < options_.rotor_fault_clear_asymmetry, utime, PersistenceUs(i, utime));
+    if (flag.on && !was_on) {
+      last_raised_rotor_ = i;
+      last_raised_utime_ = utime;
+    }
   }
   double upper = -1e9, lower = -1e9;  // max over rotors of mu + n std, mu - n std
   for (int i = 0; i < n; ++i) {

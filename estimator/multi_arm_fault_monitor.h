@@ -31,6 +31,9 @@ class MultiArmFaultMonitor {
   //   d_i = a^T mu,  var d_i = a^T P_mu a;
   // flagged when d_i - n_sigma std(d_i) > rotor_fault_asymmetry held for
   // fault_persistence_s, cleared when d_i + n_sigma std(d_i) < rotor_fault_clear_asymmetry.
+  // Within fault_second_rotor_window_s of another rotor's raise it must hold
+  // fault_second_rotor_persistence_s instead: the first loss's transient
+  // swings the other thrust scales for a few milliseconds (EkfOptions).
   // Deficit: even the strongest rotor has mu + n_sigma std(mu) < thrust_deficit_scale.
   void Update(int64_t utime, int n, const ScaleVector& thrust_scale, const ScaleMatrix& covariance);
   void FillFacts(int n, MultiArmFilterFacts* facts) const;
@@ -40,10 +43,17 @@ class MultiArmFaultMonitor {
  private:
   using Flag = PersistentFlag;
 
+  // The persistence rotor i's flag needs at utime [us].
+  int64_t PersistenceUs(int rotor, int64_t utime) const;
+
   EkfOptions options_;
   int64_t persistence_us_;
+  int64_t second_rotor_persistence_us_;
+  int64_t second_rotor_window_us_;
   std::array<Flag, kMaxArms> fault_{};
   Flag deficit_;
+  int last_raised_rotor_ = -1;     // the rotor whose flag went on last; -1 none since Reset
+  int64_t last_raised_utime_ = 0;  // when [us]
 };
 
 }  // namespace birotor

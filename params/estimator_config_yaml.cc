@@ -65,6 +65,8 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Real("thrust_deficit_clear_scale", &O::thrust_deficit_clear_scale, 0.0, 1.0),
       Real("fault_n_sigma", &O::fault_n_sigma, 0.0, 10.0),
       Real("fault_persistence_s", &O::fault_persistence_s, 0.0, 10.0),
+      Real("fault_second_rotor_persistence_s", &O::fault_second_rotor_persistence_s, 0.0, 10.0),
+      Real("fault_second_rotor_window_s", &O::fault_second_rotor_window_s, 0.0, 10.0),
       Real("max_prediction_step_s", &O::max_prediction_step_s, 1e-5, 0.004),
       Real("ground_contact_on_n", &O::ground_contact_on_n, 0.0, 1e5),
       Real("ground_contact_off_n", &O::ground_contact_off_n, 0.0, 1e5),  // and <= ground_contact_on_n
