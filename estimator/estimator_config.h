@@ -236,6 +236,14 @@ struct EkfOptions {
   // moments are read at the accelerometer's full weight, where a payload
   // shows (from the first sample, the band hid a payload at a ground start).
   double ground_may_touch_after_s = 0.5;
+  // N arms: while the ground may carry part of the weight (near it, the
+  // filtered support above ground_contact_off_n: GroundContact::may_carry),
+  // the thrust scale mu_i of a rotor without a gauge is held from every
+  // update if its sigma was below this when the episode began (learned in
+  // the air); an unlearned one keeps learning, its prior in its sigma.
+  // 0: never held (docs/estimator.md, "A rotor without a gauge near the
+  // ground"). [1]
+  double ground_carry_learned_thrust_scale_std = 0.1;
   // The body is held on a test stand (scenario bench): the supported-body
   // model throughout, whatever the IMU says.
   bool body_held = false;

@@ -48,6 +48,11 @@ class GroundContact {
   // ground_may_touch_after_s, whose accelerometer is read at its full
   // weight (that is where a payload shows).
   bool may_touch() const;
+  // near_ground with the filtered support N_f above ground_contact_off_n
+  // (the in-the-air threshold) but below the contact's: the ground may be
+  // carrying part of the weight, by an amount the IMU cannot tell from a
+  // thrust no gauge reads.
+  bool may_carry() const { return near_ground() && support_force_n_ > off_n_; }
   // In the air after a time on the ground, the support may still carry the
   // filtered N (up to ground_contact_off_n when the contact lets go at
   // F_z > M g - off_n, before the body lifts): the accelerometer then reads

@@ -217,6 +217,33 @@ class MultiArmEkf : public MultiArmForceEstimator {
   const LeadingGainHold<N>* AccelerometerOffsetHold() const {
     return every_offset_hold_.active && contact_.near_ground() ? &every_offset_hold_ : FlightOffsetHold();
   }
+  // The thrust scales mu_i of the rotors without a gauge, held from every
+  // update (keep 0) while the ground may carry part of the weight
+  // (GroundContact::may_carry): only the free body's motion shows those
+  // rotors, and the support's force and torque then move the IMU and the
+  // arms as a thrust change would. Held only where learned when the
+  // episode began (sigma below ground_carry_learned_thrust_scale_std): an
+  // unlearned one is free to learn, its prior's sigma in its force. Without
+  // the hold a 25 % loss on rotor 2 of the trirotor without arm 2's gauge,
+  // learned in the 30 ms before the body settled back on the ground, was
+  // undone in 0.1 s and the rotor published VALID 3.4 N off.
+  TrailingGainHold<N> ground_thrust_scale_hold_;
+  bool ground_carry_ = false;  // may_carry at the hold's last update
+  const TrailingGainHold<N>* GroundThrustScaleHold() {
+    const bool carry = contact_.may_carry();
+    if (carry && !ground_carry_) {  // an episode begins: hold each learned mu_i of a rotor without a gauge
+      const double learned_std = options_.ground_carry_learned_thrust_scale_std;
+      for (int i = 0; i < N; ++i) {
+        const int mu = Layout::ThrustScale(i);
+        const bool held =
+            !vehicle_.arms[static_cast<size_t>(i)].has_gauge && covariance_(mu, mu) < learned_std * learned_std;
+        ground_thrust_scale_hold_.keep(i) = held ? 0.0 : 1.0;
+      }
+      ground_thrust_scale_hold_.active = ground_thrust_scale_hold_.keep.minCoeff() == 0.0;
+    }
+    ground_carry_ = carry;
+    return carry && ground_thrust_scale_hold_.active ? &ground_thrust_scale_hold_ : nullptr;
+  }
   std::array<double, N> force_std_n_{};
   MultiArmFilterFacts facts_;                   // of the newest estimate
   NoiseAdaptation strain_noise_;                // the learned scale on each gauge's variance

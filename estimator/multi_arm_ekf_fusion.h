@@ -30,6 +30,15 @@ struct LeadingGainHold {
   Eigen::Matrix<double, R, R> keep = Eigen::Matrix<double, R, R>::Identity();
 };
 
+// A Schmidt hold on single states among the trailing T of the update: the
+// gain's row of trailing state j scaled by keep(j), 1 updated, 0 held (the
+// N-arm EKF's thrust scales mu_i, its last N states). Inactive: unchanged.
+template <int T>
+struct TrailingGainHold {
+  bool active = false;
+  Eigen::Matrix<double, T, 1> keep = Eigen::Matrix<double, T, 1>::Ones();
+};
+
 template <int M>
 using OnesRowStates = std::array<std::array<int, 2>, M>;
 
@@ -62,12 +71,13 @@ OnesRowStates<M> FindOnesRowStates(const Eigen::Matrix<double, M, N>& h) {
 // R states, the gain's first R rows replaced by hold->keep times them (the
 // combinations hold->keep removes are not moved; their variance and
 // correlations stay in P, exact for this gain: the Joseph form holds for any
-// gain, and B = (H P)^T - K S is A H^T - K R for any K).
-template <int M, typename State, typename Cov, int R = 1>
+// gain, and B = (H P)^T - K S is A H^T - K R for any K); tail, likewise,
+// the gain's last T rows scaled by tail->keep.
+template <int M, typename State, typename Cov, int R = 1, int T = 1>
 void SymmetricJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
                            const Eigen::Matrix<double, M, M>& s, const Eigen::Matrix<double, M, M>& s_inverse,
                            const Eigen::Matrix<double, M, 1>& residual, State* x, Cov* cov,
-                           const LeadingGainHold<R>* hold = nullptr) {
+                           const LeadingGainHold<R>* hold = nullptr, const TrailingGainHold<T>* tail = nullptr) {
   constexpr int N = State::RowsAtCompileTime;
   Eigen::Matrix<double, N, M> gain;
   gain.noalias() = h_p.transpose().lazyProduct(s_inverse);
@@ -75,6 +85,8 @@ void SymmetricJosephUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTi
     const Eigen::Matrix<double, R, M> leading = hold->keep * gain.template topRows<R>();
     gain.template topRows<R>() = leading;
   }
+  if (tail != nullptr && tail->active)
+    gain.template bottomRows<T>() = tail->keep.asDiagonal() * gain.template bottomRows<T>();
   x->noalias() += gain.lazyProduct(residual);
   Eigen::Matrix<double, N, M> b = h_p.transpose();
   b.noalias() -= gain.lazyProduct(s);
@@ -123,18 +135,18 @@ bool PassesGate(const Eigen::Matrix<double, M, M>& s_inverse, const Eigen::Matri
 
 // The gate on S and, when it passes, SymmetricJosephUpdate; *nis and
 // *report filled when not null (the tail of every grouped fusion).
-template <int M, typename State, typename Cov, int R = 1>
+template <int M, typename State, typename Cov, int R = 1, int T = 1>
 FusionOutcome GateAndUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileTime>& h_p,
                             const Eigen::Matrix<double, M, M>& s, const Eigen::Matrix<double, M, 1>& residual,
                             double gate_nis, State* x, Cov* cov, double* nis, FusionReport* report,
-                            const LeadingGainHold<R>* hold = nullptr) {
+                            const LeadingGainHold<R>* hold = nullptr, const TrailingGainHold<T>* tail = nullptr) {
   const Eigen::Matrix<double, M, M> s_inverse = s.inverse();
   double nis_value;
   const bool passes = PassesGate(s_inverse, residual, gate_nis, &nis_value);
   if (nis != nullptr) *nis = nis_value;
   const FusionOutcome outcome = passes ? FusionOutcome::kFused : FusionOutcome::kRejectedGate;
   if (report != nullptr) FillFusionReport(residual, s, nis_value, gate_nis, outcome, report);
-  if (passes) SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov, hold);
+  if (passes) SymmetricJosephUpdate(h_p, s, s_inverse, residual, x, cov, hold, tail);
   return outcome;
 }
 
@@ -142,12 +154,13 @@ FusionOutcome GateAndUpdate(const Eigen::Matrix<double, M, State::RowsAtCompileT
 // covariance by SymmetricJosephUpdate: S = H P H^T + R, NIS = y^T S^-1 y,
 // gated as there (the N-arm accelerometer). H's first Z columns must be zero
 // (the accelerometer reads no offset e_i): left out of H P and H P H^T.
-// report, when not null: FillFusionReport; hold: SymmetricJosephUpdate's.
-template <int Z = 0, int M, typename State, typename Cov, int R = 1>
+// report, when not null: FillFusionReport; hold, tail: SymmetricJosephUpdate's.
+template <int Z = 0, int M, typename State, typename Cov, int R = 1, int T = 1>
 FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                       const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                       double gate_nis, State* x, Cov* cov, double* nis = nullptr,
-                                      FusionReport* report = nullptr, const LeadingGainHold<R>* hold = nullptr) {
+                                      FusionReport* report = nullptr, const LeadingGainHold<R>* hold = nullptr,
+                                      const TrailingGainHold<T>* tail = nullptr) {
   constexpr int N = State::RowsAtCompileTime, read = N - Z;
   const auto h_read = at.jacobian.template rightCols<read>();
   Eigen::Matrix<double, M, N> h_p;
@@ -155,19 +168,20 @@ FusionOutcome FuseSymmetricUnreported(const MeasurementLinearization<M, State::R
   Eigen::Matrix<double, M, M> s = noise;
   s.noalias() += h_p.template rightCols<read>().lazyProduct(h_read.transpose());
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
-  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report, hold);
+  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report, hold, tail);
 }
 
 // FuseSymmetricUnreported for H whose rows are sums of at most two unit rows
 // (FindOnesRowStates; the N-arm strain b_i + e_i, telemetry and gyro), H's
 // zeros left out: with {a_j, b_j} the states row j reads, (H P)_j = P_(a_j) +
 // P_(b_j) (rows), (H P H^T)_jl = (H P)_(j, a_l) + (H P)_(j, b_l).
-// report, when not null: FillFusionReport; hold: SymmetricJosephUpdate's.
-template <int M, typename State, typename Cov, int R = 1>
+// report, when not null: FillFusionReport; hold, tail: SymmetricJosephUpdate's.
+template <int M, typename State, typename Cov, int R = 1, int T = 1>
 FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::RowsAtCompileTime>& at,
                                      const Eigen::Matrix<double, M, M>& noise, const Eigen::Matrix<double, M, 1>& z,
                                      double gate_nis, State* x, Cov* cov, double* nis = nullptr,
-                                     FusionReport* report = nullptr, const LeadingGainHold<R>* hold = nullptr) {
+                                     FusionReport* report = nullptr, const LeadingGainHold<R>* hold = nullptr,
+                                     const TrailingGainHold<T>* tail = nullptr) {
   constexpr int N = State::RowsAtCompileTime;
   const OnesRowStates<M> states = FindOnesRowStates(at.jacobian);
   Eigen::Matrix<double, M, N> h_p = Eigen::Matrix<double, M, N>::Zero();
@@ -185,7 +199,7 @@ FusionOutcome FuseOnesRowsUnreported(const MeasurementLinearization<M, State::Ro
     }
   }
   const Eigen::Matrix<double, M, 1> residual = z - at.predicted;
-  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report, hold);
+  return GateAndUpdate(h_p, s, residual, gate_nis, x, cov, nis, report, hold, tail);
 }
 
 }  // namespace birotor

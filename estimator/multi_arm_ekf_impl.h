@@ -81,6 +81,7 @@ void MultiArmEkf<N>::Reset() {
   strain_gate_.Reset();
   faults_.Reset();
   contact_.Reset();
+  ground_carry_ = false;
   state_.setZero();
   covariance_.setZero();
   force_std_n_.fill(std::numeric_limits<double>::infinity());
@@ -259,7 +260,8 @@ void MultiArmEkf<N>::ApplyMotor(const MultiArmMotorSample& sample) {
       FusionReport report = MakeFusionReport(FusionSource::kTelemetry, sample.utime, FusionOutcome::kNotFused);
       FuseOnesRowsUnreported(Measurements::Telemetry(state_, measured),
                              Measurements::MaskedNoise(options_.motor_speed_noise_rad_s, measured), z,
-                             options_.telemetry_gate_nis, &state_, &covariance_, nullptr, &report, FlightOffsetHold());
+                             options_.telemetry_gate_nis, &state_, &covariance_, nullptr, &report, FlightOffsetHold(),
+                             GroundThrustScaleHold());
       LeaveOutUnmeasured(measured, &report);
       reports_.Add(report);
     }
@@ -283,8 +285,8 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
     r(0, 0) += contact_.HeldRateVariance(gyro.predicted(0));  // a touch may hold the body still
     FusionReport report = MakeFusionReport(FusionSource::kGyro, sample.utime, FusionOutcome::kNotFused);
     FuseOnesRowsUnreported(gyro, r, Eigen::Matrix<double, 1, 1>(sample.gyro_y_rad_s), options_.gyro_gate_nis, &state_,
-                           &covariance_, nullptr, &report,
-                           FlightOffsetHold());  // a unit row: phi_dot
+                           &covariance_, nullptr, &report, FlightOffsetHold(),
+                           GroundThrustScaleHold());  // a unit row: phi_dot
     reports_.Add(report);
   }
   const bool accel_finite = std::isfinite(sample.accel_x_m_s2) && std::isfinite(sample.accel_z_m_s2);
@@ -317,10 +319,10 @@ void MultiArmEkf<N>::ApplyImu(const ImuSample& sample) {
   const bool unlearned_in_air = accel_noise_.enabled() && accel_noise_.samples() < options_.accel_noise_min_samples &&
                                 !contact_.has_been_supported();
   FusionReport report = MakeFusionReport(FusionSource::kAccelerometer, sample.utime, FusionOutcome::kNotFused);
-  FuseSymmetricUnreported<Layout::kFirstDynamic>(Measurements::Accelerometer(accel_linearization_, state_), r,
-                                                 Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2),
-                                                 unlearned_in_air ? 0.0 : options_.accel_gate_nis, &state_,
-                                                 &covariance_, nullptr, &report, AccelerometerOffsetHold());
+  FuseSymmetricUnreported<Layout::kFirstDynamic>(
+      Measurements::Accelerometer(accel_linearization_, state_), r,
+      Eigen::Vector2d(sample.accel_x_m_s2, sample.accel_z_m_s2), unlearned_in_air ? 0.0 : options_.accel_gate_nis,
+      &state_, &covariance_, nullptr, &report, AccelerometerOffsetHold(), GroundThrustScaleHold());
   // a_z first: the thrust axis, the birotor's accelerometer report (its
   // one component), which the model-consistency monitor's fast test reads.
   std::swap(report.innovation(0), report.innovation(1));
@@ -382,7 +384,8 @@ FusionReport MultiArmEkf<N>::FuseStrain(const MultiArmStrainSample& sample) {
   strain_gate_.FuseUnreportedWith(
       options_.strain_gate_nis,
       [&](double gate) {
-        return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_, nullptr, &report, FlightOffsetHold());
+        return FuseOnesRowsUnreported(at, noise, z, gate, &state_, &covariance_, nullptr, &report, FlightOffsetHold(),
+                                      GroundThrustScaleHold());
       },
       &covariance_,
       [extra](Covariance* p) {

@@ -32,6 +32,8 @@ class MultiArmGroundContact {
   // GroundContact::near_ground: in the air within ground_may_touch_m of the
   // height the ground last held the body.
   bool near_ground() const { return contact_.near_ground(); }
+  // GroundContact::may_carry: near the ground with a support above the in-the-air threshold.
+  bool may_carry() const { return contact_.may_carry(); }
   // GroundContact::has_been_supported: the ground has held the body since start-up.
   bool has_been_supported() const { return contact_.has_been_supported(); }
   // GroundContact::ReleasedSupportVarianceM2S4: the support that may still

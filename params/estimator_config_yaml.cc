@@ -73,6 +73,7 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Real("ground_contact_filter_s", &O::ground_contact_filter_s, 1e-4, 10.0),
       Real("ground_may_touch_m", &O::ground_may_touch_m, 0.0, 10.0),
       Real("ground_may_touch_after_s", &O::ground_may_touch_after_s, 0.0, 60.0),
+      Real("ground_carry_learned_thrust_scale_std", &O::ground_carry_learned_thrust_scale_std, 0.0, 10.0),
       Flag("body_held", &O::body_held),
   };
   return keys;
