@@ -1,7 +1,8 @@
 // The ground-contact judgement (estimator/ground_contact.h): the support
 // force N = M a_z - (f1 + f2) low-passed against its hysteresis, the filter
 // lengthened for a noisy accelerometer, one reading spike clamped, missing
-// readings skipped, Reset, and the may-touch band above the ground.
+// readings skipped, Reset, the may-touch band above the ground and a
+// support the ground may carry there.
 #include "estimator/ground_contact.h"
 
 #include <gtest/gtest.h>
@@ -114,16 +115,23 @@ TEST(GroundContactTest, ResetStartsFromTheNextSample) {
 // accelerometer's a_z variance gains (on_n / M)^2. A flicker (one noisy
 // first sample held the contact 38 ms in the air, accel noise 1 m/s^2)
 // sets no ground height.
+// 0.6 s at rest at z = 0, motors stopped (IMU at 1 kHz, POSE at 100 Hz):
+// the time after it [us].
+int64_t RestAtZeroHeight(const BirotorParams& p, GroundContact* contact) {
+  int64_t utime = 0;
+  for (int k = 0; k < 600; ++k, utime += 1000) {
+    contact->Update(utime, p.gravity_m_s2, 0.0);
+    if (k % 10 == 0) contact->OnPose(0.0);
+  }
+  return utime;
+}
+
 TEST(GroundContactTest, TheBandNeedsARestAndStartsAfterTheLetGo) {
   const BirotorParams p;
   const EkfOptions options;
   const double weight_n = p.TotalMass() * p.gravity_m_s2;
   GroundContact contact(p, options);
-  int64_t utime = 0;
-  for (int k = 0; k < 600; ++k, utime += 1000) {  // 0.6 s at rest, motors stopped
-    contact.Update(utime, p.gravity_m_s2, 0.0);
-    if (k % 10 == 0) contact.OnPose(0.0);
-  }
+  int64_t utime = RestAtZeroHeight(p, &contact);
   ASSERT_TRUE(contact.supported());
   EXPECT_FALSE(contact.near_ground());  // on the ground, not near it
   for (int k = 0; k < 100; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n);
@@ -151,6 +159,31 @@ TEST(GroundContactTest, TheBandNeedsARestAndStartsAfterTheLetGo) {
   flicker.OnPose(1.0);
   EXPECT_FALSE(flicker.near_ground());
   EXPECT_FALSE(flicker.may_touch());
+}
+
+// In the air within the band after a rest, the filtered support N_f above
+// ground_contact_off_n (1 N) but below ground_contact_on_n (4.5 N): the
+// ground may carry part of the weight (the N-arm EKF then holds a learned
+// thrust scale of a rotor without a gauge: docs/estimator.md, "A rotor
+// without a gauge near the ground"). Below 1 N, clear of the band, or on
+// the ground (supported): not.
+TEST(GroundContactTest, MayCarryBetweenTheThresholdsNearTheGround) {
+  const BirotorParams p;
+  const double weight_n = p.TotalMass() * p.gravity_m_s2;
+  GroundContact contact(p, EkfOptions());
+  int64_t utime = RestAtZeroHeight(p, &contact);
+  ASSERT_TRUE(contact.supported());
+  EXPECT_FALSE(contact.may_carry());  // held: the supported model, not the hold
+  for (int k = 0; k < 200; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n);
+  contact.OnPose(0.0);
+  ASSERT_FALSE(contact.supported());
+  EXPECT_FALSE(contact.may_carry());  // N_f ~ 0: in the air
+  for (int k = 0; k < 200; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n - 2.5);
+  ASSERT_FALSE(contact.supported());  // 2.5 N: within the hysteresis
+  EXPECT_NEAR(contact.support_force_n(), 2.5, 1e-3);
+  EXPECT_TRUE(contact.may_carry());
+  contact.OnPose(0.025);  // 2.5 cm up: clear of the band, nothing to carry it
+  EXPECT_FALSE(contact.may_carry());
 }
 
 }  // namespace

@@ -1,14 +1,15 @@
 // A rotor without a gauge near the ground (docs/estimator.md, "A rotor
-// without a gauge near the ground"): GroundContact::may_carry, the Schmidt
-// hold on trailing states (TrailingGainHold, estimator/multi_arm_ekf_fusion.h)
-// and the N-arm EKF holding a learned thrust scale of such a rotor while
-// the ground may carry part of the weight. Figures measured on this commit
+// without a gauge near the ground"; GroundContact::may_carry is tested in
+// ground_contact_test.cc): the Schmidt hold on trailing states
+// (TrailingGainHold, estimator/multi_arm_ekf_fusion.h) and the N-arm EKF
+// holding a learned thrust scale of such a rotor while the ground may
+// carry part of the weight. Figures measured on this commit
 // with birotor-eval --vehicle (the same code).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
-#include "estimator/ground_contact.h"
 #include "estimator/multi_arm_ekf_fusion.h"
 #include "evaluation/eval_runner.h"
 #include "evaluation/multi_arm_accuracy.h"
@@ -16,34 +17,6 @@
 
 namespace birotor {
 namespace {
-
-// In the air within the band after a rest, the filtered support N_f above
-// ground_contact_off_n (1 N) but below ground_contact_on_n (4.5 N): the
-// ground may carry part of the weight. Below 1 N, clear of the band, or on
-// the ground (supported): not.
-TEST(GroundContactTest, MayCarryBetweenTheThresholdsNearTheGround) {
-  const BirotorParams p;
-  const EkfOptions options;
-  const double weight_n = p.TotalMass() * p.gravity_m_s2;
-  GroundContact contact(p, options);
-  int64_t utime = 0;
-  for (int k = 0; k < 600; ++k, utime += 1000) {  // 0.6 s at rest, motors stopped
-    contact.Update(utime, p.gravity_m_s2, 0.0);
-    if (k % 10 == 0) contact.OnPose(0.0);
-  }
-  ASSERT_TRUE(contact.supported());
-  EXPECT_FALSE(contact.may_carry());  // held: the supported model, not the hold
-  for (int k = 0; k < 200; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n);
-  contact.OnPose(0.0);
-  ASSERT_FALSE(contact.supported());
-  EXPECT_FALSE(contact.may_carry());  // N_f ~ 0: in the air
-  for (int k = 0; k < 200; ++k, utime += 1000) contact.Update(utime, p.gravity_m_s2, weight_n - 2.5);
-  ASSERT_FALSE(contact.supported());  // 2.5 N: within the hysteresis
-  EXPECT_NEAR(contact.support_force_n(), 2.5, 1e-3);
-  EXPECT_TRUE(contact.may_carry());
-  contact.OnPose(0.025);  // 2.5 cm up: clear of the band, nothing to carry it
-  EXPECT_FALSE(contact.may_carry());
-}
 
 // The trailing hold on a small problem (3 states, the last held, 2
 // measurements): the held state does not move, and P+ is the Joseph form
@@ -76,10 +49,12 @@ TEST(TrailingGainHoldTest, HeldStateDoesNotMoveAndPIsTheJosephFormOfItsGain) {
   EXPECT_GE(updated(2, 2), p(2, 2) - 1e-15);  // no certainty gained on the held state
 }
 
-VehicleDescription TrirotorWithoutGauge(int arm) {
+// `scenario` from the ground (seed 1) on the trirotor without arm 2's gauge.
+MultiArmAccuracy FlyFromTheGroundWithoutGauge2(const std::string& scenario) {
   VehicleDescription vehicle = Vehicle("trirotor");
-  vehicle.arms[static_cast<size_t>(arm)].has_gauge = false;
-  return vehicle;
+  vehicle.arms[1].has_gauge = false;
+  const Scenario flight = ScenarioFor(scenario, {"ground.enabled=true", "scenario.seed=1"}, vehicle.arm_count);
+  return RunMultiArmAccuracy(vehicle, flight, Config(), EvalOptions());
 }
 
 // A 25 % loss on rotor 2 a second after the lift-off puts the trirotor
@@ -91,10 +66,7 @@ VehicleDescription TrirotorWithoutGauge(int arm) {
 // held while the ground may carry (measured): MODEL_MISMATCH 0.879, VALID
 // 0.121 (the 5 s before the loss), rotor 2 1.06 N.
 TEST(MultiArmGroundCarryTest, AnUngaugedRotorsLearnedLossIsNotUndoneByTheGround) {
-  const VehicleDescription vehicle = TrirotorWithoutGauge(1);
-  const MultiArmAccuracy r = RunMultiArmAccuracy(
-      vehicle, ScenarioFor("thrust_loss", {"ground.enabled=true", "scenario.seed=1"}, vehicle.arm_count), Config(),
-      EvalOptions());
+  const MultiArmAccuracy r = FlyFromTheGroundWithoutGauge2("thrust_loss");
   EXPECT_EQ(r.nonfinite, 0);
   EXPECT_LT(r.valid_share, 0.2);
   EXPECT_GT(r.mismatch_share, 0.8);
@@ -107,10 +79,7 @@ TEST(MultiArmGroundCarryTest, AnUngaugedRotorsLearnedLossIsNotUndoneByTheGround)
 // MAE 0.1037 / 0.0805 / 0.0642 N, 2-sigma share 0.992 / 0.953 / 0.978,
 // VALID 1.000; before 0.1039 / 0.0805 / 0.0643 N, the same shares).
 TEST(MultiArmGroundCarryTest, AHoverAtTheGroundsHeightIsUnchanged) {
-  const VehicleDescription vehicle = TrirotorWithoutGauge(1);
-  const MultiArmAccuracy r =
-      RunMultiArmAccuracy(vehicle, ScenarioFor("hover", {"ground.enabled=true", "scenario.seed=1"}, vehicle.arm_count),
-                          Config(), EvalOptions());
+  const MultiArmAccuracy r = FlyFromTheGroundWithoutGauge2("hover");
   EXPECT_EQ(r.nonfinite, 0);
   EXPECT_GT(r.valid_share, 0.98);
   EXPECT_LT(r.rotor[1].mae_n, 0.1);
