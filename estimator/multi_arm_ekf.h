@@ -228,8 +228,10 @@ class MultiArmEkf : public MultiArmForceEstimator {
   // learned in the 30 ms before the body settled back on the ground, was
   // undone in 0.1 s and the rotor published VALID 3.4 N off.
   TrailingGainHold<N> ground_thrust_scale_hold_;
-  bool ground_carry_ = false;  // may_carry at the hold's last update
+  bool has_arm_without_gauge_ = false;  // else never a hold: every rotor is read by its gauge
+  bool ground_carry_ = false;           // may_carry at the hold's last update
   const TrailingGainHold<N>* GroundThrustScaleHold() {
+    if (!has_arm_without_gauge_) return nullptr;
     const bool carry = contact_.may_carry();
     if (carry && !ground_carry_) {  // an episode begins: hold each learned mu_i of a rotor without a gauge
       const double learned_std = options_.ground_carry_learned_thrust_scale_std;

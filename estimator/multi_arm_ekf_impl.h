@@ -44,6 +44,8 @@ MultiArmEkf<N>::MultiArmEkf(const VehicleDescription& vehicle, const EkfOptions&
   if (options.estimate_gauge_offsets && options.hold_unseen_offsets) offset_hold_ = UnseenOffsetHold<N>(vehicle);
   every_offset_hold_.active = options.estimate_gauge_offsets;
   every_offset_hold_.keep.setZero();
+  for (int i = 0; i < N; ++i)
+    has_arm_without_gauge_ = has_arm_without_gauge_ || !vehicle.arms[static_cast<size_t>(i)].has_gauge;
   const HoverSolution hover = SolveHover(vehicle);
   for (int i = 0; i < N; ++i) {
     const ArmDescription& arm = vehicle.arms[static_cast<size_t>(i)];
