@@ -263,6 +263,8 @@ void ArmModeMonitor::UpdateTipMass() {
   // tip from the file's.
   const double r = learner_.ratio(), r_std = learner_.ratio_std(), r_variance = r_std * r_std;
   state_.tip_mass_readings = learner_.readings();
+  state_.learned_ratio = r;
+  state_.learned_ratio_std = r_std;
   state_.tip_mass_change_probability = state_.tip_mass_readings > 0
                                            ? ChangedParameterProbability(r, r_std, learner_.options().prior_std,
                                                                          options_.arm_mode_tip_mass_change_probability)

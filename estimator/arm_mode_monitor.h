@@ -120,6 +120,11 @@ struct ArmModeState {
   // Learning: P(the tip mass is not the file's | readings), the learned
   // m_p's weight in tip_mass_kg (1 before this run's first reading) [1].
   double tip_mass_change_probability = 0;
+  // Learning: the learner's own r = m_p / m_p,file read from the mode with
+  // the file's stiffness and its sigma, before the average with the file's
+  // (what the mode says; estimator/strain_scale_attribution.h) [1].
+  double learned_ratio = 1;
+  double learned_ratio_std = 0;
   // The relative sigma of m_p each published force sigma carries now (0:
   // none): learning, the learned one while airborne; else the prior's
   // (arm_mode_unconfirmed_tip_mass_std) while airborne and not agreed, a

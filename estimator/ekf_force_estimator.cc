@@ -56,6 +56,7 @@ EkfForceEstimator::EkfForceEstimator(const BirotorParams& params, const EkfOptio
       contact_(params, options),
       strain_gate_(options.gate_consecutive_limit),
       gyro_gate_(options.gate_consecutive_limit),
+      accel_gate_(options.gate_consecutive_limit),
       strain_noise_(StrainNoiseSettings(options)),
       accel_noise_(AccelerometerNoiseSettings(options), 1),
       strain_noise_rad2_(strain_model_.noise),
@@ -101,6 +102,7 @@ void EkfForceEstimator::DoReset() {
   converged_ = false;
   strain_gate_.Reset();
   gyro_gate_.Reset();
+  accel_gate_.Reset();
   has_motor_ = false;
   command_ = hover_input_;
   faults_.Reset();
@@ -227,6 +229,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
   }
   strain_gate_.Reset();
   gyro_gate_.Reset();
+  accel_gate_.Reset();
   step_hold_until_utime_ = 0;
   liftoff_hold_until_utime_ = 0;
   converged_ = false;
@@ -321,6 +324,10 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
         AverageOverHypotheses(state_(m), covariance_(m, m), covariance_(m, r), scale, scale_variance, payload).value;
   }
   SetFilterFacts(sample, options_.converged_force_std_n, gated, &converged_, estimate, facts);
+  // While learned strain scales settle after a start or a lift-off the
+  // unexplained part of the readings sits in the offsets (SplitScaleAndOffsetAgain):
+  // a payload's forces are off then, and nothing tells it yet.
+  if (settling_.pending) facts->convergence = FilterConvergence::kConverging;
   faults_.FillFacts(facts);
 }
 

@@ -81,7 +81,7 @@ class EkfForceEstimator : public ForceEstimator {
   void LearnStrainNoise(const FusionReport& strain);
   // Which gate policy a fusion runs under (GateWithInflation): none (gated
   // only), the strain's or the gyro's.
-  enum class GateInflation { kNone, kStrain, kGyro };
+  enum class GateInflation { kNone, kStrain, kGyro, kAccelerometer };
   // Every fusion of the filter goes through here (estimator/ekf_fusion.cc,
   // with the fusion of each measurement): FuseMeasurement, or with
   // `inflation` the gate's policy against a persistent change (the strain's:
@@ -129,6 +129,10 @@ class EkfForceEstimator : public ForceEstimator {
   bool InThrustStep() const;
   // The gyro may take back a lost pitch rate (gyro_liftoff_recovery_s).
   bool GyroMayInflate(int64_t utime) const;
+  // The accelerometer's gate may open the strain scales (GateInflation::
+  // kAccelerometer): they learn, and no thrust step or rotor fault explains
+  // the rejections.
+  bool AccelerometerMayInflate() const { return StrainScalesLive() && !InThrustStep() && !faults_.AnyRotorFault(); }
   // Whether slow state p (kStrainScale1, kStrainScale2, kBodyMassScale) is frozen.
   bool SlowStateFrozen(int p) const { return p == kBodyMassScale ? mass_frozen_ : scales_frozen_; }
   // The leading states whose rows and columns of P may be non-zero: up to
@@ -231,6 +235,7 @@ class EkfForceEstimator : public ForceEstimator {
   EkfMatrix covariance_;
   GateWithInflation strain_gate_;      // strain gate and its inflation policy
   GateWithInflation gyro_gate_;        // gyro gate; a lost pitch rate is inflated by its initial variance
+  GateWithInflation accel_gate_;       // accelerometer gate while strain scales learn; the scales open up
   NoiseAdaptation strain_noise_;       // the learned scale on each gauge's variance
   NoiseAdaptation accel_noise_;        // the learned scale on the accelerometer's variance
   Eigen::Matrix2d strain_noise_rad2_;  // R of the strain: diag(scale_i strain_noise_rad^2) [rad^2]

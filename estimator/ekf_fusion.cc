@@ -32,6 +32,20 @@ FusionReport EkfForceEstimator::FuseOn(const MeasurementLinearization<M, N>& at,
     return gyro_gate_.Fuse(at, noise, z, request, x, cov,
                            [extra](Cov* p) { (*p)(kPitchRate, kPitchRate) += extra * extra; });
   }
+  if (inflation == GateInflation::kAccelerometer) {
+    // Strain scales learning: a total force the gauges' scales cannot give
+    // (a softer arm: every accelerometer sample at the gate while g stays
+    // at the file's) is taken as real after as many rejections in a row:
+    // the thrust scales and the strain scales open up by their priors and
+    // the sample is fused without the gate.
+    const double mu_extra = options_.gate_inflation_thrust_scale_std, g_extra = options_.strain_scale_prior_std;
+    return accel_gate_.Fuse(at, noise, z, request, x, cov, [mu_extra, g_extra](Cov* p) {
+      for (int i = 0; i < 2; ++i) {
+        (*p)(kThrustScaleIndex[i], kThrustScaleIndex[i]) += mu_extra * mu_extra;
+        (*p)(kStrainScaleIndex[i], kStrainScaleIndex[i]) += g_extra * g_extra;
+      }
+    });
+  }
   return FuseMeasurement(at, noise, z, request, x, cov);
 }
 
@@ -141,7 +155,8 @@ void EkfForceEstimator::ApplyImu(const ImuSample& sample) {
   noise(0, 0) *= accel_noise_.CautiousScale(0);
   noise(0, 0) += contact_.ReleasedSupportVarianceM2S4();  // the support that may still carry the body
   const FusionReport report = Fuse(at, noise, AccelerometerMeasurementModel::Vector(sample.accel_z_m_s2),
-                                   {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis});
+                                   {FusionSource::kAccelerometer, sample.utime, options_.accel_gate_nis},
+                                   AccelerometerMayInflate() ? GateInflation::kAccelerometer : GateInflation::kNone);
   // From the first sample on (converged or not): a noisier accelerometer
   // would otherwise raise MODEL_MISMATCH before the filter converged. Held
   // in a thrust step (the strain gated, or fused after the gate's inflation,

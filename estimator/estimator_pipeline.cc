@@ -78,8 +78,10 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       tare_(model_, config.tare),
       rotor_speed_(model_, config.pipeline.motor_timeout_s),
       notch_(config.harmonic_notch),
+      tip_mass_map_(TipMassMapOf(config.model_consistency, model_, *method_)),
+      attributes_scales_(config.ekf.learn_strain_scale && !tip_mass_map_.empty()),
       consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad, kBirotorRotors,
-                   TipMassMapOf(config.model_consistency, model_, *method_)) {
+                   tip_mass_map_) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
   health_.gauge = calibration_;
   double direction[kBirotorRotors], drift_psd_rad2_s[kBirotorRotors], force_per_direction_n[kBirotorRotors];
@@ -92,8 +94,11 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
     force_per_direction_n[i] = model_.arm_stiffness_n_m_rad / model_.arm_length_m;
   }
   // With learned strain scales a common force goes to the scales as much as
-  // to the offsets (split again after each settling): the test is not run.
-  if (!config.ekf.learn_strain_scale) consistency_.SetOffsetGauges(direction, drift_psd_rad2_s, force_per_direction_n);
+  // to the offsets (split again after each settling): the test is run only
+  // when the arm mode tells the scales apart, and a departure is released
+  // while they stand for the forces (ModelConsistencyMonitor::AddScaleAttribution).
+  if (!config.ekf.learn_strain_scale || attributes_scales_)
+    consistency_.SetOffsetGauges(direction, drift_psd_rad2_s, force_per_direction_n);
   consistency_.AnchorOffsets(calibration_.offset_rad, calibration_.offset_std_rad);
   health_.body_mass_kg = config.vehicle.body_mass_kg;
   health_.tip_mass_kg = model_.tip_mass_kg;
@@ -156,7 +161,7 @@ void EstimatorPipeline::UpdateReportedGaugeOffsets(const StrainStepInfo& info) {
     health_.gauge.strain_scale[i] = info.learned_strain_scale[i];
     health_.gauge.strain_scale_std[i] = info.learned_strain_scale_std[i];
   }
-  if (info.has_learned_strain_scale)
+  if (info.has_learned_strain_scale && !attributes_scales_)
     consistency_.SetLearnedStrainScales(info.learned_strain_scale, info.learned_strain_scale_std);
   consistency_.SetStrainNoiseScales(info.strain_noise_scale);
   for (int i = 0; i < 2; ++i) health_.strain_noise_scale[i] = info.strain_noise_scale[i];
@@ -291,6 +296,7 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
   consistency_.AddStrain(deflection.utime, deflection.deflection_rad, !info.body_supported, outlier);
   HandOverTipMass();
   UpdateReportedGaugeOffsets(info);
+  if (attributes_scales_ && health_.gauge.has_strain_scale) JudgeLearnedScales(deflection.utime);
   if (info.has_learned_gauge_offset)
     consistency_.AddOffsets(deflection.utime, health_.gauge.offset_rad, !info.body_supported);
   if (info.reset != ResetReason::kNone) {
@@ -315,11 +321,11 @@ bool EstimatorPipeline::OnStrain(const StrainSample& sample, ForceEstimate* esti
 }
 
 void EstimatorPipeline::ResumeTipMass(double tip_mass_kg, double std_kg) {
-  // Learned only with the file's stiffness (a learned strain scale may be a
-  // stiffness): with learn_strain_scale, or arm_mode_learn_tip_mass off, the
-  // file's m_p is flown, as a persisted strain scale is not flown with
-  // learn_strain_scale off, and the next stop does not write it back.
-  if (config_.ekf.learn_strain_scale || !consistency_.ResumeTipMass(tip_mass_kg, std_kg)) return;
+  // With arm_mode_learn_tip_mass off the file's m_p is flown, as a persisted
+  // strain scale is not flown with learn_strain_scale off, and the next stop
+  // does not write it back. (With learn_strain_scale the persisted m_p is
+  // the attributed one, HandOverTipMass.)
+  if (!consistency_.ResumeTipMass(tip_mass_kg, std_kg)) return;
   const ArmModeState& arm_mode = consistency_.state().arm_mode;
   health_.tip_mass_learned = true;
   health_.tip_mass_from_state_file = true;
@@ -333,12 +339,52 @@ void EstimatorPipeline::HandOverTipMass() {
   const ArmModeState& arm_mode = consistency_.state().arm_mode;
   if (!arm_mode.learning) return;
   if (arm_mode.tip_mass_readings > 0) health_.tip_mass_from_state_file = false;  // refined in this run
+  // With learned strain scales the mode's shift may be a stiffness's
+  // (JudgeLearnedScales): by that weight, and a payload's, the tip mass is
+  // the file's. What is flown is what is reported and persisted.
+  const double flown =
+      arm_mode.tip_mass_kg + tip_mass_file_share_ * (tip_mass_map_.file_tip_mass_kg() - arm_mode.tip_mass_kg);
   health_.tip_mass_learned = true;
-  health_.tip_mass_kg = arm_mode.tip_mass_kg;
+  health_.tip_mass_kg = flown;
   health_.tip_mass_std_kg = arm_mode.tip_mass_std_kg;
-  if (arm_mode.tip_mass_kg == tip_mass_in_method_kg_) return;
-  method_->SetTipMassKg(arm_mode.tip_mass_kg);
-  tip_mass_in_method_kg_ = arm_mode.tip_mass_kg;
+  if (flown == tip_mass_in_method_kg_) return;
+  method_->SetTipMassKg(flown);
+  tip_mass_in_method_kg_ = flown;
+}
+
+void EstimatorPipeline::JudgeLearnedScales(int64_t utime) {
+  // Every 20 ms: the scales and the mode move over seconds.
+  const int64_t since_us = utime - scales_judged_utime_;
+  if (scales_judged_utime_ >= 0 && since_us >= 0 && since_us < kScaleJudgementIntervalUs) return;
+  scales_judged_utime_ = utime;
+  const ScaleAttribution a = AttributeLearnedScales();
+  tip_mass_file_share_ = a.of(ScaleChange::kStiffness) + a.of(ScaleChange::kCommonScale);
+  consistency_.AddScaleAttribution(utime, a);
+}
+
+ScaleAttribution EstimatorPipeline::AttributeLearnedScales() const {
+  const ArmModeState& arm_mode = consistency_.state().arm_mode;
+  ScaleEvidence e;
+  for (int i = 0; i < 2; ++i) {
+    const double g = health_.gauge.strain_scale[i], g_std = health_.gauge.strain_scale_std[i];
+    e.log_scale[i] = std::log(g);
+    e.log_scale_var[i] = (g_std / g) * (g_std / g);
+  }
+  const double r = arm_mode.learned_ratio;
+  e.mode_shift = tip_mass_map_.LogHz(r) - tip_mass_map_.LogHz(1.0);
+  const double shift_std = tip_mass_map_.LogHzSlope(r) * arm_mode.learned_ratio_std;
+  e.mode_shift_var = shift_std * shift_std;
+  const ModelConsistencyOptions& mc = config_.model_consistency;
+  ScaleAttributionOptions o;
+  o.stiffness_prior_std = mc.scale_attribution_stiffness_std;
+  o.gauge_scale_prior_std = mc.scale_attribution_gauge_scale_std;
+  o.tip_mass_prior_std = mc.arm_mode_unconfirmed_tip_mass_std;
+  o.common_scale_prior_std = config_.ekf.body_mass_scale_prior_std;
+  o.change_probability = mc.arm_mode_tip_mass_change_probability;
+  o.tolerance = mc.scale_attribution_tolerance;
+  o.explained_distance2 = mc.scale_attribution_limit;
+  o.tip_mass_mode_slope = tip_mass_map_.LogHzSlope(1.0);
+  return AttributeScales(e, o);
 }
 
 void EstimatorPipeline::Publish(const ForceStatusFacts& facts, ForceEstimate* estimate) {

@@ -25,6 +25,7 @@
 #include "estimator/input_admission.h"
 #include "estimator/model_consistency.h"
 #include "estimator/motor_speed_tracker.h"
+#include "estimator/strain_scale_attribution.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
 
@@ -146,6 +147,12 @@ class EstimatorPipeline {
   void Publish(const ForceStatusFacts& facts, ForceEstimate* estimate);
   // The tip mass the arm-mode test learned, to the method when it moved.
   void HandOverTipMass();
+  // With learned strain scales: which change the scales and the arm mode
+  // point at (estimator/strain_scale_attribution.h).
+  ScaleAttribution AttributeLearnedScales() const;
+  // The attribution's share that leaves the tip mass the file's, and its
+  // MODEL_MISMATCH (ModelConsistencyMonitor::AddScaleAttribution).
+  void JudgeLearnedScales(int64_t utime);
   // An earlier run's tip mass and sigma (the state file) into the arm-mode
   // test's learning and the method, when this run learns the tip mass.
   void ResumeTipMass(double tip_mass_kg, double std_kg);
@@ -163,7 +170,15 @@ class EstimatorPipeline {
   GaugeTare tare_;
   MotorSpeedTracker rotor_speed_;  // for the harmonic notches
   HarmonicNotch notch_;
-  FusionReports reports_;                // of the newest method call
+  FusionReports reports_;  // of the newest method call
+  // The model's arm mode over m_p (empty: the tip mass is not learned).
+  ArmModeTipMassMap tip_mass_map_;
+  // learn_strain_scale with the tip mass learned: the mode tells the
+  // learned scales' stiffness from a gauge's scale or a payload.
+  bool attributes_scales_ = false;
+  double tip_mass_file_share_ = 0.0;  // weight of a stiffness or a common scale [1]
+  int64_t scales_judged_utime_ = -1;  // JudgeLearnedScales' newest judgement [us]; -1 none
+  static constexpr int64_t kScaleJudgementIntervalUs = 20000;
   ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
 
   bool started_ = false;             // a strain sample has been accepted

@@ -47,7 +47,7 @@ void ModelConsistencyMonitor::AddStrain(int64_t utime, const double* deflection_
     Raise(utime, newest_thrust_scale_.data());
     state_.parameter = MismatchParameter::kTipMass;
   } else if (!arm_mode_mismatch && state_.mismatch && state_.parameter == MismatchParameter::kTipMass &&
-             consistent_run_ >= options_.clear_windows && !offsets_.state().departed) {
+             consistent_run_ >= options_.clear_windows && !DepartureHolds() && !state_.scales_unexplained) {
     // Cleared by the arm-mode test, the windows as consistent as their own clearing needs.
     state_.mismatch = false;
   }
@@ -85,6 +85,35 @@ void ModelConsistencyMonitor::AddOffsets(int64_t utime, const double* offset_rad
   }
 }
 
+void ModelConsistencyMonitor::AddScaleAttribution(int64_t utime, const ScaleAttribution& attribution) {
+  if (!options_.enabled || !judging_) return;
+  const double payload = attribution.of(ScaleChange::kCommonScale);
+  const double changed = attribution.of(ScaleChange::kStiffness) + attribution.of(ScaleChange::kTipMass) +
+                         attribution.of(ScaleChange::kGauge1) + attribution.of(ScaleChange::kGauge2);
+  const double stand = options_.scale_attribution_stand_weight;
+  scales_stand_ = attribution.explained && 1.0 - payload >= stand;
+  if (state_.scales_unexplained) {
+    // Raised: held until a stiffness, a gauge's scale or a tip mass explains the scales.
+    if (attribution.explained && changed >= stand) {
+      state_.scales_unexplained = false;
+      scales_suspect_since_ = -1;
+    }
+    return;
+  }
+  if (attribution.explained && payload <= options_.scale_attribution_payload_weight) {
+    scales_suspect_since_ = -1;
+    return;
+  }
+  if (scales_suspect_since_ < 0) scales_suspect_since_ = utime;
+  if (utime - scales_suspect_since_ < static_cast<int64_t>(options_.offset_departure_hold_s * 1e6)) return;
+  state_.scales_unexplained = true;
+  if (!state_.mismatch) {
+    state_.raised_fast = false;
+    Raise(utime, newest_thrust_scale_.data());
+    state_.parameter = attribution.explained ? MismatchParameter::kMass : MismatchParameter::kStiffnessOrGaugeScale;
+  }
+}
+
 void ModelConsistencyMonitor::Restart() {
   arm_mode_.Restart();
   state_.arm_mode = arm_mode_.state();
@@ -118,7 +147,8 @@ ConsistencyStatusFacts ModelConsistencyMonitor::Judge(int64_t utime, const doubl
   facts.unconfirmed_withholds_valid = options_.valid_needs_confirmation;
   // Never set while the test is off.
   if (state_.arm_mode.awaiting_reading || state_.arm_mode.force_tip_mass_std > 0) AwaitArmMode(&facts);
-  if (options_.offset_departure_in_sigma_above >= 0 && state_.offsets.statistic > 0) CarryOffsetDeparture(&facts);
+  if (options_.offset_departure_in_sigma_above >= 0 && state_.offsets.statistic > 0 && !scales_stand_)
+    CarryOffsetDeparture(&facts);
   return facts;
 }
 
@@ -254,7 +284,7 @@ void ModelConsistencyMonitor::CloseWindow(int64_t utime) {
     inconsistent_run_ = 0;
     ++consistent_run_;
     if (state_.mismatch && consistent_run_ >= options_.clear_windows && !arm_mode_.state().mismatch &&
-        !offsets_.state().departed) {
+        !DepartureHolds() && !state_.scales_unexplained) {
       state_.mismatch = false;
     }
   }

@@ -14,6 +14,7 @@
 #include "estimator/force_status.h"
 #include "estimator/fusion_report.h"
 #include "estimator/offset_departure.h"
+#include "estimator/strain_scale_attribution.h"
 #include "samples/multi_arm_samples.h"
 #include "samples/rotor_count.h"
 #include "samples/samples.h"
@@ -97,6 +98,9 @@ struct ModelConsistencyState {
   ArmValues thrust_scale_mean = UnitThrustScales();  // window mean of mu_i of the estimates [1]
   ArmModeState arm_mode;                             // the arm-mode test (options arm_mode_*)
   OffsetDepartureState offsets;                      // the offset-departure test (options offset_departure_*)
+  // With learned strain scales (AddScaleAttribution): they point at a
+  // payload, or at no single change; held until they stand for the forces [bool].
+  bool scales_unexplained = false;
 };
 
 // For the birotor (EstimatorPipeline) and any N-rotor vehicle
@@ -150,6 +154,17 @@ class ModelConsistencyMonitor {
   // (OffsetDepartureTest::Add). Raises MODEL_MISMATCH when they depart:
   // "mass" along the common force, "stiffness_or_gauge_scale" for one gauge.
   void AddOffsets(int64_t utime, const double* offset_rad, bool free_flight, bool near_ground = false);
+  // With learned strain scales (estimator/strain_scale_attribution.h), after
+  // every strain sample. Their common part most likely a payload (or both
+  // gauges alike: the forces are that share off), or no single change
+  // explaining them, held for offset_departure_hold_s, raises MODEL_MISMATCH
+  // (`mass` / `stiffness_or_gauge_scale`), held until a stiffness, a gauge's
+  // scale or a tip mass explains them with scale_attribution_stand_weight;
+  // the windows' clearing waits for it. While every change but a payload
+  // holds that weight, the forces stand: an offsets' departure (the offsets
+  // took the common force before the scales were split from them) neither
+  // holds MODEL_MISMATCH nor widens the sigmas.
+  void AddScaleAttribution(int64_t utime, const ScaleAttribution& attribution);
   // Every force estimate (its utime, and its thrust scales for the
   // attribution); returns the monitor's facts on it (all false for a method
   // it does not judge): the mismatch raised, the model not yet confirmed
@@ -209,6 +224,10 @@ class ModelConsistencyMonitor {
   ArmValues newest_thrust_scale_ = UnitThrustScales();  // of the newest estimate [1]
   ArmValues thrust_scale_sum_{};
   int64_t estimates_ = 0;
+  int64_t scales_suspect_since_ = -1;  // AddScaleAttribution's payload or unexplained began [us]; -1 none
+  bool scales_stand_ = false;          // AddScaleAttribution: the forces stand (releases an offsets' departure)
+  // The offsets' departure holds MODEL_MISMATCH (no learned scales stand for the forces).
+  bool DepartureHolds() const { return offsets_.state().departed && !scales_stand_; }
   int inconsistent_run_ = 0;
   int consistent_run_ = 0;
   ModelConsistencyState state_;

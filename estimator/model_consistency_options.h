@@ -199,6 +199,37 @@ struct ModelConsistencyOptions {
   // offsets a real gauge starts with in the air (gauge_airborne) widened
   // the sigma to a share of 1.000 (docs/mismatch.md) [sigma]; negative: off.
   double offset_departure_in_sigma_above = 0.5;
+  // What learned strain scales are (estimator.ekf learn_strain_scale with
+  // the tip mass learned; estimator/strain_scale_attribution.h,
+  // docs/mismatch.md "What a learned strain scale is"): the priors of a
+  // change of both arms' stiffness and of one gauge's scale (relative, one
+  // sigma; a tip mass's is arm_mode_unconfirmed_tip_mass_std, a payload's
+  // estimator.ekf body_mass_scale_prior_std, each change's probability
+  // arm_mode_tip_mass_change_probability) [1].
+  double scale_attribution_stiffness_std = 0.2;
+  double scale_attribution_gauge_scale_std = 0.2;
+  // The model's tolerance on the evidence (ln g's mean and difference, the
+  // mode's log-frequency shift), one sigma: the hover linearisation's mode
+  // against a flight's [1].
+  double scale_attribution_tolerance = 0.02;
+  // Beyond this Mahalanobis distance^2 of the evidence under the best single
+  // change none explains the scales and the mode (several changes at once):
+  // MODEL_MISMATCH `stiffness_or_gauge_scale`. Measured: at most 4.0 for one
+  // change (gentle, seeds 1-5: stiffness +-15/20 %, gauge 0.7 on either
+  // arm, tip mass +-20 %), 7.6 for mismatch_all, 25-33 for every parameter
+  // 5-30 % off [1].
+  double scale_attribution_limit = 6.0;
+  // A payload's weight above which (held offset_departure_hold_s)
+  // MODEL_MISMATCH "mass" is raised: the forces are the payload's share off
+  // (the accelerometer weighs them against the file's mass). 0.3: a body
+  // +10 % reads 0.3-0.8 from the split of scales and offsets on, the calm
+  // hovers (whose g wanders unobserved) at most 0.11 [1].
+  double scale_attribution_payload_weight = 0.3;
+  // The weight at which a stiffness, a gauge's scale or a tip mass (not a
+  // payload) explains the scales: a payload's MODEL_MISMATCH is released,
+  // and with the file's vehicle too an offsets' departure neither holds
+  // nor widens [1].
+  double scale_attribution_stand_weight = 0.8;
 };
 
 }  // namespace birotor

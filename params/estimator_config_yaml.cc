@@ -229,6 +229,12 @@ const OptionTable<ModelConsistencyOptions>& ModelConsistencyKeys() {
       Real("offset_departure_limit", &O::offset_departure_limit, 0.0, 1e3),  // 0: off
       Real("offset_departure_hold_s", &O::offset_departure_hold_s, 0.0, 100.0),
       Real("offset_departure_in_sigma_above", &O::offset_departure_in_sigma_above, -1.0, 1e3),  // negative: off
+      Real("scale_attribution_stiffness_std", &O::scale_attribution_stiffness_std, 1e-3, 1.0),
+      Real("scale_attribution_gauge_scale_std", &O::scale_attribution_gauge_scale_std, 1e-3, 1.0),
+      Real("scale_attribution_tolerance", &O::scale_attribution_tolerance, 1e-4, 0.5),
+      Real("scale_attribution_limit", &O::scale_attribution_limit, 0.1, 1e3),
+      Real("scale_attribution_payload_weight", &O::scale_attribution_payload_weight, 0.0, 1.0),
+      Real("scale_attribution_stand_weight", &O::scale_attribution_stand_weight, 0.0, 1.0),
   };
   return keys;
 }

@@ -95,7 +95,8 @@ void LogResumedTipMass(const GaugeCalibration& persisted, const PipelineHealth& 
   } else {
     spdlog::info(
         "tip mass {:.6g} +- {:.3g} kg in the state file {} not flown (model_consistency arm_mode_learn_tip_mass "
-        "off, or learn_strain_scale on): the parameter file's {:.6g} kg; deploy it with birotor-identify "
+        "off, or learn_strain_scale on without the arm-mode test): the parameter file's {:.6g} kg; deploy it with "
+        "birotor-identify "
         "--learned",
         persisted.tip_mass_kg, persisted.tip_mass_std_kg, file, health.tip_mass_kg);
   }

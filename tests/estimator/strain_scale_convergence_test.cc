@@ -79,17 +79,19 @@ TEST(StrainScaleConvergence, AStifferArmIsCoveredByItsSigma) {
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(t.g[3][i], g_true[i], 0.1);  // 1.5 x the measured 0.063 / 0.066
 }
 
-// Both arms 20 % softer: g = 1.25, learned slowly (the thrust scales take
-// the error first; MODEL_MISMATCH stays raised). NOT within 2 sigma at 2 s
-// (g_1 1.0813 +- 0.0335, 5.0 sigmas); measured 1.0 sigma at 5 s, 0.3 at
-// 10 s, 0.1 at 15 s (1.2402 +- 0.1216 / 1.2506 +- 0.1318).
-TEST(StrainScaleConvergence, ASofterArmIsLearnedSlowly) {
+// Both arms 20 % softer: g = 1.25, 2.5 prior sigmas. The accelerometer's
+// gate opens the strain scales when every sample lands at it
+// (GateInflation::kAccelerometer; before, g crept up over 15 s with
+// MODEL_MISMATCH raised throughout: 1.0813 +- 0.0335 at 2 s, 5.0 sigmas).
+// Measured: within 0.9 sigma at every time (1.2404 +- 0.0248 / 1.2579 +-
+// 0.0234 at 2 s, 1.2654 +- 0.0190 / 1.2782 +- 0.0306 at 15 s).
+TEST(StrainScaleConvergence, ASofterArmIsLearnedOnceTheAccelerometerOpensTheScales) {
   const double g_true[2] = {1 / 0.8, 1 / 0.8};
   const Trace t = Fly("mismatch_stiffness_minus20", g_true);
-  for (int k = 1; k < 4; ++k) {
-    for (int i = 0; i < 2; ++i) EXPECT_LE(std::abs(t.g[k][i] - g_true[i]), 1.5 * t.std[k][i]) << kTimesS[k];  // 1.0
+  for (int k = 0; k < 4; ++k) {
+    for (int i = 0; i < 2; ++i) EXPECT_LE(std::abs(t.g[k][i] - g_true[i]), 1.5 * t.std[k][i]) << kTimesS[k];  // 0.9
   }
-  for (int i = 0; i < 2; ++i) EXPECT_NEAR(t.g[3][i], g_true[i], 0.015);  // 1.5 x the measured 0.0098
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(t.g[3][i], g_true[i], 0.045);  // 1.5 x the measured 0.028
 }
 
 }  // namespace

@@ -200,13 +200,21 @@ TEST(TipMassResume, WithLearningOffThePersistedTipMassIsNotFlown) {
     EXPECT_DOUBLE_EQ(s.kg, kFileTipMassKg);
   }
   EXPECT_FALSE(PersistedGaugeState(flown.run.health).has_tip_mass);  // not written back at the stop
-  // Learning the strain scales (then the tip mass is not learned): not flown either.
+  // Learning the strain scales as well: the tip mass is learned beside them
+  // (the arm mode tells a stiffness from a tip mass), so the persisted one is
+  // flown and learning resumes from it.
   EstimatorConfig scales = learning;
   scales.ekf.learn_strain_scale = true;
   EstimatorPipeline with_scales(scales);
   with_scales.SetGaugeOffsets(persisted);
-  EXPECT_FALSE(with_scales.health().tip_mass_learned);
-  EXPECT_DOUBLE_EQ(with_scales.health().tip_mass_kg, kFileTipMassKg);
+  EXPECT_TRUE(with_scales.health().tip_mass_learned);
+  EXPECT_TRUE(with_scales.health().tip_mass_from_state_file);
+  // Without the arm mode the scales alone cannot tell a tip mass: not flown.
+  scales.model_consistency.arm_mode_learn_tip_mass = false;
+  EstimatorPipeline without_mode(scales);
+  without_mode.SetGaugeOffsets(persisted);
+  EXPECT_FALSE(without_mode.health().tip_mass_learned);
+  EXPECT_DOUBLE_EQ(without_mode.health().tip_mass_kg, kFileTipMassKg);
 }
 
 }  // namespace
