@@ -35,6 +35,23 @@ ArmModeTipMassMap TipMassMapOf(const ModelConsistencyOptions& options, const Bir
   return learns ? ArmModeTipMassMap::Of(params) : ArmModeTipMassMap();
 }
 
+// The priors and limits of what learned strain scales are
+// (estimator/strain_scale_attribution.h), from the configuration and the
+// model's mode over the tip mass.
+ScaleAttributionOptions ScaleAttributionOptionsOf(const EstimatorConfig& config, const ArmModeTipMassMap& tip_mass) {
+  const ModelConsistencyOptions& mc = config.model_consistency;
+  ScaleAttributionOptions o;
+  o.stiffness_prior_std = mc.scale_attribution_stiffness_std;
+  o.gauge_scale_prior_std = mc.scale_attribution_gauge_scale_std;
+  o.tip_mass_prior_std = mc.arm_mode_unconfirmed_tip_mass_std;
+  o.common_scale_prior_std = config.ekf.body_mass_scale_prior_std;
+  o.change_probability = mc.arm_mode_tip_mass_change_probability;
+  o.tolerance = mc.scale_attribution_tolerance;
+  o.explained_distance2 = mc.scale_attribution_limit;
+  if (!tip_mass.empty()) o.tip_mass_mode_slope = tip_mass.LogHzSlope(1.0);
+  return o;
+}
+
 double GateOf(const ForceEstimator& method, InputChannel channel) {
   FusionSource source;
   return GatedSourceOf(channel, &source) ? method.Gate(source) : std::numeric_limits<double>::quiet_NaN();
@@ -80,6 +97,7 @@ EstimatorPipeline::EstimatorPipeline(const EstimatorConfig& config)
       notch_(config.harmonic_notch),
       tip_mass_map_(TipMassMapOf(config.model_consistency, model_, *method_)),
       attributes_scales_(config.ekf.learn_strain_scale && !tip_mass_map_.empty()),
+      scale_attribution_options_(ScaleAttributionOptionsOf(config, tip_mass_map_)),
       consistency_(config.model_consistency, ExpectedArmMode(model_), config.ekf.strain_noise_rad, kBirotorRotors,
                    tip_mass_map_) {
   calibration_ = GaugeCalibration::FromVehicle(model_);
@@ -374,17 +392,7 @@ ScaleAttribution EstimatorPipeline::AttributeLearnedScales() const {
   e.mode_shift = tip_mass_map_.LogHz(r) - tip_mass_map_.LogHz(1.0);
   const double shift_std = tip_mass_map_.LogHzSlope(r) * arm_mode.learned_ratio_std;
   e.mode_shift_var = shift_std * shift_std;
-  const ModelConsistencyOptions& mc = config_.model_consistency;
-  ScaleAttributionOptions o;
-  o.stiffness_prior_std = mc.scale_attribution_stiffness_std;
-  o.gauge_scale_prior_std = mc.scale_attribution_gauge_scale_std;
-  o.tip_mass_prior_std = mc.arm_mode_unconfirmed_tip_mass_std;
-  o.common_scale_prior_std = config_.ekf.body_mass_scale_prior_std;
-  o.change_probability = mc.arm_mode_tip_mass_change_probability;
-  o.tolerance = mc.scale_attribution_tolerance;
-  o.explained_distance2 = mc.scale_attribution_limit;
-  o.tip_mass_mode_slope = tip_mass_map_.LogHzSlope(1.0);
-  return AttributeScales(e, o);
+  return AttributeScales(e, scale_attribution_options_);
 }
 
 void EstimatorPipeline::Publish(const ForceStatusFacts& facts, ForceEstimate* estimate) {

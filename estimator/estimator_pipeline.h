@@ -176,8 +176,9 @@ class EstimatorPipeline {
   // learn_strain_scale with the tip mass learned: the mode tells the
   // learned scales' stiffness from a gauge's scale or a payload.
   bool attributes_scales_ = false;
-  double tip_mass_file_share_ = 0.0;  // weight of a stiffness or a common scale [1]
-  int64_t scales_judged_utime_ = -1;  // JudgeLearnedScales' newest judgement [us]; -1 none
+  ScaleAttributionOptions scale_attribution_options_;  // its priors and limits (ScaleAttributionOptionsOf)
+  double tip_mass_file_share_ = 0.0;                   // weight of a stiffness or a common scale [1]
+  int64_t scales_judged_utime_ = -1;                   // JudgeLearnedScales' newest judgement [us]; -1 none
   static constexpr int64_t kScaleJudgementIntervalUs = 20000;
   ModelConsistencyMonitor consistency_;  // judges every fusion report (docs/mismatch.md)
 
