@@ -222,6 +222,7 @@ void EkfForceEstimator::Initialize(const StrainSample& sample) {
   scales_frozen_ = mass_frozen_ = false;
   for (const int p : {kStrainScale1, kStrainScale2, kBodyMassScale}) process_noise_psd_(p) = slow_noise_psd_[p];
   flying_since_utime_ = kFlyingSinceStart;  // no lift-off seen (a start in the air): no delay
+  carried_in_flight_ = false;
   UpdateLearning();
   if (has_telemetry) {
     // The state was set from it: fused, without an innovation.

@@ -218,6 +218,9 @@ class EkfForceEstimator : public ForceEstimator {
   // Start of the current free flight [us], or one of these.
   static constexpr int64_t kNotFlying = -1, kFlyingSinceStart = -2;
   int64_t flying_since_utime_ = kFlyingSinceStart;
+  // The rotors have carried the vehicle since it last touched (UpdateLearning):
+  // a thrust deficit in the air (a rotor loss) is then no landing.
+  bool carried_in_flight_ = false;
   // The settling of the fast states after a start or a lift-off, at whose
   // end the strain scales and offsets are split again (SplitScaleAndOffsetAgain).
   struct {

@@ -25,8 +25,14 @@ void EkfForceEstimator::UpdateLearning() {
     FreezeSlowParameters(true, true);
     return;
   }
+  // Once the rotors carried it, only a contact ends the flight: a rotor
+  // loss in the air (total thrust below the weight for a while) is no new
+  // lift-off, whose settling would withhold VALID and split the strain
+  // scales again just when force feedback needs them.
   const double total_force_n = process_.Force(state_, 0) + process_.Force(state_, 1);
-  const bool flying = !(options_.body_held || contact_.supported()) && total_force_n >= params_.HoverForceN();
+  const bool airborne = !(options_.body_held || contact_.supported());
+  carried_in_flight_ = airborne && (carried_in_flight_ || total_force_n >= params_.HoverForceN());
+  const bool flying = carried_in_flight_;
   if (!flying) {
     flying_since_utime_ = kNotFlying;
   } else if (flying_since_utime_ == kNotFlying) {
