@@ -25,13 +25,15 @@ void EkfForceEstimator::UpdateLearning() {
     FreezeSlowParameters(true, true);
     return;
   }
-  // Once the rotors carried it, only a contact ends the flight: a rotor
-  // loss in the air (total thrust below the weight for a while) is no new
-  // lift-off, whose settling would withhold VALID and split the strain
-  // scales again just when force feedback needs them.
+  // Once the rotors carried it, a thrust below the weight away from the
+  // ground (a rotor loss in the air) does not end the flight: a new lift-off
+  // would withhold VALID while settling and split the strain scales again
+  // just when force feedback needs them. Near the ground it does (a
+  // touchdown before the contact is confirmed).
   const double total_force_n = process_.Force(state_, 0) + process_.Force(state_, 1);
   const bool airborne = !(options_.body_held || contact_.supported());
-  carried_in_flight_ = airborne && (carried_in_flight_ || total_force_n >= params_.HoverForceN());
+  const bool carrying = total_force_n >= params_.HoverForceN();
+  carried_in_flight_ = airborne && (carrying || (carried_in_flight_ && !contact_.near_ground()));
   const bool flying = carried_in_flight_;
   if (!flying) {
     flying_since_utime_ = kNotFlying;
