@@ -327,8 +327,9 @@ void EkfForceEstimator::FillEstimate(const StrainSample& sample, bool gated, For
   SetFilterFacts(sample, options_.converged_force_std_n, gated, &converged_, estimate, facts);
   // While learned strain scales settle after a start or a lift-off the
   // unexplained part of the readings sits in the offsets (SplitScaleAndOffsetAgain):
-  // a payload's forces are off then, and nothing tells it yet.
-  if (settling_.pending) facts->convergence = FilterConvergence::kConverging;
+  // once they moved (settling_offset_limit_sigma) a payload's forces are
+  // off, and nothing tells it yet.
+  if (settling_.pending && SettlingOffsetsMoved()) facts->convergence = FilterConvergence::kConverging;
   faults_.FillFacts(facts);
 }
 

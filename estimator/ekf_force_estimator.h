@@ -185,6 +185,7 @@ class EkfForceEstimator : public ForceEstimator {
   void UpdateLearning();
   // Remembers the offsets and the strain scales' sigma at a start or a lift-off.
   void StartSettling();
+  bool SettlingOffsetsMoved() const;
   // At the end of the settling: the offsets and the strain scales from
   // there, uncorrelated (see the .cc).
   void SplitScaleAndOffsetAgain();

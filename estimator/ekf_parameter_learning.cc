@@ -63,6 +63,15 @@ void EkfForceEstimator::StartSettling() {
   }
 }
 
+bool EkfForceEstimator::SettlingOffsetsMoved() const {
+  // |e_i - e_i(start)| > settling_offset_limit_sigma sigma_e_i(start) on any arm.
+  for (int i = 0; i < kBirotorRotors; ++i) {
+    const double moved_rad = std::abs(state_(kGaugeOffsetIndex[i]) - settling_.offset_rad[i]);
+    if (moved_rad > options_.settling_offset_limit_sigma * std::sqrt(settling_.offset_variance_rad2[i])) return true;
+  }
+  return false;
+}
+
 void EkfForceEstimator::SplitScaleAndOffsetAgain() {
   // While the fast states settle (a start, a lift-off) the reading's part
   // that the file's model does not explain lands where the linearisation

@@ -117,6 +117,17 @@ struct EkfOptions {
   // after a start or a lift-off at whose end the strain scales and the gauge
   // offsets are split again (SplitScaleAndOffsetAgain, issue 27) [s].
   double slow_learning_delay_s = 0.5;
+  // During that settling (learned strain scales and gauge offsets) VALID is
+  // withheld once a gauge offset moved more than this many of its sigmas
+  // (at the settling's start) from its value then: the part of the readings
+  // the file's model does not explain sits in the offsets then, and a
+  // payload's forces are off before anything can say so. 2: body +10 %
+  // airborne keeps every 2 s window of VALID estimates honest on seeds
+  // 1-10 (3: one seed 1.96 N off for 0.3 s) while a matching vehicle is
+  // VALID from its first estimates (force feedback on c_T -15 %: 0.048 m
+  // sag instead of 0.127 m with the whole settling withheld); 0: the whole
+  // settling withheld [sigma].
+  double settling_offset_limit_sigma = 2.0;
   // While a slow parameter learns, through a thrust step and a lift-off the
   // learned parameters (strain scales, body mass) and the gauge offsets are
   // held: Schmidt consider states, no gain, their correlations kept

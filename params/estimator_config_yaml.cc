@@ -42,6 +42,7 @@ const OptionTable<EkfOptions>& EkfKeys() {
       Real("body_mass_scale_psd_1_s", &O::body_mass_scale_psd_1_s, 0.0, 1e-2),
       Real("body_mass_change_probability", &O::body_mass_change_probability, 1e-6, 1.0),
       Real("slow_learning_delay_s", &O::slow_learning_delay_s, 0.0, 60.0),
+      Real("settling_offset_limit_sigma", &O::settling_offset_limit_sigma, 0.0, 100.0),
       Real("step_hold_s", &O::step_hold_s, 0.0, 60.0),
       Real("thrust_scale_psd_1_s", &O::thrust_scale_psd_1_s, 0.0, 10.0),
       Real("deflection_rate_psd_rad2_s3", &O::deflection_rate_psd_rad2_s3, 0.0, 1e4),
