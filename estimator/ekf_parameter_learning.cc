@@ -25,8 +25,9 @@ void EkfForceEstimator::UpdateLearning() {
     FreezeSlowParameters(true, true);
     return;
   }
-  // Once the rotors carried it, a thrust below the weight away from the
-  // ground (a rotor loss in the air) does not end the flight: a new lift-off
+  // Once the rotors carried it, a thrust estimate below the criterion away
+  // from the ground (f1 + f2 under half the weight, a rotor loss's transient
+  // estimate) does not end the flight: a new lift-off
   // would withhold VALID while settling and split the strain scales again
   // just when force feedback needs them. Near the ground it does (a
   // touchdown before the contact is confirmed).

@@ -123,7 +123,7 @@ struct EkfOptions {
   // the file's model does not explain sits in the offsets then, and a
   // payload's forces are off before anything can say so. 2: body +10 %
   // airborne keeps every 2 s window of VALID estimates honest on seeds
-  // 1-10 (3: one seed 1.96 N off for 0.3 s) while a matching vehicle is
+  // 1-10 (3: seed 8 still had a window at share 0.000) while a matching vehicle is
   // VALID from its first estimates (force feedback on c_T -15 %: 0.048 m
   // sag instead of 0.127 m with the whole settling withheld); 0: the whole
   // settling withheld [sigma].

@@ -32,8 +32,8 @@ double ValidShareFrom(const ScenarioRun& run, int64_t from_utime) {
   return count > 0 ? static_cast<double>(valid) / static_cast<double>(count) : NAN;
 }
 
-// A rotor loss in the air: the total thrust estimate falls below the weight
-// for a while. Only a contact (or that thrust near the ground) ends a
+// A rotor loss in the air: the total thrust estimate may fall below the
+// free-flight criterion (half the weight) for a moment. Only a contact (or that thrust near the ground) ends a
 // flight, so no new lift-off settling withholds VALID after the loss and
 // the strain scales are not split again on the loss's aftermath.
 // thrust_loss_severe: rotor 2 loses 40 % at 5 s in a hover on the vehicle
