@@ -173,6 +173,17 @@ struct EfficiencyParams {
   // most the feasibility bound margin x weight / (2 c_T omega_max^2).
   double sink_detect_altitude_m = 0.15;  // [m]
   double sink_detect_s = 0.1;            // [s]
+  // A sink is a judgement made in a loss's transient; the rotors' own
+  // measure may undo it (Cause::kSink only): level and calm, still sinking
+  // faster than recover_min_sink_m_s (a vehicle on the ground does not
+  // move), over sink_recover_s the mean commands and the vertical
+  // acceleration a_z say every rotor holds its share of the weight with the
+  // margin, (g + a_z) / (g max_i mean (omega_i / omega_max)^2) >=
+  // feasibility_margin: hover is feasible again (payload +15 % with a 60 %
+  // loss: the vehicle holds with 4 %). The sink detection re-arms once the
+  // vehicle no longer falls behind its reference. 0: latched for the flight.
+  double sink_recover_s = 0.3;        // [s]
+  double recover_min_sink_m_s = 0.1;  // [m/s]
   // The infeasible descent first levels: tilt target 0 until |tilt| below
   // level_tilt_rad and |pitch rate| below level_rate_rad_s, then descends.
   double level_tilt_rad = 0.05;   // [rad]

@@ -44,8 +44,55 @@ void HoverFeasibility::Latch(Cause cause, int weak_rotor, double efficiency) {
   phase_ = Phase::kLevelling;
 }
 
+void HoverFeasibility::MeasureRecovery(double omega_max_rad_s, double gravity_m_s2) {
+  omega_max_rad_s_ = omega_max_rad_s;
+  gravity_m_s2_ = gravity_m_s2;
+}
+
+void HoverFeasibility::Recover() {
+  phase_ = Phase::kFeasible;
+  cause_ = Cause::kNone;
+  holds_weak_ = true;
+  below_bound_s_ = sinking_s_ = 0.0;
+  hold_elapsed_s_ = -1.0;
+  sink_armed_ = false;
+  ++recoveries_;
+}
+
+bool HoverFeasibility::HoldMeasured(const FeasibilityInputs& in, double dt_s) {
+  if (params_.sink_recover_s <= 0.0 || omega_max_rad_s_ <= 0.0) return false;
+  const bool calm = std::fabs(in.tilt_rad) <= params_.level_tilt_rad &&
+                    std::fabs(in.pitch_rate_rad_s) <= params_.level_rate_rad_s &&
+                    in.climb_rate_m_s < -params_.recover_min_sink_m_s;
+  if (!calm) {
+    hold_elapsed_s_ = -1.0;
+    return false;
+  }
+  if (hold_elapsed_s_ < 0.0) {  // the window opens at this climb rate
+    hold_elapsed_s_ = 0.0;
+    hold_start_climb_m_s_ = in.climb_rate_m_s;
+    std::fill(hold_share_s_, hold_share_s_ + kMaxArms, 0.0);
+    return false;
+  }
+  hold_elapsed_s_ += dt_s;
+  double worst_share = 0.0;
+  for (int i = 0; i < rotor_count_; ++i) {
+    const double ratio = in.command_rad_s[i] / omega_max_rad_s_;
+    hold_share_s_[i] += ratio * ratio * dt_s;
+    worst_share = std::max(worst_share, hold_share_s_[i]);
+  }
+  if (hold_elapsed_s_ < params_.sink_recover_s) return false;
+  // Mean vertical acceleration a_z and the busiest rotor's mean share s:
+  // the rotors make m (g + a_z) at s of their maximum, so hover needs
+  // (g + a_z) / (g s) >= margin (no division: s may be 0).
+  const double accel_m_s2 = (in.climb_rate_m_s - hold_start_climb_m_s_) / hold_elapsed_s_;
+  const double mean_share = worst_share / hold_elapsed_s_;
+  hold_elapsed_s_ = -1.0;  // the next window
+  return gravity_m_s2_ + accel_m_s2 >= params_.feasibility_margin * gravity_m_s2_ * mean_share;
+}
+
 double HoverFeasibility::EfficiencyFor(int rotor, double efficiency_in_use) const {
-  return infeasible() && rotor == weak_rotor_ ? weak_efficiency_ : efficiency_in_use;
+  return (infeasible() || holds_weak_) && rotor == weak_rotor_ ? weak_efficiency_ : efficiency_in_use;
 }
 
 int HoverFeasibility::Weakest(const double (&efficiency)[kMaxArms]) const {
@@ -96,6 +143,8 @@ int HoverFeasibility::WeakFromSink(const FeasibilityInputs& in) const {
 
 HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, double dt_s) {
   const int weakest = Weakest(in.efficiency);
+  if (infeasible() && cause_ == Cause::kSink && HoldMeasured(in, dt_s)) Recover();
+  holds_weak_ = holds_weak_ && !in.following_force;
   if (infeasible()) {
     // Latched: the weak rotor stays infeasible; its efficiency follows a
     // usable FORCE (a transient low of the ringing estimate is not kept),
@@ -113,9 +162,17 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     return phase_;
   }
   below_bound_s_ = HoverHeld(in, weakest) ? 0.0 : below_bound_s_ + dt_s;
-  const bool sinking =
-      in.allocation_limited && in.altitude_lag_m > params_.sink_detect_altitude_m && in.sink_behind_m_s > 0.0;
+  const bool behind = in.altitude_lag_m > params_.sink_detect_altitude_m && in.sink_behind_m_s > 0.0;
+  sink_armed_ = sink_armed_ || !behind;
+  const bool sinking = sink_armed_ && in.allocation_limited && behind;
+  if (sinking && sinking_s_ == 0.0) sink_start_climb_m_s_ = in.climb_rate_m_s;
   sinking_s_ = sinking ? sinking_s_ + dt_s : 0.0;
+  // The sink grows over the window: the rotors, limited, do not hold the weight.
+  const bool sink_grows = in.climb_rate_m_s < sink_start_climb_m_s_;
+  if (sinking_s_ >= params_.sink_detect_s && !sink_grows) {
+    sinking_s_ = dt_s;  // the next window starts here
+    sink_start_climb_m_s_ = in.climb_rate_m_s;
+  }
   if (below_bound_s_ > 0.0 && below_bound_s_ >= params_.infeasible_s) {
     Latch(Cause::kEfficiency, weakest, in.efficiency[weakest]);
   } else if (sinking_s_ > 0.0 && sinking_s_ >= params_.sink_detect_s) {
@@ -136,6 +193,7 @@ void SetTrackingInputs(const ReferencePoint& reference, const BodyState& body, F
   in->sink_behind_m_s = reference.velocity_m_s.y() - body.velocity_m_s.y();
   in->tilt_rad = body.phi_rad;
   in->pitch_rate_rad_s = body.phi_dot_rad_s;
+  in->climb_rate_m_s = body.velocity_m_s.y();
 }
 
 }  // namespace birotor

@@ -1,5 +1,5 @@
 // Whether the rotors can still hold the vehicle in hover, decided once and
-// latched for the flight (issue 34; N rotors: issue 38): a rotor known to be
+// latched (issue 34; N rotors: issue 38): a rotor known to be
 // too weak stays known when FORCE later turns unusable (MODEL_MISMATCH,
 // stale), so the level descent and its flare do not depend on FORCE staying
 // VALID. Hover needs every rotor's hover thrust within what it can make:
@@ -9,11 +9,14 @@
 // f_hover,i = weight / 2: 2 min_i(e_i c_T omega_max^2) >= margin x weight).
 // Two ways in: the efficiencies in use (some e_i below its bound
 // margin f_hover,i / (c_T,i omega_max^2) for infeasible_s), or the vehicle
-// itself (the allocation limited while it sinks below its reference for
-// sink_detect_s: a loss so large that FORCE's thrust_scale sits at its
-// plausibility floor and is refused). Then the descent levels first (tilt
-// target 0) and descends once level and calm. Pure bookkeeping: no
-// allocation, no throw.
+// itself (the allocation limited while it sinks below its reference, the
+// sink growing, for sink_detect_s: a loss so large that FORCE's
+// thrust_scale sits at its plausibility floor and is refused). Then the
+// descent levels first (tilt target 0) and descends once level and calm. A
+// latch from the sink is undone when the rotors' commands then show that
+// they hold the weight with the margin (MeasureRecovery; a payload the
+// weight model does not know makes the sink a poor judge). Pure
+// bookkeeping: no allocation, no throw.
 #pragma once
 
 #include <cstdint>
@@ -48,10 +51,12 @@ struct FeasibilityInputs {
   double sink_behind_m_s = 0.0;   // z_dot_ref - z_dot [m/s]
   double tilt_rad = 0.0;          // phi [rad]
   double pitch_rate_rad_s = 0.0;  // phi_dot [rad/s]
+  double climb_rate_m_s = 0.0;    // z_dot [m/s]
 };
 
 // The tracking entries of the inputs from the reference and the observed
-// body (world frame, z up): altitude lag, sink rate behind, tilt, pitch rate.
+// body (world frame, z up): altitude lag, sink rate behind, tilt, pitch
+// rate, climb rate.
 void SetTrackingInputs(const ReferencePoint& reference, const BodyState& body, FeasibilityInputs* in);
 
 class HoverFeasibility {
@@ -76,6 +81,11 @@ class HoverFeasibility {
   HoverFeasibility(const EfficiencyParams& params, int rotor_count, const double* max_rotor_force_n,
                    const double* hover_force_n, const HoverSpace& space = HoverSpace());
 
+  // Lets the rotors' commands undo a latch from the sink
+  // (EfficiencyParams::sink_recover_s): every rotor's omega_max [rad/s] and
+  // g [m/s^2]. Until called a latch holds for the flight.
+  void MeasureRecovery(double omega_max_rad_s, double gravity_m_s2);
+
   // One control period of dt_s [s]; returns the phase after it.
   Phase Update(const FeasibilityInputs& in, double dt_s);
 
@@ -85,6 +95,8 @@ class HoverFeasibility {
   // Entries into the infeasible phase detected from the vehicle's sink
   // (Cause::kSink) since construction.
   int64_t entries_by_sink() const { return entries_by_sink_; }
+  // Latches from the sink undone by the rotors' measure since construction.
+  int64_t recoveries() const { return recoveries_; }
   // Without a spare rotor (the trirotor's space) a tilted hover counts only
   // with every rotor within max_share (the cascade's spare_max_share: room
   // for its torque above the weak rotor; 1 / margin until called) [1].
@@ -94,7 +106,8 @@ class HoverFeasibility {
   // detected from the sink only downwards), otherwise it holds.
   int weak_rotor() const { return weak_rotor_; }
   double weak_efficiency() const { return weak_efficiency_; }
-  // The efficiency rotor i is flown with: the latched one for the weak rotor.
+  // The efficiency rotor i is flown with: the latched one for the weak
+  // rotor (after a recovery too, until FORCE is usable again).
   double EfficiencyFor(int rotor, double efficiency_in_use) const;
   // The largest efficiency of rotor i at which hover is still infeasible:
   // margin f_hover,i / (c_T,i omega_max^2) [1]; the birotor's
@@ -105,6 +118,14 @@ class HoverFeasibility {
 
  private:
   void Latch(Cause cause, int weak_rotor, double efficiency);
+  // Feasible again: the latch undone, the sink detection disarmed until the
+  // vehicle no longer falls behind its reference (the climb back starts
+  // behind it).
+  void Recover();
+  // One period of the recovery window; true when a full window measured
+  // that the rotors hold the weight with the margin (header of
+  // EfficiencyParams::sink_recover_s).
+  bool HoldMeasured(const FeasibilityInputs& in, double dt_s);
   // Whether the efficiencies hold a hover: e_weakest at least its bound, or
   // with spare rotors some hover within the shares, or fully actuated a
   // tilted one (constructor).
@@ -133,6 +154,21 @@ class HoverFeasibility {
   int weak_rotor_ = 0;
   double weak_efficiency_ = 1.0;
   int64_t entries_by_sink_ = 0;
+  int64_t recoveries_ = 0;
+  double sink_start_climb_m_s_ = 0.0;  // climb rate where the sink window began [m/s]
+  bool sink_armed_ = true;             // the sink detection counts (disarmed by Recover)
+  // Recovered: the weak rotor is still flown at its latched efficiency
+  // until FORCE is usable again (switching it back to the fallback's
+  // efficiency near 1 tilted the climb back 0.2 rad).
+  bool holds_weak_ = false;
+  // The recovery window: omega_max and g (0: off), its length so far [s],
+  // the climb rate at its start [m/s] and each rotor's integral of
+  // (omega_i / omega_max)^2 over it [s].
+  double omega_max_rad_s_ = 0.0;
+  double gravity_m_s2_ = 0.0;
+  double hold_elapsed_s_ = -1.0;  // < 0: no window open
+  double hold_start_climb_m_s_ = 0.0;
+  double hold_share_s_[kMaxArms] = {};
   HoverSpace space_;               // the hovers the rotors can hold (spare rotors: more than one)
   double tilted_max_share_ = 1.0;  // LimitTiltedHoverShare [1]
 };

@@ -49,6 +49,7 @@ HoverFeasibility FeasibilityOf(const VehicleDescription& vehicle, const Controll
   // Without a spare rotor the tilted hover needs room above the weak rotor
   // (docs/controller.md, "A tilted hover without a spare rotor").
   feasibility.LimitTiltedHoverShare(config.efficiency.spare_max_share);
+  feasibility.MeasureRecovery(vehicle.omega_max_rad_s, vehicle.gravity_m_s2);
   return feasibility;
 }
 

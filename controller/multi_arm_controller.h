@@ -52,7 +52,7 @@ namespace birotor {
 struct MultiArmDegradation {
   bool descending = false;         // the controlled descent (POSE lost or hover infeasible)
   bool levelling = false;          // the infeasible descent's first phase: tilt target 0
-  bool hover_infeasible = false;   // HoverFeasibility latched (for the flight)
+  bool hover_infeasible = false;   // HoverFeasibility latched (one from the sink may be undone)
   int64_t descents = 0;            // entries into the descent
   int64_t infeasible = 0;          // entries into the hover-infeasible descent
   int64_t infeasible_by_sink = 0;  // ... of them detected from the vehicle's sink

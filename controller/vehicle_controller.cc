@@ -47,6 +47,7 @@ VehicleController::VehicleController(const ControllerConfig& config)
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
       setpoint_(config.setpoint),
       weight_n_(2.0 * HoverForce(model_)) {
+  feasibility_.MeasureRecovery(model_.omega_max_rad_s, model_.gravity_m_s2);
   if (config.model_predictive) mpc_ = std::make_unique<MpcController>(model_, config.mpc);
   // Force feedback starts in the fallback until FORCE has been healthy for
   // force_recovery_s; that start is not counted as a fallback.

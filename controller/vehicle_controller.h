@@ -10,11 +10,10 @@
 // of gated POSEs re-acquired: ForceFloorEvidence, PoseGate); a second
 // publisher drops force feedback; FORCE stale, not VALID or refused lets the
 // efficiency decay towards the nominal map; a lost POSE or a hover the
-// rotors cannot make (HoverFeasibility, latched for the flight with its weak
-// rotor) gives a level controlled descent with slewed commands, levelling
-// first (and a flare near the ground, controller/rotor_allocation.h); a
-// command is never non-finite or outside [0, omega_max]. No LCM, no
-// allocation, no throw after construction.
+// rotors cannot make (HoverFeasibility, latched with its weak rotor; a
+// latch from the sink is undone once the rotors show the margin) gives a level controlled descent with slewed commands,
+// levelling first (and a flare near the ground, controller/rotor_allocation.h); a command is never non-finite or
+// outside [0, omega_max]. No LCM, no allocation, no throw after construction.
 #pragma once
 
 #include <cstdint>
@@ -51,9 +50,9 @@ struct ControllerHealth {
   int64_t conflicts = 0;            // entries into STATUS_INPUT_CONFLICT
   int64_t pose_gate_resets = 0;     // observer re-initialised after pose_gate_reset_s of gated POSE
   int64_t pose_reacquisitions = 0;  // observer moved onto a consistent run of gated POSEs (PoseGate)
-  int64_t infeasible = 0;           // entries into the hover-infeasible descent (latched for the flight)
-  int64_t infeasible_by_sink = 0;   // ... of them detected from the vehicle's sink (HoverFeasibility)
-  int64_t flares = 0;               // entries into that descent's flare near the ground
+  int64_t infeasible = 0;  // entries into the hover-infeasible descent (latched; one from the sink may be undone)
+  int64_t infeasible_by_sink = 0;  // ... of them detected from the vehicle's sink (HoverFeasibility)
+  int64_t flares = 0;              // entries into that descent's flare near the ground
   bool fallback_active = false;
   bool descending = false;
   bool flaring = false;

@@ -80,6 +80,8 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("spare_retire_scale", &O::spare_retire_scale, 0.0, 0.5),
       Real("sink_detect_altitude_m", &O::sink_detect_altitude_m, 0.01, 10.0),
       Real("sink_detect_s", &O::sink_detect_s, 0.0, 10.0),
+      Real("sink_recover_s", &O::sink_recover_s, 0.0, 10.0),
+      Real("recover_min_sink_m_s", &O::recover_min_sink_m_s, 0.0, 10.0),
       Real("level_tilt_rad", &O::level_tilt_rad, 1e-3, 0.5),
       Real("level_rate_rad_s", &O::level_rate_rad_s, 1e-3, 10.0),
       Real("flare_tilt_rad", &O::flare_tilt_rad, 0.0, 0.3),
