@@ -22,6 +22,18 @@ namespace {
 
 std::string ConfigFile(const std::string& name) { return std::string(BIROTOR_SOURCE_DIR) + "/config/" + name; }
 
+// The scenario flown with the shipped files, nominal (entry 0) and force
+// feedback (entry 1).
+void FlyBothModes(const Scenario& scenario, ClosedLoopRun (&runs)[2], ControlMetrics (&m)[2]) {
+  const EstimatorConfig estimator = LoadEstimatorConfig(ConfigFile("estimator.yaml"));
+  for (const bool force_feedback : {false, true}) {
+    ControllerConfig config = LoadControllerConfig(ConfigFile("controller.yaml"));
+    config.force_feedback = force_feedback;
+    runs[force_feedback] = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
+    m[force_feedback] = EvaluateControl(runs[force_feedback]);
+  }
+}
+
 struct Measured {
   double rms_m, tilt_rad, altitude_m;  // force feedback, measured
   bool no_worse;                       // issue 25's target met on this seed
@@ -121,15 +133,9 @@ TEST(ControlCasesTest, ThrustCoefficientMinus15SagsLessWithForceFeedback) {
   const ControlCase* c = FindControlCase("ct_-15");
   ASSERT_NE(c, nullptr);
   const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
-  const EstimatorConfig estimator = LoadEstimatorConfig(ConfigFile("estimator.yaml"));
-  ControlMetrics m[2];
   ClosedLoopRun runs[2];
-  for (const bool force_feedback : {false, true}) {
-    ControllerConfig config = LoadControllerConfig(ConfigFile("controller.yaml"));
-    config.force_feedback = force_feedback;
-    runs[force_feedback] = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
-    m[force_feedback] = EvaluateControl(runs[force_feedback]);
-  }
+  ControlMetrics m[2];
+  FlyBothModes(scenario, runs, m);
   EXPECT_GT(m[0].peak_altitude_deviation_m - m[1].peak_altitude_deviation_m, 0.060 / 1.5);
   EXPECT_LT(m[1].rms_position_error_m, m[0].rms_position_error_m / (0.0786 / 0.0302 / 1.5));
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(runs[1].controller.efficiency[i], 0.85, 1.5 * 0.0093) << i;
@@ -198,15 +204,9 @@ TEST(ControlCasesTest, ASinkLatchIsUndoneWhenTheRotorsHoldTheWeight) {
       LoadScenario(ConfigFile("scenarios/thrust_loss_severe.yaml"),
                    {"scenario.duration_s=10", "vehicle.body_mass_kg=4.6",
                     "faults.thrust_steps=[{time_s: 5.0, rotor: 1, scale: 0.3}, {time_s: 5.6, rotor: 1, scale: 0.45}]"});
-  const EstimatorConfig estimator = LoadEstimatorConfig(ConfigFile("estimator.yaml"));
-  ControlMetrics m[2];
   ClosedLoopRun runs[2];
-  for (const bool force_feedback : {false, true}) {
-    ControllerConfig config = LoadControllerConfig(ConfigFile("controller.yaml"));
-    config.force_feedback = force_feedback;
-    runs[force_feedback] = RunClosedLoop(scenario, estimator, config, ClosedLoopOptions());
-    m[force_feedback] = EvaluateControl(runs[force_feedback]);
-  }
+  ControlMetrics m[2];
+  FlyBothModes(scenario, runs, m);
   EXPECT_EQ(runs[1].controller.infeasible_by_sink, 1);
   EXPECT_LE(m[1].peak_altitude_deviation_m, 1.05 * m[0].peak_altitude_deviation_m);
   EXPECT_LE(m[1].rms_position_error_m, m[0].rms_position_error_m);
