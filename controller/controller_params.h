@@ -168,21 +168,26 @@ struct EfficiencyParams {
   // Infeasibility from the vehicle itself (force feedback; FORCE refused at
   // its plausibility floor on a large loss): the allocation limited for
   // sink_detect_s while the vehicle is more than sink_detect_altitude_m below
-  // its reference and falling behind it. The weak rotor's efficiency is then
-  // at most what FORCE last said (refused below the floor included) and at
-  // most the feasibility bound margin x weight / (2 c_T omega_max^2).
+  // its reference and falling behind it, the sink growing over that window.
+  // The weak rotor's efficiency is then at most what FORCE last said
+  // (refused below the floor included) and at most the feasibility bound
+  // margin x weight / (2 c_T omega_max^2).
   double sink_detect_altitude_m = 0.15;  // [m]
   double sink_detect_s = 0.1;            // [s]
-  // A sink is a judgement made in a loss's transient; the rotors' own
-  // measure may undo it (Cause::kSink only): level and calm, still sinking
-  // faster than recover_min_sink_m_s (a vehicle on the ground does not
-  // move), over sink_recover_s the mean commands and the vertical
+  // A sink is a judgement made in a loss's transient on a weight model that
+  // may be wrong (a payload); the rotors' own measure may undo it
+  // (Cause::kSink only): level and calm, sinking faster than
+  // recover_min_sink_m_s by the observer and by the height (a vehicle on the
+  // ground does not move, though the observer's climb rate decays for a
+  // while after the impact), over each of two sink_recover_s windows in a
+  // row (an impact fills at most one) the mean commands and the vertical
   // acceleration a_z say every rotor holds its share of the weight with the
   // margin, (g + a_z) / (g max_i mean (omega_i / omega_max)^2) >=
-  // feasibility_margin: hover is feasible again (payload +15 % with a 60 %
-  // loss: the vehicle holds with 4 %). The sink detection re-arms once the
-  // vehicle no longer falls behind its reference. 0: latched for the flight.
-  double sink_recover_s = 0.3;        // [s]
+  // feasibility_margin: hover is feasible again (payload +15 %, rotor 1 at
+  // 0.3 then back to 0.45: the vehicle holds with 12 %). The sink detection
+  // re-arms once the vehicle no longer falls behind its reference. 0:
+  // latched for the flight.
+  double sink_recover_s = 0.15;       // [s]
   double recover_min_sink_m_s = 0.1;  // [m/s]
   // The infeasible descent first levels: tilt target 0 until |tilt| below
   // level_tilt_rad and |pitch rate| below level_rate_rad_s, then descends.

@@ -14,6 +14,9 @@ namespace {
 // make, so a lower value would only mislead the allocation.
 constexpr double kMinEfficiency = 0.05;
 
+// Recovery windows (sink_recover_s each) in a row that must show the margin.
+constexpr int kRecoveryWindows = 2;
+
 }  // namespace
 
 HoverFeasibility::HoverFeasibility(const EfficiencyParams& params, double max_rotor_force_n, double weight_n)
@@ -55,6 +58,7 @@ void HoverFeasibility::Recover() {
   holds_weak_ = true;
   below_bound_s_ = sinking_s_ = 0.0;
   hold_elapsed_s_ = -1.0;
+  hold_windows_ = 0;
   sink_armed_ = false;
   ++recoveries_;
 }
@@ -66,11 +70,13 @@ bool HoverFeasibility::HoldMeasured(const FeasibilityInputs& in, double dt_s) {
                     in.climb_rate_m_s < -params_.recover_min_sink_m_s;
   if (!calm) {
     hold_elapsed_s_ = -1.0;
+    hold_windows_ = 0;
     return false;
   }
-  if (hold_elapsed_s_ < 0.0) {  // the window opens at this climb rate
+  if (hold_elapsed_s_ < 0.0) {  // the window opens at this climb rate and height
     hold_elapsed_s_ = 0.0;
     hold_start_climb_m_s_ = in.climb_rate_m_s;
+    hold_start_altitude_m_ = in.altitude_m;
     std::fill(hold_share_s_, hold_share_s_ + kMaxArms, 0.0);
     return false;
   }
@@ -84,11 +90,18 @@ bool HoverFeasibility::HoldMeasured(const FeasibilityInputs& in, double dt_s) {
   if (hold_elapsed_s_ < params_.sink_recover_s) return false;
   // Mean vertical acceleration a_z and the busiest rotor's mean share s:
   // the rotors make m (g + a_z) at s of their maximum, so hover needs
-  // (g + a_z) / (g s) >= margin (no division: s may be 0).
+  // (g + a_z) / (g s) >= margin (no division: s may be 0). The height
+  // (POSE) must have dropped too: on the ground the observer's climb rate
+  // decays for a while after the impact, the height does not move.
   const double accel_m_s2 = (in.climb_rate_m_s - hold_start_climb_m_s_) / hold_elapsed_s_;
   const double mean_share = worst_share / hold_elapsed_s_;
+  const bool dropped = in.altitude_m - hold_start_altitude_m_ <= -params_.recover_min_sink_m_s * hold_elapsed_s_;
+  const bool held = dropped && gravity_m_s2_ + accel_m_s2 >= params_.feasibility_margin * gravity_m_s2_ * mean_share;
   hold_elapsed_s_ = -1.0;  // the next window
-  return gravity_m_s2_ + accel_m_s2 >= params_.feasibility_margin * gravity_m_s2_ * mean_share;
+  // Two windows in a row: an impact on the ground fills at most one (its
+  // stop reads as a large a_z), the next one is on the ground.
+  hold_windows_ = held ? hold_windows_ + 1 : 0;
+  return hold_windows_ >= kRecoveryWindows;
 }
 
 double HoverFeasibility::EfficiencyFor(int rotor, double efficiency_in_use) const {
@@ -169,10 +182,7 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
   sinking_s_ = sinking ? sinking_s_ + dt_s : 0.0;
   // The sink grows over the window: the rotors, limited, do not hold the weight.
   const bool sink_grows = in.climb_rate_m_s < sink_start_climb_m_s_;
-  if (sinking_s_ >= params_.sink_detect_s && !sink_grows) {
-    sinking_s_ = dt_s;  // the next window starts here
-    sink_start_climb_m_s_ = in.climb_rate_m_s;
-  }
+  if (sinking_s_ >= params_.sink_detect_s && !sink_grows) sinking_s_ = 0.0;  // the next window opens next period
   if (below_bound_s_ > 0.0 && below_bound_s_ >= params_.infeasible_s) {
     Latch(Cause::kEfficiency, weakest, in.efficiency[weakest]);
   } else if (sinking_s_ > 0.0 && sinking_s_ >= params_.sink_detect_s) {
@@ -194,6 +204,7 @@ void SetTrackingInputs(const ReferencePoint& reference, const BodyState& body, F
   in->tilt_rad = body.phi_rad;
   in->pitch_rate_rad_s = body.phi_dot_rad_s;
   in->climb_rate_m_s = body.velocity_m_s.y();
+  in->altitude_m = body.position_m.y();
 }
 
 }  // namespace birotor

@@ -52,11 +52,12 @@ struct FeasibilityInputs {
   double tilt_rad = 0.0;          // phi [rad]
   double pitch_rate_rad_s = 0.0;  // phi_dot [rad/s]
   double climb_rate_m_s = 0.0;    // z_dot [m/s]
+  double altitude_m = 0.0;        // z [m]
 };
 
 // The tracking entries of the inputs from the reference and the observed
 // body (world frame, z up): altitude lag, sink rate behind, tilt, pitch
-// rate, climb rate.
+// rate, climb rate, height.
 void SetTrackingInputs(const ReferencePoint& reference, const BodyState& body, FeasibilityInputs* in);
 
 class HoverFeasibility {
@@ -168,6 +169,8 @@ class HoverFeasibility {
   double gravity_m_s2_ = 0.0;
   double hold_elapsed_s_ = -1.0;  // < 0: no window open
   double hold_start_climb_m_s_ = 0.0;
+  double hold_start_altitude_m_ = 0.0;  // z where the window opened [m]
+  int hold_windows_ = 0;                // windows in a row that showed the margin
   double hold_share_s_[kMaxArms] = {};
   HoverSpace space_;               // the hovers the rotors can hold (spare rotors: more than one)
   double tilted_max_share_ = 1.0;  // LimitTiltedHoverShare [1]

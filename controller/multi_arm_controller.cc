@@ -252,6 +252,7 @@ bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint&
   SetTrackingInputs(reference, body, &in);
   feasibility_.Update(in, dt_s);
   degradation_.infeasible_by_sink = feasibility_.entries_by_sink();
+  degradation_.infeasible_undone = feasibility_.recoveries();
   degradation_.hover_infeasible = feasibility_.infeasible();
   degradation_.levelling = feasibility_.phase() == HoverFeasibility::Phase::kLevelling;
   degradation_.weak_rotor = feasibility_.infeasible() ? feasibility_.weak_rotor() : -1;

@@ -56,6 +56,7 @@ struct MultiArmDegradation {
   int64_t descents = 0;            // entries into the descent
   int64_t infeasible = 0;          // entries into the hover-infeasible descent
   int64_t infeasible_by_sink = 0;  // ... of them detected from the vehicle's sink
+  int64_t infeasible_undone = 0;   // latches from the sink undone by the rotors' measure
   int weak_rotor = -1;             // the latched weak rotor (0-based); -1: none
   bool flaring = false;            // the infeasible descent's flare near the ground (this period)
   int64_t flares = 0;              // entries into it

@@ -276,6 +276,7 @@ bool VehicleController::UpdateFeasibility(double dt_s, bool use_force) {
   SetTrackingInputs(reference_, body, &in);
   feasibility_.Update(in, dt_s);
   health_.infeasible_by_sink = feasibility_.entries_by_sink();
+  health_.infeasible_undone = feasibility_.recoveries();
   health_.levelling = feasibility_.phase() == HoverFeasibility::Phase::kLevelling;
   return feasibility_.infeasible();
 }

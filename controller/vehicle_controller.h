@@ -52,6 +52,7 @@ struct ControllerHealth {
   int64_t pose_reacquisitions = 0;  // observer moved onto a consistent run of gated POSEs (PoseGate)
   int64_t infeasible = 0;  // entries into the hover-infeasible descent (latched; one from the sink may be undone)
   int64_t infeasible_by_sink = 0;  // ... of them detected from the vehicle's sink (HoverFeasibility)
+  int64_t infeasible_undone = 0;   // latches from the sink undone by the rotors' measure (HoverFeasibility)
   int64_t flares = 0;              // entries into that descent's flare near the ground
   bool fallback_active = false;
   bool descending = false;

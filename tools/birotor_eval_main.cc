@@ -206,11 +206,11 @@ void LogDescentFloor(const std::string& label, const ClosedLoopRun& run, const C
   const DescentFloor floor = LevelDescentFloor(run, scenario);
   if (!floor.found) return;
   spdlog::info(
-      "{}: descent from {:.3f} m at {:+.2f} m/s (t = {:.2f} s), level floor {:.2f} m/s (a = {:.3f} m/s^2); "
-      "touchdown {:.2f} m/s = {:.2f} x floor, peak tilt from the fault {:.3f} rad; {} infeasible ({} from the sink)",
+      "{}: descent from {:.3f} m at {:+.2f} m/s (t = {:.2f} s), level floor {:.2f} m/s (a = {:.3f} m/s^2); touchdown "
+      "{:.2f} m/s = {:.2f} x floor, peak tilt from the fault {:.3f} rad; {} infeasible ({} from the sink, {} undone)",
       label, floor.height_m, floor.climb_m_s, floor.start_s, floor.touchdown_m_s, floor.sink_accel_m_s2,
       metrics.touchdown_speed_m_s, metrics.touchdown_speed_m_s / floor.touchdown_m_s, metrics.tilt_before_touchdown_rad,
-      run.controller.infeasible, run.controller.infeasible_by_sink);
+      run.controller.infeasible, run.controller.infeasible_by_sink, run.controller.infeasible_undone);
 }
 
 // One seed of a case in both cascade modes: their rows, figures and (first

@@ -153,10 +153,12 @@ TEST(HoverFeasibilityTest, NoSinkDetectionWhileTheSinkShrinks) {
 }
 
 // Latched from the sink with rotor 1 weak (the 80 % loss above), then the
-// level and calm descent at 0.4 m/s with rotor 1 commanded at command_1 and
-// rotor 0 at 750 rad/s, the climb rate changing at accel [m/s^2], for
-// seconds; returns the feasibility.
-HoverFeasibility DescendAfterASink(double command_1, double accel_m_s2, double climb_m_s, double seconds) {
+// level and calm descent with rotor 1 commanded at command_1 and rotor 0 at
+// 750 rad/s, from the climb rate climb [m/s] changing at accel [m/s^2], for
+// seconds; the height follows the climb rate unless held (on the ground).
+// Returns the feasibility.
+HoverFeasibility DescendAfterASink(double command_1, double accel_m_s2, double climb_m_s, double seconds,
+                                   bool height_held = false) {
   HoverFeasibility f(EfficiencyParams(), kMaxRotorForceN, kWeightN);
   f.MeasureRecovery(1200.0, 9.81);
   FeasibilityInputs in;
@@ -170,17 +172,20 @@ HoverFeasibility DescendAfterASink(double command_1, double accel_m_s2, double c
   in.climb_rate_m_s = climb_m_s;
   for (double t = 0.0; t < seconds; t += kDtS) {
     f.Update(in, kDtS);
+    if (!height_held) in.altitude_m += in.climb_rate_m_s * kDtS;
     in.climb_rate_m_s += accel_m_s2 * kDtS;
   }
   return f;
 }
 
+// Two recovery windows and a period to spare [s].
+double TwoWindowsS() { return 2.0 * EfficiencyParams().sink_recover_s + 0.01; }
+
 TEST(HoverFeasibilityTest, SinkLatchIsUndoneWhenTheCommandsHoldTheWeightWithTheMargin) {
   // A 60 % loss with a +15 % payload: the weak rotor holds its share of the
   // weight at (1172 / 1200)^2 = 0.954 of its maximum in a steady descent,
   // a margin of 1.048 >= 1.02.
-  const EfficiencyParams params;
-  const HoverFeasibility f = DescendAfterASink(1172.0, 0.0, -0.4, params.sink_recover_s + 0.05);
+  const HoverFeasibility f = DescendAfterASink(1172.0, 0.0, -0.4, TwoWindowsS());
   EXPECT_FALSE(f.infeasible());
   EXPECT_EQ(f.recoveries(), 1);
   EXPECT_EQ(f.entries_by_sink(), 1);
@@ -191,7 +196,9 @@ TEST(HoverFeasibilityTest, SinkLatchIsUndoneWhenTheCommandsHoldTheWeightWithTheM
 
 TEST(HoverFeasibilityTest, SaturatedRotorThatStillSlowsTheSinkRecovers) {
   // At omega_max the rotors hold m (g + a): +0.5 m/s^2 is a margin of 1.051.
-  EXPECT_FALSE(DescendAfterASink(1200.0, 0.5, -0.8, 0.5).infeasible());
+  EXPECT_FALSE(DescendAfterASink(1200.0, 0.5, -0.8, TwoWindowsS()).infeasible());
+  // One window is not enough.
+  EXPECT_TRUE(DescendAfterASink(1200.0, 0.5, -0.8, 0.5 * TwoWindowsS()).infeasible());
   // +0.1 m/s^2 is 1.010: not enough.
   EXPECT_TRUE(DescendAfterASink(1200.0, 0.1, -0.8, 1.0).infeasible());
 }
@@ -199,8 +206,11 @@ TEST(HoverFeasibilityTest, SaturatedRotorThatStillSlowsTheSinkRecovers) {
 TEST(HoverFeasibilityTest, SinkLatchHoldsWithoutTheMarginOnTheGroundOrWithoutTheMeasure) {
   // Steady at (1195 / 1200)^2 = 0.992: margin 1.008.
   EXPECT_TRUE(DescendAfterASink(1195.0, 0.0, -0.4, 2.0).infeasible());
-  // On the ground nothing moves: the rotors do not carry the vehicle.
+  // On the ground nothing moves: the rotors do not carry the vehicle. After
+  // the impact the observer's climb rate decays (here from -1.5 m/s at
+  // 3 m/s^2, a margin of 1.31 by the rate) while the height stays.
   EXPECT_TRUE(DescendAfterASink(600.0, 0.0, 0.0, 2.0).infeasible());
+  EXPECT_TRUE(DescendAfterASink(600.0, 3.0, -1.5, 0.45, true).infeasible());
   // Without MeasureRecovery the latch holds for the flight.
   HoverFeasibility f(EfficiencyParams(), kMaxRotorForceN, kWeightN);
   FeasibilityInputs in;
@@ -216,7 +226,7 @@ TEST(HoverFeasibilityTest, SinkLatchHoldsWithoutTheMarginOnTheGroundOrWithoutThe
 
 TEST(HoverFeasibilityTest, SinkDetectionRearmsOnceTheVehicleNoLongerFallsBehind) {
   const EfficiencyParams params;
-  HoverFeasibility f = DescendAfterASink(1172.0, 0.0, -0.4, params.sink_recover_s + 0.05);
+  HoverFeasibility f = DescendAfterASink(1172.0, 0.0, -0.4, TwoWindowsS());
   ASSERT_FALSE(f.infeasible());
   // The climb back starts behind the reference with the weak rotor
   // saturated (its transient may grow the sink a moment): not a new sink.
