@@ -11,9 +11,11 @@
 // publisher drops force feedback; FORCE stale, not VALID or refused lets the
 // efficiency decay towards the nominal map; a lost POSE or a hover the
 // rotors cannot make (HoverFeasibility, latched with its weak rotor; a
-// latch from the sink is undone once the rotors show the margin) gives a level controlled descent with slewed commands,
-// levelling first (and a flare near the ground, controller/rotor_allocation.h); a command is never non-finite or
-// outside [0, omega_max]. No LCM, no allocation, no throw after construction.
+// latch from the sink is undone once the rotors show the margin) gives a
+// level controlled descent with slewed commands, levelling first (and a
+// flare near the ground, controller/rotor_allocation.h); a command is never
+// non-finite or outside [0, omega_max]. No LCM, no allocation, no throw
+// after construction.
 #pragma once
 
 #include <cstdint>

@@ -229,7 +229,9 @@ class EkfForceEstimator : public ForceEstimator {
     int64_t until_utime = 0;
     double offset_rad[kBirotorRotors] = {0, 0};            // e_i at the start of the settling
     double offset_variance_rad2[kBirotorRotors] = {0, 0};  // and its variance
-    double scale_variance[kBirotorRotors] = {0, 0};        // var(g_i) to learn from after it
+    // settling_offset_limit_sigma x its sigma then: VALID waits beyond it [rad]
+    double offset_limit_rad[kBirotorRotors] = {0, 0};
+    double scale_variance[kBirotorRotors] = {0, 0};  // var(g_i) to learn from after it
   } settling_;
 
   bool initialized_ = false;

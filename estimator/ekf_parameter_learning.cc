@@ -60,15 +60,16 @@ void EkfForceEstimator::StartSettling() {
     const int e = kGaugeOffsetIndex[i];
     settling_.offset_rad[i] = state_(e);
     settling_.offset_variance_rad2[i] = covariance_(e, e);
+    settling_.offset_limit_rad[i] = options_.settling_offset_limit_sigma * std::sqrt(covariance_(e, e));
     settling_.scale_variance[i] = learned_.std[kStrainScaleIndex[i]] * learned_.std[kStrainScaleIndex[i]];
   }
 }
 
 bool EkfForceEstimator::SettlingOffsetsMoved() const {
-  // |e_i - e_i(start)| > settling_offset_limit_sigma sigma_e_i(start) on any arm.
+  // |e_i - e_i(start)| > settling_offset_limit_sigma sigma_e_i(start) on
+  // any arm (the limit taken once, at the start: no root per sample).
   for (int i = 0; i < kBirotorRotors; ++i) {
-    const double moved_rad = std::abs(state_(kGaugeOffsetIndex[i]) - settling_.offset_rad[i]);
-    if (moved_rad > options_.settling_offset_limit_sigma * std::sqrt(settling_.offset_variance_rad2[i])) return true;
+    if (std::abs(state_(kGaugeOffsetIndex[i]) - settling_.offset_rad[i]) > settling_.offset_limit_rad[i]) return true;
   }
   return false;
 }
