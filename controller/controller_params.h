@@ -123,6 +123,22 @@ struct EfficiencyParams {
   double blend_after_s = 0.2;            // a fallback at least this long is blended out of [s]
   double blend_s = 1.5;                  // back from a fallback: blended in (time constant blend_s / 3) [s]
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
+  // FORCE not VALID by MODEL_MISMATCH alone: a rotor it flags is still
+  // flown at its change relative to the unflagged rotors (false: the
+  // nominal map until VALID).
+  bool mismatch_relative = true;
+  // ... once the fault flag has held this long with the relative change
+  // beyond mismatch_min_change throughout (a mismatch's own errors flag the
+  // rotors by turns, up to some 15 % apart) [s], [1].
+  double mismatch_confirm_s = 0.03;
+  double mismatch_min_change = 0.25;
+  // ... and within this of itself over that run; once flown, wandering this
+  // far from the confirmed change ends the rule until VALID again [1].
+  double mismatch_max_spread = 0.1;
+  // A confirmed change is flown with a time constant of this many times the
+  // time its fault was held (the nominal loop's integrators took it on
+  // meanwhile) [1].
+  double mismatch_handover_factor = 2.0;
   // The absolute rule (issue 36 item 5): a trusted mu0_i is flown itself,
   // e_i = a_i c_i with a_i towards mu0_i (EfficiencyConditioner).
   double absolute_tau_s = 0.2;                // time constant of a_i towards mu0_i (0: off) [s]

@@ -8,7 +8,11 @@
 namespace birotor {
 
 EfficiencyConditioner::EfficiencyConditioner(const EfficiencyParams& params, double weight_n, int rotor_count)
-    : params_(params), weight_n_(weight_n), rotor_count_(std::clamp(rotor_count, 1, kMaxArms)) {
+    : params_(params),
+      weight_n_(weight_n),
+      rotor_count_(std::clamp(rotor_count, 1, kMaxArms)),
+      airborne_(params, weight_n, std::clamp(rotor_count, 1, kMaxArms)),
+      mismatch_(params, weight_n, std::clamp(rotor_count, 1, kMaxArms)) {
   change_.fill(1.0);
   absolute_.fill(1.0);
   absolute_target_.fill(1.0);
@@ -19,31 +23,32 @@ EfficiencyConditioner::EfficiencyConditioner(const EfficiencyParams& params, dou
 
 void EfficiencyConditioner::OnForce(const RotorEfficiencyEstimate& estimate) {
   if (!estimate.valid || estimate.n_rotors != rotor_count_) return;
+  mismatch_.Reset();
   Take(estimate);
 }
 
 void EfficiencyConditioner::OnForce(const ForceEstimate& estimate) {
   if (rotor_count_ != kBirotorRotors) return;
+  mismatch_.Reset();
   Take(RotorEfficiencyReportOf(estimate));
 }
 
-bool EfficiencyConditioner::NoteAirborne(const RotorEfficiencyEstimate& e) {
-  if (airborne_) return true;
-  double total_n = e.force_n[0];  // sum_i f_i [N]
-  for (int i = 1; i < rotor_count_; ++i) total_n += e.force_n[Index(i)];
-  if (total_n < params_.airborne_force_fraction * weight_n_) {
-    above_since_us_ = -1;
-    return false;
-  }
-  if (above_since_us_ < 0) above_since_us_ = e.utime;
-  airborne_ = ElapsedSeconds(e.utime, above_since_us_) >= params_.airborne_s;
-  return false;  // the sample that makes it airborne is not followed yet
+void EfficiencyConditioner::OnMismatchedForce(const RotorEfficiencyEstimate& estimate) {
+  if (!params_.mismatch_relative || estimate.valid || !MismatchedOnly(estimate.status) ||
+      estimate.n_rotors != rotor_count_)
+    return;
+  mismatch_.OnMismatchedReport(estimate);
+}
+
+void EfficiencyConditioner::OnMismatchedForce(const ForceEstimate& estimate) {
+  if (rotor_count_ != kBirotorRotors) return;
+  OnMismatchedForce(RotorEfficiencyReportOf(estimate));
 }
 
 void EfficiencyConditioner::Take(const RotorEfficiencyEstimate& e) {
   const double dt_s = last_utime_ < 0 ? 0.0 : ElapsedSeconds(e.utime, last_utime_);
   last_utime_ = e.utime;
-  if (!NoteAirborne(e)) return;
+  if (!airborne_.Note(e)) return;
   const bool deficit = (e.status & kStatusThrustDeficit) != 0;
   const double baseline_gain = std::min(1.0, dt_s / params_.baseline_tau_s);
   // A rotor's mean share of the hover thrust [N]: the sigma of a rotor that
@@ -104,8 +109,11 @@ void EfficiencyConditioner::NoteAbsolute(const RotorEfficiencyEstimate& e) {
   }
 }
 
-void EfficiencyConditioner::Advance(double dt_s, bool usable) {
-  const bool follow = usable && airborne_ && has_baseline_;
+void EfficiencyConditioner::Advance(double dt_s, bool usable, bool change_usable) {
+  const bool follow = usable && airborne_.airborne() && has_baseline_;
+  // Not VALID by MODEL_MISMATCH alone: a change the rule confirmed is flown.
+  const bool relative = !follow && change_usable;
+  relative_since_usable_ = !follow && relative_since_usable_;
   // Back from a fallback longer than blend_after_s: the integrators have
   // absorbed what the estimate could not tell, so it is blended in over
   // blend_s instead of at once (a short dropout returns at once).
@@ -119,8 +127,12 @@ void EfficiencyConditioner::Advance(double dt_s, bool usable) {
   for (int i = 0; i < rotor_count_; ++i) {
     const size_t r = Index(i);
     const bool flagged = follow && flagged_[r];
-    const double goal = flagged ? target_[r] : 1.0;
-    const double tau_s = flagged ? flagged_tau_s : params_.decay_s;
+    const bool flown_relative = relative && mismatch_.flown(i);
+    relative_since_usable_ = relative_since_usable_ || flown_relative;
+    const double goal = flown_relative ? mismatch_.target(i) : flagged ? target_[r] : 1.0;
+    const double tau_s = flown_relative ? std::max(params_.fault_tau_s, mismatch_.handover_tau_s(i))
+                         : flagged      ? flagged_tau_s
+                                        : params_.decay_s;
     const double step = (goal - change_[r]) * std::min(1.0, dt_s / tau_s);
     change_[r] += std::clamp(step, -max_step, max_step);
     // The absolute factor: towards the trusted mu0_i slowly, else towards 1

@@ -33,6 +33,9 @@
 //    decays towards 1 with decay_s. absolute_tau_s 0: off (the issue 25 rule);
 //  - first-order towards the target with fault_tau_s, rate limited: a
 //    ringing estimate cannot drive the rotors;
+//  - FORCE not VALID by MODEL_MISMATCH alone but on time (OnMismatchedForce,
+//    Advance's change_usable): a rotor's loss MismatchChangeRule confirmed
+//    is flown relative to the unflagged rotors (no absolute factor);
 //  - when FORCE is unusable or the flag clears, the efficiency decays towards
 //    1 over decay_s (no jump to the nominal map); back from a fallback longer
 //    than blend_after_s it is blended in with a time constant of blend_s / 3
@@ -48,7 +51,9 @@
 #include <array>
 #include <cstdint>
 
+#include "controller/airborne_by_force.h"
 #include "controller/controller_params.h"
+#include "controller/mismatch_change_rule.h"
 #include "controller/rotor_efficiency_estimate.h"
 #include "model/vehicle_description.h"
 #include "samples/rotor_count.h"
@@ -68,8 +73,14 @@ class EfficiencyConditioner {
   void OnForce(const RotorEfficiencyEstimate& estimate);
   // One healthy birotor FORCE sample (the caller passes VALID ones only).
   void OnForce(const ForceEstimate& estimate);
-  // One control period of dt_s [s]; usable: the estimate may be flown on now.
-  void Advance(double dt_s, bool usable);
+  // One report whose VALID MODEL_MISMATCH alone withdrew (MismatchedOnly;
+  // others are ignored): MismatchChangeRule, with mismatch_relative.
+  void OnMismatchedForce(const RotorEfficiencyEstimate& estimate);
+  void OnMismatchedForce(const ForceEstimate& estimate);
+  // One control period of dt_s [s]; usable: the estimate may be flown on
+  // now; change_usable: not usable, but the mismatched reports are on time
+  // (a change MismatchChangeRule confirmed is flown).
+  void Advance(double dt_s, bool usable, bool change_usable = false);
 
   // e_i = a_i c_i, the efficiency the rotor map flies [1].
   double efficiency(int rotor) const { return absolute_[Index(rotor)] * change_[Index(rotor)]; }
@@ -77,7 +88,12 @@ class EfficiencyConditioner {
   double change(int rotor) const { return change_[Index(rotor)]; }
   // a_i: the trusted absolute thrust_scale mu0_i, followed slowly [1].
   double absolute(int rotor) const { return absolute_[Index(rotor)]; }
-  bool airborne() const { return airborne_; }
+  bool airborne() const { return airborne_.airborne(); }
+  const MismatchChangeRule& mismatch_rule() const { return mismatch_; }
+  // A loss relative to the others (MismatchChangeRule) has been flown since
+  // the estimate was last usable: the efficiencies are right against each
+  // other, their absolute level is not known.
+  bool relative_since_usable() const { return relative_since_usable_; }
   // The unflagged thrust_scale mu0_i the efficiency is relative to [1].
   double baseline(int rotor) const { return baseline_[Index(rotor)]; }
   int rotor_count() const { return rotor_count_; }
@@ -86,8 +102,6 @@ class EfficiencyConditioner {
   static size_t Index(int rotor) { return static_cast<size_t>(rotor); }
   // One report of the rotor count, taken (the caller has checked VALID).
   void Take(const RotorEfficiencyEstimate& estimate);
-  // The airborne test on one report; true once airborne.
-  bool NoteAirborne(const RotorEfficiencyEstimate& estimate);
   // The absolute rule's facts of one VALID sample (trusted_, absolute_target_).
   void NoteAbsolute(const RotorEfficiencyEstimate& estimate);
 
@@ -101,11 +115,11 @@ class EfficiencyConditioner {
   std::array<bool, kMaxArms> trusted_{};           // the newest sample's mu0_i may be flown absolutely
   std::array<double, kMaxArms> target_;
   std::array<bool, kMaxArms> flagged_{};  // the estimate says rotor i's change is real
-  // Airborne test on the reports' stamps.
-  bool airborne_ = false;
-  int64_t above_since_us_ = -1;
+  AirborneByForce airborne_;              // the airborne test on the VALID reports
+  MismatchChangeRule mismatch_;           // a rotor's change under a model mismatch
   int64_t last_utime_ = -1;
   bool has_baseline_ = false;
+  bool relative_since_usable_ = false;
   bool was_following_ = false;
   double blend_left_s_ = 0.0;  // time left of the blend after a fallback [s]
   double unusable_s_ = 0.0;    // length of the current fallback [s]

@@ -174,7 +174,7 @@ HoverFeasibility::Phase HoverFeasibility::Update(const FeasibilityInputs& in, do
     }
     return phase_;
   }
-  below_bound_s_ = HoverHeld(in, weakest) ? 0.0 : below_bound_s_ + dt_s;
+  below_bound_s_ = in.relative_efficiency || HoverHeld(in, weakest) ? 0.0 : below_bound_s_ + dt_s;
   const bool behind = in.altitude_lag_m > params_.sink_detect_altitude_m && in.sink_behind_m_s > 0.0;
   sink_armed_ = sink_armed_ || !behind;
   const bool sinking = sink_armed_ && in.allocation_limited && behind;

@@ -37,6 +37,11 @@ inline constexpr double kNaNReport = std::numeric_limits<double>::quiet_NaN();
 struct FeasibilityInputs {
   double efficiency[kMaxArms] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // efficiencies in use (force feedback) [1]
   bool following_force = false;                                  // they follow a usable FORCE this period
+  // They carry a loss flown relative to the other rotors under a model
+  // mismatch (MismatchChangeRule) since FORCE was last usable: right against
+  // the others, its absolute level unknown, so no latch is taken from them
+  // (the sink detection still is).
+  bool relative_efficiency = false;
   // FORCE's newest thrust_scale / baseline per rotor, low-passed, including
   // samples refused below the plausibility floor (evidence, not flown) [1].
   double reported_scale[kMaxArms] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};

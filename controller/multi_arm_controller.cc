@@ -157,7 +157,10 @@ bool MultiArmController::OnEfficiency(const RotorEfficiencyEstimate& estimate) {
     // 1.48 on it and 1.13 on the healthy rotor 2 within 15 ms, docs/
     // controller.md), and a healthy rotor's efficiency would keep such a
     // sample for decay_s once the flag it raised has cleared.
-    if ((estimate.status & kStatusMeasurementRejected) == 0) efficiency_.OnForce(estimate);  // VALID ones only
+    if ((estimate.status & kStatusMeasurementRejected) == 0) {
+      efficiency_.OnForce(estimate);            // VALID ones only
+      efficiency_.OnMismatchedForce(estimate);  // mismatched ones only
+    }
   } else if (counted && estimate.valid) {
     force_alive_utime_ = std::max(force_alive_utime_, estimate.utime);
   }
@@ -167,6 +170,16 @@ bool MultiArmController::OnEfficiency(const RotorEfficiencyEstimate& estimate) {
 
 bool MultiArmController::EstimateUsable(int64_t now_us) const {
   return config_.force_feedback && force_usable_ && efficiency_estimate_.valid &&
+         AgeS(force_alive_utime_, now_us) <= config_.supervision.force_timeout_s;
+}
+
+bool MultiArmController::ChangesUsable(int64_t now_us) const {
+  // Mode mpc plans on the efficiencies within every rotor's bounds: a loss
+  // right against the others on a vehicle heavier than its file (a payload)
+  // left it no hover it could plan, where the nominal map, tilted, held
+  // (docs/controller.md, "A rotor's loss under a model mismatch").
+  return config_.force_feedback && !config_.model_predictive && changes_usable_ &&
+         (efficiency_estimate_.valid || MismatchedOnly(efficiency_estimate_.status)) &&
          AgeS(force_alive_utime_, now_us) <= config_.supervision.force_timeout_s;
 }
 
@@ -235,6 +248,7 @@ bool MultiArmController::UpdateFeasibility(int64_t now_us, const ReferencePoint&
   const BodyState& body = observer_.state();
   FeasibilityInputs in;
   in.following_force = EstimateUsable(now_us);
+  in.relative_efficiency = efficiency_.relative_since_usable();
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
     in.efficiency[i] = efficiency[rotor];
@@ -366,7 +380,7 @@ MultiArmRotorCommand MultiArmController::Update(int64_t now_us, const ReferenceP
   }
   UpdateState(now_us, dt_s);
   // The efficiency follows the estimate while it is usable, decays towards 1 when not.
-  if (config_.force_feedback) efficiency_.Advance(dt_s, EstimateUsable(now_us));
+  if (config_.force_feedback) efficiency_.Advance(dt_s, EstimateUsable(now_us), ChangesUsable(now_us));
   RotorEfficiencies efficiency = EfficiencyInUse();
   const bool infeasible = UpdateFeasibility(now_us, reference, efficiency, dt_s);
   for (int i = 0; i < vehicle_.arm_count; ++i) {

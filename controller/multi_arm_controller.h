@@ -100,6 +100,9 @@ class MultiArmController {
   // estimate says. true (the default) leaves it to the estimate's own
   // checks (EstimateUsable), as the lock-step loop flies.
   void SetForceUsable(bool usable) { force_usable_ = usable; }
+  // The same verdict with a mismatched estimate counted healthy
+  // (MismatchedOnly): its flagged rotors' relative changes may be flown.
+  void SetChangesUsable(bool usable) { changes_usable_ = usable; }
 
   // One control period (1 / rate_hz()) at now_us on the reference: the
   // observer predicted with the mean IMU of the period (stale beyond
@@ -155,6 +158,9 @@ class MultiArmController {
   // SetForceUsable, VALID, FORCE alive within force_timeout_s (counted from
   // a newer refused VALID report, if any).
   bool EstimateUsable(int64_t now_us) const;
+  // ... or, not VALID by MODEL_MISMATCH alone (SetChangesUsable), only its
+  // flagged rotors' relative changes (EfficiencyParams::mismatch_relative).
+  bool ChangesUsable(int64_t now_us) const;
   // Force feedback only (nominal mode flies no efficiency: its infeasibility
   // is not known): HoverFeasibility on the efficiencies in use, the
   // low-passed reports (ForceFloorEvidence), the last command and the state
@@ -227,6 +233,7 @@ class MultiArmController {
   RotorEfficiencyEstimate efficiency_estimate_;  // the newest plausible one
   int64_t force_alive_utime_ = -1;               // its stamp, or a newer refused VALID report's [us]
   bool force_usable_ = true;                     // SetForceUsable
+  bool changes_usable_ = true;                   // SetChangesUsable
   EfficiencyConditioner efficiency_;             // e_i from the plausible estimates
   ForceFloorEvidence floor_evidence_;
   std::array<bool, kMaxArms> retired_{};  // BelowFloorEfficiency's retired rotors (this run below the floor)

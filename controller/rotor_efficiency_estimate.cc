@@ -21,4 +21,10 @@ RotorEfficiencyEstimate RotorEfficiencyReportOf(const ForceEstimate& estimate) {
   return report;
 }
 
+bool MismatchedOnly(int32_t status) {
+  const int32_t not_converged_or_fed =
+      kStatusConverging | kStatusInputStale | kStatusFilterReset | kStatusNoMotorInput | kStatusInputConflict;
+  return (status & kStatusValid) == 0 && (status & kStatusModelMismatch) != 0 && (status & not_converged_or_fed) == 0;
+}
+
 }  // namespace birotor

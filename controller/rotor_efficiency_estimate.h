@@ -31,4 +31,10 @@ struct RotorEfficiencyEstimate {
 // gives the force's, not the scale's).
 RotorEfficiencyEstimate RotorEfficiencyReportOf(const ForceEstimate& estimate);
 
+// A report whose VALID MODEL_MISMATCH alone withdrew: the model cannot
+// explain the data, but the filter is converged, fresh, from one publisher
+// and driven by the motors (none of CONVERGING, INPUT_STALE, FILTER_RESET,
+// NO_MOTOR_INPUT, INPUT_CONFLICT).
+bool MismatchedOnly(int32_t status);
+
 }  // namespace birotor

@@ -43,6 +43,7 @@ VehicleController::VehicleController(const ControllerConfig& config)
       pose_gate_(config.supervision),
       floor_evidence_(config.supervision, config.efficiency.infeasible_s, kBirotorRotors),
       force_recovery_(config.supervision),
+      change_recovery_(config.supervision),
       force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
       setpoint_(config.setpoint),
@@ -129,14 +130,18 @@ void VehicleController::OnForce(const ForceEstimate& reported, int64_t now_us) {
     // the run; a run of refused ones makes the next good one late, and a late
     // one starts a new run.
     force_recovery_.OnRefused(plausible);
+    change_recovery_.OnRefused(plausible);
     return;
   }
   // A late FORCE starts a new healthy run: recovery needs force_recovery_s
   // of on-time samples (ForceRecovery, shared with the N-rotor node).
   const bool healthy = (estimate.status & kStatusValid) != 0;
+  const bool mismatched = !healthy && MismatchedOnly(estimate.status);
   force_recovery_.OnAccepted(estimate.utime, previous_utime, healthy);
+  change_recovery_.OnAccepted(estimate.utime, previous_utime, healthy || mismatched);
   if (!healthy) {
     ++health_.force_unhealthy;
+    if (mismatched) efficiency_.OnMismatchedForce(estimate);
     return;
   }
   efficiency_.OnForce(estimate);
@@ -149,6 +154,10 @@ double VehicleController::AgeS(int64_t last_utime, int64_t now_us) const {
 
 bool VehicleController::ForceUsable(int64_t now_us) const {
   return !health_.conflict && force_recovery_.Usable(now_us, health_.force.last_utime);
+}
+
+bool VehicleController::ChangesUsable(int64_t now_us) const {
+  return !health_.conflict && change_recovery_.Usable(now_us, health_.force.last_utime);
 }
 
 void VehicleController::UpdateState(int64_t now_us, double dt_s, int32_t* status) {
@@ -267,6 +276,7 @@ bool VehicleController::UpdateFeasibility(double dt_s, bool use_force) {
   const BodyState& body = observer_.state();
   FeasibilityInputs in;
   in.following_force = use_force;
+  in.relative_efficiency = efficiency_.relative_since_usable();
   for (int i = 0; i < kBirotorRotors; ++i) {
     in.efficiency[i] = efficiency_.efficiency(i);
     in.reported_scale[i] = floor_evidence_.reported_scale(i);
@@ -348,7 +358,7 @@ MotorCommand VehicleController::Update(int64_t now_us) {
       if (!health_.fallback_active) ++health_.fallbacks;
     }
     health_.fallback_active = !use_force;
-    efficiency_.Advance(dt_s, use_force);
+    efficiency_.Advance(dt_s, use_force, ChangesUsable(now_us));
   }
 
   reference_ = setpoint_.At(now_us, observer_.state().position_m);

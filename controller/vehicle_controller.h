@@ -95,6 +95,9 @@ class VehicleController {
  private:
   // True when FORCE may be flown on at now_us (fresh, on time, VALID, no conflict).
   bool ForceUsable(int64_t now_us) const;
+  // FORCE VALID or not VALID by MODEL_MISMATCH alone, on time: its flagged
+  // rotors' relative changes may be flown (EfficiencyParams::mismatch_relative).
+  bool ChangesUsable(int64_t now_us) const;
   // Age of an input at now_us [s]; +inf before its first sample or when its
   // stamp is ahead of the clock (negative age: stale).
   double AgeS(int64_t last_utime, int64_t now_us) const;
@@ -130,7 +133,8 @@ class VehicleController {
   HoverFeasibility feasibility_;
   PoseGate pose_gate_;
   ForceFloorEvidence floor_evidence_;
-  ForceRecovery force_recovery_;  // FORCE's health and its healthy run (force_recovery_s)
+  ForceRecovery force_recovery_;   // FORCE's health and its healthy run (force_recovery_s)
+  ForceRecovery change_recovery_;  // ... counting a mismatched FORCE healthy too
   SeqStreamLock force_lock_, pose_lock_;
   ControllerHealth health_;
   SetpointInput setpoint_;

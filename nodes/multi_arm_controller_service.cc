@@ -57,7 +57,8 @@ MultiArmControllerService::MultiArmControllerService(const VehicleDescription& v
       pose_lock_(StreamLockParams(config.supervision, config.supervision.pose_stream_max_rate_hz)),
       force_lock_(StreamLockParams(config.supervision, config.supervision.force_stream_max_rate_hz)),
       pose_gate_(config.supervision),
-      force_recovery_(config.supervision) {
+      force_recovery_(config.supervision),
+      change_recovery_(config.supervision) {
   routes_.Add(channels_.pose, Channel::kPose);
   routes_.Add(channels_.imu, Channel::kImu);
   routes_.Add(channels_.force_n, Channel::kForce);
@@ -189,9 +190,11 @@ void MultiArmControllerService::OnForce(const force_estimate_n_t& m, int64_t now
   if (!AdmitToStream(s, message, plausible, now_us, &force_lock_, &health_.force) ||
       !AcceptNewest(m.utime, &health_.force)) {
     force_recovery_.OnRefused(plausible);
+    change_recovery_.OnRefused(plausible);
     return;
   }
   force_recovery_.OnAccepted(m.utime, previous_utime, estimate.valid);
+  change_recovery_.OnAccepted(m.utime, previous_utime, estimate.valid || MismatchedOnly(estimate.status));
   if (!estimate.valid) ++health_.force_unhealthy;
   controller_.OnEfficiency(estimate);
 }
@@ -243,6 +246,7 @@ void MultiArmControllerService::RunControlPeriod(int64_t host_us) {
   const int64_t mpc_fallbacks = controller_.mpc_fallbacks();
   const int64_t mpc_solves = controller_.mpc_solves();
   controller_.SetForceUsable(SuperviseForce(vehicle_us));
+  controller_.SetChangesUsable(!health_.conflict && change_recovery_.Usable(vehicle_us, health_.force.last_utime));
   MultiArmRotorCommand command = controller_.Update(vehicle_us, reference, pose_lost);
   const MultiArmDegradation& degradation = controller_.degradation();
   health_.descending = degradation.descending;

@@ -126,7 +126,8 @@ class MultiArmControllerService : public PacketHandler {
   int32_t mpc_max_iterations_ = 0;
   int64_t decode_errors_[kNumControllerInputs] = {0, 0, 0};
   int64_t setpoint_decode_errors_ = 0;
-  ForceRecovery force_recovery_;  // FORCE_N's health and its healthy run (force_recovery_s)
+  ForceRecovery force_recovery_;   // FORCE_N's health and its healthy run (force_recovery_s)
+  ForceRecovery change_recovery_;  // ... counting a mismatched FORCE_N healthy too (MismatchedOnly)
   int64_t last_period_vehicle_us_ = -1;
   MultiArmRotorCommand last_good_;  // the last finite command (the numerical guard)
   motor_command_n_t command_{};

@@ -6,8 +6,13 @@
 // --vehicle config/vehicles/trirotor.yaml --control --scenarios thrust_loss
 // --set vehicle.body_mass_kg=4.6 --set "faults.thrust_steps=[{time_s: 5.0,
 // rotor: 1, scale: S}]" (the scenario's seed): S = 0.5, the cascade 0.6471 m
-// on both maps (latched before: 2.8052 m); S = 0.45, mode mpc 0.1838 m on
-// both (latched before: 21.6444 m).
+// on the nominal map (latched before: 2.8052 m); S = 0.45, mode mpc 0.1838 m
+// (latched before: 21.6444 m). On the estimated efficiencies the cascade
+// flies rotor 1's loss relative to the others (MismatchChangeRule): no worse,
+// and a 40 % loss (S = 0.6) at least 2x better than the nominal map (issue
+// 36's target: 0.4074 -> 0.0669 m). Mode mpc on N arms does not take that
+// rule (flown, S = 0.45 latched from the sink and descended 18 m) and flies
+// the nominal map under the mismatch.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -55,6 +60,16 @@ TEST(MultiArmSinkLatchTest, APayloadAndAHoldableLossFlyAsTheNominalMap) {
     EXPECT_LT(flown_m, 1.5 * (mpc ? 0.1838 : 0.6471)) << (mpc ? "mpc" : "cascade");
     EXPECT_EQ(latched, 0) << (mpc ? "mpc" : "cascade");
   }
+}
+
+TEST(MultiArmSinkLatchTest, AFortyPercentLossOnAPayloadIsFlownTwiceAsWell) {
+  int64_t latched = 0;
+  const double nominal_m = AltitudeDeviationM(0.6, false, false, &latched);
+  const double flown_m = AltitudeDeviationM(0.6, false, true, &latched);
+  std::printf("trirotor +15 %%, rotor 1 at 0.6, cascade: altitude deviation %.4f m nominal, %.4f m estimated\n",
+              nominal_m, flown_m);
+  EXPECT_GE(nominal_m, 2.0 * flown_m);
+  EXPECT_LT(flown_m, 1.5 * 0.0669);
 }
 
 }  // namespace
