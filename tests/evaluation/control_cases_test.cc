@@ -34,6 +34,13 @@ void FlyBothModes(const Scenario& scenario, ClosedLoopRun (&runs)[2], ControlMet
   }
 }
 
+// The case of the list by name, flown in both modes (FlyBothModes).
+void FlyCaseBothModes(const std::string& name, ClosedLoopRun (&runs)[2], ControlMetrics (&m)[2]) {
+  const ControlCase* c = FindControlCase(name);
+  ASSERT_NE(c, nullptr) << name;
+  FlyBothModes(LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides), runs, m);
+}
+
 struct Measured {
   double rms_m, tilt_rad, altitude_m;  // force feedback, measured
   bool no_worse;                       // issue 25's target met on this seed
@@ -127,12 +134,9 @@ TEST(ControlCasesTest, ThrustCoefficientMinus15SagsLessWithForceFeedback) {
   // estimator's mu0 (0.85 within its accuracy) once trusted. Measured on seed
   // 1 (the scenario's): sag 0.1659 -> 0.1059 m, a 0.060 m gain; RMS 0.0786 ->
   // 0.0302 m; final efficiencies 0.841, 0.848 (5 seeds 0.837-0.856).
-  const ControlCase* c = FindControlCase("ct_-15");
-  ASSERT_NE(c, nullptr);
-  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
   ClosedLoopRun runs[2];
   ControlMetrics m[2];
-  FlyBothModes(scenario, runs, m);
+  FlyCaseBothModes("ct_-15", runs, m);
   EXPECT_GT(m[0].peak_altitude_deviation_m - m[1].peak_altitude_deviation_m, 0.060 / 1.5);
   EXPECT_LT(m[1].rms_position_error_m, m[0].rms_position_error_m / (0.0786 / 0.0302 / 1.5));
   for (int i = 0; i < 2; ++i) EXPECT_NEAR(runs[1].controller.efficiency[i], 0.85, 1.5 * 0.0093) << i;
@@ -219,17 +223,16 @@ TEST(ControlCasesTest, ASinkLatchIsUndoneWhenTheRotorsHoldTheWeight) {
 // rule force feedback is the nominal map. Measured on the scenario's seed
 // (1): 0.0852 m against 0.3727 m (4.4x; 5 seeds 4.4x median, 3.8x worst).
 TEST(ControlCasesTest, ALossOnAPayloadIsFlownRelativeToTheOtherRotor) {
-  const ControlCase* c = FindControlCase("payload_+15_loss_40");
-  ASSERT_NE(c, nullptr);
-  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
   ClosedLoopRun runs[2];
   ControlMetrics m[2];
-  FlyBothModes(scenario, runs, m);
+  FlyCaseBothModes("payload_+15_loss_40", runs, m);
   EXPECT_GE(m[0].peak_altitude_deviation_m, 2.0 * m[1].peak_altitude_deviation_m);
   EXPECT_LT(m[1].peak_altitude_deviation_m, 1.5 * 0.0852);
   EXPECT_LT(m[1].fault_peak_tilt_rad, m[0].fault_peak_tilt_rad);
   ControllerConfig off = LoadControllerConfig(ConfigFile("controller.yaml"));
   off.efficiency.mismatch_relative = false;
+  const ControlCase* c = FindControlCase("payload_+15_loss_40");
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), c->overrides);
   const ControlMetrics without = EvaluateControl(
       RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), off, ClosedLoopOptions()));
   EXPECT_DOUBLE_EQ(without.peak_altitude_deviation_m, m[0].peak_altitude_deviation_m);
