@@ -89,7 +89,6 @@ class EfficiencyConditioner {
   // a_i: the trusted absolute thrust_scale mu0_i, followed slowly [1].
   double absolute(int rotor) const { return absolute_[Index(rotor)]; }
   bool airborne() const { return airborne_.airborne(); }
-  const MismatchChangeRule& mismatch_rule() const { return mismatch_; }
   // A loss relative to the others (MismatchChangeRule) has been flown since
   // the estimate was last usable: the efficiencies are right against each
   // other, their absolute level is not known.
