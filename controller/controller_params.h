@@ -123,6 +123,11 @@ struct EfficiencyParams {
   double blend_after_s = 0.2;            // a fallback at least this long is blended out of [s]
   double blend_s = 1.5;                  // back from a fallback: blended in (time constant blend_s / 3) [s]
   double decay_s = 3.0;                  // unflagged or FORCE unusable: towards 1 with this time constant [s]
+  // The change factor c_i followed is at most this: no fault makes a rotor
+  // stronger, and a healthy rotor reads high only for moments beside
+  // another's loss; a motor lag the file lacks swings mu_i to 2 and more
+  // (EfficiencyConditioner) [1].
+  double max_change_gain = 1.2;
   // FORCE not VALID by MODEL_MISMATCH alone: a rotor it flags is still
   // flown at its change relative to the unflagged rotors (false: the
   // nominal map until VALID).

@@ -75,7 +75,7 @@ void EfficiencyConditioner::Take(const RotorEfficiencyEstimate& e) {
       baseline_[r] += baseline_gain * (e.thrust_scale[r] - baseline_[r]);
       baseline_relative_std_[r] += baseline_gain * (relative_std - baseline_relative_std_[r]);
     }
-    target_[r] = flagged_[r] ? e.thrust_scale[r] / baseline_[r] : 1.0;
+    target_[r] = flagged_[r] ? std::min(e.thrust_scale[r] / baseline_[r], params_.max_change_gain) : 1.0;
   }
   has_baseline_ = true;
   settled_s_ += std::min(dt_s, 0.1);  // a gap does not count

@@ -6,7 +6,8 @@
 //  - followed only while the change is real: FORCE flags rotor i's fault
 //    or the shared thrust deficit, or mu_i moved by more than
 //    change_threshold from its baseline (a step; a mismatch drifts), and
-//    only once the baseline has settled (baseline_tau_s airborne). Then e_i = mu_i / mu0_i, mu0_i the
+//    only once the baseline has settled (baseline_tau_s airborne). Then e_i = mu_i / mu0_i (at most
+//    max_change_gain: no fault makes a rotor stronger), mu0_i the
 //    low-passed mu_i of the unflagged flight before (baseline_tau_s), so a
 //    model mismatch (stiffness, gauge scale, mass, motor lag, noise), which
 //    moves mu slowly and unflagged, is left to the nominal loop's

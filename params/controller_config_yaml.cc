@@ -64,6 +64,7 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("blend_after_s", &O::blend_after_s, 0.0, 100.0),
       Real("blend_s", &O::blend_s, 0.0, 100.0),
       Real("decay_s", &O::decay_s, 1e-3, 1e3),
+      Real("max_change_gain", &O::max_change_gain, 1.0, 10.0),
       Flag("mismatch_relative", &O::mismatch_relative),
       Real("mismatch_confirm_s", &O::mismatch_confirm_s, 0.0, 10.0),
       Real("mismatch_min_change", &O::mismatch_min_change, 0.0, 1.0),

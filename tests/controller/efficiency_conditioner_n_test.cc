@@ -124,6 +124,27 @@ TEST(EfficiencyConditionerNTest, ARingingScaleIsNotPassedToTheRotors) {
   EXPECT_NEAR(feed.conditioner().efficiency(0), 0.6, 1e-3);
 }
 
+// A rotor that reads stronger than its baseline is followed up to
+// max_change_gain (1.2) and no further: a motor lag the file lacks swings a
+// healthy rotor's scale to 2 and more beside another's loss. A loss is not
+// bounded.
+TEST(EfficiencyConditionerNTest, AGainIsFollowedUpToMaxChangeGain) {
+  ThreeRotorFeed feed;
+  feed.Fly(kSettledS, {1.0, 1.0, 1.0});
+  feed.Fly(0.1, {2.3, 1.0, 0.5}, 1 << 2);
+  EXPECT_NEAR(feed.conditioner().efficiency(0), 1.2, 1e-3);
+  EXPECT_LE(feed.conditioner().efficiency(0), 1.2);
+  EXPECT_NEAR(feed.conditioner().efficiency(2), 0.5, 1e-3);
+  feed.Fly(0.1, {1.15, 1.0, 0.5}, 1 << 2);
+  EXPECT_NEAR(feed.conditioner().efficiency(0), 1.15, 1e-3);
+  EfficiencyParams unbounded;
+  unbounded.max_change_gain = 10.0;
+  ThreeRotorFeed free_feed(unbounded);
+  free_feed.Fly(kSettledS, {1.0, 1.0, 1.0});
+  free_feed.Fly(0.1, {2.3, 1.0, 0.5}, 1 << 2);
+  EXPECT_NEAR(free_feed.conditioner().efficiency(0), 2.3, 1e-3);
+}
+
 // Every rotor at 0.85 of its map (c_T -15 %, thinner air) from take-off:
 // no change (the baseline starts there), but mu0 = 0.85 is flown
 // absolutely: a towards 0.85 with absolute_tau_s (0.2 s), 0.8510 after 1 s

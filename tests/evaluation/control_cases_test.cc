@@ -9,6 +9,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "evaluation/closed_loop.h"
 #include "evaluation/control_metrics.h"
@@ -58,6 +59,9 @@ const std::map<std::string, Measured>& MeasuredFigures() {
       {"stiffness_-20", {0.0034, 0.0135, 0.0072, true}},
       {"mass_-15", {0.0559, 0.0125, 0.1141, true}},
       {"motor_tau_+70", {0.0035, 0.0345, 0.0054, true}},
+      // FORCE's thrust scales swing with the lag before MODEL_MISMATCH: the change flown is bounded
+      // (max_change_gain); nominal 0.2342 / 0.1901 / 0.4998 on this seed (4).
+      {"motor_tau_+70_loss_50", {0.1234, 0.1626, 0.2160, true}},
       // The estimator raises MODEL_MISMATCH (a gauge scale of 0.7), VALID is withdrawn and force feedback flies the
       // nominal map: equal to nominal on all 10 seeds (was RMS 0.1062 m, 31x nominal, before the mismatch detector).
       {"gauge_scale_0.7", {0.0034, 0.0134, 0.0072, true}},
@@ -236,6 +240,33 @@ TEST(ControlCasesTest, ALossOnAPayloadIsFlownRelativeToTheOtherRotor) {
   const ControlMetrics without = EvaluateControl(
       RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), off, ClosedLoopOptions()));
   EXPECT_DOUBLE_EQ(without.peak_altitude_deviation_m, m[0].peak_altitude_deviation_m);
+}
+
+// A motor lag 70 % longer than the file, and rotor 2 loses 50 %: FORCE stays
+// VALID for 0.5 s while rotor 1's thrust scale swings with the lag (0.8 ->
+// 2.3 -> 0.7); followed without a bound, force feedback flew rotor 1 at 1.68
+// and lost the vehicle on seed 1 (54 m down, 7 rad). The change followed is
+// at most max_change_gain (1.2). Measured on seed 1: altitude deviation
+// 0.2053 m against the nominal map's 0.4921 m, tilt 0.2362 against 0.2026
+// rad (the worst of seeds 1-5; their median 0.1626 against 0.1926).
+TEST(ControlCasesTest, AMotorLagTheFileLacksDoesNotLoseTheVehicleAfterALoss) {
+  const ControlCase* c = FindControlCase("motor_tau_+70_loss_50");
+  ASSERT_NE(c, nullptr);
+  std::vector<std::string> overrides = c->overrides;
+  overrides.push_back("scenario.seed=1");
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), overrides);
+  ClosedLoopRun runs[2];
+  ControlMetrics m[2];
+  FlyBothModes(scenario, runs, m);
+  EXPECT_FALSE(m[1].verdict.lost);
+  EXPECT_LT(m[1].peak_altitude_deviation_m, 0.5 * m[0].peak_altitude_deviation_m);
+  EXPECT_LT(m[1].fault_peak_tilt_rad, 1.5 * 0.2362);
+  ControllerConfig unbounded = LoadControllerConfig(ConfigFile("controller.yaml"));
+  unbounded.force_feedback = true;
+  unbounded.efficiency.max_change_gain = 10.0;
+  const ControlMetrics without = EvaluateControl(
+      RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")), unbounded, ClosedLoopOptions()));
+  EXPECT_TRUE(without.verdict.lost);
 }
 
 // The rule's guard: a motor lag 70 % longer than the file makes the
