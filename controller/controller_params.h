@@ -134,9 +134,10 @@ struct EfficiencyParams {
   bool mismatch_relative = true;
   // ... once the fault flag has held this long with the relative change
   // beyond mismatch_min_change throughout (a mismatch's own errors flag the
-  // rotors by turns, up to some 15 % apart) [s], [1].
+  // rotors by turns, up to some 15 % apart; a 25 % loss reads 20-30 % under
+  // a mismatch) [s], [1].
   double mismatch_confirm_s = 0.03;
-  double mismatch_min_change = 0.25;
+  double mismatch_min_change = 0.2;
   // ... and within this of itself over that run; once flown, wandering this
   // far from the confirmed change ends the rule until VALID again [1].
   double mismatch_max_spread = 0.1;
@@ -232,6 +233,12 @@ struct EfficiencyParams {
   // first-order motor lag (tau_m, model/plant.h) for the efficiency's share of the
   // command only (0: off) [s].
   double motor_lead_s = 0.035;
+  // Motor-lag lead on the cascade's thrust: omega_cmd = omega + lead_s
+  // d(omega)/dt for the change of the allocated thrust at this period's e
+  // (the inverse of the first-order motor lag, tau_m of the file; 0: off).
+  // Without it the cascade's attitude loop lost the vehicle in hover
+  // once the rotor lagged 1.9x the file's tau_m; with it, it holds to 4x [s].
+  double thrust_lead_s = 0.035;
 };
 
 // What the controller accepts on SETPOINT (controller/setpoint_input.h).

@@ -202,18 +202,8 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
     bool clip = false;
     omega_rad_s[i] = RotorSpeedForThrust(vehicle, allocation.force_n[i], efficiency[i], &clip);
     clipped = clipped || (clip && allocation.force_n[i] > 0.0);
-    // The rotor follows its command with the lag tau_m (model/plant.h); a
-    // falling e raises the speed omega = sqrt(f / (e c_T)) needs by
-    // d(omega)/dt = -omega / (2 e) de/dt, led by motor_lead_s so the weak
-    // rotor makes the lost thrust without the lag (thrust_loss: peak tilt
-    // 0.0279 -> 0.0152 rad, 10 seeds). Only a falling e is led: the
-    // estimate rings upwards right after a loss (mu 0.68 -> 1.09 -> 0.80 in
-    // 6 ms, flagged), and a lead on that would cut the weak rotor when it is
-    // needed most. e is filtered and rate limited, so the lead is bounded;
-    // clipped to [0, omega_max] below, not counted as saturation.
-    const double de_1_s = dt_s > 0.0 ? std::min(efficiency[i] - last_efficiency_[i], 0.0) / dt_s : 0.0;
-    last_efficiency_[i] = efficiency[i];
-    omega_rad_s[i] -= config_.efficiency.motor_lead_s * omega_rad_s[i] / (2.0 * efficiency[i]) * de_1_s;
+    // Clipped to [0, omega_max] below, not counted as saturation.
+    omega_rad_s[i] = LeadMotorLag(i, omega_rad_s[i], allocation.force_n[i], efficiency[i], dt_s);
   }
   if (!std::isfinite(omega_rad_s[0]) || !std::isfinite(omega_rad_s[1])) {
     // Cannot happen with finite inputs; if it does, repeat the last good
@@ -236,6 +226,34 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
     *status |= kCommandSaturated;
     ++health_.saturated;
   }
+}
+
+double VehicleController::LeadMotorLag(int rotor, double omega_rad_s, double force_n, double efficiency, double dt_s) {
+  const EfficiencyParams& e = config_.efficiency;
+  const double last_force_n = last_force_n_[rotor];
+  const double last_efficiency = last_efficiency_[rotor];
+  last_force_n_[rotor] = force_n;
+  last_efficiency_[rotor] = efficiency;
+  if (!(dt_s > 0.0)) return omega_rad_s;
+  // The thrust's change at this period's e: against the speed the last
+  // thrust needed at this e (the change of e is the falling-e term's). The
+  // attitude loop then sees a rotor without the lag (hover peak tilt 0.0100
+  // -> 0.0063 rad, 10 seeds; a hover held to tau_m 4x the file's, 1.9x
+  // without: docs/controller.md). The caller clips to [0, omega_max].
+  bool clip = false;
+  const double thrust_rate_rad_s2 =
+      std::isfinite(last_force_n) ? (omega_rad_s - RotorSpeedForThrust(model_, last_force_n, efficiency, &clip)) / dt_s
+                                  : 0.0;
+  // A falling e raises the speed omega = sqrt(f / (e c_T)) needs by
+  // d(omega)/dt = -omega / (2 e) de/dt; led, the weak rotor makes the lost
+  // thrust without the lag (thrust_loss: peak tilt 0.0279 -> 0.0152 rad,
+  // 10 seeds). Only a falling e is led: the estimate rings upwards right
+  // after a loss (mu 0.68 -> 1.09 -> 0.80 in 6 ms, flagged), and a lead on
+  // that would cut the weak rotor when it is needed most. e is filtered and
+  // rate limited, so this term is bounded.
+  const double de_1_s = std::min(efficiency - last_efficiency, 0.0) / dt_s;
+  const double efficiency_rate_rad_s2 = -omega_rad_s / (2.0 * efficiency) * de_1_s;
+  return omega_rad_s + e.thrust_lead_s * thrust_rate_rad_s2 + e.motor_lead_s * efficiency_rate_rad_s2;
 }
 
 double VehicleController::EfficiencyInUse(int rotor, bool use_efficiency) const {

@@ -2,7 +2,7 @@
 // mismatch (FORCE not VALID by MODEL_MISMATCH alone) a rotor the estimate
 // flags is flown at its change relative to the unflagged rotors, once
 // confirmed (fault held mismatch_confirm_s 0.03 s, a loss beyond
-// mismatch_min_change 0.25, the change and the common factor steady within
+// mismatch_min_change 0.2, the change and the common factor steady within
 // mismatch_max_spread 0.1), handed over with mismatch_handover_factor (2) x
 // the time the fault was held; and nothing when the flags disagree. Reports
 // at 1 kHz, the reference vehicle's weight (44.89 N), defaults of
@@ -103,10 +103,10 @@ TEST(MismatchChangeRuleTest, TheCommonFactorIsTheUnflaggedRotorsMean) {
 
 TEST(MismatchChangeRuleTest, WhatAMismatchDoesIsNotFlown) {
   {
-    // A change within mismatch_min_change (a loss of 20 % against the other).
+    // A change within mismatch_min_change (a loss of 15 % against the other).
     RuleFeed feed;
     feed.Fly(2.0, {1.0, 1.0, 0.0});
-    feed.Fly(0.5, {0.8, 1.0, 0.0}, 1);
+    feed.Fly(0.5, {0.85, 1.0, 0.0}, 1);
     EXPECT_FALSE(feed.rule().flown(0));
   }
   {
