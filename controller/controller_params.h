@@ -233,12 +233,16 @@ struct EfficiencyParams {
   // first-order motor lag (tau_m, model/plant.h) for the efficiency's share of the
   // command only (0: off) [s].
   double motor_lead_s = 0.035;
-  // Motor-lag lead on the cascade's thrust: omega_cmd = omega + lead_s
-  // d(omega)/dt for the change of the allocated thrust at this period's e
-  // (the inverse of the first-order motor lag, tau_m of the file; 0: off).
-  // Without it the cascade's attitude loop lost the vehicle in hover
-  // once the rotor lagged 1.9x the file's tau_m; with it, it holds to 4x [s].
+  // Motor-lag lead on the cascade's thrust: omega_cmd = omega (lead_s s + 1)
+  // / (filter_s s + 1) for the change of the allocated thrust at this
+  // period's e (the inverse of the first-order motor lag, tau_m of the file,
+  // down to a lag of filter_s; 0: off; filter_s >= lead_s: off). Without it
+  // the cascade's attitude loop lost the vehicle in hover once the rotor
+  // lagged 1.9x the file's tau_m; with it, it holds to 3x. The filter bounds
+  // the noise the lead amplifies to lead_s / filter_s (hover: the largest
+  // command change per period 4 rad/s without the lead, 81 unfiltered, 20) [s].
   double thrust_lead_s = 0.035;
+  double thrust_lead_filter_s = 0.005;
 };
 
 // What the controller accepts on SETPOINT (controller/setpoint_input.h).

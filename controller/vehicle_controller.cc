@@ -253,7 +253,13 @@ double VehicleController::LeadMotorLag(int rotor, double omega_rad_s, double for
   // rate limited, so this term is bounded.
   const double de_1_s = std::min(efficiency - last_efficiency, 0.0) / dt_s;
   const double efficiency_rate_rad_s2 = -omega_rad_s / (2.0 * efficiency) * de_1_s;
-  return omega_rad_s + e.thrust_lead_s * thrust_rate_rad_s2 + e.motor_lead_s * efficiency_rate_rad_s2;
+  // The thrust's lead through a first-order low-pass of thrust_lead_filter_s
+  // (tau_f): omega (tau s + 1) / (tau_f s + 1), the rotor seen by the law
+  // lags tau_f instead of tau, and noise is amplified at most tau / tau_f.
+  const double tau_f_s = e.thrust_lead_filter_s;
+  const double raw_lead_rad_s = std::max(e.thrust_lead_s - tau_f_s, 0.0) * thrust_rate_rad_s2;
+  thrust_lead_rad_s_[rotor] += dt_s / (tau_f_s + dt_s) * (raw_lead_rad_s - thrust_lead_rad_s_[rotor]);
+  return omega_rad_s + thrust_lead_rad_s_[rotor] + e.motor_lead_s * efficiency_rate_rad_s2;
 }
 
 double VehicleController::EfficiencyInUse(int rotor, bool use_efficiency) const {

@@ -116,8 +116,8 @@ class VehicleController {
   void Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s, MotorCommand* command,
                 int32_t* status);
   // The rotor follows its command with the lag tau_m (model/plant.h); the
-  // command leads it: omega_i + thrust_lead_s x d(omega_i)/dt for the
-  // thrust's change at this period's e_i, and while e_i falls
+  // command leads it: omega_i (thrust_lead_s s + 1) / (thrust_lead_filter_s
+  // s + 1) for the thrust's change at this period's e_i, and while e_i falls
   // + motor_lead_s x -omega_i / (2 e_i) de_i/dt (the speed a falling e
   // needs). Returns the led speed [rad/s] for the speed omega_rad_s the map
   // gives for force_n [N] at efficiency [1]; remembers both for the next period.
@@ -168,6 +168,7 @@ class VehicleController {
   double last_force_n_[kBirotorRotors] = {
       std::numeric_limits<double>::quiet_NaN(),
       std::numeric_limits<double>::quiet_NaN()};  // allocated thrust of the previous period (motor-lag lead) [N]
+  double thrust_lead_rad_s_[kBirotorRotors] = {0.0, 0.0};  // the filtered thrust lead (LeadMotorLag) [rad/s]
   int32_t seq_ = 0;
   std::unique_ptr<MpcController> mpc_;  // mode mpc only
 };

@@ -95,6 +95,7 @@ const OptionTable<EfficiencyParams>& EfficiencyKeys() {
       Real("flare_time_s", &O::flare_time_s, 0.0, 1.0),
       Real("motor_lead_s", &O::motor_lead_s, 0.0, 1.0),
       Real("thrust_lead_s", &O::thrust_lead_s, 0.0, 1.0),
+      Real("thrust_lead_filter_s", &O::thrust_lead_filter_s, 0.0, 1.0),
   };
   return keys;
 }

@@ -89,25 +89,31 @@ TEST(VehicleControllerTest, AFallingEfficiencyIsLedByTheMotorLagARisingOneIsNot)
 
 TEST(VehicleControllerTest, TheThrustIsLedByTheMotorLag) {
   // Climbing at 0.5 m/s the law's thrusts change every period; at a constant
-  // e each command leads the speed omega_k the map gives by thrust_lead_s x
-  // (omega_k - omega_{k-1}) / dt (the inverse of the lag tau_m), over the
-  // same law without the lead (whose commands are omega_k).
+  // e each command is omega_k (the map's speed, the same law's command
+  // without the lead) + L_k, the lead (thrust_lead_s - tau_f) d(omega)/dt
+  // through a first-order low-pass of tau_f = thrust_lead_filter_s:
+  // L_k = L_{k-1} + dt / (tau_f + dt) ((0.035 - 0.005) (omega_k -
+  // omega_{k-1}) / dt - L_{k-1}), i.e. omega (0.035 s + 1) / (0.005 s + 1).
   ControllerConfig config, no_lead_config;
   no_lead_config.efficiency.thrust_lead_s = 0.0;
   HoverFeed feed(config), no_lead(no_lead_config);
   feed.Settle();
   no_lead.Settle();
   feed.climb_m_s = no_lead.climb_m_s = 0.5;
+  const double dt_s = 1.0 / config.gains.rate_hz;
+  double lead_rad_s[kBirotorRotors] = {0.0, 0.0};  // settled: no change, no lead
   MotorCommand before = no_lead.Period();
-  feed.Period();
+  const MotorCommand first = feed.Period();
+  for (int i = 0; i < kBirotorRotors; ++i) lead_rad_s[i] = first.omega_cmd_rad_s[i] - before.omega_cmd_rad_s[i];
   double largest_lead_rad_s = 0.0;
   for (int k = 0; k < 50; ++k) {
     const MotorCommand led = feed.Period();
     const MotorCommand plain = no_lead.Period();
     for (int i = 0; i < kBirotorRotors; ++i) {
-      const double lead_rad_s = 0.035 * (plain.omega_cmd_rad_s[i] - before.omega_cmd_rad_s[i]) * config.gains.rate_hz;
-      EXPECT_NEAR(led.omega_cmd_rad_s[i], plain.omega_cmd_rad_s[i] + lead_rad_s, 1e-6) << k;
-      largest_lead_rad_s = std::max(largest_lead_rad_s, std::abs(lead_rad_s));
+      const double raw_rad_s = 0.030 * (plain.omega_cmd_rad_s[i] - before.omega_cmd_rad_s[i]) / dt_s;
+      lead_rad_s[i] += dt_s / (0.005 + dt_s) * (raw_rad_s - lead_rad_s[i]);
+      EXPECT_NEAR(led.omega_cmd_rad_s[i], plain.omega_cmd_rad_s[i] + lead_rad_s[i], 1e-6) << k;
+      largest_lead_rad_s = std::max(largest_lead_rad_s, std::abs(lead_rad_s[i]));
     }
     before = plain;
   }

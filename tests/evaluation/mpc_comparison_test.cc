@@ -111,7 +111,7 @@ TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
   }
 }
 
-TEST(MpcComparisonTest, FastestAcceptedTrajectoryKeepsTheCascadesAltitude) {
+TEST(MpcComparisonTest, FastestAcceptedTrajectoryKeepsItsAltitudeWithoutFallback) {
   // Issue 34: on the fastest trajectory SETPOINT accepts (case
   // aggressive_limit, 10 m/s^2 per axis) the tilt limit binds; the MPC keeps
   // its altitude with no fallback. Measured on this seed (3): MPC 0.1725 m
