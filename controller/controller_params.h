@@ -238,7 +238,7 @@ struct EfficiencyParams {
   // period's e (the inverse of the first-order motor lag, tau_m of the file,
   // down to a lag of filter_s; 0: off; filter_s >= lead_s: off). Without it
   // the cascade's attitude loop lost the vehicle in hover once the rotor
-  // lagged 1.9x the file's tau_m; with it, it holds to 3x. The filter bounds
+  // lagged 1.9x the file's tau_m; with it, it holds to 3.5x. The filter bounds
   // the noise the lead amplifies to lead_s / filter_s (hover: the largest
   // command change per period 4 rad/s without the lead, 81 unfiltered, 20) [s].
   double thrust_lead_s = 0.035;

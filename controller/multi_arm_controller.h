@@ -252,11 +252,11 @@ class MultiArmController {
   MultiArmDegradation degradation_;
   RotorEfficiencies flown_efficiency_ = NominalEfficiencies();
   std::array<double, kMaxArms> last_command_rad_s_{};          // the command returned last [rad/s]
+  bool last_saturated_ = false;                                // ... and whether its allocation was limited
   RotorEfficiencies last_efficiency_ = NominalEfficiencies();  // e_i of the period before (the lead) [1]
   std::array<double, kMaxArms> last_force_n_{};       // the cascade's thrusts of the period before (the lead) [N] ...
   bool has_last_force_ = false;                       // ... once there was one
   std::array<double, kMaxArms> thrust_lead_rad_s_{};  // the filtered thrust lead per rotor [rad/s]
-  bool last_saturated_ = false;                       // ... and whether its allocation was limited
   // Mode mpc (null otherwise).
   std::unique_ptr<MultiArmMpc> mpc_;
   std::vector<ReferencePoint> horizon_;  // mpc.horizon_steps samples, sized once

@@ -237,9 +237,10 @@ double VehicleController::LeadMotorLag(int rotor, double omega_rad_s, double for
   if (!(dt_s > 0.0)) return omega_rad_s;
   // The thrust's change at this period's e: against the speed the last
   // thrust needed at this e (the change of e is the falling-e term's). The
-  // attitude loop then sees a rotor without the lag (hover peak tilt 0.0100
-  // -> 0.0063 rad, 10 seeds; a hover held to tau_m 4x the file's, 1.9x
-  // without: docs/controller.md). The caller clips to [0, omega_max].
+  // attitude loop then sees a rotor lagging tau_f instead of tau_m (hover
+  // peak tilt 0.0100 -> 0.0066 rad, 10 seeds; a hover held to tau_m 3.5x
+  // the file's, 1.9x without: docs/controller.md). The caller clips to
+  // [0, omega_max].
   bool clip = false;
   const double thrust_rate_rad_s2 =
       std::isfinite(last_force_n) ? (omega_rad_s - RotorSpeedForThrust(model_, last_force_n, efficiency, &clip)) / dt_s

@@ -539,7 +539,7 @@ TEST(MultiArmClosedLoopTest, TrirotorCascadeHoldsMotorsThreeTimesSlowerThanItsFi
 // HoverSpace::NearestTiltedWithinShares).
 // Measured (birotor-eval --vehicle config/vehicles/quadrotor.yaml --control
 // --scenarios descent100_rotor3,descent100_rotor1): no descent, altitude
-// deviation 0.0066 / 0.0579 m (0.0169 / 0.0418 before the cascade's thrust
+// deviation 0.0066 / 0.0579 m (0.0169 / 0.0479 before the cascade's thrust
 // lead); the nominal map on the same seed hovers 0.38 m low (rotor 3) and
 // loses the vehicle (rotor 1: 37 m below). Level
 // hovers only (spare_hover_tilt_rad 0, the rule before tilted hovers): the
