@@ -312,33 +312,16 @@ double MultiArmController::BelowFloorEfficiency(int rotor, double efficiency, in
 }
 
 void MultiArmController::LeadMotorLag(const RotorEfficiencies& efficiency, double dt_s, MultiArmRotorCommand* command) {
-  const EfficiencyParams& e = config_.efficiency;
-  const double tau_f_s = e.thrust_lead_filter_s;
   for (int i = 0; i < vehicle_.arm_count; ++i) {
     const size_t rotor = static_cast<size_t>(i);
-    const double de_1_s = std::min(efficiency[rotor] - last_efficiency_[rotor], 0.0) / dt_s;
-    const double last_force_n = last_force_n_[rotor];
-    last_efficiency_[rotor] = efficiency[rotor];
-    last_force_n_[rotor] = command->force_n[rotor];
+    const RotorMap map{vehicle_.arms[rotor].thrust_coeff_n_s2_rad2, vehicle_.omega_max_rad_s};
     const double omega = command->omega_cmd_rad_s[rotor];
-    if (!std::isfinite(omega) || !(efficiency[rotor] > 0.0)) {
-      thrust_lead_rad_s_[rotor] = 0.0;  // not driven: nothing to lead
-      continue;
-    }
-    const double c_t = vehicle_.arms[rotor].thrust_coeff_n_s2_rad2;
-    const double thrust_rate_rad_s2 =
-        has_last_force_ && std::isfinite(last_force_n)
-            ? (omega - RotorSpeedForThrust(c_t, vehicle_.omega_max_rad_s, last_force_n, efficiency[rotor])) / dt_s
-            : 0.0;
-    // The birotor's leads (VehicleController::LeadMotorLag): the thrust's
-    // change at this period's e through (tau s + 1) / (tau_f s + 1), and a
-    // falling e's share, -omega / (2 e) de/dt, led by motor_lead_s.
-    const double raw_lead_rad_s = std::max(e.thrust_lead_s - tau_f_s, 0.0) * thrust_rate_rad_s2;
-    thrust_lead_rad_s_[rotor] += dt_s / (tau_f_s + dt_s) * (raw_lead_rad_s - thrust_lead_rad_s_[rotor]);
-    const double lead_rad_s = thrust_lead_rad_s_[rotor] - e.motor_lead_s * omega / (2.0 * efficiency[rotor]) * de_1_s;
-    command->omega_cmd_rad_s[rotor] = ClampCommand(vehicle_.omega_max_rad_s, omega + lead_rad_s);
+    const double led_rad_s =
+        motor_lead_[rotor].Lead(config_.efficiency, map, omega, command->force_n[rotor], efficiency[rotor], dt_s);
+    // A rotor not driven keeps its command as it is.
+    if (std::isfinite(omega) && efficiency[rotor] > 0.0)
+      command->omega_cmd_rad_s[rotor] = ClampCommand(vehicle_.omega_max_rad_s, led_rad_s);
   }
-  has_last_force_ = true;
 }
 
 void MultiArmController::SlewDescent(const RotorEfficiencies& efficiency, double dt_s,

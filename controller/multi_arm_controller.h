@@ -34,6 +34,7 @@
 #include "controller/efficiency_conditioner.h"
 #include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
+#include "controller/motor_lag_lead.h"
 #include "controller/multi_arm_flare.h"
 #include "controller/multi_arm_law.h"
 #include "controller/multi_arm_mpc.h"
@@ -186,11 +187,8 @@ class MultiArmController {
   // e > 0); efficiency otherwise. The other rotors then hold the hover,
   // level or tilted (docs/controller.md, "Spare rotors").
   double BelowFloorEfficiency(int rotor, double efficiency, int64_t now_us);
-  // The birotor's motor-lag leads (VehicleController::LeadMotorLag) on the
-  // cascade's speeds, within [0, omega_max]: the change of rotor i's thrust
-  // at this period's e_i through omega (thrust_lead_s s + 1) /
-  // (thrust_lead_filter_s s + 1), and while e_i falls + motor_lead_s x
-  // -omega_i / (2 e_i) de_i/dt (a rising e_i is not led).
+  // Each rotor's motor-lag lead (MotorLagLead, as the birotor's cascade) on
+  // the cascade's speeds, within [0, omega_max].
   void LeadMotorLag(const RotorEfficiencies& efficiency, double dt_s, MultiArmRotorCommand* command);
   // In a descent each speed within degraded_omega_rate_rad_s2 dt_s of the
   // last command sent (never 0 <-> omega_max in one period), the thrusts
@@ -251,12 +249,9 @@ class MultiArmController {
   HoverFeasibility feasibility_;
   MultiArmDegradation degradation_;
   RotorEfficiencies flown_efficiency_ = NominalEfficiencies();
-  std::array<double, kMaxArms> last_command_rad_s_{};          // the command returned last [rad/s]
-  bool last_saturated_ = false;                                // ... and whether its allocation was limited
-  RotorEfficiencies last_efficiency_ = NominalEfficiencies();  // e_i of the period before (the lead) [1]
-  std::array<double, kMaxArms> last_force_n_{};       // the cascade's thrusts of the period before (the lead) [N] ...
-  bool has_last_force_ = false;                       // ... once there was one
-  std::array<double, kMaxArms> thrust_lead_rad_s_{};  // the filtered thrust lead per rotor [rad/s]
+  std::array<double, kMaxArms> last_command_rad_s_{};  // the command returned last [rad/s]
+  bool last_saturated_ = false;                        // ... and whether its allocation was limited
+  std::array<MotorLagLead, kMaxArms> motor_lead_{};    // each rotor's lead of its motor lag
   // Mode mpc (null otherwise).
   std::unique_ptr<MultiArmMpc> mpc_;
   std::vector<ReferencePoint> horizon_;  // mpc.horizon_steps samples, sized once

@@ -203,7 +203,9 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
     omega_rad_s[i] = RotorSpeedForThrust(vehicle, allocation.force_n[i], efficiency[i], &clip);
     clipped = clipped || (clip && allocation.force_n[i] > 0.0);
     // Clipped to [0, omega_max] below, not counted as saturation.
-    omega_rad_s[i] = LeadMotorLag(i, omega_rad_s[i], allocation.force_n[i], efficiency[i], dt_s);
+    omega_rad_s[i] =
+        motor_lead_[i].Lead(config_.efficiency, RotorMap{model_.thrust_coeff_n_s2_rad2, model_.omega_max_rad_s},
+                            omega_rad_s[i], allocation.force_n[i], efficiency[i], dt_s);
   }
   if (!std::isfinite(omega_rad_s[0]) || !std::isfinite(omega_rad_s[1])) {
     // Cannot happen with finite inputs; if it does, repeat the last good
@@ -226,41 +228,6 @@ void VehicleController::Allocate(const RotorForces& forces, bool use_efficiency,
     *status |= kCommandSaturated;
     ++health_.saturated;
   }
-}
-
-double VehicleController::LeadMotorLag(int rotor, double omega_rad_s, double force_n, double efficiency, double dt_s) {
-  const EfficiencyParams& e = config_.efficiency;
-  const double last_force_n = last_force_n_[rotor];
-  const double last_efficiency = last_efficiency_[rotor];
-  last_force_n_[rotor] = force_n;
-  last_efficiency_[rotor] = efficiency;
-  if (!(dt_s > 0.0)) return omega_rad_s;
-  // The thrust's change at this period's e: against the speed the last
-  // thrust needed at this e (the change of e is the falling-e term's). The
-  // attitude loop then sees a rotor lagging tau_f instead of tau_m (hover
-  // peak tilt 0.0100 -> 0.0066 rad, 10 seeds; a hover held to tau_m 3.5x
-  // the file's, 1.9x without: docs/controller.md). The caller clips to
-  // [0, omega_max].
-  bool clip = false;
-  const double thrust_rate_rad_s2 =
-      std::isfinite(last_force_n) ? (omega_rad_s - RotorSpeedForThrust(model_, last_force_n, efficiency, &clip)) / dt_s
-                                  : 0.0;
-  // A falling e raises the speed omega = sqrt(f / (e c_T)) needs by
-  // d(omega)/dt = -omega / (2 e) de/dt; led, the weak rotor makes the lost
-  // thrust without the lag (thrust_loss: peak tilt 0.0279 -> 0.0152 rad,
-  // 10 seeds). Only a falling e is led: the estimate rings upwards right
-  // after a loss (mu 0.68 -> 1.09 -> 0.80 in 6 ms, flagged), and a lead on
-  // that would cut the weak rotor when it is needed most. e is filtered and
-  // rate limited, so this term is bounded.
-  const double de_1_s = std::min(efficiency - last_efficiency, 0.0) / dt_s;
-  const double efficiency_rate_rad_s2 = -omega_rad_s / (2.0 * efficiency) * de_1_s;
-  // The thrust's lead through a first-order low-pass of thrust_lead_filter_s
-  // (tau_f): omega (tau s + 1) / (tau_f s + 1), the rotor seen by the law
-  // lags tau_f instead of tau, and noise is amplified at most tau / tau_f.
-  const double tau_f_s = e.thrust_lead_filter_s;
-  const double raw_lead_rad_s = std::max(e.thrust_lead_s - tau_f_s, 0.0) * thrust_rate_rad_s2;
-  thrust_lead_rad_s_[rotor] += dt_s / (tau_f_s + dt_s) * (raw_lead_rad_s - thrust_lead_rad_s_[rotor]);
-  return omega_rad_s + thrust_lead_rad_s_[rotor] + e.motor_lead_s * efficiency_rate_rad_s2;
 }
 
 double VehicleController::EfficiencyInUse(int rotor, bool use_efficiency) const {

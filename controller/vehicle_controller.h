@@ -19,7 +19,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <memory>
 
 #include "controller/body_state_observer.h"
@@ -28,6 +27,7 @@
 #include "controller/force_floor_evidence.h"
 #include "controller/hover_feasibility.h"
 #include "controller/input_admission.h"
+#include "controller/motor_lag_lead.h"
 #include "controller/mpc_controller.h"
 #include "controller/pose_gate.h"
 #include "controller/position_attitude_law.h"
@@ -111,17 +111,10 @@ class VehicleController {
   void UpdateState(int64_t now_us, double dt_s, int32_t* status);
   // Rotor speeds from the law's forces: allocation within the rotors'
   // limits, the map with the efficiency in use, the motor-lag lead
-  // (LeadMotorLag) over the period dt_s.
+  // (MotorLagLead) over the period dt_s.
   // slewed: each speed within degraded_omega_rate_rad_s2 x dt_s of the last.
   void Allocate(const RotorForces& forces, bool use_efficiency, bool slewed, double dt_s, MotorCommand* command,
                 int32_t* status);
-  // The rotor follows its command with the lag tau_m (model/plant.h); the
-  // command leads it: omega_i (thrust_lead_s s + 1) / (thrust_lead_filter_s
-  // s + 1) for the thrust's change at this period's e_i, and while e_i falls
-  // + motor_lead_s x -omega_i / (2 e_i) de_i/dt (the speed a falling e
-  // needs). Returns the led speed [rad/s] for the speed omega_rad_s the map
-  // gives for force_n [N] at efficiency [1]; remembers both for the next period.
-  double LeadMotorLag(int rotor, double omega_rad_s, double force_n, double efficiency, double dt_s);
   // The efficiency rotor i is flown with: the conditioned one, or the latched
   // weak rotor's once hover is infeasible [1].
   double EfficiencyInUse(int rotor, bool use_efficiency) const;
@@ -164,11 +157,7 @@ class VehicleController {
   bool difference_limited_ = false;  // ... and its pitch torque (f2 - f1) was
   Eigen::Vector2d last_accel_des_m_s2_ = Eigen::Vector2d::Zero();
   double last_good_omega_rad_s_[kBirotorRotors] = {0.0, 0.0};
-  double last_efficiency_[kBirotorRotors] = {1.0, 1.0};  // efficiency of the previous period (motor-lag lead) [1]
-  double last_force_n_[kBirotorRotors] = {
-      std::numeric_limits<double>::quiet_NaN(),
-      std::numeric_limits<double>::quiet_NaN()};  // allocated thrust of the previous period (motor-lag lead) [N]
-  double thrust_lead_rad_s_[kBirotorRotors] = {0.0, 0.0};  // the filtered thrust lead (LeadMotorLag) [rad/s]
+  MotorLagLead motor_lead_[kBirotorRotors];  // each rotor's lead of its motor lag
   int32_t seq_ = 0;
   std::unique_ptr<MpcController> mpc_;  // mode mpc only
 };

@@ -513,8 +513,8 @@ TEST(MultiArmClosedLoopTest, QuadrotorHoldsAnEightyPercentLossOnItsSpareRotors) 
 
 // Every rotor of the trirotor 3x slower than its file (tau_m x 3 on every
 // arm, the scenario's vehicle ratio), hover, the cascade on the estimate:
-// the thrust lead (thrust_lead_s, thrust_lead_filter_s; MultiArmController::
-// LeadMotorLag) holds it; without the lead the cascade's attitude loop is
+// the thrust lead (thrust_lead_s, thrust_lead_filter_s;
+// controller/motor_lag_lead.h) holds it; without the lead the cascade's attitude loop is
 // lost from 2.5x (birotor-eval --vehicle config/vehicles/trirotor.yaml
 // --control --scenarios hover --set vehicle.motor_time_constant_s=T, 3
 // seeds: held to 4x, RMS 0.0031 m at 3x).
