@@ -45,7 +45,7 @@ MpcController::MpcController(const BirotorParams& vehicle, const MpcParams& para
   data_.reference = Eigen::MatrixXd::Zero(kMpcStateSize, params.horizon_steps);
   data_.feed_forward_rad_s = Eigen::MatrixXd::Zero(kMpcInputSize, params.horizon_steps);
   data_.last_command_rad_s = MultiArmMpcInputs::Zero(kMpcInputSize);
-  for (const MpcWeightSet set : {MpcWeightSet::kRecovery, MpcWeightSet::kDescent})
+  for (const MpcWeightSet set : {MpcWeightSet::kRecovery, MpcWeightSet::kDescent, MpcWeightSet::kSteady})
     qp_.SetTerminalWeight(set, TerminalWeight(model_, MpcQp::WeightParams(params, set)));
   omega_estimate_rad_s_.setConstant(RotorSpeedForThrust(vehicle, model_.hover_force_n(), 1.0));
 }
@@ -148,8 +148,11 @@ MpcPlan MpcController::Plan(const MpcPlanInput& input) {
   data_.feed_forward_rad_s.colwise() = feed_forward;  // held over the horizon
   data_.last_command_rad_s = input.last_command_rad_s;
   data_.command_period_s = input.period_s;
+  // A steady reference (a hover, a slow move): the pitch damped harder.
+  const bool steady = input.reference.acceleration_m_s2.norm() < params_.steady_max_accel_m_s2;
   data_.weights = input.level_descent      ? MpcWeightSet::kDescent
                   : recovery_left_s_ > 0.0 ? MpcWeightSet::kRecovery
+                  : steady                 ? MpcWeightSet::kSteady
                                            : MpcWeightSet::kTracking;
   FillReference(input, feed_forward);
   const MpcQpSolution solution = qp_.Solve(data_);

@@ -57,6 +57,8 @@ MpcParams MpcQp::WeightParams(const MpcParams& params, MpcWeightSet set) {
     out.velocity_weight_s2_m2 = params.descent_velocity_weight_s2_m2;
     out.tilt_weight_1_rad2 = params.descent_tilt_weight_1_rad2;
     out.pitch_rate_weight_s2_rad2 = params.descent_pitch_rate_weight_s2_rad2;
+  } else if (set == MpcWeightSet::kSteady) {
+    out.pitch_rate_weight_s2_rad2 = params.steady_pitch_rate_weight_s2_rad2;
   } else if (set == MpcWeightSet::kTiltedHover) {
     out.tilt_weight_1_rad2 = params.tilted_hover_tilt_weight_1_rad2;
     out.pitch_rate_weight_s2_rad2 = params.tilted_hover_pitch_rate_weight_s2_rad2;

@@ -71,9 +71,11 @@ StateMatrix MpcRiccatiTerminalWeight(const StateMatrix& a, const InputMatrix& b,
 
 // Which state weights a solve plans with (MpcParams: the tracking ones, the
 // recovery_* ones after a sudden pitch disturbance, the descent_* ones in
-// the hover-infeasible descent).
-enum class MpcWeightSet : int { kTracking = 0, kRecovery = 1, kDescent = 2, kTiltedHover = 3 };
-constexpr int kMpcWeightSets = 4;
+// the hover-infeasible descent, the tilted_hover_* ones of a fully-actuated
+// vehicle about a tilted hover, the birotor's steady_* pitch rate weight
+// while its reference does not accelerate).
+enum class MpcWeightSet : int { kTracking = 0, kRecovery = 1, kDescent = 2, kTiltedHover = 3, kSteady = 4 };
+constexpr int kMpcWeightSets = 5;
 
 // Everything one solve needs besides the options.
 struct MpcQpData {

@@ -117,6 +117,8 @@ void ReadMpcParams(YamlSection s, MpcParams* o) {
   s.Double("level_pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->level_pitch_rate_weight_s2_rad2);
   s.Double("tilted_hover_tilt_weight_1_rad2", 0.0, 1e8, &o->tilted_hover_tilt_weight_1_rad2);
   s.Double("tilted_hover_pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->tilted_hover_pitch_rate_weight_s2_rad2);
+  s.Double("steady_pitch_rate_weight_s2_rad2", 0.0, 1e8, &o->steady_pitch_rate_weight_s2_rad2);
+  s.Double("steady_max_accel_m_s2", 0.0, 100.0, &o->steady_max_accel_m_s2);
   s.Double("descent_position_weight_1_m2", 0.0, 1e8, &o->descent_position_weight_1_m2);
   s.Double("descent_velocity_weight_s2_m2", 0.0, 1e8, &o->descent_velocity_weight_s2_m2);
   s.Double("descent_tilt_weight_1_rad2", 0.0, 1e8, &o->descent_tilt_weight_1_rad2);

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -74,15 +75,54 @@ ControlFigures FlyCase(const std::string& name, bool model_predictive) {
                                                  controller, ClosedLoopOptions())));
 }
 
+// The peak tilt of case name on seed flown in mode mpc or by the nominal cascade [rad].
+double PeakTiltOnSeed(const std::string& name, bool model_predictive, int seed) {
+  const ControlCase* c = FindControlCase(name);
+  EXPECT_NE(c, nullptr) << name;
+  if (c == nullptr) return 0.0;
+  std::vector<std::string> overrides = c->overrides;
+  overrides.push_back("scenario.seed=" + std::to_string(seed));
+  ControllerConfig controller = ControllerForCase(*c, LoadControllerConfig(ConfigFile("controller.yaml")));
+  controller.force_feedback = controller.model_predictive = model_predictive;
+  const Scenario scenario = LoadScenario(ConfigFile("scenarios/" + c->scenario + ".yaml"), overrides);
+  return FiguresOf(EvaluateControl(RunClosedLoop(scenario, LoadEstimatorConfig(ConfigFile("estimator.yaml")),
+                                                 controller, ClosedLoopOptions())))
+      .tilt_rad;
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+TEST(MpcComparisonTest, AHoverAndASlowMoveTiltNoMoreThanTheCascade) {
+  // A controller is never worse than the nominal map it replaces: with the
+  // tracking pitch rate weight in the hover the MPC's peak tilt was 1.09x
+  // the led cascade's on a hover (0.0093 against 0.0085 rad) and 1.23x on
+  // gentle with the motor +70 % (0.0122 against 0.0099; medians of seeds
+  // 1-5); the steady weights (mpc_params.h) fly them at 0.84x and 0.94x
+  // (0.0071, 0.0093 rad; docs/mpc.md "Steady weights").
+  for (const std::string name : {"hover", "motor_tau_+70"}) {
+    std::vector<double> mpc, nominal;
+    for (int seed = 1; seed <= 5; ++seed) {
+      mpc.push_back(PeakTiltOnSeed(name, true, seed));
+      nominal.push_back(PeakTiltOnSeed(name, false, seed));
+    }
+    std::printf("%s peak tilt, median of seeds 1-5: mpc %.4f rad, nominal cascade %.4f rad\n", name.c_str(),
+                Median(mpc), Median(nominal));
+    EXPECT_LE(Median(mpc), 1.05 * Median(nominal)) << name;
+  }
+}
+
 TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
   // birotor-eval --control --mpc --seeds 10 (docs/mpc.md), the scenario's own
   // seed of each case: MPC with the efficiencies (RMS, fault tilt, altitude),
   // bounds 1.5x those figures; in the mismatch cases (issue 21) no worse than
-  // the nominal cascade by more than 5 % in RMS and altitude, 10 % in tilt
-  // (the cascade's thrust lead took its tilt on mass_-15 to 0.0090 rad, the
-  // MPC's 0.0096; before the lead 0.0125); in
-  // the loss cases the fault's peak tilt at most half the force-feedback
-  // cascade's on this seed (measured 0.46x and 0.45x).
+  // the nominal cascade by more than 5 % (its thrust lead took its hover tilt
+  // to 0.0090-0.0101 rad here; the MPC's steady pitch rate weight took the
+  // MPC's from 0.0093-0.0096 to 0.0082-0.0086); in the loss cases the fault's
+  // peak tilt at most half the force-feedback cascade's on this seed
+  // (measured 0.49x and 0.46x).
   struct Expected {
     std::string name;
     ControlFigures mpc;
@@ -90,13 +130,15 @@ TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
     double half_feedback_tilt_rad;  // 0: not a loss case
   };
   const std::vector<Expected> cases = {
-      {"stiffness_-20", {0.0008, 0.0093, 0.0018}, true, 0.0},      // seed 1; nominal 0.0033, 0.0098, 0.0068
-      {"mass_-15", {0.0014, 0.0096, 0.0045}, true, 0.0},           // seed 1; nominal 0.0558, 0.0090, 0.1138
-      {"loss_40", {0.0015, 0.0172, 0.0051}, false, 0.5 * 0.0370},  // seed 4; force feedback 0.0059, 0.0249, 0.0137
-      {"loss_60", {0.0090, 0.0362, 0.0360}, false, 0.5 * 0.0800},  // seed 4; force feedback 0.0166, 0.0541, 0.0531
+      {"stiffness_-20", {0.0007, 0.0086, 0.0010}, true, 0.0},      // seed 1; nominal 0.0033, 0.0101, 0.0068
+      {"mass_-15", {0.0009, 0.0082, 0.0028}, true, 0.0},           // seed 1; nominal 0.0559, 0.0093, 0.1138
+      {"loss_40", {0.0011, 0.0181, 0.0045}, false, 0.5 * 0.0370},  // seed 4; force feedback 0.0059, 0.0249, 0.0137
+      {"loss_60", {0.0064, 0.0369, 0.0361}, false, 0.5 * 0.0800},  // seed 4; force feedback 0.0166, 0.0541, 0.0531
   };
   for (const Expected& e : cases) {
     const ControlFigures mpc = FlyCase(e.name, true);
+    std::printf("%s mpc: rms %.4f m, tilt %.4f rad, altitude %.4f m\n", e.name.c_str(), mpc.rms_m, mpc.tilt_rad,
+                mpc.altitude_m);
     EXPECT_LT(mpc.rms_m, 1.5 * e.mpc.rms_m) << e.name;
     EXPECT_LT(mpc.tilt_rad, 1.5 * e.mpc.tilt_rad) << e.name;
     EXPECT_LT(mpc.altitude_m, 1.5 * e.mpc.altitude_m) << e.name;
@@ -105,8 +147,10 @@ TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
     }
     if (!e.no_worse_than_nominal) continue;
     const ControlFigures nominal = FlyCase(e.name, false);
+    std::printf("%s nominal: rms %.4f m, tilt %.4f rad, altitude %.4f m\n", e.name.c_str(), nominal.rms_m,
+                nominal.tilt_rad, nominal.altitude_m);
     EXPECT_LE(mpc.rms_m, 1.05 * nominal.rms_m) << e.name;
-    EXPECT_LE(mpc.tilt_rad, 1.10 * nominal.tilt_rad) << e.name;
+    EXPECT_LE(mpc.tilt_rad, 1.05 * nominal.tilt_rad) << e.name;
     EXPECT_LE(mpc.altitude_m, 1.05 * nominal.altitude_m) << e.name;
   }
 }
@@ -114,10 +158,11 @@ TEST(MpcComparisonTest, MismatchAndLossCasesInModeMpc) {
 TEST(MpcComparisonTest, FastestAcceptedTrajectoryKeepsItsAltitudeWithoutFallback) {
   // Issue 34: on the fastest trajectory SETPOINT accepts (case
   // aggressive_limit, 10 m/s^2 per axis) the tilt limit binds; the MPC keeps
-  // its altitude with no fallback. Measured on this seed (3): MPC 0.1725 m
-  // at |tilt| 0.512 rad; the cascade 0.0828 m (at 0.577 rad; 0.2282 m before
-  // its thrust lead, which the MPC then kept within 10 %); before
-  // altitude_weight_factor and DENSE-IPM: 0.478 m and 8 late solves.
+  // its altitude with no fallback. Measured on this seed (3): MPC 0.1726 m
+  // at |tilt| 0.512 rad; the cascade 0.1245 m, its tilt past its 0.5 rad
+  // target (0.2282 m before its thrust lead, which the MPC then kept within
+  // 10 %; docs/mpc.md "At the limits"); before altitude_weight_factor and
+  // DENSE-IPM: 0.478 m and 8 late solves.
   ControllerConfig controller;
   const ClosedLoopRun run =
       FlyInModeMpc(CaseScenario("aggressive_limit"), &controller, *FindControlCase("aggressive_limit"));

@@ -50,6 +50,8 @@ TEST(ControllerConfigYamlTest, ReferenceFileHoldsTheDefaults) {
   EXPECT_EQ(config.mpc.level_pitch_rate_weight_s2_rad2, defaults.mpc.level_pitch_rate_weight_s2_rad2);
   EXPECT_EQ(config.mpc.tilted_hover_tilt_weight_1_rad2, defaults.mpc.tilted_hover_tilt_weight_1_rad2);
   EXPECT_EQ(config.mpc.tilted_hover_pitch_rate_weight_s2_rad2, defaults.mpc.tilted_hover_pitch_rate_weight_s2_rad2);
+  EXPECT_EQ(config.mpc.steady_pitch_rate_weight_s2_rad2, defaults.mpc.steady_pitch_rate_weight_s2_rad2);
+  EXPECT_EQ(config.mpc.steady_max_accel_m_s2, defaults.mpc.steady_max_accel_m_s2);
   EXPECT_EQ(config.efficiency.spare_hover_tilt_rad, defaults.efficiency.spare_hover_tilt_rad);
 }
 
@@ -88,6 +90,10 @@ TEST(ControllerConfigYamlTest, ErrorsNameFileKeyAndRange) {
   e = ErrorOf("mpc: {tilted_hover_pitch_rate_weight_s2_rad2: -1}\n");
   EXPECT_NE(e.find("mpc.tilted_hover_pitch_rate_weight_s2_rad2"), std::string::npos) << e;
   EXPECT_NE(e.find("allowed: [0, 1e+08]"), std::string::npos) << e;
+  // ... and the birotor MPC's steady weight and threshold.
+  e = ErrorOf("mpc: {steady_max_accel_m_s2: -0.1}\n");
+  EXPECT_NE(e.find("mpc.steady_max_accel_m_s2"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: [0, 100]"), std::string::npos) << e;
   // The absolute efficiency stays inside the plausible scales and on its side of 1.
   e = ErrorOf("controller:\n  efficiency: {min_absolute_efficiency: 1.1}\n");
   EXPECT_NE(e.find("bad.yaml: key 'controller.efficiency.min_absolute_efficiency'"), std::string::npos) << e;
