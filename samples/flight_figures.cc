@@ -51,10 +51,11 @@ void FlightFigures::AddCommand(int32_t status) {
 }
 
 std::string FlightFigureValues::Line() const {
-  char line[160];
-  std::snprintf(line, sizeof(line), "RMS position error %.4f m, max tilt %.4f rad, fallbacks %lld, MPC fallbacks %lld",
-                rms_position_error_m, max_tilt_rad, static_cast<long long>(fallbacks),
-                static_cast<long long>(mpc_fallbacks));
+  char rms[48] = "- (no SETPOINT)";
+  if (std::isfinite(rms_position_error_m)) std::snprintf(rms, sizeof(rms), "%.4f m", rms_position_error_m);
+  char line[192];
+  std::snprintf(line, sizeof(line), "RMS position error %s, max tilt %.4f rad, fallbacks %lld, MPC fallbacks %lld", rms,
+                max_tilt_rad, static_cast<long long>(fallbacks), static_cast<long long>(mpc_fallbacks));
   return line;
 }
 

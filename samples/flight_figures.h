@@ -33,7 +33,9 @@ struct FlightFigureValues {
   int64_t mpc_fallbacks = 0;
 
   // "RMS position error 0.0123 m, max tilt 0.0456 rad, fallbacks 5, MPC
-  // fallbacks 0": the one line the three programs print.
+  // fallbacks 0": the one line the three programs print; "RMS position
+  // error - (no SETPOINT)" when nothing was scored (a flight holding its
+  // first POSE publishes no setpoint).
   std::string Line() const;
 };
 

@@ -4,6 +4,8 @@
 // EvaluateControl) and as birotor-review reads them back from the log
 // (FlightData::figures, ComputeHeadline): equal to the printed digits, and
 // equal to the controller's and the MPC's own counts.
+#include "samples/flight_figures.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -77,6 +79,26 @@ void ExpectOneSetOfFigures(const FlownFlight& f) {
   EXPECT_EQ(sim.fallbacks, f.run.controller.fallbacks);
   EXPECT_EQ(f.headline.fallbacks, f.run.controller.fallbacks);
   EXPECT_EQ(sim.mpc_fallbacks, f.run.mpc.Fallbacks());
+}
+
+TEST(FlightFiguresTest, AFlightWithoutSetpointsSaysSoInsteadOfNan) {
+  // A live flight that holds its first POSE (tools/demo.sh --controller ...)
+  // publishes no SETPOINT: nothing to score the position against.
+  FlightFigures figures;
+  TruthSample truth;
+  truth.utime = 1000;
+  truth.x_dot_m_s = 0.1;
+  truth.phi_rad = 0.02;
+  figures.AddTruth(truth);
+  const std::string line = figures.Result().Line();
+  EXPECT_EQ(line, "RMS position error - (no SETPOINT), max tilt 0.0200 rad, fallbacks 0, MPC fallbacks 0");
+  Setpoint setpoint;
+  setpoint.utime = 1000;
+  setpoint.x_m = 0.1;
+  figures.AddSetpoint(setpoint);
+  truth.utime = 2000;
+  figures.AddTruth(truth);
+  EXPECT_EQ(figures.Result().Line(), "RMS position error 0.1000 m, max tilt 0.0200 rad, fallbacks 0, MPC fallbacks 0");
 }
 
 TEST(FlightFiguresTest, ForceFeedbackFlightHasOneRmsTiltAndFallbackCount) {
